@@ -1,0 +1,96 @@
+"""Turns the validated YAML documents into the intermediate model and runs the semantic checks."""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+from typing import Any
+
+from . import checks
+from .errors import SpecError, SpecErrors
+from .loader import Document, load_document, schema_errors
+from .model import (EnumDef, EnumValue, Example, Field, Group, Item, Layout, Manual, Note, Origin,
+                    Sentence, Spec)
+
+
+def load_spec(spec_dir: Path) -> Spec:
+    """Load, schema-check, build and semantically check the spec; raise SpecErrors listing
+    every problem found."""
+    errors: list[SpecError] = []
+    root = spec_dir.parent
+    docs: dict[str, list[Document]] = {"manuals": [], "enums": [], "sentences": []}
+    files = [(spec_dir / "manuals.yaml", "manuals", "manuals.schema.json")]
+    files += [(p, "enums", "enum.schema.json") for p in sorted((spec_dir / "enums").glob("*.yaml"))]
+    files += [(p, "sentences", "sentence.schema.json") for p in sorted((spec_dir / "standard").glob("*.yaml"))]
+    digest = hashlib.sha256()
+    for path, kind, schema in files:
+        try:
+            doc = load_document(path)
+        except SpecError as err:
+            errors.append(err)
+            continue
+        doc.path = path.relative_to(root)
+        digest.update(str(doc.path).encode() + b"\0" + path.read_bytes())
+        found = schema_errors(doc, schema)
+        errors += found
+        if not found:
+            docs[kind].append(doc)
+    if errors:
+        raise SpecErrors(errors)
+
+    manuals = [Manual(**m) for m in docs["manuals"][0].data["manuals"]]
+    enums = [_enum(d) for d in docs["enums"]]
+    sentences = [_sentence(d) for d in docs["sentences"]]
+    spec = Spec(manuals, enums, sentences, sources=[str(d.path) for d in docs["enums"] + docs["sentences"]],
+                digest=digest.hexdigest()[:16])
+    by_file = {str(d.path): d for kind in docs.values() for d in kind}
+    errors = checks.run(spec, by_file)
+    if errors:
+        raise SpecErrors(errors)
+    return spec
+
+
+def _enum(doc: Document) -> EnumDef:
+    d = doc.data
+    values = [EnumValue(v["code"], v["id"], v["doc"], v.get("manuals", []), v.get("since"),
+                        Origin(str(doc.path), ("values", i)))
+              for i, v in enumerate(d["values"])]
+    return EnumDef(d["enum"], d["name"], d["doc"], values, Origin(str(doc.path), ()))
+
+
+def _field(data: dict[str, Any], origin: Origin) -> Field:
+    return Field(id=data["id"], name=data["name"], type=data["type"], doc=data["doc"],
+                 manuals=data.get("manuals", []), origin=origin, format=data.get("format"),
+                 unit=data.get("unit"), min=data.get("min"), max=data.get("max"),
+                 max_length=data.get("max_length"), enum_id=data.get("enum"), value=data.get("value"),
+                 since=data.get("since"), optional=bool(data.get("optional", False)))
+
+
+def _items(data: list[dict[str, Any]], file: str, where: tuple[str | int, ...]) -> list[Item]:
+    items: list[Item] = []
+    for i, item in enumerate(data):
+        origin = Origin(file, where + (i,))
+        if "group" in item:
+            fields = [_field(f, Origin(file, where + (i, "fields", j))) for j, f in enumerate(item["fields"])]
+            items.append(Group(item["group"], item["name"], item.get("doc", item["name"]), item["min"],
+                               item["max"], fields, origin))
+        else:
+            items.append(_field(item, origin))
+    return items
+
+
+def _sentence(doc: Document) -> Sentence:
+    d = doc.data
+    file = str(doc.path)
+    layout = Layout(None, d["name"], d["doc"], _items(d["fields"], file, ("fields",)), d["manuals"],
+                    Origin(file, ("fields",)))
+    variants = [Layout(v["id"], v["name"], v["doc"], _items(v["fields"], file, ("variants", i, "fields")),
+                       v.get("manuals", d["manuals"]), Origin(file, ("variants", i)))
+                for i, v in enumerate(d.get("variants", []))]
+    examples = [Example(e["manual"], e.get("where"), e["raw"], e.get("corrected"), e.get("reason"),
+                        e.get("unrecoverable"), e.get("variant"), e.get("expect"),
+                        Origin(file, ("examples", i)))
+                for i, e in enumerate(d.get("examples", []))]
+    notes = [Note(n["manuals"], n["text"]) for n in d.get("notes", [])]
+    return Sentence(d["sentence"], d["name"], d["doc"], d.get("talkers", []), d["manuals"], layout,
+                    variants, notes, examples, Origin(file, ()), file)

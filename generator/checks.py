@@ -1,0 +1,317 @@
+"""Semantic checks run after the schema: references resolve, layouts are parseable, and every
+example of the manuals decodes to the values the spec expects. Each rule has an id that appears
+in its messages; every message names the file, line and YAML path at fault."""
+
+from __future__ import annotations
+
+import json
+from decimal import Decimal, InvalidOperation
+from typing import Any
+
+from . import reference
+from .errors import SpecError
+from .loader import Document
+from .model import Example, Field, Group, Layout, Origin, Sentence, Spec
+
+VERSION_ORDER = ["2.0", "2.1", "2.2", "2.3", "3.0", "3.01", "4.00", "4.10", "4.11"]
+
+
+class _Reporter:
+    def __init__(self, docs: dict[str, Document]) -> None:
+        self.docs = docs
+        self.errors: list[SpecError] = []
+
+    def __call__(self, origin: Origin, rule: str, message: str, *more: str | int) -> None:
+        doc = self.docs[origin.file]
+        self.errors.append(doc.error(origin.path + tuple(more), message, rule))
+
+
+def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
+    report = _Reporter(docs)
+    _unique(spec, report)
+    manual_ids = {m.id for m in spec.manuals}
+    spec.enum_by_id = {e.id: e for e in spec.enums}
+    for enum in spec.enums:
+        _check_enum(enum, manual_ids, report)
+    for sentence in spec.sentences:
+        _check_manuals(sentence.manuals, manual_ids, sentence.origin, report, "manuals")
+        for layout in sentence.layouts:
+            _resolve_layout(spec, sentence, layout, manual_ids, report)
+    if report.errors:
+        return report.errors
+    for sentence in spec.sentences:
+        variant_ids = {v.id for v in sentence.variants}
+        for example in sentence.examples:
+            _check_example(spec, sentence, example, manual_ids, variant_ids, report)
+    return report.errors
+
+
+def _unique(spec: Spec, report: _Reporter) -> None:
+    seen: dict[str, Origin] = {}
+    for s in spec.sentences:
+        if s.id in seen:
+            report(s.origin, "S001", f"sentence {s.id} is also defined in {seen[s.id].file}", "sentence")
+        seen[s.id] = s.origin
+    enums: dict[str, Origin] = {}
+    for e in spec.enums:
+        if e.id in enums:
+            report(e.origin, "S001", f"enum {e.id} is also defined in {enums[e.id].file}", "enum")
+        enums[e.id] = e.origin
+        stem = e.origin.file.rsplit("/", 1)[-1].removesuffix(".yaml")
+        if stem != e.id:
+            report(e.origin, "S010", f"enum {e.id} must live in {e.id}.yaml", "enum")
+    for s in spec.sentences:
+        stem = s.origin.file.rsplit("/", 1)[-1].removesuffix(".yaml")
+        if stem != s.id.lower():
+            report(s.origin, "S010", f"sentence {s.id} must live in {s.id.lower()}.yaml", "sentence")
+
+
+def _check_manuals(manuals: list[str], known: set[str], origin: Origin, report: _Reporter, *where: str | int) -> None:
+    for i, m in enumerate(manuals):
+        if m not in known:
+            report(origin, "S003", f"unknown manual {m!r} (spec/manuals.yaml lists {', '.join(sorted(known))})",
+                   *where, i)
+
+
+def _check_enum(enum: Any, manual_ids: set[str], report: _Reporter) -> None:
+    codes: set[str] = set()
+    ids: set[str] = set()
+    for v in enum.values:
+        if v.code in codes:
+            report(v.origin, "S006", f"code {v.code!r} appears twice in enum {enum.id}", "code")
+        if v.id in ids:
+            report(v.origin, "S006", f"value id {v.id!r} appears twice in enum {enum.id}", "id")
+        if not v.code.isalnum():
+            report(v.origin, "S006", f"code {v.code!r} must be letters or digits", "code")
+        codes.add(v.code)
+        ids.add(v.id)
+        _check_manuals(v.manuals, manual_ids, v.origin, report, "manuals")
+
+
+def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: set[str],
+                    report: _Reporter) -> None:
+    ids: set[str] = set()
+    index = 1
+    seen_optional = False
+    seen_group = False
+    groups = 0
+    for item in layout.items:
+        if item.id in ids:
+            report(item.origin, "S001", f"{item.id!r} appears twice in {sentence.id}", "id")
+        ids.add(item.id)
+        if isinstance(item, Group):
+            groups += 1
+            seen_group = True
+            item.wire_index = index
+            if item.min > item.max:
+                report(item.origin, "S005", f"group {item.id}: min {item.min} exceeds max {item.max}", "min")
+            if seen_optional:
+                report(item.origin, "S004", f"group {item.id} follows an optional field", "group")
+            offset = 1
+            inner: set[str] = set()
+            for f in item.fields:
+                if f.id in inner:
+                    report(f.origin, "S001", f"{f.id!r} appears twice in group {item.id}", "id")
+                inner.add(f.id)
+                if f.is_optional:
+                    report(f.origin, "S004", "a field inside a group cannot be optional", "id")
+                f.group = item
+                f.wire_index = offset
+                offset += f.wire_width
+                _resolve_field(spec, f, manual_ids, report)
+            index += item.min * item.width
+            continue
+        item.wire_index = index
+        index += item.wire_width
+        if item.is_optional:
+            seen_optional = True
+        elif seen_optional:
+            report(item.origin, "S004", f"required field {item.id} follows an optional field; optional "
+                   "fields must be trailing", "id")
+        _resolve_field(spec, item, manual_ids, report)
+    if groups > 1:
+        report(layout.origin, "S005", f"{sentence.id} has {groups} groups; a layout takes at most one")
+    group = layout.group
+    if group is not None and not group.is_fixed and layout.optional_count >= group.width:
+        report(group.origin, "S005", f"group {group.id} repeats a variable number of times and is followed by "
+               f"{layout.optional_count} optional fields; fewer than its width ({group.width}) keep the "
+               "field count unambiguous", "group")
+    versions = [f.since for f in layout.optional_fields if f.since]
+    if versions != sorted(versions, key=VERSION_ORDER.index):
+        report(layout.origin, "S004", f"{sentence.id}: optional fields must be in the order of the NMEA "
+               "versions that added them")
+    del seen_group
+
+
+def _resolve_field(spec: Spec, f: Field, manual_ids: set[str], report: _Reporter) -> None:
+    _check_manuals(f.manuals, manual_ids, f.origin, report, "manuals")
+    if f.enum_id is not None:
+        f.enum = spec.enum_by_id.get(f.enum_id)
+        if f.enum is None:
+            report(f.origin, "S002", f"field {f.id} refers to unknown enum {f.enum_id!r}", "enum")
+        elif f.type == "enum_chars" and f.enum.max_len != 1:
+            report(f.origin, "S002", f"enum_chars field {f.id} needs an enum of one-character codes", "enum")
+    if f.min is not None and f.max is not None and f.min > f.max:
+        report(f.origin, "S007", f"field {f.id}: min {f.min} exceeds max {f.max}", "min")
+    if (f.min is not None or f.max is not None) and f.type not in ("integer", "decimal"):
+        report(f.origin, "S007", f"field {f.id}: min/max apply to integer and decimal fields only", "min")
+    if f.max_length is not None and f.type not in ("text", "enum_chars"):
+        report(f.origin, "S007", f"field {f.id}: max_length applies to text and enum_chars only", "max_length")
+
+
+def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids: set[str],
+                   variant_ids: set[str | None], report: _Reporter) -> None:
+    o = example.origin
+    if example.manual not in manual_ids:
+        report(o, "S003", f"unknown manual {example.manual!r}", "manual")
+    example.checksum_ok = _checksum_ok(example.raw)
+    if example.checksum_ok and example.corrected:
+        report(o, "S008", "raw's checksum is intact; a correction must not be given", "corrected")
+        return
+    if not example.checksum_ok and not (example.corrected or example.unrecoverable):
+        report(o, "S008", f"raw's checksum fails (computed {_computed(example.raw)}); give `corrected` and "
+               "`reason`, or `unrecoverable`", "raw")
+        return
+    if example.unrecoverable:
+        return
+    if example.corrected and not _checksum_ok(example.corrected):
+        report(o, "S008", f"the correction's checksum fails too (computed {_computed(example.corrected)})",
+               "corrected")
+        return
+    if example.variant is not None and example.variant not in variant_ids:
+        report(o, "S009", f"unknown variant {example.variant!r}", "variant")
+        return
+    line = example.line
+    assert line is not None
+    try:
+        decoded = reference.decode(spec, line)
+    except reference.rt.NmeaError as err:
+        report(o, "S008", f"does not decode: {err}", "corrected" if example.corrected else "raw")
+        return
+    if decoded.sentence is not sentence:
+        report(o, "S008", f"decodes as {decoded.sentence.id if decoded.sentence else 'an unknown sentence'}, "
+               f"not {sentence.id}", "raw")
+        return
+    if decoded.layout is None or decoded.layout.id != example.variant:
+        found = decoded.layout.id if decoded.layout else None
+        report(o, "S009", f"decodes with layout {found or 'main'}, the example says "
+               f"{example.variant or 'main'}", "variant")
+        return
+    expected = expect_json(decoded.layout, example.expect or {}, report, o)
+    if expected is None:
+        return
+    got = json.loads(reference.fields_json(decoded, values=True))
+    want = json.loads(expected)
+    for key in got:
+        if key not in want:
+            report(o, "S008", f"field {key} is on the wire but not in expect (decoded: {json.dumps(got[key])})",
+                   "expect")
+    for key in want:
+        if key not in got:
+            report(o, "S008", f"expect names {key}, which is not on the wire", "expect", key)
+        elif got[key] != want[key]:
+            report(o, "S008", f"{key} decodes to {json.dumps(got[key])}, expect says {json.dumps(want[key])}",
+                   "expect", key)
+
+
+def _checksum_ok(line: str) -> bool:
+    star = line.rfind("*")
+    if not line or line[0] not in "$!" or star < 0 or len(line) != star + 3:
+        return False
+    try:
+        return int(line[star + 1:], 16) == reference.rt.checksum(line[1:star])
+    except ValueError:
+        return False
+
+
+def _computed(line: str) -> str:
+    star = line.find("*")
+    body = line[1:star] if star >= 0 else line[1:]
+    return f"{reference.rt.checksum(body):02X}"
+
+
+def expect_json(layout: Layout, expect: dict[str, Any], report: _Reporter | None = None,
+                origin: Origin | None = None) -> str | None:
+    """An example's `expect` in the decoded JSON form (`decode --values`), fields in wire order."""
+    items = {i.id: i for i in layout.items}
+    parts = []
+    ok = True
+    for item in layout.items:
+        if item.id not in expect:
+            continue
+        try:
+            parts.append(f'"{item.id}":{_expect_item(item, expect[item.id])}')
+        except (TypeError, ValueError, KeyError, InvalidOperation) as exc:
+            ok = False
+            if report and origin:
+                report(origin, "S008", f"expect value of {item.id} does not fit its type {_kind(item)}: {exc}",
+                       "expect", item.id)
+    for key in expect:
+        if key not in items and report and origin:
+            ok = False
+            report(origin, "S008", f"expect names {key}, which the layout does not have", "expect", key)
+    return "{" + ",".join(parts) + "}" if ok else None
+
+
+def _kind(item: Field | Group) -> str:
+    return "group" if isinstance(item, Group) else item.type
+
+
+def _expect_item(item: Field | Group, value: Any) -> str:
+    if isinstance(item, Group):
+        if not isinstance(value, list):
+            raise TypeError("a group expects a list")
+        if item.single:
+            return "[" + ",".join(_expect_value(item.fields[0], v) for v in value) + "]"
+        out = []
+        for entry in value:
+            if set(entry) != {f.id for f in item.fields}:
+                raise KeyError(f"entry keys {sorted(entry)} differ from the group's fields")
+            out.append("{" + ",".join(f'"{f.id}":{_expect_value(f, entry[f.id])}' for f in item.fields) + "}")
+        return "[" + ",".join(out) + "]"
+    return _expect_value(item, value)
+
+
+def _number_json(value: Any) -> str:
+    if isinstance(value, bool):
+        raise TypeError("a number, not a boolean")
+    number = Decimal(str(value))
+    sign, digits, exponent = number.as_tuple()
+    assert isinstance(exponent, int)
+    magnitude = int("".join(map(str, digits)) or "0")
+    if exponent > 0:
+        magnitude *= 10 ** exponent
+        exponent = 0
+    return reference.rt.decimal_json(magnitude, -exponent, bool(sign))
+
+
+def _expect_value(f: Field, value: Any) -> str:
+    rt = reference.rt
+    if value is None:
+        return "null"
+    t = f.type
+    if t in ("integer", "decimal"):
+        return _number_json(value)
+    if t == "hex":
+        if not isinstance(value, int):
+            raise TypeError("hex expects an integer")
+        return str(value)
+    if t in ("time", "date", "char", "literal", "text"):
+        if not isinstance(value, str):
+            raise TypeError(f"{t} expects a string")
+        return rt.json_str(value)
+    if t in ("latitude", "longitude"):
+        if set(value) != {"deg", "min", "hemi"}:
+            raise KeyError("expects {deg, min, hemi}")
+        return f'{{"deg":{int(value["deg"])},"min":{_number_json(value["min"])},"hemi":{rt.json_str(str(value["hemi"]))}}}'
+    assert f.enum is not None
+    if t == "enum":
+        if f.enum.by_id(str(value)) is None:
+            raise ValueError(f"{value!r} is not a value id of enum {f.enum.id}")
+        return rt.json_str(str(value))
+    if not isinstance(value, list):
+        raise TypeError("enum_chars expects a list of value ids")
+    for v in value:
+        if f.enum.by_id(str(v)) is None:
+            raise ValueError(f"{v!r} is not a value id of enum {f.enum.id}")
+    return "[" + ",".join(rt.json_str(str(v)) for v in value) + "]"

@@ -1,0 +1,138 @@
+"""Python emitter: a stdlib-only package `nmeaspec` with a dataclass, parser and serializer per
+sentence layout, over the hand-written runtime."""
+
+from __future__ import annotations
+
+import json
+
+import jinja2
+
+from . import emit_vectors
+from .emit import TEMPLATES, header
+from .model import Field, Group, Layout, Sentence, Spec, fmt_num
+
+PACKAGE = "nmeaspec"
+
+
+def py_type(f: Field) -> str:
+    base = {
+        "integer": "rt.Number", "decimal": "rt.Number", "hex": "rt.Hex", "time": "rt.Time",
+        "date": "rt.Date", "latitude": "rt.Coordinate", "longitude": "rt.Coordinate", "char": "str",
+        "literal": "str", "text": "str",
+    }.get(f.type)
+    if base is None:
+        assert f.enum is not None
+        base = f"{f.enum.camel} | str" if f.type == "enum" else f"list[{f.enum.camel} | str]"
+    return base + " | None" + (" | rt._Absent" if f.is_optional else "")
+
+
+def py_parse(f: Field, pos: str, name: str) -> str:
+    """The expression that reads field `f` from `fields[pos]` (and `fields[pos + 1]` for lat/lon)."""
+    text = f"fields[{pos}]"
+    index = _plus(pos, 1)
+    common = f'{text}, address, {index}, {name}, {json.dumps(f.expected)}'
+    t = f.type
+    if t in ("integer", "decimal"):
+        bounds = ""
+        if f.min is not None or f.max is not None:
+            bounds = f", {_decimal(f.min)}, {_decimal(f.max)}"
+        return f"rt.{t}_field({common}{bounds})"
+    if t in ("hex", "time", "date", "char"):
+        return f"rt.{t}_field({common})"
+    if t in ("latitude", "longitude"):
+        return (f"rt.coordinate_field({text}, fields[{index}], address, {index}, {name}, "
+                f"{json.dumps(f.expected)}, {json.dumps(f.hemisphere_expected)}, {json.dumps(f.hemispheres)})")
+    if t == "literal":
+        return f"rt.literal_field({common}, {json.dumps(f.value)})"
+    if t == "text":
+        return f"rt.text_field({common}, {f.max_length})"
+    assert f.enum is not None
+    e = f.enum
+    if t == "enum":
+        return f'rt.enum_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {e.min_len}, {e.max_len})'
+    return f'rt.enum_chars_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {f.max_length})'
+
+
+def _plus(pos: str, n: int) -> str:
+    """`pos + n` as Python source, folded when `pos` is a constant."""
+    if pos.isdigit():
+        return str(int(pos) + n)
+    base, _, offset = pos.partition(" + ")
+    return f"{base} + {int(offset or 0) + n}"
+
+
+def _decimal(value: float | None) -> str:
+    return "None" if value is None else f'Decimal("{fmt_num(value)}")'
+
+
+def py_texts(f: Field, value: str) -> str:
+    """The expression that yields the wire text(s) of a field value, as a list fragment."""
+    if f.type in ("latitude", "longitude"):
+        return f"*rt.coordinate_texts({value})"
+    return f"rt.text_of({value})"
+
+
+def entry_class(sentence: Sentence, layout: Layout, group: Group) -> str:
+    """The class of one entry of a repeated group: GsvSatellite for GSV's `satellites`."""
+    word = group.camel
+    return sentence.layout_camel(layout) + (word[:-1] if word.endswith("s") else word + "Entry")
+
+
+def layout_view(sentence: Sentence, layout: Layout) -> dict:
+    """Everything the template prints for one layout, with wire positions worked out: constant
+    before the repeated group, relative to `pos` (the position right after it) behind it."""
+    items: list[dict] = []
+    at = 0
+    after_group = False
+    optional_seen = 0
+    for item in layout.items:
+        if isinstance(item, Group):
+            items.append({"group": item, "start": at, "entry": entry_class(sentence, layout, item)})
+            after_group, at = True, 0
+            continue
+        pos = (f"pos + {at}" if at else "pos") if after_group else str(at)
+        view = {"field": item, "pos": pos, "optional_index": None}
+        if item.is_optional:
+            optional_seen += item.wire_width
+            view["optional_index"] = optional_seen
+        items.append(view)
+        at += item.wire_width
+    return {"layout": layout, "class": sentence.layout_camel(layout), "items": items, "group": layout.group}
+
+
+def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
+    env.globals.update(py_type=py_type, py_parse=py_parse, py_texts=py_texts, json=json)
+    base = f"python/{PACKAGE}"
+    files: dict[str, str] = {}
+    runtime = (TEMPLATES / "python" / "runtime.py").read_text(encoding="utf-8")
+    files[f"{base}/runtime.py"] = header(spec, "#", ["templates/python/runtime.py"]) + runtime
+    for module in ("api", "cli"):
+        text = (TEMPLATES / "python" / f"{module}.py").read_text(encoding="utf-8")
+        files[f"{base}/{module}.py"] = header(spec, "#", [f"templates/python/{module}.py"]) + text
+    files[f"{base}/__main__.py"] = header(spec, "#", ["templates/python/cli.py"]) + \
+        "from .cli import main\n\nraise SystemExit(main())\n"
+    files[f"{base}/py.typed"] = ""
+    files[f"{base}/enums.py"] = env.get_template("python/enums.py.j2").render(
+        header=header(spec, "#", [e.origin.file for e in spec.enums]), enums=spec.enums)
+    for sentence in spec.sentences:
+        files[f"{base}/sentences/{sentence.id.lower()}.py"] = env.get_template("python/sentence.py.j2").render(
+            header=header(spec, "#", [sentence.source]), sentence=sentence,
+            layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
+            enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}))
+    files[f"{base}/sentences/__init__.py"] = env.get_template("python/sentences_init.py.j2").render(
+        header=header(spec, "#"), sentences=spec.sentences)
+    files[f"{base}/__init__.py"] = env.get_template("python/init.py.j2").render(
+        header=header(spec, "#"), sentences=spec.sentences, enums=spec.enums)
+    files["python/pyproject.toml"] = env.get_template("python/pyproject.toml.j2").render(
+        header=header(spec, "#"), package=PACKAGE)
+    files["python/tests/test_examples.py"] = env.get_template("python/test_examples.py.j2").render(
+        header=header(spec, "#"), vectors=[v for v in emit_vectors.example_vectors(spec)], package=PACKAGE,
+        json=json)
+    return files
+
+
+def _all_fields(layout: Layout) -> list[Field]:
+    out: list[Field] = []
+    for item in layout.items:
+        out += item.fields if isinstance(item, Group) else [item]
+    return out

@@ -1,0 +1,91 @@
+"""Reads the spec's YAML files, keeping the line of every node, and checks them against the schema."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import jsonschema
+import yaml
+
+from .errors import SpecError
+
+SCHEMA_DIR = Path(__file__).resolve().parent.parent / "spec" / "schema"
+
+Path_ = tuple[str | int, ...]
+
+
+@dataclass
+class Document:
+    """One YAML file: its data as plain Python values, and the line of each YAML path."""
+
+    path: Path
+    data: Any
+    lines: dict[Path_, int] = field(default_factory=dict)
+
+    def line(self, where: Path_) -> int:
+        """The line of `where`, or of its nearest ancestor that has one."""
+        while where not in self.lines and where:
+            where = where[:-1]
+        return self.lines.get(where, 1)
+
+    def error(self, where: Path_, message: str, rule: str) -> SpecError:
+        return SpecError(str(self.path), self.line(where), yaml_path(where), message, rule)
+
+
+def yaml_path(where: Path_) -> str:
+    out = ""
+    for part in where:
+        out += f"[{part}]" if isinstance(part, int) else (f".{part}" if out else part)
+    return out or "(top)"
+
+
+def _build(node: yaml.Node, where: Path_, lines: dict[Path_, int]) -> Any:
+    lines[where] = node.start_mark.line + 1
+    if isinstance(node, yaml.MappingNode):
+        out: dict[str, Any] = {}
+        for key_node, value_node in node.value:
+            key = str(key_node.value)
+            out[key] = _build(value_node, where + (key,), lines)
+        return out
+    if isinstance(node, yaml.SequenceNode):
+        return [_build(item, where + (i,), lines) for i, item in enumerate(node.value)]
+    # Scalars: let PyYAML's safe constructor decide the type, one scalar at a time.
+    return yaml.safe_load(yaml.serialize(node)) if node.tag != "tag:yaml.org,2002:str" else node.value
+
+
+def load_document(path: Path) -> Document:
+    text = path.read_text(encoding="utf-8")
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        raise SpecError(str(path), (mark.line + 1) if mark else 1, "(top)", f"not valid YAML: {exc}",
+                        "yaml") from None
+    lines: dict[Path_, int] = {}
+    data = _build(node, (), lines) if node is not None else None
+    return Document(path, data, lines)
+
+
+_SCHEMAS: dict[str, Any] = {}
+
+
+def schema_errors(doc: Document, schema_name: str) -> list[SpecError]:
+    """Every place where `doc` breaks the JSON Schema `schema_name`."""
+    if schema_name not in _SCHEMAS:
+        _SCHEMAS[schema_name] = json.loads((SCHEMA_DIR / schema_name).read_text(encoding="utf-8"))
+    validator = jsonschema.Draft202012Validator(_SCHEMAS[schema_name])
+    errors = []
+    for err in sorted(validator.iter_errors(doc.data), key=lambda e: (list(map(str, e.absolute_path)), e.message)):
+        where = tuple(err.absolute_path)
+        errors.append(doc.error(where, _schema_message(err), "schema"))
+    return errors
+
+
+def _schema_message(err: jsonschema.ValidationError) -> str:
+    if err.validator == "oneOf" and err.context:
+        best = min(err.context, key=lambda e: len(list(e.absolute_path)))
+        return f"{err.message[:80]}... ({best.message})"
+    return err.message

@@ -1,0 +1,333 @@
+"""The intermediate model: the spec as typed objects with every derived fact.
+
+Emitters read only this model, never the YAML. Each node remembers where it came from
+(`origin`: file and YAML path) so that the semantic checks can point at it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+# Wire fields each spec type takes.
+WIRE_WIDTH = {"latitude": 2, "longitude": 2}
+
+# The NMEA version a parser must assume for fields without `since`.
+BASE_VERSION = "2.0"
+
+
+@dataclass
+class Origin:
+    file: str
+    path: tuple[str | int, ...]
+
+
+@dataclass
+class Manual:
+    id: str
+    title: str
+    vendor: str
+    file: str | None = None
+    language: str | None = None
+    note: str | None = None
+
+
+@dataclass
+class EnumValue:
+    code: str
+    id: str
+    doc: str
+    manuals: list[str]
+    since: str | None
+    origin: Origin
+
+    @property
+    def const_name(self) -> str:
+        return self.id.upper()
+
+
+@dataclass
+class EnumDef:
+    id: str
+    name: str
+    doc: str
+    values: list[EnumValue]
+    origin: Origin
+
+    # Derived: what an unknown code must look like to be kept rather than rejected.
+    @property
+    def digits(self) -> bool:
+        return any(ch.isdigit() for v in self.values for ch in v.code)
+
+    @property
+    def letters(self) -> bool:
+        return any(ch.isalpha() for v in self.values for ch in v.code)
+
+    @property
+    def min_len(self) -> int:
+        return min(len(v.code) for v in self.values)
+
+    @property
+    def max_len(self) -> int:
+        return max(len(v.code) for v in self.values)
+
+    @property
+    def code_class(self) -> str:
+        """`digits`, `letters` or `alnum`: the characters an unknown code may use."""
+        if self.digits and not self.letters:
+            return "digits"
+        if self.letters and not self.digits:
+            return "letters"
+        return "alnum"
+
+    def by_code(self, code: str) -> EnumValue | None:
+        return next((v for v in self.values if v.code == code), None)
+
+    def by_id(self, value_id: str) -> EnumValue | None:
+        return next((v for v in self.values if v.id == value_id), None)
+
+    @property
+    def camel(self) -> str:
+        return camel(self.id)
+
+
+@dataclass
+class Field:
+    id: str
+    name: str
+    type: str
+    doc: str
+    manuals: list[str]
+    origin: Origin
+    format: str | None = None
+    unit: str | None = None
+    min: float | None = None
+    max: float | None = None
+    max_length: int | None = None
+    enum_id: str | None = None
+    value: str | None = None
+    since: str | None = None
+    optional: bool = False
+    # Derived by resolve():
+    enum: EnumDef | None = None
+    wire_index: int = 0          # 1-based index of the first wire field, within its group entry for grouped fields
+    group: Group | None = None
+
+    @property
+    def wire_width(self) -> int:
+        return WIRE_WIDTH.get(self.type, 1)
+
+    @property
+    def is_optional(self) -> bool:
+        return self.optional or self.since is not None
+
+    @property
+    def expected(self) -> str:
+        """What a bad_field error says the field should hold (the value part of lat/lon)."""
+        t = self.type
+        if t in ("integer", "decimal"):
+            what = "integer" if t == "integer" else "decimal number"
+            if self.min is not None and self.max is not None:
+                return f"{what} {fmt_num(self.min)}..{fmt_num(self.max)}"
+            if self.min is not None:
+                return f"{what} of at least {fmt_num(self.min)}"
+            if self.max is not None:
+                return f"{what} of at most {fmt_num(self.max)}"
+            return what
+        if t == "hex":
+            return "hex number"
+        if t == "time":
+            return "time hhmmss[.s]"
+        if t == "date":
+            return "date ddmmyy"
+        if t == "latitude":
+            return "latitude ddmm.mmmm"
+        if t == "longitude":
+            return "longitude dddmm.mmmm"
+        if t == "char":
+            return "one character"
+        if t == "literal":
+            return f"{self.value} or nothing"
+        if t in ("enum", "enum_chars"):
+            assert self.enum is not None
+            codes = " ".join(v.code for v in self.enum.values)
+            return f"{self.enum.id} code{'s' if t == 'enum_chars' else ''} ({codes})"
+        if t == "text":
+            return f"text of at most {self.max_length} characters" if self.max_length else "text"
+        raise AssertionError(t)
+
+    @property
+    def hemisphere_expected(self) -> str:
+        return "hemisphere N or S" if self.type == "latitude" else "hemisphere E or W"
+
+    @property
+    def hemispheres(self) -> str:
+        return "NS" if self.type == "latitude" else "EW"
+
+    @property
+    def camel(self) -> str:
+        return camel(self.id)
+
+
+@dataclass
+class Group:
+    id: str
+    name: str
+    doc: str
+    min: int
+    max: int
+    fields: list[Field]
+    origin: Origin
+    wire_index: int = 0
+
+    @property
+    def width(self) -> int:
+        return sum(f.wire_width for f in self.fields)
+
+    @property
+    def is_fixed(self) -> bool:
+        return self.min == self.max
+
+    @property
+    def single(self) -> bool:
+        """A group of one field is a plain list of values."""
+        return len(self.fields) == 1
+
+    @property
+    def camel(self) -> str:
+        return camel(self.id)
+
+
+Item = Field | Group
+
+
+@dataclass
+class Layout:
+    """One way the fields of a sentence are laid out on the wire."""
+
+    id: str | None               # None for the main layout, else the variant id
+    name: str
+    doc: str
+    items: list[Item]
+    manuals: list[str]
+    origin: Origin
+
+    @property
+    def fields(self) -> list[Field]:
+        """Top-level fields, in wire order (groups left out)."""
+        return [i for i in self.items if isinstance(i, Field)]
+
+    @property
+    def group(self) -> Group | None:
+        return next((i for i in self.items if isinstance(i, Group)), None)
+
+    @property
+    def required_items(self) -> list[Item]:
+        return [i for i in self.items if not (isinstance(i, Field) and i.is_optional)]
+
+    @property
+    def optional_fields(self) -> list[Field]:
+        return [i for i in self.items if isinstance(i, Field) and i.is_optional]
+
+    @property
+    def fixed_count(self) -> int:
+        """Wire fields outside the group that are always present."""
+        return sum(i.wire_width for i in self.required_items if isinstance(i, Field))
+
+    @property
+    def optional_count(self) -> int:
+        return sum(f.wire_width for f in self.optional_fields)
+
+    @property
+    def min_fields(self) -> int:
+        g = self.group
+        return self.fixed_count + (g.min * g.width if g else 0)
+
+    @property
+    def max_fields(self) -> int:
+        g = self.group
+        return self.fixed_count + self.optional_count + (g.max * g.width if g else 0)
+
+
+@dataclass
+class Example:
+    manual: str
+    where: str | None
+    raw: str
+    corrected: str | None
+    reason: str | None
+    unrecoverable: str | None
+    variant: str | None
+    expect: dict[str, Any] | None
+    origin: Origin
+    checksum_ok: bool = False
+
+    @property
+    def line(self) -> str | None:
+        """The intact sentence: the manual's text, or its correction."""
+        if self.checksum_ok:
+            return self.raw
+        return self.corrected
+
+
+@dataclass
+class Note:
+    manuals: list[str]
+    text: str
+
+
+@dataclass
+class Sentence:
+    id: str
+    name: str
+    doc: str
+    talkers: list[str]
+    manuals: list[str]
+    layout: Layout
+    variants: list[Layout]
+    notes: list[Note]
+    examples: list[Example]
+    origin: Origin
+    source: str                  # spec file, relative to the repository
+
+    @property
+    def layouts(self) -> list[Layout]:
+        return [self.layout, *self.variants]
+
+    @property
+    def camel(self) -> str:
+        return camel(self.id.lower())
+
+    def layout_camel(self, layout: Layout) -> str:
+        return self.camel + (camel(layout.id) if layout.id else "")
+
+    def layout_snake(self, layout: Layout) -> str:
+        return self.id.lower() + (f"_{layout.id}" if layout.id else "")
+
+
+@dataclass
+class Spec:
+    manuals: list[Manual]
+    enums: list[EnumDef]
+    sentences: list[Sentence]
+    sources: list[str]
+    digest: str
+    enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
+
+    def manual(self, manual_id: str) -> Manual | None:
+        return next((m for m in self.manuals if m.id == manual_id), None)
+
+    def sentence(self, sentence_id: str) -> Sentence | None:
+        return next((s for s in self.sentences if s.id == sentence_id), None)
+
+    @property
+    def used_enums(self) -> list[EnumDef]:
+        return self.enums
+
+
+def camel(snake: str) -> str:
+    return "".join(part[:1].upper() + part[1:] for part in snake.split("_"))
+
+
+def fmt_num(value: float) -> str:
+    return str(int(value)) if float(value).is_integer() else str(value)

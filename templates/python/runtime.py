@@ -1,0 +1,674 @@
+"""Hand-written runtime of the generated NMEA 0183 codecs: framing, checksum, field types, errors.
+
+Every sentence module generated from the spec is a thin layer over these helpers. The rules here
+(what text each field type accepts, the error messages, the JSON form) are shared with the C and
+Rust runtimes byte for byte; see docs/json.md.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from decimal import Decimal
+from enum import Enum
+from typing import Any, Final
+
+MAX_LINE: Final = 1024
+"""Longest line (without its line ending) the parser accepts."""
+
+MAX_DIGITS: Final = 18
+"""Most digits a number may have, so that every runtime holds it in a signed 64-bit integer."""
+
+_HEX_DIGITS: Final = frozenset("0123456789abcdefABCDEF")
+
+
+class NmeaError(ValueError):
+    """A line that is not a valid sentence, or a sentence that does not fit its layout."""
+
+    def __init__(self, kind: str, message: str, address: str | None = None,
+                 field: int | None = None, name: str | None = None) -> None:
+        super().__init__(message)
+        self.kind = kind
+        self.message = message
+        self.address = address
+        self.field = field
+        self.name = name
+
+    def __str__(self) -> str:
+        where = self.address or "line"
+        if self.field is not None:
+            where += f" field {self.field} ({self.name})"
+        return f"{self.kind}: {where}: {self.message}"
+
+    def to_json(self) -> str:
+        return (f'{{"ok":false,"error":{{"kind":{json_str(self.kind)},"address":{json_opt(self.address)},'
+                f'"field":{"null" if self.field is None else self.field},"name":{json_opt(self.name)},'
+                f'"message":{json_str(self.message)}}}}}')
+
+
+class _Absent:
+    """Marks an optional trailing field that was not on the wire (not even a comma)."""
+
+    _instance: _Absent | None = None
+
+    def __new__(cls) -> _Absent:
+        if cls._instance is None:
+            cls._instance = super().__new__(cls)
+        return cls._instance
+
+    def __repr__(self) -> str:
+        return "ABSENT"
+
+    def __bool__(self) -> bool:
+        return False
+
+
+ABSENT: Final = _Absent()
+
+
+# ---------------------------------------------------------------------------------------------
+# Framing
+
+
+@dataclass(slots=True)
+class Frame:
+    """A line split into its parts; the checksum, if any, has been verified."""
+
+    start: str
+    address: str
+    fields: list[str]
+    checksum: str | None
+
+
+def checksum(body: str) -> int:
+    """XOR of every byte between the start character and the '*'."""
+    value = 0
+    for byte in body.encode("latin-1"):
+        value ^= byte
+    return value
+
+
+def frame(line: str) -> Frame:
+    """Split one line (without its line ending) into a Frame."""
+    if len(line) > MAX_LINE:
+        raise NmeaError("too_long", f"line is {len(line)} bytes, the limit is {MAX_LINE}")
+    if not line:
+        raise NmeaError("not_a_sentence", "empty line")
+    start = line[0]
+    if start != "$" and start != "!":
+        raise NmeaError("not_a_sentence", "line does not start with '$' or '!'")
+    if not line.isascii() or not line.isprintable():
+        for offset, ch in enumerate(line):
+            if not " " <= ch <= "~":
+                raise NmeaError("not_a_sentence",
+                                f"byte 0x{ord(ch):02x} at offset {offset} is not printable ASCII")
+    star = line.find("*")
+    body = line[1:] if star < 0 else line[1:star]
+    parts = body.split(",")
+    address = parts[0]
+    named = address if address.isalnum() else None
+    sent = None
+    if star >= 0:
+        sent = line[star + 1:]
+        if len(sent) != 2 or sent[0] not in _HEX_DIGITS or sent[1] not in _HEX_DIGITS \
+                or (sent != sent.upper() and sent != sent.lower()):
+            raise NmeaError("bad_checksum", f"checksum {json_str(sent)} is not two hex digits of one letter case",
+                            named)
+        computed = checksum(body)
+        if int(sent, 16) != computed:
+            raise NmeaError("checksum_mismatch", f"checksum is {sent}, computed {computed:02X}", named)
+    if named is None:
+        raise NmeaError("not_a_sentence", f"address {json_str(address)} is not letters and digits")
+    return Frame(start, address, parts[1:], sent)
+
+
+def assemble(start: str, address: str, fields: list[str], checksum_style: str | None) -> str:
+    """The sentence text: start, address, fields and the checksum written in `checksum_style`
+    ("upper", "lower", or None for none)."""
+    body = ",".join([address, *fields])
+    if checksum_style is None:
+        return start + body
+    text = f"{checksum(body):02X}"
+    return f"{start}{body}*{text.lower() if checksum_style == 'lower' else text}"
+
+
+# ---------------------------------------------------------------------------------------------
+# Field types. Each parser takes the field's text (never empty: the caller maps "" to None)
+# and returns the typed value, or None when the text does not fit the type.
+
+
+@dataclass(slots=True, frozen=True)
+class Number:
+    """A fixed-point number as received: its digits as an integer, the number of decimals,
+    the number of integer digits (leading zeros included) and the sign as written."""
+
+    digits: int
+    scale: int = 0
+    width: int = 1
+    sign: str = ""
+    point: bool = False
+
+    @property
+    def value(self) -> Decimal:
+        magnitude = Decimal(self.digits).scaleb(-self.scale)
+        return -magnitude if self.sign == "-" else magnitude
+
+    def __int__(self) -> int:
+        return int(self.value)
+
+    def __float__(self) -> float:
+        return float(self.value)
+
+    def text(self) -> str:
+        whole, frac = divmod(self.digits, 10 ** self.scale)
+        out = self.sign + (str(whole).zfill(self.width) if self.width else "")
+        if self.point:
+            out += "." + (str(frac).zfill(self.scale) if self.scale else "")
+        return out
+
+    def value_json(self) -> str:
+        return decimal_json(self.digits, self.scale, self.sign == "-")
+
+    @classmethod
+    def of(cls, value: int | str | Decimal) -> Number:
+        """A number from a Python value, written the plain way (no leading zeros, no '+')."""
+        parsed = parse_number(str(value), integer=False)
+        if parsed is None:
+            raise ValueError(f"not a number: {value!r}")
+        return parsed
+
+
+def decimal_json(digits: int, scale: int, negative: bool) -> str:
+    """A JSON number for digits * 10^-scale, without leading or trailing zeros."""
+    whole, frac = divmod(digits, 10 ** scale)
+    text = str(whole)
+    if frac:
+        text += "." + str(frac).zfill(scale).rstrip("0")
+    if negative and digits:
+        text = "-" + text
+    return text
+
+
+def parse_number(text: str, integer: bool) -> Number | None:
+    sign = ""
+    body = text
+    if body[0] == "+" or body[0] == "-":
+        sign, body = body[0], body[1:]
+    whole, point, frac = body.partition(".")
+    if integer and point:
+        return None
+    if not (whole + frac) or len(whole) + len(frac) > MAX_DIGITS:
+        return None
+    if (whole and not whole.isdigit()) or (frac and not frac.isdigit()) or not whole.isascii() \
+            or not frac.isascii():
+        return None
+    return Number(int(whole + frac), len(frac), len(whole), sign, bool(point))
+
+
+def parse_integer(text: str) -> Number | None:
+    return parse_number(text, integer=True)
+
+
+def parse_decimal(text: str) -> Number | None:
+    return parse_number(text, integer=False)
+
+
+@dataclass(slots=True, frozen=True)
+class Hex:
+    """An unsigned hexadecimal number; digit count and letter case are kept."""
+
+    value: int
+    digits: int = 1
+    lower: bool = False
+
+    def text(self) -> str:
+        out = f"{self.value:0{self.digits}X}"
+        return out.lower() if self.lower else out
+
+    def value_json(self) -> str:
+        return str(self.value)
+
+
+def parse_hex(text: str) -> Hex | None:
+    if len(text) > 16 or not all(ch in _HEX_DIGITS for ch in text):
+        return None
+    has_lower = text != text.upper()
+    if has_lower and text != text.lower():
+        return None
+    return Hex(int(text, 16), len(text), has_lower)
+
+
+@dataclass(slots=True, frozen=True)
+class Time:
+    """UTC time of day hhmmss[.f…]; the number of fraction digits is kept."""
+
+    hour: int
+    minute: int
+    second: int
+    fraction: int = 0
+    fraction_digits: int = 0
+    point: bool = False
+
+    def text(self) -> str:
+        out = f"{self.hour:02d}{self.minute:02d}{self.second:02d}"
+        if self.point:
+            out += "." + (str(self.fraction).zfill(self.fraction_digits) if self.fraction_digits else "")
+        return out
+
+    def value_json(self) -> str:
+        out = f"{self.hour:02d}:{self.minute:02d}:{self.second:02d}"
+        if self.fraction_digits:
+            out += "." + str(self.fraction).zfill(self.fraction_digits)
+        return f'"{out}"'
+
+
+def parse_time(text: str) -> Time | None:
+    clock, point, frac = text.partition(".")
+    if len(clock) != 6 or not clock.isdigit() or not clock.isascii() or len(frac) > 9:
+        return None
+    if frac and not (frac.isdigit() and frac.isascii()):
+        return None
+    hour, minute, second = int(clock[0:2]), int(clock[2:4]), int(clock[4:6])
+    if hour > 23 or minute > 59 or second > 60:
+        return None
+    return Time(hour, minute, second, int(frac) if frac else 0, len(frac), bool(point))
+
+
+@dataclass(slots=True, frozen=True)
+class Date:
+    """A date ddmmyy with a two-digit year."""
+
+    day: int
+    month: int
+    year: int
+
+    def text(self) -> str:
+        return f"{self.day:02d}{self.month:02d}{self.year:02d}"
+
+    def value_json(self) -> str:
+        return f'"{self.year:02d}-{self.month:02d}-{self.day:02d}"'
+
+
+def parse_date(text: str) -> Date | None:
+    if len(text) != 6 or not text.isdigit() or not text.isascii():
+        return None
+    day, month, year = int(text[0:2]), int(text[2:4]), int(text[4:6])
+    if not 1 <= day <= 31 or not 1 <= month <= 12:
+        return None
+    return Date(day, month, year)
+
+
+@dataclass(slots=True, frozen=True)
+class Coordinate:
+    """Latitude or longitude as received: degrees, minutes (fixed point) and hemisphere."""
+
+    degrees: int
+    minutes: Number
+    hemisphere: str
+    degree_digits: int = 2
+
+    @property
+    def decimal_degrees(self) -> float:
+        value = self.degrees + float(self.minutes.value) / 60.0
+        return -value if self.hemisphere in ("S", "W") else value
+
+    def texts(self) -> tuple[str, str]:
+        return (str(self.degrees).zfill(self.degree_digits) if self.degree_digits else "") \
+            + self.minutes.text(), self.hemisphere
+
+    def value_json(self) -> str:
+        return (f'{{"deg":{self.degrees},"min":{self.minutes.value_json()},'
+                f'"hemi":"{self.hemisphere}"}}')
+
+
+def parse_coordinate(text: str, max_degree_digits: int, max_degrees: int) -> Coordinate | None:
+    """ddmm.mmmm (latitude) or dddmm.mmmm (longitude): the two digits before the point are
+    whole minutes, the digits before them degrees."""
+    whole, point, frac = text.partition(".")
+    if not 2 <= len(whole) <= 2 + max_degree_digits or not whole.isdigit() or not whole.isascii():
+        return None
+    if len(frac) > MAX_DIGITS - 2 or (frac and not (frac.isdigit() and frac.isascii())):
+        return None
+    degree_text = whole[:-2]
+    degrees = int(degree_text) if degree_text else 0
+    minutes = Number(int(whole[-2:] + frac), len(frac), 2, "", bool(point))
+    if degrees > max_degrees or minutes.digits >= 60 * 10 ** len(frac):
+        return None
+    return Coordinate(degrees, minutes, "", len(degree_text))
+
+
+def is_code_like(text: str, code_class: str, min_len: int, max_len: int) -> bool:
+    """Whether an enum code the spec does not know is still well formed for its enum: the same
+    length range and character class (`digits`, `letters`, `alnum`) as the known codes."""
+    if not min_len <= len(text) <= max_len or not text.isascii():
+        return False
+    if code_class == "digits":
+        return text.isdigit()
+    if code_class == "letters":
+        return text.isalpha()
+    return text.isalnum()
+
+
+class CodeEnum(Enum):
+    """Base of generated enums: the member's value is the wire code."""
+
+    @property
+    def id(self) -> str:
+        return self.name.lower()
+
+
+def enum_text(value: CodeEnum | str) -> str:
+    return value.value if isinstance(value, CodeEnum) else value
+
+
+def enum_value_json(value: CodeEnum | str) -> str:
+    return json_str(value.id if isinstance(value, CodeEnum) else value)
+
+
+# ---------------------------------------------------------------------------------------------
+# JSON
+
+
+def json_str(text: str) -> str:
+    """A JSON string: '"' and '\\' escaped, every byte outside 0x20-0x7E as \\u00hh."""
+    if text.isascii() and text.isprintable() and '"' not in text and "\\" not in text:
+        return f'"{text}"'
+    out = ['"']
+    for ch in text:
+        if ch == '"' or ch == "\\":
+            out.append("\\" + ch)
+        elif " " <= ch <= "~":
+            out.append(ch)
+        else:
+            out.append(f"\\u{ord(ch) & 0xFF:04x}")
+    out.append('"')
+    return "".join(out)
+
+
+def json_opt(text: str | None) -> str:
+    return "null" if text is None else json_str(text)
+
+
+def bad_field(address: str, index: int, name: str, expected: str, text: str) -> NmeaError:
+    return NmeaError("bad_field", f"expected {expected}, found {json_str(text)}", address, index, name)
+
+
+def too_few(address: str, sentence: str, need: int, found: int) -> NmeaError:
+    return NmeaError("too_few_fields", f"{sentence} needs at least {need} fields, found {found}", address)
+
+
+def too_many(address: str, sentence: str, limit: int, found: int) -> NmeaError:
+    return NmeaError("too_many_fields", f"{sentence} takes at most {limit} fields, found {found}", address)
+
+
+def group_cut(address: str, sentence: str, group: str, width: int, left: int) -> NmeaError:
+    return NmeaError("too_few_fields",
+                     f"{sentence} {group} entries take {width} fields each, {left} left over", address)
+
+
+def split_group(address: str, sentence: str, group: str, count: int, fixed: int, width: int,
+                minimum: int, maximum: int, optional: int) -> tuple[int, int]:
+    """How many times the layout's repeated group occurs in a sentence of `count` fields and how
+    many optional trailing fields follow it. `fixed` counts the required fields outside the group."""
+    rest = count - fixed
+    if rest < minimum * width:
+        raise too_few(address, sentence, fixed + minimum * width, count)
+    repeats = min(rest // width, maximum)
+    extra = rest - repeats * width
+    if extra > optional:
+        if repeats == maximum:
+            raise too_many(address, sentence, fixed + maximum * width + optional, count)
+        raise group_cut(address, sentence, group, width, extra)
+    return repeats, extra
+
+
+def decode_json_line(line: str) -> Any:
+    """Parse one line of `decode` output (the tools' own JSON, nothing more general)."""
+    import json
+
+    return json.loads(line)
+
+
+# ---------------------------------------------------------------------------------------------
+# Field readers used by the generated parsers: "" is an empty field (None), text that does not
+# fit raises bad_field naming the sentence, the field and what was expected.
+
+
+def in_range(number: Number, low: Decimal | None, high: Decimal | None) -> bool:
+    if low is None and high is None:
+        return True
+    value = number.value
+    return (low is None or value >= low) and (high is None or value <= high)
+
+
+def integer_field(text: str, address: str, index: int, name: str, expected: str,
+                  low: Decimal | None = None, high: Decimal | None = None) -> Number | None:
+    if not text:
+        return None
+    number = parse_number(text, integer=True)
+    if number is None or not in_range(number, low, high):
+        raise bad_field(address, index, name, expected, text)
+    return number
+
+
+def decimal_field(text: str, address: str, index: int, name: str, expected: str,
+                  low: Decimal | None = None, high: Decimal | None = None) -> Number | None:
+    if not text:
+        return None
+    number = parse_number(text, integer=False)
+    if number is None or not in_range(number, low, high):
+        raise bad_field(address, index, name, expected, text)
+    return number
+
+
+def hex_field(text: str, address: str, index: int, name: str, expected: str) -> Hex | None:
+    if not text:
+        return None
+    value = parse_hex(text)
+    if value is None:
+        raise bad_field(address, index, name, expected, text)
+    return value
+
+
+def time_field(text: str, address: str, index: int, name: str, expected: str) -> Time | None:
+    if not text:
+        return None
+    value = parse_time(text)
+    if value is None:
+        raise bad_field(address, index, name, expected, text)
+    return value
+
+
+def date_field(text: str, address: str, index: int, name: str, expected: str) -> Date | None:
+    if not text:
+        return None
+    value = parse_date(text)
+    if value is None:
+        raise bad_field(address, index, name, expected, text)
+    return value
+
+
+def coordinate_field(text: str, hemisphere: str, address: str, index: int, name: str,
+                     expected: str, hemisphere_expected: str, hemispheres: str) -> Coordinate | None:
+    """Latitude (hemispheres "NS") or longitude ("EW"): a value field and a hemisphere field,
+    both empty or both set."""
+    latitude = hemispheres == "NS"
+    if not text:
+        if hemisphere:
+            raise bad_field(address, index, name, expected, text)
+        return None
+    value = parse_coordinate(text, 2 if latitude else 3, 90 if latitude else 180)
+    if value is None:
+        raise bad_field(address, index, name, expected, text)
+    if len(hemisphere) != 1 or hemisphere not in hemispheres:
+        raise bad_field(address, index + 1, name, hemisphere_expected, hemisphere)
+    return Coordinate(value.degrees, value.minutes, hemisphere, value.degree_digits)
+
+
+def char_field(text: str, address: str, index: int, name: str, expected: str) -> str | None:
+    if not text:
+        return None
+    if len(text) != 1:
+        raise bad_field(address, index, name, expected, text)
+    return text
+
+
+def literal_field(text: str, address: str, index: int, name: str, expected: str,
+                  literal: str) -> str | None:
+    if not text:
+        return None
+    if text != literal:
+        raise bad_field(address, index, name, expected, text)
+    return text
+
+
+def text_field(text: str, address: str, index: int, name: str, expected: str,
+               max_length: int | None = None) -> str | None:
+    if not text:
+        return None
+    if max_length is not None and len(text) > max_length:
+        raise bad_field(address, index, name, expected, text)
+    return text
+
+
+def enum_field(text: str, address: str, index: int, name: str, expected: str,
+               by_code: dict[str, Any], code_class: str, min_len: int,
+               max_len: int) -> Any:
+    """An enum member for a known code, the code itself for a well-formed unknown one."""
+    if not text:
+        return None
+    member = by_code.get(text)
+    if member is not None:
+        return member
+    if not is_code_like(text, code_class, min_len, max_len):
+        raise bad_field(address, index, name, expected, text)
+    return text
+
+
+def enum_chars_field(text: str, address: str, index: int, name: str, expected: str,
+                     by_code: dict[str, Any], code_class: str, max_length: int | None) -> list[Any] | None:
+    """A run of one-character codes (GNS mode "ANNN"): one member or unknown code per character."""
+    if not text:
+        return None
+    if max_length is not None and len(text) > max_length:
+        raise bad_field(address, index, name, expected, text)
+    out = []
+    for ch in text:
+        member = by_code.get(ch)
+        if member is None:
+            if not is_code_like(ch, code_class, 1, 1):
+                raise bad_field(address, index, name, expected, text)
+            member = ch
+        out.append(member)
+    return out
+
+
+def enum_chars_text(values: list[Any]) -> str:
+    return "".join(enum_text(v) for v in values)
+
+
+# ---------------------------------------------------------------------------------------------
+# Writing fields back and describing them as JSON
+
+
+def text_of(value: Any) -> str:
+    """The wire text of a field value (not lat/lon, whose value spans two fields)."""
+    if value is None or value is ABSENT:
+        return ""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, CodeEnum):
+        return value.value
+    if isinstance(value, list):
+        return enum_chars_text(value)
+    return value.text()
+
+
+def coordinate_texts(value: Coordinate | None) -> tuple[str, str]:
+    return ("", "") if value is None else value.texts()
+
+
+def text_json(value: Any) -> str:
+    """A field value in the lossless JSON form of `decode`."""
+    if value is None:
+        return "null"
+    if isinstance(value, Coordinate):
+        number, hemisphere = value.texts()
+        return f"[{json_str(number)},{json_str(hemisphere)}]"
+    return json_str(text_of(value))
+
+
+def value_json(value: Any) -> str:
+    """A field value in the decoded JSON form of `decode --values`."""
+    if value is None:
+        return "null"
+    if isinstance(value, str):
+        return json_str(value)
+    if isinstance(value, CodeEnum):
+        return json_str(value.id)
+    if isinstance(value, list):
+        return "[" + ",".join(enum_value_json(v) for v in value) + "]"
+    return value.value_json()
+
+
+# ---------------------------------------------------------------------------------------------
+# Reading the tools' lossless JSON back (the `encode` verb)
+
+
+def bad_json(message: str) -> NmeaError:
+    return NmeaError("bad_json", message)
+
+
+def json_member(obj: Any, key: str) -> Any:
+    if not isinstance(obj, dict) or key not in obj:
+        raise bad_json(f'missing "{key}"')
+    return obj[key]
+
+
+def json_list(obj: Any, key: str) -> list[Any]:
+    value = json_member(obj, key)
+    if not isinstance(value, list):
+        raise bad_json(f'"{key}" is not an array')
+    return value
+
+
+def json_texts(value: Any, width: int) -> list[str]:
+    """The wire texts of one JSON field value: a string or null, or for latitude/longitude
+    (width 2) null or an array of two."""
+    if width == 2:
+        if value is None:
+            return ["", ""]
+        if isinstance(value, list) and len(value) == 2:
+            return [json_text(value[0]), json_text(value[1])]
+        raise bad_json("a latitude or longitude is not null or an array of two")
+    return [json_text(value)]
+
+
+def json_text(value: Any) -> str:
+    if value is None:
+        return ""
+    if not isinstance(value, str):
+        raise bad_json("a field value is not a string or null")
+    if not (value.isascii() and value.isprintable()) or "," in value or "*" in value:
+        raise bad_json(f"field text {json_str(value)} holds ',', '*' or a byte outside printable ASCII")
+    return value
+
+
+def checksum_case(text: str | None) -> str | None:
+    """How a received checksum was written: None (absent), "lower" or "upper"."""
+    if text is None:
+        return None
+    return "lower" if text != text.upper() else "upper"
+
+
+def json_opt_text(obj: Any, key: str) -> str | None:
+    value = json_member(obj, key)
+    if value is not None and not isinstance(value, str):
+        raise bad_json(f'"{key}" is not a string or null')
+    return value
+
+
+def json_str_member(obj: Any, key: str) -> str:
+    value = json_member(obj, key)
+    if not isinstance(value, str):
+        raise bad_json(f'"{key}" is not a string')
+    return value

@@ -1,0 +1,137 @@
+"""The three tools (build/bin/nmea-{c,rs,py}) against each other and against the reference decoder:
+on the manuals' examples, hand-written edge cases and every real receiver log in ../shared/corpus/real.
+
+- decode and decode --values print byte-identical output in the three languages;
+- decode prints exactly one JSON line per input line;
+- every ok line re-encodes to exactly the input line;
+- every line whose checksum is wrong is rejected as checksum_mismatch;
+- on the examples, the output equals what the reference decoder (generator/reference.py) says.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+from functools import lru_cache
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = ROOT / "build" / "bin"
+TOOLS = ["nmea-c", "nmea-rs", "nmea-py"]
+CORPUS = ROOT.parent / "shared" / "corpus" / "real"
+EDGE_CASES = Path(__file__).with_name("edge_cases.txt")
+VECTORS = ROOT / "generated" / "vectors" / "examples.jsonl"
+
+
+def run(tool: str, args: list[str], data: bytes) -> bytes:
+    done = subprocess.run([str(BIN / tool), *args], input=data, capture_output=True, timeout=300)
+    assert done.returncode == 0, f"{tool} {args} exited {done.returncode}: {done.stderr[-2000:]!r}"
+    return done.stdout
+
+
+def input_lines(data: bytes) -> list[bytes]:
+    parts = data.split(b"\n")
+    if parts and parts[-1] == b"":
+        parts.pop()
+    return [p[:-1] if p.endswith(b"\r") else p for p in parts]
+
+
+@lru_cache(maxsize=None)
+def decode_all(data: bytes, values: bool = False) -> bytes:
+    """decode's output, after checking that the three tools agree byte for byte."""
+    args = ["decode", "--values"] if values else ["decode"]
+    outputs = {tool: run(tool, args, data) for tool in TOOLS}
+    reference = outputs[TOOLS[0]]
+    for tool, out in outputs.items():
+        if out != reference:
+            a, b = reference.split(b"\n"), out.split(b"\n")
+            diff = next(i for i in range(max(len(a), len(b))) if i >= len(a) or i >= len(b) or a[i] != b[i])
+            line = input_lines(data)[diff] if diff < len(input_lines(data)) else b"(end)"
+            pytest.fail(f"{TOOLS[0]} and {tool} disagree on line {diff + 1}: {line[:200]!r}\n"
+                        f"{TOOLS[0]}: {a[diff][:400] if diff < len(a) else b'(none)'!r}\n"
+                        f"{tool}: {b[diff][:400] if diff < len(b) else b'(none)'!r}")
+    return reference
+
+
+def check_stream(data: bytes) -> list[dict]:
+    """The properties every input must have; returns the decoded objects."""
+    lines = input_lines(data)
+    out = decode_all(data).split(b"\n")
+    assert out[-1] == b"" and len(out) - 1 == len(lines), "decode must print one line per input line"
+    decode_all(data, values=True)
+    objects = [json.loads(line) for line in out[:-1]]
+    ok_lines = [line for line, obj in zip(lines, objects) if obj["ok"]]
+    ok_json = b"".join(line + b"\n" for line, obj in zip(out, objects) if obj["ok"])
+    encoded = {tool: run(tool, ["encode"], ok_json) for tool in TOOLS}
+    for tool, text in encoded.items():
+        assert text == encoded[TOOLS[0]], f"{tool} encodes differently from {TOOLS[0]}"
+    back = encoded[TOOLS[0]].split(b"\n")[:-1]
+    assert len(back) == len(ok_lines)
+    for original, again in zip(ok_lines, back):
+        assert again == original, f"round trip changed {original!r} into {again!r}"
+    for line, obj in zip(lines, objects):
+        if wrong_checksum(line):
+            assert not obj["ok"] and obj["error"]["kind"] == "checksum_mismatch", (line, obj)
+    return objects
+
+
+def wrong_checksum(line: bytes) -> bool:
+    """A printable line of the form $...*HH whose two hex digits differ from the XOR of its body."""
+    if not line or line[:1] not in (b"$", b"!") or len(line) > 1024 or any(b < 0x20 or b > 0x7E for b in line):
+        return False
+    star = line.find(b"*")
+    if star < 0 or len(line) != star + 3:
+        return False
+    digits = line[star + 1:].decode()
+    if not all(c in "0123456789abcdefABCDEF" for c in digits) or (digits.lower() != digits and digits.upper() != digits):
+        return False
+    value = 0
+    for byte in line[1:star]:
+        value ^= byte
+    return value != int(digits, 16)
+
+
+def test_tools_are_built() -> None:
+    for tool in TOOLS:
+        assert (BIN / tool).exists(), f"{tool} missing: run make build"
+
+
+def test_examples_match_the_reference() -> None:
+    vectors = [json.loads(line) for line in VECTORS.read_text().splitlines()]
+    assert vectors, "no examples"
+    lines = [v["line"] for v in vectors if v["line"]]
+    data = "".join(line + "\n" for line in lines).encode()
+    check_stream(data)
+    assert decode_all(data).decode().splitlines() == [v["decode"] for v in vectors if v["line"]]
+    assert decode_all(data, True).decode().splitlines() == [v["decode_values"] for v in vectors if v["line"]]
+    damaged = [v for v in vectors if not v["checksum_ok"]]
+    raw = "".join(v["raw"] + "\n" for v in damaged).encode()
+    assert decode_all(raw).decode().splitlines() == [v["raw_decode"] for v in damaged]
+
+
+def test_edge_cases() -> None:
+    objects = check_stream(EDGE_CASES.read_bytes())
+    kinds = {o["error"]["kind"] for o in objects if not o["ok"]}
+    for kind in ("checksum_mismatch", "bad_checksum", "not_a_sentence", "too_few_fields", "too_many_fields",
+                 "bad_field", "too_long"):
+        assert kind in kinds, f"edge cases no longer produce {kind}"
+
+
+def test_empty_and_unterminated_input() -> None:
+    assert decode_all(b"") == b""
+    assert decode_all(b"$GPHDT,1.0,T").count(b"\n") == 1
+    assert decode_all(b"\n\n").count(b"\n") == 2
+
+
+CORPUS_FILES = sorted(CORPUS.rglob("*.nmea"))
+
+
+@pytest.mark.parametrize("path", CORPUS_FILES, ids=[str(p.relative_to(CORPUS)) for p in CORPUS_FILES])
+def test_real_logs(path: Path) -> None:
+    check_stream(path.read_bytes())
+
+
+def test_corpus_present() -> None:
+    assert len(CORPUS_FILES) > 50, f"expected the real logs in {CORPUS}"
