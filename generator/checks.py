@@ -165,8 +165,8 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
     if example.manual not in manual_ids:
         report(o, "S003", f"unknown manual {example.manual!r}", "manual")
     example.checksum_ok = _checksum_ok(example.raw)
-    if example.checksum_ok and example.corrected:
-        report(o, "S008", "raw's checksum is intact; a correction must not be given", "corrected")
+    if example.checksum_ok and example.corrected and example.corrected == example.raw:
+        report(o, "S008", "the correction is the manual's text itself", "corrected")
         return
     if not example.checksum_ok and not (example.corrected or example.unrecoverable):
         report(o, "S008", f"raw's checksum fails (computed {_computed(example.raw)}); give `corrected` and "

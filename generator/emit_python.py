@@ -87,7 +87,8 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
     optional_seen = 0
     for item in layout.items:
         if isinstance(item, Group):
-            items.append({"group": item, "start": at, "entry": entry_class(sentence, layout, item)})
+            items.append({"group": item, "start": at, "entry": entry_class(sentence, layout, item),
+                          "optional_index": None})
             after_group, at = True, 0
             continue
         pos = (f"pos + {at}" if at else "pos") if after_group else str(at)
@@ -97,7 +98,15 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
             view["optional_index"] = optional_seen
         items.append(view)
         at += item.wire_width
-    return {"layout": layout, "class": sentence.layout_camel(layout), "items": items, "group": layout.group}
+    fields = [v for v in items if "field" in v]
+    return {
+        "layout": layout, "class": sentence.layout_camel(layout), "items": items, "group": layout.group,
+        # Required fields before the group (all of them when there is none), required fields
+        # after it, and the optional trailing fields: the order fields() and fields_json() emit.
+        "before": [v for v in fields if not v["field"].is_optional and not v["pos"].startswith("pos")],
+        "after": [v for v in fields if not v["field"].is_optional and v["pos"].startswith("pos")],
+        "optional": [v for v in fields if v["field"].is_optional],
+    }
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:

@@ -264,10 +264,11 @@ class Example:
 
     @property
     def line(self) -> str | None:
-        """The intact sentence: the manual's text, or its correction."""
-        if self.checksum_ok:
-            return self.raw
-        return self.corrected
+        """The intact sentence: the correction when there is one (a checksum can be intact while the
+        layout is damaged: XOR cannot see a moved comma or two added ones), else the manual's text."""
+        if self.corrected:
+            return self.corrected
+        return self.raw if self.checksum_ok else None
 
 
 @dataclass

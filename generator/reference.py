@@ -62,7 +62,7 @@ def decode(spec: Spec, line: str) -> Decoded:
 
 
 def _find(spec: Spec, frame: Any) -> Sentence | None:
-    if frame.start != "$" or len(frame.address) != 5:
+    if not rt.is_standard_address(frame.start, frame.address):
         return None
     return spec.sentence(frame.address[2:])
 

@@ -37,7 +37,7 @@ def parse(line: str | bytes) -> Any:
     frame = runtime.frame(line)
     checksum = runtime.checksum_case(frame.checksum)
     address = frame.address
-    layouts = LAYOUTS.get(address[2:]) if frame.start == "$" and len(address) == 5 else None
+    layouts = LAYOUTS.get(address[2:]) if runtime.is_standard_address(frame.start, address) else None
     if layouts is None:
         return Generic(address, frame.fields, frame.start, checksum)
     first_error = None

@@ -121,6 +121,11 @@ def frame(line: str) -> Frame:
     return Frame(start, address, parts[1:], sent)
 
 
+def is_standard_address(start: str, address: str) -> bool:
+    """A talker ID and a 3-letter sentence formatter: `$`, 5 characters, not proprietary (`P…`)."""
+    return start == "$" and len(address) == 5 and address[0] != "P"
+
+
 def assemble(start: str, address: str, fields: list[str], checksum_style: str | None) -> str:
     """The sentence text: start, address, fields and the checksum written in `checksum_style`
     ("upper", "lower", or None for none)."""
@@ -331,7 +336,7 @@ def parse_coordinate(text: str, max_degree_digits: int, max_degrees: int) -> Coo
     degree_text = whole[:-2]
     degrees = int(degree_text) if degree_text else 0
     minutes = Number(int(whole[-2:] + frac), len(frac), 2, "", bool(point))
-    if degrees > max_degrees or minutes.digits >= 60 * 10 ** len(frac):
+    if degrees > max_degrees or minutes.digits > 60 * 10 ** len(frac):
         return None
     return Coordinate(degrees, minutes, "", len(degree_text))
 
