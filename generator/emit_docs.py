@@ -1,11 +1,138 @@
-"""Placeholder while the docs emitter is written."""
+"""Markdown reference docs: an index, a page per sentence and per enum, the manuals' errata, the
+tools' JSON form."""
 
 from __future__ import annotations
 
+import json
+from collections import Counter
+
 import jinja2
 
-from .model import Spec
+from . import emit_vectors
+from .emit import TEMPLATES, header
+from .model import Field, Group, Layout, Sentence, Spec
+
+TYPE_NAMES = {
+    "integer": "integer", "decimal": "decimal", "hex": "hex", "time": "UTC time", "date": "date",
+    "latitude": "latitude + N/S", "longitude": "longitude + E/W", "char": "character",
+    "literal": "literal", "enum": "enum", "enum_chars": "enum characters", "text": "text",
+}
+
+
+def cell(text: str | None) -> str:
+    """Text safe inside a Markdown table cell."""
+    if not text:
+        return ""
+    return " ".join(text.split()).replace("|", "\\|")
+
+
+def type_cell(f: Field) -> str:
+    name = TYPE_NAMES[f.type]
+    if f.enum is not None:
+        return f"{name} [{f.enum.id}](../enums/{f.enum.id}.md)"
+    if f.type == "literal":
+        return f"literal `{f.value}`"
+    if f.min is not None or f.max is not None:
+        low = "" if f.min is None else _num(f.min)
+        high = "" if f.max is None else _num(f.max)
+        return f"{name} {low}..{high}"
+    if f.max_length:
+        return f"{name} (≤ {f.max_length})"
+    return name
+
+
+def _num(value: float) -> str:
+    return str(int(value)) if float(value).is_integer() else str(value)
+
+
+def position(f: Field, layout: Layout) -> str:
+    """Where the field is on the wire, 1-based after the address."""
+    group = layout.group
+    if f.group is not None:
+        g = f.group
+        first = g.wire_index + f.wire_index - 1
+        return f"{first} + {g.width}·k" if not g.single else f"{first}…"
+    if group is not None and layout.items.index(f) > layout.items.index(group):
+        after = [i for i in layout.items[layout.items.index(group) + 1:] if isinstance(i, Field)]
+        offset = sum(x.wire_width for x in after[:after.index(f)])
+        return f"after {group.id}" + (f" + {offset}" if offset else "")
+    width = f.wire_width
+    return f"{f.wire_index}" if width == 1 else f"{f.wire_index}–{f.wire_index + width - 1}"
+
+
+def rows(layout: Layout) -> list[dict]:
+    out = []
+    for item in layout.items:
+        fields = item.fields if isinstance(item, Group) else [item]
+        for f in fields:
+            out.append({
+                "pos": position(f, layout),
+                "id": f"{item.id}[k].{f.id}" if isinstance(item, Group) else f.id,
+                "name": cell(f.name), "type": type_cell(f), "unit": cell(f.unit), "format": cell(f.format),
+                "doc": cell(f.doc), "manuals": ", ".join(f.manuals),
+                "since": ("v" + f.since) if f.since else ("optional" if f.optional else ""),
+            })
+    return out
+
+
+def layout_summary(layout: Layout) -> str:
+    g = layout.group
+    if g is None:
+        if layout.min_fields == layout.max_fields:
+            return f"{layout.min_fields} fields"
+        return f"{layout.min_fields} to {layout.max_fields} fields"
+    return (f"{layout.fixed_count} fields, plus {g.min} to {g.max} × {g.width} fields of {g.id}"
+            + (f", plus up to {layout.optional_count} optional trailing" if layout.optional_count else ""))
+
+
+def example_view(vector: dict) -> dict:
+    status = "intact" if vector["checksum_ok"] and vector["line"] == vector["raw"] else (
+        "unrecoverable" if vector["line"] is None else "corrected")
+    values = json.loads(vector["decode_values"])["fields"] if vector.get("decode_values") else None
+    return {**vector, "status": status,
+            "decoded": [(k, json.dumps(v, ensure_ascii=False)) for k, v in values.items()] if values else []}
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    return {}
+    env.filters["cell"] = cell
+    vectors = [example_view(v) for v in emit_vectors.example_vectors(spec)]
+    by_sentence: dict[str, list[dict]] = {}
+    for v in vectors:
+        by_sentence.setdefault(v["sentence"], []).append(v)
+    counts: dict[str, Counter] = {m.id: Counter() for m in spec.manuals}
+    for v in vectors:
+        counts[v["manual_id"]][v["status"]] += 1
+    enum_users: dict[str, list[str]] = {e.id: [] for e in spec.enums}
+    for s in spec.sentences:
+        for lay in s.layouts:
+            for item in lay.items:
+                for f in (item.fields if isinstance(item, Group) else [item]):
+                    if f.enum and s.id not in enum_users[f.enum.id]:
+                        enum_users[f.enum.id].append(s.id)
+    matrix = [(s, [m.id in s.manuals for m in spec.manuals]) for s in spec.sentences]
+    files: dict[str, str] = {}
+    md_header = header(spec, "", None).replace("\n", "\n").strip()
+    banner = "<!-- " + " | ".join(md_header.splitlines()) + " -->\n"
+    files["docs/README.md"] = env.get_template("docs/index.md.j2").render(
+        banner=banner, spec=spec, matrix=matrix, counts=counts, vectors=vectors)
+    for s in spec.sentences:
+        files[f"docs/sentences/{s.id.lower()}.md"] = env.get_template("docs/sentence.md.j2").render(
+            banner=banner, s=s, spec=spec, layouts=[(lay, rows(lay), layout_summary(lay)) for lay in s.layouts],
+            examples=by_sentence.get(s.id, []), enums=_enums_of(s))
+    for e in spec.enums:
+        files[f"docs/enums/{e.id}.md"] = env.get_template("docs/enum.md.j2").render(
+            banner=banner, e=e, users=enum_users[e.id])
+    files["docs/errata.md"] = env.get_template("docs/errata.md.j2").render(
+        banner=banner, spec=spec, vectors=[v for v in vectors if v["status"] != "intact"], counts=counts)
+    files["docs/json.md"] = banner + (TEMPLATES / "docs" / "json.md").read_text(encoding="utf-8")
+    return files
+
+
+def _enums_of(s: Sentence) -> list:
+    seen = []
+    for lay in s.layouts:
+        for item in lay.items:
+            for f in (item.fields if isinstance(item, Group) else [item]):
+                if f.enum and f.enum not in seen:
+                    seen.append(f.enum)
+    return seen

@@ -85,7 +85,19 @@ def schema_errors(doc: Document, schema_name: str) -> list[SpecError]:
 
 
 def _schema_message(err: jsonschema.ValidationError) -> str:
+    """The schema's complaint; for a value that fits none of several shapes (a field or a group),
+    the complaint of the shape it is closest to."""
     if err.validator == "oneOf" and err.context:
-        best = min(err.context, key=lambda e: len(list(e.absolute_path)))
-        return f"{err.message[:80]}... ({best.message})"
+        shape = "group" if isinstance(err.instance, dict) and "group" in err.instance else None
+        options = err.schema.get("oneOf", []) if isinstance(err.schema, dict) else []
+
+        def is_group_branch(e: jsonschema.ValidationError) -> bool:
+            index = e.relative_schema_path[0] if e.relative_schema_path else None
+            return isinstance(index, int) and index < len(options) and "group" in str(options[index])
+
+        branch = [e for e in err.context if (shape == "group") == is_group_branch(e)]
+        best = jsonschema.exceptions.best_match(branch or err.context)
+        if best is not None:
+            where = "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in best.relative_path)
+            return f"{best.message}{f' (at {where[1:]})' if where else ''}"
     return err.message

@@ -1,0 +1,112 @@
+"""Tests of the generator: the real spec validates, bad specs are rejected with the rule, file,
+line and YAML path at fault, generation is deterministic and every output carries its header."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from generator.build import load_spec
+from generator.emit import render_all
+from generator.errors import SpecErrors
+from generator import reference
+
+ROOT = Path(__file__).resolve().parents[2]
+SPEC = ROOT / "spec"
+BAD = Path(__file__).with_name("bad_specs")
+
+
+@pytest.fixture(scope="module")
+def spec():
+    return load_spec(SPEC)
+
+
+def test_spec_is_valid(spec) -> None:
+    assert len(spec.sentences) >= 12
+    assert {s.id for s in spec.sentences} >= {"GGA", "GLL", "GNS", "GSA", "GSV", "RMC", "VTG", "ZDA", "DTM",
+                                               "GST", "HDT", "RLM"}
+
+
+def _fixture_header(path: Path) -> tuple[str, str]:
+    lines = path.read_text().splitlines()
+    return lines[0].split(":", 1)[1].strip(), lines[1].split(":", 1)[1].strip()
+
+
+@pytest.mark.parametrize("fixture", sorted(BAD.glob("*.yaml")), ids=lambda p: p.stem)
+def test_bad_spec_is_rejected(fixture: Path, tmp_path: Path) -> None:
+    rule, message = _fixture_header(fixture)
+    shutil.copytree(SPEC, tmp_path / "spec")
+    name = fixture.name if fixture.stem == "wrong_file_name" else "xyz.yaml"
+    shutil.copy(fixture, tmp_path / "spec" / "standard" / name)
+    with pytest.raises(SpecErrors) as caught:
+        load_spec(tmp_path / "spec")
+    errors = caught.value.errors
+    ours = [e for e in errors if e.file.endswith(name)]
+    assert ours, f"no error in the fixture; got {[str(e) for e in errors]}"
+    assert len(ours) == len(errors), f"errors outside the fixture: {[str(e) for e in errors]}"
+    assert any(e.rule == rule and message in e.message for e in ours), [str(e) for e in ours]
+    for e in ours:
+        assert e.line > 1 and e.path, str(e)
+
+
+def test_every_error_is_reported_at_once(tmp_path: Path) -> None:
+    shutil.copytree(SPEC, tmp_path / "spec")
+    for fixture in ("unknown_enum", "unknown_manual"):
+        text = (BAD / f"{fixture}.yaml").read_text().replace("sentence: XYZ", f"sentence: X{fixture[8:10].upper()}")
+        stem = f"x{fixture[8:10]}"
+        (tmp_path / "spec" / "standard" / f"{stem}.yaml").write_text(text)
+    with pytest.raises(SpecErrors) as caught:
+        load_spec(tmp_path / "spec")
+    assert {e.rule for e in caught.value.errors} == {"S002", "S003"}
+
+
+def test_generation_is_deterministic(spec) -> None:
+    first = render_all(spec)
+    second = render_all(load_spec(SPEC))
+    assert first == second
+
+
+def test_every_generated_file_has_a_header(spec) -> None:
+    for path, content in render_all(spec).items():
+        if path.endswith((".jsonl", "py.typed")):
+            continue
+        assert "DO NOT EDIT" in content[:400], path
+
+
+def test_vectors_cover_every_example(spec) -> None:
+    files = render_all(spec)
+    vectors = [json.loads(line) for line in files["vectors/examples.jsonl"].splitlines()]
+    assert len(vectors) == sum(len(s.examples) for s in spec.sentences)
+    for v in vectors:
+        assert {"manual", "raw", "checksum_ok", "line", "expect"} <= set(v) or v.get("unrecoverable")
+        assert v["manual"].endswith(".txt") or v["manual"] == "nmea0183"
+        if not v["checksum_ok"]:
+            assert json.loads(v["raw_decode"])["error"]["kind"] in ("checksum_mismatch", "bad_checksum")
+
+
+@pytest.mark.parametrize("line,kind,field", [
+    ("$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,*68", "checksum_mismatch", None),
+    ("$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,*6", "bad_checksum", None),
+    ("GPGGA,1", "not_a_sentence", None),
+    ("$GPGGA,075241.00", "too_few_fields", None),
+    ("$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,,", "too_many_fields", None),
+    ("$GPGGA,075241.00,5550.613576,X,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,", "bad_field", 3),
+    ("$GPGGA,995241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,", "bad_field", 1),
+    ("$GPTXT," + "A" * 1100, "too_long", None),
+])
+def test_reference_errors(spec, line: str, kind: str, field: int | None) -> None:
+    with pytest.raises(reference.rt.NmeaError) as caught:
+        reference.decode(spec, line)
+    assert caught.value.kind == kind
+    assert caught.value.field == field
+
+
+def test_reference_round_trips_the_examples(spec) -> None:
+    for sentence in spec.sentences:
+        for example in sentence.examples:
+            if example.line:
+                decoded = reference.decode(spec, example.line)
+                assert decoded.sentence is sentence
