@@ -23,6 +23,7 @@ def load_spec(spec_dir: Path) -> Spec:
     files += [(p, "enums", "enum.schema.json") for p in sorted((spec_dir / "enums").glob("*.yaml"))]
     files += [(p, "sentences", "sentence.schema.json") for p in sorted((spec_dir / "standard").glob("*.yaml"))]
     digest = hashlib.sha256()
+    file_digests: dict[str, str] = {}
     for path, kind, schema in files:
         try:
             doc = load_document(path)
@@ -31,6 +32,7 @@ def load_spec(spec_dir: Path) -> Spec:
             continue
         doc.path = path.relative_to(root)
         digest.update(str(doc.path).encode() + b"\0" + path.read_bytes())
+        file_digests[str(doc.path)] = hashlib.sha256(path.read_bytes()).hexdigest()
         found = schema_errors(doc, schema)
         errors += found
         if not found:
@@ -42,7 +44,7 @@ def load_spec(spec_dir: Path) -> Spec:
     enums = [_enum(d) for d in docs["enums"]]
     sentences = [_sentence(d) for d in docs["sentences"]]
     spec = Spec(manuals, enums, sentences, sources=[str(d.path) for d in docs["enums"] + docs["sentences"]],
-                digest=digest.hexdigest()[:16])
+                digest=digest.hexdigest()[:16], file_digests=file_digests)
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     errors = checks.run(spec, by_file)
     if errors:

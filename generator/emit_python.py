@@ -125,7 +125,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         header=header(spec, "#", [e.origin.file for e in spec.enums]), enums=spec.enums)
     for sentence in spec.sentences:
         files[f"{base}/sentences/{sentence.id.lower()}.py"] = env.get_template("python/sentence.py.j2").render(
-            header=header(spec, "#", [sentence.source]), sentence=sentence,
+            header=header(spec, "#", [sentence.source, *sorted({f.enum.origin.file for lay in sentence.layouts
+                                                               for f in _all_fields(lay) if f.enum})]),
+            sentence=sentence,
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
             enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}))
     files[f"{base}/sentences/__init__.py"] = env.get_template("python/sentences_init.py.j2").render(
@@ -133,7 +135,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/__init__.py"] = env.get_template("python/init.py.j2").render(
         header=header(spec, "#"), sentences=spec.sentences, enums=spec.enums)
     files["python/pyproject.toml"] = env.get_template("python/pyproject.toml.j2").render(
-        header=header(spec, "#"), package=PACKAGE)
+        header=header(spec, "#", ["templates/python/pyproject.toml.j2"]), package=PACKAGE)
     files["python/tests/test_examples.py"] = env.get_template("python/test_examples.py.j2").render(
         header=header(spec, "#"), vectors=[v for v in emit_vectors.example_vectors(spec)], package=PACKAGE,
         json=json)

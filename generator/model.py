@@ -6,7 +6,9 @@ Emitters read only this model, never the YAML. Each node remembers where it came
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 # Wire fields each spec type takes.
@@ -313,7 +315,20 @@ class Spec:
     sentences: list[Sentence]
     sources: list[str]
     digest: str
+    file_digests: dict[str, str] = field(default_factory=dict)
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
+
+    def digest_of(self, sources: list[str]) -> str:
+        """A short hash of the given spec or template files, so that a generated file's header
+        changes only when what it is made from changes."""
+        h = hashlib.sha256()
+        for source in sources:
+            known = self.file_digests.get(source)
+            if known is None:
+                path = Path(__file__).resolve().parent.parent / source
+                known = hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else source
+            h.update(source.encode() + b"\0" + known.encode())
+        return h.hexdigest()[:16]
 
     def manual(self, manual_id: str) -> Manual | None:
         return next((m for m in self.manuals if m.id == manual_id), None)
