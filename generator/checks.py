@@ -81,8 +81,9 @@ def _check_enum(enum: Any, manual_ids: set[str], report: _Reporter) -> None:
             report(v.origin, "S006", f"code {v.code!r} appears twice in enum {enum.id}", "code")
         if v.id in ids:
             report(v.origin, "S006", f"value id {v.id!r} appears twice in enum {enum.id}", "id")
-        if not v.code.isalnum():
-            report(v.origin, "S006", f"code {v.code!r} must be letters or digits", "code")
+        if any(ch in ",*$!" for ch in v.code) or v.code != v.code.strip():
+            report(v.origin, "S006", f"code {v.code!r} cannot hold ',', '*', '$', '!' or start or end with a space",
+                   "code")
         codes.add(v.code)
         ids.add(v.id)
         _check_manuals(v.manuals, manual_ids, v.origin, report, "manuals")
