@@ -9,8 +9,8 @@ from typing import Any
 from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
-from .model import (EnumDef, EnumValue, Example, Field, Group, Item, Layout, Manual, Note, Origin,
-                    Sentence, Spec)
+from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Field, Group, Item, Layout,
+                    Manual, Note, Origin, Parameter, Sentence, Spec, TableDef)
 
 
 def load_spec(spec_dir: Path) -> Spec:
@@ -18,10 +18,14 @@ def load_spec(spec_dir: Path) -> Spec:
     every problem found."""
     errors: list[SpecError] = []
     root = spec_dir.parent
-    docs: dict[str, list[Document]] = {"manuals": [], "enums": [], "sentences": []}
+    docs: dict[str, list[Document]] = {"manuals": [], "enums": [], "bitfields": [], "tables": [], "sentences": []}
     files = [(spec_dir / "manuals.yaml", "manuals", "manuals.schema.json")]
-    files += [(p, "enums", "enum.schema.json") for p in sorted((spec_dir / "enums").glob("*.yaml"))]
-    files += [(p, "sentences", "sentence.schema.json") for p in sorted((spec_dir / "standard").glob("*.yaml"))]
+    for folder, kind, schema in (("enums", "enums", "enum.schema.json"),
+                                 ("bitfields", "bitfields", "bitfield.schema.json"),
+                                 ("tables", "tables", "table.schema.json"),
+                                 ("standard", "sentences", "sentence.schema.json"),
+                                 ("proprietary", "sentences", "sentence.schema.json")):
+        files += [(p, kind, schema) for p in sorted((spec_dir / folder).glob("*.yaml"))]
     digest = hashlib.sha256()
     file_digests: dict[str, str] = {}
     for path, kind, schema in files:
@@ -43,8 +47,10 @@ def load_spec(spec_dir: Path) -> Spec:
     manuals = [Manual(**m) for m in docs["manuals"][0].data["manuals"]]
     enums = [_enum(d) for d in docs["enums"]]
     sentences = [_sentence(d) for d in docs["sentences"]]
-    spec = Spec(manuals, enums, sentences, sources=[str(d.path) for d in docs["enums"] + docs["sentences"]],
-                digest=digest.hexdigest()[:16], file_digests=file_digests)
+    spec = Spec(manuals, enums, sentences,
+                sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences") for d in docs[kind]],
+                digest=digest.hexdigest()[:16], file_digests=file_digests,
+                bitfields=[_bitfield(d) for d in docs["bitfields"]], tables=[_table(d) for d in docs["tables"]])
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     errors = checks.run(spec, by_file)
     if errors:
@@ -65,7 +71,31 @@ def _field(data: dict[str, Any], origin: Origin) -> Field:
                  manuals=data.get("manuals", []), origin=origin, format=data.get("format"),
                  unit=data.get("unit"), min=data.get("min"), max=data.get("max"),
                  max_length=data.get("max_length"), enum_id=data.get("enum"), value=data.get("value"),
-                 since=data.get("since"), optional=bool(data.get("optional", False)))
+                 since=data.get("since"), optional=bool(data.get("optional", False)),
+                 bitfield_id=data.get("bitfield"))
+
+
+def _bitfield(doc: Document) -> BitfieldDef:
+    d = doc.data
+    bits = []
+    for i, b in enumerate(d["bits"]):
+        high, _, low = b["bits"].partition(":")
+        bits.append(Bits(int(high), int(low or high), b["id"], b["doc"],
+                         [BitValue(v["value"], v["id"], v["doc"]) for v in b.get("values", [])],
+                         Origin(str(doc.path), ("bits", i))))
+    return BitfieldDef(d["bitfield"], d["name"], d["doc"], d["width"], d.get("manuals", []), bits,
+                       Origin(str(doc.path), ()))
+
+
+def _table(doc: Document) -> TableDef:
+    d = doc.data
+    params = [Parameter(number=p["number"], id=p["id"], name=p["name"], doc=p["doc"], encoding=p["encoding"],
+                        origin=Origin(str(doc.path), ("parameters", i)), size=p.get("size"), count=p.get("count"),
+                        min=p.get("min"), max=p.get("max"), max_length=p.get("max_length"),
+                        default=p.get("default"), unit=p.get("unit"), enum_id=p.get("enum"),
+                        bitfield_id=p.get("bitfield"), takes_effect=p.get("takes_effect"))
+              for i, p in enumerate(d["parameters"])]
+    return TableDef(d["table"], d["name"], d["doc"], d["manuals"], params, Origin(str(doc.path), ()))
 
 
 def _items(data: list[dict[str, Any]], file: str, where: tuple[str | int, ...]) -> list[Item]:
@@ -95,4 +125,6 @@ def _sentence(doc: Document) -> Sentence:
                 for i, e in enumerate(d.get("examples", []))]
     notes = [Note(n["manuals"], n["text"]) for n in d.get("notes", [])]
     return Sentence(d["sentence"], d["name"], d["doc"], d.get("talkers", []), d["manuals"], layout,
-                    variants, notes, examples, Origin(file, ()), file)
+                    variants, notes, examples, Origin(file, ()), file, address=d.get("address"),
+                    framing=d.get("framing", "sentence"), kind=d.get("kind", "standard"), vendor=d.get("vendor"),
+                    reply_ids=d.get("replies", []))

@@ -29,12 +29,18 @@ class _Reporter:
 def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
     report = _Reporter(docs)
     _unique(spec, report)
+    _distinct_names(spec, report)
     manual_ids = {m.id for m in spec.manuals}
     spec.enum_by_id = {e.id: e for e in spec.enums}
     for enum in spec.enums:
         _check_enum(enum, manual_ids, report)
+    for bitfield in spec.bitfields:
+        _check_bitfield(bitfield, manual_ids, report)
+    for table in spec.tables:
+        _check_table(spec, table, manual_ids, report)
     for sentence in spec.sentences:
         _check_manuals(sentence.manuals, manual_ids, sentence.origin, report, "manuals")
+        _check_proprietary(spec, sentence, manual_ids, report)
         for layout in sentence.layouts:
             _resolve_layout(spec, sentence, layout, manual_ids, report)
     if report.errors:
@@ -44,6 +50,22 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
         for example in sentence.examples:
             _check_example(spec, sentence, example, manual_ids, variant_ids, report)
     return report.errors
+
+
+def _distinct_names(spec: Spec, report: _Reporter) -> None:
+    """Enums, bitfields, tables and sentence layouts become types of one namespace in every
+    language: their names must differ."""
+    owners: dict[str, str] = {}
+    for s in spec.sentences:
+        for layout in s.layouts:
+            owners[s.layout_snake(layout)] = f"sentence {s.id}"
+    for kind, items in (("enum", spec.enums), ("bitfield", spec.bitfields), ("table", spec.tables)):
+        for item in items:
+            other = owners.get(item.id)
+            if other is not None:
+                report(item.origin, "S013", f"{kind} {item.id} has the name of {other}; rename it "
+                       f"(e.g. {item.id}_code)", kind)
+            owners[item.id] = f"{kind} {item.id}"
 
 
 def _unique(spec: Spec, report: _Reporter) -> None:
@@ -64,6 +86,72 @@ def _unique(spec: Spec, report: _Reporter) -> None:
         stem = s.origin.file.rsplit("/", 1)[-1].removesuffix(".yaml")
         if stem != s.id.lower():
             report(s.origin, "S010", f"sentence {s.id} must live in {s.id.lower()}.yaml", "sentence")
+
+
+def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], report: _Reporter) -> None:
+    if not sentence.is_proprietary:
+        if len(sentence.id) != 3 or not sentence.id.isalnum():
+            report(sentence.origin, "S010", f"standard sentence {sentence.id}: the id is the 3-character formatter; "
+                   "a proprietary sentence needs `address`", "sentence")
+        for key, value in (("kind", sentence.kind != "standard"), ("vendor", sentence.vendor), ("replies", sentence.reply_ids),
+                           ("framing", sentence.framing != "sentence")):
+            if value:
+                report(sentence.origin, "S010", f"standard sentence {sentence.id} cannot have `{key}`", key)
+        return
+    if sentence.vendor not in manual_ids:
+        report(sentence.origin, "S003", f"vendor {sentence.vendor!r} is not a manual id", "vendor")
+    if sentence.framing == "text" and not (sentence.address or "").isalpha():
+        report(sentence.origin, "S010", "a text command's address is its command word: letters only", "address")
+    if sentence.reply_ids and sentence.kind != "command":
+        report(sentence.origin, "S011", "only commands have replies", "replies")
+    sentence.replies = []
+    for i, reply_id in enumerate(sentence.reply_ids):
+        reply = spec.sentence(reply_id)
+        if reply is None:
+            report(sentence.origin, "S011", f"unknown reply sentence {reply_id!r}", "replies", i)
+        else:
+            sentence.replies.append(reply)
+
+
+def _check_bitfield(bitfield: Any, manual_ids: set[str], report: _Reporter) -> None:
+    _check_manuals(bitfield.manuals, manual_ids, bitfield.origin, report, "manuals")
+    used = 0
+    ids: set[str] = set()
+    for b in bitfield.bits:
+        if b.low > b.high or b.high >= bitfield.width:
+            report(b.origin, "S012", f"bits {b.label} do not fit a {bitfield.width}-bit value (write high:low)", "bits")
+            continue
+        if used & b.mask:
+            report(b.origin, "S012", f"bits {b.label} overlap bits named before", "bits")
+        used |= b.mask
+        if b.id in ids:
+            report(b.origin, "S012", f"{b.id!r} appears twice in bitfield {bitfield.id}", "id")
+        ids.add(b.id)
+        for j, v in enumerate(b.values):
+            if v.value >= 1 << b.width:
+                report(b.origin, "S012", f"value {v.value} does not fit bits {b.label}", "values", j)
+
+
+def _check_table(spec: Spec, table: Any, manual_ids: set[str], report: _Reporter) -> None:
+    _check_manuals(table.manuals, manual_ids, table.origin, report, "manuals")
+    numbers: set[int] = set()
+    ids: set[str] = set()
+    bitfields = {b.id: b for b in spec.bitfields}
+    for p in table.parameters:
+        if p.number in numbers or p.id in ids:
+            report(p.origin, "S001", f"parameter {p.number} ({p.id}) appears twice in table {table.id}", "number")
+        numbers.add(p.number)
+        ids.add(p.id)
+        if p.enum_id is not None:
+            p.enum = spec.enum_by_id.get(p.enum_id)
+            if p.enum is None:
+                report(p.origin, "S002", f"parameter {p.id} refers to unknown enum {p.enum_id!r}", "enum")
+        if p.bitfield_id is not None:
+            p.bitfield = bitfields.get(p.bitfield_id)
+            if p.bitfield is None:
+                report(p.origin, "S002", f"parameter {p.id} refers to unknown bitfield {p.bitfield_id!r}", "bitfield")
+        if p.encoding == "decimal_list" and not p.count:
+            report(p.origin, "S007", f"parameter {p.id}: a decimal_list needs `count`", "encoding")
 
 
 def _check_manuals(manuals: list[str], known: set[str], origin: Origin, report: _Reporter, *where: str | int) -> None:
@@ -141,6 +229,14 @@ def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: 
 
 def _resolve_field(spec: Spec, f: Field, manual_ids: set[str], report: _Reporter) -> None:
     _check_manuals(f.manuals, manual_ids, f.origin, report, "manuals")
+    if f.bitfield_id is not None:
+        f.bitfield = next((b for b in spec.bitfields if b.id == f.bitfield_id), None)
+        if f.bitfield is None:
+            report(f.origin, "S002", f"field {f.id} refers to unknown bitfield {f.bitfield_id!r}", "bitfield")
+        elif f.type not in ("hex", "integer"):
+            report(f.origin, "S012", f"field {f.id}: a bitfield applies to hex and integer fields", "bitfield")
+    if f.type == "keyword" and not (f.value or "").strip():
+        report(f.origin, "S007", f"keyword field {f.id} needs its word in `value`", "value")
     if f.enum_id is not None:
         f.enum = spec.enum_by_id.get(f.enum_id)
         if f.enum is None:
@@ -160,7 +256,8 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
     o = example.origin
     if example.manual not in manual_ids:
         report(o, "S003", f"unknown manual {example.manual!r}", "manual")
-    example.checksum_ok = _checksum_ok(example.raw)
+    example.checksum_ok = sentence.framing == "text" or "*" not in example.raw and example.raw.startswith("$") \
+        or _checksum_ok(example.raw)
     if example.checksum_ok and example.corrected and example.corrected == example.raw:
         report(o, "S008", "the correction is the manual's text itself", "corrected")
         return
@@ -170,7 +267,8 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
         return
     if example.unrecoverable:
         return
-    if example.corrected and not _checksum_ok(example.corrected):
+    if example.corrected and sentence.framing != "text" and "*" in example.corrected \
+            and not _checksum_ok(example.corrected):
         report(o, "S008", f"the correction's checksum fails too (computed {_computed(example.corrected)})",
                "corrected")
         return
@@ -211,6 +309,10 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
 
 
 def _checksum_ok(line: str) -> bool:
+    """Whether a `$` line's checksum holds; a bare '*' (checksum left out, as ST's manual writes
+    its commands) holds too."""
+    if line.startswith("$") and line.endswith("*") and line.count("*") == 1:
+        return True
     star = line.rfind("*")
     if not line or line[0] not in "$!" or star < 0 or len(line) != star + 3:
         return False
@@ -292,7 +394,7 @@ def _expect_value(f: Field, value: Any) -> str:
         if not isinstance(value, int):
             raise TypeError("hex expects an integer")
         return str(value)
-    if t in ("time", "date", "char", "literal", "text"):
+    if t in ("time", "date", "char", "literal", "text", "keyword"):
         if not isinstance(value, str):
             raise TypeError(f"{t} expects a string")
         return rt.json_str(value)

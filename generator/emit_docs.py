@@ -15,7 +15,7 @@ from .model import Field, Group, Layout, Sentence, Spec
 TYPE_NAMES = {
     "integer": "integer", "decimal": "decimal", "hex": "hex", "time": "UTC time", "date": "date",
     "latitude": "latitude + N/S", "longitude": "longitude + E/W", "char": "character",
-    "literal": "literal", "enum": "enum", "enum_chars": "enum characters", "text": "text",
+    "literal": "literal", "keyword": "keyword", "enum": "enum", "enum_chars": "enum characters", "text": "text",
 }
 
 

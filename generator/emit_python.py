@@ -18,16 +18,19 @@ def py_type(f: Field) -> str:
     base = {
         "integer": "rt.Number", "decimal": "rt.Number", "hex": "rt.Hex", "time": "rt.Time",
         "date": "rt.Date", "latitude": "rt.Coordinate", "longitude": "rt.Coordinate", "char": "str",
-        "literal": "str", "text": "str",
+        "literal": "str", "text": "str", "keyword": "str",
     }.get(f.type)
     if base is None:
         assert f.enum is not None
         base = f"{f.enum.camel} | str" if f.type == "enum" else f"list[{f.enum.camel} | str]"
+    if f.type == "keyword":
+        return base
     return base + " | None" + (" | rt._Absent" if f.is_optional else "")
 
 
-def py_parse(f: Field, pos: str, name: str) -> str:
-    """The expression that reads field `f` from `fields[pos]` (and `fields[pos + 1]` for lat/lon)."""
+def py_parse(f: Field, pos: str, name: str, ignore_case: bool = False) -> str:
+    """The expression that reads field `f` from `fields[pos]` (and `fields[pos + 1]` for lat/lon);
+    `ignore_case` for the words of a text command."""
     text = f"fields[{pos}]"
     index = _plus(pos, 1)
     common = f'{text}, address, {index}, {name}, {json.dumps(f.expected)}'
@@ -46,10 +49,13 @@ def py_parse(f: Field, pos: str, name: str) -> str:
         return f"rt.literal_field({common}, {json.dumps(f.value)})"
     if t == "text":
         return f"rt.text_field({common}, {f.max_length})"
+    if t == "keyword":
+        return f"rt.keyword_field({common}, {json.dumps(f.value)}{', True' if ignore_case else ''})"
     assert f.enum is not None
     e = f.enum
     if t == "enum":
-        return f'rt.enum_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {e.min_len}, {e.max_len})'
+        tail = ", True" if ignore_case else ""
+        return f'rt.enum_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {e.min_len}, {e.max_len}{tail})'
     return f'rt.enum_chars_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {f.max_length})'
 
 
@@ -63,6 +69,15 @@ def _plus(pos: str, n: int) -> str:
 
 def _decimal(value: float | None) -> str:
     return "None" if value is None else f'Decimal("{fmt_num(value)}")'
+
+
+def py_literal(value: object) -> str:
+    """A Python literal for a spec value (None, a string, a number)."""
+    if value is None:
+        return "None"
+    if isinstance(value, str):
+        return json.dumps(value)
+    return repr(value)
 
 
 def py_texts(f: Field, value: str) -> str:
@@ -110,7 +125,7 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    env.globals.update(py_type=py_type, py_parse=py_parse, py_texts=py_texts, json=json)
+    env.globals.update(py_type=py_type, py_parse=py_parse, py_texts=py_texts, py=py_literal, json=json)
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
     runtime = (TEMPLATES / "python" / "runtime.py").read_text(encoding="utf-8")
@@ -130,8 +145,17 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             sentence=sentence,
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
             enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}))
+    by_address = {s.address: spec.by_address(s.address) for s in spec.proprietary if s.framing == "sentence"}
+    text_commands = {s.address.upper(): spec.text_command(s.address) for s in spec.proprietary if s.framing == "text"}
+    files[f"{base}/bitfields.py"] = env.get_template("python/bitfields.py.j2").render(
+        header=header(spec, "#", [b.origin.file for b in spec.bitfields]), bitfields=spec.bitfields)
+    files[f"{base}/tables.py"] = env.get_template("python/tables.py.j2").render(
+        header=header(spec, "#", [t.origin.file for t in spec.tables]), tables=spec.tables,
+        uses_enums=any(p.enum for t in spec.tables for p in t.parameters),
+        uses_bitfields=any(p.bitfield for t in spec.tables for p in t.parameters))
     files[f"{base}/sentences/__init__.py"] = env.get_template("python/sentences_init.py.j2").render(
-        header=header(spec, "#"), sentences=spec.sentences)
+        header=header(spec, "#"), sentences=spec.sentences, by_address=sorted(by_address.items()),
+        text_commands=sorted(text_commands.items()))
     files[f"{base}/__init__.py"] = env.get_template("python/init.py.j2").render(
         header=header(spec, "#"), sentences=spec.sentences, enums=spec.enums)
     files["python/pyproject.toml"] = env.get_template("python/pyproject.toml.j2").render(

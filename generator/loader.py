@@ -42,30 +42,29 @@ def yaml_path(where: Path_) -> str:
     return out or "(top)"
 
 
-def _build(node: yaml.Node, where: Path_, lines: dict[Path_, int]) -> Any:
+def _record_lines(node: yaml.Node, where: Path_, lines: dict[Path_, int]) -> None:
+    """Remember the line of every YAML path (the data itself comes from yaml.safe_load)."""
     lines[where] = node.start_mark.line + 1
     if isinstance(node, yaml.MappingNode):
-        out: dict[str, Any] = {}
         for key_node, value_node in node.value:
-            key = str(key_node.value)
-            out[key] = _build(value_node, where + (key,), lines)
-        return out
-    if isinstance(node, yaml.SequenceNode):
-        return [_build(item, where + (i,), lines) for i, item in enumerate(node.value)]
-    # Scalars: let PyYAML's safe constructor decide the type, one scalar at a time.
-    return yaml.safe_load(yaml.serialize(node)) if node.tag != "tag:yaml.org,2002:str" else node.value
+            _record_lines(value_node, where + (str(key_node.value),), lines)
+    elif isinstance(node, yaml.SequenceNode):
+        for i, item in enumerate(node.value):
+            _record_lines(item, where + (i,), lines)
 
 
 def load_document(path: Path) -> Document:
     text = path.read_text(encoding="utf-8")
     try:
         node = yaml.compose(text, Loader=yaml.SafeLoader)
+        data = yaml.safe_load(text)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         raise SpecError(str(path), (mark.line + 1) if mark else 1, "(top)", f"not valid YAML: {exc}",
                         "yaml") from None
     lines: dict[Path_, int] = {}
-    data = _build(node, (), lines) if node is not None else None
+    if node is not None:
+        _record_lines(node, (), lines)
     return Document(path, data, lines)
 
 

@@ -110,8 +110,10 @@ class Field:
     value: str | None = None
     since: str | None = None
     optional: bool = False
+    bitfield_id: str | None = None
     # Derived by resolve():
     enum: EnumDef | None = None
+    bitfield: BitfieldDef | None = None
     wire_index: int = 0          # 1-based index of the first wire field, within its group entry for grouped fields
     group: Group | None = None
 
@@ -150,6 +152,8 @@ class Field:
             return "one character"
         if t == "literal":
             return f"{self.value} or nothing"
+        if t == "keyword":
+            return self.value or ""
         if t in ("enum", "enum_chars"):
             assert self.enum is not None
             codes = " ".join(v.code for v in self.enum.values)
@@ -241,6 +245,12 @@ class Layout:
         return sum(f.wire_width for f in self.optional_fields)
 
     @property
+    def selector(self) -> str | None:
+        """The keyword a line's first field must hold for this layout (RQUERY in $GPSGG,RQUERY,…)."""
+        first = self.items[0] if self.items else None
+        return first.value if isinstance(first, Field) and first.type == "keyword" else None
+
+    @property
     def min_fields(self) -> int:
         g = self.group
         return self.fixed_count + (g.min * g.width if g else 0)
@@ -292,6 +302,16 @@ class Sentence:
     examples: list[Example]
     origin: Origin
     source: str                  # spec file, relative to the repository
+    address: str | None = None   # proprietary: the exact address (text framing: the command word)
+    framing: str = "sentence"    # "sentence" ($…*hh) or "text" (space-separated words)
+    kind: str = "standard"       # standard, command, reply or output
+    vendor: str | None = None
+    reply_ids: list[str] = field(default_factory=list)
+    replies: list[Sentence] = field(default_factory=list)   # resolved reply_ids
+
+    @property
+    def is_proprietary(self) -> bool:
+        return self.address is not None
 
     @property
     def layouts(self) -> list[Layout]:
@@ -309,6 +329,90 @@ class Sentence:
 
 
 @dataclass
+class BitValue:
+    value: int
+    id: str
+    doc: str
+
+
+@dataclass
+class Bits:
+    high: int
+    low: int
+    id: str
+    doc: str
+    values: list[BitValue]
+    origin: Origin
+
+    @property
+    def width(self) -> int:
+        return self.high - self.low + 1
+
+    @property
+    def max_value(self) -> int:
+        return (1 << self.width) - 1
+
+    @property
+    def mask(self) -> int:
+        return self.max_value << self.low
+
+    @property
+    def label(self) -> str:
+        return str(self.high) if self.high == self.low else f"{self.high}:{self.low}"
+
+
+@dataclass
+class BitfieldDef:
+    id: str
+    name: str
+    doc: str
+    width: int
+    manuals: list[str]
+    bits: list[Bits]
+    origin: Origin
+
+    @property
+    def camel(self) -> str:
+        return camel(self.id)
+
+
+@dataclass
+class Parameter:
+    number: int
+    id: str
+    name: str
+    doc: str
+    encoding: str
+    origin: Origin
+    size: int | None = None
+    count: int | None = None
+    min: float | None = None
+    max: float | None = None
+    max_length: int | None = None
+    default: str | None = None
+    unit: str | None = None
+    enum_id: str | None = None
+    bitfield_id: str | None = None
+    takes_effect: str | None = None
+    enum: EnumDef | None = None
+    bitfield: BitfieldDef | None = None
+
+
+@dataclass
+class TableDef:
+    id: str
+    name: str
+    doc: str
+    manuals: list[str]
+    parameters: list[Parameter]
+    origin: Origin
+
+    @property
+    def camel(self) -> str:
+        return camel(self.id)
+
+
+@dataclass
 class Spec:
     manuals: list[Manual]
     enums: list[EnumDef]
@@ -316,6 +420,8 @@ class Spec:
     sources: list[str]
     digest: str
     file_digests: dict[str, str] = field(default_factory=dict)
+    bitfields: list[BitfieldDef] = field(default_factory=list)
+    tables: list[TableDef] = field(default_factory=list)
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
 
     def digest_of(self, sources: list[str]) -> str:
@@ -337,8 +443,29 @@ class Spec:
         return next((s for s in self.sentences if s.id == sentence_id), None)
 
     @property
-    def used_enums(self) -> list[EnumDef]:
-        return self.enums
+    def standard(self) -> list[Sentence]:
+        return [s for s in self.sentences if not s.is_proprietary]
+
+    @property
+    def proprietary(self) -> list[Sentence]:
+        return [s for s in self.sentences if s.is_proprietary]
+
+    def by_address(self, address: str) -> list[tuple[Sentence, Layout]]:
+        """The layouts of the proprietary `$` sentences with this exact address, in parse order."""
+        return _parse_order([s for s in self.sentences if s.address == address and s.framing == "sentence"])
+
+    def text_command(self, word: str) -> list[tuple[Sentence, Layout]]:
+        """The layouts of the text commands whose command word is `word` (ignoring case), in parse order."""
+        upper = word.upper()
+        return _parse_order([s for s in self.sentences
+                             if s.framing == "text" and s.address and s.address.upper() == upper])
+
+
+def _parse_order(sentences: list[Sentence]) -> list[tuple[Sentence, Layout]]:
+    """Layouts that start with a keyword first (they are the specific ones), then the others,
+    each in file order."""
+    pairs = [(s, layout) for s in sentences for layout in s.layouts]
+    return [p for p in pairs if p[1].selector is not None] + [p for p in pairs if p[1].selector is None]
 
 
 def camel(snake: str) -> str:

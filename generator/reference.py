@@ -36,7 +36,9 @@ class Decoded:
     frame: Any
     sentence: Sentence | None
     layout: Layout | None
-    values: list[tuple[str, Any]]  # (field or group id, value) for every item on the wire
+    # For every item on the wire: (field or group id, value, wire texts). A group's value is a
+    # list of entries, each a list of (field id, value, texts).
+    values: list[tuple[str, Any, Any]]
 
 
 class _EnumMember:
@@ -48,40 +50,54 @@ class _EnumMember:
 
 
 def decode(spec: Spec, line: str) -> Decoded:
-    frame = rt.frame(line)
-    sentence = _find(spec, frame)
-    if sentence is None:
+    if line[:1] not in ("$", "!") and spec.text_command(rt.first_word(line)):
+        frame = rt.text_frame(line)
+        candidates = spec.text_command(frame.address)
+    else:
+        frame = rt.frame(line)
+        candidates = spec.by_address(frame.address) if frame.start == "$" else []
+        if not candidates and rt.is_standard_address(frame.start, frame.address):
+            standard = spec.sentence(frame.address[2:])
+            if standard is not None and not standard.is_proprietary:
+                candidates = [(standard, layout) for layout in standard.layouts]
+    if not candidates:
         return Decoded(frame, None, None, [])
-    first_error = None
-    for layout in sentence.layouts:
+    errors = []
+    for sentence, layout in candidates:
         try:
             return Decoded(frame, sentence, layout, _decode_layout(sentence, layout, frame))
         except rt.NmeaError as err:
-            first_error = first_error or err
-    raise first_error
+            errors.append((layout, err))
+    raise _best_error(errors, frame)
 
 
-def _find(spec: Spec, frame: Any) -> Sentence | None:
-    if not rt.is_standard_address(frame.start, frame.address):
-        return None
-    return spec.sentence(frame.address[2:])
+def _best_error(errors: list[tuple[Layout, Any]], frame: Any) -> Any:
+    """The error to report when no layout fits. The layouts whose keyword the line's first field
+    holds (else all) are the contenders; of those, the first whose field count fitted (its error
+    is a bad field) else the first."""
+    first = frame.fields[0].upper() if frame.fields else None
+    contenders = [e for layout, e in errors if layout.selector is not None and layout.selector.upper() == first]
+    contenders = contenders or [e for _, e in errors]
+    return next((e for e in contenders if e.kind == "bad_field"), contenders[0])
 
 
-def _decode_layout(sentence: Sentence, layout: Layout, frame: Any) -> list[tuple[str, Any]]:
+def _decode_layout(sentence: Sentence, layout: Layout, frame: Any) -> list[tuple[str, Any, Any]]:
     fields = frame.fields
     count = len(fields)
     address = frame.address
+    name = sentence.id if sentence.is_proprietary else sentence.id
     group = layout.group
     if group is not None:
-        repeats, extra = rt.split_group(address, sentence.id, group.id, count, layout.fixed_count,
+        repeats, extra = rt.split_group(address, name, group.id, count, layout.fixed_count,
                                         group.width, group.min, group.max, layout.optional_count)
     else:
         if count < layout.fixed_count:
-            raise rt.too_few(address, sentence.id, layout.fixed_count, count)
+            raise rt.too_few(address, name, layout.fixed_count, count)
         if count > layout.max_fields:
-            raise rt.too_many(address, sentence.id, layout.max_fields, count)
+            raise rt.too_many(address, name, layout.max_fields, count)
         repeats, extra = 0, count - layout.fixed_count
-    values: list[tuple[str, Any]] = []
+    ignore_case = sentence.framing == "text"
+    values: list[tuple[str, Any, Any]] = []
     pos = 0
     optional_left = extra
     for item in layout.items:
@@ -90,16 +106,18 @@ def _decode_layout(sentence: Sentence, layout: Layout, frame: Any) -> list[tuple
             for r in range(repeats):
                 entry = []
                 for f in item.fields:
-                    entry.append((f.id, _field(f, fields, pos, address, f"{item.id}[{r + 1}].{f.id}")))
+                    value = _field(f, fields, pos, address, f"{item.id}[{r + 1}].{f.id}", ignore_case)
+                    entry.append((f.id, value, fields[pos:pos + f.wire_width]))
                     pos += f.wire_width
                 entries.append(entry)
-            values.append((item.id, entries))
+            values.append((item.id, entries, None))
             continue
         if item.is_optional:
             if optional_left < item.wire_width:
                 break
             optional_left -= item.wire_width
-        values.append((item.id, _field(item, fields, pos, address, item.id)))
+        value = _field(item, fields, pos, address, item.id, ignore_case)
+        values.append((item.id, value, fields[pos:pos + item.wire_width]))
         pos += item.wire_width
     return values
 
@@ -108,7 +126,7 @@ def _bound(value: float | None) -> Decimal | None:
     return None if value is None else Decimal(str(value))
 
 
-def _field(f: Field, fields: list[str], pos: int, address: str, name: str) -> Any:
+def _field(f: Field, fields: list[str], pos: int, address: str, name: str, ignore_case: bool) -> Any:
     text = fields[pos]
     index = pos + 1
     t = f.type
@@ -131,21 +149,22 @@ def _field(f: Field, fields: list[str], pos: int, address: str, name: str) -> An
         return rt.literal_field(text, address, index, name, f.expected, f.value)
     if t == "text":
         return rt.text_field(text, address, index, name, f.expected, f.max_length)
+    if t == "keyword":
+        return rt.keyword_field(text, address, index, name, f.expected, f.value, ignore_case)
     assert f.enum is not None
     by_code = {v.code: _EnumMember(v.code, v.id) for v in f.enum.values}
     if t == "enum":
         return rt.enum_field(text, address, index, name, f.expected, by_code, f.enum.code_class,
-                             f.enum.min_len, f.enum.max_len)
+                             f.enum.min_len, f.enum.max_len, ignore_case)
     return rt.enum_chars_field(text, address, index, name, f.expected, by_code, f.enum.code_class,
                                f.max_length)
 
 
-def _text(value: Any) -> str:
-    if isinstance(value, _EnumMember):
-        return rt.json_str(value.code)
-    if isinstance(value, list):
-        return rt.json_str("".join(v.code if isinstance(v, _EnumMember) else v for v in value))
-    return rt.text_json(value)
+def _texts_json(texts: list[str]) -> str:
+    """The lossless JSON of a field: its wire text(s), null when empty."""
+    if len(texts) == 2:
+        return "null" if texts == ["", ""] else f"[{rt.json_str(texts[0])},{rt.json_str(texts[1])}]"
+    return "null" if not texts[0] else rt.json_str(texts[0])
 
 
 def _value(value: Any) -> str:
@@ -158,19 +177,21 @@ def _value(value: Any) -> str:
 
 def fields_json(decoded: Decoded, values: bool = False) -> str:
     """The `fields` object of a known sentence, in the lossless or the decoded (`values`) form."""
-    show = _value if values else _text
+    def show(value: Any, texts: list[str]) -> str:
+        return _value(value) if values else _texts_json(texts)
+
     parts = []
-    for item_id, value in decoded.values:
-        if _is_group(decoded.layout, item_id):
+    for item_id, value, texts in decoded.values:
+        if texts is None:  # a group
             entries = []
             for entry in value:
                 if len(entry) == 1:
-                    entries.append(show(entry[0][1]))
+                    entries.append(show(entry[0][1], entry[0][2]))
                 else:
-                    entries.append("{" + ",".join(f'"{k}":{show(v)}' for k, v in entry) + "}")
+                    entries.append("{" + ",".join(f'"{k}":{show(v, t)}' for k, v, t in entry) + "}")
             parts.append(f'"{item_id}":[' + ",".join(entries) + "]")
         else:
-            parts.append(f'"{item_id}":{show(value)}')
+            parts.append(f'"{item_id}":{show(value, texts)}')
     return "{" + ",".join(parts) + "}"
 
 
@@ -183,12 +204,9 @@ def to_json(decoded: Decoded, values: bool = False) -> str:
         fields = "[" + ",".join(rt.json_str(f) for f in frame.fields) + "]"
         return head + '"talker":null,"sentence":null,"variant":null,"fields":' + fields + tail
     variant = rt.json_opt(decoded.layout.id if decoded.layout else None)
-    return (head + f'"talker":{rt.json_str(frame.address[:-3])},"sentence":{rt.json_str(decoded.sentence.id)},'
+    talker = "null" if decoded.sentence.is_proprietary else rt.json_str(frame.address[:-3])
+    return (head + f'"talker":{talker},"sentence":{rt.json_str(decoded.sentence.id)},'
             f'"variant":{variant},"fields":{fields_json(decoded, values)}' + tail)
-
-
-def _is_group(layout: Layout | None, item_id: str) -> bool:
-    return layout is not None and layout.group is not None and layout.group.id == item_id
 
 
 def decode_json(spec: Spec, line: str, values: bool = False) -> str:

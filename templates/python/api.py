@@ -8,7 +8,7 @@ from typing import Any
 
 from . import runtime
 from .runtime import NmeaError
-from .sentences import LAYOUTS
+from .sentences import BY_ADDRESS, LAYOUTS, STANDARD, TEXT_COMMANDS
 
 
 @dataclass(slots=True)
@@ -28,41 +28,65 @@ class Generic:
 
 
 def parse(line: str | bytes) -> Any:
-    """Decode one sentence (a trailing CR LF is allowed) into the class of its layout, or a
-    Generic for a well-formed sentence the spec does not describe. Raises NmeaError."""
+    """Decode one line (a trailing CR LF is allowed) into the class of its layout, or a Generic
+    for a well-formed sentence the spec does not describe. Raises NmeaError."""
     if isinstance(line, bytes):
         line = line.decode("latin-1")
     if line.endswith("\n"):
         line = line[:-2] if line.endswith("\r\n") else line[:-1]
+    if line[:1] not in ("$", "!"):
+        layouts = TEXT_COMMANDS.get(runtime.first_word(line).upper())
+        if layouts is not None:
+            frame = runtime.text_frame(line)
+            return _first_fit(layouts, frame, None, line)
     frame = runtime.frame(line)
     checksum = runtime.checksum_case(frame.checksum)
     address = frame.address
-    layouts = LAYOUTS.get(address[2:]) if runtime.is_standard_address(frame.start, address) else None
+    layouts = BY_ADDRESS.get(address) if frame.start == "$" else None
+    if layouts is None and runtime.is_standard_address(frame.start, address):
+        layouts = STANDARD.get(address[2:])
     if layouts is None:
         return Generic(address, frame.fields, frame.start, checksum)
-    first_error = None
+    return _first_fit(layouts, frame, checksum, line)
+
+
+def _first_fit(layouts: tuple[Any, ...], frame: runtime.Frame, checksum: str | None, line: str) -> Any:
+    """The first layout that parses the fields. When none does, the error of the layouts whose
+    keyword the first field holds (else of all): the first bad field, else the first error."""
+    errors = []
     for layout in layouts:
         try:
-            return layout.parse_fields(address[:2], frame.fields, checksum)
+            return layout.parse_fields(frame.address, frame.fields, checksum, line)
         except NmeaError as err:
-            if first_error is None:
-                first_error = err
-    assert first_error is not None
-    raise first_error
+            errors.append((layout, err))
+    first = frame.fields[0].upper() if frame.fields else None
+    contenders = [err for layout, err in errors if layout.SELECTOR is not None and layout.SELECTOR == first]
+    contenders = contenders or [err for _, err in errors]
+    raise next((err for err in contenders if err.kind == "bad_field"), contenders[0])
+
+
+def replies_of(command: Any) -> tuple[Any, ...]:
+    """The sentence classes (all layouts) that answer a command class or instance."""
+    return tuple(layout for reply in command.REPLIES for layout in LAYOUTS[reply])
 
 
 def to_json(sentence: Any, values: bool = False) -> str:
     """The tools' JSON line for a decoded sentence (`values`: decoded values, not texts)."""
+    text = sentence.to_sentence()
     if isinstance(sentence, Generic):
         fields = "[" + ",".join(runtime.json_str(f) for f in sentence.fields) + "]"
         head = (f'{{"ok":true,"start":{runtime.json_str(sentence.start)},"address":{runtime.json_str(sentence.address)},'
                 '"talker":null,"sentence":null,"variant":null,"fields":')
     else:
-        address = sentence.talker + sentence.SENTENCE
-        fields = sentence.fields_json(values)
-        head = (f'{{"ok":true,"start":"$","address":{runtime.json_str(address)},"talker":{runtime.json_str(sentence.talker)},'
+        if sentence.ADDRESS is None:
+            start, address, talker = "$", sentence.talker + sentence.SENTENCE, runtime.json_str(sentence.talker)
+        elif sentence.checksum is None and not text.startswith("$"):
+            start, address, talker = "", runtime.first_word(text), "null"
+        else:
+            start, address, talker = "$", sentence.ADDRESS, "null"
+        head = (f'{{"ok":true,"start":"{start}","address":{runtime.json_str(address)},"talker":{talker},'
                 f'"sentence":"{sentence.SENTENCE}","variant":{runtime.json_opt(sentence.VARIANT)},"fields":')
-    text = sentence.to_sentence()
+        fields = sentence.fields_json(values)
     star = text.rfind("*") if sentence.checksum is not None else -1
     checksum = runtime.json_opt(text[star + 1:] if star >= 0 else None)
     return f'{head}{fields},"checksum":{checksum}}}'
@@ -93,7 +117,15 @@ def from_json(obj: Any) -> Any:
     fields = runtime.json_member(obj, "fields")
     if not isinstance(fields, dict):
         raise runtime.bad_json('"fields" is not an object')
-    return layout.parse_fields(runtime.json_str_member(obj, "talker"), layout.fields_from_json(fields), checksum)
+    texts = layout.fields_from_json(fields)
+    if layout.ADDRESS is None:
+        address = runtime.json_str_member(obj, "talker") + sentence_id
+        return layout.parse_fields(address, texts, checksum)
+    if runtime.json_str_member(obj, "start") == "":
+        address = runtime.json_str_member(obj, "address")
+        line = " ".join([address, *texts])
+        return layout.parse_fields(address, texts, None, line)
+    return layout.parse_fields(layout.ADDRESS, texts, checksum)
 
 
 def encode_json(line: str) -> str:

@@ -109,16 +109,48 @@ def frame(line: str) -> Frame:
     sent = None
     if star >= 0:
         sent = line[star + 1:]
-        if len(sent) != 2 or sent[0] not in _HEX_DIGITS or sent[1] not in _HEX_DIGITS \
-                or (sent != sent.upper() and sent != sent.lower()):
-            raise NmeaError("bad_checksum", f"checksum {json_str(sent)} is not two hex digits of one letter case",
-                            named)
-        computed = checksum(body)
-        if int(sent, 16) != computed:
-            raise NmeaError("checksum_mismatch", f"checksum is {sent}, computed {computed:02X}", named)
+        # A bare '*' leaves the checksum out, as ST's manual writes its commands.
+        if sent:
+            if len(sent) != 2 or sent[0] not in _HEX_DIGITS or sent[1] not in _HEX_DIGITS \
+                    or (sent != sent.upper() and sent != sent.lower()):
+                raise NmeaError("bad_checksum",
+                                f"checksum {json_str(sent)} is not two hex digits of one letter case", named)
+            computed = checksum(body)
+            if int(sent, 16) != computed:
+                raise NmeaError("checksum_mismatch", f"checksum is {sent}, computed {computed:02X}", named)
     if named is None:
         raise NmeaError("not_a_sentence", f"address {json_str(address)} is not letters and digits")
     return Frame(start, address, parts[1:], sent)
+
+
+def text_frame(line: str) -> Frame:
+    """Split a text command (ComNav: words separated by single spaces, no '$', no checksum)."""
+    if len(line) > MAX_LINE:
+        raise NmeaError("too_long", f"line is {len(line)} bytes, the limit is {MAX_LINE}")
+    for offset, ch in enumerate(line):
+        if not " " <= ch <= "~":
+            raise NmeaError("not_a_sentence", f"byte 0x{ord(ch):02x} at offset {offset} is not printable ASCII")
+    words = line.split(" ")
+    return Frame("", words[0], words[1:], None)
+
+
+def first_word(line: str) -> str:
+    """The command word of a possible text command: the text before the first space."""
+    return line.split(" ", 1)[0]
+
+
+def checked_bytes(line: str, parse: Any, text: bool) -> bytes:
+    """`line` plus CR LF, after reading it back with `parse` so that a bad field is refused
+    before anything is sent."""
+    frame = text_frame(line) if text else globals()["frame"](line)
+    parse(frame.address, frame.fields, checksum_case(frame.checksum), line)
+    return (line + "\r\n").encode("ascii")
+
+
+def words_json(ids: tuple[str, ...], line: str) -> str:
+    """The lossless `fields` object of a text command: each word as written."""
+    words = line.split(" ")[1:]
+    return "{" + ",".join(f'"{i}":{json_str(w) if w else "null"}' for i, w in zip(ids, words)) + "}"
 
 
 def is_standard_address(start: str, address: str) -> bool:
@@ -128,10 +160,12 @@ def is_standard_address(start: str, address: str) -> bool:
 
 def assemble(start: str, address: str, fields: list[str], checksum_style: str | None) -> str:
     """The sentence text: start, address, fields and the checksum written in `checksum_style`
-    ("upper", "lower", or None for none)."""
+    ("upper", "lower", "empty" for a bare '*', or None for none)."""
     body = ",".join([address, *fields])
     if checksum_style is None:
         return start + body
+    if checksum_style == "empty":
+        return f"{start}{body}*"
     text = f"{checksum(body):02X}"
     return f"{start}{body}*{text.lower() if checksum_style == 'lower' else text}"
 
@@ -526,6 +560,14 @@ def literal_field(text: str, address: str, index: int, name: str, expected: str,
     return text
 
 
+def keyword_field(text: str, address: str, index: int, name: str, expected: str, keyword: str,
+                  ignore_case: bool = False) -> str:
+    """A fixed word that must be there (it picks the layout); returned in the spec's spelling."""
+    if text != keyword and not (ignore_case and text.upper() == keyword):
+        raise bad_field(address, index, name, expected, text)
+    return keyword
+
+
 def text_field(text: str, address: str, index: int, name: str, expected: str,
                max_length: int | None = None) -> str | None:
     if not text:
@@ -537,11 +579,11 @@ def text_field(text: str, address: str, index: int, name: str, expected: str,
 
 def enum_field(text: str, address: str, index: int, name: str, expected: str,
                by_code: dict[str, Any], code_class: str, min_len: int,
-               max_len: int) -> Any:
+               max_len: int, ignore_case: bool = False) -> Any:
     """An enum member for a known code, the code itself for a well-formed unknown one."""
     if not text:
         return None
-    member = by_code.get(text)
+    member = by_code.get(text.upper() if ignore_case else text)
     if member is not None:
         return member
     if not is_code_like(text, code_class, min_len, max_len):
@@ -659,10 +701,20 @@ def json_text(value: Any) -> str:
 
 
 def checksum_case(text: str | None) -> str | None:
-    """How a received checksum was written: None (absent), "lower" or "upper"."""
+    """How a received checksum was written: None (absent), "empty" (a bare '*'), "lower" or "upper"."""
     if text is None:
         return None
+    if not text:
+        return "empty"
     return "lower" if text != text.upper() else "upper"
+
+
+def assemble_text(address: str, fields: list[str], as_received: str | None) -> str:
+    """A text command: its words joined by single spaces, in the letter case it was received in."""
+    line = " ".join([address, *fields])
+    if as_received is not None and as_received.upper() == line.upper():
+        return as_received
+    return line
 
 
 def json_opt_text(obj: Any, key: str) -> str | None:
@@ -677,3 +729,61 @@ def json_str_member(obj: Any, key: str) -> str:
     if not isinstance(value, str):
         raise bad_json(f'"{key}" is not a string')
     return value
+
+
+# ---------------------------------------------------------------------------------------------
+# Configuration parameter tables (ST's CDB): the wire text of a value
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter of a receiver's configuration table and how its value is written."""
+
+    number: int
+    id: str
+    name: str
+    encoding: str  # hex, decimal, decimal_list or text
+    size: int | None = None
+    count: int | None = None
+    minimum: float | None = None
+    maximum: float | None = None
+    max_length: int | None = None
+    default: str | None = None
+    unit: str | None = None
+    enum: Any = None
+    bitfield: Any = None
+    doc: str = ""
+
+    def encode(self, value: Any) -> list[str]:
+        """The wire field(s) for `value`: an int (hex), a number (decimal), a sequence of numbers
+        (decimal_list) or a string (text). Raises ValueError naming the parameter."""
+        where = f"parameter {self.number} ({self.id})"
+        if self.encoding == "hex":
+            number = int(value.value, 16) if isinstance(value, CodeEnum) else int(value)
+            self._check_range(number, where)
+            if number < 0 or (self.size is not None and number >= 1 << (8 * self.size)):
+                raise ValueError(f"{where}: {number} does not fit {self.size} byte(s)")
+            return [f"{number:X}"]
+        if self.encoding == "decimal":
+            number = Decimal(str(value))
+            self._check_range(number, where)
+            return [str(number)]
+        if self.encoding == "decimal_list":
+            values = [Decimal(str(v)) for v in value]
+            if self.count is not None and len(values) != self.count:
+                raise ValueError(f"{where}: expected {self.count} values, got {len(values)}")
+            for v in values:
+                self._check_range(v, where)
+            return [str(v) for v in values]
+        text = str(value)
+        if self.max_length is not None and len(text) > self.max_length:
+            raise ValueError(f"{where}: text longer than {self.max_length}")
+        if not (text.isascii() and text.isprintable()) or any(ch in ",*$!" for ch in text):
+            raise ValueError(f"{where}: text holds ',', '*', '$', '!' or a byte outside printable ASCII")
+        return [text]
+
+    def _check_range(self, number: Any, where: str) -> None:
+        if self.minimum is not None and number < Decimal(str(self.minimum)):
+            raise ValueError(f"{where}: {number} is below {self.minimum}")
+        if self.maximum is not None and number > Decimal(str(self.maximum)):
+            raise ValueError(f"{where}: {number} is above {self.maximum}")
