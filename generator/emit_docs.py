@@ -30,6 +30,10 @@ def type_cell(f: Field) -> str:
     name = TYPE_NAMES[f.type]
     if f.enum is not None:
         return f"{name} [{f.enum.id}](../enums/{f.enum.id}.md)"
+    if f.bitfield is not None:
+        return f"{name} [{f.bitfield.id}](../bitfields/{f.bitfield.id}.md)"
+    if f.type == "keyword":
+        return f"keyword `{f.value}`"
     if f.type == "literal":
         return f"literal `{f.value}`"
     if f.min is not None or f.max is not None:
@@ -95,6 +99,7 @@ def example_view(vector: dict) -> dict:
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     env.filters["cell"] = cell
+    env.globals["replied_by"] = lambda s: replied_by(spec, s)
     vectors = [example_view(v) for v in emit_vectors.example_vectors(spec)]
     by_sentence: dict[str, list[dict]] = {}
     for v in vectors:
@@ -109,7 +114,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                 for f in (item.fields if isinstance(item, Group) else [item]):
                     if f.enum and s.id not in enum_users[f.enum.id]:
                         enum_users[f.enum.id].append(s.id)
-    matrix = [(s, [m.id in s.manuals for m in spec.manuals]) for s in spec.sentences]
+    matrix = [(s, [m.id in s.manuals for m in spec.manuals]) for s in spec.standard]
+    matrix += [(s, [m.id in s.manuals for m in spec.manuals]) for s in spec.proprietary]
     files: dict[str, str] = {}
     md_header = header(spec, "", None).replace("\n", "\n").strip()
     banner = "<!-- " + " | ".join(md_header.splitlines()) + " -->\n"
@@ -122,10 +128,45 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     for e in spec.enums:
         files[f"docs/enums/{e.id}.md"] = env.get_template("docs/enum.md.j2").render(
             banner=banner, e=e, users=enum_users[e.id])
+    for b in spec.bitfields:
+        files[f"docs/bitfields/{b.id}.md"] = env.get_template("docs/bitfield.md.j2").render(
+            banner=banner, b=b, users=_bitfield_users(spec, b.id))
+    for t in spec.tables:
+        files[f"docs/tables/{t.id}.md"] = env.get_template("docs/table.md.j2").render(banner=banner, t=t)
+    for m in spec.manuals:
+        if m.file is None:
+            continue
+        files[f"docs/vendors/{m.id}.md"] = env.get_template("docs/vendor.md.j2").render(
+            banner=banner, m=m, spec=spec, counts=counts[m.id],
+            standard=[(s, [n for n in s.notes if m.id in n.manuals]) for s in spec.standard if m.id in s.manuals],
+            proprietary=[s for s in spec.proprietary if s.vendor == m.id],
+            tables=[t for t in spec.tables if m.id in t.manuals],
+            bitfields=[b for b in spec.bitfields if m.id in b.manuals],
+            errata=[v for v in vectors if v["manual_id"] == m.id and v["status"] != "intact"])
     files["docs/errata.md"] = env.get_template("docs/errata.md.j2").render(
         banner=banner, spec=spec, vectors=[v for v in vectors if v["status"] != "intact"], counts=counts)
     files["docs/json.md"] = banner + (TEMPLATES / "docs" / "json.md").read_text(encoding="utf-8")
     return files
+
+
+def _bitfield_users(spec: Spec, bitfield_id: str) -> list[str]:
+    users = []
+    for s in spec.sentences:
+        for lay in s.layouts:
+            for item in lay.items:
+                for f in (item.fields if isinstance(item, Group) else [item]):
+                    if f.bitfield and f.bitfield.id == bitfield_id and s.id not in users:
+                        users.append(s.id)
+    for t in spec.tables:
+        for p in t.parameters:
+            if p.bitfield and p.bitfield.id == bitfield_id and t.id not in users:
+                users.append(t.id)
+    return users
+
+
+def replied_by(spec: Spec, sentence: Sentence) -> list[Sentence]:
+    """The commands a reply answers."""
+    return [s for s in spec.sentences if sentence in s.replies]
 
 
 def _enums_of(s: Sentence) -> list:
