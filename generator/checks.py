@@ -220,6 +220,11 @@ def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: 
         _resolve_field(spec, item, manual_ids, report)
     if groups > 1:
         report(layout.origin, "S005", f"{sentence.id} has {groups} groups; a layout takes at most one")
+    group = layout.group
+    if group is not None and not group.is_fixed and layout.optional_count >= group.width:
+        report(group.origin, "S005", f"group {group.id} repeats a variable number of times and is followed by "
+               f"{layout.optional_count} optional fields; fewer than its width ({group.width}) keep the "
+               "field count unambiguous (or use a variant)", "group")
     versions = [f.since for f in layout.optional_fields if f.since]
     if versions != sorted(versions, key=VERSION_ORDER.index):
         report(layout.origin, "S004", f"{sentence.id}: optional fields must be in the order of the NMEA "
