@@ -1,11 +1,469 @@
-"""Placeholder while the c emitter is written."""
+"""C emitter: one nmea.h / nmea.c pair (the hand-written runtime of templates/c plus a struct,
+parser, serializer and JSON form per sentence layout), the nmea-c tool and the example tests.
+
+Everything the templates print is worked out here: C names, the call that reads, writes, shows
+or collects each field, the value ranges; the templates only loop and print.
+"""
 
 from __future__ import annotations
 
+import textwrap
+from decimal import Decimal
+
 import jinja2
 
-from .model import Spec
+from . import emit_vectors
+from .emit import TEMPLATES, header
+from .model import EnumDef, Example, Field, Group, Layout, Sentence, Spec, fmt_num
+
+C_KEYWORDS = frozenset("""
+auto break case char const continue default do double else enum extern float for goto if inline int
+long register restrict return short signed sizeof static struct switch typedef union unsigned void
+volatile while bool true false _Bool _Complex _Imaginary
+""".split())
+
+# Struct members every layout has besides its fields.
+RESERVED_MEMBERS = frozenset({"talker", "checksum", "optional_count"})
+
+C_TYPES = {
+    "integer": "nmea_number", "decimal": "nmea_number", "hex": "nmea_hex", "time": "nmea_time",
+    "date": "nmea_date", "latitude": "nmea_coordinate", "longitude": "nmea_coordinate", "char": "char",
+    "literal": "bool", "enum": "nmea_enum", "enum_chars": "nmea_text", "text": "nmea_text",
+}
+
+# What "no value" looks like for each C type, for the member docs.
+EMPTY = {
+    "nmea_number": "present false", "nmea_hex": "present false", "nmea_time": "present false",
+    "nmea_date": "present false", "nmea_coordinate": "present false", "nmea_enum": "present false",
+    "char": "0", "bool": "false", "nmea_text": "length 0",
+}
+
+
+def c_str(text: str) -> str:
+    """A C string literal of `text` (UTF-8 bytes; '?' escaped so that no trigraph can form)."""
+    out = ['"']
+    for byte in text.encode("utf-8"):
+        ch = chr(byte)
+        if ch in '"\\?':
+            out.append("\\" + ch)
+        elif 0x20 <= byte <= 0x7E:
+            out.append(ch)
+        else:
+            out.append(f"\\{byte:03o}")
+    out.append('"')
+    return "".join(out)
+
+
+def c_comment(text: str) -> str:
+    """Text that is safe inside a /* */ comment."""
+    return text.replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
+
+
+def doc_lines(text: str, width: int = 92) -> list[str]:
+    return textwrap.wrap(c_comment(" ".join(text.split())), width) or [""]
+
+
+def member(name: str) -> str:
+    return name + "_" if name in C_KEYWORDS else name
+
+
+def enum_type(e: EnumDef) -> str:
+    return f"nmea_{e.id}"
+
+
+def enum_def(e: EnumDef) -> str:
+    return f"nmea_{e.id}_def"
+
+
+def enum_const(e: EnumDef, value_id: str) -> str:
+    return f"NMEA_{e.id.upper()}_{value_id.upper()}"
+
+
+def layout_const(sentence: Sentence, layout: Layout) -> str:
+    return "NMEA_SENTENCE_" + sentence.layout_snake(layout).upper()
+
+
+def entry_type(sentence: Sentence, layout: Layout, group: Group) -> str:
+    """The struct of one entry of a repeated group: nmea_gsv_satellite for GSV's `satellites`."""
+    word = group.id[:-1] if group.id.endswith("s") else group.id + "_entry"
+    return f"nmea_{sentence.layout_snake(layout)}_{word}"
+
+
+# ------------------------------------------------------------------------------------------------
+# Value ranges
+
+
+def _fixed(value: float) -> tuple[int, int]:
+    """(digits, scale) with digits * 10^-scale == value."""
+    d = Decimal(fmt_num(value))
+    scale = max(0, -d.as_tuple().exponent)  # type: ignore[operator]
+    digits = int(d.scaleb(scale))
+    if scale > 18 or abs(digits) >= 10**18:
+        raise ValueError(f"bound {fmt_num(value)} needs more than the 18 digits of nmea_number")
+    return digits, scale
+
+
+def _range_word(value: float) -> str:
+    text = fmt_num(value)
+    return text.replace("-", "minus_").replace(".", "p")
+
+
+class Ranges:
+    """The distinct value ranges of the spec, each a named static const nmea_range."""
+
+    def __init__(self) -> None:
+        self.by_bounds: dict[tuple, dict] = {}
+
+    def ref(self, f: Field) -> str:
+        if f.min is None and f.max is None:
+            return "NULL"
+        key = (f.min, f.max)
+        if key not in self.by_bounds:
+            if f.min is not None and f.max is not None:
+                name = f"range_{_range_word(f.min)}_to_{_range_word(f.max)}"
+            elif f.min is not None:
+                name = f"range_from_{_range_word(f.min)}"
+            else:
+                name = f"range_up_to_{_range_word(f.max)}"  # type: ignore[arg-type]
+            parts = []
+            if f.min is not None:
+                digits, scale = _fixed(f.min)
+                parts += [".has_min = true", f".min = {digits}"] + ([f".min_scale = {scale}"] if scale else [])
+            if f.max is not None:
+                digits, scale = _fixed(f.max)
+                parts += [".has_max = true", f".max = {digits}"] + ([f".max_scale = {scale}"] if scale else [])
+            shown = f"{fmt_num(f.min) if f.min is not None else ''}..{fmt_num(f.max) if f.max is not None else ''}"
+            self.by_bounds[key] = {"name": name, "init": "{" + ", ".join(parts) + "}", "shown": shown}
+        return "&" + self.by_bounds[key]["name"]
+
+    @property
+    def all(self) -> list[dict]:
+        return sorted(self.by_bounds.values(), key=lambda r: r["name"])
+
+
+# ------------------------------------------------------------------------------------------------
+# Per-field calls
+
+
+def read_call(f: Field, target: str, ranges: Ranges) -> str:
+    """The call that reads field `f` into `target` (an lvalue) from reader `r`."""
+    head = f"&r, &{target}, {c_str(f.id)}, {c_str(f.expected)}"
+    t = f.type
+    if t in ("integer", "decimal"):
+        return f"read_{t}({head}, {ranges.ref(f)})"
+    if t in ("hex", "time", "date", "char"):
+        return f"read_{t}({head})"
+    if t in ("latitude", "longitude"):
+        return f"read_{t}({head}, {c_str(f.hemisphere_expected)})"
+    if t == "literal":
+        return f"read_literal({head}, {c_str(f.value or '')})"
+    if t == "text":
+        return f"read_text({head}, {f.max_length or 0})"
+    assert f.enum is not None
+    if t == "enum":
+        return f"read_enum({head}, &{enum_def(f.enum)})"
+    return f"read_enum_chars({head}, &{enum_def(f.enum)}, {f.max_length or 0})"
+
+
+def put_call(f: Field, target: str) -> str:
+    """The call that writes field `f` (its comma and text) to writer `w`."""
+    t = f.type
+    if t in ("integer", "decimal"):
+        return f"put_number(w, &{target})"
+    if t in ("hex", "time", "date"):
+        return f"put_{t}(w, &{target})"
+    if t in ("latitude", "longitude"):
+        return f"put_coordinate(w, &{target})"
+    if t == "char":
+        return f"put_char_field(w, {target})"
+    if t == "literal":
+        return f"put_literal(w, {target}, {c_str(f.value or '')})"
+    if t in ("text", "enum_chars"):
+        return f"put_text_field(w, {target})"
+    assert f.enum is not None
+    return f"put_enum(w, &{target}, &{enum_def(f.enum)})"
+
+
+def json_call(f: Field, target: str, key: bool = True) -> str:
+    """The call that shows field `f` in the `fields` object (or, key False, a group array)."""
+    k = c_str(f.id) if key else "NULL"
+    t = f.type
+    if t in ("integer", "decimal"):
+        return f"json_number(w, {k}, &{target}, values)"
+    if t in ("hex", "time", "date"):
+        return f"json_{t}(w, {k}, &{target}, values)"
+    if t in ("latitude", "longitude"):
+        return f"json_coordinate(w, {k}, &{target}, values)"
+    if t == "char":
+        return f"json_char(w, {k}, {target}, values)"
+    if t == "literal":
+        return f"json_literal(w, {k}, {target}, {c_str(f.value or '')}, values)"
+    if t == "text":
+        return f"json_text(w, {k}, {target}, values)"
+    assert f.enum is not None
+    if t == "enum":
+        return f"json_enum(w, {k}, &{target}, &{enum_def(f.enum)}, values)"
+    return f"json_enum_chars(w, {k}, {target}, &{enum_def(f.enum)}, values)"
+
+
+def member_doc(f: Field) -> list[str]:
+    unit = f" [{f.unit}]" if f.unit else ""
+    fmt = f" ({f.format})" if f.format else ""
+    since = f" (NMEA {f.since}, optional)" if f.since else (" (optional)" if f.optional else "")
+    empty = EMPTY[C_TYPES[f.type]]
+    extra = ""
+    if f.type == "literal":
+        extra = f' True when the field holds "{f.value}".'
+    elif f.type == "enum":
+        assert f.enum is not None
+        extra = f" Values: {enum_type(f.enum)} (table {enum_def(f.enum)})."
+    elif f.type == "enum_chars":
+        assert f.enum is not None
+        extra = f" One code of {enum_type(f.enum)} per character (table {enum_def(f.enum)})."
+    return doc_lines(f"{f.name}{unit}{fmt}{since}: {f.doc}{extra} Empty: {empty}.")
+
+
+# ------------------------------------------------------------------------------------------------
+# Layout views
+
+
+def field_view(f: Field, base: str, ranges: Ranges, key: bool = True) -> dict:
+    target = f"{base}{member(f.id)}" if base.endswith(("->", ".")) else base
+    return {
+        "field": f,
+        "member": member(f.id),
+        "type": C_TYPES[f.type],
+        "doc": member_doc(f),
+        "read": read_call(f, target, ranges),
+        "put": put_call(f, target),
+        "json": json_call(f, target, key),
+        "collect": f"collect_field(c, fields, {c_str(f.id)}, {f.wire_width})",
+        "optional_collect": f"collect_optional(c, fields, {c_str(f.id)}, {f.wire_width})",
+    }
+
+
+def optional_count_expr(widths: list[int]) -> str:
+    """How many optional fields are present when `optional` wire fields follow the required
+    ones (a field of two wire fields needs both)."""
+    if all(w == 1 for w in widths):
+        return "(uint8_t)optional"
+    expr = "0"
+    total = 0
+    steps = []
+    for n, w in enumerate(widths, 1):
+        total += w
+        steps.append((total, n))
+    for total, n in steps:
+        expr = f"optional >= {total} ? {n} : {expr}"
+    return f"(uint8_t)({expr})"
+
+
+def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
+    snake = sentence.layout_snake(layout)
+    group = layout.group
+    before: list[dict] = []
+    after: list[dict] = []
+    optional: list[dict] = []
+    names = set()
+    seen_group = False
+    for item in layout.items:
+        if isinstance(item, Group):
+            seen_group = True
+            names.add(member(item.id))
+            names.add(member(item.id) + "_count")
+            continue
+        view = field_view(item, "s->", ranges)
+        if view["member"] in names or view["member"] in RESERVED_MEMBERS:
+            raise ValueError(f"{sentence.id}: field id {item.id!r} collides with a generated C member")
+        names.add(view["member"])
+        if item.is_optional:
+            optional.append(view)
+        elif seen_group:
+            after.append(view)
+        else:
+            before.append(view)
+    for n, view in enumerate(optional, 1):
+        view["index"] = n
+    group_view = None
+    if group is not None:
+        single = group.single
+        etype = entry_type(sentence, layout, group)
+        if single:
+            fields = [field_view(group.fields[0], f"s->{member(group.id)}[i]", ranges, key=False)]
+        else:
+            fields = [field_view(f, "e->", ranges) for f in group.fields]
+        for view in fields:
+            view["collect"] = (f"collect_value(c, entry, {view['field'].wire_width})" if single else
+                               f"collect_field(c, entry, {c_str(view['field'].id)}, {view['field'].wire_width})")
+        group_view = {
+            "group": group,
+            "id": c_str(group.id),
+            "member": member(group.id),
+            "count": None if group.is_fixed else member(group.id) + "_count",
+            "entry_type": None if single else etype,
+            "value_type": C_TYPES[group.fields[0].type] if single else etype,
+            "single": single,
+            "fields": fields,
+            "doc": doc_lines(f"{group.name}: {group.doc} " + (
+                f"Always {group.max} entries." if group.is_fixed else
+                f"{group.min} to {group.max} entries; {member(group.id)}_count of them are on the wire.")),
+        }
+    example = _example(sentence, layout)
+    # The fields read before the group (all of them when there is none) and after it.
+    head = before + ([] if group_view else optional)
+    tail = (after + optional) if group_view else []
+    for view in optional:
+        view["when"] = f"s->optional_count >= {view['index']}"
+    return {
+        "sentence": sentence,
+        "layout": layout,
+        "name": snake,
+        "type": f"nmea_{snake}",
+        "const": layout_const(sentence, layout),
+        "id": c_str(sentence.id),
+        "variant": c_str(layout.id) if layout.id else "NULL",
+        "example": c_comment(example.line) if example and example.line else None,
+        "example_manual": example.manual if example else None,
+        "doc": doc_lines(layout.doc if layout.id else sentence.doc),
+        "title": c_comment(f"{sentence.id}{' (' + layout.name + ')' if layout.id else ''}: "
+                           f"{sentence.name if layout.id else layout.name}"),
+        "before": before,
+        "group": group_view,
+        "after": after,
+        "optional": optional,
+        "fields": before + after + optional,
+        "head_reads": _conditions(head),
+        "tail_reads": _conditions(tail),
+        "head_collects": [v["optional_collect"] if v.get("when") else v["collect"] for v in head],
+        "tail_collects": [v["optional_collect"] if v.get("when") else v["collect"] for v in tail],
+        "optional_names": ", ".join(v["field"].id for v in optional),
+        "optional_count": optional_count_expr([v["field"].wire_width for v in optional]),
+        "fixed": layout.fixed_count,
+        "max_fields": layout.max_fields,
+        "optional_max": layout.optional_count,
+        "source": sentence.source,
+    }
+
+
+def _example(sentence: Sentence, layout: Layout) -> Example | None:
+    """The manual example shown above a layout's parser: the one with the most filled fields."""
+    examples = [ex for ex in sentence.examples if ex.line and ex.variant == layout.id]
+    return max(examples, key=lambda ex: sum(1 for f in (ex.line or "").split("*")[0].split(",") if f),
+               default=None)
+
+
+def _conditions(views: list[dict]) -> list[str]:
+    """The failure conditions of reading fields, for an `if (a || b ...) return false;` chain."""
+    conds = [_read_condition(v) for v in views]
+    if len(conds) == 1 and conds[0].startswith("("):
+        conds[0] = conds[0][1:-1]
+    return conds
+
+
+def _read_condition(view: dict) -> str:
+    """The failure condition of reading one field, in the `if (... || ...) return false;` chain."""
+    if view.get("when"):
+        return f"({view['when']} && !{view['read']})"
+    return "!" + view["read"]
+
+
+def enum_view(e: EnumDef) -> dict:
+    return {
+        "enum": e,
+        "type": enum_type(e),
+        "def": enum_def(e),
+        "codes": f"{e.id}_codes",
+        "doc": doc_lines(f"{e.id}: {e.name}. {e.doc}"),
+        "class": {"digits": "NMEA_CODES_DIGITS", "letters": "NMEA_CODES_LETTERS", "alnum": "NMEA_CODES_ALNUM"}[
+            e.code_class],
+        "values": [{
+            "const": enum_const(e, v.id),
+            "code": c_str(v.code),
+            "id": c_str(v.id),
+            "doc": doc_lines(f'"{v.code}": {v.doc}' + (f" (NMEA {v.since})" if v.since else ""), 88),
+        } for v in e.values],
+    }
+
+
+def json_max(spec: Spec, views: list[dict]) -> int:
+    """A buffer size that holds the decode JSON (or error JSON) of any line of at most 1024
+    bytes: every wire byte costs at most `per_byte` output bytes (an enum_chars code becomes its
+    quoted id), every wire field at most `per_field` more (its key and punctuation)."""
+    longest_id = max([len(v.id) for e in spec.enums for v in e.values] + [0])
+    per_byte = max(8, longest_id + 4)
+    keys = [len(f.id) for s in spec.sentences for lay in s.layouts for f in _all_fields(lay)]
+    per_field = max(keys + [0]) + 64
+    fields = max([v["max_fields"] for v in views] + [0]) + 2
+    return 1024 + 1024 * per_byte + fields * per_field
+
+
+def _all_fields(layout: Layout) -> list[Field]:
+    out: list[Field] = []
+    for item in layout.items:
+        out += item.fields if isinstance(item, Group) else [item]
+    return out
+
+
+def _check_names(spec: Spec, views: list[dict]) -> None:
+    """Generated identifiers must not collide (they are built from frozen spec ids)."""
+    seen: dict[str, str] = {}
+
+    def claim(name: str, what: str) -> None:
+        if name in seen and seen[name] != what:
+            raise ValueError(f"C name {name} of {what} collides with {seen[name]}")
+        seen[name] = what
+
+    for e in spec.enums:
+        claim(enum_type(e), f"enum {e.id}")
+        for v in e.values:
+            claim(enum_const(e, v.id), f"enum value {e.id}.{v.id}")
+    for v in views:
+        claim(v["type"], f"layout {v['name']}")
+        claim(v["const"], f"layout {v['name']}")
+        if v["group"] and v["group"]["entry_type"]:
+            claim(v["group"]["entry_type"], f"group {v['name']}.{v['group']['group'].id}")
+
+
+def vector_view(record: dict) -> dict:
+    def lit(key: str) -> str:
+        value = record.get(key)
+        if value is None:
+            return "NULL"
+        assert len(value.encode("utf-8")) < 4000, "string literal too long for ISO C99"
+        return c_str(value)
+
+    return {
+        "what": c_str(f"{record['sentence']} {record['manual_id']}: {record.get('where') or ''}"),
+        "line": lit("line"), "decode": lit("decode"), "decode_values": lit("decode_values"),
+        "raw": c_str(record["raw"]), "raw_decode": lit("raw_decode"),
+    }
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    return {}
+    ranges = Ranges()
+    views = [layout_view(s, lay, ranges) for s in spec.sentences for lay in s.layouts]
+    _check_names(spec, views)
+    enums = [enum_view(e) for e in spec.enums]
+    sentences = [{
+        "sentence": s,
+        "const": layout_const(s, s.layout),
+        "id": c_str(s.id),
+        "layouts": [v for v in views if v["sentence"] is s],
+    } for s in spec.sentences]
+    runtime_h = (TEMPLATES / "c" / "runtime.h").read_text(encoding="utf-8")
+    runtime_c = (TEMPLATES / "c" / "runtime.c").read_text(encoding="utf-8")
+    tool_c = (TEMPLATES / "c" / "tool.c").read_text(encoding="utf-8")
+    context = {
+        "enums": enums, "layouts": views, "sentences": sentences, "ranges": ranges.all,
+        "code_max": max([e.max_len for e in spec.enums] + [1]),
+        "json_max": json_max(spec, views),
+        "runtime_h": runtime_h, "runtime_c": runtime_c,
+    }
+    files = {
+        "c/nmea.h": env.get_template("c/nmea.h.j2").render(header=header(spec, "//"), **context),
+        "c/nmea.c": env.get_template("c/nmea.c.j2").render(header=header(spec, "//"), **context),
+        "c/nmea_tool.c": header(spec, "//", ["templates/c/tool.c"]) + tool_c,
+        "c/tests/test_examples.c": env.get_template("c/test_examples.c.j2").render(
+            header=header(spec, "//"), vectors=[vector_view(r) for r in emit_vectors.example_vectors(spec)]),
+    }
+    return files

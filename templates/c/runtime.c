@@ -1,0 +1,1847 @@
+/*
+ * Runtime (hand-written: templates/c/runtime.c): framing, checksum, field types, errors, JSON.
+ *
+ * The acceptance rules and messages here are shared byte for byte with the Python and Rust
+ * runtimes (see docs/json.md). Everything below is static: the generated per-sentence code at
+ * the end of this file is its only user, and the public functions are declared in nmea.h.
+ */
+
+#include <string.h>
+
+#if defined(__GNUC__)
+#define NMEA_INTERNAL static __attribute__((unused))
+#else
+#define NMEA_INTERNAL static
+#endif
+
+static const char HEX_UPPER[] = "0123456789ABCDEF";
+static const char HEX_LOWER[] = "0123456789abcdef";
+
+static const int64_t POW10[NMEA_MAX_DIGITS + 1] = {
+    1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000,
+    10000000000, 100000000000, 1000000000000, 10000000000000, 100000000000000,
+    1000000000000000, 10000000000000000, 100000000000000000, 1000000000000000000,
+};
+
+static bool is_digit(char c) { return c >= '0' && c <= '9'; }
+static bool is_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+static bool is_alnum(char c) { return is_digit(c) || is_letter(c); }
+static bool is_printable(char c) { return (unsigned char)c >= 0x20 && (unsigned char)c <= 0x7E; }
+
+static int hex_value(char c)
+{
+    if (is_digit(c))
+        return c - '0';
+    if (c >= 'a' && c <= 'f')
+        return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F')
+        return c - 'A' + 10;
+    return -1;
+}
+
+nmea_text nmea_text_of(const char *s)
+{
+    nmea_text t;
+    t.ptr = s;
+    t.len = s ? strlen(s) : 0;
+    return t;
+}
+
+static nmea_text text_span(const char *begin, const char *end)
+{
+    nmea_text t;
+    t.ptr = begin;
+    t.len = (size_t)(end - begin);
+    return t;
+}
+
+static bool text_is(nmea_text t, const char *s)
+{
+    size_t n = strlen(s);
+    return t.len == n && (n == 0 || memcmp(t.ptr, s, n) == 0);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Writing text: a bounded buffer that keeps counting past its end and XORs the bytes written
+   while `summing` (the checksum). */
+
+typedef struct {
+    char *buf;
+    size_t cap;
+    size_t len;
+    unsigned char sum;
+    bool summing;
+    char last;
+} nmea_writer;
+
+static nmea_writer writer_of(char *buf, size_t cap)
+{
+    nmea_writer w;
+    w.buf = buf;
+    w.cap = buf ? cap : 0;
+    w.len = 0;
+    w.sum = 0;
+    w.summing = false;
+    w.last = 0;
+    return w;
+}
+
+static void put_char(nmea_writer *w, char c)
+{
+    if (w->len < w->cap)
+        w->buf[w->len] = c;
+    w->len++;
+    if (w->summing)
+        w->sum ^= (unsigned char)c;
+    w->last = c;
+}
+
+static void put_mem(nmea_writer *w, const char *s, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        put_char(w, s[i]);
+}
+
+static void put_str(nmea_writer *w, const char *s)
+{
+    while (*s)
+        put_char(w, *s++);
+}
+
+static void put_text(nmea_writer *w, nmea_text t)
+{
+    put_mem(w, t.ptr, t.len);
+}
+
+/* An unsigned number in decimal, zero-padded to at least `width` digits. */
+static void put_uint(nmea_writer *w, uint64_t v, unsigned width)
+{
+    char digits[20];
+    unsigned n = 0;
+    do {
+        digits[n++] = (char)('0' + v % 10);
+        v /= 10;
+    } while (v);
+    while (width > n) {
+        put_char(w, '0');
+        width--;
+    }
+    while (n)
+        put_char(w, digits[--n]);
+}
+
+/* The NUL-terminated result, or 0 when it did not fit. */
+static size_t writer_finish(nmea_writer *w)
+{
+    if (w->len < w->cap) {
+        w->buf[w->len] = 0;
+        return w->len;
+    }
+    if (w->cap)
+        w->buf[0] = 0;
+    return 0;
+}
+
+/* A character of a JSON string, escaped `depth` times (a message holding a quoted text is
+   itself escaped inside the JSON of an error: depth 2 for the text). */
+static void put_escaped(nmea_writer *w, char c, int depth)
+{
+    unsigned char u = (unsigned char)c;
+    if (depth == 0) {
+        put_char(w, c);
+    } else if (c == '"' || c == '\\') {
+        put_escaped(w, '\\', depth - 1);
+        put_escaped(w, c, depth - 1);
+    } else if (!is_printable(c)) {
+        put_escaped(w, '\\', depth - 1);
+        put_escaped(w, 'u', depth - 1);
+        put_escaped(w, '0', depth - 1);
+        put_escaped(w, '0', depth - 1);
+        put_escaped(w, HEX_LOWER[u >> 4], depth - 1);
+        put_escaped(w, HEX_LOWER[u & 15], depth - 1);
+    } else {
+        put_escaped(w, c, depth - 1);
+    }
+}
+
+static void put_escaped_mem(nmea_writer *w, const char *s, size_t n, int depth)
+{
+    size_t i;
+    if (depth == 1) { /* the common case, without the recursion */
+        for (i = 0; i < n; i++) {
+            char c = s[i];
+            if (is_printable(c) && c != '"' && c != '\\')
+                put_char(w, c);
+            else
+                put_escaped(w, c, 1);
+        }
+        return;
+    }
+    for (i = 0; i < n; i++)
+        put_escaped(w, s[i], depth);
+}
+
+/* A JSON string of `t`, written inside text escaped `depth` times. */
+static void put_json_str(nmea_writer *w, nmea_text t, int depth)
+{
+    put_escaped(w, '"', depth);
+    put_escaped_mem(w, t.ptr, t.len, depth + 1);
+    put_escaped(w, '"', depth);
+}
+
+static void put_json_cstr(nmea_writer *w, const char *s)
+{
+    put_json_str(w, nmea_text_of(s), 0);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Errors */
+
+static const char *const ERROR_KINDS[] = {
+    "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "too_few_fields",
+    "too_many_fields", "bad_field", "bad_json",
+};
+
+const char *nmea_error_kind_name(nmea_error_kind kind)
+{
+    return (unsigned)kind < sizeof ERROR_KINDS / sizeof ERROR_KINDS[0] ? ERROR_KINDS[kind] : "unknown";
+}
+
+/* Resets `err` to an error of `kind` whose message is `pattern`; returns false. Directives:
+   %q the text as a JSON string, %t the text as is, %s the next string, %n the next number,
+   %X / %x the next number as two upper / lower case hex digits. */
+static bool fail(nmea_error *err, nmea_error_kind kind, const char *pattern)
+{
+    memset(err, 0, sizeof *err);
+    err->kind = kind;
+    err->pattern = pattern;
+    return false;
+}
+
+static void set_address(nmea_error *err, nmea_text address, const char *suffix)
+{
+    err->has_address = true;
+    err->address = address;
+    err->address_suffix = suffix;
+}
+
+void nmea_error_too_long(nmea_error *err, size_t len)
+{
+    fail(err, NMEA_ERR_TOO_LONG, "line is %n bytes, the limit is 1024");
+    err->num[0] = len;
+}
+
+static void put_message(nmea_writer *w, const nmea_error *err, int depth)
+{
+    const char *p = err->pattern ? err->pattern : "";
+    unsigned strs = 0, nums = 0;
+    for (; *p; p++) {
+        size_t n;
+        if (*p != '%' || !p[1]) {
+            put_escaped(w, *p, depth);
+            continue;
+        }
+        switch (*++p) {
+        case 'q':
+            put_json_str(w, err->text, depth);
+            break;
+        case 't':
+            put_escaped_mem(w, err->text.ptr, err->text.len, depth);
+            break;
+        case 's':
+            if (strs < 2 && err->str[strs])
+                put_escaped_mem(w, err->str[strs], strlen(err->str[strs]), depth);
+            strs++;
+            break;
+        case 'n':
+            put_uint(w, nums < 2 ? err->num[nums] : 0, 1);
+            nums++;
+            break;
+        case 'X':
+        case 'x':
+            n = nums < 2 ? err->num[nums] : 0;
+            put_char(w, (*p == 'X' ? HEX_UPPER : HEX_LOWER)[(n >> 4) & 15]);
+            put_char(w, (*p == 'X' ? HEX_UPPER : HEX_LOWER)[n & 15]);
+            nums++;
+            break;
+        default:
+            put_escaped(w, *p, depth);
+        }
+    }
+}
+
+static void put_name(nmea_writer *w, const nmea_error *err)
+{
+    if (err->group) {
+        put_str(w, err->group);
+        put_char(w, '[');
+        put_uint(w, err->entry, 1);
+        put_str(w, "].");
+    }
+    put_str(w, err->name);
+}
+
+size_t nmea_error_message(const nmea_error *err, char *buf, size_t cap)
+{
+    nmea_writer w = writer_of(buf, cap);
+    put_message(&w, err, 0);
+    return writer_finish(&w);
+}
+
+size_t nmea_error_name(const nmea_error *err, char *buf, size_t cap)
+{
+    nmea_writer w = writer_of(buf, cap);
+    if (!err->name) {
+        writer_finish(&w);
+        return 0;
+    }
+    put_name(&w, err);
+    return writer_finish(&w);
+}
+
+size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
+{
+    nmea_writer w = writer_of(buf, cap);
+    put_str(&w, "{\"ok\":false,\"error\":{\"kind\":\"");
+    put_str(&w, nmea_error_kind_name(err->kind));
+    put_str(&w, "\",\"address\":");
+    if (err->has_address) {
+        put_char(&w, '"');
+        put_escaped_mem(&w, err->address.ptr, err->address.len, 1);
+        if (err->address_suffix)
+            put_escaped_mem(&w, err->address_suffix, strlen(err->address_suffix), 1);
+        put_char(&w, '"');
+    } else {
+        put_str(&w, "null");
+    }
+    put_str(&w, ",\"field\":");
+    if (err->field)
+        put_uint(&w, err->field, 1);
+    else
+        put_str(&w, "null");
+    put_str(&w, ",\"name\":");
+    if (err->name) {
+        put_char(&w, '"');
+        put_name(&w, err);
+        put_char(&w, '"');
+    } else {
+        put_str(&w, "null");
+    }
+    put_str(&w, ",\"message\":\"");
+    put_message(&w, err, 1);
+    put_str(&w, "\"}}");
+    return writer_finish(&w);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Framing: a line split into start, address and fields, its checksum verified. */
+
+typedef struct {
+    nmea_text start;
+    nmea_text address;
+    nmea_text fields; /* the text after the address and its comma */
+    size_t count;     /* number of fields */
+    nmea_checksum_style checksum;
+} nmea_frame;
+
+/* One pass over the line: the printable check, the checksum and the field count. */
+static bool frame_line(nmea_frame *f, const char *line, size_t len, nmea_error *err)
+{
+    size_t i, star = 0, comma = 0, commas = 0, body_end;
+    unsigned sum = 0;
+    bool named, lower = false, upper = false;
+    nmea_text sent;
+
+    if (len > NMEA_MAX_LINE) {
+        nmea_error_too_long(err, len);
+        return false;
+    }
+    if (len == 0)
+        return fail(err, NMEA_ERR_NOT_A_SENTENCE, "empty line");
+    if (line[0] != '$' && line[0] != '!')
+        return fail(err, NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'");
+    for (i = 1; i < len; i++) { /* the body: checksum and commas */
+        unsigned char c = (unsigned char)line[i];
+        if (c < 0x20 || c > 0x7E || c == '*')
+            break;
+        sum ^= c;
+        if (c == ',' && !commas++)
+            comma = i;
+    }
+    if (i < len && line[i] == '*')
+        for (star = i++; i < len && is_printable(line[i]); i++)
+            continue;
+    if (i < len) {
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, "byte 0x%x at offset %n is not printable ASCII");
+        err->num[0] = (unsigned char)line[i];
+        err->num[1] = i;
+        return false;
+    }
+    body_end = star ? star : len;
+    f->start = text_span(line, line + 1);
+    f->address = text_span(line + 1, line + (comma ? comma : body_end));
+    named = f->address.len > 0;
+    for (i = 0; i < f->address.len && named; i++)
+        named = is_alnum(f->address.ptr[i]);
+    f->checksum = NMEA_CHECKSUM_NONE;
+    if (star) {
+        sent = text_span(line + star + 1, line + len);
+        for (i = 0; i < sent.len; i++) {
+            lower = lower || (sent.ptr[i] >= 'a' && sent.ptr[i] <= 'f');
+            upper = upper || (sent.ptr[i] >= 'A' && sent.ptr[i] <= 'F');
+        }
+        if (sent.len != 2 || hex_value(sent.ptr[0]) < 0 || hex_value(sent.ptr[1]) < 0 || (lower && upper)) {
+            fail(err, NMEA_ERR_BAD_CHECKSUM, "checksum %q is not two hex digits of one letter case");
+            err->text = sent;
+            if (named)
+                set_address(err, f->address, NULL);
+            return false;
+        }
+        if ((unsigned)(hex_value(sent.ptr[0]) * 16 + hex_value(sent.ptr[1])) != sum) {
+            fail(err, NMEA_ERR_CHECKSUM_MISMATCH, "checksum is %t, computed %X");
+            err->text = sent;
+            err->num[0] = sum;
+            if (named)
+                set_address(err, f->address, NULL);
+            return false;
+        }
+        f->checksum = lower ? NMEA_CHECKSUM_LOWER : NMEA_CHECKSUM_UPPER;
+    }
+    if (!named) {
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, "address %q is not letters and digits");
+        err->text = f->address;
+        return false;
+    }
+    f->count = commas;
+    f->fields = commas ? text_span(line + comma + 1, line + body_end) : text_span(line + body_end, line + body_end);
+    return true;
+}
+
+/* A talker ID and a 3-letter sentence formatter: '$', 5 characters, not proprietary ('P...'). */
+static bool is_standard_address(const nmea_frame *f)
+{
+    return f->start.ptr[0] == '$' && f->address.len == 5 && f->address.ptr[0] != 'P';
+}
+
+/* A known sentence starts with '$', its talker and its sentence id; the checksum covers all but
+   the '$'. Each field writes its comma, end_sentence the checksum. */
+NMEA_INTERNAL void begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence)
+{
+    put_char(w, '$');
+    w->summing = true;
+    put_text(w, talker);
+    put_str(w, sentence);
+}
+
+static void end_sentence(nmea_writer *w, nmea_checksum_style style)
+{
+    unsigned char sum = w->sum;
+    w->summing = false;
+    if (style == NMEA_CHECKSUM_NONE)
+        return;
+    put_char(w, '*');
+    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum >> 4]);
+    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum & 15]);
+}
+
+nmea_text nmea_generic_field(const nmea_generic *g, size_t index)
+{
+    const char *p = g->fields.ptr, *end = p + g->fields.len;
+    const char *comma;
+    if (index >= g->field_count)
+        return text_span(end, end);
+    for (;;) {
+        comma = p;
+        while (comma < end && *comma != ',')
+            comma++;
+        if (index-- == 0)
+            return text_span(p, comma);
+        p = comma < end ? comma + 1 : end;
+    }
+}
+
+static void write_generic(nmea_writer *w, const nmea_generic *g)
+{
+    put_text(w, g->start);
+    w->summing = true;
+    put_text(w, g->address);
+    if (g->field_count) {
+        put_char(w, ',');
+        put_text(w, g->fields);
+    }
+    end_sentence(w, g->checksum);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Field types: parse the text of a non-empty field, false when it does not fit the type. */
+
+/* Appends the digits at *p to *value; returns how many there were (at most `room`: a longer
+   run makes the caller fail). */
+static size_t take_digits(const char **p, const char *end, int64_t *value, size_t room)
+{
+    const char *s = *p;
+    int64_t v = *value;
+    while (s < end && is_digit(*s) && (size_t)(s - *p) < room)
+        v = v * 10 + (*s++ - '0');
+    *value = v;
+    room = (size_t)(s - *p);
+    *p = s;
+    return room;
+}
+
+/* [+-]digits[.digits] (no point for an integer), at most NMEA_MAX_DIGITS digits. */
+static bool parse_number(nmea_text t, bool integer, nmea_number *out)
+{
+    const char *p = t.ptr, *end = t.ptr + t.len;
+    size_t whole, frac = 0;
+    int64_t digits = 0;
+    char sign = 0;
+    bool point = false;
+
+    if (p < end && (*p == '+' || *p == '-'))
+        sign = *p++;
+    whole = take_digits(&p, end, &digits, NMEA_MAX_DIGITS);
+    if (p < end && *p == '.' && !integer) {
+        point = true;
+        p++;
+        frac = take_digits(&p, end, &digits, NMEA_MAX_DIGITS - whole);
+    }
+    if (p != end || whole + frac == 0)
+        return false;
+    out->digits = digits;
+    out->scale = (uint8_t)frac;
+    out->width = (uint8_t)whole;
+    out->sign = sign;
+    out->point = point;
+    out->present = true;
+    return true;
+}
+
+/* An inclusive value range of an integer or decimal field (from the spec's min/max). */
+typedef struct {
+    bool has_min;
+    bool has_max;
+    int64_t min;  /* min * 10^-min_scale */
+    uint8_t min_scale;
+    int64_t max;
+    uint8_t max_scale;
+} nmea_range;
+
+/* Compares a * 10^-as with b * 10^-bs (both signed): -1, 0 or 1. */
+static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
+{
+    int64_t wa, wb, fa, fb;
+    if (as == bs) /* the common case: an integer against integer bounds */
+        return a < b ? -1 : a > b;
+    if (as > bs && b > -POW10[NMEA_MAX_DIGITS - (as - bs)] && b < POW10[NMEA_MAX_DIGITS - (as - bs)]) {
+        b *= POW10[as - bs];
+        return a < b ? -1 : a > b;
+    }
+    if (as < bs && a > -POW10[NMEA_MAX_DIGITS - (bs - as)] && a < POW10[NMEA_MAX_DIGITS - (bs - as)]) {
+        a *= POW10[bs - as];
+        return a < b ? -1 : a > b;
+    }
+    /* whole parts first, then the fractions scaled to NMEA_MAX_DIGITS digits */
+    wa = a / POW10[as];
+    wb = b / POW10[bs];
+    fa = (a % POW10[as]) * POW10[NMEA_MAX_DIGITS - as];
+    fb = (b % POW10[bs]) * POW10[NMEA_MAX_DIGITS - bs];
+    if (wa != wb)
+        return wa < wb ? -1 : 1;
+    return fa < fb ? -1 : fa > fb;
+}
+
+static bool in_range(const nmea_number *n, const nmea_range *range)
+{
+    int64_t value;
+    if (!range)
+        return true;
+    value = n->sign == '-' ? -n->digits : n->digits;
+    if (range->has_min && compare_fixed(value, n->scale, range->min, range->min_scale) < 0)
+        return false;
+    if (range->has_max && compare_fixed(value, n->scale, range->max, range->max_scale) > 0)
+        return false;
+    return true;
+}
+
+int64_t nmea_number_scaled(const nmea_number *n, unsigned scale)
+{
+    int64_t v = n->digits;
+    unsigned s = n->scale;
+    while (s > scale) {
+        v /= 10;
+        s--;
+    }
+    while (s < scale) {
+        v *= 10;
+        s++;
+    }
+    return n->sign == '-' ? -v : v;
+}
+
+static bool parse_hex(nmea_text t, nmea_hex *out)
+{
+    size_t i;
+    uint64_t value = 0;
+    bool lower = false, upper = false;
+    if (t.len > 16)
+        return false;
+    for (i = 0; i < t.len; i++) {
+        int d = hex_value(t.ptr[i]);
+        if (d < 0)
+            return false;
+        lower = lower || (t.ptr[i] >= 'a' && t.ptr[i] <= 'f');
+        upper = upper || (t.ptr[i] >= 'A' && t.ptr[i] <= 'F');
+        value = value * 16 + (uint64_t)d;
+    }
+    if (lower && upper)
+        return false;
+    out->value = value;
+    out->digits = (uint8_t)t.len;
+    out->lower = lower;
+    out->present = true;
+    return true;
+}
+
+static unsigned two_digits(const char *p)
+{
+    return (unsigned)((p[0] - '0') * 10 + (p[1] - '0'));
+}
+
+static bool all_digits(const char *p, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        if (!is_digit(p[i]))
+            return false;
+    return true;
+}
+
+/* hhmmss[.f...], at most 9 fraction digits. */
+static bool parse_time(nmea_text t, nmea_time *out)
+{
+    size_t frac = 0, i;
+    uint32_t fraction = 0;
+    bool point = t.len > 6 && t.ptr[6] == '.';
+    if (t.len < 6 || !all_digits(t.ptr, 6) || (t.len > 6 && !point))
+        return false;
+    if (point) {
+        frac = t.len - 7;
+        if (frac > 9 || !all_digits(t.ptr + 7, frac))
+            return false;
+        for (i = 0; i < frac; i++)
+            fraction = fraction * 10 + (uint32_t)(t.ptr[7 + i] - '0');
+    }
+    out->hour = (uint8_t)two_digits(t.ptr);
+    out->minute = (uint8_t)two_digits(t.ptr + 2);
+    out->second = (uint8_t)two_digits(t.ptr + 4);
+    if (out->hour > 23 || out->minute > 59 || out->second > 60)
+        return false;
+    out->fraction = fraction;
+    out->fraction_digits = (uint8_t)frac;
+    out->point = point;
+    out->present = true;
+    return true;
+}
+
+/* ddmmyy */
+static bool parse_date(nmea_text t, nmea_date *out)
+{
+    if (t.len != 6 || !all_digits(t.ptr, 6))
+        return false;
+    out->day = (uint8_t)two_digits(t.ptr);
+    out->month = (uint8_t)two_digits(t.ptr + 2);
+    out->year = (uint8_t)two_digits(t.ptr + 4);
+    if (out->day < 1 || out->day > 31 || out->month < 1 || out->month > 12)
+        return false;
+    out->present = true;
+    return true;
+}
+
+/* ddmm.mmmm (latitude) or dddmm.mmmm (longitude): the two digits before the point are whole
+   minutes, the digits before them degrees. */
+static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
+{
+    const char *point = memchr(t.ptr, '.', t.len);
+    size_t whole = point ? (size_t)(point - t.ptr) : t.len;
+    size_t frac = point ? t.len - whole - 1 : 0;
+    size_t i;
+    unsigned degrees = 0;
+    int64_t minutes = 0;
+
+    if (whole < 2 || whole > 2 + max_degree_digits || !all_digits(t.ptr, whole))
+        return false;
+    if (frac > NMEA_MAX_DIGITS - 2 || !all_digits(point ? point + 1 : t.ptr, frac))
+        return false;
+    for (i = 0; i + 2 < whole; i++)
+        degrees = degrees * 10 + (unsigned)(t.ptr[i] - '0');
+    minutes = two_digits(t.ptr + whole - 2);
+    for (i = 0; i < frac; i++)
+        minutes = minutes * 10 + (point[1 + i] - '0');
+    if (degrees > max_degrees || minutes > 60 * POW10[frac])
+        return false;
+    out->degrees = (uint16_t)degrees;
+    out->degree_digits = (uint8_t)(whole - 2);
+    out->minutes.digits = minutes;
+    out->minutes.scale = (uint8_t)frac;
+    out->minutes.width = 2;
+    out->minutes.sign = 0;
+    out->minutes.point = point != NULL;
+    out->minutes.present = true;
+    out->present = true;
+    return true;
+}
+
+/* Whether a code the table does not know is still well formed for it: the same length range
+   and character class as the known codes. */
+static bool is_code_like(const nmea_enum_def *def, const char *p, size_t n, size_t min_len, size_t max_len)
+{
+    size_t i;
+    if (n < min_len || n > max_len)
+        return false;
+    for (i = 0; i < n; i++) {
+        if (def->code_class == NMEA_CODES_DIGITS ? !is_digit(p[i])
+            : def->code_class == NMEA_CODES_LETTERS ? !is_letter(p[i]) : !is_alnum(p[i]))
+            return false;
+    }
+    return true;
+}
+
+static int enum_find(const nmea_enum_def *def, const char *p, size_t n)
+{
+    int i;
+    for (i = 0; i < def->count; i++) {
+        const char *code = def->codes[i].code;
+        if (code[0] == p[0] && strlen(code) == n && memcmp(code, p, n) == 0)
+            return i;
+    }
+    return NMEA_UNKNOWN_CODE;
+}
+
+int nmea_enum_lookup(const nmea_enum_def *def, char code)
+{
+    return enum_find(def, &code, 1);
+}
+
+const char *nmea_enum_id(const nmea_enum_def *def, const nmea_enum *e)
+{
+    if (!e->present || e->value < 0 || e->value >= def->count)
+        return NULL;
+    return def->codes[e->value].id;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Reading the fields of a layout: a cursor over the comma-separated fields, which knows the
+   address and the field being read for the errors. */
+
+typedef struct {
+    nmea_text start;
+    nmea_text talker;
+    nmea_text fields;
+    size_t count;
+    nmea_checksum_style checksum;
+} nmea_wire;
+
+typedef struct {
+    const char *next;
+    const char *end;
+    unsigned index; /* 1-based wire index of the field read last */
+    nmea_text talker;
+    const char *sentence;
+    const char *group;
+    unsigned entry;
+    nmea_error *err;
+} nmea_reader;
+
+static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sentence, nmea_error *err)
+{
+    r->next = wire->fields.ptr;
+    r->end = wire->fields.ptr + wire->fields.len;
+    r->index = 0;
+    r->talker = wire->talker;
+    r->sentence = sentence;
+    r->group = NULL;
+    r->entry = 0;
+    r->err = err;
+}
+
+/* From now on the fields read belong to entry `index` (0-based) of `group` (NULL: none). */
+NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
+{
+    r->group = group;
+    r->entry = (unsigned)index + 1;
+}
+
+static nmea_text next_field(nmea_reader *r)
+{
+    const char *p = r->next;
+    nmea_text t;
+    r->index++;
+    while (r->next < r->end && *r->next != ',')
+        r->next++;
+    t = text_span(p, r->next);
+    if (r->next < r->end)
+        r->next++;
+    return t;
+}
+
+static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *pattern, size_t n, size_t m)
+{
+    fail(r->err, kind, pattern);
+    set_address(r->err, r->talker, r->sentence);
+    r->err->str[0] = r->sentence;
+    r->err->num[0] = n;
+    r->err->num[1] = m;
+    return false;
+}
+
+static bool too_few(nmea_reader *r, size_t need, size_t found)
+{
+    return count_error(r, NMEA_ERR_TOO_FEW_FIELDS, "%s needs at least %n fields, found %n", need, found);
+}
+
+static bool too_many(nmea_reader *r, size_t limit, size_t found)
+{
+    return count_error(r, NMEA_ERR_TOO_MANY_FIELDS, "%s takes at most %n fields, found %n", limit, found);
+}
+
+/* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
+   the number of optional trailing wire fields present. */
+NMEA_INTERNAL bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t max, size_t *optional)
+{
+    if (count < fixed)
+        return too_few(r, fixed, count);
+    if (count > max)
+        return too_many(r, max, count);
+    *optional = count - fixed;
+    return true;
+}
+
+/* A layout with a repeated group of `width` wire fields, `min` to `max` times, and `fixed`
+   required fields besides: how many times it occurs and how many optional wire fields follow. */
+NMEA_INTERNAL bool read_group_count(nmea_reader *r, size_t count, const char *group, size_t fixed, size_t width,
+                                    size_t min, size_t max, size_t optional_max, size_t *repeats, size_t *optional)
+{
+    size_t rest, extra;
+    if (count < fixed + min * width)
+        return too_few(r, fixed + min * width, count);
+    rest = count - fixed;
+    *repeats = rest / width < max ? rest / width : max;
+    extra = rest - *repeats * width;
+    if (extra > optional_max) {
+        if (*repeats == max)
+            return too_many(r, fixed + max * width + optional_max, count);
+        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, "%s %s entries take %n fields each, %n left over", width, extra);
+        r->err->str[1] = group;
+        return false;
+    }
+    *optional = extra;
+    return true;
+}
+
+static bool bad_field(nmea_reader *r, unsigned index, const char *name, const char *expected, nmea_text text)
+{
+    nmea_error *err = r->err;
+    fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
+    set_address(err, r->talker, r->sentence);
+    err->field = index;
+    err->group = r->group;
+    err->entry = r->entry;
+    err->name = name;
+    err->str[0] = expected;
+    err->text = text;
+    return false;
+}
+
+NMEA_INTERNAL bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                                const nmea_range *range)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !(parse_number(t, true, out) && in_range(out, range)))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+NMEA_INTERNAL bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                                const nmea_range *range)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !(parse_number(t, false, out) && in_range(out, range)))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+NMEA_INTERNAL bool read_hex(nmea_reader *r, nmea_hex *out, const char *name, const char *expected)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !parse_hex(t, out))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+NMEA_INTERNAL bool read_time(nmea_reader *r, nmea_time *out, const char *name, const char *expected)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !parse_time(t, out))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+NMEA_INTERNAL bool read_date(nmea_reader *r, nmea_date *out, const char *name, const char *expected)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !parse_date(t, out))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+/* A value field and a hemisphere field, both empty or both set. */
+static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
+                            const char *hemisphere_expected, const char *hemispheres, unsigned max_degree_digits,
+                            unsigned max_degrees)
+{
+    nmea_text value = next_field(r);
+    nmea_text hemisphere = next_field(r);
+    if (!value.len) {
+        if (hemisphere.len)
+            return bad_field(r, r->index - 1, name, expected, value);
+        return true;
+    }
+    if (!parse_coordinate(value, max_degree_digits, max_degrees, out))
+        return bad_field(r, r->index - 1, name, expected, value);
+    if (hemisphere.len != 1 || (hemisphere.ptr[0] != hemispheres[0] && hemisphere.ptr[0] != hemispheres[1])) {
+        out->present = false;
+        return bad_field(r, r->index, name, hemisphere_expected, hemisphere);
+    }
+    out->hemisphere = hemisphere.ptr[0];
+    return true;
+}
+
+NMEA_INTERNAL bool read_latitude(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
+                                 const char *hemisphere_expected)
+{
+    return read_coordinate(r, out, name, expected, hemisphere_expected, "NS", 2, 90);
+}
+
+NMEA_INTERNAL bool read_longitude(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
+                                  const char *hemisphere_expected)
+{
+    return read_coordinate(r, out, name, expected, hemisphere_expected, "EW", 3, 180);
+}
+
+NMEA_INTERNAL bool read_char(nmea_reader *r, char *out, const char *name, const char *expected)
+{
+    nmea_text t = next_field(r);
+    if (t.len > 1)
+        return bad_field(r, r->index, name, expected, t);
+    *out = t.len ? t.ptr[0] : 0;
+    return true;
+}
+
+NMEA_INTERNAL bool read_literal(nmea_reader *r, bool *out, const char *name, const char *expected, const char *literal)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !text_is(t, literal))
+        return bad_field(r, r->index, name, expected, t);
+    *out = t.len > 0;
+    return true;
+}
+
+NMEA_INTERNAL bool read_text(nmea_reader *r, nmea_text *out, const char *name, const char *expected, size_t max_length)
+{
+    nmea_text t = next_field(r);
+    if (max_length && t.len > max_length)
+        return bad_field(r, r->index, name, expected, t);
+    *out = t;
+    return true;
+}
+
+/* A known code, or a well-formed unknown one (kept in `code`). */
+NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, const char *expected,
+                             const nmea_enum_def *def)
+{
+    nmea_text t = next_field(r);
+    if (!t.len)
+        return true;
+    out->value = enum_find(def, t.ptr, t.len);
+    if (out->value == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr, t.len, def->min_len, def->max_len))
+        return bad_field(r, r->index, name, expected, t);
+    memcpy(out->code, t.ptr, t.len); /* t.len <= max_len <= NMEA_CODE_MAX */
+    out->code[t.len] = 0;
+    out->present = true;
+    return true;
+}
+
+/* A run of one-character codes (GNS mode "ANNN"), kept as text. */
+NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *name, const char *expected,
+                                   const nmea_enum_def *def, size_t max_length)
+{
+    nmea_text t = next_field(r);
+    size_t i;
+    if (max_length && t.len > max_length)
+        return bad_field(r, r->index, name, expected, t);
+    for (i = 0; i < t.len; i++)
+        if (enum_find(def, t.ptr + i, 1) == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr + i, 1, 1, 1))
+            return bad_field(r, r->index, name, expected, t);
+    *out = t;
+    return true;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Writing fields back: each writes its comma and its text (nothing for an empty field). */
+
+static void number_text(nmea_writer *w, const nmea_number *n)
+{
+    uint64_t digits = (uint64_t)n->digits;
+    uint64_t unit = (uint64_t)POW10[n->scale <= NMEA_MAX_DIGITS ? n->scale : 0];
+    if (!n->present)
+        return;
+    if (n->sign)
+        put_char(w, n->sign);
+    if (n->width)
+        put_uint(w, digits / unit, n->width);
+    if (n->point) {
+        put_char(w, '.');
+        if (n->scale)
+            put_uint(w, digits % unit, n->scale);
+    }
+}
+
+NMEA_INTERNAL void put_number(nmea_writer *w, const nmea_number *n)
+{
+    put_char(w, ',');
+    number_text(w, n);
+}
+
+static void hex_text(nmea_writer *w, const nmea_hex *h)
+{
+    char digits[16];
+    unsigned n = 0, width = h->digits;
+    uint64_t v = h->value;
+    const char *hex = h->lower ? HEX_LOWER : HEX_UPPER;
+    do {
+        digits[n++] = hex[v & 15];
+        v >>= 4;
+    } while (v);
+    while (width > n) {
+        put_char(w, '0');
+        width--;
+    }
+    while (n)
+        put_char(w, digits[--n]);
+}
+
+NMEA_INTERNAL void put_hex(nmea_writer *w, const nmea_hex *h)
+{
+    put_char(w, ',');
+    if (h->present)
+        hex_text(w, h);
+}
+
+static void time_text(nmea_writer *w, const nmea_time *t)
+{
+    put_uint(w, t->hour, 2);
+    put_uint(w, t->minute, 2);
+    put_uint(w, t->second, 2);
+    if (t->point) {
+        put_char(w, '.');
+        if (t->fraction_digits)
+            put_uint(w, t->fraction, t->fraction_digits);
+    }
+}
+
+NMEA_INTERNAL void put_time(nmea_writer *w, const nmea_time *t)
+{
+    put_char(w, ',');
+    if (t->present)
+        time_text(w, t);
+}
+
+static void date_text(nmea_writer *w, const nmea_date *d)
+{
+    put_uint(w, d->day, 2);
+    put_uint(w, d->month, 2);
+    put_uint(w, d->year, 2);
+}
+
+NMEA_INTERNAL void put_date(nmea_writer *w, const nmea_date *d)
+{
+    put_char(w, ',');
+    if (d->present)
+        date_text(w, d);
+}
+
+static void coordinate_text(nmea_writer *w, const nmea_coordinate *c)
+{
+    if (c->degree_digits)
+        put_uint(w, c->degrees, c->degree_digits);
+    number_text(w, &c->minutes);
+}
+
+NMEA_INTERNAL void put_coordinate(nmea_writer *w, const nmea_coordinate *c)
+{
+    put_char(w, ',');
+    if (c->present)
+        coordinate_text(w, c);
+    put_char(w, ',');
+    if (c->present)
+        put_char(w, c->hemisphere);
+}
+
+NMEA_INTERNAL void put_char_field(nmea_writer *w, char c)
+{
+    put_char(w, ',');
+    if (c)
+        put_char(w, c);
+}
+
+NMEA_INTERNAL void put_literal(nmea_writer *w, bool present, const char *literal)
+{
+    put_char(w, ',');
+    if (present)
+        put_str(w, literal);
+}
+
+static const char *enum_code(const nmea_enum *e, const nmea_enum_def *def)
+{
+    return e->value >= 0 && e->value < def->count ? def->codes[e->value].code : e->code;
+}
+
+NMEA_INTERNAL void put_enum(nmea_writer *w, const nmea_enum *e, const nmea_enum_def *def)
+{
+    put_char(w, ',');
+    if (e->present)
+        put_str(w, enum_code(e, def));
+}
+
+NMEA_INTERNAL void put_text_field(nmea_writer *w, nmea_text t)
+{
+    put_char(w, ',');
+    put_text(w, t);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* The fields as JSON: the lossless texts, or (values) the decoded values. Each writes
+   [,]"key": (no key inside an array) and the value. */
+
+static void json_key(nmea_writer *w, const char *key)
+{
+    if (w->last != '{' && w->last != '[')
+        put_char(w, ',');
+    if (key) {
+        put_char(w, '"');
+        put_str(w, key);
+        put_str(w, "\":");
+    }
+}
+
+NMEA_INTERNAL void json_open(nmea_writer *w, const char *key, char bracket)
+{
+    json_key(w, key);
+    put_char(w, bracket);
+}
+
+NMEA_INTERNAL void json_close(nmea_writer *w, char bracket)
+{
+    put_char(w, bracket);
+}
+
+/* A JSON number for digits * 10^-scale, without leading or trailing zeros. */
+static void decimal_json(nmea_writer *w, const nmea_number *n)
+{
+    uint64_t digits = (uint64_t)n->digits;
+    uint64_t unit = (uint64_t)POW10[n->scale <= NMEA_MAX_DIGITS ? n->scale : 0];
+    uint64_t frac = digits % unit;
+    unsigned scale = n->scale;
+    if (n->sign == '-' && digits)
+        put_char(w, '-');
+    put_uint(w, digits / unit, 1);
+    if (frac) {
+        while (frac % 10 == 0) {
+            frac /= 10;
+            scale--;
+        }
+        put_char(w, '.');
+        put_uint(w, frac, scale);
+    }
+}
+
+/* The text form of a value as a JSON string: the text is printable, so only '"' and '\' need
+   escaping, and no value type writes them. */
+#define JSON_TEXT(w, present, write) \
+    do {                             \
+        if (!(present)) {            \
+            put_str(w, "null");      \
+        } else {                     \
+            put_char(w, '"');        \
+            write;                   \
+            put_char(w, '"');        \
+        }                            \
+    } while (0)
+
+NMEA_INTERNAL void json_number(nmea_writer *w, const char *key, const nmea_number *n, bool values)
+{
+    json_key(w, key);
+    if (values && n->present)
+        decimal_json(w, n);
+    else
+        JSON_TEXT(w, n->present, number_text(w, n));
+}
+
+NMEA_INTERNAL void json_hex(nmea_writer *w, const char *key, const nmea_hex *h, bool values)
+{
+    json_key(w, key);
+    if (values && h->present)
+        put_uint(w, h->value, 1);
+    else
+        JSON_TEXT(w, h->present, hex_text(w, h));
+}
+
+NMEA_INTERNAL void json_time(nmea_writer *w, const char *key, const nmea_time *t, bool values)
+{
+    json_key(w, key);
+    if (values && t->present) {
+        put_char(w, '"');
+        put_uint(w, t->hour, 2);
+        put_char(w, ':');
+        put_uint(w, t->minute, 2);
+        put_char(w, ':');
+        put_uint(w, t->second, 2);
+        if (t->fraction_digits) {
+            put_char(w, '.');
+            put_uint(w, t->fraction, t->fraction_digits);
+        }
+        put_char(w, '"');
+    } else {
+        JSON_TEXT(w, t->present, time_text(w, t));
+    }
+}
+
+NMEA_INTERNAL void json_date(nmea_writer *w, const char *key, const nmea_date *d, bool values)
+{
+    json_key(w, key);
+    if (values && d->present) {
+        put_char(w, '"');
+        put_uint(w, d->year, 2);
+        put_char(w, '-');
+        put_uint(w, d->month, 2);
+        put_char(w, '-');
+        put_uint(w, d->day, 2);
+        put_char(w, '"');
+    } else {
+        JSON_TEXT(w, d->present, date_text(w, d));
+    }
+}
+
+NMEA_INTERNAL void json_coordinate(nmea_writer *w, const char *key, const nmea_coordinate *c, bool values)
+{
+    json_key(w, key);
+    if (!c->present) {
+        put_str(w, "null");
+    } else if (values) {
+        put_str(w, "{\"deg\":");
+        put_uint(w, c->degrees, 1);
+        put_str(w, ",\"min\":");
+        decimal_json(w, &c->minutes);
+        put_str(w, ",\"hemi\":");
+        put_json_str(w, text_span(&c->hemisphere, &c->hemisphere + 1), 0);
+        put_char(w, '}');
+    } else {
+        put_str(w, "[\"");
+        coordinate_text(w, c);
+        put_str(w, "\",");
+        put_json_str(w, text_span(&c->hemisphere, &c->hemisphere + 1), 0);
+        put_char(w, ']');
+    }
+}
+
+NMEA_INTERNAL void json_char(nmea_writer *w, const char *key, char c, bool values)
+{
+    (void)values;
+    json_key(w, key);
+    if (c)
+        put_json_str(w, text_span(&c, &c + 1), 0);
+    else
+        put_str(w, "null");
+}
+
+NMEA_INTERNAL void json_literal(nmea_writer *w, const char *key, bool present, const char *literal, bool values)
+{
+    (void)values;
+    json_key(w, key);
+    if (present)
+        put_json_cstr(w, literal);
+    else
+        put_str(w, "null");
+}
+
+NMEA_INTERNAL void json_text(nmea_writer *w, const char *key, nmea_text t, bool values)
+{
+    (void)values;
+    json_key(w, key);
+    if (t.len)
+        put_json_str(w, t, 0);
+    else
+        put_str(w, "null");
+}
+
+NMEA_INTERNAL void json_enum(nmea_writer *w, const char *key, const nmea_enum *e, const nmea_enum_def *def, bool values)
+{
+    json_key(w, key);
+    if (!e->present)
+        put_str(w, "null");
+    else if (values && e->value >= 0 && e->value < def->count)
+        put_json_cstr(w, def->codes[e->value].id);
+    else
+        put_json_cstr(w, enum_code(e, def));
+}
+
+NMEA_INTERNAL void json_enum_chars(nmea_writer *w, const char *key, nmea_text t, const nmea_enum_def *def, bool values)
+{
+    size_t i;
+    if (!values || !t.len) {
+        json_text(w, key, t, values);
+        return;
+    }
+    json_open(w, key, '[');
+    for (i = 0; i < t.len; i++) {
+        int value = enum_find(def, t.ptr + i, 1);
+        json_key(w, NULL);
+        if (value >= 0)
+            put_json_cstr(w, def->codes[value].id);
+        else
+            put_json_str(w, text_span(t.ptr + i, t.ptr + i + 1), 0);
+    }
+    json_close(w, ']');
+}
+
+static void json_head(nmea_writer *w, nmea_text start, nmea_text address)
+{
+    put_str(w, "{\"ok\":true,\"start\":");
+    put_json_str(w, start, 0);
+    put_str(w, ",\"address\":");
+    put_json_str(w, address, 0);
+}
+
+/* A known sentence up to the opening brace of its fields. */
+NMEA_INTERNAL void json_begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence, const char *variant)
+{
+    put_str(w, "{\"ok\":true,\"start\":\"$\",\"address\":\"");
+    put_escaped_mem(w, talker.ptr, talker.len, 1);
+    put_str(w, sentence);
+    put_str(w, "\",\"talker\":");
+    put_json_str(w, talker, 0);
+    put_str(w, ",\"sentence\":\"");
+    put_str(w, sentence);
+    put_str(w, "\",\"variant\":");
+    if (variant)
+        put_json_cstr(w, variant);
+    else
+        put_str(w, "null");
+    put_str(w, ",\"fields\":{");
+}
+
+/* ,"checksum":"HH"} with the checksum `sum` the sentence is written with. */
+static void json_checksum(nmea_writer *w, unsigned char sum, nmea_checksum_style style)
+{
+    put_str(w, ",\"checksum\":");
+    if (style == NMEA_CHECKSUM_NONE) {
+        put_str(w, "null}");
+        return;
+    }
+    put_char(w, '"');
+    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum >> 4]);
+    put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum & 15]);
+    put_str(w, "\"}");
+}
+
+/* Closes the fields of a known sentence; `sentence` is the writer that wrote it (for its
+   checksum). */
+NMEA_INTERNAL void json_end_sentence(nmea_writer *w, const nmea_writer *sentence, nmea_checksum_style style)
+{
+    put_char(w, '}');
+    json_checksum(w, sentence->sum, style);
+}
+
+static void json_generic(nmea_writer *w, const nmea_generic *g)
+{
+    nmea_writer sum = writer_of(NULL, 0);
+    const char *p = g->fields.ptr, *end = p + g->fields.len, *comma;
+    size_t i;
+    write_generic(&sum, g);
+    json_head(w, g->start, g->address);
+    put_str(w, ",\"talker\":null,\"sentence\":null,\"variant\":null,\"fields\":[");
+    for (i = 0; i < g->field_count; i++) {
+        for (comma = p; comma < end && *comma != ','; comma++)
+            continue;
+        if (i)
+            put_char(w, ',');
+        put_json_str(w, text_span(p, comma), 0);
+        p = comma < end ? comma + 1 : end;
+    }
+    put_char(w, ']');
+    json_checksum(w, sum.sum, g->checksum);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Reading JSON (the `encode` direction): a validator for the whole text, then lookups that
+   walk the validated text again. A value is the span [p, end) of its text. */
+
+typedef struct {
+    const char *p;
+    const char *end;
+} nmea_json;
+
+#define JSON_MAX_DEPTH 1024
+
+static const char *json_ws(const char *p, const char *end)
+{
+    while (p < end && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r'))
+        p++;
+    return p;
+}
+
+static bool json_word(const char **p, const char *end, const char *word)
+{
+    size_t n = strlen(word);
+    if ((size_t)(end - *p) < n || memcmp(*p, word, n) != 0)
+        return false;
+    *p += n;
+    return true;
+}
+
+/* Reads one character of a JSON string at *p (after the opening quote): its code point in
+   *cp; false at the closing quote or on an error (then *cp is -1). */
+static bool json_char_at(const char **p, const char *end, long *cp)
+{
+    const char *s = *p;
+    int i, d;
+    long v = 0;
+    *cp = -1;
+    if (s >= end || *s == '"' || (unsigned char)*s < 0x20)
+        return false;
+    if (*s != '\\') {
+        *cp = (unsigned char)*s;
+        *p = s + 1;
+        return true;
+    }
+    if (++s >= end)
+        return false;
+    switch (*s) {
+    case '"': v = '"'; break;
+    case '\\': v = '\\'; break;
+    case '/': v = '/'; break;
+    case 'b': v = '\b'; break;
+    case 'f': v = '\f'; break;
+    case 'n': v = '\n'; break;
+    case 'r': v = '\r'; break;
+    case 't': v = '\t'; break;
+    case 'u':
+        if (end - s < 5)
+            return false;
+        for (i = 1; i <= 4; i++) {
+            if ((d = hex_value(s[i])) < 0)
+                return false;
+            v = v * 16 + d;
+        }
+        s += 4;
+        /* a surrogate pair is one character */
+        if (v >= 0xD800 && v <= 0xDBFF && end - s >= 7 && s[1] == '\\' && s[2] == 'u') {
+            long low = 0;
+            for (i = 3; i <= 6 && (d = hex_value(s[i])) >= 0; i++)
+                low = low * 16 + d;
+            if (i == 7 && low >= 0xDC00 && low <= 0xDFFF) {
+                v = 0x10000 + ((v - 0xD800) << 10) + (low - 0xDC00);
+                s += 6;
+            }
+        }
+        break;
+    default:
+        return false;
+    }
+    *cp = v;
+    *p = s + 1;
+    return true;
+}
+
+/* Past the string starting at p (at its quote); NULL when it is not a valid string. */
+static const char *json_string_end(const char *p, const char *end)
+{
+    long cp;
+    p++;
+    while (json_char_at(&p, end, &cp))
+        continue;
+    return p < end && *p == '"' ? p + 1 : NULL;
+}
+
+static const char *json_number_end(const char *p, const char *end)
+{
+    if (p < end && *p == '-')
+        p++;
+    if (p < end && *p == '0')
+        p++;
+    else if (p < end && *p >= '1' && *p <= '9')
+        while (p < end && is_digit(*p))
+            p++;
+    else
+        return NULL;
+    if (end - p >= 2 && *p == '.' && is_digit(p[1]))
+        for (p++; p < end && is_digit(*p); p++)
+            continue;
+    if (p < end && (*p == 'e' || *p == 'E')) {
+        const char *q = p + 1;
+        if (q < end && (*q == '+' || *q == '-'))
+            q++;
+        if (q < end && is_digit(*q))
+            for (p = q; p < end && is_digit(*p); p++)
+                continue;
+    }
+    return p;
+}
+
+/* Whether `len` bytes are one JSON value (as Python's json.loads takes it, NaN and Infinity
+   included); *root is the value without the surrounding white space. */
+static bool json_parse(const char *text, size_t len, nmea_json *root)
+{
+    const char *p = text, *end = text + len;
+    unsigned char stack[JSON_MAX_DEPTH / 8] = {0};
+    size_t depth = 0;
+    bool object;
+
+    p = json_ws(p, end);
+    root->p = p;
+    for (;;) {
+        /* a value */
+        if (p >= end)
+            return false;
+        if (*p == '{' || *p == '[') {
+            if (depth == JSON_MAX_DEPTH)
+                return false;
+            object = *p == '{';
+            if (object)
+                stack[depth / 8] |= (unsigned char)(1u << depth % 8);
+            else
+                stack[depth / 8] &= (unsigned char)~(1u << depth % 8);
+            depth++;
+            p = json_ws(p + 1, end);
+            if (p < end && *p == (object ? '}' : ']')) {
+                depth--;
+                p++;
+            } else if (object) {
+                if (p >= end || *p != '"' || !(p = json_string_end(p, end)))
+                    return false;
+                p = json_ws(p, end);
+                if (p >= end || *p != ':')
+                    return false;
+                p = json_ws(p + 1, end);
+                continue;
+            } else {
+                continue;
+            }
+        } else if (*p == '"') {
+            if (!(p = json_string_end(p, end)))
+                return false;
+        } else if (!(json_word(&p, end, "true") || json_word(&p, end, "false") || json_word(&p, end, "null")
+                     || json_word(&p, end, "NaN") || json_word(&p, end, "Infinity")
+                     || json_word(&p, end, "-Infinity"))) {
+            if (!(p = json_number_end(p, end)))
+                return false;
+        }
+        /* after a value: close containers, or go on to the next element */
+        for (;;) {
+            p = json_ws(p, end);
+            if (depth == 0) {
+                root->end = p;
+                while (root->end > root->p && (root->end[-1] == ' ' || root->end[-1] == '\t'
+                                               || root->end[-1] == '\n' || root->end[-1] == '\r'))
+                    root->end--;
+                return p == end;
+            }
+            object = (stack[(depth - 1) / 8] >> (depth - 1) % 8) & 1;
+            if (p < end && *p == (object ? '}' : ']')) {
+                depth--;
+                p++;
+                continue;
+            }
+            if (p >= end || *p != ',')
+                return false;
+            p = json_ws(p + 1, end);
+            if (object) {
+                if (p >= end || *p != '"' || !(p = json_string_end(p, end)))
+                    return false;
+                p = json_ws(p, end);
+                if (p >= end || *p != ':')
+                    return false;
+                p = json_ws(p + 1, end);
+            }
+            break;
+        }
+    }
+}
+
+/* Past the (valid) value starting at p. */
+static const char *json_skip(const char *p, const char *end)
+{
+    size_t depth = 0;
+    do {
+        if (*p == '"') {
+            p = json_string_end(p, end);
+        } else if (*p == '{' || *p == '[') {
+            depth++;
+            p++;
+        } else if (*p == '}' || *p == ']') {
+            depth--;
+            p++;
+        } else if (depth == 0) {
+            while (p < end && *p != ',' && *p != ']' && *p != '}' && *p != ' ' && *p != '\t' && *p != '\n'
+                   && *p != '\r')
+                p++;
+        } else {
+            p++;
+        }
+    } while (depth > 0 && p < end);
+    return p;
+}
+
+static bool json_is(nmea_json v, char first)
+{
+    return v.p < v.end && *v.p == first;
+}
+
+static bool json_is_null(nmea_json v)
+{
+    return v.end - v.p == 4 && memcmp(v.p, "null", 4) == 0;
+}
+
+/* Whether the JSON string at p (at its quote) is `key`. */
+static bool json_key_is(const char *p, const char *end, const char *key)
+{
+    long cp;
+    p++;
+    while (json_char_at(&p, end, &cp)) {
+        if (!*key || cp != (unsigned char)*key)
+            return false;
+        key++;
+    }
+    return *key == 0;
+}
+
+/* The member `key` of an object (the last one, as Python's dict keeps it); false when `obj` is
+   not an object or has no such member. */
+static bool json_member(nmea_json obj, const char *key, nmea_json *out)
+{
+    const char *p, *end = obj.end, *k;
+    bool found = false;
+    if (!json_is(obj, '{'))
+        return false;
+    p = json_ws(obj.p + 1, end);
+    while (p < end && *p == '"') {
+        k = p;
+        p = json_ws(json_string_end(p, end), end) + 1;
+        p = json_ws(p, end);
+        if (json_key_is(k, end, key)) {
+            out->p = p;
+            out->end = json_skip(p, end);
+            found = true;
+        }
+        p = json_ws(json_skip(p, end), end);
+        if (p < end && *p == ',')
+            p = json_ws(p + 1, end);
+    }
+    return found;
+}
+
+/* The elements of an array, to walk with json_next. */
+static nmea_json json_items(nmea_json array)
+{
+    nmea_json items;
+    items.p = json_ws(array.p + 1, array.end);
+    items.end = array.end;
+    return items;
+}
+
+/* The next element of the items of an array (false after the last). */
+static bool json_next(nmea_json *iter, nmea_json *element)
+{
+    const char *p = iter->p;
+    if (p >= iter->end || *p == ']')
+        return false;
+    element->p = p;
+    element->end = json_skip(p, iter->end);
+    p = json_ws(element->end, iter->end);
+    if (p < iter->end && *p == ',')
+        p = json_ws(p + 1, iter->end);
+    iter->p = p;
+    return true;
+}
+
+/* The bytes of JSON strings are copied into the caller's scratch buffer (a character beyond
+   0xFF keeps its low byte, like the tools' escaping; `wide` tells). */
+typedef struct {
+    char *buf;
+    size_t cap;
+    size_t len;
+} nmea_scratch;
+
+static bool json_string(nmea_json v, nmea_scratch *s, nmea_text *out, bool *wide)
+{
+    const char *p = v.p + 1;
+    long cp;
+    size_t start = s->len;
+    *wide = false;
+    while (json_char_at(&p, v.end, &cp)) {
+        if (s->len >= s->cap)
+            return false;
+        *wide = *wide || cp > 0xFF;
+        s->buf[s->len++] = (char)(cp & 0xFF);
+    }
+    out->ptr = s->buf + start;
+    out->len = s->len - start;
+    return true;
+}
+
+static bool bad_json(nmea_error *err, const char *pattern, const char *key)
+{
+    fail(err, NMEA_ERR_BAD_JSON, pattern);
+    err->str[0] = key;
+    return false;
+}
+
+static bool scratch_full(nmea_error *err)
+{
+    return bad_json(err, "the scratch buffer is too small for this line", NULL);
+}
+
+static bool json_require(nmea_json obj, const char *key, nmea_json *out, nmea_error *err)
+{
+    if (!json_member(obj, key, out))
+        return bad_json(err, "missing \"%s\"", key);
+    return true;
+}
+
+/* A member that must be a string (`nullable`: or null, then *present is false). */
+static bool json_text_member(nmea_json obj, const char *key, bool nullable, nmea_scratch *s, nmea_text *out,
+                             bool *present, bool *wide, nmea_error *err)
+{
+    nmea_json v;
+    if (!json_require(obj, key, &v, err))
+        return false;
+    *present = false;
+    *wide = false;
+    if (nullable && json_is_null(v))
+        return true;
+    if (!json_is(v, '"'))
+        return bad_json(err, nullable ? "\"%s\" is not a string or null" : "\"%s\" is not a string", key);
+    if (!json_string(v, s, out, wide))
+        return scratch_full(err);
+    *present = true;
+    return true;
+}
+
+/* How a received checksum was written: none, lower case (when it has a lower-case letter, as
+   Python's str.upper() sees it) or upper case. */
+static nmea_checksum_style checksum_case(nmea_text t, bool present)
+{
+    size_t i;
+    if (!present)
+        return NMEA_CHECKSUM_NONE;
+    for (i = 0; i < t.len; i++) {
+        unsigned char c = (unsigned char)t.ptr[i];
+        if ((c >= 'a' && c <= 'z') || c == 0xB5 || (c >= 0xDF && c != 0xF7))
+            return NMEA_CHECKSUM_LOWER;
+    }
+    return NMEA_CHECKSUM_UPPER;
+}
+
+/* Collecting wire fields from the `fields` of decode's JSON: each text is checked and appended
+   to the scratch buffer, comma separated, so that the layout's reader parses them like a line. */
+typedef struct {
+    nmea_scratch *scratch;
+    size_t start;
+    size_t count;
+    nmea_error *err;
+} nmea_collector;
+
+static bool collect_text(nmea_collector *c, nmea_json v)
+{
+    nmea_text t;
+    bool wide;
+    size_t i;
+    if (c->count && c->scratch->len >= c->scratch->cap)
+        return scratch_full(c->err);
+    if (c->count)
+        c->scratch->buf[c->scratch->len++] = ',';
+    c->count++;
+    if (json_is_null(v))
+        return true;
+    if (!json_is(v, '"'))
+        return bad_json(c->err, "a field value is not a string or null", NULL);
+    if (!json_string(v, c->scratch, &t, &wide))
+        return scratch_full(c->err);
+    for (i = 0; i < t.len; i++) {
+        if (!is_printable(t.ptr[i]) || t.ptr[i] == ',' || t.ptr[i] == '*') {
+            bad_json(c->err, "field text %q holds ',', '*' or a byte outside printable ASCII", NULL);
+            c->err->text = t;
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The texts of one field value: a string or null, or for latitude/longitude (width 2) null or
+   an array of two. */
+static bool collect_value(nmea_collector *c, nmea_json v, unsigned width)
+{
+    nmea_json first, second, rest;
+    if (width == 1)
+        return collect_text(c, v);
+    if (json_is_null(v)) {
+        nmea_json empty;
+        empty.p = "null";
+        empty.end = empty.p + 4;
+        return collect_text(c, empty) && collect_text(c, empty);
+    }
+    rest = json_items(v);
+    if (json_is(v, '[') && json_next(&rest, &first) && json_next(&rest, &second) && !json_next(&rest, &v))
+        return collect_text(c, first) && collect_text(c, second);
+    return bad_json(c->err, "a latitude or longitude is not null or an array of two", NULL);
+}
+
+/* A required field of an object (a layout's fields, a group entry). */
+NMEA_INTERNAL bool collect_field(nmea_collector *c, nmea_json obj, const char *key, unsigned width)
+{
+    nmea_json v;
+    return json_require(obj, key, &v, c->err) && collect_value(c, v, width);
+}
+
+/* An optional trailing field: its texts when the key is there, nothing otherwise. */
+NMEA_INTERNAL bool collect_optional(nmea_collector *c, nmea_json obj, const char *key, unsigned width)
+{
+    nmea_json v;
+    return !json_member(obj, key, &v) || collect_value(c, v, width);
+}
+
+/* The array of a repeated group, to walk with json_next. */
+NMEA_INTERNAL bool collect_group(nmea_collector *c, nmea_json obj, const char *key, nmea_json *entries)
+{
+    if (!json_require(obj, key, entries, c->err))
+        return false;
+    if (!json_is(*entries, '['))
+        return bad_json(c->err, "\"%s\" is not an array", key);
+    *entries = json_items(*entries);
+    return true;
+}
+
+static nmea_text collected(const nmea_collector *c)
+{
+    return text_span(c->scratch->buf + c->start, c->scratch->buf + c->scratch->len);
+}
+
+/* Whether a line of decode's output is a JSON object whose "ok" is false (encode skips it). */
+bool nmea_json_is_failure(const char *json, size_t len)
+{
+    nmea_json root, ok;
+    return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
+        && memcmp(ok.p, "false", 5) == 0;
+}

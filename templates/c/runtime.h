@@ -1,0 +1,203 @@
+/*
+ * Runtime types (hand-written: templates/c/runtime.h).
+ *
+ * Conventions of the whole API:
+ * - No heap, no global mutable state: every struct is owned by the caller, every function is
+ *   reentrant. Nothing here needs more than a few hundred bytes of stack.
+ * - Texts are nmea_text slices (pointer + length, not NUL-terminated). A parsed sentence points
+ *   into the line given to the parser (text, enum_chars and talker fields, the raw fields of an
+ *   nmea_generic): keep that line alive and unchanged while the sentence is used. Sentences
+ *   rebuilt from JSON point into the caller's scratch buffer the same way. nmea_error points
+ *   into the line (or scratch buffer) too.
+ * - Every field can be empty on the wire; each value type says how it marks "no value"
+ *   (`present == false`, a zero char, an empty slice).
+ * - Functions that write text (nmea_serialize, nmea_to_json, ...) take a buffer and its capacity,
+ *   write a NUL-terminated string and return its length, or return 0 (writing at most a NUL at
+ *   buf[0]) when the text and its NUL do not fit. They never write past `cap`.
+ */
+
+/** Longest line (without its line ending) the parser accepts. */
+#define NMEA_MAX_LINE 1024
+
+/** Most digits a number may have (it is held in a signed 64-bit integer). */
+#define NMEA_MAX_DIGITS 18
+
+/** A run of bytes that belongs to someone else (usually the parsed line). */
+typedef struct {
+    const char *ptr;
+    size_t len;
+} nmea_text;
+
+/** A slice of a NUL-terminated string (which must outlive the slice). */
+nmea_text nmea_text_of(const char *s);
+
+/** How the checksum of a sentence is written. */
+typedef enum {
+    NMEA_CHECKSUM_UPPER = 0, /* "*6A" (also the style of an all-digit checksum) */
+    NMEA_CHECKSUM_LOWER,     /* "*6a" */
+    NMEA_CHECKSUM_NONE       /* no checksum at all */
+} nmea_checksum_style;
+
+/**
+ * A fixed-point number as received (integer and decimal fields): its value is
+ * digits * 10^-scale, negative when sign is '-'. `width` (integer digits written, leading zeros
+ * included), `sign` ('+', '-' or 0) and `point` (a '.' was written, even with no decimals) keep
+ * the exact text for the round trip: "-007.50" is {750, 2, 3, '-', true}.
+ */
+typedef struct {
+    int64_t digits;
+    uint8_t scale;
+    uint8_t width;
+    char sign;
+    bool point;
+    bool present;
+} nmea_number;
+
+/** The value of `n` in units of 10^-scale (truncated toward zero), e.g. scale 3 for
+    thousandths. Digits beyond the int64 range are not checked for: keep scale small. */
+int64_t nmea_number_scaled(const nmea_number *n, unsigned scale);
+
+/** An unsigned hexadecimal number; the digit count and the letter case are kept. */
+typedef struct {
+    uint64_t value;
+    uint8_t digits;
+    bool lower;
+    bool present;
+} nmea_hex;
+
+/** A UTC time of day hhmmss[.f...]: `fraction` has `fraction_digits` digits (0 to 9);
+    `point` says whether a '.' was written. */
+typedef struct {
+    uint8_t hour;
+    uint8_t minute;
+    uint8_t second;
+    uint8_t fraction_digits;
+    uint32_t fraction;
+    bool point;
+    bool present;
+} nmea_time;
+
+/** A date ddmmyy with its two-digit year. */
+typedef struct {
+    uint8_t day;
+    uint8_t month;
+    uint8_t year;
+    bool present;
+} nmea_date;
+
+/** A latitude (ddmm.mmmm,N) or longitude (dddmm.mmmm,E) as received: whole degrees (written
+    with `degree_digits` digits), minutes as a fixed-point number and the hemisphere letter. */
+typedef struct {
+    uint16_t degrees;
+    uint8_t degree_digits;
+    char hemisphere;
+    nmea_number minutes;
+    bool present;
+} nmea_coordinate;
+
+/** Which characters a code unknown to the spec may use to be kept rather than rejected. */
+typedef enum { NMEA_CODES_DIGITS, NMEA_CODES_LETTERS, NMEA_CODES_ALNUM } nmea_code_class;
+
+/** One code of a lookup table: the wire text and the spec's id. */
+typedef struct {
+    const char *code;
+    const char *id;
+} nmea_enum_code;
+
+/** A lookup table of the spec (one per spec/enums file): nmea_<enum>_def. */
+typedef struct {
+    const char *name;
+    const nmea_enum_code *codes; /* indexed by the table's C enum */
+    uint8_t count;
+    uint8_t min_len;
+    uint8_t max_len;
+    nmea_code_class code_class;
+} nmea_enum_def;
+
+/** The value `nmea_enum.value` has for a well-formed code the table does not know. */
+#define NMEA_UNKNOWN_CODE (-1)
+
+/**
+ * An enum field: `value` is one of the table's C enum constants, or NMEA_UNKNOWN_CODE for a
+ * code the spec does not know; `code` holds the code as received (NUL-terminated). The
+ * serializer writes the table's code for a known value and `code` for an unknown one.
+ */
+typedef struct {
+    int value;
+    char code[NMEA_CODE_MAX + 1];
+    bool present;
+} nmea_enum;
+
+/** The spec id of an enum value ("gps"), or NULL when it is empty or unknown. */
+const char *nmea_enum_id(const nmea_enum_def *def, const nmea_enum *e);
+
+/** The table's constant for a one-character code (the elements of an enum_chars field, e.g.
+    GNS mode "ANNN"), or NMEA_UNKNOWN_CODE. */
+int nmea_enum_lookup(const nmea_enum_def *def, char code);
+
+/** What went wrong (the "kind" of the tools' JSON). */
+typedef enum {
+    NMEA_ERR_TOO_LONG,
+    NMEA_ERR_NOT_A_SENTENCE,
+    NMEA_ERR_BAD_CHECKSUM,
+    NMEA_ERR_CHECKSUM_MISMATCH,
+    NMEA_ERR_TOO_FEW_FIELDS,
+    NMEA_ERR_TOO_MANY_FIELDS,
+    NMEA_ERR_BAD_FIELD,
+    NMEA_ERR_BAD_JSON
+} nmea_error_kind;
+
+/** "too_long", "bad_field", ... */
+const char *nmea_error_kind_name(nmea_error_kind kind);
+
+/**
+ * Why a line was rejected. The message is not stored as text: it is rendered on demand by
+ * nmea_error_message / nmea_error_to_json from a static pattern and the parts below, so the
+ * struct stays small. `address` (and `text`) point into the parsed line or JSON scratch buffer.
+ */
+typedef struct {
+    nmea_error_kind kind;
+    bool has_address;
+    nmea_text address;          /* the address, or the talker when address_suffix is set */
+    const char *address_suffix; /* the sentence id after the talker, or NULL */
+    unsigned field;             /* 1-based wire field after the address; 0 when none */
+    const char *group;          /* for a field in a repeated group: the group id, */
+    unsigned entry;             /* the 1-based entry, */
+    const char *name;           /* and the field id (or NULL when no field is at fault) */
+    const char *pattern;        /* the message, with %-directives for the parts below */
+    nmea_text text;
+    const char *str[2];
+    size_t num[2];
+} nmea_error;
+
+/** The message ("checksum is 40, computed 6C"); returns its length (0 when it does not fit). */
+size_t nmea_error_message(const nmea_error *err, char *buf, size_t cap);
+
+/** The name of the field at fault ("satellites[2].prn"), or 0 when there is none. */
+size_t nmea_error_name(const nmea_error *err, char *buf, size_t cap);
+
+/** The tools' JSON for an error: {"ok":false,"error":{...}}. */
+size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap);
+
+/** The too_long error for a line of `len` bytes (for readers that stream long lines away). */
+void nmea_error_too_long(nmea_error *err, size_t len);
+
+/**
+ * A well-formed sentence the spec does not describe. `fields` is the raw text of all fields
+ * after the address, comma separated, and `field_count` their number (0 when the address is
+ * not followed by a comma: "$PSTMSAVEPAR" has none, "$PSTMSAVEPAR," one empty field).
+ */
+typedef struct {
+    nmea_text start; /* "$" or "!" */
+    nmea_text address;
+    nmea_text fields;
+    size_t field_count;
+    nmea_checksum_style checksum;
+} nmea_generic;
+
+/** Field `index` (0-based) of a generic sentence; an empty slice past the end. */
+nmea_text nmea_generic_field(const nmea_generic *g, size_t index);
+
+/** Whether a line of decode's JSON output is an object whose "ok" is false (encode skips
+    those lines). */
+bool nmea_json_is_failure(const char *json, size_t len);

@@ -1,0 +1,155 @@
+/*
+ * nmea-c: `decode` NMEA lines to JSON, `encode` that JSON back to sentences (hand-written:
+ * templates/c/tool.c). Same behaviour, byte for byte, as nmea-py and nmea-rs; see docs/json.md.
+ *
+ *     nmea-c decode [--values]   stdin: NMEA lines       stdout: one JSON object per line
+ *     nmea-c encode              stdin: decode's output  stdout: the sentences, one per line
+ *
+ * Input is split on LF and one CR before it is dropped. decode streams: a line longer than
+ * NMEA_MAX_LINE is counted, not stored. encode holds one line at a time (up to ENCODE_MAX bytes).
+ */
+
+#include <stdio.h>
+#include <string.h>
+
+#include "nmea.h"
+
+#define CHUNK 65536
+#define DECODE_MAX (NMEA_MAX_LINE + 1) /* a line and its CR */
+#define ENCODE_MAX (1u << 20)
+
+/* The tool's buffers: a line being assembled across reads, the output being gathered. */
+static char input[CHUNK];
+static char pending[ENCODE_MAX];
+static char scratch[ENCODE_MAX];
+static char output[4 * ENCODE_MAX + NMEA_JSON_MAX + 1];
+
+typedef struct {
+    bool encode;
+    bool values;
+    size_t out_len;
+} tool;
+
+static void flush(tool *t)
+{
+    fwrite(output, 1, t->out_len, stdout);
+    t->out_len = 0;
+}
+
+/* Room for one more output line of up to `need` bytes. */
+static char *room(tool *t, size_t need)
+{
+    if (sizeof output - t->out_len < need)
+        flush(t);
+    return output + t->out_len;
+}
+
+static void emit(tool *t, size_t n)
+{
+    output[t->out_len + n] = '\n';
+    t->out_len += n + 1;
+}
+
+static void decode_line(tool *t, const char *line, size_t len)
+{
+    char *out = room(t, NMEA_JSON_MAX + 1);
+    size_t n;
+    if (len > NMEA_MAX_LINE) {
+        nmea_error err;
+        nmea_error_too_long(&err, len);
+        n = nmea_error_to_json(&err, out, NMEA_JSON_MAX);
+    } else {
+        n = nmea_decode_json(line, len, t->values, out, NMEA_JSON_MAX);
+    }
+    emit(t, n);
+}
+
+static void encode_line(tool *t, const char *line, size_t len, bool complete)
+{
+    size_t cap = 4 * len + NMEA_JSON_MAX; /* the sentence, or an error quoting the line twice */
+    char *out = room(t, cap + 1);
+    nmea_sentence s;
+    nmea_error err;
+    size_t n;
+
+    if (!complete) {
+        /* longer than this tool takes: not a line decode could have printed */
+        char json[256];
+        sprintf(json, "{\"ok\":false,\"error\":{\"kind\":\"bad_json\",\"address\":null,\"field\":null,"
+                      "\"name\":null,\"message\":\"line is %lu bytes, the limit is %lu\"}}",
+                (unsigned long)len, (unsigned long)ENCODE_MAX);
+        n = strlen(json);
+        memcpy(out, json, n);
+    } else if (nmea_json_is_failure(line, len)) {
+        return;
+    } else if (nmea_from_json(&s, line, len, scratch, sizeof scratch, &err)) {
+        n = nmea_serialize(&s, out, cap);
+    } else {
+        n = nmea_error_to_json(&err, out, cap);
+    }
+    emit(t, n);
+}
+
+/* One line, without its LF: `len` bytes in all, of which the first `kept` are in `line`. */
+static void handle(tool *t, const char *line, size_t len, size_t kept, char last)
+{
+    if (last == '\r') {
+        len--;
+        if (kept > len)
+            kept = len;
+    }
+    if (t->encode)
+        encode_line(t, line, len, kept == len);
+    else
+        decode_line(t, line, len);
+}
+
+int main(int argc, char **argv)
+{
+    tool t = {false, false, 0};
+    size_t got, pending_len = 0, line_len = 0;
+    char last = 0;
+
+    if (argc == 2 && strcmp(argv[1], "decode") == 0) {
+        t.values = false;
+    } else if (argc == 3 && strcmp(argv[1], "decode") == 0 && strcmp(argv[2], "--values") == 0) {
+        t.values = true;
+    } else if (argc == 2 && strcmp(argv[1], "encode") == 0) {
+        t.encode = true;
+    } else {
+        fputs("usage: nmea-c decode [--values] | encode   (reads stdin, writes stdout)\n", stderr);
+        return 2;
+    }
+    /* A line that ends inside one chunk is handled where it lies; one that spans chunks is
+       gathered in `pending` (as far as it fits: a longer one is only counted). */
+    while ((got = fread(input, 1, sizeof input, stdin)) > 0) {
+        const char *p = input, *end = input + got;
+        while (p < end) {
+            const char *lf = memchr(p, '\n', (size_t)(end - p));
+            const char *stop = lf ? lf : end;
+            size_t n = (size_t)(stop - p);
+            if (n)
+                last = stop[-1];
+            if (lf && line_len == 0) {
+                handle(&t, p, n, n, last);
+            } else {
+                size_t cap = t.encode ? sizeof pending : DECODE_MAX;
+                size_t keep = pending_len + n <= cap ? n : cap - pending_len;
+                memcpy(pending + pending_len, p, keep);
+                pending_len += keep;
+                line_len += n;
+                if (lf)
+                    handle(&t, pending, line_len, pending_len, last);
+            }
+            if (lf) {
+                pending_len = line_len = 0;
+                last = 0;
+            }
+            p = lf ? lf + 1 : end;
+        }
+    }
+    if (line_len)
+        handle(&t, pending, line_len, pending_len, last);
+    flush(&t);
+    return ferror(stdin) ? 1 : 0;
+}
