@@ -108,8 +108,10 @@ def from_json(obj: Any) -> Any:
     sentence_id = runtime.json_opt_text(obj, "sentence")
     if sentence_id is None:
         fields = runtime.json_list(obj, "fields")
-        return Generic(runtime.json_str_member(obj, "address"), [runtime.json_text(f) for f in fields],
-                       runtime.json_str_member(obj, "start"), checksum)
+        start = runtime.json_str_member(obj, "start")
+        if start not in ("$", "!"):
+            raise runtime.bad_json('"start" is not "$" or "!"')
+        return Generic(runtime.json_word(obj, "address"), [runtime.json_text(f) for f in fields], start, checksum)
     variant = runtime.json_opt_text(obj, "variant")
     layout = next((lay for lay in LAYOUTS.get(sentence_id, ()) if lay.VARIANT == variant), None)
     if layout is None:
@@ -119,12 +121,12 @@ def from_json(obj: Any) -> Any:
         raise runtime.bad_json('"fields" is not an object')
     texts = layout.fields_from_json(fields)
     if layout.ADDRESS is None:
-        address = runtime.json_str_member(obj, "talker") + sentence_id
-        return layout.parse_fields(address, texts, checksum)
-    if runtime.json_str_member(obj, "start") == "":
-        address = runtime.json_str_member(obj, "address")
-        line = " ".join([address, *texts])
-        return layout.parse_fields(address, texts, None, line)
+        return layout.parse_fields(runtime.json_word(obj, "talker") + sentence_id, texts, checksum)
+    if layout.checksum is None:  # a text command: its word as written, its letter case kept
+        word = runtime.json_word(obj, "address")
+        if word.upper() != layout.ADDRESS.upper():
+            raise runtime.bad_json(f'"address" is not {layout.ADDRESS}')
+        return layout.parse_fields(word, texts, None, " ".join([word, *texts]))
     return layout.parse_fields(layout.ADDRESS, texts, checksum)
 
 
@@ -132,7 +134,7 @@ def encode_json(line: str) -> str:
     """`encode`'s output for one line of `decode` output: the sentence, or the error as JSON."""
     try:
         obj = json.loads(line)
-    except ValueError:
+    except (ValueError, RecursionError):
         return runtime.bad_json("not JSON").to_json()
     try:
         return from_json(obj).to_sentence()

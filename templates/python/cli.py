@@ -32,7 +32,7 @@ def main(argv: list[str] | None = None) -> int:
             try:
                 if json.loads(line).get("ok") is False:
                     continue
-            except (ValueError, AttributeError):
+            except (ValueError, AttributeError, RecursionError):
                 pass
             out.append(encode_json(line))
     else:

@@ -724,6 +724,14 @@ def json_opt_text(obj: Any, key: str) -> str | None:
     return value
 
 
+def json_word(obj: Any, key: str) -> str:
+    """A member that must be letters and digits (an address, a talker ID, a command word)."""
+    value = json_member(obj, key)
+    if not isinstance(value, str) or not value.isascii() or not value.isalnum():
+        raise bad_json(f'"{key}" is not letters and digits')
+    return value
+
+
 def json_str_member(obj: Any, key: str) -> str:
     value = json_member(obj, key)
     if not isinstance(value, str):
