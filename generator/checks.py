@@ -177,6 +177,15 @@ def _check_enum(enum: Any, manual_ids: set[str], report: _Reporter) -> None:
         _check_manuals(v.manuals, manual_ids, v.origin, report, "manuals")
 
 
+# Names the generated code of every language gives to other things in a sentence's type:
+# envelope attributes, methods, the C tagged union. A field or group may not take them.
+RESERVED_FIELD_IDS = frozenset({
+    "address", "as", "as_received", "checksum", "fields", "fields_from_json", "fields_json", "id", "kind",
+    "optional_count", "parse", "parse_fields", "problems", "replies", "selector", "sentence", "start", "talker",
+    "to_bytes", "to_json", "to_sentence", "variant",
+})
+
+
 def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: set[str],
                     report: _Reporter) -> None:
     ids: set[str] = set()
@@ -188,6 +197,11 @@ def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: 
         if item.id in ids:
             report(item.origin, "S001", f"{item.id!r} appears twice in {sentence.id}", "id")
         ids.add(item.id)
+        names = [item.id] + ([f.id for f in item.fields] if isinstance(item, Group) else [])
+        for name in names:
+            if name in RESERVED_FIELD_IDS:
+                report(item.origin, "S014", f"{name!r} is a name the generated code uses itself; choose another id",
+                       "group" if isinstance(item, Group) and name == item.id else "id")
         if isinstance(item, Group):
             groups += 1
             seen_group = True
