@@ -36,8 +36,15 @@ def main() -> None:
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     for raw in sys.argv[1:]:
         start, rest = raw[0], raw[1:]
-        body, _, printed = rest.partition("*")
-        want = int(printed[:2], 16)
+        body, star, printed = rest.partition("*")
+        if not star or not printed:
+            print(f"{raw}\n  no checksum to verify (computed {checksum(body):02X})")
+            continue
+        try:
+            want = int(printed[:2], 16)
+        except ValueError:
+            print(f"{raw}\n  the checksum {printed!r} is not hex (computed {checksum(body):02X})")
+            continue
         print(f"{raw}\n  computed {checksum(body):02X}, printed {printed[:2]}")
         if checksum(body) == want:
             print("  intact")
