@@ -35,7 +35,8 @@ def candidates(body: str):
 def main() -> None:
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     for raw in sys.argv[1:]:
-        start, rest = raw[0], raw[1:]
+        # A line that lost its '$' still sums from its first character.
+        start, rest = (raw[0], raw[1:]) if raw[:1] in ("$", "!") else ("", raw)
         body, star, printed = rest.partition("*")
         if not star or not printed:
             print(f"{raw}\n  no checksum to verify (computed {checksum(body):02X})")
