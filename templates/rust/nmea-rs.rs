@@ -1,0 +1,142 @@
+//! The `nmea-rs` tool: `decode` NMEA lines to JSON, `encode` that JSON back to sentences.
+//!
+//! Same behaviour, byte for byte, as nmea-c and nmea-py; see docs/json.md. Input is bytes, split
+//! on LF with one CR before it dropped; a line over the limit is reported without being kept.
+
+use std::fmt;
+use std::io::{self, BufRead, BufReader, BufWriter, Write};
+use std::process::ExitCode;
+
+use nmeaspec::runtime::json::Value;
+use nmeaspec::runtime::MAX_LINE;
+use nmeaspec::{write_decoded, write_encoded, Error};
+
+const USAGE: &str = "usage: nmea-rs decode [--values] | encode   (reads stdin, writes stdout)\n";
+const BUFFER: usize = 1 << 16;
+
+/// Writes output lines: each is formatted into a reused buffer, then written as Latin-1 bytes (as
+/// the Python tool does) with its LF.
+struct Output<W: Write> {
+    inner: W,
+    line: String,
+}
+
+impl<W: Write> Output<W> {
+    fn new(inner: W) -> Self {
+        Self { inner, line: String::with_capacity(4096) }
+    }
+
+    fn line(&mut self, write: impl FnOnce(&mut String) -> fmt::Result) -> io::Result<()> {
+        self.line.clear();
+        write(&mut self.line).map_err(|_| io::Error::other("formatting failed"))?;
+        self.line.push('\n');
+        if self.line.is_ascii() {
+            self.inner.write_all(self.line.as_bytes())
+        } else {
+            let bytes: Vec<u8> = self.line.chars().map(|c| c as u32 as u8).collect();
+            self.inner.write_all(&bytes)
+        }
+    }
+}
+
+/// Splits the input into lines and hands each to `handle`: its bytes when it has at most `keep`
+/// bytes (after dropping the CR), else `Err(length)`; a longer line is counted but not kept.
+fn for_each_line(
+    input: &mut impl BufRead,
+    keep: usize,
+    mut handle: impl FnMut(Result<&[u8], usize>) -> io::Result<()>,
+) -> io::Result<()> {
+    // `kept` holds the first bytes of a line that spans buffer refills; `length` counts them all.
+    let mut kept: Vec<u8> = Vec::with_capacity(keep + 1);
+    let mut length = 0usize;
+    let mut last = 0u8;
+    let mut emit = |kept: &[u8], length: usize, last: u8| {
+        let length = if last == b'\r' { length - 1 } else { length };
+        handle(if length > keep { Err(length) } else { Ok(&kept[..length]) })
+    };
+    loop {
+        let buf = input.fill_buf()?;
+        if buf.is_empty() {
+            break;
+        }
+        let newline = buf.iter().position(|&b| b == b'\n');
+        let chunk = &buf[..newline.unwrap_or(buf.len())];
+        if newline.is_some() && length == 0 {
+            // The whole line is in the buffer: no copy.
+            emit(chunk, chunk.len(), chunk.last().copied().unwrap_or(0))?;
+        } else {
+            let room = (keep + 1).saturating_sub(kept.len());
+            kept.extend_from_slice(&chunk[..chunk.len().min(room)]);
+            length += chunk.len();
+            last = chunk.last().copied().unwrap_or(last);
+            if newline.is_some() {
+                emit(&kept, length, last)?;
+                kept.clear();
+                length = 0;
+            }
+        }
+        let used = chunk.len() + usize::from(newline.is_some());
+        input.consume(used);
+    }
+    if length > 0 {
+        emit(&kept, length, last)?;
+    }
+    Ok(())
+}
+
+fn decode(values: bool) -> io::Result<()> {
+    let mut input = BufReader::with_capacity(BUFFER, io::stdin().lock());
+    let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
+    for_each_line(&mut input, MAX_LINE, |line| match line {
+        Ok(line) => out.line(|w| write_decoded(w, line, values)),
+        Err(length) => out.line(|w| Error::too_long(length).write_json(w)),
+    })?;
+    out.inner.flush()
+}
+
+fn encode() -> io::Result<()> {
+    let mut input = BufReader::with_capacity(BUFFER, io::stdin().lock());
+    let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
+    let mut line = Vec::new();
+    loop {
+        line.clear();
+        if input.read_until(b'\n', &mut line)? == 0 {
+            break;
+        }
+        if line.last() == Some(&b'\n') {
+            line.pop();
+        }
+        if line.last() == Some(&b'\r') {
+            line.pop();
+        }
+        let value = Value::parse(&line);
+        // decode's error lines have nothing to encode.
+        if value.as_ref().and_then(|v| v.get("ok")) == Some(&Value::Bool(false)) {
+            continue;
+        }
+        out.line(|w| write_encoded(w, value.as_ref()))?;
+    }
+    out.inner.flush()
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args_os().skip(1).map(|a| a.to_string_lossy().into_owned()).collect();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let result = match args.as_slice() {
+        ["decode"] => decode(false),
+        ["decode", "--values"] => decode(true),
+        ["encode"] => encode(),
+        _ => {
+            eprint!("{USAGE}");
+            return ExitCode::from(2);
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) if err.kind() == io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("nmea-rs: {err}");
+            ExitCode::from(1)
+        }
+    }
+}

@@ -1,0 +1,532 @@
+//! Framing: one pass over a line checks it and splits it into start, address, fields and
+//! checksum; then a [`Reader`] hands out the fields one by one to the typed field readers.
+
+use super::error::{Error, Message, Name};
+use super::types::{Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Time};
+
+/// Longest line (without its line ending) the parser accepts.
+pub const MAX_LINE: usize = 1024;
+
+const LATITUDE: &str = "latitude ddmm.mmmm";
+const LONGITUDE: &str = "longitude dddmm.mmmm";
+const NORTH_SOUTH: &str = "hemisphere N or S";
+const EAST_WEST: &str = "hemisphere E or W";
+
+/// XOR of every byte of `body` (the bytes between the start character and the `*`).
+pub fn checksum(body: &[u8]) -> u8 {
+    body.iter().fold(0, |sum, b| sum ^ b)
+}
+
+/// A line split into its parts; its checksum, if any, has been verified.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Frame<'a> {
+    /// `"$"` or `"!"`.
+    pub start: &'a str,
+    /// Everything between the start character and the first `,` (or `*`): letters and digits.
+    pub address: &'a str,
+    /// The fields after the address.
+    pub fields: Fields<'a>,
+    /// How the checksum was written.
+    pub checksum: Checksum,
+}
+
+impl<'a> Frame<'a> {
+    /// Checks and splits one line (without its line ending), in the order of docs/json.md:
+    /// length, start, printable bytes, checksum form, checksum value, address.
+    pub fn parse(line: &'a [u8]) -> Result<Self, Error<'a>> {
+        let not_a_sentence = |message| Error::new(None, message);
+        if line.len() > MAX_LINE {
+            return Err(Error::too_long(line.len()));
+        }
+        let start = match line.first() {
+            None => return Err(not_a_sentence(Message::EmptyLine)),
+            Some(b'$') => "$",
+            Some(b'!') => "!",
+            Some(_) => return Err(not_a_sentence(Message::BadStart)),
+        };
+        let Scan { printable, mut sum, mut commas, stars } = Scan::of(&line[1..]);
+        if !printable {
+            let offset = line.iter().position(|b| !(0x20..=0x7e).contains(b)).unwrap_or(0);
+            return Err(not_a_sentence(Message::NotPrintable { byte: line[offset], offset }));
+        }
+        // The checksum star is nearly always the only one, third byte from the end. What follows
+        // the first star is not part of the body: take it out of the sum and the comma count.
+        let star = match stars {
+            0 => None,
+            1 if line.len() >= 3 && line[line.len() - 3] == b'*' => Some(line.len() - 3),
+            _ => line.iter().position(|&b| b == b'*'),
+        };
+        let body_end = star.unwrap_or(line.len());
+        for &b in &line[body_end..] {
+            sum ^= b;
+            commas -= usize::from(b == b',');
+        }
+        let body = &line[1..body_end];
+        let first_comma = body.iter().position(|&b| b == b',').map(|i| i + 1);
+        let text = match core::str::from_utf8(line) {
+            Ok(text) => text,
+            Err(err) => {
+                let offset = err.valid_up_to();
+                return Err(not_a_sentence(Message::NotPrintable { byte: line[offset], offset }));
+            }
+        };
+        let address = &text[1..first_comma.unwrap_or(body_end)];
+        let named = (!address.is_empty() && address.bytes().all(|b| b.is_ascii_alphanumeric())).then_some(address);
+        let sent = star.map(|star| &text[star + 1..]);
+        if let Some(sent) = sent {
+            let b = sent.as_bytes();
+            let one_case = !(b.iter().any(u8::is_ascii_uppercase) && b.iter().any(u8::is_ascii_lowercase));
+            if b.len() != 2 || !b.iter().all(u8::is_ascii_hexdigit) || !one_case {
+                return Err(Error::new(named, Message::BadChecksum { text: sent }));
+            }
+            if hex_value(b[0]) << 4 | hex_value(b[1]) != sum {
+                let message = Message::ChecksumMismatch { sent, computed: sum };
+                return Err(Error::new(named, message));
+            }
+        }
+        let Some(address) = named else {
+            return Err(not_a_sentence(Message::BadAddress { text: address }));
+        };
+        let fields = match first_comma {
+            Some(comma) => Fields::new(address, &text[comma + 1..body_end], commas),
+            None => Fields::new(address, "", 0),
+        };
+        Ok(Self { start, address, fields, checksum: Checksum::of(sent) })
+    }
+}
+
+/// Whether a line is a standard sentence, a talker ID and a 3-letter formatter: `$` and 5
+/// characters, not proprietary (`P…`).
+pub fn is_standard_address(start: &str, address: &str) -> bool {
+    start == "$" && address.len() == 5 && !address.starts_with('P')
+}
+
+/// What one pass over the bytes after the start finds: whether all are printable ASCII, their
+/// XOR, and how many commas and stars there are. Eight bytes at a time (SWAR).
+struct Scan {
+    printable: bool,
+    sum: u8,
+    commas: usize,
+    stars: usize,
+}
+
+impl Scan {
+    const ONES: u64 = 0x0101_0101_0101_0101;
+    const HIGH: u64 = 0x8080_8080_8080_8080;
+    const LOW7: u64 = 0x7f7f_7f7f_7f7f_7f7f;
+
+    /// The high bit of each byte of `v` that is zero (exact, no false positives).
+    fn zero_bytes(v: u64) -> u64 {
+        !(((v & Self::LOW7) + Self::LOW7) | v | Self::LOW7)
+    }
+
+    /// The high bit of each byte of `v` that equals `byte`.
+    fn bytes_equal(v: u64, byte: u8) -> u64 {
+        Self::zero_bytes(v ^ (Self::ONES * u64::from(byte)))
+    }
+
+    /// The high bit of each byte of `v` outside 0x20..=0x7e.
+    fn unprintable(v: u64) -> u64 {
+        let at_least_space = ((v & Self::LOW7) + Self::ONES * 0x60) & Self::HIGH;
+        (v & Self::HIGH) | (!at_least_space & Self::HIGH) | Self::bytes_equal(v, 0x7f)
+    }
+
+    fn of(bytes: &[u8]) -> Self {
+        let (mut bad, mut sum, mut commas, mut stars) = (0u64, 0u64, 0usize, 0usize);
+        let mut words = bytes.chunks_exact(8);
+        for word in &mut words {
+            let mut le = [0u8; 8];
+            le.copy_from_slice(word);
+            let v = u64::from_le_bytes(le);
+            bad |= Self::unprintable(v);
+            sum ^= v;
+            commas += Self::bytes_equal(v, b',').count_ones() as usize;
+            stars += Self::bytes_equal(v, b'*').count_ones() as usize;
+        }
+        let mut sum = sum.to_le_bytes().iter().fold(0u8, |x, b| x ^ b);
+        let mut printable = bad == 0;
+        for &b in words.remainder() {
+            printable &= (0x20..=0x7e).contains(&b);
+            sum ^= b;
+            commas += usize::from(b == b',');
+            stars += usize::from(b == b'*');
+        }
+        Self { printable, sum, commas, stars }
+    }
+}
+
+fn hex_value(b: u8) -> u8 {
+    match b {
+        b'0'..=b'9' => b - b'0',
+        b'a'..=b'f' => b - b'a' + 10,
+        _ => b - b'A' + 10,
+    }
+}
+
+/// The fields after the address: their text (joined by `,`) and how many there are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Fields<'a> {
+    address: &'a str,
+    text: &'a str,
+    count: usize,
+}
+
+impl<'a> Fields<'a> {
+    /// `count` fields joined by `,` in `text`, of the sentence at `address` (named in errors).
+    pub const fn new(address: &'a str, text: &'a str, count: usize) -> Self {
+        Self { address, text, count }
+    }
+
+    /// The address of the sentence.
+    pub const fn address(&self) -> &'a str {
+        self.address
+    }
+
+    /// The talker ID of a standard sentence: the address without its last 3 characters.
+    pub fn talker(&self) -> &'a str {
+        let end = self.address.len().saturating_sub(3);
+        self.address.get(..end).unwrap_or("")
+    }
+
+    /// The fields as received, joined by `,`.
+    pub const fn as_str(&self) -> &'a str {
+        self.text
+    }
+
+    /// How many fields there are.
+    pub const fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Whether there are no fields at all (not even an empty one).
+    pub const fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// The field texts, in order.
+    pub fn iter(&self) -> FieldIter<'a> {
+        FieldIter { rest: self.text, left: self.count }
+    }
+
+    /// A reader that hands out the fields in order to the typed field readers.
+    pub fn reader(&self) -> Reader<'a> {
+        Reader { address: self.address, rest: self.text, index: 0, group: "", entry: 0 }
+    }
+
+    /// Checks the field count against a layout: how many times its repeated group occurs and
+    /// how many optional trailing wire fields follow, or `too_few_fields`/`too_many_fields`.
+    pub fn shape(&self, shape: &Shape) -> Result<(usize, usize), Error<'a>> {
+        let (count, fixed, optional) = (self.count, shape.fixed, shape.optional);
+        let sentence = shape.sentence;
+        let too_few = |need| Message::TooFew { sentence, need, found: count };
+        let too_many = |limit| Message::TooMany { sentence, limit, found: count };
+        let error = |message| Error::new(Some(self.address), message);
+        let Some(group) = &shape.group else {
+            if count < fixed {
+                return Err(error(too_few(fixed)));
+            }
+            if count > fixed + optional {
+                return Err(error(too_many(fixed + optional)));
+            }
+            return Ok((0, count - fixed));
+        };
+        let width = group.width;
+        if count < fixed + group.min * width {
+            return Err(error(too_few(fixed + group.min * width)));
+        }
+        let rest = count - fixed;
+        let repeats = (rest / width).min(group.max);
+        let extra = rest - repeats * width;
+        if extra > optional {
+            if repeats == group.max {
+                return Err(error(too_many(fixed + group.max * width + optional)));
+            }
+            return Err(error(Message::GroupCut { sentence, group: group.id, width, left: extra }));
+        }
+        Ok((repeats, extra))
+    }
+}
+
+impl<'a> IntoIterator for &Fields<'a> {
+    type Item = &'a str;
+    type IntoIter = FieldIter<'a>;
+
+    fn into_iter(self) -> FieldIter<'a> {
+        self.iter()
+    }
+}
+
+/// Iterator over the field texts of [`Fields`].
+#[derive(Clone, Debug)]
+pub struct FieldIter<'a> {
+    rest: &'a str,
+    left: usize,
+}
+
+impl<'a> Iterator for FieldIter<'a> {
+    type Item = &'a str;
+
+    fn next(&mut self) -> Option<&'a str> {
+        if self.left == 0 {
+            return None;
+        }
+        self.left -= 1;
+        Some(take(&mut self.rest))
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        (self.left, Some(self.left))
+    }
+}
+
+impl ExactSizeIterator for FieldIter<'_> {}
+
+fn take<'a>(rest: &mut &'a str) -> &'a str {
+    match rest.bytes().position(|b| b == b',') {
+        Some(comma) => {
+            let field = &rest[..comma];
+            *rest = &rest[comma + 1..];
+            field
+        }
+        None => core::mem::take(rest),
+    }
+}
+
+/// How the fields of a layout are counted: required fields outside the repeated group, optional
+/// trailing fields, and the group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shape {
+    /// The sentence id, for messages.
+    pub sentence: &'static str,
+    /// Wire fields outside the group that are always present.
+    pub fixed: usize,
+    /// Wire fields of the optional trailing fields.
+    pub optional: usize,
+    /// The repeated group, if any.
+    pub group: Option<GroupShape>,
+}
+
+/// The repeated group of a layout.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GroupShape {
+    /// The group id, for messages.
+    pub id: &'static str,
+    /// Wire fields per entry.
+    pub width: usize,
+    /// Fewest entries.
+    pub min: usize,
+    /// Most entries.
+    pub max: usize,
+}
+
+/// Hands out the fields of a sentence in wire order to the typed readers below. Each reader
+/// takes the next field (two for latitude and longitude): an empty field is `None`, text that
+/// does not fit the type is a `bad_field` error naming the field (`id`, or `group[n].id` inside
+/// [`Reader::group`]).
+#[derive(Clone, Debug)]
+pub struct Reader<'a> {
+    address: &'a str,
+    rest: &'a str,
+    index: usize,
+    group: &'static str,
+    entry: usize,
+}
+
+impl<'a> Reader<'a> {
+    /// Reads `count` entries of the repeated group `id` with `read` (at most `N`).
+    pub fn group<T: Copy + Default, const N: usize>(
+        &mut self,
+        id: &'static str,
+        count: usize,
+        mut read: impl FnMut(&mut Self) -> Result<T, Error<'a>>,
+    ) -> Result<Group<T, N>, Error<'a>> {
+        self.group = id;
+        let entries = Group::read(count, |entry| {
+            self.entry = entry;
+            read(self)
+        });
+        (self.group, self.entry) = ("", 0);
+        entries
+    }
+
+    fn name(&self, id: &'static str) -> Name {
+        Name::entry(self.group, self.entry, id)
+    }
+
+    fn next_text(&mut self) -> &'a str {
+        self.index += 1;
+        take(&mut self.rest)
+    }
+
+    fn read<T>(
+        &mut self,
+        id: &'static str,
+        expected: &'static str,
+        parse: impl FnOnce(&'a str) -> Option<T>,
+    ) -> Result<Option<T>, Error<'a>> {
+        let text = self.next_text();
+        if text.is_empty() {
+            return Ok(None);
+        }
+        match parse(text) {
+            Some(value) => Ok(Some(value)),
+            None => Err(Error::bad_field(self.address, self.index, self.name(id), expected, text)),
+        }
+    }
+
+    /// An integer `[+-]digits` within `range`.
+    pub fn integer(
+        &mut self,
+        id: &'static str,
+        expected: &'static str,
+        range: Range,
+    ) -> Result<Option<Number>, Error<'a>> {
+        self.read(id, expected, |t| Number::parse(t, true).filter(|n| range.contains(*n)))
+    }
+
+    /// A decimal number `[+-]digits[.digits]` within `range`.
+    pub fn decimal(
+        &mut self,
+        id: &'static str,
+        expected: &'static str,
+        range: Range,
+    ) -> Result<Option<Number>, Error<'a>> {
+        self.read(id, expected, |t| Number::parse(t, false).filter(|n| range.contains(*n)))
+    }
+
+    /// Hex digits.
+    pub fn hex(&mut self, id: &'static str) -> Result<Option<Hex>, Error<'a>> {
+        self.read(id, "hex number", Hex::parse)
+    }
+
+    /// A time `hhmmss[.s…]`.
+    pub fn time(&mut self, id: &'static str) -> Result<Option<Time>, Error<'a>> {
+        self.read(id, "time hhmmss[.s]", Time::parse)
+    }
+
+    /// A date `ddmmyy`.
+    pub fn date(&mut self, id: &'static str) -> Result<Option<Date>, Error<'a>> {
+        self.read(id, "date ddmmyy", Date::parse)
+    }
+
+    /// One character.
+    pub fn char(&mut self, id: &'static str) -> Result<Option<char>, Error<'a>> {
+        self.read(id, "one character", |t| {
+            let mut chars = t.chars();
+            chars.next().filter(|_| chars.next().is_none())
+        })
+    }
+
+    /// Exactly `value` (or nothing).
+    pub fn literal(
+        &mut self,
+        id: &'static str,
+        expected: &'static str,
+        value: &'static str,
+    ) -> Result<Option<&'a str>, Error<'a>> {
+        self.read(id, expected, |t| (t == value).then_some(t))
+    }
+
+    /// Any text, at most `max_length` characters.
+    pub fn text(
+        &mut self,
+        id: &'static str,
+        expected: &'static str,
+        max_length: Option<usize>,
+    ) -> Result<Option<&'a str>, Error<'a>> {
+        self.read(id, expected, |t| max_length.is_none_or(|max| t.len() <= max).then_some(t))
+    }
+
+    /// A code of enum `E`, or an unknown one of the same form.
+    pub fn code<E: CodeEnum>(&mut self, id: &'static str) -> Result<Option<Code<'a, E>>, Error<'a>> {
+        self.read(id, E::EXPECTED, |t| Code::parse(t, E::MIN_LEN, E::MAX_LEN))
+    }
+
+    /// A run of one-character codes of enum `E`, at most `max_length`.
+    pub fn code_chars<E: CodeEnum>(
+        &mut self,
+        id: &'static str,
+        max_length: Option<usize>,
+    ) -> Result<Option<CodeChars<'a, E>>, Error<'a>> {
+        self.read(id, E::EXPECTED_CHARS, |t| CodeChars::parse(t, max_length))
+    }
+
+    /// A latitude: `ddmm.mmmm` and `N`/`S`, both empty or both set.
+    pub fn latitude(&mut self, id: &'static str) -> Result<Option<Coordinate>, Error<'a>> {
+        self.coordinate(id, (LATITUDE, 2, 90), (NORTH_SOUTH, ['N', 'S']))
+    }
+
+    /// A longitude: `dddmm.mmmm` and `E`/`W`, both empty or both set.
+    pub fn longitude(&mut self, id: &'static str) -> Result<Option<Coordinate>, Error<'a>> {
+        self.coordinate(id, (LONGITUDE, 3, 180), (EAST_WEST, ['E', 'W']))
+    }
+
+    fn coordinate(
+        &mut self,
+        id: &'static str,
+        (expected, degree_digits, max_degrees): (&'static str, usize, u8),
+        (hemisphere_expected, hemispheres): (&'static str, [char; 2]),
+    ) -> Result<Option<Coordinate>, Error<'a>> {
+        let text = self.next_text();
+        let hemisphere = self.next_text();
+        let (index, name) = (self.index - 1, self.name(id));
+        if text.is_empty() {
+            if !hemisphere.is_empty() {
+                return Err(Error::bad_field(self.address, index, name, expected, text));
+            }
+            return Ok(None);
+        }
+        let Some(mut value) = Coordinate::parse(text, degree_digits, max_degrees) else {
+            return Err(Error::bad_field(self.address, index, name, expected, text));
+        };
+        let mut chars = hemisphere.chars();
+        match (chars.next(), chars.next()) {
+            (Some(c), None) if hemispheres.contains(&c) => value.hemisphere = c,
+            _ => return Err(Error::bad_field(self.address, index + 1, name, hemisphere_expected, hemisphere)),
+        }
+        Ok(Some(value))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn naive(bytes: &[u8]) -> (bool, u8, usize, usize) {
+        let printable = bytes.iter().all(|b| (0x20..=0x7e).contains(b));
+        let sum = bytes.iter().fold(0, |x, b| x ^ b);
+        let count = |c| bytes.iter().filter(|&&b| b == c).count();
+        (printable, sum, count(b','), count(b'*'))
+    }
+
+    #[test]
+    fn scan_agrees_with_a_byte_loop() {
+        let mut buf = [b'a'; 24];
+        for len in [0, 1, 7, 8, 9, 16, 23, 24] {
+            for at in 0..len {
+                for byte in 0..=255u8 {
+                    buf[at] = byte;
+                    let scan = Scan::of(&buf[..len]);
+                    assert_eq!((scan.printable, scan.sum, scan.commas, scan.stars), naive(&buf[..len]));
+                    buf[at] = b'a';
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn frames_split_address_fields_and_checksum() {
+        let frame = Frame::parse(b"$GPHDT,1.0,T*34").unwrap();
+        assert_eq!((frame.start, frame.address, frame.fields.len()), ("$", "GPHDT", 2));
+        assert!(frame.fields.iter().eq(["1.0", "T"]));
+        assert_eq!(frame.fields.talker(), "GP");
+        let err = Frame::parse(b"!AB*aB").unwrap_err();
+        assert_eq!(err.message(), &Message::BadChecksum { text: "aB" });
+        let err = Frame::parse(b"!AB*2a").unwrap_err();
+        assert_eq!(err.message(), &Message::ChecksumMismatch { sent: "2a", computed: 3 });
+        let fields = Frame::parse(b"$A,*6D").unwrap().fields;
+        assert_eq!((fields.as_str(), fields.len()), ("", 1));
+        assert_eq!(Frame::parse(b"$A,*,*41").unwrap_err().message(), &Message::BadChecksum { text: ",*41" });
+        assert!(Frame::parse(b"$PSTMSAVEPAR").unwrap().fields.is_empty());
+    }
+}

@@ -1,0 +1,26 @@
+//! The hand-written runtime under the generated sentence modules: framing and checksum, field
+//! splitting, the field types, the error type, JSON writing and (with `std`) JSON reading.
+//!
+//! Its rules (what text each field type accepts, the error messages, the JSON form) are the
+//! Python and C runtimes' rules byte for byte; see docs/json.md.
+
+mod error;
+mod frame;
+mod layout;
+mod types;
+mod write;
+
+#[cfg(feature = "std")]
+pub mod json;
+
+pub use error::{Error, ErrorKind, Message, Name};
+pub use frame::{checksum, is_standard_address, FieldIter, Fields, Frame, GroupShape, Reader, Shape, MAX_LINE};
+pub use layout::{strip_line_ending, Generic, Layout};
+pub use types::{
+    Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Sign, Time,
+    MAX_DIGITS,
+};
+pub use write::{
+    write_json_char, write_json_display, write_json_str, write_sentence, Discard, FieldValue, JsonEscape, JsonFields,
+    WireWriter,
+};

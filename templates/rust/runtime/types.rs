@@ -1,0 +1,801 @@
+//! The field types: what text each spec type accepts and how it is kept for a byte-exact round
+//! trip. `Display` of each type writes its wire text back.
+
+use core::cmp::Ordering;
+use core::fmt;
+use core::marker::PhantomData;
+use core::ops::{Deref, DerefMut};
+
+/// Most digits a number may have, so that it fits a signed 64-bit integer.
+pub const MAX_DIGITS: usize = 18;
+
+const POW10: [i64; 19] = {
+    let mut table = [1i64; 19];
+    let mut i = 1;
+    while i < 19 {
+        table[i] = table[i - 1] * 10;
+        i += 1;
+    }
+    table
+};
+
+/// 10^`exp` (for `exp` up to 18).
+const fn pow10(exp: u8) -> i64 {
+    if (exp as usize) < POW10.len() {
+        POW10[exp as usize]
+    } else {
+        i64::MAX
+    }
+}
+
+/// How the checksum of a sentence is written.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Checksum {
+    /// `*hh` with upper-case hex letters (also used when the digits have no letters).
+    #[default]
+    Upper,
+    /// `*hh` with lower-case hex letters.
+    Lower,
+    /// No checksum at all.
+    None,
+}
+
+impl Checksum {
+    /// The style of two received checksum digits (`None` when there were none).
+    pub fn of(text: Option<&str>) -> Self {
+        match text {
+            None => Self::None,
+            Some(t) if t.bytes().any(|b| b.is_ascii_lowercase()) => Self::Lower,
+            Some(_) => Self::Upper,
+        }
+    }
+
+    /// The two digits of `value` in this style (`None` for [`Checksum::None`]).
+    pub fn digits(self, value: u8) -> Option<[u8; 2]> {
+        const UPPER: &[u8; 16] = b"0123456789ABCDEF";
+        const LOWER: &[u8; 16] = b"0123456789abcdef";
+        let table = match self {
+            Self::Upper => UPPER,
+            Self::Lower => LOWER,
+            Self::None => return None,
+        };
+        Some([table[usize::from(value >> 4)], table[usize::from(value & 15)]])
+    }
+}
+
+/// The sign of a number as written.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Sign {
+    /// No sign character.
+    #[default]
+    Implicit,
+    /// A `+`.
+    Plus,
+    /// A `-`.
+    Minus,
+}
+
+/// A fixed-point number as received (integer and decimal fields): `digits` × 10^-`scale`,
+/// with the integer digits (leading zeros included), the sign and the decimal point as written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Number {
+    /// All digits as one integer (`00188.976` → 188976).
+    pub digits: i64,
+    /// Digits after the point (`00188.976` → 3).
+    pub scale: u8,
+    /// Digits before the point, leading zeros included (`00188.976` → 5; `.5` → 0).
+    pub width: u8,
+    /// The sign as written.
+    pub sign: Sign,
+    /// Whether a decimal point was written (`5.` has one, with scale 0).
+    pub point: bool,
+}
+
+impl Number {
+    /// Parses `[+-]digits` (`integer`) or `[+-]digits[.digits]`; at most 18 digits.
+    pub fn parse(text: &str, integer: bool) -> Option<Self> {
+        let bytes = text.as_bytes();
+        let (sign, body) = match bytes.first() {
+            Some(b'+') => (Sign::Plus, &bytes[1..]),
+            Some(b'-') => (Sign::Minus, &bytes[1..]),
+            _ => (Sign::Implicit, bytes),
+        };
+        let (mut digits, mut whole, mut frac, mut point) = (0i64, 0usize, 0usize, false);
+        for &b in body {
+            match b {
+                b'0'..=b'9' => {
+                    if whole + frac == MAX_DIGITS {
+                        return None;
+                    }
+                    digits = digits * 10 + i64::from(b - b'0');
+                    if point {
+                        frac += 1;
+                    } else {
+                        whole += 1;
+                    }
+                }
+                b'.' if !point && !integer => point = true,
+                _ => return None,
+            }
+        }
+        if whole + frac == 0 {
+            return None;
+        }
+        Some(Self { digits, scale: frac as u8, width: whole as u8, sign, point })
+    }
+
+    /// Whether the number was written with a `-` (also for `-0`).
+    pub const fn is_negative(self) -> bool {
+        matches!(self.sign, Sign::Minus)
+    }
+
+    /// The value as a signed fixed-point integer: `digits` with the sign applied.
+    pub const fn signed_digits(self) -> i64 {
+        if self.is_negative() {
+            -self.digits
+        } else {
+            self.digits
+        }
+    }
+
+    /// The value as a float.
+    pub fn to_f64(self) -> f64 {
+        self.signed_digits() as f64 / POW10[usize::from(self.scale)] as f64
+    }
+
+    /// The integer part of the value (toward zero).
+    pub const fn trunc(self) -> i64 {
+        self.signed_digits() / POW10[self.scale as usize]
+    }
+
+    fn split(self) -> (u64, u64) {
+        let unit = POW10[usize::from(self.scale)] as u64;
+        let digits = self.digits as u64;
+        (digits / unit, digits % unit)
+    }
+
+    /// Writes the value as a JSON number without leading or trailing zeros (`188.862`, `-2`).
+    pub fn write_json_value<W: fmt::Write + ?Sized>(self, w: &mut W) -> fmt::Result {
+        let (whole, frac) = self.split();
+        if self.is_negative() && self.digits != 0 {
+            w.write_char('-')?;
+        }
+        write_digits(w, whole, 1)?;
+        if frac != 0 {
+            let mut frac = frac;
+            let mut scale = usize::from(self.scale);
+            while frac % 10 == 0 {
+                frac /= 10;
+                scale -= 1;
+            }
+            w.write_char('.')?;
+            write_digits(w, frac, scale)?;
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for Number {
+    /// The wire text: sign, integer digits zero-padded to `width`, point and fraction.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (whole, frac) = self.split();
+        match self.sign {
+            Sign::Implicit => {}
+            Sign::Plus => f.write_str("+")?,
+            Sign::Minus => f.write_str("-")?,
+        }
+        if self.width > 0 {
+            write_digits(f, whole, usize::from(self.width))?;
+        }
+        if self.point {
+            f.write_str(".")?;
+            if self.scale > 0 {
+                write_digits(f, frac, usize::from(self.scale))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Writes `value` in decimal, zero-padded to at least `width` digits.
+pub(crate) fn write_digits<W: fmt::Write + ?Sized>(w: &mut W, mut value: u64, width: usize) -> fmt::Result {
+    let mut buf = [b'0'; 24];
+    let mut at = buf.len();
+    while value > 0 {
+        at -= 1;
+        buf[at] = b'0' + (value % 10) as u8;
+        value /= 10;
+    }
+    at = at.min(buf.len() - width.min(buf.len()));
+    // Only ASCII digits were written.
+    w.write_str(core::str::from_utf8(&buf[at..]).map_err(|_| fmt::Error)?)
+}
+
+/// An inclusive bound of a number range: `digits` × 10^-`scale` (signed).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bound {
+    /// The bound as a signed fixed-point integer.
+    pub digits: i64,
+    /// Digits after the point.
+    pub scale: u8,
+}
+
+impl Bound {
+    /// `digits` × 10^-`scale`, e.g. `Bound::new(9999, 1)` for 999.9.
+    pub const fn new(digits: i64, scale: u8) -> Self {
+        Self { digits, scale }
+    }
+
+    /// A whole number.
+    pub const fn int(value: i64) -> Self {
+        Self { digits: value, scale: 0 }
+    }
+
+    #[inline]
+    fn cmp_number(self, number: Number) -> Ordering {
+        let value = number.signed_digits();
+        if self.scale == number.scale {
+            return self.digits.cmp(&value);
+        }
+        // Both at the larger scale, exactly: 18 digits times 10^18 fit in an i128.
+        let scale = self.scale.max(number.scale);
+        let widen = |digits: i64, from: u8| i128::from(digits) * i128::from(pow10(scale - from));
+        widen(self.digits, self.scale).cmp(&widen(value, number.scale))
+    }
+}
+
+/// The inclusive value range of an integer or decimal field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Range {
+    /// The least value allowed.
+    pub min: Option<Bound>,
+    /// The greatest value allowed.
+    pub max: Option<Bound>,
+}
+
+impl Range {
+    /// Any value.
+    pub const ANY: Self = Self { min: None, max: None };
+
+    /// `min..=max`.
+    pub const fn between(min: Bound, max: Bound) -> Self {
+        Self { min: Some(min), max: Some(max) }
+    }
+
+    /// `min` or more.
+    pub const fn at_least(min: Bound) -> Self {
+        Self { min: Some(min), max: None }
+    }
+
+    /// `max` or less.
+    pub const fn at_most(max: Bound) -> Self {
+        Self { min: None, max: Some(max) }
+    }
+
+    /// Whether `number` lies in the range.
+    #[inline]
+    pub fn contains(self, number: Number) -> bool {
+        self.min.is_none_or(|min| min.cmp_number(number) != Ordering::Greater)
+            && self.max.is_none_or(|max| max.cmp_number(number) != Ordering::Less)
+    }
+}
+
+/// An unsigned hexadecimal number (at most 16 digits); digit count and letter case are kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Hex {
+    /// The value.
+    pub value: u64,
+    /// Digits written, leading zeros included.
+    pub digits: u8,
+    /// Whether the letters were lower case.
+    pub lower: bool,
+}
+
+impl Hex {
+    /// Parses up to 16 hex digits whose letters are all of one case.
+    pub fn parse(text: &str) -> Option<Self> {
+        if text.len() > 16 {
+            return None;
+        }
+        let (mut value, mut upper, mut lower) = (0u64, false, false);
+        for b in text.bytes() {
+            let digit = match b {
+                b'0'..=b'9' => b - b'0',
+                b'A'..=b'F' => {
+                    upper = true;
+                    b - b'A' + 10
+                }
+                b'a'..=b'f' => {
+                    lower = true;
+                    b - b'a' + 10
+                }
+                _ => return None,
+            };
+            value = value << 4 | u64::from(digit);
+        }
+        if upper && lower {
+            return None;
+        }
+        Some(Self { value, digits: text.len() as u8, lower })
+    }
+}
+
+impl fmt::Display for Hex {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let width = usize::from(self.digits);
+        if self.lower {
+            write!(f, "{:0width$x}", self.value)
+        } else {
+            write!(f, "{:0width$X}", self.value)
+        }
+    }
+}
+
+/// UTC time of day `hhmmss[.f…]`; the number of fraction digits is kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Time {
+    /// 0 to 23.
+    pub hour: u8,
+    /// 0 to 59.
+    pub minute: u8,
+    /// 0 to 60 (leap second).
+    pub second: u8,
+    /// The fraction digits as an integer (`.05` → 5).
+    pub fraction: u32,
+    /// Fraction digits written (0 to 9).
+    pub fraction_digits: u8,
+    /// Whether a point was written.
+    pub point: bool,
+}
+
+impl Time {
+    /// Parses `hhmmss` with an optional `.` and up to 9 fraction digits.
+    pub fn parse(text: &str) -> Option<Self> {
+        let (clock, frac, point) = match text.split_once('.') {
+            Some((clock, frac)) => (clock, frac, true),
+            None => (text, "", false),
+        };
+        if clock.len() != 6 || frac.len() > 9 {
+            return None;
+        }
+        let c = clock.as_bytes();
+        let hour = two_digits(c[0], c[1])?;
+        let minute = two_digits(c[2], c[3])?;
+        let second = two_digits(c[4], c[5])?;
+        let mut fraction = 0u32;
+        for b in frac.bytes() {
+            if !b.is_ascii_digit() {
+                return None;
+            }
+            fraction = fraction * 10 + u32::from(b - b'0');
+        }
+        if hour > 23 || minute > 59 || second > 60 {
+            return None;
+        }
+        Some(Self { hour, minute, second, fraction, fraction_digits: frac.len() as u8, point })
+    }
+
+    /// Seconds since midnight, fraction included.
+    pub fn seconds(self) -> f64 {
+        let whole = u32::from(self.hour) * 3600 + u32::from(self.minute) * 60 + u32::from(self.second);
+        f64::from(whole) + f64::from(self.fraction) / POW10[usize::from(self.fraction_digits)] as f64
+    }
+
+    /// Writes the JSON value `"hh:mm:ss[.fff]"`.
+    pub fn write_json_value<W: fmt::Write + ?Sized>(self, w: &mut W) -> fmt::Result {
+        write!(w, "\"{:02}:{:02}:{:02}", self.hour, self.minute, self.second)?;
+        if self.fraction_digits > 0 {
+            w.write_char('.')?;
+            write_digits(w, u64::from(self.fraction), usize::from(self.fraction_digits))?;
+        }
+        w.write_char('"')
+    }
+}
+
+impl fmt::Display for Time {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:02}{:02}{:02}", self.hour, self.minute, self.second)?;
+        if self.point {
+            f.write_str(".")?;
+            if self.fraction_digits > 0 {
+                write_digits(f, u64::from(self.fraction), usize::from(self.fraction_digits))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+fn two_digits(a: u8, b: u8) -> Option<u8> {
+    if a.is_ascii_digit() && b.is_ascii_digit() {
+        Some((a - b'0') * 10 + (b - b'0'))
+    } else {
+        None
+    }
+}
+
+/// A date `ddmmyy` with a two-digit year.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Date {
+    /// 1 to 31.
+    pub day: u8,
+    /// 1 to 12.
+    pub month: u8,
+    /// Two-digit year, 0 to 99.
+    pub year: u8,
+}
+
+impl Date {
+    /// Parses `ddmmyy` (day 1 to 31, month 1 to 12).
+    pub fn parse(text: &str) -> Option<Self> {
+        let b = text.as_bytes();
+        if b.len() != 6 {
+            return None;
+        }
+        let (day, month, year) = (two_digits(b[0], b[1])?, two_digits(b[2], b[3])?, two_digits(b[4], b[5])?);
+        if !(1..=31).contains(&day) || !(1..=12).contains(&month) {
+            return None;
+        }
+        Some(Self { day, month, year })
+    }
+
+    /// Writes the JSON value `"yy-mm-dd"`.
+    pub fn write_json_value<W: fmt::Write + ?Sized>(self, w: &mut W) -> fmt::Result {
+        write!(w, "\"{:02}-{:02}-{:02}\"", self.year, self.month, self.day)
+    }
+}
+
+impl fmt::Display for Date {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:02}{:02}{:02}", self.day, self.month, self.year)
+    }
+}
+
+/// Latitude or longitude as received: degrees, minutes (fixed point) and hemisphere.
+///
+/// On the wire it takes two fields, `ddmm.mmmm,N` or `dddmm.mmmm,E`; `Display` writes both.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Coordinate {
+    /// Whole degrees (at most 90 or 180).
+    pub degrees: u8,
+    /// Minutes, at most 60; always written with two integer digits.
+    pub minutes: Number,
+    /// `N`, `S`, `E` or `W`.
+    pub hemisphere: char,
+    /// Digits written for the degrees, leading zeros included.
+    pub degree_digits: u8,
+}
+
+impl Coordinate {
+    /// Parses the value field: `max_degree_digits` is 2 for a latitude, 3 for a longitude.
+    /// The hemisphere is left empty (`'\0'`).
+    pub fn parse(text: &str, max_degree_digits: usize, max_degrees: u8) -> Option<Self> {
+        let (whole, frac, point) = match text.split_once('.') {
+            Some((whole, frac)) => (whole, frac, true),
+            None => (text, "", false),
+        };
+        if whole.len() < 2 || whole.len() > 2 + max_degree_digits || frac.len() > MAX_DIGITS - 2 {
+            return None;
+        }
+        let (degree_text, minute_text) = whole.split_at(whole.len() - 2);
+        let mut degrees = 0u16;
+        for b in degree_text.bytes() {
+            if !b.is_ascii_digit() {
+                return None;
+            }
+            degrees = degrees * 10 + u16::from(b - b'0');
+        }
+        let mut digits = 0i64;
+        for b in minute_text.bytes().chain(frac.bytes()) {
+            if !b.is_ascii_digit() {
+                return None;
+            }
+            digits = digits * 10 + i64::from(b - b'0');
+        }
+        if degrees > u16::from(max_degrees) || digits > 60 * POW10[frac.len()] {
+            return None;
+        }
+        let minutes = Number { digits, scale: frac.len() as u8, width: 2, sign: Sign::Implicit, point };
+        Some(Self { degrees: degrees as u8, minutes, hemisphere: '\0', degree_digits: degree_text.len() as u8 })
+    }
+
+    /// Signed decimal degrees (south and west negative).
+    pub fn to_degrees(self) -> f64 {
+        let value = f64::from(self.degrees) + self.minutes.to_f64() / 60.0;
+        if matches!(self.hemisphere, 'S' | 'W') {
+            -value
+        } else {
+            value
+        }
+    }
+
+    /// Writes the value field (without the hemisphere).
+    pub fn write_value_text<W: fmt::Write + ?Sized>(self, w: &mut W) -> fmt::Result {
+        if self.degree_digits > 0 {
+            write_digits(w, u64::from(self.degrees), usize::from(self.degree_digits))?;
+        }
+        write!(w, "{}", self.minutes)
+    }
+
+    /// Writes the JSON value `{"deg":55,"min":50.613522,"hemi":"N"}`.
+    pub fn write_json_value<W: fmt::Write + ?Sized>(self, w: &mut W) -> fmt::Result {
+        write!(w, "{{\"deg\":{},\"min\":", self.degrees)?;
+        self.minutes.write_json_value(w)?;
+        w.write_str(",\"hemi\":")?;
+        super::write::write_json_char(w, self.hemisphere)?;
+        w.write_char('}')
+    }
+}
+
+impl fmt::Display for Coordinate {
+    /// Both wire fields: `5550.613522,N`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write_value_text(f)?;
+        write!(f, ",{}", self.hemisphere)
+    }
+}
+
+/// Which characters the codes of an enum use: an unknown code must use the same ones to be
+/// kept (rather than rejected).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CodeClass {
+    /// ASCII digits only.
+    Digits,
+    /// ASCII letters only.
+    Letters,
+    /// ASCII letters and digits.
+    Alnum,
+}
+
+impl CodeClass {
+    /// Whether a code the spec does not know is still well formed: `min..=max` characters of
+    /// this class.
+    pub fn admits(self, text: &str, min: usize, max: usize) -> bool {
+        (min..=max).contains(&text.len())
+            && text.bytes().all(|b| match self {
+                Self::Digits => b.is_ascii_digit(),
+                Self::Letters => b.is_ascii_alphabetic(),
+                Self::Alnum => b.is_ascii_alphanumeric(),
+            })
+    }
+}
+
+/// A lookup table of the spec (generated in [`crate::enums`]): each value has a wire code and
+/// a spec id.
+pub trait CodeEnum: Copy + Sized + 'static {
+    /// What a `bad_field` error says an enum field should hold.
+    const EXPECTED: &'static str;
+    /// What a `bad_field` error says an enum_chars field should hold.
+    const EXPECTED_CHARS: &'static str;
+    /// The characters of the known codes.
+    const CLASS: CodeClass;
+    /// Length of the shortest known code.
+    const MIN_LEN: usize;
+    /// Length of the longest known code.
+    const MAX_LEN: usize;
+
+    /// The value with wire code `code`.
+    fn from_code(code: &str) -> Option<Self>;
+    /// The wire code.
+    fn code(self) -> &'static str;
+    /// The spec id (`"differential"`).
+    fn id(self) -> &'static str;
+}
+
+/// An enum field's value: a code the spec knows, or a well-formed one it does not.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Code<'a, E> {
+    /// A code of the spec.
+    Known(E),
+    /// A code the spec does not list, of the same form as the known ones.
+    Unknown(&'a str),
+}
+
+impl<'a, E: CodeEnum> Code<'a, E> {
+    /// Reads a code: known, or unknown of length `min..=max` and the enum's character class.
+    pub fn parse(text: &'a str, min: usize, max: usize) -> Option<Self> {
+        match E::from_code(text) {
+            Some(value) => Some(Self::Known(value)),
+            None if E::CLASS.admits(text, min, max) => Some(Self::Unknown(text)),
+            None => None,
+        }
+    }
+
+    /// The wire code.
+    pub fn code(self) -> &'a str {
+        match self {
+            Self::Known(value) => value.code(),
+            Self::Unknown(code) => code,
+        }
+    }
+
+    /// The spec's value, if the code is known.
+    pub fn known(self) -> Option<E> {
+        match self {
+            Self::Known(value) => Some(value),
+            Self::Unknown(_) => None,
+        }
+    }
+
+    /// The spec id, or the code itself when unknown (the `decode --values` form).
+    pub fn id(self) -> &'a str {
+        match self {
+            Self::Known(value) => value.id(),
+            Self::Unknown(code) => code,
+        }
+    }
+}
+
+impl<E: CodeEnum> From<E> for Code<'_, E> {
+    fn from(value: E) -> Self {
+        Self::Known(value)
+    }
+}
+
+impl<E: CodeEnum> fmt::Display for Code<'_, E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.code())
+    }
+}
+
+/// An enum_chars field: a run of one-character codes (GNS mode `ANNN`), kept as its text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct CodeChars<'a, E> {
+    text: &'a str,
+    values: PhantomData<E>,
+}
+
+impl<'a, E: CodeEnum> CodeChars<'a, E> {
+    /// Reads a run of codes, each known or a well-formed unknown one; at most `max_length`.
+    pub fn parse(text: &'a str, max_length: Option<usize>) -> Option<Self> {
+        if max_length.is_some_and(|max| text.len() > max) {
+            return None;
+        }
+        let ok = (0..text.len()).all(|i| text.get(i..i + 1).is_some_and(|c| Code::<E>::parse(c, 1, 1).is_some()));
+        ok.then_some(Self { text, values: PhantomData })
+    }
+
+    /// The wire text.
+    pub fn as_str(self) -> &'a str {
+        self.text
+    }
+
+    /// The codes, one per character.
+    pub fn iter(self) -> impl Iterator<Item = Code<'a, E>> {
+        let text = self.text;
+        (0..text.len()).map(move |i| {
+            let code = text.get(i..i + 1).unwrap_or("");
+            E::from_code(code).map_or(Code::Unknown(code), Code::Known)
+        })
+    }
+}
+
+impl<E: CodeEnum> fmt::Display for CodeChars<'_, E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.text)
+    }
+}
+
+/// The entries of a repeated group: a fixed array sized by the group's maximum, and how many
+/// entries are on the wire. Dereferences to the slice of those entries.
+#[derive(Clone, Copy)]
+pub struct Group<T, const N: usize> {
+    items: [T; N],
+    len: usize,
+}
+
+impl<T: Copy + Default, const N: usize> Default for Group<T, N> {
+    fn default() -> Self {
+        Self { items: [T::default(); N], len: 0 }
+    }
+}
+
+impl<T: Copy + Default, const N: usize> Group<T, N> {
+    /// Reads `count` entries (at most `N`) with `read`, which gets the 1-based entry number.
+    pub fn read<E>(count: usize, mut read: impl FnMut(usize) -> Result<T, E>) -> Result<Self, E> {
+        let mut group = Self::default();
+        for (i, slot) in group.items.iter_mut().take(count).enumerate() {
+            *slot = read(i + 1)?;
+            group.len = i + 1;
+        }
+        Ok(group)
+    }
+
+    /// Appends an entry; gives it back when the group is full.
+    pub fn push(&mut self, item: T) -> Result<(), T> {
+        match self.items.get_mut(self.len) {
+            Some(slot) => {
+                *slot = item;
+                self.len += 1;
+                Ok(())
+            }
+            None => Err(item),
+        }
+    }
+
+    /// Removes every entry.
+    pub fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// The most entries the group holds.
+    pub const fn capacity(&self) -> usize {
+        N
+    }
+}
+
+impl<T, const N: usize> Deref for Group<T, N> {
+    type Target = [T];
+
+    fn deref(&self) -> &[T] {
+        &self.items[..self.len]
+    }
+}
+
+impl<T, const N: usize> DerefMut for Group<T, N> {
+    fn deref_mut(&mut self) -> &mut [T] {
+        &mut self.items[..self.len]
+    }
+}
+
+impl<T: PartialEq, const N: usize> PartialEq for Group<T, N> {
+    fn eq(&self, other: &Self) -> bool {
+        **self == **other
+    }
+}
+
+impl<T: Eq, const N: usize> Eq for Group<T, N> {}
+
+impl<T: fmt::Debug, const N: usize> fmt::Debug for Group<T, N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+impl<'g, T, const N: usize> IntoIterator for &'g Group<T, N> {
+    type Item = &'g T;
+    type IntoIter = core::slice::Iter<'g, T>;
+
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_keep_their_text() {
+        for text in ["0", "-0.0", "+.5", "5.", "00188.976", "123456789012345678"] {
+            let number = Number::parse(text, false).unwrap();
+            let mut out = [0u8; 32];
+            let mut w = crate::runtime::write::tests::Buf::new(&mut out);
+            core::fmt::Write::write_fmt(&mut w, format_args!("{number}")).unwrap();
+            assert_eq!(w.as_str(), text);
+        }
+        for text in ["", "+", ".", "1.2.3", "1e5", "1234567890123456789", "-"] {
+            assert_eq!(Number::parse(text, false), None, "{text}");
+        }
+        assert_eq!(Number::parse("1.5", true), None);
+    }
+
+    #[test]
+    fn ranges_compare_exactly() {
+        let range = Range::between(Bound::int(0), Bound::new(9999, 1));
+        let number = |text| Number::parse(text, false).unwrap();
+        assert!(range.contains(number("999.90")));
+        assert!(!range.contains(number("999.91")));
+        assert!(range.contains(number("-0.0")));
+        assert!(!range.contains(number("-0.001")));
+        assert!(Range::at_most(Bound::int(7)).contains(number("6.99999999999999999")));
+        assert!(!Range::at_least(Bound::int(1)).contains(number("0.99999999999999999")));
+    }
+
+    #[test]
+    fn coordinates_allow_sixty_minutes() {
+        assert!(Coordinate::parse("8960.000000", 2, 90).is_some());
+        assert!(Coordinate::parse("8960.000001", 2, 90).is_none());
+        assert!(Coordinate::parse("9100.0", 2, 90).is_none());
+        assert_eq!(Coordinate::parse("50.1", 2, 90).map(|c| c.degree_digits), Some(0));
+    }
+}

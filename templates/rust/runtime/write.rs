@@ -1,0 +1,388 @@
+//! Writing sentences back (with their checksum) and the tools' JSON, into any `fmt::Write`.
+
+use core::fmt::{self, Write};
+
+use super::types::{Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Time};
+
+/// A field value: how it is written on the wire and in both JSON forms of the tools.
+pub trait FieldValue {
+    /// Wire fields the value takes (2 for latitude and longitude).
+    const WIDTH: usize = 1;
+
+    /// Writes the wire text (fields joined by `,`).
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result;
+
+    /// Writes the lossless JSON form of `decode`: the text as a string.
+    fn write_text_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        w.write_char('"')?;
+        self.write_wire(&mut JsonEscape(w))?;
+        w.write_char('"')
+    }
+
+    /// Writes the decoded JSON form of `decode --values`.
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result;
+}
+
+impl FieldValue for Number {
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{self}")
+    }
+
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        self.write_json_value(w)
+    }
+}
+
+impl FieldValue for Hex {
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{self}")
+    }
+
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{}", self.value)
+    }
+}
+
+impl FieldValue for Time {
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{self}")
+    }
+
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        self.write_json_value(w)
+    }
+}
+
+impl FieldValue for Date {
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{self}")
+    }
+
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        self.write_json_value(w)
+    }
+}
+
+impl FieldValue for Coordinate {
+    const WIDTH: usize = 2;
+
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{self}")
+    }
+
+    fn write_text_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        w.write_str("[\"")?;
+        self.write_value_text(w)?;
+        w.write_str("\",")?;
+        write_json_char(w, self.hemisphere)?;
+        w.write_char(']')
+    }
+
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        self.write_json_value(w)
+    }
+}
+
+impl FieldValue for char {
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        w.write_char(*self)
+    }
+
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write_json_char(w, *self)
+    }
+}
+
+impl FieldValue for &str {
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        w.write_str(self)
+    }
+
+    fn write_text_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write_json_str(w, self)
+    }
+
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write_json_str(w, self)
+    }
+}
+
+impl<E: CodeEnum> FieldValue for Code<'_, E> {
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        w.write_str(self.code())
+    }
+
+    fn write_text_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write_json_str(w, self.code())
+    }
+
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write_json_str(w, self.id())
+    }
+}
+
+impl<E: CodeEnum> FieldValue for CodeChars<'_, E> {
+    fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        w.write_str(self.as_str())
+    }
+
+    fn write_text_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write_json_str(w, self.as_str())
+    }
+
+    fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        w.write_char('[')?;
+        for (i, code) in self.iter().enumerate() {
+            if i > 0 {
+                w.write_char(',')?;
+            }
+            write_json_str(w, code.id())?;
+        }
+        w.write_char(']')
+    }
+}
+
+/// Writes the fields of a sentence, each after a `,`, and keeps the XOR checksum of every byte
+/// written (a character above U+00FF counts as its low byte, as Latin-1 would).
+pub struct WireWriter<'w, W: Write + ?Sized> {
+    out: &'w mut W,
+    sum: u8,
+}
+
+impl<'w, W: Write + ?Sized> WireWriter<'w, W> {
+    /// A writer into `out`, checksum 0.
+    pub fn new(out: &'w mut W) -> Self {
+        Self { out, sum: 0 }
+    }
+
+    /// The XOR of everything written so far.
+    pub const fn checksum(&self) -> u8 {
+        self.sum
+    }
+
+    /// Writes `,` and the field (`WIDTH` empty fields when it is `None`).
+    pub fn field<T: FieldValue>(&mut self, value: &Option<T>) -> fmt::Result {
+        self.write_char(',')?;
+        match value {
+            Some(value) => value.write_wire(self),
+            None => (1..T::WIDTH).try_for_each(|_| self.write_char(',')),
+        }
+    }
+
+    /// Writes each value of a single-field group.
+    pub fn fields<T: FieldValue>(&mut self, values: &[Option<T>]) -> fmt::Result {
+        values.iter().try_for_each(|value| self.field(value))
+    }
+}
+
+impl<W: Write + ?Sized> Write for WireWriter<'_, W> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        if s.is_ascii() {
+            self.sum = s.bytes().fold(self.sum, |sum, b| sum ^ b);
+        } else {
+            self.sum = s.chars().fold(self.sum, |sum, c| sum ^ (c as u32 as u8));
+        }
+        self.out.write_str(s)
+    }
+}
+
+/// A sink that keeps nothing: with a [`WireWriter`] over it, computes a checksum.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Discard;
+
+impl Write for Discard {
+    fn write_str(&mut self, _: &str) -> fmt::Result {
+        Ok(())
+    }
+}
+
+/// Writes a whole sentence: `start`, the address, the fields written by `fields`, and the
+/// checksum in the given style.
+pub fn write_sentence<W: Write + ?Sized>(
+    out: &mut W,
+    start: &str,
+    address: [&str; 2],
+    checksum: super::Checksum,
+    fields: impl FnOnce(&mut WireWriter<'_, W>) -> fmt::Result,
+) -> fmt::Result {
+    out.write_str(start)?;
+    let mut w = WireWriter::new(out);
+    w.write_str(address[0])?;
+    w.write_str(address[1])?;
+    fields(&mut w)?;
+    let sum = w.checksum();
+    if let Some(digits) = checksum.digits(sum) {
+        out.write_char('*')?;
+        out.write_char(char::from(digits[0]))?;
+        out.write_char(char::from(digits[1]))?;
+    }
+    Ok(())
+}
+
+/// The `fields` object of the tools' JSON: writes `{`, then `"key":value` members, and `}` when
+/// finished.
+pub struct JsonFields<'w, W: Write + ?Sized> {
+    out: &'w mut W,
+    values: bool,
+    first: bool,
+}
+
+impl<'w, W: Write + ?Sized> JsonFields<'w, W> {
+    /// Starts an object; `values` picks the decoded form of `decode --values`.
+    pub fn begin(out: &'w mut W, values: bool) -> Result<Self, fmt::Error> {
+        out.write_char('{')?;
+        Ok(Self { out, values, first: true })
+    }
+
+    /// Closes the object.
+    pub fn end(self) -> fmt::Result {
+        self.out.write_char('}')
+    }
+
+    fn key(&mut self, key: &str) -> fmt::Result {
+        if !self.first {
+            self.out.write_char(',')?;
+        }
+        self.first = false;
+        self.out.write_char('"')?;
+        self.out.write_str(key)?;
+        self.out.write_str("\":")
+    }
+
+    fn value<T: FieldValue>(&mut self, value: &Option<T>) -> fmt::Result {
+        match value {
+            None => self.out.write_str("null"),
+            Some(v) if self.values => v.write_value_json(self.out),
+            Some(v) => v.write_text_json(self.out),
+        }
+    }
+
+    /// A field: `"key":value` (`null` when empty).
+    pub fn field<T: FieldValue>(&mut self, key: &str, value: &Option<T>) -> fmt::Result {
+        self.key(key)?;
+        self.value(value)
+    }
+
+    /// A group of one field: an array of bare values.
+    pub fn values<T: FieldValue>(&mut self, key: &str, values: &[Option<T>]) -> fmt::Result {
+        self.key(key)?;
+        self.out.write_char('[')?;
+        for (i, value) in values.iter().enumerate() {
+            if i > 0 {
+                self.out.write_char(',')?;
+            }
+            self.value(value)?;
+        }
+        self.out.write_char(']')
+    }
+
+    /// A group of several fields: an array of objects, each written by `entry`.
+    pub fn entries<T>(
+        &mut self,
+        key: &str,
+        entries: &[T],
+        mut entry: impl FnMut(&T, &mut JsonFields<'_, W>) -> fmt::Result,
+    ) -> fmt::Result {
+        self.key(key)?;
+        self.out.write_char('[')?;
+        for (i, item) in entries.iter().enumerate() {
+            if i > 0 {
+                self.out.write_char(',')?;
+            }
+            let mut object = JsonFields::begin(&mut *self.out, self.values)?;
+            entry(item, &mut object)?;
+            object.end()?;
+        }
+        self.out.write_char(']')
+    }
+}
+
+/// Writes everything through JSON string escaping (without the quotes).
+pub struct JsonEscape<'w, W: Write + ?Sized>(pub &'w mut W);
+
+impl<W: Write + ?Sized> Write for JsonEscape<'_, W> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let plain = |b: u8| (0x20..=0x7e).contains(&b) && b != b'"' && b != b'\\';
+        if s.bytes().all(plain) {
+            return self.0.write_str(s);
+        }
+        for c in s.chars() {
+            match c {
+                '"' => self.0.write_str("\\\"")?,
+                '\\' => self.0.write_str("\\\\")?,
+                ' '..='~' => self.0.write_char(c)?,
+                _ => write!(self.0, "\\u00{:02x}", c as u32 & 0xff)?,
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Writes a JSON string: `"` and `\` escaped, every character outside 0x20-0x7E as `\u00hh`
+/// (its low byte).
+pub fn write_json_str<W: Write + ?Sized>(w: &mut W, text: &str) -> fmt::Result {
+    w.write_char('"')?;
+    JsonEscape(&mut *w).write_str(text)?;
+    w.write_char('"')
+}
+
+/// Writes one character as a JSON string.
+pub fn write_json_char<W: Write + ?Sized>(w: &mut W, c: char) -> fmt::Result {
+    let mut buf = [0u8; 4];
+    write_json_str(w, c.encode_utf8(&mut buf))
+}
+
+/// Writes the `Display` text of `value` as a JSON string.
+pub fn write_json_display<W: Write + ?Sized>(w: &mut W, value: &dyn fmt::Display) -> fmt::Result {
+    w.write_char('"')?;
+    write!(JsonEscape(&mut *w), "{value}")?;
+    w.write_char('"')
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// A `fmt::Write` into a fixed buffer, so that the tests need no allocator.
+    pub(crate) struct Buf<'b> {
+        data: &'b mut [u8],
+        len: usize,
+    }
+
+    impl<'b> Buf<'b> {
+        pub(crate) fn new(data: &'b mut [u8]) -> Self {
+            Self { data, len: 0 }
+        }
+
+        pub(crate) fn as_str(&self) -> &str {
+            core::str::from_utf8(&self.data[..self.len]).unwrap()
+        }
+    }
+
+    impl Write for Buf<'_> {
+        fn write_str(&mut self, s: &str) -> fmt::Result {
+            let end = self.len + s.len();
+            self.data.get_mut(self.len..end).ok_or(fmt::Error)?.copy_from_slice(s.as_bytes());
+            self.len = end;
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn json_strings_escape_quotes_backslashes_and_other_bytes() {
+        let mut out = [0u8; 64];
+        let mut w = Buf::new(&mut out);
+        write_json_str(&mut w, "a\"b\\c\u{7f}\u{e9}\u{1f600}").unwrap();
+        assert_eq!(w.as_str(), r#""a\"b\\c\u007f\u00e9\u0000""#);
+    }
+
+    #[test]
+    fn numbers_as_json_values_drop_leading_and_trailing_zeros() {
+        for (text, json) in [("00188.860", "188.86"), ("-0.0", "0"), ("-2", "-2"), (".5", "0.5"), ("5.", "5")] {
+            let mut out = [0u8; 32];
+            let mut w = Buf::new(&mut out);
+            Number::parse(text, false).unwrap().write_json_value(&mut w).unwrap();
+            assert_eq!(w.as_str(), json);
+        }
+    }
+}
