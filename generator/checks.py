@@ -5,6 +5,7 @@ in its messages; every message names the file, line and YAML path at fault."""
 from __future__ import annotations
 
 import json
+import keyword
 from decimal import Decimal, InvalidOperation
 from typing import Any
 
@@ -182,8 +183,8 @@ def _check_enum(enum: Any, manual_ids: set[str], report: _Reporter) -> None:
 RESERVED_FIELD_IDS = frozenset({
     "address", "as", "as_received", "checksum", "fields", "fields_from_json", "fields_json", "id", "kind",
     "optional_count", "parse", "parse_fields", "problems", "replies", "selector", "sentence", "start", "talker",
-    "to_bytes", "to_json", "to_sentence", "variant",
-})
+    "to_bytes", "to_json", "to_sentence", "trailing", "variant",
+}) | frozenset(keyword.kwlist)
 
 
 def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: set[str],
