@@ -49,21 +49,26 @@ class _EnumMember:
         self.id = value_id
 
 
-def decode(spec: Spec, line: str) -> Decoded:
+def candidates(spec: Spec, line: str) -> tuple[Any, list[tuple[Sentence, Layout]]]:
+    """The line's frame and the layouts that may parse it, in order (none: a generic sentence)."""
     if line[:1] not in ("$", "!") and spec.text_command(rt.first_word(line)):
         frame = rt.text_frame(line)
-        candidates = spec.text_command(frame.address)
-    else:
-        frame = rt.frame(line)
-        candidates = spec.by_address(frame.address) if frame.start == "$" else []
-        if not candidates and rt.is_standard_address(frame.start, frame.address):
-            standard = spec.sentence(frame.address[2:])
-            if standard is not None and not standard.is_proprietary:
-                candidates = [(standard, layout) for layout in standard.layouts]
-    if not candidates:
+        return frame, spec.text_command(frame.address)
+    frame = rt.frame(line)
+    found = spec.by_address(frame.address) if frame.start == "$" else []
+    if not found and rt.is_standard_address(frame.start, frame.address):
+        standard = spec.sentence(frame.address[2:])
+        if standard is not None and not standard.is_proprietary:
+            found = [(standard, layout) for layout in standard.layouts]
+    return frame, found
+
+
+def decode(spec: Spec, line: str) -> Decoded:
+    frame, candidates_ = candidates(spec, line)
+    if not candidates_:
         return Decoded(frame, None, None, [])
     errors = []
-    for sentence, layout in candidates:
+    for sentence, layout in candidates_:
         try:
             return Decoded(frame, sentence, layout, _decode_layout(sentence, layout, frame))
         except rt.NmeaError as err:
