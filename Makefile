@@ -10,7 +10,7 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build test test-generator test-python test-c test-rust test-tools clean
+.PHONY: generate validate check build test test-generator test-python test-c test-c-memory test-rust test-tools clean
 
 $(STAMP): requirements.txt
 	python3 -m venv $(VENV)
@@ -46,7 +46,7 @@ $(BIN)/nmea-rs: $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/
 
 # --- tests -----------------------------------------------------------------------------------
 
-test: check test-generator test-python test-c test-rust test-tools
+test: check test-generator test-python test-c test-c-memory test-rust test-tools
 
 test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
@@ -58,6 +58,27 @@ test-c: $(STAMP)
 	@mkdir -p build/c
 	$(CC) $(CFLAGS) -o build/c/test_examples generated/c/nmea.c generated/c/tests/test_examples.c
 	build/c/test_examples
+
+# The C test program and the C tool under AddressSanitizer + UndefinedBehaviorSanitizer, and under
+# valgrind, over the examples, the edge cases and every real log.
+SANITIZE := -std=c99 -Wall -Wextra -Werror -pedantic -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+MEMORY_INPUTS := tests/agreement/edge_cases.txt $(sort $(wildcard ../shared/corpus/real/*/*.nmea))
+
+test-c-memory: $(STAMP)
+	@mkdir -p build/c
+	$(CC) $(SANITIZE) -o build/c/test_examples_asan generated/c/nmea.c generated/c/tests/test_examples.c
+	build/c/test_examples_asan
+	$(CC) $(SANITIZE) -o build/c/nmea-c-asan generated/c/nmea.c generated/c/nmea_tool.c
+	@cat $(MEMORY_INPUTS) > build/c/memory.nmea
+	build/c/nmea-c-asan decode < build/c/memory.nmea > build/c/asan.jsonl
+	build/c/nmea-c-asan encode < build/c/asan.jsonl > /dev/null
+	build/c/nmea-c-asan decode --values < build/c/memory.nmea > /dev/null
+	$(CC) -std=c99 -O1 -g -o build/c/nmea-c-debug generated/c/nmea.c generated/c/nmea_tool.c
+	$(CC) -std=c99 -O1 -g -o build/c/test_examples_debug generated/c/nmea.c generated/c/tests/test_examples.c
+	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_examples_debug > /dev/null
+	head -c 2000000 build/c/asan.jsonl | head -n -1 > build/c/valgrind.jsonl
+	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug decode < tests/agreement/edge_cases.txt > /dev/null
+	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug encode < build/c/valgrind.jsonl > /dev/null
 
 test-rust:
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --features std --target-dir $(CARGO_TARGET)
