@@ -27,9 +27,14 @@ class Generic:
         return runtime.assemble(self.start, self.address, self.fields, self.checksum)
 
 
-def parse(line: str | bytes) -> Any:
+def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = False) -> Any:
     """Decode one line (a trailing CR LF is allowed) into the class of its layout, or a Generic
-    for a well-formed sentence the spec does not describe. Raises NmeaError."""
+    for a well-formed sentence the spec does not describe. Raises NmeaError.
+
+    `require_checksum` refuses a `$`/`!` sentence without a checksum (missing_checksum).
+    `lenient` keeps a sentence whose fields do not all fit their types: each such field is left
+    empty and listed in the result's `problems` with its text, which the sentence is written back
+    with, so the round trip stays exact. Text commands are always strict."""
     if isinstance(line, bytes):
         line = line.decode("latin-1")
     if line.endswith("\n"):
@@ -39,7 +44,7 @@ def parse(line: str | bytes) -> Any:
         if layouts is not None:
             frame = runtime.text_frame(line)
             return _first_fit(layouts, frame, None, line)
-    frame = runtime.frame(line)
+    frame = runtime.frame(line, require_checksum)
     checksum = runtime.checksum_case(frame.checksum)
     address = frame.address
     layouts = BY_ADDRESS.get(address) if frame.start == "$" else None
@@ -47,7 +52,31 @@ def parse(line: str | bytes) -> Any:
         layouts = STANDARD.get(address[2:])
     if layouts is None:
         return Generic(address, frame.fields, frame.start, checksum)
-    return _first_fit(layouts, frame, checksum, line)
+    try:
+        return _first_fit(layouts, frame, checksum, line)
+    except NmeaError as err:
+        if not lenient or err.kind != "bad_field":
+            raise
+        return _lenient(layouts, frame, checksum, err)
+
+
+def _lenient(layouts: tuple[Any, ...], frame: runtime.Frame, checksum: str | None, err: NmeaError) -> Any:
+    """Parse again with every field that does not fit left empty, one at a time; a field that is
+    already empty and still does not fit ends the attempt with its error."""
+    fields = list(frame.fields)
+    problems = []
+    while err.kind == "bad_field" and err.field is not None and fields[err.field - 1]:
+        problems.append(err)
+        fields[err.field - 1] = ""
+        try:
+            sentence = _first_fit(layouts, runtime.Frame(frame.start, frame.address, fields, frame.checksum),
+                                  checksum, "")
+        except NmeaError as again:
+            err = again
+            continue
+        sentence.problems = problems
+        return sentence
+    raise err
 
 
 def _first_fit(layouts: tuple[Any, ...], frame: runtime.Frame, checksum: str | None, line: str) -> Any:
@@ -87,15 +116,18 @@ def to_json(sentence: Any, values: bool = False) -> str:
         head = (f'{{"ok":true,"start":"{start}","address":{runtime.json_str(address)},"talker":{talker},'
                 f'"sentence":"{sentence.SENTENCE}","variant":{runtime.json_opt(sentence.VARIANT)},"fields":')
         fields = sentence.fields_json(values)
+        if sentence.problems:
+            fields += ',"problems":[' + ",".join(runtime.problem_json(p) for p in sentence.problems) + "]"
     star = text.rfind("*") if sentence.checksum is not None else -1
     checksum = runtime.json_opt(text[star + 1:] if star >= 0 else None)
     return f'{head}{fields},"checksum":{checksum}}}'
 
 
-def decode_json(line: str | bytes, values: bool = False) -> str:
+def decode_json(line: str | bytes, values: bool = False, lenient: bool = False,
+                require_checksum: bool = False) -> str:
     """`decode`'s output for one line: the sentence as JSON, or the error as JSON."""
     try:
-        return to_json(parse(line), values)
+        return to_json(parse(line, lenient, require_checksum), values)
     except NmeaError as err:
         return err.to_json()
 
@@ -120,6 +152,8 @@ def from_json(obj: Any) -> Any:
     if not isinstance(fields, dict):
         raise runtime.bad_json('"fields" is not an object')
     texts = layout.fields_from_json(fields)
+    if "problems" in obj:
+        return _with_problems(layout, obj, texts, checksum)
     if layout.ADDRESS is None:
         return layout.parse_fields(runtime.json_word(obj, "talker") + sentence_id, texts, checksum)
     if layout.checksum is None:  # a text command: its word as written, its letter case kept
@@ -128,6 +162,26 @@ def from_json(obj: Any) -> Any:
             raise runtime.bad_json(f'"address" is not {layout.ADDRESS}')
         return layout.parse_fields(word, texts, None, " ".join([word, *texts]))
     return layout.parse_fields(layout.ADDRESS, texts, checksum)
+
+
+def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum: str | None) -> Any:
+    """A sentence that lenient decoding kept: its problem fields' texts go back where they were,
+    and it is parsed leniently again."""
+    if runtime.json_str_member(obj, "start") == "":
+        raise runtime.bad_json("a text command has no problems")
+    for problem in runtime.json_list(obj, "problems"):
+        index = runtime.json_member(problem, "field")
+        if not isinstance(index, int) or isinstance(index, bool) or not 1 <= index <= len(texts):
+            raise runtime.bad_json('a problem\'s "field" is not the index of a field')
+        texts[index - 1] = runtime.json_text(runtime.json_member(problem, "text"))
+    address = runtime.json_word(obj, "talker") + layout.SENTENCE if layout.ADDRESS is None else layout.ADDRESS
+    frame = runtime.Frame("$", address, texts, None)
+    try:
+        return _first_fit((layout,), frame, checksum, "")
+    except NmeaError as err:
+        if err.kind != "bad_field":
+            raise
+        return _lenient((layout,), frame, checksum, err)
 
 
 def encode_json(line: str) -> str:

@@ -1,4 +1,5 @@
-"""The `nmea-py` tool: `decode` NMEA lines to JSON, `encode` that JSON back to sentences.
+"""The `nmea-py` tool: `decode` NMEA lines to JSON, `encode` that JSON back to sentences,
+`stream` a byte stream that may hold garbage, cut lines or sentences run together.
 
 Same behaviour, byte for byte, as nmea-c and nmea-rs; see docs/json.md.
 """
@@ -9,8 +10,11 @@ import json
 import sys
 
 from . import decode_json, encode_json
+from .stream import json_lines
 
-USAGE = "usage: nmea-py decode [--values] | encode   (reads stdin, writes stdout)\n"
+USAGE = ("usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] | encode\n"
+         "       (reads stdin, writes stdout)\n")
+FLAGS = ("--values", "--lenient", "--require-checksum")
 
 
 def lines(data: bytes) -> list[str]:
@@ -23,23 +27,28 @@ def lines(data: bytes) -> list[str]:
 
 def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else argv
-    if args == ["decode"] or args == ["decode", "--values"]:
-        values = len(args) == 2
-        out = [decode_json(line, values) for line in lines(sys.stdin.buffer.read())]
-    elif args == ["encode"]:
-        out = []
+    verb, flags = (args[0], args[1:]) if args else ("", [])
+    if verb in ("decode", "stream") and all(f in FLAGS for f in flags) and len(set(flags)) == len(flags):
+        values, lenient, required = (f in flags for f in FLAGS)
+        if verb == "decode":
+            out = (decode_json(line, values, lenient, required) for line in lines(sys.stdin.buffer.read()))
+        else:
+            out = json_lines(sys.stdin.buffer, values, lenient=lenient, require_checksum=required)
+        write = sys.stdout.buffer.write
+        for text in out:
+            write(text.encode("latin-1") + b"\n")
+        return 0
+    if verb == "encode" and not flags:
         for line in lines(sys.stdin.buffer.read()):
             try:
                 if json.loads(line).get("ok") is False:
                     continue
             except (ValueError, AttributeError, RecursionError):
                 pass
-            out.append(encode_json(line))
-    else:
-        sys.stderr.write(USAGE)
-        return 2
-    sys.stdout.buffer.write("".join(text + "\n" for text in out).encode("latin-1"))
-    return 0
+            sys.stdout.buffer.write(encode_json(line).encode("latin-1") + b"\n")
+        return 0
+    sys.stderr.write(USAGE)
+    return 2
 
 
 if __name__ == "__main__":

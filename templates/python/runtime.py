@@ -25,13 +25,14 @@ class NmeaError(ValueError):
     """A line that is not a valid sentence, or a sentence that does not fit its layout."""
 
     def __init__(self, kind: str, message: str, address: str | None = None,
-                 field: int | None = None, name: str | None = None) -> None:
+                 field: int | None = None, name: str | None = None, text: str | None = None) -> None:
         super().__init__(message)
         self.kind = kind
         self.message = message
         self.address = address
         self.field = field
         self.name = name
+        self.text = text  # bad_field: the field's text as received
 
     def __str__(self) -> str:
         where = self.address or "line"
@@ -87,8 +88,9 @@ def checksum(body: str) -> int:
     return value
 
 
-def frame(line: str) -> Frame:
-    """Split one line (without its line ending) into a Frame."""
+def frame(line: str, require_checksum: bool = False) -> Frame:
+    """Split one line (without its line ending) into a Frame; with `require_checksum`, a sentence
+    without a checksum (or with a bare '*') is refused."""
     if len(line) > MAX_LINE:
         raise NmeaError("too_long", f"line is {len(line)} bytes, the limit is {MAX_LINE}")
     if not line:
@@ -120,6 +122,8 @@ def frame(line: str) -> Frame:
                 raise NmeaError("checksum_mismatch", f"checksum is {sent}, computed {computed:02X}", named)
     if named is None:
         raise NmeaError("not_a_sentence", f"address {json_str(address)} is not letters and digits")
+    if require_checksum and not sent:
+        raise NmeaError("missing_checksum", "the sentence has no checksum", named)
     return Frame(start, address, parts[1:], sent)
 
 
@@ -428,7 +432,24 @@ def json_opt(text: str | None) -> str:
 
 
 def bad_field(address: str, index: int, name: str, expected: str, text: str) -> NmeaError:
-    return NmeaError("bad_field", f"expected {expected}, found {json_str(text)}", address, index, name)
+    return NmeaError("bad_field", f"expected {expected}, found {json_str(text)}", address, index, name, text)
+
+
+def problem_json(problem: NmeaError) -> str:
+    """A field lenient parsing left empty: where it is, its text as received, and why."""
+    return (f'{{"field":{problem.field},"name":{json_opt(problem.name)},"text":{json_opt(problem.text)},'
+            f'"message":{json_str(problem.message)}}}')
+
+
+def with_problems(fields: list[str], problems: list[NmeaError]) -> list[str]:
+    """The wire fields, with the text of every field lenient parsing left empty put back."""
+    if not problems:
+        return fields
+    out = list(fields)
+    for problem in problems:
+        if problem.field is not None and problem.field <= len(out) and problem.text is not None:
+            out[problem.field - 1] = problem.text
+    return out
 
 
 def too_few(address: str, sentence: str, need: int, found: int) -> NmeaError:
