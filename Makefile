@@ -10,7 +10,8 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build test test-generator test-python test-c test-c-memory test-rust test-tools clean
+.PHONY: generate validate check build test test-generator test-python test-c test-c-memory test-rust test-tools clean \
+        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-differential
 
 $(STAMP): requirements.txt
 	python3 -m venv $(VENV)
@@ -46,7 +47,7 @@ $(BIN)/nmea-rs: $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/
 
 # --- tests -----------------------------------------------------------------------------------
 
-test: check test-generator test-python test-c test-c-memory test-rust test-tools
+test: check test-generator test-python test-c test-c-memory test-rust test-tools fuzz-smoke
 
 test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
@@ -87,6 +88,40 @@ test-rust:
 
 test-tools: build $(STAMP)
 	$(PY) -m pytest -q tests/agreement
+
+# --- fuzzing ---------------------------------------------------------------------------------
+# `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds, then replays what they
+# found through the three tools (fuzz/differential.py). `make fuzz-smoke` is the short run of
+# `make test`. Crashes land in build/fuzz/crash-*; copy each into fuzz/regressions/.
+FUZZ_SECONDS ?= 300
+FUZZ := build/fuzz
+FUZZ_FLAGS = -max_total_time=$(FUZZ_SECONDS) -max_len=1100 -timeout=10 -print_final_stats=1
+CLANG ?= clang
+
+fuzz-smoke:
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15
+
+fuzz: fuzz-c fuzz-rust fuzz-python fuzz-differential
+
+fuzz-seeds: $(STAMP)
+	@rm -rf $(FUZZ)/seeds
+	$(PY) fuzz/seeds.py $(FUZZ)/seeds
+
+fuzz-c: fuzz-seeds
+	@mkdir -p $(FUZZ)/corpus-c
+	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -Igenerated/c \
+		-o $(FUZZ)/fuzz-c generated/c/nmea.c fuzz/c/fuzz_nmea.c
+	$(FUZZ)/fuzz-c $(FUZZ_FLAGS) -artifact_prefix=$(FUZZ)/crash-c- $(FUZZ)/corpus-c $(FUZZ)/seeds
+
+fuzz-python: fuzz-seeds
+	@mkdir -p $(FUZZ)/corpus-python
+	PYTHONPATH=generated/python $(PY) fuzz/python/fuzz_nmea.py $(FUZZ_FLAGS) -artifact_prefix=$(FUZZ)/crash-python- \
+		$(FUZZ)/corpus-python $(FUZZ)/seeds
+
+fuzz-rust: fuzz-seeds
+
+fuzz-differential: build
+	$(PY) fuzz/differential.py $(FUZZ)/seeds $(FUZZ)/corpus-c $(FUZZ)/corpus-python $(FUZZ)/corpus-rust fuzz/regressions
 
 clean:
 	rm -rf build

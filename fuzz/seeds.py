@@ -1,0 +1,53 @@
+"""Seed corpus for the fuzzers: every example of the manuals (intact and damaged), the edge
+cases, a sample of every real log, random sentences of every layout, and decode's JSON of some
+of them (the fuzz targets also read their input as JSON). One file per input, no line ending.
+
+Usage: python fuzz/seeds.py OUT_DIR
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from generator import reference  # noqa: E402
+from generator.build import load_spec  # noqa: E402
+from tests.agreement.random_sentences import random_lines  # noqa: E402
+
+CORPUS = ROOT.parent / "shared" / "corpus" / "real"
+PER_LOG = 40
+
+
+def seeds() -> list[bytes]:
+    spec = load_spec(ROOT / "spec")
+    lines: list[str] = []
+    for record in map(json.loads, (ROOT / "generated" / "vectors" / "examples.jsonl").read_text().splitlines()):
+        lines.append(record["raw"])
+        if record["line"]:
+            lines.append(record["line"])
+    lines += [s for _, _, s in random_lines(spec, 2, seed=99)]
+    out = [line.encode("latin-1") for line in lines]
+    out += [line.rstrip(b"\r") for line in (ROOT / "tests" / "agreement" / "edge_cases.txt").read_bytes().split(b"\n")]
+    for path in sorted(CORPUS.rglob("*.nmea")):
+        logged = [line.rstrip(b"\r") for line in path.read_bytes().split(b"\n") if line]
+        step = max(1, len(logged) // PER_LOG)
+        out += logged[::step][:PER_LOG]
+    out += [reference.decode_json(spec, line).encode() for line in lines[:400]]
+    out += sorted(p.read_bytes() for p in (ROOT / "fuzz" / "regressions").glob("*") if p.is_file())
+    return [s for s in dict.fromkeys(out) if s]
+
+
+def main() -> None:
+    target = Path(sys.argv[1])
+    target.mkdir(parents=True, exist_ok=True)
+    for seed in seeds():
+        (target / hashlib.sha1(seed).hexdigest()).write_bytes(seed)
+
+
+if __name__ == "__main__":
+    main()
