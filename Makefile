@@ -118,7 +118,13 @@ fuzz-python: fuzz-seeds
 	PYTHONPATH=generated/python $(PY) fuzz/python/fuzz_nmea.py $(FUZZ_FLAGS) -artifact_prefix=$(FUZZ)/crash-python- \
 		$(FUZZ)/corpus-python $(FUZZ)/seeds
 
+CARGO_FUZZ_VERSION := 0.13.2
+
 fuzz-rust: fuzz-seeds
+	@command -v cargo-fuzz >/dev/null || cargo install --quiet --locked cargo-fuzz --version $(CARGO_FUZZ_VERSION)
+	@mkdir -p $(FUZZ)/corpus-rust
+	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run --fuzz-dir fuzz/rust nmea -- \
+		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-rust- $(CURDIR)/$(FUZZ)/corpus-rust $(CURDIR)/$(FUZZ)/seeds
 
 fuzz-differential: build
 	$(PY) fuzz/differential.py $(FUZZ)/seeds $(FUZZ)/corpus-c $(FUZZ)/corpus-python $(FUZZ)/corpus-rust fuzz/regressions
