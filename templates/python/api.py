@@ -62,10 +62,12 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
 
 def _lenient(layouts: tuple[Any, ...], frame: runtime.Frame, checksum: str | None, err: NmeaError) -> Any:
     """Parse again with every field that does not fit left empty, one at a time; a field that is
-    already empty and still does not fit ends the attempt with its error."""
+    already empty and still does not fit, or one problem more than MAX_PROBLEMS, ends the attempt
+    with its error."""
     fields = list(frame.fields)
     problems = []
-    while err.kind == "bad_field" and err.field is not None and fields[err.field - 1]:
+    while err.kind == "bad_field" and err.field is not None and fields[err.field - 1] \
+            and len(problems) < runtime.MAX_PROBLEMS:
         problems.append(err)
         fields[err.field - 1] = ""
         try:

@@ -15,6 +15,9 @@ from typing import Any, Final
 MAX_LINE: Final = 1024
 """Longest line (without its line ending) the parser accepts."""
 
+MAX_PROBLEMS: Final = 8
+"""Most fields lenient parsing leaves empty in one sentence (the C and Rust structs hold as many)."""
+
 MAX_DIGITS: Final = 18
 """Most digits a number may have, so that every runtime holds it in a signed 64-bit integer."""
 
