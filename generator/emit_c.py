@@ -14,7 +14,7 @@ import jinja2
 
 from . import emit_vectors
 from .emit import TEMPLATES, header
-from .model import EnumDef, Example, Field, Group, Layout, Sentence, Spec, fmt_num
+from .model import BitfieldDef, EnumDef, Example, Field, Group, Layout, Sentence, Spec, TableDef, fmt_num
 
 C_KEYWORDS = frozenset("""
 auto break case char const continue default do double else enum extern float for goto if inline int
@@ -23,12 +23,13 @@ volatile while bool true false _Bool _Complex _Imaginary
 """.split())
 
 # Struct members every layout has besides its fields.
-RESERVED_MEMBERS = frozenset({"talker", "checksum", "optional_count"})
+RESERVED_MEMBERS = frozenset({"talker", "checksum", "optional_count", "as_received"})
 
 C_TYPES = {
     "integer": "nmea_number", "decimal": "nmea_number", "hex": "nmea_hex", "time": "nmea_time",
     "date": "nmea_date", "latitude": "nmea_coordinate", "longitude": "nmea_coordinate", "char": "char",
     "literal": "bool", "enum": "nmea_enum", "enum_chars": "nmea_text", "text": "nmea_text",
+    "keyword": None,  # a fixed word: the layout says it, nothing to store
 }
 
 # What "no value" looks like for each C type, for the member docs.
@@ -108,6 +109,18 @@ def _range_word(value: float) -> str:
     return text.replace("-", "minus_").replace(".", "p")
 
 
+def range_init(low: float | None, high: float | None) -> str:
+    """The initializer of an nmea_range."""
+    parts = []
+    if low is not None:
+        digits, scale = _fixed(low)
+        parts += [".has_min = true", f".min = {digits}"] + ([f".min_scale = {scale}"] if scale else [])
+    if high is not None:
+        digits, scale = _fixed(high)
+        parts += [".has_max = true", f".max = {digits}"] + ([f".max_scale = {scale}"] if scale else [])
+    return "{" + ", ".join(parts) + "}" if parts else "{0}"
+
+
 class Ranges:
     """The distinct value ranges of the spec, each a named static const nmea_range."""
 
@@ -125,15 +138,8 @@ class Ranges:
                 name = f"range_from_{_range_word(f.min)}"
             else:
                 name = f"range_up_to_{_range_word(f.max)}"  # type: ignore[arg-type]
-            parts = []
-            if f.min is not None:
-                digits, scale = _fixed(f.min)
-                parts += [".has_min = true", f".min = {digits}"] + ([f".min_scale = {scale}"] if scale else [])
-            if f.max is not None:
-                digits, scale = _fixed(f.max)
-                parts += [".has_max = true", f".max = {digits}"] + ([f".max_scale = {scale}"] if scale else [])
             shown = f"{fmt_num(f.min) if f.min is not None else ''}..{fmt_num(f.max) if f.max is not None else ''}"
-            self.by_bounds[key] = {"name": name, "init": "{" + ", ".join(parts) + "}", "shown": shown}
+            self.by_bounds[key] = {"name": name, "init": range_init(f.min, f.max), "shown": shown}
         return "&" + self.by_bounds[key]["name"]
 
     @property
@@ -149,6 +155,8 @@ def read_call(f: Field, target: str, ranges: Ranges) -> str:
     """The call that reads field `f` into `target` (an lvalue) from reader `r`."""
     head = f"&r, &{target}, {c_str(f.id)}, {c_str(f.expected)}"
     t = f.type
+    if t == "keyword":
+        return f"read_keyword(&r, {c_str(f.id)}, {c_str(f.expected)}, {c_str(f.value or '')})"
     if t in ("integer", "decimal"):
         return f"read_{t}({head}, {ranges.ref(f)})"
     if t in ("hex", "time", "date", "char"):
@@ -168,6 +176,8 @@ def read_call(f: Field, target: str, ranges: Ranges) -> str:
 def put_call(f: Field, target: str) -> str:
     """The call that writes field `f` (its comma and text) to writer `w`."""
     t = f.type
+    if t == "keyword":
+        return f"put_keyword(w, {c_str(f.value or '')})"
     if t in ("integer", "decimal"):
         return f"put_number(w, &{target})"
     if t in ("hex", "time", "date"):
@@ -184,33 +194,37 @@ def put_call(f: Field, target: str) -> str:
     return f"put_enum(w, &{target}, &{enum_def(f.enum)})"
 
 
-def json_call(f: Field, target: str, key: bool = True) -> str:
-    """The call that shows field `f` in the `fields` object (or, key False, a group array)."""
-    k = c_str(f.id) if key else "NULL"
+def json_call(f: Field, target: str, key: bool | str = True, values: str = "values") -> str:
+    """The call that shows field `f` in the `fields` object (or, key False, a group array; a
+    string: under that key)."""
+    k = c_str(key) if isinstance(key, str) else c_str(f.id) if key else "NULL"
     t = f.type
+    if t == "keyword":
+        return f"json_keyword(w, {k}, {c_str(f.value or '')}, {values})"
     if t in ("integer", "decimal"):
-        return f"json_number(w, {k}, &{target}, values)"
+        return f"json_number(w, {k}, &{target}, {values})"
     if t in ("hex", "time", "date"):
-        return f"json_{t}(w, {k}, &{target}, values)"
+        return f"json_{t}(w, {k}, &{target}, {values})"
     if t in ("latitude", "longitude"):
-        return f"json_coordinate(w, {k}, &{target}, values)"
+        return f"json_coordinate(w, {k}, &{target}, {values})"
     if t == "char":
-        return f"json_char(w, {k}, {target}, values)"
+        return f"json_char(w, {k}, {target}, {values})"
     if t == "literal":
-        return f"json_literal(w, {k}, {target}, {c_str(f.value or '')}, values)"
+        return f"json_literal(w, {k}, {target}, {c_str(f.value or '')}, {values})"
     if t == "text":
-        return f"json_text(w, {k}, {target}, values)"
+        return f"json_text(w, {k}, {target}, {values})"
     assert f.enum is not None
     if t == "enum":
-        return f"json_enum(w, {k}, &{target}, &{enum_def(f.enum)}, values)"
-    return f"json_enum_chars(w, {k}, {target}, &{enum_def(f.enum)}, values)"
+        return f"json_enum(w, {k}, &{target}, &{enum_def(f.enum)}, {values})"
+    return f"json_enum_chars(w, {k}, {target}, &{enum_def(f.enum)}, {values})"
 
 
 def member_doc(f: Field) -> list[str]:
     unit = f" [{f.unit}]" if f.unit else ""
     fmt = f" ({f.format})" if f.format else ""
     since = f" (NMEA {f.since}, optional)" if f.since else (" (optional)" if f.optional else "")
-    empty = EMPTY[C_TYPES[f.type]]
+    ctype = C_TYPES[f.type]
+    empty = EMPTY[ctype] if ctype else ""
     extra = ""
     if f.type == "literal":
         extra = f' True when the field holds "{f.value}".'
@@ -220,7 +234,11 @@ def member_doc(f: Field) -> list[str]:
     elif f.type == "enum_chars":
         assert f.enum is not None
         extra = f" One code of {enum_type(f.enum)} per character (table {enum_def(f.enum)})."
-    return doc_lines(f"{f.name}{unit}{fmt}{since}: {f.doc}{extra} Empty: {empty}.")
+    if f.bitfield is not None:
+        extra += f" Bits: nmea_{f.bitfield.id}_<bits>(value) (bitfield {f.bitfield.id})."
+    doc = f.doc.strip()
+    doc += "" if doc.endswith((".", "!", "?", ")")) or not doc else "."
+    return doc_lines(f"{f.name}{unit}{fmt}{since}: {doc}{extra} Empty: {empty}.")
 
 
 # ------------------------------------------------------------------------------------------------
@@ -229,14 +247,16 @@ def member_doc(f: Field) -> list[str]:
 
 def field_view(f: Field, base: str, ranges: Ranges, key: bool = True) -> dict:
     target = f"{base}{member(f.id)}" if base.endswith(("->", ".")) else base
+    stored = C_TYPES[f.type] is not None
     return {
         "field": f,
-        "member": member(f.id),
+        "member": member(f.id) if stored else None,
         "type": C_TYPES[f.type],
-        "doc": member_doc(f),
+        "doc": member_doc(f) if stored else [],
         "read": read_call(f, target, ranges),
         "put": put_call(f, target),
         "json": json_call(f, target, key),
+        "target": target,
         "collect": f"collect_field(c, fields, {c_str(f.id)}, {f.wire_width})",
         "optional_collect": f"collect_optional(c, fields, {c_str(f.id)}, {f.wire_width})",
     }
@@ -258,9 +278,20 @@ def optional_count_expr(widths: list[int]) -> str:
     return f"(uint8_t)({expr})"
 
 
+def framing(sentence: Sentence) -> str:
+    """standard ($ + talker + sentence id), proprietary ($ + fixed address) or text (a command
+    of words)."""
+    if not sentence.is_proprietary:
+        return "standard"
+    return "text" if sentence.framing == "text" else "proprietary"
+
+
 def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     snake = sentence.layout_snake(layout)
     group = layout.group
+    kind = framing(sentence)
+    if kind == "text" and group is not None:
+        raise ValueError(f"{sentence.id}: a text command cannot have a repeated group")
     before: list[dict] = []
     after: list[dict] = []
     optional: list[dict] = []
@@ -273,17 +304,25 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
             names.add(member(item.id) + "_count")
             continue
         view = field_view(item, "s->", ranges)
-        if view["member"] in names or view["member"] in RESERVED_MEMBERS:
-            raise ValueError(f"{sentence.id}: field id {item.id!r} collides with a generated C member")
-        names.add(view["member"])
+        if view["member"] is not None:
+            if view["member"] in names or view["member"] in RESERVED_MEMBERS:
+                raise ValueError(f"{sentence.id}: field id {item.id!r} collides with a generated C member")
+            names.add(view["member"])
         if item.is_optional:
             optional.append(view)
         elif seen_group:
             after.append(view)
         else:
             before.append(view)
+    # An optional keyword is always written and shown, as in the Python reference (its value is
+    # the word itself, never absent): the optional fields up to the last keyword are written
+    # (empty when they were not on the wire) and the keywords are always in the JSON.
+    last_keyword = max((n for n, v in enumerate(optional, 1) if v["field"].type == "keyword"), default=0)
     for n, view in enumerate(optional, 1):
         view["index"] = n
+        view["when"] = f"s->optional_count >= {n}"
+        view["put_when"] = None if n <= last_keyword else view["when"]
+        view["json_when"] = None if view["field"].type == "keyword" else view["when"]
     group_view = None
     if group is not None:
         single = group.single
@@ -295,15 +334,17 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         for view in fields:
             view["collect"] = (f"collect_value(c, entry, {view['field'].wire_width})" if single else
                                f"collect_field(c, entry, {c_str(view['field'].id)}, {view['field'].wire_width})")
+        stored = [v for v in fields if v["member"] is not None]
         group_view = {
             "group": group,
             "id": c_str(group.id),
-            "member": member(group.id),
+            "member": member(group.id) if stored else None,
             "count": None if group.is_fixed else member(group.id) + "_count",
-            "entry_type": None if single else etype,
-            "value_type": C_TYPES[group.fields[0].type] if single else etype,
+            "entry_type": None if single or not stored else etype,
+            "value_type": (C_TYPES[group.fields[0].type] if single else etype) if stored else None,
             "single": single,
             "fields": fields,
+            "stored": stored,
             "doc": doc_lines(f"{group.name}: {group.doc} " + (
                 f"Always {group.max} entries." if group.is_fixed else
                 f"{group.min} to {group.max} entries; {member(group.id)}_count of them are on the wire.")),
@@ -312,15 +353,18 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     # The fields read before the group (all of them when there is none) and after it.
     head = before + ([] if group_view else optional)
     tail = (after + optional) if group_view else []
-    for view in optional:
-        view["when"] = f"s->optional_count >= {view['index']}"
+    words = _text_words(layout, before + optional) if kind == "text" else []
     return {
         "sentence": sentence,
         "layout": layout,
+        "kind": kind,
         "name": snake,
         "type": f"nmea_{snake}",
         "const": layout_const(sentence, layout),
         "id": c_str(sentence.id),
+        "address": c_str(sentence.address or ""),
+        "command": c_str((sentence.address or "").upper()),
+        "selector": c_str(layout.selector) if layout.selector is not None else "NULL",
         "variant": c_str(layout.id) if layout.id else "NULL",
         "example": c_comment(example.line) if example and example.line else None,
         "example_manual": example.manual if example else None,
@@ -342,7 +386,33 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "max_fields": layout.max_fields,
         "optional_max": layout.optional_count,
         "source": sentence.source,
+        "ids": [c_str(i.id) for i in layout.items],
+        "words": words,
+        "replies": [layout_const(r, lay) for r in sentence.replies for lay in r.layouts],
     }
+
+
+def _text_words(layout: Layout, views: list[dict]) -> list[dict]:
+    """The lossless fields of a text command written in the spec's letter case, as the Python
+    reference shows them: the words of the command paired with the field ids in order (a
+    latitude or longitude is two words, so the ids after it pair with the next words)."""
+    ids = [item.id for item in layout.items]
+    out = []
+    pos = 0
+    for view in views:
+        f = view["field"]
+        when = view.get("put_when")
+        for part in range(f.wire_width):
+            if pos + part >= len(ids):
+                break
+            key = ids[pos + part]
+            if f.wire_width == 1:
+                call = json_call(f, view["target"], key, "false")
+            else:
+                call = f"json_coordinate_word(w, {c_str(key)}, &{view['target']}, {part})"
+            out.append({"when": when, "call": call})
+        pos += f.wire_width
+    return out
 
 
 def _example(sentence: Sentence, layout: Layout) -> Example | None:
@@ -404,7 +474,7 @@ def _all_fields(layout: Layout) -> list[Field]:
     return out
 
 
-def _check_names(spec: Spec, views: list[dict]) -> None:
+def _check_names(spec: Spec, views: list[dict], bitfields: list[dict], tables: list[dict]) -> None:
     """Generated identifiers must not collide (they are built from frozen spec ids)."""
     seen: dict[str, str] = {}
 
@@ -420,8 +490,110 @@ def _check_names(spec: Spec, views: list[dict]) -> None:
     for v in views:
         claim(v["type"], f"layout {v['name']}")
         claim(v["const"], f"layout {v['name']}")
+        for prefix in ("nmea_parse_", "nmea_serialize_", "nmea_build_"):
+            claim(prefix + v["name"], f"layout {v['name']}")
         if v["group"] and v["group"]["entry_type"]:
             claim(v["group"]["entry_type"], f"group {v['name']}.{v['group']['group'].id}")
+    for b in bitfields:
+        for bits in b["bits"]:
+            claim(bits["function"], f"bits {b['bitfield'].id}.{bits['bits'].id}")
+            claim(bits["mask"], f"bits {b['bitfield'].id}.{bits['bits'].id}")
+            for value in bits["values"]:
+                claim(value["const"], f"bits {b['bitfield'].id}.{bits['bits'].id} = {value['value']}")
+    for t in tables:
+        claim(t["name"], f"table {t['table'].id}")
+        claim(t["count"], f"table {t['table'].id}")
+        for param in t["parameters"]:
+            claim(param["macro"], f"parameter {t['table'].id}.{param['parameter'].id}")
+
+
+# ------------------------------------------------------------------------------------------------
+# Bitfields and parameter tables
+
+
+def bitfield_view(b: BitfieldDef) -> dict:
+    prefix = f"nmea_{b.id}"
+    bits = []
+    for r in b.bits:
+        wide = r.width > 32
+        values = [{"const": f"{prefix.upper()}_{r.id.upper()}_{v.id.upper()}", "value": v.value,
+                   "doc": doc_lines(f"{v.value}: {v.doc}", 88)} for v in r.values]
+        bits.append({
+            "bits": r,
+            "function": f"{prefix}_{r.id}",
+            "type": "uint64_t" if wide else "uint32_t",
+            "mask": f"{prefix.upper()}_{r.id.upper()}_MASK",
+            "mask_value": f"UINT64_C(0x{r.mask:X})",
+            "max_value": f"UINT64_C(0x{r.max_value:X})",
+            "low": r.low,
+            "doc": doc_lines(f"Bit{'s' if r.width > 1 else ''} {r.label}: {r.doc}"),
+            "values": values,
+            # an enum holds values that fit an int
+            "as_enum": all(v.value < 2**31 for v in r.values),
+        })
+    return {
+        "bitfield": b,
+        "doc": doc_lines(f"{b.id}: {b.name} ({b.width} bits). {b.doc} Bits the spec does not name are "
+                         "reserved; no accessor refuses them."),
+        "bits": bits,
+    }
+
+
+ENCODINGS = {"hex": "NMEA_PARAM_HEX", "decimal": "NMEA_PARAM_DECIMAL", "decimal_list": "NMEA_PARAM_DECIMAL_LIST",
+             "text": "NMEA_PARAM_TEXT"}
+
+
+def _opt_str(value: object) -> str:
+    return "NULL" if value is None else c_str(str(value))
+
+
+def table_view(t: TableDef) -> dict:
+    name = f"nmea_{t.id}"
+    params = []
+    for i, p in enumerate(t.parameters):
+        for what, value in (("size", p.size), ("count", p.count), ("max_length", p.max_length)):
+            if value is not None and not 0 <= value <= 255:
+                raise ValueError(f"parameter {t.id}.{p.id}: {what} {value} does not fit nmea_parameter")
+        init = ", ".join([
+            str(p.number), c_str(p.id), c_str(p.name), ENCODINGS[p.encoding], str(p.size or 0), str(p.count or 0),
+            range_init(p.min, p.max), str(p.max_length or 0), _opt_str(p.default), _opt_str(p.unit),
+            f"&{enum_def(p.enum)}" if p.enum else "NULL", _opt_str(p.bitfield.id if p.bitfield else None),
+        ])
+        params.append({
+            "parameter": p,
+            "init": "{" + init + "}",
+            "macro": f"{name.upper()}_{p.id.upper()}",
+            "index": i,
+            "doc": c_comment(f"{p.number}: {p.name}" + (f" [{p.unit}]" if p.unit else "")),
+        })
+    return {
+        "table": t,
+        "name": name,
+        "count": f"{name.upper()}_COUNT",
+        "doc": doc_lines(f"{t.id}: {t.name}. {t.doc}"),
+        "parameters": params,
+    }
+
+
+def cased_runs() -> list[tuple[int, int, int]]:
+    """The characters above U+00FF that Python's str.upper() changes, as runs (first, last,
+    step): how the reference decides that a JSON checksum is written in lower case."""
+    points = [c for c in range(0x100, 0x110000) if chr(c).upper() != chr(c)]
+    runs: list[tuple[int, int, int]] = []
+    i = 0
+    while i < len(points):
+        first = points[i]
+        if i + 1 < len(points) and points[i + 1] - first in (1, 2):
+            step = points[i + 1] - first
+            j = i + 1
+            while j + 1 < len(points) and points[j + 1] - points[j] == step:
+                j += 1
+            runs.append((first, points[j], step))
+            i = j + 1
+        else:
+            runs.append((first, first, 1))
+            i += 1
+    return runs
 
 
 def vector_view(record: dict) -> dict:
@@ -439,11 +611,40 @@ def vector_view(record: dict) -> dict:
     }
 
 
+def _dispatch(spec: Spec, views: list[dict]) -> dict[str, list[dict]]:
+    """The tables nmea_parse looks a line up in, each sorted by its key (bytewise): standard
+    sentences by sentence id, proprietary `$` sentences by address, text commands by their
+    command word in upper case. Each entry lists its layouts in parse order."""
+    const = {(v["sentence"].id, v["layout"].id): v["const"] for v in views}
+
+    def entry(key: str, suffix: str | None, pairs: list) -> dict:
+        code = int.from_bytes(key.encode(), "big") if suffix else 0
+        return {"key": c_str(key), "len": len(key.encode()), "suffix": c_str(suffix) if suffix else "NULL",
+                "sort": key.encode(), "ids": [const[(s.id, lay.id)] for s, lay in pairs], "code": f"0x{code:06X}"}
+
+    def standard_like(address: str) -> bool:  # what is_standard_address accepts
+        return len(address) == 5 and address[0] != "P"
+
+    standard = [entry(s.id, s.id, [(s, lay) for lay in s.layouts]) for s in spec.standard]
+    addresses = sorted({s.address for s in spec.proprietary if s.framing == "sentence" and s.address})
+    proprietary = [entry(a, None, spec.by_address(a)) for a in addresses if not standard_like(a)]
+    # Proprietary addresses that look like a standard one ($GPSGG) come before the standard
+    # sentences; keeping them apart spares a standard line the search of every proprietary address.
+    talker_like = [entry(a, None, spec.by_address(a)) for a in addresses if standard_like(a)]
+    words = sorted({s.address.upper() for s in spec.proprietary if s.framing == "text" and s.address})
+    text = [entry(w, None, spec.text_command(w)) for w in words]
+    return {name: sorted(table, key=lambda e: e["sort"])
+            for name, table in (("standard", standard), ("talker_like", talker_like),
+                                ("proprietary", proprietary), ("text", text))}
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     ranges = Ranges()
     views = [layout_view(s, lay, ranges) for s in spec.sentences for lay in s.layouts]
-    _check_names(spec, views)
     enums = [enum_view(e) for e in spec.enums]
+    bitfields = [bitfield_view(b) for b in spec.bitfields]
+    tables = [table_view(t) for t in spec.tables]
+    _check_names(spec, views, bitfields, tables)
     sentences = [{
         "sentence": s,
         "const": layout_const(s, s.layout),
@@ -455,6 +656,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     tool_c = (TEMPLATES / "c" / "tool.c").read_text(encoding="utf-8")
     context = {
         "enums": enums, "layouts": views, "sentences": sentences, "ranges": ranges.all,
+        "bitfields": bitfields, "tables": tables, "dispatch": _dispatch(spec, views),
+        "commands": [v for v in views if v["replies"]], "cased_runs": cased_runs(),
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "json_max": json_max(spec, views),
         "runtime_h": runtime_h, "runtime_c": runtime_c,
@@ -464,6 +667,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "c/nmea.c": env.get_template("c/nmea.c.j2").render(header=header(spec, "//"), **context),
         "c/nmea_tool.c": header(spec, "//", ["templates/c/tool.c"]) + tool_c,
         "c/tests/test_examples.c": env.get_template("c/test_examples.c.j2").render(
-            header=header(spec, "//"), vectors=[vector_view(r) for r in emit_vectors.example_vectors(spec)]),
+            header=header(spec, "//"), vectors=[vector_view(r) for r in emit_vectors.example_vectors(spec)],
+            commands=context["commands"], bitfields=bitfields, tables=tables),
     }
     return files

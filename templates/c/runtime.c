@@ -61,9 +61,28 @@ static bool text_is(nmea_text t, const char *s)
     return t.len == n && (n == 0 || memcmp(t.ptr, s, n) == 0);
 }
 
+static char ascii_upper(char c)
+{
+    return c >= 'a' && c <= 'z' ? (char)(c - 'a' + 'A') : c;
+}
+
+/* Whether the upper-case form of `t` (ASCII letters only) is exactly `s`. */
+static bool upper_is(nmea_text t, const char *s)
+{
+    size_t i, n = strlen(s);
+    if (t.len != n)
+        return false;
+    for (i = 0; i < n; i++)
+        if (ascii_upper(t.ptr[i]) != s[i])
+            return false;
+    return true;
+}
+
 /* ------------------------------------------------------------------------------------------ */
 /* Writing text: a bounded buffer that keeps counting past its end and XORs the bytes written
-   while `summing` (the checksum). */
+   while `summing` (the checksum). Fields are preceded by `sep` (',', or ' ' between the words of a
+   text command). While a text command is written, `match` is the command as received: the bytes
+   written are compared with it ignoring case (`matched` stays true while they agree). */
 
 typedef struct {
     char *buf;
@@ -72,6 +91,12 @@ typedef struct {
     unsigned char sum;
     bool summing;
     char last;
+    char sep;
+    bool matched;
+    const char *match;
+    size_t match_len;
+    size_t match_pos;
+    size_t start;
 } nmea_writer;
 
 static nmea_writer writer_of(char *buf, size_t cap)
@@ -83,7 +108,20 @@ static nmea_writer writer_of(char *buf, size_t cap)
     w.sum = 0;
     w.summing = false;
     w.last = 0;
+    w.sep = ',';
+    w.matched = false;
+    w.match = NULL;
+    w.match_len = 0;
+    w.match_pos = 0;
+    w.start = 0;
     return w;
+}
+
+static void match_char(nmea_writer *w, char c)
+{
+    if (w->match_pos >= w->match_len || ascii_upper(w->match[w->match_pos]) != ascii_upper(c))
+        w->matched = false;
+    w->match_pos++;
 }
 
 static void put_char(nmea_writer *w, char c)
@@ -91,8 +129,11 @@ static void put_char(nmea_writer *w, char c)
     if (w->len < w->cap)
         w->buf[w->len] = c;
     w->len++;
-    if (w->summing)
+    if (w->summing) {
         w->sum ^= (unsigned char)c;
+        if (w->match)
+            match_char(w, c);
+    }
     w->last = c;
 }
 
@@ -143,26 +184,33 @@ static size_t writer_finish(nmea_writer *w)
     return 0;
 }
 
-/* A character of a JSON string, escaped `depth` times (a message holding a quoted text is
-   itself escaped inside the JSON of an error: depth 2 for the text). */
-static void put_escaped(nmea_writer *w, char c, int depth)
+/* A character of a JSON string escaped `depth` times; `wide`: `c` is the low byte of a character
+   above 0xFF, which the tools escape as \u00hh of that byte. */
+static void put_escaped_char(nmea_writer *w, char c, bool wide, int depth)
 {
     unsigned char u = (unsigned char)c;
     if (depth == 0) {
         put_char(w, c);
-    } else if (c == '"' || c == '\\') {
-        put_escaped(w, '\\', depth - 1);
-        put_escaped(w, c, depth - 1);
-    } else if (!is_printable(c)) {
-        put_escaped(w, '\\', depth - 1);
-        put_escaped(w, 'u', depth - 1);
-        put_escaped(w, '0', depth - 1);
-        put_escaped(w, '0', depth - 1);
-        put_escaped(w, HEX_LOWER[u >> 4], depth - 1);
-        put_escaped(w, HEX_LOWER[u & 15], depth - 1);
+    } else if (!wide && (c == '"' || c == '\\')) {
+        put_escaped_char(w, '\\', false, depth - 1);
+        put_escaped_char(w, c, false, depth - 1);
+    } else if (wide || !is_printable(c)) {
+        put_escaped_char(w, '\\', false, depth - 1);
+        put_escaped_char(w, 'u', false, depth - 1);
+        put_escaped_char(w, '0', false, depth - 1);
+        put_escaped_char(w, '0', false, depth - 1);
+        put_escaped_char(w, HEX_LOWER[u >> 4], false, depth - 1);
+        put_escaped_char(w, HEX_LOWER[u & 15], false, depth - 1);
     } else {
-        put_escaped(w, c, depth - 1);
+        put_escaped_char(w, c, false, depth - 1);
     }
+}
+
+/* A character of a JSON string, escaped `depth` times (a message holding a quoted text is
+   itself escaped inside the JSON of an error: depth 2 for the text). */
+static void put_escaped(nmea_writer *w, char c, int depth)
+{
+    put_escaped_char(w, c, false, depth);
 }
 
 static void put_escaped_mem(nmea_writer *w, const char *s, size_t n, int depth)
@@ -200,7 +248,7 @@ static void put_json_cstr(nmea_writer *w, const char *s)
 
 static const char *const ERROR_KINDS[] = {
     "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "too_few_fields",
-    "too_many_fields", "bad_field", "bad_json",
+    "too_many_fields", "bad_field", "bad_json", "bad_value",
 };
 
 const char *nmea_error_kind_name(nmea_error_kind kind)
@@ -232,6 +280,22 @@ void nmea_error_too_long(nmea_error *err, size_t len)
     err->num[0] = len;
 }
 
+static bool json_char_at(const char **p, const char *end, long *cp);
+
+/* The text of an error: bytes, or (text_json) the inside of a JSON string, whose characters
+   above 0xFF are written as their low byte, escaped. */
+static void put_error_text(nmea_writer *w, const nmea_error *err, int depth)
+{
+    const char *p = err->text.ptr, *end = p + err->text.len;
+    long cp;
+    if (!err->text_json) {
+        put_escaped_mem(w, err->text.ptr, err->text.len, depth);
+        return;
+    }
+    while (json_char_at(&p, end, &cp))
+        put_escaped_char(w, (char)(cp & 0xFF), cp > 0xFF, depth);
+}
+
 static void put_message(nmea_writer *w, const nmea_error *err, int depth)
 {
     const char *p = err->pattern ? err->pattern : "";
@@ -244,10 +308,12 @@ static void put_message(nmea_writer *w, const nmea_error *err, int depth)
         }
         switch (*++p) {
         case 'q':
-            put_json_str(w, err->text, depth);
+            put_escaped(w, '"', depth);
+            put_error_text(w, err, depth + 1);
+            put_escaped(w, '"', depth);
             break;
         case 't':
-            put_escaped_mem(w, err->text.ptr, err->text.len, depth);
+            put_error_text(w, err, depth);
             break;
         case 's':
             if (strs < 2 && err->str[strs])
@@ -255,12 +321,12 @@ static void put_message(nmea_writer *w, const nmea_error *err, int depth)
             strs++;
             break;
         case 'n':
-            put_uint(w, nums < 2 ? err->num[nums] : 0, 1);
+            put_uint(w, nums < 3 ? err->num[nums] : 0, 1);
             nums++;
             break;
         case 'X':
         case 'x':
-            n = nums < 2 ? err->num[nums] : 0;
+            n = nums < 3 ? err->num[nums] : 0;
             put_char(w, (*p == 'X' ? HEX_UPPER : HEX_LOWER)[(n >> 4) & 15]);
             put_char(w, (*p == 'X' ? HEX_UPPER : HEX_LOWER)[n & 15]);
             nums++;
@@ -385,7 +451,9 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, nmea_error *
     for (i = 0; i < f->address.len && named; i++)
         named = is_alnum(f->address.ptr[i]);
     f->checksum = NMEA_CHECKSUM_NONE;
-    if (star) {
+    if (star && star + 1 == len) { /* a bare '*' leaves the checksum out */
+        f->checksum = NMEA_CHECKSUM_EMPTY;
+    } else if (star) {
         sent = text_span(line + star + 1, line + len);
         for (i = 0; i < sent.len; i++) {
             lower = lower || (sent.ptr[i] >= 'a' && sent.ptr[i] <= 'f');
@@ -421,7 +489,59 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, nmea_error *
 /* A talker ID and a 3-letter sentence formatter: '$', 5 characters, not proprietary ('P...'). */
 static bool is_standard_address(const nmea_frame *f)
 {
-    return f->start.ptr[0] == '$' && f->address.len == 5 && f->address.ptr[0] != 'P';
+    return f->start.len == 1 && f->start.ptr[0] == '$' && f->address.len == 5 && f->address.ptr[0] != 'P';
+}
+
+/* A text command (ComNav: words separated by single spaces, no '$', no checksum): the first
+   word is the address, the others are the fields. */
+static bool text_frame(nmea_frame *f, const char *line, size_t len, nmea_error *err)
+{
+    size_t i, space = 0, spaces = 0;
+
+    if (len > NMEA_MAX_LINE) {
+        nmea_error_too_long(err, len);
+        return false;
+    }
+    for (i = 0; i < len; i++) {
+        if (!is_printable(line[i])) {
+            fail(err, NMEA_ERR_NOT_A_SENTENCE, "byte 0x%x at offset %n is not printable ASCII");
+            err->num[0] = (unsigned char)line[i];
+            err->num[1] = i;
+            return false;
+        }
+        if (line[i] == ' ' && !spaces++)
+            space = i;
+    }
+    f->start = text_span(line, line);
+    f->address = text_span(line, line + (spaces ? space : len));
+    f->count = spaces;
+    f->fields = spaces ? text_span(line + space + 1, line + len) : text_span(line + len, line + len);
+    f->checksum = NMEA_CHECKSUM_NONE;
+    return true;
+}
+
+/* The command word of a possible text command: the text before the first space. */
+static nmea_text first_word(const char *line, size_t len)
+{
+    const char *space = len ? memchr(line, ' ', len) : NULL;
+    return text_span(line, space ? space : line + len);
+}
+
+/* Whether `word` in upper case is the command word `upper` (the upper case of Latin-1 0xDF,
+   the sharp s, being "SS" as in the Python reference). */
+static bool word_is(nmea_text word, const char *upper)
+{
+    size_t i;
+    for (i = 0; i < word.len; i++) {
+        if ((unsigned char)word.ptr[i] == 0xDF) {
+            if (upper[0] != 'S' || upper[1] != 'S')
+                return false;
+            upper += 2;
+        } else if (!*upper || ascii_upper(word.ptr[i]) != *upper++) {
+            return false;
+        }
+    }
+    return *upper == 0;
 }
 
 /* A known sentence starts with '$', its talker and its sentence id; the checksum covers all but
@@ -441,8 +561,35 @@ static void end_sentence(nmea_writer *w, nmea_checksum_style style)
     if (style == NMEA_CHECKSUM_NONE)
         return;
     put_char(w, '*');
+    if (style == NMEA_CHECKSUM_EMPTY)
+        return;
     put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum >> 4]);
     put_char(w, (style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER)[sum & 15]);
+}
+
+/* A text command: the command word and each field after a space (the put_ functions write
+   w->sep). Written back exactly as received when its words still match ignoring case. */
+NMEA_INTERNAL void begin_text(nmea_writer *w, const char *address, nmea_text as_received)
+{
+    w->sep = ' ';
+    w->start = w->len;
+    w->match = as_received.ptr;
+    w->match_len = as_received.len;
+    w->match_pos = 0;
+    w->matched = as_received.ptr != NULL;
+    w->summing = w->matched;
+    put_str(w, address);
+}
+
+NMEA_INTERNAL void end_text(nmea_writer *w)
+{
+    size_t i;
+    w->matched = w->matched && w->match_pos == w->match_len;
+    for (i = 0; w->matched && i < w->match_len && w->start + i < w->cap; i++)
+        w->buf[w->start + i] = w->match[i];
+    w->summing = false;
+    w->match = NULL;
+    w->sep = ',';
 }
 
 nmea_text nmea_generic_field(const nmea_generic *g, size_t index)
@@ -518,16 +665,6 @@ static bool parse_number(nmea_text t, bool integer, nmea_number *out)
     return true;
 }
 
-/* An inclusive value range of an integer or decimal field (from the spec's min/max). */
-typedef struct {
-    bool has_min;
-    bool has_max;
-    int64_t min;  /* min * 10^-min_scale */
-    uint8_t min_scale;
-    int64_t max;
-    uint8_t max_scale;
-} nmea_range;
-
 /* Compares a * 10^-as with b * 10^-bs (both signed): -1, 0 or 1. */
 static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
 {
@@ -578,6 +715,23 @@ int64_t nmea_number_scaled(const nmea_number *n, unsigned scale)
         s++;
     }
     return n->sign == '-' ? -v : v;
+}
+
+nmea_number nmea_number_of(int64_t value, unsigned scale)
+{
+    nmea_number n;
+    uint64_t magnitude = value < 0 ? (uint64_t)0 - (uint64_t)value : (uint64_t)value, whole;
+    if (scale > NMEA_MAX_DIGITS)
+        scale = NMEA_MAX_DIGITS;
+    whole = magnitude / (uint64_t)POW10[scale];
+    n.digits = (int64_t)magnitude;
+    n.scale = (uint8_t)scale;
+    for (n.width = 1; whole >= 10; whole /= 10)
+        n.width++;
+    n.sign = value < 0 ? '-' : 0;
+    n.point = scale > 0;
+    n.present = true;
+    return n;
 }
 
 static bool parse_hex(nmea_text t, nmea_hex *out)
@@ -719,9 +873,30 @@ static int enum_find(const nmea_enum_def *def, const char *p, size_t n)
     return NMEA_UNKNOWN_CODE;
 }
 
+/* The code whose text is `t` in upper case (the words of a text command). */
+static int enum_find_upper(const nmea_enum_def *def, nmea_text t)
+{
+    int i;
+    for (i = 0; i < def->count; i++)
+        if (upper_is(t, def->codes[i].code))
+            return i;
+    return NMEA_UNKNOWN_CODE;
+}
+
 int nmea_enum_lookup(const nmea_enum_def *def, char code)
 {
     return enum_find(def, &code, 1);
+}
+
+nmea_enum nmea_enum_of(const nmea_enum_def *def, int value)
+{
+    nmea_enum e;
+    memset(&e, 0, sizeof e);
+    e.value = value;
+    e.present = true;
+    if (value >= 0 && value < def->count && strlen(def->codes[value].code) <= NMEA_CODE_MAX)
+        strcpy(e.code, def->codes[value].code);
+    return e;
 }
 
 const char *nmea_enum_id(const nmea_enum_def *def, const nmea_enum *e)
@@ -735,22 +910,30 @@ const char *nmea_enum_id(const nmea_enum_def *def, const nmea_enum *e)
 /* Reading the fields of a layout: a cursor over the comma-separated fields, which knows the
    address and the field being read for the errors. */
 
+/* The fields of a line (or of decode's JSON) for a layout to read, and the address its errors
+   name: `address` followed by `suffix` (a standard sentence: the talker and the sentence id). */
 typedef struct {
-    nmea_text start;
-    nmea_text talker;
+    nmea_text address;
+    const char *suffix;
     nmea_text fields;
     size_t count;
+    char sep;                     /* between fields: ',' or ' ' (the words of a text command) */
+    bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
     nmea_checksum_style checksum;
+    nmea_text line;               /* a text command: the command as received */
 } nmea_wire;
 
 typedef struct {
     const char *next;
     const char *end;
     unsigned index; /* 1-based wire index of the field read last */
-    nmea_text talker;
+    nmea_text address;
+    const char *suffix;
     const char *sentence;
     const char *group;
     unsigned entry;
+    char sep;
+    bool ignore_case;
     nmea_error *err;
 } nmea_reader;
 
@@ -759,10 +942,13 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->next = wire->fields.ptr;
     r->end = wire->fields.ptr + wire->fields.len;
     r->index = 0;
-    r->talker = wire->talker;
+    r->address = wire->address;
+    r->suffix = wire->suffix;
     r->sentence = sentence;
     r->group = NULL;
     r->entry = 0;
+    r->sep = wire->sep;
+    r->ignore_case = wire->ignore_case;
     r->err = err;
 }
 
@@ -778,7 +964,7 @@ static nmea_text next_field(nmea_reader *r)
     const char *p = r->next;
     nmea_text t;
     r->index++;
-    while (r->next < r->end && *r->next != ',')
+    while (r->next < r->end && *r->next != r->sep)
         r->next++;
     t = text_span(p, r->next);
     if (r->next < r->end)
@@ -789,7 +975,7 @@ static nmea_text next_field(nmea_reader *r)
 static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *pattern, size_t n, size_t m)
 {
     fail(r->err, kind, pattern);
-    set_address(r->err, r->talker, r->sentence);
+    set_address(r->err, r->address, r->suffix);
     r->err->str[0] = r->sentence;
     r->err->num[0] = n;
     r->err->num[1] = m;
@@ -808,6 +994,53 @@ static bool too_many(nmea_reader *r, size_t limit, size_t found)
 
 /* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
    the number of optional trailing wire fields present. */
+/* The wire of a framed line: a standard sentence's address is its talker followed by `suffix`
+   (its 3-character sentence id); a text command (`line`, as received) has words separated by
+   spaces. */
+static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, const char *line)
+{
+    wire->address = suffix ? text_span(f->address.ptr, f->address.ptr + f->address.len - 3) : f->address;
+    wire->suffix = suffix;
+    wire->fields = f->fields;
+    wire->count = f->count;
+    wire->sep = line ? ' ' : ',';
+    wire->ignore_case = line != NULL;
+    wire->checksum = f->checksum;
+    wire->line = line ? text_span(line, f->fields.ptr + f->fields.len) : nmea_text_of(NULL);
+}
+
+/* For nmea_build_*: the sentence just written to w (which must hold it, its CR LF and a NUL),
+   framed again as a receiver frames it. */
+NMEA_INTERNAL bool build_wire(nmea_writer *w, bool text, nmea_wire *wire, nmea_error *err)
+{
+    nmea_frame f;
+    if (w->len + 2 >= w->cap) {
+        fail(err, NMEA_ERR_TOO_LONG, "the sentence, its CR LF and a NUL need %n bytes, the buffer holds %n");
+        err->num[0] = w->len + 3;
+        err->num[1] = w->cap;
+        w->len = w->cap; /* nothing of it is kept */
+        return false;
+    }
+    if (!(text ? text_frame : frame_line)(&f, w->buf, w->len, err))
+        return false;
+    wire_of(wire, &f, NULL, text ? w->buf : NULL);
+    return true;
+}
+
+/* A refused sentence stays in the buffer (the error points into it); one too long is not kept. */
+NMEA_INTERNAL size_t build_failed(nmea_writer *w)
+{
+    writer_finish(w);
+    return 0;
+}
+
+NMEA_INTERNAL size_t build_end(nmea_writer *w)
+{
+    put_char(w, '\r');
+    put_char(w, '\n');
+    return writer_finish(w);
+}
+
 NMEA_INTERNAL bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t max, size_t *optional)
 {
     if (count < fixed)
@@ -844,7 +1077,7 @@ static bool bad_field(nmea_reader *r, unsigned index, const char *name, const ch
 {
     nmea_error *err = r->err;
     fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
-    set_address(err, r->talker, r->sentence);
+    set_address(err, r->address, r->suffix);
     err->field = index;
     err->group = r->group;
     err->entry = r->entry;
@@ -948,6 +1181,15 @@ NMEA_INTERNAL bool read_literal(nmea_reader *r, bool *out, const char *name, con
     return true;
 }
 
+/* A fixed word that must be there (it picks the layout); in a text command ignoring case. */
+NMEA_INTERNAL bool read_keyword(nmea_reader *r, const char *name, const char *expected, const char *keyword)
+{
+    nmea_text t = next_field(r);
+    if (!text_is(t, keyword) && !(r->ignore_case && upper_is(t, keyword)))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
 NMEA_INTERNAL bool read_text(nmea_reader *r, nmea_text *out, const char *name, const char *expected, size_t max_length)
 {
     nmea_text t = next_field(r);
@@ -964,7 +1206,7 @@ NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, c
     nmea_text t = next_field(r);
     if (!t.len)
         return true;
-    out->value = enum_find(def, t.ptr, t.len);
+    out->value = r->ignore_case ? enum_find_upper(def, t) : enum_find(def, t.ptr, t.len);
     if (out->value == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr, t.len, def->min_len, def->max_len))
         return bad_field(r, r->index, name, expected, t);
     memcpy(out->code, t.ptr, t.len); /* t.len <= max_len <= NMEA_CODE_MAX */
@@ -1010,7 +1252,7 @@ static void number_text(nmea_writer *w, const nmea_number *n)
 
 NMEA_INTERNAL void put_number(nmea_writer *w, const nmea_number *n)
 {
-    put_char(w, ',');
+    put_char(w, w->sep);
     number_text(w, n);
 }
 
@@ -1034,7 +1276,7 @@ static void hex_text(nmea_writer *w, const nmea_hex *h)
 
 NMEA_INTERNAL void put_hex(nmea_writer *w, const nmea_hex *h)
 {
-    put_char(w, ',');
+    put_char(w, w->sep);
     if (h->present)
         hex_text(w, h);
 }
@@ -1053,7 +1295,7 @@ static void time_text(nmea_writer *w, const nmea_time *t)
 
 NMEA_INTERNAL void put_time(nmea_writer *w, const nmea_time *t)
 {
-    put_char(w, ',');
+    put_char(w, w->sep);
     if (t->present)
         time_text(w, t);
 }
@@ -1067,7 +1309,7 @@ static void date_text(nmea_writer *w, const nmea_date *d)
 
 NMEA_INTERNAL void put_date(nmea_writer *w, const nmea_date *d)
 {
-    put_char(w, ',');
+    put_char(w, w->sep);
     if (d->present)
         date_text(w, d);
 }
@@ -1081,24 +1323,24 @@ static void coordinate_text(nmea_writer *w, const nmea_coordinate *c)
 
 NMEA_INTERNAL void put_coordinate(nmea_writer *w, const nmea_coordinate *c)
 {
-    put_char(w, ',');
+    put_char(w, w->sep);
     if (c->present)
         coordinate_text(w, c);
-    put_char(w, ',');
+    put_char(w, w->sep);
     if (c->present)
         put_char(w, c->hemisphere);
 }
 
 NMEA_INTERNAL void put_char_field(nmea_writer *w, char c)
 {
-    put_char(w, ',');
+    put_char(w, w->sep);
     if (c)
         put_char(w, c);
 }
 
 NMEA_INTERNAL void put_literal(nmea_writer *w, bool present, const char *literal)
 {
-    put_char(w, ',');
+    put_char(w, w->sep);
     if (present)
         put_str(w, literal);
 }
@@ -1110,14 +1352,20 @@ static const char *enum_code(const nmea_enum *e, const nmea_enum_def *def)
 
 NMEA_INTERNAL void put_enum(nmea_writer *w, const nmea_enum *e, const nmea_enum_def *def)
 {
-    put_char(w, ',');
+    put_char(w, w->sep);
     if (e->present)
         put_str(w, enum_code(e, def));
 }
 
+NMEA_INTERNAL void put_keyword(nmea_writer *w, const char *keyword)
+{
+    put_char(w, w->sep);
+    put_str(w, keyword);
+}
+
 NMEA_INTERNAL void put_text_field(nmea_writer *w, nmea_text t)
 {
-    put_char(w, ',');
+    put_char(w, w->sep);
     put_text(w, t);
 }
 
@@ -1276,6 +1524,31 @@ NMEA_INTERNAL void json_literal(nmea_writer *w, const char *key, bool present, c
         put_str(w, "null");
 }
 
+NMEA_INTERNAL void json_keyword(nmea_writer *w, const char *key, const char *keyword, bool values)
+{
+    (void)values;
+    json_key(w, key);
+    put_json_cstr(w, keyword);
+}
+
+/* One of the two words of a latitude or longitude (`part` 0: the number, 1: the hemisphere) in
+   the lossless fields of a text command. */
+NMEA_INTERNAL void json_coordinate_word(nmea_writer *w, const char *key, const nmea_coordinate *c, int part)
+{
+    json_key(w, key);
+    if (!c->present) {
+        put_str(w, "null");
+    } else if (part == 0) {
+        put_char(w, '"');
+        coordinate_text(w, c);
+        put_char(w, '"');
+    } else if (!c->hemisphere) {
+        put_str(w, "null");
+    } else {
+        put_json_str(w, text_span(&c->hemisphere, &c->hemisphere + 1), 0);
+    }
+}
+
 NMEA_INTERNAL void json_text(nmea_writer *w, const char *key, nmea_text t, bool values)
 {
     (void)values;
@@ -1324,14 +1597,9 @@ static void json_head(nmea_writer *w, nmea_text start, nmea_text address)
     put_json_str(w, address, 0);
 }
 
-/* A known sentence up to the opening brace of its fields. */
-NMEA_INTERNAL void json_begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence, const char *variant)
+/* The rest of a known sentence's head, up to the opening brace of its fields. */
+static void json_sentence_variant(nmea_writer *w, const char *sentence, const char *variant)
 {
-    put_str(w, "{\"ok\":true,\"start\":\"$\",\"address\":\"");
-    put_escaped_mem(w, talker.ptr, talker.len, 1);
-    put_str(w, sentence);
-    put_str(w, "\",\"talker\":");
-    put_json_str(w, talker, 0);
     put_str(w, ",\"sentence\":\"");
     put_str(w, sentence);
     put_str(w, "\",\"variant\":");
@@ -1342,12 +1610,65 @@ NMEA_INTERNAL void json_begin_sentence(nmea_writer *w, nmea_text talker, const c
     put_str(w, ",\"fields\":{");
 }
 
+/* A known standard sentence up to the opening brace of its fields. */
+NMEA_INTERNAL void json_begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence, const char *variant)
+{
+    put_str(w, "{\"ok\":true,\"start\":\"$\",\"address\":\"");
+    put_escaped_mem(w, talker.ptr, talker.len, 1);
+    put_str(w, sentence);
+    put_str(w, "\",\"talker\":");
+    put_json_str(w, talker, 0);
+    json_sentence_variant(w, sentence, variant);
+}
+
+/* A proprietary sentence ("start" "$" or "" for a text command, no talker) up to the opening
+   brace of its fields. */
+NMEA_INTERNAL void json_begin_proprietary(nmea_writer *w, const char *start, nmea_text address, const char *sentence,
+                                          const char *variant)
+{
+    json_head(w, nmea_text_of(start), address);
+    put_str(w, ",\"talker\":null");
+    json_sentence_variant(w, sentence, variant);
+}
+
+/* The address a text command shows: its word as received when it is written back as received
+   (`sentence` wrote it), else the spec's. */
+NMEA_INTERNAL nmea_text text_address(const nmea_writer *sentence, nmea_text as_received, const char *address)
+{
+    if (sentence->matched)
+        return text_span(as_received.ptr, as_received.ptr + strlen(address));
+    return nmea_text_of(address);
+}
+
+/* The lossless fields of a text command written back as received: each word as written, paired
+   with the field ids in order (`ids`, `count` of them). */
+NMEA_INTERNAL void json_words(nmea_writer *w, const char *const *ids, size_t count, nmea_text line)
+{
+    const char *p = line.ptr, *end = line.ptr + line.len, *space;
+    size_t i;
+    p = memchr(p, ' ', line.len);
+    for (i = 0; p && i < count; i++) {
+        p++;
+        space = memchr(p, ' ', (size_t)(end - p));
+        json_key(w, ids[i]);
+        if (p == (space ? space : end))
+            put_str(w, "null");
+        else
+            put_json_str(w, text_span(p, space ? space : end), 0);
+        p = space;
+    }
+}
+
 /* ,"checksum":"HH"} with the checksum `sum` the sentence is written with. */
 static void json_checksum(nmea_writer *w, unsigned char sum, nmea_checksum_style style)
 {
     put_str(w, ",\"checksum\":");
     if (style == NMEA_CHECKSUM_NONE) {
         put_str(w, "null}");
+        return;
+    }
+    if (style == NMEA_CHECKSUM_EMPTY) {
+        put_str(w, "\"\"}");
         return;
     }
     put_char(w, '"');
@@ -1393,7 +1714,11 @@ typedef struct {
     const char *end;
 } nmea_json;
 
-#define JSON_MAX_DEPTH 1024
+/* How deep arrays and objects may nest: as deep as the Python reference's json.loads goes before
+   its recursion limit, which leaves `encode` 990 levels and its check whether a line is a failure
+   (one call shallower) 991. Deeper JSON is "not JSON". */
+#define JSON_MAX_DEPTH 991
+#define JSON_ENCODE_DEPTH 990
 
 static const char *json_ws(const char *p, const char *end)
 {
@@ -1502,10 +1827,10 @@ static const char *json_number_end(const char *p, const char *end)
 
 /* Whether `len` bytes are one JSON value (as Python's json.loads takes it, NaN and Infinity
    included); *root is the value without the surrounding white space. */
-static bool json_parse(const char *text, size_t len, nmea_json *root)
+static bool json_parse(const char *text, size_t len, size_t max_depth, nmea_json *root)
 {
     const char *p = text, *end = text + len;
-    unsigned char stack[JSON_MAX_DEPTH / 8] = {0};
+    unsigned char stack[(JSON_MAX_DEPTH + 7) / 8] = {0};
     size_t depth = 0;
     bool object;
 
@@ -1516,7 +1841,7 @@ static bool json_parse(const char *text, size_t len, nmea_json *root)
         if (p >= end)
             return false;
         if (*p == '{' || *p == '[') {
-            if (depth == JSON_MAX_DEPTH)
+            if (depth >= max_depth || depth >= JSON_MAX_DEPTH)
                 return false;
             object = *p == '{';
             if (object)
@@ -1701,6 +2026,12 @@ static bool json_string(nmea_json v, nmea_scratch *s, nmea_text *out, bool *wide
     return true;
 }
 
+/* The inside of a JSON string value, between its quotes. */
+static nmea_text json_inside(nmea_json v)
+{
+    return text_span(v.p + 1, v.end - 1);
+}
+
 static bool bad_json(nmea_error *err, const char *pattern, const char *key)
 {
     fail(err, NMEA_ERR_BAD_JSON, pattern);
@@ -1739,19 +2070,65 @@ static bool json_text_member(nmea_json obj, const char *key, bool nullable, nmea
     return true;
 }
 
-/* How a received checksum was written: none, lower case (when it has a lower-case letter, as
-   Python's str.upper() sees it) or upper case. */
-static nmea_checksum_style checksum_case(nmea_text t, bool present)
+/* Whether Python's str.upper() changes the character `cp` (CASED_RUNS, generated from the
+   reference's Unicode data, lists those above 0xFF). */
+static bool changes_in_upper_case(long cp)
 {
-    size_t i;
-    if (!present)
-        return NMEA_CHECKSUM_NONE;
-    for (i = 0; i < t.len; i++) {
-        unsigned char c = (unsigned char)t.ptr[i];
-        if ((c >= 'a' && c <= 'z') || c == 0xB5 || (c >= 0xDF && c != 0xF7))
-            return NMEA_CHECKSUM_LOWER;
+    size_t lo = 0, hi = sizeof CASED_RUNS / sizeof CASED_RUNS[0];
+    if (cp <= 0xFF)
+        return (cp >= 'a' && cp <= 'z') || cp == 0xB5 || (cp >= 0xDF && cp != 0xF7);
+    while (lo < hi) { /* the last run starting at or below cp */
+        size_t mid = (lo + hi) / 2;
+        if (CASED_RUNS[mid][0] <= (unsigned long)cp)
+            lo = mid + 1;
+        else
+            hi = mid;
     }
-    return NMEA_CHECKSUM_UPPER;
+    return lo > 0 && (unsigned long)cp <= CASED_RUNS[lo - 1][1]
+        && ((unsigned long)cp - CASED_RUNS[lo - 1][0]) % CASED_RUNS[lo - 1][2] == 0;
+}
+
+/* How the "checksum" of decode's JSON says to write the checksum: null (none), "" (a bare '*'),
+   lower case (when the text has a character str.upper() changes) or upper case. */
+static bool json_checksum_style(nmea_json root, nmea_checksum_style *style, nmea_error *err)
+{
+    nmea_json v;
+    const char *p;
+    long cp;
+    if (!json_require(root, "checksum", &v, err))
+        return false;
+    if (json_is_null(v)) {
+        *style = NMEA_CHECKSUM_NONE;
+        return true;
+    }
+    if (!json_is(v, '"'))
+        return bad_json(err, "\"%s\" is not a string or null", "checksum");
+    *style = v.end - v.p == 2 ? NMEA_CHECKSUM_EMPTY : NMEA_CHECKSUM_UPPER;
+    for (p = v.p + 1; json_char_at(&p, v.end, &cp);)
+        if (changes_in_upper_case(cp))
+            *style = NMEA_CHECKSUM_LOWER;
+    return true;
+}
+
+/* A member that must be a string of ASCII letters and digits (an address, a talker ID, a command
+   word), copied to the scratch buffer. */
+static bool json_word_member(nmea_json obj, const char *key, nmea_scratch *s, nmea_text *out, nmea_error *err)
+{
+    nmea_json v;
+    size_t i;
+    bool wide;
+    if (!json_require(obj, key, &v, err))
+        return false;
+    if (!json_is(v, '"'))
+        return bad_json(err, "\"%s\" is not letters and digits", key);
+    if (!json_string(v, s, out, &wide))
+        return scratch_full(err);
+    for (i = 0; i < out->len; i++)
+        if (!is_alnum(out->ptr[i]))
+            wide = true;
+    if (wide || !out->len)
+        return bad_json(err, "\"%s\" is not letters and digits", key);
+    return true;
 }
 
 /* Collecting wire fields from the `fields` of decode's JSON: each text is checked and appended
@@ -1780,9 +2157,10 @@ static bool collect_text(nmea_collector *c, nmea_json v)
     if (!json_string(v, c->scratch, &t, &wide))
         return scratch_full(c->err);
     for (i = 0; i < t.len; i++) {
-        if (!is_printable(t.ptr[i]) || t.ptr[i] == ',' || t.ptr[i] == '*') {
+        if (wide || !is_printable(t.ptr[i]) || t.ptr[i] == ',' || t.ptr[i] == '*') {
             bad_json(c->err, "field text %q holds ',', '*' or a byte outside printable ASCII", NULL);
-            c->err->text = t;
+            c->err->text = json_inside(v);
+            c->err->text_json = true;
             return false;
         }
     }
@@ -1842,6 +2220,163 @@ static nmea_text collected(const nmea_collector *c)
 bool nmea_json_is_failure(const char *json, size_t len)
 {
     nmea_json root, ok;
-    return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
+    return json_parse(json, len, JSON_MAX_DEPTH, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
         && memcmp(ok.p, "false", 5) == 0;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Configuration parameter tables: the wire text of a value (Parameter.encode of the Python
+   runtime). */
+
+const nmea_parameter *nmea_param_find(const nmea_parameter *table, size_t count, unsigned number)
+{
+    size_t i;
+    for (i = 0; i < count; i++)
+        if (table[i].number == number)
+            return &table[i];
+    return NULL;
+}
+
+static bool param_refuse(const nmea_parameter *p, const char *pattern, nmea_error *err)
+{
+    fail(err, NMEA_ERR_BAD_VALUE, pattern);
+    err->num[0] = p->number;
+    err->str[0] = p->id;
+    return false;
+}
+
+static bool param_encoding(const nmea_parameter *p, nmea_param_encoding encoding, nmea_error *err)
+{
+    static const char *const NAMES[] = {"hex", "decimal", "decimal_list", "text"};
+    if (p->encoding == encoding)
+        return true;
+    param_refuse(p, "parameter %n (%s) is written as %s", err);
+    err->str[1] = (unsigned)p->encoding < 4 ? NAMES[p->encoding] : "?";
+    return false;
+}
+
+/* value * 10^-scale within the parameter's range. */
+static bool param_in_range(const nmea_parameter *p, int64_t value, unsigned scale, nmea_error *err)
+{
+    if (p->range.has_min && compare_fixed(value, scale, p->range.min, p->range.min_scale) < 0)
+        return param_refuse(p, "parameter %n (%s): the value is below its minimum", err);
+    if (p->range.has_max && compare_fixed(value, scale, p->range.max, p->range.max_scale) > 0)
+        return param_refuse(p, "parameter %n (%s): the value is above its maximum", err);
+    return true;
+}
+
+static size_t param_finish(nmea_writer *w, nmea_error *err)
+{
+    size_t n = writer_finish(w);
+    if (n == 0 && w->len) {
+        fail(err, NMEA_ERR_TOO_LONG, "the text needs %n bytes and a NUL, the buffer holds %n");
+        err->num[0] = w->len;
+        err->num[1] = w->cap;
+    }
+    return n;
+}
+
+size_t nmea_param_hex(const nmea_parameter *p, uint64_t value, char *buf, size_t cap, nmea_error *err)
+{
+    nmea_writer w = writer_of(buf, cap);
+    nmea_hex h;
+    if (!param_encoding(p, NMEA_PARAM_HEX, err))
+        return writer_finish(&w);
+    if (value > (uint64_t)INT64_MAX) { /* above any bound an int64_t holds */
+        if (p->range.has_max) {
+            param_refuse(p, "parameter %n (%s): the value is above its maximum", err);
+            return writer_finish(&w);
+        }
+    } else if (!param_in_range(p, (int64_t)value, 0, err)) {
+        return writer_finish(&w);
+    }
+    if (p->size && p->size < 8 && value >> (8 * p->size)) {
+        param_refuse(p, "parameter %n (%s): the value does not fit %n byte(s)", err);
+        err->num[1] = p->size;
+        return writer_finish(&w);
+    }
+    h.value = value;
+    h.digits = 1;
+    h.lower = false;
+    h.present = true;
+    hex_text(&w, &h);
+    return param_finish(&w, err);
+}
+
+/* value * 10^-scale with `scale` decimals. */
+static void param_number(nmea_writer *w, int64_t value, unsigned scale)
+{
+    uint64_t magnitude = value < 0 ? (uint64_t)0 - (uint64_t)value : (uint64_t)value;
+    uint64_t unit = (uint64_t)POW10[scale];
+    if (value < 0)
+        put_char(w, '-');
+    put_uint(w, magnitude / unit, 1);
+    if (scale) {
+        put_char(w, '.');
+        put_uint(w, magnitude % unit, scale);
+    }
+}
+
+static bool param_scale(const nmea_parameter *p, unsigned scale, nmea_error *err)
+{
+    if (scale <= NMEA_MAX_DIGITS)
+        return true;
+    return param_refuse(p, "parameter %n (%s): more than 18 decimals", err);
+}
+
+size_t nmea_param_decimal(const nmea_parameter *p, int64_t value, unsigned scale, char *buf, size_t cap,
+                          nmea_error *err)
+{
+    nmea_writer w = writer_of(buf, cap);
+    if (!param_encoding(p, NMEA_PARAM_DECIMAL, err) || !param_scale(p, scale, err)
+        || !param_in_range(p, value, scale, err))
+        return writer_finish(&w);
+    param_number(&w, value, scale);
+    return param_finish(&w, err);
+}
+
+size_t nmea_param_decimal_list(const nmea_parameter *p, const int64_t *values, size_t n, unsigned scale, char *buf,
+                               size_t cap, nmea_error *err)
+{
+    nmea_writer w = writer_of(buf, cap);
+    size_t i;
+    if (!param_encoding(p, NMEA_PARAM_DECIMAL_LIST, err) || !param_scale(p, scale, err))
+        return writer_finish(&w);
+    if (p->count && n != p->count) {
+        param_refuse(p, "parameter %n (%s): expected %n values, got %n", err);
+        err->num[1] = p->count;
+        err->num[2] = n;
+        return writer_finish(&w);
+    }
+    for (i = 0; i < n; i++)
+        if (!param_in_range(p, values[i], scale, err))
+            return writer_finish(&w);
+    for (i = 0; i < n; i++) {
+        if (i)
+            put_char(&w, ',');
+        param_number(&w, values[i], scale);
+    }
+    return param_finish(&w, err);
+}
+
+size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, size_t cap, nmea_error *err)
+{
+    nmea_writer w = writer_of(buf, cap);
+    size_t i, n = strlen(text);
+    if (!param_encoding(p, NMEA_PARAM_TEXT, err))
+        return writer_finish(&w);
+    if (p->max_length && n > p->max_length) {
+        param_refuse(p, "parameter %n (%s): text longer than %n", err);
+        err->num[1] = p->max_length;
+        return writer_finish(&w);
+    }
+    for (i = 0; i < n; i++) {
+        if (!is_printable(text[i]) || strchr(",*$!", text[i])) {
+            param_refuse(p, "parameter %n (%s): text holds ',', '*', '$', '!' or a byte outside printable ASCII",
+                         err);
+            return writer_finish(&w);
+        }
+    }
+    put_str(&w, text);
+    return param_finish(&w, err);
 }

@@ -35,7 +35,8 @@ nmea_text nmea_text_of(const char *s);
 typedef enum {
     NMEA_CHECKSUM_UPPER = 0, /* "*6A" (also the style of an all-digit checksum) */
     NMEA_CHECKSUM_LOWER,     /* "*6a" */
-    NMEA_CHECKSUM_NONE       /* no checksum at all */
+    NMEA_CHECKSUM_NONE,      /* no checksum at all */
+    NMEA_CHECKSUM_EMPTY      /* a bare '*': the checksum left out, as ST's manual writes commands */
 } nmea_checksum_style;
 
 /**
@@ -56,6 +57,22 @@ typedef struct {
 /** The value of `n` in units of 10^-scale (truncated toward zero), e.g. scale 3 for
     thousandths. Digits beyond the int64 range are not checked for: keep scale small. */
 int64_t nmea_number_scaled(const nmea_number *n, unsigned scale);
+
+/** The number value * 10^-scale written the plain way (no leading zeros, no '+', `scale`
+    decimals), for a struct to build: nmea_number_of(1201, 0) is "1201", (-5, 1) is "-0.5".
+    `scale` is at most NMEA_MAX_DIGITS. */
+nmea_number nmea_number_of(int64_t value, unsigned scale);
+
+/** An inclusive value range (integer and decimal fields, table parameters): min * 10^-min_scale
+    to max * 10^-max_scale, each bound only when has_min / has_max. */
+typedef struct {
+    bool has_min;
+    bool has_max;
+    int64_t min;
+    uint8_t min_scale;
+    int64_t max;
+    uint8_t max_scale;
+} nmea_range;
 
 /** An unsigned hexadecimal number; the digit count and the letter case are kept. */
 typedef struct {
@@ -128,6 +145,10 @@ typedef struct {
     bool present;
 } nmea_enum;
 
+/** A known value of a lookup table, for a struct to build (`value` one of its C enum
+    constants). */
+nmea_enum nmea_enum_of(const nmea_enum_def *def, int value);
+
 /** The spec id of an enum value ("gps"), or NULL when it is empty or unknown. */
 const char *nmea_enum_id(const nmea_enum_def *def, const nmea_enum *e);
 
@@ -144,7 +165,8 @@ typedef enum {
     NMEA_ERR_TOO_FEW_FIELDS,
     NMEA_ERR_TOO_MANY_FIELDS,
     NMEA_ERR_BAD_FIELD,
-    NMEA_ERR_BAD_JSON
+    NMEA_ERR_BAD_JSON,
+    NMEA_ERR_BAD_VALUE /* a value a parameter table refuses (nmea_param_*); never printed by the tools */
 } nmea_error_kind;
 
 /** "too_long", "bad_field", ... */
@@ -153,7 +175,8 @@ const char *nmea_error_kind_name(nmea_error_kind kind);
 /**
  * Why a line was rejected. The message is not stored as text: it is rendered on demand by
  * nmea_error_message / nmea_error_to_json from a static pattern and the parts below, so the
- * struct stays small. `address` (and `text`) point into the parsed line or JSON scratch buffer.
+ * struct stays small. `address` (and `text`) point into the parsed line or JSON scratch buffer
+ * (or at the spec's address of a proprietary sentence).
  */
 typedef struct {
     nmea_error_kind kind;
@@ -166,8 +189,9 @@ typedef struct {
     const char *name;           /* and the field id (or NULL when no field is at fault) */
     const char *pattern;        /* the message, with %-directives for the parts below */
     nmea_text text;
+    bool text_json;             /* `text` is the inside of a JSON string, escapes and all */
     const char *str[2];
-    size_t num[2];
+    size_t num[3];
 } nmea_error;
 
 /** The message ("checksum is 40, computed 6C"); returns its length (0 when it does not fit). */
@@ -201,3 +225,52 @@ nmea_text nmea_generic_field(const nmea_generic *g, size_t index);
 /** Whether a line of decode's JSON output is an object whose "ok" is false (encode skips
     those lines). */
 bool nmea_json_is_failure(const char *json, size_t len);
+
+/* ------------------------------------------------------------------------------------------ */
+/* Configuration parameter tables (spec/tables): the wire text of a value. */
+
+/** How a parameter's value is written on the wire. */
+typedef enum {
+    NMEA_PARAM_HEX,          /* upper-case hex digits without 0x */
+    NMEA_PARAM_DECIMAL,      /* a decimal number */
+    NMEA_PARAM_DECIMAL_LIST, /* `count` decimal numbers separated by ',' */
+    NMEA_PARAM_TEXT          /* printable ASCII without ',', '*', '$' or '!' */
+} nmea_param_encoding;
+
+/** One parameter of a receiver's configuration table; what the table leaves out is 0, NULL or
+    an unset bound. */
+typedef struct {
+    unsigned number;             /* the parameter ID on the wire */
+    const char *id;
+    const char *name;
+    nmea_param_encoding encoding;
+    uint8_t size;                /* bytes in the block, or 0 */
+    uint8_t count;               /* values of a decimal list, or 0 */
+    nmea_range range;            /* allowed values */
+    uint8_t max_length;          /* longest text, or 0 */
+    const char *default_value;   /* as the table writes it, or NULL */
+    const char *unit;            /* or NULL */
+    const nmea_enum_def *values; /* the lookup table of its values, or NULL */
+    const char *bitfield;        /* the bitfield naming its bits (nmea_<bitfield>_<bits>()), or NULL */
+} nmea_parameter;
+
+/** The parameter with this number in a table of `count` parameters, or NULL. */
+const nmea_parameter *nmea_param_find(const nmea_parameter *table, size_t count, unsigned number);
+
+/*
+ * The wire text of a parameter value, written to `buf` (NUL-terminated) the way the receiver
+ * reads it; returns its length. A value the parameter refuses (out of range, too wide for its
+ * size, wrong count, bad text, or a function for another encoding) returns 0 and fills `err`
+ * (kind NMEA_ERR_BAD_VALUE), as does a buffer too small (kind NMEA_ERR_TOO_LONG). An empty text
+ * is the one accepted value whose length is 0 (`err` is then left alone).
+ * - hex: upper-case digits ("84356");
+ * - decimal: value * 10^-scale, written with `scale` decimals ("-12.50" for -1250, scale 2);
+ * - decimal list: `n` such numbers separated by ',';
+ * - text: the text itself.
+ */
+size_t nmea_param_hex(const nmea_parameter *p, uint64_t value, char *buf, size_t cap, nmea_error *err);
+size_t nmea_param_decimal(const nmea_parameter *p, int64_t value, unsigned scale, char *buf, size_t cap,
+                          nmea_error *err);
+size_t nmea_param_decimal_list(const nmea_parameter *p, const int64_t *values, size_t n, unsigned scale, char *buf,
+                               size_t cap, nmea_error *err);
+size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, size_t cap, nmea_error *err);

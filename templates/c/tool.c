@@ -21,7 +21,7 @@
 /* The tool's buffers: a line being assembled across reads, the output being gathered. */
 static char input[CHUNK];
 static char pending[ENCODE_MAX];
-static char scratch[ENCODE_MAX];
+static char scratch[2 * ENCODE_MAX]; /* a text command needs its texts twice */
 static char output[4 * ENCODE_MAX + NMEA_JSON_MAX + 1];
 
 typedef struct {
