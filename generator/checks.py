@@ -103,6 +103,12 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
         report(sentence.origin, "S003", f"vendor {sentence.vendor!r} is not a manual id", "vendor")
     if sentence.framing == "text" and not (sentence.address or "").isalpha():
         report(sentence.origin, "S010", "a text command's address is its command word: letters only", "address")
+    if sentence.framing == "text":
+        for layout in sentence.layouts:
+            for item in layout.items:
+                if isinstance(item, Group) or item.wire_width != 1:
+                    report(item.origin, "S015", "a text command's fields are single words: no groups, no "
+                           "latitude or longitude", "id")
     if sentence.reply_ids and sentence.kind != "command":
         report(sentence.origin, "S011", "only commands have replies", "replies")
     sentence.replies = []
@@ -257,6 +263,8 @@ def _resolve_field(spec: Spec, f: Field, manual_ids: set[str], report: _Reporter
             report(f.origin, "S012", f"field {f.id}: a bitfield applies to hex and integer fields", "bitfield")
     if f.type == "keyword" and not (f.value or "").strip():
         report(f.origin, "S007", f"keyword field {f.id} needs its word in `value`", "value")
+    if f.type == "keyword" and f.value and f.value != f.value.upper():
+        report(f.origin, "S015", f"keyword field {f.id}: write the word in upper case", "value")
     if f.enum_id is not None:
         f.enum = spec.enum_by_id.get(f.enum_id)
         if f.enum is None:

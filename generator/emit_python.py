@@ -24,7 +24,7 @@ def py_type(f: Field) -> str:
         assert f.enum is not None
         base = f"{f.enum.camel} | str" if f.type == "enum" else f"list[{f.enum.camel} | str]"
     if f.type == "keyword":
-        return base
+        return base + (" | rt._Absent" if f.is_optional else "")
     return base + " | None" + (" | rt._Absent" if f.is_optional else "")
 
 

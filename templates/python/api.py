@@ -189,8 +189,10 @@ def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum:
 def encode_json(line: str) -> str:
     """`encode`'s output for one line of `decode` output: the sentence, or the error as JSON."""
     try:
+        if runtime.json_too_deep(line):
+            raise ValueError("too deep")
         obj = json.loads(line)
-    except (ValueError, RecursionError):
+    except ValueError:
         return runtime.bad_json("not JSON").to_json()
     try:
         return from_json(obj).to_sentence()

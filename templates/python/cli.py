@@ -10,6 +10,7 @@ import json
 import sys
 
 from . import decode_json, encode_json
+from .runtime import json_too_deep
 from .stream import json_lines
 
 USAGE = ("usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] | encode\n"
@@ -41,9 +42,9 @@ def main(argv: list[str] | None = None) -> int:
     if verb == "encode" and not flags:
         for line in lines(sys.stdin.buffer.read()):
             try:
-                if json.loads(line).get("ok") is False:
+                if not json_too_deep(line) and json.loads(line).get("ok") is False:
                     continue
-            except (ValueError, AttributeError, RecursionError):
+            except (ValueError, AttributeError):
                 pass
             sys.stdout.buffer.write(encode_json(line).encode("latin-1") + b"\n")
         return 0

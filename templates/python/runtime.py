@@ -484,6 +484,33 @@ def split_group(address: str, sentence: str, group: str, count: int, fixed: int,
     return repeats, extra
 
 
+MAX_JSON_DEPTH: Final = 500
+"""Deepest nesting of arrays and objects `encode` reads; deeper input is "not JSON" in every tool."""
+
+
+def json_too_deep(text: str) -> bool:
+    """Whether `text` opens more than MAX_JSON_DEPTH arrays and objects at once (outside strings)."""
+    depth = 0
+    in_string = escaped = False
+    for ch in text:
+        if in_string:
+            if escaped:
+                escaped = False
+            elif ch == "\\":
+                escaped = True
+            elif ch == '"':
+                in_string = False
+        elif ch == '"':
+            in_string = True
+        elif ch in "[{":
+            depth += 1
+            if depth > MAX_JSON_DEPTH:
+                return True
+        elif ch in "]}":
+            depth -= 1
+    return False
+
+
 def decode_json_line(line: str) -> Any:
     """Parse one line of `decode` output (the tools' own JSON, nothing more general)."""
     import json
