@@ -38,10 +38,8 @@ def input_lines(data: bytes) -> list[bytes]:
     return [p[:-1] if p.endswith(b"\r") else p for p in parts]
 
 
-@lru_cache(maxsize=None)
-def decode_all(data: bytes, values: bool = False) -> bytes:
-    """decode's output, after checking that the three tools agree byte for byte."""
-    args = ["decode", "--values"] if values else ["decode"]
+def agreed(args: list[str], data: bytes) -> bytes:
+    """The output of `args`, after checking that the three tools agree byte for byte."""
     outputs = {tool: run(tool, args, data) for tool in TOOLS}
     reference = outputs[TOOLS[0]]
     for tool, out in outputs.items():
@@ -49,10 +47,16 @@ def decode_all(data: bytes, values: bool = False) -> bytes:
             a, b = reference.split(b"\n"), out.split(b"\n")
             diff = next(i for i in range(max(len(a), len(b))) if i >= len(a) or i >= len(b) or a[i] != b[i])
             line = input_lines(data)[diff] if diff < len(input_lines(data)) else b"(end)"
-            pytest.fail(f"{TOOLS[0]} and {tool} disagree on line {diff + 1}: {line[:200]!r}\n"
+            pytest.fail(f"{TOOLS[0]} and {tool} disagree ({' '.join(args)}) on line {diff + 1}: {line[:200]!r}\n"
                         f"{TOOLS[0]}: {a[diff][:400] if diff < len(a) else b'(none)'!r}\n"
                         f"{tool}: {b[diff][:400] if diff < len(b) else b'(none)'!r}")
     return reference
+
+
+@lru_cache(maxsize=None)
+def decode_all(data: bytes, values: bool = False) -> bytes:
+    """decode's output, after checking that the three tools agree byte for byte."""
+    return agreed(["decode", "--values"] if values else ["decode"], data)
 
 
 def check_stream(data: bytes) -> list[dict]:
@@ -135,3 +139,37 @@ def test_real_logs(path: Path) -> None:
 
 def test_corpus_present() -> None:
     assert len(CORPUS_FILES) > 50, f"expected the real logs in {CORPUS}"
+
+
+STREAM_CASES = Path(__file__).with_name("stream_cases.bin")
+REGRESSIONS = ROOT / "fuzz" / "regressions"
+
+
+def test_stream_verb() -> None:
+    """stream frames garbage, cut lines, sentences run together, bare CRs and overlong lines the
+    same way in the three tools, with and without --lenient."""
+    data = STREAM_CASES.read_bytes() + EDGE_CASES.read_bytes()
+    items = agreed(["stream"], data).split(b"\n")[:-1]
+    assert len(items) > 20
+    agreed(["stream", "--values", "--lenient"], data)
+    agreed(["stream", "--require-checksum"], data)
+
+
+def test_lenient_and_required_checksum() -> None:
+    data = EDGE_CASES.read_bytes()
+    lenient = agreed(["decode", "--lenient"], data)
+    assert b'"problems":[' in lenient
+    kept = b"".join(line + b"\n" for line in lenient.split(b"\n") if line.startswith(b'{"ok":true'))
+    back = agreed(["encode"], kept).split(b"\n")[:-1]
+    originals = [line for line, out in zip(input_lines(data), lenient.split(b"\n")) if out.startswith(b'{"ok":true')]
+    assert back == originals, "lenient decoding must round-trip exactly"
+    assert b"missing_checksum" in agreed(["decode", "--require-checksum"], data)
+
+
+def test_fuzz_regressions() -> None:
+    """Every input a fuzzer ever found a problem with, through the three tools."""
+    for path in sorted(REGRESSIONS.glob("*")):
+        if path.is_file() and path.stat().st_size:
+            data = path.read_bytes()
+            check_stream(data)
+            agreed(["stream", "--lenient"], data)
