@@ -1,6 +1,7 @@
 """Rust emitter: the crate `nmeaspec` (no dependencies, `#![no_std]` unless the `std` feature is
-on) with a struct, parser and serializer per sentence layout over the hand-written runtime in
-templates/rust/runtime, the `nmea-rs` tool and a test over the manuals' examples."""
+on) with a struct, parser, serializer and command builder per sentence layout over the
+hand-written runtime in templates/rust/runtime, the bitfields and parameter tables, the `nmea-rs`
+tool and a test over the manuals' examples."""
 
 from __future__ import annotations
 
@@ -13,10 +14,10 @@ import jinja2
 
 from . import emit_vectors
 from .emit import TEMPLATES, header
-from .model import EnumDef, Field, Group, Layout, Sentence, Spec, camel, fmt_num
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fmt_num
 
 CRATE = "nmeaspec"
-RUNTIME_MODULES = ["mod", "error", "frame", "layout", "types", "write", "json"]
+RUNTIME_MODULES = ["mod", "error", "frame", "layout", "table", "types", "write", "json"]
 
 # Expected texts the runtime's readers hold for the types whose description is fixed.
 FIXED_EXPECTED = {
@@ -36,14 +37,16 @@ KEYWORDS = {
     "gen",
 }
 
-# Names a layout struct already uses for its own members.
-RESERVED_FIELDS = {"talker", "trailing", "checksum"}
+# Names a layout struct already uses for its own members (checks.py reserves them for every
+# language; asserted here too).
+RESERVED_FIELDS = {"talker", "trailing", "checksum", "as_received"}
 
 # Names the sentence modules import from the runtime; generated type names must differ.
 RUNTIME_NAMES = {
     "Bound", "Checksum", "Code", "CodeChars", "Coordinate", "Date", "Error", "Fields", "Group", "Hex",
     "JsonFields", "Layout", "Name", "Number", "Range", "Reader", "Shape", "GroupShape", "Time", "WireWriter",
-    "Sentence", "Generic", "LayoutId", "Frame", "Option", "Result", "Self",
+    "Sentence", "Generic", "LayoutId", "Frame", "Option", "Result", "Self", "Framing", "Kind", "Parameter",
+    "Table", "Encoding", "Texts",
 }
 
 
@@ -125,6 +128,18 @@ def borrows(f: Field) -> bool:
     return f.type in ("literal", "text", "enum", "enum_chars")
 
 
+def is_text(sentence: Sentence) -> bool:
+    return sentence.framing == "text"
+
+
+def framing_expr(sentence: Sentence) -> str:
+    """The layout's `Framing` constant."""
+    if not sentence.is_proprietary:
+        return "Framing::Standard"
+    kind = "Text" if is_text(sentence) else "Proprietary"
+    return f"Framing::{kind}({rust_str(sentence.address or '')})"
+
+
 def bound(value: float) -> str:
     number = Decimal(fmt_num(value))
     sign, digits, exponent = number.as_tuple()
@@ -166,6 +181,9 @@ def read_call(f: Field) -> tuple[str, list[str]]:
         return "f.literal", [name, rust_str(f.expected), rust_str(f.value or "")]
     if t == "text":
         return "f.text", [name, rust_str(f.expected), max_len(f.max_length)]
+    if t == "keyword":
+        assert f.expected == f.value
+        return "f.keyword", [name, rust_str(f.value or "")]
     assert f.enum is not None
     if t == "enum":
         assert f.expected == enum_expected(f.enum, False)
@@ -247,6 +265,44 @@ def fmt_option(indent: int, key: str, value: str | None) -> list[str]:
     return [f"{pad}{key}: Some(", f"{pad}    {value},", f"{pad}),"]
 
 
+def fmt_arm(indent: int, pattern: str, value: str) -> list[str]:
+    """A match arm `pattern => value,` as rustfmt writes it: on one line, else the value in a
+    block, else a `.map(…)` chain broken before the `.map`, else a call's one argument on its own
+    line."""
+    pad = " " * indent
+    one = f"{pad}{pattern} => {value},"
+    if len(one) <= WIDTH:
+        return [one]
+    if len(pad) + 4 + len(value) <= WIDTH:
+        return [f"{pad}{pattern} => {{", f"{pad}    {value}", f"{pad}}}"]
+    if ").map(" in value:
+        call, _, rest = value.partition(").map(")
+        return [f"{pad}{pattern} => {call})", f"{pad}    .map({rest},"]
+    callee, _, arg = value.partition("(")
+    return [f"{pad}{pattern} => {callee}(", f"{pad}    {arg[:-1]},", f"{pad}),"]
+
+
+def fmt_const_slice(indent: int, decl: str, items: list[str]) -> list[str]:
+    """`decl = &[items];`: on one line, else the slice on the next line, else one item per line."""
+    lines = fmt_const(indent, decl, "&[" + ", ".join(items) + "]")
+    if all(len(line) <= WIDTH for line in lines):
+        return lines
+    return fmt_slice(indent, f"{decl} = ", items, ";")
+
+
+def fmt_slice(indent: int, head: str, items: list[str], suffix: str) -> list[str]:
+    """`head&[items]suffix` (a match arm, a return), one item per line when it does not fit (a
+    match arm's body goes into a block first, when it fits there)."""
+    pad = " " * indent
+    body = f"&[{', '.join(items)}]"
+    one = f"{pad}{head}{body}{suffix}"
+    if len(one) <= WIDTH:
+        return [one]
+    if head.endswith("=> ") and suffix == "," and len(pad) + 4 + len(body) <= WIDTH:
+        return [f"{pad}{head}{{", f"{pad}    {body}", f"{pad}}}"]
+    return [f"{pad}{head}&[", *[f"{pad}    {i}," for i in items], f"{pad}]{suffix}"]
+
+
 def fmt_tuple(indent: int, items: list[str], suffix: str) -> list[str]:
     pad = " " * indent
     one = f"{pad}({', '.join(items)}){suffix}"
@@ -318,7 +374,7 @@ def placeholders(f: Field) -> list[str]:
         return parts if len(parts) == 2 else [parts[0], "a"]
     if f.format:
         return [f.format]
-    if t == "literal":
+    if t in ("literal", "keyword"):
         return [f.value or "a"]
     if t == "enum":
         assert f.enum is not None
@@ -352,10 +408,14 @@ def diagram(sentence: Sentence, layout: Layout) -> list[str]:
         for text in placeholders(item):
             parts.append((index, text))
             index += 1
+    if is_text(sentence):
+        head, sep, tail = sentence.address or "", " ", ""
+    else:
+        head, sep, tail = (f"${sentence.address}" if sentence.is_proprietary else f"$--{sentence.id}"), ",", "*hh"
     if not parts:
-        return [f"$--{sentence.id}*hh"]
-    prefix = f"$--{sentence.id},"
-    line = prefix + ",".join(text for _, text in parts) + "*hh"
+        return [head + tail]
+    prefix = head + sep
+    line = prefix + sep.join(text for _, text in parts) + tail
     columns = []
     at = len(prefix)
     for label, text in parts:
@@ -406,7 +466,7 @@ def field_view(f: Field, indent: int, prefix: str, suffix: str, next_line: bool)
         "type": f"Option<{base_type(f)}>",
         "read": fmt_call(indent, prefix, callee, args, suffix, next_line),
         "width": f.wire_width,
-        "doc": field_doc(f),
+        "doc": field_doc(f) + bits_doc(f),
     }
 
 
@@ -422,6 +482,7 @@ def entry_read(fields: list[dict]) -> list[str]:
 
 def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     name = sentence.layout_camel(layout)
+    text = is_text(sentence)
     items: list[dict] = []
     entries: list[dict] = []
     optional_wire = 0
@@ -429,7 +490,19 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     for item in layout.items:
         if isinstance(item, Group):
             g = item
-            if g.single:
+            assert not text, f"{sentence.id}: a text command cannot have a repeated group ({g.id})"
+            assert all(f.type != "keyword" for f in g.fields), f"{sentence.id}: keyword in group {g.id}"
+            if g.single and g.fields[0].type == "text":
+                # Kept as the wire text: a struct stays small whatever the group's maximum.
+                f = g.fields[0]
+                read = fmt_call(8, f"out.{ident(g.id)} = ", "f.texts",
+                                [rust_str(g.id), rust_str(f.id), "repeats", rust_str(f.expected), max_len(f.max_length)],
+                                "?;", True)
+                items.append({"kind": "texts", "group": g, "ident": ident(g.id), "read": read, "optional": None,
+                              "type": "Texts<'a>", "width": 1,
+                              "doc": doc_lines(f"{g.name}: {g.min} to {g.max} values of {f.name.lower()}, as "
+                                               f"received: {f.doc}", 92)})
+            elif g.single:
                 f = g.fields[0]
                 callee, args = read_call(f)
                 read = fmt_group_read(8, ident(g.id), rust_str(g.id), callee, args)
@@ -437,7 +510,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 items.append({"kind": "values", "group": g, "ident": ident(g.id), "read": read, "optional": None,
                               "type": f"Group<Option<{base_type(f)}>, {g.max}>", "width": f.wire_width,
                               "doc": doc_lines(f"{g.name}: {g.min} to {g.max} values of {f.name.lower()}{unit}: "
-                                               f"{f.doc}", 92)})
+                                               f"{f.doc}", 92) + bits_doc(f)})
             else:
                 entry = entry_name(sentence, layout, g)
                 fields = [field_view(f, 12, f"{ident(f.id)}: ", "?,", False) for f in g.fields]
@@ -448,7 +521,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.group", [rust_str(g.id), "repeats", f"{entry}::read"],
                                 "?;", True)
                 items.append({"kind": "entries", "group": g, "ident": ident(g.id), "entry": entry, "read": read,
-                              "optional": None,
+                              "optional": None, "lifetime": lifetime,
                               "type": f"Group<{entry_type}, {g.max}>",
                               "doc": doc_lines(f"{g.name}: {g.min} to {g.max} entries.", 92)})
             continue
@@ -457,8 +530,15 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
             optional_wire += item.wire_width
             optional_index += 1
             optional = {"wire": optional_wire, "index": optional_index}
-        view = field_view(item, 12 if optional else 8, f"out.{ident(item.id)} = ", "?;", True)
-        view["kind"] = "field"
+        indent = 12 if optional else 8
+        if item.type == "keyword":
+            callee, args = read_call(item)
+            view = {"field": item, "ident": ident(item.id), "read": fmt_call(indent, "", callee, args, "?;", False),
+                    "width": 1, "word": rust_str(item.value or "")}
+            view["kind"] = "keyword"
+        else:
+            view = field_view(item, indent, f"out.{ident(item.id)} = ", "?;", True)
+            view["kind"] = "field"
         view["optional"] = optional
         items.append(view)
     for it in items:
@@ -473,9 +553,36 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                   default=None)
     manual = spec.manual(example.manual) if example else None
     title = f"{sentence.id}: {sentence.name}" if not layout.id else f"{sentence.id} ({layout.name})"
+    members = [it for it in items if it["kind"] != "keyword"]
+    if not sentence.is_proprietary:
+        framing_members = ["talker: fields.talker()", "checksum"]
+    elif text:
+        framing_members = ["as_received: fields.line()"]
+    else:
+        framing_members = ["checksum"]
+    assigned = bool(members) or bool(optional)
+    init = [f"        let {'mut ' if assigned else ''}out = Self {{ "
+            + ", ".join(framing_members + (["..Self::default()"] if assigned else [])) + " };"]
+    assert len(init[0]) <= WIDTH
+    lifetime = (not sentence.is_proprietary or text
+                or any(it["kind"] in ("field", "values") and borrows(it["field"] if it["kind"] == "field"
+                                                                     else it["group"].fields[0])
+                       for it in items)
+                or any(it.get("lifetime") for it in items if it["kind"] == "entries")
+                or any(it["kind"] == "texts" for it in items))
+    keywords = [it["field"] for it in items if it["kind"] == "keyword"]
+    reader = "fields.reader().ignoring_case()" if text else "fields.reader()"
+    if text:
+        what = f"`{sentence.address} …` command (its words in any letter case)"
+    elif sentence.is_proprietary:
+        what = f"`${sentence.address}` line"
+    else:
+        what = f"`$--{sentence.id}` line"
     return {
         "layout": layout,
         "name": name,
+        "type": name + ("<'a>" if lifetime else ""),
+        "lifetime": lifetime,
         "title": title,
         "doc": doc_lines(layout.doc if layout.id else sentence.doc),
         "diagram": diagram(sentence, layout),
@@ -490,7 +597,27 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         "shape": shape_lines(sentence, layout),
         "variant": fmt_const(4, "const VARIANT: Option<&'static str>",
                              f"Some({rust_str(layout.id)})" if layout.id else "None"),
+        "framing": fmt_const(4, "const FRAMING: Framing", framing_expr(sentence)),
+        "words": fmt_const_slice(4, "const WORDS: &'static [(&'static str, usize)]",
+                                 [f"({rust_str(it['field'].id)}, {it['width']})" for it in items]) if text else [],
+        "init": init,
+        "reader": fmt_const(8, "let mut f", reader) if items else [],
+        "checksum_arg": "_checksum" if text else "checksum",
+        "keywords": doc_lines("Keywords (fixed words, not members: parsing checks them, writing puts them "
+                              "back): " + ", ".join(f"`{f.id}` = `{f.value}`" for f in keywords) + ".")
+        if keywords else [],
+        "parse_doc": doc_lines(f"Parses a whole {what} with this layout; a trailing LF or CR LF is allowed.", 92),
+        "display_doc": "The command's words separated by single spaces; no line ending." if text else
+        "The sentence text, checksum included unless it is `Checksum::None`; no line ending.",
+        "selector": layout.selector,
     }
+
+
+def bits_doc(f: Field) -> list[str]:
+    """A doc line linking a field to the bitfield that names its bits."""
+    if f.bitfield is None:
+        return []
+    return [f"Named bits: [`{f.bitfield.camel}`](crate::bitfields::{f.bitfield.camel})."]
 
 
 def shape_lines(sentence: Sentence, layout: Layout) -> list[str]:
@@ -505,11 +632,15 @@ def shape_lines(sentence: Sentence, layout: Layout) -> list[str]:
 
 
 def module_imports(views: list[dict]) -> list[str]:
-    runtime = {"Checksum", "Error", "Fields", "JsonFields", "Layout", "Shape", "WireWriter"}
+    runtime = {"Checksum", "Error", "Fields", "Framing", "JsonFields", "Layout", "Shape", "WireWriter"}
     enums: set[str] = set()
     for view in views:
         if view["group"] is not None:
-            runtime |= {"Group", "GroupShape"}
+            runtime.add("GroupShape")
+        if any(it["kind"] in ("values", "entries") for it in view["items"]):
+            runtime.add("Group")
+        if any(it["kind"] == "texts" for it in view["items"]):
+            runtime.add("Texts")
         if view["entries"]:
             runtime.add("Reader")
         fields = [it["field"] for it in view["items"] if it["kind"] == "field"]
@@ -531,6 +662,7 @@ def module_imports(views: list[dict]) -> list[str]:
         lines += fmt_use("crate::enums", rust_sorted(enums))
     lines += ['#[cfg(feature = "std")]', "use crate::runtime::json;"]
     lines += fmt_use("crate::runtime", rust_sorted(runtime))
+    lines += ["use crate::LayoutId;"]
     return lines
 
 
@@ -550,6 +682,10 @@ def check_names(spec: Spec) -> None:
                 taken[entry] = f"entry of {s.id}"
     for name, what in taken.items():
         assert name not in RUNTIME_NAMES, f"{what} would be named {name}, a name of the Rust runtime"
+    for b in spec.bitfields:
+        assert b.camel != "Hex", f"bitfield {b.id} would be named Hex, a name of the Rust runtime"
+    for t in spec.tables:
+        assert all(p.id != "table" for p in t.parameters), f"table {t.id}: a parameter named table clashes with TABLE"
 
 
 def enum_view(e: EnumDef) -> dict:
@@ -568,7 +704,136 @@ def enum_view(e: EnumDef) -> dict:
         "expected": fmt_const(4, "const EXPECTED: &'static str", rust_str(enum_expected(e, False))),
         "expected_chars": fmt_const(4, "const EXPECTED_CHARS: &'static str", rust_str(enum_expected(e, True))),
         "class": {"digits": "Digits", "letters": "Letters", "alnum": "Alnum"}[e.code_class],
+        "all": fmt_const_slice(4, "const ALL: &'static [Self]", [f"Self::{v['name']}" for v in variants]),
     }
+
+
+def hex_literal(value: int) -> str:
+    """`0xABCD`, digits grouped by four from the right when longer (`0x8000_0000`)."""
+    digits = f"{value:X}"
+    groups = []
+    while len(digits) > 4:
+        groups.insert(0, digits[-4:])
+        digits = digits[:-4]
+    return "0x" + "_".join([digits, *groups])
+
+
+def bitfield_view(b: BitfieldDef, on_integers: bool) -> dict:
+    """`on_integers`: an integer field uses the bitfield (it then converts from a Number too)."""
+    bits_type = next(f"u{n}" for n in (8, 16, 32, 64) if b.width <= n)
+    type_bits = int(bits_type[1:])
+    ranges = []
+    constants = []
+    for bits in b.bits:
+        max_value = hex_literal(bits.max_value)
+        full = bits.low == 0 and bits.width == type_bits
+        if full:
+            get, put = "self.0", "Self(value)"
+        elif bits.low == 0:
+            get = f"self.0 & {max_value}"
+            put = f"Self((self.0 & !{hex_literal(bits.mask)}) | (value & {max_value}))"
+        else:
+            get = f"self.0 >> {bits.low}" if bits.high == type_bits - 1 else f"(self.0 >> {bits.low}) & {max_value}"
+            put = f"Self((self.0 & !{hex_literal(bits.mask)}) | ((value & {max_value}) << {bits.low}))"
+        label = f"Bit {bits.label}" if bits.width == 1 else f"Bits {bits.label}"
+        name = ident(bits.id)
+        ranges.append({
+            "name": name, "setter": f"with_{bits.id}", "read": get, "write": put,
+            "doc": doc_lines(f"{label} (`{bits.id}`): {bits.doc}", 92),
+            "set_doc": doc_lines(f"The value with {label.lower()} (`{bits.id}`) set to `value` "
+                                 f"(its low {bits.width} bit{'s' if bits.width > 1 else ''}).", 92),
+        })
+        for v in bits.values:
+            constants.append({"name": f"{bits.id}_{v.id}".upper(), "value": str(v.value),
+                              "doc": doc_lines(f"`{bits.id}` = {v.value}: {v.doc}", 92)})
+    names = [c["name"] for c in constants]
+    assert len(names) == len(set(names)), f"bitfield {b.id}: value constants clash: {names}"
+    return {
+        "name": b.camel, "type": bits_type, "doc": doc_lines(f"{b.name} ({b.width} bits): {b.doc}"),
+        "ranges": ranges, "constants": constants,
+        "from_hex": "Self(hex.value)" if bits_type == "u64" else f"Self(hex.value as {bits_type})",
+        "from_number": f"Self(number.trunc() as {bits_type})" if on_integers else None,
+    }
+
+
+ENCODINGS = {"hex": "Hex", "decimal": "Decimal", "decimal_list": "DecimalList", "text": "Text"}
+
+
+def table_view(t: TableDef) -> dict:
+    def opt(value: object, render=None) -> str:
+        if value is None:
+            return "None"
+        return f"Some({render(value) if render else value})"
+
+    parameters = []
+    for prm in t.parameters:
+        links = []
+        if prm.enum is not None:
+            links.append(f"Values: [`{prm.enum.camel}`](crate::enums::{prm.enum.camel}).")
+        if prm.bitfield is not None:
+            links.append(f"Bits: [`{prm.bitfield.camel}`](crate::bitfields::{prm.bitfield.camel}).")
+        title = prm.name + (f" [{prm.unit}]" if prm.unit else "")
+        effect = f" Takes effect {prm.takes_effect}." if prm.takes_effect else ""
+        members = [
+            ("number", str(prm.number)),
+            ("id", rust_str(prm.id)),
+            ("name", rust_str(prm.name)),
+            ("encoding", f"Encoding::{ENCODINGS[prm.encoding]}"),
+            ("size", opt(prm.size)),
+            ("count", opt(prm.count)),
+            ("min", opt(prm.min, bound)),
+            ("max", opt(prm.max, bound)),
+            ("max_length", opt(prm.max_length)),
+            ("default", opt(prm.default, lambda v: rust_str(str(v)))),
+            ("unit", opt(prm.unit, rust_str)),
+            ("enum_id", opt(prm.enum_id, rust_str)),
+            ("bitfield_id", opt(prm.bitfield_id, rust_str)),
+        ]
+        parameters.append({
+            "name": prm.id.upper(),
+            "doc": doc_lines(f"{prm.number}, {title}: {prm.doc}{effect}", 92) + links,
+            "members": [f"        {k}: {v}," for k, v in members],
+        })
+    names = [prm["name"] for prm in parameters]
+    return {
+        "table": t, "module": ident(t.id), "const": t.id.upper(), "doc": doc_lines(f"{t.name}: {t.doc}"),
+        "parameters": parameters,
+        "head": table_head(t, names),
+    }
+
+
+def table_head(t: TableDef, names: list[str]) -> list[str]:
+    """`pub const TABLE: Table = Table { … };` as rustfmt writes it."""
+    members = [("id", rust_str(t.id)), ("name", rust_str(t.name)), ("parameters", "&[" + ", ".join(names) + "]")]
+    lines = fmt_struct(4, "pub const TABLE: Table = ", "Table", members, ";")
+    if len(lines) == 1 or all(len(line) <= WIDTH for line in lines):
+        return lines
+    return [*lines[:-2], "        parameters: &[", *[f"            {n}," for n in names], "        ],", lines[-1]]
+
+
+def command_example(spec: Spec) -> dict | None:
+    """The builder example of lib.rs: the first command (one with a keyword, framed with `$`,
+    preferred) that a default struct builds, and the bytes it makes."""
+    layouts = [(s, lay) for s in spec.proprietary if s.kind == "command" for lay in s.layouts
+               if lay.group is None or lay.group.min == 0]
+    layouts.sort(key=lambda p: (p[0].framing != "sentence", p[1].selector is None))
+    if not layouts:
+        return None
+    s, lay = layouts[0]
+    texts: list[str] = []
+    for item in lay.items:
+        if isinstance(item, Group) or item.is_optional:
+            continue
+        texts += [item.value or ""] if item.type == "keyword" else [""] * item.wire_width
+    if s.framing == "text":
+        line = " ".join([s.address or "", *texts])
+    else:
+        body = ",".join([s.address or "", *texts])
+        sum_ = 0
+        for ch in body:
+            sum_ ^= ord(ch)
+        line = f"${body}*{sum_:02X}"
+    return {"layout": s.layout_camel(lay), "bytes": "b" + rust_str(line)[:-1] + '\\r\\n"'}
 
 
 def all_fields(layout: Layout) -> list[Field]:
@@ -614,32 +879,52 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     for s in spec.sentences:
         views = [layout_view(spec, s, lay) for lay in s.layouts]
         enum_files = sorted({f.enum.origin.file for lay in s.layouts for f in all_fields(lay) if f.enum})
+        bitfield_files = sorted({f.bitfield.origin.file for lay in s.layouts for f in all_fields(lay) if f.bitfield})
         module_file = sentence_module(s).removeprefix("r#")
         files[f"{base}/src/sentences/{module_file}.rs"] = env.get_template("rust/sentence.rs.j2").render(
-            header=header(spec, "//", [s.source, *enum_files]), sentence=s, doc=doc_lines(s.doc), layouts=views,
-            imports=module_imports(views))
+            header=header(spec, "//", [s.source, *enum_files, *bitfield_files]), sentence=s, doc=doc_lines(s.doc),
+            layouts=views, imports=module_imports(views))
         for view in views:
-            layouts.append({"sentence": s, "name": view["name"], "layout": view["layout"], "title": view["title"]})
-    dispatch = []
-    for s in spec.sentences:
-        names = [s.layout_camel(lay) for lay in s.layouts]
-        dispatch.append({"sentence": s, "main": names[0], "variants": names[1:]})
+            name = view["name"]
+            reply_names = [r.layout_camel(lay) for r in s.replies for lay in r.layouts]
+            parse_arm = fmt_arm(12, f"Self::{name}", f"{name}::parse_fields(fields, checksum).map(Sentence::{name})")
+            layouts.append({
+                "sentence": s, "name": name, "layout": view["layout"], "title": view["title"], "type": view["type"],
+                "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm,
+                "framing_arm": fmt_arm(12, f"Self::{name}", framing_expr(s)),
+                "replies_arm": fmt_slice(12, f"Self::{name} => ", [f"Self::{r}" for r in reply_names], ","),
+            })
     files[f"{base}/src/sentences/mod.rs"] = env.get_template("rust/sentences_mod.rs.j2").render(
-        header=header(spec, "//"), sentences=[
+        header=header(spec, "//"), sentences=sorted((
             {"sentence": s, "module": sentence_module(s), "uses": fmt_use(
                 sentence_module(s), rust_sorted({s.layout_camel(lay) for lay in s.layouts}), "pub use")}
-            for s in spec.sentences])
+            for s in spec.sentences), key=lambda m: m["module"].removeprefix("r#")))
     files[f"{base}/src/enums.rs"] = env.get_template("rust/enums.rs.j2").render(
         header=header(spec, "//", [e.origin.file for e in spec.enums]), enums=[enum_view(e) for e in spec.enums])
+    files[f"{base}/src/bitfields.rs"] = env.get_template("rust/bitfields.rs.j2").render(
+        header=header(spec, "//", [b.origin.file for b in spec.bitfields]),
+        bitfields=[bitfield_view(b, any(f.bitfield is b and f.type == "integer" for s in spec.sentences
+                                        for lay in s.layouts for f in all_fields(lay)))
+                   for b in spec.bitfields],
+        uses_numbers=any(f.bitfield is not None and f.type == "integer" for s in spec.sentences
+                         for lay in s.layouts for f in all_fields(lay)))
+    files[f"{base}/src/tables.rs"] = env.get_template("rust/tables.rs.j2").render(
+        header=header(spec, "//", [t.origin.file for t in spec.tables]), tables=[table_view(t) for t in spec.tables],
+        imports=fmt_use("crate::runtime", rust_sorted(
+            {"Encoding", "Parameter", "Table"}
+            | ({"Bound"} if any(p.min is not None or p.max is not None for t in spec.tables for p in t.parameters)
+               else set()))) if spec.tables else [])
     vectors = emit_vectors.example_vectors(spec)
     intact = [v for v in vectors if v["line"]]
     first = None
-    candidates = [v for v in intact if v["sentence"] == "GGA"] or intact
+    candidates = [v for v in intact if v["sentence"] == "GGA"] or [
+        v for v in intact if not spec.sentence(v["sentence"]).is_proprietary]
     if candidates:
         v = max(candidates, key=lambda v: sum(1 for t in v["line"].split("*")[0].split(",") if t))
         s = spec.sentence(v["sentence"])
         lay = next(lay for lay in s.layouts if lay.id == v["variant"])
-        filled = [f for f in lay.fields if not f.is_optional and json.loads(v["decode"])["fields"].get(f.id)]
+        filled = [f for f in lay.fields if not f.is_optional and f.type != "keyword"
+                  and json.loads(v["decode"])["fields"].get(f.id)]
         if filled:
             first = {"line": v["line"], "layout": s.layout_camel(lay), "var": ident(s.id.lower()),
                      "talker": v["line"][1:3], "field": ident(filled[0].id)}
@@ -649,9 +934,31 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                       and v["variant"] == lay["layout"].id), None)
         if found:
             unit_examples += fmt_tuple(8, [rust_raw(found["line"]), rust_raw(found["decode"])], ",")
+    # Proprietary `$` addresses: those that look standard (GeoS-5's GPSGG) are looked up before the
+    # standard sentences, the others on their own.
+    proprietary_arms: list[str] = []
+    standard_like_arms: list[str] = []
+    for address in sorted({s.address for s in spec.proprietary if s.framing == "sentence" and s.address}):
+        names = [s.layout_camel(lay) for s, lay in spec.by_address(address)]
+        standard_like = len(address) == 5 and not address.startswith("P")
+        arms = standard_like_arms if standard_like else proprietary_arms
+        arms += fmt_slice(12, f"{rust_str(address)} => ", [f"LayoutId::{n}" for n in names], ",")
+    standard_arms: list[str] = []
+    for s in spec.standard:
+        standard_arms += fmt_slice(8, f"{rust_str(s.id)} => ", [f"LayoutId::{s.layout_camel(lay)}" for lay in s.layouts],
+                                   ",")
+    text_commands = []
+    for word in sorted({(s.address or "").upper() for s in spec.proprietary if s.framing == "text"}):
+        names = [s.layout_camel(lay) for s, lay in spec.text_command(word)]
+        text_commands.append({"word": word, "lines": fmt_slice(8, "return ", [f"LayoutId::{n}" for n in names], ";")})
     files[f"{base}/src/lib.rs"] = env.get_template("rust/lib.rs.j2").render(
-        header=header(spec, "//"), spec=spec, layouts=layouts, dispatch=dispatch, example=first,
-        unit_examples=unit_examples,
+        header=header(spec, "//"), spec=spec, layouts=layouts, example=first, command=command_example(spec),
+        unit_examples=unit_examples, proprietary_arms=proprietary_arms, standard_arms=standard_arms,
+        standard_like_arms=standard_like_arms,
+        text_commands=text_commands,
+        runtime_uses=fmt_use("runtime", rust_sorted(
+            {"first_word", "is_standard_address", "strip_line_ending", "upper_eq"}
+            | ({"is_command_word"} if text_commands else set()))),
         all_layouts=fmt_array(4, f"pub const ALL: [Self; {len(layouts)}]", [f"Self::{lay['name']}" for lay in layouts]))
     files[f"{base}/Cargo.toml"] = env.get_template("rust/Cargo.toml.j2").render(
         header=header(spec, "#", ["templates/rust/Cargo.toml.j2"]), crate=CRATE)

@@ -7,7 +7,7 @@ use std::fmt;
 use std::io::{self, BufRead, BufReader, BufWriter, Write};
 use std::process::ExitCode;
 
-use nmeaspec::runtime::json::Value;
+use nmeaspec::runtime::json::{Value, MAX_DEPTH, SKIP_CHECK_DEPTH};
 use nmeaspec::runtime::MAX_LINE;
 use nmeaspec::{write_decoded, write_encoded, Error};
 
@@ -109,11 +109,12 @@ fn encode() -> io::Result<()> {
         if line.last() == Some(&b'\r') {
             line.pop();
         }
-        let value = Value::parse(&line);
+        let parsed = Value::parse_nested(&line, SKIP_CHECK_DEPTH);
         // decode's error lines have nothing to encode.
-        if value.as_ref().and_then(|v| v.get("ok")) == Some(&Value::Bool(false)) {
+        if parsed.as_ref().and_then(|(v, _)| v.get("ok")) == Some(&Value::Bool(false)) {
             continue;
         }
+        let value = parsed.filter(|&(_, depth)| depth <= MAX_DEPTH).map(|(value, _)| value);
         out.line(|w| write_encoded(w, value.as_ref()))?;
     }
     out.inner.flush()

@@ -26,6 +26,8 @@ pub enum ErrorKind {
     BadField,
     /// `encode` input that is not decode's JSON.
     BadJson,
+    /// A command builder's buffer cannot hold the line (the tools never report it).
+    BufferTooSmall,
 }
 
 impl ErrorKind {
@@ -40,6 +42,7 @@ impl ErrorKind {
             Self::TooManyFields => "too_many_fields",
             Self::BadField => "bad_field",
             Self::BadJson => "bad_json",
+            Self::BufferTooSmall => "buffer_too_small",
         }
     }
 }
@@ -174,6 +177,13 @@ pub enum Message<'a> {
         /// The field's text.
         text: &'a str,
     },
+    /// `the line needs N bytes, the buffer holds M` (a command builder's buffer).
+    BufferTooSmall {
+        /// Bytes of the line with its CR LF.
+        needed: usize,
+        /// Bytes the buffer holds.
+        capacity: usize,
+    },
     /// A `bad_json` message of the encode verb.
     #[cfg(feature = "std")]
     Json(std::string::String),
@@ -194,6 +204,7 @@ impl Message<'_> {
             Self::TooFew { .. } | Self::GroupCut { .. } => ErrorKind::TooFewFields,
             Self::TooMany { .. } => ErrorKind::TooManyFields,
             Self::BadField { .. } => ErrorKind::BadField,
+            Self::BufferTooSmall { .. } => ErrorKind::BufferTooSmall,
             #[cfg(feature = "std")]
             Self::Json(_) => ErrorKind::BadJson,
         }
@@ -241,6 +252,9 @@ impl fmt::Display for Message<'_> {
             Self::BadField { expected, text } => {
                 write!(f, "expected {expected}, found ")?;
                 write_json_str(f, text)
+            }
+            Self::BufferTooSmall { needed, capacity } => {
+                write!(f, "the line needs {needed} bytes, the buffer holds {capacity}")
             }
             #[cfg(feature = "std")]
             Self::Json(message) => f.write_str(message),

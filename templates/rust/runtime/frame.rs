@@ -1,8 +1,12 @@
 //! Framing: one pass over a line checks it and splits it into start, address, fields and
 //! checksum; then a [`Reader`] hands out the fields one by one to the typed field readers.
+//! Text commands (words separated by single spaces, no `$`, no checksum) are framed by
+//! [`Frame::parse_text`].
 
 use super::error::{Error, Message, Name};
-use super::types::{Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Time};
+use super::types::{
+    upper_eq, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Texts, Time,
+};
 
 /// Longest line (without its line ending) the parser accepts.
 pub const MAX_LINE: usize = 1024;
@@ -20,9 +24,10 @@ pub fn checksum(body: &[u8]) -> u8 {
 /// A line split into its parts; its checksum, if any, has been verified.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Frame<'a> {
-    /// `"$"` or `"!"`.
+    /// `"$"` or `"!"`; `""` for a text command.
     pub start: &'a str,
     /// Everything between the start character and the first `,` (or `*`): letters and digits.
+    /// For a text command, its first word as received.
     pub address: &'a str,
     /// The fields after the address.
     pub fields: Fields<'a>,
@@ -73,7 +78,8 @@ impl<'a> Frame<'a> {
         let address = &text[1..first_comma.unwrap_or(body_end)];
         let named = (!address.is_empty() && address.bytes().all(|b| b.is_ascii_alphanumeric())).then_some(address);
         let sent = star.map(|star| &text[star + 1..]);
-        if let Some(sent) = sent {
+        // A bare '*' leaves the checksum out, as ST's manual writes its commands.
+        if let Some(sent) = sent.filter(|sent| !sent.is_empty()) {
             let b = sent.as_bytes();
             let one_case = !(b.iter().any(u8::is_ascii_uppercase) && b.iter().any(u8::is_ascii_lowercase));
             if b.len() != 2 || !b.iter().all(u8::is_ascii_hexdigit) || !one_case {
@@ -93,6 +99,46 @@ impl<'a> Frame<'a> {
         };
         Ok(Self { start, address, fields, checksum: Checksum::of(sent) })
     }
+
+    /// Checks and splits a text command (ComNav: words separated by single spaces, no `$`, no
+    /// checksum): length, printable bytes; the first word is the address.
+    pub fn parse_text(line: &'a [u8]) -> Result<Self, Error<'a>> {
+        if line.len() > MAX_LINE {
+            return Err(Error::too_long(line.len()));
+        }
+        if let Some(offset) = line.iter().position(|b| !(0x20..=0x7e).contains(b)) {
+            return Err(Error::new(None, Message::NotPrintable { byte: line[offset], offset }));
+        }
+        let Ok(text) = core::str::from_utf8(line) else {
+            return Err(Error::new(None, Message::NotPrintable { byte: line[0], offset: 0 }));
+        };
+        let (address, fields) = match text.split_once(' ') {
+            Some((word, rest)) => (word, Fields::words(word, rest, text.bytes().filter(|&b| b == b' ').count())),
+            None => (text, Fields::words(text, "", 0)),
+        };
+        Ok(Self { start: "", address, fields: fields.with_line(text), checksum: Checksum::None })
+    }
+}
+
+/// The command word of a possible text command: the bytes before the first space.
+pub fn first_word(line: &[u8]) -> &[u8] {
+    line.split(|&b| b == b' ').next().unwrap_or(line)
+}
+
+/// Whether a line's first word, upper-cased the way Python upper-cases Latin-1 text (ASCII
+/// letters, and `ß` as `SS`), is the command word `upper`.
+pub fn is_command_word(word: &[u8], upper: &str) -> bool {
+    let mut expected = upper.bytes();
+    for &b in word {
+        let fits = match b {
+            0xdf => expected.next() == Some(b'S') && expected.next() == Some(b'S'),
+            _ => expected.next() == Some(b.to_ascii_uppercase()),
+        };
+        if !fits {
+            return false;
+        }
+    }
+    expected.next().is_none()
 }
 
 /// Whether a line is a standard sentence, a talker ID and a 3-letter formatter: `$` and 5
@@ -163,18 +209,36 @@ fn hex_value(b: u8) -> u8 {
     }
 }
 
-/// The fields after the address: their text (joined by `,`) and how many there are.
+/// The fields after the address: their text (joined by `,`, or by spaces in a text command
+/// as received) and how many there are.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Fields<'a> {
     address: &'a str,
     text: &'a str,
     count: usize,
+    separator: u8,
+    line: Option<&'a str>,
 }
 
 impl<'a> Fields<'a> {
     /// `count` fields joined by `,` in `text`, of the sentence at `address` (named in errors).
     pub const fn new(address: &'a str, text: &'a str, count: usize) -> Self {
-        Self { address, text, count }
+        Self { address, text, count, separator: b',', line: None }
+    }
+
+    /// `count` words joined by single spaces in `text`, after the command word `address`.
+    pub const fn words(address: &'a str, text: &'a str, count: usize) -> Self {
+        Self { address, text, count, separator: b' ', line: None }
+    }
+
+    /// The same fields, belonging to the text command `line` (kept by the parsed command).
+    pub const fn with_line(self, line: &'a str) -> Self {
+        Self { line: Some(line), ..self }
+    }
+
+    /// The whole command line, for a text command.
+    pub const fn line(&self) -> Option<&'a str> {
+        self.line
     }
 
     /// The address of the sentence.
@@ -188,7 +252,7 @@ impl<'a> Fields<'a> {
         self.address.get(..end).unwrap_or("")
     }
 
-    /// The fields as received, joined by `,`.
+    /// The fields as received, joined by `,` (by spaces in a text command as received).
     pub const fn as_str(&self) -> &'a str {
         self.text
     }
@@ -205,12 +269,20 @@ impl<'a> Fields<'a> {
 
     /// The field texts, in order.
     pub fn iter(&self) -> FieldIter<'a> {
-        FieldIter { rest: self.text, left: self.count }
+        FieldIter { rest: self.text, left: self.count, separator: self.separator }
     }
 
     /// A reader that hands out the fields in order to the typed field readers.
     pub fn reader(&self) -> Reader<'a> {
-        Reader { address: self.address, rest: self.text, index: 0, group: "", entry: 0 }
+        Reader {
+            address: self.address,
+            rest: self.text,
+            separator: self.separator,
+            ignore_case: false,
+            index: 0,
+            group: "",
+            entry: 0,
+        }
     }
 
     /// Checks the field count against a layout: how many times its repeated group occurs and
@@ -261,6 +333,7 @@ impl<'a> IntoIterator for &Fields<'a> {
 pub struct FieldIter<'a> {
     rest: &'a str,
     left: usize,
+    separator: u8,
 }
 
 impl<'a> Iterator for FieldIter<'a> {
@@ -271,7 +344,7 @@ impl<'a> Iterator for FieldIter<'a> {
             return None;
         }
         self.left -= 1;
-        Some(take(&mut self.rest))
+        Some(take(&mut self.rest, self.separator))
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
@@ -281,11 +354,11 @@ impl<'a> Iterator for FieldIter<'a> {
 
 impl ExactSizeIterator for FieldIter<'_> {}
 
-fn take<'a>(rest: &mut &'a str) -> &'a str {
-    match rest.bytes().position(|b| b == b',') {
-        Some(comma) => {
-            let field = &rest[..comma];
-            *rest = &rest[comma + 1..];
+fn take<'a>(rest: &mut &'a str, separator: u8) -> &'a str {
+    match rest.bytes().position(|b| b == separator) {
+        Some(at) => {
+            let field = &rest[..at];
+            *rest = &rest[at + 1..];
             field
         }
         None => core::mem::take(rest),
@@ -327,12 +400,19 @@ pub struct GroupShape {
 pub struct Reader<'a> {
     address: &'a str,
     rest: &'a str,
+    separator: u8,
+    ignore_case: bool,
     index: usize,
     group: &'static str,
     entry: usize,
 }
 
 impl<'a> Reader<'a> {
+    /// The same reader for a text command: keywords and enum codes match ignoring case.
+    pub const fn ignoring_case(self) -> Self {
+        Self { ignore_case: true, ..self }
+    }
+
     /// Reads `count` entries of the repeated group `id` with `read` (at most `N`).
     pub fn group<T: Copy + Default, const N: usize>(
         &mut self,
@@ -349,13 +429,36 @@ impl<'a> Reader<'a> {
         entries
     }
 
+    /// Reads `count` values of the repeated group `group` of one text field `id` (each at most
+    /// `max_length`), kept as their wire text.
+    pub fn texts(
+        &mut self,
+        group: &'static str,
+        id: &'static str,
+        count: usize,
+        expected: &'static str,
+        max_length: Option<usize>,
+    ) -> Result<Texts<'a>, Error<'a>> {
+        let start = self.rest;
+        let mut end = 0;
+        for entry in 1..=count {
+            let offset = start.len() - self.rest.len();
+            let text = self.next_text();
+            if max_length.is_some_and(|max| text.len() > max) {
+                return Err(Error::bad_field(self.address, self.index, Name::entry(group, entry, id), expected, text));
+            }
+            end = offset + text.len();
+        }
+        Ok(Texts::joined(&start[..end], count, self.separator))
+    }
+
     fn name(&self, id: &'static str) -> Name {
         Name::entry(self.group, self.entry, id)
     }
 
     fn next_text(&mut self) -> &'a str {
         self.index += 1;
-        take(&mut self.rest)
+        take(&mut self.rest, self.separator)
     }
 
     fn read<T>(
@@ -437,8 +540,20 @@ impl<'a> Reader<'a> {
         self.read(id, expected, |t| max_length.is_none_or(|max| t.len() <= max).then_some(t))
     }
 
-    /// A code of enum `E`, or an unknown one of the same form.
+    /// Exactly the word `keyword` (ignoring case in a text command); never empty.
+    pub fn keyword(&mut self, id: &'static str, keyword: &'static str) -> Result<(), Error<'a>> {
+        let text = self.next_text();
+        if text == keyword || (self.ignore_case && upper_eq(text, keyword)) {
+            return Ok(());
+        }
+        Err(Error::bad_field(self.address, self.index, self.name(id), keyword, text))
+    }
+
+    /// A code of enum `E` (ignoring case in a text command), or an unknown one of the same form.
     pub fn code<E: CodeEnum>(&mut self, id: &'static str) -> Result<Option<Code<'a, E>>, Error<'a>> {
+        if self.ignore_case {
+            return self.read(id, E::EXPECTED, |t| Code::parse_ignoring_case(t, E::MIN_LEN, E::MAX_LEN));
+        }
         self.read(id, E::EXPECTED, |t| Code::parse(t, E::MIN_LEN, E::MAX_LEN))
     }
 
@@ -528,5 +643,22 @@ mod tests {
         assert_eq!((fields.as_str(), fields.len()), ("", 1));
         assert_eq!(Frame::parse(b"$A,*,*41").unwrap_err().message(), &Message::BadChecksum { text: ",*41" });
         assert!(Frame::parse(b"$PSTMSAVEPAR").unwrap().fields.is_empty());
+        let frame = Frame::parse(b"$PSTMSETPAR,1121,10*").unwrap();
+        assert_eq!((frame.fields.len(), frame.checksum), (2, Checksum::Empty));
+    }
+
+    #[test]
+    fn text_commands_split_on_single_spaces() {
+        let frame = Frame::parse_text(b"nmeatalker GGA,1  GP").unwrap();
+        assert_eq!((frame.start, frame.address, frame.checksum), ("", "nmeatalker", Checksum::None));
+        assert!(frame.fields.iter().eq(["GGA,1", "", "GP"]));
+        assert_eq!(frame.fields.line(), Some("nmeatalker GGA,1  GP"));
+        assert!(Frame::parse_text(b"LOG").unwrap().fields.is_empty());
+        let err = Frame::parse_text(b"LOG \x01").unwrap_err();
+        assert_eq!(err.message(), &Message::NotPrintable { byte: 1, offset: 4 });
+        assert!(is_command_word(b"nmeaTalker", "NMEATALKER"));
+        assert!(is_command_word(b"cla\xdf", "CLASS"));
+        assert!(!is_command_word(b"NMEATALKERS", "NMEATALKER"));
+        assert_eq!(first_word(b"log gga"), b"log");
     }
 }

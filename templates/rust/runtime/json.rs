@@ -28,20 +28,32 @@ pub enum Value {
     Object(Vec<(String, Value)>),
 }
 
-/// Most nested arrays and objects the reader follows.
-const MAX_DEPTH: usize = 500;
+/// Most nested arrays and objects `encode` reads: as deep as the Python reference's `json.loads`
+/// goes before its recursion limit. Deeper JSON is "not JSON".
+pub const MAX_DEPTH: usize = 990;
+
+/// Most nested arrays and objects of a line whose `"ok"` the tool checks first (the Python tool
+/// makes that check one call shallower than `encode`).
+pub const SKIP_CHECK_DEPTH: usize = MAX_DEPTH + 1;
 
 /// Python refuses to convert integers of more digits than this.
 const MAX_INT_DIGITS: usize = 4300;
 
 impl Value {
-    /// Reads one JSON text (surrounding whitespace allowed); `None` when it is not JSON.
+    /// Reads one JSON text (surrounding whitespace allowed); `None` when it is not JSON (or
+    /// nests deeper than [`MAX_DEPTH`]).
     pub fn parse(text: &[u8]) -> Option<Self> {
-        let mut reader = JsonReader { text, pos: 0, depth: 0 };
+        Self::parse_nested(text, MAX_DEPTH).map(|(value, _)| value)
+    }
+
+    /// Reads one JSON text nesting at most `max_depth` arrays and objects; the value and how
+    /// deep it nests.
+    pub fn parse_nested(text: &[u8], max_depth: usize) -> Option<(Self, usize)> {
+        let mut reader = JsonReader { text, pos: 0, depth: 0, deepest: 0, max_depth };
         reader.skip_space();
         let value = reader.value()?;
         reader.skip_space();
-        (reader.pos == text.len()).then_some(value)
+        (reader.pos == text.len()).then_some((value, reader.deepest))
     }
 
     /// The member `key` of an object (the last one when repeated).
@@ -62,6 +74,8 @@ struct JsonReader<'t> {
     text: &'t [u8],
     pos: usize,
     depth: usize,
+    deepest: usize,
+    max_depth: usize,
 }
 
 impl JsonReader<'_> {
@@ -116,9 +130,10 @@ impl JsonReader<'_> {
 
     fn nested(&mut self, read: fn(&mut Self) -> Option<Value>) -> Option<Value> {
         self.depth += 1;
-        if self.depth > MAX_DEPTH {
+        if self.depth > self.max_depth {
             return None;
         }
+        self.deepest = self.deepest.max(self.depth);
         let value = read(self);
         self.depth -= 1;
         value
@@ -279,6 +294,14 @@ pub fn opt_text<'v>(obj: &'v Value, key: &str) -> Result<Option<&'v str>, Error<
     }
 }
 
+/// `obj[key]` as letters and digits (an address, a talker ID, a command word).
+pub fn word<'v>(obj: &'v Value, key: &str) -> Result<&'v str, Error<'static>> {
+    match member(obj, key)? {
+        Value::String(text) if !text.is_empty() && text.bytes().all(|b| b.is_ascii_alphanumeric()) => Ok(text),
+        _ => Err(Error::bad_json(format!("\"{key}\" is not letters and digits"))),
+    }
+}
+
 /// `obj[key]` as a string.
 pub fn str_member<'v>(obj: &'v Value, key: &str) -> Result<&'v str, Error<'static>> {
     match member(obj, key)? {
@@ -287,10 +310,12 @@ pub fn str_member<'v>(obj: &'v Value, key: &str) -> Result<&'v str, Error<'stati
     }
 }
 
-/// How a received checksum was written: absent, or lower case when upper-casing changes it.
+/// How a received checksum was written: absent, empty (a bare `*`), or lower case when
+/// upper-casing changes it.
 pub fn checksum_case(text: Option<&str>) -> Checksum {
     match text {
         None => Checksum::None,
+        Some("") => Checksum::Empty,
         Some(t) if t.chars().any(|c| c.to_uppercase().ne(Some(c))) => Checksum::Lower,
         Some(_) => Checksum::Upper,
     }
@@ -375,6 +400,17 @@ impl WireFields {
     pub fn fields<'a>(&'a self, address: &'a str) -> Fields<'a> {
         Fields::new(address, &self.text, self.count)
     }
+
+    /// The text command these fields make after the command word `word`: the words joined by
+    /// single spaces (field texts hold no `,`).
+    pub fn command_line(&self, word: &str) -> String {
+        let mut line = String::from(word);
+        if self.count > 0 {
+            line.push(' ');
+            line.extend(self.text.chars().map(|c| if c == ',' { ' ' } else { c }));
+        }
+        line
+    }
 }
 
 #[cfg(test)]
@@ -389,6 +425,10 @@ mod tests {
         for text in ["", "01", "1.", "-", "[1,]", "{\"a\":1,}", "\"\u{1}\"", "\"\\x\"", "\"\\u12\"", "nul", "{} x"] {
             assert!(Value::parse(text.as_bytes()).is_none(), "{text}");
         }
+        let deep = |n: usize| format!("{}{}", "[".repeat(n), "]".repeat(n));
+        assert!(Value::parse(deep(MAX_DEPTH).as_bytes()).is_some());
+        assert!(Value::parse(deep(MAX_DEPTH + 1).as_bytes()).is_none());
+        assert_eq!(Value::parse_nested(deep(3).as_bytes(), 5).map(|(_, depth)| depth), Some(3));
         let long = "1".repeat(4301);
         assert!(Value::parse(long.as_bytes()).is_none());
         assert!(Value::parse(format!("{long}.0").as_bytes()).is_some());
@@ -411,5 +451,6 @@ mod tests {
         );
         assert_eq!(checksum_case(Some("\u{df}")), Checksum::Lower);
         assert_eq!(checksum_case(Some("4F")), Checksum::Upper);
+        assert_eq!(checksum_case(Some("")), Checksum::Empty);
     }
 }

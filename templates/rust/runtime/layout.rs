@@ -1,32 +1,75 @@
-//! What every generated sentence layout provides, and the generic form of sentences the spec
-//! does not describe.
+//! What every generated sentence layout provides, the generic form of sentences the spec
+//! does not describe, and the command builders' checked serialization.
 
 use core::fmt::{self, Write};
 
 use super::error::{Error, Message};
-use super::frame::{is_standard_address, Fields, Frame, Shape};
+use super::frame::{is_command_word, is_standard_address, Fields, Frame, Shape, MAX_LINE};
 use super::types::Checksum;
-use super::write::{write_json_str, write_sentence, Discard, JsonEscape, JsonFields, WireWriter};
+use super::write::{
+    write_json_str, write_sentence, write_words_json, Discard, JsonEscape, JsonFields, Latin1Bytes, SameUpper,
+    WireWriter,
+};
 
-/// One layout of a standard sentence (a struct generated from the spec, e.g. `Gga`).
+/// How a sentence is framed and addressed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Framing {
+    /// `$`, a talker ID and the sentence id: `$GPGGA,…*hh`.
+    Standard,
+    /// `$` and a fixed proprietary address: `$PSTMSETPAR,…*hh`.
+    Proprietary(&'static str),
+    /// A text command (ComNav): its command word and arguments separated by single spaces, no
+    /// `$`, no checksum, matched ignoring case.
+    Text(&'static str),
+}
+
+/// What a sentence is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Kind {
+    /// A standard NMEA sentence.
+    Standard,
+    /// A command, host to receiver.
+    Command,
+    /// The receiver's answer to a command.
+    Reply,
+    /// A proprietary sentence the receiver sends on its own.
+    Output,
+}
+
+/// One layout of a sentence (a struct generated from the spec, e.g. `Gga`).
 pub trait Layout<'a>: Sized {
     /// The sentence id, e.g. `"GGA"`.
     const SENTENCE: &'static str;
     /// The variant id, `None` for the main layout.
     const VARIANT: Option<&'static str>;
+    /// How the sentence is framed and addressed.
+    const FRAMING: Framing;
     /// How the layout's fields are counted.
     const SHAPE: Shape;
+    /// A text command's fields and the words each takes: the keys of its lossless JSON, which
+    /// shows the words as written.
+    const WORDS: &'static [(&'static str, usize)] = &[];
 
     /// Decodes the fields after the address; the error names the field at fault.
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>>;
 
-    /// The talker ID (`GP`, `GN`, …).
-    fn talker(&self) -> &'a str;
+    /// The talker ID (`GP`, `GN`, …) of a standard sentence; empty for the others.
+    fn talker(&self) -> &'a str {
+        ""
+    }
 
-    /// How the checksum is written.
-    fn checksum(&self) -> Checksum;
+    /// How the checksum is written ([`Checksum::None`] for a text command).
+    fn checksum(&self) -> Checksum {
+        Checksum::None
+    }
 
-    /// Writes every field after the address, each preceded by `,`.
+    /// A text command as received, written back as it is while its words still match the
+    /// fields ignoring case.
+    fn as_received(&self) -> Option<&'a str> {
+        None
+    }
+
+    /// Writes every field after the address, each preceded by `,` (a space in a text command).
     fn write_fields<W: Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result;
 
     /// Writes the members of the `fields` object of the tools' JSON.
@@ -38,44 +81,113 @@ pub trait Layout<'a>: Sized {
 
     /// Parses a whole line (a trailing LF or CR LF is allowed) that must be this sentence.
     fn parse_line(line: &'a str) -> Result<Self, Error<'a>> {
-        let frame = Frame::parse(strip_line_ending(line.as_bytes()))?;
+        let line = strip_line_ending(line.as_bytes());
+        let frame = match Self::FRAMING {
+            Framing::Text(_) => Frame::parse_text(line)?,
+            _ => Frame::parse(line)?,
+        };
         let address = frame.address;
-        if !is_standard_address(frame.start, address) || &address[2..] != Self::SENTENCE {
+        let fits = match Self::FRAMING {
+            Framing::Standard => is_standard_address(frame.start, address) && &address[2..] == Self::SENTENCE,
+            Framing::Proprietary(expected) => frame.start == "$" && address == expected,
+            Framing::Text(word) => is_command_word(address.as_bytes(), word),
+        };
+        if !fits {
             let message = Message::WrongSentence { address, expected: Self::SENTENCE };
             return Err(Error::new(Some(address), message));
         }
         Self::parse_fields(frame.fields, frame.checksum)
     }
 
-    /// Writes the sentence text, checksum included unless it is [`Checksum::None`]; no line
-    /// ending.
+    /// Writes the sentence text, checksum included unless it is [`Checksum::None`] (a text
+    /// command: its words); no line ending.
     fn write_sentence<W: Write + ?Sized>(&self, out: &mut W) -> fmt::Result {
-        write_sentence(out, "$", [self.talker(), Self::SENTENCE], self.checksum(), |w| self.write_fields(w))
+        match Self::FRAMING {
+            Framing::Standard => {
+                write_sentence(out, "$", [self.talker(), Self::SENTENCE], self.checksum(), |w| self.write_fields(w))
+            }
+            Framing::Proprietary(address) => {
+                write_sentence(out, "$", [address, ""], self.checksum(), |w| self.write_fields(w))
+            }
+            Framing::Text(word) => match self.received_text(word) {
+                Some(line) => out.write_str(line),
+                None => self.write_words(word, out),
+            },
+        }
+    }
+
+    /// A text command's words in the spec's spelling: the command word, then each field after a
+    /// space.
+    #[doc(hidden)]
+    fn write_words<W: Write + ?Sized>(&self, word: &str, out: &mut W) -> fmt::Result {
+        let mut w = WireWriter::words(out);
+        w.write_str(word)?;
+        self.write_fields(&mut w)
+    }
+
+    /// The text command as received, when its upper-cased words equal those of the fields (the
+    /// command is then written back as it came).
+    #[doc(hidden)]
+    fn received_text(&self, word: &str) -> Option<&'a str> {
+        let received = self.as_received()?;
+        let mut compare = SameUpper::new(received);
+        (self.write_words(word, &mut compare).is_ok() && compare.finished()).then_some(received)
     }
 
     /// Writes the tools' JSON line (`values`: decoded values instead of the lossless texts).
     fn write_json<W: Write + ?Sized>(&self, out: &mut W, values: bool) -> fmt::Result {
+        let (address, talker) = match Self::FRAMING {
+            Framing::Text(word) => return self.write_command_json(word, out, values),
+            Framing::Proprietary(address) => ([address, ""], None),
+            Framing::Standard => ([self.talker(), Self::SENTENCE], Some(self.talker())),
+        };
         let mut sink = Discard;
         let mut body = WireWriter::new(&mut sink);
-        body.write_str(self.talker())?;
-        body.write_str(Self::SENTENCE)?;
+        body.write_str(address[0])?;
+        body.write_str(address[1])?;
         self.write_fields(&mut body)?;
         let sum = body.checksum();
         out.write_str("{\"ok\":true,\"start\":\"$\",\"address\":\"")?;
-        JsonEscape(&mut *out).write_str(self.talker())?;
-        out.write_str(Self::SENTENCE)?;
+        JsonEscape(&mut *out).write_str(address[0])?;
+        JsonEscape(&mut *out).write_str(address[1])?;
         out.write_str("\",\"talker\":")?;
-        write_json_str(out, self.talker())?;
-        write!(out, ",\"sentence\":\"{}\",\"variant\":", Self::SENTENCE)?;
-        match Self::VARIANT {
-            Some(variant) => write!(out, "\"{variant}\"")?,
+        match talker {
+            Some(talker) => write_json_str(out, talker)?,
             None => out.write_str("null")?,
         }
+        self.write_json_fields_object(out, values)?;
+        write_checksum_json(out, self.checksum(), sum)
+    }
+
+    /// The JSON line of a text command: start `""`, the command word as written, the words as
+    /// written (`values`: the decoded values), no checksum.
+    #[doc(hidden)]
+    fn write_command_json<W: Write + ?Sized>(&self, word: &str, out: &mut W, values: bool) -> fmt::Result {
+        let received = self.received_text(word);
+        let address = received.map_or(word, |line| line.split(' ').next().unwrap_or(line));
+        out.write_str("{\"ok\":true,\"start\":\"\",\"address\":")?;
+        write_json_str(out, address)?;
+        out.write_str(",\"talker\":null")?;
+        match received {
+            Some(line) if !values => {
+                write_sentence_json(out, Self::SENTENCE, Self::VARIANT)?;
+                out.write_str(",\"fields\":{")?;
+                write_words_json(out, line, Self::WORDS)?;
+                out.write_char('}')?;
+            }
+            _ => self.write_json_fields_object(out, values)?,
+        }
+        out.write_str(",\"checksum\":null}")
+    }
+
+    /// `"sentence"`, `"variant"` and the `"fields"` object of the JSON line.
+    #[doc(hidden)]
+    fn write_json_fields_object<W: Write + ?Sized>(&self, out: &mut W, values: bool) -> fmt::Result {
+        write_sentence_json(out, Self::SENTENCE, Self::VARIANT)?;
         out.write_str(",\"fields\":")?;
         let mut fields = JsonFields::begin(&mut *out, values)?;
         self.write_json_fields(&mut fields)?;
-        fields.end()?;
-        write_checksum_json(out, self.checksum(), sum)
+        fields.end()
     }
 
     /// The tools' JSON line (`values`: decoded values instead of the lossless texts).
@@ -87,11 +199,54 @@ pub trait Layout<'a>: Sized {
     }
 }
 
+fn write_sentence_json<W: Write + ?Sized>(out: &mut W, sentence: &str, variant: Option<&str>) -> fmt::Result {
+    write!(out, ",\"sentence\":\"{sentence}\",\"variant\":")?;
+    match variant {
+        Some(variant) => write!(out, "\"{variant}\""),
+        None => out.write_str("null"),
+    }
+}
+
 fn write_checksum_json<W: Write + ?Sized>(out: &mut W, checksum: Checksum, sum: u8) -> fmt::Result {
     match checksum.digits(sum) {
         Some([a, b]) => write!(out, ",\"checksum\":\"{}{}\"}}", char::from(a), char::from(b)),
+        None if checksum == Checksum::Empty => out.write_str(",\"checksum\":\"\"}"),
         None => out.write_str(",\"checksum\":null}"),
     }
+}
+
+/// A buffer this long always holds what a command builder writes: the longest line and CR LF.
+pub const BUILD_CAPACITY: usize = MAX_LINE + 2;
+
+/// What the command builders (`to_bytes` of each sentence struct) share: writes the line with
+/// `write` into `buf` (each character as one byte, Latin-1), reads it back the way a receiver
+/// would (framing, then `check`, the layout's own parser) and appends CR LF. The error is the
+/// parser's, naming the field at fault; `buffer_too_small` when `buf` cannot hold the line.
+pub fn build<'b>(
+    buf: &'b mut [u8],
+    framing: Framing,
+    write: impl Fn(&mut dyn Write) -> fmt::Result,
+    check: impl FnOnce(Fields<'b>, Checksum) -> Result<(), Error<'b>>,
+) -> Result<&'b [u8], Error<'b>> {
+    let mut counter = Latin1Bytes::new(&mut []);
+    let _ = write(&mut counter);
+    let length = counter.needed();
+    if length > MAX_LINE {
+        return Err(Error::too_long(length));
+    }
+    let (needed, capacity) = (length + 2, buf.len());
+    let too_small = || Error::new(None, Message::BufferTooSmall { needed, capacity });
+    let (text, end) = buf.get_mut(..needed).ok_or_else(too_small)?.split_at_mut(length);
+    write(&mut Latin1Bytes::new(text)).map_err(|_| too_small())?;
+    end.copy_from_slice(b"\r\n");
+    let buf: &'b [u8] = buf;
+    let line = &buf[..length];
+    let frame = match framing {
+        Framing::Text(_) => Frame::parse_text(line)?,
+        _ => Frame::parse(line)?,
+    };
+    check(frame.fields, frame.checksum)?;
+    Ok(&buf[..needed])
 }
 
 /// Drops one trailing LF or CR LF.

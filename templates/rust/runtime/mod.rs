@@ -1,5 +1,6 @@
 //! The hand-written runtime under the generated sentence modules: framing and checksum, field
-//! splitting, the field types, the error type, JSON writing and (with `std`) JSON reading.
+//! splitting, the field types, the error type, JSON writing, configuration parameter tables and
+//! (with `std`) JSON reading.
 //!
 //! Its rules (what text each field type accepts, the error messages, the JSON form) are the
 //! Python and C runtimes' rules byte for byte; see docs/json.md.
@@ -7,6 +8,7 @@
 mod error;
 mod frame;
 mod layout;
+mod table;
 mod types;
 mod write;
 
@@ -14,13 +16,17 @@ mod write;
 pub mod json;
 
 pub use error::{Error, ErrorKind, Message, Name};
-pub use frame::{checksum, is_standard_address, FieldIter, Fields, Frame, GroupShape, Reader, Shape, MAX_LINE};
-pub use layout::{strip_line_ending, Generic, Layout};
+pub use frame::{
+    checksum, first_word, is_command_word, is_standard_address, FieldIter, Fields, Frame, GroupShape, Reader, Shape,
+    MAX_LINE,
+};
+pub use layout::{build, strip_line_ending, Framing, Generic, Kind, Layout, BUILD_CAPACITY};
+pub use table::{Encoding, ParamValue, Parameter, ParameterError, Problem, Table};
 pub use types::{
-    Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Sign, Time,
-    MAX_DIGITS,
+    upper_eq, Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Sign,
+    Texts, Time, MAX_DIGITS,
 };
 pub use write::{
-    write_json_char, write_json_display, write_json_str, write_sentence, Discard, FieldValue, JsonEscape, JsonFields,
-    WireWriter,
+    write_json_char, write_json_display, write_json_str, write_sentence, write_words_json, Discard, FieldValue,
+    JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
 };

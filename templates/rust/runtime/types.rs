@@ -36,28 +36,32 @@ pub enum Checksum {
     Upper,
     /// `*hh` with lower-case hex letters.
     Lower,
+    /// A bare `*`: the checksum left out, as ST's manual writes its commands.
+    Empty,
     /// No checksum at all.
     None,
 }
 
 impl Checksum {
-    /// The style of two received checksum digits (`None` when there were none).
+    /// The style of the received text after the `*` (`None` when there was no `*`).
     pub fn of(text: Option<&str>) -> Self {
         match text {
             None => Self::None,
+            Some("") => Self::Empty,
             Some(t) if t.bytes().any(|b| b.is_ascii_lowercase()) => Self::Lower,
             Some(_) => Self::Upper,
         }
     }
 
-    /// The two digits of `value` in this style (`None` for [`Checksum::None`]).
+    /// The two digits of `value` in this style (`None` for [`Checksum::Empty`] and
+    /// [`Checksum::None`]).
     pub fn digits(self, value: u8) -> Option<[u8; 2]> {
         const UPPER: &[u8; 16] = b"0123456789ABCDEF";
         const LOWER: &[u8; 16] = b"0123456789abcdef";
         let table = match self {
             Self::Upper => UPPER,
             Self::Lower => LOWER,
-            Self::None => return None,
+            Self::Empty | Self::None => return None,
         };
         Some([table[usize::from(value >> 4)], table[usize::from(value & 15)]])
     }
@@ -534,6 +538,12 @@ impl fmt::Display for Coordinate {
     }
 }
 
+/// Whether `text` upper-cased (ASCII letters) is exactly `upper`: how text commands match their
+/// command word, keywords and enum codes.
+pub fn upper_eq(text: &str, upper: &str) -> bool {
+    text.len() == upper.len() && text.bytes().zip(upper.bytes()).all(|(a, b)| a.to_ascii_uppercase() == b)
+}
+
 /// Which characters the codes of an enum use: an unknown code must use the same ones to be
 /// kept (rather than rejected).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -572,6 +582,8 @@ pub trait CodeEnum: Copy + Sized + 'static {
     const MIN_LEN: usize;
     /// Length of the longest known code.
     const MAX_LEN: usize;
+    /// Every value, in the spec's order.
+    const ALL: &'static [Self];
 
     /// The value with wire code `code`.
     fn from_code(code: &str) -> Option<Self>;
@@ -595,6 +607,16 @@ impl<'a, E: CodeEnum> Code<'a, E> {
     pub fn parse(text: &'a str, min: usize, max: usize) -> Option<Self> {
         match E::from_code(text) {
             Some(value) => Some(Self::Known(value)),
+            None if E::CLASS.admits(text, min, max) => Some(Self::Unknown(text)),
+            None => None,
+        }
+    }
+
+    /// Reads a code of a text command, whose known codes match ignoring case (the text upper-cased
+    /// is looked up); an unknown one is kept as written.
+    pub fn parse_ignoring_case(text: &'a str, min: usize, max: usize) -> Option<Self> {
+        match E::ALL.iter().find(|value| upper_eq(text, value.code())) {
+            Some(&value) => Some(Self::Known(value)),
             None if E::CLASS.admits(text, min, max) => Some(Self::Unknown(text)),
             None => None,
         }
@@ -672,6 +694,65 @@ impl<'a, E: CodeEnum> CodeChars<'a, E> {
 impl<E: CodeEnum> fmt::Display for CodeChars<'_, E> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.text)
+    }
+}
+
+/// The values of a repeated group of one text field, kept as received: their wire text (joined
+/// by `,`) and how many there are. Unlike [`Group`] it stays small whatever the group's maximum
+/// (ST's sentences take up to 64 raw values).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Texts<'a> {
+    text: &'a str,
+    count: usize,
+    separator: u8,
+}
+
+impl Default for Texts<'_> {
+    fn default() -> Self {
+        Self { text: "", count: 0, separator: b',' }
+    }
+}
+
+impl<'a> Texts<'a> {
+    /// `count` values joined by `,` in `text` (`Texts::new("A,,B", 3)`).
+    pub const fn new(text: &'a str, count: usize) -> Self {
+        Self { text, count, separator: b',' }
+    }
+
+    /// `count` values joined by `separator`.
+    pub(crate) const fn joined(text: &'a str, count: usize, separator: u8) -> Self {
+        Self { text, count, separator }
+    }
+
+    /// How many values there are.
+    pub const fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Whether there are none.
+    pub const fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// The values as received, joined by `,`.
+    pub const fn as_str(&self) -> &'a str {
+        self.text
+    }
+
+    /// The values in order, `None` for an empty one.
+    pub fn iter(&self) -> impl Iterator<Item = Option<&'a str>> + 'a {
+        let (mut rest, separator) = (self.text, self.separator);
+        (0..self.count).map(move |_| {
+            let value = match rest.bytes().position(|b| b == separator) {
+                Some(at) => {
+                    let value = &rest[..at];
+                    rest = &rest[at + 1..];
+                    value
+                }
+                None => core::mem::take(&mut rest),
+            };
+            (!value.is_empty()).then_some(value)
+        })
     }
 }
 

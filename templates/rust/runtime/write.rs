@@ -2,7 +2,7 @@
 
 use core::fmt::{self, Write};
 
-use super::types::{Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Time};
+use super::types::{Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Texts, Time};
 
 /// A field value: how it is written on the wire and in both JSON forms of the tools.
 pub trait FieldValue {
@@ -11,6 +11,12 @@ pub trait FieldValue {
 
     /// Writes the wire text (fields joined by `,`).
     fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result;
+
+    /// Writes the wire text, fields joined by `separator` (a space in a text command).
+    fn write_wire_fields<W: Write + ?Sized>(&self, w: &mut W, separator: char) -> fmt::Result {
+        let _ = separator;
+        self.write_wire(w)
+    }
 
     /// Writes the lossless JSON form of `decode`: the text as a string.
     fn write_text_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
@@ -68,6 +74,12 @@ impl FieldValue for Coordinate {
 
     fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
         write!(w, "{self}")
+    }
+
+    fn write_wire_fields<W: Write + ?Sized>(&self, w: &mut W, separator: char) -> fmt::Result {
+        self.write_value_text(w)?;
+        w.write_char(separator)?;
+        w.write_char(self.hemisphere)
     }
 
     fn write_text_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
@@ -142,17 +154,24 @@ impl<E: CodeEnum> FieldValue for CodeChars<'_, E> {
     }
 }
 
-/// Writes the fields of a sentence, each after a `,`, and keeps the XOR checksum of every byte
-/// written (a character above U+00FF counts as its low byte, as Latin-1 would).
+/// Writes the fields of a sentence, each after a `,` (a space in a text command), and keeps the
+/// XOR checksum of every byte written (a character above U+00FF counts as its low byte, as
+/// Latin-1 would).
 pub struct WireWriter<'w, W: Write + ?Sized> {
     out: &'w mut W,
     sum: u8,
+    separator: char,
 }
 
 impl<'w, W: Write + ?Sized> WireWriter<'w, W> {
-    /// A writer into `out`, checksum 0.
+    /// A writer of `,`-separated fields into `out`, checksum 0.
     pub fn new(out: &'w mut W) -> Self {
-        Self { out, sum: 0 }
+        Self { out, sum: 0, separator: ',' }
+    }
+
+    /// A writer of the space-separated words of a text command into `out`.
+    pub fn words(out: &'w mut W) -> Self {
+        Self { out, sum: 0, separator: ' ' }
     }
 
     /// The XOR of everything written so far.
@@ -162,16 +181,29 @@ impl<'w, W: Write + ?Sized> WireWriter<'w, W> {
 
     /// Writes `,` and the field (`WIDTH` empty fields when it is `None`).
     pub fn field<T: FieldValue>(&mut self, value: &Option<T>) -> fmt::Result {
-        self.write_char(',')?;
+        let separator = self.separator;
+        self.write_char(separator)?;
         match value {
-            Some(value) => value.write_wire(self),
-            None => (1..T::WIDTH).try_for_each(|_| self.write_char(',')),
+            Some(value) => value.write_wire_fields(self, separator),
+            None => (1..T::WIDTH).try_for_each(|_| self.write_char(separator)),
         }
+    }
+
+    /// Writes `,` and a keyword (the word that picks the layout).
+    pub fn keyword(&mut self, word: &str) -> fmt::Result {
+        let separator = self.separator;
+        self.write_char(separator)?;
+        self.write_str(word)
     }
 
     /// Writes each value of a single-field group.
     pub fn fields<T: FieldValue>(&mut self, values: &[Option<T>]) -> fmt::Result {
         values.iter().try_for_each(|value| self.field(value))
+    }
+
+    /// Writes each value of a group of one text field.
+    pub fn texts(&mut self, values: &Texts<'_>) -> fmt::Result {
+        values.iter().try_for_each(|value| self.field(&value))
     }
 }
 
@@ -215,6 +247,102 @@ pub fn write_sentence<W: Write + ?Sized>(
         out.write_char('*')?;
         out.write_char(char::from(digits[0]))?;
         out.write_char(char::from(digits[1]))?;
+    } else if checksum == super::Checksum::Empty {
+        out.write_char('*')?;
+    }
+    Ok(())
+}
+
+/// Writes into a byte buffer, each character as one byte (its low byte, as Latin-1 would), and
+/// counts the bytes needed even past the end of the buffer.
+pub struct Latin1Bytes<'b> {
+    buf: &'b mut [u8],
+    needed: usize,
+}
+
+impl<'b> Latin1Bytes<'b> {
+    /// A writer into `buf`.
+    pub fn new(buf: &'b mut [u8]) -> Self {
+        Self { buf, needed: 0 }
+    }
+
+    /// The bytes written so far, those that did not fit included.
+    pub const fn needed(&self) -> usize {
+        self.needed
+    }
+}
+
+impl Write for Latin1Bytes<'_> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        for c in s.chars() {
+            if let Some(slot) = self.buf.get_mut(self.needed) {
+                *slot = c as u32 as u8;
+            }
+            self.needed += 1;
+        }
+        Ok(())
+    }
+}
+
+/// Compares what is written with a text, ignoring the case of ASCII letters: fails as soon as
+/// they differ; [`SameUpper::finished`] tells whether all of the text was matched.
+pub struct SameUpper<'r> {
+    rest: core::str::Chars<'r>,
+}
+
+impl<'r> SameUpper<'r> {
+    /// A comparison with `text`.
+    pub fn new(text: &'r str) -> Self {
+        Self { rest: text.chars() }
+    }
+
+    /// Whether everything written so far equals the whole text.
+    pub fn finished(&self) -> bool {
+        self.rest.clone().next().is_none()
+    }
+}
+
+impl Write for SameUpper<'_> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        for c in s.chars() {
+            match self.rest.next() {
+                Some(r) if r.eq_ignore_ascii_case(&c) => {}
+                _ => return Err(fmt::Error),
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The lossless `fields` members of a text command as received (inside the object's braces):
+/// its words after the command word, one per field of `words` (id, wire fields), `null` when
+/// empty; a latitude or longitude takes two words, an array (`null` when both are empty).
+pub fn write_words_json<W: Write + ?Sized>(out: &mut W, line: &str, words: &[(&str, usize)]) -> fmt::Result {
+    let mut rest = line.split(' ').skip(1);
+    for (i, &(id, width)) in words.iter().enumerate() {
+        let Some(first) = rest.next() else {
+            break;
+        };
+        if i > 0 {
+            out.write_char(',')?;
+        }
+        write!(out, "\"{id}\":")?;
+        if width == 2 {
+            let second = rest.next().unwrap_or("");
+            if first.is_empty() && second.is_empty() {
+                out.write_str("null")?;
+            } else {
+                out.write_char('[')?;
+                write_json_str(out, first)?;
+                out.write_char(',')?;
+                write_json_str(out, second)?;
+                out.write_char(']')?;
+            }
+        } else if first.is_empty() {
+            out.write_str("null")?;
+        } else {
+            write_json_str(out, first)?;
+        }
     }
     Ok(())
 }
@@ -263,6 +391,12 @@ impl<'w, W: Write + ?Sized> JsonFields<'w, W> {
         self.value(value)
     }
 
+    /// A keyword: `"key":"WORD"` in both forms.
+    pub fn keyword(&mut self, key: &str, word: &str) -> fmt::Result {
+        self.key(key)?;
+        write_json_str(self.out, word)
+    }
+
     /// A group of one field: an array of bare values.
     pub fn values<T: FieldValue>(&mut self, key: &str, values: &[Option<T>]) -> fmt::Result {
         self.key(key)?;
@@ -272,6 +406,19 @@ impl<'w, W: Write + ?Sized> JsonFields<'w, W> {
                 self.out.write_char(',')?;
             }
             self.value(value)?;
+        }
+        self.out.write_char(']')
+    }
+
+    /// A group of one text field: an array of strings (`null` when empty).
+    pub fn texts(&mut self, key: &str, values: &Texts<'_>) -> fmt::Result {
+        self.key(key)?;
+        self.out.write_char('[')?;
+        for (i, value) in values.iter().enumerate() {
+            if i > 0 {
+                self.out.write_char(',')?;
+            }
+            self.value(&value)?;
         }
         self.out.write_char(']')
     }

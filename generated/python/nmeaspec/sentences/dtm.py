@@ -25,6 +25,11 @@ class Dtm:
 
     SENTENCE: ClassVar[str] = "DTM"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -45,18 +50,18 @@ class Dtm:
     reference_datum: DtmDatum | str | None = None
     """Reference datum: Datum the offsets refer to; W84 (WGS-84) on GeoS-5 (standard also W72, S85, P90)."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Dtm:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Dtm:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "DTM"
         count = len(fields)
         if count < 8:
             raise rt.too_few(address, "DTM", 8, count)
         if count > 8:
             raise rt.too_many(address, "DTM", 8, count)
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.local_datum = rt.enum_field(fields[0], address, 1, "local_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
         out.local_datum_subdivision = rt.char_field(fields[1], address, 2, "local_datum_subdivision", "one character")
         out.lat_offset = rt.decimal_field(fields[2], address, 3, "lat_offset", "decimal number")
@@ -84,6 +89,11 @@ class Dtm:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "DTM", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

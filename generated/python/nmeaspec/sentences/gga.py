@@ -26,6 +26,11 @@ class Gga:
 
     SENTENCE: ClassVar[str] = "GGA"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -54,18 +59,18 @@ class Gga:
     dgps_station: rt.Number | None = None
     """Differential station ID: Differential reference station ID, 0000-4095 (GS501 and ComNav give 0-1023). GeoS-5 sends the SBAS satellite number when the corrections come from SBAS, and an empty field in autonomous mode; SiRF receivers send 0000 without DGPS."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Gga:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Gga:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "GGA"
         count = len(fields)
         if count < 14:
             raise rt.too_few(address, "GGA", 14, count)
         if count > 14:
             raise rt.too_many(address, "GGA", 14, count)
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
         out.lat = rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS")
         out.lon = rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW")
@@ -101,6 +106,11 @@ class Gga:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "GGA", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

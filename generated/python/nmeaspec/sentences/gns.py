@@ -26,6 +26,11 @@ class Gns:
 
     SENTENCE: ClassVar[str] = "GNS"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -52,19 +57,19 @@ class Gns:
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
     """Navigational status (NMEA 4.10): Navigational status (integrity) indicator. GeoS-5 does not compute it and sends V in main lines; its auxiliary lines carry no value here."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Gns:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Gns:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "GNS"
         count = len(fields)
         if count < 12:
             raise rt.too_few(address, "GNS", 12, count)
         if count > 13:
             raise rt.too_many(address, "GNS", 13, count)
         optional = count - 12
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
         out.lat = rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS")
         out.lon = rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW")
@@ -102,6 +107,11 @@ class Gns:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "GNS", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
@@ -155,6 +165,11 @@ class GnsAux:
 
     SENTENCE: ClassVar[str] = "GNS"
     VARIANT: ClassVar[str | None] = "aux"
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -179,19 +194,19 @@ class GnsAux:
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
     """Navigational status (NMEA 4.10): Navigational status (integrity) indicator. GeoS-5 does not compute it and sends V in main lines; its auxiliary lines carry no value here."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> GnsAux:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> GnsAux:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "GNS"
         count = len(fields)
         if count < 11:
             raise rt.too_few(address, "GNS", 11, count)
         if count > 12:
             raise rt.too_many(address, "GNS", 12, count)
         optional = count - 11
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
         out.lat = rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS")
         out.lon = rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW")
@@ -227,6 +242,11 @@ class GnsAux:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "GNS", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

@@ -35,6 +35,11 @@ class Gsa:
 
     SENTENCE: ClassVar[str] = "GSA"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -53,15 +58,15 @@ class Gsa:
     system_id: SystemId | str | None | rt._Absent = rt.ABSENT
     """GNSS system ID (NMEA 4.10): Constellation the satellites of this line belong to (NMEA v4.10 and later)."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Gsa:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Gsa:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "GSA"
         count = len(fields)
         repeats, optional = rt.split_group(address, "GSA", "prns", count, 5, 1, 12, 12, 1)
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.selection_mode = rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
         out.fix_type = rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
         pos = 2
@@ -95,6 +100,11 @@ class Gsa:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "GSA", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
@@ -149,6 +159,11 @@ class GsaShort:
 
     SENTENCE: ClassVar[str] = "GSA"
     VARIANT: ClassVar[str | None] = "short"
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -165,15 +180,15 @@ class GsaShort:
     vdop: rt.Number | None = None
     """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> GsaShort:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> GsaShort:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "GSA"
         count = len(fields)
         repeats, optional = rt.split_group(address, "GSA", "prns", count, 5, 1, 0, 11, 0)
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.selection_mode = rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
         out.fix_type = rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
         pos = 2
@@ -201,6 +216,11 @@ class GsaShort:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "GSA", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

@@ -24,6 +24,11 @@ class Gst:
 
     SENTENCE: ClassVar[str] = "GST"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -44,18 +49,18 @@ class Gst:
     alt_std: rt.Number | None = None
     """Altitude error [m]: Standard deviation of the altitude error, metres."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Gst:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Gst:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "GST"
         count = len(fields)
         if count < 8:
             raise rt.too_few(address, "GST", 8, count)
         if count > 8:
             raise rt.too_many(address, "GST", 8, count)
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
         out.rms = rt.decimal_field(fields[1], address, 2, "rms", "decimal number")
         out.semi_major_std = rt.decimal_field(fields[2], address, 3, "semi_major_std", "decimal number")
@@ -83,6 +88,11 @@ class Gst:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "GST", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

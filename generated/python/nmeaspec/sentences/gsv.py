@@ -40,6 +40,11 @@ class Gsv:
 
     SENTENCE: ClassVar[str] = "GSV"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -54,15 +59,15 @@ class Gsv:
     signal_id: SignalId | str | None | rt._Absent = rt.ABSENT
     """Signal ID (NMEA 4.10): Signal the set reports, meaning per system (NMEA v4.10 and later)."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Gsv:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Gsv:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "GSV"
         count = len(fields)
         repeats, optional = rt.split_group(address, "GSV", "satellites", count, 3, 4, 0, 4, 1)
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.message_count = rt.integer_field(fields[0], address, 1, "message_count", "integer of at least 1", Decimal("1"), None)
         out.message_number = rt.integer_field(fields[1], address, 2, "message_number", "integer of at least 1", Decimal("1"), None)
         out.satellites_in_view = rt.integer_field(fields[2], address, 3, "satellites_in_view", "integer of at least 0", Decimal("0"), None)
@@ -97,6 +102,11 @@ class Gsv:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "GSV", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

@@ -23,6 +23,11 @@ class Hdt:
 
     SENTENCE: ClassVar[str] = "HDT"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -31,18 +36,18 @@ class Hdt:
     heading_ref: str | None = None
     """True indicator: T = degrees true."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Hdt:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Hdt:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "HDT"
         count = len(fields)
         if count < 2:
             raise rt.too_few(address, "HDT", 2, count)
         if count > 2:
             raise rt.too_many(address, "HDT", 2, count)
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.heading = rt.decimal_field(fields[0], address, 1, "heading", "decimal number")
         out.heading_ref = rt.literal_field(fields[1], address, 2, "heading_ref", "T or nothing", "T")
         return out
@@ -58,6 +63,11 @@ class Hdt:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "HDT", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

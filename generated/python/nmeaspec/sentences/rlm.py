@@ -25,6 +25,11 @@ class Rlm:
 
     SENTENCE: ClassVar[str] = "RLM"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -37,18 +42,18 @@ class Rlm:
     message_body: str | None = None
     """Message body: Parameters of the message in hex: 4 hex digits (16 bits) for a short message, 24 hex digits (96 bits) for a long one. Kept as text because 96 bits exceed the hex type."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Rlm:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Rlm:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "RLM"
         count = len(fields)
         if count < 4:
             raise rt.too_few(address, "RLM", 4, count)
         if count > 4:
             raise rt.too_many(address, "RLM", 4, count)
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.beacon_id = rt.hex_field(fields[0], address, 1, "beacon_id", "hex number")
         out.time = rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]")
         out.message_code = rt.enum_field(fields[2], address, 3, "message_code", "rlm_message_code code (0 1 2 3 4 5 6 7 8 9 A B C D E F)", RlmMessageCode.BY_CODE, "alnum", 1, 1)
@@ -68,6 +73,11 @@ class Rlm:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "RLM", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

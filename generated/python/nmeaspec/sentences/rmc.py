@@ -26,6 +26,11 @@ class Rmc:
 
     SENTENCE: ClassVar[str] = "RMC"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -52,19 +57,19 @@ class Rmc:
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
     """Navigational status (NMEA 4.10): Navigational status (integrity) indicator; GeoS-5 does not compute it and always sends V."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Rmc:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Rmc:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "RMC"
         count = len(fields)
         if count < 11:
             raise rt.too_few(address, "RMC", 11, count)
         if count > 13:
             raise rt.too_many(address, "RMC", 13, count)
         optional = count - 11
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
         out.status = rt.enum_field(fields[1], address, 2, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
         out.lat = rt.coordinate_field(fields[2], fields[3], address, 3, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS")
@@ -104,6 +109,11 @@ class Rmc:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "RMC", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

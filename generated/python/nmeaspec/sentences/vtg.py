@@ -26,6 +26,11 @@ class Vtg:
 
     SENTENCE: ClassVar[str] = "VTG"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -48,19 +53,19 @@ class Vtg:
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
     """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3). GeoS-5 uses the letters of its GLL table (A D E G M N)."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Vtg:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Vtg:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "VTG"
         count = len(fields)
         if count < 8:
             raise rt.too_few(address, "VTG", 8, count)
         if count > 9:
             raise rt.too_many(address, "VTG", 9, count)
         optional = count - 8
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.course_true = rt.decimal_field(fields[0], address, 1, "course_true", "decimal number 0..359.9", Decimal("0"), Decimal("359.9"))
         out.course_true_ref = rt.literal_field(fields[1], address, 2, "course_true_ref", "T or nothing", "T")
         out.course_magnetic = rt.decimal_field(fields[2], address, 3, "course_magnetic", "decimal number 0..359.9", Decimal("0"), Decimal("359.9"))
@@ -94,6 +99,11 @@ class Vtg:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "VTG", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

@@ -24,6 +24,11 @@ class Zda:
 
     SENTENCE: ClassVar[str] = "ZDA"
     VARIANT: ClassVar[str | None] = None
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -40,18 +45,18 @@ class Zda:
     local_zone_minutes: rt.Number | None = None
     """Local zone minutes: Local zone offset minutes, 00-59, with the sign of the hours. Empty on GS501 and ComNav."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case) or None (no checksum)."""
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
     @classmethod
-    def parse_fields(cls, talker: str, fields: list[str], checksum: str | None = "upper") -> Zda:
+    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> Zda:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        address = talker + "ZDA"
         count = len(fields)
         if count < 6:
             raise rt.too_few(address, "ZDA", 6, count)
         if count > 6:
             raise rt.too_many(address, "ZDA", 6, count)
-        out = cls(talker, checksum=checksum)
+        out = cls(address[:-3], checksum=checksum)
         out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
         out.day = rt.integer_field(fields[1], address, 2, "day", "integer 1..31", Decimal("1"), Decimal("31"))
         out.month = rt.integer_field(fields[2], address, 3, "month", "integer 1..12", Decimal("1"), Decimal("12"))
@@ -75,6 +80,11 @@ class Zda:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
         return rt.assemble("$", self.talker + "ZDA", self.fields(), self.checksum)
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises rt.NmeaError naming the field at fault."""
+        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
 
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""

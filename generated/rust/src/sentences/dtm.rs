@@ -11,7 +11,8 @@ use core::fmt;
 use crate::enums::{DtmDatum, DtmLatOffsetDir, DtmLonOffsetDir};
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::LayoutId;
 
 /// DTM: Datum reference.
 ///
@@ -60,15 +61,23 @@ pub struct Dtm<'a> {
 }
 
 impl<'a> Dtm<'a> {
-    /// Parses a whole `$--DTM` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--DTM` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Dtm.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Dtm<'a> {
     const SENTENCE: &'static str = "DTM";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "DTM", fixed: 8, optional: 0, group: None };
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {

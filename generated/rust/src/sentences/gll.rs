@@ -11,7 +11,8 @@ use core::fmt;
 use crate::enums::{PosMode, Status};
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Coordinate, Error, Fields, JsonFields, Layout, Shape, Time, WireWriter};
+use crate::runtime::{Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Shape, Time, WireWriter};
+use crate::LayoutId;
 
 /// GLL: Geographic position, latitude/longitude.
 ///
@@ -52,15 +53,23 @@ pub struct Gll<'a> {
 }
 
 impl<'a> Gll<'a> {
-    /// Parses a whole `$--GLL` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--GLL` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Gll.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Gll<'a> {
     const SENTENCE: &'static str = "GLL";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GLL", fixed: 6, optional: 1, group: None };
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {

@@ -13,9 +13,10 @@ use crate::enums::{NavStatus, PosMode};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, CodeChars, Coordinate, Error, Fields, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, CodeChars, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
+    Time, WireWriter,
 };
+use crate::LayoutId;
 
 /// GNS: GNSS fix data.
 ///
@@ -78,15 +79,23 @@ pub struct Gns<'a> {
 }
 
 impl<'a> Gns<'a> {
-    /// Parses a whole `$--GNS` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--GNS` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Gns.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Gns<'a> {
     const SENTENCE: &'static str = "GNS";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GNS", fixed: 12, optional: 1, group: None };
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
@@ -236,15 +245,23 @@ pub struct GnsAux<'a> {
 }
 
 impl<'a> GnsAux<'a> {
-    /// Parses a whole `$--GNS` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--GNS` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::GnsAux.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for GnsAux<'a> {
     const SENTENCE: &'static str = "GNS";
     const VARIANT: Option<&'static str> = Some("aux");
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GNS", fixed: 11, optional: 1, group: None };
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {

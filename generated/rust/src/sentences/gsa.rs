@@ -14,8 +14,9 @@ use crate::enums::{GsaFixType, GsaSelectionMode, SystemId};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Code, Error, Fields, Group, GroupShape, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
+use crate::LayoutId;
 
 /// GSA: GNSS DOP and active satellites.
 ///
@@ -66,15 +67,23 @@ pub struct Gsa<'a> {
 }
 
 impl<'a> Gsa<'a> {
-    /// Parses a whole `$--GSA` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--GSA` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Gsa.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Gsa<'a> {
     const SENTENCE: &'static str = "GSA";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape {
         sentence: "GSA",
         fixed: 5,
@@ -199,15 +208,23 @@ pub struct GsaShort<'a> {
 }
 
 impl<'a> GsaShort<'a> {
-    /// Parses a whole `$--GSA` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--GSA` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::GsaShort.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for GsaShort<'a> {
     const SENTENCE: &'static str = "GSA";
     const VARIANT: Option<&'static str> = Some("short");
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape {
         sentence: "GSA",
         fixed: 5,

@@ -11,7 +11,8 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, JsonFields, Layout, Number, Range, Shape, Time, WireWriter};
+use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter};
+use crate::LayoutId;
 
 /// GST: GNSS pseudorange error statistics.
 ///
@@ -52,15 +53,23 @@ pub struct Gst<'a> {
 }
 
 impl<'a> Gst<'a> {
-    /// Parses a whole `$--GST` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--GST` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Gst.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Gst<'a> {
     const SENTENCE: &'static str = "GST";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GST", fixed: 8, optional: 0, group: None };
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {

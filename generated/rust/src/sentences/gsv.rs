@@ -13,9 +13,10 @@ use crate::enums::SignalId;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, Fields, Group, GroupShape, JsonFields, Layout, Number, Range, Reader, Shape,
+    Bound, Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Reader, Shape,
     WireWriter,
 };
+use crate::LayoutId;
 
 /// One entry of satellites in view (0 to 4 per sentence).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -113,15 +114,23 @@ pub struct Gsv<'a> {
 }
 
 impl<'a> Gsv<'a> {
-    /// Parses a whole `$--GSV` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--GSV` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Gsv.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Gsv<'a> {
     const SENTENCE: &'static str = "GSV";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape {
         sentence: "GSV",
         fixed: 3,

@@ -10,7 +10,8 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::LayoutId;
 
 /// HDT: Heading, true.
 ///
@@ -34,15 +35,23 @@ pub struct Hdt<'a> {
 }
 
 impl<'a> Hdt<'a> {
-    /// Parses a whole `$--HDT` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--HDT` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Hdt.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Hdt<'a> {
     const SENTENCE: &'static str = "HDT";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HDT", fixed: 2, optional: 0, group: None };
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {

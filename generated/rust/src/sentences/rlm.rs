@@ -11,7 +11,8 @@ use core::fmt;
 use crate::enums::RlmMessageCode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Hex, JsonFields, Layout, Shape, Time, WireWriter};
+use crate::runtime::{Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, Time, WireWriter};
+use crate::LayoutId;
 
 /// RLM: Return link message.
 ///
@@ -47,15 +48,23 @@ pub struct Rlm<'a> {
 }
 
 impl<'a> Rlm<'a> {
-    /// Parses a whole `$--RLM` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--RLM` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Rlm.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Rlm<'a> {
     const SENTENCE: &'static str = "RLM";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RLM", fixed: 4, optional: 0, group: None };
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {

@@ -13,8 +13,10 @@ use crate::enums::{NavStatus, PosMode, RmcMagVarDir, Status};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Coordinate, Date, Error, Fields, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Date, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
+    WireWriter,
 };
+use crate::LayoutId;
 
 /// RMC: Recommended minimum specific GNSS data.
 ///
@@ -72,15 +74,23 @@ pub struct Rmc<'a> {
 }
 
 impl<'a> Rmc<'a> {
-    /// Parses a whole `$--RMC` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--RMC` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Rmc.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Rmc<'a> {
     const SENTENCE: &'static str = "RMC";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RMC", fixed: 11, optional: 2, group: None };
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {

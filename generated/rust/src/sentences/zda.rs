@@ -10,7 +10,10 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Bound, Checksum, Error, Fields, JsonFields, Layout, Number, Range, Shape, Time, WireWriter};
+use crate::runtime::{
+    Bound, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+};
+use crate::LayoutId;
 
 /// ZDA: Time and date.
 ///
@@ -51,15 +54,23 @@ pub struct Zda<'a> {
 }
 
 impl<'a> Zda<'a> {
-    /// Parses a whole `$--ZDA` line (a trailing LF or CR LF is allowed) with this layout.
+    /// Parses a whole `$--ZDA` line with this layout; a trailing LF or CR LF is allowed.
     pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::Zda.build(buf, |w| self.write_sentence(w))
     }
 }
 
 impl<'a> Layout<'a> for Zda<'a> {
     const SENTENCE: &'static str = "ZDA";
     const VARIANT: Option<&'static str> = None;
+    const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ZDA", fixed: 6, optional: 0, group: None };
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
