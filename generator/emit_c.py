@@ -23,7 +23,7 @@ volatile while bool true false _Bool _Complex _Imaginary
 """.split())
 
 # Struct members every layout has besides its fields.
-RESERVED_MEMBERS = frozenset({"talker", "checksum", "optional_count", "as_received"})
+RESERVED_MEMBERS = frozenset({"talker", "checksum", "optional_count", "as_received", "problems"})
 
 C_TYPES = {
     "integer": "nmea_number", "decimal": "nmea_number", "hex": "nmea_hex", "time": "nmea_time",
@@ -38,6 +38,9 @@ EMPTY = {
     "nmea_date": "present false", "nmea_coordinate": "present false", "nmea_enum": "present false",
     "char": "0", "bool": "false", "nmea_text": "length 0",
 }
+
+
+MAX_PROBLEMS = 8  # NMEA_MAX_PROBLEMS, the reference's runtime.MAX_PROBLEMS
 
 
 def c_str(text: str) -> str:
@@ -314,15 +317,10 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
             after.append(view)
         else:
             before.append(view)
-    # An optional keyword is always written and shown, as in the Python reference (its value is
-    # the word itself, never absent): the optional fields up to the last keyword are written
-    # (empty when they were not on the wire) and the keywords are always in the JSON.
-    last_keyword = max((n for n, v in enumerate(optional, 1) if v["field"].type == "keyword"), default=0)
+    # An optional field (a keyword too) is written and shown when it was on the wire.
     for n, view in enumerate(optional, 1):
         view["index"] = n
         view["when"] = f"s->optional_count >= {n}"
-        view["put_when"] = None if n <= last_keyword else view["when"]
-        view["json_when"] = None if view["field"].type == "keyword" else view["when"]
     group_view = None
     if group is not None:
         single = group.single
@@ -353,7 +351,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     # The fields read before the group (all of them when there is none) and after it.
     head = before + ([] if group_view else optional)
     tail = (after + optional) if group_view else []
-    words = _text_words(layout, before + optional) if kind == "text" else []
+    words = _text_words(before + optional) if kind == "text" else []
     return {
         "sentence": sentence,
         "layout": layout,
@@ -392,26 +390,19 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     }
 
 
-def _text_words(layout: Layout, views: list[dict]) -> list[dict]:
+def _text_words(views: list[dict]) -> list[dict]:
     """The lossless fields of a text command written in the spec's letter case, as the Python
-    reference shows them: the words of the command paired with the field ids in order (a
-    latitude or longitude is two words, so the ids after it pair with the next words)."""
-    ids = [item.id for item in layout.items]
+    reference shows them: each word (a text command's fields are single words, S015) under its
+    field id, the text of a problem in place of the field's."""
     out = []
-    pos = 0
-    for view in views:
+    for n, view in enumerate(views, 1):
         f = view["field"]
-        when = view.get("put_when")
-        for part in range(f.wire_width):
-            if pos + part >= len(ids):
-                break
-            key = ids[pos + part]
-            if f.wire_width == 1:
-                call = json_call(f, view["target"], key, "false")
-            else:
-                call = f"json_coordinate_word(w, {c_str(key)}, &{view['target']}, {part})"
-            out.append({"when": when, "call": call})
-        pos += f.wire_width
+        if f.wire_width != 1:
+            raise ValueError(f"{f.id}: a text command's fields are single words")
+        cond = f"!json_problem_word(w, {c_str(f.id)}, &s->problems, {n})"
+        if view.get("when"):
+            cond = f"{view['when']} && {cond}"
+        out.append({"cond": cond, "call": json_call(f, view["target"], True, "false")})
     return out
 
 
@@ -458,13 +449,21 @@ def enum_view(e: EnumDef) -> dict:
 def json_max(spec: Spec, views: list[dict]) -> int:
     """A buffer size that holds the decode JSON (or error JSON) of any line of at most 1024
     bytes: every wire byte costs at most `per_byte` output bytes (an enum_chars code becomes its
-    quoted id), every wire field at most `per_field` more (its key and punctuation)."""
+    quoted id), every wire field at most `per_field` more (its key and punctuation). Lenient
+    decoding adds up to MAX_PROBLEMS problems: their texts (wire bytes shown twice, the second
+    time escaped twice: 6 bytes each at most) and per problem its name, what was expected and
+    punctuation."""
     longest_id = max([len(v.id) for e in spec.enums for v in e.values] + [0])
     per_byte = max(8, longest_id + 4)
-    keys = [len(f.id) for s in spec.sentences for lay in s.layouts for f in _all_fields(lay)]
+    all_fields = [f for s in spec.sentences for lay in s.layouts for f in _all_fields(lay)]
+    keys = [len(f.id) for f in all_fields]
     per_field = max(keys + [0]) + 64
     fields = max([v["max_fields"] for v in views] + [0]) + 2
-    return 1024 + 1024 * per_byte + fields * per_field
+    groups = [len(item.id) for s in spec.sentences for lay in s.layouts for item in lay.items
+              if isinstance(item, Group)]
+    expected = max([len(c_str(f.expected)) for f in all_fields] + [0])
+    per_problem = max(groups + [0]) + 8 + per_field + 2 * expected + 64
+    return 1024 + 1024 * per_byte + fields * per_field + 6 * 1024 + MAX_PROBLEMS * per_problem
 
 
 def _all_fields(layout: Layout) -> list[Field]:
@@ -659,6 +658,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "bitfields": bitfields, "tables": tables, "dispatch": _dispatch(spec, views),
         "commands": [v for v in views if v["replies"]], "cased_runs": cased_runs(),
         "code_max": max([e.max_len for e in spec.enums] + [1]),
+        "max_fields": max([v["max_fields"] for v in views] + [1]),
         "json_max": json_max(spec, views),
         "runtime_h": runtime_h, "runtime_c": runtime_c,
     }

@@ -1,11 +1,17 @@
 /*
  * libFuzzer target for the generated C codec (build: make fuzz-smoke / make fuzz).
  *
- * The input is tried as an NMEA line and as a line of decode's JSON:
+ * The input is tried as an NMEA line, as a line of decode's JSON and as a byte stream:
  * - a line that parses must serialize back to exactly its bytes, its lossless JSON must rebuild
- *   the same sentence, and both JSON forms must fit NMEA_JSON_MAX;
- * - a line that does not parse must describe its error as JSON;
- * - JSON that rebuilds a sentence must serialize, and that sentence must parse again.
+ *   the same sentence, and both JSON forms must fit NMEA_JSON_MAX; lenient parsing must give the
+ *   same JSON, and requiring a checksum must refuse it exactly when it has none;
+ * - a line that does not parse must describe its error as JSON; when lenient parsing keeps it, it
+ *   must still serialize back to exactly its bytes, and its JSON (problems included) must rebuild
+ *   it the same way;
+ * - JSON that rebuilds a sentence must serialize, and that sentence must parse again;
+ * - the stream framer must cut the input into the same items as a byte-at-a-time model of the
+ *   Python reference's Framer, whether it gets the input whole or in chunks of any size (the
+ *   chunk sizes are derived from the input).
  * Any broken promise aborts, and AddressSanitizer/UndefinedBehaviorSanitizer catch the rest.
  */
 #include <stdint.h>
@@ -17,32 +23,77 @@
 static char text[NMEA_MAX_LINE + 8];
 static char again[NMEA_MAX_LINE + 8];
 static char json[NMEA_JSON_MAX];
+static char json2[NMEA_JSON_MAX];
 static char scratch[NMEA_JSON_MAX];
+
+static const nmea_options LENIENT = {true, false};
+static const nmea_options REQUIRED = {false, true};
+
+static void check(bool ok)
+{
+    if (!ok)
+        abort();
+}
+
+static bool ends_with(const char *s, size_t n, const char *suffix)
+{
+    size_t m = strlen(suffix);
+    return n >= m && memcmp(s + n - m, suffix, m) == 0;
+}
+
+/* The sentence's lossless JSON must rebuild it, and the rebuilt one must serialize to `line`. */
+static void json_round_trip(const nmea_sentence *s, const char *line, size_t size)
+{
+    nmea_sentence rebuilt;
+    nmea_error err;
+    size_t n, j;
+
+    check(nmea_to_json(s, true, json, sizeof json) != 0);
+    j = nmea_to_json(s, false, json, sizeof json);
+    check(j != 0 && nmea_from_json(&rebuilt, json, j, scratch, sizeof scratch, &err));
+    n = nmea_serialize(&rebuilt, again, sizeof again);
+    check(n == size && memcmp(again, line, size) == 0);
+}
 
 static void as_line(const char *data, size_t size)
 {
-    nmea_sentence s;
-    nmea_sentence rebuilt;
+    nmea_sentence s, other;
     nmea_error err;
-    size_t n;
-    size_t j;
+    size_t n, j, k;
+    bool no_checksum, text_command;
 
     if (!nmea_parse(&s, data, size, &err)) {
-        if (nmea_error_to_json(&err, json, sizeof json) == 0)
-            abort();
+        check(nmea_error_to_json(&err, json, sizeof json) != 0);
+        if (!nmea_parse_ex(&s, data, size, &LENIENT, &err)) {
+            check(nmea_error_to_json(&err, json, sizeof json) != 0);
+            return;
+        }
+        /* kept leniently: the problems' texts are written back in their places */
+        n = nmea_serialize(&s, text, sizeof text);
+        check(n == size && memcmp(text, data, size) == 0);
+        json_round_trip(&s, data, size);
         return;
     }
     n = nmea_serialize(&s, text, sizeof text);
-    if (n != size || memcmp(text, data, size) != 0)
-        abort();
-    if (nmea_to_json(&s, true, json, sizeof json) == 0)
-        abort();
+    check(n == size && memcmp(text, data, size) == 0);
+    json_round_trip(&s, data, size);
+
+    /* lenient parsing of a line that parses strictly changes nothing */
     j = nmea_to_json(&s, false, json, sizeof json);
-    if (j == 0 || !nmea_from_json(&rebuilt, json, j, scratch, sizeof scratch, &err))
-        abort();
-    n = nmea_serialize(&rebuilt, again, sizeof again);
-    if (n != size || memcmp(again, data, size) != 0)
-        abort();
+    check(nmea_parse_ex(&other, data, size, &LENIENT, &err));
+    k = nmea_to_json(&other, false, json2, sizeof json2);
+    check(j == k && memcmp(json, json2, j) == 0);
+
+    /* a required checksum refuses exactly the $/! sentences without one */
+    no_checksum = ends_with(json, j, "\"checksum\":null}") || ends_with(json, j, "\"checksum\":\"\"}");
+    text_command = j > 21 && memcmp(json, "{\"ok\":true,\"start\":\"\"", 21) == 0;
+    if (nmea_parse_ex(&other, data, size, &REQUIRED, &err)) {
+        k = nmea_to_json(&other, false, json2, sizeof json2);
+        check(j == k && memcmp(json, json2, j) == 0);
+        check(!no_checksum || text_command);
+    } else {
+        check(err.kind == NMEA_ERR_MISSING_CHECKSUM && no_checksum && !text_command);
+    }
 }
 
 static void as_json(const char *data, size_t size)
@@ -52,18 +103,122 @@ static void as_json(const char *data, size_t size)
     nmea_error err;
     size_t n;
 
-    if (size > sizeof scratch || !nmea_from_json(&s, data, size, scratch, sizeof scratch, &err))
+    if (size > sizeof scratch / 2 || !nmea_from_json(&s, data, size, scratch, sizeof scratch, &err))
         return;
     n = nmea_serialize(&s, text, sizeof text);
     if (n == 0 && size < NMEA_MAX_LINE)
         return; /* a sentence rebuilt from JSON may be longer than any line the parser takes */
-    if (n > 0 && n <= NMEA_MAX_LINE && !nmea_parse(&parsed, text, n, &err))
+    if (n > 0 && n <= NMEA_MAX_LINE && !nmea_parse_ex(&parsed, text, n, &LENIENT, &err))
         abort();
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* Stream framing */
+
+#define STREAM_MAX 65536
+
+typedef struct {
+    size_t start; /* offset in model_bytes of the kept bytes */
+    size_t len;   /* the line's length (> NMEA_MAX_LINE: overlong, only counted) */
+} model_item;
+
+static model_item model[STREAM_MAX];
+static size_t model_count;
+static char model_bytes[STREAM_MAX];
+static size_t model_used;
+
+/* The Python reference's Framer, one byte at a time. */
+static void model_finish(size_t *length, size_t *start)
+{
+    if (*length) {
+        model[model_count].start = *start;
+        model[model_count].len = *length;
+        model_count++;
+    }
+    *length = 0;
+    *start = model_used;
+}
+
+static void model_frame(const char *data, size_t size)
+{
+    size_t i, length = 0, start = 0;
+    model_count = 0;
+    model_used = 0;
+    for (i = 0; i < size; i++) {
+        char c = data[i];
+        if (c == '\r' || c == '\n') {
+            model_finish(&length, &start);
+        } else if (c == '$' || c == '!') {
+            model_finish(&length, &start);
+            model_bytes[model_used++] = c;
+            length = 1;
+        } else {
+            length++;
+            if (length <= NMEA_MAX_LINE)
+                model_bytes[model_used++] = c;
+        }
+    }
+    model_finish(&length, &start);
+}
+
+/* The item must be the model's next one. */
+static void expect_item(size_t *next, nmea_framed item)
+{
+    const model_item *m;
+    check(*next < model_count);
+    m = &model[(*next)++];
+    check(item.len == m->len);
+    if (item.len > NMEA_MAX_LINE)
+        check(item.ptr == NULL);
+    else
+        check(item.ptr != NULL && memcmp(item.ptr, model_bytes + m->start, item.len) == 0);
+}
+
+/* Frames the input in chunks: `sizes` (n of them, each at least 1) cycled. */
+static void frame_chunked(const char *data, size_t size, const size_t *sizes, size_t n, bool decode)
+{
+    static nmea_framer framer;
+    nmea_framed item;
+    size_t pos = 0, next = 0, k = 0;
+
+    nmea_framer_init(&framer);
+    while (pos < size) {
+        const char *p = data + pos;
+        size_t len = sizes[k++ % n];
+        if (len > size - pos)
+            len = size - pos;
+        pos += len;
+        while (nmea_framer_push(&framer, &p, &len, &item)) {
+            expect_item(&next, item);
+            if (decode)
+                nmea_decode_json_ex(item.ptr, item.len, false, &LENIENT, json, sizeof json);
+        }
+        check(len == 0 && p == data + pos);
+    }
+    if (nmea_framer_end(&framer, &item))
+        expect_item(&next, item);
+    check(next == model_count && !nmea_framer_end(&framer, &item));
+}
+
+static void as_stream(const char *data, size_t size)
+{
+    static const size_t cycle[] = {1, 2, 3, 4, 5, 6, 7};
+    size_t sizes[16], i, whole = size ? size : 1;
+
+    if (size > STREAM_MAX)
+        return;
+    model_frame(data, size);
+    frame_chunked(data, size, &whole, 1, true);
+    frame_chunked(data, size, cycle, 7, false);
+    for (i = 0; i < 16; i++) /* chunk sizes taken from the input */
+        sizes[i] = i < size ? (unsigned char)data[i] % 64 + 1 : 1 + i;
+    frame_chunked(data, size, sizes, 16, false);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     as_line((const char *)data, size);
     as_json((const char *)data, size);
+    as_stream((const char *)data, size);
     return 0;
 }

@@ -10,8 +10,10 @@
 
 #if defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
+#define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
 #else
 #define NMEA_INTERNAL static
+#define NMEA_RARE static
 #endif
 
 static const char HEX_UPPER[] = "0123456789ABCDEF";
@@ -82,7 +84,9 @@ static bool upper_is(nmea_text t, const char *s)
 /* Writing text: a bounded buffer that keeps counting past its end and XORs the bytes written
    while `summing` (the checksum). Fields are preceded by `sep` (',', or ' ' between the words of a
    text command). While a text command is written, `match` is the command as received: the bytes
-   written are compared with it ignoring case (`matched` stays true while they agree). */
+   written are compared with it ignoring case (`matched` stays true while they agree). While a
+   sentence is written, `field` counts its wire fields, and the fields of its `problems` (those
+   lenient parsing left empty) are written with their text as received. */
 
 typedef struct {
     char *buf;
@@ -97,6 +101,8 @@ typedef struct {
     size_t match_len;
     size_t match_pos;
     size_t start;
+    const nmea_problems *problems;
+    unsigned field;
 } nmea_writer;
 
 static nmea_writer writer_of(char *buf, size_t cap)
@@ -114,6 +120,8 @@ static nmea_writer writer_of(char *buf, size_t cap)
     w.match_len = 0;
     w.match_pos = 0;
     w.start = 0;
+    w.problems = NULL;
+    w.field = 0;
     return w;
 }
 
@@ -247,7 +255,7 @@ static void put_json_cstr(nmea_writer *w, const char *s)
 /* Errors */
 
 static const char *const ERROR_KINDS[] = {
-    "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "too_few_fields",
+    "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "missing_checksum", "too_few_fields",
     "too_many_fields", "bad_field", "bad_json", "bad_value",
 };
 
@@ -400,6 +408,43 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
+/* A problem as the bad_field error it was. */
+static void problem_error(const nmea_problem *p, nmea_error *err)
+{
+    fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
+    err->field = p->field;
+    err->group = p->group;
+    err->entry = p->entry;
+    err->name = p->name;
+    err->str[0] = p->expected;
+    err->text = p->text;
+}
+
+/* A bad_field error kept as a problem. */
+static void problem_of(nmea_problem *p, const nmea_error *err)
+{
+    p->field = (uint16_t)err->field;
+    p->entry = (uint16_t)err->entry;
+    p->group = err->group;
+    p->name = err->name;
+    p->expected = err->str[0];
+    p->text = err->text;
+}
+
+size_t nmea_problem_message(const nmea_problem *p, char *buf, size_t cap)
+{
+    nmea_error err;
+    problem_error(p, &err);
+    return nmea_error_message(&err, buf, cap);
+}
+
+size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap)
+{
+    nmea_error err;
+    problem_error(p, &err);
+    return nmea_error_name(&err, buf, cap);
+}
+
 /* ------------------------------------------------------------------------------------------ */
 /* Framing: a line split into start, address and fields, its checksum verified. */
 
@@ -411,8 +456,9 @@ typedef struct {
     nmea_checksum_style checksum;
 } nmea_frame;
 
-/* One pass over the line: the printable check, the checksum and the field count. */
-static bool frame_line(nmea_frame *f, const char *line, size_t len, nmea_error *err)
+/* One pass over the line: the printable check, the checksum and the field count; with
+   `require_checksum`, a sentence without a checksum (or with a bare '*') is refused. */
+static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require_checksum, nmea_error *err)
 {
     size_t i, star = 0, comma = 0, commas = 0, body_end;
     unsigned sum = 0;
@@ -481,6 +527,11 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, nmea_error *
         err->text = f->address;
         return false;
     }
+    if (require_checksum && (f->checksum == NMEA_CHECKSUM_NONE || f->checksum == NMEA_CHECKSUM_EMPTY)) {
+        fail(err, NMEA_ERR_MISSING_CHECKSUM, "the sentence has no checksum");
+        set_address(err, f->address, NULL);
+        return false;
+    }
     f->count = commas;
     f->fields = commas ? text_span(line + comma + 1, line + body_end) : text_span(line + body_end, line + body_end);
     return true;
@@ -544,10 +595,88 @@ static bool word_is(nmea_text word, const char *upper)
     return *upper == 0;
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* Stream framing */
+
+/* The bytes that end a line (CR, LF) or start a new one ('$', '!'). */
+static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2};
+
+void nmea_framer_init(nmea_framer *f)
+{
+    f->length = 0;
+}
+
+/* Adds bytes to the line being assembled (only its first NMEA_MAX_LINE bytes are kept). */
+static void framer_keep(nmea_framer *f, const char *p, size_t n)
+{
+    if (f->length < NMEA_MAX_LINE)
+        memcpy(f->line + f->length, p, n < NMEA_MAX_LINE - f->length ? n : NMEA_MAX_LINE - f->length);
+    f->length += n;
+}
+
+bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out)
+{
+    const char *p = *data, *end, *q;
+    if (*len == 0)
+        return false;
+    end = p + *len;
+    if (f->length == 0) {
+        while (p < end && LINE_BOUNDARY[(unsigned char)*p] == 1) /* empty lines */
+            p++;
+        if (p == end) {
+            *data = end;
+            *len = 0;
+            return false;
+        }
+        /* a line starts at p: one that ends in this chunk is handed on where it lies */
+        for (q = p + 1; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
+            continue;
+        if (q < end) {
+            out->ptr = (size_t)(q - p) <= NMEA_MAX_LINE ? p : NULL;
+            out->len = (size_t)(q - p);
+            q += LINE_BOUNDARY[(unsigned char)*q] == 1; /* a '$' or '!' stays for the next line */
+            *data = q;
+            *len = (size_t)(end - q);
+            return true;
+        }
+    } else {
+        for (q = p; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
+            continue;
+        framer_keep(f, p, (size_t)(q - p));
+        if (q < end) {
+            out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
+            out->len = f->length;
+            f->length = 0;
+            q += LINE_BOUNDARY[(unsigned char)*q] == 1;
+            *data = q;
+            *len = (size_t)(end - q);
+            return true;
+        }
+        p = q;
+    }
+    framer_keep(f, p, (size_t)(end - p));
+    *data = end;
+    *len = 0;
+    return false;
+}
+
+bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
+{
+    if (f->length == 0)
+        return false;
+    out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
+    out->len = f->length;
+    f->length = 0;
+    return true;
+}
+
 /* A known sentence starts with '$', its talker and its sentence id; the checksum covers all but
    the '$'. Each field writes its comma, end_sentence the checksum. */
-NMEA_INTERNAL void begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence)
+NMEA_INTERNAL void begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence,
+                                  const nmea_problems *problems)
 {
+    w->problems = problems;
+    w->field = 0;
     put_char(w, '$');
     w->summing = true;
     put_text(w, talker);
@@ -558,6 +687,7 @@ static void end_sentence(nmea_writer *w, nmea_checksum_style style)
 {
     unsigned char sum = w->sum;
     w->summing = false;
+    w->problems = NULL;
     if (style == NMEA_CHECKSUM_NONE)
         return;
     put_char(w, '*');
@@ -569,8 +699,11 @@ static void end_sentence(nmea_writer *w, nmea_checksum_style style)
 
 /* A text command: the command word and each field after a space (the put_ functions write
    w->sep). Written back exactly as received when its words still match ignoring case. */
-NMEA_INTERNAL void begin_text(nmea_writer *w, const char *address, nmea_text as_received)
+NMEA_INTERNAL void begin_text(nmea_writer *w, const char *address, nmea_text as_received,
+                              const nmea_problems *problems)
 {
+    w->problems = problems;
+    w->field = 0;
     w->sep = ' ';
     w->start = w->len;
     w->match = as_received.ptr;
@@ -590,6 +723,7 @@ NMEA_INTERNAL void end_text(nmea_writer *w)
     w->summing = false;
     w->match = NULL;
     w->sep = ',';
+    w->problems = NULL;
 }
 
 nmea_text nmea_generic_field(const nmea_generic *g, size_t index)
@@ -921,6 +1055,8 @@ typedef struct {
     bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
     nmea_checksum_style checksum;
     nmea_text line;               /* a text command: the command as received */
+    uint16_t blank[NMEA_MAX_PROBLEMS]; /* lenient parsing: the wire fields read as empty */
+    unsigned blanks;
 } nmea_wire;
 
 typedef struct {
@@ -934,6 +1070,8 @@ typedef struct {
     unsigned entry;
     char sep;
     bool ignore_case;
+    const uint16_t *blank;
+    unsigned blanks;
     nmea_error *err;
 } nmea_reader;
 
@@ -949,7 +1087,19 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->entry = 0;
     r->sep = wire->sep;
     r->ignore_case = wire->ignore_case;
+    r->blank = wire->blank;
+    r->blanks = wire->blanks;
     r->err = err;
+}
+
+/* Whether lenient parsing reads wire field `index` (1-based) as empty. */
+NMEA_RARE bool is_blank(const uint16_t *blank, unsigned blanks, unsigned index)
+{
+    unsigned i;
+    for (i = 0; i < blanks; i++)
+        if (blank[i] == index)
+            return true;
+    return false;
 }
 
 /* From now on the fields read belong to entry `index` (0-based) of `group` (NULL: none). */
@@ -959,7 +1109,7 @@ NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
     r->entry = (unsigned)index + 1;
 }
 
-static nmea_text next_field(nmea_reader *r)
+static inline nmea_text next_field(nmea_reader *r)
 {
     const char *p = r->next;
     nmea_text t;
@@ -969,6 +1119,8 @@ static nmea_text next_field(nmea_reader *r)
     t = text_span(p, r->next);
     if (r->next < r->end)
         r->next++;
+    if (r->blanks && is_blank(r->blank, r->blanks, r->index))
+        t.len = 0;
     return t;
 }
 
@@ -1007,6 +1159,7 @@ static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, co
     wire->ignore_case = line != NULL;
     wire->checksum = f->checksum;
     wire->line = line ? text_span(line, f->fields.ptr + f->fields.len) : nmea_text_of(NULL);
+    wire->blanks = 0;
 }
 
 /* For nmea_build_*: the sentence just written to w (which must hold it, its CR LF and a NUL),
@@ -1021,7 +1174,7 @@ NMEA_INTERNAL bool build_wire(nmea_writer *w, bool text, nmea_wire *wire, nmea_e
         w->len = w->cap; /* nothing of it is kept */
         return false;
     }
-    if (!(text ? text_frame : frame_line)(&f, w->buf, w->len, err))
+    if (!(text ? text_frame(&f, w->buf, w->len, err) : frame_line(&f, w->buf, w->len, false, err)))
         return false;
     wire_of(wire, &f, NULL, text ? w->buf : NULL);
     return true;
@@ -1233,6 +1386,28 @@ NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *n
 /* ------------------------------------------------------------------------------------------ */
 /* Writing fields back: each writes its comma and its text (nothing for an empty field). */
 
+/* The text of a field lenient parsing left empty, in its place (the last problem naming it). */
+static bool put_problem(nmea_writer *w)
+{
+    const nmea_problem *found = NULL;
+    size_t i;
+    for (i = 0; i < w->problems->count && i < NMEA_MAX_PROBLEMS; i++)
+        if (w->problems->list[i].field == w->field)
+            found = &w->problems->list[i];
+    if (found)
+        put_text(w, found->text);
+    return found != NULL;
+}
+
+/* The separator before the next wire field; true when that field is a problem, whose text as
+   received has then been written in place of the field's own. */
+static bool put_sep(nmea_writer *w)
+{
+    put_char(w, w->sep);
+    w->field++;
+    return w->problems && w->problems->count && put_problem(w);
+}
+
 static void number_text(nmea_writer *w, const nmea_number *n)
 {
     uint64_t digits = (uint64_t)n->digits;
@@ -1252,8 +1427,8 @@ static void number_text(nmea_writer *w, const nmea_number *n)
 
 NMEA_INTERNAL void put_number(nmea_writer *w, const nmea_number *n)
 {
-    put_char(w, w->sep);
-    number_text(w, n);
+    if (!put_sep(w))
+        number_text(w, n);
 }
 
 static void hex_text(nmea_writer *w, const nmea_hex *h)
@@ -1276,8 +1451,7 @@ static void hex_text(nmea_writer *w, const nmea_hex *h)
 
 NMEA_INTERNAL void put_hex(nmea_writer *w, const nmea_hex *h)
 {
-    put_char(w, w->sep);
-    if (h->present)
+    if (!put_sep(w) && h->present)
         hex_text(w, h);
 }
 
@@ -1295,8 +1469,7 @@ static void time_text(nmea_writer *w, const nmea_time *t)
 
 NMEA_INTERNAL void put_time(nmea_writer *w, const nmea_time *t)
 {
-    put_char(w, w->sep);
-    if (t->present)
+    if (!put_sep(w) && t->present)
         time_text(w, t);
 }
 
@@ -1309,8 +1482,7 @@ static void date_text(nmea_writer *w, const nmea_date *d)
 
 NMEA_INTERNAL void put_date(nmea_writer *w, const nmea_date *d)
 {
-    put_char(w, w->sep);
-    if (d->present)
+    if (!put_sep(w) && d->present)
         date_text(w, d);
 }
 
@@ -1323,25 +1495,21 @@ static void coordinate_text(nmea_writer *w, const nmea_coordinate *c)
 
 NMEA_INTERNAL void put_coordinate(nmea_writer *w, const nmea_coordinate *c)
 {
-    put_char(w, w->sep);
-    if (c->present)
+    if (!put_sep(w) && c->present)
         coordinate_text(w, c);
-    put_char(w, w->sep);
-    if (c->present)
+    if (!put_sep(w) && c->present)
         put_char(w, c->hemisphere);
 }
 
 NMEA_INTERNAL void put_char_field(nmea_writer *w, char c)
 {
-    put_char(w, w->sep);
-    if (c)
+    if (!put_sep(w) && c)
         put_char(w, c);
 }
 
 NMEA_INTERNAL void put_literal(nmea_writer *w, bool present, const char *literal)
 {
-    put_char(w, w->sep);
-    if (present)
+    if (!put_sep(w) && present)
         put_str(w, literal);
 }
 
@@ -1352,21 +1520,20 @@ static const char *enum_code(const nmea_enum *e, const nmea_enum_def *def)
 
 NMEA_INTERNAL void put_enum(nmea_writer *w, const nmea_enum *e, const nmea_enum_def *def)
 {
-    put_char(w, w->sep);
-    if (e->present)
+    if (!put_sep(w) && e->present)
         put_str(w, enum_code(e, def));
 }
 
 NMEA_INTERNAL void put_keyword(nmea_writer *w, const char *keyword)
 {
-    put_char(w, w->sep);
-    put_str(w, keyword);
+    if (!put_sep(w))
+        put_str(w, keyword);
 }
 
 NMEA_INTERNAL void put_text_field(nmea_writer *w, nmea_text t)
 {
-    put_char(w, w->sep);
-    put_text(w, t);
+    if (!put_sep(w))
+        put_text(w, t);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -1531,24 +1698,6 @@ NMEA_INTERNAL void json_keyword(nmea_writer *w, const char *key, const char *key
     put_json_cstr(w, keyword);
 }
 
-/* One of the two words of a latitude or longitude (`part` 0: the number, 1: the hemisphere) in
-   the lossless fields of a text command. */
-NMEA_INTERNAL void json_coordinate_word(nmea_writer *w, const char *key, const nmea_coordinate *c, int part)
-{
-    json_key(w, key);
-    if (!c->present) {
-        put_str(w, "null");
-    } else if (part == 0) {
-        put_char(w, '"');
-        coordinate_text(w, c);
-        put_char(w, '"');
-    } else if (!c->hemisphere) {
-        put_str(w, "null");
-    } else {
-        put_json_str(w, text_span(&c->hemisphere, &c->hemisphere + 1), 0);
-    }
-}
-
 NMEA_INTERNAL void json_text(nmea_writer *w, const char *key, nmea_text t, bool values)
 {
     (void)values;
@@ -1677,12 +1826,61 @@ static void json_checksum(nmea_writer *w, unsigned char sum, nmea_checksum_style
     put_str(w, "\"}");
 }
 
-/* Closes the fields of a known sentence; `sentence` is the writer that wrote it (for its
-   checksum). */
-NMEA_INTERNAL void json_end_sentence(nmea_writer *w, const nmea_writer *sentence, nmea_checksum_style style)
+/* ,"problems":[...]: each field lenient parsing left empty, with its text and why. */
+static void json_problems(nmea_writer *w, const nmea_problems *problems)
+{
+    nmea_error err;
+    size_t i;
+    put_str(w, ",\"problems\":[");
+    for (i = 0; i < problems->count && i < NMEA_MAX_PROBLEMS; i++) {
+        problem_error(&problems->list[i], &err);
+        put_str(w, i ? ",{\"field\":" : "{\"field\":");
+        put_uint(w, err.field, 1);
+        put_str(w, ",\"name\":");
+        if (err.name) {
+            put_char(w, '"');
+            put_name(w, &err);
+            put_char(w, '"');
+        } else {
+            put_str(w, "null");
+        }
+        put_str(w, ",\"text\":");
+        put_json_str(w, err.text, 0);
+        put_str(w, ",\"message\":\"");
+        put_message(w, &err, 1);
+        put_str(w, "\"}");
+    }
+    put_char(w, ']');
+}
+
+/* Closes the fields of a known sentence, lists its problems and ends with its checksum;
+   `sentence` is the writer that wrote it (for the checksum). */
+NMEA_INTERNAL void json_end_sentence(nmea_writer *w, const nmea_writer *sentence, nmea_checksum_style style,
+                                     const nmea_problems *problems)
 {
     put_char(w, '}');
+    if (problems->count)
+        json_problems(w, problems);
     json_checksum(w, sentence->sum, style);
+}
+
+/* A word of a text command's lossless fields that is a problem: its text in place of the
+   field's (true), or nothing (false). */
+NMEA_INTERNAL bool json_problem_word(nmea_writer *w, const char *key, const nmea_problems *problems, unsigned field)
+{
+    const nmea_problem *found = NULL;
+    size_t i;
+    for (i = 0; i < problems->count && i < NMEA_MAX_PROBLEMS; i++)
+        if (problems->list[i].field == field)
+            found = &problems->list[i];
+    if (!found)
+        return false;
+    json_key(w, key);
+    if (found->text.len)
+        put_json_str(w, found->text, 0);
+    else
+        put_str(w, "null");
+    return true;
 }
 
 static void json_generic(nmea_writer *w, const nmea_generic *g)
@@ -1714,11 +1912,9 @@ typedef struct {
     const char *end;
 } nmea_json;
 
-/* How deep arrays and objects may nest: as deep as the Python reference's json.loads goes before
-   its recursion limit, which leaves `encode` 990 levels and its check whether a line is a failure
-   (one call shallower) 991. Deeper JSON is "not JSON". */
-#define JSON_MAX_DEPTH 991
-#define JSON_ENCODE_DEPTH 990
+/* How deep arrays and objects may nest in what `encode` reads (and in its check whether a line is
+   a failure to skip), as in every tool: deeper JSON is "not JSON". */
+#define JSON_MAX_DEPTH 500
 
 static const char *json_ws(const char *p, const char *end)
 {
@@ -1827,7 +2023,7 @@ static const char *json_number_end(const char *p, const char *end)
 
 /* Whether `len` bytes are one JSON value (as Python's json.loads takes it, NaN and Infinity
    included); *root is the value without the surrounding white space. */
-static bool json_parse(const char *text, size_t len, size_t max_depth, nmea_json *root)
+static bool json_parse(const char *text, size_t len, nmea_json *root)
 {
     const char *p = text, *end = text + len;
     unsigned char stack[(JSON_MAX_DEPTH + 7) / 8] = {0};
@@ -1841,7 +2037,7 @@ static bool json_parse(const char *text, size_t len, size_t max_depth, nmea_json
         if (p >= end)
             return false;
         if (*p == '{' || *p == '[') {
-            if (depth >= max_depth || depth >= JSON_MAX_DEPTH)
+            if (depth >= JSON_MAX_DEPTH)
                 return false;
             object = *p == '{';
             if (object)
@@ -2140,31 +2336,39 @@ typedef struct {
     nmea_error *err;
 } nmea_collector;
 
+/* The wire text of a field value of decode's JSON (a string or null; null is empty), checked and
+   copied to the scratch buffer. */
+static bool json_field_text(nmea_json v, nmea_scratch *s, nmea_text *out, nmea_error *err)
+{
+    bool wide;
+    size_t i;
+    *out = nmea_text_of(NULL);
+    if (json_is_null(v))
+        return true;
+    if (!json_is(v, '"'))
+        return bad_json(err, "a field value is not a string or null", NULL);
+    if (!json_string(v, s, out, &wide))
+        return scratch_full(err);
+    for (i = 0; i < out->len; i++) {
+        if (wide || !is_printable(out->ptr[i]) || out->ptr[i] == ',' || out->ptr[i] == '*') {
+            bad_json(err, "field text %q holds ',', '*' or a byte outside printable ASCII", NULL);
+            err->text = json_inside(v);
+            err->text_json = true;
+            return false;
+        }
+    }
+    return true;
+}
+
 static bool collect_text(nmea_collector *c, nmea_json v)
 {
     nmea_text t;
-    bool wide;
-    size_t i;
     if (c->count && c->scratch->len >= c->scratch->cap)
         return scratch_full(c->err);
     if (c->count)
         c->scratch->buf[c->scratch->len++] = ',';
     c->count++;
-    if (json_is_null(v))
-        return true;
-    if (!json_is(v, '"'))
-        return bad_json(c->err, "a field value is not a string or null", NULL);
-    if (!json_string(v, c->scratch, &t, &wide))
-        return scratch_full(c->err);
-    for (i = 0; i < t.len; i++) {
-        if (wide || !is_printable(t.ptr[i]) || t.ptr[i] == ',' || t.ptr[i] == '*') {
-            bad_json(c->err, "field text %q holds ',', '*' or a byte outside printable ASCII", NULL);
-            c->err->text = json_inside(v);
-            c->err->text_json = true;
-            return false;
-        }
-    }
-    return true;
+    return json_field_text(v, c->scratch, &t, c->err);
 }
 
 /* The texts of one field value: a string or null, or for latitude/longitude (width 2) null or
@@ -2220,7 +2424,7 @@ static nmea_text collected(const nmea_collector *c)
 bool nmea_json_is_failure(const char *json, size_t len)
 {
     nmea_json root, ok;
-    return json_parse(json, len, JSON_MAX_DEPTH, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
+    return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
         && memcmp(ok.p, "false", 5) == 0;
 }
 

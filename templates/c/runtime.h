@@ -3,7 +3,7 @@
  *
  * Conventions of the whole API:
  * - No heap, no global mutable state: every struct is owned by the caller, every function is
- *   reentrant. Nothing here needs more than a few hundred bytes of stack.
+ *   reentrant. Nothing here needs more than a few kilobytes of stack (parsing: well under one).
  * - Texts are nmea_text slices (pointer + length, not NUL-terminated). A parsed sentence points
  *   into the line given to the parser (text, enum_chars and talker fields, the raw fields of an
  *   nmea_generic): keep that line alive and unchanged while the sentence is used. Sentences
@@ -162,6 +162,7 @@ typedef enum {
     NMEA_ERR_NOT_A_SENTENCE,
     NMEA_ERR_BAD_CHECKSUM,
     NMEA_ERR_CHECKSUM_MISMATCH,
+    NMEA_ERR_MISSING_CHECKSUM, /* nmea_options.require_checksum, and the sentence has none */
     NMEA_ERR_TOO_FEW_FIELDS,
     NMEA_ERR_TOO_MANY_FIELDS,
     NMEA_ERR_BAD_FIELD,
@@ -205,6 +206,88 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap);
 
 /** The too_long error for a line of `len` bytes (for readers that stream long lines away). */
 void nmea_error_too_long(nmea_error *err, size_t len);
+
+/** Most fields lenient parsing leaves empty in one sentence. */
+#define NMEA_MAX_PROBLEMS 8
+
+/**
+ * A field that lenient parsing (nmea_options.lenient) left empty because its text does not fit
+ * its type: where it is, its text as received (which the serializer writes back in its place, so
+ * the round trip stays exact) and what was expected. The message ("expected integer 0..99, found
+ * \"x\"") is rendered by nmea_problem_message.
+ */
+typedef struct {
+    uint16_t field;       /* 1-based wire field after the address */
+    uint16_t entry;       /* in a repeated group: the 1-based entry */
+    const char *group;    /* in a repeated group: the group id, else NULL */
+    const char *name;     /* the field id */
+    const char *expected; /* what the field takes */
+    nmea_text text;       /* the field's text as received */
+} nmea_problem;
+
+/** The problems of a sentence (every layout struct has them; `count` is 0 after a strict parse). */
+typedef struct {
+    uint8_t count;
+    nmea_problem list[NMEA_MAX_PROBLEMS];
+} nmea_problems;
+
+/** A problem's message ("expected ..., found \"TEXT\""); returns its length (0 when it does not
+    fit). */
+size_t nmea_problem_message(const nmea_problem *p, char *buf, size_t cap);
+
+/** A problem's field name ("satellites[2].prn"); returns its length (0 when it does not fit). */
+size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap);
+
+/**
+ * How nmea_parse_ex reads a line (a zeroed struct, or NULL, is nmea_parse's strict reading):
+ * - lenient: a `$`/`!` sentence whose fields do not all fit their types is still decoded: the
+ *   fields at fault are read as empty, one at a time in the order the errors come, and listed in
+ *   the layout's `problems`. A field that is already empty and still does not fit (a keyword, a
+ *   hemisphere without its latitude), or a problem more than NMEA_MAX_PROBLEMS, ends the attempt
+ *   with its error. Text commands are always strict.
+ * - require_checksum: a `$`/`!` sentence without a checksum (or with a bare '*') is refused as
+ *   NMEA_ERR_MISSING_CHECKSUM.
+ */
+typedef struct {
+    bool lenient;
+    bool require_checksum;
+} nmea_options;
+
+/* ------------------------------------------------------------------------------------------ */
+/* Stream framing: bytes as a serial port or socket delivers them, in chunks of any size. */
+
+/**
+ * Cuts a byte stream into lines: CR LF, LF and a bare CR end a line, and empty lines are skipped;
+ * a '$' or '!' always starts a new line, so whatever came before it (garbage, a sentence cut
+ * short) is a line of its own; a line longer than NMEA_MAX_LINE is not kept, only counted. The
+ * struct holds the line being assembled across chunks (no heap): zero it, or nmea_framer_init.
+ */
+typedef struct {
+    size_t length;             /* bytes of the current line so far (counted past NMEA_MAX_LINE) */
+    char line[NMEA_MAX_LINE];  /* its first NMEA_MAX_LINE bytes */
+} nmea_framer;
+
+/** A framed line: `len` bytes at `ptr`, or for a line longer than NMEA_MAX_LINE its length in
+    `len` and `ptr` NULL (nmea_parse refuses it as too_long without reading it, so it can be
+    handed on as it is). `ptr` points into the chunk given to nmea_framer_push or into the
+    framer, and stays valid until the framer's next call. */
+typedef nmea_text nmea_framed;
+
+void nmea_framer_init(nmea_framer *f);
+
+/**
+ * Takes bytes from `*data` (`*len` of them) until a line is complete: returns true with it in
+ * `*out`, having advanced `*data` and `*len` past what it used (the line ending, but not a '$' or
+ * '!' that starts the next line); returns false once every byte is used without completing a
+ * line (the rest is kept for the next chunk). Call it until it returns false:
+ *
+ *     while (nmea_framer_push(&framer, &p, &n, &line))
+ *         handle(line);
+ */
+bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out);
+
+/** At the end of the stream: the last line, when it had no line ending (true), else false. */
+bool nmea_framer_end(nmea_framer *f, nmea_framed *out);
 
 /**
  * A well-formed sentence the spec does not describe. `fields` is the raw text of all fields

@@ -1,12 +1,15 @@
 /*
- * nmea-c: `decode` NMEA lines to JSON, `encode` that JSON back to sentences (hand-written:
+ * nmea-c: `decode` NMEA lines to JSON, `encode` that JSON back to sentences, `stream` a byte
+ * stream that may hold garbage, cut lines or sentences run together (hand-written:
  * templates/c/tool.c). Same behaviour, byte for byte, as nmea-py and nmea-rs; see docs/json.md.
  *
- *     nmea-c decode [--values]   stdin: NMEA lines       stdout: one JSON object per line
- *     nmea-c encode              stdin: decode's output  stdout: the sentences, one per line
+ *     nmea-c decode [--values] [--lenient] [--require-checksum]   stdin: NMEA lines
+ *     nmea-c stream [--values] [--lenient] [--require-checksum]   stdin: any bytes
+ *     nmea-c encode                                               stdin: decode's output
  *
- * Input is split on LF and one CR before it is dropped. decode streams: a line longer than
- * NMEA_MAX_LINE is counted, not stored. encode holds one line at a time (up to ENCODE_MAX bytes).
+ * decode splits its input on LF and drops one CR before it; stream frames it with nmea_framer.
+ * Both print one JSON object per line; a line longer than NMEA_MAX_LINE is counted, not stored.
+ * encode holds one line at a time (up to ENCODE_MAX bytes).
  */
 
 #include <stdio.h>
@@ -27,6 +30,7 @@ static char output[4 * ENCODE_MAX + NMEA_JSON_MAX + 1];
 typedef struct {
     bool encode;
     bool values;
+    nmea_options options;
     size_t out_len;
 } tool;
 
@@ -59,7 +63,7 @@ static void decode_line(tool *t, const char *line, size_t len)
         nmea_error_too_long(&err, len);
         n = nmea_error_to_json(&err, out, NMEA_JSON_MAX);
     } else {
-        n = nmea_decode_json(line, len, t->values, out, NMEA_JSON_MAX);
+        n = nmea_decode_json_ex(line, len, t->values, &t->options, out, NMEA_JSON_MAX);
     }
     emit(t, n);
 }
@@ -104,20 +108,60 @@ static void handle(tool *t, const char *line, size_t len, size_t kept, char last
         decode_line(t, line, len);
 }
 
+/* The flags of decode and stream, each at most once, in any order. */
+static bool decode_flags(tool *t, int argc, char **argv)
+{
+    int i;
+    bool lenient = false, required = false;
+    for (i = 2; i < argc; i++) {
+        bool *flag = strcmp(argv[i], "--values") == 0 ? &t->values
+            : strcmp(argv[i], "--lenient") == 0 ? &lenient
+            : strcmp(argv[i], "--require-checksum") == 0 ? &required : NULL;
+        if (!flag || *flag)
+            return false;
+        *flag = true;
+    }
+    t->options.lenient = lenient;
+    t->options.require_checksum = required;
+    return true;
+}
+
+/* stream: the framed lines of stdin, each decoded. */
+static int stream(tool *t)
+{
+    static nmea_framer framer;
+    nmea_framed line;
+    size_t got;
+
+    nmea_framer_init(&framer);
+    while ((got = fread(input, 1, sizeof input, stdin)) > 0) {
+        const char *p = input;
+        while (nmea_framer_push(&framer, &p, &got, &line))
+            decode_line(t, line.ptr, line.len);
+    }
+    if (nmea_framer_end(&framer, &line))
+        decode_line(t, line.ptr, line.len);
+    flush(t);
+    return ferror(stdin) ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
-    tool t = {false, false, 0};
+    tool t;
     size_t got, pending_len = 0, line_len = 0;
     char last = 0;
 
-    if (argc == 2 && strcmp(argv[1], "decode") == 0) {
-        t.values = false;
-    } else if (argc == 3 && strcmp(argv[1], "decode") == 0 && strcmp(argv[2], "--values") == 0) {
-        t.values = true;
+    memset(&t, 0, sizeof t);
+    if (argc >= 2 && strcmp(argv[1], "stream") == 0 && decode_flags(&t, argc, argv)) {
+        return stream(&t);
+    } else if (argc >= 2 && strcmp(argv[1], "decode") == 0 && decode_flags(&t, argc, argv)) {
+        t.encode = false;
     } else if (argc == 2 && strcmp(argv[1], "encode") == 0) {
         t.encode = true;
     } else {
-        fputs("usage: nmea-c decode [--values] | encode   (reads stdin, writes stdout)\n", stderr);
+        fputs("usage: nmea-c decode|stream [--values] [--lenient] [--require-checksum] | encode\n"
+              "       (reads stdin, writes stdout)\n",
+              stderr);
         return 2;
     }
     /* A line that ends inside one chunk is handled where it lies; one that spans chunks is
