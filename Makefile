@@ -74,6 +74,9 @@ test-c-memory: $(STAMP)
 	build/c/nmea-c-asan decode < build/c/memory.nmea > build/c/asan.jsonl
 	build/c/nmea-c-asan encode < build/c/asan.jsonl > /dev/null
 	build/c/nmea-c-asan decode --values < build/c/memory.nmea > /dev/null
+	build/c/nmea-c-asan stream --lenient < build/c/memory.nmea > build/c/asan-lenient.jsonl
+	build/c/nmea-c-asan encode < build/c/asan-lenient.jsonl > /dev/null
+	build/c/nmea-c-asan stream --require-checksum < tests/agreement/stream_cases.bin > /dev/null
 	$(CC) -std=c99 -O1 -g -o build/c/nmea-c-debug generated/c/nmea.c generated/c/nmea_tool.c
 	$(CC) -std=c99 -O1 -g -o build/c/test_examples_debug generated/c/nmea.c generated/c/tests/test_examples.c
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_examples_debug > /dev/null

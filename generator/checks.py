@@ -190,6 +190,8 @@ RESERVED_FIELD_IDS = frozenset({
     "address", "as", "as_received", "checksum", "fields", "fields_from_json", "fields_json", "id", "kind",
     "optional_count", "parse", "parse_fields", "problems", "replies", "selector", "sentence", "start", "talker",
     "to_bytes", "to_json", "to_sentence", "trailing", "variant",
+    # names the generated Python module itself uses
+    "Any", "ClassVar", "Decimal", "dataclass", "field", "list", "rt",
 }) | frozenset(keyword.kwlist)
 
 
