@@ -30,6 +30,8 @@ def inputs(paths: list[str]) -> list[bytes]:
     out = []
     for name in paths:
         path = Path(name)
+        if not path.exists():  # a fuzzer that has not run yet
+            continue
         files = sorted(p for p in path.rglob("*") if p.is_file()) if path.is_dir() else [path]
         out += [p.read_bytes() for p in files]
     return out
