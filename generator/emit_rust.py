@@ -17,7 +17,7 @@ from .emit import TEMPLATES, header
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fmt_num
 
 CRATE = "nmeaspec"
-RUNTIME_MODULES = ["mod", "error", "frame", "layout", "table", "types", "write", "json"]
+RUNTIME_MODULES = ["mod", "error", "frame", "layout", "stream", "table", "types", "write", "json"]
 
 # Expected texts the runtime's readers hold for the types whose description is fixed.
 FIXED_EXPECTED = {
@@ -46,7 +46,7 @@ RUNTIME_NAMES = {
     "Bound", "Checksum", "Code", "CodeChars", "Coordinate", "Date", "Error", "Fields", "Group", "Hex",
     "JsonFields", "Layout", "Name", "Number", "Range", "Reader", "Shape", "GroupShape", "Time", "WireWriter",
     "Sentence", "Generic", "LayoutId", "Frame", "Option", "Result", "Self", "Framing", "Kind", "Parameter",
-    "Table", "Encoding", "Texts",
+    "Table", "Encoding", "Texts", "Parsed", "Options", "Problems", "FieldProblem", "Blanks", "Framer", "Item",
 }
 
 

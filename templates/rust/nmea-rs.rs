@@ -1,17 +1,20 @@
-//! The `nmea-rs` tool: `decode` NMEA lines to JSON, `encode` that JSON back to sentences.
+//! The `nmea-rs` tool: `decode` NMEA lines to JSON, `encode` that JSON back to sentences,
+//! `stream` a byte stream that may hold garbage, cut lines or sentences run together.
 //!
 //! Same behaviour, byte for byte, as nmea-c and nmea-py; see docs/json.md. Input is bytes, split
 //! on LF with one CR before it dropped; a line over the limit is reported without being kept.
 
 use std::fmt;
-use std::io::{self, BufRead, BufReader, BufWriter, Write};
+use std::io::{self, BufRead, BufReader, BufWriter, Read, Write};
 use std::process::ExitCode;
 
-use nmeaspec::runtime::json::{Value, MAX_DEPTH, SKIP_CHECK_DEPTH};
+use nmeaspec::runtime::json::{Value, SKIP_CHECK_DEPTH};
 use nmeaspec::runtime::MAX_LINE;
-use nmeaspec::{write_decoded, write_encoded, Error};
+use nmeaspec::stream::{Framer, Item};
+use nmeaspec::{write_decoded_with, write_encoded, Error, Options};
 
-const USAGE: &str = "usage: nmea-rs decode [--values] | encode   (reads stdin, writes stdout)\n";
+const USAGE: &str = "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] | encode\n       \
+                     (reads stdin, writes stdout)\n";
 const BUFFER: usize = 1 << 16;
 
 /// Writes output lines: each is formatted into a reused buffer, then written as Latin-1 bytes (as
@@ -84,13 +87,41 @@ fn for_each_line(
     Ok(())
 }
 
-fn decode(values: bool) -> io::Result<()> {
+fn decode(values: bool, options: Options) -> io::Result<()> {
     let mut input = BufReader::with_capacity(BUFFER, io::stdin().lock());
     let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
     for_each_line(&mut input, MAX_LINE, |line| match line {
-        Ok(line) => out.line(|w| write_decoded(w, line, values)),
+        Ok(line) => out.line(|w| write_decoded_with(w, line, values, options)),
         Err(length) => out.line(|w| Error::too_long(length).write_json(w)),
     })?;
+    out.inner.flush()
+}
+
+fn stream(values: bool, options: Options) -> io::Result<()> {
+    let mut input = io::stdin().lock();
+    let mut out = Output::new(BufWriter::with_capacity(BUFFER, io::stdout().lock()));
+    let mut framer = Framer::new();
+    let mut chunk = vec![0u8; BUFFER];
+    let write = |out: &mut Output<_>, item: Item<'_>| match item {
+        Item::Line(line) => out.line(|w| write_decoded_with(w, line, values, options)),
+        Item::TooLong(length) => out.line(|w| Error::too_long(length).write_json(w)),
+    };
+    loop {
+        let n = match input.read(&mut chunk) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(err) if err.kind() == io::ErrorKind::Interrupted => continue,
+            Err(err) => return Err(err),
+        };
+        for &byte in &chunk[..n] {
+            if let Some(item) = framer.push(byte) {
+                write(&mut out, item)?;
+            }
+        }
+    }
+    if let Some(item) = framer.finish() {
+        write(&mut out, item)?;
+    }
     out.inner.flush()
 }
 
@@ -109,24 +140,40 @@ fn encode() -> io::Result<()> {
         if line.last() == Some(&b'\r') {
             line.pop();
         }
-        let parsed = Value::parse_nested(&line, SKIP_CHECK_DEPTH);
+        // JSON nested deeper than the limit is "not JSON", also for this check.
+        let value = Value::parse_nested(&line, SKIP_CHECK_DEPTH).map(|(value, _)| value);
         // decode's error lines have nothing to encode.
-        if parsed.as_ref().and_then(|(v, _)| v.get("ok")) == Some(&Value::Bool(false)) {
+        if value.as_ref().and_then(|v| v.get("ok")) == Some(&Value::Bool(false)) {
             continue;
         }
-        let value = parsed.filter(|&(_, depth)| depth <= MAX_DEPTH).map(|(value, _)| value);
         out.line(|w| write_encoded(w, value.as_ref()))?;
     }
     out.inner.flush()
+}
+
+/// Flags of decode and stream: each known one at most once, in any order.
+fn flags_ok(flags: &[&str]) -> bool {
+    const FLAGS: [&str; 3] = ["--values", "--lenient", "--require-checksum"];
+    flags.iter().enumerate().all(|(i, flag)| FLAGS.contains(flag) && !flags[..i].contains(flag))
 }
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args_os().skip(1).map(|a| a.to_string_lossy().into_owned()).collect();
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let result = match args.as_slice() {
-        ["decode"] => decode(false),
-        ["decode", "--values"] => decode(true),
         ["encode"] => encode(),
+        [verb @ ("decode" | "stream"), flags @ ..] if flags_ok(flags) => {
+            let values = flags.contains(&"--values");
+            let options = Options {
+                lenient: flags.contains(&"--lenient"),
+                require_checksum: flags.contains(&"--require-checksum"),
+            };
+            if *verb == "decode" {
+                decode(values, options)
+            } else {
+                stream(values, options)
+            }
+        }
         _ => {
             eprint!("{USAGE}");
             return ExitCode::from(2);

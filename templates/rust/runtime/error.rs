@@ -26,6 +26,8 @@ pub enum ErrorKind {
     BadField,
     /// `encode` input that is not decode's JSON.
     BadJson,
+    /// The sentence has no checksum, and one is required.
+    MissingChecksum,
     /// A command builder's buffer cannot hold the line (the tools never report it).
     BufferTooSmall,
 }
@@ -42,6 +44,7 @@ impl ErrorKind {
             Self::TooManyFields => "too_many_fields",
             Self::BadField => "bad_field",
             Self::BadJson => "bad_json",
+            Self::MissingChecksum => "missing_checksum",
             Self::BufferTooSmall => "buffer_too_small",
         }
     }
@@ -141,6 +144,8 @@ pub enum Message<'a> {
         /// The sentence the layout parses.
         expected: &'static str,
     },
+    /// `the sentence has no checksum` (a checksum is required)
+    MissingChecksum,
     /// `GGA needs at least N fields, found M`
     TooFew {
         /// The sentence id.
@@ -204,6 +209,7 @@ impl Message<'_> {
             Self::TooFew { .. } | Self::GroupCut { .. } => ErrorKind::TooFewFields,
             Self::TooMany { .. } => ErrorKind::TooManyFields,
             Self::BadField { .. } => ErrorKind::BadField,
+            Self::MissingChecksum => ErrorKind::MissingChecksum,
             Self::BufferTooSmall { .. } => ErrorKind::BufferTooSmall,
             #[cfg(feature = "std")]
             Self::Json(_) => ErrorKind::BadJson,
@@ -253,6 +259,7 @@ impl fmt::Display for Message<'_> {
                 write!(f, "expected {expected}, found ")?;
                 write_json_str(f, text)
             }
+            Self::MissingChecksum => f.write_str("the sentence has no checksum"),
             Self::BufferTooSmall { needed, capacity } => {
                 write!(f, "the line needs {needed} bytes, the buffer holds {capacity}")
             }
@@ -325,6 +332,24 @@ impl<'a> Error<'a> {
         self.name
     }
 
+    /// The field's text as received, for a `bad_field` error.
+    pub const fn text(&self) -> Option<&'a str> {
+        match self.message {
+            Message::BadField { text, .. } => Some(text),
+            _ => None,
+        }
+    }
+
+    /// The problem lenient parsing records for a `bad_field` error.
+    pub const fn problem(&self) -> Option<FieldProblem<'a>> {
+        match (self.field, self.name, &self.message) {
+            (Some(field), Some(name), Message::BadField { expected, text }) => {
+                Some(FieldProblem { field, name, expected, text })
+            }
+            _ => None,
+        }
+    }
+
     /// The message (without kind and place), e.g. `checksum is 40, computed 6C`.
     pub const fn message(&self) -> &Message<'a> {
         &self.message
@@ -375,3 +400,106 @@ impl fmt::Display for Error<'_> {
 
 #[cfg(feature = "std")]
 impl std::error::Error for Error<'_> {}
+
+/// A field lenient parsing left empty: where it is, its text as received, and why (the
+/// `bad_field` error it gave).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FieldProblem<'a> {
+    field: u32,
+    name: Name,
+    expected: &'static str,
+    text: &'a str,
+}
+
+impl<'a> FieldProblem<'a> {
+    /// The 1-based index of the wire field (after the address).
+    pub const fn field(&self) -> usize {
+        self.field as usize
+    }
+
+    /// The spec name of the field.
+    pub const fn name(&self) -> Name {
+        self.name
+    }
+
+    /// The field's text as received.
+    pub const fn text(&self) -> &'a str {
+        self.text
+    }
+
+    /// The `bad_field` message: `expected DESCRIPTION, found "TEXT"`.
+    pub const fn message(&self) -> Message<'a> {
+        Message::BadField { expected: self.expected, text: self.text }
+    }
+
+    /// Writes the `problems` entry of the tools' JSON.
+    pub fn write_json<W: fmt::Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        write!(w, "{{\"field\":{},\"name\":", self.field)?;
+        super::write::write_json_display(w, &self.name)?;
+        w.write_str(",\"text\":")?;
+        write_json_str(w, self.text)?;
+        w.write_str(",\"message\":")?;
+        super::write::write_json_display(w, &self.message())?;
+        w.write_char('}')
+    }
+}
+
+/// The fields lenient parsing left empty in one sentence, in the order their errors came: at
+/// most [`MAX_PROBLEMS`](super::MAX_PROBLEMS), kept inline (no allocation).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Problems<'a> {
+    items: [Option<FieldProblem<'a>>; super::MAX_PROBLEMS],
+    len: usize,
+}
+
+impl<'a> Problems<'a> {
+    /// No problems.
+    pub const fn new() -> Self {
+        Self { items: [None; super::MAX_PROBLEMS], len: 0 }
+    }
+
+    /// Adds a problem; `false` when there are already [`MAX_PROBLEMS`](super::MAX_PROBLEMS).
+    pub fn push(&mut self, problem: FieldProblem<'a>) -> bool {
+        let Some(slot) = self.items.get_mut(self.len) else {
+            return false;
+        };
+        *slot = Some(problem);
+        self.len += 1;
+        true
+    }
+
+    /// How many there are.
+    pub const fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether there are none.
+    pub const fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The problems in order.
+    pub fn iter(&self) -> impl Iterator<Item = &FieldProblem<'a>> + '_ {
+        self.items[..self.len].iter().flatten()
+    }
+
+    /// The text to write back for wire field `index`, if lenient parsing left it empty.
+    pub fn text_of(&self, index: usize) -> Option<&'a str> {
+        self.iter().find(|p| p.field() == index).map(|p| p.text)
+    }
+
+    /// Writes `,"problems":[...]` (nothing when there are none).
+    pub fn write_json<W: fmt::Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
+        if self.is_empty() {
+            return Ok(());
+        }
+        w.write_str(",\"problems\":[")?;
+        for (i, problem) in self.iter().enumerate() {
+            if i > 0 {
+                w.write_char(',')?;
+            }
+            problem.write_json(w)?;
+        }
+        w.write_char(']')
+    }
+}

@@ -11,6 +11,48 @@ use super::types::{
 /// Longest line (without its line ending) the parser accepts.
 pub const MAX_LINE: usize = 1024;
 
+/// Most fields lenient parsing leaves empty in one sentence.
+pub const MAX_PROBLEMS: usize = 8;
+
+/// The wire fields (1-based indices) that lenient parsing reads as empty: at most
+/// [`MAX_PROBLEMS`], kept inline so that [`Fields`] stays a copyable view of the line.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Blanks {
+    at: [u16; MAX_PROBLEMS],
+    len: u8,
+}
+
+impl Blanks {
+    /// No field left empty.
+    pub const EMPTY: Self = Self { at: [0; MAX_PROBLEMS], len: 0 };
+
+    /// Whether wire field `index` is left empty.
+    #[inline]
+    pub fn contains(&self, index: usize) -> bool {
+        self.at[..usize::from(self.len)].iter().any(|&at| usize::from(at) == index)
+    }
+
+    /// How many fields are left empty.
+    pub const fn len(&self) -> usize {
+        self.len as usize
+    }
+
+    /// Whether no field is left empty.
+    pub const fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The same set with wire field `index` added (ignored once full).
+    #[must_use]
+    pub fn with(mut self, index: usize) -> Self {
+        if usize::from(self.len) < MAX_PROBLEMS {
+            self.at[usize::from(self.len)] = u16::try_from(index).unwrap_or(u16::MAX);
+            self.len += 1;
+        }
+        self
+    }
+}
+
 const LATITUDE: &str = "latitude ddmm.mmmm";
 const LONGITUDE: &str = "longitude dddmm.mmmm";
 const NORTH_SOUTH: &str = "hemisphere N or S";
@@ -39,6 +81,12 @@ impl<'a> Frame<'a> {
     /// Checks and splits one line (without its line ending), in the order of docs/json.md:
     /// length, start, printable bytes, checksum form, checksum value, address.
     pub fn parse(line: &'a [u8]) -> Result<Self, Error<'a>> {
+        Self::parse_checked(line, false)
+    }
+
+    /// [`Frame::parse`]; with `require_checksum`, a sentence without a checksum (or with a bare
+    /// `*`) is refused as `missing_checksum`, after the address check.
+    pub fn parse_checked(line: &'a [u8], require_checksum: bool) -> Result<Self, Error<'a>> {
         let not_a_sentence = |message| Error::new(None, message);
         if line.len() > MAX_LINE {
             return Err(Error::too_long(line.len()));
@@ -93,6 +141,9 @@ impl<'a> Frame<'a> {
         let Some(address) = named else {
             return Err(not_a_sentence(Message::BadAddress { text: address }));
         };
+        if require_checksum && sent.is_none_or(str::is_empty) {
+            return Err(Error::new(Some(address), Message::MissingChecksum));
+        }
         let fields = match first_comma {
             Some(comma) => Fields::new(address, &text[comma + 1..body_end], commas),
             None => Fields::new(address, "", 0),
@@ -218,22 +269,42 @@ pub struct Fields<'a> {
     count: usize,
     separator: u8,
     line: Option<&'a str>,
+    blanks: Blanks,
 }
 
 impl<'a> Fields<'a> {
     /// `count` fields joined by `,` in `text`, of the sentence at `address` (named in errors).
     pub const fn new(address: &'a str, text: &'a str, count: usize) -> Self {
-        Self { address, text, count, separator: b',', line: None }
+        Self { address, text, count, separator: b',', line: None, blanks: Blanks::EMPTY }
     }
 
     /// `count` words joined by single spaces in `text`, after the command word `address`.
     pub const fn words(address: &'a str, text: &'a str, count: usize) -> Self {
-        Self { address, text, count, separator: b' ', line: None }
+        Self { address, text, count, separator: b' ', line: None, blanks: Blanks::EMPTY }
     }
 
     /// The same fields, belonging to the text command `line` (kept by the parsed command).
     pub const fn with_line(self, line: &'a str) -> Self {
         Self { line: Some(line), ..self }
+    }
+
+    /// The same fields with wire field `index` (1-based) read as empty (lenient parsing).
+    #[must_use]
+    pub fn with_blank(self, index: usize) -> Self {
+        Self { blanks: self.blanks.with(index), ..self }
+    }
+
+    /// The fields lenient parsing reads as empty.
+    pub const fn blanks(&self) -> &Blanks {
+        &self.blanks
+    }
+
+    /// The text of wire field `index` (1-based) as the readers see it: empty when it is blanked.
+    pub fn get(&self, index: usize) -> Option<&'a str> {
+        if self.blanks.contains(index) {
+            return (index >= 1 && index <= self.count).then_some("");
+        }
+        self.iter().nth(index.checked_sub(1)?)
     }
 
     /// The whole command line, for a text command.
@@ -278,6 +349,7 @@ impl<'a> Fields<'a> {
             address: self.address,
             rest: self.text,
             separator: self.separator,
+            blanks: self.blanks,
             ignore_case: false,
             index: 0,
             group: "",
@@ -401,6 +473,7 @@ pub struct Reader<'a> {
     address: &'a str,
     rest: &'a str,
     separator: u8,
+    blanks: Blanks,
     ignore_case: bool,
     index: usize,
     group: &'static str,
@@ -441,15 +514,23 @@ impl<'a> Reader<'a> {
     ) -> Result<Texts<'a>, Error<'a>> {
         let start = self.rest;
         let mut end = 0;
+        let mut blanked = Blanks::default();
         for entry in 1..=count {
             let offset = start.len() - self.rest.len();
-            let text = self.next_text();
+            self.index += 1;
+            let raw = take(&mut self.rest, self.separator);
+            let text = if !self.blanks.is_empty() && self.blanks.contains(self.index) {
+                blanked = blanked.with(entry);
+                ""
+            } else {
+                raw
+            };
             if max_length.is_some_and(|max| text.len() > max) {
                 return Err(Error::bad_field(self.address, self.index, Name::entry(group, entry, id), expected, text));
             }
-            end = offset + text.len();
+            end = offset + raw.len();
         }
-        Ok(Texts::joined(&start[..end], count, self.separator))
+        Ok(Texts::joined(&start[..end], count, self.separator).blanking(blanked))
     }
 
     fn name(&self, id: &'static str) -> Name {
@@ -458,7 +539,11 @@ impl<'a> Reader<'a> {
 
     fn next_text(&mut self) -> &'a str {
         self.index += 1;
-        take(&mut self.rest, self.separator)
+        let text = take(&mut self.rest, self.separator);
+        if self.blanks.is_empty() || !self.blanks.contains(self.index) {
+            return text;
+        }
+        ""
     }
 
     fn read<T>(

@@ -18,8 +18,11 @@ pub enum Value {
     Null,
     /// `true` or `false`
     Bool(bool),
-    /// Any number (also `NaN`, `Infinity`, `-Infinity`, as Python reads them).
+    /// Any number but an integer (also `NaN`, `Infinity`, `-Infinity`, as Python reads them).
     Number,
+    /// An integer: its value when it is positive and fits a `u64` (else `None`: zero, negative
+    /// or huge, never the index of a field).
+    Integer(Option<u64>),
     /// A string.
     String(String),
     /// An array.
@@ -28,13 +31,12 @@ pub enum Value {
     Object(Vec<(String, Value)>),
 }
 
-/// Most nested arrays and objects `encode` reads: as deep as the Python reference's `json.loads`
-/// goes before its recursion limit. Deeper JSON is "not JSON".
-pub const MAX_DEPTH: usize = 990;
+/// Most nested arrays and objects `encode` reads (counted outside strings), in every tool.
+/// Deeper JSON is "not JSON".
+pub const MAX_DEPTH: usize = 500;
 
-/// Most nested arrays and objects of a line whose `"ok"` the tool checks first (the Python tool
-/// makes that check one call shallower than `encode`).
-pub const SKIP_CHECK_DEPTH: usize = MAX_DEPTH + 1;
+/// Most nested arrays and objects of a line whose `"ok"` the tool checks first: the same limit.
+pub const SKIP_CHECK_DEPTH: usize = MAX_DEPTH;
 
 /// Python refuses to convert integers of more digits than this.
 const MAX_INT_DIGITS: usize = 4300;
@@ -140,9 +142,11 @@ impl JsonReader<'_> {
     }
 
     fn number(&mut self) -> Option<Value> {
-        if self.peek() == Some(b'-') {
+        let negative = self.peek() == Some(b'-');
+        if negative {
             self.pos += 1;
         }
+        let first = self.pos;
         let digits = match self.peek()? {
             b'0' => {
                 self.pos += 1;
@@ -169,7 +173,14 @@ impl JsonReader<'_> {
                 self.pos = mark;
             }
         }
-        (float || digits <= MAX_INT_DIGITS).then_some(Value::Number)
+        if float {
+            return Some(Value::Number);
+        }
+        if digits > MAX_INT_DIGITS {
+            return None;
+        }
+        let value = core::str::from_utf8(&self.text[first..first + digits]).ok().and_then(|t| t.parse::<u64>().ok());
+        Some(Value::Integer(value.filter(|&v| v > 0 && !negative)))
     }
 
     fn hex4(&mut self) -> Option<u32> {
@@ -394,6 +405,31 @@ impl WireFields {
             Some(value) => self.value(value, width),
             None => Ok(()),
         }
+    }
+
+    /// How many fields there are.
+    pub const fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Whether there are none.
+    pub const fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// Replaces the text of field `index` (0-based; ignored past the end).
+    pub fn set(&mut self, index: usize, text: &str) {
+        if index >= self.count {
+            return;
+        }
+        let mut out = String::with_capacity(self.text.len() + text.len());
+        for (i, field) in self.text.split(',').enumerate() {
+            if i > 0 {
+                out.push(',');
+            }
+            out.push_str(if i == index { text } else { field });
+        }
+        self.text = out;
     }
 
     /// The fields, for parsing, of the sentence at `address`.

@@ -3,12 +3,12 @@
 
 use core::fmt::{self, Write};
 
-use super::error::{Error, Message};
+use super::error::{Error, Message, Problems};
 use super::frame::{is_command_word, is_standard_address, Fields, Frame, Shape, MAX_LINE};
 use super::types::Checksum;
 use super::write::{
-    write_json_str, write_sentence, write_words_json, Discard, JsonEscape, JsonFields, Latin1Bytes, SameUpper,
-    WireWriter,
+    write_json_str, write_sentence, write_sentence_with, write_words_json, Discard, JsonEscape, JsonFields,
+    Latin1Bytes, SameUpper, WireWriter,
 };
 
 /// How a sentence is framed and addressed.
@@ -102,12 +102,21 @@ pub trait Layout<'a>: Sized {
     /// Writes the sentence text, checksum included unless it is [`Checksum::None`] (a text
     /// command: its words); no line ending.
     fn write_sentence<W: Write + ?Sized>(&self, out: &mut W) -> fmt::Result {
+        self.write_sentence_with(out, &Problems::new())
+    }
+
+    /// [`Layout::write_sentence`] for a sentence lenient parsing kept: the text of each field
+    /// it left empty is written back (a text command has none).
+    fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
+        let checksum = self.checksum();
         match Self::FRAMING {
             Framing::Standard => {
-                write_sentence(out, "$", [self.talker(), Self::SENTENCE], self.checksum(), |w| self.write_fields(w))
+                write_sentence_with(out, "$", [self.talker(), Self::SENTENCE], checksum, problems, |w| {
+                    self.write_fields(w)
+                })
             }
             Framing::Proprietary(address) => {
-                write_sentence(out, "$", [address, ""], self.checksum(), |w| self.write_fields(w))
+                write_sentence_with(out, "$", [address, ""], checksum, problems, |w| self.write_fields(w))
             }
             Framing::Text(word) => match self.received_text(word) {
                 Some(line) => out.write_str(line),
@@ -136,13 +145,19 @@ pub trait Layout<'a>: Sized {
 
     /// Writes the tools' JSON line (`values`: decoded values instead of the lossless texts).
     fn write_json<W: Write + ?Sized>(&self, out: &mut W, values: bool) -> fmt::Result {
+        self.write_json_with(out, values, &Problems::new())
+    }
+
+    /// [`Layout::write_json`] for a sentence lenient parsing kept: `"problems"` follows
+    /// `"fields"`, and the checksum is that of the sentence with the problem texts put back.
+    fn write_json_with<W: Write + ?Sized>(&self, out: &mut W, values: bool, problems: &Problems<'_>) -> fmt::Result {
         let (address, talker) = match Self::FRAMING {
             Framing::Text(word) => return self.write_command_json(word, out, values),
             Framing::Proprietary(address) => ([address, ""], None),
             Framing::Standard => ([self.talker(), Self::SENTENCE], Some(self.talker())),
         };
         let mut sink = Discard;
-        let mut body = WireWriter::new(&mut sink);
+        let mut body = WireWriter::new(&mut sink).with_problems(problems);
         body.write_str(address[0])?;
         body.write_str(address[1])?;
         self.write_fields(&mut body)?;
@@ -156,6 +171,7 @@ pub trait Layout<'a>: Sized {
             None => out.write_str("null")?,
         }
         self.write_json_fields_object(out, values)?;
+        problems.write_json(out)?;
         write_checksum_json(out, self.checksum(), sum)
     }
 

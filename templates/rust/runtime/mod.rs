@@ -12,13 +12,15 @@ mod table;
 mod types;
 mod write;
 
+pub mod stream;
+
 #[cfg(feature = "std")]
 pub mod json;
 
-pub use error::{Error, ErrorKind, Message, Name};
+pub use error::{Error, ErrorKind, FieldProblem, Message, Name, Problems};
 pub use frame::{
-    checksum, first_word, is_command_word, is_standard_address, FieldIter, Fields, Frame, GroupShape, Reader, Shape,
-    MAX_LINE,
+    checksum, first_word, is_command_word, is_standard_address, Blanks, FieldIter, Fields, Frame, GroupShape, Reader,
+    Shape, MAX_LINE, MAX_PROBLEMS,
 };
 pub use layout::{build, strip_line_ending, Framing, Generic, Kind, Layout, BUILD_CAPACITY};
 pub use table::{Encoding, ParamValue, Parameter, ParameterError, Problem, Table};
@@ -27,6 +29,6 @@ pub use types::{
     Texts, Time, MAX_DIGITS,
 };
 pub use write::{
-    write_json_char, write_json_display, write_json_str, write_sentence, write_words_json, Discard, FieldValue,
-    JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
+    write_json_char, write_json_display, write_json_str, write_sentence, write_sentence_with, write_words_json,
+    Discard, FieldValue, JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
 };

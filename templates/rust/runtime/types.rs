@@ -705,23 +705,29 @@ pub struct Texts<'a> {
     text: &'a str,
     count: usize,
     separator: u8,
+    blanks: super::frame::Blanks,
 }
 
 impl Default for Texts<'_> {
     fn default() -> Self {
-        Self { text: "", count: 0, separator: b',' }
+        Self::new("", 0)
     }
 }
 
 impl<'a> Texts<'a> {
     /// `count` values joined by `,` in `text` (`Texts::new("A,,B", 3)`).
     pub const fn new(text: &'a str, count: usize) -> Self {
-        Self { text, count, separator: b',' }
+        Self::joined(text, count, b',')
     }
 
     /// `count` values joined by `separator`.
     pub(crate) const fn joined(text: &'a str, count: usize, separator: u8) -> Self {
-        Self { text, count, separator }
+        Self { text, count, separator, blanks: super::frame::Blanks::EMPTY }
+    }
+
+    /// The same values with the entries in `blanks` (1-based) read as empty (lenient parsing).
+    pub(crate) const fn blanking(self, blanks: super::frame::Blanks) -> Self {
+        Self { blanks, ..self }
     }
 
     /// How many values there are.
@@ -741,8 +747,8 @@ impl<'a> Texts<'a> {
 
     /// The values in order, `None` for an empty one.
     pub fn iter(&self) -> impl Iterator<Item = Option<&'a str>> + 'a {
-        let (mut rest, separator) = (self.text, self.separator);
-        (0..self.count).map(move |_| {
+        let (mut rest, separator, blanks) = (self.text, self.separator, self.blanks);
+        (1..=self.count).map(move |entry| {
             let value = match rest.bytes().position(|b| b == separator) {
                 Some(at) => {
                     let value = &rest[..at];
@@ -751,7 +757,7 @@ impl<'a> Texts<'a> {
                 }
                 None => core::mem::take(&mut rest),
             };
-            (!value.is_empty()).then_some(value)
+            (!value.is_empty() && (blanks.is_empty() || !blanks.contains(entry))).then_some(value)
         })
     }
 }

@@ -2,6 +2,7 @@
 
 use core::fmt::{self, Write};
 
+use super::error::Problems;
 use super::types::{Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Texts, Time};
 
 /// A field value: how it is written on the wire and in both JSON forms of the tools.
@@ -161,17 +162,36 @@ pub struct WireWriter<'w, W: Write + ?Sized> {
     out: &'w mut W,
     sum: u8,
     separator: char,
+    problems: &'w Problems<'w>,
+    index: usize,
 }
+
+static NO_PROBLEMS: Problems<'static> = Problems::new();
 
 impl<'w, W: Write + ?Sized> WireWriter<'w, W> {
     /// A writer of `,`-separated fields into `out`, checksum 0.
     pub fn new(out: &'w mut W) -> Self {
-        Self { out, sum: 0, separator: ',' }
+        Self { out, sum: 0, separator: ',', problems: &NO_PROBLEMS, index: 0 }
     }
 
     /// A writer of the space-separated words of a text command into `out`.
     pub fn words(out: &'w mut W) -> Self {
-        Self { out, sum: 0, separator: ' ' }
+        Self { out, sum: 0, separator: ' ', problems: &NO_PROBLEMS, index: 0 }
+    }
+
+    /// The same writer, putting back the text of each field lenient parsing left empty (the
+    /// fields are counted by the `,` written).
+    pub fn with_problems(self, problems: &'w Problems<'w>) -> Self {
+        Self { problems, ..self }
+    }
+
+    fn put(&mut self, s: &str) -> fmt::Result {
+        if s.is_ascii() {
+            self.sum = s.bytes().fold(self.sum, |sum, b| sum ^ b);
+        } else {
+            self.sum = s.chars().fold(self.sum, |sum, c| sum ^ (c as u32 as u8));
+        }
+        self.out.write_str(s)
     }
 
     /// The XOR of everything written so far.
@@ -209,12 +229,19 @@ impl<'w, W: Write + ?Sized> WireWriter<'w, W> {
 
 impl<W: Write + ?Sized> Write for WireWriter<'_, W> {
     fn write_str(&mut self, s: &str) -> fmt::Result {
-        if s.is_ascii() {
-            self.sum = s.bytes().fold(self.sum, |sum, b| sum ^ b);
-        } else {
-            self.sum = s.chars().fold(self.sum, |sum, c| sum ^ (c as u32 as u8));
+        if self.problems.is_empty() {
+            return self.put(s);
         }
-        self.out.write_str(s)
+        let mut rest = s;
+        while let Some(at) = rest.find(',') {
+            self.put(&rest[..=at])?;
+            rest = &rest[at + 1..];
+            self.index += 1;
+            if let Some(text) = self.problems.text_of(self.index) {
+                self.put(text)?;
+            }
+        }
+        self.put(rest)
     }
 }
 
@@ -237,8 +264,20 @@ pub fn write_sentence<W: Write + ?Sized>(
     checksum: super::Checksum,
     fields: impl FnOnce(&mut WireWriter<'_, W>) -> fmt::Result,
 ) -> fmt::Result {
+    write_sentence_with(out, start, address, checksum, &NO_PROBLEMS, fields)
+}
+
+/// [`write_sentence`], putting back the text of each field lenient parsing left empty.
+pub fn write_sentence_with<W: Write + ?Sized>(
+    out: &mut W,
+    start: &str,
+    address: [&str; 2],
+    checksum: super::Checksum,
+    problems: &Problems<'_>,
+    fields: impl FnOnce(&mut WireWriter<'_, W>) -> fmt::Result,
+) -> fmt::Result {
     out.write_str(start)?;
-    let mut w = WireWriter::new(out);
+    let mut w = WireWriter::new(out).with_problems(problems);
     w.write_str(address[0])?;
     w.write_str(address[1])?;
     fields(&mut w)?;
