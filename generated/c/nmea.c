@@ -169,8 +169,10 @@ static const uint32_t CASED_RUNS[][3] = {
 
 #if defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
+#define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
 #else
 #define NMEA_INTERNAL static
+#define NMEA_RARE static
 #endif
 
 static const char HEX_UPPER[] = "0123456789ABCDEF";
@@ -241,7 +243,9 @@ static bool upper_is(nmea_text t, const char *s)
 /* Writing text: a bounded buffer that keeps counting past its end and XORs the bytes written
    while `summing` (the checksum). Fields are preceded by `sep` (',', or ' ' between the words of a
    text command). While a text command is written, `match` is the command as received: the bytes
-   written are compared with it ignoring case (`matched` stays true while they agree). */
+   written are compared with it ignoring case (`matched` stays true while they agree). While a
+   sentence is written, `field` counts its wire fields, and the fields of its `problems` (those
+   lenient parsing left empty) are written with their text as received. */
 
 typedef struct {
     char *buf;
@@ -256,6 +260,8 @@ typedef struct {
     size_t match_len;
     size_t match_pos;
     size_t start;
+    const nmea_problems *problems;
+    unsigned field;
 } nmea_writer;
 
 static nmea_writer writer_of(char *buf, size_t cap)
@@ -273,6 +279,8 @@ static nmea_writer writer_of(char *buf, size_t cap)
     w.match_len = 0;
     w.match_pos = 0;
     w.start = 0;
+    w.problems = NULL;
+    w.field = 0;
     return w;
 }
 
@@ -406,7 +414,7 @@ static void put_json_cstr(nmea_writer *w, const char *s)
 /* Errors */
 
 static const char *const ERROR_KINDS[] = {
-    "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "too_few_fields",
+    "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "missing_checksum", "too_few_fields",
     "too_many_fields", "bad_field", "bad_json", "bad_value",
 };
 
@@ -559,6 +567,43 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
+/* A problem as the bad_field error it was. */
+static void problem_error(const nmea_problem *p, nmea_error *err)
+{
+    fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
+    err->field = p->field;
+    err->group = p->group;
+    err->entry = p->entry;
+    err->name = p->name;
+    err->str[0] = p->expected;
+    err->text = p->text;
+}
+
+/* A bad_field error kept as a problem. */
+static void problem_of(nmea_problem *p, const nmea_error *err)
+{
+    p->field = (uint16_t)err->field;
+    p->entry = (uint16_t)err->entry;
+    p->group = err->group;
+    p->name = err->name;
+    p->expected = err->str[0];
+    p->text = err->text;
+}
+
+size_t nmea_problem_message(const nmea_problem *p, char *buf, size_t cap)
+{
+    nmea_error err;
+    problem_error(p, &err);
+    return nmea_error_message(&err, buf, cap);
+}
+
+size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap)
+{
+    nmea_error err;
+    problem_error(p, &err);
+    return nmea_error_name(&err, buf, cap);
+}
+
 /* ------------------------------------------------------------------------------------------ */
 /* Framing: a line split into start, address and fields, its checksum verified. */
 
@@ -570,8 +615,9 @@ typedef struct {
     nmea_checksum_style checksum;
 } nmea_frame;
 
-/* One pass over the line: the printable check, the checksum and the field count. */
-static bool frame_line(nmea_frame *f, const char *line, size_t len, nmea_error *err)
+/* One pass over the line: the printable check, the checksum and the field count; with
+   `require_checksum`, a sentence without a checksum (or with a bare '*') is refused. */
+static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require_checksum, nmea_error *err)
 {
     size_t i, star = 0, comma = 0, commas = 0, body_end;
     unsigned sum = 0;
@@ -640,6 +686,11 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, nmea_error *
         err->text = f->address;
         return false;
     }
+    if (require_checksum && (f->checksum == NMEA_CHECKSUM_NONE || f->checksum == NMEA_CHECKSUM_EMPTY)) {
+        fail(err, NMEA_ERR_MISSING_CHECKSUM, "the sentence has no checksum");
+        set_address(err, f->address, NULL);
+        return false;
+    }
     f->count = commas;
     f->fields = commas ? text_span(line + comma + 1, line + body_end) : text_span(line + body_end, line + body_end);
     return true;
@@ -703,10 +754,88 @@ static bool word_is(nmea_text word, const char *upper)
     return *upper == 0;
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* Stream framing */
+
+/* The bytes that end a line (CR, LF) or start a new one ('$', '!'). */
+static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2};
+
+void nmea_framer_init(nmea_framer *f)
+{
+    f->length = 0;
+}
+
+/* Adds bytes to the line being assembled (only its first NMEA_MAX_LINE bytes are kept). */
+static void framer_keep(nmea_framer *f, const char *p, size_t n)
+{
+    if (f->length < NMEA_MAX_LINE)
+        memcpy(f->line + f->length, p, n < NMEA_MAX_LINE - f->length ? n : NMEA_MAX_LINE - f->length);
+    f->length += n;
+}
+
+bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out)
+{
+    const char *p = *data, *end, *q;
+    if (*len == 0)
+        return false;
+    end = p + *len;
+    if (f->length == 0) {
+        while (p < end && LINE_BOUNDARY[(unsigned char)*p] == 1) /* empty lines */
+            p++;
+        if (p == end) {
+            *data = end;
+            *len = 0;
+            return false;
+        }
+        /* a line starts at p: one that ends in this chunk is handed on where it lies */
+        for (q = p + 1; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
+            continue;
+        if (q < end) {
+            out->ptr = (size_t)(q - p) <= NMEA_MAX_LINE ? p : NULL;
+            out->len = (size_t)(q - p);
+            q += LINE_BOUNDARY[(unsigned char)*q] == 1; /* a '$' or '!' stays for the next line */
+            *data = q;
+            *len = (size_t)(end - q);
+            return true;
+        }
+    } else {
+        for (q = p; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
+            continue;
+        framer_keep(f, p, (size_t)(q - p));
+        if (q < end) {
+            out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
+            out->len = f->length;
+            f->length = 0;
+            q += LINE_BOUNDARY[(unsigned char)*q] == 1;
+            *data = q;
+            *len = (size_t)(end - q);
+            return true;
+        }
+        p = q;
+    }
+    framer_keep(f, p, (size_t)(end - p));
+    *data = end;
+    *len = 0;
+    return false;
+}
+
+bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
+{
+    if (f->length == 0)
+        return false;
+    out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
+    out->len = f->length;
+    f->length = 0;
+    return true;
+}
+
 /* A known sentence starts with '$', its talker and its sentence id; the checksum covers all but
    the '$'. Each field writes its comma, end_sentence the checksum. */
-NMEA_INTERNAL void begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence)
+NMEA_INTERNAL void begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence,
+                                  const nmea_problems *problems)
 {
+    w->problems = problems;
+    w->field = 0;
     put_char(w, '$');
     w->summing = true;
     put_text(w, talker);
@@ -717,6 +846,7 @@ static void end_sentence(nmea_writer *w, nmea_checksum_style style)
 {
     unsigned char sum = w->sum;
     w->summing = false;
+    w->problems = NULL;
     if (style == NMEA_CHECKSUM_NONE)
         return;
     put_char(w, '*');
@@ -728,8 +858,11 @@ static void end_sentence(nmea_writer *w, nmea_checksum_style style)
 
 /* A text command: the command word and each field after a space (the put_ functions write
    w->sep). Written back exactly as received when its words still match ignoring case. */
-NMEA_INTERNAL void begin_text(nmea_writer *w, const char *address, nmea_text as_received)
+NMEA_INTERNAL void begin_text(nmea_writer *w, const char *address, nmea_text as_received,
+                              const nmea_problems *problems)
 {
+    w->problems = problems;
+    w->field = 0;
     w->sep = ' ';
     w->start = w->len;
     w->match = as_received.ptr;
@@ -749,6 +882,7 @@ NMEA_INTERNAL void end_text(nmea_writer *w)
     w->summing = false;
     w->match = NULL;
     w->sep = ',';
+    w->problems = NULL;
 }
 
 nmea_text nmea_generic_field(const nmea_generic *g, size_t index)
@@ -1080,6 +1214,8 @@ typedef struct {
     bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
     nmea_checksum_style checksum;
     nmea_text line;               /* a text command: the command as received */
+    uint16_t blank[NMEA_MAX_PROBLEMS]; /* lenient parsing: the wire fields read as empty */
+    unsigned blanks;
 } nmea_wire;
 
 typedef struct {
@@ -1093,6 +1229,8 @@ typedef struct {
     unsigned entry;
     char sep;
     bool ignore_case;
+    const uint16_t *blank;
+    unsigned blanks;
     nmea_error *err;
 } nmea_reader;
 
@@ -1108,7 +1246,19 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->entry = 0;
     r->sep = wire->sep;
     r->ignore_case = wire->ignore_case;
+    r->blank = wire->blank;
+    r->blanks = wire->blanks;
     r->err = err;
+}
+
+/* Whether lenient parsing reads wire field `index` (1-based) as empty. */
+NMEA_RARE bool is_blank(const uint16_t *blank, unsigned blanks, unsigned index)
+{
+    unsigned i;
+    for (i = 0; i < blanks; i++)
+        if (blank[i] == index)
+            return true;
+    return false;
 }
 
 /* From now on the fields read belong to entry `index` (0-based) of `group` (NULL: none). */
@@ -1118,7 +1268,7 @@ NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
     r->entry = (unsigned)index + 1;
 }
 
-static nmea_text next_field(nmea_reader *r)
+static inline nmea_text next_field(nmea_reader *r)
 {
     const char *p = r->next;
     nmea_text t;
@@ -1128,6 +1278,8 @@ static nmea_text next_field(nmea_reader *r)
     t = text_span(p, r->next);
     if (r->next < r->end)
         r->next++;
+    if (r->blanks && is_blank(r->blank, r->blanks, r->index))
+        t.len = 0;
     return t;
 }
 
@@ -1166,6 +1318,7 @@ static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, co
     wire->ignore_case = line != NULL;
     wire->checksum = f->checksum;
     wire->line = line ? text_span(line, f->fields.ptr + f->fields.len) : nmea_text_of(NULL);
+    wire->blanks = 0;
 }
 
 /* For nmea_build_*: the sentence just written to w (which must hold it, its CR LF and a NUL),
@@ -1180,7 +1333,7 @@ NMEA_INTERNAL bool build_wire(nmea_writer *w, bool text, nmea_wire *wire, nmea_e
         w->len = w->cap; /* nothing of it is kept */
         return false;
     }
-    if (!(text ? text_frame : frame_line)(&f, w->buf, w->len, err))
+    if (!(text ? text_frame(&f, w->buf, w->len, err) : frame_line(&f, w->buf, w->len, false, err)))
         return false;
     wire_of(wire, &f, NULL, text ? w->buf : NULL);
     return true;
@@ -1392,6 +1545,28 @@ NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *n
 /* ------------------------------------------------------------------------------------------ */
 /* Writing fields back: each writes its comma and its text (nothing for an empty field). */
 
+/* The text of a field lenient parsing left empty, in its place (the last problem naming it). */
+static bool put_problem(nmea_writer *w)
+{
+    const nmea_problem *found = NULL;
+    size_t i;
+    for (i = 0; i < w->problems->count && i < NMEA_MAX_PROBLEMS; i++)
+        if (w->problems->list[i].field == w->field)
+            found = &w->problems->list[i];
+    if (found)
+        put_text(w, found->text);
+    return found != NULL;
+}
+
+/* The separator before the next wire field; true when that field is a problem, whose text as
+   received has then been written in place of the field's own. */
+static bool put_sep(nmea_writer *w)
+{
+    put_char(w, w->sep);
+    w->field++;
+    return w->problems && w->problems->count && put_problem(w);
+}
+
 static void number_text(nmea_writer *w, const nmea_number *n)
 {
     uint64_t digits = (uint64_t)n->digits;
@@ -1411,8 +1586,8 @@ static void number_text(nmea_writer *w, const nmea_number *n)
 
 NMEA_INTERNAL void put_number(nmea_writer *w, const nmea_number *n)
 {
-    put_char(w, w->sep);
-    number_text(w, n);
+    if (!put_sep(w))
+        number_text(w, n);
 }
 
 static void hex_text(nmea_writer *w, const nmea_hex *h)
@@ -1435,8 +1610,7 @@ static void hex_text(nmea_writer *w, const nmea_hex *h)
 
 NMEA_INTERNAL void put_hex(nmea_writer *w, const nmea_hex *h)
 {
-    put_char(w, w->sep);
-    if (h->present)
+    if (!put_sep(w) && h->present)
         hex_text(w, h);
 }
 
@@ -1454,8 +1628,7 @@ static void time_text(nmea_writer *w, const nmea_time *t)
 
 NMEA_INTERNAL void put_time(nmea_writer *w, const nmea_time *t)
 {
-    put_char(w, w->sep);
-    if (t->present)
+    if (!put_sep(w) && t->present)
         time_text(w, t);
 }
 
@@ -1468,8 +1641,7 @@ static void date_text(nmea_writer *w, const nmea_date *d)
 
 NMEA_INTERNAL void put_date(nmea_writer *w, const nmea_date *d)
 {
-    put_char(w, w->sep);
-    if (d->present)
+    if (!put_sep(w) && d->present)
         date_text(w, d);
 }
 
@@ -1482,25 +1654,21 @@ static void coordinate_text(nmea_writer *w, const nmea_coordinate *c)
 
 NMEA_INTERNAL void put_coordinate(nmea_writer *w, const nmea_coordinate *c)
 {
-    put_char(w, w->sep);
-    if (c->present)
+    if (!put_sep(w) && c->present)
         coordinate_text(w, c);
-    put_char(w, w->sep);
-    if (c->present)
+    if (!put_sep(w) && c->present)
         put_char(w, c->hemisphere);
 }
 
 NMEA_INTERNAL void put_char_field(nmea_writer *w, char c)
 {
-    put_char(w, w->sep);
-    if (c)
+    if (!put_sep(w) && c)
         put_char(w, c);
 }
 
 NMEA_INTERNAL void put_literal(nmea_writer *w, bool present, const char *literal)
 {
-    put_char(w, w->sep);
-    if (present)
+    if (!put_sep(w) && present)
         put_str(w, literal);
 }
 
@@ -1511,21 +1679,20 @@ static const char *enum_code(const nmea_enum *e, const nmea_enum_def *def)
 
 NMEA_INTERNAL void put_enum(nmea_writer *w, const nmea_enum *e, const nmea_enum_def *def)
 {
-    put_char(w, w->sep);
-    if (e->present)
+    if (!put_sep(w) && e->present)
         put_str(w, enum_code(e, def));
 }
 
 NMEA_INTERNAL void put_keyword(nmea_writer *w, const char *keyword)
 {
-    put_char(w, w->sep);
-    put_str(w, keyword);
+    if (!put_sep(w))
+        put_str(w, keyword);
 }
 
 NMEA_INTERNAL void put_text_field(nmea_writer *w, nmea_text t)
 {
-    put_char(w, w->sep);
-    put_text(w, t);
+    if (!put_sep(w))
+        put_text(w, t);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -1690,24 +1857,6 @@ NMEA_INTERNAL void json_keyword(nmea_writer *w, const char *key, const char *key
     put_json_cstr(w, keyword);
 }
 
-/* One of the two words of a latitude or longitude (`part` 0: the number, 1: the hemisphere) in
-   the lossless fields of a text command. */
-NMEA_INTERNAL void json_coordinate_word(nmea_writer *w, const char *key, const nmea_coordinate *c, int part)
-{
-    json_key(w, key);
-    if (!c->present) {
-        put_str(w, "null");
-    } else if (part == 0) {
-        put_char(w, '"');
-        coordinate_text(w, c);
-        put_char(w, '"');
-    } else if (!c->hemisphere) {
-        put_str(w, "null");
-    } else {
-        put_json_str(w, text_span(&c->hemisphere, &c->hemisphere + 1), 0);
-    }
-}
-
 NMEA_INTERNAL void json_text(nmea_writer *w, const char *key, nmea_text t, bool values)
 {
     (void)values;
@@ -1836,12 +1985,61 @@ static void json_checksum(nmea_writer *w, unsigned char sum, nmea_checksum_style
     put_str(w, "\"}");
 }
 
-/* Closes the fields of a known sentence; `sentence` is the writer that wrote it (for its
-   checksum). */
-NMEA_INTERNAL void json_end_sentence(nmea_writer *w, const nmea_writer *sentence, nmea_checksum_style style)
+/* ,"problems":[...]: each field lenient parsing left empty, with its text and why. */
+static void json_problems(nmea_writer *w, const nmea_problems *problems)
+{
+    nmea_error err;
+    size_t i;
+    put_str(w, ",\"problems\":[");
+    for (i = 0; i < problems->count && i < NMEA_MAX_PROBLEMS; i++) {
+        problem_error(&problems->list[i], &err);
+        put_str(w, i ? ",{\"field\":" : "{\"field\":");
+        put_uint(w, err.field, 1);
+        put_str(w, ",\"name\":");
+        if (err.name) {
+            put_char(w, '"');
+            put_name(w, &err);
+            put_char(w, '"');
+        } else {
+            put_str(w, "null");
+        }
+        put_str(w, ",\"text\":");
+        put_json_str(w, err.text, 0);
+        put_str(w, ",\"message\":\"");
+        put_message(w, &err, 1);
+        put_str(w, "\"}");
+    }
+    put_char(w, ']');
+}
+
+/* Closes the fields of a known sentence, lists its problems and ends with its checksum;
+   `sentence` is the writer that wrote it (for the checksum). */
+NMEA_INTERNAL void json_end_sentence(nmea_writer *w, const nmea_writer *sentence, nmea_checksum_style style,
+                                     const nmea_problems *problems)
 {
     put_char(w, '}');
+    if (problems->count)
+        json_problems(w, problems);
     json_checksum(w, sentence->sum, style);
+}
+
+/* A word of a text command's lossless fields that is a problem: its text in place of the
+   field's (true), or nothing (false). */
+NMEA_INTERNAL bool json_problem_word(nmea_writer *w, const char *key, const nmea_problems *problems, unsigned field)
+{
+    const nmea_problem *found = NULL;
+    size_t i;
+    for (i = 0; i < problems->count && i < NMEA_MAX_PROBLEMS; i++)
+        if (problems->list[i].field == field)
+            found = &problems->list[i];
+    if (!found)
+        return false;
+    json_key(w, key);
+    if (found->text.len)
+        put_json_str(w, found->text, 0);
+    else
+        put_str(w, "null");
+    return true;
 }
 
 static void json_generic(nmea_writer *w, const nmea_generic *g)
@@ -1873,11 +2071,9 @@ typedef struct {
     const char *end;
 } nmea_json;
 
-/* How deep arrays and objects may nest: as deep as the Python reference's json.loads goes before
-   its recursion limit, which leaves `encode` 990 levels and its check whether a line is a failure
-   (one call shallower) 991. Deeper JSON is "not JSON". */
-#define JSON_MAX_DEPTH 991
-#define JSON_ENCODE_DEPTH 990
+/* How deep arrays and objects may nest in what `encode` reads (and in its check whether a line is
+   a failure to skip), as in every tool: deeper JSON is "not JSON". */
+#define JSON_MAX_DEPTH 500
 
 static const char *json_ws(const char *p, const char *end)
 {
@@ -1986,7 +2182,7 @@ static const char *json_number_end(const char *p, const char *end)
 
 /* Whether `len` bytes are one JSON value (as Python's json.loads takes it, NaN and Infinity
    included); *root is the value without the surrounding white space. */
-static bool json_parse(const char *text, size_t len, size_t max_depth, nmea_json *root)
+static bool json_parse(const char *text, size_t len, nmea_json *root)
 {
     const char *p = text, *end = text + len;
     unsigned char stack[(JSON_MAX_DEPTH + 7) / 8] = {0};
@@ -2000,7 +2196,7 @@ static bool json_parse(const char *text, size_t len, size_t max_depth, nmea_json
         if (p >= end)
             return false;
         if (*p == '{' || *p == '[') {
-            if (depth >= max_depth || depth >= JSON_MAX_DEPTH)
+            if (depth >= JSON_MAX_DEPTH)
                 return false;
             object = *p == '{';
             if (object)
@@ -2299,31 +2495,39 @@ typedef struct {
     nmea_error *err;
 } nmea_collector;
 
+/* The wire text of a field value of decode's JSON (a string or null; null is empty), checked and
+   copied to the scratch buffer. */
+static bool json_field_text(nmea_json v, nmea_scratch *s, nmea_text *out, nmea_error *err)
+{
+    bool wide;
+    size_t i;
+    *out = nmea_text_of(NULL);
+    if (json_is_null(v))
+        return true;
+    if (!json_is(v, '"'))
+        return bad_json(err, "a field value is not a string or null", NULL);
+    if (!json_string(v, s, out, &wide))
+        return scratch_full(err);
+    for (i = 0; i < out->len; i++) {
+        if (wide || !is_printable(out->ptr[i]) || out->ptr[i] == ',' || out->ptr[i] == '*') {
+            bad_json(err, "field text %q holds ',', '*' or a byte outside printable ASCII", NULL);
+            err->text = json_inside(v);
+            err->text_json = true;
+            return false;
+        }
+    }
+    return true;
+}
+
 static bool collect_text(nmea_collector *c, nmea_json v)
 {
     nmea_text t;
-    bool wide;
-    size_t i;
     if (c->count && c->scratch->len >= c->scratch->cap)
         return scratch_full(c->err);
     if (c->count)
         c->scratch->buf[c->scratch->len++] = ',';
     c->count++;
-    if (json_is_null(v))
-        return true;
-    if (!json_is(v, '"'))
-        return bad_json(c->err, "a field value is not a string or null", NULL);
-    if (!json_string(v, c->scratch, &t, &wide))
-        return scratch_full(c->err);
-    for (i = 0; i < t.len; i++) {
-        if (wide || !is_printable(t.ptr[i]) || t.ptr[i] == ',' || t.ptr[i] == '*') {
-            bad_json(c->err, "field text %q holds ',', '*' or a byte outside printable ASCII", NULL);
-            c->err->text = json_inside(v);
-            c->err->text_json = true;
-            return false;
-        }
-    }
-    return true;
+    return json_field_text(v, c->scratch, &t, c->err);
 }
 
 /* The texts of one field value: a string or null, or for latitude/longitude (width 2) null or
@@ -2379,7 +2583,7 @@ static nmea_text collected(const nmea_collector *c)
 bool nmea_json_is_failure(const char *json, size_t len)
 {
     nmea_json root, ok;
-    return json_parse(json, len, JSON_MAX_DEPTH, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
+    return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
         && memcmp(ok.p, "false", 5) == 0;
 }
 
@@ -3032,7 +3236,7 @@ static const nmea_range range_minus_90_to_90 = {.has_min = true, .min = -90, .ha
 NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, const char *sentence, nmea_error *err)
 {
     nmea_frame f;
-    if (!frame_line(&f, line, len, err))
+    if (!frame_line(&f, line, len, false, err))
         return false;
     if (!is_standard_address(&f) || !text_is(text_span(f.address.ptr + 2, f.address.ptr + 5), sentence)) {
         fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a $--%s sentence");
@@ -3049,7 +3253,7 @@ NMEA_INTERNAL bool frame_proprietary(nmea_wire *wire, const char *line, size_t l
                                      nmea_error *err)
 {
     nmea_frame f;
-    if (!frame_line(&f, line, len, err))
+    if (!frame_line(&f, line, len, false, err))
         return false;
     if (f.start.ptr[0] != '$' || !text_is(f.address, address)) {
         fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a $%s sentence");
@@ -3089,7 +3293,8 @@ static bool dtm_read(nmea_dtm *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "DTM", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_dtm, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     (void)optional;
@@ -3107,7 +3312,7 @@ static bool dtm_read(nmea_dtm *s, const nmea_wire *wire, nmea_error *err)
 
 static void dtm_write(nmea_writer *w, const nmea_dtm *s)
 {
-    begin_sentence(w, s->talker, "DTM");
+    begin_sentence(w, s->talker, "DTM", &s->problems);
     put_enum(w, &s->local_datum, &nmea_dtm_datum_def);
     put_char_field(w, s->local_datum_subdivision);
     put_number(w, &s->lat_offset);
@@ -3133,7 +3338,7 @@ static void dtm_json(nmea_writer *w, const nmea_dtm *s, bool values)
     json_enum(w, "lon_offset_dir", &s->lon_offset_dir, &nmea_dtm_lon_offset_dir_def, values);
     json_number(w, "altitude_offset", &s->altitude_offset, values);
     json_enum(w, "reference_datum", &s->reference_datum, &nmea_dtm_datum_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -3187,7 +3392,8 @@ static bool gga_read(nmea_gga *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GGA", err);
     if (!read_count(&r, wire->count, 14, 14, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_gga, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     (void)optional;
@@ -3209,7 +3415,7 @@ static bool gga_read(nmea_gga *s, const nmea_wire *wire, nmea_error *err)
 
 static void gga_write(nmea_writer *w, const nmea_gga *s)
 {
-    begin_sentence(w, s->talker, "GGA");
+    begin_sentence(w, s->talker, "GGA", &s->problems);
     put_time(w, &s->time);
     put_coordinate(w, &s->lat);
     put_coordinate(w, &s->lon);
@@ -3243,7 +3449,7 @@ static void gga_json(nmea_writer *w, const nmea_gga *s, bool values)
     json_literal(w, "geoid_separation_unit", s->geoid_separation_unit, "M", values);
     json_number(w, "dgps_age", &s->dgps_age, values);
     json_number(w, "dgps_station", &s->dgps_station, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -3301,7 +3507,8 @@ static bool gll_read(nmea_gll *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GLL", err);
     if (!read_count(&r, wire->count, 6, 7, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_gll, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -3316,7 +3523,7 @@ static bool gll_read(nmea_gll *s, const nmea_wire *wire, nmea_error *err)
 
 static void gll_write(nmea_writer *w, const nmea_gll *s)
 {
-    begin_sentence(w, s->talker, "GLL");
+    begin_sentence(w, s->talker, "GLL", &s->problems);
     put_coordinate(w, &s->lat);
     put_coordinate(w, &s->lon);
     put_time(w, &s->time);
@@ -3338,7 +3545,7 @@ static void gll_json(nmea_writer *w, const nmea_gll *s, bool values)
     json_enum(w, "status", &s->status, &nmea_status_def, values);
     if (s->optional_count >= 1)
         json_enum(w, "mode", &s->mode, &nmea_pos_mode_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -3389,7 +3596,8 @@ static bool gns_read(nmea_gns *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GNS", err);
     if (!read_count(&r, wire->count, 12, 13, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_gns, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -3410,7 +3618,7 @@ static bool gns_read(nmea_gns *s, const nmea_wire *wire, nmea_error *err)
 
 static void gns_write(nmea_writer *w, const nmea_gns *s)
 {
-    begin_sentence(w, s->talker, "GNS");
+    begin_sentence(w, s->talker, "GNS", &s->problems);
     put_time(w, &s->time);
     put_coordinate(w, &s->lat);
     put_coordinate(w, &s->lon);
@@ -3444,7 +3652,7 @@ static void gns_json(nmea_writer *w, const nmea_gns *s, bool values)
     json_number(w, "dgps_station", &s->dgps_station, values);
     if (s->optional_count >= 1)
         json_enum(w, "nav_status", &s->nav_status, &nmea_nav_status_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -3501,7 +3709,8 @@ static bool gns_aux_read(nmea_gns_aux *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "GNS", err);
     if (!read_count(&r, wire->count, 11, 12, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_gns_aux, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -3521,7 +3730,7 @@ static bool gns_aux_read(nmea_gns_aux *s, const nmea_wire *wire, nmea_error *err
 
 static void gns_aux_write(nmea_writer *w, const nmea_gns_aux *s)
 {
-    begin_sentence(w, s->talker, "GNS");
+    begin_sentence(w, s->talker, "GNS", &s->problems);
     put_time(w, &s->time);
     put_coordinate(w, &s->lat);
     put_coordinate(w, &s->lon);
@@ -3553,7 +3762,7 @@ static void gns_aux_json(nmea_writer *w, const nmea_gns_aux *s, bool values)
     json_number(w, "dgps_station", &s->dgps_station, values);
     if (s->optional_count >= 1)
         json_enum(w, "nav_status", &s->nav_status, &nmea_nav_status_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -3609,7 +3818,8 @@ static bool gsa_read(nmea_gsa *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GSA", err);
     if (!read_group_count(&r, wire->count, "prns", 5, 1, 12, 12, 1, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_gsa, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -3634,7 +3844,7 @@ static void gsa_write(nmea_writer *w, const nmea_gsa *s)
 {
     size_t i;
 
-    begin_sentence(w, s->talker, "GSA");
+    begin_sentence(w, s->talker, "GSA", &s->problems);
     put_enum(w, &s->selection_mode, &nmea_gsa_selection_mode_def);
     put_enum(w, &s->fix_type, &nmea_gsa_fix_type_def);
     for (i = 0; i < 12; i++) {
@@ -3667,7 +3877,7 @@ static void gsa_json(nmea_writer *w, const nmea_gsa *s, bool values)
     json_number(w, "vdop", &s->vdop, values);
     if (s->optional_count >= 1)
         json_enum(w, "system_id", &s->system_id, &nmea_system_id_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -3727,7 +3937,8 @@ static bool gsa_short_read(nmea_gsa_short *s, const nmea_wire *wire, nmea_error 
     reader_start(&r, wire, "GSA", err);
     if (!read_group_count(&r, wire->count, "prns", 5, 1, 0, 11, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_gsa_short, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     (void)optional;
@@ -3752,7 +3963,7 @@ static void gsa_short_write(nmea_writer *w, const nmea_gsa_short *s)
 {
     size_t i;
 
-    begin_sentence(w, s->talker, "GSA");
+    begin_sentence(w, s->talker, "GSA", &s->problems);
     put_enum(w, &s->selection_mode, &nmea_gsa_selection_mode_def);
     put_enum(w, &s->fix_type, &nmea_gsa_fix_type_def);
     for (i = 0; i < s->prns_count && i < 11; i++) {
@@ -3781,7 +3992,7 @@ static void gsa_short_json(nmea_writer *w, const nmea_gsa_short *s, bool values)
     json_number(w, "pdop", &s->pdop, values);
     json_number(w, "hdop", &s->hdop, values);
     json_number(w, "vdop", &s->vdop, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -3839,7 +4050,8 @@ static bool gst_read(nmea_gst *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GST", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_gst, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     (void)optional;
@@ -3857,7 +4069,7 @@ static bool gst_read(nmea_gst *s, const nmea_wire *wire, nmea_error *err)
 
 static void gst_write(nmea_writer *w, const nmea_gst *s)
 {
-    begin_sentence(w, s->talker, "GST");
+    begin_sentence(w, s->talker, "GST", &s->problems);
     put_time(w, &s->time);
     put_number(w, &s->rms);
     put_number(w, &s->semi_major_std);
@@ -3883,7 +4095,7 @@ static void gst_json(nmea_writer *w, const nmea_gst *s, bool values)
     json_number(w, "lat_std", &s->lat_std, values);
     json_number(w, "lon_std", &s->lon_std, values);
     json_number(w, "alt_std", &s->alt_std, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -3936,7 +4148,8 @@ static bool gsv_read(nmea_gsv *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GSV", err);
     if (!read_group_count(&r, wire->count, "satellites", 3, 4, 0, 4, 1, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_gsv, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -3965,7 +4178,7 @@ static void gsv_write(nmea_writer *w, const nmea_gsv *s)
 {
     size_t i;
 
-    begin_sentence(w, s->talker, "GSV");
+    begin_sentence(w, s->talker, "GSV", &s->problems);
     put_number(w, &s->message_count);
     put_number(w, &s->message_number);
     put_number(w, &s->satellites_in_view);
@@ -4006,7 +4219,7 @@ static void gsv_json(nmea_writer *w, const nmea_gsv *s, bool values)
     json_close(w, ']');
     if (s->optional_count >= 1)
         json_enum(w, "signal_id", &s->signal_id, &nmea_signal_id_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4066,7 +4279,8 @@ static bool hdt_read(nmea_hdt *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "HDT", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_hdt, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     (void)optional;
@@ -4078,7 +4292,7 @@ static bool hdt_read(nmea_hdt *s, const nmea_wire *wire, nmea_error *err)
 
 static void hdt_write(nmea_writer *w, const nmea_hdt *s)
 {
-    begin_sentence(w, s->talker, "HDT");
+    begin_sentence(w, s->talker, "HDT", &s->problems);
     put_number(w, &s->heading);
     put_literal(w, s->heading_ref, "T");
     end_sentence(w, s->checksum);
@@ -4092,7 +4306,7 @@ static void hdt_json(nmea_writer *w, const nmea_hdt *s, bool values)
     json_begin_sentence(w, s->talker, "HDT", NULL);
     json_number(w, "heading", &s->heading, values);
     json_literal(w, "heading_ref", s->heading_ref, "T", values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4139,7 +4353,8 @@ static bool rlm_read(nmea_rlm *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "RLM", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_rlm, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     (void)optional;
@@ -4153,7 +4368,7 @@ static bool rlm_read(nmea_rlm *s, const nmea_wire *wire, nmea_error *err)
 
 static void rlm_write(nmea_writer *w, const nmea_rlm *s)
 {
-    begin_sentence(w, s->talker, "RLM");
+    begin_sentence(w, s->talker, "RLM", &s->problems);
     put_hex(w, &s->beacon_id);
     put_time(w, &s->time);
     put_enum(w, &s->message_code, &nmea_rlm_message_code_def);
@@ -4171,7 +4386,7 @@ static void rlm_json(nmea_writer *w, const nmea_rlm *s, bool values)
     json_time(w, "time", &s->time, values);
     json_enum(w, "message_code", &s->message_code, &nmea_rlm_message_code_def, values);
     json_text(w, "message_body", s->message_body, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4221,7 +4436,8 @@ static bool rmc_read(nmea_rmc *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "RMC", err);
     if (!read_count(&r, wire->count, 11, 13, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_rmc, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -4242,7 +4458,7 @@ static bool rmc_read(nmea_rmc *s, const nmea_wire *wire, nmea_error *err)
 
 static void rmc_write(nmea_writer *w, const nmea_rmc *s)
 {
-    begin_sentence(w, s->talker, "RMC");
+    begin_sentence(w, s->talker, "RMC", &s->problems);
     put_time(w, &s->time);
     put_enum(w, &s->status, &nmea_status_def);
     put_coordinate(w, &s->lat);
@@ -4278,7 +4494,7 @@ static void rmc_json(nmea_writer *w, const nmea_rmc *s, bool values)
         json_enum(w, "mode", &s->mode, &nmea_pos_mode_def, values);
     if (s->optional_count >= 2)
         json_enum(w, "nav_status", &s->nav_status, &nmea_nav_status_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4335,7 +4551,8 @@ static bool vtg_read(nmea_vtg *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "VTG", err);
     if (!read_count(&r, wire->count, 8, 9, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_vtg, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -4354,7 +4571,7 @@ static bool vtg_read(nmea_vtg *s, const nmea_wire *wire, nmea_error *err)
 
 static void vtg_write(nmea_writer *w, const nmea_vtg *s)
 {
-    begin_sentence(w, s->talker, "VTG");
+    begin_sentence(w, s->talker, "VTG", &s->problems);
     put_number(w, &s->course_true);
     put_literal(w, s->course_true_ref, "T");
     put_number(w, &s->course_magnetic);
@@ -4384,7 +4601,7 @@ static void vtg_json(nmea_writer *w, const nmea_vtg *s, bool values)
     json_literal(w, "speed_kmh_unit", s->speed_kmh_unit, "K", values);
     if (s->optional_count >= 1)
         json_enum(w, "mode", &s->mode, &nmea_pos_mode_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4439,7 +4656,8 @@ static bool zda_read(nmea_zda *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "ZDA", err);
     if (!read_count(&r, wire->count, 6, 6, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_zda, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
     (void)optional;
@@ -4455,7 +4673,7 @@ static bool zda_read(nmea_zda *s, const nmea_wire *wire, nmea_error *err)
 
 static void zda_write(nmea_writer *w, const nmea_zda *s)
 {
-    begin_sentence(w, s->talker, "ZDA");
+    begin_sentence(w, s->talker, "ZDA", &s->problems);
     put_time(w, &s->time);
     put_number(w, &s->day);
     put_number(w, &s->month);
@@ -4477,7 +4695,7 @@ static void zda_json(nmea_writer *w, const nmea_zda *s, bool values)
     json_number(w, "year", &s->year, values);
     json_number(w, "local_zone_hours", &s->local_zone_hours, values);
     json_number(w, "local_zone_minutes", &s->local_zone_minutes, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4529,7 +4747,8 @@ static bool comnav_log_read(nmea_comnav_log *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "COMNAV_LOG", err);
     if (!read_count(&r, wire->count, 3, 3, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_comnav_log, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
     if (!read_enum(&r, &s->message, "message", "comnav_log_message code (GPGGA GPGLL GPGSA GPGST GPGSV GPHDT GPRMC GPVTG GPZDA)", &nmea_comnav_log_message_def)
@@ -4541,7 +4760,7 @@ static bool comnav_log_read(nmea_comnav_log *s, const nmea_wire *wire, nmea_erro
 
 static void comnav_log_write(nmea_writer *w, const nmea_comnav_log *s)
 {
-    begin_text(w, "LOG", s->as_received);
+    begin_text(w, "LOG", s->as_received, &s->problems);
     put_enum(w, &s->message, &nmea_comnav_log_message_def);
     put_keyword(w, "ONTIME");
     put_number(w, &s->period);
@@ -4559,20 +4778,23 @@ static void comnav_log_json(nmea_writer *w, const nmea_comnav_log *s, bool value
     json_begin_proprietary(w, "", text_address(&sentence, s->as_received, "LOG"), "COMNAV_LOG", NULL);
     if (!values && sentence.matched) { /* the words as received */
         json_words(w, comnav_log_ids, 3, s->as_received);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
         return;
     }
     if (!values) { /* the words as written in the spec's letter case */
-        json_enum(w, "message", &s->message, &nmea_comnav_log_message_def, false);
-        json_keyword(w, "trigger", "ONTIME", false);
-        json_number(w, "period", &s->period, false);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+        if (!json_problem_word(w, "message", &s->problems, 1))
+            json_enum(w, "message", &s->message, &nmea_comnav_log_message_def, false);
+        if (!json_problem_word(w, "trigger", &s->problems, 2))
+            json_keyword(w, "trigger", "ONTIME", false);
+        if (!json_problem_word(w, "period", &s->problems, 3))
+            json_number(w, "period", &s->period, false);
+        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
         return;
     }
     json_enum(w, "message", &s->message, &nmea_comnav_log_message_def, values);
     json_keyword(w, "trigger", "ONTIME", values);
     json_number(w, "period", &s->period, values);
-    json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+    json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4620,7 +4842,8 @@ static bool comnav_nmeatalker_read(nmea_comnav_nmeatalker *s, const nmea_wire *w
     reader_start(&r, wire, "COMNAV_NMEATALKER", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_comnav_nmeatalker, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
     if (!read_enum(&r, &s->message, "message", "comnav_talker_sentence code (GGA GSA GSV GST ZDA HDT RMC VTG GLL ALL)", &nmea_comnav_talker_sentence_def)
@@ -4631,7 +4854,7 @@ static bool comnav_nmeatalker_read(nmea_comnav_nmeatalker *s, const nmea_wire *w
 
 static void comnav_nmeatalker_write(nmea_writer *w, const nmea_comnav_nmeatalker *s)
 {
-    begin_text(w, "NMEATALKER", s->as_received);
+    begin_text(w, "NMEATALKER", s->as_received, &s->problems);
     put_enum(w, &s->message, &nmea_comnav_talker_sentence_def);
     put_enum(w, &s->talker_id, &nmea_comnav_talker_id_def);
     end_text(w);
@@ -4648,18 +4871,20 @@ static void comnav_nmeatalker_json(nmea_writer *w, const nmea_comnav_nmeatalker 
     json_begin_proprietary(w, "", text_address(&sentence, s->as_received, "NMEATALKER"), "COMNAV_NMEATALKER", NULL);
     if (!values && sentence.matched) { /* the words as received */
         json_words(w, comnav_nmeatalker_ids, 2, s->as_received);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
         return;
     }
     if (!values) { /* the words as written in the spec's letter case */
-        json_enum(w, "message", &s->message, &nmea_comnav_talker_sentence_def, false);
-        json_enum(w, "talker_id", &s->talker_id, &nmea_comnav_talker_id_def, false);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+        if (!json_problem_word(w, "message", &s->problems, 1))
+            json_enum(w, "message", &s->message, &nmea_comnav_talker_sentence_def, false);
+        if (!json_problem_word(w, "talker_id", &s->problems, 2))
+            json_enum(w, "talker_id", &s->talker_id, &nmea_comnav_talker_id_def, false);
+        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
         return;
     }
     json_enum(w, "message", &s->message, &nmea_comnav_talker_sentence_def, values);
     json_enum(w, "talker_id", &s->talker_id, &nmea_comnav_talker_id_def, values);
-    json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+    json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4706,7 +4931,8 @@ static bool comnav_nmeatalker_list_read(nmea_comnav_nmeatalker_list *s, const nm
     reader_start(&r, wire, "COMNAV_NMEATALKER", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_comnav_nmeatalker_list, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
     if (!read_keyword(&r, "subcommand", "LIST", "LIST"))
@@ -4716,7 +4942,7 @@ static bool comnav_nmeatalker_list_read(nmea_comnav_nmeatalker_list *s, const nm
 
 static void comnav_nmeatalker_list_write(nmea_writer *w, const nmea_comnav_nmeatalker_list *s)
 {
-    begin_text(w, "NMEATALKER", s->as_received);
+    begin_text(w, "NMEATALKER", s->as_received, &s->problems);
     put_keyword(w, "LIST");
     end_text(w);
 }
@@ -4732,16 +4958,17 @@ static void comnav_nmeatalker_list_json(nmea_writer *w, const nmea_comnav_nmeata
     json_begin_proprietary(w, "", text_address(&sentence, s->as_received, "NMEATALKER"), "COMNAV_NMEATALKER", "list");
     if (!values && sentence.matched) { /* the words as received */
         json_words(w, comnav_nmeatalker_list_ids, 1, s->as_received);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
         return;
     }
     if (!values) { /* the words as written in the spec's letter case */
-        json_keyword(w, "subcommand", "LIST", false);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+        if (!json_problem_word(w, "subcommand", &s->problems, 1))
+            json_keyword(w, "subcommand", "LIST", false);
+        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
         return;
     }
     json_keyword(w, "subcommand", "LIST", values);
-    json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+    json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4788,7 +5015,8 @@ static bool comnav_nmeatalker_reset_read(nmea_comnav_nmeatalker_reset *s, const 
     reader_start(&r, wire, "COMNAV_NMEATALKER", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_comnav_nmeatalker_reset, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
     if (!read_keyword(&r, "subcommand", "RESET", "RESET"))
@@ -4798,7 +5026,7 @@ static bool comnav_nmeatalker_reset_read(nmea_comnav_nmeatalker_reset *s, const 
 
 static void comnav_nmeatalker_reset_write(nmea_writer *w, const nmea_comnav_nmeatalker_reset *s)
 {
-    begin_text(w, "NMEATALKER", s->as_received);
+    begin_text(w, "NMEATALKER", s->as_received, &s->problems);
     put_keyword(w, "RESET");
     end_text(w);
 }
@@ -4814,16 +5042,17 @@ static void comnav_nmeatalker_reset_json(nmea_writer *w, const nmea_comnav_nmeat
     json_begin_proprietary(w, "", text_address(&sentence, s->as_received, "NMEATALKER"), "COMNAV_NMEATALKER", "reset");
     if (!values && sentence.matched) { /* the words as received */
         json_words(w, comnav_nmeatalker_reset_ids, 1, s->as_received);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
         return;
     }
     if (!values) { /* the words as written in the spec's letter case */
-        json_keyword(w, "subcommand", "RESET", false);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+        if (!json_problem_word(w, "subcommand", &s->problems, 1))
+            json_keyword(w, "subcommand", "RESET", false);
+        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
         return;
     }
     json_keyword(w, "subcommand", "RESET", values);
-    json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE);
+    json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4870,7 +5099,8 @@ static bool geos5_command_read(nmea_geos5_command *s, const nmea_wire *wire, nme
     reader_start(&r, wire, "GEOS5_COMMAND", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_geos5_command, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_enum(&r, &s->command, "command", "geos5_command_word code (SWPROT SAVEFL CSTART WSTART HSTART BDR004 BDR009 BDR019 BDR038 BDR057 BDR115 BDR230 BDR460 BDR921 STOP01 STOP02 GGA ON GGAOFF GLL ON GLLOFF GSA ON GSAOFF GSV ON GSVOFF RMC ON RMCOFF VTG ON VTGOFF ZDA ON ZDAOFF DTM ON DTMOFF RLM ON RLMOFF NMEAV2 NMEAV4 RATE01 RATE02 RATE05 RATE10 PSM ON PSMOFF ELEV05 ELEV06 ELEV07 ELEV08 ELEV09 ELEV10 ELEV11 ELEV12 ELEV13 ELEV14 ELEV15 DATP90 DATW84 NVSGPS NVSGLN NVSMIX)", &nmea_geos5_command_word_def))
@@ -4880,7 +5110,7 @@ static bool geos5_command_read(nmea_geos5_command *s, const nmea_wire *wire, nme
 
 static void geos5_command_write(nmea_writer *w, const nmea_geos5_command *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "GPSGG");
+    begin_sentence(w, nmea_text_of(NULL), "GPSGG", &s->problems);
     put_enum(w, &s->command, &nmea_geos5_command_word_def);
     end_sentence(w, s->checksum);
 }
@@ -4892,7 +5122,7 @@ static void geos5_command_json(nmea_writer *w, const nmea_geos5_command *s, bool
     geos5_command_write(&sentence, s);
     json_begin_proprietary(w, "$", nmea_text_of("GPSGG"), "GEOS5_COMMAND", NULL);
     json_enum(w, "command", &s->command, &nmea_geos5_command_word_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -4939,7 +5169,8 @@ static bool geos5_jamdet_read(nmea_geos5_jamdet *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "GEOS5_JAMDET", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_geos5_jamdet, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_keyword(&r, "keyword", "JAMDET", "JAMDET")
@@ -4950,7 +5181,7 @@ static bool geos5_jamdet_read(nmea_geos5_jamdet *s, const nmea_wire *wire, nmea_
 
 static void geos5_jamdet_write(nmea_writer *w, const nmea_geos5_jamdet *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "GPSGG");
+    begin_sentence(w, nmea_text_of(NULL), "GPSGG", &s->problems);
     put_keyword(w, "JAMDET");
     put_text_field(w, s->reserved);
     end_sentence(w, s->checksum);
@@ -4964,7 +5195,7 @@ static void geos5_jamdet_json(nmea_writer *w, const nmea_geos5_jamdet *s, bool v
     json_begin_proprietary(w, "$", nmea_text_of("GPSGG"), "GEOS5_JAMDET", NULL);
     json_keyword(w, "keyword", "JAMDET", values);
     json_text(w, "reserved", s->reserved, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5012,7 +5243,8 @@ static bool geos5_nquery_read(nmea_geos5_nquery *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "GEOS5_NQUERY", err);
     if (!read_count(&r, wire->count, 14, 14, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_geos5_nquery, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_keyword(&r, "keyword", "NQUERY", "NQUERY")
@@ -5035,7 +5267,7 @@ static bool geos5_nquery_read(nmea_geos5_nquery *s, const nmea_wire *wire, nmea_
 
 static void geos5_nquery_write(nmea_writer *w, const nmea_geos5_nquery *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "GPSGG");
+    begin_sentence(w, nmea_text_of(NULL), "GPSGG", &s->problems);
     put_keyword(w, "NQUERY");
     put_number(w, &s->port);
     put_enum(w, &s->output_rate, &nmea_geos5_output_rate_def);
@@ -5073,7 +5305,7 @@ static void geos5_nquery_json(nmea_writer *w, const nmea_geos5_nquery *s, bool v
     json_enum(w, "zda_rate", &s->zda_rate, &nmea_geos5_message_rate_def, values);
     json_enum(w, "dtm_rate", &s->dtm_rate, &nmea_geos5_message_rate_def, values);
     json_enum(w, "rlm_rate", &s->rlm_rate, &nmea_geos5_message_rate_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5133,7 +5365,8 @@ static bool geos5_nquery_request_read(nmea_geos5_nquery_request *s, const nmea_w
     reader_start(&r, wire, "GEOS5_NQUERY_REQUEST", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_geos5_nquery_request, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_keyword(&r, "keyword", "NQUERY", "NQUERY"))
@@ -5143,7 +5376,7 @@ static bool geos5_nquery_request_read(nmea_geos5_nquery_request *s, const nmea_w
 
 static void geos5_nquery_request_write(nmea_writer *w, const nmea_geos5_nquery_request *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "GPSGG");
+    begin_sentence(w, nmea_text_of(NULL), "GPSGG", &s->problems);
     put_keyword(w, "NQUERY");
     end_sentence(w, s->checksum);
 }
@@ -5155,7 +5388,7 @@ static void geos5_nquery_request_json(nmea_writer *w, const nmea_geos5_nquery_re
     geos5_nquery_request_write(&sentence, s);
     json_begin_proprietary(w, "$", nmea_text_of("GPSGG"), "GEOS5_NQUERY_REQUEST", NULL);
     json_keyword(w, "keyword", "NQUERY", values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5202,7 +5435,8 @@ static bool geos5_rquery_read(nmea_geos5_rquery *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "GEOS5_RQUERY", err);
     if (!read_count(&r, wire->count, 7, 7, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_geos5_rquery, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_keyword(&r, "keyword", "RQUERY", "RQUERY")
@@ -5218,7 +5452,7 @@ static bool geos5_rquery_read(nmea_geos5_rquery *s, const nmea_wire *wire, nmea_
 
 static void geos5_rquery_write(nmea_writer *w, const nmea_geos5_rquery *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "GPSGG");
+    begin_sentence(w, nmea_text_of(NULL), "GPSGG", &s->problems);
     put_keyword(w, "RQUERY");
     put_text_field(w, s->receiver_name);
     put_text_field(w, s->software_version);
@@ -5242,7 +5476,7 @@ static void geos5_rquery_json(nmea_writer *w, const nmea_geos5_rquery *s, bool v
     json_hex(w, "status", &s->status, values);
     json_hex(w, "config_1", &s->config_1, values);
     json_hex(w, "config_2", &s->config_2, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5295,7 +5529,8 @@ static bool geos5_rquery_request_read(nmea_geos5_rquery_request *s, const nmea_w
     reader_start(&r, wire, "GEOS5_RQUERY_REQUEST", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_geos5_rquery_request, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_keyword(&r, "keyword", "RQUERY", "RQUERY"))
@@ -5305,7 +5540,7 @@ static bool geos5_rquery_request_read(nmea_geos5_rquery_request *s, const nmea_w
 
 static void geos5_rquery_request_write(nmea_writer *w, const nmea_geos5_rquery_request *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "GPSGG");
+    begin_sentence(w, nmea_text_of(NULL), "GPSGG", &s->problems);
     put_keyword(w, "RQUERY");
     end_sentence(w, s->checksum);
 }
@@ -5317,7 +5552,7 @@ static void geos5_rquery_request_json(nmea_writer *w, const nmea_geos5_rquery_re
     geos5_rquery_request_write(&sentence, s);
     json_begin_proprietary(w, "$", nmea_text_of("GPSGG"), "GEOS5_RQUERY_REQUEST", NULL);
     json_keyword(w, "keyword", "RQUERY", values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5364,7 +5599,8 @@ static bool psrf100_read(nmea_psrf100 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF100", err);
     if (!read_count(&r, wire->count, 5, 5, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_psrf100, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_enum(&r, &s->protocol, "protocol", "sirf_protocol code (0 1)", &nmea_sirf_protocol_def)
@@ -5378,7 +5614,7 @@ static bool psrf100_read(nmea_psrf100 *s, const nmea_wire *wire, nmea_error *err
 
 static void psrf100_write(nmea_writer *w, const nmea_psrf100 *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSRF100");
+    begin_sentence(w, nmea_text_of(NULL), "PSRF100", &s->problems);
     put_enum(w, &s->protocol, &nmea_sirf_protocol_def);
     put_enum(w, &s->baud, &nmea_sirf_baud_def);
     put_number(w, &s->data_bits);
@@ -5398,7 +5634,7 @@ static void psrf100_json(nmea_writer *w, const nmea_psrf100 *s, bool values)
     json_number(w, "data_bits", &s->data_bits, values);
     json_number(w, "stop_bits", &s->stop_bits, values);
     json_enum(w, "parity", &s->parity, &nmea_sirf_parity_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5449,7 +5685,8 @@ static bool psrf101_read(nmea_psrf101 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF101", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_psrf101, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_integer(&r, &s->x, "x", "integer -2147483648..2147483647", &range_minus_2147483648_to_2147483647)
@@ -5466,7 +5703,7 @@ static bool psrf101_read(nmea_psrf101 *s, const nmea_wire *wire, nmea_error *err
 
 static void psrf101_write(nmea_writer *w, const nmea_psrf101 *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSRF101");
+    begin_sentence(w, nmea_text_of(NULL), "PSRF101", &s->problems);
     put_number(w, &s->x);
     put_number(w, &s->y);
     put_number(w, &s->z);
@@ -5492,7 +5729,7 @@ static void psrf101_json(nmea_writer *w, const nmea_psrf101 *s, bool values)
     json_number(w, "week", &s->week, values);
     json_number(w, "channels", &s->channels, values);
     json_number(w, "reset_cfg", &s->reset_cfg, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5546,7 +5783,8 @@ static bool psrf102_read(nmea_psrf102 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF102", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_psrf102, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_enum(&r, &s->baud, "baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", &nmea_sirf_baud_def)
@@ -5559,7 +5797,7 @@ static bool psrf102_read(nmea_psrf102 *s, const nmea_wire *wire, nmea_error *err
 
 static void psrf102_write(nmea_writer *w, const nmea_psrf102 *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSRF102");
+    begin_sentence(w, nmea_text_of(NULL), "PSRF102", &s->problems);
     put_enum(w, &s->baud, &nmea_sirf_baud_def);
     put_number(w, &s->data_bits);
     put_number(w, &s->stop_bits);
@@ -5577,7 +5815,7 @@ static void psrf102_json(nmea_writer *w, const nmea_psrf102 *s, bool values)
     json_number(w, "data_bits", &s->data_bits, values);
     json_number(w, "stop_bits", &s->stop_bits, values);
     json_enum(w, "parity", &s->parity, &nmea_sirf_parity_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5627,7 +5865,8 @@ static bool psrf103_read(nmea_psrf103 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF103", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_psrf103, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_enum(&r, &s->message, "message", "sirf_nmea_message code (00 01 02 03 04 05)", &nmea_sirf_nmea_message_def)
@@ -5640,7 +5879,7 @@ static bool psrf103_read(nmea_psrf103 *s, const nmea_wire *wire, nmea_error *err
 
 static void psrf103_write(nmea_writer *w, const nmea_psrf103 *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSRF103");
+    begin_sentence(w, nmea_text_of(NULL), "PSRF103", &s->problems);
     put_enum(w, &s->message, &nmea_sirf_nmea_message_def);
     put_enum(w, &s->mode, &nmea_sirf_rate_mode_def);
     put_number(w, &s->rate);
@@ -5658,7 +5897,7 @@ static void psrf103_json(nmea_writer *w, const nmea_psrf103 *s, bool values)
     json_enum(w, "mode", &s->mode, &nmea_sirf_rate_mode_def, values);
     json_number(w, "rate", &s->rate, values);
     json_enum(w, "checksum_mode", &s->checksum_mode, &nmea_sirf_checksum_enable_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5708,7 +5947,8 @@ static bool psrf104_read(nmea_psrf104 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF104", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_psrf104, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_decimal(&r, &s->latitude, "latitude", "decimal number -90..90", &range_minus_90_to_90)
@@ -5725,7 +5965,7 @@ static bool psrf104_read(nmea_psrf104 *s, const nmea_wire *wire, nmea_error *err
 
 static void psrf104_write(nmea_writer *w, const nmea_psrf104 *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSRF104");
+    begin_sentence(w, nmea_text_of(NULL), "PSRF104", &s->problems);
     put_number(w, &s->latitude);
     put_number(w, &s->longitude);
     put_number(w, &s->altitude);
@@ -5751,7 +5991,7 @@ static void psrf104_json(nmea_writer *w, const nmea_psrf104 *s, bool values)
     json_number(w, "week", &s->week, values);
     json_number(w, "channels", &s->channels, values);
     json_number(w, "reset_cfg", &s->reset_cfg, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5805,7 +6045,8 @@ static bool psrf105_read(nmea_psrf105 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF105", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_psrf105, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_enum(&r, &s->debug, "debug", "sirf_debug code (0 1)", &nmea_sirf_debug_def))
@@ -5815,7 +6056,7 @@ static bool psrf105_read(nmea_psrf105 *s, const nmea_wire *wire, nmea_error *err
 
 static void psrf105_write(nmea_writer *w, const nmea_psrf105 *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSRF105");
+    begin_sentence(w, nmea_text_of(NULL), "PSRF105", &s->problems);
     put_enum(w, &s->debug, &nmea_sirf_debug_def);
     end_sentence(w, s->checksum);
 }
@@ -5827,7 +6068,7 @@ static void psrf105_json(nmea_writer *w, const nmea_psrf105 *s, bool values)
     psrf105_write(&sentence, s);
     json_begin_proprietary(w, "$", nmea_text_of("PSRF105"), "PSRF105", NULL);
     json_enum(w, "debug", &s->debug, &nmea_sirf_debug_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5873,7 +6114,8 @@ static bool psrf150_read(nmea_psrf150 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF150", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_psrf150, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_enum(&r, &s->ok_to_send, "ok_to_send", "sirf_ok_to_send code (0 1)", &nmea_sirf_ok_to_send_def))
@@ -5883,7 +6125,7 @@ static bool psrf150_read(nmea_psrf150 *s, const nmea_wire *wire, nmea_error *err
 
 static void psrf150_write(nmea_writer *w, const nmea_psrf150 *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSRF150");
+    begin_sentence(w, nmea_text_of(NULL), "PSRF150", &s->problems);
     put_enum(w, &s->ok_to_send, &nmea_sirf_ok_to_send_def);
     end_sentence(w, s->checksum);
 }
@@ -5895,7 +6137,7 @@ static void psrf150_json(nmea_writer *w, const nmea_psrf150 *s, bool values)
     psrf150_write(&sentence, s);
     json_begin_proprietary(w, "$", nmea_text_of("PSRF150"), "PSRF150", NULL);
     json_enum(w, "ok_to_send", &s->ok_to_send, &nmea_sirf_ok_to_send_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -5940,7 +6182,8 @@ static bool pstmagps_read(nmea_pstmagps *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMAGPS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmagps, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -5957,7 +6200,7 @@ static void pstmagps_write(nmea_writer *w, const nmea_pstmagps *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMAGPS");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMAGPS", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -5976,7 +6219,7 @@ static void pstmagps_json(nmea_writer *w, const nmea_pstmagps *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6029,7 +6272,8 @@ static bool pstmalmanac_read(nmea_pstmalmanac *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMALMANAC", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmalmanac, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -6046,7 +6290,7 @@ static void pstmalmanac_write(nmea_writer *w, const nmea_pstmalmanac *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMALMANAC");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMALMANAC", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -6065,7 +6309,7 @@ static void pstmalmanac_json(nmea_writer *w, const nmea_pstmalmanac *s, bool val
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6119,7 +6363,8 @@ static bool pstmclralms_read(nmea_pstmclralms *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMCLRALMS", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmclralms, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -6127,7 +6372,7 @@ static bool pstmclralms_read(nmea_pstmclralms *s, const nmea_wire *wire, nmea_er
 
 static void pstmclralms_write(nmea_writer *w, const nmea_pstmclralms *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMCLRALMS");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMCLRALMS", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -6138,7 +6383,7 @@ static void pstmclralms_json(nmea_writer *w, const nmea_pstmclralms *s, bool val
     pstmclralms_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMCLRALMS"), "PSTMCLRALMS", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6187,7 +6432,8 @@ static bool pstmclrephs_read(nmea_pstmclrephs *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMCLREPHS", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmclrephs, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -6195,7 +6441,7 @@ static bool pstmclrephs_read(nmea_pstmclrephs *s, const nmea_wire *wire, nmea_er
 
 static void pstmclrephs_write(nmea_writer *w, const nmea_pstmclrephs *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMCLREPHS");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMCLREPHS", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -6206,7 +6452,7 @@ static void pstmclrephs_json(nmea_writer *w, const nmea_pstmclrephs *s, bool val
     pstmclrephs_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMCLREPHS"), "PSTMCLREPHS", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6255,7 +6501,8 @@ static bool pstmcold_read(nmea_pstmcold *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMCOLD", err);
     if (!read_count(&r, wire->count, 0, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmcold, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
     if (s->optional_count >= 1 && !read_integer(&r, &s->mask, "mask", "integer 0..15", &range_0_to_15))
@@ -6265,7 +6512,7 @@ static bool pstmcold_read(nmea_pstmcold *s, const nmea_wire *wire, nmea_error *e
 
 static void pstmcold_write(nmea_writer *w, const nmea_pstmcold *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMCOLD");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMCOLD", &s->problems);
     if (s->optional_count >= 1)
         put_number(w, &s->mask);
     end_sentence(w, s->checksum);
@@ -6279,7 +6526,7 @@ static void pstmcold_json(nmea_writer *w, const nmea_pstmcold *s, bool values)
     json_begin_proprietary(w, "$", nmea_text_of("PSTMCOLD"), "PSTMCOLD", NULL);
     if (s->optional_count >= 1)
         json_number(w, "mask", &s->mask, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6325,7 +6572,8 @@ static bool pstmcorr_read(nmea_pstmcorr *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMCORR", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmcorr, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -6342,7 +6590,7 @@ static void pstmcorr_write(nmea_writer *w, const nmea_pstmcorr *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMCORR");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMCORR", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -6361,7 +6609,7 @@ static void pstmcorr_json(nmea_writer *w, const nmea_pstmcorr *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6414,7 +6662,8 @@ static bool pstmdiff_read(nmea_pstmdiff *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMDIFF", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmdiff, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -6431,7 +6680,7 @@ static void pstmdiff_write(nmea_writer *w, const nmea_pstmdiff *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMDIFF");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMDIFF", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -6450,7 +6699,7 @@ static void pstmdiff_json(nmea_writer *w, const nmea_pstmdiff *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6503,7 +6752,8 @@ static bool pstmeph_read(nmea_pstmeph *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMEPH", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmeph, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -6520,7 +6770,7 @@ static void pstmeph_write(nmea_writer *w, const nmea_pstmeph *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMEPH");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMEPH", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -6539,7 +6789,7 @@ static void pstmeph_json(nmea_writer *w, const nmea_pstmeph *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6593,7 +6843,8 @@ static bool pstmgetpar_read(nmea_pstmgetpar *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "PSTMGETPAR", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmgetpar, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_integer(&r, &s->block_param, "block_param", "integer 1000..3999", &range_1000_to_3999))
@@ -6603,7 +6854,7 @@ static bool pstmgetpar_read(nmea_pstmgetpar *s, const nmea_wire *wire, nmea_erro
 
 static void pstmgetpar_write(nmea_writer *w, const nmea_pstmgetpar *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMGETPAR");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMGETPAR", &s->problems);
     put_number(w, &s->block_param);
     end_sentence(w, s->checksum);
 }
@@ -6615,7 +6866,7 @@ static void pstmgetpar_json(nmea_writer *w, const nmea_pstmgetpar *s, bool value
     pstmgetpar_write(&sentence, s);
     json_begin_proprietary(w, "$", nmea_text_of("PSTMGETPAR"), "PSTMGETPAR", NULL);
     json_number(w, "block_param", &s->block_param, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6661,7 +6912,8 @@ static bool pstmgetparerror_read(nmea_pstmgetparerror *s, const nmea_wire *wire,
     reader_start(&r, wire, "PSTMGETPARERROR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmgetparerror, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -6669,7 +6921,7 @@ static bool pstmgetparerror_read(nmea_pstmgetparerror *s, const nmea_wire *wire,
 
 static void pstmgetparerror_write(nmea_writer *w, const nmea_pstmgetparerror *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMGETPARERROR");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMGETPARERROR", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -6680,7 +6932,7 @@ static void pstmgetparerror_json(nmea_writer *w, const nmea_pstmgetparerror *s, 
     pstmgetparerror_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMGETPARERROR"), "PSTMGETPARERROR", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6728,7 +6980,8 @@ static bool pstmgetrtctime_read(nmea_pstmgetrtctime *s, const nmea_wire *wire, n
     reader_start(&r, wire, "PSTMGETRTCTIME", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmgetrtctime, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -6736,7 +6989,7 @@ static bool pstmgetrtctime_read(nmea_pstmgetrtctime *s, const nmea_wire *wire, n
 
 static void pstmgetrtctime_write(nmea_writer *w, const nmea_pstmgetrtctime *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMGETRTCTIME");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMGETRTCTIME", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -6747,7 +7000,7 @@ static void pstmgetrtctime_json(nmea_writer *w, const nmea_pstmgetrtctime *s, bo
     pstmgetrtctime_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMGETRTCTIME"), "PSTMGETRTCTIME", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6795,7 +7048,8 @@ static bool pstmgetrtctime_reply_read(nmea_pstmgetrtctime_reply *s, const nmea_w
     reader_start(&r, wire, "PSTMGETRTCTIME_REPLY", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmgetrtctime_reply, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_time(&r, &s->time, "time", "time hhmmss[.s]")
@@ -6808,7 +7062,7 @@ static bool pstmgetrtctime_reply_read(nmea_pstmgetrtctime_reply *s, const nmea_w
 
 static void pstmgetrtctime_reply_write(nmea_writer *w, const nmea_pstmgetrtctime_reply *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMGETRTCTIME");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMGETRTCTIME", &s->problems);
     put_time(w, &s->time);
     put_date(w, &s->date);
     put_enum(w, &s->rtc_status, &nmea_teseo_rtc_status_def);
@@ -6826,7 +7080,7 @@ static void pstmgetrtctime_reply_json(nmea_writer *w, const nmea_pstmgetrtctime_
     json_date(w, "date", &s->date, values);
     json_enum(w, "rtc_status", &s->rtc_status, &nmea_teseo_rtc_status_def, values);
     json_enum(w, "time_validity", &s->time_validity, &nmea_teseo_time_validity_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6875,7 +7129,8 @@ static bool pstmgetswver_read(nmea_pstmgetswver *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "PSTMGETSWVER", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmgetswver, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -6883,7 +7138,7 @@ static bool pstmgetswver_read(nmea_pstmgetswver *s, const nmea_wire *wire, nmea_
 
 static void pstmgetswver_write(nmea_writer *w, const nmea_pstmgetswver *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMGETSWVER");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMGETSWVER", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -6894,7 +7149,7 @@ static void pstmgetswver_json(nmea_writer *w, const nmea_pstmgetswver *s, bool v
     pstmgetswver_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMGETSWVER"), "PSTMGETSWVER", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -6942,7 +7197,8 @@ static bool pstmgetswver_reply_read(nmea_pstmgetswver_reply *s, const nmea_wire 
     reader_start(&r, wire, "PSTMGETSWVER_REPLY", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmgetswver_reply, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_text(&r, &s->library_version, "library_version", "text", 0)
@@ -6955,7 +7211,7 @@ static bool pstmgetswver_reply_read(nmea_pstmgetswver_reply *s, const nmea_wire 
 
 static void pstmgetswver_reply_write(nmea_writer *w, const nmea_pstmgetswver_reply *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMGETSWVER");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMGETSWVER", &s->problems);
     put_text_field(w, s->library_version);
     put_enum(w, &s->compiler, &nmea_teseo_compiler_type_def);
     put_text_field(w, s->build_date);
@@ -6973,7 +7229,7 @@ static void pstmgetswver_reply_json(nmea_writer *w, const nmea_pstmgetswver_repl
     json_enum(w, "compiler", &s->compiler, &nmea_teseo_compiler_type_def, values);
     json_text(w, "build_date", s->build_date, values);
     json_text(w, "build_time", s->build_time, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7022,7 +7278,8 @@ static bool pstmhot_read(nmea_pstmhot *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMHOT", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmhot, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -7030,7 +7287,7 @@ static bool pstmhot_read(nmea_pstmhot *s, const nmea_wire *wire, nmea_error *err
 
 static void pstmhot_write(nmea_writer *w, const nmea_pstmhot *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMHOT");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMHOT", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -7041,7 +7298,7 @@ static void pstmhot_json(nmea_writer *w, const nmea_pstmhot *s, bool values)
     pstmhot_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMHOT"), "PSTMHOT", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7089,7 +7346,8 @@ static bool pstmkfcov_read(nmea_pstmkfcov *s, const nmea_wire *wire, nmea_error 
     reader_start(&r, wire, "PSTMKFCOV", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmkfcov, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -7106,7 +7364,7 @@ static void pstmkfcov_write(nmea_writer *w, const nmea_pstmkfcov *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMKFCOV");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMKFCOV", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -7125,7 +7383,7 @@ static void pstmkfcov_json(nmea_writer *w, const nmea_pstmkfcov *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7179,7 +7437,8 @@ static bool pstmnmeaonoff_read(nmea_pstmnmeaonoff *s, const nmea_wire *wire, nme
     reader_start(&r, wire, "PSTMNMEAONOFF", err);
     if (!read_count(&r, wire->count, 0, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmnmeaonoff, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
     if (s->optional_count >= 1 && !read_enum(&r, &s->on_off, "on_off", "teseo_nmea_on_off code (0 1)", &nmea_teseo_nmea_on_off_def))
@@ -7189,7 +7448,7 @@ static bool pstmnmeaonoff_read(nmea_pstmnmeaonoff *s, const nmea_wire *wire, nme
 
 static void pstmnmeaonoff_write(nmea_writer *w, const nmea_pstmnmeaonoff *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMNMEAONOFF");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMNMEAONOFF", &s->problems);
     if (s->optional_count >= 1)
         put_enum(w, &s->on_off, &nmea_teseo_nmea_on_off_def);
     end_sentence(w, s->checksum);
@@ -7203,7 +7462,7 @@ static void pstmnmeaonoff_json(nmea_writer *w, const nmea_pstmnmeaonoff *s, bool
     json_begin_proprietary(w, "$", nmea_text_of("PSTMNMEAONOFF"), "PSTMNMEAONOFF", NULL);
     if (s->optional_count >= 1)
         json_enum(w, "on_off", &s->on_off, &nmea_teseo_nmea_on_off_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7249,7 +7508,8 @@ static bool pstmpa_read(nmea_pstmpa *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMPA", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmpa, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -7266,7 +7526,7 @@ static void pstmpa_write(nmea_writer *w, const nmea_pstmpa *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMPA");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMPA", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -7285,7 +7545,7 @@ static void pstmpa_json(nmea_writer *w, const nmea_pstmpa *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7338,7 +7598,8 @@ static bool pstmpres_read(nmea_pstmpres *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMPRES", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmpres, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -7355,7 +7616,7 @@ static void pstmpres_write(nmea_writer *w, const nmea_pstmpres *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMPRES");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMPRES", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -7374,7 +7635,7 @@ static void pstmpres_json(nmea_writer *w, const nmea_pstmpres *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7427,7 +7688,8 @@ static bool pstmres_read(nmea_pstmres *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMRES", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmres, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -7444,7 +7706,7 @@ static void pstmres_write(nmea_writer *w, const nmea_pstmres *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMRES");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMRES", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -7463,7 +7725,7 @@ static void pstmres_json(nmea_writer *w, const nmea_pstmres *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7517,7 +7779,8 @@ static bool pstmrestorepar_read(nmea_pstmrestorepar *s, const nmea_wire *wire, n
     reader_start(&r, wire, "PSTMRESTOREPAR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmrestorepar, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -7525,7 +7788,7 @@ static bool pstmrestorepar_read(nmea_pstmrestorepar *s, const nmea_wire *wire, n
 
 static void pstmrestorepar_write(nmea_writer *w, const nmea_pstmrestorepar *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMRESTOREPAR");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMRESTOREPAR", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -7536,7 +7799,7 @@ static void pstmrestorepar_json(nmea_writer *w, const nmea_pstmrestorepar *s, bo
     pstmrestorepar_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMRESTOREPAR"), "PSTMRESTOREPAR", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7584,7 +7847,8 @@ static bool pstmrf_read(nmea_pstmrf *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMRF", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmrf, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -7601,7 +7865,7 @@ static void pstmrf_write(nmea_writer *w, const nmea_pstmrf *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMRF");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMRF", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -7620,7 +7884,7 @@ static void pstmrf_json(nmea_writer *w, const nmea_pstmrf *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7673,7 +7937,8 @@ static bool pstmsat_read(nmea_pstmsat *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMSAT", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmsat, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -7690,7 +7955,7 @@ static void pstmsat_write(nmea_writer *w, const nmea_pstmsat *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSAT");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSAT", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -7709,7 +7974,7 @@ static void pstmsat_json(nmea_writer *w, const nmea_pstmsat *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7763,7 +8028,8 @@ static bool pstmsavepar_read(nmea_pstmsavepar *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMSAVEPAR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmsavepar, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -7771,7 +8037,7 @@ static bool pstmsavepar_read(nmea_pstmsavepar *s, const nmea_wire *wire, nmea_er
 
 static void pstmsavepar_write(nmea_writer *w, const nmea_pstmsavepar *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSAVEPAR");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSAVEPAR", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -7782,7 +8048,7 @@ static void pstmsavepar_json(nmea_writer *w, const nmea_pstmsavepar *s, bool val
     pstmsavepar_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMSAVEPAR"), "PSTMSAVEPAR", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7830,7 +8096,8 @@ static bool pstmsbas_read(nmea_pstmsbas *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMSBAS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmsbas, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -7847,7 +8114,7 @@ static void pstmsbas_write(nmea_writer *w, const nmea_pstmsbas *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSBAS");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSBAS", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -7866,7 +8133,7 @@ static void pstmsbas_json(nmea_writer *w, const nmea_pstmsbas *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -7919,7 +8186,8 @@ static bool pstmsbascorr_read(nmea_pstmsbascorr *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "PSTMSBASCORR", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmsbascorr, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -7936,7 +8204,7 @@ static void pstmsbascorr_write(nmea_writer *w, const nmea_pstmsbascorr *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSBASCORR");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSBASCORR", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -7955,7 +8223,7 @@ static void pstmsbascorr_json(nmea_writer *w, const nmea_pstmsbascorr *s, bool v
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8008,7 +8276,8 @@ static bool pstmset_read(nmea_pstmset *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMSET", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmset, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_integer(&r, &s->block_param, "block_param", "integer 1000..3999", &range_1000_to_3999)
@@ -8019,7 +8288,7 @@ static bool pstmset_read(nmea_pstmset *s, const nmea_wire *wire, nmea_error *err
 
 static void pstmset_write(nmea_writer *w, const nmea_pstmset *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSET");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSET", &s->problems);
     put_number(w, &s->block_param);
     put_text_field(w, s->value);
     end_sentence(w, s->checksum);
@@ -8033,7 +8302,7 @@ static void pstmset_json(nmea_writer *w, const nmea_pstmset *s, bool values)
     json_begin_proprietary(w, "$", nmea_text_of("PSTMSET"), "PSTMSET", NULL);
     json_number(w, "block_param", &s->block_param, values);
     json_text(w, "value", s->value, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8080,7 +8349,8 @@ static bool pstmset_dop_read(nmea_pstmset_dop *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMSET", err);
     if (!read_count(&r, wire->count, 5, 5, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmset_dop, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_integer(&r, &s->block_param, "block_param", "integer 1400..3403", &range_1400_to_3403)
@@ -8094,7 +8364,7 @@ static bool pstmset_dop_read(nmea_pstmset_dop *s, const nmea_wire *wire, nmea_er
 
 static void pstmset_dop_write(nmea_writer *w, const nmea_pstmset_dop *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSET");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSET", &s->problems);
     put_number(w, &s->block_param);
     put_number(w, &s->pdop);
     put_number(w, &s->vdop);
@@ -8114,7 +8384,7 @@ static void pstmset_dop_json(nmea_writer *w, const nmea_pstmset_dop *s, bool val
     json_number(w, "vdop", &s->vdop, values);
     json_number(w, "hdop", &s->hdop, values);
     json_number(w, "gdop", &s->gdop, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8165,7 +8435,8 @@ static bool pstmsetpar_read(nmea_pstmsetpar *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "PSTMSETPAR", err);
     if (!read_count(&r, wire->count, 2, 3, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmsetpar, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
     if (!read_integer(&r, &s->block_param, "block_param", "integer 1000..3999", &range_1000_to_3999)
@@ -8177,7 +8448,7 @@ static bool pstmsetpar_read(nmea_pstmsetpar *s, const nmea_wire *wire, nmea_erro
 
 static void pstmsetpar_write(nmea_writer *w, const nmea_pstmsetpar *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSETPAR");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSETPAR", &s->problems);
     put_number(w, &s->block_param);
     put_text_field(w, s->value);
     if (s->optional_count >= 1)
@@ -8195,7 +8466,7 @@ static void pstmsetpar_json(nmea_writer *w, const nmea_pstmsetpar *s, bool value
     json_text(w, "value", s->value, values);
     if (s->optional_count >= 1)
         json_enum(w, "mode", &s->mode, &nmea_teseo_setpar_mode_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8243,7 +8514,8 @@ static bool pstmsetpar_dop_read(nmea_pstmsetpar_dop *s, const nmea_wire *wire, n
     reader_start(&r, wire, "PSTMSETPAR", err);
     if (!read_count(&r, wire->count, 5, 6, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmsetpar_dop, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
     if (!read_integer(&r, &s->block_param, "block_param", "integer 1400..3403", &range_1400_to_3403)
@@ -8258,7 +8530,7 @@ static bool pstmsetpar_dop_read(nmea_pstmsetpar_dop *s, const nmea_wire *wire, n
 
 static void pstmsetpar_dop_write(nmea_writer *w, const nmea_pstmsetpar_dop *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSETPAR");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSETPAR", &s->problems);
     put_number(w, &s->block_param);
     put_number(w, &s->pdop);
     put_number(w, &s->vdop);
@@ -8282,7 +8554,7 @@ static void pstmsetpar_dop_json(nmea_writer *w, const nmea_pstmsetpar_dop *s, bo
     json_number(w, "gdop", &s->gdop, values);
     if (s->optional_count >= 1)
         json_enum(w, "mode", &s->mode, &nmea_teseo_setpar_mode_def, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8332,7 +8604,8 @@ static bool pstmsetparerror_read(nmea_pstmsetparerror *s, const nmea_wire *wire,
     reader_start(&r, wire, "PSTMSETPARERROR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmsetparerror, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -8340,7 +8613,7 @@ static bool pstmsetparerror_read(nmea_pstmsetparerror *s, const nmea_wire *wire,
 
 static void pstmsetparerror_write(nmea_writer *w, const nmea_pstmsetparerror *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSETPARERROR");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSETPARERROR", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -8351,7 +8624,7 @@ static void pstmsetparerror_json(nmea_writer *w, const nmea_pstmsetparerror *s, 
     pstmsetparerror_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMSETPARERROR"), "PSTMSETPARERROR", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8399,7 +8672,8 @@ static bool pstmsetparok_read(nmea_pstmsetparok *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "PSTMSETPAROK", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmsetparok, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     if (!read_integer(&r, &s->block_param, "block_param", "integer 1000..3999", &range_1000_to_3999))
@@ -8409,7 +8683,7 @@ static bool pstmsetparok_read(nmea_pstmsetparok *s, const nmea_wire *wire, nmea_
 
 static void pstmsetparok_write(nmea_writer *w, const nmea_pstmsetparok *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMSETPAROK");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMSETPAROK", &s->problems);
     put_number(w, &s->block_param);
     end_sentence(w, s->checksum);
 }
@@ -8421,7 +8695,7 @@ static void pstmsetparok_json(nmea_writer *w, const nmea_pstmsetparok *s, bool v
     pstmsetparok_write(&sentence, s);
     json_begin_proprietary(w, "$", nmea_text_of("PSTMSETPAROK"), "PSTMSETPAROK", NULL);
     json_number(w, "block_param", &s->block_param, values);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8467,7 +8741,8 @@ static bool pstmtestrf_read(nmea_pstmtestrf *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "PSTMTESTRF", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmtestrf, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -8484,7 +8759,7 @@ static void pstmtestrf_write(nmea_writer *w, const nmea_pstmtestrf *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMTESTRF");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMTESTRF", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -8503,7 +8778,7 @@ static void pstmtestrf_json(nmea_writer *w, const nmea_pstmtestrf *s, bool value
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8556,7 +8831,8 @@ static bool pstmtg_read(nmea_pstmtg *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMTG", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmtg, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -8573,7 +8849,7 @@ static void pstmtg_write(nmea_writer *w, const nmea_pstmtg *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMTG");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMTG", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -8592,7 +8868,7 @@ static void pstmtg_json(nmea_writer *w, const nmea_pstmtg *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8645,7 +8921,8 @@ static bool pstmtim_read(nmea_pstmtim *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMTIM", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmtim, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -8662,7 +8939,7 @@ static void pstmtim_write(nmea_writer *w, const nmea_pstmtim *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMTIM");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMTIM", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -8681,7 +8958,7 @@ static void pstmtim_json(nmea_writer *w, const nmea_pstmtim *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8734,7 +9011,8 @@ static bool pstmts_read(nmea_pstmts *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMTS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmts, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -8751,7 +9029,7 @@ static void pstmts_write(nmea_writer *w, const nmea_pstmts *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMTS");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMTS", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -8770,7 +9048,7 @@ static void pstmts_json(nmea_writer *w, const nmea_pstmts *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8823,7 +9101,8 @@ static bool pstmver_read(nmea_pstmver *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMVER", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmver, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -8840,7 +9119,7 @@ static void pstmver_write(nmea_writer *w, const nmea_pstmver *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMVER");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMVER", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -8859,7 +9138,7 @@ static void pstmver_json(nmea_writer *w, const nmea_pstmver *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -8912,7 +9191,8 @@ static bool pstmvres_read(nmea_pstmvres *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMVRES", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmvres, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -8929,7 +9209,7 @@ static void pstmvres_write(nmea_writer *w, const nmea_pstmvres *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMVRES");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMVRES", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -8948,7 +9228,7 @@ static void pstmvres_json(nmea_writer *w, const nmea_pstmvres *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -9001,7 +9281,8 @@ static bool pstmwaas_read(nmea_pstmwaas *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMWAAS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmwaas, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     for (i = 0; i < repeats; i++) {
@@ -9018,7 +9299,7 @@ static void pstmwaas_write(nmea_writer *w, const nmea_pstmwaas *s)
 {
     size_t i;
 
-    begin_sentence(w, nmea_text_of(NULL), "PSTMWAAS");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMWAAS", &s->problems);
     for (i = 0; i < s->values_count && i < 64; i++) {
         put_text_field(w, s->values[i]);
     }
@@ -9037,7 +9318,7 @@ static void pstmwaas_json(nmea_writer *w, const nmea_pstmwaas *s, bool values)
         json_text(w, NULL, s->values[i], values);
     }
     json_close(w, ']');
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -9091,7 +9372,8 @@ static bool pstmwarm_read(nmea_pstmwarm *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMWARM", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, sizeof *s);
+    memset(s, 0, offsetof(nmea_pstmwarm, problems)); /* the problems are set by lenient parsing */
+    s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
     return true;
@@ -9099,7 +9381,7 @@ static bool pstmwarm_read(nmea_pstmwarm *s, const nmea_wire *wire, nmea_error *e
 
 static void pstmwarm_write(nmea_writer *w, const nmea_pstmwarm *s)
 {
-    begin_sentence(w, nmea_text_of(NULL), "PSTMWARM");
+    begin_sentence(w, nmea_text_of(NULL), "PSTMWARM", &s->problems);
     end_sentence(w, s->checksum);
 }
 
@@ -9110,7 +9392,7 @@ static void pstmwarm_json(nmea_writer *w, const nmea_pstmwarm *s, bool values)
     pstmwarm_write(&sentence, s);
     (void)values;
     json_begin_proprietary(w, "$", nmea_text_of("PSTMWARM"), "PSTMWARM", NULL);
-    json_end_sentence(w, &sentence, s->checksum);
+    json_end_sentence(w, &sentence, s->checksum, &s->problems);
 }
 
 /* The wire fields of a `fields` object of decode's JSON, in wire order. */
@@ -9760,6 +10042,8 @@ static bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nme
     while (first_end < wire->fields.ptr + wire->fields.len && *first_end != wire->sep)
         first_end++;
     first = text_span(wire->fields.ptr, first_end);
+    if (wire->blanks && is_blank(wire->blank, wire->blanks, 1))
+        first.len = 0;
     for (i = 0; i < layouts->count; i++) {
         const char *selector = LAYOUT_INFO[layouts->ids[i]].selector;
         if (read_layout(out, layouts->ids[i], wire, &attempt))
@@ -9769,6 +10053,182 @@ static bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nme
         keep_error(&fallback, &have_fallback, &attempt);
     }
     *err = have_chosen ? chosen : fallback;
+    return false;
+}
+
+/* The problems of the layout a sentence holds (NULL for a generic one). */
+static nmea_problems *problems_of(nmea_sentence *s)
+{
+    switch (s->id) {
+    case NMEA_SENTENCE_DTM:
+        return &s->as.dtm.problems;
+    case NMEA_SENTENCE_GGA:
+        return &s->as.gga.problems;
+    case NMEA_SENTENCE_GLL:
+        return &s->as.gll.problems;
+    case NMEA_SENTENCE_GNS:
+        return &s->as.gns.problems;
+    case NMEA_SENTENCE_GNS_AUX:
+        return &s->as.gns_aux.problems;
+    case NMEA_SENTENCE_GSA:
+        return &s->as.gsa.problems;
+    case NMEA_SENTENCE_GSA_SHORT:
+        return &s->as.gsa_short.problems;
+    case NMEA_SENTENCE_GST:
+        return &s->as.gst.problems;
+    case NMEA_SENTENCE_GSV:
+        return &s->as.gsv.problems;
+    case NMEA_SENTENCE_HDT:
+        return &s->as.hdt.problems;
+    case NMEA_SENTENCE_RLM:
+        return &s->as.rlm.problems;
+    case NMEA_SENTENCE_RMC:
+        return &s->as.rmc.problems;
+    case NMEA_SENTENCE_VTG:
+        return &s->as.vtg.problems;
+    case NMEA_SENTENCE_ZDA:
+        return &s->as.zda.problems;
+    case NMEA_SENTENCE_COMNAV_LOG:
+        return &s->as.comnav_log.problems;
+    case NMEA_SENTENCE_COMNAV_NMEATALKER:
+        return &s->as.comnav_nmeatalker.problems;
+    case NMEA_SENTENCE_COMNAV_NMEATALKER_LIST:
+        return &s->as.comnav_nmeatalker_list.problems;
+    case NMEA_SENTENCE_COMNAV_NMEATALKER_RESET:
+        return &s->as.comnav_nmeatalker_reset.problems;
+    case NMEA_SENTENCE_GEOS5_COMMAND:
+        return &s->as.geos5_command.problems;
+    case NMEA_SENTENCE_GEOS5_JAMDET:
+        return &s->as.geos5_jamdet.problems;
+    case NMEA_SENTENCE_GEOS5_NQUERY:
+        return &s->as.geos5_nquery.problems;
+    case NMEA_SENTENCE_GEOS5_NQUERY_REQUEST:
+        return &s->as.geos5_nquery_request.problems;
+    case NMEA_SENTENCE_GEOS5_RQUERY:
+        return &s->as.geos5_rquery.problems;
+    case NMEA_SENTENCE_GEOS5_RQUERY_REQUEST:
+        return &s->as.geos5_rquery_request.problems;
+    case NMEA_SENTENCE_PSRF100:
+        return &s->as.psrf100.problems;
+    case NMEA_SENTENCE_PSRF101:
+        return &s->as.psrf101.problems;
+    case NMEA_SENTENCE_PSRF102:
+        return &s->as.psrf102.problems;
+    case NMEA_SENTENCE_PSRF103:
+        return &s->as.psrf103.problems;
+    case NMEA_SENTENCE_PSRF104:
+        return &s->as.psrf104.problems;
+    case NMEA_SENTENCE_PSRF105:
+        return &s->as.psrf105.problems;
+    case NMEA_SENTENCE_PSRF150:
+        return &s->as.psrf150.problems;
+    case NMEA_SENTENCE_PSTMAGPS:
+        return &s->as.pstmagps.problems;
+    case NMEA_SENTENCE_PSTMALMANAC:
+        return &s->as.pstmalmanac.problems;
+    case NMEA_SENTENCE_PSTMCLRALMS:
+        return &s->as.pstmclralms.problems;
+    case NMEA_SENTENCE_PSTMCLREPHS:
+        return &s->as.pstmclrephs.problems;
+    case NMEA_SENTENCE_PSTMCOLD:
+        return &s->as.pstmcold.problems;
+    case NMEA_SENTENCE_PSTMCORR:
+        return &s->as.pstmcorr.problems;
+    case NMEA_SENTENCE_PSTMDIFF:
+        return &s->as.pstmdiff.problems;
+    case NMEA_SENTENCE_PSTMEPH:
+        return &s->as.pstmeph.problems;
+    case NMEA_SENTENCE_PSTMGETPAR:
+        return &s->as.pstmgetpar.problems;
+    case NMEA_SENTENCE_PSTMGETPARERROR:
+        return &s->as.pstmgetparerror.problems;
+    case NMEA_SENTENCE_PSTMGETRTCTIME:
+        return &s->as.pstmgetrtctime.problems;
+    case NMEA_SENTENCE_PSTMGETRTCTIME_REPLY:
+        return &s->as.pstmgetrtctime_reply.problems;
+    case NMEA_SENTENCE_PSTMGETSWVER:
+        return &s->as.pstmgetswver.problems;
+    case NMEA_SENTENCE_PSTMGETSWVER_REPLY:
+        return &s->as.pstmgetswver_reply.problems;
+    case NMEA_SENTENCE_PSTMHOT:
+        return &s->as.pstmhot.problems;
+    case NMEA_SENTENCE_PSTMKFCOV:
+        return &s->as.pstmkfcov.problems;
+    case NMEA_SENTENCE_PSTMNMEAONOFF:
+        return &s->as.pstmnmeaonoff.problems;
+    case NMEA_SENTENCE_PSTMPA:
+        return &s->as.pstmpa.problems;
+    case NMEA_SENTENCE_PSTMPRES:
+        return &s->as.pstmpres.problems;
+    case NMEA_SENTENCE_PSTMRES:
+        return &s->as.pstmres.problems;
+    case NMEA_SENTENCE_PSTMRESTOREPAR:
+        return &s->as.pstmrestorepar.problems;
+    case NMEA_SENTENCE_PSTMRF:
+        return &s->as.pstmrf.problems;
+    case NMEA_SENTENCE_PSTMSAT:
+        return &s->as.pstmsat.problems;
+    case NMEA_SENTENCE_PSTMSAVEPAR:
+        return &s->as.pstmsavepar.problems;
+    case NMEA_SENTENCE_PSTMSBAS:
+        return &s->as.pstmsbas.problems;
+    case NMEA_SENTENCE_PSTMSBASCORR:
+        return &s->as.pstmsbascorr.problems;
+    case NMEA_SENTENCE_PSTMSET:
+        return &s->as.pstmset.problems;
+    case NMEA_SENTENCE_PSTMSET_DOP:
+        return &s->as.pstmset_dop.problems;
+    case NMEA_SENTENCE_PSTMSETPAR:
+        return &s->as.pstmsetpar.problems;
+    case NMEA_SENTENCE_PSTMSETPAR_DOP:
+        return &s->as.pstmsetpar_dop.problems;
+    case NMEA_SENTENCE_PSTMSETPARERROR:
+        return &s->as.pstmsetparerror.problems;
+    case NMEA_SENTENCE_PSTMSETPAROK:
+        return &s->as.pstmsetparok.problems;
+    case NMEA_SENTENCE_PSTMTESTRF:
+        return &s->as.pstmtestrf.problems;
+    case NMEA_SENTENCE_PSTMTG:
+        return &s->as.pstmtg.problems;
+    case NMEA_SENTENCE_PSTMTIM:
+        return &s->as.pstmtim.problems;
+    case NMEA_SENTENCE_PSTMTS:
+        return &s->as.pstmts.problems;
+    case NMEA_SENTENCE_PSTMVER:
+        return &s->as.pstmver.problems;
+    case NMEA_SENTENCE_PSTMVRES:
+        return &s->as.pstmvres.problems;
+    case NMEA_SENTENCE_PSTMWAAS:
+        return &s->as.pstmwaas.problems;
+    case NMEA_SENTENCE_PSTMWARM:
+        return &s->as.pstmwarm.problems;
+    default:
+        return NULL;
+    }
+}
+
+/* The first of the layouts that reads the wire, as first_fit; when none does and `lenient`, the
+   fields at fault are read as empty one at a time, each kept as a problem, until a layout reads
+   the wire, a field at fault is already empty, or a problem would be one too many. */
+static bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, bool lenient, nmea_error *err)
+{
+    nmea_problems problems;
+    if (first_fit(out, layouts, wire, err))
+        return true;
+    if (!lenient)
+        return false;
+    problems.count = 0;
+    /* a bad field's text is the field's text on the wire, empty once it has been left empty */
+    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && problems.count < NMEA_MAX_PROBLEMS) {
+        problem_of(&problems.list[problems.count++], err);
+        wire->blank[wire->blanks++] = (uint16_t)err->field;
+        if (first_fit(out, layouts, wire, err)) {
+            nmea_problems *kept = problems_of(out);
+            kept->count = problems.count;
+            memcpy(kept->list, problems.list, problems.count * sizeof problems.list[0]);
+            return true;
+        }
+    }
     return false;
 }
 
@@ -10191,9 +10651,22 @@ const nmea_sentence_id *nmea_replies(nmea_sentence_id command, size_t *count)
 
 bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *err)
 {
+    return nmea_parse_ex(out, line, len, NULL, err);
+}
+
+bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
+{
+    static const nmea_options strict = {false, false};
     nmea_frame f;
     nmea_wire wire;
     const nmea_layouts *layouts = NULL;
+
+    if (!options)
+        options = &strict;
+    if (len > NMEA_MAX_LINE) { /* not even read (a framed overlong line has no bytes) */
+        nmea_error_too_long(err, len);
+        return false;
+    }
 
     if (len && line[0] != '$' && line[0] != '!' && (layouts = find_command(first_word(line, len))) != NULL) {
         if (!text_frame(&f, line, len, err))
@@ -10201,21 +10674,21 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
         wire_of(&wire, &f, NULL, line);
         return first_fit(out, layouts, &wire, err);
     }
-    if (!frame_line(&f, line, len, err))
+    if (!frame_line(&f, line, len, options->require_checksum, err))
         return false;
     if (is_standard_address(&f)) {
         if ((layouts = find_layouts(TALKER_LIKE, TALKER_LIKE_COUNT, f.address)) != NULL) {
             wire_of(&wire, &f, NULL, NULL);
-            return first_fit(out, layouts, &wire, err);
+            return fit(out, layouts, &wire, options->lenient, err);
         }
         layouts = find_standard(f.address.ptr + 2);
         if (layouts) {
             wire_of(&wire, &f, layouts->suffix, NULL);
-            return first_fit(out, layouts, &wire, err);
+            return fit(out, layouts, &wire, options->lenient, err);
         }
     } else if (f.start.ptr[0] == '$' && (layouts = find_layouts(PROPRIETARY, PROPRIETARY_COUNT, f.address)) != NULL) {
         wire_of(&wire, &f, NULL, NULL);
-        return first_fit(out, layouts, &wire, err);
+        return fit(out, layouts, &wire, options->lenient, err);
     }
     out->id = NMEA_SENTENCE_GENERIC;
     out->as.generic.start = f.start;
@@ -10614,9 +11087,15 @@ size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
 
 size_t nmea_decode_json(const char *line, size_t len, bool values, char *buf, size_t cap)
 {
+    return nmea_decode_json_ex(line, len, values, NULL, buf, cap);
+}
+
+size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea_options *options, char *buf,
+                           size_t cap)
+{
     nmea_sentence s;
     nmea_error err;
-    if (nmea_parse(&s, line, len, &err))
+    if (nmea_parse_ex(&s, line, len, options, &err))
         return nmea_to_json(&s, values, buf, cap);
     return nmea_error_to_json(&err, buf, cap);
 }
@@ -10671,12 +11150,98 @@ static bool command_line(nmea_wire *wire, nmea_text word, nmea_scratch *s, nmea_
     return true;
 }
 
+/* A JSON integer (no fraction, no exponent) from 1 to n. */
+static bool json_index(nmea_json v, size_t n, size_t *index)
+{
+    const char *p;
+    size_t value = 0;
+    if (v.p >= v.end)
+        return false;
+    for (p = v.p; p < v.end; p++) {
+        if (!is_digit(*p) || value > n)
+            return false;
+        value = value * 10 + (size_t)(*p - '0');
+    }
+    *index = value;
+    return value >= 1 && value <= n;
+}
+
+/* The most wire fields any layout takes. */
+#define NMEA_MAX_FIELDS 64
+
+/* A sentence that lenient decoding kept (its JSON has "problems"): the texts of its problem
+   fields go back in their places, and its layout parses it leniently again. `wire` holds the
+   texts of the `fields` object. */
+static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json root, nmea_json problems,
+                          nmea_scratch *s, nmea_wire *wire, nmea_error *err)
+{
+    nmea_text start, text, texts[NMEA_MAX_FIELDS];
+    nmea_json problem, v;
+    nmea_layouts one;
+    const char *p = wire->fields.ptr, *end = p + wire->fields.len, *comma;
+    size_t i, index, n = wire->count, need = 0;
+    bool present, wide;
+
+    if (!json_text_member(root, "start", false, s, &start, &present, &wide, err))
+        return false;
+    if (start.len == 0)
+        return bad_json(err, "a text command has no problems", NULL);
+    if (!json_is(problems, '['))
+        return bad_json(err, "\"%s\" is not an array", "problems");
+    /* the texts one by one (unless there are more than any layout takes: the layout then refuses
+       them whatever they say) */
+    for (i = 0; n <= NMEA_MAX_FIELDS && i < n; i++) {
+        for (comma = p; comma < end && *comma != ','; comma++)
+            continue;
+        texts[i] = text_span(p, comma);
+        p = comma < end ? comma + 1 : end;
+    }
+    problems = json_items(problems);
+    while (json_next(&problems, &problem)) {
+        if (!json_require(problem, "field", &v, err))
+            return false;
+        if (!json_index(v, n, &index))
+            return bad_json(err, "a problem's \"field\" is not the index of a field", NULL);
+        if (!json_require(problem, "text", &v, err) || !json_field_text(v, s, &text, err))
+            return false;
+        if (n <= NMEA_MAX_FIELDS)
+            texts[index - 1] = text;
+    }
+    if (!LAYOUT_INFO[id].address) { /* a standard sentence: the talker and the sentence id */
+        if (!json_word_member(root, "talker", s, &wire->address, err))
+            return false;
+        wire->suffix = LAYOUT_INFO[id].sentence;
+    }
+    if (n && n <= NMEA_MAX_FIELDS) { /* the texts joined again */
+        for (i = 0; i < n; i++)
+            need += texts[i].len + 1;
+        if (s->cap - s->len < need)
+            return scratch_full(err);
+        p = s->buf + s->len;
+        for (i = 0; i < n; i++) {
+            if (i)
+                s->buf[s->len++] = ',';
+            if (texts[i].len)
+                memcpy(s->buf + s->len, texts[i].ptr, texts[i].len);
+            s->len += texts[i].len;
+        }
+        wire->fields = text_span(p, s->buf + s->len);
+    }
+    one.key = NULL;
+    one.key_len = 0;
+    one.suffix = NULL;
+    one.ids = &id;
+    one.count = 1;
+    return fit(out, &one, wire, true, err);
+}
+
 bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
                     nmea_error *err)
 {
     nmea_scratch s;
     nmea_json root, fields;
     nmea_text sentence, variant, word;
+    nmea_json problems;
     bool has_sentence, has_variant, wide_sentence, wide_variant;
     nmea_checksum_style checksum;
     nmea_sentence_id id;
@@ -10687,7 +11252,7 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     s.buf = scratch;
     s.cap = scratch ? scratch_cap : 0;
     s.len = 0;
-    if (!json_parse(json, len, JSON_ENCODE_DEPTH, &root))
+    if (!json_parse(json, len, &root))
         return bad_json(err, "not JSON", NULL);
     if (!json_is(root, '{'))
         return bad_json(err, "not a JSON object", NULL);
@@ -10729,6 +11294,11 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     wire.ignore_case = false;
     wire.checksum = checksum;
     wire.line = nmea_text_of(NULL);
+    wire.blanks = 0;
+    if (json_member(root, "problems", &problems)) {
+        wire.ignore_case = info->command != NULL;
+        return with_problems(out, id, root, problems, &s, &wire, err);
+    }
     if (!info->address) { /* a standard sentence: the talker and the sentence id */
         if (!json_word_member(root, "talker", &s, &wire.address, err))
             return false;

@@ -13,6 +13,16 @@
  *
  * A parsed sentence points into `line` (see nmea_text): keep the line while you use it.
  * Serializing a parsed sentence gives back the exact bytes of the line.
+ *
+ * From a serial port or socket, nmea_framer cuts the bytes into lines, and nmea_parse_ex takes
+ * options (keep sentences with bad fields as problems, require checksums):
+ *
+ *     static nmea_framer framer;              (zeroed: ready)
+ *     nmea_options options = {true, false};   (lenient, require_checksum)
+ *     nmea_framed line;
+ *     while (nmea_framer_push(&framer, &chunk, &chunk_len, &line))
+ *         if (nmea_parse_ex(&s, line.ptr, line.len, &options, &err))
+ *             use(&s);
  */
 #ifndef NMEA_H
 #define NMEA_H
@@ -30,14 +40,14 @@ extern "C" {
 
 /** A buffer of this size holds the JSON (nmea_to_json or nmea_error_to_json) of any line of
     at most NMEA_MAX_LINE bytes. */
-#define NMEA_JSON_MAX 30318
+#define NMEA_JSON_MAX 44742
 
 /*
  * Runtime types (hand-written: templates/c/runtime.h).
  *
  * Conventions of the whole API:
  * - No heap, no global mutable state: every struct is owned by the caller, every function is
- *   reentrant. Nothing here needs more than a few hundred bytes of stack.
+ *   reentrant. Nothing here needs more than a few kilobytes of stack (parsing: well under one).
  * - Texts are nmea_text slices (pointer + length, not NUL-terminated). A parsed sentence points
  *   into the line given to the parser (text, enum_chars and talker fields, the raw fields of an
  *   nmea_generic): keep that line alive and unchanged while the sentence is used. Sentences
@@ -196,6 +206,7 @@ typedef enum {
     NMEA_ERR_NOT_A_SENTENCE,
     NMEA_ERR_BAD_CHECKSUM,
     NMEA_ERR_CHECKSUM_MISMATCH,
+    NMEA_ERR_MISSING_CHECKSUM, /* nmea_options.require_checksum, and the sentence has none */
     NMEA_ERR_TOO_FEW_FIELDS,
     NMEA_ERR_TOO_MANY_FIELDS,
     NMEA_ERR_BAD_FIELD,
@@ -239,6 +250,88 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap);
 
 /** The too_long error for a line of `len` bytes (for readers that stream long lines away). */
 void nmea_error_too_long(nmea_error *err, size_t len);
+
+/** Most fields lenient parsing leaves empty in one sentence. */
+#define NMEA_MAX_PROBLEMS 8
+
+/**
+ * A field that lenient parsing (nmea_options.lenient) left empty because its text does not fit
+ * its type: where it is, its text as received (which the serializer writes back in its place, so
+ * the round trip stays exact) and what was expected. The message ("expected integer 0..99, found
+ * \"x\"") is rendered by nmea_problem_message.
+ */
+typedef struct {
+    uint16_t field;       /* 1-based wire field after the address */
+    uint16_t entry;       /* in a repeated group: the 1-based entry */
+    const char *group;    /* in a repeated group: the group id, else NULL */
+    const char *name;     /* the field id */
+    const char *expected; /* what the field takes */
+    nmea_text text;       /* the field's text as received */
+} nmea_problem;
+
+/** The problems of a sentence (every layout struct has them; `count` is 0 after a strict parse). */
+typedef struct {
+    uint8_t count;
+    nmea_problem list[NMEA_MAX_PROBLEMS];
+} nmea_problems;
+
+/** A problem's message ("expected ..., found \"TEXT\""); returns its length (0 when it does not
+    fit). */
+size_t nmea_problem_message(const nmea_problem *p, char *buf, size_t cap);
+
+/** A problem's field name ("satellites[2].prn"); returns its length (0 when it does not fit). */
+size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap);
+
+/**
+ * How nmea_parse_ex reads a line (a zeroed struct, or NULL, is nmea_parse's strict reading):
+ * - lenient: a `$`/`!` sentence whose fields do not all fit their types is still decoded: the
+ *   fields at fault are read as empty, one at a time in the order the errors come, and listed in
+ *   the layout's `problems`. A field that is already empty and still does not fit (a keyword, a
+ *   hemisphere without its latitude), or a problem more than NMEA_MAX_PROBLEMS, ends the attempt
+ *   with its error. Text commands are always strict.
+ * - require_checksum: a `$`/`!` sentence without a checksum (or with a bare '*') is refused as
+ *   NMEA_ERR_MISSING_CHECKSUM.
+ */
+typedef struct {
+    bool lenient;
+    bool require_checksum;
+} nmea_options;
+
+/* ------------------------------------------------------------------------------------------ */
+/* Stream framing: bytes as a serial port or socket delivers them, in chunks of any size. */
+
+/**
+ * Cuts a byte stream into lines: CR LF, LF and a bare CR end a line, and empty lines are skipped;
+ * a '$' or '!' always starts a new line, so whatever came before it (garbage, a sentence cut
+ * short) is a line of its own; a line longer than NMEA_MAX_LINE is not kept, only counted. The
+ * struct holds the line being assembled across chunks (no heap): zero it, or nmea_framer_init.
+ */
+typedef struct {
+    size_t length;             /* bytes of the current line so far (counted past NMEA_MAX_LINE) */
+    char line[NMEA_MAX_LINE];  /* its first NMEA_MAX_LINE bytes */
+} nmea_framer;
+
+/** A framed line: `len` bytes at `ptr`, or for a line longer than NMEA_MAX_LINE its length in
+    `len` and `ptr` NULL (nmea_parse refuses it as too_long without reading it, so it can be
+    handed on as it is). `ptr` points into the chunk given to nmea_framer_push or into the
+    framer, and stays valid until the framer's next call. */
+typedef nmea_text nmea_framed;
+
+void nmea_framer_init(nmea_framer *f);
+
+/**
+ * Takes bytes from `*data` (`*len` of them) until a line is complete: returns true with it in
+ * `*out`, having advanced `*data` and `*len` past what it used (the line ending, but not a '$' or
+ * '!' that starts the next line); returns false once every byte is used without completing a
+ * line (the rest is kept for the next chunk). Call it until it returns false:
+ *
+ *     while (nmea_framer_push(&framer, &p, &n, &line))
+ *         handle(line);
+ */
+bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out);
+
+/** At the end of the stream: the last line, when it had no line ending (true), else false. */
+bool nmea_framer_end(nmea_framer *f, nmea_framed *out);
 
 /**
  * A well-formed sentence the spec does not describe. `fields` is the raw text of all fields
@@ -2320,7 +2413,8 @@ static inline uint32_t nmea_teseo_nmea_msg_list_pstmagps(uint64_t value)
 /* Sentences (spec/standard, spec/proprietary): one struct per layout. Optional trailing fields
    are counted by optional_count: that many of them were on the wire (empty or not) and are
    written back. A keyword (a fixed word such as RQUERY) is implied by the layout: it has no
-   member and is always written. */
+   member and is written whenever it is on the wire (always, unless it is optional). `problems`
+   lists the fields lenient parsing left empty; their texts are written back in their places. */
 
 /*
  * DTM: Datum reference.
@@ -2361,6 +2455,8 @@ typedef struct {
     nmea_enum reference_datum;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_dtm;
 
 /*
@@ -2413,6 +2509,8 @@ typedef struct {
     nmea_number dgps_station;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_gga;
 
 /*
@@ -2441,6 +2539,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_gll;
 
 /*
@@ -2496,6 +2596,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_gns;
 
 /*
@@ -2547,6 +2649,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_gns_aux;
 
 /*
@@ -2586,6 +2690,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_gsa;
 
 /*
@@ -2622,6 +2728,8 @@ typedef struct {
     nmea_number vdop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_gsa_short;
 
 /*
@@ -2660,6 +2768,8 @@ typedef struct {
     nmea_number alt_std;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_gst;
 
 /* One entry of GSV satellites. */
@@ -2713,6 +2823,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_gsv;
 
 /*
@@ -2730,6 +2842,8 @@ typedef struct {
     bool heading_ref;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_hdt;
 
 /*
@@ -2758,6 +2872,8 @@ typedef struct {
     nmea_text message_body;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_rlm;
 
 /*
@@ -2805,6 +2921,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_rmc;
 
 /*
@@ -2849,6 +2967,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_vtg;
 
 /*
@@ -2878,6 +2998,8 @@ typedef struct {
     nmea_number local_zone_minutes;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_zda;
 
 /*
@@ -2902,6 +3024,8 @@ typedef struct {
        fractional (e.g. 0.2 for 5 Hz) down to the model's maximum output rate. Empty: present
        false. */
     nmea_number period;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_comnav_log;
 
 /*
@@ -2924,6 +3048,8 @@ typedef struct {
        of the current solution. Values: nmea_comnav_talker_id (table nmea_comnav_talker_id_def).
        Empty: present false. */
     nmea_enum talker_id;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_comnav_nmeatalker;
 
 /*
@@ -2938,6 +3064,8 @@ typedef struct {
     /* The command as received (e.g. in lower case): written back as is while its words, ignoring
        case, are those of the fields. Empty: written in the spec's letter case. */
     nmea_text as_received;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_comnav_nmeatalker_list;
 
 /*
@@ -2951,6 +3079,8 @@ typedef struct {
     /* The command as received (e.g. in lower case): written back as is while its words, ignoring
        case, are those of the fields. Empty: written in the spec's letter case. */
     nmea_text as_received;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_comnav_nmeatalker_reset;
 
 /*
@@ -2973,6 +3103,8 @@ typedef struct {
     nmea_enum command;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_geos5_command;
 
 /*
@@ -2989,6 +3121,8 @@ typedef struct {
     nmea_text reserved;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_geos5_jamdet;
 
 /*
@@ -3065,6 +3199,8 @@ typedef struct {
     nmea_enum rlm_rate;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_geos5_nquery;
 
 /*
@@ -3078,6 +3214,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_geos5_nquery_request;
 
 /*
@@ -3116,6 +3254,8 @@ typedef struct {
     nmea_hex config_2;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_geos5_rquery;
 
 /*
@@ -3129,6 +3269,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_geos5_rquery_request;
 
 /*
@@ -3160,6 +3302,8 @@ typedef struct {
     nmea_enum parity;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_psrf100;
 
 /*
@@ -3204,6 +3348,8 @@ typedef struct {
     nmea_number reset_cfg;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_psrf101;
 
 /*
@@ -3231,6 +3377,8 @@ typedef struct {
     nmea_enum parity;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_psrf102;
 
 /*
@@ -3259,6 +3407,8 @@ typedef struct {
     nmea_enum checksum_mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_psrf103;
 
 /*
@@ -3303,6 +3453,8 @@ typedef struct {
     nmea_number reset_cfg;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_psrf104;
 
 /*
@@ -3321,6 +3473,8 @@ typedef struct {
     nmea_enum debug;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_psrf105;
 
 /*
@@ -3339,6 +3493,8 @@ typedef struct {
     nmea_enum ok_to_send;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_psrf150;
 
 /*
@@ -3354,6 +3510,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmagps;
 
 /*
@@ -3368,6 +3526,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmalmanac;
 
 /*
@@ -3381,6 +3541,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmclralms;
 
 /*
@@ -3394,6 +3556,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmclrephs;
 
 /*
@@ -3418,6 +3582,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmcold;
 
 /*
@@ -3433,6 +3599,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmcorr;
 
 /*
@@ -3448,6 +3616,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmdiff;
 
 /*
@@ -3462,6 +3632,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmeph;
 
 /*
@@ -3482,6 +3654,8 @@ typedef struct {
     nmea_number block_param;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmgetpar;
 
 /*
@@ -3492,6 +3666,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmgetparerror;
 
 /*
@@ -3505,6 +3681,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmgetrtctime;
 
 /*
@@ -3527,6 +3705,8 @@ typedef struct {
     nmea_enum time_validity;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmgetrtctime_reply;
 
 /*
@@ -3540,6 +3720,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmgetswver;
 
 /*
@@ -3564,6 +3746,8 @@ typedef struct {
     nmea_text build_time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmgetswver_reply;
 
 /*
@@ -3579,6 +3763,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmhot;
 
 /*
@@ -3595,6 +3781,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmkfcov;
 
 /*
@@ -3616,6 +3804,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmnmeaonoff;
 
 /*
@@ -3631,6 +3821,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmpa;
 
 /*
@@ -3646,6 +3838,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmpres;
 
 /*
@@ -3661,6 +3855,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmres;
 
 /*
@@ -3675,6 +3871,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmrestorepar;
 
 /*
@@ -3690,6 +3888,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmrf;
 
 /*
@@ -3705,6 +3905,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmsat;
 
 /*
@@ -3720,6 +3922,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmsavepar;
 
 /*
@@ -3735,6 +3939,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmsbas;
 
 /*
@@ -3749,6 +3955,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmsbascorr;
 
 /*
@@ -3770,6 +3978,8 @@ typedef struct {
     nmea_text value;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmset;
 
 /*
@@ -3794,6 +4004,8 @@ typedef struct {
     nmea_number gdop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmset_dop;
 
 /*
@@ -3831,6 +4043,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmsetpar;
 
 /*
@@ -3860,6 +4074,8 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmsetpar_dop;
 
 /*
@@ -3870,6 +4086,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmsetparerror;
 
 /*
@@ -3886,6 +4104,8 @@ typedef struct {
     nmea_number block_param;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmsetparok;
 
 /*
@@ -3901,6 +4121,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmtestrf;
 
 /*
@@ -3916,6 +4138,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmtg;
 
 /*
@@ -3931,6 +4155,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmtim;
 
 /*
@@ -3946,6 +4172,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmts;
 
 /*
@@ -3960,6 +4188,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmver;
 
 /*
@@ -3975,6 +4205,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmvres;
 
 /*
@@ -3990,6 +4222,8 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmwaas;
 
 /*
@@ -4005,6 +4239,8 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
+    /* The fields lenient parsing left empty (none after a strict parse). */
+    nmea_problems problems;
 } nmea_pstmwarm;
 
 /* Which layout an nmea_sentence holds. */
@@ -4177,6 +4413,9 @@ typedef struct {
  * first error. A line longer than NMEA_MAX_LINE is rejected before any of its bytes is read.
  */
 bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *err);
+
+/** nmea_parse with options (see nmea_options; NULL: strict, as nmea_parse). */
+bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err);
 bool nmea_parse_dtm(nmea_dtm *out, const char *line, size_t len, nmea_error *err);
 bool nmea_parse_gga(nmea_gga *out, const char *line, size_t len, nmea_error *err);
 bool nmea_parse_gll(nmea_gll *out, const char *line, size_t len, nmea_error *err);
@@ -4417,12 +4656,17 @@ size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap);
 /** What `nmea-c decode` prints for one line: the sentence's JSON or the error's JSON. */
 size_t nmea_decode_json(const char *line, size_t len, bool values, char *buf, size_t cap);
 
+/** What `nmea-c decode` prints for one line with its options (--lenient, --require-checksum). */
+size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea_options *options, char *buf,
+                           size_t cap);
+
 /**
  * Rebuilds a sentence from one line of decode's lossless JSON (what `nmea-c encode` does):
- * the fields' texts are put back on the wire and parsed again by the sentence's layout.
+ * the fields' texts are put back on the wire and parsed again by the sentence's layout (with the
+ * texts of its "problems" in their places, leniently, when lenient decoding kept it).
  * Strings of the JSON are copied into `scratch` (the sentence points into it); 2 * `len` bytes
  * of scratch are always enough (`len` but for a text command, whose line as received is built
- * there too).
+ * there too, or a sentence with problems, whose texts are joined again there).
  */
 bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
                     nmea_error *err);

@@ -1337,8 +1337,11 @@ static bool built(const example *ex, const char *got, size_t len, const char *li
     return false;
 }
 
+static char json[NMEA_JSON_MAX];
+
 static bool check(const example *ex)
 {
+    static const nmea_options lenient = {true, false};
     nmea_sentence s, again;
     nmea_error err;
     size_t n;
@@ -1362,6 +1365,8 @@ static bool check(const example *ex)
             n = nmea_serialize(&again, buf, sizeof buf);
             ok = same(ex, "encode", buf, n, ex->line) && ok;
         }
+        n = nmea_decode_json_ex(ex->line, strlen(ex->line), false, &lenient, json, sizeof json);
+        ok = same(ex, "decode --lenient", json, n, ex->decode) && ok;
         n = nmea_build(&s, buf, sizeof buf, &err);
         if (n == 0) {
             n = nmea_error_to_json(&err, buf, sizeof buf);
@@ -1624,6 +1629,51 @@ static void check_api(size_t *passed, size_t *failed)
     API_CHECK(nmea_param_find(nmea_teseo_cdb, NMEA_TESEO_CDB_COUNT, 500) == NMEA_TESEO_CDB_TEXT_MESSAGE, "parameter teseo_cdb 500");
 }
 
+/* A line that is one sentence: it starts with '$' or '!' and holds no other. */
+static bool one_sentence(const char *line)
+{
+    return line && (line[0] == '$' || line[0] == '!') && !strpbrk(line + 1, "$!");
+}
+
+/* Feeds `n` bytes to the framer one at a time: every item it hands on must be `want`. */
+static bool feed_bytes(nmea_framer *f, const char *p, size_t n, const char *want, size_t *got)
+{
+    nmea_framed item;
+    bool ok = true;
+    for (; n; n--, p++) {
+        const char *q = p;
+        size_t len = 1;
+        while (nmea_framer_push(f, &q, &len, &item)) {
+            (*got)++;
+            ok = ok && item.ptr && item.len == strlen(want) && memcmp(item.ptr, want, item.len) == 0;
+        }
+    }
+    return ok;
+}
+
+/* The example sentences as one stream (CR LF, LF, a bare CR or an empty line after each), fed to
+   the framer one byte at a time: it must hand on exactly the sentences. */
+static void check_framer(size_t *passed, size_t *failed)
+{
+    static const char *const ENDS[] = {"\r\n", "\n", "\r", "\n\n"};
+    static nmea_framer framer;
+    nmea_framed item;
+    size_t i, got = 0, want = 0;
+    bool ok = true;
+
+    nmea_framer_init(&framer);
+    for (i = 0; i < sizeof EXAMPLES / sizeof EXAMPLES[0]; i++) {
+        const char *line = EXAMPLES[i].line;
+        if (!one_sentence(line))
+            continue;
+        want++;
+        ok = feed_bytes(&framer, line, strlen(line), line, &got) && ok;
+        ok = feed_bytes(&framer, ENDS[i % 4], strlen(ENDS[i % 4]), line, &got) && ok;
+    }
+    ok = ok && !nmea_framer_end(&framer, &item) && got == want;
+    API_CHECK(ok, "framing the examples one byte at a time");
+}
+
 int main(void)
 {
     size_t i, passed = 0, failed = 0;
@@ -1634,6 +1684,7 @@ int main(void)
             failed++;
     }
     check_api(&passed, &failed);
+    check_framer(&passed, &failed);
     printf("%lu passed, %lu failed\n", (unsigned long)passed, (unsigned long)failed);
     return failed ? 1 : 0;
 }

@@ -15,11 +15,11 @@ Errors are `NmeaError`s with a `kind`, the `address`, the 1-based `field` index 
 
 from __future__ import annotations
 
-from . import enums, runtime
+from . import enums, runtime, stream
 from .api import Generic, decode_json, encode_json, from_json, parse, replies_of, to_json
 from .enums import *  # noqa: F401,F403
 from .runtime import ABSENT, Coordinate, Date, Hex, NmeaError, Number, Time
 from .sentences import *  # noqa: F401,F403
 
 __all__ = ["ABSENT", "Coordinate", "Date", "Generic", "Hex", "NmeaError", "Number", "Time", "decode_json",
-           "encode_json", "enums", "from_json", "parse", "replies_of", "runtime", "to_json"]
+           "encode_json", "enums", "from_json", "parse", "replies_of", "runtime", "stream", "to_json"]

@@ -59,9 +59,11 @@ pub mod tables;
 use runtime::json::{self, Value, WireFields};
 use runtime::{first_word, is_command_word, is_standard_address, strip_line_ending, upper_eq};
 pub use runtime::{
-    Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Error, ErrorKind, Fields, Frame, Framing, Generic, Group,
-    Hex, Kind, Layout, Name, Number, Sign, Time, BUILD_CAPACITY,
+    Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Error, ErrorKind, FieldProblem, Fields, Frame, Framing,
+    Generic, Group, Hex, Kind, Layout, Name, Number, Problems, Sign, Time, BUILD_CAPACITY, MAX_PROBLEMS,
 };
+
+pub use runtime::stream;
 pub use sentences::*;
 
 /// A decoded sentence: one variant per layout of the spec, and [`Generic`] for the rest.
@@ -1186,79 +1188,168 @@ impl<'a> Sentence<'a> {
 
     /// Writes the tools' JSON line (`values`: decoded values instead of the lossless texts).
     pub fn write_json<W: Write + ?Sized>(&self, out: &mut W, values: bool) -> fmt::Result {
+        self.write_json_with(out, values, &Problems::new())
+    }
+
+    /// Writes the tools' JSON line of a sentence lenient parsing kept with `problems`.
+    pub fn write_json_with<W: Write + ?Sized>(
+        &self,
+        out: &mut W,
+        values: bool,
+        problems: &Problems<'_>,
+    ) -> fmt::Result {
         match self {
-            Self::Dtm(s) => s.write_json(out, values),
-            Self::Gga(s) => s.write_json(out, values),
-            Self::Gll(s) => s.write_json(out, values),
-            Self::Gns(s) => s.write_json(out, values),
-            Self::GnsAux(s) => s.write_json(out, values),
-            Self::Gsa(s) => s.write_json(out, values),
-            Self::GsaShort(s) => s.write_json(out, values),
-            Self::Gst(s) => s.write_json(out, values),
-            Self::Gsv(s) => s.write_json(out, values),
-            Self::Hdt(s) => s.write_json(out, values),
-            Self::Rlm(s) => s.write_json(out, values),
-            Self::Rmc(s) => s.write_json(out, values),
-            Self::Vtg(s) => s.write_json(out, values),
-            Self::Zda(s) => s.write_json(out, values),
-            Self::ComnavLog(s) => s.write_json(out, values),
-            Self::ComnavNmeatalker(s) => s.write_json(out, values),
-            Self::ComnavNmeatalkerList(s) => s.write_json(out, values),
-            Self::ComnavNmeatalkerReset(s) => s.write_json(out, values),
-            Self::Geos5Command(s) => s.write_json(out, values),
-            Self::Geos5Jamdet(s) => s.write_json(out, values),
-            Self::Geos5Nquery(s) => s.write_json(out, values),
-            Self::Geos5NqueryRequest(s) => s.write_json(out, values),
-            Self::Geos5Rquery(s) => s.write_json(out, values),
-            Self::Geos5RqueryRequest(s) => s.write_json(out, values),
-            Self::Psrf100(s) => s.write_json(out, values),
-            Self::Psrf101(s) => s.write_json(out, values),
-            Self::Psrf102(s) => s.write_json(out, values),
-            Self::Psrf103(s) => s.write_json(out, values),
-            Self::Psrf104(s) => s.write_json(out, values),
-            Self::Psrf105(s) => s.write_json(out, values),
-            Self::Psrf150(s) => s.write_json(out, values),
-            Self::Pstmagps(s) => s.write_json(out, values),
-            Self::Pstmalmanac(s) => s.write_json(out, values),
-            Self::Pstmclralms(s) => s.write_json(out, values),
-            Self::Pstmclrephs(s) => s.write_json(out, values),
-            Self::Pstmcold(s) => s.write_json(out, values),
-            Self::Pstmcorr(s) => s.write_json(out, values),
-            Self::Pstmdiff(s) => s.write_json(out, values),
-            Self::Pstmeph(s) => s.write_json(out, values),
-            Self::Pstmgetpar(s) => s.write_json(out, values),
-            Self::Pstmgetparerror(s) => s.write_json(out, values),
-            Self::Pstmgetrtctime(s) => s.write_json(out, values),
-            Self::PstmgetrtctimeReply(s) => s.write_json(out, values),
-            Self::Pstmgetswver(s) => s.write_json(out, values),
-            Self::PstmgetswverReply(s) => s.write_json(out, values),
-            Self::Pstmhot(s) => s.write_json(out, values),
-            Self::Pstmkfcov(s) => s.write_json(out, values),
-            Self::Pstmnmeaonoff(s) => s.write_json(out, values),
-            Self::Pstmpa(s) => s.write_json(out, values),
-            Self::Pstmpres(s) => s.write_json(out, values),
-            Self::Pstmres(s) => s.write_json(out, values),
-            Self::Pstmrestorepar(s) => s.write_json(out, values),
-            Self::Pstmrf(s) => s.write_json(out, values),
-            Self::Pstmsat(s) => s.write_json(out, values),
-            Self::Pstmsavepar(s) => s.write_json(out, values),
-            Self::Pstmsbas(s) => s.write_json(out, values),
-            Self::Pstmsbascorr(s) => s.write_json(out, values),
-            Self::Pstmset(s) => s.write_json(out, values),
-            Self::PstmsetDop(s) => s.write_json(out, values),
-            Self::Pstmsetpar(s) => s.write_json(out, values),
-            Self::PstmsetparDop(s) => s.write_json(out, values),
-            Self::Pstmsetparerror(s) => s.write_json(out, values),
-            Self::Pstmsetparok(s) => s.write_json(out, values),
-            Self::Pstmtestrf(s) => s.write_json(out, values),
-            Self::Pstmtg(s) => s.write_json(out, values),
-            Self::Pstmtim(s) => s.write_json(out, values),
-            Self::Pstmts(s) => s.write_json(out, values),
-            Self::Pstmver(s) => s.write_json(out, values),
-            Self::Pstmvres(s) => s.write_json(out, values),
-            Self::Pstmwaas(s) => s.write_json(out, values),
-            Self::Pstmwarm(s) => s.write_json(out, values),
+            Self::Dtm(s) => s.write_json_with(out, values, problems),
+            Self::Gga(s) => s.write_json_with(out, values, problems),
+            Self::Gll(s) => s.write_json_with(out, values, problems),
+            Self::Gns(s) => s.write_json_with(out, values, problems),
+            Self::GnsAux(s) => s.write_json_with(out, values, problems),
+            Self::Gsa(s) => s.write_json_with(out, values, problems),
+            Self::GsaShort(s) => s.write_json_with(out, values, problems),
+            Self::Gst(s) => s.write_json_with(out, values, problems),
+            Self::Gsv(s) => s.write_json_with(out, values, problems),
+            Self::Hdt(s) => s.write_json_with(out, values, problems),
+            Self::Rlm(s) => s.write_json_with(out, values, problems),
+            Self::Rmc(s) => s.write_json_with(out, values, problems),
+            Self::Vtg(s) => s.write_json_with(out, values, problems),
+            Self::Zda(s) => s.write_json_with(out, values, problems),
+            Self::ComnavLog(s) => s.write_json_with(out, values, problems),
+            Self::ComnavNmeatalker(s) => s.write_json_with(out, values, problems),
+            Self::ComnavNmeatalkerList(s) => s.write_json_with(out, values, problems),
+            Self::ComnavNmeatalkerReset(s) => s.write_json_with(out, values, problems),
+            Self::Geos5Command(s) => s.write_json_with(out, values, problems),
+            Self::Geos5Jamdet(s) => s.write_json_with(out, values, problems),
+            Self::Geos5Nquery(s) => s.write_json_with(out, values, problems),
+            Self::Geos5NqueryRequest(s) => s.write_json_with(out, values, problems),
+            Self::Geos5Rquery(s) => s.write_json_with(out, values, problems),
+            Self::Geos5RqueryRequest(s) => s.write_json_with(out, values, problems),
+            Self::Psrf100(s) => s.write_json_with(out, values, problems),
+            Self::Psrf101(s) => s.write_json_with(out, values, problems),
+            Self::Psrf102(s) => s.write_json_with(out, values, problems),
+            Self::Psrf103(s) => s.write_json_with(out, values, problems),
+            Self::Psrf104(s) => s.write_json_with(out, values, problems),
+            Self::Psrf105(s) => s.write_json_with(out, values, problems),
+            Self::Psrf150(s) => s.write_json_with(out, values, problems),
+            Self::Pstmagps(s) => s.write_json_with(out, values, problems),
+            Self::Pstmalmanac(s) => s.write_json_with(out, values, problems),
+            Self::Pstmclralms(s) => s.write_json_with(out, values, problems),
+            Self::Pstmclrephs(s) => s.write_json_with(out, values, problems),
+            Self::Pstmcold(s) => s.write_json_with(out, values, problems),
+            Self::Pstmcorr(s) => s.write_json_with(out, values, problems),
+            Self::Pstmdiff(s) => s.write_json_with(out, values, problems),
+            Self::Pstmeph(s) => s.write_json_with(out, values, problems),
+            Self::Pstmgetpar(s) => s.write_json_with(out, values, problems),
+            Self::Pstmgetparerror(s) => s.write_json_with(out, values, problems),
+            Self::Pstmgetrtctime(s) => s.write_json_with(out, values, problems),
+            Self::PstmgetrtctimeReply(s) => s.write_json_with(out, values, problems),
+            Self::Pstmgetswver(s) => s.write_json_with(out, values, problems),
+            Self::PstmgetswverReply(s) => s.write_json_with(out, values, problems),
+            Self::Pstmhot(s) => s.write_json_with(out, values, problems),
+            Self::Pstmkfcov(s) => s.write_json_with(out, values, problems),
+            Self::Pstmnmeaonoff(s) => s.write_json_with(out, values, problems),
+            Self::Pstmpa(s) => s.write_json_with(out, values, problems),
+            Self::Pstmpres(s) => s.write_json_with(out, values, problems),
+            Self::Pstmres(s) => s.write_json_with(out, values, problems),
+            Self::Pstmrestorepar(s) => s.write_json_with(out, values, problems),
+            Self::Pstmrf(s) => s.write_json_with(out, values, problems),
+            Self::Pstmsat(s) => s.write_json_with(out, values, problems),
+            Self::Pstmsavepar(s) => s.write_json_with(out, values, problems),
+            Self::Pstmsbas(s) => s.write_json_with(out, values, problems),
+            Self::Pstmsbascorr(s) => s.write_json_with(out, values, problems),
+            Self::Pstmset(s) => s.write_json_with(out, values, problems),
+            Self::PstmsetDop(s) => s.write_json_with(out, values, problems),
+            Self::Pstmsetpar(s) => s.write_json_with(out, values, problems),
+            Self::PstmsetparDop(s) => s.write_json_with(out, values, problems),
+            Self::Pstmsetparerror(s) => s.write_json_with(out, values, problems),
+            Self::Pstmsetparok(s) => s.write_json_with(out, values, problems),
+            Self::Pstmtestrf(s) => s.write_json_with(out, values, problems),
+            Self::Pstmtg(s) => s.write_json_with(out, values, problems),
+            Self::Pstmtim(s) => s.write_json_with(out, values, problems),
+            Self::Pstmts(s) => s.write_json_with(out, values, problems),
+            Self::Pstmver(s) => s.write_json_with(out, values, problems),
+            Self::Pstmvres(s) => s.write_json_with(out, values, problems),
+            Self::Pstmwaas(s) => s.write_json_with(out, values, problems),
+            Self::Pstmwarm(s) => s.write_json_with(out, values, problems),
             Self::Generic(s) => s.write_json(out),
+        }
+    }
+
+    /// Writes the sentence text of a sentence lenient parsing kept with `problems`: the text of
+    /// each field it left empty is put back.
+    pub fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
+        match self {
+            Self::Dtm(s) => s.write_sentence_with(out, problems),
+            Self::Gga(s) => s.write_sentence_with(out, problems),
+            Self::Gll(s) => s.write_sentence_with(out, problems),
+            Self::Gns(s) => s.write_sentence_with(out, problems),
+            Self::GnsAux(s) => s.write_sentence_with(out, problems),
+            Self::Gsa(s) => s.write_sentence_with(out, problems),
+            Self::GsaShort(s) => s.write_sentence_with(out, problems),
+            Self::Gst(s) => s.write_sentence_with(out, problems),
+            Self::Gsv(s) => s.write_sentence_with(out, problems),
+            Self::Hdt(s) => s.write_sentence_with(out, problems),
+            Self::Rlm(s) => s.write_sentence_with(out, problems),
+            Self::Rmc(s) => s.write_sentence_with(out, problems),
+            Self::Vtg(s) => s.write_sentence_with(out, problems),
+            Self::Zda(s) => s.write_sentence_with(out, problems),
+            Self::ComnavLog(s) => s.write_sentence_with(out, problems),
+            Self::ComnavNmeatalker(s) => s.write_sentence_with(out, problems),
+            Self::ComnavNmeatalkerList(s) => s.write_sentence_with(out, problems),
+            Self::ComnavNmeatalkerReset(s) => s.write_sentence_with(out, problems),
+            Self::Geos5Command(s) => s.write_sentence_with(out, problems),
+            Self::Geos5Jamdet(s) => s.write_sentence_with(out, problems),
+            Self::Geos5Nquery(s) => s.write_sentence_with(out, problems),
+            Self::Geos5NqueryRequest(s) => s.write_sentence_with(out, problems),
+            Self::Geos5Rquery(s) => s.write_sentence_with(out, problems),
+            Self::Geos5RqueryRequest(s) => s.write_sentence_with(out, problems),
+            Self::Psrf100(s) => s.write_sentence_with(out, problems),
+            Self::Psrf101(s) => s.write_sentence_with(out, problems),
+            Self::Psrf102(s) => s.write_sentence_with(out, problems),
+            Self::Psrf103(s) => s.write_sentence_with(out, problems),
+            Self::Psrf104(s) => s.write_sentence_with(out, problems),
+            Self::Psrf105(s) => s.write_sentence_with(out, problems),
+            Self::Psrf150(s) => s.write_sentence_with(out, problems),
+            Self::Pstmagps(s) => s.write_sentence_with(out, problems),
+            Self::Pstmalmanac(s) => s.write_sentence_with(out, problems),
+            Self::Pstmclralms(s) => s.write_sentence_with(out, problems),
+            Self::Pstmclrephs(s) => s.write_sentence_with(out, problems),
+            Self::Pstmcold(s) => s.write_sentence_with(out, problems),
+            Self::Pstmcorr(s) => s.write_sentence_with(out, problems),
+            Self::Pstmdiff(s) => s.write_sentence_with(out, problems),
+            Self::Pstmeph(s) => s.write_sentence_with(out, problems),
+            Self::Pstmgetpar(s) => s.write_sentence_with(out, problems),
+            Self::Pstmgetparerror(s) => s.write_sentence_with(out, problems),
+            Self::Pstmgetrtctime(s) => s.write_sentence_with(out, problems),
+            Self::PstmgetrtctimeReply(s) => s.write_sentence_with(out, problems),
+            Self::Pstmgetswver(s) => s.write_sentence_with(out, problems),
+            Self::PstmgetswverReply(s) => s.write_sentence_with(out, problems),
+            Self::Pstmhot(s) => s.write_sentence_with(out, problems),
+            Self::Pstmkfcov(s) => s.write_sentence_with(out, problems),
+            Self::Pstmnmeaonoff(s) => s.write_sentence_with(out, problems),
+            Self::Pstmpa(s) => s.write_sentence_with(out, problems),
+            Self::Pstmpres(s) => s.write_sentence_with(out, problems),
+            Self::Pstmres(s) => s.write_sentence_with(out, problems),
+            Self::Pstmrestorepar(s) => s.write_sentence_with(out, problems),
+            Self::Pstmrf(s) => s.write_sentence_with(out, problems),
+            Self::Pstmsat(s) => s.write_sentence_with(out, problems),
+            Self::Pstmsavepar(s) => s.write_sentence_with(out, problems),
+            Self::Pstmsbas(s) => s.write_sentence_with(out, problems),
+            Self::Pstmsbascorr(s) => s.write_sentence_with(out, problems),
+            Self::Pstmset(s) => s.write_sentence_with(out, problems),
+            Self::PstmsetDop(s) => s.write_sentence_with(out, problems),
+            Self::Pstmsetpar(s) => s.write_sentence_with(out, problems),
+            Self::PstmsetparDop(s) => s.write_sentence_with(out, problems),
+            Self::Pstmsetparerror(s) => s.write_sentence_with(out, problems),
+            Self::Pstmsetparok(s) => s.write_sentence_with(out, problems),
+            Self::Pstmtestrf(s) => s.write_sentence_with(out, problems),
+            Self::Pstmtg(s) => s.write_sentence_with(out, problems),
+            Self::Pstmtim(s) => s.write_sentence_with(out, problems),
+            Self::Pstmts(s) => s.write_sentence_with(out, problems),
+            Self::Pstmver(s) => s.write_sentence_with(out, problems),
+            Self::Pstmvres(s) => s.write_sentence_with(out, problems),
+            Self::Pstmwaas(s) => s.write_sentence_with(out, problems),
+            Self::Pstmwarm(s) => s.write_sentence_with(out, problems),
+            Self::Generic(s) => s.write_sentence(out),
         }
     }
 
@@ -1798,14 +1889,118 @@ pub fn parse<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_
     parse_frame(Frame::parse(line)?)
 }
 
+/// How [`parse_with`] reads a line.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Options {
+    /// Keep a `$`/`!` sentence whose fields do not all fit their types: each field at fault is
+    /// read as empty and listed in [`Parsed::problems`] (at most [`MAX_PROBLEMS`]). Text
+    /// commands are always strict.
+    pub lenient: bool,
+    /// Refuse a `$`/`!` sentence without a checksum (or with a bare `*`): `missing_checksum`.
+    pub require_checksum: bool,
+}
+
+/// A sentence decoded by [`parse_with`], and the fields lenient parsing left empty (with their
+/// text as received, written back by `Display` so that the round trip stays exact).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Parsed<'a> {
+    /// The decoded sentence (fields at fault are `None`).
+    pub sentence: Sentence<'a>,
+    /// The fields lenient parsing left empty, in the order their errors came.
+    pub problems: Problems<'a>,
+}
+
+impl<'a> From<Sentence<'a>> for Parsed<'a> {
+    fn from(sentence: Sentence<'a>) -> Self {
+        Self { sentence, problems: Problems::new() }
+    }
+}
+
+impl Parsed<'_> {
+    /// Writes the tools' JSON line: `"problems"` follows `"fields"` when there are any.
+    pub fn write_json<W: Write + ?Sized>(&self, out: &mut W, values: bool) -> fmt::Result {
+        self.sentence.write_json_with(out, values, &self.problems)
+    }
+
+    /// The tools' JSON line (`values`: decoded values instead of the lossless texts).
+    #[cfg(feature = "std")]
+    pub fn to_json(&self, values: bool) -> String {
+        let mut out = String::new();
+        let _ = self.write_json(&mut out, values);
+        out
+    }
+}
+
+impl fmt::Display for Parsed<'_> {
+    /// The sentence text with the problem fields' texts put back; no line ending.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.sentence.write_sentence_with(f, &self.problems)
+    }
+}
+
+/// [`parse`] with options: lenient decoding and required checksums.
+pub fn parse_with<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
+    let line = strip_line_ending(line.as_ref());
+    if !matches!(line.first(), Some(b'$' | b'!')) && !text_command(first_word(line)).is_empty() {
+        return parse_frame(Frame::parse_text(line)?).map(Parsed::from);
+    }
+    let frame = Frame::parse_checked(line, options.require_checksum)?;
+    let layouts = layouts_of(frame.start, frame.address);
+    if layouts.is_empty() {
+        return Ok(Sentence::Generic(Generic::from_frame(frame)).into());
+    }
+    match first_fit(layouts, frame.fields, frame.checksum) {
+        Ok(sentence) => Ok(sentence.into()),
+        Err(error) if options.lenient && error.kind() == ErrorKind::BadField => {
+            lenient(layouts, frame.fields, frame.checksum, error)
+        }
+        Err(error) => Err(error),
+    }
+}
+
+/// Parses again with every field that does not fit left empty, one at a time; a field that is
+/// already empty and still does not fit, or one problem more than [`MAX_PROBLEMS`], ends the
+/// attempt with its error.
+pub fn lenient<'a>(
+    layouts: &[LayoutId],
+    mut fields: Fields<'a>,
+    checksum: Checksum,
+    mut error: Error<'a>,
+) -> Result<Parsed<'a>, Error<'a>> {
+    let mut problems = Problems::new();
+    loop {
+        let Some(problem) = error.problem() else {
+            return Err(error);
+        };
+        let index = problem.field();
+        if fields.get(index).is_none_or(str::is_empty) || !problems.push(problem) {
+            return Err(error);
+        }
+        fields = fields.with_blank(index);
+        match first_fit(layouts, fields, checksum) {
+            Ok(sentence) => return Ok(Parsed { sentence, problems }),
+            Err(again) => error = again,
+        }
+    }
+}
+
 /// Decodes a framed line with the layouts of its address ([`layouts_of`]), the first that fits;
 /// [`Generic`] when the spec knows none.
 pub fn parse_frame(frame: Frame<'_>) -> Result<Sentence<'_>, Error<'_>> {
     let layouts = layouts_of(frame.start, frame.address);
-    let Some((&first, others)) = layouts.split_first() else {
+    if layouts.is_empty() {
         return Ok(Sentence::Generic(Generic::from_frame(frame)));
+    }
+    first_fit(layouts, frame.fields, frame.checksum)
+}
+
+/// The first of `layouts` (not empty) that fits the fields; when none does, the error of the
+/// contenders (the layouts whose keyword the first field holds, else all): the first that is a
+/// bad field, else the first.
+fn first_fit<'a>(layouts: &[LayoutId], fields: Fields<'a>, checksum: Checksum) -> Result<Sentence<'a>, Error<'a>> {
+    let Some((&first, others)) = layouts.split_first() else {
+        return Err(Error::new(None, runtime::Message::EmptyLine));
     };
-    let Frame { fields, checksum, .. } = frame;
     let error = match first.parse_fields(fields, checksum) {
         Ok(sentence) => return Ok(sentence),
         Err(error) => error,
@@ -1813,9 +2008,7 @@ pub fn parse_frame(frame: Frame<'_>) -> Result<Sentence<'_>, Error<'_>> {
     if others.is_empty() {
         return Err(error);
     }
-    // No layout fits: the contenders are the layouts whose keyword the first field holds (else
-    // all); of those, the first whose error is a bad field, else the first.
-    let word = fields.iter().next();
+    let word = fields.get(1).filter(|_| !fields.is_empty());
     let rank = |layout: LayoutId, error: &Error<'_>| {
         let contender = matches!((layout.selector(), word), (Some(keyword), Some(word)) if upper_eq(word, keyword));
         u8::from(!contender) * 2 + u8::from(error.kind() != ErrorKind::BadField)
@@ -1941,11 +2134,27 @@ pub fn write_decoded<W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool) 
     }
 }
 
+/// [`write_decoded`] with options (`decode --lenient --require-checksum`).
+pub fn write_decoded_with<W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool, options: Options) -> fmt::Result {
+    match parse_with(line, options) {
+        Ok(parsed) => parsed.write_json(out, values),
+        Err(err) => err.write_json(out),
+    }
+}
+
 /// `decode`'s output for one line (without line ending): the sentence or the error as JSON.
 #[cfg(feature = "std")]
 pub fn decode_json(line: &[u8], values: bool) -> String {
     let mut out = String::new();
     let _ = write_decoded(&mut out, line, values);
+    out
+}
+
+/// [`decode_json`] with options.
+#[cfg(feature = "std")]
+pub fn decode_json_with(line: &[u8], values: bool, options: Options) -> String {
+    let mut out = String::new();
+    let _ = write_decoded_with(&mut out, line, values, options);
     out
 }
 
@@ -1960,24 +2169,34 @@ pub struct Rebuilt {
     layout: Option<LayoutId>,
     /// A text command: its words joined by spaces, the command word as written.
     line: Option<String>,
+    /// A sentence lenient decoding kept (its JSON has `"problems"`): parsed leniently again.
+    lenient: bool,
 }
 
 #[cfg(feature = "std")]
 impl Rebuilt {
-    /// Parses the rebuilt fields through the same field parsers as a received line.
-    pub fn parse(&self) -> Result<Sentence<'_>, Error<'_>> {
+    /// Parses the rebuilt fields through the same field parsers as a received line (leniently
+    /// for a sentence whose JSON lists problems).
+    pub fn parse(&self) -> Result<Parsed<'_>, Error<'_>> {
         let mut fields = self.fields.fields(&self.address);
         if let Some(line) = &self.line {
             fields = fields.with_line(line);
         }
         match self.layout {
-            Some(layout) => layout.parse_fields(fields, self.checksum),
+            Some(layout) => match layout.parse_fields(fields, self.checksum) {
+                Ok(sentence) => Ok(sentence.into()),
+                Err(error) if self.lenient && error.kind() == ErrorKind::BadField => {
+                    lenient(&[layout], fields, self.checksum, error)
+                }
+                Err(error) => Err(error),
+            },
             None => Ok(Sentence::Generic(Generic {
                 start: &self.start,
                 address: &self.address,
                 fields,
                 checksum: self.checksum,
-            })),
+            })
+            .into()),
         }
     }
 }
@@ -2001,7 +2220,7 @@ pub fn from_json(obj: &Value) -> Result<Rebuilt, Error<'static>> {
         for item in items {
             fields.push(json::text(item)?);
         }
-        return Ok(Rebuilt { start, address, fields, checksum, layout: None, line: None });
+        return Ok(Rebuilt { start, address, fields, checksum, layout: None, line: None, lenient: false });
     };
     let variant = json::opt_text(obj, "variant")?;
     let unknown = || Error::bad_json(format!("unknown sentence \"{sentence}\""));
@@ -2012,6 +2231,9 @@ pub fn from_json(obj: &Value) -> Result<Rebuilt, Error<'static>> {
     }
     let mut wire = WireFields::default();
     layout.fields_from_json(fields, &mut wire)?;
+    if obj.get("problems").is_some() {
+        return with_problems(obj, layout, wire, checksum);
+    }
     let (address, checksum, line) = match layout.framing() {
         Framing::Standard => (format!("{}{}", json::word(obj, "talker")?, layout.sentence()), checksum, None),
         Framing::Proprietary(address) => (address.to_string(), checksum, None),
@@ -2024,7 +2246,44 @@ pub fn from_json(obj: &Value) -> Result<Rebuilt, Error<'static>> {
             (word.to_string(), Checksum::None, Some(wire.command_line(word)))
         }
     };
-    Ok(Rebuilt { start: "$".to_string(), address, fields: wire, checksum, layout: Some(layout), line })
+    Ok(Rebuilt { start: "$".to_string(), address, fields: wire, checksum, layout: Some(layout), line, lenient: false })
+}
+
+/// A sentence that lenient decoding kept: its problem fields' texts go back where they were, and
+/// it is parsed leniently again.
+#[cfg(feature = "std")]
+fn with_problems(
+    obj: &Value,
+    layout: LayoutId,
+    mut wire: WireFields,
+    checksum: Checksum,
+) -> Result<Rebuilt, Error<'static>> {
+    if json::str_member(obj, "start")?.is_empty() {
+        return Err(Error::bad_json("a text command has no problems"));
+    }
+    for problem in json::list(obj, "problems")? {
+        let index = match json::member(problem, "field")? {
+            Value::Integer(Some(index)) => usize::try_from(*index).ok().filter(|&i| i <= wire.len()),
+            _ => None,
+        };
+        let Some(index) = index else {
+            return Err(Error::bad_json("a problem's \"field\" is not the index of a field"));
+        };
+        wire.set(index - 1, json::text(json::member(problem, "text")?)?);
+    }
+    let address = match layout.framing() {
+        Framing::Standard => format!("{}{}", json::word(obj, "talker")?, layout.sentence()),
+        Framing::Proprietary(address) | Framing::Text(address) => address.to_string(),
+    };
+    Ok(Rebuilt {
+        start: "$".to_string(),
+        address,
+        fields: wire,
+        checksum,
+        layout: Some(layout),
+        line: None,
+        lenient: true,
+    })
 }
 
 /// Writes `encode`'s output for one parsed line of decode's JSON (`None`: not JSON): the
@@ -2037,7 +2296,7 @@ pub fn write_encoded<W: Write + ?Sized>(out: &mut W, obj: Option<&Value>) -> fmt
         Some(Ok(rebuilt)) => rebuilt,
     };
     match rebuilt.parse() {
-        Ok(sentence) => write!(out, "{sentence}"),
+        Ok(parsed) => write!(out, "{parsed}"),
         Err(err) => err.write_json(out),
     }
 }
@@ -2280,6 +2539,23 @@ mod tests {
         assert_eq!(sentence.to_bytes(&mut small).unwrap_err().kind(), ErrorKind::BufferTooSmall);
         let mut buf = [0u8; BUILD_CAPACITY];
         assert_eq!(sentence.to_bytes(&mut buf).unwrap(), b"$PXUNKNOWN,00,01,,1*\r\n");
+    }
+
+    #[test]
+    fn lenient_parsing_keeps_the_fields_at_fault() {
+        let line = "$GPHDT,x,T*63";
+        assert_eq!(parse(line).unwrap_err().kind(), ErrorKind::BadField);
+        let parsed = parse_with(line, Options { lenient: true, require_checksum: false }).unwrap();
+        assert_eq!(parsed.problems.len(), 1);
+        let mut text = Buf::new();
+        write!(text, "{parsed}").unwrap();
+        assert_eq!(text.as_str(), line);
+        let mut out = Buf::new();
+        parsed.write_json(&mut out, false).unwrap();
+        assert!(out.as_str().contains(r#""problems":[{"field":1,"name":"heading","text":"x","#));
+        assert!(out.as_str().ends_with(r#"],"checksum":"63"}"#));
+        let required = Options { lenient: false, require_checksum: true };
+        assert_eq!(parse_with("$GPHDT,1.0,T*", required).unwrap_err().kind(), ErrorKind::MissingChecksum);
     }
 
     #[test]

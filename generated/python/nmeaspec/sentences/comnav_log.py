@@ -43,6 +43,8 @@ class ComnavLog:
     """ONTIME trigger: The word ONTIME, output at a fixed time interval; the only trigger the manual shows."""
     period: rt.Number | None = None
     """Period [s]: Interval between two outputs in seconds. The manual prints only 1 and states no range; ComNav's OEM reference describes the period as a time interval in seconds that may be fractional (e.g. 0.2 for 5 Hz) down to the model's maximum output rate."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: ClassVar[str | None] = None
 
     @classmethod
@@ -71,7 +73,8 @@ class ComnavLog:
 
     def to_sentence(self) -> str:
         """The command text, words separated by single spaces; no line ending."""
-        return rt.assemble_text("LOG", self.fields(), self.as_received)
+        return rt.assemble_text("LOG", rt.with_problems(self.fields(), self.problems),
+                                self.as_received)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

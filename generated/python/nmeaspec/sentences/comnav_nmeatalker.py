@@ -41,6 +41,8 @@ class ComnavNmeatalker:
     """Sentence: The sentence whose talker ID is set, or ALL for all nine."""
     talker_id: ComnavTalkerId | str | None = None
     """Talker ID: The talker ID to use (GN, GP, BD, GL, GA), or AUTO to follow the constellations of the current solution."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: ClassVar[str | None] = None
 
     @classmethod
@@ -67,7 +69,8 @@ class ComnavNmeatalker:
 
     def to_sentence(self) -> str:
         """The command text, words separated by single spaces; no line ending."""
-        return rt.assemble_text("NMEATALKER", self.fields(), self.as_received)
+        return rt.assemble_text("NMEATALKER", rt.with_problems(self.fields(), self.problems),
+                                self.as_received)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a
@@ -117,6 +120,8 @@ class ComnavNmeatalkerList:
     """The command as received; written back in its letter case when the words still match."""
     subcommand: str = "LIST"
     """LIST keyword: The word LIST."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: ClassVar[str | None] = None
 
     @classmethod
@@ -141,7 +146,8 @@ class ComnavNmeatalkerList:
 
     def to_sentence(self) -> str:
         """The command text, words separated by single spaces; no line ending."""
-        return rt.assemble_text("NMEATALKER", self.fields(), self.as_received)
+        return rt.assemble_text("NMEATALKER", rt.with_problems(self.fields(), self.problems),
+                                self.as_received)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a
@@ -188,6 +194,8 @@ class ComnavNmeatalkerReset:
     """The command as received; written back in its letter case when the words still match."""
     subcommand: str = "RESET"
     """RESET keyword: The word RESET."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: ClassVar[str | None] = None
 
     @classmethod
@@ -212,7 +220,8 @@ class ComnavNmeatalkerReset:
 
     def to_sentence(self) -> str:
         """The command text, words separated by single spaces; no line ending."""
-        return rt.assemble_text("NMEATALKER", self.fields(), self.as_received)
+        return rt.assemble_text("NMEATALKER", rt.with_problems(self.fields(), self.problems),
+                                self.as_received)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -49,6 +49,8 @@ class Dtm:
     """Altitude offset [m]: Altitude offset of the local datum from the reference datum, metres; may be negative."""
     reference_datum: DtmDatum | str | None = None
     """Reference datum: Datum the offsets refer to; W84 (WGS-84) on GeoS-5 (standard also W72, S85, P90)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -88,7 +90,8 @@ class Dtm:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "DTM", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "DTM",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

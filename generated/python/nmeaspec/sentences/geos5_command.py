@@ -37,6 +37,8 @@ class Geos5Command:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     command: Geos5CommandWord | str | None = None
     """Command word: The 6-character command word, e.g. BDR115 (115200 bit/s), GGA ON, RATE10 or ELEV05. The words that switch a sentence on contain a space ("GGA ON") that is sent and covered by the checksum."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -62,7 +64,8 @@ class Geos5Command:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "GPSGG", self.fields(), self.checksum)
+        return rt.assemble("$", "GPSGG",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -34,6 +34,8 @@ class Geos5Jamdet:
     """Mnemonic: Identifies the sentence among the GeoS-5 proprietary sentences, which all share the address GPSGG."""
     reserved: str | None = None
     """Reserved: A field that is empty in every printed form ($GPSGG,JAMDET,*57; the comma is covered by the checksum). The manual gives it no meaning."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -61,7 +63,8 @@ class Geos5Jamdet:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "GPSGG", self.fields(), self.checksum)
+        return rt.assemble("$", "GPSGG",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

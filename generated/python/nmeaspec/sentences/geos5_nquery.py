@@ -61,6 +61,8 @@ class Geos5Nquery:
     """DTM output rate (provisional position): Per-sentence rate field 9 of 10, provisionally taken to be DTM: the manual's list of which sentence each position belongs to was lost (see the notes)."""
     rlm_rate: Geos5MessageRate | str | None = None
     """RLM output rate (provisional position): Per-sentence rate field 10 of 10, provisionally taken to be RLM: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -112,7 +114,8 @@ class Geos5Nquery:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "GPSGG", self.fields(), self.checksum)
+        return rt.assemble("$", "GPSGG",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -32,6 +32,8 @@ class Geos5NqueryRequest:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     keyword: str = "NQUERY"
     """Command word: The request word; like every GeoS-5 command word it is 6 characters and the only field."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -57,7 +59,8 @@ class Geos5NqueryRequest:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "GPSGG", self.fields(), self.checksum)
+        return rt.assemble("$", "GPSGG",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -48,6 +48,8 @@ class Geos5Rquery:
     """Configuration register 1: Receiver configuration register 1, 32 bits as 8 hex digits (manual table 8)."""
     config_2: rt.Hex | None = None
     """Configuration register 2: Receiver configuration register 2, 32 bits as 8 hex digits (manual table 9)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -85,7 +87,8 @@ class Geos5Rquery:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "GPSGG", self.fields(), self.checksum)
+        return rt.assemble("$", "GPSGG",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -58,6 +58,8 @@ class Gga:
     """Age of differential data [s]: Seconds since the last differential correction (SC104 type 1 or 9 for SiRF); GeoS-5 range 0-999.9. Empty without differential corrections."""
     dgps_station: rt.Number | None = None
     """Differential station ID: Differential reference station ID, 0000-4095 (GS501 and ComNav give 0-1023). GeoS-5 sends the SBAS satellite number when the corrections come from SBAS, and an empty field in autonomous mode; SiRF receivers send 0000 without DGPS."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -105,7 +107,8 @@ class Gga:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GGA", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "GGA",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

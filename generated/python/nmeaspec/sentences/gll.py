@@ -43,6 +43,8 @@ class Gll:
     """Data status: A when the data are valid, V when not. GeoS-5 sets V exactly when the mode indicator is N."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
     """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -81,7 +83,8 @@ class Gll:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GLL", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "GLL",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

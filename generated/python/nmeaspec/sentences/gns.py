@@ -56,6 +56,8 @@ class Gns:
     """Differential station ID: Differential reference station ID, 0-4095; empty without differential data. GeoS-5 sends the SBAS satellite number when the corrections come from SBAS, and (like the age) leaves it empty in the GN line and sends it per system in the auxiliary lines."""
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
     """Navigational status (NMEA 4.10): Navigational status (integrity) indicator. GeoS-5 does not compute it and sends V in main lines; its auxiliary lines carry no value here."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -106,7 +108,8 @@ class Gns:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GNS", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "GNS",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a
@@ -193,6 +196,8 @@ class GnsAux:
     """Differential station ID: Differential reference station ID, 0-4095; empty without differential data. GeoS-5 sends the SBAS satellite number when the corrections come from SBAS, and (like the age) leaves it empty in the GN line and sends it per system in the auxiliary lines."""
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
     """Navigational status (NMEA 4.10): Navigational status (integrity) indicator. GeoS-5 does not compute it and sends V in main lines; its auxiliary lines carry no value here."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -241,7 +246,8 @@ class GnsAux:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GNS", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "GNS",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

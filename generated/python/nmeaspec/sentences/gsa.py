@@ -57,6 +57,8 @@ class Gsa:
     """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
     system_id: SystemId | str | None | rt._Absent = rt.ABSENT
     """GNSS system ID (NMEA 4.10): Constellation the satellites of this line belong to (NMEA v4.10 and later)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -99,7 +101,8 @@ class Gsa:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GSA", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "GSA",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a
@@ -179,6 +182,8 @@ class GsaShort:
     """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
     vdop: rt.Number | None = None
     """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -215,7 +220,8 @@ class GsaShort:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GSA", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "GSA",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -48,6 +48,8 @@ class Gst:
     """Longitude error [m]: Standard deviation of the longitude error, metres."""
     alt_std: rt.Number | None = None
     """Altitude error [m]: Standard deviation of the altitude error, metres."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -87,7 +89,8 @@ class Gst:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GST", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "GST",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -58,6 +58,8 @@ class Gsv:
     """Satellites in view: 0 to 4 entries."""
     signal_id: SignalId | str | None | rt._Absent = rt.ABSENT
     """Signal ID (NMEA 4.10): Signal the set reports, meaning per system (NMEA v4.10 and later)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -101,7 +103,8 @@ class Gsv:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GSV", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "GSV",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

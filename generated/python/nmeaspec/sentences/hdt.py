@@ -35,6 +35,8 @@ class Hdt:
     """Heading [deg]: Heading in degrees true (ComNav sample 89.2769, 4 decimals)."""
     heading_ref: str | None = None
     """True indicator: T = degrees true."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -62,7 +64,8 @@ class Hdt:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HDT", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "HDT",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

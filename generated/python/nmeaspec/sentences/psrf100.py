@@ -44,6 +44,8 @@ class Psrf100:
     """Stop bits: Stop bits, listed as 0 or 1. The example sets 1 for one stop bit ("8,N,1"); what 0 selects is not explained in the surviving text."""
     parity: SirfParity | str | None = None
     """Parity: Parity, 0 none, 1 odd, 2 even."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -77,7 +79,8 @@ class Psrf100:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF100", self.fields(), self.checksum)
+        return rt.assemble("$", "PSRF100",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

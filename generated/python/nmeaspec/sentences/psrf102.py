@@ -42,6 +42,8 @@ class Psrf102:
     """Stop bits: Stop bits, listed as 0 or 1; the default is printed as 0 while the example writes 1 for one stop bit ("8,N,1"). The surviving text does not explain 0."""
     parity: SirfParity | str | None = None
     """Parity: Parity, 0 none (default), 1 odd, 2 even."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -73,7 +75,8 @@ class Psrf102:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF102", self.fields(), self.checksum)
+        return rt.assemble("$", "PSRF102",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

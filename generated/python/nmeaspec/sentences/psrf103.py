@@ -41,6 +41,8 @@ class Psrf103:
     """Output period [s]: Seconds between two outputs of the sentence in set-rate mode; 0 turns it off, 255 is the maximum. Ignored by a query."""
     checksum_mode: SirfChecksumEnable | str | None = None
     """Checksum enable: Whether the sentence is sent with a checksum, 00 no, 01 yes."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -72,7 +74,8 @@ class Psrf103:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF103", self.fields(), self.checksum)
+        return rt.assemble("$", "PSRF103",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -47,6 +47,8 @@ class Psrf104:
     """Channel count: Number of receiver channels to use, 1-12, default and maximum 12. Fewer channels lower the processor load (SiRF NMEA reference)."""
     reset_cfg: rt.Number | None = None
     """Reset configuration: Reset configuration bit mask (UBYTE, written in decimal): bit 0 (0x01) the initialisation data are valid, set for warm and hot starts; bit 1 (0x02) clear the ephemerides, set for a warm start; bit 2 (0x04) clear the memory, set for a cold start. Only the masks and "= 1" survive in the manual; the bit names are reconstructed (SiRF NMEA reference). The examples send 3 (data valid and clear ephemerides: warm start with the given data)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -86,7 +88,8 @@ class Psrf104:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF104", self.fields(), self.checksum)
+        return rt.assemble("$", "PSRF104",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -35,6 +35,8 @@ class Psrf105:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     debug: SirfDebug | str | None = None
     """Development data: 1 switches the development data messages on, 0 off."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -60,7 +62,8 @@ class Psrf105:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF105", self.fields(), self.checksum)
+        return rt.assemble("$", "PSRF105",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -35,6 +35,8 @@ class Psrf150:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     ok_to_send: SirfOkToSend | str | None = None
     """OkToSend: 1 the receiver is ready to accept input, 0 it is going to sleep (SiRF NMEA reference)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -60,7 +62,8 @@ class Psrf150:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF150", self.fields(), self.checksum)
+        return rt.assemble("$", "PSRF150",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

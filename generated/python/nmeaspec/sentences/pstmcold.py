@@ -33,6 +33,8 @@ class Pstmcold:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     mask: rt.Number | None | rt._Absent = rt.ABSENT
     """Erase mask: Which data to invalidate before the start: 0x1 almanac, 0x2 ephemerides, 0x4 position, 0x8 time; several may be combined (e.g. 0xD). Only the selected data is invalidated. When the argument is absent the receiver uses 0xE (ephemerides, time and position). The manual calls the argument an integer and writes it in decimal in its examples (6; 15 for a full cold start, i.e. 0xF), so it is modelled as a decimal integer carrying the bitmask."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -63,7 +65,8 @@ class Pstmcold:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMCOLD", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMCOLD",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

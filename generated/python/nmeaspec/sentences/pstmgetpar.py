@@ -33,6 +33,8 @@ class Pstmgetpar:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     block_param: rt.Number | None = None
     """Configuration block and parameter ID: One wire field made of the configuration block digit b followed, without a comma or a space, by the 3-digit CDB parameter ID nnn (e.g. 1403 = block 1, parameter 403). Blocks: 1 current configuration (RAM), 2 factory defaults, 3 configuration saved in NVM. ID 000 (e.g. 1000) reads the whole block, answered with one sentence per parameter."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -58,7 +60,8 @@ class Pstmgetpar:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMGETPAR", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMGETPAR",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

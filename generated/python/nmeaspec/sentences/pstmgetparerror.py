@@ -28,6 +28,8 @@ class Pstmgetparerror:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -51,7 +53,8 @@ class Pstmgetparerror:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMGETPARERROR", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMGETPARERROR",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

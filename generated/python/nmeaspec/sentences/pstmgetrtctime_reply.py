@@ -38,6 +38,8 @@ class PstmgetrtctimeReply:
     """RTC status: State of the RTC, 0 invalid, 1 stored, 2 approximate."""
     time_validity: TeseoTimeValidity | str | None = None
     """Time validity: Source and quality of the time, 0 (no time) to 8 (ephemeris time)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -69,7 +71,8 @@ class PstmgetrtctimeReply:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMGETRTCTIME", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMGETRTCTIME",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

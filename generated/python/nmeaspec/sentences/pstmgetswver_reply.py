@@ -38,6 +38,8 @@ class PstmgetswverReply:
     """Build date: Compilation date as text with spaces, e.g. "Sept 04 2008": although the format column says mm dd yyyy, the example gives the month as an English abbreviation (the style of the C compiler's __DATE__)."""
     build_time: str | None = None
     """Build time: Compilation time with colons, e.g. 13:15:03 (not the NMEA hhmmss time form)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -69,7 +71,8 @@ class PstmgetswverReply:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMGETSWVER", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMGETSWVER",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

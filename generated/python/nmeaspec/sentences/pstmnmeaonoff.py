@@ -34,6 +34,8 @@ class Pstmnmeaonoff:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     on_off: TeseoNmeaOnOff | str | None | rt._Absent = rt.ABSENT
     """Output state: 0 stops the NMEA output, 1 starts it. Added in software version 7.1.9.29; when absent the output toggles."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -64,7 +66,8 @@ class Pstmnmeaonoff:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMNMEAONOFF", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMNMEAONOFF",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -39,6 +39,8 @@ class Pstmsbas:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     values: list[str | None] = field(default_factory=list)
     """Fields: 0 to 64 entries."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -65,7 +67,8 @@ class Pstmsbas:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSBAS", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMSBAS",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -35,6 +35,8 @@ class Pstmset:
     """Configuration block and parameter ID: The configuration block digit (1 current, 2 default, 3 saved in NVM) followed, without a separator, by the 3-digit CDB parameter ID that was read."""
     value: str | None = None
     """Parameter value: The value in the parameter's wire encoding (teseo_cdb): hex without "0x" for integer parameters, decimal for real ones, text for parameter 500. The four DOP values of parameters 400-403 are covered by the variant dop."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -62,7 +64,8 @@ class Pstmset:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSET", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMSET",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a
@@ -114,6 +117,8 @@ class PstmsetDop:
     """HDOP threshold: Horizontal DOP threshold (H), decimal."""
     gdop: rt.Number | None = None
     """GDOP threshold: Geometric DOP threshold (G), decimal."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -147,7 +152,8 @@ class PstmsetDop:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSET", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMSET",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

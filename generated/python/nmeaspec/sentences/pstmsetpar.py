@@ -41,6 +41,8 @@ class Pstmsetpar:
     """Parameter value: The value, 1 to 80 bytes, written as the parameter requires (teseo_cdb encoding): hex digits without "0x" for every integer parameter (e.g. 10 = 0x10), decimal for the real parameters (301-303), plain text for the text message (500). The four DOP values of parameters 400-403 take four wire fields and are covered by the variant dop."""
     mode: TeseoSetparMode | str | None | rt._Absent = rt.ABSENT
     """Write mode: How the value is combined with the stored one: 0 replace (also when absent), 1 bitwise OR (set the given bits), 2 bitwise AND with the inverted value (clear the given bits). Only in the command; the $PSTMGETPAR answer has no mode."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -75,7 +77,8 @@ class Pstmsetpar:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSETPAR", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMSETPAR",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a
@@ -133,6 +136,8 @@ class PstmsetparDop:
     """GDOP threshold: Geometric DOP threshold (G), decimal."""
     mode: TeseoSetparMode | str | None | rt._Absent = rt.ABSENT
     """Write mode: Optional write mode as in the main layout; the manual does not exclude it for the DOP parameters, although bitwise modes make no sense for them."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -173,7 +178,8 @@ class PstmsetparDop:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSETPAR", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMSETPAR",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

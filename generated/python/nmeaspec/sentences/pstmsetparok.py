@@ -31,6 +31,8 @@ class Pstmsetparok:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     block_param: rt.Number | None = None
     """Configuration block and parameter ID: The configuration block digit followed, without a separator, by the 3-digit CDB parameter ID, as given in the command (e.g. 1121 = block 1, parameter 121)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -56,7 +58,8 @@ class Pstmsetparok:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSETPAROK", self.fields(), self.checksum)
+        return rt.assemble("$", "PSTMSETPAROK",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -41,6 +41,8 @@ class Rlm:
     """Message code: RLM service, one hex digit (1 acknowledgement, 2 command, 3 message, F test, others reserved)."""
     message_body: str | None = None
     """Message body: Parameters of the message in hex: 4 hex digits (16 bits) for a short message, 24 hex digits (96 bits) for a long one. Kept as text because 96 bits exceed the hex type."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -72,7 +74,8 @@ class Rlm:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RLM", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "RLM",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

@@ -56,6 +56,8 @@ class Rmc:
     """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3)."""
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
     """Navigational status (NMEA 4.10): Navigational status (integrity) indicator; GeoS-5 does not compute it and always sends V."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -108,7 +110,8 @@ class Rmc:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RMC", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "RMC",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

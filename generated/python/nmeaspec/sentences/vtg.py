@@ -52,6 +52,8 @@ class Vtg:
     """Km/h unit: K, kilometres per hour."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
     """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3). GeoS-5 uses the letters of its GLL table (A D E G M N)."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -98,7 +100,8 @@ class Vtg:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VTG", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "VTG",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a

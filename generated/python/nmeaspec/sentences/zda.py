@@ -44,6 +44,8 @@ class Zda:
     """Local zone hours: Local zone offset hours, signed (GeoS-5 sends +00). Local time = UTC + the offset, where the offset is hours and minutes taken together with the sign of the hours. Empty on GS501 and ComNav, which do not support it."""
     local_zone_minutes: rt.Number | None = None
     """Local zone minutes: Local zone offset minutes, 00-59, with the sign of the hours. Empty on GS501 and ComNav."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
 
@@ -79,7 +81,8 @@ class Zda:
 
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ZDA", self.fields(), self.checksum)
+        return rt.assemble("$", self.talker + "ZDA",
+                           rt.with_problems(self.fields(), self.problems), self.checksum)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a
