@@ -6,13 +6,13 @@ from __future__ import annotations
 
 import json
 import keyword
-from decimal import Decimal, InvalidOperation
+from decimal import InvalidOperation
 from typing import Any
 
 from . import reference
 from .errors import SpecError
 from .loader import Document
-from .model import Example, Field, Group, Layout, Origin, Sentence, Spec
+from .model import Example, Field, Group, Layout, Origin, Sentence, Spec, fixed_point
 
 VERSION_ORDER = ["2.0", "2.1", "2.2", "2.3", "3.0", "3.01", "4.00", "4.10", "4.11"]
 
@@ -403,14 +403,8 @@ def _expect_item(item: Field | Group, value: Any) -> str:
 def _number_json(value: Any) -> str:
     if isinstance(value, bool):
         raise TypeError("a number, not a boolean")
-    number = Decimal(str(value))
-    sign, digits, exponent = number.as_tuple()
-    assert isinstance(exponent, int)
-    magnitude = int("".join(map(str, digits)) or "0")
-    if exponent > 0:
-        magnitude *= 10 ** exponent
-        exponent = 0
-    return reference.rt.decimal_json(magnitude, -exponent, bool(sign))
+    digits, scale = fixed_point(str(value))
+    return reference.rt.decimal_json(abs(digits), scale, digits < 0)
 
 
 def _expect_value(f: Field, value: Any) -> str:

@@ -8,13 +8,12 @@ or collects each field, the value ranges; the templates only loop and print.
 from __future__ import annotations
 
 import textwrap
-from decimal import Decimal
 
 import jinja2
 
 from . import emit_vectors
 from .emit import TEMPLATES, header
-from .model import BitfieldDef, EnumDef, Example, Field, Group, Layout, Sentence, Spec, TableDef, fmt_num
+from .model import BitfieldDef, EnumDef, Example, Field, Group, Layout, Sentence, Spec, TableDef, fixed_point, fmt_num
 
 C_KEYWORDS = frozenset("""
 auto break case char const continue default do double else enum extern float for goto if inline int
@@ -99,9 +98,7 @@ def entry_type(sentence: Sentence, layout: Layout, group: Group) -> str:
 
 def _fixed(value: float) -> tuple[int, int]:
     """(digits, scale) with digits * 10^-scale == value."""
-    d = Decimal(fmt_num(value))
-    scale = max(0, -d.as_tuple().exponent)  # type: ignore[operator]
-    digits = int(d.scaleb(scale))
+    digits, scale = fixed_point(value)
     if scale > 18 or abs(digits) >= 10**18:
         raise ValueError(f"bound {fmt_num(value)} needs more than the 18 digits of nmea_number")
     return digits, scale

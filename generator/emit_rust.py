@@ -8,13 +8,12 @@ from __future__ import annotations
 import json
 import re
 import textwrap
-from decimal import Decimal
 
 import jinja2
 
 from . import emit_vectors
 from .emit import TEMPLATES, header
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fmt_num
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
 
 CRATE = "nmeaspec"
 RUNTIME_MODULES = ["mod", "error", "frame", "layout", "stream", "table", "types", "write", "json"]
@@ -141,15 +140,8 @@ def framing_expr(sentence: Sentence) -> str:
 
 
 def bound(value: float) -> str:
-    number = Decimal(fmt_num(value))
-    sign, digits, exponent = number.as_tuple()
-    assert isinstance(exponent, int)
-    magnitude = int("".join(map(str, digits)) or "0")
-    if exponent > 0:
-        magnitude *= 10 ** exponent
-        exponent = 0
-    signed = -magnitude if sign else magnitude
-    return f"Bound::int({signed})" if exponent == 0 else f"Bound::new({signed}, {-exponent})"
+    digits, scale = fixed_point(value)
+    return f"Bound::int({digits})" if scale == 0 else f"Bound::new({digits}, {scale})"
 
 
 def range_expr(f: Field) -> str:

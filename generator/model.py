@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import hashlib
 from dataclasses import dataclass, field
+from decimal import Decimal
 from pathlib import Path
 from typing import Any
 
@@ -466,6 +467,19 @@ def _parse_order(sentences: list[Sentence]) -> list[tuple[Sentence, Layout]]:
     each in file order."""
     pairs = [(s, layout) for s in sentences for layout in s.layouts]
     return [p for p in pairs if p[1].selector is not None] + [p for p in pairs if p[1].selector is None]
+
+
+def fixed_point(value: object) -> tuple[int, int]:
+    """A spec number (int, float or its text) as (digits, scale), signed, with
+    digits * 10^-scale == value and no negative scale: 1.50 -> (15, 1), -2 -> (-2, 0), 1E+2 -> (100, 0)."""
+    number = Decimal(fmt_num(value) if isinstance(value, float) else str(value))
+    sign, digits, exponent = number.as_tuple()
+    assert isinstance(exponent, int)
+    magnitude = int("".join(map(str, digits)) or "0")
+    if exponent > 0:
+        magnitude *= 10 ** exponent
+        exponent = 0
+    return (-magnitude if sign else magnitude), -exponent
 
 
 def camel(snake: str) -> str:
