@@ -4,7 +4,6 @@ identically and write every one back byte for byte."""
 
 from __future__ import annotations
 
-import json
 import os
 from pathlib import Path
 
@@ -33,7 +32,7 @@ def test_reference_decodes_every_random_sentence(lines) -> None:
     for sentence, layout, line in samples:
         decoded = reference.decode(spec, line)
         assert decoded.sentence is sentence, (line, decoded.sentence and decoded.sentence.id)
-        assert decoded.layout is layout or layout.selector is None and decoded.layout.selector is None, line
+        assert decoded.layout is layout, (line, layout.id, decoded.layout and decoded.layout.id)
 
 
 def test_tools_agree_and_round_trip_random_sentences(lines) -> None:
@@ -42,4 +41,3 @@ def test_tools_agree_and_round_trip_random_sentences(lines) -> None:
     objects = check_stream(data)
     failed = [(line, obj) for (_, _, line), obj in zip(samples, objects) if not obj["ok"]]
     assert not failed, failed[:5]
-    assert all(json.dumps(o).count('"ok": true') for o in objects)
