@@ -11,6 +11,7 @@ BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
 .PHONY: generate validate check build test test-generator test-python test-c test-c-memory test-rust test-tools clean \
+        bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-differential
 
 $(STAMP): requirements.txt
@@ -47,7 +48,7 @@ $(BIN)/nmea-rs: $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/
 
 # --- tests -----------------------------------------------------------------------------------
 
-test: check test-generator test-python test-c test-c-memory test-rust test-tools fuzz-smoke
+test: check test-generator test-python test-c test-c-memory test-rust test-tools test-bench-smoke fuzz-smoke
 
 test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
@@ -91,6 +92,21 @@ test-rust:
 
 test-tools: build $(STAMP)
 	$(PY) -m pytest -q tests/agreement
+
+# The benchmark harness for our implementations only, at a tiny size (no peers, nothing fetched).
+test-bench-smoke: $(STAMP)
+	$(PY) -m pytest -q tests/bench
+
+# --- benchmarks ------------------------------------------------------------------------------
+# `make bench` (not part of `make test`): ours in C, Rust and Python, the ceiling and the peers
+# (installed by bench/run.py from crates.io and PyPI) over a corpus built from the real logs.
+# Writes build/bench/results.{json,md} and docs/performance.md. Takes several minutes.
+BENCH_ROUNDS   ?= 5
+BENCH_LINES    ?= 1000000
+BENCH_PY_LINES ?= 100000
+
+bench: build
+	python3 bench/run.py --rounds $(BENCH_ROUNDS) --lines $(BENCH_LINES) --python-lines $(BENCH_PY_LINES)
 
 # --- fuzzing ---------------------------------------------------------------------------------
 # `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds, then replays what they

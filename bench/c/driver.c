@@ -1,0 +1,250 @@
+/*
+ * The C benchmark driver: reads the corpus into memory once, then times one operation of one
+ * implementation over every line and prints a JSON object.
+ *
+ *     bench-c ours|ceiling parse|serialize|roundtrip CORPUS [--by-type]
+ *
+ * parse: nmea_parse of every line (ok = lines parsed). serialize: the lines are parsed chunk by
+ * chunk outside the timed region, then only nmea_serialize of the chunk is timed (ok = lines
+ * written back byte for byte). roundtrip: parse then serialize each line, comparing with the input.
+ * ceiling: ceiling_scan (checksum and field boundaries), parse only. --by-type repeats the timing
+ * over the lines of each sentence type separately.
+ */
+#define _POSIX_C_SOURCE 199309L
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "ceiling.h"
+#include "nmea.h"
+
+#define CHUNK 2048
+
+typedef struct {
+    const char *ptr;
+    size_t len;
+} line_ref;
+
+typedef struct {
+    double seconds;
+    size_t ok;
+    size_t lines;
+} timing;
+
+static volatile size_t sink; /* keeps results observable so nothing is optimised away */
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static char *read_file(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    char *data;
+    long n;
+    if (!f || fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        perror(path);
+        exit(2);
+    }
+    data = malloc((size_t)n + 1);
+    if (!data || fread(data, 1, (size_t)n, f) != (size_t)n) {
+        perror(path);
+        exit(2);
+    }
+    fclose(f);
+    *size = (size_t)n;
+    return data;
+}
+
+/* Splits the corpus into lines without their CR LF. */
+static line_ref *split_lines(const char *data, size_t size, size_t *count)
+{
+    size_t n = 0, cap = 1024, start = 0, i;
+    line_ref *lines = malloc(cap * sizeof *lines);
+    for (i = 0; i < size; i++) {
+        if (data[i] != '\n')
+            continue;
+        if (n == cap) {
+            cap *= 2;
+            lines = realloc(lines, cap * sizeof *lines);
+        }
+        lines[n].ptr = data + start;
+        lines[n].len = i - start - (i > start && data[i - 1] == '\r');
+        n++;
+        start = i + 1;
+    }
+    *count = n;
+    return lines;
+}
+
+static timing time_parse(const line_ref *lines, size_t n)
+{
+    nmea_sentence s;
+    nmea_error err;
+    size_t ok = 0, i, ids = 0;
+    double start = now();
+    for (i = 0; i < n; i++) {
+        if (nmea_parse(&s, lines[i].ptr, lines[i].len, &err)) {
+            ok++;
+            ids += (size_t)s.id;
+        }
+    }
+    start = now() - start;
+    sink = ids;
+    return (timing){start, ok, n};
+}
+
+static timing time_ceiling(const line_ref *lines, size_t n)
+{
+    unsigned short starts[CEILING_MAX_FIELDS];
+    size_t ok = 0, i, total = 0;
+    double start = now();
+    for (i = 0; i < n; i++) {
+        int fields = ceiling_scan(lines[i].ptr, lines[i].len, starts);
+        if (fields > 0) {
+            ok++;
+            total += starts[fields - 1];
+        }
+    }
+    start = now() - start;
+    sink = total;
+    return (timing){start, ok, n};
+}
+
+static timing time_serialize(const line_ref *lines, size_t n)
+{
+    static nmea_sentence parsed[CHUNK];
+    static char out[CHUNK][NMEA_MAX_LINE + 3];
+    static size_t lengths[CHUNK];
+    nmea_error err;
+    size_t ok = 0, done, i, count;
+    double seconds = 0;
+    for (done = 0; done < n; done += count) {
+        const line_ref *chunk = lines + done;
+        size_t kept = 0;
+        size_t index[CHUNK];
+        double start;
+        count = n - done < CHUNK ? n - done : CHUNK;
+        for (i = 0; i < count; i++)
+            if (nmea_parse(&parsed[kept], chunk[i].ptr, chunk[i].len, &err))
+                index[kept++] = i;
+        start = now();
+        for (i = 0; i < kept; i++)
+            lengths[i] = nmea_serialize(&parsed[i], out[i], sizeof out[i]);
+        seconds += now() - start;
+        for (i = 0; i < kept; i++) {
+            const line_ref *line = &chunk[index[i]];
+            ok += lengths[i] == line->len && memcmp(out[i], line->ptr, line->len) == 0;
+        }
+    }
+    return (timing){seconds, ok, n};
+}
+
+static timing time_roundtrip(const line_ref *lines, size_t n)
+{
+    nmea_sentence s;
+    nmea_error err;
+    char out[NMEA_MAX_LINE + 3];
+    size_t ok = 0, i;
+    double start = now();
+    for (i = 0; i < n; i++) {
+        size_t len;
+        if (!nmea_parse(&s, lines[i].ptr, lines[i].len, &err))
+            continue;
+        len = nmea_serialize(&s, out, sizeof out);
+        ok += len == lines[i].len && memcmp(out, lines[i].ptr, len) == 0;
+    }
+    start = now() - start;
+    return (timing){start, ok, n};
+}
+
+static timing run(const char *impl, const char *op, const line_ref *lines, size_t n)
+{
+    if (strcmp(impl, "ceiling") == 0 && strcmp(op, "parse") == 0)
+        return time_ceiling(lines, n);
+    if (strcmp(impl, "ours") == 0 && strcmp(op, "parse") == 0)
+        return time_parse(lines, n);
+    if (strcmp(impl, "ours") == 0 && strcmp(op, "serialize") == 0)
+        return time_serialize(lines, n);
+    if (strcmp(impl, "ours") == 0 && strcmp(op, "roundtrip") == 0)
+        return time_roundtrip(lines, n);
+    fprintf(stderr, "unknown implementation/operation %s %s\n", impl, op);
+    exit(2);
+}
+
+/* The sentence type of a line: the three letters after `$` and the talker. */
+static int type_of(const line_ref *line, char type[4])
+{
+    if (line->len < 6)
+        return 0;
+    memcpy(type, line->ptr + 3, 3);
+    type[3] = '\0';
+    return 1;
+}
+
+static void print_by_type(const char *impl, const char *op, const line_ref *lines, size_t n)
+{
+    char types[64][4];
+    size_t ntypes = 0, i, t;
+    line_ref *group = malloc(n * sizeof *group);
+    char *text = malloc(lines[n - 1].ptr + lines[n - 1].len - lines[0].ptr);
+    for (i = 0; i < n; i++) {
+        char type[4];
+        if (!type_of(&lines[i], type))
+            continue;
+        for (t = 0; t < ntypes && strcmp(types[t], type) != 0; t++)
+            ;
+        if (t == ntypes && ntypes < 64)
+            memcpy(types[ntypes++], type, 4);
+    }
+    printf(", \"by_type\": {");
+    for (t = 0; t < ntypes; t++) {
+        size_t m = 0, used = 0;
+        timing r;
+        for (i = 0; i < n; i++) {
+            char type[4];
+            if (type_of(&lines[i], type) && strcmp(type, types[t]) == 0) {
+                /* copied next to each other, so that a group is read as sequentially as the corpus */
+                memcpy(text + used, lines[i].ptr, lines[i].len);
+                group[m].ptr = text + used;
+                group[m++].len = lines[i].len;
+                used += lines[i].len;
+            }
+        }
+        r = run(impl, op, group, m);
+        printf("%s\"%s\": {\"ns_per_line\": %.2f, \"ok_lines\": %zu, \"lines\": %zu}", t ? ", " : "", types[t],
+               r.seconds * 1e9 / (double)m, r.ok, m);
+    }
+    printf("}");
+    free(text);
+    free(group);
+}
+
+int main(int argc, char **argv)
+{
+    size_t size, n;
+    char *data;
+    line_ref *lines;
+    timing r;
+    if (argc < 4) {
+        fprintf(stderr, "usage: %s ours|ceiling parse|serialize|roundtrip CORPUS [--by-type]\n", argv[0]);
+        return 2;
+    }
+    data = read_file(argv[3], &size);
+    lines = split_lines(data, size, &n);
+    run(argv[1], argv[2], lines, n < 10000 ? n : 10000); /* warm the caches and branch predictors */
+    r = run(argv[1], argv[2], lines, n);
+    printf("{\"impl\": \"%s\", \"op\": \"%s\", \"lines\": %zu, \"bytes\": %zu, \"ns_per_line\": %.2f, \"ok_lines\": %zu",
+           argv[1], argv[2], n, size, r.seconds * 1e9 / (double)n, r.ok);
+    if (argc > 4 && strcmp(argv[4], "--by-type") == 0)
+        print_by_type(argv[1], argv[2], lines, n);
+    printf("}\n");
+    free(lines);
+    free(data);
+    return 0;
+}

@@ -1,0 +1,299 @@
+//! The Rust benchmark driver: reads the corpus into memory once, then times one operation of one
+//! implementation over every line and prints a JSON object.
+//!
+//! ```text
+//! bench-rs ours|nmea|nmea0183 parse|serialize|roundtrip CORPUS [--by-type]
+//! ```
+//!
+//! `ours` is `nmeaspec`: parse is `nmeaspec::parse`; serialize writes each parsed sentence's text
+//! (its `Display`, what `to_bytes` writes before its read-back check) into a fixed buffer, the
+//! sentences being parsed chunk by chunk outside the timed region; `to_bytes` (text, read-back
+//! check, CR LF) is timed too and reported beside it; roundtrip parses and writes each line and
+//! compares it with the input. A counting global allocator reports the allocations made inside
+//! our timed loops. The peers only parse: `nmea::parse_str` per line, and one `nmea0183::Parser`
+//! fed every line with its CR LF (built with the `peers` feature).
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::fmt::{self, Write as _};
+use std::hint::black_box;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+/// The system allocator, counting every allocation.
+struct CountingAllocator;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for CountingAllocator {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        System.realloc(ptr, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: CountingAllocator = CountingAllocator;
+
+fn allocations() -> usize {
+    ALLOCATIONS.load(Ordering::Relaxed)
+}
+
+/// Lines are parsed this many at a time before their serialization is timed.
+const CHUNK: usize = 2048;
+/// Room for the longest line a parser accepts and its CR LF.
+const LINE_CAPACITY: usize = nmeaspec::BUILD_CAPACITY;
+
+/// A `fmt::Write` into a fixed byte buffer; fails when the text does not fit.
+struct FixedWriter<'b> {
+    buf: &'b mut [u8],
+    len: usize,
+}
+
+impl fmt::Write for FixedWriter<'_> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let end = self.len + s.len();
+        self.buf
+            .get_mut(self.len..end)
+            .ok_or(fmt::Error)?
+            .copy_from_slice(s.as_bytes());
+        self.len = end;
+        Ok(())
+    }
+}
+
+/// Writes the sentence text into `buf`; its length, or None when it does not fit.
+fn write_text(sentence: &nmeaspec::Sentence<'_>, buf: &mut [u8]) -> Option<usize> {
+    let mut writer = FixedWriter { buf, len: 0 };
+    write!(writer, "{sentence}").ok().map(|()| writer.len)
+}
+
+#[derive(Default)]
+struct Timing {
+    seconds: f64,
+    ok: usize,
+    allocations: usize,
+}
+
+/// One corpus line: its text without, and with, its CR LF.
+#[derive(Clone, Copy)]
+struct Line<'a> {
+    text: &'a str,
+    raw: &'a [u8],
+}
+
+fn time_ours_parse(lines: &[Line<'_>]) -> Timing {
+    let before = allocations();
+    let start = Instant::now();
+    let mut ok = 0;
+    for line in lines {
+        if let Ok(sentence) = nmeaspec::parse(line.text) {
+            black_box(&sentence);
+            ok += 1;
+        }
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    Timing {
+        seconds,
+        ok,
+        allocations: allocations() - before,
+    }
+}
+
+/// Times `write` over the sentences of each chunk, parsed beforehand; counts the lines written
+/// back byte for byte (`with_line_ending`: the output ends with CR LF).
+fn time_ours_serialize(
+    lines: &[Line<'_>],
+    with_line_ending: bool,
+    write: impl Fn(&nmeaspec::Sentence<'_>, &mut [u8]) -> Option<usize>,
+) -> Timing {
+    let mut out = vec![0u8; CHUNK * LINE_CAPACITY];
+    let mut lengths = vec![None; CHUNK];
+    let mut parsed = Vec::with_capacity(CHUNK);
+    let mut timing = Timing::default();
+    for chunk in lines.chunks(CHUNK) {
+        parsed.clear();
+        parsed.extend(
+            chunk
+                .iter()
+                .filter_map(|line| nmeaspec::parse(line.text).ok().map(|s| (s, line))),
+        );
+        let before = allocations();
+        let start = Instant::now();
+        for ((sentence, _), (slot, length)) in parsed
+            .iter()
+            .zip(out.chunks_mut(LINE_CAPACITY).zip(lengths.iter_mut()))
+        {
+            *length = write(sentence, slot);
+        }
+        timing.seconds += start.elapsed().as_secs_f64();
+        timing.allocations += allocations() - before;
+        for ((_, line), (slot, length)) in
+            parsed.iter().zip(out.chunks(LINE_CAPACITY).zip(&lengths))
+        {
+            let expected = if with_line_ending {
+                line.raw
+            } else {
+                line.text.as_bytes()
+            };
+            timing.ok += usize::from(length.is_some_and(|n| &slot[..n] == expected));
+        }
+    }
+    timing
+}
+
+fn time_ours_roundtrip(lines: &[Line<'_>]) -> Timing {
+    let mut buf = [0u8; LINE_CAPACITY];
+    let before = allocations();
+    let start = Instant::now();
+    let mut ok = 0;
+    for line in lines {
+        if let Ok(sentence) = nmeaspec::parse(line.text) {
+            let written = write_text(&sentence, &mut buf);
+            ok += usize::from(written.is_some_and(|n| &buf[..n] == line.text.as_bytes()));
+        }
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    Timing {
+        seconds,
+        ok,
+        allocations: allocations() - before,
+    }
+}
+
+#[cfg(feature = "peers")]
+fn time_nmea_parse(lines: &[Line<'_>]) -> Timing {
+    let start = Instant::now();
+    let mut ok = 0;
+    for line in lines {
+        if let Ok(result) = nmea::parse_str(line.text) {
+            black_box(&result);
+            ok += 1;
+        }
+    }
+    Timing {
+        seconds: start.elapsed().as_secs_f64(),
+        ok,
+        allocations: 0,
+    }
+}
+
+#[cfg(feature = "peers")]
+fn time_nmea0183_parse(lines: &[Line<'_>]) -> Timing {
+    let mut parser = nmea0183::Parser::new();
+    let start = Instant::now();
+    let mut ok = 0;
+    for line in lines {
+        for result in parser.parse_from_bytes(line.raw).flatten() {
+            black_box(&result);
+            ok += 1;
+        }
+    }
+    Timing {
+        seconds: start.elapsed().as_secs_f64(),
+        ok,
+        allocations: 0,
+    }
+}
+
+fn run(implementation: &str, op: &str, lines: &[Line<'_>]) -> Timing {
+    match (implementation, op) {
+        ("ours", "parse") => time_ours_parse(lines),
+        ("ours", "serialize") => time_ours_serialize(lines, false, write_text),
+        ("ours", "to_bytes") => time_ours_serialize(lines, true, |sentence, buf| {
+            sentence.to_bytes(buf).ok().map(<[u8]>::len)
+        }),
+        ("ours", "roundtrip") => time_ours_roundtrip(lines),
+        #[cfg(feature = "peers")]
+        ("nmea", "parse") => time_nmea_parse(lines),
+        #[cfg(feature = "peers")]
+        ("nmea0183", "parse") => time_nmea0183_parse(lines),
+        _ => {
+            eprintln!("unknown implementation/operation {implementation} {op}");
+            std::process::exit(2);
+        }
+    }
+}
+
+fn split_lines(corpus: &str) -> Vec<Line<'_>> {
+    corpus
+        .split_inclusive('\n')
+        .map(|raw| Line {
+            text: raw.trim_end_matches(['\r', '\n']),
+            raw: raw.as_bytes(),
+        })
+        .collect()
+}
+
+fn ns_per_line(timing: &Timing, lines: usize) -> f64 {
+    timing.seconds * 1e9 / lines.max(1) as f64
+}
+
+/// Times `op` over the lines of each sentence type, each group copied into a text of its own.
+fn by_type(implementation: &str, op: &str, lines: &[Line<'_>]) -> String {
+    let mut types: Vec<&str> = Vec::new();
+    for line in lines {
+        let kind = line.text.get(3..6).unwrap_or("");
+        if !types.contains(&kind) {
+            types.push(kind);
+        }
+    }
+    let mut entries = Vec::new();
+    for kind in types {
+        let text: String = lines
+            .iter()
+            .filter(|l| l.text.get(3..6).unwrap_or("") == kind)
+            .map(|l| std::str::from_utf8(l.raw).unwrap())
+            .collect();
+        let group = split_lines(&text);
+        let timing = run(implementation, op, &group);
+        entries.push(format!(
+            "\"{kind}\": {{\"ns_per_line\": {:.2}, \"ok_lines\": {}, \"lines\": {}}}",
+            ns_per_line(&timing, group.len()),
+            timing.ok,
+            group.len()
+        ));
+    }
+    entries.join(", ")
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args.len() < 4 {
+        eprintln!(
+            "usage: bench-rs ours|nmea|nmea0183 parse|serialize|roundtrip CORPUS [--by-type]"
+        );
+        std::process::exit(2);
+    }
+    let (implementation, op) = (args[1].as_str(), args[2].as_str());
+    let corpus = std::fs::read_to_string(&args[3]).expect("read the corpus");
+    let lines = split_lines(&corpus);
+    run(implementation, op, &lines[..lines.len().min(10_000)]); // warm the caches and branch predictors
+    let timing = run(implementation, op, &lines);
+    let mut json = format!(
+        "{{\"impl\": \"{implementation}\", \"op\": \"{op}\", \"lines\": {}, \"bytes\": {}, \"ns_per_line\": {:.2}, \"ok_lines\": {}, \"allocations\": {}",
+        lines.len(),
+        corpus.len(),
+        ns_per_line(&timing, lines.len()),
+        timing.ok,
+        timing.allocations
+    );
+    if implementation == "ours" && op == "serialize" {
+        let checked = run(implementation, "to_bytes", &lines);
+        json += &format!(
+            ", \"to_bytes_ns_per_line\": {:.2}, \"to_bytes_ok_lines\": {}",
+            ns_per_line(&checked, lines.len()),
+            checked.ok
+        );
+    }
+    if args.get(4).map(String::as_str) == Some("--by-type") {
+        json += &format!(", \"by_type\": {{{}}}", by_type(implementation, op, &lines));
+    }
+    println!("{json}}}");
+}

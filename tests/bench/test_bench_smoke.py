@@ -1,0 +1,38 @@
+"""The benchmark harness at a tiny size: our implementations only (no peers, nothing fetched), one
+round over 2,000 lines. Checks the shape of results.json and that every line parses and comes back
+byte for byte; the timings of so small a run mean nothing."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+OUT = ROOT / "build" / "bench-smoke"
+LINES = 2000
+OURS = {"ours-c": "c", "ours-rust": "rust", "ours-python": "python"}
+OPS = ("parse", "serialize", "roundtrip")
+
+
+def test_bench_smoke():
+    subprocess.run([sys.executable, "bench/run.py", "--lines", str(LINES), "--rounds", "1", "--no-peers",
+                    "--no-docs", "--no-memory", "--cargo-profile", "smoke", "--out", str(OUT)],
+                   cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
+    report = json.loads((OUT / "results.json").read_text())
+    assert report["corpus"]["lines"] == LINES
+    assert report["corpus"]["bytes"] == (OUT / "corpus.nmea").stat().st_size
+    rows = {(r["name"], r["op"]): r for r in report["results"]}
+    expected = {(name, op) for name in OURS for op in OPS} | {("ceiling-c", "parse")}
+    assert set(rows) == expected
+    for (name, op), row in rows.items():
+        assert set(row) >= {"name", "lang", "op", "ns_per_line", "ok_lines"}
+        assert row["lang"] == OURS.get(name, "c")
+        assert row["ns_per_line"] > 0
+        # Every corpus line parses and, serialized, is the input byte for byte.
+        assert row["ok_lines"] == LINES, (name, op)
+    for op in OPS:
+        assert rows[("ours-rust", op)]["allocations"] == 0
+        assert set(rows[("ours-c", op)]["by_type"]) <= {"GGA", "RMC", "GSV", "GSA", "VTG", "GLL", "ZDA", "GST"}
+    assert report["c_object"]["heap"] == []
+    assert report["struct_sizes"]["nmea_sentence"] > 0
+    assert (OUT / "results.md").read_text().startswith("Corpus: 2,000 lines")
