@@ -16,7 +16,7 @@ OPS = ("parse", "serialize", "roundtrip")
 
 def test_bench_smoke():
     subprocess.run([sys.executable, "bench/run.py", "--lines", str(LINES), "--rounds", "1", "--no-peers",
-                    "--no-docs", "--no-memory", "--cargo-profile", "smoke", "--out", str(OUT)],
+                    "--no-docs", "--no-memory", "--no-instructions", "--cargo-profile", "smoke", "--out", str(OUT)],
                    cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
     report = json.loads((OUT / "results.json").read_text())
     assert report["corpus"]["lines"] == LINES
