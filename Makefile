@@ -10,7 +10,7 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build test test-generator test-python test-c test-c-memory test-rust test-tools clean \
+.PHONY: generate validate check build test test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-differential
 
 $(STAMP): requirements.txt
@@ -47,7 +47,7 @@ $(BIN)/nmea-rs: $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/
 
 # --- tests -----------------------------------------------------------------------------------
 
-test: check test-generator test-python test-c test-c-memory test-rust test-tools fuzz-smoke
+test: check test-generator test-python test-c test-c-memory test-rust test-tools test-workflows fuzz-smoke
 
 test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
@@ -91,6 +91,13 @@ test-rust:
 
 test-tools: build $(STAMP)
 	$(PY) -m pytest -q tests/agreement
+
+# The users' workflows from fresh temporary directories: the C pair in a CMake project and a plain
+# build, the Rust crate as a path dependency with vendor features and serde, the Python package
+# pip-installed into a new venv (mypy --strict on a user script), the `nmea` tool, the docs' links
+# and the HTML site in headless Chromium.
+test-workflows: $(STAMP)
+	$(PY) -m pytest -q tests/workflows
 
 # --- fuzzing ---------------------------------------------------------------------------------
 # `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds, then replays what they

@@ -110,9 +110,9 @@ class Summary:
                   f"{sum(self.unknown.values())} unknown, {total_errors} errors\n")
         for title, counts in (("sentences", self.sentences), ("unknown", self.unknown), ("errors", self.errors)):
             if counts:
-                width = max(len(k) for k in list(counts)[:self.LIMIT])
-                out.write(f"{title}:\n")
                 ranked = sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))
+                width = max(len(k) for k, _ in ranked[:self.LIMIT])
+                out.write(f"{title}:\n")
                 for key, count in ranked[:self.LIMIT]:
                     out.write(f"  {key:<{width}}  {count}\n")
                 if len(ranked) > self.LIMIT:

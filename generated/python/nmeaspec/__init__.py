@@ -4,11 +4,11 @@
 """NMEA 0183 parsers and serializers generated from the spec: 65 sentences.
 
     >>> import nmeaspec
-    >>> gga = nmeaspec.parse("$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,*67")
+    >>> gga = nmeaspec.parse("$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,*66")
     >>> gga.quality, float(gga.altitude.value)
     (<GgaQuality.AUTONOMOUS: '1'>, 188.976)
     >>> gga.to_sentence()
-    '$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,*67'
+    '$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,*66'
 
 Errors are `NmeaError`s with a `kind`, the `address`, the 1-based `field` index and its `name`.
 """
