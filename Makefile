@@ -45,6 +45,19 @@ $(BIN)/nmea-rs: $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/
 	cargo build --quiet --release --manifest-path generated/rust/Cargo.toml --features std --bin nmea-rs --target-dir $(CARGO_TARGET)
 	cp $(CARGO_TARGET)/release/nmea-rs $@
 
+# --- the docs as a static HTML site (mkdocs, its built-in search) -----------------------------
+
+DOCS_VENV  := .venv-docs
+DOCS_STAMP := $(DOCS_VENV)/.installed
+
+$(DOCS_STAMP): docs/requirements-docs.txt
+	python3 -m venv $(DOCS_VENV)
+	$(DOCS_VENV)/bin/pip install --quiet --disable-pip-version-check -r docs/requirements-docs.txt
+	touch $@
+
+docs-site: $(DOCS_STAMP)
+	$(DOCS_VENV)/bin/mkdocs build --strict --quiet --config-file mkdocs.yml
+
 # --- tests -----------------------------------------------------------------------------------
 
 test: check test-generator test-python test-c test-c-memory test-rust test-tools test-workflows fuzz-smoke
@@ -96,7 +109,7 @@ test-tools: build $(STAMP)
 # build, the Rust crate as a path dependency with vendor features and serde, the Python package
 # pip-installed into a new venv (mypy --strict on a user script), the `nmea` tool, the docs' links
 # and the HTML site in headless Chromium.
-test-workflows: $(STAMP)
+test-workflows: $(STAMP) $(DOCS_STAMP)
 	$(PY) -m pytest -q tests/workflows
 
 # --- fuzzing ---------------------------------------------------------------------------------

@@ -32,7 +32,7 @@ def command_views(spec: Spec) -> tuple[list[dict], list[dict]]:
             arguments = [{"id": f.id, "type": f.type, "doc": _first_sentence(f.doc),
                           "enum": f.enum.camel if f.enum else None, "value": f.value, "optional": f.is_optional}
                          for f in layout.fields]
-            commands.append({"vendor": s.vendor, "name": name, "layout": s.layout_camel(layout),
+            commands.append({"sentence": s, "layout_id": layout.id, "vendor": s.vendor, "name": name, "layout": s.layout_camel(layout),
                              "doc": _one_line(layout.name if layout.id else s.name), "arguments": arguments,
                              "text": s.framing == "text"})
             for f in layout.fields:
@@ -43,6 +43,16 @@ def command_views(spec: Spec) -> tuple[list[dict], list[dict]]:
     names = [(c["vendor"], c["name"]) for c in commands]
     assert len(names) == len(set(names)), "two commands of a vendor share a name"
     return commands, shortcuts
+
+
+def usage(command: dict) -> str:
+    """How `nmea command --list` writes a command: its name, then its arguments (optional ones and
+    keywords, which may be left out, in brackets)."""
+    words = [command["name"]]
+    for a in command["arguments"]:
+        word = (a["value"] or "").lower() if a["type"] == "keyword" else a["id"].upper()
+        words.append(f"[{word}]" if a["optional"] or a["type"] == "keyword" else word)
+    return " ".join(words)
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
