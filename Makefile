@@ -97,10 +97,20 @@ test-c-memory: $(STAMP)
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug decode < tests/agreement/edge_cases.txt > /dev/null
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug encode < build/c/valgrind.jsonl > /dev/null
 
+# The crate's receiver features (default: all of them); each must build and lint on its own.
+RUST_VENDORS = $(shell sed -n 's/^\([a-z0-9_]*\) = \[\]$$/\1/p' generated/rust/Cargo.toml | grep -vx std)
+
 test-rust:
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --features std --target-dir $(CARGO_TARGET)
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --no-default-features --lib --target-dir $(CARGO_TARGET)
 	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --features std --target-dir $(CARGO_TARGET) -- -D warnings
+	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --features std,serde --target-dir $(CARGO_TARGET) -- -D warnings
+	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --target-dir $(CARGO_TARGET) -- -D warnings
+	set -e; for vendor in $(RUST_VENDORS); do \
+		cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --features $$vendor \
+			--target-dir $(CARGO_TARGET) -- -D warnings; \
+	done
+	cargo fmt --manifest-path generated/rust/Cargo.toml --check
 
 test-tools: build $(STAMP)
 	$(PY) -m pytest -q tests/agreement

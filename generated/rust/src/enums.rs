@@ -11,6 +11,7 @@ use crate::runtime::{CodeClass, CodeEnum};
 /// ComNav NMEA log name: The NMEA messages the ComNav LOG command can request (manual Table 2, "LOG
 /// MESSAGE"). The log names always carry the GP prefix, whatever talker ID the output uses (set by
 /// NMEATALKER). Matched ignoring case.
+#[cfg(feature = "comnav")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ComnavLogMessage {
     /// GGA, GNSS fix data and undulation, with ComNav's higher position precision (that of its
@@ -35,6 +36,7 @@ pub enum ComnavLogMessage {
     Gpzda,
 }
 
+#[cfg(feature = "comnav")]
 impl CodeEnum for ComnavLogMessage {
     const EXPECTED: &'static str = "comnav_log_message code (GPGGA GPGLL GPGSA GPGST GPGSV GPHDT GPRMC GPVTG GPZDA)";
     const EXPECTED_CHARS: &'static str =
@@ -102,6 +104,7 @@ impl CodeEnum for ComnavLogMessage {
 /// put in front of the selected sentences, or AUTO. The manual lists exactly these six. BeiDou uses
 /// BD by default (compatibility); the manual notes that NMEA 0183 v4.10 (supplement of 19 June 2018) requires GB and that ComNav can switch BeiDou to GB only in custom firmware. Matched
 /// ignoring case.
+#[cfg(feature = "comnav")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ComnavTalkerId {
     /// GN, combined GNSS.
@@ -120,6 +123,7 @@ pub enum ComnavTalkerId {
     Auto,
 }
 
+#[cfg(feature = "comnav")]
 impl CodeEnum for ComnavTalkerId {
     const EXPECTED: &'static str = "comnav_talker_id code (GN GP BD GL GA AUTO)";
     const EXPECTED_CHARS: &'static str = "comnav_talker_id codes (GN GP BD GL GA AUTO)";
@@ -166,6 +170,7 @@ impl CodeEnum for ComnavTalkerId {
 /// ComNav NMEATALKER sentence selector: First argument of the ComNav NMEATALKER command: the
 /// sentence whose talker ID is set. The manual lists 10 identifiers, nine sentence formatters and
 /// ALL (printed "TODOS" by the Spanish machine translation). Matched ignoring case.
+#[cfg(feature = "comnav")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ComnavTalkerSentence {
     /// GGA, fix data.
@@ -191,6 +196,7 @@ pub enum ComnavTalkerSentence {
     All,
 }
 
+#[cfg(feature = "comnav")]
 impl CodeEnum for ComnavTalkerSentence {
     const EXPECTED: &'static str = "comnav_talker_sentence code (GGA GSA GSV GST ZDA HDT RMC VTG GLL ALL)";
     const EXPECTED_CHARS: &'static str = "comnav_talker_sentence codes (GGA GSA GSV GST ZDA HDT RMC VTG GLL ALL)";
@@ -389,6 +395,7 @@ impl CodeEnum for DtmLonOffsetDir {
 /// (manual section 4), apart from the RQUERY and NQUERY requests, which have their own files. Every
 /// word is exactly 6 characters; the `\<msg\> ON` words contain a real space. The manual marks all
 /// input commands as GeoS-5M only and documents no reply or acknowledgement for any of these.
+#[cfg(feature = "geos5")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Geos5CommandWord {
     /// Switch the receiver port that runs the NMEA protocol to the receiver's binary protocol
@@ -537,6 +544,7 @@ pub enum Geos5CommandWord {
     GlonassGpsGalileo,
 }
 
+#[cfg(feature = "geos5")]
 impl CodeEnum for Geos5CommandWord {
     const EXPECTED: &'static str = "geos5_command_word code (SWPROT SAVEFL CSTART WSTART HSTART BDR004 BDR009 BDR019 BDR038 BDR057 BDR115 BDR230 BDR460 BDR921 STOP01 STOP02 GGA ON GGAOFF GLL ON GLLOFF GSA ON GSAOFF GSV ON GSVOFF RMC ON RMCOFF VTG ON VTGOFF ZDA ON ZDAOFF DTM ON DTMOFF RLM ON RLMOFF NMEAV2 NMEAV4 RATE01 RATE02 RATE05 RATE10 PSM ON PSMOFF ELEV05 ELEV06 ELEV07 ELEV08 ELEV09 ELEV10 ELEV11 ELEV12 ELEV13 ELEV14 ELEV15 DATP90 DATW84 NVSGPS NVSGLN NVSMIX)";
     const EXPECTED_CHARS: &'static str = "geos5_command_word codes (SWPROT SAVEFL CSTART WSTART HSTART BDR004 BDR009 BDR019 BDR038 BDR057 BDR115 BDR230 BDR460 BDR921 STOP01 STOP02 GGA ON GGAOFF GLL ON GLLOFF GSA ON GSAOFF GSV ON GSVOFF RMC ON RMCOFF VTG ON VTGOFF ZDA ON ZDAOFF DTM ON DTMOFF RLM ON RLMOFF NMEAV2 NMEAV4 RATE01 RATE02 RATE05 RATE10 PSM ON PSMOFF ELEV05 ELEV06 ELEV07 ELEV08 ELEV09 ELEV10 ELEV11 ELEV12 ELEV13 ELEV14 ELEV15 DATP90 DATW84 NVSGPS NVSGLN NVSMIX)";
@@ -798,6 +806,7 @@ impl CodeEnum for Geos5CommandWord {
 /// GeoS-5 per-sentence output rate: How often one standard sentence is output, as reported for each
 /// sentence by $GPSGG,NQUERY. The `\<msg\> ON`/`\<msg\>OFF` commands switch a sentence on or off; the
 /// manual gives no command that selects the 2 s or 20 s periods.
+#[cfg(feature = "geos5")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Geos5MessageRate {
     /// Not output.
@@ -812,6 +821,7 @@ pub enum Geos5MessageRate {
     OutputRate,
 }
 
+#[cfg(feature = "geos5")]
 impl CodeEnum for Geos5MessageRate {
     const EXPECTED: &'static str = "geos5_message_rate code (0 1 2 3 R)";
     const EXPECTED_CHARS: &'static str = "geos5_message_rate codes (0 1 2 3 R)";
@@ -854,6 +864,7 @@ impl CodeEnum for Geos5MessageRate {
 
 /// GeoS-5 NMEA standard version: Version of the NMEA 0183 standard the standard sentences follow,
 /// reported by $GPSGG,NQUERY and selected with the NMEAV2/NMEAV4 commands.
+#[cfg(feature = "geos5")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Geos5NmeaVersion {
     /// NMEA 0183 v2.x.
@@ -862,6 +873,7 @@ pub enum Geos5NmeaVersion {
     V410,
 }
 
+#[cfg(feature = "geos5")]
 impl CodeEnum for Geos5NmeaVersion {
     const EXPECTED: &'static str = "geos5_nmea_version code (2 4)";
     const EXPECTED_CHARS: &'static str = "geos5_nmea_version codes (2 4)";
@@ -896,6 +908,7 @@ impl CodeEnum for Geos5NmeaVersion {
 /// GeoS-5 output data rate: Navigation output data rate reported in the output-rate field of
 /// $GPSGG,NQUERY (the same coding as bits 19:18 of configuration register 1 in RQUERY). Set with
 /// the RATE01/02/05/10 commands.
+#[cfg(feature = "geos5")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Geos5OutputRate {
     /// 10 Hz.
@@ -908,6 +921,7 @@ pub enum Geos5OutputRate {
     Rate1hz,
 }
 
+#[cfg(feature = "geos5")]
 impl CodeEnum for Geos5OutputRate {
     const EXPECTED: &'static str = "geos5_output_rate code (0 1 2 3)";
     const EXPECTED_CHARS: &'static str = "geos5_output_rate codes (0 1 2 3)";
@@ -1562,6 +1576,7 @@ impl CodeEnum for SignalId {
 /// SiRF serial baud rate: Serial port speed in bit/s accepted by $PSRF100 (port A) and $PSRF102
 /// (port B, DGPS input). The code is the rate itself. The GlobalSat manual lists 1200 to 38400;
 /// whether faster rates are accepted is not stated.
+#[cfg(feature = "globalsat")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SirfBaud {
     /// 1200 bit/s.
@@ -1578,6 +1593,7 @@ pub enum SirfBaud {
     Baud38400,
 }
 
+#[cfg(feature = "globalsat")]
 impl CodeEnum for SirfBaud {
     const EXPECTED: &'static str = "sirf_baud code (1200 2400 4800 9600 19200 38400)";
     const EXPECTED_CHARS: &'static str = "sirf_baud codes (1200 2400 4800 9600 19200 38400)";
@@ -1625,6 +1641,7 @@ impl CodeEnum for SirfBaud {
 /// SiRF NMEA checksum enable: Whether the sentence selected by $PSRF103 is sent with a checksum.
 /// The manual's value list writes 0 and 1 (names lost in extraction, reconstructed from the SiRF
 /// NMEA reference), its examples write 01; the codes are the two-digit wire form of the examples.
+#[cfg(feature = "globalsat")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SirfChecksumEnable {
     /// Sentence sent without the *hh checksum.
@@ -1633,6 +1650,7 @@ pub enum SirfChecksumEnable {
     Enabled,
 }
 
+#[cfg(feature = "globalsat")]
 impl CodeEnum for SirfChecksumEnable {
     const EXPECTED: &'static str = "sirf_checksum_enable code (00 01)";
     const EXPECTED_CHARS: &'static str = "sirf_checksum_enable codes (00 01)";
@@ -1667,6 +1685,7 @@ impl CodeEnum for SirfChecksumEnable {
 /// SiRF development data switch: Argument of $PSRF105: switches the receiver's development (debug)
 /// messages on or off. The manual prints the codes; the words "off"/"on" were lost in extraction
 /// and are confirmed by the English command title "Switch Development Data Messages On/Off".
+#[cfg(feature = "globalsat")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SirfDebug {
     /// Development data messages off.
@@ -1675,6 +1694,7 @@ pub enum SirfDebug {
     On,
 }
 
+#[cfg(feature = "globalsat")]
 impl CodeEnum for SirfDebug {
     const EXPECTED: &'static str = "sirf_debug code (0 1)";
     const EXPECTED_CHARS: &'static str = "sirf_debug codes (0 1)";
@@ -1709,6 +1729,7 @@ impl CodeEnum for SirfDebug {
 /// SiRF standard NMEA message selector: Which standard sentence $PSRF103 polls or schedules. The
 /// manual's value list writes the numbers 0-5, its examples write them with two digits (00, 05), as
 /// SiRF receivers do; the codes here are the two-digit wire form of the examples.
+#[cfg(feature = "globalsat")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SirfNmeaMessage {
     /// GGA, fix data.
@@ -1725,6 +1746,7 @@ pub enum SirfNmeaMessage {
     Vtg,
 }
 
+#[cfg(feature = "globalsat")]
 impl CodeEnum for SirfNmeaMessage {
     const EXPECTED: &'static str = "sirf_nmea_message code (00 01 02 03 04 05)";
     const EXPECTED_CHARS: &'static str = "sirf_nmea_message codes (00 01 02 03 04 05)";
@@ -1770,6 +1792,7 @@ impl CodeEnum for SirfNmeaMessage {
 
 /// SiRF OkToSend state: Argument of $PSRF150. The GS501 manual names the sentence but gives no
 /// format; the values are reconstructed (SiRF NMEA reference).
+#[cfg(feature = "gs501")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SirfOkToSend {
     /// Not OK to send, the receiver is about to enter a power-saving state and will not accept
@@ -1779,6 +1802,7 @@ pub enum SirfOkToSend {
     Ok,
 }
 
+#[cfg(feature = "gs501")]
 impl CodeEnum for SirfOkToSend {
     const EXPECTED: &'static str = "sirf_ok_to_send code (0 1)";
     const EXPECTED_CHARS: &'static str = "sirf_ok_to_send codes (0 1)";
@@ -1813,6 +1837,7 @@ impl CodeEnum for SirfOkToSend {
 /// SiRF serial parity: Parity of a SiRF serial port ($PSRF100 and $PSRF102). The manual prints the
 /// codes 0, 1 and 2 but the names were lost in extraction; 0 = none is confirmed by the example
 /// caption "9600,8,N,1", odd/even for 1/2 are reconstructed (SiRF NMEA reference).
+#[cfg(feature = "globalsat")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SirfParity {
     /// No parity.
@@ -1823,6 +1848,7 @@ pub enum SirfParity {
     Even,
 }
 
+#[cfg(feature = "globalsat")]
 impl CodeEnum for SirfParity {
     const EXPECTED: &'static str = "sirf_parity code (0 1 2)";
     const EXPECTED_CHARS: &'static str = "sirf_parity codes (0 1 2)";
@@ -1860,6 +1886,7 @@ impl CodeEnum for SirfParity {
 /// SiRF serial port protocol: Protocol to run on SiRF serial port A ($PSRF100 argument 1). The
 /// manual prints the codes with the protocol names; the rest of the Russian text was lost in
 /// extraction.
+#[cfg(feature = "globalsat")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SirfProtocol {
     /// SiRF binary protocol. The NMEA interface stops; further configuration is done in binary
@@ -1869,6 +1896,7 @@ pub enum SirfProtocol {
     Nmea,
 }
 
+#[cfg(feature = "globalsat")]
 impl CodeEnum for SirfProtocol {
     const EXPECTED: &'static str = "sirf_protocol code (0 1)";
     const EXPECTED_CHARS: &'static str = "sirf_protocol codes (0 1)";
@@ -1904,6 +1932,7 @@ impl CodeEnum for SirfProtocol {
 /// list writes 0 and 1 (their Russian names were lost; meanings from the SiRF NMEA reference and
 /// from the example captions), its examples write 00 and 01; the codes are the two-digit wire form
 /// of the examples.
+#[cfg(feature = "globalsat")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SirfRateMode {
     /// Set the periodic output rate of the sentence to the rate argument (0 turns it off).
@@ -1912,6 +1941,7 @@ pub enum SirfRateMode {
     Query,
 }
 
+#[cfg(feature = "globalsat")]
 impl CodeEnum for SirfRateMode {
     const EXPECTED: &'static str = "sirf_rate_mode code (00 01)";
     const EXPECTED_CHARS: &'static str = "sirf_rate_mode codes (00 01)";
@@ -2056,6 +2086,7 @@ impl CodeEnum for SystemId {
 /// Teseo NMEA port baud rate code: Baud rate codes of CDB parameter 102 (NMEA port baud rate). The
 /// code is the parameter value, written in hex without "0x" like every integer CDB parameter. The
 /// default is A (115200 baud); a new rate takes effect after the receiver is restarted.
+#[cfg(feature = "teseo")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TeseoBaud {
     /// 300 baud.
@@ -2088,6 +2119,7 @@ pub enum TeseoBaud {
     Baud921600,
 }
 
+#[cfg(feature = "teseo")]
 impl CodeEnum for TeseoBaud {
     const EXPECTED: &'static str = "teseo_baud code (0 1 2 3 4 5 6 7 8 9 A B C D)";
     const EXPECTED_CHARS: &'static str = "teseo_baud codes (0 1 2 3 4 5 6 7 8 9 A B C D)";
@@ -2172,6 +2204,7 @@ impl CodeEnum for TeseoBaud {
 
 /// Teseo firmware compiler type: Tool chain that built the GNSS library, as reported by the
 /// $PSTMGETSWVER answer.
+#[cfg(feature = "teseo")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TeseoCompilerType {
     /// Built with the ARM compiler.
@@ -2180,6 +2213,7 @@ pub enum TeseoCompilerType {
     Gnu,
 }
 
+#[cfg(feature = "teseo")]
 impl CodeEnum for TeseoCompilerType {
     const EXPECTED: &'static str = "teseo_compiler_type code (ARM GNU)";
     const EXPECTED_CHARS: &'static str = "teseo_compiler_type codes (ARM GNU)";
@@ -2213,6 +2247,7 @@ impl CodeEnum for TeseoCompilerType {
 
 /// Teseo NMEA output on/off: Argument of $PSTMNMEAONOFF: the state the NMEA output is to take. A
 /// request for the state the output is already in is rejected without effect.
+#[cfg(feature = "teseo")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TeseoNmeaOnOff {
     /// Stop the NMEA output.
@@ -2221,6 +2256,7 @@ pub enum TeseoNmeaOnOff {
     On,
 }
 
+#[cfg(feature = "teseo")]
 impl CodeEnum for TeseoNmeaOnOff {
     const EXPECTED: &'static str = "teseo_nmea_on_off code (0 1)";
     const EXPECTED_CHARS: &'static str = "teseo_nmea_on_off codes (0 1)";
@@ -2253,6 +2289,7 @@ impl CodeEnum for TeseoNmeaOnOff {
 }
 
 /// Teseo RTC status: State of the real-time clock reported by the $PSTMGETRTCTIME answer.
+#[cfg(feature = "teseo")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TeseoRtcStatus {
     /// The RTC does not hold a valid time.
@@ -2263,6 +2300,7 @@ pub enum TeseoRtcStatus {
     Approximate,
 }
 
+#[cfg(feature = "teseo")]
 impl CodeEnum for TeseoRtcStatus {
     const EXPECTED: &'static str = "teseo_rtc_status code (0 1 2)";
     const EXPECTED_CHARS: &'static str = "teseo_rtc_status codes (0 1 2)";
@@ -2300,6 +2338,7 @@ impl CodeEnum for TeseoRtcStatus {
 /// Teseo $PSTMSETPAR write mode: How $PSTMSETPAR combines the value it carries with the parameter's
 /// value in the configuration block (optional last argument; absent means 0, replace). Modes 1 and
 /// 2 serve bitmask parameters such as CDB 200 and 201: they set or clear only the bits given.
+#[cfg(feature = "teseo")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TeseoSetparMode {
     /// The parameter takes the given value (the default when the argument is absent).
@@ -2311,6 +2350,7 @@ pub enum TeseoSetparMode {
     ClearBits,
 }
 
+#[cfg(feature = "teseo")]
 impl CodeEnum for TeseoSetparMode {
     const EXPECTED: &'static str = "teseo_setpar_mode code (0 1 2)";
     const EXPECTED_CHARS: &'static str = "teseo_setpar_mode codes (0 1 2)";
@@ -2348,6 +2388,7 @@ impl CodeEnum for TeseoSetparMode {
 /// Teseo time validity: Where the time known to the GNSS engine comes from and how far it can be
 /// trusted, as reported by the $PSTMGETRTCTIME answer. The manual only names the levels; their
 /// meanings below follow the names.
+#[cfg(feature = "teseo")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TeseoTimeValidity {
     /// No time is known.
@@ -2371,6 +2412,7 @@ pub enum TeseoTimeValidity {
     EphemerisTime,
 }
 
+#[cfg(feature = "teseo")]
 impl CodeEnum for TeseoTimeValidity {
     const EXPECTED: &'static str = "teseo_time_validity code (0 1 2 3 4 5 6 7 8)";
     const EXPECTED_CHARS: &'static str = "teseo_time_validity codes (0 1 2 3 4 5 6 7 8)";

@@ -55,9 +55,11 @@ pub mod runtime;
 pub mod sentences;
 pub mod tables;
 
+#[cfg(feature = "comnav")]
+use runtime::is_command_word;
 #[cfg(feature = "std")]
 use runtime::json::{self, Value, WireFields};
-use runtime::{first_word, is_command_word, is_standard_address, strip_line_ending, upper_eq};
+use runtime::{first_word, is_standard_address, strip_line_ending, upper_eq};
 pub use runtime::{
     Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Error, ErrorKind, FieldProblem, Fields, Frame, Framing,
     Generic, Group, Hex, Kind, Layout, Name, Number, Problems, Sign, Time, BUILD_CAPACITY, MAX_PROBLEMS,
@@ -67,6 +69,7 @@ pub use runtime::stream;
 pub use sentences::*;
 
 /// A decoded sentence: one variant per layout of the spec, and [`Generic`] for the rest.
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[allow(clippy::large_enum_variant)] // no boxes: parsing does not allocate
 pub enum Sentence<'a> {
@@ -99,118 +102,175 @@ pub enum Sentence<'a> {
     /// ZDA: Time and date.
     Zda(Zda<'a>),
     /// COMNAV_LOG: Request periodic output of an NMEA message.
+    #[cfg(feature = "comnav")]
     ComnavLog(ComnavLog<'a>),
     /// COMNAV_NMEATALKER: Set, list or reset the NMEA talker IDs.
+    #[cfg(feature = "comnav")]
     ComnavNmeatalker(ComnavNmeatalker<'a>),
     /// COMNAV_NMEATALKER (List the talker IDs).
+    #[cfg(feature = "comnav")]
     ComnavNmeatalkerList(ComnavNmeatalkerList<'a>),
     /// COMNAV_NMEATALKER (Reset the talker IDs).
+    #[cfg(feature = "comnav")]
     ComnavNmeatalkerReset(ComnavNmeatalkerReset<'a>),
     /// GEOS5_COMMAND: GeoS-5 input command.
+    #[cfg(feature = "geos5")]
     Geos5Command(Geos5Command<'a>),
     /// GEOS5_JAMDET: GeoS-5 jamming detected.
+    #[cfg(feature = "geos5")]
     Geos5Jamdet(Geos5Jamdet<'a>),
     /// GEOS5_NQUERY: GeoS-5 set and rates of NMEA sentences.
+    #[cfg(feature = "geos5")]
     Geos5Nquery(Geos5Nquery<'a>),
     /// GEOS5_NQUERY_REQUEST: GeoS-5 request for the set and rates of NMEA sentences.
+    #[cfg(feature = "geos5")]
     Geos5NqueryRequest(Geos5NqueryRequest),
     /// GEOS5_RQUERY: GeoS-5 software version, telemetry and configuration.
+    #[cfg(feature = "geos5")]
     Geos5Rquery(Geos5Rquery<'a>),
     /// GEOS5_RQUERY_REQUEST: GeoS-5 request for software version, telemetry and configuration.
+    #[cfg(feature = "geos5")]
     Geos5RqueryRequest(Geos5RqueryRequest),
     /// PSRF100: Set serial port A.
+    #[cfg(feature = "globalsat")]
     Psrf100(Psrf100<'a>),
     /// PSRF101: Navigation initialisation, ECEF.
+    #[cfg(feature = "globalsat")]
     Psrf101(Psrf101),
     /// PSRF102: Set DGPS serial port B.
+    #[cfg(feature = "globalsat")]
     Psrf102(Psrf102<'a>),
     /// PSRF103: Query or set the rate of a standard NMEA sentence.
+    #[cfg(feature = "globalsat")]
     Psrf103(Psrf103<'a>),
     /// PSRF104: Navigation initialisation, latitude/longitude/altitude.
+    #[cfg(feature = "globalsat")]
     Psrf104(Psrf104),
     /// PSRF105: Switch development data messages on/off.
+    #[cfg(feature = "globalsat")]
     Psrf105(Psrf105<'a>),
     /// PSRF150: OkToSend.
+    #[cfg(feature = "gs501")]
     Psrf150(Psrf150<'a>),
     /// PSTMAGPS: ST STAGPS predicted ephemeris information.
+    #[cfg(feature = "teseo")]
     Pstmagps(Pstmagps<'a>),
     /// PSTMALMANAC: ST almanac data.
+    #[cfg(feature = "teseo")]
     Pstmalmanac(Pstmalmanac<'a>),
     /// PSTMCLRALMS: Clear all almanacs.
+    #[cfg(feature = "teseo")]
     Pstmclralms(Pstmclralms),
     /// PSTMCLREPHS: Clear all ephemerides.
+    #[cfg(feature = "teseo")]
     Pstmclrephs(Pstmclrephs),
     /// PSTMCOLD: Cold start.
+    #[cfg(feature = "teseo")]
     Pstmcold(Pstmcold),
     /// PSTMCORR: ST correction data.
+    #[cfg(feature = "teseo")]
     Pstmcorr(Pstmcorr<'a>),
     /// PSTMDIFF: ST differential correction data.
+    #[cfg(feature = "teseo")]
     Pstmdiff(Pstmdiff<'a>),
     /// PSTMEPH: ST ephemeris data.
+    #[cfg(feature = "teseo")]
     Pstmeph(Pstmeph<'a>),
     /// PSTMGETPAR: Get configuration parameter.
+    #[cfg(feature = "teseo")]
     Pstmgetpar(Pstmgetpar),
     /// PSTMGETPARERROR: Get parameter error.
+    #[cfg(feature = "teseo")]
     Pstmgetparerror(Pstmgetparerror),
     /// PSTMGETRTCTIME: Get RTC time.
+    #[cfg(feature = "teseo")]
     Pstmgetrtctime(Pstmgetrtctime),
     /// PSTMGETRTCTIME_REPLY: RTC time and status.
+    #[cfg(feature = "teseo")]
     PstmgetrtctimeReply(PstmgetrtctimeReply<'a>),
     /// PSTMGETSWVER: Get software version.
+    #[cfg(feature = "teseo")]
     Pstmgetswver(Pstmgetswver),
     /// PSTMGETSWVER_REPLY: Software version.
+    #[cfg(feature = "teseo")]
     PstmgetswverReply(PstmgetswverReply<'a>),
     /// PSTMHOT: Hot start.
+    #[cfg(feature = "teseo")]
     Pstmhot(Pstmhot),
     /// PSTMKFCOV: ST Kalman filter covariance.
+    #[cfg(feature = "teseo")]
     Pstmkfcov(Pstmkfcov<'a>),
     /// PSTMNMEAONOFF: NMEA output on/off.
+    #[cfg(feature = "teseo")]
     Pstmnmeaonoff(Pstmnmeaonoff<'a>),
     /// PSTMPA: ST position algorithm data.
+    #[cfg(feature = "teseo")]
     Pstmpa(Pstmpa<'a>),
     /// PSTMPRES: ST position residuals.
+    #[cfg(feature = "teseo")]
     Pstmpres(Pstmpres<'a>),
     /// PSTMRES: ST residuals.
+    #[cfg(feature = "teseo")]
     Pstmres(Pstmres<'a>),
     /// PSTMRESTOREPAR: Restore factory parameters.
+    #[cfg(feature = "teseo")]
     Pstmrestorepar(Pstmrestorepar),
     /// PSTMRF: ST radio-frequency data.
+    #[cfg(feature = "teseo")]
     Pstmrf(Pstmrf<'a>),
     /// PSTMSAT: ST satellite information.
+    #[cfg(feature = "teseo")]
     Pstmsat(Pstmsat<'a>),
     /// PSTMSAVEPAR: Save parameters.
+    #[cfg(feature = "teseo")]
     Pstmsavepar(Pstmsavepar),
     /// PSTMSBAS: ST SBAS data.
+    #[cfg(feature = "teseo")]
     Pstmsbas(Pstmsbas<'a>),
     /// PSTMSBASCORR: ST satellite correction data.
+    #[cfg(feature = "teseo")]
     Pstmsbascorr(Pstmsbascorr<'a>),
     /// PSTMSET: Get parameter answer, printed form.
+    #[cfg(feature = "teseo")]
     Pstmset(Pstmset<'a>),
     /// PSTMSET (DOP thresholds).
+    #[cfg(feature = "teseo")]
     PstmsetDop(PstmsetDop),
     /// PSTMSETPAR: Set configuration parameter (also the $PSTMGETPAR answer).
+    #[cfg(feature = "teseo")]
     Pstmsetpar(Pstmsetpar<'a>),
     /// PSTMSETPAR (DOP thresholds).
+    #[cfg(feature = "teseo")]
     PstmsetparDop(PstmsetparDop<'a>),
     /// PSTMSETPARERROR: Set parameter error.
+    #[cfg(feature = "teseo")]
     Pstmsetparerror(Pstmsetparerror),
     /// PSTMSETPAROK: Set parameter accepted.
+    #[cfg(feature = "teseo")]
     Pstmsetparok(Pstmsetparok),
     /// PSTMTESTRF: ST RF test data.
+    #[cfg(feature = "teseo")]
     Pstmtestrf(Pstmtestrf<'a>),
     /// PSTMTG: ST time and satellites used.
+    #[cfg(feature = "teseo")]
     Pstmtg(Pstmtg<'a>),
     /// PSTMTIM: ST system time.
+    #[cfg(feature = "teseo")]
     Pstmtim(Pstmtim<'a>),
     /// PSTMTS: ST tracked satellite data.
+    #[cfg(feature = "teseo")]
     Pstmts(Pstmts<'a>),
     /// PSTMVER: ST version string.
+    #[cfg(feature = "teseo")]
     Pstmver(Pstmver<'a>),
     /// PSTMVRES: ST velocity residuals.
+    #[cfg(feature = "teseo")]
     Pstmvres(Pstmvres<'a>),
     /// PSTMWAAS: ST WAAS data.
+    #[cfg(feature = "teseo")]
     Pstmwaas(Pstmwaas<'a>),
     /// PSTMWARM: Warm start.
+    #[cfg(feature = "teseo")]
     Pstmwarm(Pstmwarm),
     /// A well-formed sentence the spec does not describe.
     Generic(Generic<'a>),
@@ -248,124 +308,181 @@ pub enum LayoutId {
     /// ZDA: Time and date.
     Zda,
     /// COMNAV_LOG: Request periodic output of an NMEA message.
+    #[cfg(feature = "comnav")]
     ComnavLog,
     /// COMNAV_NMEATALKER: Set, list or reset the NMEA talker IDs.
+    #[cfg(feature = "comnav")]
     ComnavNmeatalker,
     /// COMNAV_NMEATALKER (List the talker IDs).
+    #[cfg(feature = "comnav")]
     ComnavNmeatalkerList,
     /// COMNAV_NMEATALKER (Reset the talker IDs).
+    #[cfg(feature = "comnav")]
     ComnavNmeatalkerReset,
     /// GEOS5_COMMAND: GeoS-5 input command.
+    #[cfg(feature = "geos5")]
     Geos5Command,
     /// GEOS5_JAMDET: GeoS-5 jamming detected.
+    #[cfg(feature = "geos5")]
     Geos5Jamdet,
     /// GEOS5_NQUERY: GeoS-5 set and rates of NMEA sentences.
+    #[cfg(feature = "geos5")]
     Geos5Nquery,
     /// GEOS5_NQUERY_REQUEST: GeoS-5 request for the set and rates of NMEA sentences.
+    #[cfg(feature = "geos5")]
     Geos5NqueryRequest,
     /// GEOS5_RQUERY: GeoS-5 software version, telemetry and configuration.
+    #[cfg(feature = "geos5")]
     Geos5Rquery,
     /// GEOS5_RQUERY_REQUEST: GeoS-5 request for software version, telemetry and configuration.
+    #[cfg(feature = "geos5")]
     Geos5RqueryRequest,
     /// PSRF100: Set serial port A.
+    #[cfg(feature = "globalsat")]
     Psrf100,
     /// PSRF101: Navigation initialisation, ECEF.
+    #[cfg(feature = "globalsat")]
     Psrf101,
     /// PSRF102: Set DGPS serial port B.
+    #[cfg(feature = "globalsat")]
     Psrf102,
     /// PSRF103: Query or set the rate of a standard NMEA sentence.
+    #[cfg(feature = "globalsat")]
     Psrf103,
     /// PSRF104: Navigation initialisation, latitude/longitude/altitude.
+    #[cfg(feature = "globalsat")]
     Psrf104,
     /// PSRF105: Switch development data messages on/off.
+    #[cfg(feature = "globalsat")]
     Psrf105,
     /// PSRF150: OkToSend.
+    #[cfg(feature = "gs501")]
     Psrf150,
     /// PSTMAGPS: ST STAGPS predicted ephemeris information.
+    #[cfg(feature = "teseo")]
     Pstmagps,
     /// PSTMALMANAC: ST almanac data.
+    #[cfg(feature = "teseo")]
     Pstmalmanac,
     /// PSTMCLRALMS: Clear all almanacs.
+    #[cfg(feature = "teseo")]
     Pstmclralms,
     /// PSTMCLREPHS: Clear all ephemerides.
+    #[cfg(feature = "teseo")]
     Pstmclrephs,
     /// PSTMCOLD: Cold start.
+    #[cfg(feature = "teseo")]
     Pstmcold,
     /// PSTMCORR: ST correction data.
+    #[cfg(feature = "teseo")]
     Pstmcorr,
     /// PSTMDIFF: ST differential correction data.
+    #[cfg(feature = "teseo")]
     Pstmdiff,
     /// PSTMEPH: ST ephemeris data.
+    #[cfg(feature = "teseo")]
     Pstmeph,
     /// PSTMGETPAR: Get configuration parameter.
+    #[cfg(feature = "teseo")]
     Pstmgetpar,
     /// PSTMGETPARERROR: Get parameter error.
+    #[cfg(feature = "teseo")]
     Pstmgetparerror,
     /// PSTMGETRTCTIME: Get RTC time.
+    #[cfg(feature = "teseo")]
     Pstmgetrtctime,
     /// PSTMGETRTCTIME_REPLY: RTC time and status.
+    #[cfg(feature = "teseo")]
     PstmgetrtctimeReply,
     /// PSTMGETSWVER: Get software version.
+    #[cfg(feature = "teseo")]
     Pstmgetswver,
     /// PSTMGETSWVER_REPLY: Software version.
+    #[cfg(feature = "teseo")]
     PstmgetswverReply,
     /// PSTMHOT: Hot start.
+    #[cfg(feature = "teseo")]
     Pstmhot,
     /// PSTMKFCOV: ST Kalman filter covariance.
+    #[cfg(feature = "teseo")]
     Pstmkfcov,
     /// PSTMNMEAONOFF: NMEA output on/off.
+    #[cfg(feature = "teseo")]
     Pstmnmeaonoff,
     /// PSTMPA: ST position algorithm data.
+    #[cfg(feature = "teseo")]
     Pstmpa,
     /// PSTMPRES: ST position residuals.
+    #[cfg(feature = "teseo")]
     Pstmpres,
     /// PSTMRES: ST residuals.
+    #[cfg(feature = "teseo")]
     Pstmres,
     /// PSTMRESTOREPAR: Restore factory parameters.
+    #[cfg(feature = "teseo")]
     Pstmrestorepar,
     /// PSTMRF: ST radio-frequency data.
+    #[cfg(feature = "teseo")]
     Pstmrf,
     /// PSTMSAT: ST satellite information.
+    #[cfg(feature = "teseo")]
     Pstmsat,
     /// PSTMSAVEPAR: Save parameters.
+    #[cfg(feature = "teseo")]
     Pstmsavepar,
     /// PSTMSBAS: ST SBAS data.
+    #[cfg(feature = "teseo")]
     Pstmsbas,
     /// PSTMSBASCORR: ST satellite correction data.
+    #[cfg(feature = "teseo")]
     Pstmsbascorr,
     /// PSTMSET: Get parameter answer, printed form.
+    #[cfg(feature = "teseo")]
     Pstmset,
     /// PSTMSET (DOP thresholds).
+    #[cfg(feature = "teseo")]
     PstmsetDop,
     /// PSTMSETPAR: Set configuration parameter (also the $PSTMGETPAR answer).
+    #[cfg(feature = "teseo")]
     Pstmsetpar,
     /// PSTMSETPAR (DOP thresholds).
+    #[cfg(feature = "teseo")]
     PstmsetparDop,
     /// PSTMSETPARERROR: Set parameter error.
+    #[cfg(feature = "teseo")]
     Pstmsetparerror,
     /// PSTMSETPAROK: Set parameter accepted.
+    #[cfg(feature = "teseo")]
     Pstmsetparok,
     /// PSTMTESTRF: ST RF test data.
+    #[cfg(feature = "teseo")]
     Pstmtestrf,
     /// PSTMTG: ST time and satellites used.
+    #[cfg(feature = "teseo")]
     Pstmtg,
     /// PSTMTIM: ST system time.
+    #[cfg(feature = "teseo")]
     Pstmtim,
     /// PSTMTS: ST tracked satellite data.
+    #[cfg(feature = "teseo")]
     Pstmts,
     /// PSTMVER: ST version string.
+    #[cfg(feature = "teseo")]
     Pstmver,
     /// PSTMVRES: ST velocity residuals.
+    #[cfg(feature = "teseo")]
     Pstmvres,
     /// PSTMWAAS: ST WAAS data.
+    #[cfg(feature = "teseo")]
     Pstmwaas,
     /// PSTMWARM: Warm start.
+    #[cfg(feature = "teseo")]
     Pstmwarm,
 }
 
 impl LayoutId {
     /// Every layout, in parse order.
-    pub const ALL: [Self; 71] = [
+    pub const ALL: &'static [Self] = &[
         Self::Dtm,
         Self::Gga,
         Self::Gll,
@@ -380,62 +497,119 @@ impl LayoutId {
         Self::Rmc,
         Self::Vtg,
         Self::Zda,
+        #[cfg(feature = "comnav")]
         Self::ComnavLog,
+        #[cfg(feature = "comnav")]
         Self::ComnavNmeatalker,
+        #[cfg(feature = "comnav")]
         Self::ComnavNmeatalkerList,
+        #[cfg(feature = "comnav")]
         Self::ComnavNmeatalkerReset,
+        #[cfg(feature = "geos5")]
         Self::Geos5Command,
+        #[cfg(feature = "geos5")]
         Self::Geos5Jamdet,
+        #[cfg(feature = "geos5")]
         Self::Geos5Nquery,
+        #[cfg(feature = "geos5")]
         Self::Geos5NqueryRequest,
+        #[cfg(feature = "geos5")]
         Self::Geos5Rquery,
+        #[cfg(feature = "geos5")]
         Self::Geos5RqueryRequest,
+        #[cfg(feature = "globalsat")]
         Self::Psrf100,
+        #[cfg(feature = "globalsat")]
         Self::Psrf101,
+        #[cfg(feature = "globalsat")]
         Self::Psrf102,
+        #[cfg(feature = "globalsat")]
         Self::Psrf103,
+        #[cfg(feature = "globalsat")]
         Self::Psrf104,
+        #[cfg(feature = "globalsat")]
         Self::Psrf105,
+        #[cfg(feature = "gs501")]
         Self::Psrf150,
+        #[cfg(feature = "teseo")]
         Self::Pstmagps,
+        #[cfg(feature = "teseo")]
         Self::Pstmalmanac,
+        #[cfg(feature = "teseo")]
         Self::Pstmclralms,
+        #[cfg(feature = "teseo")]
         Self::Pstmclrephs,
+        #[cfg(feature = "teseo")]
         Self::Pstmcold,
+        #[cfg(feature = "teseo")]
         Self::Pstmcorr,
+        #[cfg(feature = "teseo")]
         Self::Pstmdiff,
+        #[cfg(feature = "teseo")]
         Self::Pstmeph,
+        #[cfg(feature = "teseo")]
         Self::Pstmgetpar,
+        #[cfg(feature = "teseo")]
         Self::Pstmgetparerror,
+        #[cfg(feature = "teseo")]
         Self::Pstmgetrtctime,
+        #[cfg(feature = "teseo")]
         Self::PstmgetrtctimeReply,
+        #[cfg(feature = "teseo")]
         Self::Pstmgetswver,
+        #[cfg(feature = "teseo")]
         Self::PstmgetswverReply,
+        #[cfg(feature = "teseo")]
         Self::Pstmhot,
+        #[cfg(feature = "teseo")]
         Self::Pstmkfcov,
+        #[cfg(feature = "teseo")]
         Self::Pstmnmeaonoff,
+        #[cfg(feature = "teseo")]
         Self::Pstmpa,
+        #[cfg(feature = "teseo")]
         Self::Pstmpres,
+        #[cfg(feature = "teseo")]
         Self::Pstmres,
+        #[cfg(feature = "teseo")]
         Self::Pstmrestorepar,
+        #[cfg(feature = "teseo")]
         Self::Pstmrf,
+        #[cfg(feature = "teseo")]
         Self::Pstmsat,
+        #[cfg(feature = "teseo")]
         Self::Pstmsavepar,
+        #[cfg(feature = "teseo")]
         Self::Pstmsbas,
+        #[cfg(feature = "teseo")]
         Self::Pstmsbascorr,
+        #[cfg(feature = "teseo")]
         Self::Pstmset,
+        #[cfg(feature = "teseo")]
         Self::PstmsetDop,
+        #[cfg(feature = "teseo")]
         Self::Pstmsetpar,
+        #[cfg(feature = "teseo")]
         Self::PstmsetparDop,
+        #[cfg(feature = "teseo")]
         Self::Pstmsetparerror,
+        #[cfg(feature = "teseo")]
         Self::Pstmsetparok,
+        #[cfg(feature = "teseo")]
         Self::Pstmtestrf,
+        #[cfg(feature = "teseo")]
         Self::Pstmtg,
+        #[cfg(feature = "teseo")]
         Self::Pstmtim,
+        #[cfg(feature = "teseo")]
         Self::Pstmts,
+        #[cfg(feature = "teseo")]
         Self::Pstmver,
+        #[cfg(feature = "teseo")]
         Self::Pstmvres,
+        #[cfg(feature = "teseo")]
         Self::Pstmwaas,
+        #[cfg(feature = "teseo")]
         Self::Pstmwarm,
     ];
 
@@ -456,62 +630,119 @@ impl LayoutId {
             Self::Rmc => "RMC",
             Self::Vtg => "VTG",
             Self::Zda => "ZDA",
+            #[cfg(feature = "comnav")]
             Self::ComnavLog => "COMNAV_LOG",
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker => "COMNAV_NMEATALKER",
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList => "COMNAV_NMEATALKER",
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset => "COMNAV_NMEATALKER",
+            #[cfg(feature = "geos5")]
             Self::Geos5Command => "GEOS5_COMMAND",
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet => "GEOS5_JAMDET",
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery => "GEOS5_NQUERY",
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest => "GEOS5_NQUERY_REQUEST",
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery => "GEOS5_RQUERY",
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest => "GEOS5_RQUERY_REQUEST",
+            #[cfg(feature = "globalsat")]
             Self::Psrf100 => "PSRF100",
+            #[cfg(feature = "globalsat")]
             Self::Psrf101 => "PSRF101",
+            #[cfg(feature = "globalsat")]
             Self::Psrf102 => "PSRF102",
+            #[cfg(feature = "globalsat")]
             Self::Psrf103 => "PSRF103",
+            #[cfg(feature = "globalsat")]
             Self::Psrf104 => "PSRF104",
+            #[cfg(feature = "globalsat")]
             Self::Psrf105 => "PSRF105",
+            #[cfg(feature = "gs501")]
             Self::Psrf150 => "PSRF150",
+            #[cfg(feature = "teseo")]
             Self::Pstmagps => "PSTMAGPS",
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac => "PSTMALMANAC",
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms => "PSTMCLRALMS",
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs => "PSTMCLREPHS",
+            #[cfg(feature = "teseo")]
             Self::Pstmcold => "PSTMCOLD",
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr => "PSTMCORR",
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff => "PSTMDIFF",
+            #[cfg(feature = "teseo")]
             Self::Pstmeph => "PSTMEPH",
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar => "PSTMGETPAR",
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror => "PSTMGETPARERROR",
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime => "PSTMGETRTCTIME",
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply => "PSTMGETRTCTIME_REPLY",
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver => "PSTMGETSWVER",
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply => "PSTMGETSWVER_REPLY",
+            #[cfg(feature = "teseo")]
             Self::Pstmhot => "PSTMHOT",
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov => "PSTMKFCOV",
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff => "PSTMNMEAONOFF",
+            #[cfg(feature = "teseo")]
             Self::Pstmpa => "PSTMPA",
+            #[cfg(feature = "teseo")]
             Self::Pstmpres => "PSTMPRES",
+            #[cfg(feature = "teseo")]
             Self::Pstmres => "PSTMRES",
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar => "PSTMRESTOREPAR",
+            #[cfg(feature = "teseo")]
             Self::Pstmrf => "PSTMRF",
+            #[cfg(feature = "teseo")]
             Self::Pstmsat => "PSTMSAT",
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar => "PSTMSAVEPAR",
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas => "PSTMSBAS",
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr => "PSTMSBASCORR",
+            #[cfg(feature = "teseo")]
             Self::Pstmset => "PSTMSET",
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop => "PSTMSET",
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar => "PSTMSETPAR",
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop => "PSTMSETPAR",
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror => "PSTMSETPARERROR",
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok => "PSTMSETPAROK",
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf => "PSTMTESTRF",
+            #[cfg(feature = "teseo")]
             Self::Pstmtg => "PSTMTG",
+            #[cfg(feature = "teseo")]
             Self::Pstmtim => "PSTMTIM",
+            #[cfg(feature = "teseo")]
             Self::Pstmts => "PSTMTS",
+            #[cfg(feature = "teseo")]
             Self::Pstmver => "PSTMVER",
+            #[cfg(feature = "teseo")]
             Self::Pstmvres => "PSTMVRES",
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas => "PSTMWAAS",
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm => "PSTMWARM",
         }
     }
@@ -533,62 +764,119 @@ impl LayoutId {
             Self::Rmc => None,
             Self::Vtg => None,
             Self::Zda => None,
+            #[cfg(feature = "comnav")]
             Self::ComnavLog => None,
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker => None,
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList => Some("list"),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset => Some("reset"),
+            #[cfg(feature = "geos5")]
             Self::Geos5Command => None,
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet => None,
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery => None,
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest => None,
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery => None,
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf100 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf101 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf102 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf103 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf104 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf105 => None,
+            #[cfg(feature = "gs501")]
             Self::Psrf150 => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmagps => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmcold => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmeph => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime => None,
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver => None,
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmhot => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmpa => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmpres => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmres => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmrf => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsat => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmset => None,
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop => Some("dop"),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar => None,
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop => Some("dop"),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmtg => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmtim => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmts => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmver => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmvres => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm => None,
         }
     }
@@ -610,62 +898,119 @@ impl LayoutId {
             Self::Rmc => Framing::Standard,
             Self::Vtg => Framing::Standard,
             Self::Zda => Framing::Standard,
+            #[cfg(feature = "comnav")]
             Self::ComnavLog => Framing::Text("LOG"),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker => Framing::Text("NMEATALKER"),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList => Framing::Text("NMEATALKER"),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset => Framing::Text("NMEATALKER"),
+            #[cfg(feature = "geos5")]
             Self::Geos5Command => Framing::Proprietary("GPSGG"),
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet => Framing::Proprietary("GPSGG"),
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery => Framing::Proprietary("GPSGG"),
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest => Framing::Proprietary("GPSGG"),
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery => Framing::Proprietary("GPSGG"),
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest => Framing::Proprietary("GPSGG"),
+            #[cfg(feature = "globalsat")]
             Self::Psrf100 => Framing::Proprietary("PSRF100"),
+            #[cfg(feature = "globalsat")]
             Self::Psrf101 => Framing::Proprietary("PSRF101"),
+            #[cfg(feature = "globalsat")]
             Self::Psrf102 => Framing::Proprietary("PSRF102"),
+            #[cfg(feature = "globalsat")]
             Self::Psrf103 => Framing::Proprietary("PSRF103"),
+            #[cfg(feature = "globalsat")]
             Self::Psrf104 => Framing::Proprietary("PSRF104"),
+            #[cfg(feature = "globalsat")]
             Self::Psrf105 => Framing::Proprietary("PSRF105"),
+            #[cfg(feature = "gs501")]
             Self::Psrf150 => Framing::Proprietary("PSRF150"),
+            #[cfg(feature = "teseo")]
             Self::Pstmagps => Framing::Proprietary("PSTMAGPS"),
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac => Framing::Proprietary("PSTMALMANAC"),
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms => Framing::Proprietary("PSTMCLRALMS"),
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs => Framing::Proprietary("PSTMCLREPHS"),
+            #[cfg(feature = "teseo")]
             Self::Pstmcold => Framing::Proprietary("PSTMCOLD"),
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr => Framing::Proprietary("PSTMCORR"),
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff => Framing::Proprietary("PSTMDIFF"),
+            #[cfg(feature = "teseo")]
             Self::Pstmeph => Framing::Proprietary("PSTMEPH"),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar => Framing::Proprietary("PSTMGETPAR"),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror => Framing::Proprietary("PSTMGETPARERROR"),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime => Framing::Proprietary("PSTMGETRTCTIME"),
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply => Framing::Proprietary("PSTMGETRTCTIME"),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver => Framing::Proprietary("PSTMGETSWVER"),
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply => Framing::Proprietary("PSTMGETSWVER"),
+            #[cfg(feature = "teseo")]
             Self::Pstmhot => Framing::Proprietary("PSTMHOT"),
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov => Framing::Proprietary("PSTMKFCOV"),
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff => Framing::Proprietary("PSTMNMEAONOFF"),
+            #[cfg(feature = "teseo")]
             Self::Pstmpa => Framing::Proprietary("PSTMPA"),
+            #[cfg(feature = "teseo")]
             Self::Pstmpres => Framing::Proprietary("PSTMPRES"),
+            #[cfg(feature = "teseo")]
             Self::Pstmres => Framing::Proprietary("PSTMRES"),
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar => Framing::Proprietary("PSTMRESTOREPAR"),
+            #[cfg(feature = "teseo")]
             Self::Pstmrf => Framing::Proprietary("PSTMRF"),
+            #[cfg(feature = "teseo")]
             Self::Pstmsat => Framing::Proprietary("PSTMSAT"),
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar => Framing::Proprietary("PSTMSAVEPAR"),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas => Framing::Proprietary("PSTMSBAS"),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr => Framing::Proprietary("PSTMSBASCORR"),
+            #[cfg(feature = "teseo")]
             Self::Pstmset => Framing::Proprietary("PSTMSET"),
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop => Framing::Proprietary("PSTMSET"),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar => Framing::Proprietary("PSTMSETPAR"),
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop => Framing::Proprietary("PSTMSETPAR"),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror => Framing::Proprietary("PSTMSETPARERROR"),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok => Framing::Proprietary("PSTMSETPAROK"),
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf => Framing::Proprietary("PSTMTESTRF"),
+            #[cfg(feature = "teseo")]
             Self::Pstmtg => Framing::Proprietary("PSTMTG"),
+            #[cfg(feature = "teseo")]
             Self::Pstmtim => Framing::Proprietary("PSTMTIM"),
+            #[cfg(feature = "teseo")]
             Self::Pstmts => Framing::Proprietary("PSTMTS"),
+            #[cfg(feature = "teseo")]
             Self::Pstmver => Framing::Proprietary("PSTMVER"),
+            #[cfg(feature = "teseo")]
             Self::Pstmvres => Framing::Proprietary("PSTMVRES"),
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas => Framing::Proprietary("PSTMWAAS"),
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm => Framing::Proprietary("PSTMWARM"),
         }
     }
@@ -687,62 +1032,119 @@ impl LayoutId {
             Self::Rmc => Kind::Standard,
             Self::Vtg => Kind::Standard,
             Self::Zda => Kind::Standard,
+            #[cfg(feature = "comnav")]
             Self::ComnavLog => Kind::Command,
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker => Kind::Command,
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList => Kind::Command,
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset => Kind::Command,
+            #[cfg(feature = "geos5")]
             Self::Geos5Command => Kind::Command,
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet => Kind::Output,
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery => Kind::Reply,
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest => Kind::Command,
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery => Kind::Reply,
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest => Kind::Command,
+            #[cfg(feature = "globalsat")]
             Self::Psrf100 => Kind::Command,
+            #[cfg(feature = "globalsat")]
             Self::Psrf101 => Kind::Command,
+            #[cfg(feature = "globalsat")]
             Self::Psrf102 => Kind::Command,
+            #[cfg(feature = "globalsat")]
             Self::Psrf103 => Kind::Command,
+            #[cfg(feature = "globalsat")]
             Self::Psrf104 => Kind::Command,
+            #[cfg(feature = "globalsat")]
             Self::Psrf105 => Kind::Command,
+            #[cfg(feature = "gs501")]
             Self::Psrf150 => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmagps => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::Pstmcold => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmeph => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror => Kind::Reply,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply => Kind::Reply,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply => Kind::Reply,
+            #[cfg(feature = "teseo")]
             Self::Pstmhot => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::Pstmpa => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmpres => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmres => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::Pstmrf => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmsat => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmset => Kind::Reply,
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop => Kind::Reply,
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop => Kind::Command,
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror => Kind::Reply,
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok => Kind::Reply,
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmtg => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmtim => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmts => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmver => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmvres => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas => Kind::Output,
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm => Kind::Command,
         }
     }
@@ -764,62 +1166,119 @@ impl LayoutId {
             Self::Rmc => None,
             Self::Vtg => None,
             Self::Zda => None,
+            #[cfg(feature = "comnav")]
             Self::ComnavLog => None,
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker => None,
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList => Some("LIST"),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset => Some("RESET"),
+            #[cfg(feature = "geos5")]
             Self::Geos5Command => None,
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet => Some("JAMDET"),
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery => Some("NQUERY"),
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest => Some("NQUERY"),
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery => Some("RQUERY"),
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest => Some("RQUERY"),
+            #[cfg(feature = "globalsat")]
             Self::Psrf100 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf101 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf102 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf103 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf104 => None,
+            #[cfg(feature = "globalsat")]
             Self::Psrf105 => None,
+            #[cfg(feature = "gs501")]
             Self::Psrf150 => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmagps => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmcold => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmeph => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime => None,
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver => None,
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmhot => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmpa => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmpres => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmres => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmrf => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsat => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmset => None,
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar => None,
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmtg => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmtim => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmts => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmver => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmvres => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas => None,
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm => None,
         }
     }
@@ -841,71 +1300,128 @@ impl LayoutId {
             Self::Rmc => &[],
             Self::Vtg => &[],
             Self::Zda => &[],
+            #[cfg(feature = "comnav")]
             Self::ComnavLog => &[],
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker => &[],
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList => &[],
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset => &[],
+            #[cfg(feature = "geos5")]
             Self::Geos5Command => &[],
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet => &[],
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery => &[],
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest => &[Self::Geos5Nquery],
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery => &[],
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest => &[Self::Geos5Rquery],
+            #[cfg(feature = "globalsat")]
             Self::Psrf100 => &[],
+            #[cfg(feature = "globalsat")]
             Self::Psrf101 => &[],
+            #[cfg(feature = "globalsat")]
             Self::Psrf102 => &[],
+            #[cfg(feature = "globalsat")]
             Self::Psrf103 => &[Self::Gga, Self::Gll, Self::Gsa, Self::GsaShort, Self::Gsv, Self::Rmc, Self::Vtg],
+            #[cfg(feature = "globalsat")]
             Self::Psrf104 => &[],
+            #[cfg(feature = "globalsat")]
             Self::Psrf105 => &[],
+            #[cfg(feature = "gs501")]
             Self::Psrf150 => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmagps => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmcold => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmeph => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar => {
                 &[Self::Pstmsetpar, Self::PstmsetparDop, Self::Pstmset, Self::PstmsetDop, Self::Pstmgetparerror]
             }
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime => &[Self::PstmgetrtctimeReply],
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver => &[Self::PstmgetswverReply],
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmhot => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmpa => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmpres => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmres => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmrf => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmsat => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmset => &[],
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar => &[Self::Pstmsetparok, Self::Pstmsetparerror],
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop => &[Self::Pstmsetparok, Self::Pstmsetparerror],
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmtg => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmtim => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmts => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmver => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmvres => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas => &[],
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm => &[],
         }
     }
 
     /// The first layout of sentence `sentence` with variant `variant`.
     pub fn find(sentence: &str, variant: Option<&str>) -> Option<Self> {
-        Self::ALL.into_iter().find(|layout| layout.sentence() == sentence && layout.variant() == variant)
+        Self::ALL.iter().copied().find(|layout| layout.sentence() == sentence && layout.variant() == variant)
     }
 
     /// Decodes the fields after the address with this layout.
@@ -925,74 +1441,131 @@ impl LayoutId {
             Self::Rmc => Rmc::parse_fields(fields, checksum).map(Sentence::Rmc),
             Self::Vtg => Vtg::parse_fields(fields, checksum).map(Sentence::Vtg),
             Self::Zda => Zda::parse_fields(fields, checksum).map(Sentence::Zda),
+            #[cfg(feature = "comnav")]
             Self::ComnavLog => ComnavLog::parse_fields(fields, checksum).map(Sentence::ComnavLog),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker => ComnavNmeatalker::parse_fields(fields, checksum).map(Sentence::ComnavNmeatalker),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList => {
                 ComnavNmeatalkerList::parse_fields(fields, checksum).map(Sentence::ComnavNmeatalkerList)
             }
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset => {
                 ComnavNmeatalkerReset::parse_fields(fields, checksum).map(Sentence::ComnavNmeatalkerReset)
             }
+            #[cfg(feature = "geos5")]
             Self::Geos5Command => Geos5Command::parse_fields(fields, checksum).map(Sentence::Geos5Command),
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet => Geos5Jamdet::parse_fields(fields, checksum).map(Sentence::Geos5Jamdet),
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery => Geos5Nquery::parse_fields(fields, checksum).map(Sentence::Geos5Nquery),
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest => {
                 Geos5NqueryRequest::parse_fields(fields, checksum).map(Sentence::Geos5NqueryRequest)
             }
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery => Geos5Rquery::parse_fields(fields, checksum).map(Sentence::Geos5Rquery),
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest => {
                 Geos5RqueryRequest::parse_fields(fields, checksum).map(Sentence::Geos5RqueryRequest)
             }
+            #[cfg(feature = "globalsat")]
             Self::Psrf100 => Psrf100::parse_fields(fields, checksum).map(Sentence::Psrf100),
+            #[cfg(feature = "globalsat")]
             Self::Psrf101 => Psrf101::parse_fields(fields, checksum).map(Sentence::Psrf101),
+            #[cfg(feature = "globalsat")]
             Self::Psrf102 => Psrf102::parse_fields(fields, checksum).map(Sentence::Psrf102),
+            #[cfg(feature = "globalsat")]
             Self::Psrf103 => Psrf103::parse_fields(fields, checksum).map(Sentence::Psrf103),
+            #[cfg(feature = "globalsat")]
             Self::Psrf104 => Psrf104::parse_fields(fields, checksum).map(Sentence::Psrf104),
+            #[cfg(feature = "globalsat")]
             Self::Psrf105 => Psrf105::parse_fields(fields, checksum).map(Sentence::Psrf105),
+            #[cfg(feature = "gs501")]
             Self::Psrf150 => Psrf150::parse_fields(fields, checksum).map(Sentence::Psrf150),
+            #[cfg(feature = "teseo")]
             Self::Pstmagps => Pstmagps::parse_fields(fields, checksum).map(Sentence::Pstmagps),
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac => Pstmalmanac::parse_fields(fields, checksum).map(Sentence::Pstmalmanac),
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms => Pstmclralms::parse_fields(fields, checksum).map(Sentence::Pstmclralms),
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs => Pstmclrephs::parse_fields(fields, checksum).map(Sentence::Pstmclrephs),
+            #[cfg(feature = "teseo")]
             Self::Pstmcold => Pstmcold::parse_fields(fields, checksum).map(Sentence::Pstmcold),
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr => Pstmcorr::parse_fields(fields, checksum).map(Sentence::Pstmcorr),
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff => Pstmdiff::parse_fields(fields, checksum).map(Sentence::Pstmdiff),
+            #[cfg(feature = "teseo")]
             Self::Pstmeph => Pstmeph::parse_fields(fields, checksum).map(Sentence::Pstmeph),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar => Pstmgetpar::parse_fields(fields, checksum).map(Sentence::Pstmgetpar),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror => Pstmgetparerror::parse_fields(fields, checksum).map(Sentence::Pstmgetparerror),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime => Pstmgetrtctime::parse_fields(fields, checksum).map(Sentence::Pstmgetrtctime),
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply => {
                 PstmgetrtctimeReply::parse_fields(fields, checksum).map(Sentence::PstmgetrtctimeReply)
             }
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver => Pstmgetswver::parse_fields(fields, checksum).map(Sentence::Pstmgetswver),
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply => {
                 PstmgetswverReply::parse_fields(fields, checksum).map(Sentence::PstmgetswverReply)
             }
+            #[cfg(feature = "teseo")]
             Self::Pstmhot => Pstmhot::parse_fields(fields, checksum).map(Sentence::Pstmhot),
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov => Pstmkfcov::parse_fields(fields, checksum).map(Sentence::Pstmkfcov),
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff => Pstmnmeaonoff::parse_fields(fields, checksum).map(Sentence::Pstmnmeaonoff),
+            #[cfg(feature = "teseo")]
             Self::Pstmpa => Pstmpa::parse_fields(fields, checksum).map(Sentence::Pstmpa),
+            #[cfg(feature = "teseo")]
             Self::Pstmpres => Pstmpres::parse_fields(fields, checksum).map(Sentence::Pstmpres),
+            #[cfg(feature = "teseo")]
             Self::Pstmres => Pstmres::parse_fields(fields, checksum).map(Sentence::Pstmres),
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar => Pstmrestorepar::parse_fields(fields, checksum).map(Sentence::Pstmrestorepar),
+            #[cfg(feature = "teseo")]
             Self::Pstmrf => Pstmrf::parse_fields(fields, checksum).map(Sentence::Pstmrf),
+            #[cfg(feature = "teseo")]
             Self::Pstmsat => Pstmsat::parse_fields(fields, checksum).map(Sentence::Pstmsat),
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar => Pstmsavepar::parse_fields(fields, checksum).map(Sentence::Pstmsavepar),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas => Pstmsbas::parse_fields(fields, checksum).map(Sentence::Pstmsbas),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr => Pstmsbascorr::parse_fields(fields, checksum).map(Sentence::Pstmsbascorr),
+            #[cfg(feature = "teseo")]
             Self::Pstmset => Pstmset::parse_fields(fields, checksum).map(Sentence::Pstmset),
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop => PstmsetDop::parse_fields(fields, checksum).map(Sentence::PstmsetDop),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar => Pstmsetpar::parse_fields(fields, checksum).map(Sentence::Pstmsetpar),
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop => PstmsetparDop::parse_fields(fields, checksum).map(Sentence::PstmsetparDop),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror => Pstmsetparerror::parse_fields(fields, checksum).map(Sentence::Pstmsetparerror),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok => Pstmsetparok::parse_fields(fields, checksum).map(Sentence::Pstmsetparok),
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf => Pstmtestrf::parse_fields(fields, checksum).map(Sentence::Pstmtestrf),
+            #[cfg(feature = "teseo")]
             Self::Pstmtg => Pstmtg::parse_fields(fields, checksum).map(Sentence::Pstmtg),
+            #[cfg(feature = "teseo")]
             Self::Pstmtim => Pstmtim::parse_fields(fields, checksum).map(Sentence::Pstmtim),
+            #[cfg(feature = "teseo")]
             Self::Pstmts => Pstmts::parse_fields(fields, checksum).map(Sentence::Pstmts),
+            #[cfg(feature = "teseo")]
             Self::Pstmver => Pstmver::parse_fields(fields, checksum).map(Sentence::Pstmver),
+            #[cfg(feature = "teseo")]
             Self::Pstmvres => Pstmvres::parse_fields(fields, checksum).map(Sentence::Pstmvres),
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas => Pstmwaas::parse_fields(fields, checksum).map(Sentence::Pstmwaas),
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm => Pstmwarm::parse_fields(fields, checksum).map(Sentence::Pstmwarm),
         }
     }
@@ -1025,62 +1598,119 @@ impl LayoutId {
             Self::Rmc => Rmc::fields_from_json(fields, out),
             Self::Vtg => Vtg::fields_from_json(fields, out),
             Self::Zda => Zda::fields_from_json(fields, out),
+            #[cfg(feature = "comnav")]
             Self::ComnavLog => ComnavLog::fields_from_json(fields, out),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker => ComnavNmeatalker::fields_from_json(fields, out),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList => ComnavNmeatalkerList::fields_from_json(fields, out),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset => ComnavNmeatalkerReset::fields_from_json(fields, out),
+            #[cfg(feature = "geos5")]
             Self::Geos5Command => Geos5Command::fields_from_json(fields, out),
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet => Geos5Jamdet::fields_from_json(fields, out),
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery => Geos5Nquery::fields_from_json(fields, out),
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest => Geos5NqueryRequest::fields_from_json(fields, out),
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery => Geos5Rquery::fields_from_json(fields, out),
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest => Geos5RqueryRequest::fields_from_json(fields, out),
+            #[cfg(feature = "globalsat")]
             Self::Psrf100 => Psrf100::fields_from_json(fields, out),
+            #[cfg(feature = "globalsat")]
             Self::Psrf101 => Psrf101::fields_from_json(fields, out),
+            #[cfg(feature = "globalsat")]
             Self::Psrf102 => Psrf102::fields_from_json(fields, out),
+            #[cfg(feature = "globalsat")]
             Self::Psrf103 => Psrf103::fields_from_json(fields, out),
+            #[cfg(feature = "globalsat")]
             Self::Psrf104 => Psrf104::fields_from_json(fields, out),
+            #[cfg(feature = "globalsat")]
             Self::Psrf105 => Psrf105::fields_from_json(fields, out),
+            #[cfg(feature = "gs501")]
             Self::Psrf150 => Psrf150::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmagps => Pstmagps::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac => Pstmalmanac::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms => Pstmclralms::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs => Pstmclrephs::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmcold => Pstmcold::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr => Pstmcorr::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff => Pstmdiff::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmeph => Pstmeph::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar => Pstmgetpar::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror => Pstmgetparerror::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime => Pstmgetrtctime::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply => PstmgetrtctimeReply::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver => Pstmgetswver::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply => PstmgetswverReply::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmhot => Pstmhot::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov => Pstmkfcov::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff => Pstmnmeaonoff::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmpa => Pstmpa::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmpres => Pstmpres::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmres => Pstmres::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar => Pstmrestorepar::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmrf => Pstmrf::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmsat => Pstmsat::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar => Pstmsavepar::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas => Pstmsbas::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr => Pstmsbascorr::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmset => Pstmset::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop => PstmsetDop::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar => Pstmsetpar::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop => PstmsetparDop::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror => Pstmsetparerror::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok => Pstmsetparok::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf => Pstmtestrf::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmtg => Pstmtg::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmtim => Pstmtim::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmts => Pstmts::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmver => Pstmver::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmvres => Pstmvres::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas => Pstmwaas::fields_from_json(fields, out),
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm => Pstmwarm::fields_from_json(fields, out),
         }
     }
@@ -1104,62 +1734,119 @@ impl<'a> Sentence<'a> {
             Self::Rmc(_) => Some(LayoutId::Rmc),
             Self::Vtg(_) => Some(LayoutId::Vtg),
             Self::Zda(_) => Some(LayoutId::Zda),
+            #[cfg(feature = "comnav")]
             Self::ComnavLog(_) => Some(LayoutId::ComnavLog),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker(_) => Some(LayoutId::ComnavNmeatalker),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList(_) => Some(LayoutId::ComnavNmeatalkerList),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset(_) => Some(LayoutId::ComnavNmeatalkerReset),
+            #[cfg(feature = "geos5")]
             Self::Geos5Command(_) => Some(LayoutId::Geos5Command),
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet(_) => Some(LayoutId::Geos5Jamdet),
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery(_) => Some(LayoutId::Geos5Nquery),
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest(_) => Some(LayoutId::Geos5NqueryRequest),
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery(_) => Some(LayoutId::Geos5Rquery),
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest(_) => Some(LayoutId::Geos5RqueryRequest),
+            #[cfg(feature = "globalsat")]
             Self::Psrf100(_) => Some(LayoutId::Psrf100),
+            #[cfg(feature = "globalsat")]
             Self::Psrf101(_) => Some(LayoutId::Psrf101),
+            #[cfg(feature = "globalsat")]
             Self::Psrf102(_) => Some(LayoutId::Psrf102),
+            #[cfg(feature = "globalsat")]
             Self::Psrf103(_) => Some(LayoutId::Psrf103),
+            #[cfg(feature = "globalsat")]
             Self::Psrf104(_) => Some(LayoutId::Psrf104),
+            #[cfg(feature = "globalsat")]
             Self::Psrf105(_) => Some(LayoutId::Psrf105),
+            #[cfg(feature = "gs501")]
             Self::Psrf150(_) => Some(LayoutId::Psrf150),
+            #[cfg(feature = "teseo")]
             Self::Pstmagps(_) => Some(LayoutId::Pstmagps),
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac(_) => Some(LayoutId::Pstmalmanac),
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms(_) => Some(LayoutId::Pstmclralms),
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs(_) => Some(LayoutId::Pstmclrephs),
+            #[cfg(feature = "teseo")]
             Self::Pstmcold(_) => Some(LayoutId::Pstmcold),
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr(_) => Some(LayoutId::Pstmcorr),
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff(_) => Some(LayoutId::Pstmdiff),
+            #[cfg(feature = "teseo")]
             Self::Pstmeph(_) => Some(LayoutId::Pstmeph),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar(_) => Some(LayoutId::Pstmgetpar),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror(_) => Some(LayoutId::Pstmgetparerror),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime(_) => Some(LayoutId::Pstmgetrtctime),
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply(_) => Some(LayoutId::PstmgetrtctimeReply),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver(_) => Some(LayoutId::Pstmgetswver),
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply(_) => Some(LayoutId::PstmgetswverReply),
+            #[cfg(feature = "teseo")]
             Self::Pstmhot(_) => Some(LayoutId::Pstmhot),
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov(_) => Some(LayoutId::Pstmkfcov),
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff(_) => Some(LayoutId::Pstmnmeaonoff),
+            #[cfg(feature = "teseo")]
             Self::Pstmpa(_) => Some(LayoutId::Pstmpa),
+            #[cfg(feature = "teseo")]
             Self::Pstmpres(_) => Some(LayoutId::Pstmpres),
+            #[cfg(feature = "teseo")]
             Self::Pstmres(_) => Some(LayoutId::Pstmres),
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar(_) => Some(LayoutId::Pstmrestorepar),
+            #[cfg(feature = "teseo")]
             Self::Pstmrf(_) => Some(LayoutId::Pstmrf),
+            #[cfg(feature = "teseo")]
             Self::Pstmsat(_) => Some(LayoutId::Pstmsat),
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar(_) => Some(LayoutId::Pstmsavepar),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas(_) => Some(LayoutId::Pstmsbas),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr(_) => Some(LayoutId::Pstmsbascorr),
+            #[cfg(feature = "teseo")]
             Self::Pstmset(_) => Some(LayoutId::Pstmset),
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop(_) => Some(LayoutId::PstmsetDop),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar(_) => Some(LayoutId::Pstmsetpar),
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop(_) => Some(LayoutId::PstmsetparDop),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror(_) => Some(LayoutId::Pstmsetparerror),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok(_) => Some(LayoutId::Pstmsetparok),
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf(_) => Some(LayoutId::Pstmtestrf),
+            #[cfg(feature = "teseo")]
             Self::Pstmtg(_) => Some(LayoutId::Pstmtg),
+            #[cfg(feature = "teseo")]
             Self::Pstmtim(_) => Some(LayoutId::Pstmtim),
+            #[cfg(feature = "teseo")]
             Self::Pstmts(_) => Some(LayoutId::Pstmts),
+            #[cfg(feature = "teseo")]
             Self::Pstmver(_) => Some(LayoutId::Pstmver),
+            #[cfg(feature = "teseo")]
             Self::Pstmvres(_) => Some(LayoutId::Pstmvres),
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas(_) => Some(LayoutId::Pstmwaas),
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm(_) => Some(LayoutId::Pstmwarm),
             Self::Generic(_) => None,
         }
@@ -1213,62 +1900,119 @@ impl<'a> Sentence<'a> {
             Self::Rmc(s) => s.write_json_with(out, values, problems),
             Self::Vtg(s) => s.write_json_with(out, values, problems),
             Self::Zda(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "comnav")]
             Self::ComnavLog(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5Command(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf100(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf101(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf102(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf103(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf104(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf105(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "gs501")]
             Self::Psrf150(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmagps(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmcold(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmeph(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmhot(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmpa(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmpres(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmres(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmrf(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsat(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmset(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmtg(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmtim(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmts(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmver(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmvres(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm(s) => s.write_json_with(out, values, problems),
             Self::Generic(s) => s.write_json(out),
         }
@@ -1292,62 +2036,119 @@ impl<'a> Sentence<'a> {
             Self::Rmc(s) => s.write_sentence_with(out, problems),
             Self::Vtg(s) => s.write_sentence_with(out, problems),
             Self::Zda(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "comnav")]
             Self::ComnavLog(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5Command(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf100(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf101(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf102(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf103(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf104(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "globalsat")]
             Self::Psrf105(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "gs501")]
             Self::Psrf150(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmagps(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmcold(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmeph(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmhot(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmpa(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmpres(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmres(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmrf(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsat(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmset(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmtg(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmtim(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmts(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmver(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmvres(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm(s) => s.write_sentence_with(out, problems),
             Self::Generic(s) => s.write_sentence(out),
         }
@@ -1389,62 +2190,119 @@ impl fmt::Display for Sentence<'_> {
             Self::Rmc(s) => s.write_sentence(f),
             Self::Vtg(s) => s.write_sentence(f),
             Self::Zda(s) => s.write_sentence(f),
+            #[cfg(feature = "comnav")]
             Self::ComnavLog(s) => s.write_sentence(f),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalker(s) => s.write_sentence(f),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerList(s) => s.write_sentence(f),
+            #[cfg(feature = "comnav")]
             Self::ComnavNmeatalkerReset(s) => s.write_sentence(f),
+            #[cfg(feature = "geos5")]
             Self::Geos5Command(s) => s.write_sentence(f),
+            #[cfg(feature = "geos5")]
             Self::Geos5Jamdet(s) => s.write_sentence(f),
+            #[cfg(feature = "geos5")]
             Self::Geos5Nquery(s) => s.write_sentence(f),
+            #[cfg(feature = "geos5")]
             Self::Geos5NqueryRequest(s) => s.write_sentence(f),
+            #[cfg(feature = "geos5")]
             Self::Geos5Rquery(s) => s.write_sentence(f),
+            #[cfg(feature = "geos5")]
             Self::Geos5RqueryRequest(s) => s.write_sentence(f),
+            #[cfg(feature = "globalsat")]
             Self::Psrf100(s) => s.write_sentence(f),
+            #[cfg(feature = "globalsat")]
             Self::Psrf101(s) => s.write_sentence(f),
+            #[cfg(feature = "globalsat")]
             Self::Psrf102(s) => s.write_sentence(f),
+            #[cfg(feature = "globalsat")]
             Self::Psrf103(s) => s.write_sentence(f),
+            #[cfg(feature = "globalsat")]
             Self::Psrf104(s) => s.write_sentence(f),
+            #[cfg(feature = "globalsat")]
             Self::Psrf105(s) => s.write_sentence(f),
+            #[cfg(feature = "gs501")]
             Self::Psrf150(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmagps(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmalmanac(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmclralms(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmclrephs(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmcold(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmcorr(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmdiff(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmeph(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetpar(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetparerror(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetrtctime(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::PstmgetrtctimeReply(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmgetswver(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::PstmgetswverReply(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmhot(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmkfcov(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmnmeaonoff(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmpa(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmpres(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmres(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmrestorepar(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmrf(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmsat(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmsavepar(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbas(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmsbascorr(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmset(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::PstmsetDop(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetpar(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::PstmsetparDop(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparerror(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmsetparok(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmtestrf(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmtg(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmtim(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmts(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmver(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmvres(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmwaas(s) => s.write_sentence(f),
+            #[cfg(feature = "teseo")]
             Self::Pstmwarm(s) => s.write_sentence(f),
             Self::Generic(s) => s.write_sentence(f),
         }
@@ -1535,342 +2393,399 @@ impl<'a> From<Zda<'a>> for Sentence<'a> {
     }
 }
 
+#[cfg(feature = "comnav")]
 impl<'a> From<ComnavLog<'a>> for Sentence<'a> {
     fn from(sentence: ComnavLog<'a>) -> Self {
         Self::ComnavLog(sentence)
     }
 }
 
+#[cfg(feature = "comnav")]
 impl<'a> From<ComnavNmeatalker<'a>> for Sentence<'a> {
     fn from(sentence: ComnavNmeatalker<'a>) -> Self {
         Self::ComnavNmeatalker(sentence)
     }
 }
 
+#[cfg(feature = "comnav")]
 impl<'a> From<ComnavNmeatalkerList<'a>> for Sentence<'a> {
     fn from(sentence: ComnavNmeatalkerList<'a>) -> Self {
         Self::ComnavNmeatalkerList(sentence)
     }
 }
 
+#[cfg(feature = "comnav")]
 impl<'a> From<ComnavNmeatalkerReset<'a>> for Sentence<'a> {
     fn from(sentence: ComnavNmeatalkerReset<'a>) -> Self {
         Self::ComnavNmeatalkerReset(sentence)
     }
 }
 
+#[cfg(feature = "geos5")]
 impl<'a> From<Geos5Command<'a>> for Sentence<'a> {
     fn from(sentence: Geos5Command<'a>) -> Self {
         Self::Geos5Command(sentence)
     }
 }
 
+#[cfg(feature = "geos5")]
 impl<'a> From<Geos5Jamdet<'a>> for Sentence<'a> {
     fn from(sentence: Geos5Jamdet<'a>) -> Self {
         Self::Geos5Jamdet(sentence)
     }
 }
 
+#[cfg(feature = "geos5")]
 impl<'a> From<Geos5Nquery<'a>> for Sentence<'a> {
     fn from(sentence: Geos5Nquery<'a>) -> Self {
         Self::Geos5Nquery(sentence)
     }
 }
 
+#[cfg(feature = "geos5")]
 impl From<Geos5NqueryRequest> for Sentence<'_> {
     fn from(sentence: Geos5NqueryRequest) -> Self {
         Self::Geos5NqueryRequest(sentence)
     }
 }
 
+#[cfg(feature = "geos5")]
 impl<'a> From<Geos5Rquery<'a>> for Sentence<'a> {
     fn from(sentence: Geos5Rquery<'a>) -> Self {
         Self::Geos5Rquery(sentence)
     }
 }
 
+#[cfg(feature = "geos5")]
 impl From<Geos5RqueryRequest> for Sentence<'_> {
     fn from(sentence: Geos5RqueryRequest) -> Self {
         Self::Geos5RqueryRequest(sentence)
     }
 }
 
+#[cfg(feature = "globalsat")]
 impl<'a> From<Psrf100<'a>> for Sentence<'a> {
     fn from(sentence: Psrf100<'a>) -> Self {
         Self::Psrf100(sentence)
     }
 }
 
+#[cfg(feature = "globalsat")]
 impl From<Psrf101> for Sentence<'_> {
     fn from(sentence: Psrf101) -> Self {
         Self::Psrf101(sentence)
     }
 }
 
+#[cfg(feature = "globalsat")]
 impl<'a> From<Psrf102<'a>> for Sentence<'a> {
     fn from(sentence: Psrf102<'a>) -> Self {
         Self::Psrf102(sentence)
     }
 }
 
+#[cfg(feature = "globalsat")]
 impl<'a> From<Psrf103<'a>> for Sentence<'a> {
     fn from(sentence: Psrf103<'a>) -> Self {
         Self::Psrf103(sentence)
     }
 }
 
+#[cfg(feature = "globalsat")]
 impl From<Psrf104> for Sentence<'_> {
     fn from(sentence: Psrf104) -> Self {
         Self::Psrf104(sentence)
     }
 }
 
+#[cfg(feature = "globalsat")]
 impl<'a> From<Psrf105<'a>> for Sentence<'a> {
     fn from(sentence: Psrf105<'a>) -> Self {
         Self::Psrf105(sentence)
     }
 }
 
+#[cfg(feature = "gs501")]
 impl<'a> From<Psrf150<'a>> for Sentence<'a> {
     fn from(sentence: Psrf150<'a>) -> Self {
         Self::Psrf150(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmagps<'a>> for Sentence<'a> {
     fn from(sentence: Pstmagps<'a>) -> Self {
         Self::Pstmagps(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmalmanac<'a>> for Sentence<'a> {
     fn from(sentence: Pstmalmanac<'a>) -> Self {
         Self::Pstmalmanac(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmclralms> for Sentence<'_> {
     fn from(sentence: Pstmclralms) -> Self {
         Self::Pstmclralms(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmclrephs> for Sentence<'_> {
     fn from(sentence: Pstmclrephs) -> Self {
         Self::Pstmclrephs(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmcold> for Sentence<'_> {
     fn from(sentence: Pstmcold) -> Self {
         Self::Pstmcold(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmcorr<'a>> for Sentence<'a> {
     fn from(sentence: Pstmcorr<'a>) -> Self {
         Self::Pstmcorr(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmdiff<'a>> for Sentence<'a> {
     fn from(sentence: Pstmdiff<'a>) -> Self {
         Self::Pstmdiff(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmeph<'a>> for Sentence<'a> {
     fn from(sentence: Pstmeph<'a>) -> Self {
         Self::Pstmeph(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmgetpar> for Sentence<'_> {
     fn from(sentence: Pstmgetpar) -> Self {
         Self::Pstmgetpar(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmgetparerror> for Sentence<'_> {
     fn from(sentence: Pstmgetparerror) -> Self {
         Self::Pstmgetparerror(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmgetrtctime> for Sentence<'_> {
     fn from(sentence: Pstmgetrtctime) -> Self {
         Self::Pstmgetrtctime(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<PstmgetrtctimeReply<'a>> for Sentence<'a> {
     fn from(sentence: PstmgetrtctimeReply<'a>) -> Self {
         Self::PstmgetrtctimeReply(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmgetswver> for Sentence<'_> {
     fn from(sentence: Pstmgetswver) -> Self {
         Self::Pstmgetswver(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<PstmgetswverReply<'a>> for Sentence<'a> {
     fn from(sentence: PstmgetswverReply<'a>) -> Self {
         Self::PstmgetswverReply(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmhot> for Sentence<'_> {
     fn from(sentence: Pstmhot) -> Self {
         Self::Pstmhot(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmkfcov<'a>> for Sentence<'a> {
     fn from(sentence: Pstmkfcov<'a>) -> Self {
         Self::Pstmkfcov(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmnmeaonoff<'a>> for Sentence<'a> {
     fn from(sentence: Pstmnmeaonoff<'a>) -> Self {
         Self::Pstmnmeaonoff(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmpa<'a>> for Sentence<'a> {
     fn from(sentence: Pstmpa<'a>) -> Self {
         Self::Pstmpa(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmpres<'a>> for Sentence<'a> {
     fn from(sentence: Pstmpres<'a>) -> Self {
         Self::Pstmpres(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmres<'a>> for Sentence<'a> {
     fn from(sentence: Pstmres<'a>) -> Self {
         Self::Pstmres(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmrestorepar> for Sentence<'_> {
     fn from(sentence: Pstmrestorepar) -> Self {
         Self::Pstmrestorepar(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmrf<'a>> for Sentence<'a> {
     fn from(sentence: Pstmrf<'a>) -> Self {
         Self::Pstmrf(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmsat<'a>> for Sentence<'a> {
     fn from(sentence: Pstmsat<'a>) -> Self {
         Self::Pstmsat(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmsavepar> for Sentence<'_> {
     fn from(sentence: Pstmsavepar) -> Self {
         Self::Pstmsavepar(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmsbas<'a>> for Sentence<'a> {
     fn from(sentence: Pstmsbas<'a>) -> Self {
         Self::Pstmsbas(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmsbascorr<'a>> for Sentence<'a> {
     fn from(sentence: Pstmsbascorr<'a>) -> Self {
         Self::Pstmsbascorr(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmset<'a>> for Sentence<'a> {
     fn from(sentence: Pstmset<'a>) -> Self {
         Self::Pstmset(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<PstmsetDop> for Sentence<'_> {
     fn from(sentence: PstmsetDop) -> Self {
         Self::PstmsetDop(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmsetpar<'a>> for Sentence<'a> {
     fn from(sentence: Pstmsetpar<'a>) -> Self {
         Self::Pstmsetpar(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<PstmsetparDop<'a>> for Sentence<'a> {
     fn from(sentence: PstmsetparDop<'a>) -> Self {
         Self::PstmsetparDop(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmsetparerror> for Sentence<'_> {
     fn from(sentence: Pstmsetparerror) -> Self {
         Self::Pstmsetparerror(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmsetparok> for Sentence<'_> {
     fn from(sentence: Pstmsetparok) -> Self {
         Self::Pstmsetparok(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmtestrf<'a>> for Sentence<'a> {
     fn from(sentence: Pstmtestrf<'a>) -> Self {
         Self::Pstmtestrf(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmtg<'a>> for Sentence<'a> {
     fn from(sentence: Pstmtg<'a>) -> Self {
         Self::Pstmtg(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmtim<'a>> for Sentence<'a> {
     fn from(sentence: Pstmtim<'a>) -> Self {
         Self::Pstmtim(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmts<'a>> for Sentence<'a> {
     fn from(sentence: Pstmts<'a>) -> Self {
         Self::Pstmts(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmver<'a>> for Sentence<'a> {
     fn from(sentence: Pstmver<'a>) -> Self {
         Self::Pstmver(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmvres<'a>> for Sentence<'a> {
     fn from(sentence: Pstmvres<'a>) -> Self {
         Self::Pstmvres(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl<'a> From<Pstmwaas<'a>> for Sentence<'a> {
     fn from(sentence: Pstmwaas<'a>) -> Self {
         Self::Pstmwaas(sentence)
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Pstmwarm> for Sentence<'_> {
     fn from(sentence: Pstmwarm) -> Self {
         Self::Pstmwarm(sentence)
@@ -2034,6 +2949,7 @@ fn first_fit<'a>(layouts: &[LayoutId], fields: Fields<'a>, checksum: Checksum) -
 pub fn layouts_of(start: &str, address: &str) -> &'static [LayoutId] {
     match start {
         "$" if is_standard_address(start, address) => match address {
+            #[cfg(feature = "geos5")]
             "GPSGG" => &[
                 LayoutId::Geos5Jamdet,
                 LayoutId::Geos5Nquery,
@@ -2045,48 +2961,91 @@ pub fn layouts_of(start: &str, address: &str) -> &'static [LayoutId] {
             _ => standard(&address[2..]),
         },
         "$" => match address {
+            #[cfg(feature = "globalsat")]
             "PSRF100" => &[LayoutId::Psrf100],
+            #[cfg(feature = "globalsat")]
             "PSRF101" => &[LayoutId::Psrf101],
+            #[cfg(feature = "globalsat")]
             "PSRF102" => &[LayoutId::Psrf102],
+            #[cfg(feature = "globalsat")]
             "PSRF103" => &[LayoutId::Psrf103],
+            #[cfg(feature = "globalsat")]
             "PSRF104" => &[LayoutId::Psrf104],
+            #[cfg(feature = "globalsat")]
             "PSRF105" => &[LayoutId::Psrf105],
+            #[cfg(feature = "gs501")]
             "PSRF150" => &[LayoutId::Psrf150],
+            #[cfg(feature = "teseo")]
             "PSTMAGPS" => &[LayoutId::Pstmagps],
+            #[cfg(feature = "teseo")]
             "PSTMALMANAC" => &[LayoutId::Pstmalmanac],
+            #[cfg(feature = "teseo")]
             "PSTMCLRALMS" => &[LayoutId::Pstmclralms],
+            #[cfg(feature = "teseo")]
             "PSTMCLREPHS" => &[LayoutId::Pstmclrephs],
+            #[cfg(feature = "teseo")]
             "PSTMCOLD" => &[LayoutId::Pstmcold],
+            #[cfg(feature = "teseo")]
             "PSTMCORR" => &[LayoutId::Pstmcorr],
+            #[cfg(feature = "teseo")]
             "PSTMDIFF" => &[LayoutId::Pstmdiff],
+            #[cfg(feature = "teseo")]
             "PSTMEPH" => &[LayoutId::Pstmeph],
+            #[cfg(feature = "teseo")]
             "PSTMGETPAR" => &[LayoutId::Pstmgetpar],
+            #[cfg(feature = "teseo")]
             "PSTMGETPARERROR" => &[LayoutId::Pstmgetparerror],
+            #[cfg(feature = "teseo")]
             "PSTMGETRTCTIME" => &[LayoutId::Pstmgetrtctime, LayoutId::PstmgetrtctimeReply],
+            #[cfg(feature = "teseo")]
             "PSTMGETSWVER" => &[LayoutId::Pstmgetswver, LayoutId::PstmgetswverReply],
+            #[cfg(feature = "teseo")]
             "PSTMHOT" => &[LayoutId::Pstmhot],
+            #[cfg(feature = "teseo")]
             "PSTMKFCOV" => &[LayoutId::Pstmkfcov],
+            #[cfg(feature = "teseo")]
             "PSTMNMEAONOFF" => &[LayoutId::Pstmnmeaonoff],
+            #[cfg(feature = "teseo")]
             "PSTMPA" => &[LayoutId::Pstmpa],
+            #[cfg(feature = "teseo")]
             "PSTMPRES" => &[LayoutId::Pstmpres],
+            #[cfg(feature = "teseo")]
             "PSTMRES" => &[LayoutId::Pstmres],
+            #[cfg(feature = "teseo")]
             "PSTMRESTOREPAR" => &[LayoutId::Pstmrestorepar],
+            #[cfg(feature = "teseo")]
             "PSTMRF" => &[LayoutId::Pstmrf],
+            #[cfg(feature = "teseo")]
             "PSTMSAT" => &[LayoutId::Pstmsat],
+            #[cfg(feature = "teseo")]
             "PSTMSAVEPAR" => &[LayoutId::Pstmsavepar],
+            #[cfg(feature = "teseo")]
             "PSTMSBAS" => &[LayoutId::Pstmsbas],
+            #[cfg(feature = "teseo")]
             "PSTMSBASCORR" => &[LayoutId::Pstmsbascorr],
+            #[cfg(feature = "teseo")]
             "PSTMSET" => &[LayoutId::Pstmset, LayoutId::PstmsetDop],
+            #[cfg(feature = "teseo")]
             "PSTMSETPAR" => &[LayoutId::Pstmsetpar, LayoutId::PstmsetparDop],
+            #[cfg(feature = "teseo")]
             "PSTMSETPARERROR" => &[LayoutId::Pstmsetparerror],
+            #[cfg(feature = "teseo")]
             "PSTMSETPAROK" => &[LayoutId::Pstmsetparok],
+            #[cfg(feature = "teseo")]
             "PSTMTESTRF" => &[LayoutId::Pstmtestrf],
+            #[cfg(feature = "teseo")]
             "PSTMTG" => &[LayoutId::Pstmtg],
+            #[cfg(feature = "teseo")]
             "PSTMTIM" => &[LayoutId::Pstmtim],
+            #[cfg(feature = "teseo")]
             "PSTMTS" => &[LayoutId::Pstmts],
+            #[cfg(feature = "teseo")]
             "PSTMVER" => &[LayoutId::Pstmver],
+            #[cfg(feature = "teseo")]
             "PSTMVRES" => &[LayoutId::Pstmvres],
+            #[cfg(feature = "teseo")]
             "PSTMWAAS" => &[LayoutId::Pstmwaas],
+            #[cfg(feature = "teseo")]
             "PSTMWARM" => &[LayoutId::Pstmwarm],
             _ => &[],
         },
@@ -2115,13 +3074,22 @@ fn standard(formatter: &str) -> &'static [LayoutId] {
 }
 
 /// The layouts of the text command whose command word is `word` (ignoring case).
+#[cfg(feature = "comnav")]
 fn text_command(word: &[u8]) -> &'static [LayoutId] {
+    #[cfg(feature = "comnav")]
     if is_command_word(word, "LOG") {
         return &[LayoutId::ComnavLog];
     }
+    #[cfg(feature = "comnav")]
     if is_command_word(word, "NMEATALKER") {
         return &[LayoutId::ComnavNmeatalkerList, LayoutId::ComnavNmeatalkerReset, LayoutId::ComnavNmeatalker];
     }
+    &[]
+}
+
+/// The layouts of the text command whose command word is `word`: none without the features of the receivers that have text commands.
+#[cfg(not(feature = "comnav"))]
+fn text_command(_word: &[u8]) -> &'static [LayoutId] {
     &[]
 }
 
@@ -2388,118 +3356,147 @@ mod tests {
             "$GPZDA,072914.00,31,05,2018,+00,00*48",
             r#"{"ok":true,"start":"$","address":"GPZDA","talker":"GP","sentence":"ZDA","variant":null,"fields":{"time":"072914.00","day":"31","month":"05","year":"2018","local_zone_hours":"+00","local_zone_minutes":"00"},"checksum":"48"}"#,
         ),
+        #[cfg(feature = "comnav")]
         (
             "LOG GPGGA ONTIME 1",
             r#"{"ok":true,"start":"","address":"LOG","talker":null,"sentence":"COMNAV_LOG","variant":null,"fields":{"message":"GPGGA","trigger":"ONTIME","period":"1"},"checksum":null}"#,
         ),
+        #[cfg(feature = "comnav")]
         (
             "NMEATALKER LIST",
             r#"{"ok":true,"start":"","address":"NMEATALKER","talker":null,"sentence":"COMNAV_NMEATALKER","variant":"list","fields":{"subcommand":"LIST"},"checksum":null}"#,
         ),
+        #[cfg(feature = "comnav")]
         (
             "NMEATALKER RESET",
             r#"{"ok":true,"start":"","address":"NMEATALKER","talker":null,"sentence":"COMNAV_NMEATALKER","variant":"reset","fields":{"subcommand":"RESET"},"checksum":null}"#,
         ),
+        #[cfg(feature = "geos5")]
         (
             "$GPSGG,SWPROT*75",
             r#"{"ok":true,"start":"$","address":"GPSGG","talker":null,"sentence":"GEOS5_COMMAND","variant":null,"fields":{"command":"SWPROT"},"checksum":"75"}"#,
         ),
+        #[cfg(feature = "geos5")]
         (
             "$GPSGG,JAMDET,*57",
             r#"{"ok":true,"start":"$","address":"GPSGG","talker":null,"sentence":"GEOS5_JAMDET","variant":null,"fields":{"keyword":"JAMDET","reserved":null},"checksum":"57"}"#,
         ),
+        #[cfg(feature = "geos5")]
         (
             "$GPSGG,NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71",
             r#"{"ok":true,"start":"$","address":"GPSGG","talker":null,"sentence":"GEOS5_NQUERY","variant":null,"fields":{"keyword":"NQUERY","port":"1","output_rate":"3","nmea_version":"2","gga_rate":"R","gll_rate":"0","gsa_rate":"R","gsv_rate":"1","rmc_rate":"0","vtg_rate":"0","gns_rate":"0","zda_rate":"1","dtm_rate":"1","rlm_rate":"0"},"checksum":"71"}"#,
         ),
+        #[cfg(feature = "geos5")]
         (
             "$GPSGG,NQUERY*6C",
             r#"{"ok":true,"start":"$","address":"GPSGG","talker":null,"sentence":"GEOS5_NQUERY_REQUEST","variant":null,"fields":{"keyword":"NQUERY"},"checksum":"6C"}"#,
         ),
+        #[cfg(feature = "geos5")]
         (
             "$GPSGG,RQUERY,GEOS-5,V.5.102,100518,00083037,802DC097,F7FF8064*5C",
             r#"{"ok":true,"start":"$","address":"GPSGG","talker":null,"sentence":"GEOS5_RQUERY","variant":null,"fields":{"keyword":"RQUERY","receiver_name":"GEOS-5","software_version":"V.5.102","software_date":"100518","status":"00083037","config_1":"802DC097","config_2":"F7FF8064"},"checksum":"5C"}"#,
         ),
+        #[cfg(feature = "geos5")]
         (
             "$GPSGG,RQUERY*70",
             r#"{"ok":true,"start":"$","address":"GPSGG","talker":null,"sentence":"GEOS5_RQUERY_REQUEST","variant":null,"fields":{"keyword":"RQUERY"},"checksum":"70"}"#,
         ),
+        #[cfg(feature = "globalsat")]
         (
             "$PSRF100,0,9600,8,1,0*0C",
             r#"{"ok":true,"start":"$","address":"PSRF100","talker":null,"sentence":"PSRF100","variant":null,"fields":{"protocol":"0","baud":"9600","data_bits":"8","stop_bits":"1","parity":"0"},"checksum":"0C"}"#,
         ),
+        #[cfg(feature = "globalsat")]
         (
             "$PSRF101,-2686700,-4304200,3851624,96000,497260,921,12,3*2F",
             r#"{"ok":true,"start":"$","address":"PSRF101","talker":null,"sentence":"PSRF101","variant":null,"fields":{"x":"-2686700","y":"-4304200","z":"3851624","clock_offset":"96000","time_of_week":"497260","week":"921","channels":"12","reset_cfg":"3"},"checksum":"2F"}"#,
         ),
+        #[cfg(feature = "globalsat")]
         (
             "$PSRF102,9600,8,1,0*12",
             r#"{"ok":true,"start":"$","address":"PSRF102","talker":null,"sentence":"PSRF102","variant":null,"fields":{"baud":"9600","data_bits":"8","stop_bits":"1","parity":"0"},"checksum":"12"}"#,
         ),
+        #[cfg(feature = "globalsat")]
         (
             "$PSRF103,00,01,00,01*25",
             r#"{"ok":true,"start":"$","address":"PSRF103","talker":null,"sentence":"PSRF103","variant":null,"fields":{"message":"00","mode":"01","rate":"00","checksum_mode":"01"},"checksum":"25"}"#,
         ),
+        #[cfg(feature = "globalsat")]
         (
             "$PSRF104,37.3875111,-121.97232,0,96000,237759,922,12,3*37",
             r#"{"ok":true,"start":"$","address":"PSRF104","talker":null,"sentence":"PSRF104","variant":null,"fields":{"latitude":"37.3875111","longitude":"-121.97232","altitude":"0","clock_offset":"96000","time_of_week":"237759","week":"922","channels":"12","reset_cfg":"3"},"checksum":"37"}"#,
         ),
+        #[cfg(feature = "globalsat")]
         (
             "$PSRF105,1*3E",
             r#"{"ok":true,"start":"$","address":"PSRF105","talker":null,"sentence":"PSRF105","variant":null,"fields":{"debug":"1"},"checksum":"3E"}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMCLRALMS",
             r#"{"ok":true,"start":"$","address":"PSTMCLRALMS","talker":null,"sentence":"PSTMCLRALMS","variant":null,"fields":{},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMCLREPHS",
             r#"{"ok":true,"start":"$","address":"PSTMCLREPHS","talker":null,"sentence":"PSTMCLREPHS","variant":null,"fields":{},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMCOLD,6",
             r#"{"ok":true,"start":"$","address":"PSTMCOLD","talker":null,"sentence":"PSTMCOLD","variant":null,"fields":{"mask":"6"},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMGETPAR,1403*",
             r#"{"ok":true,"start":"$","address":"PSTMGETPAR","talker":null,"sentence":"PSTMGETPAR","variant":null,"fields":{"block_param":"1403"},"checksum":""}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMGETRTCTIME",
             r#"{"ok":true,"start":"$","address":"PSTMGETRTCTIME","talker":null,"sentence":"PSTMGETRTCTIME","variant":null,"fields":{},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMGETSWVER",
             r#"{"ok":true,"start":"$","address":"PSTMGETSWVER","talker":null,"sentence":"PSTMGETSWVER","variant":null,"fields":{},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMHOT",
             r#"{"ok":true,"start":"$","address":"PSTMHOT","talker":null,"sentence":"PSTMHOT","variant":null,"fields":{},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMNMEAONOFF,0",
             r#"{"ok":true,"start":"$","address":"PSTMNMEAONOFF","talker":null,"sentence":"PSTMNMEAONOFF","variant":null,"fields":{"on_off":"0"},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMRESTOREPAR",
             r#"{"ok":true,"start":"$","address":"PSTMRESTOREPAR","talker":null,"sentence":"PSTMRESTOREPAR","variant":null,"fields":{},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMSAVEPAR",
             r#"{"ok":true,"start":"$","address":"PSTMSAVEPAR","talker":null,"sentence":"PSTMSAVEPAR","variant":null,"fields":{},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMSET,1403,15,12,12,18",
             r#"{"ok":true,"start":"$","address":"PSTMSET","talker":null,"sentence":"PSTMSET","variant":"dop","fields":{"block_param":"1403","pdop":"15","vdop":"12","hdop":"12","gdop":"18"},"checksum":null}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMSETPAR,1121,10*",
             r#"{"ok":true,"start":"$","address":"PSTMSETPAR","talker":null,"sentence":"PSTMSETPAR","variant":null,"fields":{"block_param":"1121","value":"10"},"checksum":""}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMSETPAROK,1121*",
             r#"{"ok":true,"start":"$","address":"PSTMSETPAROK","talker":null,"sentence":"PSTMSETPAROK","variant":null,"fields":{"block_param":"1121"},"checksum":""}"#,
         ),
+        #[cfg(feature = "teseo")]
         (
             "$PSTMWARM",
             r#"{"ok":true,"start":"$","address":"PSTMWARM","talker":null,"sentence":"PSTMWARM","variant":null,"fields":{},"checksum":null}"#,

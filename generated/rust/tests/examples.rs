@@ -1393,6 +1393,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "LOG GPGGA ONTIME 1",
@@ -1406,6 +1407,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "LOG GPGLL ONTIME 1",
@@ -1419,6 +1421,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "REGISTRO GPGSA ONTIME 1",
@@ -1434,6 +1437,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "REGISTRO GPGST ONTIME 1",
@@ -1449,6 +1453,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "REGISTRO GPGSV ONTIME 1",
@@ -1464,6 +1469,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "REGISTRO GPHDT ONTIME 1",
@@ -1479,6 +1485,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "REGISTRO GPRMC ONTIME 1",
@@ -1494,6 +1501,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "LOG GPVTG ONTIME 1",
@@ -1507,6 +1515,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "REGISTRO GPZDA ONTIME 1",
@@ -1522,6 +1531,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "LISTA DE NMEATALKER",
@@ -1537,6 +1547,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "comnav")]
     Example {
         manual: "comnav",
         raw: "NMEATALKER RESET",
@@ -1550,6 +1561,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, SWPROT*75",
@@ -1565,6 +1577,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 75, computed 12"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, SAVEFL*63",
@@ -1580,6 +1593,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 63, computed 04"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, CSTART*6B",
@@ -1595,6 +1609,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 6B, computed 0C"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, WSTART*7F",
@@ -1610,6 +1625,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 7F, computed 18"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, HSTART*60",
@@ -1625,6 +1641,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 60, computed 07"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, BDR004*08",
@@ -1640,6 +1657,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 08, computed 6F"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, BDR009*05",
@@ -1655,6 +1673,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 05, computed 62"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, BDR019*04",
@@ -1670,6 +1689,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 04, computed 63"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, BDR038*07",
@@ -1685,6 +1705,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 07, computed 60"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, BDR057*0E",
@@ -1700,6 +1721,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 0E, computed 69"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, BDR115*09",
@@ -1715,6 +1737,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 09, computed 6E"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, BDR230*0D",
@@ -1730,6 +1753,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 0D, computed 6A"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, BDR460*0E",
@@ -1745,6 +1769,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 0E, computed 69"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, BDR921*06",
@@ -1760,6 +1785,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 06, computed 61"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG,STOP01*71",
@@ -1773,6 +1799,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG,STOP02*72",
@@ -1786,6 +1813,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG,GGA ON*08",
@@ -1799,6 +1827,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG,GGAOFF*66",
@@ -1812,6 +1841,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG,GLL ON*0E",
@@ -1825,6 +1855,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG,GLLOFF*60",
@@ -1838,6 +1869,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG,GSA ON*1C",
@@ -1851,6 +1883,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG,GSAOFF*72",
@@ -1864,6 +1897,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, GSV ON*0B",
@@ -1879,6 +1913,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 0B, computed 6C"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, GSVOFF*65",
@@ -1894,6 +1929,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 65, computed 02"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,GSV ON*0B",
@@ -1909,6 +1945,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 0B, computed 4C"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,GSVOFF*65",
@@ -1924,6 +1961,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 65, computed 22"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, RMC ON*15",
@@ -1939,6 +1977,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 15, computed 72"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, RMCOFF*7B",
@@ -1954,6 +1993,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 7B, computed 1C"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,RMC ON*15",
@@ -1969,6 +2009,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 15, computed 52"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,RMCOFF*7B",
@@ -1984,6 +2025,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 7B, computed 3C"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, VTG ON*0C",
@@ -1999,6 +2041,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 0C, computed 6B"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, VTGOFF*62",
@@ -2014,6 +2057,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 62, computed 05"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,VTG ON*0C",
@@ -2029,6 +2073,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 0C, computed 4B"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,VTGOFF*62",
@@ -2044,6 +2089,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 62, computed 25"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ZDA ON*16",
@@ -2059,6 +2105,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 16, computed 71"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ZDAOFF*78",
@@ -2074,6 +2121,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 78, computed 1F"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,ZDA ON*16",
@@ -2089,6 +2137,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 16, computed 51"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,ZDAOFF*78",
@@ -2104,6 +2153,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 78, computed 3F"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,DTM ON*14",
@@ -2119,6 +2169,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 14, computed 47"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,DTMOFF*7A",
@@ -2134,6 +2185,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 7A, computed 29"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,RLM ON*1A",
@@ -2149,6 +2201,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 1A, computed 49"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,RLMOFF*74",
@@ -2164,6 +2217,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 74, computed 27"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,NMEA V2*0B",
@@ -2179,6 +2233,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 0B, computed 78"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,NMEA V4*0D",
@@ -2194,6 +2249,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 0D, computed 7E"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,RATE01*6B",
@@ -2209,6 +2265,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 6B, computed 38"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,RATE02*68",
@@ -2224,6 +2281,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 68, computed 3B"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,RATE05*6F",
@@ -2239,6 +2297,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 6F, computed 3C"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSSG,RATE10*6B",
@@ -2254,6 +2313,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSSG","field":null,"name":null,"message":"checksum is 6B, computed 38"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, PSM ON*07",
@@ -2269,6 +2329,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 07, computed 60"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, PSMOFF*69",
@@ -2284,6 +2345,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 69, computed 0E"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,PSM ON*07",
@@ -2299,6 +2361,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 07, computed 40"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,PSMOFF*69",
@@ -2314,6 +2377,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 69, computed 2E"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV05*77",
@@ -2329,6 +2393,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 77, computed 10"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV06*74",
@@ -2344,6 +2409,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 74, computed 13"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV07*75",
@@ -2359,6 +2425,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 75, computed 12"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV08*7A",
@@ -2374,6 +2441,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 7A, computed 1D"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV09*7B",
@@ -2389,6 +2457,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 7B, computed 1C"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV10*73",
@@ -2404,6 +2473,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 73, computed 14"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV11*72",
@@ -2419,6 +2489,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 72, computed 15"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV12*71",
@@ -2434,6 +2505,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 71, computed 16"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV13*70",
@@ -2449,6 +2521,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 70, computed 17"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV14*77",
@@ -2464,6 +2537,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 77, computed 10"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, ELEV15*76",
@@ -2479,6 +2553,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 76, computed 11"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, DATP90*60",
@@ -2494,6 +2569,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 60, computed 07"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, DATW84*62",
@@ -2509,6 +2585,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 62, computed 05"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,DATP90*60",
@@ -2524,6 +2601,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 60, computed 27"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,DATW84*62",
@@ -2539,6 +2617,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 62, computed 25"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG, NVSGPS*67",
@@ -2554,6 +2633,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPSGG","field":null,"name":null,"message":"checksum is 67, computed 47"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG, NVSGLN*66",
@@ -2569,6 +2649,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPSGG","field":null,"name":null,"message":"checksum is 66, computed 46"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG, NVSMIX*7F",
@@ -2584,6 +2665,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPSGG","field":null,"name":null,"message":"checksum is 7F, computed 5F"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG,JAMDET,*57",
@@ -2597,6 +2679,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGG, JAMDET, *57",
@@ -2612,6 +2695,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGG","field":null,"name":null,"message":"checksum is 57, computed 04"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGG,NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71",
@@ -2627,6 +2711,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGG","field":null,"name":null,"message":"checksum is 71, computed 22"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGG, NQUERY*6C",
@@ -2642,6 +2727,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGG","field":null,"name":null,"message":"checksum is 6C, computed 1F"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, NQUERY*6C",
@@ -2657,6 +2743,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 6C, computed 0B"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG,RQUERY,GEOS-5,V.5.102,100518,00083037,802DC097,F7FF8064*5C",
@@ -2672,6 +2759,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 5C, computed 1B"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPSGG, RQUERY*70",
@@ -2687,6 +2775,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPSGG","field":null,"name":null,"message":"checksum is 70, computed 50"}}"#,
         ),
     },
+    #[cfg(feature = "geos5")]
     Example {
         manual: "geos5",
         raw: "$GPGSGG, RQUERY*70",
@@ -2702,6 +2791,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"checksum_mismatch","address":"GPGSGG","field":null,"name":null,"message":"checksum is 70, computed 17"}}"#,
         ),
     },
+    #[cfg(feature = "globalsat")]
     Example {
         manual: "globalsat",
         raw: "$PSRF100,0,9600,8,1,0*0C",
@@ -2715,6 +2805,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "globalsat")]
     Example {
         manual: "globalsat",
         raw: "PSRF101,-2686700,-4304200,3851624,96000,497260,921,12,3*7F",
@@ -2730,6 +2821,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "globalsat")]
     Example {
         manual: "globalsat",
         raw: "PSRF102,9600,8,1,0*12",
@@ -2745,6 +2837,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "globalsat")]
     Example {
         manual: "globalsat",
         raw: "PSRF103,00,01,00,01*25",
@@ -2760,6 +2853,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "globalsat")]
     Example {
         manual: "globalsat",
         raw: "PSRF103,05,00,01,01*20",
@@ -2775,6 +2869,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "globalsat")]
     Example {
         manual: "globalsat",
         raw: "PSRF103,05,00,00,01*21",
@@ -2790,6 +2885,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "globalsat")]
     Example {
         manual: "globalsat",
         raw: "PSRF104,37.3875111,-121.97232,0,96000,237759,922,12,3*37",
@@ -2805,6 +2901,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "globalsat")]
     Example {
         manual: "globalsat",
         raw: "PSRF105,1*3E",
@@ -2820,6 +2917,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "globalsat")]
     Example {
         manual: "globalsat",
         raw: "PSRF105,0*3F",
@@ -2835,6 +2933,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"line does not start with '$' or '!'"}}"#,
         ),
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMCLRALMS",
@@ -2848,6 +2947,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMCLREPHS",
@@ -2861,6 +2961,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMCOLD,6",
@@ -2874,6 +2975,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMCOLD,15",
@@ -2887,6 +2989,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMGETPAR,1403*",
@@ -2900,6 +3003,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMGETRTCTIME",
@@ -2913,6 +3017,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMGETSWVER",
@@ -2926,6 +3031,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMHOT",
@@ -2939,6 +3045,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMNMEAONOFF,0",
@@ -2952,6 +3059,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMNMEAONOFF,1",
@@ -2965,6 +3073,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMNMEAONOFF",
@@ -2978,6 +3087,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMRESTOREPAR",
@@ -2991,6 +3101,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMSAVEPAR",
@@ -3004,6 +3115,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMSET,1403,15,12,12,18*<checksum><cr><lf>",
@@ -3019,6 +3131,7 @@ const EXAMPLES: &[Example] = &[
             r#"{"ok":false,"error":{"kind":"bad_checksum","address":"PSTMSET","field":null,"name":null,"message":"checksum \"<checksum><cr><lf>\" is not two hex digits of one letter case"}}"#,
         ),
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMSETPAR,1121,10*",
@@ -3032,6 +3145,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMSETPAROK,1121*",
@@ -3045,6 +3159,7 @@ const EXAMPLES: &[Example] = &[
         ),
         raw_decode: None,
     },
+    #[cfg(feature = "teseo")]
     Example {
         manual: "teseo",
         raw: "$PSTMWARM",

@@ -39,6 +39,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPSGG,SWPROT*75
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Geos5Command<'a> {
     /// Command word: The 6-character command word, e.g. BDR115 (115200 bit/s), GGA ON, RATE10 or
