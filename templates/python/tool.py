@@ -453,6 +453,8 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
+    if not args and sys.stdin.isatty():  # `nmea` alone at a prompt: nothing to read, say how
+        args = ["--help"]
     if not args or args[0] not in ("show", "command", "-h", "--help"):
         args.insert(0, "show")
     try:
