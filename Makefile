@@ -10,7 +10,7 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build test test-generator test-python test-c test-c-memory test-rust test-tools clean \
+.PHONY: generate validate check build test test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-differential
 
@@ -46,9 +46,22 @@ $(BIN)/nmea-rs: $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/
 	cargo build --quiet --release --manifest-path generated/rust/Cargo.toml --features std --bin nmea-rs --target-dir $(CARGO_TARGET)
 	cp $(CARGO_TARGET)/release/nmea-rs $@
 
+# --- the docs as a static HTML site (mkdocs, its built-in search) -----------------------------
+
+DOCS_VENV  := .venv-docs
+DOCS_STAMP := $(DOCS_VENV)/.installed
+
+$(DOCS_STAMP): docs/requirements-docs.txt
+	python3 -m venv $(DOCS_VENV)
+	$(DOCS_VENV)/bin/pip install --quiet --disable-pip-version-check -r docs/requirements-docs.txt
+	touch $@
+
+docs-site: $(DOCS_STAMP)
+	$(DOCS_VENV)/bin/mkdocs build --strict --quiet --config-file mkdocs.yml
+
 # --- tests -----------------------------------------------------------------------------------
 
-test: check test-generator test-python test-c test-c-memory test-rust test-tools test-bench-smoke fuzz-smoke
+test: check test-generator test-python test-c test-c-memory test-rust test-tools test-workflows test-bench-smoke fuzz-smoke
 
 test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
@@ -85,10 +98,20 @@ test-c-memory: $(STAMP)
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug decode < tests/agreement/edge_cases.txt > /dev/null
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug encode < build/c/valgrind.jsonl > /dev/null
 
+# The crate's receiver features (default: all of them); each must build and lint on its own.
+RUST_VENDORS = $(shell sed -n 's/^\([a-z0-9_]*\) = \[\]$$/\1/p' generated/rust/Cargo.toml | grep -vx std)
+
 test-rust:
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --features std --target-dir $(CARGO_TARGET)
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --no-default-features --lib --target-dir $(CARGO_TARGET)
 	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --features std --target-dir $(CARGO_TARGET) -- -D warnings
+	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --features std,serde --target-dir $(CARGO_TARGET) -- -D warnings
+	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --target-dir $(CARGO_TARGET) -- -D warnings
+	set -e; for vendor in $(RUST_VENDORS); do \
+		cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --features $$vendor \
+			--target-dir $(CARGO_TARGET) -- -D warnings; \
+	done
+	cargo fmt --manifest-path generated/rust/Cargo.toml --check
 
 test-tools: build $(STAMP)
 	$(PY) -m pytest -q tests/agreement
@@ -107,6 +130,13 @@ BENCH_PY_LINES ?= 100000
 
 bench: build
 	python3 bench/run.py --rounds $(BENCH_ROUNDS) --lines $(BENCH_LINES) --python-lines $(BENCH_PY_LINES)
+
+# The users' workflows from fresh temporary directories: the C pair in a CMake project and a plain
+# build, the Rust crate as a path dependency with vendor features and serde, the Python package
+# pip-installed into a new venv (mypy --strict on a user script), the `nmea` tool, the docs' links
+# and the HTML site in headless Chromium.
+test-workflows: $(STAMP) $(DOCS_STAMP)
+	$(PY) -m pytest -q tests/workflows
 
 # --- fuzzing ---------------------------------------------------------------------------------
 # `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds, then replays what they

@@ -61,7 +61,7 @@ def load_spec(spec_dir: Path) -> Spec:
 def _enum(doc: Document) -> EnumDef:
     d = doc.data
     values = [EnumValue(v["code"], v["id"], v["doc"], v.get("manuals", []), v.get("since"),
-                        Origin(str(doc.path), ("values", i)))
+                        Origin(str(doc.path), ("values", i)), v.get("cli"))
               for i, v in enumerate(d["values"])]
     return EnumDef(d["enum"], d["name"], d["doc"], values, Origin(str(doc.path), ()))
 

@@ -46,6 +46,7 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
             _resolve_layout(spec, sentence, layout, manual_ids, report)
     if report.errors:
         return report.errors
+    _check_cli(spec, report)
     for sentence in spec.sentences:
         variant_ids = {v.id for v in sentence.variants}
         for example in sentence.examples:
@@ -182,6 +183,32 @@ def _check_enum(enum: Any, manual_ids: set[str], report: _Reporter) -> None:
         codes.add(v.code)
         ids.add(v.id)
         _check_manuals(v.manuals, manual_ids, v.origin, report, "manuals")
+
+
+def _check_cli(spec: Spec, report: _Reporter) -> None:
+    """`cli` shortcuts: on values of an enum that a command field takes, unique in their enum, and
+    not named like a command of the vendors that take the enum."""
+    takers: dict[str, list[Sentence]] = {}
+    for s in spec.sentences:
+        if s.kind == "command":
+            for layout in s.layouts:
+                for f in layout.fields:
+                    if f.enum is not None:
+                        takers.setdefault(f.enum.id, []).append(s)
+    for enum in spec.enums:
+        seen: set[str] = set()
+        commands = {t.command_name(layout) for s in takers.get(enum.id, []) for t in spec.sentences
+                    if t.kind == "command" and t.vendor == s.vendor for layout in t.layouts}
+        for v in enum.values:
+            if v.cli is None:
+                continue
+            if enum.id not in takers:
+                report(v.origin, "S006", f"cli {v.cli!r}: no command takes enum {enum.id}", "cli")
+            if v.cli in seen:
+                report(v.origin, "S006", f"cli {v.cli!r} appears twice in enum {enum.id}", "cli")
+            if v.cli.split()[0] in commands:
+                report(v.origin, "S006", f"cli {v.cli!r} is named like a command", "cli")
+            seen.add(v.cli)
 
 
 # Names the generated code of every language gives to other things in a sentence's type:

@@ -143,10 +143,39 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             tables=[t for t in spec.tables if m.id in t.manuals],
             bitfields=[b for b in spec.bitfields if m.id in b.manuals],
             errata=[v for v in vectors if v["manual_id"] == m.id and v["status"] != "intact"])
+    files.update(_indexes(spec, env, banner))
     files["docs/errata.md"] = env.get_template("docs/errata.md.j2").render(
         banner=banner, spec=spec, vectors=[v for v in vectors if v["status"] != "intact"], counts=counts)
     files["docs/json.md"] = banner + (TEMPLATES / "docs" / "json.md").read_text(encoding="utf-8")
     return files
+
+
+def _indexes(spec: Spec, env: jinja2.Environment, banner: str) -> dict[str, str]:
+    """The index pages: sentences A to Z, receivers, commands."""
+    from .emit_tool import command_views, usage
+
+    commands, shortcuts = command_views(spec)
+    sentences = [{"id": s.id, "name": s.name, "kind": s.kind, "vendor": s.vendor,
+                  "wire": (s.address if s.framing == "text" else f"${s.address}") if s.address
+                  else f"$--{s.id}"} for s in sorted(spec.sentences, key=lambda s: s.id)]
+    manuals = [m for m in spec.manuals if m.file is not None]
+    vendors = [{"manual": m,
+                "standard": sum(1 for s in spec.standard if m.id in s.manuals),
+                "own": sum(1 for s in spec.proprietary if s.vendor == m.id and s.kind != "command"),
+                "commands": sum(1 for s in spec.proprietary if s.vendor == m.id and s.kind == "command")}
+               for m in manuals]
+    by_vendor = []
+    for m in manuals:
+        mine = [{**c, "usage": usage(c)} for c in commands if c["vendor"] == m.id]
+        if mine:
+            by_vendor.append({"manual": m, "commands": mine, "shortcuts": [
+                (" ".join(x["words"]), x["command"], ", ".join(f"{k} `{v}`" for k, v in x["settings"]))
+                for x in shortcuts if x["vendor"] == m.id]})
+    return {
+        "docs/sentences.md": env.get_template("docs/sentences.md.j2").render(banner=banner, sentences=sentences),
+        "docs/vendors.md": env.get_template("docs/vendors.md.j2").render(banner=banner, vendors=vendors),
+        "docs/commands.md": env.get_template("docs/commands.md.j2").render(banner=banner, vendors=by_vendor),
+    }
 
 
 def _bitfield_users(spec: Spec, bitfield_id: str) -> list[str]:

@@ -14,9 +14,10 @@ import jinja2
 from . import emit_vectors
 from .emit import TEMPLATES, header
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
+from .rust_features import Gates, cfg, with_cfg
 
 CRATE = "nmeaspec"
-RUNTIME_MODULES = ["mod", "error", "frame", "layout", "stream", "table", "types", "write", "json"]
+RUNTIME_MODULES = ["mod", "error", "frame", "layout", "serialize", "stream", "table", "types", "write", "json"]
 
 # Expected texts the runtime's readers hold for the types whose description is fixed.
 FIXED_EXPECTED = {
@@ -867,9 +868,11 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     tool = (TEMPLATES / "rust" / "nmea-rs.rs").read_text(encoding="utf-8")
     files[f"{base}/src/bin/nmea-rs.rs"] = header(spec, "//", ["templates/rust/nmea-rs.rs"]) + "\n" + tool
 
+    gates = Gates(spec)
     layouts = []
     for s in spec.sentences:
         views = [layout_view(spec, s, lay) for lay in s.layouts]
+        gate = gates.sentence(s)
         enum_files = sorted({f.enum.origin.file for lay in s.layouts for f in all_fields(lay) if f.enum})
         bitfield_files = sorted({f.bitfield.origin.file for lay in s.layouts for f in all_fields(lay) if f.bitfield})
         module_file = sentence_module(s).removeprefix("r#")
@@ -879,29 +882,34 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         for view in views:
             name = view["name"]
             reply_names = [r.layout_camel(lay) for r in s.replies for lay in r.layouts]
-            parse_arm = fmt_arm(12, f"Self::{name}", f"{name}::parse_fields(fields, checksum).map(Sentence::{name})")
+            parse_arm = with_cfg(12, gate, fmt_arm(
+                12, f"Self::{name}", f"{name}::parse_fields(fields, checksum).map(Sentence::{name})"))
             layouts.append({
                 "sentence": s, "name": name, "layout": view["layout"], "title": view["title"], "type": view["type"],
-                "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm,
-                "framing_arm": fmt_arm(12, f"Self::{name}", framing_expr(s)),
-                "replies_arm": fmt_slice(12, f"Self::{name} => ", [f"Self::{r}" for r in reply_names], ","),
+                "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm, "cfg": gate,
+                "framing_arm": with_cfg(12, gate, fmt_arm(12, f"Self::{name}", framing_expr(s))),
+                "replies_arm": with_cfg(12, gate, fmt_slice(12, f"Self::{name} => ", [f"Self::{r}" for r in reply_names],
+                                                            ",")),
             })
     files[f"{base}/src/sentences/mod.rs"] = env.get_template("rust/sentences_mod.rs.j2").render(
         header=header(spec, "//"), sentences=sorted((
-            {"sentence": s, "module": sentence_module(s), "uses": fmt_use(
+            {"sentence": s, "module": sentence_module(s), "cfg": gates.sentence(s), "uses": fmt_use(
                 sentence_module(s), rust_sorted({s.layout_camel(lay) for lay in s.layouts}), "pub use")}
             for s in spec.sentences), key=lambda m: m["module"].removeprefix("r#")))
     files[f"{base}/src/enums.rs"] = env.get_template("rust/enums.rs.j2").render(
-        header=header(spec, "//", [e.origin.file for e in spec.enums]), enums=[enum_view(e) for e in spec.enums])
+        header=header(spec, "//", [e.origin.file for e in spec.enums]), enums=[{**enum_view(e), "cfg": gates.enum(e.id)} for e in spec.enums])
     files[f"{base}/src/bitfields.rs"] = env.get_template("rust/bitfields.rs.j2").render(
         header=header(spec, "//", [b.origin.file for b in spec.bitfields]),
-        bitfields=[bitfield_view(b, any(f.bitfield is b and f.type == "integer" for s in spec.sentences
+        bitfields=[{"cfg": gates.bitfield(b.id)} | bitfield_view(b, any(f.bitfield is b and f.type == "integer" for s in spec.sentences
                                         for lay in s.layouts for f in all_fields(lay)))
                    for b in spec.bitfields],
         uses_numbers=any(f.bitfield is not None and f.type == "integer" for s in spec.sentences
-                         for lay in s.layouts for f in all_fields(lay)))
+                         for lay in s.layouts for f in all_fields(lay)),
+        hex_cfg=gates.union([gates.bitfield(b.id) for b in spec.bitfields]),
+        number_cfg=gates.union([gates.bitfield(f.bitfield.id) for s in spec.sentences for lay in s.layouts
+                                for f in all_fields(lay) if f.bitfield is not None and f.type == "integer"]))
     files[f"{base}/src/tables.rs"] = env.get_template("rust/tables.rs.j2").render(
-        header=header(spec, "//", [t.origin.file for t in spec.tables]), tables=[table_view(t) for t in spec.tables],
+        header=header(spec, "//", [t.origin.file for t in spec.tables]), tables=[{**table_view(t), "cfg": gates.table(t.id)} for t in spec.tables],
         imports=fmt_use("crate::runtime", rust_sorted(
             {"Encoding", "Parameter", "Table"}
             | ({"Bound"} if any(p.min is not None or p.max is not None for t in spec.tables for p in t.parameters)
@@ -925,37 +933,47 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         found = next((v for v in intact if v["sentence"] == lay["sentence"].id
                       and v["variant"] == lay["layout"].id), None)
         if found:
-            unit_examples += fmt_tuple(8, [rust_raw(found["line"]), rust_raw(found["decode"])], ",")
+            unit_examples += with_cfg(8, lay["cfg"], fmt_tuple(8, [rust_raw(found["line"]), rust_raw(found["decode"])], ","))
     # Proprietary `$` addresses: those that look standard (GeoS-5's GPSGG) are looked up before the
     # standard sentences, the others on their own.
     proprietary_arms: list[str] = []
     standard_like_arms: list[str] = []
     for address in sorted({s.address for s in spec.proprietary if s.framing == "sentence" and s.address}):
-        names = [s.layout_camel(lay) for s, lay in spec.by_address(address)]
+        owners = spec.by_address(address)
+        names = [s.layout_camel(lay) for s, lay in owners]
         standard_like = len(address) == 5 and not address.startswith("P")
         arms = standard_like_arms if standard_like else proprietary_arms
-        arms += fmt_slice(12, f"{rust_str(address)} => ", [f"LayoutId::{n}" for n in names], ",")
+        arms += with_cfg(12, cfg({s.vendor for s, _ in owners if s.vendor}),
+                         fmt_slice(12, f"{rust_str(address)} => ", [f"LayoutId::{n}" for n in names], ","))
     standard_arms: list[str] = []
     for s in spec.standard:
         standard_arms += fmt_slice(8, f"{rust_str(s.id)} => ", [f"LayoutId::{s.layout_camel(lay)}" for lay in s.layouts],
                                    ",")
     text_commands = []
     for word in sorted({(s.address or "").upper() for s in spec.proprietary if s.framing == "text"}):
-        names = [s.layout_camel(lay) for s, lay in spec.text_command(word)]
-        text_commands.append({"word": word, "lines": fmt_slice(8, "return ", [f"LayoutId::{n}" for n in names], ";")})
+        owners = spec.text_command(word)
+        names = [s.layout_camel(lay) for s, lay in owners]
+        text_commands.append({"word": word, "cfg": cfg({s.vendor for s, _ in owners if s.vendor}),
+                              "lines": fmt_slice(8, "return ", [f"LayoutId::{n}" for n in names], ";")})
+    # Text commands compile with their receivers' features; without them, a fallback finds none.
+    text_cfg = cfg(None if not text_commands or any(not t["cfg"] for t in text_commands) else
+                   {s.vendor for s in spec.proprietary if s.framing == "text" and s.vendor})
     files[f"{base}/src/lib.rs"] = env.get_template("rust/lib.rs.j2").render(
         header=header(spec, "//"), spec=spec, layouts=layouts, example=first, command=command_example(spec),
         unit_examples=unit_examples, proprietary_arms=proprietary_arms, standard_arms=standard_arms,
         standard_like_arms=standard_like_arms,
         text_commands=text_commands,
         runtime_uses=fmt_use("runtime", rust_sorted(
-            {"first_word", "is_standard_address", "strip_line_ending", "upper_eq"}
-            | ({"is_command_word"} if text_commands else set()))),
-        all_layouts=fmt_array(4, f"pub const ALL: [Self; {len(layouts)}]", [f"Self::{lay['name']}" for lay in layouts]))
+            {"first_word", "is_standard_address", "strip_line_ending", "upper_eq"})),
+        text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
+        all_layouts=["    pub const ALL: &'static [Self] = &[",
+                     *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],
+                     "    ];"])
     files[f"{base}/Cargo.toml"] = env.get_template("rust/Cargo.toml.j2").render(
-        header=header(spec, "#", ["templates/rust/Cargo.toml.j2"]), crate=CRATE)
+        header=header(spec, "#", ["templates/rust/Cargo.toml.j2"]), crate=CRATE, vendors=gates.features)
     rustfmt = (TEMPLATES / "rust" / "rustfmt.toml").read_text(encoding="utf-8")
     files[f"{base}/rustfmt.toml"] = header(spec, "#", ["templates/rust/rustfmt.toml"]) + "\n" + rustfmt
     files[f"{base}/tests/examples.rs"] = env.get_template("rust/examples.rs.j2").render(
-        header=header(spec, "//"), vectors=[{"rust": example_lines(v)} for v in vectors], crate=CRATE)
+        header=header(spec, "//"), vectors=[{"rust": example_lines(v), "cfg": gates.sentence(spec.sentence(v["sentence"]))} for v in vectors],
+        crate=CRATE)
     return files

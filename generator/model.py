@@ -43,6 +43,7 @@ class EnumValue:
     manuals: list[str]
     since: str | None
     origin: Origin
+    cli: str | None = None       # the `nmea command` words that pick this value: "set-baud 115200"
 
     @property
     def const_name(self) -> str:
@@ -327,6 +328,12 @@ class Sentence:
 
     def layout_snake(self, layout: Layout) -> str:
         return self.id.lower() + (f"_{layout.id}" if layout.id else "")
+
+    def command_name(self, layout: Layout) -> str:
+        """The name `nmea command VENDOR NAME` knows a command layout by: its id without the vendor
+        prefix, then the variant, in kebab case (geos5_nquery_request -> nquery-request)."""
+        name = self.id.lower().removeprefix(f"{self.vendor}_") + (f"_{layout.id}" if layout.id else "")
+        return name.replace("_", "-")
 
 
 @dataclass

@@ -7,16 +7,22 @@
 //! methods build a value to send. Bits the manuals leave unnamed are reserved: they are kept
 //! and never make a value invalid.
 
-use crate::runtime::{Hex, Number};
+#[cfg(any(feature = "geos5", feature = "globalsat", feature = "teseo"))]
+use crate::runtime::Hex;
+#[cfg(any(feature = "globalsat", feature = "teseo"))]
+use crate::runtime::Number;
 
 /// GeoS-5 configuration register 1 (32 bits): Receiver configuration register #1, the sixth field
 /// of $GPSGG,RQUERY (manual table 8 of section 3.11), sent as 8 hex digits with bit 31 first:
 /// antenna supply, operating mode, RAIM, power saving, dynamics profile, output data rate, Kalman
 /// filter, 2D modes, GeoPath, 1PPS settings and the constellations in use. Bits 31, 29, 20, 17:16
 /// and 5 are reserved; the manual's own example (0x802DC097) has the reserved bits 31 and 16 set.
+#[cfg(feature = "geos5")]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Geos5Config1(pub u32);
 
+#[cfg(feature = "geos5")]
 impl Geos5Config1 {
     /// `antenna_power` = 0: Antenna supply off.
     pub const ANTENNA_POWER_OFF: u32 = 0;
@@ -357,6 +363,7 @@ impl Geos5Config1 {
     }
 }
 
+#[cfg(feature = "geos5")]
 impl From<Hex> for Geos5Config1 {
     /// The value of a hex field (its low 32 bits).
     fn from(hex: Hex) -> Self {
@@ -369,9 +376,12 @@ impl From<Hex> for Geos5Config1 {
 /// receiver type code, the datum of the output coordinates and the differential/SBAS settings. Bits
 /// 13:9, 7:5 and 1:0 are reserved; the manual's own example (0xF7FF8064) has the reserved bits 6
 /// and 5 set.
+#[cfg(feature = "geos5")]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Geos5Config2(pub u32);
 
+#[cfg(feature = "geos5")]
 impl Geos5Config2 {
     /// `receiver_type` = 63487: GeoS-5M.
     pub const RECEIVER_TYPE_GEOS5M: u32 = 63487;
@@ -476,6 +486,7 @@ impl Geos5Config2 {
     }
 }
 
+#[cfg(feature = "geos5")]
 impl From<Hex> for Geos5Config2 {
     /// The value of a hex field (its low 32 bits).
     fn from(hex: Hex) -> Self {
@@ -489,9 +500,12 @@ impl From<Hex> for Geos5Config2 {
 /// holds, and the results of the built-in hardware tests. Bits 29 and 17 are reserved. The manual's
 /// only example (0x00083037) shows bit 23 = 0 (SLEEP) in a sentence the receiver sent while
 /// producing a solution; see the notes of GEOS5_RQUERY.
+#[cfg(feature = "geos5")]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Geos5StatusWord(pub u32);
 
+#[cfg(feature = "geos5")]
 impl Geos5StatusWord {
     /// `jamming_detected` = 0: No jamming detected.
     pub const JAMMING_DETECTED_NO_JAMMING: u32 = 0;
@@ -947,6 +961,7 @@ impl Geos5StatusWord {
     }
 }
 
+#[cfg(feature = "geos5")]
 impl From<Hex> for Geos5StatusWord {
     /// The value of a hex field (its low 32 bits).
     fn from(hex: Hex) -> Self {
@@ -957,9 +972,12 @@ impl From<Hex> for Geos5StatusWord {
 /// SiRF reset configuration (8 bits): The ResetCfg mask of $PSRF101 and $PSRF104, written in
 /// decimal on the wire. The GlobalSat manual keeps only the masks; the bit meanings follow the SiRF
 /// NMEA reference.
+#[cfg(feature = "globalsat")]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct SirfResetCfg(pub u8);
 
+#[cfg(feature = "globalsat")]
 impl SirfResetCfg {
     /// Bit 0 (`data_valid`): The initialisation data in the command are valid (set for warm and hot
     /// starts).
@@ -996,6 +1014,7 @@ impl SirfResetCfg {
     }
 }
 
+#[cfg(feature = "globalsat")]
 impl From<Hex> for SirfResetCfg {
     /// The value of a hex field (its low 8 bits).
     fn from(hex: Hex) -> Self {
@@ -1003,6 +1022,7 @@ impl From<Hex> for SirfResetCfg {
     }
 }
 
+#[cfg(feature = "globalsat")]
 impl From<Number> for SirfResetCfg {
     /// The value of an integer field (its low 8 bits).
     fn from(number: Number) -> Self {
@@ -1017,9 +1037,12 @@ impl From<Number> for SirfResetCfg {
 /// on. The manual does not describe bits 0, 3-8, 11, 13 and 26-31; they are reserved and must not
 /// be changed. A full cold start ($PSTMCOLD,15) is strongly recommended after switching any
 /// constellation.
+#[cfg(feature = "teseo")]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct TeseoAppOnOff(pub u32);
 
+#[cfg(feature = "teseo")]
 impl TeseoAppOnOff {
     /// `pps_polarity_inversion` = 0: Not inverted; the PPS signal rises at the PPS event.
     pub const PPS_POLARITY_INVERSION_RISING_EDGE: u32 = 0;
@@ -1232,6 +1255,7 @@ impl TeseoAppOnOff {
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Hex> for TeseoAppOnOff {
     /// The value of a hex field (its low 32 bits).
     fn from(hex: Hex) -> Self {
@@ -1243,9 +1267,12 @@ impl From<Hex> for TeseoAppOnOff {
 /// Mask argument of $PSTMCOLD and CDB parameter 120 (cold start type, 1 byte). A set bit erases
 /// that data; any combination is allowed (e.g. 0xD). The default is 0xE (ephemerides, position and
 /// time; the almanac is kept); 0xF erases everything (a "full" cold start).
+#[cfg(feature = "teseo")]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct TeseoColdStartMask(pub u8);
 
+#[cfg(feature = "teseo")]
 impl TeseoColdStartMask {
     /// Bit 0 (`erase_almanac`): Erase the almanacs (mask 0x1).
     pub const fn erase_almanac(self) -> u8 {
@@ -1292,6 +1319,7 @@ impl TeseoColdStartMask {
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Hex> for TeseoColdStartMask {
     /// The value of a hex field (its low 8 bits).
     fn from(hex: Hex) -> Self {
@@ -1299,6 +1327,7 @@ impl From<Hex> for TeseoColdStartMask {
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Number> for TeseoColdStartMask {
     /// The value of an integer field (its low 8 bits).
     fn from(number: Number) -> Self {
@@ -1314,9 +1343,12 @@ impl From<Number> for TeseoColdStartMask {
 /// lists, which give VTG, PSTMTG and PSTMTS as off by default and PSTMSBAS as on. The standard
 /// messages are named with talker GP, but GSA and GSV follow the talker rules of CDB 200. ZDA,
 /// listed among the standard messages (off by default), has no bit.
+#[cfg(feature = "teseo")]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct TeseoNmeaMsgList(pub u32);
 
+#[cfg(feature = "teseo")]
 impl TeseoNmeaMsgList {
     /// Bit 0 (`gga`): $GPGGA, GGA with 3 decimals of latitude/longitude minutes (mask 0x1).
     pub const fn gga(self) -> u32 {
@@ -1556,6 +1588,7 @@ impl TeseoNmeaMsgList {
     }
 }
 
+#[cfg(feature = "teseo")]
 impl From<Hex> for TeseoNmeaMsgList {
     /// The value of a hex field (its low 32 bits).
     fn from(hex: Hex) -> Self {

@@ -17,6 +17,7 @@
 /// 0,5; on the wire a point is assumed, the NMEA convention, since a comma separates fields).
 /// Changes are lost at reset unless saved; parameters the manual does not describe are reserved and
 /// must not be changed, since wrong values can degrade or stop the receiver.
+#[cfg(feature = "teseo")]
 pub mod teseo_cdb {
     use crate::runtime::{Bound, Encoding, Parameter, Table};
 
@@ -315,4 +316,5 @@ pub mod teseo_cdb {
 }
 
 /// ST Teseo configuration data block (CDB): every parameter (see [`teseo_cdb`]).
+#[cfg(feature = "teseo")]
 pub const TESEO_CDB: crate::runtime::Table = teseo_cdb::TABLE;

@@ -12,6 +12,9 @@ mod table;
 mod types;
 mod write;
 
+#[cfg(feature = "serde")]
+mod serialize;
+
 pub mod stream;
 
 #[cfg(feature = "std")]

@@ -38,6 +38,7 @@ use crate::LayoutId;
 /// ```text
 /// LOG GPGGA ONTIME 1
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ComnavLog<'a> {
     /// The command as received: written back as it is while its words, ignoring case, still

@@ -31,6 +31,7 @@ use crate::LayoutId;
 ///            |   |
 /// NMEATALKER aaa aaaa
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ComnavNmeatalker<'a> {
     /// The command as received: written back as it is while its words, ignoring case, still
@@ -124,6 +125,7 @@ impl fmt::Display for ComnavNmeatalker<'_> {
 /// ```text
 /// NMEATALKER LIST
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ComnavNmeatalkerList<'a> {
     /// The command as received: written back as it is while its words, ignoring case, still
@@ -207,6 +209,7 @@ impl fmt::Display for ComnavNmeatalkerList<'_> {
 /// ```text
 /// NMEATALKER RESET
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ComnavNmeatalkerReset<'a> {
     /// The command as received: written back as it is while its words, ignoring case, still

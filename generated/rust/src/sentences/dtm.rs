@@ -29,6 +29,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPDTM,999,,0.002,S,0.005,E,005.8,W84*1A
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Dtm<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

@@ -33,6 +33,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPSGG,JAMDET,*57
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Geos5Jamdet<'a> {
     /// Reserved: A field that is empty in every printed form ($GPSGG,JAMDET,*57; the comma is

@@ -41,6 +41,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPSGG,NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Geos5Nquery<'a> {
     /// Port number: Serial port the report is about (0 = port

@@ -33,6 +33,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPSGG,NQUERY*6C
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Geos5NqueryRequest {
     /// How the checksum is written.

@@ -41,6 +41,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPSGG,RQUERY,GEOS-5,V.5.102,100518,00083037,802DC097,F7FF8064*5C
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Geos5Rquery<'a> {
     /// Receiver name: Name of the receiver; GEOS-5 for every module type of the GeoS-5 family (the

@@ -33,6 +33,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPSGG,RQUERY*70
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Geos5RqueryRequest {
     /// How the checksum is written.

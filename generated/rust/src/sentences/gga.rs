@@ -35,6 +35,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPGGA,075140.00,5550.613522,N,03732.251556,E,2,22,0.5,00188.862,M,0014.4,M,001.0,0000*4F
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Gga<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

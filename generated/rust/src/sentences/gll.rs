@@ -29,6 +29,7 @@ use crate::LayoutId;
 /// ```text
 /// $GNGLL,5550.612764,N,03732.252689,E,075712.00,V,N*6B
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Gll<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

@@ -34,6 +34,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPGNS,080839.00,5550.611145,N,03732.253491,E,DNNN,10,0.8,00182.290,0014.4,001.0,0000,V*15
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Gns<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).
@@ -205,6 +206,7 @@ impl fmt::Display for Gns<'_> {
 /// ```text
 /// $GPGNS,080520.00,,,,,11,,,,,*40
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct GnsAux<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

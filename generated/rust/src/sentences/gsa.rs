@@ -35,6 +35,7 @@ use crate::LayoutId;
 /// ```text
 /// $GNGSA,A,3,01,10,11,12,13,15,17,18,19,24,28,30,1.0,0.5,0.8,1*30
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Gsa<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).
@@ -182,6 +183,7 @@ impl fmt::Display for Gsa<'_> {
 /// ```text
 /// $GNGSA,A,3,18,03,11,86,19,,,,,,1.0,0.6,0.8*2F
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct GsaShort<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

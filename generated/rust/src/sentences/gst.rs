@@ -24,6 +24,7 @@ use crate::LayoutId;
 ///        |         |   |   |   |   |   |   |
 /// $--GST,hhmmss.ss,x.x,x.x,x.x,x.x,x.x,x.x,x.x*hh
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Gst<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

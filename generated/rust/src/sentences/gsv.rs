@@ -19,6 +19,7 @@ use crate::runtime::{
 use crate::LayoutId;
 
 /// One entry of satellites in view (0 to 4 per sentence).
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct GsvSatellite {
     /// Satellite ID: Satellite ID. GPS 1-32, SBAS 33-64 (PRN - 87), GLONASS 65-88 (slot + 64);
@@ -89,6 +90,7 @@ impl GsvSatellite {
 /// ```text
 /// $GPGSV,4,1,16,02,43,143,51,03,08,014,39,06,45,081,49,12,87,266,55,1*68
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Gsv<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

@@ -22,6 +22,7 @@ use crate::LayoutId;
 ///        |   |
 /// $--HDT,x.x,T*hh
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Hdt<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

@@ -39,6 +39,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSRF100,0,9600,8,1,0*0C
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Psrf100<'a> {
     /// Protocol: Protocol to run on port A.

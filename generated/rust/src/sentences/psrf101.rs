@@ -34,6 +34,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSRF101,-2686700,-4304200,3851624,96000,497260,921,12,3*2F
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Psrf101 {
     /// ECEF X \[m\]: ECEF X coordinate of the approximate position, metres (unit from the SiRF NMEA

@@ -39,6 +39,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSRF102,9600,8,1,0*12
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Psrf102<'a> {
     /// Baud rate \[bit/s\]: Port B speed, 1200 to 38400 bit/s; default 9600.

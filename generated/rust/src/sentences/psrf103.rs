@@ -37,6 +37,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSRF103,00,01,00,01*25
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Psrf103<'a> {
     /// Message: The standard sentence to query or schedule, 00 GGA to 05 VTG.

@@ -32,6 +32,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSRF104,37.3875111,-121.97232,0,96000,237759,922,12,3*37
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Psrf104 {
     /// Latitude \[deg\]: Latitude in decimal degrees, positive north, negative south (sign convention

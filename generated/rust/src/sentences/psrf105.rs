@@ -35,6 +35,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSRF105,1*3E
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Psrf105<'a> {
     /// Development data: 1 switches the development data messages on, 0 off.

@@ -31,6 +31,7 @@ use crate::LayoutId;
 ///          |
 /// $PSRF150,x*hh
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Psrf150<'a> {
     /// OkToSend: 1 the receiver is ready to accept input, 0 it is going to sleep (SiRF NMEA

@@ -28,6 +28,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSTMCLRALMS
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmclralms {
     /// How the checksum is written.

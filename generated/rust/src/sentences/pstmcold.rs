@@ -32,6 +32,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSTMCOLD,6
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmcold {
     /// Erase mask (optional): Which data to invalidate before the start: 0x1 almanac, 0x2

@@ -32,6 +32,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSTMGETPAR,1403*
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmgetpar {
     /// Configuration block and parameter ID: One wire field made of the configuration block digit b

@@ -25,6 +25,7 @@ use crate::LayoutId;
 ///                 |         |      | |
 /// $PSTMGETRTCTIME,hhmmss.ms,ddmmyy,x,x*hh
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PstmgetrtctimeReply<'a> {
     /// RTC time: Current time read from the RTC; the manual gives the layout hhmmss.ms without

@@ -25,6 +25,7 @@ use crate::LayoutId;
 ///               |               |   |          |
 /// $PSTMGETSWVER,GNSSLIB_X.X.X.X,aaa,mm dd yyyy,hh:mm:ss*hh
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PstmgetswverReply<'a> {
     /// GNSS library version: The fixed text "GNSSLIB_" joined by the underscore to the library

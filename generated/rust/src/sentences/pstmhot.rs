@@ -30,6 +30,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSTMHOT
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmhot {
     /// How the checksum is written.

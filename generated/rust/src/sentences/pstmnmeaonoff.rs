@@ -33,6 +33,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSTMNMEAONOFF,0
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmnmeaonoff<'a> {
     /// Output state (optional): 0 stops the NMEA output, 1 starts it. Added in software version

@@ -28,6 +28,7 @@ use crate::LayoutId;
 ///          |    |
 /// $PSTMSET,bnnn,c--c*hh
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmset<'a> {
     /// Configuration block and parameter ID: The configuration block digit (1 current, 2 default, 3
@@ -118,6 +119,7 @@ impl fmt::Display for Pstmset<'_> {
 /// ```text
 /// $PSTMSET,1403,15,12,12,18
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PstmsetDop {
     /// Configuration block and parameter ID: Configuration block digit followed by the DOP

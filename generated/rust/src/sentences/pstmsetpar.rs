@@ -41,6 +41,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSTMSETPAR,1121,10*
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmsetpar<'a> {
     /// Configuration block and parameter ID: One wire field made of the configuration block digit b
@@ -152,6 +153,7 @@ impl fmt::Display for Pstmsetpar<'_> {
 ///             |    |   |   |   |   |
 /// $PSTMSETPAR,bnnn,x.x,x.x,x.x,x.x,x*hh
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PstmsetparDop<'a> {
     /// Configuration block and parameter ID: Configuration block digit followed by the DOP

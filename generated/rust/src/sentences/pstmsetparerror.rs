@@ -20,6 +20,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSTMSETPARERROR*hh
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmsetparerror {
     /// How the checksum is written.

@@ -28,6 +28,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSTMSETPAROK,1121*
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmsetparok {
     /// Configuration block and parameter ID: The configuration block digit followed, without a

@@ -24,6 +24,7 @@ use crate::LayoutId;
 ///             |
 /// $PSTMTESTRF,c--c,...*hh
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmtestrf<'a> {
     /// Fields: 0 to 64 values of field, as received: One field of the message, as received.

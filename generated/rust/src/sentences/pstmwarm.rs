@@ -32,6 +32,7 @@ use crate::LayoutId;
 /// ```text
 /// $PSTMWARM
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pstmwarm {
     /// How the checksum is written.

@@ -29,6 +29,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPRLM,123456789ABCD12,000128.00,3,333344445555666677778888*64
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Rlm<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

@@ -35,6 +35,7 @@ use crate::LayoutId;
 /// ```text
 /// $GNRMC,102348.00,V,5550.608356,N,03732.248949,E,000.00000,325.5,300518,,,N,V*24
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Rmc<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

@@ -33,6 +33,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPVTG,309.62,T,,M,0.13,N,0.2,K,A*03
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Vtg<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

@@ -30,6 +30,7 @@ use crate::LayoutId;
 /// ```text
 /// $GPZDA,072914.00,31,05,2018,+00,00*48
 /// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Zda<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).

@@ -1,0 +1,479 @@
+"""`nmea`: look at a receiver log and build vendor commands, from the command line.
+
+    nmea show LOG|-        a table, JSON lines or CSV of the sentences, a summary on stderr
+    nmea command ...       the bytes of a vendor command, checked field by field
+
+Standard library only; the contract tool for other programs is `nmea-py` (cli.py), not this one.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import os
+import sys
+import time
+from collections import Counter
+from collections.abc import Iterable, Iterator
+from typing import IO, Any
+
+from .api import Generic, parse
+from .commands import COMMANDS, SHORTCUTS, VENDORS, Command, Shortcut
+from .runtime import NmeaError
+from .stream import lines, too_long
+
+SHOW_EXAMPLES = """\
+examples:
+  nmea show track.nmea                                   every sentence, one row each
+  nmea track.nmea --sentences GGA --fields time,lat,lon,quality,satellites
+  nmea show --json track.nmea | head                     JSON lines of decoded values
+  nmea show --csv --fields time,lat,lon,speed --sentences RMC track.nmea > track.csv
+  cat /dev/ttyUSB0 | nmea show - --sentences GGA,RMC     a live receiver
+
+Fields are the field ids of the reference docs (`time`, `lat`, `quality`...), plus `line`,
+`talker` and `sentence`. Latitudes and longitudes are shown in signed decimal degrees, enums by
+value id. The summary (counts per sentence, errors by kind, unknown sentences) goes to stderr.
+"""
+
+COMMAND_EXAMPLES = """\
+examples:
+  nmea command --list                        every vendor's commands and their arguments
+  nmea command --list geos5
+  nmea command geos5 set-baud 115200         a shortcut: $GPSGG,BDR115*09
+  nmea command geos5 command BDR115          the same, by the command's field
+  nmea command teseo pstmsetpar 1201 40 set-bits
+  nmea command globalsat psrf103 --message gga --mode query --rate 0 --checksum-mode enabled
+  nmea command comnav log gpgga ontime 1     text commands have no '$' and no checksum
+
+Arguments are positional in field order, or `--field value`; an enum takes its code or its
+value id. The bytes are written to stdout with CR LF, ready for the serial port.
+"""
+
+
+class ToolError(Exception):
+    """A mistake on the command line: printed without a traceback, exit status 2."""
+
+
+# --------------------------------------------------------------------------------------------
+# show
+
+
+SPECIAL_FIELDS = ("line", "talker", "sentence")
+
+
+def _plain(value: Any) -> Any:
+    """A decoded JSON value made friendlier: a coordinate as signed decimal degrees."""
+    if isinstance(value, dict) and set(value) == {"deg", "min", "hemi"}:
+        degrees = value["deg"] + value["min"] / 60
+        return round(-degrees if value["hemi"] in ("S", "W") else degrees, 7)
+    if isinstance(value, list):
+        return [_plain(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    return value
+
+
+def _text(value: Any) -> str:
+    """A value as one table or CSV cell."""
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, list):  # GSA's empty PRN slots are left out
+        return " ".join(_text(v) for v in value if v is not None)
+    if isinstance(value, dict):  # the fields of a group entry; empty ones are left out
+        return "(" + " ".join(f"{k}={_text(v)}" for k, v in value.items() if v is not None) + ")"
+    return str(value)
+
+
+def _summary(fields: dict[str, Any]) -> str:
+    """Every field with a value, as `id=value`: the last column of the default table."""
+    return " ".join(f"{k}={_text(v)}" for k, v in fields.items() if v is not None and v != [])
+
+
+class Summary:
+    """What was read: sentences by id, errors by kind, unknown sentences by address."""
+
+    LIMIT = 20  # rows per list: a log of many talkers has a long tail of unknown addresses
+
+    def __init__(self) -> None:
+        self.lines = 0
+        self.sentences: Counter[str] = Counter()
+        self.errors: Counter[str] = Counter()
+        self.unknown: Counter[str] = Counter()
+
+    def write(self, out: IO[str]) -> None:
+        total_errors = sum(self.errors.values())
+        out.write(f"{self.lines} lines: {sum(self.sentences.values())} sentences, "
+                  f"{sum(self.unknown.values())} unknown, {total_errors} errors\n")
+        for title, counts in (("sentences", self.sentences), ("unknown", self.unknown), ("errors", self.errors)):
+            if counts:
+                ranked = sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))
+                width = max(len(k) for k, _ in ranked[:self.LIMIT])
+                out.write(f"{title}:\n")
+                for key, count in ranked[:self.LIMIT]:
+                    out.write(f"  {key:<{width}}  {count}\n")
+                if len(ranked) > self.LIMIT:
+                    rest = ranked[self.LIMIT:]
+                    out.write(f"  ... {len(rest)} more, {sum(c for _, c in rest)} lines\n")
+
+
+class Progress:
+    """A bar on stderr, redrawn at most ten times a second, that knows the size of the file."""
+
+    def __init__(self, total: int, out: IO[str]) -> None:
+        self.total = max(total, 1)
+        self.out = out
+        self.done = 0
+        self.drawn = 0.0
+
+    def advance(self, count: int) -> None:
+        self.done += count
+        now = time.monotonic()
+        if now - self.drawn >= 0.1:
+            self.drawn = now
+            self._draw()
+
+    def _draw(self) -> None:
+        share = min(self.done / self.total, 1.0)
+        bar = "#" * int(share * 30)
+        self.out.write(f"\r[{bar:<30}] {share:4.0%} {self.done / 1e6:.1f}/{self.total / 1e6:.1f} MB")
+        self.out.flush()
+
+    def finish(self) -> None:
+        self._draw()
+        self.out.write("\n")
+        self.out.flush()
+
+
+def _chunks(source: IO[bytes], progress: Progress | None, size: int = 1 << 16) -> Iterator[bytes]:
+    while chunk := source.read(size):
+        if progress is not None:
+            progress.advance(len(chunk))
+        yield chunk
+
+
+def records(chunks: Iterable[bytes], wanted: set[str] | None, summary: Summary,
+            lenient: bool = False) -> Iterator[dict[str, Any]]:
+    """Each sentence as {line, talker, sentence, fields}, counted in `summary`; errors are only
+    counted. `wanted`: the sentence ids (or addresses of unknown sentences) to keep."""
+    for number, item in enumerate(lines(chunks), 1):
+        summary.lines += 1
+        try:
+            if isinstance(item, int):
+                raise too_long(item)
+            sentence = parse(item, lenient=lenient)
+        except NmeaError as err:
+            summary.errors[err.kind] += 1
+            continue
+        if isinstance(sentence, Generic):
+            summary.unknown[sentence.address] += 1
+            name, talker, fields = sentence.address, None, {"fields": sentence.fields}
+        else:
+            summary.sentences[sentence.SENTENCE] += 1
+            name = sentence.SENTENCE
+            talker = getattr(sentence, "talker", None)
+            fields = _plain(json.loads(sentence.fields_json(True)))
+        if wanted is None or name in wanted:
+            yield {"line": number, "talker": talker, "sentence": name, "fields": fields}
+
+
+def _row(record: dict[str, Any], fields: list[str] | None) -> list[Any]:
+    if fields is None:
+        return [record["line"], record["talker"], record["sentence"], _summary(record["fields"])]
+    return [record[f] if f in SPECIAL_FIELDS else record["fields"].get(f) for f in fields]
+
+
+def write_table(rows: Iterable[list[Any]], header: list[str], out: IO[str], block: int = 200) -> None:
+    """Aligned columns, printed a block of rows at a time so that a long log streams; a column
+    only ever widens. The last column is not padded."""
+    widths = [len(h) for h in header]
+
+    def flush(batch: list[list[str]]) -> None:
+        for cells in batch:
+            for i, text in enumerate(cells[:-1]):
+                widths[i] = max(widths[i], len(text))
+        for cells in batch:
+            out.write("  ".join(t.ljust(w) for t, w in zip(cells[:-1], widths)) + ("  " if len(cells) > 1 else "")
+                      + cells[-1] + "\n")
+
+    batch: list[list[str]] = [header]
+    for row in rows:
+        batch.append([_text(v) for v in row])
+        if len(batch) >= block:
+            flush(batch)
+            batch = []
+    flush(batch)
+
+
+def show(args: argparse.Namespace) -> int:
+    fields = [f.strip() for f in args.fields.split(",") if f.strip()] if args.fields else None
+    wanted = {s.strip().upper() for s in args.sentences.split(",") if s.strip()} if args.sentences else None
+    if args.log == "-":
+        source: IO[bytes] = sys.stdin.buffer
+        size = None
+    else:
+        try:
+            source = open(args.log, "rb")
+        except OSError as err:
+            raise ToolError(f"cannot read {args.log}: {err.strerror}") from None
+        size = os.fstat(source.fileno()).st_size if os.path.isfile(args.log) else None
+    bar = args.progress
+    if bar is None:  # a bar only where a person watches, and only when it is worth it
+        bar = sys.stderr.isatty() and size is not None and size >= 4 << 20
+    progress = Progress(size or 0, sys.stderr) if bar and size else None
+    summary = Summary()
+    stream = records(_chunks(source, progress), wanted, summary, args.lenient)
+    out = sys.stdout
+    try:
+        if args.format == "json":
+            for record in stream:
+                if fields is not None:
+                    record = {f: _row(record, [f])[0] for f in fields}
+                out.write(json.dumps(record, ensure_ascii=False) + "\n")
+        elif args.format == "csv":
+            writer = csv.writer(out, lineterminator="\n")
+            writer.writerow(fields or ["line", "talker", "sentence", "fields"])
+            for record in stream:
+                writer.writerow([_text(v) for v in _row(record, fields)])
+        else:
+            write_table((_row(r, fields) for r in stream), fields or ["line", "talker", "sentence", "fields"], out)
+        out.flush()
+    except BrokenPipeError:  # `nmea show log | head`
+        sys.stdout = io.TextIOWrapper(io.BytesIO())
+        return 0
+    finally:
+        if source is not sys.stdin.buffer:
+            source.close()
+    if progress is not None:
+        progress.finish()
+    if not args.quiet:
+        summary.write(sys.stderr)
+    return 0
+
+
+# --------------------------------------------------------------------------------------------
+# command
+
+
+def _kebab(text: str) -> str:
+    return text.lower().replace("_", "-")
+
+
+def _vendor(name: str) -> str:
+    vendor = name.lower()
+    if vendor not in VENDORS:
+        raise ToolError(f"unknown vendor {name!r}; vendors: {', '.join(VENDORS)}")
+    return vendor
+
+
+def _typed(command: Command) -> list[Any]:
+    """The arguments a user gives (keywords are fixed)."""
+    return [a for a in command.arguments if a.type != "keyword"]
+
+
+def _enum_code(argument: Any, given: str) -> str:
+    """An enum argument as its code: the code itself, or a value id in any case, '-' for '_'."""
+    if given in argument.enum.BY_CODE:
+        return given
+    key = given.lower().replace("-", "_")
+    for member in argument.enum:
+        if member.id == key or member.value.lower() == given.lower():
+            return str(member.value)
+    codes = ", ".join(_kebab(m.id) for m in argument.enum)
+    raise ToolError(f"{argument.id}: {given!r} is not one of {codes}")
+
+
+def usage_of(command: Command) -> str:
+    parts = []
+    for a in command.arguments:
+        word = (a.value or "").lower() if a.type == "keyword" else a.id.upper()
+        parts.append(f"[{word}]" if a.optional or a.type == "keyword" else word)
+    return " ".join([command.name, *parts])
+
+
+def list_commands(vendor: str | None) -> str:
+    out = []
+    for vendor_id, title in VENDORS.items():
+        if vendor is not None and vendor_id != vendor:
+            continue
+        out.append(f"{vendor_id}: {title}")
+        for command in (c for c in COMMANDS if c.vendor == vendor_id):
+            out.append(f"  {usage_of(command):<40} {_short(command.doc)}")
+            for a in _typed(command):
+                choices = f" ({', '.join(_kebab(m.id) for m in a.enum)})" if a.enum is not None else ""
+                out.append(f"      {a.id.upper()}: {a.type}{', optional' if a.optional else ''}{choices}. {_short(a.doc)}")
+        groups: dict[str, list[Shortcut]] = {}
+        for s in (s for s in SHORTCUTS if s.vendor == vendor_id):
+            groups.setdefault(s.words[0], []).append(s)
+        if groups:
+            out.append("  shortcuts:")
+        for name, shortcuts in groups.items():
+            args = "|".join(" ".join(s.words[1:]) for s in shortcuts)
+            doc = shortcuts[0].doc if len(shortcuts) == 1 else \
+                f"{shortcuts[0].command} {' '.join(k.upper() for k, _ in shortcuts[0].values)} " \
+                + "|".join(v for s in shortcuts for _, v in s.values)
+            out.append(f"  {(name + ' ' + args).strip():<40} {_short(doc)}")
+    return "\n".join(out) + "\n"
+
+
+def _short(text: str, limit: int = 90) -> str:
+    return text if len(text) <= limit else text[:limit - 1].rstrip() + "…"
+
+
+def _split_options(words: list[str]) -> tuple[list[str], dict[str, str]]:
+    positional, named = [], {}
+    i = 0
+    while i < len(words):
+        word = words[i]
+        if word.startswith("--") and len(word) > 2:
+            key, eq, value = word[2:].partition("=")
+            if not eq:
+                if i + 1 >= len(words):
+                    raise ToolError(f"--{key} needs a value")
+                i += 1
+                value = words[i]
+            named[key.replace("-", "_").lower()] = value
+        else:
+            positional.append(word)
+        i += 1
+    return positional, named
+
+
+def build(vendor: str, words: list[str], checksum: bool = True) -> bytes:
+    """The bytes of the command `words` (name and arguments) of `vendor`; raises ToolError."""
+    vendor = _vendor(vendor)
+    if not words:
+        raise ToolError("which command? see nmea command --list " + vendor)
+    positional, named = _split_options(words)
+    shortcut = next((s for s in SHORTCUTS if s.vendor == vendor and list(s.words) == [w.lower() for w in positional]),
+                    None)
+    if shortcut is not None:
+        positional, named = [shortcut.command], {**dict(shortcut.values), **named}
+    elif any(s.vendor == vendor and s.words[0] == positional[0].lower() for s in SHORTCUTS):
+        choices = [" ".join(s.words[1:]) for s in SHORTCUTS if s.vendor == vendor and s.words[0] == positional[0].lower()]
+        raise ToolError(f"{positional[0]} takes one of: {', '.join(choices)}")
+    name = positional[0].lower()
+    command = next((c for c in COMMANDS if c.vendor == vendor and c.name == name), None)
+    if command is None:
+        known = ", ".join(c.name for c in COMMANDS if c.vendor == vendor)
+        raise ToolError(f"{vendor} has no command {name!r}; its commands: {known}")
+    typed = _typed(command)
+    given = positional[1:]
+    values: dict[str, str] = {}
+    for a in command.arguments:  # positional, in field order; a keyword may be typed or left out
+        if not given:
+            break
+        if a.type == "keyword":
+            if given[0].upper() == (a.value or "").upper():
+                given.pop(0)
+        else:
+            values[a.id] = given.pop(0)
+    if given:
+        raise ToolError(f"too many arguments; usage: {usage_of(command)}")
+    for key, value in named.items():
+        if key not in {a.id for a in typed}:
+            raise ToolError(f"{command.name} has no argument --{key.replace('_', '-')}; usage: {usage_of(command)}")
+        if key in values and values[key] != value:
+            raise ToolError(f"{key} given twice")
+        values[key] = value
+    texts: list[str] = []
+    for a in command.arguments:
+        if a.type == "keyword":
+            texts.append(a.value or "")
+        elif a.id in values:
+            text = values[a.id]
+            texts.append(_enum_code(a, text) if a.enum is not None and a.type == "enum" else text)
+        elif a.optional:
+            break
+        else:
+            raise ToolError(f"missing {a.id.upper()}; usage: {usage_of(command)}")
+    later = [a.id for a in command.arguments[len(texts):] if a.id in values]
+    if later:
+        raise ToolError(f"{', '.join(later)} needs the optional arguments before it")
+    address = command.layout.ADDRESS
+    try:
+        if command.text:
+            sentence = command.layout.parse_fields(address, texts, None, " ".join([address, *texts]))
+        else:
+            sentence = command.layout.parse_fields(address, texts, "upper" if checksum else None)
+        data: bytes = sentence.to_bytes()
+        return data
+    except NmeaError as err:
+        raise ToolError(str(err)) from None
+
+
+def command(args: argparse.Namespace) -> int:
+    if args.list:
+        vendor = _vendor(args.words[0]) if args.words else None
+        sys.stdout.write(list_commands(vendor))
+        return 0
+    if not args.words:
+        raise ToolError("give VENDOR NAME [ARGS], or --list")
+    data = build(args.words[0], args.words[1:], checksum=not args.no_checksum)
+    sys.stdout.buffer.write(data)
+    sys.stdout.flush()
+    return 0
+
+
+# --------------------------------------------------------------------------------------------
+
+
+def parser() -> argparse.ArgumentParser:
+    top = argparse.ArgumentParser(
+        prog="nmea", formatter_class=argparse.RawDescriptionHelpFormatter,
+        description="Read NMEA 0183 logs and build GNSS receiver commands.",
+        epilog="`nmea LOG` is `nmea show LOG`.\n\n" + SHOW_EXAMPLES + "\n" + COMMAND_EXAMPLES)
+    verbs = top.add_subparsers(dest="verb", metavar="show|command")
+    s = verbs.add_parser("show", help="print the sentences of a log (a file, or - for stdin)",
+                         formatter_class=argparse.RawDescriptionHelpFormatter, epilog=SHOW_EXAMPLES)
+    s.add_argument("log", nargs="?", default="-", help="the log file, or - (the default) for stdin")
+    form = s.add_mutually_exclusive_group()
+    form.add_argument("--json", dest="format", action="store_const", const="json", help="JSON lines")
+    form.add_argument("--csv", dest="format", action="store_const", const="csv", help="CSV with a header row")
+    s.add_argument("--fields", metavar="F,F...", help="the columns: field ids, line, talker, sentence")
+    s.add_argument("--sentences", metavar="S,S...", help="only these sentences (GGA,RMC or PSTMTG)")
+    s.add_argument("--lenient", action="store_true", help="keep sentences with fields that do not fit (left empty)")
+    s.add_argument("--progress", action="store_true", default=None, help="a progress bar on stderr (default: "
+                   "when stderr is a terminal and the file is large)")
+    s.add_argument("--no-progress", dest="progress", action="store_false", help="never a progress bar")
+    s.add_argument("-q", "--quiet", action="store_true", help="no summary on stderr")
+    s.set_defaults(format="table", run=show)
+    c = verbs.add_parser("command", help="print the bytes of a vendor command",
+                         formatter_class=argparse.RawDescriptionHelpFormatter, epilog=COMMAND_EXAMPLES)
+    c.add_argument("--list", action="store_true", help="list the commands (of one vendor) with their arguments")
+    c.add_argument("--no-checksum", action="store_true", help="send a '$' command without its checksum")
+    c.add_argument("words", nargs=argparse.REMAINDER, metavar="VENDOR NAME [ARGS]",
+                   help=f"vendors: {', '.join(VENDORS)}")
+    c.set_defaults(run=command)
+    return top
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = list(sys.argv[1:] if argv is None else argv)
+    if not args and sys.stdin.isatty():  # `nmea` alone at a prompt: nothing to read, say how
+        args = ["--help"]
+    if not args or args[0] not in ("show", "command", "-h", "--help"):
+        args.insert(0, "show")
+    try:
+        if args[0] == "command":  # its options may come anywhere; `--field value` belong to the command
+            flags = [a for a in args[1:] if a in ("--list", "--no-checksum", "-h", "--help")]
+            if "-h" in flags or "--help" in flags:
+                parser().parse_args(["command", "--help"])
+            words = [a for a in args[1:] if a not in flags]
+            return command(argparse.Namespace(list="--list" in flags, no_checksum="--no-checksum" in flags,
+                                              words=words))
+        parsed = parser().parse_args(args)
+        result: int = parsed.run(parsed)
+        return result
+    except ToolError as err:
+        sys.stderr.write(f"nmea: {err}\n")
+        return 2
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

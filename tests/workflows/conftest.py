@@ -1,0 +1,82 @@
+"""The users' workflows, run the way a user would: from fresh temporary directories, with copies of
+generated/ and the ecosystem's own tools (cmake, cargo, pip, a browser). A missing tool is a
+failure with the command that installs it, never a skip."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import venv
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+GENERATED = ROOT / "generated"
+CORPUS = ROOT.parent / "shared" / "corpus" / "real"
+# Test-only tools installed into the temporary virtual environment, pinned.
+MYPY = "mypy==1.13.0"
+
+
+def need(tool: str, hint: str) -> str:
+    path = shutil.which(tool)
+    if path is None:
+        pytest.fail(f"{tool} is not installed; {hint}")
+    return path
+
+
+def run(*args: str | Path, cwd: Path | None = None, input: bytes | None = None,
+        env: dict[str, str] | None = None, check: bool = True, timeout: float = 600) -> subprocess.CompletedProcess:
+    """Run a command; on failure, fail the test with its output."""
+    result = subprocess.run([str(a) for a in args], cwd=cwd, input=input, capture_output=True, env=env,
+                            timeout=timeout)
+    if check and result.returncode != 0:
+        pytest.fail(f"{' '.join(map(str, args))} exited with {result.returncode}\n"
+                    f"stdout:\n{result.stdout.decode(errors='replace')[-4000:]}\n"
+                    f"stderr:\n{result.stderr.decode(errors='replace')[-4000:]}")
+    return result
+
+
+class Venv:
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self.bin = path / "bin"
+
+    @property
+    def python(self) -> Path:
+        return self.bin / "python"
+
+    def pip(self, *args: str | Path) -> None:
+        run(self.python, "-m", "pip", "install", "--quiet", "--disable-pip-version-check", *args)
+
+
+@pytest.fixture(scope="session")
+def installed(tmp_path_factory: pytest.TempPathFactory) -> Venv:
+    """A fresh virtual environment with a copy of generated/python installed by pip, as a user
+    would (the wheel is built by setuptools from PyPI in an isolated build environment)."""
+    home = tmp_path_factory.mktemp("pyuser")
+    source = home / "nmeaspec-src"
+    shutil.copytree(GENERATED / "python", source, ignore=shutil.ignore_patterns("__pycache__", ".pytest_cache"))
+    venv.create(home / "venv", with_pip=True)
+    env = Venv(home / "venv")
+    env.pip(source)
+    return env
+
+
+def corpus_log(name: str) -> Path:
+    path = CORPUS / name
+    if not path.is_file():
+        pytest.fail(f"{path} is missing: the real logs live in ../shared/corpus/real beside the worktree")
+    return path
+
+
+def clean_env() -> dict[str, str]:
+    """The environment without this repository's virtual environment on PATH."""
+    env = dict(os.environ)
+    env.pop("VIRTUAL_ENV", None)
+    env.pop("PYTHONPATH", None)
+    env["PATH"] = os.pathsep.join(p for p in env.get("PATH", "").split(os.pathsep)
+                                  if not p.startswith(str(ROOT)) and p != str(Path(sys.executable).parent))
+    return env

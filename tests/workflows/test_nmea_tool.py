@@ -1,0 +1,103 @@
+"""The `nmea` tool as installed by pip into a fresh virtual environment, on real receiver logs and
+on stdin, and its command builder for several vendors (every command's checksum is verified)."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from functools import reduce
+from pathlib import Path
+
+import pytest
+
+from .conftest import Venv, corpus_log, run
+
+LOG = "gpsd/ac12.nmea"          # GP GGA/GSA/GSV/RMC/ZDA with a 3D fix
+ERRORS_LOG = "gpsd/blumax-gps009.nmea"   # SiRF text lines that are not sentences
+
+
+def nmea(env: Venv, *args: str | Path, input: bytes | None = None, check: bool = True):  # type: ignore[no-untyped-def]
+    return run(env.bin / "nmea", *args, input=input, check=check, cwd=env.path.parent)
+
+
+def test_table_of_chosen_fields(installed: Venv) -> None:
+    result = nmea(installed, corpus_log(LOG), "--sentences", "GGA", "--fields", "line,time,lat,lon,quality,satellites")
+    rows = result.stdout.decode().splitlines()
+    assert rows[0].split() == ["line", "time", "lat", "lon", "quality", "satellites"]
+    assert rows[1].split() == ["1", "19:32:21.00", "20.6287987", "-87.0680797", "autonomous", "4"]
+    assert len(rows) == 1 + 7
+    # aligned: every column starts at the same offset in every row
+    starts = [rows[0].index(h) for h in ("time", "lat", "lon", "quality")]
+    assert all(row[s - 2:s] == "  " and row[s] != " " for row in rows[1:] for s in starts)
+    summary = result.stderr.decode()
+    assert summary.startswith("51 lines: 51 sentences, 0 unknown, 0 errors\n")
+    assert "  GSV  24\n" in summary and "  GGA  7\n" in summary
+
+
+def test_json_lines(installed: Venv) -> None:
+    out = nmea(installed, "show", "--json", "--sentences", "RMC", corpus_log(LOG)).stdout.decode().splitlines()
+    first = json.loads(out[0])
+    assert first["sentence"] == "RMC" and first["talker"] == "GP" and first["line"] == 6
+    assert first["fields"]["lat"] == 20.6287983 and first["fields"]["status"] == "valid"
+    assert all(json.loads(line)["sentence"] == "RMC" for line in out) and len(out) == 7
+
+
+def test_csv(installed: Venv) -> None:
+    out = nmea(installed, "show", "--csv", "--fields", "time,lat,lon,speed,date", "--sentences", "RMC",
+               corpus_log(LOG)).stdout.decode()
+    rows = list(csv.reader(io.StringIO(out)))
+    assert rows[0] == ["time", "lat", "lon", "speed", "date"]
+    assert rows[1][:3] == ["19:32:21.00", "20.6287983", "-87.06808"] and len(rows) == 8
+
+
+def test_stdin_errors_and_no_progress_bar_in_a_pipe(installed: Venv) -> None:
+    data = corpus_log(ERRORS_LOG).read_bytes()
+    result = nmea(installed, "-", "--fields", "sentence", input=data)
+    assert result.stdout.decode().splitlines()[1:4] == ["GGA", "GLL", "GSA"]
+    summary = result.stderr.decode()
+    assert summary.startswith("67 lines: 59 sentences, 0 unknown, 8 errors\n")
+    assert "errors:\n  not_a_sentence  8\n" in summary
+    assert "\r" not in summary and "%" not in summary
+
+
+def test_progress_bar_on_request(installed: Venv) -> None:
+    result = nmea(installed, "show", "--progress", "-q", "--json", corpus_log(LOG))
+    assert "100%" in result.stderr.decode() and result.stderr.decode().startswith("\r[")
+
+
+def _checked(data: bytes) -> bytes:
+    """The bytes of a '$' command, after checking that they end in CR LF and that the checksum fits."""
+    assert data.endswith(b"\r\n")
+    body, star, checksum = data[1:-2].rpartition(b"*")
+    if star:
+        assert int(checksum, 16) == reduce(lambda a, b: a ^ b, body, 0), data
+    return data
+
+
+@pytest.mark.parametrize(("words", "expected"), [
+    (["geos5", "set-baud", "115200"], b"$GPSGG,BDR115*09\r\n"),
+    (["geos5", "command", "BDR115"], b"$GPSGG,BDR115*09\r\n"),
+    (["geos5", "output", "gga", "on"], b"$GPSGG,GGA ON*08\r\n"),
+    (["geos5", "nquery-request"], b"$GPSGG,NQUERY*6C\r\n"),
+    (["teseo", "pstmsetpar", "1201", "40", "set-bits"], b"$PSTMSETPAR,1201,40,1*00\r\n"),
+    (["teseo", "pstmcold", "3"], b"$PSTMCOLD,3*01\r\n"),
+    (["globalsat", "psrf103", "--message", "gga", "--mode", "query", "--rate", "0", "--checksum-mode", "enabled"],
+     b"$PSRF103,00,01,0,01*15\r\n"),
+    (["comnav", "log", "gpgga", "ontime", "1"], b"LOG GPGGA ONTIME 1\r\n"),
+    (["comnav", "nmeatalker-list"], b"NMEATALKER LIST\r\n"),
+])
+def test_command_builder(installed: Venv, words: list[str], expected: bytes) -> None:
+    assert _checked(nmea(installed, "command", *words).stdout) == expected
+
+
+def test_command_errors_and_list(installed: Venv) -> None:
+    bad = nmea(installed, "command", "geos5", "set-baud", "1234", check=False)
+    assert bad.returncode == 2 and b"115200" in bad.stderr and bad.stdout == b""
+    bad = nmea(installed, "command", "globalsat", "psrf103", "--rate", "x", "--message", "gga", "--mode", "query",
+               "--checksum-mode", "enabled", check=False)
+    assert bad.returncode == 2 and b"rate" in bad.stderr
+    listing = nmea(installed, "command", "--list", "teseo").stdout.decode()
+    assert "pstmsetpar BLOCK_PARAM VALUE [MODE]" in listing and "geos5" not in listing
+    assert b"set-baud 4800|9600" in nmea(installed, "command", "--list").stdout
+    assert b"examples:" in nmea(installed, "command", "--help").stdout
