@@ -120,6 +120,13 @@ test-tools: build $(STAMP)
 test-bench-smoke: $(STAMP)
 	$(PY) -m pytest -q tests/bench
 
+# The users' workflows from fresh temporary directories: the C pair in a CMake project and a plain
+# build, the Rust crate as a path dependency with vendor features and serde, the Python package
+# pip-installed into a new venv (mypy --strict on a user script), the `nmea` tool, the docs' links
+# and the HTML site in headless Chromium.
+test-workflows: $(STAMP) $(DOCS_STAMP)
+	$(PY) -m pytest -q tests/workflows
+
 # --- benchmarks ------------------------------------------------------------------------------
 # `make bench` (not part of `make test`): ours in C, Rust and Python, the ceiling and the peers
 # (installed by bench/run.py from crates.io and PyPI) over a corpus built from the real logs.
@@ -130,13 +137,6 @@ BENCH_PY_LINES ?= 100000
 
 bench: build
 	python3 bench/run.py --rounds $(BENCH_ROUNDS) --lines $(BENCH_LINES) --python-lines $(BENCH_PY_LINES)
-
-# The users' workflows from fresh temporary directories: the C pair in a CMake project and a plain
-# build, the Rust crate as a path dependency with vendor features and serde, the Python package
-# pip-installed into a new venv (mypy --strict on a user script), the `nmea` tool, the docs' links
-# and the HTML site in headless Chromium.
-test-workflows: $(STAMP) $(DOCS_STAMP)
-	$(PY) -m pytest -q tests/workflows
 
 # --- fuzzing ---------------------------------------------------------------------------------
 # `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds, then replays what they
