@@ -55,11 +55,14 @@ def build_parser() -> argparse.ArgumentParser:
                "created, updated or removed file and a summary line.\n\n"
                "Subsets: --only takes a comma-separated list of `standard`, vendor manual ids of "
                "spec/manuals.yaml (geos5, teseo, gs501, globalsat, comnav), sentence or command ids "
-               "(GGA, GEOS5_JAMDET) and proprietary addresses (GPSGG, PSTMSETPAR). Enums, bitfields "
-               "and tables only the subset uses, and examples from other vendors' manuals, are left out.\n\n"
+               "(GGA, GEOS5_JAMDET) and proprietary addresses (GPSGG, PSTMSETPAR). Only the enums, "
+               "bitfields and tables the subset uses come along; standard sentences keep the examples of "
+               "every manual (they are their tests).\n\n"
                "Renaming: --prefix P renames the C API (nmea_* -> P_*, NMEA_* -> P_*, nmea.c/nmea.h -> "
                "P.c/P.h); --namespace N renames the Rust crate and the Python package (nmeaspec -> N) "
-               "and its console scripts (nmea-py -> N-py). A subset or a renamed copy needs --out.",
+               "and its console scripts (nmea-py -> N-py). A subset or a renamed copy needs --out.\n\n"
+               "The output directory belongs to the generator: a file in it that the spec does not "
+               "generate is removed (build products of cargo, pip and pytest excepted).",
                f"  {PROG} generate\n"
                f"  {PROG} generate --only standard,geos5 --out /tmp/nmea-geos5\n"
                f"  {PROG} generate --only standard,geos5 --prefix gs5 --namespace gs5nmea --out third_party/gs5\n")

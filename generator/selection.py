@@ -8,8 +8,9 @@ A selector is a comma-separated list of words, each one of:
   - a proprietary address or text command word (`GPSGG`, `PSTMSETPAR`, `PSRF100`): every item
     with that address.
 A command drags its replies along. The subset keeps only the enums, bitfields and parameter tables
-its items use, the manuals it cites, and the examples taken from those manuals, so that the code,
-the docs, the vectors and the tests generated from it speak only of the subset.
+its items use and the manuals it cites (a standard sentence keeps the examples of every manual:
+they are its tests), so that the code, the docs, the vectors and the tests generated from it speak
+only of the subset.
 """
 
 from __future__ import annotations
@@ -75,14 +76,15 @@ def subset(spec: Spec, words: list[str]) -> Spec:
     model = copy.deepcopy(spec)
     sentences = [s for s in model.sentences if s.id in keep_ids]
 
-    # Manuals: the standard, every vendor named or owning a kept item.
+    # Manuals: the standard, every vendor named or owning a kept item, and the manuals the kept
+    # examples come from (a standard sentence keeps the examples of every manual: they are its tests).
     vendors = {s.vendor for s in sentences if s.vendor} | (lowered & {m.id for m in model.manuals})
+    vendors |= {e.manual for s in sentences for e in s.examples}
     manuals = [m for m in model.manuals if m.vendor == "standard" or m.id in vendors]
     manual_ids = {m.id for m in manuals}
     for s in sentences:
         s.manuals = [m for m in s.manuals if m in manual_ids]
         s.notes = [n for n in s.notes if any(m in manual_ids for m in n.manuals)]
-        s.examples = [e for e in s.examples if e.manual in manual_ids]
         s.replies = [r for r in s.replies if r.id in keep_ids]
         s.reply_ids = [r.id for r in s.replies]
 
