@@ -10,7 +10,7 @@ is a file-scope name of the API (function, object, type, macro, enum constant) a
 `P_`, except the spec's own ids (a field `nmea_version`, an enum value `nmea_v2`) that start the
 same way: those are struct members and JSON texts. C string literals are left alone (they hold the
 JSON ids), except the `#include "nmea.h"` lines. Files nmea.c, nmea.h, nmea_tool.c become p.c,
-p.h, p_tool.c. The test compiles two renamed copies into one program and checks with `nm` that no
+p.h, p_tool.c; in the other files of c/ (build files) the word `nmea` (a target name) becomes p too. The test compiles two renamed copies into one program and checks with `nm` that no
 external symbol is left unprefixed.
 
 Rust and Python: the token `nmeaspec` (crate name, package name, `use nmeaspec::`, doc examples)
@@ -123,9 +123,11 @@ def rename_files(files: dict[str, str], spec: Spec, prefix: str | None, namespac
             out[path] = content
             continue
         if prefix not in (None, DEFAULT_PREFIX):
-            if path.startswith("c/"):
+            if path.startswith("c/") and path.endswith((".c", ".h")):
                 content = rename_c(content, prefix, keep)
                 path = "c/" + _FILE_NAMES.sub(prefix, path[2:])
+            elif path.startswith("c/"):           # build files (CMakeLists.txt): the target and tool names too
+                content = re.sub(r"\bnmea\b", prefix, rename_text(content, prefix, keep))
             elif path.endswith(".md"):
                 content = rename_text(content, prefix, keep)
         if namespace not in (None, DEFAULT_NAMESPACE):
