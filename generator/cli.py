@@ -1,29 +1,122 @@
-"""Command line of the generator: validate the spec, generate every output, check it is fresh."""
+"""Command line of the generator (`python -m generator`, or `nmeaspec-gen` once installed):
+validate the spec, generate every output (or a renamed subset), check it is fresh, print the API
+changelog between two spec trees, and reconcile a manual's example sentences with the spec."""
 
 from __future__ import annotations
 
 import argparse
 import sys
+import textwrap
 from pathlib import Path
 
-from .build import load_spec
-from .emit import render_all
 from .errors import SpecErrors
+from .paths import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
+PROG = "nmeaspec-gen"
+
+EPILOG = f"""\
+examples:
+  {PROG} validate                      check spec/ (every error at once: file:line: YAML path)
+  {PROG} generate                      rewrite the files of generated/ whose content changed
+  {PROG} check                         exit 1 when generated/ is stale
+  {PROG} diff HEAD spec                changelog from the committed spec to the working tree
+  {PROG} reconcile ../shared/seeds/000_6b9167a029107846.txt
+  {PROG} generate --only standard,geos5 --prefix gs5 --namespace gs5nmea --out vendor/nmea
+
+`python -m generator` is the same program, run from the checkout.
+"""
+
+
+def _formatter(prog: str) -> argparse.HelpFormatter:
+    return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog=PROG, formatter_class=_formatter, epilog=EPILOG,
+        description="NMEA 0183 spec -> C, Python and Rust codecs, Markdown docs and test vectors.")
+    parser.add_argument("--spec", type=Path, default=ROOT / "spec", help="spec directory (default: %(default)s)")
+    verbs = parser.add_subparsers(dest="verb", required=True, metavar="VERB")
+
+    def verb(name: str, help: str, description: str, examples: str) -> argparse.ArgumentParser:
+        text = "\n\n".join(textwrap.fill(p, 100) for p in description.split("\n\n"))
+        return verbs.add_parser(name, help=help, description=text, formatter_class=_formatter,
+                                epilog="examples:\n" + examples)
+
+    verb("validate", "check the spec against the schema and the semantic rules",
+         "Load spec/, check every file against the JSON Schema, then the semantic rules (references, "
+         "layouts, every manual example decodes to its expected values).\n\nEvery error is printed at "
+         "once as FILE:LINE: YAML.PATH: message [RULE].",
+         f"  {PROG} validate\n  {PROG} --spec /tmp/myspec validate\n")
+
+    out_help = "output directory (default: generated/ of the checkout)"
+    gen = verb("generate", "write every generated file whose content changed",
+               "Render every output and rewrite only the files whose content changed; print each "
+               "created, updated or removed file and a summary line.\n\n"
+               "Subsets: --only takes a comma-separated list of `standard`, vendor manual ids of "
+               "spec/manuals.yaml (geos5, teseo, gs501, globalsat, comnav), sentence or command ids "
+               "(GGA, GEOS5_JAMDET) and proprietary addresses (GPSGG, PSTMSETPAR). Only the enums, "
+               "bitfields and tables the subset uses come along; standard sentences keep the examples of "
+               "every manual (they are their tests).\n\n"
+               "Renaming: --prefix P renames the C API (nmea_* -> P_*, NMEA_* -> P_*, nmea.c/nmea.h -> "
+               "P.c/P.h); --namespace N renames the Rust crate and the Python package (nmeaspec -> N) "
+               "and its console scripts (nmea-py -> N-py). A subset or a renamed copy needs --out.\n\n"
+               "The output directory belongs to the generator: a file in it that the spec does not "
+               "generate is removed (build products of cargo, pip and pytest excepted).",
+               f"  {PROG} generate\n"
+               f"  {PROG} generate --only standard,geos5 --out /tmp/nmea-geos5\n"
+               f"  {PROG} generate --only standard,geos5 --prefix gs5 --namespace gs5nmea --out third_party/gs5\n")
+    gen.add_argument("--out", type=Path, help=out_help)
+    gen.add_argument("--only", metavar="SELECTOR", help="emit a subset: standard, vendors, sentence ids, addresses")
+    gen.add_argument("--prefix", help="C symbol and file prefix instead of nmea")
+    gen.add_argument("--namespace", help="Rust crate / Python package name instead of nmeaspec")
+    gen.add_argument("-q", "--quiet", action="store_true", help="print only the summary line")
+
+    chk = verb("check", "fail when the output differs from what the spec generates",
+               "Exit 1 (listing the stale files) when the output directory differs from what the spec "
+               "generates; takes the same options as generate.",
+               f"  {PROG} check\n  {PROG} check --only standard,geos5 --prefix gs5 --out third_party/gs5\n")
+    chk.add_argument("--out", type=Path, help=out_help)
+    chk.add_argument("--only", metavar="SELECTOR")
+    chk.add_argument("--prefix")
+    chk.add_argument("--namespace")
+
+    diff = verb("diff", "API changelog between two spec trees (directories or git revisions)",
+                "Load OLD and NEW through the normal loader and model and print what changed for the "
+                "users of the generated code: sentences and commands, fields (added, removed, renamed, "
+                "retyped, reordered, optional, since), enum values, bitfields, tables and examples. Each "
+                "change is tagged BREAKING (existing user code or existing wire data stops working) or "
+                "compatible.\n\nOLD and NEW are each a spec directory (anything that exists on disk) or a "
+                "git revision of the repository of the current directory: REV (its spec/), or REV:DIR.",
+                f"  {PROG} diff HEAD spec                  the working tree against the last commit\n"
+                f"  {PROG} diff HEAD~3 HEAD                two commits\n"
+                f"  {PROG} diff main:spec /tmp/spec --json\n"
+                f"  {PROG} diff v1.0 spec --fail-on-breaking   (CI: exit 1 on a breaking change)\n")
+    diff.add_argument("old", metavar="OLD")
+    diff.add_argument("new", metavar="NEW")
+    diff.add_argument("--json", action="store_true", help="one JSON document instead of Markdown")
+    diff.add_argument("--fail-on-breaking", action="store_true", help="exit 1 when a change is BREAKING")
+
+    rec = verb("reconcile", "compare a manual's example sentences with the spec",
+               "Find every example sentence in a manual's text ($...*HH, and $... without a checksum, "
+               "also when wrapped or typeset with spaces), check its checksum, and report for each "
+               "whether it is already in the spec (as an example's raw or corrected text), whether it "
+               "decodes with the spec (or the error), and unknown addresses; then the counts.",
+               f"  {PROG} reconcile ../shared/seeds/000_6b9167a029107846.txt\n"
+               f"  {PROG} reconcile new_manual.txt --manual geos5 --only-new\n")
+    rec.add_argument("manual_text", metavar="MANUAL.txt", type=Path)
+    rec.add_argument("--manual", metavar="ID", help="manual id of spec/manuals.yaml (default: guessed from the file name)")
+    rec.add_argument("--only-new", action="store_true", help="list only the examples that are not in the spec")
+    rec.add_argument("--json", action="store_true", help="JSON lines instead of text")
+    return parser
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m generator",
-                                     description="NMEA 0183 spec -> C, Python and Rust codecs, docs, tests.")
-    parser.add_argument("--spec", type=Path, default=ROOT / "spec", help="spec directory (default: spec/)")
-    parser.add_argument("--out", type=Path, default=ROOT / "generated", help="output directory (default: generated/)")
-    verbs = parser.add_subparsers(dest="verb", required=True)
-    verbs.add_parser("validate", help="check the spec against the schema and the semantic rules")
-    verbs.add_parser("generate", help="write every generated file whose content changed")
-    verbs.add_parser("check", help="fail when generated/ differs from what the spec generates")
-    args = parser.parse_args(argv)
-
+    args = build_parser().parse_args(argv)
+    if args.verb == "diff":
+        from . import diff
+        return diff.main(args)
+    from .build import load_spec
     try:
         spec = load_spec(args.spec)
     except SpecErrors as errs:
@@ -34,40 +127,83 @@ def main(argv: list[str] | None = None) -> int:
         examples = sum(len(s.examples) for s in spec.sentences)
         print(f"spec ok: {len(spec.sentences)} sentences, {len(spec.enums)} enums, {examples} examples")
         return 0
+    if args.verb == "reconcile":
+        from . import reconcile
+        return reconcile.main(spec, args)
+    return _write(spec, args)
 
-    files = render_all(spec)
+
+def _write(spec, args: argparse.Namespace) -> int:
+    from .emit import render_all
+    from .naming import NamingError, check_names, rename_files
+    from .selection import SelectionError, parse_selector, subset
+
+    custom = args.only or args.prefix or args.namespace
+    if args.out is None:
+        if custom:
+            print(f"{args.verb}: --only, --prefix and --namespace need --out DIR (generated/ is the full default copy)",
+                  file=sys.stderr)
+            return 2
+        args.out = ROOT / "generated"
+    try:
+        check_names(args.prefix, args.namespace)
+        if args.only:
+            spec = subset(spec, parse_selector(args.only))
+    except (SelectionError, NamingError) as err:
+        print(f"{args.verb}: {err}", file=sys.stderr)
+        return 2
+    files = rename_files(render_all(spec), spec, args.prefix, args.namespace)
+
     out: Path = args.out
-    stale = []
+    quiet = getattr(args, "quiet", False)
+    created, updated, unchanged = [], [], 0
     for rel, content in sorted(files.items()):
         path = out / rel
+        data = content.encode("utf-8")
         old = path.read_bytes() if path.exists() else None
-        if old != content.encode("utf-8"):
-            stale.append(rel)
-            if args.verb == "generate":
-                path.parent.mkdir(parents=True, exist_ok=True)
-                path.write_bytes(content.encode("utf-8"))
-                print(f"{'updated' if old is not None else 'created'} {out.name}/{rel}")
-    extra = sorted(str(p.relative_to(out)) for p in out.rglob("*")
-                   if p.is_file() and str(p.relative_to(out)) not in files and not _ignored(p, out))
-    for rel in extra:
+        if old == data:
+            unchanged += 1
+            continue
+        (updated if old is not None else created).append(rel)
         if args.verb == "generate":
-            (out / rel).unlink()
-            print(f"removed {out.name}/{rel}")
-    if args.verb == "check":
-        for rel in stale:
-            print(f"stale: {out.name}/{rel}", file=sys.stderr)
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_bytes(data)
+            if not quiet:
+                print(f"{'updated' if old is not None else 'created'} {out.name}/{rel}")
+    extra = sorted(p.relative_to(out).as_posix() for p in out.rglob("*")
+                   if p.is_file() and p.relative_to(out).as_posix() not in files and not _ignored(p, out)) \
+        if out.is_dir() else []
+    if args.verb == "generate":
         for rel in extra:
-            print(f"not generated by the spec: {out.name}/{rel}", file=sys.stderr)
-        if stale or extra:
-            print("generated/ is out of date: run `make` (python3 -m generator generate)", file=sys.stderr)
-            return 1
-        print(f"generated/ is up to date ({len(files)} files)")
-    elif not stale and not extra:
-        print(f"nothing changed ({len(files)} files)")
+            (out / rel).unlink()
+            if not quiet:
+                print(f"removed {out.name}/{rel}")
+        _remove_empty_dirs(out)
+        if created or updated or extra:
+            print(f"{out.name}/: {len(created)} created, {len(updated)} updated, {len(extra)} removed, "
+                  f"{unchanged} unchanged")
+        else:
+            print(f"nothing changed ({len(files)} files)")
+        return 0
+    for rel in created + updated:
+        print(f"stale: {out.name}/{rel}", file=sys.stderr)
+    for rel in extra:
+        print(f"not generated by the spec: {out.name}/{rel}", file=sys.stderr)
+    if created or updated or extra:
+        print(f"{out.name}/ is out of date: run `make` (python3 -m generator generate)", file=sys.stderr)
+        return 1
+    print(f"{out.name}/ is up to date ({len(files)} files)")
     return 0
 
 
 def _ignored(path: Path, out: Path) -> bool:
-    """Build products that tools leave inside generated/ (cargo, Python caches)."""
+    """Build products that tools leave inside generated/ (cargo, Python caches, pip builds)."""
     parts = path.relative_to(out).parts
-    return any(p in ("target", "__pycache__", ".pytest_cache", "Cargo.lock") for p in parts) or path.suffix == ".pyc"
+    return any(p in ("target", "__pycache__", ".pytest_cache", "Cargo.lock", "build") or p.endswith(".egg-info")
+               for p in parts) or path.suffix == ".pyc"
+
+
+def _remove_empty_dirs(out: Path) -> None:
+    for path in sorted((p for p in out.rglob("*") if p.is_dir()), key=lambda p: len(p.parts), reverse=True):
+        if not any(path.iterdir()):
+            path.rmdir()

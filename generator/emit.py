@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Callable
 
 import jinja2
 
 from .model import Spec
-
-ROOT = Path(__file__).resolve().parent.parent
+from .paths import ROOT
 TEMPLATES = ROOT / "templates"
 REGENERATE = "make generate (python3 -m generator generate)"
 

@@ -11,8 +11,9 @@ import jsonschema
 import yaml
 
 from .errors import SpecError
+from .paths import ROOT
 
-SCHEMA_DIR = Path(__file__).resolve().parent.parent / "spec" / "schema"
+SCHEMA_DIR = ROOT / "spec" / "schema"
 
 Path_ = tuple[str | int, ...]
 

@@ -12,6 +12,8 @@ from decimal import Decimal
 from pathlib import Path
 from typing import Any
 
+from .paths import ROOT
+
 # Wire fields each spec type takes.
 WIRE_WIDTH = {"latitude": 2, "longitude": 2}
 
@@ -439,7 +441,7 @@ class Spec:
         for source in sources:
             known = self.file_digests.get(source)
             if known is None:
-                path = Path(__file__).resolve().parent.parent / source
+                path = ROOT / source
                 known = hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else source
             h.update(source.encode() + b"\0" + known.encode())
         return h.hexdigest()[:16]

@@ -15,11 +15,12 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
+from .paths import ROOT
 from .model import Field, Group, Layout, Sentence, Spec
 
 
 def _load_runtime() -> ModuleType:
-    path = Path(__file__).resolve().parent.parent / "templates" / "python" / "runtime.py"
+    path = ROOT / "templates" / "python" / "runtime.py"
     spec = importlib.util.spec_from_file_location("_nmea_reference_runtime", path)
     assert spec and spec.loader
     module = importlib.util.module_from_spec(spec)

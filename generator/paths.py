@@ -1,0 +1,33 @@
+"""Where the generator finds its templates/ and spec/ (schema included).
+
+They live in the project checkout next to generator/. A checkout run (`python -m generator`) or an
+editable install (`pip install -e .`) finds them there; a plain install (`pip install .`) has only
+the Python code, so it uses $NMEASPEC_ROOT or the nearest directory at or above the current one
+that holds templates/ and spec/schema/: run `nmeaspec-gen` from inside the checkout.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+
+def _is_root(path: Path) -> bool:
+    return (path / "templates").is_dir() and (path / "spec" / "schema").is_dir()
+
+
+def find_root() -> Path:
+    env = os.environ.get("NMEASPEC_ROOT")
+    if env:
+        return Path(env).resolve()
+    beside = Path(__file__).resolve().parent.parent
+    if _is_root(beside):
+        return beside
+    here = Path.cwd().resolve()
+    for path in (here, *here.parents):
+        if _is_root(path):
+            return path
+    return beside
+
+
+ROOT = find_root()

@@ -1,0 +1,106 @@
+"""`generate --only`: cut the model down to a subset before the emitters see it.
+
+A selector is a comma-separated list of words, each one of:
+  - `standard`: every standard sentence (GGA, RMC, ...);
+  - a manual id of spec/manuals.yaml (`geos5`, `teseo`, `gs501`, `globalsat`, `comnav`): every
+    proprietary sentence and command of that vendor;
+  - a sentence or command id (`GGA`, `GEOS5_JAMDET`, `PSTMSETPAR`, case ignored);
+  - a proprietary address or text command word (`GPSGG`, `PSTMSETPAR`, `PSRF100`): every item
+    with that address.
+A command drags its replies along. The subset keeps only the enums, bitfields and parameter tables
+its items use and the manuals it cites (a standard sentence keeps the examples of every manual:
+they are its tests), so that the code, the docs, the vectors and the tests generated from it speak
+only of the subset.
+"""
+
+from __future__ import annotations
+
+import copy
+
+from .model import Field, Group, Sentence, Spec
+
+
+class SelectionError(ValueError):
+    pass
+
+
+def parse_selector(text: str) -> list[str]:
+    words = [w.strip() for w in text.split(",") if w.strip()]
+    if not words:
+        raise SelectionError("--only needs at least one vendor, `standard`, sentence id or address")
+    return words
+
+
+def selected_sentences(spec: Spec, words: list[str]) -> list[Sentence]:
+    """The sentences the words name, in spec order; every unknown word is an error."""
+    manual_ids = {m.id for m in spec.manuals}
+    chosen: set[str] = set()
+    unknown = []
+    for word in words:
+        lower, upper = word.lower(), word.upper()
+        if lower == "standard":
+            hits = [s for s in spec.sentences if not s.is_proprietary]
+        elif lower in manual_ids:
+            hits = [s for s in spec.sentences if s.is_proprietary and s.vendor == lower]
+            if lower == "nmea0183":
+                hits = [s for s in spec.sentences if not s.is_proprietary]
+        else:
+            hits = [s for s in spec.sentences
+                    if s.id.upper() == upper or (s.address is not None and s.address.upper() == upper)]
+        if not hits and lower not in manual_ids:
+            unknown.append(word)
+        chosen.update(s.id for s in hits)
+    if unknown:
+        known = ", ".join(["standard", *sorted(manual_ids - {"nmea0183"})])
+        raise SelectionError(f"--only: unknown {', '.join(repr(w) for w in unknown)} "
+                             f"(give {known}, a sentence id or an address)")
+    # Commands bring their replies: a builder that pairs replies must be able to parse them.
+    for s in spec.sentences:
+        if s.id in chosen:
+            chosen.update(r.id for r in s.replies)
+    return [s for s in spec.sentences if s.id in chosen]
+
+
+def _fields(sentence: Sentence) -> list[Field]:
+    out: list[Field] = []
+    for layout in sentence.layouts:
+        for item in layout.items:
+            out.extend(item.fields if isinstance(item, Group) else [item])
+    return out
+
+
+def subset(spec: Spec, words: list[str]) -> Spec:
+    """A copy of the model holding only what the words select (see the module doc)."""
+    keep_ids = {s.id for s in selected_sentences(spec, words)}
+    lowered = {w.lower() for w in words}
+    model = copy.deepcopy(spec)
+    sentences = [s for s in model.sentences if s.id in keep_ids]
+
+    # Manuals: the standard, every vendor named or owning a kept item, and the manuals the kept
+    # examples come from (a standard sentence keeps the examples of every manual: they are its tests).
+    vendors = {s.vendor for s in sentences if s.vendor} | (lowered & {m.id for m in model.manuals})
+    vendors |= {e.manual for s in sentences for e in s.examples}
+    manuals = [m for m in model.manuals if m.vendor == "standard" or m.id in vendors]
+    manual_ids = {m.id for m in manuals}
+    for s in sentences:
+        s.manuals = [m for m in s.manuals if m in manual_ids]
+        s.notes = [n for n in s.notes if any(m in manual_ids for m in n.manuals)]
+        s.replies = [r for r in s.replies if r.id in keep_ids]
+        s.reply_ids = [r.id for r in s.replies]
+
+    # Tables: those of a kept vendor (they are addressed by its commands).
+    tables = [t for t in model.tables if any(m in manual_ids and m != "nmea0183" for m in t.manuals)]
+    enum_ids = {f.enum.id for s in sentences for f in _fields(s) if f.enum}
+    enum_ids |= {p.enum.id for t in tables for p in t.parameters if p.enum}
+    bitfield_ids = {f.bitfield.id for s in sentences for f in _fields(s) if f.bitfield}
+    bitfield_ids |= {p.bitfield.id for t in tables for p in t.parameters if p.bitfield}
+
+    model.sentences = sentences
+    model.manuals = manuals
+    model.tables = tables
+    model.enums = [e for e in model.enums if e.id in enum_ids]
+    model.bitfields = [b for b in model.bitfields if b.id in bitfield_ids]
+    model.enum_by_id = {e.id: e for e in model.enums}
+    kept_files = {s.source for s in sentences} | {x.origin.file for x in (*model.enums, *model.bitfields, *model.tables)}
+    model.sources = [f for f in model.sources if f in kept_files]
+    return model

@@ -1,0 +1,425 @@
+"""The users' workflows, run the way a user runs them, from fresh temporary directories:
+
+- regenerate when a manual changes: edit the YAML, `generate` (prints what changed), `diff`
+  (the API changelog, BREAKING or compatible), `reconcile` a manual's text;
+- vendor a renamed subset next to the default copy: one C program, one Rust project and one
+  Python environment using both;
+- the generator's own command line: --help on every verb, the installable console script.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import venv
+from pathlib import Path
+
+import pytest
+
+from generator import diff, reconcile
+from generator.build import load_spec
+from generator.model import Field
+
+ROOT = Path(__file__).resolve().parents[2]
+SPEC = ROOT / "spec"
+BAD = Path(__file__).with_name("bad_specs")
+SEEDS = ROOT.parent / "shared" / "seeds"
+ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
+
+
+def gen(*args: str | Path, cwd: Path, check: bool = True) -> subprocess.CompletedProcess[str]:
+    """`python -m generator ARGS` from `cwd`, as a user runs it."""
+    result = subprocess.run([sys.executable, "-m", "generator", *map(str, args)], cwd=cwd, env=ENV,
+                            capture_output=True, text=True)
+    if check and result.returncode != 0:
+        raise AssertionError(f"generator {args} failed ({result.returncode}):\n{result.stdout}\n{result.stderr}")
+    return result
+
+
+def run(*args: str | Path, cwd: Path, env: dict[str, str] | None = None) -> str:
+    result = subprocess.run(list(map(str, args)), cwd=cwd, env=env, capture_output=True, text=True)
+    assert result.returncode == 0, f"{args} failed:\n{result.stdout}\n{result.stderr}"
+    return result.stdout
+
+
+# --- the generator's command line -----------------------------------------------------------
+
+@pytest.mark.parametrize("verb", ["validate", "generate", "check", "diff", "reconcile"])
+def test_every_verb_has_help_with_examples(verb: str, tmp_path: Path) -> None:
+    out = gen(verb, "--help", cwd=tmp_path).stdout
+    assert out.startswith(f"usage: nmeaspec-gen {verb}") and "examples:\n" in out and "nmeaspec-gen " + verb in out
+
+
+def test_validate_reports_every_error_at_once(tmp_path: Path) -> None:
+    """Schema errors in two files, each with its file, line and YAML path, in one run."""
+    shutil.copytree(SPEC, tmp_path / "spec")
+    for fixture in ("bad_type", "unknown_key"):
+        text = (BAD / f"{fixture}.yaml").read_text().replace("sentence: XYZ", f"sentence: X{fixture[:2].upper()}")
+        (tmp_path / "spec" / "standard" / f"x{fixture[:2]}.yaml").write_text(text)
+    result = gen("--spec", tmp_path / "spec", "validate", cwd=tmp_path, check=False)
+    assert result.returncode == 1
+    errors = [line for line in result.stderr.splitlines() if re.match(r"spec/standard/x\w\w\.yaml:\d+: ", line)]
+    assert {e.split(":")[0] for e in errors} == {"spec/standard/xba.yaml", "spec/standard/xun.yaml"}, result.stderr
+    assert all(re.match(r"[^:]+:\d+: \S+: .+ \[\w+\]$", e) for e in errors), errors
+    assert f"{len(errors)} error(s) in the spec" in result.stderr
+
+
+# --- regenerate when a manual changes: the worked example of the README ----------------------
+
+NEW_FIELD = """\
+  - id: gst_rate
+    name: GST output rate
+    type: enum
+    enum: geos5_message_rate
+    format: x
+    optional: true
+    doc: Rate of GST, the 11th per-sentence field added by manual revision 4.1.
+    manuals: [geos5]
+"""
+NEW_VALUE = """\
+  - code: "4"
+    id: rate_20hz
+    doc: 20 Hz (manual revision 4.1).
+    manuals: [geos5]
+"""
+
+
+def _checksum(body: str) -> str:
+    value = 0
+    for ch in body:
+        value ^= ord(ch)
+    return f"{value:02X}"
+
+
+NEW_BODY = "GPSGG,NQUERY,1,4,2,R,0,R,1,0,0,0,1,1,0,1"
+
+
+def _new_example() -> str:
+    body = NEW_BODY
+    return f"""\
+  - manual: geos5
+    where: "3.12 NQUERY example of revision 4.1: 20 Hz, GST every second"
+    raw: "${body}*{_checksum(body)}"
+    expect: {{keyword: NQUERY, port: 1, output_rate: rate_20hz, nmea_version: v2_x,
+             gga_rate: output_rate, gll_rate: "off", gsa_rate: output_rate, gsv_rate: every_1s,
+             rmc_rate: "off", vtg_rate: "off", gns_rate: "off", zda_rate: every_1s, dtm_rate: every_1s,
+             rlm_rate: "off", gst_rate: every_1s}}
+"""
+
+
+def test_worked_example_new_manual_revision(tmp_path: Path) -> None:
+    """GeoS-5 manual revision 4.1 adds a per-sentence rate field to NQUERY and a 20 Hz output
+    rate: edit the YAML, run `generate` and `diff`, read the changelog and the regenerated code."""
+    git = ["git", "-c", "user.name=t", "-c", "user.email=t@example.com"]
+    shutil.copytree(SPEC, tmp_path / "spec")
+    run(*git, "init", "-q", cwd=tmp_path)
+    run(*git, "add", "spec", cwd=tmp_path)
+    run(*git, "commit", "-q", "-m", "spec", cwd=tmp_path)
+    first = gen("--spec", "spec", "generate", "--out", "generated", "-q", cwd=tmp_path)
+    assert re.search(r"generated/: \d+ created, 0 updated, 0 removed, 0 unchanged", first.stdout), first.stdout
+
+    nquery = tmp_path / "spec" / "proprietary" / "geos5_nquery.yaml"
+    text = nquery.read_text()
+    nquery.write_text(text.replace("\nnotes:\n", "\n" + NEW_FIELD + "notes:\n", 1) + _new_example())
+    with (tmp_path / "spec" / "enums" / "geos5_output_rate.yaml").open("a") as f:
+        f.write(NEW_VALUE)
+
+    out = gen("--spec", "spec", "generate", "--out", "generated", cwd=tmp_path).stdout
+    updated = {line.split(" ", 1)[1] for line in out.splitlines() if line.startswith("updated ")}
+    for path in ("c/nmea.h", "c/nmea.c", "python/nmeaspec/sentences/geos5_nquery.py", "python/nmeaspec/enums.py",
+                 "rust/src/sentences/geos5_nquery.rs", "rust/src/enums.rs", "vectors/examples.jsonl"):
+        assert f"generated/{path}" in updated, out
+    for path in ("python/nmeaspec/sentences/gga.py", "rust/src/sentences/gga.rs", "python/nmeaspec/runtime.py"):
+        assert f"generated/{path}" not in updated
+    summary = out.splitlines()[-1]
+    assert re.fullmatch(rf"generated/: 0 created, {len(updated)} updated, 0 removed, \d+ unchanged", summary), summary
+    code = (tmp_path / "generated/python/nmeaspec/sentences/geos5_nquery.py").read_text()
+    assert "gst_rate" in code
+    assert "RATE_20HZ" in (tmp_path / "generated/python/nmeaspec/enums.py").read_text()
+    assert "gst_rate" in (tmp_path / "generated/c/nmea.h").read_text()
+    assert gen("--spec", "spec", "generate", "--out", "generated", cwd=tmp_path).stdout.startswith("nothing changed")
+
+    changelog = gen("diff", "HEAD", "spec", "--fail-on-breaking", cwd=tmp_path).stdout    # exit 0: nothing breaks
+    assert "3 change(s): 0 BREAKING, 3 compatible." in changelog, changelog
+    assert "- compatible: `GEOS5_NQUERY`: optional field `gst_rate` (enum(geos5_message_rate)) added at the end" in changelog
+    assert "- compatible: `geos5_output_rate`: value `rate_20hz` (code 4) added" in changelog
+    assert re.search(r"- compatible: `GEOS5_NQUERY`: example from geos5 added: `\$GPSGG,NQUERY,[0-9,R]+\*[0-9A-F]{2}`",
+                     changelog)
+    assert changelog.index("## Fields") < changelog.index("## Enums") < changelog.index("## Examples")
+
+    # Backwards, with a sentence dropped too: what breaks, as JSON, and the exit status for CI.
+    (tmp_path / "spec" / "proprietary" / "psrf150.yaml").unlink()
+    result = gen("diff", "spec", "HEAD:spec", "--json", "--fail-on-breaking", cwd=tmp_path, check=False)
+    assert result.returncode == 1, result.stderr
+    report = json.loads(result.stdout)
+    changes = {c["change"]: c["breaking"] for c in report["changes"]}
+    assert changes == {
+        "sentence `PSRF150` added (vendor gs501, address PSRF150)": False,
+        "`GEOS5_NQUERY`: field `gst_rate` removed": True,
+        "`geos5_output_rate`: value `rate_20hz` (code 4) removed": True,
+        f"`GEOS5_NQUERY`: example from geos5 removed: `${NEW_BODY}*{_checksum(NEW_BODY)}`": False,
+    }, changes
+    assert report["breaking"] == 2 and report["old"] == "spec" and report["new"] == "HEAD:spec"
+
+
+# --- diff: every kind of change, on the model ------------------------------------------------
+
+@pytest.fixture(scope="module")
+def spec():
+    return load_spec(SPEC)
+
+
+def _changes(old, new) -> dict[str, bool]:
+    return {c.change: c.breaking for c in diff.compare(old, new)}
+
+
+def test_diff_classifies_field_changes(spec) -> None:
+    new = copy.deepcopy(spec)
+    gga = new.sentence("GGA")
+    items = gga.layout.items
+    quality = next(i for i in items if i.id == "quality")
+    items.insert(items.index(quality), Field("extra", "Extra", "integer", "", [], quality.origin))
+    hdop = next(i for i in items if i.id == "hdop")
+    hdop.id = "horizontal_dop"
+    sats = next(i for i in items if i.id == "satellites")
+    sats.type = "decimal"
+    rmc = new.sentence("RMC").layout.items
+    rmc[0], rmc[1] = rmc[1], rmc[0]
+    vtg = new.sentence("VTG").layout.items
+    vtg.append(Field("trailing", "Trailing", "integer", "", [], vtg[0].origin, optional=True))
+    zda = new.sentence("ZDA").layout.items
+    zda.append(Field("required_tail", "Required", "integer", "", [], zda[0].origin))
+    changes = _changes(spec, new)
+    assert changes["`GGA`: field `extra` (integer) inserted after `lon`: the fields after it move on the wire"] is True
+    assert changes["`GGA`: field `hdop` renamed to `horizontal_dop` (same place and type)"] is True
+    assert changes["`GGA.satellites`: type integer(xx) -> decimal(xx)"] is True
+    assert any(c.startswith("`RMC`: fields reordered") and b for c, b in changes.items()), changes
+    assert changes["`VTG`: optional field `trailing` (integer) added at the end"] is False
+    assert changes["`ZDA`: required field `required_tail` (integer) added at the end: "
+                   "existing sentences without it no longer parse"] is True
+
+
+def test_diff_classifies_enum_and_sentence_changes(spec) -> None:
+    new = copy.deepcopy(spec)
+    quality = next(e for e in new.enums if e.id == "gga_quality")
+    removed = quality.values.pop()
+    quality.values[0].code = "Z"
+    new.sentences = [s for s in new.sentences if s.id != "HDT"]
+    new.sentences.append(copy.deepcopy(spec.sentence("ZDA")))
+    new.sentences[-1].id = "ZDX"
+    changes = _changes(spec, new)
+    assert changes[f"`gga_quality`: value `{removed.id}` (code {removed.code}) removed"] is True
+    assert changes[f"`gga_quality`: value `{quality.values[0].id}` code {spec.enum_by_id['gga_quality'].values[0].code} -> Z"] is True
+    assert changes["sentence `HDT` removed"] is True
+    assert changes["sentence `ZDX` added"] is False
+    assert not _changes(spec, copy.deepcopy(spec))
+    text = diff.markdown(diff.compare(spec, new), "old", "new")
+    assert text.startswith("# API changelog: old -> new\n\n")
+    assert "\n## Sentences and commands\n\n- **BREAKING**: sentence `HDT` removed\n" in text
+    assert "- compatible: sentence `ZDX` added\n" in text
+    assert "No change to the generated API." in diff.markdown([], "a", "b")
+
+
+# --- reconcile a manual's text -------------------------------------------------------------------
+
+@pytest.mark.skipif(not SEEDS.is_dir(), reason="../shared/seeds not present")
+def test_reconcile_finds_the_manuals_examples_in_the_spec(spec, tmp_path: Path) -> None:
+    for manual in spec.manuals:
+        if not manual.file:
+            continue
+        results = reconcile.reconcile(spec, (SEEDS / manual.file).read_text(), manual.id)
+        out = reconcile.report(results, manual.id, only_new=False)
+        summary = out.splitlines()[-2]
+        found = re.match(rf"(\d+) example sentence\(s\) in the manual \({manual.id}\): (\d+) already in the spec, (\d+) not",
+                         summary)
+        assert found, out[-2000:]
+        total, in_spec, new = map(int, found.groups())
+        assert total > 0 and in_spec >= total - 2, summary
+        if manual.id == "teseo":    # a heading the spec has no example of, and an OCR fragment
+            assert "line 287: $PSTMCOLD" in out and "$GPGGA5" in out and "address unknown to the spec" in out
+        for r in results:
+            if r.checksum == "damaged":
+                assert r.in_spec and r.corrected, r
+    out = gen("reconcile", SEEDS / spec.manual("gs501").file, cwd=tmp_path).stdout     # the command itself
+    assert "10 example sentence(s) in the manual (gs501): 10 already in the spec, 0 not." in out
+
+
+def test_reconcile_reports_a_new_revision(tmp_path: Path) -> None:
+    body = "GPSGG,NQUERY,1,4,2,R,0,R,1,0,0,0,1,1,0,1"
+    text = (f"3.12 NQUERY\nExample: \\$GPSGG, NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71 (port 1)\n"
+            f"Revision 4.1: ${body}*{_checksum(body)}\nBroken: $GPSGG,JAMDET,*58\n"
+            "Wrapped: $GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,\n00188.976,M,0014.4,M,,*66\n"
+            "Format: $--GGA,hhmmss.ss,llll.ll,a*hh and $PSTMCOLD,<Mask><cr><lf>\nUnknown: $PXYZ,1,2*00\n")
+    (tmp_path / "manual.txt").write_text(text)
+    out = gen("reconcile", "manual.txt", "--manual", "geos5", cwd=tmp_path).stdout
+    assert "line 2: $GPSGG, NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71\n    checksum ok once the typeset spaces are removed; GEOS5_NQUERY example" in out
+    assert f"line 3: ${body}*{_checksum(body)}\n    checksum ok; NOT IN THE SPEC; does not decode: too_many_fields: GPSGG: GEOS5_NQUERY takes at most 14 fields, found 15" in out
+    assert "line 4: $GPSGG,JAMDET,*58\n    checksum DAMAGED; NOT IN THE SPEC; decodes (checksum left out) as GEOS5_JAMDET" in out
+    assert "line 5: $GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,*66\n    checksum ok; GGA example" in out
+    assert "$--GGA" not in out and "<Mask>" not in out
+    assert "$PXYZ,1,2*00" in out and "address unknown to the spec" in out
+    assert "5 example sentence(s) in the manual (geos5): 2 already in the spec, 3 not" in out
+
+
+# --- vendor a renamed subset next to the default copy ----------------------------------------
+
+SUBSET = ("--only", "standard,geos5", "--prefix", "gs5", "--namespace", "gs5nmea")
+GEOS5 = "$GPSGG,JAMDET,*57"
+PIP_OPTIONS: list[str] = []
+TESEO = "$PSTMSETPAROK,1121*"
+
+
+@pytest.fixture(scope="module")
+def copies(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """One temp dir for the session: the default copy and the renamed GeoS-5 subset."""
+    tmp = tmp_path_factory.mktemp("vendor")
+    gen("generate", "--out", tmp / "default", "-q", cwd=tmp)
+    out = gen("generate", *SUBSET, "--out", tmp / "gs5", cwd=tmp).stdout
+    assert "created gs5/c/gs5.h" in out and "created gs5/python/gs5nmea/__init__.py" in out
+    return tmp
+
+
+def test_subset_leaves_other_vendors_out(copies: Path) -> None:
+    gs5 = copies / "gs5"
+    vectors = [json.loads(line) for line in (gs5 / "vectors/examples.jsonl").read_text().splitlines()]
+    full = load_spec(SPEC)
+    kept = {s.id for s in full.sentences if not s.is_proprietary or s.vendor == "geos5"}
+    assert {v["sentence"] for v in vectors} == {s.id for s in full.sentences if s.id in kept and s.examples}
+    assert not list(gs5.rglob("*pstm*")) and not list(gs5.rglob("*psrf*")) and not list(gs5.rglob("*comnav*"))
+    assert "PSTM" not in (gs5 / "docs/vendors/teseo.md").read_text()     # its standard sentences only
+    assert "GS5_SENTENCE_PSTM" not in (gs5 / "c/gs5.h").read_text() and "GS5_SENTENCE_GEOS5_JAMDET" in (gs5 / "c/gs5.h").read_text()
+
+
+def test_renaming_is_complete(copies: Path) -> None:
+    gs5 = copies / "gs5"
+    for path in gs5.rglob("*"):
+        if path.is_file() and path.suffix != ".jsonl":
+            text = path.read_text()
+            assert not re.search(r"\bnmeaspec\b", text), path
+            if path.suffix in (".c", ".h"):
+                code = re.sub(r'"(?:[^"\\\n]|\\.)*"', '""', text)
+                leftover = set(re.findall(r"\b(?:nmea|NMEA)_\w*", code))
+                assert leftover <= {"nmea_version"}, (path, leftover)   # a GeoS-5 field id, a struct member
+
+
+def test_two_c_copies_in_one_program(copies: Path) -> None:
+    program = copies / "both.c"
+    program.write_text(f"""\
+#include <stdio.h>
+#include <string.h>
+#include "nmea.h"
+#include "gs5.h"
+
+static int check(const char *line, int want_gs5, int want_nmea) {{
+    gs5_sentence a;
+    gs5_error ea;
+    nmea_sentence b;
+    nmea_error eb;
+    if (!gs5_parse(&a, line, strlen(line), &ea) || !nmea_parse(&b, line, strlen(line), &eb)) return 0;
+    return (int)a.id == want_gs5 && (int)b.id == want_nmea;
+}}
+
+int main(void) {{
+    if (!check("{GEOS5}", GS5_SENTENCE_GEOS5_JAMDET, NMEA_SENTENCE_GEOS5_JAMDET)) return 1;
+    if (!check("{TESEO}", GS5_SENTENCE_GENERIC, NMEA_SENTENCE_PSTMSETPAROK)) return 2;
+    puts("both copies parse");
+    return 0;
+}}
+""")
+    cc = os.environ.get("CC", "gcc")
+    run(cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O1", "-Idefault/c", "-Igs5/c", "-o", "both",
+        "both.c", "default/c/nmea.c", "gs5/c/gs5.c", cwd=copies)
+    assert run("./both", cwd=copies) == "both copies parse\n"
+    run(cc, "-std=c99", "-c", "-o", "gs5.o", "gs5/c/gs5.c", cwd=copies)
+    symbols = run("nm", "-g", "--defined-only", "gs5.o", cwd=copies).split()[2::3]
+    assert symbols and all(s.startswith("gs5_") for s in symbols), [s for s in symbols if not s.startswith("gs5_")]
+    run(cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-o", "gs5_tests", "gs5/c/gs5.c",
+        "gs5/c/tests/test_examples.c", cwd=copies)
+    assert " 0 failed" in run("./gs5_tests", cwd=copies)
+
+
+def test_two_rust_crates_in_one_project(copies: Path) -> None:
+    app = copies / "app"
+    (app / "src").mkdir(parents=True)
+    (app / "Cargo.toml").write_text(f"""\
+[package]
+name = "app"
+version = "0.1.0"
+edition = "2021"
+
+[dependencies]
+nmeaspec = {{ path = "{copies / 'default/rust'}" }}
+gs5nmea = {{ path = "{copies / 'gs5/rust'}" }}
+""")
+    (app / "src/main.rs").write_text(f"""\
+fn main() {{
+    let geos5 = "{GEOS5}";
+    assert!(matches!(gs5nmea::parse(geos5), Ok(gs5nmea::Sentence::Geos5Jamdet(_))));
+    assert!(matches!(nmeaspec::parse(geos5), Ok(nmeaspec::Sentence::Geos5Jamdet(_))));
+    let teseo = "{TESEO}";
+    assert!(matches!(gs5nmea::parse(teseo), Ok(gs5nmea::Sentence::Generic(_))));
+    assert!(matches!(nmeaspec::parse(teseo), Ok(nmeaspec::Sentence::Pstmsetparok(_))));
+    println!("both crates parse");
+}}
+""")
+    out = run("cargo", "run", "--quiet", "--offline", "--target-dir", copies / "target", cwd=app)
+    assert out == "both crates parse\n"
+
+
+@pytest.fixture(scope="module")
+def python_env(copies: Path) -> Path:
+    """A fresh venv with the default package and the renamed subset installed by pip."""
+    env = copies / "venv"
+    venv.create(env, with_pip=True)
+    python = env / "bin" / "python"
+    # Build from copies: pip builds in the source tree and leaves build/ and *.egg-info behind.
+    # setuptools comes with the venv; with wheel too, pip builds without fetching a build environment.
+    has_wheel = subprocess.run([python, "-c", "import setuptools, wheel"], capture_output=True).returncode == 0 or \
+        subprocess.run([python, "-m", "pip", "install", "--quiet", "wheel"], capture_output=True).returncode == 0
+    options = ["--no-deps", "--no-build-isolation"] if has_wheel else ["--no-deps"]
+    PIP_OPTIONS[:] = options
+    run(python, "-m", "pip", "install", "--quiet", *options, copies / "default/python", copies / "gs5/python",
+        cwd=copies)
+    return python
+
+
+def test_two_python_packages_in_one_environment(copies: Path, python_env: Path) -> None:
+    script = f"""
+import gs5nmea, nmeaspec
+assert type(gs5nmea.parse({GEOS5!r})).__name__ == "Geos5Jamdet"
+assert type(nmeaspec.parse({GEOS5!r})).__name__ == "Geos5Jamdet"
+assert type(gs5nmea.parse({TESEO!r})).__name__ == "Generic"
+assert type(nmeaspec.parse({TESEO!r})).__name__ == "Pstmsetparok"
+assert gs5nmea.parse({GEOS5!r}).to_sentence() == {GEOS5!r}
+assert not hasattr(gs5nmea, "Pstmsetpar") and hasattr(nmeaspec, "Pstmsetpar")
+print("both packages parse")
+"""
+    assert run(python_env, "-c", script, cwd=copies) == "both packages parse\n"
+    bin_dir = python_env.parent
+    assert (bin_dir / "gs5nmea-py").exists() and (bin_dir / "nmea-py").exists()
+    out = subprocess.run([bin_dir / "gs5nmea-py", "decode"], input=GEOS5 + "\n", capture_output=True, text=True)
+    assert '"sentence":"GEOS5_JAMDET"' in out.stdout
+
+
+def test_generator_console_script(copies: Path, python_env: Path) -> None:
+    """`pip install` the generator (a copy of the checkout's pyproject.toml and generator/) and run
+    `nmeaspec-gen` from inside the checkout: it finds spec/ and templates/ there."""
+    src = copies / "generator-src"
+    shutil.copytree(ROOT / "generator", src / "generator", ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", src)
+    run(python_env, "-m", "pip", "install", "--quiet", *PIP_OPTIONS, src, cwd=copies)
+    # The generator's own dependencies come from the project's environment, not from the network.
+    site = subprocess.run([python_env, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                          capture_output=True, text=True, check=True).stdout.strip()
+    ours = [p for p in sys.path if p.endswith("site-packages") and Path(p, "jinja2").is_dir()]
+    Path(site, "project-deps.pth").write_text("\n".join(ours) + "\n")
+    script = python_env.parent / "nmeaspec-gen"
+    assert "usage: nmeaspec-gen" in run(script, "--help", cwd=ROOT)
+    assert run(script, "validate", cwd=ROOT).startswith("spec ok: ")
+    out = run(script, "generate", "--only", "GGA", "--out", copies / "gga-only", cwd=ROOT)
+    assert "created gga-only/python/nmeaspec/sentences/gga.py" in out and "created gga-only/c/nmea.h" in out
