@@ -11,9 +11,11 @@
 #if defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
+#define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
 #else
 #define NMEA_INTERNAL static
 #define NMEA_RARE static
+#define NMEA_HOT static
 #endif
 
 static const char HEX_UPPER[] = "0123456789ABCDEF";
@@ -94,6 +96,7 @@ static bool upper_is(nmea_text t, const char *s)
 typedef struct {
     char *buf;
     size_t cap;
+    size_t quick_cap; /* put_mem copies runs of bytes up to here: cap, or 0 to match a text command */
     size_t len;
     unsigned char sum;
     bool summing;
@@ -114,6 +117,7 @@ static nmea_writer writer_of(char *buf, size_t cap)
     nmea_writer w;
     w.buf = buf;
     w.cap = buf ? cap : 0;
+    w.quick_cap = w.cap;
     w.len = 0;
     w.sum = 0;
     w.summing = false;
@@ -152,15 +156,17 @@ static inline void put_char(nmea_writer *w, char c)
 static inline void put_mem(nmea_writer *w, const char *s, size_t n)
 {
     size_t i;
+    char *dst;
     if (n == 0)
         return;
-    if (w->match || w->len > w->cap || n > w->cap - w->len) { /* a text command, or a full buffer */
+    if (w->len + n > w->quick_cap) { /* a full buffer, or a text command */
         for (i = 0; i < n; i++)
             put_char(w, s[i]);
         return;
     }
+    dst = w->buf + w->len; /* (a local pointer: a store through w->buf could change w) */
     for (i = 0; i < n; i++)
-        w->buf[w->len + i] = s[i];
+        dst[i] = s[i];
     w->len += n;
     w->last = s[n - 1];
 }
@@ -212,11 +218,23 @@ static void put_text(nmea_writer *w, nmea_text t)
    written in one put_mem. */
 static inline char *uint_text(char *end, uint64_t v, unsigned width)
 {
+    static const char PAIRS[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                                "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                                "8081828384858687888990919293949596979899";
     char *p = end;
-    do {
+    uint32_t low;
+    for (; v > UINT32_MAX; v /= 10)
         *--p = (char)('0' + v % 10);
-        v /= 10;
-    } while (v);
+    for (low = (uint32_t)v; low >= 100; low /= 100) { /* two digits per division */
+        p -= 2;
+        memcpy(p, PAIRS + low % 100 * 2, 2);
+    }
+    if (low >= 10) {
+        p -= 2;
+        memcpy(p, PAIRS + low * 2, 2);
+    } else {
+        *--p = (char)('0' + low);
+    }
     while ((unsigned)(end - p) < width)
         *--p = '0';
     return p;
@@ -548,7 +566,7 @@ static bool ends_body(unsigned char c)
    `require_checksum`, a sentence without a checksum (or with a bare '*') is refused. */
 static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require_checksum, nmea_error *err)
 {
-    size_t i, star = 0, comma = 0, commas = 0, body_end;
+    size_t i, star = 0, comma = 0, commas = 0, body_end, words_end;
     unsigned sum = 0;
     uint64_t word, words = 0;
     bool named, lower = false, upper = false;
@@ -570,7 +588,10 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
             break;
         }
     }
-    for (; commas && len - i >= 8; i += 8) { /* the fields, while whole words of them */
+    /* the fields, a word at a time up to the usual "*hh" at the end (the byte loop then finds
+       where the body really ends) */
+    words_end = len >= 3 && line[len - 3] == '*' ? len - 3 : len;
+    for (; commas && i + 8 <= words_end; i += 8) {
         memcpy(&word, line + i, 8);
         if (body_end_bytes(word))
             break;
@@ -812,6 +833,7 @@ NMEA_INTERNAL void begin_text(nmea_writer *w, const char *address, nmea_text as_
     w->sep = ' ';
     w->start = w->len;
     w->match = as_received.ptr;
+    w->quick_cap = 0;
     w->match_len = as_received.len;
     w->match_pos = 0;
     w->matched = as_received.ptr != NULL;
@@ -828,6 +850,7 @@ NMEA_INTERNAL void end_text(nmea_writer *w)
     for (i = 0; w->matched && i < w->match_len && w->start + i < w->cap; i++)
         w->buf[w->start + i] = w->match[i];
     w->match = NULL;
+    w->quick_cap = w->cap;
     w->sep = ',';
     w->problems = NULL;
 }
@@ -1352,8 +1375,8 @@ static bool bad_field(nmea_reader *r, unsigned index, const char *name, const ch
 }
 
 /* The general reading of an integer or decimal field. */
-static bool read_number(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                        const nmea_range *range, bool integer)
+NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range, bool integer)
 {
     nmea_text t = next_field(r);
     if (t.len && !(parse_number(t, integer, out) && in_range(out, range)))
@@ -1365,7 +1388,7 @@ static bool read_number(nmea_reader *r, nmea_number *out, const char *name, cons
    field, or digits with (`integer` false) at most one point, NMEA_MAX_DIGITS digits in all, in
    `range`. Anything else (a sign, more digits, not a number, out of range, a field lenient
    parsing reads as empty) is left to read_number: returns false without having read it. */
-static inline bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
+NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
 {
     const char *p = r->next, *end = r->end, *point = NULL;
     uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
@@ -1397,14 +1420,14 @@ static inline bool quick_number(nmea_reader *r, nmea_number *out, const nmea_ran
     return true;
 }
 
-NMEA_INTERNAL bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                                const nmea_range *range)
+NMEA_HOT bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range)
 {
     return quick_number(r, out, range, true) || read_number(r, out, name, expected, range, true);
 }
 
-NMEA_INTERNAL bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                                const nmea_range *range)
+NMEA_HOT bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range)
 {
     return quick_number(r, out, range, false) || read_number(r, out, name, expected, range, false);
 }
@@ -1562,7 +1585,7 @@ static inline bool put_sep(nmea_writer *w)
 /* [sign][whole digits, `width` of them at least][.[`scale` decimals]], formatted backwards from
    the last decimal so that no division by a power of ten is needed. A scale beyond
    NMEA_MAX_DIGITS (only in a struct built by hand) is written as that many zeros. */
-static void number_text(nmea_writer *w, const nmea_number *n)
+NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
 {
     char text[1 + NMEA_UINT_TEXT + 1 + 255], *end = text + sizeof text, *p = end;
     uint64_t v = (uint64_t)n->digits;
@@ -1577,11 +1600,37 @@ static void number_text(nmea_writer *w, const nmea_number *n)
             v /= 10;
         }
         *--p = '.';
-    } else if (n->scale <= NMEA_MAX_DIGITS) {
+    } else if (n->scale && n->scale <= NMEA_MAX_DIGITS) {
         v /= (uint64_t)POW10[n->scale];
     }
     if (n->width)
         p = uint_text(p, v, n->width);
+    if (n->sign)
+        *--p = n->sign;
+    put_mem(w, p, (size_t)(end - p));
+}
+
+/* any_number_text for the numbers a parser makes: at most NMEA_MAX_DIGITS digits, a whole
+   part and no decimals without a point. */
+static void number_text(nmea_writer *w, const nmea_number *n)
+{
+    char text[1 + 20 + 1 + NMEA_MAX_DIGITS], *end = text + sizeof text, *p = end;
+    uint64_t v = (uint64_t)n->digits;
+    unsigned i;
+    if (!n->present)
+        return;
+    if (n->digits < 0 || n->scale > NMEA_MAX_DIGITS || !n->width || n->width > 20 || (n->scale && !n->point)) {
+        any_number_text(w, n);
+        return;
+    }
+    if (n->point) {
+        for (i = 0; i < n->scale; i++) {
+            *--p = (char)('0' + v % 10);
+            v /= 10;
+        }
+        *--p = '.';
+    }
+    p = uint_text(p, v, n->width);
     if (n->sign)
         *--p = n->sign;
     put_mem(w, p, (size_t)(end - p));
