@@ -727,6 +727,7 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
 {
     size_t i, star = 0, comma = 0, commas = 0, body_end, words_end;
     unsigned sum = 0;
+    int high = -1, low = -1; /* the checksum's hex digits */
     uint64_t word, words = 0;
     bool named, lower = false, upper = false;
     nmea_text sent;
@@ -785,18 +786,20 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         f->checksum = NMEA_CHECKSUM_EMPTY;
     } else if (star) {
         sent = text_span(line + star + 1, line + len);
-        for (i = 0; i < sent.len; i++) {
-            lower = lower || (sent.ptr[i] >= 'a' && sent.ptr[i] <= 'f');
-            upper = upper || (sent.ptr[i] >= 'A' && sent.ptr[i] <= 'F');
+        if (sent.len == 2) {
+            high = hex_value(sent.ptr[0]);
+            low = hex_value(sent.ptr[1]);
+            lower = (sent.ptr[0] >= 'a' && sent.ptr[0] <= 'f') || (sent.ptr[1] >= 'a' && sent.ptr[1] <= 'f');
+            upper = (sent.ptr[0] >= 'A' && sent.ptr[0] <= 'F') || (sent.ptr[1] >= 'A' && sent.ptr[1] <= 'F');
         }
-        if (sent.len != 2 || hex_value(sent.ptr[0]) < 0 || hex_value(sent.ptr[1]) < 0 || (lower && upper)) {
+        if (high < 0 || low < 0 || (lower && upper)) {
             fail(err, NMEA_ERR_BAD_CHECKSUM, "checksum %q is not two hex digits of one letter case");
             err->text = sent;
             if (named)
                 set_address(err, f->address, NULL);
             return false;
         }
-        if ((unsigned)(hex_value(sent.ptr[0]) * 16 + hex_value(sent.ptr[1])) != sum) {
+        if ((unsigned)(high * 16 + low) != sum) {
             fail(err, NMEA_ERR_CHECKSUM_MISMATCH, "checksum is %t, computed %X");
             err->text = sent;
             err->num[0] = sum;
@@ -1241,27 +1244,26 @@ static bool parse_date(nmea_text t, nmea_date *out)
    minutes, the digits before them degrees. */
 static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
-    const char *point = memchr(t.ptr, '.', t.len);
-    size_t whole = point ? (size_t)(point - t.ptr) : t.len;
-    size_t frac = point ? t.len - whole - 1 : 0;
-    size_t i;
-    unsigned degrees = 0;
-    int64_t minutes = 0;
+    const char *p = t.ptr, *end = t.ptr + t.len, *point = NULL;
+    uint64_t whole_value = 0, minutes; /* unsigned: digits too many for them are refused below */
+    size_t whole, frac = 0;
 
-    if (whole < 2 || whole > 2 + max_degree_digits || !all_digits(t.ptr, whole))
+    for (; p < end && is_digit(*p); p++)
+        whole_value = whole_value * 10 + (uint64_t)(*p - '0');
+    whole = (size_t)(p - t.ptr);
+    minutes = whole_value % 100;
+    if (p < end && *p == '.') {
+        for (point = p++; p < end && is_digit(*p); p++)
+            minutes = minutes * 10 + (uint64_t)(*p - '0');
+        frac = (size_t)(p - point - 1);
+    }
+    if (p != end || whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_MAX_DIGITS - 2)
         return false;
-    if (frac > NMEA_MAX_DIGITS - 2 || !all_digits(point ? point + 1 : t.ptr, frac))
+    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
         return false;
-    for (i = 0; i + 2 < whole; i++)
-        degrees = degrees * 10 + (unsigned)(t.ptr[i] - '0');
-    minutes = two_digits(t.ptr + whole - 2);
-    for (i = 0; i < frac; i++)
-        minutes = minutes * 10 + (point[1 + i] - '0');
-    if (degrees > max_degrees || minutes > 60 * POW10[frac])
-        return false;
-    out->degrees = (uint16_t)degrees;
+    out->degrees = (uint16_t)(whole_value / 100);
     out->degree_digits = (uint8_t)(whole - 2);
-    out->minutes.digits = minutes;
+    out->minutes.digits = (int64_t)minutes;
     out->minutes.scale = (uint8_t)frac;
     out->minutes.width = 2;
     out->minutes.sign = 0;
@@ -9885,11 +9887,8 @@ NMEA_INTERNAL const nmea_layouts *find_layouts(const nmea_layouts *table, size_t
 {
     size_t lo = 0, hi = n;
     while (lo < hi) {
-        size_t mid = (lo + hi) / 2, len = table[mid].key_len, i;
-        const unsigned char *a = (const unsigned char *)table[mid].key, *b = (const unsigned char *)key.ptr;
-        int order = 0;
-        for (i = 0; i < len && i < key.len && !order; i++)
-            order = a[i] < b[i] ? -1 : a[i] > b[i];
+        size_t mid = (lo + hi) / 2, len = table[mid].key_len;
+        int order = memcmp(table[mid].key, key.ptr, len < key.len ? len : key.len);
         if (order == 0)
             order = len < key.len ? -1 : len > key.len;
         if (order == 0)
