@@ -171,10 +171,12 @@ static const uint32_t CASED_RUNS[][3] = {
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
 #define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
+#define NMEA_OUTLINE static __attribute__((noinline))
 #else
 #define NMEA_INTERNAL static
 #define NMEA_RARE static
 #define NMEA_HOT static
+#define NMEA_OUTLINE static
 #endif
 
 static const char HEX_UPPER[] = "0123456789ABCDEF";
@@ -1385,6 +1387,15 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->blank = wire->blank;
     r->blanks = wire->blanks;
     r->err = err;
+}
+
+/* Zeroes the `size` first bytes of a layout struct before it is read, with the C library's
+   memset: the size is read back from a volatile so that the compiler cannot see it is a
+   constant of a few hundred bytes, which it would inline as `rep stos`, slow to start. */
+NMEA_OUTLINE void clear_layout(void *s, size_t size)
+{
+    volatile size_t unknown = size;
+    memset(s, 0, unknown);
 }
 
 /* Whether lenient parsing reads wire field `index` (1-based) as empty. */
@@ -3510,7 +3521,7 @@ static bool dtm_read(nmea_dtm *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "DTM", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_dtm, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_dtm, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3609,7 +3620,7 @@ static bool gga_read(nmea_gga *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GGA", err);
     if (!read_count(&r, wire->count, 14, 14, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gga, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gga, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3724,7 +3735,7 @@ static bool gll_read(nmea_gll *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GLL", err);
     if (!read_count(&r, wire->count, 6, 7, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gll, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gll, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3813,7 +3824,7 @@ static bool gns_read(nmea_gns *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GNS", err);
     if (!read_count(&r, wire->count, 12, 13, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gns, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gns, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3926,7 +3937,7 @@ static bool gns_aux_read(nmea_gns_aux *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "GNS", err);
     if (!read_count(&r, wire->count, 11, 12, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gns_aux, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gns_aux, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4035,7 +4046,7 @@ static bool gsa_read(nmea_gsa *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GSA", err);
     if (!read_group_count(&r, wire->count, "prns", 5, 1, 12, 12, 1, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gsa, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gsa, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4154,7 +4165,7 @@ static bool gsa_short_read(nmea_gsa_short *s, const nmea_wire *wire, nmea_error 
     reader_start(&r, wire, "GSA", err);
     if (!read_group_count(&r, wire->count, "prns", 5, 1, 0, 11, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gsa_short, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gsa_short, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4267,7 +4278,7 @@ static bool gst_read(nmea_gst *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GST", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gst, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gst, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4365,7 +4376,7 @@ static bool gsv_read(nmea_gsv *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GSV", err);
     if (!read_group_count(&r, wire->count, "satellites", 3, 4, 0, 4, 1, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gsv, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gsv, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4496,7 +4507,7 @@ static bool hdt_read(nmea_hdt *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "HDT", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_hdt, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_hdt, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4570,7 +4581,7 @@ static bool rlm_read(nmea_rlm *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "RLM", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_rlm, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_rlm, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4653,7 +4664,7 @@ static bool rmc_read(nmea_rmc *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "RMC", err);
     if (!read_count(&r, wire->count, 11, 13, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_rmc, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_rmc, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4768,7 +4779,7 @@ static bool vtg_read(nmea_vtg *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "VTG", err);
     if (!read_count(&r, wire->count, 8, 9, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_vtg, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_vtg, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4873,7 +4884,7 @@ static bool zda_read(nmea_zda *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "ZDA", err);
     if (!read_count(&r, wire->count, 6, 6, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_zda, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_zda, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4964,7 +4975,7 @@ static bool comnav_log_read(nmea_comnav_log *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "COMNAV_LOG", err);
     if (!read_count(&r, wire->count, 3, 3, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_comnav_log, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_comnav_log, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
@@ -5059,7 +5070,7 @@ static bool comnav_nmeatalker_read(nmea_comnav_nmeatalker *s, const nmea_wire *w
     reader_start(&r, wire, "COMNAV_NMEATALKER", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_comnav_nmeatalker, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_comnav_nmeatalker, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
@@ -5148,7 +5159,7 @@ static bool comnav_nmeatalker_list_read(nmea_comnav_nmeatalker_list *s, const nm
     reader_start(&r, wire, "COMNAV_NMEATALKER", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_comnav_nmeatalker_list, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_comnav_nmeatalker_list, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
@@ -5232,7 +5243,7 @@ static bool comnav_nmeatalker_reset_read(nmea_comnav_nmeatalker_reset *s, const 
     reader_start(&r, wire, "COMNAV_NMEATALKER", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_comnav_nmeatalker_reset, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_comnav_nmeatalker_reset, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
@@ -5316,7 +5327,7 @@ static bool geos5_command_read(nmea_geos5_command *s, const nmea_wire *wire, nme
     reader_start(&r, wire, "GEOS5_COMMAND", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_command, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_command, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5386,7 +5397,7 @@ static bool geos5_jamdet_read(nmea_geos5_jamdet *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "GEOS5_JAMDET", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_jamdet, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_jamdet, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5460,7 +5471,7 @@ static bool geos5_nquery_read(nmea_geos5_nquery *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "GEOS5_NQUERY", err);
     if (!read_count(&r, wire->count, 14, 14, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_nquery, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_nquery, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5582,7 +5593,7 @@ static bool geos5_nquery_request_read(nmea_geos5_nquery_request *s, const nmea_w
     reader_start(&r, wire, "GEOS5_NQUERY_REQUEST", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_nquery_request, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_nquery_request, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5652,7 +5663,7 @@ static bool geos5_rquery_read(nmea_geos5_rquery *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "GEOS5_RQUERY", err);
     if (!read_count(&r, wire->count, 7, 7, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_rquery, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_rquery, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5746,7 +5757,7 @@ static bool geos5_rquery_request_read(nmea_geos5_rquery_request *s, const nmea_w
     reader_start(&r, wire, "GEOS5_RQUERY_REQUEST", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_rquery_request, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_rquery_request, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5816,7 +5827,7 @@ static bool psrf100_read(nmea_psrf100 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF100", err);
     if (!read_count(&r, wire->count, 5, 5, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf100, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf100, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5902,7 +5913,7 @@ static bool psrf101_read(nmea_psrf101 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF101", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf101, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf101, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6000,7 +6011,7 @@ static bool psrf102_read(nmea_psrf102 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF102", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf102, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf102, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6082,7 +6093,7 @@ static bool psrf103_read(nmea_psrf103 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF103", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf103, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf103, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6164,7 +6175,7 @@ static bool psrf104_read(nmea_psrf104 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF104", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf104, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf104, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6262,7 +6273,7 @@ static bool psrf105_read(nmea_psrf105 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF105", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf105, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf105, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6331,7 +6342,7 @@ static bool psrf150_read(nmea_psrf150 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF150", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf150, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf150, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6399,7 +6410,7 @@ static bool pstmagps_read(nmea_pstmagps *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMAGPS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmagps, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmagps, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6489,7 +6500,7 @@ static bool pstmalmanac_read(nmea_pstmalmanac *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMALMANAC", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmalmanac, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmalmanac, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6580,7 +6591,7 @@ static bool pstmclralms_read(nmea_pstmclralms *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMCLRALMS", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmclralms, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmclralms, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6649,7 +6660,7 @@ static bool pstmclrephs_read(nmea_pstmclrephs *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMCLREPHS", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmclrephs, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmclrephs, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6718,7 +6729,7 @@ static bool pstmcold_read(nmea_pstmcold *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMCOLD", err);
     if (!read_count(&r, wire->count, 0, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmcold, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmcold, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -6789,7 +6800,7 @@ static bool pstmcorr_read(nmea_pstmcorr *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMCORR", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmcorr, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmcorr, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6879,7 +6890,7 @@ static bool pstmdiff_read(nmea_pstmdiff *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMDIFF", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmdiff, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmdiff, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6969,7 +6980,7 @@ static bool pstmeph_read(nmea_pstmeph *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMEPH", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmeph, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmeph, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7060,7 +7071,7 @@ static bool pstmgetpar_read(nmea_pstmgetpar *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "PSTMGETPAR", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetpar, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetpar, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7129,7 +7140,7 @@ static bool pstmgetparerror_read(nmea_pstmgetparerror *s, const nmea_wire *wire,
     reader_start(&r, wire, "PSTMGETPARERROR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetparerror, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetparerror, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7197,7 +7208,7 @@ static bool pstmgetrtctime_read(nmea_pstmgetrtctime *s, const nmea_wire *wire, n
     reader_start(&r, wire, "PSTMGETRTCTIME", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetrtctime, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetrtctime, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7265,7 +7276,7 @@ static bool pstmgetrtctime_reply_read(nmea_pstmgetrtctime_reply *s, const nmea_w
     reader_start(&r, wire, "PSTMGETRTCTIME_REPLY", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetrtctime_reply, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetrtctime_reply, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7346,7 +7357,7 @@ static bool pstmgetswver_read(nmea_pstmgetswver *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "PSTMGETSWVER", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetswver, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetswver, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7414,7 +7425,7 @@ static bool pstmgetswver_reply_read(nmea_pstmgetswver_reply *s, const nmea_wire 
     reader_start(&r, wire, "PSTMGETSWVER_REPLY", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetswver_reply, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetswver_reply, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7495,7 +7506,7 @@ static bool pstmhot_read(nmea_pstmhot *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMHOT", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmhot, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmhot, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7563,7 +7574,7 @@ static bool pstmkfcov_read(nmea_pstmkfcov *s, const nmea_wire *wire, nmea_error 
     reader_start(&r, wire, "PSTMKFCOV", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmkfcov, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmkfcov, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7654,7 +7665,7 @@ static bool pstmnmeaonoff_read(nmea_pstmnmeaonoff *s, const nmea_wire *wire, nme
     reader_start(&r, wire, "PSTMNMEAONOFF", err);
     if (!read_count(&r, wire->count, 0, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmnmeaonoff, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmnmeaonoff, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -7725,7 +7736,7 @@ static bool pstmpa_read(nmea_pstmpa *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMPA", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmpa, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmpa, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7815,7 +7826,7 @@ static bool pstmpres_read(nmea_pstmpres *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMPRES", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmpres, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmpres, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7905,7 +7916,7 @@ static bool pstmres_read(nmea_pstmres *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMRES", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmres, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmres, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7996,7 +8007,7 @@ static bool pstmrestorepar_read(nmea_pstmrestorepar *s, const nmea_wire *wire, n
     reader_start(&r, wire, "PSTMRESTOREPAR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmrestorepar, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmrestorepar, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8064,7 +8075,7 @@ static bool pstmrf_read(nmea_pstmrf *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMRF", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmrf, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmrf, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8154,7 +8165,7 @@ static bool pstmsat_read(nmea_pstmsat *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMSAT", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsat, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsat, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8245,7 +8256,7 @@ static bool pstmsavepar_read(nmea_pstmsavepar *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMSAVEPAR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsavepar, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsavepar, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8313,7 +8324,7 @@ static bool pstmsbas_read(nmea_pstmsbas *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMSBAS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsbas, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsbas, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8403,7 +8414,7 @@ static bool pstmsbascorr_read(nmea_pstmsbascorr *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "PSTMSBASCORR", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsbascorr, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsbascorr, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8493,7 +8504,7 @@ static bool pstmset_read(nmea_pstmset *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMSET", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmset, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmset, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8566,7 +8577,7 @@ static bool pstmset_dop_read(nmea_pstmset_dop *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMSET", err);
     if (!read_count(&r, wire->count, 5, 5, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmset_dop, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmset_dop, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8652,7 +8663,7 @@ static bool pstmsetpar_read(nmea_pstmsetpar *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "PSTMSETPAR", err);
     if (!read_count(&r, wire->count, 2, 3, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsetpar, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsetpar, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -8731,7 +8742,7 @@ static bool pstmsetpar_dop_read(nmea_pstmsetpar_dop *s, const nmea_wire *wire, n
     reader_start(&r, wire, "PSTMSETPAR", err);
     if (!read_count(&r, wire->count, 5, 6, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsetpar_dop, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsetpar_dop, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -8821,7 +8832,7 @@ static bool pstmsetparerror_read(nmea_pstmsetparerror *s, const nmea_wire *wire,
     reader_start(&r, wire, "PSTMSETPARERROR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsetparerror, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsetparerror, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8889,7 +8900,7 @@ static bool pstmsetparok_read(nmea_pstmsetparok *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "PSTMSETPAROK", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsetparok, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsetparok, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8958,7 +8969,7 @@ static bool pstmtestrf_read(nmea_pstmtestrf *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "PSTMTESTRF", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmtestrf, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmtestrf, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9048,7 +9059,7 @@ static bool pstmtg_read(nmea_pstmtg *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMTG", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmtg, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmtg, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9138,7 +9149,7 @@ static bool pstmtim_read(nmea_pstmtim *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMTIM", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmtim, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmtim, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9228,7 +9239,7 @@ static bool pstmts_read(nmea_pstmts *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMTS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmts, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmts, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9318,7 +9329,7 @@ static bool pstmver_read(nmea_pstmver *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMVER", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmver, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmver, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9408,7 +9419,7 @@ static bool pstmvres_read(nmea_pstmvres *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMVRES", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmvres, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmvres, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9498,7 +9509,7 @@ static bool pstmwaas_read(nmea_pstmwaas *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMWAAS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmwaas, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmwaas, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9589,7 +9600,7 @@ static bool pstmwarm_read(nmea_pstmwarm *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMWARM", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmwarm, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmwarm, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;

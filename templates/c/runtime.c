@@ -12,10 +12,12 @@
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
 #define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
+#define NMEA_OUTLINE static __attribute__((noinline))
 #else
 #define NMEA_INTERNAL static
 #define NMEA_RARE static
 #define NMEA_HOT static
+#define NMEA_OUTLINE static
 #endif
 
 static const char HEX_UPPER[] = "0123456789ABCDEF";
@@ -1226,6 +1228,15 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->blank = wire->blank;
     r->blanks = wire->blanks;
     r->err = err;
+}
+
+/* Zeroes the `size` first bytes of a layout struct before it is read, with the C library's
+   memset: the size is read back from a volatile so that the compiler cannot see it is a
+   constant of a few hundred bytes, which it would inline as `rep stos`, slow to start. */
+NMEA_OUTLINE void clear_layout(void *s, size_t size)
+{
+    volatile size_t unknown = size;
+    memset(s, 0, unknown);
 }
 
 /* Whether lenient parsing reads wire field `index` (1-based) as empty. */
