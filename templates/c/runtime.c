@@ -207,7 +207,10 @@ static void stop_sum(nmea_writer *w)
 
 static void put_str(nmea_writer *w, const char *s)
 {
-    put_mem(w, s, strlen(s));
+    size_t n = 0;
+    while (s[n]) /* (short strings: codes, sentence ids, JSON keys) */
+        n++;
+    put_mem(w, s, n);
 }
 
 static void put_text(nmea_writer *w, nmea_text t)
