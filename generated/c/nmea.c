@@ -170,9 +170,13 @@ static const uint32_t CASED_RUNS[][3] = {
 #if defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
+#define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
+#define NMEA_OUTLINE static __attribute__((noinline))
 #else
 #define NMEA_INTERNAL static
 #define NMEA_RARE static
+#define NMEA_HOT static
+#define NMEA_OUTLINE static
 #endif
 
 static const char HEX_UPPER[] = "0123456789ABCDEF";
@@ -241,8 +245,11 @@ static bool upper_is(nmea_text t, const char *s)
 
 /* ------------------------------------------------------------------------------------------ */
 /* Writing text: a bounded buffer that keeps counting past its end and XORs the bytes written
-   while `summing` (the checksum). Fields are preceded by `sep` (',', or ' ' between the words of a
-   text command). While a text command is written, `match` is the command as received: the bytes
+   while `summing` (the checksum). The bytes kept in the buffer are summed once, when summing
+   stops (from `sum_start` on); only those past its end (or with no buffer: decode's JSON writes
+   a sentence just for its checksum) are summed as they come. Fields are preceded by `sep` (',',
+   or ' ' between the words of a text command). While a text command is written, `match` is the
+   command as received: the bytes
    written are compared with it ignoring case (`matched` stays true while they agree). While a
    sentence is written, `field` counts its wire fields, and the fields of its `problems` (those
    lenient parsing left empty) are written with their text as received. */
@@ -250,9 +257,11 @@ static bool upper_is(nmea_text t, const char *s)
 typedef struct {
     char *buf;
     size_t cap;
+    size_t quick_cap; /* put_mem copies runs of bytes up to here: cap, or 0 to match a text command */
     size_t len;
     unsigned char sum;
     bool summing;
+    size_t sum_start;
     char last;
     char sep;
     bool matched;
@@ -269,9 +278,11 @@ static nmea_writer writer_of(char *buf, size_t cap)
     nmea_writer w;
     w.buf = buf;
     w.cap = buf ? cap : 0;
+    w.quick_cap = w.cap;
     w.len = 0;
     w.sum = 0;
     w.summing = false;
+    w.sum_start = 0;
     w.last = 0;
     w.sep = ',';
     w.matched = false;
@@ -291,30 +302,74 @@ static void match_char(nmea_writer *w, char c)
     w->match_pos++;
 }
 
-static void put_char(nmea_writer *w, char c)
+static inline void put_char(nmea_writer *w, char c)
 {
     if (w->len < w->cap)
         w->buf[w->len] = c;
-    w->len++;
-    if (w->summing) {
+    else if (w->summing)
         w->sum ^= (unsigned char)c;
-        if (w->match)
-            match_char(w, c);
-    }
+    w->len++;
+    if (w->match && w->summing)
+        match_char(w, c);
     w->last = c;
 }
 
-static void put_mem(nmea_writer *w, const char *s, size_t n)
+static inline void put_mem(nmea_writer *w, const char *s, size_t n)
 {
     size_t i;
+    char *dst;
+    if (n == 0)
+        return;
+    if (w->len + n > w->quick_cap) { /* a full buffer, or a text command */
+        for (i = 0; i < n; i++)
+            put_char(w, s[i]);
+        return;
+    }
+    dst = w->buf + w->len; /* (a local pointer: a store through w->buf could change w) */
     for (i = 0; i < n; i++)
-        put_char(w, s[i]);
+        dst[i] = s[i];
+    w->len += n;
+    w->last = s[n - 1];
+}
+
+/* The XOR of n bytes, a machine word at a time. */
+static unsigned char xor_bytes(const char *p, size_t n)
+{
+    uint64_t word, acc = 0;
+    unsigned char sum = 0;
+    for (; n >= 8; p += 8, n -= 8) {
+        memcpy(&word, p, 8);
+        acc ^= word;
+    }
+    for (; n; n--)
+        sum ^= (unsigned char)*p++;
+    acc ^= acc >> 32;
+    acc ^= acc >> 16;
+    acc ^= acc >> 8;
+    return (unsigned char)(sum ^ (unsigned char)acc);
+}
+
+static void start_sum(nmea_writer *w)
+{
+    w->summing = true;
+    w->sum_start = w->len;
+}
+
+/* Sums the bytes kept since start_sum (the others are summed already). */
+static void stop_sum(nmea_writer *w)
+{
+    size_t kept = w->len < w->cap ? w->len : w->cap;
+    if (w->summing && w->sum_start < kept)
+        w->sum ^= xor_bytes(w->buf + w->sum_start, kept - w->sum_start);
+    w->summing = false;
 }
 
 static void put_str(nmea_writer *w, const char *s)
 {
-    while (*s)
-        put_char(w, *s++);
+    size_t n = 0;
+    while (s[n]) /* (short strings: codes, sentence ids, JSON keys) */
+        n++;
+    put_mem(w, s, n);
 }
 
 static void put_text(nmea_writer *w, nmea_text t)
@@ -322,21 +377,44 @@ static void put_text(nmea_writer *w, nmea_text t)
     put_mem(w, t.ptr, t.len);
 }
 
+/* Writes `v` in decimal, zero-padded to at least `width` digits, just before `end`: returns
+   where the text starts. Numbers are formatted backwards into a local buffer this way and then
+   written in one put_mem. */
+static inline char *uint_text(char *end, uint64_t v, unsigned width)
+{
+    static const char PAIRS[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                                "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                                "8081828384858687888990919293949596979899";
+    char *p = end;
+    uint32_t low;
+    for (; v > UINT32_MAX; v /= 10)
+        *--p = (char)('0' + v % 10);
+    for (low = (uint32_t)v; low >= 100; low /= 100) { /* two digits per division */
+        p -= 2;
+        memcpy(p, PAIRS + low % 100 * 2, 2);
+    }
+    if (low >= 10) {
+        p -= 2;
+        memcpy(p, PAIRS + low * 2, 2);
+    } else {
+        *--p = (char)('0' + low);
+    }
+    while ((unsigned)(end - p) < width)
+        *--p = '0';
+    return p;
+}
+
+/* Room for any uint_text of a uint8_t width: 255 digits. */
+#define NMEA_UINT_TEXT 255
+
 /* An unsigned number in decimal, zero-padded to at least `width` digits. */
 static void put_uint(nmea_writer *w, uint64_t v, unsigned width)
 {
-    char digits[20];
-    unsigned n = 0;
-    do {
-        digits[n++] = (char)('0' + v % 10);
-        v /= 10;
-    } while (v);
-    while (width > n) {
+    char text[NMEA_UINT_TEXT], *end = text + sizeof text, *p;
+    for (; width > NMEA_UINT_TEXT; width--)
         put_char(w, '0');
-        width--;
-    }
-    while (n)
-        put_char(w, digits[--n]);
+    p = uint_text(end, v, width);
+    put_mem(w, p, (size_t)(end - p));
 }
 
 /* The NUL-terminated result, or 0 when it did not fit. */
@@ -615,12 +693,47 @@ typedef struct {
     nmea_checksum_style checksum;
 } nmea_frame;
 
+/* The body of a sentence is read 8 bytes at a time as one 64-bit word (SWAR): each function
+   below sets the high bit of every byte of the word that is (exactly) what it looks for. The
+   order of the bytes in the word does not matter to any of them. */
+#define BYTES_ONES UINT64_C(0x0101010101010101)
+#define BYTES_HIGH UINT64_C(0x8080808080808080)
+#define BYTES_LOW7 UINT64_C(0x7F7F7F7F7F7F7F7F)
+
+/* The zero bytes (no carry crosses a byte, so there are no false positives). */
+static inline uint64_t zero_bytes(uint64_t word)
+{
+    return ~(((word & BYTES_LOW7) + BYTES_LOW7) | word | BYTES_LOW7);
+}
+
+/* The bytes that end the body of a sentence: '*', and whatever is not printable ASCII (below
+   0x20, 0x7F and above). */
+static inline uint64_t body_end_bytes(uint64_t word)
+{
+    uint64_t low7 = word & BYTES_LOW7;
+    return ((word | ~(low7 + 0x60 * BYTES_ONES) | (low7 + BYTES_ONES)) & BYTES_HIGH)
+           | zero_bytes(word ^ ('*' * BYTES_ONES));
+}
+
+/* How many bytes a byte mask marks. */
+static inline size_t count_bytes(uint64_t mask)
+{
+    return (size_t)(((mask >> 7) * BYTES_ONES) >> 56);
+}
+
+static bool ends_body(unsigned char c)
+{
+    return c < 0x20 || c > 0x7E || c == '*';
+}
+
 /* One pass over the line: the printable check, the checksum and the field count; with
    `require_checksum`, a sentence without a checksum (or with a bare '*') is refused. */
 static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require_checksum, nmea_error *err)
 {
-    size_t i, star = 0, comma = 0, commas = 0, body_end;
+    size_t i, star = 0, comma = 0, commas = 0, body_end, words_end;
     unsigned sum = 0;
+    int high = -1, low = -1; /* the checksum's hex digits */
+    uint64_t word, words = 0;
     bool named, lower = false, upper = false;
     nmea_text sent;
 
@@ -632,14 +745,32 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         return fail(err, NMEA_ERR_NOT_A_SENTENCE, "empty line");
     if (line[0] != '$' && line[0] != '!')
         return fail(err, NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'");
-    for (i = 1; i < len; i++) { /* the body: checksum and commas */
-        unsigned char c = (unsigned char)line[i];
-        if (c < 0x20 || c > 0x7E || c == '*')
+    for (i = 1; i < len && !ends_body((unsigned char)line[i]); i++) { /* the address */
+        sum ^= (unsigned char)line[i];
+        if (line[i] == ',') {
+            commas = 1;
+            comma = i++;
             break;
-        sum ^= c;
-        if (c == ',' && !commas++)
-            comma = i;
+        }
     }
+    /* the fields, a word at a time up to the usual "*hh" at the end (the byte loop then finds
+       where the body really ends) */
+    words_end = len >= 3 && line[len - 3] == '*' ? len - 3 : len;
+    for (; commas && i + 8 <= words_end; i += 8) {
+        memcpy(&word, line + i, 8);
+        if (body_end_bytes(word))
+            break;
+        words ^= word;
+        commas += count_bytes(zero_bytes(word ^ (',' * BYTES_ONES)));
+    }
+    for (; i < len && !ends_body((unsigned char)line[i]); i++) { /* the rest of the body */
+        sum ^= (unsigned char)line[i];
+        commas += line[i] == ',';
+    }
+    words ^= words >> 32;
+    words ^= words >> 16;
+    words ^= words >> 8;
+    sum ^= (unsigned char)words;
     if (i < len && line[i] == '*')
         for (star = i++; i < len && is_printable(line[i]); i++)
             continue;
@@ -660,18 +791,20 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         f->checksum = NMEA_CHECKSUM_EMPTY;
     } else if (star) {
         sent = text_span(line + star + 1, line + len);
-        for (i = 0; i < sent.len; i++) {
-            lower = lower || (sent.ptr[i] >= 'a' && sent.ptr[i] <= 'f');
-            upper = upper || (sent.ptr[i] >= 'A' && sent.ptr[i] <= 'F');
+        if (sent.len == 2) {
+            high = hex_value(sent.ptr[0]);
+            low = hex_value(sent.ptr[1]);
+            lower = (sent.ptr[0] >= 'a' && sent.ptr[0] <= 'f') || (sent.ptr[1] >= 'a' && sent.ptr[1] <= 'f');
+            upper = (sent.ptr[0] >= 'A' && sent.ptr[0] <= 'F') || (sent.ptr[1] >= 'A' && sent.ptr[1] <= 'F');
         }
-        if (sent.len != 2 || hex_value(sent.ptr[0]) < 0 || hex_value(sent.ptr[1]) < 0 || (lower && upper)) {
+        if (high < 0 || low < 0 || (lower && upper)) {
             fail(err, NMEA_ERR_BAD_CHECKSUM, "checksum %q is not two hex digits of one letter case");
             err->text = sent;
             if (named)
                 set_address(err, f->address, NULL);
             return false;
         }
-        if ((unsigned)(hex_value(sent.ptr[0]) * 16 + hex_value(sent.ptr[1])) != sum) {
+        if ((unsigned)(high * 16 + low) != sum) {
             fail(err, NMEA_ERR_CHECKSUM_MISMATCH, "checksum is %t, computed %X");
             err->text = sent;
             err->num[0] = sum;
@@ -837,15 +970,16 @@ NMEA_INTERNAL void begin_sentence(nmea_writer *w, nmea_text talker, const char *
     w->problems = problems;
     w->field = 0;
     put_char(w, '$');
-    w->summing = true;
+    start_sum(w);
     put_text(w, talker);
     put_str(w, sentence);
 }
 
 static void end_sentence(nmea_writer *w, nmea_checksum_style style)
 {
-    unsigned char sum = w->sum;
-    w->summing = false;
+    unsigned char sum;
+    stop_sum(w);
+    sum = w->sum;
     w->problems = NULL;
     if (style == NMEA_CHECKSUM_NONE)
         return;
@@ -866,21 +1000,24 @@ NMEA_INTERNAL void begin_text(nmea_writer *w, const char *address, nmea_text as_
     w->sep = ' ';
     w->start = w->len;
     w->match = as_received.ptr;
+    w->quick_cap = 0;
     w->match_len = as_received.len;
     w->match_pos = 0;
     w->matched = as_received.ptr != NULL;
-    w->summing = w->matched;
+    if (w->matched)
+        start_sum(w);
     put_str(w, address);
 }
 
 NMEA_INTERNAL void end_text(nmea_writer *w)
 {
     size_t i;
+    stop_sum(w);
     w->matched = w->matched && w->match_pos == w->match_len;
     for (i = 0; w->matched && i < w->match_len && w->start + i < w->cap; i++)
         w->buf[w->start + i] = w->match[i];
-    w->summing = false;
     w->match = NULL;
+    w->quick_cap = w->cap;
     w->sep = ',';
     w->problems = NULL;
 }
@@ -904,7 +1041,7 @@ nmea_text nmea_generic_field(const nmea_generic *g, size_t index)
 static void write_generic(nmea_writer *w, const nmea_generic *g)
 {
     put_text(w, g->start);
-    w->summing = true;
+    start_sum(w);
     put_text(w, g->address);
     if (g->field_count) {
         put_char(w, ',');
@@ -982,15 +1119,17 @@ static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
     return fa < fb ? -1 : fa > fb;
 }
 
-static bool in_range(const nmea_number *n, const nmea_range *range)
+static inline bool in_range(const nmea_number *n, const nmea_range *range)
 {
     int64_t value;
     if (!range)
         return true;
     value = n->sign == '-' ? -n->digits : n->digits;
-    if (range->has_min && compare_fixed(value, n->scale, range->min, range->min_scale) < 0)
+    if (range->has_min && (n->scale == range->min_scale ? value < range->min
+                           : compare_fixed(value, n->scale, range->min, range->min_scale) < 0))
         return false;
-    if (range->has_max && compare_fixed(value, n->scale, range->max, range->max_scale) > 0)
+    if (range->has_max && (n->scale == range->max_scale ? value > range->max
+                           : compare_fixed(value, n->scale, range->max, range->max_scale) > 0))
         return false;
     return true;
 }
@@ -1110,27 +1249,26 @@ static bool parse_date(nmea_text t, nmea_date *out)
    minutes, the digits before them degrees. */
 static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
-    const char *point = memchr(t.ptr, '.', t.len);
-    size_t whole = point ? (size_t)(point - t.ptr) : t.len;
-    size_t frac = point ? t.len - whole - 1 : 0;
-    size_t i;
-    unsigned degrees = 0;
-    int64_t minutes = 0;
+    const char *p = t.ptr, *end = t.ptr + t.len, *point = NULL;
+    uint64_t whole_value = 0, minutes; /* unsigned: digits too many for them are refused below */
+    size_t whole, frac = 0;
 
-    if (whole < 2 || whole > 2 + max_degree_digits || !all_digits(t.ptr, whole))
+    for (; p < end && is_digit(*p); p++)
+        whole_value = whole_value * 10 + (uint64_t)(*p - '0');
+    whole = (size_t)(p - t.ptr);
+    minutes = whole_value % 100;
+    if (p < end && *p == '.') {
+        for (point = p++; p < end && is_digit(*p); p++)
+            minutes = minutes * 10 + (uint64_t)(*p - '0');
+        frac = (size_t)(p - point - 1);
+    }
+    if (p != end || whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_MAX_DIGITS - 2)
         return false;
-    if (frac > NMEA_MAX_DIGITS - 2 || !all_digits(point ? point + 1 : t.ptr, frac))
+    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
         return false;
-    for (i = 0; i + 2 < whole; i++)
-        degrees = degrees * 10 + (unsigned)(t.ptr[i] - '0');
-    minutes = two_digits(t.ptr + whole - 2);
-    for (i = 0; i < frac; i++)
-        minutes = minutes * 10 + (point[1 + i] - '0');
-    if (degrees > max_degrees || minutes > 60 * POW10[frac])
-        return false;
-    out->degrees = (uint16_t)degrees;
+    out->degrees = (uint16_t)(whole_value / 100);
     out->degree_digits = (uint8_t)(whole - 2);
-    out->minutes.digits = minutes;
+    out->minutes.digits = (int64_t)minutes;
     out->minutes.scale = (uint8_t)frac;
     out->minutes.width = 2;
     out->minutes.sign = 0;
@@ -1158,9 +1296,12 @@ static bool is_code_like(const nmea_enum_def *def, const char *p, size_t n, size
 static int enum_find(const nmea_enum_def *def, const char *p, size_t n)
 {
     int i;
+    size_t k;
     for (i = 0; i < def->count; i++) {
         const char *code = def->codes[i].code;
-        if (code[0] == p[0] && strlen(code) == n && memcmp(code, p, n) == 0)
+        for (k = 0; k < n && code[k] == p[k]; k++)
+            continue;
+        if (k == n && code[n] == 0)
             return i;
     }
     return NMEA_UNKNOWN_CODE;
@@ -1249,6 +1390,15 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->blank = wire->blank;
     r->blanks = wire->blanks;
     r->err = err;
+}
+
+/* Zeroes the `size` first bytes of a layout struct before it is read, with the C library's
+   memset: the size is read back from a volatile so that the compiler cannot see it is a
+   constant of a few hundred bytes, which it would inline as `rep stos`, slow to start. */
+NMEA_OUTLINE void clear_layout(void *s, size_t size)
+{
+    volatile size_t unknown = size;
+    memset(s, 0, unknown);
 }
 
 /* Whether lenient parsing reads wire field `index` (1-based) as empty. */
@@ -1399,22 +1549,62 @@ static bool bad_field(nmea_reader *r, unsigned index, const char *name, const ch
     return false;
 }
 
-NMEA_INTERNAL bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                                const nmea_range *range)
+/* The general reading of an integer or decimal field. */
+NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range, bool integer)
 {
     nmea_text t = next_field(r);
-    if (t.len && !(parse_number(t, true, out) && in_range(out, range)))
+    if (t.len && !(parse_number(t, integer, out) && in_range(out, range)))
         return bad_field(r, r->index, name, expected, t);
     return true;
 }
 
-NMEA_INTERNAL bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                                const nmea_range *range)
+/* The common case of read_number, in the one pass that finds the end of the field: an empty
+   field, or digits with (`integer` false) at most one point, NMEA_MAX_DIGITS digits in all, in
+   `range`. Anything else (a sign, more digits, not a number, out of range, a field lenient
+   parsing reads as empty) is left to read_number: returns false without having read it. */
+NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
 {
-    nmea_text t = next_field(r);
-    if (t.len && !(parse_number(t, false, out) && in_range(out, range)))
-        return bad_field(r, r->index, name, expected, t);
+    const char *p = r->next, *end = r->end, *point = NULL;
+    uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
+    size_t whole, count;
+    nmea_number n;
+
+    for (; p < end && is_digit(*p); p++)
+        digits = digits * 10 + (uint64_t)(*p - '0');
+    whole = (size_t)(p - r->next);
+    if (!integer && p < end && *p == '.')
+        for (point = p++; p < end && is_digit(*p); p++)
+            digits = digits * 10 + (uint64_t)(*p - '0');
+    count = (size_t)(p - r->next) - (point != NULL); /* digits before and after the point */
+    if ((p < end && *p != r->sep) || r->blanks || count > NMEA_MAX_DIGITS || (point && count == 0))
+        return false;
+    if (count) {
+        n.digits = (int64_t)digits;
+        n.scale = (uint8_t)(count - whole);
+        n.width = (uint8_t)whole;
+        n.sign = 0;
+        n.point = point != NULL;
+        n.present = true;
+        if (!in_range(&n, range))
+            return false;
+        *out = n;
+    }
+    r->index++;
+    r->next = p < end ? p + 1 : p;
     return true;
+}
+
+NMEA_HOT bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range)
+{
+    return quick_number(r, out, range, true) || read_number(r, out, name, expected, range, true);
+}
+
+NMEA_HOT bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range)
+{
+    return quick_number(r, out, range, false) || read_number(r, out, name, expected, range, false);
 }
 
 NMEA_INTERNAL bool read_hex(nmea_reader *r, nmea_hex *out, const char *name, const char *expected)
@@ -1546,7 +1736,7 @@ NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *n
 /* Writing fields back: each writes its comma and its text (nothing for an empty field). */
 
 /* The text of a field lenient parsing left empty, in its place (the last problem naming it). */
-static bool put_problem(nmea_writer *w)
+NMEA_RARE bool put_problem(nmea_writer *w)
 {
     const nmea_problem *found = NULL;
     size_t i;
@@ -1560,28 +1750,65 @@ static bool put_problem(nmea_writer *w)
 
 /* The separator before the next wire field; true when that field is a problem, whose text as
    received has then been written in place of the field's own. */
-static bool put_sep(nmea_writer *w)
+static inline bool put_sep(nmea_writer *w)
 {
     put_char(w, w->sep);
     w->field++;
     return w->problems && w->problems->count && put_problem(w);
 }
 
-static void number_text(nmea_writer *w, const nmea_number *n)
+/* [sign][whole digits, `width` of them at least][.[`scale` decimals]], formatted backwards from
+   the last decimal so that no division by a power of ten is needed. A scale beyond
+   NMEA_MAX_DIGITS (only in a struct built by hand) is written as that many zeros. */
+NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
 {
-    uint64_t digits = (uint64_t)n->digits;
-    uint64_t unit = (uint64_t)POW10[n->scale <= NMEA_MAX_DIGITS ? n->scale : 0];
+    char text[1 + NMEA_UINT_TEXT + 1 + 255], *end = text + sizeof text, *p = end;
+    uint64_t v = (uint64_t)n->digits;
+    unsigned i, decimals = n->scale <= NMEA_MAX_DIGITS ? n->scale : 0;
     if (!n->present)
         return;
-    if (n->sign)
-        put_char(w, n->sign);
-    if (n->width)
-        put_uint(w, digits / unit, n->width);
     if (n->point) {
-        put_char(w, '.');
-        if (n->scale)
-            put_uint(w, digits % unit, n->scale);
+        for (i = decimals; i < n->scale; i++)
+            *--p = '0';
+        for (i = 0; i < decimals; i++) {
+            *--p = (char)('0' + v % 10);
+            v /= 10;
+        }
+        *--p = '.';
+    } else if (n->scale && n->scale <= NMEA_MAX_DIGITS) {
+        v /= (uint64_t)POW10[n->scale];
     }
+    if (n->width)
+        p = uint_text(p, v, n->width);
+    if (n->sign)
+        *--p = n->sign;
+    put_mem(w, p, (size_t)(end - p));
+}
+
+/* any_number_text for the numbers a parser makes: at most NMEA_MAX_DIGITS digits, a whole
+   part and no decimals without a point. */
+static void number_text(nmea_writer *w, const nmea_number *n)
+{
+    char text[1 + 20 + 1 + NMEA_MAX_DIGITS], *end = text + sizeof text, *p = end;
+    uint64_t v = (uint64_t)n->digits;
+    unsigned i;
+    if (!n->present)
+        return;
+    if (n->digits < 0 || n->scale > NMEA_MAX_DIGITS || !n->width || n->width > 20 || (n->scale && !n->point)) {
+        any_number_text(w, n);
+        return;
+    }
+    if (n->point) {
+        for (i = 0; i < n->scale; i++) {
+            *--p = (char)('0' + v % 10);
+            v /= 10;
+        }
+        *--p = '.';
+    }
+    p = uint_text(p, v, n->width);
+    if (n->sign)
+        *--p = n->sign;
+    put_mem(w, p, (size_t)(end - p));
 }
 
 NMEA_INTERNAL void put_number(nmea_writer *w, const nmea_number *n)
@@ -1616,14 +1843,16 @@ NMEA_INTERNAL void put_hex(nmea_writer *w, const nmea_hex *h)
 
 static void time_text(nmea_writer *w, const nmea_time *t)
 {
-    put_uint(w, t->hour, 2);
-    put_uint(w, t->minute, 2);
-    put_uint(w, t->second, 2);
+    char text[3 * 3 + 1 + NMEA_UINT_TEXT], *end = text + sizeof text, *p = end;
     if (t->point) {
-        put_char(w, '.');
         if (t->fraction_digits)
-            put_uint(w, t->fraction, t->fraction_digits);
+            p = uint_text(p, t->fraction, t->fraction_digits);
+        *--p = '.';
     }
+    p = uint_text(p, t->second, 2);
+    p = uint_text(p, t->minute, 2);
+    p = uint_text(p, t->hour, 2);
+    put_mem(w, p, (size_t)(end - p));
 }
 
 NMEA_INTERNAL void put_time(nmea_writer *w, const nmea_time *t)
@@ -1634,9 +1863,11 @@ NMEA_INTERNAL void put_time(nmea_writer *w, const nmea_time *t)
 
 static void date_text(nmea_writer *w, const nmea_date *d)
 {
-    put_uint(w, d->day, 2);
-    put_uint(w, d->month, 2);
-    put_uint(w, d->year, 2);
+    char text[3 * 3], *end = text + sizeof text, *p = end;
+    p = uint_text(p, d->year, 2);
+    p = uint_text(p, d->month, 2);
+    p = uint_text(p, d->day, 2);
+    put_mem(w, p, (size_t)(end - p));
 }
 
 NMEA_INTERNAL void put_date(nmea_writer *w, const nmea_date *d)
@@ -3293,7 +3524,7 @@ static bool dtm_read(nmea_dtm *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "DTM", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_dtm, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_dtm, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3392,7 +3623,7 @@ static bool gga_read(nmea_gga *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GGA", err);
     if (!read_count(&r, wire->count, 14, 14, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gga, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gga, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3507,7 +3738,7 @@ static bool gll_read(nmea_gll *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GLL", err);
     if (!read_count(&r, wire->count, 6, 7, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gll, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gll, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3596,7 +3827,7 @@ static bool gns_read(nmea_gns *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GNS", err);
     if (!read_count(&r, wire->count, 12, 13, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gns, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gns, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3709,7 +3940,7 @@ static bool gns_aux_read(nmea_gns_aux *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "GNS", err);
     if (!read_count(&r, wire->count, 11, 12, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gns_aux, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gns_aux, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3818,7 +4049,7 @@ static bool gsa_read(nmea_gsa *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GSA", err);
     if (!read_group_count(&r, wire->count, "prns", 5, 1, 12, 12, 1, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gsa, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gsa, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -3937,7 +4168,7 @@ static bool gsa_short_read(nmea_gsa_short *s, const nmea_wire *wire, nmea_error 
     reader_start(&r, wire, "GSA", err);
     if (!read_group_count(&r, wire->count, "prns", 5, 1, 0, 11, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gsa_short, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gsa_short, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4050,7 +4281,7 @@ static bool gst_read(nmea_gst *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GST", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gst, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gst, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4148,7 +4379,7 @@ static bool gsv_read(nmea_gsv *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "GSV", err);
     if (!read_group_count(&r, wire->count, "satellites", 3, 4, 0, 4, 1, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_gsv, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_gsv, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4279,7 +4510,7 @@ static bool hdt_read(nmea_hdt *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "HDT", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_hdt, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_hdt, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4353,7 +4584,7 @@ static bool rlm_read(nmea_rlm *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "RLM", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_rlm, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_rlm, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4436,7 +4667,7 @@ static bool rmc_read(nmea_rmc *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "RMC", err);
     if (!read_count(&r, wire->count, 11, 13, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_rmc, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_rmc, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4551,7 +4782,7 @@ static bool vtg_read(nmea_vtg *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "VTG", err);
     if (!read_count(&r, wire->count, 8, 9, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_vtg, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_vtg, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4656,7 +4887,7 @@ static bool zda_read(nmea_zda *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "ZDA", err);
     if (!read_count(&r, wire->count, 6, 6, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_zda, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_zda, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->talker = wire->address;
     s->checksum = wire->checksum;
@@ -4747,7 +4978,7 @@ static bool comnav_log_read(nmea_comnav_log *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "COMNAV_LOG", err);
     if (!read_count(&r, wire->count, 3, 3, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_comnav_log, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_comnav_log, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
@@ -4842,7 +5073,7 @@ static bool comnav_nmeatalker_read(nmea_comnav_nmeatalker *s, const nmea_wire *w
     reader_start(&r, wire, "COMNAV_NMEATALKER", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_comnav_nmeatalker, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_comnav_nmeatalker, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
@@ -4931,7 +5162,7 @@ static bool comnav_nmeatalker_list_read(nmea_comnav_nmeatalker_list *s, const nm
     reader_start(&r, wire, "COMNAV_NMEATALKER", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_comnav_nmeatalker_list, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_comnav_nmeatalker_list, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
@@ -5015,7 +5246,7 @@ static bool comnav_nmeatalker_reset_read(nmea_comnav_nmeatalker_reset *s, const 
     reader_start(&r, wire, "COMNAV_NMEATALKER", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_comnav_nmeatalker_reset, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_comnav_nmeatalker_reset, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->as_received = wire->line;
     (void)optional;
@@ -5099,7 +5330,7 @@ static bool geos5_command_read(nmea_geos5_command *s, const nmea_wire *wire, nme
     reader_start(&r, wire, "GEOS5_COMMAND", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_command, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_command, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5169,7 +5400,7 @@ static bool geos5_jamdet_read(nmea_geos5_jamdet *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "GEOS5_JAMDET", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_jamdet, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_jamdet, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5243,7 +5474,7 @@ static bool geos5_nquery_read(nmea_geos5_nquery *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "GEOS5_NQUERY", err);
     if (!read_count(&r, wire->count, 14, 14, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_nquery, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_nquery, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5365,7 +5596,7 @@ static bool geos5_nquery_request_read(nmea_geos5_nquery_request *s, const nmea_w
     reader_start(&r, wire, "GEOS5_NQUERY_REQUEST", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_nquery_request, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_nquery_request, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5435,7 +5666,7 @@ static bool geos5_rquery_read(nmea_geos5_rquery *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "GEOS5_RQUERY", err);
     if (!read_count(&r, wire->count, 7, 7, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_rquery, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_rquery, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5529,7 +5760,7 @@ static bool geos5_rquery_request_read(nmea_geos5_rquery_request *s, const nmea_w
     reader_start(&r, wire, "GEOS5_RQUERY_REQUEST", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_geos5_rquery_request, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_geos5_rquery_request, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5599,7 +5830,7 @@ static bool psrf100_read(nmea_psrf100 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF100", err);
     if (!read_count(&r, wire->count, 5, 5, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf100, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf100, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5685,7 +5916,7 @@ static bool psrf101_read(nmea_psrf101 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF101", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf101, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf101, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5783,7 +6014,7 @@ static bool psrf102_read(nmea_psrf102 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF102", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf102, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf102, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5865,7 +6096,7 @@ static bool psrf103_read(nmea_psrf103 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF103", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf103, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf103, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -5947,7 +6178,7 @@ static bool psrf104_read(nmea_psrf104 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF104", err);
     if (!read_count(&r, wire->count, 8, 8, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf104, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf104, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6045,7 +6276,7 @@ static bool psrf105_read(nmea_psrf105 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF105", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf105, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf105, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6114,7 +6345,7 @@ static bool psrf150_read(nmea_psrf150 *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSRF150", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_psrf150, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_psrf150, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6182,7 +6413,7 @@ static bool pstmagps_read(nmea_pstmagps *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMAGPS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmagps, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmagps, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6272,7 +6503,7 @@ static bool pstmalmanac_read(nmea_pstmalmanac *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMALMANAC", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmalmanac, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmalmanac, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6363,7 +6594,7 @@ static bool pstmclralms_read(nmea_pstmclralms *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMCLRALMS", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmclralms, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmclralms, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6432,7 +6663,7 @@ static bool pstmclrephs_read(nmea_pstmclrephs *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMCLREPHS", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmclrephs, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmclrephs, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6501,7 +6732,7 @@ static bool pstmcold_read(nmea_pstmcold *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMCOLD", err);
     if (!read_count(&r, wire->count, 0, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmcold, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmcold, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -6572,7 +6803,7 @@ static bool pstmcorr_read(nmea_pstmcorr *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMCORR", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmcorr, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmcorr, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6662,7 +6893,7 @@ static bool pstmdiff_read(nmea_pstmdiff *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMDIFF", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmdiff, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmdiff, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6752,7 +6983,7 @@ static bool pstmeph_read(nmea_pstmeph *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMEPH", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmeph, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmeph, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6843,7 +7074,7 @@ static bool pstmgetpar_read(nmea_pstmgetpar *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "PSTMGETPAR", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetpar, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetpar, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6912,7 +7143,7 @@ static bool pstmgetparerror_read(nmea_pstmgetparerror *s, const nmea_wire *wire,
     reader_start(&r, wire, "PSTMGETPARERROR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetparerror, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetparerror, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -6980,7 +7211,7 @@ static bool pstmgetrtctime_read(nmea_pstmgetrtctime *s, const nmea_wire *wire, n
     reader_start(&r, wire, "PSTMGETRTCTIME", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetrtctime, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetrtctime, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7048,7 +7279,7 @@ static bool pstmgetrtctime_reply_read(nmea_pstmgetrtctime_reply *s, const nmea_w
     reader_start(&r, wire, "PSTMGETRTCTIME_REPLY", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetrtctime_reply, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetrtctime_reply, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7129,7 +7360,7 @@ static bool pstmgetswver_read(nmea_pstmgetswver *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "PSTMGETSWVER", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetswver, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetswver, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7197,7 +7428,7 @@ static bool pstmgetswver_reply_read(nmea_pstmgetswver_reply *s, const nmea_wire 
     reader_start(&r, wire, "PSTMGETSWVER_REPLY", err);
     if (!read_count(&r, wire->count, 4, 4, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmgetswver_reply, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmgetswver_reply, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7278,7 +7509,7 @@ static bool pstmhot_read(nmea_pstmhot *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMHOT", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmhot, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmhot, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7346,7 +7577,7 @@ static bool pstmkfcov_read(nmea_pstmkfcov *s, const nmea_wire *wire, nmea_error 
     reader_start(&r, wire, "PSTMKFCOV", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmkfcov, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmkfcov, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7437,7 +7668,7 @@ static bool pstmnmeaonoff_read(nmea_pstmnmeaonoff *s, const nmea_wire *wire, nme
     reader_start(&r, wire, "PSTMNMEAONOFF", err);
     if (!read_count(&r, wire->count, 0, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmnmeaonoff, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmnmeaonoff, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -7508,7 +7739,7 @@ static bool pstmpa_read(nmea_pstmpa *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMPA", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmpa, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmpa, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7598,7 +7829,7 @@ static bool pstmpres_read(nmea_pstmpres *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMPRES", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmpres, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmpres, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7688,7 +7919,7 @@ static bool pstmres_read(nmea_pstmres *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMRES", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmres, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmres, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7779,7 +8010,7 @@ static bool pstmrestorepar_read(nmea_pstmrestorepar *s, const nmea_wire *wire, n
     reader_start(&r, wire, "PSTMRESTOREPAR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmrestorepar, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmrestorepar, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7847,7 +8078,7 @@ static bool pstmrf_read(nmea_pstmrf *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMRF", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmrf, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmrf, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -7937,7 +8168,7 @@ static bool pstmsat_read(nmea_pstmsat *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMSAT", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsat, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsat, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8028,7 +8259,7 @@ static bool pstmsavepar_read(nmea_pstmsavepar *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMSAVEPAR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsavepar, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsavepar, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8096,7 +8327,7 @@ static bool pstmsbas_read(nmea_pstmsbas *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMSBAS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsbas, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsbas, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8186,7 +8417,7 @@ static bool pstmsbascorr_read(nmea_pstmsbascorr *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "PSTMSBASCORR", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsbascorr, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsbascorr, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8276,7 +8507,7 @@ static bool pstmset_read(nmea_pstmset *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMSET", err);
     if (!read_count(&r, wire->count, 2, 2, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmset, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmset, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8349,7 +8580,7 @@ static bool pstmset_dop_read(nmea_pstmset_dop *s, const nmea_wire *wire, nmea_er
     reader_start(&r, wire, "PSTMSET", err);
     if (!read_count(&r, wire->count, 5, 5, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmset_dop, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmset_dop, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8435,7 +8666,7 @@ static bool pstmsetpar_read(nmea_pstmsetpar *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "PSTMSETPAR", err);
     if (!read_count(&r, wire->count, 2, 3, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsetpar, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsetpar, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -8514,7 +8745,7 @@ static bool pstmsetpar_dop_read(nmea_pstmsetpar_dop *s, const nmea_wire *wire, n
     reader_start(&r, wire, "PSTMSETPAR", err);
     if (!read_count(&r, wire->count, 5, 6, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsetpar_dop, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsetpar_dop, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     s->optional_count = (uint8_t)optional;
@@ -8604,7 +8835,7 @@ static bool pstmsetparerror_read(nmea_pstmsetparerror *s, const nmea_wire *wire,
     reader_start(&r, wire, "PSTMSETPARERROR", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsetparerror, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsetparerror, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8672,7 +8903,7 @@ static bool pstmsetparok_read(nmea_pstmsetparok *s, const nmea_wire *wire, nmea_
     reader_start(&r, wire, "PSTMSETPAROK", err);
     if (!read_count(&r, wire->count, 1, 1, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmsetparok, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmsetparok, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8741,7 +8972,7 @@ static bool pstmtestrf_read(nmea_pstmtestrf *s, const nmea_wire *wire, nmea_erro
     reader_start(&r, wire, "PSTMTESTRF", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmtestrf, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmtestrf, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8831,7 +9062,7 @@ static bool pstmtg_read(nmea_pstmtg *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMTG", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmtg, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmtg, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -8921,7 +9152,7 @@ static bool pstmtim_read(nmea_pstmtim *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMTIM", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmtim, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmtim, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9011,7 +9242,7 @@ static bool pstmts_read(nmea_pstmts *s, const nmea_wire *wire, nmea_error *err)
     reader_start(&r, wire, "PSTMTS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmts, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmts, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9101,7 +9332,7 @@ static bool pstmver_read(nmea_pstmver *s, const nmea_wire *wire, nmea_error *err
     reader_start(&r, wire, "PSTMVER", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmver, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmver, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9191,7 +9422,7 @@ static bool pstmvres_read(nmea_pstmvres *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMVRES", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmvres, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmvres, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9281,7 +9512,7 @@ static bool pstmwaas_read(nmea_pstmwaas *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMWAAS", err);
     if (!read_group_count(&r, wire->count, "values", 0, 1, 0, 64, 0, &repeats, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmwaas, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmwaas, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9372,7 +9603,7 @@ static bool pstmwarm_read(nmea_pstmwarm *s, const nmea_wire *wire, nmea_error *e
     reader_start(&r, wire, "PSTMWARM", err);
     if (!read_count(&r, wire->count, 0, 0, &optional))
         return false;
-    memset(s, 0, offsetof(nmea_pstmwarm, problems)); /* the problems are set by lenient parsing */
+    clear_layout(s, offsetof(nmea_pstmwarm, problems)); /* the problems are set by lenient parsing */
     s->problems.count = 0;
     s->checksum = wire->checksum;
     (void)optional;
@@ -9670,11 +9901,8 @@ NMEA_INTERNAL const nmea_layouts *find_layouts(const nmea_layouts *table, size_t
 {
     size_t lo = 0, hi = n;
     while (lo < hi) {
-        size_t mid = (lo + hi) / 2, len = table[mid].key_len, i;
-        const unsigned char *a = (const unsigned char *)table[mid].key, *b = (const unsigned char *)key.ptr;
-        int order = 0;
-        for (i = 0; i < len && i < key.len && !order; i++)
-            order = a[i] < b[i] ? -1 : a[i] > b[i];
+        size_t mid = (lo + hi) / 2, len = table[mid].key_len;
+        int order = memcmp(table[mid].key, key.ptr, len < key.len ? len : key.len);
         if (order == 0)
             order = len < key.len ? -1 : len > key.len;
         if (order == 0)

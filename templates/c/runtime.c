@@ -11,9 +11,13 @@
 #if defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
+#define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
+#define NMEA_OUTLINE static __attribute__((noinline))
 #else
 #define NMEA_INTERNAL static
 #define NMEA_RARE static
+#define NMEA_HOT static
+#define NMEA_OUTLINE static
 #endif
 
 static const char HEX_UPPER[] = "0123456789ABCDEF";
@@ -82,8 +86,11 @@ static bool upper_is(nmea_text t, const char *s)
 
 /* ------------------------------------------------------------------------------------------ */
 /* Writing text: a bounded buffer that keeps counting past its end and XORs the bytes written
-   while `summing` (the checksum). Fields are preceded by `sep` (',', or ' ' between the words of a
-   text command). While a text command is written, `match` is the command as received: the bytes
+   while `summing` (the checksum). The bytes kept in the buffer are summed once, when summing
+   stops (from `sum_start` on); only those past its end (or with no buffer: decode's JSON writes
+   a sentence just for its checksum) are summed as they come. Fields are preceded by `sep` (',',
+   or ' ' between the words of a text command). While a text command is written, `match` is the
+   command as received: the bytes
    written are compared with it ignoring case (`matched` stays true while they agree). While a
    sentence is written, `field` counts its wire fields, and the fields of its `problems` (those
    lenient parsing left empty) are written with their text as received. */
@@ -91,9 +98,11 @@ static bool upper_is(nmea_text t, const char *s)
 typedef struct {
     char *buf;
     size_t cap;
+    size_t quick_cap; /* put_mem copies runs of bytes up to here: cap, or 0 to match a text command */
     size_t len;
     unsigned char sum;
     bool summing;
+    size_t sum_start;
     char last;
     char sep;
     bool matched;
@@ -110,9 +119,11 @@ static nmea_writer writer_of(char *buf, size_t cap)
     nmea_writer w;
     w.buf = buf;
     w.cap = buf ? cap : 0;
+    w.quick_cap = w.cap;
     w.len = 0;
     w.sum = 0;
     w.summing = false;
+    w.sum_start = 0;
     w.last = 0;
     w.sep = ',';
     w.matched = false;
@@ -132,30 +143,74 @@ static void match_char(nmea_writer *w, char c)
     w->match_pos++;
 }
 
-static void put_char(nmea_writer *w, char c)
+static inline void put_char(nmea_writer *w, char c)
 {
     if (w->len < w->cap)
         w->buf[w->len] = c;
-    w->len++;
-    if (w->summing) {
+    else if (w->summing)
         w->sum ^= (unsigned char)c;
-        if (w->match)
-            match_char(w, c);
-    }
+    w->len++;
+    if (w->match && w->summing)
+        match_char(w, c);
     w->last = c;
 }
 
-static void put_mem(nmea_writer *w, const char *s, size_t n)
+static inline void put_mem(nmea_writer *w, const char *s, size_t n)
 {
     size_t i;
+    char *dst;
+    if (n == 0)
+        return;
+    if (w->len + n > w->quick_cap) { /* a full buffer, or a text command */
+        for (i = 0; i < n; i++)
+            put_char(w, s[i]);
+        return;
+    }
+    dst = w->buf + w->len; /* (a local pointer: a store through w->buf could change w) */
     for (i = 0; i < n; i++)
-        put_char(w, s[i]);
+        dst[i] = s[i];
+    w->len += n;
+    w->last = s[n - 1];
+}
+
+/* The XOR of n bytes, a machine word at a time. */
+static unsigned char xor_bytes(const char *p, size_t n)
+{
+    uint64_t word, acc = 0;
+    unsigned char sum = 0;
+    for (; n >= 8; p += 8, n -= 8) {
+        memcpy(&word, p, 8);
+        acc ^= word;
+    }
+    for (; n; n--)
+        sum ^= (unsigned char)*p++;
+    acc ^= acc >> 32;
+    acc ^= acc >> 16;
+    acc ^= acc >> 8;
+    return (unsigned char)(sum ^ (unsigned char)acc);
+}
+
+static void start_sum(nmea_writer *w)
+{
+    w->summing = true;
+    w->sum_start = w->len;
+}
+
+/* Sums the bytes kept since start_sum (the others are summed already). */
+static void stop_sum(nmea_writer *w)
+{
+    size_t kept = w->len < w->cap ? w->len : w->cap;
+    if (w->summing && w->sum_start < kept)
+        w->sum ^= xor_bytes(w->buf + w->sum_start, kept - w->sum_start);
+    w->summing = false;
 }
 
 static void put_str(nmea_writer *w, const char *s)
 {
-    while (*s)
-        put_char(w, *s++);
+    size_t n = 0;
+    while (s[n]) /* (short strings: codes, sentence ids, JSON keys) */
+        n++;
+    put_mem(w, s, n);
 }
 
 static void put_text(nmea_writer *w, nmea_text t)
@@ -163,21 +218,44 @@ static void put_text(nmea_writer *w, nmea_text t)
     put_mem(w, t.ptr, t.len);
 }
 
+/* Writes `v` in decimal, zero-padded to at least `width` digits, just before `end`: returns
+   where the text starts. Numbers are formatted backwards into a local buffer this way and then
+   written in one put_mem. */
+static inline char *uint_text(char *end, uint64_t v, unsigned width)
+{
+    static const char PAIRS[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                                "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                                "8081828384858687888990919293949596979899";
+    char *p = end;
+    uint32_t low;
+    for (; v > UINT32_MAX; v /= 10)
+        *--p = (char)('0' + v % 10);
+    for (low = (uint32_t)v; low >= 100; low /= 100) { /* two digits per division */
+        p -= 2;
+        memcpy(p, PAIRS + low % 100 * 2, 2);
+    }
+    if (low >= 10) {
+        p -= 2;
+        memcpy(p, PAIRS + low * 2, 2);
+    } else {
+        *--p = (char)('0' + low);
+    }
+    while ((unsigned)(end - p) < width)
+        *--p = '0';
+    return p;
+}
+
+/* Room for any uint_text of a uint8_t width: 255 digits. */
+#define NMEA_UINT_TEXT 255
+
 /* An unsigned number in decimal, zero-padded to at least `width` digits. */
 static void put_uint(nmea_writer *w, uint64_t v, unsigned width)
 {
-    char digits[20];
-    unsigned n = 0;
-    do {
-        digits[n++] = (char)('0' + v % 10);
-        v /= 10;
-    } while (v);
-    while (width > n) {
+    char text[NMEA_UINT_TEXT], *end = text + sizeof text, *p;
+    for (; width > NMEA_UINT_TEXT; width--)
         put_char(w, '0');
-        width--;
-    }
-    while (n)
-        put_char(w, digits[--n]);
+    p = uint_text(end, v, width);
+    put_mem(w, p, (size_t)(end - p));
 }
 
 /* The NUL-terminated result, or 0 when it did not fit. */
@@ -456,12 +534,47 @@ typedef struct {
     nmea_checksum_style checksum;
 } nmea_frame;
 
+/* The body of a sentence is read 8 bytes at a time as one 64-bit word (SWAR): each function
+   below sets the high bit of every byte of the word that is (exactly) what it looks for. The
+   order of the bytes in the word does not matter to any of them. */
+#define BYTES_ONES UINT64_C(0x0101010101010101)
+#define BYTES_HIGH UINT64_C(0x8080808080808080)
+#define BYTES_LOW7 UINT64_C(0x7F7F7F7F7F7F7F7F)
+
+/* The zero bytes (no carry crosses a byte, so there are no false positives). */
+static inline uint64_t zero_bytes(uint64_t word)
+{
+    return ~(((word & BYTES_LOW7) + BYTES_LOW7) | word | BYTES_LOW7);
+}
+
+/* The bytes that end the body of a sentence: '*', and whatever is not printable ASCII (below
+   0x20, 0x7F and above). */
+static inline uint64_t body_end_bytes(uint64_t word)
+{
+    uint64_t low7 = word & BYTES_LOW7;
+    return ((word | ~(low7 + 0x60 * BYTES_ONES) | (low7 + BYTES_ONES)) & BYTES_HIGH)
+           | zero_bytes(word ^ ('*' * BYTES_ONES));
+}
+
+/* How many bytes a byte mask marks. */
+static inline size_t count_bytes(uint64_t mask)
+{
+    return (size_t)(((mask >> 7) * BYTES_ONES) >> 56);
+}
+
+static bool ends_body(unsigned char c)
+{
+    return c < 0x20 || c > 0x7E || c == '*';
+}
+
 /* One pass over the line: the printable check, the checksum and the field count; with
    `require_checksum`, a sentence without a checksum (or with a bare '*') is refused. */
 static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require_checksum, nmea_error *err)
 {
-    size_t i, star = 0, comma = 0, commas = 0, body_end;
+    size_t i, star = 0, comma = 0, commas = 0, body_end, words_end;
     unsigned sum = 0;
+    int high = -1, low = -1; /* the checksum's hex digits */
+    uint64_t word, words = 0;
     bool named, lower = false, upper = false;
     nmea_text sent;
 
@@ -473,14 +586,32 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         return fail(err, NMEA_ERR_NOT_A_SENTENCE, "empty line");
     if (line[0] != '$' && line[0] != '!')
         return fail(err, NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'");
-    for (i = 1; i < len; i++) { /* the body: checksum and commas */
-        unsigned char c = (unsigned char)line[i];
-        if (c < 0x20 || c > 0x7E || c == '*')
+    for (i = 1; i < len && !ends_body((unsigned char)line[i]); i++) { /* the address */
+        sum ^= (unsigned char)line[i];
+        if (line[i] == ',') {
+            commas = 1;
+            comma = i++;
             break;
-        sum ^= c;
-        if (c == ',' && !commas++)
-            comma = i;
+        }
     }
+    /* the fields, a word at a time up to the usual "*hh" at the end (the byte loop then finds
+       where the body really ends) */
+    words_end = len >= 3 && line[len - 3] == '*' ? len - 3 : len;
+    for (; commas && i + 8 <= words_end; i += 8) {
+        memcpy(&word, line + i, 8);
+        if (body_end_bytes(word))
+            break;
+        words ^= word;
+        commas += count_bytes(zero_bytes(word ^ (',' * BYTES_ONES)));
+    }
+    for (; i < len && !ends_body((unsigned char)line[i]); i++) { /* the rest of the body */
+        sum ^= (unsigned char)line[i];
+        commas += line[i] == ',';
+    }
+    words ^= words >> 32;
+    words ^= words >> 16;
+    words ^= words >> 8;
+    sum ^= (unsigned char)words;
     if (i < len && line[i] == '*')
         for (star = i++; i < len && is_printable(line[i]); i++)
             continue;
@@ -501,18 +632,20 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         f->checksum = NMEA_CHECKSUM_EMPTY;
     } else if (star) {
         sent = text_span(line + star + 1, line + len);
-        for (i = 0; i < sent.len; i++) {
-            lower = lower || (sent.ptr[i] >= 'a' && sent.ptr[i] <= 'f');
-            upper = upper || (sent.ptr[i] >= 'A' && sent.ptr[i] <= 'F');
+        if (sent.len == 2) {
+            high = hex_value(sent.ptr[0]);
+            low = hex_value(sent.ptr[1]);
+            lower = (sent.ptr[0] >= 'a' && sent.ptr[0] <= 'f') || (sent.ptr[1] >= 'a' && sent.ptr[1] <= 'f');
+            upper = (sent.ptr[0] >= 'A' && sent.ptr[0] <= 'F') || (sent.ptr[1] >= 'A' && sent.ptr[1] <= 'F');
         }
-        if (sent.len != 2 || hex_value(sent.ptr[0]) < 0 || hex_value(sent.ptr[1]) < 0 || (lower && upper)) {
+        if (high < 0 || low < 0 || (lower && upper)) {
             fail(err, NMEA_ERR_BAD_CHECKSUM, "checksum %q is not two hex digits of one letter case");
             err->text = sent;
             if (named)
                 set_address(err, f->address, NULL);
             return false;
         }
-        if ((unsigned)(hex_value(sent.ptr[0]) * 16 + hex_value(sent.ptr[1])) != sum) {
+        if ((unsigned)(high * 16 + low) != sum) {
             fail(err, NMEA_ERR_CHECKSUM_MISMATCH, "checksum is %t, computed %X");
             err->text = sent;
             err->num[0] = sum;
@@ -678,15 +811,16 @@ NMEA_INTERNAL void begin_sentence(nmea_writer *w, nmea_text talker, const char *
     w->problems = problems;
     w->field = 0;
     put_char(w, '$');
-    w->summing = true;
+    start_sum(w);
     put_text(w, talker);
     put_str(w, sentence);
 }
 
 static void end_sentence(nmea_writer *w, nmea_checksum_style style)
 {
-    unsigned char sum = w->sum;
-    w->summing = false;
+    unsigned char sum;
+    stop_sum(w);
+    sum = w->sum;
     w->problems = NULL;
     if (style == NMEA_CHECKSUM_NONE)
         return;
@@ -707,21 +841,24 @@ NMEA_INTERNAL void begin_text(nmea_writer *w, const char *address, nmea_text as_
     w->sep = ' ';
     w->start = w->len;
     w->match = as_received.ptr;
+    w->quick_cap = 0;
     w->match_len = as_received.len;
     w->match_pos = 0;
     w->matched = as_received.ptr != NULL;
-    w->summing = w->matched;
+    if (w->matched)
+        start_sum(w);
     put_str(w, address);
 }
 
 NMEA_INTERNAL void end_text(nmea_writer *w)
 {
     size_t i;
+    stop_sum(w);
     w->matched = w->matched && w->match_pos == w->match_len;
     for (i = 0; w->matched && i < w->match_len && w->start + i < w->cap; i++)
         w->buf[w->start + i] = w->match[i];
-    w->summing = false;
     w->match = NULL;
+    w->quick_cap = w->cap;
     w->sep = ',';
     w->problems = NULL;
 }
@@ -745,7 +882,7 @@ nmea_text nmea_generic_field(const nmea_generic *g, size_t index)
 static void write_generic(nmea_writer *w, const nmea_generic *g)
 {
     put_text(w, g->start);
-    w->summing = true;
+    start_sum(w);
     put_text(w, g->address);
     if (g->field_count) {
         put_char(w, ',');
@@ -823,15 +960,17 @@ static int compare_fixed(int64_t a, unsigned as, int64_t b, unsigned bs)
     return fa < fb ? -1 : fa > fb;
 }
 
-static bool in_range(const nmea_number *n, const nmea_range *range)
+static inline bool in_range(const nmea_number *n, const nmea_range *range)
 {
     int64_t value;
     if (!range)
         return true;
     value = n->sign == '-' ? -n->digits : n->digits;
-    if (range->has_min && compare_fixed(value, n->scale, range->min, range->min_scale) < 0)
+    if (range->has_min && (n->scale == range->min_scale ? value < range->min
+                           : compare_fixed(value, n->scale, range->min, range->min_scale) < 0))
         return false;
-    if (range->has_max && compare_fixed(value, n->scale, range->max, range->max_scale) > 0)
+    if (range->has_max && (n->scale == range->max_scale ? value > range->max
+                           : compare_fixed(value, n->scale, range->max, range->max_scale) > 0))
         return false;
     return true;
 }
@@ -951,27 +1090,26 @@ static bool parse_date(nmea_text t, nmea_date *out)
    minutes, the digits before them degrees. */
 static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
-    const char *point = memchr(t.ptr, '.', t.len);
-    size_t whole = point ? (size_t)(point - t.ptr) : t.len;
-    size_t frac = point ? t.len - whole - 1 : 0;
-    size_t i;
-    unsigned degrees = 0;
-    int64_t minutes = 0;
+    const char *p = t.ptr, *end = t.ptr + t.len, *point = NULL;
+    uint64_t whole_value = 0, minutes; /* unsigned: digits too many for them are refused below */
+    size_t whole, frac = 0;
 
-    if (whole < 2 || whole > 2 + max_degree_digits || !all_digits(t.ptr, whole))
+    for (; p < end && is_digit(*p); p++)
+        whole_value = whole_value * 10 + (uint64_t)(*p - '0');
+    whole = (size_t)(p - t.ptr);
+    minutes = whole_value % 100;
+    if (p < end && *p == '.') {
+        for (point = p++; p < end && is_digit(*p); p++)
+            minutes = minutes * 10 + (uint64_t)(*p - '0');
+        frac = (size_t)(p - point - 1);
+    }
+    if (p != end || whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_MAX_DIGITS - 2)
         return false;
-    if (frac > NMEA_MAX_DIGITS - 2 || !all_digits(point ? point + 1 : t.ptr, frac))
+    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
         return false;
-    for (i = 0; i + 2 < whole; i++)
-        degrees = degrees * 10 + (unsigned)(t.ptr[i] - '0');
-    minutes = two_digits(t.ptr + whole - 2);
-    for (i = 0; i < frac; i++)
-        minutes = minutes * 10 + (point[1 + i] - '0');
-    if (degrees > max_degrees || minutes > 60 * POW10[frac])
-        return false;
-    out->degrees = (uint16_t)degrees;
+    out->degrees = (uint16_t)(whole_value / 100);
     out->degree_digits = (uint8_t)(whole - 2);
-    out->minutes.digits = minutes;
+    out->minutes.digits = (int64_t)minutes;
     out->minutes.scale = (uint8_t)frac;
     out->minutes.width = 2;
     out->minutes.sign = 0;
@@ -999,9 +1137,12 @@ static bool is_code_like(const nmea_enum_def *def, const char *p, size_t n, size
 static int enum_find(const nmea_enum_def *def, const char *p, size_t n)
 {
     int i;
+    size_t k;
     for (i = 0; i < def->count; i++) {
         const char *code = def->codes[i].code;
-        if (code[0] == p[0] && strlen(code) == n && memcmp(code, p, n) == 0)
+        for (k = 0; k < n && code[k] == p[k]; k++)
+            continue;
+        if (k == n && code[n] == 0)
             return i;
     }
     return NMEA_UNKNOWN_CODE;
@@ -1090,6 +1231,15 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->blank = wire->blank;
     r->blanks = wire->blanks;
     r->err = err;
+}
+
+/* Zeroes the `size` first bytes of a layout struct before it is read, with the C library's
+   memset: the size is read back from a volatile so that the compiler cannot see it is a
+   constant of a few hundred bytes, which it would inline as `rep stos`, slow to start. */
+NMEA_OUTLINE void clear_layout(void *s, size_t size)
+{
+    volatile size_t unknown = size;
+    memset(s, 0, unknown);
 }
 
 /* Whether lenient parsing reads wire field `index` (1-based) as empty. */
@@ -1240,22 +1390,62 @@ static bool bad_field(nmea_reader *r, unsigned index, const char *name, const ch
     return false;
 }
 
-NMEA_INTERNAL bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                                const nmea_range *range)
+/* The general reading of an integer or decimal field. */
+NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range, bool integer)
 {
     nmea_text t = next_field(r);
-    if (t.len && !(parse_number(t, true, out) && in_range(out, range)))
+    if (t.len && !(parse_number(t, integer, out) && in_range(out, range)))
         return bad_field(r, r->index, name, expected, t);
     return true;
 }
 
-NMEA_INTERNAL bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
-                                const nmea_range *range)
+/* The common case of read_number, in the one pass that finds the end of the field: an empty
+   field, or digits with (`integer` false) at most one point, NMEA_MAX_DIGITS digits in all, in
+   `range`. Anything else (a sign, more digits, not a number, out of range, a field lenient
+   parsing reads as empty) is left to read_number: returns false without having read it. */
+NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
 {
-    nmea_text t = next_field(r);
-    if (t.len && !(parse_number(t, false, out) && in_range(out, range)))
-        return bad_field(r, r->index, name, expected, t);
+    const char *p = r->next, *end = r->end, *point = NULL;
+    uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
+    size_t whole, count;
+    nmea_number n;
+
+    for (; p < end && is_digit(*p); p++)
+        digits = digits * 10 + (uint64_t)(*p - '0');
+    whole = (size_t)(p - r->next);
+    if (!integer && p < end && *p == '.')
+        for (point = p++; p < end && is_digit(*p); p++)
+            digits = digits * 10 + (uint64_t)(*p - '0');
+    count = (size_t)(p - r->next) - (point != NULL); /* digits before and after the point */
+    if ((p < end && *p != r->sep) || r->blanks || count > NMEA_MAX_DIGITS || (point && count == 0))
+        return false;
+    if (count) {
+        n.digits = (int64_t)digits;
+        n.scale = (uint8_t)(count - whole);
+        n.width = (uint8_t)whole;
+        n.sign = 0;
+        n.point = point != NULL;
+        n.present = true;
+        if (!in_range(&n, range))
+            return false;
+        *out = n;
+    }
+    r->index++;
+    r->next = p < end ? p + 1 : p;
     return true;
+}
+
+NMEA_HOT bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range)
+{
+    return quick_number(r, out, range, true) || read_number(r, out, name, expected, range, true);
+}
+
+NMEA_HOT bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range)
+{
+    return quick_number(r, out, range, false) || read_number(r, out, name, expected, range, false);
 }
 
 NMEA_INTERNAL bool read_hex(nmea_reader *r, nmea_hex *out, const char *name, const char *expected)
@@ -1387,7 +1577,7 @@ NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *n
 /* Writing fields back: each writes its comma and its text (nothing for an empty field). */
 
 /* The text of a field lenient parsing left empty, in its place (the last problem naming it). */
-static bool put_problem(nmea_writer *w)
+NMEA_RARE bool put_problem(nmea_writer *w)
 {
     const nmea_problem *found = NULL;
     size_t i;
@@ -1401,28 +1591,65 @@ static bool put_problem(nmea_writer *w)
 
 /* The separator before the next wire field; true when that field is a problem, whose text as
    received has then been written in place of the field's own. */
-static bool put_sep(nmea_writer *w)
+static inline bool put_sep(nmea_writer *w)
 {
     put_char(w, w->sep);
     w->field++;
     return w->problems && w->problems->count && put_problem(w);
 }
 
-static void number_text(nmea_writer *w, const nmea_number *n)
+/* [sign][whole digits, `width` of them at least][.[`scale` decimals]], formatted backwards from
+   the last decimal so that no division by a power of ten is needed. A scale beyond
+   NMEA_MAX_DIGITS (only in a struct built by hand) is written as that many zeros. */
+NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
 {
-    uint64_t digits = (uint64_t)n->digits;
-    uint64_t unit = (uint64_t)POW10[n->scale <= NMEA_MAX_DIGITS ? n->scale : 0];
+    char text[1 + NMEA_UINT_TEXT + 1 + 255], *end = text + sizeof text, *p = end;
+    uint64_t v = (uint64_t)n->digits;
+    unsigned i, decimals = n->scale <= NMEA_MAX_DIGITS ? n->scale : 0;
     if (!n->present)
         return;
-    if (n->sign)
-        put_char(w, n->sign);
-    if (n->width)
-        put_uint(w, digits / unit, n->width);
     if (n->point) {
-        put_char(w, '.');
-        if (n->scale)
-            put_uint(w, digits % unit, n->scale);
+        for (i = decimals; i < n->scale; i++)
+            *--p = '0';
+        for (i = 0; i < decimals; i++) {
+            *--p = (char)('0' + v % 10);
+            v /= 10;
+        }
+        *--p = '.';
+    } else if (n->scale && n->scale <= NMEA_MAX_DIGITS) {
+        v /= (uint64_t)POW10[n->scale];
     }
+    if (n->width)
+        p = uint_text(p, v, n->width);
+    if (n->sign)
+        *--p = n->sign;
+    put_mem(w, p, (size_t)(end - p));
+}
+
+/* any_number_text for the numbers a parser makes: at most NMEA_MAX_DIGITS digits, a whole
+   part and no decimals without a point. */
+static void number_text(nmea_writer *w, const nmea_number *n)
+{
+    char text[1 + 20 + 1 + NMEA_MAX_DIGITS], *end = text + sizeof text, *p = end;
+    uint64_t v = (uint64_t)n->digits;
+    unsigned i;
+    if (!n->present)
+        return;
+    if (n->digits < 0 || n->scale > NMEA_MAX_DIGITS || !n->width || n->width > 20 || (n->scale && !n->point)) {
+        any_number_text(w, n);
+        return;
+    }
+    if (n->point) {
+        for (i = 0; i < n->scale; i++) {
+            *--p = (char)('0' + v % 10);
+            v /= 10;
+        }
+        *--p = '.';
+    }
+    p = uint_text(p, v, n->width);
+    if (n->sign)
+        *--p = n->sign;
+    put_mem(w, p, (size_t)(end - p));
 }
 
 NMEA_INTERNAL void put_number(nmea_writer *w, const nmea_number *n)
@@ -1457,14 +1684,16 @@ NMEA_INTERNAL void put_hex(nmea_writer *w, const nmea_hex *h)
 
 static void time_text(nmea_writer *w, const nmea_time *t)
 {
-    put_uint(w, t->hour, 2);
-    put_uint(w, t->minute, 2);
-    put_uint(w, t->second, 2);
+    char text[3 * 3 + 1 + NMEA_UINT_TEXT], *end = text + sizeof text, *p = end;
     if (t->point) {
-        put_char(w, '.');
         if (t->fraction_digits)
-            put_uint(w, t->fraction, t->fraction_digits);
+            p = uint_text(p, t->fraction, t->fraction_digits);
+        *--p = '.';
     }
+    p = uint_text(p, t->second, 2);
+    p = uint_text(p, t->minute, 2);
+    p = uint_text(p, t->hour, 2);
+    put_mem(w, p, (size_t)(end - p));
 }
 
 NMEA_INTERNAL void put_time(nmea_writer *w, const nmea_time *t)
@@ -1475,9 +1704,11 @@ NMEA_INTERNAL void put_time(nmea_writer *w, const nmea_time *t)
 
 static void date_text(nmea_writer *w, const nmea_date *d)
 {
-    put_uint(w, d->day, 2);
-    put_uint(w, d->month, 2);
-    put_uint(w, d->year, 2);
+    char text[3 * 3], *end = text + sizeof text, *p = end;
+    p = uint_text(p, d->year, 2);
+    p = uint_text(p, d->month, 2);
+    p = uint_text(p, d->day, 2);
+    put_mem(w, p, (size_t)(end - p));
 }
 
 NMEA_INTERNAL void put_date(nmea_writer *w, const nmea_date *d)
