@@ -426,15 +426,18 @@ impl<'a> Iterator for FieldIter<'a> {
 
 impl ExactSizeIterator for FieldIter<'_> {}
 
+/// Splits off the text before the next `separator` (all of `rest` when there is none).
+#[inline(always)]
 fn take<'a>(rest: &mut &'a str, separator: u8) -> &'a str {
-    match rest.bytes().position(|b| b == separator) {
-        Some(at) => {
-            let field = &rest[..at];
-            *rest = &rest[at + 1..];
-            field
-        }
-        None => core::mem::take(rest),
+    let bytes = rest.as_bytes();
+    let mut at = 0;
+    while at < bytes.len() && bytes[at] != separator {
+        at += 1;
     }
+    // The separator is ASCII, so both cuts fall on character boundaries.
+    let (field, tail) = rest.split_at(at);
+    *rest = tail.get(1..).unwrap_or("");
+    field
 }
 
 /// How the fields of a layout are counted: required fields outside the repeated group, optional
@@ -537,6 +540,15 @@ impl<'a> Reader<'a> {
         Name::entry(self.group, self.entry, id)
     }
 
+    /// The `bad_field` error of field `id` at the current index: kept out of line, so that the
+    /// readers' fast path stays small.
+    #[cold]
+    #[inline(never)]
+    fn bad_field(&self, id: &'static str, expected: &'static str, text: &'a str) -> Error<'a> {
+        Error::bad_field(self.address, self.index, self.name(id), expected, text)
+    }
+
+    #[inline(always)]
     fn next_text(&mut self) -> &'a str {
         self.index += 1;
         let text = take(&mut self.rest, self.separator);
@@ -546,6 +558,7 @@ impl<'a> Reader<'a> {
         ""
     }
 
+    #[inline(always)]
     fn read<T>(
         &mut self,
         id: &'static str,
@@ -558,11 +571,12 @@ impl<'a> Reader<'a> {
         }
         match parse(text) {
             Some(value) => Ok(Some(value)),
-            None => Err(Error::bad_field(self.address, self.index, self.name(id), expected, text)),
+            None => Err(self.bad_field(id, expected, text)),
         }
     }
 
     /// An integer `[+-]digits` within `range`.
+    #[inline]
     pub fn integer(
         &mut self,
         id: &'static str,
@@ -573,6 +587,7 @@ impl<'a> Reader<'a> {
     }
 
     /// A decimal number `[+-]digits[.digits]` within `range`.
+    #[inline]
     pub fn decimal(
         &mut self,
         id: &'static str,
@@ -583,21 +598,25 @@ impl<'a> Reader<'a> {
     }
 
     /// Hex digits.
+    #[inline]
     pub fn hex(&mut self, id: &'static str) -> Result<Option<Hex>, Error<'a>> {
         self.read(id, "hex number", Hex::parse)
     }
 
     /// A time `hhmmss[.s…]`.
+    #[inline]
     pub fn time(&mut self, id: &'static str) -> Result<Option<Time>, Error<'a>> {
         self.read(id, "time hhmmss[.s]", Time::parse)
     }
 
     /// A date `ddmmyy`.
+    #[inline]
     pub fn date(&mut self, id: &'static str) -> Result<Option<Date>, Error<'a>> {
         self.read(id, "date ddmmyy", Date::parse)
     }
 
     /// One character.
+    #[inline]
     pub fn char(&mut self, id: &'static str) -> Result<Option<char>, Error<'a>> {
         self.read(id, "one character", |t| {
             let mut chars = t.chars();
@@ -606,6 +625,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Exactly `value` (or nothing).
+    #[inline]
     pub fn literal(
         &mut self,
         id: &'static str,
@@ -616,6 +636,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Any text, at most `max_length` characters.
+    #[inline]
     pub fn text(
         &mut self,
         id: &'static str,
@@ -626,15 +647,17 @@ impl<'a> Reader<'a> {
     }
 
     /// Exactly the word `keyword` (ignoring case in a text command); never empty.
+    #[inline]
     pub fn keyword(&mut self, id: &'static str, keyword: &'static str) -> Result<(), Error<'a>> {
         let text = self.next_text();
         if text == keyword || (self.ignore_case && upper_eq(text, keyword)) {
             return Ok(());
         }
-        Err(Error::bad_field(self.address, self.index, self.name(id), keyword, text))
+        Err(self.bad_field(id, keyword, text))
     }
 
     /// A code of enum `E` (ignoring case in a text command), or an unknown one of the same form.
+    #[inline]
     pub fn code<E: CodeEnum>(&mut self, id: &'static str) -> Result<Option<Code<'a, E>>, Error<'a>> {
         if self.ignore_case {
             return self.read(id, E::EXPECTED, |t| Code::parse_ignoring_case(t, E::MIN_LEN, E::MAX_LEN));
@@ -643,6 +666,7 @@ impl<'a> Reader<'a> {
     }
 
     /// A run of one-character codes of enum `E`, at most `max_length`.
+    #[inline]
     pub fn code_chars<E: CodeEnum>(
         &mut self,
         id: &'static str,
@@ -652,15 +676,18 @@ impl<'a> Reader<'a> {
     }
 
     /// A latitude: `ddmm.mmmm` and `N`/`S`, both empty or both set.
+    #[inline]
     pub fn latitude(&mut self, id: &'static str) -> Result<Option<Coordinate>, Error<'a>> {
         self.coordinate(id, (LATITUDE, 2, 90), (NORTH_SOUTH, ['N', 'S']))
     }
 
     /// A longitude: `dddmm.mmmm` and `E`/`W`, both empty or both set.
+    #[inline]
     pub fn longitude(&mut self, id: &'static str) -> Result<Option<Coordinate>, Error<'a>> {
         self.coordinate(id, (LONGITUDE, 3, 180), (EAST_WEST, ['E', 'W']))
     }
 
+    #[inline]
     fn coordinate(
         &mut self,
         id: &'static str,
