@@ -97,7 +97,7 @@ pub struct Number {
 
 impl Number {
     /// Parses `[+-]digits` (`integer`) or `[+-]digits[.digits]`; at most 18 digits.
-    #[inline]
+    #[inline(always)]
     pub fn parse(text: &str, integer: bool) -> Option<Self> {
         let bytes = text.as_bytes();
         let (sign, body) = match bytes.first() {
@@ -105,28 +105,26 @@ impl Number {
             Some(b'-') => (Sign::Minus, &bytes[1..]),
             _ => (Sign::Implicit, bytes),
         };
-        let (mut digits, mut whole, mut frac, mut point) = (0i64, 0usize, 0usize, false);
-        for &b in body {
-            match b {
-                b'0'..=b'9' => {
-                    if whole + frac == MAX_DIGITS {
-                        return None;
-                    }
-                    digits = digits * 10 + i64::from(b - b'0');
-                    if point {
-                        frac += 1;
-                    } else {
-                        whole += 1;
-                    }
-                }
-                b'.' if !point && !integer => point = true,
-                _ => return None,
+        // One pass: digits accumulate (wrapping; a number with too many digits is refused
+        // below anyway) and the point's position is noted.
+        let (mut digits, mut point_at) = (0i64, None);
+        for (at, &b) in body.iter().enumerate() {
+            let digit = b.wrapping_sub(b'0');
+            if digit <= 9 {
+                digits = digits.wrapping_mul(10).wrapping_add(i64::from(digit));
+            } else if b == b'.' && point_at.is_none() && !integer {
+                point_at = Some(at);
+            } else {
+                return None;
             }
         }
-        if whole + frac == 0 {
+        let count = body.len() - usize::from(point_at.is_some());
+        if count == 0 || count > MAX_DIGITS {
             return None;
         }
-        Some(Self { digits, scale: frac as u8, width: whole as u8, sign, point })
+        let whole = point_at.unwrap_or(body.len());
+        let scale = (count - whole) as u8;
+        Some(Self { digits, scale, width: whole as u8, sign, point: point_at.is_some() })
     }
 
     /// Whether the number was written with a `-` (also for `-0`).
@@ -434,7 +432,7 @@ pub struct Time {
 
 impl Time {
     /// Parses `hhmmss` with an optional `.` and up to 9 fraction digits.
-    #[inline]
+    #[inline(always)]
     pub fn parse(text: &str) -> Option<Self> {
         let (clock, frac, point) = match text.split_once('.') {
             Some((clock, frac)) => (clock, frac, true),
@@ -530,7 +528,7 @@ pub struct Date {
 
 impl Date {
     /// Parses `ddmmyy` (day 1 to 31, month 1 to 12).
-    #[inline]
+    #[inline(always)]
     pub fn parse(text: &str) -> Option<Self> {
         let b = text.as_bytes();
         if b.len() != 6 {
@@ -593,7 +591,7 @@ pub struct Coordinate {
 impl Coordinate {
     /// Parses the value field: `max_degree_digits` is 2 for a latitude, 3 for a longitude.
     /// The hemisphere is left empty (`'\0'`).
-    #[inline]
+    #[inline(always)]
     pub fn parse(text: &str, max_degree_digits: usize, max_degrees: u8) -> Option<Self> {
         let (whole, frac, point) = match text.split_once('.') {
             Some((whole, frac)) => (whole, frac, true),
@@ -733,7 +731,7 @@ pub enum Code<'a, E> {
 
 impl<'a, E: CodeEnum> Code<'a, E> {
     /// Reads a code: known, or unknown of length `min..=max` and the enum's character class.
-    #[inline]
+    #[inline(always)]
     pub fn parse(text: &'a str, min: usize, max: usize) -> Option<Self> {
         match E::from_code(text) {
             Some(value) => Some(Self::Known(value)),
@@ -908,7 +906,7 @@ impl<T: Copy + Default, const N: usize> Default for Group<T, N> {
 
 impl<T: Copy + Default, const N: usize> Group<T, N> {
     /// Reads `count` entries (at most `N`) with `read`, which gets the 1-based entry number.
-    #[inline]
+    #[inline(always)]
     pub fn read<E>(count: usize, mut read: impl FnMut(usize) -> Result<T, E>) -> Result<Self, E> {
         let mut group = Self::default();
         for (i, slot) in group.items.iter_mut().take(count).enumerate() {
