@@ -947,7 +947,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                          fmt_slice(12, f"{rust_str(address)} => ", [f"LayoutId::{n}" for n in names], ","))
     standard_arms: list[str] = []
     for s in spec.standard:
-        standard_arms += fmt_slice(8, f"{rust_str(s.id)} => ", [f"LayoutId::{s.layout_camel(lay)}" for lay in s.layouts],
+        standard_arms += fmt_slice(8, f'b"{s.id}" => ', [f"LayoutId::{s.layout_camel(lay)}" for lay in s.layouts],
                                    ",")
     text_commands = []
     for word in sorted({(s.address or "").upper() for s in spec.proprietary if s.framing == "text"}):

@@ -1575,7 +1575,7 @@ impl LayoutId {
     pub fn build<'b>(
         self,
         buf: &'b mut [u8],
-        write: impl Fn(&mut dyn Write) -> fmt::Result,
+        write: impl FnOnce(&mut runtime::Latin1Bytes<'_>) -> fmt::Result,
     ) -> Result<&'b [u8], Error<'b>> {
         runtime::build(buf, self.framing(), write, |fields, checksum| self.parse_fields(fields, checksum).map(drop))
     }
@@ -2018,6 +2018,141 @@ impl<'a> Sentence<'a> {
         }
     }
 
+    /// Writes the sentence text (what `Display` writes) without the `fmt` machinery.
+    pub fn write_sentence<W: Write + ?Sized>(&self, out: &mut W) -> fmt::Result {
+        match self {
+            Self::Dtm(s) => s.write_sentence(out),
+            Self::Gga(s) => s.write_sentence(out),
+            Self::Gll(s) => s.write_sentence(out),
+            Self::Gns(s) => s.write_sentence(out),
+            Self::GnsAux(s) => s.write_sentence(out),
+            Self::Gsa(s) => s.write_sentence(out),
+            Self::GsaShort(s) => s.write_sentence(out),
+            Self::Gst(s) => s.write_sentence(out),
+            Self::Gsv(s) => s.write_sentence(out),
+            Self::Hdt(s) => s.write_sentence(out),
+            Self::Rlm(s) => s.write_sentence(out),
+            Self::Rmc(s) => s.write_sentence(out),
+            Self::Vtg(s) => s.write_sentence(out),
+            Self::Zda(s) => s.write_sentence(out),
+            #[cfg(feature = "comnav")]
+            Self::ComnavLog(s) => s.write_sentence(out),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalker(s) => s.write_sentence(out),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerList(s) => s.write_sentence(out),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerReset(s) => s.write_sentence(out),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Command(s) => s.write_sentence(out),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Jamdet(s) => s.write_sentence(out),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Nquery(s) => s.write_sentence(out),
+            #[cfg(feature = "geos5")]
+            Self::Geos5NqueryRequest(s) => s.write_sentence(out),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Rquery(s) => s.write_sentence(out),
+            #[cfg(feature = "geos5")]
+            Self::Geos5RqueryRequest(s) => s.write_sentence(out),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf100(s) => s.write_sentence(out),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf101(s) => s.write_sentence(out),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf102(s) => s.write_sentence(out),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf103(s) => s.write_sentence(out),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf104(s) => s.write_sentence(out),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf105(s) => s.write_sentence(out),
+            #[cfg(feature = "gs501")]
+            Self::Psrf150(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmagps(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmalmanac(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclralms(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclrephs(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcold(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcorr(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmdiff(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmeph(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetpar(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetparerror(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetrtctime(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetrtctimeReply(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetswver(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetswverReply(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmhot(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmkfcov(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmnmeaonoff(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpa(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpres(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmres(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrestorepar(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrf(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsat(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsavepar(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbas(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbascorr(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmset(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetDop(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetpar(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetparDop(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparerror(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparok(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtestrf(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtg(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtim(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmts(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmver(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmvres(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwaas(s) => s.write_sentence(out),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwarm(s) => s.write_sentence(out),
+            Self::Generic(s) => s.write_sentence(out),
+        }
+    }
+
     /// Writes the sentence text of a sentence lenient parsing kept with `problems`: the text of
     /// each field it left empty is put back.
     pub fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
@@ -2166,8 +2301,8 @@ impl<'a> Sentence<'a> {
     /// with its layout (a generic sentence: once it frames).
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         match self.layout() {
-            Some(layout) => layout.build(buf, |w| write!(w, "{self}")),
-            None => runtime::build(buf, Framing::Standard, |w| write!(w, "{self}"), |_, _| Ok(())),
+            Some(layout) => layout.build(buf, |w| self.write_sentence(w)),
+            None => runtime::build(buf, Framing::Standard, |w| self.write_sentence(w), |_, _| Ok(())),
         }
     }
 }
@@ -2175,137 +2310,7 @@ impl<'a> Sentence<'a> {
 impl fmt::Display for Sentence<'_> {
     /// The sentence text, checksum included unless it is `Checksum::None`; no line ending.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Dtm(s) => s.write_sentence(f),
-            Self::Gga(s) => s.write_sentence(f),
-            Self::Gll(s) => s.write_sentence(f),
-            Self::Gns(s) => s.write_sentence(f),
-            Self::GnsAux(s) => s.write_sentence(f),
-            Self::Gsa(s) => s.write_sentence(f),
-            Self::GsaShort(s) => s.write_sentence(f),
-            Self::Gst(s) => s.write_sentence(f),
-            Self::Gsv(s) => s.write_sentence(f),
-            Self::Hdt(s) => s.write_sentence(f),
-            Self::Rlm(s) => s.write_sentence(f),
-            Self::Rmc(s) => s.write_sentence(f),
-            Self::Vtg(s) => s.write_sentence(f),
-            Self::Zda(s) => s.write_sentence(f),
-            #[cfg(feature = "comnav")]
-            Self::ComnavLog(s) => s.write_sentence(f),
-            #[cfg(feature = "comnav")]
-            Self::ComnavNmeatalker(s) => s.write_sentence(f),
-            #[cfg(feature = "comnav")]
-            Self::ComnavNmeatalkerList(s) => s.write_sentence(f),
-            #[cfg(feature = "comnav")]
-            Self::ComnavNmeatalkerReset(s) => s.write_sentence(f),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Command(s) => s.write_sentence(f),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Jamdet(s) => s.write_sentence(f),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Nquery(s) => s.write_sentence(f),
-            #[cfg(feature = "geos5")]
-            Self::Geos5NqueryRequest(s) => s.write_sentence(f),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Rquery(s) => s.write_sentence(f),
-            #[cfg(feature = "geos5")]
-            Self::Geos5RqueryRequest(s) => s.write_sentence(f),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf100(s) => s.write_sentence(f),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf101(s) => s.write_sentence(f),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf102(s) => s.write_sentence(f),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf103(s) => s.write_sentence(f),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf104(s) => s.write_sentence(f),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf105(s) => s.write_sentence(f),
-            #[cfg(feature = "gs501")]
-            Self::Psrf150(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmagps(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmalmanac(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmclralms(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmclrephs(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmcold(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmcorr(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmdiff(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmeph(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetpar(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetparerror(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetrtctime(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::PstmgetrtctimeReply(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetswver(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::PstmgetswverReply(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmhot(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmkfcov(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmnmeaonoff(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmpa(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmpres(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmres(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmrestorepar(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmrf(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsat(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsavepar(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsbas(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsbascorr(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmset(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::PstmsetDop(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsetpar(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::PstmsetparDop(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsetparerror(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsetparok(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmtestrf(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmtg(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmtim(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmts(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmver(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmvres(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmwaas(s) => s.write_sentence(f),
-            #[cfg(feature = "teseo")]
-            Self::Pstmwarm(s) => s.write_sentence(f),
-            Self::Generic(s) => s.write_sentence(f),
-        }
+        self.write_sentence(f)
     }
 }
 
@@ -3054,21 +3059,25 @@ pub fn layouts_of(start: &str, address: &str) -> &'static [LayoutId] {
     }
 }
 
-/// The layouts of the standard sentence with formatter `formatter` (`GGA`).
+/// The layouts of the standard sentence with formatter `formatter` (`GGA`): a match on the three
+/// bytes, which compiles to a few byte comparisons rather than string comparisons.
 fn standard(formatter: &str) -> &'static [LayoutId] {
-    match formatter {
-        "DTM" => &[LayoutId::Dtm],
-        "GGA" => &[LayoutId::Gga],
-        "GLL" => &[LayoutId::Gll],
-        "GNS" => &[LayoutId::Gns, LayoutId::GnsAux],
-        "GSA" => &[LayoutId::Gsa, LayoutId::GsaShort],
-        "GST" => &[LayoutId::Gst],
-        "GSV" => &[LayoutId::Gsv],
-        "HDT" => &[LayoutId::Hdt],
-        "RLM" => &[LayoutId::Rlm],
-        "RMC" => &[LayoutId::Rmc],
-        "VTG" => &[LayoutId::Vtg],
-        "ZDA" => &[LayoutId::Zda],
+    let Ok(formatter) = <[u8; 3]>::try_from(formatter.as_bytes()) else {
+        return &[];
+    };
+    match &formatter {
+        b"DTM" => &[LayoutId::Dtm],
+        b"GGA" => &[LayoutId::Gga],
+        b"GLL" => &[LayoutId::Gll],
+        b"GNS" => &[LayoutId::Gns, LayoutId::GnsAux],
+        b"GSA" => &[LayoutId::Gsa, LayoutId::GsaShort],
+        b"GST" => &[LayoutId::Gst],
+        b"GSV" => &[LayoutId::Gsv],
+        b"HDT" => &[LayoutId::Hdt],
+        b"RLM" => &[LayoutId::Rlm],
+        b"RMC" => &[LayoutId::Rmc],
+        b"VTG" => &[LayoutId::Vtg],
+        b"ZDA" => &[LayoutId::Zda],
         _ => &[],
     }
 }

@@ -228,27 +228,46 @@ impl Scan {
         (v & Self::HIGH) | (!at_least_space & Self::HIGH) | Self::bytes_equal(v, 0x7f)
     }
 
+    /// The sum of the byte lanes of `lanes` (each at most 255, all together less than 2^16).
+    fn lane_sum(lanes: u64) -> usize {
+        const PAIRS: u64 = 0x00ff_00ff_00ff_00ff;
+        let pairs = (lanes & PAIRS) + ((lanes >> 8) & PAIRS);
+        (pairs.wrapping_mul(0x0001_0001_0001_0001) >> 48) as usize
+    }
+
+    /// Scans at most [`MAX_LINE`] bytes: commas and stars are counted per byte lane (no
+    /// popcount), at most 128 per lane.
     fn of(bytes: &[u8]) -> Self {
-        let (mut bad, mut sum, mut commas, mut stars) = (0u64, 0u64, 0usize, 0usize);
+        debug_assert!(bytes.len() <= MAX_LINE);
+        let (mut bad, mut sum, mut commas, mut stars) = (0u64, 0u64, 0u64, 0u64);
+        let mut add = |v: u64, valid: u64| {
+            bad |= Self::unprintable(v) & valid;
+            sum ^= v;
+            commas += Self::bytes_equal(v, b',') >> 7;
+            stars += Self::bytes_equal(v, b'*') >> 7;
+        };
         let mut words = bytes.chunks_exact(8);
         for word in &mut words {
             let mut le = [0u8; 8];
             le.copy_from_slice(word);
-            let v = u64::from_le_bytes(le);
-            bad |= Self::unprintable(v);
-            sum ^= v;
-            commas += Self::bytes_equal(v, b',').count_ones() as usize;
-            stars += Self::bytes_equal(v, b'*').count_ones() as usize;
+            add(u64::from_le_bytes(le), u64::MAX);
         }
-        let mut sum = sum.to_le_bytes().iter().fold(0u8, |x, b| x ^ b);
-        let mut printable = bad == 0;
-        for &b in words.remainder() {
-            printable &= (0x20..=0x7e).contains(&b);
-            sum ^= b;
-            commas += usize::from(b == b',');
-            stars += usize::from(b == b'*');
+        // The last bytes, padded with zeros: they change neither the sum nor the counts, and
+        // their lanes are left out of the printable check.
+        let rest = words.remainder();
+        if !rest.is_empty() {
+            let mut le = [0u8; 8];
+            for (lane, &b) in le.iter_mut().zip(rest) {
+                *lane = b;
+            }
+            add(u64::from_le_bytes(le), u64::MAX >> (64 - 8 * rest.len()));
         }
-        Self { printable, sum, commas, stars }
+        Self {
+            printable: bad == 0,
+            sum: sum.to_le_bytes().iter().fold(0u8, |x, b| x ^ b),
+            commas: Self::lane_sum(commas),
+            stars: Self::lane_sum(stars),
+        }
     }
 }
 
@@ -426,15 +445,18 @@ impl<'a> Iterator for FieldIter<'a> {
 
 impl ExactSizeIterator for FieldIter<'_> {}
 
+/// Splits off the text before the next `separator` (all of `rest` when there is none).
+#[inline(always)]
 fn take<'a>(rest: &mut &'a str, separator: u8) -> &'a str {
-    match rest.bytes().position(|b| b == separator) {
-        Some(at) => {
-            let field = &rest[..at];
-            *rest = &rest[at + 1..];
-            field
-        }
-        None => core::mem::take(rest),
+    let bytes = rest.as_bytes();
+    let mut at = 0;
+    while at < bytes.len() && bytes[at] != separator {
+        at += 1;
     }
+    // The separator is ASCII, so both cuts fall on character boundaries.
+    let (field, tail) = rest.split_at(at);
+    *rest = tail.get(1..).unwrap_or("");
+    field
 }
 
 /// How the fields of a layout are counted: required fields outside the repeated group, optional
@@ -487,6 +509,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Reads `count` entries of the repeated group `id` with `read` (at most `N`).
+    #[inline(always)]
     pub fn group<T: Copy + Default, const N: usize>(
         &mut self,
         id: &'static str,
@@ -537,6 +560,15 @@ impl<'a> Reader<'a> {
         Name::entry(self.group, self.entry, id)
     }
 
+    /// The `bad_field` error of field `id` at the current index: kept out of line, so that the
+    /// readers' fast path stays small.
+    #[cold]
+    #[inline(never)]
+    fn bad_field(&self, id: &'static str, expected: &'static str, text: &'a str) -> Error<'a> {
+        Error::bad_field(self.address, self.index, self.name(id), expected, text)
+    }
+
+    #[inline(always)]
     fn next_text(&mut self) -> &'a str {
         self.index += 1;
         let text = take(&mut self.rest, self.separator);
@@ -546,6 +578,7 @@ impl<'a> Reader<'a> {
         ""
     }
 
+    #[inline(always)]
     fn read<T>(
         &mut self,
         id: &'static str,
@@ -558,11 +591,12 @@ impl<'a> Reader<'a> {
         }
         match parse(text) {
             Some(value) => Ok(Some(value)),
-            None => Err(Error::bad_field(self.address, self.index, self.name(id), expected, text)),
+            None => Err(self.bad_field(id, expected, text)),
         }
     }
 
     /// An integer `[+-]digits` within `range`.
+    #[inline(always)]
     pub fn integer(
         &mut self,
         id: &'static str,
@@ -573,6 +607,7 @@ impl<'a> Reader<'a> {
     }
 
     /// A decimal number `[+-]digits[.digits]` within `range`.
+    #[inline(always)]
     pub fn decimal(
         &mut self,
         id: &'static str,
@@ -583,21 +618,25 @@ impl<'a> Reader<'a> {
     }
 
     /// Hex digits.
+    #[inline(always)]
     pub fn hex(&mut self, id: &'static str) -> Result<Option<Hex>, Error<'a>> {
         self.read(id, "hex number", Hex::parse)
     }
 
     /// A time `hhmmss[.s…]`.
+    #[inline(always)]
     pub fn time(&mut self, id: &'static str) -> Result<Option<Time>, Error<'a>> {
         self.read(id, "time hhmmss[.s]", Time::parse)
     }
 
     /// A date `ddmmyy`.
+    #[inline(always)]
     pub fn date(&mut self, id: &'static str) -> Result<Option<Date>, Error<'a>> {
         self.read(id, "date ddmmyy", Date::parse)
     }
 
     /// One character.
+    #[inline(always)]
     pub fn char(&mut self, id: &'static str) -> Result<Option<char>, Error<'a>> {
         self.read(id, "one character", |t| {
             let mut chars = t.chars();
@@ -606,6 +645,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Exactly `value` (or nothing).
+    #[inline(always)]
     pub fn literal(
         &mut self,
         id: &'static str,
@@ -616,6 +656,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Any text, at most `max_length` characters.
+    #[inline(always)]
     pub fn text(
         &mut self,
         id: &'static str,
@@ -626,15 +667,17 @@ impl<'a> Reader<'a> {
     }
 
     /// Exactly the word `keyword` (ignoring case in a text command); never empty.
+    #[inline(always)]
     pub fn keyword(&mut self, id: &'static str, keyword: &'static str) -> Result<(), Error<'a>> {
         let text = self.next_text();
         if text == keyword || (self.ignore_case && upper_eq(text, keyword)) {
             return Ok(());
         }
-        Err(Error::bad_field(self.address, self.index, self.name(id), keyword, text))
+        Err(self.bad_field(id, keyword, text))
     }
 
     /// A code of enum `E` (ignoring case in a text command), or an unknown one of the same form.
+    #[inline(always)]
     pub fn code<E: CodeEnum>(&mut self, id: &'static str) -> Result<Option<Code<'a, E>>, Error<'a>> {
         if self.ignore_case {
             return self.read(id, E::EXPECTED, |t| Code::parse_ignoring_case(t, E::MIN_LEN, E::MAX_LEN));
@@ -643,6 +686,7 @@ impl<'a> Reader<'a> {
     }
 
     /// A run of one-character codes of enum `E`, at most `max_length`.
+    #[inline(always)]
     pub fn code_chars<E: CodeEnum>(
         &mut self,
         id: &'static str,
@@ -652,15 +696,18 @@ impl<'a> Reader<'a> {
     }
 
     /// A latitude: `ddmm.mmmm` and `N`/`S`, both empty or both set.
+    #[inline(always)]
     pub fn latitude(&mut self, id: &'static str) -> Result<Option<Coordinate>, Error<'a>> {
         self.coordinate(id, (LATITUDE, 2, 90), (NORTH_SOUTH, ['N', 'S']))
     }
 
     /// A longitude: `dddmm.mmmm` and `E`/`W`, both empty or both set.
+    #[inline(always)]
     pub fn longitude(&mut self, id: &'static str) -> Result<Option<Coordinate>, Error<'a>> {
         self.coordinate(id, (LONGITUDE, 3, 180), (EAST_WEST, ['E', 'W']))
     }
 
+    #[inline(always)]
     fn coordinate(
         &mut self,
         id: &'static str,

@@ -131,7 +131,8 @@ pub trait Layout<'a>: Sized {
     fn write_words<W: Write + ?Sized>(&self, word: &str, out: &mut W) -> fmt::Result {
         let mut w = WireWriter::words(out);
         w.write_str(word)?;
-        self.write_fields(&mut w)
+        self.write_fields(&mut w)?;
+        w.finish()
     }
 
     /// The text command as received, when its upper-cased words equal those of the fields (the
@@ -235,26 +236,30 @@ fn write_checksum_json<W: Write + ?Sized>(out: &mut W, checksum: Checksum, sum: 
 pub const BUILD_CAPACITY: usize = MAX_LINE + 2;
 
 /// What the command builders (`to_bytes` of each sentence struct) share: writes the line with
-/// `write` into `buf` (each character as one byte, Latin-1), reads it back the way a receiver
-/// would (framing, then `check`, the layout's own parser) and appends CR LF. The error is the
-/// parser's, naming the field at fault; `buffer_too_small` when `buf` cannot hold the line.
+/// `write` into `buf` in one pass (each character as one byte, Latin-1), reads it back the way
+/// a receiver would (framing, then `check`, the layout's own parser) and appends CR LF. The
+/// error is the parser's, naming the field at fault; `buffer_too_small` when `buf` cannot hold
+/// the line (what did fit may then have been written).
 pub fn build<'b>(
     buf: &'b mut [u8],
     framing: Framing,
-    write: impl Fn(&mut dyn Write) -> fmt::Result,
+    write: impl FnOnce(&mut Latin1Bytes<'_>) -> fmt::Result,
     check: impl FnOnce(Fields<'b>, Checksum) -> Result<(), Error<'b>>,
 ) -> Result<&'b [u8], Error<'b>> {
-    let mut counter = Latin1Bytes::new(&mut []);
-    let _ = write(&mut counter);
-    let length = counter.needed();
+    let capacity = buf.len();
+    let mut out = Latin1Bytes::new(buf);
+    let written = write(&mut out);
+    let length = out.needed();
     if length > MAX_LINE {
         return Err(Error::too_long(length));
     }
-    let (needed, capacity) = (length + 2, buf.len());
+    let needed = length + 2;
     let too_small = || Error::new(None, Message::BufferTooSmall { needed, capacity });
-    let (text, end) = buf.get_mut(..needed).ok_or_else(too_small)?.split_at_mut(length);
-    write(&mut Latin1Bytes::new(text)).map_err(|_| too_small())?;
-    end.copy_from_slice(b"\r\n");
+    if needed > capacity {
+        return Err(too_small());
+    }
+    written.map_err(|_| too_small())?;
+    buf[length..needed].copy_from_slice(b"\r\n");
     let buf: &'b [u8] = buf;
     let line = &buf[..length];
     let frame = match framing {

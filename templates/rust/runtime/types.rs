@@ -2,7 +2,7 @@
 //! trip. `Display` of each type writes its wire text back.
 
 use core::cmp::Ordering;
-use core::fmt;
+use core::fmt::{self, Write};
 use core::marker::PhantomData;
 use core::ops::{Deref, DerefMut};
 
@@ -97,6 +97,7 @@ pub struct Number {
 
 impl Number {
     /// Parses `[+-]digits` (`integer`) or `[+-]digits[.digits]`; at most 18 digits.
+    #[inline(always)]
     pub fn parse(text: &str, integer: bool) -> Option<Self> {
         let bytes = text.as_bytes();
         let (sign, body) = match bytes.first() {
@@ -104,28 +105,26 @@ impl Number {
             Some(b'-') => (Sign::Minus, &bytes[1..]),
             _ => (Sign::Implicit, bytes),
         };
-        let (mut digits, mut whole, mut frac, mut point) = (0i64, 0usize, 0usize, false);
-        for &b in body {
-            match b {
-                b'0'..=b'9' => {
-                    if whole + frac == MAX_DIGITS {
-                        return None;
-                    }
-                    digits = digits * 10 + i64::from(b - b'0');
-                    if point {
-                        frac += 1;
-                    } else {
-                        whole += 1;
-                    }
-                }
-                b'.' if !point && !integer => point = true,
-                _ => return None,
+        // One pass: digits accumulate (wrapping; a number with too many digits is refused
+        // below anyway) and the point's position is noted.
+        let (mut digits, mut point_at) = (0i64, None);
+        for (at, &b) in body.iter().enumerate() {
+            let digit = b.wrapping_sub(b'0');
+            if digit <= 9 {
+                digits = digits.wrapping_mul(10).wrapping_add(i64::from(digit));
+            } else if b == b'.' && point_at.is_none() && !integer {
+                point_at = Some(at);
+            } else {
+                return None;
             }
         }
-        if whole + frac == 0 {
+        let count = body.len() - usize::from(point_at.is_some());
+        if count == 0 || count > MAX_DIGITS {
             return None;
         }
-        Some(Self { digits, scale: frac as u8, width: whole as u8, sign, point })
+        let whole = point_at.unwrap_or(body.len());
+        let scale = (count - whole) as u8;
+        Some(Self { digits, scale, width: whole as u8, sign, point: point_at.is_some() })
     }
 
     /// Whether the number was written with a `-` (also for `-0`).
@@ -179,40 +178,119 @@ impl Number {
     }
 }
 
-impl fmt::Display for Number {
-    /// The wire text: sign, integer digits zero-padded to `width`, point and fraction.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl Number {
+    /// Writes the wire text in one piece: sign, integer digits zero-padded to `width`, point
+    /// and fraction.
+    #[inline]
+    pub fn write_text<W: fmt::Write + ?Sized>(self, w: &mut W) -> fmt::Result {
+        let mut text = Ascii::new();
+        self.push_text(&mut text);
+        w.write_str(text.as_str())
+    }
+
+    pub(crate) fn push_text(self, text: &mut Ascii) {
         let (whole, frac) = self.split();
         match self.sign {
             Sign::Implicit => {}
-            Sign::Plus => f.write_str("+")?,
-            Sign::Minus => f.write_str("-")?,
+            Sign::Plus => text.push(b'+'),
+            Sign::Minus => text.push(b'-'),
         }
         if self.width > 0 {
-            write_digits(f, whole, usize::from(self.width))?;
+            text.digits(whole, usize::from(self.width));
         }
         if self.point {
-            f.write_str(".")?;
+            text.push(b'.');
             if self.scale > 0 {
-                write_digits(f, frac, usize::from(self.scale))?;
+                text.digits(frac, usize::from(self.scale));
             }
         }
-        Ok(())
+    }
+}
+
+impl fmt::Display for Number {
+    /// The wire text: sign, integer digits zero-padded to `width`, point and fraction.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write_text(f)
     }
 }
 
 /// Writes `value` in decimal, zero-padded to at least `width` digits.
-pub(crate) fn write_digits<W: fmt::Write + ?Sized>(w: &mut W, mut value: u64, width: usize) -> fmt::Result {
-    let mut buf = [b'0'; 24];
-    let mut at = buf.len();
-    while value > 0 {
-        at -= 1;
-        buf[at] = b'0' + (value % 10) as u8;
-        value /= 10;
+pub(crate) fn write_digits<W: fmt::Write + ?Sized>(w: &mut W, value: u64, width: usize) -> fmt::Result {
+    let mut text = Ascii::new();
+    text.digits(value, width);
+    w.write_str(text.as_str())
+}
+
+/// The wire text of a value put together on the stack, so that it is written with one
+/// `write_str` and without the `fmt` machinery: ASCII only, at most [`Ascii::CAPACITY`] bytes
+/// (a number's digits before or after its point are at most 24, as `fmt` padding was).
+#[derive(Clone, Copy, Debug)]
+pub struct Ascii {
+    bytes: [u8; Ascii::CAPACITY],
+    len: usize,
+}
+
+impl Default for Ascii {
+    fn default() -> Self {
+        Self::new()
     }
-    at = at.min(buf.len() - width.min(buf.len()));
-    // Only ASCII digits were written.
-    w.write_str(core::str::from_utf8(&buf[at..]).map_err(|_| fmt::Error)?)
+}
+
+impl Ascii {
+    /// The longest text: a coordinate's degrees, minutes and hemisphere.
+    pub const CAPACITY: usize = 96;
+
+    /// No text.
+    pub const fn new() -> Self {
+        Self { bytes: [0; Self::CAPACITY], len: 0 }
+    }
+
+    /// The text as bytes.
+    pub fn as_bytes(&self) -> &[u8] {
+        &self.bytes[..self.len]
+    }
+
+    #[inline]
+    pub(crate) fn push(&mut self, byte: u8) {
+        if let Some(slot) = self.bytes.get_mut(self.len) {
+            *slot = byte;
+            self.len += 1;
+        }
+    }
+
+    /// `value` in decimal, zero-padded to at least `width` digits (at most 24).
+    #[inline]
+    pub(crate) fn digits(&mut self, mut value: u64, width: usize) {
+        let width = width.min(24);
+        let mut count = 1;
+        let mut rest = value / 10;
+        while rest > 0 {
+            count += 1;
+            rest /= 10;
+        }
+        let count = count.max(width);
+        let end = (self.len + count).min(Self::CAPACITY);
+        let start = self.len.min(end);
+        for slot in self.bytes[start..end].iter_mut().rev() {
+            *slot = b'0' + (value % 10) as u8;
+            value /= 10;
+        }
+        self.len = end;
+    }
+
+    /// Two digits (`value` below 100).
+    #[inline]
+    pub(crate) fn two_digits(&mut self, value: u8) {
+        self.push(b'0' + value / 10 % 10);
+        self.push(b'0' + value % 10);
+    }
+
+    /// The text.
+    #[inline]
+    pub fn as_str(&self) -> &str {
+        // Only ASCII bytes are pushed.
+        core::str::from_utf8(&self.bytes[..self.len]).unwrap_or("")
+    }
 }
 
 /// An inclusive bound of a number range: `digits` × 10^-`scale` (signed).
@@ -354,6 +432,7 @@ pub struct Time {
 
 impl Time {
     /// Parses `hhmmss` with an optional `.` and up to 9 fraction digits.
+    #[inline(always)]
     pub fn parse(text: &str) -> Option<Self> {
         let (clock, frac, point) = match text.split_once('.') {
             Some((clock, frac)) => (clock, frac, true),
@@ -396,16 +475,35 @@ impl Time {
     }
 }
 
-impl fmt::Display for Time {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:02}{:02}{:02}", self.hour, self.minute, self.second)?;
-        if self.point {
-            f.write_str(".")?;
-            if self.fraction_digits > 0 {
-                write_digits(f, u64::from(self.fraction), usize::from(self.fraction_digits))?;
+impl Time {
+    /// Writes the wire text `hhmmss[.f…]` in one piece.
+    #[inline]
+    pub fn write_text<W: fmt::Write + ?Sized>(self, w: &mut W) -> fmt::Result {
+        let mut text = Ascii::new();
+        self.push_text(&mut text);
+        w.write_str(text.as_str())
+    }
+
+    pub(crate) fn push_text(self, text: &mut Ascii) {
+        for part in [self.hour, self.minute, self.second] {
+            if part < 100 {
+                text.two_digits(part);
+            } else {
+                text.digits(u64::from(part), 2);
             }
         }
-        Ok(())
+        if self.point {
+            text.push(b'.');
+            if self.fraction_digits > 0 {
+                text.digits(u64::from(self.fraction), usize::from(self.fraction_digits));
+            }
+        }
+    }
+}
+
+impl fmt::Display for Time {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write_text(f)
     }
 }
 
@@ -430,6 +528,7 @@ pub struct Date {
 
 impl Date {
     /// Parses `ddmmyy` (day 1 to 31, month 1 to 12).
+    #[inline(always)]
     pub fn parse(text: &str) -> Option<Self> {
         let b = text.as_bytes();
         if b.len() != 6 {
@@ -448,9 +547,29 @@ impl Date {
     }
 }
 
+impl Date {
+    /// Writes the wire text `ddmmyy` in one piece.
+    #[inline]
+    pub fn write_text<W: fmt::Write + ?Sized>(self, w: &mut W) -> fmt::Result {
+        let mut text = Ascii::new();
+        self.push_text(&mut text);
+        w.write_str(text.as_str())
+    }
+
+    pub(crate) fn push_text(self, text: &mut Ascii) {
+        for part in [self.day, self.month, self.year] {
+            if part < 100 {
+                text.two_digits(part);
+            } else {
+                text.digits(u64::from(part), 2);
+            }
+        }
+    }
+}
+
 impl fmt::Display for Date {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:02}{:02}{:02}", self.day, self.month, self.year)
+        self.write_text(f)
     }
 }
 
@@ -472,6 +591,7 @@ pub struct Coordinate {
 impl Coordinate {
     /// Parses the value field: `max_degree_digits` is 2 for a latitude, 3 for a longitude.
     /// The hemisphere is left empty (`'\0'`).
+    #[inline(always)]
     pub fn parse(text: &str, max_degree_digits: usize, max_degrees: u8) -> Option<Self> {
         let (whole, frac, point) = match text.split_once('.') {
             Some((whole, frac)) => (whole, frac, true),
@@ -514,10 +634,16 @@ impl Coordinate {
 
     /// Writes the value field (without the hemisphere).
     pub fn write_value_text<W: fmt::Write + ?Sized>(self, w: &mut W) -> fmt::Result {
+        let mut text = Ascii::new();
+        self.push_value_text(&mut text);
+        w.write_str(text.as_str())
+    }
+
+    pub(crate) fn push_value_text(self, text: &mut Ascii) {
         if self.degree_digits > 0 {
-            write_digits(w, u64::from(self.degrees), usize::from(self.degree_digits))?;
+            text.digits(u64::from(self.degrees), usize::from(self.degree_digits));
         }
-        write!(w, "{}", self.minutes)
+        self.minutes.push_text(text);
     }
 
     /// Writes the JSON value `{"deg":55,"min":50.613522,"hemi":"N"}`.
@@ -534,7 +660,8 @@ impl fmt::Display for Coordinate {
     /// Both wire fields: `5550.613522,N`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         self.write_value_text(f)?;
-        write!(f, ",{}", self.hemisphere)
+        f.write_char(',')?;
+        f.write_char(self.hemisphere)
     }
 }
 
@@ -604,6 +731,7 @@ pub enum Code<'a, E> {
 
 impl<'a, E: CodeEnum> Code<'a, E> {
     /// Reads a code: known, or unknown of length `min..=max` and the enum's character class.
+    #[inline(always)]
     pub fn parse(text: &'a str, min: usize, max: usize) -> Option<Self> {
         match E::from_code(text) {
             Some(value) => Some(Self::Known(value)),
@@ -778,6 +906,7 @@ impl<T: Copy + Default, const N: usize> Default for Group<T, N> {
 
 impl<T: Copy + Default, const N: usize> Group<T, N> {
     /// Reads `count` entries (at most `N`) with `read`, which gets the 1-based entry number.
+    #[inline(always)]
     pub fn read<E>(count: usize, mut read: impl FnMut(usize) -> Result<T, E>) -> Result<Self, E> {
         let mut group = Self::default();
         for (i, slot) in group.items.iter_mut().take(count).enumerate() {

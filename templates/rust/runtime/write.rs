@@ -3,7 +3,7 @@
 use core::fmt::{self, Write};
 
 use super::error::Problems;
-use super::types::{Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Texts, Time};
+use super::types::{Ascii, Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Texts, Time};
 
 /// A field value: how it is written on the wire and in both JSON forms of the tools.
 pub trait FieldValue {
@@ -28,11 +28,27 @@ pub trait FieldValue {
 
     /// Writes the decoded JSON form of `decode --values`.
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result;
+
+    /// Appends the wire text (fields joined by `separator`) when it is ASCII put together
+    /// without `fmt` (numbers, times, dates, coordinates): `false` for the other types, which
+    /// [`FieldValue::write_wire_fields`] writes.
+    #[inline]
+    fn push_ascii(&self, text: &mut Ascii, separator: u8) -> bool {
+        let _ = (text, separator);
+        false
+    }
 }
 
 impl FieldValue for Number {
+    #[inline]
     fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
-        write!(w, "{self}")
+        self.write_text(w)
+    }
+
+    #[inline]
+    fn push_ascii(&self, text: &mut Ascii, _separator: u8) -> bool {
+        self.push_text(text);
+        true
     }
 
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
@@ -51,8 +67,15 @@ impl FieldValue for Hex {
 }
 
 impl FieldValue for Time {
+    #[inline]
     fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
-        write!(w, "{self}")
+        self.write_text(w)
+    }
+
+    #[inline]
+    fn push_ascii(&self, text: &mut Ascii, _separator: u8) -> bool {
+        self.push_text(text);
+        true
     }
 
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
@@ -61,8 +84,15 @@ impl FieldValue for Time {
 }
 
 impl FieldValue for Date {
+    #[inline]
     fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
-        write!(w, "{self}")
+        self.write_text(w)
+    }
+
+    #[inline]
+    fn push_ascii(&self, text: &mut Ascii, _separator: u8) -> bool {
+        self.push_text(text);
+        true
     }
 
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
@@ -74,9 +104,21 @@ impl FieldValue for Coordinate {
     const WIDTH: usize = 2;
 
     fn write_wire<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
-        write!(w, "{self}")
+        self.write_wire_fields(w, ',')
     }
 
+    #[inline]
+    fn push_ascii(&self, text: &mut Ascii, separator: u8) -> bool {
+        if !self.hemisphere.is_ascii() {
+            return false;
+        }
+        self.push_value_text(text);
+        text.push(separator);
+        text.push(self.hemisphere as u8);
+        true
+    }
+
+    #[inline]
     fn write_wire_fields<W: Write + ?Sized>(&self, w: &mut W, separator: char) -> fmt::Result {
         self.write_value_text(w)?;
         w.write_char(separator)?;
@@ -157,26 +199,32 @@ impl<E: CodeEnum> FieldValue for CodeChars<'_, E> {
 
 /// Writes the fields of a sentence, each after a `,` (a space in a text command), and keeps the
 /// XOR checksum of every byte written (a character above U+00FF counts as its low byte, as
-/// Latin-1 would).
+/// Latin-1 would). The text is gathered in a small buffer and handed to `out` in a few large
+/// pieces: [`WireWriter::finish`] writes what is left.
 pub struct WireWriter<'w, W: Write + ?Sized> {
     out: &'w mut W,
     sum: u8,
     separator: char,
     problems: &'w Problems<'w>,
     index: usize,
+    staged: [u8; STAGE],
+    len: usize,
 }
+
+/// Bytes a [`WireWriter`] gathers before it writes them out: most sentences in one piece.
+const STAGE: usize = 128;
 
 static NO_PROBLEMS: Problems<'static> = Problems::new();
 
 impl<'w, W: Write + ?Sized> WireWriter<'w, W> {
     /// A writer of `,`-separated fields into `out`, checksum 0.
     pub fn new(out: &'w mut W) -> Self {
-        Self { out, sum: 0, separator: ',', problems: &NO_PROBLEMS, index: 0 }
+        Self { out, sum: 0, separator: ',', problems: &NO_PROBLEMS, index: 0, staged: [0; STAGE], len: 0 }
     }
 
     /// A writer of the space-separated words of a text command into `out`.
     pub fn words(out: &'w mut W) -> Self {
-        Self { out, sum: 0, separator: ' ', problems: &NO_PROBLEMS, index: 0 }
+        Self { out, sum: 0, separator: ' ', problems: &NO_PROBLEMS, index: 0, staged: [0; STAGE], len: 0 }
     }
 
     /// The same writer, putting back the text of each field lenient parsing left empty (the
@@ -185,13 +233,45 @@ impl<'w, W: Write + ?Sized> WireWriter<'w, W> {
         Self { problems, ..self }
     }
 
+    #[inline]
     fn put(&mut self, s: &str) -> fmt::Result {
-        if s.is_ascii() {
-            self.sum = s.bytes().fold(self.sum, |sum, b| sum ^ b);
-        } else {
+        if !s.is_ascii() {
             self.sum = s.chars().fold(self.sum, |sum, c| sum ^ (c as u32 as u8));
+            self.flush()?;
+            return self.out.write_str(s);
         }
-        self.out.write_str(s)
+        self.put_ascii(s.as_bytes())
+    }
+
+    /// Appends ASCII bytes, adding them to the checksum.
+    #[inline]
+    fn put_ascii(&mut self, bytes: &[u8]) -> fmt::Result {
+        let end = self.len + bytes.len();
+        let Some(slots) = self.staged.get_mut(self.len..end) else {
+            self.sum = bytes.iter().fold(self.sum, |sum, b| sum ^ b);
+            self.flush()?;
+            // Only ASCII bytes come here.
+            return self.out.write_str(core::str::from_utf8(bytes).map_err(|_| fmt::Error)?);
+        };
+        let mut sum = self.sum;
+        for (slot, &b) in slots.iter_mut().zip(bytes) {
+            *slot = b;
+            sum ^= b;
+        }
+        (self.sum, self.len) = (sum, end);
+        Ok(())
+    }
+
+    /// Writes out what is gathered (whole strings only, so it is valid UTF-8).
+    fn flush(&mut self) -> fmt::Result {
+        let staged = core::str::from_utf8(&self.staged[..self.len]).map_err(|_| fmt::Error)?;
+        self.len = 0;
+        self.out.write_str(staged)
+    }
+
+    /// Writes out the rest of the text; the writer is done.
+    pub fn finish(mut self) -> fmt::Result {
+        self.flush()
     }
 
     /// The XOR of everything written so far.
@@ -202,6 +282,13 @@ impl<'w, W: Write + ?Sized> WireWriter<'w, W> {
     /// Writes `,` and the field (`WIDTH` empty fields when it is `None`).
     pub fn field<T: FieldValue>(&mut self, value: &Option<T>) -> fmt::Result {
         let separator = self.separator;
+        if let Some(value) = value.as_ref().filter(|_| self.problems.is_empty()) {
+            let mut text = Ascii::new();
+            text.push(separator as u8);
+            if value.push_ascii(&mut text, separator as u8) {
+                return self.put_ascii(text.as_bytes());
+            }
+        }
         self.write_char(separator)?;
         match value {
             Some(value) => value.write_wire_fields(self, separator),
@@ -282,10 +369,10 @@ pub fn write_sentence_with<W: Write + ?Sized>(
     w.write_str(address[1])?;
     fields(&mut w)?;
     let sum = w.checksum();
-    if let Some(digits) = checksum.digits(sum) {
-        out.write_char('*')?;
-        out.write_char(char::from(digits[0]))?;
-        out.write_char(char::from(digits[1]))?;
+    w.finish()?;
+    if let Some([high, low]) = checksum.digits(sum) {
+        let digits = [b'*', high, low];
+        out.write_str(core::str::from_utf8(&digits).map_err(|_| fmt::Error)?)?;
     } else if checksum == super::Checksum::Empty {
         out.write_char('*')?;
     }
@@ -312,7 +399,16 @@ impl<'b> Latin1Bytes<'b> {
 }
 
 impl Write for Latin1Bytes<'_> {
+    #[inline]
     fn write_str(&mut self, s: &str) -> fmt::Result {
+        let end = self.needed + s.len();
+        if s.is_ascii() {
+            if let Some(slots) = self.buf.get_mut(self.needed..end) {
+                slots.copy_from_slice(s.as_bytes());
+            }
+            self.needed = end;
+            return Ok(());
+        }
         for c in s.chars() {
             if let Some(slot) = self.buf.get_mut(self.needed) {
                 *slot = c as u32 as u8;
