@@ -71,7 +71,7 @@ def _sentences(old: Spec, new: Spec, log: _Log) -> None:
         if sid not in olds:
             where = f" (vendor {s.vendor}, address {s.address})" if s.vendor else ""
             log("sentence", sid, f"{_what(s)} `{sid}` added{where}", False)
-    for sid in olds.keys() & news.keys():
+    for sid in sorted(olds.keys() & news.keys()):
         _sentence(olds[sid], news[sid], log)
 
 
@@ -92,12 +92,12 @@ def _sentence(a: Sentence, b: Sentence, log: _Log) -> None:
             any(r not in b.reply_ids for r in a.reply_ids))
     old_variants = {v.id: v for v in a.variants}
     new_variants = {v.id: v for v in b.variants}
-    for vid in old_variants.keys() - new_variants.keys():
+    for vid in sorted(old_variants.keys() - new_variants.keys()):
         log("sentence", f"{sid}.{vid}", f"`{sid}`: variant `{vid}` removed", True)
-    for vid in new_variants.keys() - old_variants.keys():
+    for vid in sorted(new_variants.keys() - old_variants.keys()):
         log("sentence", f"{sid}.{vid}", f"`{sid}`: variant `{vid}` added", False)
     _layout(sid, a.layout, b.layout, log)
-    for vid in old_variants.keys() & new_variants.keys():
+    for vid in sorted(old_variants.keys() & new_variants.keys()):
         _layout(f"{sid}[{vid}]", old_variants[vid], new_variants[vid], log)
 
 
@@ -156,7 +156,7 @@ def _items(owner: str, old: list[Item], new: list[Item], log: _Log, group: bool 
     common_new = [i for i in kept_new]
     if common_old != common_new:
         log("field", owner, f"`{owner}`: fields reordered: {', '.join(common_old)} -> {', '.join(common_new)}", True)
-    for iid in olds.keys() & news.keys():
+    for iid in sorted(olds.keys() & news.keys()):
         _item(owner, olds[iid], news[iid], log)
 
 
@@ -220,7 +220,7 @@ def _by_id(xs):
 
 def _enums(old: Spec, new: Spec, log: _Log) -> None:
     olds, news = _by_id(old.enums), _by_id(new.enums)
-    for eid in olds.keys() - news.keys():
+    for eid in sorted(olds.keys() - news.keys()):
         log("enum", eid, f"enum `{eid}` removed", True)
     for eid in sorted(news.keys() - olds.keys()):
         e = news[eid]
@@ -248,7 +248,7 @@ def _enum(a: EnumDef, b: EnumDef, log: _Log) -> None:
 
 def _bitfields(old: Spec, new: Spec, log: _Log) -> None:
     olds, news = _by_id(old.bitfields), _by_id(new.bitfields)
-    for bid in olds.keys() - news.keys():
+    for bid in sorted(olds.keys() - news.keys()):
         log("bitfield", bid, f"bitfield `{bid}` removed", True)
     for bid in sorted(news.keys() - olds.keys()):
         log("bitfield", bid, f"bitfield `{bid}` added", False)
@@ -265,7 +265,7 @@ def _bitfields(old: Spec, new: Spec, log: _Log) -> None:
             else:
                 old_values = {v.id: v.value for v in x.values}
                 new_values = {v.id: v.value for v in bits_b[x.id].values}
-                for vid in old_values.keys() - new_values.keys():
+                for vid in sorted(old_values.keys() - new_values.keys()):
                     log("bitfield", f"{bid}.{x.id}.{vid}", f"`{bid}`: bits `{x.id}` value `{vid}` removed", True)
                 for vid in sorted(new_values.keys() - old_values.keys()):
                     log("bitfield", f"{bid}.{x.id}.{vid}", f"`{bid}`: bits `{x.id}` value `{vid}` added", False)
@@ -276,7 +276,7 @@ def _bitfields(old: Spec, new: Spec, log: _Log) -> None:
 
 def _tables(old: Spec, new: Spec, log: _Log) -> None:
     olds, news = _by_id(old.tables), _by_id(new.tables)
-    for tid in olds.keys() - news.keys():
+    for tid in sorted(olds.keys() - news.keys()):
         log("table", tid, f"table `{tid}` removed", True)
     for tid in sorted(news.keys() - olds.keys()):
         log("table", tid, f"table `{tid}` added", False)
@@ -290,7 +290,7 @@ def _param_shape(p) -> tuple:
 
 def _table(a: TableDef, b: TableDef, log: _Log) -> None:
     pa, pb = _by_id(a.parameters), _by_id(b.parameters)
-    for pid in pa.keys() - pb.keys():
+    for pid in sorted(pa.keys() - pb.keys()):
         log("table", f"{a.id}.{pid}", f"`{a.id}`: parameter `{pid}` ({pa[pid].number}) removed", True)
     for p in b.parameters:
         if p.id not in pa:
