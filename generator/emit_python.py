@@ -28,25 +28,52 @@ def py_type(f: Field) -> str:
     return base + " | None" + (" | rt._Absent" if f.is_optional else "")
 
 
+def known_table(f: Field) -> tuple[str, str] | None:
+    """The module-level table of values already read (rt.known) that a field of `f`'s type and
+    rule shares, as (Python name, rule), or None for types that are not looked up."""
+    t = f.type
+    if t in ("integer", "decimal"):
+        rule = t
+        if f.min is not None or f.max is not None:
+            rule += f" {'' if f.min is None else fmt_num(f.min)}..{'' if f.max is None else fmt_num(f.max)}"
+    elif t in ("hex", "time", "date", "latitude", "longitude"):
+        rule = t
+    else:
+        return None
+    name = "_" + "".join(ch if ch.isalnum() else "_" for ch in rule.upper().replace("-", "MINUS_")
+                         .replace("..", "_TO_").replace(".", "_POINT_")).strip("_")
+    return name.rstrip("_"), rule
+
+
 def py_parse(f: Field, pos: str, name: str, ignore_case: bool = False) -> str:
     """The expression that reads field `f` from `fields[pos]` (and `fields[pos + 1]` for lat/lon);
-    `ignore_case` for the words of a text command."""
+    `ignore_case` for the words of a text command. A text already read under the same rule is
+    looked up first (rt.known); the reader only runs for a new text, and raises for a bad one."""
     text = f"fields[{pos}]"
     index = _plus(pos, 1)
     common = f'{text}, address, {index}, {name}, {json.dumps(f.expected)}'
     t = f.type
+    table = known_table(f)
     if t in ("integer", "decimal"):
         bounds = ""
         if f.min is not None or f.max is not None:
-            bounds = f", {_decimal(f.min)}, {_decimal(f.max)}"
-        return f"rt.{t}_field({common}{bounds})"
-    if t in ("hex", "time", "date", "char"):
-        return f"rt.{t}_field({common})"
+            bounds = f", {_bound(f.min)}, {_bound(f.max)}"
+        elif table:
+            bounds = ", None, None"
+        read = f"rt.{t}_field({common}{bounds}, {table[0]})" if table else f"rt.{t}_field({common}{bounds})"
+        return f"{table[0]}.get({text}) or {read}" if table else read
+    if t in ("hex", "time", "date"):
+        assert table
+        return f"{table[0]}.get({text}) or rt.{t}_field({common}, {table[0]})"
     if t in ("latitude", "longitude"):
-        return (f"rt.coordinate_field({text}, fields[{index}], address, {index}, {name}, "
-                f"{json.dumps(f.expected)}, {json.dumps(f.hemisphere_expected)}, {json.dumps(f.hemispheres)})")
+        assert table
+        pair = f"fields[{index}]"
+        return (f"{table[0]}.get(({text}, {pair})) or rt.coordinate_field({text}, {pair}, address, {index}, {name}, "
+                f"{json.dumps(f.expected)}, {json.dumps(f.hemisphere_expected)}, {json.dumps(f.hemispheres)}, {table[0]})")
+    if t == "char":
+        return f"rt.{t}_field({common})"
     if t == "literal":
-        return f"rt.literal_field({common}, {json.dumps(f.value)})"
+        return f"{json.dumps(f.value)} if {text} == {json.dumps(f.value)} else rt.literal_field({common}, {json.dumps(f.value)})"
     if t == "text":
         return f"rt.text_field({common}, {f.max_length})"
     if t == "keyword":
@@ -54,8 +81,10 @@ def py_parse(f: Field, pos: str, name: str, ignore_case: bool = False) -> str:
     assert f.enum is not None
     e = f.enum
     if t == "enum":
-        tail = ", True" if ignore_case else ""
-        return f'rt.enum_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {e.min_len}, {e.max_len}{tail})'
+        if ignore_case:
+            return f'rt.enum_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {e.min_len}, {e.max_len}, True)'
+        return (f'{e.camel}.BY_CODE.get({text}) or '
+                f'rt.enum_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {e.min_len}, {e.max_len})')
     return f'rt.enum_chars_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {f.max_length})'
 
 
@@ -67,8 +96,12 @@ def _plus(pos: str, n: int) -> str:
     return f"{base} + {int(offset or 0) + n}"
 
 
-def _decimal(value: float | None) -> str:
-    return "None" if value is None else f'Decimal("{fmt_num(value)}")'
+def _bound(value: float | None) -> str:
+    """A bound as Python source: an int when whole, else an exact Decimal."""
+    if value is None:
+        return "None"
+    text = fmt_num(value)
+    return text if "." not in text and "e" not in text.lower() else f'Decimal("{text}")'
 
 
 def py_literal(value: object) -> str:
@@ -144,7 +177,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                                                                for f in _all_fields(lay) if f.enum})]),
             sentence=sentence,
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
-            enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}))
+            enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}),
+            tables=sorted({t for lay in sentence.layouts for f in _all_fields(lay) if (t := known_table(f))}))
     by_address = {s.address: spec.by_address(s.address) for s in spec.proprietary if s.framing == "sentence"}
     text_commands = {s.address.upper(): spec.text_command(s.address) for s in spec.proprietary if s.framing == "text"}
     files[f"{base}/bitfields.py"] = env.get_template("python/bitfields.py.j2").render(

@@ -39,6 +39,31 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
         line = line.decode("latin-1")
     if line.endswith("\n"):
         line = line[:-2] if line.endswith("\r\n") else line[:-1]
+    # The common case first: a `$` sentence in printable ASCII whose checksum matches, decoded
+    # without building a Frame; anything else takes the general path below, which reports it.
+    star = len(line) - 3
+    if line[:1] == "$" and line.find("*") == star and len(line) <= runtime.MAX_LINE and line.isascii() \
+            and line.isprintable():
+        body = line[1:star]
+        sent = line[star + 1:]
+        computed = runtime.checksum(body)
+        checksum = "upper" if sent == _UPPER_HEX[computed] else "lower" if sent == _LOWER_HEX[computed] else None
+        fields = body.split(",")
+        address = fields[0]
+        if checksum is not None and address.isalnum():
+            del fields[0]
+            layouts = BY_ADDRESS.get(address)
+            if layouts is None and len(address) == 5 and address[0] != "P":
+                layouts = STANDARD.get(address[2:])
+            if layouts is None:
+                return Generic(address, fields, "$", checksum)
+            if len(layouts) == 1:
+                try:
+                    return layouts[0].parse_fields(address, fields, checksum, line)
+                except NmeaError as err:
+                    if not lenient or err.kind != "bad_field":
+                        raise
+                    return _lenient(layouts, runtime.Frame("$", address, fields, sent), checksum, err)
     if line[:1] not in ("$", "!"):
         layouts = TEXT_COMMANDS.get(runtime.first_word(line).upper())
         if layouts is not None:
@@ -58,6 +83,10 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
         if not lenient or err.kind != "bad_field":
             raise
         return _lenient(layouts, frame, checksum, err)
+
+
+_UPPER_HEX = [f"{value:02X}" for value in range(256)]
+_LOWER_HEX = [f"{value:02x}" for value in range(256)]
 
 
 def _lenient(layouts: tuple[Any, ...], frame: runtime.Frame, checksum: str | None, err: NmeaError) -> Any:

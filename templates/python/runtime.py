@@ -65,6 +65,9 @@ class _Absent:
     def __bool__(self) -> bool:
         return False
 
+    def text(self) -> str:
+        return ""
+
 
 ABSENT: Final = _Absent()
 
@@ -84,11 +87,16 @@ class Frame:
 
 
 def checksum(body: str) -> int:
-    """XOR of every byte between the start character and the '*'."""
-    value = 0
-    for byte in body.encode("latin-1"):
-        value ^= byte
-    return value
+    """XOR of every byte between the start character and the '*': the bytes read as one integer
+    and folded onto themselves in halves, far fewer Python steps than a loop over the bytes."""
+    value = int.from_bytes(body.encode("latin-1"), "little")
+    shift = 8
+    while value >> shift:
+        shift <<= 1
+    while shift > 8:
+        shift >>= 1
+        value ^= value >> shift
+    return value & 0xFF
 
 
 def frame(line: str, require_checksum: bool = False) -> Frame:
@@ -180,23 +188,114 @@ def assemble(start: str, address: str, fields: list[str], checksum_style: str | 
 # ---------------------------------------------------------------------------------------------
 # Field types. Each parser takes the field's text (never empty: the caller maps "" to None)
 # and returns the typed value, or None when the text does not fit the type.
+#
+# The values are immutable. One read from the wire keeps its text and works its parts out only
+# when they are first asked for, so that reading a sentence costs little more than checking it;
+# one built from its parts (Number(5, 1)) works its text out when first asked. Either way the
+# public attributes, equality, hashing and repr are those of the parts.
+
+_new = object.__new__
 
 
-@dataclass(slots=True, frozen=True)
-class Number:
+class _Value:
+    """Base of the field value types: the text as received and/or the parts, each worked out from
+    the other on first use (an unset slot raises AttributeError)."""
+
+    __slots__ = ("_text", "_parts")
+    _FIELDS: tuple[str, ...] = ()
+
+    @classmethod
+    def _read(cls, text: str) -> Any:
+        """A value of a text the caller has checked, its parts left for later."""
+        value = _new(cls)
+        value._text = text
+        return value
+
+    def _split(self) -> tuple[Any, ...]:
+        try:
+            return self._parts
+        except AttributeError:
+            parts = self._parts = self._parts_of(self._text)
+            return parts
+
+    def text(self) -> str:
+        """The wire text."""
+        try:
+            return self._text
+        except AttributeError:
+            text = self._text = self._text_of(*self._parts)
+            return text
+
+    @staticmethod
+    def _parts_of(text: str) -> tuple[Any, ...]:
+        raise NotImplementedError
+
+    @staticmethod
+    def _text_of(*parts: Any) -> str:
+        raise NotImplementedError
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is self.__class__:
+            return self._split() == other._split()  # type: ignore[attr-defined]
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(self._split())
+
+    def __repr__(self) -> str:
+        parts = ", ".join(f"{name}={value!r}" for name, value in zip(self._FIELDS, self._split()))
+        return f"{type(self).__name__}({parts})"
+
+
+class Number(_Value):
     """A fixed-point number as received: its digits as an integer, the number of decimals,
     the number of integer digits (leading zeros included) and the sign as written."""
 
-    digits: int
-    scale: int = 0
-    width: int = 1
-    sign: str = ""
-    point: bool = False
+    __slots__ = ()
+    __match_args__ = _FIELDS = ("digits", "scale", "width", "sign", "point")
+
+    def __init__(self, digits: int, scale: int = 0, width: int = 1, sign: str = "", point: bool = False) -> None:
+        self._parts = (digits, scale, width, sign, point)
+
+    @property
+    def digits(self) -> int:
+        return self._split()[0]  # type: ignore[no-any-return]
+
+    @property
+    def scale(self) -> int:
+        return self._split()[1]  # type: ignore[no-any-return]
+
+    @property
+    def width(self) -> int:
+        return self._split()[2]  # type: ignore[no-any-return]
+
+    @property
+    def sign(self) -> str:
+        return self._split()[3]  # type: ignore[no-any-return]
+
+    @property
+    def point(self) -> bool:
+        return self._split()[4]  # type: ignore[no-any-return]
+
+    @staticmethod
+    def _parts_of(text: str) -> tuple[int, int, int, str, bool]:
+        sign = text[0] if text[0] == "+" or text[0] == "-" else ""
+        whole, point, frac = text[len(sign):].partition(".")
+        return int(whole + frac), len(frac), len(whole), sign, bool(point)
+
+    @staticmethod
+    def _text_of(digits: int, scale: int, width: int, sign: str, point: bool) -> str:  # type: ignore[override]
+        whole, frac = divmod(digits, 10 ** scale)
+        out = sign + (str(whole).zfill(width) if width else "")
+        if point:
+            out += "." + (str(frac).zfill(scale) if scale else "")
+        return out
 
     @property
     def value(self) -> Decimal:
-        magnitude = Decimal(self.digits).scaleb(-self.scale)
-        return -magnitude if self.sign == "-" else magnitude
+        digits, scale, _, sign, _ = self._split()
+        magnitude = Decimal(digits).scaleb(-scale)
+        return -magnitude if sign == "-" else magnitude
 
     def __int__(self) -> int:
         return int(self.value)
@@ -204,15 +303,9 @@ class Number:
     def __float__(self) -> float:
         return float(self.value)
 
-    def text(self) -> str:
-        whole, frac = divmod(self.digits, 10 ** self.scale)
-        out = self.sign + (str(whole).zfill(self.width) if self.width else "")
-        if self.point:
-            out += "." + (str(frac).zfill(self.scale) if self.scale else "")
-        return out
-
     def value_json(self) -> str:
-        return decimal_json(self.digits, self.scale, self.sign == "-")
+        digits, scale, _, sign, _ = self._split()
+        return decimal_json(digits, scale, sign == "-")
 
     @classmethod
     def of(cls, value: int | str | Decimal) -> Number:
@@ -235,10 +328,11 @@ def decimal_json(digits: int, scale: int, negative: bool) -> str:
 
 
 def parse_number(text: str, integer: bool) -> Number | None:
-    sign = ""
-    body = text
-    if body[0] == "+" or body[0] == "-":
-        sign, body = body[0], body[1:]
+    if text.isdigit() and text.isascii():  # the common case: digits only
+        if len(text) > MAX_DIGITS:
+            return None
+        return Number._read(text)  # type: ignore[no-any-return]
+    body = text[1:] if text[0] == "+" or text[0] == "-" else text
     whole, point, frac = body.partition(".")
     if integer and point:
         return None
@@ -247,7 +341,7 @@ def parse_number(text: str, integer: bool) -> Number | None:
     if (whole and not whole.isdigit()) or (frac and not frac.isdigit()) or not whole.isascii() \
             or not frac.isascii():
         return None
-    return Number(int(whole + frac), len(frac), len(whole), sign, bool(point))
+    return Number._read(text)  # type: ignore[no-any-return]
 
 
 def parse_integer(text: str) -> Number | None:
@@ -258,52 +352,101 @@ def parse_decimal(text: str) -> Number | None:
     return parse_number(text, integer=False)
 
 
-@dataclass(slots=True, frozen=True)
-class Hex:
+class Hex(_Value):
     """An unsigned hexadecimal number; digit count and letter case are kept."""
 
-    value: int
-    digits: int = 1
-    lower: bool = False
+    __slots__ = ()
+    __match_args__ = _FIELDS = ("value", "digits", "lower")
 
-    def text(self) -> str:
-        out = f"{self.value:0{self.digits}X}"
-        return out.lower() if self.lower else out
+    def __init__(self, value: int, digits: int = 1, lower: bool = False) -> None:
+        self._parts = (value, digits, lower)
+
+    @property
+    def value(self) -> int:
+        return self._split()[0]  # type: ignore[no-any-return]
+
+    @property
+    def digits(self) -> int:
+        return self._split()[1]  # type: ignore[no-any-return]
+
+    @property
+    def lower(self) -> bool:
+        return self._split()[2]  # type: ignore[no-any-return]
+
+    @staticmethod
+    def _parts_of(text: str) -> tuple[int, int, bool]:
+        return int(text, 16), len(text), text != text.upper()
+
+    @staticmethod
+    def _text_of(value: int, digits: int, lower: bool) -> str:  # type: ignore[override]
+        out = f"{value:0{digits}X}"
+        return out.lower() if lower else out
 
     def value_json(self) -> str:
         return str(self.value)
 
 
 def parse_hex(text: str) -> Hex | None:
-    if len(text) > 16 or not all(ch in _HEX_DIGITS for ch in text):
+    if len(text) > 16 or not _HEX_DIGITS.issuperset(text):
         return None
-    has_lower = text != text.upper()
-    if has_lower and text != text.lower():
+    if text != text.upper() and text != text.lower():
         return None
-    return Hex(int(text, 16), len(text), has_lower)
+    return Hex._read(text)  # type: ignore[no-any-return]
 
 
-@dataclass(slots=True, frozen=True)
-class Time:
+class Time(_Value):
     """UTC time of day hhmmss[.f…]; the number of fraction digits is kept."""
 
-    hour: int
-    minute: int
-    second: int
-    fraction: int = 0
-    fraction_digits: int = 0
-    point: bool = False
+    __slots__ = ()
+    __match_args__ = _FIELDS = ("hour", "minute", "second", "fraction", "fraction_digits", "point")
 
-    def text(self) -> str:
-        out = f"{self.hour:02d}{self.minute:02d}{self.second:02d}"
-        if self.point:
-            out += "." + (str(self.fraction).zfill(self.fraction_digits) if self.fraction_digits else "")
+    def __init__(self, hour: int, minute: int, second: int, fraction: int = 0, fraction_digits: int = 0,
+                 point: bool = False) -> None:
+        self._parts = (hour, minute, second, fraction, fraction_digits, point)
+
+    @property
+    def hour(self) -> int:
+        return self._split()[0]  # type: ignore[no-any-return]
+
+    @property
+    def minute(self) -> int:
+        return self._split()[1]  # type: ignore[no-any-return]
+
+    @property
+    def second(self) -> int:
+        return self._split()[2]  # type: ignore[no-any-return]
+
+    @property
+    def fraction(self) -> int:
+        return self._split()[3]  # type: ignore[no-any-return]
+
+    @property
+    def fraction_digits(self) -> int:
+        return self._split()[4]  # type: ignore[no-any-return]
+
+    @property
+    def point(self) -> bool:
+        return self._split()[5]  # type: ignore[no-any-return]
+
+    @staticmethod
+    def _parts_of(text: str) -> tuple[int, int, int, int, int, bool]:
+        clock, point, frac = text.partition(".")
+        return (int(clock[0:2]), int(clock[2:4]), int(clock[4:6]), int(frac) if frac else 0, len(frac),
+                bool(point))
+
+    @staticmethod
+    def _text_of(hour: int, minute: int, second: int, fraction: int,  # type: ignore[override]
+                 fraction_digits: int, point: bool) -> str:
+        out = f"{hour:02d}{minute:02d}{second:02d}"
+        if point:
+            out += "." + (str(fraction).zfill(fraction_digits) if fraction_digits else "")
         return out
 
     def value_json(self) -> str:
-        out = f"{self.hour:02d}:{self.minute:02d}:{self.second:02d}"
-        if self.fraction_digits:
-            out += "." + str(self.fraction).zfill(self.fraction_digits)
+        hour, minute, second, fraction, fraction_digits, _ = self._split()
+        out = f"{hour:02d}:{minute:02d}:{second:02d}"
+        if fraction_digits:
+            out += "." + str(fraction).zfill(fraction_digits)
         return f'"{out}"'
 
 
@@ -313,57 +456,120 @@ def parse_time(text: str) -> Time | None:
         return None
     if frac and not (frac.isdigit() and frac.isascii()):
         return None
-    hour, minute, second = int(clock[0:2]), int(clock[2:4]), int(clock[4:6])
-    if hour > 23 or minute > 59 or second > 60:
+    # Two ASCII digits compare as text the way they do as numbers.
+    if clock[0:2] > "23" or clock[2:4] > "59" or clock[4:6] > "60":
         return None
-    return Time(hour, minute, second, int(frac) if frac else 0, len(frac), bool(point))
+    return Time._read(text)  # type: ignore[no-any-return]
 
 
-@dataclass(slots=True, frozen=True)
-class Date:
+class Date(_Value):
     """A date ddmmyy with a two-digit year."""
 
-    day: int
-    month: int
-    year: int
+    __slots__ = ()
+    __match_args__ = _FIELDS = ("day", "month", "year")
 
-    def text(self) -> str:
-        return f"{self.day:02d}{self.month:02d}{self.year:02d}"
+    def __init__(self, day: int, month: int, year: int) -> None:
+        self._parts = (day, month, year)
+
+    @property
+    def day(self) -> int:
+        return self._split()[0]  # type: ignore[no-any-return]
+
+    @property
+    def month(self) -> int:
+        return self._split()[1]  # type: ignore[no-any-return]
+
+    @property
+    def year(self) -> int:
+        return self._split()[2]  # type: ignore[no-any-return]
+
+    @staticmethod
+    def _parts_of(text: str) -> tuple[int, int, int]:
+        return int(text[0:2]), int(text[2:4]), int(text[4:6])
+
+    @staticmethod
+    def _text_of(day: int, month: int, year: int) -> str:  # type: ignore[override]
+        return f"{day:02d}{month:02d}{year:02d}"
 
     def value_json(self) -> str:
-        return f'"{self.year:02d}-{self.month:02d}-{self.day:02d}"'
+        day, month, year = self._split()
+        return f'"{year:02d}-{month:02d}-{day:02d}"'
 
 
 def parse_date(text: str) -> Date | None:
     if len(text) != 6 or not text.isdigit() or not text.isascii():
         return None
-    day, month, year = int(text[0:2]), int(text[2:4]), int(text[4:6])
-    if not 1 <= day <= 31 or not 1 <= month <= 12:
+    if not "01" <= text[0:2] <= "31" or not "01" <= text[2:4] <= "12":
         return None
-    return Date(day, month, year)
+    return Date._read(text)  # type: ignore[no-any-return]
 
 
-@dataclass(slots=True, frozen=True)
-class Coordinate:
+class Coordinate(_Value):
     """Latitude or longitude as received: degrees, minutes (fixed point) and hemisphere."""
 
-    degrees: int
-    minutes: Number
-    hemisphere: str
-    degree_digits: int = 2
+    __slots__ = ("_hemisphere",)
+    __match_args__ = _FIELDS = ("degrees", "minutes", "hemisphere", "degree_digits")
+
+    def __init__(self, degrees: int, minutes: Number, hemisphere: str, degree_digits: int = 2) -> None:
+        self._parts = (degrees, minutes, hemisphere, degree_digits)
+        self._hemisphere = hemisphere
+
+    @classmethod
+    def _read_pair(cls, text: str, hemisphere: str) -> Coordinate:
+        """A coordinate of a value text and hemisphere the caller has checked."""
+        value = _new(cls)
+        value._text = text
+        value._hemisphere = hemisphere
+        return value
+
+    @property
+    def degrees(self) -> int:
+        return self._split()[0]  # type: ignore[no-any-return]
+
+    @property
+    def minutes(self) -> Number:
+        return self._split()[1]  # type: ignore[no-any-return]
+
+    @property
+    def hemisphere(self) -> str:
+        return self._hemisphere
+
+    @property
+    def degree_digits(self) -> int:
+        return self._split()[3]  # type: ignore[no-any-return]
+
+    def _split(self) -> tuple[Any, ...]:
+        try:
+            return self._parts
+        except AttributeError:
+            whole, point, frac = self._text.partition(".")
+            degree_text = whole[:-2]
+            minutes = Number._read(whole[-2:] + point + frac)
+            parts = self._parts = (int(degree_text) if degree_text else 0, minutes, self._hemisphere,
+                                   len(degree_text))
+            return parts
+
+    def text(self) -> str:
+        """The wire text of the value field (the hemisphere is the next field)."""
+        try:
+            return self._text
+        except AttributeError:
+            degrees, minutes, _, degree_digits = self._parts
+            text = self._text = (str(degrees).zfill(degree_digits) if degree_digits else "") + minutes.text()
+            return text
 
     @property
     def decimal_degrees(self) -> float:
-        value = self.degrees + float(self.minutes.value) / 60.0
-        return -value if self.hemisphere in ("S", "W") else value
+        degrees, minutes, hemisphere, _ = self._split()
+        value = degrees + float(minutes.value) / 60.0
+        return -value if hemisphere in ("S", "W") else value
 
     def texts(self) -> tuple[str, str]:
-        return (str(self.degrees).zfill(self.degree_digits) if self.degree_digits else "") \
-            + self.minutes.text(), self.hemisphere
+        return self.text(), self._hemisphere
 
     def value_json(self) -> str:
-        return (f'{{"deg":{self.degrees},"min":{self.minutes.value_json()},'
-                f'"hemi":"{self.hemisphere}"}}')
+        degrees, minutes, hemisphere, _ = self._split()
+        return f'{{"deg":{degrees},"min":{minutes.value_json()},"hemi":"{hemisphere}"}}'
 
 
 def parse_coordinate(text: str, max_degree_digits: int, max_degrees: int) -> Coordinate | None:
@@ -375,11 +581,12 @@ def parse_coordinate(text: str, max_degree_digits: int, max_degrees: int) -> Coo
     if len(frac) > MAX_DIGITS - 2 or (frac and not (frac.isdigit() and frac.isascii())):
         return None
     degree_text = whole[:-2]
-    degrees = int(degree_text) if degree_text else 0
-    minutes = Number(int(whole[-2:] + frac), len(frac), 2, "", bool(point))
-    if degrees > max_degrees or minutes.digits > 60 * 10 ** len(frac):
+    if degree_text and int(degree_text) > max_degrees:
         return None
-    return Coordinate(degrees, minutes, "", len(degree_text))
+    minutes = whole[-2:]  # at most 60 minutes: 60 itself only with a zero fraction
+    if minutes > "60" or (minutes == "60" and frac.strip("0")):
+        return None
+    return Coordinate._read_pair(text, "")
 
 
 def is_code_like(text: str, code_class: str, min_len: int, max_len: int) -> bool:
@@ -400,6 +607,10 @@ class CodeEnum(Enum):
     @property
     def id(self) -> str:
         return self.name.lower()
+
+    def text(self) -> str:
+        """The wire code."""
+        return self._value_  # type: ignore[no-any-return]
 
 
 def enum_text(value: CodeEnum | str) -> str:
@@ -530,55 +741,95 @@ def in_range(number: Number, low: Decimal | None, high: Decimal | None) -> bool:
     return (low is None or value >= low) and (high is None or value <= high)
 
 
+KNOWN_LIMIT: Final = 256
+"""Most texts one table of known values holds before it starts again (see `known`)."""
+
+_KNOWN: dict[str, dict[Any, Any]] = {}
+
+
+def known(rule: str) -> dict[Any, Any]:
+    """The table of values already read under one field rule ("integer 0..99", "time", ...), by
+    wire text. Values are immutable, so a text read before under the same rule takes the value it
+    gave then: the generated parsers look a text up here first, which spares nearly all the work
+    for the texts receivers repeat (satellite numbers, elevations, the time of each fix...)."""
+    return _KNOWN.setdefault(rule, {})
+
+
+def remember(table: dict[Any, Any] | None, key: Any, value: Any) -> None:
+    if table is not None:
+        if len(table) >= KNOWN_LIMIT:
+            table.clear()
+        table[key] = value
+
+
+def _within(text: str, integer: bool, low: Decimal | int | None, high: Decimal | int | None) -> bool:
+    """Whether a number's text (already checked) lies in [low, high], compared exactly."""
+    if low is None and high is None:
+        return True
+    value = int(text) if integer else Decimal(text)
+    return (low is None or value >= low) and (high is None or value <= high)
+
+
 def integer_field(text: str, address: str, index: int, name: str, expected: str,
-                  low: Decimal | None = None, high: Decimal | None = None) -> Number | None:
+                  low: Decimal | int | None = None, high: Decimal | int | None = None,
+                  table: dict[str, Number] | None = None) -> Number | None:
     if not text:
         return None
     number = parse_number(text, integer=True)
-    if number is None or not in_range(number, low, high):
+    if number is None or not _within(text, True, low, high):
         raise bad_field(address, index, name, expected, text)
+    remember(table, text, number)
     return number
 
 
 def decimal_field(text: str, address: str, index: int, name: str, expected: str,
-                  low: Decimal | None = None, high: Decimal | None = None) -> Number | None:
+                  low: Decimal | int | None = None, high: Decimal | int | None = None,
+                  table: dict[str, Number] | None = None) -> Number | None:
     if not text:
         return None
     number = parse_number(text, integer=False)
-    if number is None or not in_range(number, low, high):
+    if number is None or not _within(text, False, low, high):
         raise bad_field(address, index, name, expected, text)
+    remember(table, text, number)
     return number
 
 
-def hex_field(text: str, address: str, index: int, name: str, expected: str) -> Hex | None:
+def hex_field(text: str, address: str, index: int, name: str, expected: str,
+              table: dict[str, Hex] | None = None) -> Hex | None:
     if not text:
         return None
     value = parse_hex(text)
     if value is None:
         raise bad_field(address, index, name, expected, text)
+    remember(table, text, value)
     return value
 
 
-def time_field(text: str, address: str, index: int, name: str, expected: str) -> Time | None:
+def time_field(text: str, address: str, index: int, name: str, expected: str,
+               table: dict[str, Time] | None = None) -> Time | None:
     if not text:
         return None
     value = parse_time(text)
     if value is None:
         raise bad_field(address, index, name, expected, text)
+    remember(table, text, value)
     return value
 
 
-def date_field(text: str, address: str, index: int, name: str, expected: str) -> Date | None:
+def date_field(text: str, address: str, index: int, name: str, expected: str,
+               table: dict[str, Date] | None = None) -> Date | None:
     if not text:
         return None
     value = parse_date(text)
     if value is None:
         raise bad_field(address, index, name, expected, text)
+    remember(table, text, value)
     return value
 
 
 def coordinate_field(text: str, hemisphere: str, address: str, index: int, name: str,
-                     expected: str, hemisphere_expected: str, hemispheres: str) -> Coordinate | None:
+                     expected: str, hemisphere_expected: str, hemispheres: str,
+                     table: dict[tuple[str, str], Coordinate] | None = None) -> Coordinate | None:
     """Latitude (hemispheres "NS") or longitude ("EW"): a value field and a hemisphere field,
     both empty or both set."""
     latitude = hemispheres == "NS"
@@ -591,7 +842,9 @@ def coordinate_field(text: str, hemisphere: str, address: str, index: int, name:
         raise bad_field(address, index, name, expected, text)
     if len(hemisphere) != 1 or hemisphere not in hemispheres:
         raise bad_field(address, index + 1, name, hemisphere_expected, hemisphere)
-    return Coordinate(value.degrees, value.minutes, hemisphere, value.degree_digits)
+    coordinate = Coordinate._read_pair(text, hemisphere)
+    remember(table, (text, hemisphere), coordinate)
+    return coordinate
 
 
 def char_field(text: str, address: str, index: int, name: str, expected: str) -> str | None:
@@ -670,15 +923,15 @@ def enum_chars_text(values: list[Any]) -> str:
 
 def text_of(value: Any) -> str:
     """The wire text of a field value (not lat/lon, whose value spans two fields)."""
-    if value is None or value is ABSENT:
+    if value is None:
         return ""
-    if isinstance(value, str):
-        return value
-    if isinstance(value, CodeEnum):
-        return value.value
+    if value.__class__ is str:
+        return value  # type: ignore[no-any-return]
     if isinstance(value, list):
         return enum_chars_text(value)
-    return value.text()
+    if isinstance(value, str):
+        return str(value)
+    return value.text()  # type: ignore[no-any-return]
 
 
 def coordinate_texts(value: Coordinate | None) -> tuple[str, str]:

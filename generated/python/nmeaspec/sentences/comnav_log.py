@@ -18,6 +18,9 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import ComnavLogMessage
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DECIMAL: dict[Any, Any] = rt.known("decimal")
+
 
 @dataclass(slots=True)
 class ComnavLog:
@@ -59,7 +62,7 @@ class ComnavLog:
         out = cls(as_received=line)
         out.message = rt.enum_field(fields[0], address, 1, "message", "comnav_log_message code (GPGGA GPGLL GPGSA GPGST GPGSV GPHDT GPRMC GPVTG GPZDA)", ComnavLogMessage.BY_CODE, "letters", 5, 5, True)
         out.trigger = rt.keyword_field(fields[1], address, 2, "trigger", "ONTIME", "ONTIME", True)
-        out.period = rt.decimal_field(fields[2], address, 3, "period", "decimal number")
+        out.period = _DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "period", "decimal number", None, None, _DECIMAL)
         return out
 
     def fields(self) -> list[str]:

@@ -15,6 +15,9 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import DtmDatum, DtmLatOffsetDir, DtmLonOffsetDir
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DECIMAL: dict[Any, Any] = rt.known("decimal")
+
 
 @dataclass(slots=True)
 class Dtm:
@@ -64,14 +67,14 @@ class Dtm:
         if count > 8:
             raise rt.too_many(address, "DTM", 8, count)
         out = cls(address[:-3], checksum=checksum)
-        out.local_datum = rt.enum_field(fields[0], address, 1, "local_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
+        out.local_datum = DtmDatum.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "local_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
         out.local_datum_subdivision = rt.char_field(fields[1], address, 2, "local_datum_subdivision", "one character")
-        out.lat_offset = rt.decimal_field(fields[2], address, 3, "lat_offset", "decimal number")
-        out.lat_offset_dir = rt.enum_field(fields[3], address, 4, "lat_offset_dir", "dtm_lat_offset_dir code (N S)", DtmLatOffsetDir.BY_CODE, "letters", 1, 1)
-        out.lon_offset = rt.decimal_field(fields[4], address, 5, "lon_offset", "decimal number")
-        out.lon_offset_dir = rt.enum_field(fields[5], address, 6, "lon_offset_dir", "dtm_lon_offset_dir code (E W)", DtmLonOffsetDir.BY_CODE, "letters", 1, 1)
-        out.altitude_offset = rt.decimal_field(fields[6], address, 7, "altitude_offset", "decimal number")
-        out.reference_datum = rt.enum_field(fields[7], address, 8, "reference_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
+        out.lat_offset = _DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "lat_offset", "decimal number", None, None, _DECIMAL)
+        out.lat_offset_dir = DtmLatOffsetDir.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "lat_offset_dir", "dtm_lat_offset_dir code (N S)", DtmLatOffsetDir.BY_CODE, "letters", 1, 1)
+        out.lon_offset = _DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "lon_offset", "decimal number", None, None, _DECIMAL)
+        out.lon_offset_dir = DtmLonOffsetDir.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "lon_offset_dir", "dtm_lon_offset_dir code (E W)", DtmLonOffsetDir.BY_CODE, "letters", 1, 1)
+        out.altitude_offset = _DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "altitude_offset", "decimal number", None, None, _DECIMAL)
+        out.reference_datum = DtmDatum.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "reference_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
         return out
 
     def fields(self) -> list[str]:

@@ -18,6 +18,9 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import Geos5MessageRate, Geos5NmeaVersion, Geos5OutputRate
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_INTEGER_0_TO_1: dict[Any, Any] = rt.known("integer 0..1")
+
 
 @dataclass(slots=True)
 class Geos5Nquery:
@@ -77,19 +80,19 @@ class Geos5Nquery:
             raise rt.too_many(address, "GEOS5_NQUERY", 14, count)
         out = cls(checksum=checksum)
         out.keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NQUERY", "NQUERY")
-        out.port = rt.integer_field(fields[1], address, 2, "port", "integer 0..1", Decimal("0"), Decimal("1"))
-        out.output_rate = rt.enum_field(fields[2], address, 3, "output_rate", "geos5_output_rate code (0 1 2 3)", Geos5OutputRate.BY_CODE, "digits", 1, 1)
-        out.nmea_version = rt.enum_field(fields[3], address, 4, "nmea_version", "geos5_nmea_version code (2 4)", Geos5NmeaVersion.BY_CODE, "digits", 1, 1)
-        out.gga_rate = rt.enum_field(fields[4], address, 5, "gga_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.gll_rate = rt.enum_field(fields[5], address, 6, "gll_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.gsa_rate = rt.enum_field(fields[6], address, 7, "gsa_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.gsv_rate = rt.enum_field(fields[7], address, 8, "gsv_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.rmc_rate = rt.enum_field(fields[8], address, 9, "rmc_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.vtg_rate = rt.enum_field(fields[9], address, 10, "vtg_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.gns_rate = rt.enum_field(fields[10], address, 11, "gns_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.zda_rate = rt.enum_field(fields[11], address, 12, "zda_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.dtm_rate = rt.enum_field(fields[12], address, 13, "dtm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.rlm_rate = rt.enum_field(fields[13], address, 14, "rlm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.port = _INTEGER_0_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "port", "integer 0..1", 0, 1, _INTEGER_0_TO_1)
+        out.output_rate = Geos5OutputRate.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "output_rate", "geos5_output_rate code (0 1 2 3)", Geos5OutputRate.BY_CODE, "digits", 1, 1)
+        out.nmea_version = Geos5NmeaVersion.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "nmea_version", "geos5_nmea_version code (2 4)", Geos5NmeaVersion.BY_CODE, "digits", 1, 1)
+        out.gga_rate = Geos5MessageRate.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "gga_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.gll_rate = Geos5MessageRate.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "gll_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.gsa_rate = Geos5MessageRate.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "gsa_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.gsv_rate = Geos5MessageRate.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "gsv_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.rmc_rate = Geos5MessageRate.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "rmc_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.vtg_rate = Geos5MessageRate.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "vtg_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.gns_rate = Geos5MessageRate.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "gns_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.zda_rate = Geos5MessageRate.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "zda_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.dtm_rate = Geos5MessageRate.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "dtm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        out.rlm_rate = Geos5MessageRate.BY_CODE.get(fields[13]) or rt.enum_field(fields[13], address, 14, "rlm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
         return out
 
     def fields(self) -> list[str]:

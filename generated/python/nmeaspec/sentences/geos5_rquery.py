@@ -19,6 +19,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DATE: dict[Any, Any] = rt.known("date")
+_HEX: dict[Any, Any] = rt.known("hex")
+
 
 @dataclass(slots=True)
 class Geos5Rquery:
@@ -66,10 +70,10 @@ class Geos5Rquery:
         out.keyword = rt.keyword_field(fields[0], address, 1, "keyword", "RQUERY", "RQUERY")
         out.receiver_name = rt.text_field(fields[1], address, 2, "receiver_name", "text", None)
         out.software_version = rt.text_field(fields[2], address, 3, "software_version", "text", None)
-        out.software_date = rt.date_field(fields[3], address, 4, "software_date", "date ddmmyy")
-        out.status = rt.hex_field(fields[4], address, 5, "status", "hex number")
-        out.config_1 = rt.hex_field(fields[5], address, 6, "config_1", "hex number")
-        out.config_2 = rt.hex_field(fields[6], address, 7, "config_2", "hex number")
+        out.software_date = _DATE.get(fields[3]) or rt.date_field(fields[3], address, 4, "software_date", "date ddmmyy", _DATE)
+        out.status = _HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "status", "hex number", _HEX)
+        out.config_1 = _HEX.get(fields[5]) or rt.hex_field(fields[5], address, 6, "config_1", "hex number", _HEX)
+        out.config_2 = _HEX.get(fields[6]) or rt.hex_field(fields[6], address, 7, "config_2", "hex number", _HEX)
         return out
 
     def fields(self) -> list[str]:

@@ -15,6 +15,11 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import PosMode, Status
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_LATITUDE: dict[Any, Any] = rt.known("latitude")
+_LONGITUDE: dict[Any, Any] = rt.known("longitude")
+_TIME: dict[Any, Any] = rt.known("time")
+
 
 @dataclass(slots=True)
 class Gll:
@@ -59,12 +64,12 @@ class Gll:
             raise rt.too_many(address, "GLL", 7, count)
         optional = count - 6
         out = cls(address[:-3], checksum=checksum)
-        out.lat = rt.coordinate_field(fields[0], fields[1], address, 1, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS")
-        out.lon = rt.coordinate_field(fields[2], fields[3], address, 3, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW")
-        out.time = rt.time_field(fields[4], address, 5, "time", "time hhmmss[.s]")
-        out.status = rt.enum_field(fields[5], address, 6, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
+        out.lat = _LATITUDE.get((fields[0], fields[1])) or rt.coordinate_field(fields[0], fields[1], address, 1, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
+        out.lon = _LONGITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
+        out.time = _TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "time", "time hhmmss[.s]", _TIME)
+        out.status = Status.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
         if optional >= 1:
-            out.mode = rt.enum_field(fields[6], address, 7, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
+            out.mode = PosMode.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
         return out
 
     def fields(self) -> list[str]:

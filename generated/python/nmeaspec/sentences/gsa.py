@@ -17,6 +17,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GsaFixType, GsaSelectionMode, SystemId
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DECIMAL: dict[Any, Any] = rt.known("decimal")
+_INTEGER: dict[Any, Any] = rt.known("integer")
+
 
 @dataclass(slots=True)
 class GsaPrn:
@@ -69,17 +73,17 @@ class Gsa:
         count = len(fields)
         repeats, optional = rt.split_group(address, "GSA", "prns", count, 5, 1, 12, 12, 1)
         out = cls(address[:-3], checksum=checksum)
-        out.selection_mode = rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
-        out.fix_type = rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
+        out.selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
+        out.fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
         pos = 2
         for entry in range(repeats):
-            out.prns.append(rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer"))
+            out.prns.append(_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER))
             pos += 1
-        out.pdop = rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number")
-        out.hdop = rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number")
-        out.vdop = rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number")
+        out.pdop = _DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)
+        out.hdop = _DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)
+        out.vdop = _DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)
         if optional >= 1:
-            out.system_id = rt.enum_field(fields[pos + 3], address, pos + 4, "system_id", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
+            out.system_id = SystemId.BY_CODE.get(fields[pos + 3]) or rt.enum_field(fields[pos + 3], address, pos + 4, "system_id", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
         return out
 
     def fields(self) -> list[str]:
@@ -194,15 +198,15 @@ class GsaShort:
         count = len(fields)
         repeats, optional = rt.split_group(address, "GSA", "prns", count, 5, 1, 0, 11, 0)
         out = cls(address[:-3], checksum=checksum)
-        out.selection_mode = rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
-        out.fix_type = rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
+        out.selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
+        out.fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
         pos = 2
         for entry in range(repeats):
-            out.prns.append(rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer"))
+            out.prns.append(_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER))
             pos += 1
-        out.pdop = rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number")
-        out.hdop = rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number")
-        out.vdop = rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number")
+        out.pdop = _DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)
+        out.hdop = _DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)
+        out.vdop = _DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)
         return out
 
     def fields(self) -> list[str]:

@@ -15,6 +15,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DECIMAL: dict[Any, Any] = rt.known("decimal")
+_TIME: dict[Any, Any] = rt.known("time")
+
 
 @dataclass(slots=True)
 class Gst:
@@ -63,14 +67,14 @@ class Gst:
         if count > 8:
             raise rt.too_many(address, "GST", 8, count)
         out = cls(address[:-3], checksum=checksum)
-        out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
-        out.rms = rt.decimal_field(fields[1], address, 2, "rms", "decimal number")
-        out.semi_major_std = rt.decimal_field(fields[2], address, 3, "semi_major_std", "decimal number")
-        out.semi_minor_std = rt.decimal_field(fields[3], address, 4, "semi_minor_std", "decimal number")
-        out.orientation = rt.decimal_field(fields[4], address, 5, "orientation", "decimal number")
-        out.lat_std = rt.decimal_field(fields[5], address, 6, "lat_std", "decimal number")
-        out.lon_std = rt.decimal_field(fields[6], address, 7, "lon_std", "decimal number")
-        out.alt_std = rt.decimal_field(fields[7], address, 8, "alt_std", "decimal number")
+        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
+        out.rms = _DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "rms", "decimal number", None, None, _DECIMAL)
+        out.semi_major_std = _DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "semi_major_std", "decimal number", None, None, _DECIMAL)
+        out.semi_minor_std = _DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "semi_minor_std", "decimal number", None, None, _DECIMAL)
+        out.orientation = _DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "orientation", "decimal number", None, None, _DECIMAL)
+        out.lat_std = _DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "lat_std", "decimal number", None, None, _DECIMAL)
+        out.lon_std = _DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "lon_std", "decimal number", None, None, _DECIMAL)
+        out.alt_std = _DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "alt_std", "decimal number", None, None, _DECIMAL)
         return out
 
     def fields(self) -> list[str]:

@@ -16,6 +16,14 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SignalId
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_INTEGER: dict[Any, Any] = rt.known("integer")
+_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
+_INTEGER_0_TO_360: dict[Any, Any] = rt.known("integer 0..360")
+_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
+_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
+_INTEGER_MINUS_90_TO_90: dict[Any, Any] = rt.known("integer -90..90")
+
 
 @dataclass(slots=True)
 class GsvSatellite:
@@ -70,20 +78,20 @@ class Gsv:
         count = len(fields)
         repeats, optional = rt.split_group(address, "GSV", "satellites", count, 3, 4, 0, 4, 1)
         out = cls(address[:-3], checksum=checksum)
-        out.message_count = rt.integer_field(fields[0], address, 1, "message_count", "integer of at least 1", Decimal("1"), None)
-        out.message_number = rt.integer_field(fields[1], address, 2, "message_number", "integer of at least 1", Decimal("1"), None)
-        out.satellites_in_view = rt.integer_field(fields[2], address, 3, "satellites_in_view", "integer of at least 0", Decimal("0"), None)
+        out.message_count = _INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "message_count", "integer of at least 1", 1, None, _INTEGER_1_TO)
+        out.message_number = _INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "message_number", "integer of at least 1", 1, None, _INTEGER_1_TO)
+        out.satellites_in_view = _INTEGER_0_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "satellites_in_view", "integer of at least 0", 0, None, _INTEGER_0_TO)
         pos = 3
         for entry in range(repeats):
             out.satellites.append(GsvSatellite(
-                rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].prn", "integer"),
-                rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].elevation", "integer -90..90", Decimal("-90"), Decimal("90")),
-                rt.integer_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].azimuth", "integer 0..360", Decimal("0"), Decimal("360")),
-                rt.integer_field(fields[pos + 3], address, pos + 4, f"satellites[{entry + 1}].snr", "integer 0..99", Decimal("0"), Decimal("99")),
+                _INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].prn", "integer", None, None, _INTEGER),
+                _INTEGER_MINUS_90_TO_90.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].elevation", "integer -90..90", -90, 90, _INTEGER_MINUS_90_TO_90),
+                _INTEGER_0_TO_360.get(fields[pos + 2]) or rt.integer_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].azimuth", "integer 0..360", 0, 360, _INTEGER_0_TO_360),
+                _INTEGER_0_TO_99.get(fields[pos + 3]) or rt.integer_field(fields[pos + 3], address, pos + 4, f"satellites[{entry + 1}].snr", "integer 0..99", 0, 99, _INTEGER_0_TO_99),
             ))
             pos += 4
         if optional >= 1:
-            out.signal_id = rt.enum_field(fields[pos], address, pos + 1, "signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", SignalId.BY_CODE, "alnum", 1, 1)
+            out.signal_id = SignalId.BY_CODE.get(fields[pos]) or rt.enum_field(fields[pos], address, pos + 1, "signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", SignalId.BY_CODE, "alnum", 1, 1)
         return out
 
     def fields(self) -> list[str]:

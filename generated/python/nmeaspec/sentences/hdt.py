@@ -14,6 +14,9 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DECIMAL: dict[Any, Any] = rt.known("decimal")
+
 
 @dataclass(slots=True)
 class Hdt:
@@ -50,8 +53,8 @@ class Hdt:
         if count > 2:
             raise rt.too_many(address, "HDT", 2, count)
         out = cls(address[:-3], checksum=checksum)
-        out.heading = rt.decimal_field(fields[0], address, 1, "heading", "decimal number")
-        out.heading_ref = rt.literal_field(fields[1], address, 2, "heading_ref", "T or nothing", "T")
+        out.heading = _DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heading", "decimal number", None, None, _DECIMAL)
+        out.heading_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "heading_ref", "T or nothing", "T")
         return out
 
     def fields(self) -> list[str]:

@@ -17,6 +17,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_INTEGER_0_TO_604799: dict[Any, Any] = rt.known("integer 0..604799")
+_INTEGER_0_TO_65535: dict[Any, Any] = rt.known("integer 0..65535")
+_INTEGER_0_TO_7: dict[Any, Any] = rt.known("integer 0..7")
+_INTEGER_1_TO_12: dict[Any, Any] = rt.known("integer 1..12")
+_INTEGER_MINUS_2147483648_TO_2147483647: dict[Any, Any] = rt.known("integer -2147483648..2147483647")
+
 
 @dataclass(slots=True)
 class Psrf101:
@@ -63,14 +70,14 @@ class Psrf101:
         if count > 8:
             raise rt.too_many(address, "PSRF101", 8, count)
         out = cls(checksum=checksum)
-        out.x = rt.integer_field(fields[0], address, 1, "x", "integer -2147483648..2147483647", Decimal("-2147483648"), Decimal("2147483647"))
-        out.y = rt.integer_field(fields[1], address, 2, "y", "integer -2147483648..2147483647", Decimal("-2147483648"), Decimal("2147483647"))
-        out.z = rt.integer_field(fields[2], address, 3, "z", "integer -2147483648..2147483647", Decimal("-2147483648"), Decimal("2147483647"))
-        out.clock_offset = rt.integer_field(fields[3], address, 4, "clock_offset", "integer -2147483648..2147483647", Decimal("-2147483648"), Decimal("2147483647"))
-        out.time_of_week = rt.integer_field(fields[4], address, 5, "time_of_week", "integer 0..604799", Decimal("0"), Decimal("604799"))
-        out.week = rt.integer_field(fields[5], address, 6, "week", "integer 0..65535", Decimal("0"), Decimal("65535"))
-        out.channels = rt.integer_field(fields[6], address, 7, "channels", "integer 1..12", Decimal("1"), Decimal("12"))
-        out.reset_cfg = rt.integer_field(fields[7], address, 8, "reset_cfg", "integer 0..7", Decimal("0"), Decimal("7"))
+        out.x = _INTEGER_MINUS_2147483648_TO_2147483647.get(fields[0]) or rt.integer_field(fields[0], address, 1, "x", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)
+        out.y = _INTEGER_MINUS_2147483648_TO_2147483647.get(fields[1]) or rt.integer_field(fields[1], address, 2, "y", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)
+        out.z = _INTEGER_MINUS_2147483648_TO_2147483647.get(fields[2]) or rt.integer_field(fields[2], address, 3, "z", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)
+        out.clock_offset = _INTEGER_MINUS_2147483648_TO_2147483647.get(fields[3]) or rt.integer_field(fields[3], address, 4, "clock_offset", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)
+        out.time_of_week = _INTEGER_0_TO_604799.get(fields[4]) or rt.integer_field(fields[4], address, 5, "time_of_week", "integer 0..604799", 0, 604799, _INTEGER_0_TO_604799)
+        out.week = _INTEGER_0_TO_65535.get(fields[5]) or rt.integer_field(fields[5], address, 6, "week", "integer 0..65535", 0, 65535, _INTEGER_0_TO_65535)
+        out.channels = _INTEGER_1_TO_12.get(fields[6]) or rt.integer_field(fields[6], address, 7, "channels", "integer 1..12", 1, 12, _INTEGER_1_TO_12)
+        out.reset_cfg = _INTEGER_0_TO_7.get(fields[7]) or rt.integer_field(fields[7], address, 8, "reset_cfg", "integer 0..7", 0, 7, _INTEGER_0_TO_7)
         return out
 
     def fields(self) -> list[str]:

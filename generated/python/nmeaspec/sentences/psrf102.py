@@ -19,6 +19,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SirfBaud, SirfParity
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_INTEGER_0_TO_1: dict[Any, Any] = rt.known("integer 0..1")
+_INTEGER_8_TO_8: dict[Any, Any] = rt.known("integer 8..8")
+
 
 @dataclass(slots=True)
 class Psrf102:
@@ -57,10 +61,10 @@ class Psrf102:
         if count > 4:
             raise rt.too_many(address, "PSRF102", 4, count)
         out = cls(checksum=checksum)
-        out.baud = rt.enum_field(fields[0], address, 1, "baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud.BY_CODE, "digits", 4, 5)
-        out.data_bits = rt.integer_field(fields[1], address, 2, "data_bits", "integer 8..8", Decimal("8"), Decimal("8"))
-        out.stop_bits = rt.integer_field(fields[2], address, 3, "stop_bits", "integer 0..1", Decimal("0"), Decimal("1"))
-        out.parity = rt.enum_field(fields[3], address, 4, "parity", "sirf_parity code (0 1 2)", SirfParity.BY_CODE, "digits", 1, 1)
+        out.baud = SirfBaud.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud.BY_CODE, "digits", 4, 5)
+        out.data_bits = _INTEGER_8_TO_8.get(fields[1]) or rt.integer_field(fields[1], address, 2, "data_bits", "integer 8..8", 8, 8, _INTEGER_8_TO_8)
+        out.stop_bits = _INTEGER_0_TO_1.get(fields[2]) or rt.integer_field(fields[2], address, 3, "stop_bits", "integer 0..1", 0, 1, _INTEGER_0_TO_1)
+        out.parity = SirfParity.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "parity", "sirf_parity code (0 1 2)", SirfParity.BY_CODE, "digits", 1, 1)
         return out
 
     def fields(self) -> list[str]:

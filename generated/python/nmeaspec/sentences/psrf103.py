@@ -18,6 +18,9 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SirfChecksumEnable, SirfNmeaMessage, SirfRateMode
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_INTEGER_0_TO_255: dict[Any, Any] = rt.known("integer 0..255")
+
 
 @dataclass(slots=True)
 class Psrf103:
@@ -56,10 +59,10 @@ class Psrf103:
         if count > 4:
             raise rt.too_many(address, "PSRF103", 4, count)
         out = cls(checksum=checksum)
-        out.message = rt.enum_field(fields[0], address, 1, "message", "sirf_nmea_message code (00 01 02 03 04 05)", SirfNmeaMessage.BY_CODE, "digits", 2, 2)
-        out.mode = rt.enum_field(fields[1], address, 2, "mode", "sirf_rate_mode code (00 01)", SirfRateMode.BY_CODE, "digits", 2, 2)
-        out.rate = rt.integer_field(fields[2], address, 3, "rate", "integer 0..255", Decimal("0"), Decimal("255"))
-        out.checksum_mode = rt.enum_field(fields[3], address, 4, "checksum_mode", "sirf_checksum_enable code (00 01)", SirfChecksumEnable.BY_CODE, "digits", 2, 2)
+        out.message = SirfNmeaMessage.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "message", "sirf_nmea_message code (00 01 02 03 04 05)", SirfNmeaMessage.BY_CODE, "digits", 2, 2)
+        out.mode = SirfRateMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "sirf_rate_mode code (00 01)", SirfRateMode.BY_CODE, "digits", 2, 2)
+        out.rate = _INTEGER_0_TO_255.get(fields[2]) or rt.integer_field(fields[2], address, 3, "rate", "integer 0..255", 0, 255, _INTEGER_0_TO_255)
+        out.checksum_mode = SirfChecksumEnable.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "checksum_mode", "sirf_checksum_enable code (00 01)", SirfChecksumEnable.BY_CODE, "digits", 2, 2)
         return out
 
     def fields(self) -> list[str]:

@@ -50,7 +50,7 @@ class Psrf105:
         if count > 1:
             raise rt.too_many(address, "PSRF105", 1, count)
         out = cls(checksum=checksum)
-        out.debug = rt.enum_field(fields[0], address, 1, "debug", "sirf_debug code (0 1)", SirfDebug.BY_CODE, "digits", 1, 1)
+        out.debug = SirfDebug.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "debug", "sirf_debug code (0 1)", SirfDebug.BY_CODE, "digits", 1, 1)
         return out
 
     def fields(self) -> list[str]:

@@ -50,7 +50,7 @@ class Psrf150:
         if count > 1:
             raise rt.too_many(address, "PSRF150", 1, count)
         out = cls(checksum=checksum)
-        out.ok_to_send = rt.enum_field(fields[0], address, 1, "ok_to_send", "sirf_ok_to_send code (0 1)", SirfOkToSend.BY_CODE, "digits", 1, 1)
+        out.ok_to_send = SirfOkToSend.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "ok_to_send", "sirf_ok_to_send code (0 1)", SirfOkToSend.BY_CODE, "digits", 1, 1)
         return out
 
     def fields(self) -> list[str]:

@@ -16,6 +16,9 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_INTEGER_0_TO_15: dict[Any, Any] = rt.known("integer 0..15")
+
 
 @dataclass(slots=True)
 class Pstmcold:
@@ -50,7 +53,7 @@ class Pstmcold:
         optional = count - 0
         out = cls(checksum=checksum)
         if optional >= 1:
-            out.mask = rt.integer_field(fields[0], address, 1, "mask", "integer 0..15", Decimal("0"), Decimal("15"))
+            out.mask = _INTEGER_0_TO_15.get(fields[0]) or rt.integer_field(fields[0], address, 1, "mask", "integer 0..15", 0, 15, _INTEGER_0_TO_15)
         return out
 
     def fields(self) -> list[str]:

@@ -16,6 +16,9 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_INTEGER_1000_TO_3999: dict[Any, Any] = rt.known("integer 1000..3999")
+
 
 @dataclass(slots=True)
 class Pstmgetpar:
@@ -48,7 +51,7 @@ class Pstmgetpar:
         if count > 1:
             raise rt.too_many(address, "PSTMGETPAR", 1, count)
         out = cls(checksum=checksum)
-        out.block_param = rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", Decimal("1000"), Decimal("3999"))
+        out.block_param = _INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)
         return out
 
     def fields(self) -> list[str]:

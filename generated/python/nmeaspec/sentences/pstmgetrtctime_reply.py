@@ -16,6 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TeseoRtcStatus, TeseoTimeValidity
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DATE: dict[Any, Any] = rt.known("date")
+_TIME: dict[Any, Any] = rt.known("time")
+
 
 @dataclass(slots=True)
 class PstmgetrtctimeReply:
@@ -53,10 +57,10 @@ class PstmgetrtctimeReply:
         if count > 4:
             raise rt.too_many(address, "PSTMGETRTCTIME_REPLY", 4, count)
         out = cls(checksum=checksum)
-        out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
-        out.date = rt.date_field(fields[1], address, 2, "date", "date ddmmyy")
-        out.rtc_status = rt.enum_field(fields[2], address, 3, "rtc_status", "teseo_rtc_status code (0 1 2)", TeseoRtcStatus.BY_CODE, "digits", 1, 1)
-        out.time_validity = rt.enum_field(fields[3], address, 4, "time_validity", "teseo_time_validity code (0 1 2 3 4 5 6 7 8)", TeseoTimeValidity.BY_CODE, "digits", 1, 1)
+        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
+        out.date = _DATE.get(fields[1]) or rt.date_field(fields[1], address, 2, "date", "date ddmmyy", _DATE)
+        out.rtc_status = TeseoRtcStatus.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "rtc_status", "teseo_rtc_status code (0 1 2)", TeseoRtcStatus.BY_CODE, "digits", 1, 1)
+        out.time_validity = TeseoTimeValidity.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "time_validity", "teseo_time_validity code (0 1 2 3 4 5 6 7 8)", TeseoTimeValidity.BY_CODE, "digits", 1, 1)
         return out
 
     def fields(self) -> list[str]:

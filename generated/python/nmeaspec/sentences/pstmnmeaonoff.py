@@ -51,7 +51,7 @@ class Pstmnmeaonoff:
         optional = count - 0
         out = cls(checksum=checksum)
         if optional >= 1:
-            out.on_off = rt.enum_field(fields[0], address, 1, "on_off", "teseo_nmea_on_off code (0 1)", TeseoNmeaOnOff.BY_CODE, "digits", 1, 1)
+            out.on_off = TeseoNmeaOnOff.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "on_off", "teseo_nmea_on_off code (0 1)", TeseoNmeaOnOff.BY_CODE, "digits", 1, 1)
         return out
 
     def fields(self) -> list[str]:

@@ -17,6 +17,11 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DECIMAL_0_TO_99: dict[Any, Any] = rt.known("decimal 0..99")
+_INTEGER_1000_TO_3999: dict[Any, Any] = rt.known("integer 1000..3999")
+_INTEGER_1400_TO_3403: dict[Any, Any] = rt.known("integer 1400..3403")
+
 
 @dataclass(slots=True)
 class Pstmset:
@@ -50,7 +55,7 @@ class Pstmset:
         if count > 2:
             raise rt.too_many(address, "PSTMSET", 2, count)
         out = cls(checksum=checksum)
-        out.block_param = rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", Decimal("1000"), Decimal("3999"))
+        out.block_param = _INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)
         out.value = rt.text_field(fields[1], address, 2, "value", "text of at most 80 characters", 80)
         return out
 
@@ -132,11 +137,11 @@ class PstmsetDop:
         if count > 5:
             raise rt.too_many(address, "PSTMSET", 5, count)
         out = cls(checksum=checksum)
-        out.block_param = rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", Decimal("1400"), Decimal("3403"))
-        out.pdop = rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", Decimal("0"), Decimal("99"))
-        out.vdop = rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", Decimal("0"), Decimal("99"))
-        out.hdop = rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", Decimal("0"), Decimal("99"))
-        out.gdop = rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", Decimal("0"), Decimal("99"))
+        out.block_param = _INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)
+        out.pdop = _DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
+        out.vdop = _DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
+        out.hdop = _DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
+        out.gdop = _DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
         return out
 
     def fields(self) -> list[str]:

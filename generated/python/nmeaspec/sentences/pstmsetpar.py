@@ -20,6 +20,11 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TeseoSetparMode
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DECIMAL_0_TO_99: dict[Any, Any] = rt.known("decimal 0..99")
+_INTEGER_1000_TO_3999: dict[Any, Any] = rt.known("integer 1000..3999")
+_INTEGER_1400_TO_3403: dict[Any, Any] = rt.known("integer 1400..3403")
+
 
 @dataclass(slots=True)
 class Pstmsetpar:
@@ -57,10 +62,10 @@ class Pstmsetpar:
             raise rt.too_many(address, "PSTMSETPAR", 3, count)
         optional = count - 2
         out = cls(checksum=checksum)
-        out.block_param = rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", Decimal("1000"), Decimal("3999"))
+        out.block_param = _INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)
         out.value = rt.text_field(fields[1], address, 2, "value", "text of at most 80 characters", 80)
         if optional >= 1:
-            out.mode = rt.enum_field(fields[2], address, 3, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
+            out.mode = TeseoSetparMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
         return out
 
     def fields(self) -> list[str]:
@@ -152,13 +157,13 @@ class PstmsetparDop:
             raise rt.too_many(address, "PSTMSETPAR", 6, count)
         optional = count - 5
         out = cls(checksum=checksum)
-        out.block_param = rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", Decimal("1400"), Decimal("3403"))
-        out.pdop = rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", Decimal("0"), Decimal("99"))
-        out.vdop = rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", Decimal("0"), Decimal("99"))
-        out.hdop = rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", Decimal("0"), Decimal("99"))
-        out.gdop = rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", Decimal("0"), Decimal("99"))
+        out.block_param = _INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)
+        out.pdop = _DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
+        out.vdop = _DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
+        out.hdop = _DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
+        out.gdop = _DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
         if optional >= 1:
-            out.mode = rt.enum_field(fields[5], address, 6, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
+            out.mode = TeseoSetparMode.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
         return out
 
     def fields(self) -> list[str]:

@@ -16,6 +16,14 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import NavStatus, PosMode, RmcMagVarDir, Status
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_DATE: dict[Any, Any] = rt.known("date")
+_DECIMAL: dict[Any, Any] = rt.known("decimal")
+_DECIMAL_0_TO_359_POINT_9: dict[Any, Any] = rt.known("decimal 0..359.9")
+_LATITUDE: dict[Any, Any] = rt.known("latitude")
+_LONGITUDE: dict[Any, Any] = rt.known("longitude")
+_TIME: dict[Any, Any] = rt.known("time")
+
 
 @dataclass(slots=True)
 class Rmc:
@@ -72,19 +80,19 @@ class Rmc:
             raise rt.too_many(address, "RMC", 13, count)
         optional = count - 11
         out = cls(address[:-3], checksum=checksum)
-        out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
-        out.status = rt.enum_field(fields[1], address, 2, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        out.lat = rt.coordinate_field(fields[2], fields[3], address, 3, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS")
-        out.lon = rt.coordinate_field(fields[4], fields[5], address, 5, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW")
-        out.speed = rt.decimal_field(fields[6], address, 7, "speed", "decimal number")
-        out.course = rt.decimal_field(fields[7], address, 8, "course", "decimal number 0..359.9", Decimal("0"), Decimal("359.9"))
-        out.date = rt.date_field(fields[8], address, 9, "date", "date ddmmyy")
-        out.mag_var = rt.decimal_field(fields[9], address, 10, "mag_var", "decimal number")
-        out.mag_var_dir = rt.enum_field(fields[10], address, 11, "mag_var_dir", "rmc_mag_var_dir code (E W)", RmcMagVarDir.BY_CODE, "letters", 1, 1)
+        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
+        out.status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
+        out.lat = _LATITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
+        out.lon = _LONGITUDE.get((fields[4], fields[5])) or rt.coordinate_field(fields[4], fields[5], address, 5, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
+        out.speed = _DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed", "decimal number", None, None, _DECIMAL)
+        out.course = _DECIMAL_0_TO_359_POINT_9.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "course", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)
+        out.date = _DATE.get(fields[8]) or rt.date_field(fields[8], address, 9, "date", "date ddmmyy", _DATE)
+        out.mag_var = _DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "mag_var", "decimal number", None, None, _DECIMAL)
+        out.mag_var_dir = RmcMagVarDir.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "mag_var_dir", "rmc_mag_var_dir code (E W)", RmcMagVarDir.BY_CODE, "letters", 1, 1)
         if optional >= 1:
-            out.mode = rt.enum_field(fields[11], address, 12, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
+            out.mode = PosMode.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
         if optional >= 2:
-            out.nav_status = rt.enum_field(fields[12], address, 13, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
+            out.nav_status = NavStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
         return out
 
     def fields(self) -> list[str]:

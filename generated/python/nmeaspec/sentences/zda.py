@@ -14,6 +14,14 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
+# Values already read, by wire text, one table per field rule (see rt.known).
+_INTEGER: dict[Any, Any] = rt.known("integer")
+_INTEGER_0_TO_59: dict[Any, Any] = rt.known("integer 0..59")
+_INTEGER_1_TO_12: dict[Any, Any] = rt.known("integer 1..12")
+_INTEGER_1_TO_31: dict[Any, Any] = rt.known("integer 1..31")
+_INTEGER_MINUS_13_TO_13: dict[Any, Any] = rt.known("integer -13..13")
+_TIME: dict[Any, Any] = rt.known("time")
+
 
 @dataclass(slots=True)
 class Zda:
@@ -59,12 +67,12 @@ class Zda:
         if count > 6:
             raise rt.too_many(address, "ZDA", 6, count)
         out = cls(address[:-3], checksum=checksum)
-        out.time = rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]")
-        out.day = rt.integer_field(fields[1], address, 2, "day", "integer 1..31", Decimal("1"), Decimal("31"))
-        out.month = rt.integer_field(fields[2], address, 3, "month", "integer 1..12", Decimal("1"), Decimal("12"))
-        out.year = rt.integer_field(fields[3], address, 4, "year", "integer")
-        out.local_zone_hours = rt.integer_field(fields[4], address, 5, "local_zone_hours", "integer -13..13", Decimal("-13"), Decimal("13"))
-        out.local_zone_minutes = rt.integer_field(fields[5], address, 6, "local_zone_minutes", "integer 0..59", Decimal("0"), Decimal("59"))
+        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
+        out.day = _INTEGER_1_TO_31.get(fields[1]) or rt.integer_field(fields[1], address, 2, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)
+        out.month = _INTEGER_1_TO_12.get(fields[2]) or rt.integer_field(fields[2], address, 3, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)
+        out.year = _INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "year", "integer", None, None, _INTEGER)
+        out.local_zone_hours = _INTEGER_MINUS_13_TO_13.get(fields[4]) or rt.integer_field(fields[4], address, 5, "local_zone_hours", "integer -13..13", -13, 13, _INTEGER_MINUS_13_TO_13)
+        out.local_zone_minutes = _INTEGER_0_TO_59.get(fields[5]) or rt.integer_field(fields[5], address, 6, "local_zone_minutes", "integer 0..59", 0, 59, _INTEGER_0_TO_59)
         return out
 
     def fields(self) -> list[str]:
