@@ -5,7 +5,8 @@
 
 use super::error::{Error, Message, Name};
 use super::types::{
-    upper_eq, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Texts, Time,
+    upper_eq, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Sign, Texts, Time,
+    MAX_DIGITS,
 };
 
 /// Longest line (without its line ending) the parser accepts.
@@ -603,7 +604,7 @@ impl<'a> Reader<'a> {
         expected: &'static str,
         range: Range,
     ) -> Result<Option<Number>, Error<'a>> {
-        self.read(id, expected, |t| Number::parse(t, true).filter(|n| range.contains(*n)))
+        self.number(id, expected, range, true)
     }
 
     /// A decimal number `[+-]digits[.digits]` within `range`.
@@ -614,7 +615,72 @@ impl<'a> Reader<'a> {
         expected: &'static str,
         range: Range,
     ) -> Result<Option<Number>, Error<'a>> {
-        self.read(id, expected, |t| Number::parse(t, false).filter(|n| range.contains(*n)))
+        self.number(id, expected, range, false)
+    }
+
+    /// An integer or decimal field: the usual unsigned field in range is read in one pass over
+    /// its bytes, up to the separator; anything else (a sign, a field out of range or not a
+    /// number, a blanked field) is read again from its start by the general path.
+    #[inline(always)]
+    fn number(
+        &mut self,
+        id: &'static str,
+        expected: &'static str,
+        range: Range,
+        integer: bool,
+    ) -> Result<Option<Number>, Error<'a>> {
+        if self.blanks.is_empty() {
+            match self.unsigned_number(integer) {
+                Some((0, None)) => {
+                    self.skip(0);
+                    return Ok(None);
+                }
+                Some((end, Some(number))) if range.contains(number) => {
+                    self.skip(end);
+                    return Ok(Some(number));
+                }
+                _ => {}
+            }
+        }
+        self.read(id, expected, |t| Number::parse(t, integer).filter(|n| range.contains(*n)))
+    }
+
+    /// The next field as `digits[.digits]` (no point for an `integer`) without taking it: where
+    /// it ends and its value (`None` when empty); `None` when it is anything else.
+    #[inline(always)]
+    fn unsigned_number(&self, integer: bool) -> Option<(usize, Option<Number>)> {
+        let bytes = self.rest.as_bytes();
+        let (mut digits, mut end, mut point_at) = (0i64, 0, None);
+        while let Some(&b) = bytes.get(end) {
+            let digit = b.wrapping_sub(b'0');
+            if digit <= 9 {
+                digits = digits.wrapping_mul(10).wrapping_add(i64::from(digit));
+            } else if b == self.separator {
+                break;
+            } else if b == b'.' && point_at.is_none() && !integer {
+                point_at = Some(end);
+            } else {
+                return None;
+            }
+            end += 1;
+        }
+        if end == 0 {
+            return Some((0, None));
+        }
+        let count = end - usize::from(point_at.is_some());
+        if count == 0 || count > MAX_DIGITS {
+            return None;
+        }
+        let whole = point_at.unwrap_or(end);
+        let (scale, width) = ((count - whole) as u8, whole as u8);
+        Some((end, Some(Number { digits, scale, width, sign: Sign::Implicit, point: point_at.is_some() })))
+    }
+
+    /// Takes the next field, `end` bytes long.
+    #[inline(always)]
+    fn skip(&mut self, end: usize) {
+        self.index += 1;
+        self.rest = self.rest.get(end + 1..).unwrap_or("");
     }
 
     /// Hex digits.
