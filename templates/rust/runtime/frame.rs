@@ -200,7 +200,8 @@ pub fn is_standard_address(start: &str, address: &str) -> bool {
 }
 
 /// What one pass over the bytes after the start finds: whether all are printable ASCII, their
-/// XOR, and how many commas and stars there are. Eight bytes at a time (SWAR).
+/// XOR, and how many commas and stars there are. Sixteen bytes at a time, each into its own lane
+/// of the counters, a loop the compiler turns into vector instructions.
 struct Scan {
     printable: bool,
     sum: u8,
@@ -208,66 +209,61 @@ struct Scan {
     stars: usize,
 }
 
+/// Per-lane accumulators of [`Scan`].
+#[derive(Default)]
+struct Lanes {
+    unprintable: [u8; Lanes::WIDTH],
+    sum: [u8; Lanes::WIDTH],
+    commas: [u8; Lanes::WIDTH],
+    stars: [u8; Lanes::WIDTH],
+}
+
+impl Lanes {
+    const WIDTH: usize = 16;
+
+    /// Adds one chunk, byte `i` to lane `i`: at most [`MAX_LINE`] / 16 = 64 per lane.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // Indexing the lanes side by side is what vectorizes.
+    fn add(&mut self, chunk: &[u8; Self::WIDTH]) {
+        for i in 0..Self::WIDTH {
+            let b = chunk[i];
+            self.unprintable[i] |= u8::from(!(0x20..=0x7e).contains(&b));
+            self.sum[i] ^= b;
+            self.commas[i] += u8::from(b == b',');
+            self.stars[i] += u8::from(b == b'*');
+        }
+    }
+}
+
 impl Scan {
-    const ONES: u64 = 0x0101_0101_0101_0101;
-    const HIGH: u64 = 0x8080_8080_8080_8080;
-    const LOW7: u64 = 0x7f7f_7f7f_7f7f_7f7f;
-
-    /// The high bit of each byte of `v` that is zero (exact, no false positives).
-    fn zero_bytes(v: u64) -> u64 {
-        !(((v & Self::LOW7) + Self::LOW7) | v | Self::LOW7)
-    }
-
-    /// The high bit of each byte of `v` that equals `byte`.
-    fn bytes_equal(v: u64, byte: u8) -> u64 {
-        Self::zero_bytes(v ^ (Self::ONES * u64::from(byte)))
-    }
-
-    /// The high bit of each byte of `v` outside 0x20..=0x7e.
-    fn unprintable(v: u64) -> u64 {
-        let at_least_space = ((v & Self::LOW7) + Self::ONES * 0x60) & Self::HIGH;
-        (v & Self::HIGH) | (!at_least_space & Self::HIGH) | Self::bytes_equal(v, 0x7f)
-    }
-
-    /// The sum of the byte lanes of `lanes` (each at most 255, all together less than 2^16).
-    fn lane_sum(lanes: u64) -> usize {
-        const PAIRS: u64 = 0x00ff_00ff_00ff_00ff;
-        let pairs = (lanes & PAIRS) + ((lanes >> 8) & PAIRS);
-        (pairs.wrapping_mul(0x0001_0001_0001_0001) >> 48) as usize
-    }
-
-    /// Scans at most [`MAX_LINE`] bytes: commas and stars are counted per byte lane (no
-    /// popcount), at most 128 per lane.
+    /// Scans at most [`MAX_LINE`] bytes.
     fn of(bytes: &[u8]) -> Self {
         debug_assert!(bytes.len() <= MAX_LINE);
-        let (mut bad, mut sum, mut commas, mut stars) = (0u64, 0u64, 0u64, 0u64);
-        let mut add = |v: u64, valid: u64| {
-            bad |= Self::unprintable(v) & valid;
-            sum ^= v;
-            commas += Self::bytes_equal(v, b',') >> 7;
-            stars += Self::bytes_equal(v, b'*') >> 7;
-        };
-        let mut words = bytes.chunks_exact(8);
-        for word in &mut words {
-            let mut le = [0u8; 8];
-            le.copy_from_slice(word);
-            add(u64::from_le_bytes(le), u64::MAX);
+        let mut lanes = Lanes::default();
+        let mut chunks = bytes.chunks_exact(Lanes::WIDTH);
+        for chunk in &mut chunks {
+            let mut block = [0u8; Lanes::WIDTH];
+            block.copy_from_slice(chunk);
+            lanes.add(&block);
         }
-        // The last bytes, padded with zeros: they change neither the sum nor the counts, and
-        // their lanes are left out of the printable check.
-        let rest = words.remainder();
+        // The last bytes, padded with spaces: printable, neither comma nor star, and each pair
+        // of them leaves the sum unchanged.
+        let rest = chunks.remainder();
+        let mut sum = 0;
         if !rest.is_empty() {
-            let mut le = [0u8; 8];
-            for (lane, &b) in le.iter_mut().zip(rest) {
-                *lane = b;
+            let mut block = [b' '; Lanes::WIDTH];
+            block[..rest.len()].copy_from_slice(rest);
+            lanes.add(&block);
+            if (Lanes::WIDTH - rest.len()) % 2 == 1 {
+                sum = b' ';
             }
-            add(u64::from_le_bytes(le), u64::MAX >> (64 - 8 * rest.len()));
         }
+        let total = |lanes: &[u8; Lanes::WIDTH]| lanes.iter().map(|&n| usize::from(n)).sum();
         Self {
-            printable: bad == 0,
-            sum: sum.to_le_bytes().iter().fold(0u8, |x, b| x ^ b),
-            commas: Self::lane_sum(commas),
-            stars: Self::lane_sum(stars),
+            printable: lanes.unprintable.iter().all(|&bad| bad == 0),
+            sum: lanes.sum.iter().fold(sum, |x, b| x ^ b),
+            commas: total(&lanes.commas),
+            stars: total(&lanes.stars),
         }
     }
 }
@@ -524,6 +520,24 @@ impl<'a> Reader<'a> {
         });
         (self.group, self.entry) = ("", 0);
         entries
+    }
+
+    /// [`Reader::group`] into `entries` in place (a layout's group is read without a copy).
+    #[inline(always)]
+    pub fn group_into<T: Copy + Default, const N: usize>(
+        &mut self,
+        entries: &mut Group<T, N>,
+        id: &'static str,
+        count: usize,
+        mut read: impl FnMut(&mut Self) -> Result<T, Error<'a>>,
+    ) -> Result<(), Error<'a>> {
+        self.group = id;
+        let filled = entries.fill(count, |entry| {
+            self.entry = entry;
+            read(self)
+        });
+        (self.group, self.entry) = ("", 0);
+        filled
     }
 
     /// Reads `count` values of the repeated group `group` of one text field `id` (each at most

@@ -918,6 +918,18 @@ impl<T: Copy + Default, const N: usize> Group<T, N> {
         Ok(group)
     }
 
+    /// Reads `count` entries (at most `N`) with `read` into this group, emptied first: each
+    /// entry is written in its slot, the group is not moved.
+    #[inline(always)]
+    pub fn fill<E>(&mut self, count: usize, mut read: impl FnMut(usize) -> Result<T, E>) -> Result<(), E> {
+        self.len = 0;
+        for (i, slot) in self.items.iter_mut().take(count).enumerate() {
+            *slot = read(i + 1)?;
+            self.len = i + 1;
+        }
+        Ok(())
+    }
+
     /// Appends an entry; gives it back when the group is full.
     pub fn push(&mut self, item: T) -> Result<(), T> {
         match self.items.get_mut(self.len) {
