@@ -258,13 +258,27 @@ impl Scan {
                 sum = b' ';
             }
         }
-        let total = |lanes: &[u8; Lanes::WIDTH]| lanes.iter().map(|&n| usize::from(n)).sum();
-        Self {
-            printable: lanes.unprintable.iter().all(|&bad| bad == 0),
-            sum: lanes.sum.iter().fold(sum, |x, b| x ^ b),
-            commas: total(&lanes.commas),
-            stars: total(&lanes.stars),
+        // The lanes folded as one 128-bit word each rather than byte by byte.
+        let mut xor = u128::from_le_bytes(lanes.sum);
+        for shift in [64, 32, 16, 8] {
+            xor ^= xor >> shift;
         }
+        Self {
+            printable: u128::from_le_bytes(lanes.unprintable) == 0,
+            sum: sum ^ xor as u8,
+            commas: Self::lane_sum(lanes.commas),
+            stars: Self::lane_sum(lanes.stars),
+        }
+    }
+
+    /// The sum of 16 counters of at most 64 each.
+    fn lane_sum(lanes: [u8; Lanes::WIDTH]) -> usize {
+        const PAIRS: u128 = 0x00ff_00ff_00ff_00ff_00ff_00ff_00ff_00ff;
+        const ONES: u128 = 0x0001_0001_0001_0001_0001_0001_0001_0001;
+        let v = u128::from_le_bytes(lanes);
+        // Byte pairs summed into 16-bit lanes, then every 16-bit lane into the top one.
+        let pairs = (v & PAIRS) + ((v >> 8) & PAIRS);
+        (pairs.wrapping_mul(ONES) >> 112) as usize
     }
 }
 
@@ -656,6 +670,19 @@ impl<'a> Reader<'a> {
                 _ => {}
             }
         }
+        self.any_number(id, expected, range, integer)
+    }
+
+    /// [`Reader::number`] for a field its fast path leaves: kept out of line.
+    #[cold]
+    #[inline(never)]
+    fn any_number(
+        &mut self,
+        id: &'static str,
+        expected: &'static str,
+        range: Range,
+        integer: bool,
+    ) -> Result<Option<Number>, Error<'a>> {
         self.read(id, expected, |t| Number::parse(t, integer).filter(|n| range.contains(*n)))
     }
 
