@@ -209,23 +209,15 @@ def fmt_call(indent: int, prefix: str, callee: str, args: list[str], suffix: str
 
 
 def fmt_group_read(indent: int, target: str, group: str, callee: str, args: list[str]) -> list[str]:
-    """`out.target = f.group(group, repeats, |f| callee(args))?;` as rustfmt writes it: on one
-    line, else the call on the next line, else the closure as a block (after `=` or on the next
-    line)."""
+    """`f.group_into(&mut out.target, group, repeats, |f| callee(args))?;` (the group is read in
+    place) as rustfmt writes it: on one line, else one argument per line, the closure as a block
+    when it does not fit either."""
     pad = " " * indent
     body = f"{callee}({', '.join(args)})"
-    call = f"f.group({group}, repeats, |f| {body})"
-    if len(f"{pad}out.{target} = {call}?;") <= WIDTH - 2:
-        return [f"{pad}out.{target} = {call}?;"]
-    if len(f"{pad}    {call}?;") <= WIDTH:
-        return [f"{pad}out.{target} =", f"{pad}    {call}?;"]
-    head = f"f.group({group}, repeats, |f| {{"
-    if len(f"{pad}out.{target} = {head}") <= WIDTH - 5:
-        return [f"{pad}out.{target} = {head}", *fmt_call(indent + 4, "", callee, args, "", False), f"{pad}}})?;"]
-    if len(f"{pad}    {head}") <= WIDTH - 4:
-        return [f"{pad}out.{target} =", f"{pad}    {head}", *fmt_call(indent + 8, "", callee, args, "", False),
-                f"{pad}    }})?;"]
-    return [f"{pad}out.{target} = f.group(", f"{pad}    {group},", f"{pad}    repeats,",
+    lines = fmt_call(indent, "", "f.group_into", [f"&mut out.{target}", group, "repeats", f"|f| {body}"], "?;", False)
+    if all(len(line) <= WIDTH for line in lines):
+        return lines
+    return [f"{pad}f.group_into(", f"{pad}    &mut out.{target},", f"{pad}    {group},", f"{pad}    repeats,",
             *fmt_call(indent + 4, "|f| ", callee, args, ",", False), f"{pad})?;"]
 
 
@@ -511,8 +503,8 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 entry_type = entry + ("<'a>" if lifetime else "")
                 entries.append({"name": entry, "group": g, "fields": fields, "lifetime": lifetime,
                                 "type": entry_type, "read": entry_read(fields)})
-                read = fmt_call(8, f"out.{ident(g.id)} = ", "f.group", [rust_str(g.id), "repeats", f"{entry}::read"],
-                                "?;", True)
+                read = fmt_call(8, "", "f.group_into",
+                                [f"&mut out.{ident(g.id)}", rust_str(g.id), "repeats", f"{entry}::read"], "?;", False)
                 items.append({"kind": "entries", "group": g, "ident": ident(g.id), "entry": entry, "read": read,
                               "optional": None, "lifetime": lifetime,
                               "type": f"Group<{entry_type}, {g.max}>",

@@ -5,7 +5,8 @@
 
 use super::error::{Error, Message, Name};
 use super::types::{
-    upper_eq, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Texts, Time,
+    upper_eq, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Sign, Texts, Time,
+    MAX_DIGITS,
 };
 
 /// Longest line (without its line ending) the parser accepts.
@@ -199,7 +200,8 @@ pub fn is_standard_address(start: &str, address: &str) -> bool {
 }
 
 /// What one pass over the bytes after the start finds: whether all are printable ASCII, their
-/// XOR, and how many commas and stars there are. Eight bytes at a time (SWAR).
+/// XOR, and how many commas and stars there are. Sixteen bytes at a time, each into its own lane
+/// of the counters, a loop the compiler turns into vector instructions.
 struct Scan {
     printable: bool,
     sum: u8,
@@ -207,67 +209,76 @@ struct Scan {
     stars: usize,
 }
 
+/// Per-lane accumulators of [`Scan`].
+#[derive(Default)]
+struct Lanes {
+    unprintable: [u8; Lanes::WIDTH],
+    sum: [u8; Lanes::WIDTH],
+    commas: [u8; Lanes::WIDTH],
+    stars: [u8; Lanes::WIDTH],
+}
+
+impl Lanes {
+    const WIDTH: usize = 16;
+
+    /// Adds one chunk, byte `i` to lane `i`: at most [`MAX_LINE`] / 16 = 64 per lane.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // Indexing the lanes side by side is what vectorizes.
+    fn add(&mut self, chunk: &[u8; Self::WIDTH]) {
+        for i in 0..Self::WIDTH {
+            let b = chunk[i];
+            self.unprintable[i] |= u8::from(!(0x20..=0x7e).contains(&b));
+            self.sum[i] ^= b;
+            self.commas[i] += u8::from(b == b',');
+            self.stars[i] += u8::from(b == b'*');
+        }
+    }
+}
+
 impl Scan {
-    const ONES: u64 = 0x0101_0101_0101_0101;
-    const HIGH: u64 = 0x8080_8080_8080_8080;
-    const LOW7: u64 = 0x7f7f_7f7f_7f7f_7f7f;
-
-    /// The high bit of each byte of `v` that is zero (exact, no false positives).
-    fn zero_bytes(v: u64) -> u64 {
-        !(((v & Self::LOW7) + Self::LOW7) | v | Self::LOW7)
-    }
-
-    /// The high bit of each byte of `v` that equals `byte`.
-    fn bytes_equal(v: u64, byte: u8) -> u64 {
-        Self::zero_bytes(v ^ (Self::ONES * u64::from(byte)))
-    }
-
-    /// The high bit of each byte of `v` outside 0x20..=0x7e.
-    fn unprintable(v: u64) -> u64 {
-        let at_least_space = ((v & Self::LOW7) + Self::ONES * 0x60) & Self::HIGH;
-        (v & Self::HIGH) | (!at_least_space & Self::HIGH) | Self::bytes_equal(v, 0x7f)
-    }
-
-    /// The sum of the byte lanes of `lanes` (each at most 255, all together less than 2^16).
-    fn lane_sum(lanes: u64) -> usize {
-        const PAIRS: u64 = 0x00ff_00ff_00ff_00ff;
-        let pairs = (lanes & PAIRS) + ((lanes >> 8) & PAIRS);
-        (pairs.wrapping_mul(0x0001_0001_0001_0001) >> 48) as usize
-    }
-
-    /// Scans at most [`MAX_LINE`] bytes: commas and stars are counted per byte lane (no
-    /// popcount), at most 128 per lane.
+    /// Scans at most [`MAX_LINE`] bytes.
     fn of(bytes: &[u8]) -> Self {
         debug_assert!(bytes.len() <= MAX_LINE);
-        let (mut bad, mut sum, mut commas, mut stars) = (0u64, 0u64, 0u64, 0u64);
-        let mut add = |v: u64, valid: u64| {
-            bad |= Self::unprintable(v) & valid;
-            sum ^= v;
-            commas += Self::bytes_equal(v, b',') >> 7;
-            stars += Self::bytes_equal(v, b'*') >> 7;
-        };
-        let mut words = bytes.chunks_exact(8);
-        for word in &mut words {
-            let mut le = [0u8; 8];
-            le.copy_from_slice(word);
-            add(u64::from_le_bytes(le), u64::MAX);
+        let mut lanes = Lanes::default();
+        let mut chunks = bytes.chunks_exact(Lanes::WIDTH);
+        for chunk in &mut chunks {
+            let mut block = [0u8; Lanes::WIDTH];
+            block.copy_from_slice(chunk);
+            lanes.add(&block);
         }
-        // The last bytes, padded with zeros: they change neither the sum nor the counts, and
-        // their lanes are left out of the printable check.
-        let rest = words.remainder();
+        // The last bytes, padded with spaces: printable, neither comma nor star, and each pair
+        // of them leaves the sum unchanged.
+        let rest = chunks.remainder();
+        let mut sum = 0;
         if !rest.is_empty() {
-            let mut le = [0u8; 8];
-            for (lane, &b) in le.iter_mut().zip(rest) {
-                *lane = b;
+            let mut block = [b' '; Lanes::WIDTH];
+            block[..rest.len()].copy_from_slice(rest);
+            lanes.add(&block);
+            if (Lanes::WIDTH - rest.len()) % 2 == 1 {
+                sum = b' ';
             }
-            add(u64::from_le_bytes(le), u64::MAX >> (64 - 8 * rest.len()));
+        }
+        // The lanes folded as one 128-bit word each rather than byte by byte.
+        let mut xor = u128::from_le_bytes(lanes.sum);
+        for shift in [64, 32, 16, 8] {
+            xor ^= xor >> shift;
         }
         Self {
-            printable: bad == 0,
-            sum: sum.to_le_bytes().iter().fold(0u8, |x, b| x ^ b),
-            commas: Self::lane_sum(commas),
-            stars: Self::lane_sum(stars),
+            printable: u128::from_le_bytes(lanes.unprintable) == 0,
+            sum: sum ^ xor as u8,
+            commas: Self::lane_sum(lanes.commas),
+            stars: Self::lane_sum(lanes.stars),
         }
+    }
+
+    /// The sum of 16 counters of at most 64 each.
+    fn lane_sum(lanes: [u8; Lanes::WIDTH]) -> usize {
+        const PAIRS: u128 = 0x00ff_00ff_00ff_00ff_00ff_00ff_00ff_00ff;
+        const ONES: u128 = 0x0001_0001_0001_0001_0001_0001_0001_0001;
+        let v = u128::from_le_bytes(lanes);
+        // Byte pairs summed into 16-bit lanes, then every 16-bit lane into the top one.
+        let pairs = (v & PAIRS) + ((v >> 8) & PAIRS);
+        (pairs.wrapping_mul(ONES) >> 112) as usize
     }
 }
 
@@ -525,6 +536,24 @@ impl<'a> Reader<'a> {
         entries
     }
 
+    /// [`Reader::group`] into `entries` in place (a layout's group is read without a copy).
+    #[inline(always)]
+    pub fn group_into<T: Copy + Default, const N: usize>(
+        &mut self,
+        entries: &mut Group<T, N>,
+        id: &'static str,
+        count: usize,
+        mut read: impl FnMut(&mut Self) -> Result<T, Error<'a>>,
+    ) -> Result<(), Error<'a>> {
+        self.group = id;
+        let filled = entries.fill(count, |entry| {
+            self.entry = entry;
+            read(self)
+        });
+        (self.group, self.entry) = ("", 0);
+        filled
+    }
+
     /// Reads `count` values of the repeated group `group` of one text field `id` (each at most
     /// `max_length`), kept as their wire text.
     pub fn texts(
@@ -603,7 +632,7 @@ impl<'a> Reader<'a> {
         expected: &'static str,
         range: Range,
     ) -> Result<Option<Number>, Error<'a>> {
-        self.read(id, expected, |t| Number::parse(t, true).filter(|n| range.contains(*n)))
+        self.number(id, expected, range, true)
     }
 
     /// A decimal number `[+-]digits[.digits]` within `range`.
@@ -614,7 +643,85 @@ impl<'a> Reader<'a> {
         expected: &'static str,
         range: Range,
     ) -> Result<Option<Number>, Error<'a>> {
-        self.read(id, expected, |t| Number::parse(t, false).filter(|n| range.contains(*n)))
+        self.number(id, expected, range, false)
+    }
+
+    /// An integer or decimal field: the usual unsigned field in range is read in one pass over
+    /// its bytes, up to the separator; anything else (a sign, a field out of range or not a
+    /// number, a blanked field) is read again from its start by the general path.
+    #[inline(always)]
+    fn number(
+        &mut self,
+        id: &'static str,
+        expected: &'static str,
+        range: Range,
+        integer: bool,
+    ) -> Result<Option<Number>, Error<'a>> {
+        if self.blanks.is_empty() {
+            match self.unsigned_number(integer) {
+                Some((0, None)) => {
+                    self.skip(0);
+                    return Ok(None);
+                }
+                Some((end, Some(number))) if range.contains(number) => {
+                    self.skip(end);
+                    return Ok(Some(number));
+                }
+                _ => {}
+            }
+        }
+        self.any_number(id, expected, range, integer)
+    }
+
+    /// [`Reader::number`] for a field its fast path leaves: kept out of line.
+    #[cold]
+    #[inline(never)]
+    fn any_number(
+        &mut self,
+        id: &'static str,
+        expected: &'static str,
+        range: Range,
+        integer: bool,
+    ) -> Result<Option<Number>, Error<'a>> {
+        self.read(id, expected, |t| Number::parse(t, integer).filter(|n| range.contains(*n)))
+    }
+
+    /// The next field as `digits[.digits]` (no point for an `integer`) without taking it: where
+    /// it ends and its value (`None` when empty); `None` when it is anything else.
+    #[inline(always)]
+    fn unsigned_number(&self, integer: bool) -> Option<(usize, Option<Number>)> {
+        let bytes = self.rest.as_bytes();
+        let (mut digits, mut end, mut point_at) = (0i64, 0, None);
+        while let Some(&b) = bytes.get(end) {
+            let digit = b.wrapping_sub(b'0');
+            if digit <= 9 {
+                digits = digits.wrapping_mul(10).wrapping_add(i64::from(digit));
+            } else if b == self.separator {
+                break;
+            } else if b == b'.' && point_at.is_none() && !integer {
+                point_at = Some(end);
+            } else {
+                return None;
+            }
+            end += 1;
+        }
+        if end == 0 {
+            return Some((0, None));
+        }
+        let count = end - usize::from(point_at.is_some());
+        if count == 0 || count > MAX_DIGITS {
+            return None;
+        }
+        let whole = point_at.unwrap_or(end);
+        let (scale, width) = ((count - whole) as u8, whole as u8);
+        Some((end, Some(Number { digits, scale, width, sign: Sign::Implicit, point: point_at.is_some() })))
+    }
+
+    /// Takes the next field, `end` bytes long.
+    #[inline(always)]
+    fn skip(&mut self, end: usize) {
+        self.index += 1;
+        self.rest = self.rest.get(end + 1..).unwrap_or("");
     }
 
     /// Hex digits.

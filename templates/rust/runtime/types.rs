@@ -313,7 +313,7 @@ impl Bound {
         Self { digits: value, scale: 0 }
     }
 
-    #[inline]
+    #[inline(always)]
     fn cmp_number(self, number: Number) -> Ordering {
         let value = number.signed_digits();
         if self.scale == number.scale {
@@ -355,7 +355,7 @@ impl Range {
     }
 
     /// Whether `number` lies in the range.
-    #[inline]
+    #[inline(always)]
     pub fn contains(self, number: Number) -> bool {
         self.min.is_none_or(|min| min.cmp_number(number) != Ordering::Greater)
             && self.max.is_none_or(|max| max.cmp_number(number) != Ordering::Less)
@@ -434,19 +434,21 @@ impl Time {
     /// Parses `hhmmss` with an optional `.` and up to 9 fraction digits.
     #[inline(always)]
     pub fn parse(text: &str) -> Option<Self> {
-        let (clock, frac, point) = match text.split_once('.') {
-            Some((clock, frac)) => (clock, frac, true),
-            None => (text, "", false),
+        // Six digits, then the point if any: a point elsewhere fails the digit checks.
+        let bytes = text.as_bytes();
+        let (c, frac, point) = match bytes.get(6) {
+            None if bytes.len() == 6 => (bytes, &bytes[6..], false),
+            Some(b'.') => (&bytes[..6], &bytes[7..], true),
+            _ => return None,
         };
-        if clock.len() != 6 || frac.len() > 9 {
+        if frac.len() > 9 {
             return None;
         }
-        let c = clock.as_bytes();
         let hour = two_digits(c[0], c[1])?;
         let minute = two_digits(c[2], c[3])?;
         let second = two_digits(c[4], c[5])?;
         let mut fraction = 0u32;
-        for b in frac.bytes() {
+        for &b in frac {
             if !b.is_ascii_digit() {
                 return None;
             }
@@ -593,8 +595,8 @@ impl Coordinate {
     /// The hemisphere is left empty (`'\0'`).
     #[inline(always)]
     pub fn parse(text: &str, max_degree_digits: usize, max_degrees: u8) -> Option<Self> {
-        let (whole, frac, point) = match text.split_once('.') {
-            Some((whole, frac)) => (whole, frac, true),
+        let (whole, frac, point) = match text.bytes().position(|b| b == b'.') {
+            Some(at) => (&text[..at], &text[at + 1..], true),
             None => (text, "", false),
         };
         if whole.len() < 2 || whole.len() > 2 + max_degree_digits || frac.len() > MAX_DIGITS - 2 {
@@ -914,6 +916,18 @@ impl<T: Copy + Default, const N: usize> Group<T, N> {
             group.len = i + 1;
         }
         Ok(group)
+    }
+
+    /// Reads `count` entries (at most `N`) with `read` into this group, emptied first: each
+    /// entry is written in its slot, the group is not moved.
+    #[inline(always)]
+    pub fn fill<E>(&mut self, count: usize, mut read: impl FnMut(usize) -> Result<T, E>) -> Result<(), E> {
+        self.len = 0;
+        for (i, slot) in self.items.iter_mut().take(count).enumerate() {
+            *slot = read(i + 1)?;
+            self.len = i + 1;
+        }
+        Ok(())
     }
 
     /// Appends an entry; gives it back when the group is full.

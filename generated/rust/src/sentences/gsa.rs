@@ -98,7 +98,7 @@ impl<'a> Layout<'a> for Gsa<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.selection_mode = f.code("selection_mode")?;
         out.fix_type = f.code("fix_type")?;
-        out.prns = f.group("prns", repeats, |f| f.integer("prn", "integer", Range::ANY))?;
+        f.group_into(&mut out.prns, "prns", repeats, |f| f.integer("prn", "integer", Range::ANY))?;
         out.pdop = f.decimal("pdop", "decimal number", Range::ANY)?;
         out.hdop = f.decimal("hdop", "decimal number", Range::ANY)?;
         out.vdop = f.decimal("vdop", "decimal number", Range::ANY)?;
@@ -240,7 +240,7 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.selection_mode = f.code("selection_mode")?;
         out.fix_type = f.code("fix_type")?;
-        out.prns = f.group("prns", repeats, |f| f.integer("prn", "integer", Range::ANY))?;
+        f.group_into(&mut out.prns, "prns", repeats, |f| f.integer("prn", "integer", Range::ANY))?;
         out.pdop = f.decimal("pdop", "decimal number", Range::ANY)?;
         out.hdop = f.decimal("hdop", "decimal number", Range::ANY)?;
         out.vdop = f.decimal("vdop", "decimal number", Range::ANY)?;

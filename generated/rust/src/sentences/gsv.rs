@@ -148,7 +148,7 @@ impl<'a> Layout<'a> for Gsv<'a> {
         out.message_number = f.integer("message_number", "integer of at least 1", Range::at_least(Bound::int(1)))?;
         out.satellites_in_view =
             f.integer("satellites_in_view", "integer of at least 0", Range::at_least(Bound::int(0)))?;
-        out.satellites = f.group("satellites", repeats, GsvSatellite::read)?;
+        f.group_into(&mut out.satellites, "satellites", repeats, GsvSatellite::read)?;
         if extra >= 1 {
             out.signal_id = f.code("signal_id")?;
             out.trailing = 1;
