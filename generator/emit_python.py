@@ -157,8 +157,19 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
     }
 
 
+# Names parse_fields already uses (arguments, counters, module names): a field id among them gets
+# a trailing underscore as a local variable.
+_TAKEN_LOCALS = frozenset({"cls", "address", "fields", "checksum", "line", "count", "repeats", "optional",
+                           "pos", "entry", "rt", "Decimal", "Any", "ClassVar", "dataclass", "field"})
+
+
+def py_local(name: str) -> str:
+    """The local variable parse_fields reads field `name` into."""
+    return name + "_" if name in _TAKEN_LOCALS else name
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    env.globals.update(py_type=py_type, py_parse=py_parse, py_texts=py_texts, py=py_literal, json=json)
+    env.globals.update(py_type=py_type, py_parse=py_parse, local=py_local, py_texts=py_texts, py=py_literal, json=json)
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
     runtime = (TEMPLATES / "python" / "runtime.py").read_text(encoding="utf-8")

@@ -45,8 +45,8 @@ class Pstmrestorepar:
             raise rt.too_few(address, "PSTMRESTOREPAR", 0, count)
         if count > 0:
             raise rt.too_many(address, "PSTMRESTOREPAR", 0, count)
-        out = cls(checksum=checksum)
-        return out
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls([], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -50,12 +50,13 @@ class Pstmtg:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
         count = len(fields)
         repeats, optional = rt.split_group(address, "PSTMTG", "values", count, 0, 1, 0, 64, 0)
-        out = cls(checksum=checksum)
+        values: list[str | None] = []
         pos = 0
         for entry in range(repeats):
-            out.values.append(rt.text_field(fields[pos], address, pos + 1, f"values[{entry + 1}].value", "text", None))
+            values.append(rt.text_field(fields[pos], address, pos + 1, f"values[{entry + 1}].value", "text", None))
             pos += 1
-        return out
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(values, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""
