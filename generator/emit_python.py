@@ -61,10 +61,11 @@ def py_parse(f: Field, pos: str, name: str, ignore_case: bool = False) -> str:
         elif table:
             bounds = ", None, None"
         read = f"rt.{t}_field({common}{bounds}, {table[0]})" if table else f"rt.{t}_field({common}{bounds})"
-        return f"{table[0]}.get({text}) or {read}" if table else read
+        # An empty field is None (the reader's answer too), without a call for it.
+        return f"({table[0]}.get({text}) or {read}) if {text} else None" if table else read
     if t in ("hex", "time", "date"):
         assert table
-        return f"{table[0]}.get({text}) or rt.{t}_field({common}, {table[0]})"
+        return f"({table[0]}.get({text}) or rt.{t}_field({common}, {table[0]})) if {text} else None"
     if t in ("latitude", "longitude"):
         assert table
         pair = f"fields[{index}]"

@@ -79,7 +79,7 @@ class Geos5Nquery:
         if count > 14:
             raise rt.too_many(address, "GEOS5_NQUERY", 14, count)
         keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NQUERY", "NQUERY")
-        port = _INTEGER_0_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "port", "integer 0..1", 0, 1, _INTEGER_0_TO_1)
+        port = (_INTEGER_0_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "port", "integer 0..1", 0, 1, _INTEGER_0_TO_1)) if fields[1] else None
         output_rate = Geos5OutputRate.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "output_rate", "geos5_output_rate code (0 1 2 3)", Geos5OutputRate.BY_CODE, "digits", 1, 1)
         nmea_version = Geos5NmeaVersion.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "nmea_version", "geos5_nmea_version code (2 4)", Geos5NmeaVersion.BY_CODE, "digits", 1, 1)
         gga_rate = Geos5MessageRate.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "gga_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)

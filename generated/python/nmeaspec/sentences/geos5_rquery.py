@@ -69,10 +69,10 @@ class Geos5Rquery:
         keyword = rt.keyword_field(fields[0], address, 1, "keyword", "RQUERY", "RQUERY")
         receiver_name = rt.text_field(fields[1], address, 2, "receiver_name", "text", None)
         software_version = rt.text_field(fields[2], address, 3, "software_version", "text", None)
-        software_date = _DATE.get(fields[3]) or rt.date_field(fields[3], address, 4, "software_date", "date ddmmyy", _DATE)
-        status = _HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "status", "hex number", _HEX)
-        config_1 = _HEX.get(fields[5]) or rt.hex_field(fields[5], address, 6, "config_1", "hex number", _HEX)
-        config_2 = _HEX.get(fields[6]) or rt.hex_field(fields[6], address, 7, "config_2", "hex number", _HEX)
+        software_date = (_DATE.get(fields[3]) or rt.date_field(fields[3], address, 4, "software_date", "date ddmmyy", _DATE)) if fields[3] else None
+        status = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "status", "hex number", _HEX)) if fields[4] else None
+        config_1 = (_HEX.get(fields[5]) or rt.hex_field(fields[5], address, 6, "config_1", "hex number", _HEX)) if fields[5] else None
+        config_2 = (_HEX.get(fields[6]) or rt.hex_field(fields[6], address, 7, "config_2", "hex number", _HEX)) if fields[6] else None
         # Every value at once, in the order of the fields above: one pass through __init__.
         return cls(keyword, receiver_name, software_version, software_date, status, config_1, config_2, [], checksum)
 

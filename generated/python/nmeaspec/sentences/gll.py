@@ -65,7 +65,7 @@ class Gll:
         optional = count - 6
         lat = _LATITUDE.get((fields[0], fields[1])) or rt.coordinate_field(fields[0], fields[1], address, 1, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
         lon = _LONGITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        time = _TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "time", "time hhmmss[.s]", _TIME)
+        time = (_TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "time", "time hhmmss[.s]", _TIME)) if fields[4] else None
         status = Status.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
         mode: PosMode | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:

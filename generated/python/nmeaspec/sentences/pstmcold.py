@@ -53,7 +53,7 @@ class Pstmcold:
         optional = count - 0
         mask: rt.Number | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            mask = _INTEGER_0_TO_15.get(fields[0]) or rt.integer_field(fields[0], address, 1, "mask", "integer 0..15", 0, 15, _INTEGER_0_TO_15)
+            mask = (_INTEGER_0_TO_15.get(fields[0]) or rt.integer_field(fields[0], address, 1, "mask", "integer 0..15", 0, 15, _INTEGER_0_TO_15)) if fields[0] else None
         # Every value at once, in the order of the fields above: one pass through __init__.
         return cls(mask, [], checksum)
 

@@ -54,7 +54,7 @@ class Pstmset:
             raise rt.too_few(address, "PSTMSET", 2, count)
         if count > 2:
             raise rt.too_many(address, "PSTMSET", 2, count)
-        block_param = _INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)
+        block_param = (_INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)) if fields[0] else None
         value = rt.text_field(fields[1], address, 2, "value", "text of at most 80 characters", 80)
         # Every value at once, in the order of the fields above: one pass through __init__.
         return cls(block_param, value, [], checksum)
@@ -136,11 +136,11 @@ class PstmsetDop:
             raise rt.too_few(address, "PSTMSET", 5, count)
         if count > 5:
             raise rt.too_many(address, "PSTMSET", 5, count)
-        block_param = _INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)
-        pdop = _DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        vdop = _DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        hdop = _DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        gdop = _DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
+        block_param = (_INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)) if fields[0] else None
+        pdop = (_DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[1] else None
+        vdop = (_DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[2] else None
+        hdop = (_DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[3] else None
+        gdop = (_DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[4] else None
         # Every value at once, in the order of the fields above: one pass through __init__.
         return cls(block_param, pdop, vdop, hdop, gdop, [], checksum)
 

@@ -49,7 +49,12 @@ class Pstmtim:
                      line: str | None = None) -> Pstmtim:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
         count = len(fields)
-        repeats, optional = rt.split_group(address, "PSTMTIM", "values", count, 0, 1, 0, 64, 0)
+        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
+        # a sentence where that does not add up.
+        repeats = min((count - 0) // 1, 64)
+        optional = count - 0 - repeats * 1
+        if optional > 0:
+            rt.split_group(address, "PSTMTIM", "values", count, 0, 1, 0, 64, 0)
         values: list[str | None] = []
         pos = 0
         for entry in range(repeats):

@@ -59,8 +59,8 @@ class Rlm:
             raise rt.too_few(address, "RLM", 4, count)
         if count > 4:
             raise rt.too_many(address, "RLM", 4, count)
-        beacon_id = _HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "beacon_id", "hex number", _HEX)
-        time = _TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)
+        beacon_id = (_HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "beacon_id", "hex number", _HEX)) if fields[0] else None
+        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
         message_code = RlmMessageCode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "message_code", "rlm_message_code code (0 1 2 3 4 5 6 7 8 9 A B C D E F)", RlmMessageCode.BY_CODE, "alnum", 1, 1)
         message_body = rt.text_field(fields[3], address, 4, "message_body", "text of at most 24 characters", 24)
         # Every value at once, in the order of the fields above: one pass through __init__.

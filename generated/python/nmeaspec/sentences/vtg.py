@@ -71,13 +71,13 @@ class Vtg:
         if count > 9:
             raise rt.too_many(address, "VTG", 9, count)
         optional = count - 8
-        course_true = _DECIMAL_0_TO_359_POINT_9.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "course_true", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)
+        course_true = (_DECIMAL_0_TO_359_POINT_9.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "course_true", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[0] else None
         course_true_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "course_true_ref", "T or nothing", "T")
-        course_magnetic = _DECIMAL_0_TO_359_POINT_9.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "course_magnetic", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)
+        course_magnetic = (_DECIMAL_0_TO_359_POINT_9.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "course_magnetic", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[2] else None
         course_magnetic_ref = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "course_magnetic_ref", "M or nothing", "M")
-        speed_knots = _DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "speed_knots", "decimal number", None, None, _DECIMAL)
+        speed_knots = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "speed_knots", "decimal number", None, None, _DECIMAL)) if fields[4] else None
         speed_knots_unit = "N" if fields[5] == "N" else rt.literal_field(fields[5], address, 6, "speed_knots_unit", "N or nothing", "N")
-        speed_kmh = _DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed_kmh", "decimal number", None, None, _DECIMAL)
+        speed_kmh = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed_kmh", "decimal number", None, None, _DECIMAL)) if fields[6] else None
         speed_kmh_unit = "K" if fields[7] == "K" else rt.literal_field(fields[7], address, 8, "speed_kmh_unit", "K or nothing", "K")
         mode: PosMode | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:

@@ -66,12 +66,12 @@ class Zda:
             raise rt.too_few(address, "ZDA", 6, count)
         if count > 6:
             raise rt.too_many(address, "ZDA", 6, count)
-        time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
-        day = _INTEGER_1_TO_31.get(fields[1]) or rt.integer_field(fields[1], address, 2, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)
-        month = _INTEGER_1_TO_12.get(fields[2]) or rt.integer_field(fields[2], address, 3, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)
-        year = _INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "year", "integer", None, None, _INTEGER)
-        local_zone_hours = _INTEGER_MINUS_13_TO_13.get(fields[4]) or rt.integer_field(fields[4], address, 5, "local_zone_hours", "integer -13..13", -13, 13, _INTEGER_MINUS_13_TO_13)
-        local_zone_minutes = _INTEGER_0_TO_59.get(fields[5]) or rt.integer_field(fields[5], address, 6, "local_zone_minutes", "integer 0..59", 0, 59, _INTEGER_0_TO_59)
+        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
+        day = (_INTEGER_1_TO_31.get(fields[1]) or rt.integer_field(fields[1], address, 2, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)) if fields[1] else None
+        month = (_INTEGER_1_TO_12.get(fields[2]) or rt.integer_field(fields[2], address, 3, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[2] else None
+        year = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "year", "integer", None, None, _INTEGER)) if fields[3] else None
+        local_zone_hours = (_INTEGER_MINUS_13_TO_13.get(fields[4]) or rt.integer_field(fields[4], address, 5, "local_zone_hours", "integer -13..13", -13, 13, _INTEGER_MINUS_13_TO_13)) if fields[4] else None
+        local_zone_minutes = (_INTEGER_0_TO_59.get(fields[5]) or rt.integer_field(fields[5], address, 6, "local_zone_minutes", "integer 0..59", 0, 59, _INTEGER_0_TO_59)) if fields[5] else None
         # Every value at once, in the order of the fields above: one pass through __init__.
         return cls(address[:-3], time, day, month, year, local_zone_hours, local_zone_minutes, [], checksum)
 
