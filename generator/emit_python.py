@@ -190,6 +190,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             sentence=sentence,
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
             enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}),
+            uses_decimal=any(f.type in ("integer", "decimal") and "Decimal" in _bound(f.min) + _bound(f.max)
+                             for lay in sentence.layouts for f in _all_fields(lay)),
             tables=sorted({t for lay in sentence.layouts for f in _all_fields(lay) if (t := known_table(f))}))
     by_address = {s.address: spec.by_address(s.address) for s in spec.proprietary if s.framing == "sentence"}
     text_commands = {s.address.upper(): spec.text_command(s.address) for s in spec.proprietary if s.framing == "text"}

@@ -13,7 +13,6 @@ the messages with GP (LOG GPGGA ...).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -9,7 +9,6 @@ Local datum in which the positions are given, and its offsets from the reference
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

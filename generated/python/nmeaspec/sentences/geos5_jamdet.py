@@ -10,7 +10,6 @@ Sent by the receiver when it detects jamming (manual section 3.13, added in manu
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -12,7 +12,6 @@ second when the port runs NMEA and every standard sentence is switched off.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

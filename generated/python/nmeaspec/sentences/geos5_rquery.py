@@ -14,7 +14,6 @@ sentence is switched off. In the SLEEP state it is sent once, on the transition 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

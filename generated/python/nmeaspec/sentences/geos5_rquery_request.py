@@ -10,7 +10,6 @@ answers with the $GPSGG,RQUERY sentence (GEOS5_RQUERY).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -9,7 +9,6 @@ Latitude, longitude, UTC time of the fix, data status and (since NMEA v2.3) mode
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -9,7 +9,6 @@ Heading of the vessel (for a GNSS receiver, of its antenna baseline) relative to
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

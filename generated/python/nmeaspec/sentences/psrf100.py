@@ -13,7 +13,6 @@ set. The accepted values are kept in battery-backed SRAM and the receiver restar
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

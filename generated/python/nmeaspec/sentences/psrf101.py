@@ -12,7 +12,6 @@ selects a warm or cold start (purpose partly reconstructed, SiRF NMEA reference)
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

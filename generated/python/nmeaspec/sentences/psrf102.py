@@ -13,7 +13,6 @@ the receiver restarts with them (SiRF NMEA reference).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -12,7 +12,6 @@ memory (SiRF NMEA reference). A query is answered by the selected standard sente
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -10,7 +10,6 @@ default. Switched on and off by bit 28 (mask 0x10000000) of CDB parameter 201.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -9,7 +9,6 @@ Ephemeris data output, listed among the messages sent in answer to a command.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -9,7 +9,6 @@ Answer to a $PSTMGETPAR that failed. It has no fields; the manual does not list 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

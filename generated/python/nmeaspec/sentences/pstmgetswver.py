@@ -10,7 +10,6 @@ receiver answers with the same address followed by the version fields (PSTMGETSW
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -11,7 +11,6 @@ engine is reset, it is not a reboot of the system. No arguments; no answer is do
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

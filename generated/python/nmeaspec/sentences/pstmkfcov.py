@@ -10,7 +10,6 @@ off by default. Switched on and off by bit 27 (mask 0x8000000) of CDB parameter 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

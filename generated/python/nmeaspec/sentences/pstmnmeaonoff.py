@@ -11,7 +11,6 @@ state; a request for the state it is already in is rejected without effect. With
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

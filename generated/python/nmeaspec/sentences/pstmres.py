@@ -10,7 +10,6 @@ off by bit 12 (mask 0x1000) of CDB parameter 201.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -11,7 +11,6 @@ restore and run on the defaults. No arguments; no answer is documented.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

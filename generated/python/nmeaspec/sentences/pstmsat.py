@@ -10,7 +10,6 @@ Satellite information (ST message list). Periodic; off by default. Switched on a
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

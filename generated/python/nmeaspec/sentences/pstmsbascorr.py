@@ -9,7 +9,6 @@ Satellite correction data (ST message list). Periodic; off by default.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -9,7 +9,6 @@ Answer to a successful $PSTMSETPAR, naming the block and parameter that were set
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

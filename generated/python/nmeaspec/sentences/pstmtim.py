@@ -10,7 +10,6 @@ System time (ST message list). Periodic; off by default. Switched on and off by 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

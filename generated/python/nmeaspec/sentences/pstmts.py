@@ -10,7 +10,6 @@ by bit 9 (mask 0x200) of CDB parameter 201.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

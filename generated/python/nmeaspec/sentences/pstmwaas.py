@@ -10,7 +10,6 @@ data). Switched on and off by bit 14 (mask 0x4000) of CDB parameter 201.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

@@ -9,7 +9,6 @@ Galileo search-and-rescue Return Link Message received for a COSPAS-SARSAT distr
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt

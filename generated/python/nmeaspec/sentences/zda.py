@@ -9,7 +9,6 @@ UTC time, day, month, year and local time zone offset.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
