@@ -61,10 +61,11 @@ def py_parse(f: Field, pos: str, name: str, ignore_case: bool = False) -> str:
         elif table:
             bounds = ", None, None"
         read = f"rt.{t}_field({common}{bounds}, {table[0]})" if table else f"rt.{t}_field({common}{bounds})"
-        return f"{table[0]}.get({text}) or {read}" if table else read
+        # An empty field is None (the reader's answer too), without a call for it.
+        return f"({table[0]}.get({text}) or {read}) if {text} else None" if table else read
     if t in ("hex", "time", "date"):
         assert table
-        return f"{table[0]}.get({text}) or rt.{t}_field({common}, {table[0]})"
+        return f"({table[0]}.get({text}) or rt.{t}_field({common}, {table[0]})) if {text} else None"
     if t in ("latitude", "longitude"):
         assert table
         pair = f"fields[{index}]"
@@ -157,8 +158,19 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
     }
 
 
+# Names parse_fields already uses (arguments, counters, module names): a field id among them gets
+# a trailing underscore as a local variable.
+_TAKEN_LOCALS = frozenset({"cls", "address", "fields", "checksum", "line", "count", "repeats", "optional",
+                           "pos", "entry", "rt", "Decimal", "Any", "ClassVar", "dataclass", "field"})
+
+
+def py_local(name: str) -> str:
+    """The local variable parse_fields reads field `name` into."""
+    return name + "_" if name in _TAKEN_LOCALS else name
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    env.globals.update(py_type=py_type, py_parse=py_parse, py_texts=py_texts, py=py_literal, json=json)
+    env.globals.update(py_type=py_type, py_parse=py_parse, local=py_local, py_texts=py_texts, py=py_literal, json=json)
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
     runtime = (TEMPLATES / "python" / "runtime.py").read_text(encoding="utf-8")
@@ -178,6 +190,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             sentence=sentence,
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
             enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}),
+            uses_decimal=any(f.type in ("integer", "decimal") and "Decimal" in _bound(f.min) + _bound(f.max)
+                             for lay in sentence.layouts for f in _all_fields(lay)),
             tables=sorted({t for lay in sentence.layouts for f in _all_fields(lay) if (t := known_table(f))}))
     by_address = {s.address: spec.by_address(s.address) for s in spec.proprietary if s.framing == "sentence"}
     text_commands = {s.address.upper(): spec.text_command(s.address) for s in spec.proprietary if s.framing == "text"}

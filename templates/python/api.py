@@ -57,18 +57,19 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
                 layouts = STANDARD.get(address[2:])
             if layouts is None:
                 return Generic(address, fields, "$", checksum)
-            if len(layouts) == 1:
-                try:
+            try:
+                if len(layouts) == 1:
                     return layouts[0].parse_fields(address, fields, checksum, line)
-                except NmeaError as err:
-                    if not lenient or err.kind != "bad_field":
-                        raise
-                    return _lenient(layouts, runtime.Frame("$", address, fields, sent), checksum, err)
+                return _first_fit(layouts, address, fields, checksum, line)
+            except NmeaError as err:
+                if not lenient or err.kind != "bad_field":
+                    raise
+                return _lenient(layouts, address, fields, checksum, err)
     if line[:1] not in ("$", "!"):
         layouts = TEXT_COMMANDS.get(runtime.first_word(line).upper())
         if layouts is not None:
             frame = runtime.text_frame(line)
-            return _first_fit(layouts, frame, None, line)
+            return _first_fit(layouts, frame.address, frame.fields, None, line)
     frame = runtime.frame(line, require_checksum)
     checksum = runtime.checksum_case(frame.checksum)
     address = frame.address
@@ -78,30 +79,30 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
     if layouts is None:
         return Generic(address, frame.fields, frame.start, checksum)
     try:
-        return _first_fit(layouts, frame, checksum, line)
+        return _first_fit(layouts, frame.address, frame.fields, checksum, line)
     except NmeaError as err:
         if not lenient or err.kind != "bad_field":
             raise
-        return _lenient(layouts, frame, checksum, err)
+        return _lenient(layouts, frame.address, frame.fields, checksum, err)
 
 
 _UPPER_HEX = [f"{value:02X}" for value in range(256)]
 _LOWER_HEX = [f"{value:02x}" for value in range(256)]
 
 
-def _lenient(layouts: tuple[Any, ...], frame: runtime.Frame, checksum: str | None, err: NmeaError) -> Any:
+def _lenient(layouts: tuple[Any, ...], address: str, fields: list[str], checksum: str | None,
+             err: NmeaError) -> Any:
     """Parse again with every field that does not fit left empty, one at a time; a field that is
     already empty and still does not fit, or one problem more than MAX_PROBLEMS, ends the attempt
     with its error."""
-    fields = list(frame.fields)
+    fields = list(fields)
     problems = []
     while err.kind == "bad_field" and err.field is not None and fields[err.field - 1] \
             and len(problems) < runtime.MAX_PROBLEMS:
         problems.append(err)
         fields[err.field - 1] = ""
         try:
-            sentence = _first_fit(layouts, runtime.Frame(frame.start, frame.address, fields, frame.checksum),
-                                  checksum, "")
+            sentence = _first_fit(layouts, address, fields, checksum, "")
         except NmeaError as again:
             err = again
             continue
@@ -110,16 +111,17 @@ def _lenient(layouts: tuple[Any, ...], frame: runtime.Frame, checksum: str | Non
     raise err
 
 
-def _first_fit(layouts: tuple[Any, ...], frame: runtime.Frame, checksum: str | None, line: str) -> Any:
+def _first_fit(layouts: tuple[Any, ...], address: str, fields: list[str], checksum: str | None,
+               line: str) -> Any:
     """The first layout that parses the fields. When none does, the error of the layouts whose
     keyword the first field holds (else of all): the first bad field, else the first error."""
     errors = []
     for layout in layouts:
         try:
-            return layout.parse_fields(frame.address, frame.fields, checksum, line)
+            return layout.parse_fields(address, fields, checksum, line)
         except NmeaError as err:
             errors.append((layout, err))
-    first = frame.fields[0].upper() if frame.fields else None
+    first = fields[0].upper() if fields else None
     contenders = [err for layout, err in errors if layout.SELECTOR is not None and layout.SELECTOR == first]
     contenders = contenders or [err for _, err in errors]
     raise next((err for err in contenders if err.kind == "bad_field"), contenders[0])
@@ -206,13 +208,12 @@ def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum:
             raise runtime.bad_json('a problem\'s "field" is not the index of a field')
         texts[index - 1] = runtime.json_text(runtime.json_member(problem, "text"))
     address = runtime.json_word(obj, "talker") + layout.SENTENCE if layout.ADDRESS is None else layout.ADDRESS
-    frame = runtime.Frame("$", address, texts, None)
     try:
-        return _first_fit((layout,), frame, checksum, "")
+        return _first_fit((layout,), address, texts, checksum, "")
     except NmeaError as err:
         if err.kind != "bad_field":
             raise
-        return _lenient((layout,), frame, checksum, err)
+        return _lenient((layout,), address, texts, checksum, err)
 
 
 def encode_json(line: str) -> str:

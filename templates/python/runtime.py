@@ -90,9 +90,7 @@ def checksum(body: str) -> int:
     """XOR of every byte between the start character and the '*': the bytes read as one integer
     and folded onto themselves in halves, far fewer Python steps than a loop over the bytes."""
     value = int.from_bytes(body.encode("latin-1"), "little")
-    shift = 8
-    while value >> shift:
-        shift <<= 1
+    shift = 8 << (len(body) - 1).bit_length()  # the smallest power-of-two width that holds it
     while shift > 8:
         shift >>= 1
         value ^= value >> shift

@@ -12,7 +12,6 @@ message, all with a period of 1.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -59,11 +58,11 @@ class ComnavLog:
             raise rt.too_few(address, "COMNAV_LOG", 3, count)
         if count > 3:
             raise rt.too_many(address, "COMNAV_LOG", 3, count)
-        out = cls(as_received=line)
-        out.message = rt.enum_field(fields[0], address, 1, "message", "comnav_log_message code (GPGGA GPGLL GPGSA GPGST GPGSV GPHDT GPRMC GPVTG GPZDA)", ComnavLogMessage.BY_CODE, "letters", 5, 5, True)
-        out.trigger = rt.keyword_field(fields[1], address, 2, "trigger", "ONTIME", "ONTIME", True)
-        out.period = _DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "period", "decimal number", None, None, _DECIMAL)
-        return out
+        message = rt.enum_field(fields[0], address, 1, "message", "comnav_log_message code (GPGGA GPGLL GPGSA GPGST GPGSV GPHDT GPRMC GPVTG GPZDA)", ComnavLogMessage.BY_CODE, "letters", 5, 5, True)
+        trigger = rt.keyword_field(fields[1], address, 2, "trigger", "ONTIME", "ONTIME", True)
+        period = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "period", "decimal number", None, None, _DECIMAL)) if fields[2] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(line, message, trigger, period, [])
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

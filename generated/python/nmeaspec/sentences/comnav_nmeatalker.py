@@ -13,7 +13,6 @@ the messages with GP (LOG GPGGA ...).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -54,10 +53,10 @@ class ComnavNmeatalker:
             raise rt.too_few(address, "COMNAV_NMEATALKER", 2, count)
         if count > 2:
             raise rt.too_many(address, "COMNAV_NMEATALKER", 2, count)
-        out = cls(as_received=line)
-        out.message = rt.enum_field(fields[0], address, 1, "message", "comnav_talker_sentence code (GGA GSA GSV GST ZDA HDT RMC VTG GLL ALL)", ComnavTalkerSentence.BY_CODE, "letters", 3, 3, True)
-        out.talker_id = rt.enum_field(fields[1], address, 2, "talker_id", "comnav_talker_id code (GN GP BD GL GA AUTO)", ComnavTalkerId.BY_CODE, "letters", 2, 4, True)
-        return out
+        message = rt.enum_field(fields[0], address, 1, "message", "comnav_talker_sentence code (GGA GSA GSV GST ZDA HDT RMC VTG GLL ALL)", ComnavTalkerSentence.BY_CODE, "letters", 3, 3, True)
+        talker_id = rt.enum_field(fields[1], address, 2, "talker_id", "comnav_talker_id code (GN GP BD GL GA AUTO)", ComnavTalkerId.BY_CODE, "letters", 2, 4, True)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(line, message, talker_id, [])
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""
@@ -133,9 +132,9 @@ class ComnavNmeatalkerList:
             raise rt.too_few(address, "COMNAV_NMEATALKER", 1, count)
         if count > 1:
             raise rt.too_many(address, "COMNAV_NMEATALKER", 1, count)
-        out = cls(as_received=line)
-        out.subcommand = rt.keyword_field(fields[0], address, 1, "subcommand", "LIST", "LIST", True)
-        return out
+        subcommand = rt.keyword_field(fields[0], address, 1, "subcommand", "LIST", "LIST", True)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(line, subcommand, [])
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""
@@ -207,9 +206,9 @@ class ComnavNmeatalkerReset:
             raise rt.too_few(address, "COMNAV_NMEATALKER", 1, count)
         if count > 1:
             raise rt.too_many(address, "COMNAV_NMEATALKER", 1, count)
-        out = cls(as_received=line)
-        out.subcommand = rt.keyword_field(fields[0], address, 1, "subcommand", "RESET", "RESET", True)
-        return out
+        subcommand = rt.keyword_field(fields[0], address, 1, "subcommand", "RESET", "RESET", True)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(line, subcommand, [])
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

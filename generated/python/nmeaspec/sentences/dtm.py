@@ -9,7 +9,6 @@ Local datum in which the positions are given, and its offsets from the reference
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -66,16 +65,16 @@ class Dtm:
             raise rt.too_few(address, "DTM", 8, count)
         if count > 8:
             raise rt.too_many(address, "DTM", 8, count)
-        out = cls(address[:-3], checksum=checksum)
-        out.local_datum = DtmDatum.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "local_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
-        out.local_datum_subdivision = rt.char_field(fields[1], address, 2, "local_datum_subdivision", "one character")
-        out.lat_offset = _DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "lat_offset", "decimal number", None, None, _DECIMAL)
-        out.lat_offset_dir = DtmLatOffsetDir.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "lat_offset_dir", "dtm_lat_offset_dir code (N S)", DtmLatOffsetDir.BY_CODE, "letters", 1, 1)
-        out.lon_offset = _DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "lon_offset", "decimal number", None, None, _DECIMAL)
-        out.lon_offset_dir = DtmLonOffsetDir.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "lon_offset_dir", "dtm_lon_offset_dir code (E W)", DtmLonOffsetDir.BY_CODE, "letters", 1, 1)
-        out.altitude_offset = _DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "altitude_offset", "decimal number", None, None, _DECIMAL)
-        out.reference_datum = DtmDatum.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "reference_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
-        return out
+        local_datum = DtmDatum.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "local_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
+        local_datum_subdivision = rt.char_field(fields[1], address, 2, "local_datum_subdivision", "one character")
+        lat_offset = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "lat_offset", "decimal number", None, None, _DECIMAL)) if fields[2] else None
+        lat_offset_dir = DtmLatOffsetDir.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "lat_offset_dir", "dtm_lat_offset_dir code (N S)", DtmLatOffsetDir.BY_CODE, "letters", 1, 1)
+        lon_offset = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "lon_offset", "decimal number", None, None, _DECIMAL)) if fields[4] else None
+        lon_offset_dir = DtmLonOffsetDir.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "lon_offset_dir", "dtm_lon_offset_dir code (E W)", DtmLonOffsetDir.BY_CODE, "letters", 1, 1)
+        altitude_offset = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "altitude_offset", "decimal number", None, None, _DECIMAL)) if fields[6] else None
+        reference_datum = DtmDatum.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "reference_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], local_datum, local_datum_subdivision, lat_offset, lat_offset_dir, lon_offset, lon_offset_dir, altitude_offset, reference_datum, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

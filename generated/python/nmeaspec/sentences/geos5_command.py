@@ -14,7 +14,6 @@ are part of the word.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -51,9 +50,9 @@ class Geos5Command:
             raise rt.too_few(address, "GEOS5_COMMAND", 1, count)
         if count > 1:
             raise rt.too_many(address, "GEOS5_COMMAND", 1, count)
-        out = cls(checksum=checksum)
-        out.command = Geos5CommandWord.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "command", "geos5_command_word code (SWPROT SAVEFL CSTART WSTART HSTART BDR004 BDR009 BDR019 BDR038 BDR057 BDR115 BDR230 BDR460 BDR921 STOP01 STOP02 GGA ON GGAOFF GLL ON GLLOFF GSA ON GSAOFF GSV ON GSVOFF RMC ON RMCOFF VTG ON VTGOFF ZDA ON ZDAOFF DTM ON DTMOFF RLM ON RLMOFF NMEAV2 NMEAV4 RATE01 RATE02 RATE05 RATE10 PSM ON PSMOFF ELEV05 ELEV06 ELEV07 ELEV08 ELEV09 ELEV10 ELEV11 ELEV12 ELEV13 ELEV14 ELEV15 DATP90 DATW84 NVSGPS NVSGLN NVSMIX)", Geos5CommandWord.BY_CODE, "alnum", 6, 6)
-        return out
+        command = Geos5CommandWord.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "command", "geos5_command_word code (SWPROT SAVEFL CSTART WSTART HSTART BDR004 BDR009 BDR019 BDR038 BDR057 BDR115 BDR230 BDR460 BDR921 STOP01 STOP02 GGA ON GGAOFF GLL ON GLLOFF GSA ON GSAOFF GSV ON GSVOFF RMC ON RMCOFF VTG ON VTGOFF ZDA ON ZDAOFF DTM ON DTMOFF RLM ON RLMOFF NMEAV2 NMEAV4 RATE01 RATE02 RATE05 RATE10 PSM ON PSMOFF ELEV05 ELEV06 ELEV07 ELEV08 ELEV09 ELEV10 ELEV11 ELEV12 ELEV13 ELEV14 ELEV15 DATP90 DATW84 NVSGPS NVSGLN NVSMIX)", Geos5CommandWord.BY_CODE, "alnum", 6, 6)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(command, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -10,7 +10,6 @@ Sent by the receiver when it detects jamming (manual section 3.13, added in manu
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -48,10 +47,10 @@ class Geos5Jamdet:
             raise rt.too_few(address, "GEOS5_JAMDET", 2, count)
         if count > 2:
             raise rt.too_many(address, "GEOS5_JAMDET", 2, count)
-        out = cls(checksum=checksum)
-        out.keyword = rt.keyword_field(fields[0], address, 1, "keyword", "JAMDET", "JAMDET")
-        out.reserved = rt.text_field(fields[1], address, 2, "reserved", "text", None)
-        return out
+        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "JAMDET", "JAMDET")
+        reserved = rt.text_field(fields[1], address, 2, "reserved", "text", None)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(keyword, reserved, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -12,7 +12,6 @@ second when the port runs NMEA and every standard sentence is switched off.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -78,22 +77,22 @@ class Geos5Nquery:
             raise rt.too_few(address, "GEOS5_NQUERY", 14, count)
         if count > 14:
             raise rt.too_many(address, "GEOS5_NQUERY", 14, count)
-        out = cls(checksum=checksum)
-        out.keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NQUERY", "NQUERY")
-        out.port = _INTEGER_0_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "port", "integer 0..1", 0, 1, _INTEGER_0_TO_1)
-        out.output_rate = Geos5OutputRate.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "output_rate", "geos5_output_rate code (0 1 2 3)", Geos5OutputRate.BY_CODE, "digits", 1, 1)
-        out.nmea_version = Geos5NmeaVersion.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "nmea_version", "geos5_nmea_version code (2 4)", Geos5NmeaVersion.BY_CODE, "digits", 1, 1)
-        out.gga_rate = Geos5MessageRate.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "gga_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.gll_rate = Geos5MessageRate.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "gll_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.gsa_rate = Geos5MessageRate.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "gsa_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.gsv_rate = Geos5MessageRate.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "gsv_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.rmc_rate = Geos5MessageRate.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "rmc_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.vtg_rate = Geos5MessageRate.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "vtg_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.gns_rate = Geos5MessageRate.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "gns_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.zda_rate = Geos5MessageRate.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "zda_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.dtm_rate = Geos5MessageRate.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "dtm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        out.rlm_rate = Geos5MessageRate.BY_CODE.get(fields[13]) or rt.enum_field(fields[13], address, 14, "rlm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        return out
+        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NQUERY", "NQUERY")
+        port = (_INTEGER_0_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "port", "integer 0..1", 0, 1, _INTEGER_0_TO_1)) if fields[1] else None
+        output_rate = Geos5OutputRate.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "output_rate", "geos5_output_rate code (0 1 2 3)", Geos5OutputRate.BY_CODE, "digits", 1, 1)
+        nmea_version = Geos5NmeaVersion.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "nmea_version", "geos5_nmea_version code (2 4)", Geos5NmeaVersion.BY_CODE, "digits", 1, 1)
+        gga_rate = Geos5MessageRate.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "gga_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        gll_rate = Geos5MessageRate.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "gll_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        gsa_rate = Geos5MessageRate.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "gsa_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        gsv_rate = Geos5MessageRate.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "gsv_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        rmc_rate = Geos5MessageRate.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "rmc_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        vtg_rate = Geos5MessageRate.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "vtg_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        gns_rate = Geos5MessageRate.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "gns_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        zda_rate = Geos5MessageRate.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "zda_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        dtm_rate = Geos5MessageRate.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "dtm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        rlm_rate = Geos5MessageRate.BY_CODE.get(fields[13]) or rt.enum_field(fields[13], address, 14, "rlm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(keyword, port, output_rate, nmea_version, gga_rate, gll_rate, gsa_rate, gsv_rate, rmc_rate, vtg_rate, gns_rate, zda_rate, dtm_rate, rlm_rate, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

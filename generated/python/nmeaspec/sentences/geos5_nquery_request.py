@@ -10,7 +10,6 @@ with the $GPSGG,NQUERY sentence (GEOS5_NQUERY).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -46,9 +45,9 @@ class Geos5NqueryRequest:
             raise rt.too_few(address, "GEOS5_NQUERY_REQUEST", 1, count)
         if count > 1:
             raise rt.too_many(address, "GEOS5_NQUERY_REQUEST", 1, count)
-        out = cls(checksum=checksum)
-        out.keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NQUERY", "NQUERY")
-        return out
+        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NQUERY", "NQUERY")
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(keyword, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

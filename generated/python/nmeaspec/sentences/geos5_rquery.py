@@ -14,7 +14,6 @@ sentence is switched off. In the SLEEP state it is sent once, on the transition 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -66,15 +65,15 @@ class Geos5Rquery:
             raise rt.too_few(address, "GEOS5_RQUERY", 7, count)
         if count > 7:
             raise rt.too_many(address, "GEOS5_RQUERY", 7, count)
-        out = cls(checksum=checksum)
-        out.keyword = rt.keyword_field(fields[0], address, 1, "keyword", "RQUERY", "RQUERY")
-        out.receiver_name = rt.text_field(fields[1], address, 2, "receiver_name", "text", None)
-        out.software_version = rt.text_field(fields[2], address, 3, "software_version", "text", None)
-        out.software_date = _DATE.get(fields[3]) or rt.date_field(fields[3], address, 4, "software_date", "date ddmmyy", _DATE)
-        out.status = _HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "status", "hex number", _HEX)
-        out.config_1 = _HEX.get(fields[5]) or rt.hex_field(fields[5], address, 6, "config_1", "hex number", _HEX)
-        out.config_2 = _HEX.get(fields[6]) or rt.hex_field(fields[6], address, 7, "config_2", "hex number", _HEX)
-        return out
+        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "RQUERY", "RQUERY")
+        receiver_name = rt.text_field(fields[1], address, 2, "receiver_name", "text", None)
+        software_version = rt.text_field(fields[2], address, 3, "software_version", "text", None)
+        software_date = (_DATE.get(fields[3]) or rt.date_field(fields[3], address, 4, "software_date", "date ddmmyy", _DATE)) if fields[3] else None
+        status = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "status", "hex number", _HEX)) if fields[4] else None
+        config_1 = (_HEX.get(fields[5]) or rt.hex_field(fields[5], address, 6, "config_1", "hex number", _HEX)) if fields[5] else None
+        config_2 = (_HEX.get(fields[6]) or rt.hex_field(fields[6], address, 7, "config_2", "hex number", _HEX)) if fields[6] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(keyword, receiver_name, software_version, software_date, status, config_1, config_2, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -81,20 +81,20 @@ class Gga:
             raise rt.too_few(address, "GGA", 14, count)
         if count > 14:
             raise rt.too_many(address, "GGA", 14, count)
-        out = cls(address[:-3], checksum=checksum)
-        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
-        out.lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        out.lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        out.quality = GgaQuality.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "quality", "gga_quality code (0 1 2 3 4 5 6 7 8 9)", GgaQuality.BY_CODE, "digits", 1, 1)
-        out.satellites = _INTEGER_0_TO_99.get(fields[6]) or rt.integer_field(fields[6], address, 7, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)
-        out.hdop = _DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "hdop", "decimal number", None, None, _DECIMAL)
-        out.altitude = _DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "altitude", "decimal number", None, None, _DECIMAL)
-        out.altitude_unit = "M" if fields[9] == "M" else rt.literal_field(fields[9], address, 10, "altitude_unit", "M or nothing", "M")
-        out.geoid_separation = _DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "geoid_separation", "decimal number", None, None, _DECIMAL)
-        out.geoid_separation_unit = "M" if fields[11] == "M" else rt.literal_field(fields[11], address, 12, "geoid_separation_unit", "M or nothing", "M")
-        out.dgps_age = _DECIMAL_0_TO_999_POINT_9.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "dgps_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)
-        out.dgps_station = _INTEGER_0_TO_4095.get(fields[13]) or rt.integer_field(fields[13], address, 14, "dgps_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)
-        return out
+        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
+        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
+        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
+        quality = GgaQuality.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "quality", "gga_quality code (0 1 2 3 4 5 6 7 8 9)", GgaQuality.BY_CODE, "digits", 1, 1)
+        satellites = (_INTEGER_0_TO_99.get(fields[6]) or rt.integer_field(fields[6], address, 7, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[6] else None
+        hdop = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "hdop", "decimal number", None, None, _DECIMAL)) if fields[7] else None
+        altitude = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "altitude", "decimal number", None, None, _DECIMAL)) if fields[8] else None
+        altitude_unit = "M" if fields[9] == "M" else rt.literal_field(fields[9], address, 10, "altitude_unit", "M or nothing", "M")
+        geoid_separation = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "geoid_separation", "decimal number", None, None, _DECIMAL)) if fields[10] else None
+        geoid_separation_unit = "M" if fields[11] == "M" else rt.literal_field(fields[11], address, 12, "geoid_separation_unit", "M or nothing", "M")
+        dgps_age = (_DECIMAL_0_TO_999_POINT_9.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "dgps_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[12] else None
+        dgps_station = (_INTEGER_0_TO_4095.get(fields[13]) or rt.integer_field(fields[13], address, 14, "dgps_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)) if fields[13] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], time, lat, lon, quality, satellites, hdop, altitude, altitude_unit, geoid_separation, geoid_separation_unit, dgps_age, dgps_station, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

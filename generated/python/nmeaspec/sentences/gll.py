@@ -9,7 +9,6 @@ Latitude, longitude, UTC time of the fix, data status and (since NMEA v2.3) mode
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -63,14 +62,15 @@ class Gll:
         if count > 7:
             raise rt.too_many(address, "GLL", 7, count)
         optional = count - 6
-        out = cls(address[:-3], checksum=checksum)
-        out.lat = _LATITUDE.get((fields[0], fields[1])) or rt.coordinate_field(fields[0], fields[1], address, 1, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        out.lon = _LONGITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        out.time = _TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "time", "time hhmmss[.s]", _TIME)
-        out.status = Status.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
+        lat = _LATITUDE.get((fields[0], fields[1])) or rt.coordinate_field(fields[0], fields[1], address, 1, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
+        lon = _LONGITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
+        time = (_TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "time", "time hhmmss[.s]", _TIME)) if fields[4] else None
+        status = Status.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
+        mode: PosMode | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.mode = PosMode.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        return out
+            mode = PosMode.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], lat, lon, time, status, mode, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -80,20 +80,21 @@ class Gns:
         if count > 13:
             raise rt.too_many(address, "GNS", 13, count)
         optional = count - 12
-        out = cls(address[:-3], checksum=checksum)
-        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
-        out.lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        out.lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        out.mode = rt.enum_chars_field(fields[5], address, 6, "mode", "pos_mode codes (A D E F G M N P R S)", PosMode.BY_CODE, "letters", None)
-        out.satellites = _INTEGER_0_TO_99.get(fields[6]) or rt.integer_field(fields[6], address, 7, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)
-        out.hdop = _DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "hdop", "decimal number", None, None, _DECIMAL)
-        out.altitude = _DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "altitude", "decimal number", None, None, _DECIMAL)
-        out.geoid_separation = _DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "geoid_separation", "decimal number", None, None, _DECIMAL)
-        out.dgps_age = _DECIMAL_0_TO_999_POINT_9.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "dgps_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)
-        out.dgps_station = _INTEGER_0_TO_4095.get(fields[11]) or rt.integer_field(fields[11], address, 12, "dgps_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)
+        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
+        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
+        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
+        mode = rt.enum_chars_field(fields[5], address, 6, "mode", "pos_mode codes (A D E F G M N P R S)", PosMode.BY_CODE, "letters", None)
+        satellites = (_INTEGER_0_TO_99.get(fields[6]) or rt.integer_field(fields[6], address, 7, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[6] else None
+        hdop = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "hdop", "decimal number", None, None, _DECIMAL)) if fields[7] else None
+        altitude = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "altitude", "decimal number", None, None, _DECIMAL)) if fields[8] else None
+        geoid_separation = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "geoid_separation", "decimal number", None, None, _DECIMAL)) if fields[9] else None
+        dgps_age = (_DECIMAL_0_TO_999_POINT_9.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "dgps_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[10] else None
+        dgps_station = (_INTEGER_0_TO_4095.get(fields[11]) or rt.integer_field(fields[11], address, 12, "dgps_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)) if fields[11] else None
+        nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.nav_status = NavStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
-        return out
+            nav_status = NavStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], time, lat, lon, mode, satellites, hdop, altitude, geoid_separation, dgps_age, dgps_station, nav_status, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""
@@ -220,19 +221,20 @@ class GnsAux:
         if count > 12:
             raise rt.too_many(address, "GNS", 12, count)
         optional = count - 11
-        out = cls(address[:-3], checksum=checksum)
-        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
-        out.lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        out.lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        out.satellites = _INTEGER_0_TO_99.get(fields[5]) or rt.integer_field(fields[5], address, 6, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)
-        out.hdop = _DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "hdop", "decimal number", None, None, _DECIMAL)
-        out.altitude = _DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "altitude", "decimal number", None, None, _DECIMAL)
-        out.geoid_separation = _DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "geoid_separation", "decimal number", None, None, _DECIMAL)
-        out.dgps_age = _DECIMAL_0_TO_999_POINT_9.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "dgps_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)
-        out.dgps_station = _INTEGER_0_TO_4095.get(fields[10]) or rt.integer_field(fields[10], address, 11, "dgps_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)
+        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
+        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
+        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
+        satellites = (_INTEGER_0_TO_99.get(fields[5]) or rt.integer_field(fields[5], address, 6, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[5] else None
+        hdop = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "hdop", "decimal number", None, None, _DECIMAL)) if fields[6] else None
+        altitude = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "altitude", "decimal number", None, None, _DECIMAL)) if fields[7] else None
+        geoid_separation = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "geoid_separation", "decimal number", None, None, _DECIMAL)) if fields[8] else None
+        dgps_age = (_DECIMAL_0_TO_999_POINT_9.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "dgps_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[9] else None
+        dgps_station = (_INTEGER_0_TO_4095.get(fields[10]) or rt.integer_field(fields[10], address, 11, "dgps_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)) if fields[10] else None
+        nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.nav_status = NavStatus.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
-        return out
+            nav_status = NavStatus.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], time, lat, lon, satellites, hdop, altitude, geoid_separation, dgps_age, dgps_station, nav_status, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -11,7 +11,6 @@ system's talker).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -71,20 +70,27 @@ class Gsa:
                      line: str | None = None) -> Gsa:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
         count = len(fields)
-        repeats, optional = rt.split_group(address, "GSA", "prns", count, 5, 1, 12, 12, 1)
-        out = cls(address[:-3], checksum=checksum)
-        out.selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
-        out.fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
+        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
+        # a sentence where that does not add up.
+        repeats = min((count - 5) // 1, 12)
+        optional = count - 5 - repeats * 1
+        if count < 17 or optional > 1:
+            rt.split_group(address, "GSA", "prns", count, 5, 1, 12, 12, 1)
+        selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
+        fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
+        prns: list[rt.Number | None] = []
         pos = 2
         for entry in range(repeats):
-            out.prns.append(_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER))
+            prns.append((_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None)
             pos += 1
-        out.pdop = _DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)
-        out.hdop = _DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)
-        out.vdop = _DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)
+        pdop = (_DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)) if fields[pos] else None
+        hdop = (_DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 1] else None
+        vdop = (_DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 2] else None
+        system_id: SystemId | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.system_id = SystemId.BY_CODE.get(fields[pos + 3]) or rt.enum_field(fields[pos + 3], address, pos + 4, "system_id", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
-        return out
+            system_id = SystemId.BY_CODE.get(fields[pos + 3]) or rt.enum_field(fields[pos + 3], address, pos + 4, "system_id", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], selection_mode, fix_type, prns, pdop, hdop, vdop, system_id, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""
@@ -196,18 +202,24 @@ class GsaShort:
                      line: str | None = None) -> GsaShort:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
         count = len(fields)
-        repeats, optional = rt.split_group(address, "GSA", "prns", count, 5, 1, 0, 11, 0)
-        out = cls(address[:-3], checksum=checksum)
-        out.selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
-        out.fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
+        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
+        # a sentence where that does not add up.
+        repeats = min((count - 5) // 1, 11)
+        optional = count - 5 - repeats * 1
+        if count < 5 or optional > 0:
+            rt.split_group(address, "GSA", "prns", count, 5, 1, 0, 11, 0)
+        selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
+        fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
+        prns: list[rt.Number | None] = []
         pos = 2
         for entry in range(repeats):
-            out.prns.append(_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER))
+            prns.append((_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None)
             pos += 1
-        out.pdop = _DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)
-        out.hdop = _DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)
-        out.vdop = _DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)
-        return out
+        pdop = (_DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)) if fields[pos] else None
+        hdop = (_DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 1] else None
+        vdop = (_DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 2] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], selection_mode, fix_type, prns, pdop, hdop, vdop, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -10,7 +10,6 @@ standard deviations of latitude, longitude and altitude errors.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -66,16 +65,16 @@ class Gst:
             raise rt.too_few(address, "GST", 8, count)
         if count > 8:
             raise rt.too_many(address, "GST", 8, count)
-        out = cls(address[:-3], checksum=checksum)
-        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
-        out.rms = _DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "rms", "decimal number", None, None, _DECIMAL)
-        out.semi_major_std = _DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "semi_major_std", "decimal number", None, None, _DECIMAL)
-        out.semi_minor_std = _DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "semi_minor_std", "decimal number", None, None, _DECIMAL)
-        out.orientation = _DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "orientation", "decimal number", None, None, _DECIMAL)
-        out.lat_std = _DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "lat_std", "decimal number", None, None, _DECIMAL)
-        out.lon_std = _DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "lon_std", "decimal number", None, None, _DECIMAL)
-        out.alt_std = _DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "alt_std", "decimal number", None, None, _DECIMAL)
-        return out
+        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
+        rms = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "rms", "decimal number", None, None, _DECIMAL)) if fields[1] else None
+        semi_major_std = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "semi_major_std", "decimal number", None, None, _DECIMAL)) if fields[2] else None
+        semi_minor_std = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "semi_minor_std", "decimal number", None, None, _DECIMAL)) if fields[3] else None
+        orientation = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "orientation", "decimal number", None, None, _DECIMAL)) if fields[4] else None
+        lat_std = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "lat_std", "decimal number", None, None, _DECIMAL)) if fields[5] else None
+        lon_std = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "lon_std", "decimal number", None, None, _DECIMAL)) if fields[6] else None
+        alt_std = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "alt_std", "decimal number", None, None, _DECIMAL)) if fields[7] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], time, rms, semi_major_std, semi_minor_std, orientation, lat_std, lon_std, alt_std, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -10,7 +10,6 @@ set of several sentences reports all of them.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -76,23 +75,30 @@ class Gsv:
                      line: str | None = None) -> Gsv:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
         count = len(fields)
-        repeats, optional = rt.split_group(address, "GSV", "satellites", count, 3, 4, 0, 4, 1)
-        out = cls(address[:-3], checksum=checksum)
-        out.message_count = _INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "message_count", "integer of at least 1", 1, None, _INTEGER_1_TO)
-        out.message_number = _INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "message_number", "integer of at least 1", 1, None, _INTEGER_1_TO)
-        out.satellites_in_view = _INTEGER_0_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "satellites_in_view", "integer of at least 0", 0, None, _INTEGER_0_TO)
+        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
+        # a sentence where that does not add up.
+        repeats = min((count - 3) // 4, 4)
+        optional = count - 3 - repeats * 4
+        if count < 3 or optional > 1:
+            rt.split_group(address, "GSV", "satellites", count, 3, 4, 0, 4, 1)
+        message_count = (_INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "message_count", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[0] else None
+        message_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "message_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
+        satellites_in_view = (_INTEGER_0_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "satellites_in_view", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[2] else None
+        satellites: list[GsvSatellite] = []
         pos = 3
         for entry in range(repeats):
-            out.satellites.append(GsvSatellite(
-                _INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].prn", "integer", None, None, _INTEGER),
-                _INTEGER_MINUS_90_TO_90.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].elevation", "integer -90..90", -90, 90, _INTEGER_MINUS_90_TO_90),
-                _INTEGER_0_TO_360.get(fields[pos + 2]) or rt.integer_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].azimuth", "integer 0..360", 0, 360, _INTEGER_0_TO_360),
-                _INTEGER_0_TO_99.get(fields[pos + 3]) or rt.integer_field(fields[pos + 3], address, pos + 4, f"satellites[{entry + 1}].snr", "integer 0..99", 0, 99, _INTEGER_0_TO_99),
+            satellites.append(GsvSatellite(
+                (_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None,
+                (_INTEGER_MINUS_90_TO_90.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].elevation", "integer -90..90", -90, 90, _INTEGER_MINUS_90_TO_90)) if fields[pos + 1] else None,
+                (_INTEGER_0_TO_360.get(fields[pos + 2]) or rt.integer_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].azimuth", "integer 0..360", 0, 360, _INTEGER_0_TO_360)) if fields[pos + 2] else None,
+                (_INTEGER_0_TO_99.get(fields[pos + 3]) or rt.integer_field(fields[pos + 3], address, pos + 4, f"satellites[{entry + 1}].snr", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[pos + 3] else None,
             ))
             pos += 4
+        signal_id: SignalId | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.signal_id = SignalId.BY_CODE.get(fields[pos]) or rt.enum_field(fields[pos], address, pos + 1, "signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", SignalId.BY_CODE, "alnum", 1, 1)
-        return out
+            signal_id = SignalId.BY_CODE.get(fields[pos]) or rt.enum_field(fields[pos], address, pos + 1, "signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", SignalId.BY_CODE, "alnum", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], message_count, message_number, satellites_in_view, satellites, signal_id, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -9,7 +9,6 @@ Heading of the vessel (for a GNSS receiver, of its antenna baseline) relative to
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -52,10 +51,10 @@ class Hdt:
             raise rt.too_few(address, "HDT", 2, count)
         if count > 2:
             raise rt.too_many(address, "HDT", 2, count)
-        out = cls(address[:-3], checksum=checksum)
-        out.heading = _DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heading", "decimal number", None, None, _DECIMAL)
-        out.heading_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "heading_ref", "T or nothing", "T")
-        return out
+        heading = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heading", "decimal number", None, None, _DECIMAL)) if fields[0] else None
+        heading_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "heading_ref", "T or nothing", "T")
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], heading, heading_ref, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -13,7 +13,6 @@ set. The accepted values are kept in battery-backed SRAM and the receiver restar
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -62,13 +61,13 @@ class Psrf100:
             raise rt.too_few(address, "PSRF100", 5, count)
         if count > 5:
             raise rt.too_many(address, "PSRF100", 5, count)
-        out = cls(checksum=checksum)
-        out.protocol = SirfProtocol.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "protocol", "sirf_protocol code (0 1)", SirfProtocol.BY_CODE, "digits", 1, 1)
-        out.baud = SirfBaud.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud.BY_CODE, "digits", 4, 5)
-        out.data_bits = _INTEGER_7_TO_8.get(fields[2]) or rt.integer_field(fields[2], address, 3, "data_bits", "integer 7..8", 7, 8, _INTEGER_7_TO_8)
-        out.stop_bits = _INTEGER_0_TO_1.get(fields[3]) or rt.integer_field(fields[3], address, 4, "stop_bits", "integer 0..1", 0, 1, _INTEGER_0_TO_1)
-        out.parity = SirfParity.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "parity", "sirf_parity code (0 1 2)", SirfParity.BY_CODE, "digits", 1, 1)
-        return out
+        protocol = SirfProtocol.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "protocol", "sirf_protocol code (0 1)", SirfProtocol.BY_CODE, "digits", 1, 1)
+        baud = SirfBaud.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud.BY_CODE, "digits", 4, 5)
+        data_bits = (_INTEGER_7_TO_8.get(fields[2]) or rt.integer_field(fields[2], address, 3, "data_bits", "integer 7..8", 7, 8, _INTEGER_7_TO_8)) if fields[2] else None
+        stop_bits = (_INTEGER_0_TO_1.get(fields[3]) or rt.integer_field(fields[3], address, 4, "stop_bits", "integer 0..1", 0, 1, _INTEGER_0_TO_1)) if fields[3] else None
+        parity = SirfParity.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "parity", "sirf_parity code (0 1 2)", SirfParity.BY_CODE, "digits", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(protocol, baud, data_bits, stop_bits, parity, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -12,7 +12,6 @@ selects a warm or cold start (purpose partly reconstructed, SiRF NMEA reference)
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -69,16 +68,16 @@ class Psrf101:
             raise rt.too_few(address, "PSRF101", 8, count)
         if count > 8:
             raise rt.too_many(address, "PSRF101", 8, count)
-        out = cls(checksum=checksum)
-        out.x = _INTEGER_MINUS_2147483648_TO_2147483647.get(fields[0]) or rt.integer_field(fields[0], address, 1, "x", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)
-        out.y = _INTEGER_MINUS_2147483648_TO_2147483647.get(fields[1]) or rt.integer_field(fields[1], address, 2, "y", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)
-        out.z = _INTEGER_MINUS_2147483648_TO_2147483647.get(fields[2]) or rt.integer_field(fields[2], address, 3, "z", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)
-        out.clock_offset = _INTEGER_MINUS_2147483648_TO_2147483647.get(fields[3]) or rt.integer_field(fields[3], address, 4, "clock_offset", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)
-        out.time_of_week = _INTEGER_0_TO_604799.get(fields[4]) or rt.integer_field(fields[4], address, 5, "time_of_week", "integer 0..604799", 0, 604799, _INTEGER_0_TO_604799)
-        out.week = _INTEGER_0_TO_65535.get(fields[5]) or rt.integer_field(fields[5], address, 6, "week", "integer 0..65535", 0, 65535, _INTEGER_0_TO_65535)
-        out.channels = _INTEGER_1_TO_12.get(fields[6]) or rt.integer_field(fields[6], address, 7, "channels", "integer 1..12", 1, 12, _INTEGER_1_TO_12)
-        out.reset_cfg = _INTEGER_0_TO_7.get(fields[7]) or rt.integer_field(fields[7], address, 8, "reset_cfg", "integer 0..7", 0, 7, _INTEGER_0_TO_7)
-        return out
+        x = (_INTEGER_MINUS_2147483648_TO_2147483647.get(fields[0]) or rt.integer_field(fields[0], address, 1, "x", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)) if fields[0] else None
+        y = (_INTEGER_MINUS_2147483648_TO_2147483647.get(fields[1]) or rt.integer_field(fields[1], address, 2, "y", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)) if fields[1] else None
+        z = (_INTEGER_MINUS_2147483648_TO_2147483647.get(fields[2]) or rt.integer_field(fields[2], address, 3, "z", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)) if fields[2] else None
+        clock_offset = (_INTEGER_MINUS_2147483648_TO_2147483647.get(fields[3]) or rt.integer_field(fields[3], address, 4, "clock_offset", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)) if fields[3] else None
+        time_of_week = (_INTEGER_0_TO_604799.get(fields[4]) or rt.integer_field(fields[4], address, 5, "time_of_week", "integer 0..604799", 0, 604799, _INTEGER_0_TO_604799)) if fields[4] else None
+        week = (_INTEGER_0_TO_65535.get(fields[5]) or rt.integer_field(fields[5], address, 6, "week", "integer 0..65535", 0, 65535, _INTEGER_0_TO_65535)) if fields[5] else None
+        channels = (_INTEGER_1_TO_12.get(fields[6]) or rt.integer_field(fields[6], address, 7, "channels", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[6] else None
+        reset_cfg = (_INTEGER_0_TO_7.get(fields[7]) or rt.integer_field(fields[7], address, 8, "reset_cfg", "integer 0..7", 0, 7, _INTEGER_0_TO_7)) if fields[7] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(x, y, z, clock_offset, time_of_week, week, channels, reset_cfg, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

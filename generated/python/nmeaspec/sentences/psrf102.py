@@ -13,7 +13,6 @@ the receiver restarts with them (SiRF NMEA reference).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -60,12 +59,12 @@ class Psrf102:
             raise rt.too_few(address, "PSRF102", 4, count)
         if count > 4:
             raise rt.too_many(address, "PSRF102", 4, count)
-        out = cls(checksum=checksum)
-        out.baud = SirfBaud.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud.BY_CODE, "digits", 4, 5)
-        out.data_bits = _INTEGER_8_TO_8.get(fields[1]) or rt.integer_field(fields[1], address, 2, "data_bits", "integer 8..8", 8, 8, _INTEGER_8_TO_8)
-        out.stop_bits = _INTEGER_0_TO_1.get(fields[2]) or rt.integer_field(fields[2], address, 3, "stop_bits", "integer 0..1", 0, 1, _INTEGER_0_TO_1)
-        out.parity = SirfParity.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "parity", "sirf_parity code (0 1 2)", SirfParity.BY_CODE, "digits", 1, 1)
-        return out
+        baud = SirfBaud.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud.BY_CODE, "digits", 4, 5)
+        data_bits = (_INTEGER_8_TO_8.get(fields[1]) or rt.integer_field(fields[1], address, 2, "data_bits", "integer 8..8", 8, 8, _INTEGER_8_TO_8)) if fields[1] else None
+        stop_bits = (_INTEGER_0_TO_1.get(fields[2]) or rt.integer_field(fields[2], address, 3, "stop_bits", "integer 0..1", 0, 1, _INTEGER_0_TO_1)) if fields[2] else None
+        parity = SirfParity.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "parity", "sirf_parity code (0 1 2)", SirfParity.BY_CODE, "digits", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(baud, data_bits, stop_bits, parity, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

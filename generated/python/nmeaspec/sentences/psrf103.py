@@ -12,7 +12,6 @@ memory (SiRF NMEA reference). A query is answered by the selected standard sente
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -58,12 +57,12 @@ class Psrf103:
             raise rt.too_few(address, "PSRF103", 4, count)
         if count > 4:
             raise rt.too_many(address, "PSRF103", 4, count)
-        out = cls(checksum=checksum)
-        out.message = SirfNmeaMessage.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "message", "sirf_nmea_message code (00 01 02 03 04 05)", SirfNmeaMessage.BY_CODE, "digits", 2, 2)
-        out.mode = SirfRateMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "sirf_rate_mode code (00 01)", SirfRateMode.BY_CODE, "digits", 2, 2)
-        out.rate = _INTEGER_0_TO_255.get(fields[2]) or rt.integer_field(fields[2], address, 3, "rate", "integer 0..255", 0, 255, _INTEGER_0_TO_255)
-        out.checksum_mode = SirfChecksumEnable.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "checksum_mode", "sirf_checksum_enable code (00 01)", SirfChecksumEnable.BY_CODE, "digits", 2, 2)
-        return out
+        message = SirfNmeaMessage.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "message", "sirf_nmea_message code (00 01 02 03 04 05)", SirfNmeaMessage.BY_CODE, "digits", 2, 2)
+        mode = SirfRateMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "sirf_rate_mode code (00 01)", SirfRateMode.BY_CODE, "digits", 2, 2)
+        rate = (_INTEGER_0_TO_255.get(fields[2]) or rt.integer_field(fields[2], address, 3, "rate", "integer 0..255", 0, 255, _INTEGER_0_TO_255)) if fields[2] else None
+        checksum_mode = SirfChecksumEnable.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "checksum_mode", "sirf_checksum_enable code (00 01)", SirfChecksumEnable.BY_CODE, "digits", 2, 2)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(message, mode, rate, checksum_mode, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

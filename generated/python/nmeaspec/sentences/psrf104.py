@@ -11,7 +11,6 @@ reconstructed, SiRF NMEA reference).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -71,16 +70,16 @@ class Psrf104:
             raise rt.too_few(address, "PSRF104", 8, count)
         if count > 8:
             raise rt.too_many(address, "PSRF104", 8, count)
-        out = cls(checksum=checksum)
-        out.latitude = _DECIMAL_MINUS_90_TO_90.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "latitude", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)
-        out.longitude = _DECIMAL_MINUS_180_TO_180.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "longitude", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)
-        out.altitude = _DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "altitude", "decimal number", None, None, _DECIMAL)
-        out.clock_offset = _INTEGER_MINUS_2147483648_TO_2147483647.get(fields[3]) or rt.integer_field(fields[3], address, 4, "clock_offset", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)
-        out.time_of_week = _INTEGER_0_TO_604799.get(fields[4]) or rt.integer_field(fields[4], address, 5, "time_of_week", "integer 0..604799", 0, 604799, _INTEGER_0_TO_604799)
-        out.week = _INTEGER_0_TO_65535.get(fields[5]) or rt.integer_field(fields[5], address, 6, "week", "integer 0..65535", 0, 65535, _INTEGER_0_TO_65535)
-        out.channels = _INTEGER_1_TO_12.get(fields[6]) or rt.integer_field(fields[6], address, 7, "channels", "integer 1..12", 1, 12, _INTEGER_1_TO_12)
-        out.reset_cfg = _INTEGER_0_TO_7.get(fields[7]) or rt.integer_field(fields[7], address, 8, "reset_cfg", "integer 0..7", 0, 7, _INTEGER_0_TO_7)
-        return out
+        latitude = (_DECIMAL_MINUS_90_TO_90.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "latitude", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[0] else None
+        longitude = (_DECIMAL_MINUS_180_TO_180.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "longitude", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[1] else None
+        altitude = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "altitude", "decimal number", None, None, _DECIMAL)) if fields[2] else None
+        clock_offset = (_INTEGER_MINUS_2147483648_TO_2147483647.get(fields[3]) or rt.integer_field(fields[3], address, 4, "clock_offset", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)) if fields[3] else None
+        time_of_week = (_INTEGER_0_TO_604799.get(fields[4]) or rt.integer_field(fields[4], address, 5, "time_of_week", "integer 0..604799", 0, 604799, _INTEGER_0_TO_604799)) if fields[4] else None
+        week = (_INTEGER_0_TO_65535.get(fields[5]) or rt.integer_field(fields[5], address, 6, "week", "integer 0..65535", 0, 65535, _INTEGER_0_TO_65535)) if fields[5] else None
+        channels = (_INTEGER_1_TO_12.get(fields[6]) or rt.integer_field(fields[6], address, 7, "channels", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[6] else None
+        reset_cfg = (_INTEGER_0_TO_7.get(fields[7]) or rt.integer_field(fields[7], address, 8, "reset_cfg", "integer 0..7", 0, 7, _INTEGER_0_TO_7)) if fields[7] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(latitude, longitude, altitude, clock_offset, time_of_week, week, channels, reset_cfg, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -12,7 +12,6 @@ format of these debug messages is not documented.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -49,9 +48,9 @@ class Psrf105:
             raise rt.too_few(address, "PSRF105", 1, count)
         if count > 1:
             raise rt.too_many(address, "PSRF105", 1, count)
-        out = cls(checksum=checksum)
-        out.debug = SirfDebug.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "debug", "sirf_debug code (0 1)", SirfDebug.BY_CODE, "digits", 1, 1)
-        return out
+        debug = SirfDebug.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "debug", "sirf_debug code (0 1)", SirfDebug.BY_CODE, "digits", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(debug, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -13,7 +13,6 @@ power-saving state.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -49,9 +48,9 @@ class Psrf150:
             raise rt.too_few(address, "PSRF150", 1, count)
         if count > 1:
             raise rt.too_many(address, "PSRF150", 1, count)
-        out = cls(checksum=checksum)
-        out.ok_to_send = SirfOkToSend.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "ok_to_send", "sirf_ok_to_send code (0 1)", SirfOkToSend.BY_CODE, "digits", 1, 1)
-        return out
+        ok_to_send = SirfOkToSend.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "ok_to_send", "sirf_ok_to_send code (0 1)", SirfOkToSend.BY_CODE, "digits", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(ok_to_send, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

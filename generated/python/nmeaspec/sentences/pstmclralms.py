@@ -10,7 +10,6 @@ the receiver sends no answer.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -44,8 +43,8 @@ class Pstmclralms:
             raise rt.too_few(address, "PSTMCLRALMS", 0, count)
         if count > 0:
             raise rt.too_many(address, "PSTMCLRALMS", 0, count)
-        out = cls(checksum=checksum)
-        return out
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls([], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -11,7 +11,6 @@ documented.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -51,10 +50,11 @@ class Pstmcold:
         if count > 1:
             raise rt.too_many(address, "PSTMCOLD", 1, count)
         optional = count - 0
-        out = cls(checksum=checksum)
+        mask: rt.Number | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.mask = _INTEGER_0_TO_15.get(fields[0]) or rt.integer_field(fields[0], address, 1, "mask", "integer 0..15", 0, 15, _INTEGER_0_TO_15)
-        return out
+            mask = (_INTEGER_0_TO_15.get(fields[0]) or rt.integer_field(fields[0], address, 1, "mask", "integer 0..15", 0, 15, _INTEGER_0_TO_15)) if fields[0] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(mask, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

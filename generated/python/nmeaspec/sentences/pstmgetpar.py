@@ -11,7 +11,6 @@ encoding; printed as $PSTMSET in the manual's example) or $PSTMGETPARERROR.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -50,9 +49,9 @@ class Pstmgetpar:
             raise rt.too_few(address, "PSTMGETPAR", 1, count)
         if count > 1:
             raise rt.too_many(address, "PSTMGETPAR", 1, count)
-        out = cls(checksum=checksum)
-        out.block_param = _INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)
-        return out
+        block_param = (_INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)) if fields[0] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(block_param, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

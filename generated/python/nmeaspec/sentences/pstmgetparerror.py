@@ -9,7 +9,6 @@ Answer to a $PSTMGETPAR that failed. It has no fields; the manual does not list 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -42,8 +41,8 @@ class Pstmgetparerror:
             raise rt.too_few(address, "PSTMGETPARERROR", 0, count)
         if count > 0:
             raise rt.too_many(address, "PSTMGETPARERROR", 0, count)
-        out = cls(checksum=checksum)
-        return out
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls([], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

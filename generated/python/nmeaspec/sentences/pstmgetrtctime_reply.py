@@ -10,7 +10,6 @@ validity of the time.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -56,12 +55,12 @@ class PstmgetrtctimeReply:
             raise rt.too_few(address, "PSTMGETRTCTIME_REPLY", 4, count)
         if count > 4:
             raise rt.too_many(address, "PSTMGETRTCTIME_REPLY", 4, count)
-        out = cls(checksum=checksum)
-        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
-        out.date = _DATE.get(fields[1]) or rt.date_field(fields[1], address, 2, "date", "date ddmmyy", _DATE)
-        out.rtc_status = TeseoRtcStatus.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "rtc_status", "teseo_rtc_status code (0 1 2)", TeseoRtcStatus.BY_CODE, "digits", 1, 1)
-        out.time_validity = TeseoTimeValidity.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "time_validity", "teseo_time_validity code (0 1 2 3 4 5 6 7 8)", TeseoTimeValidity.BY_CODE, "digits", 1, 1)
-        return out
+        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
+        date = (_DATE.get(fields[1]) or rt.date_field(fields[1], address, 2, "date", "date ddmmyy", _DATE)) if fields[1] else None
+        rtc_status = TeseoRtcStatus.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "rtc_status", "teseo_rtc_status code (0 1 2)", TeseoRtcStatus.BY_CODE, "digits", 1, 1)
+        time_validity = TeseoTimeValidity.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "time_validity", "teseo_time_validity code (0 1 2 3 4 5 6 7 8)", TeseoTimeValidity.BY_CODE, "digits", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(time, date, rtc_status, time_validity, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -10,7 +10,6 @@ receiver answers with the same address followed by the version fields (PSTMGETSW
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -44,8 +43,8 @@ class Pstmgetswver:
             raise rt.too_few(address, "PSTMGETSWVER", 0, count)
         if count > 0:
             raise rt.too_many(address, "PSTMGETSWVER", 0, count)
-        out = cls(checksum=checksum)
-        return out
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls([], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

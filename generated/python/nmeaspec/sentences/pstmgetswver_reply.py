@@ -10,7 +10,6 @@ type and the build date and time.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -52,12 +51,12 @@ class PstmgetswverReply:
             raise rt.too_few(address, "PSTMGETSWVER_REPLY", 4, count)
         if count > 4:
             raise rt.too_many(address, "PSTMGETSWVER_REPLY", 4, count)
-        out = cls(checksum=checksum)
-        out.library_version = rt.text_field(fields[0], address, 1, "library_version", "text", None)
-        out.compiler = TeseoCompilerType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "compiler", "teseo_compiler_type code (ARM GNU)", TeseoCompilerType.BY_CODE, "letters", 3, 3)
-        out.build_date = rt.text_field(fields[2], address, 3, "build_date", "text", None)
-        out.build_time = rt.text_field(fields[3], address, 4, "build_time", "text", None)
-        return out
+        library_version = rt.text_field(fields[0], address, 1, "library_version", "text", None)
+        compiler = TeseoCompilerType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "compiler", "teseo_compiler_type code (ARM GNU)", TeseoCompilerType.BY_CODE, "letters", 3, 3)
+        build_date = rt.text_field(fields[2], address, 3, "build_date", "text", None)
+        build_time = rt.text_field(fields[3], address, 4, "build_time", "text", None)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(library_version, compiler, build_date, build_time, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

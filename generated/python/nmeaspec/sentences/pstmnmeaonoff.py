@@ -11,7 +11,6 @@ state; a request for the state it is already in is rejected without effect. With
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -49,10 +48,11 @@ class Pstmnmeaonoff:
         if count > 1:
             raise rt.too_many(address, "PSTMNMEAONOFF", 1, count)
         optional = count - 0
-        out = cls(checksum=checksum)
+        on_off: TeseoNmeaOnOff | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.on_off = TeseoNmeaOnOff.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "on_off", "teseo_nmea_on_off code (0 1)", TeseoNmeaOnOff.BY_CODE, "digits", 1, 1)
-        return out
+            on_off = TeseoNmeaOnOff.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "on_off", "teseo_nmea_on_off code (0 1)", TeseoNmeaOnOff.BY_CODE, "digits", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(on_off, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

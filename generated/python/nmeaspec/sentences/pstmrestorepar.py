@@ -11,7 +11,6 @@ restore and run on the defaults. No arguments; no answer is documented.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -45,8 +44,8 @@ class Pstmrestorepar:
             raise rt.too_few(address, "PSTMRESTOREPAR", 0, count)
         if count > 0:
             raise rt.too_many(address, "PSTMRESTOREPAR", 0, count)
-        out = cls(checksum=checksum)
-        return out
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls([], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -12,7 +12,6 @@ the factory parameters.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -46,8 +45,8 @@ class Pstmsavepar:
             raise rt.too_few(address, "PSTMSAVEPAR", 0, count)
         if count > 0:
             raise rt.too_many(address, "PSTMSAVEPAR", 0, count)
-        out = cls(checksum=checksum)
-        return out
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls([], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

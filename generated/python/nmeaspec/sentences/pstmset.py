@@ -12,7 +12,6 @@ both are accepted.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -54,10 +53,10 @@ class Pstmset:
             raise rt.too_few(address, "PSTMSET", 2, count)
         if count > 2:
             raise rt.too_many(address, "PSTMSET", 2, count)
-        out = cls(checksum=checksum)
-        out.block_param = _INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)
-        out.value = rt.text_field(fields[1], address, 2, "value", "text of at most 80 characters", 80)
-        return out
+        block_param = (_INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)) if fields[0] else None
+        value = rt.text_field(fields[1], address, 2, "value", "text of at most 80 characters", 80)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(block_param, value, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""
@@ -136,13 +135,13 @@ class PstmsetDop:
             raise rt.too_few(address, "PSTMSET", 5, count)
         if count > 5:
             raise rt.too_many(address, "PSTMSET", 5, count)
-        out = cls(checksum=checksum)
-        out.block_param = _INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)
-        out.pdop = _DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        out.vdop = _DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        out.hdop = _DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        out.gdop = _DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        return out
+        block_param = (_INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)) if fields[0] else None
+        pdop = (_DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[1] else None
+        vdop = (_DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[2] else None
+        hdop = (_DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[3] else None
+        gdop = (_DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[4] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(block_param, pdop, vdop, hdop, gdop, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -14,7 +14,6 @@ degrade or stop the receiver.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -61,12 +60,13 @@ class Pstmsetpar:
         if count > 3:
             raise rt.too_many(address, "PSTMSETPAR", 3, count)
         optional = count - 2
-        out = cls(checksum=checksum)
-        out.block_param = _INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)
-        out.value = rt.text_field(fields[1], address, 2, "value", "text of at most 80 characters", 80)
+        block_param = (_INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)) if fields[0] else None
+        value = rt.text_field(fields[1], address, 2, "value", "text of at most 80 characters", 80)
+        mode: TeseoSetparMode | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.mode = TeseoSetparMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
-        return out
+            mode = TeseoSetparMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(block_param, value, mode, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""
@@ -156,15 +156,16 @@ class PstmsetparDop:
         if count > 6:
             raise rt.too_many(address, "PSTMSETPAR", 6, count)
         optional = count - 5
-        out = cls(checksum=checksum)
-        out.block_param = _INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)
-        out.pdop = _DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        out.vdop = _DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        out.hdop = _DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
-        out.gdop = _DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)
+        block_param = (_INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)) if fields[0] else None
+        pdop = (_DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[1] else None
+        vdop = (_DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[2] else None
+        hdop = (_DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[3] else None
+        gdop = (_DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[4] else None
+        mode: TeseoSetparMode | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.mode = TeseoSetparMode.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
-        return out
+            mode = TeseoSetparMode.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(block_param, pdop, vdop, hdop, gdop, mode, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -10,7 +10,6 @@ off by bit 8 (mask 0x100) of CDB parameter 201.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -49,13 +48,19 @@ class Pstmtg:
                      line: str | None = None) -> Pstmtg:
         """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
         count = len(fields)
-        repeats, optional = rt.split_group(address, "PSTMTG", "values", count, 0, 1, 0, 64, 0)
-        out = cls(checksum=checksum)
+        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
+        # a sentence where that does not add up.
+        repeats = min((count - 0) // 1, 64)
+        optional = count - 0 - repeats * 1
+        if optional > 0:
+            rt.split_group(address, "PSTMTG", "values", count, 0, 1, 0, 64, 0)
+        values: list[str | None] = []
         pos = 0
         for entry in range(repeats):
-            out.values.append(rt.text_field(fields[pos], address, pos + 1, f"values[{entry + 1}].value", "text", None))
+            values.append(rt.text_field(fields[pos], address, pos + 1, f"values[{entry + 1}].value", "text", None))
             pos += 1
-        return out
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(values, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -9,7 +9,6 @@ Galileo search-and-rescue Return Link Message received for a COSPAS-SARSAT distr
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -59,12 +58,12 @@ class Rlm:
             raise rt.too_few(address, "RLM", 4, count)
         if count > 4:
             raise rt.too_many(address, "RLM", 4, count)
-        out = cls(address[:-3], checksum=checksum)
-        out.beacon_id = _HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "beacon_id", "hex number", _HEX)
-        out.time = _TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)
-        out.message_code = RlmMessageCode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "message_code", "rlm_message_code code (0 1 2 3 4 5 6 7 8 9 A B C D E F)", RlmMessageCode.BY_CODE, "alnum", 1, 1)
-        out.message_body = rt.text_field(fields[3], address, 4, "message_body", "text of at most 24 characters", 24)
-        return out
+        beacon_id = (_HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "beacon_id", "hex number", _HEX)) if fields[0] else None
+        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
+        message_code = RlmMessageCode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "message_code", "rlm_message_code code (0 1 2 3 4 5 6 7 8 9 A B C D E F)", RlmMessageCode.BY_CODE, "alnum", 1, 1)
+        message_body = rt.text_field(fields[3], address, 4, "message_body", "text of at most 24 characters", 24)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], beacon_id, time, message_code, message_body, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -79,21 +79,23 @@ class Rmc:
         if count > 13:
             raise rt.too_many(address, "RMC", 13, count)
         optional = count - 11
-        out = cls(address[:-3], checksum=checksum)
-        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
-        out.status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        out.lat = _LATITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        out.lon = _LONGITUDE.get((fields[4], fields[5])) or rt.coordinate_field(fields[4], fields[5], address, 5, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        out.speed = _DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed", "decimal number", None, None, _DECIMAL)
-        out.course = _DECIMAL_0_TO_359_POINT_9.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "course", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)
-        out.date = _DATE.get(fields[8]) or rt.date_field(fields[8], address, 9, "date", "date ddmmyy", _DATE)
-        out.mag_var = _DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "mag_var", "decimal number", None, None, _DECIMAL)
-        out.mag_var_dir = RmcMagVarDir.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "mag_var_dir", "rmc_mag_var_dir code (E W)", RmcMagVarDir.BY_CODE, "letters", 1, 1)
+        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
+        status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
+        lat = _LATITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
+        lon = _LONGITUDE.get((fields[4], fields[5])) or rt.coordinate_field(fields[4], fields[5], address, 5, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
+        speed = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed", "decimal number", None, None, _DECIMAL)) if fields[6] else None
+        course = (_DECIMAL_0_TO_359_POINT_9.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "course", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[7] else None
+        date = (_DATE.get(fields[8]) or rt.date_field(fields[8], address, 9, "date", "date ddmmyy", _DATE)) if fields[8] else None
+        mag_var = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "mag_var", "decimal number", None, None, _DECIMAL)) if fields[9] else None
+        mag_var_dir = RmcMagVarDir.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "mag_var_dir", "rmc_mag_var_dir code (E W)", RmcMagVarDir.BY_CODE, "letters", 1, 1)
+        mode: PosMode | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.mode = PosMode.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
+            mode = PosMode.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
+        nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
         if optional >= 2:
-            out.nav_status = NavStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
-        return out
+            nav_status = NavStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], time, status, lat, lon, speed, course, date, mag_var, mag_var_dir, mode, nav_status, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -71,18 +71,19 @@ class Vtg:
         if count > 9:
             raise rt.too_many(address, "VTG", 9, count)
         optional = count - 8
-        out = cls(address[:-3], checksum=checksum)
-        out.course_true = _DECIMAL_0_TO_359_POINT_9.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "course_true", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)
-        out.course_true_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "course_true_ref", "T or nothing", "T")
-        out.course_magnetic = _DECIMAL_0_TO_359_POINT_9.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "course_magnetic", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)
-        out.course_magnetic_ref = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "course_magnetic_ref", "M or nothing", "M")
-        out.speed_knots = _DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "speed_knots", "decimal number", None, None, _DECIMAL)
-        out.speed_knots_unit = "N" if fields[5] == "N" else rt.literal_field(fields[5], address, 6, "speed_knots_unit", "N or nothing", "N")
-        out.speed_kmh = _DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed_kmh", "decimal number", None, None, _DECIMAL)
-        out.speed_kmh_unit = "K" if fields[7] == "K" else rt.literal_field(fields[7], address, 8, "speed_kmh_unit", "K or nothing", "K")
+        course_true = (_DECIMAL_0_TO_359_POINT_9.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "course_true", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[0] else None
+        course_true_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "course_true_ref", "T or nothing", "T")
+        course_magnetic = (_DECIMAL_0_TO_359_POINT_9.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "course_magnetic", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[2] else None
+        course_magnetic_ref = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "course_magnetic_ref", "M or nothing", "M")
+        speed_knots = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "speed_knots", "decimal number", None, None, _DECIMAL)) if fields[4] else None
+        speed_knots_unit = "N" if fields[5] == "N" else rt.literal_field(fields[5], address, 6, "speed_knots_unit", "N or nothing", "N")
+        speed_kmh = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed_kmh", "decimal number", None, None, _DECIMAL)) if fields[6] else None
+        speed_kmh_unit = "K" if fields[7] == "K" else rt.literal_field(fields[7], address, 8, "speed_kmh_unit", "K or nothing", "K")
+        mode: PosMode | str | None | rt._Absent = rt.ABSENT
         if optional >= 1:
-            out.mode = PosMode.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        return out
+            mode = PosMode.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], course_true, course_true_ref, course_magnetic, course_magnetic_ref, speed_knots, speed_knots_unit, speed_kmh, speed_kmh_unit, mode, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""

@@ -9,7 +9,6 @@ UTC time, day, month, year and local time zone offset.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import Decimal
 from typing import Any, ClassVar
 
 from .. import runtime as rt
@@ -66,14 +65,14 @@ class Zda:
             raise rt.too_few(address, "ZDA", 6, count)
         if count > 6:
             raise rt.too_many(address, "ZDA", 6, count)
-        out = cls(address[:-3], checksum=checksum)
-        out.time = _TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)
-        out.day = _INTEGER_1_TO_31.get(fields[1]) or rt.integer_field(fields[1], address, 2, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)
-        out.month = _INTEGER_1_TO_12.get(fields[2]) or rt.integer_field(fields[2], address, 3, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)
-        out.year = _INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "year", "integer", None, None, _INTEGER)
-        out.local_zone_hours = _INTEGER_MINUS_13_TO_13.get(fields[4]) or rt.integer_field(fields[4], address, 5, "local_zone_hours", "integer -13..13", -13, 13, _INTEGER_MINUS_13_TO_13)
-        out.local_zone_minutes = _INTEGER_0_TO_59.get(fields[5]) or rt.integer_field(fields[5], address, 6, "local_zone_minutes", "integer 0..59", 0, 59, _INTEGER_0_TO_59)
-        return out
+        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
+        day = (_INTEGER_1_TO_31.get(fields[1]) or rt.integer_field(fields[1], address, 2, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)) if fields[1] else None
+        month = (_INTEGER_1_TO_12.get(fields[2]) or rt.integer_field(fields[2], address, 3, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[2] else None
+        year = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "year", "integer", None, None, _INTEGER)) if fields[3] else None
+        local_zone_hours = (_INTEGER_MINUS_13_TO_13.get(fields[4]) or rt.integer_field(fields[4], address, 5, "local_zone_hours", "integer -13..13", -13, 13, _INTEGER_MINUS_13_TO_13)) if fields[4] else None
+        local_zone_minutes = (_INTEGER_0_TO_59.get(fields[5]) or rt.integer_field(fields[5], address, 6, "local_zone_minutes", "integer 0..59", 0, 59, _INTEGER_0_TO_59)) if fields[5] else None
+        # Every value at once, in the order of the fields above: one pass through __init__.
+        return cls(address[:-3], time, day, month, year, local_zone_hours, local_zone_minutes, [], checksum)
 
     def fields(self) -> list[str]:
         """The wire text of every field after the address."""
