@@ -61,10 +61,13 @@ static nmea_text text_span(const char *begin, const char *end)
     return t;
 }
 
+/* Byte by byte: the words compared are a few characters, shorter than a call to strlen. */
 static bool text_is(nmea_text t, const char *s)
 {
-    size_t n = strlen(s);
-    return t.len == n && (n == 0 || memcmp(t.ptr, s, n) == 0);
+    size_t k;
+    for (k = 0; k < t.len && s[k] && s[k] == t.ptr[k]; k++)
+        continue;
+    return k == t.len && s[k] == 0;
 }
 
 static char ascii_upper(char c)
@@ -1547,12 +1550,14 @@ NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, c
                              const nmea_enum_def *def)
 {
     nmea_text t = next_field(r);
+    size_t i;
     if (!t.len)
         return true;
     out->value = r->ignore_case ? enum_find_upper(def, t) : enum_find(def, t.ptr, t.len);
     if (out->value == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr, t.len, def->min_len, def->max_len))
         return bad_field(r, r->index, name, expected, t);
-    memcpy(out->code, t.ptr, t.len); /* t.len <= max_len <= NMEA_CODE_MAX */
+    for (i = 0; i < t.len; i++) /* t.len <= max_len <= NMEA_CODE_MAX; a code is a character or two */
+        out->code[i] = t.ptr[i];
     out->code[t.len] = 0;
     out->present = true;
     return true;
