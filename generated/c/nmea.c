@@ -748,12 +748,20 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         return fail(err, NMEA_ERR_NOT_A_SENTENCE, "empty line");
     if (line[0] != '$' && line[0] != '!')
         return fail(err, NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'");
-    for (i = 1; i < len && !ends_body((unsigned char)line[i]); i++) { /* the address */
-        sum ^= (unsigned char)line[i];
-        if (line[i] == ',') {
-            commas = 1;
-            comma = i++;
-            break;
+    if (len > 6 && line[6] == ',' && is_alnum(line[1]) && is_alnum(line[2]) && is_alnum(line[3])
+        && is_alnum(line[4]) && is_alnum(line[5])) { /* the usual address: talker and sentence id */
+        sum = (unsigned char)(line[1] ^ line[2] ^ line[3] ^ line[4] ^ line[5] ^ ',');
+        commas = 1;
+        comma = 6;
+        i = 7;
+    } else {
+        for (i = 1; i < len && !ends_body((unsigned char)line[i]); i++) { /* the address */
+            sum ^= (unsigned char)line[i];
+            if (line[i] == ',') {
+                commas = 1;
+                comma = i++;
+                break;
+            }
         }
     }
     /* the fields, a word at a time up to the usual "*hh" at the end (the byte loop then finds
@@ -1570,17 +1578,20 @@ NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *r
 {
     const char *p = r->next, *end = r->end, *point = NULL;
     uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
+    unsigned digit;      /* unsigned: a byte below '0' wraps to a large value */
     size_t whole, count;
     nmea_number n;
 
-    for (; p < end && is_digit(*p); p++)
-        digits = digits * 10 + (uint64_t)(*p - '0');
+    if (r->blanks)
+        return false;
+    for (; p < end && (digit = (unsigned)(unsigned char)*p - '0') < 10; p++)
+        digits = digits * 10 + digit;
     whole = (size_t)(p - r->next);
     if (!integer && p < end && *p == '.')
-        for (point = p++; p < end && is_digit(*p); p++)
-            digits = digits * 10 + (uint64_t)(*p - '0');
+        for (point = p++; p < end && (digit = (unsigned)(unsigned char)*p - '0') < 10; p++)
+            digits = digits * 10 + digit;
     count = (size_t)(p - r->next) - (point != NULL); /* digits before and after the point */
-    if ((p < end && *p != r->sep) || r->blanks || count > NMEA_MAX_DIGITS || (point && count == 0))
+    if ((p < end && *p != r->sep) || count > NMEA_MAX_DIGITS || (point && count == 0))
         return false;
     if (count) {
         n.digits = (int64_t)digits;
