@@ -1642,30 +1642,59 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
     put_mem(w, p, (size_t)(end - p));
 }
 
-/* any_number_text for the numbers a parser makes: at most NMEA_MAX_DIGITS digits, a whole
-   part and no decimals without a point. */
-static void number_text(nmea_writer *w, const nmea_number *n)
+/* The number of decimal digits of v (one for 0). */
+static inline unsigned digit_count(uint64_t v)
+{
+    unsigned count = 1;
+    while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10[count])
+        count++;
+    return count;
+}
+
+/* any_number_text for the decimals a parser makes: at most NMEA_MAX_DIGITS decimals and a
+   whole part. */
+static void decimal_text(nmea_writer *w, const nmea_number *n)
 {
     char text[1 + 20 + 1 + NMEA_MAX_DIGITS], *end = text + sizeof text, *p = end;
     uint64_t v = (uint64_t)n->digits;
     unsigned i;
-    if (!n->present)
-        return;
-    if (n->digits < 0 || n->scale > NMEA_MAX_DIGITS || !n->width || n->width > 20 || (n->scale && !n->point)) {
+    if (n->digits < 0 || n->scale > NMEA_MAX_DIGITS || !n->width || n->width > 20 || !n->point) {
         any_number_text(w, n);
         return;
     }
-    if (n->point) {
-        for (i = 0; i < n->scale; i++) {
-            *--p = (char)('0' + v % 10);
-            v /= 10;
-        }
-        *--p = '.';
+    for (i = 0; i < n->scale; i++) {
+        *--p = (char)('0' + v % 10);
+        v /= 10;
     }
+    *--p = '.';
     p = uint_text(p, v, n->width);
     if (n->sign)
         *--p = n->sign;
     put_mem(w, p, (size_t)(end - p));
+}
+
+/* any_number_text, the integers a parser makes (no sign, some width) written straight into the
+   buffer when it has room: their length is worked out first, then they are formatted
+   backwards in place. */
+static void number_text(nmea_writer *w, const nmea_number *n)
+{
+    unsigned size;
+    if (!n->present)
+        return;
+    if (n->point || n->scale || n->sign || n->digits < 0 || !n->width || n->width > 20) {
+        decimal_text(w, n);
+        return;
+    }
+    size = digit_count((uint64_t)n->digits);
+    if (size < n->width)
+        size = n->width;
+    if (w->len + size > w->quick_cap) { /* a full buffer, or a text command */
+        any_number_text(w, n);
+        return;
+    }
+    uint_text(w->buf + w->len + size, (uint64_t)n->digits, n->width);
+    w->len += size;
+    w->last = w->buf[w->len - 1];
 }
 
 NMEA_INTERNAL void put_number(nmea_writer *w, const nmea_number *n)
