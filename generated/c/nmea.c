@@ -10305,7 +10305,8 @@ static void keep_error(nmea_error *kept, bool *have, const nmea_error *err)
 /* The first of the layouts that reads the wire. When none does, `err` gets the error of the
    layouts whose keyword the first field holds (else of all of them): the first bad field among
    them, else their first error. */
-static bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
+NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
+                                nmea_error *err)
 {
     nmea_error attempt, chosen, fallback;
     bool have_chosen = false, have_fallback = false;
@@ -10313,8 +10314,6 @@ static bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nme
     nmea_text first;
     size_t i;
 
-    if (layouts->count == 1)
-        return read_layout(out, layouts->ids[0], wire, err);
     while (first_end < wire->fields.ptr + wire->fields.len && *first_end != wire->sep)
         first_end++;
     first = text_span(wire->fields.ptr, first_end);
@@ -10483,16 +10482,21 @@ static nmea_problems *problems_of(nmea_sentence *s)
     }
 }
 
-/* The first of the layouts that reads the wire, as first_fit; when none does and `lenient`, the
-   fields at fault are read as empty one at a time, each kept as a problem, until a layout reads
-   the wire, a field at fault is already empty, or a problem would be one too many. */
-static bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, bool lenient, nmea_error *err)
+/* first_of_many, and for the usual single layout just that layout's reader (inlined here: no
+   bookkeeping of errors to compare). */
+static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
+{
+    if (layouts->count == 1)
+        return read_layout(out, layouts->ids[0], wire, err);
+    return first_of_many(out, layouts, wire, err);
+}
+
+/* first_fit, when it fails and `lenient`, the fields at fault are read as empty one at a time,
+   each kept as a problem, until a layout reads the wire, a field at fault is already empty, or
+   a problem would be one too many. */
+NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, nmea_error *err)
 {
     nmea_problems problems;
-    if (first_fit(out, layouts, wire, err))
-        return true;
-    if (!lenient)
-        return false;
     problems.count = 0;
     /* a bad field's text is the field's text on the wire, empty once it has been left empty */
     while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && problems.count < NMEA_MAX_PROBLEMS) {
@@ -10506,6 +10510,12 @@ static bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire
         }
     }
     return false;
+}
+
+/* The first of the layouts that reads the wire (first_fit); when none does and `lenient`, refit. */
+static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, bool lenient, nmea_error *err)
+{
+    return first_fit(out, layouts, wire, err) || (lenient && refit(out, layouts, wire, err));
 }
 
 static void write_sentence(nmea_writer *w, const nmea_sentence *s)
