@@ -737,7 +737,7 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
     unsigned sum = 0;
     int high = -1, low = -1; /* the checksum's hex digits */
     uint64_t word, words = 0;
-    bool named, lower = false, upper = false;
+    bool named = false, lower = false, upper = false;
     nmea_text sent;
 
     if (len > NMEA_MAX_LINE) {
@@ -750,6 +750,7 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         return fail(err, NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'");
     if (len > 6 && line[6] == ',' && is_alnum(line[1]) && is_alnum(line[2]) && is_alnum(line[3])
         && is_alnum(line[4]) && is_alnum(line[5])) { /* the usual address: talker and sentence id */
+        named = true;
         sum = (unsigned char)(line[1] ^ line[2] ^ line[3] ^ line[4] ^ line[5] ^ ',');
         commas = 1;
         comma = 6;
@@ -794,9 +795,11 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
     body_end = star ? star : len;
     f->start = text_span(line, line + 1);
     f->address = text_span(line + 1, line + (comma ? comma : body_end));
-    named = f->address.len > 0;
-    for (i = 0; i < f->address.len && named; i++)
-        named = is_alnum(f->address.ptr[i]);
+    if (!named) { /* not yet known to be letters and digits */
+        named = f->address.len > 0;
+        for (i = 0; i < f->address.len && named; i++)
+            named = is_alnum(f->address.ptr[i]);
+    }
     f->checksum = NMEA_CHECKSUM_NONE;
     if (star && star + 1 == len) { /* a bare '*' leaves the checksum out */
         f->checksum = NMEA_CHECKSUM_EMPTY;
