@@ -9946,7 +9946,7 @@ static const nmea_layouts TEXT[] = {
 
 /* The entry of a table sorted by key whose key is `key`, or NULL. The keys are compared byte by
    byte (as memcmp would, but the first byte mostly decides, sooner than a call). */
-NMEA_INTERNAL const nmea_layouts *find_layouts(const nmea_layouts *table, size_t n, nmea_text key)
+NMEA_INTERNAL inline const nmea_layouts *find_layouts(const nmea_layouts *table, size_t n, nmea_text key)
 {
     size_t lo = 0, hi = n;
     while (lo < hi) {
