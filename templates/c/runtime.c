@@ -1275,14 +1275,14 @@ NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
 
 static inline nmea_text next_field(nmea_reader *r)
 {
-    const char *p = r->next;
+    const char *p = r->next, *q = p, *end = r->end; /* (locals: the bytes read could alias r) */
+    char sep = r->sep;
     nmea_text t;
     r->index++;
-    while (r->next < r->end && *r->next != r->sep)
-        r->next++;
-    t = text_span(p, r->next);
-    if (r->next < r->end)
-        r->next++;
+    while (q < end && *q != sep)
+        q++;
+    t = text_span(p, q);
+    r->next = q < end ? q + 1 : q;
     if (r->blanks && is_blank(r->blank, r->blanks, r->index))
         t.len = 0;
     return t;
