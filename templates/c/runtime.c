@@ -1612,7 +1612,12 @@ NMEA_RARE bool put_problem(nmea_writer *w)
    received has then been written in place of the field's own. */
 static inline bool put_sep(nmea_writer *w)
 {
-    put_char(w, w->sep);
+    if (w->len < w->quick_cap) { /* put_char, without the checks a full buffer or a text command needs */
+        w->buf[w->len++] = w->sep;
+        w->last = w->sep;
+    } else {
+        put_char(w, w->sep);
+    }
     w->field++;
     return w->problems && w->problems->count && put_problem(w);
 }
@@ -1679,11 +1684,9 @@ static void decimal_text(nmea_writer *w, const nmea_number *n)
 /* any_number_text, the integers a parser makes (no sign, some width) written straight into the
    buffer when it has room: their length is worked out first, then they are formatted
    backwards in place. */
-static void number_text(nmea_writer *w, const nmea_number *n)
+NMEA_OUTLINE void integer_text(nmea_writer *w, const nmea_number *n)
 {
     unsigned size;
-    if (!n->present)
-        return;
     if (n->point || n->scale || n->sign || n->digits < 0 || !n->width || n->width > 20) {
         decimal_text(w, n);
         return;
@@ -1698,6 +1701,33 @@ static void number_text(nmea_writer *w, const nmea_number *n)
     uint_text(w->buf + w->len + size, (uint64_t)n->digits, n->width);
     w->len += size;
     w->last = w->buf[w->len - 1];
+}
+
+/* integer_text, inline for the most common numbers of all: up to three digits and a width of
+   at most three (satellite numbers, elevations, azimuths, signal strengths). */
+static inline void number_text(nmea_writer *w, const nmea_number *n)
+{
+    uint64_t v = (uint64_t)n->digits; /* (a negative one is a huge value here) */
+    unsigned value, size;
+    char *end;
+    if (!n->present)
+        return;
+    if (n->point || n->scale || n->sign || v >= 1000 || !n->width || n->width > 3 || w->len + 3 > w->quick_cap) {
+        integer_text(w, n);
+        return;
+    }
+    value = (unsigned)v;
+    size = value >= 100 ? 3 : value >= 10 ? 2 : 1;
+    if (size < n->width)
+        size = n->width;
+    end = w->buf + w->len + size;
+    end[-1] = (char)('0' + value % 10);
+    if (size >= 2)
+        end[-2] = (char)('0' + value / 10 % 10);
+    if (size == 3)
+        end[-3] = (char)('0' + value / 100);
+    w->len += size;
+    w->last = end[-1];
 }
 
 NMEA_INTERNAL void put_number(nmea_writer *w, const nmea_number *n)
