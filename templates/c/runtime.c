@@ -1358,7 +1358,7 @@ NMEA_INTERNAL size_t build_end(nmea_writer *w)
     return writer_finish(w);
 }
 
-NMEA_INTERNAL bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t max, size_t *optional)
+NMEA_INTERNAL inline bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t max, size_t *optional)
 {
     if (count < fixed)
         return too_few(r, fixed, count);
@@ -1370,8 +1370,8 @@ NMEA_INTERNAL bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t
 
 /* A layout with a repeated group of `width` wire fields, `min` to `max` times, and `fixed`
    required fields besides: how many times it occurs and how many optional wire fields follow. */
-NMEA_INTERNAL bool read_group_count(nmea_reader *r, size_t count, const char *group, size_t fixed, size_t width,
-                                    size_t min, size_t max, size_t optional_max, size_t *repeats, size_t *optional)
+NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const char *group, size_t fixed, size_t width,
+                                           size_t min, size_t max, size_t optional_max, size_t *repeats, size_t *optional)
 {
     size_t rest, extra;
     if (count < fixed + min * width)
