@@ -1360,6 +1360,7 @@ NMEA_INTERNAL size_t build_end(nmea_writer *w)
 
 NMEA_INTERNAL inline bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t max, size_t *optional)
 {
+    *optional = 0; /* (set first: once inlined, gcc -O1 cannot tell it is read only on success) */
     if (count < fixed)
         return too_few(r, fixed, count);
     if (count > max)
@@ -1374,6 +1375,8 @@ NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const c
                                            size_t min, size_t max, size_t optional_max, size_t *repeats, size_t *optional)
 {
     size_t rest, extra;
+    *repeats = 0; /* (set first: once inlined, gcc -O1 cannot tell they are read only on success) */
+    *optional = 0;
     if (count < fixed + min * width)
         return too_few(r, fixed + min * width, count);
     rest = count - fixed;
