@@ -61,10 +61,13 @@ static nmea_text text_span(const char *begin, const char *end)
     return t;
 }
 
+/* Byte by byte: the words compared are a few characters, shorter than a call to strlen. */
 static bool text_is(nmea_text t, const char *s)
 {
-    size_t n = strlen(s);
-    return t.len == n && (n == 0 || memcmp(t.ptr, s, n) == 0);
+    size_t k;
+    for (k = 0; k < t.len && s[k] && s[k] == t.ptr[k]; k++)
+        continue;
+    return k == t.len && s[k] == 0;
 }
 
 static char ascii_upper(char c)
@@ -575,7 +578,7 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
     unsigned sum = 0;
     int high = -1, low = -1; /* the checksum's hex digits */
     uint64_t word, words = 0;
-    bool named, lower = false, upper = false;
+    bool named = false, lower = false, upper = false;
     nmea_text sent;
 
     if (len > NMEA_MAX_LINE) {
@@ -586,12 +589,21 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
         return fail(err, NMEA_ERR_NOT_A_SENTENCE, "empty line");
     if (line[0] != '$' && line[0] != '!')
         return fail(err, NMEA_ERR_NOT_A_SENTENCE, "line does not start with '$' or '!'");
-    for (i = 1; i < len && !ends_body((unsigned char)line[i]); i++) { /* the address */
-        sum ^= (unsigned char)line[i];
-        if (line[i] == ',') {
-            commas = 1;
-            comma = i++;
-            break;
+    if (len > 6 && line[6] == ',' && is_alnum(line[1]) && is_alnum(line[2]) && is_alnum(line[3])
+        && is_alnum(line[4]) && is_alnum(line[5])) { /* the usual address: talker and sentence id */
+        named = true;
+        sum = (unsigned char)(line[1] ^ line[2] ^ line[3] ^ line[4] ^ line[5] ^ ',');
+        commas = 1;
+        comma = 6;
+        i = 7;
+    } else {
+        for (i = 1; i < len && !ends_body((unsigned char)line[i]); i++) { /* the address */
+            sum ^= (unsigned char)line[i];
+            if (line[i] == ',') {
+                commas = 1;
+                comma = i++;
+                break;
+            }
         }
     }
     /* the fields, a word at a time up to the usual "*hh" at the end (the byte loop then finds
@@ -624,9 +636,11 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
     body_end = star ? star : len;
     f->start = text_span(line, line + 1);
     f->address = text_span(line + 1, line + (comma ? comma : body_end));
-    named = f->address.len > 0;
-    for (i = 0; i < f->address.len && named; i++)
-        named = is_alnum(f->address.ptr[i]);
+    if (!named) { /* not yet known to be letters and digits */
+        named = f->address.len > 0;
+        for (i = 0; i < f->address.len && named; i++)
+            named = is_alnum(f->address.ptr[i]);
+    }
     f->checksum = NMEA_CHECKSUM_NONE;
     if (star && star + 1 == len) { /* a bare '*' leaves the checksum out */
         f->checksum = NMEA_CHECKSUM_EMPTY;
@@ -1261,14 +1275,14 @@ NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
 
 static inline nmea_text next_field(nmea_reader *r)
 {
-    const char *p = r->next;
+    const char *p = r->next, *q = p, *end = r->end; /* (locals: the bytes read could alias r) */
+    char sep = r->sep;
     nmea_text t;
     r->index++;
-    while (r->next < r->end && *r->next != r->sep)
-        r->next++;
-    t = text_span(p, r->next);
-    if (r->next < r->end)
-        r->next++;
+    while (q < end && *q != sep)
+        q++;
+    t = text_span(p, q);
+    r->next = q < end ? q + 1 : q;
     if (r->blanks && is_blank(r->blank, r->blanks, r->index))
         t.len = 0;
     return t;
@@ -1344,8 +1358,9 @@ NMEA_INTERNAL size_t build_end(nmea_writer *w)
     return writer_finish(w);
 }
 
-NMEA_INTERNAL bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t max, size_t *optional)
+NMEA_INTERNAL inline bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t max, size_t *optional)
 {
+    *optional = 0; /* (set first: once inlined, gcc -O1 cannot tell it is read only on success) */
     if (count < fixed)
         return too_few(r, fixed, count);
     if (count > max)
@@ -1356,10 +1371,12 @@ NMEA_INTERNAL bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t
 
 /* A layout with a repeated group of `width` wire fields, `min` to `max` times, and `fixed`
    required fields besides: how many times it occurs and how many optional wire fields follow. */
-NMEA_INTERNAL bool read_group_count(nmea_reader *r, size_t count, const char *group, size_t fixed, size_t width,
-                                    size_t min, size_t max, size_t optional_max, size_t *repeats, size_t *optional)
+NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const char *group, size_t fixed, size_t width,
+                                           size_t min, size_t max, size_t optional_max, size_t *repeats, size_t *optional)
 {
     size_t rest, extra;
+    *repeats = 0; /* (set first: once inlined, gcc -O1 cannot tell they are read only on success) */
+    *optional = 0;
     if (count < fixed + min * width)
         return too_few(r, fixed + min * width, count);
     rest = count - fixed;
@@ -1408,17 +1425,20 @@ NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *r
 {
     const char *p = r->next, *end = r->end, *point = NULL;
     uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
+    unsigned digit;      /* unsigned: a byte below '0' wraps to a large value */
     size_t whole, count;
     nmea_number n;
 
-    for (; p < end && is_digit(*p); p++)
-        digits = digits * 10 + (uint64_t)(*p - '0');
+    if (r->blanks)
+        return false;
+    for (; p < end && (digit = (unsigned)(unsigned char)*p - '0') < 10; p++)
+        digits = digits * 10 + digit;
     whole = (size_t)(p - r->next);
     if (!integer && p < end && *p == '.')
-        for (point = p++; p < end && is_digit(*p); p++)
-            digits = digits * 10 + (uint64_t)(*p - '0');
+        for (point = p++; p < end && (digit = (unsigned)(unsigned char)*p - '0') < 10; p++)
+            digits = digits * 10 + digit;
     count = (size_t)(p - r->next) - (point != NULL); /* digits before and after the point */
-    if ((p < end && *p != r->sep) || r->blanks || count > NMEA_MAX_DIGITS || (point && count == 0))
+    if ((p < end && *p != r->sep) || count > NMEA_MAX_DIGITS || (point && count == 0))
         return false;
     if (count) {
         n.digits = (int64_t)digits;
@@ -1547,12 +1567,14 @@ NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, c
                              const nmea_enum_def *def)
 {
     nmea_text t = next_field(r);
+    size_t i;
     if (!t.len)
         return true;
     out->value = r->ignore_case ? enum_find_upper(def, t) : enum_find(def, t.ptr, t.len);
     if (out->value == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr, t.len, def->min_len, def->max_len))
         return bad_field(r, r->index, name, expected, t);
-    memcpy(out->code, t.ptr, t.len); /* t.len <= max_len <= NMEA_CODE_MAX */
+    for (i = 0; i < t.len; i++) /* t.len <= max_len <= NMEA_CODE_MAX; a code is a character or two */
+        out->code[i] = t.ptr[i];
     out->code[t.len] = 0;
     out->present = true;
     return true;
@@ -1593,7 +1615,12 @@ NMEA_RARE bool put_problem(nmea_writer *w)
    received has then been written in place of the field's own. */
 static inline bool put_sep(nmea_writer *w)
 {
-    put_char(w, w->sep);
+    if (w->len < w->quick_cap) { /* put_char, without the checks a full buffer or a text command needs */
+        w->buf[w->len++] = w->sep;
+        w->last = w->sep;
+    } else {
+        put_char(w, w->sep);
+    }
     w->field++;
     return w->problems && w->problems->count && put_problem(w);
 }
@@ -1626,30 +1653,84 @@ NMEA_RARE void any_number_text(nmea_writer *w, const nmea_number *n)
     put_mem(w, p, (size_t)(end - p));
 }
 
-/* any_number_text for the numbers a parser makes: at most NMEA_MAX_DIGITS digits, a whole
-   part and no decimals without a point. */
-static void number_text(nmea_writer *w, const nmea_number *n)
+/* The number of decimal digits of v (one for 0). */
+static inline unsigned digit_count(uint64_t v)
+{
+    unsigned count = 1;
+    while (count <= NMEA_MAX_DIGITS && v >= (uint64_t)POW10[count])
+        count++;
+    return count;
+}
+
+/* any_number_text for the decimals a parser makes: at most NMEA_MAX_DIGITS decimals and a
+   whole part. */
+static void decimal_text(nmea_writer *w, const nmea_number *n)
 {
     char text[1 + 20 + 1 + NMEA_MAX_DIGITS], *end = text + sizeof text, *p = end;
     uint64_t v = (uint64_t)n->digits;
     unsigned i;
-    if (!n->present)
-        return;
-    if (n->digits < 0 || n->scale > NMEA_MAX_DIGITS || !n->width || n->width > 20 || (n->scale && !n->point)) {
+    if (n->digits < 0 || n->scale > NMEA_MAX_DIGITS || !n->width || n->width > 20 || !n->point) {
         any_number_text(w, n);
         return;
     }
-    if (n->point) {
-        for (i = 0; i < n->scale; i++) {
-            *--p = (char)('0' + v % 10);
-            v /= 10;
-        }
-        *--p = '.';
+    for (i = 0; i < n->scale; i++) {
+        *--p = (char)('0' + v % 10);
+        v /= 10;
     }
+    *--p = '.';
     p = uint_text(p, v, n->width);
     if (n->sign)
         *--p = n->sign;
     put_mem(w, p, (size_t)(end - p));
+}
+
+/* any_number_text, the integers a parser makes (no sign, some width) written straight into the
+   buffer when it has room: their length is worked out first, then they are formatted
+   backwards in place. */
+NMEA_OUTLINE void integer_text(nmea_writer *w, const nmea_number *n)
+{
+    unsigned size;
+    if (n->point || n->scale || n->sign || n->digits < 0 || !n->width || n->width > 20) {
+        decimal_text(w, n);
+        return;
+    }
+    size = digit_count((uint64_t)n->digits);
+    if (size < n->width)
+        size = n->width;
+    if (w->len + size > w->quick_cap) { /* a full buffer, or a text command */
+        any_number_text(w, n);
+        return;
+    }
+    uint_text(w->buf + w->len + size, (uint64_t)n->digits, n->width);
+    w->len += size;
+    w->last = w->buf[w->len - 1];
+}
+
+/* integer_text, inline for the most common numbers of all: up to three digits and a width of
+   at most three (satellite numbers, elevations, azimuths, signal strengths). */
+static inline void number_text(nmea_writer *w, const nmea_number *n)
+{
+    uint64_t v = (uint64_t)n->digits; /* (a negative one is a huge value here) */
+    unsigned value, size;
+    char *end;
+    if (!n->present)
+        return;
+    if (n->point || n->scale || n->sign || v >= 1000 || !n->width || n->width > 3 || w->len + 3 > w->quick_cap) {
+        integer_text(w, n);
+        return;
+    }
+    value = (unsigned)v;
+    size = value >= 100 ? 3 : value >= 10 ? 2 : 1;
+    if (size < n->width)
+        size = n->width;
+    end = w->buf + w->len + size;
+    end[-1] = (char)('0' + value % 10);
+    if (size >= 2)
+        end[-2] = (char)('0' + value / 10 % 10);
+    if (size == 3)
+        end[-3] = (char)('0' + value / 100);
+    w->len += size;
+    w->last = end[-1];
 }
 
 NMEA_INTERNAL void put_number(nmea_writer *w, const nmea_number *n)
