@@ -923,6 +923,8 @@ def text_of(value: Any) -> str:
     """The wire text of a field value (not lat/lon, whose value spans two fields)."""
     if value is None:
         return ""
+    if isinstance(value, _Value):  # numbers, times, dates, hex values: most fields
+        return value.text()
     if value.__class__ is str:
         return value  # type: ignore[no-any-return]
     if isinstance(value, list):

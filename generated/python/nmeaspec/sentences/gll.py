@@ -80,8 +80,11 @@ class Gll:
             rt.text_of(self.time),
             rt.text_of(self.status),
         ]
-        present = [self.mode]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.mode is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.mode)]
         return out

@@ -110,8 +110,11 @@ class Gns:
             rt.text_of(self.dgps_age),
             rt.text_of(self.dgps_station),
         ]
-        present = [self.nav_status]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.nav_status is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.nav_status)]
         return out
@@ -249,8 +252,11 @@ class GnsAux:
             rt.text_of(self.dgps_age),
             rt.text_of(self.dgps_station),
         ]
-        present = [self.nav_status]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.nav_status is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.nav_status)]
         return out

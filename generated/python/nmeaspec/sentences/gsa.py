@@ -103,8 +103,11 @@ class Gsa:
         out.append(rt.text_of(self.pdop))
         out.append(rt.text_of(self.hdop))
         out.append(rt.text_of(self.vdop))
-        present = [self.system_id]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.system_id is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.system_id)]
         return out

@@ -109,8 +109,11 @@ class Gsv:
         ]
         for entry in self.satellites:
             out += [rt.text_of(entry.prn), rt.text_of(entry.elevation), rt.text_of(entry.azimuth), rt.text_of(entry.snr)]
-        present = [self.signal_id]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.signal_id is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.signal_id)]
         return out

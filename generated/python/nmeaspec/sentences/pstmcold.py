@@ -60,8 +60,11 @@ class Pstmcold:
         """The wire text of every field after the address."""
         out: list[str] = [
         ]
-        present = [self.mask]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.mask is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.mask)]
         return out

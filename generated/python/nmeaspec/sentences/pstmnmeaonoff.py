@@ -58,8 +58,11 @@ class Pstmnmeaonoff:
         """The wire text of every field after the address."""
         out: list[str] = [
         ]
-        present = [self.on_off]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.on_off is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.on_off)]
         return out

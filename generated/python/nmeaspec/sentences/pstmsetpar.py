@@ -74,8 +74,11 @@ class Pstmsetpar:
             rt.text_of(self.block_param),
             rt.text_of(self.value),
         ]
-        present = [self.mode]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.mode is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.mode)]
         return out
@@ -176,8 +179,11 @@ class PstmsetparDop:
             rt.text_of(self.hdop),
             rt.text_of(self.gdop),
         ]
-        present = [self.mode]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.mode is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.mode)]
         return out

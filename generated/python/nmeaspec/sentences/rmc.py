@@ -110,8 +110,13 @@ class Rmc:
             rt.text_of(self.mag_var),
             rt.text_of(self.mag_var_dir),
         ]
-        present = [self.mode, self.nav_status]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.nav_status is not rt.ABSENT:
+            last = 1
+        elif self.mode is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.mode)]
         if last >= 1:

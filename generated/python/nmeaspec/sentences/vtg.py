@@ -97,8 +97,11 @@ class Vtg:
             rt.text_of(self.speed_kmh),
             rt.text_of(self.speed_kmh_unit),
         ]
-        present = [self.mode]
-        last = max((i for i, value in enumerate(present) if value is not rt.ABSENT), default=-1)
+        # Optional trailing fields are written up to the last one present.
+        if self.mode is not rt.ABSENT:
+            last = 0
+        else:
+            last = -1
         if last >= 0:
             out += [rt.text_of(self.mode)]
         return out
