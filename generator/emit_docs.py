@@ -117,22 +117,27 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     matrix = [(s, [m.id in s.manuals for m in spec.manuals]) for s in spec.standard]
     matrix += [(s, [m.id in s.manuals for m in spec.manuals]) for s in spec.proprietary]
     files: dict[str, str] = {}
-    md_header = header(spec, "", None).replace("\n", "\n").strip()
-    banner = "<!-- " + " | ".join(md_header.splitlines()) + " -->\n"
+    def banner_of(sources: list[str] | None) -> str:
+        """The DO NOT EDIT banner as an HTML comment; a page about one item names the files it is
+        made from, so that editing one YAML file does not rewrite every page's banner."""
+        return "<!-- " + " | ".join(header(spec, "", sources).strip().splitlines()) + " -->\n"
+
+    banner = banner_of(None)
     files["docs/README.md"] = env.get_template("docs/index.md.j2").render(
         banner=banner, spec=spec, matrix=matrix, counts=counts, vectors=vectors)
     for s in spec.sentences:
         files[f"docs/sentences/{s.id.lower()}.md"] = env.get_template("docs/sentence.md.j2").render(
-            banner=banner, s=s, spec=spec, layouts=[(lay, rows(lay), layout_summary(lay)) for lay in s.layouts],
+            banner=banner_of([s.source, *sorted({e.origin.file for e in _enums_of(s)}), "spec/manuals.yaml"]),
+            s=s, spec=spec, layouts=[(lay, rows(lay), layout_summary(lay)) for lay in s.layouts],
             examples=by_sentence.get(s.id, []), enums=_enums_of(s))
     for e in spec.enums:
         files[f"docs/enums/{e.id}.md"] = env.get_template("docs/enum.md.j2").render(
-            banner=banner, e=e, users=enum_users[e.id])
+            banner=banner_of([e.origin.file]), e=e, users=enum_users[e.id])
     for b in spec.bitfields:
         files[f"docs/bitfields/{b.id}.md"] = env.get_template("docs/bitfield.md.j2").render(
-            banner=banner, b=b, users=_bitfield_users(spec, b.id))
+            banner=banner_of([b.origin.file]), b=b, users=_bitfield_users(spec, b.id))
     for t in spec.tables:
-        files[f"docs/tables/{t.id}.md"] = env.get_template("docs/table.md.j2").render(banner=banner, t=t)
+        files[f"docs/tables/{t.id}.md"] = env.get_template("docs/table.md.j2").render(banner=banner_of([t.origin.file]), t=t)
     for m in spec.manuals:
         if m.file is None:
             continue
@@ -146,7 +151,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files.update(_indexes(spec, env, banner))
     files["docs/errata.md"] = env.get_template("docs/errata.md.j2").render(
         banner=banner, spec=spec, vectors=[v for v in vectors if v["status"] != "intact"], counts=counts)
-    files["docs/json.md"] = banner + (TEMPLATES / "docs" / "json.md").read_text(encoding="utf-8")
+    files["docs/json.md"] = banner_of(["templates/docs/json.md"]) + (TEMPLATES / "docs" / "json.md").read_text(encoding="utf-8")
     return files
 
 

@@ -134,7 +134,8 @@ def test_worked_example_new_manual_revision(tmp_path: Path) -> None:
     for path in ("c/nmea.h", "c/nmea.c", "python/nmeaspec/sentences/geos5_nquery.py", "python/nmeaspec/enums.py",
                  "rust/src/sentences/geos5_nquery.rs", "rust/src/enums.rs", "vectors/examples.jsonl"):
         assert f"generated/{path}" in updated, out
-    for path in ("python/nmeaspec/sentences/gga.py", "rust/src/sentences/gga.rs", "python/nmeaspec/runtime.py"):
+    for path in ("python/nmeaspec/sentences/gga.py", "rust/src/sentences/gga.rs", "python/nmeaspec/runtime.py",
+                 "docs/sentences/gga.md", "docs/enums/gga_quality.md", "docs/json.md"):
         assert f"generated/{path}" not in updated
     summary = out.splitlines()[-1]
     assert re.fullmatch(rf"generated/: 0 created, {len(updated)} updated, 0 removed, \d+ unchanged", summary), summary
