@@ -285,6 +285,19 @@ impl Ascii {
         self.push(b'0' + value % 10);
     }
 
+    /// `hhmmss` or `ddmmyy`: two digits a part; a part above 99 (only in a value built by hand)
+    /// is written whole.
+    #[inline]
+    pub(crate) fn two_digit_parts(&mut self, parts: [u8; 3]) {
+        for part in parts {
+            if part < 100 {
+                self.two_digits(part);
+            } else {
+                self.digits(u64::from(part), 2);
+            }
+        }
+    }
+
     /// The text.
     #[inline]
     pub fn as_str(&self) -> &str {
@@ -487,13 +500,7 @@ impl Time {
     }
 
     pub(crate) fn push_text(self, text: &mut Ascii) {
-        for part in [self.hour, self.minute, self.second] {
-            if part < 100 {
-                text.two_digits(part);
-            } else {
-                text.digits(u64::from(part), 2);
-            }
-        }
+        text.two_digit_parts([self.hour, self.minute, self.second]);
         if self.point {
             text.push(b'.');
             if self.fraction_digits > 0 {
@@ -559,13 +566,7 @@ impl Date {
     }
 
     pub(crate) fn push_text(self, text: &mut Ascii) {
-        for part in [self.day, self.month, self.year] {
-            if part < 100 {
-                text.two_digits(part);
-            } else {
-                text.digits(u64::from(part), 2);
-            }
-        }
+        text.two_digit_parts([self.day, self.month, self.year]);
     }
 }
 
