@@ -96,7 +96,7 @@ def _lenient(layouts: tuple[Any, ...], address: str, fields: list[str], checksum
     already empty and still does not fit, or one problem more than MAX_PROBLEMS, ends the attempt
     with its error."""
     fields = list(fields)
-    problems = []
+    problems: list[NmeaError] = []
     while err.kind == "bad_field" and err.field is not None and fields[err.field - 1] \
             and len(problems) < runtime.MAX_PROBLEMS:
         problems.append(err)
@@ -225,6 +225,7 @@ def encode_json(line: str) -> str:
     except ValueError:
         return runtime.bad_json("not JSON").to_json()
     try:
-        return from_json(obj).to_sentence()
+        sentence: str = from_json(obj).to_sentence()
     except NmeaError as err:
         return err.to_json()
+    return sentence

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import sys
+from collections.abc import Iterator
 
 from . import decode_json, encode_json
 from .runtime import json_too_deep
@@ -31,6 +32,7 @@ def main(argv: list[str] | None = None) -> int:
     verb, flags = (args[0], args[1:]) if args else ("", [])
     if verb in ("decode", "stream") and all(f in FLAGS for f in flags) and len(set(flags)) == len(flags):
         values, lenient, required = (f in flags for f in FLAGS)
+        out: Iterator[str]
         if verb == "decode":
             out = (decode_json(line, values, lenient, required) for line in lines(sys.stdin.buffer.read()))
         else:

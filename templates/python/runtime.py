@@ -200,6 +200,8 @@ class _Value:
     the other on first use (an unset slot raises AttributeError)."""
 
     __slots__ = ("_text", "_parts")
+    _text: str
+    _parts: tuple[Any, ...]
     _FIELDS: tuple[str, ...] = ()
 
     @classmethod
@@ -234,7 +236,7 @@ class _Value:
 
     def __eq__(self, other: object) -> bool:
         if other.__class__ is self.__class__:
-            return self._split() == other._split()  # type: ignore[attr-defined]
+            return self._split() == other._split()
         return NotImplemented
 
     def __hash__(self) -> int:
@@ -282,7 +284,7 @@ class Number(_Value):
         return int(whole + frac), len(frac), len(whole), sign, bool(point)
 
     @staticmethod
-    def _text_of(digits: int, scale: int, width: int, sign: str, point: bool) -> str:  # type: ignore[override]
+    def _text_of(digits: int, scale: int, width: int, sign: str, point: bool) -> str:
         whole, frac = divmod(digits, 10 ** scale)
         out = sign + (str(whole).zfill(width) if width else "")
         if point:
@@ -376,7 +378,7 @@ class Hex(_Value):
         return int(text, 16), len(text), text != text.upper()
 
     @staticmethod
-    def _text_of(value: int, digits: int, lower: bool) -> str:  # type: ignore[override]
+    def _text_of(value: int, digits: int, lower: bool) -> str:
         out = f"{value:0{digits}X}"
         return out.lower() if lower else out
 
@@ -433,7 +435,7 @@ class Time(_Value):
                 bool(point))
 
     @staticmethod
-    def _text_of(hour: int, minute: int, second: int, fraction: int,  # type: ignore[override]
+    def _text_of(hour: int, minute: int, second: int, fraction: int,
                  fraction_digits: int, point: bool) -> str:
         out = f"{hour:02d}{minute:02d}{second:02d}"
         if point:
@@ -486,7 +488,7 @@ class Date(_Value):
         return int(text[0:2]), int(text[2:4]), int(text[4:6])
 
     @staticmethod
-    def _text_of(day: int, month: int, year: int) -> str:  # type: ignore[override]
+    def _text_of(day: int, month: int, year: int) -> str:
         return f"{day:02d}{month:02d}{year:02d}"
 
     def value_json(self) -> str:
@@ -553,13 +555,14 @@ class Coordinate(_Value):
             return self._text
         except AttributeError:
             degrees, minutes, _, degree_digits = self._parts
-            text = self._text = (str(degrees).zfill(degree_digits) if degree_digits else "") + minutes.text()
+            text: str = (str(degrees).zfill(degree_digits) if degree_digits else "") + minutes.text()
+            self._text = text
             return text
 
     @property
     def decimal_degrees(self) -> float:
         degrees, minutes, hemisphere, _ = self._split()
-        value = degrees + float(minutes.value) / 60.0
+        value: float = degrees + float(minutes.value) / 60.0
         return -value if hemisphere in ("S", "W") else value
 
     def texts(self) -> tuple[str, str]:
@@ -926,7 +929,7 @@ def text_of(value: Any) -> str:
     if isinstance(value, _Value):  # numbers, times, dates, hex values: most fields
         return value.text()
     if value.__class__ is str:
-        return value  # type: ignore[no-any-return]
+        return value
     if isinstance(value, list):
         return enum_chars_text(value)
     if isinstance(value, str):
@@ -958,7 +961,8 @@ def value_json(value: Any) -> str:
         return json_str(value.id)
     if isinstance(value, list):
         return "[" + ",".join(enum_value_json(v) for v in value) + "]"
-    return value.value_json()
+    text: str = value.value_json()
+    return text
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1077,9 +1081,9 @@ class Parameter:
                 raise ValueError(f"{where}: {number} does not fit {self.size} byte(s)")
             return [f"{number:X}"]
         if self.encoding == "decimal":
-            number = Decimal(str(value))
-            self._check_range(number, where)
-            return [str(number)]
+            amount = Decimal(str(value))
+            self._check_range(amount, where)
+            return [str(amount)]
         if self.encoding == "decimal_list":
             values = [Decimal(str(v)) for v in value]
             if self.count is not None and len(values) != self.count:

@@ -17,7 +17,7 @@ ROOT = Path(__file__).resolve().parents[2]
 GENERATED = ROOT / "generated"
 CORPUS = ROOT.parent / "shared" / "corpus" / "real"
 # Test-only tools installed into the temporary virtual environment, pinned.
-MYPY = "mypy==1.13.0"
+MYPY = "mypy==2.4.1"
 
 
 def need(tool: str, hint: str) -> str:

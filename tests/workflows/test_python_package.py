@@ -1,11 +1,14 @@
 """The Python package in a fresh virtual environment: pip-installed from a copy of generated/python,
-imported from elsewhere, its console scripts on PATH, its types accepted by mypy --strict."""
+imported from elsewhere, its console scripts on PATH, its types accepted by mypy --strict, and the
+package itself strict-clean when vendored into a project that runs mypy --strict."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from .conftest import MYPY, Venv, run
+import shutil
+
+from .conftest import GENERATED, MYPY, Venv, run
 
 USER_SCRIPT = '''
 from decimal import Decimal
@@ -52,3 +55,12 @@ def test_mypy_strict_accepts_a_user_script(installed: Venv, tmp_path: Path) -> N
     script.write_text(USER_SCRIPT)
     out = run(installed.python, "-m", "mypy", "--strict", "--no-incremental", script, cwd=tmp_path).stdout
     assert b"Success" in out
+
+
+def test_mypy_strict_accepts_the_vendored_package(installed: Venv, tmp_path: Path) -> None:
+    """A user who copies the package into their tree checks it with their own code."""
+    installed.pip(MYPY)
+    shutil.copytree(GENERATED / "python" / "nmeaspec", tmp_path / "nmeaspec",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    out = run(installed.python, "-m", "mypy", "--strict", "--no-incremental", "nmeaspec", cwd=tmp_path).stdout
+    assert b"Success: no issues found" in out

@@ -88,7 +88,7 @@ class ComnavLog:
         if not values:
             return rt.words_json(self.FIELD_IDS, self.to_sentence())
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"message":' + show(self.message),
             '"trigger":' + show(self.trigger),
             '"period":' + show(self.period),

@@ -81,7 +81,7 @@ class ComnavNmeatalker:
         if not values:
             return rt.words_json(self.FIELD_IDS, self.to_sentence())
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"message":' + show(self.message),
             '"talker_id":' + show(self.talker_id),
         ]
@@ -158,7 +158,7 @@ class ComnavNmeatalkerList:
         if not values:
             return rt.words_json(self.FIELD_IDS, self.to_sentence())
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"subcommand":' + show(self.subcommand),
         ]
         return "{" + ",".join(parts) + "}"
@@ -232,7 +232,7 @@ class ComnavNmeatalkerReset:
         if not values:
             return rt.words_json(self.FIELD_IDS, self.to_sentence())
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"subcommand":' + show(self.subcommand),
         ]
         return "{" + ",".join(parts) + "}"

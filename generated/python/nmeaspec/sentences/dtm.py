@@ -103,7 +103,7 @@ class Dtm:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"local_datum":' + show(self.local_datum),
             '"local_datum_subdivision":' + show(self.local_datum_subdivision),
             '"lat_offset":' + show(self.lat_offset),

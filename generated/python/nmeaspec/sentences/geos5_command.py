@@ -74,7 +74,7 @@ class Geos5Command:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"command":' + show(self.command),
         ]
         return "{" + ",".join(parts) + "}"

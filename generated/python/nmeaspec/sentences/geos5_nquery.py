@@ -127,7 +127,7 @@ class Geos5Nquery:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"keyword":' + show(self.keyword),
             '"port":' + show(self.port),
             '"output_rate":' + show(self.output_rate),

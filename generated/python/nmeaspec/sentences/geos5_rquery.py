@@ -101,7 +101,7 @@ class Geos5Rquery:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"keyword":' + show(self.keyword),
             '"receiver_name":' + show(self.receiver_name),
             '"software_version":' + show(self.software_version),

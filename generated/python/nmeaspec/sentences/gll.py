@@ -102,7 +102,7 @@ class Gll:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"lat":' + show(self.lat),
             '"lon":' + show(self.lon),
             '"time":' + show(self.time),

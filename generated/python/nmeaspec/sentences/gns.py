@@ -132,7 +132,7 @@ class Gns:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"time":' + show(self.time),
             '"lat":' + show(self.lat),
             '"lon":' + show(self.lon),
@@ -274,7 +274,7 @@ class GnsAux:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"time":' + show(self.time),
             '"lat":' + show(self.lat),
             '"lon":' + show(self.lon),

@@ -125,7 +125,7 @@ class Gsa:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"selection_mode":' + show(self.selection_mode),
             '"fix_type":' + show(self.fix_type),
             '"prns":[' + ",".join(show(entry) for entry in self.prns) + "]",
@@ -250,7 +250,7 @@ class GsaShort:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"selection_mode":' + show(self.selection_mode),
             '"fix_type":' + show(self.fix_type),
             '"prns":[' + ",".join(show(entry) for entry in self.prns) + "]",

@@ -103,7 +103,7 @@ class Gst:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"time":' + show(self.time),
             '"rms":' + show(self.rms),
             '"semi_major_std":' + show(self.semi_major_std),

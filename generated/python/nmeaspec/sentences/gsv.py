@@ -131,7 +131,7 @@ class Gsv:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"message_count":' + show(self.message_count),
             '"message_number":' + show(self.message_number),
             '"satellites_in_view":' + show(self.satellites_in_view),

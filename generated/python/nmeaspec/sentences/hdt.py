@@ -77,7 +77,7 @@ class Hdt:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"heading":' + show(self.heading),
             '"heading_ref":' + show(self.heading_ref),
         ]

@@ -93,7 +93,7 @@ class Psrf100:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"protocol":' + show(self.protocol),
             '"baud":' + show(self.baud),
             '"data_bits":' + show(self.data_bits),

@@ -106,7 +106,7 @@ class Psrf101:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"x":' + show(self.x),
             '"y":' + show(self.y),
             '"z":' + show(self.z),

@@ -89,7 +89,7 @@ class Psrf102:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"baud":' + show(self.baud),
             '"data_bits":' + show(self.data_bits),
             '"stop_bits":' + show(self.stop_bits),

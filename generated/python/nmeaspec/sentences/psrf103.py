@@ -87,7 +87,7 @@ class Psrf103:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"message":' + show(self.message),
             '"mode":' + show(self.mode),
             '"rate":' + show(self.rate),

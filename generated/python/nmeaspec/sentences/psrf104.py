@@ -108,7 +108,7 @@ class Psrf104:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"latitude":' + show(self.latitude),
             '"longitude":' + show(self.longitude),
             '"altitude":' + show(self.altitude),

@@ -72,7 +72,7 @@ class Psrf150:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"ok_to_send":' + show(self.ok_to_send),
         ]
         return "{" + ",".join(parts) + "}"

@@ -83,7 +83,7 @@ class Pstmagps:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"values":[' + ",".join(show(entry) for entry in self.values) + "]",
         ]
         return "{" + ",".join(parts) + "}"

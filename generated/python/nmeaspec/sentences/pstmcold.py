@@ -82,7 +82,7 @@ class Pstmcold:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
         ]
         if self.mask is not rt.ABSENT:
             parts.append('"mask":' + show(self.mask))

@@ -73,7 +73,7 @@ class Pstmgetpar:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"block_param":' + show(self.block_param),
         ]
         return "{" + ",".join(parts) + "}"

@@ -85,7 +85,7 @@ class PstmgetrtctimeReply:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"time":' + show(self.time),
             '"date":' + show(self.date),
             '"rtc_status":' + show(self.rtc_status),

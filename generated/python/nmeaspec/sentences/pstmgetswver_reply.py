@@ -81,7 +81,7 @@ class PstmgetswverReply:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"library_version":' + show(self.library_version),
             '"compiler":' + show(self.compiler),
             '"build_date":' + show(self.build_date),

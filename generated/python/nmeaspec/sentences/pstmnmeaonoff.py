@@ -80,7 +80,7 @@ class Pstmnmeaonoff:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
         ]
         if self.on_off is not rt.ABSENT:
             parts.append('"on_off":' + show(self.on_off))

@@ -79,7 +79,7 @@ class Pstmset:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"block_param":' + show(self.block_param),
             '"value":' + show(self.value),
         ]
@@ -167,7 +167,7 @@ class PstmsetDop:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"block_param":' + show(self.block_param),
             '"pdop":' + show(self.pdop),
             '"vdop":' + show(self.vdop),

@@ -96,7 +96,7 @@ class Pstmsetpar:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"block_param":' + show(self.block_param),
             '"value":' + show(self.value),
         ]
@@ -201,7 +201,7 @@ class PstmsetparDop:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"block_param":' + show(self.block_param),
             '"pdop":' + show(self.pdop),
             '"vdop":' + show(self.vdop),

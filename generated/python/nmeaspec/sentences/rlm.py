@@ -88,7 +88,7 @@ class Rlm:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"beacon_id":' + show(self.beacon_id),
             '"time":' + show(self.time),
             '"message_code":' + show(self.message_code),

@@ -136,7 +136,7 @@ class Rmc:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"time":' + show(self.time),
             '"status":' + show(self.status),
             '"lat":' + show(self.lat),

@@ -119,7 +119,7 @@ class Vtg:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"course_true":' + show(self.course_true),
             '"course_true_ref":' + show(self.course_true_ref),
             '"course_magnetic":' + show(self.course_magnetic),

@@ -99,7 +99,7 @@ class Zda:
     def fields_json(self, values: bool = False) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = rt.value_json if values else rt.text_json
-        parts = [
+        parts: list[str] = [
             '"time":' + show(self.time),
             '"day":' + show(self.day),
             '"month":' + show(self.month),
