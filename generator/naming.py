@@ -16,6 +16,9 @@ external symbol is left unprefixed.
 Rust and Python: the token `nmeaspec` (crate name, package name, `use nmeaspec::`, doc examples)
 becomes N; the Python package directory moves to N/ (its own imports are relative), and the
 console scripts `nmea...` become `N...` so that two installs do not overwrite each other's.
+
+The tools follow their copy: nmea-c becomes P-c (CMake target, usage text), nmea-py and nmea-rs
+become N-py and N-rs (console script, cargo bin, usage texts), the `nmea` tool N.
 """
 
 from __future__ import annotations
@@ -100,6 +103,16 @@ def rename_namespace(text: str, namespace: str) -> str:
     return re.sub(r"\bnmeaspec\b", namespace, text)
 
 
+def rename_tools(text: str, prefix: str | None, namespace: str | None) -> str:
+    """The tools' names where the tools name themselves (usage texts, bin and script names)."""
+    if prefix not in (None, DEFAULT_PREFIX):
+        text = re.sub(r"\bnmea-c\b", f"{prefix}-c", text)
+    if namespace not in (None, DEFAULT_NAMESPACE):
+        text = re.sub(r"\bnmea-(py|rs)\b", namespace + r"-\1", text)
+        text = text.replace('prog="nmea"', f'prog="{namespace}"')
+    return text
+
+
 def _rename_scripts(text: str, namespace: str) -> str:
     """pyproject.toml: console scripts `nmea...` -> `<namespace>...`."""
     out, in_scripts = [], False
@@ -136,6 +149,9 @@ def rename_files(files: dict[str, str], spec: Spec, prefix: str | None, namespac
                 path = f"python/{namespace}/" + path[len("python/nmeaspec/"):]
             if path == "python/pyproject.toml":
                 content = _rename_scripts(content, namespace)
+        content = rename_tools(content, prefix, namespace)
+        if path.startswith("rust/"):
+            path = rename_tools(path, None, namespace)   # src/bin/nmea-rs.rs, named in Cargo.toml
         assert path not in out, path
         out[path] = content
     return out

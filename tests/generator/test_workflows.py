@@ -306,6 +306,10 @@ def test_renaming_is_complete(copies: Path) -> None:
                 code = re.sub(r'"(?:[^"\\\n]|\\.)*"', '""', text)
                 leftover = set(re.findall(r"\b(?:nmea|NMEA)_\w*", code))
                 assert leftover <= {"nmea_version"}, (path, leftover)   # a GeoS-5 field id, a struct member
+            assert not re.search(r"\bnmea-(?:c|py|rs)\b", text), path       # the tools name their copy
+    assert (gs5 / "rust/src/bin/gs5nmea-rs.rs").is_file()
+    assert 'name = "gs5nmea-rs"' in (gs5 / "rust/Cargo.toml").read_text()
+    assert 'prog="gs5nmea"' in (gs5 / "python/gs5nmea/tool.py").read_text()
 
 
 def test_two_c_copies_in_one_program(copies: Path) -> None:
@@ -342,6 +346,9 @@ int main(void) {{
     run(cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-o", "gs5_tests", "gs5/c/gs5.c",
         "gs5/c/tests/test_examples.c", cwd=copies)
     assert " 0 failed" in run("./gs5_tests", cwd=copies)
+    run(cc, "-std=c99", "-o", "gs5-c", "gs5/c/gs5.c", "gs5/c/gs5_tool.c", cwd=copies)
+    usage = subprocess.run(["./gs5-c"], cwd=copies, capture_output=True, text=True)
+    assert usage.returncode == 2 and usage.stderr.startswith("usage: gs5-c decode"), usage.stderr
 
 
 def test_two_rust_crates_in_one_project(copies: Path) -> None:
