@@ -69,14 +69,18 @@ test-generator: $(STAMP)
 test-python: $(STAMP)
 	cd generated/python && ../../$(PY) -m pytest -q tests
 
+# NMEA_TEST_HOOKS: the test programs also check nmea_parse_ex's fast path against its general path.
 test-c: $(STAMP)
 	@mkdir -p build/c
-	$(CC) $(CFLAGS) -o build/c/test_examples generated/c/nmea.c generated/c/tests/test_examples.c
+	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o build/c/test_examples generated/c/nmea.c generated/c/tests/test_examples.c
 	build/c/test_examples
+	$(CC) $(CFLAGS) -DNMEA_NO_FAST_PATH -o build/c/test_examples_general generated/c/nmea.c generated/c/tests/test_examples.c
+	build/c/test_examples_general
 
 # The C test program and the C tool under AddressSanitizer + UndefinedBehaviorSanitizer, and under
 # valgrind, over the examples, the edge cases and every real log.
-SANITIZE := -std=c99 -Wall -Wextra -Werror -pedantic -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+SANITIZE := -std=c99 -Wall -Wextra -Werror -pedantic -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer \
+            -DNMEA_TEST_HOOKS
 MEMORY_INPUTS := tests/agreement/edge_cases.txt $(sort $(wildcard ../shared/corpus/real/*/*.nmea))
 
 test-c-memory: $(STAMP)
@@ -158,7 +162,7 @@ fuzz-seeds: $(STAMP)
 
 fuzz-c: fuzz-seeds
 	@mkdir -p $(FUZZ)/corpus-c
-	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -Igenerated/c \
+	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -DNMEA_TEST_HOOKS -Igenerated/c \
 		-o $(FUZZ)/fuzz-c generated/c/nmea.c fuzz/c/fuzz_nmea.c
 	$(FUZZ)/fuzz-c $(FUZZ_FLAGS) -artifact_prefix=$(FUZZ)/crash-c- $(FUZZ)/corpus-c $(FUZZ)/seeds
 

@@ -173,6 +173,26 @@ def read_call(f: Field, target: str, ranges: Ranges) -> str:
     return f"read_enum_chars({head}, &{enum_def(f.enum)}, {f.max_length or 0})"
 
 
+def fast_call(f: Field, target: str, ranges: Ranges) -> str:
+    """The fast path's call that reads field `f` into `target` from the line at `p` (see
+    fast_frame in the runtime): read_call without the names errors need."""
+    t = f.type
+    if t == "keyword":
+        return f"fast_keyword(&p, {c_str(f.value or '')})"
+    if t in ("integer", "decimal"):
+        return f"fast_{t}(&p, &{target}, {ranges.ref(f)})"
+    if t in ("hex", "time", "date", "char", "latitude", "longitude"):
+        return f"fast_{t}(&p, &{target})"
+    if t == "literal":
+        return f"fast_literal(&p, &{target}, {c_str(f.value or '')})"
+    if t == "text":
+        return f"fast_text(&p, &{target}, {f.max_length or 0})"
+    assert f.enum is not None
+    if t == "enum":
+        return f"fast_enum(&p, &{target}, &{enum_def(f.enum)})"
+    return f"fast_enum_chars(&p, &{target}, &{enum_def(f.enum)}, {f.max_length or 0})"
+
+
 def put_call(f: Field, target: str) -> str:
     """The call that writes field `f` (its comma and text) to writer `w`."""
     t = f.type
@@ -254,6 +274,7 @@ def field_view(f: Field, base: str, ranges: Ranges, key: bool = True) -> dict:
         "type": C_TYPES[f.type],
         "doc": member_doc(f) if stored else [],
         "read": read_call(f, target, ranges),
+        "fast": fast_call(f, target, ranges),
         "put": put_call(f, target),
         "json": json_call(f, target, key),
         "target": target,
@@ -373,6 +394,8 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "fields": before + after + optional,
         "head_reads": _conditions(head),
         "tail_reads": _conditions(tail),
+        "head_fast": _conditions(head, "fast"),
+        "tail_fast": _conditions(tail, "fast"),
         "head_collects": [v["optional_collect"] if v.get("when") else v["collect"] for v in head],
         "tail_collects": [v["optional_collect"] if v.get("when") else v["collect"] for v in tail],
         "optional_names": ", ".join(v["field"].id for v in optional),
@@ -410,19 +433,20 @@ def _example(sentence: Sentence, layout: Layout) -> Example | None:
                default=None)
 
 
-def _conditions(views: list[dict]) -> list[str]:
-    """The failure conditions of reading fields, for an `if (a || b ...) return false;` chain."""
-    conds = [_read_condition(v) for v in views]
+def _conditions(views: list[dict], call: str = "read") -> list[str]:
+    """The failure conditions of reading fields (with the `read` calls, or the `fast` ones), for
+    an `if (a || b ...) return false;` chain."""
+    conds = [_read_condition(v, call) for v in views]
     if len(conds) == 1 and conds[0].startswith("("):
         conds[0] = conds[0][1:-1]
     return conds
 
 
-def _read_condition(view: dict) -> str:
+def _read_condition(view: dict, call: str) -> str:
     """The failure condition of reading one field, in the `if (... || ...) return false;` chain."""
     if view.get("when"):
-        return f"({view['when']} && !{view['read']})"
-    return "!" + view["read"]
+        return f"({view['when']} && !{view[call]})"
+    return "!" + view[call]
 
 
 def enum_view(e: EnumDef) -> dict:

@@ -8,6 +8,8 @@
  * - a line that does not parse must describe its error as JSON; when lenient parsing keeps it, it
  *   must still serialize back to exactly its bytes, and its JSON (problems included) must rebuild
  *   it the same way;
+ * - the fast path of nmea_parse_ex must decode the line exactly as its general path does
+ *   (nmea_parse_general: built with NMEA_TEST_HOOKS);
  * - JSON that rebuilds a sentence must serialize, and that sentence must parse again;
  * - the stream framer must cut the input into the same items as a byte-at-a-time model of the
  *   Python reference's Framer, whether it gets the input whole or in chunks of any size (the
@@ -55,14 +57,24 @@ static void json_round_trip(const nmea_sentence *s, const char *line, size_t siz
     check(n == size && memcmp(again, line, size) == 0);
 }
 
+/* The JSON of a parse: the sentence's lossless JSON, or the error's. */
+static size_t parse_json(bool ok, const nmea_sentence *s, const nmea_error *err, char *buf, size_t cap)
+{
+    return ok ? nmea_to_json(s, false, buf, cap) : nmea_error_to_json(err, buf, cap);
+}
+
 static void as_line(const char *data, size_t size)
 {
     nmea_sentence s, other;
     nmea_error err;
     size_t n, j, k;
-    bool no_checksum, text_command;
+    bool no_checksum, text_command, parsed;
 
-    if (!nmea_parse(&s, data, size, &err)) {
+    parsed = nmea_parse(&s, data, size, &err);
+    j = parse_json(parsed, &s, &err, json, sizeof json);
+    k = parse_json(nmea_parse_general(&other, data, size, NULL, &err), &other, &err, json2, sizeof json2);
+    check(j == k && memcmp(json, json2, j) == 0);
+    if (!parsed) {
         check(nmea_error_to_json(&err, json, sizeof json) != 0);
         if (!nmea_parse_ex(&s, data, size, &LENIENT, &err)) {
             check(nmea_error_to_json(&err, json, sizeof json) != 0);

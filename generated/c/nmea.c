@@ -1755,6 +1755,245 @@ NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *n
 }
 
 /* ------------------------------------------------------------------------------------------ */
+/* The fast path: a sentence in its usual form, read in one pass without the bookkeeping errors
+   need. nmea_parse_ex tries it first; whatever it is not sure of (any field it cannot read, a
+   field count that fits no layout, an unusual frame) it leaves to the general path above, which
+   then reads the line from the start and finds the error. It accepts a subset of what the
+   general path accepts and fills the struct exactly as the general path would: a build with
+   NMEA_TEST_HOOKS checks that on every line it is given (nmea_parse_general). */
+
+/* What a layout's fast reader found: the line read, or it cannot be this layout (its field
+   count does not fit: the general path cannot read it with this layout either), or not sure. */
+typedef enum { FAST_OK, FAST_NOT_THIS, FAST_UNSURE } fast_result;
+
+static const unsigned char HEX_UPPER_VALUE[256] = { /* the value of an upper-case hex digit + 1; 0 */
+    ['0'] = 1, ['1'] = 2, ['2'] = 3, ['3'] = 4, ['4'] = 5, ['5'] = 6, ['6'] = 7, ['7'] = 8, ['8'] = 9, ['9'] = 10,
+    ['A'] = 11, ['B'] = 12, ['C'] = 13, ['D'] = 14, ['E'] = 15, ['F'] = 16};
+
+/* The usual frame: '$', the body, and "*HH" with upper-case hex digits (or none) matching the
+   body's XOR, NMEA_MAX_LINE bytes at most, the address followed by a comma. Sets the number of
+   fields. The body is read 8 bytes at a time, its last bytes as the word that ends them; what
+   it holds is left to the fast readers: each stops at the ',' or '*' after its field, refuses
+   what its type does not take (a reader that takes any byte refuses one that is not printable
+   ASCII), and the layout's reader checks that its last field ends at the final '*' (a '*' in
+   the body would end a field early). */
+NMEA_HOT bool fast_frame(const char *line, size_t len, size_t *count)
+{
+    const char *body = line + 1;
+    size_t n, i, commas = 0;
+    uint64_t word, sum = 0;
+    unsigned high, low;
+
+    if (len < 12 || len > NMEA_MAX_LINE || line[0] != '$' || line[len - 3] != '*')
+        return false;
+    n = len - 4; /* at least 8 */
+    for (i = 0; i + 8 <= n; i += 8) {
+        memcpy(&word, body + i, 8);
+        sum ^= word;
+        commas += count_bytes(zero_bytes(word ^ (',' * BYTES_ONES)));
+    }
+    if (i < n) { /* the last n - i bytes: the top of the word that ends the body, moved down */
+        unsigned shift = (unsigned)(8 * (8 - (n - i)));
+        memcpy(&word, body + n - 8, 8);
+        word >>= shift;
+        sum ^= word;
+        commas += count_bytes(zero_bytes(word ^ (',' * BYTES_ONES)) & (~UINT64_C(0) >> shift));
+    }
+    sum ^= sum >> 32;
+    sum ^= sum >> 16;
+    sum ^= sum >> 8;
+    high = HEX_UPPER_VALUE[(unsigned char)line[len - 2]];
+    low = HEX_UPPER_VALUE[(unsigned char)line[len - 1]];
+    *count = commas;
+    return high && low && (high - 1) * 16 + (low - 1) == (sum & 0xFF);
+}
+
+/* The field at *p, up to the ',' or '*' after it; *p then points past that separator. */
+NMEA_HOT nmea_text fast_span(const char **p)
+{
+    const char *q = *p;
+    nmea_text t;
+    while (*q != ',' && *q != '*')
+        q++;
+    t = text_span(*p, q);
+    *p = q + 1;
+    return t;
+}
+
+/* fast_span for a field that takes any text: false when a byte of it is not printable. */
+NMEA_HOT bool fast_printable_span(const char **p, nmea_text *out)
+{
+    const char *q = *p;
+    while (*q != ',' && *q != '*') {
+        if (!is_printable(*q))
+            return false;
+        q++;
+    }
+    *out = text_span(*p, q);
+    *p = q + 1;
+    return true;
+}
+
+/* An integer or decimal field in one pass: empty, or an optional '-', digits and (`integer`
+   false) at most one point, NMEA_MAX_DIGITS digits in all, in `range`. */
+NMEA_HOT bool fast_number(const char **p, nmea_number *out, const nmea_range *range, bool integer)
+{
+    const char *q = *p, *digits_start, *point = NULL;
+    uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
+    unsigned digit;      /* unsigned: a byte below '0' wraps to a large value */
+    size_t whole, count;
+    nmea_number n;
+
+    n.sign = *q == '-' ? '-' : 0;
+    q += n.sign != 0;
+    for (digits_start = q; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
+        digits = digits * 10 + digit;
+    whole = (size_t)(q - digits_start);
+    if (!integer && *q == '.')
+        for (point = q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
+            digits = digits * 10 + digit;
+    count = (size_t)(q - digits_start) - (point != NULL);
+    if ((*q != ',' && *q != '*') || count > NMEA_MAX_DIGITS || (count == 0 && (point || n.sign)))
+        return false;
+    if (count) {
+        n.digits = (int64_t)digits;
+        n.scale = (uint8_t)(count - whole);
+        n.width = (uint8_t)whole;
+        n.point = point != NULL;
+        n.present = true;
+        if (!in_range(&n, range))
+            return false;
+        *out = n;
+    }
+    *p = q + 1;
+    return true;
+}
+
+NMEA_HOT bool fast_integer(const char **p, nmea_number *out, const nmea_range *range)
+{
+    return fast_number(p, out, range, true);
+}
+
+NMEA_HOT bool fast_decimal(const char **p, nmea_number *out, const nmea_range *range)
+{
+    return fast_number(p, out, range, false);
+}
+
+NMEA_HOT bool fast_hex(const char **p, nmea_hex *out)
+{
+    nmea_text t = fast_span(p);
+    return !t.len || parse_hex(t, out);
+}
+
+NMEA_HOT bool fast_time(const char **p, nmea_time *out)
+{
+    nmea_text t = fast_span(p);
+    return !t.len || parse_time(t, out);
+}
+
+NMEA_HOT bool fast_date(const char **p, nmea_date *out)
+{
+    nmea_text t = fast_span(p);
+    return !t.len || parse_date(t, out);
+}
+
+NMEA_HOT bool fast_coordinate(const char **p, nmea_coordinate *out, char positive, char negative,
+                              unsigned max_degree_digits, unsigned max_degrees)
+{
+    nmea_text value = fast_span(p), hemisphere = fast_span(p);
+    if (!value.len)
+        return !hemisphere.len;
+    if (hemisphere.len != 1 || (hemisphere.ptr[0] != positive && hemisphere.ptr[0] != negative)
+        || !parse_coordinate(value, max_degree_digits, max_degrees, out))
+        return false;
+    out->hemisphere = hemisphere.ptr[0];
+    return true;
+}
+
+NMEA_HOT bool fast_latitude(const char **p, nmea_coordinate *out)
+{
+    return fast_coordinate(p, out, 'N', 'S', 2, 90);
+}
+
+NMEA_HOT bool fast_longitude(const char **p, nmea_coordinate *out)
+{
+    return fast_coordinate(p, out, 'E', 'W', 3, 180);
+}
+
+NMEA_HOT bool fast_char(const char **p, char *out)
+{
+    nmea_text t;
+    if (!fast_printable_span(p, &t))
+        return false;
+    *out = t.len ? t.ptr[0] : 0;
+    return t.len <= 1;
+}
+
+NMEA_HOT bool fast_literal(const char **p, bool *out, const char *literal)
+{
+    nmea_text t = fast_span(p);
+    *out = t.len > 0;
+    return !t.len || text_is(t, literal);
+}
+
+NMEA_HOT bool fast_keyword(const char **p, const char *keyword)
+{
+    return text_is(fast_span(p), keyword);
+}
+
+NMEA_HOT bool fast_text(const char **p, nmea_text *out, size_t max_length)
+{
+    return fast_printable_span(p, out) && (!max_length || out->len <= max_length);
+}
+
+/* A known code only: a code the table does not know is the general path's to keep. */
+NMEA_HOT bool fast_enum(const char **p, nmea_enum *out, const nmea_enum_def *def)
+{
+    nmea_text t = fast_span(p);
+    size_t i;
+    if (!t.len)
+        return true;
+    if (t.len > def->max_len || (out->value = enum_find(def, t.ptr, t.len)) == NMEA_UNKNOWN_CODE)
+        return false;
+    for (i = 0; i < t.len; i++)
+        out->code[i] = t.ptr[i];
+    out->code[t.len] = 0;
+    out->present = true;
+    return true;
+}
+
+NMEA_HOT bool fast_enum_chars(const char **p, nmea_text *out, const nmea_enum_def *def, size_t max_length)
+{
+    size_t i;
+    *out = fast_span(p);
+    if (max_length && out->len > max_length)
+        return false;
+    for (i = 0; i < out->len; i++)
+        if (enum_find(def, out->ptr + i, 1) == NMEA_UNKNOWN_CODE && !is_code_like(def, out->ptr + i, 1, 1, 1))
+            return false;
+    return true;
+}
+
+/* The optional trailing wire fields of a layout without a repeated group, when `count` fits. */
+NMEA_HOT bool fast_count(size_t count, size_t fixed, size_t max, size_t *optional)
+{
+    *optional = count - fixed;
+    return count >= fixed && count <= max;
+}
+
+/* read_group_count without its errors. */
+NMEA_HOT bool fast_group_count(size_t count, size_t fixed, size_t width, size_t min, size_t max,
+                               size_t optional_max, size_t *repeats, size_t *optional)
+{
+    size_t rest = count - fixed;
+    if (count < fixed + min * width)
+        return false;
+    *repeats = rest / width < max ? rest / width : max;
+    *optional = rest - *repeats * width;
+    return *optional <= optional_max;
+}
+
+/* ------------------------------------------------------------------------------------------ */
 /* Writing fields back: each writes its comma and its text (nothing for an empty field). */
 
 /* The text of a field lenient parsing left empty, in its place (the last problem naming it). */
@@ -3622,6 +3861,32 @@ static bool dtm_read(nmea_dtm *s, const nmea_wire *wire, nmea_error *err)
     return true;
 }
 
+
+/* dtm_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result dtm_fast(nmea_dtm *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 8, 8, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_dtm, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_enum(&p, &s->local_datum, &nmea_dtm_datum_def)
+        || !fast_char(&p, &s->local_datum_subdivision)
+        || !fast_decimal(&p, &s->lat_offset, NULL)
+        || !fast_enum(&p, &s->lat_offset_dir, &nmea_dtm_lat_offset_dir_def)
+        || !fast_decimal(&p, &s->lon_offset, NULL)
+        || !fast_enum(&p, &s->lon_offset_dir, &nmea_dtm_lon_offset_dir_def)
+        || !fast_decimal(&p, &s->altitude_offset, NULL)
+        || !fast_enum(&p, &s->reference_datum, &nmea_dtm_datum_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void dtm_write(nmea_writer *w, const nmea_dtm *s)
 {
     begin_sentence(w, s->talker, "DTM", &s->problems);
@@ -3723,6 +3988,36 @@ static bool gga_read(nmea_gga *s, const nmea_wire *wire, nmea_error *err)
         || !read_integer(&r, &s->dgps_station, "dgps_station", "integer 0..4095", &range_0_to_4095))
         return false;
     return true;
+}
+
+
+/* gga_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result gga_fast(nmea_gga *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 14, 14, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_gga, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_time(&p, &s->time)
+        || !fast_latitude(&p, &s->lat)
+        || !fast_longitude(&p, &s->lon)
+        || !fast_enum(&p, &s->quality, &nmea_gga_quality_def)
+        || !fast_integer(&p, &s->satellites, &range_0_to_99)
+        || !fast_decimal(&p, &s->hdop, NULL)
+        || !fast_decimal(&p, &s->altitude, NULL)
+        || !fast_literal(&p, &s->altitude_unit, "M")
+        || !fast_decimal(&p, &s->geoid_separation, NULL)
+        || !fast_literal(&p, &s->geoid_separation_unit, "M")
+        || !fast_decimal(&p, &s->dgps_age, &range_0_to_999p9)
+        || !fast_integer(&p, &s->dgps_station, &range_0_to_4095))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void gga_write(nmea_writer *w, const nmea_gga *s)
@@ -3833,6 +4128,29 @@ static bool gll_read(nmea_gll *s, const nmea_wire *wire, nmea_error *err)
     return true;
 }
 
+
+/* gll_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result gll_fast(nmea_gll *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 6, 7, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_gll, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (!fast_latitude(&p, &s->lat)
+        || !fast_longitude(&p, &s->lon)
+        || !fast_time(&p, &s->time)
+        || !fast_enum(&p, &s->status, &nmea_status_def)
+        || (s->optional_count >= 1 && !fast_enum(&p, &s->mode, &nmea_pos_mode_def)))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void gll_write(nmea_writer *w, const nmea_gll *s)
 {
     begin_sentence(w, s->talker, "GLL", &s->problems);
@@ -3926,6 +4244,35 @@ static bool gns_read(nmea_gns *s, const nmea_wire *wire, nmea_error *err)
         || (s->optional_count >= 1 && !read_enum(&r, &s->nav_status, "nav_status", "nav_status code (S C U V)", &nmea_nav_status_def)))
         return false;
     return true;
+}
+
+
+/* gns_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result gns_fast(nmea_gns *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 12, 13, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_gns, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (!fast_time(&p, &s->time)
+        || !fast_latitude(&p, &s->lat)
+        || !fast_longitude(&p, &s->lon)
+        || !fast_enum_chars(&p, &s->mode, &nmea_pos_mode_def, 0)
+        || !fast_integer(&p, &s->satellites, &range_0_to_99)
+        || !fast_decimal(&p, &s->hdop, NULL)
+        || !fast_decimal(&p, &s->altitude, NULL)
+        || !fast_decimal(&p, &s->geoid_separation, NULL)
+        || !fast_decimal(&p, &s->dgps_age, &range_0_to_999p9)
+        || !fast_integer(&p, &s->dgps_station, &range_0_to_4095)
+        || (s->optional_count >= 1 && !fast_enum(&p, &s->nav_status, &nmea_nav_status_def)))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void gns_write(nmea_writer *w, const nmea_gns *s)
@@ -4040,6 +4387,34 @@ static bool gns_aux_read(nmea_gns_aux *s, const nmea_wire *wire, nmea_error *err
     return true;
 }
 
+
+/* gns_aux_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result gns_aux_fast(nmea_gns_aux *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 11, 12, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_gns_aux, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (!fast_time(&p, &s->time)
+        || !fast_latitude(&p, &s->lat)
+        || !fast_longitude(&p, &s->lon)
+        || !fast_integer(&p, &s->satellites, &range_0_to_99)
+        || !fast_decimal(&p, &s->hdop, NULL)
+        || !fast_decimal(&p, &s->altitude, NULL)
+        || !fast_decimal(&p, &s->geoid_separation, NULL)
+        || !fast_decimal(&p, &s->dgps_age, &range_0_to_999p9)
+        || !fast_integer(&p, &s->dgps_station, &range_0_to_4095)
+        || (s->optional_count >= 1 && !fast_enum(&p, &s->nav_status, &nmea_nav_status_def)))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void gns_aux_write(nmea_writer *w, const nmea_gns_aux *s)
 {
     begin_sentence(w, s->talker, "GNS", &s->problems);
@@ -4150,6 +4525,35 @@ static bool gsa_read(nmea_gsa *s, const nmea_wire *wire, nmea_error *err)
         || (s->optional_count >= 1 && !read_enum(&r, &s->system_id, "system_id", "system_id code (1 2 3 4 5 6 F)", &nmea_system_id_def)))
         return false;
     return true;
+}
+
+
+/* gsa_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result gsa_fast(nmea_gsa *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 5, 1, 12, 12, 1, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_gsa, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (!fast_enum(&p, &s->selection_mode, &nmea_gsa_selection_mode_def)
+        || !fast_enum(&p, &s->fix_type, &nmea_gsa_fix_type_def))
+        return FAST_UNSURE;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_integer(&p, &s->prns[i], NULL))
+            return FAST_UNSURE;
+    }
+    if (!fast_decimal(&p, &s->pdop, NULL)
+        || !fast_decimal(&p, &s->hdop, NULL)
+        || !fast_decimal(&p, &s->vdop, NULL)
+        || (s->optional_count >= 1 && !fast_enum(&p, &s->system_id, &nmea_system_id_def)))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void gsa_write(nmea_writer *w, const nmea_gsa *s)
@@ -4271,6 +4675,35 @@ static bool gsa_short_read(nmea_gsa_short *s, const nmea_wire *wire, nmea_error 
     return true;
 }
 
+
+/* gsa_short_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result gsa_short_fast(nmea_gsa_short *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 5, 1, 0, 11, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_gsa_short, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_enum(&p, &s->selection_mode, &nmea_gsa_selection_mode_def)
+        || !fast_enum(&p, &s->fix_type, &nmea_gsa_fix_type_def))
+        return FAST_UNSURE;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_integer(&p, &s->prns[i], NULL))
+            return FAST_UNSURE;
+    }
+    s->prns_count = (uint8_t)repeats;
+    if (!fast_decimal(&p, &s->pdop, NULL)
+        || !fast_decimal(&p, &s->hdop, NULL)
+        || !fast_decimal(&p, &s->vdop, NULL))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void gsa_short_write(nmea_writer *w, const nmea_gsa_short *s)
 {
     size_t i;
@@ -4379,6 +4812,32 @@ static bool gst_read(nmea_gst *s, const nmea_wire *wire, nmea_error *err)
     return true;
 }
 
+
+/* gst_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result gst_fast(nmea_gst *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 8, 8, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_gst, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_time(&p, &s->time)
+        || !fast_decimal(&p, &s->rms, NULL)
+        || !fast_decimal(&p, &s->semi_major_std, NULL)
+        || !fast_decimal(&p, &s->semi_minor_std, NULL)
+        || !fast_decimal(&p, &s->orientation, NULL)
+        || !fast_decimal(&p, &s->lat_std, NULL)
+        || !fast_decimal(&p, &s->lon_std, NULL)
+        || !fast_decimal(&p, &s->alt_std, NULL))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void gst_write(nmea_writer *w, const nmea_gst *s)
 {
     begin_sentence(w, s->talker, "GST", &s->problems);
@@ -4484,6 +4943,39 @@ static bool gsv_read(nmea_gsv *s, const nmea_wire *wire, nmea_error *err)
     if (s->optional_count >= 1 && !read_enum(&r, &s->signal_id, "signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", &nmea_signal_id_def))
         return false;
     return true;
+}
+
+
+/* gsv_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result gsv_fast(nmea_gsv *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 3, 4, 0, 4, 1, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_gsv, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (!fast_integer(&p, &s->message_count, &range_from_1)
+        || !fast_integer(&p, &s->message_number, &range_from_1)
+        || !fast_integer(&p, &s->satellites_in_view, &range_from_0))
+        return FAST_UNSURE;
+    for (i = 0; i < repeats; i++) {
+        nmea_gsv_satellite *e = &s->satellites[i];
+
+        if (!fast_integer(&p, &e->prn, NULL)
+            || !fast_integer(&p, &e->elevation, &range_minus_90_to_90)
+            || !fast_integer(&p, &e->azimuth, &range_0_to_360)
+            || !fast_integer(&p, &e->snr, &range_0_to_99))
+            return FAST_UNSURE;
+    }
+    s->satellites_count = (uint8_t)repeats;
+    if (s->optional_count >= 1 && !fast_enum(&p, &s->signal_id, &nmea_signal_id_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void gsv_write(nmea_writer *w, const nmea_gsv *s)
@@ -4602,6 +5094,26 @@ static bool hdt_read(nmea_hdt *s, const nmea_wire *wire, nmea_error *err)
     return true;
 }
 
+
+/* hdt_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result hdt_fast(nmea_hdt *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 2, 2, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_hdt, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_decimal(&p, &s->heading, NULL)
+        || !fast_literal(&p, &s->heading_ref, "T"))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void hdt_write(nmea_writer *w, const nmea_hdt *s)
 {
     begin_sentence(w, s->talker, "HDT", &s->problems);
@@ -4676,6 +5188,28 @@ static bool rlm_read(nmea_rlm *s, const nmea_wire *wire, nmea_error *err)
         || !read_text(&r, &s->message_body, "message_body", "text of at most 24 characters", 24))
         return false;
     return true;
+}
+
+
+/* rlm_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result rlm_fast(nmea_rlm *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 4, 4, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_rlm, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_hex(&p, &s->beacon_id)
+        || !fast_time(&p, &s->time)
+        || !fast_enum(&p, &s->message_code, &nmea_rlm_message_code_def)
+        || !fast_text(&p, &s->message_body, 24))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void rlm_write(nmea_writer *w, const nmea_rlm *s)
@@ -4766,6 +5300,35 @@ static bool rmc_read(nmea_rmc *s, const nmea_wire *wire, nmea_error *err)
         || (s->optional_count >= 2 && !read_enum(&r, &s->nav_status, "nav_status", "nav_status code (S C U V)", &nmea_nav_status_def)))
         return false;
     return true;
+}
+
+
+/* rmc_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result rmc_fast(nmea_rmc *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 11, 13, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_rmc, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (!fast_time(&p, &s->time)
+        || !fast_enum(&p, &s->status, &nmea_status_def)
+        || !fast_latitude(&p, &s->lat)
+        || !fast_longitude(&p, &s->lon)
+        || !fast_decimal(&p, &s->speed, NULL)
+        || !fast_decimal(&p, &s->course, &range_0_to_359p9)
+        || !fast_date(&p, &s->date)
+        || !fast_decimal(&p, &s->mag_var, NULL)
+        || !fast_enum(&p, &s->mag_var_dir, &nmea_rmc_mag_var_dir_def)
+        || (s->optional_count >= 1 && !fast_enum(&p, &s->mode, &nmea_pos_mode_def))
+        || (s->optional_count >= 2 && !fast_enum(&p, &s->nav_status, &nmea_nav_status_def)))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void rmc_write(nmea_writer *w, const nmea_rmc *s)
@@ -4881,6 +5444,33 @@ static bool vtg_read(nmea_vtg *s, const nmea_wire *wire, nmea_error *err)
     return true;
 }
 
+
+/* vtg_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result vtg_fast(nmea_vtg *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 8, 9, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_vtg, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (!fast_decimal(&p, &s->course_true, &range_0_to_359p9)
+        || !fast_literal(&p, &s->course_true_ref, "T")
+        || !fast_decimal(&p, &s->course_magnetic, &range_0_to_359p9)
+        || !fast_literal(&p, &s->course_magnetic_ref, "M")
+        || !fast_decimal(&p, &s->speed_knots, NULL)
+        || !fast_literal(&p, &s->speed_knots_unit, "N")
+        || !fast_decimal(&p, &s->speed_kmh, NULL)
+        || !fast_literal(&p, &s->speed_kmh_unit, "K")
+        || (s->optional_count >= 1 && !fast_enum(&p, &s->mode, &nmea_pos_mode_def)))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void vtg_write(nmea_writer *w, const nmea_vtg *s)
 {
     begin_sentence(w, s->talker, "VTG", &s->problems);
@@ -4983,6 +5573,30 @@ static bool zda_read(nmea_zda *s, const nmea_wire *wire, nmea_error *err)
     return true;
 }
 
+
+/* zda_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result zda_fast(nmea_zda *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 6, 6, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_zda, problems));
+    s->problems.count = 0;
+    s->talker = text_span(line + 1, line + 3);
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_time(&p, &s->time)
+        || !fast_integer(&p, &s->day, &range_1_to_31)
+        || !fast_integer(&p, &s->month, &range_1_to_12)
+        || !fast_integer(&p, &s->year, NULL)
+        || !fast_integer(&p, &s->local_zone_hours, &range_minus_13_to_13)
+        || !fast_integer(&p, &s->local_zone_minutes, &range_0_to_59))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void zda_write(nmea_writer *w, const nmea_zda *s)
 {
     begin_sentence(w, s->talker, "ZDA", &s->problems);
@@ -5069,6 +5683,7 @@ static bool comnav_log_read(nmea_comnav_log *s, const nmea_wire *wire, nmea_erro
         return false;
     return true;
 }
+
 
 static void comnav_log_write(nmea_writer *w, const nmea_comnav_log *s)
 {
@@ -5164,6 +5779,7 @@ static bool comnav_nmeatalker_read(nmea_comnav_nmeatalker *s, const nmea_wire *w
     return true;
 }
 
+
 static void comnav_nmeatalker_write(nmea_writer *w, const nmea_comnav_nmeatalker *s)
 {
     begin_text(w, "NMEATALKER", s->as_received, &s->problems);
@@ -5252,6 +5868,7 @@ static bool comnav_nmeatalker_list_read(nmea_comnav_nmeatalker_list *s, const nm
     return true;
 }
 
+
 static void comnav_nmeatalker_list_write(nmea_writer *w, const nmea_comnav_nmeatalker_list *s)
 {
     begin_text(w, "NMEATALKER", s->as_received, &s->problems);
@@ -5335,6 +5952,7 @@ static bool comnav_nmeatalker_reset_read(nmea_comnav_nmeatalker_reset *s, const 
         return false;
     return true;
 }
+
 
 static void comnav_nmeatalker_reset_write(nmea_writer *w, const nmea_comnav_nmeatalker_reset *s)
 {
@@ -5420,6 +6038,25 @@ static bool geos5_command_read(nmea_geos5_command *s, const nmea_wire *wire, nme
     return true;
 }
 
+
+/* geos5_command_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result geos5_command_fast(nmea_geos5_command *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 1, 1, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_geos5_command, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_enum(&p, &s->command, &nmea_geos5_command_word_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void geos5_command_write(nmea_writer *w, const nmea_geos5_command *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "GPSGG", &s->problems);
@@ -5489,6 +6126,26 @@ static bool geos5_jamdet_read(nmea_geos5_jamdet *s, const nmea_wire *wire, nmea_
         || !read_text(&r, &s->reserved, "reserved", "text", 0))
         return false;
     return true;
+}
+
+
+/* geos5_jamdet_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result geos5_jamdet_fast(nmea_geos5_jamdet *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 2, 2, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_geos5_jamdet, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_keyword(&p, "JAMDET")
+        || !fast_text(&p, &s->reserved, 0))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void geos5_jamdet_write(nmea_writer *w, const nmea_geos5_jamdet *s)
@@ -5575,6 +6232,38 @@ static bool geos5_nquery_read(nmea_geos5_nquery *s, const nmea_wire *wire, nmea_
         || !read_enum(&r, &s->rlm_rate, "rlm_rate", "geos5_message_rate code (0 1 2 3 R)", &nmea_geos5_message_rate_def))
         return false;
     return true;
+}
+
+
+/* geos5_nquery_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result geos5_nquery_fast(nmea_geos5_nquery *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 14, 14, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_geos5_nquery, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_keyword(&p, "NQUERY")
+        || !fast_integer(&p, &s->port, &range_0_to_1)
+        || !fast_enum(&p, &s->output_rate, &nmea_geos5_output_rate_def)
+        || !fast_enum(&p, &s->nmea_version, &nmea_geos5_nmea_version_def)
+        || !fast_enum(&p, &s->gga_rate, &nmea_geos5_message_rate_def)
+        || !fast_enum(&p, &s->gll_rate, &nmea_geos5_message_rate_def)
+        || !fast_enum(&p, &s->gsa_rate, &nmea_geos5_message_rate_def)
+        || !fast_enum(&p, &s->gsv_rate, &nmea_geos5_message_rate_def)
+        || !fast_enum(&p, &s->rmc_rate, &nmea_geos5_message_rate_def)
+        || !fast_enum(&p, &s->vtg_rate, &nmea_geos5_message_rate_def)
+        || !fast_enum(&p, &s->gns_rate, &nmea_geos5_message_rate_def)
+        || !fast_enum(&p, &s->zda_rate, &nmea_geos5_message_rate_def)
+        || !fast_enum(&p, &s->dtm_rate, &nmea_geos5_message_rate_def)
+        || !fast_enum(&p, &s->rlm_rate, &nmea_geos5_message_rate_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void geos5_nquery_write(nmea_writer *w, const nmea_geos5_nquery *s)
@@ -5686,6 +6375,25 @@ static bool geos5_nquery_request_read(nmea_geos5_nquery_request *s, const nmea_w
     return true;
 }
 
+
+/* geos5_nquery_request_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result geos5_nquery_request_fast(nmea_geos5_nquery_request *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 1, 1, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_geos5_nquery_request, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_keyword(&p, "NQUERY"))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void geos5_nquery_request_write(nmea_writer *w, const nmea_geos5_nquery_request *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "GPSGG", &s->problems);
@@ -5760,6 +6468,31 @@ static bool geos5_rquery_read(nmea_geos5_rquery *s, const nmea_wire *wire, nmea_
         || !read_hex(&r, &s->config_2, "config_2", "hex number"))
         return false;
     return true;
+}
+
+
+/* geos5_rquery_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result geos5_rquery_fast(nmea_geos5_rquery *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 7, 7, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_geos5_rquery, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_keyword(&p, "RQUERY")
+        || !fast_text(&p, &s->receiver_name, 0)
+        || !fast_text(&p, &s->software_version, 0)
+        || !fast_date(&p, &s->software_date)
+        || !fast_hex(&p, &s->status)
+        || !fast_hex(&p, &s->config_1)
+        || !fast_hex(&p, &s->config_2))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void geos5_rquery_write(nmea_writer *w, const nmea_geos5_rquery *s)
@@ -5850,6 +6583,25 @@ static bool geos5_rquery_request_read(nmea_geos5_rquery_request *s, const nmea_w
     return true;
 }
 
+
+/* geos5_rquery_request_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result geos5_rquery_request_fast(nmea_geos5_rquery_request *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 1, 1, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_geos5_rquery_request, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_keyword(&p, "RQUERY"))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void geos5_rquery_request_write(nmea_writer *w, const nmea_geos5_rquery_request *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "GPSGG", &s->problems);
@@ -5922,6 +6674,29 @@ static bool psrf100_read(nmea_psrf100 *s, const nmea_wire *wire, nmea_error *err
         || !read_enum(&r, &s->parity, "parity", "sirf_parity code (0 1 2)", &nmea_sirf_parity_def))
         return false;
     return true;
+}
+
+
+/* psrf100_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result psrf100_fast(nmea_psrf100 *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 5, 5, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_psrf100, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_enum(&p, &s->protocol, &nmea_sirf_protocol_def)
+        || !fast_enum(&p, &s->baud, &nmea_sirf_baud_def)
+        || !fast_integer(&p, &s->data_bits, &range_7_to_8)
+        || !fast_integer(&p, &s->stop_bits, &range_0_to_1)
+        || !fast_enum(&p, &s->parity, &nmea_sirf_parity_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void psrf100_write(nmea_writer *w, const nmea_psrf100 *s)
@@ -6011,6 +6786,32 @@ static bool psrf101_read(nmea_psrf101 *s, const nmea_wire *wire, nmea_error *err
         || !read_integer(&r, &s->reset_cfg, "reset_cfg", "integer 0..7", &range_0_to_7))
         return false;
     return true;
+}
+
+
+/* psrf101_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result psrf101_fast(nmea_psrf101 *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 8, 8, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_psrf101, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_integer(&p, &s->x, &range_minus_2147483648_to_2147483647)
+        || !fast_integer(&p, &s->y, &range_minus_2147483648_to_2147483647)
+        || !fast_integer(&p, &s->z, &range_minus_2147483648_to_2147483647)
+        || !fast_integer(&p, &s->clock_offset, &range_minus_2147483648_to_2147483647)
+        || !fast_integer(&p, &s->time_of_week, &range_0_to_604799)
+        || !fast_integer(&p, &s->week, &range_0_to_65535)
+        || !fast_integer(&p, &s->channels, &range_1_to_12)
+        || !fast_integer(&p, &s->reset_cfg, &range_0_to_7))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void psrf101_write(nmea_writer *w, const nmea_psrf101 *s)
@@ -6107,6 +6908,28 @@ static bool psrf102_read(nmea_psrf102 *s, const nmea_wire *wire, nmea_error *err
     return true;
 }
 
+
+/* psrf102_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result psrf102_fast(nmea_psrf102 *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 4, 4, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_psrf102, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_enum(&p, &s->baud, &nmea_sirf_baud_def)
+        || !fast_integer(&p, &s->data_bits, &range_8_to_8)
+        || !fast_integer(&p, &s->stop_bits, &range_0_to_1)
+        || !fast_enum(&p, &s->parity, &nmea_sirf_parity_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void psrf102_write(nmea_writer *w, const nmea_psrf102 *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSRF102", &s->problems);
@@ -6187,6 +7010,28 @@ static bool psrf103_read(nmea_psrf103 *s, const nmea_wire *wire, nmea_error *err
         || !read_enum(&r, &s->checksum_mode, "checksum_mode", "sirf_checksum_enable code (00 01)", &nmea_sirf_checksum_enable_def))
         return false;
     return true;
+}
+
+
+/* psrf103_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result psrf103_fast(nmea_psrf103 *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 4, 4, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_psrf103, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_enum(&p, &s->message, &nmea_sirf_nmea_message_def)
+        || !fast_enum(&p, &s->mode, &nmea_sirf_rate_mode_def)
+        || !fast_integer(&p, &s->rate, &range_0_to_255)
+        || !fast_enum(&p, &s->checksum_mode, &nmea_sirf_checksum_enable_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void psrf103_write(nmea_writer *w, const nmea_psrf103 *s)
@@ -6273,6 +7118,32 @@ static bool psrf104_read(nmea_psrf104 *s, const nmea_wire *wire, nmea_error *err
         || !read_integer(&r, &s->reset_cfg, "reset_cfg", "integer 0..7", &range_0_to_7))
         return false;
     return true;
+}
+
+
+/* psrf104_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result psrf104_fast(nmea_psrf104 *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 8, 8, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_psrf104, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_decimal(&p, &s->latitude, &range_minus_90_to_90)
+        || !fast_decimal(&p, &s->longitude, &range_minus_180_to_180)
+        || !fast_decimal(&p, &s->altitude, NULL)
+        || !fast_integer(&p, &s->clock_offset, &range_minus_2147483648_to_2147483647)
+        || !fast_integer(&p, &s->time_of_week, &range_0_to_604799)
+        || !fast_integer(&p, &s->week, &range_0_to_65535)
+        || !fast_integer(&p, &s->channels, &range_1_to_12)
+        || !fast_integer(&p, &s->reset_cfg, &range_0_to_7))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void psrf104_write(nmea_writer *w, const nmea_psrf104 *s)
@@ -6366,6 +7237,25 @@ static bool psrf105_read(nmea_psrf105 *s, const nmea_wire *wire, nmea_error *err
     return true;
 }
 
+
+/* psrf105_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result psrf105_fast(nmea_psrf105 *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 1, 1, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_psrf105, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_enum(&p, &s->debug, &nmea_sirf_debug_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void psrf105_write(nmea_writer *w, const nmea_psrf105 *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSRF105", &s->problems);
@@ -6433,6 +7323,25 @@ static bool psrf150_read(nmea_psrf150 *s, const nmea_wire *wire, nmea_error *err
     if (!read_enum(&r, &s->ok_to_send, "ok_to_send", "sirf_ok_to_send code (0 1)", &nmea_sirf_ok_to_send_def))
         return false;
     return true;
+}
+
+
+/* psrf150_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result psrf150_fast(nmea_psrf150 *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 1, 1, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_psrf150, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_enum(&p, &s->ok_to_send, &nmea_sirf_ok_to_send_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void psrf150_write(nmea_writer *w, const nmea_psrf150 *s)
@@ -6506,6 +7415,28 @@ static bool pstmagps_read(nmea_pstmagps *s, const nmea_wire *wire, nmea_error *e
     s->values_count = (uint8_t)repeats;
     reader_entry(&r, NULL, 0);
     return true;
+}
+
+
+/* pstmagps_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmagps_fast(nmea_pstmagps *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmagps, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmagps_write(nmea_writer *w, const nmea_pstmagps *s)
@@ -6598,6 +7529,28 @@ static bool pstmalmanac_read(nmea_pstmalmanac *s, const nmea_wire *wire, nmea_er
     return true;
 }
 
+
+/* pstmalmanac_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmalmanac_fast(nmea_pstmalmanac *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmalmanac, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmalmanac_write(nmea_writer *w, const nmea_pstmalmanac *s)
 {
     size_t i;
@@ -6682,6 +7635,23 @@ static bool pstmclralms_read(nmea_pstmclralms *s, const nmea_wire *wire, nmea_er
     return true;
 }
 
+
+/* pstmclralms_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmclralms_fast(nmea_pstmclralms *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmclralms, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmclralms_write(nmea_writer *w, const nmea_pstmclralms *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMCLRALMS", &s->problems);
@@ -6749,6 +7719,23 @@ static bool pstmclrephs_read(nmea_pstmclrephs *s, const nmea_wire *wire, nmea_er
     s->checksum = wire->checksum;
     (void)optional;
     return true;
+}
+
+
+/* pstmclrephs_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmclrephs_fast(nmea_pstmclrephs *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmclrephs, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmclrephs_write(nmea_writer *w, const nmea_pstmclrephs *s)
@@ -6820,6 +7807,25 @@ static bool pstmcold_read(nmea_pstmcold *s, const nmea_wire *wire, nmea_error *e
     if (s->optional_count >= 1 && !read_integer(&r, &s->mask, "mask", "integer 0..15", &range_0_to_15))
         return false;
     return true;
+}
+
+
+/* pstmcold_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmcold_fast(nmea_pstmcold *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 1, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmcold, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (s->optional_count >= 1 && !fast_integer(&p, &s->mask, &range_0_to_15))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmcold_write(nmea_writer *w, const nmea_pstmcold *s)
@@ -6896,6 +7902,28 @@ static bool pstmcorr_read(nmea_pstmcorr *s, const nmea_wire *wire, nmea_error *e
     s->values_count = (uint8_t)repeats;
     reader_entry(&r, NULL, 0);
     return true;
+}
+
+
+/* pstmcorr_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmcorr_fast(nmea_pstmcorr *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmcorr, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmcorr_write(nmea_writer *w, const nmea_pstmcorr *s)
@@ -6988,6 +8016,28 @@ static bool pstmdiff_read(nmea_pstmdiff *s, const nmea_wire *wire, nmea_error *e
     return true;
 }
 
+
+/* pstmdiff_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmdiff_fast(nmea_pstmdiff *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmdiff, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmdiff_write(nmea_writer *w, const nmea_pstmdiff *s)
 {
     size_t i;
@@ -7078,6 +8128,28 @@ static bool pstmeph_read(nmea_pstmeph *s, const nmea_wire *wire, nmea_error *err
     return true;
 }
 
+
+/* pstmeph_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmeph_fast(nmea_pstmeph *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmeph, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmeph_write(nmea_writer *w, const nmea_pstmeph *s)
 {
     size_t i;
@@ -7164,6 +8236,25 @@ static bool pstmgetpar_read(nmea_pstmgetpar *s, const nmea_wire *wire, nmea_erro
     return true;
 }
 
+
+/* pstmgetpar_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmgetpar_fast(nmea_pstmgetpar *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 1, 1, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmgetpar, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_integer(&p, &s->block_param, &range_1000_to_3999))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmgetpar_write(nmea_writer *w, const nmea_pstmgetpar *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMGETPAR", &s->problems);
@@ -7229,6 +8320,23 @@ static bool pstmgetparerror_read(nmea_pstmgetparerror *s, const nmea_wire *wire,
     s->checksum = wire->checksum;
     (void)optional;
     return true;
+}
+
+
+/* pstmgetparerror_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmgetparerror_fast(nmea_pstmgetparerror *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmgetparerror, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmgetparerror_write(nmea_writer *w, const nmea_pstmgetparerror *s)
@@ -7297,6 +8405,23 @@ static bool pstmgetrtctime_read(nmea_pstmgetrtctime *s, const nmea_wire *wire, n
     s->checksum = wire->checksum;
     (void)optional;
     return true;
+}
+
+
+/* pstmgetrtctime_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmgetrtctime_fast(nmea_pstmgetrtctime *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmgetrtctime, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmgetrtctime_write(nmea_writer *w, const nmea_pstmgetrtctime *s)
@@ -7370,6 +8495,28 @@ static bool pstmgetrtctime_reply_read(nmea_pstmgetrtctime_reply *s, const nmea_w
         || !read_enum(&r, &s->time_validity, "time_validity", "teseo_time_validity code (0 1 2 3 4 5 6 7 8)", &nmea_teseo_time_validity_def))
         return false;
     return true;
+}
+
+
+/* pstmgetrtctime_reply_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmgetrtctime_reply_fast(nmea_pstmgetrtctime_reply *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 4, 4, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmgetrtctime_reply, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_time(&p, &s->time)
+        || !fast_date(&p, &s->date)
+        || !fast_enum(&p, &s->rtc_status, &nmea_teseo_rtc_status_def)
+        || !fast_enum(&p, &s->time_validity, &nmea_teseo_time_validity_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmgetrtctime_reply_write(nmea_writer *w, const nmea_pstmgetrtctime_reply *s)
@@ -7448,6 +8595,23 @@ static bool pstmgetswver_read(nmea_pstmgetswver *s, const nmea_wire *wire, nmea_
     return true;
 }
 
+
+/* pstmgetswver_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmgetswver_fast(nmea_pstmgetswver *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmgetswver, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmgetswver_write(nmea_writer *w, const nmea_pstmgetswver *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMGETSWVER", &s->problems);
@@ -7519,6 +8683,28 @@ static bool pstmgetswver_reply_read(nmea_pstmgetswver_reply *s, const nmea_wire 
         || !read_text(&r, &s->build_time, "build_time", "text", 0))
         return false;
     return true;
+}
+
+
+/* pstmgetswver_reply_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmgetswver_reply_fast(nmea_pstmgetswver_reply *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 4, 4, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmgetswver_reply, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_text(&p, &s->library_version, 0)
+        || !fast_enum(&p, &s->compiler, &nmea_teseo_compiler_type_def)
+        || !fast_text(&p, &s->build_date, 0)
+        || !fast_text(&p, &s->build_time, 0))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmgetswver_reply_write(nmea_writer *w, const nmea_pstmgetswver_reply *s)
@@ -7597,6 +8783,23 @@ static bool pstmhot_read(nmea_pstmhot *s, const nmea_wire *wire, nmea_error *err
     return true;
 }
 
+
+/* pstmhot_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmhot_fast(nmea_pstmhot *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmhot, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmhot_write(nmea_writer *w, const nmea_pstmhot *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMHOT", &s->problems);
@@ -7670,6 +8873,28 @@ static bool pstmkfcov_read(nmea_pstmkfcov *s, const nmea_wire *wire, nmea_error 
     s->values_count = (uint8_t)repeats;
     reader_entry(&r, NULL, 0);
     return true;
+}
+
+
+/* pstmkfcov_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmkfcov_fast(nmea_pstmkfcov *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmkfcov, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmkfcov_write(nmea_writer *w, const nmea_pstmkfcov *s)
@@ -7758,6 +8983,25 @@ static bool pstmnmeaonoff_read(nmea_pstmnmeaonoff *s, const nmea_wire *wire, nme
     return true;
 }
 
+
+/* pstmnmeaonoff_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmnmeaonoff_fast(nmea_pstmnmeaonoff *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 1, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmnmeaonoff, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (s->optional_count >= 1 && !fast_enum(&p, &s->on_off, &nmea_teseo_nmea_on_off_def))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmnmeaonoff_write(nmea_writer *w, const nmea_pstmnmeaonoff *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMNMEAONOFF", &s->problems);
@@ -7832,6 +9076,28 @@ static bool pstmpa_read(nmea_pstmpa *s, const nmea_wire *wire, nmea_error *err)
     s->values_count = (uint8_t)repeats;
     reader_entry(&r, NULL, 0);
     return true;
+}
+
+
+/* pstmpa_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmpa_fast(nmea_pstmpa *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmpa, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmpa_write(nmea_writer *w, const nmea_pstmpa *s)
@@ -7924,6 +9190,28 @@ static bool pstmpres_read(nmea_pstmpres *s, const nmea_wire *wire, nmea_error *e
     return true;
 }
 
+
+/* pstmpres_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmpres_fast(nmea_pstmpres *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmpres, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmpres_write(nmea_writer *w, const nmea_pstmpres *s)
 {
     size_t i;
@@ -8014,6 +9302,28 @@ static bool pstmres_read(nmea_pstmres *s, const nmea_wire *wire, nmea_error *err
     return true;
 }
 
+
+/* pstmres_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmres_fast(nmea_pstmres *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmres, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmres_write(nmea_writer *w, const nmea_pstmres *s)
 {
     size_t i;
@@ -8098,6 +9408,23 @@ static bool pstmrestorepar_read(nmea_pstmrestorepar *s, const nmea_wire *wire, n
     return true;
 }
 
+
+/* pstmrestorepar_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmrestorepar_fast(nmea_pstmrestorepar *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmrestorepar, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmrestorepar_write(nmea_writer *w, const nmea_pstmrestorepar *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMRESTOREPAR", &s->problems);
@@ -8171,6 +9498,28 @@ static bool pstmrf_read(nmea_pstmrf *s, const nmea_wire *wire, nmea_error *err)
     s->values_count = (uint8_t)repeats;
     reader_entry(&r, NULL, 0);
     return true;
+}
+
+
+/* pstmrf_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmrf_fast(nmea_pstmrf *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmrf, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmrf_write(nmea_writer *w, const nmea_pstmrf *s)
@@ -8263,6 +9612,28 @@ static bool pstmsat_read(nmea_pstmsat *s, const nmea_wire *wire, nmea_error *err
     return true;
 }
 
+
+/* pstmsat_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmsat_fast(nmea_pstmsat *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmsat, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmsat_write(nmea_writer *w, const nmea_pstmsat *s)
 {
     size_t i;
@@ -8347,6 +9718,23 @@ static bool pstmsavepar_read(nmea_pstmsavepar *s, const nmea_wire *wire, nmea_er
     return true;
 }
 
+
+/* pstmsavepar_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmsavepar_fast(nmea_pstmsavepar *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmsavepar, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmsavepar_write(nmea_writer *w, const nmea_pstmsavepar *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMSAVEPAR", &s->problems);
@@ -8420,6 +9808,28 @@ static bool pstmsbas_read(nmea_pstmsbas *s, const nmea_wire *wire, nmea_error *e
     s->values_count = (uint8_t)repeats;
     reader_entry(&r, NULL, 0);
     return true;
+}
+
+
+/* pstmsbas_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmsbas_fast(nmea_pstmsbas *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmsbas, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmsbas_write(nmea_writer *w, const nmea_pstmsbas *s)
@@ -8512,6 +9922,28 @@ static bool pstmsbascorr_read(nmea_pstmsbascorr *s, const nmea_wire *wire, nmea_
     return true;
 }
 
+
+/* pstmsbascorr_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmsbascorr_fast(nmea_pstmsbascorr *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmsbascorr, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmsbascorr_write(nmea_writer *w, const nmea_pstmsbascorr *s)
 {
     size_t i;
@@ -8598,6 +10030,26 @@ static bool pstmset_read(nmea_pstmset *s, const nmea_wire *wire, nmea_error *err
     return true;
 }
 
+
+/* pstmset_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmset_fast(nmea_pstmset *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 2, 2, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmset, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_integer(&p, &s->block_param, &range_1000_to_3999)
+        || !fast_text(&p, &s->value, 80))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmset_write(nmea_writer *w, const nmea_pstmset *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMSET", &s->problems);
@@ -8672,6 +10124,29 @@ static bool pstmset_dop_read(nmea_pstmset_dop *s, const nmea_wire *wire, nmea_er
         || !read_decimal(&r, &s->gdop, "gdop", "decimal number 0..99", &range_0_to_99))
         return false;
     return true;
+}
+
+
+/* pstmset_dop_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmset_dop_fast(nmea_pstmset_dop *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 5, 5, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmset_dop, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_integer(&p, &s->block_param, &range_1400_to_3403)
+        || !fast_decimal(&p, &s->pdop, &range_0_to_99)
+        || !fast_decimal(&p, &s->vdop, &range_0_to_99)
+        || !fast_decimal(&p, &s->hdop, &range_0_to_99)
+        || !fast_decimal(&p, &s->gdop, &range_0_to_99))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmset_dop_write(nmea_writer *w, const nmea_pstmset_dop *s)
@@ -8758,6 +10233,27 @@ static bool pstmsetpar_read(nmea_pstmsetpar *s, const nmea_wire *wire, nmea_erro
     return true;
 }
 
+
+/* pstmsetpar_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmsetpar_fast(nmea_pstmsetpar *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 2, 3, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmsetpar, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (!fast_integer(&p, &s->block_param, &range_1000_to_3999)
+        || !fast_text(&p, &s->value, 80)
+        || (s->optional_count >= 1 && !fast_enum(&p, &s->mode, &nmea_teseo_setpar_mode_def)))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmsetpar_write(nmea_writer *w, const nmea_pstmsetpar *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMSETPAR", &s->problems);
@@ -8838,6 +10334,30 @@ static bool pstmsetpar_dop_read(nmea_pstmsetpar_dop *s, const nmea_wire *wire, n
         || (s->optional_count >= 1 && !read_enum(&r, &s->mode, "mode", "teseo_setpar_mode code (0 1 2)", &nmea_teseo_setpar_mode_def)))
         return false;
     return true;
+}
+
+
+/* pstmsetpar_dop_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmsetpar_dop_fast(nmea_pstmsetpar_dop *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 5, 6, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmsetpar_dop, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    s->optional_count = (uint8_t)optional;
+    if (!fast_integer(&p, &s->block_param, &range_1400_to_3403)
+        || !fast_decimal(&p, &s->pdop, &range_0_to_99)
+        || !fast_decimal(&p, &s->vdop, &range_0_to_99)
+        || !fast_decimal(&p, &s->hdop, &range_0_to_99)
+        || !fast_decimal(&p, &s->gdop, &range_0_to_99)
+        || (s->optional_count >= 1 && !fast_enum(&p, &s->mode, &nmea_teseo_setpar_mode_def)))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmsetpar_dop_write(nmea_writer *w, const nmea_pstmsetpar_dop *s)
@@ -8923,6 +10443,23 @@ static bool pstmsetparerror_read(nmea_pstmsetparerror *s, const nmea_wire *wire,
     return true;
 }
 
+
+/* pstmsetparerror_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmsetparerror_fast(nmea_pstmsetparerror *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmsetparerror, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmsetparerror_write(nmea_writer *w, const nmea_pstmsetparerror *s)
 {
     begin_sentence(w, nmea_text_of(NULL), "PSTMSETPARERROR", &s->problems);
@@ -8991,6 +10528,25 @@ static bool pstmsetparok_read(nmea_pstmsetparok *s, const nmea_wire *wire, nmea_
     if (!read_integer(&r, &s->block_param, "block_param", "integer 1000..3999", &range_1000_to_3999))
         return false;
     return true;
+}
+
+
+/* pstmsetparok_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmsetparok_fast(nmea_pstmsetparok *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 1, 1, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmsetparok, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    if (!fast_integer(&p, &s->block_param, &range_1000_to_3999))
+        return FAST_UNSURE;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmsetparok_write(nmea_writer *w, const nmea_pstmsetparok *s)
@@ -9065,6 +10621,28 @@ static bool pstmtestrf_read(nmea_pstmtestrf *s, const nmea_wire *wire, nmea_erro
     s->values_count = (uint8_t)repeats;
     reader_entry(&r, NULL, 0);
     return true;
+}
+
+
+/* pstmtestrf_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmtestrf_fast(nmea_pstmtestrf *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmtestrf, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmtestrf_write(nmea_writer *w, const nmea_pstmtestrf *s)
@@ -9157,6 +10735,28 @@ static bool pstmtg_read(nmea_pstmtg *s, const nmea_wire *wire, nmea_error *err)
     return true;
 }
 
+
+/* pstmtg_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmtg_fast(nmea_pstmtg *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmtg, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmtg_write(nmea_writer *w, const nmea_pstmtg *s)
 {
     size_t i;
@@ -9245,6 +10845,28 @@ static bool pstmtim_read(nmea_pstmtim *s, const nmea_wire *wire, nmea_error *err
     s->values_count = (uint8_t)repeats;
     reader_entry(&r, NULL, 0);
     return true;
+}
+
+
+/* pstmtim_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmtim_fast(nmea_pstmtim *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmtim, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmtim_write(nmea_writer *w, const nmea_pstmtim *s)
@@ -9337,6 +10959,28 @@ static bool pstmts_read(nmea_pstmts *s, const nmea_wire *wire, nmea_error *err)
     return true;
 }
 
+
+/* pstmts_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmts_fast(nmea_pstmts *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmts, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmts_write(nmea_writer *w, const nmea_pstmts *s)
 {
     size_t i;
@@ -9425,6 +11069,28 @@ static bool pstmver_read(nmea_pstmver *s, const nmea_wire *wire, nmea_error *err
     s->values_count = (uint8_t)repeats;
     reader_entry(&r, NULL, 0);
     return true;
+}
+
+
+/* pstmver_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmver_fast(nmea_pstmver *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmver, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmver_write(nmea_writer *w, const nmea_pstmver *s)
@@ -9517,6 +11183,28 @@ static bool pstmvres_read(nmea_pstmvres *s, const nmea_wire *wire, nmea_error *e
     return true;
 }
 
+
+/* pstmvres_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmvres_fast(nmea_pstmvres *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmvres, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmvres_write(nmea_writer *w, const nmea_pstmvres *s)
 {
     size_t i;
@@ -9607,6 +11295,28 @@ static bool pstmwaas_read(nmea_pstmwaas *s, const nmea_wire *wire, nmea_error *e
     return true;
 }
 
+
+/* pstmwaas_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmwaas_fast(nmea_pstmwaas *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t i, repeats, optional;
+
+    if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmwaas, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    for (i = 0; i < repeats; i++) {
+        if (!fast_text(&p, &s->values[i], 0))
+            return FAST_UNSURE;
+    }
+    s->values_count = (uint8_t)repeats;
+    return p == end ? FAST_OK : FAST_UNSURE;
+}
+
 static void pstmwaas_write(nmea_writer *w, const nmea_pstmwaas *s)
 {
     size_t i;
@@ -9689,6 +11399,23 @@ static bool pstmwarm_read(nmea_pstmwarm *s, const nmea_wire *wire, nmea_error *e
     s->checksum = wire->checksum;
     (void)optional;
     return true;
+}
+
+
+/* pstmwarm_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
+   (`end` is just past it). */
+static fast_result pstmwarm_fast(nmea_pstmwarm *s, const char *line, const char *p, const char *end, size_t count)
+{
+    size_t optional;
+
+    if (!fast_count(count, 0, 0, &optional))
+        return FAST_NOT_THIS;
+    clear_layout(s, offsetof(nmea_pstmwarm, problems));
+    s->problems.count = 0;
+    (void)line;
+    s->checksum = NMEA_CHECKSUM_UPPER;
+    (void)optional;
+    return p == end ? FAST_OK : FAST_UNSURE;
 }
 
 static void pstmwarm_write(nmea_writer *w, const nmea_pstmwarm *s)
@@ -10327,6 +12054,187 @@ static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire
     default:
         return false;
     }
+}
+
+/* A layout's fast reader (FAST_NOT_THIS for a text command, which has none). */
+static fast_result fast_read_layout(nmea_sentence *out, nmea_sentence_id id, const char *line, const char *fields,
+                                    const char *end, size_t count)
+{
+    out->id = id;
+    switch (id) {
+    case NMEA_SENTENCE_DTM:
+        return dtm_fast(&out->as.dtm, line, fields, end, count);
+    case NMEA_SENTENCE_GGA:
+        return gga_fast(&out->as.gga, line, fields, end, count);
+    case NMEA_SENTENCE_GLL:
+        return gll_fast(&out->as.gll, line, fields, end, count);
+    case NMEA_SENTENCE_GNS:
+        return gns_fast(&out->as.gns, line, fields, end, count);
+    case NMEA_SENTENCE_GNS_AUX:
+        return gns_aux_fast(&out->as.gns_aux, line, fields, end, count);
+    case NMEA_SENTENCE_GSA:
+        return gsa_fast(&out->as.gsa, line, fields, end, count);
+    case NMEA_SENTENCE_GSA_SHORT:
+        return gsa_short_fast(&out->as.gsa_short, line, fields, end, count);
+    case NMEA_SENTENCE_GST:
+        return gst_fast(&out->as.gst, line, fields, end, count);
+    case NMEA_SENTENCE_GSV:
+        return gsv_fast(&out->as.gsv, line, fields, end, count);
+    case NMEA_SENTENCE_HDT:
+        return hdt_fast(&out->as.hdt, line, fields, end, count);
+    case NMEA_SENTENCE_RLM:
+        return rlm_fast(&out->as.rlm, line, fields, end, count);
+    case NMEA_SENTENCE_RMC:
+        return rmc_fast(&out->as.rmc, line, fields, end, count);
+    case NMEA_SENTENCE_VTG:
+        return vtg_fast(&out->as.vtg, line, fields, end, count);
+    case NMEA_SENTENCE_ZDA:
+        return zda_fast(&out->as.zda, line, fields, end, count);
+    case NMEA_SENTENCE_GEOS5_COMMAND:
+        return geos5_command_fast(&out->as.geos5_command, line, fields, end, count);
+    case NMEA_SENTENCE_GEOS5_JAMDET:
+        return geos5_jamdet_fast(&out->as.geos5_jamdet, line, fields, end, count);
+    case NMEA_SENTENCE_GEOS5_NQUERY:
+        return geos5_nquery_fast(&out->as.geos5_nquery, line, fields, end, count);
+    case NMEA_SENTENCE_GEOS5_NQUERY_REQUEST:
+        return geos5_nquery_request_fast(&out->as.geos5_nquery_request, line, fields, end, count);
+    case NMEA_SENTENCE_GEOS5_RQUERY:
+        return geos5_rquery_fast(&out->as.geos5_rquery, line, fields, end, count);
+    case NMEA_SENTENCE_GEOS5_RQUERY_REQUEST:
+        return geos5_rquery_request_fast(&out->as.geos5_rquery_request, line, fields, end, count);
+    case NMEA_SENTENCE_PSRF100:
+        return psrf100_fast(&out->as.psrf100, line, fields, end, count);
+    case NMEA_SENTENCE_PSRF101:
+        return psrf101_fast(&out->as.psrf101, line, fields, end, count);
+    case NMEA_SENTENCE_PSRF102:
+        return psrf102_fast(&out->as.psrf102, line, fields, end, count);
+    case NMEA_SENTENCE_PSRF103:
+        return psrf103_fast(&out->as.psrf103, line, fields, end, count);
+    case NMEA_SENTENCE_PSRF104:
+        return psrf104_fast(&out->as.psrf104, line, fields, end, count);
+    case NMEA_SENTENCE_PSRF105:
+        return psrf105_fast(&out->as.psrf105, line, fields, end, count);
+    case NMEA_SENTENCE_PSRF150:
+        return psrf150_fast(&out->as.psrf150, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMAGPS:
+        return pstmagps_fast(&out->as.pstmagps, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMALMANAC:
+        return pstmalmanac_fast(&out->as.pstmalmanac, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMCLRALMS:
+        return pstmclralms_fast(&out->as.pstmclralms, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMCLREPHS:
+        return pstmclrephs_fast(&out->as.pstmclrephs, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMCOLD:
+        return pstmcold_fast(&out->as.pstmcold, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMCORR:
+        return pstmcorr_fast(&out->as.pstmcorr, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMDIFF:
+        return pstmdiff_fast(&out->as.pstmdiff, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMEPH:
+        return pstmeph_fast(&out->as.pstmeph, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMGETPAR:
+        return pstmgetpar_fast(&out->as.pstmgetpar, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMGETPARERROR:
+        return pstmgetparerror_fast(&out->as.pstmgetparerror, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMGETRTCTIME:
+        return pstmgetrtctime_fast(&out->as.pstmgetrtctime, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMGETRTCTIME_REPLY:
+        return pstmgetrtctime_reply_fast(&out->as.pstmgetrtctime_reply, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMGETSWVER:
+        return pstmgetswver_fast(&out->as.pstmgetswver, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMGETSWVER_REPLY:
+        return pstmgetswver_reply_fast(&out->as.pstmgetswver_reply, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMHOT:
+        return pstmhot_fast(&out->as.pstmhot, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMKFCOV:
+        return pstmkfcov_fast(&out->as.pstmkfcov, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMNMEAONOFF:
+        return pstmnmeaonoff_fast(&out->as.pstmnmeaonoff, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMPA:
+        return pstmpa_fast(&out->as.pstmpa, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMPRES:
+        return pstmpres_fast(&out->as.pstmpres, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMRES:
+        return pstmres_fast(&out->as.pstmres, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMRESTOREPAR:
+        return pstmrestorepar_fast(&out->as.pstmrestorepar, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMRF:
+        return pstmrf_fast(&out->as.pstmrf, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSAT:
+        return pstmsat_fast(&out->as.pstmsat, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSAVEPAR:
+        return pstmsavepar_fast(&out->as.pstmsavepar, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSBAS:
+        return pstmsbas_fast(&out->as.pstmsbas, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSBASCORR:
+        return pstmsbascorr_fast(&out->as.pstmsbascorr, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSET:
+        return pstmset_fast(&out->as.pstmset, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSET_DOP:
+        return pstmset_dop_fast(&out->as.pstmset_dop, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSETPAR:
+        return pstmsetpar_fast(&out->as.pstmsetpar, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSETPAR_DOP:
+        return pstmsetpar_dop_fast(&out->as.pstmsetpar_dop, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSETPARERROR:
+        return pstmsetparerror_fast(&out->as.pstmsetparerror, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMSETPAROK:
+        return pstmsetparok_fast(&out->as.pstmsetparok, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMTESTRF:
+        return pstmtestrf_fast(&out->as.pstmtestrf, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMTG:
+        return pstmtg_fast(&out->as.pstmtg, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMTIM:
+        return pstmtim_fast(&out->as.pstmtim, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMTS:
+        return pstmts_fast(&out->as.pstmts, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMVER:
+        return pstmver_fast(&out->as.pstmver, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMVRES:
+        return pstmvres_fast(&out->as.pstmvres, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMWAAS:
+        return pstmwaas_fast(&out->as.pstmwaas, line, fields, end, count);
+    case NMEA_SENTENCE_PSTMWARM:
+        return pstmwarm_fast(&out->as.pstmwarm, line, fields, end, count);
+    default:
+        return FAST_NOT_THIS;
+    }
+}
+
+/* The first of the layouts that reads the line, as first_fit would pick it: a layout whose field
+   count does not fit is passed over, any other doubt ends the fast path. */
+static bool fast_fit(nmea_sentence *out, const nmea_layouts *layouts, const char *line, const char *fields,
+                     const char *end, size_t count)
+{
+    size_t i;
+    for (i = 0; i < layouts->count; i++) {
+        fast_result result = fast_read_layout(out, layouts->ids[i], line, fields, end, count);
+        if (result != FAST_NOT_THIS)
+            return result == FAST_OK;
+    }
+    return false;
+}
+
+/* nmea_parse_ex's fast path: a known `$` sentence in the usual frame (fast_frame), read by
+   its layouts' fast readers; false leaves the line to the general path. */
+NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len)
+{
+    const nmea_layouts *layouts = NULL;
+    size_t count, comma;
+
+    if (!fast_frame(line, len, &count))
+        return false;
+    if (line[6] == ',' && line[1] != 'P') { /* a talker and a sentence id, or a look-alike */
+        if (!is_alnum(line[1]) || !is_alnum(line[2]) || find_layouts(TALKER_LIKE, TALKER_LIKE_COUNT, text_span(line + 1, line + 6)))
+            return false;
+        layouts = find_standard(line + 3);
+        return layouts && fast_fit(out, layouts, line, line + 7, line + len - 2, count);
+    }
+    for (comma = 1; is_alnum(line[comma]); comma++) /* the address: letters and digits up to a comma */
+        continue;
+    if (line[comma] != ',' || comma == 1 || (layouts = find_layouts(PROPRIETARY, PROPRIETARY_COUNT, text_span(line + 1, line + comma))) == NULL)
+        return false;
+    return fast_fit(out, layouts, line, line + comma + 1, line + len - 2, count);
 }
 
 /* Keeps the error to report: the first one, or the first bad field that comes after it. */
@@ -10976,7 +12884,9 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
     return nmea_parse_ex(out, line, len, NULL, err);
 }
 
-bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
+/* nmea_parse_ex's general path: every line, every option, every error. */
+static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                          nmea_error *err)
 {
     static const nmea_options strict = {false, false};
     nmea_frame f;
@@ -11020,6 +12930,24 @@ bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_
     out->as.generic.checksum = f.checksum;
     return true;
 }
+
+/* The fast path needs no options: what it reads has a checksum, and a line read without a
+   problem is read the same way leniently. */
+bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
+{
+#ifndef NMEA_NO_FAST_PATH
+    if (fast_parse(out, line, len))
+        return true;
+#endif
+    return parse_general(out, line, len, options, err);
+}
+
+#ifdef NMEA_TEST_HOOKS
+bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
+{
+    return parse_general(out, line, len, options, err);
+}
+#endif
 
 size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
 {

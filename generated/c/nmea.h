@@ -4416,6 +4416,12 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
 
 /** nmea_parse with options (see nmea_options; NULL: strict, as nmea_parse). */
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err);
+
+#ifdef NMEA_TEST_HOOKS
+/* For tests: nmea_parse_ex without its fast path for sentences in the usual form, which must
+   give the same results (NMEA_NO_FAST_PATH makes nmea_parse_ex this function). */
+bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err);
+#endif
 bool nmea_parse_dtm(nmea_dtm *out, const char *line, size_t len, nmea_error *err);
 bool nmea_parse_gga(nmea_gga *out, const char *line, size_t len, nmea_error *err);
 bool nmea_parse_gll(nmea_gll *out, const char *line, size_t len, nmea_error *err);

@@ -13,6 +13,7 @@
  */
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "nmea.h"
@@ -54,6 +55,23 @@ static void emit(tool *t, size_t n)
     t->out_len += n + 1;
 }
 
+#ifdef NMEA_TEST_HOOKS
+/* A test build checks that nmea_parse_ex's fast path decodes every line as its general path
+   does (the tests run it over every real log and edge case). */
+static void check_general(const tool *t, const char *line, size_t len, const char *json, size_t n)
+{
+    static char general[NMEA_JSON_MAX];
+    nmea_sentence s;
+    nmea_error err;
+    size_t m = nmea_parse_general(&s, line, len, &t->options, &err) ? nmea_to_json(&s, t->values, general, sizeof general)
+                                                                    : nmea_error_to_json(&err, general, sizeof general);
+    if (m != n || memcmp(general, json, n) != 0) {
+        fprintf(stderr, "nmea-c: the fast path decodes this line unlike the general path: %.*s\n", (int)len, line);
+        abort();
+    }
+}
+#endif
+
 static void decode_line(tool *t, const char *line, size_t len)
 {
     char *out = room(t, NMEA_JSON_MAX + 1);
@@ -64,6 +82,9 @@ static void decode_line(tool *t, const char *line, size_t len)
         n = nmea_error_to_json(&err, out, NMEA_JSON_MAX);
     } else {
         n = nmea_decode_json_ex(line, len, t->values, &t->options, out, NMEA_JSON_MAX);
+#ifdef NMEA_TEST_HOOKS
+        check_general(t, line, len, out, n);
+#endif
     }
     emit(t, n);
 }
