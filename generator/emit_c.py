@@ -214,6 +214,28 @@ def put_call(f: Field, target: str) -> str:
     return f"put_enum(w, &{target}, &{enum_def(f.enum)})"
 
 
+def fast_put_call(f: Field, target: str) -> str:
+    """The fast path's call that writes field `f` (its comma and text) with fast_writer `w`:
+    put_call, false when the general writer must write the sentence."""
+    t = f.type
+    if t == "keyword":
+        return f"fast_put_keyword(&w, {c_str(f.value or '')}, {len((f.value or '').encode())})"
+    if t in ("integer", "decimal"):
+        return f"fast_put_number(&w, &{target})"
+    if t in ("hex", "time", "date"):
+        return f"fast_put_{t}(&w, &{target})"
+    if t in ("latitude", "longitude"):
+        return f"fast_put_coordinate(&w, &{target})"
+    if t == "char":
+        return f"fast_put_char(&w, {target})"
+    if t == "literal":
+        return f"fast_put_literal(&w, {target}, {c_str(f.value or '')}, {len((f.value or '').encode())})"
+    if t in ("text", "enum_chars"):
+        return f"fast_put_text(&w, {target})"
+    assert f.enum is not None
+    return f"fast_put_enum(&w, &{target}, &{enum_def(f.enum)})"
+
+
 def json_call(f: Field, target: str, key: bool | str = True, values: str = "values") -> str:
     """The call that shows field `f` in the `fields` object (or, key False, a group array; a
     string: under that key)."""
@@ -276,6 +298,7 @@ def field_view(f: Field, base: str, ranges: Ranges, key: bool = True) -> dict:
         "read": read_call(f, target, ranges),
         "fast": fast_call(f, target, ranges),
         "put": put_call(f, target),
+        "fast_put": fast_put_call(f, target),
         "json": json_call(f, target, key),
         "target": target,
         "collect": f"collect_field(c, fields, {c_str(f.id)}, {f.wire_width})",
@@ -396,6 +419,8 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "tail_reads": _conditions(tail),
         "head_fast": _conditions(head, "fast"),
         "tail_fast": _conditions(tail, "fast"),
+        "head_fast_puts": _conditions(head, "fast_put"),
+        "tail_fast_puts": _conditions(tail, "fast_put"),
         "head_collects": [v["optional_collect"] if v.get("when") else v["collect"] for v in head],
         "tail_collects": [v["optional_collect"] if v.get("when") else v["collect"] for v in tail],
         "optional_names": ", ".join(v["field"].id for v in optional),

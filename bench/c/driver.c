@@ -5,7 +5,8 @@
  *     bench-c ours|ceiling parse|serialize|roundtrip|none CORPUS [--by-type]
  *
  * parse: nmea_parse of every line (ok = lines parsed). serialize: the lines are parsed chunk by
- * chunk outside the timed region, then only nmea_serialize of the chunk is timed (ok = lines
+ * chunk outside the timed region, then only nmea_serialize of the chunk is timed, the sentences
+ * written one after another into one buffer as a program writing a stream would (ok = lines
  * written back byte for byte). roundtrip: parse then serialize each line, comparing with the input.
  * ceiling: ceiling_scan (checksum and field boundaries), parse only. --by-type repeats the timing
  * over the lines of each sentence type separately. none: nothing (the cost of reading the corpus,
@@ -120,14 +121,14 @@ static timing time_ceiling(const line_ref *lines, size_t n)
 static timing time_serialize(const line_ref *lines, size_t n)
 {
     static nmea_sentence parsed[CHUNK];
-    static char out[CHUNK][NMEA_MAX_LINE + 3];
-    static size_t lengths[CHUNK];
+    static char out[CHUNK * (NMEA_MAX_LINE + 3)]; /* the chunk's sentences one after another */
+    static size_t offsets[CHUNK + 1];
     nmea_error err;
     size_t ok = 0, done, i, count;
     double seconds = 0;
     for (done = 0; done < n; done += count) {
         const line_ref *chunk = lines + done;
-        size_t kept = 0;
+        size_t kept = 0, used = 0;
         size_t index[CHUNK];
         double start;
         count = n - done < CHUNK ? n - done : CHUNK;
@@ -135,12 +136,15 @@ static timing time_serialize(const line_ref *lines, size_t n)
             if (nmea_parse(&parsed[kept], chunk[i].ptr, chunk[i].len, &err))
                 index[kept++] = i;
         start = now();
-        for (i = 0; i < kept; i++)
-            lengths[i] = nmea_serialize(&parsed[i], out[i], sizeof out[i]);
+        for (i = 0; i < kept; i++) { /* each NUL is overwritten by the next sentence */
+            offsets[i] = used;
+            used += nmea_serialize(&parsed[i], out + used, sizeof out - used);
+        }
         seconds += now() - start;
+        offsets[kept] = used;
         for (i = 0; i < kept; i++) {
             const line_ref *line = &chunk[index[i]];
-            ok += lengths[i] == line->len && memcmp(out[i], line->ptr, line->len) == 0;
+            ok += offsets[i + 1] - offsets[i] == line->len && memcmp(out + offsets[i], line->ptr, line->len) == 0;
         }
     }
     return (timing){seconds, ok, n};

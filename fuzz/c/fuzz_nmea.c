@@ -8,8 +8,9 @@
  * - a line that does not parse must describe its error as JSON; when lenient parsing keeps it, it
  *   must still serialize back to exactly its bytes, and its JSON (problems included) must rebuild
  *   it the same way;
- * - the fast path of nmea_parse_ex must decode the line exactly as its general path does
- *   (nmea_parse_general: built with NMEA_TEST_HOOKS);
+ * - the fast paths of nmea_parse_ex and nmea_serialize must decode and write the line exactly as
+ *   their general paths do (nmea_parse_general, nmea_serialize_general: built with
+ *   NMEA_TEST_HOOKS), into any buffer size;
  * - JSON that rebuilds a sentence must serialize, and that sentence must parse again;
  * - the stream framer must cut the input into the same items as a byte-at-a-time model of the
  *   Python reference's Framer, whether it gets the input whole or in chunks of any size (the
@@ -41,6 +42,24 @@ static bool ends_with(const char *s, size_t n, const char *suffix)
 {
     size_t m = strlen(suffix);
     return n >= m && memcmp(s + n - m, suffix, m) == 0;
+}
+
+/* nmea_serialize must write what its general path writes, whatever the buffer's size (sizes
+   around the sentence's length and the fast path's margin, taken from `seed`). */
+static void same_writing(const nmea_sentence *s, size_t seed)
+{
+    size_t sizes[4], i, n, m;
+    sizes[0] = sizeof text;
+    sizes[1] = seed % 80;
+    sizes[2] = seed % 80 + 64;
+    sizes[3] = nmea_serialize_general(s, again, sizeof again) + 1 - seed % 3;
+    for (i = 0; i < 4; i++) {
+        if (sizes[i] > sizeof text)
+            continue;
+        n = nmea_serialize(s, text, sizes[i]);
+        m = nmea_serialize_general(s, again, sizes[i]);
+        check(n == m && (sizes[i] == 0 || memcmp(text, again, n + 1) == 0));
+    }
 }
 
 /* The sentence's lossless JSON must rebuild it, and the rebuilt one must serialize to `line`. */
@@ -86,6 +105,7 @@ static void as_line(const char *data, size_t size)
         json_round_trip(&s, data, size);
         return;
     }
+    same_writing(&s, size);
     n = nmea_serialize(&s, text, sizeof text);
     check(n == size && memcmp(text, data, size) == 0);
     json_round_trip(&s, data, size);
@@ -117,6 +137,7 @@ static void as_json(const char *data, size_t size)
 
     if (size > sizeof scratch / 2 || !nmea_from_json(&s, data, size, scratch, sizeof scratch, &err))
         return;
+    same_writing(&s, size);
     n = nmea_serialize(&s, text, sizeof text);
     if (n == 0 && size < NMEA_MAX_LINE)
         return; /* a sentence rebuilt from JSON may be longer than any line the parser takes */

@@ -335,11 +335,18 @@ static inline void put_mem(nmea_writer *w, const char *s, size_t n)
     w->last = s[n - 1];
 }
 
-/* The XOR of n bytes, a machine word at a time. */
+/* The XOR of n bytes, a machine word at a time; when there are at least 8, the last n % 8 are
+   the top of the word that ends them, moved down (no loop over single bytes to mispredict). */
 static unsigned char xor_bytes(const char *p, size_t n)
 {
     uint64_t word, acc = 0;
     unsigned char sum = 0;
+    const char *end = p + n;
+    if (n >= 8 && n % 8) {
+        memcpy(&word, end - 8, 8);
+        acc = word >> (8 * (8 - n % 8));
+        n -= n % 8;
+    }
     for (; n >= 8; p += 8, n -= 8) {
         memcpy(&word, p, 8);
         acc ^= word;
@@ -383,22 +390,23 @@ static void put_text(nmea_writer *w, nmea_text t)
 /* Writes `v` in decimal, zero-padded to at least `width` digits, just before `end`: returns
    where the text starts. Numbers are formatted backwards into a local buffer this way and then
    written in one put_mem. */
+static const char DIGIT_PAIRS[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                                  "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                                  "8081828384858687888990919293949596979899";
+
 static inline char *uint_text(char *end, uint64_t v, unsigned width)
 {
-    static const char PAIRS[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-                                "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-                                "8081828384858687888990919293949596979899";
     char *p = end;
     uint32_t low;
     for (; v > UINT32_MAX; v /= 10)
         *--p = (char)('0' + v % 10);
     for (low = (uint32_t)v; low >= 100; low /= 100) { /* two digits per division */
         p -= 2;
-        memcpy(p, PAIRS + low % 100 * 2, 2);
+        memcpy(p, DIGIT_PAIRS + low % 100 * 2, 2);
     }
     if (low >= 10) {
         p -= 2;
-        memcpy(p, PAIRS + low * 2, 2);
+        memcpy(p, DIGIT_PAIRS + low * 2, 2);
     } else {
         *--p = (char)('0' + low);
     }
@@ -1779,13 +1787,15 @@ static const unsigned char HEX_UPPER_VALUE[256] = { /* the value of an upper-cas
    the body would end a field early). */
 NMEA_HOT bool fast_frame(const char *line, size_t len, size_t *count)
 {
-    const char *body = line + 1;
+    const char *body;
     size_t n, i, commas = 0;
     uint64_t word, sum = 0;
     unsigned high, low;
 
+    /* (an overlong framed line has no bytes: `line` is then NULL) */
     if (len < 12 || len > NMEA_MAX_LINE || line[0] != '$' || line[len - 3] != '*')
         return false;
+    body = line + 1;
     n = len - 4; /* at least 8 */
     for (i = 0; i + 8 <= n; i += 8) {
         memcpy(&word, body + i, 8);
@@ -2244,6 +2254,257 @@ NMEA_INTERNAL void put_text_field(nmea_writer *w, nmea_text t)
 {
     if (!put_sep(w))
         put_text(w, t);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* The fast path of writing: a sentence without problems whose values are as a parser makes
+   them, written with a local cursor and without the bookkeeping of nmea_writer (no per-byte
+   capacity checks: each field first checks that the buffer has FAST_ROOM bytes left, which
+   holds any field but a text, and a text checks its own length). Whatever else (a value only a
+   hand-built struct has, a buffer nearly full) returns false and is left to the general writer,
+   which then writes the whole sentence again; the output is the same byte for byte. */
+
+/* The most bytes a fast_put_* other than a text writes, plus the checksum and the NUL. */
+#define FAST_ROOM 64
+
+typedef struct {
+    char *buf;
+    char *p;           /* the next byte */
+    const char *limit; /* buf + cap - FAST_ROOM */
+} fast_writer;
+
+/* `n` bytes the caller has made room for. */
+NMEA_HOT void fast_copy(fast_writer *w, const char *s, size_t n)
+{
+    char *p = w->p;
+    size_t i;
+    for (i = 0; i < n; i++)
+        p[i] = s[i];
+    w->p = p + n;
+}
+
+/* A text of `n` bytes, when it fits with FAST_ROOM bytes to spare (a separator may already
+   have gone past the limit). */
+NMEA_HOT bool fast_put_mem(fast_writer *w, const char *s, size_t n)
+{
+    if (n && (w->p > w->limit || n > (size_t)(w->limit - w->p)))
+        return false;
+    fast_copy(w, s, n);
+    return true;
+}
+
+/* An enum's code (at most NMEA_CODE_MAX bytes). */
+NMEA_HOT void fast_put_code(fast_writer *w, const char *s)
+{
+    char *p = w->p;
+    while (*s)
+        *p++ = *s++;
+    w->p = p;
+}
+
+/* The separator of the next field, when there is room for it and any field but a text. */
+NMEA_HOT bool fast_sep(fast_writer *w)
+{
+    if (w->p > w->limit)
+        return false;
+    *w->p++ = ',';
+    return true;
+}
+
+NMEA_HOT bool fast_begin(fast_writer *w, char *buf, size_t cap, nmea_text talker, const char *address,
+                         const nmea_problems *problems)
+{
+    if (problems->count || cap < FAST_ROOM + 1)
+        return false;
+    w->buf = buf;
+    w->p = buf;
+    w->limit = buf + cap - FAST_ROOM;
+    *w->p++ = '$';
+    return fast_put_mem(w, talker.ptr, talker.len) && fast_put_mem(w, address, strlen(address));
+}
+
+/* The checksum (there is room for it and the NUL); returns the sentence's length. */
+NMEA_HOT size_t fast_end(fast_writer *w, nmea_checksum_style style)
+{
+    unsigned char sum = xor_bytes(w->buf + 1, (size_t)(w->p - w->buf - 1));
+    const char *hex = style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER;
+    if (style != NMEA_CHECKSUM_NONE) {
+        *w->p++ = '*';
+        if (style != NMEA_CHECKSUM_EMPTY) {
+            w->p[0] = hex[sum >> 4];
+            w->p[1] = hex[sum & 15];
+            w->p += 2;
+        }
+    }
+    *w->p = 0;
+    return (size_t)(w->p - w->buf);
+}
+
+/* number_text for the numbers a parser makes: no more than NMEA_MAX_DIGITS decimals (all after
+   a point), 1 to 20 whole digits written, not negative. */
+NMEA_HOT bool fast_number_text(fast_writer *w, const nmea_number *n)
+{
+    char text[1 + 20 + 1 + NMEA_MAX_DIGITS], *end = text + sizeof text, *t = end;
+    uint64_t v = (uint64_t)n->digits;
+    unsigned scale = n->scale;
+    if (!n->present)
+        return true;
+    /* the most common of all: an integer of at most 3 digits written with 1 to 3 (tested with |,
+       one branch) */
+    if ((scale | (unsigned char)n->sign | (unsigned)n->point) == 0 && v < 1000 && (unsigned)n->width - 1 < 3) {
+        char *p = w->p;
+        if (v >= 100 || n->width == 3) {
+            *p++ = (char)('0' + v / 100);
+            v %= 100;
+        }
+        if (v >= 10 || p != w->p || n->width == 2) {
+            memcpy(p, DIGIT_PAIRS + v * 2, 2);
+            p += 2;
+        } else {
+            *p++ = (char)('0' + v);
+        }
+        w->p = p;
+        return true;
+    }
+    if (n->digits < 0 || !n->width || n->width > 20 || scale > NMEA_MAX_DIGITS || (scale && !n->point))
+        return false;
+    if (n->point) {
+        for (; scale >= 2; scale -= 2, v /= 100) {
+            t -= 2;
+            memcpy(t, DIGIT_PAIRS + v % 100 * 2, 2);
+        }
+        if (scale) {
+            *--t = (char)('0' + v % 10);
+            v /= 10;
+        }
+        *--t = '.';
+    }
+    t = uint_text(t, v, n->width);
+    if (n->sign)
+        *--t = n->sign;
+    fast_copy(w, t, (size_t)(end - t));
+    return true;
+}
+
+NMEA_HOT bool fast_put_number(fast_writer *w, const nmea_number *n)
+{
+    return fast_sep(w) && fast_number_text(w, n);
+}
+
+NMEA_HOT bool fast_put_hex(fast_writer *w, const nmea_hex *h)
+{
+    const char *hex = h->lower ? HEX_LOWER : HEX_UPPER;
+    char *p;
+    unsigned n = 1, i;
+    uint64_t v = h->value;
+    if (!fast_sep(w))
+        return false;
+    if (!h->present)
+        return true;
+    while (n < 16 && v >> (4 * n))
+        n++;
+    if (h->digits > 16)
+        return false;
+    if (n < h->digits)
+        n = h->digits;
+    p = w->p + n;
+    for (i = 0; i < n; i++, v >>= 4)
+        *--p = hex[v & 15];
+    w->p += n;
+    return true;
+}
+
+/* Two digits, for the parts of times and dates a parser makes (at most 99). */
+NMEA_HOT bool fast_two_digits(fast_writer *w, unsigned v)
+{
+    if (v > 99)
+        return false;
+    memcpy(w->p, DIGIT_PAIRS + v * 2, 2);
+    w->p += 2;
+    return true;
+}
+
+NMEA_HOT bool fast_put_time(fast_writer *w, const nmea_time *t)
+{
+    char text[9], *end = text + sizeof text;
+    if (!fast_sep(w))
+        return false;
+    if (!t->present)
+        return true;
+    if (!fast_two_digits(w, t->hour) || !fast_two_digits(w, t->minute) || !fast_two_digits(w, t->second)
+        || t->fraction_digits > 9)
+        return false;
+    if (t->point) {
+        *w->p++ = '.';
+        if (t->fraction_digits) {
+            if (t->fraction >= (uint64_t)POW10[t->fraction_digits])
+                return false;
+            fast_copy(w, uint_text(end, t->fraction, t->fraction_digits), t->fraction_digits);
+        }
+    }
+    return true;
+}
+
+NMEA_HOT bool fast_put_date(fast_writer *w, const nmea_date *d)
+{
+    if (!fast_sep(w))
+        return false;
+    return !d->present
+           || (fast_two_digits(w, d->day) && fast_two_digits(w, d->month) && fast_two_digits(w, d->year));
+}
+
+NMEA_HOT bool fast_put_coordinate(fast_writer *w, const nmea_coordinate *c)
+{
+    char text[3], *end = text + sizeof text;
+    if (!fast_sep(w))
+        return false;
+    if (c->present) {
+        if (c->degree_digits > 3 || c->degrees > 999 || (c->degree_digits && c->degrees >= POW10[c->degree_digits]))
+            return false;
+        if (c->degree_digits)
+            fast_copy(w, uint_text(end, c->degrees, c->degree_digits), c->degree_digits);
+        if (!fast_number_text(w, &c->minutes))
+            return false;
+    }
+    *w->p++ = ',';
+    if (c->present)
+        *w->p++ = c->hemisphere;
+    return true;
+}
+
+NMEA_HOT bool fast_put_char(fast_writer *w, char c)
+{
+    if (!fast_sep(w))
+        return false;
+    if (c)
+        *w->p++ = c;
+    return true;
+}
+
+/* A literal field: `literal` is `len` bytes. */
+NMEA_HOT bool fast_put_literal(fast_writer *w, bool present, const char *literal, size_t len)
+{
+    return fast_sep(w) && (!present || fast_put_mem(w, literal, len));
+}
+
+NMEA_HOT bool fast_put_enum(fast_writer *w, const nmea_enum *e, const nmea_enum_def *def)
+{
+    if (!fast_sep(w))
+        return false;
+    if (e->present)
+        fast_put_code(w, enum_code(e, def));
+    return true;
+}
+
+/* A keyword field: `keyword` is `len` bytes. */
+NMEA_HOT bool fast_put_keyword(fast_writer *w, const char *keyword, size_t len)
+{
+    return fast_sep(w) && fast_put_mem(w, keyword, len);
+}
+
+NMEA_HOT bool fast_put_text(fast_writer *w, nmea_text t)
+{
+    return fast_sep(w) && fast_put_mem(w, t.ptr, t.len);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -3901,6 +4162,26 @@ static void dtm_write(nmea_writer *w, const nmea_dtm *s)
     end_sentence(w, s->checksum);
 }
 
+/* dtm_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t dtm_fast_write(const nmea_dtm *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "DTM", &s->problems))
+        return 0;
+    if (!fast_put_enum(&w, &s->local_datum, &nmea_dtm_datum_def)
+        || !fast_put_char(&w, s->local_datum_subdivision)
+        || !fast_put_number(&w, &s->lat_offset)
+        || !fast_put_enum(&w, &s->lat_offset_dir, &nmea_dtm_lat_offset_dir_def)
+        || !fast_put_number(&w, &s->lon_offset)
+        || !fast_put_enum(&w, &s->lon_offset_dir, &nmea_dtm_lon_offset_dir_def)
+        || !fast_put_number(&w, &s->altitude_offset)
+        || !fast_put_enum(&w, &s->reference_datum, &nmea_dtm_datum_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void dtm_json(nmea_writer *w, const nmea_dtm *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -3941,6 +4222,11 @@ bool nmea_parse_dtm(nmea_dtm *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_dtm(const nmea_dtm *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = dtm_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     dtm_write(&w, s);
     return writer_finish(&w);
 }
@@ -4038,6 +4324,30 @@ static void gga_write(nmea_writer *w, const nmea_gga *s)
     end_sentence(w, s->checksum);
 }
 
+/* gga_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t gga_fast_write(const nmea_gga *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "GGA", &s->problems))
+        return 0;
+    if (!fast_put_time(&w, &s->time)
+        || !fast_put_coordinate(&w, &s->lat)
+        || !fast_put_coordinate(&w, &s->lon)
+        || !fast_put_enum(&w, &s->quality, &nmea_gga_quality_def)
+        || !fast_put_number(&w, &s->satellites)
+        || !fast_put_number(&w, &s->hdop)
+        || !fast_put_number(&w, &s->altitude)
+        || !fast_put_literal(&w, s->altitude_unit, "M", 1)
+        || !fast_put_number(&w, &s->geoid_separation)
+        || !fast_put_literal(&w, s->geoid_separation_unit, "M", 1)
+        || !fast_put_number(&w, &s->dgps_age)
+        || !fast_put_number(&w, &s->dgps_station))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void gga_json(nmea_writer *w, const nmea_gga *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -4086,6 +4396,11 @@ bool nmea_parse_gga(nmea_gga *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_gga(const nmea_gga *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = gga_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     gga_write(&w, s);
     return writer_finish(&w);
 }
@@ -4163,6 +4478,23 @@ static void gll_write(nmea_writer *w, const nmea_gll *s)
     end_sentence(w, s->checksum);
 }
 
+/* gll_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t gll_fast_write(const nmea_gll *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "GLL", &s->problems))
+        return 0;
+    if (!fast_put_coordinate(&w, &s->lat)
+        || !fast_put_coordinate(&w, &s->lon)
+        || !fast_put_time(&w, &s->time)
+        || !fast_put_enum(&w, &s->status, &nmea_status_def)
+        || (s->optional_count >= 1 && !fast_put_enum(&w, &s->mode, &nmea_pos_mode_def)))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void gll_json(nmea_writer *w, const nmea_gll *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -4198,6 +4530,11 @@ bool nmea_parse_gll(nmea_gll *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_gll(const nmea_gll *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = gll_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     gll_write(&w, s);
     return writer_finish(&w);
 }
@@ -4293,6 +4630,29 @@ static void gns_write(nmea_writer *w, const nmea_gns *s)
     end_sentence(w, s->checksum);
 }
 
+/* gns_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t gns_fast_write(const nmea_gns *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "GNS", &s->problems))
+        return 0;
+    if (!fast_put_time(&w, &s->time)
+        || !fast_put_coordinate(&w, &s->lat)
+        || !fast_put_coordinate(&w, &s->lon)
+        || !fast_put_text(&w, s->mode)
+        || !fast_put_number(&w, &s->satellites)
+        || !fast_put_number(&w, &s->hdop)
+        || !fast_put_number(&w, &s->altitude)
+        || !fast_put_number(&w, &s->geoid_separation)
+        || !fast_put_number(&w, &s->dgps_age)
+        || !fast_put_number(&w, &s->dgps_station)
+        || (s->optional_count >= 1 && !fast_put_enum(&w, &s->nav_status, &nmea_nav_status_def)))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void gns_json(nmea_writer *w, const nmea_gns *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -4340,6 +4700,11 @@ bool nmea_parse_gns(nmea_gns *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_gns(const nmea_gns *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = gns_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     gns_write(&w, s);
     return writer_finish(&w);
 }
@@ -4432,6 +4797,28 @@ static void gns_aux_write(nmea_writer *w, const nmea_gns_aux *s)
     end_sentence(w, s->checksum);
 }
 
+/* gns_aux_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t gns_aux_fast_write(const nmea_gns_aux *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "GNS", &s->problems))
+        return 0;
+    if (!fast_put_time(&w, &s->time)
+        || !fast_put_coordinate(&w, &s->lat)
+        || !fast_put_coordinate(&w, &s->lon)
+        || !fast_put_number(&w, &s->satellites)
+        || !fast_put_number(&w, &s->hdop)
+        || !fast_put_number(&w, &s->altitude)
+        || !fast_put_number(&w, &s->geoid_separation)
+        || !fast_put_number(&w, &s->dgps_age)
+        || !fast_put_number(&w, &s->dgps_station)
+        || (s->optional_count >= 1 && !fast_put_enum(&w, &s->nav_status, &nmea_nav_status_def)))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void gns_aux_json(nmea_writer *w, const nmea_gns_aux *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -4477,6 +4864,11 @@ bool nmea_parse_gns_aux(nmea_gns_aux *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_gns_aux(const nmea_gns_aux *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = gns_aux_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     gns_aux_write(&w, s);
     return writer_finish(&w);
 }
@@ -4574,6 +4966,30 @@ static void gsa_write(nmea_writer *w, const nmea_gsa *s)
     end_sentence(w, s->checksum);
 }
 
+/* gsa_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t gsa_fast_write(const nmea_gsa *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "GSA", &s->problems))
+        return 0;
+    if (!fast_put_enum(&w, &s->selection_mode, &nmea_gsa_selection_mode_def)
+        || !fast_put_enum(&w, &s->fix_type, &nmea_gsa_fix_type_def))
+        return 0;
+    for (i = 0; i < 12; i++) {
+        if (!fast_put_number(&w, &s->prns[i]))
+            return 0;
+    }
+    if (!fast_put_number(&w, &s->pdop)
+        || !fast_put_number(&w, &s->hdop)
+        || !fast_put_number(&w, &s->vdop)
+        || (s->optional_count >= 1 && !fast_put_enum(&w, &s->system_id, &nmea_system_id_def)))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void gsa_json(nmea_writer *w, const nmea_gsa *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -4625,6 +5041,11 @@ bool nmea_parse_gsa(nmea_gsa *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_gsa(const nmea_gsa *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = gsa_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     gsa_write(&w, s);
     return writer_finish(&w);
 }
@@ -4720,6 +5141,29 @@ static void gsa_short_write(nmea_writer *w, const nmea_gsa_short *s)
     end_sentence(w, s->checksum);
 }
 
+/* gsa_short_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t gsa_short_fast_write(const nmea_gsa_short *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "GSA", &s->problems))
+        return 0;
+    if (!fast_put_enum(&w, &s->selection_mode, &nmea_gsa_selection_mode_def)
+        || !fast_put_enum(&w, &s->fix_type, &nmea_gsa_fix_type_def))
+        return 0;
+    for (i = 0; i < s->prns_count && i < 11; i++) {
+        if (!fast_put_number(&w, &s->prns[i]))
+            return 0;
+    }
+    if (!fast_put_number(&w, &s->pdop)
+        || !fast_put_number(&w, &s->hdop)
+        || !fast_put_number(&w, &s->vdop))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void gsa_short_json(nmea_writer *w, const nmea_gsa_short *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -4768,6 +5212,11 @@ bool nmea_parse_gsa_short(nmea_gsa_short *out, const char *line, size_t len, nme
 size_t nmea_serialize_gsa_short(const nmea_gsa_short *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = gsa_short_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     gsa_short_write(&w, s);
     return writer_finish(&w);
 }
@@ -4852,6 +5301,26 @@ static void gst_write(nmea_writer *w, const nmea_gst *s)
     end_sentence(w, s->checksum);
 }
 
+/* gst_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t gst_fast_write(const nmea_gst *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "GST", &s->problems))
+        return 0;
+    if (!fast_put_time(&w, &s->time)
+        || !fast_put_number(&w, &s->rms)
+        || !fast_put_number(&w, &s->semi_major_std)
+        || !fast_put_number(&w, &s->semi_minor_std)
+        || !fast_put_number(&w, &s->orientation)
+        || !fast_put_number(&w, &s->lat_std)
+        || !fast_put_number(&w, &s->lon_std)
+        || !fast_put_number(&w, &s->alt_std))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void gst_json(nmea_writer *w, const nmea_gst *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -4891,6 +5360,11 @@ bool nmea_parse_gst(nmea_gst *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_gst(const nmea_gst *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = gst_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     gst_write(&w, s);
     return writer_finish(&w);
 }
@@ -4999,6 +5473,33 @@ static void gsv_write(nmea_writer *w, const nmea_gsv *s)
     end_sentence(w, s->checksum);
 }
 
+/* gsv_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t gsv_fast_write(const nmea_gsv *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "GSV", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->message_count)
+        || !fast_put_number(&w, &s->message_number)
+        || !fast_put_number(&w, &s->satellites_in_view))
+        return 0;
+    for (i = 0; i < s->satellites_count && i < 4; i++) {
+        const nmea_gsv_satellite *e = &s->satellites[i];
+
+        if (!fast_put_number(&w, &e->prn)
+            || !fast_put_number(&w, &e->elevation)
+            || !fast_put_number(&w, &e->azimuth)
+            || !fast_put_number(&w, &e->snr))
+            return 0;
+    }
+    if (s->optional_count >= 1 && !fast_put_enum(&w, &s->signal_id, &nmea_signal_id_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void gsv_json(nmea_writer *w, const nmea_gsv *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -5056,6 +5557,11 @@ bool nmea_parse_gsv(nmea_gsv *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_gsv(const nmea_gsv *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = gsv_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     gsv_write(&w, s);
     return writer_finish(&w);
 }
@@ -5122,6 +5628,20 @@ static void hdt_write(nmea_writer *w, const nmea_hdt *s)
     end_sentence(w, s->checksum);
 }
 
+/* hdt_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t hdt_fast_write(const nmea_hdt *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "HDT", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->heading)
+        || !fast_put_literal(&w, s->heading_ref, "T", 1))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void hdt_json(nmea_writer *w, const nmea_hdt *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -5149,6 +5669,11 @@ bool nmea_parse_hdt(nmea_hdt *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_hdt(const nmea_hdt *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = hdt_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     hdt_write(&w, s);
     return writer_finish(&w);
 }
@@ -5222,6 +5747,22 @@ static void rlm_write(nmea_writer *w, const nmea_rlm *s)
     end_sentence(w, s->checksum);
 }
 
+/* rlm_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t rlm_fast_write(const nmea_rlm *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "RLM", &s->problems))
+        return 0;
+    if (!fast_put_hex(&w, &s->beacon_id)
+        || !fast_put_time(&w, &s->time)
+        || !fast_put_enum(&w, &s->message_code, &nmea_rlm_message_code_def)
+        || !fast_put_text(&w, s->message_body))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void rlm_json(nmea_writer *w, const nmea_rlm *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -5254,6 +5795,11 @@ bool nmea_parse_rlm(nmea_rlm *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_rlm(const nmea_rlm *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = rlm_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     rlm_write(&w, s);
     return writer_finish(&w);
 }
@@ -5350,6 +5896,29 @@ static void rmc_write(nmea_writer *w, const nmea_rmc *s)
     end_sentence(w, s->checksum);
 }
 
+/* rmc_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t rmc_fast_write(const nmea_rmc *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "RMC", &s->problems))
+        return 0;
+    if (!fast_put_time(&w, &s->time)
+        || !fast_put_enum(&w, &s->status, &nmea_status_def)
+        || !fast_put_coordinate(&w, &s->lat)
+        || !fast_put_coordinate(&w, &s->lon)
+        || !fast_put_number(&w, &s->speed)
+        || !fast_put_number(&w, &s->course)
+        || !fast_put_date(&w, &s->date)
+        || !fast_put_number(&w, &s->mag_var)
+        || !fast_put_enum(&w, &s->mag_var_dir, &nmea_rmc_mag_var_dir_def)
+        || (s->optional_count >= 1 && !fast_put_enum(&w, &s->mode, &nmea_pos_mode_def))
+        || (s->optional_count >= 2 && !fast_put_enum(&w, &s->nav_status, &nmea_nav_status_def)))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void rmc_json(nmea_writer *w, const nmea_rmc *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -5398,6 +5967,11 @@ bool nmea_parse_rmc(nmea_rmc *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_rmc(const nmea_rmc *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = rmc_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     rmc_write(&w, s);
     return writer_finish(&w);
 }
@@ -5487,6 +6061,27 @@ static void vtg_write(nmea_writer *w, const nmea_vtg *s)
     end_sentence(w, s->checksum);
 }
 
+/* vtg_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t vtg_fast_write(const nmea_vtg *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "VTG", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->course_true)
+        || !fast_put_literal(&w, s->course_true_ref, "T", 1)
+        || !fast_put_number(&w, &s->course_magnetic)
+        || !fast_put_literal(&w, s->course_magnetic_ref, "M", 1)
+        || !fast_put_number(&w, &s->speed_knots)
+        || !fast_put_literal(&w, s->speed_knots_unit, "N", 1)
+        || !fast_put_number(&w, &s->speed_kmh)
+        || !fast_put_literal(&w, s->speed_kmh_unit, "K", 1)
+        || (s->optional_count >= 1 && !fast_put_enum(&w, &s->mode, &nmea_pos_mode_def)))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void vtg_json(nmea_writer *w, const nmea_vtg *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -5530,6 +6125,11 @@ bool nmea_parse_vtg(nmea_vtg *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_vtg(const nmea_vtg *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = vtg_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     vtg_write(&w, s);
     return writer_finish(&w);
 }
@@ -5609,6 +6209,24 @@ static void zda_write(nmea_writer *w, const nmea_zda *s)
     end_sentence(w, s->checksum);
 }
 
+/* zda_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t zda_fast_write(const nmea_zda *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, s->talker, "ZDA", &s->problems))
+        return 0;
+    if (!fast_put_time(&w, &s->time)
+        || !fast_put_number(&w, &s->day)
+        || !fast_put_number(&w, &s->month)
+        || !fast_put_number(&w, &s->year)
+        || !fast_put_number(&w, &s->local_zone_hours)
+        || !fast_put_number(&w, &s->local_zone_minutes))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void zda_json(nmea_writer *w, const nmea_zda *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -5645,6 +6263,11 @@ bool nmea_parse_zda(nmea_zda *out, const char *line, size_t len, nmea_error *err
 size_t nmea_serialize_zda(const nmea_zda *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = zda_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     zda_write(&w, s);
     return writer_finish(&w);
 }
@@ -6064,6 +6687,19 @@ static void geos5_command_write(nmea_writer *w, const nmea_geos5_command *s)
     end_sentence(w, s->checksum);
 }
 
+/* geos5_command_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t geos5_command_fast_write(const nmea_geos5_command *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "GPSGG", &s->problems))
+        return 0;
+    if (!fast_put_enum(&w, &s->command, &nmea_geos5_command_word_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void geos5_command_json(nmea_writer *w, const nmea_geos5_command *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -6090,6 +6726,11 @@ bool nmea_parse_geos5_command(nmea_geos5_command *out, const char *line, size_t 
 size_t nmea_serialize_geos5_command(const nmea_geos5_command *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = geos5_command_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     geos5_command_write(&w, s);
     return writer_finish(&w);
 }
@@ -6156,6 +6797,20 @@ static void geos5_jamdet_write(nmea_writer *w, const nmea_geos5_jamdet *s)
     end_sentence(w, s->checksum);
 }
 
+/* geos5_jamdet_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t geos5_jamdet_fast_write(const nmea_geos5_jamdet *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "GPSGG", &s->problems))
+        return 0;
+    if (!fast_put_keyword(&w, "JAMDET", 6)
+        || !fast_put_text(&w, s->reserved))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void geos5_jamdet_json(nmea_writer *w, const nmea_geos5_jamdet *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -6184,6 +6839,11 @@ bool nmea_parse_geos5_jamdet(nmea_geos5_jamdet *out, const char *line, size_t le
 size_t nmea_serialize_geos5_jamdet(const nmea_geos5_jamdet *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = geos5_jamdet_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     geos5_jamdet_write(&w, s);
     return writer_finish(&w);
 }
@@ -6286,6 +6946,32 @@ static void geos5_nquery_write(nmea_writer *w, const nmea_geos5_nquery *s)
     end_sentence(w, s->checksum);
 }
 
+/* geos5_nquery_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t geos5_nquery_fast_write(const nmea_geos5_nquery *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "GPSGG", &s->problems))
+        return 0;
+    if (!fast_put_keyword(&w, "NQUERY", 6)
+        || !fast_put_number(&w, &s->port)
+        || !fast_put_enum(&w, &s->output_rate, &nmea_geos5_output_rate_def)
+        || !fast_put_enum(&w, &s->nmea_version, &nmea_geos5_nmea_version_def)
+        || !fast_put_enum(&w, &s->gga_rate, &nmea_geos5_message_rate_def)
+        || !fast_put_enum(&w, &s->gll_rate, &nmea_geos5_message_rate_def)
+        || !fast_put_enum(&w, &s->gsa_rate, &nmea_geos5_message_rate_def)
+        || !fast_put_enum(&w, &s->gsv_rate, &nmea_geos5_message_rate_def)
+        || !fast_put_enum(&w, &s->rmc_rate, &nmea_geos5_message_rate_def)
+        || !fast_put_enum(&w, &s->vtg_rate, &nmea_geos5_message_rate_def)
+        || !fast_put_enum(&w, &s->gns_rate, &nmea_geos5_message_rate_def)
+        || !fast_put_enum(&w, &s->zda_rate, &nmea_geos5_message_rate_def)
+        || !fast_put_enum(&w, &s->dtm_rate, &nmea_geos5_message_rate_def)
+        || !fast_put_enum(&w, &s->rlm_rate, &nmea_geos5_message_rate_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void geos5_nquery_json(nmea_writer *w, const nmea_geos5_nquery *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -6338,6 +7024,11 @@ bool nmea_parse_geos5_nquery(nmea_geos5_nquery *out, const char *line, size_t le
 size_t nmea_serialize_geos5_nquery(const nmea_geos5_nquery *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = geos5_nquery_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     geos5_nquery_write(&w, s);
     return writer_finish(&w);
 }
@@ -6401,6 +7092,19 @@ static void geos5_nquery_request_write(nmea_writer *w, const nmea_geos5_nquery_r
     end_sentence(w, s->checksum);
 }
 
+/* geos5_nquery_request_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t geos5_nquery_request_fast_write(const nmea_geos5_nquery_request *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "GPSGG", &s->problems))
+        return 0;
+    if (!fast_put_keyword(&w, "NQUERY", 6))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void geos5_nquery_request_json(nmea_writer *w, const nmea_geos5_nquery_request *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -6427,6 +7131,11 @@ bool nmea_parse_geos5_nquery_request(nmea_geos5_nquery_request *out, const char 
 size_t nmea_serialize_geos5_nquery_request(const nmea_geos5_nquery_request *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = geos5_nquery_request_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     geos5_nquery_request_write(&w, s);
     return writer_finish(&w);
 }
@@ -6508,6 +7217,25 @@ static void geos5_rquery_write(nmea_writer *w, const nmea_geos5_rquery *s)
     end_sentence(w, s->checksum);
 }
 
+/* geos5_rquery_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t geos5_rquery_fast_write(const nmea_geos5_rquery *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "GPSGG", &s->problems))
+        return 0;
+    if (!fast_put_keyword(&w, "RQUERY", 6)
+        || !fast_put_text(&w, s->receiver_name)
+        || !fast_put_text(&w, s->software_version)
+        || !fast_put_date(&w, &s->software_date)
+        || !fast_put_hex(&w, &s->status)
+        || !fast_put_hex(&w, &s->config_1)
+        || !fast_put_hex(&w, &s->config_2))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void geos5_rquery_json(nmea_writer *w, const nmea_geos5_rquery *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -6546,6 +7274,11 @@ bool nmea_parse_geos5_rquery(nmea_geos5_rquery *out, const char *line, size_t le
 size_t nmea_serialize_geos5_rquery(const nmea_geos5_rquery *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = geos5_rquery_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     geos5_rquery_write(&w, s);
     return writer_finish(&w);
 }
@@ -6609,6 +7342,19 @@ static void geos5_rquery_request_write(nmea_writer *w, const nmea_geos5_rquery_r
     end_sentence(w, s->checksum);
 }
 
+/* geos5_rquery_request_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t geos5_rquery_request_fast_write(const nmea_geos5_rquery_request *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "GPSGG", &s->problems))
+        return 0;
+    if (!fast_put_keyword(&w, "RQUERY", 6))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void geos5_rquery_request_json(nmea_writer *w, const nmea_geos5_rquery_request *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -6635,6 +7381,11 @@ bool nmea_parse_geos5_rquery_request(nmea_geos5_rquery_request *out, const char 
 size_t nmea_serialize_geos5_rquery_request(const nmea_geos5_rquery_request *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = geos5_rquery_request_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     geos5_rquery_request_write(&w, s);
     return writer_finish(&w);
 }
@@ -6710,6 +7461,23 @@ static void psrf100_write(nmea_writer *w, const nmea_psrf100 *s)
     end_sentence(w, s->checksum);
 }
 
+/* psrf100_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t psrf100_fast_write(const nmea_psrf100 *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSRF100", &s->problems))
+        return 0;
+    if (!fast_put_enum(&w, &s->protocol, &nmea_sirf_protocol_def)
+        || !fast_put_enum(&w, &s->baud, &nmea_sirf_baud_def)
+        || !fast_put_number(&w, &s->data_bits)
+        || !fast_put_number(&w, &s->stop_bits)
+        || !fast_put_enum(&w, &s->parity, &nmea_sirf_parity_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void psrf100_json(nmea_writer *w, const nmea_psrf100 *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -6744,6 +7512,11 @@ bool nmea_parse_psrf100(nmea_psrf100 *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_psrf100(const nmea_psrf100 *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = psrf100_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     psrf100_write(&w, s);
     return writer_finish(&w);
 }
@@ -6828,6 +7601,26 @@ static void psrf101_write(nmea_writer *w, const nmea_psrf101 *s)
     end_sentence(w, s->checksum);
 }
 
+/* psrf101_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t psrf101_fast_write(const nmea_psrf101 *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSRF101", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->x)
+        || !fast_put_number(&w, &s->y)
+        || !fast_put_number(&w, &s->z)
+        || !fast_put_number(&w, &s->clock_offset)
+        || !fast_put_number(&w, &s->time_of_week)
+        || !fast_put_number(&w, &s->week)
+        || !fast_put_number(&w, &s->channels)
+        || !fast_put_number(&w, &s->reset_cfg))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void psrf101_json(nmea_writer *w, const nmea_psrf101 *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -6868,6 +7661,11 @@ bool nmea_parse_psrf101(nmea_psrf101 *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_psrf101(const nmea_psrf101 *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = psrf101_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     psrf101_write(&w, s);
     return writer_finish(&w);
 }
@@ -6940,6 +7738,22 @@ static void psrf102_write(nmea_writer *w, const nmea_psrf102 *s)
     end_sentence(w, s->checksum);
 }
 
+/* psrf102_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t psrf102_fast_write(const nmea_psrf102 *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSRF102", &s->problems))
+        return 0;
+    if (!fast_put_enum(&w, &s->baud, &nmea_sirf_baud_def)
+        || !fast_put_number(&w, &s->data_bits)
+        || !fast_put_number(&w, &s->stop_bits)
+        || !fast_put_enum(&w, &s->parity, &nmea_sirf_parity_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void psrf102_json(nmea_writer *w, const nmea_psrf102 *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -6972,6 +7786,11 @@ bool nmea_parse_psrf102(nmea_psrf102 *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_psrf102(const nmea_psrf102 *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = psrf102_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     psrf102_write(&w, s);
     return writer_finish(&w);
 }
@@ -7044,6 +7863,22 @@ static void psrf103_write(nmea_writer *w, const nmea_psrf103 *s)
     end_sentence(w, s->checksum);
 }
 
+/* psrf103_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t psrf103_fast_write(const nmea_psrf103 *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSRF103", &s->problems))
+        return 0;
+    if (!fast_put_enum(&w, &s->message, &nmea_sirf_nmea_message_def)
+        || !fast_put_enum(&w, &s->mode, &nmea_sirf_rate_mode_def)
+        || !fast_put_number(&w, &s->rate)
+        || !fast_put_enum(&w, &s->checksum_mode, &nmea_sirf_checksum_enable_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void psrf103_json(nmea_writer *w, const nmea_psrf103 *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7076,6 +7911,11 @@ bool nmea_parse_psrf103(nmea_psrf103 *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_psrf103(const nmea_psrf103 *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = psrf103_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     psrf103_write(&w, s);
     return writer_finish(&w);
 }
@@ -7160,6 +8000,26 @@ static void psrf104_write(nmea_writer *w, const nmea_psrf104 *s)
     end_sentence(w, s->checksum);
 }
 
+/* psrf104_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t psrf104_fast_write(const nmea_psrf104 *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSRF104", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->latitude)
+        || !fast_put_number(&w, &s->longitude)
+        || !fast_put_number(&w, &s->altitude)
+        || !fast_put_number(&w, &s->clock_offset)
+        || !fast_put_number(&w, &s->time_of_week)
+        || !fast_put_number(&w, &s->week)
+        || !fast_put_number(&w, &s->channels)
+        || !fast_put_number(&w, &s->reset_cfg))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void psrf104_json(nmea_writer *w, const nmea_psrf104 *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7200,6 +8060,11 @@ bool nmea_parse_psrf104(nmea_psrf104 *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_psrf104(const nmea_psrf104 *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = psrf104_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     psrf104_write(&w, s);
     return writer_finish(&w);
 }
@@ -7263,6 +8128,19 @@ static void psrf105_write(nmea_writer *w, const nmea_psrf105 *s)
     end_sentence(w, s->checksum);
 }
 
+/* psrf105_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t psrf105_fast_write(const nmea_psrf105 *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSRF105", &s->problems))
+        return 0;
+    if (!fast_put_enum(&w, &s->debug, &nmea_sirf_debug_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void psrf105_json(nmea_writer *w, const nmea_psrf105 *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7289,6 +8167,11 @@ bool nmea_parse_psrf105(nmea_psrf105 *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_psrf105(const nmea_psrf105 *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = psrf105_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     psrf105_write(&w, s);
     return writer_finish(&w);
 }
@@ -7351,6 +8234,19 @@ static void psrf150_write(nmea_writer *w, const nmea_psrf150 *s)
     end_sentence(w, s->checksum);
 }
 
+/* psrf150_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t psrf150_fast_write(const nmea_psrf150 *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSRF150", &s->problems))
+        return 0;
+    if (!fast_put_enum(&w, &s->ok_to_send, &nmea_sirf_ok_to_send_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void psrf150_json(nmea_writer *w, const nmea_psrf150 *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7376,6 +8272,11 @@ bool nmea_parse_psrf150(nmea_psrf150 *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_psrf150(const nmea_psrf150 *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = psrf150_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     psrf150_write(&w, s);
     return writer_finish(&w);
 }
@@ -7450,6 +8351,22 @@ static void pstmagps_write(nmea_writer *w, const nmea_pstmagps *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmagps_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmagps_fast_write(const nmea_pstmagps *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMAGPS", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmagps_json(nmea_writer *w, const nmea_pstmagps *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7488,6 +8405,11 @@ bool nmea_parse_pstmagps(nmea_pstmagps *out, const char *line, size_t len, nmea_
 size_t nmea_serialize_pstmagps(const nmea_pstmagps *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmagps_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmagps_write(&w, s);
     return writer_finish(&w);
 }
@@ -7562,6 +8484,22 @@ static void pstmalmanac_write(nmea_writer *w, const nmea_pstmalmanac *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmalmanac_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmalmanac_fast_write(const nmea_pstmalmanac *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMALMANAC", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmalmanac_json(nmea_writer *w, const nmea_pstmalmanac *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7600,6 +8538,11 @@ bool nmea_parse_pstmalmanac(nmea_pstmalmanac *out, const char *line, size_t len,
 size_t nmea_serialize_pstmalmanac(const nmea_pstmalmanac *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmalmanac_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmalmanac_write(&w, s);
     return writer_finish(&w);
 }
@@ -7658,6 +8601,17 @@ static void pstmclralms_write(nmea_writer *w, const nmea_pstmclralms *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmclralms_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmclralms_fast_write(const nmea_pstmclralms *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMCLRALMS", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmclralms_json(nmea_writer *w, const nmea_pstmclralms *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7686,6 +8640,11 @@ bool nmea_parse_pstmclralms(nmea_pstmclralms *out, const char *line, size_t len,
 size_t nmea_serialize_pstmclralms(const nmea_pstmclralms *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmclralms_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmclralms_write(&w, s);
     return writer_finish(&w);
 }
@@ -7744,6 +8703,17 @@ static void pstmclrephs_write(nmea_writer *w, const nmea_pstmclrephs *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmclrephs_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmclrephs_fast_write(const nmea_pstmclrephs *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMCLREPHS", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmclrephs_json(nmea_writer *w, const nmea_pstmclrephs *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7772,6 +8742,11 @@ bool nmea_parse_pstmclrephs(nmea_pstmclrephs *out, const char *line, size_t len,
 size_t nmea_serialize_pstmclrephs(const nmea_pstmclrephs *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmclrephs_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmclrephs_write(&w, s);
     return writer_finish(&w);
 }
@@ -7836,6 +8811,19 @@ static void pstmcold_write(nmea_writer *w, const nmea_pstmcold *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmcold_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmcold_fast_write(const nmea_pstmcold *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMCOLD", &s->problems))
+        return 0;
+    if (s->optional_count >= 1 && !fast_put_number(&w, &s->mask))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmcold_json(nmea_writer *w, const nmea_pstmcold *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7863,6 +8851,11 @@ bool nmea_parse_pstmcold(nmea_pstmcold *out, const char *line, size_t len, nmea_
 size_t nmea_serialize_pstmcold(const nmea_pstmcold *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmcold_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmcold_write(&w, s);
     return writer_finish(&w);
 }
@@ -7937,6 +8930,22 @@ static void pstmcorr_write(nmea_writer *w, const nmea_pstmcorr *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmcorr_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmcorr_fast_write(const nmea_pstmcorr *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMCORR", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmcorr_json(nmea_writer *w, const nmea_pstmcorr *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -7975,6 +8984,11 @@ bool nmea_parse_pstmcorr(nmea_pstmcorr *out, const char *line, size_t len, nmea_
 size_t nmea_serialize_pstmcorr(const nmea_pstmcorr *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmcorr_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmcorr_write(&w, s);
     return writer_finish(&w);
 }
@@ -8049,6 +9063,22 @@ static void pstmdiff_write(nmea_writer *w, const nmea_pstmdiff *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmdiff_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmdiff_fast_write(const nmea_pstmdiff *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMDIFF", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmdiff_json(nmea_writer *w, const nmea_pstmdiff *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8087,6 +9117,11 @@ bool nmea_parse_pstmdiff(nmea_pstmdiff *out, const char *line, size_t len, nmea_
 size_t nmea_serialize_pstmdiff(const nmea_pstmdiff *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmdiff_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmdiff_write(&w, s);
     return writer_finish(&w);
 }
@@ -8161,6 +9196,22 @@ static void pstmeph_write(nmea_writer *w, const nmea_pstmeph *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmeph_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmeph_fast_write(const nmea_pstmeph *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMEPH", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmeph_json(nmea_writer *w, const nmea_pstmeph *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8199,6 +9250,11 @@ bool nmea_parse_pstmeph(nmea_pstmeph *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_pstmeph(const nmea_pstmeph *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmeph_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmeph_write(&w, s);
     return writer_finish(&w);
 }
@@ -8262,6 +9318,19 @@ static void pstmgetpar_write(nmea_writer *w, const nmea_pstmgetpar *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmgetpar_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmgetpar_fast_write(const nmea_pstmgetpar *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMGETPAR", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->block_param))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmgetpar_json(nmea_writer *w, const nmea_pstmgetpar *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8288,6 +9357,11 @@ bool nmea_parse_pstmgetpar(nmea_pstmgetpar *out, const char *line, size_t len, n
 size_t nmea_serialize_pstmgetpar(const nmea_pstmgetpar *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmgetpar_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmgetpar_write(&w, s);
     return writer_finish(&w);
 }
@@ -8345,6 +9419,17 @@ static void pstmgetparerror_write(nmea_writer *w, const nmea_pstmgetparerror *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmgetparerror_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmgetparerror_fast_write(const nmea_pstmgetparerror *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMGETPARERROR", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmgetparerror_json(nmea_writer *w, const nmea_pstmgetparerror *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8372,6 +9457,11 @@ bool nmea_parse_pstmgetparerror(nmea_pstmgetparerror *out, const char *line, siz
 size_t nmea_serialize_pstmgetparerror(const nmea_pstmgetparerror *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmgetparerror_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmgetparerror_write(&w, s);
     return writer_finish(&w);
 }
@@ -8430,6 +9520,17 @@ static void pstmgetrtctime_write(nmea_writer *w, const nmea_pstmgetrtctime *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmgetrtctime_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmgetrtctime_fast_write(const nmea_pstmgetrtctime *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMGETRTCTIME", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmgetrtctime_json(nmea_writer *w, const nmea_pstmgetrtctime *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8458,6 +9559,11 @@ bool nmea_parse_pstmgetrtctime(nmea_pstmgetrtctime *out, const char *line, size_
 size_t nmea_serialize_pstmgetrtctime(const nmea_pstmgetrtctime *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmgetrtctime_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmgetrtctime_write(&w, s);
     return writer_finish(&w);
 }
@@ -8529,6 +9635,22 @@ static void pstmgetrtctime_reply_write(nmea_writer *w, const nmea_pstmgetrtctime
     end_sentence(w, s->checksum);
 }
 
+/* pstmgetrtctime_reply_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmgetrtctime_reply_fast_write(const nmea_pstmgetrtctime_reply *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMGETRTCTIME", &s->problems))
+        return 0;
+    if (!fast_put_time(&w, &s->time)
+        || !fast_put_date(&w, &s->date)
+        || !fast_put_enum(&w, &s->rtc_status, &nmea_teseo_rtc_status_def)
+        || !fast_put_enum(&w, &s->time_validity, &nmea_teseo_time_validity_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmgetrtctime_reply_json(nmea_writer *w, const nmea_pstmgetrtctime_reply *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8560,6 +9682,11 @@ bool nmea_parse_pstmgetrtctime_reply(nmea_pstmgetrtctime_reply *out, const char 
 size_t nmea_serialize_pstmgetrtctime_reply(const nmea_pstmgetrtctime_reply *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmgetrtctime_reply_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmgetrtctime_reply_write(&w, s);
     return writer_finish(&w);
 }
@@ -8618,6 +9745,17 @@ static void pstmgetswver_write(nmea_writer *w, const nmea_pstmgetswver *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmgetswver_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmgetswver_fast_write(const nmea_pstmgetswver *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMGETSWVER", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmgetswver_json(nmea_writer *w, const nmea_pstmgetswver *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8646,6 +9784,11 @@ bool nmea_parse_pstmgetswver(nmea_pstmgetswver *out, const char *line, size_t le
 size_t nmea_serialize_pstmgetswver(const nmea_pstmgetswver *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmgetswver_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmgetswver_write(&w, s);
     return writer_finish(&w);
 }
@@ -8717,6 +9860,22 @@ static void pstmgetswver_reply_write(nmea_writer *w, const nmea_pstmgetswver_rep
     end_sentence(w, s->checksum);
 }
 
+/* pstmgetswver_reply_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmgetswver_reply_fast_write(const nmea_pstmgetswver_reply *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMGETSWVER", &s->problems))
+        return 0;
+    if (!fast_put_text(&w, s->library_version)
+        || !fast_put_enum(&w, &s->compiler, &nmea_teseo_compiler_type_def)
+        || !fast_put_text(&w, s->build_date)
+        || !fast_put_text(&w, s->build_time))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmgetswver_reply_json(nmea_writer *w, const nmea_pstmgetswver_reply *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8748,6 +9907,11 @@ bool nmea_parse_pstmgetswver_reply(nmea_pstmgetswver_reply *out, const char *lin
 size_t nmea_serialize_pstmgetswver_reply(const nmea_pstmgetswver_reply *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmgetswver_reply_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmgetswver_reply_write(&w, s);
     return writer_finish(&w);
 }
@@ -8806,6 +9970,17 @@ static void pstmhot_write(nmea_writer *w, const nmea_pstmhot *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmhot_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmhot_fast_write(const nmea_pstmhot *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMHOT", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmhot_json(nmea_writer *w, const nmea_pstmhot *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8834,6 +10009,11 @@ bool nmea_parse_pstmhot(nmea_pstmhot *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_pstmhot(const nmea_pstmhot *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmhot_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmhot_write(&w, s);
     return writer_finish(&w);
 }
@@ -8908,6 +10088,22 @@ static void pstmkfcov_write(nmea_writer *w, const nmea_pstmkfcov *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmkfcov_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmkfcov_fast_write(const nmea_pstmkfcov *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMKFCOV", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmkfcov_json(nmea_writer *w, const nmea_pstmkfcov *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -8946,6 +10142,11 @@ bool nmea_parse_pstmkfcov(nmea_pstmkfcov *out, const char *line, size_t len, nme
 size_t nmea_serialize_pstmkfcov(const nmea_pstmkfcov *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmkfcov_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmkfcov_write(&w, s);
     return writer_finish(&w);
 }
@@ -9010,6 +10211,19 @@ static void pstmnmeaonoff_write(nmea_writer *w, const nmea_pstmnmeaonoff *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmnmeaonoff_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmnmeaonoff_fast_write(const nmea_pstmnmeaonoff *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMNMEAONOFF", &s->problems))
+        return 0;
+    if (s->optional_count >= 1 && !fast_put_enum(&w, &s->on_off, &nmea_teseo_nmea_on_off_def))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmnmeaonoff_json(nmea_writer *w, const nmea_pstmnmeaonoff *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9037,6 +10251,11 @@ bool nmea_parse_pstmnmeaonoff(nmea_pstmnmeaonoff *out, const char *line, size_t 
 size_t nmea_serialize_pstmnmeaonoff(const nmea_pstmnmeaonoff *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmnmeaonoff_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmnmeaonoff_write(&w, s);
     return writer_finish(&w);
 }
@@ -9111,6 +10330,22 @@ static void pstmpa_write(nmea_writer *w, const nmea_pstmpa *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmpa_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmpa_fast_write(const nmea_pstmpa *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMPA", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmpa_json(nmea_writer *w, const nmea_pstmpa *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9149,6 +10384,11 @@ bool nmea_parse_pstmpa(nmea_pstmpa *out, const char *line, size_t len, nmea_erro
 size_t nmea_serialize_pstmpa(const nmea_pstmpa *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmpa_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmpa_write(&w, s);
     return writer_finish(&w);
 }
@@ -9223,6 +10463,22 @@ static void pstmpres_write(nmea_writer *w, const nmea_pstmpres *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmpres_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmpres_fast_write(const nmea_pstmpres *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMPRES", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmpres_json(nmea_writer *w, const nmea_pstmpres *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9261,6 +10517,11 @@ bool nmea_parse_pstmpres(nmea_pstmpres *out, const char *line, size_t len, nmea_
 size_t nmea_serialize_pstmpres(const nmea_pstmpres *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmpres_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmpres_write(&w, s);
     return writer_finish(&w);
 }
@@ -9335,6 +10596,22 @@ static void pstmres_write(nmea_writer *w, const nmea_pstmres *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmres_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmres_fast_write(const nmea_pstmres *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMRES", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmres_json(nmea_writer *w, const nmea_pstmres *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9373,6 +10650,11 @@ bool nmea_parse_pstmres(nmea_pstmres *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_pstmres(const nmea_pstmres *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmres_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmres_write(&w, s);
     return writer_finish(&w);
 }
@@ -9431,6 +10713,17 @@ static void pstmrestorepar_write(nmea_writer *w, const nmea_pstmrestorepar *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmrestorepar_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmrestorepar_fast_write(const nmea_pstmrestorepar *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMRESTOREPAR", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmrestorepar_json(nmea_writer *w, const nmea_pstmrestorepar *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9459,6 +10752,11 @@ bool nmea_parse_pstmrestorepar(nmea_pstmrestorepar *out, const char *line, size_
 size_t nmea_serialize_pstmrestorepar(const nmea_pstmrestorepar *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmrestorepar_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmrestorepar_write(&w, s);
     return writer_finish(&w);
 }
@@ -9533,6 +10831,22 @@ static void pstmrf_write(nmea_writer *w, const nmea_pstmrf *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmrf_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmrf_fast_write(const nmea_pstmrf *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMRF", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmrf_json(nmea_writer *w, const nmea_pstmrf *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9571,6 +10885,11 @@ bool nmea_parse_pstmrf(nmea_pstmrf *out, const char *line, size_t len, nmea_erro
 size_t nmea_serialize_pstmrf(const nmea_pstmrf *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmrf_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmrf_write(&w, s);
     return writer_finish(&w);
 }
@@ -9645,6 +10964,22 @@ static void pstmsat_write(nmea_writer *w, const nmea_pstmsat *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmsat_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmsat_fast_write(const nmea_pstmsat *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSAT", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmsat_json(nmea_writer *w, const nmea_pstmsat *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9683,6 +11018,11 @@ bool nmea_parse_pstmsat(nmea_pstmsat *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_pstmsat(const nmea_pstmsat *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmsat_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmsat_write(&w, s);
     return writer_finish(&w);
 }
@@ -9741,6 +11081,17 @@ static void pstmsavepar_write(nmea_writer *w, const nmea_pstmsavepar *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmsavepar_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmsavepar_fast_write(const nmea_pstmsavepar *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSAVEPAR", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmsavepar_json(nmea_writer *w, const nmea_pstmsavepar *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9769,6 +11120,11 @@ bool nmea_parse_pstmsavepar(nmea_pstmsavepar *out, const char *line, size_t len,
 size_t nmea_serialize_pstmsavepar(const nmea_pstmsavepar *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmsavepar_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmsavepar_write(&w, s);
     return writer_finish(&w);
 }
@@ -9843,6 +11199,22 @@ static void pstmsbas_write(nmea_writer *w, const nmea_pstmsbas *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmsbas_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmsbas_fast_write(const nmea_pstmsbas *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSBAS", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmsbas_json(nmea_writer *w, const nmea_pstmsbas *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9881,6 +11253,11 @@ bool nmea_parse_pstmsbas(nmea_pstmsbas *out, const char *line, size_t len, nmea_
 size_t nmea_serialize_pstmsbas(const nmea_pstmsbas *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmsbas_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmsbas_write(&w, s);
     return writer_finish(&w);
 }
@@ -9955,6 +11332,22 @@ static void pstmsbascorr_write(nmea_writer *w, const nmea_pstmsbascorr *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmsbascorr_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmsbascorr_fast_write(const nmea_pstmsbascorr *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSBASCORR", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmsbascorr_json(nmea_writer *w, const nmea_pstmsbascorr *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -9993,6 +11386,11 @@ bool nmea_parse_pstmsbascorr(nmea_pstmsbascorr *out, const char *line, size_t le
 size_t nmea_serialize_pstmsbascorr(const nmea_pstmsbascorr *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmsbascorr_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmsbascorr_write(&w, s);
     return writer_finish(&w);
 }
@@ -10058,6 +11456,20 @@ static void pstmset_write(nmea_writer *w, const nmea_pstmset *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmset_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmset_fast_write(const nmea_pstmset *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSET", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->block_param)
+        || !fast_put_text(&w, s->value))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmset_json(nmea_writer *w, const nmea_pstmset *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -10085,6 +11497,11 @@ bool nmea_parse_pstmset(nmea_pstmset *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_pstmset(const nmea_pstmset *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmset_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmset_write(&w, s);
     return writer_finish(&w);
 }
@@ -10160,6 +11577,23 @@ static void pstmset_dop_write(nmea_writer *w, const nmea_pstmset_dop *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmset_dop_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmset_dop_fast_write(const nmea_pstmset_dop *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSET", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->block_param)
+        || !fast_put_number(&w, &s->pdop)
+        || !fast_put_number(&w, &s->vdop)
+        || !fast_put_number(&w, &s->hdop)
+        || !fast_put_number(&w, &s->gdop))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmset_dop_json(nmea_writer *w, const nmea_pstmset_dop *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -10194,6 +11628,11 @@ bool nmea_parse_pstmset_dop(nmea_pstmset_dop *out, const char *line, size_t len,
 size_t nmea_serialize_pstmset_dop(const nmea_pstmset_dop *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmset_dop_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmset_dop_write(&w, s);
     return writer_finish(&w);
 }
@@ -10264,6 +11703,21 @@ static void pstmsetpar_write(nmea_writer *w, const nmea_pstmsetpar *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmsetpar_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmsetpar_fast_write(const nmea_pstmsetpar *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSETPAR", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->block_param)
+        || !fast_put_text(&w, s->value)
+        || (s->optional_count >= 1 && !fast_put_enum(&w, &s->mode, &nmea_teseo_setpar_mode_def)))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmsetpar_json(nmea_writer *w, const nmea_pstmsetpar *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -10295,6 +11749,11 @@ bool nmea_parse_pstmsetpar(nmea_pstmsetpar *out, const char *line, size_t len, n
 size_t nmea_serialize_pstmsetpar(const nmea_pstmsetpar *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmsetpar_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmsetpar_write(&w, s);
     return writer_finish(&w);
 }
@@ -10373,6 +11832,24 @@ static void pstmsetpar_dop_write(nmea_writer *w, const nmea_pstmsetpar_dop *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmsetpar_dop_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmsetpar_dop_fast_write(const nmea_pstmsetpar_dop *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSETPAR", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->block_param)
+        || !fast_put_number(&w, &s->pdop)
+        || !fast_put_number(&w, &s->vdop)
+        || !fast_put_number(&w, &s->hdop)
+        || !fast_put_number(&w, &s->gdop)
+        || (s->optional_count >= 1 && !fast_put_enum(&w, &s->mode, &nmea_teseo_setpar_mode_def)))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmsetpar_dop_json(nmea_writer *w, const nmea_pstmsetpar_dop *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -10409,6 +11886,11 @@ bool nmea_parse_pstmsetpar_dop(nmea_pstmsetpar_dop *out, const char *line, size_
 size_t nmea_serialize_pstmsetpar_dop(const nmea_pstmsetpar_dop *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmsetpar_dop_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmsetpar_dop_write(&w, s);
     return writer_finish(&w);
 }
@@ -10466,6 +11948,17 @@ static void pstmsetparerror_write(nmea_writer *w, const nmea_pstmsetparerror *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmsetparerror_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmsetparerror_fast_write(const nmea_pstmsetparerror *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSETPARERROR", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmsetparerror_json(nmea_writer *w, const nmea_pstmsetparerror *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -10493,6 +11986,11 @@ bool nmea_parse_pstmsetparerror(nmea_pstmsetparerror *out, const char *line, siz
 size_t nmea_serialize_pstmsetparerror(const nmea_pstmsetparerror *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmsetparerror_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmsetparerror_write(&w, s);
     return writer_finish(&w);
 }
@@ -10556,6 +12054,19 @@ static void pstmsetparok_write(nmea_writer *w, const nmea_pstmsetparok *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmsetparok_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmsetparok_fast_write(const nmea_pstmsetparok *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSETPAROK", &s->problems))
+        return 0;
+    if (!fast_put_number(&w, &s->block_param))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmsetparok_json(nmea_writer *w, const nmea_pstmsetparok *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -10582,6 +12093,11 @@ bool nmea_parse_pstmsetparok(nmea_pstmsetparok *out, const char *line, size_t le
 size_t nmea_serialize_pstmsetparok(const nmea_pstmsetparok *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmsetparok_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmsetparok_write(&w, s);
     return writer_finish(&w);
 }
@@ -10656,6 +12172,22 @@ static void pstmtestrf_write(nmea_writer *w, const nmea_pstmtestrf *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmtestrf_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmtestrf_fast_write(const nmea_pstmtestrf *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMTESTRF", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmtestrf_json(nmea_writer *w, const nmea_pstmtestrf *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -10694,6 +12226,11 @@ bool nmea_parse_pstmtestrf(nmea_pstmtestrf *out, const char *line, size_t len, n
 size_t nmea_serialize_pstmtestrf(const nmea_pstmtestrf *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmtestrf_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmtestrf_write(&w, s);
     return writer_finish(&w);
 }
@@ -10768,6 +12305,22 @@ static void pstmtg_write(nmea_writer *w, const nmea_pstmtg *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmtg_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmtg_fast_write(const nmea_pstmtg *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMTG", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmtg_json(nmea_writer *w, const nmea_pstmtg *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -10806,6 +12359,11 @@ bool nmea_parse_pstmtg(nmea_pstmtg *out, const char *line, size_t len, nmea_erro
 size_t nmea_serialize_pstmtg(const nmea_pstmtg *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmtg_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmtg_write(&w, s);
     return writer_finish(&w);
 }
@@ -10880,6 +12438,22 @@ static void pstmtim_write(nmea_writer *w, const nmea_pstmtim *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmtim_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmtim_fast_write(const nmea_pstmtim *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMTIM", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmtim_json(nmea_writer *w, const nmea_pstmtim *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -10918,6 +12492,11 @@ bool nmea_parse_pstmtim(nmea_pstmtim *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_pstmtim(const nmea_pstmtim *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmtim_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmtim_write(&w, s);
     return writer_finish(&w);
 }
@@ -10992,6 +12571,22 @@ static void pstmts_write(nmea_writer *w, const nmea_pstmts *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmts_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmts_fast_write(const nmea_pstmts *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMTS", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmts_json(nmea_writer *w, const nmea_pstmts *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -11030,6 +12625,11 @@ bool nmea_parse_pstmts(nmea_pstmts *out, const char *line, size_t len, nmea_erro
 size_t nmea_serialize_pstmts(const nmea_pstmts *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmts_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmts_write(&w, s);
     return writer_finish(&w);
 }
@@ -11104,6 +12704,22 @@ static void pstmver_write(nmea_writer *w, const nmea_pstmver *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmver_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmver_fast_write(const nmea_pstmver *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMVER", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmver_json(nmea_writer *w, const nmea_pstmver *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -11142,6 +12758,11 @@ bool nmea_parse_pstmver(nmea_pstmver *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_pstmver(const nmea_pstmver *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmver_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmver_write(&w, s);
     return writer_finish(&w);
 }
@@ -11216,6 +12837,22 @@ static void pstmvres_write(nmea_writer *w, const nmea_pstmvres *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmvres_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmvres_fast_write(const nmea_pstmvres *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMVRES", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmvres_json(nmea_writer *w, const nmea_pstmvres *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -11254,6 +12891,11 @@ bool nmea_parse_pstmvres(nmea_pstmvres *out, const char *line, size_t len, nmea_
 size_t nmea_serialize_pstmvres(const nmea_pstmvres *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmvres_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmvres_write(&w, s);
     return writer_finish(&w);
 }
@@ -11328,6 +12970,22 @@ static void pstmwaas_write(nmea_writer *w, const nmea_pstmwaas *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmwaas_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmwaas_fast_write(const nmea_pstmwaas *s, char *buf, size_t cap)
+{
+    fast_writer w;
+    size_t i;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMWAAS", &s->problems))
+        return 0;
+    for (i = 0; i < s->values_count && i < 64; i++) {
+        if (!fast_put_text(&w, s->values[i]))
+            return 0;
+    }
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmwaas_json(nmea_writer *w, const nmea_pstmwaas *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -11366,6 +13024,11 @@ bool nmea_parse_pstmwaas(nmea_pstmwaas *out, const char *line, size_t len, nmea_
 size_t nmea_serialize_pstmwaas(const nmea_pstmwaas *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmwaas_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmwaas_write(&w, s);
     return writer_finish(&w);
 }
@@ -11424,6 +13087,17 @@ static void pstmwarm_write(nmea_writer *w, const nmea_pstmwarm *s)
     end_sentence(w, s->checksum);
 }
 
+/* pstmwarm_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
+   to the general writer. */
+static size_t pstmwarm_fast_write(const nmea_pstmwarm *s, char *buf, size_t cap)
+{
+    fast_writer w;
+
+    if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMWARM", &s->problems))
+        return 0;
+    return fast_end(&w, s->checksum);
+}
+
 static void pstmwarm_json(nmea_writer *w, const nmea_pstmwarm *s, bool values)
 {
     nmea_writer sentence = writer_of(NULL, 0);
@@ -11452,6 +13126,11 @@ bool nmea_parse_pstmwarm(nmea_pstmwarm *out, const char *line, size_t len, nmea_
 size_t nmea_serialize_pstmwarm(const nmea_pstmwarm *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = pstmwarm_fast_write(s, buf, cap);
+    if (n)
+        return n;
+#endif
     pstmwarm_write(&w, s);
     return writer_finish(&w);
 }
@@ -12683,6 +14362,149 @@ static void write_sentence(nmea_writer *w, const nmea_sentence *s)
     }
 }
 
+/* write_sentence on the fast path: the length, or 0 to leave it to the general writer. */
+NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size_t cap)
+{
+    switch (s->id) {
+    case NMEA_SENTENCE_DTM:
+        return dtm_fast_write(&s->as.dtm, buf, cap);
+    case NMEA_SENTENCE_GGA:
+        return gga_fast_write(&s->as.gga, buf, cap);
+    case NMEA_SENTENCE_GLL:
+        return gll_fast_write(&s->as.gll, buf, cap);
+    case NMEA_SENTENCE_GNS:
+        return gns_fast_write(&s->as.gns, buf, cap);
+    case NMEA_SENTENCE_GNS_AUX:
+        return gns_aux_fast_write(&s->as.gns_aux, buf, cap);
+    case NMEA_SENTENCE_GSA:
+        return gsa_fast_write(&s->as.gsa, buf, cap);
+    case NMEA_SENTENCE_GSA_SHORT:
+        return gsa_short_fast_write(&s->as.gsa_short, buf, cap);
+    case NMEA_SENTENCE_GST:
+        return gst_fast_write(&s->as.gst, buf, cap);
+    case NMEA_SENTENCE_GSV:
+        return gsv_fast_write(&s->as.gsv, buf, cap);
+    case NMEA_SENTENCE_HDT:
+        return hdt_fast_write(&s->as.hdt, buf, cap);
+    case NMEA_SENTENCE_RLM:
+        return rlm_fast_write(&s->as.rlm, buf, cap);
+    case NMEA_SENTENCE_RMC:
+        return rmc_fast_write(&s->as.rmc, buf, cap);
+    case NMEA_SENTENCE_VTG:
+        return vtg_fast_write(&s->as.vtg, buf, cap);
+    case NMEA_SENTENCE_ZDA:
+        return zda_fast_write(&s->as.zda, buf, cap);
+    case NMEA_SENTENCE_GEOS5_COMMAND:
+        return geos5_command_fast_write(&s->as.geos5_command, buf, cap);
+    case NMEA_SENTENCE_GEOS5_JAMDET:
+        return geos5_jamdet_fast_write(&s->as.geos5_jamdet, buf, cap);
+    case NMEA_SENTENCE_GEOS5_NQUERY:
+        return geos5_nquery_fast_write(&s->as.geos5_nquery, buf, cap);
+    case NMEA_SENTENCE_GEOS5_NQUERY_REQUEST:
+        return geos5_nquery_request_fast_write(&s->as.geos5_nquery_request, buf, cap);
+    case NMEA_SENTENCE_GEOS5_RQUERY:
+        return geos5_rquery_fast_write(&s->as.geos5_rquery, buf, cap);
+    case NMEA_SENTENCE_GEOS5_RQUERY_REQUEST:
+        return geos5_rquery_request_fast_write(&s->as.geos5_rquery_request, buf, cap);
+    case NMEA_SENTENCE_PSRF100:
+        return psrf100_fast_write(&s->as.psrf100, buf, cap);
+    case NMEA_SENTENCE_PSRF101:
+        return psrf101_fast_write(&s->as.psrf101, buf, cap);
+    case NMEA_SENTENCE_PSRF102:
+        return psrf102_fast_write(&s->as.psrf102, buf, cap);
+    case NMEA_SENTENCE_PSRF103:
+        return psrf103_fast_write(&s->as.psrf103, buf, cap);
+    case NMEA_SENTENCE_PSRF104:
+        return psrf104_fast_write(&s->as.psrf104, buf, cap);
+    case NMEA_SENTENCE_PSRF105:
+        return psrf105_fast_write(&s->as.psrf105, buf, cap);
+    case NMEA_SENTENCE_PSRF150:
+        return psrf150_fast_write(&s->as.psrf150, buf, cap);
+    case NMEA_SENTENCE_PSTMAGPS:
+        return pstmagps_fast_write(&s->as.pstmagps, buf, cap);
+    case NMEA_SENTENCE_PSTMALMANAC:
+        return pstmalmanac_fast_write(&s->as.pstmalmanac, buf, cap);
+    case NMEA_SENTENCE_PSTMCLRALMS:
+        return pstmclralms_fast_write(&s->as.pstmclralms, buf, cap);
+    case NMEA_SENTENCE_PSTMCLREPHS:
+        return pstmclrephs_fast_write(&s->as.pstmclrephs, buf, cap);
+    case NMEA_SENTENCE_PSTMCOLD:
+        return pstmcold_fast_write(&s->as.pstmcold, buf, cap);
+    case NMEA_SENTENCE_PSTMCORR:
+        return pstmcorr_fast_write(&s->as.pstmcorr, buf, cap);
+    case NMEA_SENTENCE_PSTMDIFF:
+        return pstmdiff_fast_write(&s->as.pstmdiff, buf, cap);
+    case NMEA_SENTENCE_PSTMEPH:
+        return pstmeph_fast_write(&s->as.pstmeph, buf, cap);
+    case NMEA_SENTENCE_PSTMGETPAR:
+        return pstmgetpar_fast_write(&s->as.pstmgetpar, buf, cap);
+    case NMEA_SENTENCE_PSTMGETPARERROR:
+        return pstmgetparerror_fast_write(&s->as.pstmgetparerror, buf, cap);
+    case NMEA_SENTENCE_PSTMGETRTCTIME:
+        return pstmgetrtctime_fast_write(&s->as.pstmgetrtctime, buf, cap);
+    case NMEA_SENTENCE_PSTMGETRTCTIME_REPLY:
+        return pstmgetrtctime_reply_fast_write(&s->as.pstmgetrtctime_reply, buf, cap);
+    case NMEA_SENTENCE_PSTMGETSWVER:
+        return pstmgetswver_fast_write(&s->as.pstmgetswver, buf, cap);
+    case NMEA_SENTENCE_PSTMGETSWVER_REPLY:
+        return pstmgetswver_reply_fast_write(&s->as.pstmgetswver_reply, buf, cap);
+    case NMEA_SENTENCE_PSTMHOT:
+        return pstmhot_fast_write(&s->as.pstmhot, buf, cap);
+    case NMEA_SENTENCE_PSTMKFCOV:
+        return pstmkfcov_fast_write(&s->as.pstmkfcov, buf, cap);
+    case NMEA_SENTENCE_PSTMNMEAONOFF:
+        return pstmnmeaonoff_fast_write(&s->as.pstmnmeaonoff, buf, cap);
+    case NMEA_SENTENCE_PSTMPA:
+        return pstmpa_fast_write(&s->as.pstmpa, buf, cap);
+    case NMEA_SENTENCE_PSTMPRES:
+        return pstmpres_fast_write(&s->as.pstmpres, buf, cap);
+    case NMEA_SENTENCE_PSTMRES:
+        return pstmres_fast_write(&s->as.pstmres, buf, cap);
+    case NMEA_SENTENCE_PSTMRESTOREPAR:
+        return pstmrestorepar_fast_write(&s->as.pstmrestorepar, buf, cap);
+    case NMEA_SENTENCE_PSTMRF:
+        return pstmrf_fast_write(&s->as.pstmrf, buf, cap);
+    case NMEA_SENTENCE_PSTMSAT:
+        return pstmsat_fast_write(&s->as.pstmsat, buf, cap);
+    case NMEA_SENTENCE_PSTMSAVEPAR:
+        return pstmsavepar_fast_write(&s->as.pstmsavepar, buf, cap);
+    case NMEA_SENTENCE_PSTMSBAS:
+        return pstmsbas_fast_write(&s->as.pstmsbas, buf, cap);
+    case NMEA_SENTENCE_PSTMSBASCORR:
+        return pstmsbascorr_fast_write(&s->as.pstmsbascorr, buf, cap);
+    case NMEA_SENTENCE_PSTMSET:
+        return pstmset_fast_write(&s->as.pstmset, buf, cap);
+    case NMEA_SENTENCE_PSTMSET_DOP:
+        return pstmset_dop_fast_write(&s->as.pstmset_dop, buf, cap);
+    case NMEA_SENTENCE_PSTMSETPAR:
+        return pstmsetpar_fast_write(&s->as.pstmsetpar, buf, cap);
+    case NMEA_SENTENCE_PSTMSETPAR_DOP:
+        return pstmsetpar_dop_fast_write(&s->as.pstmsetpar_dop, buf, cap);
+    case NMEA_SENTENCE_PSTMSETPARERROR:
+        return pstmsetparerror_fast_write(&s->as.pstmsetparerror, buf, cap);
+    case NMEA_SENTENCE_PSTMSETPAROK:
+        return pstmsetparok_fast_write(&s->as.pstmsetparok, buf, cap);
+    case NMEA_SENTENCE_PSTMTESTRF:
+        return pstmtestrf_fast_write(&s->as.pstmtestrf, buf, cap);
+    case NMEA_SENTENCE_PSTMTG:
+        return pstmtg_fast_write(&s->as.pstmtg, buf, cap);
+    case NMEA_SENTENCE_PSTMTIM:
+        return pstmtim_fast_write(&s->as.pstmtim, buf, cap);
+    case NMEA_SENTENCE_PSTMTS:
+        return pstmts_fast_write(&s->as.pstmts, buf, cap);
+    case NMEA_SENTENCE_PSTMVER:
+        return pstmver_fast_write(&s->as.pstmver, buf, cap);
+    case NMEA_SENTENCE_PSTMVRES:
+        return pstmvres_fast_write(&s->as.pstmvres, buf, cap);
+    case NMEA_SENTENCE_PSTMWAAS:
+        return pstmwaas_fast_write(&s->as.pstmwaas, buf, cap);
+    case NMEA_SENTENCE_PSTMWARM:
+        return pstmwarm_fast_write(&s->as.pstmwarm, buf, cap);
+    default:
+        return 0;
+    }
+}
+
 static bool collect_layout(nmea_sentence_id id, nmea_collector *c, nmea_json fields)
 {
     switch (id) {
@@ -12949,12 +14771,30 @@ bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const 
 }
 #endif
 
-size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+/* nmea_serialize's general path: every sentence, every buffer. */
+static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
     write_sentence(&w, s);
     return writer_finish(&w);
 }
+
+size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+{
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = fast_write_sentence(s, buf, cap);
+    if (n)
+        return n;
+#endif
+    return serialize_general(s, buf, cap);
+}
+
+#ifdef NMEA_TEST_HOOKS
+size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap)
+{
+    return serialize_general(s, buf, cap);
+}
+#endif
 
 size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err)
 {

@@ -4419,8 +4419,11 @@ bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_
 
 #ifdef NMEA_TEST_HOOKS
 /* For tests: nmea_parse_ex without its fast path for sentences in the usual form, which must
-   give the same results (NMEA_NO_FAST_PATH makes nmea_parse_ex this function). */
+   give the same results (NMEA_NO_FAST_PATH makes nmea_parse_ex and nmea_serialize their
+   general paths). */
 bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err);
+/* For tests: nmea_serialize without its fast path. */
+size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap);
 #endif
 bool nmea_parse_dtm(nmea_dtm *out, const char *line, size_t len, nmea_error *err);
 bool nmea_parse_gga(nmea_gga *out, const char *line, size_t len, nmea_error *err);

@@ -176,11 +176,18 @@ static inline void put_mem(nmea_writer *w, const char *s, size_t n)
     w->last = s[n - 1];
 }
 
-/* The XOR of n bytes, a machine word at a time. */
+/* The XOR of n bytes, a machine word at a time; when there are at least 8, the last n % 8 are
+   the top of the word that ends them, moved down (no loop over single bytes to mispredict). */
 static unsigned char xor_bytes(const char *p, size_t n)
 {
     uint64_t word, acc = 0;
     unsigned char sum = 0;
+    const char *end = p + n;
+    if (n >= 8 && n % 8) {
+        memcpy(&word, end - 8, 8);
+        acc = word >> (8 * (8 - n % 8));
+        n -= n % 8;
+    }
     for (; n >= 8; p += 8, n -= 8) {
         memcpy(&word, p, 8);
         acc ^= word;
@@ -224,22 +231,23 @@ static void put_text(nmea_writer *w, nmea_text t)
 /* Writes `v` in decimal, zero-padded to at least `width` digits, just before `end`: returns
    where the text starts. Numbers are formatted backwards into a local buffer this way and then
    written in one put_mem. */
+static const char DIGIT_PAIRS[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                                  "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                                  "8081828384858687888990919293949596979899";
+
 static inline char *uint_text(char *end, uint64_t v, unsigned width)
 {
-    static const char PAIRS[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-                                "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-                                "8081828384858687888990919293949596979899";
     char *p = end;
     uint32_t low;
     for (; v > UINT32_MAX; v /= 10)
         *--p = (char)('0' + v % 10);
     for (low = (uint32_t)v; low >= 100; low /= 100) { /* two digits per division */
         p -= 2;
-        memcpy(p, PAIRS + low % 100 * 2, 2);
+        memcpy(p, DIGIT_PAIRS + low % 100 * 2, 2);
     }
     if (low >= 10) {
         p -= 2;
-        memcpy(p, PAIRS + low * 2, 2);
+        memcpy(p, DIGIT_PAIRS + low * 2, 2);
     } else {
         *--p = (char)('0' + low);
     }
@@ -1620,13 +1628,15 @@ static const unsigned char HEX_UPPER_VALUE[256] = { /* the value of an upper-cas
    the body would end a field early). */
 NMEA_HOT bool fast_frame(const char *line, size_t len, size_t *count)
 {
-    const char *body = line + 1;
+    const char *body;
     size_t n, i, commas = 0;
     uint64_t word, sum = 0;
     unsigned high, low;
 
+    /* (an overlong framed line has no bytes: `line` is then NULL) */
     if (len < 12 || len > NMEA_MAX_LINE || line[0] != '$' || line[len - 3] != '*')
         return false;
+    body = line + 1;
     n = len - 4; /* at least 8 */
     for (i = 0; i + 8 <= n; i += 8) {
         memcpy(&word, body + i, 8);
@@ -2085,6 +2095,257 @@ NMEA_INTERNAL void put_text_field(nmea_writer *w, nmea_text t)
 {
     if (!put_sep(w))
         put_text(w, t);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* The fast path of writing: a sentence without problems whose values are as a parser makes
+   them, written with a local cursor and without the bookkeeping of nmea_writer (no per-byte
+   capacity checks: each field first checks that the buffer has FAST_ROOM bytes left, which
+   holds any field but a text, and a text checks its own length). Whatever else (a value only a
+   hand-built struct has, a buffer nearly full) returns false and is left to the general writer,
+   which then writes the whole sentence again; the output is the same byte for byte. */
+
+/* The most bytes a fast_put_* other than a text writes, plus the checksum and the NUL. */
+#define FAST_ROOM 64
+
+typedef struct {
+    char *buf;
+    char *p;           /* the next byte */
+    const char *limit; /* buf + cap - FAST_ROOM */
+} fast_writer;
+
+/* `n` bytes the caller has made room for. */
+NMEA_HOT void fast_copy(fast_writer *w, const char *s, size_t n)
+{
+    char *p = w->p;
+    size_t i;
+    for (i = 0; i < n; i++)
+        p[i] = s[i];
+    w->p = p + n;
+}
+
+/* A text of `n` bytes, when it fits with FAST_ROOM bytes to spare (a separator may already
+   have gone past the limit). */
+NMEA_HOT bool fast_put_mem(fast_writer *w, const char *s, size_t n)
+{
+    if (n && (w->p > w->limit || n > (size_t)(w->limit - w->p)))
+        return false;
+    fast_copy(w, s, n);
+    return true;
+}
+
+/* An enum's code (at most NMEA_CODE_MAX bytes). */
+NMEA_HOT void fast_put_code(fast_writer *w, const char *s)
+{
+    char *p = w->p;
+    while (*s)
+        *p++ = *s++;
+    w->p = p;
+}
+
+/* The separator of the next field, when there is room for it and any field but a text. */
+NMEA_HOT bool fast_sep(fast_writer *w)
+{
+    if (w->p > w->limit)
+        return false;
+    *w->p++ = ',';
+    return true;
+}
+
+NMEA_HOT bool fast_begin(fast_writer *w, char *buf, size_t cap, nmea_text talker, const char *address,
+                         const nmea_problems *problems)
+{
+    if (problems->count || cap < FAST_ROOM + 1)
+        return false;
+    w->buf = buf;
+    w->p = buf;
+    w->limit = buf + cap - FAST_ROOM;
+    *w->p++ = '$';
+    return fast_put_mem(w, talker.ptr, talker.len) && fast_put_mem(w, address, strlen(address));
+}
+
+/* The checksum (there is room for it and the NUL); returns the sentence's length. */
+NMEA_HOT size_t fast_end(fast_writer *w, nmea_checksum_style style)
+{
+    unsigned char sum = xor_bytes(w->buf + 1, (size_t)(w->p - w->buf - 1));
+    const char *hex = style == NMEA_CHECKSUM_LOWER ? HEX_LOWER : HEX_UPPER;
+    if (style != NMEA_CHECKSUM_NONE) {
+        *w->p++ = '*';
+        if (style != NMEA_CHECKSUM_EMPTY) {
+            w->p[0] = hex[sum >> 4];
+            w->p[1] = hex[sum & 15];
+            w->p += 2;
+        }
+    }
+    *w->p = 0;
+    return (size_t)(w->p - w->buf);
+}
+
+/* number_text for the numbers a parser makes: no more than NMEA_MAX_DIGITS decimals (all after
+   a point), 1 to 20 whole digits written, not negative. */
+NMEA_HOT bool fast_number_text(fast_writer *w, const nmea_number *n)
+{
+    char text[1 + 20 + 1 + NMEA_MAX_DIGITS], *end = text + sizeof text, *t = end;
+    uint64_t v = (uint64_t)n->digits;
+    unsigned scale = n->scale;
+    if (!n->present)
+        return true;
+    /* the most common of all: an integer of at most 3 digits written with 1 to 3 (tested with |,
+       one branch) */
+    if ((scale | (unsigned char)n->sign | (unsigned)n->point) == 0 && v < 1000 && (unsigned)n->width - 1 < 3) {
+        char *p = w->p;
+        if (v >= 100 || n->width == 3) {
+            *p++ = (char)('0' + v / 100);
+            v %= 100;
+        }
+        if (v >= 10 || p != w->p || n->width == 2) {
+            memcpy(p, DIGIT_PAIRS + v * 2, 2);
+            p += 2;
+        } else {
+            *p++ = (char)('0' + v);
+        }
+        w->p = p;
+        return true;
+    }
+    if (n->digits < 0 || !n->width || n->width > 20 || scale > NMEA_MAX_DIGITS || (scale && !n->point))
+        return false;
+    if (n->point) {
+        for (; scale >= 2; scale -= 2, v /= 100) {
+            t -= 2;
+            memcpy(t, DIGIT_PAIRS + v % 100 * 2, 2);
+        }
+        if (scale) {
+            *--t = (char)('0' + v % 10);
+            v /= 10;
+        }
+        *--t = '.';
+    }
+    t = uint_text(t, v, n->width);
+    if (n->sign)
+        *--t = n->sign;
+    fast_copy(w, t, (size_t)(end - t));
+    return true;
+}
+
+NMEA_HOT bool fast_put_number(fast_writer *w, const nmea_number *n)
+{
+    return fast_sep(w) && fast_number_text(w, n);
+}
+
+NMEA_HOT bool fast_put_hex(fast_writer *w, const nmea_hex *h)
+{
+    const char *hex = h->lower ? HEX_LOWER : HEX_UPPER;
+    char *p;
+    unsigned n = 1, i;
+    uint64_t v = h->value;
+    if (!fast_sep(w))
+        return false;
+    if (!h->present)
+        return true;
+    while (n < 16 && v >> (4 * n))
+        n++;
+    if (h->digits > 16)
+        return false;
+    if (n < h->digits)
+        n = h->digits;
+    p = w->p + n;
+    for (i = 0; i < n; i++, v >>= 4)
+        *--p = hex[v & 15];
+    w->p += n;
+    return true;
+}
+
+/* Two digits, for the parts of times and dates a parser makes (at most 99). */
+NMEA_HOT bool fast_two_digits(fast_writer *w, unsigned v)
+{
+    if (v > 99)
+        return false;
+    memcpy(w->p, DIGIT_PAIRS + v * 2, 2);
+    w->p += 2;
+    return true;
+}
+
+NMEA_HOT bool fast_put_time(fast_writer *w, const nmea_time *t)
+{
+    char text[9], *end = text + sizeof text;
+    if (!fast_sep(w))
+        return false;
+    if (!t->present)
+        return true;
+    if (!fast_two_digits(w, t->hour) || !fast_two_digits(w, t->minute) || !fast_two_digits(w, t->second)
+        || t->fraction_digits > 9)
+        return false;
+    if (t->point) {
+        *w->p++ = '.';
+        if (t->fraction_digits) {
+            if (t->fraction >= (uint64_t)POW10[t->fraction_digits])
+                return false;
+            fast_copy(w, uint_text(end, t->fraction, t->fraction_digits), t->fraction_digits);
+        }
+    }
+    return true;
+}
+
+NMEA_HOT bool fast_put_date(fast_writer *w, const nmea_date *d)
+{
+    if (!fast_sep(w))
+        return false;
+    return !d->present
+           || (fast_two_digits(w, d->day) && fast_two_digits(w, d->month) && fast_two_digits(w, d->year));
+}
+
+NMEA_HOT bool fast_put_coordinate(fast_writer *w, const nmea_coordinate *c)
+{
+    char text[3], *end = text + sizeof text;
+    if (!fast_sep(w))
+        return false;
+    if (c->present) {
+        if (c->degree_digits > 3 || c->degrees > 999 || (c->degree_digits && c->degrees >= POW10[c->degree_digits]))
+            return false;
+        if (c->degree_digits)
+            fast_copy(w, uint_text(end, c->degrees, c->degree_digits), c->degree_digits);
+        if (!fast_number_text(w, &c->minutes))
+            return false;
+    }
+    *w->p++ = ',';
+    if (c->present)
+        *w->p++ = c->hemisphere;
+    return true;
+}
+
+NMEA_HOT bool fast_put_char(fast_writer *w, char c)
+{
+    if (!fast_sep(w))
+        return false;
+    if (c)
+        *w->p++ = c;
+    return true;
+}
+
+/* A literal field: `literal` is `len` bytes. */
+NMEA_HOT bool fast_put_literal(fast_writer *w, bool present, const char *literal, size_t len)
+{
+    return fast_sep(w) && (!present || fast_put_mem(w, literal, len));
+}
+
+NMEA_HOT bool fast_put_enum(fast_writer *w, const nmea_enum *e, const nmea_enum_def *def)
+{
+    if (!fast_sep(w))
+        return false;
+    if (e->present)
+        fast_put_code(w, enum_code(e, def));
+    return true;
+}
+
+/* A keyword field: `keyword` is `len` bytes. */
+NMEA_HOT bool fast_put_keyword(fast_writer *w, const char *keyword, size_t len)
+{
+    return fast_sep(w) && fast_put_mem(w, keyword, len);
+}
+
+NMEA_HOT bool fast_put_text(fast_writer *w, nmea_text t)
+{
+    return fast_sep(w) && fast_put_mem(w, t.ptr, t.len);
 }
 
 /* ------------------------------------------------------------------------------------------ */

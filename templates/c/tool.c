@@ -56,19 +56,35 @@ static void emit(tool *t, size_t n)
 }
 
 #ifdef NMEA_TEST_HOOKS
-/* A test build checks that nmea_parse_ex's fast path decodes every line as its general path
-   does (the tests run it over every real log and edge case). */
+static void disagree(const char *what, const char *line, size_t len)
+{
+    fprintf(stderr, "nmea-c: the fast path %s unlike the general path: %.*s\n", what, (int)len, line);
+    abort();
+}
+
+/* A test build checks that the fast paths of nmea_parse_ex and nmea_serialize decode and write
+   every line as their general paths do (the tests run it over every real log and edge case). */
 static void check_general(const tool *t, const char *line, size_t len, const char *json, size_t n)
 {
-    static char general[NMEA_JSON_MAX];
+    static char general[NMEA_JSON_MAX], fast[NMEA_JSON_MAX];
     nmea_sentence s;
     nmea_error err;
-    size_t m = nmea_parse_general(&s, line, len, &t->options, &err) ? nmea_to_json(&s, t->values, general, sizeof general)
-                                                                    : nmea_error_to_json(&err, general, sizeof general);
-    if (m != n || memcmp(general, json, n) != 0) {
-        fprintf(stderr, "nmea-c: the fast path decodes this line unlike the general path: %.*s\n", (int)len, line);
-        abort();
-    }
+    bool parsed = nmea_parse_general(&s, line, len, &t->options, &err);
+    size_t m = parsed ? nmea_to_json(&s, t->values, general, sizeof general)
+                      : nmea_error_to_json(&err, general, sizeof general);
+    if (m != n || memcmp(general, json, n) != 0)
+        disagree("decodes this line", line, len);
+    if (parsed && (nmea_serialize(&s, fast, sizeof fast) != nmea_serialize_general(&s, general, sizeof general)
+                   || strcmp(fast, general) != 0))
+        disagree("writes this line", line, len);
+}
+
+/* The same for a sentence rebuilt from JSON, written into `out` (`cap` bytes, `n` of them). */
+static void check_written(const nmea_sentence *s, const char *out, size_t cap, size_t n, const char *line, size_t len)
+{
+    static char general[sizeof output];
+    if (nmea_serialize_general(s, general, cap) != n || memcmp(general, out, n) != 0)
+        disagree("writes this JSON", line, len);
 }
 #endif
 
@@ -109,6 +125,9 @@ static void encode_line(tool *t, const char *line, size_t len, bool complete)
         return;
     } else if (nmea_from_json(&s, line, len, scratch, sizeof scratch, &err)) {
         n = nmea_serialize(&s, out, cap);
+#ifdef NMEA_TEST_HOOKS
+        check_written(&s, out, cap, n, line, len);
+#endif
     } else {
         n = nmea_error_to_json(&err, out, cap);
     }
