@@ -23,6 +23,11 @@
  *     while (nmea_framer_push(&framer, &chunk, &chunk_len, &line))
  *         if (nmea_parse_ex(&s, line.ptr, line.len, &options, &err))
  *             use(&s);
+ *
+ * nmea_parse_ex and nmea_serialize first try a fast path for `$` sentences in their usual form
+ * (one pass, no error bookkeeping) and fall back to the general path, with the same results.
+ * For flash over speed, build nmea.c with -DNMEA_NO_FAST_PATH: about a third less code, parsing
+ * and writing about 1.5 to 2 times slower.
  */
 #ifndef NMEA_H
 #define NMEA_H

@@ -2181,34 +2181,16 @@ NMEA_HOT size_t fast_end(fast_writer *w, nmea_checksum_style style)
     return (size_t)(w->p - w->buf);
 }
 
-/* number_text for the numbers a parser makes: no more than NMEA_MAX_DIGITS decimals (all after
-   a point), 1 to 20 whole digits written, not negative. */
-NMEA_HOT bool fast_number_text(fast_writer *w, const nmea_number *n)
+/* fast_number_text past its most common case: no more than NMEA_MAX_DIGITS decimals (all
+   after a point), 1 to 20 whole digits written, not negative. Out of line: the code of every
+   number field would be much longer with it. */
+NMEA_OUTLINE char *fast_any_number_text(char *p, const nmea_number *n)
 {
     char text[1 + 20 + 1 + NMEA_MAX_DIGITS], *end = text + sizeof text, *t = end;
     uint64_t v = (uint64_t)n->digits;
     unsigned scale = n->scale;
-    if (!n->present)
-        return true;
-    /* the most common of all: an integer of at most 3 digits written with 1 to 3 (tested with |,
-       one branch) */
-    if ((scale | (unsigned char)n->sign | (unsigned)n->point) == 0 && v < 1000 && (unsigned)n->width - 1 < 3) {
-        char *p = w->p;
-        if (v >= 100 || n->width == 3) {
-            *p++ = (char)('0' + v / 100);
-            v %= 100;
-        }
-        if (v >= 10 || p != w->p || n->width == 2) {
-            memcpy(p, DIGIT_PAIRS + v * 2, 2);
-            p += 2;
-        } else {
-            *p++ = (char)('0' + v);
-        }
-        w->p = p;
-        return true;
-    }
     if (n->digits < 0 || !n->width || n->width > 20 || scale > NMEA_MAX_DIGITS || (scale && !n->point))
-        return false;
+        return NULL;
     if (n->point) {
         for (; scale >= 2; scale -= 2, v /= 100) {
             t -= 2;
@@ -2223,7 +2205,32 @@ NMEA_HOT bool fast_number_text(fast_writer *w, const nmea_number *n)
     t = uint_text(t, v, n->width);
     if (n->sign)
         *--t = n->sign;
-    fast_copy(w, t, (size_t)(end - t));
+    while (t < end)
+        *p++ = *t++;
+    return p;
+}
+
+/* number_text for the numbers a parser makes; inline for the most common of all, an integer of
+   at most 3 digits written with 1 to 3 (its conditions tested with |, one branch). */
+NMEA_HOT bool fast_number_text(fast_writer *w, const nmea_number *n)
+{
+    uint64_t v = (uint64_t)n->digits;
+    char *p = w->p;
+    if (!n->present)
+        return true;
+    if ((n->scale | (unsigned char)n->sign | (unsigned)n->point) != 0 || v >= 1000 || (unsigned)n->width - 1 >= 3)
+        return (w->p = fast_any_number_text(p, n)) != NULL;
+    if (v >= 100 || n->width == 3) {
+        *p++ = (char)('0' + v / 100);
+        v %= 100;
+    }
+    if (v >= 10 || p != w->p || n->width == 2) {
+        memcpy(p, DIGIT_PAIRS + v * 2, 2);
+        p += 2;
+    } else {
+        *p++ = (char)('0' + v);
+    }
+    w->p = p;
     return true;
 }
 
