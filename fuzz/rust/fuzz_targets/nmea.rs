@@ -4,6 +4,8 @@
 //!   refuse it exactly when it has none (text commands never need one);
 //! - a line kept only by lenient parsing must still write back to exactly its bytes, and its
 //!   JSON (problems included) must encode back to them;
+//! - the fast path of `parse` and `parse_with` must give exactly what the general path alone gives
+//!   (`parse_general`, `parse_with_general`), with every option;
 //! - JSON that encodes to a sentence must parse again (leniently);
 //! - the stream framer must cut the input into the same items as a byte-at-a-time model of the
 //!   Python reference's Framer, whether it gets the input whole or in chunks of sizes derived
@@ -18,6 +20,14 @@ const LENIENT: Options = Options { lenient: true, require_checksum: false };
 const REQUIRED: Options = Options { lenient: false, require_checksum: true };
 
 fn as_line(data: &[u8]) {
+    assert_eq!(nmeaspec::parse(data), nmeaspec::parse_general(data), "the fast path disagrees with the general path");
+    for options in [LENIENT, REQUIRED, Options { lenient: true, require_checksum: true }] {
+        assert_eq!(
+            nmeaspec::parse_with(data, options),
+            nmeaspec::parse_with_general(data, options),
+            "the fast path disagrees with the general path ({options:?})"
+        );
+    }
     let _ = nmeaspec::decode_json(data, true);
     if data.ends_with(b"\n") {
         return; // parse() drops one line ending: the round trip is checked without it

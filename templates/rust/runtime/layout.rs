@@ -4,6 +4,7 @@
 use core::fmt::{self, Write};
 
 use super::error::{Error, Message, Problems};
+use super::fast::{FastReader, Read, Unsure};
 use super::frame::{is_command_word, is_standard_address, Fields, Frame, Shape, MAX_LINE};
 use super::types::Checksum;
 use super::write::{
@@ -52,6 +53,16 @@ pub trait Layout<'a>: Sized {
 
     /// Decodes the fields after the address; the error names the field at fault.
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>>;
+
+    /// [`Layout::parse_fields`] on the fast path of [`parse`](crate::parse): fills `self`, the
+    /// layout's default struct, from the fields of a sentence in its usual frame
+    /// ([`FastReader::frame`]) whose count fits the layout ([`FastReader::shape`] gave `repeats`
+    /// and `extra`), exactly as `parse_fields` would decode them; or [`Unsure`] when the general
+    /// path must decide (`self` is then half filled). A text command has no fast reader.
+    fn read_fast(&mut self, fields: FastReader<'a>, repeats: usize, extra: usize) -> Read<()> {
+        let _ = (fields, repeats, extra);
+        Err(Unsure)
+    }
 
     /// The talker ID (`GP`, `GN`, …) of a standard sentence; empty for the others.
     fn talker(&self) -> &'a str {

@@ -6,6 +6,7 @@
 //! Python and C runtimes' rules byte for byte; see docs/json.md.
 
 mod error;
+mod fast;
 mod frame;
 mod layout;
 mod table;
@@ -21,6 +22,7 @@ pub mod stream;
 pub mod json;
 
 pub use error::{Error, ErrorKind, FieldProblem, Message, Name, Problems};
+pub use fast::{FastReader, Read, Unsure};
 pub use frame::{
     checksum, first_word, is_command_word, is_standard_address, Blanks, FieldIter, Fields, Frame, GroupShape, Reader,
     Shape, MAX_LINE, MAX_PROBLEMS,

@@ -11,7 +11,7 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter};
 use crate::LayoutId;
 
 /// GEOS5_JAMDET: GeoS-5 jamming detected.
@@ -70,6 +70,14 @@ impl<'a> Layout<'a> for Geos5Jamdet<'a> {
         f.keyword("keyword", "JAMDET")?;
         out.reserved = f.text("reserved", "text", None)?;
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        f.keyword("JAMDET")?;
+        self.reserved = f.text(None)?;
+        f.end()
     }
 
     fn checksum(&self) -> Checksum {

@@ -13,8 +13,8 @@ use crate::enums::GgaQuality;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -115,6 +115,25 @@ impl<'a> Layout<'a> for Gga<'a> {
         out.dgps_station =
             f.integer("dgps_station", "integer 0..4095", Range::between(Bound::int(0), Bound::int(4095)))?;
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.lat = f.latitude()?;
+        self.lon = f.longitude()?;
+        self.quality = f.code()?;
+        self.satellites = f.integer(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.hdop = f.decimal(Range::ANY)?;
+        self.altitude = f.decimal(Range::ANY)?;
+        self.altitude_unit = f.literal("M")?;
+        self.geoid_separation = f.decimal(Range::ANY)?;
+        self.geoid_separation_unit = f.literal("M")?;
+        self.dgps_age = f.decimal(Range::between(Bound::int(0), Bound::new(9999, 1)))?;
+        self.dgps_station = f.integer(Range::between(Bound::int(0), Bound::int(4095)))?;
+        f.end()
     }
 
     fn talker(&self) -> &'a str {

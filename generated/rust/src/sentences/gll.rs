@@ -11,7 +11,9 @@ use core::fmt;
 use crate::enums::{PosMode, Status};
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Shape, Time, WireWriter};
+use crate::runtime::{
+    Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, Time, WireWriter,
+};
 use crate::LayoutId;
 
 /// GLL: Geographic position, latitude/longitude.
@@ -86,6 +88,21 @@ impl<'a> Layout<'a> for Gll<'a> {
             out.trailing = 1;
         }
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.lat = f.latitude()?;
+        self.lon = f.longitude()?;
+        self.time = f.time()?;
+        self.status = f.code()?;
+        if extra >= 1 {
+            self.mode = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
     }
 
     fn talker(&self) -> &'a str {

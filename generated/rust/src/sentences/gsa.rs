@@ -14,7 +14,8 @@ use crate::enums::{GsaFixType, GsaSelectionMode, SystemId};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -107,6 +108,23 @@ impl<'a> Layout<'a> for Gsa<'a> {
             out.trailing = 1;
         }
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.selection_mode = f.code()?;
+        self.fix_type = f.code()?;
+        f.group_into(&mut self.prns, repeats, |f| f.integer(Range::ANY))?;
+        self.pdop = f.decimal(Range::ANY)?;
+        self.hdop = f.decimal(Range::ANY)?;
+        self.vdop = f.decimal(Range::ANY)?;
+        if extra >= 1 {
+            self.system_id = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
     }
 
     fn talker(&self) -> &'a str {
@@ -245,6 +263,19 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         out.hdop = f.decimal("hdop", "decimal number", Range::ANY)?;
         out.vdop = f.decimal("vdop", "decimal number", Range::ANY)?;
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.selection_mode = f.code()?;
+        self.fix_type = f.code()?;
+        f.group_into(&mut self.prns, repeats, |f| f.integer(Range::ANY))?;
+        self.pdop = f.decimal(Range::ANY)?;
+        self.hdop = f.decimal(Range::ANY)?;
+        self.vdop = f.decimal(Range::ANY)?;
+        f.end()
     }
 
     fn talker(&self) -> &'a str {

@@ -11,7 +11,9 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter};
+use crate::runtime::{
+    Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, Time, WireWriter,
+};
 use crate::LayoutId;
 
 /// GST: GNSS pseudorange error statistics.
@@ -86,6 +88,21 @@ impl<'a> Layout<'a> for Gst<'a> {
         out.lon_std = f.decimal("lon_std", "decimal number", Range::ANY)?;
         out.alt_std = f.decimal("alt_std", "decimal number", Range::ANY)?;
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.rms = f.decimal(Range::ANY)?;
+        self.semi_major_std = f.decimal(Range::ANY)?;
+        self.semi_minor_std = f.decimal(Range::ANY)?;
+        self.orientation = f.decimal(Range::ANY)?;
+        self.lat_std = f.decimal(Range::ANY)?;
+        self.lon_std = f.decimal(Range::ANY)?;
+        self.alt_std = f.decimal(Range::ANY)?;
+        f.end()
     }
 
     fn talker(&self) -> &'a str {

@@ -10,7 +10,9 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{
+    Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// HDT: Heading, true.
@@ -62,6 +64,15 @@ impl<'a> Layout<'a> for Hdt<'a> {
         out.heading = f.decimal("heading", "decimal number", Range::ANY)?;
         out.heading_ref = f.literal("heading_ref", "T or nothing", "T")?;
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.heading = f.decimal(Range::ANY)?;
+        self.heading_ref = f.literal("T")?;
+        f.end()
     }
 
     fn talker(&self) -> &'a str {

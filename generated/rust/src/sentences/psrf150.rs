@@ -15,7 +15,7 @@ use core::fmt;
 use crate::enums::SirfOkToSend;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter};
 use crate::LayoutId;
 
 /// PSRF150: OkToSend.
@@ -67,6 +67,13 @@ impl<'a> Layout<'a> for Psrf150<'a> {
         let mut out = Self { checksum, ..Self::default() };
         out.ok_to_send = f.code("ok_to_send")?;
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.ok_to_send = f.code()?;
+        f.end()
     }
 
     fn checksum(&self) -> Checksum {

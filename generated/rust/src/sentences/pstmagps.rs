@@ -11,7 +11,9 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, GroupShape, JsonFields, Layout, Shape, Texts, WireWriter};
+use crate::runtime::{
+    Checksum, Error, FastReader, Fields, Framing, GroupShape, JsonFields, Layout, Read, Shape, Texts, WireWriter,
+};
 use crate::LayoutId;
 
 /// PSTMAGPS: ST STAGPS predicted ephemeris information.
@@ -64,6 +66,13 @@ impl<'a> Layout<'a> for Pstmagps<'a> {
         let mut out = Self { checksum, ..Self::default() };
         out.values = f.texts("values", "value", repeats, "text", None)?;
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.values = f.texts(repeats, None)?;
+        f.end()
     }
 
     fn checksum(&self) -> Checksum {

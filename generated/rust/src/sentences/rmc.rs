@@ -13,8 +13,8 @@ use crate::enums::{NavStatus, PosMode, RmcMagVarDir, Status};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Coordinate, Date, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Coordinate, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range,
+    Read, Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -117,6 +117,30 @@ impl<'a> Layout<'a> for Rmc<'a> {
             out.trailing = 2;
         }
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.status = f.code()?;
+        self.lat = f.latitude()?;
+        self.lon = f.longitude()?;
+        self.speed = f.decimal(Range::ANY)?;
+        self.course = f.decimal(Range::between(Bound::int(0), Bound::new(3599, 1)))?;
+        self.date = f.date()?;
+        self.mag_var = f.decimal(Range::ANY)?;
+        self.mag_var_dir = f.code()?;
+        if extra >= 1 {
+            self.mode = f.code()?;
+            self.trailing = 1;
+        }
+        if extra >= 2 {
+            self.nav_status = f.code()?;
+            self.trailing = 2;
+        }
+        f.end()
     }
 
     fn talker(&self) -> &'a str {

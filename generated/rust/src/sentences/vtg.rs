@@ -13,7 +13,8 @@ use crate::enums::PosMode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -108,6 +109,25 @@ impl<'a> Layout<'a> for Vtg<'a> {
             out.trailing = 1;
         }
         Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.course_true = f.decimal(Range::between(Bound::int(0), Bound::new(3599, 1)))?;
+        self.course_true_ref = f.literal("T")?;
+        self.course_magnetic = f.decimal(Range::between(Bound::int(0), Bound::new(3599, 1)))?;
+        self.course_magnetic_ref = f.literal("M")?;
+        self.speed_knots = f.decimal(Range::ANY)?;
+        self.speed_knots_unit = f.literal("N")?;
+        self.speed_kmh = f.decimal(Range::ANY)?;
+        self.speed_kmh_unit = f.literal("K")?;
+        if extra >= 1 {
+            self.mode = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
     }
 
     fn talker(&self) -> &'a str {
