@@ -300,6 +300,19 @@ def fmt_arm(indent: int, pattern: str, value: str) -> list[str]:
     return [f"{pad}{pattern} => {callee}(", f"{pad}    {arg[:-1]},", f"{pad}),"]
 
 
+def fmt_fast_arm(indent: int, pattern: str, layouts: list[str]) -> list[str]:
+    """The match arm of the fast path's dispatch (lib.rs `read_sentence`) for an address with
+    `layouts`: its first layout's reader, given the others."""
+    pad = " " * indent
+    rest = [f"LayoutId::{n}" for n in layouts[1:]]
+    call = f"read_layout::<{layouts[0]}, O>"
+    one = f"{pad}{pattern} => {call}(fields, line, &[{', '.join(rest)}]),"
+    if len(one) <= WIDTH:
+        return [one]
+    return [f"{pad}{pattern} => {call}(", f"{pad}    fields,", f"{pad}    line,",
+            *fmt_slice(indent + 4, "", rest, ","), f"{pad}),"]
+
+
 def fmt_const_slice(indent: int, decl: str, items: list[str]) -> list[str]:
     """`decl = &[items];`: on one line, else the slice on the next line, else one item per line."""
     lines = fmt_const(indent, decl, "&[" + ", ".join(items) + "]")
@@ -998,18 +1011,25 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     # standard sentences, the others on their own.
     proprietary_arms: list[str] = []
     standard_like_arms: list[str] = []
+    proprietary_fast_arms: list[str] = []
+    standard_like_fast_arms: list[str] = []
     for address in sorted({s.address for s in spec.proprietary if s.framing == "sentence" and s.address}):
         owners = spec.by_address(address)
         names = [s.layout_camel(lay) for s, lay in owners]
         standard_like = len(address) == 5 and not address.startswith("P")
         arms = standard_like_arms if standard_like else proprietary_arms
         indent = 12 if standard_like else 8
-        arms += with_cfg(indent, cfg({s.vendor for s, _ in owners if s.vendor}),
+        gate = cfg({s.vendor for s, _ in owners if s.vendor})
+        arms += with_cfg(indent, gate,
                          fmt_slice(indent, f"b{rust_str(address)} => ", [f"LayoutId::{n}" for n in names], ","))
+        fast_arms = standard_like_fast_arms if standard_like else proprietary_fast_arms
+        fast_arms += with_cfg(indent, gate, fmt_fast_arm(indent, f"b{rust_str(address)}", names))
     standard_arms: list[str] = []
+    standard_fast_arms: list[str] = []
     for s in spec.standard:
         standard_arms += fmt_slice(8, f'b"{s.id}" => ', [f"LayoutId::{s.layout_camel(lay)}" for lay in s.layouts],
                                    ",")
+        standard_fast_arms += fmt_fast_arm(8, f'b"{s.id}"', [s.layout_camel(lay) for lay in s.layouts])
     text_commands = []
     for word in sorted({(s.address or "").upper() for s in spec.proprietary if s.framing == "text"}):
         owners = spec.text_command(word)
@@ -1022,7 +1042,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/src/lib.rs"] = env.get_template("rust/lib.rs.j2").render(
         header=header(spec, "//"), spec=spec, layouts=layouts, example=first, command=command_example(spec),
         unit_examples=unit_examples, proprietary_arms=proprietary_arms, standard_arms=standard_arms,
-        standard_like_arms=standard_like_arms,
+        standard_like_arms=standard_like_arms, standard_fast_arms=standard_fast_arms,
+        proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands,
         runtime_uses=fmt_use("runtime", rust_sorted(
             {"first_word", "strip_line_ending", "upper_eq", "FastReader", "Unsure"})),

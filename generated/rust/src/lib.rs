@@ -2804,7 +2804,7 @@ impl From<Pstmwarm> for Sentence<'_> {
 pub fn parse<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_>> {
     let line = strip_line_ending(line.as_ref());
     match FastReader::frame(line) {
-        Some(fields) => read_fast(sentence_layouts(fields.address()), fields, line),
+        Some(fields) => read_sentence(fields, line),
         None => general(line),
     }
 }
@@ -2821,8 +2821,7 @@ pub fn parse_general<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, 
 #[doc(hidden)]
 pub fn parse_fast<L: AsRef<[u8]> + ?Sized>(line: &L) -> Option<Sentence<'_>> {
     let line = strip_line_ending(line.as_ref());
-    let fields = FastReader::frame(line)?;
-    read_fast(sentence_layouts(fields.address()), fields, line)
+    read_sentence(FastReader::frame(line)?, line)
 }
 
 /// What the fast path of [`parse`] gives: the sentence it read or, when it is not sure, what the
@@ -2856,13 +2855,141 @@ impl<'a> Outcome<'a> for Option<Sentence<'a>> {
 }
 
 /// The fast path of [`parse`]: a `$` sentence in its usual frame (see [`FastReader::frame`]),
-/// read by the fast reader of the first of `layouts` whose field count fits it (the general path
-/// could read it with no other before it either); when that reader is not sure, or none fits,
-/// the general path decides. What it reads has an upper-case checksum and no field at fault, so
-/// [`parse_with`]'s options would not change it.
+/// read by the fast reader of the first layout of its address ([`sentence_layouts`], matched
+/// here once more so that the reader is picked in one step) whose field count fits it (the
+/// general path could read it with no other before it either); when that reader is not sure,
+/// or none fits, the general path decides. What it reads has an upper-case checksum and no field
+/// at fault, so [`parse_with`]'s options would not change it.
 ///
 /// Each step returns what the next one returns, so that the sentence read is copied once, into
 /// the caller's result: a copy of what was just written waits for those writes to land.
+fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> O {
+    match fields.address() {
+        &[first, _, a, b, c] if first != b'P' => match fields.address() {
+            #[cfg(feature = "geos5")]
+            b"GPSGG" => read_layout::<Geos5Jamdet, O>(
+                fields,
+                line,
+                &[
+                    LayoutId::Geos5Nquery,
+                    LayoutId::Geos5NqueryRequest,
+                    LayoutId::Geos5Rquery,
+                    LayoutId::Geos5RqueryRequest,
+                    LayoutId::Geos5Command,
+                ],
+            ),
+            _ => read_standard([a, b, c], fields, line),
+        },
+        #[cfg(feature = "globalsat")]
+        b"PSRF100" => read_layout::<Psrf100, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF101" => read_layout::<Psrf101, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF102" => read_layout::<Psrf102, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF103" => read_layout::<Psrf103, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF104" => read_layout::<Psrf104, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF105" => read_layout::<Psrf105, O>(fields, line, &[]),
+        #[cfg(feature = "gs501")]
+        b"PSRF150" => read_layout::<Psrf150, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMAGPS" => read_layout::<Pstmagps, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMALMANAC" => read_layout::<Pstmalmanac, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMCLRALMS" => read_layout::<Pstmclralms, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMCLREPHS" => read_layout::<Pstmclrephs, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMCOLD" => read_layout::<Pstmcold, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMCORR" => read_layout::<Pstmcorr, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMDIFF" => read_layout::<Pstmdiff, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMEPH" => read_layout::<Pstmeph, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMGETPAR" => read_layout::<Pstmgetpar, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMGETPARERROR" => read_layout::<Pstmgetparerror, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMGETRTCTIME" => read_layout::<Pstmgetrtctime, O>(fields, line, &[LayoutId::PstmgetrtctimeReply]),
+        #[cfg(feature = "teseo")]
+        b"PSTMGETSWVER" => read_layout::<Pstmgetswver, O>(fields, line, &[LayoutId::PstmgetswverReply]),
+        #[cfg(feature = "teseo")]
+        b"PSTMHOT" => read_layout::<Pstmhot, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMKFCOV" => read_layout::<Pstmkfcov, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMNMEAONOFF" => read_layout::<Pstmnmeaonoff, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMPA" => read_layout::<Pstmpa, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMPRES" => read_layout::<Pstmpres, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMRES" => read_layout::<Pstmres, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMRESTOREPAR" => read_layout::<Pstmrestorepar, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMRF" => read_layout::<Pstmrf, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSAT" => read_layout::<Pstmsat, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSAVEPAR" => read_layout::<Pstmsavepar, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSBAS" => read_layout::<Pstmsbas, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSBASCORR" => read_layout::<Pstmsbascorr, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSET" => read_layout::<Pstmset, O>(fields, line, &[LayoutId::PstmsetDop]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSETPAR" => read_layout::<Pstmsetpar, O>(fields, line, &[LayoutId::PstmsetparDop]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSETPARERROR" => read_layout::<Pstmsetparerror, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSETPAROK" => read_layout::<Pstmsetparok, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMTESTRF" => read_layout::<Pstmtestrf, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMTG" => read_layout::<Pstmtg, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMTIM" => read_layout::<Pstmtim, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMTS" => read_layout::<Pstmts, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMVER" => read_layout::<Pstmver, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMVRES" => read_layout::<Pstmvres, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMWAAS" => read_layout::<Pstmwaas, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMWARM" => read_layout::<Pstmwarm, O>(fields, line, &[]),
+        _ => O::general(line),
+    }
+}
+
+/// [`read_sentence`] for the standard sentence with formatter `formatter`.
+fn read_standard<'a, O: Outcome<'a>>(formatter: [u8; 3], fields: FastReader<'a>, line: &'a [u8]) -> O {
+    match &formatter {
+        b"DTM" => read_layout::<Dtm, O>(fields, line, &[]),
+        b"GGA" => read_layout::<Gga, O>(fields, line, &[]),
+        b"GLL" => read_layout::<Gll, O>(fields, line, &[]),
+        b"GNS" => read_layout::<Gns, O>(fields, line, &[LayoutId::GnsAux]),
+        b"GSA" => read_layout::<Gsa, O>(fields, line, &[LayoutId::GsaShort]),
+        b"GST" => read_layout::<Gst, O>(fields, line, &[]),
+        b"GSV" => read_layout::<Gsv, O>(fields, line, &[]),
+        b"HDT" => read_layout::<Hdt, O>(fields, line, &[]),
+        b"RLM" => read_layout::<Rlm, O>(fields, line, &[]),
+        b"RMC" => read_layout::<Rmc, O>(fields, line, &[]),
+        b"VTG" => read_layout::<Vtg, O>(fields, line, &[]),
+        b"ZDA" => read_layout::<Zda, O>(fields, line, &[]),
+        _ => O::general(line),
+    }
+}
+
+/// [`read_sentence`] with the next of `layouts`, the layouts of the address that remain.
 fn read_fast<'a, O: Outcome<'a>>(layouts: &[LayoutId], fields: FastReader<'a>, line: &'a [u8]) -> O {
     let Some((&layout, rest)) = layouts.split_first() else {
         return O::general(line);
@@ -2999,7 +3126,7 @@ fn read_fast<'a, O: Outcome<'a>>(layouts: &[LayoutId], fields: FastReader<'a>, l
     }
 }
 
-/// [`read_fast`] with layout `L`, the first of `layouts` (`rest`: the others).
+/// [`read_sentence`] with layout `L` (`rest`: the layouts to try after it).
 #[inline(never)]
 fn read_layout<'a, L: Layout<'a> + Default + Into<Sentence<'a>>, O: Outcome<'a>>(
     fields: FastReader<'a>,
@@ -3076,9 +3203,7 @@ impl fmt::Display for Parsed<'_> {
 /// [`parse`] with options: lenient decoding and required checksums.
 pub fn parse_with<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
     let line = strip_line_ending(line.as_ref());
-    if let Some(sentence) = FastReader::frame(line)
-        .and_then(|fields| read_fast::<Option<_>>(sentence_layouts(fields.address()), fields, line))
-    {
+    if let Some(sentence) = FastReader::frame(line).and_then(|fields| read_sentence::<Option<_>>(fields, line)) {
         return Ok(sentence.into());
     }
     general_with(line, options)

@@ -67,15 +67,17 @@ const LETTER_PAIRS: &str = {
     }
 };
 
-/// The value of an upper-case hex digit.
-#[inline(always)]
-const fn upper_hex(b: u8) -> Option<u8> {
-    match b {
-        b'0'..=b'9' => Some(b - b'0'),
-        b'A'..=b'F' => Some(b - b'A' + 10),
-        _ => None,
+/// The value of each upper-case hex digit plus one; 0 for any other byte (a table: whether a
+/// checksum digit is a letter or a digit is not worth a branch).
+const UPPER_HEX: [u8; 256] = {
+    let mut table = [0; 256];
+    let mut i = 0;
+    while i < 16 {
+        table[b"0123456789ABCDEF"[i] as usize] = i as u8 + 1;
+        i += 1;
     }
-}
+    table
+};
 
 /// The fields of a sentence in its usual frame, handed out in wire order to the fast readers:
 /// each reads its field up to the `,` or `*` after it, and refuses ([`Unsure`]) whatever
@@ -111,19 +113,18 @@ impl<'a> FastReader<'a> {
             sum ^= word;
             commas += count_bytes(bytes_equal(word, b','));
         }
-        let left = words.remainder().len();
-        if left > 0 {
-            // The last bytes: the top of the word that ends the body, moved down.
-            let shift = 8 * (8 - left) as u32;
-            let last = u64::from_le_bytes(body[body.len() - 8..].try_into().ok()?) >> shift;
-            sum ^= last;
-            commas += count_bytes(bytes_equal(last, b',') & (u64::MAX >> shift));
-        }
+        // The last bytes: the top of the word that ends the body, moved down (none when the
+        // body is whole words: shifted out entirely).
+        let shift = 8 * (8 - words.remainder().len()) as u32;
+        let end = u64::from_le_bytes(body[body.len() - 8..].try_into().ok()?);
+        let (last, keep) = (end.checked_shr(shift).unwrap_or(0), u64::MAX.checked_shr(shift).unwrap_or(0));
+        sum ^= last;
+        commas += count_bytes(bytes_equal(last, b',') & keep);
         sum ^= sum >> 32;
         sum ^= sum >> 16;
         sum ^= sum >> 8;
-        let sent = upper_hex(line[len - 2])? << 4 | upper_hex(line[len - 1])?;
-        if sent != sum as u8 {
+        let (high, low) = (UPPER_HEX[usize::from(line[len - 2])], UPPER_HEX[usize::from(line[len - 1])]);
+        if high == 0 || low == 0 || (high - 1) << 4 | (low - 1) != sum as u8 {
             return None;
         }
         let end = body.iter().position(|b| !b.is_ascii_alphanumeric())?;
@@ -207,15 +208,12 @@ impl<'a> FastReader<'a> {
         line.get(start..end).ok_or(Unsure)
     }
 
-    /// The next field read by `parse` (the general path's own parser of its type); empty is
-    /// `None`.
+    /// The next field, `None` when it is empty; each reader then takes it with the general
+    /// path's own parser of its type.
     #[inline(always)]
-    fn parsed<T>(&mut self, parse: impl FnOnce(&'a [u8]) -> Option<T>) -> Read<Option<T>> {
+    fn field(&mut self) -> Read<Option<&'a [u8]>> {
         let text = self.span()?;
-        if text.is_empty() {
-            return Ok(None);
-        }
-        parse(text).map(Some).ok_or(Unsure)
+        Ok((!text.is_empty()).then_some(text))
     }
 
     /// An integer `[+-]digits` within `range`.
@@ -235,18 +233,18 @@ impl<'a> FastReader<'a> {
     #[inline(always)]
     fn number(&mut self, range: Range, integer: bool) -> Read<Option<Number>> {
         let (line, at) = (self.line, self.at);
-        let mut digits = 0u64;
-        let mut end = take_digits(line, at, &mut digits);
-        // A sign comes before no digit: looked for only when the field does not start with one.
         let (sign, start) = match line.get(at) {
-            _ if end > at => (Sign::Implicit, at),
+            Some(b'0'..=b'9') => (Sign::Implicit, at),
+            Some(b',' | b'*') => {
+                self.at = at + 1;
+                return Ok(None);
+            }
             Some(b'-') => (Sign::Minus, at + 1),
             Some(b'+') => (Sign::Plus, at + 1),
-            _ => (Sign::Implicit, at),
+            _ => (Sign::Implicit, at), // a point, or what the checks below refuse
         };
-        if start > at {
-            end = take_digits(line, start, &mut digits);
-        }
+        let mut digits = 0u64;
+        let mut end = take_digits(line, start, &mut digits);
         let whole = end - start;
         let point = !integer && line.get(end) == Some(&b'.');
         if point {
@@ -258,7 +256,7 @@ impl<'a> FastReader<'a> {
         }
         self.at = end + 1;
         if count == 0 {
-            return if end == at { Ok(None) } else { Err(Unsure) };
+            return Err(Unsure); // a sign or a point alone
         }
         let number = Number { digits: digits as i64, scale: (count - whole) as u8, width: whole as u8, sign, point };
         if range.contains(number) {
@@ -271,19 +269,28 @@ impl<'a> FastReader<'a> {
     /// Hex digits.
     #[inline(always)]
     pub fn hex(&mut self) -> Read<Option<Hex>> {
-        self.parsed(Hex::parse_bytes)
+        match self.field()? {
+            None => Ok(None),
+            Some(text) => Hex::parse_bytes(text).map(Some).ok_or(Unsure),
+        }
     }
 
     /// A time `hhmmss[.s…]`.
     #[inline(always)]
     pub fn time(&mut self) -> Read<Option<Time>> {
-        self.parsed(Time::parse_bytes)
+        match self.field()? {
+            None => Ok(None),
+            Some(text) => Time::parse_bytes(text).map(Some).ok_or(Unsure),
+        }
     }
 
     /// A date `ddmmyy`.
     #[inline(always)]
     pub fn date(&mut self) -> Read<Option<Date>> {
-        self.parsed(Date::parse_bytes)
+        match self.field()? {
+            None => Ok(None),
+            Some(text) => Date::parse_bytes(text).map(Some).ok_or(Unsure),
+        }
     }
 
     /// One printable ASCII character.
@@ -299,7 +306,11 @@ impl<'a> FastReader<'a> {
     /// Exactly `value` (or nothing).
     #[inline(always)]
     pub fn literal(&mut self, value: &'static str) -> Read<Option<&'a str>> {
-        self.parsed(|text| (text == value.as_bytes()).then_some(value))
+        match self.field()? {
+            None => Ok(None),
+            Some(text) if text == value.as_bytes() => Ok(Some(value)),
+            Some(_) => Err(Unsure),
+        }
     }
 
     /// Printable text, at most `max_length` characters.
@@ -328,13 +339,20 @@ impl<'a> FastReader<'a> {
     /// A code of enum `E` the spec knows (a code it does not know is the general path's to keep).
     #[inline(always)]
     pub fn code<E: CodeEnum>(&mut self) -> Read<Option<Code<'a, E>>> {
-        self.parsed(|text| E::from_code_bytes(text).map(Code::Known))
+        match self.field()? {
+            None => Ok(None),
+            Some(text) => E::from_code_bytes(text).map(|value| Some(Code::Known(value))).ok_or(Unsure),
+        }
     }
 
     /// A run of one-character codes of enum `E`, at most `max_length`.
     #[inline(always)]
     pub fn code_chars<E: CodeEnum>(&mut self, max_length: Option<usize>) -> Read<Option<CodeChars<'a, E>>> {
-        self.parsed(|text| CodeChars::parse(core::str::from_utf8(text).ok()?, max_length))
+        let Some(text) = self.field()? else {
+            return Ok(None);
+        };
+        let text = core::str::from_utf8(text).map_err(|_| Unsure)?;
+        CodeChars::parse(text, max_length).map(Some).ok_or(Unsure)
     }
 
     /// A latitude: `ddmm.mmmm` and `N`/`S`, both empty or both set.

@@ -634,7 +634,13 @@ impl Coordinate {
             degrees = degrees * 10 + u16::from(b - b'0');
         }
         let mut digits = 0i64;
-        for &b in minute_text.iter().chain(frac) {
+        for &b in minute_text {
+            if !b.is_ascii_digit() {
+                return None;
+            }
+            digits = digits * 10 + i64::from(b - b'0');
+        }
+        for &b in frac {
             if !b.is_ascii_digit() {
                 return None;
             }
