@@ -47,7 +47,7 @@ RUNTIME_NAMES = {
     "JsonFields", "Layout", "Name", "Number", "Range", "Reader", "Shape", "GroupShape", "Time", "WireWriter",
     "Sentence", "Generic", "LayoutId", "Frame", "Option", "Result", "Self", "Framing", "Kind", "Parameter",
     "Table", "Encoding", "Texts", "Parsed", "Options", "Problems", "FieldProblem", "Blanks", "Framer", "Item",
-    "FastReader", "Read", "Unsure",
+    "FastReader", "Read", "Unsure", "ByteWriter",
 }
 
 
@@ -705,7 +705,7 @@ def module_imports(views: list[dict]) -> list[str]:
         if view["entries"]:
             runtime.add("Reader")
         if not view["text"]:
-            runtime |= {"FastReader", "Read"}
+            runtime |= {"ByteWriter", "FastReader", "Read"}
         fields = [it["field"] for it in view["items"] if it["kind"] == "field"]
         fields += [it["group"].fields[0] for it in view["items"] if it["kind"] == "values"]
         fields += [fv["field"] for e in view["entries"] for fv in e["fields"]]

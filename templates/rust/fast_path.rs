@@ -10,13 +10,20 @@
 //!   not.
 //!
 //! The fast path must also read most of the logs' lines, or this test would prove nothing.
+//!
+//! Likewise the byte writer of `serialize_into` against the `fmt` writer (`write_sentence_with`)
+//! on every sentence read, lenient readings with problems included: the same text, or `None`
+//! when the buffer is too small for it.
 
 use std::collections::HashMap;
 use std::fs;
 use std::path::{Path, PathBuf};
 
 use nmeaspec::runtime::json::Value;
-use nmeaspec::{parse, parse_fast, parse_general, parse_with, parse_with_general, LayoutId, Options};
+use nmeaspec::runtime::MAX_LINE;
+use nmeaspec::{
+    parse, parse_fast, parse_general, parse_with, parse_with_general, LayoutId, Options, Parsed,
+};
 
 const CRATE: &str = env!("CARGO_MANIFEST_DIR");
 
@@ -30,6 +37,10 @@ struct Tally {
     lines: usize,
     known: usize,
     fast: usize,
+    /// Lines the general path read.
+    read: usize,
+    /// Sentences the byte writer wrote without its `fmt` fallback.
+    written_fast: usize,
 }
 
 impl Tally {
@@ -41,6 +52,14 @@ impl Tally {
         assert_eq!(parse(line), general, "parse disagrees with the general path on {:?}", show(line));
         self.lines += 1;
         self.known += usize::from(general.as_ref().is_ok_and(|sentence| sentence.layout().is_some()));
+        if let Ok(sentence) = &general {
+            check_writing(&(*sentence).into(), line);
+            self.read += 1;
+            self.written_fast += usize::from(sentence.serialize_fast(&mut [0; MAX_LINE]).is_some());
+        }
+        if let Ok(parsed) = parse_with_general(line, Options { lenient: true, require_checksum: false }) {
+            check_writing(&parsed, line);
+        }
         let Some(sentence) = parse_fast(line) else {
             return;
         };
@@ -63,6 +82,26 @@ impl Tally {
         if let Some(fixed) = with_checksum(line).filter(|fixed| line.trim_ascii_end() != fixed.as_slice()) {
             self.check(&fixed);
         }
+    }
+}
+
+/// `serialize_into` writes what the `fmt` writer writes (the sentence's text with its problem
+/// fields' texts put back), into a buffer of any size: all of it, or `None`.
+fn check_writing(parsed: &Parsed<'_>, line: &[u8]) {
+    let mut expected = String::new();
+    parsed.sentence.write_sentence_with(&mut expected, &parsed.problems).expect("a String takes any text");
+    let mut buf = [0u8; MAX_LINE + 64];
+    let written =
+        parsed.serialize_into(&mut buf).unwrap_or_else(|| panic!("serialize_into wrote nothing for {:?}", show(line)));
+    assert_eq!(show(&buf[..written]), expected, "serialize_into and the fmt writer disagree on {:?}", show(line));
+    if parsed.problems.is_empty() {
+        assert_eq!(parsed.sentence.serialize_into(&mut buf), Some(written));
+        if let Some(fast) = parsed.sentence.serialize_fast(&mut buf) {
+            assert_eq!(show(&buf[..fast]), expected, "the byte writer alone wrote {:?} differently", show(line));
+        }
+    }
+    for capacity in [written - 1, written / 2, 0] {
+        assert_eq!(parsed.serialize_into(&mut buf[..capacity]), None, "{capacity} bytes took {:?}", show(line));
     }
 }
 
@@ -172,6 +211,9 @@ fn fast_path_agrees_on_the_real_logs() {
     // its checksum made right on the fast path: it reads nearly all of them.
     assert!(tally.fast * 10 > tally.known * 9, "the fast path read only {} of {} lines", tally.fast, tally.known);
     assert!(edited.fast > 0 && edited.fast < edited.known);
+    // Every sentence read from the logs is ASCII and none is a text command: the byte writer
+    // writes each without falling back.
+    assert_eq!(tally.written_fast, tally.read, "the byte writer left sentences to fmt");
 }
 
 #[test]

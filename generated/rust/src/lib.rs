@@ -2153,6 +2153,157 @@ impl<'a> Sentence<'a> {
         }
     }
 
+    /// The sentence text, what `Display` writes (no line ending), put at the start of `buf`, as
+    /// C's `nmea_serialize` does: its length, or `None` when `buf` cannot hold it (a buffer of
+    /// [`runtime::MAX_LINE`] bytes holds any sentence [`parse`] gives). An ASCII text (every
+    /// parsed `$` sentence) is written without the `fmt` machinery.
+    pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
+        if let Some(len) = self.serialize_fast(buf) {
+            return Some(len);
+        }
+        let mut w = runtime::ByteWriter::new(buf);
+        self.write_sentence_with(&mut w, &Problems::new()).ok()?;
+        Some(w.len())
+    }
+
+    /// The byte writer of [`Sentence::serialize_into`] alone, without its `fmt` fallback: `None`
+    /// for a text that is not all ASCII, a text command, or a buffer too small (the crate's tests
+    /// check that it writes what the `fmt` writer writes).
+    #[doc(hidden)]
+    pub fn serialize_fast(&self, buf: &mut [u8]) -> Option<usize> {
+        match self {
+            Self::Dtm(s) => s.put_sentence(buf),
+            Self::Gga(s) => s.put_sentence(buf),
+            Self::Gll(s) => s.put_sentence(buf),
+            Self::Gns(s) => s.put_sentence(buf),
+            Self::GnsAux(s) => s.put_sentence(buf),
+            Self::Gsa(s) => s.put_sentence(buf),
+            Self::GsaShort(s) => s.put_sentence(buf),
+            Self::Gst(s) => s.put_sentence(buf),
+            Self::Gsv(s) => s.put_sentence(buf),
+            Self::Hdt(s) => s.put_sentence(buf),
+            Self::Rlm(s) => s.put_sentence(buf),
+            Self::Rmc(s) => s.put_sentence(buf),
+            Self::Vtg(s) => s.put_sentence(buf),
+            Self::Zda(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavLog(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalker(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerList(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerReset(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Command(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Jamdet(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Nquery(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5NqueryRequest(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Rquery(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5RqueryRequest(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf100(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf101(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf102(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf103(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf104(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf105(s) => s.put_sentence(buf),
+            #[cfg(feature = "gs501")]
+            Self::Psrf150(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmagps(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmalmanac(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclralms(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclrephs(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcold(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcorr(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmdiff(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmeph(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetpar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetparerror(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetrtctime(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetrtctimeReply(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetswver(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetswverReply(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmhot(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmkfcov(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmnmeaonoff(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpa(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpres(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmres(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrestorepar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrf(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsat(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsavepar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbas(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbascorr(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmset(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetDop(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetpar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetparDop(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparerror(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparok(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtestrf(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtg(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtim(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmts(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmver(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmvres(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwaas(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwarm(s) => s.put_sentence(buf),
+            Self::Generic(s) => s.put_sentence(buf),
+        }
+    }
+
     /// Writes the sentence text of a sentence lenient parsing kept with `problems`: the text of
     /// each field it left empty is put back.
     pub fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
@@ -3193,9 +3344,26 @@ impl Parsed<'_> {
     }
 }
 
+impl Parsed<'_> {
+    /// The sentence text with the problem fields' texts put back (what `Display` writes, no
+    /// line ending) at the start of `buf`: its length, or `None` when `buf` cannot hold it (see
+    /// [`Sentence::serialize_into`]).
+    pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
+        if self.problems.is_empty() {
+            return self.sentence.serialize_into(buf);
+        }
+        let mut w = runtime::ByteWriter::new(buf);
+        self.sentence.write_sentence_with(&mut w, &self.problems).ok()?;
+        Some(w.len())
+    }
+}
+
 impl fmt::Display for Parsed<'_> {
     /// The sentence text with the problem fields' texts put back; no line ending.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.problems.is_empty() {
+            return self.sentence.write_sentence(f);
+        }
         self.sentence.write_sentence_with(f, &self.problems)
     }
 }

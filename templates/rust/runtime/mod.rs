@@ -35,5 +35,5 @@ pub use types::{
 };
 pub use write::{
     write_json_char, write_json_display, write_json_str, write_sentence, write_sentence_with, write_words_json,
-    Discard, FieldValue, JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
+    ByteWriter, Discard, FieldValue, JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
 };

@@ -12,7 +12,8 @@ use crate::enums::{DtmDatum, DtmLatOffsetDir, DtmLonOffsetDir};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, WireWriter,
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -131,6 +132,19 @@ impl<'a> Layout<'a> for Dtm<'a> {
         w.field(&self.altitude_offset)?;
         w.field(&self.reference_datum)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.local_datum)?;
+        w.field(&self.local_datum_subdivision)?;
+        w.field(&self.lat_offset)?;
+        w.field(&self.lat_offset_dir)?;
+        w.field(&self.lon_offset)?;
+        w.field(&self.lon_offset_dir)?;
+        w.field(&self.altitude_offset)?;
+        w.field(&self.reference_datum)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

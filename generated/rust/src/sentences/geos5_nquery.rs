@@ -15,8 +15,8 @@ use crate::enums::{Geos5MessageRate, Geos5NmeaVersion, Geos5OutputRate};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -178,6 +178,25 @@ impl<'a> Layout<'a> for Geos5Nquery<'a> {
         w.field(&self.dtm_rate)?;
         w.field(&self.rlm_rate)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.keyword("NQUERY")?;
+        w.field(&self.port)?;
+        w.field(&self.output_rate)?;
+        w.field(&self.nmea_version)?;
+        w.field(&self.gga_rate)?;
+        w.field(&self.gll_rate)?;
+        w.field(&self.gsa_rate)?;
+        w.field(&self.gsv_rate)?;
+        w.field(&self.rmc_rate)?;
+        w.field(&self.vtg_rate)?;
+        w.field(&self.gns_rate)?;
+        w.field(&self.zda_rate)?;
+        w.field(&self.dtm_rate)?;
+        w.field(&self.rlm_rate)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -16,7 +16,7 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Date, Error, FastReader, Fields, Framing, Hex, JsonFields, Layout, Read, Shape, WireWriter,
+    ByteWriter, Checksum, Date, Error, FastReader, Fields, Framing, Hex, JsonFields, Layout, Read, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -128,6 +128,18 @@ impl<'a> Layout<'a> for Geos5Rquery<'a> {
         w.field(&self.config_1)?;
         w.field(&self.config_2)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.keyword("RQUERY")?;
+        w.field(&self.receiver_name)?;
+        w.field(&self.software_version)?;
+        w.field(&self.software_date)?;
+        w.field(&self.status)?;
+        w.field(&self.config_1)?;
+        w.field(&self.config_2)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

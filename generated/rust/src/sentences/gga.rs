@@ -13,8 +13,8 @@ use crate::enums::GgaQuality;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, Time, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number,
+    Range, Read, Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -158,6 +158,23 @@ impl<'a> Layout<'a> for Gga<'a> {
         w.field(&self.dgps_age)?;
         w.field(&self.dgps_station)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.quality)?;
+        w.field(&self.satellites)?;
+        w.field(&self.hdop)?;
+        w.field(&self.altitude)?;
+        w.field(&self.altitude_unit)?;
+        w.field(&self.geoid_separation)?;
+        w.field(&self.geoid_separation_unit)?;
+        w.field(&self.dgps_age)?;
+        w.field(&self.dgps_station)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -12,7 +12,8 @@ use crate::enums::{PosMode, Status};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, Time, WireWriter,
+    ByteWriter, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, Time,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -122,6 +123,18 @@ impl<'a> Layout<'a> for Gll<'a> {
             w.field(&self.mode)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.time)?;
+        w.field(&self.status)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

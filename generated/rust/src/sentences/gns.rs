@@ -13,8 +13,8 @@ use crate::enums::{NavStatus, PosMode};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, CodeChars, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number,
-    Range, Read, Shape, Time, WireWriter,
+    Bound, ByteWriter, Checksum, Code, CodeChars, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout,
+    Number, Range, Read, Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -166,6 +166,24 @@ impl<'a> Layout<'a> for Gns<'a> {
             w.field(&self.nav_status)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.mode)?;
+        w.field(&self.satellites)?;
+        w.field(&self.hdop)?;
+        w.field(&self.altitude)?;
+        w.field(&self.geoid_separation)?;
+        w.field(&self.dgps_age)?;
+        w.field(&self.dgps_station)?;
+        if self.trailing >= 1 {
+            w.field(&self.nav_status)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -351,6 +369,23 @@ impl<'a> Layout<'a> for GnsAux<'a> {
             w.field(&self.nav_status)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.satellites)?;
+        w.field(&self.hdop)?;
+        w.field(&self.altitude)?;
+        w.field(&self.geoid_separation)?;
+        w.field(&self.dgps_age)?;
+        w.field(&self.dgps_station)?;
+        if self.trailing >= 1 {
+            w.field(&self.nav_status)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

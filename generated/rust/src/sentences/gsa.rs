@@ -14,8 +14,8 @@ use crate::enums::{GsaFixType, GsaSelectionMode, SystemId};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number,
+    Range, Read, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -146,6 +146,20 @@ impl<'a> Layout<'a> for Gsa<'a> {
             w.field(&self.system_id)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.selection_mode)?;
+        w.field(&self.fix_type)?;
+        w.fields(&self.prns)?;
+        w.field(&self.pdop)?;
+        w.field(&self.hdop)?;
+        w.field(&self.vdop)?;
+        if self.trailing >= 1 {
+            w.field(&self.system_id)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -294,6 +308,17 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         w.field(&self.hdop)?;
         w.field(&self.vdop)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.selection_mode)?;
+        w.field(&self.fix_type)?;
+        w.fields(&self.prns)?;
+        w.field(&self.pdop)?;
+        w.field(&self.hdop)?;
+        w.field(&self.vdop)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

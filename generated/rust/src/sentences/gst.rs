@@ -12,7 +12,8 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, Time, WireWriter,
+    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, Time,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -123,6 +124,19 @@ impl<'a> Layout<'a> for Gst<'a> {
         w.field(&self.lon_std)?;
         w.field(&self.alt_std)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.rms)?;
+        w.field(&self.semi_major_std)?;
+        w.field(&self.semi_minor_std)?;
+        w.field(&self.orientation)?;
+        w.field(&self.lat_std)?;
+        w.field(&self.lon_std)?;
+        w.field(&self.alt_std)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

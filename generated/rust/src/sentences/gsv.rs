@@ -13,8 +13,8 @@ use crate::enums::SignalId;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range,
-    Read, Reader, Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout,
+    Number, Range, Read, Reader, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -63,6 +63,14 @@ impl GsvSatellite {
         w.field(&self.azimuth)?;
         w.field(&self.snr)?;
         Ok(())
+    }
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.prn)?;
+        w.field(&self.elevation)?;
+        w.field(&self.azimuth)?;
+        w.field(&self.snr)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -199,6 +207,20 @@ impl<'a> Layout<'a> for Gsv<'a> {
             w.field(&self.signal_id)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.message_count)?;
+        w.field(&self.message_number)?;
+        w.field(&self.satellites_in_view)?;
+        for entry in &self.satellites {
+            entry.put_fields(w)?;
+        }
+        if self.trailing >= 1 {
+            w.field(&self.signal_id)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -11,7 +11,8 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, WireWriter,
+    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -87,6 +88,13 @@ impl<'a> Layout<'a> for Hdt<'a> {
         w.field(&self.heading)?;
         w.field(&self.heading_ref)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.heading)?;
+        w.field(&self.heading_ref)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -16,8 +16,8 @@ use crate::enums::{SirfBaud, SirfParity};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -107,6 +107,15 @@ impl<'a> Layout<'a> for Psrf102<'a> {
         w.field(&self.stop_bits)?;
         w.field(&self.parity)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.baud)?;
+        w.field(&self.data_bits)?;
+        w.field(&self.stop_bits)?;
+        w.field(&self.parity)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -15,8 +15,8 @@ use crate::enums::{SirfChecksumEnable, SirfNmeaMessage, SirfRateMode};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -108,6 +108,15 @@ impl<'a> Layout<'a> for Psrf103<'a> {
         w.field(&self.rate)?;
         w.field(&self.checksum_mode)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.message)?;
+        w.field(&self.mode)?;
+        w.field(&self.rate)?;
+        w.field(&self.checksum_mode)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

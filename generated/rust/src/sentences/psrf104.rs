@@ -13,7 +13,8 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -141,6 +142,19 @@ impl<'a> Layout<'a> for Psrf104 {
         w.field(&self.channels)?;
         w.field(&self.reset_cfg)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.latitude)?;
+        w.field(&self.longitude)?;
+        w.field(&self.altitude)?;
+        w.field(&self.clock_offset)?;
+        w.field(&self.time_of_week)?;
+        w.field(&self.week)?;
+        w.field(&self.channels)?;
+        w.field(&self.reset_cfg)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

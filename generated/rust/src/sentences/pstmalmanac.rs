@@ -11,7 +11,8 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Error, FastReader, Fields, Framing, GroupShape, JsonFields, Layout, Read, Shape, Texts, WireWriter,
+    ByteWriter, Checksum, Error, FastReader, Fields, Framing, GroupShape, JsonFields, Layout, Read, Shape, Texts,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -80,6 +81,12 @@ impl<'a> Layout<'a> for Pstmalmanac<'a> {
     fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
         w.texts(&self.values)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.texts(&self.values)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

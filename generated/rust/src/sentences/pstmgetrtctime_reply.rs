@@ -13,7 +13,8 @@ use crate::enums::{TeseoRtcStatus, TeseoTimeValidity};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, Time, WireWriter,
+    ByteWriter, Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, Time,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -94,6 +95,15 @@ impl<'a> Layout<'a> for PstmgetrtctimeReply<'a> {
         w.field(&self.rtc_status)?;
         w.field(&self.time_validity)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.date)?;
+        w.field(&self.rtc_status)?;
+        w.field(&self.time_validity)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -11,7 +11,9 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// PSTMGETSWVER: Get software version.
@@ -76,6 +78,11 @@ impl<'a> Layout<'a> for Pstmgetswver {
 
     fn write_fields<W: fmt::Write + ?Sized>(&self, _w: &mut WireWriter<'_, W>) -> fmt::Result {
         Ok(())
+    }
+
+
+    fn put_fields(&self, _w: &mut ByteWriter<'_>) -> Option<()> {
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, _j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -13,7 +13,9 @@ use core::fmt;
 use crate::enums::TeseoNmeaOnOff;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// PSTMNMEAONOFF: NMEA output on/off.
@@ -96,6 +98,14 @@ impl<'a> Layout<'a> for Pstmnmeaonoff<'a> {
             w.field(&self.on_off)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        if self.trailing >= 1 {
+            w.field(&self.on_off)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

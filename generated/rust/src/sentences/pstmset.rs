@@ -14,7 +14,8 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -90,6 +91,13 @@ impl<'a> Layout<'a> for Pstmset<'a> {
         w.field(&self.block_param)?;
         w.field(&self.value)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.block_param)?;
+        w.field(&self.value)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -202,6 +210,16 @@ impl<'a> Layout<'a> for PstmsetDop {
         w.field(&self.hdop)?;
         w.field(&self.gdop)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.block_param)?;
+        w.field(&self.pdop)?;
+        w.field(&self.vdop)?;
+        w.field(&self.hdop)?;
+        w.field(&self.gdop)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -17,8 +17,8 @@ use crate::enums::TeseoSetparMode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -128,6 +128,16 @@ impl<'a> Layout<'a> for Pstmsetpar<'a> {
             w.field(&self.mode)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.block_param)?;
+        w.field(&self.value)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -259,6 +269,19 @@ impl<'a> Layout<'a> for PstmsetparDop<'a> {
             w.field(&self.mode)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.block_param)?;
+        w.field(&self.pdop)?;
+        w.field(&self.vdop)?;
+        w.field(&self.hdop)?;
+        w.field(&self.gdop)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

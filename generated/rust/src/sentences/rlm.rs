@@ -12,7 +12,8 @@ use crate::enums::RlmMessageCode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Code, Error, FastReader, Fields, Framing, Hex, JsonFields, Layout, Read, Shape, Time, WireWriter,
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Hex, JsonFields, Layout, Read, Shape, Time,
+    WireWriter,
 };
 use crate::LayoutId;
 
@@ -106,6 +107,15 @@ impl<'a> Layout<'a> for Rlm<'a> {
         w.field(&self.message_code)?;
         w.field(&self.message_body)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.beacon_id)?;
+        w.field(&self.time)?;
+        w.field(&self.message_code)?;
+        w.field(&self.message_body)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -13,8 +13,8 @@ use crate::enums::{NavStatus, PosMode, RmcMagVarDir, Status};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Coordinate, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range,
-    Read, Shape, Time, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Coordinate, Date, Error, FastReader, Fields, Framing, JsonFields, Layout,
+    Number, Range, Read, Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -168,6 +168,26 @@ impl<'a> Layout<'a> for Rmc<'a> {
             w.field(&self.nav_status)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.status)?;
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.speed)?;
+        w.field(&self.course)?;
+        w.field(&self.date)?;
+        w.field(&self.mag_var)?;
+        w.field(&self.mag_var_dir)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        if self.trailing >= 2 {
+            w.field(&self.nav_status)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

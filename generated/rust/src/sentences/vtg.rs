@@ -13,8 +13,8 @@ use crate::enums::PosMode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -151,6 +151,22 @@ impl<'a> Layout<'a> for Vtg<'a> {
             w.field(&self.mode)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.course_true)?;
+        w.field(&self.course_true_ref)?;
+        w.field(&self.course_magnetic)?;
+        w.field(&self.course_magnetic_ref)?;
+        w.field(&self.speed_knots)?;
+        w.field(&self.speed_knots_unit)?;
+        w.field(&self.speed_kmh)?;
+        w.field(&self.speed_kmh_unit)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -11,8 +11,8 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, Time,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -119,6 +119,17 @@ impl<'a> Layout<'a> for Zda<'a> {
         w.field(&self.local_zone_hours)?;
         w.field(&self.local_zone_minutes)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.day)?;
+        w.field(&self.month)?;
+        w.field(&self.year)?;
+        w.field(&self.local_zone_hours)?;
+        w.field(&self.local_zone_minutes)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
