@@ -17,7 +17,7 @@ from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, T
 from .rust_features import Gates, cfg, with_cfg
 
 CRATE = "nmeaspec"
-RUNTIME_MODULES = ["mod", "error", "frame", "layout", "serialize", "stream", "table", "types", "write", "json"]
+RUNTIME_MODULES = ["mod", "error", "fast", "frame", "layout", "serialize", "stream", "table", "types", "write", "json"]
 
 # Expected texts the runtime's readers hold for the types whose description is fixed.
 FIXED_EXPECTED = {
@@ -47,6 +47,7 @@ RUNTIME_NAMES = {
     "JsonFields", "Layout", "Name", "Number", "Range", "Reader", "Shape", "GroupShape", "Time", "WireWriter",
     "Sentence", "Generic", "LayoutId", "Frame", "Option", "Result", "Self", "Framing", "Kind", "Parameter",
     "Table", "Encoding", "Texts", "Parsed", "Options", "Problems", "FieldProblem", "Blanks", "Framer", "Item",
+    "FastReader", "Read", "Unsure", "ByteWriter",
 }
 
 
@@ -185,6 +186,26 @@ def read_call(f: Field) -> tuple[str, list[str]]:
     return "f.code_chars", [name, max_len(f.max_length)]
 
 
+def fast_call(f: Field) -> tuple[str, list[str]]:
+    """The fast path's reader call that takes field `f` from `f` (a FastReader, see
+    runtime/fast.rs): read_call without the names and texts that errors need."""
+    t = f.type
+    if t in FIXED_EXPECTED:
+        return f"f.{t}", []
+    if t in ("integer", "decimal"):
+        return f"f.{t}", [range_expr(f)]
+    if t == "literal":
+        return "f.literal", [rust_str(f.value or "")]
+    if t == "text":
+        return "f.text", [max_len(f.max_length)]
+    if t == "keyword":
+        return "f.keyword", [rust_str(f.value or "")]
+    assert f.enum is not None
+    if t == "enum":
+        return "f.code", []
+    return "f.code_chars", [max_len(f.max_length)]
+
+
 # ---------------------------------------------------------------------------------------------
 # Formatting: the statements come out as rustfmt would write them (templates/rust/rustfmt.toml:
 # max_width 120, use_small_heuristics Max), so that `cargo fmt --check` passes on the crate.
@@ -218,6 +239,18 @@ def fmt_group_read(indent: int, target: str, group: str, callee: str, args: list
     if all(len(line) <= WIDTH for line in lines):
         return lines
     return [f"{pad}f.group_into(", f"{pad}    &mut out.{target},", f"{pad}    {group},", f"{pad}    repeats,",
+            *fmt_call(indent + 4, "|f| ", callee, args, ",", False), f"{pad})?;"]
+
+
+def fmt_fast_group_read(indent: int, target: str, callee: str, args: list[str]) -> list[str]:
+    """`f.group_into(&mut self.target, repeats, |f| callee(args))?;` of a fast reader, as
+    rustfmt writes it (see fmt_group_read)."""
+    pad = " " * indent
+    body = f"{callee}({', '.join(args)})"
+    lines = fmt_call(indent, "", "f.group_into", [f"&mut self.{target}", "repeats", f"|f| {body}"], "?;", False)
+    if all(len(line) <= WIDTH for line in lines):
+        return lines
+    return [f"{pad}f.group_into(", f"{pad}    &mut self.{target},", f"{pad}    repeats,",
             *fmt_call(indent + 4, "|f| ", callee, args, ",", False), f"{pad})?;"]
 
 
@@ -265,6 +298,19 @@ def fmt_arm(indent: int, pattern: str, value: str) -> list[str]:
         return [f"{pad}{pattern} => {call})", f"{pad}    .map({rest},"]
     callee, _, arg = value.partition("(")
     return [f"{pad}{pattern} => {callee}(", f"{pad}    {arg[:-1]},", f"{pad}),"]
+
+
+def fmt_fast_arm(indent: int, pattern: str, layouts: list[str]) -> list[str]:
+    """The match arm of the fast path's dispatch (lib.rs `read_sentence`) for an address with
+    `layouts`: its first layout's reader, given the others."""
+    pad = " " * indent
+    rest = [f"LayoutId::{n}" for n in layouts[1:]]
+    call = f"read_layout::<{layouts[0]}, O>"
+    one = f"{pad}{pattern} => {call}(fields, line, &[{', '.join(rest)}]),"
+    if len(one) <= WIDTH:
+        return [one]
+    return [f"{pad}{pattern} => {call}(", f"{pad}    fields,", f"{pad}    line,",
+            *fmt_slice(indent + 4, "", rest, ","), f"{pad}),"]
 
 
 def fmt_const_slice(indent: int, decl: str, items: list[str]) -> list[str]:
@@ -483,7 +529,9 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.texts",
                                 [rust_str(g.id), rust_str(f.id), "repeats", rust_str(f.expected), max_len(f.max_length)],
                                 "?;", True)
-                items.append({"kind": "texts", "group": g, "ident": ident(g.id), "read": read, "optional": None,
+                fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.texts", ["repeats", max_len(f.max_length)], "?;", True)
+                items.append({"kind": "texts", "group": g, "ident": ident(g.id), "read": read, "fast": fast,
+                              "optional": None,
                               "type": "Texts<'a>", "width": 1,
                               "doc": doc_lines(f"{g.name}: {g.min} to {g.max} values of {f.name.lower()}, as "
                                                f"received: {f.doc}", 92)})
@@ -491,8 +539,10 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 f = g.fields[0]
                 callee, args = read_call(f)
                 read = fmt_group_read(8, ident(g.id), rust_str(g.id), callee, args)
+                fast = fmt_fast_group_read(8, ident(g.id), *fast_call(f))
                 unit = f" [{f.unit}]" if f.unit else ""
-                items.append({"kind": "values", "group": g, "ident": ident(g.id), "read": read, "optional": None,
+                items.append({"kind": "values", "group": g, "ident": ident(g.id), "read": read, "fast": fast,
+                              "optional": None,
                               "type": f"Group<Option<{base_type(f)}>, {g.max}>", "width": f.wire_width,
                               "doc": doc_lines(f"{g.name}: {g.min} to {g.max} values of {f.name.lower()}{unit}: "
                                                f"{f.doc}", 92) + bits_doc(f)})
@@ -501,11 +551,16 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 fields = [field_view(f, 12, f"{ident(f.id)}: ", "?,", False) for f in g.fields]
                 lifetime = any(borrows(f) for f in g.fields)
                 entry_type = entry + ("<'a>" if lifetime else "")
+                read_fast = [line for f in g.fields
+                             for line in fmt_call(8, f"self.{ident(f.id)} = ", *fast_call(f), "?;", True)]
                 entries.append({"name": entry, "group": g, "fields": fields, "lifetime": lifetime,
-                                "type": entry_type, "read": entry_read(fields)})
+                                "type": entry_type, "read": entry_read(fields), "read_fast": read_fast})
                 read = fmt_call(8, "", "f.group_into",
                                 [f"&mut out.{ident(g.id)}", rust_str(g.id), "repeats", f"{entry}::read"], "?;", False)
+                fast = fmt_call(8, "", "f.entries_into", [f"&mut self.{ident(g.id)}", "repeats", f"{entry}::read_fast"],
+                                "?;", False)
                 items.append({"kind": "entries", "group": g, "ident": ident(g.id), "entry": entry, "read": read,
+                              "fast": fast,
                               "optional": None, "lifetime": lifetime,
                               "type": f"Group<{entry_type}, {g.max}>",
                               "doc": doc_lines(f"{g.name}: {g.min} to {g.max} entries.", 92)})
@@ -519,10 +574,12 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         if item.type == "keyword":
             callee, args = read_call(item)
             view = {"field": item, "ident": ident(item.id), "read": fmt_call(indent, "", callee, args, "?;", False),
+                    "fast": fmt_call(indent, "", *fast_call(item), "?;", False),
                     "width": 1, "word": rust_str(item.value or "")}
             view["kind"] = "keyword"
         else:
             view = field_view(item, indent, f"out.{ident(item.id)} = ", "?;", True)
+            view["fast"] = fmt_call(indent, f"self.{ident(item.id)} = ", *fast_call(item), "?;", True)
             view["kind"] = "field"
         view["optional"] = optional
         items.append(view)
@@ -549,6 +606,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     init = [f"        let {'mut ' if assigned else ''}out = Self {{ "
             + ", ".join(framing_members + (["..Self::default()"] if assigned else [])) + " };"]
     assert len(init[0]) <= WIDTH
+    fast = [] if text else fast_reader(sentence, items)
     lifetime = (not sentence.is_proprietary or text
                 or any(it["kind"] in ("field", "values") and borrows(it["field"] if it["kind"] == "field"
                                                                      else it["group"].fields[0])
@@ -586,6 +644,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         "words": fmt_const_slice(4, "const WORDS: &'static [(&'static str, usize)]",
                                  [f"({rust_str(it['field'].id)}, {it['width']})" for it in items]) if text else [],
         "init": init,
+        "fast": fast,
         "reader": fmt_const(8, "let mut f", reader) if items else [],
         "checksum_arg": "_checksum" if text else "checksum",
         "keywords": doc_lines("Keywords (fixed words, not members: parsing checks them, writing puts them "
@@ -595,7 +654,24 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         "display_doc": "The command's words separated by single spaces; no line ending." if text else
         "The sentence text, checksum included unless it is `Checksum::None`; no line ending.",
         "selector": layout.selector,
+        "text": text,
     }
+
+
+def fast_reader(sentence: Sentence, items: list[dict]) -> list[str]:
+    """The body of a layout's fast reader (`read_fast`, see runtime/fast.rs): each member read
+    into the default struct where it is."""
+    lines = ["        self.talker = f.talker()?;"] if not sentence.is_proprietary else []
+    lines.append("        self.checksum = Checksum::Upper;")
+    for it in items:
+        optional = it["optional"]
+        if not optional:
+            lines += it["fast"]
+            continue
+        lines += [f"        if extra >= {optional['wire']} {{", *it["fast"],
+                  f"            self.trailing = {optional['index']};", "        }"]
+    lines.append("        f.end()")
+    return lines
 
 
 def bits_doc(f: Field) -> list[str]:
@@ -628,6 +704,8 @@ def module_imports(views: list[dict]) -> list[str]:
             runtime.add("Texts")
         if view["entries"]:
             runtime.add("Reader")
+        if not view["text"]:
+            runtime |= {"ByteWriter", "FastReader", "Read"}
         fields = [it["field"] for it in view["items"] if it["kind"] == "field"]
         fields += [it["group"].fields[0] for it in view["items"] if it["kind"] == "values"]
         fields += [fv["field"] for e in view["entries"] for fv in e["fields"]]
@@ -859,6 +937,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         files[f"{base}/src/runtime/{module}.rs"] = header(spec, "//", [source]) + "\n" + text
     tool = (TEMPLATES / "rust" / "nmea-rs.rs").read_text(encoding="utf-8")
     files[f"{base}/src/bin/nmea-rs.rs"] = header(spec, "//", ["templates/rust/nmea-rs.rs"]) + "\n" + tool
+    fast_path = (TEMPLATES / "rust" / "fast_path.rs").read_text(encoding="utf-8")
+    files[f"{base}/tests/fast_path.rs"] = header(spec, "//", ["templates/rust/fast_path.rs"]) + "\n" + fast_path
 
     gates = Gates(spec)
     layouts = []
@@ -876,9 +956,10 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             reply_names = [r.layout_camel(lay) for r in s.replies for lay in r.layouts]
             parse_arm = with_cfg(12, gate, fmt_arm(
                 12, f"Self::{name}", f"{name}::parse_fields(fields, checksum).map(Sentence::{name})"))
+            fast_arm = with_cfg(8, gate, fmt_arm(8, f"LayoutId::{name}", f"read_layout::<{name}, O>(fields, line, rest)"))
             layouts.append({
                 "sentence": s, "name": name, "layout": view["layout"], "title": view["title"], "type": view["type"],
-                "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm, "cfg": gate,
+                "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm, "fast_arm": fast_arm, "cfg": gate,
                 "framing_arm": with_cfg(12, gate, fmt_arm(12, f"Self::{name}", framing_expr(s))),
                 "replies_arm": with_cfg(12, gate, fmt_slice(12, f"Self::{name} => ", [f"Self::{r}" for r in reply_names],
                                                             ",")),
@@ -930,17 +1011,25 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     # standard sentences, the others on their own.
     proprietary_arms: list[str] = []
     standard_like_arms: list[str] = []
+    proprietary_fast_arms: list[str] = []
+    standard_like_fast_arms: list[str] = []
     for address in sorted({s.address for s in spec.proprietary if s.framing == "sentence" and s.address}):
         owners = spec.by_address(address)
         names = [s.layout_camel(lay) for s, lay in owners]
         standard_like = len(address) == 5 and not address.startswith("P")
         arms = standard_like_arms if standard_like else proprietary_arms
-        arms += with_cfg(12, cfg({s.vendor for s, _ in owners if s.vendor}),
-                         fmt_slice(12, f"{rust_str(address)} => ", [f"LayoutId::{n}" for n in names], ","))
+        indent = 12 if standard_like else 8
+        gate = cfg({s.vendor for s, _ in owners if s.vendor})
+        arms += with_cfg(indent, gate,
+                         fmt_slice(indent, f"b{rust_str(address)} => ", [f"LayoutId::{n}" for n in names], ","))
+        fast_arms = standard_like_fast_arms if standard_like else proprietary_fast_arms
+        fast_arms += with_cfg(indent, gate, fmt_fast_arm(indent, f"b{rust_str(address)}", names))
     standard_arms: list[str] = []
+    standard_fast_arms: list[str] = []
     for s in spec.standard:
         standard_arms += fmt_slice(8, f'b"{s.id}" => ', [f"LayoutId::{s.layout_camel(lay)}" for lay in s.layouts],
                                    ",")
+        standard_fast_arms += fmt_fast_arm(8, f'b"{s.id}"', [s.layout_camel(lay) for lay in s.layouts])
     text_commands = []
     for word in sorted({(s.address or "").upper() for s in spec.proprietary if s.framing == "text"}):
         owners = spec.text_command(word)
@@ -953,10 +1042,11 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/src/lib.rs"] = env.get_template("rust/lib.rs.j2").render(
         header=header(spec, "//"), spec=spec, layouts=layouts, example=first, command=command_example(spec),
         unit_examples=unit_examples, proprietary_arms=proprietary_arms, standard_arms=standard_arms,
-        standard_like_arms=standard_like_arms,
+        standard_like_arms=standard_like_arms, standard_fast_arms=standard_fast_arms,
+        proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands,
         runtime_uses=fmt_use("runtime", rust_sorted(
-            {"first_word", "is_standard_address", "strip_line_ending", "upper_eq"})),
+            {"first_word", "strip_line_ending", "upper_eq", "FastReader", "Unsure"})),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],

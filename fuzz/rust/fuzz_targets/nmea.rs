@@ -4,6 +4,9 @@
 //!   refuse it exactly when it has none (text commands never need one);
 //! - a line kept only by lenient parsing must still write back to exactly its bytes, and its
 //!   JSON (problems included) must encode back to them;
+//! - the fast path of `parse` and `parse_with` must give exactly what the general path alone gives
+//!   (`parse_general`, `parse_with_general`), with every option;
+//! - `serialize_into` must write those same bytes, and give `None` for a buffer a byte short;
 //! - JSON that encodes to a sentence must parse again (leniently);
 //! - the stream framer must cut the input into the same items as a byte-at-a-time model of the
 //!   Python reference's Framer, whether it gets the input whole or in chunks of sizes derived
@@ -18,6 +21,14 @@ const LENIENT: Options = Options { lenient: true, require_checksum: false };
 const REQUIRED: Options = Options { lenient: false, require_checksum: true };
 
 fn as_line(data: &[u8]) {
+    assert_eq!(nmeaspec::parse(data), nmeaspec::parse_general(data), "the fast path disagrees with the general path");
+    for options in [LENIENT, REQUIRED, Options { lenient: true, require_checksum: true }] {
+        assert_eq!(
+            nmeaspec::parse_with(data, options),
+            nmeaspec::parse_with_general(data, options),
+            "the fast path disagrees with the general path ({options:?})"
+        );
+    }
     let _ = nmeaspec::decode_json(data, true);
     if data.ends_with(b"\n") {
         return; // parse() drops one line ending: the round trip is checked without it
@@ -26,6 +37,7 @@ fn as_line(data: &[u8]) {
         if let Ok(parsed) = nmeaspec::parse_with(data, LENIENT) {
             assert!(!parsed.problems.is_empty(), "lenient parsing kept a line strict parsing refused, without problems");
             assert_eq!(parsed.to_string().as_bytes(), data, "lenient round trip changed the line");
+            assert_serialized(|buf| parsed.serialize_into(buf), data);
             let _ = parsed.to_json(true);
             let json = parsed.to_json(false);
             assert_eq!(nmeaspec::encode_json(json.as_bytes()).as_bytes(), data, "JSON with problems changed the line");
@@ -34,6 +46,7 @@ fn as_line(data: &[u8]) {
     };
     let text = sentence.to_string();
     assert_eq!(text.as_bytes(), data, "round trip changed the line");
+    assert_serialized(|buf| sentence.serialize_into(buf), data);
     let json = sentence.to_json(false);
     let _ = sentence.to_json(true);
     assert_eq!(nmeaspec::encode_json(json.as_bytes()).as_bytes(), data, "JSON round trip changed the line");
@@ -52,6 +65,15 @@ fn as_line(data: &[u8]) {
             assert!(no_checksum && !text_command, "a checksum was asked of a sentence that has one");
         }
     }
+}
+
+/// `serialize` writes exactly `data` into a buffer with room to spare, and nothing into one a
+/// byte short.
+fn assert_serialized(serialize: impl Fn(&mut [u8]) -> Option<usize>, data: &[u8]) {
+    let mut buf = [0u8; nmeaspec::runtime::MAX_LINE + 64];
+    let written = serialize(&mut buf).expect("serialize_into wrote nothing");
+    assert_eq!(&buf[..written], data, "serialize_into changed the line");
+    assert_eq!(serialize(&mut buf[..written - 1]), None, "serialize_into wrote into a buffer too small");
 }
 
 fn as_json(data: &[u8]) {

@@ -57,16 +57,20 @@ impl CodeEnum for ComnavLogMessage {
     ];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "GPGGA" => Some(Self::Gpgga),
-            "GPGLL" => Some(Self::Gpgll),
-            "GPGSA" => Some(Self::Gpgsa),
-            "GPGST" => Some(Self::Gpgst),
-            "GPGSV" => Some(Self::Gpgsv),
-            "GPHDT" => Some(Self::Gphdt),
-            "GPRMC" => Some(Self::Gprmc),
-            "GPVTG" => Some(Self::Gpvtg),
-            "GPZDA" => Some(Self::Gpzda),
+            b"GPGGA" => Some(Self::Gpgga),
+            b"GPGLL" => Some(Self::Gpgll),
+            b"GPGSA" => Some(Self::Gpgsa),
+            b"GPGST" => Some(Self::Gpgst),
+            b"GPGSV" => Some(Self::Gpgsv),
+            b"GPHDT" => Some(Self::Gphdt),
+            b"GPRMC" => Some(Self::Gprmc),
+            b"GPVTG" => Some(Self::Gpvtg),
+            b"GPZDA" => Some(Self::Gpzda),
             _ => None,
         }
     }
@@ -133,13 +137,17 @@ impl CodeEnum for ComnavTalkerId {
     const ALL: &'static [Self] = &[Self::Gn, Self::Gp, Self::Bd, Self::Gl, Self::Ga, Self::Auto];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "GN" => Some(Self::Gn),
-            "GP" => Some(Self::Gp),
-            "BD" => Some(Self::Bd),
-            "GL" => Some(Self::Gl),
-            "GA" => Some(Self::Ga),
-            "AUTO" => Some(Self::Auto),
+            b"GN" => Some(Self::Gn),
+            b"GP" => Some(Self::Gp),
+            b"BD" => Some(Self::Bd),
+            b"GL" => Some(Self::Gl),
+            b"GA" => Some(Self::Ga),
+            b"AUTO" => Some(Self::Auto),
             _ => None,
         }
     }
@@ -207,17 +215,21 @@ impl CodeEnum for ComnavTalkerSentence {
         &[Self::Gga, Self::Gsa, Self::Gsv, Self::Gst, Self::Zda, Self::Hdt, Self::Rmc, Self::Vtg, Self::Gll, Self::All];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "GGA" => Some(Self::Gga),
-            "GSA" => Some(Self::Gsa),
-            "GSV" => Some(Self::Gsv),
-            "GST" => Some(Self::Gst),
-            "ZDA" => Some(Self::Zda),
-            "HDT" => Some(Self::Hdt),
-            "RMC" => Some(Self::Rmc),
-            "VTG" => Some(Self::Vtg),
-            "GLL" => Some(Self::Gll),
-            "ALL" => Some(Self::All),
+            b"GGA" => Some(Self::Gga),
+            b"GSA" => Some(Self::Gsa),
+            b"GSV" => Some(Self::Gsv),
+            b"GST" => Some(Self::Gst),
+            b"ZDA" => Some(Self::Zda),
+            b"HDT" => Some(Self::Hdt),
+            b"RMC" => Some(Self::Rmc),
+            b"VTG" => Some(Self::Vtg),
+            b"GLL" => Some(Self::Gll),
+            b"ALL" => Some(Self::All),
             _ => None,
         }
     }
@@ -278,12 +290,16 @@ impl CodeEnum for DtmDatum {
     const ALL: &'static [Self] = &[Self::Wgs84, Self::Wgs72, Self::Sgs85, Self::Pz90, Self::UserDefined];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "W84" => Some(Self::Wgs84),
-            "W72" => Some(Self::Wgs72),
-            "S85" => Some(Self::Sgs85),
-            "P90" => Some(Self::Pz90),
-            "999" => Some(Self::UserDefined),
+            b"W84" => Some(Self::Wgs84),
+            b"W72" => Some(Self::Wgs72),
+            b"S85" => Some(Self::Sgs85),
+            b"P90" => Some(Self::Pz90),
+            b"999" => Some(Self::UserDefined),
             _ => None,
         }
     }
@@ -328,9 +344,13 @@ impl CodeEnum for DtmLatOffsetDir {
     const ALL: &'static [Self] = &[Self::North, Self::South];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "N" => Some(Self::North),
-            "S" => Some(Self::South),
+            b"N" => Some(Self::North),
+            b"S" => Some(Self::South),
             _ => None,
         }
     }
@@ -369,9 +389,13 @@ impl CodeEnum for DtmLonOffsetDir {
     const ALL: &'static [Self] = &[Self::East, Self::West];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "E" => Some(Self::East),
-            "W" => Some(Self::West),
+            b"E" => Some(Self::East),
+            b"W" => Some(Self::West),
             _ => None,
         }
     }
@@ -613,65 +637,69 @@ impl CodeEnum for Geos5CommandWord {
     ];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "SWPROT" => Some(Self::SwitchToBinary),
-            "SAVEFL" => Some(Self::SaveAlmanacs),
-            "CSTART" => Some(Self::ColdStart),
-            "WSTART" => Some(Self::WarmStart),
-            "HSTART" => Some(Self::HotStart),
-            "BDR004" => Some(Self::Baud4800),
-            "BDR009" => Some(Self::Baud9600),
-            "BDR019" => Some(Self::Baud19200),
-            "BDR038" => Some(Self::Baud38400),
-            "BDR057" => Some(Self::Baud57600),
-            "BDR115" => Some(Self::Baud115200),
-            "BDR230" => Some(Self::Baud230400),
-            "BDR460" => Some(Self::Baud460800),
-            "BDR921" => Some(Self::Baud921600),
-            "STOP01" => Some(Self::StopBits1),
-            "STOP02" => Some(Self::StopBits2),
-            "GGA ON" => Some(Self::GgaGnsOn),
-            "GGAOFF" => Some(Self::GgaGnsOff),
-            "GLL ON" => Some(Self::GllOn),
-            "GLLOFF" => Some(Self::GllOff),
-            "GSA ON" => Some(Self::GsaOn),
-            "GSAOFF" => Some(Self::GsaOff),
-            "GSV ON" => Some(Self::GsvOn),
-            "GSVOFF" => Some(Self::GsvOff),
-            "RMC ON" => Some(Self::RmcOn),
-            "RMCOFF" => Some(Self::RmcOff),
-            "VTG ON" => Some(Self::VtgOn),
-            "VTGOFF" => Some(Self::VtgOff),
-            "ZDA ON" => Some(Self::ZdaOn),
-            "ZDAOFF" => Some(Self::ZdaOff),
-            "DTM ON" => Some(Self::DtmOn),
-            "DTMOFF" => Some(Self::DtmOff),
-            "RLM ON" => Some(Self::RlmOn),
-            "RLMOFF" => Some(Self::RlmOff),
-            "NMEAV2" => Some(Self::NmeaV2),
-            "NMEAV4" => Some(Self::NmeaV410),
-            "RATE01" => Some(Self::Rate1hz),
-            "RATE02" => Some(Self::Rate2hz),
-            "RATE05" => Some(Self::Rate5hz),
-            "RATE10" => Some(Self::Rate10hz),
-            "PSM ON" => Some(Self::PowerSavingOn),
-            "PSMOFF" => Some(Self::PowerSavingOff),
-            "ELEV05" => Some(Self::ElevationMask5),
-            "ELEV06" => Some(Self::ElevationMask6),
-            "ELEV07" => Some(Self::ElevationMask7),
-            "ELEV08" => Some(Self::ElevationMask8),
-            "ELEV09" => Some(Self::ElevationMask9),
-            "ELEV10" => Some(Self::ElevationMask10),
-            "ELEV11" => Some(Self::ElevationMask11),
-            "ELEV12" => Some(Self::ElevationMask12),
-            "ELEV13" => Some(Self::ElevationMask13),
-            "ELEV14" => Some(Self::ElevationMask14),
-            "ELEV15" => Some(Self::ElevationMask15),
-            "DATP90" => Some(Self::DatumPz90),
-            "DATW84" => Some(Self::DatumWgs84),
-            "NVSGPS" => Some(Self::GpsOnly),
-            "NVSGLN" => Some(Self::GlonassOnly),
-            "NVSMIX" => Some(Self::GlonassGpsGalileo),
+            b"SWPROT" => Some(Self::SwitchToBinary),
+            b"SAVEFL" => Some(Self::SaveAlmanacs),
+            b"CSTART" => Some(Self::ColdStart),
+            b"WSTART" => Some(Self::WarmStart),
+            b"HSTART" => Some(Self::HotStart),
+            b"BDR004" => Some(Self::Baud4800),
+            b"BDR009" => Some(Self::Baud9600),
+            b"BDR019" => Some(Self::Baud19200),
+            b"BDR038" => Some(Self::Baud38400),
+            b"BDR057" => Some(Self::Baud57600),
+            b"BDR115" => Some(Self::Baud115200),
+            b"BDR230" => Some(Self::Baud230400),
+            b"BDR460" => Some(Self::Baud460800),
+            b"BDR921" => Some(Self::Baud921600),
+            b"STOP01" => Some(Self::StopBits1),
+            b"STOP02" => Some(Self::StopBits2),
+            b"GGA ON" => Some(Self::GgaGnsOn),
+            b"GGAOFF" => Some(Self::GgaGnsOff),
+            b"GLL ON" => Some(Self::GllOn),
+            b"GLLOFF" => Some(Self::GllOff),
+            b"GSA ON" => Some(Self::GsaOn),
+            b"GSAOFF" => Some(Self::GsaOff),
+            b"GSV ON" => Some(Self::GsvOn),
+            b"GSVOFF" => Some(Self::GsvOff),
+            b"RMC ON" => Some(Self::RmcOn),
+            b"RMCOFF" => Some(Self::RmcOff),
+            b"VTG ON" => Some(Self::VtgOn),
+            b"VTGOFF" => Some(Self::VtgOff),
+            b"ZDA ON" => Some(Self::ZdaOn),
+            b"ZDAOFF" => Some(Self::ZdaOff),
+            b"DTM ON" => Some(Self::DtmOn),
+            b"DTMOFF" => Some(Self::DtmOff),
+            b"RLM ON" => Some(Self::RlmOn),
+            b"RLMOFF" => Some(Self::RlmOff),
+            b"NMEAV2" => Some(Self::NmeaV2),
+            b"NMEAV4" => Some(Self::NmeaV410),
+            b"RATE01" => Some(Self::Rate1hz),
+            b"RATE02" => Some(Self::Rate2hz),
+            b"RATE05" => Some(Self::Rate5hz),
+            b"RATE10" => Some(Self::Rate10hz),
+            b"PSM ON" => Some(Self::PowerSavingOn),
+            b"PSMOFF" => Some(Self::PowerSavingOff),
+            b"ELEV05" => Some(Self::ElevationMask5),
+            b"ELEV06" => Some(Self::ElevationMask6),
+            b"ELEV07" => Some(Self::ElevationMask7),
+            b"ELEV08" => Some(Self::ElevationMask8),
+            b"ELEV09" => Some(Self::ElevationMask9),
+            b"ELEV10" => Some(Self::ElevationMask10),
+            b"ELEV11" => Some(Self::ElevationMask11),
+            b"ELEV12" => Some(Self::ElevationMask12),
+            b"ELEV13" => Some(Self::ElevationMask13),
+            b"ELEV14" => Some(Self::ElevationMask14),
+            b"ELEV15" => Some(Self::ElevationMask15),
+            b"DATP90" => Some(Self::DatumPz90),
+            b"DATW84" => Some(Self::DatumWgs84),
+            b"NVSGPS" => Some(Self::GpsOnly),
+            b"NVSGLN" => Some(Self::GlonassOnly),
+            b"NVSMIX" => Some(Self::GlonassGpsGalileo),
             _ => None,
         }
     }
@@ -831,12 +859,16 @@ impl CodeEnum for Geos5MessageRate {
     const ALL: &'static [Self] = &[Self::Off, Self::Every1s, Self::Every2s, Self::Every20s, Self::OutputRate];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::Off),
-            "1" => Some(Self::Every1s),
-            "2" => Some(Self::Every2s),
-            "3" => Some(Self::Every20s),
-            "R" => Some(Self::OutputRate),
+            b"0" => Some(Self::Off),
+            b"1" => Some(Self::Every1s),
+            b"2" => Some(Self::Every2s),
+            b"3" => Some(Self::Every20s),
+            b"R" => Some(Self::OutputRate),
             _ => None,
         }
     }
@@ -883,9 +915,13 @@ impl CodeEnum for Geos5NmeaVersion {
     const ALL: &'static [Self] = &[Self::V2X, Self::V410];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "2" => Some(Self::V2X),
-            "4" => Some(Self::V410),
+            b"2" => Some(Self::V2X),
+            b"4" => Some(Self::V410),
             _ => None,
         }
     }
@@ -931,11 +967,15 @@ impl CodeEnum for Geos5OutputRate {
     const ALL: &'static [Self] = &[Self::Rate10hz, Self::Rate5hz, Self::Rate2hz, Self::Rate1hz];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::Rate10hz),
-            "1" => Some(Self::Rate5hz),
-            "2" => Some(Self::Rate2hz),
-            "3" => Some(Self::Rate1hz),
+            b"0" => Some(Self::Rate10hz),
+            b"1" => Some(Self::Rate5hz),
+            b"2" => Some(Self::Rate2hz),
+            b"3" => Some(Self::Rate1hz),
             _ => None,
         }
     }
@@ -1009,17 +1049,21 @@ impl CodeEnum for GgaQuality {
     ];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::Invalid),
-            "1" => Some(Self::Autonomous),
-            "2" => Some(Self::Differential),
-            "3" => Some(Self::Pps),
-            "4" => Some(Self::RtkFixed),
-            "5" => Some(Self::RtkFloat),
-            "6" => Some(Self::DeadReckoning),
-            "7" => Some(Self::ManualInput),
-            "8" => Some(Self::Simulator),
-            "9" => Some(Self::Geopath),
+            b"0" => Some(Self::Invalid),
+            b"1" => Some(Self::Autonomous),
+            b"2" => Some(Self::Differential),
+            b"3" => Some(Self::Pps),
+            b"4" => Some(Self::RtkFixed),
+            b"5" => Some(Self::RtkFloat),
+            b"6" => Some(Self::DeadReckoning),
+            b"7" => Some(Self::ManualInput),
+            b"8" => Some(Self::Simulator),
+            b"9" => Some(Self::Geopath),
             _ => None,
         }
     }
@@ -1075,10 +1119,14 @@ impl CodeEnum for GsaFixType {
     const ALL: &'static [Self] = &[Self::NoFix, Self::Fix2d, Self::Fix3d];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "1" => Some(Self::NoFix),
-            "2" => Some(Self::Fix2d),
-            "3" => Some(Self::Fix3d),
+            b"1" => Some(Self::NoFix),
+            b"2" => Some(Self::Fix2d),
+            b"3" => Some(Self::Fix3d),
             _ => None,
         }
     }
@@ -1119,9 +1167,13 @@ impl CodeEnum for GsaSelectionMode {
     const ALL: &'static [Self] = &[Self::Manual, Self::Automatic];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "M" => Some(Self::Manual),
-            "A" => Some(Self::Automatic),
+            b"M" => Some(Self::Manual),
+            b"A" => Some(Self::Automatic),
             _ => None,
         }
     }
@@ -1165,11 +1217,15 @@ impl CodeEnum for NavStatus {
     const ALL: &'static [Self] = &[Self::Safe, Self::Caution, Self::Unsafe, Self::NotValid];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "S" => Some(Self::Safe),
-            "C" => Some(Self::Caution),
-            "U" => Some(Self::Unsafe),
-            "V" => Some(Self::NotValid),
+            b"S" => Some(Self::Safe),
+            b"C" => Some(Self::Caution),
+            b"U" => Some(Self::Unsafe),
+            b"V" => Some(Self::NotValid),
             _ => None,
         }
     }
@@ -1243,17 +1299,21 @@ impl CodeEnum for PosMode {
     ];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "A" => Some(Self::Autonomous),
-            "D" => Some(Self::Differential),
-            "E" => Some(Self::Estimated),
-            "F" => Some(Self::RtkFloat),
-            "G" => Some(Self::Geopath),
-            "M" => Some(Self::ManualInput),
-            "N" => Some(Self::NotValid),
-            "P" => Some(Self::Precise),
-            "R" => Some(Self::RtkFixed),
-            "S" => Some(Self::Simulator),
+            b"A" => Some(Self::Autonomous),
+            b"D" => Some(Self::Differential),
+            b"E" => Some(Self::Estimated),
+            b"F" => Some(Self::RtkFloat),
+            b"G" => Some(Self::Geopath),
+            b"M" => Some(Self::ManualInput),
+            b"N" => Some(Self::NotValid),
+            b"P" => Some(Self::Precise),
+            b"R" => Some(Self::RtkFixed),
+            b"S" => Some(Self::Simulator),
             _ => None,
         }
     }
@@ -1353,23 +1413,27 @@ impl CodeEnum for RlmMessageCode {
     ];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::Reserved0),
-            "1" => Some(Self::Acknowledgement),
-            "2" => Some(Self::Command),
-            "3" => Some(Self::Message),
-            "4" => Some(Self::Reserved4),
-            "5" => Some(Self::Reserved5),
-            "6" => Some(Self::Reserved6),
-            "7" => Some(Self::Reserved7),
-            "8" => Some(Self::Reserved8),
-            "9" => Some(Self::Reserved9),
-            "A" => Some(Self::ReservedA),
-            "B" => Some(Self::ReservedB),
-            "C" => Some(Self::ReservedC),
-            "D" => Some(Self::ReservedD),
-            "E" => Some(Self::ReservedE),
-            "F" => Some(Self::Test),
+            b"0" => Some(Self::Reserved0),
+            b"1" => Some(Self::Acknowledgement),
+            b"2" => Some(Self::Command),
+            b"3" => Some(Self::Message),
+            b"4" => Some(Self::Reserved4),
+            b"5" => Some(Self::Reserved5),
+            b"6" => Some(Self::Reserved6),
+            b"7" => Some(Self::Reserved7),
+            b"8" => Some(Self::Reserved8),
+            b"9" => Some(Self::Reserved9),
+            b"A" => Some(Self::ReservedA),
+            b"B" => Some(Self::ReservedB),
+            b"C" => Some(Self::ReservedC),
+            b"D" => Some(Self::ReservedD),
+            b"E" => Some(Self::ReservedE),
+            b"F" => Some(Self::Test),
             _ => None,
         }
     }
@@ -1436,9 +1500,13 @@ impl CodeEnum for RmcMagVarDir {
     const ALL: &'static [Self] = &[Self::East, Self::West];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "E" => Some(Self::East),
-            "W" => Some(Self::West),
+            b"E" => Some(Self::East),
+            b"W" => Some(Self::West),
             _ => None,
         }
     }
@@ -1518,20 +1586,24 @@ impl CodeEnum for SignalId {
     ];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::AllSignals),
-            "1" => Some(Self::Signal1),
-            "2" => Some(Self::Signal2),
-            "3" => Some(Self::Signal3),
-            "4" => Some(Self::Signal4),
-            "5" => Some(Self::Signal5),
-            "6" => Some(Self::Signal6),
-            "7" => Some(Self::Signal7),
-            "8" => Some(Self::Signal8),
-            "9" => Some(Self::Signal9),
-            "A" => Some(Self::SignalA),
-            "B" => Some(Self::SignalB),
-            "C" => Some(Self::SignalC),
+            b"0" => Some(Self::AllSignals),
+            b"1" => Some(Self::Signal1),
+            b"2" => Some(Self::Signal2),
+            b"3" => Some(Self::Signal3),
+            b"4" => Some(Self::Signal4),
+            b"5" => Some(Self::Signal5),
+            b"6" => Some(Self::Signal6),
+            b"7" => Some(Self::Signal7),
+            b"8" => Some(Self::Signal8),
+            b"9" => Some(Self::Signal9),
+            b"A" => Some(Self::SignalA),
+            b"B" => Some(Self::SignalB),
+            b"C" => Some(Self::SignalC),
             _ => None,
         }
     }
@@ -1604,13 +1676,17 @@ impl CodeEnum for SirfBaud {
         &[Self::Baud1200, Self::Baud2400, Self::Baud4800, Self::Baud9600, Self::Baud19200, Self::Baud38400];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "1200" => Some(Self::Baud1200),
-            "2400" => Some(Self::Baud2400),
-            "4800" => Some(Self::Baud4800),
-            "9600" => Some(Self::Baud9600),
-            "19200" => Some(Self::Baud19200),
-            "38400" => Some(Self::Baud38400),
+            b"1200" => Some(Self::Baud1200),
+            b"2400" => Some(Self::Baud2400),
+            b"4800" => Some(Self::Baud4800),
+            b"9600" => Some(Self::Baud9600),
+            b"19200" => Some(Self::Baud19200),
+            b"38400" => Some(Self::Baud38400),
             _ => None,
         }
     }
@@ -1660,9 +1736,13 @@ impl CodeEnum for SirfChecksumEnable {
     const ALL: &'static [Self] = &[Self::Disabled, Self::Enabled];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "00" => Some(Self::Disabled),
-            "01" => Some(Self::Enabled),
+            b"00" => Some(Self::Disabled),
+            b"01" => Some(Self::Enabled),
             _ => None,
         }
     }
@@ -1704,9 +1784,13 @@ impl CodeEnum for SirfDebug {
     const ALL: &'static [Self] = &[Self::Off, Self::On];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::Off),
-            "1" => Some(Self::On),
+            b"0" => Some(Self::Off),
+            b"1" => Some(Self::On),
             _ => None,
         }
     }
@@ -1756,13 +1840,17 @@ impl CodeEnum for SirfNmeaMessage {
     const ALL: &'static [Self] = &[Self::Gga, Self::Gll, Self::Gsa, Self::Gsv, Self::Rmc, Self::Vtg];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "00" => Some(Self::Gga),
-            "01" => Some(Self::Gll),
-            "02" => Some(Self::Gsa),
-            "03" => Some(Self::Gsv),
-            "04" => Some(Self::Rmc),
-            "05" => Some(Self::Vtg),
+            b"00" => Some(Self::Gga),
+            b"01" => Some(Self::Gll),
+            b"02" => Some(Self::Gsa),
+            b"03" => Some(Self::Gsv),
+            b"04" => Some(Self::Rmc),
+            b"05" => Some(Self::Vtg),
             _ => None,
         }
     }
@@ -1812,9 +1900,13 @@ impl CodeEnum for SirfOkToSend {
     const ALL: &'static [Self] = &[Self::NotOk, Self::Ok];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::NotOk),
-            "1" => Some(Self::Ok),
+            b"0" => Some(Self::NotOk),
+            b"1" => Some(Self::Ok),
             _ => None,
         }
     }
@@ -1858,10 +1950,14 @@ impl CodeEnum for SirfParity {
     const ALL: &'static [Self] = &[Self::None, Self::Odd, Self::Even];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::None),
-            "1" => Some(Self::Odd),
-            "2" => Some(Self::Even),
+            b"0" => Some(Self::None),
+            b"1" => Some(Self::Odd),
+            b"2" => Some(Self::Even),
             _ => None,
         }
     }
@@ -1906,9 +2002,13 @@ impl CodeEnum for SirfProtocol {
     const ALL: &'static [Self] = &[Self::SirfBinary, Self::Nmea];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::SirfBinary),
-            "1" => Some(Self::Nmea),
+            b"0" => Some(Self::SirfBinary),
+            b"1" => Some(Self::Nmea),
             _ => None,
         }
     }
@@ -1951,9 +2051,13 @@ impl CodeEnum for SirfRateMode {
     const ALL: &'static [Self] = &[Self::SetRate, Self::Query];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "00" => Some(Self::SetRate),
-            "01" => Some(Self::Query),
+            b"00" => Some(Self::SetRate),
+            b"01" => Some(Self::Query),
             _ => None,
         }
     }
@@ -1991,9 +2095,13 @@ impl CodeEnum for Status {
     const ALL: &'static [Self] = &[Self::Valid, Self::Invalid];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "A" => Some(Self::Valid),
-            "V" => Some(Self::Invalid),
+            b"A" => Some(Self::Valid),
+            b"V" => Some(Self::Invalid),
             _ => None,
         }
     }
@@ -2046,14 +2154,18 @@ impl CodeEnum for SystemId {
         &[Self::Gps, Self::Glonass, Self::Galileo, Self::Beidou, Self::Qzss, Self::Navic, Self::Geos5Qzss];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "1" => Some(Self::Gps),
-            "2" => Some(Self::Glonass),
-            "3" => Some(Self::Galileo),
-            "4" => Some(Self::Beidou),
-            "5" => Some(Self::Qzss),
-            "6" => Some(Self::Navic),
-            "F" => Some(Self::Geos5Qzss),
+            b"1" => Some(Self::Gps),
+            b"2" => Some(Self::Glonass),
+            b"3" => Some(Self::Galileo),
+            b"4" => Some(Self::Beidou),
+            b"5" => Some(Self::Qzss),
+            b"6" => Some(Self::Navic),
+            b"F" => Some(Self::Geos5Qzss),
             _ => None,
         }
     }
@@ -2144,21 +2256,25 @@ impl CodeEnum for TeseoBaud {
     ];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::Baud300),
-            "1" => Some(Self::Baud600),
-            "2" => Some(Self::Baud1200),
-            "3" => Some(Self::Baud2400),
-            "4" => Some(Self::Baud4800),
-            "5" => Some(Self::Baud9600),
-            "6" => Some(Self::Baud14400),
-            "7" => Some(Self::Baud19200),
-            "8" => Some(Self::Baud38400),
-            "9" => Some(Self::Baud57600),
-            "A" => Some(Self::Baud115200),
-            "B" => Some(Self::Baud230400),
-            "C" => Some(Self::Baud460800),
-            "D" => Some(Self::Baud921600),
+            b"0" => Some(Self::Baud300),
+            b"1" => Some(Self::Baud600),
+            b"2" => Some(Self::Baud1200),
+            b"3" => Some(Self::Baud2400),
+            b"4" => Some(Self::Baud4800),
+            b"5" => Some(Self::Baud9600),
+            b"6" => Some(Self::Baud14400),
+            b"7" => Some(Self::Baud19200),
+            b"8" => Some(Self::Baud38400),
+            b"9" => Some(Self::Baud57600),
+            b"A" => Some(Self::Baud115200),
+            b"B" => Some(Self::Baud230400),
+            b"C" => Some(Self::Baud460800),
+            b"D" => Some(Self::Baud921600),
             _ => None,
         }
     }
@@ -2223,9 +2339,13 @@ impl CodeEnum for TeseoCompilerType {
     const ALL: &'static [Self] = &[Self::Arm, Self::Gnu];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "ARM" => Some(Self::Arm),
-            "GNU" => Some(Self::Gnu),
+            b"ARM" => Some(Self::Arm),
+            b"GNU" => Some(Self::Gnu),
             _ => None,
         }
     }
@@ -2266,9 +2386,13 @@ impl CodeEnum for TeseoNmeaOnOff {
     const ALL: &'static [Self] = &[Self::Off, Self::On];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::Off),
-            "1" => Some(Self::On),
+            b"0" => Some(Self::Off),
+            b"1" => Some(Self::On),
             _ => None,
         }
     }
@@ -2310,10 +2434,14 @@ impl CodeEnum for TeseoRtcStatus {
     const ALL: &'static [Self] = &[Self::Invalid, Self::Stored, Self::Approximate];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::Invalid),
-            "1" => Some(Self::Stored),
-            "2" => Some(Self::Approximate),
+            b"0" => Some(Self::Invalid),
+            b"1" => Some(Self::Stored),
+            b"2" => Some(Self::Approximate),
             _ => None,
         }
     }
@@ -2360,10 +2488,14 @@ impl CodeEnum for TeseoSetparMode {
     const ALL: &'static [Self] = &[Self::Replace, Self::SetBits, Self::ClearBits];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::Replace),
-            "1" => Some(Self::SetBits),
-            "2" => Some(Self::ClearBits),
+            b"0" => Some(Self::Replace),
+            b"1" => Some(Self::SetBits),
+            b"2" => Some(Self::ClearBits),
             _ => None,
         }
     }
@@ -2432,16 +2564,20 @@ impl CodeEnum for TeseoTimeValidity {
     ];
 
     fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
         match code {
-            "0" => Some(Self::NoTime),
-            "1" => Some(Self::FlashTime),
-            "2" => Some(Self::UserTime),
-            "3" => Some(Self::UserRtcTime),
-            "4" => Some(Self::RtcTime),
-            "5" => Some(Self::AccurateRtcTime),
-            "6" => Some(Self::ApproximateTime),
-            "7" => Some(Self::PositionTime),
-            "8" => Some(Self::EphemerisTime),
+            b"0" => Some(Self::NoTime),
+            b"1" => Some(Self::FlashTime),
+            b"2" => Some(Self::UserTime),
+            b"3" => Some(Self::UserRtcTime),
+            b"4" => Some(Self::RtcTime),
+            b"5" => Some(Self::AccurateRtcTime),
+            b"6" => Some(Self::ApproximateTime),
+            b"7" => Some(Self::PositionTime),
+            b"8" => Some(Self::EphemerisTime),
             _ => None,
         }
     }

@@ -59,7 +59,7 @@ pub mod tables;
 use runtime::is_command_word;
 #[cfg(feature = "std")]
 use runtime::json::{self, Value, WireFields};
-use runtime::{first_word, is_standard_address, strip_line_ending, upper_eq};
+use runtime::{first_word, strip_line_ending, upper_eq, FastReader, Unsure};
 pub use runtime::{
     Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Error, ErrorKind, FieldProblem, Fields, Frame, Framing,
     Generic, Group, Hex, Kind, Layout, Name, Number, Problems, Sign, Time, BUILD_CAPACITY, MAX_PROBLEMS,
@@ -2153,6 +2153,157 @@ impl<'a> Sentence<'a> {
         }
     }
 
+    /// The sentence text, what `Display` writes (no line ending), put at the start of `buf`, as
+    /// C's `nmea_serialize` does: its length, or `None` when `buf` cannot hold it (a buffer of
+    /// [`runtime::MAX_LINE`] bytes holds any sentence [`parse`] gives). An ASCII text (every
+    /// parsed `$` sentence) is written without the `fmt` machinery.
+    pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
+        if let Some(len) = self.serialize_fast(buf) {
+            return Some(len);
+        }
+        let mut w = runtime::ByteWriter::new(buf);
+        self.write_sentence_with(&mut w, &Problems::new()).ok()?;
+        Some(w.len())
+    }
+
+    /// The byte writer of [`Sentence::serialize_into`] alone, without its `fmt` fallback: `None`
+    /// for a text that is not all ASCII, a text command, or a buffer too small (the crate's tests
+    /// check that it writes what the `fmt` writer writes).
+    #[doc(hidden)]
+    pub fn serialize_fast(&self, buf: &mut [u8]) -> Option<usize> {
+        match self {
+            Self::Dtm(s) => s.put_sentence(buf),
+            Self::Gga(s) => s.put_sentence(buf),
+            Self::Gll(s) => s.put_sentence(buf),
+            Self::Gns(s) => s.put_sentence(buf),
+            Self::GnsAux(s) => s.put_sentence(buf),
+            Self::Gsa(s) => s.put_sentence(buf),
+            Self::GsaShort(s) => s.put_sentence(buf),
+            Self::Gst(s) => s.put_sentence(buf),
+            Self::Gsv(s) => s.put_sentence(buf),
+            Self::Hdt(s) => s.put_sentence(buf),
+            Self::Rlm(s) => s.put_sentence(buf),
+            Self::Rmc(s) => s.put_sentence(buf),
+            Self::Vtg(s) => s.put_sentence(buf),
+            Self::Zda(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavLog(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalker(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerList(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerReset(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Command(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Jamdet(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Nquery(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5NqueryRequest(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Rquery(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5RqueryRequest(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf100(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf101(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf102(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf103(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf104(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf105(s) => s.put_sentence(buf),
+            #[cfg(feature = "gs501")]
+            Self::Psrf150(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmagps(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmalmanac(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclralms(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclrephs(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcold(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcorr(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmdiff(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmeph(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetpar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetparerror(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetrtctime(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetrtctimeReply(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetswver(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetswverReply(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmhot(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmkfcov(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmnmeaonoff(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpa(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpres(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmres(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrestorepar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrf(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsat(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsavepar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbas(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbascorr(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmset(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetDop(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetpar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetparDop(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparerror(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparok(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtestrf(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtg(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtim(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmts(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmver(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmvres(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwaas(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwarm(s) => s.put_sentence(buf),
+            Self::Generic(s) => s.put_sentence(buf),
+        }
+    }
+
     /// Writes the sentence text of a sentence lenient parsing kept with `problems`: the text of
     /// each field it left empty is put back.
     pub fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
@@ -2803,6 +2954,348 @@ impl From<Pstmwarm> for Sentence<'_> {
 /// (ignoring case).
 pub fn parse<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_>> {
     let line = strip_line_ending(line.as_ref());
+    match FastReader::frame(line) {
+        Some(fields) => read_sentence(fields, line),
+        None => general(line),
+    }
+}
+
+/// [`parse`] without its fast path: the general path alone, which reads every line and finds
+/// every error. It gives what [`parse`] gives (the crate's tests and fuzz target check it).
+#[doc(hidden)]
+pub fn parse_general<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_>> {
+    general(strip_line_ending(line.as_ref()))
+}
+
+/// The fast path of [`parse`] alone: the sentence, or `None` for a line it leaves to the general
+/// path (for tests).
+#[doc(hidden)]
+pub fn parse_fast<L: AsRef<[u8]> + ?Sized>(line: &L) -> Option<Sentence<'_>> {
+    let line = strip_line_ending(line.as_ref());
+    read_sentence(FastReader::frame(line)?, line)
+}
+
+/// What the fast path of [`parse`] gives: the sentence it read or, when it is not sure, what the
+/// general path makes of the line ([`parse`]: the result of [`parse_general`]; [`parse_fast`]:
+/// `None`).
+trait Outcome<'a> {
+    fn read(sentence: Sentence<'a>) -> Self;
+    fn general(line: &'a [u8]) -> Self;
+}
+
+impl<'a> Outcome<'a> for Result<Sentence<'a>, Error<'a>> {
+    #[inline(always)]
+    fn read(sentence: Sentence<'a>) -> Self {
+        Ok(sentence)
+    }
+
+    fn general(line: &'a [u8]) -> Self {
+        general(line)
+    }
+}
+
+impl<'a> Outcome<'a> for Option<Sentence<'a>> {
+    #[inline(always)]
+    fn read(sentence: Sentence<'a>) -> Self {
+        Some(sentence)
+    }
+
+    fn general(_: &'a [u8]) -> Self {
+        None
+    }
+}
+
+/// The fast path of [`parse`]: a `$` sentence in its usual frame (see [`FastReader::frame`]),
+/// read by the fast reader of the first layout of its address ([`sentence_layouts`], matched
+/// here once more so that the reader is picked in one step) whose field count fits it (the
+/// general path could read it with no other before it either); when that reader is not sure,
+/// or none fits, the general path decides. What it reads has an upper-case checksum and no field
+/// at fault, so [`parse_with`]'s options would not change it.
+///
+/// Each step returns what the next one returns, so that the sentence read is copied once, into
+/// the caller's result: a copy of what was just written waits for those writes to land.
+fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> O {
+    match fields.address() {
+        &[first, _, a, b, c] if first != b'P' => match fields.address() {
+            #[cfg(feature = "geos5")]
+            b"GPSGG" => read_layout::<Geos5Jamdet, O>(
+                fields,
+                line,
+                &[
+                    LayoutId::Geos5Nquery,
+                    LayoutId::Geos5NqueryRequest,
+                    LayoutId::Geos5Rquery,
+                    LayoutId::Geos5RqueryRequest,
+                    LayoutId::Geos5Command,
+                ],
+            ),
+            _ => read_standard([a, b, c], fields, line),
+        },
+        #[cfg(feature = "globalsat")]
+        b"PSRF100" => read_layout::<Psrf100, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF101" => read_layout::<Psrf101, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF102" => read_layout::<Psrf102, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF103" => read_layout::<Psrf103, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF104" => read_layout::<Psrf104, O>(fields, line, &[]),
+        #[cfg(feature = "globalsat")]
+        b"PSRF105" => read_layout::<Psrf105, O>(fields, line, &[]),
+        #[cfg(feature = "gs501")]
+        b"PSRF150" => read_layout::<Psrf150, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMAGPS" => read_layout::<Pstmagps, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMALMANAC" => read_layout::<Pstmalmanac, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMCLRALMS" => read_layout::<Pstmclralms, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMCLREPHS" => read_layout::<Pstmclrephs, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMCOLD" => read_layout::<Pstmcold, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMCORR" => read_layout::<Pstmcorr, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMDIFF" => read_layout::<Pstmdiff, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMEPH" => read_layout::<Pstmeph, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMGETPAR" => read_layout::<Pstmgetpar, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMGETPARERROR" => read_layout::<Pstmgetparerror, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMGETRTCTIME" => read_layout::<Pstmgetrtctime, O>(fields, line, &[LayoutId::PstmgetrtctimeReply]),
+        #[cfg(feature = "teseo")]
+        b"PSTMGETSWVER" => read_layout::<Pstmgetswver, O>(fields, line, &[LayoutId::PstmgetswverReply]),
+        #[cfg(feature = "teseo")]
+        b"PSTMHOT" => read_layout::<Pstmhot, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMKFCOV" => read_layout::<Pstmkfcov, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMNMEAONOFF" => read_layout::<Pstmnmeaonoff, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMPA" => read_layout::<Pstmpa, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMPRES" => read_layout::<Pstmpres, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMRES" => read_layout::<Pstmres, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMRESTOREPAR" => read_layout::<Pstmrestorepar, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMRF" => read_layout::<Pstmrf, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSAT" => read_layout::<Pstmsat, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSAVEPAR" => read_layout::<Pstmsavepar, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSBAS" => read_layout::<Pstmsbas, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSBASCORR" => read_layout::<Pstmsbascorr, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSET" => read_layout::<Pstmset, O>(fields, line, &[LayoutId::PstmsetDop]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSETPAR" => read_layout::<Pstmsetpar, O>(fields, line, &[LayoutId::PstmsetparDop]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSETPARERROR" => read_layout::<Pstmsetparerror, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMSETPAROK" => read_layout::<Pstmsetparok, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMTESTRF" => read_layout::<Pstmtestrf, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMTG" => read_layout::<Pstmtg, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMTIM" => read_layout::<Pstmtim, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMTS" => read_layout::<Pstmts, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMVER" => read_layout::<Pstmver, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMVRES" => read_layout::<Pstmvres, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMWAAS" => read_layout::<Pstmwaas, O>(fields, line, &[]),
+        #[cfg(feature = "teseo")]
+        b"PSTMWARM" => read_layout::<Pstmwarm, O>(fields, line, &[]),
+        _ => O::general(line),
+    }
+}
+
+/// [`read_sentence`] for the standard sentence with formatter `formatter`.
+fn read_standard<'a, O: Outcome<'a>>(formatter: [u8; 3], fields: FastReader<'a>, line: &'a [u8]) -> O {
+    match &formatter {
+        b"DTM" => read_layout::<Dtm, O>(fields, line, &[]),
+        b"GGA" => read_layout::<Gga, O>(fields, line, &[]),
+        b"GLL" => read_layout::<Gll, O>(fields, line, &[]),
+        b"GNS" => read_layout::<Gns, O>(fields, line, &[LayoutId::GnsAux]),
+        b"GSA" => read_layout::<Gsa, O>(fields, line, &[LayoutId::GsaShort]),
+        b"GST" => read_layout::<Gst, O>(fields, line, &[]),
+        b"GSV" => read_layout::<Gsv, O>(fields, line, &[]),
+        b"HDT" => read_layout::<Hdt, O>(fields, line, &[]),
+        b"RLM" => read_layout::<Rlm, O>(fields, line, &[]),
+        b"RMC" => read_layout::<Rmc, O>(fields, line, &[]),
+        b"VTG" => read_layout::<Vtg, O>(fields, line, &[]),
+        b"ZDA" => read_layout::<Zda, O>(fields, line, &[]),
+        _ => O::general(line),
+    }
+}
+
+/// [`read_sentence`] with the next of `layouts`, the layouts of the address that remain.
+fn read_fast<'a, O: Outcome<'a>>(layouts: &[LayoutId], fields: FastReader<'a>, line: &'a [u8]) -> O {
+    let Some((&layout, rest)) = layouts.split_first() else {
+        return O::general(line);
+    };
+    match layout {
+        LayoutId::Dtm => read_layout::<Dtm, O>(fields, line, rest),
+        LayoutId::Gga => read_layout::<Gga, O>(fields, line, rest),
+        LayoutId::Gll => read_layout::<Gll, O>(fields, line, rest),
+        LayoutId::Gns => read_layout::<Gns, O>(fields, line, rest),
+        LayoutId::GnsAux => read_layout::<GnsAux, O>(fields, line, rest),
+        LayoutId::Gsa => read_layout::<Gsa, O>(fields, line, rest),
+        LayoutId::GsaShort => read_layout::<GsaShort, O>(fields, line, rest),
+        LayoutId::Gst => read_layout::<Gst, O>(fields, line, rest),
+        LayoutId::Gsv => read_layout::<Gsv, O>(fields, line, rest),
+        LayoutId::Hdt => read_layout::<Hdt, O>(fields, line, rest),
+        LayoutId::Rlm => read_layout::<Rlm, O>(fields, line, rest),
+        LayoutId::Rmc => read_layout::<Rmc, O>(fields, line, rest),
+        LayoutId::Vtg => read_layout::<Vtg, O>(fields, line, rest),
+        LayoutId::Zda => read_layout::<Zda, O>(fields, line, rest),
+        #[cfg(feature = "comnav")]
+        LayoutId::ComnavLog => read_layout::<ComnavLog, O>(fields, line, rest),
+        #[cfg(feature = "comnav")]
+        LayoutId::ComnavNmeatalker => read_layout::<ComnavNmeatalker, O>(fields, line, rest),
+        #[cfg(feature = "comnav")]
+        LayoutId::ComnavNmeatalkerList => read_layout::<ComnavNmeatalkerList, O>(fields, line, rest),
+        #[cfg(feature = "comnav")]
+        LayoutId::ComnavNmeatalkerReset => read_layout::<ComnavNmeatalkerReset, O>(fields, line, rest),
+        #[cfg(feature = "geos5")]
+        LayoutId::Geos5Command => read_layout::<Geos5Command, O>(fields, line, rest),
+        #[cfg(feature = "geos5")]
+        LayoutId::Geos5Jamdet => read_layout::<Geos5Jamdet, O>(fields, line, rest),
+        #[cfg(feature = "geos5")]
+        LayoutId::Geos5Nquery => read_layout::<Geos5Nquery, O>(fields, line, rest),
+        #[cfg(feature = "geos5")]
+        LayoutId::Geos5NqueryRequest => read_layout::<Geos5NqueryRequest, O>(fields, line, rest),
+        #[cfg(feature = "geos5")]
+        LayoutId::Geos5Rquery => read_layout::<Geos5Rquery, O>(fields, line, rest),
+        #[cfg(feature = "geos5")]
+        LayoutId::Geos5RqueryRequest => read_layout::<Geos5RqueryRequest, O>(fields, line, rest),
+        #[cfg(feature = "globalsat")]
+        LayoutId::Psrf100 => read_layout::<Psrf100, O>(fields, line, rest),
+        #[cfg(feature = "globalsat")]
+        LayoutId::Psrf101 => read_layout::<Psrf101, O>(fields, line, rest),
+        #[cfg(feature = "globalsat")]
+        LayoutId::Psrf102 => read_layout::<Psrf102, O>(fields, line, rest),
+        #[cfg(feature = "globalsat")]
+        LayoutId::Psrf103 => read_layout::<Psrf103, O>(fields, line, rest),
+        #[cfg(feature = "globalsat")]
+        LayoutId::Psrf104 => read_layout::<Psrf104, O>(fields, line, rest),
+        #[cfg(feature = "globalsat")]
+        LayoutId::Psrf105 => read_layout::<Psrf105, O>(fields, line, rest),
+        #[cfg(feature = "gs501")]
+        LayoutId::Psrf150 => read_layout::<Psrf150, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmagps => read_layout::<Pstmagps, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmalmanac => read_layout::<Pstmalmanac, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmclralms => read_layout::<Pstmclralms, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmclrephs => read_layout::<Pstmclrephs, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmcold => read_layout::<Pstmcold, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmcorr => read_layout::<Pstmcorr, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmdiff => read_layout::<Pstmdiff, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmeph => read_layout::<Pstmeph, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmgetpar => read_layout::<Pstmgetpar, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmgetparerror => read_layout::<Pstmgetparerror, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmgetrtctime => read_layout::<Pstmgetrtctime, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::PstmgetrtctimeReply => read_layout::<PstmgetrtctimeReply, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmgetswver => read_layout::<Pstmgetswver, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::PstmgetswverReply => read_layout::<PstmgetswverReply, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmhot => read_layout::<Pstmhot, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmkfcov => read_layout::<Pstmkfcov, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmnmeaonoff => read_layout::<Pstmnmeaonoff, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmpa => read_layout::<Pstmpa, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmpres => read_layout::<Pstmpres, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmres => read_layout::<Pstmres, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmrestorepar => read_layout::<Pstmrestorepar, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmrf => read_layout::<Pstmrf, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmsat => read_layout::<Pstmsat, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmsavepar => read_layout::<Pstmsavepar, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmsbas => read_layout::<Pstmsbas, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmsbascorr => read_layout::<Pstmsbascorr, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmset => read_layout::<Pstmset, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::PstmsetDop => read_layout::<PstmsetDop, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmsetpar => read_layout::<Pstmsetpar, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::PstmsetparDop => read_layout::<PstmsetparDop, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmsetparerror => read_layout::<Pstmsetparerror, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmsetparok => read_layout::<Pstmsetparok, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmtestrf => read_layout::<Pstmtestrf, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmtg => read_layout::<Pstmtg, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmtim => read_layout::<Pstmtim, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmts => read_layout::<Pstmts, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmver => read_layout::<Pstmver, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmvres => read_layout::<Pstmvres, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmwaas => read_layout::<Pstmwaas, O>(fields, line, rest),
+        #[cfg(feature = "teseo")]
+        LayoutId::Pstmwarm => read_layout::<Pstmwarm, O>(fields, line, rest),
+    }
+}
+
+/// [`read_sentence`] with layout `L` (`rest`: the layouts to try after it).
+#[inline(never)]
+fn read_layout<'a, L: Layout<'a> + Default + Into<Sentence<'a>>, O: Outcome<'a>>(
+    fields: FastReader<'a>,
+    line: &'a [u8],
+    rest: &[LayoutId],
+) -> O {
+    let Some((repeats, extra)) = fields.shape(&L::SHAPE) else {
+        return read_fast(rest, fields, line);
+    };
+    let mut layout = L::default();
+    match layout.read_fast(fields, repeats, extra) {
+        Ok(()) => O::read(layout.into()),
+        Err(Unsure) => O::general(line),
+    }
+}
+
+/// The general path of [`parse`], for a line without its line ending.
+fn general(line: &[u8]) -> Result<Sentence<'_>, Error<'_>> {
     if !matches!(line.first(), Some(b'$' | b'!')) && !text_command(first_word(line)).is_empty() {
         return parse_frame(Frame::parse_text(line)?);
     }
@@ -2851,9 +3344,26 @@ impl Parsed<'_> {
     }
 }
 
+impl Parsed<'_> {
+    /// The sentence text with the problem fields' texts put back (what `Display` writes, no
+    /// line ending) at the start of `buf`: its length, or `None` when `buf` cannot hold it (see
+    /// [`Sentence::serialize_into`]).
+    pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
+        if self.problems.is_empty() {
+            return self.sentence.serialize_into(buf);
+        }
+        let mut w = runtime::ByteWriter::new(buf);
+        self.sentence.write_sentence_with(&mut w, &self.problems).ok()?;
+        Some(w.len())
+    }
+}
+
 impl fmt::Display for Parsed<'_> {
     /// The sentence text with the problem fields' texts put back; no line ending.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.problems.is_empty() {
+            return self.sentence.write_sentence(f);
+        }
         self.sentence.write_sentence_with(f, &self.problems)
     }
 }
@@ -2861,6 +3371,20 @@ impl fmt::Display for Parsed<'_> {
 /// [`parse`] with options: lenient decoding and required checksums.
 pub fn parse_with<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
     let line = strip_line_ending(line.as_ref());
+    if let Some(sentence) = FastReader::frame(line).and_then(|fields| read_sentence::<Option<_>>(fields, line)) {
+        return Ok(sentence.into());
+    }
+    general_with(line, options)
+}
+
+/// [`parse_with`] without its fast path (see [`parse_general`]).
+#[doc(hidden)]
+pub fn parse_with_general<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
+    general_with(strip_line_ending(line.as_ref()), options)
+}
+
+/// The general path of [`parse_with`], for a line without its line ending.
+fn general_with(line: &[u8], options: Options) -> Result<Parsed<'_>, Error<'_>> {
     if !matches!(line.first(), Some(b'$' | b'!')) && !text_command(first_word(line)).is_empty() {
         return parse_frame(Frame::parse_text(line)?).map(Parsed::from);
     }
@@ -2953,9 +3477,20 @@ fn first_fit<'a>(layouts: &[LayoutId], fields: Fields<'a>, checksum: Checksum) -
 /// of a text command's word (start `""`); none for anything else.
 pub fn layouts_of(start: &str, address: &str) -> &'static [LayoutId] {
     match start {
-        "$" if is_standard_address(start, address) => match address {
+        "$" => sentence_layouts(address.as_bytes()),
+        "" => text_command(address.as_bytes()),
+        _ => &[],
+    }
+}
+
+/// The layouts of a `$` address: a proprietary one (those that look standard, like GeoS-5's
+/// `GPSGG`, are looked up before the standard sentences), else a standard sentence's: a talker
+/// ID and a formatter, 5 characters, not proprietary (`P…`; see [`runtime::is_standard_address`]).
+fn sentence_layouts(address: &[u8]) -> &'static [LayoutId] {
+    match address {
+        &[first, _, a, b, c] if first != b'P' => match address {
             #[cfg(feature = "geos5")]
-            "GPSGG" => &[
+            b"GPSGG" => &[
                 LayoutId::Geos5Jamdet,
                 LayoutId::Geos5Nquery,
                 LayoutId::Geos5NqueryRequest,
@@ -2963,108 +3498,101 @@ pub fn layouts_of(start: &str, address: &str) -> &'static [LayoutId] {
                 LayoutId::Geos5RqueryRequest,
                 LayoutId::Geos5Command,
             ],
-            _ => standard(&address[2..]),
+            _ => standard([a, b, c]),
         },
-        "$" => match address {
-            #[cfg(feature = "globalsat")]
-            "PSRF100" => &[LayoutId::Psrf100],
-            #[cfg(feature = "globalsat")]
-            "PSRF101" => &[LayoutId::Psrf101],
-            #[cfg(feature = "globalsat")]
-            "PSRF102" => &[LayoutId::Psrf102],
-            #[cfg(feature = "globalsat")]
-            "PSRF103" => &[LayoutId::Psrf103],
-            #[cfg(feature = "globalsat")]
-            "PSRF104" => &[LayoutId::Psrf104],
-            #[cfg(feature = "globalsat")]
-            "PSRF105" => &[LayoutId::Psrf105],
-            #[cfg(feature = "gs501")]
-            "PSRF150" => &[LayoutId::Psrf150],
-            #[cfg(feature = "teseo")]
-            "PSTMAGPS" => &[LayoutId::Pstmagps],
-            #[cfg(feature = "teseo")]
-            "PSTMALMANAC" => &[LayoutId::Pstmalmanac],
-            #[cfg(feature = "teseo")]
-            "PSTMCLRALMS" => &[LayoutId::Pstmclralms],
-            #[cfg(feature = "teseo")]
-            "PSTMCLREPHS" => &[LayoutId::Pstmclrephs],
-            #[cfg(feature = "teseo")]
-            "PSTMCOLD" => &[LayoutId::Pstmcold],
-            #[cfg(feature = "teseo")]
-            "PSTMCORR" => &[LayoutId::Pstmcorr],
-            #[cfg(feature = "teseo")]
-            "PSTMDIFF" => &[LayoutId::Pstmdiff],
-            #[cfg(feature = "teseo")]
-            "PSTMEPH" => &[LayoutId::Pstmeph],
-            #[cfg(feature = "teseo")]
-            "PSTMGETPAR" => &[LayoutId::Pstmgetpar],
-            #[cfg(feature = "teseo")]
-            "PSTMGETPARERROR" => &[LayoutId::Pstmgetparerror],
-            #[cfg(feature = "teseo")]
-            "PSTMGETRTCTIME" => &[LayoutId::Pstmgetrtctime, LayoutId::PstmgetrtctimeReply],
-            #[cfg(feature = "teseo")]
-            "PSTMGETSWVER" => &[LayoutId::Pstmgetswver, LayoutId::PstmgetswverReply],
-            #[cfg(feature = "teseo")]
-            "PSTMHOT" => &[LayoutId::Pstmhot],
-            #[cfg(feature = "teseo")]
-            "PSTMKFCOV" => &[LayoutId::Pstmkfcov],
-            #[cfg(feature = "teseo")]
-            "PSTMNMEAONOFF" => &[LayoutId::Pstmnmeaonoff],
-            #[cfg(feature = "teseo")]
-            "PSTMPA" => &[LayoutId::Pstmpa],
-            #[cfg(feature = "teseo")]
-            "PSTMPRES" => &[LayoutId::Pstmpres],
-            #[cfg(feature = "teseo")]
-            "PSTMRES" => &[LayoutId::Pstmres],
-            #[cfg(feature = "teseo")]
-            "PSTMRESTOREPAR" => &[LayoutId::Pstmrestorepar],
-            #[cfg(feature = "teseo")]
-            "PSTMRF" => &[LayoutId::Pstmrf],
-            #[cfg(feature = "teseo")]
-            "PSTMSAT" => &[LayoutId::Pstmsat],
-            #[cfg(feature = "teseo")]
-            "PSTMSAVEPAR" => &[LayoutId::Pstmsavepar],
-            #[cfg(feature = "teseo")]
-            "PSTMSBAS" => &[LayoutId::Pstmsbas],
-            #[cfg(feature = "teseo")]
-            "PSTMSBASCORR" => &[LayoutId::Pstmsbascorr],
-            #[cfg(feature = "teseo")]
-            "PSTMSET" => &[LayoutId::Pstmset, LayoutId::PstmsetDop],
-            #[cfg(feature = "teseo")]
-            "PSTMSETPAR" => &[LayoutId::Pstmsetpar, LayoutId::PstmsetparDop],
-            #[cfg(feature = "teseo")]
-            "PSTMSETPARERROR" => &[LayoutId::Pstmsetparerror],
-            #[cfg(feature = "teseo")]
-            "PSTMSETPAROK" => &[LayoutId::Pstmsetparok],
-            #[cfg(feature = "teseo")]
-            "PSTMTESTRF" => &[LayoutId::Pstmtestrf],
-            #[cfg(feature = "teseo")]
-            "PSTMTG" => &[LayoutId::Pstmtg],
-            #[cfg(feature = "teseo")]
-            "PSTMTIM" => &[LayoutId::Pstmtim],
-            #[cfg(feature = "teseo")]
-            "PSTMTS" => &[LayoutId::Pstmts],
-            #[cfg(feature = "teseo")]
-            "PSTMVER" => &[LayoutId::Pstmver],
-            #[cfg(feature = "teseo")]
-            "PSTMVRES" => &[LayoutId::Pstmvres],
-            #[cfg(feature = "teseo")]
-            "PSTMWAAS" => &[LayoutId::Pstmwaas],
-            #[cfg(feature = "teseo")]
-            "PSTMWARM" => &[LayoutId::Pstmwarm],
-            _ => &[],
-        },
-        "" => text_command(address.as_bytes()),
+        #[cfg(feature = "globalsat")]
+        b"PSRF100" => &[LayoutId::Psrf100],
+        #[cfg(feature = "globalsat")]
+        b"PSRF101" => &[LayoutId::Psrf101],
+        #[cfg(feature = "globalsat")]
+        b"PSRF102" => &[LayoutId::Psrf102],
+        #[cfg(feature = "globalsat")]
+        b"PSRF103" => &[LayoutId::Psrf103],
+        #[cfg(feature = "globalsat")]
+        b"PSRF104" => &[LayoutId::Psrf104],
+        #[cfg(feature = "globalsat")]
+        b"PSRF105" => &[LayoutId::Psrf105],
+        #[cfg(feature = "gs501")]
+        b"PSRF150" => &[LayoutId::Psrf150],
+        #[cfg(feature = "teseo")]
+        b"PSTMAGPS" => &[LayoutId::Pstmagps],
+        #[cfg(feature = "teseo")]
+        b"PSTMALMANAC" => &[LayoutId::Pstmalmanac],
+        #[cfg(feature = "teseo")]
+        b"PSTMCLRALMS" => &[LayoutId::Pstmclralms],
+        #[cfg(feature = "teseo")]
+        b"PSTMCLREPHS" => &[LayoutId::Pstmclrephs],
+        #[cfg(feature = "teseo")]
+        b"PSTMCOLD" => &[LayoutId::Pstmcold],
+        #[cfg(feature = "teseo")]
+        b"PSTMCORR" => &[LayoutId::Pstmcorr],
+        #[cfg(feature = "teseo")]
+        b"PSTMDIFF" => &[LayoutId::Pstmdiff],
+        #[cfg(feature = "teseo")]
+        b"PSTMEPH" => &[LayoutId::Pstmeph],
+        #[cfg(feature = "teseo")]
+        b"PSTMGETPAR" => &[LayoutId::Pstmgetpar],
+        #[cfg(feature = "teseo")]
+        b"PSTMGETPARERROR" => &[LayoutId::Pstmgetparerror],
+        #[cfg(feature = "teseo")]
+        b"PSTMGETRTCTIME" => &[LayoutId::Pstmgetrtctime, LayoutId::PstmgetrtctimeReply],
+        #[cfg(feature = "teseo")]
+        b"PSTMGETSWVER" => &[LayoutId::Pstmgetswver, LayoutId::PstmgetswverReply],
+        #[cfg(feature = "teseo")]
+        b"PSTMHOT" => &[LayoutId::Pstmhot],
+        #[cfg(feature = "teseo")]
+        b"PSTMKFCOV" => &[LayoutId::Pstmkfcov],
+        #[cfg(feature = "teseo")]
+        b"PSTMNMEAONOFF" => &[LayoutId::Pstmnmeaonoff],
+        #[cfg(feature = "teseo")]
+        b"PSTMPA" => &[LayoutId::Pstmpa],
+        #[cfg(feature = "teseo")]
+        b"PSTMPRES" => &[LayoutId::Pstmpres],
+        #[cfg(feature = "teseo")]
+        b"PSTMRES" => &[LayoutId::Pstmres],
+        #[cfg(feature = "teseo")]
+        b"PSTMRESTOREPAR" => &[LayoutId::Pstmrestorepar],
+        #[cfg(feature = "teseo")]
+        b"PSTMRF" => &[LayoutId::Pstmrf],
+        #[cfg(feature = "teseo")]
+        b"PSTMSAT" => &[LayoutId::Pstmsat],
+        #[cfg(feature = "teseo")]
+        b"PSTMSAVEPAR" => &[LayoutId::Pstmsavepar],
+        #[cfg(feature = "teseo")]
+        b"PSTMSBAS" => &[LayoutId::Pstmsbas],
+        #[cfg(feature = "teseo")]
+        b"PSTMSBASCORR" => &[LayoutId::Pstmsbascorr],
+        #[cfg(feature = "teseo")]
+        b"PSTMSET" => &[LayoutId::Pstmset, LayoutId::PstmsetDop],
+        #[cfg(feature = "teseo")]
+        b"PSTMSETPAR" => &[LayoutId::Pstmsetpar, LayoutId::PstmsetparDop],
+        #[cfg(feature = "teseo")]
+        b"PSTMSETPARERROR" => &[LayoutId::Pstmsetparerror],
+        #[cfg(feature = "teseo")]
+        b"PSTMSETPAROK" => &[LayoutId::Pstmsetparok],
+        #[cfg(feature = "teseo")]
+        b"PSTMTESTRF" => &[LayoutId::Pstmtestrf],
+        #[cfg(feature = "teseo")]
+        b"PSTMTG" => &[LayoutId::Pstmtg],
+        #[cfg(feature = "teseo")]
+        b"PSTMTIM" => &[LayoutId::Pstmtim],
+        #[cfg(feature = "teseo")]
+        b"PSTMTS" => &[LayoutId::Pstmts],
+        #[cfg(feature = "teseo")]
+        b"PSTMVER" => &[LayoutId::Pstmver],
+        #[cfg(feature = "teseo")]
+        b"PSTMVRES" => &[LayoutId::Pstmvres],
+        #[cfg(feature = "teseo")]
+        b"PSTMWAAS" => &[LayoutId::Pstmwaas],
+        #[cfg(feature = "teseo")]
+        b"PSTMWARM" => &[LayoutId::Pstmwarm],
         _ => &[],
     }
 }
 
 /// The layouts of the standard sentence with formatter `formatter` (`GGA`): a match on the three
 /// bytes, which compiles to a few byte comparisons rather than string comparisons.
-fn standard(formatter: &str) -> &'static [LayoutId] {
-    let Ok(formatter) = <[u8; 3]>::try_from(formatter.as_bytes()) else {
-        return &[];
-    };
+fn standard(formatter: [u8; 3]) -> &'static [LayoutId] {
     match &formatter {
         b"DTM" => &[LayoutId::Dtm],
         b"GGA" => &[LayoutId::Gga],

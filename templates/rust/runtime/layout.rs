@@ -4,11 +4,12 @@
 use core::fmt::{self, Write};
 
 use super::error::{Error, Message, Problems};
+use super::fast::{FastReader, Read, Unsure};
 use super::frame::{is_command_word, is_standard_address, Fields, Frame, Shape, MAX_LINE};
 use super::types::Checksum;
 use super::write::{
-    write_json_str, write_sentence, write_sentence_with, write_words_json, Discard, JsonEscape, JsonFields,
-    Latin1Bytes, SameUpper, WireWriter,
+    write_json_str, write_sentence, write_sentence_with, write_words_json, ByteWriter, Discard, JsonEscape,
+    JsonFields, Latin1Bytes, SameUpper, WireWriter,
 };
 
 /// How a sentence is framed and addressed.
@@ -53,6 +54,16 @@ pub trait Layout<'a>: Sized {
     /// Decodes the fields after the address; the error names the field at fault.
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>>;
 
+    /// [`Layout::parse_fields`] on the fast path of [`parse`](crate::parse): fills `self`, the
+    /// layout's default struct, from the fields of a sentence in its usual frame
+    /// ([`FastReader::frame`]) whose count fits the layout ([`FastReader::shape`] gave `repeats`
+    /// and `extra`), exactly as `parse_fields` would decode them; or [`Unsure`] when the general
+    /// path must decide (`self` is then half filled). A text command has no fast reader.
+    fn read_fast(&mut self, fields: FastReader<'a>, repeats: usize, extra: usize) -> Read<()> {
+        let _ = (fields, repeats, extra);
+        Err(Unsure)
+    }
+
     /// The talker ID (`GP`, `GN`, …) of a standard sentence; empty for the others.
     fn talker(&self) -> &'a str {
         ""
@@ -71,6 +82,13 @@ pub trait Layout<'a>: Sized {
 
     /// Writes every field after the address, each preceded by `,` (a space in a text command).
     fn write_fields<W: Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result;
+
+    /// [`Layout::write_fields`] into a byte buffer without `fmt`, when the text is ASCII;
+    /// `None`: leave it to `write_fields` (a text command always does).
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        let _ = w;
+        None
+    }
 
     /// Writes the members of the `fields` object of the tools' JSON.
     fn write_json_fields<W: Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result;
@@ -100,9 +118,44 @@ pub trait Layout<'a>: Sized {
     }
 
     /// Writes the sentence text, checksum included unless it is [`Checksum::None`] (a text
-    /// command: its words); no line ending.
+    /// command: its words); no line ending. The text is put together on the stack and written
+    /// at once (see [`Layout::serialize_into`]), or written piece by piece when that cannot be.
     fn write_sentence<W: Write + ?Sized>(&self, out: &mut W) -> fmt::Result {
-        self.write_sentence_with(out, &Problems::new())
+        let mut buf = [0; MAX_LINE];
+        match self.put_sentence(&mut buf) {
+            Some(len) => out.write_str(core::str::from_utf8(&buf[..len]).map_err(|_| fmt::Error)?),
+            None => self.write_sentence_with(out, &Problems::new()),
+        }
+    }
+
+    /// The sentence text, what `Display` writes (no line ending), put at the start of `buf`, as
+    /// C's `nmea_serialize` does: its length, or `None` when `buf` cannot hold it. Without the
+    /// `fmt` machinery for an ASCII text (every parsed `$` sentence), with it for any other.
+    fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
+        if let Some(len) = self.put_sentence(buf) {
+            return Some(len);
+        }
+        let mut w = ByteWriter::new(buf);
+        self.write_sentence_with(&mut w, &Problems::new()).ok()?;
+        Some(w.len())
+    }
+
+    /// [`Layout::serialize_into`] without `fmt`: `None` when the text is not all ASCII, a text
+    /// command, or longer than `buf`.
+    #[doc(hidden)]
+    fn put_sentence(&self, buf: &mut [u8]) -> Option<usize> {
+        let mut w = ByteWriter::new(buf);
+        w.str("$")?;
+        match Self::FRAMING {
+            Framing::Standard => {
+                w.str(self.talker())?;
+                w.str(Self::SENTENCE)?;
+            }
+            Framing::Proprietary(address) => w.str(address)?,
+            Framing::Text(_) => return None,
+        }
+        self.put_fields(&mut w)?;
+        w.finish(self.checksum())
     }
 
     /// [`Layout::write_sentence`] for a sentence lenient parsing kept: the text of each field
@@ -308,7 +361,38 @@ impl<'a> Generic<'a> {
 
     /// Writes the sentence text; no line ending.
     pub fn write_sentence<W: Write + ?Sized>(&self, out: &mut W) -> fmt::Result {
-        write_sentence(out, self.start, ["", ""], self.checksum, |w| self.write_body(w))
+        let mut buf = [0; MAX_LINE];
+        match self.put_sentence(&mut buf) {
+            Some(len) => out.write_str(core::str::from_utf8(&buf[..len]).map_err(|_| fmt::Error)?),
+            None => write_sentence(out, self.start, ["", ""], self.checksum, |w| self.write_body(w)),
+        }
+    }
+
+    /// The sentence text put at the start of `buf` (see [`Layout::serialize_into`]): its
+    /// length, or `None` when `buf` cannot hold it.
+    pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
+        if let Some(len) = self.put_sentence(buf) {
+            return Some(len);
+        }
+        let mut w = ByteWriter::new(buf);
+        write_sentence(&mut w, self.start, ["", ""], self.checksum, |w| self.write_body(w)).ok()?;
+        Some(w.len())
+    }
+
+    /// [`Generic::serialize_into`] without `fmt`: `None` when the text is not all ASCII.
+    #[doc(hidden)]
+    pub fn put_sentence(&self, buf: &mut [u8]) -> Option<usize> {
+        if self.start.len() != 1 {
+            return None; // `finish` sums what follows a start character
+        }
+        let mut w = ByteWriter::new(buf);
+        w.str(self.start)?;
+        w.str(self.address)?;
+        if !self.fields.is_empty() {
+            w.str(",")?;
+            w.str(self.fields.as_str())?;
+        }
+        w.finish(self.checksum)
     }
 
     /// Writes the tools' JSON line: the fields as an array of strings.

@@ -6,6 +6,7 @@
 //! Python and C runtimes' rules byte for byte; see docs/json.md.
 
 mod error;
+mod fast;
 mod frame;
 mod layout;
 mod table;
@@ -21,6 +22,7 @@ pub mod stream;
 pub mod json;
 
 pub use error::{Error, ErrorKind, FieldProblem, Message, Name, Problems};
+pub use fast::{FastReader, Read, Unsure};
 pub use frame::{
     checksum, first_word, is_command_word, is_standard_address, Blanks, FieldIter, Fields, Frame, GroupShape, Reader,
     Shape, MAX_LINE, MAX_PROBLEMS,
@@ -33,5 +35,5 @@ pub use types::{
 };
 pub use write::{
     write_json_char, write_json_display, write_json_str, write_sentence, write_sentence_with, write_words_json,
-    Discard, FieldValue, JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
+    ByteWriter, Discard, FieldValue, JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
 };

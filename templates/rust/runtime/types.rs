@@ -389,11 +389,17 @@ pub struct Hex {
 impl Hex {
     /// Parses up to 16 hex digits whose letters are all of one case.
     pub fn parse(text: &str) -> Option<Self> {
+        Self::parse_bytes(text.as_bytes())
+    }
+
+    /// [`Hex::parse`] of a field's bytes.
+    #[inline(always)]
+    pub fn parse_bytes(text: &[u8]) -> Option<Self> {
         if text.len() > 16 {
             return None;
         }
         let (mut value, mut upper, mut lower) = (0u64, false, false);
-        for b in text.bytes() {
+        for &b in text {
             let digit = match b {
                 b'0'..=b'9' => b - b'0',
                 b'A'..=b'F' => {
@@ -447,8 +453,13 @@ impl Time {
     /// Parses `hhmmss` with an optional `.` and up to 9 fraction digits.
     #[inline(always)]
     pub fn parse(text: &str) -> Option<Self> {
+        Self::parse_bytes(text.as_bytes())
+    }
+
+    /// [`Time::parse`] of a field's bytes.
+    #[inline(always)]
+    pub fn parse_bytes(bytes: &[u8]) -> Option<Self> {
         // Six digits, then the point if any: a point elsewhere fails the digit checks.
-        let bytes = text.as_bytes();
         let (c, frac, point) = match bytes.get(6) {
             None if bytes.len() == 6 => (bytes, &bytes[6..], false),
             Some(b'.') => (&bytes[..6], &bytes[7..], true),
@@ -539,7 +550,12 @@ impl Date {
     /// Parses `ddmmyy` (day 1 to 31, month 1 to 12).
     #[inline(always)]
     pub fn parse(text: &str) -> Option<Self> {
-        let b = text.as_bytes();
+        Self::parse_bytes(text.as_bytes())
+    }
+
+    /// [`Date::parse`] of a field's bytes.
+    #[inline(always)]
+    pub fn parse_bytes(b: &[u8]) -> Option<Self> {
         if b.len() != 6 {
             return None;
         }
@@ -596,23 +612,35 @@ impl Coordinate {
     /// The hemisphere is left empty (`'\0'`).
     #[inline(always)]
     pub fn parse(text: &str, max_degree_digits: usize, max_degrees: u8) -> Option<Self> {
-        let (whole, frac, point) = match text.bytes().position(|b| b == b'.') {
+        Self::parse_bytes(text.as_bytes(), max_degree_digits, max_degrees)
+    }
+
+    /// [`Coordinate::parse`] of a field's bytes.
+    #[inline(always)]
+    pub fn parse_bytes(text: &[u8], max_degree_digits: usize, max_degrees: u8) -> Option<Self> {
+        let (whole, frac, point) = match text.iter().position(|&b| b == b'.') {
             Some(at) => (&text[..at], &text[at + 1..], true),
-            None => (text, "", false),
+            None => (text, &[][..], false),
         };
         if whole.len() < 2 || whole.len() > 2 + max_degree_digits || frac.len() > MAX_DIGITS - 2 {
             return None;
         }
         let (degree_text, minute_text) = whole.split_at(whole.len() - 2);
         let mut degrees = 0u16;
-        for b in degree_text.bytes() {
+        for &b in degree_text {
             if !b.is_ascii_digit() {
                 return None;
             }
             degrees = degrees * 10 + u16::from(b - b'0');
         }
         let mut digits = 0i64;
-        for b in minute_text.bytes().chain(frac.bytes()) {
+        for &b in minute_text {
+            if !b.is_ascii_digit() {
+                return None;
+            }
+            digits = digits * 10 + i64::from(b - b'0');
+        }
+        for &b in frac {
             if !b.is_ascii_digit() {
                 return None;
             }
@@ -717,6 +745,11 @@ pub trait CodeEnum: Copy + Sized + 'static {
 
     /// The value with wire code `code`.
     fn from_code(code: &str) -> Option<Self>;
+    /// The value with wire code `code` given as bytes (how the fast path of parsing reads it).
+    #[inline]
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        core::str::from_utf8(code).ok().and_then(Self::from_code)
+    }
     /// The wire code.
     fn code(self) -> &'static str;
     /// The spec id (`"differential"`).
@@ -926,6 +959,18 @@ impl<T: Copy + Default, const N: usize> Group<T, N> {
         self.len = 0;
         for (i, slot) in self.items.iter_mut().take(count).enumerate() {
             *slot = read(i + 1)?;
+            self.len = i + 1;
+        }
+        Ok(())
+    }
+
+    /// [`Group::fill`] with `read` filling each entry in its slot (reset to the default first).
+    #[inline(always)]
+    pub fn fill_in_place<E>(&mut self, count: usize, mut read: impl FnMut(&mut T) -> Result<(), E>) -> Result<(), E> {
+        self.len = 0;
+        for (i, slot) in self.items.iter_mut().take(count).enumerate() {
+            *slot = T::default();
+            read(slot)?;
             self.len = i + 1;
         }
         Ok(())

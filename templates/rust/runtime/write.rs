@@ -3,7 +3,7 @@
 use core::fmt::{self, Write};
 
 use super::error::Problems;
-use super::types::{Ascii, Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Texts, Time};
+use super::types::{Ascii, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Sign, Texts, Time};
 
 /// A field value: how it is written on the wire and in both JSON forms of the tools.
 pub trait FieldValue {
@@ -37,6 +37,15 @@ pub trait FieldValue {
         let _ = (text, separator);
         false
     }
+
+    /// Puts the wire text (fields joined by `,`) into `out`, byte for byte what
+    /// [`FieldValue::write_wire`] writes, when it is ASCII; `None` when it is not, or does not
+    /// fit (the caller then writes the text with `fmt`).
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        let _ = out;
+        None
+    }
 }
 
 impl FieldValue for Number {
@@ -54,6 +63,11 @@ impl FieldValue for Number {
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
         self.write_json_value(w)
     }
+
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.number(*self)
+    }
 }
 
 impl FieldValue for Hex {
@@ -63,6 +77,11 @@ impl FieldValue for Hex {
 
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
         write!(w, "{}", self.value)
+    }
+
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.hex(*self)
     }
 }
 
@@ -81,6 +100,11 @@ impl FieldValue for Time {
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
         self.write_json_value(w)
     }
+
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.time(*self)
+    }
 }
 
 impl FieldValue for Date {
@@ -97,6 +121,11 @@ impl FieldValue for Date {
 
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
         self.write_json_value(w)
+    }
+
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.two_digit_parts([self.day, self.month, self.year])
     }
 }
 
@@ -136,6 +165,11 @@ impl FieldValue for Coordinate {
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
         self.write_json_value(w)
     }
+
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.coordinate(*self)
+    }
 }
 
 impl FieldValue for char {
@@ -145,6 +179,11 @@ impl FieldValue for char {
 
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
         write_json_char(w, *self)
+    }
+
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.put(&[u8::try_from(*self).ok().filter(u8::is_ascii)?])
     }
 }
 
@@ -160,6 +199,11 @@ impl FieldValue for &str {
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
         write_json_str(w, self)
     }
+
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.str(self)
+    }
 }
 
 impl<E: CodeEnum> FieldValue for Code<'_, E> {
@@ -173,6 +217,11 @@ impl<E: CodeEnum> FieldValue for Code<'_, E> {
 
     fn write_value_json<W: Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
         write_json_str(w, self.id())
+    }
+
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.str(self.code())
     }
 }
 
@@ -194,6 +243,11 @@ impl<E: CodeEnum> FieldValue for CodeChars<'_, E> {
             write_json_str(w, code.id())?;
         }
         w.write_char(']')
+    }
+
+    #[inline]
+    fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.str(self.as_str())
     }
 }
 
@@ -377,6 +431,233 @@ pub fn write_sentence_with<W: Write + ?Sized>(
         out.write_char('*')?;
     }
     Ok(())
+}
+
+/// Puts a sentence's text into a byte buffer without the `fmt` machinery: what `Display` writes,
+/// byte for byte, when it is ASCII (as every parsed `$` sentence is). Each piece is checked once
+/// for room; a piece that is not ASCII, or a value built by hand that `Display` writes in an
+/// unusual way, or the end of the buffer, makes it give up (`None`) and the caller writes the
+/// text with `fmt` instead. As a `fmt::Write` it takes any text, as UTF-8 (that fallback).
+#[derive(Debug)]
+pub struct ByteWriter<'b> {
+    buf: &'b mut [u8],
+    len: usize,
+}
+
+/// 10^n for n up to 19 (the most digits [`ByteWriter`] writes in one run).
+const POW10: [u64; 20] = {
+    let mut table = [1u64; 20];
+    let mut i = 1;
+    while i < 20 {
+        table[i] = table[i - 1] * 10;
+        i += 1;
+    }
+    table
+};
+
+impl<'b> ByteWriter<'b> {
+    /// A writer into `buf`, from its start.
+    pub fn new(buf: &'b mut [u8]) -> Self {
+        Self { buf, len: 0 }
+    }
+
+    /// The bytes written so far.
+    pub const fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether nothing was written yet.
+    pub const fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The next `N` bytes of the buffer, to fill: one check for a whole field.
+    #[inline(always)]
+    fn room<const N: usize>(&mut self) -> Option<&mut [u8; N]> {
+        let end = self.len.checked_add(N)?;
+        self.buf.get_mut(self.len..end)?.try_into().ok()
+    }
+
+    /// Bytes already known to be ASCII.
+    #[inline(always)]
+    fn put(&mut self, bytes: &[u8]) -> Option<()> {
+        let end = self.len.checked_add(bytes.len())?;
+        self.buf.get_mut(self.len..end)?.copy_from_slice(bytes);
+        self.len = end;
+        Some(())
+    }
+
+    /// ASCII text (`None` for any other).
+    #[inline]
+    pub fn str(&mut self, text: &str) -> Option<()> {
+        if !text.is_ascii() {
+            return None;
+        }
+        self.put(text.as_bytes())
+    }
+
+    /// A number as [`Number`]'s `Display` writes it: sign, integer digits zero-padded to its
+    /// width, point and fraction (`None` for one built by hand that it writes otherwise).
+    #[inline]
+    pub fn number(&mut self, number: Number) -> Option<()> {
+        let (width, scale) = (usize::from(number.width), usize::from(number.scale));
+        let count = width + scale;
+        let digits = u64::try_from(number.digits).ok()?;
+        if count >= POW10.len() || digits >= POW10[count] || (scale > 0 && !number.point) {
+            return None;
+        }
+        let room = self.room::<24>()?;
+        let at = usize::from(number.sign != Sign::Implicit);
+        room[0] = if number.sign == Sign::Minus { b'-' } else { b'+' };
+        let end = at + count + usize::from(number.point);
+        // From the right: the fraction, the point, the integer digits.
+        let (mut value, mut i) = (digits, end);
+        for _ in 0..scale {
+            i -= 1;
+            room[i] = b'0' + (value % 10) as u8;
+            value /= 10;
+        }
+        if number.point {
+            i -= 1;
+            room[i] = b'.';
+        }
+        for _ in 0..width {
+            i -= 1;
+            room[i] = b'0' + (value % 10) as u8;
+            value /= 10;
+        }
+        self.len += end;
+        Some(())
+    }
+
+    /// `value` in `count` decimal digits (it has no more).
+    #[inline(always)]
+    fn digits(&mut self, mut value: u64, count: usize) -> Option<()> {
+        let room = self.room::<20>()?;
+        for slot in room.get_mut(..count)?.iter_mut().rev() {
+            *slot = b'0' + (value % 10) as u8;
+            value /= 10;
+        }
+        self.len += count;
+        Some(())
+    }
+
+    /// Two digits a part, as times and dates are written (`None` for a part above 99, only in
+    /// a value built by hand).
+    #[inline]
+    pub fn two_digit_parts(&mut self, parts: [u8; 3]) -> Option<()> {
+        let room = self.room::<6>()?;
+        for (pair, part) in room.chunks_exact_mut(2).zip(parts) {
+            if part > 99 {
+                return None;
+            }
+            pair[0] = b'0' + part / 10;
+            pair[1] = b'0' + part % 10;
+        }
+        self.len += 6;
+        Some(())
+    }
+
+    /// A time as [`Time`]'s `Display` writes it: `hhmmss`, and the point and fraction digits.
+    #[inline]
+    pub fn time(&mut self, time: Time) -> Option<()> {
+        self.two_digit_parts([time.hour, time.minute, time.second])?;
+        if !time.point {
+            return Some(());
+        }
+        let count = usize::from(time.fraction_digits);
+        if count >= POW10.len() || u64::from(time.fraction) >= POW10[count] {
+            return None;
+        }
+        self.put(b".")?;
+        self.digits(u64::from(time.fraction), count)
+    }
+
+    /// A latitude or longitude as [`Coordinate`]'s `Display` writes it: degrees zero-padded to
+    /// their digits, minutes, `,` and the hemisphere.
+    #[inline]
+    pub fn coordinate(&mut self, coordinate: Coordinate) -> Option<()> {
+        let count = usize::from(coordinate.degree_digits);
+        if count >= POW10.len() || u64::from(coordinate.degrees) >= POW10[count] || !coordinate.hemisphere.is_ascii() {
+            return None;
+        }
+        self.digits(u64::from(coordinate.degrees), count)?;
+        self.number(coordinate.minutes)?;
+        self.put(&[b',', coordinate.hemisphere as u8])
+    }
+
+    /// A hex number as [`Hex`]'s `Display` writes it: its digits, zero-padded to its width.
+    #[inline]
+    pub fn hex(&mut self, hex: Hex) -> Option<()> {
+        let needed = (64 - hex.value.leading_zeros()).div_ceil(4).max(1) as usize;
+        let count = needed.max(usize::from(hex.digits));
+        let room = self.room::<32>()?;
+        let table = if hex.lower { b"0123456789abcdef" } else { b"0123456789ABCDEF" };
+        let mut value = hex.value;
+        for slot in room.get_mut(..count)?.iter_mut().rev() {
+            *slot = table[(value & 15) as usize];
+            value >>= 4;
+        }
+        self.len += count;
+        Some(())
+    }
+
+    /// `,` and a field (`WIDTH` empty fields when it is `None`).
+    #[inline]
+    pub fn field<T: FieldValue>(&mut self, value: &Option<T>) -> Option<()> {
+        match value {
+            Some(value) => {
+                self.put(b",")?;
+                value.put_wire(self)
+            }
+            None if T::WIDTH == 2 => self.put(b",,"),
+            None => self.put(b","),
+        }
+    }
+
+    /// `,` and a keyword.
+    #[inline]
+    pub fn keyword(&mut self, word: &str) -> Option<()> {
+        self.put(b",")?;
+        self.str(word)
+    }
+
+    /// Each value of a single-field group.
+    #[inline]
+    pub fn fields<T: FieldValue>(&mut self, values: &[Option<T>]) -> Option<()> {
+        values.iter().try_for_each(|value| self.field(value))
+    }
+
+    /// Each value of a group of one text field.
+    pub fn texts(&mut self, values: &Texts<'_>) -> Option<()> {
+        values.iter().try_for_each(|value| self.field(&value))
+    }
+
+    /// Ends a sentence written from its start character on: `*` and the XOR of everything after
+    /// that character, in the checksum's style. The sentence's length.
+    #[inline]
+    pub fn finish(mut self, checksum: Checksum) -> Option<usize> {
+        let body = self.buf.get(1..self.len)?;
+        let mut words = body.chunks_exact(8);
+        let mut sum = words.by_ref().fold(0u64, |sum, word| sum ^ u64::from_le_bytes(word.try_into().unwrap_or_default()));
+        sum ^= sum >> 32;
+        sum ^= sum >> 16;
+        sum ^= sum >> 8;
+        let sum = words.remainder().iter().fold(sum as u8, |sum, b| sum ^ b);
+        match checksum.digits(sum) {
+            Some([high, low]) => self.put(&[b'*', high, low])?,
+            None if checksum == Checksum::Empty => self.put(b"*")?,
+            None => {}
+        }
+        Some(self.len)
+    }
+}
+
+impl Write for ByteWriter<'_> {
+    /// Any text, as UTF-8 (the fallback of the byte writers: text with characters outside ASCII).
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        self.put(s.as_bytes()).ok_or(fmt::Error)
+    }
 }
 
 /// Writes into a byte buffer, each character as one byte (its low byte, as Latin-1 would), and

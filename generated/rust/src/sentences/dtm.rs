@@ -11,7 +11,10 @@ use core::fmt;
 use crate::enums::{DtmDatum, DtmLatOffsetDir, DtmLonOffsetDir};
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// DTM: Datum reference.
@@ -96,6 +99,21 @@ impl<'a> Layout<'a> for Dtm<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.local_datum = f.code()?;
+        self.local_datum_subdivision = f.char()?;
+        self.lat_offset = f.decimal(Range::ANY)?;
+        self.lat_offset_dir = f.code()?;
+        self.lon_offset = f.decimal(Range::ANY)?;
+        self.lon_offset_dir = f.code()?;
+        self.altitude_offset = f.decimal(Range::ANY)?;
+        self.reference_datum = f.code()?;
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -114,6 +132,19 @@ impl<'a> Layout<'a> for Dtm<'a> {
         w.field(&self.altitude_offset)?;
         w.field(&self.reference_datum)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.local_datum)?;
+        w.field(&self.local_datum_subdivision)?;
+        w.field(&self.lat_offset)?;
+        w.field(&self.lat_offset_dir)?;
+        w.field(&self.lon_offset)?;
+        w.field(&self.lon_offset_dir)?;
+        w.field(&self.altitude_offset)?;
+        w.field(&self.reference_datum)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

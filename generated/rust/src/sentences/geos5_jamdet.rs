@@ -11,7 +11,9 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// GEOS5_JAMDET: GeoS-5 jamming detected.
@@ -72,6 +74,14 @@ impl<'a> Layout<'a> for Geos5Jamdet<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        f.keyword("JAMDET")?;
+        self.reserved = f.text(None)?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -80,6 +90,13 @@ impl<'a> Layout<'a> for Geos5Jamdet<'a> {
         w.keyword("JAMDET")?;
         w.field(&self.reserved)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.keyword("JAMDET")?;
+        w.field(&self.reserved)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

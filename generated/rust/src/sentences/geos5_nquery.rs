@@ -15,7 +15,8 @@ use crate::enums::{Geos5MessageRate, Geos5NmeaVersion, Geos5OutputRate};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -137,6 +138,26 @@ impl<'a> Layout<'a> for Geos5Nquery<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        f.keyword("NQUERY")?;
+        self.port = f.integer(Range::between(Bound::int(0), Bound::int(1)))?;
+        self.output_rate = f.code()?;
+        self.nmea_version = f.code()?;
+        self.gga_rate = f.code()?;
+        self.gll_rate = f.code()?;
+        self.gsa_rate = f.code()?;
+        self.gsv_rate = f.code()?;
+        self.rmc_rate = f.code()?;
+        self.vtg_rate = f.code()?;
+        self.gns_rate = f.code()?;
+        self.zda_rate = f.code()?;
+        self.dtm_rate = f.code()?;
+        self.rlm_rate = f.code()?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -157,6 +178,25 @@ impl<'a> Layout<'a> for Geos5Nquery<'a> {
         w.field(&self.dtm_rate)?;
         w.field(&self.rlm_rate)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.keyword("NQUERY")?;
+        w.field(&self.port)?;
+        w.field(&self.output_rate)?;
+        w.field(&self.nmea_version)?;
+        w.field(&self.gga_rate)?;
+        w.field(&self.gll_rate)?;
+        w.field(&self.gsa_rate)?;
+        w.field(&self.gsv_rate)?;
+        w.field(&self.rmc_rate)?;
+        w.field(&self.vtg_rate)?;
+        w.field(&self.gns_rate)?;
+        w.field(&self.zda_rate)?;
+        w.field(&self.dtm_rate)?;
+        w.field(&self.rlm_rate)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -15,7 +15,9 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Date, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Date, Error, FastReader, Fields, Framing, Hex, JsonFields, Layout, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// GEOS5_RQUERY: GeoS-5 software version, telemetry and configuration.
@@ -100,6 +102,19 @@ impl<'a> Layout<'a> for Geos5Rquery<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        f.keyword("RQUERY")?;
+        self.receiver_name = f.text(None)?;
+        self.software_version = f.text(None)?;
+        self.software_date = f.date()?;
+        self.status = f.hex()?;
+        self.config_1 = f.hex()?;
+        self.config_2 = f.hex()?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -113,6 +128,18 @@ impl<'a> Layout<'a> for Geos5Rquery<'a> {
         w.field(&self.config_1)?;
         w.field(&self.config_2)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.keyword("RQUERY")?;
+        w.field(&self.receiver_name)?;
+        w.field(&self.software_version)?;
+        w.field(&self.software_date)?;
+        w.field(&self.status)?;
+        w.field(&self.config_1)?;
+        w.field(&self.config_2)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -11,7 +11,9 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// GEOS5_RQUERY_REQUEST: GeoS-5 request for software version, telemetry and configuration.
@@ -71,6 +73,13 @@ impl<'a> Layout<'a> for Geos5RqueryRequest {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        f.keyword("RQUERY")?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -78,6 +87,12 @@ impl<'a> Layout<'a> for Geos5RqueryRequest {
     fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
         w.keyword("RQUERY")?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.keyword("RQUERY")?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -13,8 +13,8 @@ use crate::enums::GgaQuality;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number,
+    Range, Read, Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -117,6 +117,25 @@ impl<'a> Layout<'a> for Gga<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.lat = f.latitude()?;
+        self.lon = f.longitude()?;
+        self.quality = f.code()?;
+        self.satellites = f.integer(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.hdop = f.decimal(Range::ANY)?;
+        self.altitude = f.decimal(Range::ANY)?;
+        self.altitude_unit = f.literal("M")?;
+        self.geoid_separation = f.decimal(Range::ANY)?;
+        self.geoid_separation_unit = f.literal("M")?;
+        self.dgps_age = f.decimal(Range::between(Bound::int(0), Bound::new(9999, 1)))?;
+        self.dgps_station = f.integer(Range::between(Bound::int(0), Bound::int(4095)))?;
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -139,6 +158,23 @@ impl<'a> Layout<'a> for Gga<'a> {
         w.field(&self.dgps_age)?;
         w.field(&self.dgps_station)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.quality)?;
+        w.field(&self.satellites)?;
+        w.field(&self.hdop)?;
+        w.field(&self.altitude)?;
+        w.field(&self.altitude_unit)?;
+        w.field(&self.geoid_separation)?;
+        w.field(&self.geoid_separation_unit)?;
+        w.field(&self.dgps_age)?;
+        w.field(&self.dgps_station)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

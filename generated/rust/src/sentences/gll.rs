@@ -11,7 +11,10 @@ use core::fmt;
 use crate::enums::{PosMode, Status};
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Shape, Time, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, Time,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// GLL: Geographic position, latitude/longitude.
@@ -88,6 +91,21 @@ impl<'a> Layout<'a> for Gll<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.lat = f.latitude()?;
+        self.lon = f.longitude()?;
+        self.time = f.time()?;
+        self.status = f.code()?;
+        if extra >= 1 {
+            self.mode = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -105,6 +123,18 @@ impl<'a> Layout<'a> for Gll<'a> {
             w.field(&self.mode)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.time)?;
+        w.field(&self.status)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

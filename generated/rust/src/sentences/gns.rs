@@ -13,8 +13,8 @@ use crate::enums::{NavStatus, PosMode};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, CodeChars, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    Time, WireWriter,
+    Bound, ByteWriter, Checksum, Code, CodeChars, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout,
+    Number, Range, Read, Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -122,6 +122,27 @@ impl<'a> Layout<'a> for Gns<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.lat = f.latitude()?;
+        self.lon = f.longitude()?;
+        self.mode = f.code_chars(None)?;
+        self.satellites = f.integer(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.hdop = f.decimal(Range::ANY)?;
+        self.altitude = f.decimal(Range::ANY)?;
+        self.geoid_separation = f.decimal(Range::ANY)?;
+        self.dgps_age = f.decimal(Range::between(Bound::int(0), Bound::new(9999, 1)))?;
+        self.dgps_station = f.integer(Range::between(Bound::int(0), Bound::int(4095)))?;
+        if extra >= 1 {
+            self.nav_status = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -145,6 +166,24 @@ impl<'a> Layout<'a> for Gns<'a> {
             w.field(&self.nav_status)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.mode)?;
+        w.field(&self.satellites)?;
+        w.field(&self.hdop)?;
+        w.field(&self.altitude)?;
+        w.field(&self.geoid_separation)?;
+        w.field(&self.dgps_age)?;
+        w.field(&self.dgps_station)?;
+        if self.trailing >= 1 {
+            w.field(&self.nav_status)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -288,6 +327,26 @@ impl<'a> Layout<'a> for GnsAux<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.lat = f.latitude()?;
+        self.lon = f.longitude()?;
+        self.satellites = f.integer(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.hdop = f.decimal(Range::ANY)?;
+        self.altitude = f.decimal(Range::ANY)?;
+        self.geoid_separation = f.decimal(Range::ANY)?;
+        self.dgps_age = f.decimal(Range::between(Bound::int(0), Bound::new(9999, 1)))?;
+        self.dgps_station = f.integer(Range::between(Bound::int(0), Bound::int(4095)))?;
+        if extra >= 1 {
+            self.nav_status = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -310,6 +369,23 @@ impl<'a> Layout<'a> for GnsAux<'a> {
             w.field(&self.nav_status)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.satellites)?;
+        w.field(&self.hdop)?;
+        w.field(&self.altitude)?;
+        w.field(&self.geoid_separation)?;
+        w.field(&self.dgps_age)?;
+        w.field(&self.dgps_station)?;
+        if self.trailing >= 1 {
+            w.field(&self.nav_status)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -14,7 +14,8 @@ use crate::enums::{GsaFixType, GsaSelectionMode, SystemId};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number,
+    Range, Read, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -109,6 +110,23 @@ impl<'a> Layout<'a> for Gsa<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.selection_mode = f.code()?;
+        self.fix_type = f.code()?;
+        f.group_into(&mut self.prns, repeats, |f| f.integer(Range::ANY))?;
+        self.pdop = f.decimal(Range::ANY)?;
+        self.hdop = f.decimal(Range::ANY)?;
+        self.vdop = f.decimal(Range::ANY)?;
+        if extra >= 1 {
+            self.system_id = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -128,6 +146,20 @@ impl<'a> Layout<'a> for Gsa<'a> {
             w.field(&self.system_id)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.selection_mode)?;
+        w.field(&self.fix_type)?;
+        w.fields(&self.prns)?;
+        w.field(&self.pdop)?;
+        w.field(&self.hdop)?;
+        w.field(&self.vdop)?;
+        if self.trailing >= 1 {
+            w.field(&self.system_id)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -247,6 +279,19 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.selection_mode = f.code()?;
+        self.fix_type = f.code()?;
+        f.group_into(&mut self.prns, repeats, |f| f.integer(Range::ANY))?;
+        self.pdop = f.decimal(Range::ANY)?;
+        self.hdop = f.decimal(Range::ANY)?;
+        self.vdop = f.decimal(Range::ANY)?;
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -263,6 +308,17 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         w.field(&self.hdop)?;
         w.field(&self.vdop)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.selection_mode)?;
+        w.field(&self.fix_type)?;
+        w.fields(&self.prns)?;
+        w.field(&self.pdop)?;
+        w.field(&self.hdop)?;
+        w.field(&self.vdop)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -11,7 +11,10 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, Time,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// GST: GNSS pseudorange error statistics.
@@ -88,6 +91,21 @@ impl<'a> Layout<'a> for Gst<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.rms = f.decimal(Range::ANY)?;
+        self.semi_major_std = f.decimal(Range::ANY)?;
+        self.semi_minor_std = f.decimal(Range::ANY)?;
+        self.orientation = f.decimal(Range::ANY)?;
+        self.lat_std = f.decimal(Range::ANY)?;
+        self.lon_std = f.decimal(Range::ANY)?;
+        self.alt_std = f.decimal(Range::ANY)?;
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -106,6 +124,19 @@ impl<'a> Layout<'a> for Gst<'a> {
         w.field(&self.lon_std)?;
         w.field(&self.alt_std)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.rms)?;
+        w.field(&self.semi_major_std)?;
+        w.field(&self.semi_minor_std)?;
+        w.field(&self.orientation)?;
+        w.field(&self.lat_std)?;
+        w.field(&self.lon_std)?;
+        w.field(&self.alt_std)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

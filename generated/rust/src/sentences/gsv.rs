@@ -13,8 +13,8 @@ use crate::enums::SignalId;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Reader, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout,
+    Number, Range, Read, Reader, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -48,12 +48,29 @@ impl GsvSatellite {
         })
     }
 
+    #[inline(always)]
+    fn read_fast(&mut self, f: &mut FastReader<'_>) -> Read<()> {
+        self.prn = f.integer(Range::ANY)?;
+        self.elevation = f.integer(Range::between(Bound::int(-90), Bound::int(90)))?;
+        self.azimuth = f.integer(Range::between(Bound::int(0), Bound::int(360)))?;
+        self.snr = f.integer(Range::between(Bound::int(0), Bound::int(99)))?;
+        Ok(())
+    }
+
     fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
         w.field(&self.prn)?;
         w.field(&self.elevation)?;
         w.field(&self.azimuth)?;
         w.field(&self.snr)?;
         Ok(())
+    }
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.prn)?;
+        w.field(&self.elevation)?;
+        w.field(&self.azimuth)?;
+        w.field(&self.snr)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -156,6 +173,21 @@ impl<'a> Layout<'a> for Gsv<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.message_count = f.integer(Range::at_least(Bound::int(1)))?;
+        self.message_number = f.integer(Range::at_least(Bound::int(1)))?;
+        self.satellites_in_view = f.integer(Range::at_least(Bound::int(0)))?;
+        f.entries_into(&mut self.satellites, repeats, GsvSatellite::read_fast)?;
+        if extra >= 1 {
+            self.signal_id = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -175,6 +207,20 @@ impl<'a> Layout<'a> for Gsv<'a> {
             w.field(&self.signal_id)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.message_count)?;
+        w.field(&self.message_number)?;
+        w.field(&self.satellites_in_view)?;
+        for entry in &self.satellites {
+            entry.put_fields(w)?;
+        }
+        if self.trailing >= 1 {
+            w.field(&self.signal_id)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

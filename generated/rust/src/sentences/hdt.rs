@@ -10,7 +10,10 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// HDT: Heading, true.
@@ -64,6 +67,15 @@ impl<'a> Layout<'a> for Hdt<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.heading = f.decimal(Range::ANY)?;
+        self.heading_ref = f.literal("T")?;
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -76,6 +88,13 @@ impl<'a> Layout<'a> for Hdt<'a> {
         w.field(&self.heading)?;
         w.field(&self.heading_ref)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.heading)?;
+        w.field(&self.heading_ref)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

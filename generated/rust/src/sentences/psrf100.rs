@@ -16,7 +16,8 @@ use crate::enums::{SirfBaud, SirfParity, SirfProtocol};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -89,6 +90,17 @@ impl<'a> Layout<'a> for Psrf100<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.protocol = f.code()?;
+        self.baud = f.code()?;
+        self.data_bits = f.integer(Range::between(Bound::int(7), Bound::int(8)))?;
+        self.stop_bits = f.integer(Range::between(Bound::int(0), Bound::int(1)))?;
+        self.parity = f.code()?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -100,6 +112,16 @@ impl<'a> Layout<'a> for Psrf100<'a> {
         w.field(&self.stop_bits)?;
         w.field(&self.parity)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.protocol)?;
+        w.field(&self.baud)?;
+        w.field(&self.data_bits)?;
+        w.field(&self.stop_bits)?;
+        w.field(&self.parity)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

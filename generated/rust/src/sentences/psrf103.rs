@@ -15,7 +15,8 @@ use crate::enums::{SirfChecksumEnable, SirfNmeaMessage, SirfRateMode};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -87,6 +88,16 @@ impl<'a> Layout<'a> for Psrf103<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.message = f.code()?;
+        self.mode = f.code()?;
+        self.rate = f.integer(Range::between(Bound::int(0), Bound::int(255)))?;
+        self.checksum_mode = f.code()?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -97,6 +108,15 @@ impl<'a> Layout<'a> for Psrf103<'a> {
         w.field(&self.rate)?;
         w.field(&self.checksum_mode)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.message)?;
+        w.field(&self.mode)?;
+        w.field(&self.rate)?;
+        w.field(&self.checksum_mode)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

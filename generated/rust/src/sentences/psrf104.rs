@@ -12,7 +12,10 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Bound, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{
+    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// PSRF104: Navigation initialisation, latitude/longitude/altitude.
@@ -111,6 +114,20 @@ impl<'a> Layout<'a> for Psrf104 {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.latitude = f.decimal(Range::between(Bound::int(-90), Bound::int(90)))?;
+        self.longitude = f.decimal(Range::between(Bound::int(-180), Bound::int(180)))?;
+        self.altitude = f.decimal(Range::ANY)?;
+        self.clock_offset = f.integer(Range::between(Bound::int(-2147483648), Bound::int(2147483647)))?;
+        self.time_of_week = f.integer(Range::between(Bound::int(0), Bound::int(604799)))?;
+        self.week = f.integer(Range::between(Bound::int(0), Bound::int(65535)))?;
+        self.channels = f.integer(Range::between(Bound::int(1), Bound::int(12)))?;
+        self.reset_cfg = f.integer(Range::between(Bound::int(0), Bound::int(7)))?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -125,6 +142,19 @@ impl<'a> Layout<'a> for Psrf104 {
         w.field(&self.channels)?;
         w.field(&self.reset_cfg)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.latitude)?;
+        w.field(&self.longitude)?;
+        w.field(&self.altitude)?;
+        w.field(&self.clock_offset)?;
+        w.field(&self.time_of_week)?;
+        w.field(&self.week)?;
+        w.field(&self.channels)?;
+        w.field(&self.reset_cfg)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -14,7 +14,9 @@ use core::fmt;
 use crate::enums::SirfDebug;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// PSRF105: Switch development data messages on/off.
@@ -72,6 +74,13 @@ impl<'a> Layout<'a> for Psrf105<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.debug = f.code()?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -79,6 +88,12 @@ impl<'a> Layout<'a> for Psrf105<'a> {
     fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
         w.field(&self.debug)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.debug)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -15,7 +15,9 @@ use core::fmt;
 use crate::enums::SirfOkToSend;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// PSRF150: OkToSend.
@@ -69,6 +71,13 @@ impl<'a> Layout<'a> for Psrf150<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.ok_to_send = f.code()?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -76,6 +85,12 @@ impl<'a> Layout<'a> for Psrf150<'a> {
     fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
         w.field(&self.ok_to_send)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.ok_to_send)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

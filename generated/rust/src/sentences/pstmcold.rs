@@ -12,7 +12,10 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Bound, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{
+    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// PSTMCOLD: Cold start.
@@ -81,6 +84,16 @@ impl<'a> Layout<'a> for Pstmcold {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        if extra >= 1 {
+            self.mask = f.integer(Range::between(Bound::int(0), Bound::int(15)))?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -90,6 +103,14 @@ impl<'a> Layout<'a> for Pstmcold {
             w.field(&self.mask)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        if self.trailing >= 1 {
+            w.field(&self.mask)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

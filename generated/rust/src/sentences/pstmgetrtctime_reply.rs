@@ -12,7 +12,10 @@ use core::fmt;
 use crate::enums::{TeseoRtcStatus, TeseoTimeValidity};
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Date, Error, Fields, Framing, JsonFields, Layout, Shape, Time, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, Time,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// PSTMGETRTCTIME_REPLY: RTC time and status.
@@ -72,6 +75,16 @@ impl<'a> Layout<'a> for PstmgetrtctimeReply<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.date = f.date()?;
+        self.rtc_status = f.code()?;
+        self.time_validity = f.code()?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -82,6 +95,15 @@ impl<'a> Layout<'a> for PstmgetrtctimeReply<'a> {
         w.field(&self.rtc_status)?;
         w.field(&self.time_validity)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.date)?;
+        w.field(&self.rtc_status)?;
+        w.field(&self.time_validity)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -12,7 +12,9 @@ use core::fmt;
 use crate::enums::TeseoCompilerType;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// PSTMGETSWVER_REPLY: Software version.
@@ -74,6 +76,16 @@ impl<'a> Layout<'a> for PstmgetswverReply<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.library_version = f.text(None)?;
+        self.compiler = f.code()?;
+        self.build_date = f.text(None)?;
+        self.build_time = f.text(None)?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -84,6 +96,15 @@ impl<'a> Layout<'a> for PstmgetswverReply<'a> {
         w.field(&self.build_date)?;
         w.field(&self.build_time)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.library_version)?;
+        w.field(&self.compiler)?;
+        w.field(&self.build_date)?;
+        w.field(&self.build_time)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -13,7 +13,9 @@ use core::fmt;
 use crate::enums::TeseoNmeaOnOff;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
+};
 use crate::LayoutId;
 
 /// PSTMNMEAONOFF: NMEA output on/off.
@@ -77,6 +79,16 @@ impl<'a> Layout<'a> for Pstmnmeaonoff<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        if extra >= 1 {
+            self.on_off = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -86,6 +98,14 @@ impl<'a> Layout<'a> for Pstmnmeaonoff<'a> {
             w.field(&self.on_off)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        if self.trailing >= 1 {
+            w.field(&self.on_off)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

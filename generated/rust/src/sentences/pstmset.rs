@@ -13,7 +13,10 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Bound, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{
+    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// PSTMSET: Get parameter answer, printed form.
@@ -72,6 +75,14 @@ impl<'a> Layout<'a> for Pstmset<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.block_param = f.integer(Range::between(Bound::int(1000), Bound::int(3999)))?;
+        self.value = f.text(Some(80))?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -80,6 +91,13 @@ impl<'a> Layout<'a> for Pstmset<'a> {
         w.field(&self.block_param)?;
         w.field(&self.value)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.block_param)?;
+        w.field(&self.value)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -170,6 +188,17 @@ impl<'a> Layout<'a> for PstmsetDop {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.block_param = f.integer(Range::between(Bound::int(1400), Bound::int(3403)))?;
+        self.pdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.vdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.hdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.gdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -181,6 +210,16 @@ impl<'a> Layout<'a> for PstmsetDop {
         w.field(&self.hdop)?;
         w.field(&self.gdop)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.block_param)?;
+        w.field(&self.pdop)?;
+        w.field(&self.vdop)?;
+        w.field(&self.hdop)?;
+        w.field(&self.gdop)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

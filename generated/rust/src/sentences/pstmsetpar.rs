@@ -17,7 +17,8 @@ use crate::enums::TeseoSetparMode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -104,6 +105,18 @@ impl<'a> Layout<'a> for Pstmsetpar<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.block_param = f.integer(Range::between(Bound::int(1000), Bound::int(3999)))?;
+        self.value = f.text(Some(80))?;
+        if extra >= 1 {
+            self.mode = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -115,6 +128,16 @@ impl<'a> Layout<'a> for Pstmsetpar<'a> {
             w.field(&self.mode)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.block_param)?;
+        w.field(&self.value)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
@@ -217,6 +240,21 @@ impl<'a> Layout<'a> for PstmsetparDop<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.block_param = f.integer(Range::between(Bound::int(1400), Bound::int(3403)))?;
+        self.pdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.vdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.hdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
+        self.gdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
+        if extra >= 1 {
+            self.mode = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -231,6 +269,19 @@ impl<'a> Layout<'a> for PstmsetparDop<'a> {
             w.field(&self.mode)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.block_param)?;
+        w.field(&self.pdop)?;
+        w.field(&self.vdop)?;
+        w.field(&self.hdop)?;
+        w.field(&self.gdop)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -11,7 +11,10 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, GroupShape, JsonFields, Layout, Shape, Texts, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Error, FastReader, Fields, Framing, GroupShape, JsonFields, Layout, Read, Shape, Texts,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// PSTMTG: ST time and satellites used.
@@ -66,6 +69,13 @@ impl<'a> Layout<'a> for Pstmtg<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, repeats: usize, _extra: usize) -> Read<()> {
+        self.checksum = Checksum::Upper;
+        self.values = f.texts(repeats, None)?;
+        f.end()
+    }
+
     fn checksum(&self) -> Checksum {
         self.checksum
     }
@@ -73,6 +83,12 @@ impl<'a> Layout<'a> for Pstmtg<'a> {
     fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
         w.texts(&self.values)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.texts(&self.values)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

@@ -11,7 +11,10 @@ use core::fmt;
 use crate::enums::RlmMessageCode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, Time, WireWriter};
+use crate::runtime::{
+    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Hex, JsonFields, Layout, Read, Shape, Time,
+    WireWriter,
+};
 use crate::LayoutId;
 
 /// RLM: Return link message.
@@ -79,6 +82,17 @@ impl<'a> Layout<'a> for Rlm<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.beacon_id = f.hex()?;
+        self.time = f.time()?;
+        self.message_code = f.code()?;
+        self.message_body = f.text(Some(24))?;
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -93,6 +107,15 @@ impl<'a> Layout<'a> for Rlm<'a> {
         w.field(&self.message_code)?;
         w.field(&self.message_body)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.beacon_id)?;
+        w.field(&self.time)?;
+        w.field(&self.message_code)?;
+        w.field(&self.message_body)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

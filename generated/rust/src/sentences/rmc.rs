@@ -13,8 +13,8 @@ use crate::enums::{NavStatus, PosMode, RmcMagVarDir, Status};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Coordinate, Date, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Code, Coordinate, Date, Error, FastReader, Fields, Framing, JsonFields, Layout,
+    Number, Range, Read, Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -119,6 +119,30 @@ impl<'a> Layout<'a> for Rmc<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.status = f.code()?;
+        self.lat = f.latitude()?;
+        self.lon = f.longitude()?;
+        self.speed = f.decimal(Range::ANY)?;
+        self.course = f.decimal(Range::between(Bound::int(0), Bound::new(3599, 1)))?;
+        self.date = f.date()?;
+        self.mag_var = f.decimal(Range::ANY)?;
+        self.mag_var_dir = f.code()?;
+        if extra >= 1 {
+            self.mode = f.code()?;
+            self.trailing = 1;
+        }
+        if extra >= 2 {
+            self.nav_status = f.code()?;
+            self.trailing = 2;
+        }
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -144,6 +168,26 @@ impl<'a> Layout<'a> for Rmc<'a> {
             w.field(&self.nav_status)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.status)?;
+        w.field(&self.lat)?;
+        w.field(&self.lon)?;
+        w.field(&self.speed)?;
+        w.field(&self.course)?;
+        w.field(&self.date)?;
+        w.field(&self.mag_var)?;
+        w.field(&self.mag_var_dir)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        if self.trailing >= 2 {
+            w.field(&self.nav_status)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

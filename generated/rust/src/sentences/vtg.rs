@@ -13,7 +13,8 @@ use crate::enums::PosMode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
+    Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -110,6 +111,25 @@ impl<'a> Layout<'a> for Vtg<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.course_true = f.decimal(Range::between(Bound::int(0), Bound::new(3599, 1)))?;
+        self.course_true_ref = f.literal("T")?;
+        self.course_magnetic = f.decimal(Range::between(Bound::int(0), Bound::new(3599, 1)))?;
+        self.course_magnetic_ref = f.literal("M")?;
+        self.speed_knots = f.decimal(Range::ANY)?;
+        self.speed_knots_unit = f.literal("N")?;
+        self.speed_kmh = f.decimal(Range::ANY)?;
+        self.speed_kmh_unit = f.literal("K")?;
+        if extra >= 1 {
+            self.mode = f.code()?;
+            self.trailing = 1;
+        }
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -131,6 +151,22 @@ impl<'a> Layout<'a> for Vtg<'a> {
             w.field(&self.mode)?;
         }
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.course_true)?;
+        w.field(&self.course_true_ref)?;
+        w.field(&self.course_magnetic)?;
+        w.field(&self.course_magnetic_ref)?;
+        w.field(&self.speed_knots)?;
+        w.field(&self.speed_knots_unit)?;
+        w.field(&self.speed_kmh)?;
+        w.field(&self.speed_kmh_unit)?;
+        if self.trailing >= 1 {
+            w.field(&self.mode)?;
+        }
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {

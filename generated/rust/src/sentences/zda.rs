@@ -11,7 +11,8 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
+    Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -89,6 +90,19 @@ impl<'a> Layout<'a> for Zda<'a> {
         Ok(out)
     }
 
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.day = f.integer(Range::between(Bound::int(1), Bound::int(31)))?;
+        self.month = f.integer(Range::between(Bound::int(1), Bound::int(12)))?;
+        self.year = f.integer(Range::ANY)?;
+        self.local_zone_hours = f.integer(Range::between(Bound::int(-13), Bound::int(13)))?;
+        self.local_zone_minutes = f.integer(Range::between(Bound::int(0), Bound::int(59)))?;
+        f.end()
+    }
+
     fn talker(&self) -> &'a str {
         self.talker
     }
@@ -105,6 +119,17 @@ impl<'a> Layout<'a> for Zda<'a> {
         w.field(&self.local_zone_hours)?;
         w.field(&self.local_zone_minutes)?;
         Ok(())
+    }
+
+
+    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
+        w.field(&self.time)?;
+        w.field(&self.day)?;
+        w.field(&self.month)?;
+        w.field(&self.year)?;
+        w.field(&self.local_zone_hours)?;
+        w.field(&self.local_zone_minutes)?;
+        Some(())
     }
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
