@@ -347,8 +347,8 @@ def markdown(report: dict) -> str:
             "values out of range): ours refuses those with a typed error, so its ok lines are below the corpus "
             "size. "
             "nmea-rs, nmea0183-rs and pynmea2-allfields have no serialize or roundtrip row: the crates have "
-            "no serializer, and pynmea2's is measured under `pynmea2`. Rust serialize is the sentence's text "
-            "(its `Display` into a fixed buffer, as `nmea_serialize` in C); `to_bytes`, which also reads the "
+            "no serializer, and pynmea2's is measured under `pynmea2`. Rust serialize is `Sentence::serialize_into` "
+            "(the sentence's text into a byte buffer, as `nmea_serialize` in C); `to_bytes`, which also reads the "
             "line back and appends CR LF, is listed below.", ""]
     out += ["## Targets", "", "| target | measured | limit | met |", "| --- | --- | --- | --- |"]
     for check in report["targets"]:
@@ -418,7 +418,7 @@ def docs_page(report: dict, table: str) -> str:
         "Every implementation runs as its own process, pinned to one core with `taskset`, reads the corpus into "
         "memory once and times only its loop; the rounds run the implementations interleaved (A B C A B C ...) "
         "and each figure is the median over the rounds. parse converts every field into its typed value; "
-        "serialize times only writing back sentences parsed beforehand (chunks of 2,048 lines); roundtrip is "
+        "serialize times only writing back sentences parsed beforehand (chunks of 2,048 lines), one after another into one buffer as a program writing a stream would; roundtrip is "
         "parse plus serialize per line. ceiling-c (bench/c/ceiling.c) only checks the checksum and records "
         "where each field starts: no parser can do less.", "",
         "Reproduce: `make bench` (`BENCH_ROUNDS=5 BENCH_LINES=1000000`; `BENCH_PY_LINES` for the Python slice).", "",

@@ -5,16 +5,15 @@
 //! bench-rs ours|nmea|nmea0183 parse|serialize|roundtrip|none CORPUS [--by-type]
 //! ```
 //!
-//! `ours` is `nmeaspec`: parse is `nmeaspec::parse`; serialize writes each parsed sentence's text
-//! (its `Display`, what `to_bytes` writes before its read-back check) into a fixed buffer, the
-//! sentences being parsed chunk by chunk outside the timed region; `to_bytes` (text, read-back
-//! check, CR LF) is timed too and reported beside it; roundtrip parses and writes each line and
-//! compares it with the input. A counting global allocator reports the allocations made inside
+//! `ours` is `nmeaspec`: parse is `nmeaspec::parse`; serialize is `serialize_into` of each parsed
+//! sentence (its text, what `Display` writes), the sentences being parsed chunk by chunk outside
+//! the timed region and written one after another into one buffer, as a program writing a stream
+//! would; `to_bytes` (text, read-back check, CR LF) is timed the same way and reported beside it;
+//! roundtrip parses and writes each line and compares it with the input. A counting global allocator reports the allocations made inside
 //! our timed loops. The peers only parse: `nmea::parse_str` per line, and one `nmea0183::Parser`
 //! fed every line with its CR LF (built with the `peers` feature).
 
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::fmt::{self, Write as _};
 use std::hint::black_box;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
@@ -50,30 +49,6 @@ const CHUNK: usize = 2048;
 /// Room for the longest line a parser accepts and its CR LF.
 const LINE_CAPACITY: usize = nmeaspec::BUILD_CAPACITY;
 
-/// A `fmt::Write` into a fixed byte buffer; fails when the text does not fit.
-struct FixedWriter<'b> {
-    buf: &'b mut [u8],
-    len: usize,
-}
-
-impl fmt::Write for FixedWriter<'_> {
-    fn write_str(&mut self, s: &str) -> fmt::Result {
-        let end = self.len + s.len();
-        self.buf
-            .get_mut(self.len..end)
-            .ok_or(fmt::Error)?
-            .copy_from_slice(s.as_bytes());
-        self.len = end;
-        Ok(())
-    }
-}
-
-/// Writes the sentence text into `buf`; its length, or None when it does not fit.
-fn write_text(sentence: &nmeaspec::Sentence<'_>, buf: &mut [u8]) -> Option<usize> {
-    let mut writer = FixedWriter { buf, len: 0 };
-    write!(writer, "{sentence}").ok().map(|()| writer.len)
-}
-
 #[derive(Default)]
 struct Timing {
     seconds: f64,
@@ -106,19 +81,21 @@ fn time_ours_parse(lines: &[Line<'_>]) -> Timing {
     }
 }
 
-/// Times `write` over the sentences of each chunk, parsed beforehand; counts the lines written
-/// back byte for byte (`with_line_ending`: the output ends with CR LF).
+/// Times `write` over the sentences of each chunk, parsed beforehand, written one after another
+/// into one buffer; counts the lines written back byte for byte (`with_line_ending`: the output
+/// ends with CR LF).
 fn time_ours_serialize(
     lines: &[Line<'_>],
     with_line_ending: bool,
     write: impl Fn(&nmeaspec::Sentence<'_>, &mut [u8]) -> Option<usize>,
 ) -> Timing {
     let mut out = vec![0u8; CHUNK * LINE_CAPACITY];
-    let mut lengths = vec![None; CHUNK];
+    let mut ends = Vec::with_capacity(CHUNK);
     let mut parsed = Vec::with_capacity(CHUNK);
     let mut timing = Timing::default();
     for chunk in lines.chunks(CHUNK) {
         parsed.clear();
+        ends.clear();
         parsed.extend(
             chunk
                 .iter()
@@ -126,23 +103,22 @@ fn time_ours_serialize(
         );
         let before = allocations();
         let start = Instant::now();
-        for ((sentence, _), (slot, length)) in parsed
-            .iter()
-            .zip(out.chunks_mut(LINE_CAPACITY).zip(lengths.iter_mut()))
-        {
-            *length = write(sentence, slot);
+        let mut used = 0;
+        for (sentence, _) in &parsed {
+            used += write(sentence, &mut out[used..]).unwrap_or(0);
+            ends.push(used);
         }
         timing.seconds += start.elapsed().as_secs_f64();
         timing.allocations += allocations() - before;
-        for ((_, line), (slot, length)) in
-            parsed.iter().zip(out.chunks(LINE_CAPACITY).zip(&lengths))
-        {
+        let mut begin = 0;
+        for ((_, line), &end) in parsed.iter().zip(&ends) {
             let expected = if with_line_ending {
                 line.raw
             } else {
                 line.text.as_bytes()
             };
-            timing.ok += usize::from(length.is_some_and(|n| &slot[..n] == expected));
+            timing.ok += usize::from(&out[begin..end] == expected);
+            begin = end;
         }
     }
     timing
@@ -155,7 +131,7 @@ fn time_ours_roundtrip(lines: &[Line<'_>]) -> Timing {
     let mut ok = 0;
     for line in lines {
         if let Ok(sentence) = nmeaspec::parse(line.text) {
-            let written = write_text(&sentence, &mut buf);
+            let written = sentence.serialize_into(&mut buf);
             ok += usize::from(written.is_some_and(|n| &buf[..n] == line.text.as_bytes()));
         }
     }
@@ -207,7 +183,7 @@ fn run(implementation: &str, op: &str, lines: &[Line<'_>]) -> Timing {
         // Reading the corpus only: the baseline bench/run.py subtracts from instruction counts.
         (_, "none") => Timing::default(),
         ("ours", "parse") => time_ours_parse(lines),
-        ("ours", "serialize") => time_ours_serialize(lines, false, write_text),
+        ("ours", "serialize") => time_ours_serialize(lines, false, |sentence, buf| sentence.serialize_into(buf)),
         ("ours", "to_bytes") => time_ours_serialize(lines, true, |sentence, buf| {
             sentence.to_bytes(buf).ok().map(<[u8]>::len)
         }),
@@ -286,7 +262,7 @@ fn main() {
         timing.ok,
         timing.allocations
     );
-    if implementation == "ours" && op == "serialize" {
+    if implementation == "ours" && op == "serialize" && std::env::var_os("NO_TO_BYTES").is_none() {
         let checked = run(implementation, "to_bytes", &lines);
         json += &format!(
             ", \"to_bytes_ns_per_line\": {:.2}, \"to_bytes_ok_lines\": {}",

@@ -455,6 +455,34 @@ const POW10: [u64; 20] = {
     table
 };
 
+/// "00", "01", … "99": two digits at a time.
+const DIGIT_PAIRS: [[u8; 2]; 100] = {
+    let mut pairs = [[0; 2]; 100];
+    let mut i = 0;
+    while i < 100 {
+        pairs[i] = [b'0' + (i / 10) as u8, b'0' + (i % 10) as u8];
+        i += 1;
+    }
+    pairs
+};
+
+/// Puts the last `count` decimal digits of `value` into `out`, ending at `end`, two at a time;
+/// what is left of `value` (`None`: they do not fit before `end`).
+#[inline(always)]
+fn digits_ending_at(out: &mut [u8], end: usize, mut value: u64, count: usize) -> Option<u64> {
+    let slots = out.get_mut(end.checked_sub(count)?..end)?;
+    let mut pairs = slots.rchunks_exact_mut(2);
+    for pair in pairs.by_ref() {
+        pair.copy_from_slice(&DIGIT_PAIRS[(value % 100) as usize]);
+        value /= 100;
+    }
+    if let [digit] = pairs.into_remainder() {
+        *digit = b'0' + (value % 10) as u8;
+        value /= 10;
+    }
+    Some(value)
+}
+
 impl<'b> ByteWriter<'b> {
     /// A writer into `buf`, from its start.
     pub fn new(buf: &'b mut [u8]) -> Self {
@@ -497,9 +525,28 @@ impl<'b> ByteWriter<'b> {
     }
 
     /// A number as [`Number`]'s `Display` writes it: sign, integer digits zero-padded to its
-    /// width, point and fraction (`None` for one built by hand that it writes otherwise).
+    /// width, point and fraction (`None` for one built by hand that it writes otherwise). The
+    /// most common of all, an integer written with one to three digits, is put here without a
+    /// branch; any other by [`ByteWriter::any_number`], out of line.
     #[inline]
     pub fn number(&mut self, number: Number) -> Option<()> {
+        let value = number.digits as u64; // a negative one (built by hand) is refused below
+        let plain = number.scale == 0 && !number.point && number.sign == Sign::Implicit;
+        if !plain || value >= 1000 || number.width.wrapping_sub(1) >= 3 {
+            return self.any_number(number);
+        }
+        let value = value as u32;
+        let len = usize::from(number.width).max(1 + usize::from(value >= 10) + usize::from(value >= 100));
+        // Three digits in the low bytes, shifted so that the first `len` hold the last `len`.
+        let digits = 0x30_3030 | (value / 100) | ((value / 10 % 10) << 8) | ((value % 10) << 16);
+        *self.room::<4>()? = (digits >> (8 * (3 - len))).to_le_bytes();
+        self.len += len;
+        Some(())
+    }
+
+    /// [`ByteWriter::number`] for any number.
+    #[inline(never)]
+    fn any_number(&mut self, number: Number) -> Option<()> {
         let (width, scale) = (usize::from(number.width), usize::from(number.scale));
         let count = width + scale;
         let digits = u64::try_from(number.digits).ok()?;
@@ -509,35 +556,21 @@ impl<'b> ByteWriter<'b> {
         let room = self.room::<24>()?;
         let at = usize::from(number.sign != Sign::Implicit);
         room[0] = if number.sign == Sign::Minus { b'-' } else { b'+' };
-        let end = at + count + usize::from(number.point);
-        // From the right: the fraction, the point, the integer digits.
-        let (mut value, mut i) = (digits, end);
-        for _ in 0..scale {
-            i -= 1;
-            room[i] = b'0' + (value % 10) as u8;
-            value /= 10;
-        }
+        let point = at + width;
+        let end = point + usize::from(number.point) + scale;
+        let whole = digits_ending_at(room, end, digits, scale)?;
         if number.point {
-            i -= 1;
-            room[i] = b'.';
+            room[point] = b'.';
         }
-        for _ in 0..width {
-            i -= 1;
-            room[i] = b'0' + (value % 10) as u8;
-            value /= 10;
-        }
+        digits_ending_at(room, point, whole, width)?;
         self.len += end;
         Some(())
     }
 
     /// `value` in `count` decimal digits (it has no more).
     #[inline(always)]
-    fn digits(&mut self, mut value: u64, count: usize) -> Option<()> {
-        let room = self.room::<20>()?;
-        for slot in room.get_mut(..count)?.iter_mut().rev() {
-            *slot = b'0' + (value % 10) as u8;
-            value /= 10;
-        }
+    fn digits(&mut self, value: u64, count: usize) -> Option<()> {
+        digits_ending_at(self.room::<20>()?, count, value, count)?;
         self.len += count;
         Some(())
     }
