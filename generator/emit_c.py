@@ -193,47 +193,34 @@ def fast_call(f: Field, target: str, ranges: Ranges) -> str:
     return f"fast_enum_chars(&p, &{target}, &{enum_def(f.enum)}, {f.max_length or 0})"
 
 
-def put_call(f: Field, target: str) -> str:
-    """The call that writes field `f` (its comma and text) to writer `w`."""
-    t = f.type
-    if t == "keyword":
-        return f"put_keyword(w, {c_str(f.value or '')})"
-    if t in ("integer", "decimal"):
-        return f"put_number(w, &{target})"
-    if t in ("hex", "time", "date"):
-        return f"put_{t}(w, &{target})"
-    if t in ("latitude", "longitude"):
-        return f"put_coordinate(w, &{target})"
-    if t == "char":
-        return f"put_char_field(w, {target})"
-    if t == "literal":
-        return f"put_literal(w, {target}, {c_str(f.value or '')})"
-    if t in ("text", "enum_chars"):
-        return f"put_text_field(w, {target})"
-    assert f.enum is not None
-    return f"put_enum(w, &{target}, &{enum_def(f.enum)})"
+# The C writer of each field type: put_<name>, and the fast path's fast_put_<name>.
+WRITER_NAMES = {
+    "keyword": "keyword", "integer": "number", "decimal": "number", "hex": "hex", "time": "time",
+    "date": "date", "latitude": "coordinate", "longitude": "coordinate", "char": "char_field",
+    "literal": "literal", "text": "text_field", "enum_chars": "text_field", "enum": "enum",
+}
 
 
-def fast_put_call(f: Field, target: str) -> str:
-    """The fast path's call that writes field `f` (its comma and text) with fast_writer `w`:
-    put_call, false when the general writer must write the sentence."""
+def put_call(f: Field, target: str, fast: bool = False) -> str:
+    """The call that writes field `f` (its comma and text) with writer `w`; `fast`: with the fast
+    path's fast_writer `w`, false when the general writer must write the sentence (the fast
+    writers also take a keyword's or literal's length)."""
     t = f.type
+    word = f.value or ""
+    word_args = f"{c_str(word)}, {len(word.encode())}" if fast else c_str(word)
     if t == "keyword":
-        return f"fast_put_keyword(&w, {c_str(f.value or '')}, {len((f.value or '').encode())})"
-    if t in ("integer", "decimal"):
-        return f"fast_put_number(&w, &{target})"
-    if t in ("hex", "time", "date"):
-        return f"fast_put_{t}(&w, &{target})"
-    if t in ("latitude", "longitude"):
-        return f"fast_put_coordinate(&w, &{target})"
-    if t == "char":
-        return f"fast_put_char(&w, {target})"
-    if t == "literal":
-        return f"fast_put_literal(&w, {target}, {c_str(f.value or '')}, {len((f.value or '').encode())})"
-    if t in ("text", "enum_chars"):
-        return f"fast_put_text(&w, {target})"
-    assert f.enum is not None
-    return f"fast_put_enum(&w, &{target}, &{enum_def(f.enum)})"
+        args = word_args
+    elif t == "literal":
+        args = f"{target}, {word_args}"
+    elif t in ("char", "text", "enum_chars"):
+        args = target
+    elif t == "enum":
+        assert f.enum is not None
+        args = f"&{target}, &{enum_def(f.enum)}"
+    else:
+        args = f"&{target}"
+    writer = "&w" if fast else "w"
+    return f"{'fast_put_' if fast else 'put_'}{WRITER_NAMES[t]}({writer}, {args})"
 
 
 def json_call(f: Field, target: str, key: bool | str = True, values: str = "values") -> str:
@@ -298,7 +285,7 @@ def field_view(f: Field, base: str, ranges: Ranges, key: bool = True) -> dict:
         "read": read_call(f, target, ranges),
         "fast": fast_call(f, target, ranges),
         "put": put_call(f, target),
-        "fast_put": fast_put_call(f, target),
+        "fast_put": put_call(f, target, fast=True),
         "json": json_call(f, target, key),
         "target": target,
         "collect": f"collect_field(c, fields, {c_str(f.id)}, {f.wire_width})",

@@ -2479,7 +2479,7 @@ NMEA_HOT bool fast_put_coordinate(fast_writer *w, const nmea_coordinate *c)
     return true;
 }
 
-NMEA_HOT bool fast_put_char(fast_writer *w, char c)
+NMEA_HOT bool fast_put_char_field(fast_writer *w, char c)
 {
     if (!fast_sep(w))
         return false;
@@ -2509,7 +2509,7 @@ NMEA_HOT bool fast_put_keyword(fast_writer *w, const char *keyword, size_t len)
     return fast_sep(w) && fast_put_mem(w, keyword, len);
 }
 
-NMEA_HOT bool fast_put_text(fast_writer *w, nmea_text t)
+NMEA_HOT bool fast_put_text_field(fast_writer *w, nmea_text t)
 {
     return fast_sep(w) && fast_put_mem(w, t.ptr, t.len);
 }
@@ -4178,7 +4178,7 @@ static size_t dtm_fast_write(const nmea_dtm *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, s->talker, "DTM", &s->problems))
         return 0;
     if (!fast_put_enum(&w, &s->local_datum, &nmea_dtm_datum_def)
-        || !fast_put_char(&w, s->local_datum_subdivision)
+        || !fast_put_char_field(&w, s->local_datum_subdivision)
         || !fast_put_number(&w, &s->lat_offset)
         || !fast_put_enum(&w, &s->lat_offset_dir, &nmea_dtm_lat_offset_dir_def)
         || !fast_put_number(&w, &s->lon_offset)
@@ -4648,7 +4648,7 @@ static size_t gns_fast_write(const nmea_gns *s, char *buf, size_t cap)
     if (!fast_put_time(&w, &s->time)
         || !fast_put_coordinate(&w, &s->lat)
         || !fast_put_coordinate(&w, &s->lon)
-        || !fast_put_text(&w, s->mode)
+        || !fast_put_text_field(&w, s->mode)
         || !fast_put_number(&w, &s->satellites)
         || !fast_put_number(&w, &s->hdop)
         || !fast_put_number(&w, &s->altitude)
@@ -5765,7 +5765,7 @@ static size_t rlm_fast_write(const nmea_rlm *s, char *buf, size_t cap)
     if (!fast_put_hex(&w, &s->beacon_id)
         || !fast_put_time(&w, &s->time)
         || !fast_put_enum(&w, &s->message_code, &nmea_rlm_message_code_def)
-        || !fast_put_text(&w, s->message_body))
+        || !fast_put_text_field(&w, s->message_body))
         return 0;
     return fast_end(&w, s->checksum);
 }
@@ -6813,7 +6813,7 @@ static size_t geos5_jamdet_fast_write(const nmea_geos5_jamdet *s, char *buf, siz
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "GPSGG", &s->problems))
         return 0;
     if (!fast_put_keyword(&w, "JAMDET", 6)
-        || !fast_put_text(&w, s->reserved))
+        || !fast_put_text_field(&w, s->reserved))
         return 0;
     return fast_end(&w, s->checksum);
 }
@@ -7233,8 +7233,8 @@ static size_t geos5_rquery_fast_write(const nmea_geos5_rquery *s, char *buf, siz
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "GPSGG", &s->problems))
         return 0;
     if (!fast_put_keyword(&w, "RQUERY", 6)
-        || !fast_put_text(&w, s->receiver_name)
-        || !fast_put_text(&w, s->software_version)
+        || !fast_put_text_field(&w, s->receiver_name)
+        || !fast_put_text_field(&w, s->software_version)
         || !fast_put_date(&w, &s->software_date)
         || !fast_put_hex(&w, &s->status)
         || !fast_put_hex(&w, &s->config_1)
@@ -8368,7 +8368,7 @@ static size_t pstmagps_fast_write(const nmea_pstmagps *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMAGPS", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -8501,7 +8501,7 @@ static size_t pstmalmanac_fast_write(const nmea_pstmalmanac *s, char *buf, size_
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMALMANAC", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -8947,7 +8947,7 @@ static size_t pstmcorr_fast_write(const nmea_pstmcorr *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMCORR", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -9080,7 +9080,7 @@ static size_t pstmdiff_fast_write(const nmea_pstmdiff *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMDIFF", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -9213,7 +9213,7 @@ static size_t pstmeph_fast_write(const nmea_pstmeph *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMEPH", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -9875,10 +9875,10 @@ static size_t pstmgetswver_reply_fast_write(const nmea_pstmgetswver_reply *s, ch
 
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMGETSWVER", &s->problems))
         return 0;
-    if (!fast_put_text(&w, s->library_version)
+    if (!fast_put_text_field(&w, s->library_version)
         || !fast_put_enum(&w, &s->compiler, &nmea_teseo_compiler_type_def)
-        || !fast_put_text(&w, s->build_date)
-        || !fast_put_text(&w, s->build_time))
+        || !fast_put_text_field(&w, s->build_date)
+        || !fast_put_text_field(&w, s->build_time))
         return 0;
     return fast_end(&w, s->checksum);
 }
@@ -10105,7 +10105,7 @@ static size_t pstmkfcov_fast_write(const nmea_pstmkfcov *s, char *buf, size_t ca
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMKFCOV", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -10347,7 +10347,7 @@ static size_t pstmpa_fast_write(const nmea_pstmpa *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMPA", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -10480,7 +10480,7 @@ static size_t pstmpres_fast_write(const nmea_pstmpres *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMPRES", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -10613,7 +10613,7 @@ static size_t pstmres_fast_write(const nmea_pstmres *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMRES", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -10848,7 +10848,7 @@ static size_t pstmrf_fast_write(const nmea_pstmrf *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMRF", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -10981,7 +10981,7 @@ static size_t pstmsat_fast_write(const nmea_pstmsat *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSAT", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -11216,7 +11216,7 @@ static size_t pstmsbas_fast_write(const nmea_pstmsbas *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSBAS", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -11349,7 +11349,7 @@ static size_t pstmsbascorr_fast_write(const nmea_pstmsbascorr *s, char *buf, siz
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSBASCORR", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -11472,7 +11472,7 @@ static size_t pstmset_fast_write(const nmea_pstmset *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSET", &s->problems))
         return 0;
     if (!fast_put_number(&w, &s->block_param)
-        || !fast_put_text(&w, s->value))
+        || !fast_put_text_field(&w, s->value))
         return 0;
     return fast_end(&w, s->checksum);
 }
@@ -11719,7 +11719,7 @@ static size_t pstmsetpar_fast_write(const nmea_pstmsetpar *s, char *buf, size_t 
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMSETPAR", &s->problems))
         return 0;
     if (!fast_put_number(&w, &s->block_param)
-        || !fast_put_text(&w, s->value)
+        || !fast_put_text_field(&w, s->value)
         || (s->optional_count >= 1 && !fast_put_enum(&w, &s->mode, &nmea_teseo_setpar_mode_def)))
         return 0;
     return fast_end(&w, s->checksum);
@@ -12189,7 +12189,7 @@ static size_t pstmtestrf_fast_write(const nmea_pstmtestrf *s, char *buf, size_t 
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMTESTRF", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -12322,7 +12322,7 @@ static size_t pstmtg_fast_write(const nmea_pstmtg *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMTG", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -12455,7 +12455,7 @@ static size_t pstmtim_fast_write(const nmea_pstmtim *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMTIM", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -12588,7 +12588,7 @@ static size_t pstmts_fast_write(const nmea_pstmts *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMTS", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -12721,7 +12721,7 @@ static size_t pstmver_fast_write(const nmea_pstmver *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMVER", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -12854,7 +12854,7 @@ static size_t pstmvres_fast_write(const nmea_pstmvres *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMVRES", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);
@@ -12987,7 +12987,7 @@ static size_t pstmwaas_fast_write(const nmea_pstmwaas *s, char *buf, size_t cap)
     if (!fast_begin(&w, buf, cap, nmea_text_of(NULL), "PSTMWAAS", &s->problems))
         return 0;
     for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text(&w, s->values[i]))
+        if (!fast_put_text_field(&w, s->values[i]))
             return 0;
     }
     return fast_end(&w, s->checksum);

@@ -2320,7 +2320,7 @@ NMEA_HOT bool fast_put_coordinate(fast_writer *w, const nmea_coordinate *c)
     return true;
 }
 
-NMEA_HOT bool fast_put_char(fast_writer *w, char c)
+NMEA_HOT bool fast_put_char_field(fast_writer *w, char c)
 {
     if (!fast_sep(w))
         return false;
@@ -2350,7 +2350,7 @@ NMEA_HOT bool fast_put_keyword(fast_writer *w, const char *keyword, size_t len)
     return fast_sep(w) && fast_put_mem(w, keyword, len);
 }
 
-NMEA_HOT bool fast_put_text(fast_writer *w, nmea_text t)
+NMEA_HOT bool fast_put_text_field(fast_writer *w, nmea_text t)
 {
     return fast_sep(w) && fast_put_mem(w, t.ptr, t.len);
 }
