@@ -263,7 +263,7 @@ fn main() {
         timing.ok,
         timing.allocations
     );
-    if implementation == "ours" && op == "serialize" && std::env::var_os("NO_TO_BYTES").is_none() {
+    if implementation == "ours" && op == "serialize" {
         let checked = run(implementation, "to_bytes", &lines);
         json += &format!(
             ", \"to_bytes_ns_per_line\": {:.2}, \"to_bytes_ok_lines\": {}",

@@ -9,7 +9,8 @@ use core::ops::{Deref, DerefMut};
 /// Most digits a number may have, so that it fits a signed 64-bit integer.
 pub const MAX_DIGITS: usize = 18;
 
-const POW10: [i64; 19] = {
+/// 10^n for n up to [`MAX_DIGITS`].
+pub(crate) const POW10: [i64; 19] = {
     let mut table = [1i64; 19];
     let mut i = 1;
     while i < 19 {

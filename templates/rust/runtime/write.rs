@@ -3,7 +3,9 @@
 use core::fmt::{self, Write};
 
 use super::error::Problems;
-use super::types::{Ascii, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Sign, Texts, Time};
+use super::types::{
+    Ascii, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Sign, Texts, Time, MAX_DIGITS, POW10,
+};
 
 /// A field value: how it is written on the wire and in both JSON forms of the tools.
 pub trait FieldValue {
@@ -46,6 +48,13 @@ pub trait FieldValue {
         let _ = out;
         None
     }
+
+    /// `,` and [`FieldValue::put_wire`].
+    #[inline]
+    fn put_field(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.put(b",")?;
+        self.put_wire(out)
+    }
 }
 
 impl FieldValue for Number {
@@ -67,6 +76,11 @@ impl FieldValue for Number {
     #[inline]
     fn put_wire(&self, out: &mut ByteWriter<'_>) -> Option<()> {
         out.number(*self)
+    }
+
+    #[inline]
+    fn put_field(&self, out: &mut ByteWriter<'_>) -> Option<()> {
+        out.comma_number(*self)
     }
 }
 
@@ -444,16 +458,12 @@ pub struct ByteWriter<'b> {
     len: usize,
 }
 
-/// 10^n for n up to 19 (the most digits [`ByteWriter`] writes in one run).
-const POW10: [u64; 20] = {
-    let mut table = [1u64; 20];
-    let mut i = 1;
-    while i < 20 {
-        table[i] = table[i - 1] * 10;
-        i += 1;
-    }
-    table
-};
+/// Whether `value` has at most `count` decimal digits, `count` at most [`MAX_DIGITS`] (the most
+/// [`ByteWriter`] writes in one run).
+#[inline(always)]
+fn fits_in_digits(value: u64, count: usize) -> bool {
+    count <= MAX_DIGITS && value < POW10[count] as u64
+}
 
 /// "00", "01", … "99": two digits at a time.
 const DIGIT_PAIRS: [[u8; 2]; 100] = {
@@ -482,6 +492,32 @@ fn digits_ending_at(out: &mut [u8], end: usize, mut value: u64, count: usize) ->
     }
     Some(value)
 }
+
+/// The text of an integer written with one to three digits (the most common number of all) in
+/// the low bytes of a word, and its length; `None` for any other number.
+#[inline(always)]
+fn small_integer(number: Number) -> Option<(u32, usize)> {
+    let value = number.digits as u64; // a negative one (built by hand) is refused below
+    let plain = number.scale == 0 && !number.point && number.sign == Sign::Implicit;
+    if !plain || value >= 1000 || number.width.wrapping_sub(1) >= 3 {
+        return None;
+    }
+    let len = usize::from(number.width).max(1 + usize::from(value >= 10) + usize::from(value >= 100));
+    // Shifted so that the first `len` bytes hold the last `len` digits.
+    Some((THREE_DIGITS[value as usize] >> (8 * (3 - len)), len))
+}
+
+/// 0 to 999 in three digits, in the low bytes of a word ("007" is `0x37_30_30`): a table rather
+/// than three divisions, for the numbers most written.
+const THREE_DIGITS: [u32; 1000] = {
+    let mut table = [0; 1000];
+    let mut i = 0;
+    while i < 1000 {
+        table[i] = 0x30_3030 | (i / 100) as u32 | ((i / 10 % 10) << 8) as u32 | ((i % 10) << 16) as u32;
+        i += 1;
+    }
+    table
+};
 
 impl<'b> ByteWriter<'b> {
     /// A writer into `buf`, from its start.
@@ -526,21 +562,27 @@ impl<'b> ByteWriter<'b> {
 
     /// A number as [`Number`]'s `Display` writes it: sign, integer digits zero-padded to its
     /// width, point and fraction (`None` for one built by hand that it writes otherwise). The
-    /// most common of all, an integer written with one to three digits, is put here without a
-    /// branch; any other by [`ByteWriter::any_number`], out of line.
+    /// most common of all, a [`small_integer`], is put here without a branch; any other by
+    /// [`ByteWriter::any_number`], out of line.
     #[inline]
     pub fn number(&mut self, number: Number) -> Option<()> {
-        let value = number.digits as u64; // a negative one (built by hand) is refused below
-        let plain = number.scale == 0 && !number.point && number.sign == Sign::Implicit;
-        if !plain || value >= 1000 || number.width.wrapping_sub(1) >= 3 {
+        let Some((text, len)) = small_integer(number) else {
             return self.any_number(number);
-        }
-        let value = value as u32;
-        let len = usize::from(number.width).max(1 + usize::from(value >= 10) + usize::from(value >= 100));
-        // Three digits in the low bytes, shifted so that the first `len` hold the last `len`.
-        let digits = 0x30_3030 | (value / 100) | ((value / 10 % 10) << 8) | ((value % 10) << 16);
-        *self.room::<4>()? = (digits >> (8 * (3 - len))).to_le_bytes();
+        };
+        *self.room::<4>()? = text.to_le_bytes();
         self.len += len;
+        Some(())
+    }
+
+    /// `,` and a number: a small integer's text in the same word as its comma.
+    #[inline]
+    pub fn comma_number(&mut self, number: Number) -> Option<()> {
+        let Some((text, len)) = small_integer(number) else {
+            self.put(b",")?;
+            return self.any_number(number);
+        };
+        *self.room::<4>()? = (u32::from(b',') | text << 8).to_le_bytes();
+        self.len += 1 + len;
         Some(())
     }
 
@@ -550,7 +592,7 @@ impl<'b> ByteWriter<'b> {
         let (width, scale) = (usize::from(number.width), usize::from(number.scale));
         let count = width + scale;
         let digits = u64::try_from(number.digits).ok()?;
-        if count >= POW10.len() || digits >= POW10[count] || (scale > 0 && !number.point) {
+        if !fits_in_digits(digits, count) || (scale > 0 && !number.point) {
             return None;
         }
         let room = self.room::<24>()?;
@@ -599,7 +641,7 @@ impl<'b> ByteWriter<'b> {
             return Some(());
         }
         let count = usize::from(time.fraction_digits);
-        if count >= POW10.len() || u64::from(time.fraction) >= POW10[count] {
+        if !fits_in_digits(u64::from(time.fraction), count) {
             return None;
         }
         self.put(b".")?;
@@ -611,7 +653,7 @@ impl<'b> ByteWriter<'b> {
     #[inline]
     pub fn coordinate(&mut self, coordinate: Coordinate) -> Option<()> {
         let count = usize::from(coordinate.degree_digits);
-        if count >= POW10.len() || u64::from(coordinate.degrees) >= POW10[count] || !coordinate.hemisphere.is_ascii() {
+        if !fits_in_digits(u64::from(coordinate.degrees), count) || !coordinate.hemisphere.is_ascii() {
             return None;
         }
         self.digits(u64::from(coordinate.degrees), count)?;
@@ -639,10 +681,7 @@ impl<'b> ByteWriter<'b> {
     #[inline]
     pub fn field<T: FieldValue>(&mut self, value: &Option<T>) -> Option<()> {
         match value {
-            Some(value) => {
-                self.put(b",")?;
-                value.put_wire(self)
-            }
+            Some(value) => value.put_field(self),
             None if T::WIDTH == 2 => self.put(b",,"),
             None => self.put(b","),
         }
@@ -980,5 +1019,26 @@ pub(crate) mod tests {
             Number::parse(text, false).unwrap().write_json_value(&mut w).unwrap();
             assert_eq!(w.as_str(), json);
         }
+    }
+
+    #[test]
+    fn the_byte_writer_puts_numbers_back_as_written() {
+        let texts = ["0", "00", "000", "7", "07", "007", "0007", "99", "099", "359", "999", "1000", "-5", "+5", "5.", ".5"];
+        for text in texts.iter().chain(&["0.0", "-0.0", "00188.860", "123456789012.345678", "-.5"]) {
+            let number = Number::parse(text, false).unwrap();
+            let mut out = [0u8; 64];
+            let mut w = ByteWriter::new(&mut out);
+            w.number(number).unwrap();
+            w.comma_number(number).unwrap();
+            let (n, len) = (text.len(), w.len());
+            assert_eq!((&out[..n], out[n], &out[n + 1..len]), (text.as_bytes(), b',', text.as_bytes()), "{text}");
+        }
+        // Refused, for the fmt writer to write: a number built by hand that Display writes
+        // otherwise, and a buffer too small.
+        let whole = Number { digits: 1234, scale: 0, width: 2, sign: Sign::Implicit, point: false };
+        assert_eq!(ByteWriter::new(&mut [0; 40]).number(whole), None);
+        let negative = Number { digits: -5, ..whole };
+        assert_eq!(ByteWriter::new(&mut [0; 40]).number(negative), None);
+        assert_eq!(ByteWriter::new(&mut [0; 3]).number(Number::parse("5", true).unwrap()), None);
     }
 }
