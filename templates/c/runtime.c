@@ -2181,33 +2181,40 @@ NMEA_HOT size_t fast_end(fast_writer *w, nmea_checksum_style style)
     return (size_t)(w->p - w->buf);
 }
 
-/* fast_number_text past its most common case: no more than NMEA_MAX_DIGITS decimals (all
-   after a point), 1 to 20 whole digits written, not negative. Out of line: the code of every
+/* Puts the last `count` digits of `v` just before `end`, two at a time: what is left of `v`. */
+NMEA_HOT uint64_t digits_before(char *end, uint64_t v, unsigned count)
+{
+    for (; count >= 2; count -= 2, v /= 100) {
+        end -= 2;
+        memcpy(end, DIGIT_PAIRS + v % 100 * 2, 2);
+    }
+    if (count) {
+        end[-1] = (char)('0' + v % 10);
+        v /= 10;
+    }
+    return v;
+}
+
+/* fast_number_text past its most common case, for the numbers a parser makes: not negative, no
+   more digits than written (whole ones leading zeros included), NMEA_MAX_DIGITS at most, and
+   decimals only after a point; written from the right in place. Out of line: the code of every
    number field would be much longer with it. */
 NMEA_OUTLINE char *fast_any_number_text(char *p, const nmea_number *n)
 {
-    char text[1 + 20 + 1 + NMEA_MAX_DIGITS], *end = text + sizeof text, *t = end;
     uint64_t v = (uint64_t)n->digits;
-    unsigned scale = n->scale;
-    if (n->digits < 0 || !n->width || n->width > 20 || scale > NMEA_MAX_DIGITS || (scale && !n->point))
+    unsigned count = (unsigned)n->width + n->scale;
+    char *point, *end;
+    if (n->digits < 0 || count > NMEA_MAX_DIGITS || v >= (uint64_t)POW10[count] || (n->scale && !n->point))
         return NULL;
-    if (n->point) {
-        for (; scale >= 2; scale -= 2, v /= 100) {
-            t -= 2;
-            memcpy(t, DIGIT_PAIRS + v % 100 * 2, 2);
-        }
-        if (scale) {
-            *--t = (char)('0' + v % 10);
-            v /= 10;
-        }
-        *--t = '.';
-    }
-    t = uint_text(t, v, n->width);
+    point = p + (n->sign != 0) + n->width;
+    end = point + (n->point != 0) + n->scale;
+    v = digits_before(end, v, n->scale);
+    if (n->point)
+        *point = '.';
+    digits_before(point, v, n->width);
     if (n->sign)
-        *--t = n->sign;
-    while (t < end)
-        *p++ = *t++;
-    return p;
+        *p = n->sign;
+    return end;
 }
 
 /* number_text for the numbers a parser makes; inline for the most common of all, an integer of
