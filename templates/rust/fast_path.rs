@@ -21,9 +21,7 @@ use std::path::{Path, PathBuf};
 
 use nmeaspec::runtime::json::Value;
 use nmeaspec::runtime::MAX_LINE;
-use nmeaspec::{
-    parse, parse_fast, parse_general, parse_with, parse_with_general, LayoutId, Options, Parsed,
-};
+use nmeaspec::{parse, parse_fast, parse_general, parse_with, parse_with_general, LayoutId, Options, Parsed};
 
 const CRATE: &str = env!("CARGO_MANIFEST_DIR");
 

@@ -8,8 +8,8 @@ use super::fast::{FastReader, Read, Unsure};
 use super::frame::{is_command_word, is_standard_address, Fields, Frame, Shape, MAX_LINE};
 use super::types::Checksum;
 use super::write::{
-    write_json_str, write_sentence, write_sentence_with, write_words_json, ByteWriter, Discard, JsonEscape,
-    JsonFields, Latin1Bytes, SameUpper, WireWriter,
+    write_json_str, write_sentence, write_sentence_with, write_words_json, ByteWriter, Discard, JsonEscape, JsonFields,
+    Latin1Bytes, SameUpper, WireWriter,
 };
 
 /// How a sentence is framed and addressed.

@@ -711,7 +711,8 @@ impl<'b> ByteWriter<'b> {
     pub fn finish(mut self, checksum: Checksum) -> Option<usize> {
         let body = self.buf.get(1..self.len)?;
         let mut words = body.chunks_exact(8);
-        let mut sum = words.by_ref().fold(0u64, |sum, word| sum ^ u64::from_le_bytes(word.try_into().unwrap_or_default()));
+        let mut sum =
+            words.by_ref().fold(0u64, |sum, word| sum ^ u64::from_le_bytes(word.try_into().unwrap_or_default()));
         sum ^= sum >> 32;
         sum ^= sum >> 16;
         sum ^= sum >> 8;
@@ -1023,7 +1024,8 @@ pub(crate) mod tests {
 
     #[test]
     fn the_byte_writer_puts_numbers_back_as_written() {
-        let texts = ["0", "00", "000", "7", "07", "007", "0007", "99", "099", "359", "999", "1000", "-5", "+5", "5.", ".5"];
+        let texts =
+            ["0", "00", "000", "7", "07", "007", "0007", "99", "099", "359", "999", "1000", "-5", "+5", "5.", ".5"];
         for text in texts.iter().chain(&["0.0", "-0.0", "00188.860", "123456789012.345678", "-.5"]) {
             let number = Number::parse(text, false).unwrap();
             let mut out = [0u8; 64];

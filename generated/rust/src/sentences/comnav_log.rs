@@ -95,7 +95,6 @@ impl<'a> Layout<'a> for ComnavLog<'a> {
         Ok(())
     }
 
-
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
         j.field("message", &self.message)?;
         j.keyword("trigger", "ONTIME")?;

@@ -85,7 +85,6 @@ impl<'a> Layout<'a> for ComnavNmeatalker<'a> {
         Ok(())
     }
 
-
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
         j.field("message", &self.message)?;
         j.field("talker_id", &self.talker_id)?;
@@ -173,7 +172,6 @@ impl<'a> Layout<'a> for ComnavNmeatalkerList<'a> {
         Ok(())
     }
 
-
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
         j.keyword("subcommand", "LIST")?;
         Ok(())
@@ -257,7 +255,6 @@ impl<'a> Layout<'a> for ComnavNmeatalkerReset<'a> {
         w.keyword("RESET")?;
         Ok(())
     }
-
 
     fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
         j.keyword("subcommand", "RESET")?;

@@ -134,7 +134,6 @@ impl<'a> Layout<'a> for Dtm<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.local_datum)?;
         w.field(&self.local_datum_subdivision)?;

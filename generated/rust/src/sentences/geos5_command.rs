@@ -96,7 +96,6 @@ impl<'a> Layout<'a> for Geos5Command<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.command)?;
         Some(())

@@ -92,7 +92,6 @@ impl<'a> Layout<'a> for Geos5Jamdet<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.keyword("JAMDET")?;
         w.field(&self.reserved)?;

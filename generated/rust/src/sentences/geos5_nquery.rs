@@ -180,7 +180,6 @@ impl<'a> Layout<'a> for Geos5Nquery<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.keyword("NQUERY")?;
         w.field(&self.port)?;

@@ -89,7 +89,6 @@ impl<'a> Layout<'a> for Geos5NqueryRequest {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.keyword("NQUERY")?;
         Some(())

@@ -130,7 +130,6 @@ impl<'a> Layout<'a> for Geos5Rquery<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.keyword("RQUERY")?;
         w.field(&self.receiver_name)?;

@@ -89,7 +89,6 @@ impl<'a> Layout<'a> for Geos5RqueryRequest {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.keyword("RQUERY")?;
         Some(())

@@ -160,7 +160,6 @@ impl<'a> Layout<'a> for Gga<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.time)?;
         w.field(&self.lat)?;

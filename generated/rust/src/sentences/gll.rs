@@ -125,7 +125,6 @@ impl<'a> Layout<'a> for Gll<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.lat)?;
         w.field(&self.lon)?;

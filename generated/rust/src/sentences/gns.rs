@@ -168,7 +168,6 @@ impl<'a> Layout<'a> for Gns<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.time)?;
         w.field(&self.lat)?;
@@ -370,7 +369,6 @@ impl<'a> Layout<'a> for GnsAux<'a> {
         }
         Ok(())
     }
-
 
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.time)?;

@@ -148,7 +148,6 @@ impl<'a> Layout<'a> for Gsa<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.selection_mode)?;
         w.field(&self.fix_type)?;
@@ -309,7 +308,6 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         w.field(&self.vdop)?;
         Ok(())
     }
-
 
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.selection_mode)?;

@@ -126,7 +126,6 @@ impl<'a> Layout<'a> for Gst<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.time)?;
         w.field(&self.rms)?;

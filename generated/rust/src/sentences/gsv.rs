@@ -209,7 +209,6 @@ impl<'a> Layout<'a> for Gsv<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.message_count)?;
         w.field(&self.message_number)?;

@@ -90,7 +90,6 @@ impl<'a> Layout<'a> for Hdt<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.heading)?;
         w.field(&self.heading_ref)?;

@@ -114,7 +114,6 @@ impl<'a> Layout<'a> for Psrf100<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.protocol)?;
         w.field(&self.baud)?;

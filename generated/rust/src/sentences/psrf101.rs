@@ -154,7 +154,6 @@ impl<'a> Layout<'a> for Psrf101 {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.x)?;
         w.field(&self.y)?;

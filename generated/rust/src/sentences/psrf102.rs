@@ -109,7 +109,6 @@ impl<'a> Layout<'a> for Psrf102<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.baud)?;
         w.field(&self.data_bits)?;

@@ -110,7 +110,6 @@ impl<'a> Layout<'a> for Psrf103<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.message)?;
         w.field(&self.mode)?;

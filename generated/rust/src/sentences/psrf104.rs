@@ -144,7 +144,6 @@ impl<'a> Layout<'a> for Psrf104 {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.latitude)?;
         w.field(&self.longitude)?;

@@ -90,7 +90,6 @@ impl<'a> Layout<'a> for Psrf105<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.debug)?;
         Some(())

@@ -87,7 +87,6 @@ impl<'a> Layout<'a> for Psrf150<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.ok_to_send)?;
         Some(())

@@ -77,7 +77,6 @@ impl<'a> Layout<'a> for Pstmclralms {
         Ok(())
     }
 
-
     fn put_fields(&self, _w: &mut ByteWriter<'_>) -> Option<()> {
         Some(())
     }

@@ -105,7 +105,6 @@ impl<'a> Layout<'a> for Pstmcold {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         if self.trailing >= 1 {
             w.field(&self.mask)?;

@@ -83,7 +83,6 @@ impl<'a> Layout<'a> for Pstmeph<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.texts(&self.values)?;
         Some(())

@@ -96,7 +96,6 @@ impl<'a> Layout<'a> for Pstmgetpar {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.block_param)?;
         Some(())

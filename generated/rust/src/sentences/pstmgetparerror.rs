@@ -69,7 +69,6 @@ impl<'a> Layout<'a> for Pstmgetparerror {
         Ok(())
     }
 
-
     fn put_fields(&self, _w: &mut ByteWriter<'_>) -> Option<()> {
         Some(())
     }

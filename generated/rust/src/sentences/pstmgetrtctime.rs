@@ -80,7 +80,6 @@ impl<'a> Layout<'a> for Pstmgetrtctime {
         Ok(())
     }
 
-
     fn put_fields(&self, _w: &mut ByteWriter<'_>) -> Option<()> {
         Some(())
     }

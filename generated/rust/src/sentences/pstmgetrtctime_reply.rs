@@ -97,7 +97,6 @@ impl<'a> Layout<'a> for PstmgetrtctimeReply<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.time)?;
         w.field(&self.date)?;

@@ -98,7 +98,6 @@ impl<'a> Layout<'a> for PstmgetswverReply<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.library_version)?;
         w.field(&self.compiler)?;

@@ -100,7 +100,6 @@ impl<'a> Layout<'a> for Pstmnmeaonoff<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         if self.trailing >= 1 {
             w.field(&self.on_off)?;

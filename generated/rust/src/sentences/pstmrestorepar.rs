@@ -79,7 +79,6 @@ impl<'a> Layout<'a> for Pstmrestorepar {
         Ok(())
     }
 
-
     fn put_fields(&self, _w: &mut ByteWriter<'_>) -> Option<()> {
         Some(())
     }

@@ -85,7 +85,6 @@ impl<'a> Layout<'a> for Pstmsat<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.texts(&self.values)?;
         Some(())

@@ -81,7 +81,6 @@ impl<'a> Layout<'a> for Pstmsavepar {
         Ok(())
     }
 
-
     fn put_fields(&self, _w: &mut ByteWriter<'_>) -> Option<()> {
         Some(())
     }

@@ -93,7 +93,6 @@ impl<'a> Layout<'a> for Pstmset<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.block_param)?;
         w.field(&self.value)?;
@@ -211,7 +210,6 @@ impl<'a> Layout<'a> for PstmsetDop {
         w.field(&self.gdop)?;
         Ok(())
     }
-
 
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.block_param)?;

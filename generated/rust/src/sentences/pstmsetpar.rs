@@ -130,7 +130,6 @@ impl<'a> Layout<'a> for Pstmsetpar<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.block_param)?;
         w.field(&self.value)?;
@@ -270,7 +269,6 @@ impl<'a> Layout<'a> for PstmsetparDop<'a> {
         }
         Ok(())
     }
-
 
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.block_param)?;

@@ -87,7 +87,6 @@ impl<'a> Layout<'a> for Pstmsetparok {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.block_param)?;
         Some(())

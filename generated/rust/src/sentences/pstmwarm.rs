@@ -81,7 +81,6 @@ impl<'a> Layout<'a> for Pstmwarm {
         Ok(())
     }
 
-
     fn put_fields(&self, _w: &mut ByteWriter<'_>) -> Option<()> {
         Some(())
     }

@@ -109,7 +109,6 @@ impl<'a> Layout<'a> for Rlm<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.beacon_id)?;
         w.field(&self.time)?;

@@ -170,7 +170,6 @@ impl<'a> Layout<'a> for Rmc<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.time)?;
         w.field(&self.status)?;

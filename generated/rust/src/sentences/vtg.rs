@@ -153,7 +153,6 @@ impl<'a> Layout<'a> for Vtg<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.course_true)?;
         w.field(&self.course_true_ref)?;

@@ -121,7 +121,6 @@ impl<'a> Layout<'a> for Zda<'a> {
         Ok(())
     }
 
-
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         w.field(&self.time)?;
         w.field(&self.day)?;
