@@ -229,28 +229,16 @@ def fmt_call(indent: int, prefix: str, callee: str, args: list[str], suffix: str
     return [f"{pad}{prefix}{callee}(", *[f"{pad}    {a}," for a in args], f"{pad}){suffix}"]
 
 
-def fmt_group_read(indent: int, target: str, group: str, callee: str, args: list[str]) -> list[str]:
-    """`f.group_into(&mut out.target, group, repeats, |f| callee(args))?;` (the group is read in
-    place) as rustfmt writes it: on one line, else one argument per line, the closure as a block
-    when it does not fit either."""
+def fmt_group_read(indent: int, leading: list[str], callee: str, args: list[str]) -> list[str]:
+    """`f.group_into(leading…, |f| callee(args))?;` (the group is read in place; `leading`: the
+    target, and the group's id for the general reader, and `repeats`) as rustfmt writes it: on one
+    line, else one argument per line, the closure as a block when it does not fit either."""
     pad = " " * indent
     body = f"{callee}({', '.join(args)})"
-    lines = fmt_call(indent, "", "f.group_into", [f"&mut out.{target}", group, "repeats", f"|f| {body}"], "?;", False)
+    lines = fmt_call(indent, "", "f.group_into", [*leading, f"|f| {body}"], "?;", False)
     if all(len(line) <= WIDTH for line in lines):
         return lines
-    return [f"{pad}f.group_into(", f"{pad}    &mut out.{target},", f"{pad}    {group},", f"{pad}    repeats,",
-            *fmt_call(indent + 4, "|f| ", callee, args, ",", False), f"{pad})?;"]
-
-
-def fmt_fast_group_read(indent: int, target: str, callee: str, args: list[str]) -> list[str]:
-    """`f.group_into(&mut self.target, repeats, |f| callee(args))?;` of a fast reader, as
-    rustfmt writes it (see fmt_group_read)."""
-    pad = " " * indent
-    body = f"{callee}({', '.join(args)})"
-    lines = fmt_call(indent, "", "f.group_into", [f"&mut self.{target}", "repeats", f"|f| {body}"], "?;", False)
-    if all(len(line) <= WIDTH for line in lines):
-        return lines
-    return [f"{pad}f.group_into(", f"{pad}    &mut self.{target},", f"{pad}    repeats,",
+    return [f"{pad}f.group_into(", *[f"{pad}    {arg}," for arg in leading],
             *fmt_call(indent + 4, "|f| ", callee, args, ",", False), f"{pad})?;"]
 
 
@@ -538,8 +526,8 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
             elif g.single:
                 f = g.fields[0]
                 callee, args = read_call(f)
-                read = fmt_group_read(8, ident(g.id), rust_str(g.id), callee, args)
-                fast = fmt_fast_group_read(8, ident(g.id), *fast_call(f))
+                read = fmt_group_read(8, [f"&mut out.{ident(g.id)}", rust_str(g.id), "repeats"], callee, args)
+                fast = fmt_group_read(8, [f"&mut self.{ident(g.id)}", "repeats"], *fast_call(f))
                 unit = f" [{f.unit}]" if f.unit else ""
                 items.append({"kind": "values", "group": g, "ident": ident(g.id), "read": read, "fast": fast,
                               "optional": None,

@@ -5,11 +5,9 @@
 //! Every example sentence of the manuals (generated/vectors/examples.jsonl): intact ones parse,
 //! serialize back byte for byte (also through the command builder), decode to the expected JSON
 //! in both forms and encode back from it; the manual's text, where it differs, decodes exactly
-//! as expected (a damaged one is refused); the fast path of `parse` reads each as the general path
-//! does.
+//! as expected (a damaged one is refused). tests/fast_path.rs checks the fast path on them.
 
-use nmeaspec::BUILD_CAPACITY;
-use nmeaspec::{decode_json, encode_json, parse, parse_fast, parse_general, parse_with, parse_with_general, Options};
+use nmeaspec::{decode_json, encode_json, parse, BUILD_CAPACITY};
 
 struct Example {
     manual: &'static str,
@@ -3209,24 +3207,4 @@ fn damaged_examples_give_their_errors() {
             assert!(expected.starts_with(r#"{"ok":false"#), "{}: {} must be refused", ex.manual, ex.raw);
         }
     }
-}
-
-#[test]
-fn fast_path_agrees_on_the_examples() {
-    let mut fast = 0;
-    for ex in EXAMPLES {
-        for line in [Some(ex.raw), ex.line].into_iter().flatten() {
-            let general = parse_general(line);
-            assert_eq!(parse(line), general, "{}: {line}", ex.manual);
-            if let Some(sentence) = parse_fast(line) {
-                assert_eq!(Ok(sentence), general, "{}: {line}: fast path", ex.manual);
-                fast += 1;
-            }
-            for (lenient, require_checksum) in [(false, false), (true, false), (false, true), (true, true)] {
-                let options = Options { lenient, require_checksum };
-                assert_eq!(parse_with(line, options), parse_with_general(line, options), "{}: {line}", ex.manual);
-            }
-        }
-    }
-    assert!(fast > 0 || EXAMPLES.is_empty());
 }

@@ -6,7 +6,7 @@
 //! the same value (`parse_general` is the general path alone; the crate's tests and its fuzz
 //! target check that both agree).
 
-use super::frame::{GroupShape, Shape, MAX_LINE};
+use super::frame::{xor_of_bytes, GroupShape, Shape, MAX_LINE};
 use super::types::{
     Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Sign, Texts, Time, MAX_DIGITS,
 };
@@ -120,11 +120,8 @@ impl<'a> FastReader<'a> {
         let (last, keep) = (end.checked_shr(shift).unwrap_or(0), u64::MAX.checked_shr(shift).unwrap_or(0));
         sum ^= last;
         commas += count_bytes(bytes_equal(last, b',') & keep);
-        sum ^= sum >> 32;
-        sum ^= sum >> 16;
-        sum ^= sum >> 8;
         let (high, low) = (UPPER_HEX[usize::from(line[len - 2])], UPPER_HEX[usize::from(line[len - 1])]);
-        if high == 0 || low == 0 || (high - 1) << 4 | (low - 1) != sum as u8 {
+        if high == 0 || low == 0 || (high - 1) << 4 | (low - 1) != xor_of_bytes(sum) {
             return None;
         }
         let end = body.iter().position(|b| !b.is_ascii_alphanumeric())?;
@@ -266,31 +263,32 @@ impl<'a> FastReader<'a> {
         }
     }
 
+    /// A field `parse` reads, or none: `Unsure` when `parse` refuses it. `parse` is a function
+    /// item or closure, inlined here like the rest: no call through a pointer.
+    #[inline(always)]
+    fn parsed<T>(&mut self, parse: impl FnOnce(&[u8]) -> Option<T>) -> Read<Option<T>> {
+        match self.field()? {
+            None => Ok(None),
+            Some(text) => parse(text).map(Some).ok_or(Unsure),
+        }
+    }
+
     /// Hex digits.
     #[inline(always)]
     pub fn hex(&mut self) -> Read<Option<Hex>> {
-        match self.field()? {
-            None => Ok(None),
-            Some(text) => Hex::parse_bytes(text).map(Some).ok_or(Unsure),
-        }
+        self.parsed(Hex::parse_bytes)
     }
 
     /// A time `hhmmss[.s…]`.
     #[inline(always)]
     pub fn time(&mut self) -> Read<Option<Time>> {
-        match self.field()? {
-            None => Ok(None),
-            Some(text) => Time::parse_bytes(text).map(Some).ok_or(Unsure),
-        }
+        self.parsed(Time::parse_bytes)
     }
 
     /// A date `ddmmyy`.
     #[inline(always)]
     pub fn date(&mut self) -> Read<Option<Date>> {
-        match self.field()? {
-            None => Ok(None),
-            Some(text) => Date::parse_bytes(text).map(Some).ok_or(Unsure),
-        }
+        self.parsed(Date::parse_bytes)
     }
 
     /// One printable ASCII character.
@@ -339,10 +337,7 @@ impl<'a> FastReader<'a> {
     /// A code of enum `E` the spec knows (a code it does not know is the general path's to keep).
     #[inline(always)]
     pub fn code<E: CodeEnum>(&mut self) -> Read<Option<Code<'a, E>>> {
-        match self.field()? {
-            None => Ok(None),
-            Some(text) => E::from_code_bytes(text).map(|value| Some(Code::Known(value))).ok_or(Unsure),
-        }
+        self.parsed(|text| E::from_code_bytes(text).map(Code::Known))
     }
 
     /// A run of one-character codes of enum `E`, at most `max_length`.

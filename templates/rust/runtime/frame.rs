@@ -59,9 +59,21 @@ const LONGITUDE: &str = "longitude dddmm.mmmm";
 const NORTH_SOUTH: &str = "hemisphere N or S";
 const EAST_WEST: &str = "hemisphere E or W";
 
-/// XOR of every byte of `body` (the bytes between the start character and the `*`).
+/// XOR of every byte of `body` (the bytes between the start character and the `*`), 8 at a time.
+#[inline]
 pub fn checksum(body: &[u8]) -> u8 {
-    body.iter().fold(0, |sum, b| sum ^ b)
+    let mut words = body.chunks_exact(8);
+    let sum = words.by_ref().fold(0u64, |sum, word| sum ^ u64::from_le_bytes(word.try_into().unwrap_or_default()));
+    words.remainder().iter().fold(xor_of_bytes(sum), |sum, b| sum ^ b)
+}
+
+/// XOR of the 8 bytes of `word`.
+#[inline(always)]
+pub(crate) const fn xor_of_bytes(mut word: u64) -> u8 {
+    word ^= word >> 32;
+    word ^= word >> 16;
+    word ^= word >> 8;
+    word as u8
 }
 
 /// A line split into its parts; its checksum, if any, has been verified.

@@ -20,6 +20,18 @@ pub(crate) const POW10: [i64; 19] = {
     table
 };
 
+/// `value` followed by the decimal digits `bytes`; `None` for any other byte in them.
+#[inline(always)]
+fn append_digits(mut value: i64, bytes: &[u8]) -> Option<i64> {
+    for &b in bytes {
+        if !b.is_ascii_digit() {
+            return None;
+        }
+        value = value * 10 + i64::from(b - b'0');
+    }
+    Some(value)
+}
+
 /// 10^`exp` (for `exp` up to 18).
 const fn pow10(exp: u8) -> i64 {
     if (exp as usize) < POW10.len() {
@@ -627,27 +639,10 @@ impl Coordinate {
             return None;
         }
         let (degree_text, minute_text) = whole.split_at(whole.len() - 2);
-        let mut degrees = 0u16;
-        for &b in degree_text {
-            if !b.is_ascii_digit() {
-                return None;
-            }
-            degrees = degrees * 10 + u16::from(b - b'0');
-        }
-        let mut digits = 0i64;
-        for &b in minute_text {
-            if !b.is_ascii_digit() {
-                return None;
-            }
-            digits = digits * 10 + i64::from(b - b'0');
-        }
-        for &b in frac {
-            if !b.is_ascii_digit() {
-                return None;
-            }
-            digits = digits * 10 + i64::from(b - b'0');
-        }
-        if degrees > u16::from(max_degrees) || digits > 60 * POW10[frac.len()] {
+        // At most 3 degree digits and 18 of minutes (checked above): no overflow.
+        let degrees = append_digits(0, degree_text)?;
+        let digits = append_digits(append_digits(0, minute_text)?, frac)?;
+        if degrees > i64::from(max_degrees) || digits > 60 * POW10[frac.len()] {
             return None;
         }
         let minutes = Number { digits, scale: frac.len() as u8, width: 2, sign: Sign::Implicit, point };

@@ -3,6 +3,7 @@
 use core::fmt::{self, Write};
 
 use super::error::Problems;
+use super::frame;
 use super::types::{
     Ascii, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Sign, Texts, Time, MAX_DIGITS, POW10,
 };
@@ -709,14 +710,7 @@ impl<'b> ByteWriter<'b> {
     /// that character, in the checksum's style. The sentence's length.
     #[inline]
     pub fn finish(mut self, checksum: Checksum) -> Option<usize> {
-        let body = self.buf.get(1..self.len)?;
-        let mut words = body.chunks_exact(8);
-        let mut sum =
-            words.by_ref().fold(0u64, |sum, word| sum ^ u64::from_le_bytes(word.try_into().unwrap_or_default()));
-        sum ^= sum >> 32;
-        sum ^= sum >> 16;
-        sum ^= sum >> 8;
-        let sum = words.remainder().iter().fold(sum as u8, |sum, b| sum ^ b);
+        let sum = frame::checksum(self.buf.get(1..self.len)?);
         match checksum.digits(sum) {
             Some([high, low]) => self.put(&[b'*', high, low])?,
             None if checksum == Checksum::Empty => self.put(b"*")?,
