@@ -33,6 +33,7 @@ class Manual:
     title: str
     vendor: str
     file: str | None = None
+    url: str | None = None
     language: str | None = None
     note: str | None = None
 
