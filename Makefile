@@ -72,9 +72,10 @@ test-python: $(STAMP)
 # NMEA_TEST_HOOKS: the test programs also check nmea_parse_ex's fast path against its general path.
 test-c: $(STAMP)
 	@mkdir -p build/c
-	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o build/c/test_examples generated/c/nmea.c generated/c/tests/test_examples.c
+	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o build/c/test_examples generated/c/nmea.c generated/c/tests/test_examples.c & first=$$!; \
+	$(CC) $(CFLAGS) -DNMEA_NO_FAST_PATH -o build/c/test_examples_general generated/c/nmea.c generated/c/tests/test_examples.c & \
+	second=$$!; wait $$first && wait $$second
 	build/c/test_examples
-	$(CC) $(CFLAGS) -DNMEA_NO_FAST_PATH -o build/c/test_examples_general generated/c/nmea.c generated/c/tests/test_examples.c
 	build/c/test_examples_general
 
 # The C test program and the C tool under AddressSanitizer + UndefinedBehaviorSanitizer, and under
@@ -83,11 +84,16 @@ SANITIZE := -std=c99 -Wall -Wextra -Werror -pedantic -O1 -g -fsanitize=address,u
             -DNMEA_TEST_HOOKS
 MEMORY_INPUTS := tests/agreement/edge_cases.txt $(sort $(wildcard ../shared/corpus/real/*/*.nmea))
 
+# nmea.c is compiled once per set of flags (the sanitized and the debug object, side by side on two
+# cores) and linked with the test program and with the tool.
 test-c-memory: $(STAMP)
 	@mkdir -p build/c
-	$(CC) $(SANITIZE) -o build/c/test_examples_asan generated/c/nmea.c generated/c/tests/test_examples.c
+	$(CC) $(SANITIZE) -c -o build/c/nmea-asan.o generated/c/nmea.c & first=$$!; \
+	$(CC) -std=c99 -O1 -g -c -o build/c/nmea-debug.o generated/c/nmea.c & second=$$!; \
+	wait $$first && wait $$second
+	$(CC) $(SANITIZE) -o build/c/test_examples_asan build/c/nmea-asan.o generated/c/tests/test_examples.c
 	build/c/test_examples_asan
-	$(CC) $(SANITIZE) -o build/c/nmea-c-asan generated/c/nmea.c generated/c/nmea_tool.c
+	$(CC) $(SANITIZE) -o build/c/nmea-c-asan build/c/nmea-asan.o generated/c/nmea_tool.c
 	@cat $(MEMORY_INPUTS) > build/c/memory.nmea
 	build/c/nmea-c-asan decode < build/c/memory.nmea > build/c/asan.jsonl
 	build/c/nmea-c-asan encode < build/c/asan.jsonl > /dev/null
@@ -95,8 +101,8 @@ test-c-memory: $(STAMP)
 	build/c/nmea-c-asan stream --lenient < build/c/memory.nmea > build/c/asan-lenient.jsonl
 	build/c/nmea-c-asan encode < build/c/asan-lenient.jsonl > /dev/null
 	build/c/nmea-c-asan stream --require-checksum < tests/agreement/stream_cases.bin > /dev/null
-	$(CC) -std=c99 -O1 -g -o build/c/nmea-c-debug generated/c/nmea.c generated/c/nmea_tool.c
-	$(CC) -std=c99 -O1 -g -o build/c/test_examples_debug generated/c/nmea.c generated/c/tests/test_examples.c
+	$(CC) -std=c99 -O1 -g -o build/c/nmea-c-debug build/c/nmea-debug.o generated/c/nmea_tool.c
+	$(CC) -std=c99 -O1 -g -o build/c/test_examples_debug build/c/nmea-debug.o generated/c/tests/test_examples.c
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_examples_debug > /dev/null
 	head -c 2000000 build/c/asan.jsonl | head -n -1 > build/c/valgrind.jsonl
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug decode < tests/agreement/edge_cases.txt > /dev/null

@@ -126,5 +126,5 @@ def _sentence(doc: Document) -> Sentence:
     notes = [Note(n["manuals"], n["text"]) for n in d.get("notes", [])]
     return Sentence(d["sentence"], d["name"], d["doc"], d.get("talkers", []), d["manuals"], layout,
                     variants, notes, examples, Origin(file, ()), file, address=d.get("address"),
-                    framing=d.get("framing", "sentence"), kind=d.get("kind", "standard"), vendor=d.get("vendor"),
+                    framing=d.get("framing", "sentence"), start=d.get("start", "$"), domain=d.get("domain"), kind=d.get("kind", "standard"), vendor=d.get("vendor"),
                     reply_ids=d.get("replies", []))

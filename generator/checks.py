@@ -99,7 +99,13 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
                            ("framing", sentence.framing != "sentence")):
             if value:
                 report(sentence.origin, "S010", f"standard sentence {sentence.id} cannot have `{key}`", key)
+        if sentence.domain is None:
+            report(sentence.origin, "S010", f"standard sentence {sentence.id} needs a `domain` (for the docs index)",
+                   "sentence")
         return
+    for key, value in (("start", sentence.start != "$"), ("domain", sentence.domain)):
+        if value:
+            report(sentence.origin, "S010", f"proprietary sentence {sentence.id} cannot have `{key}`", key)
     if sentence.vendor not in manual_ids:
         report(sentence.origin, "S003", f"vendor {sentence.vendor!r} is not a manual id", "vendor")
     if sentence.framing == "text" and not (sentence.address or "").isalpha():

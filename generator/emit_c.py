@@ -388,6 +388,8 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "type": f"nmea_{snake}",
         "const": layout_const(sentence, layout),
         "id": c_str(sentence.id),
+        "start": sentence.start,
+        "fast": kind != "text" and sentence.fast_path,
         "address": c_str(sentence.address or ""),
         "command": c_str((sentence.address or "").upper()),
         "selector": c_str(layout.selector) if layout.selector is not None else "NULL",
@@ -657,7 +659,8 @@ def _dispatch(spec: Spec, views: list[dict]) -> dict[str, list[dict]]:
     def standard_like(address: str) -> bool:  # what is_standard_address accepts
         return len(address) == 5 and address[0] != "P"
 
-    standard = [entry(s.id, s.id, [(s, lay) for lay in s.layouts]) for s in spec.standard]
+    standard = [entry(s.id, s.id, [(s, lay) for lay in s.layouts]) for s in spec.standard if s.start == "$"]
+    encapsulated = [entry(s.id, s.id, [(s, lay) for lay in s.layouts]) for s in spec.standard if s.start == "!"]
     addresses = sorted({s.address for s in spec.proprietary if s.framing == "sentence" and s.address})
     proprietary = [entry(a, None, spec.by_address(a)) for a in addresses if not standard_like(a)]
     # Proprietary addresses that look like a standard one ($GPSGG) come before the standard
@@ -666,7 +669,7 @@ def _dispatch(spec: Spec, views: list[dict]) -> dict[str, list[dict]]:
     words = sorted({s.address.upper() for s in spec.proprietary if s.framing == "text" and s.address})
     text = [entry(w, None, spec.text_command(w)) for w in words]
     return {name: sorted(table, key=lambda e: e["sort"])
-            for name, table in (("standard", standard), ("talker_like", talker_like),
+            for name, table in (("standard", standard), ("encapsulated", encapsulated), ("talker_like", talker_like),
                                 ("proprietary", proprietary), ("text", text))}
 
 

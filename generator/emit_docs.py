@@ -97,6 +97,18 @@ def example_view(vector: dict) -> dict:
             "decoded": [(k, json.dumps(v, ensure_ascii=False)) for k, v in values.items()] if values else []}
 
 
+# The domains of the standard sentences (the spec's `domain` key), in the order the index shows them.
+DOMAINS = {
+    "gnss": "GNSS: position, satellites, integrity, time",
+    "navigation": "Navigation: waypoints, routes, bearings, cross-track, autopilot",
+    "heading": "Heading, attitude, rate of turn, steering and propulsion",
+    "environment": "Wind, water, depth, speed through water, transducers",
+    "ais_safety": "AIS, radar targets, DSC, man overboard, safety messages",
+    "alarms": "Alarms, alerts and detection systems",
+    "system": "Text, equipment, configuration and communication",
+}
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     env.filters["cell"] = cell
     env.globals["replied_by"] = lambda s: replied_by(spec, s)
@@ -114,8 +126,13 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                 for f in (item.fields if isinstance(item, Group) else [item]):
                     if f.enum and s.id not in enum_users[f.enum.id]:
                         enum_users[f.enum.id].append(s.id)
-    matrix = [(s, [m.id in s.manuals for m in spec.manuals]) for s in spec.standard]
-    matrix += [(s, [m.id in s.manuals for m in spec.manuals]) for s in spec.proprietary]
+    # The support matrix: the receiver manuals (and the standard) against what they document.
+    matrix_manuals = [m for m in spec.manuals if m.file or m.id == "nmea0183"]
+    matrix = [(s, [m.id in s.manuals for m in matrix_manuals]) for s in [*spec.standard, *spec.proprietary]
+              if any(m.file and m.id in s.manuals for m in matrix_manuals)]
+    domains = [{"title": title, "sentences": [s for s in spec.standard if s.domain == domain]}
+               for domain, title in DOMAINS.items()]
+    env.globals["domain_titles"] = DOMAINS
     files: dict[str, str] = {}
     def banner_of(sources: list[str] | None) -> str:
         """The DO NOT EDIT banner as an HTML comment; a page about one item names the files it is
@@ -124,7 +141,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
 
     banner = banner_of(None)
     files["docs/README.md"] = env.get_template("docs/index.md.j2").render(
-        banner=banner, spec=spec, matrix=matrix, counts=counts, vectors=vectors)
+        banner=banner, spec=spec, matrix=matrix, matrix_manuals=matrix_manuals, counts=counts, vectors=vectors,
+        domains=[d for d in domains if d["sentences"]])
     for s in spec.sentences:
         files[f"docs/sentences/{s.id.lower()}.md"] = env.get_template("docs/sentence.md.j2").render(
             banner=banner_of([s.source, *sorted({e.origin.file for e in _enums_of(s)}), "spec/manuals.yaml"]),

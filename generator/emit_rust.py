@@ -136,7 +136,7 @@ def is_text(sentence: Sentence) -> bool:
 def framing_expr(sentence: Sentence) -> str:
     """The layout's `Framing` constant."""
     if not sentence.is_proprietary:
-        return "Framing::Standard"
+        return "Framing::Encapsulated" if sentence.start == "!" else "Framing::Standard"
     kind = "Text" if is_text(sentence) else "Proprietary"
     return f"Framing::{kind}({rust_str(sentence.address or '')})"
 
@@ -232,12 +232,16 @@ def fmt_call(indent: int, prefix: str, callee: str, args: list[str], suffix: str
 def fmt_group_read(indent: int, leading: list[str], callee: str, args: list[str]) -> list[str]:
     """`f.group_into(leading…, |f| callee(args))?;` (the group is read in place; `leading`: the
     target, and the group's id for the general reader, and `repeats`) as rustfmt writes it: on one
-    line, else one argument per line, the closure as a block when it does not fit either."""
+    line, else with the closure's body in a block after the other arguments, else one argument per
+    line."""
     pad = " " * indent
     body = f"{callee}({', '.join(args)})"
-    lines = fmt_call(indent, "", "f.group_into", [*leading, f"|f| {body}"], "?;", False)
-    if all(len(line) <= WIDTH for line in lines):
-        return lines
+    one = f"{pad}f.group_into({', '.join([*leading, f'|f| {body}'])})?;"
+    if len(one) <= WIDTH:
+        return [one]
+    head = f"{pad}f.group_into({', '.join(leading)}, |f| {{"
+    if len(head) <= WIDTH:  # the closure overflows into a block
+        return [head, *fmt_call(indent + 4, "", callee, args, "", False), f"{pad}}})?;"]
     return [f"{pad}f.group_into(", *[f"{pad}    {arg}," for arg in leading],
             *fmt_call(indent + 4, "|f| ", callee, args, ",", False), f"{pad})?;"]
 
@@ -356,9 +360,10 @@ def fmt_use(path: str, names: list[str], prefix: str = "use") -> list[str]:
     if len(one) < WIDTH - 1:
         return [one]
     lines, line = [], "   "
-    for name in names:
+    for i, name in enumerate(names):
         part = f" {name},"
-        if len(line) + len(part) >= WIDTH:
+        # rustfmt fills a line to 119 columns, the last one to 120 (its trailing comma is free)
+        if len(line) + len(part) > WIDTH - (i < len(names) - 1):
             lines.append(line)
             line = "   "
         line += part
@@ -594,7 +599,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     init = [f"        let {'mut ' if assigned else ''}out = Self {{ "
             + ", ".join(framing_members + (["..Self::default()"] if assigned else [])) + " };"]
     assert len(init[0]) <= WIDTH
-    fast = [] if text else fast_reader(sentence, items)
+    fast = fast_reader(sentence, items) if sentence.fast_path and not text else []
     lifetime = (not sentence.is_proprietary or text
                 or any(it["kind"] in ("field", "values") and borrows(it["field"] if it["kind"] == "field"
                                                                      else it["group"].fields[0])
@@ -633,6 +638,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                                  [f"({rust_str(it['field'].id)}, {it['width']})" for it in items]) if text else [],
         "init": init,
         "fast": fast,
+        "fast_path": sentence.fast_path and not text,
         "reader": fmt_const(8, "let mut f", reader) if items else [],
         "checksum_arg": "_checksum" if text else "checksum",
         "keywords": doc_lines("Keywords (fixed words, not members: parsing checks them, writing puts them "
@@ -693,7 +699,9 @@ def module_imports(views: list[dict]) -> list[str]:
         if view["entries"]:
             runtime.add("Reader")
         if not view["text"]:
-            runtime |= {"ByteWriter", "FastReader", "Read"}
+            runtime.add("ByteWriter")
+            if view["fast_path"]:
+                runtime |= {"FastReader", "Read"}
         fields = [it["field"] for it in view["items"] if it["kind"] == "field"]
         fields += [it["group"].fields[0] for it in view["items"] if it["kind"] == "values"]
         fields += [fv["field"] for e in view["entries"] for fv in e["fields"]]
@@ -952,11 +960,12 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                 "replies_arm": with_cfg(12, gate, fmt_slice(12, f"Self::{name} => ", [f"Self::{r}" for r in reply_names],
                                                             ",")),
             })
+    modules = [{"sentence": s, "module": sentence_module(s), "cfg": gates.sentence(s), "uses": fmt_use(
+        sentence_module(s), rust_sorted({s.layout_camel(lay) for lay in s.layouts}), "pub use")} for s in spec.sentences]
+    # rustfmt sorts `mod` items by the name without `r#`, `use` items by the path as written.
     files[f"{base}/src/sentences/mod.rs"] = env.get_template("rust/sentences_mod.rs.j2").render(
-        header=header(spec, "//"), sentences=sorted((
-            {"sentence": s, "module": sentence_module(s), "cfg": gates.sentence(s), "uses": fmt_use(
-                sentence_module(s), rust_sorted({s.layout_camel(lay) for lay in s.layouts}), "pub use")}
-            for s in spec.sentences), key=lambda m: m["module"].removeprefix("r#")))
+        header=header(spec, "//"), sentences=sorted(modules, key=lambda m: m["module"].removeprefix("r#")),
+        uses=sorted(modules, key=lambda m: m["module"]))
     files[f"{base}/src/enums.rs"] = env.get_template("rust/enums.rs.j2").render(
         header=header(spec, "//", [e.origin.file for e in spec.enums]), enums=[{**enum_view(e), "cfg": gates.enum(e.id)} for e in spec.enums])
     files[f"{base}/src/bitfields.rs"] = env.get_template("rust/bitfields.rs.j2").render(
@@ -1013,11 +1022,16 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         fast_arms = standard_like_fast_arms if standard_like else proprietary_fast_arms
         fast_arms += with_cfg(indent, gate, fmt_fast_arm(indent, f"b{rust_str(address)}", names))
     standard_arms: list[str] = []
+    encapsulated_arms: list[str] = []
     standard_fast_arms: list[str] = []
     for s in spec.standard:
-        standard_arms += fmt_slice(8, f'b"{s.id}" => ', [f"LayoutId::{s.layout_camel(lay)}" for lay in s.layouts],
-                                   ",")
-        standard_fast_arms += fmt_fast_arm(8, f'b"{s.id}"', [s.layout_camel(lay) for lay in s.layouts])
+        arm = fmt_slice(8, f'b"{s.id}" => ', [f"LayoutId::{s.layout_camel(lay)}" for lay in s.layouts], ",")
+        if s.start == "!":  # the fast path reads `$` sentences only
+            encapsulated_arms += arm
+            continue
+        standard_arms += arm
+        if s.fast_path:
+            standard_fast_arms += fmt_fast_arm(8, f'b"{s.id}"', [s.layout_camel(lay) for lay in s.layouts])
     text_commands = []
     for word in sorted({(s.address or "").upper() for s in spec.proprietary if s.framing == "text"}):
         owners = spec.text_command(word)
@@ -1030,6 +1044,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/src/lib.rs"] = env.get_template("rust/lib.rs.j2").render(
         header=header(spec, "//"), spec=spec, layouts=layouts, example=first, command=command_example(spec),
         unit_examples=unit_examples, proprietary_arms=proprietary_arms, standard_arms=standard_arms,
+        encapsulated_arms=encapsulated_arms,
         standard_like_arms=standard_like_arms, standard_fast_arms=standard_fast_arms,
         proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands,

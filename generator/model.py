@@ -285,13 +285,17 @@ class Example:
         layout is damaged: XOR cannot see a moved comma or two added ones), else the manual's text."""
         if self.corrected:
             return self.corrected
-        return self.raw if self.checksum_ok else None
+        return self.raw if self.checksum_ok and not self.unrecoverable else None
 
 
 @dataclass
 class Note:
     manuals: list[str]
     text: str
+
+
+# The standard sentences that get a fast path (see Sentence.fast_path): a receiver's per-fix output.
+FAST_PATH_SENTENCES = frozenset({"GGA", "GLL", "GNS", "GSA", "GST", "GSV", "HDT", "RMC", "VTG", "ZDA"})
 
 
 @dataclass
@@ -309,6 +313,8 @@ class Sentence:
     source: str                  # spec file, relative to the repository
     address: str | None = None   # proprietary: the exact address (text framing: the command word)
     framing: str = "sentence"    # "sentence" ($…*hh) or "text" (space-separated words)
+    start: str = "$"             # standard sentences: "$", or "!" for encapsulation (AIS VDM/VDO)
+    domain: str | None = None    # standard sentences: what they are about, for the docs index
     kind: str = "standard"       # standard, command, reply or output
     vendor: str | None = None
     reply_ids: list[str] = field(default_factory=list)
@@ -317,6 +323,14 @@ class Sentence:
     @property
     def is_proprietary(self) -> bool:
         return self.address is not None
+
+    @property
+    def fast_path(self) -> bool:
+        """Whether C and Rust give the sentence a fast reader and writer besides the general
+        ones: the standard sentences a GNSS receiver sends with every fix, and the proprietary
+        ones; the others (instruments, alarms, AIS, ...) take the general path, which keeps the
+        code small as the spec grows."""
+        return self.is_proprietary or self.id in FAST_PATH_SENTENCES
 
     @property
     def layouts(self) -> list[Layout]:

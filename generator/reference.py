@@ -59,7 +59,7 @@ def candidates(spec: Spec, line: str) -> tuple[Any, list[tuple[Sentence, Layout]
     found = spec.by_address(frame.address) if frame.start == "$" else []
     if not found and rt.is_standard_address(frame.start, frame.address):
         standard = spec.sentence(frame.address[2:])
-        if standard is not None and not standard.is_proprietary:
+        if standard is not None and not standard.is_proprietary and standard.start == frame.start:
             found = [(standard, layout) for layout in standard.layouts]
     return frame, found
 

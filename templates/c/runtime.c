@@ -692,10 +692,12 @@ static bool frame_line(nmea_frame *f, const char *line, size_t len, bool require
     return true;
 }
 
-/* A talker ID and a 3-letter sentence formatter: '$', 5 characters, not proprietary ('P...'). */
+/* A talker ID and a 3-letter sentence formatter: '$' (or '!', an encapsulation sentence such as
+   AIS VDM), 5 characters, not proprietary ('P...'). */
 static bool is_standard_address(const nmea_frame *f)
 {
-    return f->start.len == 1 && f->start.ptr[0] == '$' && f->address.len == 5 && f->address.ptr[0] != 'P';
+    return f->start.len == 1 && (f->start.ptr[0] == '$' || f->start.ptr[0] == '!') && f->address.len == 5 &&
+           f->address.ptr[0] != 'P';
 }
 
 /* A text command (ComNav: words separated by single spaces, no '$', no checksum): the first
@@ -825,14 +827,15 @@ bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
     return true;
 }
 
-/* A known sentence starts with '$', its talker and its sentence id; the checksum covers all but
-   the '$'. Each field writes its comma, end_sentence the checksum. */
-NMEA_INTERNAL void begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence,
+/* A known sentence starts with '$' (or '!', an encapsulation sentence), its talker and its
+   sentence id; the checksum covers all but the start. Each field writes its comma, end_sentence
+   the checksum. */
+NMEA_INTERNAL void begin_sentence(nmea_writer *w, char start, nmea_text talker, const char *sentence,
                                   const nmea_problems *problems)
 {
     w->problems = problems;
     w->field = 0;
-    put_char(w, '$');
+    put_char(w, start);
     start_sum(w);
     put_text(w, talker);
     put_str(w, sentence);
@@ -2152,7 +2155,7 @@ NMEA_HOT bool fast_sep(fast_writer *w)
     return true;
 }
 
-NMEA_HOT bool fast_begin(fast_writer *w, char *buf, size_t cap, nmea_text talker, const char *address,
+NMEA_HOT bool fast_begin(fast_writer *w, char *buf, size_t cap, char start, nmea_text talker, const char *address,
                          const nmea_problems *problems)
 {
     if (problems->count || cap < FAST_ROOM + 1)
@@ -2160,7 +2163,7 @@ NMEA_HOT bool fast_begin(fast_writer *w, char *buf, size_t cap, nmea_text talker
     w->buf = buf;
     w->p = buf;
     w->limit = buf + cap - FAST_ROOM;
-    *w->p++ = '$';
+    *w->p++ = start;
     return fast_put_mem(w, talker.ptr, talker.len) && fast_put_mem(w, address, strlen(address));
 }
 
@@ -2586,9 +2589,10 @@ static void json_sentence_variant(nmea_writer *w, const char *sentence, const ch
 }
 
 /* A known standard sentence up to the opening brace of its fields. */
-NMEA_INTERNAL void json_begin_sentence(nmea_writer *w, nmea_text talker, const char *sentence, const char *variant)
+NMEA_INTERNAL void json_begin_sentence(nmea_writer *w, char start, nmea_text talker, const char *sentence,
+                                       const char *variant)
 {
-    put_str(w, "{\"ok\":true,\"start\":\"$\",\"address\":\"");
+    put_str(w, start == '!' ? "{\"ok\":true,\"start\":\"!\",\"address\":\"" : "{\"ok\":true,\"start\":\"$\",\"address\":\"");
     put_escaped_mem(w, talker.ptr, talker.len, 1);
     put_str(w, sentence);
     put_str(w, "\",\"talker\":");

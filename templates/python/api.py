@@ -8,7 +8,8 @@ from typing import Any
 
 from . import runtime
 from .runtime import NmeaError
-from .sentences import BY_ADDRESS, LAYOUTS, STANDARD, TEXT_COMMANDS
+from . import sentences
+from .sentences import BY_ADDRESS, ENCAPSULATED, STANDARD, TEXT_COMMANDS
 
 
 @dataclass(slots=True)
@@ -52,9 +53,9 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
         address = fields[0]
         if checksum is not None and address.isalnum():
             del fields[0]
-            layouts = BY_ADDRESS.get(address)
+            layouts = BY_ADDRESS.get(address) or sentences.by_address(address)
             if layouts is None and len(address) == 5 and address[0] != "P":
-                layouts = STANDARD.get(address[2:])
+                layouts = STANDARD.get(address[2:]) or sentences.standard(address[2:])
             if layouts is None:
                 return Generic(address, fields, "$", checksum)
             try:
@@ -66,16 +67,21 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
                     raise
                 return _lenient(layouts, address, fields, checksum, err)
     if line[:1] not in ("$", "!"):
-        layouts = TEXT_COMMANDS.get(runtime.first_word(line).upper())
+        word = runtime.first_word(line).upper()
+        layouts = TEXT_COMMANDS.get(word) or sentences.text_command(word)
         if layouts is not None:
             frame = runtime.text_frame(line)
             return _first_fit(layouts, frame.address, frame.fields, None, line)
     frame = runtime.frame(line, require_checksum)
     checksum = runtime.checksum_case(frame.checksum)
     address = frame.address
-    layouts = BY_ADDRESS.get(address) if frame.start == "$" else None
+    layouts = (BY_ADDRESS.get(address) or sentences.by_address(address)) if frame.start == "$" else None
     if layouts is None and runtime.is_standard_address(frame.start, address):
-        layouts = STANDARD.get(address[2:])
+        formatter = address[2:]
+        if frame.start == "$":
+            layouts = STANDARD.get(formatter) or sentences.standard(formatter)
+        else:
+            layouts = ENCAPSULATED.get(formatter) or sentences.encapsulated(formatter)
     if layouts is None:
         return Generic(address, frame.fields, frame.start, checksum)
     try:
@@ -129,7 +135,7 @@ def _first_fit(layouts: tuple[Any, ...], address: str, fields: list[str], checks
 
 def replies_of(command: Any) -> tuple[Any, ...]:
     """The sentence classes (all layouts) that answer a command class or instance."""
-    return tuple(layout for reply in command.REPLIES for layout in LAYOUTS[reply])
+    return tuple(layout for reply in command.REPLIES for layout in sentences.layouts(reply) or ())
 
 
 def to_json(sentence: Any, values: bool = False) -> str:
@@ -141,7 +147,7 @@ def to_json(sentence: Any, values: bool = False) -> str:
                 '"talker":null,"sentence":null,"variant":null,"fields":')
     else:
         if sentence.ADDRESS is None:
-            start, address, talker = "$", sentence.talker + sentence.SENTENCE, runtime.json_str(sentence.talker)
+            start, address, talker = text[0], sentence.talker + sentence.SENTENCE, runtime.json_str(sentence.talker)
         elif sentence.checksum is None and not text.startswith("$"):
             start, address, talker = "", runtime.first_word(text), "null"
         else:
@@ -178,7 +184,7 @@ def from_json(obj: Any) -> Any:
             raise runtime.bad_json('"start" is not "$" or "!"')
         return Generic(runtime.json_word(obj, "address"), [runtime.json_text(f) for f in fields], start, checksum)
     variant = runtime.json_opt_text(obj, "variant")
-    layout = next((lay for lay in LAYOUTS.get(sentence_id, ()) if lay.VARIANT == variant), None)
+    layout = next((lay for lay in sentences.layouts(sentence_id) or () if lay.VARIANT == variant), None)
     if layout is None:
         raise runtime.bad_json(f'unknown sentence "{sentence_id}"')
     fields = runtime.json_member(obj, "fields")

@@ -167,8 +167,9 @@ def words_json(ids: tuple[str, ...], line: str) -> str:
 
 
 def is_standard_address(start: str, address: str) -> bool:
-    """A talker ID and a 3-letter sentence formatter: `$`, 5 characters, not proprietary (`P…`)."""
-    return start == "$" and len(address) == 5 and address[0] != "P"
+    """A talker ID and a 3-letter sentence formatter: `$` (or `!`, an encapsulation sentence such
+    as AIS VDM), 5 characters, not proprietary (`P…`)."""
+    return start in ("$", "!") and len(address) == 5 and address[0] != "P"
 
 
 def assemble(start: str, address: str, fields: list[str], checksum_style: str | None) -> str:

@@ -104,13 +104,14 @@ def sentence_line(rng: random.Random, sentence: Sentence, layout: Layout) -> str
         return " ".join([word.lower() if rng.random() < 0.3 else word, *fields])
     address = sentence.address or (rng.choice(TALKERS) + sentence.id)
     body = ",".join([address, *fields])
+    start = sentence.start
     style = rng.random()
     if style < 0.1:
-        return "$" + body
+        return start + body
     if style < 0.15:
-        return f"${body}*"
+        return f"{start}{body}*"
     checksum = f"{_checksum(body):02X}"
-    return f"${body}*{checksum.lower() if style < 0.3 else checksum}"
+    return f"{start}{body}*{checksum.lower() if style < 0.3 else checksum}"
 
 
 def random_lines(spec: Spec, per_layout: int, seed: int) -> list[tuple[Sentence, Layout, str]]:

@@ -32,7 +32,10 @@ def test_reference_decodes_every_random_sentence(lines) -> None:
     for sentence, layout, line in samples:
         decoded = reference.decode(spec, line)
         assert decoded.sentence is sentence, (line, decoded.sentence and decoded.sentence.id)
-        assert decoded.layout is layout, (line, layout.id, decoded.layout and decoded.layout.id)
+        # The first layout that parses wins: a line made for a variant may also fit one tried
+        # before it (a no-fix sentinel variant's line with empty position fields is a plain GLL).
+        tried = sentence.layouts[:sentence.layouts.index(layout) + 1]
+        assert any(decoded.layout is lay for lay in tried), (line, layout.id, decoded.layout and decoded.layout.id)
 
 
 def test_tools_agree_and_round_trip_random_sentences(lines) -> None:

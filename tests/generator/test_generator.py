@@ -12,7 +12,7 @@ import pytest
 from generator.build import load_spec
 from generator.emit import render_all
 from generator.errors import SpecErrors
-from generator import reference
+from generator import emit_docs, reference
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEC = ROOT / "spec"
@@ -82,10 +82,10 @@ def test_vectors_cover_every_example(spec) -> None:
     assert len(vectors) == sum(len(s.examples) for s in spec.sentences)
     for v in vectors:
         assert {"manual", "raw", "checksum_ok", "line", "expect"} <= set(v) or v.get("unrecoverable")
-        assert v["manual"].endswith(".txt") or v["manual"] == "nmea0183"
+        assert v["manual"].endswith(".txt") or spec.manual(v["manual"]) is not None
         if not v["checksum_ok"]:
             kind = json.loads(v["raw_decode"])["error"]["kind"]
-            if v["raw"].startswith("$"):
+            if v["raw"].startswith(("$", "!")):
                 assert kind in ("checksum_mismatch", "bad_checksum"), v["raw"]
             else:
                 assert kind == "not_a_sentence", v["raw"]
@@ -96,7 +96,7 @@ def test_vectors_cover_every_example(spec) -> None:
     ("$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,*6", "bad_checksum", None),
     ("GPGGA,1", "not_a_sentence", None),
     ("$GPGGA,075241.00", "too_few_fields", None),
-    ("$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,,", "too_many_fields", None),
+    ("$GPGGA,075241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,,,", "too_many_fields", None),
     ("$GPGGA,075241.00,5550.613576,X,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,", "bad_field", 3),
     ("$GPGGA,995241.00,5550.613576,N,03732.251532,E,1,22,0.5,00188.976,M,0014.4,M,,", "bad_field", 1),
     ("$GPTXT," + "A" * 1100, "too_long", None),
@@ -114,3 +114,8 @@ def test_reference_round_trips_the_examples(spec) -> None:
             if example.line:
                 decoded = reference.decode(spec, example.line)
                 assert decoded.sentence is sentence
+
+
+def test_every_domain_has_a_docs_heading() -> None:
+    schema = json.loads((ROOT / "spec" / "schema" / "sentence.schema.json").read_text())
+    assert list(emit_docs.DOMAINS) == schema["properties"]["domain"]["enum"]

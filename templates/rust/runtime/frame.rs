@@ -205,10 +205,10 @@ pub fn is_command_word(word: &[u8], upper: &str) -> bool {
     expected.next().is_none()
 }
 
-/// Whether a line is a standard sentence, a talker ID and a 3-letter formatter: `$` and 5
-/// characters, not proprietary (`P…`).
+/// Whether a line is a standard sentence, a talker ID and a 3-letter formatter: `$` (or `!`, an
+/// encapsulation sentence such as AIS VDM) and 5 characters, not proprietary (`P…`).
 pub fn is_standard_address(start: &str, address: &str) -> bool {
-    start == "$" && address.len() == 5 && !address.starts_with('P')
+    matches!(start, "$" | "!") && address.len() == 5 && !address.starts_with('P')
 }
 
 /// What one pass over the bytes after the start finds: whether all are printable ASCII, their

@@ -17,11 +17,24 @@ use super::write::{
 pub enum Framing {
     /// `$`, a talker ID and the sentence id: `$GPGGA,…*hh`.
     Standard,
+    /// `!`, a talker ID and the sentence id: an encapsulation sentence, `!AIVDM,…*hh`.
+    Encapsulated,
     /// `$` and a fixed proprietary address: `$PSTMSETPAR,…*hh`.
     Proprietary(&'static str),
     /// A text command (ComNav): its command word and arguments separated by single spaces, no
     /// `$`, no checksum, matched ignoring case.
     Text(&'static str),
+}
+
+impl Framing {
+    /// The start delimiter: `$`, `!` for an encapsulation sentence, `""` for a text command.
+    pub const fn start(self) -> &'static str {
+        match self {
+            Self::Encapsulated => "!",
+            Self::Text(_) => "",
+            Self::Standard | Self::Proprietary(_) => "$",
+        }
+    }
 }
 
 /// What a sentence is for.
@@ -106,7 +119,11 @@ pub trait Layout<'a>: Sized {
         };
         let address = frame.address;
         let fits = match Self::FRAMING {
-            Framing::Standard => is_standard_address(frame.start, address) && &address[2..] == Self::SENTENCE,
+            Framing::Standard | Framing::Encapsulated => {
+                is_standard_address(frame.start, address)
+                    && frame.start == Self::FRAMING.start()
+                    && &address[2..] == Self::SENTENCE
+            }
             Framing::Proprietary(expected) => frame.start == "$" && address == expected,
             Framing::Text(word) => is_command_word(address.as_bytes(), word),
         };
@@ -145,9 +162,9 @@ pub trait Layout<'a>: Sized {
     #[doc(hidden)]
     fn put_sentence(&self, buf: &mut [u8]) -> Option<usize> {
         let mut w = ByteWriter::new(buf);
-        w.str("$")?;
+        w.str(Self::FRAMING.start())?;
         match Self::FRAMING {
-            Framing::Standard => {
+            Framing::Standard | Framing::Encapsulated => {
                 w.str(self.talker())?;
                 w.str(Self::SENTENCE)?;
             }
@@ -163,11 +180,14 @@ pub trait Layout<'a>: Sized {
     fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
         let checksum = self.checksum();
         match Self::FRAMING {
-            Framing::Standard => {
-                write_sentence_with(out, "$", [self.talker(), Self::SENTENCE], checksum, problems, |w| {
-                    self.write_fields(w)
-                })
-            }
+            Framing::Standard | Framing::Encapsulated => write_sentence_with(
+                out,
+                Self::FRAMING.start(),
+                [self.talker(), Self::SENTENCE],
+                checksum,
+                problems,
+                |w| self.write_fields(w),
+            ),
             Framing::Proprietary(address) => {
                 write_sentence_with(out, "$", [address, ""], checksum, problems, |w| self.write_fields(w))
             }
@@ -208,7 +228,7 @@ pub trait Layout<'a>: Sized {
         let (address, talker) = match Self::FRAMING {
             Framing::Text(word) => return self.write_command_json(word, out, values),
             Framing::Proprietary(address) => ([address, ""], None),
-            Framing::Standard => ([self.talker(), Self::SENTENCE], Some(self.talker())),
+            Framing::Standard | Framing::Encapsulated => ([self.talker(), Self::SENTENCE], Some(self.talker())),
         };
         let mut sink = Discard;
         let mut body = WireWriter::new(&mut sink).with_problems(problems);
@@ -216,7 +236,9 @@ pub trait Layout<'a>: Sized {
         body.write_str(address[1])?;
         self.write_fields(&mut body)?;
         let sum = body.checksum();
-        out.write_str("{\"ok\":true,\"start\":\"$\",\"address\":\"")?;
+        out.write_str("{\"ok\":true,\"start\":\"")?;
+        out.write_str(Self::FRAMING.start())?;
+        out.write_str("\",\"address\":\"")?;
         JsonEscape(&mut *out).write_str(address[0])?;
         JsonEscape(&mut *out).write_str(address[1])?;
         out.write_str("\",\"talker\":")?;

@@ -12,8 +12,7 @@ use crate::enums::RlmMessageCode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Hex, JsonFields, Layout, Read, Shape, Time,
-    WireWriter,
+    ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -80,17 +79,6 @@ impl<'a> Layout<'a> for Rlm<'a> {
         out.message_code = f.code("message_code")?;
         out.message_body = f.text("message_body", "text of at most 24 characters", Some(24))?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.talker = f.talker()?;
-        self.checksum = Checksum::Upper;
-        self.beacon_id = f.hex()?;
-        self.time = f.time()?;
-        self.message_code = f.code()?;
-        self.message_body = f.text(Some(24))?;
-        f.end()
     }
 
     fn talker(&self) -> &'a str {
