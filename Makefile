@@ -70,11 +70,13 @@ test-python: $(STAMP)
 	cd generated/python && ../../$(PY) -m pytest -q tests
 
 # NMEA_TEST_HOOKS: the test programs also check nmea_parse_ex's fast path against its general path.
+# The smallest build (-DNMEA_NO_JSON -DNMEA_NO_FAST_PATH) must compile without a warning too.
 test-c: $(STAMP)
 	@mkdir -p build/c
 	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o build/c/test_examples generated/c/nmea.c generated/c/tests/test_examples.c & first=$$!; \
 	$(CC) $(CFLAGS) -DNMEA_NO_FAST_PATH -o build/c/test_examples_general generated/c/nmea.c generated/c/tests/test_examples.c & \
 	second=$$!; wait $$first && wait $$second
+	$(CC) $(CFLAGS) -O0 -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -c -o build/c/nmea-small.o generated/c/nmea.c
 	build/c/test_examples
 	build/c/test_examples_general
 

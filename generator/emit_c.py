@@ -673,6 +673,24 @@ def _dispatch(spec: Spec, views: list[dict]) -> dict[str, list[dict]]:
                                 ("proprietary", proprietary), ("text", text))}
 
 
+def perfect_hash(codes: list[int]) -> dict:
+    """A multiplier and a table size under which `(code * multiplier mod 2^32) >> (32 - bits)`
+    differs for every code: the standard tables are then looked up in one step, however many
+    sentences the spec has (the search is deterministic, so the output is too)."""
+    bits = max(2, (8 * max(len(codes), 1) - 1).bit_length())
+    while True:
+        for i in range(200_000):
+            multiplier = (0x9E3779B1 + 2 * i) & 0xFFFFFFFF
+            slots = [(code * multiplier & 0xFFFFFFFF) >> (32 - bits) for code in codes]
+            if len(set(slots)) == len(slots):
+                table = [0] * (1 << bits)
+                for index, slot in enumerate(slots):
+                    table[slot] = index + 1
+                return {"multiplier": f"0x{multiplier:08X}u", "bits": bits, "slots": table,
+                        "slot_type": "uint8_t" if len(codes) < 255 else "uint16_t"}
+        bits += 1
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     ranges = Ranges()
     views = [layout_view(s, lay, ranges) for s in spec.sentences for lay in s.layouts]
@@ -680,6 +698,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     bitfields = [bitfield_view(b) for b in spec.bitfields]
     tables = [table_view(t) for t in spec.tables]
     _check_names(spec, views, bitfields, tables)
+    dispatch = _dispatch(spec, views)
     sentences = [{
         "sentence": s,
         "const": layout_const(s, s.layout),
@@ -691,7 +710,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     tool_c = (TEMPLATES / "c" / "tool.c").read_text(encoding="utf-8")
     context = {
         "enums": enums, "layouts": views, "sentences": sentences, "ranges": ranges.all,
-        "bitfields": bitfields, "tables": tables, "dispatch": _dispatch(spec, views),
+        "bitfields": bitfields, "tables": tables, "dispatch": dispatch,
+        "hashes": {name: perfect_hash([int(e["code"], 16) for e in dispatch[name]])
+                   for name in ("standard", "encapsulated") if dispatch[name]},
         "commands": [v for v in views if v["replies"]], "cased_runs": cased_runs(),
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),

@@ -10,6 +10,7 @@
 /* The characters above U+00FF that Python's str.upper() changes, as runs {first, last, step}
    (from the Unicode data of the Python that generated this file): a JSON checksum holding one
    is in lower case for the reference, and so here. */
+#ifndef NMEA_NO_JSON
 static const uint32_t CASED_RUNS[][3] = {
     {0x101, 0x137, 2},
     {0x13A, 0x148, 2},
@@ -156,6 +157,7 @@ static const uint32_t CASED_RUNS[][3] = {
     {0x16E60, 0x16E7F, 1},
     {0x1E922, 0x1E943, 1},
 };
+#endif
 
 /*
  * Runtime (hand-written: templates/c/runtime.c): framing, checksum, field types, errors, JSON.
@@ -486,6 +488,7 @@ static void put_escaped_mem(nmea_writer *w, const char *s, size_t n, int depth)
         put_escaped(w, s[i], depth);
 }
 
+#ifndef NMEA_NO_JSON
 /* A JSON string of `t`, written inside text escaped `depth` times. */
 static void put_json_str(nmea_writer *w, nmea_text t, int depth)
 {
@@ -493,11 +496,8 @@ static void put_json_str(nmea_writer *w, nmea_text t, int depth)
     put_escaped_mem(w, t.ptr, t.len, depth + 1);
     put_escaped(w, '"', depth);
 }
+#endif
 
-static void put_json_cstr(nmea_writer *w, const char *s)
-{
-    put_json_str(w, nmea_text_of(s), 0);
-}
 
 /* ------------------------------------------------------------------------------------------ */
 /* Errors */
@@ -536,7 +536,9 @@ void nmea_error_too_long(nmea_error *err, size_t len)
     err->num[0] = len;
 }
 
+#ifndef NMEA_NO_JSON
 static bool json_char_at(const char **p, const char *end, long *cp);
+#endif
 
 /* The text of an error: bytes, or (text_json) the inside of a JSON string, whose characters
    above 0xFF are written as their low byte, escaped. */
@@ -548,8 +550,12 @@ static void put_error_text(nmea_writer *w, const nmea_error *err, int depth)
         put_escaped_mem(w, err->text.ptr, err->text.len, depth);
         return;
     }
+#ifndef NMEA_NO_JSON /* only the JSON reader makes errors with text_json */
     while (json_char_at(&p, end, &cp))
         put_escaped_char(w, (char)(cp & 0xFF), cp > 0xFF, depth);
+#else
+    (void)p, (void)end, (void)cp;
+#endif
 }
 
 static void put_message(nmea_writer *w, const nmea_error *err, int depth)
@@ -622,6 +628,7 @@ size_t nmea_error_name(const nmea_error *err, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
+#ifndef NMEA_NO_JSON
 size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
@@ -655,6 +662,7 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
     put_str(&w, "\"}}");
     return writer_finish(&w);
 }
+#endif
 
 /* A problem as the bad_field error it was. */
 static void problem_error(const nmea_problem *p, nmea_error *err)
@@ -2524,9 +2532,16 @@ NMEA_HOT bool fast_put_text_field(fast_writer *w, nmea_text t)
     return fast_sep(w) && fast_put_mem(w, t.ptr, t.len);
 }
 
+#ifndef NMEA_NO_JSON
+static void put_json_cstr(nmea_writer *w, const char *s)
+{
+    put_json_str(w, nmea_text_of(s), 0);
+}
+
 /* ------------------------------------------------------------------------------------------ */
 /* The fields as JSON: the lossless texts, or (values) the decoded values. Each writes
-   [,]"key": (no key inside an array) and the value. */
+   [,]"key": (no key inside an array) and the value. Left out by -DNMEA_NO_JSON, with the JSON
+   reader below: the tools need them, a program that only parses and writes sentences does not. */
 
 static void json_key(nmea_writer *w, const char *key)
 {
@@ -3416,6 +3431,7 @@ bool nmea_json_is_failure(const char *json, size_t len)
     return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
         && memcmp(ok.p, "false", 5) == 0;
 }
+#endif /* NMEA_NO_JSON */
 
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables: the wire text of a value (Parameter.encode of the Python
@@ -5296,6 +5312,7 @@ static void aam_write(nmea_writer *w, const nmea_aam *s)
     put_text_field(w, s->waypoint);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void aam_json(nmea_writer *w, const nmea_aam *s, bool values)
 {
@@ -5320,6 +5337,8 @@ static bool aam_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "arrival_radius_unit", 1)
         && collect_field(c, fields, "waypoint", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPAAM,A,A,0.10,N,WPTNME*32 */
 bool nmea_parse_aam(nmea_aam *out, const char *line, size_t len, nmea_error *err)
@@ -5384,6 +5403,7 @@ static void abk_write(nmea_writer *w, const nmea_abk *s)
     put_enum(w, &s->ack_type, &nmea_abk_ack_type_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void abk_json(nmea_writer *w, const nmea_abk *s, bool values)
 {
@@ -5408,6 +5428,8 @@ static bool abk_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "sequence_number", 1)
         && collect_field(c, fields, "ack_type", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $AIABK,219012679,B,12,1,0*1D */
 bool nmea_parse_abk(nmea_abk *out, const char *line, size_t len, nmea_error *err)
@@ -5478,6 +5500,7 @@ static void abm_write(nmea_writer *w, const nmea_abm *s)
     put_number(w, &s->fill_bits);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void abm_json(nmea_writer *w, const nmea_abm *s, bool values)
 {
@@ -5508,6 +5531,8 @@ static bool abm_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "payload", 1)
         && collect_field(c, fields, "fill_bits", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* !AIABM,1,1,0,219997000,0,12,<>j?1GhlLplPD5CDP6B?=P6BF,0*5F */
 bool nmea_parse_abm(nmea_abm *out, const char *line, size_t len, nmea_error *err)
@@ -5591,6 +5616,7 @@ static void aca_write(nmea_writer *w, const nmea_aca *s)
     put_time(w, &s->in_use_time);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void aca_json(nmea_writer *w, const nmea_aca *s, bool values)
 {
@@ -5635,6 +5661,8 @@ static bool aca_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "in_use", 1)
         && collect_field(c, fields, "in_use_time", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_aca(nmea_aca *out, const char *line, size_t len, nmea_error *err)
 {
@@ -5690,6 +5718,7 @@ static void ack_write(nmea_writer *w, const nmea_ack *s)
     put_number(w, &s->alarm_number);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ack_json(nmea_writer *w, const nmea_ack *s, bool values)
 {
@@ -5706,6 +5735,8 @@ static bool ack_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "alarm_number", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $VRACK,001*50 */
 bool nmea_parse_ack(nmea_ack *out, const char *line, size_t len, nmea_error *err)
@@ -5772,6 +5803,7 @@ static void acn_write(nmea_writer *w, const nmea_acn *s)
     put_literal(w, s->status_flag, "C");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void acn_json(nmea_writer *w, const nmea_acn *s, bool values)
 {
@@ -5798,6 +5830,8 @@ static bool acn_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "command", 1)
         && collect_field(c, fields, "status_flag", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $RAACN,220516,TCK,002,1,A,C*00 */
 bool nmea_parse_acn(nmea_acn *out, const char *line, size_t len, nmea_error *err)
@@ -5863,6 +5897,7 @@ static void acs_write(nmea_writer *w, const nmea_acs *s)
     put_number(w, &s->year);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void acs_json(nmea_writer *w, const nmea_acs *s, bool values)
 {
@@ -5889,6 +5924,8 @@ static bool acs_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "month", 1)
         && collect_field(c, fields, "year", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_acs(nmea_acs *out, const char *line, size_t len, nmea_error *err)
 {
@@ -5969,6 +6006,7 @@ static void air_write(nmea_writer *w, const nmea_air *s)
         put_number(w, &s->station2_message_slot);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void air_json(nmea_writer *w, const nmea_air *s, bool values)
 {
@@ -6011,6 +6049,8 @@ static bool air_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "station1_message2_slot", 1)
         && collect_optional(c, fields, "station2_message_slot", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_air(nmea_air *out, const char *line, size_t len, nmea_error *err)
 {
@@ -6079,6 +6119,7 @@ static void akd_write(nmea_writer *w, const nmea_akd *s)
     put_number(w, &s->ack_instance);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void akd_json(nmea_writer *w, const nmea_akd *s, bool values)
 {
@@ -6109,6 +6150,8 @@ static bool akd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "ack_subsystem", 1)
         && collect_field(c, fields, "ack_instance", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_akd(nmea_akd *out, const char *line, size_t len, nmea_error *err)
 {
@@ -6178,6 +6221,7 @@ static void ala_write(nmea_writer *w, const nmea_ala *s)
     put_text_field(w, s->description);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ala_json(nmea_writer *w, const nmea_ala *s, bool values)
 {
@@ -6208,6 +6252,8 @@ static bool ala_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "ack_state", 1)
         && collect_field(c, fields, "description", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $FRALA,143955,FR,OT,00,901,N,V,Syst Fault : AutroSafe comm. OK*4F */
 bool nmea_parse_ala(nmea_ala *out, const char *line, size_t len, nmea_error *err)
@@ -6292,6 +6338,7 @@ static void alc_write(nmea_writer *w, const nmea_alc *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void alc_json(nmea_writer *w, const nmea_alc *s, bool values)
 {
@@ -6339,6 +6386,8 @@ static bool alc_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $FBALC,02,01,03,02,FEB,01,02,03,TEB,02,03,04*5f */
 bool nmea_parse_alc(nmea_alc *out, const char *line, size_t len, nmea_error *err)
@@ -6419,6 +6468,7 @@ static void alf_write(nmea_writer *w, const nmea_alf *s)
     put_text_field(w, s->text);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void alf_json(nmea_writer *w, const nmea_alf *s, bool values)
 {
@@ -6459,6 +6509,8 @@ static bool alf_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "escalation_counter", 1)
         && collect_field(c, fields, "text", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIALF,2,1,1,081950.10,B,A,S,XYZ,0512,1,2,0,HEADING LOST*2D */
 bool nmea_parse_alf(nmea_alf *out, const char *line, size_t len, nmea_error *err)
@@ -6527,6 +6579,7 @@ static void alk_write(nmea_writer *w, const nmea_alk *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void alk_json(nmea_writer *w, const nmea_alk *s, bool values)
 {
@@ -6558,6 +6611,8 @@ static bool alk_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $STALK,52,A1,00,00*36 */
 bool nmea_parse_alk(nmea_alk *out, const char *line, size_t len, nmea_error *err)
@@ -6642,6 +6697,7 @@ static void alm_write(nmea_writer *w, const nmea_alm *s)
     put_hex(w, &s->clock_af1);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void alm_json(nmea_writer *w, const nmea_alm *s, bool values)
 {
@@ -6686,6 +6742,8 @@ static bool alm_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "clock_af0", 1)
         && collect_field(c, fields, "clock_af1", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPALM,31,1,02,1617,00,50F6,0F,FD98,FD39,A10CF3,81389B,423632,BD913C,148,001*3C */
 bool nmea_parse_alm(nmea_alm *out, const char *line, size_t len, nmea_error *err)
@@ -6750,6 +6808,7 @@ static void alr_write(nmea_writer *w, const nmea_alr *s)
     put_text_field(w, s->description);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void alr_json(nmea_writer *w, const nmea_alr *s, bool values)
 {
@@ -6774,6 +6833,8 @@ static bool alr_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "ack_state", 1)
         && collect_field(c, fields, "description", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $AIALR,000000.00,026,A,V,AIS: no position sensor in use*5D */
 bool nmea_parse_alr(nmea_alr *out, const char *line, size_t len, nmea_error *err)
@@ -6848,6 +6909,7 @@ static void apa_write(nmea_writer *w, const nmea_apa *s)
     put_text_field(w, s->destination_waypoint);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void apa_json(nmea_writer *w, const nmea_apa *s, bool values)
 {
@@ -6882,6 +6944,8 @@ static bool apa_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "bearing_origin_to_destination_ref", 1)
         && collect_field(c, fields, "destination_waypoint", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPAPA,A,A,0.10,R,N,V,V,011,M,DEST*3F */
 bool nmea_parse_apa(nmea_apa *out, const char *line, size_t len, nmea_error *err)
@@ -6967,6 +7031,7 @@ static void apb_write(nmea_writer *w, const nmea_apb *s)
         put_enum(w, &s->mode, &nmea_pos_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void apb_json(nmea_writer *w, const nmea_apb *s, bool values)
 {
@@ -7012,6 +7077,8 @@ static bool apb_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "heading_to_steer_ref", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPAPB,A,A,0.10,R,N,V,V,011,M,DEST,011,M,011,M*3C */
 bool nmea_parse_apb(nmea_apb *out, const char *line, size_t len, nmea_error *err)
@@ -7076,6 +7143,7 @@ static void arc_write(nmea_writer *w, const nmea_arc *s)
     put_enum(w, &s->command, &nmea_acn_alert_command_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void arc_json(nmea_writer *w, const nmea_arc *s, bool values)
 {
@@ -7100,6 +7168,8 @@ static bool arc_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "alert_instance", 1)
         && collect_field(c, fields, "command", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $RAARC,220516,TCK,002,1,A*73 */
 bool nmea_parse_arc(nmea_arc *out, const char *line, size_t len, nmea_error *err)
@@ -7168,6 +7238,7 @@ static void bbm_write(nmea_writer *w, const nmea_bbm *s)
     put_number(w, &s->fill_bits);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void bbm_json(nmea_writer *w, const nmea_bbm *s, bool values)
 {
@@ -7196,6 +7267,8 @@ static bool bbm_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "payload", 1)
         && collect_field(c, fields, "fill_bits", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* !AIBBM,4,1,0,0,8,05d00EOdJ0:gP3Vs6QwPH41kkE0wiKk0r3K<OqT:0M7Q`?u,0*2B */
 bool nmea_parse_bbm(nmea_bbm *out, const char *line, size_t len, nmea_error *err)
@@ -7273,6 +7346,7 @@ static void bec_write(nmea_writer *w, const nmea_bec *s)
         put_enum(w, &s->mode, &nmea_pos_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void bec_json(nmea_writer *w, const nmea_bec *s, bool values)
 {
@@ -7310,6 +7384,8 @@ static bool bec_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "waypoint", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPBEC,220516,5130.02,N,00046.34,W,213.8,T,218.0,M,0004.6,N,EGLM*33 */
 bool nmea_parse_bec(nmea_bec *out, const char *line, size_t len, nmea_error *err)
@@ -7376,6 +7452,7 @@ static void bod_write(nmea_writer *w, const nmea_bod *s)
     put_text_field(w, s->origin_waypoint);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void bod_json(nmea_writer *w, const nmea_bod *s, bool values)
 {
@@ -7402,6 +7479,8 @@ static bool bod_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "destination_waypoint", 1)
         && collect_field(c, fields, "origin_waypoint", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPBOD,139.7,T,134.9,M,A002,A003*45 */
 bool nmea_parse_bod(nmea_bod *out, const char *line, size_t len, nmea_error *err)
@@ -7479,6 +7558,7 @@ static void bwc_write(nmea_writer *w, const nmea_bwc *s)
         put_enum(w, &s->mode, &nmea_pos_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void bwc_json(nmea_writer *w, const nmea_bwc *s, bool values)
 {
@@ -7516,6 +7596,8 @@ static bool bwc_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "waypoint", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPBWC,220516,5130.02,N,00046.34,W,213.8,T,218.0,M,0004.6,N,EGLM,A*4C */
 bool nmea_parse_bwc(nmea_bwc *out, const char *line, size_t len, nmea_error *err)
@@ -7593,6 +7675,7 @@ static void bwr_write(nmea_writer *w, const nmea_bwr *s)
         put_enum(w, &s->mode, &nmea_pos_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void bwr_json(nmea_writer *w, const nmea_bwr *s, bool values)
 {
@@ -7630,6 +7713,8 @@ static bool bwr_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "waypoint", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPBWR,220516,5130.02,N,00046.34,W,213.8,T,218.0,M,0004.6,N,EGLM,A*5D */
 bool nmea_parse_bwr(nmea_bwr *out, const char *line, size_t len, nmea_error *err)
@@ -7696,6 +7781,7 @@ static void bww_write(nmea_writer *w, const nmea_bww *s)
     put_text_field(w, s->from_waypoint);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void bww_json(nmea_writer *w, const nmea_bww *s, bool values)
 {
@@ -7722,6 +7808,8 @@ static bool bww_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "to_waypoint", 1)
         && collect_field(c, fields, "from_waypoint", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPBWW,213.8,T,218.0,M,TOWPT,FROMWPT*42 */
 bool nmea_parse_bww(nmea_bww *out, const char *line, size_t len, nmea_error *err)
@@ -7798,6 +7886,7 @@ static void cur_write(nmea_writer *w, const nmea_cur *s)
     put_enum(w, &s->speed_reference, &nmea_cur_speed_reference_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void cur_json(nmea_writer *w, const nmea_cur *s, bool values)
 {
@@ -7834,6 +7923,8 @@ static bool cur_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "heading_reference", 1)
         && collect_field(c, fields, "speed_reference", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IICUR,A,0,,,123.4,T,2.5,,,M,B*41 */
 bool nmea_parse_cur(nmea_cur *out, const char *line, size_t len, nmea_error *err)
@@ -7900,6 +7991,7 @@ static void dbk_write(nmea_writer *w, const nmea_dbk *s)
     put_literal(w, s->depth_fathoms_unit, "F");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void dbk_json(nmea_writer *w, const nmea_dbk *s, bool values)
 {
@@ -7926,6 +8018,8 @@ static bool dbk_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "depth_fathoms", 1)
         && collect_field(c, fields, "depth_fathoms_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $SDDBK,1330.5,f,0405.5,M,0221.6,F*2E */
 bool nmea_parse_dbk(nmea_dbk *out, const char *line, size_t len, nmea_error *err)
@@ -7992,6 +8086,7 @@ static void dbs_write(nmea_writer *w, const nmea_dbs *s)
     put_literal(w, s->depth_fathoms_unit, "F");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void dbs_json(nmea_writer *w, const nmea_dbs *s, bool values)
 {
@@ -8018,6 +8113,8 @@ static bool dbs_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "depth_fathoms", 1)
         && collect_field(c, fields, "depth_fathoms_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $SDDBS,12.3,f,3.75,M,2.05,F*37 */
 bool nmea_parse_dbs(nmea_dbs *out, const char *line, size_t len, nmea_error *err)
@@ -8084,6 +8181,7 @@ static void dbt_write(nmea_writer *w, const nmea_dbt *s)
     put_literal(w, s->depth_fathoms_unit, "F");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void dbt_json(nmea_writer *w, const nmea_dbt *s, bool values)
 {
@@ -8110,6 +8208,8 @@ static bool dbt_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "depth_fathoms", 1)
         && collect_field(c, fields, "depth_fathoms_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $SDDBT,7.7,f,2.3,M,1.3,F*05 */
 bool nmea_parse_dbt(nmea_dbt *out, const char *line, size_t len, nmea_error *err)
@@ -8174,6 +8274,7 @@ static void ddc_write(nmea_writer *w, const nmea_ddc *s)
         put_enum(w, &s->command_mode, &nmea_ddc_command_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ddc_json(nmea_writer *w, const nmea_ddc *s, bool values)
 {
@@ -8199,6 +8300,8 @@ static bool ddc_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "sentence_status", 1)
         && collect_optional(c, fields, "command_mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_ddc(nmea_ddc *out, const char *line, size_t len, nmea_error *err)
 {
@@ -8270,6 +8373,7 @@ static void dor_write(nmea_writer *w, const nmea_dor *s)
     put_text_field(w, s->description);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void dor_json(nmea_writer *w, const nmea_dor *s, bool values)
 {
@@ -8302,6 +8406,8 @@ static bool dor_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "switch_setting", 1)
         && collect_field(c, fields, "description", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $FRDOR,E,233042,FD,FP,000,010,C,C,Door Closed : TEST FPA Name*4D */
 bool nmea_parse_dor(nmea_dor *out, const char *line, size_t len, nmea_error *err)
@@ -8363,6 +8469,7 @@ static void dpt_write(nmea_writer *w, const nmea_dpt *s)
         put_number(w, &s->max_range_scale);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void dpt_json(nmea_writer *w, const nmea_dpt *s, bool values)
 {
@@ -8384,6 +8491,8 @@ static bool dpt_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "offset", 1)
         && collect_optional(c, fields, "max_range_scale", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIDPT,03.3,00.3,00.7*76 */
 bool nmea_parse_dpt(nmea_dpt *out, const char *line, size_t len, nmea_error *err)
@@ -8460,6 +8569,7 @@ static void dsc_write(nmea_writer *w, const nmea_dsc *s)
     put_literal(w, s->expansion, "E");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void dsc_json(nmea_writer *w, const nmea_dsc *s, bool values)
 {
@@ -8496,6 +8606,8 @@ static bool dsc_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "acknowledgement", 1)
         && collect_field(c, fields, "expansion", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $CDDSC,12,3380400790,12,06,00,1423108312,2019,,,S,E*6A */
 bool nmea_parse_dsc(nmea_dsc *out, const char *line, size_t len, nmea_error *err)
@@ -8576,6 +8688,7 @@ static void dse_write(nmea_writer *w, const nmea_dse *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void dse_json(nmea_writer *w, const nmea_dse *s, bool values)
 {
@@ -8619,6 +8732,8 @@ static bool dse_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $CDDSE,1,1,A,3380400790,00,46504437,01,16501437*17 */
 bool nmea_parse_dse(nmea_dse *out, const char *line, size_t len, nmea_error *err)
@@ -8689,6 +8804,7 @@ static void dtm_write(nmea_writer *w, const nmea_dtm *s)
     put_enum(w, &s->reference_datum, &nmea_dtm_datum_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void dtm_json(nmea_writer *w, const nmea_dtm *s, bool values)
 {
@@ -8719,6 +8835,8 @@ static bool dtm_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "altitude_offset", 1)
         && collect_field(c, fields, "reference_datum", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPDTM,999,,0.002,S,0.005,E,005.8,W84*1A */
 bool nmea_parse_dtm(nmea_dtm *out, const char *line, size_t len, nmea_error *err)
@@ -8777,6 +8895,7 @@ static void dtm_short_write(nmea_writer *w, const nmea_dtm_short *s)
     put_char_field(w, s->local_datum_subdivision);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void dtm_short_json(nmea_writer *w, const nmea_dtm_short *s, bool values)
 {
@@ -8795,6 +8914,8 @@ static bool dtm_short_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "local_datum", 1)
         && collect_field(c, fields, "local_datum_subdivision", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPDTM,W84,C*52 */
 bool nmea_parse_dtm_short(nmea_dtm_short *out, const char *line, size_t len, nmea_error *err)
@@ -8859,6 +8980,7 @@ static void epv_write(nmea_writer *w, const nmea_epv *s)
     put_text_field(w, s->value);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void epv_json(nmea_writer *w, const nmea_epv *s, bool values)
 {
@@ -8883,6 +9005,8 @@ static bool epv_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "property_id", 1)
         && collect_field(c, fields, "value", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIEPV,C,AI,211000001,111,HEUREKA143*55 */
 bool nmea_parse_epv(nmea_epv *out, const char *line, size_t len, nmea_error *err)
@@ -8948,6 +9072,7 @@ static void etl_write(nmea_writer *w, const nmea_etl *s)
     put_number(w, &s->engine_number);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void etl_json(nmea_writer *w, const nmea_etl *s, bool values)
 {
@@ -8974,6 +9099,8 @@ static bool etl_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "operating_location", 1)
         && collect_field(c, fields, "engine_number", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_etl(nmea_etl *out, const char *line, size_t len, nmea_error *err)
 {
@@ -9033,6 +9160,7 @@ static void eve_write(nmea_writer *w, const nmea_eve *s)
     put_text_field(w, s->description);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void eve_json(nmea_writer *w, const nmea_eve *s, bool values)
 {
@@ -9053,6 +9181,8 @@ static bool eve_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "tag_code", 1)
         && collect_field(c, fields, "description", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $FREVE,000001,DZ00513,Fire Alarm On: TEST DZ201 Name*0A */
 bool nmea_parse_eve(nmea_eve *out, const char *line, size_t len, nmea_error *err)
@@ -9125,6 +9255,7 @@ static void fir_write(nmea_writer *w, const nmea_fir *s)
     put_text_field(w, s->description);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void fir_json(nmea_writer *w, const nmea_fir *s, bool values)
 {
@@ -9157,6 +9288,8 @@ static bool fir_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "ack_state", 1)
         && collect_field(c, fields, "description", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $FRFIR,E,103000,FD,PT,000,007,A,V,Fire Alarm : TEST PT7 Name TEST DZ2 Name*7A */
 bool nmea_parse_fir(nmea_fir *out, const char *line, size_t len, nmea_error *err)
@@ -9235,6 +9368,7 @@ static void fmi_write(nmea_writer *w, const nmea_fmi *s)
     put_hex(w, &s->status);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void fmi_json(nmea_writer *w, const nmea_fmi *s, bool values)
 {
@@ -9273,6 +9407,8 @@ static bool fmi_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "nav_mode", 1)
         && collect_field(c, fields, "status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPFMI,160224.40,0.0,0.0,0.0,0.05268,0.001,0.17453,0.17,12,0,2,001C0001*1A */
 bool nmea_parse_fmi(nmea_fmi *out, const char *line, size_t len, nmea_error *err)
@@ -9338,6 +9474,7 @@ static void fsi_write(nmea_writer *w, const nmea_fsi *s)
         put_enum(w, &s->sentence_status, &nmea_fsi_sentence_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void fsi_json(nmea_writer *w, const nmea_fsi *s, bool values)
 {
@@ -9363,6 +9500,8 @@ static bool fsi_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "power_level", 1)
         && collect_optional(c, fields, "sentence_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $CTFSI,020230,026140,m,0,C */
 bool nmea_parse_fsi(nmea_fsi *out, const char *line, size_t len, nmea_error *err)
@@ -9439,6 +9578,7 @@ static void gbs_write(nmea_writer *w, const nmea_gbs *s)
         put_enum(w, &s->signal_id, &nmea_signal_id_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gbs_json(nmea_writer *w, const nmea_gbs *s, bool values)
 {
@@ -9475,6 +9615,8 @@ static bool gbs_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "system_id", 1)
         && collect_optional(c, fields, "signal_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGBS,235458.00,1.4,1.3,3.1,03,,-21.4,3.8,1,0*5A */
 bool nmea_parse_gbs(nmea_gbs *out, const char *line, size_t len, nmea_error *err)
@@ -9543,6 +9685,7 @@ static void gbs_units_write(nmea_writer *w, const nmea_gbs_units *s)
     put_literal(w, s->alt_error_unit, "M");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gbs_units_json(nmea_writer *w, const nmea_gbs_units *s, bool values)
 {
@@ -9571,6 +9714,8 @@ static bool gbs_units_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "alt_error", 1)
         && collect_field(c, fields, "alt_error_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGBS,125027,23.43,M,13.91,M,34.01,M*07 */
 bool nmea_parse_gbs_units(nmea_gbs_units *out, const char *line, size_t len, nmea_error *err)
@@ -9641,6 +9786,7 @@ static void gen_write(nmea_writer *w, const nmea_gen *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gen_json(nmea_writer *w, const nmea_gen *s, bool values)
 {
@@ -9674,6 +9820,8 @@ static bool gen_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $VRGEN,0000,011200.00,0123,4567,89AB,CDEF,0123,4567,89AB,CDEF*64 */
 bool nmea_parse_gen(nmea_gen *out, const char *line, size_t len, nmea_error *err)
@@ -9745,6 +9893,7 @@ static void gfa_write(nmea_writer *w, const nmea_gfa *s)
     put_text_field(w, s->integrity);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gfa_json(nmea_writer *w, const nmea_gfa *s, bool values)
 {
@@ -9777,6 +9926,8 @@ static bool gfa_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "selected_accuracy", 1)
         && collect_field(c, fields, "integrity", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_gfa(nmea_gfa *out, const char *line, size_t len, nmea_error *err)
 {
@@ -9913,6 +10064,7 @@ static size_t gga_fast_write(const nmea_gga *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gga_json(nmea_writer *w, const nmea_gga *s, bool values)
 {
@@ -9955,6 +10107,8 @@ static bool gga_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "dgps_station", 1)
         && collect_optional(c, fields, "vdop", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGGA,075140.00,5550.613522,N,03732.251556,E,2,22,0.5,00188.862,M,0014.4,M,001.0,0000*4F */
 bool nmea_parse_gga(nmea_gga *out, const char *line, size_t len, nmea_error *err)
@@ -10037,6 +10191,7 @@ static void glc_write(nmea_writer *w, const nmea_glc *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void glc_json(nmea_writer *w, const nmea_glc *s, bool values)
 {
@@ -10078,6 +10233,8 @@ static bool glc_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGLC,9960,,,,,,,,,,,,*75 */
 bool nmea_parse_glc(nmea_glc *out, const char *line, size_t len, nmea_error *err)
@@ -10182,6 +10339,7 @@ static size_t gll_fast_write(const nmea_gll *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gll_json(nmea_writer *w, const nmea_gll *s, bool values)
 {
@@ -10207,6 +10365,8 @@ static bool gll_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "status", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GNGLL,5550.612764,N,03732.252689,E,075712.00,V,N*6B */
 bool nmea_parse_gll(nmea_gll *out, const char *line, size_t len, nmea_error *err)
@@ -10324,6 +10484,7 @@ static size_t gll_sentinel_fast_write(const nmea_gll_sentinel *s, char *buf, siz
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gll_sentinel_json(nmea_writer *w, const nmea_gll_sentinel *s, bool values)
 {
@@ -10353,6 +10514,8 @@ static bool gll_sentinel_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "status", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGLL,36000.0000,N,72000.0000,E,000452.981,V*10 */
 bool nmea_parse_gll_sentinel(nmea_gll_sentinel *out, const char *line, size_t len, nmea_error *err)
@@ -10436,6 +10599,7 @@ static void gmp_write(nmea_writer *w, const nmea_gmp *s)
     put_number(w, &s->dgps_station);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gmp_json(nmea_writer *w, const nmea_gmp *s, bool values)
 {
@@ -10474,6 +10638,8 @@ static bool gmp_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "dgps_age", 1)
         && collect_field(c, fields, "dgps_station", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGMP,131745.00,LOC,,45215.125,14587.298,R,11,1.5,125.221,5.214,1.5,454*49 */
 bool nmea_parse_gmp(nmea_gmp *out, const char *line, size_t len, nmea_error *err)
@@ -10602,6 +10768,7 @@ static size_t gns_fast_write(const nmea_gns *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gns_json(nmea_writer *w, const nmea_gns *s, bool values)
 {
@@ -10639,6 +10806,8 @@ static bool gns_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "dgps_station", 1)
         && collect_optional(c, fields, "nav_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGNS,080839.00,5550.611145,N,03732.253491,E,DNNN,10,0.8,00182.290,0014.4,001.0,0000,V*15 */
 bool nmea_parse_gns(nmea_gns *out, const char *line, size_t len, nmea_error *err)
@@ -10768,6 +10937,7 @@ static size_t gns_aux_fast_write(const nmea_gns_aux *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gns_aux_json(nmea_writer *w, const nmea_gns_aux *s, bool values)
 {
@@ -10803,6 +10973,8 @@ static bool gns_aux_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "dgps_station", 1)
         && collect_optional(c, fields, "nav_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGNS,080520.00,,,,,11,,,,,*40 */
 bool nmea_parse_gns_aux(nmea_gns_aux *out, const char *line, size_t len, nmea_error *err)
@@ -10884,6 +11056,7 @@ static void grs_write(nmea_writer *w, const nmea_grs *s)
         put_enum(w, &s->signal_id, &nmea_signal_id_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void grs_json(nmea_writer *w, const nmea_grs *s, bool values)
 {
@@ -10922,6 +11095,8 @@ static bool grs_collect(nmea_collector *c, nmea_json fields)
     return collect_optional(c, fields, "system_id", 1)
         && collect_optional(c, fields, "signal_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGRS,150119.000,1,-0.33,-2.59,3.03,-0.09,-2.98,7.12,-15.6,17.0,,,,*5A */
 bool nmea_parse_grs(nmea_grs *out, const char *line, size_t len, nmea_error *err)
@@ -11053,6 +11228,7 @@ static size_t gsa_fast_write(const nmea_gsa *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gsa_json(nmea_writer *w, const nmea_gsa *s, bool values)
 {
@@ -11094,6 +11270,8 @@ static bool gsa_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "vdop", 1)
         && collect_optional(c, fields, "system_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GNGSA,A,3,01,10,11,12,13,15,17,18,19,24,28,30,1.0,0.5,0.8,1*30 */
 bool nmea_parse_gsa(nmea_gsa *out, const char *line, size_t len, nmea_error *err)
@@ -11227,6 +11405,7 @@ static size_t gsa_short_fast_write(const nmea_gsa_short *s, char *buf, size_t ca
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gsa_short_json(nmea_writer *w, const nmea_gsa_short *s, bool values)
 {
@@ -11265,6 +11444,8 @@ static bool gsa_short_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "hdop", 1)
         && collect_field(c, fields, "vdop", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GNGSA,A,3,18,03,11,86,19,,,,,,1.0,0.6,0.8*2F */
 bool nmea_parse_gsa_short(nmea_gsa_short *out, const char *line, size_t len, nmea_error *err)
@@ -11401,6 +11582,7 @@ static size_t gsa_wide_system_fast_write(const nmea_gsa_wide_system *s, char *bu
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gsa_wide_system_json(nmea_writer *w, const nmea_gsa_wide_system *s, bool values)
 {
@@ -11441,6 +11623,8 @@ static bool gsa_wide_system_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "vdop", 1)
         && collect_field(c, fields, "system_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_gsa_wide_system(nmea_gsa_wide_system *out, const char *line, size_t len, nmea_error *err)
 {
@@ -11572,6 +11756,7 @@ static size_t gsa_wide_fast_write(const nmea_gsa_wide *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gsa_wide_json(nmea_writer *w, const nmea_gsa_wide *s, bool values)
 {
@@ -11610,6 +11795,8 @@ static bool gsa_wide_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "hdop", 1)
         && collect_field(c, fields, "vdop", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_gsa_wide(nmea_gsa_wide *out, const char *line, size_t len, nmea_error *err)
 {
@@ -11744,6 +11931,7 @@ static size_t gsa_extra_dop_fast_write(const nmea_gsa_extra_dop *s, char *buf, s
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gsa_extra_dop_json(nmea_writer *w, const nmea_gsa_extra_dop *s, bool values)
 {
@@ -11784,6 +11972,8 @@ static bool gsa_extra_dop_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "vdop", 1)
         && collect_field(c, fields, "fourth_dop", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGSA,A,3,25,32,,,,,,,,,,,5.1,1.3,4.9,3.3*3D */
 bool nmea_parse_gsa_extra_dop(nmea_gsa_extra_dop *out, const char *line, size_t len, nmea_error *err)
@@ -11903,6 +12093,7 @@ static size_t gst_fast_write(const nmea_gst *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gst_json(nmea_writer *w, const nmea_gst *s, bool values)
 {
@@ -11933,6 +12124,8 @@ static bool gst_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "lon_std", 1)
         && collect_field(c, fields, "alt_std", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_gst(nmea_gst *out, const char *line, size_t len, nmea_error *err)
 {
@@ -12082,6 +12275,7 @@ static size_t gsv_fast_write(const nmea_gsv *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void gsv_json(nmea_writer *w, const nmea_gsv *s, bool values)
 {
@@ -12129,6 +12323,8 @@ static bool gsv_collect(nmea_collector *c, nmea_json fields)
     }
     return collect_optional(c, fields, "signal_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPGSV,4,1,16,02,43,143,51,03,08,014,39,06,45,081,49,12,87,266,55,1*68 */
 bool nmea_parse_gsv(nmea_gsv *out, const char *line, size_t len, nmea_error *err)
@@ -12194,6 +12390,7 @@ static void hbt_write(nmea_writer *w, const nmea_hbt *s)
     put_number(w, &s->sequence_id);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hbt_json(nmea_writer *w, const nmea_hbt *s, bool values)
 {
@@ -12214,6 +12411,8 @@ static bool hbt_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "equipment_status", 1)
         && collect_field(c, fields, "sequence_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $AIHBT,30,A,1*09 */
 bool nmea_parse_hbt(nmea_hbt *out, const char *line, size_t len, nmea_error *err)
@@ -12275,6 +12474,7 @@ static void hcr_write(nmea_writer *w, const nmea_hcr *s)
     put_number(w, &s->correction_value);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hcr_json(nmea_writer *w, const nmea_hcr *s, bool values)
 {
@@ -12297,6 +12497,8 @@ static bool hcr_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "correction_state", 1)
         && collect_field(c, fields, "correction_value", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_hcr(nmea_hcr *out, const char *line, size_t len, nmea_error *err)
 {
@@ -12360,6 +12562,7 @@ static void hdg_write(nmea_writer *w, const nmea_hdg *s)
     put_enum(w, &s->variation_dir, &nmea_east_west_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hdg_json(nmea_writer *w, const nmea_hdg *s, bool values)
 {
@@ -12384,6 +12587,8 @@ static bool hdg_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "variation", 1)
         && collect_field(c, fields, "variation_dir", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $HCHDG,98.3,0.1,E,12.6,W*56 */
 bool nmea_parse_hdg(nmea_hdg *out, const char *line, size_t len, nmea_error *err)
@@ -12442,6 +12647,7 @@ static void hdm_write(nmea_writer *w, const nmea_hdm *s)
     put_literal(w, s->heading_ref, "M");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hdm_json(nmea_writer *w, const nmea_hdm *s, bool values)
 {
@@ -12460,6 +12666,8 @@ static bool hdm_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "heading", 1)
         && collect_field(c, fields, "heading_ref", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $APHDM,218.634,M*39 */
 bool nmea_parse_hdm(nmea_hdm *out, const char *line, size_t len, nmea_error *err)
@@ -12550,6 +12758,7 @@ static size_t hdt_fast_write(const nmea_hdt *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hdt_json(nmea_writer *w, const nmea_hdt *s, bool values)
 {
@@ -12568,6 +12777,8 @@ static bool hdt_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "heading", 1)
         && collect_field(c, fields, "heading_ref", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_hdt(nmea_hdt *out, const char *line, size_t len, nmea_error *err)
 {
@@ -12631,6 +12842,7 @@ static void hev_write(nmea_writer *w, const nmea_hev *s)
         put_text_field(w, s->spare);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hev_json(nmea_writer *w, const nmea_hev *s, bool values)
 {
@@ -12650,6 +12862,8 @@ static bool hev_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "heave", 1)
         && collect_optional(c, fields, "spare", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPHEV,-0.01*52 */
 bool nmea_parse_hev(nmea_hev *out, const char *line, size_t len, nmea_error *err)
@@ -12737,6 +12951,7 @@ static void hmr_write(nmea_writer *w, const nmea_hmr *s)
     put_enum(w, &s->variation_dir, &nmea_east_west_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hmr_json(nmea_writer *w, const nmea_hmr *s, bool values)
 {
@@ -12785,6 +13000,8 @@ static bool hmr_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "variation", 1)
         && collect_field(c, fields, "variation_dir", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_hmr(nmea_hmr *out, const char *line, size_t len, nmea_error *err)
 {
@@ -12843,6 +13060,7 @@ static void hms_write(nmea_writer *w, const nmea_hms *s)
     put_number(w, &s->max_difference);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hms_json(nmea_writer *w, const nmea_hms *s, bool values)
 {
@@ -12863,6 +13081,8 @@ static bool hms_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "sensor2_id", 1)
         && collect_field(c, fields, "max_difference", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_hms(nmea_hms *out, const char *line, size_t len, nmea_error *err)
 {
@@ -12950,6 +13170,7 @@ static void hpd_write(nmea_writer *w, const nmea_hpd *s)
     put_number(w, &s->satellites_slave);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hpd_json(nmea_writer *w, const nmea_hpd *s, bool values)
 {
@@ -12998,6 +13219,8 @@ static bool hpd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "satellites_master", 1)
         && collect_field(c, fields, "satellites_slave", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPHPD,2319,462170.00,251.77,-48.16,178.48,40.0789783,116.2365145,63.03,0.001,0.000,-0.003,-0.001,-0.002,-0.001,0.000,48,48*76 */
 bool nmea_parse_hpd(nmea_hpd *out, const char *line, size_t len, nmea_error *err)
@@ -13068,6 +13291,7 @@ static void hpr_write(nmea_writer *w, const nmea_hpr *s)
     put_text_field(w, s->station_id);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hpr_json(nmea_writer *w, const nmea_hpr *s, bool values)
 {
@@ -13098,6 +13322,8 @@ static bool hpr_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "diff_age", 1)
         && collect_field(c, fields, "station_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GNHPR,074615.00,320.9610,-66.1712,000.0000,4,47,0.00,0999*45 */
 bool nmea_parse_hpr(nmea_hpr *out, const char *line, size_t len, nmea_error *err)
@@ -13180,6 +13406,7 @@ static void hrm_write(nmea_writer *w, const nmea_hrm *s)
         put_enum(w, &s->sentence_status, &nmea_hsc_sentence_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hrm_json(nmea_writer *w, const nmea_hrm *s, bool values)
 {
@@ -13223,6 +13450,8 @@ static bool hrm_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "heel_alert_threshold", 1)
         && collect_optional(c, fields, "sentence_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_hrm(nmea_hrm *out, const char *line, size_t len, nmea_error *err)
 {
@@ -13287,6 +13516,7 @@ static void hsc_write(nmea_writer *w, const nmea_hsc *s)
         put_enum(w, &s->sentence_status, &nmea_hsc_sentence_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hsc_json(nmea_writer *w, const nmea_hsc *s, bool values)
 {
@@ -13312,6 +13542,8 @@ static bool hsc_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "heading_magnetic_ref", 1)
         && collect_optional(c, fields, "sentence_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $FTHSC,40.12,T,39.11,M*5E */
 bool nmea_parse_hsc(nmea_hsc *out, const char *line, size_t len, nmea_error *err)
@@ -13371,6 +13603,7 @@ static void hss_write(nmea_writer *w, const nmea_hss *s)
     put_enum(w, &s->status, &nmea_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void hss_json(nmea_writer *w, const nmea_hss *s, bool values)
 {
@@ -13391,6 +13624,8 @@ static bool hss_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "value", 1)
         && collect_field(c, fields, "status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_hss(nmea_hss *out, const char *line, size_t len, nmea_error *err)
 {
@@ -13473,6 +13708,7 @@ static void htc_write(nmea_writer *w, const nmea_htc *s)
         put_enum(w, &s->sentence_status, &nmea_hsc_sentence_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void htc_json(nmea_writer *w, const nmea_htc *s, bool values)
 {
@@ -13516,6 +13752,8 @@ static bool htc_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "heading_reference", 1)
         && collect_optional(c, fields, "sentence_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $AGHTC,V,0.1,R,M,,15.0,15.0,,,90.3,,,T*53 */
 bool nmea_parse_htc(nmea_htc *out, const char *line, size_t len, nmea_error *err)
@@ -13607,6 +13845,7 @@ static void htd_write(nmea_writer *w, const nmea_htd *s)
         put_text_field(w, s->spare);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void htd_json(nmea_writer *w, const nmea_htd *s, bool values)
 {
@@ -13658,6 +13897,8 @@ static bool htd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "vessel_heading", 1)
         && collect_optional(c, fields, "spare", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $AGHTD,V,0.1,R,M,,15.0,15.0,,,,,,T,A,A,A,90.3,*39 */
 bool nmea_parse_htd(nmea_htd *out, const char *line, size_t len, nmea_error *err)
@@ -13734,6 +13975,7 @@ static void llq_write(nmea_writer *w, const nmea_llq *s)
     put_literal(w, s->height_unit, "M");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void llq_json(nmea_writer *w, const nmea_llq *s, bool values)
 {
@@ -13770,6 +14012,8 @@ static bool llq_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "height", 1)
         && collect_field(c, fields, "height_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPLLQ,154324.00,111414,546629.232,M,5250781.577,M,1,09,3.876,366.549,M*05 */
 bool nmea_parse_llq(nmea_llq *out, const char *line, size_t len, nmea_error *err)
@@ -13835,6 +14079,7 @@ static void lr1_write(nmea_writer *w, const nmea_lr1 *s)
     put_number(w, &s->imo_number);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void lr1_json(nmea_writer *w, const nmea_lr1 *s, bool values)
 {
@@ -13861,6 +14106,8 @@ static bool lr1_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "call_sign", 1)
         && collect_field(c, fields, "imo_number", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_lr1(nmea_lr1 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -13933,6 +14180,7 @@ static void lr2_write(nmea_writer *w, const nmea_lr2 *s)
     put_literal(w, s->sog_unit, "N");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void lr2_json(nmea_writer *w, const nmea_lr2 *s, bool values)
 {
@@ -13967,6 +14215,8 @@ static bool lr2_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "sog", 1)
         && collect_field(c, fields, "sog_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_lr2(nmea_lr2 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -14041,6 +14291,7 @@ static void lr3_write(nmea_writer *w, const nmea_lr3 *s)
     put_number(w, &s->persons);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void lr3_json(nmea_writer *w, const nmea_lr3 *s, bool values)
 {
@@ -14077,6 +14328,8 @@ static bool lr3_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "ship_type", 1)
         && collect_field(c, fields, "persons", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_lr3(nmea_lr3 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -14139,6 +14392,7 @@ static void lrf_write(nmea_writer *w, const nmea_lrf *s)
     put_text_field(w, s->reply_status);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void lrf_json(nmea_writer *w, const nmea_lrf *s, bool values)
 {
@@ -14163,6 +14417,8 @@ static bool lrf_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "function_request", 1)
         && collect_field(c, fields, "reply_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_lrf(nmea_lrf *out, const char *line, size_t len, nmea_error *err)
 {
@@ -14231,6 +14487,7 @@ static void lri_write(nmea_writer *w, const nmea_lri *s)
     put_coordinate(w, &s->sw_lon);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void lri_json(nmea_writer *w, const nmea_lri *s, bool values)
 {
@@ -14261,6 +14518,8 @@ static bool lri_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "sw_lat", 2)
         && collect_field(c, fields, "sw_lon", 2);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_lri(nmea_lri *out, const char *line, size_t len, nmea_error *err)
 {
@@ -14354,6 +14613,7 @@ static void mda_write(nmea_writer *w, const nmea_mda *s)
     put_literal(w, s->wind_speed_ms_unit, "M");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void mda_json(nmea_writer *w, const nmea_mda *s, bool values)
 {
@@ -14408,6 +14668,8 @@ static bool mda_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "wind_speed_ms", 1)
         && collect_field(c, fields, "wind_speed_ms_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIMDA,30.0,I,1.0149,B,26.8,C,,C,64.2,16.4,19.5,C,,T,38.7,M,10.88,N,5.60,M*36 */
 bool nmea_parse_mda(nmea_mda *out, const char *line, size_t len, nmea_error *err)
@@ -14470,6 +14732,7 @@ static void mmb_write(nmea_writer *w, const nmea_mmb *s)
     put_literal(w, s->pressure_bar_unit, "B");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void mmb_json(nmea_writer *w, const nmea_mmb *s, bool values)
 {
@@ -14492,6 +14755,8 @@ static bool mmb_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "pressure_bar", 1)
         && collect_field(c, fields, "pressure_bar_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIMMB,29.9870,I,1.0154,B*75 */
 bool nmea_parse_mmb(nmea_mmb *out, const char *line, size_t len, nmea_error *err)
@@ -14570,6 +14835,7 @@ static void mob_write(nmea_writer *w, const nmea_mob *s)
     put_enum(w, &s->battery, &nmea_mob_battery_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void mob_json(nmea_writer *w, const nmea_mob *s, bool values)
 {
@@ -14608,6 +14874,8 @@ static bool mob_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "mmsi", 1)
         && collect_field(c, fields, "battery", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $INMOB,ABCDE,V,123456.987,0,311219,132456.876,12.34,N,123.45,E,12.34,23.45,269104520,0*53 */
 bool nmea_parse_mob(nmea_mob *out, const char *line, size_t len, nmea_error *err)
@@ -14678,6 +14946,7 @@ static void msk_write(nmea_writer *w, const nmea_msk *s)
         put_enum(w, &s->sentence_status, &nmea_pos_sentence_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void msk_json(nmea_writer *w, const nmea_msk *s, bool values)
 {
@@ -14708,6 +14977,8 @@ static bool msk_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "channel", 1)
         && collect_optional(c, fields, "sentence_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPMSK,318.0,A,100,M,2*45 */
 bool nmea_parse_msk(nmea_msk *out, const char *line, size_t len, nmea_error *err)
@@ -14773,6 +15044,7 @@ static void mss_write(nmea_writer *w, const nmea_mss *s)
         put_number(w, &s->channel);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void mss_json(nmea_writer *w, const nmea_mss *s, bool values)
 {
@@ -14798,6 +15070,8 @@ static bool mss_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "bit_rate", 1)
         && collect_optional(c, fields, "channel", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPMSS,26.4,7.2,283.5,200,2*61 */
 bool nmea_parse_mss(nmea_mss *out, const char *line, size_t len, nmea_error *err)
@@ -14856,6 +15130,7 @@ static void mta_write(nmea_writer *w, const nmea_mta *s)
     put_literal(w, s->temperature_unit, "C");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void mta_json(nmea_writer *w, const nmea_mta *s, bool values)
 {
@@ -14874,6 +15149,8 @@ static bool mta_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "temperature", 1)
         && collect_field(c, fields, "temperature_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIMTA,17.9,C*0A */
 bool nmea_parse_mta(nmea_mta *out, const char *line, size_t len, nmea_error *err)
@@ -14932,6 +15209,7 @@ static void mtw_write(nmea_writer *w, const nmea_mtw *s)
     put_literal(w, s->temperature_unit, "C");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void mtw_json(nmea_writer *w, const nmea_mtw *s, bool values)
 {
@@ -14950,6 +15228,8 @@ static bool mtw_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "temperature", 1)
         && collect_field(c, fields, "temperature_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $INMTW,17.9,C*1B */
 bool nmea_parse_mtw(nmea_mtw *out, const char *line, size_t len, nmea_error *err)
@@ -15020,6 +15300,7 @@ static void mwd_write(nmea_writer *w, const nmea_mwd *s)
     put_literal(w, s->speed_ms_unit, "M");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void mwd_json(nmea_writer *w, const nmea_mwd *s, bool values)
 {
@@ -15050,6 +15331,8 @@ static bool mwd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "speed_ms", 1)
         && collect_field(c, fields, "speed_ms_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $WIMWD,328.2,T,326.8,M,11.2,N,5.8,M*61 */
 bool nmea_parse_mwd(nmea_mwd *out, const char *line, size_t len, nmea_error *err)
@@ -15114,6 +15397,7 @@ static void mwv_write(nmea_writer *w, const nmea_mwv *s)
     put_enum(w, &s->status, &nmea_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void mwv_json(nmea_writer *w, const nmea_mwv *s, bool values)
 {
@@ -15138,6 +15422,8 @@ static bool mwv_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "wind_speed_unit", 1)
         && collect_field(c, fields, "status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $WIMWV,57.5,R,13.0,N,A*26 */
 bool nmea_parse_mwv(nmea_mwv *out, const char *line, size_t len, nmea_error *err)
@@ -15202,6 +15488,7 @@ static void nak_write(nmea_writer *w, const nmea_nak *s)
     put_text_field(w, s->text);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void nak_json(nmea_writer *w, const nmea_nak *s, bool values)
 {
@@ -15226,6 +15513,8 @@ static bool nak_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "reason", 1)
         && collect_field(c, fields, "text", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $ANNAK,UP,AID,999999990,11,*1E */
 bool nmea_parse_nak(nmea_nak *out, const char *line, size_t len, nmea_error *err)
@@ -15290,6 +15579,7 @@ static void nrm_write(nmea_writer *w, const nmea_nrm *s)
     put_enum(w, &s->sentence_status, &nmea_fsi_sentence_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void nrm_json(nmea_writer *w, const nmea_nrm *s, bool values)
 {
@@ -15314,6 +15604,8 @@ static bool nrm_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "message_type_mask", 1)
         && collect_field(c, fields, "sentence_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $INNRM,2,1,00001E1F,00000023,C*38 */
 bool nmea_parse_nrm(nmea_nrm *out, const char *line, size_t len, nmea_error *err)
@@ -15394,6 +15686,7 @@ static void nrx_write(nmea_writer *w, const nmea_nrx *s)
     put_text_field(w, s->message_body);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void nrx_json(nmea_writer *w, const nmea_nrx *s, bool values)
 {
@@ -15434,6 +15727,8 @@ static bool nrx_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "status", 1)
         && collect_field(c, fields, "message_body", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $CRNRX,007,001,00,IE69,1,135600,27,06,2001,241,3,A,============================*09 */
 bool nmea_parse_nrx(nmea_nrx *out, const char *line, size_t len, nmea_error *err)
@@ -15507,6 +15802,7 @@ static void nrx_nx700_write(nmea_writer *w, const nmea_nrx_nx700 *s)
     put_text_field(w, s->message_body);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void nrx_nx700_json(nmea_writer *w, const nmea_nrx_nx700 *s, bool values)
 {
@@ -15541,6 +15837,8 @@ static bool nrx_nx700_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "error_rate", 1)
         && collect_field(c, fields, "message_body", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_nrx_nx700(nmea_nrx_nx700 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -15619,6 +15917,7 @@ static void nsr_write(nmea_writer *w, const nmea_nsr *s)
     put_enum(w, &s->time_plausibility, &nmea_nsr_plausibility_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void nsr_json(nmea_writer *w, const nmea_nsr *s, bool values)
 {
@@ -15659,6 +15958,8 @@ static bool nsr_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "time_integrity", 1)
         && collect_field(c, fields, "time_plausibility", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_nsr(nmea_nsr *out, const char *line, size_t len, nmea_error *err)
 {
@@ -15730,6 +16031,7 @@ static void osd_write(nmea_writer *w, const nmea_osd *s)
     put_enum(w, &s->speed_units, &nmea_ttm_units_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void osd_json(nmea_writer *w, const nmea_osd *s, bool values)
 {
@@ -15762,6 +16064,8 @@ static bool osd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "drift", 1)
         && collect_field(c, fields, "speed_units", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $RAOSD,35.1,A,36.0,P,10.2,P,15.3,0.1,N*41 */
 bool nmea_parse_osd(nmea_osd *out, const char *line, size_t len, nmea_error *err)
@@ -15835,6 +16139,7 @@ static void pos_write(nmea_writer *w, const nmea_pos *s)
     put_enum(w, &s->sentence_status, &nmea_pos_sentence_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pos_json(nmea_writer *w, const nmea_pos *s, bool values)
 {
@@ -15869,6 +16174,8 @@ static bool pos_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "ship_length", 1)
         && collect_field(c, fields, "sentence_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pos(nmea_pos *out, const char *line, size_t len, nmea_error *err)
 {
@@ -15937,6 +16244,7 @@ static void prc_write(nmea_writer *w, const nmea_prc *s)
     put_number(w, &s->engine_number);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void prc_json(nmea_writer *w, const nmea_prc *s, bool values)
 {
@@ -15967,6 +16275,8 @@ static bool prc_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "operating_location", 1)
         && collect_field(c, fields, "engine_number", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_prc(nmea_prc *out, const char *line, size_t len, nmea_error *err)
 {
@@ -16031,6 +16341,7 @@ static void r00_write(nmea_writer *w, const nmea_r00 *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void r00_json(nmea_writer *w, const nmea_r00 *s, bool values)
 {
@@ -16060,6 +16371,8 @@ static bool r00_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPR00,EGLL,EGLM,EGTB,EGUB,EGTK,MBOT,EGTB,,,,,,,*58 */
 bool nmea_parse_r00(nmea_r00 *out, const char *line, size_t len, nmea_error *err)
@@ -16122,6 +16435,7 @@ static void rlm_write(nmea_writer *w, const nmea_rlm *s)
     put_text_field(w, s->message_body);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rlm_json(nmea_writer *w, const nmea_rlm *s, bool values)
 {
@@ -16144,6 +16458,8 @@ static bool rlm_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "message_code", 1)
         && collect_field(c, fields, "message_body", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPRLM,123456789ABCD12,000128.00,3,333344445555666677778888*64 */
 bool nmea_parse_rlm(nmea_rlm *out, const char *line, size_t len, nmea_error *err)
@@ -16219,6 +16535,7 @@ static void rma_write(nmea_writer *w, const nmea_rma *s)
         put_enum(w, &s->mode, &nmea_pos_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rma_json(nmea_writer *w, const nmea_rma *s, bool values)
 {
@@ -16254,6 +16571,8 @@ static bool rma_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "mag_var_dir", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPRMA,A,5327.03942,N,11214.42462,W,,,23.1,23,14.8,W*58 */
 bool nmea_parse_rma(nmea_rma *out, const char *line, size_t len, nmea_error *err)
@@ -16333,6 +16652,7 @@ static void rmb_write(nmea_writer *w, const nmea_rmb *s)
         put_enum(w, &s->mode, &nmea_pos_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rmb_json(nmea_writer *w, const nmea_rmb *s, bool values)
 {
@@ -16372,6 +16692,8 @@ static bool rmb_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "arrival_status", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPRMB,A,0.20,R,A003,A002,6004.099,N,01940.515,E,0.310,180.1,-0.3,V,D*68 */
 bool nmea_parse_rmb(nmea_rmb *out, const char *line, size_t len, nmea_error *err)
@@ -16501,6 +16823,7 @@ static size_t rmc_fast_write(const nmea_rmc *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rmc_json(nmea_writer *w, const nmea_rmc *s, bool values)
 {
@@ -16539,6 +16862,8 @@ static bool rmc_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "mode", 1)
         && collect_optional(c, fields, "nav_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GNRMC,102348.00,V,5550.608356,N,03732.248949,E,000.00000,325.5,300518,,,N,V*24 */
 bool nmea_parse_rmc(nmea_rmc *out, const char *line, size_t len, nmea_error *err)
@@ -16681,6 +17006,7 @@ static size_t rmc_sentinel_fast_write(const nmea_rmc_sentinel *s, char *buf, siz
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rmc_sentinel_json(nmea_writer *w, const nmea_rmc_sentinel *s, bool values)
 {
@@ -16723,6 +17049,8 @@ static bool rmc_sentinel_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "mode", 1)
         && collect_optional(c, fields, "nav_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPRMC,000452.981,V,36000.0000,N,72000.0000,E,0.000000,,190120,,*32 */
 bool nmea_parse_rmc_sentinel(nmea_rmc_sentinel *out, const char *line, size_t len, nmea_error *err)
@@ -16803,6 +17131,7 @@ static void ror_write(nmea_writer *w, const nmea_ror *s)
         put_enum(w, &s->bow_status, &nmea_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ror_json(nmea_writer *w, const nmea_ror *s, bool values)
 {
@@ -16839,6 +17168,8 @@ static bool ror_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "bow_order", 1)
         && collect_optional(c, fields, "bow_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_ror(nmea_ror *out, const char *line, size_t len, nmea_error *err)
 {
@@ -16896,6 +17227,7 @@ static void rot_write(nmea_writer *w, const nmea_rot *s)
     put_enum(w, &s->status, &nmea_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rot_json(nmea_writer *w, const nmea_rot *s, bool values)
 {
@@ -16914,6 +17246,8 @@ static bool rot_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "rate_of_turn", 1)
         && collect_field(c, fields, "status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $HEROT,0.0,A*2B */
 bool nmea_parse_rot(nmea_rot *out, const char *line, size_t len, nmea_error *err)
@@ -16978,6 +17312,7 @@ static void rpm_write(nmea_writer *w, const nmea_rpm *s)
     put_enum(w, &s->status, &nmea_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rpm_json(nmea_writer *w, const nmea_rpm *s, bool values)
 {
@@ -17002,6 +17337,8 @@ static bool rpm_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "pitch", 1)
         && collect_field(c, fields, "status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $RCRPM,S,0,74.6,30.0,A*56 */
 bool nmea_parse_rpm(nmea_rpm *out, const char *line, size_t len, nmea_error *err)
@@ -17067,6 +17404,7 @@ static void rrt_write(nmea_writer *w, const nmea_rrt *s)
     put_enum(w, &s->application_status, &nmea_rrt_application_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rrt_json(nmea_writer *w, const nmea_rrt *s, bool values)
 {
@@ -17093,6 +17431,8 @@ static bool rrt_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "file_status", 1)
         && collect_field(c, fields, "application_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_rrt(nmea_rrt *out, const char *line, size_t len, nmea_error *err)
 {
@@ -17166,6 +17506,7 @@ static void rsa_write(nmea_writer *w, const nmea_rsa *s)
         put_enum(w, &s->bow_status, &nmea_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rsa_json(nmea_writer *w, const nmea_rsa *s, bool values)
 {
@@ -17200,6 +17541,8 @@ static bool rsa_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "bow_rudder", 1)
         && collect_optional(c, fields, "bow_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIRSA,10.5,A,0.4,A*70 */
 bool nmea_parse_rsa(nmea_rsa *out, const char *line, size_t len, nmea_error *err)
@@ -17280,6 +17623,7 @@ static void rsd_write(nmea_writer *w, const nmea_rsd *s)
     put_enum(w, &s->display_rotation, &nmea_rsd_display_rotation_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rsd_json(nmea_writer *w, const nmea_rsd *s, bool values)
 {
@@ -17320,6 +17664,8 @@ static bool rsd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "range_units", 1)
         && collect_field(c, fields, "display_rotation", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $RARSD,12,90,24,45,6,270,12,315,6.5,118,96,N,N*5A */
 bool nmea_parse_rsd(nmea_rsd *out, const char *line, size_t len, nmea_error *err)
@@ -17394,6 +17740,7 @@ static void rte_write(nmea_writer *w, const nmea_rte *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void rte_json(nmea_writer *w, const nmea_rte *s, bool values)
 {
@@ -17431,6 +17778,8 @@ static bool rte_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPRTE,2,1,c,0,PBRCPK,PBRTO,PTELGR,PPLAND,PYAMBU,PPFAIR,PWARRN,PMORTL,PLISMR*73 */
 bool nmea_parse_rte(nmea_rte *out, const char *line, size_t len, nmea_error *err)
@@ -17506,6 +17855,7 @@ static void sfi_write(nmea_writer *w, const nmea_sfi *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void sfi_json(nmea_writer *w, const nmea_sfi *s, bool values)
 {
@@ -17545,6 +17895,8 @@ static bool sfi_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_sfi(nmea_sfi *out, const char *line, size_t len, nmea_error *err)
 {
@@ -17625,6 +17977,7 @@ static void sm1_write(nmea_writer *w, const nmea_sm1 *s)
     put_number(w, &s->address_code);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void sm1_json(nmea_writer *w, const nmea_sm1 *s, bool values)
 {
@@ -17667,6 +18020,8 @@ static bool sm1_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "minute", 1)
         && collect_field(c, fields, "address_code", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_sm1(nmea_sm1 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -17751,6 +18106,7 @@ static void sm2_write(nmea_writer *w, const nmea_sm2 *s)
     put_enum(w, &s->subject_indicator, &nmea_sm2_subject_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void sm2_json(nmea_writer *w, const nmea_sm2 *s, bool values)
 {
@@ -17797,6 +18153,8 @@ static bool sm2_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "coastal_warning_area", 1)
         && collect_field(c, fields, "subject_indicator", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_sm2(nmea_sm2 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -17881,6 +18239,7 @@ static void sm3_write(nmea_writer *w, const nmea_sm3 *s)
     put_number(w, &s->radius);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void sm3_json(nmea_writer *w, const nmea_sm3 *s, bool values)
 {
@@ -17927,6 +18286,8 @@ static bool sm3_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "center_lon", 2)
         && collect_field(c, fields, "radius", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_sm3(nmea_sm3 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -18013,6 +18374,7 @@ static void sm4_write(nmea_writer *w, const nmea_sm4 *s)
     put_number(w, &s->extent_east);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void sm4_json(nmea_writer *w, const nmea_sm4 *s, bool values)
 {
@@ -18061,6 +18423,8 @@ static bool sm4_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "extent_north", 1)
         && collect_field(c, fields, "extent_east", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_sm4(nmea_sm4 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -18124,6 +18488,7 @@ static void smb_write(nmea_writer *w, const nmea_smb *s)
     put_text_field(w, s->message_body);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void smb_json(nmea_writer *w, const nmea_smb *s, bool values)
 {
@@ -18148,6 +18513,8 @@ static bool smb_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "unique_message_number", 1)
         && collect_field(c, fields, "message_body", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $CSSMB,008,001,0,123456,FROM:Maritime Rescue Coordination Centre xxx^0D)0ATO:*48 */
 bool nmea_parse_smb(nmea_smb *out, const char *line, size_t len, nmea_error *err)
@@ -18210,6 +18577,7 @@ static void spw_write(nmea_writer *w, const nmea_spw *s)
     put_text_field(w, s->password);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void spw_json(nmea_writer *w, const nmea_spw *s, bool values)
 {
@@ -18232,6 +18600,8 @@ static bool spw_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "password_level", 1)
         && collect_field(c, fields, "password", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IISPW,EPV,211000001,2,SESAME*1A */
 bool nmea_parse_spw(nmea_spw *out, const char *line, size_t len, nmea_error *err)
@@ -18301,6 +18671,7 @@ static void ssd_write(nmea_writer *w, const nmea_ssd *s)
     put_text_field(w, s->source_id);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ssd_json(nmea_writer *w, const nmea_ssd *s, bool values)
 {
@@ -18331,6 +18702,8 @@ static bool ssd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "dte", 1)
         && collect_field(c, fields, "source_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_ssd(nmea_ssd *out, const char *line, size_t len, nmea_error *err)
 {
@@ -18386,6 +18759,7 @@ static void stn_write(nmea_writer *w, const nmea_stn *s)
     put_number(w, &s->talker_id_number);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void stn_json(nmea_writer *w, const nmea_stn *s, bool values)
 {
@@ -18402,6 +18776,8 @@ static bool stn_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "talker_id_number", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPSTN,34*75 */
 bool nmea_parse_stn(nmea_stn *out, const char *line, size_t len, nmea_error *err)
@@ -18460,6 +18836,7 @@ static void ths_write(nmea_writer *w, const nmea_ths *s)
     put_enum(w, &s->mode, &nmea_ths_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ths_json(nmea_writer *w, const nmea_ths *s, bool values)
 {
@@ -18478,6 +18855,8 @@ static bool ths_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "heading", 1)
         && collect_field(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GNTHS,244.28,A*11 */
 bool nmea_parse_ths(nmea_ths *out, const char *line, size_t len, nmea_error *err)
@@ -18549,6 +18928,7 @@ static void tlb_write(nmea_writer *w, const nmea_tlb *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void tlb_json(nmea_writer *w, const nmea_tlb *s, bool values)
 {
@@ -18584,6 +18964,8 @@ static bool tlb_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $RATLB,1,SHIPONE,2,SHIPTWO,3,SHIPTHREE*3D */
 bool nmea_parse_tlb(nmea_tlb *out, const char *line, size_t len, nmea_error *err)
@@ -18652,6 +19034,7 @@ static void tll_write(nmea_writer *w, const nmea_tll *s)
     put_literal(w, s->reference_target, "R");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void tll_json(nmea_writer *w, const nmea_tll *s, bool values)
 {
@@ -18680,6 +19063,8 @@ static bool tll_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "target_status", 1)
         && collect_field(c, fields, "reference_target", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $RATLL,1,3646.54266,N,00235.37778,W,test,020915,L,R*78 */
 bool nmea_parse_tll(nmea_tll *out, const char *line, size_t len, nmea_error *err)
@@ -18749,6 +19134,7 @@ static void tra_write(nmea_writer *w, const nmea_tra *s)
     put_text_field(w, s->station_id);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void tra_json(nmea_writer *w, const nmea_tra *s, bool values)
 {
@@ -18779,6 +19165,8 @@ static bool tra_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "differential_age", 1)
         && collect_field(c, fields, "station_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_tra(nmea_tra *out, const char *line, size_t len, nmea_error *err)
 {
@@ -18847,6 +19235,7 @@ static void trc_write(nmea_writer *w, const nmea_trc *s)
     put_enum(w, &s->sentence_status, &nmea_hsc_sentence_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void trc_json(nmea_writer *w, const nmea_trc *s, bool values)
 {
@@ -18877,6 +19266,8 @@ static bool trc_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "operating_location", 1)
         && collect_field(c, fields, "sentence_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_trc(nmea_trc *out, const char *line, size_t len, nmea_error *err)
 {
@@ -18941,6 +19332,7 @@ static void trd_write(nmea_writer *w, const nmea_trd *s)
     put_number(w, &s->azimuth_response);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void trd_json(nmea_writer *w, const nmea_trd *s, bool values)
 {
@@ -18967,6 +19359,8 @@ static bool trd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "pitch_mode", 1)
         && collect_field(c, fields, "azimuth_response", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_trd(nmea_trd *out, const char *line, size_t len, nmea_error *err)
 {
@@ -19039,6 +19433,7 @@ static void trf_write(nmea_writer *w, const nmea_trf *s)
     put_enum(w, &s->data_validity, &nmea_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void trf_json(nmea_writer *w, const nmea_trf *s, bool values)
 {
@@ -19073,6 +19468,8 @@ static bool trf_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "satellite_id", 1)
         && collect_field(c, fields, "data_validity", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_trf(nmea_trf *out, const char *line, size_t len, nmea_error *err)
 {
@@ -19141,6 +19538,7 @@ static void trl_write(nmea_writer *w, const nmea_trl *s)
     put_enum(w, &s->reason, &nmea_trl_reason_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void trl_json(nmea_writer *w, const nmea_trl *s, bool values)
 {
@@ -19171,6 +19569,8 @@ static bool trl_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "switch_on_time", 1)
         && collect_field(c, fields, "reason", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_trl(nmea_trl *out, const char *line, size_t len, nmea_error *err)
 {
@@ -19234,6 +19634,7 @@ static void ttd_write(nmea_writer *w, const nmea_ttd *s)
     put_number(w, &s->fill_bits);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ttd_json(nmea_writer *w, const nmea_ttd *s, bool values)
 {
@@ -19258,6 +19659,8 @@ static bool ttd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "payload", 1)
         && collect_field(c, fields, "fill_bits", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* !RATTD,1A,01,1,177KQJ5000G?tO`K>RA1wUbN0TKH,0*72 */
 bool nmea_parse_ttd(nmea_ttd *out, const char *line, size_t len, nmea_error *err)
@@ -19344,6 +19747,7 @@ static void ttm_write(nmea_writer *w, const nmea_ttm *s)
         put_enum(w, &s->acquisition, &nmea_ttm_acquisition_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ttm_json(nmea_writer *w, const nmea_ttm *s, bool values)
 {
@@ -19390,6 +19794,8 @@ static bool ttm_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "time", 1)
         && collect_optional(c, fields, "acquisition", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $RATTM,01,0.2,190.8,T,12.1,109.7,T,0.1,0.5,N,TGT01,T,,100021.00,A*79 */
 bool nmea_parse_ttm(nmea_ttm *out, const char *line, size_t len, nmea_error *err)
@@ -19456,6 +19862,7 @@ static void tut_write(nmea_writer *w, const nmea_tut *s)
     put_text_field(w, s->text_body);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void tut_json(nmea_writer *w, const nmea_tut *s, bool values)
 {
@@ -19482,6 +19889,8 @@ static bool tut_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "translation_code", 1)
         && collect_field(c, fields, "text_body", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $INTUT,SD,01,01,1,A,5368616C6C6F7720576174657221*4B */
 bool nmea_parse_tut(nmea_tut *out, const char *line, size_t len, nmea_error *err)
@@ -19544,6 +19953,7 @@ static void txt_write(nmea_writer *w, const nmea_txt *s)
     put_text_field(w, s->text);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void txt_json(nmea_writer *w, const nmea_txt *s, bool values)
 {
@@ -19566,6 +19976,8 @@ static bool txt_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "text_identifier", 1)
         && collect_field(c, fields, "text", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPTXT,01,01,01,ANTENNA OK*35 */
 bool nmea_parse_txt(nmea_txt *out, const char *line, size_t len, nmea_error *err)
@@ -19623,6 +20035,7 @@ static void uid_write(nmea_writer *w, const nmea_uid *s)
     put_text_field(w, s->code_2);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void uid_json(nmea_writer *w, const nmea_uid *s, bool values)
 {
@@ -19641,6 +20054,8 @@ static bool uid_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "code_1", 1)
         && collect_field(c, fields, "code_2", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_uid(nmea_uid *out, const char *line, size_t len, nmea_error *err)
 {
@@ -19718,6 +20133,7 @@ static void vbw_write(nmea_writer *w, const nmea_vbw *s)
         put_enum(w, &s->stern_ground_speed_status, &nmea_status_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vbw_json(nmea_writer *w, const nmea_vbw *s, bool values)
 {
@@ -19756,6 +20172,8 @@ static bool vbw_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "stern_ground_speed_transverse", 1)
         && collect_optional(c, fields, "stern_ground_speed_status", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIVBW,11.0,02.0,A,06.0,03.0,A,05.3,A,01.0,A*43 */
 bool nmea_parse_vbw(nmea_vbw *out, const char *line, size_t len, nmea_error *err)
@@ -19822,6 +20240,7 @@ static void vdm_write(nmea_writer *w, const nmea_vdm *s)
     put_number(w, &s->fill_bits);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vdm_json(nmea_writer *w, const nmea_vdm *s, bool values)
 {
@@ -19848,6 +20267,8 @@ static bool vdm_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "payload", 1)
         && collect_field(c, fields, "fill_bits", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* !AIVDM,2,1,7,A,53aGulD0000000c7?0918Tq<E>0<Q8U=@Tp400155P:22uG`002ShTj0,0*05 */
 bool nmea_parse_vdm(nmea_vdm *out, const char *line, size_t len, nmea_error *err)
@@ -19914,6 +20335,7 @@ static void vdo_write(nmea_writer *w, const nmea_vdo *s)
     put_number(w, &s->fill_bits);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vdo_json(nmea_writer *w, const nmea_vdo *s, bool values)
 {
@@ -19940,6 +20362,8 @@ static bool vdo_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "payload", 1)
         && collect_field(c, fields, "fill_bits", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* !AIVDO,2,1,4,B,8h2=Vg@0GwwfOANA>AB0OwvlFR06EuOwgr27wnSwe7wvlOwwsAwwnSGm,0*63 */
 bool nmea_parse_vdo(nmea_vdo *out, const char *line, size_t len, nmea_error *err)
@@ -20006,6 +20430,7 @@ static void vdr_write(nmea_writer *w, const nmea_vdr *s)
     put_literal(w, s->current_speed_unit, "N");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vdr_json(nmea_writer *w, const nmea_vdr *s, bool values)
 {
@@ -20032,6 +20457,8 @@ static bool vdr_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "current_speed", 1)
         && collect_field(c, fields, "current_speed_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIVDR,10.1,T,12.3,M,1.2,N*3A */
 bool nmea_parse_vdr(nmea_vdr *out, const char *line, size_t len, nmea_error *err)
@@ -20105,6 +20532,7 @@ static void ver_write(nmea_writer *w, const nmea_ver *s)
     put_number(w, &s->sequential_message_id);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ver_json(nmea_writer *w, const nmea_ver *s, bool values)
 {
@@ -20139,6 +20567,8 @@ static bool ver_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "hardware_revision", 1)
         && collect_field(c, fields, "sequential_message_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_ver(nmea_ver *out, const char *line, size_t len, nmea_error *err)
 {
@@ -20208,6 +20638,7 @@ static void vhw_write(nmea_writer *w, const nmea_vhw *s)
     put_literal(w, s->speed_kmh_unit, "K");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vhw_json(nmea_writer *w, const nmea_vhw *s, bool values)
 {
@@ -20238,6 +20669,8 @@ static bool vhw_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "speed_kmh", 1)
         && collect_field(c, fields, "speed_kmh_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $SDVHW,231.3,T,229.9,M,6.6,N,12.3,K*71 */
 bool nmea_parse_vhw(nmea_vhw *out, const char *line, size_t len, nmea_error *err)
@@ -20312,6 +20745,7 @@ static void vlw_write(nmea_writer *w, const nmea_vlw *s)
         put_literal(w, s->trip_ground_distance_unit, "N");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vlw_json(nmea_writer *w, const nmea_vlw *s, bool values)
 {
@@ -20346,6 +20780,8 @@ static bool vlw_collect(nmea_collector *c, nmea_json fields)
         && collect_optional(c, fields, "trip_ground_distance", 1)
         && collect_optional(c, fields, "trip_ground_distance_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $SDVLW,,N,545.6,N,1109.4,N,393.6,N*44 */
 bool nmea_parse_vlw(nmea_vlw *out, const char *line, size_t len, nmea_error *err)
@@ -20408,6 +20844,7 @@ static void vpw_write(nmea_writer *w, const nmea_vpw *s)
     put_literal(w, s->speed_ms_unit, "M");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vpw_json(nmea_writer *w, const nmea_vpw *s, bool values)
 {
@@ -20430,6 +20867,8 @@ static bool vpw_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "speed_ms", 1)
         && collect_field(c, fields, "speed_ms_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIVPW,4.5,N,6.7,M*52 */
 bool nmea_parse_vpw(nmea_vpw *out, const char *line, size_t len, nmea_error *err)
@@ -20502,6 +20941,7 @@ static void vsd_write(nmea_writer *w, const nmea_vsd *s)
     put_number(w, &s->regional_flags);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vsd_json(nmea_writer *w, const nmea_vsd *s, bool values)
 {
@@ -20534,6 +20974,8 @@ static bool vsd_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "nav_status", 1)
         && collect_field(c, fields, "regional_flags", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $RAVSD,0,4.5,6,@@@@@@@@@@@@@@@@@@@@,220516,01,02,8,*6E */
 bool nmea_parse_vsd(nmea_vsd *out, const char *line, size_t len, nmea_error *err)
@@ -20654,6 +21096,7 @@ static size_t vtg_fast_write(const nmea_vtg *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vtg_json(nmea_writer *w, const nmea_vtg *s, bool values)
 {
@@ -20687,6 +21130,8 @@ static bool vtg_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "speed_kmh_unit", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPVTG,213.710,T,213.710,M,0.304,N,0.563,K,A*24 */
 bool nmea_parse_vtg(nmea_vtg *out, const char *line, size_t len, nmea_error *err)
@@ -20762,6 +21207,7 @@ static void vwr_write(nmea_writer *w, const nmea_vwr *s)
     put_literal(w, s->speed_kmh_unit, "K");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vwr_json(nmea_writer *w, const nmea_vwr *s, bool values)
 {
@@ -20792,6 +21238,8 @@ static bool vwr_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "speed_kmh", 1)
         && collect_field(c, fields, "speed_kmh_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIVWR,75,R,1.0,N,0.51,M,1.85,K*6C */
 bool nmea_parse_vwr(nmea_vwr *out, const char *line, size_t len, nmea_error *err)
@@ -20862,6 +21310,7 @@ static void vwt_write(nmea_writer *w, const nmea_vwt *s)
     put_literal(w, s->speed_kmh_unit, "K");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void vwt_json(nmea_writer *w, const nmea_vwt *s, bool values)
 {
@@ -20892,6 +21341,8 @@ static bool vwt_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "speed_kmh", 1)
         && collect_field(c, fields, "speed_kmh_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIVWT,030.,R,10.1,N,05.2,M,018.7,K*75 */
 bool nmea_parse_vwt(nmea_vwt *out, const char *line, size_t len, nmea_error *err)
@@ -20963,6 +21414,7 @@ static void wat_write(nmea_writer *w, const nmea_wat *s)
     put_text_field(w, s->description);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void wat_json(nmea_writer *w, const nmea_wat *s, bool values)
 {
@@ -20995,6 +21447,8 @@ static bool wat_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "override", 1)
         && collect_field(c, fields, "description", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_wat(nmea_wat *out, const char *line, size_t len, nmea_error *err)
 {
@@ -21057,6 +21511,7 @@ static void wcv_write(nmea_writer *w, const nmea_wcv *s)
         put_enum(w, &s->mode, &nmea_pos_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void wcv_json(nmea_writer *w, const nmea_wcv *s, bool values)
 {
@@ -21080,6 +21535,8 @@ static bool wcv_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "waypoint", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPWCV,12.3,N,POINT1*54 */
 bool nmea_parse_wcv(nmea_wcv *out, const char *line, size_t len, nmea_error *err)
@@ -21146,6 +21603,7 @@ static void wnc_write(nmea_writer *w, const nmea_wnc *s)
     put_text_field(w, s->from_waypoint);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void wnc_json(nmea_writer *w, const nmea_wnc *s, bool values)
 {
@@ -21172,6 +21630,8 @@ static bool wnc_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "to_waypoint", 1)
         && collect_field(c, fields, "from_waypoint", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPWNC,200.00,N,370.40,K,Dest,Origin*58 */
 bool nmea_parse_wnc(nmea_wnc *out, const char *line, size_t len, nmea_error *err)
@@ -21232,6 +21692,7 @@ static void wpl_write(nmea_writer *w, const nmea_wpl *s)
     put_text_field(w, s->waypoint);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void wpl_json(nmea_writer *w, const nmea_wpl *s, bool values)
 {
@@ -21252,6 +21713,8 @@ static bool wpl_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "waypoint_lon", 2)
         && collect_field(c, fields, "waypoint", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPWPL,6004.407,N,01939.993,E,A003*39 */
 bool nmea_parse_wpl(nmea_wpl *out, const char *line, size_t len, nmea_error *err)
@@ -21327,6 +21790,7 @@ static void xdr_write(nmea_writer *w, const nmea_xdr *s)
     }
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void xdr_json(nmea_writer *w, const nmea_xdr *s, bool values)
 {
@@ -21366,6 +21830,8 @@ static bool xdr_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIXDR,C,,C,AIRTEMP,A,-1.0,D,HEEL,A,2.9,D,TRIM,P,,B,BARO,A,-3.9,D,RUDDER*29 */
 bool nmea_parse_xdr(nmea_xdr *out, const char *line, size_t len, nmea_error *err)
@@ -21433,6 +21899,7 @@ static void xte_write(nmea_writer *w, const nmea_xte *s)
         put_enum(w, &s->mode, &nmea_pos_mode_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void xte_json(nmea_writer *w, const nmea_xte *s, bool values)
 {
@@ -21460,6 +21927,8 @@ static bool xte_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "cross_track_error_unit", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $IIXTE,A,A,5.36,R,N*67 */
 bool nmea_parse_xte(nmea_xte *out, const char *line, size_t len, nmea_error *err)
@@ -21520,6 +21989,7 @@ static void xtr_write(nmea_writer *w, const nmea_xtr *s)
     put_literal(w, s->cross_track_error_unit, "N");
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void xtr_json(nmea_writer *w, const nmea_xtr *s, bool values)
 {
@@ -21540,6 +22010,8 @@ static bool xtr_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "steer_direction", 1)
         && collect_field(c, fields, "cross_track_error_unit", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPXTR,1.2,,N*06 */
 bool nmea_parse_xtr(nmea_xtr *out, const char *line, size_t len, nmea_error *err)
@@ -21647,6 +22119,7 @@ static size_t zda_fast_write(const nmea_zda *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void zda_json(nmea_writer *w, const nmea_zda *s, bool values)
 {
@@ -21673,6 +22146,8 @@ static bool zda_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "local_zone_hours", 1)
         && collect_field(c, fields, "local_zone_minutes", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPZDA,072914.00,31,05,2018,+00,00*48 */
 bool nmea_parse_zda(nmea_zda *out, const char *line, size_t len, nmea_error *err)
@@ -21738,6 +22213,7 @@ static void zdl_write(nmea_writer *w, const nmea_zdl *s)
     put_enum(w, &s->point_type, &nmea_zdl_point_type_def);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void zdl_json(nmea_writer *w, const nmea_zdl *s, bool values)
 {
@@ -21758,6 +22234,8 @@ static bool zdl_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "distance_to_point", 1)
         && collect_field(c, fields, "point_type", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPZDL,000000,0.0,R*15 */
 bool nmea_parse_zdl(nmea_zdl *out, const char *line, size_t len, nmea_error *err)
@@ -21818,6 +22296,7 @@ static void zfo_write(nmea_writer *w, const nmea_zfo *s)
     put_text_field(w, s->origin_waypoint);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void zfo_json(nmea_writer *w, const nmea_zfo *s, bool values)
 {
@@ -21838,6 +22317,8 @@ static bool zfo_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "elapsed_time", 1)
         && collect_field(c, fields, "origin_waypoint", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPZFO,145832.12,042359.17,WPT*3E */
 bool nmea_parse_zfo(nmea_zfo *out, const char *line, size_t len, nmea_error *err)
@@ -21898,6 +22379,7 @@ static void ztg_write(nmea_writer *w, const nmea_ztg *s)
     put_text_field(w, s->destination_waypoint);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void ztg_json(nmea_writer *w, const nmea_ztg *s, bool values)
 {
@@ -21918,6 +22400,8 @@ static bool ztg_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "time_to_go", 1)
         && collect_field(c, fields, "destination_waypoint", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPZTG,145832.12,042359.17,WPT*24 */
 bool nmea_parse_ztg(nmea_ztg *out, const char *line, size_t len, nmea_error *err)
@@ -21977,6 +22461,7 @@ static void comnav_log_write(nmea_writer *w, const nmea_comnav_log *s)
     put_number(w, &s->period);
     end_text(w);
 }
+#ifndef NMEA_NO_JSON
 
 /* The field ids a text command's words pair with in decode's JSON. */
 static const char *const comnav_log_ids[] = {"message", "trigger", "period"};
@@ -22015,6 +22500,8 @@ static bool comnav_log_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "trigger", 1)
         && collect_field(c, fields, "period", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* LOG GPGGA ONTIME 1 */
 bool nmea_parse_comnav_log(nmea_comnav_log *out, const char *line, size_t len, nmea_error *err)
@@ -22071,6 +22558,7 @@ static void comnav_nmeatalker_write(nmea_writer *w, const nmea_comnav_nmeatalker
     put_enum(w, &s->talker_id, &nmea_comnav_talker_id_def);
     end_text(w);
 }
+#ifndef NMEA_NO_JSON
 
 /* The field ids a text command's words pair with in decode's JSON. */
 static const char *const comnav_nmeatalker_ids[] = {"message", "talker_id"};
@@ -22105,6 +22593,8 @@ static bool comnav_nmeatalker_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "message", 1)
         && collect_field(c, fields, "talker_id", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_comnav_nmeatalker(nmea_comnav_nmeatalker *out, const char *line, size_t len, nmea_error *err)
 {
@@ -22159,6 +22649,7 @@ static void comnav_nmeatalker_list_write(nmea_writer *w, const nmea_comnav_nmeat
     put_keyword(w, "LIST");
     end_text(w);
 }
+#ifndef NMEA_NO_JSON
 
 /* The field ids a text command's words pair with in decode's JSON. */
 static const char *const comnav_nmeatalker_list_ids[] = {"subcommand"};
@@ -22189,6 +22680,8 @@ static bool comnav_nmeatalker_list_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "subcommand", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* NMEATALKER LIST */
 bool nmea_parse_comnav_nmeatalker_list(nmea_comnav_nmeatalker_list *out, const char *line, size_t len, nmea_error *err)
@@ -22244,6 +22737,7 @@ static void comnav_nmeatalker_reset_write(nmea_writer *w, const nmea_comnav_nmea
     put_keyword(w, "RESET");
     end_text(w);
 }
+#ifndef NMEA_NO_JSON
 
 /* The field ids a text command's words pair with in decode's JSON. */
 static const char *const comnav_nmeatalker_reset_ids[] = {"subcommand"};
@@ -22274,6 +22768,8 @@ static bool comnav_nmeatalker_reset_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "subcommand", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* NMEATALKER RESET */
 bool nmea_parse_comnav_nmeatalker_reset(nmea_comnav_nmeatalker_reset *out, const char *line, size_t len, nmea_error *err)
@@ -22360,6 +22856,7 @@ static size_t geos5_command_fast_write(const nmea_geos5_command *s, char *buf, s
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void geos5_command_json(nmea_writer *w, const nmea_geos5_command *s, bool values)
 {
@@ -22376,6 +22873,8 @@ static bool geos5_command_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "command", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPSGG,SWPROT*75 */
 bool nmea_parse_geos5_command(nmea_geos5_command *out, const char *line, size_t len, nmea_error *err)
@@ -22471,6 +22970,7 @@ static size_t geos5_jamdet_fast_write(const nmea_geos5_jamdet *s, char *buf, siz
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void geos5_jamdet_json(nmea_writer *w, const nmea_geos5_jamdet *s, bool values)
 {
@@ -22489,6 +22989,8 @@ static bool geos5_jamdet_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "keyword", 1)
         && collect_field(c, fields, "reserved", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPSGG,JAMDET,*57 */
 bool nmea_parse_geos5_jamdet(nmea_geos5_jamdet *out, const char *line, size_t len, nmea_error *err)
@@ -22632,6 +23134,7 @@ static size_t geos5_nquery_fast_write(const nmea_geos5_nquery *s, char *buf, siz
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void geos5_nquery_json(nmea_writer *w, const nmea_geos5_nquery *s, bool values)
 {
@@ -22674,6 +23177,8 @@ static bool geos5_nquery_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "dtm_rate", 1)
         && collect_field(c, fields, "rlm_rate", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPSGG,NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71 */
 bool nmea_parse_geos5_nquery(nmea_geos5_nquery *out, const char *line, size_t len, nmea_error *err)
@@ -22765,6 +23270,7 @@ static size_t geos5_nquery_request_fast_write(const nmea_geos5_nquery_request *s
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void geos5_nquery_request_json(nmea_writer *w, const nmea_geos5_nquery_request *s, bool values)
 {
@@ -22781,6 +23287,8 @@ static bool geos5_nquery_request_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "keyword", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPSGG,NQUERY*6C */
 bool nmea_parse_geos5_nquery_request(nmea_geos5_nquery_request *out, const char *line, size_t len, nmea_error *err)
@@ -22896,6 +23404,7 @@ static size_t geos5_rquery_fast_write(const nmea_geos5_rquery *s, char *buf, siz
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void geos5_rquery_json(nmea_writer *w, const nmea_geos5_rquery *s, bool values)
 {
@@ -22924,6 +23433,8 @@ static bool geos5_rquery_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "config_1", 1)
         && collect_field(c, fields, "config_2", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPSGG,RQUERY,GEOS-5,V.5.102,100518,00083037,802DC097,F7FF8064*5C */
 bool nmea_parse_geos5_rquery(nmea_geos5_rquery *out, const char *line, size_t len, nmea_error *err)
@@ -23015,6 +23526,7 @@ static size_t geos5_rquery_request_fast_write(const nmea_geos5_rquery_request *s
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void geos5_rquery_request_json(nmea_writer *w, const nmea_geos5_rquery_request *s, bool values)
 {
@@ -23031,6 +23543,8 @@ static bool geos5_rquery_request_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "keyword", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPSGG,RQUERY*70 */
 bool nmea_parse_geos5_rquery_request(nmea_geos5_rquery_request *out, const char *line, size_t len, nmea_error *err)
@@ -23138,6 +23652,7 @@ static size_t psrf100_fast_write(const nmea_psrf100 *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void psrf100_json(nmea_writer *w, const nmea_psrf100 *s, bool values)
 {
@@ -23162,6 +23677,8 @@ static bool psrf100_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "stop_bits", 1)
         && collect_field(c, fields, "parity", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSRF100,0,9600,8,1,0*0C */
 bool nmea_parse_psrf100(nmea_psrf100 *out, const char *line, size_t len, nmea_error *err)
@@ -23281,6 +23798,7 @@ static size_t psrf101_fast_write(const nmea_psrf101 *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void psrf101_json(nmea_writer *w, const nmea_psrf101 *s, bool values)
 {
@@ -23311,6 +23829,8 @@ static bool psrf101_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "channels", 1)
         && collect_field(c, fields, "reset_cfg", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSRF101,-2686700,-4304200,3851624,96000,497260,921,12,3*2F */
 bool nmea_parse_psrf101(nmea_psrf101 *out, const char *line, size_t len, nmea_error *err)
@@ -23414,6 +23934,7 @@ static size_t psrf102_fast_write(const nmea_psrf102 *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void psrf102_json(nmea_writer *w, const nmea_psrf102 *s, bool values)
 {
@@ -23436,6 +23957,8 @@ static bool psrf102_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "stop_bits", 1)
         && collect_field(c, fields, "parity", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSRF102,9600,8,1,0*12 */
 bool nmea_parse_psrf102(nmea_psrf102 *out, const char *line, size_t len, nmea_error *err)
@@ -23539,6 +24062,7 @@ static size_t psrf103_fast_write(const nmea_psrf103 *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void psrf103_json(nmea_writer *w, const nmea_psrf103 *s, bool values)
 {
@@ -23561,6 +24085,8 @@ static bool psrf103_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "rate", 1)
         && collect_field(c, fields, "checksum_mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSRF103,00,01,00,01*25 */
 bool nmea_parse_psrf103(nmea_psrf103 *out, const char *line, size_t len, nmea_error *err)
@@ -23663,6 +24189,7 @@ static size_t psrf103_short_codes_fast_write(const nmea_psrf103_short_codes *s, 
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void psrf103_short_codes_json(nmea_writer *w, const nmea_psrf103_short_codes *s, bool values)
 {
@@ -23685,6 +24212,8 @@ static bool psrf103_short_codes_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "rate", 1)
         && collect_field(c, fields, "checksum_mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_psrf103_short_codes(nmea_psrf103_short_codes *out, const char *line, size_t len, nmea_error *err)
 {
@@ -23803,6 +24332,7 @@ static size_t psrf104_fast_write(const nmea_psrf104 *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void psrf104_json(nmea_writer *w, const nmea_psrf104 *s, bool values)
 {
@@ -23833,6 +24363,8 @@ static bool psrf104_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "channels", 1)
         && collect_field(c, fields, "reset_cfg", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSRF104,37.3875111,-121.97232,0,96000,237759,922,12,3*37 */
 bool nmea_parse_psrf104(nmea_psrf104 *out, const char *line, size_t len, nmea_error *err)
@@ -23924,6 +24456,7 @@ static size_t psrf105_fast_write(const nmea_psrf105 *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void psrf105_json(nmea_writer *w, const nmea_psrf105 *s, bool values)
 {
@@ -23940,6 +24473,8 @@ static bool psrf105_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "debug", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSRF105,1*3E */
 bool nmea_parse_psrf105(nmea_psrf105 *out, const char *line, size_t len, nmea_error *err)
@@ -24030,6 +24565,7 @@ static size_t psrf150_fast_write(const nmea_psrf150 *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void psrf150_json(nmea_writer *w, const nmea_psrf150 *s, bool values)
 {
@@ -24046,6 +24582,8 @@ static bool psrf150_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "ok_to_send", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_psrf150(nmea_psrf150 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -24150,6 +24688,7 @@ static size_t pstmagps_fast_write(const nmea_pstmagps *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmagps_json(nmea_writer *w, const nmea_pstmagps *s, bool values)
 {
@@ -24179,6 +24718,8 @@ static bool pstmagps_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmagps(nmea_pstmagps *out, const char *line, size_t len, nmea_error *err)
 {
@@ -24283,6 +24824,7 @@ static size_t pstmalmanac_fast_write(const nmea_pstmalmanac *s, char *buf, size_
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmalmanac_json(nmea_writer *w, const nmea_pstmalmanac *s, bool values)
 {
@@ -24312,6 +24854,8 @@ static bool pstmalmanac_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmalmanac(nmea_pstmalmanac *out, const char *line, size_t len, nmea_error *err)
 {
@@ -24395,6 +24939,7 @@ static size_t pstmclralms_fast_write(const nmea_pstmclralms *s, char *buf, size_
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmclralms_json(nmea_writer *w, const nmea_pstmclralms *s, bool values)
 {
@@ -24413,6 +24958,8 @@ static bool pstmclralms_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMCLRALMS */
 bool nmea_parse_pstmclralms(nmea_pstmclralms *out, const char *line, size_t len, nmea_error *err)
@@ -24497,6 +25044,7 @@ static size_t pstmclrephs_fast_write(const nmea_pstmclrephs *s, char *buf, size_
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmclrephs_json(nmea_writer *w, const nmea_pstmclrephs *s, bool values)
 {
@@ -24515,6 +25063,8 @@ static bool pstmclrephs_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMCLREPHS */
 bool nmea_parse_pstmclrephs(nmea_pstmclrephs *out, const char *line, size_t len, nmea_error *err)
@@ -24607,6 +25157,7 @@ static size_t pstmcold_fast_write(const nmea_pstmcold *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmcold_json(nmea_writer *w, const nmea_pstmcold *s, bool values)
 {
@@ -24624,6 +25175,8 @@ static bool pstmcold_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_optional(c, fields, "mask", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMCOLD,6 */
 bool nmea_parse_pstmcold(nmea_pstmcold *out, const char *line, size_t len, nmea_error *err)
@@ -24729,6 +25282,7 @@ static size_t pstmcorr_fast_write(const nmea_pstmcorr *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmcorr_json(nmea_writer *w, const nmea_pstmcorr *s, bool values)
 {
@@ -24758,6 +25312,8 @@ static bool pstmcorr_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmcorr(nmea_pstmcorr *out, const char *line, size_t len, nmea_error *err)
 {
@@ -24862,6 +25418,7 @@ static size_t pstmdiff_fast_write(const nmea_pstmdiff *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmdiff_json(nmea_writer *w, const nmea_pstmdiff *s, bool values)
 {
@@ -24891,6 +25448,8 @@ static bool pstmdiff_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmdiff(nmea_pstmdiff *out, const char *line, size_t len, nmea_error *err)
 {
@@ -24995,6 +25554,7 @@ static size_t pstmeph_fast_write(const nmea_pstmeph *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmeph_json(nmea_writer *w, const nmea_pstmeph *s, bool values)
 {
@@ -25024,6 +25584,8 @@ static bool pstmeph_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmeph(nmea_pstmeph *out, const char *line, size_t len, nmea_error *err)
 {
@@ -25114,6 +25676,7 @@ static size_t pstmgetpar_fast_write(const nmea_pstmgetpar *s, char *buf, size_t 
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmgetpar_json(nmea_writer *w, const nmea_pstmgetpar *s, bool values)
 {
@@ -25130,6 +25693,8 @@ static bool pstmgetpar_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "block_param", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMGETPAR,1403* */
 bool nmea_parse_pstmgetpar(nmea_pstmgetpar *out, const char *line, size_t len, nmea_error *err)
@@ -25213,6 +25778,7 @@ static size_t pstmgetparerror_fast_write(const nmea_pstmgetparerror *s, char *bu
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmgetparerror_json(nmea_writer *w, const nmea_pstmgetparerror *s, bool values)
 {
@@ -25231,6 +25797,8 @@ static bool pstmgetparerror_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmgetparerror(nmea_pstmgetparerror *out, const char *line, size_t len, nmea_error *err)
 {
@@ -25314,6 +25882,7 @@ static size_t pstmgetrtctime_fast_write(const nmea_pstmgetrtctime *s, char *buf,
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmgetrtctime_json(nmea_writer *w, const nmea_pstmgetrtctime *s, bool values)
 {
@@ -25332,6 +25901,8 @@ static bool pstmgetrtctime_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMGETRTCTIME */
 bool nmea_parse_pstmgetrtctime(nmea_pstmgetrtctime *out, const char *line, size_t len, nmea_error *err)
@@ -25434,6 +26005,7 @@ static size_t pstmgetrtctime_reply_fast_write(const nmea_pstmgetrtctime_reply *s
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmgetrtctime_reply_json(nmea_writer *w, const nmea_pstmgetrtctime_reply *s, bool values)
 {
@@ -25456,6 +26028,8 @@ static bool pstmgetrtctime_reply_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "rtc_status", 1)
         && collect_field(c, fields, "time_validity", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmgetrtctime_reply(nmea_pstmgetrtctime_reply *out, const char *line, size_t len, nmea_error *err)
 {
@@ -25539,6 +26113,7 @@ static size_t pstmgetswver_fast_write(const nmea_pstmgetswver *s, char *buf, siz
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmgetswver_json(nmea_writer *w, const nmea_pstmgetswver *s, bool values)
 {
@@ -25557,6 +26132,8 @@ static bool pstmgetswver_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMGETSWVER */
 bool nmea_parse_pstmgetswver(nmea_pstmgetswver *out, const char *line, size_t len, nmea_error *err)
@@ -25659,6 +26236,7 @@ static size_t pstmgetswver_reply_fast_write(const nmea_pstmgetswver_reply *s, ch
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmgetswver_reply_json(nmea_writer *w, const nmea_pstmgetswver_reply *s, bool values)
 {
@@ -25681,6 +26259,8 @@ static bool pstmgetswver_reply_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "build_date", 1)
         && collect_field(c, fields, "build_time", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmgetswver_reply(nmea_pstmgetswver_reply *out, const char *line, size_t len, nmea_error *err)
 {
@@ -25764,6 +26344,7 @@ static size_t pstmhot_fast_write(const nmea_pstmhot *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmhot_json(nmea_writer *w, const nmea_pstmhot *s, bool values)
 {
@@ -25782,6 +26363,8 @@ static bool pstmhot_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMHOT */
 bool nmea_parse_pstmhot(nmea_pstmhot *out, const char *line, size_t len, nmea_error *err)
@@ -25887,6 +26470,7 @@ static size_t pstmkfcov_fast_write(const nmea_pstmkfcov *s, char *buf, size_t ca
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmkfcov_json(nmea_writer *w, const nmea_pstmkfcov *s, bool values)
 {
@@ -25916,6 +26500,8 @@ static bool pstmkfcov_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmkfcov(nmea_pstmkfcov *out, const char *line, size_t len, nmea_error *err)
 {
@@ -26007,6 +26593,7 @@ static size_t pstmnmeaonoff_fast_write(const nmea_pstmnmeaonoff *s, char *buf, s
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmnmeaonoff_json(nmea_writer *w, const nmea_pstmnmeaonoff *s, bool values)
 {
@@ -26024,6 +26611,8 @@ static bool pstmnmeaonoff_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_optional(c, fields, "on_off", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMNMEAONOFF,0 */
 bool nmea_parse_pstmnmeaonoff(nmea_pstmnmeaonoff *out, const char *line, size_t len, nmea_error *err)
@@ -26129,6 +26718,7 @@ static size_t pstmpa_fast_write(const nmea_pstmpa *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmpa_json(nmea_writer *w, const nmea_pstmpa *s, bool values)
 {
@@ -26158,6 +26748,8 @@ static bool pstmpa_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmpa(nmea_pstmpa *out, const char *line, size_t len, nmea_error *err)
 {
@@ -26262,6 +26854,7 @@ static size_t pstmpres_fast_write(const nmea_pstmpres *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmpres_json(nmea_writer *w, const nmea_pstmpres *s, bool values)
 {
@@ -26291,6 +26884,8 @@ static bool pstmpres_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmpres(nmea_pstmpres *out, const char *line, size_t len, nmea_error *err)
 {
@@ -26395,6 +26990,7 @@ static size_t pstmres_fast_write(const nmea_pstmres *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmres_json(nmea_writer *w, const nmea_pstmres *s, bool values)
 {
@@ -26424,6 +27020,8 @@ static bool pstmres_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmres(nmea_pstmres *out, const char *line, size_t len, nmea_error *err)
 {
@@ -26507,6 +27105,7 @@ static size_t pstmrestorepar_fast_write(const nmea_pstmrestorepar *s, char *buf,
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmrestorepar_json(nmea_writer *w, const nmea_pstmrestorepar *s, bool values)
 {
@@ -26525,6 +27124,8 @@ static bool pstmrestorepar_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMRESTOREPAR */
 bool nmea_parse_pstmrestorepar(nmea_pstmrestorepar *out, const char *line, size_t len, nmea_error *err)
@@ -26630,6 +27231,7 @@ static size_t pstmrf_fast_write(const nmea_pstmrf *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmrf_json(nmea_writer *w, const nmea_pstmrf *s, bool values)
 {
@@ -26659,6 +27261,8 @@ static bool pstmrf_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmrf(nmea_pstmrf *out, const char *line, size_t len, nmea_error *err)
 {
@@ -26763,6 +27367,7 @@ static size_t pstmsat_fast_write(const nmea_pstmsat *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmsat_json(nmea_writer *w, const nmea_pstmsat *s, bool values)
 {
@@ -26792,6 +27397,8 @@ static bool pstmsat_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmsat(nmea_pstmsat *out, const char *line, size_t len, nmea_error *err)
 {
@@ -26875,6 +27482,7 @@ static size_t pstmsavepar_fast_write(const nmea_pstmsavepar *s, char *buf, size_
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmsavepar_json(nmea_writer *w, const nmea_pstmsavepar *s, bool values)
 {
@@ -26893,6 +27501,8 @@ static bool pstmsavepar_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMSAVEPAR */
 bool nmea_parse_pstmsavepar(nmea_pstmsavepar *out, const char *line, size_t len, nmea_error *err)
@@ -26998,6 +27608,7 @@ static size_t pstmsbas_fast_write(const nmea_pstmsbas *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmsbas_json(nmea_writer *w, const nmea_pstmsbas *s, bool values)
 {
@@ -27027,6 +27638,8 @@ static bool pstmsbas_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmsbas(nmea_pstmsbas *out, const char *line, size_t len, nmea_error *err)
 {
@@ -27131,6 +27744,7 @@ static size_t pstmsbascorr_fast_write(const nmea_pstmsbascorr *s, char *buf, siz
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmsbascorr_json(nmea_writer *w, const nmea_pstmsbascorr *s, bool values)
 {
@@ -27160,6 +27774,8 @@ static bool pstmsbascorr_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmsbascorr(nmea_pstmsbascorr *out, const char *line, size_t len, nmea_error *err)
 {
@@ -27253,6 +27869,7 @@ static size_t pstmset_fast_write(const nmea_pstmset *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmset_json(nmea_writer *w, const nmea_pstmset *s, bool values)
 {
@@ -27271,6 +27888,8 @@ static bool pstmset_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "block_param", 1)
         && collect_field(c, fields, "value", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmset(nmea_pstmset *out, const char *line, size_t len, nmea_error *err)
 {
@@ -27377,6 +27996,7 @@ static size_t pstmset_dop_fast_write(const nmea_pstmset_dop *s, char *buf, size_
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmset_dop_json(nmea_writer *w, const nmea_pstmset_dop *s, bool values)
 {
@@ -27401,6 +28021,8 @@ static bool pstmset_dop_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "hdop", 1)
         && collect_field(c, fields, "gdop", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMSET,1403,15,12,12,18 */
 bool nmea_parse_pstmset_dop(nmea_pstmset_dop *out, const char *line, size_t len, nmea_error *err)
@@ -27501,6 +28123,7 @@ static size_t pstmsetpar_fast_write(const nmea_pstmsetpar *s, char *buf, size_t 
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmsetpar_json(nmea_writer *w, const nmea_pstmsetpar *s, bool values)
 {
@@ -27522,6 +28145,8 @@ static bool pstmsetpar_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "value", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMSETPAR,1121,10* */
 bool nmea_parse_pstmsetpar(nmea_pstmsetpar *out, const char *line, size_t len, nmea_error *err)
@@ -27633,6 +28258,7 @@ static size_t pstmsetpar_dop_fast_write(const nmea_pstmsetpar_dop *s, char *buf,
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmsetpar_dop_json(nmea_writer *w, const nmea_pstmsetpar_dop *s, bool values)
 {
@@ -27660,6 +28286,8 @@ static bool pstmsetpar_dop_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "gdop", 1)
         && collect_optional(c, fields, "mode", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmsetpar_dop(nmea_pstmsetpar_dop *out, const char *line, size_t len, nmea_error *err)
 {
@@ -27742,6 +28370,7 @@ static size_t pstmsetparerror_fast_write(const nmea_pstmsetparerror *s, char *bu
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmsetparerror_json(nmea_writer *w, const nmea_pstmsetparerror *s, bool values)
 {
@@ -27760,6 +28389,8 @@ static bool pstmsetparerror_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmsetparerror(nmea_pstmsetparerror *out, const char *line, size_t len, nmea_error *err)
 {
@@ -27850,6 +28481,7 @@ static size_t pstmsetparok_fast_write(const nmea_pstmsetparok *s, char *buf, siz
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmsetparok_json(nmea_writer *w, const nmea_pstmsetparok *s, bool values)
 {
@@ -27866,6 +28498,8 @@ static bool pstmsetparok_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "block_param", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMSETPAROK,1121* */
 bool nmea_parse_pstmsetparok(nmea_pstmsetparok *out, const char *line, size_t len, nmea_error *err)
@@ -27971,6 +28605,7 @@ static size_t pstmtestrf_fast_write(const nmea_pstmtestrf *s, char *buf, size_t 
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmtestrf_json(nmea_writer *w, const nmea_pstmtestrf *s, bool values)
 {
@@ -28000,6 +28635,8 @@ static bool pstmtestrf_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmtestrf(nmea_pstmtestrf *out, const char *line, size_t len, nmea_error *err)
 {
@@ -28104,6 +28741,7 @@ static size_t pstmtg_fast_write(const nmea_pstmtg *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmtg_json(nmea_writer *w, const nmea_pstmtg *s, bool values)
 {
@@ -28133,6 +28771,8 @@ static bool pstmtg_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmtg(nmea_pstmtg *out, const char *line, size_t len, nmea_error *err)
 {
@@ -28237,6 +28877,7 @@ static size_t pstmtim_fast_write(const nmea_pstmtim *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmtim_json(nmea_writer *w, const nmea_pstmtim *s, bool values)
 {
@@ -28266,6 +28907,8 @@ static bool pstmtim_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmtim(nmea_pstmtim *out, const char *line, size_t len, nmea_error *err)
 {
@@ -28370,6 +29013,7 @@ static size_t pstmts_fast_write(const nmea_pstmts *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmts_json(nmea_writer *w, const nmea_pstmts *s, bool values)
 {
@@ -28399,6 +29043,8 @@ static bool pstmts_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmts(nmea_pstmts *out, const char *line, size_t len, nmea_error *err)
 {
@@ -28503,6 +29149,7 @@ static size_t pstmver_fast_write(const nmea_pstmver *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmver_json(nmea_writer *w, const nmea_pstmver *s, bool values)
 {
@@ -28532,6 +29179,8 @@ static bool pstmver_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmver(nmea_pstmver *out, const char *line, size_t len, nmea_error *err)
 {
@@ -28636,6 +29285,7 @@ static size_t pstmvres_fast_write(const nmea_pstmvres *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmvres_json(nmea_writer *w, const nmea_pstmvres *s, bool values)
 {
@@ -28665,6 +29315,8 @@ static bool pstmvres_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmvres(nmea_pstmvres *out, const char *line, size_t len, nmea_error *err)
 {
@@ -28769,6 +29421,7 @@ static size_t pstmwaas_fast_write(const nmea_pstmwaas *s, char *buf, size_t cap)
     }
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmwaas_json(nmea_writer *w, const nmea_pstmwaas *s, bool values)
 {
@@ -28798,6 +29451,8 @@ static bool pstmwaas_collect(nmea_collector *c, nmea_json fields)
     }
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 bool nmea_parse_pstmwaas(nmea_pstmwaas *out, const char *line, size_t len, nmea_error *err)
 {
@@ -28881,6 +29536,7 @@ static size_t pstmwarm_fast_write(const nmea_pstmwarm *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pstmwarm_json(nmea_writer *w, const nmea_pstmwarm *s, bool values)
 {
@@ -28899,6 +29555,8 @@ static bool pstmwarm_collect(nmea_collector *c, nmea_json fields)
     (void)fields;
     return true;
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PSTMWARM */
 bool nmea_parse_pstmwarm(nmea_pstmwarm *out, const char *line, size_t len, nmea_error *err)
@@ -29509,8 +30167,98 @@ static const nmea_layouts STANDARD[] = {
 };
 #define STANDARD_COUNT 141
 
-/* Their 3-character ids as numbers (big-endian), in the same order. */
+/* Their 3-character ids as numbers (big-endian), in the same order, and a perfect hash of them:
+   slot (id * 0x9E3779DDu) >> 21 holds 1 + the entry's index, 0 for none. */
 static const uint32_t STANDARD_CODES[] = {0x41414D, 0x41424B, 0x414341, 0x41434B, 0x41434E, 0x414353, 0x414952, 0x414B44, 0x414C41, 0x414C43, 0x414C46, 0x414C4B, 0x414C4D, 0x414C52, 0x415041, 0x415042, 0x415243, 0x424543, 0x424F44, 0x425743, 0x425752, 0x425757, 0x435552, 0x44424B, 0x444253, 0x444254, 0x444443, 0x444F52, 0x445054, 0x445343, 0x445345, 0x44544D, 0x455056, 0x45544C, 0x455645, 0x464952, 0x464D49, 0x465349, 0x474253, 0x47454E, 0x474641, 0x474741, 0x474C43, 0x474C4C, 0x474D50, 0x474E53, 0x475253, 0x475341, 0x475354, 0x475356, 0x484254, 0x484352, 0x484447, 0x48444D, 0x484454, 0x484556, 0x484D52, 0x484D53, 0x485044, 0x485052, 0x48524D, 0x485343, 0x485353, 0x485443, 0x485444, 0x4C4C51, 0x4C5231, 0x4C5232, 0x4C5233, 0x4C5246, 0x4C5249, 0x4D4441, 0x4D4D42, 0x4D4F42, 0x4D534B, 0x4D5353, 0x4D5441, 0x4D5457, 0x4D5744, 0x4D5756, 0x4E414B, 0x4E524D, 0x4E5258, 0x4E5352, 0x4F5344, 0x504F53, 0x505243, 0x523030, 0x524C4D, 0x524D41, 0x524D42, 0x524D43, 0x524F52, 0x524F54, 0x52504D, 0x525254, 0x525341, 0x525344, 0x525445, 0x534649, 0x534D31, 0x534D32, 0x534D33, 0x534D34, 0x534D42, 0x535057, 0x535344, 0x53544E, 0x544853, 0x544C42, 0x544C4C, 0x545241, 0x545243, 0x545244, 0x545246, 0x54524C, 0x54544D, 0x545554, 0x545854, 0x554944, 0x564257, 0x564452, 0x564552, 0x564857, 0x564C57, 0x565057, 0x565344, 0x565447, 0x565752, 0x565754, 0x574154, 0x574356, 0x574E43, 0x57504C, 0x584452, 0x585445, 0x585452, 0x5A4441, 0x5A444C, 0x5A464F, 0x5A5447};
+static const uint8_t STANDARD_SLOTS[2048] = {
+    0, 31, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 121, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 115, 0, 0, 34, 0, 0, 0, 128, 0, 0, 0,
+    0, 0, 24, 0, 0, 0, 0, 0, 0, 0, 0, 0, 77, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 22, 0, 0, 0, 0, 0, 0, 0, 126, 0, 0, 0, 0, 0, 0,
+    98, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 71, 0, 0, 0, 0, 0, 0, 0, 16, 94, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 132, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 14, 0, 0, 0, 0, 89, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 102, 0, 0, 0, 0, 0, 0, 88, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 17, 0, 0, 0, 0, 0, 0, 0, 0, 0, 37, 0, 0, 0, 35, 0, 0, 0, 92,
+    0, 0, 0, 73, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 41, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 32, 0, 0, 0, 0,
+    113, 0, 0, 0, 0, 0, 0, 0, 28, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 125, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 97, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 70, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 8, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 67, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 44, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 110,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 58, 0,
+    0, 0, 0, 0, 87, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 83, 0, 0, 0, 0, 60, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    135, 0, 0, 0, 0, 0, 120, 0, 0, 0, 124, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 118, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 33, 0, 104, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 122, 0, 0, 0, 0, 0, 42, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 56, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 39, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 131, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 38, 0, 0, 111, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 7, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 15, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 69, 0, 0,
+    0, 0, 0, 129, 0, 0, 52, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 101,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 82, 0, 0, 0, 0, 0, 51, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 86, 0, 0, 0, 0, 0, 0, 0, 0, 0, 65,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 91, 0, 0, 0, 0, 0, 0, 27, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 107, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 79, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 139, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 63, 0, 0, 0, 0, 0, 0, 0, 0, 0, 72,
+    0, 0, 19, 74, 0, 0, 0, 0, 0, 0, 0, 0, 81, 0, 123, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 9, 0, 0, 0, 0,
+    0, 0, 26, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0,
+    0, 54, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 106, 1, 0, 0, 0, 0, 0, 85, 0, 0, 0, 29,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 78, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 61,
+    3, 0, 0, 0, 0, 0, 0, 59, 0, 0, 0, 0, 57, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 80, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 5,
+    0, 62, 0, 0, 0, 0, 0, 0, 0, 0, 0, 11, 0, 0, 0, 43, 0, 0, 0, 0, 0, 0, 0, 20,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 49, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 130, 0, 0, 0, 66, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 103, 0, 0, 0, 0, 0, 96, 0, 0, 0, 0, 134, 0, 0, 0, 0, 0, 0, 0, 0, 133, 0,
+    116, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 136,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 138, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 6, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 12, 30, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 137, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 117, 18, 0, 0, 0, 0, 0, 0, 0, 114, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 84, 0, 100, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 10, 36,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 93, 0, 0, 0, 0, 0, 0, 0, 140, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 68, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 47, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 99, 0, 0, 0, 0, 0, 0, 0, 64, 109, 0, 0, 0, 0, 0, 0, 0, 0, 53,
+    0, 0, 0, 0, 90, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 108, 0, 0, 0, 0, 0, 0, 0, 0, 55, 0, 0,
+    141, 0, 45, 0, 0, 112, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 50, 0, 0, 0, 76,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 21, 0, 127, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 48, 40, 0, 0, 0, 95, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 25, 0, 0, 0, 119, 0, 0, 0,
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 105, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 23, 75, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 46, 0, 0, 0, 13,
+};
+#define STANDARD_HASH(id) ((uint32_t)((id) * 0x9E3779DDu) >> 21)
 
 /* Standard '!' (encapsulation) sentences by sentence id: AIS VDM, VDO, ... */
 static const nmea_layouts ENCAPSULATED[] = {
@@ -29522,8 +30270,15 @@ static const nmea_layouts ENCAPSULATED[] = {
 };
 #define ENCAPSULATED_COUNT 5
 
-/* Their 3-character ids as numbers (big-endian), in the same order. */
+/* Their 3-character ids as numbers (big-endian), in the same order, and a perfect hash of them:
+   slot (id * 0x9E3779B1u) >> 26 holds 1 + the entry's index, 0 for none. */
 static const uint32_t ENCAPSULATED_CODES[] = {0x41424D, 0x42424D, 0x545444, 0x56444D, 0x56444F};
+static const uint8_t ENCAPSULATED_SLOTS[64] = {
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 4, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 0, 0, 5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+};
+#define ENCAPSULATED_HASH(id) ((uint32_t)((id) * 0x9E3779B1u) >> 26)
 
 /* Proprietary $ sentences whose address looks like a talker and a sentence id, by address. */
 static const nmea_layouts TALKER_LIKE[] = {
@@ -29609,22 +30364,26 @@ NMEA_INTERNAL inline const nmea_layouts *find_layouts(const nmea_layouts *table,
 }
 
 
-/* The entry of `table` (sorted, `codes` its ids as numbers) whose sentence id is the 3
-   characters at `id`, or NULL. */
-static const nmea_layouts *find_standard(const nmea_layouts *table, const uint32_t *codes, size_t n, const char *id)
+/* The 3 characters at `id` as a number (big-endian), as the _CODES tables hold them. */
+static inline uint32_t standard_code(const char *id)
 {
-    uint32_t want = (uint32_t)(unsigned char)id[0] << 16 | (uint32_t)(unsigned char)id[1] << 8 | (unsigned char)id[2];
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = (lo + hi) / 2;
-        if (codes[mid] == want)
-            return &table[mid];
-        if (codes[mid] < want)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return NULL;
+    return (uint32_t)(unsigned char)id[0] << 16 | (uint32_t)(unsigned char)id[1] << 8 | (unsigned char)id[2];
+}
+
+/* The standard sentence whose id is the 3 characters at `id`, or NULL: one probe of the hash. */
+static const nmea_layouts *find_standard(const char *id)
+{
+    uint32_t code = standard_code(id);
+    unsigned slot = STANDARD_SLOTS[STANDARD_HASH(code)];
+    return slot && STANDARD_CODES[slot - 1] == code ? &STANDARD[slot - 1] : NULL;
+}
+
+/* The encapsulated sentence whose id is the 3 characters at `id`, or NULL: one probe of the hash. */
+static const nmea_layouts *find_encapsulated(const char *id)
+{
+    uint32_t code = standard_code(id);
+    unsigned slot = ENCAPSULATED_SLOTS[ENCAPSULATED_HASH(code)];
+    return slot && ENCAPSULATED_CODES[slot - 1] == code ? &ENCAPSULATED[slot - 1] : NULL;
 }
 
 /* The text command whose word `word` is, ignoring case, or NULL. */
@@ -29637,6 +30396,7 @@ static const nmea_layouts *find_command(nmea_text word)
     return NULL;
 }
 
+#ifndef NMEA_NO_JSON
 /* The layout that decode's JSON names by its sentence id and variant (NULL: the main one). */
 static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant)
 {
@@ -30072,6 +30832,8 @@ static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant
     (void)variant;
     return NMEA_SENTENCE_GENERIC;
 }
+
+#endif
 
 /* Parses the wire with one layout. */
 static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
@@ -30691,7 +31453,7 @@ NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len)
     if (line[6] == ',' && line[1] != 'P') { /* a talker and a sentence id, or a look-alike */
         if (!is_alnum(line[1]) || !is_alnum(line[2]) || find_layouts(TALKER_LIKE, TALKER_LIKE_COUNT, text_span(line + 1, line + 6)))
             return false;
-        layouts = find_standard(STANDARD, STANDARD_CODES, STANDARD_COUNT, line + 3);
+        layouts = find_standard(line + 3);
         return layouts && fast_fit(out, layouts, line, line + 7, line + len - 2, count);
     }
     for (comma = 1; is_alnum(line[comma]); comma++) /* the address: letters and digits up to a comma */
@@ -32013,6 +32775,7 @@ NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size
     }
 }
 
+#ifndef NMEA_NO_JSON
 static bool collect_layout(nmea_sentence_id id, nmea_collector *c, nmea_json fields)
 {
     switch (id) {
@@ -32448,6 +33211,7 @@ static bool collect_layout(nmea_sentence_id id, nmea_collector *c, nmea_json fie
         return false;
     }
 }
+#endif
 
 /* The replies of each command. */
 static const nmea_sentence_id COMNAV_LOG_REPLIES[] = {NMEA_SENTENCE_GGA, NMEA_SENTENCE_GLL, NMEA_SENTENCE_GLL_SENTINEL, NMEA_SENTENCE_GSA, NMEA_SENTENCE_GSA_SHORT, NMEA_SENTENCE_GSA_WIDE_SYSTEM, NMEA_SENTENCE_GSA_WIDE, NMEA_SENTENCE_GSA_EXTRA_DOP, NMEA_SENTENCE_GST, NMEA_SENTENCE_GSV, NMEA_SENTENCE_HDT, NMEA_SENTENCE_RMC, NMEA_SENTENCE_RMC_SENTINEL, NMEA_SENTENCE_VTG, NMEA_SENTENCE_ZDA};
@@ -32537,13 +33301,13 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
             wire_of(&wire, &f, NULL, NULL);
             return fit(out, layouts, &wire, options->lenient, err);
         }
-        layouts = find_standard(STANDARD, STANDARD_CODES, STANDARD_COUNT, f.address.ptr + 2);
+        layouts = find_standard(f.address.ptr + 2);
         if (layouts) {
             wire_of(&wire, &f, layouts->suffix, NULL);
             return fit(out, layouts, &wire, options->lenient, err);
         }
     } else if (is_standard_address(&f)) {
-        layouts = find_standard(ENCAPSULATED, ENCAPSULATED_CODES, ENCAPSULATED_COUNT, f.address.ptr + 2);
+        layouts = find_encapsulated(f.address.ptr + 2);
         if (layouts) {
             wire_of(&wire, &f, layouts->suffix, NULL);
             return fit(out, layouts, &wire, options->lenient, err);
@@ -33046,6 +33810,7 @@ size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err
     }
 }
 
+#ifndef NMEA_NO_JSON
 size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
@@ -33932,3 +34697,4 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     }
     return read_layout(out, id, &wire, err);
 }
+#endif /* NMEA_NO_JSON */

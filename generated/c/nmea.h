@@ -250,8 +250,10 @@ size_t nmea_error_message(const nmea_error *err, char *buf, size_t cap);
 /** The name of the field at fault ("satellites[2].prn"), or 0 when there is none. */
 size_t nmea_error_name(const nmea_error *err, char *buf, size_t cap);
 
+#ifndef NMEA_NO_JSON
 /** The tools' JSON for an error: {"ok":false,"error":{...}}. */
 size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap);
+#endif
 
 /** The too_long error for a line of `len` bytes (for readers that stream long lines away). */
 void nmea_error_too_long(nmea_error *err, size_t len);
@@ -354,9 +356,11 @@ typedef struct {
 /** Field `index` (0-based) of a generic sentence; an empty slice past the end. */
 nmea_text nmea_generic_field(const nmea_generic *g, size_t index);
 
+#ifndef NMEA_NO_JSON
 /** Whether a line of decode's JSON output is an object whose "ok" is false (encode skips
     those lines). */
 bool nmea_json_is_failure(const char *json, size_t len);
+#endif
 
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables (spec/tables): the wire text of a value. */
@@ -12875,6 +12879,10 @@ size_t nmea_build_pstmwarm(const nmea_pstmwarm *s, char *buf, size_t cap, nmea_e
     names), `*count` of them; NULL and 0 for any other layout. */
 const nmea_sentence_id *nmea_replies(nmea_sentence_id command, size_t *count);
 
+#ifndef NMEA_NO_JSON
+/* The tools' JSON (json.md of the docs), which -DNMEA_NO_JSON leaves out of a build that only
+   parses and writes sentences: about a quarter of the code. */
+
 /** The tools' JSON for a sentence: the lossless field texts, or (values) the decoded values. */
 size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap);
 
@@ -12895,6 +12903,7 @@ size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea
  */
 bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
                     nmea_error *err);
+#endif /* NMEA_NO_JSON */
 
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables (spec/tables): nmea_param_find and nmea_param_* take them. */

@@ -327,6 +327,7 @@ static void put_escaped_mem(nmea_writer *w, const char *s, size_t n, int depth)
         put_escaped(w, s[i], depth);
 }
 
+#ifndef NMEA_NO_JSON
 /* A JSON string of `t`, written inside text escaped `depth` times. */
 static void put_json_str(nmea_writer *w, nmea_text t, int depth)
 {
@@ -334,11 +335,8 @@ static void put_json_str(nmea_writer *w, nmea_text t, int depth)
     put_escaped_mem(w, t.ptr, t.len, depth + 1);
     put_escaped(w, '"', depth);
 }
+#endif
 
-static void put_json_cstr(nmea_writer *w, const char *s)
-{
-    put_json_str(w, nmea_text_of(s), 0);
-}
 
 /* ------------------------------------------------------------------------------------------ */
 /* Errors */
@@ -377,7 +375,9 @@ void nmea_error_too_long(nmea_error *err, size_t len)
     err->num[0] = len;
 }
 
+#ifndef NMEA_NO_JSON
 static bool json_char_at(const char **p, const char *end, long *cp);
+#endif
 
 /* The text of an error: bytes, or (text_json) the inside of a JSON string, whose characters
    above 0xFF are written as their low byte, escaped. */
@@ -389,8 +389,12 @@ static void put_error_text(nmea_writer *w, const nmea_error *err, int depth)
         put_escaped_mem(w, err->text.ptr, err->text.len, depth);
         return;
     }
+#ifndef NMEA_NO_JSON /* only the JSON reader makes errors with text_json */
     while (json_char_at(&p, end, &cp))
         put_escaped_char(w, (char)(cp & 0xFF), cp > 0xFF, depth);
+#else
+    (void)p, (void)end, (void)cp;
+#endif
 }
 
 static void put_message(nmea_writer *w, const nmea_error *err, int depth)
@@ -463,6 +467,7 @@ size_t nmea_error_name(const nmea_error *err, char *buf, size_t cap)
     return writer_finish(&w);
 }
 
+#ifndef NMEA_NO_JSON
 size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
@@ -496,6 +501,7 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
     put_str(&w, "\"}}");
     return writer_finish(&w);
 }
+#endif
 
 /* A problem as the bad_field error it was. */
 static void problem_error(const nmea_problem *p, nmea_error *err)
@@ -2365,9 +2371,16 @@ NMEA_HOT bool fast_put_text_field(fast_writer *w, nmea_text t)
     return fast_sep(w) && fast_put_mem(w, t.ptr, t.len);
 }
 
+#ifndef NMEA_NO_JSON
+static void put_json_cstr(nmea_writer *w, const char *s)
+{
+    put_json_str(w, nmea_text_of(s), 0);
+}
+
 /* ------------------------------------------------------------------------------------------ */
 /* The fields as JSON: the lossless texts, or (values) the decoded values. Each writes
-   [,]"key": (no key inside an array) and the value. */
+   [,]"key": (no key inside an array) and the value. Left out by -DNMEA_NO_JSON, with the JSON
+   reader below: the tools need them, a program that only parses and writes sentences does not. */
 
 static void json_key(nmea_writer *w, const char *key)
 {
@@ -3257,6 +3270,7 @@ bool nmea_json_is_failure(const char *json, size_t len)
     return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
         && memcmp(ok.p, "false", 5) == 0;
 }
+#endif /* NMEA_NO_JSON */
 
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables: the wire text of a value (Parameter.encode of the Python

@@ -201,8 +201,10 @@ size_t nmea_error_message(const nmea_error *err, char *buf, size_t cap);
 /** The name of the field at fault ("satellites[2].prn"), or 0 when there is none. */
 size_t nmea_error_name(const nmea_error *err, char *buf, size_t cap);
 
+#ifndef NMEA_NO_JSON
 /** The tools' JSON for an error: {"ok":false,"error":{...}}. */
 size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap);
+#endif
 
 /** The too_long error for a line of `len` bytes (for readers that stream long lines away). */
 void nmea_error_too_long(nmea_error *err, size_t len);
@@ -305,9 +307,11 @@ typedef struct {
 /** Field `index` (0-based) of a generic sentence; an empty slice past the end. */
 nmea_text nmea_generic_field(const nmea_generic *g, size_t index);
 
+#ifndef NMEA_NO_JSON
 /** Whether a line of decode's JSON output is an object whose "ok" is false (encode skips
     those lines). */
 bool nmea_json_is_failure(const char *json, size_t len);
+#endif
 
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables (spec/tables): the wire text of a value. */

@@ -10,6 +10,7 @@
 /* The characters above U+00FF that Python's str.upper() changes, as runs {first, last, step}
    (from the Unicode data of the Python that generated this file): a JSON checksum holding one
    is in lower case for the reference, and so here. */
+#ifndef NMEA_NO_JSON
 static const uint32_t CASED_RUNS[][3] = {
     {0x101, 0x137, 2},
     {0x13A, 0x148, 2},
@@ -156,6 +157,7 @@ static const uint32_t CASED_RUNS[][3] = {
     {0x16E60, 0x16E7F, 1},
     {0x1E922, 0x1E943, 1},
 };
+#endif
 
 /* templates/c/runtime.c */
 
@@ -303,6 +305,7 @@ static void fix_write(nmea_writer *w, const nmea_fix *s)
         put_number(w, &s->extra);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void fix_json(nmea_writer *w, const nmea_fix *s, bool values)
 {
@@ -344,6 +347,8 @@ static bool fix_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "note", 1)
         && collect_optional(c, fields, "extra", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPFIX,123519.50,4807.038,N,01131.000,E,230394,1,08,-12.5,1F,Q,M,AD,HELLO,5*69 */
 bool nmea_parse_fix(nmea_fix *out, const char *line, size_t len, nmea_error *err)
@@ -402,6 +407,7 @@ static void fix_short_write(nmea_writer *w, const nmea_fix_short *s)
     put_coordinate(w, &s->lat);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void fix_short_json(nmea_writer *w, const nmea_fix_short *s, bool values)
 {
@@ -420,6 +426,8 @@ static bool fix_short_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "time", 1)
         && collect_field(c, fields, "lat", 2);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPFIX,123519.50,4807.038,N*1A */
 bool nmea_parse_fix_short(nmea_fix_short *out, const char *line, size_t len, nmea_error *err)
@@ -506,6 +514,7 @@ static void sat_write(nmea_writer *w, const nmea_sat *s)
         put_hex(w, &s->signal);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void sat_json(nmea_writer *w, const nmea_sat *s, bool values)
 {
@@ -553,6 +562,8 @@ static bool sat_collect(nmea_collector *c, nmea_json fields)
     }
     return collect_optional(c, fields, "signal", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $GPSAT,2,1,07,12,40,083,46,25,,,,1*5D */
 bool nmea_parse_sat(nmea_sat *out, const char *line, size_t len, nmea_error *err)
@@ -615,6 +626,7 @@ static void xdm_write(nmea_writer *w, const nmea_xdm *s)
     put_text_field(w, s->payload);
     end_sentence(w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void xdm_json(nmea_writer *w, const nmea_xdm *s, bool values)
 {
@@ -637,6 +649,8 @@ static bool xdm_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "message_id", 1)
         && collect_field(c, fields, "payload", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* !AIXDM,1,1,,13nUgBWP01PkHvDU7<kC4wvJ2>`<*5B */
 bool nmea_parse_xdm(nmea_xdm *out, const char *line, size_t len, nmea_error *err)
@@ -694,6 +708,7 @@ static void acme_log_write(nmea_writer *w, const nmea_acme_log *s)
     put_number(w, &s->period);
     end_text(w);
 }
+#ifndef NMEA_NO_JSON
 
 /* The field ids a text command's words pair with in decode's JSON. */
 static const char *const acme_log_ids[] = {"message", "period"};
@@ -728,6 +743,8 @@ static bool acme_log_collect(nmea_collector *c, nmea_json fields)
     return collect_field(c, fields, "message", 1)
         && collect_field(c, fields, "period", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* LOG GPFIX 1 */
 bool nmea_parse_acme_log(nmea_acme_log *out, const char *line, size_t len, nmea_error *err)
@@ -814,6 +831,7 @@ static size_t pacmack_fast_write(const nmea_pacmack *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pacmack_json(nmea_writer *w, const nmea_pacmack *s, bool values)
 {
@@ -830,6 +848,8 @@ static bool pacmack_collect(nmea_collector *c, nmea_json fields)
 {
     return collect_field(c, fields, "ok", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PACMACK,1*4B */
 bool nmea_parse_pacmack(nmea_pacmack *out, const char *line, size_t len, nmea_error *err)
@@ -929,6 +949,7 @@ static size_t pacmset_fast_write(const nmea_pacmset *s, char *buf, size_t cap)
         return 0;
     return fast_end(&w, s->checksum);
 }
+#ifndef NMEA_NO_JSON
 
 static void pacmset_json(nmea_writer *w, const nmea_pacmset *s, bool values)
 {
@@ -949,6 +970,8 @@ static bool pacmset_collect(nmea_collector *c, nmea_json fields)
         && collect_field(c, fields, "baud", 1)
         && collect_field(c, fields, "outputs", 1);
 }
+
+#endif /* NMEA_NO_JSON */
 
 /* $PACMSET,BAUD,4800,C3*1F */
 bool nmea_parse_pacmset(nmea_pacmset *out, const char *line, size_t len, nmea_error *err)
@@ -1027,8 +1050,13 @@ static const nmea_layouts STANDARD[] = {
 };
 #define STANDARD_COUNT 2
 
-/* Their 3-character ids as numbers (big-endian), in the same order. */
+/* Their 3-character ids as numbers (big-endian), in the same order, and a perfect hash of them:
+   slot (id * 0x9E3779C3u) >> 28 holds 1 + the entry's index, 0 for none. */
 static const uint32_t STANDARD_CODES[] = {0x464958, 0x534154};
+static const uint8_t STANDARD_SLOTS[16] = {
+    0, 0, 0, 0, 0, 0, 0, 2, 1, 0, 0, 0, 0, 0, 0, 0,
+};
+#define STANDARD_HASH(id) ((uint32_t)((id) * 0x9E3779C3u) >> 28)
 
 /* Standard '!' (encapsulation) sentences by sentence id: AIS VDM, VDO, ... */
 static const nmea_layouts ENCAPSULATED[] = {
@@ -1036,8 +1064,13 @@ static const nmea_layouts ENCAPSULATED[] = {
 };
 #define ENCAPSULATED_COUNT 1
 
-/* Their 3-character ids as numbers (big-endian), in the same order. */
+/* Their 3-character ids as numbers (big-endian), in the same order, and a perfect hash of them:
+   slot (id * 0x9E3779B1u) >> 29 holds 1 + the entry's index, 0 for none. */
 static const uint32_t ENCAPSULATED_CODES[] = {0x58444D};
+static const uint8_t ENCAPSULATED_SLOTS[8] = {
+    0, 1, 0, 0, 0, 0, 0, 0,
+};
+#define ENCAPSULATED_HASH(id) ((uint32_t)((id) * 0x9E3779B1u) >> 29)
 
 /* The other proprietary $ sentences by address. */
 static const nmea_layouts PROPRIETARY[] = {
@@ -1075,22 +1108,26 @@ NMEA_INTERNAL inline const nmea_layouts *find_layouts(const nmea_layouts *table,
 }
 
 
-/* The entry of `table` (sorted, `codes` its ids as numbers) whose sentence id is the 3
-   characters at `id`, or NULL. */
-static const nmea_layouts *find_standard(const nmea_layouts *table, const uint32_t *codes, size_t n, const char *id)
+/* The 3 characters at `id` as a number (big-endian), as the _CODES tables hold them. */
+static inline uint32_t standard_code(const char *id)
 {
-    uint32_t want = (uint32_t)(unsigned char)id[0] << 16 | (uint32_t)(unsigned char)id[1] << 8 | (unsigned char)id[2];
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = (lo + hi) / 2;
-        if (codes[mid] == want)
-            return &table[mid];
-        if (codes[mid] < want)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return NULL;
+    return (uint32_t)(unsigned char)id[0] << 16 | (uint32_t)(unsigned char)id[1] << 8 | (unsigned char)id[2];
+}
+
+/* The standard sentence whose id is the 3 characters at `id`, or NULL: one probe of the hash. */
+static const nmea_layouts *find_standard(const char *id)
+{
+    uint32_t code = standard_code(id);
+    unsigned slot = STANDARD_SLOTS[STANDARD_HASH(code)];
+    return slot && STANDARD_CODES[slot - 1] == code ? &STANDARD[slot - 1] : NULL;
+}
+
+/* The encapsulated sentence whose id is the 3 characters at `id`, or NULL: one probe of the hash. */
+static const nmea_layouts *find_encapsulated(const char *id)
+{
+    uint32_t code = standard_code(id);
+    unsigned slot = ENCAPSULATED_SLOTS[ENCAPSULATED_HASH(code)];
+    return slot && ENCAPSULATED_CODES[slot - 1] == code ? &ENCAPSULATED[slot - 1] : NULL;
 }
 
 /* The text command whose word `word` is, ignoring case, or NULL. */
@@ -1103,6 +1140,7 @@ static const nmea_layouts *find_command(nmea_text word)
     return NULL;
 }
 
+#ifndef NMEA_NO_JSON
 /* The layout that decode's JSON names by its sentence id and variant (NULL: the main one). */
 static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant)
 {
@@ -1124,6 +1162,8 @@ static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant
     (void)variant;
     return NMEA_SENTENCE_GENERIC;
 }
+
+#endif
 
 /* Parses the wire with one layout. */
 static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
@@ -1191,7 +1231,7 @@ NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len)
     if (line[6] == ',' && line[1] != 'P') { /* a talker and a sentence id, or a look-alike */
         if (!is_alnum(line[1]) || !is_alnum(line[2]))
             return false;
-        layouts = find_standard(STANDARD, STANDARD_CODES, STANDARD_COUNT, line + 3);
+        layouts = find_standard(line + 3);
         return layouts && fast_fit(out, layouts, line, line + 7, line + len - 2, count);
     }
     for (comma = 1; is_alnum(line[comma]); comma++) /* the address: letters and digits up to a comma */
@@ -1340,6 +1380,7 @@ NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size
     }
 }
 
+#ifndef NMEA_NO_JSON
 static bool collect_layout(nmea_sentence_id id, nmea_collector *c, nmea_json fields)
 {
     switch (id) {
@@ -1361,6 +1402,7 @@ static bool collect_layout(nmea_sentence_id id, nmea_collector *c, nmea_json fie
         return false;
     }
 }
+#endif
 
 /* The replies of each command. */
 static const nmea_sentence_id ACME_LOG_REPLIES[] = {NMEA_SENTENCE_FIX, NMEA_SENTENCE_FIX_SHORT};
@@ -1414,13 +1456,13 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
     if (!frame_line(&f, line, len, options->require_checksum, err))
         return false;
     if (is_standard_address(&f) && f.start.ptr[0] == '$') {
-        layouts = find_standard(STANDARD, STANDARD_CODES, STANDARD_COUNT, f.address.ptr + 2);
+        layouts = find_standard(f.address.ptr + 2);
         if (layouts) {
             wire_of(&wire, &f, layouts->suffix, NULL);
             return fit(out, layouts, &wire, options->lenient, err);
         }
     } else if (is_standard_address(&f)) {
-        layouts = find_standard(ENCAPSULATED, ENCAPSULATED_CODES, ENCAPSULATED_COUNT, f.address.ptr + 2);
+        layouts = find_encapsulated(f.address.ptr + 2);
         if (layouts) {
             wire_of(&wire, &f, layouts->suffix, NULL);
             return fit(out, layouts, &wire, options->lenient, err);
@@ -1509,6 +1551,7 @@ size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err
     }
 }
 
+#ifndef NMEA_NO_JSON
 size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
@@ -1774,3 +1817,4 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     }
     return read_layout(out, id, &wire, err);
 }
+#endif /* NMEA_NO_JSON */

@@ -414,6 +414,10 @@ size_t nmea_build_pacmset(const nmea_pacmset *s, char *buf, size_t cap, nmea_err
     names), `*count` of them; NULL and 0 for any other layout. */
 const nmea_sentence_id *nmea_replies(nmea_sentence_id command, size_t *count);
 
+#ifndef NMEA_NO_JSON
+/* The tools' JSON (json.md of the docs), which -DNMEA_NO_JSON leaves out of a build that only
+   parses and writes sentences: about a quarter of the code. */
+
 /** The tools' JSON for a sentence: the lossless field texts, or (values) the decoded values. */
 size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap);
 
@@ -434,6 +438,7 @@ size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea
  */
 bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
                     nmea_error *err);
+#endif /* NMEA_NO_JSON */
 
 #ifdef __cplusplus
 }
