@@ -29,13 +29,19 @@ def lines():
 
 def test_reference_decodes_every_random_sentence(lines) -> None:
     spec, samples = lines
+    reached = set()
     for sentence, layout, line in samples:
         decoded = reference.decode(spec, line)
         assert decoded.sentence is sentence, (line, decoded.sentence and decoded.sentence.id)
         # The first layout that parses wins: a line made for a variant may also fit one tried
-        # before it (a no-fix sentinel variant's line with empty position fields is a plain GLL).
+        # before it (a no-fix sentinel variant's line with empty position fields is a plain GLL),
+        # never one tried after it; and every layout must win for some of its own lines.
         tried = sentence.layouts[:sentence.layouts.index(layout) + 1]
         assert any(decoded.layout is lay for lay in tried), (line, layout.id, decoded.layout and decoded.layout.id)
+        if decoded.layout is layout:
+            reached.add((sentence.id, layout.id))
+    unreached = {(s.id, lay.id) for s, lay, _ in samples} - reached
+    assert not unreached, f"layouts that none of their random lines decodes as: {sorted(unreached, key=str)}"
 
 
 def test_tools_agree_and_round_trip_random_sentences(lines) -> None:

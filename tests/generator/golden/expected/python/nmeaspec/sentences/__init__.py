@@ -41,14 +41,15 @@ _CLASSES: dict[str, str] = {
     "Pacmset": "pacmset",
 }
 
-# Sentence ids by dispatch key, in the order their layouts are tried.
-_STANDARD_IDS: dict[str, str] = {
-    "FIX": "FIX",
-    "SAT": "SAT",
-}
-_ENCAPSULATED_IDS: dict[str, str] = {
-    "XDM": "XDM",
-}
+# The formatters of the standard sentences (their ids), and the layouts of each dispatch key in
+# the order they are tried.
+_STANDARD_IDS = frozenset({
+    "FIX",
+    "SAT",
+})
+_ENCAPSULATED_IDS = frozenset({
+    "XDM",
+})
 _ADDRESS_LAYOUTS: dict[str, tuple[str, ...]] = {
     "PACMACK": ("Pacmack", ),
     "PACMSET": ("Pacmset", ),
@@ -79,19 +80,17 @@ def layouts(sentence_id: str) -> tuple[Any, ...] | None:
 
 def standard(formatter: str) -> tuple[Any, ...] | None:
     """The layouts of the standard `$` sentence with this formatter (GGA), or None."""
-    sentence_id = _STANDARD_IDS.get(formatter)
-    if sentence_id is None:
+    if formatter not in _STANDARD_IDS:
         return None
-    found = STANDARD[formatter] = layouts(sentence_id) or ()
+    found = STANDARD[formatter] = layouts(formatter) or ()
     return found
 
 
 def encapsulated(formatter: str) -> tuple[Any, ...] | None:
     """The layouts of the standard `!` sentence with this formatter (VDM), or None."""
-    sentence_id = _ENCAPSULATED_IDS.get(formatter)
-    if sentence_id is None:
+    if formatter not in _ENCAPSULATED_IDS:
         return None
-    found = ENCAPSULATED[formatter] = layouts(sentence_id) or ()
+    found = ENCAPSULATED[formatter] = layouts(formatter) or ()
     return found
 
 
