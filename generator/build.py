@@ -10,7 +10,7 @@ from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
 from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Field, Group, Item, Layout,
-                    Manual, Note, Origin, Parameter, Sentence, Spec, TableDef)
+                    Manual, Note, Origin, Outcome, Parameter, ReplyRule, Sentence, Spec, TableDef)
 
 
 def load_spec(spec_dir: Path) -> Spec:
@@ -114,11 +114,16 @@ def _items(data: list[dict[str, Any]], file: str, where: tuple[str | int, ...]) 
 def _sentence(doc: Document) -> Sentence:
     d = doc.data
     file = str(doc.path)
+    outcome = _outcome(d.get("outcome"), Origin(file, ("outcome",)))
     layout = Layout(None, d["name"], d["doc"], _items(d["fields"], file, ("fields",)), d["manuals"],
-                    Origin(file, ("fields",)))
+                    Origin(file, ("fields",)), outcome)
     variants = [Layout(v["id"], v["name"], v["doc"], _items(v["fields"], file, ("variants", i, "fields")),
-                       v.get("manuals", d["manuals"]), Origin(file, ("variants", i)))
+                       v.get("manuals", d["manuals"]), Origin(file, ("variants", i)),
+                       _outcome(v["outcome"], Origin(file, ("variants", i, "outcome"))) if "outcome" in v else outcome)
                 for i, v in enumerate(d.get("variants", []))]
+    rules = [ReplyRule(r, {}, Origin(file, ("replies", i))) if isinstance(r, str)
+             else ReplyRule(r["sentence"], dict(r["when"]), Origin(file, ("replies", i)))
+             for i, r in enumerate(d.get("replies", []))]
     examples = [Example(e["manual"], e.get("where"), e["raw"], e.get("corrected"), e.get("reason"),
                         e.get("unrecoverable"), e.get("variant"), e.get("expect"),
                         Origin(file, ("examples", i)))
@@ -127,4 +132,13 @@ def _sentence(doc: Document) -> Sentence:
     return Sentence(d["sentence"], d["name"], d["doc"], d.get("talkers", []), d["manuals"], layout,
                     variants, notes, examples, Origin(file, ()), file, address=d.get("address"),
                     framing=d.get("framing", "sentence"), start=d.get("start", "$"), domain=d.get("domain"), kind=d.get("kind", "standard"), vendor=d.get("vendor"),
-                    reply_ids=d.get("replies", []))
+                    reply_rules=rules)
+
+
+def _outcome(data: Any, origin: Origin) -> Outcome | None:
+    """A reply's `outcome`: "ok", "error", or {field, ok: [values]}."""
+    if data is None:
+        return None
+    if isinstance(data, str):
+        return Outcome(fixed=data, origin=origin)
+    return Outcome(field_id=data["field"], ok=list(data["ok"]), origin=origin)

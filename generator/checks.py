@@ -48,6 +48,8 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
         return report.errors
     _check_cli(spec, report)
     for sentence in spec.sentences:
+        _check_replies(sentence, report)
+    for sentence in spec.sentences:
         variant_ids = {v.id for v in sentence.variants}
         for example in sentence.examples:
             _check_example(spec, sentence, example, manual_ids, variant_ids, report)
@@ -95,7 +97,7 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
         if len(sentence.id) != 3 or not sentence.id.isalnum():
             report(sentence.origin, "S010", f"standard sentence {sentence.id}: the id is the 3-character formatter; "
                    "a proprietary sentence needs `address`", "sentence")
-        for key, value in (("kind", sentence.kind != "standard"), ("vendor", sentence.vendor), ("replies", sentence.reply_ids),
+        for key, value in (("kind", sentence.kind != "standard"), ("vendor", sentence.vendor), ("replies", sentence.reply_rules),
                            ("framing", sentence.framing != "sentence")):
             if value:
                 report(sentence.origin, "S010", f"standard sentence {sentence.id} cannot have `{key}`", key)
@@ -119,12 +121,57 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
     if sentence.reply_ids and sentence.kind != "command":
         report(sentence.origin, "S011", "only commands have replies", "replies")
     sentence.replies = []
-    for i, reply_id in enumerate(sentence.reply_ids):
-        reply = spec.sentence(reply_id)
-        if reply is None:
-            report(sentence.origin, "S011", f"unknown reply sentence {reply_id!r}", "replies", i)
-        else:
-            sentence.replies.append(reply)
+    for rule in sentence.reply_rules:
+        rule.sentence = spec.sentence(rule.sentence_id)
+        if rule.sentence is None:
+            report(rule.origin, "S011", f"unknown reply sentence {rule.sentence_id!r}")
+        elif rule.sentence not in sentence.replies:
+            sentence.replies.append(rule.sentence)
+    if any(layout.outcome for layout in sentence.layouts) and sentence.kind != "reply":
+        report(sentence.origin, "S011", "only replies have an `outcome`", "sentence")
+
+
+# The field types a reply's `when` and `outcome` may test: values a program compares exactly.
+PAIRING_TYPES = ("integer", "enum", "text", "char")
+
+
+def _pairing_value(f: Field, value: Any) -> str | None:
+    """Why `value` (expect form) cannot be a value of field `f` in a `when` or an `outcome`."""
+    if f.type not in PAIRING_TYPES:
+        return f"field {f.id} is {f.type}: a reply is paired or judged only by {', '.join(PAIRING_TYPES)} fields"
+    if f.type == "integer" and (isinstance(value, bool) or not isinstance(value, int)):
+        return f"field {f.id} is an integer: {value!r} is not one"
+    if f.type == "enum" and (f.enum is None or f.enum.by_id(str(value)) is None):
+        return f"{value!r} is not a value id of enum {f.enum.id if f.enum else '?'}"
+    if f.type in ("text", "char") and (not isinstance(value, str) or not value or (f.type == "char" and len(value) != 1)):
+        return f"field {f.id} is {f.type}: {value!r} is not one"
+    return None
+
+
+def _check_replies(sentence: Sentence, report: _Reporter) -> None:
+    """A command's `when` names fields of its reply with values they can hold; a reply's `outcome`
+    names a field of each layout it applies to."""
+    for rule in sentence.reply_rules:
+        if rule.sentence is None:
+            continue
+        for field_id, value in rule.when.items():
+            found = [f for layout in rule.sentence.layouts for f in layout.fields if f.id == field_id]
+            if not found:
+                report(rule.origin, "S011", f"reply {rule.sentence_id} has no field {field_id!r}", "when", field_id)
+            elif (problem := _pairing_value(found[0], value)) is not None:
+                report(rule.origin, "S011", problem, "when", field_id)
+    for layout in sentence.layouts:
+        outcome = layout.outcome
+        if outcome is None or outcome.field_id is None or outcome.origin is None:
+            continue
+        found = [f for f in layout.fields if f.id == outcome.field_id]
+        if not found:
+            name = f"variant {layout.id}" if layout.id else "the main layout"
+            report(outcome.origin, "S011", f"{name} of {sentence.id} has no field {outcome.field_id!r}", "field")
+            continue
+        for i, value in enumerate(outcome.ok):
+            if (problem := _pairing_value(found[0], value)) is not None:
+                report(outcome.origin, "S011", problem, "ok", i)
 
 
 def _check_bitfield(bitfield: Any, manual_ids: set[str], report: _Reporter) -> None:

@@ -213,6 +213,28 @@ Item = Field | Group
 
 
 @dataclass
+class Outcome:
+    """Whether a reply reports success: always `ok` or always `error` (`fixed`), or ok when the
+    field `field_id` holds one of the values `ok` (expect form: enum value ids, numbers, texts)."""
+
+    fixed: str | None = None
+    field_id: str | None = None
+    ok: list[Any] = field(default_factory=list)
+    origin: Origin | None = None
+
+
+@dataclass
+class ReplyRule:
+    """One entry of a command's `replies`: the reply sentence, and the values its fields must have
+    for it to answer this command (an acknowledgement that names the command, e.g. PMTK001)."""
+
+    sentence_id: str
+    when: dict[str, Any]
+    origin: Origin
+    sentence: Sentence | None = None     # resolved by the checks
+
+
+@dataclass
 class Layout:
     """One way the fields of a sentence are laid out on the wire."""
 
@@ -222,6 +244,7 @@ class Layout:
     items: list[Item]
     manuals: list[str]
     origin: Origin
+    outcome: Outcome | None = None   # replies: whether this layout reports success
 
     @property
     def fields(self) -> list[Field]:
@@ -317,8 +340,13 @@ class Sentence:
     domain: str | None = None    # standard sentences: what they are about, for the docs index
     kind: str = "standard"       # standard, command, reply or output
     vendor: str | None = None
-    reply_ids: list[str] = field(default_factory=list)
-    replies: list[Sentence] = field(default_factory=list)   # resolved reply_ids
+    reply_rules: list[ReplyRule] = field(default_factory=list)
+    replies: list[Sentence] = field(default_factory=list)   # resolved, each reply sentence once
+
+    @property
+    def reply_ids(self) -> list[str]:
+        """The ids of the sentences that answer this command, each once, in spec order."""
+        return list(dict.fromkeys(r.sentence_id for r in self.reply_rules))
 
     @property
     def is_proprietary(self) -> bool:

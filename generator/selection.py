@@ -86,7 +86,7 @@ def subset(spec: Spec, words: list[str]) -> Spec:
         s.manuals = [m for m in s.manuals if m in manual_ids]
         s.notes = [n for n in s.notes if any(m in manual_ids for m in n.manuals)]
         s.replies = [r for r in s.replies if r.id in keep_ids]
-        s.reply_ids = [r.id for r in s.replies]
+        s.reply_rules = [r for r in s.reply_rules if r.sentence_id in keep_ids]
 
     # Tables: those of a kept vendor (they are addressed by its commands).
     tables = [t for t in model.tables if any(m in manual_ids and m != "nmea0183" for m in t.manuals)]
