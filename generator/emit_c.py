@@ -11,7 +11,7 @@ import textwrap
 
 import jinja2
 
-from . import emit_vectors
+from . import emit_vectors, pairing
 from .emit import TEMPLATES, header
 from .model import BitfieldDef, EnumDef, Example, Field, Group, Layout, Sentence, Spec, TableDef, fixed_point, fmt_num
 
@@ -424,6 +424,40 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     }
 
 
+def _member_of(sentence: Sentence, layout: Layout, f: Field) -> str:
+    return f"s->as.{sentence.layout_snake(layout)}.{member(f.id)}"
+
+
+def reply_pairings(spec: Spec) -> list[dict]:
+    """Per command layout, the test that a parsed sentence `s` answers it (nmea_reply_to)."""
+    out = []
+    for command in spec.proprietary:
+        tests = [" && ".join([f"s->id == {layout_const(p.reply, p.layout)}",
+                              *(pairing.c_test(c, _member_of(p.reply, p.layout, c.field)) for c in p.conditions)])
+                 for p in pairing.pairings(command)]
+        if len(tests) > 1:
+            tests = [f"({t})" if " && " in t else t for t in tests]
+        if tests:
+            out += [{"const": layout_const(command, layout), "tests": tests} for layout in command.layouts]
+    return out
+
+
+def reply_judgements(spec: Spec) -> list[dict]:
+    """Per reply layout that does not always report success, what it reports (reply_outcome)."""
+    out = []
+    for sentence in spec.proprietary:
+        for layout, j in pairing.judged(sentence):
+            if j.fixed is not None:
+                expr = "NMEA_REPLY_ERROR"
+            else:
+                assert j.field is not None
+                target = _member_of(sentence, layout, j.field)
+                ok = pairing.any_of([pairing.c_test(pairing.Condition(j.field, v), target) for v in j.ok])
+                expr = f"{ok} ? NMEA_REPLY_OK : NMEA_REPLY_ERROR"
+            out.append({"const": layout_const(sentence, layout), "expr": expr})
+    return out
+
+
 def _text_words(views: list[dict]) -> list[dict]:
     """The lossless fields of a text command written in the spec's letter case, as the Python
     reference shows them: each word (a text command's fields are single words, S015) under its
@@ -714,6 +748,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "hashes": {name: perfect_hash([int(e["code"], 16) for e in dispatch[name]])
                    for name in ("standard", "encapsulated") if dispatch[name]},
         "commands": [v for v in views if v["replies"]], "cased_runs": cased_runs(),
+        "pairings": reply_pairings(spec), "judged": reply_judgements(spec),
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),
         "json_max": json_max(spec, views),
@@ -725,6 +760,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "c/nmea_tool.c": header(spec, "//", ["templates/c/tool.c"]) + tool_c,
         "c/tests/test_examples.c": env.get_template("c/test_examples.c.j2").render(
             header=header(spec, "//"), vectors=[vector_view(r) for r in emit_vectors.example_vectors(spec)],
-            commands=context["commands"], bitfields=bitfields, tables=tables),
+            commands=context["commands"], bitfields=bitfields, tables=tables,
+            reply_cases=[{"const": layout_const(c.command, c.layout), "line": c_str(c.line), "what": c_comment(
+                f"{c.line} to {c.command.id}"), "expect": {"ok": "NMEA_REPLY_OK", "error": "NMEA_REPLY_ERROR"}.get(
+                c.outcome or "", "NMEA_REPLY_NONE")} for c in pairing.reply_cases(spec)]),
     }
     return files

@@ -10,7 +10,7 @@ import jinja2
 
 from . import emit_vectors
 from .emit import TEMPLATES, header
-from .model import Field, Group, Layout, Sentence, Spec
+from .model import Field, Group, Layout, ReplyRule, Sentence, Spec
 
 TYPE_NAMES = {
     "integer": "integer", "decimal": "decimal", "hex": "hex", "time": "UTC time", "date": "date",
@@ -112,6 +112,8 @@ DOMAINS = {
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     env.filters["cell"] = cell
     env.globals["replied_by"] = lambda s: replied_by(spec, s)
+    env.globals["reply_link"] = reply_link
+    env.globals["outcome_text"] = outcome_text
     vectors = [example_view(v) for v in emit_vectors.example_vectors(spec)]
     by_sentence: dict[str, list[dict]] = {}
     for v in vectors:
@@ -214,6 +216,32 @@ def _bitfield_users(spec: Spec, bitfield_id: str) -> list[str]:
             if p.bitfield and p.bitfield.id == bitfield_id and t.id not in users:
                 users.append(t.id)
     return users
+
+
+def _value_text(value: object) -> str:
+    return f"`{value}`"
+
+
+def reply_link(rule: ReplyRule, prefix: str = "") -> str:
+    """A reply of a command, linked, with the field values that pair it with the command."""
+    link = f"[{rule.sentence_id}]({prefix}{rule.sentence_id.lower()}.md)"
+    if not rule.when:
+        return link
+    return link + " with " + " and ".join(f"`{k}` = {_value_text(v)}" for k, v in rule.when.items())
+
+
+def outcome_text(sentence: Sentence) -> str:
+    """What a reply reports, per layout: success, an error, or success when a field says so."""
+    parts = []
+    for layout in sentence.layouts:
+        o = layout.outcome
+        text = ("success (it carries what the command asked for)" if o is None else
+                "success" if o.fixed == "ok" else "an error" if o.fixed == "error" else
+                f"success when `{o.field_id}` is " + " or ".join(_value_text(v) for v in o.ok) + ", else an error")
+        parts.append((f"variant `{layout.id}`: " if layout.id else "", text))
+    if len({text for _, text in parts}) == 1:
+        return parts[0][1]
+    return "; ".join(label + text for label, text in parts)
 
 
 def replied_by(spec: Spec, sentence: Sentence) -> list[Sentence]:

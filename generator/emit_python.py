@@ -7,7 +7,7 @@ import json
 
 import jinja2
 
-from . import emit_vectors
+from . import emit_vectors, pairing
 from .emit import TEMPLATES, header
 from .model import Field, Group, Layout, Sentence, Spec, fmt_num
 
@@ -155,7 +155,22 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
         "before": [v for v in fields if not v["field"].is_optional and not v["pos"].startswith("pos")],
         "after": [v for v in fields if not v["field"].is_optional and v["pos"].startswith("pos")],
         "optional": [v for v in fields if v["field"].is_optional],
+        "reply_rules": [f"({json.dumps(p.reply.id)}, {json.dumps(p.layout.id) if p.layout.id else 'None'}, ({''.join(pairing.python_test(c) + ', ' for c in p.conditions)}))"
+                        for p in pairing.pairings(sentence)],
+        "outcome": _outcome(layout),
     }
+
+
+def _outcome(layout: Layout) -> str | None:
+    """The OUTCOME of a reply layout that does not always report success: "error", or the field
+    and the values that mean success, for runtime.reply_outcome."""
+    j = pairing.judgement(layout)
+    if j.fixed == "ok":
+        return None
+    if j.fixed == "error" or j.field is None:
+        return '"error"'
+    tests = [pairing.python_test(pairing.Condition(j.field, v)) for v in j.ok]
+    return f"({''.join(t + ', ' for t in tests)})"
 
 
 # Names parse_fields already uses (arguments, counters, module names): a field id among them gets
@@ -210,7 +225,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         header=header(spec, "#", ["templates/python/pyproject.toml.j2"]), package=PACKAGE)
     files["python/tests/test_examples.py"] = env.get_template("python/test_examples.py.j2").render(
         header=header(spec, "#"), vectors=[v for v in emit_vectors.example_vectors(spec)], package=PACKAGE,
-        json=json)
+        json=json, reply_cases=pairing.reply_cases(spec))
     return files
 
 

@@ -11,7 +11,7 @@ import textwrap
 
 import jinja2
 
-from . import emit_vectors
+from . import emit_vectors, pairing
 from .emit import TEMPLATES, header
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
 from .rust_features import Gates, cfg, with_cfg
@@ -47,7 +47,7 @@ RUNTIME_NAMES = {
     "JsonFields", "Layout", "Name", "Number", "Range", "Reader", "Shape", "GroupShape", "Time", "WireWriter",
     "Sentence", "Generic", "LayoutId", "Frame", "Option", "Result", "Self", "Framing", "Kind", "Parameter",
     "Table", "Encoding", "Texts", "Parsed", "Options", "Problems", "FieldProblem", "Blanks", "Framer", "Item",
-    "FastReader", "Read", "Unsure", "ByteWriter",
+    "FastReader", "Read", "Unsure", "ByteWriter", "ReplyOutcome",
 }
 
 
@@ -311,6 +311,69 @@ def fmt_const_slice(indent: int, decl: str, items: list[str]) -> list[str]:
     if all(len(line) <= WIDTH for line in lines):
         return lines
     return fmt_slice(indent, f"{decl} = ", items, ";")
+
+
+def fmt_bool_arm(indent: int, pattern: str, value: str) -> list[str]:
+    """A match arm whose value is `a && b && ...`, as rustfmt writes it: on one line, else in a
+    block, else one operand a line."""
+    pad = " " * indent
+    if len(f"{pad}{pattern} => {value},") <= WIDTH or len(pad) + 4 + len(value) <= WIDTH:
+        return fmt_arm(indent, pattern, value)
+    first, *rest = value.split(" && ")
+    return [f"{pad}{pattern} => {{", f"{pad}    {first}", *(f"{pad}        && {r}" for r in rest), f"{pad}}}"]
+
+
+def reply_case_lines(spec: Spec, gates: Gates) -> list[str]:
+    """The elements of tests/examples.rs's REPLY_CASES, as rustfmt writes them."""
+    out: list[str] = []
+    for case in pairing.reply_cases(spec):
+        outcome = f"Some(ReplyOutcome::{case.outcome.capitalize()})" if case.outcome else "None"
+        members = [f"command: LayoutId::{case.command.layout_camel(case.layout)}", f"line: {rust_str(case.line)}",
+                   f"outcome: {outcome}"]
+        one = f"    ReplyCase {{ {', '.join(members)} }},"
+        lines = [one] if len(one) <= WIDTH else ["    ReplyCase {", *(f"        {m}," for m in members), "    },"]
+        reply = spec.by_address(case.line[1:].split(",")[0].split("*")[0])
+        vendors = {case.command.vendor} | {s.vendor for s, _ in reply if s.vendor}
+        out += with_cfg(4, gates_all(vendors), lines)
+    return out
+
+
+def gates_all(vendors: set[str | None]) -> str:
+    """The attribute that compiles an item only with every one of `vendors` ("" for none)."""
+    features = sorted({v for v in vendors if v})
+    if len(features) < 2:
+        return cfg(set(features))
+    return "#[cfg(all(" + ", ".join(f'feature = "{f}"' for f in features) + "))]"
+
+
+def reply_pairing_arms(spec: Spec) -> tuple[list[str], list[str]]:
+    """The arms of `Sentence::reply_to` (command layout, reply layout => the reply's fields hold
+    what the spec pairs them by) and of `reply_outcome` (reply layout => what it reports)."""
+    def gate(*vendors: str | None) -> str:
+        return gates_all(set(vendors))
+
+    reply_arms: list[str] = []
+    for command in spec.proprietary:
+        for p in pairing.pairings(command):
+            binding = "s" if p.conditions else "_"
+            tests = [pairing.rust_test(c, f"s.{ident(c.field.id)}") for c in p.conditions] or ["true"]
+            reply_arms += [line for layout in command.layouts
+                           for line in with_cfg(12, gate(command.vendor, p.reply.vendor), fmt_bool_arm(
+                               12, f"(LayoutId::{command.layout_camel(layout)}, "
+                               f"Self::{p.reply.layout_camel(p.layout)}({binding}))", " && ".join(tests)))]
+    outcome_arms: list[str] = []
+    for sentence in spec.proprietary:
+        for layout, j in pairing.judged(sentence):
+            name = sentence.layout_camel(layout)
+            if j.fixed is not None:
+                arm = fmt_arm(12, f"Self::{name}(_)", "ReplyOutcome::Error")
+            else:
+                assert j.field is not None
+                target = f"s.{ident(j.field.id)}"
+                ok = " || ".join(pairing.rust_test(pairing.Condition(j.field, v), target) for v in j.ok)
+                arm = fmt_arm(12, f"Self::{name}(s)", f"ReplyOutcome::judged({ok})")
+            outcome_arms += with_cfg(12, gate(sentence.vendor), arm)
+    return reply_arms, outcome_arms
 
 
 def fmt_slice(indent: int, head: str, items: list[str], suffix: str) -> list[str]:
@@ -1041,13 +1104,14 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     # Text commands compile with their receivers' features; without them, a fallback finds none.
     text_cfg = cfg(None if not text_commands or any(not t["cfg"] for t in text_commands) else
                    {s.vendor for s in spec.proprietary if s.framing == "text" and s.vendor})
+    reply_arms, outcome_arms = reply_pairing_arms(spec)
     files[f"{base}/src/lib.rs"] = env.get_template("rust/lib.rs.j2").render(
         header=header(spec, "//"), spec=spec, layouts=layouts, example=first, command=command_example(spec),
         unit_examples=unit_examples, proprietary_arms=proprietary_arms, standard_arms=standard_arms,
         encapsulated_arms=encapsulated_arms,
         standard_like_arms=standard_like_arms, standard_fast_arms=standard_fast_arms,
         proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
-        text_commands=text_commands,
+        text_commands=text_commands, reply_arms=reply_arms, outcome_arms=outcome_arms,
         runtime_uses=fmt_use("runtime", rust_sorted(
             {"first_word", "strip_line_ending", "upper_eq", "FastReader", "Unsure"})),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
@@ -1060,5 +1124,5 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/rustfmt.toml"] = header(spec, "#", ["templates/rust/rustfmt.toml"]) + "\n" + rustfmt
     files[f"{base}/tests/examples.rs"] = env.get_template("rust/examples.rs.j2").render(
         header=header(spec, "//"), vectors=[{"rust": example_lines(v), "cfg": gates.sentence(spec.sentence(v["sentence"]))} for v in vectors],
-        crate=CRATE)
+        crate=CRATE, reply_cases=reply_case_lines(spec, gates))
     return files

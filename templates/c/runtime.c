@@ -70,6 +70,12 @@ static bool text_is(nmea_text t, const char *s)
     return k == t.len && s[k] == 0;
 }
 
+/* Whether a number field holds the integer `v` (no decimals), as a reply's pairing asks. */
+static inline bool integer_is(nmea_number n, int64_t v)
+{
+    return n.present && n.scale == 0 && (n.sign == '-' ? -n.digits : n.digits) == v;
+}
+
 static char ascii_upper(char c)
 {
     return c >= 'a' && c <= 'z' ? (char)(c - 'a' + 'A') : c;

@@ -138,6 +138,13 @@ def replies_of(command: Any) -> tuple[Any, ...]:
     return tuple(layout for reply in command.REPLIES for layout in sentences.layouts(reply) or ())
 
 
+def reply_to(command: Any, sentence: Any) -> str | None:
+    """Whether decoded `sentence` answers `command` (a command class or instance), holding the
+    field values the spec pairs them by (e.g. the command number in $PMTK001): "ok" when it reports
+    success, "error" when it reports a failure, None when it is no answer to that command."""
+    return runtime.reply_outcome(command, sentence)
+
+
 def to_json(sentence: Any, values: bool = False) -> str:
     """The tools' JSON line for a decoded sentence (`values`: decoded values, not texts)."""
     text = sentence.to_sentence()

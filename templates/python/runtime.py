@@ -615,6 +615,38 @@ class CodeEnum(Enum):
         return self._value_  # type: ignore[no-any-return]
 
 
+# A reply's pairing with a command and its outcome (generated REPLY_RULES and OUTCOME):
+# (field id, "integer" | "enum" | "text", value) tests; an enum is tested by value id.
+FieldTest = tuple[str, str, Any]
+ReplyRule = tuple[str, "str | None", tuple[FieldTest, ...]]
+Outcome = Any  # "error", or a tuple of FieldTest of which one must hold for success
+
+
+def holds(sentence: Any, test: FieldTest) -> bool:
+    """Whether a field of a decoded sentence holds the value of `test`."""
+    field_id, kind, want = test
+    value = getattr(sentence, field_id, None)
+    if kind == "integer":
+        return isinstance(value, Number) and value.scale == 0 and not value.point and \
+            (-value.digits if value.sign == "-" else value.digits) == want
+    if kind == "enum":
+        return isinstance(value, CodeEnum) and value.id == want
+    return isinstance(value, str) and value == want
+
+
+def reply_outcome(command: Any, sentence: Any) -> str | None:
+    """"ok" or "error" when `sentence` (decoded) answers `command` (a command class or instance),
+    None when it does not answer it."""
+    sentence_id, variant = getattr(sentence, "SENTENCE", None), getattr(sentence, "VARIANT", None)
+    for reply_id, reply_variant, tests in getattr(command, "REPLY_RULES", ()):
+        if reply_id == sentence_id and reply_variant == variant and all(holds(sentence, t) for t in tests):
+            outcome = getattr(sentence, "OUTCOME", None)
+            if outcome is None:
+                return "ok"
+            return "ok" if outcome != "error" and any(holds(sentence, t) for t in outcome) else "error"
+    return None
+
+
 def enum_text(value: CodeEnum | str) -> str:
     return value.value if isinstance(value, CodeEnum) else value
 

@@ -50,6 +50,26 @@ pub enum Kind {
     Output,
 }
 
+/// What a reply to a command reports (see `Sentence::reply_to`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ReplyOutcome {
+    /// The command was carried out, or here is what it asked for.
+    Ok,
+    /// The receiver refused the command or failed to carry it out.
+    Error,
+}
+
+impl ReplyOutcome {
+    /// `Ok` when `ok`, else `Error`.
+    pub const fn judged(ok: bool) -> Self {
+        if ok {
+            Self::Ok
+        } else {
+            Self::Error
+        }
+    }
+}
+
 /// One layout of a sentence (a struct generated from the spec, e.g. `Gga`).
 pub trait Layout<'a>: Sized {
     /// The sentence id, e.g. `"GGA"`.

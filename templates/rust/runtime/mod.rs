@@ -27,7 +27,7 @@ pub use frame::{
     checksum, first_word, is_command_word, is_standard_address, Blanks, FieldIter, Fields, Frame, GroupShape, Reader,
     Shape, MAX_LINE, MAX_PROBLEMS,
 };
-pub use layout::{build, strip_line_ending, Framing, Generic, Kind, Layout, BUILD_CAPACITY};
+pub use layout::{build, strip_line_ending, Framing, Generic, Kind, Layout, ReplyOutcome, BUILD_CAPACITY};
 pub use table::{Encoding, ParamValue, Parameter, ParameterError, Problem, Table};
 pub use types::{
     upper_eq, Ascii, Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Group, Hex, Number,

@@ -109,6 +109,13 @@ pub struct Number {
 }
 
 impl Number {
+    /// Whether the number is the integer `value`, written without decimals (`0220` is 220), as
+    /// a reply's pairing with its command asks.
+    pub fn is_integer(self, value: i64) -> bool {
+        let signed = if self.sign == Sign::Minus { -self.digits } else { self.digits };
+        self.scale == 0 && !self.point && signed == value
+    }
+
     /// Parses `[+-]digits` (`integer`) or `[+-]digits[.digits]`; at most 18 digits.
     #[inline(always)]
     pub fn parse(text: &str, integer: bool) -> Option<Self> {

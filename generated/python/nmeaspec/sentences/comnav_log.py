@@ -35,6 +35,24 @@ class ComnavLog:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("GGA", "GLL", "GSA", "GST", "GSV", "HDT", "RMC", "VTG", "ZDA", )
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
+        ("GGA", None, ()),
+        ("GLL", None, ()),
+        ("GLL", "sentinel", ()),
+        ("GSA", None, ()),
+        ("GSA", "short", ()),
+        ("GSA", "wide_system", ()),
+        ("GSA", "wide", ()),
+        ("GSA", "extra_dop", ()),
+        ("GST", None, ()),
+        ("GSV", None, ()),
+        ("HDT", None, ()),
+        ("RMC", None, ()),
+        ("RMC", "sentinel", ()),
+        ("VTG", None, ()),
+        ("ZDA", None, ()),
+    )
+    """Reply layouts (sentence, variant) and the field values that pair them with this command."""
     FIELD_IDS: ClassVar[tuple[str, ...]] = ("message", "trigger", "period", )
 
     as_received: str | None = None

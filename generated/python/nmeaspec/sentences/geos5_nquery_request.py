@@ -29,6 +29,10 @@ class Geos5NqueryRequest:
     SELECTOR: ClassVar[str | None] = "NQUERY"
     REPLIES: ClassVar[tuple[str, ...]] = ("GEOS5_NQUERY", )
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
+        ("GEOS5_NQUERY", None, ()),
+    )
+    """Reply layouts (sentence, variant) and the field values that pair them with this command."""
     keyword: str = "NQUERY"
     """Command word: The request word; like every GeoS-5 command word it is 6 characters and the only field."""
     problems: list[rt.NmeaError] = field(default_factory=list)

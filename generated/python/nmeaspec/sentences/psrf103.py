@@ -35,6 +35,21 @@ class Psrf103:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("GGA", "GLL", "GSA", "GSV", "RMC", "VTG", )
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
+        ("GGA", None, ()),
+        ("GLL", None, ()),
+        ("GLL", "sentinel", ()),
+        ("GSA", None, ()),
+        ("GSA", "short", ()),
+        ("GSA", "wide_system", ()),
+        ("GSA", "wide", ()),
+        ("GSA", "extra_dop", ()),
+        ("GSV", None, ()),
+        ("RMC", None, ()),
+        ("RMC", "sentinel", ()),
+        ("VTG", None, ()),
+    )
+    """Reply layouts (sentence, variant) and the field values that pair them with this command."""
     message: SirfNmeaMessage | str | None = None
     """Message: The standard sentence to query or schedule, 00 GGA to 05 VTG."""
     mode: SirfRateMode | str | None = None
@@ -122,6 +137,21 @@ class Psrf103ShortCodes:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("GGA", "GLL", "GSA", "GSV", "RMC", "VTG", )
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
+        ("GGA", None, ()),
+        ("GLL", None, ()),
+        ("GLL", "sentinel", ()),
+        ("GSA", None, ()),
+        ("GSA", "short", ()),
+        ("GSA", "wide_system", ()),
+        ("GSA", "wide", ()),
+        ("GSA", "extra_dop", ()),
+        ("GSV", None, ()),
+        ("RMC", None, ()),
+        ("RMC", "sentinel", ()),
+        ("VTG", None, ()),
+    )
+    """Reply layouts (sentence, variant) and the field values that pair them with this command."""
     message: SirfNmeaMessageDigit | str | None = None
     """Message: The standard sentence to query or schedule: 0 GGA, 1 GLL, 2 GSA, 3 GSV, 4 RMC, 5 VTG."""
     mode: SirfRateModeDigit | str | None = None

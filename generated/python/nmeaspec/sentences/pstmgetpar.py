@@ -33,6 +33,14 @@ class Pstmgetpar:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("PSTMSETPAR", "PSTMSET", "PSTMGETPARERROR", )
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
+        ("PSTMSETPAR", None, ()),
+        ("PSTMSETPAR", "dop", ()),
+        ("PSTMSET", None, ()),
+        ("PSTMSET", "dop", ()),
+        ("PSTMGETPARERROR", None, ()),
+    )
+    """Reply layouts (sentence, variant) and the field values that pair them with this command."""
     block_param: rt.Number | None = None
     """Configuration block and parameter ID: One wire field made of the configuration block digit b followed, without a comma or a space, by the 3-digit CDB parameter ID nnn (e.g. 1403 = block 1, parameter 403). Blocks: 1 current configuration (RAM), 2 factory defaults, 3 configuration saved in NVM. ID 000 (e.g. 1000) reads the whole block, answered with one sentence per parameter."""
     problems: list[rt.NmeaError] = field(default_factory=list)

@@ -29,6 +29,10 @@ class Pstmgetswver:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("PSTMGETSWVER_REPLY", )
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
+        ("PSTMGETSWVER_REPLY", None, ()),
+    )
+    """Reply layouts (sentence, variant) and the field values that pair them with this command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
     """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
     checksum: str | None = "upper"

@@ -39,6 +39,11 @@ class Pstmsetpar:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("PSTMSETPAROK", "PSTMSETPARERROR", )
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
+        ("PSTMSETPAROK", None, ()),
+        ("PSTMSETPARERROR", None, ()),
+    )
+    """Reply layouts (sentence, variant) and the field values that pair them with this command."""
     block_param: rt.Number | None = None
     """Configuration block and parameter ID: One wire field made of the configuration block digit b followed, without a comma or a space, by the 3-digit CDB parameter ID nnn (e.g. 1121 = block 1, parameter 121). Blocks: 1 current configuration (RAM), 2 factory defaults, 3 configuration saved in NVM. When setting, the block digit is ignored (only the current configuration can be written) and only kept for the same syntax as $PSTMGETPAR; in the $PSTMGETPAR answer it is the block that was read."""
     value: str | None = None
@@ -132,6 +137,11 @@ class PstmsetparDop:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ("PSTMSETPAROK", "PSTMSETPARERROR", )
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
+        ("PSTMSETPAROK", None, ()),
+        ("PSTMSETPARERROR", None, ()),
+    )
+    """Reply layouts (sentence, variant) and the field values that pair them with this command."""
     block_param: rt.Number | None = None
     """Configuration block and parameter ID: Configuration block digit followed by the DOP parameter ID 400-403 (e.g. 1403 = block 1, start 3D DOP)."""
     pdop: rt.Number | None = None
