@@ -120,7 +120,7 @@ test-rust:
 	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --features std,serde --target-dir $(CARGO_TARGET) -- -D warnings
 	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --target-dir $(CARGO_TARGET) -- -D warnings
 	set -e; for vendor in $(RUST_VENDORS); do \
-		cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --features $$vendor \
+		cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --lib --no-default-features --features $$vendor \
 			--target-dir $(CARGO_TARGET) -- -D warnings; \
 	done
 	cargo fmt --manifest-path generated/rust/Cargo.toml --check

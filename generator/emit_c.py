@@ -393,6 +393,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "address": c_str(sentence.address or ""),
         "command": c_str((sentence.address or "").upper()),
         "selector": c_str(layout.selector) if layout.selector is not None else "NULL",
+        "selector_at": layout.selector_at,
         "variant": c_str(layout.id) if layout.id else "NULL",
         "example": c_comment(example.line) if example and example.line else None,
         "example_manual": example.manual if example else None,

@@ -298,9 +298,11 @@ def fmt_fast_arm(indent: int, pattern: str, layouts: list[str]) -> list[str]:
     pad = " " * indent
     rest = [f"LayoutId::{n}" for n in layouts[1:]]
     call = f"read_layout::<{layouts[0]}, O>"
-    one = f"{pad}{pattern} => {call}(fields, line, &[{', '.join(rest)}]),"
-    if len(one) <= WIDTH:
-        return [one]
+    value = f"{call}(fields, line, &[{', '.join(rest)}])"
+    if len(f"{pad}{pattern} => {value},") <= WIDTH:
+        return [f"{pad}{pattern} => {value},"]
+    if len(pad) + 4 + len(value) <= WIDTH:
+        return [f"{pad}{pattern} => {{", f"{pad}    {value}", f"{pad}}}"]
     return [f"{pad}{pattern} => {call}(", f"{pad}    fields,", f"{pad}    line,",
             *fmt_slice(indent + 4, "", rest, ","), f"{pad}),"]
 

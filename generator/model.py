@@ -274,9 +274,26 @@ class Layout:
 
     @property
     def selector(self) -> str | None:
-        """The keyword a line's first field must hold for this layout (RQUERY in $GPSGG,RQUERY,…)."""
-        first = self.items[0] if self.items else None
-        return first.value if isinstance(first, Field) and first.type == "keyword" else None
+        """The keyword that picks this layout: the first keyword among the fields every line of
+        it has at a fixed place (RQUERY in $GPSGG,RQUERY,…; SAT in $PGLOR,2,SAT,…)."""
+        found = self._selector()
+        return found[1] if found else None
+
+    @property
+    def selector_at(self) -> int:
+        """The wire index (0-based, after the address) of the selector; 0 when there is none."""
+        found = self._selector()
+        return found[0] if found else 0
+
+    def _selector(self) -> tuple[int, str] | None:
+        at = 0
+        for item in self.items:
+            if isinstance(item, Group) or item.is_optional:
+                return None
+            if item.type == "keyword":
+                return at, str(item.value)
+            at += item.wire_width
+        return None
 
     @property
     def min_fields(self) -> int:
@@ -356,9 +373,9 @@ class Sentence:
     def fast_path(self) -> bool:
         """Whether C and Rust give the sentence a fast reader and writer besides the general
         ones: the standard sentences a GNSS receiver sends with every fix, and the proprietary
-        ones; the others (instruments, alarms, AIS, ...) take the general path, which keeps the
-        code small as the spec grows."""
-        return self.is_proprietary or self.id in FAST_PATH_SENTENCES
+        outputs; the others (instruments, alarms, AIS, commands and their replies, ...) take the
+        general path, which keeps the code small as the spec grows."""
+        return self.id in FAST_PATH_SENTENCES or (self.is_proprietary and self.kind == "output")
 
     @property
     def layouts(self) -> list[Layout]:

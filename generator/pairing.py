@@ -96,7 +96,7 @@ def rust_test(condition: Condition, target: str) -> str:
         assert f.enum is not None
         variant = camel(str(value))
         variant = "Self_" if variant == "Self" else variant
-        return f"{target} == Some(Code::Known({f.enum.camel}::{variant}))"
+        return f"{target} == Some(Code::Known(crate::enums::{f.enum.camel}::{variant}))"
     if f.type == "text":
         return f"{target} == Some({json.dumps(value)})"
     return f"{target} == Some({c_char(value)})"

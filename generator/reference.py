@@ -57,6 +57,8 @@ def candidates(spec: Spec, line: str) -> tuple[Any, list[tuple[Sentence, Layout]
         return frame, spec.text_command(frame.address)
     frame = rt.frame(line)
     found = spec.by_address(frame.address) if frame.start == "$" else []
+    if not any(layout.selector is None or holds_selector(layout, frame.fields) for _, layout in found):
+        found = []  # a message of a known family the spec does not know: a generic sentence
     if not found and rt.is_standard_address(frame.start, frame.address):
         standard = spec.sentence(frame.address[2:])
         if standard is not None and not standard.is_proprietary and standard.start == frame.start:
@@ -77,12 +79,17 @@ def decode(spec: Spec, line: str) -> Decoded:
     raise _best_error(errors, frame)
 
 
+def holds_selector(layout: Layout, fields: list[str]) -> bool:
+    """Whether the line's fields hold the layout's keyword in its place (ignoring case)."""
+    at = layout.selector_at
+    return layout.selector is not None and at < len(fields) and fields[at].upper() == layout.selector.upper()
+
+
 def _best_error(errors: list[tuple[Layout, Any]], frame: Any) -> Any:
-    """The error to report when no layout fits. The layouts whose keyword the line's first field
-    holds (else all) are the contenders; of those, the first whose field count fitted (its error
+    """The error to report when no layout fits. The layouts whose keyword the line holds in its
+    place (else all) are the contenders; of those, the first whose field count fitted (its error
     is a bad field) else the first."""
-    first = frame.fields[0].upper() if frame.fields else None
-    contenders = [e for layout, e in errors if layout.selector is not None and layout.selector.upper() == first]
+    contenders = [e for layout, e in errors if layout.selector is not None and holds_selector(layout, frame.fields)]
     contenders = contenders or [e for _, e in errors]
     return next((e for e in contenders if e.kind == "bad_field"), contenders[0])
 

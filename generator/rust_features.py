@@ -20,7 +20,11 @@ def cfg(vendors: set[str] | None) -> str:
     features = sorted(vendors)
     if len(features) == 1:
         return f'#[cfg(feature = "{features[0]}")]'
-    return "#[cfg(any(" + ", ".join(f'feature = "{f}"' for f in features) + "))]"
+    one = "#[cfg(any(" + ", ".join(f'feature = "{f}"' for f in features) + "))]"
+    if len(one) <= 120:
+        return one
+    # As rustfmt writes it (items at the top level, where long ones occur).
+    return "\n".join(["#[cfg(any(", *(f'    feature = "{f}",' for f in features[:-1]), f'    feature = "{features[-1]}"', "))]"])
 
 
 class Gates:

@@ -54,6 +54,8 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
         if checksum is not None and address.isalnum():
             del fields[0]
             layouts = BY_ADDRESS.get(address) or sentences.by_address(address)
+            if layouts is not None and not runtime.claimed(layouts, fields):
+                layouts = None
             if layouts is None and len(address) == 5 and address[0] != "P":
                 layouts = STANDARD.get(address[2:]) or sentences.standard(address[2:])
             if layouts is None:
@@ -76,6 +78,8 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
     checksum = runtime.checksum_case(frame.checksum)
     address = frame.address
     layouts = (BY_ADDRESS.get(address) or sentences.by_address(address)) if frame.start == "$" else None
+    if layouts is not None and not runtime.claimed(layouts, frame.fields):
+        layouts = None
     if layouts is None and runtime.is_standard_address(frame.start, address):
         formatter = address[2:]
         if frame.start == "$":
@@ -120,15 +124,14 @@ def _lenient(layouts: tuple[Any, ...], address: str, fields: list[str], checksum
 def _first_fit(layouts: tuple[Any, ...], address: str, fields: list[str], checksum: str | None,
                line: str) -> Any:
     """The first layout that parses the fields. When none does, the error of the layouts whose
-    keyword the first field holds (else of all): the first bad field, else the first error."""
+    keyword the line holds in its place (else of all): the first bad field, else the first error."""
     errors = []
     for layout in layouts:
         try:
             return layout.parse_fields(address, fields, checksum, line)
         except NmeaError as err:
             errors.append((layout, err))
-    first = fields[0].upper() if fields else None
-    contenders = [err for layout, err in errors if layout.SELECTOR is not None and layout.SELECTOR == first]
+    contenders = [err for layout, err in errors if runtime.holds_selector(layout, fields)]
     contenders = contenders or [err for _, err in errors]
     raise next((err for err in contenders if err.kind == "bad_field"), contenders[0])
 

@@ -615,6 +615,19 @@ class CodeEnum(Enum):
         return self._value_  # type: ignore[no-any-return]
 
 
+def holds_selector(layout: Any, fields: list[str]) -> bool:
+    """Whether the fields hold the layout's keyword (SELECTOR) in its place, ignoring case."""
+    at = getattr(layout, "SELECTOR_AT", 0)
+    return layout.SELECTOR is not None and at < len(fields) and fields[at].upper() == layout.SELECTOR.upper()
+
+
+def claimed(layouts: tuple[Any, ...], fields: list[str]) -> bool:
+    """Whether one of the layouts of an address may read the line: one without a keyword, or one
+    whose keyword the line holds. Else the line is a message of a known family that the spec does
+    not know, kept as a generic sentence."""
+    return any(layout.SELECTOR is None or holds_selector(layout, fields) for layout in layouts)
+
+
 # A reply's pairing with a command and its outcome (generated REPLY_RULES and OUTCOME):
 # (field id, "integer" | "enum" | "text", value) tests; an enum is tested by value id.
 FieldTest = tuple[str, str, Any]

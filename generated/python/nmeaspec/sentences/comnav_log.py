@@ -32,7 +32,8 @@ class ComnavLog:
     VARIANT: ClassVar[str | None] = None
     ADDRESS: ClassVar[str | None] = "LOG"
     KIND: ClassVar[str] = "command"
-    SELECTOR: ClassVar[str | None] = None
+    SELECTOR: ClassVar[str | None] = "ONTIME"
+    SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ("GGA", "GLL", "GSA", "GST", "GSV", "HDT", "RMC", "VTG", "ZDA", )
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (

@@ -16,9 +16,7 @@ use core::fmt;
 use crate::enums::Geos5CommandWord;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
 use crate::LayoutId;
 
 /// GEOS5_COMMAND: GeoS-5 input command.
@@ -78,13 +76,6 @@ impl<'a> Layout<'a> for Geos5Command<'a> {
         let mut out = Self { checksum, ..Self::default() };
         out.command = f.code("command")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.command = f.code()?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

@@ -15,8 +15,7 @@ use crate::enums::{Geos5MessageRate, Geos5NmeaVersion, Geos5OutputRate};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -136,26 +135,6 @@ impl<'a> Layout<'a> for Geos5Nquery<'a> {
         out.dtm_rate = f.code("dtm_rate")?;
         out.rlm_rate = f.code("rlm_rate")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        f.keyword("NQUERY")?;
-        self.port = f.integer(Range::between(Bound::int(0), Bound::int(1)))?;
-        self.output_rate = f.code()?;
-        self.nmea_version = f.code()?;
-        self.gga_rate = f.code()?;
-        self.gll_rate = f.code()?;
-        self.gsa_rate = f.code()?;
-        self.gsv_rate = f.code()?;
-        self.rmc_rate = f.code()?;
-        self.vtg_rate = f.code()?;
-        self.gns_rate = f.code()?;
-        self.zda_rate = f.code()?;
-        self.dtm_rate = f.code()?;
-        self.rlm_rate = f.code()?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

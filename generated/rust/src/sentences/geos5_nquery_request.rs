@@ -11,9 +11,7 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
 use crate::LayoutId;
 
 /// GEOS5_NQUERY_REQUEST: GeoS-5 request for the set and rates of NMEA sentences.
@@ -71,13 +69,6 @@ impl<'a> Layout<'a> for Geos5NqueryRequest {
         let out = Self { checksum };
         f.keyword("keyword", "NQUERY")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        f.keyword("NQUERY")?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

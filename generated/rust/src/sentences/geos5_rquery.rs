@@ -15,9 +15,7 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Date, Error, FastReader, Fields, Framing, Hex, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{ByteWriter, Checksum, Date, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
 use crate::LayoutId;
 
 /// GEOS5_RQUERY: GeoS-5 software version, telemetry and configuration.
@@ -100,19 +98,6 @@ impl<'a> Layout<'a> for Geos5Rquery<'a> {
         out.config_1 = f.hex("config_1")?;
         out.config_2 = f.hex("config_2")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        f.keyword("RQUERY")?;
-        self.receiver_name = f.text(None)?;
-        self.software_version = f.text(None)?;
-        self.software_date = f.date()?;
-        self.status = f.hex()?;
-        self.config_1 = f.hex()?;
-        self.config_2 = f.hex()?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

@@ -16,8 +16,7 @@ use crate::enums::{SirfBaud, SirfParity, SirfProtocol};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -88,17 +87,6 @@ impl<'a> Layout<'a> for Psrf100<'a> {
         out.stop_bits = f.integer("stop_bits", "integer 0..1", Range::between(Bound::int(0), Bound::int(1)))?;
         out.parity = f.code("parity")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.protocol = f.code()?;
-        self.baud = f.code()?;
-        self.data_bits = f.integer(Range::between(Bound::int(7), Bound::int(8)))?;
-        self.stop_bits = f.integer(Range::between(Bound::int(0), Bound::int(1)))?;
-        self.parity = f.code()?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

@@ -17,8 +17,7 @@ use crate::enums::{
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -88,16 +87,6 @@ impl<'a> Layout<'a> for Psrf103<'a> {
         out.rate = f.integer("rate", "integer 0..255", Range::between(Bound::int(0), Bound::int(255)))?;
         out.checksum_mode = f.code("checksum_mode")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.message = f.code()?;
-        self.mode = f.code()?;
-        self.rate = f.integer(Range::between(Bound::int(0), Bound::int(255)))?;
-        self.checksum_mode = f.code()?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {
@@ -204,16 +193,6 @@ impl<'a> Layout<'a> for Psrf103ShortCodes<'a> {
         out.rate = f.integer("rate", "integer 0..255", Range::between(Bound::int(0), Bound::int(255)))?;
         out.checksum_mode = f.code("checksum_mode")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.message = f.code()?;
-        self.mode = f.code()?;
-        self.rate = f.integer(Range::between(Bound::int(0), Bound::int(255)))?;
-        self.checksum_mode = f.code()?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

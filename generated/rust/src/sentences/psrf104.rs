@@ -13,8 +13,7 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -112,20 +111,6 @@ impl<'a> Layout<'a> for Psrf104 {
         out.channels = f.integer("channels", "integer 1..12", Range::between(Bound::int(1), Bound::int(12)))?;
         out.reset_cfg = f.integer("reset_cfg", "integer 0..7", Range::between(Bound::int(0), Bound::int(7)))?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.latitude = f.decimal(Range::between(Bound::int(-90), Bound::int(90)))?;
-        self.longitude = f.decimal(Range::between(Bound::int(-180), Bound::int(180)))?;
-        self.altitude = f.decimal(Range::ANY)?;
-        self.clock_offset = f.integer(Range::between(Bound::int(-2147483648), Bound::int(2147483647)))?;
-        self.time_of_week = f.integer(Range::between(Bound::int(0), Bound::int(604799)))?;
-        self.week = f.integer(Range::between(Bound::int(0), Bound::int(65535)))?;
-        self.channels = f.integer(Range::between(Bound::int(1), Bound::int(12)))?;
-        self.reset_cfg = f.integer(Range::between(Bound::int(0), Bound::int(7)))?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

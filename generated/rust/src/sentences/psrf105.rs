@@ -14,9 +14,7 @@ use core::fmt;
 use crate::enums::SirfDebug;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
 use crate::LayoutId;
 
 /// PSRF105: Switch development data messages on/off.
@@ -72,13 +70,6 @@ impl<'a> Layout<'a> for Psrf105<'a> {
         let mut out = Self { checksum, ..Self::default() };
         out.debug = f.code("debug")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.debug = f.code()?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

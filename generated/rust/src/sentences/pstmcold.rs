@@ -13,8 +13,7 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -82,16 +81,6 @@ impl<'a> Layout<'a> for Pstmcold {
             out.trailing = 1;
         }
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        if extra >= 1 {
-            self.mask = f.integer(Range::between(Bound::int(0), Bound::int(15)))?;
-            self.trailing = 1;
-        }
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

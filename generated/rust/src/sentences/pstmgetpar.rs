@@ -13,8 +13,7 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -78,13 +77,6 @@ impl<'a> Layout<'a> for Pstmgetpar {
         out.block_param =
             f.integer("block_param", "integer 1000..3999", Range::between(Bound::int(1000), Bound::int(3999)))?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.block_param = f.integer(Range::between(Bound::int(1000), Bound::int(3999)))?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

@@ -13,8 +13,7 @@ use crate::enums::{TeseoRtcStatus, TeseoTimeValidity};
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, Time,
-    WireWriter,
+    ByteWriter, Checksum, Code, Date, Error, Fields, Framing, JsonFields, Layout, Shape, Time, WireWriter,
 };
 use crate::LayoutId;
 
@@ -73,16 +72,6 @@ impl<'a> Layout<'a> for PstmgetrtctimeReply<'a> {
         out.rtc_status = f.code("rtc_status")?;
         out.time_validity = f.code("time_validity")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.time = f.time()?;
-        self.date = f.date()?;
-        self.rtc_status = f.code()?;
-        self.time_validity = f.code()?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

@@ -12,9 +12,7 @@ use core::fmt;
 use crate::enums::TeseoCompilerType;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
 use crate::LayoutId;
 
 /// PSTMGETSWVER_REPLY: Software version.
@@ -74,16 +72,6 @@ impl<'a> Layout<'a> for PstmgetswverReply<'a> {
         out.build_date = f.text("build_date", "text", None)?;
         out.build_time = f.text("build_time", "text", None)?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.library_version = f.text(None)?;
-        self.compiler = f.code()?;
-        self.build_date = f.text(None)?;
-        self.build_time = f.text(None)?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

@@ -13,9 +13,7 @@ use core::fmt;
 use crate::enums::TeseoNmeaOnOff;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
 use crate::LayoutId;
 
 /// PSTMNMEAONOFF: NMEA output on/off.
@@ -77,16 +75,6 @@ impl<'a> Layout<'a> for Pstmnmeaonoff<'a> {
             out.trailing = 1;
         }
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        if extra >= 1 {
-            self.on_off = f.code()?;
-            self.trailing = 1;
-        }
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

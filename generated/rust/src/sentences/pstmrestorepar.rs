@@ -12,9 +12,7 @@ use core::fmt;
 
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
 use crate::LayoutId;
 
 /// PSTMRESTOREPAR: Restore factory parameters.
@@ -63,12 +61,6 @@ impl<'a> Layout<'a> for Pstmrestorepar {
         fields.shape(&Self::SHAPE)?;
         let out = Self { checksum };
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

@@ -14,8 +14,7 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -73,14 +72,6 @@ impl<'a> Layout<'a> for Pstmset<'a> {
             f.integer("block_param", "integer 1000..3999", Range::between(Bound::int(1000), Bound::int(3999)))?;
         out.value = f.text("value", "text of at most 80 characters", Some(80))?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.block_param = f.integer(Range::between(Bound::int(1000), Bound::int(3999)))?;
-        self.value = f.text(Some(80))?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {
@@ -185,17 +176,6 @@ impl<'a> Layout<'a> for PstmsetDop {
         out.hdop = f.decimal("hdop", "decimal number 0..99", Range::between(Bound::int(0), Bound::int(99)))?;
         out.gdop = f.decimal("gdop", "decimal number 0..99", Range::between(Bound::int(0), Bound::int(99)))?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.block_param = f.integer(Range::between(Bound::int(1400), Bound::int(3403)))?;
-        self.pdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
-        self.vdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
-        self.hdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
-        self.gdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

@@ -17,8 +17,7 @@ use crate::enums::TeseoSetparMode;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -103,18 +102,6 @@ impl<'a> Layout<'a> for Pstmsetpar<'a> {
             out.trailing = 1;
         }
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.block_param = f.integer(Range::between(Bound::int(1000), Bound::int(3999)))?;
-        self.value = f.text(Some(80))?;
-        if extra >= 1 {
-            self.mode = f.code()?;
-            self.trailing = 1;
-        }
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {
@@ -237,21 +224,6 @@ impl<'a> Layout<'a> for PstmsetparDop<'a> {
             out.trailing = 1;
         }
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.block_param = f.integer(Range::between(Bound::int(1400), Bound::int(3403)))?;
-        self.pdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
-        self.vdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
-        self.hdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
-        self.gdop = f.decimal(Range::between(Bound::int(0), Bound::int(99)))?;
-        if extra >= 1 {
-            self.mode = f.code()?;
-            self.trailing = 1;
-        }
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

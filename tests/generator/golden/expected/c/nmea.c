@@ -795,45 +795,12 @@ static bool pacmack_read(nmea_pacmack *s, const nmea_wire *wire, nmea_error *err
 }
 
 
-/* pacmack_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
-   (`end` is just past it). */
-static fast_result pacmack_fast(nmea_pacmack *s, const char *line, const char *p, const char *end, size_t count)
-{
-    size_t optional;
-
-    if (!fast_count(count, 2, 2, &optional))
-        return FAST_NOT_THIS;
-    clear_layout(s, offsetof(nmea_pacmack, problems));
-    s->problems.count = 0;
-    (void)line;
-    s->checksum = NMEA_CHECKSUM_UPPER;
-    (void)optional;
-    if (!fast_text(&p, &s->command, 8)
-        || !fast_integer(&p, &s->ok, &range_0_to_1))
-        return FAST_UNSURE;
-    return p == end ? FAST_OK : FAST_UNSURE;
-}
-
 static void pacmack_write(nmea_writer *w, const nmea_pacmack *s)
 {
     begin_sentence(w, '$', nmea_text_of(NULL), "PACMACK", &s->problems);
     put_text_field(w, s->command);
     put_number(w, &s->ok);
     end_sentence(w, s->checksum);
-}
-
-/* pacmack_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
-   to the general writer. */
-static size_t pacmack_fast_write(const nmea_pacmack *s, char *buf, size_t cap)
-{
-    fast_writer w;
-
-    if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PACMACK", &s->problems))
-        return 0;
-    if (!fast_put_text_field(&w, s->command)
-        || !fast_put_number(&w, &s->ok))
-        return 0;
-    return fast_end(&w, s->checksum);
 }
 #ifndef NMEA_NO_JSON
 
@@ -867,11 +834,6 @@ bool nmea_parse_pacmack(nmea_pacmack *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_pacmack(const nmea_pacmack *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
-#ifndef NMEA_NO_FAST_PATH
-    size_t n = pacmack_fast_write(s, buf, cap);
-    if (n)
-        return n;
-#endif
     pacmack_write(&w, s);
     return writer_finish(&w);
 }
@@ -912,26 +874,6 @@ static bool pacmset_read(nmea_pacmset *s, const nmea_wire *wire, nmea_error *err
 }
 
 
-/* pacmset_read on the fast path (see fast_frame): `count` fields from `p` to the final '*'
-   (`end` is just past it). */
-static fast_result pacmset_fast(nmea_pacmset *s, const char *line, const char *p, const char *end, size_t count)
-{
-    size_t optional;
-
-    if (!fast_count(count, 3, 3, &optional))
-        return FAST_NOT_THIS;
-    clear_layout(s, offsetof(nmea_pacmset, problems));
-    s->problems.count = 0;
-    (void)line;
-    s->checksum = NMEA_CHECKSUM_UPPER;
-    (void)optional;
-    if (!fast_keyword(&p, "BAUD")
-        || !fast_enum(&p, &s->baud, &nmea_acme_baud_def)
-        || !fast_hex(&p, &s->outputs))
-        return FAST_UNSURE;
-    return p == end ? FAST_OK : FAST_UNSURE;
-}
-
 static void pacmset_write(nmea_writer *w, const nmea_pacmset *s)
 {
     begin_sentence(w, '$', nmea_text_of(NULL), "PACMSET", &s->problems);
@@ -939,21 +881,6 @@ static void pacmset_write(nmea_writer *w, const nmea_pacmset *s)
     put_enum(w, &s->baud, &nmea_acme_baud_def);
     put_hex(w, &s->outputs);
     end_sentence(w, s->checksum);
-}
-
-/* pacmset_write on the fast path (see fast_writer): the sentence's length, or 0 to leave it
-   to the general writer. */
-static size_t pacmset_fast_write(const nmea_pacmset *s, char *buf, size_t cap)
-{
-    fast_writer w;
-
-    if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PACMSET", &s->problems))
-        return 0;
-    if (!fast_put_keyword(&w, "BAUD", 4)
-        || !fast_put_enum(&w, &s->baud, &nmea_acme_baud_def)
-        || !fast_put_hex(&w, &s->outputs))
-        return 0;
-    return fast_end(&w, s->checksum);
 }
 #ifndef NMEA_NO_JSON
 
@@ -989,11 +916,6 @@ bool nmea_parse_pacmset(nmea_pacmset *out, const char *line, size_t len, nmea_er
 size_t nmea_serialize_pacmset(const nmea_pacmset *s, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
-#ifndef NMEA_NO_FAST_PATH
-    size_t n = pacmset_fast_write(s, buf, cap);
-    if (n)
-        return n;
-#endif
     pacmset_write(&w, s);
     return writer_finish(&w);
 }
@@ -1014,25 +936,55 @@ size_t nmea_build_pacmset(const nmea_pacmset *s, char *buf, size_t cap, nmea_err
 /* Dispatch */
 
 /* What the dispatch knows of each layout: its sentence id, the address of a proprietary
-   sentence (for a text command also its word in upper case) and the keyword its first field
-   must hold (its selector). */
+   sentence (for a text command also its word in upper case) and the keyword every line of it
+   holds (its selector) at wire index selector_at (0-based). */
 typedef struct {
     const char *sentence;
     const char *address;
     const char *command;
     const char *selector;
+    unsigned selector_at;
 } nmea_layout_info;
 
 static const nmea_layout_info LAYOUT_INFO[NMEA_SENTENCE_COUNT] = {
-    {NULL, NULL, NULL, NULL},
-    {"FIX", NULL, NULL, NULL},
-    {"FIX", NULL, NULL, NULL},
-    {"SAT", NULL, NULL, NULL},
-    {"XDM", NULL, NULL, NULL},
-    {"ACME_LOG", "LOG", "LOG", NULL},
-    {"PACMACK", "PACMACK", NULL, NULL},
-    {"PACMSET", "PACMSET", NULL, "BAUD"},
+    {NULL, NULL, NULL, NULL, 0},
+    {"FIX", NULL, NULL, NULL, 0},
+    {"FIX", NULL, NULL, NULL, 0},
+    {"SAT", NULL, NULL, NULL, 0},
+    {"XDM", NULL, NULL, NULL, 0},
+    {"ACME_LOG", "LOG", "LOG", NULL, 0},
+    {"PACMACK", "PACMACK", NULL, NULL, 0},
+    {"PACMSET", "PACMSET", NULL, "BAUD", 0},
 };
+
+/* Wire field `index` (0-based) of `fields` (separated by `sep`); empty past the end. */
+static nmea_text field_at(nmea_text fields, char sep, size_t index)
+{
+    const char *p = fields.ptr, *end = fields.ptr + fields.len, *stop;
+    for (; index > 0 && p < end; index--) {
+        while (p < end && *p != sep)
+            p++;
+        if (p < end)
+            p++;
+        else
+            return text_span(end, end);
+    }
+    for (stop = p; stop < end && *stop != sep; stop++)
+        continue;
+    return text_span(p, stop);
+}
+
+/* Whether a line with `count` wire fields holds the keyword of `layout` in its place (ignoring
+   case); blanked fields (lenient parsing) hold nothing. */
+static bool holds_selector(nmea_sentence_id layout, const nmea_wire *wire)
+{
+    const nmea_layout_info *info = &LAYOUT_INFO[layout];
+    if (!info->selector || info->selector_at >= wire->count)
+        return false;
+    if (wire->blanks && is_blank(wire->blank, wire->blanks, info->selector_at + 1))
+        return false;
+    return upper_is(field_at(wire->fields, wire->sep, info->selector_at), info->selector);
+}
 
 /* The layouts a line may have, in the order they are tried. */
 typedef struct {
@@ -1042,6 +994,18 @@ typedef struct {
     const nmea_sentence_id *ids;
     size_t count;
 } nmea_layouts;
+
+/* Whether one of the layouts of a `$` line's address may read it: one without a keyword, or
+   one whose keyword the line holds; else the line is a message of a known family that the spec
+   does not know, kept as a generic sentence. */
+static bool claimed(const nmea_layouts *layouts, const nmea_wire *wire)
+{
+    size_t i;
+    for (i = 0; i < layouts->count; i++)
+        if (!LAYOUT_INFO[layouts->ids[i]].selector || holds_selector(layouts->ids[i], wire))
+            return true;
+    return false;
+}
 static const nmea_sentence_id STANDARD_1[] = {NMEA_SENTENCE_FIX, NMEA_SENTENCE_FIX_SHORT};
 static const nmea_sentence_id STANDARD_2[] = {NMEA_SENTENCE_SAT};
 static const nmea_sentence_id ENCAPSULATED_1[] = {NMEA_SENTENCE_XDM};
@@ -1202,10 +1166,6 @@ static fast_result fast_read_layout(nmea_sentence *out, nmea_sentence_id id, con
 {
     out->id = id;
     switch (id) {
-    case NMEA_SENTENCE_PACMACK:
-        return pacmack_fast(&out->as.pacmack, line, fields, end, count);
-    case NMEA_SENTENCE_PACMSET:
-        return pacmset_fast(&out->as.pacmset, line, fields, end, count);
     default:
         return FAST_NOT_THIS;
     }
@@ -1264,20 +1224,12 @@ NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts,
 {
     nmea_error attempt, chosen, fallback;
     bool have_chosen = false, have_fallback = false;
-    const char *first_end = wire->fields.ptr;
-    nmea_text first;
     size_t i;
 
-    while (first_end < wire->fields.ptr + wire->fields.len && *first_end != wire->sep)
-        first_end++;
-    first = text_span(wire->fields.ptr, first_end);
-    if (wire->blanks && is_blank(wire->blank, wire->blanks, 1))
-        first.len = 0;
     for (i = 0; i < layouts->count; i++) {
-        const char *selector = LAYOUT_INFO[layouts->ids[i]].selector;
         if (read_layout(out, layouts->ids[i], wire, &attempt))
             return true;
-        if (selector && wire->count && upper_is(first, selector))
+        if (holds_selector(layouts->ids[i], wire))
             keep_error(&chosen, &have_chosen, &attempt);
         keep_error(&fallback, &have_fallback, &attempt);
     }
@@ -1377,10 +1329,6 @@ static void write_sentence(nmea_writer *w, const nmea_sentence *s)
 NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size_t cap)
 {
     switch (s->id) {
-    case NMEA_SENTENCE_PACMACK:
-        return pacmack_fast_write(&s->as.pacmack, buf, cap);
-    case NMEA_SENTENCE_PACMSET:
-        return pacmset_fast_write(&s->as.pacmset, buf, cap);
     default:
         return 0;
     }
@@ -1505,7 +1453,8 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
         }
     } else if (f.start.ptr[0] == '$' && (layouts = find_layouts(PROPRIETARY, PROPRIETARY_COUNT, f.address)) != NULL) {
         wire_of(&wire, &f, NULL, NULL);
-        return fit(out, layouts, &wire, options->lenient, err);
+        if (claimed(layouts, &wire))
+            return fit(out, layouts, &wire, options->lenient, err);
     }
     out->id = NMEA_SENTENCE_GENERIC;
     out->as.generic.start = f.start;

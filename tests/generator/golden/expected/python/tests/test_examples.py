@@ -56,7 +56,7 @@ EXAMPLES = [
 def test_example(manual: str, raw: str, checksum_ok: bool, line: str | None, text_json: str | None,
                  values_json: str | None, raw_json: str | None) -> None:
     if raw_json is not None:
-        assert nmeaspec.decode_json(raw) == raw_json
+        assert nmeaspec.decode_json(raw.encode("utf-8")) == raw_json
     if not checksum_ok:  # damaged: its checksum fails, or it lost its '$'
         assert raw_json.startswith('{"ok":false')
     if line is None:

@@ -195,7 +195,8 @@ impl LayoutId {
         }
     }
 
-    /// The keyword the line's first field holds for this layout (`RQUERY` in `$GPSGG,RQUERY`).
+    /// The keyword that picks this layout, held by every line of it at a fixed place
+    /// ([`LayoutId::selector_at`]): `RQUERY` in `$GPSGG,RQUERY`, `SAT` in `$PGLOR,2,SAT`.
     pub const fn selector(self) -> Option<&'static str> {
         match self {
             Self::Fix => None,
@@ -208,6 +209,25 @@ impl LayoutId {
             Self::Pacmack => None,
             #[cfg(feature = "acme")]
             Self::Pacmset => Some("BAUD"),
+        }
+    }
+
+    /// The wire index (0-based, after the address) of the selector; 0 when there is none.
+    #[allow(clippy::match_single_binding)]
+    pub const fn selector_at(self) -> usize {
+        match self {
+            _ => 0,
+        }
+    }
+
+    /// Whether `fields` hold this layout's keyword in its place (ignoring case).
+    pub fn holds_selector(self, fields: &Fields<'_>) -> bool {
+        match self.selector() {
+            Some(keyword) => fields
+                .get(self.selector_at() + 1)
+                .filter(|_| !fields.is_empty())
+                .is_some_and(|word| upper_eq(word, keyword)),
+            None => false,
         }
     }
 
@@ -725,7 +745,7 @@ fn general_with(line: &[u8], options: Options) -> Result<Parsed<'_>, Error<'_>> 
     }
     let frame = Frame::parse_checked(line, options.require_checksum)?;
     let layouts = layouts_of(frame.start, frame.address);
-    if layouts.is_empty() {
+    if !claimed(layouts, &frame) {
         return Ok(Sentence::Generic(Generic::from_frame(frame)).into());
     }
     match first_fit(layouts, frame.fields, frame.checksum) {
@@ -767,10 +787,19 @@ pub fn lenient<'a>(
 /// [`Generic`] when the spec knows none.
 pub fn parse_frame(frame: Frame<'_>) -> Result<Sentence<'_>, Error<'_>> {
     let layouts = layouts_of(frame.start, frame.address);
-    if layouts.is_empty() {
+    if !claimed(layouts, &frame) {
         return Ok(Sentence::Generic(Generic::from_frame(frame)));
     }
     first_fit(layouts, frame.fields, frame.checksum)
+}
+
+/// Whether one of the layouts of the line's address may read it: for a `$` line, one without a
+/// keyword or one whose keyword the line holds; else the line is a message of a known family
+/// that the spec does not know, kept as a [`Generic`] sentence.
+fn claimed(layouts: &[LayoutId], frame: &Frame<'_>) -> bool {
+    !layouts.is_empty()
+        && (frame.start != "$"
+            || layouts.iter().any(|layout| layout.selector().is_none() || layout.holds_selector(&frame.fields)))
 }
 
 /// The first of `layouts` (not empty) that fits the fields; when none does, the error of the
@@ -787,10 +816,8 @@ fn first_fit<'a>(layouts: &[LayoutId], fields: Fields<'a>, checksum: Checksum) -
     if others.is_empty() {
         return Err(error);
     }
-    let word = fields.get(1).filter(|_| !fields.is_empty());
     let rank = |layout: LayoutId, error: &Error<'_>| {
-        let contender = matches!((layout.selector(), word), (Some(keyword), Some(word)) if upper_eq(word, keyword));
-        u8::from(!contender) * 2 + u8::from(error.kind() != ErrorKind::BadField)
+        u8::from(!layout.holds_selector(&fields)) * 2 + u8::from(error.kind() != ErrorKind::BadField)
     };
     let mut best = (rank(first, &error), error);
     for &layout in others {

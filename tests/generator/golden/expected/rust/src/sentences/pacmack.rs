@@ -11,8 +11,7 @@ use core::fmt;
 #[cfg(feature = "std")]
 use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
 };
 use crate::LayoutId;
 
@@ -69,14 +68,6 @@ impl<'a> Layout<'a> for Pacmack<'a> {
         out.command = f.text("command", "text of at most 8 characters", Some(8))?;
         out.ok = f.integer("ok", "integer 0..1", Range::between(Bound::int(0), Bound::int(1)))?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        self.command = f.text(Some(8))?;
-        self.ok = f.integer(Range::between(Bound::int(0), Bound::int(1)))?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {

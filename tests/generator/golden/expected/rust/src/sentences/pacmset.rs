@@ -11,9 +11,7 @@ use core::fmt;
 use crate::enums::AcmeBaud;
 #[cfg(feature = "std")]
 use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Hex, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
 use crate::LayoutId;
 
 /// PACMSET: Set a parameter.
@@ -77,15 +75,6 @@ impl<'a> Layout<'a> for Pacmset<'a> {
         out.baud = f.code("baud")?;
         out.outputs = f.hex("outputs")?;
         Ok(out)
-    }
-
-    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
-    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
-        self.checksum = Checksum::Upper;
-        f.keyword("BAUD")?;
-        self.baud = f.code()?;
-        self.outputs = f.hex()?;
-        f.end()
     }
 
     fn checksum(&self) -> Checksum {
