@@ -31,7 +31,9 @@ def seeds() -> list[bytes]:
         if record["line"]:
             lines.append(record["line"])
     lines += [s for _, _, s in random_lines(spec, 2, seed=99)]
-    out = [line.encode("latin-1") for line in lines]
+    # A line holds bytes as characters up to U+00FF; a manual's text with a character beyond (a
+    # Unicode minus) is its UTF-8 bytes, as the tools read it.
+    out = [line.encode("latin-1") if max(map(ord, line), default=0) < 256 else line.encode() for line in lines]
     out += [line.rstrip(b"\r") for line in (ROOT / "tests" / "agreement" / "edge_cases.txt").read_bytes().split(b"\n")]
     for path in sorted(CORPUS.rglob("*.nmea")):
         logged = [line.rstrip(b"\r") for line in path.read_bytes().split(b"\n") if line]
