@@ -118,6 +118,9 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
                 if isinstance(item, Group) or item.wire_width != 1:
                     report(item.origin, "S015", "a text command's fields are single words: no groups, no "
                            "latitude or longitude", "id")
+                elif item.type == "keyword" and item.value and item.value != item.value.upper():
+                    # Text commands match their words ignoring case, against the upper-case spelling.
+                    report(item.origin, "S015", f"keyword field {item.id}: write the word in upper case", "value")
     if sentence.reply_ids and sentence.kind != "command":
         report(sentence.origin, "S011", "only commands have replies", "replies")
     sentence.replies = []
@@ -345,8 +348,6 @@ def _resolve_field(spec: Spec, f: Field, manual_ids: set[str], report: _Reporter
             report(f.origin, "S012", f"field {f.id}: a bitfield applies to hex and integer fields", "bitfield")
     if f.type == "keyword" and not (f.value or "").strip():
         report(f.origin, "S007", f"keyword field {f.id} needs its word in `value`", "value")
-    if f.type == "keyword" and f.value and f.value != f.value.upper():
-        report(f.origin, "S015", f"keyword field {f.id}: write the word in upper case", "value")
     if f.enum_id is not None:
         f.enum = spec.enum_by_id.get(f.enum_id)
         if f.enum is None:

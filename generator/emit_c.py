@@ -392,7 +392,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "fast": kind != "text" and sentence.fast_path,
         "address": c_str(sentence.address or ""),
         "command": c_str((sentence.address or "").upper()),
-        "selector": c_str(layout.selector) if layout.selector is not None else "NULL",
+        "selector": c_str(layout.selector.upper()) if layout.selector is not None else "NULL",  # upper_is
         "selector_at": layout.selector_at,
         "variant": c_str(layout.id) if layout.id else "NULL",
         "example": c_comment(example.line) if example and example.line else None,

@@ -1115,7 +1115,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands, reply_arms=reply_arms, outcome_arms=outcome_arms,
         runtime_uses=fmt_use("runtime", rust_sorted(
-            {"first_word", "strip_line_ending", "upper_eq", "FastReader", "Unsure"})),
+            {"first_word", "strip_line_ending", "FastReader", "Unsure"})),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],

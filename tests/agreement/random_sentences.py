@@ -7,6 +7,7 @@ from __future__ import annotations
 import random
 from decimal import Decimal
 
+from generator import reference
 from generator.model import Field, Group, Layout, Sentence, Spec
 
 # NMEA 0183 talker IDs a standard sentence may carry.
@@ -120,5 +121,16 @@ def random_lines(spec: Spec, per_layout: int, seed: int) -> list[tuple[Sentence,
     for sentence in spec.sentences:
         for layout in sentence.layouts:
             for _ in range(per_layout):
-                out.append((sentence, layout, sentence_line(rng, sentence, layout)))
+                out.append((sentence, layout, _fitting_line(rng, sentence, layout)))
     return out
+
+
+def _fitting_line(rng: random.Random, sentence: Sentence, layout: Layout) -> str:
+    """A random line of the layout no longer than the parsers take (MAX_LINE): a layout with a
+    long group (Ashtech's satellite list) can draw a longer one, and draws again."""
+    line = sentence_line(rng, sentence, layout)
+    for _ in range(20):
+        if len(line) <= reference.rt.MAX_LINE:
+            break
+        line = sentence_line(rng, sentence, layout)
+    return line

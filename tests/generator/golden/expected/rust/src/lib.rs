@@ -59,7 +59,7 @@ pub mod tables;
 use runtime::is_command_word;
 #[cfg(feature = "std")]
 use runtime::json::{self, Value, WireFields};
-use runtime::{first_word, strip_line_ending, upper_eq, FastReader, Unsure};
+use runtime::{first_word, strip_line_ending, FastReader, Unsure};
 pub use runtime::{
     Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Error, ErrorKind, FieldProblem, Fields, Frame, Framing,
     Generic, Group, Hex, Kind, Layout, Name, Number, Problems, ReplyOutcome, Sign, Time, BUILD_CAPACITY, MAX_PROBLEMS,
@@ -226,7 +226,7 @@ impl LayoutId {
             Some(keyword) => fields
                 .get(self.selector_at() + 1)
                 .filter(|_| !fields.is_empty())
-                .is_some_and(|word| upper_eq(word, keyword)),
+                .is_some_and(|word| word.eq_ignore_ascii_case(keyword)),
             None => false,
         }
     }
