@@ -10,7 +10,7 @@ import jinja2
 
 from . import emit_vectors
 from .emit import TEMPLATES, header
-from .model import Field, Group, Layout, ReplyRule, Sentence, Spec
+from .model import Field, Group, Layout, Manual, ReplyRule, Sentence, Spec
 
 TYPE_NAMES = {
     "integer": "integer", "decimal": "decimal", "hex": "hex", "time": "UTC time", "date": "date",
@@ -129,9 +129,10 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                     if f.enum and s.id not in enum_users[f.enum.id]:
                         enum_users[f.enum.id].append(s.id)
     # The support matrix: the receiver manuals (and the standard) against what they document.
-    matrix_manuals = [m for m in spec.manuals if m.file or m.id == "nmea0183"]
-    matrix = [(s, [m.id in s.manuals for m in matrix_manuals]) for s in [*spec.standard, *spec.proprietary]
-              if any(m.file and m.id in s.manuals for m in matrix_manuals)]
+    matrix_manuals = [spec.manual("nmea0183"), *receiver_manuals(spec)]
+    matrix = [(s, [m.id in s.manuals or m.id == s.vendor for m in matrix_manuals])
+              for s in [*spec.standard, *spec.proprietary]
+              if any(m.id != "nmea0183" and (m.id in s.manuals or m.id == s.vendor) for m in matrix_manuals)]
     domains = [{"title": title, "sentences": [s for s in spec.standard if s.domain == domain]}
                for domain, title in DOMAINS.items()]
     env.globals["domain_titles"] = DOMAINS
@@ -158,9 +159,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             banner=banner_of([b.origin.file]), b=b, users=_bitfield_users(spec, b.id))
     for t in spec.tables:
         files[f"docs/tables/{t.id}.md"] = env.get_template("docs/table.md.j2").render(banner=banner_of([t.origin.file]), t=t)
-    for m in spec.manuals:
-        if m.file is None:
-            continue
+    for m in receiver_manuals(spec):
         files[f"docs/vendors/{m.id}.md"] = env.get_template("docs/vendor.md.j2").render(
             banner=banner, m=m, spec=spec, counts=counts[m.id],
             standard=[(s, [n for n in s.notes if m.id in n.manuals]) for s in spec.standard if m.id in s.manuals],
@@ -175,6 +174,13 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     return files
 
 
+def receiver_manuals(spec: Spec) -> list[Manual]:
+    """The manuals that get a receiver page: the receiver manuals of ../shared/seeds (`file`) and
+    the protocol document of each family with sentences of its own (a `vendor` id)."""
+    vendors = {s.vendor for s in spec.proprietary}
+    return [m for m in spec.manuals if m.file is not None or m.id in vendors]
+
+
 def _indexes(spec: Spec, env: jinja2.Environment, banner: str) -> dict[str, str]:
     """The index pages: sentences A to Z, receivers, commands."""
     from .emit_tool import command_views, usage
@@ -183,7 +189,7 @@ def _indexes(spec: Spec, env: jinja2.Environment, banner: str) -> dict[str, str]
     sentences = [{"id": s.id, "name": s.name, "kind": s.kind, "vendor": s.vendor,
                   "wire": (s.address if s.framing == "text" else f"${s.address}") if s.address
                   else f"$--{s.id}"} for s in sorted(spec.sentences, key=lambda s: s.id)]
-    manuals = [m for m in spec.manuals if m.file is not None]
+    manuals = receiver_manuals(spec)
     vendors = [{"manual": m,
                 "standard": sum(1 for s in spec.standard if m.id in s.manuals),
                 "own": sum(1 for s in spec.proprietary if s.vendor == m.id and s.kind != "command"),

@@ -10301,6 +10301,7 @@ impl CodeEnum for PrcRpmMode {
 }
 
 /// Quectel antenna power: Whether the antenna is powered.
+#[cfg(feature = "quectel_lg290p")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum QuectelAntennaPower {
     /// Power off.
@@ -10311,6 +10312,7 @@ pub enum QuectelAntennaPower {
     Unknown,
 }
 
+#[cfg(feature = "quectel_lg290p")]
 impl CodeEnum for QuectelAntennaPower {
     const EXPECTED: &'static str = "quectel_antenna_power code (0 1 2)";
     const EXPECTED_CHARS: &'static str = "quectel_antenna_power codes (0 1 2)";
@@ -10350,6 +10352,7 @@ impl CodeEnum for QuectelAntennaPower {
 }
 
 /// Quectel antenna status: State of the antenna feed.
+#[cfg(feature = "quectel_lg290p")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum QuectelAntennaStatus {
     /// Unknown.
@@ -10362,6 +10365,7 @@ pub enum QuectelAntennaStatus {
     ShortCircuit,
 }
 
+#[cfg(feature = "quectel_lg290p")]
 impl CodeEnum for QuectelAntennaStatus {
     const EXPECTED: &'static str = "quectel_antenna_status code (0 1 2 3)";
     const EXPECTED_CHARS: &'static str = "quectel_antenna_status codes (0 1 2 3)";
@@ -10716,6 +10720,7 @@ impl CodeEnum for QuectelGeofenceShape {
 }
 
 /// Quectel geofence state: Where the receiver is relative to one geofence.
+#[cfg(feature = "quectel_lg290p")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum QuectelGeofenceState {
     /// Unknown; always the case without a fix.
@@ -10726,6 +10731,7 @@ pub enum QuectelGeofenceState {
     Outside,
 }
 
+#[cfg(feature = "quectel_lg290p")]
 impl CodeEnum for QuectelGeofenceState {
     const EXPECTED: &'static str = "quectel_geofence_state code (0 1 2)";
     const EXPECTED_CHARS: &'static str = "quectel_geofence_state codes (0 1 2)";
@@ -11322,6 +11328,7 @@ impl CodeEnum for QuectelRtkRelMode {
 }
 
 /// Quectel RTK differential source type: Kind of differential source used for RTK.
+#[cfg(feature = "quectel_lg290p")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum QuectelRtkSourceType {
     /// Automatic.
@@ -11332,6 +11339,7 @@ pub enum QuectelRtkSourceType {
     WideLane,
 }
 
+#[cfg(feature = "quectel_lg290p")]
 impl CodeEnum for QuectelRtkSourceType {
     const EXPECTED: &'static str = "quectel_rtk_source_type code (0 1 2)";
     const EXPECTED_CHARS: &'static str = "quectel_rtk_source_type codes (0 1 2)";
