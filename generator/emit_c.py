@@ -429,12 +429,30 @@ def _member_of(sentence: Sentence, layout: Layout, f: Field) -> str:
     return f"s->as.{sentence.layout_snake(layout)}.{member(f.id)}"
 
 
+def reply_test(condition: pairing.Condition, target: str) -> str:
+    """The C test that the member `target` holds a reply's `when` or `outcome` value."""
+    f, value = condition.field, condition.value
+    if f.type == "integer":
+        return f"integer_is({target}, {int(value)})"
+    if f.type == "enum":
+        assert f.enum is not None
+        return f"({target}.present && {target}.value == {enum_const(f.enum, str(value))})"
+    if f.type == "text":
+        return f"text_is({target}, {c_str(value)})"
+    return f"{target} == {char_literal(value)}"
+
+
+def char_literal(value: str) -> str:
+    """A C character literal of one printable ASCII character."""
+    return "'" + {"'": "\\'", "\\": "\\\\"}.get(value, value) + "'"
+
+
 def reply_pairings(spec: Spec) -> list[dict]:
     """Per command layout, the test that a parsed sentence `s` answers it (nmea_reply_to)."""
     out = []
     for command in spec.proprietary:
         tests = [" && ".join([f"s->id == {layout_const(p.reply, p.layout)}",
-                              *(pairing.c_test(c, _member_of(p.reply, p.layout, c.field)) for c in p.conditions)])
+                              *(reply_test(c, _member_of(p.reply, p.layout, c.field)) for c in p.conditions)])
                  for p in pairing.pairings(command)]
         if len(tests) > 1:
             tests = [f"({t})" if " && " in t else t for t in tests]
@@ -453,7 +471,7 @@ def reply_judgements(spec: Spec) -> list[dict]:
             else:
                 assert j.field is not None
                 target = _member_of(sentence, layout, j.field)
-                ok = pairing.any_of([pairing.c_test(pairing.Condition(j.field, v), target) for v in j.ok])
+                ok = pairing.any_of([reply_test(pairing.Condition(j.field, v), target) for v in j.ok])
                 expr = f"{ok} ? NMEA_REPLY_OK : NMEA_REPLY_ERROR"
             out.append({"const": layout_const(sentence, layout), "expr": expr})
     return out

@@ -155,10 +155,17 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
         "before": [v for v in fields if not v["field"].is_optional and not v["pos"].startswith("pos")],
         "after": [v for v in fields if not v["field"].is_optional and v["pos"].startswith("pos")],
         "optional": [v for v in fields if v["field"].is_optional],
-        "reply_rules": [f"({json.dumps(p.reply.id)}, {json.dumps(p.layout.id) if p.layout.id else 'None'}, ({''.join(pairing.python_test(c) + ', ' for c in p.conditions)}))"
+        "reply_rules": [f"({json.dumps(p.reply.id)}, {json.dumps(p.layout.id) if p.layout.id else 'None'}, ({''.join(reply_test(c) + ', ' for c in p.conditions)}))"
                         for p in pairing.pairings(sentence)],
         "outcome": _outcome(layout),
     }
+
+
+def reply_test(condition: pairing.Condition) -> str:
+    """A (field id, kind, value) triple that runtime.holds() interprets."""
+    f = condition.field
+    kind = {"integer": "integer", "enum": "enum"}.get(f.type, "text")
+    return f"({json.dumps(f.id)}, {json.dumps(kind)}, {json.dumps(condition.value)})"
 
 
 def _outcome(layout: Layout) -> str | None:
@@ -169,7 +176,7 @@ def _outcome(layout: Layout) -> str | None:
         return None
     if j.fixed == "error" or j.field is None:
         return '"error"'
-    tests = [pairing.python_test(pairing.Condition(j.field, v)) for v in j.ok]
+    tests = [reply_test(pairing.Condition(j.field, v)) for v in j.ok]
     return f"({''.join(t + ', ' for t in tests)})"
 
 

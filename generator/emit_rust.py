@@ -348,19 +348,36 @@ def gates_all(vendors: set[str | None]) -> str:
     return "#[cfg(all(" + ", ".join(f'feature = "{f}"' for f in features) + "))]"
 
 
+def reply_test(condition: pairing.Condition, target: str) -> str:
+    """The Rust test that the member `target` (an Option) holds a reply's `when` or `outcome` value."""
+    f, value = condition.field, condition.value
+    if f.type == "integer":
+        return f"{target}.is_some_and(|n| n.is_integer({int(value)}))"
+    if f.type == "enum":
+        assert f.enum is not None
+        variant = camel(str(value))
+        variant = "Self_" if variant == "Self" else variant
+        return f"{target} == Some(Code::Known(crate::enums::{f.enum.camel}::{variant}))"
+    if f.type == "text":
+        return f"{target} == Some({rust_str(value)})"
+    return f"{target} == Some({rust_char(value)})"
+
+
+def rust_char(value: str) -> str:
+    """A Rust character literal of one printable ASCII character."""
+    return "'" + {"'": "\\'", "\\": "\\\\"}.get(value, value) + "'"
+
+
 def reply_pairing_arms(spec: Spec) -> tuple[list[str], list[str]]:
     """The arms of `Sentence::reply_to` (command layout, reply layout => the reply's fields hold
     what the spec pairs them by) and of `reply_outcome` (reply layout => what it reports)."""
-    def gate(*vendors: str | None) -> str:
-        return gates_all(set(vendors))
-
     reply_arms: list[str] = []
     for command in spec.proprietary:
         for p in pairing.pairings(command):
             binding = "s" if p.conditions else "_"
-            tests = [pairing.rust_test(c, f"s.{ident(c.field.id)}") for c in p.conditions] or ["true"]
+            tests = [reply_test(c, f"s.{ident(c.field.id)}") for c in p.conditions] or ["true"]
             reply_arms += [line for layout in command.layouts
-                           for line in with_cfg(12, gate(command.vendor, p.reply.vendor), fmt_bool_arm(
+                           for line in with_cfg(12, gates_all({command.vendor, p.reply.vendor}), fmt_bool_arm(
                                12, f"(LayoutId::{command.layout_camel(layout)}, "
                                f"Self::{p.reply.layout_camel(p.layout)}({binding}))", " && ".join(tests)))]
     outcome_arms: list[str] = []
@@ -372,9 +389,9 @@ def reply_pairing_arms(spec: Spec) -> tuple[list[str], list[str]]:
             else:
                 assert j.field is not None
                 target = f"s.{ident(j.field.id)}"
-                ok = " || ".join(pairing.rust_test(pairing.Condition(j.field, v), target) for v in j.ok)
+                ok = " || ".join(reply_test(pairing.Condition(j.field, v), target) for v in j.ok)
                 arm = fmt_arm(12, f"Self::{name}(s)", f"ReplyOutcome::judged({ok})")
-            outcome_arms += with_cfg(12, gate(sentence.vendor), arm)
+            outcome_arms += with_cfg(12, gates_all({sentence.vendor}), arm)
     return reply_arms, outcome_arms
 
 

@@ -8,11 +8,10 @@ language gets the same test of a field against a value, written once per languag
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 from typing import Any
 
-from .model import Field, Layout, Sentence, camel
+from .model import Field, Layout, Sentence
 
 
 @dataclass(frozen=True)
@@ -72,49 +71,8 @@ def judged(sentence: Sentence) -> list[tuple[Layout, Judgement]]:
     return [(layout, j) for layout in sentence.layouts if (j := judgement(layout)).fixed != "ok"]
 
 
-# ------------------------------------------------------------------------------------------------
-# One test per language: `target` is the expression of the field's member.
-
-
-def c_test(condition: Condition, target: str) -> str:
-    f, value = condition.field, condition.value
-    if f.type == "integer":
-        return f"integer_is({target}, {int(value)})"
-    if f.type == "enum":
-        assert f.enum is not None
-        return f"({target}.present && {target}.value == NMEA_{f.enum.id.upper()}_{str(value).upper()})"
-    if f.type == "text":
-        return f"text_is({target}, {json.dumps(value)})"
-    return f"{target} == {c_char(value)}"
-
-
-def rust_test(condition: Condition, target: str) -> str:
-    f, value = condition.field, condition.value
-    if f.type == "integer":
-        return f"{target}.is_some_and(|n| n.is_integer({int(value)}))"
-    if f.type == "enum":
-        assert f.enum is not None
-        variant = camel(str(value))
-        variant = "Self_" if variant == "Self" else variant
-        return f"{target} == Some(Code::Known(crate::enums::{f.enum.camel}::{variant}))"
-    if f.type == "text":
-        return f"{target} == Some({json.dumps(value)})"
-    return f"{target} == Some({c_char(value)})"
-
-
-def python_test(condition: Condition) -> str:
-    """A (field id, kind, value) triple that runtime.holds() interprets."""
-    f = condition.field
-    kind = {"integer": "integer", "enum": "enum"}.get(f.type, "text")
-    return f"({json.dumps(f.id)}, {json.dumps(kind)}, {json.dumps(condition.value)})"
-
-
-def c_char(value: str) -> str:
-    """A C (and Rust) character literal of one printable ASCII character."""
-    return "'\\''" if value == "'" else "'\\\\'" if value == "\\" else f"'{value}'"
-
-
 def any_of(tests: list[str]) -> str:
+    """Tests joined by `||` (in parentheses when there are several), in C and Rust alike."""
     return tests[0] if len(tests) == 1 else "(" + " || ".join(tests) + ")"
 
 
