@@ -1,8 +1,10 @@
-"""C emitter: one nmea.h / nmea.c pair (the hand-written runtime of templates/c plus a struct,
-parser, serializer and JSON form per sentence layout), the nmea-c tool and the example tests.
+"""C emitter: one nmea.h / nmea.c pair (the hand-written runtime of templates/c, then per
+sentence layout a struct and a descriptor table that the runtime's one reader, writer and JSON
+form interpret, plus a fast reader and writer for the sentences on the fast path), the nmea-c
+tool and the example tests.
 
-Everything the templates print is worked out here: C names, the call that reads, writes, shows
-or collects each field, the value ranges; the templates only loop and print.
+Everything the templates print is worked out here: C names, the descriptor rows, the fast path's
+call for each field, the value ranges; the templates only loop and print.
 """
 
 from __future__ import annotations
@@ -151,26 +153,32 @@ class Ranges:
 # Per-field calls
 
 
-def read_call(f: Field, target: str, ranges: Ranges) -> str:
-    """The call that reads field `f` into `target` (an lvalue) from reader `r`."""
-    head = f"&r, &{target}, {c_str(f.id)}, {c_str(f.expected)}"
+# The field_type constant of each field type (templates/c/runtime.c).
+FIELD_TYPES = {t: "FIELD_" + t.upper() for t in C_TYPES}
+
+
+def field_arg(f: Field, ranges: Ranges) -> str:
+    """The `arg` of a field's layout_field: its range, enum table, word, or what its hemisphere
+    takes."""
     t = f.type
-    if t == "keyword":
-        return f"read_keyword(&r, {c_str(f.id)}, {c_str(f.expected)}, {c_str(f.value or '')})"
+    if t in ("keyword", "literal"):
+        return c_str(f.value or "")
     if t in ("integer", "decimal"):
-        return f"read_{t}({head}, {ranges.ref(f)})"
-    if t in ("hex", "time", "date", "char"):
-        return f"read_{t}({head})"
+        return ranges.ref(f)
     if t in ("latitude", "longitude"):
-        return f"read_{t}({head}, {c_str(f.hemisphere_expected)})"
-    if t == "literal":
-        return f"read_literal({head}, {c_str(f.value or '')})"
-    if t == "text":
-        return f"read_text({head}, {f.max_length or 0})"
-    assert f.enum is not None
-    if t == "enum":
-        return f"read_enum({head}, &{enum_def(f.enum)})"
-    return f"read_enum_chars({head}, &{enum_def(f.enum)}, {f.max_length or 0})"
+        return c_str(f.hemisphere_expected)
+    if t in ("enum", "enum_chars"):
+        assert f.enum is not None
+        return f"&{enum_def(f.enum)}"
+    return "NULL"
+
+
+def field_init(f: Field, owner: str | None, ranges: Ranges) -> str:
+    """The layout_field initializer of `f`, a member of struct `owner` (None: stored at offset 0,
+    the value of a single-field group)."""
+    offset = f"offsetof({owner}, {member(f.id)})" if owner and C_TYPES[f.type] else "0"
+    return (f"{{{c_str(f.id)}, {c_str(f.expected)}, {field_arg(f, ranges)}, {offset}, {FIELD_TYPES[f.type]}, "
+            f"{f.wire_width}, {f.max_length or 0}}}")
 
 
 def fast_call(f: Field, target: str, ranges: Ranges) -> str:
@@ -223,31 +231,6 @@ def put_call(f: Field, target: str, fast: bool = False) -> str:
     return f"{'fast_put_' if fast else 'put_'}{WRITER_NAMES[t]}({writer}, {args})"
 
 
-def json_call(f: Field, target: str, key: bool | str = True, values: str = "values") -> str:
-    """The call that shows field `f` in the `fields` object (or, key False, a group array; a
-    string: under that key)."""
-    k = c_str(key) if isinstance(key, str) else c_str(f.id) if key else "NULL"
-    t = f.type
-    if t == "keyword":
-        return f"json_keyword(w, {k}, {c_str(f.value or '')}, {values})"
-    if t in ("integer", "decimal"):
-        return f"json_number(w, {k}, &{target}, {values})"
-    if t in ("hex", "time", "date"):
-        return f"json_{t}(w, {k}, &{target}, {values})"
-    if t in ("latitude", "longitude"):
-        return f"json_coordinate(w, {k}, &{target}, {values})"
-    if t == "char":
-        return f"json_char(w, {k}, {target}, {values})"
-    if t == "literal":
-        return f"json_literal(w, {k}, {target}, {c_str(f.value or '')}, {values})"
-    if t == "text":
-        return f"json_text(w, {k}, {target}, {values})"
-    assert f.enum is not None
-    if t == "enum":
-        return f"json_enum(w, {k}, &{target}, &{enum_def(f.enum)}, {values})"
-    return f"json_enum_chars(w, {k}, {target}, &{enum_def(f.enum)}, {values})"
-
-
 def member_doc(f: Field) -> list[str]:
     unit = f" [{f.unit}]" if f.unit else ""
     fmt = f" ({f.format})" if f.format else ""
@@ -274,7 +257,9 @@ def member_doc(f: Field) -> list[str]:
 # Layout views
 
 
-def field_view(f: Field, base: str, ranges: Ranges, key: bool = True) -> dict:
+def field_view(f: Field, base: str, ranges: Ranges, owner: str | None) -> dict:
+    """A field of struct `owner` (None: the value of a single-field group), read and written on
+    the fast path through `base` ("s->", "e->" or the entry itself)."""
     target = f"{base}{member(f.id)}" if base.endswith(("->", ".")) else base
     stored = C_TYPES[f.type] is not None
     return {
@@ -282,14 +267,9 @@ def field_view(f: Field, base: str, ranges: Ranges, key: bool = True) -> dict:
         "member": member(f.id) if stored else None,
         "type": C_TYPES[f.type],
         "doc": member_doc(f) if stored else [],
-        "read": read_call(f, target, ranges),
+        "init": field_init(f, owner, ranges),
         "fast": fast_call(f, target, ranges),
-        "put": put_call(f, target),
         "fast_put": put_call(f, target, fast=True),
-        "json": json_call(f, target, key),
-        "target": target,
-        "collect": f"collect_field(c, fields, {c_str(f.id)}, {f.wire_width})",
-        "optional_collect": f"collect_optional(c, fields, {c_str(f.id)}, {f.wire_width})",
     }
 
 
@@ -334,7 +314,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
             names.add(member(item.id))
             names.add(member(item.id) + "_count")
             continue
-        view = field_view(item, "s->", ranges)
+        view = field_view(item, "s->", ranges, f"nmea_{snake}")
         if view["member"] is not None:
             if view["member"] in names or view["member"] in RESERVED_MEMBERS:
                 raise ValueError(f"{sentence.id}: field id {item.id!r} collides with a generated C member")
@@ -354,20 +334,18 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         single = group.single
         etype = entry_type(sentence, layout, group)
         if single:
-            fields = [field_view(group.fields[0], f"s->{member(group.id)}[i]", ranges, key=False)]
+            fields = [field_view(group.fields[0], f"s->{member(group.id)}[i]", ranges, None)]
         else:
-            fields = [field_view(f, "e->", ranges) for f in group.fields]
-        for view in fields:
-            view["collect"] = (f"collect_value(c, entry, {view['field'].wire_width})" if single else
-                               f"collect_field(c, entry, {c_str(view['field'].id)}, {view['field'].wire_width})")
+            fields = [field_view(f, "e->", ranges, etype) for f in group.fields]
         stored = [v for v in fields if v["member"] is not None]
+        value_type = (C_TYPES[group.fields[0].type] if single else etype) if stored else None
         group_view = {
             "group": group,
             "id": c_str(group.id),
             "member": member(group.id) if stored else None,
             "count": None if group.is_fixed else member(group.id) + "_count",
             "entry_type": None if single or not stored else etype,
-            "value_type": (C_TYPES[group.fields[0].type] if single else etype) if stored else None,
+            "value_type": value_type,
             "single": single,
             "fields": fields,
             "stored": stored,
@@ -375,11 +353,49 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
                 f"Always {group.max} entries." if group.is_fixed else
                 f"{group.min} to {group.max} entries; {member(group.id)}_count of them are on the wire.")),
         }
+    struct = f"nmea_{snake}"
+    ordered = before + after + optional
+    group_init = None
+    if group_view is not None:
+        group_init = _designated([
+            ("id", c_str(group.id)),
+            ("fields", f"{snake}_group_fields"),
+            ("field_count", len(group.fields)),
+            ("width", group.width),
+            ("min", group.min),
+            ("max", group.max),
+            ("single", "true" if group.single else "false"),
+            ("offset", f"offsetof({struct}, {member(group.id)})" if group_view["stored"] else "NO_MEMBER"),
+            ("entry_size", f"sizeof({group_view['value_type']})" if group_view["stored"] else 0),
+            ("count_offset", "NO_MEMBER" if group.is_fixed else f"offsetof({struct}, {member(group.id)}_count)"),
+        ])
+    head_member = {"standard": "talker", "text": "as_received"}.get(kind)
+    layout_init = _designated([
+        ("sentence", c_str(sentence.id)),
+        ("address", c_str(sentence.address or "") if kind != "standard" else None),
+        ("command", c_str((sentence.address or "").upper()) if kind == "text" else None),
+        ("variant", c_str(layout.id) if layout.id else None),
+        ("selector", c_str(layout.selector.upper()) if layout.selector is not None else None),  # upper_is
+        ("fields", f"{snake}_fields" if ordered else None),
+        ("group", f"&{snake}_group" if group is not None else None),
+        ("selector_at", layout.selector_at if layout.selector is not None else None),
+        ("before", len(before) or None),
+        ("after", len(after) or None),
+        ("optional", len(optional) or None),
+        ("fixed", layout.fixed_count or None),
+        ("max_fields", layout.max_fields or None),
+        ("optional_max", layout.optional_count or None),
+        ("problems", f"offsetof({struct}, problems)"),
+        ("head", f"offsetof({struct}, {head_member})" if head_member else "NO_MEMBER"),
+        ("optional_count", f"offsetof({struct}, optional_count)" if optional else "NO_MEMBER"),
+        ("checksum", f"offsetof({struct}, checksum)" if kind != "text" else "NO_MEMBER"),
+        ("kind", f"LAYOUT_{kind.upper()}"),
+        ("start", f"'{sentence.start}'"),
+    ])
     example = _example(sentence, layout)
     # The fields read before the group (all of them when there is none) and after it.
     head = before + ([] if group_view else optional)
     tail = (after + optional) if group_view else []
-    words = _text_words(before + optional) if kind == "text" else []
     return {
         "sentence": sentence,
         "layout": layout,
@@ -404,25 +420,36 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "group": group_view,
         "after": after,
         "optional": optional,
-        "fields": before + after + optional,
-        "head_reads": _conditions(head),
-        "tail_reads": _conditions(tail),
+        "fields": ordered,
+        "init": layout_init,
+        "group_init": group_init,
         "head_fast": _conditions(head, "fast"),
         "tail_fast": _conditions(tail, "fast"),
         "head_fast_puts": _conditions(head, "fast_put"),
         "tail_fast_puts": _conditions(tail, "fast_put"),
-        "head_collects": [v["optional_collect"] if v.get("when") else v["collect"] for v in head],
-        "tail_collects": [v["optional_collect"] if v.get("when") else v["collect"] for v in tail],
         "optional_names": ", ".join(v["field"].id for v in optional),
         "optional_count": optional_count_expr([v["field"].wire_width for v in optional]),
         "fixed": layout.fixed_count,
         "max_fields": layout.max_fields,
         "optional_max": layout.optional_count,
         "source": sentence.source,
-        "ids": [c_str(i.id) for i in layout.items],
-        "words": words,
         "replies": [layout_const(r, lay) for r in sentence.replies for lay in r.layouts],
     }
+
+
+def _designated(members: list[tuple[str, object]], width: int = 110) -> list[str]:
+    """The lines of a designated initializer's members (those that are not None), each line at
+    most `width` characters after its indentation."""
+    lines: list[str] = []
+    for name, value in members:
+        if value is None:
+            continue
+        item = f".{name} = {value},"
+        if lines and len(lines[-1]) + 1 + len(item) <= width:
+            lines[-1] += " " + item
+        else:
+            lines.append(item)
+    return lines
 
 
 def _member_of(sentence: Sentence, layout: Layout, f: Field) -> str:
@@ -477,22 +504,6 @@ def reply_judgements(spec: Spec) -> list[dict]:
     return out
 
 
-def _text_words(views: list[dict]) -> list[dict]:
-    """The lossless fields of a text command written in the spec's letter case, as the Python
-    reference shows them: each word (a text command's fields are single words, S015) under its
-    field id, the text of a problem in place of the field's."""
-    out = []
-    for n, view in enumerate(views, 1):
-        f = view["field"]
-        if f.wire_width != 1:
-            raise ValueError(f"{f.id}: a text command's fields are single words")
-        cond = f"!json_problem_word(w, {c_str(f.id)}, &s->problems, {n})"
-        if view.get("when"):
-            cond = f"{view['when']} && {cond}"
-        out.append({"cond": cond, "call": json_call(f, view["target"], True, "false")})
-    return out
-
-
 def _example(sentence: Sentence, layout: Layout) -> Example | None:
     """The manual example shown above a layout's parser: the one with the most filled fields."""
     examples = [ex for ex in sentence.examples if ex.line and ex.variant == layout.id]
@@ -500,9 +511,9 @@ def _example(sentence: Sentence, layout: Layout) -> Example | None:
                default=None)
 
 
-def _conditions(views: list[dict], call: str = "read") -> list[str]:
-    """The failure conditions of reading fields (with the `read` calls, or the `fast` ones), for
-    an `if (a || b ...) return false;` chain."""
+def _conditions(views: list[dict], call: str) -> list[str]:
+    """The failure conditions of the fast path's reading or writing of fields (its `fast` or
+    `fast_put` calls), for an `if (a || b ...) return false;` chain."""
     conds = [_read_condition(v, call) for v in views]
     if len(conds) == 1 and conds[0].startswith("("):
         conds[0] = conds[0][1:-1]

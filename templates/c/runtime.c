@@ -2638,25 +2638,6 @@ NMEA_INTERNAL nmea_text text_address(const nmea_writer *sentence, nmea_text as_r
     return nmea_text_of(address);
 }
 
-/* The lossless fields of a text command written back as received: each word as written, paired
-   with the field ids in order (`ids`, `count` of them). */
-NMEA_INTERNAL void json_words(nmea_writer *w, const char *const *ids, size_t count, nmea_text line)
-{
-    const char *p = line.ptr, *end = line.ptr + line.len, *space;
-    size_t i;
-    p = memchr(p, ' ', line.len);
-    for (i = 0; p && i < count; i++) {
-        p++;
-        space = memchr(p, ' ', (size_t)(end - p));
-        json_key(w, ids[i]);
-        if (p == (space ? space : end))
-            put_str(w, "null");
-        else
-            put_json_str(w, text_span(p, space ? space : end), 0);
-        p = space;
-    }
-}
-
 /* ,"checksum":"HH"} with the checksum `sum` the sentence is written with. */
 static void json_checksum(nmea_writer *w, unsigned char sum, nmea_checksum_style style)
 {
@@ -3434,3 +3415,456 @@ size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, siz
     put_str(&w, text);
     return param_finish(&w, err);
 }
+
+/* ------------------------------------------------------------------------------------------ */
+/* Layouts: what the spec says of each sentence layout, as a table the generator writes (the
+   LAYOUTS of nmea.c), and the one reader, writer, JSON writer and JSON collector that read
+   them. Only the fast path has code of its own per layout. */
+
+/* The field types of the spec. */
+typedef enum {
+    FIELD_KEYWORD,
+    FIELD_INTEGER,
+    FIELD_DECIMAL,
+    FIELD_HEX,
+    FIELD_TIME,
+    FIELD_DATE,
+    FIELD_LATITUDE,
+    FIELD_LONGITUDE,
+    FIELD_CHAR,
+    FIELD_LITERAL,
+    FIELD_TEXT,
+    FIELD_ENUM,
+    FIELD_ENUM_CHARS
+} field_type;
+
+/* A field of a layout, or of the entries of its repeated group. */
+typedef struct {
+    const char *id;
+    const char *expected; /* what the field takes, for errors */
+    const void *arg;      /* integer, decimal: its nmea_range (NULL: any value); enum, enum_chars:
+                             its nmea_enum_def; keyword, literal: its word; latitude, longitude:
+                             what the hemisphere takes */
+    uint16_t offset;      /* of its member in the layout struct (or the entry); 0 for a keyword */
+    uint8_t type;         /* field_type */
+    uint8_t width;        /* wire fields: 2 for a latitude or longitude, else 1 */
+    uint16_t max_length;  /* text, enum_chars: most characters (0: any number) */
+} layout_field;
+
+/* An offset of a member a layout does not have. */
+#define NO_MEMBER 0xFFFFu
+
+/* The repeated group of a layout: `min` to `max` entries of `width` wire fields. */
+typedef struct {
+    const char *id;
+    const layout_field *fields; /* offsets in an entry (a single field: 0) */
+    uint16_t field_count;
+    uint16_t width;
+    uint16_t min;
+    uint16_t max;
+    bool single;           /* one field an entry: the JSON lists its values without keys */
+    uint16_t offset;       /* of the entries' array (NO_MEMBER: none, the entries hold only keywords) */
+    uint16_t entry_size;
+    uint16_t count_offset; /* of the uint8_t entry count (NO_MEMBER: always `max` entries) */
+} layout_group;
+
+typedef enum { LAYOUT_STANDARD, LAYOUT_PROPRIETARY, LAYOUT_TEXT } layout_kind;
+
+/* A sentence layout. Its fields are those before the group, after it, and the optional trailing
+   ones, in wire order. */
+typedef struct {
+    const char *sentence;      /* the spec's sentence id */
+    const char *address;       /* a proprietary sentence's address, a text command's word; NULL */
+    const char *command;       /* a text command: its word in upper case; NULL */
+    const char *variant;       /* NULL: the sentence's main layout */
+    const char *selector;      /* the keyword (upper case) every line of it holds, or NULL */
+    const layout_field *fields;
+    const layout_group *group; /* NULL: none */
+    uint16_t selector_at;      /* the selector's wire index (0-based) */
+    uint16_t before;           /* fields before the group (all required ones without a group) */
+    uint16_t after;            /* required fields after the group */
+    uint16_t optional;         /* optional trailing fields */
+    uint16_t fixed;            /* required wire fields besides the group */
+    uint16_t max_fields;       /* wire fields at most (without a group) */
+    uint16_t optional_max;     /* optional wire fields at most */
+    uint16_t problems;         /* offset of the struct's problems: the bytes before it are cleared */
+    uint16_t head;             /* offset of the talker (standard) or as_received (text); NO_MEMBER */
+    uint16_t optional_count;   /* offset of the uint8_t optional_count; NO_MEMBER */
+    uint16_t checksum;         /* offset of the nmea_checksum_style; NO_MEMBER (a text command) */
+    uint8_t kind;              /* layout_kind */
+    char start;                /* '$' or '!' */
+} layout;
+
+static inline void *member_at(void *s, uint16_t offset)
+{
+    return (char *)s + offset;
+}
+
+static inline const void *const_member_at(const void *s, uint16_t offset)
+{
+    return (const char *)s + offset;
+}
+
+/* How many optional trailing fields `optional` wire fields hold (a latitude needs both of its). */
+static size_t optional_present(const layout *l, size_t optional)
+{
+    const layout_field *f = l->fields + l->before + l->after;
+    size_t n, wire = 0;
+    for (n = 0; n < l->optional; n++) {
+        wire += f[n].width;
+        if (wire > optional)
+            break;
+    }
+    return n;
+}
+
+/* The entries of a layout's group that are on the wire (a struct's count may be too big). */
+static size_t entries_of(const layout_group *g, const void *s)
+{
+    size_t n;
+    if (g->count_offset == NO_MEMBER)
+        return g->max;
+    n = *(const uint8_t *)const_member_at(s, g->count_offset);
+    return n < g->max ? n : g->max;
+}
+
+/* The optional trailing fields of a struct that are on the wire. */
+static size_t optional_of(const layout *l, const void *s)
+{
+    return l->optional_count == NO_MEMBER ? 0 : *(const uint8_t *)const_member_at(s, l->optional_count);
+}
+
+static const void *entry_at(const layout_group *g, const void *s, size_t i)
+{
+    return g->offset == NO_MEMBER ? s : const_member_at(s, (uint16_t)(g->offset + i * g->entry_size));
+}
+
+static bool read_field(nmea_reader *r, const layout_field *f, void *entry)
+{
+    void *out = member_at(entry, f->offset);
+    switch ((field_type)f->type) {
+    case FIELD_KEYWORD:
+        return read_keyword(r, f->id, f->expected, f->arg);
+    case FIELD_INTEGER:
+        return read_integer(r, out, f->id, f->expected, f->arg);
+    case FIELD_DECIMAL:
+        return read_decimal(r, out, f->id, f->expected, f->arg);
+    case FIELD_HEX:
+        return read_hex(r, out, f->id, f->expected);
+    case FIELD_TIME:
+        return read_time(r, out, f->id, f->expected);
+    case FIELD_DATE:
+        return read_date(r, out, f->id, f->expected);
+    case FIELD_LATITUDE:
+        return read_latitude(r, out, f->id, f->expected, f->arg);
+    case FIELD_LONGITUDE:
+        return read_longitude(r, out, f->id, f->expected, f->arg);
+    case FIELD_CHAR:
+        return read_char(r, out, f->id, f->expected);
+    case FIELD_LITERAL:
+        return read_literal(r, out, f->id, f->expected, f->arg);
+    case FIELD_TEXT:
+        return read_text(r, out, f->id, f->expected, f->max_length);
+    case FIELD_ENUM:
+        return read_enum(r, out, f->id, f->expected, f->arg);
+    case FIELD_ENUM_CHARS:
+        return read_enum_chars(r, out, f->id, f->expected, f->arg, f->max_length);
+    }
+    return false;
+}
+
+static bool read_fields(nmea_reader *r, const layout_field *f, size_t n, void *entry)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        if (!read_field(r, &f[i], entry))
+            return false;
+    return true;
+}
+
+/* Reads the wire into `s`, a struct of layout `l`. */
+NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+{
+    const layout_group *g = l->group;
+    nmea_reader r;
+    size_t i, repeats = 0, optional, present;
+
+    reader_start(&r, wire, l->sentence, err);
+    if (g ? !read_group_count(&r, wire->count, g->id, l->fixed, g->width, g->min, g->max, l->optional_max, &repeats,
+                              &optional)
+          : !read_count(&r, wire->count, l->fixed, l->max_fields, &optional))
+        return false;
+    clear_layout(s, l->problems);
+    ((nmea_problems *)member_at(s, l->problems))->count = 0; /* lenient parsing sets them */
+    if (l->head != NO_MEMBER)
+        *(nmea_text *)member_at(s, l->head) = l->kind == LAYOUT_TEXT ? wire->line : wire->address;
+    if (l->checksum != NO_MEMBER)
+        *(nmea_checksum_style *)member_at(s, l->checksum) = wire->checksum;
+    present = optional_present(l, optional);
+    if (l->optional_count != NO_MEMBER)
+        *(uint8_t *)member_at(s, l->optional_count) = (uint8_t)present;
+    if (!read_fields(&r, l->fields, l->before, s))
+        return false;
+    if (g) {
+        for (i = 0; i < repeats; i++) {
+            reader_entry(&r, g->id, i);
+            if (!read_fields(&r, g->fields, g->field_count, (void *)entry_at(g, s, i)))
+                return false;
+        }
+        if (g->count_offset != NO_MEMBER)
+            *(uint8_t *)member_at(s, g->count_offset) = (uint8_t)repeats;
+        reader_entry(&r, NULL, 0);
+    }
+    return read_fields(&r, l->fields + l->before, l->after + present, s);
+}
+
+static void write_field(nmea_writer *w, const layout_field *f, const void *entry)
+{
+    const void *in = const_member_at(entry, f->offset);
+    switch ((field_type)f->type) {
+    case FIELD_KEYWORD:
+        put_keyword(w, f->arg);
+        break;
+    case FIELD_INTEGER:
+    case FIELD_DECIMAL:
+        put_number(w, in);
+        break;
+    case FIELD_HEX:
+        put_hex(w, in);
+        break;
+    case FIELD_TIME:
+        put_time(w, in);
+        break;
+    case FIELD_DATE:
+        put_date(w, in);
+        break;
+    case FIELD_LATITUDE:
+    case FIELD_LONGITUDE:
+        put_coordinate(w, in);
+        break;
+    case FIELD_CHAR:
+        put_char_field(w, *(const char *)in);
+        break;
+    case FIELD_LITERAL:
+        put_literal(w, *(const bool *)in, f->arg);
+        break;
+    case FIELD_TEXT:
+    case FIELD_ENUM_CHARS:
+        put_text_field(w, *(const nmea_text *)in);
+        break;
+    case FIELD_ENUM:
+        put_enum(w, in, f->arg);
+        break;
+    }
+}
+
+static void write_fields(nmea_writer *w, const layout_field *f, size_t n, const void *entry)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        write_field(w, &f[i], entry);
+}
+
+/* Writes `s`, a struct of layout `l`, with the texts of its `problems` (NULL: none) in their
+   places. */
+NMEA_OUTLINE void write_with(nmea_writer *w, const layout *l, const void *s, const nmea_problems *problems)
+{
+    const layout_group *g = l->group;
+    size_t i, n;
+
+    if (l->kind == LAYOUT_STANDARD)
+        begin_sentence(w, l->start, *(const nmea_text *)const_member_at(s, l->head), l->sentence, problems);
+    else if (l->kind == LAYOUT_PROPRIETARY)
+        begin_sentence(w, '$', nmea_text_of(NULL), l->address, problems);
+    else
+        begin_text(w, l->address, *(const nmea_text *)const_member_at(s, l->head), problems);
+    write_fields(w, l->fields, l->before, s);
+    if (g)
+        for (i = 0, n = entries_of(g, s); i < n; i++)
+            write_fields(w, g->fields, g->field_count, entry_at(g, s, i));
+    write_fields(w, l->fields + l->before, l->after + optional_of(l, s), s);
+    if (l->kind == LAYOUT_TEXT)
+        end_text(w);
+    else
+        end_sentence(w, *(const nmea_checksum_style *)const_member_at(s, l->checksum));
+}
+
+/* The sentence `s` of layout `l` (with `problems`, NULL: none) written to buf. */
+static size_t serialize_with(const layout *l, const void *s, const nmea_problems *problems, char *buf, size_t cap)
+{
+    nmea_writer w = writer_of(buf, cap);
+    write_with(&w, l, s, problems);
+    return writer_finish(&w);
+}
+
+/* nmea_build_*: the sentence written, then read back into `check` (a struct of the layout). */
+static size_t build_with(const layout *l, const void *s, const nmea_problems *problems, void *check, char *buf,
+                         size_t cap, nmea_error *err)
+{
+    nmea_writer w = writer_of(buf, cap);
+    nmea_wire wire;
+
+    write_with(&w, l, s, problems);
+    if (!build_wire(&w, l->kind == LAYOUT_TEXT, &wire, err) || !read_with(l, check, &wire, err))
+        return build_failed(&w);
+    return build_end(&w);
+}
+
+#ifndef NMEA_NO_JSON
+/* A field in the JSON under `key` (NULL: a value of a group's array). */
+static void json_field(nmea_writer *w, const char *key, const layout_field *f, const void *entry, bool values)
+{
+    const void *in = const_member_at(entry, f->offset);
+    switch ((field_type)f->type) {
+    case FIELD_KEYWORD:
+        json_keyword(w, key, f->arg, values);
+        break;
+    case FIELD_INTEGER:
+    case FIELD_DECIMAL:
+        json_number(w, key, in, values);
+        break;
+    case FIELD_HEX:
+        json_hex(w, key, in, values);
+        break;
+    case FIELD_TIME:
+        json_time(w, key, in, values);
+        break;
+    case FIELD_DATE:
+        json_date(w, key, in, values);
+        break;
+    case FIELD_LATITUDE:
+    case FIELD_LONGITUDE:
+        json_coordinate(w, key, in, values);
+        break;
+    case FIELD_CHAR:
+        json_char(w, key, *(const char *)in, values);
+        break;
+    case FIELD_LITERAL:
+        json_literal(w, key, *(const bool *)in, f->arg, values);
+        break;
+    case FIELD_TEXT:
+        json_text(w, key, *(const nmea_text *)in, values);
+        break;
+    case FIELD_ENUM:
+        json_enum(w, key, in, f->arg, values);
+        break;
+    case FIELD_ENUM_CHARS:
+        json_enum_chars(w, key, *(const nmea_text *)in, f->arg, values);
+        break;
+    }
+}
+
+static void json_fields(nmea_writer *w, const layout_field *f, size_t n, const void *entry, bool values)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        json_field(w, f[i].id, &f[i], entry, values);
+}
+
+/* The lossless fields of a text command written back as received: each word as written, under
+   the ids of the layout's fields in order. */
+static void json_words_as_received(nmea_writer *w, const layout *l, nmea_text line)
+{
+    const char *p = line.ptr, *end = line.ptr + line.len, *space;
+    size_t i, count = l->before + l->optional;
+    p = memchr(p, ' ', line.len);
+    for (i = 0; p && i < count; i++) {
+        p++;
+        space = memchr(p, ' ', (size_t)(end - p));
+        json_key(w, l->fields[i].id);
+        if (p == (space ? space : end))
+            put_str(w, "null");
+        else
+            put_json_str(w, text_span(p, space ? space : end), 0);
+        p = space;
+    }
+}
+
+/* The lossless fields of a text command written in the spec's letter case, as the reference
+   shows them: each word under its field id, the text of a problem in place of the field's. */
+static void json_words_as_written(nmea_writer *w, const layout *l, const void *s, const nmea_problems *problems)
+{
+    size_t i, count = l->before + optional_of(l, s);
+    for (i = 0; i < count; i++)
+        if (!problems || !json_problem_word(w, l->fields[i].id, problems, (unsigned)i + 1))
+            json_field(w, l->fields[i].id, &l->fields[i], s, false);
+}
+
+/* The decode JSON of `s`, a struct of layout `l`, with its `problems` (NULL: none). */
+NMEA_OUTLINE void json_with(nmea_writer *w, const layout *l, const void *s, const nmea_problems *problems,
+                            bool values)
+{
+    static const nmea_problems none = {0};
+    const layout_group *g = l->group;
+    nmea_writer sentence = writer_of(NULL, 0);
+    nmea_checksum_style checksum = NMEA_CHECKSUM_NONE;
+    size_t i, n;
+
+    write_with(&sentence, l, s, problems);
+    if (!problems)
+        problems = &none;
+    if (l->checksum != NO_MEMBER)
+        checksum = *(const nmea_checksum_style *)const_member_at(s, l->checksum);
+    if (l->kind == LAYOUT_STANDARD) {
+        json_begin_sentence(w, l->start, *(const nmea_text *)const_member_at(s, l->head), l->sentence, l->variant);
+    } else if (l->kind == LAYOUT_PROPRIETARY) {
+        json_begin_proprietary(w, "$", nmea_text_of(l->address), l->sentence, l->variant);
+    } else {
+        nmea_text as_received = *(const nmea_text *)const_member_at(s, l->head);
+        json_begin_proprietary(w, "", text_address(&sentence, as_received, l->address), l->sentence, l->variant);
+        if (!values) {
+            if (sentence.matched)
+                json_words_as_received(w, l, as_received);
+            else
+                json_words_as_written(w, l, s, problems);
+            json_end_sentence(w, &sentence, checksum, problems);
+            return;
+        }
+    }
+    json_fields(w, l->fields, l->before, s, values);
+    if (g) {
+        json_open(w, g->id, '[');
+        for (i = 0, n = entries_of(g, s); i < n; i++) {
+            if (g->single) {
+                json_field(w, NULL, g->fields, entry_at(g, s, i), values);
+            } else {
+                json_open(w, NULL, '{');
+                json_fields(w, g->fields, g->field_count, entry_at(g, s, i), values);
+                json_close(w, '}');
+            }
+        }
+        json_close(w, ']');
+    }
+    json_fields(w, l->fields + l->before, l->after + optional_of(l, s), s, values);
+    json_end_sentence(w, &sentence, checksum, problems);
+}
+
+/* The wire fields of a `fields` object of decode's JSON for layout `l`, in wire order. */
+static bool collect_with(const layout *l, nmea_collector *c, nmea_json fields)
+{
+    const layout_field *f = l->fields;
+    const layout_group *g = l->group;
+    nmea_json entries, entry;
+    size_t i;
+
+    for (i = 0; i < l->before; i++)
+        if (!collect_field(c, fields, f[i].id, f[i].width))
+            return false;
+    if (g) {
+        if (!collect_group(c, fields, g->id, &entries))
+            return false;
+        while (json_next(&entries, &entry))
+            for (i = 0; i < g->field_count; i++)
+                if (!(g->single ? collect_value(c, entry, g->fields[i].width)
+                                : collect_field(c, entry, g->fields[i].id, g->fields[i].width)))
+                    return false;
+    }
+    for (f += l->before, i = 0; i < l->after; i++)
+        if (!collect_field(c, fields, f[i].id, f[i].width))
+            return false;
+    for (f += l->after, i = 0; i < l->optional; i++)
+        if (!collect_optional(c, fields, f[i].id, f[i].width))
+            return false;
+    return true;
+}
+#endif /* NMEA_NO_JSON */

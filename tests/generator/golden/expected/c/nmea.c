@@ -251,710 +251,272 @@ NMEA_INTERNAL bool frame_command(nmea_wire *wire, const char *line, size_t len, 
     return true;
 }
 
+/* nmea_parse_<layout>: the line framed as layout `l` says, then read into `out`, a struct of it. */
+static bool parse_with(const layout *l, void *out, const char *line, size_t len, nmea_error *err)
+{
+    nmea_wire wire;
+    if (l->kind == LAYOUT_STANDARD)
+        return frame_known(&wire, line, len, l->start, l->sentence, err) && read_with(l, out, &wire, err);
+    if (l->kind == LAYOUT_PROPRIETARY)
+        return frame_proprietary(&wire, line, len, l->address, err) && read_with(l, out, &wire, err);
+    return frame_command(&wire, line, len, l->command, err) && read_with(l, out, &wire, err);
+}
+
 /* ------------------------------------------------------------------------------------------ */
 /* FIX: Fix with every field type (spec/standard/fix.yaml) */
 
 /* $GPFIX,123519.50,4807.038,N,01131.000,E,230394,1,08,-12.5,1F,Q,M,AD,HELLO,5*69 */
-static bool fix_read(nmea_fix *s, const nmea_wire *wire, nmea_error *err)
-{
-    nmea_reader r;
-    size_t optional;
+static const layout_field fix_fields[] = {
+    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_fix, time), FIELD_TIME, 1, 0},
+    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_fix, lat), FIELD_LATITUDE, 2, 0},
+    {"lon", "longitude dddmm.mmmm", "hemisphere E or W", offsetof(nmea_fix, lon), FIELD_LONGITUDE, 2, 0},
+    {"date", "date ddmmyy", NULL, offsetof(nmea_fix, date), FIELD_DATE, 1, 0},
+    {"quality", "fix_quality code (0 1 2)", &nmea_fix_quality_def, offsetof(nmea_fix, quality), FIELD_ENUM, 1, 0},
+    {"satellites", "integer 0..99", &range_0_to_99, offsetof(nmea_fix, satellites), FIELD_INTEGER, 1, 0},
+    {"altitude", "decimal number", NULL, offsetof(nmea_fix, altitude), FIELD_DECIMAL, 1, 0},
+    {"flags", "hex number", NULL, offsetof(nmea_fix, flags), FIELD_HEX, 1, 0},
+    {"grade", "one character", NULL, offsetof(nmea_fix, grade), FIELD_CHAR, 1, 0},
+    {"unit", "M or nothing", "M", offsetof(nmea_fix, unit), FIELD_LITERAL, 1, 0},
+    {"modes", "system_mode codes (A D N)", &nmea_system_mode_def, offsetof(nmea_fix, modes), FIELD_ENUM_CHARS, 1, 4},
+    {"note", "text of at most 20 characters", NULL, offsetof(nmea_fix, note), FIELD_TEXT, 1, 20},
+    {"extra", "integer", NULL, offsetof(nmea_fix, extra), FIELD_INTEGER, 1, 0},
+};
+static const layout fix_layout = {
+    .sentence = "FIX", .fields = fix_fields, .before = 12, .optional = 1, .fixed = 14, .max_fields = 15,
+    .optional_max = 1, .problems = offsetof(nmea_fix, problems), .head = offsetof(nmea_fix, talker),
+    .optional_count = offsetof(nmea_fix, optional_count), .checksum = offsetof(nmea_fix, checksum),
+    .kind = LAYOUT_STANDARD, .start = '$',
+};
 
-    reader_start(&r, wire, "FIX", err);
-    if (!read_count(&r, wire->count, 14, 15, &optional))
-        return false;
-    clear_layout(s, offsetof(nmea_fix, problems)); /* the problems are set by lenient parsing */
-    s->problems.count = 0;
-    s->talker = wire->address;
-    s->checksum = wire->checksum;
-    s->optional_count = (uint8_t)optional;
-    if (!read_time(&r, &s->time, "time", "time hhmmss[.s]")
-        || !read_latitude(&r, &s->lat, "lat", "latitude ddmm.mmmm", "hemisphere N or S")
-        || !read_longitude(&r, &s->lon, "lon", "longitude dddmm.mmmm", "hemisphere E or W")
-        || !read_date(&r, &s->date, "date", "date ddmmyy")
-        || !read_enum(&r, &s->quality, "quality", "fix_quality code (0 1 2)", &nmea_fix_quality_def)
-        || !read_integer(&r, &s->satellites, "satellites", "integer 0..99", &range_0_to_99)
-        || !read_decimal(&r, &s->altitude, "altitude", "decimal number", NULL)
-        || !read_hex(&r, &s->flags, "flags", "hex number")
-        || !read_char(&r, &s->grade, "grade", "one character")
-        || !read_literal(&r, &s->unit, "unit", "M or nothing", "M")
-        || !read_enum_chars(&r, &s->modes, "modes", "system_mode codes (A D N)", &nmea_system_mode_def, 4)
-        || !read_text(&r, &s->note, "note", "text of at most 20 characters", 20)
-        || (s->optional_count >= 1 && !read_integer(&r, &s->extra, "extra", "integer", NULL)))
-        return false;
-    return true;
-}
-
-
-static void fix_write(nmea_writer *w, const nmea_fix *s)
-{
-    begin_sentence(w, '$', s->talker, "FIX", &s->problems);
-    put_time(w, &s->time);
-    put_coordinate(w, &s->lat);
-    put_coordinate(w, &s->lon);
-    put_date(w, &s->date);
-    put_enum(w, &s->quality, &nmea_fix_quality_def);
-    put_number(w, &s->satellites);
-    put_number(w, &s->altitude);
-    put_hex(w, &s->flags);
-    put_char_field(w, s->grade);
-    put_literal(w, s->unit, "M");
-    put_text_field(w, s->modes);
-    put_text_field(w, s->note);
-    if (s->optional_count >= 1)
-        put_number(w, &s->extra);
-    end_sentence(w, s->checksum);
-}
-#ifndef NMEA_NO_JSON
-
-static void fix_json(nmea_writer *w, const nmea_fix *s, bool values)
-{
-    nmea_writer sentence = writer_of(NULL, 0);
-
-    fix_write(&sentence, s);
-    json_begin_sentence(w, '$', s->talker, "FIX", NULL);
-    json_time(w, "time", &s->time, values);
-    json_coordinate(w, "lat", &s->lat, values);
-    json_coordinate(w, "lon", &s->lon, values);
-    json_date(w, "date", &s->date, values);
-    json_enum(w, "quality", &s->quality, &nmea_fix_quality_def, values);
-    json_number(w, "satellites", &s->satellites, values);
-    json_number(w, "altitude", &s->altitude, values);
-    json_hex(w, "flags", &s->flags, values);
-    json_char(w, "grade", s->grade, values);
-    json_literal(w, "unit", s->unit, "M", values);
-    json_enum_chars(w, "modes", s->modes, &nmea_system_mode_def, values);
-    json_text(w, "note", s->note, values);
-    if (s->optional_count >= 1)
-        json_number(w, "extra", &s->extra, values);
-    json_end_sentence(w, &sentence, s->checksum, &s->problems);
-}
-
-/* The wire fields of a `fields` object of decode's JSON, in wire order. */
-static bool fix_collect(nmea_collector *c, nmea_json fields)
-{
-    return collect_field(c, fields, "time", 1)
-        && collect_field(c, fields, "lat", 2)
-        && collect_field(c, fields, "lon", 2)
-        && collect_field(c, fields, "date", 1)
-        && collect_field(c, fields, "quality", 1)
-        && collect_field(c, fields, "satellites", 1)
-        && collect_field(c, fields, "altitude", 1)
-        && collect_field(c, fields, "flags", 1)
-        && collect_field(c, fields, "grade", 1)
-        && collect_field(c, fields, "unit", 1)
-        && collect_field(c, fields, "modes", 1)
-        && collect_field(c, fields, "note", 1)
-        && collect_optional(c, fields, "extra", 1);
-}
-
-#endif /* NMEA_NO_JSON */
-
-/* $GPFIX,123519.50,4807.038,N,01131.000,E,230394,1,08,-12.5,1F,Q,M,AD,HELLO,5*69 */
 bool nmea_parse_fix(nmea_fix *out, const char *line, size_t len, nmea_error *err)
 {
-    nmea_wire wire;
-    return frame_known(&wire, line, len, '$', "FIX", err) && fix_read(out, &wire, err);
+    return parse_with(&fix_layout, out, line, len, err);
 }
 
 size_t nmea_serialize_fix(const nmea_fix *s, char *buf, size_t cap)
 {
-    nmea_writer w = writer_of(buf, cap);
-    fix_write(&w, s);
-    return writer_finish(&w);
+    return serialize_with(&fix_layout, s, &s->problems, buf, cap);
 }
 
 size_t nmea_build_fix(const nmea_fix *s, char *buf, size_t cap, nmea_error *err)
 {
-    nmea_writer w = writer_of(buf, cap);
-    nmea_wire wire;
     nmea_fix check;
-
-    fix_write(&w, s);
-    if (!build_wire(&w, false, &wire, err) || !fix_read(&check, &wire, err))
-        return build_failed(&w);
-    return build_end(&w);
+    return build_with(&fix_layout, s, &s->problems, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
 /* FIX (Time and latitude only): Fix with every field type (spec/standard/fix.yaml) */
 
 /* $GPFIX,123519.50,4807.038,N*1A */
-static bool fix_short_read(nmea_fix_short *s, const nmea_wire *wire, nmea_error *err)
-{
-    nmea_reader r;
-    size_t optional;
+static const layout_field fix_short_fields[] = {
+    {"time", "time hhmmss[.s]", NULL, offsetof(nmea_fix_short, time), FIELD_TIME, 1, 0},
+    {"lat", "latitude ddmm.mmmm", "hemisphere N or S", offsetof(nmea_fix_short, lat), FIELD_LATITUDE, 2, 0},
+};
+static const layout fix_short_layout = {
+    .sentence = "FIX", .variant = "short", .fields = fix_short_fields, .before = 2, .fixed = 3, .max_fields = 3,
+    .problems = offsetof(nmea_fix_short, problems), .head = offsetof(nmea_fix_short, talker),
+    .optional_count = NO_MEMBER, .checksum = offsetof(nmea_fix_short, checksum), .kind = LAYOUT_STANDARD,
+    .start = '$',
+};
 
-    reader_start(&r, wire, "FIX", err);
-    if (!read_count(&r, wire->count, 3, 3, &optional))
-        return false;
-    clear_layout(s, offsetof(nmea_fix_short, problems)); /* the problems are set by lenient parsing */
-    s->problems.count = 0;
-    s->talker = wire->address;
-    s->checksum = wire->checksum;
-    (void)optional;
-    if (!read_time(&r, &s->time, "time", "time hhmmss[.s]")
-        || !read_latitude(&r, &s->lat, "lat", "latitude ddmm.mmmm", "hemisphere N or S"))
-        return false;
-    return true;
-}
-
-
-static void fix_short_write(nmea_writer *w, const nmea_fix_short *s)
-{
-    begin_sentence(w, '$', s->talker, "FIX", &s->problems);
-    put_time(w, &s->time);
-    put_coordinate(w, &s->lat);
-    end_sentence(w, s->checksum);
-}
-#ifndef NMEA_NO_JSON
-
-static void fix_short_json(nmea_writer *w, const nmea_fix_short *s, bool values)
-{
-    nmea_writer sentence = writer_of(NULL, 0);
-
-    fix_short_write(&sentence, s);
-    json_begin_sentence(w, '$', s->talker, "FIX", "short");
-    json_time(w, "time", &s->time, values);
-    json_coordinate(w, "lat", &s->lat, values);
-    json_end_sentence(w, &sentence, s->checksum, &s->problems);
-}
-
-/* The wire fields of a `fields` object of decode's JSON, in wire order. */
-static bool fix_short_collect(nmea_collector *c, nmea_json fields)
-{
-    return collect_field(c, fields, "time", 1)
-        && collect_field(c, fields, "lat", 2);
-}
-
-#endif /* NMEA_NO_JSON */
-
-/* $GPFIX,123519.50,4807.038,N*1A */
 bool nmea_parse_fix_short(nmea_fix_short *out, const char *line, size_t len, nmea_error *err)
 {
-    nmea_wire wire;
-    return frame_known(&wire, line, len, '$', "FIX", err) && fix_short_read(out, &wire, err);
+    return parse_with(&fix_short_layout, out, line, len, err);
 }
 
 size_t nmea_serialize_fix_short(const nmea_fix_short *s, char *buf, size_t cap)
 {
-    nmea_writer w = writer_of(buf, cap);
-    fix_short_write(&w, s);
-    return writer_finish(&w);
+    return serialize_with(&fix_short_layout, s, &s->problems, buf, cap);
 }
 
 size_t nmea_build_fix_short(const nmea_fix_short *s, char *buf, size_t cap, nmea_error *err)
 {
-    nmea_writer w = writer_of(buf, cap);
-    nmea_wire wire;
     nmea_fix_short check;
-
-    fix_short_write(&w, s);
-    if (!build_wire(&w, false, &wire, err) || !fix_short_read(&check, &wire, err))
-        return build_failed(&w);
-    return build_end(&w);
+    return build_with(&fix_short_layout, s, &s->problems, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
 /* SAT: Satellites, a repeated group (spec/standard/sat.yaml) */
 
 /* $GPSAT,2,1,07,12,40,083,46,25,,,,1*5D */
-static bool sat_read(nmea_sat *s, const nmea_wire *wire, nmea_error *err)
-{
-    nmea_reader r;
-    size_t i, repeats, optional;
+static const layout_field sat_fields[] = {
+    {"total", "integer 1..9", &range_1_to_9, offsetof(nmea_sat, total), FIELD_INTEGER, 1, 0},
+    {"number", "integer 1..9", &range_1_to_9, offsetof(nmea_sat, number), FIELD_INTEGER, 1, 0},
+    {"in_view", "integer", NULL, offsetof(nmea_sat, in_view), FIELD_INTEGER, 1, 0},
+    {"signal", "hex number", NULL, offsetof(nmea_sat, signal), FIELD_HEX, 1, 0},
+};
+static const layout_field sat_group_fields[] = {
+    {"prn", "integer", NULL, offsetof(nmea_sat_satellite, prn), FIELD_INTEGER, 1, 0},
+    {"elevation", "integer", NULL, offsetof(nmea_sat_satellite, elevation), FIELD_INTEGER, 1, 0},
+    {"azimuth", "integer", NULL, offsetof(nmea_sat_satellite, azimuth), FIELD_INTEGER, 1, 0},
+    {"snr", "integer", NULL, offsetof(nmea_sat_satellite, snr), FIELD_INTEGER, 1, 0},
+};
+static const layout_group sat_group = {
+    .id = "satellites", .fields = sat_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
+    .single = false, .offset = offsetof(nmea_sat, satellites), .entry_size = sizeof(nmea_sat_satellite),
+    .count_offset = offsetof(nmea_sat, satellites_count),
+};
+static const layout sat_layout = {
+    .sentence = "SAT", .fields = sat_fields, .group = &sat_group, .before = 3, .optional = 1, .fixed = 3,
+    .max_fields = 20, .optional_max = 1, .problems = offsetof(nmea_sat, problems),
+    .head = offsetof(nmea_sat, talker), .optional_count = offsetof(nmea_sat, optional_count),
+    .checksum = offsetof(nmea_sat, checksum), .kind = LAYOUT_STANDARD, .start = '$',
+};
 
-    reader_start(&r, wire, "SAT", err);
-    if (!read_group_count(&r, wire->count, "satellites", 3, 4, 0, 4, 1, &repeats, &optional))
-        return false;
-    clear_layout(s, offsetof(nmea_sat, problems)); /* the problems are set by lenient parsing */
-    s->problems.count = 0;
-    s->talker = wire->address;
-    s->checksum = wire->checksum;
-    s->optional_count = (uint8_t)optional;
-    if (!read_integer(&r, &s->total, "total", "integer 1..9", &range_1_to_9)
-        || !read_integer(&r, &s->number, "number", "integer 1..9", &range_1_to_9)
-        || !read_integer(&r, &s->in_view, "in_view", "integer", NULL))
-        return false;
-    for (i = 0; i < repeats; i++) {
-        nmea_sat_satellite *e = &s->satellites[i];
-
-        reader_entry(&r, "satellites", i);
-        if (!read_integer(&r, &e->prn, "prn", "integer", NULL)
-            || !read_integer(&r, &e->elevation, "elevation", "integer", NULL)
-            || !read_integer(&r, &e->azimuth, "azimuth", "integer", NULL)
-            || !read_integer(&r, &e->snr, "snr", "integer", NULL))
-            return false;
-    }
-    s->satellites_count = (uint8_t)repeats;
-    reader_entry(&r, NULL, 0);
-    if (s->optional_count >= 1 && !read_hex(&r, &s->signal, "signal", "hex number"))
-        return false;
-    return true;
-}
-
-
-static void sat_write(nmea_writer *w, const nmea_sat *s)
-{
-    size_t i;
-
-    begin_sentence(w, '$', s->talker, "SAT", &s->problems);
-    put_number(w, &s->total);
-    put_number(w, &s->number);
-    put_number(w, &s->in_view);
-    for (i = 0; i < s->satellites_count && i < 4; i++) {
-        const nmea_sat_satellite *e = &s->satellites[i];
-
-        put_number(w, &e->prn);
-        put_number(w, &e->elevation);
-        put_number(w, &e->azimuth);
-        put_number(w, &e->snr);
-    }
-    if (s->optional_count >= 1)
-        put_hex(w, &s->signal);
-    end_sentence(w, s->checksum);
-}
-#ifndef NMEA_NO_JSON
-
-static void sat_json(nmea_writer *w, const nmea_sat *s, bool values)
-{
-    nmea_writer sentence = writer_of(NULL, 0);
-    size_t i;
-
-    sat_write(&sentence, s);
-    json_begin_sentence(w, '$', s->talker, "SAT", NULL);
-    json_number(w, "total", &s->total, values);
-    json_number(w, "number", &s->number, values);
-    json_number(w, "in_view", &s->in_view, values);
-    json_open(w, "satellites", '[');
-    for (i = 0; i < s->satellites_count && i < 4; i++) {
-        const nmea_sat_satellite *e = &s->satellites[i];
-
-        json_open(w, NULL, '{');
-        json_number(w, "prn", &e->prn, values);
-        json_number(w, "elevation", &e->elevation, values);
-        json_number(w, "azimuth", &e->azimuth, values);
-        json_number(w, "snr", &e->snr, values);
-        json_close(w, '}');
-    }
-    json_close(w, ']');
-    if (s->optional_count >= 1)
-        json_hex(w, "signal", &s->signal, values);
-    json_end_sentence(w, &sentence, s->checksum, &s->problems);
-}
-
-/* The wire fields of a `fields` object of decode's JSON, in wire order. */
-static bool sat_collect(nmea_collector *c, nmea_json fields)
-{
-    nmea_json entries, entry;
-
-    if (!collect_field(c, fields, "total", 1)
-        || !collect_field(c, fields, "number", 1)
-        || !collect_field(c, fields, "in_view", 1)
-        || !collect_group(c, fields, "satellites", &entries))
-        return false;
-    while (json_next(&entries, &entry)) {
-        if (!collect_field(c, entry, "prn", 1)
-            || !collect_field(c, entry, "elevation", 1)
-            || !collect_field(c, entry, "azimuth", 1)
-            || !collect_field(c, entry, "snr", 1))
-            return false;
-    }
-    return collect_optional(c, fields, "signal", 1);
-}
-
-#endif /* NMEA_NO_JSON */
-
-/* $GPSAT,2,1,07,12,40,083,46,25,,,,1*5D */
 bool nmea_parse_sat(nmea_sat *out, const char *line, size_t len, nmea_error *err)
 {
-    nmea_wire wire;
-    return frame_known(&wire, line, len, '$', "SAT", err) && sat_read(out, &wire, err);
+    return parse_with(&sat_layout, out, line, len, err);
 }
 
 size_t nmea_serialize_sat(const nmea_sat *s, char *buf, size_t cap)
 {
-    nmea_writer w = writer_of(buf, cap);
-    sat_write(&w, s);
-    return writer_finish(&w);
+    return serialize_with(&sat_layout, s, &s->problems, buf, cap);
 }
 
 size_t nmea_build_sat(const nmea_sat *s, char *buf, size_t cap, nmea_error *err)
 {
-    nmea_writer w = writer_of(buf, cap);
-    nmea_wire wire;
     nmea_sat check;
-
-    sat_write(&w, s);
-    if (!build_wire(&w, false, &wire, err) || !sat_read(&check, &wire, err))
-        return build_failed(&w);
-    return build_end(&w);
+    return build_with(&sat_layout, s, &s->problems, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
 /* XDM: An encapsulation sentence (spec/standard/xdm.yaml) */
 
 /* !AIXDM,1,1,,13nUgBWP01PkHvDU7<kC4wvJ2>`<*5B */
-static bool xdm_read(nmea_xdm *s, const nmea_wire *wire, nmea_error *err)
-{
-    nmea_reader r;
-    size_t optional;
+static const layout_field xdm_fields[] = {
+    {"count", "integer", NULL, offsetof(nmea_xdm, count), FIELD_INTEGER, 1, 0},
+    {"fragment", "integer", NULL, offsetof(nmea_xdm, fragment), FIELD_INTEGER, 1, 0},
+    {"message_id", "integer", NULL, offsetof(nmea_xdm, message_id), FIELD_INTEGER, 1, 0},
+    {"payload", "text", NULL, offsetof(nmea_xdm, payload), FIELD_TEXT, 1, 0},
+};
+static const layout xdm_layout = {
+    .sentence = "XDM", .fields = xdm_fields, .before = 4, .fixed = 4, .max_fields = 4,
+    .problems = offsetof(nmea_xdm, problems), .head = offsetof(nmea_xdm, talker), .optional_count = NO_MEMBER,
+    .checksum = offsetof(nmea_xdm, checksum), .kind = LAYOUT_STANDARD, .start = '!',
+};
 
-    reader_start(&r, wire, "XDM", err);
-    if (!read_count(&r, wire->count, 4, 4, &optional))
-        return false;
-    clear_layout(s, offsetof(nmea_xdm, problems)); /* the problems are set by lenient parsing */
-    s->problems.count = 0;
-    s->talker = wire->address;
-    s->checksum = wire->checksum;
-    (void)optional;
-    if (!read_integer(&r, &s->count, "count", "integer", NULL)
-        || !read_integer(&r, &s->fragment, "fragment", "integer", NULL)
-        || !read_integer(&r, &s->message_id, "message_id", "integer", NULL)
-        || !read_text(&r, &s->payload, "payload", "text", 0))
-        return false;
-    return true;
-}
-
-
-static void xdm_write(nmea_writer *w, const nmea_xdm *s)
-{
-    begin_sentence(w, '!', s->talker, "XDM", &s->problems);
-    put_number(w, &s->count);
-    put_number(w, &s->fragment);
-    put_number(w, &s->message_id);
-    put_text_field(w, s->payload);
-    end_sentence(w, s->checksum);
-}
-#ifndef NMEA_NO_JSON
-
-static void xdm_json(nmea_writer *w, const nmea_xdm *s, bool values)
-{
-    nmea_writer sentence = writer_of(NULL, 0);
-
-    xdm_write(&sentence, s);
-    json_begin_sentence(w, '!', s->talker, "XDM", NULL);
-    json_number(w, "count", &s->count, values);
-    json_number(w, "fragment", &s->fragment, values);
-    json_number(w, "message_id", &s->message_id, values);
-    json_text(w, "payload", s->payload, values);
-    json_end_sentence(w, &sentence, s->checksum, &s->problems);
-}
-
-/* The wire fields of a `fields` object of decode's JSON, in wire order. */
-static bool xdm_collect(nmea_collector *c, nmea_json fields)
-{
-    return collect_field(c, fields, "count", 1)
-        && collect_field(c, fields, "fragment", 1)
-        && collect_field(c, fields, "message_id", 1)
-        && collect_field(c, fields, "payload", 1);
-}
-
-#endif /* NMEA_NO_JSON */
-
-/* !AIXDM,1,1,,13nUgBWP01PkHvDU7<kC4wvJ2>`<*5B */
 bool nmea_parse_xdm(nmea_xdm *out, const char *line, size_t len, nmea_error *err)
 {
-    nmea_wire wire;
-    return frame_known(&wire, line, len, '!', "XDM", err) && xdm_read(out, &wire, err);
+    return parse_with(&xdm_layout, out, line, len, err);
 }
 
 size_t nmea_serialize_xdm(const nmea_xdm *s, char *buf, size_t cap)
 {
-    nmea_writer w = writer_of(buf, cap);
-    xdm_write(&w, s);
-    return writer_finish(&w);
+    return serialize_with(&xdm_layout, s, &s->problems, buf, cap);
 }
 
 size_t nmea_build_xdm(const nmea_xdm *s, char *buf, size_t cap, nmea_error *err)
 {
-    nmea_writer w = writer_of(buf, cap);
-    nmea_wire wire;
     nmea_xdm check;
-
-    xdm_write(&w, s);
-    if (!build_wire(&w, false, &wire, err) || !xdm_read(&check, &wire, err))
-        return build_failed(&w);
-    return build_end(&w);
+    return build_with(&xdm_layout, s, &s->problems, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
 /* ACME_LOG: Request a log (spec/proprietary/acme_log.yaml) */
 
 /* LOG GPFIX 1 */
-static bool acme_log_read(nmea_acme_log *s, const nmea_wire *wire, nmea_error *err)
-{
-    nmea_reader r;
-    size_t optional;
+static const layout_field acme_log_fields[] = {
+    {"message", "text", NULL, offsetof(nmea_acme_log, message), FIELD_TEXT, 1, 0},
+    {"period", "integer", NULL, offsetof(nmea_acme_log, period), FIELD_INTEGER, 1, 0},
+};
+static const layout acme_log_layout = {
+    .sentence = "ACME_LOG", .address = "LOG", .command = "LOG", .fields = acme_log_fields, .before = 2,
+    .fixed = 2, .max_fields = 2, .problems = offsetof(nmea_acme_log, problems),
+    .head = offsetof(nmea_acme_log, as_received), .optional_count = NO_MEMBER, .checksum = NO_MEMBER,
+    .kind = LAYOUT_TEXT, .start = '$',
+};
 
-    reader_start(&r, wire, "ACME_LOG", err);
-    if (!read_count(&r, wire->count, 2, 2, &optional))
-        return false;
-    clear_layout(s, offsetof(nmea_acme_log, problems)); /* the problems are set by lenient parsing */
-    s->problems.count = 0;
-    s->as_received = wire->line;
-    (void)optional;
-    if (!read_text(&r, &s->message, "message", "text", 0)
-        || !read_integer(&r, &s->period, "period", "integer", NULL))
-        return false;
-    return true;
-}
-
-
-static void acme_log_write(nmea_writer *w, const nmea_acme_log *s)
-{
-    begin_text(w, "LOG", s->as_received, &s->problems);
-    put_text_field(w, s->message);
-    put_number(w, &s->period);
-    end_text(w);
-}
-#ifndef NMEA_NO_JSON
-
-/* The field ids a text command's words pair with in decode's JSON. */
-static const char *const acme_log_ids[] = {"message", "period"};
-
-static void acme_log_json(nmea_writer *w, const nmea_acme_log *s, bool values)
-{
-    nmea_writer sentence = writer_of(NULL, 0);
-
-    acme_log_write(&sentence, s);
-    json_begin_proprietary(w, "", text_address(&sentence, s->as_received, "LOG"), "ACME_LOG", NULL);
-    if (!values && sentence.matched) { /* the words as received */
-        json_words(w, acme_log_ids, 2, s->as_received);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
-        return;
-    }
-    if (!values) { /* the words as written in the spec's letter case */
-        if (!json_problem_word(w, "message", &s->problems, 1))
-            json_text(w, "message", s->message, false);
-        if (!json_problem_word(w, "period", &s->problems, 2))
-            json_number(w, "period", &s->period, false);
-        json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
-        return;
-    }
-    json_text(w, "message", s->message, values);
-    json_number(w, "period", &s->period, values);
-    json_end_sentence(w, &sentence, NMEA_CHECKSUM_NONE, &s->problems);
-}
-
-/* The wire fields of a `fields` object of decode's JSON, in wire order. */
-static bool acme_log_collect(nmea_collector *c, nmea_json fields)
-{
-    return collect_field(c, fields, "message", 1)
-        && collect_field(c, fields, "period", 1);
-}
-
-#endif /* NMEA_NO_JSON */
-
-/* LOG GPFIX 1 */
 bool nmea_parse_acme_log(nmea_acme_log *out, const char *line, size_t len, nmea_error *err)
 {
-    nmea_wire wire;
-    return frame_command(&wire, line, len, "LOG", err) && acme_log_read(out, &wire, err);
+    return parse_with(&acme_log_layout, out, line, len, err);
 }
 
 size_t nmea_serialize_acme_log(const nmea_acme_log *s, char *buf, size_t cap)
 {
-    nmea_writer w = writer_of(buf, cap);
-    acme_log_write(&w, s);
-    return writer_finish(&w);
+    return serialize_with(&acme_log_layout, s, &s->problems, buf, cap);
 }
 
 size_t nmea_build_acme_log(const nmea_acme_log *s, char *buf, size_t cap, nmea_error *err)
 {
-    nmea_writer w = writer_of(buf, cap);
-    nmea_wire wire;
     nmea_acme_log check;
-
-    acme_log_write(&w, s);
-    if (!build_wire(&w, true, &wire, err) || !acme_log_read(&check, &wire, err))
-        return build_failed(&w);
-    return build_end(&w);
+    return build_with(&acme_log_layout, s, &s->problems, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
 /* PACMACK: Acknowledgement (spec/proprietary/pacmack.yaml) */
 
 /* $PACMACK,SET,1*25 */
-static bool pacmack_read(nmea_pacmack *s, const nmea_wire *wire, nmea_error *err)
-{
-    nmea_reader r;
-    size_t optional;
+static const layout_field pacmack_fields[] = {
+    {"command", "text of at most 8 characters", NULL, offsetof(nmea_pacmack, command), FIELD_TEXT, 1, 8},
+    {"ok", "integer 0..1", &range_0_to_1, offsetof(nmea_pacmack, ok), FIELD_INTEGER, 1, 0},
+};
+static const layout pacmack_layout = {
+    .sentence = "PACMACK", .address = "PACMACK", .fields = pacmack_fields, .before = 2, .fixed = 2,
+    .max_fields = 2, .problems = offsetof(nmea_pacmack, problems), .head = NO_MEMBER, .optional_count = NO_MEMBER,
+    .checksum = offsetof(nmea_pacmack, checksum), .kind = LAYOUT_PROPRIETARY, .start = '$',
+};
 
-    reader_start(&r, wire, "PACMACK", err);
-    if (!read_count(&r, wire->count, 2, 2, &optional))
-        return false;
-    clear_layout(s, offsetof(nmea_pacmack, problems)); /* the problems are set by lenient parsing */
-    s->problems.count = 0;
-    s->checksum = wire->checksum;
-    (void)optional;
-    if (!read_text(&r, &s->command, "command", "text of at most 8 characters", 8)
-        || !read_integer(&r, &s->ok, "ok", "integer 0..1", &range_0_to_1))
-        return false;
-    return true;
-}
-
-
-static void pacmack_write(nmea_writer *w, const nmea_pacmack *s)
-{
-    begin_sentence(w, '$', nmea_text_of(NULL), "PACMACK", &s->problems);
-    put_text_field(w, s->command);
-    put_number(w, &s->ok);
-    end_sentence(w, s->checksum);
-}
-#ifndef NMEA_NO_JSON
-
-static void pacmack_json(nmea_writer *w, const nmea_pacmack *s, bool values)
-{
-    nmea_writer sentence = writer_of(NULL, 0);
-
-    pacmack_write(&sentence, s);
-    json_begin_proprietary(w, "$", nmea_text_of("PACMACK"), "PACMACK", NULL);
-    json_text(w, "command", s->command, values);
-    json_number(w, "ok", &s->ok, values);
-    json_end_sentence(w, &sentence, s->checksum, &s->problems);
-}
-
-/* The wire fields of a `fields` object of decode's JSON, in wire order. */
-static bool pacmack_collect(nmea_collector *c, nmea_json fields)
-{
-    return collect_field(c, fields, "command", 1)
-        && collect_field(c, fields, "ok", 1);
-}
-
-#endif /* NMEA_NO_JSON */
-
-/* $PACMACK,SET,1*25 */
 bool nmea_parse_pacmack(nmea_pacmack *out, const char *line, size_t len, nmea_error *err)
 {
-    nmea_wire wire;
-    return frame_proprietary(&wire, line, len, "PACMACK", err) && pacmack_read(out, &wire, err);
+    return parse_with(&pacmack_layout, out, line, len, err);
 }
 
 size_t nmea_serialize_pacmack(const nmea_pacmack *s, char *buf, size_t cap)
 {
-    nmea_writer w = writer_of(buf, cap);
-    pacmack_write(&w, s);
-    return writer_finish(&w);
+    return serialize_with(&pacmack_layout, s, &s->problems, buf, cap);
 }
 
 size_t nmea_build_pacmack(const nmea_pacmack *s, char *buf, size_t cap, nmea_error *err)
 {
-    nmea_writer w = writer_of(buf, cap);
-    nmea_wire wire;
     nmea_pacmack check;
-
-    pacmack_write(&w, s);
-    if (!build_wire(&w, false, &wire, err) || !pacmack_read(&check, &wire, err))
-        return build_failed(&w);
-    return build_end(&w);
+    return build_with(&pacmack_layout, s, &s->problems, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
 /* PACMSET: Set a parameter (spec/proprietary/pacmset.yaml) */
 
 /* $PACMSET,BAUD,4800,C3*1F */
-static bool pacmset_read(nmea_pacmset *s, const nmea_wire *wire, nmea_error *err)
-{
-    nmea_reader r;
-    size_t optional;
+static const layout_field pacmset_fields[] = {
+    {"what", "BAUD", "BAUD", 0, FIELD_KEYWORD, 1, 0},
+    {"baud", "acme_baud code (4800 9600)", &nmea_acme_baud_def, offsetof(nmea_pacmset, baud), FIELD_ENUM, 1, 0},
+    {"outputs", "hex number", NULL, offsetof(nmea_pacmset, outputs), FIELD_HEX, 1, 0},
+};
+static const layout pacmset_layout = {
+    .sentence = "PACMSET", .address = "PACMSET", .selector = "BAUD", .fields = pacmset_fields, .selector_at = 0,
+    .before = 3, .fixed = 3, .max_fields = 3, .problems = offsetof(nmea_pacmset, problems), .head = NO_MEMBER,
+    .optional_count = NO_MEMBER, .checksum = offsetof(nmea_pacmset, checksum), .kind = LAYOUT_PROPRIETARY,
+    .start = '$',
+};
 
-    reader_start(&r, wire, "PACMSET", err);
-    if (!read_count(&r, wire->count, 3, 3, &optional))
-        return false;
-    clear_layout(s, offsetof(nmea_pacmset, problems)); /* the problems are set by lenient parsing */
-    s->problems.count = 0;
-    s->checksum = wire->checksum;
-    (void)optional;
-    if (!read_keyword(&r, "what", "BAUD", "BAUD")
-        || !read_enum(&r, &s->baud, "baud", "acme_baud code (4800 9600)", &nmea_acme_baud_def)
-        || !read_hex(&r, &s->outputs, "outputs", "hex number"))
-        return false;
-    return true;
-}
-
-
-static void pacmset_write(nmea_writer *w, const nmea_pacmset *s)
-{
-    begin_sentence(w, '$', nmea_text_of(NULL), "PACMSET", &s->problems);
-    put_keyword(w, "BAUD");
-    put_enum(w, &s->baud, &nmea_acme_baud_def);
-    put_hex(w, &s->outputs);
-    end_sentence(w, s->checksum);
-}
-#ifndef NMEA_NO_JSON
-
-static void pacmset_json(nmea_writer *w, const nmea_pacmset *s, bool values)
-{
-    nmea_writer sentence = writer_of(NULL, 0);
-
-    pacmset_write(&sentence, s);
-    json_begin_proprietary(w, "$", nmea_text_of("PACMSET"), "PACMSET", NULL);
-    json_keyword(w, "what", "BAUD", values);
-    json_enum(w, "baud", &s->baud, &nmea_acme_baud_def, values);
-    json_hex(w, "outputs", &s->outputs, values);
-    json_end_sentence(w, &sentence, s->checksum, &s->problems);
-}
-
-/* The wire fields of a `fields` object of decode's JSON, in wire order. */
-static bool pacmset_collect(nmea_collector *c, nmea_json fields)
-{
-    return collect_field(c, fields, "what", 1)
-        && collect_field(c, fields, "baud", 1)
-        && collect_field(c, fields, "outputs", 1);
-}
-
-#endif /* NMEA_NO_JSON */
-
-/* $PACMSET,BAUD,4800,C3*1F */
 bool nmea_parse_pacmset(nmea_pacmset *out, const char *line, size_t len, nmea_error *err)
 {
-    nmea_wire wire;
-    return frame_proprietary(&wire, line, len, "PACMSET", err) && pacmset_read(out, &wire, err);
+    return parse_with(&pacmset_layout, out, line, len, err);
 }
 
 size_t nmea_serialize_pacmset(const nmea_pacmset *s, char *buf, size_t cap)
 {
-    nmea_writer w = writer_of(buf, cap);
-    pacmset_write(&w, s);
-    return writer_finish(&w);
+    return serialize_with(&pacmset_layout, s, &s->problems, buf, cap);
 }
 
 size_t nmea_build_pacmset(const nmea_pacmset *s, char *buf, size_t cap, nmea_error *err)
 {
-    nmea_writer w = writer_of(buf, cap);
-    nmea_wire wire;
     nmea_pacmset check;
-
-    pacmset_write(&w, s);
-    if (!build_wire(&w, false, &wire, err) || !pacmset_read(&check, &wire, err))
-        return build_failed(&w);
-    return build_end(&w);
+    return build_with(&pacmset_layout, s, &s->problems, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
 /* Dispatch */
 
-/* What the dispatch knows of each layout: its sentence id, the address of a proprietary
-   sentence (for a text command also its word in upper case) and the keyword every line of it
-   holds (its selector) at wire index selector_at (0-based). */
-typedef struct {
-    const char *sentence;
-    const char *address;
-    const char *command;
-    const char *selector;
-    unsigned selector_at;
-} nmea_layout_info;
-
-static const nmea_layout_info LAYOUT_INFO[NMEA_SENTENCE_COUNT] = {
-    {NULL, NULL, NULL, NULL, 0},
-    {"FIX", NULL, NULL, NULL, 0},
-    {"FIX", NULL, NULL, NULL, 0},
-    {"SAT", NULL, NULL, NULL, 0},
-    {"XDM", NULL, NULL, NULL, 0},
-    {"ACME_LOG", "LOG", "LOG", NULL, 0},
-    {"PACMACK", "PACMACK", NULL, NULL, 0},
-    {"PACMSET", "PACMSET", NULL, "BAUD", 0},
+/* Every layout by its nmea_sentence_id (NULL: the generic sentence). */
+static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {
+    NULL,
+    &fix_layout,
+    &fix_short_layout,
+    &sat_layout,
+    &xdm_layout,
+    &acme_log_layout,
+    &pacmack_layout,
+    &pacmset_layout,
 };
 
 /* Wire field `index` (0-based) of `fields` (separated by `sep`); empty past the end. */
@@ -974,16 +536,16 @@ static nmea_text field_at(nmea_text fields, char sep, size_t index)
     return text_span(p, stop);
 }
 
-/* Whether a line with `count` wire fields holds the keyword of `layout` in its place (ignoring
+/* Whether a line with `count` wire fields holds the keyword of layout `id` in its place (ignoring
    case); blanked fields (lenient parsing) hold nothing. */
-static bool holds_selector(nmea_sentence_id layout, const nmea_wire *wire)
+static bool holds_selector(nmea_sentence_id id, const nmea_wire *wire)
 {
-    const nmea_layout_info *info = &LAYOUT_INFO[layout];
-    if (!info->selector || info->selector_at >= wire->count)
+    const layout *l = LAYOUTS[id];
+    if (!l->selector || l->selector_at >= wire->count)
         return false;
-    if (wire->blanks && is_blank(wire->blank, wire->blanks, info->selector_at + 1))
+    if (wire->blanks && is_blank(wire->blank, wire->blanks, l->selector_at + 1u))
         return false;
-    return upper_is(field_at(wire->fields, wire->sep, info->selector_at), info->selector);
+    return upper_is(field_at(wire->fields, wire->sep, l->selector_at), l->selector);
 }
 
 /* The layouts a line may have, in the order they are tried. */
@@ -1002,7 +564,7 @@ static bool claimed(const nmea_layouts *layouts, const nmea_wire *wire)
 {
     size_t i;
     for (i = 0; i < layouts->count; i++)
-        if (!LAYOUT_INFO[layouts->ids[i]].selector || holds_selector(layouts->ids[i], wire))
+        if (!LAYOUTS[layouts->ids[i]]->selector || holds_selector(layouts->ids[i], wire))
             return true;
     return false;
 }
@@ -1114,22 +676,12 @@ static const nmea_layouts *find_command(nmea_text word)
 /* The layout that decode's JSON names by its sentence id and variant (NULL: the main one). */
 static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant)
 {
-    if (text_is(sentence, "FIX") && !variant)
-        return NMEA_SENTENCE_FIX;
-    if (text_is(sentence, "FIX") && variant && text_is(*variant, "short"))
-        return NMEA_SENTENCE_FIX_SHORT;
-    if (text_is(sentence, "SAT") && !variant)
-        return NMEA_SENTENCE_SAT;
-    if (text_is(sentence, "XDM") && !variant)
-        return NMEA_SENTENCE_XDM;
-    if (text_is(sentence, "ACME_LOG") && !variant)
-        return NMEA_SENTENCE_ACME_LOG;
-    if (text_is(sentence, "PACMACK") && !variant)
-        return NMEA_SENTENCE_PACMACK;
-    if (text_is(sentence, "PACMSET") && !variant)
-        return NMEA_SENTENCE_PACMSET;
-    (void)sentence;
-    (void)variant;
+    size_t id;
+    for (id = 1; id < NMEA_SENTENCE_COUNT; id++) {
+        const layout *l = LAYOUTS[id];
+        if (text_is(sentence, l->sentence) && (variant ? l->variant && text_is(*variant, l->variant) : !l->variant))
+            return (nmea_sentence_id)id;
+    }
     return NMEA_SENTENCE_GENERIC;
 }
 
@@ -1139,24 +691,7 @@ static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant
 static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
 {
     out->id = id;
-    switch (id) {
-    case NMEA_SENTENCE_FIX:
-        return fix_read(&out->as.fix, wire, err);
-    case NMEA_SENTENCE_FIX_SHORT:
-        return fix_short_read(&out->as.fix_short, wire, err);
-    case NMEA_SENTENCE_SAT:
-        return sat_read(&out->as.sat, wire, err);
-    case NMEA_SENTENCE_XDM:
-        return xdm_read(&out->as.xdm, wire, err);
-    case NMEA_SENTENCE_ACME_LOG:
-        return acme_log_read(&out->as.acme_log, wire, err);
-    case NMEA_SENTENCE_PACMACK:
-        return pacmack_read(&out->as.pacmack, wire, err);
-    case NMEA_SENTENCE_PACMSET:
-        return pacmset_read(&out->as.pacmset, wire, err);
-    default:
-        return false;
-    }
+    return read_with(LAYOUTS[id], &out->as, wire, err);
 }
 
 /* A layout's fast reader (FAST_NOT_THIS for a layout without one: a text command, or a sentence
@@ -1238,26 +773,9 @@ NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts,
 }
 
 /* The problems of the layout a sentence holds (NULL for a generic one). */
-static nmea_problems *problems_of(nmea_sentence *s)
+static nmea_problems *problems_of(const nmea_sentence *s)
 {
-    switch (s->id) {
-    case NMEA_SENTENCE_FIX:
-        return &s->as.fix.problems;
-    case NMEA_SENTENCE_FIX_SHORT:
-        return &s->as.fix_short.problems;
-    case NMEA_SENTENCE_SAT:
-        return &s->as.sat.problems;
-    case NMEA_SENTENCE_XDM:
-        return &s->as.xdm.problems;
-    case NMEA_SENTENCE_ACME_LOG:
-        return &s->as.acme_log.problems;
-    case NMEA_SENTENCE_PACMACK:
-        return &s->as.pacmack.problems;
-    case NMEA_SENTENCE_PACMSET:
-        return &s->as.pacmset.problems;
-    default:
-        return NULL;
-    }
+    return s->id == NMEA_SENTENCE_GENERIC ? NULL : (nmea_problems *)const_member_at(&s->as, LAYOUTS[s->id]->problems);
 }
 
 /* first_of_many, and for the usual single layout just that layout's reader (inlined here: no
@@ -1298,31 +816,10 @@ static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wir
 
 static void write_sentence(nmea_writer *w, const nmea_sentence *s)
 {
-    switch (s->id) {
-    case NMEA_SENTENCE_FIX:
-        fix_write(w, &s->as.fix);
-        break;
-    case NMEA_SENTENCE_FIX_SHORT:
-        fix_short_write(w, &s->as.fix_short);
-        break;
-    case NMEA_SENTENCE_SAT:
-        sat_write(w, &s->as.sat);
-        break;
-    case NMEA_SENTENCE_XDM:
-        xdm_write(w, &s->as.xdm);
-        break;
-    case NMEA_SENTENCE_ACME_LOG:
-        acme_log_write(w, &s->as.acme_log);
-        break;
-    case NMEA_SENTENCE_PACMACK:
-        pacmack_write(w, &s->as.pacmack);
-        break;
-    case NMEA_SENTENCE_PACMSET:
-        pacmset_write(w, &s->as.pacmset);
-        break;
-    default:
+    if (s->id == NMEA_SENTENCE_GENERIC)
         write_generic(w, &s->as.generic);
-    }
+    else
+        write_with(w, LAYOUTS[s->id], &s->as, problems_of(s));
 }
 
 /* write_sentence on the fast path: the length, or 0 to leave it to the general writer. */
@@ -1334,29 +831,6 @@ NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size
     }
 }
 
-#ifndef NMEA_NO_JSON
-static bool collect_layout(nmea_sentence_id id, nmea_collector *c, nmea_json fields)
-{
-    switch (id) {
-    case NMEA_SENTENCE_FIX:
-        return fix_collect(c, fields);
-    case NMEA_SENTENCE_FIX_SHORT:
-        return fix_short_collect(c, fields);
-    case NMEA_SENTENCE_SAT:
-        return sat_collect(c, fields);
-    case NMEA_SENTENCE_XDM:
-        return xdm_collect(c, fields);
-    case NMEA_SENTENCE_ACME_LOG:
-        return acme_log_collect(c, fields);
-    case NMEA_SENTENCE_PACMACK:
-        return pacmack_collect(c, fields);
-    case NMEA_SENTENCE_PACMSET:
-        return pacmset_collect(c, fields);
-    default:
-        return false;
-    }
-}
-#endif
 
 /* The replies of each command. */
 static const nmea_sentence_id ACME_LOG_REPLIES[] = {NMEA_SENTENCE_FIX, NMEA_SENTENCE_FIX_SHORT, NMEA_SENTENCE_PACMACK};
@@ -1512,59 +986,25 @@ size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err
 {
     nmea_writer w;
     nmea_wire wire;
-    switch (s->id) {
-    case NMEA_SENTENCE_FIX:
-        return nmea_build_fix(&s->as.fix, buf, cap, err);
-    case NMEA_SENTENCE_FIX_SHORT:
-        return nmea_build_fix_short(&s->as.fix_short, buf, cap, err);
-    case NMEA_SENTENCE_SAT:
-        return nmea_build_sat(&s->as.sat, buf, cap, err);
-    case NMEA_SENTENCE_XDM:
-        return nmea_build_xdm(&s->as.xdm, buf, cap, err);
-    case NMEA_SENTENCE_ACME_LOG:
-        return nmea_build_acme_log(&s->as.acme_log, buf, cap, err);
-    case NMEA_SENTENCE_PACMACK:
-        return nmea_build_pacmack(&s->as.pacmack, buf, cap, err);
-    case NMEA_SENTENCE_PACMSET:
-        return nmea_build_pacmset(&s->as.pacmset, buf, cap, err);
-    default:
-        w = writer_of(buf, cap);
-        write_generic(&w, &s->as.generic);
-        if (!build_wire(&w, false, &wire, err))
-            return build_failed(&w);
-        return build_end(&w);
-    }
+    nmea_sentence check;
+
+    if (s->id != NMEA_SENTENCE_GENERIC)
+        return build_with(LAYOUTS[s->id], &s->as, problems_of(s), &check.as, buf, cap, err);
+    w = writer_of(buf, cap);
+    write_generic(&w, &s->as.generic);
+    if (!build_wire(&w, false, &wire, err))
+        return build_failed(&w);
+    return build_end(&w);
 }
 
 #ifndef NMEA_NO_JSON
 size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
 {
     nmea_writer w = writer_of(buf, cap);
-    switch (s->id) {
-    case NMEA_SENTENCE_FIX:
-        fix_json(&w, &s->as.fix, values);
-        break;
-    case NMEA_SENTENCE_FIX_SHORT:
-        fix_short_json(&w, &s->as.fix_short, values);
-        break;
-    case NMEA_SENTENCE_SAT:
-        sat_json(&w, &s->as.sat, values);
-        break;
-    case NMEA_SENTENCE_XDM:
-        xdm_json(&w, &s->as.xdm, values);
-        break;
-    case NMEA_SENTENCE_ACME_LOG:
-        acme_log_json(&w, &s->as.acme_log, values);
-        break;
-    case NMEA_SENTENCE_PACMACK:
-        pacmack_json(&w, &s->as.pacmack, values);
-        break;
-    case NMEA_SENTENCE_PACMSET:
-        pacmset_json(&w, &s->as.pacmset, values);
-        break;
-    default:
+    if (s->id == NMEA_SENTENCE_GENERIC)
         json_generic(&w, &s->as.generic);
-    }
+    else
+        json_with(&w, LAYOUTS[s->id], &s->as, problems_of(s), values);
     return writer_finish(&w);
 }
 
@@ -1690,10 +1130,10 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
         if (n <= NMEA_MAX_FIELDS)
             texts[index - 1] = text;
     }
-    if (!LAYOUT_INFO[id].address) { /* a standard sentence: the talker and the sentence id */
+    if (!LAYOUTS[id]->address) { /* a standard sentence: the talker and the sentence id */
         if (!json_word_member(root, "talker", s, &wire->address, err))
             return false;
-        wire->suffix = LAYOUT_INFO[id].sentence;
+        wire->suffix = LAYOUTS[id]->sentence;
     }
     if (n && n <= NMEA_MAX_FIELDS) { /* the texts joined again */
         for (i = 0; i < n; i++)
@@ -1728,7 +1168,7 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     bool has_sentence, has_variant, wide_sentence, wide_variant;
     nmea_checksum_style checksum;
     nmea_sentence_id id;
-    const nmea_layout_info *info;
+    const layout *info;
     nmea_collector c;
     nmea_wire wire;
 
@@ -1766,9 +1206,9 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     c.start = s.len;
     c.count = 0;
     c.err = err;
-    if (!collect_layout(id, &c, fields))
+    if (!collect_with(LAYOUTS[id], &c, fields))
         return false;
-    info = &LAYOUT_INFO[id];
+    info = LAYOUTS[id];
     wire.address = nmea_text_of(info->address);
     wire.suffix = NULL;
     wire.fields = collected(&c);
