@@ -191,7 +191,7 @@ def instruction_counts(c_bin: Path, rust_bin: Path, out: Path, corpus_path: Path
 def struct_sizes(out: Path) -> dict[str, int]:
     """sizeof of nmea_sentence and of every member of its union, by a C program made from nmea.h."""
     header = (ROOT / "generated" / "c" / "nmea.h").read_text()
-    union = re.search(r"typedef struct \{\s*nmea_sentence_id id;\s*union \{(.*?)\} as;\s*\} nmea_sentence;", header, re.S)
+    union = re.search(r"typedef struct \{\s*nmea_sentence_id id;[^{]*union \{(.*?)\} as;\s*\} nmea_sentence;", header, re.S)
     members = re.findall(r"^\s*(nmea_\w+) (\w+);", union.group(1), re.M)
     lines = ['#include <stdio.h>', '#include "nmea.h"', "int main(void)", "{",
              '    printf("{\\"nmea_sentence\\": %zu", sizeof(nmea_sentence));']

@@ -376,7 +376,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         ("command", c_str((sentence.address or "").upper()) if kind == "text" else None),
         ("variant", c_str(layout.id) if layout.id else None),
         ("selector", c_str(layout.selector.upper()) if layout.selector is not None else None),  # upper_is
-        ("fields", f"{snake}_fields" if ordered else None),
+        ("fields", f"{snake}_fields" if ordered else "NO_FIELDS"),
         ("group", f"&{snake}_group" if group is not None else None),
         ("selector_at", layout.selector_at if layout.selector is not None else None),
         ("before", len(before) or None),
@@ -385,7 +385,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         ("fixed", layout.fixed_count or None),
         ("max_fields", layout.max_fields or None),
         ("optional_max", layout.optional_count or None),
-        ("problems", f"offsetof({struct}, problems)"),
+        ("size", f"sizeof({struct})"),
         ("head", f"offsetof({struct}, {head_member})" if head_member else "NO_MEMBER"),
         ("optional_count", f"offsetof({struct}, optional_count)" if optional else "NO_MEMBER"),
         ("checksum", f"offsetof({struct}, checksum)" if kind != "text" else "NO_MEMBER"),

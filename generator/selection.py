@@ -88,8 +88,10 @@ def subset(spec: Spec, words: list[str]) -> Spec:
         s.replies = [r for r in s.replies if r.id in keep_ids]
         s.reply_rules = [r for r in s.reply_rules if r.sentence_id in keep_ids]
 
-    # Tables: those of a kept vendor (they are addressed by its commands).
-    tables = [t for t in model.tables if any(m in manual_ids and m != "nmea0183" for m in t.manuals)]
+    # Tables: those of a vendor whose sentences are kept or that is named (its commands address
+    # them), not of a vendor that only lends examples to standard sentences.
+    owners = {s.vendor for s in sentences if s.vendor} | (lowered & {m.id for m in model.manuals})
+    tables = [t for t in model.tables if any(m in owners and m != "nmea0183" for m in t.manuals)]
     enum_ids = {f.enum.id for s in sentences for f in _fields(s) if f.enum}
     enum_ids |= {p.enum.id for t in tables for p in t.parameters if p.enum}
     bitfield_ids = {f.bitfield.id for s in sentences for f in _fields(s) if f.bitfield}

@@ -29,8 +29,9 @@ static char json[NMEA_JSON_MAX];
 static char json2[NMEA_JSON_MAX];
 static char scratch[NMEA_JSON_MAX];
 
-static const nmea_options LENIENT = {true, false};
-static const nmea_options REQUIRED = {false, true};
+static nmea_problems problems;
+static const nmea_options LENIENT = {true, false, &problems};
+static const nmea_options REQUIRED = {false, true, NULL};
 
 static void check(bool ok)
 {

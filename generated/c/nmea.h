@@ -18,7 +18,8 @@
  * options (keep sentences with bad fields as problems, require checksums):
  *
  *     static nmea_framer framer;              (zeroed: ready)
- *     nmea_options options = {true, false};   (lenient, require_checksum)
+ *     nmea_problems problems;                 (the fields lenient parsing left empty)
+ *     nmea_options options = {true, false, &problems};   (lenient, require_checksum, problems)
  *     nmea_framed line;
  *     while (nmea_framer_push(&framer, &chunk, &chunk_len, &line))
  *         if (nmea_parse_ex(&s, line.ptr, line.len, &options, &err))
@@ -276,7 +277,7 @@ typedef struct {
     nmea_text text;       /* the field's text as received */
 } nmea_problem;
 
-/** The problems of a sentence (every layout struct has them; `count` is 0 after a strict parse). */
+/** The problems of a sentence that lenient parsing kept (see nmea_options.problems). */
 typedef struct {
     uint8_t count;
     nmea_problem list[NMEA_MAX_PROBLEMS];
@@ -292,16 +293,20 @@ size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap);
 /**
  * How nmea_parse_ex reads a line (a zeroed struct, or NULL, is nmea_parse's strict reading):
  * - lenient: a `$`/`!` sentence whose fields do not all fit their types is still decoded: the
- *   fields at fault are read as empty, one at a time in the order the errors come, and listed in
- *   the layout's `problems`. A field that is already empty and still does not fit (a keyword, a
- *   hemisphere without its latitude), or a problem more than NMEA_MAX_PROBLEMS, ends the attempt
- *   with its error. Text commands are always strict.
+ *   fields at fault are read as empty, one at a time in the order the errors come. A field that
+ *   is already empty and still does not fit (a keyword, a hemisphere without its latitude), or a
+ *   problem more than NMEA_MAX_PROBLEMS, ends the attempt with its error. Text commands are
+ *   always strict.
  * - require_checksum: a `$`/`!` sentence without a checksum (or with a bare '*') is refused as
  *   NMEA_ERR_MISSING_CHECKSUM.
+ * - problems: where lenient parsing lists the fields it left empty (the sentence's `problems`
+ *   then points here, and serializing it writes their texts back in their places, so the round
+ *   trip stays exact); NULL: they are not kept, and the fields are written empty.
  */
 typedef struct {
     bool lenient;
     bool require_checksum;
+    nmea_problems *problems;
 } nmea_options;
 
 /* ------------------------------------------------------------------------------------------ */
@@ -362,6 +367,7 @@ nmea_text nmea_generic_field(const nmea_generic *g, size_t index);
 bool nmea_json_is_failure(const char *json, size_t len);
 #endif
 
+#ifndef NMEA_NO_TABLES /* a build generated without parameter tables */
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables (spec/tables): the wire text of a value. */
 
@@ -410,6 +416,7 @@ size_t nmea_param_decimal(const nmea_parameter *p, int64_t value, unsigned scale
 size_t nmea_param_decimal_list(const nmea_parameter *p, const int64_t *values, size_t n, unsigned scale, char *buf,
                                size_t cap, nmea_error *err);
 size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, size_t cap, nmea_error *err);
+#endif /* NMEA_NO_TABLES */
 
 /* ------------------------------------------------------------------------------------------ */
 /* Lookup tables (spec/enums): a C enum of the known codes and the table, nmea_<enum>_def. */
@@ -6802,8 +6809,8 @@ static inline uint32_t nmea_ublox_out_proto_user(uint64_t value)
 /* Sentences (spec/standard, spec/proprietary): one struct per layout. Optional trailing fields
    are counted by optional_count: that many of them were on the wire (empty or not) and are
    written back. A keyword (a fixed word such as RQUERY) is implied by the layout: it has no
-   member and is written whenever it is on the wire (always, unless it is optional). `problems`
-   lists the fields lenient parsing left empty; their texts are written back in their places. */
+   member and is written whenever it is on the wire (always, unless it is optional). The fields
+   lenient parsing left empty are listed beside the struct, in nmea_sentence.problems. */
 
 /*
  * AAM: Waypoint arrival alarm.
@@ -6833,8 +6840,6 @@ typedef struct {
     nmea_text waypoint;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_aam;
 
 /*
@@ -6869,8 +6874,6 @@ typedef struct {
     nmea_enum ack_type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_abk;
 
 /*
@@ -6913,8 +6916,6 @@ typedef struct {
     nmea_number fill_bits;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_abm;
 
 /*
@@ -6978,8 +6979,6 @@ typedef struct {
     nmea_time in_use_time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_aca;
 
 /*
@@ -6998,8 +6997,6 @@ typedef struct {
     nmea_number alarm_number;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ack;
 
 /*
@@ -7035,8 +7032,6 @@ typedef struct {
     bool status_flag;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_acn;
 
 /*
@@ -7065,8 +7060,6 @@ typedef struct {
     nmea_number year;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_acs;
 
 /*
@@ -7121,8 +7114,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_air;
 
 /*
@@ -7160,8 +7151,6 @@ typedef struct {
     nmea_number ack_instance;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_akd;
 
 /*
@@ -7203,8 +7192,6 @@ typedef struct {
     nmea_text description;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ala;
 
 /* One entry of ALC alerts. */
@@ -7252,8 +7239,6 @@ typedef struct {
     uint8_t alerts_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_alc;
 
 /*
@@ -7309,8 +7294,6 @@ typedef struct {
     nmea_text text;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_alf;
 
 /*
@@ -7332,8 +7315,6 @@ typedef struct {
     uint8_t data_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_alk;
 
 /*
@@ -7391,8 +7372,6 @@ typedef struct {
     nmea_hex clock_af1;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_alm;
 
 /*
@@ -7425,8 +7404,6 @@ typedef struct {
     nmea_text description;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_alr;
 
 /*
@@ -7472,8 +7449,6 @@ typedef struct {
     nmea_text destination_waypoint;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_apa;
 
 /*
@@ -7535,8 +7510,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_apb;
 
 /*
@@ -7567,8 +7540,6 @@ typedef struct {
     nmea_enum command;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_arc;
 
 /*
@@ -7606,8 +7577,6 @@ typedef struct {
     nmea_number fill_bits;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_bbm;
 
 /*
@@ -7653,8 +7622,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_bec;
 
 /*
@@ -7687,8 +7654,6 @@ typedef struct {
     nmea_text origin_waypoint;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_bod;
 
 /*
@@ -7733,8 +7698,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_bwc;
 
 /*
@@ -7779,8 +7742,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_bwr;
 
 /*
@@ -7809,8 +7770,6 @@ typedef struct {
     nmea_text from_waypoint;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_bww;
 
 /*
@@ -7861,8 +7820,6 @@ typedef struct {
     nmea_enum speed_reference;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_cur;
 
 /*
@@ -7892,8 +7849,6 @@ typedef struct {
     bool depth_fathoms_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_dbk;
 
 /*
@@ -7923,8 +7878,6 @@ typedef struct {
     bool depth_fathoms_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_dbs;
 
 /*
@@ -7954,8 +7907,6 @@ typedef struct {
     bool depth_fathoms_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_dbt;
 
 /*
@@ -7989,8 +7940,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ddc;
 
 /*
@@ -8038,8 +7987,6 @@ typedef struct {
     nmea_text description;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_dor;
 
 /*
@@ -8069,8 +8016,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_dpt;
 
 /*
@@ -8128,8 +8073,6 @@ typedef struct {
     bool expansion;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_dsc;
 
 /* One entry of DSE data_sets. */
@@ -8172,8 +8115,6 @@ typedef struct {
     uint8_t data_sets_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_dse;
 
 /*
@@ -8215,8 +8156,6 @@ typedef struct {
     nmea_enum reference_datum;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_dtm;
 
 /*
@@ -8239,8 +8178,6 @@ typedef struct {
     char local_datum_subdivision;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_dtm_short;
 
 /*
@@ -8272,8 +8209,6 @@ typedef struct {
     nmea_text value;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_epv;
 
 /*
@@ -8307,8 +8242,6 @@ typedef struct {
     nmea_number engine_number;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_etl;
 
 /*
@@ -8331,8 +8264,6 @@ typedef struct {
     nmea_text description;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_eve;
 
 /*
@@ -8376,8 +8307,6 @@ typedef struct {
     nmea_text description;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_fir;
 
 /*
@@ -8429,8 +8358,6 @@ typedef struct {
     nmea_hex status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_fmi;
 
 /*
@@ -8468,8 +8395,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_fsi;
 
 /*
@@ -8523,8 +8448,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gbs;
 
 /*
@@ -8561,8 +8484,6 @@ typedef struct {
     bool alt_error_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gbs_units;
 
 /*
@@ -8589,8 +8510,6 @@ typedef struct {
     uint8_t words_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gen;
 
 /*
@@ -8634,8 +8553,6 @@ typedef struct {
     nmea_text integrity;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gfa;
 
 /*
@@ -8693,8 +8610,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gga;
 
 /* One entry of GLC time_differences. */
@@ -8736,8 +8651,6 @@ typedef struct {
     nmea_glc_time_difference time_differences[5];
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_glc;
 
 /*
@@ -8766,8 +8679,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gll;
 
 /*
@@ -8808,8 +8719,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gll_sentinel;
 
 /*
@@ -8861,8 +8770,6 @@ typedef struct {
     nmea_number dgps_station;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gmp;
 
 /*
@@ -8918,8 +8825,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gns;
 
 /*
@@ -8971,8 +8876,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gns_aux;
 
 /*
@@ -9007,8 +8910,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_grs;
 
 /*
@@ -9048,8 +8949,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gsa;
 
 /*
@@ -9086,8 +8985,6 @@ typedef struct {
     nmea_number vdop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gsa_short;
 
 /*
@@ -9125,8 +9022,6 @@ typedef struct {
     nmea_enum system_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gsa_wide_system;
 
 /*
@@ -9159,8 +9054,6 @@ typedef struct {
     nmea_number vdop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gsa_wide;
 
 /*
@@ -9197,8 +9090,6 @@ typedef struct {
     nmea_number fourth_dop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gsa_extra_dop;
 
 /*
@@ -9237,8 +9128,6 @@ typedef struct {
     nmea_number alt_std;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gst;
 
 /* One entry of GSV satellites. */
@@ -9292,8 +9181,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_gsv;
 
 /*
@@ -9320,8 +9207,6 @@ typedef struct {
     nmea_number sequence_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hbt;
 
 /*
@@ -9350,8 +9235,6 @@ typedef struct {
     nmea_number correction_value;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hcr;
 
 /*
@@ -9385,8 +9268,6 @@ typedef struct {
     nmea_enum variation_dir;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hdg;
 
 /*
@@ -9407,8 +9288,6 @@ typedef struct {
     bool heading_ref;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hdm;
 
 /*
@@ -9426,8 +9305,6 @@ typedef struct {
     bool heading_ref;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hdt;
 
 /*
@@ -9450,8 +9327,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hev;
 
 /*
@@ -9511,8 +9386,6 @@ typedef struct {
     nmea_enum variation_dir;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hmr;
 
 /*
@@ -9533,8 +9406,6 @@ typedef struct {
     nmea_number max_difference;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hms;
 
 /*
@@ -9594,8 +9465,6 @@ typedef struct {
     nmea_number satellites_slave;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hpd;
 
 /*
@@ -9632,8 +9501,6 @@ typedef struct {
     nmea_text station_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hpr;
 
 /*
@@ -9690,8 +9557,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hrm;
 
 /*
@@ -9722,8 +9587,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hsc;
 
 /*
@@ -9746,8 +9609,6 @@ typedef struct {
     nmea_enum status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_hss;
 
 /*
@@ -9812,8 +9673,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_htc;
 
 /*
@@ -9890,8 +9749,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_htd;
 
 /*
@@ -9936,8 +9793,6 @@ typedef struct {
     bool height_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_llq;
 
 /*
@@ -9965,8 +9820,6 @@ typedef struct {
     nmea_number imo_number;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_lr1;
 
 /*
@@ -10004,8 +9857,6 @@ typedef struct {
     bool sog_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_lr2;
 
 /*
@@ -10046,8 +9897,6 @@ typedef struct {
     nmea_number persons;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_lr3;
 
 /*
@@ -10078,8 +9927,6 @@ typedef struct {
     nmea_text reply_status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_lrf;
 
 /*
@@ -10117,8 +9964,6 @@ typedef struct {
     nmea_coordinate sw_lon;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_lri;
 
 /*
@@ -10185,8 +10030,6 @@ typedef struct {
     bool wind_speed_ms_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_mda;
 
 /*
@@ -10211,8 +10054,6 @@ typedef struct {
     bool pressure_bar_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_mmb;
 
 /*
@@ -10265,8 +10106,6 @@ typedef struct {
     nmea_enum battery;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_mob;
 
 /*
@@ -10306,8 +10145,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_msk;
 
 /*
@@ -10340,8 +10177,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_mss;
 
 /*
@@ -10362,8 +10197,6 @@ typedef struct {
     bool temperature_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_mta;
 
 /*
@@ -10383,8 +10216,6 @@ typedef struct {
     bool temperature_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_mtw;
 
 /*
@@ -10418,8 +10249,6 @@ typedef struct {
     bool speed_ms_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_mwd;
 
 /*
@@ -10451,8 +10280,6 @@ typedef struct {
     nmea_enum status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_mwv;
 
 /*
@@ -10484,8 +10311,6 @@ typedef struct {
     nmea_text text;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_nak;
 
 /*
@@ -10518,8 +10343,6 @@ typedef struct {
     nmea_enum sentence_status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_nrm;
 
 /*
@@ -10576,8 +10399,6 @@ typedef struct {
     nmea_text message_body;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_nrx;
 
 /*
@@ -10615,8 +10436,6 @@ typedef struct {
     nmea_text message_body;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_nrx_nx700;
 
 /*
@@ -10683,8 +10502,6 @@ typedef struct {
     nmea_enum time_plausibility;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_nsr;
 
 /*
@@ -10727,8 +10544,6 @@ typedef struct {
     nmea_enum speed_units;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_osd;
 
 /*
@@ -10772,8 +10587,6 @@ typedef struct {
     nmea_enum sentence_status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pos;
 
 /*
@@ -10814,8 +10627,6 @@ typedef struct {
     nmea_number engine_number;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_prc;
 
 /*
@@ -10835,8 +10646,6 @@ typedef struct {
     uint8_t waypoints_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_r00;
 
 /*
@@ -10865,8 +10674,6 @@ typedef struct {
     nmea_text message_body;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rlm;
 
 /*
@@ -10909,8 +10716,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rma;
 
 /*
@@ -10965,8 +10770,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rmb;
 
 /*
@@ -11014,8 +10817,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rmc;
 
 /*
@@ -11074,8 +10875,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rmc_sentinel;
 
 /*
@@ -11119,8 +10918,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ror;
 
 /*
@@ -11142,8 +10939,6 @@ typedef struct {
     nmea_enum status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rot;
 
 /*
@@ -11172,8 +10967,6 @@ typedef struct {
     nmea_enum status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rpm;
 
 /*
@@ -11209,8 +11002,6 @@ typedef struct {
     nmea_enum application_status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rrt;
 
 /*
@@ -11253,8 +11044,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rsa;
 
 /*
@@ -11309,8 +11098,6 @@ typedef struct {
     nmea_enum display_rotation;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rsd;
 
 /*
@@ -11343,8 +11130,6 @@ typedef struct {
     uint8_t waypoints_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_rte;
 
 /* One entry of SFI frequencies. */
@@ -11378,8 +11163,6 @@ typedef struct {
     uint8_t frequencies_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_sfi;
 
 /*
@@ -11434,8 +11217,6 @@ typedef struct {
     nmea_number address_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_sm1;
 
 /*
@@ -11496,8 +11277,6 @@ typedef struct {
     nmea_enum subject_indicator;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_sm2;
 
 /*
@@ -11558,8 +11337,6 @@ typedef struct {
     nmea_number radius;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_sm3;
 
 /*
@@ -11623,8 +11400,6 @@ typedef struct {
     nmea_number extent_east;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_sm4;
 
 /*
@@ -11656,8 +11431,6 @@ typedef struct {
     nmea_text message_body;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_smb;
 
 /*
@@ -11685,8 +11458,6 @@ typedef struct {
     nmea_text password;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_spw;
 
 /*
@@ -11726,8 +11497,6 @@ typedef struct {
     nmea_text source_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ssd;
 
 /*
@@ -11747,8 +11516,6 @@ typedef struct {
     nmea_number talker_id_number;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_stn;
 
 /*
@@ -11771,8 +11538,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ths;
 
 /* One entry of TLB labels. */
@@ -11800,8 +11565,6 @@ typedef struct {
     uint8_t labels_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_tlb;
 
 /*
@@ -11835,8 +11598,6 @@ typedef struct {
     bool reference_target;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_tll;
 
 /*
@@ -11871,8 +11632,6 @@ typedef struct {
     nmea_text station_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_tra;
 
 /*
@@ -11912,8 +11671,6 @@ typedef struct {
     nmea_enum sentence_status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_trc;
 
 /*
@@ -11944,8 +11701,6 @@ typedef struct {
     nmea_number azimuth_response;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_trd;
 
 /*
@@ -11983,8 +11738,6 @@ typedef struct {
     nmea_enum data_validity;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_trf;
 
 /*
@@ -12022,8 +11775,6 @@ typedef struct {
     nmea_enum reason;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_trl;
 
 /*
@@ -12056,8 +11807,6 @@ typedef struct {
     nmea_number fill_bits;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ttd;
 
 /*
@@ -12123,8 +11872,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ttm;
 
 /*
@@ -12159,8 +11906,6 @@ typedef struct {
     nmea_text text_body;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_tut;
 
 /*
@@ -12188,8 +11933,6 @@ typedef struct {
     nmea_text text;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_txt;
 
 /*
@@ -12209,8 +11952,6 @@ typedef struct {
     nmea_text code_2;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_uid;
 
 /*
@@ -12260,8 +12001,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vbw;
 
 /*
@@ -12297,8 +12036,6 @@ typedef struct {
     nmea_number fill_bits;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vdm;
 
 /*
@@ -12333,8 +12070,6 @@ typedef struct {
     nmea_number fill_bits;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vdo;
 
 /*
@@ -12364,8 +12099,6 @@ typedef struct {
     bool current_speed_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vdr;
 
 /*
@@ -12410,8 +12143,6 @@ typedef struct {
     nmea_number sequential_message_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ver;
 
 /*
@@ -12447,8 +12178,6 @@ typedef struct {
     bool speed_kmh_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vhw;
 
 /*
@@ -12488,8 +12217,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vlw;
 
 /*
@@ -12515,8 +12242,6 @@ typedef struct {
     bool speed_ms_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vpw;
 
 /*
@@ -12559,8 +12284,6 @@ typedef struct {
     nmea_number regional_flags;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vsd;
 
 /*
@@ -12605,8 +12328,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vtg;
 
 /*
@@ -12643,8 +12364,6 @@ typedef struct {
     bool speed_kmh_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vwr;
 
 /*
@@ -12681,8 +12400,6 @@ typedef struct {
     bool speed_kmh_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_vwt;
 
 /*
@@ -12726,8 +12443,6 @@ typedef struct {
     nmea_text description;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_wat;
 
 /*
@@ -12756,8 +12471,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_wcv;
 
 /*
@@ -12785,8 +12498,6 @@ typedef struct {
     nmea_text from_waypoint;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_wnc;
 
 /*
@@ -12810,8 +12521,6 @@ typedef struct {
     nmea_text waypoint;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_wpl;
 
 /* One entry of XDR measurements. */
@@ -12851,8 +12560,6 @@ typedef struct {
     uint8_t measurements_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_xdr;
 
 /*
@@ -12890,8 +12597,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_xte;
 
 /*
@@ -12915,8 +12620,6 @@ typedef struct {
     bool cross_track_error_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_xtr;
 
 /*
@@ -12946,8 +12649,6 @@ typedef struct {
     nmea_number local_zone_minutes;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_zda;
 
 /*
@@ -12971,8 +12672,6 @@ typedef struct {
     nmea_enum point_type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_zdl;
 
 /*
@@ -12994,8 +12693,6 @@ typedef struct {
     nmea_text origin_waypoint;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_zfo;
 
 /*
@@ -13017,8 +12714,6 @@ typedef struct {
     nmea_text destination_waypoint;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ztg;
 
 /*
@@ -13043,8 +12738,6 @@ typedef struct {
        fractional (e.g. 0.2 for 5 Hz) down to the model's maximum output rate. Empty: present
        false. */
     nmea_number period;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_comnav_log;
 
 /*
@@ -13067,8 +12760,6 @@ typedef struct {
        of the current solution. Values: nmea_comnav_talker_id (table nmea_comnav_talker_id_def).
        Empty: present false. */
     nmea_enum talker_id;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_comnav_nmeatalker;
 
 /*
@@ -13083,8 +12774,6 @@ typedef struct {
     /* The command as received (e.g. in lower case): written back as is while its words, ignoring
        case, are those of the fields. Empty: written in the spec's letter case. */
     nmea_text as_received;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_comnav_nmeatalker_list;
 
 /*
@@ -13098,8 +12787,6 @@ typedef struct {
     /* The command as received (e.g. in lower case): written back as is while its words, ignoring
        case, are those of the fields. Empty: written in the spec's letter case. */
     nmea_text as_received;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_comnav_nmeatalker_reset;
 
 /*
@@ -13122,8 +12809,6 @@ typedef struct {
     nmea_enum command;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_geos5_command;
 
 /*
@@ -13140,8 +12825,6 @@ typedef struct {
     nmea_text reserved;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_geos5_jamdet;
 
 /*
@@ -13218,8 +12901,6 @@ typedef struct {
     nmea_enum rlm_rate;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_geos5_nquery;
 
 /*
@@ -13233,8 +12914,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_geos5_nquery_request;
 
 /*
@@ -13273,8 +12952,6 @@ typedef struct {
     nmea_hex config_2;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_geos5_rquery;
 
 /*
@@ -13288,8 +12965,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_geos5_rquery_request;
 
 /*
@@ -13310,8 +12985,6 @@ typedef struct {
     nmea_enum result;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair001;
 
 /*
@@ -13324,8 +12997,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair002;
 
 /*
@@ -13340,8 +13011,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair003;
 
 /*
@@ -13354,8 +13023,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair004;
 
 /*
@@ -13368,8 +13035,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair005;
 
 /*
@@ -13382,8 +13047,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair006;
 
 /*
@@ -13396,8 +13059,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair007;
 
 /*
@@ -13422,8 +13083,6 @@ typedef struct {
     nmea_number tow;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair010;
 
 /*
@@ -13439,8 +13098,6 @@ typedef struct {
     nmea_number interval;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair050;
 
 /*
@@ -13453,8 +13110,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair051;
 
 /*
@@ -13469,8 +13124,6 @@ typedef struct {
     nmea_number interval;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair051_reply;
 
 /*
@@ -13486,8 +13139,6 @@ typedef struct {
     nmea_number min_snr;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair058;
 
 /*
@@ -13500,8 +13151,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair059;
 
 /*
@@ -13516,8 +13165,6 @@ typedef struct {
     nmea_number min_snr;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair059_reply;
 
 /*
@@ -13537,8 +13184,6 @@ typedef struct {
     nmea_number rate;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair062;
 
 /*
@@ -13554,8 +13199,6 @@ typedef struct {
     nmea_enum type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair063;
 
 /*
@@ -13574,8 +13217,6 @@ typedef struct {
     nmea_number rate;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair063_reply;
 
 /*
@@ -13606,8 +13247,6 @@ typedef struct {
     nmea_number reserved;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair066;
 
 /*
@@ -13620,8 +13259,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair067;
 
 /*
@@ -13651,8 +13288,6 @@ typedef struct {
     nmea_number reserved;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair067_reply;
 
 /*
@@ -13669,8 +13304,6 @@ typedef struct {
     nmea_number threshold;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair070;
 
 /*
@@ -13683,8 +13316,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair071;
 
 /*
@@ -13699,8 +13330,6 @@ typedef struct {
     nmea_number threshold;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair071_reply;
 
 /*
@@ -13716,8 +13345,6 @@ typedef struct {
     nmea_number elevation;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair072;
 
 /*
@@ -13730,8 +13357,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair073;
 
 /*
@@ -13746,8 +13371,6 @@ typedef struct {
     nmea_number elevation;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair073_reply;
 
 /*
@@ -13763,8 +13386,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair074;
 
 /*
@@ -13777,8 +13398,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair075;
 
 /*
@@ -13794,8 +13413,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair075_reply;
 
 /*
@@ -13811,8 +13428,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair080;
 
 /*
@@ -13825,8 +13440,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair081;
 
 /*
@@ -13842,8 +13455,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair081_reply;
 
 /*
@@ -13859,8 +13470,6 @@ typedef struct {
     nmea_enum level;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair086;
 
 /*
@@ -13873,8 +13482,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair087;
 
 /*
@@ -13890,8 +13497,6 @@ typedef struct {
     nmea_enum level;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair087_reply;
 
 /*
@@ -13907,8 +13512,6 @@ typedef struct {
     nmea_enum precision;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair098;
 
 /*
@@ -13921,8 +13524,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair099;
 
 /*
@@ -13938,8 +13539,6 @@ typedef struct {
     nmea_enum precision;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair099_reply;
 
 /*
@@ -13959,8 +13558,6 @@ typedef struct {
     nmea_enum proprietary;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair100;
 
 /*
@@ -13973,8 +13570,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair101;
 
 /*
@@ -13993,8 +13588,6 @@ typedef struct {
     nmea_enum proprietary;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair101_reply;
 
 /*
@@ -14011,8 +13604,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair104;
 
 /*
@@ -14025,8 +13616,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair105;
 
 /*
@@ -14042,8 +13631,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair105_reply;
 
 /*
@@ -14059,8 +13646,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair154;
 
 /*
@@ -14073,8 +13658,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair155;
 
 /*
@@ -14090,8 +13673,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair155_reply;
 
 /*
@@ -14107,8 +13688,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair158;
 
 /*
@@ -14125,8 +13704,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair382;
 
 /*
@@ -14143,8 +13720,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair391;
 
 /*
@@ -14160,8 +13735,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair400;
 
 /*
@@ -14174,8 +13747,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair401;
 
 /*
@@ -14191,8 +13762,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair401_reply;
 
 /*
@@ -14208,8 +13777,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair410;
 
 /*
@@ -14222,8 +13789,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair411;
 
 /*
@@ -14239,8 +13804,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair411_reply;
 
 /*
@@ -14256,8 +13819,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair420;
 
 /*
@@ -14270,8 +13831,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair421;
 
 /*
@@ -14287,8 +13846,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair421_reply;
 
 /*
@@ -14304,8 +13861,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair432;
 
 /*
@@ -14318,8 +13873,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair433;
 
 /*
@@ -14335,8 +13888,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair433_reply;
 
 /*
@@ -14352,8 +13903,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair434;
 
 /*
@@ -14366,8 +13915,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair435;
 
 /*
@@ -14383,8 +13930,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair435_reply;
 
 /*
@@ -14400,8 +13945,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair436;
 
 /*
@@ -14414,8 +13957,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair437;
 
 /*
@@ -14431,8 +13972,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair437_reply;
 
 /*
@@ -14448,8 +13987,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair490;
 
 /*
@@ -14462,8 +13999,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair491;
 
 /*
@@ -14484,8 +14019,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair491_reply;
 
 /*
@@ -14498,8 +14031,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair511;
 
 /*
@@ -14512,8 +14043,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair512;
 
 /*
@@ -14526,8 +14055,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair513;
 
 /*
@@ -14547,8 +14074,6 @@ typedef struct {
     nmea_enum state;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair6010;
 
 /*
@@ -14564,8 +14089,6 @@ typedef struct {
     nmea_enum type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair6011;
 
 /*
@@ -14584,8 +14107,6 @@ typedef struct {
     nmea_enum state;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair6011_reply;
 
 /*
@@ -14603,8 +14124,6 @@ typedef struct {
     nmea_number duration;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair650;
 
 /*
@@ -14621,8 +14140,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair680;
 
 /*
@@ -14635,8 +14152,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair681;
 
 /*
@@ -14652,8 +14167,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair681_reply;
 
 /*
@@ -14680,8 +14193,6 @@ typedef struct {
     nmea_number second_sleep;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair690;
 
 /*
@@ -14694,8 +14205,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair691;
 
 /*
@@ -14722,8 +14231,6 @@ typedef struct {
     nmea_number second_sleep;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair691_reply;
 
 /*
@@ -14740,8 +14247,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair730;
 
 /*
@@ -14754,8 +14259,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair731;
 
 /*
@@ -14771,8 +14274,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair731_reply;
 
 /*
@@ -14789,8 +14290,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair732;
 
 /*
@@ -14803,8 +14302,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair733;
 
 /*
@@ -14820,8 +14317,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair733_reply;
 
 /*
@@ -14839,8 +14334,6 @@ typedef struct {
     nmea_number pulse_width;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair752;
 
 /*
@@ -14860,8 +14353,6 @@ typedef struct {
     nmea_enum baud;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair864;
 
 /*
@@ -14878,8 +14369,6 @@ typedef struct {
     nmea_number port_index;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair865;
 
 /*
@@ -14895,8 +14384,6 @@ typedef struct {
     nmea_enum baud;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair865_reply;
 
 /*
@@ -14916,8 +14403,6 @@ typedef struct {
     nmea_number flow_control;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair866;
 
 /*
@@ -14934,8 +14419,6 @@ typedef struct {
     nmea_number port_index;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair867;
 
 /*
@@ -14951,8 +14434,6 @@ typedef struct {
     nmea_number flow_control;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair867_reply;
 
 /* One entry of PAIR890 fences. */
@@ -14989,8 +14470,6 @@ typedef struct {
     uint8_t fences_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair890;
 
 /*
@@ -15003,8 +14482,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair891;
 
 /* One entry of PAIR891_REPLY fences. */
@@ -15039,8 +14516,6 @@ typedef struct {
     uint8_t fences_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair891_reply;
 
 /*
@@ -15057,8 +14532,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair900;
 
 /*
@@ -15071,8 +14544,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair901;
 
 /*
@@ -15088,8 +14559,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair901_reply;
 
 /*
@@ -15108,8 +14577,6 @@ typedef struct {
     nmea_enum check_3d;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair902;
 
 /*
@@ -15122,8 +14589,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair903;
 
 /*
@@ -15142,8 +14607,6 @@ typedef struct {
     nmea_enum check_3d;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair903_reply;
 
 /*
@@ -15163,8 +14626,6 @@ typedef struct {
     nmea_number threshold;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair904;
 
 /*
@@ -15180,8 +14641,6 @@ typedef struct {
     nmea_enum threshold_kind;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair905;
 
 /*
@@ -15197,8 +14656,6 @@ typedef struct {
     nmea_enum type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair906;
 
 /*
@@ -15211,8 +14668,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair907;
 
 /*
@@ -15229,8 +14684,6 @@ typedef struct {
     nmea_enum format;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair908;
 
 /*
@@ -15243,8 +14696,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair909;
 
 /*
@@ -15259,8 +14710,6 @@ typedef struct {
     nmea_number records;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pair909_reply;
 
 /*
@@ -15277,8 +14726,6 @@ typedef struct {
     nmea_enum status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pairspf;
 
 /*
@@ -15295,8 +14742,6 @@ typedef struct {
     nmea_enum status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pairspf5;
 
 /*
@@ -15309,8 +14754,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashq_att;
 
 /*
@@ -15323,8 +14766,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashq_elm;
 
 /*
@@ -15340,8 +14781,6 @@ typedef struct {
     nmea_enum port;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashq_nmo;
 
 /*
@@ -15354,8 +14793,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashq_pem;
 
 /*
@@ -15368,8 +14805,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashq_pop;
 
 /*
@@ -15388,8 +14823,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashq_pos;
 
 /*
@@ -15409,8 +14842,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashq_ptt;
 
 /*
@@ -15429,8 +14860,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashq_sat;
 
 /*
@@ -15443,8 +14872,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashq_sba;
 
 /*
@@ -15489,8 +14916,6 @@ typedef struct {
     nmea_enum imu_alignment;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr;
 
 /*
@@ -15503,8 +14928,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_ack;
 
 /*
@@ -15538,8 +14961,6 @@ typedef struct {
     nmea_number ambiguity;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_att;
 
 /*
@@ -15555,8 +14976,6 @@ typedef struct {
     nmea_number mask;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_elm;
 
 /*
@@ -15601,8 +15020,6 @@ typedef struct {
     nmea_number pdop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_hpr;
 
 /*
@@ -15616,8 +15033,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_nak;
 
 /* One entry of PASHR_NMO messages. */
@@ -15656,8 +15071,6 @@ typedef struct {
     uint8_t messages_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_nmo;
 
 /*
@@ -15673,8 +15086,6 @@ typedef struct {
     nmea_number mask;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_pem;
 
 /*
@@ -15690,8 +15101,6 @@ typedef struct {
     nmea_number rate;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_pop;
 
 /*
@@ -15745,8 +15154,6 @@ typedef struct {
     nmea_text base_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_pos;
 
 /*
@@ -15766,8 +15173,6 @@ typedef struct {
     nmea_text time_tag;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_ptt;
 
 /* One entry of PASHR_SAT satellites. */
@@ -15806,8 +15211,6 @@ typedef struct {
     uint8_t satellites_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_sat;
 
 /*
@@ -15823,8 +15226,6 @@ typedef struct {
     nmea_enum state;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_sba;
 
 /*
@@ -15844,8 +15245,6 @@ typedef struct {
     nmea_text time_tag;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashr_ttt;
 
 /*
@@ -15876,8 +15275,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashs_nme;
 
 /*
@@ -15894,8 +15291,6 @@ typedef struct {
     nmea_number period;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pashs_nme_period;
 
 /*
@@ -15929,8 +15324,6 @@ typedef struct {
     nmea_enum pps_sync;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_perdcrw;
 
 /*
@@ -15976,8 +15369,6 @@ typedef struct {
     nmea_number accuracy_threshold;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_perdcrx;
 
 /*
@@ -16019,8 +15410,6 @@ typedef struct {
     nmea_text receiver_status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_perdcry;
 
 /*
@@ -16064,8 +15453,6 @@ typedef struct {
     nmea_text gclk_setting_2;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_perdcrz;
 
 /*
@@ -16083,8 +15470,6 @@ typedef struct {
     nmea_number roll;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pfec_gpatt;
 
 /*
@@ -16100,8 +15485,6 @@ typedef struct {
     char status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pfec_gphve;
 
 /*
@@ -16124,8 +15507,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pfec_gprtc;
 
 /*
@@ -16162,8 +15543,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pfec_gpwpl;
 
 /*
@@ -16181,8 +15560,6 @@ typedef struct {
     char code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pfec_gpxfr;
 
 /*
@@ -16204,8 +15581,6 @@ typedef struct {
     nmea_number ttff_start;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_fix;
 
 /*
@@ -16261,8 +15636,6 @@ typedef struct {
     uint8_t extra_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_lsq;
 
 /*
@@ -16302,8 +15675,6 @@ typedef struct {
     nmea_time time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_pwr;
 
 /*
@@ -16351,8 +15722,6 @@ typedef struct {
     nmea_time time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_pwr_v2;
 
 /*
@@ -16395,8 +15764,6 @@ typedef struct {
     uint8_t extra_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_pwr_v4;
 
 /* One entry of PGLOR_SAT satellites. */
@@ -16439,8 +15806,6 @@ typedef struct {
     uint8_t satellites_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_sat;
 
 /* One entry of PGLOR_SAT_V1 satellites. */
@@ -16472,8 +15837,6 @@ typedef struct {
     uint8_t satellites_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_sat_v1;
 
 /* One entry of PGLOR_SAT_V0 satellites. */
@@ -16504,8 +15867,6 @@ typedef struct {
     uint8_t satellites_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_sat_v0;
 
 /*
@@ -16568,8 +15929,6 @@ typedef struct {
     nmea_number host_chip_time_delta;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_sio;
 
 /*
@@ -16617,8 +15976,6 @@ typedef struct {
     nmea_number host_chip_time_delta;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_sio_v0;
 
 /*
@@ -16682,8 +16039,6 @@ typedef struct {
     uint8_t extra_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_sta;
 
 /*
@@ -16726,8 +16081,6 @@ typedef struct {
     nmea_number ellipse_orientation;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pglor_unc;
 
 /*
@@ -16768,8 +16121,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmb;
 
 /*
@@ -16832,8 +16183,6 @@ typedef struct {
     nmea_number dr_time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmc;
 
 /*
@@ -16894,8 +16243,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmc1;
 
 /*
@@ -16909,8 +16256,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmc1e;
 
 /*
@@ -16924,8 +16269,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmce;
 
 /*
@@ -16954,8 +16297,6 @@ typedef struct {
     bool epe_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrme;
 
 /*
@@ -16999,8 +16340,6 @@ typedef struct {
     nmea_number tdop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmf;
 
 /*
@@ -17030,8 +16369,6 @@ typedef struct {
     nmea_enum receiver_command;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmi;
 
 /*
@@ -17045,8 +16382,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmie;
 
 /*
@@ -17063,8 +16398,6 @@ typedef struct {
     nmea_text datum;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmm;
 
 /*
@@ -17087,8 +16420,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmo;
 
 /*
@@ -17130,8 +16461,6 @@ typedef struct {
     nmea_enum configuration_data;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmt;
 
 /*
@@ -17152,8 +16481,6 @@ typedef struct {
     nmea_number vel_up;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmv;
 
 /*
@@ -17177,8 +16504,6 @@ typedef struct {
     nmea_enum fix_dimension;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgrmz;
 
 /*
@@ -17197,8 +16522,6 @@ typedef struct {
     nmea_enum status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pgtop_11;
 
 /*
@@ -17221,8 +16544,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmgncmd;
 
 /*
@@ -17256,8 +16577,6 @@ typedef struct {
     nmea_number prn;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmgnst;
 
 /*
@@ -17296,8 +16615,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmgntrk;
 
 /*
@@ -17330,8 +16647,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmgnwpl;
 
 /*
@@ -17345,8 +16660,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk000;
 
 /*
@@ -17370,8 +16683,6 @@ typedef struct {
     nmea_enum flag;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk001;
 
 /*
@@ -17397,8 +16708,6 @@ typedef struct {
     nmea_hex sv_mask;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk001_sv_mask;
 
 /*
@@ -17416,8 +16725,6 @@ typedef struct {
     nmea_enum message;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk010;
 
 /*
@@ -17433,8 +16740,6 @@ typedef struct {
     nmea_text text;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk011;
 
 /*
@@ -17449,8 +16754,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk101;
 
 /*
@@ -17464,8 +16767,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk102;
 
 /*
@@ -17479,8 +16780,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk103;
 
 /*
@@ -17494,8 +16793,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk104;
 
 /*
@@ -17513,8 +16810,6 @@ typedef struct {
     nmea_enum type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk161;
 
 /*
@@ -17528,8 +16823,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk183;
 
 /*
@@ -17545,8 +16838,6 @@ typedef struct {
     bool type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk184;
 
 /*
@@ -17562,8 +16853,6 @@ typedef struct {
     nmea_enum status;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk185;
 
 /*
@@ -17582,8 +16871,6 @@ typedef struct {
     nmea_number interval;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk220;
 
 /*
@@ -17609,8 +16896,6 @@ typedef struct {
     nmea_number extension_gap;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk223;
 
 /*
@@ -17644,8 +16929,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk225;
 
 /*
@@ -17663,8 +16946,6 @@ typedef struct {
     nmea_enum baud;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk251;
 
 /*
@@ -17681,8 +16962,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk286;
 
 /*
@@ -17708,8 +16987,6 @@ typedef struct {
     nmea_number reserved_4;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk300;
 
 /*
@@ -17726,8 +17003,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk301;
 
 /*
@@ -17744,8 +17019,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk313;
 
 /*
@@ -17821,8 +17094,6 @@ typedef struct {
     nmea_number mchn;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk314;
 
 /*
@@ -17835,8 +17106,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk314_restore_default;
 
 /*
@@ -17853,8 +17122,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk319;
 
 /*
@@ -17883,8 +17150,6 @@ typedef struct {
     nmea_enum beidou;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk353;
 
 /*
@@ -17902,8 +17167,6 @@ typedef struct {
     nmea_number threshold;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk386;
 
 /*
@@ -17920,8 +17183,6 @@ typedef struct {
     nmea_number threshold;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk397;
 
 /*
@@ -17934,8 +17195,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk400;
 
 /*
@@ -17948,8 +17207,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk401;
 
 /*
@@ -17962,8 +17219,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk413;
 
 /*
@@ -17976,8 +17231,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk414;
 
 /*
@@ -17990,8 +17243,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk447;
 
 /*
@@ -18016,8 +17267,6 @@ typedef struct {
     nmea_number reserved_4;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk500;
 
 /*
@@ -18033,8 +17282,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk501;
 
 /*
@@ -18050,8 +17297,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk513;
 
 /*
@@ -18123,8 +17368,6 @@ typedef struct {
     nmea_number mchn;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk514;
 
 /*
@@ -18141,8 +17384,6 @@ typedef struct {
     nmea_number threshold;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk527;
 
 /*
@@ -18155,8 +17396,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk605;
 
 /*
@@ -18173,8 +17412,6 @@ typedef struct {
     bool type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk622;
 
 /*
@@ -18192,8 +17429,6 @@ typedef struct {
     nmea_number interval;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk660;
 
 /*
@@ -18210,8 +17445,6 @@ typedef struct {
     nmea_number interval;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk661;
 
 /*
@@ -18239,8 +17472,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk705;
 
 /*
@@ -18255,8 +17486,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk869_query;
 
 /*
@@ -18272,8 +17501,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk869_result;
 
 /*
@@ -18290,8 +17517,6 @@ typedef struct {
     nmea_enum enabled;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtk869_set;
 
 /*
@@ -18308,8 +17533,6 @@ typedef struct {
     uint8_t channels_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtkchn;
 
 /*
@@ -18350,8 +17573,6 @@ typedef struct {
     nmea_number percent;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtklog;
 
 /*
@@ -18370,8 +17591,6 @@ typedef struct {
     uint8_t words_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtklox_data;
 
 /*
@@ -18384,8 +17603,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtklox_end;
 
 /*
@@ -18402,8 +17619,6 @@ typedef struct {
     nmea_number lines;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pmtklox_start;
 
 /* One entry of PQGSV satellites. */
@@ -18445,8 +17660,6 @@ typedef struct {
     nmea_enum system;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqgsv;
 
 /*
@@ -18468,8 +17681,6 @@ typedef struct {
     nmea_enum power;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmantennastatus;
 
 /*
@@ -18491,8 +17702,6 @@ typedef struct {
     nmea_number height;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantdelta;
 
 /*
@@ -18505,8 +17714,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantdelta_read;
 
 /*
@@ -18529,8 +17736,6 @@ typedef struct {
     nmea_number height;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantdelta_result;
 
 /*
@@ -18543,8 +17748,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantdelta_result_ack;
 
 /*
@@ -18558,8 +17761,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantdelta_result_error;
 
 /*
@@ -18581,8 +17782,6 @@ typedef struct {
     nmea_text serial_number;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantinf;
 
 /*
@@ -18595,8 +17794,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantinf_read;
 
 /*
@@ -18619,8 +17816,6 @@ typedef struct {
     nmea_text serial_number;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantinf_result;
 
 /*
@@ -18633,8 +17828,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantinf_result_ack;
 
 /*
@@ -18648,8 +17841,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgantinf_result_error;
 
 /*
@@ -18666,8 +17857,6 @@ typedef struct {
     nmea_number distance;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgbld;
 
 /*
@@ -18680,8 +17869,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgbld_read;
 
 /*
@@ -18698,8 +17885,6 @@ typedef struct {
     nmea_number distance;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgbld_result;
 
 /*
@@ -18712,8 +17897,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgbld_result_ack;
 
 /*
@@ -18727,8 +17910,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgbld_result_error;
 
 /*
@@ -18743,8 +17924,6 @@ typedef struct {
     nmea_number threshold;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnrthd;
 
 /*
@@ -18757,8 +17936,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnrthd_read;
 
 /*
@@ -18774,8 +17951,6 @@ typedef struct {
     nmea_number threshold;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnrthd_result;
 
 /*
@@ -18788,8 +17963,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnrthd_result_ack;
 
 /*
@@ -18803,8 +17976,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnrthd_result_error;
 
 /*
@@ -18835,8 +18006,6 @@ typedef struct {
     nmea_enum navic;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnst;
 
 /*
@@ -18849,8 +18018,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnst_read;
 
 /*
@@ -18882,8 +18049,6 @@ typedef struct {
     nmea_enum navic;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnst_result;
 
 /*
@@ -18896,8 +18061,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnst_result_ack;
 
 /*
@@ -18911,8 +18074,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgcnst_result_error;
 
 /*
@@ -18928,8 +18089,6 @@ typedef struct {
     nmea_number elevation;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgelethd;
 
 /*
@@ -18942,8 +18101,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgelethd_read;
 
 /*
@@ -18960,8 +18117,6 @@ typedef struct {
     nmea_number elevation;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgelethd_result;
 
 /*
@@ -18974,8 +18129,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgelethd_result_ack;
 
 /*
@@ -18989,8 +18142,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgelethd_result_error;
 
 /*
@@ -19005,8 +18156,6 @@ typedef struct {
     nmea_number fix_interval;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgfixrate;
 
 /*
@@ -19019,8 +18168,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgfixrate_read;
 
 /*
@@ -19036,8 +18183,6 @@ typedef struct {
     nmea_number fix_interval;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgfixrate_result;
 
 /*
@@ -19050,8 +18195,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgfixrate_result_ack;
 
 /*
@@ -19065,8 +18208,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgfixrate_result_error;
 
 /*
@@ -19111,8 +18252,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeofence;
 
 /*
@@ -19127,8 +18266,6 @@ typedef struct {
     nmea_number index;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeofence_read;
 
 /*
@@ -19173,8 +18310,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeofence_result;
 
 /*
@@ -19187,8 +18322,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeofence_result_ack;
 
 /*
@@ -19202,8 +18335,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeofence_result_error;
 
 /*
@@ -19221,8 +18352,6 @@ typedef struct {
     nmea_number separation;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeosep;
 
 /*
@@ -19235,8 +18364,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeosep_read;
 
 /*
@@ -19255,8 +18382,6 @@ typedef struct {
     nmea_number separation;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeosep_result;
 
 /*
@@ -19269,8 +18394,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeosep_result_ack;
 
 /*
@@ -19284,8 +18407,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfggeosep_result_error;
 
 /*
@@ -19312,8 +18433,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgmsgrate;
 
 /*
@@ -19345,8 +18464,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgmsgrate_port;
 
 /*
@@ -19374,8 +18491,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgmsgrate_read_port;
 
 /*
@@ -19399,8 +18514,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgmsgrate_read;
 
 /*
@@ -19428,8 +18541,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgmsgrate_result;
 
 /*
@@ -19461,8 +18572,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgmsgrate_result_port;
 
 /*
@@ -19475,8 +18584,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgmsgrate_result_ack;
 
 /*
@@ -19490,8 +18597,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgmsgrate_result_error;
 
 /*
@@ -19520,8 +18625,6 @@ typedef struct {
     nmea_number cog_decimals;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeadp;
 
 /*
@@ -19534,8 +18637,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeadp_read;
 
 /*
@@ -19564,8 +18665,6 @@ typedef struct {
     nmea_number cog_decimals;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeadp_result;
 
 /*
@@ -19578,8 +18677,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeadp_result_ack;
 
 /*
@@ -19593,8 +18690,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeadp_result_error;
 
 /*
@@ -19613,8 +18708,6 @@ typedef struct {
     nmea_enum gsv_talker;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeatid;
 
 /*
@@ -19627,8 +18720,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeatid_read;
 
 /*
@@ -19648,8 +18739,6 @@ typedef struct {
     nmea_enum gsv_talker;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeatid_result;
 
 /*
@@ -19662,8 +18751,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeatid_result_ack;
 
 /*
@@ -19677,8 +18764,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgnmeatid_result_error;
 
 /*
@@ -19697,8 +18782,6 @@ typedef struct {
     nmea_number initial_distance;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgodo;
 
 /*
@@ -19711,8 +18794,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgodo_read;
 
 /*
@@ -19732,8 +18813,6 @@ typedef struct {
     nmea_number initial_distance;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgodo_result;
 
 /*
@@ -19746,8 +18825,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgodo_result_ack;
 
 /*
@@ -19761,8 +18838,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgodo_result_error;
 
 /*
@@ -19792,8 +18867,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgpps;
 
 /*
@@ -19808,8 +18881,6 @@ typedef struct {
     nmea_number index;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgpps_read;
 
 /*
@@ -19840,8 +18911,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgpps_result;
 
 /*
@@ -19854,8 +18923,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgpps_result_ack;
 
 /*
@@ -19869,8 +18936,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgpps_result_error;
 
 /*
@@ -19896,8 +18961,6 @@ typedef struct {
     nmea_hex output_protocols;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgprot;
 
 /*
@@ -19915,8 +18978,6 @@ typedef struct {
     nmea_number port_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgprot_read;
 
 /*
@@ -19943,8 +19004,6 @@ typedef struct {
     nmea_hex output_protocols;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgprot_result;
 
 /*
@@ -19957,8 +19016,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgprot_result_ack;
 
 /*
@@ -19972,8 +19029,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgprot_result_error;
 
 /*
@@ -19989,8 +19044,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrcvrmode;
 
 /*
@@ -20003,8 +19056,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrcvrmode_read;
 
 /*
@@ -20021,8 +19072,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrcvrmode_result;
 
 /*
@@ -20035,8 +19084,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrcvrmode_result_ack;
 
 /*
@@ -20050,8 +19097,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrcvrmode_result_error;
 
 /*
@@ -20066,8 +19111,6 @@ typedef struct {
     nmea_number station_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrsid;
 
 /*
@@ -20080,8 +19123,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrsid_read;
 
 /*
@@ -20097,8 +19138,6 @@ typedef struct {
     nmea_number station_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrsid_result;
 
 /*
@@ -20111,8 +19150,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrsid_result_ack;
 
 /*
@@ -20126,8 +19163,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrsid_result_error;
 
 /*
@@ -20158,8 +19193,6 @@ typedef struct {
     nmea_number eph_interval;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtcm;
 
 /*
@@ -20172,8 +19205,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtcm_read;
 
 /*
@@ -20205,8 +19236,6 @@ typedef struct {
     nmea_number eph_interval;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtcm_result;
 
 /*
@@ -20219,8 +19248,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtcm_result_ack;
 
 /*
@@ -20234,8 +19261,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtcm_result_error;
 
 /*
@@ -20259,8 +19284,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtk;
 
 /*
@@ -20273,8 +19296,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtk_read;
 
 /*
@@ -20299,8 +19320,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtk_result;
 
 /*
@@ -20313,8 +19332,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtk_result_ack;
 
 /*
@@ -20328,8 +19345,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtk_result_error;
 
 /*
@@ -20345,8 +19360,6 @@ typedef struct {
     nmea_enum source_type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtksrctype;
 
 /*
@@ -20359,8 +19372,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtksrctype_read;
 
 /*
@@ -20377,8 +19388,6 @@ typedef struct {
     nmea_enum source_type;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtksrctype_result;
 
 /*
@@ -20391,8 +19400,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtksrctype_result_ack;
 
 /*
@@ -20406,8 +19413,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgrtksrctype_result_error;
 
 /*
@@ -20437,8 +19442,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsat;
 
 /*
@@ -20460,8 +19463,6 @@ typedef struct {
     nmea_hex signal;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsat_read;
 
 /*
@@ -20492,8 +19493,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsat_result;
 
 /*
@@ -20506,8 +19505,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsat_result_ack;
 
 /*
@@ -20521,8 +19518,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsat_result_error;
 
 /*
@@ -20538,8 +19533,6 @@ typedef struct {
     nmea_hex systems;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsbas;
 
 /*
@@ -20552,8 +19545,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsbas_read;
 
 /*
@@ -20570,8 +19561,6 @@ typedef struct {
     nmea_hex systems;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsbas_result;
 
 /*
@@ -20584,8 +19573,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsbas_result_ack;
 
 /*
@@ -20599,8 +19586,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsbas_result_error;
 
 /*
@@ -20616,8 +19601,6 @@ typedef struct {
     nmea_number group;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsiggrp;
 
 /*
@@ -20630,8 +19613,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsiggrp_read;
 
 /*
@@ -20648,8 +19629,6 @@ typedef struct {
     nmea_number group;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsiggrp_result;
 
 /*
@@ -20662,8 +19641,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsiggrp_result_ack;
 
 /*
@@ -20677,8 +19654,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsiggrp_result_error;
 
 /*
@@ -20709,8 +19684,6 @@ typedef struct {
     nmea_hex navic_signals;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal;
 
 /*
@@ -20723,8 +19696,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal_read;
 
 /*
@@ -20756,8 +19727,6 @@ typedef struct {
     nmea_hex navic_signals;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal2;
 
 /*
@@ -20770,8 +19739,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal2_read;
 
 /*
@@ -20803,8 +19770,6 @@ typedef struct {
     nmea_hex navic_signals;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal2_result;
 
 /*
@@ -20817,8 +19782,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal2_result_ack;
 
 /*
@@ -20832,8 +19795,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal2_result_error;
 
 /*
@@ -20865,8 +19826,6 @@ typedef struct {
     nmea_hex navic_signals;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal_result;
 
 /*
@@ -20879,8 +19838,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal_result_ack;
 
 /*
@@ -20894,8 +19851,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsignal_result_error;
 
 /*
@@ -20929,8 +19884,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsvin;
 
 /*
@@ -20943,8 +19896,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsvin_read;
 
 /*
@@ -20978,8 +19929,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsvin_result;
 
 /*
@@ -20992,8 +19941,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsvin_result_ack;
 
 /*
@@ -21007,8 +19954,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgsvin_result_error;
 
 /*
@@ -21040,8 +19985,6 @@ typedef struct {
     nmea_enum flow_control;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfguart;
 
 /*
@@ -21057,8 +20000,6 @@ typedef struct {
     nmea_enum baud_rate;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfguart_current_baud;
 
 /*
@@ -21085,8 +20026,6 @@ typedef struct {
     nmea_enum flow_control;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfguart_current_full;
 
 /*
@@ -21105,8 +20044,6 @@ typedef struct {
     nmea_enum baud_rate;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfguart_port_baud;
 
 /*
@@ -21124,8 +20061,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfguart_read;
 
 /*
@@ -21156,8 +20091,6 @@ typedef struct {
     nmea_enum flow_control;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfguart_result;
 
 /*
@@ -21170,8 +20103,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfguart_result_ack;
 
 /*
@@ -21185,8 +20116,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfguart_result_error;
 
 /*
@@ -21203,8 +20132,6 @@ typedef struct {
     nmea_number week;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgwn;
 
 /*
@@ -21217,8 +20144,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgwn_read;
 
 /*
@@ -21235,8 +20160,6 @@ typedef struct {
     nmea_number week;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgwn_result;
 
 /*
@@ -21249,8 +20172,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgwn_result_ack;
 
 /*
@@ -21264,8 +20185,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcfgwn_result_error;
 
 /*
@@ -21278,8 +20197,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmcold;
 
 /*
@@ -21292,8 +20209,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmdebugoff;
 
 /*
@@ -21306,8 +20221,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmdebugoff_result;
 
 /*
@@ -21321,8 +20234,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmdebugoff_result_error;
 
 /*
@@ -21335,8 +20246,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmdebugon;
 
 /*
@@ -21349,8 +20258,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmdebugon_result;
 
 /*
@@ -21364,8 +20271,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmdebugon_result_error;
 
 /*
@@ -21397,8 +20302,6 @@ typedef struct {
     nmea_number edop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmdop;
 
 /*
@@ -21422,8 +20325,6 @@ typedef struct {
     nmea_number tow;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmeoe;
 
 /*
@@ -21449,8 +20350,6 @@ typedef struct {
     nmea_number spherical;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmepe;
 
 /*
@@ -21471,8 +20370,6 @@ typedef struct {
     nmea_enum states[4];
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmgeofencestatus;
 
 /*
@@ -21485,8 +20382,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmgnssstart;
 
 /*
@@ -21500,8 +20395,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmgnssstart_result;
 
 /*
@@ -21515,8 +20408,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmgnssstart_result_error;
 
 /*
@@ -21529,8 +20420,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmgnssstop;
 
 /*
@@ -21543,8 +20432,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmgnssstop_result;
 
 /*
@@ -21558,8 +20445,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmgnssstop_result_error;
 
 /*
@@ -21572,8 +20457,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmhot;
 
 /*
@@ -21679,8 +20562,6 @@ typedef struct {
     nmea_text reserved18;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmnav;
 
 /*
@@ -21704,8 +20585,6 @@ typedef struct {
     nmea_number distance;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmodo;
 
 /*
@@ -21748,8 +20627,6 @@ typedef struct {
     nmea_number pl_time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmpl;
 
 /*
@@ -21805,8 +20682,6 @@ typedef struct {
     nmea_number pdop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmpvt;
 
 /*
@@ -21820,8 +20695,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmresetodo;
 
 /*
@@ -21834,8 +20707,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmresetodo_result;
 
 /*
@@ -21849,8 +20720,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmresetodo_result_error;
 
 /*
@@ -21864,8 +20733,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmrestorepar;
 
 /*
@@ -21879,8 +20746,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmrestorepar_result;
 
 /*
@@ -21894,8 +20759,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmrestorepar_result_error;
 
 /*
@@ -21910,8 +20773,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmsavepar;
 
 /*
@@ -21924,8 +20785,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmsavepar_result;
 
 /*
@@ -21939,8 +20798,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmsavepar_result_error;
 
 /*
@@ -21953,8 +20810,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmsn;
 
 /*
@@ -21974,8 +20829,6 @@ typedef struct {
     nmea_text serial_number;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmsn_result;
 
 /*
@@ -21989,8 +20842,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmsn_result_error;
 
 /*
@@ -22003,8 +20854,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmsrr;
 
 /*
@@ -22041,8 +20890,6 @@ typedef struct {
     nmea_number mean_accuracy;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmsvinstatus;
 
 /*
@@ -22081,8 +20928,6 @@ typedef struct {
     nmea_number satellites;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmtar;
 
 /*
@@ -22107,8 +20952,6 @@ typedef struct {
     nmea_text text;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmtxt;
 
 /*
@@ -22121,8 +20964,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmuniqid;
 
 /*
@@ -22141,8 +20982,6 @@ typedef struct {
     nmea_text unique_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmuniqid_result;
 
 /*
@@ -22156,8 +20995,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmuniqid_result_error;
 
 /*
@@ -22194,8 +21031,6 @@ typedef struct {
     nmea_number course_accuracy;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmvel;
 
 /*
@@ -22219,8 +21054,6 @@ typedef struct {
     nmea_text build_time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmver;
 
 /*
@@ -22240,8 +21073,6 @@ typedef struct {
     nmea_text build_time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmver_legacy;
 
 /*
@@ -22254,8 +21085,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmverno;
 
 /*
@@ -22275,8 +21104,6 @@ typedef struct {
     nmea_text build_time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmverno_result;
 
 /*
@@ -22290,8 +21117,6 @@ typedef struct {
     nmea_enum error_code;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmverno_result_error;
 
 /*
@@ -22304,8 +21129,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqtmwarm;
 
 /*
@@ -22319,8 +21142,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqverno;
 
 /*
@@ -22340,8 +21161,6 @@ typedef struct {
     nmea_text build_time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pqverno_result;
 
 /*
@@ -22373,8 +21192,6 @@ typedef struct {
     nmea_enum parity;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psrf100;
 
 /*
@@ -22419,8 +21236,6 @@ typedef struct {
     nmea_number reset_cfg;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psrf101;
 
 /*
@@ -22448,8 +21263,6 @@ typedef struct {
     nmea_enum parity;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psrf102;
 
 /*
@@ -22478,8 +21291,6 @@ typedef struct {
     nmea_enum checksum_mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psrf103;
 
 /*
@@ -22505,8 +21316,6 @@ typedef struct {
     nmea_enum checksum_mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psrf103_short_codes;
 
 /*
@@ -22551,8 +21360,6 @@ typedef struct {
     nmea_number reset_cfg;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psrf104;
 
 /*
@@ -22571,8 +21378,6 @@ typedef struct {
     nmea_enum debug;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psrf105;
 
 /*
@@ -22591,8 +21396,6 @@ typedef struct {
     nmea_enum ok_to_send;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psrf150;
 
 /*
@@ -22625,8 +21428,6 @@ typedef struct {
     nmea_number ehe;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psrfepe;
 
 /*
@@ -22672,8 +21473,6 @@ typedef struct {
     nmea_enum mag_var_dir;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pssn_hrp;
 
 /*
@@ -22714,8 +21513,6 @@ typedef struct {
     nmea_number base_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pssn_rbd;
 
 /*
@@ -22759,8 +21556,6 @@ typedef struct {
     nmea_number base_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pssn_rbp;
 
 /*
@@ -22804,8 +21599,6 @@ typedef struct {
     nmea_number base_id;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pssn_rbv;
 
 /*
@@ -22833,8 +21626,6 @@ typedef struct {
     nmea_number msg_1025_1027;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pssn_tfm;
 
 /*
@@ -22880,8 +21671,6 @@ typedef struct {
     nmea_number rtk_ratio;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psti_030;
 
 /*
@@ -22928,8 +21717,6 @@ typedef struct {
     nmea_text reserved_5;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psti_032;
 
 /*
@@ -23012,8 +21799,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psti_033;
 
 /*
@@ -23060,8 +21845,6 @@ typedef struct {
     nmea_text reserved_5;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psti_035;
 
 /*
@@ -23091,8 +21874,6 @@ typedef struct {
     nmea_enum mode;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psti_036;
 
 /*
@@ -23142,8 +21923,6 @@ typedef struct {
     nmea_number distance_per_second;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_psti_20;
 
 /*
@@ -23159,8 +21938,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmagps;
 
 /*
@@ -23175,8 +21952,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmalmanac;
 
 /*
@@ -23190,8 +21965,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmclralms;
 
 /*
@@ -23205,8 +21978,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmclrephs;
 
 /*
@@ -23231,8 +22002,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmcold;
 
 /*
@@ -23248,8 +22017,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmcorr;
 
 /*
@@ -23265,8 +22032,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmdiff;
 
 /*
@@ -23281,8 +22046,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmeph;
 
 /*
@@ -23303,8 +22066,6 @@ typedef struct {
     nmea_number block_param;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmgetpar;
 
 /*
@@ -23315,8 +22076,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmgetparerror;
 
 /*
@@ -23330,8 +22089,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmgetrtctime;
 
 /*
@@ -23354,8 +22111,6 @@ typedef struct {
     nmea_enum time_validity;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmgetrtctime_reply;
 
 /*
@@ -23369,8 +22124,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmgetswver;
 
 /*
@@ -23395,8 +22148,6 @@ typedef struct {
     nmea_text build_time;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmgetswver_reply;
 
 /*
@@ -23412,8 +22163,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmhot;
 
 /*
@@ -23430,8 +22179,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmkfcov;
 
 /*
@@ -23453,8 +22200,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmnmeaonoff;
 
 /*
@@ -23470,8 +22215,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmpa;
 
 /*
@@ -23487,8 +22230,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmpres;
 
 /*
@@ -23504,8 +22245,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmres;
 
 /*
@@ -23520,8 +22259,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmrestorepar;
 
 /*
@@ -23537,8 +22274,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmrf;
 
 /*
@@ -23554,8 +22289,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmsat;
 
 /*
@@ -23571,8 +22304,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmsavepar;
 
 /*
@@ -23588,8 +22319,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmsbas;
 
 /*
@@ -23604,8 +22333,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmsbascorr;
 
 /*
@@ -23627,8 +22354,6 @@ typedef struct {
     nmea_text value;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmset;
 
 /*
@@ -23653,8 +22378,6 @@ typedef struct {
     nmea_number gdop;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmset_dop;
 
 /*
@@ -23692,8 +22415,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmsetpar;
 
 /*
@@ -23723,8 +22444,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmsetpar_dop;
 
 /*
@@ -23735,8 +22454,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmsetparerror;
 
 /*
@@ -23753,8 +22470,6 @@ typedef struct {
     nmea_number block_param;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmsetparok;
 
 /*
@@ -23770,8 +22485,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmtestrf;
 
 /*
@@ -23787,8 +22500,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmtg;
 
 /*
@@ -23804,8 +22515,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmtim;
 
 /*
@@ -23821,8 +22530,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmts;
 
 /*
@@ -23837,8 +22544,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmver;
 
 /*
@@ -23854,8 +22559,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmvres;
 
 /*
@@ -23871,8 +22574,6 @@ typedef struct {
     uint8_t values_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmwaas;
 
 /*
@@ -23888,8 +22589,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pstmwarm;
 
 /*
@@ -23931,8 +22630,6 @@ typedef struct {
     nmea_number satellites;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnl_avr;
 
 /*
@@ -23967,8 +22664,6 @@ typedef struct {
     nmea_enum quality;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnl_bpq;
 
 /*
@@ -23997,8 +22692,6 @@ typedef struct {
     nmea_number leap_seconds;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnl_evt;
 
 /*
@@ -24041,8 +22734,6 @@ typedef struct {
     bool height_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnl_ggk;
 
 /*
@@ -24083,8 +22774,6 @@ typedef struct {
     bool height_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnl_ggk_sync;
 
 /*
@@ -24126,8 +22815,6 @@ typedef struct {
     bool height_unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnl_pjk;
 
 /*
@@ -24149,8 +22836,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnl_pjt;
 
 /*
@@ -24186,8 +22871,6 @@ typedef struct {
     bool unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnl_vgk;
 
 /*
@@ -24227,8 +22910,6 @@ typedef struct {
     bool unit;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnl_vhd;
 
 /*
@@ -24275,8 +22956,6 @@ typedef struct {
     nmea_text reserved_3;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnldg;
 
 /*
@@ -24292,8 +22971,6 @@ typedef struct {
     nmea_number event_number;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnlev;
 
 /*
@@ -24317,8 +22994,6 @@ typedef struct {
     nmea_text firmware_date;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnlid;
 
 /*
@@ -24339,8 +23014,6 @@ typedef struct {
     nmea_number flag;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnlrba;
 
 /*
@@ -24361,8 +23034,6 @@ typedef struct {
     nmea_number precision;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnlrtp;
 
 /*
@@ -24382,8 +23053,6 @@ typedef struct {
     nmea_number offset;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnlrxo;
 
 /*
@@ -24406,8 +23075,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnlsm;
 
 /*
@@ -24449,8 +23116,6 @@ typedef struct {
     nmea_enum time_transfer;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_ptnta;
 
 /*
@@ -24482,8 +23147,6 @@ typedef struct {
     nmea_enum autobauding;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pubx_config;
 
 /*
@@ -24544,8 +23207,6 @@ typedef struct {
     nmea_number dr_used;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pubx_position;
 
 /*
@@ -24559,8 +23220,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pubx_position_poll;
 
 /*
@@ -24593,8 +23252,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pubx_rate;
 
 /* One entry of PUBX_SVSTATUS satellites. */
@@ -24637,8 +23294,6 @@ typedef struct {
     uint8_t satellites_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pubx_svstatus;
 
 /*
@@ -24652,8 +23307,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pubx_svstatus_poll;
 
 /*
@@ -24694,8 +23347,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pubx_time;
 
 /*
@@ -24709,8 +23360,6 @@ typedef struct {
 typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pubx_time_poll;
 
 /*
@@ -24770,8 +23419,6 @@ typedef struct {
     nmea_number dr_used;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pubx_utm;
 
 /* Which layout an nmea_sentence holds. */
@@ -25460,9 +24107,12 @@ typedef enum {
     NMEA_SENTENCE_COUNT
 } nmea_sentence_id;
 
-/* Any sentence: `id` says which member of `as` is set. */
+/* Any sentence: `id` says which member of `as` is set. `problems` (NULL: none) lists the fields
+   lenient parsing left empty, in the storage its options gave (nmea_options.problems); the
+   serializer writes their texts back in their places. */
 typedef struct {
     nmea_sentence_id id;
+    const nmea_problems *problems;
     union {
         nmea_generic generic;
         nmea_aam aam;
@@ -28267,7 +26917,8 @@ size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea
  * texts of its "problems" in their places, leniently, when lenient decoding kept it).
  * Strings of the JSON are copied into `scratch` (the sentence points into it); 2 * `len` bytes
  * of scratch are always enough (`len` but for a text command, whose line as received is built
- * there too, or a sentence with problems, whose texts are joined again there).
+ * there too, or a sentence with problems, whose texts are joined again there), and
+ * sizeof(nmea_problems) + 16 more for a sentence with problems, which are kept there too.
  */
 bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
                     nmea_error *err);

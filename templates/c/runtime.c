@@ -8,7 +8,12 @@
 
 #include <string.h>
 
-#if defined(__GNUC__)
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__) /* -Os: the compiler's choices, for size */
+#define NMEA_INTERNAL static __attribute__((unused))
+#define NMEA_RARE static __attribute__((noinline, cold))
+#define NMEA_HOT static inline
+#define NMEA_OUTLINE static __attribute__((noinline))
+#elif defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
 #define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
@@ -2167,10 +2172,9 @@ NMEA_HOT bool fast_sep(fast_writer *w)
     return true;
 }
 
-NMEA_HOT bool fast_begin(fast_writer *w, char *buf, size_t cap, char start, nmea_text talker, const char *address,
-                         const nmea_problems *problems)
+NMEA_HOT bool fast_begin(fast_writer *w, char *buf, size_t cap, char start, nmea_text talker, const char *address)
 {
-    if (problems->count || cap < FAST_ROOM + 1)
+    if (cap < FAST_ROOM + 1)
         return false;
     w->buf = buf;
     w->p = buf;
@@ -2683,13 +2687,13 @@ static void json_problems(nmea_writer *w, const nmea_problems *problems)
     put_char(w, ']');
 }
 
-/* Closes the fields of a known sentence, lists its problems and ends with its checksum;
-   `sentence` is the writer that wrote it (for the checksum). */
+/* Closes the fields of a known sentence, lists its problems (NULL: none) and ends with its
+   checksum; `sentence` is the writer that wrote it (for the checksum). */
 NMEA_INTERNAL void json_end_sentence(nmea_writer *w, const nmea_writer *sentence, nmea_checksum_style style,
                                      const nmea_problems *problems)
 {
     put_char(w, '}');
-    if (problems->count)
+    if (problems && problems->count)
         json_problems(w, problems);
     json_checksum(w, sentence->sum, style);
 }
@@ -3259,6 +3263,7 @@ bool nmea_json_is_failure(const char *json, size_t len)
 }
 #endif /* NMEA_NO_JSON */
 
+#ifndef NMEA_NO_TABLES
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables: the wire text of a value (Parameter.encode of the Python
    runtime). */
@@ -3415,6 +3420,7 @@ size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, siz
     put_str(&w, text);
     return param_finish(&w, err);
 }
+#endif /* NMEA_NO_TABLES */
 
 /* ------------------------------------------------------------------------------------------ */
 /* Layouts: what the spec says of each sentence layout, as a table the generator writes (the
@@ -3451,6 +3457,9 @@ typedef struct {
     uint16_t max_length;  /* text, enum_chars: most characters (0: any number) */
 } layout_field;
 
+/* The fields of a layout without any (its `fields` point here, never NULL: no arithmetic on it). */
+static const layout_field NO_FIELDS[1];
+
 /* An offset of a member a layout does not have. */
 #define NO_MEMBER 0xFFFFu
 
@@ -3478,8 +3487,8 @@ typedef struct {
     const char *command;       /* a text command: its word in upper case; NULL */
     const char *variant;       /* NULL: the sentence's main layout */
     const char *selector;      /* the keyword (upper case) every line of it holds, or NULL */
-    const layout_field *fields;
-    const layout_group *group; /* NULL: none */
+    const layout_field *fields; /* NO_FIELDS: none */
+    const layout_group *group;  /* NULL: none */
     uint16_t selector_at;      /* the selector's wire index (0-based) */
     uint16_t before;           /* fields before the group (all required ones without a group) */
     uint16_t after;            /* required fields after the group */
@@ -3487,7 +3496,7 @@ typedef struct {
     uint16_t fixed;            /* required wire fields besides the group */
     uint16_t max_fields;       /* wire fields at most (without a group) */
     uint16_t optional_max;     /* optional wire fields at most */
-    uint16_t problems;         /* offset of the struct's problems: the bytes before it are cleared */
+    uint16_t size;             /* of the struct */
     uint16_t head;             /* offset of the talker (standard) or as_received (text); NO_MEMBER */
     uint16_t optional_count;   /* offset of the uint8_t optional_count; NO_MEMBER */
     uint16_t checksum;         /* offset of the nmea_checksum_style; NO_MEMBER (a text command) */
@@ -3594,8 +3603,7 @@ NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nme
                               &optional)
           : !read_count(&r, wire->count, l->fixed, l->max_fields, &optional))
         return false;
-    clear_layout(s, l->problems);
-    ((nmea_problems *)member_at(s, l->problems))->count = 0; /* lenient parsing sets them */
+    clear_layout(s, l->size);
     if (l->head != NO_MEMBER)
         *(nmea_text *)member_at(s, l->head) = l->kind == LAYOUT_TEXT ? wire->line : wire->address;
     if (l->checksum != NO_MEMBER)
@@ -3794,15 +3802,12 @@ static void json_words_as_written(nmea_writer *w, const layout *l, const void *s
 NMEA_OUTLINE void json_with(nmea_writer *w, const layout *l, const void *s, const nmea_problems *problems,
                             bool values)
 {
-    static const nmea_problems none = {0};
     const layout_group *g = l->group;
     nmea_writer sentence = writer_of(NULL, 0);
     nmea_checksum_style checksum = NMEA_CHECKSUM_NONE;
     size_t i, n;
 
     write_with(&sentence, l, s, problems);
-    if (!problems)
-        problems = &none;
     if (l->checksum != NO_MEMBER)
         checksum = *(const nmea_checksum_style *)const_member_at(s, l->checksum);
     if (l->kind == LAYOUT_STANDARD) {

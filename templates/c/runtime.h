@@ -227,7 +227,7 @@ typedef struct {
     nmea_text text;       /* the field's text as received */
 } nmea_problem;
 
-/** The problems of a sentence (every layout struct has them; `count` is 0 after a strict parse). */
+/** The problems of a sentence that lenient parsing kept (see nmea_options.problems). */
 typedef struct {
     uint8_t count;
     nmea_problem list[NMEA_MAX_PROBLEMS];
@@ -243,16 +243,20 @@ size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap);
 /**
  * How nmea_parse_ex reads a line (a zeroed struct, or NULL, is nmea_parse's strict reading):
  * - lenient: a `$`/`!` sentence whose fields do not all fit their types is still decoded: the
- *   fields at fault are read as empty, one at a time in the order the errors come, and listed in
- *   the layout's `problems`. A field that is already empty and still does not fit (a keyword, a
- *   hemisphere without its latitude), or a problem more than NMEA_MAX_PROBLEMS, ends the attempt
- *   with its error. Text commands are always strict.
+ *   fields at fault are read as empty, one at a time in the order the errors come. A field that
+ *   is already empty and still does not fit (a keyword, a hemisphere without its latitude), or a
+ *   problem more than NMEA_MAX_PROBLEMS, ends the attempt with its error. Text commands are
+ *   always strict.
  * - require_checksum: a `$`/`!` sentence without a checksum (or with a bare '*') is refused as
  *   NMEA_ERR_MISSING_CHECKSUM.
+ * - problems: where lenient parsing lists the fields it left empty (the sentence's `problems`
+ *   then points here, and serializing it writes their texts back in their places, so the round
+ *   trip stays exact); NULL: they are not kept, and the fields are written empty.
  */
 typedef struct {
     bool lenient;
     bool require_checksum;
+    nmea_problems *problems;
 } nmea_options;
 
 /* ------------------------------------------------------------------------------------------ */
@@ -313,6 +317,7 @@ nmea_text nmea_generic_field(const nmea_generic *g, size_t index);
 bool nmea_json_is_failure(const char *json, size_t len);
 #endif
 
+#ifndef NMEA_NO_TABLES /* a build generated without parameter tables */
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables (spec/tables): the wire text of a value. */
 
@@ -361,3 +366,4 @@ size_t nmea_param_decimal(const nmea_parameter *p, int64_t value, unsigned scale
 size_t nmea_param_decimal_list(const nmea_parameter *p, const int64_t *values, size_t n, unsigned scale, char *buf,
                                size_t cap, nmea_error *err);
 size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, size_t cap, nmea_error *err);
+#endif /* NMEA_NO_TABLES */

@@ -25,13 +25,15 @@
 /* The tool's buffers: a line being assembled across reads, the output being gathered. */
 static char input[CHUNK];
 static char pending[ENCODE_MAX];
-static char scratch[2 * ENCODE_MAX]; /* a text command needs its texts twice */
+/* a text command needs its texts twice, a sentence with problems room for them too */
+static char scratch[2 * ENCODE_MAX + sizeof(nmea_problems) + 16];
 static char output[4 * ENCODE_MAX + NMEA_JSON_MAX + 1];
 
 typedef struct {
     bool encode;
     bool values;
     nmea_options options;
+    nmea_problems problems; /* of the line decoded last (--lenient) */
     size_t out_len;
 } tool;
 
@@ -163,6 +165,7 @@ static bool decode_flags(tool *t, int argc, char **argv)
     }
     t->options.lenient = lenient;
     t->options.require_checksum = required;
+    t->options.problems = &t->problems;
     return true;
 }
 

@@ -283,7 +283,7 @@ static const layout_field fix_fields[] = {
 };
 static const layout fix_layout = {
     .sentence = "FIX", .fields = fix_fields, .before = 12, .optional = 1, .fixed = 14, .max_fields = 15,
-    .optional_max = 1, .problems = offsetof(nmea_fix, problems), .head = offsetof(nmea_fix, talker),
+    .optional_max = 1, .size = sizeof(nmea_fix), .head = offsetof(nmea_fix, talker),
     .optional_count = offsetof(nmea_fix, optional_count), .checksum = offsetof(nmea_fix, checksum),
     .kind = LAYOUT_STANDARD, .start = '$',
 };
@@ -295,13 +295,13 @@ bool nmea_parse_fix(nmea_fix *out, const char *line, size_t len, nmea_error *err
 
 size_t nmea_serialize_fix(const nmea_fix *s, char *buf, size_t cap)
 {
-    return serialize_with(&fix_layout, s, &s->problems, buf, cap);
+    return serialize_with(&fix_layout, s, NULL, buf, cap);
 }
 
 size_t nmea_build_fix(const nmea_fix *s, char *buf, size_t cap, nmea_error *err)
 {
     nmea_fix check;
-    return build_with(&fix_layout, s, &s->problems, &check, buf, cap, err);
+    return build_with(&fix_layout, s, NULL, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -314,9 +314,8 @@ static const layout_field fix_short_fields[] = {
 };
 static const layout fix_short_layout = {
     .sentence = "FIX", .variant = "short", .fields = fix_short_fields, .before = 2, .fixed = 3, .max_fields = 3,
-    .problems = offsetof(nmea_fix_short, problems), .head = offsetof(nmea_fix_short, talker),
-    .optional_count = NO_MEMBER, .checksum = offsetof(nmea_fix_short, checksum), .kind = LAYOUT_STANDARD,
-    .start = '$',
+    .size = sizeof(nmea_fix_short), .head = offsetof(nmea_fix_short, talker), .optional_count = NO_MEMBER,
+    .checksum = offsetof(nmea_fix_short, checksum), .kind = LAYOUT_STANDARD, .start = '$',
 };
 
 bool nmea_parse_fix_short(nmea_fix_short *out, const char *line, size_t len, nmea_error *err)
@@ -326,13 +325,13 @@ bool nmea_parse_fix_short(nmea_fix_short *out, const char *line, size_t len, nme
 
 size_t nmea_serialize_fix_short(const nmea_fix_short *s, char *buf, size_t cap)
 {
-    return serialize_with(&fix_short_layout, s, &s->problems, buf, cap);
+    return serialize_with(&fix_short_layout, s, NULL, buf, cap);
 }
 
 size_t nmea_build_fix_short(const nmea_fix_short *s, char *buf, size_t cap, nmea_error *err)
 {
     nmea_fix_short check;
-    return build_with(&fix_short_layout, s, &s->problems, &check, buf, cap, err);
+    return build_with(&fix_short_layout, s, NULL, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -358,9 +357,9 @@ static const layout_group sat_group = {
 };
 static const layout sat_layout = {
     .sentence = "SAT", .fields = sat_fields, .group = &sat_group, .before = 3, .optional = 1, .fixed = 3,
-    .max_fields = 20, .optional_max = 1, .problems = offsetof(nmea_sat, problems),
-    .head = offsetof(nmea_sat, talker), .optional_count = offsetof(nmea_sat, optional_count),
-    .checksum = offsetof(nmea_sat, checksum), .kind = LAYOUT_STANDARD, .start = '$',
+    .max_fields = 20, .optional_max = 1, .size = sizeof(nmea_sat), .head = offsetof(nmea_sat, talker),
+    .optional_count = offsetof(nmea_sat, optional_count), .checksum = offsetof(nmea_sat, checksum),
+    .kind = LAYOUT_STANDARD, .start = '$',
 };
 
 bool nmea_parse_sat(nmea_sat *out, const char *line, size_t len, nmea_error *err)
@@ -370,13 +369,13 @@ bool nmea_parse_sat(nmea_sat *out, const char *line, size_t len, nmea_error *err
 
 size_t nmea_serialize_sat(const nmea_sat *s, char *buf, size_t cap)
 {
-    return serialize_with(&sat_layout, s, &s->problems, buf, cap);
+    return serialize_with(&sat_layout, s, NULL, buf, cap);
 }
 
 size_t nmea_build_sat(const nmea_sat *s, char *buf, size_t cap, nmea_error *err)
 {
     nmea_sat check;
-    return build_with(&sat_layout, s, &s->problems, &check, buf, cap, err);
+    return build_with(&sat_layout, s, NULL, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -390,9 +389,9 @@ static const layout_field xdm_fields[] = {
     {"payload", "text", NULL, offsetof(nmea_xdm, payload), FIELD_TEXT, 1, 0},
 };
 static const layout xdm_layout = {
-    .sentence = "XDM", .fields = xdm_fields, .before = 4, .fixed = 4, .max_fields = 4,
-    .problems = offsetof(nmea_xdm, problems), .head = offsetof(nmea_xdm, talker), .optional_count = NO_MEMBER,
-    .checksum = offsetof(nmea_xdm, checksum), .kind = LAYOUT_STANDARD, .start = '!',
+    .sentence = "XDM", .fields = xdm_fields, .before = 4, .fixed = 4, .max_fields = 4, .size = sizeof(nmea_xdm),
+    .head = offsetof(nmea_xdm, talker), .optional_count = NO_MEMBER, .checksum = offsetof(nmea_xdm, checksum),
+    .kind = LAYOUT_STANDARD, .start = '!',
 };
 
 bool nmea_parse_xdm(nmea_xdm *out, const char *line, size_t len, nmea_error *err)
@@ -402,13 +401,13 @@ bool nmea_parse_xdm(nmea_xdm *out, const char *line, size_t len, nmea_error *err
 
 size_t nmea_serialize_xdm(const nmea_xdm *s, char *buf, size_t cap)
 {
-    return serialize_with(&xdm_layout, s, &s->problems, buf, cap);
+    return serialize_with(&xdm_layout, s, NULL, buf, cap);
 }
 
 size_t nmea_build_xdm(const nmea_xdm *s, char *buf, size_t cap, nmea_error *err)
 {
     nmea_xdm check;
-    return build_with(&xdm_layout, s, &s->problems, &check, buf, cap, err);
+    return build_with(&xdm_layout, s, NULL, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -421,9 +420,8 @@ static const layout_field acme_log_fields[] = {
 };
 static const layout acme_log_layout = {
     .sentence = "ACME_LOG", .address = "LOG", .command = "LOG", .fields = acme_log_fields, .before = 2,
-    .fixed = 2, .max_fields = 2, .problems = offsetof(nmea_acme_log, problems),
-    .head = offsetof(nmea_acme_log, as_received), .optional_count = NO_MEMBER, .checksum = NO_MEMBER,
-    .kind = LAYOUT_TEXT, .start = '$',
+    .fixed = 2, .max_fields = 2, .size = sizeof(nmea_acme_log), .head = offsetof(nmea_acme_log, as_received),
+    .optional_count = NO_MEMBER, .checksum = NO_MEMBER, .kind = LAYOUT_TEXT, .start = '$',
 };
 
 bool nmea_parse_acme_log(nmea_acme_log *out, const char *line, size_t len, nmea_error *err)
@@ -433,13 +431,13 @@ bool nmea_parse_acme_log(nmea_acme_log *out, const char *line, size_t len, nmea_
 
 size_t nmea_serialize_acme_log(const nmea_acme_log *s, char *buf, size_t cap)
 {
-    return serialize_with(&acme_log_layout, s, &s->problems, buf, cap);
+    return serialize_with(&acme_log_layout, s, NULL, buf, cap);
 }
 
 size_t nmea_build_acme_log(const nmea_acme_log *s, char *buf, size_t cap, nmea_error *err)
 {
     nmea_acme_log check;
-    return build_with(&acme_log_layout, s, &s->problems, &check, buf, cap, err);
+    return build_with(&acme_log_layout, s, NULL, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -452,7 +450,7 @@ static const layout_field pacmack_fields[] = {
 };
 static const layout pacmack_layout = {
     .sentence = "PACMACK", .address = "PACMACK", .fields = pacmack_fields, .before = 2, .fixed = 2,
-    .max_fields = 2, .problems = offsetof(nmea_pacmack, problems), .head = NO_MEMBER, .optional_count = NO_MEMBER,
+    .max_fields = 2, .size = sizeof(nmea_pacmack), .head = NO_MEMBER, .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_pacmack, checksum), .kind = LAYOUT_PROPRIETARY, .start = '$',
 };
 
@@ -463,13 +461,13 @@ bool nmea_parse_pacmack(nmea_pacmack *out, const char *line, size_t len, nmea_er
 
 size_t nmea_serialize_pacmack(const nmea_pacmack *s, char *buf, size_t cap)
 {
-    return serialize_with(&pacmack_layout, s, &s->problems, buf, cap);
+    return serialize_with(&pacmack_layout, s, NULL, buf, cap);
 }
 
 size_t nmea_build_pacmack(const nmea_pacmack *s, char *buf, size_t cap, nmea_error *err)
 {
     nmea_pacmack check;
-    return build_with(&pacmack_layout, s, &s->problems, &check, buf, cap, err);
+    return build_with(&pacmack_layout, s, NULL, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -483,7 +481,7 @@ static const layout_field pacmset_fields[] = {
 };
 static const layout pacmset_layout = {
     .sentence = "PACMSET", .address = "PACMSET", .selector = "BAUD", .fields = pacmset_fields, .selector_at = 0,
-    .before = 3, .fixed = 3, .max_fields = 3, .problems = offsetof(nmea_pacmset, problems), .head = NO_MEMBER,
+    .before = 3, .fixed = 3, .max_fields = 3, .size = sizeof(nmea_pacmset), .head = NO_MEMBER,
     .optional_count = NO_MEMBER, .checksum = offsetof(nmea_pacmset, checksum), .kind = LAYOUT_PROPRIETARY,
     .start = '$',
 };
@@ -495,13 +493,13 @@ bool nmea_parse_pacmset(nmea_pacmset *out, const char *line, size_t len, nmea_er
 
 size_t nmea_serialize_pacmset(const nmea_pacmset *s, char *buf, size_t cap)
 {
-    return serialize_with(&pacmset_layout, s, &s->problems, buf, cap);
+    return serialize_with(&pacmset_layout, s, NULL, buf, cap);
 }
 
 size_t nmea_build_pacmset(const nmea_pacmset *s, char *buf, size_t cap, nmea_error *err)
 {
     nmea_pacmset check;
-    return build_with(&pacmset_layout, s, &s->problems, &check, buf, cap, err);
+    return build_with(&pacmset_layout, s, NULL, &check, buf, cap, err);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -729,6 +727,7 @@ NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len)
 
     if (!fast_frame(line, len, &count))
         return false;
+    out->problems = NULL;
     if (line[6] == ',' && line[1] != 'P') { /* a talker and a sentence id, or a look-alike */
         if (!is_alnum(line[1]) || !is_alnum(line[2]))
             return false;
@@ -772,12 +771,6 @@ NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts,
     return false;
 }
 
-/* The problems of the layout a sentence holds (NULL for a generic one). */
-static nmea_problems *problems_of(const nmea_sentence *s)
-{
-    return s->id == NMEA_SENTENCE_GENERIC ? NULL : (nmea_problems *)const_member_at(&s->as, LAYOUTS[s->id]->problems);
-}
-
 /* first_of_many, and for the usual single layout just that layout's reader (inlined here: no
    bookkeeping of errors to compare). */
 static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
@@ -789,8 +782,10 @@ static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, co
 
 /* first_fit, when it fails and `lenient`, the fields at fault are read as empty one at a time,
    each kept as a problem, until a layout reads the wire, a field at fault is already empty, or
-   a problem would be one too many. */
-NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, nmea_error *err)
+   a problem would be one too many. The sentence's problems are then kept in `keep` (NULL: not
+   kept). */
+NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, nmea_problems *keep,
+                        nmea_error *err)
 {
     nmea_problems problems;
     problems.count = 0;
@@ -799,19 +794,23 @@ NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wi
         problem_of(&problems.list[problems.count++], err);
         wire->blank[wire->blanks++] = (uint16_t)err->field;
         if (first_fit(out, layouts, wire, err)) {
-            nmea_problems *kept = problems_of(out);
-            kept->count = problems.count;
-            memcpy(kept->list, problems.list, problems.count * sizeof problems.list[0]);
+            if (keep) {
+                keep->count = problems.count;
+                memcpy(keep->list, problems.list, problems.count * sizeof problems.list[0]);
+            }
+            out->problems = keep;
             return true;
         }
     }
     return false;
 }
 
-/* The first of the layouts that reads the wire (first_fit); when none does and `lenient`, refit. */
-static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, bool lenient, nmea_error *err)
+/* The first of the layouts that reads the wire (first_fit); when none does and the options are
+   lenient, refit. */
+static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
+                       nmea_error *err)
 {
-    return first_fit(out, layouts, wire, err) || (lenient && refit(out, layouts, wire, err));
+    return first_fit(out, layouts, wire, err) || (options->lenient && refit(out, layouts, wire, options->problems, err));
 }
 
 static void write_sentence(nmea_writer *w, const nmea_sentence *s)
@@ -819,7 +818,7 @@ static void write_sentence(nmea_writer *w, const nmea_sentence *s)
     if (s->id == NMEA_SENTENCE_GENERIC)
         write_generic(w, &s->as.generic);
     else
-        write_with(w, LAYOUTS[s->id], &s->as, problems_of(s));
+        write_with(w, LAYOUTS[s->id], &s->as, s->problems);
 }
 
 /* write_sentence on the fast path: the length, or 0 to leave it to the general writer. */
@@ -893,13 +892,14 @@ bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *er
 static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
                           nmea_error *err)
 {
-    static const nmea_options strict = {false, false};
+    static const nmea_options strict = {false, false, NULL};
     nmea_frame f;
     nmea_wire wire;
     const nmea_layouts *layouts = NULL;
 
     if (!options)
         options = &strict;
+    out->problems = NULL;
     if (len > NMEA_MAX_LINE) { /* not even read (a framed overlong line has no bytes) */
         nmea_error_too_long(err, len);
         return false;
@@ -917,18 +917,18 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
         layouts = find_standard(f.address.ptr + 2);
         if (layouts) {
             wire_of(&wire, &f, layouts->suffix, NULL);
-            return fit(out, layouts, &wire, options->lenient, err);
+            return fit(out, layouts, &wire, options, err);
         }
     } else if (is_standard_address(&f)) {
         layouts = find_encapsulated(f.address.ptr + 2);
         if (layouts) {
             wire_of(&wire, &f, layouts->suffix, NULL);
-            return fit(out, layouts, &wire, options->lenient, err);
+            return fit(out, layouts, &wire, options, err);
         }
     } else if (f.start.ptr[0] == '$' && (layouts = find_layouts(PROPRIETARY, PROPRIETARY_COUNT, f.address)) != NULL) {
         wire_of(&wire, &f, NULL, NULL);
         if (claimed(layouts, &wire))
-            return fit(out, layouts, &wire, options->lenient, err);
+            return fit(out, layouts, &wire, options, err);
     }
     out->id = NMEA_SENTENCE_GENERIC;
     out->as.generic.start = f.start;
@@ -968,7 +968,7 @@ static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
 size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
 {
 #ifndef NMEA_NO_FAST_PATH
-    size_t n = fast_write_sentence(s, buf, cap);
+    size_t n = s->problems && s->problems->count ? 0 : fast_write_sentence(s, buf, cap);
     if (n)
         return n;
 #endif
@@ -989,7 +989,7 @@ size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err
     nmea_sentence check;
 
     if (s->id != NMEA_SENTENCE_GENERIC)
-        return build_with(LAYOUTS[s->id], &s->as, problems_of(s), &check.as, buf, cap, err);
+        return build_with(LAYOUTS[s->id], &s->as, s->problems, &check.as, buf, cap, err);
     w = writer_of(buf, cap);
     write_generic(&w, &s->as.generic);
     if (!build_wire(&w, false, &wire, err))
@@ -1004,7 +1004,7 @@ size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
     if (s->id == NMEA_SENTENCE_GENERIC)
         json_generic(&w, &s->as.generic);
     else
-        json_with(&w, LAYOUTS[s->id], &s->as, problems_of(s), values);
+        json_with(&w, LAYOUTS[s->id], &s->as, s->problems, values);
     return writer_finish(&w);
 }
 
@@ -1018,6 +1018,14 @@ size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea
 {
     nmea_sentence s;
     nmea_error err;
+    nmea_problems problems;
+    nmea_options keeping;
+
+    if (options && options->lenient && !options->problems) { /* the JSON lists them */
+        keeping = *options;
+        keeping.problems = &problems;
+        options = &keeping;
+    }
     if (nmea_parse_ex(&s, line, len, options, &err))
         return nmea_to_json(&s, values, buf, cap);
     return nmea_error_to_json(&err, buf, cap);
@@ -1092,6 +1100,21 @@ static bool json_index(nmea_json v, size_t n, size_t *index)
 /* The most wire fields any layout takes. */
 #define NMEA_MAX_FIELDS 20
 
+/* Room for the problems of a sentence rebuilt from JSON in the scratch buffer (aligned as the
+   struct needs), or NULL when it is full. */
+static nmea_problems *scratch_problems(nmea_scratch *s)
+{
+    typedef struct {
+        char c;
+        nmea_problems p;
+    } probe;
+    size_t align = offsetof(probe, p), at = s->len + (align - (uintptr_t)(s->buf + s->len) % align) % align;
+    if (at > s->cap || s->cap - at < sizeof(nmea_problems))
+        return NULL;
+    s->len = at + sizeof(nmea_problems);
+    return (nmea_problems *)(void *)(s->buf + at);
+}
+
 /* A sentence that lenient decoding kept (its JSON has "problems"): the texts of its problem
    fields go back in their places, and its layout parses it leniently again. `wire` holds the
    texts of the `fields` object. */
@@ -1101,6 +1124,7 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
     nmea_text start, text, texts[NMEA_MAX_FIELDS];
     nmea_json problem, v;
     nmea_layouts one;
+    nmea_options lenient = {true, false, NULL};
     const char *p = wire->fields.ptr, *end = p + wire->fields.len, *comma;
     size_t i, index, n = wire->count, need = 0;
     bool present, wide;
@@ -1150,12 +1174,15 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
         }
         wire->fields = text_span(p, s->buf + s->len);
     }
+    if ((lenient.problems = scratch_problems(s)) == NULL)
+        return scratch_full(err);
     one.key = NULL;
     one.key_len = 0;
     one.suffix = NULL;
     one.ids = &id;
     one.count = 1;
-    return fit(out, &one, wire, true, err);
+    out->problems = NULL;
+    return fit(out, &one, wire, &lenient, err);
 }
 
 bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
@@ -1175,6 +1202,7 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     s.buf = scratch;
     s.cap = scratch ? scratch_cap : 0;
     s.len = 0;
+    out->problems = NULL;
     if (!json_parse(json, len, &root))
         return bad_json(err, "not JSON", NULL);
     if (!json_is(root, '{'))

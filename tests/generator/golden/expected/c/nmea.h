@@ -18,7 +18,8 @@
  * options (keep sentences with bad fields as problems, require checksums):
  *
  *     static nmea_framer framer;              (zeroed: ready)
- *     nmea_options options = {true, false};   (lenient, require_checksum)
+ *     nmea_problems problems;                 (the fields lenient parsing left empty)
+ *     nmea_options options = {true, false, &problems};   (lenient, require_checksum, problems)
  *     nmea_framed line;
  *     while (nmea_framer_push(&framer, &chunk, &chunk_len, &line))
  *         if (nmea_parse_ex(&s, line.ptr, line.len, &options, &err))
@@ -46,6 +47,9 @@ extern "C" {
 /** A buffer of this size holds the JSON (nmea_to_json or nmea_error_to_json) of any line of
     at most NMEA_MAX_LINE bytes. */
 #define NMEA_JSON_MAX 26924
+
+/** This build has no configuration parameter tables (nor the nmea_param_ functions). */
+#define NMEA_NO_TABLES
 
 /* templates/c/runtime.h */
 
@@ -129,8 +133,8 @@ enum {
 /* Sentences (spec/standard, spec/proprietary): one struct per layout. Optional trailing fields
    are counted by optional_count: that many of them were on the wire (empty or not) and are
    written back. A keyword (a fixed word such as RQUERY) is implied by the layout: it has no
-   member and is written whenever it is on the wire (always, unless it is optional). `problems`
-   lists the fields lenient parsing left empty; their texts are written back in their places. */
+   member and is written whenever it is on the wire (always, unless it is optional). The fields
+   lenient parsing left empty are listed beside the struct, in nmea_sentence.problems. */
 
 /*
  * FIX: Fix with every field type.
@@ -174,8 +178,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_fix;
 
 /*
@@ -194,8 +196,6 @@ typedef struct {
     nmea_coordinate lat;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_fix_short;
 
 /* One entry of SAT satellites. */
@@ -235,8 +235,6 @@ typedef struct {
     uint8_t optional_count;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_sat;
 
 /*
@@ -259,8 +257,6 @@ typedef struct {
     nmea_text payload;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_xdm;
 
 /*
@@ -278,8 +274,6 @@ typedef struct {
     nmea_text message;
     /* Period [s] (x): Seconds between outputs. Empty: present false. */
     nmea_number period;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_acme_log;
 
 /*
@@ -296,8 +290,6 @@ typedef struct {
     nmea_number ok;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pacmack;
 
 /*
@@ -316,8 +308,6 @@ typedef struct {
     nmea_hex outputs;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
-    /* The fields lenient parsing left empty (none after a strict parse). */
-    nmea_problems problems;
 } nmea_pacmset;
 
 /* Which layout an nmea_sentence holds. */
@@ -333,9 +323,12 @@ typedef enum {
     NMEA_SENTENCE_COUNT
 } nmea_sentence_id;
 
-/* Any sentence: `id` says which member of `as` is set. */
+/* Any sentence: `id` says which member of `as` is set. `problems` (NULL: none) lists the fields
+   lenient parsing left empty, in the storage its options gave (nmea_options.problems); the
+   serializer writes their texts back in their places. */
 typedef struct {
     nmea_sentence_id id;
+    const nmea_problems *problems;
     union {
         nmea_generic generic;
         nmea_fix fix;
@@ -448,7 +441,8 @@ size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea
  * texts of its "problems" in their places, leniently, when lenient decoding kept it).
  * Strings of the JSON are copied into `scratch` (the sentence points into it); 2 * `len` bytes
  * of scratch are always enough (`len` but for a text command, whose line as received is built
- * there too, or a sentence with problems, whose texts are joined again there).
+ * there too, or a sentence with problems, whose texts are joined again there), and
+ * sizeof(nmea_problems) + 16 more for a sentence with problems, which are kept there too.
  */
 bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
                     nmea_error *err);

@@ -1,0 +1,80 @@
+"""The C pair's footprint: code size and sizeof(nmea_sentence), for a subset and the full spec.
+
+    python3 tools/footprint.py                       # the table of docs/performance.md
+    python3 tools/footprint.py --only GGA,RMC --cc arm-none-eabi-gcc --cflags "-mcpu=cortex-m4 -mthumb"
+
+For each build it generates the C pair (`generate --only ...` into a temporary directory, or
+generated/c for the full spec), compiles nmea.c alone at -Os with -DNMEA_NO_JSON, with and
+without -DNMEA_NO_FAST_PATH, and reports `size`'s text and data of the object. sizeof is measured
+by compiling a probe with the host compiler (the struct layout of the target can differ).
+"""
+
+from __future__ import annotations
+
+import argparse
+import shlex
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SUBSET = "GGA,RMC,GSV,GSA,VTG"
+
+PROBE = """#include <stdio.h>
+#include "nmea.h"
+int main(void)
+{
+    printf("%zu\\n", sizeof(nmea_sentence));
+    return 0;
+}
+"""
+
+
+def generate(only: str | None, out: Path) -> Path:
+    """The directory of the C pair: generated/c for the whole spec, else a subset written to `out`."""
+    if only is None:
+        return ROOT / "generated" / "c"
+    subprocess.run([sys.executable, "-m", "generator", "generate", "--only", only, "--out", str(out)], cwd=ROOT,
+                   check=True, stdout=subprocess.DEVNULL)
+    return out / "c"
+
+
+def object_size(cc: list[str], cflags: list[str], source: Path, flags: list[str], work: Path) -> tuple[int, int]:
+    """(text, data) of nmea.c compiled with `flags`."""
+    obj = work / "nmea.o"
+    subprocess.run([*cc, "-std=c99", "-Os", *cflags, *flags, "-c", "-o", str(obj), str(source / "nmea.c")], check=True)
+    size = subprocess.run(["size", str(obj)], check=True, capture_output=True, text=True).stdout.splitlines()[-1]
+    text, data = size.split()[:2]
+    return int(text), int(data)
+
+
+def sentence_size(source: Path, work: Path) -> int:
+    probe = work / "probe.c"
+    probe.write_text(PROBE, encoding="utf-8")
+    exe = work / "probe"
+    subprocess.run(["cc", "-std=c99", "-I", str(source), "-o", str(exe), str(probe)], check=True)
+    return int(subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--only", default=SUBSET, help=f"the subset (default {SUBSET})")
+    parser.add_argument("--cc", default="cc", help="the compiler (default cc)")
+    parser.add_argument("--cflags", default="", help="more compiler flags, e.g. a target CPU")
+    args = parser.parse_args()
+    cc, cflags = shlex.split(args.cc), shlex.split(args.cflags)
+    print("| build | text, no fast path | text, fast path | data | sizeof(nmea_sentence) |")
+    print("| --- | ---: | ---: | ---: | ---: |")
+    for name, only in ((f"--only {args.only}", args.only), ("full spec", None)):
+        with tempfile.TemporaryDirectory() as tmp:
+            work = Path(tmp)
+            source = generate(only, work / "out")
+            small, data = object_size(cc, cflags, source, ["-DNMEA_NO_JSON", "-DNMEA_NO_FAST_PATH"], work)
+            fast, _ = object_size(cc, cflags, source, ["-DNMEA_NO_JSON"], work)
+            print(f"| {name} | {small:,} | {fast:,} | {data:,} | {sentence_size(source, work):,} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
