@@ -15,7 +15,7 @@ import jinja2
 
 from . import emit_vectors, pairing
 from .emit import TEMPLATES, header
-from .model import BitfieldDef, EnumDef, Example, Field, Group, Layout, Sentence, Spec, TableDef, fixed_point, fmt_num
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, fixed_point, fmt_num
 
 C_KEYWORDS = frozenset("""
 auto break case char const continue default do double else enum extern float for goto if inline int
@@ -289,18 +289,10 @@ def optional_count_expr(widths: list[int]) -> str:
     return f"(uint8_t)({expr})"
 
 
-def framing(sentence: Sentence) -> str:
-    """standard ($ + talker + sentence id), proprietary ($ + fixed address) or text (a command
-    of words)."""
-    if not sentence.is_proprietary:
-        return "standard"
-    return "text" if sentence.framing == "text" else "proprietary"
-
-
 def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     snake = sentence.layout_snake(layout)
     group = layout.group
-    kind = framing(sentence)
+    kind = sentence.wire_kind
     if kind == "text" and group is not None:
         raise ValueError(f"{sentence.id}: a text command cannot have a repeated group")
     before: list[dict] = []
@@ -392,7 +384,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         ("kind", f"LAYOUT_{kind.upper()}"),
         ("start", f"'{sentence.start}'"),
     ])
-    example = _example(sentence, layout)
+    example = sentence.example_of(layout)
     # The fields read before the group (all of them when there is none) and after it.
     head = before + ([] if group_view else optional)
     tail = (after + optional) if group_view else []
@@ -502,13 +494,6 @@ def reply_judgements(spec: Spec) -> list[dict]:
                 expr = f"{ok} ? NMEA_REPLY_OK : NMEA_REPLY_ERROR"
             out.append({"const": layout_const(sentence, layout), "expr": expr})
     return out
-
-
-def _example(sentence: Sentence, layout: Layout) -> Example | None:
-    """The manual example shown above a layout's parser: the one with the most filled fields."""
-    examples = [ex for ex in sentence.examples if ex.line and ex.variant == layout.id]
-    return max(examples, key=lambda ex: sum(1 for f in (ex.line or "").split("*")[0].split(",") if f),
-               default=None)
 
 
 def _conditions(views: list[dict], call: str) -> list[str]:

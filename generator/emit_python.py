@@ -4,6 +4,7 @@ sentence layout, over the hand-written runtime."""
 from __future__ import annotations
 
 import json
+import textwrap
 
 import jinja2
 
@@ -28,73 +29,71 @@ def py_type(f: Field) -> str:
     return base + " | None" + (" | rt._Absent" if f.is_optional else "")
 
 
-def known_table(f: Field) -> tuple[str, str] | None:
-    """The module-level table of values already read (rt.known) that a field of `f`'s type and
-    rule shares, as (Python name, rule), or None for types that are not looked up."""
+# The runtime's FieldSpec class of each field type.
+SPEC_CLASSES = {
+    "integer": "IntegerField", "decimal": "DecimalField", "hex": "HexField", "time": "TimeField",
+    "date": "DateField", "latitude": "LatitudeField", "longitude": "LongitudeField", "char": "CharField",
+    "literal": "LiteralField", "keyword": "KeywordField", "text": "TextField", "enum": "EnumField",
+    "enum_chars": "EnumCharsField",
+}
+
+WIDTH = 100  # the longest line of the generated Python
+
+
+def field_spec(f: Field) -> list[str]:
+    """The lines of the runtime's FieldSpec of `f` in a layout's items (a call with its id, what
+    it takes and its type's arguments), each of at most WIDTH characters at an indent of 8."""
+    args = [json.dumps(f.id), json.dumps(f.expected)]
     t = f.type
-    if t in ("integer", "decimal"):
-        rule = t
-        if f.min is not None or f.max is not None:
-            rule += f" {'' if f.min is None else fmt_num(f.min)}..{'' if f.max is None else fmt_num(f.max)}"
-    elif t in ("hex", "time", "date", "latitude", "longitude"):
-        rule = t
-    else:
-        return None
-    name = "_" + "".join(ch if ch.isalnum() else "_" for ch in rule.upper().replace("-", "MINUS_")
-                         .replace("..", "_TO_").replace(".", "_POINT_")).strip("_")
-    return name.rstrip("_"), rule
+    if t in ("integer", "decimal") and (f.min is not None or f.max is not None):
+        args += [_bound(f.min), _bound(f.max)]
+    elif t in ("latitude", "longitude"):
+        args.append(json.dumps(f.hemisphere_expected))
+    elif t in ("literal", "keyword"):
+        args.append(json.dumps(f.value))
+    elif t in ("enum", "enum_chars"):
+        assert f.enum is not None
+        args.append(f.enum.camel)
+    if t in ("text", "enum_chars") and f.max_length is not None:
+        args.append(str(f.max_length))
+    if f.is_optional:
+        args.append("optional=True")
+    return call_lines(f"rt.{SPEC_CLASSES[t]}", args, 8, ",")
 
 
-def py_parse(f: Field, pos: str, name: str, ignore_case: bool = False) -> str:
-    """The expression that reads field `f` from `fields[pos]` (and `fields[pos + 1]` for lat/lon);
-    `ignore_case` for the words of a text command. A text already read under the same rule is
-    looked up first (rt.known); the reader only runs for a new text, and raises for a bad one."""
-    text = f"fields[{pos}]"
-    index = _plus(pos, 1)
-    common = f'{text}, address, {index}, {name}, {json.dumps(f.expected)}'
-    t = f.type
-    table = known_table(f)
-    if t in ("integer", "decimal"):
-        bounds = ""
-        if f.min is not None or f.max is not None:
-            bounds = f", {_bound(f.min)}, {_bound(f.max)}"
-        elif table:
-            bounds = ", None, None"
-        read = f"rt.{t}_field({common}{bounds}, {table[0]})" if table else f"rt.{t}_field({common}{bounds})"
-        # An empty field is None (the reader's answer too), without a call for it.
-        return f"({table[0]}.get({text}) or {read}) if {text} else None" if table else read
-    if t in ("hex", "time", "date"):
-        assert table
-        return f"({table[0]}.get({text}) or rt.{t}_field({common}, {table[0]})) if {text} else None"
-    if t in ("latitude", "longitude"):
-        assert table
-        pair = f"fields[{index}]"
-        return (f"{table[0]}.get(({text}, {pair})) or rt.coordinate_field({text}, {pair}, address, {index}, {name}, "
-                f"{json.dumps(f.expected)}, {json.dumps(f.hemisphere_expected)}, {json.dumps(f.hemispheres)}, {table[0]})")
-    if t == "char":
-        return f"rt.{t}_field({common})"
-    if t == "literal":
-        return f"{json.dumps(f.value)} if {text} == {json.dumps(f.value)} else rt.literal_field({common}, {json.dumps(f.value)})"
-    if t == "text":
-        return f"rt.text_field({common}, {f.max_length})"
-    if t == "keyword":
-        return f"rt.keyword_field({common}, {json.dumps(f.value)}{', True' if ignore_case else ''})"
-    assert f.enum is not None
-    e = f.enum
-    if t == "enum":
-        if ignore_case:
-            return f'rt.enum_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {e.min_len}, {e.max_len}, True)'
-        return (f'{e.camel}.BY_CODE.get({text}) or '
-                f'rt.enum_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {e.min_len}, {e.max_len})')
-    return f'rt.enum_chars_field({common}, {e.camel}.BY_CODE, "{e.code_class}", {f.max_length})'
+def call_lines(function: str, args: list[str], indent: int, end: str = "") -> list[str]:
+    """A call as lines of at most WIDTH characters (after `indent` spaces): on one line when it
+    fits, else one argument a line (a long string split where it has spaces)."""
+    one = f"{function}({', '.join(args)}){end}"
+    if indent + len(one) <= WIDTH:
+        return [one]
+    lines = [f"{function}("]
+    for arg in args:
+        lines += ["    " + part for part in _split_str(arg, WIDTH - indent - 5)]
+        lines[-1] += ","
+    return lines + [")" + end]
 
 
-def _plus(pos: str, n: int) -> str:
-    """`pos + n` as Python source, folded when `pos` is a constant."""
-    if pos.isdigit():
-        return str(int(pos) + n)
-    base, _, offset = pos.partition(" + ")
-    return f"{base} + {int(offset or 0) + n}"
+def _split_str(arg: str, width: int) -> list[str]:
+    """A JSON string literal `arg` as implicitly joined literals of at most `width` characters."""
+    if len(arg) <= width or not arg.startswith('"'):
+        return [arg]
+    text = json.loads(arg)
+    parts: list[str] = []
+    while text:
+        cut = len(text)
+        while len(json.dumps(text[:cut])) > width:
+            space = text.rfind(" ", 0, cut - 1)
+            cut = space + 1 if space > 0 else cut - 1
+        parts.append(json.dumps(text[:cut]))
+        text = text[cut:]
+    return parts
+
+
+def docstring(text: str, indent: int) -> list[str]:
+    """A docstring of `text` as lines of at most WIDTH characters (after `indent` spaces)."""
+    words = " ".join(text.split()).replace("\\", "\\\\").replace('"', '\\"')
+    return textwrap.wrap(f'"""{words}"""', WIDTH - indent, break_long_words=False, break_on_hyphens=False)
 
 
 def _bound(value: float | None) -> str:
@@ -114,48 +113,61 @@ def py_literal(value: object) -> str:
     return repr(value)
 
 
-def py_texts(f: Field, value: str) -> str:
-    """The expression that yields the wire text(s) of a field value, as a list fragment."""
-    if f.type in ("latitude", "longitude"):
-        return f"*rt.coordinate_texts({value})"
-    return f"rt.text_of({value})"
-
-
 def entry_class(sentence: Sentence, layout: Layout, group: Group) -> str:
     """The class of one entry of a repeated group: GsvSatellite for GSV's `satellites`."""
     word = group.camel
     return sentence.layout_camel(layout) + (word[:-1] if word.endswith("s") else word + "Entry")
 
 
+def member_view(f: Field) -> dict:
+    """A dataclass member of a field: its declaration and its docstring."""
+    default = "rt.ABSENT" if f.is_optional else (json.dumps(f.value) if f.type == "keyword" else "None")
+    unit = f" [{f.unit}]" if f.unit else ""
+    since = f" (NMEA {f.since})" if f.since else ""
+    return {"line": f"{f.id}: {py_type(f)} = {default}", "doc": docstring(f"{f.name}{unit}{since}: {f.doc}", 4)}
+
+
 def layout_view(sentence: Sentence, layout: Layout) -> dict:
-    """Everything the template prints for one layout, with wire positions worked out: constant
-    before the repeated group, relative to `pos` (the position right after it) behind it."""
-    items: list[dict] = []
-    at = 0
-    after_group = False
-    optional_seen = 0
+    """Everything the template prints for one layout: its dataclass members and the lines of its
+    LAYOUT (the runtime's description of its wire form)."""
+    members: list[dict] = []
+    items: list[str] = []
+    entry = None
     for item in layout.items:
         if isinstance(item, Group):
-            items.append({"group": item, "start": at, "entry": entry_class(sentence, layout, item),
-                          "optional_index": None})
-            after_group, at = True, 0
-            continue
-        pos = (f"pos + {at}" if at else "pos") if after_group else str(at)
-        view = {"field": item, "pos": pos, "optional_index": None}
-        if item.is_optional:
-            optional_seen += item.wire_width
-            view["optional_index"] = optional_seen
-        items.append(view)
-        at += item.wire_width
-    fields = [v for v in items if "field" in v]
+            name = entry_class(sentence, layout, item)
+            value_type = py_type(item.fields[0]) if item.single else name
+            members.append({"line": f"{item.id}: list[{value_type}] = field(default_factory=list)",
+                            "doc": docstring(f"{item.name}: {item.min} to {item.max} entries.", 4)})
+            fields = [line for f in item.fields for line in field_spec(f)]
+            items += [f"rt.Group({json.dumps(item.id)}, {'None' if item.single else name}, (",
+                      *("    " + line for line in fields), f"), {item.min}, {item.max}),"]
+            if not item.single:
+                entry = {"class": name, "group": item,
+                         "doc": docstring(f"One entry of {item.name.lower()} ({item.min} to {item.max} per "
+                                          "sentence).", 4),
+                         "members": [{"line": f"{f.id}: {py_type(f)} = None",
+                                      "doc": docstring(f"{f.name}{f' [{f.unit}]' if f.unit else ''}: {f.doc}", 4)}
+                                     for f in item.fields]}
+        else:
+            members.append(member_view(item))
+            items += field_spec(item)
+    head = (f"LAYOUT: ClassVar[rt.Layout] = rt.Layout({json.dumps(sentence.id)}, {json.dumps(sentence.wire_kind)}, "
+            f"{json.dumps(sentence.start)}, {layout.fixed_count}, {layout.max_fields}, (")
+    example = sentence.example_of(layout)
+    title = f"{sentence.id}{' (' + layout.name + ')' if layout.id else ''}: " + \
+        f"{sentence.name if layout.id else layout.name}."
+    doc = textwrap.wrap(title, WIDTH - 7)
+    if layout.id:
+        doc += ["", *textwrap.wrap(" ".join(layout.doc.split()), WIDTH - 4)]
+    if example:
+        doc += ["", f"Example ({example.manual}):", example.line or ""]
     return {
-        "layout": layout, "class": sentence.layout_camel(layout), "items": items, "group": layout.group,
-        # Required fields before the group (all of them when there is none), required fields
-        # after it, and the optional trailing fields: the order fields() and fields_json() emit.
-        "before": [v for v in fields if not v["field"].is_optional and not v["pos"].startswith("pos")],
-        "after": [v for v in fields if not v["field"].is_optional and v["pos"].startswith("pos")],
-        "optional": [v for v in fields if v["field"].is_optional],
-        "reply_rules": [f"({json.dumps(p.reply.id)}, {json.dumps(p.layout.id) if p.layout.id else 'None'}, ({''.join(reply_test(c) + ', ' for c in p.conditions)}))"
+        "layout": layout, "class": sentence.layout_camel(layout), "entry": entry, "members": members,
+        "doc": [line.replace("\\", "\\\\").replace('"""', '\\"\\"\\"') for line in doc],
+        "layout_head": head, "layout_items": items,
+        "reply_rules": [f"({json.dumps(p.reply.id)}, {json.dumps(p.layout.id) if p.layout.id else 'None'}, "
+                        f"({''.join(reply_test(c) + ', ' for c in p.conditions)})),"
                         for p in pairing.pairings(sentence)],
         "outcome": _outcome(layout),
     }
@@ -180,19 +192,8 @@ def _outcome(layout: Layout) -> str | None:
     return f"({''.join(t + ', ' for t in tests)})"
 
 
-# Names parse_fields already uses (arguments, counters, module names): a field id among them gets
-# a trailing underscore as a local variable.
-_TAKEN_LOCALS = frozenset({"cls", "address", "fields", "checksum", "line", "count", "repeats", "optional",
-                           "pos", "entry", "rt", "Decimal", "Any", "ClassVar", "dataclass", "field"})
-
-
-def py_local(name: str) -> str:
-    """The local variable parse_fields reads field `name` into."""
-    return name + "_" if name in _TAKEN_LOCALS else name
-
-
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    env.globals.update(py_type=py_type, py_parse=py_parse, local=py_local, py_texts=py_texts, py=py_literal, json=json)
+    env.globals.update(py=py_literal, json=json)
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
     runtime = (TEMPLATES / "python" / "runtime.py").read_text(encoding="utf-8")
@@ -213,8 +214,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
             enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}),
             uses_decimal=any(f.type in ("integer", "decimal") and "Decimal" in _bound(f.min) + _bound(f.max)
-                             for lay in sentence.layouts for f in _all_fields(lay)),
-            tables=sorted({t for lay in sentence.layouts for f in _all_fields(lay) if (t := known_table(f))}))
+                             for lay in sentence.layouts for f in _all_fields(lay)))
     by_address = {s.address: spec.by_address(s.address) for s in spec.proprietary if s.framing == "sentence"}
     text_commands = {s.address.upper(): spec.text_command(s.address) for s in spec.proprietary if s.framing == "text"}
     files[f"{base}/bitfields.py"] = env.get_template("python/bitfields.py.j2").render(

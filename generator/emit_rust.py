@@ -664,10 +664,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     group = layout.group
     optional = [it for it in items if it.get("optional")]
     binding = ("repeats" if group else "_", "extra" if optional else "_")
-    # The manual's example with the most fields filled in shows the layout best.
-    examples = [ex for ex in sentence.examples if ex.line and ex.variant == layout.id]
-    example = max(examples, key=lambda ex: sum(1 for t in (ex.line or "").split("*")[0].split(",") if t),
-                  default=None)
+    example = sentence.example_of(layout)
     manual = spec.manual(example.manual) if example else None
     title = f"{sentence.id}: {sentence.name}" if not layout.id else f"{sentence.id} ({layout.name})"
     members = [it for it in items if it["kind"] != "keyword"]

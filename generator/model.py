@@ -378,6 +378,21 @@ class Sentence:
         return self.id in FAST_PATH_SENTENCES or (self.is_proprietary and self.kind == "output")
 
     @property
+    def wire_kind(self) -> str:
+        """How its lines are framed: "standard" ($ or ! + talker + sentence id), "proprietary"
+        ($ + its fixed address) or "text" (a command of words separated by spaces)."""
+        if not self.is_proprietary:
+            return "standard"
+        return "text" if self.framing == "text" else "proprietary"
+
+    def example_of(self, layout: Layout) -> Example | None:
+        """The manual example every language's docs show for a layout: of its examples with a
+        line, the one with the most fields filled in (the first of those)."""
+        examples = [ex for ex in self.examples if ex.line and ex.variant == layout.id]
+        return max(examples, key=lambda ex: sum(1 for t in (ex.line or "").split("*")[0].split(",") if t),
+                   default=None)
+
+    @property
     def layouts(self) -> list[Layout]:
         return [self.layout, *self.variants]
 

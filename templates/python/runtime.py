@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from decimal import Decimal
 from enum import Enum
-from typing import Any, Final
+from typing import Any, Callable, ClassVar, Final, TypeVar
 
 MAX_LINE: Final = 1024
 """Longest line (without its line ending) the parser accepts."""
@@ -1149,3 +1149,466 @@ class Parameter:
             raise ValueError(f"{where}: {number} is below {self.minimum}")
         if self.maximum is not None and number > Decimal(str(self.maximum)):
             raise ValueError(f"{where}: {number} is above {self.maximum}")
+
+
+# ---------------------------------------------------------------------------------------------
+# Layouts: each generated sentence class describes its fields in LAYOUT, and the reading,
+# writing and JSON here interpret it (the generated modules hold no code of their own).
+
+
+class FieldSpec:
+    """One field of a layout: its id, what it takes (for errors), how many wire fields it spans
+    and, for an optional trailing field, how many optional wire fields must be there for it."""
+
+    __slots__ = ("id", "expected", "width", "optional_index", "offset")
+
+    width_of: ClassVar[int] = 1
+
+    def __init__(self, id: str, expected: str, optional: bool = False) -> None:
+        self.id = id
+        self.expected = expected
+        self.width = self.width_of
+        self.optional_index = 0 if not optional else -1  # set by Layout: its cumulative wire width
+        self.offset = 0  # in a group's entry: its wire index from the entry's first field
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        """The value of the field at `pos` of `fields`; raises NmeaError naming `name`."""
+        raise NotImplementedError
+
+    def known(self) -> dict[Any, Any]:
+        """Values by wire text that read() would give for them (looked up first: a dict lookup
+        is most of what reading a field costs then)."""
+        return _NOTHING_KNOWN
+
+
+_NOTHING_KNOWN: dict[Any, Any] = {}
+
+
+class _Memo(FieldSpec):
+    """A field whose values are looked up by text first (see known): most fields of a fix."""
+
+    __slots__ = ("memo",)
+
+    def __init__(self, id: str, expected: str, rule: str, optional: bool = False) -> None:
+        super().__init__(id, expected, optional)
+        self.memo = known(rule)
+
+    def known(self) -> dict[Any, Any]:
+        return self.memo
+
+
+class IntegerField(_Memo):
+    __slots__ = ("low", "high")
+
+    def __init__(self, id: str, expected: str, low: Decimal | int | None = None,
+                 high: Decimal | int | None = None, optional: bool = False) -> None:
+        super().__init__(id, expected, _rule("integer", low, high), optional)
+        self.low, self.high = low, high
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        text = fields[pos]
+        if not text:
+            return None
+        return self.memo.get(text) or integer_field(text, address, pos + 1, name, self.expected, self.low,
+                                                    self.high, self.memo)
+
+
+class DecimalField(IntegerField):
+    __slots__ = ()
+
+    def __init__(self, id: str, expected: str, low: Decimal | int | None = None,
+                 high: Decimal | int | None = None, optional: bool = False) -> None:
+        _Memo.__init__(self, id, expected, _rule("decimal", low, high), optional)
+        self.low, self.high = low, high
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        text = fields[pos]
+        if not text:
+            return None
+        return self.memo.get(text) or decimal_field(text, address, pos + 1, name, self.expected, self.low,
+                                                    self.high, self.memo)
+
+
+def _coordinate_pair(value: Any) -> tuple[str, str]:
+    """The two wire texts of a latitude or longitude (empty when it is None or absent)."""
+    return ("", "") if value is None or value is ABSENT else value.texts()
+
+
+def _rule(kind: str, low: Decimal | int | None, high: Decimal | int | None) -> str:
+    """The memo table's rule of a number field: its type and range ("integer 0..99")."""
+    if low is None and high is None:
+        return kind
+    return f"{kind} {'' if low is None else low}..{'' if high is None else high}"
+
+
+class HexField(_Memo):
+    __slots__ = ()
+
+    def __init__(self, id: str, expected: str, optional: bool = False) -> None:
+        super().__init__(id, expected, "hex", optional)
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        text = fields[pos]
+        return (self.memo.get(text) or hex_field(text, address, pos + 1, name, self.expected, self.memo)) \
+            if text else None
+
+
+class TimeField(_Memo):
+    __slots__ = ()
+
+    def __init__(self, id: str, expected: str, optional: bool = False) -> None:
+        super().__init__(id, expected, "time", optional)
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        text = fields[pos]
+        return (self.memo.get(text) or time_field(text, address, pos + 1, name, self.expected, self.memo)) \
+            if text else None
+
+
+class DateField(_Memo):
+    __slots__ = ()
+
+    def __init__(self, id: str, expected: str, optional: bool = False) -> None:
+        super().__init__(id, expected, "date", optional)
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        text = fields[pos]
+        return (self.memo.get(text) or date_field(text, address, pos + 1, name, self.expected, self.memo)) \
+            if text else None
+
+
+class LatitudeField(_Memo):
+    """A latitude and its hemisphere: two wire fields (its values are known by both texts)."""
+
+    __slots__ = ("hemisphere_expected",)
+    width_of = 2
+    HEMISPHERES: ClassVar[str] = "NS"
+
+    def __init__(self, id: str, expected: str, hemisphere_expected: str, optional: bool = False) -> None:
+        super().__init__(id, expected, "latitude" if self.HEMISPHERES == "NS" else "longitude", optional)
+        self.hemisphere_expected = hemisphere_expected
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        pair = (fields[pos], fields[pos + 1])
+        return self.memo.get(pair) or coordinate_field(pair[0], pair[1], address, pos + 1, name, self.expected,
+                                                       self.hemisphere_expected, self.HEMISPHERES, self.memo)
+
+
+class LongitudeField(LatitudeField):
+    __slots__ = ()
+    HEMISPHERES = "EW"
+
+
+class CharField(FieldSpec):
+    __slots__ = ()
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        return char_field(fields[pos], address, pos + 1, name, self.expected)
+
+
+class LiteralField(FieldSpec):
+    """A fixed word that may be left empty (a unit, "M")."""
+
+    __slots__ = ("word",)
+
+    def __init__(self, id: str, expected: str, word: str, optional: bool = False) -> None:
+        super().__init__(id, expected, optional)
+        self.word = word
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        text = fields[pos]
+        return self.word if text == self.word else literal_field(text, address, pos + 1, name, self.expected,
+                                                                 self.word)
+
+    def known(self) -> dict[Any, Any]:
+        return {self.word: self.word}
+
+
+class KeywordField(LiteralField):
+    """A fixed word that must be there (it picks the layout); in a text command ignoring case."""
+
+    __slots__ = ("ignore_case",)
+
+    def __init__(self, id: str, expected: str, word: str, optional: bool = False) -> None:
+        super().__init__(id, expected, word, optional)
+        self.ignore_case = False
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        return keyword_field(fields[pos], address, pos + 1, name, self.expected, self.word, self.ignore_case)
+
+    def known(self) -> dict[Any, Any]:
+        return _NOTHING_KNOWN if self.ignore_case else {self.word: self.word}
+
+
+class TextField(FieldSpec):
+    __slots__ = ("max_length",)
+
+    def __init__(self, id: str, expected: str, max_length: int | None = None, optional: bool = False) -> None:
+        super().__init__(id, expected, optional)
+        self.max_length = max_length
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        return text_field(fields[pos], address, pos + 1, name, self.expected, self.max_length)
+
+
+class EnumField(FieldSpec):
+    """A code of a lookup table (spec/enums): its member, or a well-formed unknown code as text."""
+
+    __slots__ = ("enum", "ignore_case")
+
+    def __init__(self, id: str, expected: str, enum: Any, optional: bool = False) -> None:
+        super().__init__(id, expected, optional)
+        self.enum = enum
+        self.ignore_case = False
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        text = fields[pos]
+        e = self.enum
+        if self.ignore_case:
+            return enum_field(text, address, pos + 1, name, self.expected, e.BY_CODE, e.CODE_CLASS, e.MIN_LEN,
+                              e.MAX_LEN, True)
+        return e.BY_CODE.get(text) or enum_field(text, address, pos + 1, name, self.expected, e.BY_CODE,
+                                                 e.CODE_CLASS, e.MIN_LEN, e.MAX_LEN)
+
+    def known(self) -> dict[Any, Any]:
+        return _NOTHING_KNOWN if self.ignore_case else self.enum.BY_CODE
+
+
+class EnumCharsField(FieldSpec):
+    """A run of one-character codes (GNS mode "ANNN")."""
+
+    __slots__ = ("enum", "max_length")
+
+    def __init__(self, id: str, expected: str, enum: Any, max_length: int | None = None,
+                 optional: bool = False) -> None:
+        super().__init__(id, expected, optional)
+        self.enum = enum
+        self.max_length = max_length
+
+    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
+        e = self.enum
+        return enum_chars_field(fields[pos], address, pos + 1, name, self.expected, e.BY_CODE, e.CODE_CLASS,
+                                self.max_length)
+
+
+class Group:
+    """A repeated group: `minimum` to `maximum` entries of `fields`, each entry an `entry`
+    dataclass (None for a group of one field, whose entries are its values)."""
+
+    __slots__ = ("id", "entry", "fields", "minimum", "maximum", "width")
+
+    def __init__(self, id: str, entry: Any, fields: tuple[FieldSpec, ...], minimum: int, maximum: int) -> None:
+        self.id, self.entry, self.fields = id, entry, fields
+        self.minimum, self.maximum = minimum, maximum
+        self.width = 0
+        for f in fields:
+            f.offset = self.width
+            self.width += f.width
+
+
+class Layout:
+    """What the generated class of a sentence layout says of its wire form: the sentence id, its
+    kind ("standard", "proprietary" or "text"), its start ('$' or '!'), how many wire fields the
+    required ones take and at most, and its items (fields and at most one Group) in wire order,
+    optional trailing fields last.
+
+    Reading is the hot path: the layout compiles its reader once, from these items, into a
+    Python function that reads each field in its place (looking its text up among the values
+    already read first) and makes the instance, as dataclasses compiles __init__."""
+
+    __slots__ = ("sentence", "kind", "start", "fixed", "max_fields", "items", "group", "optional_max",
+                 "field_ids", "parse", "write")
+
+    def __init__(self, sentence: str, kind: str, start: str, fixed: int, max_fields: int,
+                 items: tuple[FieldSpec | Group, ...]) -> None:
+        self.sentence, self.kind, self.start = sentence, kind, start
+        self.fixed, self.max_fields, self.items = fixed, max_fields, items
+        self.group = next((item for item in items if isinstance(item, Group)), None)
+        self.field_ids = tuple(item.id for item in items)
+        self.optional_max = 0
+        for item in items:
+            if isinstance(item, FieldSpec):
+                if item.optional_index:
+                    self.optional_max += item.width
+                    item.optional_index = self.optional_max
+                if kind == "text" and isinstance(item, (KeywordField, EnumField)):
+                    item.ignore_case = True  # a text command's words match ignoring case
+        self.parse: Callable[..., Any] = self._compile()
+        self.write: Callable[[Any], list[str]] = self._compile_writer()
+
+    def _compile(self) -> Callable[..., Any]:
+        """parse(cls, address, fields, checksum, line): an instance of `cls` read from the wire
+        fields after the address; raises NmeaError naming the field at fault."""
+        names: dict[str, Any] = {"too_few": too_few, "too_many": too_many, "split_group": split_group,
+                                 "ABSENT": ABSENT, "NmeaError": NmeaError}
+
+        def read(spec: FieldSpec, n: str, pos: str, name: str) -> str:
+            """The expression that reads `spec` at wire index `pos` (an expression)."""
+            names[f"known{n}"], names[f"read{n}"] = spec.known().get, spec.read
+            text = f"(fields[{pos}], fields[{pos} + 1])" if spec.width == 2 else f"fields[{pos}]"
+            expr = f"known{n}({text}) or read{n}(fields, {pos}, address, {name})"
+            return f"({expr}) if {text} else None" if isinstance(spec, _Memo) and spec.width == 1 else expr
+
+        group = self.group
+        code = ["def parse(cls, address, fields, checksum, line):", "    count = len(fields)"]
+        if group is None:
+            code += [f"    if count < {self.fixed}:",
+                     f"        raise too_few(address, {self.sentence!r}, {self.fixed}, count)",
+                     f"    if count > {self.max_fields}:",
+                     f"        raise too_many(address, {self.sentence!r}, {self.max_fields}, count)",
+                     f"    optional = count - {self.fixed}"]
+        else:
+            code.append(f"    repeats, optional = split_group(address, {self.sentence!r}, {group.id!r}, count, "
+                        f"{self.fixed}, {group.width}, {group.minimum}, {group.maximum}, {self.optional_max})")
+        values, at, pos = [], 0, "0"
+        for n, item in enumerate(self.items):
+            values.append(f"v{n}")
+            if isinstance(item, Group):
+                code += [f"    v{n} = []", f"    pos = {at}", "    try:", "        for n in range(repeats):"]
+                if item.entry is None:
+                    (f,) = item.fields
+                    code.append(f"            v{n}.append({read(f, f'{n}_0', 'pos', repr(f.id))})")
+                else:
+                    names[f"entry{n}"] = item.entry
+                    args = ", ".join(read(f, f"{n}_{k}", f"pos + {f.offset}", repr(f.id))
+                                     for k, f in enumerate(item.fields))
+                    code.append(f"            v{n}.append(entry{n}({args}))")
+                code += [f"            pos += {item.width}", "    except NmeaError as error:",
+                         f"        error.name = f\"{item.id}[{{n + 1}}].{{error.name}}\"", "        raise"]
+                at, pos = 0, "pos"
+                continue
+            place = f"{pos} + {at}" if pos == "pos" else str(at)
+            if item.optional_index:
+                code += [f"    v{n} = ABSENT", f"    if optional >= {item.optional_index}:",
+                         f"        v{n} = {read(item, str(n), place, repr(item.id))}"]
+            else:
+                code.append(f"    v{n} = {read(item, str(n), place, repr(item.id))}")
+            at += item.width
+        head = {"standard": ["address[:-3]"], "proprietary": [], "text": ["line"]}[self.kind]
+        tail = ["[]"] if self.kind == "text" else ["[]", "checksum"]
+        code.append(f"    return cls({', '.join(head + values + tail)})")
+        exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)
+        parse: Callable[..., Any] = names["parse"]
+        return parse
+
+    def _compile_writer(self) -> Callable[[Any], list[str]]:
+        """write(sentence): the wire text of every field after the address, optional trailing
+        fields up to the last one present."""
+        names: dict[str, Any] = {"text_of": text_of, "pair": _coordinate_pair, "ABSENT": ABSENT}
+
+        def texts(spec: FieldSpec, value: str) -> str:
+            return f"*pair({value})" if spec.width == 2 else f"text_of({value})"
+
+        code = ["def write(s):", "    out = []"]
+        trailing = [item for item in self.items if isinstance(item, FieldSpec) and item.optional_index]
+        for item in self.items:
+            if isinstance(item, Group):
+                if item.entry is None:
+                    code.append(f"    out += [{texts(item.fields[0], 'e')} for e in s.{item.id}]")
+                else:
+                    entry = ", ".join(texts(f, f"e.{f.id}") for f in item.fields)
+                    code += [f"    for e in s.{item.id}:", f"        out += [{entry}]"]
+            elif not item.optional_index:
+                code.append(f"    out += [{texts(item, f's.{item.id}')}]")
+        if trailing:
+            for n, item in enumerate(reversed(trailing)):
+                code += [f"    {'if' if n == 0 else 'elif'} s.{item.id} is not ABSENT:",
+                         f"        last = {item.optional_index}"]
+            code += ["    else:", "        last = 0"]
+            for item in trailing:
+                code += [f"    if last >= {item.optional_index}:", f"        out += [{texts(item, f's.{item.id}')}]"]
+        code.append("    return out")
+        exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)
+        write: Callable[[Any], list[str]] = names["write"]
+        return write
+
+    def json(self, sentence: Any, values: bool) -> str:
+        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
+        show = value_json if values else text_json
+        parts: list[str] = []
+        for item in self.items:
+            if isinstance(item, Group):
+                entries = getattr(sentence, item.id)
+                if item.entry is None:
+                    shown = ",".join(show(value) for value in entries)
+                else:
+                    shown = ",".join("{" + ",".join(f'"{f.id}":' + show(getattr(entry, f.id)) for f in item.fields)
+                                     + "}" for entry in entries)
+                parts.append(f'"{item.id}":[{shown}]')
+                continue
+            value = getattr(sentence, item.id)
+            if not (item.optional_index and value is ABSENT):
+                parts.append(f'"{item.id}":' + show(value))
+        return "{" + ",".join(parts) + "}"
+
+    def from_json(self, fields: dict[str, Any]) -> list[str]:
+        """The wire fields described by a `fields` object of the tools' lossless JSON."""
+        out: list[str] = []
+        for item in self.items:
+            if isinstance(item, Group):
+                for entry in json_list(fields, item.id):
+                    if item.entry is None:
+                        out += json_texts(entry, item.width)
+                    else:
+                        for f in item.fields:
+                            out += json_texts(json_member(entry, f.id), f.width)
+            elif item.optional_index:
+                if item.id in fields:
+                    out += json_texts(fields[item.id], item.width)
+            else:
+                out += json_texts(json_member(fields, item.id), item.width)
+        return out
+
+
+SentenceT = TypeVar("SentenceT", bound="Sentence")
+
+
+class Sentence:
+    """The base of every generated sentence class: reading, writing and JSON through its
+    LAYOUT. A standard sentence's class starts with `talker`, a text command's with
+    `as_received`; then come the items of the layout, `problems` and (but for a text command)
+    `checksum`."""
+
+    __slots__ = ()
+
+    LAYOUT: ClassVar[Layout]
+    SENTENCE: ClassVar[str]
+    ADDRESS: ClassVar[str | None]
+    problems: list[NmeaError]
+
+    @classmethod
+    def parse_fields(cls: type[SentenceT], address: str, fields: list[str], checksum: str | None = "upper",
+                     line: str | None = None) -> SentenceT:
+        """Decode the fields after the address; raises NmeaError naming the field at fault."""
+        sentence: SentenceT = cls.LAYOUT.parse(cls, address, fields, checksum, line)
+        return sentence
+
+    def fields(self) -> list[str]:
+        """The wire text of every field after the address."""
+        return self.LAYOUT.write(self)
+
+    def to_sentence(self) -> str:
+        """The sentence text, checksum included unless `checksum` is None (a text command: its
+        words separated by single spaces); no line ending."""
+        layout = self.LAYOUT
+        fields = with_problems(layout.write(self), self.problems)
+        if layout.kind == "text":
+            return assemble_text(self.ADDRESS or "", fields, getattr(self, "as_received"))
+        address = getattr(self, "talker") + self.SENTENCE if layout.kind == "standard" else self.ADDRESS or ""
+        return assemble(layout.start, address, fields, getattr(self, "checksum"))
+
+    def to_bytes(self) -> bytes:
+        """The exact bytes to send, CR LF included, once every field has been checked the way a
+        receiver would read it; raises NmeaError naming the field at fault."""
+        return checked_bytes(self.to_sentence(), self.parse_fields, self.LAYOUT.kind == "text")
+
+    def fields_json(self, values: bool = False) -> str:
+        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
+        if self.LAYOUT.kind == "text" and not values:
+            return words_json(self.LAYOUT.field_ids, self.to_sentence())
+        return self.LAYOUT.json(self, values)
+
+    @classmethod
+    def fields_from_json(cls, fields: dict[str, Any]) -> list[str]:
+        """The wire fields described by a `fields` object of the tools' lossless JSON."""
+        return cls.LAYOUT.from_json(fields)

@@ -14,6 +14,9 @@ class AamArrivalCircle(CodeEnum):
     """Arrival circle status: Whether the vessel is inside the arrival circle of the destination waypoint (AAM, APA, APB)."""
 
     BY_CODE: ClassVar[dict[str, AamArrivalCircle]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ENTERED = "A"
     """Arrival circle entered. (nmea0183, nmea_revealed, furuno_gp170, magellan_fx324)"""
     NOT_ENTERED = "V"
@@ -24,6 +27,9 @@ class AamPerpendicular(CodeEnum):
     """Perpendicular passed status: Whether the vessel has crossed the line through the destination waypoint perpendicular to the course line (AAM, APA, APB)."""
 
     BY_CODE: ClassVar[dict[str, AamPerpendicular]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     PASSED = "A"
     """Perpendicular passed at the waypoint. (nmea0183, nmea_revealed, furuno_gp170, magellan_fx324)"""
     NOT_PASSED = "V"
@@ -34,6 +40,9 @@ class AbkAckType(CodeEnum):
     """ABK acknowledgement type: Outcome of a transmission requested with ABM, AIR or BBM, as ABK reports it."""
 
     BY_CODE: ClassVar[dict[str, AbkAckType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RECEIVED = "0"
     """Addressed message (6 or 12) received and acknowledged by the addressed AIS unit. (nmea0183, dma_aislib, swiftnmea)"""
     NO_ACKNOWLEDGEMENT = "1"
@@ -52,6 +61,9 @@ class AbkChannel(CodeEnum):
     """AIS VHF channel: VHF data link channel named by a letter (ABK channel of reception, AIR channel of interrogation)."""
 
     BY_CODE: ClassVar[dict[str, AbkChannel]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     A = "A"
     """AIS channel A. (nmea0183, jrc_jhs183, dma_aislib, swiftnmea)"""
     B = "B"
@@ -62,6 +74,9 @@ class AbmChannel(CodeEnum):
     """AIS broadcast channel: Channel(s) an AIS unit is asked to transmit an ABM or BBM message on."""
 
     BY_CODE: ClassVar[dict[str, AbmChannel]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_PREFERENCE = "0"
     """No channel preference. (nmea0183, swiftnmea, dma_aislib)"""
     A = "1"
@@ -76,6 +91,9 @@ class AcaBandwidth(CodeEnum):
     """ACA channel bandwidth: Bandwidth of an AIS channel in a channel management region."""
 
     BY_CODE: ClassVar[dict[str, AcaBandwidth]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BY_CHANNEL_NUMBER = "0"
     """Bandwidth given by the channel number (ITU-R M.1084; 25 kHz by default). (nmea0183, swiftnmea)"""
     KHZ_12_5 = "1"
@@ -86,6 +104,9 @@ class AcaInUse(CodeEnum):
     """ACA in-use flag: Whether the channel management settings of an ACA sentence are in use by the AIS unit."""
 
     BY_CODE: ClassVar[dict[str, AcaInUse]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_IN_USE = "0"
     """Not in use. (nmea0183, swiftnmea)"""
     IN_USE = "1"
@@ -96,6 +117,9 @@ class AcaInfoSource(CodeEnum):
     """ACA information source: Where the AIS unit got the channel management information of an ACA sentence."""
 
     BY_CODE: ClassVar[dict[str, AcaInfoSource]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     MESSAGE22_ADDRESSED = "A"
     """ITU-R M.1371 message 22 addressed to the unit. (nmea0183, swiftnmea)"""
     MESSAGE22_BROADCAST = "B"
@@ -112,6 +136,9 @@ class AcaPowerLevel(CodeEnum):
     """ACA power level: Transmitter power level in a channel management region."""
 
     BY_CODE: ClassVar[dict[str, AcaPowerLevel]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     HIGH = "0"
     """High power. (nmea0183, swiftnmea)"""
     LOW = "1"
@@ -122,6 +149,9 @@ class AcaTxrxMode(CodeEnum):
     """ACA transmit/receive mode: Which AIS channels the unit transmits and receives on in a channel management region."""
 
     BY_CODE: ClassVar[dict[str, AcaTxrxMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     TX_AB_RX_AB = "0"
     """Transmit on A and B, receive on A and B. (nmea0183, swiftnmea)"""
     TX_A_RX_AB = "1"
@@ -140,6 +170,9 @@ class AcnAlertCommand(CodeEnum):
     """Alert command (ACN, ARC): Operator command sent to an alert source under bridge alert management, or refused by it."""
 
     BY_CODE: ClassVar[dict[str, AcnAlertCommand]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ACKNOWLEDGE = "A"
     """Acknowledge the alert. (nmea0183, go_nmea, furuno_fmd3300, icom_gm600, jrc_jln900)"""
     REQUEST_REPEAT = "Q"
@@ -154,6 +187,9 @@ class AirohaAckResult(CodeEnum):
     """Airoha PAIR acknowledgement result: Outcome of a PAIR command as reported in the second field of $PAIR001."""
 
     BY_CODE: ClassVar[dict[str, AirohaAckResult]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SUCCESS = "0"
     """The command was accepted and carried out. (airoha_pair, airoha_lc76g)"""
     PROCESSING = "1"
@@ -172,6 +208,9 @@ class AirohaAidingType(CodeEnum):
     """Airoha aiding data type: Which kind of assistance data $PAIR010 says the receiver needs."""
 
     BY_CODE: ClassVar[dict[str, AirohaAidingType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     EPO = "0"
     """EPO (extended prediction orbit) data. (airoha_lc76g)"""
     TIME = "1"
@@ -184,6 +223,9 @@ class AirohaBaud(CodeEnum):
     """Airoha UART baud rate: Serial speeds in bit/s of $PAIR864/$PAIR865; the code is the rate."""
 
     BY_CODE: ClassVar[dict[str, AirohaBaud]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BAUD_4800 = "4800"
     """4800 bit/s (listed in the LC29H query answer only). (airoha_pair)"""
     BAUD_9600 = "9600"
@@ -208,6 +250,9 @@ class AirohaDebugLog(CodeEnum):
     """Airoha debug log output: Debug log setting of $PAIR086/$PAIR087."""
 
     BY_CODE: ClassVar[dict[str, AirohaDebugLog]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """No debug log. (airoha_lc76g)"""
     FULL = "1"
@@ -220,6 +265,9 @@ class AirohaDgpsMode(CodeEnum):
     """Airoha DGPS correction source: Differential correction source of $PAIR400/$PAIR401."""
 
     BY_CODE: ClassVar[dict[str, AirohaDgpsMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NONE = "0"
     """No differential corrections. (airoha_lc76g)"""
     RTCM = "1"
@@ -232,6 +280,9 @@ class AirohaDrMessage(CodeEnum):
     """Airoha DR message selector: Dead-reckoning PQTM message chosen by $PAIR6010/$PAIR6011."""
 
     BY_CODE: ClassVar[dict[str, AirohaDrMessage]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ALL = "-1"
     """Every message below: reset their output states to the defaults (set only). (airoha_lc29h_dr_rtk)"""
     PQTMVEHMSG = "0"
@@ -250,6 +301,9 @@ class AirohaEasyStatus(CodeEnum):
     """Airoha EASY status: Progress of the EASY self-generated orbit prediction ($PAIR491)."""
 
     BY_CODE: ClassVar[dict[str, AirohaEasyStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_FINISHED = "0"
     """No extension computed yet. (airoha_pair, airoha_lc76g)"""
     DAY_1 = "1"
@@ -264,6 +318,9 @@ class AirohaEnable(CodeEnum):
     """Airoha PAIR on/off switch: Generic disable/enable flag used by many PAIR set commands and query answers."""
 
     BY_CODE: ClassVar[dict[str, AirohaEnable]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """Off. (airoha_pair, airoha_lc76g)"""
     ENABLED = "1"
@@ -274,6 +331,9 @@ class AirohaGeofenceConfidence(CodeEnum):
     """Airoha geofence confidence level: Confidence required by $PAIR890."""
 
     BY_CODE: ClassVar[dict[str, AirohaGeofenceConfidence]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NONE = "0"
     """No requirement. (airoha_lc76g)"""
     SIGMA_1 = "1"
@@ -288,6 +348,9 @@ class AirohaGnssSystem(CodeEnum):
     """Airoha GNSS system number: Constellation number used by $PAIR010."""
 
     BY_CODE: ClassVar[dict[str, AirohaGnssSystem]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GPS = "0"
     """GPS. (airoha_lc76g)"""
     GLONASS = "1"
@@ -304,6 +367,9 @@ class AirohaJammingStatus(CodeEnum):
     """Airoha jamming status: Jamming state reported by $PAIRSPF and $PAIRSPF5."""
 
     BY_CODE: ClassVar[dict[str, AirohaJammingStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UNKNOWN = "0"
     """State not known yet. (airoha_lc76g)"""
     GOOD = "1"
@@ -318,6 +384,9 @@ class AirohaLocusClear(CodeEnum):
     """Airoha LOCUS clear type: What $PAIR906 erases."""
 
     BY_CODE: ClassVar[dict[str, AirohaLocusClear]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RECORDS_AND_SETTINGS = "0"
     """Erase the records and restore the default settings. (airoha_lc76g)"""
     RECORDS = "1"
@@ -330,6 +399,9 @@ class AirohaLocusFormat(CodeEnum):
     """Airoha LOCUS dump format: Format in which $PAIR908 dumps the log."""
 
     BY_CODE: ClassVar[dict[str, AirohaLocusFormat]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NMEA = "0"
     """NMEA-like $LOGGA/$LORMC lines. (airoha_lc76g)"""
     PAIR_HEX = "1"
@@ -340,6 +412,9 @@ class AirohaLocusThreshold(CodeEnum):
     """Airoha LOCUS threshold kind: Which trigger threshold $PAIR904/$PAIR905 address."""
 
     BY_CODE: ClassVar[dict[str, AirohaLocusThreshold]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     TIME = "0"
     """Time trigger, 1-43200 s. (airoha_lc76g)"""
     SPEED = "1"
@@ -352,6 +427,9 @@ class AirohaNavMode(CodeEnum):
     """Airoha navigation mode: Dynamic model selected with $PAIR080. Codes not listed are reserved."""
 
     BY_CODE: ClassVar[dict[str, AirohaNavMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NORMAL = "0"
     """General purpose (default). (airoha_pair, airoha_lc76g)"""
     FITNESS = "1"
@@ -368,6 +446,9 @@ class AirohaNmeaOutputMode(CodeEnum):
     """Airoha NMEA output mode: NMEA output setting of $PAIR100/$PAIR101."""
 
     BY_CODE: ClassVar[dict[str, AirohaNmeaOutputMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """No NMEA output. (airoha_pair)"""
     NMEA_4_10 = "1"
@@ -380,6 +461,9 @@ class AirohaNmeaType(CodeEnum):
     """Airoha standard sentence selector: Standard NMEA sentence chosen by $PAIR062/$PAIR063; -1 stands for every sentence."""
 
     BY_CODE: ClassVar[dict[str, AirohaNmeaType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ALL = "-1"
     """Every sentence type: PAIR062 resets all rates to their defaults, PAIR063 reports all of them. (airoha_pair, airoha_lc76g)"""
     GGA = "0"
@@ -408,6 +492,9 @@ class AirohaPeriodicMode(CodeEnum):
     """Airoha periodic power saving mode: Mode of $PAIR690/$PAIR691."""
 
     BY_CODE: ClassVar[dict[str, AirohaPeriodicMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """Periodic mode off. (airoha_lc76g)"""
     SMART = "1"
@@ -420,6 +507,9 @@ class AirohaPosPrecision(CodeEnum):
     """Airoha coordinate precision: Number of decimals of latitude/longitude minutes and of altitude in the NMEA output ($PAIR098/$PAIR099)."""
 
     BY_CODE: ClassVar[dict[str, AirohaPosPrecision]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     LAT_LON_4_ALT_1 = "0"
     """4 decimals for latitude and longitude, 1 for altitude. (airoha_pair)"""
     LAT_LON_5_ALT_2 = "1"
@@ -434,6 +524,9 @@ class AirohaPpsType(CodeEnum):
     """Airoha PPS mode: When the PPS pulse is generated ($PAIR752)."""
 
     BY_CODE: ClassVar[dict[str, AirohaPpsType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """No PPS. (airoha_lc76g)"""
     AFTER_FIRST_FIX = "1"
@@ -450,6 +543,9 @@ class AirohaRtcmMode(CodeEnum):
     """Airoha RTCM output mode: RTCM 3 observation output of $PAIR432/$PAIR433."""
 
     BY_CODE: ClassVar[dict[str, AirohaRtcmMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "-1"
     """No RTCM output. (airoha_pair, airoha_lc76g)"""
     MSM4 = "0"
@@ -462,6 +558,9 @@ class AisChannel(CodeEnum):
     """AIS radio channel: The VHF data link channel an AIS message was received on (VDM) or sent on (VDO). Empty when the channel is not known or, on some own-ship VDO lines, not given."""
 
     BY_CODE: ClassVar[dict[str, AisChannel]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     A = "A"
     """AIS channel A (161.975 MHz, channel 87B). (nmea0183, aivdm_decoding)"""
     B = "B"
@@ -476,6 +575,9 @@ class AlaAckState(CodeEnum):
     """ALA alarm acknowledgement state: Acknowledgement state of a detailed alarm, with the special modes of alarm monitoring systems."""
 
     BY_CODE: ClassVar[dict[str, AlaAckState]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ACKNOWLEDGED = "A"
     """Acknowledged. (nmea0183, furuno_vr3000, go_nmea)"""
     NOT_ACKNOWLEDGED = "V"
@@ -492,6 +594,9 @@ class AlaCondition(CodeEnum):
     """ALA alarm condition: State of a detailed alarm (threshold levels above and below the normal range)."""
 
     BY_CODE: ClassVar[dict[str, AlaCondition]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NORMAL = "N"
     """Normal state. (nmea0183, furuno_vr3000, tyco_t1200c, go_nmea)"""
     HIGH = "H"
@@ -510,6 +615,9 @@ class AlfCategory(CodeEnum):
     """ALF alert category: Alert category of bridge alert management (IEC 62923); decides where the alert may be handled."""
 
     BY_CODE: ClassVar[dict[str, AlfCategory]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     CATEGORY_A = "A"
     """Category A, needs the graphical information at the task station to be assessed. (nmea0183, pynmeagps, jrc_jfe400, furuno_vr7000, icom_gm600)"""
     CATEGORY_B = "B"
@@ -522,6 +630,9 @@ class AlfPriority(CodeEnum):
     """ALF alert priority: Priority of an alert under bridge alert management."""
 
     BY_CODE: ClassVar[dict[str, AlfPriority]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     EMERGENCY_ALARM = "E"
     """Emergency alarm (bridge alert management). (nmea0183, pynmeagps, jrc_jfe400, icom_gm600)"""
     ALARM = "A"
@@ -536,6 +647,9 @@ class AlfState(CodeEnum):
     """ALF alert state: State of an alert in its life cycle under bridge alert management."""
 
     BY_CODE: ClassVar[dict[str, AlfState]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ACTIVE_UNACKNOWLEDGED = "V"
     """Active, not acknowledged. (nmea0183, jrc_jln900, jrc_jfe400, furuno_vr7000, koden_mdc7000)"""
     ACTIVE_SILENCED = "S"
@@ -554,6 +668,9 @@ class AlrAckState(CodeEnum):
     """Alarm acknowledgement state (A/V): Whether an operator has acknowledged the alarm (ALR, FIR)."""
 
     BY_CODE: ClassVar[dict[str, AlrAckState]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ACKNOWLEDGED = "A"
     """Acknowledged. (nmea0183, pynmea2, marnav, go_nmea, simrad_argus, furuno_vr7000)"""
     UNACKNOWLEDGED = "V"
@@ -564,6 +681,9 @@ class AlrCondition(CodeEnum):
     """ALR alarm condition: Whether the monitored quantity is past its alarm threshold."""
 
     BY_CODE: ClassVar[dict[str, AlrCondition]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     THRESHOLD_EXCEEDED = "A"
     """Alarm active, the threshold is exceeded. (nmea0183, pynmea2, marnav, go_nmea, simrad_argus, furuno_vr7000)"""
     NOT_EXCEEDED = "V"
@@ -574,6 +694,9 @@ class ApbBearingRef(CodeEnum):
     """Bearing reference: Reference of a bearing or heading of APA and APB, magnetic or true north."""
 
     BY_CODE: ClassVar[dict[str, ApbBearingRef]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     MAGNETIC = "M"
     """Degrees magnetic. (nmea0183, nmea_revealed, furuno_gp170)"""
     TRUE_NORTH = "T"
@@ -584,6 +707,9 @@ class AshtechHprMode(CodeEnum):
     """Ashtech HPR attitude/heading mode: State of the baseline processing of a heading receiver, in $PASHR,HPR."""
 
     BY_CODE: ClassVar[dict[str, AshtechHprMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     FIXED_BASELINE = "0"
     """Working with a fixed (known) baseline length. (ashtech_sp90m)"""
     CALIBRATING = "1"
@@ -596,6 +722,9 @@ class AshtechNmeMessage(CodeEnum):
     """Ashtech NMEA output message type: The three-letter message types $PASHS,NME switches on or off (standard NMEA and Ashtech NMEA-like messages)."""
 
     BY_CODE: ClassVar[dict[str, AshtechNmeMessage]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ALM = "ALM"
     """GPS almanac data. (ashtech)"""
     DTM = "DTM"
@@ -670,6 +799,9 @@ class AshtechOnOff(CodeEnum):
     """Ashtech ON/OFF switch: Enables or disables a setting of an Ashtech set command."""
 
     BY_CODE: ClassVar[dict[str, AshtechOnOff]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ON = "ON"
     """Enabled. (ashtech)"""
     OFF = "OFF"
@@ -680,6 +812,9 @@ class AshtechPort(CodeEnum):
     """Ashtech output port: Port (or storage) that receives an output message on the ProFlex 800 family."""
 
     BY_CODE: ClassVar[dict[str, AshtechPort]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SERIAL_A = "A"
     """Serial port A. (ashtech)"""
     SERIAL_B = "B"
@@ -728,6 +863,9 @@ class AshtechPosSolution(CodeEnum):
     """Ashtech POS solution type: Kind of position solution reported in the first field of $PASHR,POS."""
 
     BY_CODE: ClassVar[dict[str, AshtechPosSolution]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTONOMOUS = "0"
     """Autonomous (stand-alone) position, no corrections applied. (ashtech_spectra_113329, ashtech_zfamily)"""
     CODE_DIFFERENTIAL = "1"
@@ -756,6 +894,9 @@ class AshtechRt300Alignment(CodeEnum):
     """PASHR (RT300) IMU alignment status: State of the inertial unit's alignment in the plain $PASHR roll and pitch sentence."""
 
     BY_CODE: ClassVar[dict[str, AshtechRt300Alignment]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GPS_ONLY = "0"
     """GNSS only, the inertial unit is not used. (ashtech_trimble_pashr)"""
     COARSE_LEVELING = "1"
@@ -772,6 +913,9 @@ class AshtechRt300Quality(CodeEnum):
     """PASHR (RT300) GNSS quality: Quality of the GNSS solution behind the plain $PASHR roll and pitch sentence."""
 
     BY_CODE: ClassVar[dict[str, AshtechRt300Quality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_FIX = "0"
     """No fix available. (ashtech_trimble_pashr)"""
     SPS = "1"
@@ -792,6 +936,9 @@ class AshtechSvUsed(CodeEnum):
     """Ashtech satellite used flag: Whether a satellite listed in $PASHR,SAT takes part in the position computation."""
 
     BY_CODE: ClassVar[dict[str, AshtechSvUsed]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     USED = "U"
     """Used in the position computation. (ashtech, ashtech_zfamily)"""
     NOT_USED = "-"
@@ -802,6 +949,9 @@ class BroadcomGlorConfidence(CodeEnum):
     """Broadcom PGLOR confidence level: Confidence of the hybrid (HULA) position in $PGLOR,STA."""
 
     BY_CODE: ClassVar[dict[str, BroadcomGlorConfidence]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UNKNOWN = "0"
     """Confidence unknown. (broadcom_glor)"""
     LOW = "1"
@@ -816,6 +966,9 @@ class BroadcomGlorLocationRequest(CodeEnum):
     """Broadcom PGLOR HULA location request: Whether the hybrid (HULA) position engine asks the host for a location input ($PGLOR,STA)."""
 
     BY_CODE: ClassVar[dict[str, BroadcomGlorLocationRequest]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_NEEDED = "0"
     """No location input needed. (broadcom_glor)"""
     REQUESTED = "1"
@@ -826,6 +979,9 @@ class BroadcomGlorPowerSave(CodeEnum):
     """Broadcom PGLOR power saving state: Power saving mode of the GNSS chip reported by $PGLOR,STA."""
 
     BY_CODE: ClassVar[dict[str, BroadcomGlorPowerSave]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "D"
     """Power saving disabled, the chip always runs at full power. (broadcom_glor)"""
     FULL_POWER = "F"
@@ -842,6 +998,9 @@ class BroadcomGlorVelTrackQuality(CodeEnum):
     """Broadcom PGLOR internal velocity and track quality: Quality of the receiver's internal velocity and track estimates in $PGLOR,STA; independent of the speed and track of RMC and says nothing about their validity."""
 
     BY_CODE: ClassVar[dict[str, BroadcomGlorVelTrackQuality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     POOR_VELOCITY_POOR_TRACK = "0"
     """Velocity and track both poor. (broadcom_glor)"""
     GOOD_VELOCITY_POOR_TRACK = "1"
@@ -856,6 +1015,9 @@ class ComnavLogMessage(CodeEnum):
     """ComNav NMEA log name: The NMEA messages the ComNav LOG command can request (manual Table 2, "LOG MESSAGE"). The log names always carry the GP prefix, whatever talker ID the output uses (set by NMEATALKER). Matched ignoring case."""
 
     BY_CODE: ClassVar[dict[str, ComnavLogMessage]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GPGGA = "GPGGA"
     """GGA, GNSS fix data and undulation, with ComNav's higher position precision (that of its GPGGARTK log); always sent with talker GP. (comnav)"""
     GPGLL = "GPGLL"
@@ -880,6 +1042,9 @@ class ComnavTalkerId(CodeEnum):
     """ComNav NMEATALKER talker ID: Second argument of the ComNav NMEATALKER command: the talker ID to put in front of the selected sentences, or AUTO. The manual lists exactly these six. BeiDou uses BD by default (compatibility); the manual notes that NMEA 0183 v4.10 (supplement of 19 June 2018) requires GB and that ComNav can switch BeiDou to GB only in custom firmware. Matched ignoring case."""
 
     BY_CODE: ClassVar[dict[str, ComnavTalkerId]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GN = "GN"
     """GN, combined GNSS. (comnav)"""
     GP = "GP"
@@ -898,6 +1063,9 @@ class ComnavTalkerSentence(CodeEnum):
     """ComNav NMEATALKER sentence selector: First argument of the ComNav NMEATALKER command: the sentence whose talker ID is set. The manual lists 10 identifiers, nine sentence formatters and ALL (printed "TODOS" by the Spanish machine translation). Matched ignoring case."""
 
     BY_CODE: ClassVar[dict[str, ComnavTalkerSentence]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GGA = "GGA"
     """GGA, fix data. (comnav)"""
     GSA = "GSA"
@@ -924,6 +1092,9 @@ class CurDirectionReference(CodeEnum):
     """CUR current direction reference: Reference of the current direction in CUR."""
 
     BY_CODE: ClassVar[dict[str, CurDirectionReference]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     TRUE_NORTH = "T"
     """Direction relative to true north. (nmea0183, jrc_jr8600, kongsberg_ek80, marine_api)"""
     RELATIVE = "R"
@@ -934,6 +1105,9 @@ class CurHeadingReference(CodeEnum):
     """CUR heading reference: Reference of the heading in CUR."""
 
     BY_CODE: ClassVar[dict[str, CurHeadingReference]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     TRUE_NORTH = "T"
     """Heading relative to true north. (nmea0183, jrc_jr8600, kongsberg_ek80, marine_api)"""
     MAGNETIC = "M"
@@ -944,6 +1118,9 @@ class CurSpeedReference(CodeEnum):
     """CUR speed reference: Which measurement of the ship's own speed was used to derive the current in CUR."""
 
     BY_CODE: ClassVar[dict[str, CurSpeedReference]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BOTTOM_TRACK = "B"
     """Bottom track (speed over the sea bed measured by the Doppler instrument). (nmea0183, jrc_jr8600, kongsberg_ek80, marine_api)"""
     WATER_TRACK = "W"
@@ -956,6 +1133,9 @@ class DdcCommandMode(CodeEnum):
     """Display dimming command mode: Whether a DDC sentence concerns the current operating settings or the stored presets."""
 
     BY_CODE: ClassVar[dict[str, DdcCommandMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OPERATIONAL = "O"
     """Applies to the current operational settings. (swiftnmea)"""
     PRESET = "P"
@@ -966,6 +1146,9 @@ class DdcPreset(CodeEnum):
     """Display dimming or colour palette preset: A preset of display brightness or colour palette that the operator associates with a time of day; what each preset looks like is up to the equipment."""
 
     BY_CODE: ClassVar[dict[str, DdcPreset]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DAY = "D"
     """Day time setting. (nmea0183, swiftnmea)"""
     DUSK = "K"
@@ -980,6 +1163,9 @@ class DorMessageType(CodeEnum):
     """DOR message type: What a door status sentence reports."""
 
     BY_CODE: ClassVar[dict[str, DorMessageType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SECTION_STATUS = "S"
     """Status of a section: the count of open or faulty doors in the division given by the division fields (empty divisions mean a whole section); usually sent at regular intervals. (nmea0183, furuno_vr3000, furuno_vr7000, go_nmea, pynmeagps)"""
     SINGLE_DOOR = "E"
@@ -992,6 +1178,9 @@ class DorStatus(CodeEnum):
     """DOR door status: State of a single door (message type E)."""
 
     BY_CODE: ClassVar[dict[str, DorStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OPEN = "O"
     """Open. (nmea0183, furuno_vr3000, furuno_vr7000, go_nmea)"""
     CLOSED = "C"
@@ -1008,6 +1197,9 @@ class DorSwitchSetting(CodeEnum):
     """DOR watertight door switch setting: Operating mode set for the watertight doors."""
 
     BY_CODE: ClassVar[dict[str, DorSwitchSetting]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     HARBOUR_MODE = "O"
     """Harbour mode, the doors may be open. (nmea0183, furuno_vr3000, furuno_vr7000, go_nmea)"""
     SEA_MODE = "C"
@@ -1018,6 +1210,9 @@ class DorSystem(CodeEnum):
     """DOR door monitoring system: Kind of door the monitoring system watches (two letters)."""
 
     BY_CODE: ClassVar[dict[str, DorSystem]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WATERTIGHT = "WT"
     """Watertight doors. (nmea0183, furuno_vr7000, go_nmea)"""
     SEMI_WATERTIGHT = "WS"
@@ -1034,6 +1229,9 @@ class DscAcknowledgement(CodeEnum):
     """DSC acknowledgement type: Acknowledgement element of a DSC call."""
 
     BY_CODE: ClassVar[dict[str, DscAcknowledgement]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     REQUEST = "R"
     """Acknowledgement requested. (nmea0183, furuno_fa50, go_nmea, swiftnmea)"""
     ACKNOWLEDGEMENT = "B"
@@ -1046,6 +1244,9 @@ class DscCategory(CodeEnum):
     """DSC category: Priority of a DSC call (the last two digits of the ITU-R M.493 category symbol)."""
 
     BY_CODE: ClassVar[dict[str, DscCategory]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ROUTINE = "00"
     """Routine (symbol 100). (nmea0183, go_nmea, marnav, swiftnmea)"""
     SAFETY = "08"
@@ -1060,6 +1261,9 @@ class DscDistressNature(CodeEnum):
     """DSC nature of distress: Nature of distress of a DSC distress call (the last two digits of the ITU-R M.493 symbol 100-112)."""
 
     BY_CODE: ClassVar[dict[str, DscDistressNature]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     FIRE = "00"
     """Fire, explosion. (nmea0183, go_nmea, marnav, swiftnmea, signalk_nmea0183)"""
     FLOODING = "01"
@@ -1090,6 +1294,9 @@ class DscFormat(CodeEnum):
     """DSC format specifier: Kind of DSC call (the last two digits of the ITU-R M.493 format specifier symbol)."""
 
     BY_CODE: ClassVar[dict[str, DscFormat]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GEOGRAPHIC_AREA = "02"
     """Selective call to the ships in a geographic area (symbol 102). (nmea0183, go_nmea, marnav, swiftnmea)"""
     DISTRESS = "12"
@@ -1108,6 +1315,9 @@ class DseCode(CodeEnum):
     """DSE data set code: Kind of a data set of an expanded DSC sentence (the last two digits of the ITU-R M.821 expansion symbol)."""
 
     BY_CODE: ClassVar[dict[str, DseCode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ENHANCED_POSITION = "00"
     """Enhanced position resolution (extra decimals of the DSC position minutes). (nmea0183, marnav, swiftnmea)"""
     POSITION_SOURCE_DATUM = "01"
@@ -1128,6 +1338,9 @@ class DseQueryFlag(CodeEnum):
     """DSE query/reply flag: Role of an expanded DSC (DSE) sentence."""
 
     BY_CODE: ClassVar[dict[str, DseQueryFlag]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     QUERY = "Q"
     """A device asks for expanded data; the codes are filled and the data fields left empty. (nmea0183, marnav, swiftnmea)"""
     REPLY = "R"
@@ -1140,6 +1353,9 @@ class DtmDatum(CodeEnum):
     """DTM datum code: Three-character datum code used for the local and the reference datum of DTM. Besides these codes the standard allows an IHO datum code (IHO S-60) for the local datum."""
 
     BY_CODE: ClassVar[dict[str, DtmDatum]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WGS84 = "W84"
     """WGS-84. (nmea0183, geos5)"""
     WGS72 = "W72"
@@ -1156,6 +1372,9 @@ class DtmLatOffsetDir(CodeEnum):
     """DTM latitude offset direction: Direction of the latitude offset of the local datum from the reference datum."""
 
     BY_CODE: ClassVar[dict[str, DtmLatOffsetDir]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NORTH = "N"
     """Offset to the north. (nmea0183, geos5)"""
     SOUTH = "S"
@@ -1166,6 +1385,9 @@ class DtmLonOffsetDir(CodeEnum):
     """DTM longitude offset direction: Direction of the longitude offset of the local datum from the reference datum."""
 
     BY_CODE: ClassVar[dict[str, DtmLonOffsetDir]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     EAST = "E"
     """Offset to the east. (nmea0183, geos5)"""
     WEST = "W"
@@ -1176,6 +1398,9 @@ class EastWest(CodeEnum):
     """East or west: Direction of an angle such as a magnetic variation or deviation, or of an offset; easterly variation subtracts from a true bearing to give the magnetic one, westerly adds to it."""
 
     BY_CODE: ClassVar[dict[str, EastWest]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     EAST = "E"
     """East (easterly). (nmea0183)"""
     WEST = "W"
@@ -1186,6 +1411,9 @@ class EtlMessageType(CodeEnum):
     """Engine telegraph message type: Whether an ETL line reports the order given or the answer-back from the engine side."""
 
     BY_CODE: ClassVar[dict[str, EtlMessageType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ORDER = "O"
     """Order. (nmea0183, furuno_vr3000, furuno_fmd3200, swiftnmea)"""
     ANSWER_BACK = "A"
@@ -1196,6 +1424,9 @@ class EtlSubTelegraph(CodeEnum):
     """Sub-telegraph position: Position of the sub-telegraph (ETL), which tells the engine room the state of the voyage."""
 
     BY_CODE: ClassVar[dict[str, EtlSubTelegraph]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     STANDBY = "20"
     """S/B, stand by engine. (nmea0183, furuno_vr3000, swiftnmea)"""
     FULL_AWAY = "30"
@@ -1208,6 +1439,9 @@ class EtlTelegraphPosition(CodeEnum):
     """Engine telegraph position: Position of the main engine telegraph (ETL); 0x codes are ahead, 1x astern."""
 
     BY_CODE: ClassVar[dict[str, EtlTelegraphPosition]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     STOP = "00"
     """Stop engine. (nmea0183, furuno_vr3000, furuno_fmd3200, swiftnmea)"""
     AHEAD_DEAD_SLOW = "01"
@@ -1236,6 +1470,9 @@ class FirCondition(CodeEnum):
     """FIR detector condition: State of a fire detector (message types E and D)."""
 
     BY_CODE: ClassVar[dict[str, FirCondition]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ACTIVATION = "A"
     """Activated (fire alarm; for type D, the zone is disabled). (nmea0183, go_nmea, tyco_t1200c)"""
     NON_ACTIVATION = "V"
@@ -1248,6 +1485,9 @@ class FirMessageType(CodeEnum):
     """FIR message type: What a fire detection sentence reports."""
 
     BY_CODE: ClassVar[dict[str, FirMessageType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SECTION_STATUS = "S"
     """Status of a section: the count of activated or faulty detectors in the division given by the division fields; usually sent at regular intervals. (nmea0183, tyco_t1200c, pynmeagps)"""
     EVENT = "E"
@@ -1262,6 +1502,9 @@ class FirSystem(CodeEnum):
     """FIR fire detection system type: Kind of detector or release device the fire detection sentence is about (two letters)."""
 
     BY_CODE: ClassVar[dict[str, FirSystem]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GENERIC_FIRE_DETECTOR = "FD"
     """Generic fire detector (the standard also lists FD for a combined smoke and heat detector). (nmea0183, go_nmea, tyco_t1200c)"""
     HEAT_DETECTOR = "FH"
@@ -1292,6 +1535,9 @@ class FsiMode(CodeEnum):
     """Radiotelephone mode of operation: Emission class and terminal equipment of a radiotelephone channel (FSI, SFI), one lower-case letter or symbol; empty when there is no information."""
 
     BY_CODE: ClassVar[dict[str, FsiMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     F3E_G3E_SIMPLEX_TELEPHONE = "d"
     """F3E/G3E, simplex, telephone. (nmea0183, swiftnmea)"""
     F3E_G3E_DUPLEX_TELEPHONE = "e"
@@ -1320,6 +1566,9 @@ class FsiSentenceStatus(CodeEnum):
     """Sentence status flag: Tells whether a configuration sentence (FSI, NRM, EPV, DDC) reports the current settings or commands a change; a sentence without C is never a command."""
 
     BY_CODE: ClassVar[dict[str, FsiSentenceStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     REPORT = "R"
     """Report of the current settings, also the answer to a query. (nmea0183, swiftnmea, pynmeagps)"""
     COMMAND = "C"
@@ -1330,6 +1579,9 @@ class FurunoErideFreqMode(CodeEnum):
     """Furuno eRide frequency output mode: State of the disciplined frequency output ($PERDCRZ)."""
 
     BY_CODE: ClassVar[dict[str, FurunoErideFreqMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WARM_UP = "1"
     """Warming up. (furuno_eride)"""
     LOCK = "2"
@@ -1350,6 +1602,9 @@ class FurunoErideOnOff(CodeEnum):
     """Furuno eRide output state: Whether an output (1PPS, frequency) is currently produced."""
 
     BY_CODE: ClassVar[dict[str, FurunoErideOnOff]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OFF = "0"
     """Not output. (furuno_eride)"""
     ON = "1"
@@ -1360,6 +1615,9 @@ class FurunoEridePolarity(CodeEnum):
     """Furuno eRide pulse polarity: Which edge of the pulse is on time ($PERDCRX)."""
 
     BY_CODE: ClassVar[dict[str, FurunoEridePolarity]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RISING = "0"
     """Rising edge. (furuno_eride)"""
     FALLING = "1"
@@ -1370,6 +1628,9 @@ class FurunoEridePositionMode(CodeEnum):
     """Furuno eRide positioning mode: Positioning mode of a timing receiver ($PERDCRY)."""
 
     BY_CODE: ClassVar[dict[str, FurunoEridePositionMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NORMAL = "0"
     """Normal positioning. (furuno_eride)"""
     SURVEY_RESTART = "1"
@@ -1384,6 +1645,9 @@ class FurunoEridePpsMode(CodeEnum):
     """Furuno eRide 1PPS output mode: When the receiver outputs its 1PPS pulse ($PERDCRX)."""
 
     BY_CODE: ClassVar[dict[str, FurunoEridePpsMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ALWAYS_OFF = "0"
     """Never output. (furuno_eride)"""
     ALWAYS_ON = "1"
@@ -1400,6 +1664,9 @@ class FurunoEridePpsPeriod(CodeEnum):
     """Furuno eRide pulse period: Interval of the pulse output ($PERDCRX)."""
 
     BY_CODE: ClassVar[dict[str, FurunoEridePpsPeriod]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     PPS = "0"
     """One pulse per second (1PPS). (furuno_eride)"""
     PP2S = "1"
@@ -1410,6 +1677,9 @@ class FurunoEridePpsSync(CodeEnum):
     """Furuno eRide PPS synchronisation: The time scale the present 1PPS output is synchronised to ($PERDCRW)."""
 
     BY_CODE: ClassVar[dict[str, FurunoEridePpsSync]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RTC = "0"
     """The real-time clock. (furuno_eride)"""
     GPS = "1"
@@ -1426,6 +1696,9 @@ class FurunoEridePpsType(CodeEnum):
     """Furuno eRide pulse source: Which pulse the values of $PERDCRX describe."""
 
     BY_CODE: ClassVar[dict[str, FurunoEridePpsType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     LEGACY = "0"
     """The legacy PPS. (furuno_eride)"""
     GCLK = "1"
@@ -1436,6 +1709,9 @@ class FurunoErideTimeStatus(CodeEnum):
     """Furuno eRide time status: Which time scale the date and time of $PERDCRW follow."""
 
     BY_CODE: ClassVar[dict[str, FurunoErideTimeStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RTC = "0"
     """Real-time clock time (no satellite time yet). (furuno_eride)"""
     GPS = "1"
@@ -1448,6 +1724,9 @@ class FurunoErideTraimSolution(CodeEnum):
     """Furuno eRide TRAIM solution: Result of time receiver autonomous integrity monitoring ($PERDCRY)."""
 
     BY_CODE: ClassVar[dict[str, FurunoErideTraimSolution]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OK = "0"
     """TRAIM OK. (furuno_eride)"""
     ALARM = "1"
@@ -1460,6 +1739,9 @@ class FurunoErideTraimStatus(CodeEnum):
     """Furuno eRide TRAIM capability: What TRAIM can currently do ($PERDCRY)."""
 
     BY_CODE: ClassVar[dict[str, FurunoErideTraimStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DETECT_AND_ISOLATE = "0"
     """Detection and isolation of a faulty satellite possible. (furuno_eride)"""
     DETECT_ONLY = "1"
@@ -1472,6 +1754,9 @@ class GarminBaud(CodeEnum):
     """Garmin NMEA baud rate code: Baud rate of the NMEA port (PGRMC field 10); takes effect at the next power cycle or reset."""
 
     BY_CODE: ClassVar[dict[str, GarminBaud]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BAUD_1200 = "1"
     """1200 baud (older sensors). (garmin_gps16hvs)"""
     BAUD_2400 = "2"
@@ -1494,6 +1779,9 @@ class GarminConfigFixMode(CodeEnum):
     """Garmin configured fix mode: Fix dimension the receiver is allowed to use (PGRMC field 1)."""
 
     BY_CODE: ClassVar[dict[str, GarminConfigFixMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTOMATIC = "A"
     """Automatic 2D/3D. (garmin_gps18x, garmin_gps18, garmin_gps16hvs)"""
     ONLY_2D = "2"
@@ -1506,6 +1794,9 @@ class GarminDataCollection(CodeEnum):
     """Garmin data collection discrete: Data collection indicator of PGRMT; the field is empty when the receiver is not collecting."""
 
     BY_CODE: ClassVar[dict[str, GarminDataCollection]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     COLLECTING = "C"
     """The receiver is collecting data. (garmin_gps18, garmin_gps25lp)"""
 
@@ -1514,6 +1805,9 @@ class GarminDgpsMode(CodeEnum):
     """Garmin DGPS mode: Which corrections the receiver is set to use (PGRMB)."""
 
     BY_CODE: ClassVar[dict[str, GarminDgpsMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTOMATIC = "A"
     """Automatic. (garmin_gps18x, garmin_gps16x)"""
     WAAS_ONLY = "W"
@@ -1528,6 +1822,9 @@ class GarminDgpsSource(CodeEnum):
     """Garmin DGPS fix source: Where the corrections of the current fix come from (PGRMB)."""
 
     BY_CODE: ClassVar[dict[str, GarminDgpsSource]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RTCM = "R"
     """RTCM corrections. (garmin_gps18x, garmin_gps16x)"""
     WAAS = "W"
@@ -1540,6 +1837,9 @@ class GarminDiffMode(CodeEnum):
     """Garmin differential mode: Whether the receiver may output non-differential fixes (PGRMC field 9)."""
 
     BY_CODE: ClassVar[dict[str, GarminDiffMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTOMATIC = "A"
     """Differential fixes when corrections are available, non-differential ones otherwise. (garmin_gps18x, garmin_gps16hvs)"""
     DIFFERENTIAL_ONLY = "D"
@@ -1550,6 +1850,9 @@ class GarminFixDimension(CodeEnum):
     """Garmin PGRMZ fix dimension: Kind of fix the PGRMZ altitude comes with (1-based, like GSA)."""
 
     BY_CODE: ClassVar[dict[str, GarminFixDimension]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_FIX = "1"
     """No fix. (nmea_revealed)"""
     FIX_2D = "2"
@@ -1562,6 +1865,9 @@ class GarminFixMode(CodeEnum):
     """Garmin fix mode selection: Whether the 2D/3D choice of the reported fix was made by the receiver or forced by the user (PGRMF)."""
 
     BY_CODE: ClassVar[dict[str, GarminFixMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     MANUAL = "M"
     """Manual (forced) mode. (garmin_gps18x, garmin_gps18)"""
     AUTOMATIC = "A"
@@ -1572,6 +1878,9 @@ class GarminFixType(CodeEnum):
     """Garmin PGRMF fix type: Dimension of the position fix in PGRMF (note the 0-based codes, unlike GSA)."""
 
     BY_CODE: ClassVar[dict[str, GarminFixType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_FIX = "0"
     """No fix. (garmin_gps18x, garmin_gps18)"""
     FIX_2D = "1"
@@ -1584,6 +1893,9 @@ class GarminOffOn(CodeEnum):
     """Garmin off/on switch: Two-state setting written 1 = off (disabled), 2 = on (enabled), used throughout PGRMC and PGRMC1."""
 
     BY_CODE: ClassVar[dict[str, GarminOffOn]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OFF = "1"
     """Off / disabled. (garmin_gps18x, garmin_gps18, garmin_gps16hvs)"""
     ON = "2"
@@ -1594,6 +1906,9 @@ class GarminOutputMode(CodeEnum):
     """Garmin PGRMO target sentence mode: What PGRMO does with the named sentence or with all output sentences."""
 
     BY_CODE: ClassVar[dict[str, GarminOutputMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLE = "0"
     """Disable the named sentence. (garmin_gps15h, garmin_gps16hvs)"""
     ENABLE = "1"
@@ -1612,6 +1927,9 @@ class GarminPassFail(CodeEnum):
     """Garmin self-test result: Result of one self test reported in PGRMT."""
 
     BY_CODE: ClassVar[dict[str, GarminPassFail]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     PASS = "P"
     """Test passed. (garmin_gps18, garmin_gps25lp)"""
     FAIL = "F"
@@ -1622,6 +1940,9 @@ class GarminPowerMode(CodeEnum):
     """Garmin power save mode: Power mode of the receiver (PGRMC1 field 9)."""
 
     BY_CODE: ClassVar[dict[str, GarminPowerMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     POWER_SAVE = "P"
     """Power save mode. (garmin_gps18x, garmin_gps18)"""
     NORMAL = "N"
@@ -1632,6 +1953,9 @@ class GarminReceiverCommand(CodeEnum):
     """Garmin PGRMI receiver command: Action requested together with the initialization data of PGRMI."""
 
     BY_CODE: ClassVar[dict[str, GarminReceiverCommand]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTO_LOCATE = "A"
     """Auto locate (the GPS 18x manual calls it a cold start). (garmin_gps18x, garmin_gps18)"""
     RESET = "R"
@@ -1642,6 +1966,9 @@ class GarminRetainedLost(CodeEnum):
     """Garmin retained or lost: Whether some stored data survived the last power cycle (PGRMT)."""
 
     BY_CODE: ClassVar[dict[str, GarminRetainedLost]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RETAINED = "R"
     """Retained. (garmin_gps18, garmin_gps25lp)"""
     LOST = "L"
@@ -1652,6 +1979,9 @@ class GarminWaasMode(CodeEnum):
     """Garmin WAAS mode: Whether WAAS corrections are used (PGRMC1 field 8)."""
 
     BY_CODE: ClassVar[dict[str, GarminWaasMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ENABLED = "W"
     """WAAS enabled. (garmin_gps18x, garmin_gps18)"""
     DISABLED = "N"
@@ -1662,6 +1992,9 @@ class Geos5CommandWord(CodeEnum):
     """GeoS-5 command word: The 6-character command word of a GeoS-5 input command $GPSGG,<word>*hh (manual section 4), apart from the RQUERY and NQUERY requests, which have their own files. Every word is exactly 6 characters; the `<msg> ON` words contain a real space. The manual marks all input commands as GeoS-5M only and documents no reply or acknowledgement for any of these."""
 
     BY_CODE: ClassVar[dict[str, Geos5CommandWord]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SWITCH_TO_BINARY = "SWPROT"
     """Switch the receiver port that runs the NMEA protocol to the receiver's binary protocol (section 4.1); the manual does not say which port when both run NMEA, presumably the one that receives the command. (geos5)"""
     SAVE_ALMANACS = "SAVEFL"
@@ -1784,6 +2117,9 @@ class Geos5MessageRate(CodeEnum):
     """GeoS-5 per-sentence output rate: How often one standard sentence is output, as reported for each sentence by $GPSGG,NQUERY. The `<msg> ON`/`<msg>OFF` commands switch a sentence on or off; the manual gives no command that selects the 2 s or 20 s periods."""
 
     BY_CODE: ClassVar[dict[str, Geos5MessageRate]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OFF = "0"
     """Not output. (geos5)"""
     EVERY_1S = "1"
@@ -1800,6 +2136,9 @@ class Geos5NmeaVersion(CodeEnum):
     """GeoS-5 NMEA standard version: Version of the NMEA 0183 standard the standard sentences follow, reported by $GPSGG,NQUERY and selected with the NMEAV2/NMEAV4 commands."""
 
     BY_CODE: ClassVar[dict[str, Geos5NmeaVersion]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     V2_X = "2"
     """NMEA 0183 v2.x. (geos5)"""
     V4_10 = "4"
@@ -1810,6 +2149,9 @@ class Geos5OutputRate(CodeEnum):
     """GeoS-5 output data rate: Navigation output data rate reported in the output-rate field of $GPSGG,NQUERY (the same coding as bits 19:18 of configuration register 1 in RQUERY). Set with the RATE01/02/05/10 commands."""
 
     BY_CODE: ClassVar[dict[str, Geos5OutputRate]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RATE_10HZ = "0"
     """10 Hz. (geos5)"""
     RATE_5HZ = "1"
@@ -1824,6 +2166,9 @@ class GfaIntegrity(CodeEnum):
     """GFA integrity status: One character per integrity source of GFA's integrity status field (first RAIM, then SBAS, then Galileo integrity, as the sources are defined)."""
 
     BY_CODE: ClassVar[dict[str, GfaIntegrity]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_IN_USE = "V"
     """This integrity source is not in use. (nmea0183, cnav3050, navcom_sapphire, pynmeagps)"""
     SAFE = "S"
@@ -1838,6 +2183,9 @@ class GgaQuality(CodeEnum):
     """GGA fix quality: Which kind of solution the GGA position comes from (GGA field 6)."""
 
     BY_CODE: ClassVar[dict[str, GgaQuality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """Fix not available or invalid. ComNav calls it "initialization"; GeoS-5 also sends it with the last valid coordinates while it has no solution. (nmea0183, geos5, teseo, gs501, globalsat, comnav)"""
     AUTONOMOUS = "1"
@@ -1864,6 +2212,9 @@ class GlcSignalStatus(CodeEnum):
     """Loran-C signal status: Quality flag that follows each Loran-C time measurement (master TOA and time differences) of GLC."""
 
     BY_CODE: ClassVar[dict[str, GlcSignalStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     VALID = "A"
     """Signal valid. (nmea0183, koden_mdc7000)"""
     BLINK_WARNING = "B"
@@ -1878,6 +2229,9 @@ class GnsMode(CodeEnum):
     """GNSS mode indicator (one per system): Mode indicator of GNS and GMP, one character per satellite system (GPS, GLONASS, Galileo, ...): whether and how each system is used in the solution. Unlike the single mode indicator of GLL, RMC and VTG (pos_mode), R is always RTK here."""
 
     BY_CODE: ClassVar[dict[str, GnsMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTONOMOUS = "A"
     """Autonomous (single point) mode; in GNS, the system is used in an autonomous solution. (nmea0183, geos5, gs501, comnav)"""
     DIFFERENTIAL = "D"
@@ -1904,6 +2258,9 @@ class GrsMode(CodeEnum):
     """GRS residual computation mode: How the range residuals of a GRS sentence relate to the position of the matching GGA or GNS sentence."""
 
     BY_CODE: ClassVar[dict[str, GrsMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     USED_IN_FIX = "0"
     """The residuals are those used to compute the position given in the matching GGA or GNS sentence. (nmea0183, nmea_revealed, jrc_jr8600, race_technology_grs)"""
     RECOMPUTED = "1"
@@ -1914,6 +2271,9 @@ class GsaFixType(CodeEnum):
     """GSA fix type: Dimension of the current navigation solution."""
 
     BY_CODE: ClassVar[dict[str, GsaFixType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_FIX = "1"
     """Fix not available. (nmea0183, geos5, teseo, gs501, globalsat, comnav)"""
     FIX_2D = "2"
@@ -1926,6 +2286,9 @@ class GsaSelectionMode(CodeEnum):
     """GSA selection mode: Whether the receiver chooses between 2D and 3D operation by itself or is forced into one."""
 
     BY_CODE: ClassVar[dict[str, GsaSelectionMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     MANUAL = "M"
     """Manual, forced to operate in 2D or 3D mode. (nmea0183, teseo, gs501, globalsat, comnav)"""
     AUTOMATIC = "A"
@@ -1936,6 +2299,9 @@ class HbtEquipmentStatus(CodeEnum):
     """HBT equipment status: Whether the sending equipment works normally (for example the result of its built-in test)."""
 
     BY_CODE: ClassVar[dict[str, HbtEquipmentStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NORMAL = "A"
     """Equipment in normal operation. (nmea0183, pynmea2, go_nmea, simrad_argus, jrc_jfe700, furuno_br500)"""
     NOT_NORMAL = "V"
@@ -1946,6 +2312,9 @@ class HcrCorrectionState(CodeEnum):
     """Heading correction state: Which corrections the heading source has applied to the heading it reports in THS (HCR)."""
 
     BY_CODE: ClassVar[dict[str, HcrCorrectionState]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SPEED_LATITUDE_AND_DYNAMIC = "A"
     """Both the speed/latitude and the dynamic correction are included. (nmea0183, swiftnmea)"""
     DYNAMIC = "D"
@@ -1962,6 +2331,9 @@ class HmrDifferenceStatus(CodeEnum):
     """Heading difference warning: Whether the difference between the two monitored heading sensors stays within the limit set by HMS (HMR)."""
 
     BY_CODE: ClassVar[dict[str, HmrDifferenceStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WITHIN_LIMIT = "A"
     """Difference within the set limit. (nmea0183, pynmeagps, swiftnmea)"""
     LIMIT_EXCEEDED = "V"
@@ -1972,6 +2344,9 @@ class HscSentenceStatus(CodeEnum):
     """Sentence status flag: Whether a sentence that can also set values reports the current settings (R) or commands a change (C). A sentence without C is never a command. Used by HSC, HTC, HRM and TRC."""
 
     BY_CODE: ClassVar[dict[str, HscSentenceStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     REPORT = "R"
     """Status report of the current settings (also the reply to a query). (nmea0183, furuno_vr7000, swiftnmea)"""
     COMMAND = "C"
@@ -1982,6 +2357,9 @@ class HtcHeadingReference(CodeEnum):
     """Heading reference: Whether headings and tracks are referenced to true or magnetic north (HTC, HTD, HMR)."""
 
     BY_CODE: ClassVar[dict[str, HtcHeadingReference]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     TRUE_NORTH = "T"
     """True. (nmea0183, furuno_rd50, furuno_vr3000, marine_api, swiftnmea)"""
     MAGNETIC = "M"
@@ -1992,6 +2370,9 @@ class HtcOverride(CodeEnum):
     """Steering override: Whether steering is temporarily taken over by special devices that act directly on the steering gear (HTC, HTD). While it is in use the controller behaves as under manual steering and ignores the steering and turn modes."""
 
     BY_CODE: ClassVar[dict[str, HtcOverride]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     IN_USE = "A"
     """Override in use. (nmea0183, furuno_rd50, furuno_vr3000, marine_api, swiftnmea)"""
     NOT_IN_USE = "V"
@@ -2002,6 +2383,9 @@ class HtcSteeringMode(CodeEnum):
     """Selected steering mode: Steering mode chosen at the steering selector or by an earlier HTC command (HTC, HTD). Which inputs take precedence is left to the manufacturer."""
 
     BY_CODE: ClassVar[dict[str, HtcSteeringMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     MANUAL = "M"
     """Manual steering with the main steering system. (nmea0183, furuno_rd50, navis_navdp4000, marine_api, swiftnmea)"""
     STAND_ALONE = "S"
@@ -2018,6 +2402,9 @@ class HtcTurnMode(CodeEnum):
     """Turn mode: How a heading change is carried out (HTC, HTD), with the commanded radius or rate of turn."""
 
     BY_CODE: ClassVar[dict[str, HtcTurnMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RADIUS_CONTROLLED = "R"
     """The turn follows the commanded radius of turn. (nmea0183, furuno_rd50, furuno_vr3000, marine_api, swiftnmea)"""
     RATE_CONTROLLED = "T"
@@ -2030,6 +2417,9 @@ class HtdLimitStatus(CodeEnum):
     """Limit status: Whether a controlled value (rudder, off-heading, off-track) stays within its commanded limit (HTD)."""
 
     BY_CODE: ClassVar[dict[str, HtdLimitStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WITHIN_LIMITS = "A"
     """Within limits. (nmea0183, furuno_rd50, furuno_vr3000, marine_api, swiftnmea)"""
     LIMIT_REACHED = "V"
@@ -2040,6 +2430,9 @@ class LeftRight(CodeEnum):
     """Left or right: Side of a cross-track error, or the direction to steer to correct it (L = left, to port; R = right, to starboard)."""
 
     BY_CODE: ClassVar[dict[str, LeftRight]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     LEFT = "L"
     """Left (port). (nmea0183)"""
     RIGHT = "R"
@@ -2050,6 +2443,9 @@ class LlqQuality(CodeEnum):
     """LLQ GPS quality: Kind of solution of the Leica local position sentence LLQ."""
 
     BY_CODE: ClassVar[dict[str, LlqQuality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """Position not valid. (trimble_llq)"""
     GPS_NAV_FIX = "1"
@@ -2064,6 +2460,9 @@ class LrfFunction(CodeEnum):
     """Long-range function: One letter of the LRF function request, naming an item of information asked for."""
 
     BY_CODE: ClassVar[dict[str, LrfFunction]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SHIP_ID = "A"
     """Ship's name, call sign and IMO number (LR1). (nmea0183, koden_kat100, swiftnmea)"""
     DATE_TIME = "B"
@@ -2090,6 +2489,9 @@ class LrfReplyStatus(CodeEnum):
     """Long-range function reply status: One digit of the LRF function reply status, for the requested function in the same position."""
 
     BY_CODE: ClassVar[dict[str, LrfReplyStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     PROVIDED = "2"
     """Information available and provided in the following LR1, LR2 or LR3 sentence. (nmea0183, koden_kat100, swiftnmea)"""
     NOT_AVAILABLE = "3"
@@ -2102,6 +2504,9 @@ class LriControlFlag(CodeEnum):
     """LRI control flag: Reply logic an AIS unit applies to a long-range interrogation."""
 
     BY_CODE: ClassVar[dict[str, LriControlFlag]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NORMAL = "0"
     """Normal reply logic: the unit answers if it is inside the geographic rectangle and has not answered this requestor in the last 24 hours, or if its MMSI is the destination. (nmea0183, swiftnmea)"""
     GEOGRAPHIC = "1"
@@ -2112,6 +2517,9 @@ class MagellanAltitudeUnit(CodeEnum):
     """Magellan altitude unit: Unit of the altitude field of the Magellan waypoint and track sentences."""
 
     BY_CODE: ClassVar[dict[str, MagellanAltitudeUnit]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     FEET = "F"
     """Feet. (magellan_fx324, magellan_fx324_de)"""
     METERS = "M"
@@ -2122,6 +2530,9 @@ class MagellanCommand(CodeEnum):
     """Magellan PMGNCMD command word: Data set PMGNCMD asks the unit to send."""
 
     BY_CODE: ClassVar[dict[str, MagellanCommand]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WAYPOINT = "WAYPOINT"
     """Send all waypoints (answered by PMGNWPL sentences). (magellan_fx324)"""
     ROUTE = "ROUTE"
@@ -2134,6 +2545,9 @@ class MagellanFixFlag(CodeEnum):
     """Magellan PMGNST fix flag: Whether PMGNST reports a current fix; the mode field may still say 3 when this flag is F."""
 
     BY_CODE: ClassVar[dict[str, MagellanFixFlag]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     FIX = "T"
     """The receiver has a fix. (nmea_revealed)"""
     NO_FIX = "F"
@@ -2144,6 +2558,9 @@ class MagellanFixMode(CodeEnum):
     """Magellan PMGNST fix mode: Fix dimension reported by PMGNST."""
 
     BY_CODE: ClassVar[dict[str, MagellanFixMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_FIX = "1"
     """No fix. (nmea_revealed)"""
     FIX_2D = "2"
@@ -2156,6 +2573,9 @@ class MobBattery(CodeEnum):
     """MOB battery status: State of the internal power source of a MOB emitter."""
 
     BY_CODE: ClassVar[dict[str, MobBattery]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GOOD = "0"
     """Good. (nmea_mob_amendment, marnav, swiftnmea)"""
     LOW = "1"
@@ -2168,6 +2588,9 @@ class MobPositionSource(CodeEnum):
     """MOB position source: Whose position the MOB sentence reports."""
 
     BY_CODE: ClassVar[dict[str, MobPositionSource]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     VESSEL_ESTIMATE = "0"
     """Position of the MOB estimated by the vessel (e.g. own position at activation). (nmea_mob_amendment, marnav, swiftnmea)"""
     EMITTER_REPORT = "1"
@@ -2180,6 +2603,9 @@ class MobStatus(CodeEnum):
     """MOB status: State of a man-overboard device or system."""
 
     BY_CODE: ClassVar[dict[str, MobStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ACTIVATED = "A"
     """MOB activated. (nmea_mob_amendment, marnav, swiftnmea)"""
     TEST = "T"
@@ -2196,6 +2622,9 @@ class MskAutoManual(CodeEnum):
     """Beacon receiver tuning mode: Whether the beacon (MSK) receiver selects a setting itself or uses the value given with it."""
 
     BY_CODE: ClassVar[dict[str, MskAutoManual]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTOMATIC = "A"
     """Automatic; the receiver chooses the setting and the value field before it is ignored. (nmea0183, nmea_revealed, furuno_sc70, hemisphere_mbx4)"""
     MANUAL = "M"
@@ -2206,6 +2635,9 @@ class MtkAckFlag(CodeEnum):
     """MTK acknowledgement flag: How the receiver handled the PMTK command that a $PMTK001 acknowledgement names."""
 
     BY_CODE: ClassVar[dict[str, MtkAckFlag]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """The command or packet was not valid. (mtk_pmtk, mtk_quectel_l80, mtk_ublox_it500)"""
     UNSUPPORTED = "1"
@@ -2220,6 +2652,9 @@ class MtkAntennaStatus(CodeEnum):
     """GlobalTop antenna status: Which antenna a GlobalTop module uses, as $PGTOP,11 reports it (antenna advisor)."""
 
     BY_CODE: ClassVar[dict[str, MtkAntennaStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ACTIVE_SHORTED = "1"
     """The external active antenna is short-circuited. (mtk_globaltop_pa6h)"""
     INTERNAL = "2"
@@ -2232,6 +2667,9 @@ class MtkBaud(CodeEnum):
     """MTK NMEA port baud rate: Baud rates $PMTK251 accepts for the NMEA port."""
 
     BY_CODE: ClassVar[dict[str, MtkBaud]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DEFAULT = "0"
     """The receiver's default rate (9600 bit/s on the Linx module). (mtk_linx_rxm_gps_fm)"""
     BAUD_4800 = "4800"
@@ -2254,6 +2692,9 @@ class MtkDgpsMode(CodeEnum):
     """MTK DGPS correction source: Where the receiver takes its differential corrections from ($PMTK301, $PMTK501)."""
 
     BY_CODE: ClassVar[dict[str, MtkDgpsMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NONE = "0"
     """No DGPS source. (mtk_pmtk, mtk_quectel_l80, mtk_ublox_it500)"""
     RTCM = "1"
@@ -2266,6 +2707,9 @@ class MtkEnable(CodeEnum):
     """MTK enable switch: A feature switch of the PMTK commands and their query answers."""
 
     BY_CODE: ClassVar[dict[str, MtkEnable]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """Off. (mtk_pmtk, mtk_quectel_l80, mtk_ublox_it500)"""
     ENABLED = "1"
@@ -2276,6 +2720,9 @@ class MtkLocusLogger(CodeEnum):
     """MTK LOCUS logger control: Start or stop the LOCUS flash logger ($PMTK185)."""
 
     BY_CODE: ClassVar[dict[str, MtkLocusLogger]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     START = "0"
     """Start logging. (mtk_quectel_l80, mtk_ublox_it500)"""
     STOP = "1"
@@ -2286,6 +2733,9 @@ class MtkPeriodicMode(CodeEnum):
     """MTK periodic power-saving mode: The operating mode selected by $PMTK225."""
 
     BY_CODE: ClassVar[dict[str, MtkPeriodicMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NORMAL = "0"
     """Back to normal, continuous operation. (mtk_pmtk, mtk_quectel_l80)"""
     PERIODIC_BACKUP = "1"
@@ -2304,6 +2754,9 @@ class MtkSbasMode(CodeEnum):
     """MTK SBAS operating mode: Whether the receiver also uses SBAS satellites that broadcast in test mode ($PMTK319)."""
 
     BY_CODE: ClassVar[dict[str, MtkSbasMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     TESTING = "0"
     """Testing mode; SBAS satellites in test operation are used too. (mtk_pmtk)"""
     INTEGRITY = "1"
@@ -2314,6 +2767,9 @@ class MtkStandbyType(CodeEnum):
     """MTK standby type: The low-power state $PMTK161 enters."""
 
     BY_CODE: ClassVar[dict[str, MtkStandbyType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     STOP = "0"
     """Stop mode (the L80 and IT500 manuals); the GlobalTop manual calls value 0 sleep mode. (mtk_pmtk, mtk_quectel_l80, mtk_ublox_it500)"""
     SLEEP = "1"
@@ -2324,6 +2780,9 @@ class MtkSystemMessage(CodeEnum):
     """MTK system message type: The event a $PMTK010 system message reports, written with three digits on the wire."""
 
     BY_CODE: ClassVar[dict[str, MtkSystemMessage]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UNKNOWN = "000"
     """Unknown message. (mtk_pmtk, mtk_quectel_l80, mtk_ublox_it500)"""
     STARTUP = "001"
@@ -2338,6 +2797,9 @@ class MwvReference(CodeEnum):
     """MWV wind reference: Whether the wind angle and speed of MWV are apparent (measured on the moving vessel) or true (computed as if the vessel were still)."""
 
     BY_CODE: ClassVar[dict[str, MwvReference]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RELATIVE = "R"
     """Relative (apparent) wind, as felt on board the moving vessel. (nmea0183, nmea_revealed, airmar_pb200, vaisala_wmt700)"""
     THEORETICAL = "T"
@@ -2348,6 +2810,9 @@ class MwvSpeedUnit(CodeEnum):
     """MWV wind speed unit: Unit of the wind speed in MWV."""
 
     BY_CODE: ClassVar[dict[str, MwvSpeedUnit]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     KMH = "K"
     """Kilometres per hour. (nmea0183, nmea_revealed, airmar_pb200, vaisala_wmt700)"""
     METRES_PER_SECOND = "M"
@@ -2362,6 +2827,9 @@ class NakReason(CodeEnum):
     """NAK reason code: Why a listener refuses a query or a command sentence."""
 
     BY_CODE: ClassVar[dict[str, NakReason]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     QUERY_NOT_SUPPORTED = "0"
     """The listener does not support queries at all. (nmea0183, furuno_fa170)"""
     FORMATTER_NOT_SUPPORTED = "1"
@@ -2390,6 +2858,9 @@ class NavStatus(CodeEnum):
     """Navigational status: Navigational status indicator added to RMC and GNS by NMEA 0183 v4.10 (integrity of the solution). GeoS-5 does not compute it and always sends V."""
 
     BY_CODE: ClassVar[dict[str, NavStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SAFE = "S"
     """Safe, integrity within the alarm limits. (nmea0183)"""
     CAUTION = "C"
@@ -2404,6 +2875,9 @@ class NorthSouth(CodeEnum):
     """North or south: Hemisphere of a latitude given as a plain number (north or south of the equator)."""
 
     BY_CODE: ClassVar[dict[str, NorthSouth]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NORTH = "N"
     """North. (nmea0183)"""
     SOUTH = "S"
@@ -2414,6 +2888,9 @@ class NrmFunction(CodeEnum):
     """NAVTEX mask function code: Which configuration mask of the NAVTEX receiver an NRM sentence addresses."""
 
     BY_CODE: ClassVar[dict[str, NrmFunction]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     REQUEST_MESSAGES = "0"
     """Request the stored messages that match the masks (sent to the INS port). (nmea0183, swiftnmea)"""
     STORAGE_MASK = "1"
@@ -2428,6 +2905,9 @@ class NrxFrequency(CodeEnum):
     """NAVTEX frequency index: The NAVTEX frequency a message was received on (NRX) or a mask applies to (NRM)."""
 
     BY_CODE: ClassVar[dict[str, NrxFrequency]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_OVER_AIR = "0"
     """Message not received over the air (listed by the JMC NT-2000 manual). (jmc_nt2000)"""
     KHZ_490 = "1"
@@ -2442,6 +2922,9 @@ class NsrIntegrity(CodeEnum):
     """NSR integrity state: Outcome of the integrity check of one kind of navigation data in an INS."""
 
     BY_CODE: ClassVar[dict[str, NsrIntegrity]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     PASSED = "P"
     """Integrity verification passed. (nmea0183, swiftnmea)"""
     FAILED = "F"
@@ -2456,6 +2939,9 @@ class NsrPlausibility(CodeEnum):
     """NSR plausibility state: Outcome of the plausibility check of one kind of navigation data in an INS."""
 
     BY_CODE: ClassVar[dict[str, NsrPlausibility]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     PLAUSIBLE = "A"
     """Data plausible. (nmea0183, swiftnmea)"""
     NOT_PLAUSIBLE = "V"
@@ -2468,6 +2954,9 @@ class NsrStwMode(CodeEnum):
     """Speed-through-water mode: Where the speed through water used by the INS comes from."""
 
     BY_CODE: ClassVar[dict[str, NsrStwMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WATER_REFERENCED = "W"
     """Measured against the water. (nmea0183, swiftnmea)"""
     ESTIMATED = "E"
@@ -2482,6 +2971,9 @@ class OsdReference(CodeEnum):
     """Own-ship course and speed reference: The sensor or system the own-ship course or speed of OSD is derived from."""
 
     BY_CODE: ClassVar[dict[str, OsdReference]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BOTTOM_TRACK = "B"
     """Bottom tracking log. (nmea0183, furuno_far2xx7, simrad_argus)"""
     MANUAL = "M"
@@ -2498,6 +2990,9 @@ class PosMode(CodeEnum):
     """Positioning system mode indicator: Mode indicator (FAA mode) of GLL, RMC, VTG and the navigation sentences (NMEA v2.3 and later). A mode indicator of N means the data are not valid. GNS and GMP carry one character per satellite system (gns_mode)."""
 
     BY_CODE: ClassVar[dict[str, PosMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTONOMOUS = "A"
     """Autonomous (single point) mode; in GNS, the system is used in an autonomous solution. (nmea0183, geos5, gs501, comnav)"""
     DIFFERENTIAL = "D"
@@ -2524,6 +3019,9 @@ class PosSentenceStatus(CodeEnum):
     """Sentence status flag (report or configuration command): Last field of configuration sentences such as POS and MSK (IEC 61162-1 edition 4 style): tells whether the sentence reports the current settings or asks the listener to change them."""
 
     BY_CODE: ClassVar[dict[str, PosSentenceStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     REPORT = "R"
     """Status report of the current settings (e.g. the answer to a query). (nmea0183, furuno_gs100, furuno_sc70, jrc_jhs183)"""
     COMMAND = "C"
@@ -2534,6 +3032,9 @@ class PrcOperatingLocation(CodeEnum):
     """Operating location: Where a propulsion, thruster, telegraph or rudder order is given from (PRC, TRC, ETL, ROR)."""
 
     BY_CODE: ClassVar[dict[str, PrcOperatingLocation]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BRIDGE = "B"
     """Bridge. (nmea0183, furuno_fmd3200, furuno_vr7000, furuno_vr3000, swiftnmea)"""
     PORT_WING = "P"
@@ -2552,6 +3053,9 @@ class PrcPitchMode(CodeEnum):
     """Pitch mode indicator: How the preceding pitch value is expressed (PRC, TRC, TRD); it should not be empty."""
 
     BY_CODE: ClassVar[dict[str, PrcPitchMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     PERCENT = "P"
     """Per cent, -100 to 100 % from full astern through stop to full ahead. (nmea0183, furuno_fmd3200, furuno_vr7000, swiftnmea)"""
     DEGREES = "D"
@@ -2564,6 +3068,9 @@ class PrcRpmMode(CodeEnum):
     """RPM mode indicator: How the preceding RPM value is expressed (PRC, TRC, TRD); it should not be empty."""
 
     BY_CODE: ClassVar[dict[str, PrcRpmMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     PERCENT = "P"
     """Per cent, 0 to 100 % from zero to maximum revolutions. (nmea0183, furuno_fmd3200, furuno_vr7000, swiftnmea)"""
     RPM = "R"
@@ -2576,6 +3083,9 @@ class QuectelAntennaPower(CodeEnum):
     """Quectel antenna power: Whether the antenna is powered."""
 
     BY_CODE: ClassVar[dict[str, QuectelAntennaPower]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OFF = "0"
     """Power off. (quectel_lg290p)"""
     ON = "1"
@@ -2588,6 +3098,9 @@ class QuectelAntennaStatus(CodeEnum):
     """Quectel antenna status: State of the antenna feed."""
 
     BY_CODE: ClassVar[dict[str, QuectelAntennaStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UNKNOWN = "0"
     """Unknown. (quectel_lg290p)"""
     NORMAL = "1"
@@ -2602,6 +3115,9 @@ class QuectelBaudRate(CodeEnum):
     """Quectel UART baud rate: Baud rates the PQTMCFGUART command accepts, in bit/s."""
 
     BY_CODE: ClassVar[dict[str, QuectelBaudRate]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BAUD_9600 = "9600"
     """9600 bit/s. (quectel_lg290p)"""
     BAUD_115200 = "115200"
@@ -2618,6 +3134,9 @@ class QuectelEnable(CodeEnum):
     """Quectel on/off switch: A feature switch: 0 off, 1 on."""
 
     BY_CODE: ClassVar[dict[str, QuectelEnable]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """Off. (quectel_lg290p)"""
     ENABLED = "1"
@@ -2628,6 +3147,9 @@ class QuectelErrorCode(CodeEnum):
     """Quectel PQTM error code: Reason given in the ERROR answer to a PQTM command."""
 
     BY_CODE: ClassVar[dict[str, QuectelErrorCode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID_PARAMETERS = "1"
     """A parameter is missing, malformed or out of range. (quectel_lg290p)"""
     EXECUTION_FAILED = "2"
@@ -2640,6 +3162,9 @@ class QuectelFixType(CodeEnum):
     """Quectel PVT fix type: Kind of position fix in PQTMPVT."""
 
     BY_CODE: ClassVar[dict[str, QuectelFixType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_FIX = "0"
     """No fix. (quectel_lg290p)"""
     RESERVED = "1"
@@ -2654,6 +3179,9 @@ class QuectelFlowControl(CodeEnum):
     """Quectel UART flow control: Flow control of a serial port; only "none" is listed."""
 
     BY_CODE: ClassVar[dict[str, QuectelFlowControl]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NONE = "0"
     """No flow control. (quectel_lg290p)"""
 
@@ -2662,6 +3190,9 @@ class QuectelGeofenceShape(CodeEnum):
     """Quectel geofence shape: How the points of a geofence are to be read."""
 
     BY_CODE: ClassVar[dict[str, QuectelGeofenceShape]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     CIRCLE_RADIUS = "0"
     """Circle given by its centre (point 0) and a radius in metres. (quectel_lg290p)"""
     CIRCLE_POINT = "1"
@@ -2676,6 +3207,9 @@ class QuectelGeofenceState(CodeEnum):
     """Quectel geofence state: Where the receiver is relative to one geofence."""
 
     BY_CODE: ClassVar[dict[str, QuectelGeofenceState]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UNKNOWN = "0"
     """Unknown; always the case without a fix. (quectel_lg290p)"""
     INSIDE = "1"
@@ -2688,6 +3222,9 @@ class QuectelGeosepMode(CodeEnum):
     """Quectel geoidal separation mode: Where the geoidal separation comes from."""
 
     BY_CODE: ClassVar[dict[str, QuectelGeosepMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTO = "0"
     """The built-in geoid table. (quectel_lg290p)"""
     MANUAL = "1"
@@ -2698,6 +3235,9 @@ class QuectelGsvTalker(CodeEnum):
     """Quectel GSV talker choice: Which talker ID GSV sentences use."""
 
     BY_CODE: ClassVar[dict[str, QuectelGsvTalker]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BY_CONSTELLATION = "0"
     """Chosen from the constellation configuration. (quectel_lg290p)"""
     SAME_AS_MAIN = "1"
@@ -2708,6 +3248,9 @@ class QuectelHeadingQuality(CodeEnum):
     """Quectel dual-antenna heading quality: Quality of the PQTMTAR heading solution."""
 
     BY_CODE: ClassVar[dict[str, QuectelHeadingQuality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """No fix or invalid. (quectel_lg290p)"""
     AUTONOMOUS = "1"
@@ -2726,6 +3269,9 @@ class QuectelParity(CodeEnum):
     """Quectel UART parity: Parity of a serial port."""
 
     BY_CODE: ClassVar[dict[str, QuectelParity]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NONE = "0"
     """No parity bit. (quectel_lg290p)"""
     ODD = "1"
@@ -2742,6 +3288,9 @@ class QuectelPortType(CodeEnum):
     """Quectel port type: Kind of interface a port ID refers to; only UART is listed."""
 
     BY_CODE: ClassVar[dict[str, QuectelPortType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UART = "1"
     """A UART (serial) port. (quectel_lg290p)"""
 
@@ -2750,6 +3299,9 @@ class QuectelPpsMode(CodeEnum):
     """Quectel PPS output mode: When the PPS pulse is sent."""
 
     BY_CODE: ClassVar[dict[str, QuectelPpsMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ALWAYS = "1"
     """The pulse is always sent. (quectel_lg290p)"""
     FIX_ONLY = "2"
@@ -2760,6 +3312,9 @@ class QuectelPpsPolarity(CodeEnum):
     """Quectel PPS polarity: Active level of the PPS pulse."""
 
     BY_CODE: ClassVar[dict[str, QuectelPpsPolarity]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     LOW = "0"
     """Active low. (quectel_lg290p)"""
     HIGH = "1"
@@ -2770,6 +3325,9 @@ class QuectelReceiverMode(CodeEnum):
     """Quectel receiver working mode: Rover or base station."""
 
     BY_CODE: ClassVar[dict[str, QuectelReceiverMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UNKNOWN = "0"
     """Unknown. (quectel_lg290p)"""
     ROVER = "1"
@@ -2782,6 +3340,9 @@ class QuectelRtcmEphMode(CodeEnum):
     """Quectel RTCM ephemeris output mode: When RTCM ephemeris messages are sent."""
 
     BY_CODE: ClassVar[dict[str, QuectelRtcmEphMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """Not sent. (quectel_lg290p)"""
     ON_UPDATE = "1"
@@ -2796,6 +3357,9 @@ class QuectelRtkDiffMode(CodeEnum):
     """Quectel differential mode: How correction data are used."""
 
     BY_CODE: ClassVar[dict[str, QuectelRtkDiffMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """RTK and RTD off; corrections are ignored. (quectel_lg290p)"""
     AUTO = "1"
@@ -2808,6 +3372,9 @@ class QuectelRtkRelMode(CodeEnum):
     """Quectel RTK absolute/relative mode: What an RTK solution optimises."""
 
     BY_CODE: ClassVar[dict[str, QuectelRtkRelMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ABSOLUTE = "1"
     """Absolute position accuracy. (quectel_lg290p)"""
     RELATIVE = "2"
@@ -2818,6 +3385,9 @@ class QuectelRtkSourceType(CodeEnum):
     """Quectel RTK differential source type: Kind of differential source used for RTK."""
 
     BY_CODE: ClassVar[dict[str, QuectelRtkSourceType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTO = "0"
     """Automatic. (quectel_lg290p)"""
     NORMAL = "1"
@@ -2830,6 +3400,9 @@ class QuectelSolutionType(CodeEnum):
     """Quectel solution type: Kind of position solution in PQTMNAV."""
 
     BY_CODE: ClassVar[dict[str, QuectelSolutionType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_FIX = "0"
     """No fix. (quectel_lg290p)"""
     SINGLE = "1"
@@ -2848,6 +3421,9 @@ class QuectelStopBits(CodeEnum):
     """Quectel UART stop bits: Number of stop bits of a serial port."""
 
     BY_CODE: ClassVar[dict[str, QuectelStopBits]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ONE = "1"
     """One stop bit. (quectel_lg290p)"""
     TWO = "2"
@@ -2858,6 +3434,9 @@ class QuectelSvinMode(CodeEnum):
     """Quectel survey-in mode: How a base station gets its antenna position."""
 
     BY_CODE: ClassVar[dict[str, QuectelSvinMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """Neither survey-in nor a fixed position. (quectel_lg290p)"""
     SURVEY_IN = "1"
@@ -2870,6 +3449,9 @@ class QuectelSvinValid(CodeEnum):
     """Quectel survey-in validity: State of the survey-in position."""
 
     BY_CODE: ClassVar[dict[str, QuectelSvinValid]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """No valid survey-in position, or survey-in is switched off. (quectel_lg290p)"""
     IN_PROGRESS = "1"
@@ -2882,6 +3464,9 @@ class QuectelTextId(CodeEnum):
     """Quectel text message type: Severity of a PQTMTXT text."""
 
     BY_CODE: ClassVar[dict[str, QuectelTextId]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOTICE = "01"
     """Notice. (quectel_lg290p)"""
     WARNING = "02"
@@ -2894,6 +3479,9 @@ class QuectelTimeReference(CodeEnum):
     """Quectel time reference system: Time system of PQTMNAV."""
 
     BY_CODE: ClassVar[dict[str, QuectelTimeReference]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GPS = "1"
     """GPS time. (quectel_lg290p)"""
     RESERVED = "4"
@@ -2904,6 +3492,9 @@ class QuectelTimeStatus(CodeEnum):
     """Quectel time validity: Whether the time of PQTMNAV is valid."""
 
     BY_CODE: ClassVar[dict[str, QuectelTimeStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """Time invalid. (quectel_lg290p)"""
     VALID = "1"
@@ -2914,6 +3505,9 @@ class QuectelUartIndex(CodeEnum):
     """Quectel UART index: Which serial port of the module a setting applies to."""
 
     BY_CODE: ClassVar[dict[str, QuectelUartIndex]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UART1 = "1"
     """UART1. (quectel_lg290p)"""
     UART2 = "2"
@@ -2926,6 +3520,9 @@ class RlmMessageCode(CodeEnum):
     """RLM message code: Kind of Galileo Return Link Message service (one hex digit) delivered to a COSPAS-SARSAT beacon."""
 
     BY_CODE: ClassVar[dict[str, RlmMessageCode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RESERVED_0 = "0"
     """Reserved for future RLM services. (nmea0183, geos5)"""
     ACKNOWLEDGEMENT = "1"
@@ -2964,6 +3561,9 @@ class RmbArrivalStatus(CodeEnum):
     """Arrival status: Arrival status of RMB, the arrival circle and perpendicular conditions together."""
 
     BY_CODE: ClassVar[dict[str, RmbArrivalStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ARRIVED = "A"
     """Arrival circle entered or perpendicular passed. (nmea0183, nmea_revealed, furuno_far21x7)"""
     NOT_ARRIVED = "V"
@@ -2974,6 +3574,9 @@ class RmcMagVarDir(CodeEnum):
     """Magnetic variation direction: Direction of the RMC magnetic variation; easterly variation subtracts from the true course, westerly adds to it."""
 
     BY_CODE: ClassVar[dict[str, RmcMagVarDir]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     EAST = "E"
     """Easterly variation. (nmea0183, geos5, teseo, gs501, globalsat, comnav)"""
     WEST = "W"
@@ -2984,6 +3587,9 @@ class RpmSource(CodeEnum):
     """Revolutions source: Whether an RPM sentence measures a propeller shaft or an engine."""
 
     BY_CODE: ClassVar[dict[str, RpmSource]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SHAFT = "S"
     """Propeller shaft. (nmea0183, nmea_revealed, furuno_rd50, swiftnmea)"""
     ENGINE = "E"
@@ -2994,6 +3600,9 @@ class RrtApplicationStatus(CodeEnum):
     """Route application status: What the receiving application made of the content of a transferred route."""
 
     BY_CODE: ClassVar[dict[str, RrtApplicationStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ACCEPTED = "A"
     """Route content accepted and valid. (nmea0183, swiftnmea)"""
     REJECTED = "V"
@@ -3008,6 +3617,9 @@ class RrtFileStatus(CodeEnum):
     """Route file transfer status: Whether the route file arrived correctly."""
 
     BY_CODE: ClassVar[dict[str, RrtFileStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     RECEIVED = "A"
     """Route file received successfully. (nmea0183, swiftnmea)"""
     ERROR = "E"
@@ -3018,6 +3630,9 @@ class RrtTransferType(CodeEnum):
     """Route transfer type: Which kind of route an RRT sentence reports on, or a query for routes."""
 
     BY_CODE: ClassVar[dict[str, RrtTransferType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     MONITORED = "M"
     """Monitored route. (nmea0183, swiftnmea)"""
     ALTERNATE = "A"
@@ -3030,6 +3645,9 @@ class RsdDisplayRotation(CodeEnum):
     """Radar display rotation: Orientation of the radar picture."""
 
     BY_CODE: ClassVar[dict[str, RsdDisplayRotation]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     COURSE_UP = "C"
     """Course up. (nmea0183, nmea_revealed)"""
     HEAD_UP = "H"
@@ -3042,6 +3660,9 @@ class RteMode(CodeEnum):
     """Route message mode: What the waypoint list of RTE holds (lower-case codes on the wire)."""
 
     BY_CODE: ClassVar[dict[str, RteMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     COMPLETE = "c"
     """Complete route, every waypoint in route order. (nmea0183, nmea_revealed, pynmea2)"""
     WORKING = "w"
@@ -3052,6 +3673,9 @@ class SeptentrioBaseMotion(CodeEnum):
     """Septentrio base motion indicator: Whether the base station of the baseline is static or moving."""
 
     BY_CODE: ClassVar[dict[str, SeptentrioBaseMotion]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     STATIC = "0"
     """Static base. (septentrio)"""
     MOVING = "1"
@@ -3062,6 +3686,9 @@ class SeptentrioBaselineQuality(CodeEnum):
     """Septentrio rover-base quality indicator: Kind of solution behind the rover-to-base baseline of $PSSN,RBD, RBP and RBV."""
 
     BY_CODE: ClassVar[dict[str, SeptentrioBaselineQuality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """No valid baseline. (septentrio)"""
     DGPS = "2"
@@ -3076,6 +3703,9 @@ class SignalId(CodeEnum):
     """GNSS signal ID: Signal identifier (one hex digit) that NMEA 0183 v4.10 appended to GSV. Its meaning depends on the system the GSV line belongs to (the talker: GP GPS/SBAS, GL GLONASS, GA Galileo, GB/BD BeiDou, GQ QZSS, GI NavIC), so each code documents its meaning per system. 0 means all signals. BeiDou, QZSS and NavIC meanings come from v4.11; codes without a meaning for a system are reserved for it."""
 
     BY_CODE: ClassVar[dict[str, SignalId]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ALL_SIGNALS = "0"
     """All signals (any system). (nmea0183)"""
     SIGNAL_1 = "1"
@@ -3108,6 +3738,9 @@ class SirfBaud(CodeEnum):
     """SiRF serial baud rate: Serial port speed in bit/s accepted by $PSRF100 (port A) and $PSRF102 (port B, DGPS input). The code is the rate itself. The GlobalSat manual lists 1200 to 38400; whether faster rates are accepted is not stated."""
 
     BY_CODE: ClassVar[dict[str, SirfBaud]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BAUD_1200 = "1200"
     """1200 bit/s. (globalsat)"""
     BAUD_2400 = "2400"
@@ -3126,6 +3759,9 @@ class SirfChecksumEnable(CodeEnum):
     """SiRF NMEA checksum enable: Whether the sentence selected by $PSRF103 is sent with a checksum. The manual's value list writes 0 and 1 (names lost in extraction, reconstructed from the SiRF NMEA reference), its examples write 01; the codes are the two-digit wire form of the examples."""
 
     BY_CODE: ClassVar[dict[str, SirfChecksumEnable]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "00"
     """Sentence sent without the *hh checksum. (globalsat)"""
     ENABLED = "01"
@@ -3136,6 +3772,9 @@ class SirfChecksumEnableDigit(CodeEnum):
     """SiRF NMEA checksum enable, one-digit form: The same values written with one digit, as the manual's argument list gives them (0-5, 0/1); used by the short_codes layout of $PSRF103."""
 
     BY_CODE: ClassVar[dict[str, SirfChecksumEnableDigit]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """Sentence sent without the *hh checksum. (globalsat)"""
     ENABLED = "1"
@@ -3146,6 +3785,9 @@ class SirfDebug(CodeEnum):
     """SiRF development data switch: Argument of $PSRF105: switches the receiver's development (debug) messages on or off. The manual prints the codes; the words "off"/"on" were lost in extraction and are confirmed by the English command title "Switch Development Data Messages On/Off"."""
 
     BY_CODE: ClassVar[dict[str, SirfDebug]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OFF = "0"
     """Development data messages off. (globalsat)"""
     ON = "1"
@@ -3156,6 +3798,9 @@ class SirfNmeaMessage(CodeEnum):
     """SiRF standard NMEA message selector: Which standard sentence $PSRF103 polls or schedules. The manual's value list writes the numbers 0-5, its examples write them with two digits (00, 05), as SiRF receivers do; the codes here are the two-digit wire form of the examples."""
 
     BY_CODE: ClassVar[dict[str, SirfNmeaMessage]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GGA = "00"
     """GGA, fix data. (globalsat)"""
     GLL = "01"
@@ -3174,6 +3819,9 @@ class SirfNmeaMessageDigit(CodeEnum):
     """SiRF standard NMEA message selector, one-digit form: The same values written with one digit, as the manual's argument list gives them (0-5, 0/1); used by the short_codes layout of $PSRF103."""
 
     BY_CODE: ClassVar[dict[str, SirfNmeaMessageDigit]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GGA = "0"
     """GGA, fix data. (globalsat)"""
     GLL = "1"
@@ -3192,6 +3840,9 @@ class SirfOkToSend(CodeEnum):
     """SiRF OkToSend state: Argument of $PSRF150. The GS501 manual names the sentence but gives no format; the values are reconstructed (SiRF NMEA reference)."""
 
     BY_CODE: ClassVar[dict[str, SirfOkToSend]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_OK = "0"
     """Not OK to send, the receiver is about to enter a power-saving state and will not accept input (SiRF NMEA reference). (gs501)"""
     OK = "1"
@@ -3202,6 +3853,9 @@ class SirfParity(CodeEnum):
     """SiRF serial parity: Parity of a SiRF serial port ($PSRF100 and $PSRF102). The manual prints the codes 0, 1 and 2 but the names were lost in extraction; 0 = none is confirmed by the example caption "9600,8,N,1", odd/even for 1/2 are reconstructed (SiRF NMEA reference)."""
 
     BY_CODE: ClassVar[dict[str, SirfParity]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NONE = "0"
     """No parity. (globalsat)"""
     ODD = "1"
@@ -3214,6 +3868,9 @@ class SirfProtocol(CodeEnum):
     """SiRF serial port protocol: Protocol to run on SiRF serial port A ($PSRF100 argument 1). The manual prints the codes with the protocol names; the rest of the Russian text was lost in extraction."""
 
     BY_CODE: ClassVar[dict[str, SirfProtocol]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SIRF_BINARY = "0"
     """SiRF binary protocol. The NMEA interface stops; further configuration is done in binary messages. (globalsat)"""
     NMEA = "1"
@@ -3224,6 +3881,9 @@ class SirfRateMode(CodeEnum):
     """SiRF NMEA rate control mode: What $PSRF103 does with the selected sentence. The manual's value list writes 0 and 1 (their Russian names were lost; meanings from the SiRF NMEA reference and from the example captions), its examples write 00 and 01; the codes are the two-digit wire form of the examples."""
 
     BY_CODE: ClassVar[dict[str, SirfRateMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SET_RATE = "00"
     """Set the periodic output rate of the sentence to the rate argument (0 turns it off). (globalsat)"""
     QUERY = "01"
@@ -3234,6 +3894,9 @@ class SirfRateModeDigit(CodeEnum):
     """SiRF NMEA rate control mode, one-digit form: The same values written with one digit, as the manual's argument list gives them (0-5, 0/1); used by the short_codes layout of $PSRF103."""
 
     BY_CODE: ClassVar[dict[str, SirfRateModeDigit]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SET_RATE = "0"
     """Set the periodic output rate of the sentence to the rate argument (0 turns it off). (globalsat)"""
     QUERY = "1"
@@ -3244,6 +3907,9 @@ class SkytraqAvailability(CodeEnum):
     """SkyTraq availability flag: Whether an input (odometer/sensor input, antenna) is present, in $PSTI,20."""
 
     BY_CODE: ClassVar[dict[str, SkytraqAvailability]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_AVAILABLE = "0"
     """Not available. (skytraq_px1175rdp)"""
     AVAILABLE = "1"
@@ -3254,6 +3920,9 @@ class SkytraqCalibration(CodeEnum):
     """SkyTraq dead reckoning calibration state: Whether a dead reckoning calibration (of the DR solution or of the gyroscope) is complete ($PSTI,20)."""
 
     BY_CODE: ClassVar[dict[str, SkytraqCalibration]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_CALIBRATED = "0"
     """Not calibrated yet. (skytraq_px1175rdp)"""
     CALIBRATED = "1"
@@ -3264,6 +3933,9 @@ class SkytraqDirection(CodeEnum):
     """SkyTraq travel direction: The backward status of $PSTI,20, from the direction input of an ADR (odometer) installation."""
 
     BY_CODE: ClassVar[dict[str, SkytraqDirection]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     FORWARD = "0"
     """Normal, moving forward (always 0 for ODR, without odometer). (skytraq_px1175rdp)"""
     BACKWARD = "1"
@@ -3274,6 +3946,9 @@ class SkytraqDrMode(CodeEnum):
     """SkyTraq dead reckoning position mode: Position mode of $PSTI,20, telling whether the position comes from GNSS or from dead reckoning."""
 
     BY_CODE: ClassVar[dict[str, SkytraqDrMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GNSS_FIX = "A"
     """The position is a GNSS fix. (skytraq_px1175rdp)"""
     DEAD_RECKONING = "E"
@@ -3286,6 +3961,9 @@ class SkytraqMode(CodeEnum):
     """SkyTraq PSTI mode indicator: Mode indicator of the SkyTraq $PSTI sentences (030, 032, 035, 036): the NMEA 4.1 mode letters, R and F being the fixed and float RTK solutions, plus the letter O that SkyTraq firmware sends without documenting it."""
 
     BY_CODE: ClassVar[dict[str, SkytraqMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTONOMOUS = "A"
     """Autonomous (single point) solution. (skytraq_rtk, skytraq_gpsd_driver)"""
     DIFFERENTIAL = "D"
@@ -3312,6 +3990,9 @@ class SkytraqReceiverRole(CodeEnum):
     """SkyTraq RTK receiver role: Which receiver of an RTK pair the $PSTI,033 cycle-slip counts belong to."""
 
     BY_CODE: ClassVar[dict[str, SkytraqReceiverRole]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ROVER = "R"
     """The rover receiver. (skytraq_gpsd_driver)"""
     BASE = "B"
@@ -3322,6 +4003,9 @@ class Sm1MsiStatus(CodeEnum):
     """MSI message status: Whether the EGC terminal received a SafetyNET MSI message completely and correctly (SM1 to SM4)."""
 
     BY_CODE: ClassVar[dict[str, Sm1MsiStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     COMPLETE = "A"
     """Message complete; all fields here and in the SMB sentences are valid. (nmea0183, swiftnmea, furuno_felcom18)"""
     INCOMPLETE = "V"
@@ -3332,6 +4016,9 @@ class Sm1OceanRegion(CodeEnum):
     """Inmarsat ocean region: The Inmarsat satellite ocean region that relayed a SafetyNET message (SM1 to SM4)."""
 
     BY_CODE: ClassVar[dict[str, Sm1OceanRegion]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ATLANTIC_WEST = "0"
     """Atlantic Ocean Region West. (nmea0183, swiftnmea)"""
     ATLANTIC_EAST = "1"
@@ -3350,6 +4037,9 @@ class Sm1Priority(CodeEnum):
     """MSI message priority: Priority of a SafetyNET MSI message (SM1 to SM4)."""
 
     BY_CODE: ClassVar[dict[str, Sm1Priority]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SAFETY = "1"
     """Safety. (nmea0183, swiftnmea)"""
     URGENCY = "2"
@@ -3364,6 +4054,9 @@ class Sm2Subject(CodeEnum):
     """Coastal warning subject indicator: The kind of coastal warning (the B2 character of a SafetyNET coastal warning address)."""
 
     BY_CODE: ClassVar[dict[str, Sm2Subject]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NAVIGATIONAL_WARNING = "A"
     """Navigational warnings. (nmea0183, swiftnmea)"""
     METEOROLOGICAL_WARNING = "B"
@@ -3402,6 +4095,9 @@ class SpectratimeGpsMessages(CodeEnum):
     """iSync GPS message indicator: Whether and how the iSync clock takes account of the GPS receiver's messages ($PTNTA)."""
 
     BY_CODE: ClassVar[dict[str, SpectratimeGpsMessages]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     IGNORED = "0"
     """GPS messages are not taken into account. (spectratime_isync)"""
     NONE_RECEIVED = "1"
@@ -3416,6 +4112,9 @@ class SpectratimeIsyncStatus(CodeEnum):
     """iSync synchronisation status: Synchronisation state of a Spectratime iSync clock relative to its PPS reference ($PTNTA)."""
 
     BY_CODE: ClassVar[dict[str, SpectratimeIsyncStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WARMING_UP = "0"
     """Warming up or no light. (spectratime_isync)"""
     TRACKING_SETUP = "1"
@@ -3442,6 +4141,9 @@ class SpectratimeOscQuality(CodeEnum):
     """iSync oscillator quality: State of the rubidium oscillator of a Spectratime iSync GPS-disciplined clock ($PTNTA)."""
 
     BY_CODE: ClassVar[dict[str, SpectratimeOscQuality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WARMING_UP = "0"
     """Warming up. (spectratime_isync)"""
     FREE_RUN = "1"
@@ -3454,6 +4156,9 @@ class SpectratimeTimeTransfer(CodeEnum):
     """iSync date and time transfer quality: Where the date and time of the iSync clock ($PTNTA) came from and how fresh they are."""
 
     BY_CODE: ClassVar[dict[str, SpectratimeTimeTransfer]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NONE = "0"
     """No date and time transferred. (spectratime_isync)"""
     MANUAL = "1"
@@ -3468,6 +4173,9 @@ class SpwPasswordLevel(CodeEnum):
     """Password level: The access level a security password (SPW) grants."""
 
     BY_CODE: ClassVar[dict[str, SpwPasswordLevel]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     USER = "1"
     """User level password. (nmea0183, swiftnmea)"""
     ADMINISTRATOR = "2"
@@ -3478,6 +4186,9 @@ class SsdDte(CodeEnum):
     """DTE indicator: Data terminal equipment indicator of SSD: whether a display/keyboard able to show and enter AIS text messages is connected to the AIS unit (sent in ITU-R M.1371 message 5)."""
 
     BY_CODE: ClassVar[dict[str, SsdDte]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AVAILABLE = "0"
     """Keyboard and display are available. (nmea0183, kongsberg_ais100, swiftnmea)"""
     NOT_AVAILABLE = "1"
@@ -3488,6 +4199,9 @@ class Status(CodeEnum):
     """Data status: Validity of the data (A = valid, V = invalid or warning), the status flag of GLL, RMC and most other sentences."""
 
     BY_CODE: ClassVar[dict[str, Status]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     VALID = "A"
     """Data valid. GeoS-5 sets it for every mode indicator but N. (nmea0183, geos5, teseo, gs501, globalsat, comnav)"""
     INVALID = "V"
@@ -3498,6 +4212,9 @@ class SystemId(CodeEnum):
     """GNSS system ID: GNSS system identifier (one hex digit) added by NMEA 0183 v4.10 to GSA and GNS-related sentences; it tells which constellation a GSA line (or a GSV signal) belongs to when the talker is GN. v4.10 defined 1-3, v4.11 added 4-6; the remaining codes are reserved."""
 
     BY_CODE: ClassVar[dict[str, SystemId]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     GPS = "1"
     """GPS. GeoS-5 also reports SBAS satellites under this ID. (nmea0183, geos5)"""
     GLONASS = "2"
@@ -3518,6 +4235,9 @@ class TeseoBaud(CodeEnum):
     """Teseo NMEA port baud rate code: Baud rate codes of CDB parameter 102 (NMEA port baud rate). The code is the parameter value, written in hex without "0x" like every integer CDB parameter. The default is A (115200 baud); a new rate takes effect after the receiver is restarted."""
 
     BY_CODE: ClassVar[dict[str, TeseoBaud]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BAUD_300 = "0"
     """300 baud. (teseo)"""
     BAUD_600 = "1"
@@ -3552,6 +4272,9 @@ class TeseoCompilerType(CodeEnum):
     """Teseo firmware compiler type: Tool chain that built the GNSS library, as reported by the $PSTMGETSWVER answer."""
 
     BY_CODE: ClassVar[dict[str, TeseoCompilerType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ARM = "ARM"
     """Built with the ARM compiler. (teseo)"""
     GNU = "GNU"
@@ -3562,6 +4285,9 @@ class TeseoNmeaOnOff(CodeEnum):
     """Teseo NMEA output on/off: Argument of $PSTMNMEAONOFF: the state the NMEA output is to take. A request for the state the output is already in is rejected without effect."""
 
     BY_CODE: ClassVar[dict[str, TeseoNmeaOnOff]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OFF = "0"
     """Stop the NMEA output. (teseo)"""
     ON = "1"
@@ -3572,6 +4298,9 @@ class TeseoRtcStatus(CodeEnum):
     """Teseo RTC status: State of the real-time clock reported by the $PSTMGETRTCTIME answer."""
 
     BY_CODE: ClassVar[dict[str, TeseoRtcStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """The RTC does not hold a valid time. (teseo)"""
     STORED = "1"
@@ -3584,6 +4313,9 @@ class TeseoSetparMode(CodeEnum):
     """Teseo $PSTMSETPAR write mode: How $PSTMSETPAR combines the value it carries with the parameter's value in the configuration block (optional last argument; absent means 0, replace). Modes 1 and 2 serve bitmask parameters such as CDB 200 and 201: they set or clear only the bits given."""
 
     BY_CODE: ClassVar[dict[str, TeseoSetparMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     REPLACE = "0"
     """The parameter takes the given value (the default when the argument is absent). (teseo)"""
     SET_BITS = "1"
@@ -3596,6 +4328,9 @@ class TeseoTimeValidity(CodeEnum):
     """Teseo time validity: Where the time known to the GNSS engine comes from and how far it can be trusted, as reported by the $PSTMGETRTCTIME answer. The manual only names the levels; their meanings below follow the names."""
 
     BY_CODE: ClassVar[dict[str, TeseoTimeValidity]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_TIME = "0"
     """No time is known. (teseo)"""
     FLASH_TIME = "1"
@@ -3620,6 +4355,9 @@ class ThsMode(CodeEnum):
     """Heading mode indicator: Where a true heading comes from and whether it can be used (THS, HCR). Unlike the positioning mode indicator it has no differential or RTK codes; V marks unusable data, standby included."""
 
     BY_CODE: ClassVar[dict[str, ThsMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTONOMOUS = "A"
     """Autonomous, the heading is measured (valid). (nmea0183, furuno_rd50, jrc_jln720, swiftnmea)"""
     ESTIMATED = "E"
@@ -3636,6 +4374,9 @@ class TrimbleAntennaStatus(CodeEnum):
     """Trimble PTNLRBA antenna status: First field of $PTNLRBA from Trimble-firmware Ericsson GRU 04 receivers, as gpsd reads it."""
 
     BY_CODE: ClassVar[dict[str, TrimbleAntennaStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     FAULT = "0"
     """Antenna fault (the kind of fault is not given). (trimble_gpsd_driver)"""
     OK = "1"
@@ -3646,6 +4387,9 @@ class TrimbleBpqQuality(CodeEnum):
     """Trimble PTNL,BPQ base position quality: Quality of the moving base position in $PTNL,BPQ. Its own numbering, unlike the other PTNL quality indicators. With CMRx or sCMRx corrections it is not used and always 0."""
 
     BY_CODE: ClassVar[dict[str, TrimbleBpqQuality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """No fix, or the fix is not valid (always so with CMRx/sCMRx corrections). (trimble_nmea)"""
     AUTONOMOUS = "1"
@@ -3662,6 +4406,9 @@ class TrimbleDgChannelUsed(CodeEnum):
     """Trimble PTNLDG channel used as correction source: Whether the channel of $PTNLDG supplies the RTCM corrections used for the DGPS position."""
 
     BY_CODE: ClassVar[dict[str, TrimbleDgChannelUsed]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_USED = "0"
     """Not used (also when the receiver outputs no DGPS position). (trimble_nmea, trimble_aggps332)"""
     USED = "1"
@@ -3672,6 +4419,9 @@ class TrimbleDgTracking(CodeEnum):
     """Trimble PTNLDG channel tracking status: State of the beacon or L-band correction channel reported by $PTNLDG."""
 
     BY_CODE: ClassVar[dict[str, TrimbleDgTracking]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     IDLE = "0"
     """Channel idle. (trimble_nmea, trimble_aggps332)"""
     WIDEBAND_FFT_SEARCH = "1"
@@ -3690,6 +4440,9 @@ class TrimbleGpsQuality(CodeEnum):
     """Trimble PTNL GPS quality indicator: Kind of solution in the Trimble PTNL sentences (GGK, GGK_SYNC, PJK, VGK, VHD, AVR). Older receiver guides list only 0 to 4; later receiver help adds the network RTK, OmniSTAR, beacon, RTX and xFill codes. The numbering differs from the GGA quality indicator."""
 
     BY_CODE: ClassVar[dict[str, TrimbleGpsQuality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """No fix, or the fix is not valid. (trimble_nmea, trimble_r7_r8, trimble_aggps332)"""
     AUTONOMOUS = "1"
@@ -3728,6 +4481,9 @@ class TrimbleOscillatorLock(CodeEnum):
     """Trimble PTNLRXO oscillator lock status: First field of $PTNLRXO from Trimble-firmware Ericsson GRU 04 receivers, as gpsd reads it."""
 
     BY_CODE: ClassVar[dict[str, TrimbleOscillatorLock]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UNLOCKED = "0"
     """The oscillator is not disciplined (unlocked). (trimble_gpsd_driver)"""
     LOCKED = "1"
@@ -3738,6 +4494,9 @@ class TrlReason(CodeEnum):
     """TRL reason code: Why the AIS class A station did not transmit during a logged period."""
 
     BY_CODE: ClassVar[dict[str, TrlReason]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     POWER_OFF = "1"
     """Power off. (nmea0183, furuno_fa170)"""
     SILENT_MODE = "2"
@@ -3754,6 +4513,9 @@ class TtmAcquisition(CodeEnum):
     """Target acquisition type: How a tracked target was acquired (TTM field added by NMEA 0183 v3)."""
 
     BY_CODE: ClassVar[dict[str, TtmAcquisition]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTOMATIC = "A"
     """Acquired automatically by the tracker. (nmea0183, furuno_far2xx7, simrad_argus)"""
     MANUAL = "M"
@@ -3766,6 +4528,9 @@ class TtmReference(CodeEnum):
     """True or relative reference: Whether a bearing or course of a radar target is given relative to true north or to own ship's heading."""
 
     BY_CODE: ClassVar[dict[str, TtmReference]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     TRUE_NORTH = "T"
     """Degrees true. (nmea0183, furuno_far2xx7, simrad_argus)"""
     RELATIVE = "R"
@@ -3776,6 +4541,9 @@ class TtmTargetStatus(CodeEnum):
     """Radar target tracking status: State of a tracked radar target (TTM, TLL)."""
 
     BY_CODE: ClassVar[dict[str, TtmTargetStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     LOST = "L"
     """The tracked target has been lost. (nmea0183, furuno_far2xx7, simrad_argus)"""
     QUERY = "Q"
@@ -3788,6 +4556,9 @@ class TtmUnits(CodeEnum):
     """Speed and distance units: Unit system of the speeds and distances of a radar sentence (TTM target data, OSD own-ship speed and drift, RSD ranges)."""
 
     BY_CODE: ClassVar[dict[str, TtmUnits]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     KILOMETRES = "K"
     """Kilometres, speeds in km/h. (nmea0183, furuno_far2xx7, simrad_argus)"""
     NAUTICAL_MILES = "N"
@@ -3800,6 +4571,9 @@ class UbloxAutobauding(CodeEnum):
     """u-blox autobauding switch: Whether the port adapts its baud rate to the incoming data on its own (PUBX,41)."""
 
     BY_CODE: ClassVar[dict[str, UbloxAutobauding]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DISABLED = "0"
     """Autobauding off; the given baud rate is used. (ublox_m8, ublox_antaris_fv25)"""
     ENABLED = "1"
@@ -3810,6 +4584,9 @@ class UbloxNavStatus(CodeEnum):
     """u-blox PUBX navigation status: Kind of solution a PUBX position message reports (two letters)."""
 
     BY_CODE: ClassVar[dict[str, UbloxNavStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NO_FIX = "NF"
     """No fix. (ublox_m8, ublox_antaris_fv25)"""
     DEAD_RECKONING = "DR"
@@ -3832,6 +4609,9 @@ class UbloxPort(CodeEnum):
     """u-blox I/O port: The receiver's port a PUBX,41 configuration applies to."""
 
     BY_CODE: ClassVar[dict[str, UbloxPort]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     DDC = "0"
     """DDC (I2C compatible) port. (ublox_m8, ublox_antaris_fv25)"""
     UART1 = "1"
@@ -3848,6 +4628,9 @@ class UbloxSvStatus(CodeEnum):
     """u-blox PUBX satellite usage: How the receiver uses a satellite listed in PUBX,03."""
 
     BY_CODE: ClassVar[dict[str, UbloxSvStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NOT_USED = "-"
     """Tracked but not used in the solution. (ublox_m8, ublox_antaris_fv25)"""
     USED = "U"
@@ -3860,6 +4643,9 @@ class VsdNavStatus(CodeEnum):
     """AIS navigational status: Navigational status of the ship as AIS transmits it (ITU-R M.1371), entered through VSD."""
 
     BY_CODE: ClassVar[dict[str, VsdNavStatus]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     UNDER_WAY_ENGINE = "0"
     """Under way using engine. (nmea0183, swiftnmea)"""
     AT_ANCHOR = "1"
@@ -3898,6 +4684,9 @@ class WatAlarmCondition(CodeEnum):
     """WAT alarm condition: State of a water level detection point."""
 
     BY_CODE: ClassVar[dict[str, WatAlarmCondition]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     NORMAL = "N"
     """Normal state. (nmea0183, furuno_vr3000)"""
     HIGH = "H"
@@ -3916,6 +4705,9 @@ class WatMessageType(CodeEnum):
     """WAT message type: What a water level detection sentence reports."""
 
     BY_CODE: ClassVar[dict[str, WatMessageType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     SECTION_STATUS = "S"
     """Status of a section: the count of faulty and activated detection points in the location given by the location fields; usually sent at regular intervals. (nmea0183, furuno_vr3000, furuno_vr7000)"""
     SINGLE_DETECTOR = "E"
@@ -3928,6 +4720,9 @@ class WatOverride(CodeEnum):
     """WAT override setting: Whether the water level alarm is overridden."""
 
     BY_CODE: ClassVar[dict[str, WatOverride]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     OVERRIDE = "O"
     """Override mode. (nmea0183, swiftnmea)"""
     NORMAL = "N"
@@ -3938,6 +4733,9 @@ class WatSystem(CodeEnum):
     """WAT water alarm system type: Kind of system that detects the water (two letters)."""
 
     BY_CODE: ClassVar[dict[str, WatSystem]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     WATER_LEVEL_DETECTION = "WL"
     """Water level detection system. (nmea0183, furuno_vr7000)"""
     BILGE_HIGH_LEVEL = "BI"
@@ -3952,6 +4750,9 @@ class XdrTransducerType(CodeEnum):
     """XDR transducer type: The physical quantity a transducer of XDR measures; it decides how the unit letter that follows is read."""
 
     BY_CODE: ClassVar[dict[str, XdrTransducerType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     ANGULAR_DISPLACEMENT = "A"
     """Angular displacement (pitch, roll, heel, trim, rudder angle, wind direction); unit D, degrees, negative anticlockwise. (nmea0183, ashtech_hds800, airmar_pb200, vaisala_wxt530)"""
     TEMPERATURE = "C"
@@ -3986,6 +4787,9 @@ class XdrUnit(CodeEnum):
     """XDR unit of measurement: Unit letter of an XDR measurement. Several letters have two meanings told apart only by the transducer type (B bars or binary, K kelvin or kg/m3, M metres or cubic metres, P percent or pascals); ids name both. Devices use further letters outside the standard (Vaisala: F, I, H, s and others); they decode as unknown codes."""
 
     BY_CODE: ClassVar[dict[str, XdrUnit]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AMPERES = "A"
     """Amperes (current). (nmea0183, nmea_revealed, pynmeagps)"""
     BARS_OR_BINARY = "B"
@@ -4018,6 +4822,9 @@ class ZdlPointType(CodeEnum):
     """Type of variable point: Kind of point whose time and distance ZDL reports."""
 
     BY_CODE: ClassVar[dict[str, ZdlPointType]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     COLLISION = "C"
     """Collision point. (nmea0183, marnav)"""
     TURNING_POINT = "T"
@@ -4029,807 +4836,1076 @@ class ZdlPointType(CodeEnum):
 
 
 AamArrivalCircle.BY_CODE = {member.value: member for member in AamArrivalCircle}
+AamArrivalCircle.CODE_CLASS, AamArrivalCircle.MIN_LEN, AamArrivalCircle.MAX_LEN = "letters", 1, 1
 
 
 AamPerpendicular.BY_CODE = {member.value: member for member in AamPerpendicular}
+AamPerpendicular.CODE_CLASS, AamPerpendicular.MIN_LEN, AamPerpendicular.MAX_LEN = "letters", 1, 1
 
 
 AbkAckType.BY_CODE = {member.value: member for member in AbkAckType}
+AbkAckType.CODE_CLASS, AbkAckType.MIN_LEN, AbkAckType.MAX_LEN = "digits", 1, 1
 
 
 AbkChannel.BY_CODE = {member.value: member for member in AbkChannel}
+AbkChannel.CODE_CLASS, AbkChannel.MIN_LEN, AbkChannel.MAX_LEN = "letters", 1, 1
 
 
 AbmChannel.BY_CODE = {member.value: member for member in AbmChannel}
+AbmChannel.CODE_CLASS, AbmChannel.MIN_LEN, AbmChannel.MAX_LEN = "digits", 1, 1
 
 
 AcaBandwidth.BY_CODE = {member.value: member for member in AcaBandwidth}
+AcaBandwidth.CODE_CLASS, AcaBandwidth.MIN_LEN, AcaBandwidth.MAX_LEN = "digits", 1, 1
 
 
 AcaInUse.BY_CODE = {member.value: member for member in AcaInUse}
+AcaInUse.CODE_CLASS, AcaInUse.MIN_LEN, AcaInUse.MAX_LEN = "digits", 1, 1
 
 
 AcaInfoSource.BY_CODE = {member.value: member for member in AcaInfoSource}
+AcaInfoSource.CODE_CLASS, AcaInfoSource.MIN_LEN, AcaInfoSource.MAX_LEN = "letters", 1, 1
 
 
 AcaPowerLevel.BY_CODE = {member.value: member for member in AcaPowerLevel}
+AcaPowerLevel.CODE_CLASS, AcaPowerLevel.MIN_LEN, AcaPowerLevel.MAX_LEN = "digits", 1, 1
 
 
 AcaTxrxMode.BY_CODE = {member.value: member for member in AcaTxrxMode}
+AcaTxrxMode.CODE_CLASS, AcaTxrxMode.MIN_LEN, AcaTxrxMode.MAX_LEN = "digits", 1, 1
 
 
 AcnAlertCommand.BY_CODE = {member.value: member for member in AcnAlertCommand}
+AcnAlertCommand.CODE_CLASS, AcnAlertCommand.MIN_LEN, AcnAlertCommand.MAX_LEN = "letters", 1, 1
 
 
 AirohaAckResult.BY_CODE = {member.value: member for member in AirohaAckResult}
+AirohaAckResult.CODE_CLASS, AirohaAckResult.MIN_LEN, AirohaAckResult.MAX_LEN = "digits", 1, 1
 
 
 AirohaAidingType.BY_CODE = {member.value: member for member in AirohaAidingType}
+AirohaAidingType.CODE_CLASS, AirohaAidingType.MIN_LEN, AirohaAidingType.MAX_LEN = "digits", 1, 1
 
 
 AirohaBaud.BY_CODE = {member.value: member for member in AirohaBaud}
+AirohaBaud.CODE_CLASS, AirohaBaud.MIN_LEN, AirohaBaud.MAX_LEN = "digits", 4, 6
 
 
 AirohaDebugLog.BY_CODE = {member.value: member for member in AirohaDebugLog}
+AirohaDebugLog.CODE_CLASS, AirohaDebugLog.MIN_LEN, AirohaDebugLog.MAX_LEN = "digits", 1, 1
 
 
 AirohaDgpsMode.BY_CODE = {member.value: member for member in AirohaDgpsMode}
+AirohaDgpsMode.CODE_CLASS, AirohaDgpsMode.MIN_LEN, AirohaDgpsMode.MAX_LEN = "digits", 1, 1
 
 
 AirohaDrMessage.BY_CODE = {member.value: member for member in AirohaDrMessage}
+AirohaDrMessage.CODE_CLASS, AirohaDrMessage.MIN_LEN, AirohaDrMessage.MAX_LEN = "digits", 1, 2
 
 
 AirohaEasyStatus.BY_CODE = {member.value: member for member in AirohaEasyStatus}
+AirohaEasyStatus.CODE_CLASS, AirohaEasyStatus.MIN_LEN, AirohaEasyStatus.MAX_LEN = "digits", 1, 1
 
 
 AirohaEnable.BY_CODE = {member.value: member for member in AirohaEnable}
+AirohaEnable.CODE_CLASS, AirohaEnable.MIN_LEN, AirohaEnable.MAX_LEN = "digits", 1, 1
 
 
 AirohaGeofenceConfidence.BY_CODE = {member.value: member for member in AirohaGeofenceConfidence}
+AirohaGeofenceConfidence.CODE_CLASS, AirohaGeofenceConfidence.MIN_LEN, AirohaGeofenceConfidence.MAX_LEN = "digits", 1, 1
 
 
 AirohaGnssSystem.BY_CODE = {member.value: member for member in AirohaGnssSystem}
+AirohaGnssSystem.CODE_CLASS, AirohaGnssSystem.MIN_LEN, AirohaGnssSystem.MAX_LEN = "digits", 1, 1
 
 
 AirohaJammingStatus.BY_CODE = {member.value: member for member in AirohaJammingStatus}
+AirohaJammingStatus.CODE_CLASS, AirohaJammingStatus.MIN_LEN, AirohaJammingStatus.MAX_LEN = "digits", 1, 1
 
 
 AirohaLocusClear.BY_CODE = {member.value: member for member in AirohaLocusClear}
+AirohaLocusClear.CODE_CLASS, AirohaLocusClear.MIN_LEN, AirohaLocusClear.MAX_LEN = "digits", 1, 1
 
 
 AirohaLocusFormat.BY_CODE = {member.value: member for member in AirohaLocusFormat}
+AirohaLocusFormat.CODE_CLASS, AirohaLocusFormat.MIN_LEN, AirohaLocusFormat.MAX_LEN = "digits", 1, 1
 
 
 AirohaLocusThreshold.BY_CODE = {member.value: member for member in AirohaLocusThreshold}
+AirohaLocusThreshold.CODE_CLASS, AirohaLocusThreshold.MIN_LEN, AirohaLocusThreshold.MAX_LEN = "digits", 1, 1
 
 
 AirohaNavMode.BY_CODE = {member.value: member for member in AirohaNavMode}
+AirohaNavMode.CODE_CLASS, AirohaNavMode.MIN_LEN, AirohaNavMode.MAX_LEN = "digits", 1, 1
 
 
 AirohaNmeaOutputMode.BY_CODE = {member.value: member for member in AirohaNmeaOutputMode}
+AirohaNmeaOutputMode.CODE_CLASS, AirohaNmeaOutputMode.MIN_LEN, AirohaNmeaOutputMode.MAX_LEN = "digits", 1, 1
 
 
 AirohaNmeaType.BY_CODE = {member.value: member for member in AirohaNmeaType}
+AirohaNmeaType.CODE_CLASS, AirohaNmeaType.MIN_LEN, AirohaNmeaType.MAX_LEN = "digits", 1, 2
 
 
 AirohaPeriodicMode.BY_CODE = {member.value: member for member in AirohaPeriodicMode}
+AirohaPeriodicMode.CODE_CLASS, AirohaPeriodicMode.MIN_LEN, AirohaPeriodicMode.MAX_LEN = "digits", 1, 1
 
 
 AirohaPosPrecision.BY_CODE = {member.value: member for member in AirohaPosPrecision}
+AirohaPosPrecision.CODE_CLASS, AirohaPosPrecision.MIN_LEN, AirohaPosPrecision.MAX_LEN = "digits", 1, 1
 
 
 AirohaPpsType.BY_CODE = {member.value: member for member in AirohaPpsType}
+AirohaPpsType.CODE_CLASS, AirohaPpsType.MIN_LEN, AirohaPpsType.MAX_LEN = "digits", 1, 1
 
 
 AirohaRtcmMode.BY_CODE = {member.value: member for member in AirohaRtcmMode}
+AirohaRtcmMode.CODE_CLASS, AirohaRtcmMode.MIN_LEN, AirohaRtcmMode.MAX_LEN = "digits", 1, 2
 
 
 AisChannel.BY_CODE = {member.value: member for member in AisChannel}
+AisChannel.CODE_CLASS, AisChannel.MIN_LEN, AisChannel.MAX_LEN = "alnum", 1, 1
 
 
 AlaAckState.BY_CODE = {member.value: member for member in AlaAckState}
+AlaAckState.CODE_CLASS, AlaAckState.MIN_LEN, AlaAckState.MAX_LEN = "letters", 1, 1
 
 
 AlaCondition.BY_CODE = {member.value: member for member in AlaCondition}
+AlaCondition.CODE_CLASS, AlaCondition.MIN_LEN, AlaCondition.MAX_LEN = "letters", 1, 1
 
 
 AlfCategory.BY_CODE = {member.value: member for member in AlfCategory}
+AlfCategory.CODE_CLASS, AlfCategory.MIN_LEN, AlfCategory.MAX_LEN = "letters", 1, 1
 
 
 AlfPriority.BY_CODE = {member.value: member for member in AlfPriority}
+AlfPriority.CODE_CLASS, AlfPriority.MIN_LEN, AlfPriority.MAX_LEN = "letters", 1, 1
 
 
 AlfState.BY_CODE = {member.value: member for member in AlfState}
+AlfState.CODE_CLASS, AlfState.MIN_LEN, AlfState.MAX_LEN = "letters", 1, 1
 
 
 AlrAckState.BY_CODE = {member.value: member for member in AlrAckState}
+AlrAckState.CODE_CLASS, AlrAckState.MIN_LEN, AlrAckState.MAX_LEN = "letters", 1, 1
 
 
 AlrCondition.BY_CODE = {member.value: member for member in AlrCondition}
+AlrCondition.CODE_CLASS, AlrCondition.MIN_LEN, AlrCondition.MAX_LEN = "letters", 1, 1
 
 
 ApbBearingRef.BY_CODE = {member.value: member for member in ApbBearingRef}
+ApbBearingRef.CODE_CLASS, ApbBearingRef.MIN_LEN, ApbBearingRef.MAX_LEN = "letters", 1, 1
 
 
 AshtechHprMode.BY_CODE = {member.value: member for member in AshtechHprMode}
+AshtechHprMode.CODE_CLASS, AshtechHprMode.MIN_LEN, AshtechHprMode.MAX_LEN = "digits", 1, 1
 
 
 AshtechNmeMessage.BY_CODE = {member.value: member for member in AshtechNmeMessage}
+AshtechNmeMessage.CODE_CLASS, AshtechNmeMessage.MIN_LEN, AshtechNmeMessage.MAX_LEN = "alnum", 3, 3
 
 
 AshtechOnOff.BY_CODE = {member.value: member for member in AshtechOnOff}
+AshtechOnOff.CODE_CLASS, AshtechOnOff.MIN_LEN, AshtechOnOff.MAX_LEN = "letters", 2, 3
 
 
 AshtechPort.BY_CODE = {member.value: member for member in AshtechPort}
+AshtechPort.CODE_CLASS, AshtechPort.MIN_LEN, AshtechPort.MAX_LEN = "alnum", 1, 2
 
 
 AshtechPosSolution.BY_CODE = {member.value: member for member in AshtechPosSolution}
+AshtechPosSolution.CODE_CLASS, AshtechPosSolution.MIN_LEN, AshtechPosSolution.MAX_LEN = "digits", 1, 2
 
 
 AshtechRt300Alignment.BY_CODE = {member.value: member for member in AshtechRt300Alignment}
+AshtechRt300Alignment.CODE_CLASS, AshtechRt300Alignment.MIN_LEN, AshtechRt300Alignment.MAX_LEN = "digits", 1, 1
 
 
 AshtechRt300Quality.BY_CODE = {member.value: member for member in AshtechRt300Quality}
+AshtechRt300Quality.CODE_CLASS, AshtechRt300Quality.MIN_LEN, AshtechRt300Quality.MAX_LEN = "digits", 1, 1
 
 
 AshtechSvUsed.BY_CODE = {member.value: member for member in AshtechSvUsed}
+AshtechSvUsed.CODE_CLASS, AshtechSvUsed.MIN_LEN, AshtechSvUsed.MAX_LEN = "letters", 1, 1
 
 
 BroadcomGlorConfidence.BY_CODE = {member.value: member for member in BroadcomGlorConfidence}
+BroadcomGlorConfidence.CODE_CLASS, BroadcomGlorConfidence.MIN_LEN, BroadcomGlorConfidence.MAX_LEN = "digits", 1, 1
 
 
 BroadcomGlorLocationRequest.BY_CODE = {member.value: member for member in BroadcomGlorLocationRequest}
+BroadcomGlorLocationRequest.CODE_CLASS, BroadcomGlorLocationRequest.MIN_LEN, BroadcomGlorLocationRequest.MAX_LEN = "digits", 1, 1
 
 
 BroadcomGlorPowerSave.BY_CODE = {member.value: member for member in BroadcomGlorPowerSave}
+BroadcomGlorPowerSave.CODE_CLASS, BroadcomGlorPowerSave.MIN_LEN, BroadcomGlorPowerSave.MAX_LEN = "letters", 1, 2
 
 
 BroadcomGlorVelTrackQuality.BY_CODE = {member.value: member for member in BroadcomGlorVelTrackQuality}
+BroadcomGlorVelTrackQuality.CODE_CLASS, BroadcomGlorVelTrackQuality.MIN_LEN, BroadcomGlorVelTrackQuality.MAX_LEN = "digits", 1, 1
 
 
 ComnavLogMessage.BY_CODE = {member.value: member for member in ComnavLogMessage}
+ComnavLogMessage.CODE_CLASS, ComnavLogMessage.MIN_LEN, ComnavLogMessage.MAX_LEN = "letters", 5, 5
 
 
 ComnavTalkerId.BY_CODE = {member.value: member for member in ComnavTalkerId}
+ComnavTalkerId.CODE_CLASS, ComnavTalkerId.MIN_LEN, ComnavTalkerId.MAX_LEN = "letters", 2, 4
 
 
 ComnavTalkerSentence.BY_CODE = {member.value: member for member in ComnavTalkerSentence}
+ComnavTalkerSentence.CODE_CLASS, ComnavTalkerSentence.MIN_LEN, ComnavTalkerSentence.MAX_LEN = "letters", 3, 3
 
 
 CurDirectionReference.BY_CODE = {member.value: member for member in CurDirectionReference}
+CurDirectionReference.CODE_CLASS, CurDirectionReference.MIN_LEN, CurDirectionReference.MAX_LEN = "letters", 1, 1
 
 
 CurHeadingReference.BY_CODE = {member.value: member for member in CurHeadingReference}
+CurHeadingReference.CODE_CLASS, CurHeadingReference.MIN_LEN, CurHeadingReference.MAX_LEN = "letters", 1, 1
 
 
 CurSpeedReference.BY_CODE = {member.value: member for member in CurSpeedReference}
+CurSpeedReference.CODE_CLASS, CurSpeedReference.MIN_LEN, CurSpeedReference.MAX_LEN = "letters", 1, 1
 
 
 DdcCommandMode.BY_CODE = {member.value: member for member in DdcCommandMode}
+DdcCommandMode.CODE_CLASS, DdcCommandMode.MIN_LEN, DdcCommandMode.MAX_LEN = "letters", 1, 1
 
 
 DdcPreset.BY_CODE = {member.value: member for member in DdcPreset}
+DdcPreset.CODE_CLASS, DdcPreset.MIN_LEN, DdcPreset.MAX_LEN = "letters", 1, 1
 
 
 DorMessageType.BY_CODE = {member.value: member for member in DorMessageType}
+DorMessageType.CODE_CLASS, DorMessageType.MIN_LEN, DorMessageType.MAX_LEN = "letters", 1, 1
 
 
 DorStatus.BY_CODE = {member.value: member for member in DorStatus}
+DorStatus.CODE_CLASS, DorStatus.MIN_LEN, DorStatus.MAX_LEN = "letters", 1, 1
 
 
 DorSwitchSetting.BY_CODE = {member.value: member for member in DorSwitchSetting}
+DorSwitchSetting.CODE_CLASS, DorSwitchSetting.MIN_LEN, DorSwitchSetting.MAX_LEN = "letters", 1, 1
 
 
 DorSystem.BY_CODE = {member.value: member for member in DorSystem}
+DorSystem.CODE_CLASS, DorSystem.MIN_LEN, DorSystem.MAX_LEN = "letters", 2, 2
 
 
 DscAcknowledgement.BY_CODE = {member.value: member for member in DscAcknowledgement}
+DscAcknowledgement.CODE_CLASS, DscAcknowledgement.MIN_LEN, DscAcknowledgement.MAX_LEN = "letters", 1, 1
 
 
 DscCategory.BY_CODE = {member.value: member for member in DscCategory}
+DscCategory.CODE_CLASS, DscCategory.MIN_LEN, DscCategory.MAX_LEN = "digits", 2, 2
 
 
 DscDistressNature.BY_CODE = {member.value: member for member in DscDistressNature}
+DscDistressNature.CODE_CLASS, DscDistressNature.MIN_LEN, DscDistressNature.MAX_LEN = "digits", 2, 2
 
 
 DscFormat.BY_CODE = {member.value: member for member in DscFormat}
+DscFormat.CODE_CLASS, DscFormat.MIN_LEN, DscFormat.MAX_LEN = "digits", 2, 2
 
 
 DseCode.BY_CODE = {member.value: member for member in DseCode}
+DseCode.CODE_CLASS, DseCode.MIN_LEN, DseCode.MAX_LEN = "digits", 2, 2
 
 
 DseQueryFlag.BY_CODE = {member.value: member for member in DseQueryFlag}
+DseQueryFlag.CODE_CLASS, DseQueryFlag.MIN_LEN, DseQueryFlag.MAX_LEN = "letters", 1, 1
 
 
 DtmDatum.BY_CODE = {member.value: member for member in DtmDatum}
+DtmDatum.CODE_CLASS, DtmDatum.MIN_LEN, DtmDatum.MAX_LEN = "alnum", 3, 3
 
 
 DtmLatOffsetDir.BY_CODE = {member.value: member for member in DtmLatOffsetDir}
+DtmLatOffsetDir.CODE_CLASS, DtmLatOffsetDir.MIN_LEN, DtmLatOffsetDir.MAX_LEN = "letters", 1, 1
 
 
 DtmLonOffsetDir.BY_CODE = {member.value: member for member in DtmLonOffsetDir}
+DtmLonOffsetDir.CODE_CLASS, DtmLonOffsetDir.MIN_LEN, DtmLonOffsetDir.MAX_LEN = "letters", 1, 1
 
 
 EastWest.BY_CODE = {member.value: member for member in EastWest}
+EastWest.CODE_CLASS, EastWest.MIN_LEN, EastWest.MAX_LEN = "letters", 1, 1
 
 
 EtlMessageType.BY_CODE = {member.value: member for member in EtlMessageType}
+EtlMessageType.CODE_CLASS, EtlMessageType.MIN_LEN, EtlMessageType.MAX_LEN = "letters", 1, 1
 
 
 EtlSubTelegraph.BY_CODE = {member.value: member for member in EtlSubTelegraph}
+EtlSubTelegraph.CODE_CLASS, EtlSubTelegraph.MIN_LEN, EtlSubTelegraph.MAX_LEN = "digits", 2, 2
 
 
 EtlTelegraphPosition.BY_CODE = {member.value: member for member in EtlTelegraphPosition}
+EtlTelegraphPosition.CODE_CLASS, EtlTelegraphPosition.MIN_LEN, EtlTelegraphPosition.MAX_LEN = "digits", 2, 2
 
 
 FirCondition.BY_CODE = {member.value: member for member in FirCondition}
+FirCondition.CODE_CLASS, FirCondition.MIN_LEN, FirCondition.MAX_LEN = "letters", 1, 1
 
 
 FirMessageType.BY_CODE = {member.value: member for member in FirMessageType}
+FirMessageType.CODE_CLASS, FirMessageType.MIN_LEN, FirMessageType.MAX_LEN = "letters", 1, 1
 
 
 FirSystem.BY_CODE = {member.value: member for member in FirSystem}
+FirSystem.CODE_CLASS, FirSystem.MIN_LEN, FirSystem.MAX_LEN = "letters", 2, 2
 
 
 FsiMode.BY_CODE = {member.value: member for member in FsiMode}
+FsiMode.CODE_CLASS, FsiMode.MIN_LEN, FsiMode.MAX_LEN = "letters", 1, 1
 
 
 FsiSentenceStatus.BY_CODE = {member.value: member for member in FsiSentenceStatus}
+FsiSentenceStatus.CODE_CLASS, FsiSentenceStatus.MIN_LEN, FsiSentenceStatus.MAX_LEN = "letters", 1, 1
 
 
 FurunoErideFreqMode.BY_CODE = {member.value: member for member in FurunoErideFreqMode}
+FurunoErideFreqMode.CODE_CLASS, FurunoErideFreqMode.MIN_LEN, FurunoErideFreqMode.MAX_LEN = "digits", 1, 1
 
 
 FurunoErideOnOff.BY_CODE = {member.value: member for member in FurunoErideOnOff}
+FurunoErideOnOff.CODE_CLASS, FurunoErideOnOff.MIN_LEN, FurunoErideOnOff.MAX_LEN = "digits", 1, 1
 
 
 FurunoEridePolarity.BY_CODE = {member.value: member for member in FurunoEridePolarity}
+FurunoEridePolarity.CODE_CLASS, FurunoEridePolarity.MIN_LEN, FurunoEridePolarity.MAX_LEN = "digits", 1, 1
 
 
 FurunoEridePositionMode.BY_CODE = {member.value: member for member in FurunoEridePositionMode}
+FurunoEridePositionMode.CODE_CLASS, FurunoEridePositionMode.MIN_LEN, FurunoEridePositionMode.MAX_LEN = "digits", 1, 1
 
 
 FurunoEridePpsMode.BY_CODE = {member.value: member for member in FurunoEridePpsMode}
+FurunoEridePpsMode.CODE_CLASS, FurunoEridePpsMode.MIN_LEN, FurunoEridePpsMode.MAX_LEN = "digits", 1, 1
 
 
 FurunoEridePpsPeriod.BY_CODE = {member.value: member for member in FurunoEridePpsPeriod}
+FurunoEridePpsPeriod.CODE_CLASS, FurunoEridePpsPeriod.MIN_LEN, FurunoEridePpsPeriod.MAX_LEN = "digits", 1, 1
 
 
 FurunoEridePpsSync.BY_CODE = {member.value: member for member in FurunoEridePpsSync}
+FurunoEridePpsSync.CODE_CLASS, FurunoEridePpsSync.MIN_LEN, FurunoEridePpsSync.MAX_LEN = "digits", 1, 1
 
 
 FurunoEridePpsType.BY_CODE = {member.value: member for member in FurunoEridePpsType}
+FurunoEridePpsType.CODE_CLASS, FurunoEridePpsType.MIN_LEN, FurunoEridePpsType.MAX_LEN = "digits", 1, 1
 
 
 FurunoErideTimeStatus.BY_CODE = {member.value: member for member in FurunoErideTimeStatus}
+FurunoErideTimeStatus.CODE_CLASS, FurunoErideTimeStatus.MIN_LEN, FurunoErideTimeStatus.MAX_LEN = "digits", 1, 1
 
 
 FurunoErideTraimSolution.BY_CODE = {member.value: member for member in FurunoErideTraimSolution}
+FurunoErideTraimSolution.CODE_CLASS, FurunoErideTraimSolution.MIN_LEN, FurunoErideTraimSolution.MAX_LEN = "digits", 1, 1
 
 
 FurunoErideTraimStatus.BY_CODE = {member.value: member for member in FurunoErideTraimStatus}
+FurunoErideTraimStatus.CODE_CLASS, FurunoErideTraimStatus.MIN_LEN, FurunoErideTraimStatus.MAX_LEN = "digits", 1, 1
 
 
 GarminBaud.BY_CODE = {member.value: member for member in GarminBaud}
+GarminBaud.CODE_CLASS, GarminBaud.MIN_LEN, GarminBaud.MAX_LEN = "digits", 1, 1
 
 
 GarminConfigFixMode.BY_CODE = {member.value: member for member in GarminConfigFixMode}
+GarminConfigFixMode.CODE_CLASS, GarminConfigFixMode.MIN_LEN, GarminConfigFixMode.MAX_LEN = "alnum", 1, 1
 
 
 GarminDataCollection.BY_CODE = {member.value: member for member in GarminDataCollection}
+GarminDataCollection.CODE_CLASS, GarminDataCollection.MIN_LEN, GarminDataCollection.MAX_LEN = "letters", 1, 1
 
 
 GarminDgpsMode.BY_CODE = {member.value: member for member in GarminDgpsMode}
+GarminDgpsMode.CODE_CLASS, GarminDgpsMode.MIN_LEN, GarminDgpsMode.MAX_LEN = "letters", 1, 1
 
 
 GarminDgpsSource.BY_CODE = {member.value: member for member in GarminDgpsSource}
+GarminDgpsSource.CODE_CLASS, GarminDgpsSource.MIN_LEN, GarminDgpsSource.MAX_LEN = "letters", 1, 1
 
 
 GarminDiffMode.BY_CODE = {member.value: member for member in GarminDiffMode}
+GarminDiffMode.CODE_CLASS, GarminDiffMode.MIN_LEN, GarminDiffMode.MAX_LEN = "letters", 1, 1
 
 
 GarminFixDimension.BY_CODE = {member.value: member for member in GarminFixDimension}
+GarminFixDimension.CODE_CLASS, GarminFixDimension.MIN_LEN, GarminFixDimension.MAX_LEN = "digits", 1, 1
 
 
 GarminFixMode.BY_CODE = {member.value: member for member in GarminFixMode}
+GarminFixMode.CODE_CLASS, GarminFixMode.MIN_LEN, GarminFixMode.MAX_LEN = "letters", 1, 1
 
 
 GarminFixType.BY_CODE = {member.value: member for member in GarminFixType}
+GarminFixType.CODE_CLASS, GarminFixType.MIN_LEN, GarminFixType.MAX_LEN = "digits", 1, 1
 
 
 GarminOffOn.BY_CODE = {member.value: member for member in GarminOffOn}
+GarminOffOn.CODE_CLASS, GarminOffOn.MIN_LEN, GarminOffOn.MAX_LEN = "digits", 1, 1
 
 
 GarminOutputMode.BY_CODE = {member.value: member for member in GarminOutputMode}
+GarminOutputMode.CODE_CLASS, GarminOutputMode.MIN_LEN, GarminOutputMode.MAX_LEN = "alnum", 1, 1
 
 
 GarminPassFail.BY_CODE = {member.value: member for member in GarminPassFail}
+GarminPassFail.CODE_CLASS, GarminPassFail.MIN_LEN, GarminPassFail.MAX_LEN = "letters", 1, 1
 
 
 GarminPowerMode.BY_CODE = {member.value: member for member in GarminPowerMode}
+GarminPowerMode.CODE_CLASS, GarminPowerMode.MIN_LEN, GarminPowerMode.MAX_LEN = "letters", 1, 1
 
 
 GarminReceiverCommand.BY_CODE = {member.value: member for member in GarminReceiverCommand}
+GarminReceiverCommand.CODE_CLASS, GarminReceiverCommand.MIN_LEN, GarminReceiverCommand.MAX_LEN = "letters", 1, 1
 
 
 GarminRetainedLost.BY_CODE = {member.value: member for member in GarminRetainedLost}
+GarminRetainedLost.CODE_CLASS, GarminRetainedLost.MIN_LEN, GarminRetainedLost.MAX_LEN = "letters", 1, 1
 
 
 GarminWaasMode.BY_CODE = {member.value: member for member in GarminWaasMode}
+GarminWaasMode.CODE_CLASS, GarminWaasMode.MIN_LEN, GarminWaasMode.MAX_LEN = "letters", 1, 1
 
 
 Geos5CommandWord.BY_CODE = {member.value: member for member in Geos5CommandWord}
+Geos5CommandWord.CODE_CLASS, Geos5CommandWord.MIN_LEN, Geos5CommandWord.MAX_LEN = "alnum", 6, 6
 
 
 Geos5MessageRate.BY_CODE = {member.value: member for member in Geos5MessageRate}
+Geos5MessageRate.CODE_CLASS, Geos5MessageRate.MIN_LEN, Geos5MessageRate.MAX_LEN = "alnum", 1, 1
 
 
 Geos5NmeaVersion.BY_CODE = {member.value: member for member in Geos5NmeaVersion}
+Geos5NmeaVersion.CODE_CLASS, Geos5NmeaVersion.MIN_LEN, Geos5NmeaVersion.MAX_LEN = "digits", 1, 1
 
 
 Geos5OutputRate.BY_CODE = {member.value: member for member in Geos5OutputRate}
+Geos5OutputRate.CODE_CLASS, Geos5OutputRate.MIN_LEN, Geos5OutputRate.MAX_LEN = "digits", 1, 1
 
 
 GfaIntegrity.BY_CODE = {member.value: member for member in GfaIntegrity}
+GfaIntegrity.CODE_CLASS, GfaIntegrity.MIN_LEN, GfaIntegrity.MAX_LEN = "letters", 1, 1
 
 
 GgaQuality.BY_CODE = {member.value: member for member in GgaQuality}
+GgaQuality.CODE_CLASS, GgaQuality.MIN_LEN, GgaQuality.MAX_LEN = "digits", 1, 1
 
 
 GlcSignalStatus.BY_CODE = {member.value: member for member in GlcSignalStatus}
+GlcSignalStatus.CODE_CLASS, GlcSignalStatus.MIN_LEN, GlcSignalStatus.MAX_LEN = "letters", 1, 1
 
 
 GnsMode.BY_CODE = {member.value: member for member in GnsMode}
+GnsMode.CODE_CLASS, GnsMode.MIN_LEN, GnsMode.MAX_LEN = "letters", 1, 1
 
 
 GrsMode.BY_CODE = {member.value: member for member in GrsMode}
+GrsMode.CODE_CLASS, GrsMode.MIN_LEN, GrsMode.MAX_LEN = "digits", 1, 1
 
 
 GsaFixType.BY_CODE = {member.value: member for member in GsaFixType}
+GsaFixType.CODE_CLASS, GsaFixType.MIN_LEN, GsaFixType.MAX_LEN = "digits", 1, 1
 
 
 GsaSelectionMode.BY_CODE = {member.value: member for member in GsaSelectionMode}
+GsaSelectionMode.CODE_CLASS, GsaSelectionMode.MIN_LEN, GsaSelectionMode.MAX_LEN = "letters", 1, 1
 
 
 HbtEquipmentStatus.BY_CODE = {member.value: member for member in HbtEquipmentStatus}
+HbtEquipmentStatus.CODE_CLASS, HbtEquipmentStatus.MIN_LEN, HbtEquipmentStatus.MAX_LEN = "letters", 1, 1
 
 
 HcrCorrectionState.BY_CODE = {member.value: member for member in HcrCorrectionState}
+HcrCorrectionState.CODE_CLASS, HcrCorrectionState.MIN_LEN, HcrCorrectionState.MAX_LEN = "letters", 1, 1
 
 
 HmrDifferenceStatus.BY_CODE = {member.value: member for member in HmrDifferenceStatus}
+HmrDifferenceStatus.CODE_CLASS, HmrDifferenceStatus.MIN_LEN, HmrDifferenceStatus.MAX_LEN = "letters", 1, 1
 
 
 HscSentenceStatus.BY_CODE = {member.value: member for member in HscSentenceStatus}
+HscSentenceStatus.CODE_CLASS, HscSentenceStatus.MIN_LEN, HscSentenceStatus.MAX_LEN = "letters", 1, 1
 
 
 HtcHeadingReference.BY_CODE = {member.value: member for member in HtcHeadingReference}
+HtcHeadingReference.CODE_CLASS, HtcHeadingReference.MIN_LEN, HtcHeadingReference.MAX_LEN = "letters", 1, 1
 
 
 HtcOverride.BY_CODE = {member.value: member for member in HtcOverride}
+HtcOverride.CODE_CLASS, HtcOverride.MIN_LEN, HtcOverride.MAX_LEN = "letters", 1, 1
 
 
 HtcSteeringMode.BY_CODE = {member.value: member for member in HtcSteeringMode}
+HtcSteeringMode.CODE_CLASS, HtcSteeringMode.MIN_LEN, HtcSteeringMode.MAX_LEN = "letters", 1, 1
 
 
 HtcTurnMode.BY_CODE = {member.value: member for member in HtcTurnMode}
+HtcTurnMode.CODE_CLASS, HtcTurnMode.MIN_LEN, HtcTurnMode.MAX_LEN = "letters", 1, 1
 
 
 HtdLimitStatus.BY_CODE = {member.value: member for member in HtdLimitStatus}
+HtdLimitStatus.CODE_CLASS, HtdLimitStatus.MIN_LEN, HtdLimitStatus.MAX_LEN = "letters", 1, 1
 
 
 LeftRight.BY_CODE = {member.value: member for member in LeftRight}
+LeftRight.CODE_CLASS, LeftRight.MIN_LEN, LeftRight.MAX_LEN = "letters", 1, 1
 
 
 LlqQuality.BY_CODE = {member.value: member for member in LlqQuality}
+LlqQuality.CODE_CLASS, LlqQuality.MIN_LEN, LlqQuality.MAX_LEN = "digits", 1, 1
 
 
 LrfFunction.BY_CODE = {member.value: member for member in LrfFunction}
+LrfFunction.CODE_CLASS, LrfFunction.MIN_LEN, LrfFunction.MAX_LEN = "letters", 1, 1
 
 
 LrfReplyStatus.BY_CODE = {member.value: member for member in LrfReplyStatus}
+LrfReplyStatus.CODE_CLASS, LrfReplyStatus.MIN_LEN, LrfReplyStatus.MAX_LEN = "digits", 1, 1
 
 
 LriControlFlag.BY_CODE = {member.value: member for member in LriControlFlag}
+LriControlFlag.CODE_CLASS, LriControlFlag.MIN_LEN, LriControlFlag.MAX_LEN = "digits", 1, 1
 
 
 MagellanAltitudeUnit.BY_CODE = {member.value: member for member in MagellanAltitudeUnit}
+MagellanAltitudeUnit.CODE_CLASS, MagellanAltitudeUnit.MIN_LEN, MagellanAltitudeUnit.MAX_LEN = "letters", 1, 1
 
 
 MagellanCommand.BY_CODE = {member.value: member for member in MagellanCommand}
+MagellanCommand.CODE_CLASS, MagellanCommand.MIN_LEN, MagellanCommand.MAX_LEN = "letters", 5, 8
 
 
 MagellanFixFlag.BY_CODE = {member.value: member for member in MagellanFixFlag}
+MagellanFixFlag.CODE_CLASS, MagellanFixFlag.MIN_LEN, MagellanFixFlag.MAX_LEN = "letters", 1, 1
 
 
 MagellanFixMode.BY_CODE = {member.value: member for member in MagellanFixMode}
+MagellanFixMode.CODE_CLASS, MagellanFixMode.MIN_LEN, MagellanFixMode.MAX_LEN = "digits", 1, 1
 
 
 MobBattery.BY_CODE = {member.value: member for member in MobBattery}
+MobBattery.CODE_CLASS, MobBattery.MIN_LEN, MobBattery.MAX_LEN = "digits", 1, 1
 
 
 MobPositionSource.BY_CODE = {member.value: member for member in MobPositionSource}
+MobPositionSource.CODE_CLASS, MobPositionSource.MIN_LEN, MobPositionSource.MAX_LEN = "digits", 1, 1
 
 
 MobStatus.BY_CODE = {member.value: member for member in MobStatus}
+MobStatus.CODE_CLASS, MobStatus.MIN_LEN, MobStatus.MAX_LEN = "letters", 1, 1
 
 
 MskAutoManual.BY_CODE = {member.value: member for member in MskAutoManual}
+MskAutoManual.CODE_CLASS, MskAutoManual.MIN_LEN, MskAutoManual.MAX_LEN = "letters", 1, 1
 
 
 MtkAckFlag.BY_CODE = {member.value: member for member in MtkAckFlag}
+MtkAckFlag.CODE_CLASS, MtkAckFlag.MIN_LEN, MtkAckFlag.MAX_LEN = "digits", 1, 1
 
 
 MtkAntennaStatus.BY_CODE = {member.value: member for member in MtkAntennaStatus}
+MtkAntennaStatus.CODE_CLASS, MtkAntennaStatus.MIN_LEN, MtkAntennaStatus.MAX_LEN = "digits", 1, 1
 
 
 MtkBaud.BY_CODE = {member.value: member for member in MtkBaud}
+MtkBaud.CODE_CLASS, MtkBaud.MIN_LEN, MtkBaud.MAX_LEN = "digits", 1, 6
 
 
 MtkDgpsMode.BY_CODE = {member.value: member for member in MtkDgpsMode}
+MtkDgpsMode.CODE_CLASS, MtkDgpsMode.MIN_LEN, MtkDgpsMode.MAX_LEN = "digits", 1, 1
 
 
 MtkEnable.BY_CODE = {member.value: member for member in MtkEnable}
+MtkEnable.CODE_CLASS, MtkEnable.MIN_LEN, MtkEnable.MAX_LEN = "digits", 1, 1
 
 
 MtkLocusLogger.BY_CODE = {member.value: member for member in MtkLocusLogger}
+MtkLocusLogger.CODE_CLASS, MtkLocusLogger.MIN_LEN, MtkLocusLogger.MAX_LEN = "digits", 1, 1
 
 
 MtkPeriodicMode.BY_CODE = {member.value: member for member in MtkPeriodicMode}
+MtkPeriodicMode.CODE_CLASS, MtkPeriodicMode.MIN_LEN, MtkPeriodicMode.MAX_LEN = "digits", 1, 1
 
 
 MtkSbasMode.BY_CODE = {member.value: member for member in MtkSbasMode}
+MtkSbasMode.CODE_CLASS, MtkSbasMode.MIN_LEN, MtkSbasMode.MAX_LEN = "digits", 1, 1
 
 
 MtkStandbyType.BY_CODE = {member.value: member for member in MtkStandbyType}
+MtkStandbyType.CODE_CLASS, MtkStandbyType.MIN_LEN, MtkStandbyType.MAX_LEN = "digits", 1, 1
 
 
 MtkSystemMessage.BY_CODE = {member.value: member for member in MtkSystemMessage}
+MtkSystemMessage.CODE_CLASS, MtkSystemMessage.MIN_LEN, MtkSystemMessage.MAX_LEN = "digits", 3, 3
 
 
 MwvReference.BY_CODE = {member.value: member for member in MwvReference}
+MwvReference.CODE_CLASS, MwvReference.MIN_LEN, MwvReference.MAX_LEN = "letters", 1, 1
 
 
 MwvSpeedUnit.BY_CODE = {member.value: member for member in MwvSpeedUnit}
+MwvSpeedUnit.CODE_CLASS, MwvSpeedUnit.MIN_LEN, MwvSpeedUnit.MAX_LEN = "letters", 1, 1
 
 
 NakReason.BY_CODE = {member.value: member for member in NakReason}
+NakReason.CODE_CLASS, NakReason.MIN_LEN, NakReason.MAX_LEN = "digits", 1, 2
 
 
 NavStatus.BY_CODE = {member.value: member for member in NavStatus}
+NavStatus.CODE_CLASS, NavStatus.MIN_LEN, NavStatus.MAX_LEN = "letters", 1, 1
 
 
 NorthSouth.BY_CODE = {member.value: member for member in NorthSouth}
+NorthSouth.CODE_CLASS, NorthSouth.MIN_LEN, NorthSouth.MAX_LEN = "letters", 1, 1
 
 
 NrmFunction.BY_CODE = {member.value: member for member in NrmFunction}
+NrmFunction.CODE_CLASS, NrmFunction.MIN_LEN, NrmFunction.MAX_LEN = "digits", 1, 1
 
 
 NrxFrequency.BY_CODE = {member.value: member for member in NrxFrequency}
+NrxFrequency.CODE_CLASS, NrxFrequency.MIN_LEN, NrxFrequency.MAX_LEN = "digits", 1, 1
 
 
 NsrIntegrity.BY_CODE = {member.value: member for member in NsrIntegrity}
+NsrIntegrity.CODE_CLASS, NsrIntegrity.MIN_LEN, NsrIntegrity.MAX_LEN = "letters", 1, 1
 
 
 NsrPlausibility.BY_CODE = {member.value: member for member in NsrPlausibility}
+NsrPlausibility.CODE_CLASS, NsrPlausibility.MIN_LEN, NsrPlausibility.MAX_LEN = "letters", 1, 1
 
 
 NsrStwMode.BY_CODE = {member.value: member for member in NsrStwMode}
+NsrStwMode.CODE_CLASS, NsrStwMode.MIN_LEN, NsrStwMode.MAX_LEN = "letters", 1, 1
 
 
 OsdReference.BY_CODE = {member.value: member for member in OsdReference}
+OsdReference.CODE_CLASS, OsdReference.MIN_LEN, OsdReference.MAX_LEN = "letters", 1, 1
 
 
 PosMode.BY_CODE = {member.value: member for member in PosMode}
+PosMode.CODE_CLASS, PosMode.MIN_LEN, PosMode.MAX_LEN = "letters", 1, 1
 
 
 PosSentenceStatus.BY_CODE = {member.value: member for member in PosSentenceStatus}
+PosSentenceStatus.CODE_CLASS, PosSentenceStatus.MIN_LEN, PosSentenceStatus.MAX_LEN = "letters", 1, 1
 
 
 PrcOperatingLocation.BY_CODE = {member.value: member for member in PrcOperatingLocation}
+PrcOperatingLocation.CODE_CLASS, PrcOperatingLocation.MIN_LEN, PrcOperatingLocation.MAX_LEN = "letters", 1, 1
 
 
 PrcPitchMode.BY_CODE = {member.value: member for member in PrcPitchMode}
+PrcPitchMode.CODE_CLASS, PrcPitchMode.MIN_LEN, PrcPitchMode.MAX_LEN = "letters", 1, 1
 
 
 PrcRpmMode.BY_CODE = {member.value: member for member in PrcRpmMode}
+PrcRpmMode.CODE_CLASS, PrcRpmMode.MIN_LEN, PrcRpmMode.MAX_LEN = "letters", 1, 1
 
 
 QuectelAntennaPower.BY_CODE = {member.value: member for member in QuectelAntennaPower}
+QuectelAntennaPower.CODE_CLASS, QuectelAntennaPower.MIN_LEN, QuectelAntennaPower.MAX_LEN = "digits", 1, 1
 
 
 QuectelAntennaStatus.BY_CODE = {member.value: member for member in QuectelAntennaStatus}
+QuectelAntennaStatus.CODE_CLASS, QuectelAntennaStatus.MIN_LEN, QuectelAntennaStatus.MAX_LEN = "digits", 1, 1
 
 
 QuectelBaudRate.BY_CODE = {member.value: member for member in QuectelBaudRate}
+QuectelBaudRate.CODE_CLASS, QuectelBaudRate.MIN_LEN, QuectelBaudRate.MAX_LEN = "digits", 4, 6
 
 
 QuectelEnable.BY_CODE = {member.value: member for member in QuectelEnable}
+QuectelEnable.CODE_CLASS, QuectelEnable.MIN_LEN, QuectelEnable.MAX_LEN = "digits", 1, 1
 
 
 QuectelErrorCode.BY_CODE = {member.value: member for member in QuectelErrorCode}
+QuectelErrorCode.CODE_CLASS, QuectelErrorCode.MIN_LEN, QuectelErrorCode.MAX_LEN = "digits", 1, 1
 
 
 QuectelFixType.BY_CODE = {member.value: member for member in QuectelFixType}
+QuectelFixType.CODE_CLASS, QuectelFixType.MIN_LEN, QuectelFixType.MAX_LEN = "digits", 1, 1
 
 
 QuectelFlowControl.BY_CODE = {member.value: member for member in QuectelFlowControl}
+QuectelFlowControl.CODE_CLASS, QuectelFlowControl.MIN_LEN, QuectelFlowControl.MAX_LEN = "digits", 1, 1
 
 
 QuectelGeofenceShape.BY_CODE = {member.value: member for member in QuectelGeofenceShape}
+QuectelGeofenceShape.CODE_CLASS, QuectelGeofenceShape.MIN_LEN, QuectelGeofenceShape.MAX_LEN = "digits", 1, 1
 
 
 QuectelGeofenceState.BY_CODE = {member.value: member for member in QuectelGeofenceState}
+QuectelGeofenceState.CODE_CLASS, QuectelGeofenceState.MIN_LEN, QuectelGeofenceState.MAX_LEN = "digits", 1, 1
 
 
 QuectelGeosepMode.BY_CODE = {member.value: member for member in QuectelGeosepMode}
+QuectelGeosepMode.CODE_CLASS, QuectelGeosepMode.MIN_LEN, QuectelGeosepMode.MAX_LEN = "digits", 1, 1
 
 
 QuectelGsvTalker.BY_CODE = {member.value: member for member in QuectelGsvTalker}
+QuectelGsvTalker.CODE_CLASS, QuectelGsvTalker.MIN_LEN, QuectelGsvTalker.MAX_LEN = "digits", 1, 1
 
 
 QuectelHeadingQuality.BY_CODE = {member.value: member for member in QuectelHeadingQuality}
+QuectelHeadingQuality.CODE_CLASS, QuectelHeadingQuality.MIN_LEN, QuectelHeadingQuality.MAX_LEN = "digits", 1, 1
 
 
 QuectelParity.BY_CODE = {member.value: member for member in QuectelParity}
+QuectelParity.CODE_CLASS, QuectelParity.MIN_LEN, QuectelParity.MAX_LEN = "digits", 1, 1
 
 
 QuectelPortType.BY_CODE = {member.value: member for member in QuectelPortType}
+QuectelPortType.CODE_CLASS, QuectelPortType.MIN_LEN, QuectelPortType.MAX_LEN = "digits", 1, 1
 
 
 QuectelPpsMode.BY_CODE = {member.value: member for member in QuectelPpsMode}
+QuectelPpsMode.CODE_CLASS, QuectelPpsMode.MIN_LEN, QuectelPpsMode.MAX_LEN = "digits", 1, 1
 
 
 QuectelPpsPolarity.BY_CODE = {member.value: member for member in QuectelPpsPolarity}
+QuectelPpsPolarity.CODE_CLASS, QuectelPpsPolarity.MIN_LEN, QuectelPpsPolarity.MAX_LEN = "digits", 1, 1
 
 
 QuectelReceiverMode.BY_CODE = {member.value: member for member in QuectelReceiverMode}
+QuectelReceiverMode.CODE_CLASS, QuectelReceiverMode.MIN_LEN, QuectelReceiverMode.MAX_LEN = "digits", 1, 1
 
 
 QuectelRtcmEphMode.BY_CODE = {member.value: member for member in QuectelRtcmEphMode}
+QuectelRtcmEphMode.CODE_CLASS, QuectelRtcmEphMode.MIN_LEN, QuectelRtcmEphMode.MAX_LEN = "digits", 1, 1
 
 
 QuectelRtkDiffMode.BY_CODE = {member.value: member for member in QuectelRtkDiffMode}
+QuectelRtkDiffMode.CODE_CLASS, QuectelRtkDiffMode.MIN_LEN, QuectelRtkDiffMode.MAX_LEN = "digits", 1, 1
 
 
 QuectelRtkRelMode.BY_CODE = {member.value: member for member in QuectelRtkRelMode}
+QuectelRtkRelMode.CODE_CLASS, QuectelRtkRelMode.MIN_LEN, QuectelRtkRelMode.MAX_LEN = "digits", 1, 1
 
 
 QuectelRtkSourceType.BY_CODE = {member.value: member for member in QuectelRtkSourceType}
+QuectelRtkSourceType.CODE_CLASS, QuectelRtkSourceType.MIN_LEN, QuectelRtkSourceType.MAX_LEN = "digits", 1, 1
 
 
 QuectelSolutionType.BY_CODE = {member.value: member for member in QuectelSolutionType}
+QuectelSolutionType.CODE_CLASS, QuectelSolutionType.MIN_LEN, QuectelSolutionType.MAX_LEN = "digits", 1, 2
 
 
 QuectelStopBits.BY_CODE = {member.value: member for member in QuectelStopBits}
+QuectelStopBits.CODE_CLASS, QuectelStopBits.MIN_LEN, QuectelStopBits.MAX_LEN = "digits", 1, 1
 
 
 QuectelSvinMode.BY_CODE = {member.value: member for member in QuectelSvinMode}
+QuectelSvinMode.CODE_CLASS, QuectelSvinMode.MIN_LEN, QuectelSvinMode.MAX_LEN = "digits", 1, 1
 
 
 QuectelSvinValid.BY_CODE = {member.value: member for member in QuectelSvinValid}
+QuectelSvinValid.CODE_CLASS, QuectelSvinValid.MIN_LEN, QuectelSvinValid.MAX_LEN = "digits", 1, 1
 
 
 QuectelTextId.BY_CODE = {member.value: member for member in QuectelTextId}
+QuectelTextId.CODE_CLASS, QuectelTextId.MIN_LEN, QuectelTextId.MAX_LEN = "digits", 2, 2
 
 
 QuectelTimeReference.BY_CODE = {member.value: member for member in QuectelTimeReference}
+QuectelTimeReference.CODE_CLASS, QuectelTimeReference.MIN_LEN, QuectelTimeReference.MAX_LEN = "digits", 1, 1
 
 
 QuectelTimeStatus.BY_CODE = {member.value: member for member in QuectelTimeStatus}
+QuectelTimeStatus.CODE_CLASS, QuectelTimeStatus.MIN_LEN, QuectelTimeStatus.MAX_LEN = "digits", 1, 1
 
 
 QuectelUartIndex.BY_CODE = {member.value: member for member in QuectelUartIndex}
+QuectelUartIndex.CODE_CLASS, QuectelUartIndex.MIN_LEN, QuectelUartIndex.MAX_LEN = "digits", 1, 1
 
 
 RlmMessageCode.BY_CODE = {member.value: member for member in RlmMessageCode}
+RlmMessageCode.CODE_CLASS, RlmMessageCode.MIN_LEN, RlmMessageCode.MAX_LEN = "alnum", 1, 1
 
 
 RmbArrivalStatus.BY_CODE = {member.value: member for member in RmbArrivalStatus}
+RmbArrivalStatus.CODE_CLASS, RmbArrivalStatus.MIN_LEN, RmbArrivalStatus.MAX_LEN = "letters", 1, 1
 
 
 RmcMagVarDir.BY_CODE = {member.value: member for member in RmcMagVarDir}
+RmcMagVarDir.CODE_CLASS, RmcMagVarDir.MIN_LEN, RmcMagVarDir.MAX_LEN = "letters", 1, 1
 
 
 RpmSource.BY_CODE = {member.value: member for member in RpmSource}
+RpmSource.CODE_CLASS, RpmSource.MIN_LEN, RpmSource.MAX_LEN = "letters", 1, 1
 
 
 RrtApplicationStatus.BY_CODE = {member.value: member for member in RrtApplicationStatus}
+RrtApplicationStatus.CODE_CLASS, RrtApplicationStatus.MIN_LEN, RrtApplicationStatus.MAX_LEN = "letters", 1, 1
 
 
 RrtFileStatus.BY_CODE = {member.value: member for member in RrtFileStatus}
+RrtFileStatus.CODE_CLASS, RrtFileStatus.MIN_LEN, RrtFileStatus.MAX_LEN = "letters", 1, 1
 
 
 RrtTransferType.BY_CODE = {member.value: member for member in RrtTransferType}
+RrtTransferType.CODE_CLASS, RrtTransferType.MIN_LEN, RrtTransferType.MAX_LEN = "letters", 1, 1
 
 
 RsdDisplayRotation.BY_CODE = {member.value: member for member in RsdDisplayRotation}
+RsdDisplayRotation.CODE_CLASS, RsdDisplayRotation.MIN_LEN, RsdDisplayRotation.MAX_LEN = "letters", 1, 1
 
 
 RteMode.BY_CODE = {member.value: member for member in RteMode}
+RteMode.CODE_CLASS, RteMode.MIN_LEN, RteMode.MAX_LEN = "letters", 1, 1
 
 
 SeptentrioBaseMotion.BY_CODE = {member.value: member for member in SeptentrioBaseMotion}
+SeptentrioBaseMotion.CODE_CLASS, SeptentrioBaseMotion.MIN_LEN, SeptentrioBaseMotion.MAX_LEN = "digits", 1, 1
 
 
 SeptentrioBaselineQuality.BY_CODE = {member.value: member for member in SeptentrioBaselineQuality}
+SeptentrioBaselineQuality.CODE_CLASS, SeptentrioBaselineQuality.MIN_LEN, SeptentrioBaselineQuality.MAX_LEN = "digits", 1, 1
 
 
 SignalId.BY_CODE = {member.value: member for member in SignalId}
+SignalId.CODE_CLASS, SignalId.MIN_LEN, SignalId.MAX_LEN = "alnum", 1, 1
 
 
 SirfBaud.BY_CODE = {member.value: member for member in SirfBaud}
+SirfBaud.CODE_CLASS, SirfBaud.MIN_LEN, SirfBaud.MAX_LEN = "digits", 4, 5
 
 
 SirfChecksumEnable.BY_CODE = {member.value: member for member in SirfChecksumEnable}
+SirfChecksumEnable.CODE_CLASS, SirfChecksumEnable.MIN_LEN, SirfChecksumEnable.MAX_LEN = "digits", 2, 2
 
 
 SirfChecksumEnableDigit.BY_CODE = {member.value: member for member in SirfChecksumEnableDigit}
+SirfChecksumEnableDigit.CODE_CLASS, SirfChecksumEnableDigit.MIN_LEN, SirfChecksumEnableDigit.MAX_LEN = "digits", 1, 1
 
 
 SirfDebug.BY_CODE = {member.value: member for member in SirfDebug}
+SirfDebug.CODE_CLASS, SirfDebug.MIN_LEN, SirfDebug.MAX_LEN = "digits", 1, 1
 
 
 SirfNmeaMessage.BY_CODE = {member.value: member for member in SirfNmeaMessage}
+SirfNmeaMessage.CODE_CLASS, SirfNmeaMessage.MIN_LEN, SirfNmeaMessage.MAX_LEN = "digits", 2, 2
 
 
 SirfNmeaMessageDigit.BY_CODE = {member.value: member for member in SirfNmeaMessageDigit}
+SirfNmeaMessageDigit.CODE_CLASS, SirfNmeaMessageDigit.MIN_LEN, SirfNmeaMessageDigit.MAX_LEN = "digits", 1, 1
 
 
 SirfOkToSend.BY_CODE = {member.value: member for member in SirfOkToSend}
+SirfOkToSend.CODE_CLASS, SirfOkToSend.MIN_LEN, SirfOkToSend.MAX_LEN = "digits", 1, 1
 
 
 SirfParity.BY_CODE = {member.value: member for member in SirfParity}
+SirfParity.CODE_CLASS, SirfParity.MIN_LEN, SirfParity.MAX_LEN = "digits", 1, 1
 
 
 SirfProtocol.BY_CODE = {member.value: member for member in SirfProtocol}
+SirfProtocol.CODE_CLASS, SirfProtocol.MIN_LEN, SirfProtocol.MAX_LEN = "digits", 1, 1
 
 
 SirfRateMode.BY_CODE = {member.value: member for member in SirfRateMode}
+SirfRateMode.CODE_CLASS, SirfRateMode.MIN_LEN, SirfRateMode.MAX_LEN = "digits", 2, 2
 
 
 SirfRateModeDigit.BY_CODE = {member.value: member for member in SirfRateModeDigit}
+SirfRateModeDigit.CODE_CLASS, SirfRateModeDigit.MIN_LEN, SirfRateModeDigit.MAX_LEN = "digits", 1, 1
 
 
 SkytraqAvailability.BY_CODE = {member.value: member for member in SkytraqAvailability}
+SkytraqAvailability.CODE_CLASS, SkytraqAvailability.MIN_LEN, SkytraqAvailability.MAX_LEN = "digits", 1, 1
 
 
 SkytraqCalibration.BY_CODE = {member.value: member for member in SkytraqCalibration}
+SkytraqCalibration.CODE_CLASS, SkytraqCalibration.MIN_LEN, SkytraqCalibration.MAX_LEN = "digits", 1, 1
 
 
 SkytraqDirection.BY_CODE = {member.value: member for member in SkytraqDirection}
+SkytraqDirection.CODE_CLASS, SkytraqDirection.MIN_LEN, SkytraqDirection.MAX_LEN = "digits", 1, 1
 
 
 SkytraqDrMode.BY_CODE = {member.value: member for member in SkytraqDrMode}
+SkytraqDrMode.CODE_CLASS, SkytraqDrMode.MIN_LEN, SkytraqDrMode.MAX_LEN = "letters", 1, 1
 
 
 SkytraqMode.BY_CODE = {member.value: member for member in SkytraqMode}
+SkytraqMode.CODE_CLASS, SkytraqMode.MIN_LEN, SkytraqMode.MAX_LEN = "letters", 1, 1
 
 
 SkytraqReceiverRole.BY_CODE = {member.value: member for member in SkytraqReceiverRole}
+SkytraqReceiverRole.CODE_CLASS, SkytraqReceiverRole.MIN_LEN, SkytraqReceiverRole.MAX_LEN = "letters", 1, 1
 
 
 Sm1MsiStatus.BY_CODE = {member.value: member for member in Sm1MsiStatus}
+Sm1MsiStatus.CODE_CLASS, Sm1MsiStatus.MIN_LEN, Sm1MsiStatus.MAX_LEN = "letters", 1, 1
 
 
 Sm1OceanRegion.BY_CODE = {member.value: member for member in Sm1OceanRegion}
+Sm1OceanRegion.CODE_CLASS, Sm1OceanRegion.MIN_LEN, Sm1OceanRegion.MAX_LEN = "digits", 1, 1
 
 
 Sm1Priority.BY_CODE = {member.value: member for member in Sm1Priority}
+Sm1Priority.CODE_CLASS, Sm1Priority.MIN_LEN, Sm1Priority.MAX_LEN = "digits", 1, 1
 
 
 Sm2Subject.BY_CODE = {member.value: member for member in Sm2Subject}
+Sm2Subject.CODE_CLASS, Sm2Subject.MIN_LEN, Sm2Subject.MAX_LEN = "letters", 1, 1
 
 
 SpectratimeGpsMessages.BY_CODE = {member.value: member for member in SpectratimeGpsMessages}
+SpectratimeGpsMessages.CODE_CLASS, SpectratimeGpsMessages.MIN_LEN, SpectratimeGpsMessages.MAX_LEN = "digits", 1, 1
 
 
 SpectratimeIsyncStatus.BY_CODE = {member.value: member for member in SpectratimeIsyncStatus}
+SpectratimeIsyncStatus.CODE_CLASS, SpectratimeIsyncStatus.MIN_LEN, SpectratimeIsyncStatus.MAX_LEN = "digits", 1, 1
 
 
 SpectratimeOscQuality.BY_CODE = {member.value: member for member in SpectratimeOscQuality}
+SpectratimeOscQuality.CODE_CLASS, SpectratimeOscQuality.MIN_LEN, SpectratimeOscQuality.MAX_LEN = "digits", 1, 1
 
 
 SpectratimeTimeTransfer.BY_CODE = {member.value: member for member in SpectratimeTimeTransfer}
+SpectratimeTimeTransfer.CODE_CLASS, SpectratimeTimeTransfer.MIN_LEN, SpectratimeTimeTransfer.MAX_LEN = "digits", 1, 1
 
 
 SpwPasswordLevel.BY_CODE = {member.value: member for member in SpwPasswordLevel}
+SpwPasswordLevel.CODE_CLASS, SpwPasswordLevel.MIN_LEN, SpwPasswordLevel.MAX_LEN = "digits", 1, 1
 
 
 SsdDte.BY_CODE = {member.value: member for member in SsdDte}
+SsdDte.CODE_CLASS, SsdDte.MIN_LEN, SsdDte.MAX_LEN = "digits", 1, 1
 
 
 Status.BY_CODE = {member.value: member for member in Status}
+Status.CODE_CLASS, Status.MIN_LEN, Status.MAX_LEN = "letters", 1, 1
 
 
 SystemId.BY_CODE = {member.value: member for member in SystemId}
+SystemId.CODE_CLASS, SystemId.MIN_LEN, SystemId.MAX_LEN = "alnum", 1, 1
 
 
 TeseoBaud.BY_CODE = {member.value: member for member in TeseoBaud}
+TeseoBaud.CODE_CLASS, TeseoBaud.MIN_LEN, TeseoBaud.MAX_LEN = "alnum", 1, 1
 
 
 TeseoCompilerType.BY_CODE = {member.value: member for member in TeseoCompilerType}
+TeseoCompilerType.CODE_CLASS, TeseoCompilerType.MIN_LEN, TeseoCompilerType.MAX_LEN = "letters", 3, 3
 
 
 TeseoNmeaOnOff.BY_CODE = {member.value: member for member in TeseoNmeaOnOff}
+TeseoNmeaOnOff.CODE_CLASS, TeseoNmeaOnOff.MIN_LEN, TeseoNmeaOnOff.MAX_LEN = "digits", 1, 1
 
 
 TeseoRtcStatus.BY_CODE = {member.value: member for member in TeseoRtcStatus}
+TeseoRtcStatus.CODE_CLASS, TeseoRtcStatus.MIN_LEN, TeseoRtcStatus.MAX_LEN = "digits", 1, 1
 
 
 TeseoSetparMode.BY_CODE = {member.value: member for member in TeseoSetparMode}
+TeseoSetparMode.CODE_CLASS, TeseoSetparMode.MIN_LEN, TeseoSetparMode.MAX_LEN = "digits", 1, 1
 
 
 TeseoTimeValidity.BY_CODE = {member.value: member for member in TeseoTimeValidity}
+TeseoTimeValidity.CODE_CLASS, TeseoTimeValidity.MIN_LEN, TeseoTimeValidity.MAX_LEN = "digits", 1, 1
 
 
 ThsMode.BY_CODE = {member.value: member for member in ThsMode}
+ThsMode.CODE_CLASS, ThsMode.MIN_LEN, ThsMode.MAX_LEN = "letters", 1, 1
 
 
 TrimbleAntennaStatus.BY_CODE = {member.value: member for member in TrimbleAntennaStatus}
+TrimbleAntennaStatus.CODE_CLASS, TrimbleAntennaStatus.MIN_LEN, TrimbleAntennaStatus.MAX_LEN = "digits", 1, 1
 
 
 TrimbleBpqQuality.BY_CODE = {member.value: member for member in TrimbleBpqQuality}
+TrimbleBpqQuality.CODE_CLASS, TrimbleBpqQuality.MIN_LEN, TrimbleBpqQuality.MAX_LEN = "digits", 1, 1
 
 
 TrimbleDgChannelUsed.BY_CODE = {member.value: member for member in TrimbleDgChannelUsed}
+TrimbleDgChannelUsed.CODE_CLASS, TrimbleDgChannelUsed.MIN_LEN, TrimbleDgChannelUsed.MAX_LEN = "digits", 1, 1
 
 
 TrimbleDgTracking.BY_CODE = {member.value: member for member in TrimbleDgTracking}
+TrimbleDgTracking.CODE_CLASS, TrimbleDgTracking.MIN_LEN, TrimbleDgTracking.MAX_LEN = "digits", 1, 1
 
 
 TrimbleGpsQuality.BY_CODE = {member.value: member for member in TrimbleGpsQuality}
+TrimbleGpsQuality.CODE_CLASS, TrimbleGpsQuality.MIN_LEN, TrimbleGpsQuality.MAX_LEN = "digits", 1, 2
 
 
 TrimbleOscillatorLock.BY_CODE = {member.value: member for member in TrimbleOscillatorLock}
+TrimbleOscillatorLock.CODE_CLASS, TrimbleOscillatorLock.MIN_LEN, TrimbleOscillatorLock.MAX_LEN = "digits", 1, 1
 
 
 TrlReason.BY_CODE = {member.value: member for member in TrlReason}
+TrlReason.CODE_CLASS, TrlReason.MIN_LEN, TrlReason.MAX_LEN = "digits", 1, 1
 
 
 TtmAcquisition.BY_CODE = {member.value: member for member in TtmAcquisition}
+TtmAcquisition.CODE_CLASS, TtmAcquisition.MIN_LEN, TtmAcquisition.MAX_LEN = "letters", 1, 1
 
 
 TtmReference.BY_CODE = {member.value: member for member in TtmReference}
+TtmReference.CODE_CLASS, TtmReference.MIN_LEN, TtmReference.MAX_LEN = "letters", 1, 1
 
 
 TtmTargetStatus.BY_CODE = {member.value: member for member in TtmTargetStatus}
+TtmTargetStatus.CODE_CLASS, TtmTargetStatus.MIN_LEN, TtmTargetStatus.MAX_LEN = "letters", 1, 1
 
 
 TtmUnits.BY_CODE = {member.value: member for member in TtmUnits}
+TtmUnits.CODE_CLASS, TtmUnits.MIN_LEN, TtmUnits.MAX_LEN = "letters", 1, 1
 
 
 UbloxAutobauding.BY_CODE = {member.value: member for member in UbloxAutobauding}
+UbloxAutobauding.CODE_CLASS, UbloxAutobauding.MIN_LEN, UbloxAutobauding.MAX_LEN = "digits", 1, 1
 
 
 UbloxNavStatus.BY_CODE = {member.value: member for member in UbloxNavStatus}
+UbloxNavStatus.CODE_CLASS, UbloxNavStatus.MIN_LEN, UbloxNavStatus.MAX_LEN = "alnum", 2, 2
 
 
 UbloxPort.BY_CODE = {member.value: member for member in UbloxPort}
+UbloxPort.CODE_CLASS, UbloxPort.MIN_LEN, UbloxPort.MAX_LEN = "digits", 1, 1
 
 
 UbloxSvStatus.BY_CODE = {member.value: member for member in UbloxSvStatus}
+UbloxSvStatus.CODE_CLASS, UbloxSvStatus.MIN_LEN, UbloxSvStatus.MAX_LEN = "letters", 1, 1
 
 
 VsdNavStatus.BY_CODE = {member.value: member for member in VsdNavStatus}
+VsdNavStatus.CODE_CLASS, VsdNavStatus.MIN_LEN, VsdNavStatus.MAX_LEN = "digits", 1, 2
 
 
 WatAlarmCondition.BY_CODE = {member.value: member for member in WatAlarmCondition}
+WatAlarmCondition.CODE_CLASS, WatAlarmCondition.MIN_LEN, WatAlarmCondition.MAX_LEN = "letters", 1, 1
 
 
 WatMessageType.BY_CODE = {member.value: member for member in WatMessageType}
+WatMessageType.CODE_CLASS, WatMessageType.MIN_LEN, WatMessageType.MAX_LEN = "letters", 1, 1
 
 
 WatOverride.BY_CODE = {member.value: member for member in WatOverride}
+WatOverride.CODE_CLASS, WatOverride.MIN_LEN, WatOverride.MAX_LEN = "letters", 1, 1
 
 
 WatSystem.BY_CODE = {member.value: member for member in WatSystem}
+WatSystem.CODE_CLASS, WatSystem.MIN_LEN, WatSystem.MAX_LEN = "letters", 2, 2
 
 
 XdrTransducerType.BY_CODE = {member.value: member for member in XdrTransducerType}
+XdrTransducerType.CODE_CLASS, XdrTransducerType.MIN_LEN, XdrTransducerType.MAX_LEN = "letters", 1, 1
 
 
 XdrUnit.BY_CODE = {member.value: member for member in XdrUnit}
+XdrUnit.CODE_CLASS, XdrUnit.MIN_LEN, XdrUnit.MAX_LEN = "letters", 1, 1
 
 
 ZdlPointType.BY_CODE = {member.value: member for member in ZdlPointType}
+ZdlPointType.CODE_CLASS, ZdlPointType.MIN_LEN, ZdlPointType.MAX_LEN = "letters", 1, 1

@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AamArrivalCircle, AamPerpendicular
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Aam:
+class Aam(rt.Sentence):
     """AAM: Waypoint arrival alarm.
 
-    Example (log_pynmeagps): $GPAAM,A,A,0.10,N,WPTNME*32
+    Example (log_pynmeagps):
+    $GPAAM,A,A,0.10,N,WPTNME*32
     """
 
     SENTENCE: ClassVar[str] = "AAM"
@@ -33,6 +31,14 @@ class Aam:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("AAM", "standard", "$", 5, 5, (
+        rt.EnumField("arrival_circle", "aam_arrival_circle code (A V)", AamArrivalCircle),
+        rt.EnumField("perpendicular", "aam_perpendicular code (A V)", AamPerpendicular),
+        rt.DecimalField("arrival_radius", "decimal number of at least 0", 0, None),
+        rt.LiteralField("arrival_radius_unit", "N or nothing", "N"),
+        rt.TextField("waypoint", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -45,72 +51,14 @@ class Aam:
     arrival_radius_unit: str | None = None
     """Radius unit: N = nautical miles; sent even when the radius is empty."""
     waypoint: str | None = None
-    """Waypoint ID: Identifier of the destination waypoint (Magellan prints 4 characters in its v1.5 output, 6 from v2.0)."""
+    """Waypoint ID: Identifier of the destination waypoint (Magellan prints 4 characters in its v1.5
+    output, 6 from v2.0)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Aam:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "AAM", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "AAM", 5, count)
-        arrival_circle = AamArrivalCircle.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "arrival_circle", "aam_arrival_circle code (A V)", AamArrivalCircle.BY_CODE, "letters", 1, 1)
-        perpendicular = AamPerpendicular.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "perpendicular", "aam_perpendicular code (A V)", AamPerpendicular.BY_CODE, "letters", 1, 1)
-        arrival_radius = (_DECIMAL_0_TO.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "arrival_radius", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[2] else None
-        arrival_radius_unit = "N" if fields[3] == "N" else rt.literal_field(fields[3], address, 4, "arrival_radius_unit", "N or nothing", "N")
-        waypoint = rt.text_field(fields[4], address, 5, "waypoint", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], arrival_circle, perpendicular, arrival_radius, arrival_radius_unit, waypoint, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.arrival_circle),
-            rt.text_of(self.perpendicular),
-            rt.text_of(self.arrival_radius),
-            rt.text_of(self.arrival_radius_unit),
-            rt.text_of(self.waypoint),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "AAM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"arrival_circle":' + show(self.arrival_circle),
-            '"perpendicular":' + show(self.perpendicular),
-            '"arrival_radius":' + show(self.arrival_radius),
-            '"arrival_radius_unit":' + show(self.arrival_radius_unit),
-            '"waypoint":' + show(self.waypoint),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "arrival_circle"), 1)
-        out += rt.json_texts(rt.json_member(fields, "perpendicular"), 1)
-        out += rt.json_texts(rt.json_member(fields, "arrival_radius"), 1)
-        out += rt.json_texts(rt.json_member(fields, "arrival_radius_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "waypoint"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Aam, )

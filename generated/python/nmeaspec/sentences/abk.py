@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ABK: AIS addressed and binary broadcast acknowledgement.
 
-Sent by an AIS unit when a transmission requested by an ABM, AIR or BBM sentence has completed
-or failed: which message, to whom, on which channel, and the outcome.
+Sent by an AIS unit when a transmission requested by an ABM, AIR or BBM sentence has completed or
+failed: which message, to whom, on which channel, and the outcome.
 """
 
 from __future__ import annotations
@@ -15,17 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AbkAckType, AbkChannel
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-
 
 @dataclass(slots=True)
-class Abk:
+class Abk(rt.Sentence):
     """ABK: AIS addressed and binary broadcast acknowledgement.
 
-    Example (dma_aislib): $AIABK,219012679,B,12,1,0*1D
+    Example (dma_aislib):
+    $AIABK,219012679,B,12,1,0*1D
     """
 
     SENTENCE: ClassVar[str] = "ABK"
@@ -35,84 +31,38 @@ class Abk:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ABK", "standard", "$", 5, 5, (
+        rt.IntegerField("mmsi", "integer"),
+        rt.EnumField("channel", "abk_channel code (A B)", AbkChannel),
+        rt.DecimalField("message_id", "decimal number"),
+        rt.IntegerField("sequence_number", "integer 0..9", 0, 9),
+        rt.EnumField("ack_type", "abk_ack_type code (0 1 2 3 4 5)", AbkAckType),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     mmsi: rt.Number | None = None
-    """MMSI of the addressed AIS unit: MMSI of the distant unit the acknowledged message was addressed to (the first one for messages 15 and 16); empty for broadcast messages 8 and 14."""
+    """MMSI of the addressed AIS unit: MMSI of the distant unit the acknowledged message was
+    addressed to (the first one for messages 15 and 16); empty for broadcast messages 8 and 14."""
     channel: AbkChannel | str | None = None
-    """AIS channel of reception: Channel (A or B) the message 7 or 13 acknowledgement was received on; empty when no such acknowledgement is involved."""
+    """AIS channel of reception: Channel (A or B) the message 7 or 13 acknowledgement was received
+    on; empty when no such acknowledgement is involved."""
     message_id: rt.Number | None = None
-    """ITU-R M.1371 message ID: ITU-R M.1371 message this acknowledgement is about (6, 8, 12, 14, 15, ...); written x.x because a message sub-section may follow the point."""
+    """ITU-R M.1371 message ID: ITU-R M.1371 message this acknowledgement is about (6, 8, 12, 14,
+    15, ...); written x.x because a message sub-section may follow the point."""
     sequence_number: rt.Number | None = None
-    """Message sequence number: Sequence number of the ABM, AIR or BBM sentence being acknowledged; it may be reused after this ABK."""
+    """Message sequence number: Sequence number of the ABM, AIR or BBM sentence being acknowledged;
+    it may be reused after this ABK."""
     ack_type: AbkAckType | str | None = None
-    """Type of acknowledgement: 0 received, 1 sent but not acknowledged, 2 could not be broadcast, 3 broadcast done, 4 late acknowledgement."""
+    """Type of acknowledgement: 0 received, 1 sent but not acknowledged, 2 could not be broadcast, 3
+    broadcast done, 4 late acknowledgement."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Abk:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "ABK", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "ABK", 5, count)
-        mmsi = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "mmsi", "integer", None, None, _INTEGER)) if fields[0] else None
-        channel = AbkChannel.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "channel", "abk_channel code (A B)", AbkChannel.BY_CODE, "letters", 1, 1)
-        message_id = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "message_id", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        sequence_number = (_INTEGER_0_TO_9.get(fields[3]) or rt.integer_field(fields[3], address, 4, "sequence_number", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[3] else None
-        ack_type = AbkAckType.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "ack_type", "abk_ack_type code (0 1 2 3 4 5)", AbkAckType.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], mmsi, channel, message_id, sequence_number, ack_type, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.mmsi),
-            rt.text_of(self.channel),
-            rt.text_of(self.message_id),
-            rt.text_of(self.sequence_number),
-            rt.text_of(self.ack_type),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ABK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"mmsi":' + show(self.mmsi),
-            '"channel":' + show(self.channel),
-            '"message_id":' + show(self.message_id),
-            '"sequence_number":' + show(self.sequence_number),
-            '"ack_type":' + show(self.ack_type),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "channel"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sequence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ack_type"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Abk, )

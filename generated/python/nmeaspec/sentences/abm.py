@@ -17,18 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AbmChannel
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_3: dict[Any, Any] = rt.known("integer 0..3")
-_INTEGER_0_TO_5: dict[Any, Any] = rt.known("integer 0..5")
-_INTEGER_1_TO_9: dict[Any, Any] = rt.known("integer 1..9")
-
 
 @dataclass(slots=True)
-class Abm:
+class Abm(rt.Sentence):
     """ABM: AIS addressed binary and safety related message.
 
-    Example (dma_aislib): !AIABM,1,1,0,219997000,0,12,<>j?1GhlLplPD5CDP6B?=P6BF,0*5F
+    Example (dma_aislib):
+    !AIABM,1,1,0,219997000,0,12,<>j?1GhlLplPD5CDP6B?=P6BF,0*5F
     """
 
     SENTENCE: ClassVar[str] = "ABM"
@@ -38,6 +33,17 @@ class Abm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ABM", "standard", "!", 8, 8, (
+        rt.IntegerField("sentence_count", "integer 1..9", 1, 9),
+        rt.IntegerField("sentence_number", "integer 1..9", 1, 9),
+        rt.IntegerField("message_id", "integer 0..3", 0, 3),
+        rt.IntegerField("mmsi", "integer"),
+        rt.EnumField("channel", "abm_channel code (0 1 2 3)", AbmChannel),
+        rt.IntegerField("message_type", "integer"),
+        rt.TextField("payload", "text"),
+        rt.IntegerField("fill_bits", "integer 0..5", 0, 5),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -46,94 +52,27 @@ class Abm:
     sentence_number: rt.Number | None = None
     """Sentence number: Number of this sentence, 1-9."""
     message_id: rt.Number | None = None
-    """Sequential message identifier: Ties the sentences of one message together and is the sequence number of the M.1371 message (0-3); ABK returns it, after which it may be reused."""
+    """Sequential message identifier: Ties the sentences of one message together and is the sequence
+    number of the M.1371 message (0-3); ABK returns it, after which it may be reused."""
     mmsi: rt.Number | None = None
     """MMSI of destination: MMSI of the AIS unit the message is addressed to."""
     channel: AbmChannel | str | None = None
     """AIS channel for broadcast: 0 = no preference, 1 = channel A, 2 = channel B, 3 = both."""
     message_type: rt.Number | None = None
-    """ITU-R M.1371 message ID: Message to send, 6 (addressed binary) or 12 (addressed safety related text); later editions also 25, 26 and 70/71."""
+    """ITU-R M.1371 message ID: Message to send, 6 (addressed binary) or 12 (addressed safety
+    related text); later editions also 25, 26 and 70/71."""
     payload: str | None = None
-    """Encapsulated data: The binary data of message 6 or the text of message 12 (or this sentence's part of it) in six-bit ASCII armoring, up to 936 bits in all; decoding it is left to the application."""
+    """Encapsulated data: The binary data of message 6 or the text of message 12 (or this sentence's
+    part of it) in six-bit ASCII armoring, up to 936 bits in all; decoding it is left to the
+    application."""
     fill_bits: rt.Number | None = None
     """Fill bits: Number of bits (0-5) added to the last payload character; they are not data."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Abm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "ABM", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "ABM", 8, count)
-        sentence_count = (_INTEGER_1_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sentence_count", "integer 1..9", 1, 9, _INTEGER_1_TO_9)) if fields[0] else None
-        sentence_number = (_INTEGER_1_TO_9.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer 1..9", 1, 9, _INTEGER_1_TO_9)) if fields[1] else None
-        message_id = (_INTEGER_0_TO_3.get(fields[2]) or rt.integer_field(fields[2], address, 3, "message_id", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[2] else None
-        mmsi = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "mmsi", "integer", None, None, _INTEGER)) if fields[3] else None
-        channel = AbmChannel.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "channel", "abm_channel code (0 1 2 3)", AbmChannel.BY_CODE, "digits", 1, 1)
-        message_type = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "message_type", "integer", None, None, _INTEGER)) if fields[5] else None
-        payload = rt.text_field(fields[6], address, 7, "payload", "text", None)
-        fill_bits = (_INTEGER_0_TO_5.get(fields[7]) or rt.integer_field(fields[7], address, 8, "fill_bits", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[7] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sentence_count, sentence_number, message_id, mmsi, channel, message_type, payload, fill_bits, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sentence_count),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.message_id),
-            rt.text_of(self.mmsi),
-            rt.text_of(self.channel),
-            rt.text_of(self.message_type),
-            rt.text_of(self.payload),
-            rt.text_of(self.fill_bits),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("!", self.talker + "ABM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sentence_count":' + show(self.sentence_count),
-            '"sentence_number":' + show(self.sentence_number),
-            '"message_id":' + show(self.message_id),
-            '"mmsi":' + show(self.mmsi),
-            '"channel":' + show(self.channel),
-            '"message_type":' + show(self.message_type),
-            '"payload":' + show(self.payload),
-            '"fill_bits":' + show(self.fill_bits),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sentence_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "channel"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "payload"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fill_bits"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Abm, )

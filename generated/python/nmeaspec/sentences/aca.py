@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ACA: AIS channel assignment message.
 
-Regional channel management settings of an AIS unit: a rectangular region with its transition
-zone, the two VHF channels with their bandwidths, transmit/receive mode and power, where the
-settings came from and whether they are in use. Sent to the unit to enter a region, or by the
-unit to report the regions it stores (followed by ACS with the same sequence number).
+Regional channel management settings of an AIS unit: a rectangular region with its transition zone,
+the two VHF channels with their bandwidths, transmit/receive mode and power, where the settings came
+from and whether they are in use. Sent to the unit to enter a region, or by the unit to report the
+regions it stores (followed by ACS with the same sequence number).
 """
 
 from __future__ import annotations
@@ -17,19 +17,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AcaBandwidth, AcaInUse, AcaInfoSource, AcaPowerLevel, AcaTxrxMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_INTEGER_1_TO_8: dict[Any, Any] = rt.known("integer 1..8")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Aca:
+class Aca(rt.Sentence):
     """ACA: AIS channel assignment message.
-
     """
 
     SENTENCE: ClassVar[str] = "ACA"
@@ -39,11 +30,30 @@ class Aca:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ACA", "standard", "$", 19, 19, (
+        rt.IntegerField("sequence_number", "integer 0..9", 0, 9),
+        rt.LatitudeField("ne_lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("ne_lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.LatitudeField("sw_lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("sw_lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.IntegerField("transition_zone", "integer 1..8", 1, 8),
+        rt.IntegerField("channel_a", "integer"),
+        rt.EnumField("channel_a_bandwidth", "aca_bandwidth code (0 1)", AcaBandwidth),
+        rt.IntegerField("channel_b", "integer"),
+        rt.EnumField("channel_b_bandwidth", "aca_bandwidth code (0 1)", AcaBandwidth),
+        rt.EnumField("txrx_mode", "aca_txrx_mode code (0 1 2 3 4 5)", AcaTxrxMode),
+        rt.EnumField("power_level", "aca_power_level code (0 1)", AcaPowerLevel),
+        rt.EnumField("info_source", "aca_info_source code (A B C D M)", AcaInfoSource),
+        rt.EnumField("in_use", "aca_in_use code (0 1)", AcaInUse),
+        rt.TimeField("in_use_time", "time hhmmss[.s]"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     sequence_number: rt.Number | None = None
-    """Sequence number: Binds this ACA to the ACS that follows with the same number (0-9, cycling); may be empty when the sentence is sent to the unit."""
+    """Sequence number: Binds this ACA to the ACS that follows with the same number (0-9, cycling);
+    may be empty when the sentence is sent to the unit."""
     ne_lat: rt.Coordinate | None = None
     """Region north-east corner latitude: Latitude of the north-east corner of the region."""
     ne_lon: rt.Coordinate | None = None
@@ -53,7 +63,8 @@ class Aca:
     sw_lon: rt.Coordinate | None = None
     """Region south-west corner longitude: Longitude of the south-west corner of the region."""
     transition_zone: rt.Number | None = None
-    """Transition zone size [nmi]: Width of the transition zone around the region, 1-8 nautical miles."""
+    """Transition zone size [nmi]: Width of the transition zone around the region, 1-8 nautical
+    miles."""
     channel_a: rt.Number | None = None
     """Channel A: VHF channel number used as AIS channel A in the region (e.g. 2087)."""
     channel_a_bandwidth: AcaBandwidth | str | None = None
@@ -63,120 +74,25 @@ class Aca:
     channel_b_bandwidth: AcaBandwidth | str | None = None
     """Channel B bandwidth: 0 = as given by the channel number, 1 = 12.5 kHz."""
     txrx_mode: AcaTxrxMode | str | None = None
-    """Tx/Rx mode control: 0 transmit and receive on A and B; 1, 2 transmit on A or B only; 3-5 receive only (A and B, A, B)."""
+    """Tx/Rx mode control: 0 transmit and receive on A and B; 1, 2 transmit on A or B only; 3-5
+    receive only (A and B, A, B)."""
     power_level: AcaPowerLevel | str | None = None
     """Power level control: 0 = high power, 1 = low power."""
     info_source: AcaInfoSource | str | None = None
-    """Information source: A/B = message 22 addressed/broadcast, C = ACA sentence, D = DSC telecommand, M = manual input; empty when sent to the unit."""
+    """Information source: A/B = message 22 addressed/broadcast, C = ACA sentence, D = DSC
+    telecommand, M = manual input; empty when sent to the unit."""
     in_use: AcaInUse | str | None = None
-    """In-use flag: 1 when the unit is using these settings at the time it sends the sentence, 0 otherwise."""
+    """In-use flag: 1 when the unit is using these settings at the time it sends the sentence, 0
+    otherwise."""
     in_use_time: rt.Time | None = None
-    """Time of in-use change: UTC time the in-use flag last changed; empty when the sentence is sent to the unit."""
+    """Time of in-use change: UTC time the in-use flag last changed; empty when the sentence is sent
+    to the unit."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Aca:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 19:
-            raise rt.too_few(address, "ACA", 19, count)
-        if count > 19:
-            raise rt.too_many(address, "ACA", 19, count)
-        sequence_number = (_INTEGER_0_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sequence_number", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[0] else None
-        ne_lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "ne_lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        ne_lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "ne_lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        sw_lat = _LATITUDE.get((fields[5], fields[6])) or rt.coordinate_field(fields[5], fields[6], address, 6, "sw_lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        sw_lon = _LONGITUDE.get((fields[7], fields[8])) or rt.coordinate_field(fields[7], fields[8], address, 8, "sw_lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        transition_zone = (_INTEGER_1_TO_8.get(fields[9]) or rt.integer_field(fields[9], address, 10, "transition_zone", "integer 1..8", 1, 8, _INTEGER_1_TO_8)) if fields[9] else None
-        channel_a = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "channel_a", "integer", None, None, _INTEGER)) if fields[10] else None
-        channel_a_bandwidth = AcaBandwidth.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "channel_a_bandwidth", "aca_bandwidth code (0 1)", AcaBandwidth.BY_CODE, "digits", 1, 1)
-        channel_b = (_INTEGER.get(fields[12]) or rt.integer_field(fields[12], address, 13, "channel_b", "integer", None, None, _INTEGER)) if fields[12] else None
-        channel_b_bandwidth = AcaBandwidth.BY_CODE.get(fields[13]) or rt.enum_field(fields[13], address, 14, "channel_b_bandwidth", "aca_bandwidth code (0 1)", AcaBandwidth.BY_CODE, "digits", 1, 1)
-        txrx_mode = AcaTxrxMode.BY_CODE.get(fields[14]) or rt.enum_field(fields[14], address, 15, "txrx_mode", "aca_txrx_mode code (0 1 2 3 4 5)", AcaTxrxMode.BY_CODE, "digits", 1, 1)
-        power_level = AcaPowerLevel.BY_CODE.get(fields[15]) or rt.enum_field(fields[15], address, 16, "power_level", "aca_power_level code (0 1)", AcaPowerLevel.BY_CODE, "digits", 1, 1)
-        info_source = AcaInfoSource.BY_CODE.get(fields[16]) or rt.enum_field(fields[16], address, 17, "info_source", "aca_info_source code (A B C D M)", AcaInfoSource.BY_CODE, "letters", 1, 1)
-        in_use = AcaInUse.BY_CODE.get(fields[17]) or rt.enum_field(fields[17], address, 18, "in_use", "aca_in_use code (0 1)", AcaInUse.BY_CODE, "digits", 1, 1)
-        in_use_time = (_TIME.get(fields[18]) or rt.time_field(fields[18], address, 19, "in_use_time", "time hhmmss[.s]", _TIME)) if fields[18] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sequence_number, ne_lat, ne_lon, sw_lat, sw_lon, transition_zone, channel_a, channel_a_bandwidth, channel_b, channel_b_bandwidth, txrx_mode, power_level, info_source, in_use, in_use_time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sequence_number),
-            *rt.coordinate_texts(self.ne_lat),
-            *rt.coordinate_texts(self.ne_lon),
-            *rt.coordinate_texts(self.sw_lat),
-            *rt.coordinate_texts(self.sw_lon),
-            rt.text_of(self.transition_zone),
-            rt.text_of(self.channel_a),
-            rt.text_of(self.channel_a_bandwidth),
-            rt.text_of(self.channel_b),
-            rt.text_of(self.channel_b_bandwidth),
-            rt.text_of(self.txrx_mode),
-            rt.text_of(self.power_level),
-            rt.text_of(self.info_source),
-            rt.text_of(self.in_use),
-            rt.text_of(self.in_use_time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ACA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sequence_number":' + show(self.sequence_number),
-            '"ne_lat":' + show(self.ne_lat),
-            '"ne_lon":' + show(self.ne_lon),
-            '"sw_lat":' + show(self.sw_lat),
-            '"sw_lon":' + show(self.sw_lon),
-            '"transition_zone":' + show(self.transition_zone),
-            '"channel_a":' + show(self.channel_a),
-            '"channel_a_bandwidth":' + show(self.channel_a_bandwidth),
-            '"channel_b":' + show(self.channel_b),
-            '"channel_b_bandwidth":' + show(self.channel_b_bandwidth),
-            '"txrx_mode":' + show(self.txrx_mode),
-            '"power_level":' + show(self.power_level),
-            '"info_source":' + show(self.info_source),
-            '"in_use":' + show(self.in_use),
-            '"in_use_time":' + show(self.in_use_time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sequence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ne_lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "ne_lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "sw_lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "sw_lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "transition_zone"), 1)
-        out += rt.json_texts(rt.json_member(fields, "channel_a"), 1)
-        out += rt.json_texts(rt.json_member(fields, "channel_a_bandwidth"), 1)
-        out += rt.json_texts(rt.json_member(fields, "channel_b"), 1)
-        out += rt.json_texts(rt.json_member(fields, "channel_b_bandwidth"), 1)
-        out += rt.json_texts(rt.json_member(fields, "txrx_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "power_level"), 1)
-        out += rt.json_texts(rt.json_member(fields, "info_source"), 1)
-        out += rt.json_texts(rt.json_member(fields, "in_use"), 1)
-        out += rt.json_texts(rt.json_member(fields, "in_use_time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Aca, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ACK: Acknowledge alarm.
 
-Acknowledges, from a remote unit, an alarm that a device reported with ALR; the device then
-reports the alarm as acknowledged.
+Acknowledges, from a remote unit, an alarm that a device reported with ALR; the device then reports
+the alarm as acknowledged.
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Ack:
+class Ack(rt.Sentence):
     """ACK: Acknowledge alarm.
 
-    Example (go_nmea): $VRACK,001*50
+    Example (go_nmea):
+    $VRACK,001*50
     """
 
     SENTENCE: ClassVar[str] = "ACK"
@@ -32,60 +30,22 @@ class Ack:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ACK", "standard", "$", 1, 1, (
+        rt.IntegerField("alarm_number", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     alarm_number: rt.Number | None = None
-    """Alarm number: Identifier of the alarm at its source, the alarm number of the ALR being acknowledged."""
+    """Alarm number: Identifier of the alarm at its source, the alarm number of the ALR being
+    acknowledged."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ack:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "ACK", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "ACK", 1, count)
-        alarm_number = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "alarm_number", "integer", None, None, _INTEGER)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], alarm_number, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.alarm_number),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ACK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"alarm_number":' + show(self.alarm_number),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "alarm_number"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ack, )

@@ -4,8 +4,7 @@
 """ACN: Alert command.
 
 Bridge alert management: command to an alert source to acknowledge, silence, transfer the
-responsibility for, or repeat an alert it reported with ALF. A source that refuses answers with
-ARC.
+responsibility for, or repeat an alert it reported with ALF. A source that refuses answers with ARC.
 """
 
 from __future__ import annotations
@@ -16,16 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AcnAlertCommand
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Acn:
+class Acn(rt.Sentence):
     """ACN: Alert command.
 
-    Example (go_nmea): $RAACN,220516,TCK,002,1,A,C*00
+    Example (go_nmea):
+    $RAACN,220516,TCK,002,1,A,C*00
     """
 
     SENTENCE: ClassVar[str] = "ACN"
@@ -35,90 +31,38 @@ class Acn:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ACN", "standard", "$", 6, 6, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("manufacturer", "text"),
+        rt.IntegerField("alert_id", "integer"),
+        rt.IntegerField("alert_instance", "integer"),
+        rt.EnumField("command", "acn_alert_command code (A Q O S)", AcnAlertCommand),
+        rt.LiteralField("status_flag", "C or nothing", "C"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """Time: UTC time of the command; may be empty (Furuno BR-500 ignores it)."""
     manufacturer: str | None = None
-    """Manufacturer mnemonic code: Manufacturer mnemonic of a proprietary alert; empty for a standardised alert."""
+    """Manufacturer mnemonic code: Manufacturer mnemonic of a proprietary alert; empty for a
+    standardised alert."""
     alert_id: rt.Number | None = None
     """Alert identifier: Identifier of the alert the command is for, as in its ALF."""
     alert_instance: rt.Number | None = None
     """Alert instance: Instance of the alert, 1-999999, as in its ALF; may be empty."""
     command: AcnAlertCommand | str | None = None
-    """Alert command: A acknowledge, Q request/repeat information, O responsibility transfer, S silence."""
+    """Alert command: A acknowledge, Q request/repeat information, O responsibility transfer, S
+    silence."""
     status_flag: str | None = None
     """Sentence status flag: C = command; a sentence without C is not a command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Acn:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "ACN", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "ACN", 6, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        manufacturer = rt.text_field(fields[1], address, 2, "manufacturer", "text", None)
-        alert_id = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "alert_id", "integer", None, None, _INTEGER)) if fields[2] else None
-        alert_instance = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "alert_instance", "integer", None, None, _INTEGER)) if fields[3] else None
-        command = AcnAlertCommand.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "command", "acn_alert_command code (A Q O S)", AcnAlertCommand.BY_CODE, "letters", 1, 1)
-        status_flag = "C" if fields[5] == "C" else rt.literal_field(fields[5], address, 6, "status_flag", "C or nothing", "C")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, manufacturer, alert_id, alert_instance, command, status_flag, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.manufacturer),
-            rt.text_of(self.alert_id),
-            rt.text_of(self.alert_instance),
-            rt.text_of(self.command),
-            rt.text_of(self.status_flag),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ACN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"manufacturer":' + show(self.manufacturer),
-            '"alert_id":' + show(self.alert_id),
-            '"alert_instance":' + show(self.alert_instance),
-            '"command":' + show(self.command),
-            '"status_flag":' + show(self.status_flag),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "manufacturer"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alert_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alert_instance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status_flag"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Acn, )

@@ -14,18 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_INTEGER_1_TO_12: dict[Any, Any] = rt.known("integer 1..12")
-_INTEGER_1_TO_31: dict[Any, Any] = rt.known("integer 1..31")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Acs:
+class Acs(rt.Sentence):
     """ACS: AIS channel management information source.
-
     """
 
     SENTENCE: ClassVar[str] = "ACS"
@@ -35,13 +27,23 @@ class Acs:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ACS", "standard", "$", 6, 6, (
+        rt.IntegerField("sequence_number", "integer 0..9", 0, 9),
+        rt.IntegerField("mmsi", "integer"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.IntegerField("day", "integer 1..31", 1, 31),
+        rt.IntegerField("month", "integer 1..12", 1, 12),
+        rt.IntegerField("year", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     sequence_number: rt.Number | None = None
     """Sequence number: Same number as the ACA this sentence belongs to (0-9)."""
     mmsi: rt.Number | None = None
-    """MMSI of originator: MMSI of the station that originated the channel management information."""
+    """MMSI of originator: MMSI of the station that originated the channel management
+    information."""
     time: rt.Time | None = None
     """UTC time of receipt: UTC time the unit received the regional operating settings."""
     day: rt.Number | None = None
@@ -51,74 +53,11 @@ class Acs:
     year: rt.Number | None = None
     """Year: UTC year of receipt, four digits."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Acs:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "ACS", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "ACS", 6, count)
-        sequence_number = (_INTEGER_0_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sequence_number", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[0] else None
-        mmsi = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "mmsi", "integer", None, None, _INTEGER)) if fields[1] else None
-        time = (_TIME.get(fields[2]) or rt.time_field(fields[2], address, 3, "time", "time hhmmss[.s]", _TIME)) if fields[2] else None
-        day = (_INTEGER_1_TO_31.get(fields[3]) or rt.integer_field(fields[3], address, 4, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)) if fields[3] else None
-        month = (_INTEGER_1_TO_12.get(fields[4]) or rt.integer_field(fields[4], address, 5, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[4] else None
-        year = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "year", "integer", None, None, _INTEGER)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sequence_number, mmsi, time, day, month, year, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sequence_number),
-            rt.text_of(self.mmsi),
-            rt.text_of(self.time),
-            rt.text_of(self.day),
-            rt.text_of(self.month),
-            rt.text_of(self.year),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ACS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sequence_number":' + show(self.sequence_number),
-            '"mmsi":' + show(self.mmsi),
-            '"time":' + show(self.time),
-            '"day":' + show(self.day),
-            '"month":' + show(self.month),
-            '"year":' + show(self.year),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sequence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "day"), 1)
-        out += rt.json_texts(rt.json_member(fields, "month"), 1)
-        out += rt.json_texts(rt.json_member(fields, "year"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Acs, )

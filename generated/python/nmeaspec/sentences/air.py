@@ -16,16 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AbkChannel
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_2249: dict[Any, Any] = rt.known("integer 0..2249")
-
 
 @dataclass(slots=True)
-class Air:
+class Air(rt.Sentence):
     """AIR: AIS interrogation request.
-
     """
 
     SENTENCE: ClassVar[str] = "AIR"
@@ -35,158 +29,61 @@ class Air:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("AIR", "standard", "$", 8, 12, (
+        rt.IntegerField("station1_mmsi", "integer"),
+        rt.DecimalField("station1_message1", "decimal number"),
+        rt.IntegerField("station1_message1_subsection", "integer"),
+        rt.DecimalField("station1_message2", "decimal number"),
+        rt.IntegerField("station1_message2_subsection", "integer"),
+        rt.IntegerField("station2_mmsi", "integer"),
+        rt.DecimalField("station2_message", "decimal number"),
+        rt.IntegerField("station2_message_subsection", "integer"),
+        rt.EnumField("channel", "abk_channel code (A B)", AbkChannel, optional=True),
+        rt.IntegerField("station1_message1_slot", "integer 0..2249", 0, 2249, optional=True),
+        rt.IntegerField("station1_message2_slot", "integer 0..2249", 0, 2249, optional=True),
+        rt.IntegerField("station2_message_slot", "integer 0..2249", 0, 2249, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     station1_mmsi: rt.Number | None = None
     """MMSI of interrogated station 1: MMSI of the first station interrogated."""
     station1_message1: rt.Number | None = None
-    """First message requested from station 1: ITU-R M.1371 message number requested from station 1."""
+    """First message requested from station 1: ITU-R M.1371 message number requested from station
+    1."""
     station1_message1_subsection: rt.Number | None = None
-    """Message sub-section: Sub-section of the first requested message when that message has alternative structures; empty otherwise (reserved in early editions)."""
+    """Message sub-section: Sub-section of the first requested message when that message has
+    alternative structures; empty otherwise (reserved in early editions)."""
     station1_message2: rt.Number | None = None
-    """Second message requested from station 1: Number of a second message requested from station 1; empty when only one is asked for."""
+    """Second message requested from station 1: Number of a second message requested from station 1;
+    empty when only one is asked for."""
     station1_message2_subsection: rt.Number | None = None
     """Message sub-section: Sub-section of the second message from station 1, if any."""
     station2_mmsi: rt.Number | None = None
-    """MMSI of interrogated station 2: MMSI of a second station interrogated (may equal station 1); empty when none."""
+    """MMSI of interrogated station 2: MMSI of a second station interrogated (may equal station 1);
+    empty when none."""
     station2_message: rt.Number | None = None
     """Message requested from station 2: ITU-R M.1371 message number requested from station 2."""
     station2_message_subsection: rt.Number | None = None
     """Message sub-section: Sub-section of the message from station 2, if any."""
     channel: AbkChannel | str | None | rt._Absent = rt.ABSENT
-    """Channel of interrogation: Channel (A or B) to interrogate on; empty when no channel is assigned. Mobile stations ignore it. Later editions only."""
+    """Channel of interrogation: Channel (A or B) to interrogate on; empty when no channel is
+    assigned. Mobile stations ignore it. Later editions only."""
     station1_message1_slot: rt.Number | None | rt._Absent = rt.ABSENT
-    """Reply slot, station 1 first message: Start slot (0-2249) assigned for the reply to the first message of station 1; empty when none. Base stations only."""
+    """Reply slot, station 1 first message: Start slot (0-2249) assigned for the reply to the first
+    message of station 1; empty when none. Base stations only."""
     station1_message2_slot: rt.Number | None | rt._Absent = rt.ABSENT
-    """Reply slot, station 1 second message: Start slot assigned for the reply to the second message of station 1."""
+    """Reply slot, station 1 second message: Start slot assigned for the reply to the second message
+    of station 1."""
     station2_message_slot: rt.Number | None | rt._Absent = rt.ABSENT
     """Reply slot, station 2 message: Start slot assigned for the reply of station 2."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Air:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "AIR", 8, count)
-        if count > 12:
-            raise rt.too_many(address, "AIR", 12, count)
-        optional = count - 8
-        station1_mmsi = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "station1_mmsi", "integer", None, None, _INTEGER)) if fields[0] else None
-        station1_message1 = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "station1_message1", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        station1_message1_subsection = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "station1_message1_subsection", "integer", None, None, _INTEGER)) if fields[2] else None
-        station1_message2 = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "station1_message2", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        station1_message2_subsection = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "station1_message2_subsection", "integer", None, None, _INTEGER)) if fields[4] else None
-        station2_mmsi = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "station2_mmsi", "integer", None, None, _INTEGER)) if fields[5] else None
-        station2_message = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "station2_message", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        station2_message_subsection = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "station2_message_subsection", "integer", None, None, _INTEGER)) if fields[7] else None
-        channel: AbkChannel | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            channel = AbkChannel.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "channel", "abk_channel code (A B)", AbkChannel.BY_CODE, "letters", 1, 1)
-        station1_message1_slot: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            station1_message1_slot = (_INTEGER_0_TO_2249.get(fields[9]) or rt.integer_field(fields[9], address, 10, "station1_message1_slot", "integer 0..2249", 0, 2249, _INTEGER_0_TO_2249)) if fields[9] else None
-        station1_message2_slot: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            station1_message2_slot = (_INTEGER_0_TO_2249.get(fields[10]) or rt.integer_field(fields[10], address, 11, "station1_message2_slot", "integer 0..2249", 0, 2249, _INTEGER_0_TO_2249)) if fields[10] else None
-        station2_message_slot: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            station2_message_slot = (_INTEGER_0_TO_2249.get(fields[11]) or rt.integer_field(fields[11], address, 12, "station2_message_slot", "integer 0..2249", 0, 2249, _INTEGER_0_TO_2249)) if fields[11] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], station1_mmsi, station1_message1, station1_message1_subsection, station1_message2, station1_message2_subsection, station2_mmsi, station2_message, station2_message_subsection, channel, station1_message1_slot, station1_message2_slot, station2_message_slot, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.station1_mmsi),
-            rt.text_of(self.station1_message1),
-            rt.text_of(self.station1_message1_subsection),
-            rt.text_of(self.station1_message2),
-            rt.text_of(self.station1_message2_subsection),
-            rt.text_of(self.station2_mmsi),
-            rt.text_of(self.station2_message),
-            rt.text_of(self.station2_message_subsection),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.station2_message_slot is not rt.ABSENT:
-            last = 3
-        elif self.station1_message2_slot is not rt.ABSENT:
-            last = 2
-        elif self.station1_message1_slot is not rt.ABSENT:
-            last = 1
-        elif self.channel is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.channel)]
-        if last >= 1:
-            out += [rt.text_of(self.station1_message1_slot)]
-        if last >= 2:
-            out += [rt.text_of(self.station1_message2_slot)]
-        if last >= 3:
-            out += [rt.text_of(self.station2_message_slot)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "AIR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"station1_mmsi":' + show(self.station1_mmsi),
-            '"station1_message1":' + show(self.station1_message1),
-            '"station1_message1_subsection":' + show(self.station1_message1_subsection),
-            '"station1_message2":' + show(self.station1_message2),
-            '"station1_message2_subsection":' + show(self.station1_message2_subsection),
-            '"station2_mmsi":' + show(self.station2_mmsi),
-            '"station2_message":' + show(self.station2_message),
-            '"station2_message_subsection":' + show(self.station2_message_subsection),
-        ]
-        if self.channel is not rt.ABSENT:
-            parts.append('"channel":' + show(self.channel))
-        if self.station1_message1_slot is not rt.ABSENT:
-            parts.append('"station1_message1_slot":' + show(self.station1_message1_slot))
-        if self.station1_message2_slot is not rt.ABSENT:
-            parts.append('"station1_message2_slot":' + show(self.station1_message2_slot))
-        if self.station2_message_slot is not rt.ABSENT:
-            parts.append('"station2_message_slot":' + show(self.station2_message_slot))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "station1_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "station1_message1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "station1_message1_subsection"), 1)
-        out += rt.json_texts(rt.json_member(fields, "station1_message2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "station1_message2_subsection"), 1)
-        out += rt.json_texts(rt.json_member(fields, "station2_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "station2_message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "station2_message_subsection"), 1)
-        if "channel" in fields:
-            out += rt.json_texts(fields["channel"], 1)
-        if "station1_message1_slot" in fields:
-            out += rt.json_texts(fields["station1_message1_slot"], 1)
-        if "station1_message2_slot" in fields:
-            out += rt.json_texts(fields["station1_message2_slot"], 1)
-        if "station2_message_slot" in fields:
-            out += rt.json_texts(fields["station2_message_slot"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Air, )

@@ -14,15 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Akd:
+class Akd(rt.Sentence):
     """AKD: Acknowledge detail alarm condition.
-
     """
 
     SENTENCE: ClassVar[str] = "AKD"
@@ -32,6 +27,17 @@ class Akd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("AKD", "standard", "$", 8, 8, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("source_system", "text of at most 2 characters", 2),
+        rt.TextField("source_subsystem", "text of at most 2 characters", 2),
+        rt.IntegerField("source_instance", "integer"),
+        rt.IntegerField("alarm_type", "integer"),
+        rt.TextField("ack_system", "text of at most 2 characters", 2),
+        rt.TextField("ack_subsystem", "text of at most 2 characters", 2),
+        rt.IntegerField("ack_instance", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -40,94 +46,27 @@ class Akd:
     source_system: str | None = None
     """Source system indicator: System indicator of the alarm being acknowledged, as in its ALA."""
     source_subsystem: str | None = None
-    """Source sub-system indicator: Sub-system indicator of the alarm being acknowledged, as in its ALA; may be empty."""
+    """Source sub-system indicator: Sub-system indicator of the alarm being acknowledged, as in its
+    ALA; may be empty."""
     source_instance: rt.Number | None = None
-    """Source instance number: Instance number of the equipment, unit or item that raised the alarm, as in its ALA."""
+    """Source instance number: Instance number of the equipment, unit or item that raised the alarm,
+    as in its ALA."""
     alarm_type: rt.Number | None = None
     """Type of alarm: Three-digit alarm type of the alarm being acknowledged, as in its ALA."""
     ack_system: str | None = None
-    """Acknowledging system indicator: System indicator of the unit where the alarm was acknowledged; may be empty."""
+    """Acknowledging system indicator: System indicator of the unit where the alarm was
+    acknowledged; may be empty."""
     ack_subsystem: str | None = None
-    """Acknowledging sub-system indicator: Sub-system indicator of the acknowledging unit; may be empty."""
+    """Acknowledging sub-system indicator: Sub-system indicator of the acknowledging unit; may be
+    empty."""
     ack_instance: rt.Number | None = None
     """Acknowledging instance number: Instance number of the acknowledging unit; may be empty."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Akd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "AKD", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "AKD", 8, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        source_system = rt.text_field(fields[1], address, 2, "source_system", "text of at most 2 characters", 2)
-        source_subsystem = rt.text_field(fields[2], address, 3, "source_subsystem", "text of at most 2 characters", 2)
-        source_instance = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "source_instance", "integer", None, None, _INTEGER)) if fields[3] else None
-        alarm_type = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "alarm_type", "integer", None, None, _INTEGER)) if fields[4] else None
-        ack_system = rt.text_field(fields[5], address, 6, "ack_system", "text of at most 2 characters", 2)
-        ack_subsystem = rt.text_field(fields[6], address, 7, "ack_subsystem", "text of at most 2 characters", 2)
-        ack_instance = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "ack_instance", "integer", None, None, _INTEGER)) if fields[7] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, source_system, source_subsystem, source_instance, alarm_type, ack_system, ack_subsystem, ack_instance, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.source_system),
-            rt.text_of(self.source_subsystem),
-            rt.text_of(self.source_instance),
-            rt.text_of(self.alarm_type),
-            rt.text_of(self.ack_system),
-            rt.text_of(self.ack_subsystem),
-            rt.text_of(self.ack_instance),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "AKD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"source_system":' + show(self.source_system),
-            '"source_subsystem":' + show(self.source_subsystem),
-            '"source_instance":' + show(self.source_instance),
-            '"alarm_type":' + show(self.alarm_type),
-            '"ack_system":' + show(self.ack_system),
-            '"ack_subsystem":' + show(self.ack_subsystem),
-            '"ack_instance":' + show(self.ack_instance),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "source_system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "source_subsystem"), 1)
-        out += rt.json_texts(rt.json_member(fields, "source_instance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alarm_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ack_system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ack_subsystem"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ack_instance"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Akd, )

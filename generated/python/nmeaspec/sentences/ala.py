@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ALA: Report detailed alarm condition.
 
-Detailed alarm from a ship monitoring system (fire, engine, cargo, doors, ...), typically for
-the voyage data recorder: which system, sub-system and unit raised which type of alarm, its
-condition and acknowledge state.
+Detailed alarm from a ship monitoring system (fire, engine, cargo, doors, ...), typically for the
+voyage data recorder: which system, sub-system and unit raised which type of alarm, its condition
+and acknowledge state.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AlaAckState, AlaCondition
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Ala:
+class Ala(rt.Sentence):
     """ALA: Report detailed alarm condition.
 
-    Example (tyco_t1200c): $FRALA,,FR,OT,01,901,H,B,PANEL 01 ZONE 08 FAULT*6F
+    Example (go_nmea):
+    $FRALA,143955,FR,OT,00,901,N,V,Syst Fault : AutroSafe comm. OK*4F
     """
 
     SENTENCE: ClassVar[str] = "ALA"
@@ -35,102 +32,48 @@ class Ala:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ALA", "standard", "$", 8, 8, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("source_system", "text of at most 2 characters", 2),
+        rt.TextField("source_subsystem", "text of at most 2 characters", 2),
+        rt.IntegerField("instance", "integer"),
+        rt.IntegerField("alarm_type", "integer"),
+        rt.EnumField("condition", "ala_condition code (N H J L K X)", AlaCondition),
+        rt.EnumField("ack_state", "ala_ack_state code (A V B H O)", AlaAckState),
+        rt.TextField("description", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
-    """Event time: UTC time of the change of the alarm condition or acknowledge state; empty when not available (Tyco's VDR interface has no clock)."""
+    """Event time: UTC time of the change of the alarm condition or acknowledge state; empty when
+    not available (Tyco's VDR interface has no clock)."""
     source_system: str | None = None
-    """Source system indicator: Two letters naming the system where the alarm originates (the standard's annex table, e.g. FR fire detection system)."""
+    """Source system indicator: Two letters naming the system where the alarm originates (the
+    standard's annex table, e.g. FR fire detection system)."""
     source_subsystem: str | None = None
-    """Source sub-system indicator: Two letters naming the sub-system or equipment inside it (e.g. OT other); empty for group alarms or when no sub-system applies."""
+    """Source sub-system indicator: Two letters naming the sub-system or equipment inside it (e.g.
+    OT other); empty for group alarms or when no sub-system applies."""
     instance: rt.Number | None = None
     """Instance number: Number of the equipment, unit or item, two digits 00-99."""
     alarm_type: rt.Number | None = None
-    """Type of alarm: Three-digit alarm type from the standard's annex table; 900-999 are user defined (901 general)."""
+    """Type of alarm: Three-digit alarm type from the standard's annex table; 900-999 are user
+    defined (901 general)."""
     condition: AlaCondition | str | None = None
     """Alarm condition: N normal, H high, J extreme high, L low, K extreme low, X other."""
     ack_state: AlaAckState | str | None = None
-    """Acknowledge state: A acknowledged, V not acknowledged, B broadcast (no acknowledgement), H harbour mode, O override."""
+    """Acknowledge state: A acknowledged, V not acknowledged, B broadcast (no acknowledgement), H
+    harbour mode, O override."""
     description: str | None = None
-    """Description text: Optional descriptive text or alarm tag, limited only by the sentence length."""
+    """Description text: Optional descriptive text or alarm tag, limited only by the sentence
+    length."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ala:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "ALA", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "ALA", 8, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        source_system = rt.text_field(fields[1], address, 2, "source_system", "text of at most 2 characters", 2)
-        source_subsystem = rt.text_field(fields[2], address, 3, "source_subsystem", "text of at most 2 characters", 2)
-        instance = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "instance", "integer", None, None, _INTEGER)) if fields[3] else None
-        alarm_type = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "alarm_type", "integer", None, None, _INTEGER)) if fields[4] else None
-        condition = AlaCondition.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "condition", "ala_condition code (N H J L K X)", AlaCondition.BY_CODE, "letters", 1, 1)
-        ack_state = AlaAckState.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "ack_state", "ala_ack_state code (A V B H O)", AlaAckState.BY_CODE, "letters", 1, 1)
-        description = rt.text_field(fields[7], address, 8, "description", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, source_system, source_subsystem, instance, alarm_type, condition, ack_state, description, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.source_system),
-            rt.text_of(self.source_subsystem),
-            rt.text_of(self.instance),
-            rt.text_of(self.alarm_type),
-            rt.text_of(self.condition),
-            rt.text_of(self.ack_state),
-            rt.text_of(self.description),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ALA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"source_system":' + show(self.source_system),
-            '"source_subsystem":' + show(self.source_subsystem),
-            '"instance":' + show(self.instance),
-            '"alarm_type":' + show(self.alarm_type),
-            '"condition":' + show(self.condition),
-            '"ack_state":' + show(self.ack_state),
-            '"description":' + show(self.description),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "source_system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "source_subsystem"), 1)
-        out += rt.json_texts(rt.json_member(fields, "instance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alarm_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "condition"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ack_state"), 1)
-        out += rt.json_texts(rt.json_member(fields, "description"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ala, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ALC: Cyclic alert list.
 
-Bridge alert management: the list of the alerts an alert source currently holds, sent
-periodically (typically every 30 s) and on changes, so that the central alert management can
-detect lost ALF sentences. Each entry names an alert and its revision counter.
+Bridge alert management: the list of the alerts an alert source currently holds, sent periodically
+(typically every 30 s) and on changes, so that the central alert management can detect lost ALF
+sentences. Each entry names an alert and its revision counter.
 """
 
 from __future__ import annotations
@@ -15,18 +15,14 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-_INTEGER_1_TO_99: dict[Any, Any] = rt.known("integer 1..99")
-
 
 @dataclass(slots=True)
 class AlcAlert:
     """One entry of alert entries (0 to 10 per sentence)."""
 
     manufacturer: str | None = None
-    """Manufacturer mnemonic code: Manufacturer mnemonic for a proprietary alert; empty for a standardised alert."""
+    """Manufacturer mnemonic code: Manufacturer mnemonic for a proprietary alert; empty for a
+    standardised alert."""
     alert_id: rt.Number | None = None
     """Alert identifier: Alert identifier as in the alert's ALF sentence."""
     alert_instance: rt.Number | None = None
@@ -36,10 +32,11 @@ class AlcAlert:
 
 
 @dataclass(slots=True)
-class Alc:
+class Alc(rt.Sentence):
     """ALC: Cyclic alert list.
 
-    Example (go_nmea): $FBALC,02,01,03,01,FEB,01,02,03*0A
+    Example (go_nmea):
+    $FBALC,02,01,03,02,FEB,01,02,03,TEB,02,03,04*5f
     """
 
     SENTENCE: ClassVar[str] = "ALC"
@@ -49,102 +46,40 @@ class Alc:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ALC", "standard", "$", 4, 44, (
+        rt.IntegerField("sentence_count", "integer 1..99", 1, 99),
+        rt.IntegerField("sentence_number", "integer 1..99", 1, 99),
+        rt.IntegerField("sequence_id", "integer 0..99", 0, 99),
+        rt.IntegerField("entry_count", "integer"),
+        rt.Group("alerts", AlcAlert, (
+            rt.TextField("manufacturer", "text"),
+            rt.IntegerField("alert_id", "integer"),
+            rt.IntegerField("alert_instance", "integer"),
+            rt.IntegerField("revision_counter", "integer"),
+        ), 0, 10),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     sentence_count: rt.Number | None = None
-    """Total number of sentences: Number of ALC sentences that make up the list, 01-99; never empty."""
+    """Total number of sentences: Number of ALC sentences that make up the list, 01-99; never
+    empty."""
     sentence_number: rt.Number | None = None
     """Sentence number: Number of this sentence in the list, 01-99; never empty."""
     sequence_id: rt.Number | None = None
     """Sequential message identifier: Identifier 00-99 shared by all sentences of one list."""
     entry_count: rt.Number | None = None
-    """Number of alert entries: Number of alert entries carried in this sentence (Furuno 0-3); 0 when no alert is active."""
+    """Number of alert entries: Number of alert entries carried in this sentence (Furuno 0-3); 0
+    when no alert is active."""
     alerts: list[AlcAlert] = field(default_factory=list)
     """Alert entries: 0 to 10 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Alc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 4) // 4, 10)
-        optional = count - 4 - repeats * 4
-        if count < 4 or optional > 0:
-            rt.split_group(address, "ALC", "alerts", count, 4, 4, 0, 10, 0)
-        sentence_count = (_INTEGER_1_TO_99.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sentence_count", "integer 1..99", 1, 99, _INTEGER_1_TO_99)) if fields[0] else None
-        sentence_number = (_INTEGER_1_TO_99.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer 1..99", 1, 99, _INTEGER_1_TO_99)) if fields[1] else None
-        sequence_id = (_INTEGER_0_TO_99.get(fields[2]) or rt.integer_field(fields[2], address, 3, "sequence_id", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[2] else None
-        entry_count = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "entry_count", "integer", None, None, _INTEGER)) if fields[3] else None
-        alerts: list[AlcAlert] = []
-        pos = 4
-        for entry in range(repeats):
-            alerts.append(AlcAlert(
-                rt.text_field(fields[pos], address, pos + 1, f"alerts[{entry + 1}].manufacturer", "text", None),
-                (_INTEGER.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"alerts[{entry + 1}].alert_id", "integer", None, None, _INTEGER)) if fields[pos + 1] else None,
-                (_INTEGER.get(fields[pos + 2]) or rt.integer_field(fields[pos + 2], address, pos + 3, f"alerts[{entry + 1}].alert_instance", "integer", None, None, _INTEGER)) if fields[pos + 2] else None,
-                (_INTEGER.get(fields[pos + 3]) or rt.integer_field(fields[pos + 3], address, pos + 4, f"alerts[{entry + 1}].revision_counter", "integer", None, None, _INTEGER)) if fields[pos + 3] else None,
-            ))
-            pos += 4
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sentence_count, sentence_number, sequence_id, entry_count, alerts, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sentence_count),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.sequence_id),
-            rt.text_of(self.entry_count),
-        ]
-        for entry in self.alerts:
-            out += [rt.text_of(entry.manufacturer), rt.text_of(entry.alert_id), rt.text_of(entry.alert_instance), rt.text_of(entry.revision_counter)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ALC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sentence_count":' + show(self.sentence_count),
-            '"sentence_number":' + show(self.sentence_number),
-            '"sequence_id":' + show(self.sequence_id),
-            '"entry_count":' + show(self.entry_count),
-            '"alerts":[' + ",".join(
-                "{" + '"manufacturer":' + show(entry.manufacturer) + ',"alert_id":' + show(entry.alert_id) + ',"alert_instance":' + show(entry.alert_instance) + ',"revision_counter":' + show(entry.revision_counter) + "}"
-                for entry in self.alerts) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sentence_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sequence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "entry_count"), 1)
-        for entry in rt.json_list(fields, "alerts"):
-            out += rt.json_texts(rt.json_member(entry, "manufacturer"), 1)
-            out += rt.json_texts(rt.json_member(entry, "alert_id"), 1)
-            out += rt.json_texts(rt.json_member(entry, "alert_instance"), 1)
-            out += rt.json_texts(rt.json_member(entry, "revision_counter"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Alc, )

@@ -16,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AlfCategory, AlfPriority, AlfState
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_INTEGER_1_TO_2: dict[Any, Any] = rt.known("integer 1..2")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Alf:
+class Alf(rt.Sentence):
     """ALF: Alert sentence.
 
-    Example (pynmeagps): $IIALF,1,1,0,124304.50,A,W,A,,192,1,1,0,LOST TARGET*14
+    Example (pynmeagps):
+    $IIALF,2,1,1,081950.10,B,A,S,XYZ,0512,1,2,0,HEADING LOST*2D
     """
 
     SENTENCE: ClassVar[str] = "ALF"
@@ -37,6 +32,22 @@ class Alf:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ALF", "standard", "$", 13, 13, (
+        rt.IntegerField("sentence_count", "integer 1..2", 1, 2),
+        rt.IntegerField("sentence_number", "integer"),
+        rt.IntegerField("sequence_id", "integer 0..9", 0, 9),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("category", "alf_category code (A B C)", AlfCategory),
+        rt.EnumField("priority", "alf_priority code (E A W C)", AlfPriority),
+        rt.EnumField("state", "alf_state code (V S A O U N)", AlfState),
+        rt.TextField("manufacturer", "text"),
+        rt.IntegerField("alert_id", "integer"),
+        rt.IntegerField("alert_instance", "integer"),
+        rt.IntegerField("revision_counter", "integer"),
+        rt.IntegerField("escalation_counter", "integer"),
+        rt.TextField("text", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -45,124 +56,42 @@ class Alf:
     sentence_number: rt.Number | None = None
     """Sentence number: Number of this sentence, 1 or 2 (go-nmea's test sends 0)."""
     sequence_id: rt.Number | None = None
-    """Sequential message identifier: Identifier 0-9 linking the two sentences of one alert message."""
+    """Sequential message identifier: Identifier 0-9 linking the two sentences of one alert
+    message."""
     time: rt.Time | None = None
-    """Time of last change: UTC time of the last change of the alert data; empty in the second sentence."""
+    """Time of last change: UTC time of the last change of the alert data; empty in the second
+    sentence."""
     category: AlfCategory | str | None = None
     """Alert category: A, B or C (IEC 62923 alert categories); empty in the second sentence."""
     priority: AlfPriority | str | None = None
-    """Alert priority: E emergency alarm, A alarm, W warning, C caution; empty in the second sentence."""
+    """Alert priority: E emergency alarm, A alarm, W warning, C caution; empty in the second
+    sentence."""
     state: AlfState | str | None = None
-    """Alert state: V active unacknowledged, S active silenced, A active acknowledged, O responsibility transferred, U rectified unacknowledged, N normal; empty in the second sentence."""
+    """Alert state: V active unacknowledged, S active silenced, A active acknowledged, O
+    responsibility transferred, U rectified unacknowledged, N normal; empty in the second
+    sentence."""
     manufacturer: str | None = None
-    """Manufacturer mnemonic code: Manufacturer mnemonic for a proprietary alert (e.g. FEC, SAL, SKP); empty for a standardised alert."""
+    """Manufacturer mnemonic code: Manufacturer mnemonic for a proprietary alert (e.g. FEC, SAL,
+    SKP); empty for a standardised alert."""
     alert_id: rt.Number | None = None
-    """Alert identifier: Type of the alert, unique within its source, at most 7 digits; 10000-9999999 are reserved for proprietary alerts."""
+    """Alert identifier: Type of the alert, unique within its source, at most 7 digits;
+    10000-9999999 are reserved for proprietary alerts."""
     alert_instance: rt.Number | None = None
-    """Alert instance: Distinguishes alerts of the same type from the same source, 1-999999; may be empty."""
+    """Alert instance: Distinguishes alerts of the same type from the same source, 1-999999; may be
+    empty."""
     revision_counter: rt.Number | None = None
     """Revision counter: Incremented with each change of the alert's content or state, 1-99."""
     escalation_counter: rt.Number | None = None
     """Escalation counter: How often the alert was escalated, 0-9."""
     text: str | None = None
-    """Alert text: Alert title in the first sentence (Furuno: at most 16 characters), description in the second."""
+    """Alert text: Alert title in the first sentence (Furuno: at most 16 characters), description in
+    the second."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Alf:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 13:
-            raise rt.too_few(address, "ALF", 13, count)
-        if count > 13:
-            raise rt.too_many(address, "ALF", 13, count)
-        sentence_count = (_INTEGER_1_TO_2.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sentence_count", "integer 1..2", 1, 2, _INTEGER_1_TO_2)) if fields[0] else None
-        sentence_number = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer", None, None, _INTEGER)) if fields[1] else None
-        sequence_id = (_INTEGER_0_TO_9.get(fields[2]) or rt.integer_field(fields[2], address, 3, "sequence_id", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[2] else None
-        time = (_TIME.get(fields[3]) or rt.time_field(fields[3], address, 4, "time", "time hhmmss[.s]", _TIME)) if fields[3] else None
-        category = AlfCategory.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "category", "alf_category code (A B C)", AlfCategory.BY_CODE, "letters", 1, 1)
-        priority = AlfPriority.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "priority", "alf_priority code (E A W C)", AlfPriority.BY_CODE, "letters", 1, 1)
-        state = AlfState.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "state", "alf_state code (V S A O U N)", AlfState.BY_CODE, "letters", 1, 1)
-        manufacturer = rt.text_field(fields[7], address, 8, "manufacturer", "text", None)
-        alert_id = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "alert_id", "integer", None, None, _INTEGER)) if fields[8] else None
-        alert_instance = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "alert_instance", "integer", None, None, _INTEGER)) if fields[9] else None
-        revision_counter = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "revision_counter", "integer", None, None, _INTEGER)) if fields[10] else None
-        escalation_counter = (_INTEGER.get(fields[11]) or rt.integer_field(fields[11], address, 12, "escalation_counter", "integer", None, None, _INTEGER)) if fields[11] else None
-        text = rt.text_field(fields[12], address, 13, "text", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sentence_count, sentence_number, sequence_id, time, category, priority, state, manufacturer, alert_id, alert_instance, revision_counter, escalation_counter, text, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sentence_count),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.sequence_id),
-            rt.text_of(self.time),
-            rt.text_of(self.category),
-            rt.text_of(self.priority),
-            rt.text_of(self.state),
-            rt.text_of(self.manufacturer),
-            rt.text_of(self.alert_id),
-            rt.text_of(self.alert_instance),
-            rt.text_of(self.revision_counter),
-            rt.text_of(self.escalation_counter),
-            rt.text_of(self.text),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ALF",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sentence_count":' + show(self.sentence_count),
-            '"sentence_number":' + show(self.sentence_number),
-            '"sequence_id":' + show(self.sequence_id),
-            '"time":' + show(self.time),
-            '"category":' + show(self.category),
-            '"priority":' + show(self.priority),
-            '"state":' + show(self.state),
-            '"manufacturer":' + show(self.manufacturer),
-            '"alert_id":' + show(self.alert_id),
-            '"alert_instance":' + show(self.alert_instance),
-            '"revision_counter":' + show(self.revision_counter),
-            '"escalation_counter":' + show(self.escalation_counter),
-            '"text":' + show(self.text),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sentence_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sequence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "category"), 1)
-        out += rt.json_texts(rt.json_member(fields, "priority"), 1)
-        out += rt.json_texts(rt.json_member(fields, "state"), 1)
-        out += rt.json_texts(rt.json_member(fields, "manufacturer"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alert_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alert_instance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "revision_counter"), 1)
-        out += rt.json_texts(rt.json_member(fields, "escalation_counter"), 1)
-        out += rt.json_texts(rt.json_member(fields, "text"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Alf, )

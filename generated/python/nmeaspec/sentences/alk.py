@@ -14,23 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-
 
 @dataclass(slots=True)
-class AlkDataEntry:
-    """One entry of datagram bytes (0 to 23 per sentence)."""
-
-    byte: rt.Hex | None = None
-    """Data byte: Next byte of the datagram, two hex digits (the first is SeaTalk's attribute byte, whose low nibble gives the count of further bytes)."""
-
-
-@dataclass(slots=True)
-class Alk:
+class Alk(rt.Sentence):
     """ALK: SeaTalk datagram.
 
-    Example (marine_api): $STALK,52,A1,00,00*36
+    Example (marine_api):
+    $STALK,52,A1,00,00*36
     """
 
     SENTENCE: ClassVar[str] = "ALK"
@@ -40,74 +30,27 @@ class Alk:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ALK", "standard", "$", 1, 24, (
+        rt.HexField("command", "hex number"),
+        rt.Group("data", None, (
+            rt.HexField("byte", "hex number"),
+        ), 0, 23),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     command: rt.Hex | None = None
-    """Command byte: SeaTalk command (datagram type), e.g. 9C compass heading and rudder position, 52 speed over ground."""
+    """Command byte: SeaTalk command (datagram type), e.g. 9C compass heading and rudder position,
+    52 speed over ground."""
     data: list[rt.Hex | None] = field(default_factory=list)
     """Datagram bytes: 0 to 23 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Alk:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 1) // 1, 23)
-        optional = count - 1 - repeats * 1
-        if count < 1 or optional > 0:
-            rt.split_group(address, "ALK", "data", count, 1, 1, 0, 23, 0)
-        command = (_HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "command", "hex number", _HEX)) if fields[0] else None
-        data: list[rt.Hex | None] = []
-        pos = 1
-        for entry in range(repeats):
-            data.append((_HEX.get(fields[pos]) or rt.hex_field(fields[pos], address, pos + 1, f"data[{entry + 1}].byte", "hex number", _HEX)) if fields[pos] else None)
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], command, data, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-        ]
-        for entry in self.data:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ALK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-            '"data":[' + ",".join(show(entry) for entry in self.data) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        for entry in rt.json_list(fields, "data"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Alk, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ALM: GPS almanac data.
 
-Almanac of one GPS satellite, one sentence per satellite. The orbital and clock parameters are
-the raw bit fields of the almanac page (subframes 4 and 5), sent as hexadecimal numbers with the
-scaling of the GPS interface specification left to the listener.
+Almanac of one GPS satellite, one sentence per satellite. The orbital and clock parameters are the
+raw bit fields of the almanac page (subframes 4 and 5), sent as hexadecimal numbers with the scaling
+of the GPS interface specification left to the listener.
 """
 
 from __future__ import annotations
@@ -15,18 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
-_INTEGER_1_TO_32: dict[Any, Any] = rt.known("integer 1..32")
-
 
 @dataclass(slots=True)
-class Alm:
+class Alm(rt.Sentence):
     """ALM: GPS almanac data.
 
-    Example (aerorust_nmea): $GPALM,31,1,02,1617,00,50F6,0F,FD98,FD39,A10CF3,81389B,423632,BD913C,148,001*3C
+    Example (aerorust_nmea):
+    $GPALM,31,1,02,1617,00,50F6,0F,FD98,FD39,A10CF3,81389B,423632,BD913C,148,001*3C
     """
 
     SENTENCE: ClassVar[str] = "ALM"
@@ -36,17 +31,38 @@ class Alm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ALM", "standard", "$", 15, 15, (
+        rt.IntegerField("total_sentences", "integer of at least 1", 1, None),
+        rt.IntegerField("sentence_number", "integer of at least 1", 1, None),
+        rt.IntegerField("prn", "integer 1..32", 1, 32),
+        rt.IntegerField("gps_week", "integer"),
+        rt.HexField("sv_health", "hex number"),
+        rt.HexField("eccentricity", "hex number"),
+        rt.HexField("reference_time", "hex number"),
+        rt.HexField("inclination", "hex number"),
+        rt.HexField("right_ascension_rate", "hex number"),
+        rt.HexField("sqrt_semi_major_axis", "hex number"),
+        rt.HexField("perigee_argument", "hex number"),
+        rt.HexField("ascending_node_longitude", "hex number"),
+        rt.HexField("mean_anomaly", "hex number"),
+        rt.HexField("clock_af0", "hex number"),
+        rt.HexField("clock_af1", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     total_sentences: rt.Number | None = None
-    """Total number of sentences: Number of ALM sentences of this transmission (one per satellite)."""
+    """Total number of sentences: Number of ALM sentences of this transmission (one per
+    satellite)."""
     sentence_number: rt.Number | None = None
     """Sentence number: Number of this sentence within the transmission."""
     prn: rt.Number | None = None
     """Satellite PRN: PRN number of the satellite, 01-32."""
     gps_week: rt.Number | None = None
-    """GPS week number: GPS week number of the almanac. Classic receivers send the 10-bit week (0-1023, rolling over every 19.7 years); a 13-bit week counts from the same epoch, 6 January 1980."""
+    """GPS week number: GPS week number of the almanac. Classic receivers send the 10-bit week
+    (0-1023, rolling over every 19.7 years); a 13-bit week counts from the same epoch, 6 January
+    1980."""
     sv_health: rt.Hex | None = None
     """Satellite health: Health bits, bits 17-24 of each almanac page."""
     eccentricity: rt.Hex | None = None
@@ -70,110 +86,11 @@ class Alm:
     clock_af1: rt.Hex | None = None
     """Clock parameter af1: Satellite clock drift parameter af1, raw value."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Alm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 15:
-            raise rt.too_few(address, "ALM", 15, count)
-        if count > 15:
-            raise rt.too_many(address, "ALM", 15, count)
-        total_sentences = (_INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "total_sentences", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[0] else None
-        sentence_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
-        prn = (_INTEGER_1_TO_32.get(fields[2]) or rt.integer_field(fields[2], address, 3, "prn", "integer 1..32", 1, 32, _INTEGER_1_TO_32)) if fields[2] else None
-        gps_week = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "gps_week", "integer", None, None, _INTEGER)) if fields[3] else None
-        sv_health = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "sv_health", "hex number", _HEX)) if fields[4] else None
-        eccentricity = (_HEX.get(fields[5]) or rt.hex_field(fields[5], address, 6, "eccentricity", "hex number", _HEX)) if fields[5] else None
-        reference_time = (_HEX.get(fields[6]) or rt.hex_field(fields[6], address, 7, "reference_time", "hex number", _HEX)) if fields[6] else None
-        inclination = (_HEX.get(fields[7]) or rt.hex_field(fields[7], address, 8, "inclination", "hex number", _HEX)) if fields[7] else None
-        right_ascension_rate = (_HEX.get(fields[8]) or rt.hex_field(fields[8], address, 9, "right_ascension_rate", "hex number", _HEX)) if fields[8] else None
-        sqrt_semi_major_axis = (_HEX.get(fields[9]) or rt.hex_field(fields[9], address, 10, "sqrt_semi_major_axis", "hex number", _HEX)) if fields[9] else None
-        perigee_argument = (_HEX.get(fields[10]) or rt.hex_field(fields[10], address, 11, "perigee_argument", "hex number", _HEX)) if fields[10] else None
-        ascending_node_longitude = (_HEX.get(fields[11]) or rt.hex_field(fields[11], address, 12, "ascending_node_longitude", "hex number", _HEX)) if fields[11] else None
-        mean_anomaly = (_HEX.get(fields[12]) or rt.hex_field(fields[12], address, 13, "mean_anomaly", "hex number", _HEX)) if fields[12] else None
-        clock_af0 = (_HEX.get(fields[13]) or rt.hex_field(fields[13], address, 14, "clock_af0", "hex number", _HEX)) if fields[13] else None
-        clock_af1 = (_HEX.get(fields[14]) or rt.hex_field(fields[14], address, 15, "clock_af1", "hex number", _HEX)) if fields[14] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], total_sentences, sentence_number, prn, gps_week, sv_health, eccentricity, reference_time, inclination, right_ascension_rate, sqrt_semi_major_axis, perigee_argument, ascending_node_longitude, mean_anomaly, clock_af0, clock_af1, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.total_sentences),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.prn),
-            rt.text_of(self.gps_week),
-            rt.text_of(self.sv_health),
-            rt.text_of(self.eccentricity),
-            rt.text_of(self.reference_time),
-            rt.text_of(self.inclination),
-            rt.text_of(self.right_ascension_rate),
-            rt.text_of(self.sqrt_semi_major_axis),
-            rt.text_of(self.perigee_argument),
-            rt.text_of(self.ascending_node_longitude),
-            rt.text_of(self.mean_anomaly),
-            rt.text_of(self.clock_af0),
-            rt.text_of(self.clock_af1),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ALM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"total_sentences":' + show(self.total_sentences),
-            '"sentence_number":' + show(self.sentence_number),
-            '"prn":' + show(self.prn),
-            '"gps_week":' + show(self.gps_week),
-            '"sv_health":' + show(self.sv_health),
-            '"eccentricity":' + show(self.eccentricity),
-            '"reference_time":' + show(self.reference_time),
-            '"inclination":' + show(self.inclination),
-            '"right_ascension_rate":' + show(self.right_ascension_rate),
-            '"sqrt_semi_major_axis":' + show(self.sqrt_semi_major_axis),
-            '"perigee_argument":' + show(self.perigee_argument),
-            '"ascending_node_longitude":' + show(self.ascending_node_longitude),
-            '"mean_anomaly":' + show(self.mean_anomaly),
-            '"clock_af0":' + show(self.clock_af0),
-            '"clock_af1":' + show(self.clock_af1),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "total_sentences"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "prn"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sv_health"), 1)
-        out += rt.json_texts(rt.json_member(fields, "eccentricity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reference_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "inclination"), 1)
-        out += rt.json_texts(rt.json_member(fields, "right_ascension_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sqrt_semi_major_axis"), 1)
-        out += rt.json_texts(rt.json_member(fields, "perigee_argument"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ascending_node_longitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mean_anomaly"), 1)
-        out += rt.json_texts(rt.json_member(fields, "clock_af0"), 1)
-        out += rt.json_texts(rt.json_member(fields, "clock_af1"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Alm, )

@@ -4,8 +4,8 @@
 """ALR: Set alarm state.
 
 Reports one local alarm of a device: when its condition last changed, whether it is active and
-whether it has been acknowledged, with a short text. The pre-BAM alarm sentence, answered by
-ACK; bridge alert management replaces it with ALF, ALC and ACN.
+whether it has been acknowledged, with a short text. The pre-BAM alarm sentence, answered by ACK;
+bridge alert management replaces it with ALF, ALC and ACN.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AlrAckState, AlrCondition
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Alr:
+class Alr(rt.Sentence):
     """ALR: Set alarm state.
 
-    Example (pynmea2): $AIALR,,006,V,V,AIS:general failure*1A
+    Example (marnav):
+    $AIALR,000000.00,026,A,V,AIS: no position sensor in use*5D
     """
 
     SENTENCE: ClassVar[str] = "ALR"
@@ -35,84 +32,36 @@ class Alr:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ALR", "standard", "$", 5, 5, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.IntegerField("alarm_number", "integer"),
+        rt.EnumField("condition", "alr_condition code (A V)", AlrCondition),
+        rt.EnumField("ack_state", "alr_ack_state code (A V)", AlrAckState),
+        rt.TextField("description", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
-    """Time of alarm condition change: UTC time of the last change of the alarm condition; empty when the source has no clock."""
+    """Time of alarm condition change: UTC time of the last change of the alarm condition; empty
+    when the source has no clock."""
     alarm_number: rt.Number | None = None
-    """Alarm number: Identifier of the alarm, unique at its source (three digits in the standard, e.g. 006; Furuno VR-7000 000-999, JRC speed logs group ranges per unit)."""
+    """Alarm number: Identifier of the alarm, unique at its source (three digits in the standard,
+    e.g. 006; Furuno VR-7000 000-999, JRC speed logs group ranges per unit)."""
     condition: AlrCondition | str | None = None
     """Alarm condition: A = threshold exceeded (alarm active), V = not exceeded."""
     ack_state: AlrAckState | str | None = None
     """Acknowledge state: A = acknowledged, V = not acknowledged."""
     description: str | None = None
-    """Alarm description: Description of the alarm, free text limited only by the sentence length."""
+    """Alarm description: Description of the alarm, free text limited only by the sentence
+    length."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Alr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "ALR", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "ALR", 5, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        alarm_number = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "alarm_number", "integer", None, None, _INTEGER)) if fields[1] else None
-        condition = AlrCondition.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "condition", "alr_condition code (A V)", AlrCondition.BY_CODE, "letters", 1, 1)
-        ack_state = AlrAckState.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "ack_state", "alr_ack_state code (A V)", AlrAckState.BY_CODE, "letters", 1, 1)
-        description = rt.text_field(fields[4], address, 5, "description", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, alarm_number, condition, ack_state, description, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.alarm_number),
-            rt.text_of(self.condition),
-            rt.text_of(self.ack_state),
-            rt.text_of(self.description),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ALR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"alarm_number":' + show(self.alarm_number),
-            '"condition":' + show(self.condition),
-            '"ack_state":' + show(self.ack_state),
-            '"description":' + show(self.description),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alarm_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "condition"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ack_state"), 1)
-        out += rt.json_texts(rt.json_member(fields, "description"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Alr, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """APA: Autopilot sentence A.
 
-Older autopilot sentence: receiver status flags, cross-track error and direction to steer,
-arrival status and the bearing from the origin to the destination waypoint. APB, which adds the
-bearing from the present position and the heading to steer, is recommended instead.
+Older autopilot sentence: receiver status flags, cross-track error and direction to steer, arrival
+status and the bearing from the origin to the destination waypoint. APB, which adds the bearing from
+the present position and the heading to steer, is recommended instead.
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AamArrivalCircle, AamPerpendicular, ApbBearingRef, LeftRight, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Apa:
+class Apa(rt.Sentence):
     """APA: Autopilot sentence A.
 
-    Example (marnav): $GPAPA,A,A,0.10,R,N,V,V,011,M,DEST*3F
+    Example (marnav):
+    $GPAPA,A,A,0.10,R,N,V,V,011,M,DEST*3F
     """
 
     SENTENCE: ClassVar[str] = "APA"
@@ -34,11 +32,29 @@ class Apa:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("APA", "standard", "$", 10, 10, (
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.EnumField("cycle_lock_status", "status code (A V)", Status),
+        rt.DecimalField("cross_track_error", "decimal number of at least 0", 0, None),
+        rt.EnumField("steer_direction", "left_right code (L R)", LeftRight),
+        rt.LiteralField("cross_track_error_unit", "N or nothing", "N"),
+        rt.EnumField("arrival_circle", "aam_arrival_circle code (A V)", AamArrivalCircle),
+        rt.EnumField("perpendicular", "aam_perpendicular code (A V)", AamPerpendicular),
+        rt.DecimalField("bearing_origin_to_destination", "decimal number of at least 0", 0, None),
+        rt.EnumField(
+            "bearing_origin_to_destination_ref",
+            "apb_bearing_ref code (M T)",
+            ApbBearingRef,
+        ),
+        rt.TextField("destination_waypoint", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     status: Status | str | None = None
-    """Data status: A = data valid; V = Loran-C blink or SNR warning, or general warning (no reliable fix)."""
+    """Data status: A = data valid; V = Loran-C blink or SNR warning, or general warning (no
+    reliable fix)."""
     cycle_lock_status: Status | str | None = None
     """Cycle lock status: A = valid or not used; V = Loran-C cycle lock warning."""
     cross_track_error: rt.Number | None = None
@@ -52,96 +68,19 @@ class Apa:
     perpendicular: AamPerpendicular | str | None = None
     """Perpendicular status: A = perpendicular passed at the waypoint, V = not passed."""
     bearing_origin_to_destination: rt.Number | None = None
-    """Bearing, origin to destination [deg]: Bearing of the course line from the origin to the destination waypoint."""
+    """Bearing, origin to destination [deg]: Bearing of the course line from the origin to the
+    destination waypoint."""
     bearing_origin_to_destination_ref: ApbBearingRef | str | None = None
-    """Bearing reference: M = magnetic, T = true (the NMEA list of superseded sentences and Magellan's v1.5 output give magnetic only)."""
+    """Bearing reference: M = magnetic, T = true (the NMEA list of superseded sentences and
+    Magellan's v1.5 output give magnetic only)."""
     destination_waypoint: str | None = None
     """Destination waypoint ID: Identifier of the destination waypoint."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Apa:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 10:
-            raise rt.too_few(address, "APA", 10, count)
-        if count > 10:
-            raise rt.too_many(address, "APA", 10, count)
-        status = Status.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        cycle_lock_status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "cycle_lock_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        cross_track_error = (_DECIMAL_0_TO.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "cross_track_error", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[2] else None
-        steer_direction = LeftRight.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "steer_direction", "left_right code (L R)", LeftRight.BY_CODE, "letters", 1, 1)
-        cross_track_error_unit = "N" if fields[4] == "N" else rt.literal_field(fields[4], address, 5, "cross_track_error_unit", "N or nothing", "N")
-        arrival_circle = AamArrivalCircle.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "arrival_circle", "aam_arrival_circle code (A V)", AamArrivalCircle.BY_CODE, "letters", 1, 1)
-        perpendicular = AamPerpendicular.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "perpendicular", "aam_perpendicular code (A V)", AamPerpendicular.BY_CODE, "letters", 1, 1)
-        bearing_origin_to_destination = (_DECIMAL_0_TO.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "bearing_origin_to_destination", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[7] else None
-        bearing_origin_to_destination_ref = ApbBearingRef.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "bearing_origin_to_destination_ref", "apb_bearing_ref code (M T)", ApbBearingRef.BY_CODE, "letters", 1, 1)
-        destination_waypoint = rt.text_field(fields[9], address, 10, "destination_waypoint", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], status, cycle_lock_status, cross_track_error, steer_direction, cross_track_error_unit, arrival_circle, perpendicular, bearing_origin_to_destination, bearing_origin_to_destination_ref, destination_waypoint, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.cycle_lock_status),
-            rt.text_of(self.cross_track_error),
-            rt.text_of(self.steer_direction),
-            rt.text_of(self.cross_track_error_unit),
-            rt.text_of(self.arrival_circle),
-            rt.text_of(self.perpendicular),
-            rt.text_of(self.bearing_origin_to_destination),
-            rt.text_of(self.bearing_origin_to_destination_ref),
-            rt.text_of(self.destination_waypoint),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "APA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"cycle_lock_status":' + show(self.cycle_lock_status),
-            '"cross_track_error":' + show(self.cross_track_error),
-            '"steer_direction":' + show(self.steer_direction),
-            '"cross_track_error_unit":' + show(self.cross_track_error_unit),
-            '"arrival_circle":' + show(self.arrival_circle),
-            '"perpendicular":' + show(self.perpendicular),
-            '"bearing_origin_to_destination":' + show(self.bearing_origin_to_destination),
-            '"bearing_origin_to_destination_ref":' + show(self.bearing_origin_to_destination_ref),
-            '"destination_waypoint":' + show(self.destination_waypoint),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cycle_lock_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cross_track_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "steer_direction"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cross_track_error_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "arrival_circle"), 1)
-        out += rt.json_texts(rt.json_member(fields, "perpendicular"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_origin_to_destination"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_origin_to_destination_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "destination_waypoint"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Apa, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """BEC: Bearing and distance to waypoint, dead reckoning.
 
-Bearing (true and magnetic) and distance to a waypoint along the great circle, computed from a
-dead-reckoned present position, with the waypoint's position and the time of the observation.
+Bearing (true and magnetic) and distance to a waypoint along the great circle, computed from a dead-
+reckoned present position, with the waypoint's position and the time of the observation.
 """
 
 from __future__ import annotations
@@ -15,18 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import PosMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Bec:
+class Bec(rt.Sentence):
     """BEC: Bearing and distance to waypoint, dead reckoning.
 
-    Example (go_nmea): $GPBEC,220516,5130.02,N,00046.34,W,213.8,T,218.0,M,0004.6,N,EGLM*33
+    Example (go_nmea):
+    $GPBEC,220516,5130.02,N,00046.34,W,213.8,T,218.0,M,0004.6,N,EGLM*33
     """
 
     SENTENCE: ClassVar[str] = "BEC"
@@ -36,6 +31,20 @@ class Bec:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("BEC", "standard", "$", 12, 13, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("waypoint_lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("waypoint_lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("bearing_true", "decimal number of at least 0", 0, None),
+        rt.LiteralField("bearing_true_ref", "T or nothing", "T"),
+        rt.DecimalField("bearing_magnetic", "decimal number of at least 0", 0, None),
+        rt.LiteralField("bearing_magnetic_ref", "M or nothing", "M"),
+        rt.DecimalField("distance", "decimal number of at least 0", 0, None),
+        rt.LiteralField("distance_unit", "N or nothing", "N"),
+        rt.TextField("waypoint", "text"),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -60,107 +69,14 @@ class Bec:
     waypoint: str | None = None
     """Waypoint ID: Identifier of the waypoint."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
-    """Mode indicator: Positioning system mode indicator; only pynmea2 lists it for BEC (see notes)."""
+    """Mode indicator: Positioning system mode indicator; only pynmea2 lists it for BEC (see
+    notes)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Bec:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "BEC", 12, count)
-        if count > 13:
-            raise rt.too_many(address, "BEC", 13, count)
-        optional = count - 12
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        waypoint_lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "waypoint_lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        waypoint_lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "waypoint_lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        bearing_true = (_DECIMAL_0_TO.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "bearing_true", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[5] else None
-        bearing_true_ref = "T" if fields[6] == "T" else rt.literal_field(fields[6], address, 7, "bearing_true_ref", "T or nothing", "T")
-        bearing_magnetic = (_DECIMAL_0_TO.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "bearing_magnetic", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[7] else None
-        bearing_magnetic_ref = "M" if fields[8] == "M" else rt.literal_field(fields[8], address, 9, "bearing_magnetic_ref", "M or nothing", "M")
-        distance = (_DECIMAL_0_TO.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "distance", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[9] else None
-        distance_unit = "N" if fields[10] == "N" else rt.literal_field(fields[10], address, 11, "distance_unit", "N or nothing", "N")
-        waypoint = rt.text_field(fields[11], address, 12, "waypoint", "text", None)
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, waypoint_lat, waypoint_lon, bearing_true, bearing_true_ref, bearing_magnetic, bearing_magnetic_ref, distance, distance_unit, waypoint, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.waypoint_lat),
-            *rt.coordinate_texts(self.waypoint_lon),
-            rt.text_of(self.bearing_true),
-            rt.text_of(self.bearing_true_ref),
-            rt.text_of(self.bearing_magnetic),
-            rt.text_of(self.bearing_magnetic_ref),
-            rt.text_of(self.distance),
-            rt.text_of(self.distance_unit),
-            rt.text_of(self.waypoint),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "BEC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"waypoint_lat":' + show(self.waypoint_lat),
-            '"waypoint_lon":' + show(self.waypoint_lon),
-            '"bearing_true":' + show(self.bearing_true),
-            '"bearing_true_ref":' + show(self.bearing_true_ref),
-            '"bearing_magnetic":' + show(self.bearing_magnetic),
-            '"bearing_magnetic_ref":' + show(self.bearing_magnetic_ref),
-            '"distance":' + show(self.distance),
-            '"distance_unit":' + show(self.distance_unit),
-            '"waypoint":' + show(self.waypoint),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "waypoint_lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "waypoint_lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "bearing_true"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_true_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_magnetic"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_magnetic_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "waypoint"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Bec, )

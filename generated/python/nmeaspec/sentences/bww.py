@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """BWW: Bearing, waypoint to waypoint.
 
-Bearing from the FROM waypoint to the TO waypoint, computed at the FROM waypoint, in degrees
-true and magnetic.
+Bearing from the FROM waypoint to the TO waypoint, computed at the FROM waypoint, in degrees true
+and magnetic.
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Bww:
+class Bww(rt.Sentence):
     """BWW: Bearing, waypoint to waypoint.
 
-    Example (aerorust_nmea): $GPBWW,213.8,T,218.0,M,TOWPT,FROMWPT*42
+    Example (aerorust_nmea):
+    $GPBWW,213.8,T,218.0,M,TOWPT,FROMWPT*42
     """
 
     SENTENCE: ClassVar[str] = "BWW"
@@ -32,6 +30,15 @@ class Bww:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("BWW", "standard", "$", 6, 6, (
+        rt.DecimalField("bearing_true", "decimal number of at least 0", 0, None),
+        rt.LiteralField("bearing_true_ref", "T or nothing", "T"),
+        rt.DecimalField("bearing_magnetic", "decimal number of at least 0", 0, None),
+        rt.LiteralField("bearing_magnetic_ref", "M or nothing", "M"),
+        rt.TextField("to_waypoint", "text"),
+        rt.TextField("from_waypoint", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -48,74 +55,11 @@ class Bww:
     from_waypoint: str | None = None
     """FROM waypoint ID: Identifier of the FROM (origin) waypoint."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Bww:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "BWW", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "BWW", 6, count)
-        bearing_true = (_DECIMAL_0_TO.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "bearing_true", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[0] else None
-        bearing_true_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "bearing_true_ref", "T or nothing", "T")
-        bearing_magnetic = (_DECIMAL_0_TO.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "bearing_magnetic", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[2] else None
-        bearing_magnetic_ref = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "bearing_magnetic_ref", "M or nothing", "M")
-        to_waypoint = rt.text_field(fields[4], address, 5, "to_waypoint", "text", None)
-        from_waypoint = rt.text_field(fields[5], address, 6, "from_waypoint", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], bearing_true, bearing_true_ref, bearing_magnetic, bearing_magnetic_ref, to_waypoint, from_waypoint, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.bearing_true),
-            rt.text_of(self.bearing_true_ref),
-            rt.text_of(self.bearing_magnetic),
-            rt.text_of(self.bearing_magnetic_ref),
-            rt.text_of(self.to_waypoint),
-            rt.text_of(self.from_waypoint),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "BWW",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"bearing_true":' + show(self.bearing_true),
-            '"bearing_true_ref":' + show(self.bearing_true_ref),
-            '"bearing_magnetic":' + show(self.bearing_magnetic),
-            '"bearing_magnetic_ref":' + show(self.bearing_magnetic_ref),
-            '"to_waypoint":' + show(self.to_waypoint),
-            '"from_waypoint":' + show(self.from_waypoint),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "bearing_true"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_true_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_magnetic"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_magnetic_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "to_waypoint"), 1)
-        out += rt.json_texts(rt.json_member(fields, "from_waypoint"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Bww, )

@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """COMNAV_LOG: Request periodic output of an NMEA message.
 
-ComNav plain-text command LOG <message> ONTIME <period>: makes the receiver output the named
-NMEA message periodically, every <period> seconds. The message names always use the GP prefix,
-whatever talker ID the output carries (see NMEATALKER). The manual prints one such command per
-message, all with a period of 1.
+ComNav plain-text command LOG <message> ONTIME <period>: makes the receiver output the named NMEA
+message periodically, every <period> seconds. The message names always use the GP prefix, whatever
+talker ID the output carries (see NMEATALKER). The manual prints one such command per message, all
+with a period of 1.
 """
 
 from __future__ import annotations
@@ -17,15 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import ComnavLogMessage
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class ComnavLog:
+class ComnavLog(rt.Sentence):
     """COMNAV_LOG: Request periodic output of an NMEA message.
 
-    Example (comnav): LOG GPGGA ONTIME 1
+    Example (comnav):
+    LOG GPGGA ONTIME 1
     """
 
     SENTENCE: ClassVar[str] = "COMNAV_LOG"
@@ -54,74 +52,32 @@ class ComnavLog:
         ("ZDA", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
-    FIELD_IDS: ClassVar[tuple[str, ...]] = ("message", "trigger", "period", )
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("COMNAV_LOG", "text", "$", 3, 3, (
+        rt.EnumField(
+            "message",
+            "comnav_log_message code (GPGGA GPGLL GPGSA GPGST GPGSV GPHDT GPRMC GPVTG GPZDA)",
+            ComnavLogMessage,
+        ),
+        rt.KeywordField("trigger", "ONTIME", "ONTIME"),
+        rt.DecimalField("period", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     as_received: str | None = None
     """The command as received; written back in its letter case when the words still match."""
     message: ComnavLogMessage | str | None = None
     """Message: The NMEA log to output (manual Table 2)."""
     trigger: str = "ONTIME"
-    """ONTIME trigger: The word ONTIME, output at a fixed time interval; the only trigger the manual shows."""
+    """ONTIME trigger: The word ONTIME, output at a fixed time interval; the only trigger the manual
+    shows."""
     period: rt.Number | None = None
-    """Period [s]: Interval between two outputs in seconds. The manual prints only 1 and states no range; ComNav's OEM reference describes the period as a time interval in seconds that may be fractional (e.g. 0.2 for 5 Hz) down to the model's maximum output rate."""
+    """Period [s]: Interval between two outputs in seconds. The manual prints only 1 and states no
+    range; ComNav's OEM reference describes the period as a time interval in seconds that may be
+    fractional (e.g. 0.2 for 5 Hz) down to the model's maximum output rate."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: ClassVar[str | None] = None
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> ComnavLog:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "COMNAV_LOG", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "COMNAV_LOG", 3, count)
-        message = rt.enum_field(fields[0], address, 1, "message", "comnav_log_message code (GPGGA GPGLL GPGSA GPGST GPGSV GPHDT GPRMC GPVTG GPZDA)", ComnavLogMessage.BY_CODE, "letters", 5, 5, True)
-        trigger = rt.keyword_field(fields[1], address, 2, "trigger", "ONTIME", "ONTIME", True)
-        period = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "period", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(line, message, trigger, period, [])
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message),
-            rt.text_of(self.trigger),
-            rt.text_of(self.period),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The command text, words separated by single spaces; no line ending."""
-        return rt.assemble_text("LOG", rt.with_problems(self.fields(), self.problems),
-                                self.as_received)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, True)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        if not values:
-            return rt.words_json(self.FIELD_IDS, self.to_sentence())
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message":' + show(self.message),
-            '"trigger":' + show(self.trigger),
-            '"period":' + show(self.period),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "trigger"), 1)
-        out += rt.json_texts(rt.json_member(fields, "period"), 1)
-        return out
 
 
 LAYOUTS: tuple[Any, ...] = (ComnavLog, )

@@ -3,11 +3,11 @@
 # Regenerate: make generate (python3 -m generator generate)
 """COMNAV_NMEATALKER: Set, list or reset the NMEA talker IDs.
 
-ComNav plain-text command that controls the talker ID in front of the NMEA sentences the
-receiver outputs. The main form sets the talker of one sentence (or of all nine) to a fixed ID
-or to AUTO; the LIST form asks for the talker IDs of all current NMEA messages and the RESET
-form restores the factory talker IDs. It only changes the output: the LOG command still names
-the messages with GP (LOG GPGGA ...).
+ComNav plain-text command that controls the talker ID in front of the NMEA sentences the receiver
+outputs. The main form sets the talker of one sentence (or of all nine) to a fixed ID or to AUTO;
+the LIST form asks for the talker IDs of all current NMEA messages and the RESET form restores the
+factory talker IDs. It only changes the output: the LOG command still names the messages with GP
+(LOG GPGGA ...).
 """
 
 from __future__ import annotations
@@ -20,9 +20,8 @@ from ..enums import ComnavTalkerId, ComnavTalkerSentence
 
 
 @dataclass(slots=True)
-class ComnavNmeatalker:
+class ComnavNmeatalker(rt.Sentence):
     """COMNAV_NMEATALKER: Set, list or reset the NMEA talker IDs.
-
     """
 
     SENTENCE: ClassVar[str] = "COMNAV_NMEATALKER"
@@ -32,78 +31,38 @@ class ComnavNmeatalker:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
-    FIELD_IDS: ClassVar[tuple[str, ...]] = ("message", "talker_id", )
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("COMNAV_NMEATALKER", "text", "$", 2, 2, (
+        rt.EnumField(
+            "message",
+            "comnav_talker_sentence code (GGA GSA GSV GST ZDA HDT RMC VTG GLL ALL)",
+            ComnavTalkerSentence,
+        ),
+        rt.EnumField("talker_id", "comnav_talker_id code (GN GP BD GL GA AUTO)", ComnavTalkerId),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     as_received: str | None = None
     """The command as received; written back in its letter case when the words still match."""
     message: ComnavTalkerSentence | str | None = None
     """Sentence: The sentence whose talker ID is set, or ALL for all nine."""
     talker_id: ComnavTalkerId | str | None = None
-    """Talker ID: The talker ID to use (GN, GP, BD, GL, GA), or AUTO to follow the constellations of the current solution."""
+    """Talker ID: The talker ID to use (GN, GP, BD, GL, GA), or AUTO to follow the constellations of
+    the current solution."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: ClassVar[str | None] = None
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> ComnavNmeatalker:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "COMNAV_NMEATALKER", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "COMNAV_NMEATALKER", 2, count)
-        message = rt.enum_field(fields[0], address, 1, "message", "comnav_talker_sentence code (GGA GSA GSV GST ZDA HDT RMC VTG GLL ALL)", ComnavTalkerSentence.BY_CODE, "letters", 3, 3, True)
-        talker_id = rt.enum_field(fields[1], address, 2, "talker_id", "comnav_talker_id code (GN GP BD GL GA AUTO)", ComnavTalkerId.BY_CODE, "letters", 2, 4, True)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(line, message, talker_id, [])
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message),
-            rt.text_of(self.talker_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The command text, words separated by single spaces; no line ending."""
-        return rt.assemble_text("NMEATALKER", rt.with_problems(self.fields(), self.problems),
-                                self.as_received)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, True)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        if not values:
-            return rt.words_json(self.FIELD_IDS, self.to_sentence())
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message":' + show(self.message),
-            '"talker_id":' + show(self.talker_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "talker_id"), 1)
-        return out
 
 
 @dataclass(slots=True)
-class ComnavNmeatalkerList:
+class ComnavNmeatalkerList(rt.Sentence):
     """COMNAV_NMEATALKER (List the talker IDs): Set, list or reset the NMEA talker IDs.
 
-    NMEATALKER LIST, query the talker ID of every current NMEA message. The manual gives no
-    format for the answer.
+    NMEATALKER LIST, query the talker ID of every current NMEA message. The manual gives no format
+    for the answer.
 
-    Example (comnav): NMEATALKER LIST
+    Example (comnav):
+    NMEATALKER LIST
     """
 
     SENTENCE: ClassVar[str] = "COMNAV_NMEATALKER"
@@ -113,71 +72,29 @@ class ComnavNmeatalkerList:
     SELECTOR: ClassVar[str | None] = "LIST"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
-    FIELD_IDS: ClassVar[tuple[str, ...]] = ("subcommand", )
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("COMNAV_NMEATALKER", "text", "$", 1, 1, (
+        rt.KeywordField("subcommand", "LIST", "LIST"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     as_received: str | None = None
     """The command as received; written back in its letter case when the words still match."""
     subcommand: str = "LIST"
     """LIST keyword: The word LIST."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: ClassVar[str | None] = None
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> ComnavNmeatalkerList:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "COMNAV_NMEATALKER", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "COMNAV_NMEATALKER", 1, count)
-        subcommand = rt.keyword_field(fields[0], address, 1, "subcommand", "LIST", "LIST", True)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(line, subcommand, [])
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.subcommand),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The command text, words separated by single spaces; no line ending."""
-        return rt.assemble_text("NMEATALKER", rt.with_problems(self.fields(), self.problems),
-                                self.as_received)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, True)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        if not values:
-            return rt.words_json(self.FIELD_IDS, self.to_sentence())
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"subcommand":' + show(self.subcommand),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "subcommand"), 1)
-        return out
 
 
 @dataclass(slots=True)
-class ComnavNmeatalkerReset:
+class ComnavNmeatalkerReset(rt.Sentence):
     """COMNAV_NMEATALKER (Reset the talker IDs): Set, list or reset the NMEA talker IDs.
 
     NMEATALKER RESET, restore the factory default talker IDs.
 
-    Example (comnav): NMEATALKER RESET
+    Example (comnav):
+    NMEATALKER RESET
     """
 
     SENTENCE: ClassVar[str] = "COMNAV_NMEATALKER"
@@ -187,62 +104,19 @@ class ComnavNmeatalkerReset:
     SELECTOR: ClassVar[str | None] = "RESET"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
-    FIELD_IDS: ClassVar[tuple[str, ...]] = ("subcommand", )
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("COMNAV_NMEATALKER", "text", "$", 1, 1, (
+        rt.KeywordField("subcommand", "RESET", "RESET"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     as_received: str | None = None
     """The command as received; written back in its letter case when the words still match."""
     subcommand: str = "RESET"
     """RESET keyword: The word RESET."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: ClassVar[str | None] = None
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> ComnavNmeatalkerReset:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "COMNAV_NMEATALKER", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "COMNAV_NMEATALKER", 1, count)
-        subcommand = rt.keyword_field(fields[0], address, 1, "subcommand", "RESET", "RESET", True)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(line, subcommand, [])
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.subcommand),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The command text, words separated by single spaces; no line ending."""
-        return rt.assemble_text("NMEATALKER", rt.with_problems(self.fields(), self.problems),
-                                self.as_received)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, True)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        if not values:
-            return rt.words_json(self.FIELD_IDS, self.to_sentence())
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"subcommand":' + show(self.subcommand),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "subcommand"), 1)
-        return out
 
 
 LAYOUTS: tuple[Any, ...] = (ComnavNmeatalker, ComnavNmeatalkerList, ComnavNmeatalkerReset, )

@@ -4,8 +4,8 @@
 """CUR: Water current layer.
 
 Water current measured in one depth layer by a Doppler current profiler or speed log: depth,
-direction and speed of the current, with the references used. One sentence per layer; the data
-set number ties the layers of one measurement together.
+direction and speed of the current, with the references used. One sentence per layer; the data set
+number ties the layers of one measurement together.
 """
 
 from __future__ import annotations
@@ -16,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import CurDirectionReference, CurHeadingReference, CurSpeedReference, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-
 
 @dataclass(slots=True)
-class Cur:
+class Cur(rt.Sentence):
     """CUR: Water current layer.
 
-    Example (marine_api): $IICUR,A,0,,,123.4,T,2.5,,,M,B*41
+    Example (marine_api):
+    $IICUR,A,0,,,123.4,T,2.5,,,M,B*41
     """
 
     SENTENCE: ClassVar[str] = "CUR"
@@ -37,15 +32,35 @@ class Cur:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("CUR", "standard", "$", 11, 11, (
+        rt.EnumField("validity", "status code (A V)", Status),
+        rt.IntegerField("data_set_number", "integer 0..9", 0, 9),
+        rt.IntegerField("layer_number", "integer of at least 0", 0, None),
+        rt.DecimalField("current_depth", "decimal number"),
+        rt.DecimalField("current_direction", "decimal number of at least 0", 0, None),
+        rt.EnumField(
+            "direction_reference",
+            "cur_direction_reference code (T R)",
+            CurDirectionReference,
+        ),
+        rt.DecimalField("current_speed", "decimal number"),
+        rt.DecimalField("reference_layer_depth", "decimal number"),
+        rt.DecimalField("heading", "decimal number of at least 0", 0, None),
+        rt.EnumField("heading_reference", "cur_heading_reference code (T M)", CurHeadingReference),
+        rt.EnumField("speed_reference", "cur_speed_reference code (B W P)", CurSpeedReference),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     validity: Status | str | None = None
     """Data validity: A = data valid, V = not valid."""
     data_set_number: rt.Number | None = None
-    """Data set number: Number of the measurement the layer belongs to, 0 to 9; all layers of one measurement carry the same number, so data of different measurements are not mixed."""
+    """Data set number: Number of the measurement the layer belongs to, 0 to 9; all layers of one
+    measurement carry the same number, so data of different measurements are not mixed."""
     layer_number: rt.Number | None = None
-    """Layer number: Number of the layer the measurement comes from; devices measure typically 3 to 32 layers, possibly more."""
+    """Layer number: Number of the layer the measurement comes from; devices measure typically 3 to
+    32 layers, possibly more."""
     current_depth: rt.Number | None = None
     """Current depth [m]: Depth of the layer, metres."""
     current_direction: rt.Number | None = None
@@ -55,102 +70,22 @@ class Cur:
     current_speed: rt.Number | None = None
     """Current speed [knots]: Speed of the current, knots."""
     reference_layer_depth: rt.Number | None = None
-    """Reference layer depth [m]: Depth of the reference layer, metres; the currents are measured against it when the speed reference is water track or the bottom is too deep for bottom track."""
+    """Reference layer depth [m]: Depth of the reference layer, metres; the currents are measured
+    against it when the speed reference is water track or the bottom is too deep for bottom
+    track."""
     heading: rt.Number | None = None
     """Heading [deg]: Heading of the vessel, degrees, in the reference given next."""
     heading_reference: CurHeadingReference | str | None = None
     """Heading reference: T = true, M = magnetic."""
     speed_reference: CurSpeedReference | str | None = None
-    """Speed reference: How the ship's own speed was obtained for the current calculation (B = bottom track, W = water track, P = positioning system)."""
+    """Speed reference: How the ship's own speed was obtained for the current calculation (B =
+    bottom track, W = water track, P = positioning system)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Cur:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "CUR", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "CUR", 11, count)
-        validity = Status.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "validity", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        data_set_number = (_INTEGER_0_TO_9.get(fields[1]) or rt.integer_field(fields[1], address, 2, "data_set_number", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[1] else None
-        layer_number = (_INTEGER_0_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "layer_number", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[2] else None
-        current_depth = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "current_depth", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        current_direction = (_DECIMAL_0_TO.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "current_direction", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[4] else None
-        direction_reference = CurDirectionReference.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "direction_reference", "cur_direction_reference code (T R)", CurDirectionReference.BY_CODE, "letters", 1, 1)
-        current_speed = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "current_speed", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        reference_layer_depth = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "reference_layer_depth", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        heading = (_DECIMAL_0_TO.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "heading", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[8] else None
-        heading_reference = CurHeadingReference.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "heading_reference", "cur_heading_reference code (T M)", CurHeadingReference.BY_CODE, "letters", 1, 1)
-        speed_reference = CurSpeedReference.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "speed_reference", "cur_speed_reference code (B W P)", CurSpeedReference.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], validity, data_set_number, layer_number, current_depth, current_direction, direction_reference, current_speed, reference_layer_depth, heading, heading_reference, speed_reference, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.validity),
-            rt.text_of(self.data_set_number),
-            rt.text_of(self.layer_number),
-            rt.text_of(self.current_depth),
-            rt.text_of(self.current_direction),
-            rt.text_of(self.direction_reference),
-            rt.text_of(self.current_speed),
-            rt.text_of(self.reference_layer_depth),
-            rt.text_of(self.heading),
-            rt.text_of(self.heading_reference),
-            rt.text_of(self.speed_reference),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "CUR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"validity":' + show(self.validity),
-            '"data_set_number":' + show(self.data_set_number),
-            '"layer_number":' + show(self.layer_number),
-            '"current_depth":' + show(self.current_depth),
-            '"current_direction":' + show(self.current_direction),
-            '"direction_reference":' + show(self.direction_reference),
-            '"current_speed":' + show(self.current_speed),
-            '"reference_layer_depth":' + show(self.reference_layer_depth),
-            '"heading":' + show(self.heading),
-            '"heading_reference":' + show(self.heading_reference),
-            '"speed_reference":' + show(self.speed_reference),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "validity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "data_set_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "layer_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "current_depth"), 1)
-        out += rt.json_texts(rt.json_member(fields, "current_direction"), 1)
-        out += rt.json_texts(rt.json_member(fields, "direction_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "current_speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reference_layer_depth"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_reference"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Cur, )

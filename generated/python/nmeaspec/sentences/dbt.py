@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """DBT: Depth below transducer.
 
-Water depth measured from the transducer face, in feet, metres and fathoms. The transducer's
-offset from the waterline or keel is not applied (DPT carries it).
+Water depth measured from the transducer face, in feet, metres and fathoms. The transducer's offset
+from the waterline or keel is not applied (DPT carries it).
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Dbt:
+class Dbt(rt.Sentence):
     """DBT: Depth below transducer.
 
-    Example (log_gpsd): $SDDBT,7.7,f,2.3,M,1.3,F*05
+    Example (log_gpsd):
+    $SDDBT,7.7,f,2.3,M,1.3,F*05
     """
 
     SENTENCE: ClassVar[str] = "DBT"
@@ -32,11 +30,21 @@ class Dbt:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("DBT", "standard", "$", 6, 6, (
+        rt.DecimalField("depth_feet", "decimal number"),
+        rt.LiteralField("depth_feet_unit", "f or nothing", "f"),
+        rt.DecimalField("depth_metres", "decimal number"),
+        rt.LiteralField("depth_metres_unit", "M or nothing", "M"),
+        rt.DecimalField("depth_fathoms", "decimal number"),
+        rt.LiteralField("depth_fathoms_unit", "F or nothing", "F"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     depth_feet: rt.Number | None = None
-    """Depth, feet [ft]: Water depth below the transducer in feet; empty when the sounder does not convert to feet or has no bottom."""
+    """Depth, feet [ft]: Water depth below the transducer in feet; empty when the sounder does not
+    convert to feet or has no bottom."""
     depth_feet_unit: str | None = None
     """Feet unit: f, feet (lower case)."""
     depth_metres: rt.Number | None = None
@@ -44,78 +52,16 @@ class Dbt:
     depth_metres_unit: str | None = None
     """Metres unit: M, metres."""
     depth_fathoms: rt.Number | None = None
-    """Depth, fathoms [fathom]: Water depth below the transducer in fathoms (1 fathom = 6 ft = 1.8288 m)."""
+    """Depth, fathoms [fathom]: Water depth below the transducer in fathoms (1 fathom = 6 ft =
+    1.8288 m)."""
     depth_fathoms_unit: str | None = None
     """Fathoms unit: F, fathoms (upper case)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Dbt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "DBT", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "DBT", 6, count)
-        depth_feet = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "depth_feet", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        depth_feet_unit = "f" if fields[1] == "f" else rt.literal_field(fields[1], address, 2, "depth_feet_unit", "f or nothing", "f")
-        depth_metres = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "depth_metres", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        depth_metres_unit = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "depth_metres_unit", "M or nothing", "M")
-        depth_fathoms = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "depth_fathoms", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        depth_fathoms_unit = "F" if fields[5] == "F" else rt.literal_field(fields[5], address, 6, "depth_fathoms_unit", "F or nothing", "F")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], depth_feet, depth_feet_unit, depth_metres, depth_metres_unit, depth_fathoms, depth_fathoms_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.depth_feet),
-            rt.text_of(self.depth_feet_unit),
-            rt.text_of(self.depth_metres),
-            rt.text_of(self.depth_metres_unit),
-            rt.text_of(self.depth_fathoms),
-            rt.text_of(self.depth_fathoms_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "DBT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"depth_feet":' + show(self.depth_feet),
-            '"depth_feet_unit":' + show(self.depth_feet_unit),
-            '"depth_metres":' + show(self.depth_metres),
-            '"depth_metres_unit":' + show(self.depth_metres_unit),
-            '"depth_fathoms":' + show(self.depth_fathoms),
-            '"depth_fathoms_unit":' + show(self.depth_fathoms_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "depth_feet"), 1)
-        out += rt.json_texts(rt.json_member(fields, "depth_feet_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "depth_metres"), 1)
-        out += rt.json_texts(rt.json_member(fields, "depth_metres_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "depth_fathoms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "depth_fathoms_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Dbt, )

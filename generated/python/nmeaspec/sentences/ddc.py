@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """DDC: Display dimming control.
 
-Commands or reports the display dimming preset, brightness percentage and colour palette of a
-piece of equipment, so that all displays of a bridge can be dimmed together.
+Commands or reports the display dimming preset, brightness percentage and colour palette of a piece
+of equipment, so that all displays of a bridge can be dimmed together.
 """
 
 from __future__ import annotations
@@ -15,14 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import DdcCommandMode, DdcPreset, FsiSentenceStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-
 
 @dataclass(slots=True)
-class Ddc:
+class Ddc(rt.Sentence):
     """DDC: Display dimming control.
-
     """
 
     SENTENCE: ClassVar[str] = "DDC"
@@ -32,95 +28,38 @@ class Ddc:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("DDC", "standard", "$", 4, 5, (
+        rt.EnumField("dimming_preset", "ddc_preset code (D K N O)", DdcPreset),
+        rt.IntegerField("brightness", "integer 0..99", 0, 99),
+        rt.EnumField("color_palette", "ddc_preset code (D K N O)", DdcPreset),
+        rt.EnumField("sentence_status", "fsi_sentence_status code (R C)", FsiSentenceStatus),
+        rt.EnumField("command_mode", "ddc_command_mode code (O P)", DdcCommandMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     dimming_preset: DdcPreset | str | None = None
-    """Display dimming preset: D = day, K = dusk, N = night, O = backlighting off; the equipment switches to the brightness the operator set for that preset, or ignores the field if it has no presets."""
+    """Display dimming preset: D = day, K = dusk, N = night, O = backlighting off; the equipment
+    switches to the brightness the operator set for that preset, or ignores the field if it has no
+    presets."""
     brightness: rt.Number | None = None
-    """Brightness percentage [%]: Brightness from 00 (dimmest the equipment allows) to 99 (brightest)."""
+    """Brightness percentage [%]: Brightness from 00 (dimmest the equipment allows) to 99
+    (brightest)."""
     color_palette: DdcPreset | str | None = None
-    """Colour palette preset: Colour palette preset, D = day, K = dusk, N = night, O = backlighting off."""
+    """Colour palette preset: Colour palette preset, D = day, K = dusk, N = night, O = backlighting
+    off."""
     sentence_status: FsiSentenceStatus | str | None = None
     """Sentence status flag: R = report of the current settings, C = command to change them."""
     command_mode: DdcCommandMode | str | None | rt._Absent = rt.ABSENT
-    """Command mode: O = applies to the current operating settings, P = applies to the stored presets."""
+    """Command mode: O = applies to the current operating settings, P = applies to the stored
+    presets."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ddc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "DDC", 4, count)
-        if count > 5:
-            raise rt.too_many(address, "DDC", 5, count)
-        optional = count - 4
-        dimming_preset = DdcPreset.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "dimming_preset", "ddc_preset code (D K N O)", DdcPreset.BY_CODE, "letters", 1, 1)
-        brightness = (_INTEGER_0_TO_99.get(fields[1]) or rt.integer_field(fields[1], address, 2, "brightness", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[1] else None
-        color_palette = DdcPreset.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "color_palette", "ddc_preset code (D K N O)", DdcPreset.BY_CODE, "letters", 1, 1)
-        sentence_status = FsiSentenceStatus.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "sentence_status", "fsi_sentence_status code (R C)", FsiSentenceStatus.BY_CODE, "letters", 1, 1)
-        command_mode: DdcCommandMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            command_mode = DdcCommandMode.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "command_mode", "ddc_command_mode code (O P)", DdcCommandMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], dimming_preset, brightness, color_palette, sentence_status, command_mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.dimming_preset),
-            rt.text_of(self.brightness),
-            rt.text_of(self.color_palette),
-            rt.text_of(self.sentence_status),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.command_mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.command_mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "DDC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"dimming_preset":' + show(self.dimming_preset),
-            '"brightness":' + show(self.brightness),
-            '"color_palette":' + show(self.color_palette),
-            '"sentence_status":' + show(self.sentence_status),
-        ]
-        if self.command_mode is not rt.ABSENT:
-            parts.append('"command_mode":' + show(self.command_mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "dimming_preset"), 1)
-        out += rt.json_texts(rt.json_member(fields, "brightness"), 1)
-        out += rt.json_texts(rt.json_member(fields, "color_palette"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_status"), 1)
-        if "command_mode" in fields:
-            out += rt.json_texts(fields["command_mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ddc, )

@@ -4,8 +4,8 @@
 """DOR: Door status detection.
 
 State of watertight doors, fire doors and other hull openings, from the door monitoring system
-(typically to the voyage data recorder): per door, per section or a system fault. Malfunctions
-of the door controller itself are reported with ALA.
+(typically to the voyage data recorder): per door, per section or a system fault. Malfunctions of
+the door controller itself are reported with ALA.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import DorMessageType, DorStatus, DorSwitchSetting, DorSystem
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Dor:
+class Dor(rt.Sentence):
     """DOR: Door status detection.
 
-    Example (go_nmea): $FRDOR,E,233042,FD,FP,000,010,C,C,Door Closed : TEST FPA Name*4D
+    Example (go_nmea):
+    $FRDOR,E,233042,FD,FP,000,010,C,C,Door Closed : TEST FPA Name*4D
     """
 
     SENTENCE: ClassVar[str] = "DOR"
@@ -35,108 +32,53 @@ class Dor:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("DOR", "standard", "$", 9, 9, (
+        rt.EnumField("message_type", "dor_message_type code (S E F)", DorMessageType),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("system", "dor_system code (WT WS FD HD OT)", DorSystem),
+        rt.TextField("division_1", "text"),
+        rt.TextField("division_2", "text"),
+        rt.IntegerField("door_number", "integer"),
+        rt.EnumField("door_status", "dor_status code (O C S F X)", DorStatus),
+        rt.EnumField("switch_setting", "dor_switch_setting code (O C)", DorSwitchSetting),
+        rt.TextField("description", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     message_type: DorMessageType | str | None = None
-    """Message type: S status of a section, E status of one door (or an event), F fault in the system."""
+    """Message type: S status of a section, E status of one door (or an event), F fault in the
+    system."""
     time: rt.Time | None = None
     """Event time: UTC time at which the status was valid; may be empty."""
     system: DorSystem | str | None = None
-    """Type of door monitoring system: WT watertight, WS semi-watertight, FD fire door, HD hull door, OT other."""
+    """Type of door monitoring system: WT watertight, WS semi-watertight, FD fire door, HD hull
+    door, OT other."""
     division_1: str | None = None
-    """First division indicator: Where the door is (two characters): e.g. fire zone, or the central unit of the monitoring system; empty for a whole section."""
+    """First division indicator: Where the door is (two characters): e.g. fire zone, or the central
+    unit of the monitoring system; empty for a whole section."""
     division_2: str | None = None
-    """Second division indicator: Second location of the door (three digits in the standard): e.g. deck number or loop number; empty for a whole section."""
+    """Second division indicator: Second location of the door (three digits in the standard): e.g.
+    deck number or loop number; empty for a whole section."""
     door_number: rt.Number | None = None
-    """Door number or door count: Type E: number of the door; type S: number of open or faulty doors in the section; type F: empty."""
+    """Door number or door count: Type E: number of the door; type S: number of open or faulty doors
+    in the section; type F: empty."""
     door_status: DorStatus | str | None = None
-    """Door status: Type E only (empty otherwise) - O open, C closed, S secured, F free (watertight door), X fault."""
+    """Door status: Type E only (empty otherwise) - O open, C closed, S secured, F free (watertight
+    door), X fault."""
     switch_setting: DorSwitchSetting | str | None = None
-    """Watertight door switch setting: O harbour mode (doors allowed open), C sea mode (doors ordered closed); may be empty."""
+    """Watertight door switch setting: O harbour mode (doors allowed open), C sea mode (doors
+    ordered closed); may be empty."""
     description: str | None = None
-    """Description text: Optional text or door tag; may replace the division fields when the door location is a name rather than a code."""
+    """Description text: Optional text or door tag; may replace the division fields when the door
+    location is a name rather than a code."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Dor:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "DOR", 9, count)
-        if count > 9:
-            raise rt.too_many(address, "DOR", 9, count)
-        message_type = DorMessageType.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "message_type", "dor_message_type code (S E F)", DorMessageType.BY_CODE, "letters", 1, 1)
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        system = DorSystem.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "system", "dor_system code (WT WS FD HD OT)", DorSystem.BY_CODE, "letters", 2, 2)
-        division_1 = rt.text_field(fields[3], address, 4, "division_1", "text", None)
-        division_2 = rt.text_field(fields[4], address, 5, "division_2", "text", None)
-        door_number = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "door_number", "integer", None, None, _INTEGER)) if fields[5] else None
-        door_status = DorStatus.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "door_status", "dor_status code (O C S F X)", DorStatus.BY_CODE, "letters", 1, 1)
-        switch_setting = DorSwitchSetting.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "switch_setting", "dor_switch_setting code (O C)", DorSwitchSetting.BY_CODE, "letters", 1, 1)
-        description = rt.text_field(fields[8], address, 9, "description", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], message_type, time, system, division_1, division_2, door_number, door_status, switch_setting, description, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message_type),
-            rt.text_of(self.time),
-            rt.text_of(self.system),
-            rt.text_of(self.division_1),
-            rt.text_of(self.division_2),
-            rt.text_of(self.door_number),
-            rt.text_of(self.door_status),
-            rt.text_of(self.switch_setting),
-            rt.text_of(self.description),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "DOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message_type":' + show(self.message_type),
-            '"time":' + show(self.time),
-            '"system":' + show(self.system),
-            '"division_1":' + show(self.division_1),
-            '"division_2":' + show(self.division_2),
-            '"door_number":' + show(self.door_number),
-            '"door_status":' + show(self.door_status),
-            '"switch_setting":' + show(self.switch_setting),
-            '"description":' + show(self.description),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "division_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "division_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "door_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "door_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "switch_setting"), 1)
-        out += rt.json_texts(rt.json_member(fields, "description"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Dor, )

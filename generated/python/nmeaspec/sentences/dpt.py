@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """DPT: Depth.
 
-Water depth relative to the transducer and the transducer's offset, from which the depth below
-the waterline or below the keel follows; since NMEA v3.0 also the range scale in use.
+Water depth relative to the transducer and the transducer's offset, from which the depth below the
+waterline or below the keel follows; since NMEA v3.0 also the range scale in use.
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Dpt:
+class Dpt(rt.Sentence):
     """DPT: Depth.
 
-    Example (log_gpsd): $INDPT,2.2,0.0*47
+    Example (log_marine_api):
+    $IIDPT,03.3,00.3,00.7*76
     """
 
     SENTENCE: ClassVar[str] = "DPT"
@@ -32,83 +30,32 @@ class Dpt:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("DPT", "standard", "$", 2, 3, (
+        rt.DecimalField("depth", "decimal number"),
+        rt.DecimalField("offset", "decimal number"),
+        rt.DecimalField("max_range_scale", "decimal number", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     depth: rt.Number | None = None
-    """Depth below transducer [m]: Water depth measured from the transducer, in metres; empty without a bottom."""
+    """Depth below transducer [m]: Water depth measured from the transducer, in metres; empty
+    without a bottom."""
     offset: rt.Number | None = None
-    """Transducer offset [m]: Offset of the transducer in metres: positive is the distance from the transducer up to the waterline (depth + offset = depth below surface), negative the distance from the transducer down to the keel (depth + offset = depth below keel). For IEC applications it should give the depth below the keel."""
+    """Transducer offset [m]: Offset of the transducer in metres: positive is the distance from the
+    transducer up to the waterline (depth + offset = depth below surface), negative the distance
+    from the transducer down to the keel (depth + offset = depth below keel). For IEC applications
+    it should give the depth below the keel."""
     max_range_scale: rt.Number | None | rt._Absent = rt.ABSENT
-    """Maximum range scale in use [m] (NMEA 3.0): Maximum range scale of the sounder in use, in metres (NMEA v3.0 and later; absent in older devices, often sent empty)."""
+    """Maximum range scale in use [m] (NMEA 3.0): Maximum range scale of the sounder in use, in
+    metres (NMEA v3.0 and later; absent in older devices, often sent empty)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Dpt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "DPT", 2, count)
-        if count > 3:
-            raise rt.too_many(address, "DPT", 3, count)
-        optional = count - 2
-        depth = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "depth", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        offset = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "offset", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        max_range_scale: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            max_range_scale = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "max_range_scale", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], depth, offset, max_range_scale, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.depth),
-            rt.text_of(self.offset),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.max_range_scale is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.max_range_scale)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "DPT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"depth":' + show(self.depth),
-            '"offset":' + show(self.offset),
-        ]
-        if self.max_range_scale is not rt.ABSENT:
-            parts.append('"max_range_scale":' + show(self.max_range_scale))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "depth"), 1)
-        out += rt.json_texts(rt.json_member(fields, "offset"), 1)
-        if "max_range_scale" in fields:
-            out += rt.json_texts(fields["max_range_scale"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Dpt, )

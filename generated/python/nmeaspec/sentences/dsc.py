@@ -4,9 +4,9 @@
 """DSC: Digital selective calling information.
 
 A DSC call (ITU-R M.493) received by, or to be sent by, a VHF/MF/HF radio: format, address,
-category, telecommands, position or channel, time or telephone number and, for distress relays
-and acknowledgements, the ship in distress. Codes are the last two digits of the ITU-R M.493
-symbols. An E in the last field announces a DSE sentence right after.
+category, telecommands, position or channel, time or telephone number and, for distress relays and
+acknowledgements, the ship in distress. Codes are the last two digits of the ITU-R M.493 symbols. An
+E in the last field announces a DSE sentence right after.
 """
 
 from __future__ import annotations
@@ -19,10 +19,11 @@ from ..enums import DscAcknowledgement, DscCategory, DscDistressNature, DscForma
 
 
 @dataclass(slots=True)
-class Dsc:
+class Dsc(rt.Sentence):
     """DSC: Digital selective calling information.
 
-    Example (signalk_nmea0183): $CDDSC,12,3380400790,12,06,00,1423108312,2019,,,S,E*6A
+    Example (signalk_nmea0183):
+    $CDDSC,12,3380400790,12,06,00,1423108312,2019,,,S,E*6A
     """
 
     SENTENCE: ClassVar[str] = "DSC"
@@ -32,120 +33,67 @@ class Dsc:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("DSC", "standard", "$", 11, 11, (
+        rt.EnumField("format_specifier", "dsc_format code (02 12 14 16 20 23)", DscFormat),
+        rt.TextField("station_address", "text of at most 10 characters", 10),
+        rt.EnumField("category", "dsc_category code (00 08 10 12)", DscCategory),
+        rt.TextField("distress_or_telecommand1", "text of at most 2 characters", 2),
+        rt.TextField("comm_type_or_telecommand2", "text of at most 2 characters", 2),
+        rt.TextField("position_or_channel", "text"),
+        rt.TextField("time_or_phone", "text"),
+        rt.TextField("distress_mmsi", "text of at most 10 characters", 10),
+        rt.EnumField(
+            "distress_nature",
+            "dsc_distress_nature code (00 01 02 03 04 05 06 07 08 09 10 12)",
+            DscDistressNature,
+        ),
+        rt.EnumField("acknowledgement", "dsc_acknowledgement code (R B S)", DscAcknowledgement),
+        rt.LiteralField("expansion", "E or nothing", "E"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     format_specifier: DscFormat | str | None = None
-    """Format specifier: Kind of call, 2 digits (02 geographic area, 12 distress, 14 common interest, 16 all ships, 20 individual, 23 individual automatic)."""
+    """Format specifier: Kind of call, 2 digits (02 geographic area, 12 distress, 14 common
+    interest, 16 all ships, 20 individual, 23 individual automatic)."""
     station_address: str | None = None
-    """Address: MMSI of the station called (a call to be sent) or of the calling station (a received call), 10 digits: a 9-digit MMSI gets a trailing 0. For a geographic area call, the area coded as in ITU-R M.493."""
+    """Address: MMSI of the station called (a call to be sent) or of the calling station (a received
+    call), 10 digits: a 9-digit MMSI gets a trailing 0. For a geographic area call, the area coded
+    as in ITU-R M.493."""
     category: DscCategory | str | None = None
     """Category: Priority, 2 digits (00 routine, 08 safety, 10 urgency, 12 distress)."""
     distress_or_telecommand1: str | None = None
-    """Nature of distress or first telecommand: 2 digits: for a distress alert the nature of distress (as in the nature-of-distress field), otherwise the first telecommand (e.g. 00 all modes telephony, 21 position updating, 26 no information)."""
+    """Nature of distress or first telecommand: 2 digits: for a distress alert the nature of
+    distress (as in the nature-of-distress field), otherwise the first telecommand (e.g. 00 all
+    modes telephony, 21 position updating, 26 no information)."""
     comm_type_or_telecommand2: str | None = None
-    """Type of communication or second telecommand: 2 digits, the subsequent type of communication of a distress alert or the second telecommand (26 = no information)."""
+    """Type of communication or second telecommand: 2 digits, the subsequent type of communication
+    of a distress alert or the second telecommand (26 = no information)."""
     position_or_channel: str | None = None
-    """Position or channel/frequency: Position as 10 digits (quadrant 0 NE, 1 NW, 2 SE, 3 SW; then latitude ddmm and longitude dddmm, whole minutes), or a channel/frequency of 6 or 12 digits coded as in ITU-R M.493."""
+    """Position or channel/frequency: Position as 10 digits (quadrant 0 NE, 1 NW, 2 SE, 3 SW; then
+    latitude ddmm and longitude dddmm, whole minutes), or a channel/frequency of 6 or 12 digits
+    coded as in ITU-R M.493."""
     time_or_phone: str | None = None
-    """Time or telephone number: UTC time of the position as hhmm, or a telephone number of up to 16 digits."""
+    """Time or telephone number: UTC time of the position as hhmm, or a telephone number of up to 16
+    digits."""
     distress_mmsi: str | None = None
-    """MMSI of ship in distress: MMSI (10 digits) of the ship in distress; distress acknowledgements and relays only."""
+    """MMSI of ship in distress: MMSI (10 digits) of the ship in distress; distress acknowledgements
+    and relays only."""
     distress_nature: DscDistressNature | str | None = None
-    """Nature of distress: Nature of distress for distress acknowledgements and relays, 2 digits (00 fire ... 10 man overboard, 12 EPIRB)."""
+    """Nature of distress: Nature of distress for distress acknowledgements and relays, 2 digits (00
+    fire ... 10 man overboard, 12 EPIRB)."""
     acknowledgement: DscAcknowledgement | str | None = None
-    """Acknowledgement: R = acknowledgement requested, B = this is an acknowledgement, S = neither (end of sequence)."""
+    """Acknowledgement: R = acknowledgement requested, B = this is an acknowledgement, S = neither
+    (end of sequence)."""
     expansion: str | None = None
     """Expansion indicator: E when a DSE sentence follows immediately, empty otherwise."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Dsc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "DSC", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "DSC", 11, count)
-        format_specifier = DscFormat.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "format_specifier", "dsc_format code (02 12 14 16 20 23)", DscFormat.BY_CODE, "digits", 2, 2)
-        station_address = rt.text_field(fields[1], address, 2, "station_address", "text of at most 10 characters", 10)
-        category = DscCategory.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "category", "dsc_category code (00 08 10 12)", DscCategory.BY_CODE, "digits", 2, 2)
-        distress_or_telecommand1 = rt.text_field(fields[3], address, 4, "distress_or_telecommand1", "text of at most 2 characters", 2)
-        comm_type_or_telecommand2 = rt.text_field(fields[4], address, 5, "comm_type_or_telecommand2", "text of at most 2 characters", 2)
-        position_or_channel = rt.text_field(fields[5], address, 6, "position_or_channel", "text", None)
-        time_or_phone = rt.text_field(fields[6], address, 7, "time_or_phone", "text", None)
-        distress_mmsi = rt.text_field(fields[7], address, 8, "distress_mmsi", "text of at most 10 characters", 10)
-        distress_nature = DscDistressNature.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "distress_nature", "dsc_distress_nature code (00 01 02 03 04 05 06 07 08 09 10 12)", DscDistressNature.BY_CODE, "digits", 2, 2)
-        acknowledgement = DscAcknowledgement.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "acknowledgement", "dsc_acknowledgement code (R B S)", DscAcknowledgement.BY_CODE, "letters", 1, 1)
-        expansion = "E" if fields[10] == "E" else rt.literal_field(fields[10], address, 11, "expansion", "E or nothing", "E")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], format_specifier, station_address, category, distress_or_telecommand1, comm_type_or_telecommand2, position_or_channel, time_or_phone, distress_mmsi, distress_nature, acknowledgement, expansion, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.format_specifier),
-            rt.text_of(self.station_address),
-            rt.text_of(self.category),
-            rt.text_of(self.distress_or_telecommand1),
-            rt.text_of(self.comm_type_or_telecommand2),
-            rt.text_of(self.position_or_channel),
-            rt.text_of(self.time_or_phone),
-            rt.text_of(self.distress_mmsi),
-            rt.text_of(self.distress_nature),
-            rt.text_of(self.acknowledgement),
-            rt.text_of(self.expansion),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "DSC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"format_specifier":' + show(self.format_specifier),
-            '"station_address":' + show(self.station_address),
-            '"category":' + show(self.category),
-            '"distress_or_telecommand1":' + show(self.distress_or_telecommand1),
-            '"comm_type_or_telecommand2":' + show(self.comm_type_or_telecommand2),
-            '"position_or_channel":' + show(self.position_or_channel),
-            '"time_or_phone":' + show(self.time_or_phone),
-            '"distress_mmsi":' + show(self.distress_mmsi),
-            '"distress_nature":' + show(self.distress_nature),
-            '"acknowledgement":' + show(self.acknowledgement),
-            '"expansion":' + show(self.expansion),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "format_specifier"), 1)
-        out += rt.json_texts(rt.json_member(fields, "station_address"), 1)
-        out += rt.json_texts(rt.json_member(fields, "category"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distress_or_telecommand1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "comm_type_or_telecommand2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_or_channel"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_or_phone"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distress_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distress_nature"), 1)
-        out += rt.json_texts(rt.json_member(fields, "acknowledgement"), 1)
-        out += rt.json_texts(rt.json_member(fields, "expansion"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Dsc, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """DSE: Expanded digital selective calling.
 
-Expansion of the DSC call sent just before it (ITU-R M.821): data sets of a code and its data,
-e.g. more decimals of the position, the position source, speed, course or persons on board.
+Expansion of the DSC call sent just before it (ITU-R M.821): data sets of a code and its data, e.g.
+more decimals of the position, the position source, speed, course or persons on board.
 """
 
 from __future__ import annotations
@@ -15,25 +15,25 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import DseCode, DseQueryFlag
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
-
 
 @dataclass(slots=True)
 class DseDataSet:
     """One entry of data sets (1 to 8 per sentence)."""
 
     code: DseCode | str | None = None
-    """Data set code: Kind of data, 2 digits (00 enhanced position, 01 position source and datum, 02 speed, 03 course, 04 station ID, 05 geographic area, 06 persons on board)."""
+    """Data set code: Kind of data, 2 digits (00 enhanced position, 01 position source and datum, 02
+    speed, 03 course, 04 station ID, 05 geographic area, 06 persons on board)."""
     data: str | None = None
-    """Data: The data of the set, digits coded as ITU-R M.821 says for the code (00: the next 4 decimals of the latitude minutes, then 4 of the longitude minutes); empty in a query."""
+    """Data: The data of the set, digits coded as ITU-R M.821 says for the code (00: the next 4
+    decimals of the latitude minutes, then 4 of the longitude minutes); empty in a query."""
 
 
 @dataclass(slots=True)
-class Dse:
+class Dse(rt.Sentence):
     """DSE: Expanded digital selective calling.
 
-    Example (signalk_nmea0183): $CDDSE,1,1,A,3380400790,00,45894494*1B
+    Example (go_nmea):
+    $CDDSE,1,1,A,3380400790,00,46504437,01,16501437*17
     """
 
     SENTENCE: ClassVar[str] = "DSE"
@@ -43,6 +43,17 @@ class Dse:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("DSE", "standard", "$", 4, 20, (
+        rt.IntegerField("sentence_count", "integer of at least 1", 1, None),
+        rt.IntegerField("sentence_number", "integer of at least 1", 1, None),
+        rt.EnumField("query_flag", "dse_query_flag code (Q R A)", DseQueryFlag),
+        rt.TextField("vessel_mmsi", "text of at most 10 characters", 10),
+        rt.Group("data_sets", DseDataSet, (
+            rt.EnumField("code", "dse_code code (00 01 02 03 04 05 06)", DseCode),
+            rt.TextField("data", "text"),
+        ), 1, 8),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -53,88 +64,16 @@ class Dse:
     query_flag: DseQueryFlag | str | None = None
     """Query/reply flag: Q = query, R = reply to a query, A = sent automatically."""
     vessel_mmsi: str | None = None
-    """Vessel MMSI: MMSI of the vessel, 10 digits as in the DSC address (a 9-digit MMSI with a trailing 0)."""
+    """Vessel MMSI: MMSI of the vessel, 10 digits as in the DSC address (a 9-digit MMSI with a
+    trailing 0)."""
     data_sets: list[DseDataSet] = field(default_factory=list)
     """Data sets: 1 to 8 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Dse:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 4) // 2, 8)
-        optional = count - 4 - repeats * 2
-        if count < 6 or optional > 0:
-            rt.split_group(address, "DSE", "data_sets", count, 4, 2, 1, 8, 0)
-        sentence_count = (_INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sentence_count", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[0] else None
-        sentence_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
-        query_flag = DseQueryFlag.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "query_flag", "dse_query_flag code (Q R A)", DseQueryFlag.BY_CODE, "letters", 1, 1)
-        vessel_mmsi = rt.text_field(fields[3], address, 4, "vessel_mmsi", "text of at most 10 characters", 10)
-        data_sets: list[DseDataSet] = []
-        pos = 4
-        for entry in range(repeats):
-            data_sets.append(DseDataSet(
-                DseCode.BY_CODE.get(fields[pos]) or rt.enum_field(fields[pos], address, pos + 1, f"data_sets[{entry + 1}].code", "dse_code code (00 01 02 03 04 05 06)", DseCode.BY_CODE, "digits", 2, 2),
-                rt.text_field(fields[pos + 1], address, pos + 2, f"data_sets[{entry + 1}].data", "text", None),
-            ))
-            pos += 2
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sentence_count, sentence_number, query_flag, vessel_mmsi, data_sets, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sentence_count),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.query_flag),
-            rt.text_of(self.vessel_mmsi),
-        ]
-        for entry in self.data_sets:
-            out += [rt.text_of(entry.code), rt.text_of(entry.data)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "DSE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sentence_count":' + show(self.sentence_count),
-            '"sentence_number":' + show(self.sentence_number),
-            '"query_flag":' + show(self.query_flag),
-            '"vessel_mmsi":' + show(self.vessel_mmsi),
-            '"data_sets":[' + ",".join(
-                "{" + '"code":' + show(entry.code) + ',"data":' + show(entry.data) + "}"
-                for entry in self.data_sets) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sentence_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "query_flag"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vessel_mmsi"), 1)
-        for entry in rt.json_list(fields, "data_sets"):
-            out += rt.json_texts(rt.json_member(entry, "code"), 1)
-            out += rt.json_texts(rt.json_member(entry, "data"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Dse, )

@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import DtmDatum, DtmLatOffsetDir, DtmLonOffsetDir
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Dtm:
+class Dtm(rt.Sentence):
     """DTM: Datum reference.
 
-    Example (geos5): $GPDTM,999,,0.002,S,0.005,E,005.8,W84*1A
+    Example (geos5):
+    $GPDTM,999,,0.002,S,0.005,E,005.8,W84*1A
     """
 
     SENTENCE: ClassVar[str] = "DTM"
@@ -32,112 +30,60 @@ class Dtm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("DTM", "standard", "$", 8, 8, (
+        rt.EnumField("local_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum),
+        rt.CharField("local_datum_subdivision", "one character"),
+        rt.DecimalField("lat_offset", "decimal number"),
+        rt.EnumField("lat_offset_dir", "dtm_lat_offset_dir code (N S)", DtmLatOffsetDir),
+        rt.DecimalField("lon_offset", "decimal number"),
+        rt.EnumField("lon_offset_dir", "dtm_lon_offset_dir code (E W)", DtmLonOffsetDir),
+        rt.DecimalField("altitude_offset", "decimal number"),
+        rt.EnumField("reference_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     local_datum: DtmDatum | str | None = None
-    """Local datum: Datum of the position output: W84 WGS-84, P90 PZ-90.11 or 999 user-defined on GeoS-5; the standard also allows W72, S85 and IHO datum codes."""
+    """Local datum: Datum of the position output: W84 WGS-84, P90 PZ-90.11 or 999 user-defined on
+    GeoS-5; the standard also allows W72, S85 and IHO datum codes."""
     local_datum_subdivision: str | None = None
-    """Local datum subdivision code: Subdivision of the local datum (IHO code); GeoS-5 leaves it empty."""
+    """Local datum subdivision code: Subdivision of the local datum (IHO code); GeoS-5 leaves it
+    empty."""
     lat_offset: rt.Number | None = None
-    """Latitude offset [arcmin]: Latitude offset of the local datum from the reference datum, in minutes of arc; always positive, the direction field gives its sign. Local = reference + offset."""
+    """Latitude offset [arcmin]: Latitude offset of the local datum from the reference datum, in
+    minutes of arc; always positive, the direction field gives its sign. Local = reference +
+    offset."""
     lat_offset_dir: DtmLatOffsetDir | str | None = None
     """Latitude offset direction: N or S."""
     lon_offset: rt.Number | None = None
-    """Longitude offset [arcmin]: Longitude offset of the local datum from the reference datum, in minutes of arc; always positive, the direction field gives its sign."""
+    """Longitude offset [arcmin]: Longitude offset of the local datum from the reference datum, in
+    minutes of arc; always positive, the direction field gives its sign."""
     lon_offset_dir: DtmLonOffsetDir | str | None = None
     """Longitude offset direction: E or W."""
     altitude_offset: rt.Number | None = None
-    """Altitude offset [m]: Altitude offset of the local datum from the reference datum, metres; may be negative."""
+    """Altitude offset [m]: Altitude offset of the local datum from the reference datum, metres; may
+    be negative."""
     reference_datum: DtmDatum | str | None = None
-    """Reference datum: Datum the offsets refer to; W84 (WGS-84) on GeoS-5 (standard also W72, S85, P90)."""
+    """Reference datum: Datum the offsets refer to; W84 (WGS-84) on GeoS-5 (standard also W72, S85,
+    P90)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Dtm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "DTM", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "DTM", 8, count)
-        local_datum = DtmDatum.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "local_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
-        local_datum_subdivision = rt.char_field(fields[1], address, 2, "local_datum_subdivision", "one character")
-        lat_offset = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "lat_offset", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        lat_offset_dir = DtmLatOffsetDir.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "lat_offset_dir", "dtm_lat_offset_dir code (N S)", DtmLatOffsetDir.BY_CODE, "letters", 1, 1)
-        lon_offset = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "lon_offset", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        lon_offset_dir = DtmLonOffsetDir.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "lon_offset_dir", "dtm_lon_offset_dir code (E W)", DtmLonOffsetDir.BY_CODE, "letters", 1, 1)
-        altitude_offset = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "altitude_offset", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        reference_datum = DtmDatum.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "reference_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], local_datum, local_datum_subdivision, lat_offset, lat_offset_dir, lon_offset, lon_offset_dir, altitude_offset, reference_datum, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.local_datum),
-            rt.text_of(self.local_datum_subdivision),
-            rt.text_of(self.lat_offset),
-            rt.text_of(self.lat_offset_dir),
-            rt.text_of(self.lon_offset),
-            rt.text_of(self.lon_offset_dir),
-            rt.text_of(self.altitude_offset),
-            rt.text_of(self.reference_datum),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "DTM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"local_datum":' + show(self.local_datum),
-            '"local_datum_subdivision":' + show(self.local_datum_subdivision),
-            '"lat_offset":' + show(self.lat_offset),
-            '"lat_offset_dir":' + show(self.lat_offset_dir),
-            '"lon_offset":' + show(self.lon_offset),
-            '"lon_offset_dir":' + show(self.lon_offset_dir),
-            '"altitude_offset":' + show(self.altitude_offset),
-            '"reference_datum":' + show(self.reference_datum),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "local_datum"), 1)
-        out += rt.json_texts(rt.json_member(fields, "local_datum_subdivision"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_offset"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_offset_dir"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_offset"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_offset_dir"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude_offset"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reference_datum"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class DtmShort:
+class DtmShort(rt.Sentence):
     """DTM (Local datum only): Datum reference.
 
     A SAAB R4 AIS transponder sends DTM with the local datum code and a subdivision letter only
     ($GPDTM,W84,C), a form no NMEA version defines; kept with those two fields.
 
-    Example (log_gpsd): $GPDTM,W84,C*52
+    Example (log_gpsd):
+    $GPDTM,W84,C*52
     """
 
     SENTENCE: ClassVar[str] = "DTM"
@@ -147,66 +93,26 @@ class DtmShort:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("DTM", "standard", "$", 2, 2, (
+        rt.EnumField("local_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum),
+        rt.CharField("local_datum_subdivision", "one character"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     local_datum: DtmDatum | str | None = None
-    """Local datum: Datum of the position output: W84 WGS-84, P90 PZ-90.11 or 999 user-defined on GeoS-5; the standard also allows W72, S85 and IHO datum codes."""
+    """Local datum: Datum of the position output: W84 WGS-84, P90 PZ-90.11 or 999 user-defined on
+    GeoS-5; the standard also allows W72, S85 and IHO datum codes."""
     local_datum_subdivision: str | None = None
-    """Local datum subdivision code: Subdivision of the local datum (IHO code); GeoS-5 leaves it empty."""
+    """Local datum subdivision code: Subdivision of the local datum (IHO code); GeoS-5 leaves it
+    empty."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> DtmShort:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "DTM", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "DTM", 2, count)
-        local_datum = DtmDatum.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "local_datum", "dtm_datum code (W84 W72 S85 P90 999)", DtmDatum.BY_CODE, "alnum", 3, 3)
-        local_datum_subdivision = rt.char_field(fields[1], address, 2, "local_datum_subdivision", "one character")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], local_datum, local_datum_subdivision, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.local_datum),
-            rt.text_of(self.local_datum_subdivision),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "DTM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"local_datum":' + show(self.local_datum),
-            '"local_datum_subdivision":' + show(self.local_datum_subdivision),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "local_datum"), 1)
-        out += rt.json_texts(rt.json_member(fields, "local_datum_subdivision"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Dtm, DtmShort, )

@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import FsiSentenceStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class Epv:
+class Epv(rt.Sentence):
     """EPV: Command or report equipment property value.
 
-    Example (pynmeagps): $IIEPV,C,AI,211000001,111,HEUREKA143*55
+    Example (pynmeagps):
+    $IIEPV,C,AI,211000001,111,HEUREKA143*55
     """
 
     SENTENCE: ClassVar[str] = "EPV"
@@ -34,84 +32,36 @@ class Epv:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("EPV", "standard", "$", 5, 5, (
+        rt.EnumField("sentence_status", "fsi_sentence_status code (R C)", FsiSentenceStatus),
+        rt.TextField("equipment_type", "text"),
+        rt.TextField("unique_id", "text"),
+        rt.IntegerField("property_id", "integer of at least 0", 0, None),
+        rt.TextField("value", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     sentence_status: FsiSentenceStatus | str | None = None
     """Sentence status flag: R = report of the current value, C = command to set it."""
     equipment_type: str | None = None
-    """Equipment type: Two-character talker identifier of the equipment the command is for or the report comes from (e.g. AI for an AIS station)."""
+    """Equipment type: Two-character talker identifier of the equipment the command is for or the
+    report comes from (e.g. AI for an AIS station)."""
     unique_id: str | None = None
     """Unique identifier: Identifies the equipment (for AIS its MMSI); required."""
     property_id: rt.Number | None = None
-    """Property identifier: Number of the property, defined by the equipment standard (commissioning settings)."""
+    """Property identifier: Number of the property, defined by the equipment standard (commissioning
+    settings)."""
     value: str | None = None
-    """Property value: The value to set (command) or the current value (report); reserved characters are sent as ^ and two hex digits."""
+    """Property value: The value to set (command) or the current value (report); reserved characters
+    are sent as ^ and two hex digits."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Epv:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "EPV", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "EPV", 5, count)
-        sentence_status = FsiSentenceStatus.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "sentence_status", "fsi_sentence_status code (R C)", FsiSentenceStatus.BY_CODE, "letters", 1, 1)
-        equipment_type = rt.text_field(fields[1], address, 2, "equipment_type", "text", None)
-        unique_id = rt.text_field(fields[2], address, 3, "unique_id", "text", None)
-        property_id = (_INTEGER_0_TO.get(fields[3]) or rt.integer_field(fields[3], address, 4, "property_id", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[3] else None
-        value = rt.text_field(fields[4], address, 5, "value", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sentence_status, equipment_type, unique_id, property_id, value, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sentence_status),
-            rt.text_of(self.equipment_type),
-            rt.text_of(self.unique_id),
-            rt.text_of(self.property_id),
-            rt.text_of(self.value),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "EPV",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sentence_status":' + show(self.sentence_status),
-            '"equipment_type":' + show(self.equipment_type),
-            '"unique_id":' + show(self.unique_id),
-            '"property_id":' + show(self.property_id),
-            '"value":' + show(self.value),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sentence_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "equipment_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unique_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "property_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "value"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Epv, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ETL: Engine telegraph operation status.
 
-Position of the engine telegraph and of the sub-telegraph, whether it is the order or the
-answer-back, where it was operated and which engine or shaft it concerns.
+Position of the engine telegraph and of the sub-telegraph, whether it is the order or the answer-
+back, where it was operated and which engine or shaft it concerns.
 """
 
 from __future__ import annotations
@@ -15,15 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import EtlMessageType, EtlSubTelegraph, EtlTelegraphPosition, PrcOperatingLocation
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Etl:
+class Etl(rt.Sentence):
     """ETL: Engine telegraph operation status.
-
     """
 
     SENTENCE: ClassVar[str] = "ETL"
@@ -33,6 +28,23 @@ class Etl:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ETL", "standard", "$", 6, 6, (
+        rt.TimeField("event_time", "time hhmmss[.s]"),
+        rt.EnumField("message_type", "etl_message_type code (O A)", EtlMessageType),
+        rt.EnumField(
+            "telegraph_position",
+            "etl_telegraph_position code (00 01 02 03 04 05 11 12 13 14 15)",
+            EtlTelegraphPosition,
+        ),
+        rt.EnumField("sub_telegraph", "etl_sub_telegraph code (20 30 40)", EtlSubTelegraph),
+        rt.EnumField(
+            "operating_location",
+            "prc_operating_location code (B P S C E W)",
+            PrcOperatingLocation,
+        ),
+        rt.IntegerField("engine_number", "integer of at least 0", 0, None),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -41,82 +53,22 @@ class Etl:
     message_type: EtlMessageType | str | None = None
     """Message type: O = order, A = answer-back."""
     telegraph_position: EtlTelegraphPosition | str | None = None
-    """Engine telegraph position: 00 = stop; 01-05 = ahead dead slow, slow, half, full, navigation full; 11-15 = astern dead slow, slow, half, full, crash astern."""
+    """Engine telegraph position: 00 = stop; 01-05 = ahead dead slow, slow, half, full, navigation
+    full; 11-15 = astern dead slow, slow, half, full, crash astern."""
     sub_telegraph: EtlSubTelegraph | str | None = None
     """Sub-telegraph position: 20 = stand by engine, 30 = full away, 40 = finished with engine."""
     operating_location: PrcOperatingLocation | str | None = None
-    """Operating location: B = bridge, P = port wing, S = starboard wing, C = engine control room, E = engine side/local, W = wing."""
+    """Operating location: B = bridge, P = port wing, S = starboard wing, C = engine control room, E
+    = engine side/local, W = wing."""
     engine_number: rt.Number | None = None
-    """Engine or shaft number: Engine or propeller shaft, one character; 0 = single or centre line, odd = starboard, even = port."""
+    """Engine or shaft number: Engine or propeller shaft, one character; 0 = single or centre line,
+    odd = starboard, even = port."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Etl:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "ETL", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "ETL", 6, count)
-        event_time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "event_time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        message_type = EtlMessageType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "message_type", "etl_message_type code (O A)", EtlMessageType.BY_CODE, "letters", 1, 1)
-        telegraph_position = EtlTelegraphPosition.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "telegraph_position", "etl_telegraph_position code (00 01 02 03 04 05 11 12 13 14 15)", EtlTelegraphPosition.BY_CODE, "digits", 2, 2)
-        sub_telegraph = EtlSubTelegraph.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "sub_telegraph", "etl_sub_telegraph code (20 30 40)", EtlSubTelegraph.BY_CODE, "digits", 2, 2)
-        operating_location = PrcOperatingLocation.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "operating_location", "prc_operating_location code (B P S C E W)", PrcOperatingLocation.BY_CODE, "letters", 1, 1)
-        engine_number = (_INTEGER_0_TO.get(fields[5]) or rt.integer_field(fields[5], address, 6, "engine_number", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], event_time, message_type, telegraph_position, sub_telegraph, operating_location, engine_number, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.event_time),
-            rt.text_of(self.message_type),
-            rt.text_of(self.telegraph_position),
-            rt.text_of(self.sub_telegraph),
-            rt.text_of(self.operating_location),
-            rt.text_of(self.engine_number),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ETL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"event_time":' + show(self.event_time),
-            '"message_type":' + show(self.message_type),
-            '"telegraph_position":' + show(self.telegraph_position),
-            '"sub_telegraph":' + show(self.sub_telegraph),
-            '"operating_location":' + show(self.operating_location),
-            '"engine_number":' + show(self.engine_number),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "event_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "telegraph_position"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sub_telegraph"), 1)
-        out += rt.json_texts(rt.json_member(fields, "operating_location"), 1)
-        out += rt.json_texts(rt.json_member(fields, "engine_number"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Etl, )

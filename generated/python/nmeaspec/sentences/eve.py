@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """EVE: General event message.
 
-Reports an event of a ship system that is neither an alarm nor a status, with the tag of its
-source and a text (e.g. the events of a fire alarm system for the voyage data recorder).
+Reports an event of a ship system that is neither an alarm nor a status, with the tag of its source
+and a text (e.g. the events of a fire alarm system for the voyage data recorder).
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Eve:
+class Eve(rt.Sentence):
     """EVE: General event message.
 
-    Example (go_nmea): $FREVE,000001,DZ00513,Fire Alarm On: TEST DZ201 Name*0A
+    Example (go_nmea):
+    $FREVE,000001,DZ00513,Fire Alarm On: TEST DZ201 Name*0A
     """
 
     SENTENCE: ClassVar[str] = "EVE"
@@ -32,6 +30,12 @@ class Eve:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("EVE", "standard", "$", 3, 3, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("tag_code", "text"),
+        rt.TextField("description", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -42,62 +46,11 @@ class Eve:
     description: str | None = None
     """Event description: Text describing the event."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Eve:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "EVE", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "EVE", 3, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        tag_code = rt.text_field(fields[1], address, 2, "tag_code", "text", None)
-        description = rt.text_field(fields[2], address, 3, "description", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, tag_code, description, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.tag_code),
-            rt.text_of(self.description),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "EVE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"tag_code":' + show(self.tag_code),
-            '"description":' + show(self.description),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tag_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "description"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Eve, )

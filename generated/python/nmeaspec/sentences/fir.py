@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """FIR: Fire detection.
 
-Events and status of a fire detection system (typically to the voyage data recorder): one
-detector's alarm, the count of activated detectors in a section, faults and disabled zones.
+Events and status of a fire detection system (typically to the voyage data recorder): one detector's
+alarm, the count of activated detectors in a section, faults and disabled zones.
 """
 
 from __future__ import annotations
@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AlrAckState, FirCondition, FirMessageType, FirSystem
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Fir:
+class Fir(rt.Sentence):
     """FIR: Fire detection.
 
-    Example (tyco_t1200c): $FRFIR,D,000000,FD,,,,A,,PANEL 01 ZONE 03 DISABLED*38
+    Example (go_nmea):
+    $FRFIR,E,103000,FD,PT,000,007,A,V,Fire Alarm : TEST PT7 Name TEST DZ2 Name*7A
     """
 
     SENTENCE: ClassVar[str] = "FIR"
@@ -34,6 +31,18 @@ class Fir:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("FIR", "standard", "$", 9, 9, (
+        rt.EnumField("message_type", "fir_message_type code (S E F D)", FirMessageType),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("system", "fir_system code (FD FH FS FM GD GO GS GH SF SV CO OT)", FirSystem),
+        rt.TextField("division_1", "text"),
+        rt.TextField("division_2", "text"),
+        rt.IntegerField("detector_number", "integer"),
+        rt.EnumField("condition", "fir_condition code (A V X)", FirCondition),
+        rt.EnumField("ack_state", "alr_ack_state code (A V)", AlrAckState),
+        rt.TextField("description", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -42,100 +51,30 @@ class Fir:
     time: rt.Time | None = None
     """Event time: UTC time of the event; Tyco's VDR module has no clock and sends 000000."""
     system: FirSystem | str | None = None
-    """Type of fire detection system: Detector kind: FD generic fire detector, FH heat, FS smoke, FM manual call point, gas detectors GD/GO/GS/GH, sprinklers SF/SV, CO CO2 release, OT other."""
+    """Type of fire detection system: Detector kind: FD generic fire detector, FH heat, FS smoke, FM
+    manual call point, gas detectors GD/GO/GS/GH, sprinklers SF/SV, CO CO2 release, OT other."""
     division_1: str | None = None
-    """First division indicator: Where the detector is (two characters), e.g. zone or panel; Tyco encodes its panel number as two letters (AA = 01, AB = 02, ...)."""
+    """First division indicator: Where the detector is (two characters), e.g. zone or panel; Tyco
+    encodes its panel number as two letters (AA = 01, AB = 02, ...)."""
     division_2: str | None = None
-    """Second division indicator: Second location of the detector (three digits in the standard), e.g. loop number."""
+    """Second division indicator: Second location of the detector (three digits in the standard),
+    e.g. loop number."""
     detector_number: rt.Number | None = None
-    """Detector number or activated count: Type E: number of the detector; type S: number of activated (or faulty) detectors in the section."""
+    """Detector number or activated count: Type E: number of the detector; type S: number of
+    activated (or faulty) detectors in the section."""
     condition: FirCondition | str | None = None
-    """Condition: A activation, V non-activation, X fault (state unknown); empty for section status."""
+    """Condition: A activation, V non-activation, X fault (state unknown); empty for section
+    status."""
     ack_state: AlrAckState | str | None = None
     """Acknowledge state: A acknowledged, V not acknowledged; may be empty."""
     description: str | None = None
     """Description text: Optional text or detector tag, limited only by the sentence length."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Fir:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "FIR", 9, count)
-        if count > 9:
-            raise rt.too_many(address, "FIR", 9, count)
-        message_type = FirMessageType.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "message_type", "fir_message_type code (S E F D)", FirMessageType.BY_CODE, "letters", 1, 1)
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        system = FirSystem.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "system", "fir_system code (FD FH FS FM GD GO GS GH SF SV CO OT)", FirSystem.BY_CODE, "letters", 2, 2)
-        division_1 = rt.text_field(fields[3], address, 4, "division_1", "text", None)
-        division_2 = rt.text_field(fields[4], address, 5, "division_2", "text", None)
-        detector_number = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "detector_number", "integer", None, None, _INTEGER)) if fields[5] else None
-        condition = FirCondition.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "condition", "fir_condition code (A V X)", FirCondition.BY_CODE, "letters", 1, 1)
-        ack_state = AlrAckState.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "ack_state", "alr_ack_state code (A V)", AlrAckState.BY_CODE, "letters", 1, 1)
-        description = rt.text_field(fields[8], address, 9, "description", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], message_type, time, system, division_1, division_2, detector_number, condition, ack_state, description, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message_type),
-            rt.text_of(self.time),
-            rt.text_of(self.system),
-            rt.text_of(self.division_1),
-            rt.text_of(self.division_2),
-            rt.text_of(self.detector_number),
-            rt.text_of(self.condition),
-            rt.text_of(self.ack_state),
-            rt.text_of(self.description),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "FIR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message_type":' + show(self.message_type),
-            '"time":' + show(self.time),
-            '"system":' + show(self.system),
-            '"division_1":' + show(self.division_1),
-            '"division_2":' + show(self.division_2),
-            '"detector_number":' + show(self.detector_number),
-            '"condition":' + show(self.condition),
-            '"ack_state":' + show(self.ack_state),
-            '"description":' + show(self.description),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "division_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "division_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "detector_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "condition"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ack_state"), 1)
-        out += rt.json_texts(rt.json_member(fields, "description"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Fir, )

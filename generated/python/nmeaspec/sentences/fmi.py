@@ -15,18 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Fmi:
+class Fmi(rt.Sentence):
     """FMI: IMU position and attitude (Feyman).
 
-    Example (pynmeagps): $GPFMI,160224.40,0.0,0.0,0.0,0.05268,0.001,0.17453,0.17,12,0,2,001C0001*1A
+    Example (pynmeagps):
+    $GPFMI,160224.40,0.0,0.0,0.0,0.05268,0.001,0.17453,0.17,12,0,2,001C0001*1A
     """
 
     SENTENCE: ClassVar[str] = "FMI"
@@ -36,6 +31,21 @@ class Fmi:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("FMI", "standard", "$", 12, 12, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("latitude", "decimal number"),
+        rt.DecimalField("longitude", "decimal number"),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.DecimalField("roll", "decimal number"),
+        rt.DecimalField("pitch", "decimal number"),
+        rt.DecimalField("yaw", "decimal number"),
+        rt.DecimalField("hrms", "decimal number"),
+        rt.IntegerField("satellites", "integer"),
+        rt.IntegerField("differential_age", "integer"),
+        rt.IntegerField("nav_mode", "integer"),
+        rt.HexField("status", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -60,102 +70,21 @@ class Fmi:
     differential_age: rt.Number | None = None
     """Age of differential data [s]: Age of the RTK corrections in seconds."""
     nav_mode: rt.Number | None = None
-    """Navigation mode: Navigation mode of the filter, a vendor-defined number (2 in every sample)."""
+    """Navigation mode: Navigation mode of the filter, a vendor-defined number (2 in every
+    sample)."""
     status: rt.Hex | None = None
-    """Status bit mask: 32-bit status mask: 0x1 filter not initialised, 0x2 filter converged, 0x4 converging, 0x8 tilt over threshold, 0x10 poor RTK data, 0x20 filter reset, 0x40-0x200 installation angle estimation stages 1-4, 0x400 installation angles estimated, 0x2000/0x4000 shake the pole to initialise direction 1/2, 0x10000 RTK data missing, 0x20000 filter initialised, 0x40000 PPS detected, 0x80000 time synchronised to PPS, 0x100000 RTK serial link up."""
+    """Status bit mask: 32-bit status mask: 0x1 filter not initialised, 0x2 filter converged, 0x4
+    converging, 0x8 tilt over threshold, 0x10 poor RTK data, 0x20 filter reset, 0x40-0x200
+    installation angle estimation stages 1-4, 0x400 installation angles estimated, 0x2000/0x4000
+    shake the pole to initialise direction 1/2, 0x10000 RTK data missing, 0x20000 filter
+    initialised, 0x40000 PPS detected, 0x80000 time synchronised to PPS, 0x100000 RTK serial link
+    up."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Fmi:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "FMI", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "FMI", 12, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        latitude = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "latitude", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        longitude = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "longitude", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        altitude = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "altitude", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        roll = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "roll", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        pitch = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "pitch", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        yaw = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "yaw", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        hrms = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "hrms", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        satellites = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "satellites", "integer", None, None, _INTEGER)) if fields[8] else None
-        differential_age = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "differential_age", "integer", None, None, _INTEGER)) if fields[9] else None
-        nav_mode = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "nav_mode", "integer", None, None, _INTEGER)) if fields[10] else None
-        status = (_HEX.get(fields[11]) or rt.hex_field(fields[11], address, 12, "status", "hex number", _HEX)) if fields[11] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, latitude, longitude, altitude, roll, pitch, yaw, hrms, satellites, differential_age, nav_mode, status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.latitude),
-            rt.text_of(self.longitude),
-            rt.text_of(self.altitude),
-            rt.text_of(self.roll),
-            rt.text_of(self.pitch),
-            rt.text_of(self.yaw),
-            rt.text_of(self.hrms),
-            rt.text_of(self.satellites),
-            rt.text_of(self.differential_age),
-            rt.text_of(self.nav_mode),
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "FMI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"latitude":' + show(self.latitude),
-            '"longitude":' + show(self.longitude),
-            '"altitude":' + show(self.altitude),
-            '"roll":' + show(self.roll),
-            '"pitch":' + show(self.pitch),
-            '"yaw":' + show(self.yaw),
-            '"hrms":' + show(self.hrms),
-            '"satellites":' + show(self.satellites),
-            '"differential_age":' + show(self.differential_age),
-            '"nav_mode":' + show(self.nav_mode),
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "latitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "longitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "yaw"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hrms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "differential_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "nav_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Fmi, )

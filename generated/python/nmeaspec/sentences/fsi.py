@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """FSI: Frequency set information.
 
-Sets or reports the transmit and receive frequency, mode of operation and transmitter power
-level of a radiotelephone, and acknowledges setting commands. A command sentence: the status
-flag tells a report from a command.
+Sets or reports the transmit and receive frequency, mode of operation and transmitter power level of
+a radiotelephone, and acknowledges setting commands. A command sentence: the status flag tells a
+report from a command.
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import FsiMode, FsiSentenceStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-
 
 @dataclass(slots=True)
-class Fsi:
+class Fsi(rt.Sentence):
     """FSI: Frequency set information.
 
-    Example (swiftnmea): $CTFSI,020230,026140,m,0,C
+    Example (swiftnmea):
+    $CTFSI,020230,026140,m,0,C
     """
 
     SENTENCE: ClassVar[str] = "FSI"
@@ -34,95 +32,44 @@ class Fsi:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("FSI", "standard", "$", 4, 5, (
+        rt.TextField("transmit_frequency", "text"),
+        rt.TextField("receive_frequency", "text"),
+        rt.EnumField("mode", "fsi_mode code (d e m o q s t w x { |)", FsiMode),
+        rt.IntegerField("power_level", "integer 0..9", 0, 9),
+        rt.EnumField(
+            "sentence_status",
+            "fsi_sentence_status code (R C)",
+            FsiSentenceStatus,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     transmit_frequency: str | None = None
-    """Transmitting frequency: Six-digit frequency or channel code: MF/HF frequency in units of 100 Hz (first digit 0 to 2, e.g. 020230 = 2023.0 kHz), 3cccc = ITU MF/HF telephone channel, 4bbccc = ITU teletype band and channel, 90xccc = VHF channel ccc (x: 0 as defined, 1 simplex on the ship's transmit frequency, 2 simplex on the coast station's). For a paired channel only this field is given; empty for a receive-only setting."""
+    """Transmitting frequency: Six-digit frequency or channel code: MF/HF frequency in units of 100
+    Hz (first digit 0 to 2, e.g. 020230 = 2023.0 kHz), 3cccc = ITU MF/HF telephone channel, 4bbccc =
+    ITU teletype band and channel, 90xccc = VHF channel ccc (x: 0 as defined, 1 simplex on the
+    ship's transmit frequency, 2 simplex on the coast station's). For a paired channel only this
+    field is given; empty for a receive-only setting."""
     receive_frequency: str | None = None
-    """Receiving frequency: Receive frequency or channel, coded as the transmitting frequency; empty for a paired channel given in the first field."""
+    """Receiving frequency: Receive frequency or channel, coded as the transmitting frequency; empty
+    for a paired channel given in the first field."""
     mode: FsiMode | str | None = None
-    """Mode of operation: Emission class and terminal (d, e, m, o, q, s, t, w, x, {, |); empty for no information."""
+    """Mode of operation: Emission class and terminal (d, e, m, o, q, s, t, w, x, {, |); empty for
+    no information."""
     power_level: rt.Number | None = None
     """Power level: Transmitter power, 0 = standby, 1 = lowest to 9 = highest."""
     sentence_status: FsiSentenceStatus | str | None | rt._Absent = rt.ABSENT
     """Sentence status flag: R = report of the current settings, C = command to change them."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Fsi:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "FSI", 4, count)
-        if count > 5:
-            raise rt.too_many(address, "FSI", 5, count)
-        optional = count - 4
-        transmit_frequency = rt.text_field(fields[0], address, 1, "transmit_frequency", "text", None)
-        receive_frequency = rt.text_field(fields[1], address, 2, "receive_frequency", "text", None)
-        mode = FsiMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "mode", "fsi_mode code (d e m o q s t w x { |)", FsiMode.BY_CODE, "letters", 1, 1)
-        power_level = (_INTEGER_0_TO_9.get(fields[3]) or rt.integer_field(fields[3], address, 4, "power_level", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[3] else None
-        sentence_status: FsiSentenceStatus | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            sentence_status = FsiSentenceStatus.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "sentence_status", "fsi_sentence_status code (R C)", FsiSentenceStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], transmit_frequency, receive_frequency, mode, power_level, sentence_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.transmit_frequency),
-            rt.text_of(self.receive_frequency),
-            rt.text_of(self.mode),
-            rt.text_of(self.power_level),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.sentence_status is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.sentence_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "FSI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"transmit_frequency":' + show(self.transmit_frequency),
-            '"receive_frequency":' + show(self.receive_frequency),
-            '"mode":' + show(self.mode),
-            '"power_level":' + show(self.power_level),
-        ]
-        if self.sentence_status is not rt.ABSENT:
-            parts.append('"sentence_status":' + show(self.sentence_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "transmit_frequency"), 1)
-        out += rt.json_texts(rt.json_member(fields, "receive_frequency"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "power_level"), 1)
-        if "sentence_status" in fields:
-            out += rt.json_texts(fields["sentence_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Fsi, )

@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """GBS: GNSS satellite fault detection.
 
-Result of the receiver's autonomous integrity monitoring (RAIM) for the fix of the matching GGA
-or GNS sentence: the expected position errors and, when a satellite fails the test, which one is
-the most likely culprit and how large its range bias is. With several constellations the talker
-is GN and the values refer to the combined solution.
+Result of the receiver's autonomous integrity monitoring (RAIM) for the fix of the matching GGA or
+GNS sentence: the expected position errors and, when a satellite fails the test, which one is the
+most likely culprit and how large its range bias is. With several constellations the talker is GN
+and the values refer to the combined solution.
 """
 
 from __future__ import annotations
@@ -17,17 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SignalId, SystemId
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Gbs:
+class Gbs(rt.Sentence):
     """GBS: GNSS satellite fault detection.
 
-    Example (log_gpsd): $GPGBS,131519.00,0.7,0.5,1.1,02,,30.9,12.6*40
+    Example (log_pynmeagps):
+    $GPGBS,235458.00,1.4,1.3,3.1,03,,-21.4,3.8,1,0*5A
     """
 
     SENTENCE: ClassVar[str] = "GBS"
@@ -37,144 +33,76 @@ class Gbs:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GBS", "standard", "$", 8, 10, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("lat_error", "decimal number"),
+        rt.DecimalField("lon_error", "decimal number"),
+        rt.DecimalField("alt_error", "decimal number"),
+        rt.IntegerField("failed_satellite", "integer"),
+        rt.DecimalField("missed_detection_probability", "decimal number"),
+        rt.DecimalField("bias", "decimal number"),
+        rt.DecimalField("bias_std_dev", "decimal number"),
+        rt.EnumField("system_id", "system_id code (1 2 3 4 5 6 F)", SystemId, optional=True),
+        rt.EnumField(
+            "signal_id",
+            "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)",
+            SignalId,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the GGA or GNS fix these integrity results belong to."""
     lat_error: rt.Number | None = None
-    """Expected latitude error [m]: Expected error in latitude, metres (a 1-sigma value; Trimble describes it as the error due to bias with zero noise). u-blox leaves it empty unless the RAIM test passed with more than four satellites."""
+    """Expected latitude error [m]: Expected error in latitude, metres (a 1-sigma value; Trimble
+    describes it as the error due to bias with zero noise). u-blox leaves it empty unless the RAIM
+    test passed with more than four satellites."""
     lon_error: rt.Number | None = None
-    """Expected longitude error [m]: Expected error in longitude, metres (same meaning as the latitude error)."""
+    """Expected longitude error [m]: Expected error in longitude, metres (same meaning as the
+    latitude error)."""
     alt_error: rt.Number | None = None
-    """Expected altitude error [m]: Expected error in altitude, metres (same meaning as the latitude error)."""
+    """Expected altitude error [m]: Expected error in altitude, metres (same meaning as the latitude
+    error)."""
     failed_satellite: rt.Number | None = None
-    """Most likely failed satellite: ID of the satellite most likely to have failed; empty when no satellite failed the test. Numbered as in GSA (with NMEA 4.10 the system ID field tells the constellation)."""
+    """Most likely failed satellite: ID of the satellite most likely to have failed; empty when no
+    satellite failed the test. Numbered as in GSA (with NMEA 4.10 the system ID field tells the
+    constellation)."""
     missed_detection_probability: rt.Number | None = None
-    """Probability of missed detection: Probability of missed detection for the most likely failed satellite; empty when none failed."""
+    """Probability of missed detection: Probability of missed detection for the most likely failed
+    satellite; empty when none failed."""
     bias: rt.Number | None = None
-    """Bias estimate [m]: Estimated range bias on the most likely failed satellite, metres (signed); empty when none failed."""
+    """Bias estimate [m]: Estimated range bias on the most likely failed satellite, metres (signed);
+    empty when none failed."""
     bias_std_dev: rt.Number | None = None
-    """Bias standard deviation [m]: Standard deviation of the bias estimate, metres; empty when no satellite failed."""
+    """Bias standard deviation [m]: Standard deviation of the bias estimate, metres; empty when no
+    satellite failed."""
     system_id: SystemId | str | None | rt._Absent = rt.ABSENT
-    """GNSS system ID (NMEA 4.10): Constellation of the most likely failed satellite (NMEA 4.10 and later); u-blox sends it empty when no satellite failed."""
+    """GNSS system ID (NMEA 4.10): Constellation of the most likely failed satellite (NMEA 4.10 and
+    later); u-blox sends it empty when no satellite failed."""
     signal_id: SignalId | str | None | rt._Absent = rt.ABSENT
-    """GNSS signal ID (NMEA 4.10): Signal of the most likely failed satellite that failed (0 = all signals), NMEA 4.10 and later."""
+    """GNSS signal ID (NMEA 4.10): Signal of the most likely failed satellite that failed (0 = all
+    signals), NMEA 4.10 and later."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gbs:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "GBS", 8, count)
-        if count > 10:
-            raise rt.too_many(address, "GBS", 10, count)
-        optional = count - 8
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        lat_error = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "lat_error", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        lon_error = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "lon_error", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        alt_error = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "alt_error", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        failed_satellite = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "failed_satellite", "integer", None, None, _INTEGER)) if fields[4] else None
-        missed_detection_probability = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "missed_detection_probability", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        bias = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "bias", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        bias_std_dev = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "bias_std_dev", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        system_id: SystemId | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            system_id = SystemId.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "system_id", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
-        signal_id: SignalId | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            signal_id = SignalId.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", SignalId.BY_CODE, "alnum", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, lat_error, lon_error, alt_error, failed_satellite, missed_detection_probability, bias, bias_std_dev, system_id, signal_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.lat_error),
-            rt.text_of(self.lon_error),
-            rt.text_of(self.alt_error),
-            rt.text_of(self.failed_satellite),
-            rt.text_of(self.missed_detection_probability),
-            rt.text_of(self.bias),
-            rt.text_of(self.bias_std_dev),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.signal_id is not rt.ABSENT:
-            last = 1
-        elif self.system_id is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.system_id)]
-        if last >= 1:
-            out += [rt.text_of(self.signal_id)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GBS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"lat_error":' + show(self.lat_error),
-            '"lon_error":' + show(self.lon_error),
-            '"alt_error":' + show(self.alt_error),
-            '"failed_satellite":' + show(self.failed_satellite),
-            '"missed_detection_probability":' + show(self.missed_detection_probability),
-            '"bias":' + show(self.bias),
-            '"bias_std_dev":' + show(self.bias_std_dev),
-        ]
-        if self.system_id is not rt.ABSENT:
-            parts.append('"system_id":' + show(self.system_id))
-        if self.signal_id is not rt.ABSENT:
-            parts.append('"signal_id":' + show(self.signal_id))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alt_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "failed_satellite"), 1)
-        out += rt.json_texts(rt.json_member(fields, "missed_detection_probability"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bias"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bias_std_dev"), 1)
-        if "system_id" in fields:
-            out += rt.json_texts(fields["system_id"], 1)
-        if "signal_id" in fields:
-            out += rt.json_texts(fields["signal_id"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class GbsUnits:
+class GbsUnits(rt.Sentence):
     """GBS (Three errors with unit letters): GNSS satellite fault detection.
 
-    The example NMEA Revealed prints ($GPGBS,125027,23.43,M,13.91,M,34.01,M*07, checksum
-    intact): time, then the latitude, longitude and altitude errors each followed by the unit
-    letter M, and no satellite fields. Seven fields, so the standard layout (at least eight)
-    rejects it.
+    The example NMEA Revealed prints ($GPGBS,125027,23.43,M,13.91,M,34.01,M*07, checksum intact):
+    time, then the latitude, longitude and altitude errors each followed by the unit letter M, and
+    no satellite fields. Seven fields, so the standard layout (at least eight) rejects it.
 
-    Example (nmea_revealed): $GPGBS,125027,23.43,M,13.91,M,34.01,M*07
+    Example (nmea_revealed):
+    $GPGBS,125027,23.43,M,13.91,M,34.01,M*07
     """
 
     SENTENCE: ClassVar[str] = "GBS"
@@ -184,96 +112,43 @@ class GbsUnits:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GBS", "standard", "$", 7, 7, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("lat_error", "decimal number"),
+        rt.LiteralField("lat_error_unit", "M or nothing", "M"),
+        rt.DecimalField("lon_error", "decimal number"),
+        rt.LiteralField("lon_error_unit", "M or nothing", "M"),
+        rt.DecimalField("alt_error", "decimal number"),
+        rt.LiteralField("alt_error_unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the GGA or GNS fix these integrity results belong to."""
     lat_error: rt.Number | None = None
-    """Expected latitude error [m]: Expected error in latitude, metres (a 1-sigma value; Trimble describes it as the error due to bias with zero noise). u-blox leaves it empty unless the RAIM test passed with more than four satellites."""
+    """Expected latitude error [m]: Expected error in latitude, metres (a 1-sigma value; Trimble
+    describes it as the error due to bias with zero noise). u-blox leaves it empty unless the RAIM
+    test passed with more than four satellites."""
     lat_error_unit: str | None = None
     """Latitude error unit: M = metres."""
     lon_error: rt.Number | None = None
-    """Expected longitude error [m]: Expected error in longitude, metres (same meaning as the latitude error)."""
+    """Expected longitude error [m]: Expected error in longitude, metres (same meaning as the
+    latitude error)."""
     lon_error_unit: str | None = None
     """Longitude error unit: M = metres."""
     alt_error: rt.Number | None = None
-    """Expected altitude error [m]: Expected error in altitude, metres (same meaning as the latitude error)."""
+    """Expected altitude error [m]: Expected error in altitude, metres (same meaning as the latitude
+    error)."""
     alt_error_unit: str | None = None
     """Altitude error unit: M = metres."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> GbsUnits:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "GBS", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "GBS", 7, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        lat_error = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "lat_error", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        lat_error_unit = "M" if fields[2] == "M" else rt.literal_field(fields[2], address, 3, "lat_error_unit", "M or nothing", "M")
-        lon_error = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "lon_error", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        lon_error_unit = "M" if fields[4] == "M" else rt.literal_field(fields[4], address, 5, "lon_error_unit", "M or nothing", "M")
-        alt_error = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "alt_error", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        alt_error_unit = "M" if fields[6] == "M" else rt.literal_field(fields[6], address, 7, "alt_error_unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, lat_error, lat_error_unit, lon_error, lon_error_unit, alt_error, alt_error_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.lat_error),
-            rt.text_of(self.lat_error_unit),
-            rt.text_of(self.lon_error),
-            rt.text_of(self.lon_error_unit),
-            rt.text_of(self.alt_error),
-            rt.text_of(self.alt_error_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GBS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"lat_error":' + show(self.lat_error),
-            '"lat_error_unit":' + show(self.lat_error_unit),
-            '"lon_error":' + show(self.lon_error),
-            '"lon_error_unit":' + show(self.lon_error_unit),
-            '"alt_error":' + show(self.alt_error),
-            '"alt_error_unit":' + show(self.alt_error_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_error_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_error_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alt_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alt_error_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gbs, GbsUnits, )

@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """GEN: Generic binary information.
 
-Compact transport of generic binary data (e.g. the state of lamps on a display) as 16-bit words
-in hex. The data is an array of up to 65536 words; each sentence writes consecutive words from
-the given index on, and an empty word means "no update". What the bits mean is defined outside
-the standard.
+Compact transport of generic binary data (e.g. the state of lamps on a display) as 16-bit words in
+hex. The data is an array of up to 65536 words; each sentence writes consecutive words from the
+given index on, and an empty word means "no update". What the bits mean is defined outside the
+standard.
 """
 
 from __future__ import annotations
@@ -16,24 +16,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class GenWord:
-    """One entry of data words (0 to 8 per sentence)."""
-
-    word: rt.Hex | None = None
-    """Data word: 16 bits of data as four hex digits; empty means no update for that word (the index still advances)."""
-
-
-@dataclass(slots=True)
-class Gen:
+class Gen(rt.Sentence):
     """GEN: Generic binary information.
 
-    Example (pynmeagps): $VRGEN,0000,011200.00,0123,4567,89AB,CDEF,0123,4567,89AB,CDEF*64
+    Example (pynmeagps):
+    $VRGEN,0000,011200.00,0123,4567,89AB,CDEF,0123,4567,89AB,CDEF*64
     """
 
     SENTENCE: ClassVar[str] = "GEN"
@@ -43,80 +32,31 @@ class Gen:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GEN", "standard", "$", 2, 10, (
+        rt.HexField("index", "hex number"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.Group("words", None, (
+            rt.HexField("word", "hex number"),
+        ), 0, 8),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     index: rt.Hex | None = None
-    """Index of the first word: Position (0000 to FFFF) in the data array of the first word of this sentence; the next sentence of a longer block continues at this index plus the number of words sent here."""
+    """Index of the first word: Position (0000 to FFFF) in the data array of the first word of this
+    sentence; the next sentence of a longer block continues at this index plus the number of words
+    sent here."""
     time: rt.Time | None = None
     """Time stamp: UTC time of the data."""
     words: list[rt.Hex | None] = field(default_factory=list)
     """Data words: 0 to 8 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gen:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 1, 8)
-        optional = count - 2 - repeats * 1
-        if count < 2 or optional > 0:
-            rt.split_group(address, "GEN", "words", count, 2, 1, 0, 8, 0)
-        index = (_HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "index", "hex number", _HEX)) if fields[0] else None
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        words: list[rt.Hex | None] = []
-        pos = 2
-        for entry in range(repeats):
-            words.append((_HEX.get(fields[pos]) or rt.hex_field(fields[pos], address, pos + 1, f"words[{entry + 1}].word", "hex number", _HEX)) if fields[pos] else None)
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], index, time, words, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.index),
-            rt.text_of(self.time),
-        ]
-        for entry in self.words:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GEN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"index":' + show(self.index),
-            '"time":' + show(self.time),
-            '"words":[' + ",".join(show(entry) for entry in self.words) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        for entry in rt.json_list(fields, "words"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gen, )

@@ -3,12 +3,11 @@
 # Regenerate: make generate (python3 -m generator generate)
 """GEOS5_COMMAND: GeoS-5 input command.
 
-The GeoS-5 input commands of manual section 4 other than the RQUERY and NQUERY requests:
-protocol switch, saving almanacs, cold/warm/hot start, serial port baud rate and stop bits,
-switching each standard sentence on or off, NMEA version, output data rate, power saving,
-elevation mask, datum and constellation selection. Each is the line $GPSGG,<word>*hh with one
-6-character command word and no arguments; the values a command takes (baud rate, rate, mask...)
-are part of the word.
+The GeoS-5 input commands of manual section 4 other than the RQUERY and NQUERY requests: protocol
+switch, saving almanacs, cold/warm/hot start, serial port baud rate and stop bits, switching each
+standard sentence on or off, NMEA version, output data rate, power saving, elevation mask, datum and
+constellation selection. Each is the line $GPSGG,<word>*hh with one 6-character command word and no
+arguments; the values a command takes (baud rate, rate, mask...) are part of the word.
 """
 
 from __future__ import annotations
@@ -21,10 +20,11 @@ from ..enums import Geos5CommandWord
 
 
 @dataclass(slots=True)
-class Geos5Command:
+class Geos5Command(rt.Sentence):
     """GEOS5_COMMAND: GeoS-5 input command.
 
-    Example (geos5): $GPSGG,SWPROT*75
+    Example (geos5):
+    $GPSGG,SWPROT*75
     """
 
     SENTENCE: ClassVar[str] = "GEOS5_COMMAND"
@@ -34,57 +34,29 @@ class Geos5Command:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GEOS5_COMMAND", "proprietary", "$", 1, 1, (
+        rt.EnumField(
+            "command",
+            "geos5_command_word code (SWPROT SAVEFL CSTART WSTART HSTART BDR004 BDR009 BDR019 "
+            "BDR038 BDR057 BDR115 BDR230 BDR460 BDR921 STOP01 STOP02 GGA ON GGAOFF GLL ON GLLOFF "
+            "GSA ON GSAOFF GSV ON GSVOFF RMC ON RMCOFF VTG ON VTGOFF ZDA ON ZDAOFF DTM ON DTMOFF "
+            "RLM ON RLMOFF NMEAV2 NMEAV4 RATE01 RATE02 RATE05 RATE10 PSM ON PSMOFF ELEV05 ELEV06 "
+            "ELEV07 ELEV08 ELEV09 ELEV10 ELEV11 ELEV12 ELEV13 ELEV14 ELEV15 DATP90 DATW84 NVSGPS "
+            "NVSGLN NVSMIX)",
+            Geos5CommandWord,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: Geos5CommandWord | str | None = None
-    """Command word: The 6-character command word, e.g. BDR115 (115200 bit/s), GGA ON, RATE10 or ELEV05. The words that switch a sentence on contain a space ("GGA ON") that is sent and covered by the checksum."""
+    """Command word: The 6-character command word, e.g. BDR115 (115200 bit/s), GGA ON, RATE10 or
+    ELEV05. The words that switch a sentence on contain a space (\"GGA ON\") that is sent and
+    covered by the checksum."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Geos5Command:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "GEOS5_COMMAND", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "GEOS5_COMMAND", 1, count)
-        command = Geos5CommandWord.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "command", "geos5_command_word code (SWPROT SAVEFL CSTART WSTART HSTART BDR004 BDR009 BDR019 BDR038 BDR057 BDR115 BDR230 BDR460 BDR921 STOP01 STOP02 GGA ON GGAOFF GLL ON GLLOFF GSA ON GSAOFF GSV ON GSVOFF RMC ON RMCOFF VTG ON VTGOFF ZDA ON ZDAOFF DTM ON DTMOFF RLM ON RLMOFF NMEAV2 NMEAV4 RATE01 RATE02 RATE05 RATE10 PSM ON PSMOFF ELEV05 ELEV06 ELEV07 ELEV08 ELEV09 ELEV10 ELEV11 ELEV12 ELEV13 ELEV14 ELEV15 DATP90 DATW84 NVSGPS NVSGLN NVSMIX)", Geos5CommandWord.BY_CODE, "alnum", 6, 6)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "GPSGG",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Geos5Command, )

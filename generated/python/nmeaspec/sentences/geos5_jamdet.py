@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """GEOS5_JAMDET: GeoS-5 jamming detected.
 
-Sent by the receiver when it detects jamming (manual section 3.13, added in manual revision
-1.1). Status bit 31 of RQUERY reports the same condition.
+Sent by the receiver when it detects jamming (manual section 3.13, added in manual revision 1.1).
+Status bit 31 of RQUERY reports the same condition.
 """
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class Geos5Jamdet:
+class Geos5Jamdet(rt.Sentence):
     """GEOS5_JAMDET: GeoS-5 jamming detected.
 
-    Example (geos5): $GPSGG,JAMDET,*57
+    Example (geos5):
+    $GPSGG,JAMDET,*57
     """
 
     SENTENCE: ClassVar[str] = "GEOS5_JAMDET"
@@ -29,63 +30,23 @@ class Geos5Jamdet:
     SELECTOR: ClassVar[str | None] = "JAMDET"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GEOS5_JAMDET", "proprietary", "$", 2, 2, (
+        rt.KeywordField("keyword", "JAMDET", "JAMDET"),
+        rt.TextField("reserved", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "JAMDET"
-    """Mnemonic: Identifies the sentence among the GeoS-5 proprietary sentences, which all share the address GPSGG."""
+    """Mnemonic: Identifies the sentence among the GeoS-5 proprietary sentences, which all share the
+    address GPSGG."""
     reserved: str | None = None
-    """Reserved: A field that is empty in every printed form ($GPSGG,JAMDET,*57; the comma is covered by the checksum). The manual gives it no meaning."""
+    """Reserved: A field that is empty in every printed form ($GPSGG,JAMDET,*57; the comma is
+    covered by the checksum). The manual gives it no meaning."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Geos5Jamdet:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "GEOS5_JAMDET", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "GEOS5_JAMDET", 2, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "JAMDET", "JAMDET")
-        reserved = rt.text_field(fields[1], address, 2, "reserved", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, reserved, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.reserved),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "GPSGG",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"reserved":' + show(self.reserved),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Geos5Jamdet, )

@@ -17,15 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import Geos5MessageRate, Geos5NmeaVersion, Geos5OutputRate
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_1: dict[Any, Any] = rt.known("integer 0..1")
-
 
 @dataclass(slots=True)
-class Geos5Nquery:
+class Geos5Nquery(rt.Sentence):
     """GEOS5_NQUERY: GeoS-5 set and rates of NMEA sentences.
 
-    Example (geos5): $GPSGG,NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71
+    Example (geos5):
+    $GPSGG,NQUERY,1,3,2,R,0,R,1,0,0,0,1,1,0*71
     """
 
     SENTENCE: ClassVar[str] = "GEOS5_NQUERY"
@@ -35,135 +33,80 @@ class Geos5Nquery:
     SELECTOR: ClassVar[str | None] = "NQUERY"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GEOS5_NQUERY", "proprietary", "$", 14, 14, (
+        rt.KeywordField("keyword", "NQUERY", "NQUERY"),
+        rt.IntegerField("port", "integer 0..1", 0, 1),
+        rt.EnumField("output_rate", "geos5_output_rate code (0 1 2 3)", Geos5OutputRate),
+        rt.EnumField("nmea_version", "geos5_nmea_version code (2 4)", Geos5NmeaVersion),
+        rt.EnumField("gga_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+        rt.EnumField("gll_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+        rt.EnumField("gsa_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+        rt.EnumField("gsv_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+        rt.EnumField("rmc_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+        rt.EnumField("vtg_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+        rt.EnumField("gns_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+        rt.EnumField("zda_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+        rt.EnumField("dtm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+        rt.EnumField("rlm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "NQUERY"
-    """Mnemonic: Identifies the sentence among the GeoS-5 proprietary sentences, which all share the address GPSGG."""
+    """Mnemonic: Identifies the sentence among the GeoS-5 proprietary sentences, which all share the
+    address GPSGG."""
     port: rt.Number | None = None
     """Port number: Serial port the report is about (0 = port"""
     output_rate: Geos5OutputRate | str | None = None
-    """Output data rate: Navigation output data rate (0 = 10 Hz, 1 = 5 Hz, 2 = 2 Hz, 3 = 1 Hz), set with the RATEnn commands."""
+    """Output data rate: Navigation output data rate (0 = 10 Hz, 1 = 5 Hz, 2 = 2 Hz, 3 = 1 Hz), set
+    with the RATEnn commands."""
     nmea_version: Geos5NmeaVersion | str | None = None
-    """NMEA version: Version of the NMEA standard of the standard sentences (2 = v2.x, 4 = v4.10), set with NMEAV2/NMEAV4."""
+    """NMEA version: Version of the NMEA standard of the standard sentences (2 = v2.x, 4 = v4.10),
+    set with NMEAV2/NMEAV4."""
     gga_rate: Geos5MessageRate | str | None = None
-    """GGA output rate (provisional position): Per-sentence rate field 1 of 10, provisionally taken to be GGA: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """GGA output rate (provisional position): Per-sentence rate field 1 of 10, provisionally taken
+    to be GGA: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     gll_rate: Geos5MessageRate | str | None = None
-    """GLL output rate (provisional position): Per-sentence rate field 2 of 10, provisionally taken to be GLL: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """GLL output rate (provisional position): Per-sentence rate field 2 of 10, provisionally taken
+    to be GLL: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     gsa_rate: Geos5MessageRate | str | None = None
-    """GSA output rate (provisional position): Per-sentence rate field 3 of 10, provisionally taken to be GSA: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """GSA output rate (provisional position): Per-sentence rate field 3 of 10, provisionally taken
+    to be GSA: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     gsv_rate: Geos5MessageRate | str | None = None
-    """GSV output rate (provisional position): Per-sentence rate field 4 of 10, provisionally taken to be GSV: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """GSV output rate (provisional position): Per-sentence rate field 4 of 10, provisionally taken
+    to be GSV: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     rmc_rate: Geos5MessageRate | str | None = None
-    """RMC output rate (provisional position): Per-sentence rate field 5 of 10, provisionally taken to be RMC: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """RMC output rate (provisional position): Per-sentence rate field 5 of 10, provisionally taken
+    to be RMC: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     vtg_rate: Geos5MessageRate | str | None = None
-    """VTG output rate (provisional position): Per-sentence rate field 6 of 10, provisionally taken to be VTG: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """VTG output rate (provisional position): Per-sentence rate field 6 of 10, provisionally taken
+    to be VTG: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     gns_rate: Geos5MessageRate | str | None = None
-    """GNS output rate (provisional position): Per-sentence rate field 7 of 10, provisionally taken to be GNS: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """GNS output rate (provisional position): Per-sentence rate field 7 of 10, provisionally taken
+    to be GNS: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     zda_rate: Geos5MessageRate | str | None = None
-    """ZDA output rate (provisional position): Per-sentence rate field 8 of 10, provisionally taken to be ZDA: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """ZDA output rate (provisional position): Per-sentence rate field 8 of 10, provisionally taken
+    to be ZDA: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     dtm_rate: Geos5MessageRate | str | None = None
-    """DTM output rate (provisional position): Per-sentence rate field 9 of 10, provisionally taken to be DTM: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """DTM output rate (provisional position): Per-sentence rate field 9 of 10, provisionally taken
+    to be DTM: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     rlm_rate: Geos5MessageRate | str | None = None
-    """RLM output rate (provisional position): Per-sentence rate field 10 of 10, provisionally taken to be RLM: the manual's list of which sentence each position belongs to was lost (see the notes)."""
+    """RLM output rate (provisional position): Per-sentence rate field 10 of 10, provisionally taken
+    to be RLM: the manual's list of which sentence each position belongs to was lost (see the
+    notes)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Geos5Nquery:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 14:
-            raise rt.too_few(address, "GEOS5_NQUERY", 14, count)
-        if count > 14:
-            raise rt.too_many(address, "GEOS5_NQUERY", 14, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NQUERY", "NQUERY")
-        port = (_INTEGER_0_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "port", "integer 0..1", 0, 1, _INTEGER_0_TO_1)) if fields[1] else None
-        output_rate = Geos5OutputRate.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "output_rate", "geos5_output_rate code (0 1 2 3)", Geos5OutputRate.BY_CODE, "digits", 1, 1)
-        nmea_version = Geos5NmeaVersion.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "nmea_version", "geos5_nmea_version code (2 4)", Geos5NmeaVersion.BY_CODE, "digits", 1, 1)
-        gga_rate = Geos5MessageRate.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "gga_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        gll_rate = Geos5MessageRate.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "gll_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        gsa_rate = Geos5MessageRate.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "gsa_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        gsv_rate = Geos5MessageRate.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "gsv_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        rmc_rate = Geos5MessageRate.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "rmc_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        vtg_rate = Geos5MessageRate.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "vtg_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        gns_rate = Geos5MessageRate.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "gns_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        zda_rate = Geos5MessageRate.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "zda_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        dtm_rate = Geos5MessageRate.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "dtm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        rlm_rate = Geos5MessageRate.BY_CODE.get(fields[13]) or rt.enum_field(fields[13], address, 14, "rlm_rate", "geos5_message_rate code (0 1 2 3 R)", Geos5MessageRate.BY_CODE, "alnum", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, port, output_rate, nmea_version, gga_rate, gll_rate, gsa_rate, gsv_rate, rmc_rate, vtg_rate, gns_rate, zda_rate, dtm_rate, rlm_rate, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.port),
-            rt.text_of(self.output_rate),
-            rt.text_of(self.nmea_version),
-            rt.text_of(self.gga_rate),
-            rt.text_of(self.gll_rate),
-            rt.text_of(self.gsa_rate),
-            rt.text_of(self.gsv_rate),
-            rt.text_of(self.rmc_rate),
-            rt.text_of(self.vtg_rate),
-            rt.text_of(self.gns_rate),
-            rt.text_of(self.zda_rate),
-            rt.text_of(self.dtm_rate),
-            rt.text_of(self.rlm_rate),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "GPSGG",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"port":' + show(self.port),
-            '"output_rate":' + show(self.output_rate),
-            '"nmea_version":' + show(self.nmea_version),
-            '"gga_rate":' + show(self.gga_rate),
-            '"gll_rate":' + show(self.gll_rate),
-            '"gsa_rate":' + show(self.gsa_rate),
-            '"gsv_rate":' + show(self.gsv_rate),
-            '"rmc_rate":' + show(self.rmc_rate),
-            '"vtg_rate":' + show(self.vtg_rate),
-            '"gns_rate":' + show(self.gns_rate),
-            '"zda_rate":' + show(self.zda_rate),
-            '"dtm_rate":' + show(self.dtm_rate),
-            '"rlm_rate":' + show(self.rlm_rate),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port"), 1)
-        out += rt.json_texts(rt.json_member(fields, "output_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "nmea_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gga_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gll_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gsa_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gsv_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rmc_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vtg_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gns_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "zda_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dtm_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rlm_rate"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Geos5Nquery, )

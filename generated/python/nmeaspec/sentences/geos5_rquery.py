@@ -5,10 +5,10 @@
 
 Receiver name, software version and date, status word and the two configuration registers of a
 GeoS-5 module (manual section 3.11). In the ACTIVE state the receiver sends it in answer to the
-request $GPSGG,RQUERY (GEOS5_RQUERY_REQUEST); once after power-on and once on leaving SLEEP when
-the port runs the NMEA protocol; and once per second when the port runs NMEA and every standard
-sentence is switched off. In the SLEEP state it is sent once, on the transition from ACTIVE
-(port set to NMEA).
+request $GPSGG,RQUERY (GEOS5_RQUERY_REQUEST); once after power-on and once on leaving SLEEP when the
+port runs the NMEA protocol; and once per second when the port runs NMEA and every standard sentence
+is switched off. In the SLEEP state it is sent once, on the transition from ACTIVE (port set to
+NMEA).
 """
 
 from __future__ import annotations
@@ -18,16 +18,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_HEX: dict[Any, Any] = rt.known("hex")
-
 
 @dataclass(slots=True)
-class Geos5Rquery:
+class Geos5Rquery(rt.Sentence):
     """GEOS5_RQUERY: GeoS-5 software version, telemetry and configuration.
 
-    Example (geos5): $GPSGG,RQUERY,GEOS-5,V.5.102,100518,00083037,802DC097,F7FF8064*5C
+    Example (geos5):
+    $GPSGG,RQUERY,GEOS-5,V.5.102,100518,00083037,802DC097,F7FF8064*5C
     """
 
     SENTENCE: ClassVar[str] = "GEOS5_RQUERY"
@@ -37,10 +34,22 @@ class Geos5Rquery:
     SELECTOR: ClassVar[str | None] = "RQUERY"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GEOS5_RQUERY", "proprietary", "$", 7, 7, (
+        rt.KeywordField("keyword", "RQUERY", "RQUERY"),
+        rt.TextField("receiver_name", "text"),
+        rt.TextField("software_version", "text"),
+        rt.DateField("software_date", "date ddmmyy"),
+        rt.HexField("status", "hex number"),
+        rt.HexField("config_1", "hex number"),
+        rt.HexField("config_2", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "RQUERY"
-    """Mnemonic: Identifies the sentence among the GeoS-5 proprietary sentences, which all share the address GPSGG."""
+    """Mnemonic: Identifies the sentence among the GeoS-5 proprietary sentences, which all share the
+    address GPSGG."""
     receiver_name: str | None = None
-    """Receiver name: Name of the receiver; GEOS-5 for every module type of the GeoS-5 family (the type is in configuration register 2, bits 31:16)."""
+    """Receiver name: Name of the receiver; GEOS-5 for every module type of the GeoS-5 family (the
+    type is in configuration register 2, bits 31:16)."""
     software_version: str | None = None
     """Software version: Software (firmware) version, e.g. V.5.102 for version 5.102."""
     software_date: rt.Date | None = None
@@ -48,82 +57,17 @@ class Geos5Rquery:
     status: rt.Hex | None = None
     """Receiver status word: Receiver status word, 32 bits as 8 hex digits (manual table 7)."""
     config_1: rt.Hex | None = None
-    """Configuration register 1: Receiver configuration register 1, 32 bits as 8 hex digits (manual table 8)."""
+    """Configuration register 1: Receiver configuration register 1, 32 bits as 8 hex digits (manual
+    table 8)."""
     config_2: rt.Hex | None = None
-    """Configuration register 2: Receiver configuration register 2, 32 bits as 8 hex digits (manual table 9)."""
+    """Configuration register 2: Receiver configuration register 2, 32 bits as 8 hex digits (manual
+    table 9)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Geos5Rquery:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "GEOS5_RQUERY", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "GEOS5_RQUERY", 7, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "RQUERY", "RQUERY")
-        receiver_name = rt.text_field(fields[1], address, 2, "receiver_name", "text", None)
-        software_version = rt.text_field(fields[2], address, 3, "software_version", "text", None)
-        software_date = (_DATE.get(fields[3]) or rt.date_field(fields[3], address, 4, "software_date", "date ddmmyy", _DATE)) if fields[3] else None
-        status = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "status", "hex number", _HEX)) if fields[4] else None
-        config_1 = (_HEX.get(fields[5]) or rt.hex_field(fields[5], address, 6, "config_1", "hex number", _HEX)) if fields[5] else None
-        config_2 = (_HEX.get(fields[6]) or rt.hex_field(fields[6], address, 7, "config_2", "hex number", _HEX)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, receiver_name, software_version, software_date, status, config_1, config_2, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.receiver_name),
-            rt.text_of(self.software_version),
-            rt.text_of(self.software_date),
-            rt.text_of(self.status),
-            rt.text_of(self.config_1),
-            rt.text_of(self.config_2),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "GPSGG",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"receiver_name":' + show(self.receiver_name),
-            '"software_version":' + show(self.software_version),
-            '"software_date":' + show(self.software_date),
-            '"status":' + show(self.status),
-            '"config_1":' + show(self.config_1),
-            '"config_2":' + show(self.config_2),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "receiver_name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "software_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "software_date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "config_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "config_2"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Geos5Rquery, )

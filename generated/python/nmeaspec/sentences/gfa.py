@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """GFA: GNSS fix accuracy and integrity.
 
-Accuracy and integrity of the position fix of the matching GGA or GNS sentence: protection
-levels, error ellipse and altitude standard deviations, the selected accuracy level and one
-integrity flag per integrity source. With several constellations the talker is GN and the values
-refer to the combined solution.
+Accuracy and integrity of the position fix of the matching GGA or GNS sentence: protection levels,
+error ellipse and altitude standard deviations, the selected accuracy level and one integrity flag
+per integrity source. With several constellations the talker is GN and the values refer to the
+combined solution.
 """
 
 from __future__ import annotations
@@ -17,15 +17,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GfaIntegrity
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Gfa:
+class Gfa(rt.Sentence):
     """GFA: GNSS fix accuracy and integrity.
-
     """
 
     SENTENCE: ClassVar[str] = "GFA"
@@ -35,108 +30,52 @@ class Gfa:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GFA", "standard", "$", 9, 9, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("hpl", "decimal number"),
+        rt.DecimalField("vpl", "decimal number"),
+        rt.DecimalField("semi_major_std", "decimal number"),
+        rt.DecimalField("semi_minor_std", "decimal number"),
+        rt.DecimalField("orientation", "decimal number"),
+        rt.DecimalField("alt_std", "decimal number"),
+        rt.DecimalField("selected_accuracy", "decimal number"),
+        rt.EnumCharsField("integrity", "gfa_integrity codes (V S C U)", GfaIntegrity),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the GGA or GNS fix these values belong to."""
     hpl: rt.Number | None = None
-    """Horizontal protection level [m]: Horizontal protection level, metres (NavCom computes it as 4.0 times the semi-major standard deviation by default)."""
+    """Horizontal protection level [m]: Horizontal protection level, metres (NavCom computes it as
+    4.0 times the semi-major standard deviation by default)."""
     vpl: rt.Number | None = None
-    """Vertical protection level [m]: Vertical protection level, metres (NavCom: 3.5 times the altitude standard deviation by default)."""
+    """Vertical protection level [m]: Vertical protection level, metres (NavCom: 3.5 times the
+    altitude standard deviation by default)."""
     semi_major_std: rt.Number | None = None
-    """Error ellipse semi-major axis [m]: Standard deviation of the semi-major axis of the error ellipse, metres."""
+    """Error ellipse semi-major axis [m]: Standard deviation of the semi-major axis of the error
+    ellipse, metres."""
     semi_minor_std: rt.Number | None = None
-    """Error ellipse semi-minor axis [m]: Standard deviation of the semi-minor axis of the error ellipse, metres."""
+    """Error ellipse semi-minor axis [m]: Standard deviation of the semi-minor axis of the error
+    ellipse, metres."""
     orientation: rt.Number | None = None
-    """Error ellipse orientation [deg]: Orientation of the semi-major axis, degrees from true north."""
+    """Error ellipse orientation [deg]: Orientation of the semi-major axis, degrees from true
+    north."""
     alt_std: rt.Number | None = None
     """Altitude standard deviation [m]: Standard deviation of the altitude, metres."""
     selected_accuracy: rt.Number | None = None
-    """Selected accuracy level [m]: Accuracy level selected for the operation (the alert limit the integrity is judged against), metres."""
+    """Selected accuracy level [m]: Accuracy level selected for the operation (the alert limit the
+    integrity is judged against), metres."""
     integrity: list[GfaIntegrity | str] | None = None
-    """Integrity status: One character per integrity source, in the order RAIM, SBAS, Galileo integrity (V not in use, S safe, C caution, U unsafe). Not null."""
+    """Integrity status: One character per integrity source, in the order RAIM, SBAS, Galileo
+    integrity (V not in use, S safe, C caution, U unsafe). Not null."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gfa:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "GFA", 9, count)
-        if count > 9:
-            raise rt.too_many(address, "GFA", 9, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        hpl = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "hpl", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        vpl = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vpl", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        semi_major_std = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "semi_major_std", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        semi_minor_std = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "semi_minor_std", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        orientation = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "orientation", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        alt_std = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "alt_std", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        selected_accuracy = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "selected_accuracy", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        integrity = rt.enum_chars_field(fields[8], address, 9, "integrity", "gfa_integrity codes (V S C U)", GfaIntegrity.BY_CODE, "letters", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, hpl, vpl, semi_major_std, semi_minor_std, orientation, alt_std, selected_accuracy, integrity, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.hpl),
-            rt.text_of(self.vpl),
-            rt.text_of(self.semi_major_std),
-            rt.text_of(self.semi_minor_std),
-            rt.text_of(self.orientation),
-            rt.text_of(self.alt_std),
-            rt.text_of(self.selected_accuracy),
-            rt.text_of(self.integrity),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GFA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"hpl":' + show(self.hpl),
-            '"vpl":' + show(self.vpl),
-            '"semi_major_std":' + show(self.semi_major_std),
-            '"semi_minor_std":' + show(self.semi_minor_std),
-            '"orientation":' + show(self.orientation),
-            '"alt_std":' + show(self.alt_std),
-            '"selected_accuracy":' + show(self.selected_accuracy),
-            '"integrity":' + show(self.integrity),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hpl"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vpl"), 1)
-        out += rt.json_texts(rt.json_member(fields, "semi_major_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "semi_minor_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "orientation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alt_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "selected_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "integrity"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gfa, )

@@ -16,21 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GgaQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_999_POINT_9: dict[Any, Any] = rt.known("decimal 0..999.9")
-_INTEGER_0_TO_4095: dict[Any, Any] = rt.known("integer 0..4095")
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Gga:
+class Gga(rt.Sentence):
     """GGA: Global positioning system fix data.
 
-    Example (geos5): $GPGGA,000008.00,,,,,0,,,,,,,,*40
+    Example (geos5):
+    $GPGGA,075140.00,5550.613522,N,03732.251556,E,2,22,0.5,00188.862,M,0014.4,M,001.0,0000*4F
     """
 
     SENTENCE: ClassVar[str] = "GGA"
@@ -40,6 +32,22 @@ class Gga:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GGA", "standard", "$", 13, 15, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.EnumField("quality", "gga_quality code (0 1 2 3 4 5 6 7 8 9)", GgaQuality),
+        rt.IntegerField("satellites", "integer 0..99", 0, 99),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.LiteralField("altitude_unit", "M or nothing", "M"),
+        rt.DecimalField("geoid_separation", "decimal number"),
+        rt.LiteralField("geoid_separation_unit", "M or nothing", "M"),
+        rt.DecimalField("dgps_age", "decimal number 0..999.9", 0, Decimal("999.9")),
+        rt.IntegerField("dgps_station", "integer 0..4095", 0, 4095, optional=True),
+        rt.DecimalField("vdop", "decimal number", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -52,138 +60,39 @@ class Gga:
     quality: GgaQuality | str | None = None
     """Fix quality: Kind of solution the position comes from."""
     satellites: rt.Number | None = None
-    """Satellites in use: Number of satellites used in the solution (may differ from the number in view). The SiRF manuals give 0-12; ComNav reports more than 12."""
+    """Satellites in use: Number of satellites used in the solution (may differ from the number in
+    view). The SiRF manuals give 0-12; ComNav reports more than 12."""
     hdop: rt.Number | None = None
-    """HDOP: Horizontal dilution of precision (ST gives a maximum of 99.0; GeoS-5 sends 9.9 without a solution)."""
+    """HDOP: Horizontal dilution of precision (ST gives a maximum of 99.0; GeoS-5 sends 9.9 without
+    a solution)."""
     altitude: rt.Number | None = None
-    """Altitude [m]: Antenna altitude above mean sea level (geoid). ST describes it as the height above the WGS-84 ellipsoid."""
+    """Altitude [m]: Antenna altitude above mean sea level (geoid). ST describes it as the height
+    above the WGS-84 ellipsoid."""
     altitude_unit: str | None = None
     """Altitude unit: Unit of the altitude, metres."""
     geoid_separation: rt.Number | None = None
-    """Geoid separation [m]: Geoid separation (undulation), the difference between the WGS-84 ellipsoid and mean sea level; negative when mean sea level is below the ellipsoid. Empty on SiRF receivers without geoid model."""
+    """Geoid separation [m]: Geoid separation (undulation), the difference between the WGS-84
+    ellipsoid and mean sea level; negative when mean sea level is below the ellipsoid. Empty on SiRF
+    receivers without geoid model."""
     geoid_separation_unit: str | None = None
     """Geoid separation unit: Unit of the geoid separation, metres."""
     dgps_age: rt.Number | None = None
-    """Age of differential data [s]: Seconds since the last differential correction (SC104 type 1 or 9 for SiRF); GeoS-5 range 0-999.9. Empty without differential corrections."""
+    """Age of differential data [s]: Seconds since the last differential correction (SC104 type 1 or
+    9 for SiRF); GeoS-5 range 0-999.9. Empty without differential corrections."""
     dgps_station: rt.Number | None | rt._Absent = rt.ABSENT
-    """Differential station ID: Differential reference station ID, 0000-4095 (GS501 and ComNav give 0-1023). GeoS-5 sends the SBAS satellite number when the corrections come from SBAS, and an empty field in autonomous mode; SiRF receivers send 0000 without DGPS. Some receivers leave the field out altogether (13 fields)."""
+    """Differential station ID: Differential reference station ID, 0000-4095 (GS501 and ComNav give
+    0-1023). GeoS-5 sends the SBAS satellite number when the corrections come from SBAS, and an
+    empty field in autonomous mode; SiRF receivers send 0000 without DGPS. Some receivers leave the
+    field out altogether (13 fields)."""
     vdop: rt.Number | None | rt._Absent = rt.ABSENT
-    """VDOP: Vertical dilution of precision, a field some BeiDou receivers append after the station ID (15 fields); not part of any NMEA version."""
+    """VDOP: Vertical dilution of precision, a field some BeiDou receivers append after the station
+    ID (15 fields); not part of any NMEA version."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gga:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 13:
-            raise rt.too_few(address, "GGA", 13, count)
-        if count > 15:
-            raise rt.too_many(address, "GGA", 15, count)
-        optional = count - 13
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        quality = GgaQuality.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "quality", "gga_quality code (0 1 2 3 4 5 6 7 8 9)", GgaQuality.BY_CODE, "digits", 1, 1)
-        satellites = (_INTEGER_0_TO_99.get(fields[6]) or rt.integer_field(fields[6], address, 7, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[6] else None
-        hdop = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "hdop", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        altitude = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "altitude", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        altitude_unit = "M" if fields[9] == "M" else rt.literal_field(fields[9], address, 10, "altitude_unit", "M or nothing", "M")
-        geoid_separation = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "geoid_separation", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        geoid_separation_unit = "M" if fields[11] == "M" else rt.literal_field(fields[11], address, 12, "geoid_separation_unit", "M or nothing", "M")
-        dgps_age = (_DECIMAL_0_TO_999_POINT_9.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "dgps_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[12] else None
-        dgps_station: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            dgps_station = (_INTEGER_0_TO_4095.get(fields[13]) or rt.integer_field(fields[13], address, 14, "dgps_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)) if fields[13] else None
-        vdop: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            vdop = (_DECIMAL.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "vdop", "decimal number", None, None, _DECIMAL)) if fields[14] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, lat, lon, quality, satellites, hdop, altitude, altitude_unit, geoid_separation, geoid_separation_unit, dgps_age, dgps_station, vdop, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.quality),
-            rt.text_of(self.satellites),
-            rt.text_of(self.hdop),
-            rt.text_of(self.altitude),
-            rt.text_of(self.altitude_unit),
-            rt.text_of(self.geoid_separation),
-            rt.text_of(self.geoid_separation_unit),
-            rt.text_of(self.dgps_age),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.vdop is not rt.ABSENT:
-            last = 1
-        elif self.dgps_station is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.dgps_station)]
-        if last >= 1:
-            out += [rt.text_of(self.vdop)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GGA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"quality":' + show(self.quality),
-            '"satellites":' + show(self.satellites),
-            '"hdop":' + show(self.hdop),
-            '"altitude":' + show(self.altitude),
-            '"altitude_unit":' + show(self.altitude_unit),
-            '"geoid_separation":' + show(self.geoid_separation),
-            '"geoid_separation_unit":' + show(self.geoid_separation_unit),
-            '"dgps_age":' + show(self.dgps_age),
-        ]
-        if self.dgps_station is not rt.ABSENT:
-            parts.append('"dgps_station":' + show(self.dgps_station))
-        if self.vdop is not rt.ABSENT:
-            parts.append('"vdop":' + show(self.vdop))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "geoid_separation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "geoid_separation_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dgps_age"), 1)
-        if "dgps_station" in fields:
-            out += rt.json_texts(fields["dgps_station"], 1)
-        if "vdop" in fields:
-            out += rt.json_texts(fields["vdop"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gga, )

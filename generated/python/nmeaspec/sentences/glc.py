@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """GLC: Geographic position, Loran-C.
 
-Loran-C measurements of the receiver: the group repetition interval of the chain, the master
-time of arrival and up to five time differences, each with a signal status flag. Loran-C is
-obsolete (the North American chains closed in 2010, most European ones by 2016), so chart
-plotters that still send GLC leave the measurements empty.
+Loran-C measurements of the receiver: the group repetition interval of the chain, the master time of
+arrival and up to five time differences, each with a signal status flag. Loran-C is obsolete (the
+North American chains closed in 2010, most European ones by 2016), so chart plotters that still send
+GLC leave the measurements empty.
 """
 
 from __future__ import annotations
@@ -17,26 +17,25 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GlcSignalStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
 class GlcTimeDifference:
     """One entry of time differences (5 to 5 per sentence)."""
 
     time_difference: rt.Number | None = None
-    """Time difference [us]: Time difference between the master and one secondary station, microseconds."""
+    """Time difference [us]: Time difference between the master and one secondary station,
+    microseconds."""
     signal_status: GlcSignalStatus | str | None = None
-    """Time difference signal status: Signal status of this time difference (A valid, B blink, C cycle, S SNR warning)."""
+    """Time difference signal status: Signal status of this time difference (A valid, B blink, C
+    cycle, S SNR warning)."""
 
 
 @dataclass(slots=True)
-class Glc:
+class Glc(rt.Sentence):
     """GLC: Geographic position, Loran-C.
 
-    Example (log_gpsd): $GPGLC,9960,,,,,,,,,,,,*75
+    Example (log_gpsd):
+    $GPGLC,9960,,,,,,,,,,,,*75
     """
 
     SENTENCE: ClassVar[str] = "GLC"
@@ -46,92 +45,35 @@ class Glc:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GLC", "standard", "$", 3, 13, (
+        rt.IntegerField("gri", "integer"),
+        rt.DecimalField("master_toa", "decimal number"),
+        rt.EnumField("master_status", "glc_signal_status code (A B C S)", GlcSignalStatus),
+        rt.Group("time_differences", GlcTimeDifference, (
+            rt.DecimalField("time_difference", "decimal number"),
+            rt.EnumField("signal_status", "glc_signal_status code (A B C S)", GlcSignalStatus),
+        ), 5, 5),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     gri: rt.Number | None = None
-    """Group repetition interval: Group repetition interval of the chain in tens of microseconds (the chain's GRI designator, e.g. 9960)."""
+    """Group repetition interval: Group repetition interval of the chain in tens of microseconds
+    (the chain's GRI designator, e.g. 9960)."""
     master_toa: rt.Number | None = None
     """Master TOA [us]: Time of arrival of the master station's signal, microseconds."""
     master_status: GlcSignalStatus | str | None = None
-    """Master TOA signal status: Signal status of the master TOA (A valid, B blink, C cycle, S SNR warning)."""
+    """Master TOA signal status: Signal status of the master TOA (A valid, B blink, C cycle, S SNR
+    warning)."""
     time_differences: list[GlcTimeDifference] = field(default_factory=list)
     """Time differences: 5 to 5 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Glc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 3) // 2, 5)
-        optional = count - 3 - repeats * 2
-        if count < 13 or optional > 0:
-            rt.split_group(address, "GLC", "time_differences", count, 3, 2, 5, 5, 0)
-        gri = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "gri", "integer", None, None, _INTEGER)) if fields[0] else None
-        master_toa = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "master_toa", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        master_status = GlcSignalStatus.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "master_status", "glc_signal_status code (A B C S)", GlcSignalStatus.BY_CODE, "letters", 1, 1)
-        time_differences: list[GlcTimeDifference] = []
-        pos = 3
-        for entry in range(repeats):
-            time_differences.append(GlcTimeDifference(
-                (_DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, f"time_differences[{entry + 1}].time_difference", "decimal number", None, None, _DECIMAL)) if fields[pos] else None,
-                GlcSignalStatus.BY_CODE.get(fields[pos + 1]) or rt.enum_field(fields[pos + 1], address, pos + 2, f"time_differences[{entry + 1}].signal_status", "glc_signal_status code (A B C S)", GlcSignalStatus.BY_CODE, "letters", 1, 1),
-            ))
-            pos += 2
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], gri, master_toa, master_status, time_differences, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.gri),
-            rt.text_of(self.master_toa),
-            rt.text_of(self.master_status),
-        ]
-        for entry in self.time_differences:
-            out += [rt.text_of(entry.time_difference), rt.text_of(entry.signal_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GLC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"gri":' + show(self.gri),
-            '"master_toa":' + show(self.master_toa),
-            '"master_status":' + show(self.master_status),
-            '"time_differences":[' + ",".join(
-                "{" + '"time_difference":' + show(entry.time_difference) + ',"signal_status":' + show(entry.signal_status) + "}"
-                for entry in self.time_differences) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "gri"), 1)
-        out += rt.json_texts(rt.json_member(fields, "master_toa"), 1)
-        out += rt.json_texts(rt.json_member(fields, "master_status"), 1)
-        for entry in rt.json_list(fields, "time_differences"):
-            out += rt.json_texts(rt.json_member(entry, "time_difference"), 1)
-            out += rt.json_texts(rt.json_member(entry, "signal_status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Glc, )

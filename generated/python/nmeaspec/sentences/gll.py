@@ -14,18 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import EastWest, NorthSouth, PosMode, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Gll:
+class Gll(rt.Sentence):
     """GLL: Geographic position, latitude/longitude.
 
-    Example (geos5): $GNGLL,,,,,000007.00,V,N*53
+    Example (geos5):
+    $GNGLL,5550.612764,N,03732.252689,E,075712.00,V,N*6B
     """
 
     SENTENCE: ClassVar[str] = "GLL"
@@ -35,6 +30,14 @@ class Gll:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GLL", "standard", "$", 6, 7, (
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -45,97 +48,29 @@ class Gll:
     time: rt.Time | None = None
     """UTC time: UTC time of the position."""
     status: Status | str | None = None
-    """Data status: A when the data are valid, V when not. GeoS-5 sets V exactly when the mode indicator is N."""
+    """Data status: A when the data are valid, V when not. GeoS-5 sets V exactly when the mode
+    indicator is N."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
     """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gll:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "GLL", 6, count)
-        if count > 7:
-            raise rt.too_many(address, "GLL", 7, count)
-        optional = count - 6
-        lat = _LATITUDE.get((fields[0], fields[1])) or rt.coordinate_field(fields[0], fields[1], address, 1, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        time = (_TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "time", "time hhmmss[.s]", _TIME)) if fields[4] else None
-        status = Status.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], lat, lon, time, status, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.time),
-            rt.text_of(self.status),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GLL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"time":' + show(self.time),
-            '"status":' + show(self.status),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class GllSentinel:
+class GllSentinel(rt.Sentence):
     """GLL (Out-of-range position (no-fix sentinel)): Geographic position, latitude/longitude.
 
     Some receivers fill the position fields with an impossible value while they have no fix
-    (36000.0000,N,72000.0000,E: 360 and 720 degrees). Such a line is kept rather than rejected,
-    with the position fields as the plain numbers sent, so that no wrong position is ever
-    reported; the main layout rejects them.
+    (36000.0000,N,72000.0000,E: 360 and 720 degrees). Such a line is kept rather than rejected, with
+    the position fields as the plain numbers sent, so that no wrong position is ever reported; the
+    main layout rejects them.
 
-    Example (log_gpsd): $GPGLL,36000.0000,N,72000.0000,E,000452.981,V*10
+    Example (log_gpsd):
+    $GPGLL,36000.0000,N,72000.0000,E,000452.981,V*10
     """
 
     SENTENCE: ClassVar[str] = "GLL"
@@ -145,107 +80,43 @@ class GllSentinel:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GLL", "standard", "$", 6, 7, (
+        rt.DecimalField("lat_value", "decimal number"),
+        rt.EnumField("lat_hemisphere", "north_south code (N S)", NorthSouth),
+        rt.DecimalField("lon_value", "decimal number"),
+        rt.EnumField("lon_hemisphere", "east_west code (E W)", EastWest),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     lat_value: rt.Number | None = None
-    """Latitude as sent: The latitude field as the receiver sent it, a number that is no latitude (36000.0000 reads as 360 degrees); kept as a plain number so that it is never taken for a position."""
+    """Latitude as sent: The latitude field as the receiver sent it, a number that is no latitude
+    (36000.0000 reads as 360 degrees); kept as a plain number so that it is never taken for a
+    position."""
     lat_hemisphere: NorthSouth | str | None = None
     """Latitude hemisphere: Hemisphere letter of the latitude field."""
     lon_value: rt.Number | None = None
-    """Longitude as sent: The longitude field as the receiver sent it, kept as a plain number (72000.0000 reads as 720 degrees)."""
+    """Longitude as sent: The longitude field as the receiver sent it, kept as a plain number
+    (72000.0000 reads as 720 degrees)."""
     lon_hemisphere: EastWest | str | None = None
     """Longitude hemisphere: Hemisphere letter of the longitude field."""
     time: rt.Time | None = None
     """UTC time: UTC time of the position."""
     status: Status | str | None = None
-    """Data status: A when the data are valid, V when not. GeoS-5 sets V exactly when the mode indicator is N."""
+    """Data status: A when the data are valid, V when not. GeoS-5 sets V exactly when the mode
+    indicator is N."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
     """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> GllSentinel:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "GLL", 6, count)
-        if count > 7:
-            raise rt.too_many(address, "GLL", 7, count)
-        optional = count - 6
-        lat_value = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "lat_value", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        lat_hemisphere = NorthSouth.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "lat_hemisphere", "north_south code (N S)", NorthSouth.BY_CODE, "letters", 1, 1)
-        lon_value = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "lon_value", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        lon_hemisphere = EastWest.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "lon_hemisphere", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        time = (_TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "time", "time hhmmss[.s]", _TIME)) if fields[4] else None
-        status = Status.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], lat_value, lat_hemisphere, lon_value, lon_hemisphere, time, status, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.lat_value),
-            rt.text_of(self.lat_hemisphere),
-            rt.text_of(self.lon_value),
-            rt.text_of(self.lon_hemisphere),
-            rt.text_of(self.time),
-            rt.text_of(self.status),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GLL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"lat_value":' + show(self.lat_value),
-            '"lat_hemisphere":' + show(self.lat_hemisphere),
-            '"lon_value":' + show(self.lon_value),
-            '"lon_hemisphere":' + show(self.lon_hemisphere),
-            '"time":' + show(self.time),
-            '"status":' + show(self.status),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "lat_value"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_hemisphere"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_value"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_hemisphere"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gll, GllSentinel, )

@@ -16,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GnsMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Gmp:
+class Gmp(rt.Sentence):
     """GMP: GNSS map projection fix data.
 
-    Example (spectra_proflex800): $GPGMP,131745.00,LOC,,45215.125,14587.298,R,11,1.5,125.221,5.214,1.5,454*49
+    Example (spectra_proflex800):
+    $GPGMP,131745.00,LOC,,45215.125,14587.298,R,11,1.5,125.221,5.214,1.5,454*49
     """
 
     SENTENCE: ClassVar[str] = "GMP"
@@ -37,21 +32,40 @@ class Gmp:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GMP", "standard", "$", 12, 12, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("projection", "text"),
+        rt.TextField("zone", "text"),
+        rt.DecimalField("grid_north", "decimal number"),
+        rt.DecimalField("grid_east", "decimal number"),
+        rt.EnumCharsField("mode", "gns_mode codes (A D E F G M N P R S)", GnsMode),
+        rt.IntegerField("satellites", "integer of at least 0", 0, None),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.DecimalField("geoid_separation", "decimal number"),
+        rt.DecimalField("dgps_age", "decimal number"),
+        rt.IntegerField("dgps_station", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the position."""
     projection: str | None = None
-    """Map projection: Map projection identification, e.g. UTM, or (Spectra, from RTCM 3.1 messages 1024-1027) LOC local coordinate system, TM, TMS, LCC1SP, LCC2SP, LCCW, CS, OM, OS, MC, PS, DS; empty without a projection."""
+    """Map projection: Map projection identification, e.g. UTM, or (Spectra, from RTCM 3.1 messages
+    1024-1027) LOC local coordinate system, TM, TMS, LCC1SP, LCC2SP, LCCW, CS, OM, OS, MC, PS, DS;
+    empty without a projection."""
     zone: str | None = None
-    """Map zone: Zone of the projection (e.g. a UTM zone); empty when the projection has none (Spectra leaves it empty)."""
+    """Map zone: Zone of the projection (e.g. a UTM zone); empty when the projection has none
+    (Spectra leaves it empty)."""
     grid_north: rt.Number | None = None
     """Grid X (northing) [m]: X (northern) component of the grid or local coordinates, metres."""
     grid_east: rt.Number | None = None
     """Grid Y (easting) [m]: Y (eastern) component of the grid or local coordinates, metres."""
     mode: list[GnsMode | str] | None = None
-    """Mode indicator: One mode character per satellite system as in GNS (N no fix, A autonomous, D differential, R fixed RTK, F float RTK, ...); Spectra sends a single character."""
+    """Mode indicator: One mode character per satellite system as in GNS (N no fix, A autonomous, D
+    differential, R fixed RTK, F float RTK, ...); Spectra sends a single character."""
     satellites: rt.Number | None = None
     """Satellites in use: Number of satellites used in the position."""
     hdop: rt.Number | None = None
@@ -61,102 +75,17 @@ class Gmp:
     geoid_separation: rt.Number | None = None
     """Geoidal separation [m]: Geoidal separation, metres."""
     dgps_age: rt.Number | None = None
-    """Age of differential data [s]: Age of the differential corrections, seconds; empty when not differential."""
+    """Age of differential data [s]: Age of the differential corrections, seconds; empty when not
+    differential."""
     dgps_station: rt.Number | None = None
-    """Differential reference station ID: ID of the differential reference (base) station (Spectra 0-4095); empty when not differential."""
+    """Differential reference station ID: ID of the differential reference (base) station (Spectra
+    0-4095); empty when not differential."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gmp:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "GMP", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "GMP", 12, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        projection = rt.text_field(fields[1], address, 2, "projection", "text", None)
-        zone = rt.text_field(fields[2], address, 3, "zone", "text", None)
-        grid_north = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "grid_north", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        grid_east = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "grid_east", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        mode = rt.enum_chars_field(fields[5], address, 6, "mode", "gns_mode codes (A D E F G M N P R S)", GnsMode.BY_CODE, "letters", None)
-        satellites = (_INTEGER_0_TO.get(fields[6]) or rt.integer_field(fields[6], address, 7, "satellites", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[6] else None
-        hdop = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "hdop", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        altitude = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "altitude", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        geoid_separation = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "geoid_separation", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        dgps_age = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "dgps_age", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        dgps_station = (_INTEGER.get(fields[11]) or rt.integer_field(fields[11], address, 12, "dgps_station", "integer", None, None, _INTEGER)) if fields[11] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, projection, zone, grid_north, grid_east, mode, satellites, hdop, altitude, geoid_separation, dgps_age, dgps_station, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.projection),
-            rt.text_of(self.zone),
-            rt.text_of(self.grid_north),
-            rt.text_of(self.grid_east),
-            rt.text_of(self.mode),
-            rt.text_of(self.satellites),
-            rt.text_of(self.hdop),
-            rt.text_of(self.altitude),
-            rt.text_of(self.geoid_separation),
-            rt.text_of(self.dgps_age),
-            rt.text_of(self.dgps_station),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GMP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"projection":' + show(self.projection),
-            '"zone":' + show(self.zone),
-            '"grid_north":' + show(self.grid_north),
-            '"grid_east":' + show(self.grid_east),
-            '"mode":' + show(self.mode),
-            '"satellites":' + show(self.satellites),
-            '"hdop":' + show(self.hdop),
-            '"altitude":' + show(self.altitude),
-            '"geoid_separation":' + show(self.geoid_separation),
-            '"dgps_age":' + show(self.dgps_age),
-            '"dgps_station":' + show(self.dgps_station),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "projection"), 1)
-        out += rt.json_texts(rt.json_member(fields, "zone"), 1)
-        out += rt.json_texts(rt.json_member(fields, "grid_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "grid_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "geoid_separation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dgps_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dgps_station"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gmp, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """GNS: GNSS fix data.
 
-Time, position, per-system mode indicators, satellites in use, dilution, altitude and
-differential data of a multi-constellation fix.
+Time, position, per-system mode indicators, satellites in use, dilution, altitude and differential
+data of a multi-constellation fix.
 """
 
 from __future__ import annotations
@@ -16,21 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GnsMode, NavStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_999_POINT_9: dict[Any, Any] = rt.known("decimal 0..999.9")
-_INTEGER_0_TO_4095: dict[Any, Any] = rt.known("integer 0..4095")
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Gns:
+class Gns(rt.Sentence):
     """GNS: GNSS fix data.
 
-    Example (geos5): $GPGNS,000004.00,,,,,NNNN,,,,,,,V*1D
+    Example (geos5):
+    $GPGNS,080839.00,5550.611145,N,03732.253491,E,DNNN,10,0.8,00182.290,0014.4,001.0,0000,V*15
     """
 
     SENTENCE: ClassVar[str] = "GNS"
@@ -40,6 +32,20 @@ class Gns:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GNS", "standard", "$", 12, 13, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.EnumCharsField("mode", "gns_mode codes (A D E F G M N P R S)", GnsMode),
+        rt.IntegerField("satellites", "integer 0..99", 0, 99),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.DecimalField("geoid_separation", "decimal number"),
+        rt.DecimalField("dgps_age", "decimal number 0..999.9", 0, Decimal("999.9")),
+        rt.IntegerField("dgps_station", "integer 0..4095", 0, 4095),
+        rt.EnumField("nav_status", "nav_status code (S C U V)", NavStatus, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -50,133 +56,51 @@ class Gns:
     lon: rt.Coordinate | None = None
     """Longitude: Longitude and hemisphere (E/W); empty in GeoS-5's per-system auxiliary lines."""
     mode: list[GnsMode | str] | None = None
-    """Mode indicator: One mode character per satellite system, in the order GPS, GLONASS, Galileo, then further systems (NMEA 4.10: BDS, QZSS; GeoS-5: QZSS as the fourth); N when the system is not used. GeoS-5 sends four characters (e.g. AAAN, DDAN; RR in its RTK example); empty in its auxiliary lines."""
+    """Mode indicator: One mode character per satellite system, in the order GPS, GLONASS, Galileo,
+    then further systems (NMEA 4.10: BDS, QZSS; GeoS-5: QZSS as the fourth); N when the system is
+    not used. GeoS-5 sends four characters (e.g. AAAN, DDAN; RR in its RTK example); empty in its
+    auxiliary lines."""
     satellites: rt.Number | None = None
-    """Satellites in use: Total number of satellites used in the solution, 00-99; in an auxiliary line the number of satellites of that line's system."""
+    """Satellites in use: Total number of satellites used in the solution, 00-99; in an auxiliary
+    line the number of satellites of that line's system."""
     hdop: rt.Number | None = None
     """HDOP: Horizontal dilution of precision of all systems used."""
     altitude: rt.Number | None = None
     """Altitude [m]: Antenna altitude above mean sea level (geoid)."""
     geoid_separation: rt.Number | None = None
-    """Geoid separation [m]: Geoid separation, the difference between the WGS-84 ellipsoid and mean sea level; negative when mean sea level is below the ellipsoid."""
+    """Geoid separation [m]: Geoid separation, the difference between the WGS-84 ellipsoid and mean
+    sea level; negative when mean sea level is below the ellipsoid."""
     dgps_age: rt.Number | None = None
-    """Age of differential data [s]: Seconds since the last differential correction (GeoS-5: 0-999.9); empty without differential data. GeoS-5 leaves it empty in the GN line of a combined solution and sends it per system in the auxiliary lines."""
+    """Age of differential data [s]: Seconds since the last differential correction (GeoS-5:
+    0-999.9); empty without differential data. GeoS-5 leaves it empty in the GN line of a combined
+    solution and sends it per system in the auxiliary lines."""
     dgps_station: rt.Number | None = None
-    """Differential station ID: Differential reference station ID, 0-4095; empty without differential data. GeoS-5 sends the SBAS satellite number when the corrections come from SBAS, and (like the age) leaves it empty in the GN line and sends it per system in the auxiliary lines."""
+    """Differential station ID: Differential reference station ID, 0-4095; empty without
+    differential data. GeoS-5 sends the SBAS satellite number when the corrections come from SBAS,
+    and (like the age) leaves it empty in the GN line and sends it per system in the auxiliary
+    lines."""
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
-    """Navigational status (NMEA 4.10): Navigational status (integrity) indicator. GeoS-5 does not compute it and sends V in main lines; its auxiliary lines carry no value here."""
+    """Navigational status (NMEA 4.10): Navigational status (integrity) indicator. GeoS-5 does not
+    compute it and sends V in main lines; its auxiliary lines carry no value here."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gns:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "GNS", 12, count)
-        if count > 13:
-            raise rt.too_many(address, "GNS", 13, count)
-        optional = count - 12
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        mode = rt.enum_chars_field(fields[5], address, 6, "mode", "gns_mode codes (A D E F G M N P R S)", GnsMode.BY_CODE, "letters", None)
-        satellites = (_INTEGER_0_TO_99.get(fields[6]) or rt.integer_field(fields[6], address, 7, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[6] else None
-        hdop = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "hdop", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        altitude = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "altitude", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        geoid_separation = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "geoid_separation", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        dgps_age = (_DECIMAL_0_TO_999_POINT_9.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "dgps_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[10] else None
-        dgps_station = (_INTEGER_0_TO_4095.get(fields[11]) or rt.integer_field(fields[11], address, 12, "dgps_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)) if fields[11] else None
-        nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            nav_status = NavStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, lat, lon, mode, satellites, hdop, altitude, geoid_separation, dgps_age, dgps_station, nav_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.mode),
-            rt.text_of(self.satellites),
-            rt.text_of(self.hdop),
-            rt.text_of(self.altitude),
-            rt.text_of(self.geoid_separation),
-            rt.text_of(self.dgps_age),
-            rt.text_of(self.dgps_station),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.nav_status is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.nav_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GNS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"mode":' + show(self.mode),
-            '"satellites":' + show(self.satellites),
-            '"hdop":' + show(self.hdop),
-            '"altitude":' + show(self.altitude),
-            '"geoid_separation":' + show(self.geoid_separation),
-            '"dgps_age":' + show(self.dgps_age),
-            '"dgps_station":' + show(self.dgps_station),
-        ]
-        if self.nav_status is not rt.ABSENT:
-            parts.append('"nav_status":' + show(self.nav_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "geoid_separation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dgps_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dgps_station"), 1)
-        if "nav_status" in fields:
-            out += rt.json_texts(fields["nav_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class GnsAux:
+class GnsAux(rt.Sentence):
     """GNS (Per-system auxiliary line as printed (no mode field)): GNSS fix data.
 
-    GeoS-5's per-system auxiliary GNS line in the shape the manual prints it: the satellite
-    count follows the E/W field directly, without the (empty) mode indicator the manual's text
-    describes. Tried when the main layout does not fit; the text's shape (empty mode field
-    present) parses with the main layout.
+    GeoS-5's per-system auxiliary GNS line in the shape the manual prints it: the satellite count
+    follows the E/W field directly, without the (empty) mode indicator the manual's text describes.
+    Tried when the main layout does not fit; the text's shape (empty mode field present) parses with
+    the main layout.
 
-    Example (geos5): $GPGNS,080520.00,,,,,11,,,,,*40
+    Example (geos5):
+    $GPGNS,080520.00,,,,,11,,,,,*40
     """
 
     SENTENCE: ClassVar[str] = "GNS"
@@ -186,6 +110,19 @@ class GnsAux:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GNS", "standard", "$", 11, 12, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.IntegerField("satellites", "integer 0..99", 0, 99),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.DecimalField("geoid_separation", "decimal number"),
+        rt.DecimalField("dgps_age", "decimal number 0..999.9", 0, Decimal("999.9")),
+        rt.IntegerField("dgps_station", "integer 0..4095", 0, 4095),
+        rt.EnumField("nav_status", "nav_status code (S C U V)", NavStatus, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -196,115 +133,33 @@ class GnsAux:
     lon: rt.Coordinate | None = None
     """Longitude: Longitude and hemisphere (E/W); empty in GeoS-5's per-system auxiliary lines."""
     satellites: rt.Number | None = None
-    """Satellites in use: Total number of satellites used in the solution, 00-99; in an auxiliary line the number of satellites of that line's system."""
+    """Satellites in use: Total number of satellites used in the solution, 00-99; in an auxiliary
+    line the number of satellites of that line's system."""
     hdop: rt.Number | None = None
     """HDOP: Horizontal dilution of precision of all systems used."""
     altitude: rt.Number | None = None
     """Altitude [m]: Antenna altitude above mean sea level (geoid)."""
     geoid_separation: rt.Number | None = None
-    """Geoid separation [m]: Geoid separation, the difference between the WGS-84 ellipsoid and mean sea level; negative when mean sea level is below the ellipsoid."""
+    """Geoid separation [m]: Geoid separation, the difference between the WGS-84 ellipsoid and mean
+    sea level; negative when mean sea level is below the ellipsoid."""
     dgps_age: rt.Number | None = None
-    """Age of differential data [s]: Seconds since the last differential correction (GeoS-5: 0-999.9); empty without differential data. GeoS-5 leaves it empty in the GN line of a combined solution and sends it per system in the auxiliary lines."""
+    """Age of differential data [s]: Seconds since the last differential correction (GeoS-5:
+    0-999.9); empty without differential data. GeoS-5 leaves it empty in the GN line of a combined
+    solution and sends it per system in the auxiliary lines."""
     dgps_station: rt.Number | None = None
-    """Differential station ID: Differential reference station ID, 0-4095; empty without differential data. GeoS-5 sends the SBAS satellite number when the corrections come from SBAS, and (like the age) leaves it empty in the GN line and sends it per system in the auxiliary lines."""
+    """Differential station ID: Differential reference station ID, 0-4095; empty without
+    differential data. GeoS-5 sends the SBAS satellite number when the corrections come from SBAS,
+    and (like the age) leaves it empty in the GN line and sends it per system in the auxiliary
+    lines."""
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
-    """Navigational status (NMEA 4.10): Navigational status (integrity) indicator. GeoS-5 does not compute it and sends V in main lines; its auxiliary lines carry no value here."""
+    """Navigational status (NMEA 4.10): Navigational status (integrity) indicator. GeoS-5 does not
+    compute it and sends V in main lines; its auxiliary lines carry no value here."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> GnsAux:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "GNS", 11, count)
-        if count > 12:
-            raise rt.too_many(address, "GNS", 12, count)
-        optional = count - 11
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        satellites = (_INTEGER_0_TO_99.get(fields[5]) or rt.integer_field(fields[5], address, 6, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[5] else None
-        hdop = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "hdop", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        altitude = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "altitude", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        geoid_separation = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "geoid_separation", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        dgps_age = (_DECIMAL_0_TO_999_POINT_9.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "dgps_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[9] else None
-        dgps_station = (_INTEGER_0_TO_4095.get(fields[10]) or rt.integer_field(fields[10], address, 11, "dgps_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)) if fields[10] else None
-        nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            nav_status = NavStatus.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, lat, lon, satellites, hdop, altitude, geoid_separation, dgps_age, dgps_station, nav_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.satellites),
-            rt.text_of(self.hdop),
-            rt.text_of(self.altitude),
-            rt.text_of(self.geoid_separation),
-            rt.text_of(self.dgps_age),
-            rt.text_of(self.dgps_station),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.nav_status is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.nav_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GNS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"satellites":' + show(self.satellites),
-            '"hdop":' + show(self.hdop),
-            '"altitude":' + show(self.altitude),
-            '"geoid_separation":' + show(self.geoid_separation),
-            '"dgps_age":' + show(self.dgps_age),
-            '"dgps_station":' + show(self.dgps_station),
-        ]
-        if self.nav_status is not rt.ABSENT:
-            parts.append('"nav_status":' + show(self.nav_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "geoid_separation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dgps_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dgps_station"), 1)
-        if "nav_status" in fields:
-            out += rt.json_texts(fields["nav_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gns, GnsAux, )

@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """GRS: GNSS range residuals.
 
-Range residual of each satellite used in the fix of the matching GGA or GNS sentence, for
-receiver autonomous integrity monitoring. The residuals are listed in the order of the satellite
-IDs of the matching GSA sentence; with several constellations the receiver sends one GRS per
-system (talker GN, with the system ID since NMEA 4.10).
+Range residual of each satellite used in the fix of the matching GGA or GNS sentence, for receiver
+autonomous integrity monitoring. The residuals are listed in the order of the satellite IDs of the
+matching GSA sentence; with several constellations the receiver sends one GRS per system (talker GN,
+with the system ID since NMEA 4.10).
 """
 
 from __future__ import annotations
@@ -17,24 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GrsMode, SignalId, SystemId
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class GrsResidual:
-    """One entry of range residuals (12 to 12 per sentence)."""
-
-    residual: rt.Number | None = None
-    """Range residual [m]: Range residual of one satellite, metres: calculated range minus measured range. Beyond +/-99.9 m the decimals are dropped (-103.7 becomes -103); at most +/-999."""
-
-
-@dataclass(slots=True)
-class Grs:
+class Grs(rt.Sentence):
     """GRS: GNSS range residuals.
 
-    Example (log_gpsd): $GPGRS,150119.000,1,-0.33,-2.59,3.03,-0.09,-2.98,7.12,-15.6,17.0,,,,*5A
+    Example (log_gpsd):
+    $GPGRS,150119.000,1,-0.33,-2.59,3.03,-0.09,-2.98,7.12,-15.6,17.0,,,,*5A
     """
 
     SENTENCE: ClassVar[str] = "GRS"
@@ -44,109 +33,43 @@ class Grs:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GRS", "standard", "$", 2, 16, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("mode", "grs_mode code (0 1)", GrsMode),
+        rt.Group("residuals", None, (
+            rt.DecimalField("residual", "decimal number"),
+        ), 12, 12),
+        rt.EnumField("system_id", "system_id code (1 2 3 4 5 6 F)", SystemId, optional=True),
+        rt.EnumField(
+            "signal_id",
+            "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)",
+            SignalId,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the GGA or GNS fix the residuals belong to."""
     mode: GrsMode | str | None = None
-    """Residual mode: 0 = residuals used to compute the matching position, 1 = residuals recomputed after it."""
+    """Residual mode: 0 = residuals used to compute the matching position, 1 = residuals recomputed
+    after it."""
     residuals: list[rt.Number | None] = field(default_factory=list)
     """Range residuals: 12 to 12 entries."""
     system_id: SystemId | str | None | rt._Absent = rt.ABSENT
-    """GNSS system ID (NMEA 4.10): Constellation of the satellites of this line (NMEA 4.10 and later)."""
+    """GNSS system ID (NMEA 4.10): Constellation of the satellites of this line (NMEA 4.10 and
+    later)."""
     signal_id: SignalId | str | None | rt._Absent = rt.ABSENT
-    """GNSS signal ID (NMEA 4.10): Signal the residuals were computed for (NMEA 4.10 and later; meaning per system)."""
+    """GNSS signal ID (NMEA 4.10): Signal the residuals were computed for (NMEA 4.10 and later;
+    meaning per system)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Grs:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 1, 12)
-        optional = count - 2 - repeats * 1
-        if count < 14 or optional > 2:
-            rt.split_group(address, "GRS", "residuals", count, 2, 1, 12, 12, 2)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        mode = GrsMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "grs_mode code (0 1)", GrsMode.BY_CODE, "digits", 1, 1)
-        residuals: list[rt.Number | None] = []
-        pos = 2
-        for entry in range(repeats):
-            residuals.append((_DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, f"residuals[{entry + 1}].residual", "decimal number", None, None, _DECIMAL)) if fields[pos] else None)
-            pos += 1
-        system_id: SystemId | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            system_id = SystemId.BY_CODE.get(fields[pos]) or rt.enum_field(fields[pos], address, pos + 1, "system_id", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
-        signal_id: SignalId | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            signal_id = SignalId.BY_CODE.get(fields[pos + 1]) or rt.enum_field(fields[pos + 1], address, pos + 2, "signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", SignalId.BY_CODE, "alnum", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, mode, residuals, system_id, signal_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.mode),
-        ]
-        for entry in self.residuals:
-            out += [rt.text_of(entry)]
-        # Optional trailing fields are written up to the last one present.
-        if self.signal_id is not rt.ABSENT:
-            last = 1
-        elif self.system_id is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.system_id)]
-        if last >= 1:
-            out += [rt.text_of(self.signal_id)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GRS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"mode":' + show(self.mode),
-            '"residuals":[' + ",".join(show(entry) for entry in self.residuals) + "]",
-        ]
-        if self.system_id is not rt.ABSENT:
-            parts.append('"system_id":' + show(self.system_id))
-        if self.signal_id is not rt.ABSENT:
-            parts.append('"signal_id":' + show(self.signal_id))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        for entry in rt.json_list(fields, "residuals"):
-            out += rt.json_texts(entry, 1)
-        if "system_id" in fields:
-            out += rt.json_texts(fields["system_id"], 1)
-        if "signal_id" in fields:
-            out += rt.json_texts(fields["signal_id"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Grs, )

@@ -16,24 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GsaFixType, GsaSelectionMode, SystemId
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class GsaPrn:
-    """One entry of satellites used in the solution (12 to 12 per sentence)."""
-
-    prn: rt.Number | None = None
-    """Satellite ID: ID of a satellite used in the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN - 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou 121-157, ComNav BeiDou 141-177 and GLONASS 65-96."""
-
-
-@dataclass(slots=True)
-class Gsa:
+class Gsa(rt.Sentence):
     """GSA: GNSS DOP and active satellites.
 
-    Example (geos5): $GPGSA,A,1,,,,,,,,,,,,,9.9,9.9,9.9*30
+    Example (geos5):
+    $GNGSA,A,3,01,10,11,12,13,15,17,18,19,24,28,30,1.0,0.5,0.8,1*30
     """
 
     SENTENCE: ClassVar[str] = "GSA"
@@ -43,6 +32,18 @@ class Gsa:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GSA", "standard", "$", 5, 18, (
+        rt.EnumField("selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode),
+        rt.EnumField("fix_type", "gsa_fix_type code (1 2 3)", GsaFixType),
+        rt.Group("prns", None, (
+            rt.IntegerField("prn", "integer"),
+        ), 12, 12),
+        rt.DecimalField("pdop", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("vdop", "decimal number"),
+        rt.EnumField("system_id", "system_id code (1 2 3 4 5 6 F)", SystemId, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -53,124 +54,36 @@ class Gsa:
     prns: list[rt.Number | None] = field(default_factory=list)
     """Satellites used in the solution: 12 to 12 entries."""
     pdop: rt.Number | None = None
-    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     hdop: rt.Number | None = None
-    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     vdop: rt.Number | None = None
-    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     system_id: SystemId | str | None | rt._Absent = rt.ABSENT
-    """GNSS system ID (NMEA 4.10): Constellation the satellites of this line belong to (NMEA v4.10 and later)."""
+    """GNSS system ID (NMEA 4.10): Constellation the satellites of this line belong to (NMEA v4.10
+    and later)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gsa:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 5) // 1, 12)
-        optional = count - 5 - repeats * 1
-        if count < 17 or optional > 1:
-            rt.split_group(address, "GSA", "prns", count, 5, 1, 12, 12, 1)
-        selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
-        fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
-        prns: list[rt.Number | None] = []
-        pos = 2
-        for entry in range(repeats):
-            prns.append((_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None)
-            pos += 1
-        pdop = (_DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)) if fields[pos] else None
-        hdop = (_DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 1] else None
-        vdop = (_DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 2] else None
-        system_id: SystemId | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            system_id = SystemId.BY_CODE.get(fields[pos + 3]) or rt.enum_field(fields[pos + 3], address, pos + 4, "system_id", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], selection_mode, fix_type, prns, pdop, hdop, vdop, system_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.selection_mode),
-            rt.text_of(self.fix_type),
-        ]
-        for entry in self.prns:
-            out += [rt.text_of(entry)]
-        out.append(rt.text_of(self.pdop))
-        out.append(rt.text_of(self.hdop))
-        out.append(rt.text_of(self.vdop))
-        # Optional trailing fields are written up to the last one present.
-        if self.system_id is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.system_id)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GSA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"selection_mode":' + show(self.selection_mode),
-            '"fix_type":' + show(self.fix_type),
-            '"prns":[' + ",".join(show(entry) for entry in self.prns) + "]",
-            '"pdop":' + show(self.pdop),
-            '"hdop":' + show(self.hdop),
-            '"vdop":' + show(self.vdop),
-        ]
-        if self.system_id is not rt.ABSENT:
-            parts.append('"system_id":' + show(self.system_id))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "selection_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fix_type"), 1)
-        for entry in rt.json_list(fields, "prns"):
-            out += rt.json_texts(entry, 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        if "system_id" in fields:
-            out += rt.json_texts(fields["system_id"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class GsaShortPrn:
-    """One entry of satellites used in the solution (0 to 11 per sentence)."""
-
-    prn: rt.Number | None = None
-    """Satellite ID: ID of a satellite used in the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN - 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou 121-157, ComNav BeiDou 141-177 and GLONASS 65-96."""
-
-
-@dataclass(slots=True)
-class GsaShort:
+class GsaShort(rt.Sentence):
     """GSA (Fewer than 12 PRN slots): GNSS DOP and active satellites.
 
     Teseo's manual prints a GN continuation line with only 10 PRN slots and an intact checksum
-    ($GNGSA,A,3,18,03,11,86,19,,,,,,1.0,0.6,0.8*2F): the slots after the last satellite used are
-    not all sent. This layout takes 0 to 11 slots and no system ID, so that the field count
-    stays unambiguous.
+    ($GNGSA,A,3,18,03,11,86,19,,,,,,1.0,0.6,0.8*2F): the slots after the last satellite used are not
+    all sent. This layout takes 0 to 11 slots and no system ID, so that the field count stays
+    unambiguous.
 
-    Example (teseo): $GNGSA,A,3,18,03,11,86,19,,,,,,1.0,0.6,0.8*2F
+    Example (teseo):
+    $GNGSA,A,3,18,03,11,86,19,,,,,,1.0,0.6,0.8*2F
     """
 
     SENTENCE: ClassVar[str] = "GSA"
@@ -180,6 +93,17 @@ class GsaShort:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GSA", "standard", "$", 5, 16, (
+        rt.EnumField("selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode),
+        rt.EnumField("fix_type", "gsa_fix_type code (1 2 3)", GsaFixType),
+        rt.Group("prns", None, (
+            rt.IntegerField("prn", "integer"),
+        ), 0, 11),
+        rt.DecimalField("pdop", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("vdop", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -190,107 +114,30 @@ class GsaShort:
     prns: list[rt.Number | None] = field(default_factory=list)
     """Satellites used in the solution: 0 to 11 entries."""
     pdop: rt.Number | None = None
-    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     hdop: rt.Number | None = None
-    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     vdop: rt.Number | None = None
-    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> GsaShort:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 5) // 1, 11)
-        optional = count - 5 - repeats * 1
-        if count < 5 or optional > 0:
-            rt.split_group(address, "GSA", "prns", count, 5, 1, 0, 11, 0)
-        selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
-        fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
-        prns: list[rt.Number | None] = []
-        pos = 2
-        for entry in range(repeats):
-            prns.append((_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None)
-            pos += 1
-        pdop = (_DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)) if fields[pos] else None
-        hdop = (_DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 1] else None
-        vdop = (_DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], selection_mode, fix_type, prns, pdop, hdop, vdop, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.selection_mode),
-            rt.text_of(self.fix_type),
-        ]
-        for entry in self.prns:
-            out += [rt.text_of(entry)]
-        out.append(rt.text_of(self.pdop))
-        out.append(rt.text_of(self.hdop))
-        out.append(rt.text_of(self.vdop))
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GSA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"selection_mode":' + show(self.selection_mode),
-            '"fix_type":' + show(self.fix_type),
-            '"prns":[' + ",".join(show(entry) for entry in self.prns) + "]",
-            '"pdop":' + show(self.pdop),
-            '"hdop":' + show(self.hdop),
-            '"vdop":' + show(self.vdop),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "selection_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fix_type"), 1)
-        for entry in rt.json_list(fields, "prns"):
-            out += rt.json_texts(entry, 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class GsaWideSystemPrn:
-    """One entry of satellites used in the solution (13 to 24 per sentence)."""
-
-    prn: rt.Number | None = None
-    """Satellite ID: ID of a satellite used in the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN - 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou 121-157, ComNav BeiDou 141-177 and GLONASS 65-96."""
-
-
-@dataclass(slots=True)
-class GsaWideSystem:
+class GsaWideSystem(rt.Sentence):
     """GSA (More than 12 PRN slots, with the system ID): GNSS DOP and active satellites.
 
-    NMEA 0183 fixes the list at 12 slots and has a receiver using more satellites send a second
-    GSA; some receivers put up to 24 slots in one line instead. This tolerance takes 13 to 24
-    slots followed by the three DOPs and the NMEA 4.10 system ID. (No line of this form is in
-    the public logs the spec was checked on.)
-
+    NMEA 0183 fixes the list at 12 slots and has a receiver using more satellites send a second GSA;
+    some receivers put up to 24 slots in one line instead. This tolerance takes 13 to 24 slots
+    followed by the three DOPs and the NMEA 4.10 system ID. (No line of this form is in the public
+    logs the spec was checked on.)
     """
 
     SENTENCE: ClassVar[str] = "GSA"
@@ -300,6 +147,18 @@ class GsaWideSystem:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GSA", "standard", "$", 6, 30, (
+        rt.EnumField("selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode),
+        rt.EnumField("fix_type", "gsa_fix_type code (1 2 3)", GsaFixType),
+        rt.Group("prns", None, (
+            rt.IntegerField("prn", "integer"),
+        ), 13, 24),
+        rt.DecimalField("pdop", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("vdop", "decimal number"),
+        rt.EnumField("system_id", "system_id code (1 2 3 4 5 6 F)", SystemId),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -310,111 +169,30 @@ class GsaWideSystem:
     prns: list[rt.Number | None] = field(default_factory=list)
     """Satellites used in the solution: 13 to 24 entries."""
     pdop: rt.Number | None = None
-    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     hdop: rt.Number | None = None
-    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     vdop: rt.Number | None = None
-    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     system_id: SystemId | str | None = None
     """GNSS system ID: The system the satellites belong to (NMEA 4.10)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> GsaWideSystem:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 6) // 1, 24)
-        optional = count - 6 - repeats * 1
-        if count < 19 or optional > 0:
-            rt.split_group(address, "GSA", "prns", count, 6, 1, 13, 24, 0)
-        selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
-        fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
-        prns: list[rt.Number | None] = []
-        pos = 2
-        for entry in range(repeats):
-            prns.append((_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None)
-            pos += 1
-        pdop = (_DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)) if fields[pos] else None
-        hdop = (_DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 1] else None
-        vdop = (_DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 2] else None
-        system_id = SystemId.BY_CODE.get(fields[pos + 3]) or rt.enum_field(fields[pos + 3], address, pos + 4, "system_id", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], selection_mode, fix_type, prns, pdop, hdop, vdop, system_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.selection_mode),
-            rt.text_of(self.fix_type),
-        ]
-        for entry in self.prns:
-            out += [rt.text_of(entry)]
-        out.append(rt.text_of(self.pdop))
-        out.append(rt.text_of(self.hdop))
-        out.append(rt.text_of(self.vdop))
-        out.append(rt.text_of(self.system_id))
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GSA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"selection_mode":' + show(self.selection_mode),
-            '"fix_type":' + show(self.fix_type),
-            '"prns":[' + ",".join(show(entry) for entry in self.prns) + "]",
-            '"pdop":' + show(self.pdop),
-            '"hdop":' + show(self.hdop),
-            '"vdop":' + show(self.vdop),
-            '"system_id":' + show(self.system_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "selection_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fix_type"), 1)
-        for entry in rt.json_list(fields, "prns"):
-            out += rt.json_texts(entry, 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "system_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class GsaWidePrn:
-    """One entry of satellites used in the solution (13 to 24 per sentence)."""
-
-    prn: rt.Number | None = None
-    """Satellite ID: ID of a satellite used in the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN - 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou 121-157, ComNav BeiDou 141-177 and GLONASS 65-96."""
-
-
-@dataclass(slots=True)
-class GsaWide:
+class GsaWide(rt.Sentence):
     """GSA (More than 12 PRN slots): GNSS DOP and active satellites.
 
-    As wide_system, without the system ID (NMEA before 4.10): 13 to 24 slots, then the three
-    DOPs. Tried after wide_system, whose system ID field rejects a DOP value such as 1.2.
-
+    As wide_system, without the system ID (NMEA before 4.10): 13 to 24 slots, then the three DOPs.
+    Tried after wide_system, whose system ID field rejects a DOP value such as 1.2.
     """
 
     SENTENCE: ClassVar[str] = "GSA"
@@ -424,6 +202,17 @@ class GsaWide:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GSA", "standard", "$", 5, 29, (
+        rt.EnumField("selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode),
+        rt.EnumField("fix_type", "gsa_fix_type code (1 2 3)", GsaFixType),
+        rt.Group("prns", None, (
+            rt.IntegerField("prn", "integer"),
+        ), 13, 24),
+        rt.DecimalField("pdop", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("vdop", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -434,107 +223,32 @@ class GsaWide:
     prns: list[rt.Number | None] = field(default_factory=list)
     """Satellites used in the solution: 13 to 24 entries."""
     pdop: rt.Number | None = None
-    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     hdop: rt.Number | None = None
-    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     vdop: rt.Number | None = None
-    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> GsaWide:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 5) // 1, 24)
-        optional = count - 5 - repeats * 1
-        if count < 18 or optional > 0:
-            rt.split_group(address, "GSA", "prns", count, 5, 1, 13, 24, 0)
-        selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
-        fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
-        prns: list[rt.Number | None] = []
-        pos = 2
-        for entry in range(repeats):
-            prns.append((_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None)
-            pos += 1
-        pdop = (_DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)) if fields[pos] else None
-        hdop = (_DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 1] else None
-        vdop = (_DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], selection_mode, fix_type, prns, pdop, hdop, vdop, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.selection_mode),
-            rt.text_of(self.fix_type),
-        ]
-        for entry in self.prns:
-            out += [rt.text_of(entry)]
-        out.append(rt.text_of(self.pdop))
-        out.append(rt.text_of(self.hdop))
-        out.append(rt.text_of(self.vdop))
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GSA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"selection_mode":' + show(self.selection_mode),
-            '"fix_type":' + show(self.fix_type),
-            '"prns":[' + ",".join(show(entry) for entry in self.prns) + "]",
-            '"pdop":' + show(self.pdop),
-            '"hdop":' + show(self.hdop),
-            '"vdop":' + show(self.vdop),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "selection_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fix_type"), 1)
-        for entry in rt.json_list(fields, "prns"):
-            out += rt.json_texts(entry, 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class GsaExtraDopPrn:
-    """One entry of satellites used in the solution (12 to 12 per sentence)."""
-
-    prn: rt.Number | None = None
-    """Satellite ID: ID of a satellite used in the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN - 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou 121-157, ComNav BeiDou 141-177 and GLONASS 65-96."""
-
-
-@dataclass(slots=True)
-class GsaExtraDop:
+class GsaExtraDop(rt.Sentence):
     """GSA (A fourth DOP value): GNSS DOP and active satellites.
 
     A BeiDou receiver (gpsd's beidou-bd log) sends 12 PRN slots, PDOP, HDOP and VDOP and then a
-    fourth decimal value (e.g. 3.3) where NMEA 4.10 has the one-digit system ID; no document
-    names it (probably TDOP). This layout keeps it as a number.
+    fourth decimal value (e.g. 3.3) where NMEA 4.10 has the one-digit system ID; no document names
+    it (probably TDOP). This layout keeps it as a number.
 
-    Example (log_gpsd): $GPGSA,A,3,25,32,,,,,,,,,,,5.1,1.3,4.9,3.3*3D
+    Example (log_gpsd):
+    $GPGSA,A,3,25,32,,,,,,,,,,,5.1,1.3,4.9,3.3*3D
     """
 
     SENTENCE: ClassVar[str] = "GSA"
@@ -544,6 +258,18 @@ class GsaExtraDop:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GSA", "standard", "$", 6, 18, (
+        rt.EnumField("selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode),
+        rt.EnumField("fix_type", "gsa_fix_type code (1 2 3)", GsaFixType),
+        rt.Group("prns", None, (
+            rt.IntegerField("prn", "integer"),
+        ), 12, 12),
+        rt.DecimalField("pdop", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("vdop", "decimal number"),
+        rt.DecimalField("fourth_dop", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -554,94 +280,23 @@ class GsaExtraDop:
     prns: list[rt.Number | None] = field(default_factory=list)
     """Satellites used in the solution: 12 to 12 entries."""
     pdop: rt.Number | None = None
-    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     hdop: rt.Number | None = None
-    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     vdop: rt.Number | None = None
-    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix)."""
+    """VDOP: Vertical dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
+    fix)."""
     fourth_dop: rt.Number | None = None
-    """Fourth DOP value: An unnamed fourth dilution of precision value (probably the time DOP), as sent."""
+    """Fourth DOP value: An unnamed fourth dilution of precision value (probably the time DOP), as
+    sent."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> GsaExtraDop:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 6) // 1, 12)
-        optional = count - 6 - repeats * 1
-        if count < 18 or optional > 0:
-            rt.split_group(address, "GSA", "prns", count, 6, 1, 12, 12, 0)
-        selection_mode = GsaSelectionMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "selection_mode", "gsa_selection_mode code (M A)", GsaSelectionMode.BY_CODE, "letters", 1, 1)
-        fix_type = GsaFixType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "fix_type", "gsa_fix_type code (1 2 3)", GsaFixType.BY_CODE, "digits", 1, 1)
-        prns: list[rt.Number | None] = []
-        pos = 2
-        for entry in range(repeats):
-            prns.append((_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"prns[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None)
-            pos += 1
-        pdop = (_DECIMAL.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, "pdop", "decimal number", None, None, _DECIMAL)) if fields[pos] else None
-        hdop = (_DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, "hdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 1] else None
-        vdop = (_DECIMAL.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, "vdop", "decimal number", None, None, _DECIMAL)) if fields[pos + 2] else None
-        fourth_dop = (_DECIMAL.get(fields[pos + 3]) or rt.decimal_field(fields[pos + 3], address, pos + 4, "fourth_dop", "decimal number", None, None, _DECIMAL)) if fields[pos + 3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], selection_mode, fix_type, prns, pdop, hdop, vdop, fourth_dop, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.selection_mode),
-            rt.text_of(self.fix_type),
-        ]
-        for entry in self.prns:
-            out += [rt.text_of(entry)]
-        out.append(rt.text_of(self.pdop))
-        out.append(rt.text_of(self.hdop))
-        out.append(rt.text_of(self.vdop))
-        out.append(rt.text_of(self.fourth_dop))
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GSA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"selection_mode":' + show(self.selection_mode),
-            '"fix_type":' + show(self.fix_type),
-            '"prns":[' + ",".join(show(entry) for entry in self.prns) + "]",
-            '"pdop":' + show(self.pdop),
-            '"hdop":' + show(self.hdop),
-            '"vdop":' + show(self.vdop),
-            '"fourth_dop":' + show(self.fourth_dop),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "selection_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fix_type"), 1)
-        for entry in rt.json_list(fields, "prns"):
-            out += rt.json_texts(entry, 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fourth_dop"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gsa, GsaShort, GsaWideSystem, GsaWide, GsaExtraDop, )

@@ -14,15 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Gst:
+class Gst(rt.Sentence):
     """GST: GNSS pseudorange error statistics.
-
     """
 
     SENTENCE: ClassVar[str] = "GST"
@@ -32,19 +27,34 @@ class Gst:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GST", "standard", "$", 8, 8, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("rms", "decimal number"),
+        rt.DecimalField("semi_major_std", "decimal number"),
+        rt.DecimalField("semi_minor_std", "decimal number"),
+        rt.DecimalField("orientation", "decimal number"),
+        rt.DecimalField("lat_std", "decimal number"),
+        rt.DecimalField("lon_std", "decimal number"),
+        rt.DecimalField("alt_std", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the position the statistics belong to."""
     rms: rt.Number | None = None
-    """RMS of range residuals: RMS value of the standard deviation of the range inputs to the navigation process (pseudoranges and DGPS corrections). Currently always empty on ComNav."""
+    """RMS of range residuals: RMS value of the standard deviation of the range inputs to the
+    navigation process (pseudoranges and DGPS corrections). Currently always empty on ComNav."""
     semi_major_std: rt.Number | None = None
-    """Error ellipse semi-major axis [m]: Standard deviation of the semi-major axis of the error ellipse, metres. Empty on ComNav."""
+    """Error ellipse semi-major axis [m]: Standard deviation of the semi-major axis of the error
+    ellipse, metres. Empty on ComNav."""
     semi_minor_std: rt.Number | None = None
-    """Error ellipse semi-minor axis [m]: Standard deviation of the semi-minor axis of the error ellipse, metres. Empty on ComNav."""
+    """Error ellipse semi-minor axis [m]: Standard deviation of the semi-minor axis of the error
+    ellipse, metres. Empty on ComNav."""
     orientation: rt.Number | None = None
-    """Error ellipse orientation [deg]: Orientation of the semi-major axis of the error ellipse, degrees from true north. Empty on ComNav."""
+    """Error ellipse orientation [deg]: Orientation of the semi-major axis of the error ellipse,
+    degrees from true north. Empty on ComNav."""
     lat_std: rt.Number | None = None
     """Latitude error [m]: Standard deviation of the latitude error, metres."""
     lon_std: rt.Number | None = None
@@ -52,82 +62,11 @@ class Gst:
     alt_std: rt.Number | None = None
     """Altitude error [m]: Standard deviation of the altitude error, metres."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gst:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "GST", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "GST", 8, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        rms = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "rms", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        semi_major_std = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "semi_major_std", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        semi_minor_std = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "semi_minor_std", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        orientation = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "orientation", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        lat_std = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "lat_std", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        lon_std = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "lon_std", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        alt_std = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "alt_std", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, rms, semi_major_std, semi_minor_std, orientation, lat_std, lon_std, alt_std, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.rms),
-            rt.text_of(self.semi_major_std),
-            rt.text_of(self.semi_minor_std),
-            rt.text_of(self.orientation),
-            rt.text_of(self.lat_std),
-            rt.text_of(self.lon_std),
-            rt.text_of(self.alt_std),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GST",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"rms":' + show(self.rms),
-            '"semi_major_std":' + show(self.semi_major_std),
-            '"semi_minor_std":' + show(self.semi_minor_std),
-            '"orientation":' + show(self.orientation),
-            '"lat_std":' + show(self.lat_std),
-            '"lon_std":' + show(self.lon_std),
-            '"alt_std":' + show(self.alt_std),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "semi_major_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "semi_minor_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "orientation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alt_std"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gst, )

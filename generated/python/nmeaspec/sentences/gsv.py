@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """GSV: GNSS satellites in view.
 
-Satellites in view with their elevation, azimuth and signal-to-noise ratio, four per sentence; a
-set of several sentences reports all of them.
+Satellites in view with their elevation, azimuth and signal-to-noise ratio, four per sentence; a set
+of several sentences reports all of them.
 """
 
 from __future__ import annotations
@@ -15,34 +15,33 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SignalId
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_360: dict[Any, Any] = rt.known("integer 0..360")
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
-_INTEGER_MINUS_90_TO_90: dict[Any, Any] = rt.known("integer -90..90")
-
 
 @dataclass(slots=True)
 class GsvSatellite:
     """One entry of satellites in view (0 to 4 per sentence)."""
 
     prn: rt.Number | None = None
-    """Satellite ID: Satellite ID. GPS 1-32, SBAS 33-64 (PRN - 87), GLONASS 65-88 (slot + 64); GeoS-5 v2.x output prints 3 digits and numbers Galileo 101-136 and QZSS 193-197, its v4.10 output numbers Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 BeiDou 121-157; ComNav SBAS 120-138, GLONASS 1-36 (as printed), BeiDou 141-177."""
+    """Satellite ID: Satellite ID. GPS 1-32, SBAS 33-64 (PRN - 87), GLONASS 65-88 (slot + 64);
+    GeoS-5 v2.x output prints 3 digits and numbers Galileo 101-136 and QZSS 193-197, its v4.10
+    output numbers Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 BeiDou 121-157; ComNav SBAS 120-138,
+    GLONASS 1-36 (as printed), BeiDou 141-177."""
     elevation: rt.Number | None = None
-    """Elevation [deg]: Elevation, 90 degrees maximum. The standard range is 0-90, but GeoS-5 prints negative values ("-2", with azimuth 000) for some satellites."""
+    """Elevation [deg]: Elevation, 90 degrees maximum. The standard range is 0-90, but GeoS-5 prints
+    negative values (\"-2\", with azimuth 000) for some satellites."""
     azimuth: rt.Number | None = None
-    """Azimuth [deg]: Azimuth from true north, 000-359 degrees in every manual; 360 is accepted too, since real receivers send it for due north (a SiRF-based log in the test corpus does)."""
+    """Azimuth [deg]: Azimuth from true north, 000-359 degrees in every manual; 360 is accepted too,
+    since real receivers send it for due north (a SiRF-based log in the test corpus does)."""
     snr: rt.Number | None = None
-    """SNR (C/N0) [dB-Hz]: Carrier-to-noise ratio, 00-99 dB-Hz; empty when the satellite is not tracked (GS501 says 0 when not tracked)."""
+    """SNR (C/N0) [dB-Hz]: Carrier-to-noise ratio, 00-99 dB-Hz; empty when the satellite is not
+    tracked (GS501 says 0 when not tracked)."""
 
 
 @dataclass(slots=True)
-class Gsv:
+class Gsv(rt.Sentence):
     """GSV: GNSS satellites in view.
 
-    Example (geos5): $GPGSV,08,01,32,002,33,059,47,004,-2,000,48,005,34,099,49,009,06,017,40*69
+    Example (geos5):
+    $GPGSV,4,1,16,02,43,143,51,03,08,014,39,06,45,081,49,12,87,266,55,1*68
     """
 
     SENTENCE: ClassVar[str] = "GSV"
@@ -52,112 +51,45 @@ class Gsv:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("GSV", "standard", "$", 3, 20, (
+        rt.IntegerField("message_count", "integer of at least 1", 1, None),
+        rt.IntegerField("message_number", "integer of at least 1", 1, None),
+        rt.IntegerField("satellites_in_view", "integer of at least 0", 0, None),
+        rt.Group("satellites", GsvSatellite, (
+            rt.IntegerField("prn", "integer"),
+            rt.IntegerField("elevation", "integer -90..90", -90, 90),
+            rt.IntegerField("azimuth", "integer 0..360", 0, 360),
+            rt.IntegerField("snr", "integer 0..99", 0, 99),
+        ), 0, 4),
+        rt.EnumField(
+            "signal_id",
+            "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)",
+            SignalId,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     message_count: rt.Number | None = None
-    """Number of messages: Total number of GSV sentences in this set (minimum 1). GS501 and ComNav give the range 1-9; GeoS-5 prints two digits in NMEA v2.x output ("08")."""
+    """Number of messages: Total number of GSV sentences in this set (minimum 1). GS501 and ComNav
+    give the range 1-9; GeoS-5 prints two digits in NMEA v2.x output (\"08\")."""
     message_number: rt.Number | None = None
     """Message number: Number of this sentence within the set, starting at 1."""
     satellites_in_view: rt.Number | None = None
-    """Satellites in view: Total number of satellites in view reported by the set (may differ from the number used in the solution)."""
+    """Satellites in view: Total number of satellites in view reported by the set (may differ from
+    the number used in the solution)."""
     satellites: list[GsvSatellite] = field(default_factory=list)
     """Satellites in view: 0 to 4 entries."""
     signal_id: SignalId | str | None | rt._Absent = rt.ABSENT
     """Signal ID (NMEA 4.10): Signal the set reports, meaning per system (NMEA v4.10 and later)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Gsv:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 3) // 4, 4)
-        optional = count - 3 - repeats * 4
-        if count < 3 or optional > 1:
-            rt.split_group(address, "GSV", "satellites", count, 3, 4, 0, 4, 1)
-        message_count = (_INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "message_count", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[0] else None
-        message_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "message_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
-        satellites_in_view = (_INTEGER_0_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "satellites_in_view", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[2] else None
-        satellites: list[GsvSatellite] = []
-        pos = 3
-        for entry in range(repeats):
-            satellites.append(GsvSatellite(
-                (_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None,
-                (_INTEGER_MINUS_90_TO_90.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].elevation", "integer -90..90", -90, 90, _INTEGER_MINUS_90_TO_90)) if fields[pos + 1] else None,
-                (_INTEGER_0_TO_360.get(fields[pos + 2]) or rt.integer_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].azimuth", "integer 0..360", 0, 360, _INTEGER_0_TO_360)) if fields[pos + 2] else None,
-                (_INTEGER_0_TO_99.get(fields[pos + 3]) or rt.integer_field(fields[pos + 3], address, pos + 4, f"satellites[{entry + 1}].snr", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[pos + 3] else None,
-            ))
-            pos += 4
-        signal_id: SignalId | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            signal_id = SignalId.BY_CODE.get(fields[pos]) or rt.enum_field(fields[pos], address, pos + 1, "signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", SignalId.BY_CODE, "alnum", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], message_count, message_number, satellites_in_view, satellites, signal_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message_count),
-            rt.text_of(self.message_number),
-            rt.text_of(self.satellites_in_view),
-        ]
-        for entry in self.satellites:
-            out += [rt.text_of(entry.prn), rt.text_of(entry.elevation), rt.text_of(entry.azimuth), rt.text_of(entry.snr)]
-        # Optional trailing fields are written up to the last one present.
-        if self.signal_id is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.signal_id)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "GSV",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message_count":' + show(self.message_count),
-            '"message_number":' + show(self.message_number),
-            '"satellites_in_view":' + show(self.satellites_in_view),
-            '"satellites":[' + ",".join(
-                "{" + '"prn":' + show(entry.prn) + ',"elevation":' + show(entry.elevation) + ',"azimuth":' + show(entry.azimuth) + ',"snr":' + show(entry.snr) + "}"
-                for entry in self.satellites) + "]",
-        ]
-        if self.signal_id is not rt.ABSENT:
-            parts.append('"signal_id":' + show(self.signal_id))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites_in_view"), 1)
-        for entry in rt.json_list(fields, "satellites"):
-            out += rt.json_texts(rt.json_member(entry, "prn"), 1)
-            out += rt.json_texts(rt.json_member(entry, "elevation"), 1)
-            out += rt.json_texts(rt.json_member(entry, "azimuth"), 1)
-            out += rt.json_texts(rt.json_member(entry, "snr"), 1)
-        if "signal_id" in fields:
-            out += rt.json_texts(fields["signal_id"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Gsv, )

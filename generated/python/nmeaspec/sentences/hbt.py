@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import HbtEquipmentStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-
 
 @dataclass(slots=True)
-class Hbt:
+class Hbt(rt.Sentence):
     """HBT: Heartbeat supervision sentence.
 
-    Example (pynmea2): $AIHBT,30,A,1*09
+    Example (pynmea2):
+    $AIHBT,30,A,1*09
     """
 
     SENTENCE: ClassVar[str] = "HBT"
@@ -34,72 +31,29 @@ class Hbt:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HBT", "standard", "$", 3, 3, (
+        rt.DecimalField("repeat_interval", "decimal number"),
+        rt.EnumField("equipment_status", "hbt_equipment_status code (A V)", HbtEquipmentStatus),
+        rt.IntegerField("sequence_id", "integer 0..9", 0, 9),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     repeat_interval: rt.Number | None = None
-    """Configured repeat interval [s]: Configured autonomous repeat interval in seconds (Furuno BR-500: 1-999); empty in the reply to a query when the device supports queries."""
+    """Configured repeat interval [s]: Configured autonomous repeat interval in seconds (Furuno
+    BR-500: 1-999); empty in the reply to a query when the device supports queries."""
     equipment_status: HbtEquipmentStatus | str | None = None
     """Equipment status: A = equipment in normal operation, V = not (e.g. built-in test failed)."""
     sequence_id: rt.Number | None = None
-    """Sequential sentence identifier: Counts 0 to 9, one step per sentence, and wraps to 0 after 9."""
+    """Sequential sentence identifier: Counts 0 to 9, one step per sentence, and wraps to 0 after
+    9."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hbt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "HBT", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "HBT", 3, count)
-        repeat_interval = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "repeat_interval", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        equipment_status = HbtEquipmentStatus.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "equipment_status", "hbt_equipment_status code (A V)", HbtEquipmentStatus.BY_CODE, "letters", 1, 1)
-        sequence_id = (_INTEGER_0_TO_9.get(fields[2]) or rt.integer_field(fields[2], address, 3, "sequence_id", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], repeat_interval, equipment_status, sequence_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.repeat_interval),
-            rt.text_of(self.equipment_status),
-            rt.text_of(self.sequence_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HBT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"repeat_interval":' + show(self.repeat_interval),
-            '"equipment_status":' + show(self.equipment_status),
-            '"sequence_id":' + show(self.sequence_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "repeat_interval"), 1)
-        out += rt.json_texts(rt.json_member(fields, "equipment_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sequence_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hbt, )

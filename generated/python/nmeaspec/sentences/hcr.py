@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """HCR: Heading correction report.
 
-State and value of the correction that a heading source has applied to the heading it sends in
-THS. Sent just before each THS whose correction state changed, and at least once a second.
+State and value of the correction that a heading source has applied to the heading it sends in THS.
+Sent just before each THS whose correction state changed, and at least once a second.
 """
 
 from __future__ import annotations
@@ -15,15 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import HcrCorrectionState, ThsMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_MINUS_180_TO_180: dict[Any, Any] = rt.known("decimal -180..180")
-
 
 @dataclass(slots=True)
-class Hcr:
+class Hcr(rt.Sentence):
     """HCR: Heading correction report.
-
     """
 
     SENTENCE: ClassVar[str] = "HCR"
@@ -33,78 +28,37 @@ class Hcr:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HCR", "standard", "$", 4, 4, (
+        rt.DecimalField("heading", "decimal number"),
+        rt.EnumField("mode", "ths_mode code (A E M S V)", ThsMode),
+        rt.EnumField(
+            "correction_state",
+            "hcr_correction_state code (A D S N V)",
+            HcrCorrectionState,
+        ),
+        rt.DecimalField("correction_value", "decimal number -180..180", -180, 180),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     heading: rt.Number | None = None
-    """Heading [deg]: Heading, degrees true, of the THS this report belongs to; it only pairs the report with the faster THS stream and does not replace the THS heading."""
+    """Heading [deg]: Heading, degrees true, of the THS this report belongs to; it only pairs the
+    report with the faster THS stream and does not replace the THS heading."""
     mode: ThsMode | str | None = None
     """Mode indicator: Mode indicator, as in THS (A, E, M, S, V)."""
     correction_state: HcrCorrectionState | str | None = None
-    """Correction state: A = speed/latitude and dynamic corrections, D = dynamic, S = speed/latitude, N = none, V = unknown."""
+    """Correction state: A = speed/latitude and dynamic corrections, D = dynamic, S =
+    speed/latitude, N = none, V = unknown."""
     correction_value: rt.Number | None = None
-    """Correction value [deg]: Correction included in the heading, degrees, within ±180; empty when the state is N or V."""
+    """Correction value [deg]: Correction included in the heading, degrees, within ±180; empty when
+    the state is N or V."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hcr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "HCR", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "HCR", 4, count)
-        heading = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heading", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        mode = ThsMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "ths_mode code (A E M S V)", ThsMode.BY_CODE, "letters", 1, 1)
-        correction_state = HcrCorrectionState.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "correction_state", "hcr_correction_state code (A D S N V)", HcrCorrectionState.BY_CODE, "letters", 1, 1)
-        correction_value = (_DECIMAL_MINUS_180_TO_180.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "correction_value", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], heading, mode, correction_state, correction_value, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.heading),
-            rt.text_of(self.mode),
-            rt.text_of(self.correction_state),
-            rt.text_of(self.correction_value),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HCR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"heading":' + show(self.heading),
-            '"mode":' + show(self.mode),
-            '"correction_state":' + show(self.correction_state),
-            '"correction_value":' + show(self.correction_value),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "correction_state"), 1)
-        out += rt.json_texts(rt.json_member(fields, "correction_value"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hcr, )

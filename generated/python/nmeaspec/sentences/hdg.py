@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """HDG: Heading, deviation and variation.
 
-Heading read by a magnetic sensor, with the magnetic deviation and variation needed to turn it
-into magnetic and true heading. Correct the sensor reading for deviation to get magnetic heading
-(add easterly, subtract westerly), then for variation to get true heading (same rule).
+Heading read by a magnetic sensor, with the magnetic deviation and variation needed to turn it into
+magnetic and true heading. Correct the sensor reading for deviation to get magnetic heading (add
+easterly, subtract westerly), then for variation to get true heading (same rule).
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import EastWest
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Hdg:
+class Hdg(rt.Sentence):
     """HDG: Heading, deviation and variation.
 
-    Example (log_gpsd): $SDHDG,229.8,,,1.3,E*36
+    Example (go_nmea):
+    $HCHDG,98.3,0.1,E,12.6,W*56
     """
 
     SENTENCE: ClassVar[str] = "HDG"
@@ -34,84 +32,37 @@ class Hdg:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HDG", "standard", "$", 5, 5, (
+        rt.DecimalField("heading", "decimal number"),
+        rt.DecimalField("deviation", "decimal number"),
+        rt.EnumField("deviation_dir", "east_west code (E W)", EastWest),
+        rt.DecimalField("variation", "decimal number"),
+        rt.EnumField("variation_dir", "east_west code (E W)", EastWest),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     heading: rt.Number | None = None
-    """Magnetic sensor heading [deg]: Heading as read by the magnetic sensor, degrees (0 to 360; Furuno FR-1500 prints 0.00-360.00)."""
+    """Magnetic sensor heading [deg]: Heading as read by the magnetic sensor, degrees (0 to 360;
+    Furuno FR-1500 prints 0.00-360.00)."""
     deviation: rt.Number | None = None
-    """Magnetic deviation [deg]: Magnetic deviation of the sensor, degrees (0 to 180); empty when unknown."""
+    """Magnetic deviation [deg]: Magnetic deviation of the sensor, degrees (0 to 180); empty when
+    unknown."""
     deviation_dir: EastWest | str | None = None
-    """Deviation direction: E = easterly deviation (add to the sensor reading), W = westerly (subtract)."""
+    """Deviation direction: E = easterly deviation (add to the sensor reading), W = westerly
+    (subtract)."""
     variation: rt.Number | None = None
     """Magnetic variation [deg]: Magnetic variation, degrees (0 to 180); empty when unknown."""
     variation_dir: EastWest | str | None = None
-    """Variation direction: E = easterly variation (add to magnetic heading for true), W = westerly (subtract)."""
+    """Variation direction: E = easterly variation (add to magnetic heading for true), W = westerly
+    (subtract)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hdg:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "HDG", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "HDG", 5, count)
-        heading = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heading", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        deviation = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "deviation", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        deviation_dir = EastWest.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "deviation_dir", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        variation = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "variation", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        variation_dir = EastWest.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "variation_dir", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], heading, deviation, deviation_dir, variation, variation_dir, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.heading),
-            rt.text_of(self.deviation),
-            rt.text_of(self.deviation_dir),
-            rt.text_of(self.variation),
-            rt.text_of(self.variation_dir),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HDG",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"heading":' + show(self.heading),
-            '"deviation":' + show(self.deviation),
-            '"deviation_dir":' + show(self.deviation_dir),
-            '"variation":' + show(self.variation),
-            '"variation_dir":' + show(self.variation_dir),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "deviation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "deviation_dir"), 1)
-        out += rt.json_texts(rt.json_member(fields, "variation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "variation_dir"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hdg, )

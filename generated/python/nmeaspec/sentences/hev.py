@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """HEV: Heave.
 
-Vertical displacement (heave) of the antenna or vessel, metres. Hemisphere GNSS's own sentence,
-sent under the GP talker; it is not part of NMEA 0183.
+Vertical displacement (heave) of the antenna or vessel, metres. Hemisphere GNSS's own sentence, sent
+under the GP talker; it is not part of NMEA 0183.
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Hev:
+class Hev(rt.Sentence):
     """HEV: Heave.
 
-    Example (pynmea2): $GPHEV,-0.01*52
+    Example (pynmea2):
+    $GPHEV,-0.01*52
     """
 
     SENTENCE: ClassVar[str] = "HEV"
@@ -32,77 +30,25 @@ class Hev:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HEV", "standard", "$", 1, 2, (
+        rt.DecimalField("heave", "decimal number"),
+        rt.TextField("spare", "text", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     heave: rt.Number | None = None
     """Heave [m]: Heave, metres."""
     spare: str | None | rt._Absent = rt.ABSENT
-    """Trailing empty field: An empty field after the heave that Simrad's description of the format shows ("H," before the checksum)."""
+    """Trailing empty field: An empty field after the heave that Simrad's description of the format
+    shows (\"H,\" before the checksum)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hev:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "HEV", 1, count)
-        if count > 2:
-            raise rt.too_many(address, "HEV", 2, count)
-        optional = count - 1
-        heave = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heave", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        spare: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            spare = rt.text_field(fields[1], address, 2, "spare", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], heave, spare, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.heave),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.spare is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.spare)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HEV",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"heave":' + show(self.heave),
-        ]
-        if self.spare is not rt.ABSENT:
-            parts.append('"spare":' + show(self.spare))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "heave"), 1)
-        if "spare" in fields:
-            out += rt.json_texts(fields["spare"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hev, )

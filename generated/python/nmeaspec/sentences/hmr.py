@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """HMR: Heading monitor receive.
 
-Data of the two heading sensors selected by HMS, collected by a central unit and delivered to
-the heading monitor: their headings, statuses, references and deviations, the set and actual
-difference and whether the difference is within the limit.
+Data of the two heading sensors selected by HMS, collected by a central unit and delivered to the
+heading monitor: their headings, statuses, references and deviations, the set and actual difference
+and whether the difference is within the limit.
 """
 
 from __future__ import annotations
@@ -16,14 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import EastWest, HmrDifferenceStatus, HtcHeadingReference, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Hmr:
+class Hmr(rt.Sentence):
     """HMR: Heading monitor receive.
-
     """
 
     SENTENCE: ClassVar[str] = "HMR"
@@ -33,6 +29,26 @@ class Hmr:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HMR", "standard", "$", 17, 17, (
+        rt.TextField("sensor1_id", "text"),
+        rt.TextField("sensor2_id", "text"),
+        rt.DecimalField("set_difference", "decimal number"),
+        rt.DecimalField("actual_difference", "decimal number"),
+        rt.EnumField("difference_status", "hmr_difference_status code (A V)", HmrDifferenceStatus),
+        rt.DecimalField("sensor1_heading", "decimal number"),
+        rt.EnumField("sensor1_status", "status code (A V)", Status),
+        rt.EnumField("sensor1_reference", "htc_heading_reference code (T M)", HtcHeadingReference),
+        rt.DecimalField("sensor1_deviation", "decimal number"),
+        rt.EnumField("sensor1_deviation_dir", "east_west code (E W)", EastWest),
+        rt.DecimalField("sensor2_heading", "decimal number"),
+        rt.EnumField("sensor2_status", "status code (A V)", Status),
+        rt.EnumField("sensor2_reference", "htc_heading_reference code (T M)", HtcHeadingReference),
+        rt.DecimalField("sensor2_deviation", "decimal number"),
+        rt.EnumField("sensor2_deviation_dir", "east_west code (E W)", EastWest),
+        rt.DecimalField("variation", "decimal number"),
+        rt.EnumField("variation_dir", "east_west code (E W)", EastWest),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -53,7 +69,8 @@ class Hmr:
     sensor1_reference: HtcHeadingReference | str | None = None
     """Sensor 1 reference: T = true, M = magnetic."""
     sensor1_deviation: rt.Number | None = None
-    """Sensor 1 deviation [deg]: Magnetic deviation of sensor 1, degrees; empty for a true-heading sensor."""
+    """Sensor 1 deviation [deg]: Magnetic deviation of sensor 1, degrees; empty for a true-heading
+    sensor."""
     sensor1_deviation_dir: EastWest | str | None = None
     """Sensor 1 deviation direction: E = easterly, W = westerly."""
     sensor2_heading: rt.Number | None = None
@@ -63,7 +80,8 @@ class Hmr:
     sensor2_reference: HtcHeadingReference | str | None = None
     """Sensor 2 reference: T = true, M = magnetic."""
     sensor2_deviation: rt.Number | None = None
-    """Sensor 2 deviation [deg]: Magnetic deviation of sensor 2, degrees; empty for a true-heading sensor."""
+    """Sensor 2 deviation [deg]: Magnetic deviation of sensor 2, degrees; empty for a true-heading
+    sensor."""
     sensor2_deviation_dir: EastWest | str | None = None
     """Sensor 2 deviation direction: E = easterly, W = westerly."""
     variation: rt.Number | None = None
@@ -71,118 +89,11 @@ class Hmr:
     variation_dir: EastWest | str | None = None
     """Variation direction: E = easterly, W = westerly."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hmr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 17:
-            raise rt.too_few(address, "HMR", 17, count)
-        if count > 17:
-            raise rt.too_many(address, "HMR", 17, count)
-        sensor1_id = rt.text_field(fields[0], address, 1, "sensor1_id", "text", None)
-        sensor2_id = rt.text_field(fields[1], address, 2, "sensor2_id", "text", None)
-        set_difference = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "set_difference", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        actual_difference = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "actual_difference", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        difference_status = HmrDifferenceStatus.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "difference_status", "hmr_difference_status code (A V)", HmrDifferenceStatus.BY_CODE, "letters", 1, 1)
-        sensor1_heading = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "sensor1_heading", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        sensor1_status = Status.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "sensor1_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        sensor1_reference = HtcHeadingReference.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "sensor1_reference", "htc_heading_reference code (T M)", HtcHeadingReference.BY_CODE, "letters", 1, 1)
-        sensor1_deviation = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "sensor1_deviation", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        sensor1_deviation_dir = EastWest.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "sensor1_deviation_dir", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        sensor2_heading = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "sensor2_heading", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        sensor2_status = Status.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "sensor2_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        sensor2_reference = HtcHeadingReference.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "sensor2_reference", "htc_heading_reference code (T M)", HtcHeadingReference.BY_CODE, "letters", 1, 1)
-        sensor2_deviation = (_DECIMAL.get(fields[13]) or rt.decimal_field(fields[13], address, 14, "sensor2_deviation", "decimal number", None, None, _DECIMAL)) if fields[13] else None
-        sensor2_deviation_dir = EastWest.BY_CODE.get(fields[14]) or rt.enum_field(fields[14], address, 15, "sensor2_deviation_dir", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        variation = (_DECIMAL.get(fields[15]) or rt.decimal_field(fields[15], address, 16, "variation", "decimal number", None, None, _DECIMAL)) if fields[15] else None
-        variation_dir = EastWest.BY_CODE.get(fields[16]) or rt.enum_field(fields[16], address, 17, "variation_dir", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sensor1_id, sensor2_id, set_difference, actual_difference, difference_status, sensor1_heading, sensor1_status, sensor1_reference, sensor1_deviation, sensor1_deviation_dir, sensor2_heading, sensor2_status, sensor2_reference, sensor2_deviation, sensor2_deviation_dir, variation, variation_dir, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sensor1_id),
-            rt.text_of(self.sensor2_id),
-            rt.text_of(self.set_difference),
-            rt.text_of(self.actual_difference),
-            rt.text_of(self.difference_status),
-            rt.text_of(self.sensor1_heading),
-            rt.text_of(self.sensor1_status),
-            rt.text_of(self.sensor1_reference),
-            rt.text_of(self.sensor1_deviation),
-            rt.text_of(self.sensor1_deviation_dir),
-            rt.text_of(self.sensor2_heading),
-            rt.text_of(self.sensor2_status),
-            rt.text_of(self.sensor2_reference),
-            rt.text_of(self.sensor2_deviation),
-            rt.text_of(self.sensor2_deviation_dir),
-            rt.text_of(self.variation),
-            rt.text_of(self.variation_dir),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HMR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sensor1_id":' + show(self.sensor1_id),
-            '"sensor2_id":' + show(self.sensor2_id),
-            '"set_difference":' + show(self.set_difference),
-            '"actual_difference":' + show(self.actual_difference),
-            '"difference_status":' + show(self.difference_status),
-            '"sensor1_heading":' + show(self.sensor1_heading),
-            '"sensor1_status":' + show(self.sensor1_status),
-            '"sensor1_reference":' + show(self.sensor1_reference),
-            '"sensor1_deviation":' + show(self.sensor1_deviation),
-            '"sensor1_deviation_dir":' + show(self.sensor1_deviation_dir),
-            '"sensor2_heading":' + show(self.sensor2_heading),
-            '"sensor2_status":' + show(self.sensor2_status),
-            '"sensor2_reference":' + show(self.sensor2_reference),
-            '"sensor2_deviation":' + show(self.sensor2_deviation),
-            '"sensor2_deviation_dir":' + show(self.sensor2_deviation_dir),
-            '"variation":' + show(self.variation),
-            '"variation_dir":' + show(self.variation_dir),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sensor1_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor2_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "set_difference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "actual_difference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "difference_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor1_heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor1_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor1_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor1_deviation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor1_deviation_dir"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor2_heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor2_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor2_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor2_deviation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor2_deviation_dir"), 1)
-        out += rt.json_texts(rt.json_member(fields, "variation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "variation_dir"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hmr, )

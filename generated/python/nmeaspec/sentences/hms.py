@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """HMS: Heading monitor set.
 
-Command to a heading monitor: the two heading sensors to compare and the largest difference
-between them that is accepted. The monitor reports with HMR.
+Command to a heading monitor: the two heading sensors to compare and the largest difference between
+them that is accepted. The monitor reports with HMR.
 """
 
 from __future__ import annotations
@@ -14,14 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Hms:
+class Hms(rt.Sentence):
     """HMS: Heading monitor set.
-
     """
 
     SENTENCE: ClassVar[str] = "HMS"
@@ -31,6 +27,12 @@ class Hms:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HMS", "standard", "$", 3, 3, (
+        rt.TextField("sensor1_id", "text"),
+        rt.TextField("sensor2_id", "text"),
+        rt.DecimalField("max_difference", "decimal number of at least 0", 0, None),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -41,62 +43,11 @@ class Hms:
     max_difference: rt.Number | None = None
     """Maximum difference [deg]: Largest accepted difference between the two sensors, degrees."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hms:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "HMS", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "HMS", 3, count)
-        sensor1_id = rt.text_field(fields[0], address, 1, "sensor1_id", "text", None)
-        sensor2_id = rt.text_field(fields[1], address, 2, "sensor2_id", "text", None)
-        max_difference = (_DECIMAL_0_TO.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "max_difference", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sensor1_id, sensor2_id, max_difference, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sensor1_id),
-            rt.text_of(self.sensor2_id),
-            rt.text_of(self.max_difference),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HMS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sensor1_id":' + show(self.sensor1_id),
-            '"sensor2_id":' + show(self.sensor2_id),
-            '"max_difference":' + show(self.max_difference),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sensor1_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor2_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "max_difference"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hms, )

@@ -4,8 +4,8 @@
 """HPD: Positioning and heading information (Unicore).
 
 Unicore dual-antenna receivers' combined output of GPS time, heading, pitch, track, position,
-velocity, baseline length and satellite counts. Not a sentence of the NMEA standard: Unicore
-sends it under a standard-looking address ($GPHPD).
+velocity, baseline length and satellite counts. Not a sentence of the NMEA standard: Unicore sends
+it under a standard-looking address ($GPHPD).
 """
 
 from __future__ import annotations
@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Hpd:
+class Hpd(rt.Sentence):
     """HPD: Positioning and heading information (Unicore).
 
-    Example (pynmeagps): $GPHPD,2319,462170.00,251.77,-48.16,178.48,40.0789783,116.2365145,63.03,0.001,0.000,-0.003,-0.001,-0.002,-0.001,0.000,48,48*76
+    Example (pynmeagps):
+    $GPHPD,2319,462170.00,251.77,-48.16,178.48,40.0789783,116.2365145,63.03,0.001,0.000,-0.003,-0.001,-0.002,-0.001,0.000,48,48*76
     """
 
     SENTENCE: ClassVar[str] = "HPD"
@@ -34,6 +31,26 @@ class Hpd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HPD", "standard", "$", 17, 17, (
+        rt.IntegerField("gps_week", "integer"),
+        rt.DecimalField("gps_seconds", "decimal number"),
+        rt.DecimalField("heading", "decimal number"),
+        rt.DecimalField("pitch", "decimal number"),
+        rt.DecimalField("track", "decimal number"),
+        rt.DecimalField("latitude", "decimal number"),
+        rt.DecimalField("longitude", "decimal number"),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.DecimalField("velocity_east", "decimal number"),
+        rt.DecimalField("velocity_north", "decimal number"),
+        rt.DecimalField("velocity_up", "decimal number"),
+        rt.DecimalField("velocity_delta_east", "decimal number"),
+        rt.DecimalField("velocity_delta_north", "decimal number"),
+        rt.DecimalField("velocity_delta_up", "decimal number"),
+        rt.DecimalField("baseline", "decimal number"),
+        rt.IntegerField("satellites_master", "integer"),
+        rt.IntegerField("satellites_slave", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -42,13 +59,15 @@ class Hpd:
     gps_seconds: rt.Number | None = None
     """GPS seconds of week [s]: Seconds into the GPS week."""
     heading: rt.Number | None = None
-    """Heading [deg]: Heading of the baseline from the master to the slave antenna, degrees from true north."""
+    """Heading [deg]: Heading of the baseline from the master to the slave antenna, degrees from
+    true north."""
     pitch: rt.Number | None = None
     """Pitch [deg]: Pitch of the baseline, degrees (signed)."""
     track: rt.Number | None = None
     """Track [deg]: Course over ground, degrees true."""
     latitude: rt.Number | None = None
-    """Latitude [deg]: Latitude in signed decimal degrees (north positive), not the ddmm.mm form of the standard sentences."""
+    """Latitude [deg]: Latitude in signed decimal degrees (north positive), not the ddmm.mm form of
+    the standard sentences."""
     longitude: rt.Number | None = None
     """Longitude [deg]: Longitude in signed decimal degrees (east positive)."""
     altitude: rt.Number | None = None
@@ -60,7 +79,8 @@ class Hpd:
     velocity_up: rt.Number | None = None
     """Up velocity [m/s]: Vertical velocity, up positive."""
     velocity_delta_east: rt.Number | None = None
-    """East velocity delta [m/s]: East component of the velocity delta as pynmeagps names it (exact definition not documented there)."""
+    """East velocity delta [m/s]: East component of the velocity delta as pynmeagps names it (exact
+    definition not documented there)."""
     velocity_delta_north: rt.Number | None = None
     """North velocity delta [m/s]: North component of the velocity delta."""
     velocity_delta_up: rt.Number | None = None
@@ -72,118 +92,11 @@ class Hpd:
     satellites_slave: rt.Number | None = None
     """Satellites, slave antenna: Number of satellites used on the slave (secondary) antenna."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hpd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 17:
-            raise rt.too_few(address, "HPD", 17, count)
-        if count > 17:
-            raise rt.too_many(address, "HPD", 17, count)
-        gps_week = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "gps_week", "integer", None, None, _INTEGER)) if fields[0] else None
-        gps_seconds = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "gps_seconds", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        heading = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "heading", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        pitch = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "pitch", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        track = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "track", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        latitude = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "latitude", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        longitude = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "longitude", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        altitude = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "altitude", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        velocity_east = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "velocity_east", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        velocity_north = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "velocity_north", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        velocity_up = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "velocity_up", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        velocity_delta_east = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "velocity_delta_east", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        velocity_delta_north = (_DECIMAL.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "velocity_delta_north", "decimal number", None, None, _DECIMAL)) if fields[12] else None
-        velocity_delta_up = (_DECIMAL.get(fields[13]) or rt.decimal_field(fields[13], address, 14, "velocity_delta_up", "decimal number", None, None, _DECIMAL)) if fields[13] else None
-        baseline = (_DECIMAL.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "baseline", "decimal number", None, None, _DECIMAL)) if fields[14] else None
-        satellites_master = (_INTEGER.get(fields[15]) or rt.integer_field(fields[15], address, 16, "satellites_master", "integer", None, None, _INTEGER)) if fields[15] else None
-        satellites_slave = (_INTEGER.get(fields[16]) or rt.integer_field(fields[16], address, 17, "satellites_slave", "integer", None, None, _INTEGER)) if fields[16] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], gps_week, gps_seconds, heading, pitch, track, latitude, longitude, altitude, velocity_east, velocity_north, velocity_up, velocity_delta_east, velocity_delta_north, velocity_delta_up, baseline, satellites_master, satellites_slave, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.gps_week),
-            rt.text_of(self.gps_seconds),
-            rt.text_of(self.heading),
-            rt.text_of(self.pitch),
-            rt.text_of(self.track),
-            rt.text_of(self.latitude),
-            rt.text_of(self.longitude),
-            rt.text_of(self.altitude),
-            rt.text_of(self.velocity_east),
-            rt.text_of(self.velocity_north),
-            rt.text_of(self.velocity_up),
-            rt.text_of(self.velocity_delta_east),
-            rt.text_of(self.velocity_delta_north),
-            rt.text_of(self.velocity_delta_up),
-            rt.text_of(self.baseline),
-            rt.text_of(self.satellites_master),
-            rt.text_of(self.satellites_slave),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HPD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"gps_week":' + show(self.gps_week),
-            '"gps_seconds":' + show(self.gps_seconds),
-            '"heading":' + show(self.heading),
-            '"pitch":' + show(self.pitch),
-            '"track":' + show(self.track),
-            '"latitude":' + show(self.latitude),
-            '"longitude":' + show(self.longitude),
-            '"altitude":' + show(self.altitude),
-            '"velocity_east":' + show(self.velocity_east),
-            '"velocity_north":' + show(self.velocity_north),
-            '"velocity_up":' + show(self.velocity_up),
-            '"velocity_delta_east":' + show(self.velocity_delta_east),
-            '"velocity_delta_north":' + show(self.velocity_delta_north),
-            '"velocity_delta_up":' + show(self.velocity_delta_up),
-            '"baseline":' + show(self.baseline),
-            '"satellites_master":' + show(self.satellites_master),
-            '"satellites_slave":' + show(self.satellites_slave),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "gps_week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_seconds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "track"), 1)
-        out += rt.json_texts(rt.json_member(fields, "latitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "longitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_up"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_delta_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_delta_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_delta_up"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baseline"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites_master"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites_slave"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hpd, )

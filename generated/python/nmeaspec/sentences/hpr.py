@@ -4,8 +4,8 @@
 """HPR: Heading, pitch and roll (Unicore).
 
 Attitude from a dual-antenna GNSS receiver: heading, pitch and roll with the solution quality.
-Unicore's own sentence for its UM98x receivers, sent with a talker ID like a standard one; it is
-not part of NMEA 0183.
+Unicore's own sentence for its UM98x receivers, sent with a talker ID like a standard one; it is not
+part of NMEA 0183.
 """
 
 from __future__ import annotations
@@ -15,17 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Hpr:
+class Hpr(rt.Sentence):
     """HPR: Heading, pitch and roll (Unicore).
 
-    Example (pynmeagps): $GNHPR,074615.00,320.9610,-66.1712,000.0000,4,47,0.00,0999*45
+    Example (pynmeagps):
+    $GNHPR,074615.00,320.9610,-66.1712,000.0000,4,47,0.00,0999*45
     """
 
     SENTENCE: ClassVar[str] = "HPR"
@@ -35,6 +31,17 @@ class Hpr:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HPR", "standard", "$", 8, 8, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("heading", "decimal number"),
+        rt.DecimalField("pitch", "decimal number"),
+        rt.DecimalField("roll", "decimal number"),
+        rt.IntegerField("quality", "integer"),
+        rt.IntegerField("satellites", "integer"),
+        rt.DecimalField("diff_age", "decimal number"),
+        rt.TextField("station_id", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -47,7 +54,8 @@ class Hpr:
     roll: rt.Number | None = None
     """Roll [deg]: Roll, degrees (0 with two antennas, which cannot measure it)."""
     quality: rt.Number | None = None
-    """Solution quality: Quality indicator of the heading solution (4 in the only sample, an RTK-fixed baseline in Unicore's GGA numbering)."""
+    """Solution quality: Quality indicator of the heading solution (4 in the only sample, an
+    RTK-fixed baseline in Unicore's GGA numbering)."""
     satellites: rt.Number | None = None
     """Satellites used: Number of satellites used."""
     diff_age: rt.Number | None = None
@@ -55,82 +63,11 @@ class Hpr:
     station_id: str | None = None
     """Station ID: Identifier of the differential base station (four digits in the sample)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hpr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "HPR", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "HPR", 8, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        heading = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "heading", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        pitch = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "pitch", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        roll = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "roll", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        quality = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "quality", "integer", None, None, _INTEGER)) if fields[4] else None
-        satellites = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "satellites", "integer", None, None, _INTEGER)) if fields[5] else None
-        diff_age = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "diff_age", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        station_id = rt.text_field(fields[7], address, 8, "station_id", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, heading, pitch, roll, quality, satellites, diff_age, station_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.heading),
-            rt.text_of(self.pitch),
-            rt.text_of(self.roll),
-            rt.text_of(self.quality),
-            rt.text_of(self.satellites),
-            rt.text_of(self.diff_age),
-            rt.text_of(self.station_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HPR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"heading":' + show(self.heading),
-            '"pitch":' + show(self.pitch),
-            '"roll":' + show(self.roll),
-            '"quality":' + show(self.quality),
-            '"satellites":' + show(self.satellites),
-            '"diff_age":' + show(self.diff_age),
-            '"station_id":' + show(self.station_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "diff_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "station_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hpr, )

@@ -3,10 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """HRM: Heel angle, roll period and roll amplitude.
 
-Output of an electronic inclinometer for voyage data recorders and other systems: the momentary
-heel angle, the roll period and the port and starboard roll amplitudes, optionally the peak
-values held since a reset (what the friction pointers of a pendulum inclinometer show) and when
-they were reset.
+Output of an electronic inclinometer for voyage data recorders and other systems: the momentary heel
+angle, the roll period and the port and starboard roll amplitudes, optionally the peak values held
+since a reset (what the friction pointers of a pendulum inclinometer show) and when they were reset.
 """
 
 from __future__ import annotations
@@ -17,18 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import HscSentenceStatus, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_1_TO_12: dict[Any, Any] = rt.known("integer 1..12")
-_INTEGER_1_TO_31: dict[Any, Any] = rt.known("integer 1..31")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Hrm:
+class Hrm(rt.Sentence):
     """HRM: Heel angle, roll period and roll amplitude.
-
     """
 
     SENTENCE: ClassVar[str] = "HRM"
@@ -38,23 +29,50 @@ class Hrm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HRM", "standard", "$", 10, 13, (
+        rt.DecimalField("heel_angle", "decimal number"),
+        rt.DecimalField("roll_period", "decimal number"),
+        rt.DecimalField("roll_amplitude_port", "decimal number"),
+        rt.DecimalField("roll_amplitude_starboard", "decimal number"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.DecimalField("peak_hold_port", "decimal number"),
+        rt.DecimalField("peak_hold_starboard", "decimal number"),
+        rt.TimeField("peak_hold_reset_time", "time hhmmss[.s]"),
+        rt.IntegerField("peak_hold_reset_day", "integer 1..31", 1, 31),
+        rt.IntegerField("peak_hold_reset_month", "integer 1..12", 1, 12),
+        rt.IntegerField("peak_hold_reset_year", "integer", optional=True),
+        rt.DecimalField("heel_alert_threshold", "decimal number", optional=True),
+        rt.EnumField(
+            "sentence_status",
+            "hsc_sentence_status code (R C)",
+            HscSentenceStatus,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     heel_angle: rt.Number | None = None
-    """Heel angle [deg]: Momentary roll angle relative to the levelled ship, degrees; positive to starboard, negative to port."""
+    """Heel angle [deg]: Momentary roll angle relative to the levelled ship, degrees; positive to
+    starboard, negative to port."""
     roll_period: rt.Number | None = None
-    """Roll period [s]: Time between successive maxima of heel to the same side (port over starboard and back), seconds."""
+    """Roll period [s]: Time between successive maxima of heel to the same side (port over starboard
+    and back), seconds."""
     roll_amplitude_port: rt.Number | None = None
-    """Roll amplitude, port [deg]: Largest heel to port in the latest roll, degrees (positive value)."""
+    """Roll amplitude, port [deg]: Largest heel to port in the latest roll, degrees (positive
+    value)."""
     roll_amplitude_starboard: rt.Number | None = None
-    """Roll amplitude, starboard [deg]: Largest heel to starboard in the latest roll, degrees (positive value)."""
+    """Roll amplitude, starboard [deg]: Largest heel to starboard in the latest roll, degrees
+    (positive value)."""
     status: Status | str | None = None
     """Status: A = data valid, V = data invalid."""
     peak_hold_port: rt.Number | None = None
-    """Roll peak hold, port [deg]: Largest heel to port since the last reset, degrees; empty when not available."""
+    """Roll peak hold, port [deg]: Largest heel to port since the last reset, degrees; empty when
+    not available."""
     peak_hold_starboard: rt.Number | None = None
-    """Roll peak hold, starboard [deg]: Largest heel to starboard since the last reset, degrees; empty when not available."""
+    """Roll peak hold, starboard [deg]: Largest heel to starboard since the last reset, degrees;
+    empty when not available."""
     peak_hold_reset_time: rt.Time | None = None
     """Peak hold reset time: UTC time the peak hold values were reset; empty when not available."""
     peak_hold_reset_day: rt.Number | None = None
@@ -64,131 +82,18 @@ class Hrm:
     peak_hold_reset_year: rt.Number | None | rt._Absent = rt.ABSENT
     """Peak hold reset year: Year (UTC) of the reset (IEC 61162-1 edition 6, see notes)."""
     heel_alert_threshold: rt.Number | None | rt._Absent = rt.ABSENT
-    """Heel angle alert threshold [deg]: Heel angle that raises an alert, degrees, positive to starboard, negative to port (IEC 61162-1 edition 6)."""
+    """Heel angle alert threshold [deg]: Heel angle that raises an alert, degrees, positive to
+    starboard, negative to port (IEC 61162-1 edition 6)."""
     sentence_status: HscSentenceStatus | str | None | rt._Absent = rt.ABSENT
-    """Sentence status flag: R = report of current status and data; C = command, used to reset the peak hold values (with the reset date and time) or to set the alert threshold (IEC 61162-1 edition 6)."""
+    """Sentence status flag: R = report of current status and data; C = command, used to reset the
+    peak hold values (with the reset date and time) or to set the alert threshold (IEC 61162-1
+    edition 6)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hrm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 10:
-            raise rt.too_few(address, "HRM", 10, count)
-        if count > 13:
-            raise rt.too_many(address, "HRM", 13, count)
-        optional = count - 10
-        heel_angle = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heel_angle", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        roll_period = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "roll_period", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        roll_amplitude_port = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "roll_amplitude_port", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        roll_amplitude_starboard = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "roll_amplitude_starboard", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        status = Status.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        peak_hold_port = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "peak_hold_port", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        peak_hold_starboard = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "peak_hold_starboard", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        peak_hold_reset_time = (_TIME.get(fields[7]) or rt.time_field(fields[7], address, 8, "peak_hold_reset_time", "time hhmmss[.s]", _TIME)) if fields[7] else None
-        peak_hold_reset_day = (_INTEGER_1_TO_31.get(fields[8]) or rt.integer_field(fields[8], address, 9, "peak_hold_reset_day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)) if fields[8] else None
-        peak_hold_reset_month = (_INTEGER_1_TO_12.get(fields[9]) or rt.integer_field(fields[9], address, 10, "peak_hold_reset_month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[9] else None
-        peak_hold_reset_year: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            peak_hold_reset_year = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "peak_hold_reset_year", "integer", None, None, _INTEGER)) if fields[10] else None
-        heel_alert_threshold: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            heel_alert_threshold = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "heel_alert_threshold", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        sentence_status: HscSentenceStatus | str | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            sentence_status = HscSentenceStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "sentence_status", "hsc_sentence_status code (R C)", HscSentenceStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], heel_angle, roll_period, roll_amplitude_port, roll_amplitude_starboard, status, peak_hold_port, peak_hold_starboard, peak_hold_reset_time, peak_hold_reset_day, peak_hold_reset_month, peak_hold_reset_year, heel_alert_threshold, sentence_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.heel_angle),
-            rt.text_of(self.roll_period),
-            rt.text_of(self.roll_amplitude_port),
-            rt.text_of(self.roll_amplitude_starboard),
-            rt.text_of(self.status),
-            rt.text_of(self.peak_hold_port),
-            rt.text_of(self.peak_hold_starboard),
-            rt.text_of(self.peak_hold_reset_time),
-            rt.text_of(self.peak_hold_reset_day),
-            rt.text_of(self.peak_hold_reset_month),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.sentence_status is not rt.ABSENT:
-            last = 2
-        elif self.heel_alert_threshold is not rt.ABSENT:
-            last = 1
-        elif self.peak_hold_reset_year is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.peak_hold_reset_year)]
-        if last >= 1:
-            out += [rt.text_of(self.heel_alert_threshold)]
-        if last >= 2:
-            out += [rt.text_of(self.sentence_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HRM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"heel_angle":' + show(self.heel_angle),
-            '"roll_period":' + show(self.roll_period),
-            '"roll_amplitude_port":' + show(self.roll_amplitude_port),
-            '"roll_amplitude_starboard":' + show(self.roll_amplitude_starboard),
-            '"status":' + show(self.status),
-            '"peak_hold_port":' + show(self.peak_hold_port),
-            '"peak_hold_starboard":' + show(self.peak_hold_starboard),
-            '"peak_hold_reset_time":' + show(self.peak_hold_reset_time),
-            '"peak_hold_reset_day":' + show(self.peak_hold_reset_day),
-            '"peak_hold_reset_month":' + show(self.peak_hold_reset_month),
-        ]
-        if self.peak_hold_reset_year is not rt.ABSENT:
-            parts.append('"peak_hold_reset_year":' + show(self.peak_hold_reset_year))
-        if self.heel_alert_threshold is not rt.ABSENT:
-            parts.append('"heel_alert_threshold":' + show(self.heel_alert_threshold))
-        if self.sentence_status is not rt.ABSENT:
-            parts.append('"sentence_status":' + show(self.sentence_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "heel_angle"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll_period"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll_amplitude_port"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll_amplitude_starboard"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "peak_hold_port"), 1)
-        out += rt.json_texts(rt.json_member(fields, "peak_hold_starboard"), 1)
-        out += rt.json_texts(rt.json_member(fields, "peak_hold_reset_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "peak_hold_reset_day"), 1)
-        out += rt.json_texts(rt.json_member(fields, "peak_hold_reset_month"), 1)
-        if "peak_hold_reset_year" in fields:
-            out += rt.json_texts(fields["peak_hold_reset_year"], 1)
-        if "heel_alert_threshold" in fields:
-            out += rt.json_texts(fields["heel_alert_threshold"], 1)
-        if "sentence_status" in fields:
-            out += rt.json_texts(fields["sentence_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hrm, )

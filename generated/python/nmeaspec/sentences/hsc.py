@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """HSC: Heading steering command.
 
-Heading the vessel is commanded to steer, true and magnetic. An input to a heading controller,
-or a report of the commanded heading; HTC and HTD are preferred for new designs.
+Heading the vessel is commanded to steer, true and magnetic. An input to a heading controller, or a
+report of the commanded heading; HTC and HTD are preferred for new designs.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import HscSentenceStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Hsc:
+class Hsc(rt.Sentence):
     """HSC: Heading steering command.
 
-    Example (go_nmea): $FTHSC,40.12,T,39.11,M*5E
+    Example (go_nmea):
+    $FTHSC,40.12,T,39.11,M*5E
     """
 
     SENTENCE: ClassVar[str] = "HSC"
@@ -33,6 +31,19 @@ class Hsc:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HSC", "standard", "$", 4, 5, (
+        rt.DecimalField("heading_true", "decimal number"),
+        rt.LiteralField("heading_true_ref", "T or nothing", "T"),
+        rt.DecimalField("heading_magnetic", "decimal number"),
+        rt.LiteralField("heading_magnetic_ref", "M or nothing", "M"),
+        rt.EnumField(
+            "sentence_status",
+            "hsc_sentence_status code (R C)",
+            HscSentenceStatus,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -45,83 +56,14 @@ class Hsc:
     heading_magnetic_ref: str | None = None
     """Magnetic indicator: M = degrees magnetic."""
     sentence_status: HscSentenceStatus | str | None | rt._Absent = rt.ABSENT
-    """Sentence status flag: R = report of the commanded heading, C = command to steer it. Only in later editions of the standard (see notes)."""
+    """Sentence status flag: R = report of the commanded heading, C = command to steer it. Only in
+    later editions of the standard (see notes)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hsc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "HSC", 4, count)
-        if count > 5:
-            raise rt.too_many(address, "HSC", 5, count)
-        optional = count - 4
-        heading_true = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heading_true", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        heading_true_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "heading_true_ref", "T or nothing", "T")
-        heading_magnetic = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "heading_magnetic", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        heading_magnetic_ref = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "heading_magnetic_ref", "M or nothing", "M")
-        sentence_status: HscSentenceStatus | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            sentence_status = HscSentenceStatus.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "sentence_status", "hsc_sentence_status code (R C)", HscSentenceStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], heading_true, heading_true_ref, heading_magnetic, heading_magnetic_ref, sentence_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.heading_true),
-            rt.text_of(self.heading_true_ref),
-            rt.text_of(self.heading_magnetic),
-            rt.text_of(self.heading_magnetic_ref),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.sentence_status is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.sentence_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HSC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"heading_true":' + show(self.heading_true),
-            '"heading_true_ref":' + show(self.heading_true_ref),
-            '"heading_magnetic":' + show(self.heading_magnetic),
-            '"heading_magnetic_ref":' + show(self.heading_magnetic_ref),
-        ]
-        if self.sentence_status is not rt.ABSENT:
-            parts.append('"sentence_status":' + show(self.sentence_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "heading_true"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_true_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_magnetic"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_magnetic_ref"), 1)
-        if "sentence_status" in fields:
-            out += rt.json_texts(fields["sentence_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hsc, )

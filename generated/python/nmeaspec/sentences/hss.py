@@ -3,8 +3,7 @@
 # Regenerate: make generate (python3 -m generator generate)
 """HSS: Hull stress surveillance.
 
-One measurement of a hull stress surveillance (monitoring) system, with the point it was taken
-at.
+One measurement of a hull stress surveillance (monitoring) system, with the point it was taken at.
 """
 
 from __future__ import annotations
@@ -15,14 +14,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Hss:
+class Hss(rt.Sentence):
     """HSS: Hull stress surveillance.
-
     """
 
     SENTENCE: ClassVar[str] = "HSS"
@@ -32,72 +27,29 @@ class Hss:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HSS", "standard", "$", 3, 3, (
+        rt.TextField("point_id", "text"),
+        rt.DecimalField("value", "decimal number"),
+        rt.EnumField("status", "status code (A V)", Status),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     point_id: str | None = None
-    """Measurement point ID: Identifier of the measurement point (strain gauge, accelerometer, ...)."""
+    """Measurement point ID: Identifier of the measurement point (strain gauge, accelerometer,
+    ...)."""
     value: rt.Number | None = None
-    """Measurement value: Measured value; the unit depends on the measurement point and is not carried in the sentence."""
+    """Measurement value: Measured value; the unit depends on the measurement point and is not
+    carried in the sentence."""
     status: Status | str | None = None
     """Data status: A = data valid, V = data invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Hss:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "HSS", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "HSS", 3, count)
-        point_id = rt.text_field(fields[0], address, 1, "point_id", "text", None)
-        value = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "value", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        status = Status.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], point_id, value, status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.point_id),
-            rt.text_of(self.value),
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HSS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"point_id":' + show(self.point_id),
-            '"value":' + show(self.value),
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "point_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "value"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Hss, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """HTD: Heading/track control data.
 
-Report from a heading/track controller (autopilot) of the values, modes and references in use,
-with the limit status of rudder, heading and track and the vessel heading. HTC carries the same
-first 13 fields as a command.
+Report from a heading/track controller (autopilot) of the values, modes and references in use, with
+the limit status of rudder, heading and track and the vessel heading. HTC carries the same first 13
+fields as a command.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import HtcHeadingReference, HtcOverride, HtcSteeringMode, HtcTurnMode, HtdLimitStatus, LeftRight
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Htd:
+class Htd(rt.Sentence):
     """HTD: Heading/track control data.
 
-    Example (marine_api): $AGHTD,V,0.1,R,M,,15.0,15.0,,,,,,T,A,A,A,90.3,*39
+    Example (marine_api):
+    $AGHTD,V,0.1,R,M,,15.0,15.0,,,,,,T,A,A,A,90.3,*39
     """
 
     SENTENCE: ClassVar[str] = "HTD"
@@ -35,17 +32,40 @@ class Htd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("HTD", "standard", "$", 17, 18, (
+        rt.EnumField("override", "htc_override code (A V)", HtcOverride),
+        rt.DecimalField("rudder_angle", "decimal number"),
+        rt.EnumField("rudder_direction", "left_right code (L R)", LeftRight),
+        rt.EnumField("steering_mode", "htc_steering_mode code (M S H T R)", HtcSteeringMode),
+        rt.EnumField("turn_mode", "htc_turn_mode code (R T N)", HtcTurnMode),
+        rt.DecimalField("rudder_limit", "decimal number of at least 0", 0, None),
+        rt.DecimalField("off_heading_limit", "decimal number of at least 0", 0, None),
+        rt.DecimalField("turn_radius", "decimal number"),
+        rt.DecimalField("turn_rate", "decimal number"),
+        rt.DecimalField("heading_to_steer", "decimal number"),
+        rt.DecimalField("off_track_limit", "decimal number of at least 0", 0, None),
+        rt.DecimalField("track", "decimal number"),
+        rt.EnumField("heading_reference", "htc_heading_reference code (T M)", HtcHeadingReference),
+        rt.EnumField("rudder_status", "htd_limit_status code (A V)", HtdLimitStatus),
+        rt.EnumField("off_heading_status", "htd_limit_status code (A V)", HtdLimitStatus),
+        rt.EnumField("off_track_status", "htd_limit_status code (A V)", HtdLimitStatus),
+        rt.DecimalField("vessel_heading", "decimal number"),
+        rt.TextField("spare", "text", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     override: HtcOverride | str | None = None
-    """Override: A = override in use (steering taken over directly at the steering gear; the steering and turn modes are then ignored), V = not in use."""
+    """Override: A = override in use (steering taken over directly at the steering gear; the
+    steering and turn modes are then ignored), V = not in use."""
     rudder_angle: rt.Number | None = None
     """Commanded rudder angle [deg]: Commanded rudder angle, degrees."""
     rudder_direction: LeftRight | str | None = None
     """Commanded rudder direction: L = port, R = starboard."""
     steering_mode: HtcSteeringMode | str | None = None
-    """Selected steering mode: M = manual, S = stand-alone heading control, H = remote heading control, T = track control, R = rudder control."""
+    """Selected steering mode: M = manual, S = stand-alone heading control, H = remote heading
+    control, T = track control, R = rudder control."""
     turn_mode: HtcTurnMode | str | None = None
     """Turn mode: R = radius controlled, T = turn rate controlled, N = turn not controlled."""
     rudder_limit: rt.Number | None = None
@@ -53,17 +73,24 @@ class Htd:
     off_heading_limit: rt.Number | None = None
     """Commanded off-heading limit [deg]: Commanded off-heading limit, degrees, unsigned."""
     turn_radius: rt.Number | None = None
-    """Commanded radius of turn [nmi]: Commanded radius of turn for heading changes, nautical miles."""
+    """Commanded radius of turn [nmi]: Commanded radius of turn for heading changes, nautical
+    miles."""
     turn_rate: rt.Number | None = None
-    """Commanded rate of turn [deg/min]: Commanded rate of turn for heading changes, degrees per minute."""
+    """Commanded rate of turn [deg/min]: Commanded rate of turn for heading changes, degrees per
+    minute."""
     heading_to_steer: rt.Number | None = None
-    """Commanded heading to steer [deg]: Commanded heading to steer, degrees, in the heading reference in use."""
+    """Commanded heading to steer [deg]: Commanded heading to steer, degrees, in the heading
+    reference in use."""
     off_track_limit: rt.Number | None = None
-    """Commanded off-track limit [nmi]: Commanded off-track limit, nautical miles, unsigned; meaningful in track control."""
+    """Commanded off-track limit [nmi]: Commanded off-track limit, nautical miles, unsigned;
+    meaningful in track control."""
     track: rt.Number | None = None
-    """Commanded track [deg]: Commanded track, degrees, in the heading reference in use: the course line (leg) between two waypoints; it may change continuously in a track-controlled turn on a planned radius."""
+    """Commanded track [deg]: Commanded track, degrees, in the heading reference in use: the course
+    line (leg) between two waypoints; it may change continuously in a track-controlled turn on a
+    planned radius."""
     heading_reference: HtcHeadingReference | str | None = None
-    """Heading reference in use: T = true, M = magnetic; applies to the heading to steer, the track and (HTD) the vessel heading."""
+    """Heading reference in use: T = true, M = magnetic; applies to the heading to steer, the track
+    and (HTD) the vessel heading."""
     rudder_status: HtdLimitStatus | str | None = None
     """Rudder status: A = within limits, V = rudder limit reached or exceeded."""
     off_heading_status: HtdLimitStatus | str | None = None
@@ -73,135 +100,14 @@ class Htd:
     vessel_heading: rt.Number | None = None
     """Vessel heading [deg]: Heading of the vessel, degrees, in the heading reference in use."""
     spare: str | None | rt._Absent = rt.ABSENT
-    """Trailing empty field: An 18th field after the vessel heading, empty in the only sources that show it (Furuno RD-50's layout, Java Marine API's example); no meaning is documented."""
+    """Trailing empty field: An 18th field after the vessel heading, empty in the only sources that
+    show it (Furuno RD-50's layout, Java Marine API's example); no meaning is documented."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Htd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 17:
-            raise rt.too_few(address, "HTD", 17, count)
-        if count > 18:
-            raise rt.too_many(address, "HTD", 18, count)
-        optional = count - 17
-        override = HtcOverride.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "override", "htc_override code (A V)", HtcOverride.BY_CODE, "letters", 1, 1)
-        rudder_angle = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "rudder_angle", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        rudder_direction = LeftRight.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "rudder_direction", "left_right code (L R)", LeftRight.BY_CODE, "letters", 1, 1)
-        steering_mode = HtcSteeringMode.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "steering_mode", "htc_steering_mode code (M S H T R)", HtcSteeringMode.BY_CODE, "letters", 1, 1)
-        turn_mode = HtcTurnMode.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "turn_mode", "htc_turn_mode code (R T N)", HtcTurnMode.BY_CODE, "letters", 1, 1)
-        rudder_limit = (_DECIMAL_0_TO.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "rudder_limit", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[5] else None
-        off_heading_limit = (_DECIMAL_0_TO.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "off_heading_limit", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[6] else None
-        turn_radius = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "turn_radius", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        turn_rate = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "turn_rate", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        heading_to_steer = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "heading_to_steer", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        off_track_limit = (_DECIMAL_0_TO.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "off_track_limit", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[10] else None
-        track = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "track", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        heading_reference = HtcHeadingReference.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "heading_reference", "htc_heading_reference code (T M)", HtcHeadingReference.BY_CODE, "letters", 1, 1)
-        rudder_status = HtdLimitStatus.BY_CODE.get(fields[13]) or rt.enum_field(fields[13], address, 14, "rudder_status", "htd_limit_status code (A V)", HtdLimitStatus.BY_CODE, "letters", 1, 1)
-        off_heading_status = HtdLimitStatus.BY_CODE.get(fields[14]) or rt.enum_field(fields[14], address, 15, "off_heading_status", "htd_limit_status code (A V)", HtdLimitStatus.BY_CODE, "letters", 1, 1)
-        off_track_status = HtdLimitStatus.BY_CODE.get(fields[15]) or rt.enum_field(fields[15], address, 16, "off_track_status", "htd_limit_status code (A V)", HtdLimitStatus.BY_CODE, "letters", 1, 1)
-        vessel_heading = (_DECIMAL.get(fields[16]) or rt.decimal_field(fields[16], address, 17, "vessel_heading", "decimal number", None, None, _DECIMAL)) if fields[16] else None
-        spare: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            spare = rt.text_field(fields[17], address, 18, "spare", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], override, rudder_angle, rudder_direction, steering_mode, turn_mode, rudder_limit, off_heading_limit, turn_radius, turn_rate, heading_to_steer, off_track_limit, track, heading_reference, rudder_status, off_heading_status, off_track_status, vessel_heading, spare, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.override),
-            rt.text_of(self.rudder_angle),
-            rt.text_of(self.rudder_direction),
-            rt.text_of(self.steering_mode),
-            rt.text_of(self.turn_mode),
-            rt.text_of(self.rudder_limit),
-            rt.text_of(self.off_heading_limit),
-            rt.text_of(self.turn_radius),
-            rt.text_of(self.turn_rate),
-            rt.text_of(self.heading_to_steer),
-            rt.text_of(self.off_track_limit),
-            rt.text_of(self.track),
-            rt.text_of(self.heading_reference),
-            rt.text_of(self.rudder_status),
-            rt.text_of(self.off_heading_status),
-            rt.text_of(self.off_track_status),
-            rt.text_of(self.vessel_heading),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.spare is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.spare)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "HTD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"override":' + show(self.override),
-            '"rudder_angle":' + show(self.rudder_angle),
-            '"rudder_direction":' + show(self.rudder_direction),
-            '"steering_mode":' + show(self.steering_mode),
-            '"turn_mode":' + show(self.turn_mode),
-            '"rudder_limit":' + show(self.rudder_limit),
-            '"off_heading_limit":' + show(self.off_heading_limit),
-            '"turn_radius":' + show(self.turn_radius),
-            '"turn_rate":' + show(self.turn_rate),
-            '"heading_to_steer":' + show(self.heading_to_steer),
-            '"off_track_limit":' + show(self.off_track_limit),
-            '"track":' + show(self.track),
-            '"heading_reference":' + show(self.heading_reference),
-            '"rudder_status":' + show(self.rudder_status),
-            '"off_heading_status":' + show(self.off_heading_status),
-            '"off_track_status":' + show(self.off_track_status),
-            '"vessel_heading":' + show(self.vessel_heading),
-        ]
-        if self.spare is not rt.ABSENT:
-            parts.append('"spare":' + show(self.spare))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "override"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rudder_angle"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rudder_direction"), 1)
-        out += rt.json_texts(rt.json_member(fields, "steering_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "turn_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rudder_limit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "off_heading_limit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "turn_radius"), 1)
-        out += rt.json_texts(rt.json_member(fields, "turn_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_to_steer"), 1)
-        out += rt.json_texts(rt.json_member(fields, "off_track_limit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "track"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rudder_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "off_heading_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "off_track_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vessel_heading"), 1)
-        if "spare" in fields:
-            out += rt.json_texts(fields["spare"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Htd, )

@@ -3,10 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """LLQ: Leica local position and quality.
 
-Position in a local grid (easting, northing, height) with its quality, a Leica sentence that
-other makers (Trimble) also send. One GN sentence when several constellations are used; Leica's
-NMEA 4.0 output adds one line per system (GP, GL, GB) that carries only time, date and the
-satellite count.
+Position in a local grid (easting, northing, height) with its quality, a Leica sentence that other
+makers (Trimble) also send. One GN sentence when several constellations are used; Leica's NMEA 4.0
+output adds one line per system (GP, GL, GB) that carries only time, date and the satellite count.
 """
 
 from __future__ import annotations
@@ -17,17 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import LlqQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Llq:
+class Llq(rt.Sentence):
     """LLQ: Leica local position and quality.
 
-    Example (leica_llq): $GPLLQ,154324.00,111414,546629.232,M,5250781.577,M,1,09,3.876,366.549,M*05
+    Example (leica_llq):
+    $GPLLQ,154324.00,111414,546629.232,M,5250781.577,M,1,09,3.876,366.549,M*05
     """
 
     SENTENCE: ClassVar[str] = "LLQ"
@@ -37,13 +32,29 @@ class Llq:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("LLQ", "standard", "$", 11, 11, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("date", "text of at most 6 characters", 6),
+        rt.DecimalField("easting", "decimal number"),
+        rt.LiteralField("easting_unit", "M or nothing", "M"),
+        rt.DecimalField("northing", "decimal number"),
+        rt.LiteralField("northing_unit", "M or nothing", "M"),
+        rt.EnumField("quality", "llq_quality code (0 1 2 3)", LlqQuality),
+        rt.IntegerField("satellites", "integer of at least 0", 0, None),
+        rt.DecimalField("position_quality", "decimal number"),
+        rt.DecimalField("height", "decimal number"),
+        rt.LiteralField("height_unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the position."""
     date: str | None = None
-    """UTC date: UTC date, six digits whose order depends on the maker: Leica documents mmddyy (its examples read 111414 = 14 November 2014), Trimble and pynmeagps ddmmyy (210712 = 21 July 2012). Kept as text because the two orders cannot be told apart in general."""
+    """UTC date: UTC date, six digits whose order depends on the maker: Leica documents mmddyy (its
+    examples read 111414 = 14 November 2014), Trimble and pynmeagps ddmmyy (210712 = 21 July 2012).
+    Kept as text because the two orders cannot be told apart in general."""
     easting: rt.Number | None = None
     """Grid easting [m]: Grid easting, metres."""
     easting_unit: str | None = None
@@ -63,94 +74,11 @@ class Llq:
     height_unit: str | None = None
     """Height unit: M = metres."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Llq:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "LLQ", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "LLQ", 11, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        date = rt.text_field(fields[1], address, 2, "date", "text of at most 6 characters", 6)
-        easting = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "easting", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        easting_unit = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "easting_unit", "M or nothing", "M")
-        northing = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "northing", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        northing_unit = "M" if fields[5] == "M" else rt.literal_field(fields[5], address, 6, "northing_unit", "M or nothing", "M")
-        quality = LlqQuality.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "quality", "llq_quality code (0 1 2 3)", LlqQuality.BY_CODE, "digits", 1, 1)
-        satellites = (_INTEGER_0_TO.get(fields[7]) or rt.integer_field(fields[7], address, 8, "satellites", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[7] else None
-        position_quality = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "position_quality", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        height = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "height", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        height_unit = "M" if fields[10] == "M" else rt.literal_field(fields[10], address, 11, "height_unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, date, easting, easting_unit, northing, northing_unit, quality, satellites, position_quality, height, height_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.easting),
-            rt.text_of(self.easting_unit),
-            rt.text_of(self.northing),
-            rt.text_of(self.northing_unit),
-            rt.text_of(self.quality),
-            rt.text_of(self.satellites),
-            rt.text_of(self.position_quality),
-            rt.text_of(self.height),
-            rt.text_of(self.height_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "LLQ",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"easting":' + show(self.easting),
-            '"easting_unit":' + show(self.easting_unit),
-            '"northing":' + show(self.northing),
-            '"northing_unit":' + show(self.northing_unit),
-            '"quality":' + show(self.quality),
-            '"satellites":' + show(self.satellites),
-            '"position_quality":' + show(self.position_quality),
-            '"height":' + show(self.height),
-            '"height_unit":' + show(self.height_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "easting"), 1)
-        out += rt.json_texts(rt.json_member(fields, "easting_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "northing"), 1)
-        out += rt.json_texts(rt.json_member(fields, "northing_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Llq, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """LR1: AIS long-range reply 1.
 
-Part of the reply to a long-range interrogation: the destination of the reply and the ship's
-name, call sign and IMO number (function A). Follows LRF.
+Part of the reply to a long-range interrogation: the destination of the reply and the ship's name,
+call sign and IMO number (function A). Follows LRF.
 """
 
 from __future__ import annotations
@@ -14,15 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-
 
 @dataclass(slots=True)
-class Lr1:
+class Lr1(rt.Sentence):
     """LR1: AIS long-range reply 1.
-
     """
 
     SENTENCE: ClassVar[str] = "LR1"
@@ -32,6 +27,15 @@ class Lr1:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("LR1", "standard", "$", 6, 6, (
+        rt.IntegerField("sequence_number", "integer 0..9", 0, 9),
+        rt.IntegerField("responder_mmsi", "integer"),
+        rt.IntegerField("requestor_mmsi", "integer"),
+        rt.TextField("ship_name", "text of at most 20 characters", 20),
+        rt.TextField("call_sign", "text of at most 7 characters", 7),
+        rt.IntegerField("imo_number", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -48,74 +52,11 @@ class Lr1:
     imo_number: rt.Number | None = None
     """IMO number: IMO number of the ship, 9 digits."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Lr1:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "LR1", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "LR1", 6, count)
-        sequence_number = (_INTEGER_0_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sequence_number", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[0] else None
-        responder_mmsi = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "responder_mmsi", "integer", None, None, _INTEGER)) if fields[1] else None
-        requestor_mmsi = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "requestor_mmsi", "integer", None, None, _INTEGER)) if fields[2] else None
-        ship_name = rt.text_field(fields[3], address, 4, "ship_name", "text of at most 20 characters", 20)
-        call_sign = rt.text_field(fields[4], address, 5, "call_sign", "text of at most 7 characters", 7)
-        imo_number = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "imo_number", "integer", None, None, _INTEGER)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sequence_number, responder_mmsi, requestor_mmsi, ship_name, call_sign, imo_number, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sequence_number),
-            rt.text_of(self.responder_mmsi),
-            rt.text_of(self.requestor_mmsi),
-            rt.text_of(self.ship_name),
-            rt.text_of(self.call_sign),
-            rt.text_of(self.imo_number),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "LR1",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sequence_number":' + show(self.sequence_number),
-            '"responder_mmsi":' + show(self.responder_mmsi),
-            '"requestor_mmsi":' + show(self.requestor_mmsi),
-            '"ship_name":' + show(self.ship_name),
-            '"call_sign":' + show(self.call_sign),
-            '"imo_number":' + show(self.imo_number),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sequence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "responder_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "requestor_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ship_name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "call_sign"), 1)
-        out += rt.json_texts(rt.json_member(fields, "imo_number"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Lr1, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """LR2: AIS long-range reply 2.
 
-Part of the reply to a long-range interrogation: date and time, position, course and speed of
-the answering ship (functions B, C, E and F). Follows LR1.
+Part of the reply to a long-range interrogation: date and time, position, course and speed of the
+answering ship (functions B, C, E and F). Follows LR1.
 """
 
 from __future__ import annotations
@@ -14,19 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Lr2:
+class Lr2(rt.Sentence):
     """LR2: AIS long-range reply 2.
-
     """
 
     SENTENCE: ClassVar[str] = "LR2"
@@ -36,6 +27,19 @@ class Lr2:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("LR2", "standard", "$", 12, 12, (
+        rt.IntegerField("sequence_number", "integer 0..9", 0, 9),
+        rt.IntegerField("responder_mmsi", "integer"),
+        rt.TextField("date", "text of at most 8 characters", 8),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("cog", "decimal number"),
+        rt.LiteralField("cog_ref", "T or nothing", "T"),
+        rt.DecimalField("sog", "decimal number"),
+        rt.LiteralField("sog_unit", "N or nothing", "N"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -44,7 +48,8 @@ class Lr2:
     responder_mmsi: rt.Number | None = None
     """MMSI of responder: MMSI of the ship answering."""
     date: str | None = None
-    """Date: Date of the position, 8 digits ddmmyyyy (four-digit year, unlike the ddmmyy date fields)."""
+    """Date: Date of the position, 8 digits ddmmyyyy (four-digit year, unlike the ddmmyy date
+    fields)."""
     time: rt.Time | None = None
     """UTC time of position: UTC time of the position."""
     lat: rt.Coordinate | None = None
@@ -60,90 +65,11 @@ class Lr2:
     sog_unit: str | None = None
     """Speed unit: N = knots."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Lr2:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "LR2", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "LR2", 12, count)
-        sequence_number = (_INTEGER_0_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sequence_number", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[0] else None
-        responder_mmsi = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "responder_mmsi", "integer", None, None, _INTEGER)) if fields[1] else None
-        date = rt.text_field(fields[2], address, 3, "date", "text of at most 8 characters", 8)
-        time = (_TIME.get(fields[3]) or rt.time_field(fields[3], address, 4, "time", "time hhmmss[.s]", _TIME)) if fields[3] else None
-        lat = _LATITUDE.get((fields[4], fields[5])) or rt.coordinate_field(fields[4], fields[5], address, 5, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[6], fields[7])) or rt.coordinate_field(fields[6], fields[7], address, 7, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        cog = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "cog", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        cog_ref = "T" if fields[9] == "T" else rt.literal_field(fields[9], address, 10, "cog_ref", "T or nothing", "T")
-        sog = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "sog", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        sog_unit = "N" if fields[11] == "N" else rt.literal_field(fields[11], address, 12, "sog_unit", "N or nothing", "N")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sequence_number, responder_mmsi, date, time, lat, lon, cog, cog_ref, sog, sog_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sequence_number),
-            rt.text_of(self.responder_mmsi),
-            rt.text_of(self.date),
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.cog),
-            rt.text_of(self.cog_ref),
-            rt.text_of(self.sog),
-            rt.text_of(self.sog_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "LR2",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sequence_number":' + show(self.sequence_number),
-            '"responder_mmsi":' + show(self.responder_mmsi),
-            '"date":' + show(self.date),
-            '"time":' + show(self.time),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"cog":' + show(self.cog),
-            '"cog_ref":' + show(self.cog_ref),
-            '"sog":' + show(self.sog),
-            '"sog_unit":' + show(self.sog_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sequence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "responder_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "cog"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cog_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sog"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sog_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Lr2, )

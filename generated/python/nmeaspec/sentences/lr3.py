@@ -14,20 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_8191: dict[Any, Any] = rt.known("integer 0..8191")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Lr3:
+class Lr3(rt.Sentence):
     """LR3: AIS long-range reply 3.
-
     """
 
     SENTENCE: ClassVar[str] = "LR3"
@@ -37,6 +27,20 @@ class Lr3:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("LR3", "standard", "$", 11, 11, (
+        rt.IntegerField("sequence_number", "integer 0..9", 0, 9),
+        rt.IntegerField("responder_mmsi", "integer"),
+        rt.TextField("destination", "text of at most 20 characters", 20),
+        rt.DateField("eta_date", "date ddmmyy"),
+        rt.TimeField("eta_time", "time hhmmss[.s]"),
+        rt.DecimalField("draught", "decimal number of at least 0", 0, None),
+        rt.IntegerField("ship_cargo", "integer of at least 0", 0, None),
+        rt.DecimalField("length", "decimal number of at least 0", 0, None),
+        rt.DecimalField("breadth", "decimal number of at least 0", 0, None),
+        rt.IntegerField("ship_type", "integer of at least 0", 0, None),
+        rt.IntegerField("persons", "integer 0..8191", 0, 8191),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -63,94 +67,11 @@ class Lr3:
     persons: rt.Number | None = None
     """Persons on board: Persons on board, 0-8191."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Lr3:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "LR3", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "LR3", 11, count)
-        sequence_number = (_INTEGER_0_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sequence_number", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[0] else None
-        responder_mmsi = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "responder_mmsi", "integer", None, None, _INTEGER)) if fields[1] else None
-        destination = rt.text_field(fields[2], address, 3, "destination", "text of at most 20 characters", 20)
-        eta_date = (_DATE.get(fields[3]) or rt.date_field(fields[3], address, 4, "eta_date", "date ddmmyy", _DATE)) if fields[3] else None
-        eta_time = (_TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "eta_time", "time hhmmss[.s]", _TIME)) if fields[4] else None
-        draught = (_DECIMAL_0_TO.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "draught", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[5] else None
-        ship_cargo = (_INTEGER_0_TO.get(fields[6]) or rt.integer_field(fields[6], address, 7, "ship_cargo", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[6] else None
-        length = (_DECIMAL_0_TO.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "length", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[7] else None
-        breadth = (_DECIMAL_0_TO.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "breadth", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[8] else None
-        ship_type = (_INTEGER_0_TO.get(fields[9]) or rt.integer_field(fields[9], address, 10, "ship_type", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[9] else None
-        persons = (_INTEGER_0_TO_8191.get(fields[10]) or rt.integer_field(fields[10], address, 11, "persons", "integer 0..8191", 0, 8191, _INTEGER_0_TO_8191)) if fields[10] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sequence_number, responder_mmsi, destination, eta_date, eta_time, draught, ship_cargo, length, breadth, ship_type, persons, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sequence_number),
-            rt.text_of(self.responder_mmsi),
-            rt.text_of(self.destination),
-            rt.text_of(self.eta_date),
-            rt.text_of(self.eta_time),
-            rt.text_of(self.draught),
-            rt.text_of(self.ship_cargo),
-            rt.text_of(self.length),
-            rt.text_of(self.breadth),
-            rt.text_of(self.ship_type),
-            rt.text_of(self.persons),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "LR3",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sequence_number":' + show(self.sequence_number),
-            '"responder_mmsi":' + show(self.responder_mmsi),
-            '"destination":' + show(self.destination),
-            '"eta_date":' + show(self.eta_date),
-            '"eta_time":' + show(self.eta_time),
-            '"draught":' + show(self.draught),
-            '"ship_cargo":' + show(self.ship_cargo),
-            '"length":' + show(self.length),
-            '"breadth":' + show(self.breadth),
-            '"ship_type":' + show(self.ship_type),
-            '"persons":' + show(self.persons),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sequence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "responder_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "destination"), 1)
-        out += rt.json_texts(rt.json_member(fields, "eta_date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "eta_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "draught"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ship_cargo"), 1)
-        out += rt.json_texts(rt.json_member(fields, "length"), 1)
-        out += rt.json_texts(rt.json_member(fields, "breadth"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ship_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "persons"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Lr3, )

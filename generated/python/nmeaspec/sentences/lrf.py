@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """LRF: AIS long-range function.
 
-Second sentence of a long-range interrogation request (after LRI), naming the information asked
-for; also the first sentence of the reply, then with a status for each requested item, followed
-by LR1 and, when asked for, LR2 and LR3.
+Second sentence of a long-range interrogation request (after LRI), naming the information asked for;
+also the first sentence of the reply, then with a status for each requested item, followed by LR1
+and, when asked for, LR2 and LR3.
 """
 
 from __future__ import annotations
@@ -16,15 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import LrfFunction, LrfReplyStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-
 
 @dataclass(slots=True)
-class Lrf:
+class Lrf(rt.Sentence):
     """LRF: AIS long-range function.
-
     """
 
     SENTENCE: ClassVar[str] = "LRF"
@@ -34,84 +29,42 @@ class Lrf:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("LRF", "standard", "$", 5, 5, (
+        rt.IntegerField("sequence_number", "integer 0..9", 0, 9),
+        rt.IntegerField("requestor_mmsi", "integer"),
+        rt.TextField("requestor_name", "text of at most 20 characters", 20),
+        rt.EnumCharsField(
+            "function_request",
+            "lrf_function codes (A B C E F I O P U W)",
+            LrfFunction,
+            26,
+        ),
+        rt.EnumCharsField("reply_status", "lrf_reply_status codes (2 3 4)", LrfReplyStatus, 26),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     sequence_number: rt.Number | None = None
-    """Sequence number: Sequence number of the request or reply (0-9), the same in all its sentences."""
+    """Sequence number: Sequence number of the request or reply (0-9), the same in all its
+    sentences."""
     requestor_mmsi: rt.Number | None = None
     """MMSI of requestor: MMSI of the station asking."""
     requestor_name: str | None = None
     """Name of requestor: Name of the station asking, 1-20 characters."""
     function_request: list[LrfFunction | str] | None = None
-    """Function request: The items asked for, one letter each: A name/call sign/IMO number, B date and time, C position, E course, F speed, I destination and ETA, O draught, P ship/cargo, U length, breadth and type, W persons on board."""
+    """Function request: The items asked for, one letter each: A name/call sign/IMO number, B date
+    and time, C position, E course, F speed, I destination and ETA, O draught, P ship/cargo, U
+    length, breadth and type, W persons on board."""
     reply_status: list[LrfReplyStatus | str] | None = None
-    """Function reply status: In a reply, one digit per requested item in the same order: 2 provided, 3 not available, 4 available but not provided; empty in a request."""
+    """Function reply status: In a reply, one digit per requested item in the same order: 2
+    provided, 3 not available, 4 available but not provided; empty in a request."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Lrf:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "LRF", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "LRF", 5, count)
-        sequence_number = (_INTEGER_0_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sequence_number", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[0] else None
-        requestor_mmsi = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "requestor_mmsi", "integer", None, None, _INTEGER)) if fields[1] else None
-        requestor_name = rt.text_field(fields[2], address, 3, "requestor_name", "text of at most 20 characters", 20)
-        function_request = rt.enum_chars_field(fields[3], address, 4, "function_request", "lrf_function codes (A B C E F I O P U W)", LrfFunction.BY_CODE, "letters", 26)
-        reply_status = rt.enum_chars_field(fields[4], address, 5, "reply_status", "lrf_reply_status codes (2 3 4)", LrfReplyStatus.BY_CODE, "digits", 26)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sequence_number, requestor_mmsi, requestor_name, function_request, reply_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sequence_number),
-            rt.text_of(self.requestor_mmsi),
-            rt.text_of(self.requestor_name),
-            rt.text_of(self.function_request),
-            rt.text_of(self.reply_status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "LRF",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sequence_number":' + show(self.sequence_number),
-            '"requestor_mmsi":' + show(self.requestor_mmsi),
-            '"requestor_name":' + show(self.requestor_name),
-            '"function_request":' + show(self.function_request),
-            '"reply_status":' + show(self.reply_status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sequence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "requestor_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "requestor_name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "function_request"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reply_status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Lrf, )

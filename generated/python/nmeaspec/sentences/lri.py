@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """LRI: AIS long-range interrogation.
 
-First sentence of a long-range interrogation request to an AIS unit (followed by LRF): who asks,
-and either the one ship (MMSI) or the rectangular area whose ships should answer. The unit
-answers with LRF and LR1, LR2, LR3.
+First sentence of a long-range interrogation request to an AIS unit (followed by LRF): who asks, and
+either the one ship (MMSI) or the rectangular area whose ships should answer. The unit answers with
+LRF and LR1, LR2, LR3.
 """
 
 from __future__ import annotations
@@ -16,17 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import LriControlFlag
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-
 
 @dataclass(slots=True)
-class Lri:
+class Lri(rt.Sentence):
     """LRI: AIS long-range interrogation.
-
     """
 
     SENTENCE: ClassVar[str] = "LRI"
@@ -36,6 +29,17 @@ class Lri:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("LRI", "standard", "$", 12, 12, (
+        rt.IntegerField("sequence_number", "integer 0..9", 0, 9),
+        rt.EnumField("control_flag", "lri_control_flag code (0 1)", LriControlFlag),
+        rt.IntegerField("requestor_mmsi", "integer"),
+        rt.IntegerField("destination_mmsi", "integer"),
+        rt.LatitudeField("ne_lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("ne_lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.LatitudeField("sw_lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("sw_lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -46,9 +50,11 @@ class Lri:
     requestor_mmsi: rt.Number | None = None
     """MMSI of requestor: MMSI of the station asking."""
     destination_mmsi: rt.Number | None = None
-    """MMSI of destination: MMSI of the one ship that should answer; empty for a request to all ships in the area."""
+    """MMSI of destination: MMSI of the one ship that should answer; empty for a request to all
+    ships in the area."""
     ne_lat: rt.Coordinate | None = None
-    """North-east corner latitude: Latitude of the north-east corner of the area; empty when a destination MMSI is given."""
+    """North-east corner latitude: Latitude of the north-east corner of the area; empty when a
+    destination MMSI is given."""
     ne_lon: rt.Coordinate | None = None
     """North-east corner longitude: Longitude of the north-east corner of the area."""
     sw_lat: rt.Coordinate | None = None
@@ -56,82 +62,11 @@ class Lri:
     sw_lon: rt.Coordinate | None = None
     """South-west corner longitude: Longitude of the south-west corner of the area."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Lri:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "LRI", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "LRI", 12, count)
-        sequence_number = (_INTEGER_0_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sequence_number", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[0] else None
-        control_flag = LriControlFlag.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "control_flag", "lri_control_flag code (0 1)", LriControlFlag.BY_CODE, "digits", 1, 1)
-        requestor_mmsi = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "requestor_mmsi", "integer", None, None, _INTEGER)) if fields[2] else None
-        destination_mmsi = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "destination_mmsi", "integer", None, None, _INTEGER)) if fields[3] else None
-        ne_lat = _LATITUDE.get((fields[4], fields[5])) or rt.coordinate_field(fields[4], fields[5], address, 5, "ne_lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        ne_lon = _LONGITUDE.get((fields[6], fields[7])) or rt.coordinate_field(fields[6], fields[7], address, 7, "ne_lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        sw_lat = _LATITUDE.get((fields[8], fields[9])) or rt.coordinate_field(fields[8], fields[9], address, 9, "sw_lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        sw_lon = _LONGITUDE.get((fields[10], fields[11])) or rt.coordinate_field(fields[10], fields[11], address, 11, "sw_lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sequence_number, control_flag, requestor_mmsi, destination_mmsi, ne_lat, ne_lon, sw_lat, sw_lon, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sequence_number),
-            rt.text_of(self.control_flag),
-            rt.text_of(self.requestor_mmsi),
-            rt.text_of(self.destination_mmsi),
-            *rt.coordinate_texts(self.ne_lat),
-            *rt.coordinate_texts(self.ne_lon),
-            *rt.coordinate_texts(self.sw_lat),
-            *rt.coordinate_texts(self.sw_lon),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "LRI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sequence_number":' + show(self.sequence_number),
-            '"control_flag":' + show(self.control_flag),
-            '"requestor_mmsi":' + show(self.requestor_mmsi),
-            '"destination_mmsi":' + show(self.destination_mmsi),
-            '"ne_lat":' + show(self.ne_lat),
-            '"ne_lon":' + show(self.ne_lon),
-            '"sw_lat":' + show(self.sw_lat),
-            '"sw_lon":' + show(self.sw_lon),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sequence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "control_flag"), 1)
-        out += rt.json_texts(rt.json_member(fields, "requestor_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "destination_mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ne_lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "ne_lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "sw_lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "sw_lon"), 2)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Lri, )

@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Mda:
+class Mda(rt.Sentence):
     """MDA: Meteorological composite.
 
-    Example (pynmea2): $WIMDA,30.2269,I,1.0236,B,17.7,C,,,43.3,,5.0,C,131.5,T,128.6,M,0.8,N,0.4,M*54
+    Example (marine_api):
+    $IIMDA,30.0,I,1.0149,B,26.8,C,,C,64.2,16.4,19.5,C,,T,38.7,M,10.88,N,5.60,M*36
     """
 
     SENTENCE: ClassVar[str] = "MDA"
@@ -34,11 +31,35 @@ class Mda:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("MDA", "standard", "$", 20, 20, (
+        rt.DecimalField("pressure_inhg", "decimal number"),
+        rt.LiteralField("pressure_inhg_unit", "I or nothing", "I"),
+        rt.DecimalField("pressure_bar", "decimal number"),
+        rt.LiteralField("pressure_bar_unit", "B or nothing", "B"),
+        rt.DecimalField("air_temperature", "decimal number"),
+        rt.LiteralField("air_temperature_unit", "C or nothing", "C"),
+        rt.DecimalField("water_temperature", "decimal number"),
+        rt.LiteralField("water_temperature_unit", "C or nothing", "C"),
+        rt.DecimalField("relative_humidity", "decimal number of at least 0", 0, None),
+        rt.DecimalField("absolute_humidity", "decimal number"),
+        rt.DecimalField("dew_point", "decimal number"),
+        rt.LiteralField("dew_point_unit", "C or nothing", "C"),
+        rt.DecimalField("wind_direction_true", "decimal number of at least 0", 0, None),
+        rt.LiteralField("wind_direction_true_ref", "T or nothing", "T"),
+        rt.DecimalField("wind_direction_magnetic", "decimal number of at least 0", 0, None),
+        rt.LiteralField("wind_direction_magnetic_ref", "M or nothing", "M"),
+        rt.DecimalField("wind_speed_knots", "decimal number"),
+        rt.LiteralField("wind_speed_knots_unit", "N or nothing", "N"),
+        rt.DecimalField("wind_speed_ms", "decimal number"),
+        rt.LiteralField("wind_speed_ms_unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     pressure_inhg: rt.Number | None = None
-    """Barometric pressure, inches of mercury [inHg]: Barometric pressure in inches of mercury, to 0.01 inch."""
+    """Barometric pressure, inches of mercury [inHg]: Barometric pressure in inches of mercury, to
+    0.01 inch."""
     pressure_inhg_unit: str | None = None
     """Inches of mercury unit: I, inches of mercury."""
     pressure_bar: rt.Number | None = None
@@ -50,13 +71,17 @@ class Mda:
     air_temperature_unit: str | None = None
     """Air temperature unit: C, degrees Celsius."""
     water_temperature: rt.Number | None = None
-    """Water temperature [degC]: Water temperature in degrees Celsius; empty from weather stations without a water sensor (Airmar)."""
+    """Water temperature [degC]: Water temperature in degrees Celsius; empty from weather stations
+    without a water sensor (Airmar)."""
     water_temperature_unit: str | None = None
-    """Water temperature unit: C, degrees Celsius (Airmar and some other devices leave it empty with the value)."""
+    """Water temperature unit: C, degrees Celsius (Airmar and some other devices leave it empty with
+    the value)."""
     relative_humidity: rt.Number | None = None
-    """Relative humidity [%]: Relative humidity in percent, to 0.1 percent. No unit letter follows."""
+    """Relative humidity [%]: Relative humidity in percent, to 0.1 percent. No unit letter
+    follows."""
     absolute_humidity: rt.Number | None = None
-    """Absolute humidity [%]: Absolute humidity, given by the standard in percent; usually empty. No unit letter follows."""
+    """Absolute humidity [%]: Absolute humidity, given by the standard in percent; usually empty. No
+    unit letter follows."""
     dew_point: rt.Number | None = None
     """Dew point [degC]: Dew point in degrees Celsius, to 0.1 degree."""
     dew_point_unit: str | None = None
@@ -66,7 +91,8 @@ class Mda:
     wind_direction_true_ref: str | None = None
     """True reference: T, degrees true."""
     wind_direction_magnetic: rt.Number | None = None
-    """Wind direction, magnetic [deg]: Direction the wind comes from, degrees magnetic, to 0.1 degree."""
+    """Wind direction, magnetic [deg]: Direction the wind comes from, degrees magnetic, to 0.1
+    degree."""
     wind_direction_magnetic_ref: str | None = None
     """Magnetic reference: M, degrees magnetic."""
     wind_speed_knots: rt.Number | None = None
@@ -78,130 +104,11 @@ class Mda:
     wind_speed_ms_unit: str | None = None
     """Metres per second unit: M, metres per second."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Mda:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 20:
-            raise rt.too_few(address, "MDA", 20, count)
-        if count > 20:
-            raise rt.too_many(address, "MDA", 20, count)
-        pressure_inhg = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "pressure_inhg", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        pressure_inhg_unit = "I" if fields[1] == "I" else rt.literal_field(fields[1], address, 2, "pressure_inhg_unit", "I or nothing", "I")
-        pressure_bar = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "pressure_bar", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        pressure_bar_unit = "B" if fields[3] == "B" else rt.literal_field(fields[3], address, 4, "pressure_bar_unit", "B or nothing", "B")
-        air_temperature = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "air_temperature", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        air_temperature_unit = "C" if fields[5] == "C" else rt.literal_field(fields[5], address, 6, "air_temperature_unit", "C or nothing", "C")
-        water_temperature = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "water_temperature", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        water_temperature_unit = "C" if fields[7] == "C" else rt.literal_field(fields[7], address, 8, "water_temperature_unit", "C or nothing", "C")
-        relative_humidity = (_DECIMAL_0_TO.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "relative_humidity", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[8] else None
-        absolute_humidity = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "absolute_humidity", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        dew_point = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "dew_point", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        dew_point_unit = "C" if fields[11] == "C" else rt.literal_field(fields[11], address, 12, "dew_point_unit", "C or nothing", "C")
-        wind_direction_true = (_DECIMAL_0_TO.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "wind_direction_true", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[12] else None
-        wind_direction_true_ref = "T" if fields[13] == "T" else rt.literal_field(fields[13], address, 14, "wind_direction_true_ref", "T or nothing", "T")
-        wind_direction_magnetic = (_DECIMAL_0_TO.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "wind_direction_magnetic", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[14] else None
-        wind_direction_magnetic_ref = "M" if fields[15] == "M" else rt.literal_field(fields[15], address, 16, "wind_direction_magnetic_ref", "M or nothing", "M")
-        wind_speed_knots = (_DECIMAL.get(fields[16]) or rt.decimal_field(fields[16], address, 17, "wind_speed_knots", "decimal number", None, None, _DECIMAL)) if fields[16] else None
-        wind_speed_knots_unit = "N" if fields[17] == "N" else rt.literal_field(fields[17], address, 18, "wind_speed_knots_unit", "N or nothing", "N")
-        wind_speed_ms = (_DECIMAL.get(fields[18]) or rt.decimal_field(fields[18], address, 19, "wind_speed_ms", "decimal number", None, None, _DECIMAL)) if fields[18] else None
-        wind_speed_ms_unit = "M" if fields[19] == "M" else rt.literal_field(fields[19], address, 20, "wind_speed_ms_unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], pressure_inhg, pressure_inhg_unit, pressure_bar, pressure_bar_unit, air_temperature, air_temperature_unit, water_temperature, water_temperature_unit, relative_humidity, absolute_humidity, dew_point, dew_point_unit, wind_direction_true, wind_direction_true_ref, wind_direction_magnetic, wind_direction_magnetic_ref, wind_speed_knots, wind_speed_knots_unit, wind_speed_ms, wind_speed_ms_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.pressure_inhg),
-            rt.text_of(self.pressure_inhg_unit),
-            rt.text_of(self.pressure_bar),
-            rt.text_of(self.pressure_bar_unit),
-            rt.text_of(self.air_temperature),
-            rt.text_of(self.air_temperature_unit),
-            rt.text_of(self.water_temperature),
-            rt.text_of(self.water_temperature_unit),
-            rt.text_of(self.relative_humidity),
-            rt.text_of(self.absolute_humidity),
-            rt.text_of(self.dew_point),
-            rt.text_of(self.dew_point_unit),
-            rt.text_of(self.wind_direction_true),
-            rt.text_of(self.wind_direction_true_ref),
-            rt.text_of(self.wind_direction_magnetic),
-            rt.text_of(self.wind_direction_magnetic_ref),
-            rt.text_of(self.wind_speed_knots),
-            rt.text_of(self.wind_speed_knots_unit),
-            rt.text_of(self.wind_speed_ms),
-            rt.text_of(self.wind_speed_ms_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "MDA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"pressure_inhg":' + show(self.pressure_inhg),
-            '"pressure_inhg_unit":' + show(self.pressure_inhg_unit),
-            '"pressure_bar":' + show(self.pressure_bar),
-            '"pressure_bar_unit":' + show(self.pressure_bar_unit),
-            '"air_temperature":' + show(self.air_temperature),
-            '"air_temperature_unit":' + show(self.air_temperature_unit),
-            '"water_temperature":' + show(self.water_temperature),
-            '"water_temperature_unit":' + show(self.water_temperature_unit),
-            '"relative_humidity":' + show(self.relative_humidity),
-            '"absolute_humidity":' + show(self.absolute_humidity),
-            '"dew_point":' + show(self.dew_point),
-            '"dew_point_unit":' + show(self.dew_point_unit),
-            '"wind_direction_true":' + show(self.wind_direction_true),
-            '"wind_direction_true_ref":' + show(self.wind_direction_true_ref),
-            '"wind_direction_magnetic":' + show(self.wind_direction_magnetic),
-            '"wind_direction_magnetic_ref":' + show(self.wind_direction_magnetic_ref),
-            '"wind_speed_knots":' + show(self.wind_speed_knots),
-            '"wind_speed_knots_unit":' + show(self.wind_speed_knots_unit),
-            '"wind_speed_ms":' + show(self.wind_speed_ms),
-            '"wind_speed_ms_unit":' + show(self.wind_speed_ms_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "pressure_inhg"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pressure_inhg_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pressure_bar"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pressure_bar_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "air_temperature"), 1)
-        out += rt.json_texts(rt.json_member(fields, "air_temperature_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "water_temperature"), 1)
-        out += rt.json_texts(rt.json_member(fields, "water_temperature_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "relative_humidity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "absolute_humidity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dew_point"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dew_point_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_direction_true"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_direction_true_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_direction_magnetic"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_direction_magnetic_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_speed_knots"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_speed_knots_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_speed_ms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_speed_ms_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Mda, )

@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Mmb:
+class Mmb(rt.Sentence):
     """MMB: Barometer.
 
-    Example (marine_api): $IIMMB,29.9870,I,1.0154,B*75
+    Example (marine_api):
+    $IIMMB,29.9870,I,1.0154,B*75
     """
 
     SENTENCE: ClassVar[str] = "MMB"
@@ -31,78 +29,32 @@ class Mmb:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("MMB", "standard", "$", 4, 4, (
+        rt.DecimalField("pressure_inhg", "decimal number"),
+        rt.LiteralField("pressure_inhg_unit", "I or nothing", "I"),
+        rt.DecimalField("pressure_bar", "decimal number"),
+        rt.LiteralField("pressure_bar_unit", "B or nothing", "B"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     pressure_inhg: rt.Number | None = None
-    """Pressure, inches of mercury [inHg]: Barometric pressure in inches of mercury; empty when not sent."""
+    """Pressure, inches of mercury [inHg]: Barometric pressure in inches of mercury; empty when not
+    sent."""
     pressure_inhg_unit: str | None = None
     """Unit, inches of mercury: I = inches of mercury."""
     pressure_bar: rt.Number | None = None
-    """Pressure, bars [bar]: Barometric pressure in bars (e.g. 1.0154); see the notes for devices that send hectopascals here."""
+    """Pressure, bars [bar]: Barometric pressure in bars (e.g. 1.0154); see the notes for devices
+    that send hectopascals here."""
     pressure_bar_unit: str | None = None
     """Unit, bars: B = bars."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Mmb:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "MMB", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "MMB", 4, count)
-        pressure_inhg = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "pressure_inhg", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        pressure_inhg_unit = "I" if fields[1] == "I" else rt.literal_field(fields[1], address, 2, "pressure_inhg_unit", "I or nothing", "I")
-        pressure_bar = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "pressure_bar", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        pressure_bar_unit = "B" if fields[3] == "B" else rt.literal_field(fields[3], address, 4, "pressure_bar_unit", "B or nothing", "B")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], pressure_inhg, pressure_inhg_unit, pressure_bar, pressure_bar_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.pressure_inhg),
-            rt.text_of(self.pressure_inhg_unit),
-            rt.text_of(self.pressure_bar),
-            rt.text_of(self.pressure_bar_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "MMB",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"pressure_inhg":' + show(self.pressure_inhg),
-            '"pressure_inhg_unit":' + show(self.pressure_inhg_unit),
-            '"pressure_bar":' + show(self.pressure_bar),
-            '"pressure_bar_unit":' + show(self.pressure_bar_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "pressure_inhg"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pressure_inhg_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pressure_bar"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pressure_bar_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Mmb, )

@@ -4,8 +4,8 @@
 """MOB: Man over board notification.
 
 Notification from a man-overboard monitoring system: emitter, state, time of activation and a
-position (of the vessel or of the emitter) with course and speed, the ship's MMSI and the
-emitter's battery state. Added by an amendment to NMEA 0183 v4.10; one sentence per emitter.
+position (of the vessel or of the emitter) with course and speed, the ship's MMSI and the emitter's
+battery state. Added by an amendment to NMEA 0183 v4.10; one sentence per emitter.
 """
 
 from __future__ import annotations
@@ -16,21 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import MobBattery, MobPositionSource, MobStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Mob:
+class Mob(rt.Sentence):
     """MOB: Man over board notification.
 
-    Example (marnav): $INMOB,ABCDE,V,123456.987,0,311219,132456.876,12.34,N,123.45,E,12.34,23.45,269104520,0*53
+    Example (marnav):
+    $INMOB,ABCDE,V,123456.987,0,311219,132456.876,12.34,N,123.45,E,12.34,23.45,269104520,0*53
     """
 
     SENTENCE: ClassVar[str] = "MOB"
@@ -40,19 +32,38 @@ class Mob:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("MOB", "standard", "$", 14, 14, (
+        rt.HexField("emitter_id", "hex number"),
+        rt.EnumField("mob_status", "mob_status code (A T M V E)", MobStatus),
+        rt.TimeField("activation_time", "time hhmmss[.s]"),
+        rt.EnumField("position_source", "mob_position_source code (0 1 6)", MobPositionSource),
+        rt.IntegerField("position_day", "integer of at least 0", 0, None),
+        rt.TimeField("position_time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("cog", "decimal number"),
+        rt.DecimalField("sog", "decimal number"),
+        rt.IntegerField("mmsi", "integer"),
+        rt.EnumField("battery", "mob_battery code (0 1 6)", MobBattery),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     emitter_id: rt.Hex | None = None
-    """MOB emitter ID: Identifier of the MOB emitter, 5 hex digits with leading zeros; empty when unknown."""
+    """MOB emitter ID: Identifier of the MOB emitter, 5 hex digits with leading zeros; empty when
+    unknown."""
     mob_status: MobStatus | str | None = None
     """MOB status: A = activated, T = test mode, M = manual button, V = not in use, E = error."""
     activation_time: rt.Time | None = None
-    """UTC time of activation: UTC time the MOB device was activated; the amendment says no fraction of seconds is used."""
+    """UTC time of activation: UTC time the MOB device was activated; the amendment says no fraction
+    of seconds is used."""
     position_source: MobPositionSource | str | None = None
-    """MOB position source: 0 = position estimated by the vessel, 1 = reported by the emitter, 6 = error."""
+    """MOB position source: 0 = position estimated by the vessel, 1 = reported by the emitter, 6 =
+    error."""
     position_day: rt.Number | None = None
-    """Day of position: Six digits whose meaning the sources disagree on: a date ddmmyy (marnav) or the number of days since activation (pynmeagps, SwiftNMEA); see notes."""
+    """Day of position: Six digits whose meaning the sources disagree on: a date ddmmyy (marnav) or
+    the number of days since activation (pynmeagps, SwiftNMEA); see notes."""
     position_time: rt.Time | None = None
     """UTC time of position: UTC time of the position; no fraction of seconds is used."""
     lat: rt.Coordinate | None = None
@@ -64,102 +75,16 @@ class Mob:
     sog: rt.Number | None = None
     """Speed over ground [knots]: Speed over ground, knots."""
     mmsi: rt.Number | None = None
-    """MMSI of vessel: MMSI of the ship of origin, optionally configured in the MOB device; empty when unknown."""
+    """MMSI of vessel: MMSI of the ship of origin, optionally configured in the MOB device; empty
+    when unknown."""
     battery: MobBattery | str | None = None
     """Battery status: 0 = good, 1 = low, 6 = error; empty when the emitter cannot report it."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Mob:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 14:
-            raise rt.too_few(address, "MOB", 14, count)
-        if count > 14:
-            raise rt.too_many(address, "MOB", 14, count)
-        emitter_id = (_HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "emitter_id", "hex number", _HEX)) if fields[0] else None
-        mob_status = MobStatus.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mob_status", "mob_status code (A T M V E)", MobStatus.BY_CODE, "letters", 1, 1)
-        activation_time = (_TIME.get(fields[2]) or rt.time_field(fields[2], address, 3, "activation_time", "time hhmmss[.s]", _TIME)) if fields[2] else None
-        position_source = MobPositionSource.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "position_source", "mob_position_source code (0 1 6)", MobPositionSource.BY_CODE, "digits", 1, 1)
-        position_day = (_INTEGER_0_TO.get(fields[4]) or rt.integer_field(fields[4], address, 5, "position_day", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[4] else None
-        position_time = (_TIME.get(fields[5]) or rt.time_field(fields[5], address, 6, "position_time", "time hhmmss[.s]", _TIME)) if fields[5] else None
-        lat = _LATITUDE.get((fields[6], fields[7])) or rt.coordinate_field(fields[6], fields[7], address, 7, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[8], fields[9])) or rt.coordinate_field(fields[8], fields[9], address, 9, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        cog = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "cog", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        sog = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "sog", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        mmsi = (_INTEGER.get(fields[12]) or rt.integer_field(fields[12], address, 13, "mmsi", "integer", None, None, _INTEGER)) if fields[12] else None
-        battery = MobBattery.BY_CODE.get(fields[13]) or rt.enum_field(fields[13], address, 14, "battery", "mob_battery code (0 1 6)", MobBattery.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], emitter_id, mob_status, activation_time, position_source, position_day, position_time, lat, lon, cog, sog, mmsi, battery, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.emitter_id),
-            rt.text_of(self.mob_status),
-            rt.text_of(self.activation_time),
-            rt.text_of(self.position_source),
-            rt.text_of(self.position_day),
-            rt.text_of(self.position_time),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.cog),
-            rt.text_of(self.sog),
-            rt.text_of(self.mmsi),
-            rt.text_of(self.battery),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "MOB",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"emitter_id":' + show(self.emitter_id),
-            '"mob_status":' + show(self.mob_status),
-            '"activation_time":' + show(self.activation_time),
-            '"position_source":' + show(self.position_source),
-            '"position_day":' + show(self.position_day),
-            '"position_time":' + show(self.position_time),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"cog":' + show(self.cog),
-            '"sog":' + show(self.sog),
-            '"mmsi":' + show(self.mmsi),
-            '"battery":' + show(self.battery),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "emitter_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mob_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "activation_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_source"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_day"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "cog"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sog"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mmsi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "battery"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Mob, )

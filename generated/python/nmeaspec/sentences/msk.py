@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """MSK: Beacon receiver interface.
 
-Tunes a radio beacon (MSK) receiver, or reports its tuning: frequency and bit rate, each fixed
-or automatic, and how often the receiver sends its MSS status.
+Tunes a radio beacon (MSK) receiver, or reports its tuning: frequency and bit rate, each fixed or
+automatic, and how often the receiver sends its MSS status.
 """
 
 from __future__ import annotations
@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import MskAutoManual, PosSentenceStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Msk:
+class Msk(rt.Sentence):
     """MSK: Beacon receiver interface.
 
-    Example (log_pynmeagps): $GPMSK,318.0,A,100,M,2*45
+    Example (log_pynmeagps):
+    $GPMSK,318.0,A,100,M,2*45
     """
 
     SENTENCE: ClassVar[str] = "MSK"
@@ -34,114 +31,49 @@ class Msk:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("MSK", "standard", "$", 5, 7, (
+        rt.DecimalField("frequency", "decimal number"),
+        rt.EnumField("frequency_mode", "msk_auto_manual code (A M)", MskAutoManual),
+        rt.DecimalField("bit_rate", "decimal number"),
+        rt.EnumField("bit_rate_mode", "msk_auto_manual code (A M)", MskAutoManual),
+        rt.DecimalField("mss_interval", "decimal number"),
+        rt.IntegerField("channel", "integer", optional=True),
+        rt.EnumField(
+            "sentence_status",
+            "pos_sentence_status code (R C)",
+            PosSentenceStatus,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     frequency: rt.Number | None = None
-    """Beacon frequency [kHz]: Beacon frequency, 283.5-325.0 kHz; ignored when the frequency mode is automatic."""
+    """Beacon frequency [kHz]: Beacon frequency, 283.5-325.0 kHz; ignored when the frequency mode is
+    automatic."""
     frequency_mode: MskAutoManual | str | None = None
     """Frequency selection: A = automatic, M = manual (use the frequency given)."""
     bit_rate: rt.Number | None = None
-    """Beacon bit rate [bit/s]: Beacon bit rate, 25, 50, 100 or 200 bit/s (Furuno also lists 150); ignored when the bit rate mode is automatic."""
+    """Beacon bit rate [bit/s]: Beacon bit rate, 25, 50, 100 or 200 bit/s (Furuno also lists 150);
+    ignored when the bit rate mode is automatic."""
     bit_rate_mode: MskAutoManual | str | None = None
     """Bit rate selection: A = automatic, M = manual (use the bit rate given)."""
     mss_interval: rt.Number | None = None
-    """MSS status interval [s]: Interval at which the receiver sends MSS, seconds; empty for no MSS output."""
+    """MSS status interval [s]: Interval at which the receiver sends MSS, seconds; empty for no MSS
+    output."""
     channel: rt.Number | None | rt._Absent = rt.ABSENT
-    """Channel number: Receiver channel the settings apply to; 1 or empty on single-channel receivers."""
+    """Channel number: Receiver channel the settings apply to; 1 or empty on single-channel
+    receivers."""
     sentence_status: PosSentenceStatus | str | None | rt._Absent = rt.ABSENT
-    """Sentence status flag: R = report of the current settings (e.g. a reply to a query), C = command to change them."""
+    """Sentence status flag: R = report of the current settings (e.g. a reply to a query), C =
+    command to change them."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Msk:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "MSK", 5, count)
-        if count > 7:
-            raise rt.too_many(address, "MSK", 7, count)
-        optional = count - 5
-        frequency = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "frequency", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        frequency_mode = MskAutoManual.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "frequency_mode", "msk_auto_manual code (A M)", MskAutoManual.BY_CODE, "letters", 1, 1)
-        bit_rate = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "bit_rate", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        bit_rate_mode = MskAutoManual.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "bit_rate_mode", "msk_auto_manual code (A M)", MskAutoManual.BY_CODE, "letters", 1, 1)
-        mss_interval = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "mss_interval", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        channel: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            channel = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "channel", "integer", None, None, _INTEGER)) if fields[5] else None
-        sentence_status: PosSentenceStatus | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            sentence_status = PosSentenceStatus.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "sentence_status", "pos_sentence_status code (R C)", PosSentenceStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], frequency, frequency_mode, bit_rate, bit_rate_mode, mss_interval, channel, sentence_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.frequency),
-            rt.text_of(self.frequency_mode),
-            rt.text_of(self.bit_rate),
-            rt.text_of(self.bit_rate_mode),
-            rt.text_of(self.mss_interval),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.sentence_status is not rt.ABSENT:
-            last = 1
-        elif self.channel is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.channel)]
-        if last >= 1:
-            out += [rt.text_of(self.sentence_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "MSK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"frequency":' + show(self.frequency),
-            '"frequency_mode":' + show(self.frequency_mode),
-            '"bit_rate":' + show(self.bit_rate),
-            '"bit_rate_mode":' + show(self.bit_rate_mode),
-            '"mss_interval":' + show(self.mss_interval),
-        ]
-        if self.channel is not rt.ABSENT:
-            parts.append('"channel":' + show(self.channel))
-        if self.sentence_status is not rt.ABSENT:
-            parts.append('"sentence_status":' + show(self.sentence_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "frequency"), 1)
-        out += rt.json_texts(rt.json_member(fields, "frequency_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bit_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bit_rate_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mss_interval"), 1)
-        if "channel" in fields:
-            out += rt.json_texts(fields["channel"], 1)
-        if "sentence_status" in fields:
-            out += rt.json_texts(fields["sentence_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Msk, )

@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Mss:
+class Mss(rt.Sentence):
     """MSS: Beacon receiver signal status.
 
-    Example (log_gpsd): $GPMSS,0,0,0.000000,200,*5A
+    Example (trimble_mss):
+    $GPMSS,26.4,7.2,283.5,200,2*61
     """
 
     SENTENCE: ClassVar[str] = "MSS"
@@ -33,6 +30,14 @@ class Mss:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("MSS", "standard", "$", 4, 5, (
+        rt.DecimalField("signal_strength", "decimal number"),
+        rt.DecimalField("snr", "decimal number"),
+        rt.DecimalField("frequency", "decimal number"),
+        rt.DecimalField("bit_rate", "decimal number"),
+        rt.IntegerField("channel", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -41,87 +46,19 @@ class Mss:
     snr: rt.Number | None = None
     """Signal-to-noise ratio [dB]: Signal-to-noise ratio, dB."""
     frequency: rt.Number | None = None
-    """Beacon frequency [kHz]: Beacon frequency, 283.5-325.0 kHz (0 when no beacon is tuned, as SiRF receivers send)."""
+    """Beacon frequency [kHz]: Beacon frequency, 283.5-325.0 kHz (0 when no beacon is tuned, as SiRF
+    receivers send)."""
     bit_rate: rt.Number | None = None
     """Beacon bit rate [bit/s]: Beacon data rate, 25, 50, 100 or 200 bit/s."""
     channel: rt.Number | None | rt._Absent = rt.ABSENT
-    """Channel number: Receiver channel the values belong to; 1 or empty on single-channel receivers."""
+    """Channel number: Receiver channel the values belong to; 1 or empty on single-channel
+    receivers."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Mss:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "MSS", 4, count)
-        if count > 5:
-            raise rt.too_many(address, "MSS", 5, count)
-        optional = count - 4
-        signal_strength = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "signal_strength", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        snr = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "snr", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        frequency = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "frequency", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        bit_rate = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "bit_rate", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        channel: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            channel = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "channel", "integer", None, None, _INTEGER)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], signal_strength, snr, frequency, bit_rate, channel, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.signal_strength),
-            rt.text_of(self.snr),
-            rt.text_of(self.frequency),
-            rt.text_of(self.bit_rate),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.channel is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.channel)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "MSS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"signal_strength":' + show(self.signal_strength),
-            '"snr":' + show(self.snr),
-            '"frequency":' + show(self.frequency),
-            '"bit_rate":' + show(self.bit_rate),
-        ]
-        if self.channel is not rt.ABSENT:
-            parts.append('"channel":' + show(self.channel))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "signal_strength"), 1)
-        out += rt.json_texts(rt.json_member(fields, "snr"), 1)
-        out += rt.json_texts(rt.json_member(fields, "frequency"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bit_rate"), 1)
-        if "channel" in fields:
-            out += rt.json_texts(fields["channel"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Mss, )

@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Mta:
+class Mta(rt.Sentence):
     """MTA: Air temperature.
 
-    Example (log_marine_api): $IIMTA,17.9,C*0A
+    Example (log_marine_api):
+    $IIMTA,17.9,C*0A
     """
 
     SENTENCE: ClassVar[str] = "MTA"
@@ -31,6 +29,11 @@ class Mta:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("MTA", "standard", "$", 2, 2, (
+        rt.DecimalField("temperature", "decimal number"),
+        rt.LiteralField("temperature_unit", "C or nothing", "C"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -39,58 +42,11 @@ class Mta:
     temperature_unit: str | None = None
     """Temperature unit: C, degrees Celsius."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Mta:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "MTA", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "MTA", 2, count)
-        temperature = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "temperature", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        temperature_unit = "C" if fields[1] == "C" else rt.literal_field(fields[1], address, 2, "temperature_unit", "C or nothing", "C")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], temperature, temperature_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.temperature),
-            rt.text_of(self.temperature_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "MTA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"temperature":' + show(self.temperature),
-            '"temperature_unit":' + show(self.temperature_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "temperature"), 1)
-        out += rt.json_texts(rt.json_member(fields, "temperature_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Mta, )

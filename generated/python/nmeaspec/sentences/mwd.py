@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """MWD: Wind direction and speed.
 
-Direction the wind blows from, relative to true and magnetic north, and its speed in knots and
-m/s (true wind over the ground).
+Direction the wind blows from, relative to true and magnetic north, and its speed in knots and m/s
+(true wind over the ground).
 """
 
 from __future__ import annotations
@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Mwd:
+class Mwd(rt.Sentence):
     """MWD: Wind direction and speed.
 
-    Example (log_gpsd): $WIMWD,328.2,T,326.8,M,11.2,N,5.8,M*61
+    Example (log_gpsd):
+    $WIMWD,328.2,T,326.8,M,11.2,N,5.8,M*61
     """
 
     SENTENCE: ClassVar[str] = "MWD"
@@ -33,15 +30,28 @@ class Mwd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("MWD", "standard", "$", 8, 8, (
+        rt.DecimalField("direction_true", "decimal number of at least 0", 0, None),
+        rt.LiteralField("direction_true_ref", "T or nothing", "T"),
+        rt.DecimalField("direction_magnetic", "decimal number of at least 0", 0, None),
+        rt.LiteralField("direction_magnetic_ref", "M or nothing", "M"),
+        rt.DecimalField("speed_knots", "decimal number"),
+        rt.LiteralField("speed_knots_unit", "N or nothing", "N"),
+        rt.DecimalField("speed_ms", "decimal number"),
+        rt.LiteralField("speed_ms_unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     direction_true: rt.Number | None = None
-    """Wind direction, true [deg]: Direction the wind comes from, degrees true (0 to 359.9); empty without heading or position data."""
+    """Wind direction, true [deg]: Direction the wind comes from, degrees true (0 to 359.9); empty
+    without heading or position data."""
     direction_true_ref: str | None = None
     """True reference: T, degrees true."""
     direction_magnetic: rt.Number | None = None
-    """Wind direction, magnetic [deg]: Direction the wind comes from, degrees magnetic (0 to 359.9)."""
+    """Wind direction, magnetic [deg]: Direction the wind comes from, degrees magnetic (0 to
+    359.9)."""
     direction_magnetic_ref: str | None = None
     """Magnetic reference: M, degrees magnetic."""
     speed_knots: rt.Number | None = None
@@ -53,82 +63,11 @@ class Mwd:
     speed_ms_unit: str | None = None
     """Metres per second unit: M, metres per second."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Mwd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "MWD", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "MWD", 8, count)
-        direction_true = (_DECIMAL_0_TO.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "direction_true", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[0] else None
-        direction_true_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "direction_true_ref", "T or nothing", "T")
-        direction_magnetic = (_DECIMAL_0_TO.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "direction_magnetic", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[2] else None
-        direction_magnetic_ref = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "direction_magnetic_ref", "M or nothing", "M")
-        speed_knots = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "speed_knots", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        speed_knots_unit = "N" if fields[5] == "N" else rt.literal_field(fields[5], address, 6, "speed_knots_unit", "N or nothing", "N")
-        speed_ms = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed_ms", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        speed_ms_unit = "M" if fields[7] == "M" else rt.literal_field(fields[7], address, 8, "speed_ms_unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], direction_true, direction_true_ref, direction_magnetic, direction_magnetic_ref, speed_knots, speed_knots_unit, speed_ms, speed_ms_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.direction_true),
-            rt.text_of(self.direction_true_ref),
-            rt.text_of(self.direction_magnetic),
-            rt.text_of(self.direction_magnetic_ref),
-            rt.text_of(self.speed_knots),
-            rt.text_of(self.speed_knots_unit),
-            rt.text_of(self.speed_ms),
-            rt.text_of(self.speed_ms_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "MWD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"direction_true":' + show(self.direction_true),
-            '"direction_true_ref":' + show(self.direction_true_ref),
-            '"direction_magnetic":' + show(self.direction_magnetic),
-            '"direction_magnetic_ref":' + show(self.direction_magnetic_ref),
-            '"speed_knots":' + show(self.speed_knots),
-            '"speed_knots_unit":' + show(self.speed_knots_unit),
-            '"speed_ms":' + show(self.speed_ms),
-            '"speed_ms_unit":' + show(self.speed_ms_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "direction_true"), 1)
-        out += rt.json_texts(rt.json_member(fields, "direction_true_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "direction_magnetic"), 1)
-        out += rt.json_texts(rt.json_member(fields, "direction_magnetic_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_knots"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_knots_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_ms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_ms_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Mwd, )

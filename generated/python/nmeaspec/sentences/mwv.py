@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """MWV: Wind speed and angle.
 
-Wind angle measured from the bow and wind speed, either apparent (relative) or true
-(theoretical); a wind sensor usually sends both forms as separate lines.
+Wind angle measured from the bow and wind speed, either apparent (relative) or true (theoretical); a
+wind sensor usually sends both forms as separate lines.
 """
 
 from __future__ import annotations
@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import MwvReference, MwvSpeedUnit, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Mwv:
+class Mwv(rt.Sentence):
     """MWV: Wind speed and angle.
 
-    Example (log_gpsd): $WIMWV,57.5,R,13.0,N,A*26
+    Example (log_gpsd):
+    $WIMWV,57.5,R,13.0,N,A*26
     """
 
     SENTENCE: ClassVar[str] = "MWV"
@@ -34,84 +31,35 @@ class Mwv:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("MWV", "standard", "$", 5, 5, (
+        rt.DecimalField("wind_angle", "decimal number of at least 0", 0, None),
+        rt.EnumField("reference", "mwv_reference code (R T)", MwvReference),
+        rt.DecimalField("wind_speed", "decimal number"),
+        rt.EnumField("wind_speed_unit", "mwv_speed_unit code (K M N S)", MwvSpeedUnit),
+        rt.EnumField("status", "status code (A V)", Status),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     wind_angle: rt.Number | None = None
-    """Wind angle [deg]: Wind angle clockwise from the bow (vessel centreline), 0 to 359.9 degrees; empty when not valid. Some instruments send whole degrees (273, 39)."""
+    """Wind angle [deg]: Wind angle clockwise from the bow (vessel centreline), 0 to 359.9 degrees;
+    empty when not valid. Some instruments send whole degrees (273, 39)."""
     reference: MwvReference | str | None = None
     """Reference: R = relative (apparent) wind, T = theoretical (true) wind."""
     wind_speed: rt.Number | None = None
     """Wind speed: Wind speed in the unit of the next field; empty when not valid."""
     wind_speed_unit: MwvSpeedUnit | str | None = None
-    """Wind speed unit: K = km/h, M = m/s, N = knots (Airmar also lists S = statute miles per hour)."""
+    """Wind speed unit: K = km/h, M = m/s, N = knots (Airmar also lists S = statute miles per
+    hour)."""
     status: Status | str | None = None
     """Status: A = data valid, V = data invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Mwv:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "MWV", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "MWV", 5, count)
-        wind_angle = (_DECIMAL_0_TO.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "wind_angle", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[0] else None
-        reference = MwvReference.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "reference", "mwv_reference code (R T)", MwvReference.BY_CODE, "letters", 1, 1)
-        wind_speed = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "wind_speed", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        wind_speed_unit = MwvSpeedUnit.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "wind_speed_unit", "mwv_speed_unit code (K M N S)", MwvSpeedUnit.BY_CODE, "letters", 1, 1)
-        status = Status.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], wind_angle, reference, wind_speed, wind_speed_unit, status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.wind_angle),
-            rt.text_of(self.reference),
-            rt.text_of(self.wind_speed),
-            rt.text_of(self.wind_speed_unit),
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "MWV",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"wind_angle":' + show(self.wind_angle),
-            '"reference":' + show(self.reference),
-            '"wind_speed":' + show(self.wind_speed),
-            '"wind_speed_unit":' + show(self.wind_speed_unit),
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "wind_angle"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_speed_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Mwv, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """NAK: Negative acknowledgement.
 
-Reply of a listener that cannot answer a query or carry out a command sentence: names the
-sentence concerned and gives a reason code.
+Reply of a listener that cannot answer a query or carry out a command sentence: names the sentence
+concerned and gives a reason code.
 """
 
 from __future__ import annotations
@@ -17,10 +17,11 @@ from ..enums import NakReason
 
 
 @dataclass(slots=True)
-class Nak:
+class Nak(rt.Sentence):
     """NAK: Negative acknowledgement.
 
-    Example (log_pynmeagps): $ANNAK,UP,AID,999999990,11,*1E
+    Example (log_pynmeagps):
+    $ANNAK,UP,AID,999999990,11,*1E
     """
 
     SENTENCE: ClassVar[str] = "NAK"
@@ -30,84 +31,38 @@ class Nak:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("NAK", "standard", "$", 5, 5, (
+        rt.TextField("talker_id", "text of at most 2 characters", 2),
+        rt.TextField("formatter", "text"),
+        rt.TextField("unique_id", "text"),
+        rt.EnumField("reason", "nak_reason code (0 1 2 3 4 5 6 7 10 11 49)", NakReason),
+        rt.TextField("text", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     talker_id: str | None = None
-    """Talker identifier: Talker ID of the sentence that is refused (or of the device that was queried)."""
+    """Talker identifier: Talker ID of the sentence that is refused (or of the device that was
+    queried)."""
     formatter: str | None = None
-    """Affected sentence formatter: Sentence formatter (three letters) of the query or command that is refused."""
+    """Affected sentence formatter: Sentence formatter (three letters) of the query or command that
+    is refused."""
     unique_id: str | None = None
-    """Unique identifier: Identifier of the refusing unit or of the addressed object (e.g. an AIS MMSI, 999999990 in the pynmeagps log); may be empty."""
+    """Unique identifier: Identifier of the refusing unit or of the addressed object (e.g. an AIS
+    MMSI, 999999990 in the pynmeagps log); may be empty."""
     reason: NakReason | str | None = None
-    """Reason code: Why the sentence is refused: 0-7 query and formatter problems, 10 cannot perform, 11 bad data field, 49 other (see the text); other values are reserved or defined by equipment standards."""
+    """Reason code: Why the sentence is refused: 0-7 query and formatter problems, 10 cannot
+    perform, 11 bad data field, 49 other (see the text); other values are reserved or defined by
+    equipment standards."""
     text: str | None = None
     """Descriptive text: Free text explaining the refusal; may be empty."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Nak:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "NAK", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "NAK", 5, count)
-        talker_id = rt.text_field(fields[0], address, 1, "talker_id", "text of at most 2 characters", 2)
-        formatter = rt.text_field(fields[1], address, 2, "formatter", "text", None)
-        unique_id = rt.text_field(fields[2], address, 3, "unique_id", "text", None)
-        reason = NakReason.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "reason", "nak_reason code (0 1 2 3 4 5 6 7 10 11 49)", NakReason.BY_CODE, "digits", 1, 2)
-        text = rt.text_field(fields[4], address, 5, "text", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], talker_id, formatter, unique_id, reason, text, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.talker_id),
-            rt.text_of(self.formatter),
-            rt.text_of(self.unique_id),
-            rt.text_of(self.reason),
-            rt.text_of(self.text),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "NAK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"talker_id":' + show(self.talker_id),
-            '"formatter":' + show(self.formatter),
-            '"unique_id":' + show(self.unique_id),
-            '"reason":' + show(self.reason),
-            '"text":' + show(self.text),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "talker_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "formatter"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unique_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reason"), 1)
-        out += rt.json_texts(rt.json_member(fields, "text"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Nak, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """NRM: NAVTEX receiver mask.
 
-Sets or reports the masks that select which NAVTEX messages the receiver stores, prints or sends
-to the INS port, or requests the stored messages that match a mask. A command sentence.
+Sets or reports the masks that select which NAVTEX messages the receiver stores, prints or sends to
+the INS port, or requests the stored messages that match a mask. A command sentence.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import FsiSentenceStatus, NrmFunction, NrxFrequency
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-
 
 @dataclass(slots=True)
-class Nrm:
+class Nrm(rt.Sentence):
     """NRM: NAVTEX receiver mask.
 
-    Example (pynmeagps): $INNRM,2,1,00001E1F,00000023,C*38
+    Example (pynmeagps):
+    $INNRM,2,1,00001E1F,00000023,C*38
     """
 
     SENTENCE: ClassVar[str] = "NRM"
@@ -33,84 +31,38 @@ class Nrm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("NRM", "standard", "$", 5, 5, (
+        rt.EnumField("function_code", "nrm_function code (0 1 2 3)", NrmFunction),
+        rt.EnumField("frequency_index", "nrx_frequency code (0 1 2 3)", NrxFrequency),
+        rt.HexField("coverage_area_mask", "hex number"),
+        rt.HexField("message_type_mask", "hex number"),
+        rt.EnumField("sentence_status", "fsi_sentence_status code (R C)", FsiSentenceStatus),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     function_code: NrmFunction | str | None = None
-    """Function code: 0 = request messages, 1 = storage mask, 2 = printer mask, 3 = INS port mask."""
+    """Function code: 0 = request messages, 1 = storage mask, 2 = printer mask, 3 = INS port
+    mask."""
     frequency_index: NrxFrequency | str | None = None
-    """Frequency index: The NAVTEX frequency the mask applies to, 1 = 490 kHz, 2 = 518 kHz, 3 = 4209.5 kHz."""
+    """Frequency index: The NAVTEX frequency the mask applies to, 1 = 490 kHz, 2 = 518 kHz, 3 =
+    4209.5 kHz."""
     coverage_area_mask: rt.Hex | None = None
-    """Transmitter coverage area mask: 32-bit mask of transmitter coverage areas (the B1 character of the message identifier): the least significant bit is area A, the next B, up to bit 25 = Z; a set bit selects the area."""
+    """Transmitter coverage area mask: 32-bit mask of transmitter coverage areas (the B1 character
+    of the message identifier): the least significant bit is area A, the next B, up to bit 25 = Z; a
+    set bit selects the area."""
     message_type_mask: rt.Hex | None = None
-    """Message type mask: 32-bit mask of message types (the B2 character), least significant bit = type A up to bit 25 = Z."""
+    """Message type mask: 32-bit mask of message types (the B2 character), least significant bit =
+    type A up to bit 25 = Z."""
     sentence_status: FsiSentenceStatus | str | None = None
     """Sentence status flag: R = report of the current masks, C = command to change them."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Nrm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "NRM", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "NRM", 5, count)
-        function_code = NrmFunction.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "function_code", "nrm_function code (0 1 2 3)", NrmFunction.BY_CODE, "digits", 1, 1)
-        frequency_index = NrxFrequency.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "frequency_index", "nrx_frequency code (0 1 2 3)", NrxFrequency.BY_CODE, "digits", 1, 1)
-        coverage_area_mask = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "coverage_area_mask", "hex number", _HEX)) if fields[2] else None
-        message_type_mask = (_HEX.get(fields[3]) or rt.hex_field(fields[3], address, 4, "message_type_mask", "hex number", _HEX)) if fields[3] else None
-        sentence_status = FsiSentenceStatus.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "sentence_status", "fsi_sentence_status code (R C)", FsiSentenceStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], function_code, frequency_index, coverage_area_mask, message_type_mask, sentence_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.function_code),
-            rt.text_of(self.frequency_index),
-            rt.text_of(self.coverage_area_mask),
-            rt.text_of(self.message_type_mask),
-            rt.text_of(self.sentence_status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "NRM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"function_code":' + show(self.function_code),
-            '"frequency_index":' + show(self.frequency_index),
-            '"coverage_area_mask":' + show(self.coverage_area_mask),
-            '"message_type_mask":' + show(self.message_type_mask),
-            '"sentence_status":' + show(self.sentence_status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "function_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "frequency_index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "coverage_area_mask"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_type_mask"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Nrm, )

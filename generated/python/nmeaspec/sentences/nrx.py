@@ -3,10 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """NRX: NAVTEX received message.
 
-Carries a received NAVTEX message (maritime safety information) from the NAVTEX receiver to
-other equipment; a message usually spans many sentences, whose bodies are concatenated in
-sentence order. The first sentence carries all the fields, later ones usually only the counters
-and the body.
+Carries a received NAVTEX message (maritime safety information) from the NAVTEX receiver to other
+equipment; a message usually spans many sentences, whose bodies are concatenated in sentence order.
+The first sentence carries all the fields, later ones usually only the counters and the body.
 """
 
 from __future__ import annotations
@@ -17,21 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import NrxFrequency, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
-_INTEGER_1_TO_12: dict[Any, Any] = rt.known("integer 1..12")
-_INTEGER_1_TO_31: dict[Any, Any] = rt.known("integer 1..31")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Nrx:
+class Nrx(rt.Sentence):
     """NRX: NAVTEX received message.
 
-    Example (pynmeagps): $CRNRX,007,001,00,IE69,1,135600,27,06,2001,241,3,A,============================*09
+    Example (pynmeagps):
+    $CRNRX,007,001,00,IE69,1,135600,27,06,2001,241,3,A,============================*09
     """
 
     SENTENCE: ClassVar[str] = "NRX"
@@ -41,6 +32,22 @@ class Nrx:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("NRX", "standard", "$", 13, 13, (
+        rt.IntegerField("total_sentences", "integer of at least 1", 1, None),
+        rt.IntegerField("sentence_number", "integer of at least 1", 1, None),
+        rt.IntegerField("sequential_message_id", "integer 0..99", 0, 99),
+        rt.TextField("message_code", "text"),
+        rt.EnumField("frequency_index", "nrx_frequency code (0 1 2 3)", NrxFrequency),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.IntegerField("day", "integer 1..31", 1, 31),
+        rt.IntegerField("month", "integer 1..12", 1, 12),
+        rt.IntegerField("year", "integer"),
+        rt.IntegerField("total_characters", "integer"),
+        rt.IntegerField("bad_characters", "integer"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.TextField("message_body", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -49,13 +56,18 @@ class Nrx:
     sentence_number: rt.Number | None = None
     """Sentence number: Number of this sentence, 001 to 999."""
     sequential_message_id: rt.Number | None = None
-    """Sequential message identifier: Identifies the message the sentence belongs to, 00 to 99; it tells apart messages with the same message code (serial number 00 or repeats)."""
+    """Sequential message identifier: Identifies the message the sentence belongs to, 00 to 99; it
+    tells apart messages with the same message code (serial number 00 or repeats)."""
     message_code: str | None = None
-    """NAVTEX message code: The four-character NAVTEX message identifier B1B2B3B4: transmitter coverage area letter, message type letter and two-digit serial number (e.g. IE69). Usually empty after the first sentence."""
+    """NAVTEX message code: The four-character NAVTEX message identifier B1B2B3B4: transmitter
+    coverage area letter, message type letter and two-digit serial number (e.g. IE69). Usually empty
+    after the first sentence."""
     frequency_index: NrxFrequency | str | None = None
-    """Frequency index: 1 = 490 kHz, 2 = 518 kHz, 3 = 4209.5 kHz (JMC also uses 0 = not received over the air)."""
+    """Frequency index: 1 = 490 kHz, 2 = 518 kHz, 3 = 4209.5 kHz (JMC also uses 0 = not received
+    over the air)."""
     time: rt.Time | None = None
-    """UTC time of reception: UTC time the message was received; empty when the receiver has no UTC."""
+    """UTC time of reception: UTC time the message was received; empty when the receiver has no
+    UTC."""
     day: rt.Number | None = None
     """Day: Day of reception, 01 to 31 (UTC)."""
     month: rt.Number | None = None
@@ -63,120 +75,30 @@ class Nrx:
     year: rt.Number | None = None
     """Year: Year of reception (UTC)."""
     total_characters: rt.Number | None = None
-    """Total number of characters: Number of characters of the whole message in this series of NRX sentences."""
+    """Total number of characters: Number of characters of the whole message in this series of NRX
+    sentences."""
     bad_characters: rt.Number | None = None
     """Total number of bad characters: Number of characters received in error."""
     status: Status | str | None = None
     """Status: A = message received in the correct format, V = incorrect format."""
     message_body: str | None = None
-    """Message body: Part of the message text. Reserved characters are sent as ^ and two hex digits (^0D^0A for a line break, ^2C for a comma, ^2A for an asterisk); characters received in error are replaced by an underscore or a code delimiter."""
+    """Message body: Part of the message text. Reserved characters are sent as ^ and two hex digits
+    (^0D^0A for a line break, ^2C for a comma, ^2A for an asterisk); characters received in error
+    are replaced by an underscore or a code delimiter."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Nrx:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 13:
-            raise rt.too_few(address, "NRX", 13, count)
-        if count > 13:
-            raise rt.too_many(address, "NRX", 13, count)
-        total_sentences = (_INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "total_sentences", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[0] else None
-        sentence_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
-        sequential_message_id = (_INTEGER_0_TO_99.get(fields[2]) or rt.integer_field(fields[2], address, 3, "sequential_message_id", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[2] else None
-        message_code = rt.text_field(fields[3], address, 4, "message_code", "text", None)
-        frequency_index = NrxFrequency.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "frequency_index", "nrx_frequency code (0 1 2 3)", NrxFrequency.BY_CODE, "digits", 1, 1)
-        time = (_TIME.get(fields[5]) or rt.time_field(fields[5], address, 6, "time", "time hhmmss[.s]", _TIME)) if fields[5] else None
-        day = (_INTEGER_1_TO_31.get(fields[6]) or rt.integer_field(fields[6], address, 7, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)) if fields[6] else None
-        month = (_INTEGER_1_TO_12.get(fields[7]) or rt.integer_field(fields[7], address, 8, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[7] else None
-        year = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "year", "integer", None, None, _INTEGER)) if fields[8] else None
-        total_characters = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "total_characters", "integer", None, None, _INTEGER)) if fields[9] else None
-        bad_characters = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "bad_characters", "integer", None, None, _INTEGER)) if fields[10] else None
-        status = Status.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        message_body = rt.text_field(fields[12], address, 13, "message_body", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], total_sentences, sentence_number, sequential_message_id, message_code, frequency_index, time, day, month, year, total_characters, bad_characters, status, message_body, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.total_sentences),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.sequential_message_id),
-            rt.text_of(self.message_code),
-            rt.text_of(self.frequency_index),
-            rt.text_of(self.time),
-            rt.text_of(self.day),
-            rt.text_of(self.month),
-            rt.text_of(self.year),
-            rt.text_of(self.total_characters),
-            rt.text_of(self.bad_characters),
-            rt.text_of(self.status),
-            rt.text_of(self.message_body),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "NRX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"total_sentences":' + show(self.total_sentences),
-            '"sentence_number":' + show(self.sentence_number),
-            '"sequential_message_id":' + show(self.sequential_message_id),
-            '"message_code":' + show(self.message_code),
-            '"frequency_index":' + show(self.frequency_index),
-            '"time":' + show(self.time),
-            '"day":' + show(self.day),
-            '"month":' + show(self.month),
-            '"year":' + show(self.year),
-            '"total_characters":' + show(self.total_characters),
-            '"bad_characters":' + show(self.bad_characters),
-            '"status":' + show(self.status),
-            '"message_body":' + show(self.message_body),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "total_sentences"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sequential_message_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "frequency_index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "day"), 1)
-        out += rt.json_texts(rt.json_member(fields, "month"), 1)
-        out += rt.json_texts(rt.json_member(fields, "year"), 1)
-        out += rt.json_texts(rt.json_member(fields, "total_characters"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bad_characters"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_body"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class NrxNx700:
+class NrxNx700(rt.Sentence):
     """NRX (Furuno NX-700 layout): NAVTEX received message.
 
-    The ten-field layout printed in the Furuno NX-700A/B manual: message identifier, line
-    number, number of lines, frequency in kHz, date, UTC time, error rate and one line of the
-    message.
-
+    The ten-field layout printed in the Furuno NX-700A/B manual: message identifier, line number,
+    number of lines, frequency in kHz, date, UTC time, error rate and one line of the message.
     """
 
     SENTENCE: ClassVar[str] = "NRX"
@@ -186,11 +108,25 @@ class NrxNx700:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("NRX", "standard", "$", 10, 10, (
+        rt.TextField("message_code", "text"),
+        rt.IntegerField("line_number", "integer of at least 1", 1, None),
+        rt.IntegerField("line_count", "integer of at least 1", 1, None),
+        rt.IntegerField("frequency_khz", "integer"),
+        rt.IntegerField("day", "integer 1..31", 1, 31),
+        rt.IntegerField("month", "integer 1..12", 1, 12),
+        rt.IntegerField("year", "integer"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("error_rate", "decimal number"),
+        rt.TextField("message_body", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     message_code: str | None = None
-    """NAVTEX message identifier: The four-character message identifier B1B2B3B4 (e.g. TA21); given in every sentence."""
+    """NAVTEX message identifier: The four-character message identifier B1B2B3B4 (e.g. TA21); given
+    in every sentence."""
     line_number: rt.Number | None = None
     """Line number: Number of this line, 1 to 999; given in every sentence."""
     line_count: rt.Number | None = None
@@ -210,90 +146,11 @@ class NrxNx700:
     message_body: str | None = None
     """Message line: One line of the message text."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> NrxNx700:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 10:
-            raise rt.too_few(address, "NRX", 10, count)
-        if count > 10:
-            raise rt.too_many(address, "NRX", 10, count)
-        message_code = rt.text_field(fields[0], address, 1, "message_code", "text", None)
-        line_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "line_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
-        line_count = (_INTEGER_1_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "line_count", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[2] else None
-        frequency_khz = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "frequency_khz", "integer", None, None, _INTEGER)) if fields[3] else None
-        day = (_INTEGER_1_TO_31.get(fields[4]) or rt.integer_field(fields[4], address, 5, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)) if fields[4] else None
-        month = (_INTEGER_1_TO_12.get(fields[5]) or rt.integer_field(fields[5], address, 6, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[5] else None
-        year = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "year", "integer", None, None, _INTEGER)) if fields[6] else None
-        time = (_TIME.get(fields[7]) or rt.time_field(fields[7], address, 8, "time", "time hhmmss[.s]", _TIME)) if fields[7] else None
-        error_rate = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "error_rate", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        message_body = rt.text_field(fields[9], address, 10, "message_body", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], message_code, line_number, line_count, frequency_khz, day, month, year, time, error_rate, message_body, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message_code),
-            rt.text_of(self.line_number),
-            rt.text_of(self.line_count),
-            rt.text_of(self.frequency_khz),
-            rt.text_of(self.day),
-            rt.text_of(self.month),
-            rt.text_of(self.year),
-            rt.text_of(self.time),
-            rt.text_of(self.error_rate),
-            rt.text_of(self.message_body),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "NRX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message_code":' + show(self.message_code),
-            '"line_number":' + show(self.line_number),
-            '"line_count":' + show(self.line_count),
-            '"frequency_khz":' + show(self.frequency_khz),
-            '"day":' + show(self.day),
-            '"month":' + show(self.month),
-            '"year":' + show(self.year),
-            '"time":' + show(self.time),
-            '"error_rate":' + show(self.error_rate),
-            '"message_body":' + show(self.message_body),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "line_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "line_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "frequency_khz"), 1)
-        out += rt.json_texts(rt.json_member(fields, "day"), 1)
-        out += rt.json_texts(rt.json_member(fields, "month"), 1)
-        out += rt.json_texts(rt.json_member(fields, "year"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_body"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Nrx, NrxNx700, )

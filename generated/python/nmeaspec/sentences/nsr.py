@@ -4,9 +4,9 @@
 """NSR: Navigation status report.
 
 Integrity and plausibility of the heading, position, speed through water, speed and course over
-ground, depth and time that an integrated navigation system (INS) distributes, and the source of
-its speed through water; details the value sentences (GLL, THS, VBW, VTG) cannot carry. Sent at
-least every 30 s and before the affected sentence on every change; no field may be empty.
+ground, depth and time that an integrated navigation system (INS) distributes, and the source of its
+speed through water; details the value sentences (GLL, THS, VBW, VTG) cannot carry. Sent at least
+every 30 s and before the affected sentence on every change; no field may be empty.
 """
 
 from __future__ import annotations
@@ -19,9 +19,8 @@ from ..enums import NsrIntegrity, NsrPlausibility, NsrStwMode
 
 
 @dataclass(slots=True)
-class Nsr:
+class Nsr(rt.Sentence):
     """NSR: Navigation status report.
-
     """
 
     SENTENCE: ClassVar[str] = "NSR"
@@ -31,132 +30,70 @@ class Nsr:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("NSR", "standard", "$", 13, 13, (
+        rt.EnumField("heading_integrity", "nsr_integrity code (P F D N)", NsrIntegrity),
+        rt.EnumField("heading_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility),
+        rt.EnumField("position_integrity", "nsr_integrity code (P F D N)", NsrIntegrity),
+        rt.EnumField("position_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility),
+        rt.EnumField("stw_integrity", "nsr_integrity code (P F D N)", NsrIntegrity),
+        rt.EnumField("stw_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility),
+        rt.EnumField("sog_cog_integrity", "nsr_integrity code (P F D N)", NsrIntegrity),
+        rt.EnumField("sog_cog_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility),
+        rt.EnumField("depth_integrity", "nsr_integrity code (P F D N)", NsrIntegrity),
+        rt.EnumField("depth_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility),
+        rt.EnumField("stw_mode", "nsr_stw_mode code (W E M N)", NsrStwMode),
+        rt.EnumField("time_integrity", "nsr_integrity code (P F D N)", NsrIntegrity),
+        rt.EnumField("time_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     heading_integrity: NsrIntegrity | str | None = None
-    """Heading integrity: Integrity of the heading, P = passed, F = failed, D = doubtful, N = not available."""
+    """Heading integrity: Integrity of the heading, P = passed, F = failed, D = doubtful, N = not
+    available."""
     heading_plausibility: NsrPlausibility | str | None = None
-    """Heading plausibility: Plausibility of the heading, A = plausible, V = not plausible, N = not available."""
+    """Heading plausibility: Plausibility of the heading, A = plausible, V = not plausible, N = not
+    available."""
     position_integrity: NsrIntegrity | str | None = None
-    """Position integrity: Integrity of the position, P = passed, F = failed, D = doubtful, N = not available."""
+    """Position integrity: Integrity of the position, P = passed, F = failed, D = doubtful, N = not
+    available."""
     position_plausibility: NsrPlausibility | str | None = None
-    """Position plausibility: Plausibility of the position, A = plausible, V = not plausible, N = not available."""
+    """Position plausibility: Plausibility of the position, A = plausible, V = not plausible, N =
+    not available."""
     stw_integrity: NsrIntegrity | str | None = None
-    """Speed through water (STW) integrity: Integrity of the speed through water (STW), P = passed, F = failed, D = doubtful, N = not available."""
+    """Speed through water (STW) integrity: Integrity of the speed through water (STW), P = passed,
+    F = failed, D = doubtful, N = not available."""
     stw_plausibility: NsrPlausibility | str | None = None
-    """Speed through water (STW) plausibility: Plausibility of the speed through water (STW), A = plausible, V = not plausible, N = not available."""
+    """Speed through water (STW) plausibility: Plausibility of the speed through water (STW), A =
+    plausible, V = not plausible, N = not available."""
     sog_cog_integrity: NsrIntegrity | str | None = None
-    """Speed and course over ground (SOG/COG) integrity: Integrity of the speed and course over ground (SOG/COG), P = passed, F = failed, D = doubtful, N = not available."""
+    """Speed and course over ground (SOG/COG) integrity: Integrity of the speed and course over
+    ground (SOG/COG), P = passed, F = failed, D = doubtful, N = not available."""
     sog_cog_plausibility: NsrPlausibility | str | None = None
-    """Speed and course over ground (SOG/COG) plausibility: Plausibility of the speed and course over ground (SOG/COG), A = plausible, V = not plausible, N = not available."""
+    """Speed and course over ground (SOG/COG) plausibility: Plausibility of the speed and course
+    over ground (SOG/COG), A = plausible, V = not plausible, N = not available."""
     depth_integrity: NsrIntegrity | str | None = None
-    """Depth integrity: Integrity of the depth, P = passed, F = failed, D = doubtful, N = not available."""
+    """Depth integrity: Integrity of the depth, P = passed, F = failed, D = doubtful, N = not
+    available."""
     depth_plausibility: NsrPlausibility | str | None = None
-    """Depth plausibility: Plausibility of the depth, A = plausible, V = not plausible, N = not available."""
+    """Depth plausibility: Plausibility of the depth, A = plausible, V = not plausible, N = not
+    available."""
     stw_mode: NsrStwMode | str | None = None
-    """Speed through water mode: W = measured against the water, E = estimated from other sources, M = manual input, N = not available."""
+    """Speed through water mode: W = measured against the water, E = estimated from other sources, M
+    = manual input, N = not available."""
     time_integrity: NsrIntegrity | str | None = None
-    """Time integrity: Integrity of the time, P = passed, F = failed, D = doubtful, N = not available."""
+    """Time integrity: Integrity of the time, P = passed, F = failed, D = doubtful, N = not
+    available."""
     time_plausibility: NsrPlausibility | str | None = None
-    """Time plausibility: Plausibility of the time, A = plausible, V = not plausible, N = not available."""
+    """Time plausibility: Plausibility of the time, A = plausible, V = not plausible, N = not
+    available."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Nsr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 13:
-            raise rt.too_few(address, "NSR", 13, count)
-        if count > 13:
-            raise rt.too_many(address, "NSR", 13, count)
-        heading_integrity = NsrIntegrity.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "heading_integrity", "nsr_integrity code (P F D N)", NsrIntegrity.BY_CODE, "letters", 1, 1)
-        heading_plausibility = NsrPlausibility.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "heading_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility.BY_CODE, "letters", 1, 1)
-        position_integrity = NsrIntegrity.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "position_integrity", "nsr_integrity code (P F D N)", NsrIntegrity.BY_CODE, "letters", 1, 1)
-        position_plausibility = NsrPlausibility.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "position_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility.BY_CODE, "letters", 1, 1)
-        stw_integrity = NsrIntegrity.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "stw_integrity", "nsr_integrity code (P F D N)", NsrIntegrity.BY_CODE, "letters", 1, 1)
-        stw_plausibility = NsrPlausibility.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "stw_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility.BY_CODE, "letters", 1, 1)
-        sog_cog_integrity = NsrIntegrity.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "sog_cog_integrity", "nsr_integrity code (P F D N)", NsrIntegrity.BY_CODE, "letters", 1, 1)
-        sog_cog_plausibility = NsrPlausibility.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "sog_cog_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility.BY_CODE, "letters", 1, 1)
-        depth_integrity = NsrIntegrity.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "depth_integrity", "nsr_integrity code (P F D N)", NsrIntegrity.BY_CODE, "letters", 1, 1)
-        depth_plausibility = NsrPlausibility.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "depth_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility.BY_CODE, "letters", 1, 1)
-        stw_mode = NsrStwMode.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "stw_mode", "nsr_stw_mode code (W E M N)", NsrStwMode.BY_CODE, "letters", 1, 1)
-        time_integrity = NsrIntegrity.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "time_integrity", "nsr_integrity code (P F D N)", NsrIntegrity.BY_CODE, "letters", 1, 1)
-        time_plausibility = NsrPlausibility.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "time_plausibility", "nsr_plausibility code (A V N)", NsrPlausibility.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], heading_integrity, heading_plausibility, position_integrity, position_plausibility, stw_integrity, stw_plausibility, sog_cog_integrity, sog_cog_plausibility, depth_integrity, depth_plausibility, stw_mode, time_integrity, time_plausibility, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.heading_integrity),
-            rt.text_of(self.heading_plausibility),
-            rt.text_of(self.position_integrity),
-            rt.text_of(self.position_plausibility),
-            rt.text_of(self.stw_integrity),
-            rt.text_of(self.stw_plausibility),
-            rt.text_of(self.sog_cog_integrity),
-            rt.text_of(self.sog_cog_plausibility),
-            rt.text_of(self.depth_integrity),
-            rt.text_of(self.depth_plausibility),
-            rt.text_of(self.stw_mode),
-            rt.text_of(self.time_integrity),
-            rt.text_of(self.time_plausibility),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "NSR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"heading_integrity":' + show(self.heading_integrity),
-            '"heading_plausibility":' + show(self.heading_plausibility),
-            '"position_integrity":' + show(self.position_integrity),
-            '"position_plausibility":' + show(self.position_plausibility),
-            '"stw_integrity":' + show(self.stw_integrity),
-            '"stw_plausibility":' + show(self.stw_plausibility),
-            '"sog_cog_integrity":' + show(self.sog_cog_integrity),
-            '"sog_cog_plausibility":' + show(self.sog_cog_plausibility),
-            '"depth_integrity":' + show(self.depth_integrity),
-            '"depth_plausibility":' + show(self.depth_plausibility),
-            '"stw_mode":' + show(self.stw_mode),
-            '"time_integrity":' + show(self.time_integrity),
-            '"time_plausibility":' + show(self.time_plausibility),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "heading_integrity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_plausibility"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_integrity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_plausibility"), 1)
-        out += rt.json_texts(rt.json_member(fields, "stw_integrity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "stw_plausibility"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sog_cog_integrity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sog_cog_plausibility"), 1)
-        out += rt.json_texts(rt.json_member(fields, "depth_integrity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "depth_plausibility"), 1)
-        out += rt.json_texts(rt.json_member(fields, "stw_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_integrity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_plausibility"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Nsr, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """OSD: Own ship data.
 
-Summary of own ship's movement as a radar/ARPA uses it: heading, course and speed with the
-sensor each is taken from, and the set and drift of the current.
+Summary of own ship's movement as a radar/ARPA uses it: heading, course and speed with the sensor
+each is taken from, and the set and drift of the current.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import OsdReference, Status, TtmUnits
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Osd:
+class Osd(rt.Sentence):
     """OSD: Own ship data.
 
-    Example (marine_api): $RAOSD,35.1,A,36.0,P,10.2,P,15.3,0.1,N*41
+    Example (marine_api):
+    $RAOSD,35.1,A,36.0,P,10.2,P,15.3,0.1,N*41
     """
 
     SENTENCE: ClassVar[str] = "OSD"
@@ -33,6 +31,18 @@ class Osd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("OSD", "standard", "$", 9, 9, (
+        rt.DecimalField("heading", "decimal number"),
+        rt.EnumField("heading_status", "status code (A V)", Status),
+        rt.DecimalField("course", "decimal number"),
+        rt.EnumField("course_reference", "osd_reference code (B M W R P)", OsdReference),
+        rt.DecimalField("speed", "decimal number"),
+        rt.EnumField("speed_reference", "osd_reference code (B M W R P)", OsdReference),
+        rt.DecimalField("set", "decimal number"),
+        rt.DecimalField("drift", "decimal number"),
+        rt.EnumField("speed_units", "ttm_units code (K N S)", TtmUnits),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -43,98 +53,26 @@ class Osd:
     course: rt.Number | None = None
     """Vessel course [deg]: Course of the vessel, degrees true."""
     course_reference: OsdReference | str | None = None
-    """Course reference: System the course is derived from: B = bottom tracking log, M = manual, W = water referenced, R = radar tracking of a fixed target, P = positioning system (ground referenced)."""
+    """Course reference: System the course is derived from: B = bottom tracking log, M = manual, W =
+    water referenced, R = radar tracking of a fixed target, P = positioning system (ground
+    referenced)."""
     speed: rt.Number | None = None
     """Vessel speed: Speed of the vessel, in the unit of the speed units field."""
     speed_reference: OsdReference | str | None = None
     """Speed reference: System the speed is derived from, same codes as the course reference."""
     set: rt.Number | None = None
-    """Vessel set [deg]: Set (direction) of the current acting on the vessel, degrees true; entered manually on Furuno radars."""
+    """Vessel set [deg]: Set (direction) of the current acting on the vessel, degrees true; entered
+    manually on Furuno radars."""
     drift: rt.Number | None = None
     """Vessel drift: Drift (speed) of the current, in the unit of the speed units field."""
     speed_units: TtmUnits | str | None = None
     """Speed units: K = km/h, N = knots, S = statute miles per hour."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Osd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "OSD", 9, count)
-        if count > 9:
-            raise rt.too_many(address, "OSD", 9, count)
-        heading = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heading", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        heading_status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "heading_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        course = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "course", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        course_reference = OsdReference.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "course_reference", "osd_reference code (B M W R P)", OsdReference.BY_CODE, "letters", 1, 1)
-        speed = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "speed", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        speed_reference = OsdReference.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "speed_reference", "osd_reference code (B M W R P)", OsdReference.BY_CODE, "letters", 1, 1)
-        set = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "set", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        drift = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "drift", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        speed_units = TtmUnits.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "speed_units", "ttm_units code (K N S)", TtmUnits.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], heading, heading_status, course, course_reference, speed, speed_reference, set, drift, speed_units, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.heading),
-            rt.text_of(self.heading_status),
-            rt.text_of(self.course),
-            rt.text_of(self.course_reference),
-            rt.text_of(self.speed),
-            rt.text_of(self.speed_reference),
-            rt.text_of(self.set),
-            rt.text_of(self.drift),
-            rt.text_of(self.speed_units),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "OSD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"heading":' + show(self.heading),
-            '"heading_status":' + show(self.heading_status),
-            '"course":' + show(self.course),
-            '"course_reference":' + show(self.course_reference),
-            '"speed":' + show(self.speed),
-            '"speed_reference":' + show(self.speed_reference),
-            '"set":' + show(self.set),
-            '"drift":' + show(self.drift),
-            '"speed_units":' + show(self.speed_units),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "set"), 1)
-        out += rt.json_texts(rt.json_member(fields, "drift"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_units"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Osd, )

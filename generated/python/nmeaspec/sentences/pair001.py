@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PAIR001: Command acknowledgement.
 
-The receiver's answer to every PAIR command: it names the command and says whether it was
-carried out. A query answers with this acknowledgement first and then with a line of its own
-address carrying the values.
+The receiver's answer to every PAIR command: it names the command and says whether it was carried
+out. A query answers with this acknowledgement first and then with a line of its own address
+carrying the values.
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AirohaAckResult
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_9999: dict[Any, Any] = rt.known("integer 0..9999")
-
 
 @dataclass(slots=True)
-class Pair001:
+class Pair001(rt.Sentence):
     """PAIR001: Command acknowledgement.
 
-    Example (airoha_pair): $PAIR001,050,0*3E
+    Example (airoha_pair):
+    $PAIR001,050,0*3E
     """
 
     SENTENCE: ClassVar[str] = "PAIR001"
@@ -36,63 +34,22 @@ class Pair001:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = (("result", "enum", "success"), )
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR001", "proprietary", "$", 2, 2, (
+        rt.IntegerField("command", "integer 0..9999", 0, 9999),
+        rt.EnumField("result", "airoha_ack_result code (0 1 2 3 4 5)", AirohaAckResult),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: rt.Number | None = None
-    """Command ID: Number of the PAIR command being acknowledged, printed with at least three digits (050 for PAIR050, 6010 for PAIR6010)."""
+    """Command ID: Number of the PAIR command being acknowledged, printed with at least three digits
+    (050 for PAIR050, 6010 for PAIR6010)."""
     result: AirohaAckResult | str | None = None
     """Result: Outcome of the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair001:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PAIR001", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PAIR001", 2, count)
-        command = (_INTEGER_0_TO_9999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "command", "integer 0..9999", 0, 9999, _INTEGER_0_TO_9999)) if fields[0] else None
-        result = AirohaAckResult.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "result", "airoha_ack_result code (0 1 2 3 4 5)", AirohaAckResult.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, result, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-            rt.text_of(self.result),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR001",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-            '"result":' + show(self.result),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        out += rt.json_texts(rt.json_member(fields, "result"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair001, )

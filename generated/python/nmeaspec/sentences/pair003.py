@@ -3,9 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PAIR003: Power off the GNSS subsystem.
 
-Powers the GNSS part off. On LC29H, LC26G and LC76G the processor keeps accepting commands
-(those not needing the DSP); on LC86G it goes to sleep and only listens if $PAIR382,1 was sent
-first.
+Powers the GNSS part off. On LC29H, LC26G and LC76G the processor keeps accepting commands (those
+not needing the DSP); on LC86G it goes to sleep and only listens if $PAIR382,1 was sent first.
 """
 
 from __future__ import annotations
@@ -17,10 +16,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class Pair003:
+class Pair003(rt.Sentence):
     """PAIR003: Power off the GNSS subsystem.
 
-    Example (airoha_pair): $PAIR003*39
+    Example (airoha_pair):
+    $PAIR003*39
     """
 
     SENTENCE: ClassVar[str] = "PAIR003"
@@ -34,51 +34,15 @@ class Pair003:
         ("PAIR001", None, (("command", "integer", 3), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR003", "proprietary", "$", 0, 0, (
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair003:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 0:
-            raise rt.too_few(address, "PAIR003", 0, count)
-        if count > 0:
-            raise rt.too_many(address, "PAIR003", 0, count)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls([], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR003",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair003, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PAIR010: Request for aiding data.
 
-Sent by the receiver on its own (at start-up and when data expire) to tell the host which
-assistance data it needs: EPO orbits, time or position, with the GNSS week and time of week of
-the request. The host answers by loading the data, not with a PAIR010 line.
+Sent by the receiver on its own (at start-up and when data expire) to tell the host which assistance
+data it needs: EPO orbits, time or position, with the GNSS week and time of week of the request. The
+host answers by loading the data, not with a PAIR010 line.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AirohaAidingType, AirohaGnssSystem
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_604799: dict[Any, Any] = rt.known("integer 0..604799")
-
 
 @dataclass(slots=True)
-class Pair010:
+class Pair010(rt.Sentence):
     """PAIR010: Request for aiding data.
 
-    Example (log_hazer): $PAIR010,0,0,2263,403496*32
+    Example (log_hazer):
+    $PAIR010,0,0,2263,403496*32
     """
 
     SENTENCE: ClassVar[str] = "PAIR010"
@@ -35,6 +32,13 @@ class Pair010:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR010", "proprietary", "$", 4, 4, (
+        rt.EnumField("type", "airoha_aiding_type code (0 1 2)", AirohaAidingType),
+        rt.EnumField("system", "airoha_gnss_system code (0 1 2 3 4)", AirohaGnssSystem),
+        rt.IntegerField("week", "integer of at least 0", 0, None),
+        rt.IntegerField("tow", "integer 0..604799", 0, 604799),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     type: AirohaAidingType | str | None = None
     """Aiding type: Kind of assistance data requested."""
     system: AirohaGnssSystem | str | None = None
@@ -44,66 +48,11 @@ class Pair010:
     tow: rt.Number | None = None
     """Time of week [s]: Time of week of the request."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair010:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PAIR010", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PAIR010", 4, count)
-        type = AirohaAidingType.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "type", "airoha_aiding_type code (0 1 2)", AirohaAidingType.BY_CODE, "digits", 1, 1)
-        system = AirohaGnssSystem.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "system", "airoha_gnss_system code (0 1 2 3 4)", AirohaGnssSystem.BY_CODE, "digits", 1, 1)
-        week = (_INTEGER_0_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "week", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[2] else None
-        tow = (_INTEGER_0_TO_604799.get(fields[3]) or rt.integer_field(fields[3], address, 4, "tow", "integer 0..604799", 0, 604799, _INTEGER_0_TO_604799)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(type, system, week, tow, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.type),
-            rt.text_of(self.system),
-            rt.text_of(self.week),
-            rt.text_of(self.tow),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR010",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"type":' + show(self.type),
-            '"system":' + show(self.system),
-            '"week":' + show(self.week),
-            '"tow":' + show(self.tow),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tow"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair010, )

@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_100_TO_1000: dict[Any, Any] = rt.known("integer 100..1000")
-
 
 @dataclass(slots=True)
-class Pair050:
+class Pair050(rt.Sentence):
     """PAIR050: Set the position fix interval.
 
-    Example (airoha_pair): $PAIR050,1000*12
+    Example (airoha_pair):
+    $PAIR050,1000*12
     """
 
     SENTENCE: ClassVar[str] = "PAIR050"
@@ -35,57 +33,18 @@ class Pair050:
         ("PAIR001", None, (("command", "integer", 50), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR050", "proprietary", "$", 1, 1, (
+        rt.IntegerField("interval", "integer 100..1000", 100, 1000),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     interval: rt.Number | None = None
     """Fix interval [ms]: Time between two position fixes; 1000 ms (1 Hz) is the default."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair050:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PAIR050", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PAIR050", 1, count)
-        interval = (_INTEGER_100_TO_1000.get(fields[0]) or rt.integer_field(fields[0], address, 1, "interval", "integer 100..1000", 100, 1000, _INTEGER_100_TO_1000)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(interval, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.interval),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR050",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"interval":' + show(self.interval),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "interval"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair050, )

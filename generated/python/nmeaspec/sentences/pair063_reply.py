@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AirohaNmeaType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_20: dict[Any, Any] = rt.known("integer 0..20")
-
 
 @dataclass(slots=True)
-class Pair063Reply:
+class Pair063Reply(rt.Sentence):
     """PAIR063_REPLY: Output rate of a standard sentence.
 
-    Example (airoha_pair): $PAIR063,0,3*3C
+    Example (airoha_pair):
+    $PAIR063,0,3*3C
     """
 
     SENTENCE: ClassVar[str] = "PAIR063_REPLY"
@@ -32,63 +30,22 @@ class Pair063Reply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR063_REPLY", "proprietary", "$", 2, 2, (
+        rt.EnumField("type", "airoha_nmea_type code (-1 0 1 2 3 4 5 6 7 8 9)", AirohaNmeaType),
+        rt.IntegerField("rate", "integer 0..20", 0, 20),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     type: AirohaNmeaType | str | None = None
     """Sentence type: Standard sentence the rate belongs to."""
     rate: rt.Number | None = None
-    """Output rate: 0 when the sentence is off or not supported, else the number of fixes between two outputs."""
+    """Output rate: 0 when the sentence is off or not supported, else the number of fixes between
+    two outputs."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair063Reply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PAIR063_REPLY", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PAIR063_REPLY", 2, count)
-        type = AirohaNmeaType.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "type", "airoha_nmea_type code (-1 0 1 2 3 4 5 6 7 8 9)", AirohaNmeaType.BY_CODE, "digits", 1, 2)
-        rate = (_INTEGER_0_TO_20.get(fields[1]) or rt.integer_field(fields[1], address, 2, "rate", "integer 0..20", 0, 20, _INTEGER_0_TO_20)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(type, rate, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.type),
-            rt.text_of(self.rate),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR063",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"type":' + show(self.type),
-            '"rate":' + show(self.rate),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair063Reply, )

@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AirohaEnable
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_0: dict[Any, Any] = rt.known("integer 0..0")
-
 
 @dataclass(slots=True)
-class Pair067Reply:
+class Pair067Reply(rt.Sentence):
     """PAIR067_REPLY: GNSS search mode.
 
-    Example (airoha_pair): $PAIR067,1,0,0,0,0,0*3A
+    Example (airoha_pair):
+    $PAIR067,1,0,0,0,0,0*3A
     """
 
     SENTENCE: ClassVar[str] = "PAIR067_REPLY"
@@ -32,6 +30,15 @@ class Pair067Reply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR067_REPLY", "proprietary", "$", 6, 6, (
+        rt.EnumField("gps", "airoha_enable code (0 1)", AirohaEnable),
+        rt.EnumField("glonass", "airoha_enable code (0 1)", AirohaEnable),
+        rt.EnumField("galileo", "airoha_enable code (0 1)", AirohaEnable),
+        rt.EnumField("beidou", "airoha_enable code (0 1)", AirohaEnable),
+        rt.EnumField("qzss", "airoha_enable code (0 1)", AirohaEnable),
+        rt.IntegerField("reserved", "integer 0..0", 0, 0),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     gps: AirohaEnable | str | None = None
     """GPS: Whether the receiver searches GPS satellites."""
     glonass: AirohaEnable | str | None = None
@@ -45,74 +52,11 @@ class Pair067Reply:
     reserved: rt.Number | None = None
     """Reserved: Reserved, always 0 (pynmeagps names it NavIC)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair067Reply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "PAIR067_REPLY", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "PAIR067_REPLY", 6, count)
-        gps = AirohaEnable.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "gps", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        glonass = AirohaEnable.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "glonass", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        galileo = AirohaEnable.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "galileo", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        beidou = AirohaEnable.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "beidou", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        qzss = AirohaEnable.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "qzss", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        reserved = (_INTEGER_0_TO_0.get(fields[5]) or rt.integer_field(fields[5], address, 6, "reserved", "integer 0..0", 0, 0, _INTEGER_0_TO_0)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(gps, glonass, galileo, beidou, qzss, reserved, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.gps),
-            rt.text_of(self.glonass),
-            rt.text_of(self.galileo),
-            rt.text_of(self.beidou),
-            rt.text_of(self.qzss),
-            rt.text_of(self.reserved),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR067",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"gps":' + show(self.gps),
-            '"glonass":' + show(self.glonass),
-            '"galileo":' + show(self.galileo),
-            '"beidou":' + show(self.beidou),
-            '"qzss":' + show(self.qzss),
-            '"reserved":' + show(self.reserved),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "gps"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glonass"), 1)
-        out += rt.json_texts(rt.json_member(fields, "galileo"), 1)
-        out += rt.json_texts(rt.json_member(fields, "beidou"), 1)
-        out += rt.json_texts(rt.json_member(fields, "qzss"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair067Reply, )

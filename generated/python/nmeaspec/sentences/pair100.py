@@ -17,10 +17,11 @@ from ..enums import AirohaEnable, AirohaNmeaOutputMode
 
 
 @dataclass(slots=True)
-class Pair100:
+class Pair100(rt.Sentence):
     """PAIR100: Set the NMEA output mode.
 
-    Example (airoha_pair): $PAIR100,1,0*3A
+    Example (airoha_pair):
+    $PAIR100,1,0*3A
     """
 
     SENTENCE: ClassVar[str] = "PAIR100"
@@ -34,63 +35,21 @@ class Pair100:
         ("PAIR001", None, (("command", "integer", 100), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR100", "proprietary", "$", 2, 2, (
+        rt.EnumField("nmea_mode", "airoha_nmea_output_mode code (0 1 2)", AirohaNmeaOutputMode),
+        rt.EnumField("proprietary", "airoha_enable code (0 1)", AirohaEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     nmea_mode: AirohaNmeaOutputMode | str | None = None
     """NMEA output: Standard NMEA output off, version 4.10 or version 3.01."""
     proprietary: AirohaEnable | str | None = None
     """Proprietary output: Output of the chip's proprietary sentences; off by default."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair100:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PAIR100", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PAIR100", 2, count)
-        nmea_mode = AirohaNmeaOutputMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "nmea_mode", "airoha_nmea_output_mode code (0 1 2)", AirohaNmeaOutputMode.BY_CODE, "digits", 1, 1)
-        proprietary = AirohaEnable.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "proprietary", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(nmea_mode, proprietary, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.nmea_mode),
-            rt.text_of(self.proprietary),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR100",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"nmea_mode":' + show(self.nmea_mode),
-            '"proprietary":' + show(self.proprietary),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "nmea_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "proprietary"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair100, )

@@ -17,10 +17,11 @@ from ..enums import AirohaEnable
 
 
 @dataclass(slots=True)
-class Pair382:
+class Pair382(rt.Sentence):
     """PAIR382: Lock system sleep.
 
-    Example (airoha_lc76g): $PAIR382,1*2E
+    Example (airoha_lc76g):
+    $PAIR382,1*2E
     """
 
     SENTENCE: ClassVar[str] = "PAIR382"
@@ -34,57 +35,18 @@ class Pair382:
         ("PAIR001", None, (("command", "integer", 382), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR382", "proprietary", "$", 1, 1, (
+        rt.EnumField("enabled", "airoha_enable code (0 1)", AirohaEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     enabled: AirohaEnable | str | None = None
     """Lock: 0 releases the lock, 1 keeps the system awake."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair382:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PAIR382", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PAIR382", 1, count)
-        enabled = AirohaEnable.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "enabled", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(enabled, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.enabled),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR382",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"enabled":' + show(self.enabled),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "enabled"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair382, )

@@ -16,10 +16,11 @@ from ..enums import AirohaEasyStatus, AirohaEnable
 
 
 @dataclass(slots=True)
-class Pair491Reply:
+class Pair491Reply(rt.Sentence):
     """PAIR491_REPLY: EASY state.
 
-    Example (airoha_pair): $PAIR491,1,0*37
+    Example (airoha_pair):
+    $PAIR491,1,0*37
     """
 
     SENTENCE: ClassVar[str] = "PAIR491_REPLY"
@@ -29,74 +30,26 @@ class Pair491Reply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR491_REPLY", "proprietary", "$", 1, 2, (
+        rt.EnumField("enabled", "airoha_enable code (0 1)", AirohaEnable),
+        rt.EnumField(
+            "status",
+            "airoha_easy_status code (0 1 2 3)",
+            AirohaEasyStatus,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     enabled: AirohaEnable | str | None = None
     """EASY: Whether EASY is on."""
     status: AirohaEasyStatus | str | None | rt._Absent = rt.ABSENT
     """Prediction status: How many days of prediction are done; absent when EASY is off."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair491Reply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PAIR491_REPLY", 1, count)
-        if count > 2:
-            raise rt.too_many(address, "PAIR491_REPLY", 2, count)
-        optional = count - 1
-        enabled = AirohaEnable.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "enabled", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        status: AirohaEasyStatus | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            status = AirohaEasyStatus.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "airoha_easy_status code (0 1 2 3)", AirohaEasyStatus.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(enabled, status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.enabled),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.status is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR491",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"enabled":' + show(self.enabled),
-        ]
-        if self.status is not rt.ABSENT:
-            parts.append('"status":' + show(self.status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "enabled"), 1)
-        if "status" in fields:
-            out += rt.json_texts(fields["status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair491Reply, )

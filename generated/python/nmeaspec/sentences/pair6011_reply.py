@@ -16,10 +16,11 @@ from ..enums import AirohaDrMessage, AirohaEnable
 
 
 @dataclass(slots=True)
-class Pair6011Reply:
+class Pair6011Reply(rt.Sentence):
     """PAIR6011_REPLY: Output of a DR message.
 
-    Example (airoha_lc29h_dr_rtk): $PAIR6011,1,0*0D
+    Example (airoha_lc29h_dr_rtk):
+    $PAIR6011,1,0*0D
     """
 
     SENTENCE: ClassVar[str] = "PAIR6011_REPLY"
@@ -29,63 +30,21 @@ class Pair6011Reply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR6011_REPLY", "proprietary", "$", 2, 2, (
+        rt.EnumField("type", "airoha_dr_message code (-1 0 1 2 3 4)", AirohaDrMessage),
+        rt.EnumField("state", "airoha_enable code (0 1)", AirohaEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     type: AirohaDrMessage | str | None = None
     """Message: DR message concerned."""
     state: AirohaEnable | str | None = None
     """Output state: Output of the message off or on."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair6011Reply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PAIR6011_REPLY", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PAIR6011_REPLY", 2, count)
-        type = AirohaDrMessage.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "type", "airoha_dr_message code (-1 0 1 2 3 4)", AirohaDrMessage.BY_CODE, "digits", 1, 2)
-        state = AirohaEnable.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "state", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(type, state, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.type),
-            rt.text_of(self.state),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR6011",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"type":' + show(self.type),
-            '"state":' + show(self.state),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "state"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair6011Reply, )

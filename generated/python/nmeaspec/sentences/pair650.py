@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PAIR650: Enter RTC (backup) mode.
 
-Shuts everything down except the real-time clock for the given time; the receiver takes no
-command until a timer or the wake-up pin wakes it, then re-initialises. An acknowledgement comes
-only when a parameter is wrong.
+Shuts everything down except the real-time clock for the given time; the receiver takes no command
+until a timer or the wake-up pin wakes it, then re-initialises. An acknowledgement comes only when a
+parameter is wrong.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_62208000: dict[Any, Any] = rt.known("integer 0..62208000")
-
 
 @dataclass(slots=True)
-class Pair650:
+class Pair650(rt.Sentence):
     """PAIR650: Enter RTC (backup) mode.
 
-    Example (airoha_pair): $PAIR650,2*27
+    Example (airoha_pair):
+    $PAIR650,2*27
     """
 
     SENTENCE: ClassVar[str] = "PAIR650"
@@ -37,57 +35,19 @@ class Pair650:
         ("PAIR001", None, (("command", "integer", 650), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR650", "proprietary", "$", 1, 1, (
+        rt.IntegerField("duration", "integer 0..62208000", 0, 62208000),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     duration: rt.Number | None = None
-    """Duration [s]: Time in backup mode: 0 (no timer, wake by pin) or 10 to 62208000 s (two years)."""
+    """Duration [s]: Time in backup mode: 0 (no timer, wake by pin) or 10 to 62208000 s (two
+    years)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair650:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PAIR650", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PAIR650", 1, count)
-        duration = (_INTEGER_0_TO_62208000.get(fields[0]) or rt.integer_field(fields[0], address, 1, "duration", "integer 0..62208000", 0, 62208000, _INTEGER_0_TO_62208000)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(duration, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.duration),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR650",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"duration":' + show(self.duration),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "duration"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair650, )

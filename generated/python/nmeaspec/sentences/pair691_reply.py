@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AirohaPeriodicMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_518400: dict[Any, Any] = rt.known("integer 0..518400")
-_INTEGER_3_TO_518400: dict[Any, Any] = rt.known("integer 3..518400")
-
 
 @dataclass(slots=True)
-class Pair691Reply:
+class Pair691Reply(rt.Sentence):
     """PAIR691_REPLY: Periodic power saving.
 
-    Example (airoha_lc76g): $PAIR691,1,21,39,48,72*29
+    Example (airoha_lc76g):
+    $PAIR691,1,21,39,48,72*29
     """
 
     SENTENCE: ClassVar[str] = "PAIR691_REPLY"
@@ -33,6 +30,14 @@ class Pair691Reply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR691_REPLY", "proprietary", "$", 5, 5, (
+        rt.EnumField("mode", "airoha_periodic_mode code (0 1 2)", AirohaPeriodicMode),
+        rt.IntegerField("first_run", "integer 3..518400", 3, 518400),
+        rt.IntegerField("first_sleep", "integer 3..518400", 3, 518400),
+        rt.IntegerField("second_run", "integer 0..518400", 0, 518400),
+        rt.IntegerField("second_sleep", "integer 0..518400", 0, 518400),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     mode: AirohaPeriodicMode | str | None = None
     """Mode: Periodic mode off, smart or strict."""
     first_run: rt.Number | None = None
@@ -40,74 +45,17 @@ class Pair691Reply:
     first_sleep: rt.Number | None = None
     """First sleep time [s]: Sleep time after a fix was obtained or attempted."""
     second_run: rt.Number | None = None
-    """Second run time [s]: Run time when there is no signal; 0 only together with a second sleep time of 0."""
+    """Second run time [s]: Run time when there is no signal; 0 only together with a second sleep
+    time of 0."""
     second_sleep: rt.Number | None = None
-    """Second sleep time [s]: Sleep time when there is no signal; 0 only together with a second run time of 0."""
+    """Second sleep time [s]: Sleep time when there is no signal; 0 only together with a second run
+    time of 0."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair691Reply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PAIR691_REPLY", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PAIR691_REPLY", 5, count)
-        mode = AirohaPeriodicMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "mode", "airoha_periodic_mode code (0 1 2)", AirohaPeriodicMode.BY_CODE, "digits", 1, 1)
-        first_run = (_INTEGER_3_TO_518400.get(fields[1]) or rt.integer_field(fields[1], address, 2, "first_run", "integer 3..518400", 3, 518400, _INTEGER_3_TO_518400)) if fields[1] else None
-        first_sleep = (_INTEGER_3_TO_518400.get(fields[2]) or rt.integer_field(fields[2], address, 3, "first_sleep", "integer 3..518400", 3, 518400, _INTEGER_3_TO_518400)) if fields[2] else None
-        second_run = (_INTEGER_0_TO_518400.get(fields[3]) or rt.integer_field(fields[3], address, 4, "second_run", "integer 0..518400", 0, 518400, _INTEGER_0_TO_518400)) if fields[3] else None
-        second_sleep = (_INTEGER_0_TO_518400.get(fields[4]) or rt.integer_field(fields[4], address, 5, "second_sleep", "integer 0..518400", 0, 518400, _INTEGER_0_TO_518400)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(mode, first_run, first_sleep, second_run, second_sleep, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.mode),
-            rt.text_of(self.first_run),
-            rt.text_of(self.first_sleep),
-            rt.text_of(self.second_run),
-            rt.text_of(self.second_sleep),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR691",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"mode":' + show(self.mode),
-            '"first_run":' + show(self.first_run),
-            '"first_sleep":' + show(self.first_sleep),
-            '"second_run":' + show(self.second_run),
-            '"second_sleep":' + show(self.second_sleep),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "first_run"), 1)
-        out += rt.json_texts(rt.json_member(fields, "first_sleep"), 1)
-        out += rt.json_texts(rt.json_member(fields, "second_run"), 1)
-        out += rt.json_texts(rt.json_member(fields, "second_sleep"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair691Reply, )

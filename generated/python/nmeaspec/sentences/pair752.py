@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AirohaPpsType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO_999: dict[Any, Any] = rt.known("integer 1..999")
-
 
 @dataclass(slots=True)
-class Pair752:
+class Pair752(rt.Sentence):
     """PAIR752: Configure the PPS output.
 
-    Example (airoha_lc76g): $PAIR752,2,100*39
+    Example (airoha_lc76g):
+    $PAIR752,2,100*39
     """
 
     SENTENCE: ClassVar[str] = "PAIR752"
@@ -36,63 +34,21 @@ class Pair752:
         ("PAIR001", None, (("command", "integer", 752), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR752", "proprietary", "$", 2, 2, (
+        rt.EnumField("pps_type", "airoha_pps_type code (0 1 2 3 4)", AirohaPpsType),
+        rt.IntegerField("pulse_width", "integer 1..999", 1, 999),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     pps_type: AirohaPpsType | str | None = None
     """PPS mode: Condition for the pulse."""
     pulse_width: rt.Number | None = None
     """Pulse width [ms]: Width of the pulse; default 100 ms."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair752:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PAIR752", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PAIR752", 2, count)
-        pps_type = AirohaPpsType.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "pps_type", "airoha_pps_type code (0 1 2 3 4)", AirohaPpsType.BY_CODE, "digits", 1, 1)
-        pulse_width = (_INTEGER_1_TO_999.get(fields[1]) or rt.integer_field(fields[1], address, 2, "pulse_width", "integer 1..999", 1, 999, _INTEGER_1_TO_999)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(pps_type, pulse_width, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.pps_type),
-            rt.text_of(self.pulse_width),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR752",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"pps_type":' + show(self.pps_type),
-            '"pulse_width":' + show(self.pulse_width),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "pps_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pulse_width"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair752, )

@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AirohaBaud
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_0: dict[Any, Any] = rt.known("integer 0..0")
-
 
 @dataclass(slots=True)
-class Pair864:
+class Pair864(rt.Sentence):
     """PAIR864: Set the UART baud rate.
 
-    Example (airoha_pair): $PAIR864,0,0,115200*1B
+    Example (airoha_pair):
+    $PAIR864,0,0,115200*1B
     """
 
     SENTENCE: ClassVar[str] = "PAIR864"
@@ -37,6 +34,16 @@ class Pair864:
         ("PAIR001", None, (("command", "integer", 864), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR864", "proprietary", "$", 3, 3, (
+        rt.IntegerField("port_type", "integer 0..0", 0, 0),
+        rt.IntegerField("port_index", "integer of at least 0", 0, None),
+        rt.EnumField(
+            "baud",
+            "airoha_baud code (4800 9600 19200 38400 57600 115200 230400 460800 921600)",
+            AirohaBaud,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     port_type: rt.Number | None = None
     """Port type: Hardware port type: 0 = UART."""
     port_index: rt.Number | None = None
@@ -44,62 +51,11 @@ class Pair864:
     baud: AirohaBaud | str | None = None
     """Baud rate: Port speed in bit/s; 115200 by default."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair864:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PAIR864", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PAIR864", 3, count)
-        port_type = (_INTEGER_0_TO_0.get(fields[0]) or rt.integer_field(fields[0], address, 1, "port_type", "integer 0..0", 0, 0, _INTEGER_0_TO_0)) if fields[0] else None
-        port_index = (_INTEGER_0_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "port_index", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[1] else None
-        baud = AirohaBaud.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "baud", "airoha_baud code (4800 9600 19200 38400 57600 115200 230400 460800 921600)", AirohaBaud.BY_CODE, "digits", 4, 6)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(port_type, port_index, baud, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.port_type),
-            rt.text_of(self.port_index),
-            rt.text_of(self.baud),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR864",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"port_type":' + show(self.port_type),
-            '"port_index":' + show(self.port_index),
-            '"baud":' + show(self.baud),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "port_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair864, )

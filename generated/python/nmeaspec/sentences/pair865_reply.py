@@ -16,10 +16,11 @@ from ..enums import AirohaBaud
 
 
 @dataclass(slots=True)
-class Pair865Reply:
+class Pair865Reply(rt.Sentence):
     """PAIR865_REPLY: UART baud rate.
 
-    Example (airoha_pair): $PAIR865,115200*1A
+    Example (airoha_pair):
+    $PAIR865,115200*1A
     """
 
     SENTENCE: ClassVar[str] = "PAIR865_REPLY"
@@ -29,57 +30,22 @@ class Pair865Reply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR865_REPLY", "proprietary", "$", 1, 1, (
+        rt.EnumField(
+            "baud",
+            "airoha_baud code (4800 9600 19200 38400 57600 115200 230400 460800 921600)",
+            AirohaBaud,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     baud: AirohaBaud | str | None = None
     """Baud rate: Current speed of the port in bit/s."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair865Reply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PAIR865_REPLY", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PAIR865_REPLY", 1, count)
-        baud = AirohaBaud.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "baud", "airoha_baud code (4800 9600 19200 38400 57600 115200 230400 460800 921600)", AirohaBaud.BY_CODE, "digits", 4, 6)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(baud, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.baud),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR865",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"baud":' + show(self.baud),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "baud"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair865Reply, )

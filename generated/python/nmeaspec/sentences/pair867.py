@@ -13,16 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_0: dict[Any, Any] = rt.known("integer 0..0")
-
 
 @dataclass(slots=True)
-class Pair867:
+class Pair867(rt.Sentence):
     """PAIR867: Query UART flow control.
 
-    Example (pynmeagps): $PAIR867,0,0*33
+    Example (pynmeagps):
+    $PAIR867,0,0*33
     """
 
     SENTENCE: ClassVar[str] = "PAIR867"
@@ -37,63 +34,21 @@ class Pair867:
         ("PAIR867_REPLY", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR867", "proprietary", "$", 2, 2, (
+        rt.IntegerField("port_type", "integer 0..0", 0, 0),
+        rt.IntegerField("port_index", "integer of at least 0", 0, None),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     port_type: rt.Number | None = None
     """Port type: Hardware port type: 0 = UART."""
     port_index: rt.Number | None = None
     """Port index: Index of the port: 0 = UART0 (the NMEA port)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair867:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PAIR867", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PAIR867", 2, count)
-        port_type = (_INTEGER_0_TO_0.get(fields[0]) or rt.integer_field(fields[0], address, 1, "port_type", "integer 0..0", 0, 0, _INTEGER_0_TO_0)) if fields[0] else None
-        port_index = (_INTEGER_0_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "port_index", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(port_type, port_index, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.port_type),
-            rt.text_of(self.port_index),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR867",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"port_type":' + show(self.port_type),
-            '"port_index":' + show(self.port_index),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "port_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_index"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair867, )

@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class Pair867Reply:
+class Pair867Reply(rt.Sentence):
     """PAIR867_REPLY: UART flow control.
 
-    Example (pynmeagps): $PAIR867,0*2F
+    Example (pynmeagps):
+    $PAIR867,0*2F
     """
 
     SENTENCE: ClassVar[str] = "PAIR867_REPLY"
@@ -31,57 +29,19 @@ class Pair867Reply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR867_REPLY", "proprietary", "$", 1, 1, (
+        rt.IntegerField("flow_control", "integer of at least 0", 0, None),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     flow_control: rt.Number | None = None
-    """Flow control: Flow-control setting of the port (0 is the state the fixtures read back; the value list is not in the documents read)."""
+    """Flow control: Flow-control setting of the port (0 is the state the fixtures read back; the
+    value list is not in the documents read)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair867Reply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PAIR867_REPLY", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PAIR867_REPLY", 1, count)
-        flow_control = (_INTEGER_0_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "flow_control", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(flow_control, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.flow_control),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR867",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"flow_control":' + show(self.flow_control),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "flow_control"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair867Reply, )

@@ -4,8 +4,7 @@
 """PAIR890: Configure geofences.
 
 Sets up to four circular geofences. While fences are set the receiver also sends a binary status
-frame (outside, unknown or inside, per fence, with the UTC time), which this spec does not
-decode.
+frame (outside, unknown or inside, per fence, with the UTC time), which this spec does not decode.
 """
 
 from __future__ import annotations
@@ -15,12 +14,6 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 from ..enums import AirohaGeofenceConfidence
-
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-_DECIMAL_MINUS_180_TO_180: dict[Any, Any] = rt.known("decimal -180..180")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER_0_TO_4: dict[Any, Any] = rt.known("integer 0..4")
 
 
 @dataclass(slots=True)
@@ -36,10 +29,11 @@ class Pair890Fence:
 
 
 @dataclass(slots=True)
-class Pair890:
+class Pair890(rt.Sentence):
     """PAIR890: Configure geofences.
 
-    Example (airoha_lc76g): $PAIR890,1,1,25.0567,121.5743,30*20
+    Example (airoha_lc76g):
+    $PAIR890,1,1,25.0567,121.5743,30*20
     """
 
     SENTENCE: ClassVar[str] = "PAIR890"
@@ -53,6 +47,20 @@ class Pair890:
         ("PAIR001", None, (("command", "integer", 890), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR890", "proprietary", "$", 2, 14, (
+        rt.IntegerField("count", "integer 0..4", 0, 4),
+        rt.EnumField(
+            "confidence",
+            "airoha_geofence_confidence code (0 1 2 3)",
+            AirohaGeofenceConfidence,
+        ),
+        rt.Group("fences", Pair890Fence, (
+            rt.DecimalField("lat", "decimal number -90..90", -90, 90),
+            rt.DecimalField("lon", "decimal number -180..180", -180, 180),
+            rt.DecimalField("radius", "decimal number of at least 0", 0, None),
+        ), 0, 4),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     count: rt.Number | None = None
     """Number of fences: Number of circular fences that follow; 0 switches geofencing off."""
     confidence: AirohaGeofenceConfidence | str | None = None
@@ -60,78 +68,11 @@ class Pair890:
     fences: list[Pair890Fence] = field(default_factory=list)
     """Fences: 0 to 4 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair890:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 3, 4)
-        optional = count - 2 - repeats * 3
-        if count < 2 or optional > 0:
-            rt.split_group(address, "PAIR890", "fences", count, 2, 3, 0, 4, 0)
-        count_ = (_INTEGER_0_TO_4.get(fields[0]) or rt.integer_field(fields[0], address, 1, "count", "integer 0..4", 0, 4, _INTEGER_0_TO_4)) if fields[0] else None
-        confidence = AirohaGeofenceConfidence.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "confidence", "airoha_geofence_confidence code (0 1 2 3)", AirohaGeofenceConfidence.BY_CODE, "digits", 1, 1)
-        fences: list[Pair890Fence] = []
-        pos = 2
-        for entry in range(repeats):
-            fences.append(Pair890Fence(
-                (_DECIMAL_MINUS_90_TO_90.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, f"fences[{entry + 1}].lat", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[pos] else None,
-                (_DECIMAL_MINUS_180_TO_180.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, f"fences[{entry + 1}].lon", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[pos + 1] else None,
-                (_DECIMAL_0_TO.get(fields[pos + 2]) or rt.decimal_field(fields[pos + 2], address, pos + 3, f"fences[{entry + 1}].radius", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[pos + 2] else None,
-            ))
-            pos += 3
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(count_, confidence, fences, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.count),
-            rt.text_of(self.confidence),
-        ]
-        for entry in self.fences:
-            out += [rt.text_of(entry.lat), rt.text_of(entry.lon), rt.text_of(entry.radius)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR890",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"count":' + show(self.count),
-            '"confidence":' + show(self.confidence),
-            '"fences":[' + ",".join(
-                "{" + '"lat":' + show(entry.lat) + ',"lon":' + show(entry.lon) + ',"radius":' + show(entry.radius) + "}"
-                for entry in self.fences) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "confidence"), 1)
-        for entry in rt.json_list(fields, "fences"):
-            out += rt.json_texts(rt.json_member(entry, "lat"), 1)
-            out += rt.json_texts(rt.json_member(entry, "lon"), 1)
-            out += rt.json_texts(rt.json_member(entry, "radius"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair890, )

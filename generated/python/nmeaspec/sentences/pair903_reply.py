@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AirohaEnable
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-
 
 @dataclass(slots=True)
-class Pair903Reply:
+class Pair903Reply(rt.Sentence):
     """PAIR903_REPLY: LOCUS save mode.
 
-    Example (airoha_lc76g): $PAIR903,6,1*37
+    Example (airoha_lc76g):
+    $PAIR903,6,1*37
     """
 
     SENTENCE: ClassVar[str] = "PAIR903_REPLY"
@@ -32,63 +30,21 @@ class Pair903Reply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR903_REPLY", "proprietary", "$", 2, 2, (
+        rt.HexField("mode", "hex number"),
+        rt.EnumField("check_3d", "airoha_enable code (0 1)", AirohaEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     mode: rt.Hex | None = None
     """Save mode: Bit mask of the events that store a record (airoha_locus_mode)."""
     check_3d: AirohaEnable | str | None = None
     """3D fix only: When on, only 3D fixes are stored."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair903Reply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PAIR903_REPLY", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PAIR903_REPLY", 2, count)
-        mode = (_HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "mode", "hex number", _HEX)) if fields[0] else None
-        check_3d = AirohaEnable.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "check_3d", "airoha_enable code (0 1)", AirohaEnable.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(mode, check_3d, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.mode),
-            rt.text_of(self.check_3d),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR903",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"mode":' + show(self.mode),
-            '"check_3d":' + show(self.check_3d),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "check_3d"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair903Reply, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PAIR904: Set a LOCUS threshold.
 
-Sets the time, speed or distance threshold of the LOCUS triggers; LOCUS must be off and the mode
-set with PAIR902.
+Sets the time, speed or distance threshold of the LOCUS triggers; LOCUS must be off and the mode set
+with PAIR902.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AirohaLocusThreshold
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO_50000: dict[Any, Any] = rt.known("integer 1..50000")
-
 
 @dataclass(slots=True)
-class Pair904:
+class Pair904(rt.Sentence):
     """PAIR904: Set a LOCUS threshold.
 
-    Example (airoha_lc76g): $PAIR904,0,60*01
+    Example (airoha_lc76g):
+    $PAIR904,0,60*01
     """
 
     SENTENCE: ClassVar[str] = "PAIR904"
@@ -37,63 +35,22 @@ class Pair904:
         ("PAIR001", None, (("command", "integer", 904), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR904", "proprietary", "$", 2, 2, (
+        rt.EnumField("threshold_kind", "airoha_locus_threshold code (0 1 2)", AirohaLocusThreshold),
+        rt.IntegerField("threshold", "integer 1..50000", 1, 50000),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     threshold_kind: AirohaLocusThreshold | str | None = None
     """Threshold kind: Time, speed or distance threshold."""
     threshold: rt.Number | None = None
-    """Threshold: Seconds (1-43200), metres per second (1-100) or metres (1-50000), after the kind."""
+    """Threshold: Seconds (1-43200), metres per second (1-100) or metres (1-50000), after the
+    kind."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair904:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PAIR904", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PAIR904", 2, count)
-        threshold_kind = AirohaLocusThreshold.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "threshold_kind", "airoha_locus_threshold code (0 1 2)", AirohaLocusThreshold.BY_CODE, "digits", 1, 1)
-        threshold = (_INTEGER_1_TO_50000.get(fields[1]) or rt.integer_field(fields[1], address, 2, "threshold", "integer 1..50000", 1, 50000, _INTEGER_1_TO_50000)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(threshold_kind, threshold, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.threshold_kind),
-            rt.text_of(self.threshold),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR904",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"threshold_kind":' + show(self.threshold_kind),
-            '"threshold":' + show(self.threshold),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "threshold_kind"), 1)
-        out += rt.json_texts(rt.json_member(fields, "threshold"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair904, )

@@ -16,10 +16,11 @@ from ..enums import AirohaLocusThreshold
 
 
 @dataclass(slots=True)
-class Pair905:
+class Pair905(rt.Sentence):
     """PAIR905: Query a LOCUS threshold.
 
-    Example (airoha_lc76g): $PAIR905,0*2A
+    Example (airoha_lc76g):
+    $PAIR905,0*2A
     """
 
     SENTENCE: ClassVar[str] = "PAIR905"
@@ -33,57 +34,18 @@ class Pair905:
         ("PAIR001", None, (("command", "integer", 905), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PAIR905", "proprietary", "$", 1, 1, (
+        rt.EnumField("threshold_kind", "airoha_locus_threshold code (0 1 2)", AirohaLocusThreshold),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     threshold_kind: AirohaLocusThreshold | str | None = None
     """Threshold kind: Time, speed or distance threshold."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pair905:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PAIR905", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PAIR905", 1, count)
-        threshold_kind = AirohaLocusThreshold.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "threshold_kind", "airoha_locus_threshold code (0 1 2)", AirohaLocusThreshold.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(threshold_kind, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.threshold_kind),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PAIR905",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"threshold_kind":' + show(self.threshold_kind),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "threshold_kind"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pair905, )

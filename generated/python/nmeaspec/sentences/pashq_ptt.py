@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PASHQ_PTT: Query the PPS time tag (PTT).
 
-Asks for the time tag of the next PPS pulse; the answer comes right after that pulse, on the
-given port or on the port of the query.
+Asks for the time tag of the next PPS pulse; the answer comes right after that pulse, on the given
+port or on the port of the query.
 """
 
 from __future__ import annotations
@@ -17,10 +17,11 @@ from ..enums import AshtechPort
 
 
 @dataclass(slots=True)
-class PashqPtt:
+class PashqPtt(rt.Sentence):
     """PASHQ_PTT: Query the PPS time tag (PTT).
 
-    Example (ashtech): $PASHQ,PTT,A
+    Example (ashtech):
+    $PASHQ,PTT,A
     """
 
     SENTENCE: ClassVar[str] = "PASHQ_PTT"
@@ -34,74 +35,27 @@ class PashqPtt:
         ("PASHR_PTT", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHQ_PTT", "proprietary", "$", 1, 2, (
+        rt.KeywordField("keyword", "PTT", "PTT"),
+        rt.EnumField(
+            "port",
+            "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)",
+            AshtechPort,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "PTT"
     """Query: Query keyword."""
     port: AshtechPort | str | None | rt._Absent = rt.ABSENT
-    """Output port: Port on which the answer is to be sent; when absent, the port the query came from."""
+    """Output port: Port on which the answer is to be sent; when absent, the port the query came
+    from."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashqPtt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PASHQ_PTT", 1, count)
-        if count > 2:
-            raise rt.too_many(address, "PASHQ_PTT", 2, count)
-        optional = count - 1
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "PTT", "PTT")
-        port: AshtechPort | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            port = AshtechPort.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "port", "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)", AshtechPort.BY_CODE, "alnum", 1, 2)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, port, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.port is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.port)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHQ",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-        ]
-        if self.port is not rt.ABSENT:
-            parts.append('"port":' + show(self.port))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        if "port" in fields:
-            out += rt.json_texts(fields["port"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashqPtt, )

@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PASHR: Roll and pitch (RT300 form, no message keyword).
 
-Attitude sentence of inertial units and GNSS/INS receivers that reuse the Ashtech address
-without a message keyword: time, true heading, roll and pitch with their accuracy estimates, the
-GNSS solution quality and the alignment state of the inertial unit. The first field is the time,
-which tells it apart from the Ashtech $PASHR,<keyword> messages.
+Attitude sentence of inertial units and GNSS/INS receivers that reuse the Ashtech address without a
+message keyword: time, true heading, roll and pitch with their accuracy estimates, the GNSS solution
+quality and the alignment state of the inertial unit. The first field is the time, which tells it
+apart from the Ashtech $PASHR,<keyword> messages.
 """
 
 from __future__ import annotations
@@ -17,15 +17,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AshtechRt300Alignment, AshtechRt300Quality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pashr:
+class Pashr(rt.Sentence):
     """PASHR: Roll and pitch (RT300 form, no message keyword).
-
     """
 
     SENTENCE: ClassVar[str] = "PASHR"
@@ -35,6 +30,28 @@ class Pashr:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR", "proprietary", "$", 11, 11, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("heading", "decimal number"),
+        rt.LiteralField("heading_true", "T or nothing", "T"),
+        rt.DecimalField("roll", "decimal number"),
+        rt.DecimalField("pitch", "decimal number"),
+        rt.TextField("reserved", "text"),
+        rt.DecimalField("roll_accuracy", "decimal number"),
+        rt.DecimalField("pitch_accuracy", "decimal number"),
+        rt.DecimalField("heading_accuracy", "decimal number"),
+        rt.EnumField(
+            "gnss_quality",
+            "ashtech_rt300_quality code (0 1 2 3 4 5 6)",
+            AshtechRt300Quality,
+        ),
+        rt.EnumField(
+            "imu_alignment",
+            "ashtech_rt300_alignment code (0 1 2 3 4)",
+            AshtechRt300Alignment,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     time: rt.Time | None = None
     """UTC time: UTC time of the attitude data."""
     heading: rt.Number | None = None
@@ -46,7 +63,8 @@ class Pashr:
     pitch: rt.Number | None = None
     """Pitch [deg]: Pitch angle in degrees."""
     reserved: str | None = None
-    """Reserved: Reserved field, not supported (usually empty; heave in some other products' use of the same layout)."""
+    """Reserved: Reserved field, not supported (usually empty; heave in some other products' use of
+    the same layout)."""
     roll_accuracy: rt.Number | None = None
     """Roll accuracy [deg]: Estimated accuracy of the roll angle, in degrees."""
     pitch_accuracy: rt.Number | None = None
@@ -56,96 +74,14 @@ class Pashr:
     gnss_quality: AshtechRt300Quality | str | None = None
     """GNSS quality: Quality of the GNSS solution, 0 (no fix) to 6 (dead reckoning)."""
     imu_alignment: AshtechRt300Alignment | str | None = None
-    """IMU alignment status: Alignment state of the inertial unit, 0 (GNSS only) to 4 (full navigation)."""
+    """IMU alignment status: Alignment state of the inertial unit, 0 (GNSS only) to 4 (full
+    navigation)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pashr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "PASHR", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "PASHR", 11, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        heading = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "heading", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        heading_true = "T" if fields[2] == "T" else rt.literal_field(fields[2], address, 3, "heading_true", "T or nothing", "T")
-        roll = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "roll", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        pitch = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "pitch", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        reserved = rt.text_field(fields[5], address, 6, "reserved", "text", None)
-        roll_accuracy = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "roll_accuracy", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        pitch_accuracy = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "pitch_accuracy", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        heading_accuracy = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "heading_accuracy", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        gnss_quality = AshtechRt300Quality.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "gnss_quality", "ashtech_rt300_quality code (0 1 2 3 4 5 6)", AshtechRt300Quality.BY_CODE, "digits", 1, 1)
-        imu_alignment = AshtechRt300Alignment.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "imu_alignment", "ashtech_rt300_alignment code (0 1 2 3 4)", AshtechRt300Alignment.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(time, heading, heading_true, roll, pitch, reserved, roll_accuracy, pitch_accuracy, heading_accuracy, gnss_quality, imu_alignment, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.heading),
-            rt.text_of(self.heading_true),
-            rt.text_of(self.roll),
-            rt.text_of(self.pitch),
-            rt.text_of(self.reserved),
-            rt.text_of(self.roll_accuracy),
-            rt.text_of(self.pitch_accuracy),
-            rt.text_of(self.heading_accuracy),
-            rt.text_of(self.gnss_quality),
-            rt.text_of(self.imu_alignment),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"heading":' + show(self.heading),
-            '"heading_true":' + show(self.heading_true),
-            '"roll":' + show(self.roll),
-            '"pitch":' + show(self.pitch),
-            '"reserved":' + show(self.reserved),
-            '"roll_accuracy":' + show(self.roll_accuracy),
-            '"pitch_accuracy":' + show(self.pitch_accuracy),
-            '"heading_accuracy":' + show(self.heading_accuracy),
-            '"gnss_quality":' + show(self.gnss_quality),
-            '"imu_alignment":' + show(self.imu_alignment),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_true"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gnss_quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "imu_alignment"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pashr, )

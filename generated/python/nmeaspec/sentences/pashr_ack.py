@@ -15,10 +15,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class PashrAck:
+class PashrAck(rt.Sentence):
     """PASHR_ACK: Set command accepted (ACK).
 
-    Example (ashtech_promark800): $PASHR,ACK*3D
+    Example (ashtech_promark800):
+    $PASHR,ACK*3D
     """
 
     SENTENCE: ClassVar[str] = "PASHR_ACK"
@@ -28,57 +29,18 @@ class PashrAck:
     SELECTOR: ClassVar[str | None] = "ACK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_ACK", "proprietary", "$", 1, 1, (
+        rt.KeywordField("keyword", "ACK", "ACK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "ACK"
     """Message: Message keyword."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PASHR_ACK", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PASHR_ACK", 1, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "ACK", "ACK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrAck, )

@@ -5,8 +5,8 @@
 
 Attitude of a multi-antenna Ashtech/Spectra receiver: GPS time of week, true heading, pitch and
 roll, the RMS errors of the carrier measurements and of the baseline, and whether the integer
-ambiguities are fixed. Output periodically when enabled with $PASHS,NME,ATT, or once in answer
-to $PASHQ,ATT.
+ambiguities are fixed. Output periodically when enabled with $PASHS,NME,ATT, or once in answer to
+$PASHQ,ATT.
 """
 
 from __future__ import annotations
@@ -17,19 +17,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_359_POINT_99: dict[Any, Any] = rt.known("decimal 0..359.99")
-_DECIMAL_0_TO_604799_POINT_99: dict[Any, Any] = rt.known("decimal 0..604799.99")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class PashrAtt:
+class PashrAtt(rt.Sentence):
     """PASHR_ATT: Heading, pitch and roll (ATT).
 
-    Example (ashtech): $PASHR,ATT,310080.0,248.57,+04.22,,0.0027,0.0000,0*2B
+    Example (ashtech_uhdas):
+    $PASHR,ATT,88536.0000,345.9640,0.0390,-0.9052,0.0024,0.0144,0*0E
     """
 
     SENTENCE: ClassVar[str] = "PASHR_ATT"
@@ -39,6 +33,17 @@ class PashrAtt:
     SELECTOR: ClassVar[str | None] = "ATT"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_ATT", "proprietary", "$", 8, 8, (
+        rt.KeywordField("keyword", "ATT", "ATT"),
+        rt.DecimalField("week_time", "decimal number 0..604799.99", 0, Decimal("604799.99")),
+        rt.DecimalField("heading", "decimal number 0..359.99", 0, Decimal("359.99")),
+        rt.DecimalField("pitch", "decimal number -90..90", -90, 90),
+        rt.DecimalField("roll", "decimal number -90..90", -90, 90),
+        rt.DecimalField("carrier_rms", "decimal number"),
+        rt.DecimalField("baseline_rms", "decimal number"),
+        rt.IntegerField("ambiguity", "integer of at least 0", 0, None),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "ATT"
     """Message: Message keyword."""
     week_time: rt.Number | None = None
@@ -54,84 +59,14 @@ class PashrAtt:
     baseline_rms: rt.Number | None = None
     """Baseline RMS error [m]: RMS error of the baseline, in metres."""
     ambiguity: rt.Number | None = None
-    """Ambiguity state: 0 when the integer ambiguities are fixed, greater than 0 when they are float. UHDAS calls it the reacquisition flag and reads a value of 1 as bad attitude data."""
+    """Ambiguity state: 0 when the integer ambiguities are fixed, greater than 0 when they are
+    float. UHDAS calls it the reacquisition flag and reads a value of 1 as bad attitude data."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrAtt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "PASHR_ATT", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "PASHR_ATT", 8, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "ATT", "ATT")
-        week_time = (_DECIMAL_0_TO_604799_POINT_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "week_time", "decimal number 0..604799.99", 0, Decimal("604799.99"), _DECIMAL_0_TO_604799_POINT_99)) if fields[1] else None
-        heading = (_DECIMAL_0_TO_359_POINT_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "heading", "decimal number 0..359.99", 0, Decimal("359.99"), _DECIMAL_0_TO_359_POINT_99)) if fields[2] else None
-        pitch = (_DECIMAL_MINUS_90_TO_90.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "pitch", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[3] else None
-        roll = (_DECIMAL_MINUS_90_TO_90.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "roll", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[4] else None
-        carrier_rms = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "carrier_rms", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        baseline_rms = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "baseline_rms", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        ambiguity = (_INTEGER_0_TO.get(fields[7]) or rt.integer_field(fields[7], address, 8, "ambiguity", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[7] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, week_time, heading, pitch, roll, carrier_rms, baseline_rms, ambiguity, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.week_time),
-            rt.text_of(self.heading),
-            rt.text_of(self.pitch),
-            rt.text_of(self.roll),
-            rt.text_of(self.carrier_rms),
-            rt.text_of(self.baseline_rms),
-            rt.text_of(self.ambiguity),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"week_time":' + show(self.week_time),
-            '"heading":' + show(self.heading),
-            '"pitch":' + show(self.pitch),
-            '"roll":' + show(self.roll),
-            '"carrier_rms":' + show(self.carrier_rms),
-            '"baseline_rms":' + show(self.baseline_rms),
-            '"ambiguity":' + show(self.ambiguity),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "week_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "carrier_rms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baseline_rms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ambiguity"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrAtt, )

@@ -3,11 +3,11 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PASHR_HPR: True heading, pitch and roll with baseline state (HPR).
 
-Attitude message of Spectra Geospatial heading receivers: UTC time, true heading, pitch and
-roll, the RMS errors of the carrier measurements and of the baseline, the ambiguity state, the
-attitude/heading mode, the antenna setup with its double-difference counts and the PDOP of the
-first vector. A two-antenna setup gives pitch or roll, not both, depending on how the antennas
-are mounted.
+Attitude message of Spectra Geospatial heading receivers: UTC time, true heading, pitch and roll,
+the RMS errors of the carrier measurements and of the baseline, the ambiguity state, the
+attitude/heading mode, the antenna setup with its double-difference counts and the PDOP of the first
+vector. A two-antenna setup gives pitch or roll, not both, depending on how the antennas are
+mounted.
 """
 
 from __future__ import annotations
@@ -19,18 +19,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AshtechHprMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_359_POINT_99999: dict[Any, Any] = rt.known("decimal 0..359.99999")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PashrHpr:
+class PashrHpr(rt.Sentence):
     """PASHR_HPR: True heading, pitch and roll with baseline state (HPR).
-
     """
 
     SENTENCE: ClassVar[str] = "PASHR_HPR"
@@ -40,6 +32,20 @@ class PashrHpr:
     SELECTOR: ClassVar[str | None] = "HPR"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_HPR", "proprietary", "$", 11, 11, (
+        rt.KeywordField("keyword", "HPR", "HPR"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("heading", "decimal number 0..359.99999", 0, Decimal("359.99999")),
+        rt.DecimalField("pitch", "decimal number -90..90", -90, 90),
+        rt.DecimalField("roll", "decimal number -90..90", -90, 90),
+        rt.DecimalField("carrier_rms", "decimal number"),
+        rt.DecimalField("baseline_rms", "decimal number"),
+        rt.IntegerField("ambiguity", "integer of at least 0", 0, None),
+        rt.EnumField("mode", "ashtech_hpr_mode code (0 1 2)", AshtechHprMode),
+        rt.TextField("antenna_setup", "text"),
+        rt.DecimalField("pdop", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "HPR"
     """Message: Message keyword."""
     time: rt.Time | None = None
@@ -53,104 +59,29 @@ class PashrHpr:
     carrier_rms: rt.Number | None = None
     """Carrier measurement RMS error [m]: RMS error of the carrier phase measurements, in metres."""
     baseline_rms: rt.Number | None = None
-    """Baseline RMS error [m]: RMS error of the baseline in metres; 0 when the baseline length is not constrained."""
+    """Baseline RMS error [m]: RMS error of the baseline in metres; 0 when the baseline length is
+    not constrained."""
     ambiguity: rt.Number | None = None
-    """Ambiguity state: 0 when the integer ambiguities are fixed, greater than 0 when they are float."""
+    """Ambiguity state: 0 when the integer ambiguities are fixed, greater than 0 when they are
+    float."""
     mode: AshtechHprMode | str | None = None
-    """Attitude/heading mode: 0 fixed baseline length, 1 calibration in progress, 2 flexible baseline."""
+    """Attitude/heading mode: 0 fixed baseline length, 1 calibration in progress, 2 flexible
+    baseline."""
     antenna_setup: str | None = None
-    """Antenna setup and double differences: Four digits written y.xxx: y is the antenna setup (0 no length constraint, 1 heading mode with one vector, 2 attitude with two vectors, 3 attitude with three or more vectors); each x is the number of double differences (0-9, 9 meaning 9 or more) used for one baseline at the last whole-second epoch, the last x being 0 with only two vectors."""
+    """Antenna setup and double differences: Four digits written y.xxx: y is the antenna setup (0 no
+    length constraint, 1 heading mode with one vector, 2 attitude with two vectors, 3 attitude with
+    three or more vectors); each x is the number of double differences (0-9, 9 meaning 9 or more)
+    used for one baseline at the last whole-second epoch, the last x being 0 with only two
+    vectors."""
     pdop: rt.Number | None = None
-    """PDOP of vector V12: PDOP of the first vector (V12) at the last whole-second epoch; empty when unknown."""
+    """PDOP of vector V12: PDOP of the first vector (V12) at the last whole-second epoch; empty when
+    unknown."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrHpr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "PASHR_HPR", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "PASHR_HPR", 11, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "HPR", "HPR")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        heading = (_DECIMAL_0_TO_359_POINT_99999.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "heading", "decimal number 0..359.99999", 0, Decimal("359.99999"), _DECIMAL_0_TO_359_POINT_99999)) if fields[2] else None
-        pitch = (_DECIMAL_MINUS_90_TO_90.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "pitch", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[3] else None
-        roll = (_DECIMAL_MINUS_90_TO_90.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "roll", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[4] else None
-        carrier_rms = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "carrier_rms", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        baseline_rms = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "baseline_rms", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        ambiguity = (_INTEGER_0_TO.get(fields[7]) or rt.integer_field(fields[7], address, 8, "ambiguity", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[7] else None
-        mode = AshtechHprMode.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "mode", "ashtech_hpr_mode code (0 1 2)", AshtechHprMode.BY_CODE, "digits", 1, 1)
-        antenna_setup = rt.text_field(fields[9], address, 10, "antenna_setup", "text", None)
-        pdop = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "pdop", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, heading, pitch, roll, carrier_rms, baseline_rms, ambiguity, mode, antenna_setup, pdop, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.heading),
-            rt.text_of(self.pitch),
-            rt.text_of(self.roll),
-            rt.text_of(self.carrier_rms),
-            rt.text_of(self.baseline_rms),
-            rt.text_of(self.ambiguity),
-            rt.text_of(self.mode),
-            rt.text_of(self.antenna_setup),
-            rt.text_of(self.pdop),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"heading":' + show(self.heading),
-            '"pitch":' + show(self.pitch),
-            '"roll":' + show(self.roll),
-            '"carrier_rms":' + show(self.carrier_rms),
-            '"baseline_rms":' + show(self.baseline_rms),
-            '"ambiguity":' + show(self.ambiguity),
-            '"mode":' + show(self.mode),
-            '"antenna_setup":' + show(self.antenna_setup),
-            '"pdop":' + show(self.pdop),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "carrier_rms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baseline_rms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ambiguity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "antenna_setup"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrHpr, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PASHR_NAK: Set command rejected (NAK).
 
-Answer of the receiver to a set command ($PASHS,...) that it did not accept: mistyped, with
-wrong parameters, or needing a firmware option that is not installed.
+Answer of the receiver to a set command ($PASHS,...) that it did not accept: mistyped, with wrong
+parameters, or needing a firmware option that is not installed.
 """
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class PashrNak:
+class PashrNak(rt.Sentence):
     """PASHR_NAK: Set command rejected (NAK).
 
-    Example (ashtech_promark800): $PASHR,NAK*30
+    Example (ashtech_promark800):
+    $PASHR,NAK*30
     """
 
     SENTENCE: ClassVar[str] = "PASHR_NAK"
@@ -31,57 +32,18 @@ class PashrNak:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_NAK", "proprietary", "$", 1, 1, (
+        rt.KeywordField("keyword", "NAK", "NAK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "NAK"
     """Message: Message keyword."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrNak:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PASHR_NAK", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PASHR_NAK", 1, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NAK", "NAK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrNak, )

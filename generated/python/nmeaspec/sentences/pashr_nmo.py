@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PASHR_NMO: NMEA message output settings (NMO).
 
-Answer to $PASHQ,NMO: the port queried, its baud rate code, the default NMEA output period set
-by $PASHS,NME,PER, and for every NMEA or NMEA-like message the output rate on that port (0 when
-the message is off).
+Answer to $PASHQ,NMO: the port queried, its baud rate code, the default NMEA output period set by
+$PASHS,NME,PER, and for every NMEA or NMEA-like message the output rate on that port (0 when the
+message is off).
 """
 
 from __future__ import annotations
@@ -16,11 +16,6 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AshtechPort
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO_999: dict[Any, Any] = rt.known("decimal 0..999")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_15: dict[Any, Any] = rt.known("integer 0..15")
-
 
 @dataclass(slots=True)
 class PashrNmoMessage:
@@ -29,14 +24,16 @@ class PashrNmoMessage:
     message: str | None = None
     """Message type: Three-letter message type (ALM, GGA, ..., ATT, POS, SAT, PTT, TTT)."""
     rate: rt.Number | None = None
-    """Output rate [s]: Output period of the message on this port, in seconds; 0 when the message is disabled."""
+    """Output rate [s]: Output period of the message on this port, in seconds; 0 when the message is
+    disabled."""
 
 
 @dataclass(slots=True)
-class PashrNmo:
+class PashrNmo(rt.Sentence):
     """PASHR_NMO: NMEA message output settings (NMO).
 
-    Example (ashtech): $PASHR,NMO,P,0,001.00,26,ALM,0.00,DTM,0.00,GGA,0.00,GLL,0.00,GRS,0.00,GSA,0.00,GST,0.00,GSV,0.00,HDT,0.00,RMC,0.00,VTG,0.00,XDR,0,ZDA,0.00,ATT,0.00,CRT,0.00,DCR,0.00,DPO,0.00,POS,0.00,RRE,0.00,SAT,0.00,SGL,0.00,SGP,0.00,VEC,0.00,LTN,0.00,PTT,0,TTT,0*6C
+    Example (ashtech):
+    $PASHR,NMO,P,0,001.00,26,ALM,0.00,DTM,0.00,GGA,0.00,GLL,0.00,GRS,0.00,GSA,0.00,GST,0.00,GSV,0.00,HDT,0.00,RMC,0.00,VTG,0.00,XDR,0,ZDA,0.00,ATT,0.00,CRT,0.00,DCR,0.00,DPO,0.00,POS,0.00,RRE,0.00,SAT,0.00,SGL,0.00,SGP,0.00,VEC,0.00,LTN,0.00,PTT,0,TTT,0*6C
     """
 
     SENTENCE: ClassVar[str] = "PASHR_NMO"
@@ -46,6 +43,22 @@ class PashrNmo:
     SELECTOR: ClassVar[str | None] = "NMO"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_NMO", "proprietary", "$", 5, 133, (
+        rt.KeywordField("keyword", "NMO", "NMO"),
+        rt.EnumField(
+            "port",
+            "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)",
+            AshtechPort,
+        ),
+        rt.IntegerField("baud_code", "integer 0..15", 0, 15),
+        rt.DecimalField("period", "decimal number 0..999", 0, 999),
+        rt.IntegerField("count", "integer of at least 0", 0, None),
+        rt.Group("messages", PashrNmoMessage, (
+            rt.TextField("message", "text of at most 3 characters", 3),
+            rt.DecimalField("rate", "decimal number 0..999", 0, 999),
+        ), 0, 64),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "NMO"
     """Message: Message keyword."""
     port: AshtechPort | str | None = None
@@ -53,94 +66,18 @@ class PashrNmo:
     baud_code: rt.Number | None = None
     """Baud rate code: Baud rate code of the port (0-15 on serial ports, 0 or 1 on the others)."""
     period: rt.Number | None = None
-    """Default output period [s]: Output period set by the last $PASHS,NME,PER command, in seconds."""
+    """Default output period [s]: Output period set by the last $PASHS,NME,PER command, in
+    seconds."""
     count: rt.Number | None = None
     """Number of messages: Number of message entries that follow."""
     messages: list[PashrNmoMessage] = field(default_factory=list)
     """Messages: 0 to 64 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrNmo:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 5) // 2, 64)
-        optional = count - 5 - repeats * 2
-        if count < 5 or optional > 0:
-            rt.split_group(address, "PASHR_NMO", "messages", count, 5, 2, 0, 64, 0)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NMO", "NMO")
-        port = AshtechPort.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "port", "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)", AshtechPort.BY_CODE, "alnum", 1, 2)
-        baud_code = (_INTEGER_0_TO_15.get(fields[2]) or rt.integer_field(fields[2], address, 3, "baud_code", "integer 0..15", 0, 15, _INTEGER_0_TO_15)) if fields[2] else None
-        period = (_DECIMAL_0_TO_999.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "period", "decimal number 0..999", 0, 999, _DECIMAL_0_TO_999)) if fields[3] else None
-        count_ = (_INTEGER_0_TO.get(fields[4]) or rt.integer_field(fields[4], address, 5, "count", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[4] else None
-        messages: list[PashrNmoMessage] = []
-        pos = 5
-        for entry in range(repeats):
-            messages.append(PashrNmoMessage(
-                rt.text_field(fields[pos], address, pos + 1, f"messages[{entry + 1}].message", "text of at most 3 characters", 3),
-                (_DECIMAL_0_TO_999.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, f"messages[{entry + 1}].rate", "decimal number 0..999", 0, 999, _DECIMAL_0_TO_999)) if fields[pos + 1] else None,
-            ))
-            pos += 2
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, port, baud_code, period, count_, messages, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.port),
-            rt.text_of(self.baud_code),
-            rt.text_of(self.period),
-            rt.text_of(self.count),
-        ]
-        for entry in self.messages:
-            out += [rt.text_of(entry.message), rt.text_of(entry.rate)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"port":' + show(self.port),
-            '"baud_code":' + show(self.baud_code),
-            '"period":' + show(self.period),
-            '"count":' + show(self.count),
-            '"messages":[' + ",".join(
-                "{" + '"message":' + show(entry.message) + ',"rate":' + show(entry.rate) + "}"
-                for entry in self.messages) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "period"), 1)
-        out += rt.json_texts(rt.json_member(fields, "count"), 1)
-        for entry in rt.json_list(fields, "messages"):
-            out += rt.json_texts(rt.json_member(entry, "message"), 1)
-            out += rt.json_texts(rt.json_member(entry, "rate"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrNmo, )

@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_90: dict[Any, Any] = rt.known("integer 0..90")
-
 
 @dataclass(slots=True)
-class PashrPem:
+class PashrPem(rt.Sentence):
     """PASHR_PEM: Position elevation mask (PEM).
 
-    Example (ashtech_promark800): $PASHR,PEM,9*39
+    Example (ashtech_promark800):
+    $PASHR,PEM,9*39
     """
 
     SENTENCE: ClassVar[str] = "PASHR_PEM"
@@ -31,63 +29,22 @@ class PashrPem:
     SELECTOR: ClassVar[str | None] = "PEM"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_PEM", "proprietary", "$", 2, 2, (
+        rt.KeywordField("keyword", "PEM", "PEM"),
+        rt.IntegerField("mask", "integer 0..90", 0, 90),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "PEM"
     """Message: Message keyword."""
     mask: rt.Number | None = None
-    """Position elevation mask [deg]: Elevation mask angle used in the position computation, in degrees."""
+    """Position elevation mask [deg]: Elevation mask angle used in the position computation, in
+    degrees."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrPem:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PASHR_PEM", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PASHR_PEM", 2, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "PEM", "PEM")
-        mask = (_INTEGER_0_TO_90.get(fields[1]) or rt.integer_field(fields[1], address, 2, "mask", "integer 0..90", 0, 90, _INTEGER_0_TO_90)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, mask, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.mask),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"mask":' + show(self.mask),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mask"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrPem, )

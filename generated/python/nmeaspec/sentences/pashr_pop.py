@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class PashrPop:
+class PashrPop(rt.Sentence):
     """PASHR_POP: Internal update rate (POP).
 
-    Example (ashtech): $PASHR,POP,10*16
+    Example (ashtech):
+    $PASHR,POP,10*16
     """
 
     SENTENCE: ClassVar[str] = "PASHR_POP"
@@ -31,63 +29,21 @@ class PashrPop:
     SELECTOR: ClassVar[str | None] = "POP"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_POP", "proprietary", "$", 2, 2, (
+        rt.KeywordField("keyword", "POP", "POP"),
+        rt.IntegerField("rate", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "POP"
     """Message: Message keyword."""
     rate: rt.Number | None = None
     """Update rate [Hz]: Internal update rate in Hz (10 or 20 on the ProFlex 800, 20 by default)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrPop:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PASHR_POP", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PASHR_POP", 2, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "POP", "POP")
-        rate = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "rate", "integer", None, None, _INTEGER)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, rate, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.rate),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"rate":' + show(self.rate),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrPop, )

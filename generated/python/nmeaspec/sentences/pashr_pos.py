@@ -3,11 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PASHR_POS: Position, velocity and DOP (POS).
 
-Position message of Ashtech/Spectra receivers: solution type, satellites used, UTC time,
-latitude, longitude and ellipsoidal height, age of corrections, course, speed, vertical
-velocity, the four DOPs and the base station. Output periodically when enabled with
-$PASHS,NME,POS, or once in answer to $PASHQ,POS. When no position is computed the position
-fields are empty.
+Position message of Ashtech/Spectra receivers: solution type, satellites used, UTC time, latitude,
+longitude and ellipsoidal height, age of corrections, course, speed, vertical velocity, the four
+DOPs and the base station. Output periodically when enabled with $PASHS,NME,POS, or once in answer
+to $PASHQ,POS. When no position is computed the position fields are empty.
 """
 
 from __future__ import annotations
@@ -19,23 +18,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AshtechPosSolution
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO_359_POINT_9: dict[Any, Any] = rt.known("decimal 0..359.9")
-_DECIMAL_0_TO_999_POINT_9: dict[Any, Any] = rt.known("decimal 0..999.9")
-_DECIMAL_0_TO_999_POINT_999: dict[Any, Any] = rt.known("decimal 0..999.999")
-_DECIMAL_0_TO_99_POINT_9: dict[Any, Any] = rt.known("decimal 0..99.9")
-_DECIMAL_MINUS_9999_POINT_999_TO_9999_POINT_999: dict[Any, Any] = rt.known("decimal -9999.999..9999.999")
-_DECIMAL_MINUS_999_POINT_999_TO_999_POINT_999: dict[Any, Any] = rt.known("decimal -999.999..999.999")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PashrPos:
+class PashrPos(rt.Sentence):
     """PASHR_POS: Position, velocity and DOP (POS).
-
     """
 
     SENTENCE: ClassVar[str] = "PASHR_POS"
@@ -45,12 +31,47 @@ class PashrPos:
     SELECTOR: ClassVar[str | None] = "POS"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_POS", "proprietary", "$", 18, 18, (
+        rt.KeywordField("keyword", "POS", "POS"),
+        rt.EnumField(
+            "solution",
+            "ashtech_pos_solution code (0 1 2 3 5 9 10 12 13 22 23)",
+            AshtechPosSolution,
+        ),
+        rt.IntegerField("satellites", "integer of at least 0", 0, None),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField(
+            "altitude",
+            "decimal number -9999.999..9999.999",
+            Decimal("-9999.999"),
+            Decimal("9999.999"),
+        ),
+        rt.DecimalField("correction_age", "decimal number 0..999.9", 0, Decimal("999.9")),
+        rt.DecimalField("course", "decimal number 0..359.9", 0, Decimal("359.9")),
+        rt.DecimalField("speed", "decimal number 0..999.999", 0, Decimal("999.999")),
+        rt.DecimalField(
+            "vertical_velocity",
+            "decimal number -999.999..999.999",
+            Decimal("-999.999"),
+            Decimal("999.999"),
+        ),
+        rt.DecimalField("pdop", "decimal number 0..99.9", 0, Decimal("99.9")),
+        rt.DecimalField("hdop", "decimal number 0..99.9", 0, Decimal("99.9")),
+        rt.DecimalField("vdop", "decimal number 0..99.9", 0, Decimal("99.9")),
+        rt.DecimalField("tdop", "decimal number 0..99.9", 0, Decimal("99.9")),
+        rt.TextField("base_id", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "POS"
     """Message: Message keyword."""
     solution: AshtechPosSolution | str | None = None
-    """Solution type: Kind of position solution (autonomous, code differential, RTK float/fixed, ...)."""
+    """Solution type: Kind of position solution (autonomous, code differential, RTK float/fixed,
+    ...)."""
     satellites: rt.Number | None = None
-    """Satellites used: Number of satellites used in the position computation (0-26 on later receivers, 3-12 on the Z-Family)."""
+    """Satellites used: Number of satellites used in the position computation (0-26 on later
+    receivers, 3-12 on the Z-Family)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the position."""
     lat: rt.Coordinate | None = None
@@ -60,7 +81,8 @@ class PashrPos:
     altitude: rt.Number | None = None
     """Ellipsoidal height [m]: Height above the WGS84 ellipsoid, in metres."""
     correction_age: rt.Number | None = None
-    """Age of corrections [s]: Age of the differential corrections, in seconds; empty without corrections."""
+    """Age of corrections [s]: Age of the differential corrections, in seconds; empty without
+    corrections."""
     course: rt.Number | None = None
     """Course over ground [deg]: True track (course over ground), in degrees."""
     speed: rt.Number | None = None
@@ -76,116 +98,14 @@ class PashrPos:
     tdop: rt.Number | None = None
     """TDOP: Time dilution of precision."""
     base_id: str | None = None
-    """Base station ID / last field: Base station ID (0-4095) in the later Spectra Geospatial manual; the ProFlex 800 and Z-Family syntax lines give this last field as a string (s17)."""
+    """Base station ID / last field: Base station ID (0-4095) in the later Spectra Geospatial
+    manual; the ProFlex 800 and Z-Family syntax lines give this last field as a string (s17)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrPos:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 18:
-            raise rt.too_few(address, "PASHR_POS", 18, count)
-        if count > 18:
-            raise rt.too_many(address, "PASHR_POS", 18, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "POS", "POS")
-        solution = AshtechPosSolution.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "solution", "ashtech_pos_solution code (0 1 2 3 5 9 10 12 13 22 23)", AshtechPosSolution.BY_CODE, "digits", 1, 2)
-        satellites = (_INTEGER_0_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "satellites", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[2] else None
-        time = (_TIME.get(fields[3]) or rt.time_field(fields[3], address, 4, "time", "time hhmmss[.s]", _TIME)) if fields[3] else None
-        lat = _LATITUDE.get((fields[4], fields[5])) or rt.coordinate_field(fields[4], fields[5], address, 5, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[6], fields[7])) or rt.coordinate_field(fields[6], fields[7], address, 7, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        altitude = (_DECIMAL_MINUS_9999_POINT_999_TO_9999_POINT_999.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "altitude", "decimal number -9999.999..9999.999", Decimal("-9999.999"), Decimal("9999.999"), _DECIMAL_MINUS_9999_POINT_999_TO_9999_POINT_999)) if fields[8] else None
-        correction_age = (_DECIMAL_0_TO_999_POINT_9.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "correction_age", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[9] else None
-        course = (_DECIMAL_0_TO_359_POINT_9.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "course", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[10] else None
-        speed = (_DECIMAL_0_TO_999_POINT_999.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "speed", "decimal number 0..999.999", 0, Decimal("999.999"), _DECIMAL_0_TO_999_POINT_999)) if fields[11] else None
-        vertical_velocity = (_DECIMAL_MINUS_999_POINT_999_TO_999_POINT_999.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "vertical_velocity", "decimal number -999.999..999.999", Decimal("-999.999"), Decimal("999.999"), _DECIMAL_MINUS_999_POINT_999_TO_999_POINT_999)) if fields[12] else None
-        pdop = (_DECIMAL_0_TO_99_POINT_9.get(fields[13]) or rt.decimal_field(fields[13], address, 14, "pdop", "decimal number 0..99.9", 0, Decimal("99.9"), _DECIMAL_0_TO_99_POINT_9)) if fields[13] else None
-        hdop = (_DECIMAL_0_TO_99_POINT_9.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "hdop", "decimal number 0..99.9", 0, Decimal("99.9"), _DECIMAL_0_TO_99_POINT_9)) if fields[14] else None
-        vdop = (_DECIMAL_0_TO_99_POINT_9.get(fields[15]) or rt.decimal_field(fields[15], address, 16, "vdop", "decimal number 0..99.9", 0, Decimal("99.9"), _DECIMAL_0_TO_99_POINT_9)) if fields[15] else None
-        tdop = (_DECIMAL_0_TO_99_POINT_9.get(fields[16]) or rt.decimal_field(fields[16], address, 17, "tdop", "decimal number 0..99.9", 0, Decimal("99.9"), _DECIMAL_0_TO_99_POINT_9)) if fields[16] else None
-        base_id = rt.text_field(fields[17], address, 18, "base_id", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, solution, satellites, time, lat, lon, altitude, correction_age, course, speed, vertical_velocity, pdop, hdop, vdop, tdop, base_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.solution),
-            rt.text_of(self.satellites),
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.altitude),
-            rt.text_of(self.correction_age),
-            rt.text_of(self.course),
-            rt.text_of(self.speed),
-            rt.text_of(self.vertical_velocity),
-            rt.text_of(self.pdop),
-            rt.text_of(self.hdop),
-            rt.text_of(self.vdop),
-            rt.text_of(self.tdop),
-            rt.text_of(self.base_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"solution":' + show(self.solution),
-            '"satellites":' + show(self.satellites),
-            '"time":' + show(self.time),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"altitude":' + show(self.altitude),
-            '"correction_age":' + show(self.correction_age),
-            '"course":' + show(self.course),
-            '"speed":' + show(self.speed),
-            '"vertical_velocity":' + show(self.vertical_velocity),
-            '"pdop":' + show(self.pdop),
-            '"hdop":' + show(self.hdop),
-            '"vdop":' + show(self.vdop),
-            '"tdop":' + show(self.tdop),
-            '"base_id":' + show(self.base_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "solution"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "correction_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vertical_velocity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "base_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrPos, )

@@ -3,9 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PASHR_PTT: PPS time tag (PTT).
 
-GPS time at which the last PPS pulse was generated, with the day of the week. Output after each
-PPS pulse when enabled with $PASHS,NME,PTT, or once after the next pulse in answer to
-$PASHQ,PTT.
+GPS time at which the last PPS pulse was generated, with the day of the week. Output after each PPS
+pulse when enabled with $PASHS,NME,PTT, or once after the next pulse in answer to $PASHQ,PTT.
 """
 
 from __future__ import annotations
@@ -15,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO_7: dict[Any, Any] = rt.known("integer 1..7")
-
 
 @dataclass(slots=True)
-class PashrPtt:
+class PashrPtt(rt.Sentence):
     """PASHR_PTT: PPS time tag (PTT).
 
-    Example (ashtech): $PASHR,PTT,6,20:41:02.0000000*09
+    Example (ashtech):
+    $PASHR,PTT,6,20:41:02.0000000*09
     """
 
     SENTENCE: ClassVar[str] = "PASHR_PTT"
@@ -33,69 +30,25 @@ class PashrPtt:
     SELECTOR: ClassVar[str | None] = "PTT"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_PTT", "proprietary", "$", 3, 3, (
+        rt.KeywordField("keyword", "PTT", "PTT"),
+        rt.IntegerField("day_of_week", "integer 1..7", 1, 7),
+        rt.TextField("time_tag", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "PTT"
     """Message: Message keyword."""
     day_of_week: rt.Number | None = None
     """Day of week: Day of the GPS week, 1 Sunday to 7 Saturday."""
     time_tag: str | None = None
-    """GPS time tag: GPS time of the PPS pulse (including any PPS offset), written with colons and 7 decimals of seconds."""
+    """GPS time tag: GPS time of the PPS pulse (including any PPS offset), written with colons and 7
+    decimals of seconds."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrPtt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PASHR_PTT", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PASHR_PTT", 3, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "PTT", "PTT")
-        day_of_week = (_INTEGER_1_TO_7.get(fields[1]) or rt.integer_field(fields[1], address, 2, "day_of_week", "integer 1..7", 1, 7, _INTEGER_1_TO_7)) if fields[1] else None
-        time_tag = rt.text_field(fields[2], address, 3, "time_tag", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, day_of_week, time_tag, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.day_of_week),
-            rt.text_of(self.time_tag),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"day_of_week":' + show(self.day_of_week),
-            '"time_tag":' + show(self.time_tag),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "day_of_week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_tag"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrPtt, )

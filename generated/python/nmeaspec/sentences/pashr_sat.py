@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PASHR_SAT: Satellite status (SAT).
 
-Satellites tracked by the receiver, each with its PRN, azimuth, elevation, signal-to-noise ratio
-and whether it is used in the position. Output periodically when enabled with $PASHS,NME,SAT, or
-once in answer to $PASHQ,SAT.
+Satellites tracked by the receiver, each with its PRN, azimuth, elevation, signal-to-noise ratio and
+whether it is used in the position. Output periodically when enabled with $PASHS,NME,SAT, or once in
+answer to $PASHQ,SAT.
 """
 
 from __future__ import annotations
@@ -16,35 +16,32 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AshtechSvUsed
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_359: dict[Any, Any] = rt.known("integer 0..359")
-_INTEGER_0_TO_90: dict[Any, Any] = rt.known("integer 0..90")
-
 
 @dataclass(slots=True)
 class PashrSatSatellite:
     """One entry of satellites (0 to 64 per sentence)."""
 
     prn: rt.Number | None = None
-    """PRN: Satellite number: 1-32 GPS, 33-64 SBAS (EGNOS PRN = number + 87), 65-96 GLONASS (slot = number - 64), 97-126 Galileo (PRN = number - 96), 193-197 QZSS (PRN = number - 192)."""
+    """PRN: Satellite number: 1-32 GPS, 33-64 SBAS (EGNOS PRN = number + 87), 65-96 GLONASS (slot =
+    number - 64), 97-126 Galileo (PRN = number - 96), 193-197 QZSS (PRN = number - 192)."""
     azimuth: rt.Number | None = None
     """Azimuth [deg]: Azimuth of the satellite, in degrees."""
     elevation: rt.Number | None = None
     """Elevation [deg]: Elevation of the satellite, in degrees."""
     snr: rt.Number | None = None
-    """Signal-to-noise ratio [dB-Hz]: Signal-to-noise ratio, in dB-Hz (30.0 to 60.0 in the manual's range column)."""
+    """Signal-to-noise ratio [dB-Hz]: Signal-to-noise ratio, in dB-Hz (30.0 to 60.0 in the manual's
+    range column)."""
     used: AshtechSvUsed | str | None = None
-    """Used in solution: U when the satellite is used in the position computation, - when it is not."""
+    """Used in solution: U when the satellite is used in the position computation, - when it is
+    not."""
 
 
 @dataclass(slots=True)
-class PashrSat:
+class PashrSat(rt.Sentence):
     """PASHR_SAT: Satellite status (SAT).
 
-    Example (ashtech): $PASHR,SAT,13,20,092,32,44.0,U,13,206,78,50.0,U,23,056,55,48.0,U,33,198,34,44.0,-,17,218,13,42.0,U,25,152,34,38.0,U,04,276,65,50.0,U,02,308,31,48.0,U,77,052,37,48.0,U,84,294,33,48.0,U,83,234,23,48.0,U,78,124,42,46.0,U,68,034,65,48.0,U*35
+    Example (ashtech):
+    $PASHR,SAT,13,20,092,32,44.0,U,13,206,78,50.0,U,23,056,55,48.0,U,33,198,34,44.0,-,17,218,13,42.0,U,25,152,34,38.0,U,04,276,65,50.0,U,02,308,31,48.0,U,77,052,37,48.0,U,84,294,33,48.0,U,83,234,23,48.0,U,78,124,42,46.0,U,68,034,65,48.0,U*35
     """
 
     SENTENCE: ClassVar[str] = "PASHR_SAT"
@@ -54,89 +51,31 @@ class PashrSat:
     SELECTOR: ClassVar[str | None] = "SAT"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_SAT", "proprietary", "$", 2, 322, (
+        rt.KeywordField("keyword", "SAT", "SAT"),
+        rt.IntegerField("count", "integer of at least 0", 0, None),
+        rt.Group("satellites", PashrSatSatellite, (
+            rt.IntegerField("prn", "integer"),
+            rt.IntegerField("azimuth", "integer 0..359", 0, 359),
+            rt.IntegerField("elevation", "integer 0..90", 0, 90),
+            rt.DecimalField("snr", "decimal number"),
+            rt.EnumField("used", "ashtech_sv_used code (U -)", AshtechSvUsed),
+        ), 0, 64),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "SAT"
     """Message: Message keyword."""
     count: rt.Number | None = None
-    """Satellites locked: Number of satellites locked, which is the number of satellite entries that follow."""
+    """Satellites locked: Number of satellites locked, which is the number of satellite entries that
+    follow."""
     satellites: list[PashrSatSatellite] = field(default_factory=list)
     """Satellites: 0 to 64 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrSat:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 5, 64)
-        optional = count - 2 - repeats * 5
-        if count < 2 or optional > 0:
-            rt.split_group(address, "PASHR_SAT", "satellites", count, 2, 5, 0, 64, 0)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "SAT", "SAT")
-        count_ = (_INTEGER_0_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "count", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[1] else None
-        satellites: list[PashrSatSatellite] = []
-        pos = 2
-        for entry in range(repeats):
-            satellites.append(PashrSatSatellite(
-                (_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None,
-                (_INTEGER_0_TO_359.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].azimuth", "integer 0..359", 0, 359, _INTEGER_0_TO_359)) if fields[pos + 1] else None,
-                (_INTEGER_0_TO_90.get(fields[pos + 2]) or rt.integer_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].elevation", "integer 0..90", 0, 90, _INTEGER_0_TO_90)) if fields[pos + 2] else None,
-                (_DECIMAL.get(fields[pos + 3]) or rt.decimal_field(fields[pos + 3], address, pos + 4, f"satellites[{entry + 1}].snr", "decimal number", None, None, _DECIMAL)) if fields[pos + 3] else None,
-                AshtechSvUsed.BY_CODE.get(fields[pos + 4]) or rt.enum_field(fields[pos + 4], address, pos + 5, f"satellites[{entry + 1}].used", "ashtech_sv_used code (U -)", AshtechSvUsed.BY_CODE, "letters", 1, 1),
-            ))
-            pos += 5
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, count_, satellites, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.count),
-        ]
-        for entry in self.satellites:
-            out += [rt.text_of(entry.prn), rt.text_of(entry.azimuth), rt.text_of(entry.elevation), rt.text_of(entry.snr), rt.text_of(entry.used)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"count":' + show(self.count),
-            '"satellites":[' + ",".join(
-                "{" + '"prn":' + show(entry.prn) + ',"azimuth":' + show(entry.azimuth) + ',"elevation":' + show(entry.elevation) + ',"snr":' + show(entry.snr) + ',"used":' + show(entry.used) + "}"
-                for entry in self.satellites) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "count"), 1)
-        for entry in rt.json_list(fields, "satellites"):
-            out += rt.json_texts(rt.json_member(entry, "prn"), 1)
-            out += rt.json_texts(rt.json_member(entry, "azimuth"), 1)
-            out += rt.json_texts(rt.json_member(entry, "elevation"), 1)
-            out += rt.json_texts(rt.json_member(entry, "snr"), 1)
-            out += rt.json_texts(rt.json_member(entry, "used"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrSat, )

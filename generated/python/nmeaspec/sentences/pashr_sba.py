@@ -16,10 +16,11 @@ from ..enums import AshtechOnOff
 
 
 @dataclass(slots=True)
-class PashrSba:
+class PashrSba(rt.Sentence):
     """PASHR_SBA: SBAS tracking status (SBA).
 
-    Example (ashtech): $PASHR,SBA,ON*09
+    Example (ashtech):
+    $PASHR,SBA,ON*09
     """
 
     SENTENCE: ClassVar[str] = "PASHR_SBA"
@@ -29,63 +30,22 @@ class PashrSba:
     SELECTOR: ClassVar[str | None] = "SBA"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_SBA", "proprietary", "$", 2, 2, (
+        rt.KeywordField("keyword", "SBA", "SBA"),
+        rt.EnumField("state", "ashtech_on_off code (ON OFF)", AshtechOnOff),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "SBA"
     """Message: Message keyword."""
     state: AshtechOnOff | str | None = None
-    """SBAS tracking: ON when SBAS satellites are tracked and used, OFF when they are not tracked."""
+    """SBAS tracking: ON when SBAS satellites are tracked and used, OFF when they are not
+    tracked."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashrSba:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PASHR_SBA", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PASHR_SBA", 2, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "SBA", "SBA")
-        state = AshtechOnOff.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "state", "ashtech_on_off code (ON OFF)", AshtechOnOff.BY_CODE, "letters", 2, 3)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, state, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.state),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"state":' + show(self.state),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "state"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashrSba, )

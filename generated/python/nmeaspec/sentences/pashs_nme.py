@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PASHS_NME: Enable or disable an NMEA output message (NME).
 
-Switches one standard NMEA or Ashtech NMEA-like message on or off on a port, optionally with its
-own output period. The variant period sets the default output period of all NMEA messages
+Switches one standard NMEA or Ashtech NMEA-like message on or off on a port, optionally with its own
+output period. The variant period sets the default output period of all NMEA messages
 ($PASHS,NME,PER). The receiver answers $PASHR,ACK or $PASHR,NAK.
 """
 
@@ -17,15 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AshtechNmeMessage, AshtechOnOff, AshtechPort
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_POINT_05_TO_999: dict[Any, Any] = rt.known("decimal 0.05..999")
-
 
 @dataclass(slots=True)
-class PashsNme:
+class PashsNme(rt.Sentence):
     """PASHS_NME: Enable or disable an NMEA output message (NME).
 
-    Example (ashtech): $PASHS,NME,ATT,A,ON,0.5
+    Example (ashtech):
+    $PASHS,NME,ATT,A,ON,0.5
     """
 
     SENTENCE: ClassVar[str] = "PASHS_NME"
@@ -40,6 +38,23 @@ class PashsNme:
         ("PASHR_NAK", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHS_NME", "proprietary", "$", 4, 5, (
+        rt.KeywordField("keyword", "NME", "NME"),
+        rt.EnumField(
+            "message",
+            "ashtech_nme_message code (ALM DTM GGA GLL GMP GNS GRS GSA GST GSV HDT HD2 RMC VTG "
+            "ZDA XDR ATT AT2 CRT DCR DDS DPO LTN POS RRE SAT SGA SGL SGP USR VEC VE2 PTT TTT)",
+            AshtechNmeMessage,
+        ),
+        rt.EnumField(
+            "port",
+            "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)",
+            AshtechPort,
+        ),
+        rt.EnumField("state", "ashtech_on_off code (ON OFF)", AshtechOnOff),
+        rt.DecimalField("rate", "decimal number 0.05..999", Decimal("0.05"), 999, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "NME"
     """Command: Command keyword."""
     message: AshtechNmeMessage | str | None = None
@@ -49,93 +64,25 @@ class PashsNme:
     state: AshtechOnOff | str | None = None
     """On or off: ON enables the message, OFF disables it."""
     rate: rt.Number | None | rt._Absent = rt.ABSENT
-    """Output period [s]: Output period of this message in seconds: 0.05 (needs a 20 Hz update rate, $PASHS,POP,20), 0.1 to 0.4 (with the F option), 0.5 to 0.9, or 1 to 999. When absent the period set by $PASHS,NME,PER applies. Not used for PTT, TTT and XDR."""
+    """Output period [s]: Output period of this message in seconds: 0.05 (needs a 20 Hz update rate,
+    $PASHS,POP,20), 0.1 to 0.4 (with the F option), 0.5 to 0.9, or 1 to 999. When absent the period
+    set by $PASHS,NME,PER applies. Not used for PTT, TTT and XDR."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashsNme:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PASHS_NME", 4, count)
-        if count > 5:
-            raise rt.too_many(address, "PASHS_NME", 5, count)
-        optional = count - 4
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NME", "NME")
-        message = AshtechNmeMessage.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "message", "ashtech_nme_message code (ALM DTM GGA GLL GMP GNS GRS GSA GST GSV HDT HD2 RMC VTG ZDA XDR ATT AT2 CRT DCR DDS DPO LTN POS RRE SAT SGA SGL SGP USR VEC VE2 PTT TTT)", AshtechNmeMessage.BY_CODE, "alnum", 3, 3)
-        port = AshtechPort.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "port", "ashtech_port code (A B F D C I P Q I1 I2 I3 I4 I5 I6 I7 I8 I9 E M U R)", AshtechPort.BY_CODE, "alnum", 1, 2)
-        state = AshtechOnOff.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "state", "ashtech_on_off code (ON OFF)", AshtechOnOff.BY_CODE, "letters", 2, 3)
-        rate: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            rate = (_DECIMAL_0_POINT_05_TO_999.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "rate", "decimal number 0.05..999", Decimal("0.05"), 999, _DECIMAL_0_POINT_05_TO_999)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, message, port, state, rate, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.message),
-            rt.text_of(self.port),
-            rt.text_of(self.state),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.rate is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.rate)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"message":' + show(self.message),
-            '"port":' + show(self.port),
-            '"state":' + show(self.state),
-        ]
-        if self.rate is not rt.ABSENT:
-            parts.append('"rate":' + show(self.rate))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port"), 1)
-        out += rt.json_texts(rt.json_member(fields, "state"), 1)
-        if "rate" in fields:
-            out += rt.json_texts(fields["rate"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PashsNmePeriod:
+class PashsNmePeriod(rt.Sentence):
     """PASHS_NME (Default output period): Enable or disable an NMEA output message (NME).
 
-    $PASHS,NME,PER,f sets the output period of the NMEA messages that have no period of their
-    own.
+    $PASHS,NME,PER,f sets the output period of the NMEA messages that have no period of their own.
 
-    Example (ashtech_zfamily): $PASHS,NME,PER,5
+    Example (ashtech_zfamily):
+    $PASHS,NME,PER,5
     """
 
     SENTENCE: ClassVar[str] = "PASHS_NME"
@@ -150,69 +97,25 @@ class PashsNmePeriod:
         ("PASHR_NAK", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHS_NME", "proprietary", "$", 3, 3, (
+        rt.KeywordField("keyword", "NME", "NME"),
+        rt.KeywordField("per", "PER", "PER"),
+        rt.DecimalField("period", "decimal number 0.05..999", Decimal("0.05"), 999),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "NME"
     """Command: Command keyword."""
     per: str = "PER"
     """Period selector: Selects the default-period form of the command."""
     period: rt.Number | None = None
-    """Output period [s]: Default output period in seconds (0.1 to 999 on the Z-Family; 0.1 steps below 1 s, 1 s steps above)."""
+    """Output period [s]: Default output period in seconds (0.1 to 999 on the Z-Family; 0.1 steps
+    below 1 s, 1 s steps above)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PashsNmePeriod:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PASHS_NME", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PASHS_NME", 3, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "NME", "NME")
-        per = rt.keyword_field(fields[1], address, 2, "per", "PER", "PER")
-        period = (_DECIMAL_0_POINT_05_TO_999.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "period", "decimal number 0.05..999", Decimal("0.05"), 999, _DECIMAL_0_POINT_05_TO_999)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, per, period, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.per),
-            rt.text_of(self.period),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PASHS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"per":' + show(self.per),
-            '"period":' + show(self.period),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "per"), 1)
-        out += rt.json_texts(rt.json_member(fields, "period"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PashsNme, PashsNmePeriod, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PERDCRW: Furuno time transfer, date and leap second.
 
-Sent every second by Furuno eRide timing receivers (GT-87, GT-88): the present date and time,
-which time scale it follows, the scheduled leap second change and the time scale the 1PPS output
-is synchronised to.
+Sent every second by Furuno eRide timing receivers (GT-87, GT-88): the present date and time, which
+time scale it follows, the scheduled leap second change and the time scale the 1PPS output is
+synchronised to.
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import FurunoEridePpsSync, FurunoErideTimeStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_MINUS_31_TO_32: dict[Any, Any] = rt.known("integer -31..32")
-
 
 @dataclass(slots=True)
-class Perdcrw:
+class Perdcrw(rt.Sentence):
     """PERDCRW: Furuno time transfer, date and leap second.
 
-    Example (log_gpsd): $PERDCRW,TPS1,20220731120213,2,00000000000000,+18,+18,4*0D
+    Example (log_gpsd):
+    $PERDCRW,TPS1,20220731120213,2,00000000000000,+18,+18,4*0D
     """
 
     SENTENCE: ClassVar[str] = "PERDCRW"
@@ -34,6 +32,16 @@ class Perdcrw:
     SELECTOR: ClassVar[str | None] = "TPS1"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PERDCRW", "proprietary", "$", 7, 7, (
+        rt.KeywordField("command", "TPS1", "TPS1"),
+        rt.TextField("date_time", "text of at most 14 characters", 14),
+        rt.EnumField("time_status", "furuno_eride_time_status code (0 1 2)", FurunoErideTimeStatus),
+        rt.TextField("leap_update", "text of at most 14 characters", 14),
+        rt.IntegerField("leap_seconds", "integer -31..32", -31, 32),
+        rt.IntegerField("future_leap_seconds", "integer -31..32", -31, 32),
+        rt.EnumField("pps_sync", "furuno_eride_pps_sync code (0 1 2 3 4)", FurunoEridePpsSync),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: str = "TPS1"
     """Sentence name: Identifies the date and leap second report."""
     date_time: str | None = None
@@ -41,7 +49,8 @@ class Perdcrw:
     time_status: FurunoErideTimeStatus | str | None = None
     """Time status: Time scale of the date and time (RTC, GPS or UTC)."""
     leap_update: str | None = None
-    """Leap second update date: Date and time of the scheduled leap second change, 14 digits; all zeros when none is scheduled."""
+    """Leap second update date: Date and time of the scheduled leap second change, 14 digits; all
+    zeros when none is scheduled."""
     leap_seconds: rt.Number | None = None
     """Present leap seconds [s]: Present GPS-UTC leap second count received from the satellites."""
     future_leap_seconds: rt.Number | None = None
@@ -49,78 +58,11 @@ class Perdcrw:
     pps_sync: FurunoEridePpsSync | str | None = None
     """PPS synchronisation: Time scale the present 1PPS is synchronised to."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Perdcrw:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PERDCRW", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PERDCRW", 7, count)
-        command = rt.keyword_field(fields[0], address, 1, "command", "TPS1", "TPS1")
-        date_time = rt.text_field(fields[1], address, 2, "date_time", "text of at most 14 characters", 14)
-        time_status = FurunoErideTimeStatus.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "time_status", "furuno_eride_time_status code (0 1 2)", FurunoErideTimeStatus.BY_CODE, "digits", 1, 1)
-        leap_update = rt.text_field(fields[3], address, 4, "leap_update", "text of at most 14 characters", 14)
-        leap_seconds = (_INTEGER_MINUS_31_TO_32.get(fields[4]) or rt.integer_field(fields[4], address, 5, "leap_seconds", "integer -31..32", -31, 32, _INTEGER_MINUS_31_TO_32)) if fields[4] else None
-        future_leap_seconds = (_INTEGER_MINUS_31_TO_32.get(fields[5]) or rt.integer_field(fields[5], address, 6, "future_leap_seconds", "integer -31..32", -31, 32, _INTEGER_MINUS_31_TO_32)) if fields[5] else None
-        pps_sync = FurunoEridePpsSync.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "pps_sync", "furuno_eride_pps_sync code (0 1 2 3 4)", FurunoEridePpsSync.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, date_time, time_status, leap_update, leap_seconds, future_leap_seconds, pps_sync, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-            rt.text_of(self.date_time),
-            rt.text_of(self.time_status),
-            rt.text_of(self.leap_update),
-            rt.text_of(self.leap_seconds),
-            rt.text_of(self.future_leap_seconds),
-            rt.text_of(self.pps_sync),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PERDCRW",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-            '"date_time":' + show(self.date_time),
-            '"time_status":' + show(self.time_status),
-            '"leap_update":' + show(self.leap_update),
-            '"leap_seconds":' + show(self.leap_seconds),
-            '"future_leap_seconds":' + show(self.future_leap_seconds),
-            '"pps_sync":' + show(self.pps_sync),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "leap_update"), 1)
-        out += rt.json_texts(rt.json_member(fields, "leap_seconds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "future_leap_seconds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pps_sync"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Perdcrw, )

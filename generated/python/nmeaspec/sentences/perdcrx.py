@@ -3,9 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PERDCRX: Furuno time transfer, PPS settings and accuracy.
 
-Sent every second by Furuno eRide timing receivers: the 1PPS output settings (mode, period,
-width, cable delay, polarity, source) with its estimated accuracy and the sawtooth correction of
-the pulse.
+Sent every second by Furuno eRide timing receivers: the 1PPS output settings (mode, period, width,
+cable delay, polarity, source) with its estimated accuracy and the sawtooth correction of the pulse.
 """
 
 from __future__ import annotations
@@ -17,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import FurunoErideOnOff, FurunoEridePolarity, FurunoEridePpsMode, FurunoEridePpsPeriod, FurunoEridePpsType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_MINUS_1_POINT_76_TO_1_POINT_76: dict[Any, Any] = rt.known("decimal -1.76..1.76")
-_INTEGER_0_TO_9999: dict[Any, Any] = rt.known("integer 0..9999")
-_INTEGER_1_TO_500: dict[Any, Any] = rt.known("integer 1..500")
-_INTEGER_MINUS_100000_TO_100000: dict[Any, Any] = rt.known("integer -100000..100000")
-
 
 @dataclass(slots=True)
-class Perdcrx:
+class Perdcrx(rt.Sentence):
     """PERDCRX: Furuno time transfer, PPS settings and accuracy.
 
-    Example (log_gpsd): $PERDCRX,TPS2,1,1,0,200,+000000,0,0,0023,-1.178,0000*27
+    Example (log_gpsd):
+    $PERDCRX,TPS2,1,1,0,200,+000000,0,0,0023,-1.178,0000*27
     """
 
     SENTENCE: ClassVar[str] = "PERDCRX"
@@ -38,6 +32,25 @@ class Perdcrx:
     SELECTOR: ClassVar[str | None] = "TPS2"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PERDCRX", "proprietary", "$", 11, 11, (
+        rt.KeywordField("command", "TPS2", "TPS2"),
+        rt.EnumField("pps_status", "furuno_eride_on_off code (0 1)", FurunoErideOnOff),
+        rt.EnumField("pps_mode", "furuno_eride_pps_mode code (0 1 2 3 4)", FurunoEridePpsMode),
+        rt.EnumField("period", "furuno_eride_pps_period code (0 1)", FurunoEridePpsPeriod),
+        rt.IntegerField("pulse_width", "integer 1..500", 1, 500),
+        rt.IntegerField("cable_delay", "integer -100000..100000", -100000, 100000),
+        rt.EnumField("polarity", "furuno_eride_polarity code (0 1)", FurunoEridePolarity),
+        rt.EnumField("pps_type", "furuno_eride_pps_type code (0 1)", FurunoEridePpsType),
+        rt.IntegerField("estimated_accuracy", "integer 0..9999", 0, 9999),
+        rt.DecimalField(
+            "sawtooth",
+            "decimal number -1.76..1.76",
+            Decimal("-1.76"),
+            Decimal("1.76"),
+        ),
+        rt.IntegerField("accuracy_threshold", "integer 0..9999", 0, 9999),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: str = "TPS2"
     """Sentence name: Identifies the PPS report."""
     pps_status: FurunoErideOnOff | str | None = None
@@ -53,102 +66,23 @@ class Perdcrx:
     polarity: FurunoEridePolarity | str | None = None
     """Polarity: Edge of the pulse that is on time."""
     pps_type: FurunoEridePpsType | str | None = None
-    """Pulse source: Whether the period, width and polarity above describe the legacy PPS or the GCLK PPS."""
+    """Pulse source: Whether the period, width and polarity above describe the legacy PPS or the
+    GCLK PPS."""
     estimated_accuracy: rt.Number | None = None
-    """Estimated accuracy [ns]: Estimated difference between the receiver's pulse and the selected time scale (GPS, UTC(USNO) or UTC(SU)); an indication, not a guaranteed value."""
+    """Estimated accuracy [ns]: Estimated difference between the receiver's pulse and the selected
+    time scale (GPS, UTC(USNO) or UTC(SU)); an indication, not a guaranteed value."""
     sawtooth: rt.Number | None = None
-    """Sawtooth correction [ns]: Correction below the receiver's pulse resolution (about 3.5 ns); it applies to the pulse of the previous second."""
+    """Sawtooth correction [ns]: Correction below the receiver's pulse resolution (about 3.5 ns); it
+    applies to the pulse of the previous second."""
     accuracy_threshold: rt.Number | None = None
-    """Accuracy threshold [ns]: Threshold on the estimated accuracy used by PPS mode 4; 0 means it is not used."""
+    """Accuracy threshold [ns]: Threshold on the estimated accuracy used by PPS mode 4; 0 means it
+    is not used."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Perdcrx:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "PERDCRX", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "PERDCRX", 11, count)
-        command = rt.keyword_field(fields[0], address, 1, "command", "TPS2", "TPS2")
-        pps_status = FurunoErideOnOff.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "pps_status", "furuno_eride_on_off code (0 1)", FurunoErideOnOff.BY_CODE, "digits", 1, 1)
-        pps_mode = FurunoEridePpsMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "pps_mode", "furuno_eride_pps_mode code (0 1 2 3 4)", FurunoEridePpsMode.BY_CODE, "digits", 1, 1)
-        period = FurunoEridePpsPeriod.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "period", "furuno_eride_pps_period code (0 1)", FurunoEridePpsPeriod.BY_CODE, "digits", 1, 1)
-        pulse_width = (_INTEGER_1_TO_500.get(fields[4]) or rt.integer_field(fields[4], address, 5, "pulse_width", "integer 1..500", 1, 500, _INTEGER_1_TO_500)) if fields[4] else None
-        cable_delay = (_INTEGER_MINUS_100000_TO_100000.get(fields[5]) or rt.integer_field(fields[5], address, 6, "cable_delay", "integer -100000..100000", -100000, 100000, _INTEGER_MINUS_100000_TO_100000)) if fields[5] else None
-        polarity = FurunoEridePolarity.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "polarity", "furuno_eride_polarity code (0 1)", FurunoEridePolarity.BY_CODE, "digits", 1, 1)
-        pps_type = FurunoEridePpsType.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "pps_type", "furuno_eride_pps_type code (0 1)", FurunoEridePpsType.BY_CODE, "digits", 1, 1)
-        estimated_accuracy = (_INTEGER_0_TO_9999.get(fields[8]) or rt.integer_field(fields[8], address, 9, "estimated_accuracy", "integer 0..9999", 0, 9999, _INTEGER_0_TO_9999)) if fields[8] else None
-        sawtooth = (_DECIMAL_MINUS_1_POINT_76_TO_1_POINT_76.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "sawtooth", "decimal number -1.76..1.76", Decimal("-1.76"), Decimal("1.76"), _DECIMAL_MINUS_1_POINT_76_TO_1_POINT_76)) if fields[9] else None
-        accuracy_threshold = (_INTEGER_0_TO_9999.get(fields[10]) or rt.integer_field(fields[10], address, 11, "accuracy_threshold", "integer 0..9999", 0, 9999, _INTEGER_0_TO_9999)) if fields[10] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, pps_status, pps_mode, period, pulse_width, cable_delay, polarity, pps_type, estimated_accuracy, sawtooth, accuracy_threshold, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-            rt.text_of(self.pps_status),
-            rt.text_of(self.pps_mode),
-            rt.text_of(self.period),
-            rt.text_of(self.pulse_width),
-            rt.text_of(self.cable_delay),
-            rt.text_of(self.polarity),
-            rt.text_of(self.pps_type),
-            rt.text_of(self.estimated_accuracy),
-            rt.text_of(self.sawtooth),
-            rt.text_of(self.accuracy_threshold),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PERDCRX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-            '"pps_status":' + show(self.pps_status),
-            '"pps_mode":' + show(self.pps_mode),
-            '"period":' + show(self.period),
-            '"pulse_width":' + show(self.pulse_width),
-            '"cable_delay":' + show(self.cable_delay),
-            '"polarity":' + show(self.polarity),
-            '"pps_type":' + show(self.pps_type),
-            '"estimated_accuracy":' + show(self.estimated_accuracy),
-            '"sawtooth":' + show(self.sawtooth),
-            '"accuracy_threshold":' + show(self.accuracy_threshold),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pps_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pps_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "period"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pulse_width"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cable_delay"), 1)
-        out += rt.json_texts(rt.json_member(fields, "polarity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pps_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "estimated_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sawtooth"), 1)
-        out += rt.json_texts(rt.json_member(fields, "accuracy_threshold"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Perdcrx, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PERDCRY: Furuno time transfer, survey and TRAIM.
 
-Sent every second by Furuno eRide timing receivers: the positioning mode with the progress of
-the position survey, and the state of time receiver autonomous integrity monitoring (TRAIM).
+Sent every second by Furuno eRide timing receivers: the positioning mode with the progress of the
+position survey, and the state of time receiver autonomous integrity monitoring (TRAIM).
 """
 
 from __future__ import annotations
@@ -15,19 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import FurunoEridePositionMode, FurunoErideTraimSolution, FurunoErideTraimStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_1000: dict[Any, Any] = rt.known("integer 0..1000")
-_INTEGER_0_TO_255: dict[Any, Any] = rt.known("integer 0..255")
-_INTEGER_0_TO_3: dict[Any, Any] = rt.known("integer 0..3")
-_INTEGER_0_TO_604800: dict[Any, Any] = rt.known("integer 0..604800")
-_INTEGER_0_TO_999999: dict[Any, Any] = rt.known("integer 0..999999")
-
 
 @dataclass(slots=True)
-class Perdcry:
+class Perdcry(rt.Sentence):
     """PERDCRY: Furuno time transfer, survey and TRAIM.
 
-    Example (log_gpsd): $PERDCRY,TPS3,3,0049,015,084533,000000,0,0,00,0x20001300*64
+    Example (log_gpsd):
+    $PERDCRY,TPS3,3,0049,015,084533,000000,0,0,00,0x20001300*64
     """
 
     SENTENCE: ClassVar[str] = "PERDCRY"
@@ -37,6 +31,31 @@ class Perdcry:
     SELECTOR: ClassVar[str | None] = "TPS3"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PERDCRY", "proprietary", "$", 10, 10, (
+        rt.KeywordField("command", "TPS3", "TPS3"),
+        rt.EnumField(
+            "position_mode",
+            "furuno_eride_position_mode code (0 1 2 3)",
+            FurunoEridePositionMode,
+        ),
+        rt.IntegerField("sigma", "integer 0..1000", 0, 1000),
+        rt.IntegerField("sigma_threshold", "integer 0..255", 0, 255),
+        rt.IntegerField("survey_time", "integer 0..999999", 0, 999999),
+        rt.IntegerField("time_threshold", "integer 0..604800", 0, 604800),
+        rt.EnumField(
+            "traim_solution",
+            "furuno_eride_traim_solution code (0 1 2)",
+            FurunoErideTraimSolution,
+        ),
+        rt.EnumField(
+            "traim_status",
+            "furuno_eride_traim_status code (0 1 2)",
+            FurunoErideTraimStatus,
+        ),
+        rt.IntegerField("removed_satellites", "integer 0..3", 0, 3),
+        rt.TextField("receiver_status", "text of at most 10 characters", 10),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: str = "TPS3"
     """Sentence name: Identifies the survey and TRAIM report."""
     position_mode: FurunoEridePositionMode | str | None = None
@@ -46,9 +65,11 @@ class Perdcry:
     sigma_threshold: rt.Number | None = None
     """Sigma threshold [m]: Sigma below which the receiver switches to position-hold by itself."""
     survey_time: rt.Number | None = None
-    """Survey time [s]: Seconds the survey position has been updated so far; not counted while positioning is interrupted."""
+    """Survey time [s]: Seconds the survey position has been updated so far; not counted while
+    positioning is interrupted."""
     time_threshold: rt.Number | None = None
-    """Time threshold [s]: Survey time after which the receiver switches to position-hold by itself."""
+    """Time threshold [s]: Survey time after which the receiver switches to position-hold by
+    itself."""
     traim_solution: FurunoErideTraimSolution | str | None = None
     """TRAIM solution: TRAIM result."""
     traim_status: FurunoErideTraimStatus | str | None = None
@@ -56,92 +77,14 @@ class Perdcry:
     removed_satellites: rt.Number | None = None
     """Removed satellites: Number of satellites TRAIM removed."""
     receiver_status: str | None = None
-    """Receiver status: Receiver status word written as 0x and eight hex digits; the documentation calls it a reserved field."""
+    """Receiver status: Receiver status word written as 0x and eight hex digits; the documentation
+    calls it a reserved field."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Perdcry:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 10:
-            raise rt.too_few(address, "PERDCRY", 10, count)
-        if count > 10:
-            raise rt.too_many(address, "PERDCRY", 10, count)
-        command = rt.keyword_field(fields[0], address, 1, "command", "TPS3", "TPS3")
-        position_mode = FurunoEridePositionMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "position_mode", "furuno_eride_position_mode code (0 1 2 3)", FurunoEridePositionMode.BY_CODE, "digits", 1, 1)
-        sigma = (_INTEGER_0_TO_1000.get(fields[2]) or rt.integer_field(fields[2], address, 3, "sigma", "integer 0..1000", 0, 1000, _INTEGER_0_TO_1000)) if fields[2] else None
-        sigma_threshold = (_INTEGER_0_TO_255.get(fields[3]) or rt.integer_field(fields[3], address, 4, "sigma_threshold", "integer 0..255", 0, 255, _INTEGER_0_TO_255)) if fields[3] else None
-        survey_time = (_INTEGER_0_TO_999999.get(fields[4]) or rt.integer_field(fields[4], address, 5, "survey_time", "integer 0..999999", 0, 999999, _INTEGER_0_TO_999999)) if fields[4] else None
-        time_threshold = (_INTEGER_0_TO_604800.get(fields[5]) or rt.integer_field(fields[5], address, 6, "time_threshold", "integer 0..604800", 0, 604800, _INTEGER_0_TO_604800)) if fields[5] else None
-        traim_solution = FurunoErideTraimSolution.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "traim_solution", "furuno_eride_traim_solution code (0 1 2)", FurunoErideTraimSolution.BY_CODE, "digits", 1, 1)
-        traim_status = FurunoErideTraimStatus.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "traim_status", "furuno_eride_traim_status code (0 1 2)", FurunoErideTraimStatus.BY_CODE, "digits", 1, 1)
-        removed_satellites = (_INTEGER_0_TO_3.get(fields[8]) or rt.integer_field(fields[8], address, 9, "removed_satellites", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[8] else None
-        receiver_status = rt.text_field(fields[9], address, 10, "receiver_status", "text of at most 10 characters", 10)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, position_mode, sigma, sigma_threshold, survey_time, time_threshold, traim_solution, traim_status, removed_satellites, receiver_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-            rt.text_of(self.position_mode),
-            rt.text_of(self.sigma),
-            rt.text_of(self.sigma_threshold),
-            rt.text_of(self.survey_time),
-            rt.text_of(self.time_threshold),
-            rt.text_of(self.traim_solution),
-            rt.text_of(self.traim_status),
-            rt.text_of(self.removed_satellites),
-            rt.text_of(self.receiver_status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PERDCRY",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-            '"position_mode":' + show(self.position_mode),
-            '"sigma":' + show(self.sigma),
-            '"sigma_threshold":' + show(self.sigma_threshold),
-            '"survey_time":' + show(self.survey_time),
-            '"time_threshold":' + show(self.time_threshold),
-            '"traim_solution":' + show(self.traim_solution),
-            '"traim_status":' + show(self.traim_status),
-            '"removed_satellites":' + show(self.removed_satellites),
-            '"receiver_status":' + show(self.receiver_status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sigma"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sigma_threshold"), 1)
-        out += rt.json_texts(rt.json_member(fields, "survey_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_threshold"), 1)
-        out += rt.json_texts(rt.json_member(fields, "traim_solution"), 1)
-        out += rt.json_texts(rt.json_member(fields, "traim_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "removed_satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "receiver_status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Perdcry, )

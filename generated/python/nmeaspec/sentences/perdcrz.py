@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PERDCRZ: Furuno time transfer, frequency output.
 
-Sent every second by Furuno eRide timing receivers with a disciplined clock output (GCLK): the
-state of the frequency output, phase delay between the legacy and GCLK pulses, lock and hold-
-over durations and the product tag.
+Sent every second by Furuno eRide timing receivers with a disciplined clock output (GCLK): the state
+of the frequency output, phase delay between the legacy and GCLK pulses, lock and hold-over
+durations and the product tag.
 """
 
 from __future__ import annotations
@@ -16,17 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import FurunoErideFreqMode, FurunoErideOnOff
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_1: dict[Any, Any] = rt.known("integer 0..1")
-_INTEGER_0_TO_999999: dict[Any, Any] = rt.known("integer 0..999999")
-_INTEGER_MINUS_999999_TO_999999: dict[Any, Any] = rt.known("integer -999999..999999")
-
 
 @dataclass(slots=True)
-class Perdcrz:
+class Perdcrz(rt.Sentence):
     """PERDCRZ: Furuno time transfer, frequency output.
 
-    Example (log_gpsd): $PERDCRZ,TPS4,7,1,1,+000000,-000002,+009999,+059054,+00731,880000,0x54,0xA6*7D
+    Example (log_gpsd):
+    $PERDCRZ,TPS4,7,1,1,+000000,-000002,+009999,+059054,+00731,880000,0x54,0xA6*7D
     """
 
     SENTENCE: ClassVar[str] = "PERDCRZ"
@@ -36,10 +32,30 @@ class Perdcrz:
     SELECTOR: ClassVar[str | None] = "TPS4"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PERDCRZ", "proprietary", "$", 12, 12, (
+        rt.KeywordField("command", "TPS4", "TPS4"),
+        rt.EnumField(
+            "freq_mode",
+            "furuno_eride_freq_mode code (1 2 3 4 5 6 7)",
+            FurunoErideFreqMode,
+        ),
+        rt.EnumField("freq_status", "furuno_eride_on_off code (0 1)", FurunoErideOnOff),
+        rt.IntegerField("gclk_accurate", "integer 0..1", 0, 1),
+        rt.IntegerField("phase_delay", "integer -999999..999999", -999999, 999999),
+        rt.IntegerField("phase_delay_change", "integer -999999..999999", -999999, 999999),
+        rt.IntegerField("lock_count", "integer 0..999999", 0, 999999),
+        rt.IntegerField("lockoff_count", "integer 0..999999", 0, 999999),
+        rt.TextField("reserved", "text"),
+        rt.TextField("id_tag", "text of at most 6 characters", 6),
+        rt.TextField("gclk_setting_1", "text"),
+        rt.TextField("gclk_setting_2", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: str = "TPS4"
     """Sentence name: Identifies the frequency report."""
     freq_mode: FurunoErideFreqMode | str | None = None
-    """Frequency mode: State of the frequency output (warm-up, lock, hold-over, free run, coarse, fine)."""
+    """Frequency mode: State of the frequency output (warm-up, lock, hold-over, free run, coarse,
+    fine)."""
     freq_status: FurunoErideOnOff | str | None = None
     """Frequency output: Whether the frequency is output."""
     gclk_accurate: rt.Number | None = None
@@ -55,104 +71,18 @@ class Perdcrz:
     reserved: str | None = None
     """Reserved: Reserved field."""
     id_tag: str | None = None
-    """Product tag: Product number and the last two digits of the product version (870005 for a GT-87 of version 4850466005)."""
+    """Product tag: Product number and the last two digits of the product version (870005 for a
+    GT-87 of version 4850466005)."""
     gclk_setting_1: str | None = None
     """GCLK setting 1: Reserved field, written as 0x and two hex digits."""
     gclk_setting_2: str | None = None
     """GCLK setting 2: Reserved field, written as 0x and two hex digits."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Perdcrz:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "PERDCRZ", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "PERDCRZ", 12, count)
-        command = rt.keyword_field(fields[0], address, 1, "command", "TPS4", "TPS4")
-        freq_mode = FurunoErideFreqMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "freq_mode", "furuno_eride_freq_mode code (1 2 3 4 5 6 7)", FurunoErideFreqMode.BY_CODE, "digits", 1, 1)
-        freq_status = FurunoErideOnOff.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "freq_status", "furuno_eride_on_off code (0 1)", FurunoErideOnOff.BY_CODE, "digits", 1, 1)
-        gclk_accurate = (_INTEGER_0_TO_1.get(fields[3]) or rt.integer_field(fields[3], address, 4, "gclk_accurate", "integer 0..1", 0, 1, _INTEGER_0_TO_1)) if fields[3] else None
-        phase_delay = (_INTEGER_MINUS_999999_TO_999999.get(fields[4]) or rt.integer_field(fields[4], address, 5, "phase_delay", "integer -999999..999999", -999999, 999999, _INTEGER_MINUS_999999_TO_999999)) if fields[4] else None
-        phase_delay_change = (_INTEGER_MINUS_999999_TO_999999.get(fields[5]) or rt.integer_field(fields[5], address, 6, "phase_delay_change", "integer -999999..999999", -999999, 999999, _INTEGER_MINUS_999999_TO_999999)) if fields[5] else None
-        lock_count = (_INTEGER_0_TO_999999.get(fields[6]) or rt.integer_field(fields[6], address, 7, "lock_count", "integer 0..999999", 0, 999999, _INTEGER_0_TO_999999)) if fields[6] else None
-        lockoff_count = (_INTEGER_0_TO_999999.get(fields[7]) or rt.integer_field(fields[7], address, 8, "lockoff_count", "integer 0..999999", 0, 999999, _INTEGER_0_TO_999999)) if fields[7] else None
-        reserved = rt.text_field(fields[8], address, 9, "reserved", "text", None)
-        id_tag = rt.text_field(fields[9], address, 10, "id_tag", "text of at most 6 characters", 6)
-        gclk_setting_1 = rt.text_field(fields[10], address, 11, "gclk_setting_1", "text", None)
-        gclk_setting_2 = rt.text_field(fields[11], address, 12, "gclk_setting_2", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, freq_mode, freq_status, gclk_accurate, phase_delay, phase_delay_change, lock_count, lockoff_count, reserved, id_tag, gclk_setting_1, gclk_setting_2, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-            rt.text_of(self.freq_mode),
-            rt.text_of(self.freq_status),
-            rt.text_of(self.gclk_accurate),
-            rt.text_of(self.phase_delay),
-            rt.text_of(self.phase_delay_change),
-            rt.text_of(self.lock_count),
-            rt.text_of(self.lockoff_count),
-            rt.text_of(self.reserved),
-            rt.text_of(self.id_tag),
-            rt.text_of(self.gclk_setting_1),
-            rt.text_of(self.gclk_setting_2),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PERDCRZ",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-            '"freq_mode":' + show(self.freq_mode),
-            '"freq_status":' + show(self.freq_status),
-            '"gclk_accurate":' + show(self.gclk_accurate),
-            '"phase_delay":' + show(self.phase_delay),
-            '"phase_delay_change":' + show(self.phase_delay_change),
-            '"lock_count":' + show(self.lock_count),
-            '"lockoff_count":' + show(self.lockoff_count),
-            '"reserved":' + show(self.reserved),
-            '"id_tag":' + show(self.id_tag),
-            '"gclk_setting_1":' + show(self.gclk_setting_1),
-            '"gclk_setting_2":' + show(self.gclk_setting_2),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        out += rt.json_texts(rt.json_member(fields, "freq_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "freq_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gclk_accurate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "phase_delay"), 1)
-        out += rt.json_texts(rt.json_member(fields, "phase_delay_change"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lock_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lockoff_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved"), 1)
-        out += rt.json_texts(rt.json_member(fields, "id_tag"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gclk_setting_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gclk_setting_2"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Perdcrz, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PFEC_GPATT: Attitude, true heading, pitch and roll (GPatt).
 
-Attitude output of Furuno satellite compasses (SC series): true heading (yaw), pitching and
-rolling, each to a tenth of a degree.
+Attitude output of Furuno satellite compasses (SC series): true heading (yaw), pitching and rolling,
+each to a tenth of a degree.
 """
 
 from __future__ import annotations
@@ -14,14 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class PfecGpatt:
+class PfecGpatt(rt.Sentence):
     """PFEC_GPATT: Attitude, true heading, pitch and roll (GPatt).
-
     """
 
     SENTENCE: ClassVar[str] = "PFEC_GPATT"
@@ -31,6 +27,13 @@ class PfecGpatt:
     SELECTOR: ClassVar[str | None] = "GPatt"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PFEC_GPATT", "proprietary", "$", 4, 4, (
+        rt.KeywordField("keyword", "GPatt", "GPatt"),
+        rt.DecimalField("heading", "decimal number"),
+        rt.DecimalField("pitch", "decimal number"),
+        rt.DecimalField("roll", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "GPatt"
     """Message: Message identifier, mixed case on the wire (matched exactly)."""
     heading: rt.Number | None = None
@@ -40,66 +43,11 @@ class PfecGpatt:
     roll: rt.Number | None = None
     """Roll [deg]: Rolling, in degrees, written with its sign."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PfecGpatt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PFEC_GPATT", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PFEC_GPATT", 4, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "GPatt", "GPatt")
-        heading = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "heading", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        pitch = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "pitch", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        roll = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "roll", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, heading, pitch, roll, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.heading),
-            rt.text_of(self.pitch),
-            rt.text_of(self.roll),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PFEC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"heading":' + show(self.heading),
-            '"pitch":' + show(self.pitch),
-            '"roll":' + show(self.roll),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PfecGpatt, )

@@ -13,14 +13,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class PfecGphve:
+class PfecGphve(rt.Sentence):
     """PFEC_GPHVE: Heave (GPhve).
-
     """
 
     SENTENCE: ClassVar[str] = "PFEC_GPHVE"
@@ -30,69 +26,25 @@ class PfecGphve:
     SELECTOR: ClassVar[str | None] = "GPhve"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PFEC_GPHVE", "proprietary", "$", 3, 3, (
+        rt.KeywordField("keyword", "GPhve", "GPhve"),
+        rt.DecimalField("heave", "decimal number"),
+        rt.CharField("status", "one character"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "GPhve"
     """Message: Message identifier, mixed case on the wire (matched exactly)."""
     heave: rt.Number | None = None
     """Heave [m]: Heave in metres."""
     status: str | None = None
-    """Status: Status of the heave value; the format shows A (valid), other values are not listed."""
+    """Status: Status of the heave value; the format shows A (valid), other values are not
+    listed."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PfecGphve:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PFEC_GPHVE", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PFEC_GPHVE", 3, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "GPhve", "GPhve")
-        heave = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "heave", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        status = rt.char_field(fields[2], address, 3, "status", "one character")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, heave, status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.heave),
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PFEC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"heave":' + show(self.heave),
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heave"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PfecGphve, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PFEC_GPRTC: Route comment data transfer (GPrtc).
 
-Comment (and, on later navigators, name) of one stored route, sent with the route's $GPRTE
-sentences in a waypoint/route data transfer.
+Comment (and, on later navigators, name) of one stored route, sent with the route's $GPRTE sentences
+in a waypoint/route data transfer.
 """
 
 from __future__ import annotations
@@ -14,14 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO_200: dict[Any, Any] = rt.known("integer 1..200")
-
 
 @dataclass(slots=True)
-class PfecGprtc:
+class PfecGprtc(rt.Sentence):
     """PFEC_GPRTC: Route comment data transfer (GPrtc).
-
     """
 
     SENTENCE: ClassVar[str] = "PFEC_GPRTC"
@@ -31,86 +27,28 @@ class PfecGprtc:
     SELECTOR: ClassVar[str | None] = "GPrtc"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PFEC_GPRTC", "proprietary", "$", 3, 4, (
+        rt.KeywordField("keyword", "GPrtc", "GPrtc"),
+        rt.IntegerField("route", "integer 1..200", 1, 200),
+        rt.TextField("comment", "text of at most 18 characters", 18),
+        rt.TextField("route_name", "text of at most 6 characters", 6, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "GPrtc"
     """Message: Message identifier, mixed case on the wire (matched exactly)."""
     route: rt.Number | None = None
     """Route number: Route number (1-100 on the GP-33, two digits 01-30 on the GP-30/35)."""
     comment: str | None = None
-    """Route comment: Route comment, variable length (up to 18 characters on the GP-33, 16 on the GP-30/35)."""
+    """Route comment: Route comment, variable length (up to 18 characters on the GP-33, 16 on the
+    GP-30/35)."""
     route_name: str | None | rt._Absent = rt.ABSENT
     """Route name: Route name, up to 6 characters (GP-33 and later; absent on the GP-30/35)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PfecGprtc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PFEC_GPRTC", 3, count)
-        if count > 4:
-            raise rt.too_many(address, "PFEC_GPRTC", 4, count)
-        optional = count - 3
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "GPrtc", "GPrtc")
-        route = (_INTEGER_1_TO_200.get(fields[1]) or rt.integer_field(fields[1], address, 2, "route", "integer 1..200", 1, 200, _INTEGER_1_TO_200)) if fields[1] else None
-        comment = rt.text_field(fields[2], address, 3, "comment", "text of at most 18 characters", 18)
-        route_name: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            route_name = rt.text_field(fields[3], address, 4, "route_name", "text of at most 6 characters", 6)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, route, comment, route_name, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.route),
-            rt.text_of(self.comment),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.route_name is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.route_name)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PFEC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"route":' + show(self.route),
-            '"comment":' + show(self.comment),
-        ]
-        if self.route_name is not rt.ABSENT:
-            parts.append('"route_name":' + show(self.route_name))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "route"), 1)
-        out += rt.json_texts(rt.json_member(fields, "comment"), 1)
-        if "route_name" in fields:
-            out += rt.json_texts(fields["route_name"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PfecGprtc, )

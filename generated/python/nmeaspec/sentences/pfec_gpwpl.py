@@ -14,18 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_6: dict[Any, Any] = rt.known("integer 0..6")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PfecGpwpl:
+class PfecGpwpl(rt.Sentence):
     """PFEC_GPWPL: Waypoint data transfer (GPwpl).
-
     """
 
     SENTENCE: ClassVar[str] = "PFEC_GPWPL"
@@ -35,6 +27,20 @@ class PfecGpwpl:
     SELECTOR: ClassVar[str | None] = "GPwpl"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PFEC_GPWPL", "proprietary", "$", 9, 13, (
+        rt.KeywordField("keyword", "GPwpl", "GPwpl"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.TextField("name", "text of at most 8 characters", 8),
+        rt.IntegerField("color", "integer 0..6", 0, 6),
+        rt.TextField("comment", "text"),
+        rt.CharField("displayed", "one character"),
+        rt.TimeField("time", "time hhmmss[.s]", optional=True),
+        rt.IntegerField("day", "integer", optional=True),
+        rt.IntegerField("month", "integer", optional=True),
+        rt.IntegerField("year", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "GPwpl"
     """Message: Message identifier, mixed case on the wire (matched exactly)."""
     lat: rt.Coordinate | None = None
@@ -44,9 +50,12 @@ class PfecGpwpl:
     name: str | None = None
     """Waypoint name: Waypoint name, 1 to 8 characters."""
     color: rt.Number | None = None
-    """Colour: Display colour, empty or 0 black, 1 red, 2 yellow, 3 green, 4 brown, 5 purple, 6 blue."""
+    """Colour: Display colour, empty or 0 black, 1 red, 2 yellow, 3 green, 4 brown, 5 purple, 6
+    blue."""
     comment: str | None = None
-    """Comment: Mark code and comment: "@" followed by one character q to z (internal mark codes 0x10-0x19), then 0 to 13 characters from a restricted set (capitals, digits, space and a few symbols)."""
+    """Comment: Mark code and comment: \"@\" followed by one character q to z (internal mark codes
+    0x10-0x19), then 0 to 13 characters from a restricted set (capitals, digits, space and a few
+    symbols)."""
     displayed: str | None = None
     """Display flag: A when the waypoint is displayed, V when it is not."""
     time: rt.Time | None | rt._Absent = rt.ABSENT
@@ -58,126 +67,11 @@ class PfecGpwpl:
     year: rt.Number | None | rt._Absent = rt.ABSENT
     """Year: Always empty."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PfecGpwpl:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "PFEC_GPWPL", 9, count)
-        if count > 13:
-            raise rt.too_many(address, "PFEC_GPWPL", 13, count)
-        optional = count - 9
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "GPwpl", "GPwpl")
-        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        name = rt.text_field(fields[5], address, 6, "name", "text of at most 8 characters", 8)
-        color = (_INTEGER_0_TO_6.get(fields[6]) or rt.integer_field(fields[6], address, 7, "color", "integer 0..6", 0, 6, _INTEGER_0_TO_6)) if fields[6] else None
-        comment = rt.text_field(fields[7], address, 8, "comment", "text", None)
-        displayed = rt.char_field(fields[8], address, 9, "displayed", "one character")
-        time: rt.Time | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            time = (_TIME.get(fields[9]) or rt.time_field(fields[9], address, 10, "time", "time hhmmss[.s]", _TIME)) if fields[9] else None
-        day: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            day = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "day", "integer", None, None, _INTEGER)) if fields[10] else None
-        month: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            month = (_INTEGER.get(fields[11]) or rt.integer_field(fields[11], address, 12, "month", "integer", None, None, _INTEGER)) if fields[11] else None
-        year: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            year = (_INTEGER.get(fields[12]) or rt.integer_field(fields[12], address, 13, "year", "integer", None, None, _INTEGER)) if fields[12] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, lat, lon, name, color, comment, displayed, time, day, month, year, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.name),
-            rt.text_of(self.color),
-            rt.text_of(self.comment),
-            rt.text_of(self.displayed),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.year is not rt.ABSENT:
-            last = 3
-        elif self.month is not rt.ABSENT:
-            last = 2
-        elif self.day is not rt.ABSENT:
-            last = 1
-        elif self.time is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.time)]
-        if last >= 1:
-            out += [rt.text_of(self.day)]
-        if last >= 2:
-            out += [rt.text_of(self.month)]
-        if last >= 3:
-            out += [rt.text_of(self.year)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PFEC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"name":' + show(self.name),
-            '"color":' + show(self.color),
-            '"comment":' + show(self.comment),
-            '"displayed":' + show(self.displayed),
-        ]
-        if self.time is not rt.ABSENT:
-            parts.append('"time":' + show(self.time))
-        if self.day is not rt.ABSENT:
-            parts.append('"day":' + show(self.day))
-        if self.month is not rt.ABSENT:
-            parts.append('"month":' + show(self.month))
-        if self.year is not rt.ABSENT:
-            parts.append('"year":' + show(self.year))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "color"), 1)
-        out += rt.json_texts(rt.json_member(fields, "comment"), 1)
-        out += rt.json_texts(rt.json_member(fields, "displayed"), 1)
-        if "time" in fields:
-            out += rt.json_texts(fields["time"], 1)
-        if "day" in fields:
-            out += rt.json_texts(fields["day"], 1)
-        if "month" in fields:
-            out += rt.json_texts(fields["month"], 1)
-        if "year" in fields:
-            out += rt.json_texts(fields["year"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PfecGpwpl, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PFEC_GPXFR: Data transfer control (GPxfr).
 
-Control sentence of a Furuno navigator's waypoint/route data transfer; CTL,E marks the end of
-the data.
+Control sentence of a Furuno navigator's waypoint/route data transfer; CTL,E marks the end of the
+data.
 """
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class PfecGpxfr:
+class PfecGpxfr(rt.Sentence):
     """PFEC_GPXFR: Data transfer control (GPxfr).
 
-    Example (furuno_gp33): $PFEC,GPxfr,CTL,E
+    Example (furuno_gp33):
+    $PFEC,GPxfr,CTL,E
     """
 
     SENTENCE: ClassVar[str] = "PFEC_GPXFR"
@@ -29,6 +30,12 @@ class PfecGpxfr:
     SELECTOR: ClassVar[str | None] = "GPxfr"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PFEC_GPXFR", "proprietary", "$", 3, 3, (
+        rt.KeywordField("keyword", "GPxfr", "GPxfr"),
+        rt.LiteralField("control", "CTL or nothing", "CTL"),
+        rt.CharField("code", "one character"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "GPxfr"
     """Message: Message identifier, mixed case on the wire (matched exactly)."""
     control: str | None = None
@@ -36,62 +43,11 @@ class PfecGpxfr:
     code: str | None = None
     """Control code: E for the end of the transfer; no other code is documented."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PfecGpxfr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PFEC_GPXFR", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PFEC_GPXFR", 3, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "GPxfr", "GPxfr")
-        control = "CTL" if fields[1] == "CTL" else rt.literal_field(fields[1], address, 2, "control", "CTL or nothing", "CTL")
-        code = rt.char_field(fields[2], address, 3, "code", "one character")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, control, code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.control),
-            rt.text_of(self.code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PFEC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"control":' + show(self.control),
-            '"code":' + show(self.code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "control"), 1)
-        out += rt.json_texts(rt.json_member(fields, "code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PfecGpxfr, )

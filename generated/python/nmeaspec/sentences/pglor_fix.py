@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGLOR_FIX: Broadcom time to first fix.
 
-Sent by Broadcom (Global Locate) GNSS chips when a fix is obtained: the time to first fix
-counted from the position request and from the start of the GLL driver.
+Sent by Broadcom (Global Locate) GNSS chips when a fix is obtained: the time to first fix counted
+from the position request and from the start of the GLL driver.
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class PglorFix:
+class PglorFix(rt.Sentence):
     """PGLOR_FIX: Broadcom time to first fix.
 
-    Example (log_gpsd): $PGLOR,1,FIX,1.0,1.0*20
+    Example (log_gpsd):
+    $PGLOR,1,FIX,1.0,1.0*20
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_FIX"
@@ -33,75 +31,28 @@ class PglorFix:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_FIX", "proprietary", "$", 4, 4, (
+        rt.LiteralField("version", "1 or nothing", "1"),
+        rt.KeywordField("sentence_id", "FIX", "FIX"),
+        rt.DecimalField("ttff_request", "decimal number"),
+        rt.DecimalField("ttff_start", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
     """Sentence version: Version of the FIX layout, 1."""
     sentence_id: str = "FIX"
     """Sentence identifier: Identifies the time-to-fix sentence."""
     ttff_request: rt.Number | None = None
-    """TTFF since request [s]: Time to fix counted from the moment the position request was received."""
+    """TTFF since request [s]: Time to fix counted from the moment the position request was
+    received."""
     ttff_start: rt.Number | None = None
     """TTFF since start [s]: Time to fix counted from the moment the GLL driver was switched on."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorFix:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PGLOR_FIX", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PGLOR_FIX", 4, count)
-        version = "1" if fields[0] == "1" else rt.literal_field(fields[0], address, 1, "version", "1 or nothing", "1")
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "FIX", "FIX")
-        ttff_request = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "ttff_request", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        ttff_start = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "ttff_start", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, ttff_request, ttff_start, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.ttff_request),
-            rt.text_of(self.ttff_start),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"ttff_request":' + show(self.ttff_request),
-            '"ttff_start":' + show(self.ttff_start),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ttff_request"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ttff_start"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PglorFix, )

@@ -3,9 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGLOR_LSQ: Broadcom least-squares fix.
 
-The single-epoch least-squares GNSS fix of a Broadcom chip, beside the filtered fix of GGA:
-time, position, altitude, speeds and track, each with its RMS error, and the satellites used in
-it.
+The single-epoch least-squares GNSS fix of a Broadcom chip, beside the filtered fix of GGA: time,
+position, altitude, speeds and track, each with its RMS error, and the satellites used in it.
 """
 
 from __future__ import annotations
@@ -15,27 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PglorLsqExtraEntry:
-    """One entry of undocumented trailing fields (0 to 4 per sentence)."""
-
-    value: str | None = None
-    """Field: One undocumented field, kept as received."""
-
-
-@dataclass(slots=True)
-class PglorLsq:
+class PglorLsq(rt.Sentence):
     """PGLOR_LSQ: Broadcom least-squares fix.
 
-    Example (log_gpsd): $PGLOR,0,LSQ,000145.00,,,,,,,,,,,,,,,,00*3A
+    Example (log_gpsd):
+    $PGLOR,0,LSQ,000145.00,,,,,,,,,,,,,,,,00*3A
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_LSQ"
@@ -46,8 +31,32 @@ class PglorLsq:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_LSQ", "proprietary", "$", 19, 23, (
+        rt.IntegerField("version", "integer"),
+        rt.KeywordField("sentence_id", "LSQ", "LSQ"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("horizontal_error", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.DecimalField("altitude_error", "decimal number"),
+        rt.DecimalField("vdop", "decimal number"),
+        rt.DecimalField("horizontal_speed", "decimal number"),
+        rt.DecimalField("horizontal_speed_error", "decimal number"),
+        rt.DecimalField("vertical_speed", "decimal number"),
+        rt.DecimalField("vertical_speed_error", "decimal number"),
+        rt.DecimalField("track", "decimal number"),
+        rt.DecimalField("track_error", "decimal number"),
+        rt.IntegerField("satellites_used", "integer"),
+        rt.Group("extra", None, (
+            rt.TextField("value", "text"),
+        ), 0, 4),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: rt.Number | None = None
-    """Sentence version: Version of the LSQ layout (0 in the documentation; the Quectel LC79D sends 1 with two more fields)."""
+    """Sentence version: Version of the LSQ layout (0 in the documentation; the Quectel LC79D sends
+    1 with two more fields)."""
     sentence_id: str = "LSQ"
     """Sentence identifier: Identifies the least-squares fix sentence."""
     time: rt.Time | None = None
@@ -79,134 +88,16 @@ class PglorLsq:
     track_error: rt.Number | None = None
     """Track error [deg]: RMS error of the track."""
     satellites_used: rt.Number | None = None
-    """Satellites used: Satellites used in the least-squares fix; may differ from those in view and from those used by the filtered fix of GGA."""
+    """Satellites used: Satellites used in the least-squares fix; may differ from those in view and
+    from those used by the filtered fix of GGA."""
     extra: list[str | None] = field(default_factory=list)
     """Undocumented trailing fields: 0 to 4 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorLsq:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 19) // 1, 4)
-        optional = count - 19 - repeats * 1
-        if count < 19 or optional > 0:
-            rt.split_group(address, "PGLOR_LSQ", "extra", count, 19, 1, 0, 4, 0)
-        version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "version", "integer", None, None, _INTEGER)) if fields[0] else None
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "LSQ", "LSQ")
-        time = (_TIME.get(fields[2]) or rt.time_field(fields[2], address, 3, "time", "time hhmmss[.s]", _TIME)) if fields[2] else None
-        lat = _LATITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[5], fields[6])) or rt.coordinate_field(fields[5], fields[6], address, 6, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        horizontal_error = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "horizontal_error", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        hdop = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "hdop", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        altitude = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "altitude", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        altitude_error = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "altitude_error", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        vdop = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "vdop", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        horizontal_speed = (_DECIMAL.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "horizontal_speed", "decimal number", None, None, _DECIMAL)) if fields[12] else None
-        horizontal_speed_error = (_DECIMAL.get(fields[13]) or rt.decimal_field(fields[13], address, 14, "horizontal_speed_error", "decimal number", None, None, _DECIMAL)) if fields[13] else None
-        vertical_speed = (_DECIMAL.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "vertical_speed", "decimal number", None, None, _DECIMAL)) if fields[14] else None
-        vertical_speed_error = (_DECIMAL.get(fields[15]) or rt.decimal_field(fields[15], address, 16, "vertical_speed_error", "decimal number", None, None, _DECIMAL)) if fields[15] else None
-        track = (_DECIMAL.get(fields[16]) or rt.decimal_field(fields[16], address, 17, "track", "decimal number", None, None, _DECIMAL)) if fields[16] else None
-        track_error = (_DECIMAL.get(fields[17]) or rt.decimal_field(fields[17], address, 18, "track_error", "decimal number", None, None, _DECIMAL)) if fields[17] else None
-        satellites_used = (_INTEGER.get(fields[18]) or rt.integer_field(fields[18], address, 19, "satellites_used", "integer", None, None, _INTEGER)) if fields[18] else None
-        extra: list[str | None] = []
-        pos = 19
-        for entry in range(repeats):
-            extra.append(rt.text_field(fields[pos], address, pos + 1, f"extra[{entry + 1}].value", "text", None))
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, time, lat, lon, horizontal_error, hdop, altitude, altitude_error, vdop, horizontal_speed, horizontal_speed_error, vertical_speed, vertical_speed_error, track, track_error, satellites_used, extra, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.horizontal_error),
-            rt.text_of(self.hdop),
-            rt.text_of(self.altitude),
-            rt.text_of(self.altitude_error),
-            rt.text_of(self.vdop),
-            rt.text_of(self.horizontal_speed),
-            rt.text_of(self.horizontal_speed_error),
-            rt.text_of(self.vertical_speed),
-            rt.text_of(self.vertical_speed_error),
-            rt.text_of(self.track),
-            rt.text_of(self.track_error),
-            rt.text_of(self.satellites_used),
-        ]
-        for entry in self.extra:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"time":' + show(self.time),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"horizontal_error":' + show(self.horizontal_error),
-            '"hdop":' + show(self.hdop),
-            '"altitude":' + show(self.altitude),
-            '"altitude_error":' + show(self.altitude_error),
-            '"vdop":' + show(self.vdop),
-            '"horizontal_speed":' + show(self.horizontal_speed),
-            '"horizontal_speed_error":' + show(self.horizontal_speed_error),
-            '"vertical_speed":' + show(self.vertical_speed),
-            '"vertical_speed_error":' + show(self.vertical_speed_error),
-            '"track":' + show(self.track),
-            '"track_error":' + show(self.track_error),
-            '"satellites_used":' + show(self.satellites_used),
-            '"extra":[' + ",".join(show(entry) for entry in self.extra) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "horizontal_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "horizontal_speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "horizontal_speed_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vertical_speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vertical_speed_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "track"), 1)
-        out += rt.json_texts(rt.json_member(fields, "track_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites_used"), 1)
-        for entry in rt.json_list(fields, "extra"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PglorLsq, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGLOR_PWR: Broadcom power consumption report.
 
-Power report of the Broadcom GNSS chip over the last measurement interval: average current and
-how long the RF front end and the oscillator were on. Each value follows a label word.
+Power report of the Broadcom GNSS chip over the last measurement interval: average current and how
+long the RF front end and the oscillator were on. Each value follows a label word.
 """
 
 from __future__ import annotations
@@ -14,17 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PglorPwr:
+class PglorPwr(rt.Sentence):
     """PGLOR_PWR: Broadcom power consumption report.
 
-    Example (broadcom_glor_2015): $PGLOR,3,PWR,mA,15.1,RFTm,510,OscTm,1000,MeasTm,1000,UTC,200314.00*03
+    Example (broadcom_glor_2015):
+    $PGLOR,3,PWR,mA,15.1,RFTm,510,OscTm,1000,MeasTm,1000,UTC,200314.00*03
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_PWR"
@@ -35,6 +31,21 @@ class PglorPwr:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_PWR", "proprietary", "$", 12, 12, (
+        rt.LiteralField("version", "3 or nothing", "3"),
+        rt.KeywordField("sentence_id", "PWR", "PWR"),
+        rt.LiteralField("current_label", "mA or nothing", "mA"),
+        rt.DecimalField("current", "decimal number"),
+        rt.LiteralField("rf_on_label", "RFTm or nothing", "RFTm"),
+        rt.IntegerField("rf_on_time", "integer"),
+        rt.LiteralField("osc_on_label", "OscTm or nothing", "OscTm"),
+        rt.IntegerField("osc_on_time", "integer"),
+        rt.LiteralField("interval_label", "MeasTm or nothing", "MeasTm"),
+        rt.IntegerField("interval", "integer"),
+        rt.LiteralField("time_label", "UTC or nothing", "UTC"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
     """Sentence version: Version of the PWR layout; this layout (current in mA) is version 3."""
     sentence_id: str = "PWR"
@@ -50,7 +61,8 @@ class PglorPwr:
     osc_on_label: str | None = None
     """Label OscTm: Label of the next field."""
     osc_on_time: rt.Number | None = None
-    """Oscillator on time [ms]: Part of the measurement interval during which the oscillator was on."""
+    """Oscillator on time [ms]: Part of the measurement interval during which the oscillator was
+    on."""
     interval_label: str | None = None
     """Label MeasTm: Label of the next field."""
     interval: rt.Number | None = None
@@ -60,108 +72,20 @@ class PglorPwr:
     time: rt.Time | None = None
     """UTC time: UTC time of the report."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorPwr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "PGLOR_PWR", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "PGLOR_PWR", 12, count)
-        version = "3" if fields[0] == "3" else rt.literal_field(fields[0], address, 1, "version", "3 or nothing", "3")
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "PWR", "PWR")
-        current_label = "mA" if fields[2] == "mA" else rt.literal_field(fields[2], address, 3, "current_label", "mA or nothing", "mA")
-        current = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "current", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        rf_on_label = "RFTm" if fields[4] == "RFTm" else rt.literal_field(fields[4], address, 5, "rf_on_label", "RFTm or nothing", "RFTm")
-        rf_on_time = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "rf_on_time", "integer", None, None, _INTEGER)) if fields[5] else None
-        osc_on_label = "OscTm" if fields[6] == "OscTm" else rt.literal_field(fields[6], address, 7, "osc_on_label", "OscTm or nothing", "OscTm")
-        osc_on_time = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "osc_on_time", "integer", None, None, _INTEGER)) if fields[7] else None
-        interval_label = "MeasTm" if fields[8] == "MeasTm" else rt.literal_field(fields[8], address, 9, "interval_label", "MeasTm or nothing", "MeasTm")
-        interval = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "interval", "integer", None, None, _INTEGER)) if fields[9] else None
-        time_label = "UTC" if fields[10] == "UTC" else rt.literal_field(fields[10], address, 11, "time_label", "UTC or nothing", "UTC")
-        time = (_TIME.get(fields[11]) or rt.time_field(fields[11], address, 12, "time", "time hhmmss[.s]", _TIME)) if fields[11] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, current_label, current, rf_on_label, rf_on_time, osc_on_label, osc_on_time, interval_label, interval, time_label, time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.current_label),
-            rt.text_of(self.current),
-            rt.text_of(self.rf_on_label),
-            rt.text_of(self.rf_on_time),
-            rt.text_of(self.osc_on_label),
-            rt.text_of(self.osc_on_time),
-            rt.text_of(self.interval_label),
-            rt.text_of(self.interval),
-            rt.text_of(self.time_label),
-            rt.text_of(self.time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"current_label":' + show(self.current_label),
-            '"current":' + show(self.current),
-            '"rf_on_label":' + show(self.rf_on_label),
-            '"rf_on_time":' + show(self.rf_on_time),
-            '"osc_on_label":' + show(self.osc_on_label),
-            '"osc_on_time":' + show(self.osc_on_time),
-            '"interval_label":' + show(self.interval_label),
-            '"interval":' + show(self.interval),
-            '"time_label":' + show(self.time_label),
-            '"time":' + show(self.time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "current_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "current"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rf_on_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rf_on_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "osc_on_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "osc_on_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "interval_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "interval"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PglorPwrV2:
+class PglorPwrV2(rt.Sentence):
     """PGLOR_PWR (Version 2, average power): Broadcom power consumption report.
 
-    The version 2 layout: average power in mW (computed from the configured supply voltages) and
-    the times the RF, the IC, the oscillator were on and the IC was in low power, then the
-    interval and the UTC time.
-
+    The version 2 layout: average power in mW (computed from the configured supply voltages) and the
+    times the RF, the IC, the oscillator were on and the IC was in low power, then the interval and
+    the UTC time.
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_PWR"
@@ -172,6 +96,25 @@ class PglorPwrV2:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_PWR", "proprietary", "$", 16, 16, (
+        rt.LiteralField("version", "2 or nothing", "2"),
+        rt.KeywordField("sentence_id", "PWR", "PWR"),
+        rt.LiteralField("power_label", "AvgP or nothing", "AvgP"),
+        rt.DecimalField("average_power", "decimal number"),
+        rt.LiteralField("rf_on_label", "RFTm or nothing", "RFTm"),
+        rt.IntegerField("rf_on_time", "integer"),
+        rt.LiteralField("run_label", "RunT or nothing", "RunT"),
+        rt.IntegerField("run_time", "integer"),
+        rt.LiteralField("osc_on_label", "OscTm or nothing", "OscTm"),
+        rt.IntegerField("osc_on_time", "integer"),
+        rt.LiteralField("sleep_label", "SlpTm or nothing", "SlpTm"),
+        rt.IntegerField("sleep_time", "integer"),
+        rt.LiteralField("interval_label", "MeasTm or nothing", "MeasTm"),
+        rt.IntegerField("interval", "integer"),
+        rt.LiteralField("time_label", "UTC or nothing", "UTC"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
     """Sentence version: Version of the PWR layout, 2."""
     sentence_id: str = "PWR"
@@ -179,7 +122,8 @@ class PglorPwrV2:
     power_label: str | None = None
     """Label AvgP: Label of the next field."""
     average_power: rt.Number | None = None
-    """Average power [mW]: Average power during the last measurement interval, from the configured supply voltages."""
+    """Average power [mW]: Average power during the last measurement interval, from the configured
+    supply voltages."""
     rf_on_label: str | None = None
     """Label RFTm: Label of the next field."""
     rf_on_time: rt.Number | None = None
@@ -191,11 +135,13 @@ class PglorPwrV2:
     osc_on_label: str | None = None
     """Label OscTm: Label of the next field."""
     osc_on_time: rt.Number | None = None
-    """Oscillator on time [ms]: Part of the measurement interval during which the oscillator was on."""
+    """Oscillator on time [ms]: Part of the measurement interval during which the oscillator was
+    on."""
     sleep_label: str | None = None
     """Label SlpTm: Label of the next field."""
     sleep_time: rt.Number | None = None
-    """Low-power time [ms]: Part of the measurement interval during which the IC was in a low-power mode."""
+    """Low-power time [ms]: Part of the measurement interval during which the IC was in a low-power
+    mode."""
     interval_label: str | None = None
     """Label MeasTm: Label of the next field."""
     interval: rt.Number | None = None
@@ -205,132 +151,22 @@ class PglorPwrV2:
     time: rt.Time | None = None
     """UTC time: UTC time of the report."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorPwrV2:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 16:
-            raise rt.too_few(address, "PGLOR_PWR", 16, count)
-        if count > 16:
-            raise rt.too_many(address, "PGLOR_PWR", 16, count)
-        version = "2" if fields[0] == "2" else rt.literal_field(fields[0], address, 1, "version", "2 or nothing", "2")
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "PWR", "PWR")
-        power_label = "AvgP" if fields[2] == "AvgP" else rt.literal_field(fields[2], address, 3, "power_label", "AvgP or nothing", "AvgP")
-        average_power = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "average_power", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        rf_on_label = "RFTm" if fields[4] == "RFTm" else rt.literal_field(fields[4], address, 5, "rf_on_label", "RFTm or nothing", "RFTm")
-        rf_on_time = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "rf_on_time", "integer", None, None, _INTEGER)) if fields[5] else None
-        run_label = "RunT" if fields[6] == "RunT" else rt.literal_field(fields[6], address, 7, "run_label", "RunT or nothing", "RunT")
-        run_time = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "run_time", "integer", None, None, _INTEGER)) if fields[7] else None
-        osc_on_label = "OscTm" if fields[8] == "OscTm" else rt.literal_field(fields[8], address, 9, "osc_on_label", "OscTm or nothing", "OscTm")
-        osc_on_time = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "osc_on_time", "integer", None, None, _INTEGER)) if fields[9] else None
-        sleep_label = "SlpTm" if fields[10] == "SlpTm" else rt.literal_field(fields[10], address, 11, "sleep_label", "SlpTm or nothing", "SlpTm")
-        sleep_time = (_INTEGER.get(fields[11]) or rt.integer_field(fields[11], address, 12, "sleep_time", "integer", None, None, _INTEGER)) if fields[11] else None
-        interval_label = "MeasTm" if fields[12] == "MeasTm" else rt.literal_field(fields[12], address, 13, "interval_label", "MeasTm or nothing", "MeasTm")
-        interval = (_INTEGER.get(fields[13]) or rt.integer_field(fields[13], address, 14, "interval", "integer", None, None, _INTEGER)) if fields[13] else None
-        time_label = "UTC" if fields[14] == "UTC" else rt.literal_field(fields[14], address, 15, "time_label", "UTC or nothing", "UTC")
-        time = (_TIME.get(fields[15]) or rt.time_field(fields[15], address, 16, "time", "time hhmmss[.s]", _TIME)) if fields[15] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, power_label, average_power, rf_on_label, rf_on_time, run_label, run_time, osc_on_label, osc_on_time, sleep_label, sleep_time, interval_label, interval, time_label, time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.power_label),
-            rt.text_of(self.average_power),
-            rt.text_of(self.rf_on_label),
-            rt.text_of(self.rf_on_time),
-            rt.text_of(self.run_label),
-            rt.text_of(self.run_time),
-            rt.text_of(self.osc_on_label),
-            rt.text_of(self.osc_on_time),
-            rt.text_of(self.sleep_label),
-            rt.text_of(self.sleep_time),
-            rt.text_of(self.interval_label),
-            rt.text_of(self.interval),
-            rt.text_of(self.time_label),
-            rt.text_of(self.time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"power_label":' + show(self.power_label),
-            '"average_power":' + show(self.average_power),
-            '"rf_on_label":' + show(self.rf_on_label),
-            '"rf_on_time":' + show(self.rf_on_time),
-            '"run_label":' + show(self.run_label),
-            '"run_time":' + show(self.run_time),
-            '"osc_on_label":' + show(self.osc_on_label),
-            '"osc_on_time":' + show(self.osc_on_time),
-            '"sleep_label":' + show(self.sleep_label),
-            '"sleep_time":' + show(self.sleep_time),
-            '"interval_label":' + show(self.interval_label),
-            '"interval":' + show(self.interval),
-            '"time_label":' + show(self.time_label),
-            '"time":' + show(self.time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "power_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "average_power"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rf_on_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rf_on_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "run_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "run_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "osc_on_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "osc_on_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sleep_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sleep_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "interval_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "interval"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PglorPwrV4ExtraEntry:
-    """One entry of undocumented fields (0 to 16 per sentence)."""
-
-    value: str | None = None
-    """Field: One field, kept as received."""
-
-
-@dataclass(slots=True)
-class PglorPwrV4:
+class PglorPwrV4(rt.Sentence):
     """PGLOR_PWR (Version 4 (Quectel), undocumented tail): Broadcom power consumption report.
 
     Version 4 as sent by Quectel receivers: the version 3 fields, then label/value pairs that no
     public document describes, kept as text.
 
-    Example (log_gpsd): $PGLOR,4,PWR,mA,26.0,RFTm,1000,OscTm,1000,MeasTm,1000,UTC,000151.00,GNSSmA,26,CPUTm,0,COPTm,0,SrchTm,0,TrkTm,0,Rpc*00
+    Example (log_gpsd):
+    $PGLOR,4,PWR,mA,26.0,RFTm,1000,OscTm,1000,MeasTm,1000,UTC,000151.00,GNSSmA,26,CPUTm,0,COPTm,0,SrchTm,0,TrkTm,0,Rpc*00
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_PWR"
@@ -341,6 +177,24 @@ class PglorPwrV4:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_PWR", "proprietary", "$", 12, 28, (
+        rt.LiteralField("version", "4 or nothing", "4"),
+        rt.KeywordField("sentence_id", "PWR", "PWR"),
+        rt.LiteralField("current_label", "mA or nothing", "mA"),
+        rt.DecimalField("current", "decimal number"),
+        rt.LiteralField("rf_on_label", "RFTm or nothing", "RFTm"),
+        rt.IntegerField("rf_on_time", "integer"),
+        rt.LiteralField("osc_on_label", "OscTm or nothing", "OscTm"),
+        rt.IntegerField("osc_on_time", "integer"),
+        rt.LiteralField("interval_label", "MeasTm or nothing", "MeasTm"),
+        rt.IntegerField("interval", "integer"),
+        rt.LiteralField("time_label", "UTC or nothing", "UTC"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.Group("extra", None, (
+            rt.TextField("value", "text"),
+        ), 0, 16),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
     """Sentence version: Version of the PWR layout, 4."""
     sentence_id: str = "PWR"
@@ -356,7 +210,8 @@ class PglorPwrV4:
     osc_on_label: str | None = None
     """Label OscTm: Label of the next field."""
     osc_on_time: rt.Number | None = None
-    """Oscillator on time [ms]: Part of the measurement interval during which the oscillator was on."""
+    """Oscillator on time [ms]: Part of the measurement interval during which the oscillator was
+    on."""
     interval_label: str | None = None
     """Label MeasTm: Label of the next field."""
     interval: rt.Number | None = None
@@ -368,110 +223,11 @@ class PglorPwrV4:
     extra: list[str | None] = field(default_factory=list)
     """Undocumented fields: 0 to 16 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorPwrV4:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 12) // 1, 16)
-        optional = count - 12 - repeats * 1
-        if count < 12 or optional > 0:
-            rt.split_group(address, "PGLOR_PWR", "extra", count, 12, 1, 0, 16, 0)
-        version = "4" if fields[0] == "4" else rt.literal_field(fields[0], address, 1, "version", "4 or nothing", "4")
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "PWR", "PWR")
-        current_label = "mA" if fields[2] == "mA" else rt.literal_field(fields[2], address, 3, "current_label", "mA or nothing", "mA")
-        current = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "current", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        rf_on_label = "RFTm" if fields[4] == "RFTm" else rt.literal_field(fields[4], address, 5, "rf_on_label", "RFTm or nothing", "RFTm")
-        rf_on_time = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "rf_on_time", "integer", None, None, _INTEGER)) if fields[5] else None
-        osc_on_label = "OscTm" if fields[6] == "OscTm" else rt.literal_field(fields[6], address, 7, "osc_on_label", "OscTm or nothing", "OscTm")
-        osc_on_time = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "osc_on_time", "integer", None, None, _INTEGER)) if fields[7] else None
-        interval_label = "MeasTm" if fields[8] == "MeasTm" else rt.literal_field(fields[8], address, 9, "interval_label", "MeasTm or nothing", "MeasTm")
-        interval = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "interval", "integer", None, None, _INTEGER)) if fields[9] else None
-        time_label = "UTC" if fields[10] == "UTC" else rt.literal_field(fields[10], address, 11, "time_label", "UTC or nothing", "UTC")
-        time = (_TIME.get(fields[11]) or rt.time_field(fields[11], address, 12, "time", "time hhmmss[.s]", _TIME)) if fields[11] else None
-        extra: list[str | None] = []
-        pos = 12
-        for entry in range(repeats):
-            extra.append(rt.text_field(fields[pos], address, pos + 1, f"extra[{entry + 1}].value", "text", None))
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, current_label, current, rf_on_label, rf_on_time, osc_on_label, osc_on_time, interval_label, interval, time_label, time, extra, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.current_label),
-            rt.text_of(self.current),
-            rt.text_of(self.rf_on_label),
-            rt.text_of(self.rf_on_time),
-            rt.text_of(self.osc_on_label),
-            rt.text_of(self.osc_on_time),
-            rt.text_of(self.interval_label),
-            rt.text_of(self.interval),
-            rt.text_of(self.time_label),
-            rt.text_of(self.time),
-        ]
-        for entry in self.extra:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"current_label":' + show(self.current_label),
-            '"current":' + show(self.current),
-            '"rf_on_label":' + show(self.rf_on_label),
-            '"rf_on_time":' + show(self.rf_on_time),
-            '"osc_on_label":' + show(self.osc_on_label),
-            '"osc_on_time":' + show(self.osc_on_time),
-            '"interval_label":' + show(self.interval_label),
-            '"interval":' + show(self.interval),
-            '"time_label":' + show(self.time_label),
-            '"time":' + show(self.time),
-            '"extra":[' + ",".join(show(entry) for entry in self.extra) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "current_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "current"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rf_on_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rf_on_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "osc_on_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "osc_on_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "interval_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "interval"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        for entry in rt.json_list(fields, "extra"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PglorPwr, PglorPwrV2, PglorPwrV4, )

@@ -4,8 +4,8 @@
 """PGLOR_SAT: Broadcom per-satellite measurement status.
 
 Broadcom (Global Locate) GNSS chips report for every tracked satellite its C/N0 and whether its
-pseudorange and range rate were measured and used in the fix, information that GSV and GSA do
-not carry. Version 2 of the sentence splits the list over several sentences, numbered like GSV.
+pseudorange and range rate were measured and used in the fix, information that GSV and GSA do not
+carry. Version 2 of the sentence splits the list over several sentences, numbered like GSV.
 """
 
 from __future__ import annotations
@@ -15,18 +15,14 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
-
 
 @dataclass(slots=True)
 class PglorSatSatellite:
     """One entry of satellites (0 to 16 per sentence)."""
 
     satellite: str | None = None
-    """Satellite: Constellation letter followed by the satellite number in one field: G GPS, R GLONASS, Q QZSS, S SBAS (e.g. G28, R11)."""
+    """Satellite: Constellation letter followed by the satellite number in one field: G GPS, R
+    GLONASS, Q QZSS, S SBAS (e.g. G28, R11)."""
     cn0: rt.Number | None = None
     """C/N0 [dB-Hz]: Carrier-to-noise density of the satellite's signal; empty when not measured."""
     info: rt.Hex | None = None
@@ -34,10 +30,11 @@ class PglorSatSatellite:
 
 
 @dataclass(slots=True)
-class PglorSat:
+class PglorSat(rt.Sentence):
     """PGLOR_SAT: Broadcom per-satellite measurement status.
 
-    Example (log_gpsd): $PGLOR,2,SAT,3,1,G28,24,1F,G30,33,0B,R11,23,17,G13,33,17,R20,30,1F,G17,41,1F*3B
+    Example (log_gpsd):
+    $PGLOR,2,SAT,3,1,G28,24,1F,G30,33,0B,R11,23,17,G13,33,17,R20,30,1F,G17,41,1F*3B
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_SAT"
@@ -48,97 +45,36 @@ class PglorSat:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_SAT", "proprietary", "$", 4, 52, (
+        rt.LiteralField("version", "2 or nothing", "2"),
+        rt.KeywordField("sentence_id", "SAT", "SAT"),
+        rt.IntegerField("total_sentences", "integer of at least 1", 1, None),
+        rt.IntegerField("sentence_number", "integer of at least 1", 1, None),
+        rt.Group("satellites", PglorSatSatellite, (
+            rt.TextField("satellite", "text of at most 4 characters", 4),
+            rt.IntegerField("cn0", "integer"),
+            rt.HexField("info", "hex number"),
+        ), 0, 16),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
-    """Sentence version: Version of the SAT layout; this layout is version 2 (with sentence count and number)."""
+    """Sentence version: Version of the SAT layout; this layout is version 2 (with sentence count
+    and number)."""
     sentence_id: str = "SAT"
     """Sentence identifier: Identifies the satellite information sentence."""
     total_sentences: rt.Number | None = None
-    """Number of sentences: How many SAT sentences carry the whole satellite list of this epoch (at least 1)."""
+    """Number of sentences: How many SAT sentences carry the whole satellite list of this epoch (at
+    least 1)."""
     sentence_number: rt.Number | None = None
     """Sentence number: Position of this sentence in the series, starting at 1."""
     satellites: list[PglorSatSatellite] = field(default_factory=list)
     """Satellites: 0 to 16 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorSat:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 4) // 3, 16)
-        optional = count - 4 - repeats * 3
-        if count < 4 or optional > 0:
-            rt.split_group(address, "PGLOR_SAT", "satellites", count, 4, 3, 0, 16, 0)
-        version = "2" if fields[0] == "2" else rt.literal_field(fields[0], address, 1, "version", "2 or nothing", "2")
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "SAT", "SAT")
-        total_sentences = (_INTEGER_1_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "total_sentences", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[2] else None
-        sentence_number = (_INTEGER_1_TO.get(fields[3]) or rt.integer_field(fields[3], address, 4, "sentence_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[3] else None
-        satellites: list[PglorSatSatellite] = []
-        pos = 4
-        for entry in range(repeats):
-            satellites.append(PglorSatSatellite(
-                rt.text_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].satellite", "text of at most 4 characters", 4),
-                (_INTEGER.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].cn0", "integer", None, None, _INTEGER)) if fields[pos + 1] else None,
-                (_HEX.get(fields[pos + 2]) or rt.hex_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].info", "hex number", _HEX)) if fields[pos + 2] else None,
-            ))
-            pos += 3
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, total_sentences, sentence_number, satellites, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.total_sentences),
-            rt.text_of(self.sentence_number),
-        ]
-        for entry in self.satellites:
-            out += [rt.text_of(entry.satellite), rt.text_of(entry.cn0), rt.text_of(entry.info)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"total_sentences":' + show(self.total_sentences),
-            '"sentence_number":' + show(self.sentence_number),
-            '"satellites":[' + ",".join(
-                "{" + '"satellite":' + show(entry.satellite) + ',"cn0":' + show(entry.cn0) + ',"info":' + show(entry.info) + "}"
-                for entry in self.satellites) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "total_sentences"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        for entry in rt.json_list(fields, "satellites"):
-            out += rt.json_texts(rt.json_member(entry, "satellite"), 1)
-            out += rt.json_texts(rt.json_member(entry, "cn0"), 1)
-            out += rt.json_texts(rt.json_member(entry, "info"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
@@ -146,7 +82,8 @@ class PglorSatV1Satellite:
     """One entry of satellites (0 to 24 per sentence)."""
 
     satellite: str | None = None
-    """Satellite: Constellation letter followed by the satellite number in one field: G GPS, R GLONASS, Q QZSS, S SBAS (e.g. G28, R11)."""
+    """Satellite: Constellation letter followed by the satellite number in one field: G GPS, R
+    GLONASS, Q QZSS, S SBAS (e.g. G28, R11)."""
     cn0: rt.Number | None = None
     """C/N0 [dB-Hz]: Carrier-to-noise density of the satellite's signal; empty when not measured."""
     info: rt.Hex | None = None
@@ -154,12 +91,11 @@ class PglorSatV1Satellite:
 
 
 @dataclass(slots=True)
-class PglorSatV1:
+class PglorSatV1(rt.Sentence):
     """PGLOR_SAT (Version 1, single sentence): Broadcom per-satellite measurement status.
 
     Version 1 of the layout: no sentence count or number, the satellites follow the identifier
     directly, each as constellation letter plus number, C/N0 and status byte.
-
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_SAT"
@@ -170,6 +106,16 @@ class PglorSatV1:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_SAT", "proprietary", "$", 2, 74, (
+        rt.LiteralField("version", "1 or nothing", "1"),
+        rt.KeywordField("sentence_id", "SAT", "SAT"),
+        rt.Group("satellites", PglorSatV1Satellite, (
+            rt.TextField("satellite", "text of at most 4 characters", 4),
+            rt.IntegerField("cn0", "integer"),
+            rt.HexField("info", "hex number"),
+        ), 0, 24),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
     """Sentence version: Version of the SAT layout, 1."""
     sentence_id: str = "SAT"
@@ -177,78 +123,11 @@ class PglorSatV1:
     satellites: list[PglorSatV1Satellite] = field(default_factory=list)
     """Satellites: 0 to 24 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorSatV1:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 3, 24)
-        optional = count - 2 - repeats * 3
-        if count < 2 or optional > 0:
-            rt.split_group(address, "PGLOR_SAT", "satellites", count, 2, 3, 0, 24, 0)
-        version = "1" if fields[0] == "1" else rt.literal_field(fields[0], address, 1, "version", "1 or nothing", "1")
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "SAT", "SAT")
-        satellites: list[PglorSatV1Satellite] = []
-        pos = 2
-        for entry in range(repeats):
-            satellites.append(PglorSatV1Satellite(
-                rt.text_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].satellite", "text of at most 4 characters", 4),
-                (_INTEGER.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].cn0", "integer", None, None, _INTEGER)) if fields[pos + 1] else None,
-                (_HEX.get(fields[pos + 2]) or rt.hex_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].info", "hex number", _HEX)) if fields[pos + 2] else None,
-            ))
-            pos += 3
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, satellites, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-        ]
-        for entry in self.satellites:
-            out += [rt.text_of(entry.satellite), rt.text_of(entry.cn0), rt.text_of(entry.info)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"satellites":[' + ",".join(
-                "{" + '"satellite":' + show(entry.satellite) + ',"cn0":' + show(entry.cn0) + ',"info":' + show(entry.info) + "}"
-                for entry in self.satellites) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        for entry in rt.json_list(fields, "satellites"):
-            out += rt.json_texts(rt.json_member(entry, "satellite"), 1)
-            out += rt.json_texts(rt.json_member(entry, "cn0"), 1)
-            out += rt.json_texts(rt.json_member(entry, "info"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
@@ -264,12 +143,11 @@ class PglorSatV0Satellite:
 
 
 @dataclass(slots=True)
-class PglorSatV0:
+class PglorSatV0(rt.Sentence):
     """PGLOR_SAT (Version 0, GPS only): Broadcom per-satellite measurement status.
 
     Version 0 of the layout: GPS satellites only, each as PRN, C/N0 and status byte (bit 6
     reserved).
-
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_SAT"
@@ -280,6 +158,16 @@ class PglorSatV0:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_SAT", "proprietary", "$", 2, 74, (
+        rt.LiteralField("version", "0 or nothing", "0"),
+        rt.KeywordField("sentence_id", "SAT", "SAT"),
+        rt.Group("satellites", PglorSatV0Satellite, (
+            rt.IntegerField("prn", "integer"),
+            rt.IntegerField("cn0", "integer"),
+            rt.HexField("info", "hex number"),
+        ), 0, 24),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
     """Sentence version: Version of the SAT layout, 0."""
     sentence_id: str = "SAT"
@@ -287,78 +175,11 @@ class PglorSatV0:
     satellites: list[PglorSatV0Satellite] = field(default_factory=list)
     """Satellites: 0 to 24 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorSatV0:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 3, 24)
-        optional = count - 2 - repeats * 3
-        if count < 2 or optional > 0:
-            rt.split_group(address, "PGLOR_SAT", "satellites", count, 2, 3, 0, 24, 0)
-        version = "0" if fields[0] == "0" else rt.literal_field(fields[0], address, 1, "version", "0 or nothing", "0")
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "SAT", "SAT")
-        satellites: list[PglorSatV0Satellite] = []
-        pos = 2
-        for entry in range(repeats):
-            satellites.append(PglorSatV0Satellite(
-                (_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None,
-                (_INTEGER.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].cn0", "integer", None, None, _INTEGER)) if fields[pos + 1] else None,
-                (_HEX.get(fields[pos + 2]) or rt.hex_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].info", "hex number", _HEX)) if fields[pos + 2] else None,
-            ))
-            pos += 3
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, satellites, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-        ]
-        for entry in self.satellites:
-            out += [rt.text_of(entry.prn), rt.text_of(entry.cn0), rt.text_of(entry.info)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"satellites":[' + ",".join(
-                "{" + '"prn":' + show(entry.prn) + ',"cn0":' + show(entry.cn0) + ',"info":' + show(entry.info) + "}"
-                for entry in self.satellites) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        for entry in rt.json_list(fields, "satellites"):
-            out += rt.json_texts(rt.json_member(entry, "prn"), 1)
-            out += rt.json_texts(rt.json_member(entry, "cn0"), 1)
-            out += rt.json_texts(rt.json_member(entry, "info"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PglorSat, PglorSatV1, PglorSatV0, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGLOR_SIO: Broadcom serial link status.
 
-Health of the serial link between the host driver (GLL) and the Broadcom GNSS chip: error and
-byte counters, malformed packets and timing of the driver. Each value follows a label word.
+Health of the serial link between the host driver (GLL) and the Broadcom GNSS chip: error and byte
+counters, malformed packets and timing of the driver. Each value follows a label word.
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class PglorSio:
+class PglorSio(rt.Sentence):
     """PGLOR_SIO: Broadcom serial link status.
 
-    Example (log_gpsd): $PGLOR,2,SIO,TxERR,0,RxERR,0,TxCNT,433,RxCNT,4316,MLFRMPKT,0,DTMS,957,DTIN,45,55,DTOUT,470,904,HATMD,40*11
+    Example (log_gpsd):
+    $PGLOR,2,SIO,TxERR,0,RxERR,0,TxCNT,433,RxCNT,4316,MLFRMPKT,0,DTMS,957,DTIN,45,55,DTOUT,470,904,HATMD,40*11
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_SIO"
@@ -33,8 +31,34 @@ class PglorSio:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_SIO", "proprietary", "$", 22, 22, (
+        rt.LiteralField("version", "2 or nothing", "2"),
+        rt.KeywordField("sentence_id", "SIO", "SIO"),
+        rt.LiteralField("tx_errors_label", "TxERR or nothing", "TxERR"),
+        rt.IntegerField("tx_errors", "integer"),
+        rt.LiteralField("rx_errors_label", "RxERR or nothing", "RxERR"),
+        rt.IntegerField("rx_errors", "integer"),
+        rt.LiteralField("tx_bytes_label", "TxCNT or nothing", "TxCNT"),
+        rt.IntegerField("tx_bytes", "integer"),
+        rt.LiteralField("rx_bytes_label", "RxCNT or nothing", "RxCNT"),
+        rt.IntegerField("rx_bytes", "integer"),
+        rt.LiteralField("malformed_label", "MLFRMPKT or nothing", "MLFRMPKT"),
+        rt.IntegerField("malformed_packets", "integer"),
+        rt.LiteralField("clock_increment_label", "DTMS or nothing", "DTMS"),
+        rt.IntegerField("clock_increment", "integer"),
+        rt.LiteralField("time_in_gll_label", "DTIN or nothing", "DTIN"),
+        rt.IntegerField("max_time_in_gll", "integer"),
+        rt.IntegerField("total_time_in_gll", "integer"),
+        rt.LiteralField("time_outside_gll_label", "DTOUT or nothing", "DTOUT"),
+        rt.IntegerField("max_time_outside_gll", "integer"),
+        rt.IntegerField("total_time_outside_gll", "integer"),
+        rt.LiteralField("time_delta_label", "HATMD or nothing", "HATMD"),
+        rt.IntegerField("host_chip_time_delta", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
-    """Sentence version: Version of the SIO layout; this layout (with malformed packets and cumulative times) is version 2."""
+    """Sentence version: Version of the SIO layout; this layout (with malformed packets and
+    cumulative times) is version 2."""
     sentence_id: str = "SIO"
     """Sentence identifier: Identifies the serial I/O status sentence."""
     tx_errors_label: str | None = None
@@ -60,7 +84,8 @@ class PglorSio:
     clock_increment_label: str | None = None
     """Label DTMS: Label of the next field."""
     clock_increment: rt.Number | None = None
-    """Platform clock increment [ms]: Increase of the platform clock since the last position report."""
+    """Platform clock increment [ms]: Increase of the platform clock since the last position
+    report."""
     time_in_gll_label: str | None = None
     """Label DTIN: Label of the next fields."""
     max_time_in_gll: rt.Number | None = None
@@ -76,148 +101,22 @@ class PglorSio:
     time_delta_label: str | None = None
     """Label HATMD: Label of the next field."""
     host_chip_time_delta: rt.Number | None = None
-    """Host/chip time delta: Difference between host and chip time seen in the heartbeats; a value staying outside +/-500 points to a serious communication problem."""
+    """Host/chip time delta: Difference between host and chip time seen in the heartbeats; a value
+    staying outside +/-500 points to a serious communication problem."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorSio:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 22:
-            raise rt.too_few(address, "PGLOR_SIO", 22, count)
-        if count > 22:
-            raise rt.too_many(address, "PGLOR_SIO", 22, count)
-        version = "2" if fields[0] == "2" else rt.literal_field(fields[0], address, 1, "version", "2 or nothing", "2")
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "SIO", "SIO")
-        tx_errors_label = "TxERR" if fields[2] == "TxERR" else rt.literal_field(fields[2], address, 3, "tx_errors_label", "TxERR or nothing", "TxERR")
-        tx_errors = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "tx_errors", "integer", None, None, _INTEGER)) if fields[3] else None
-        rx_errors_label = "RxERR" if fields[4] == "RxERR" else rt.literal_field(fields[4], address, 5, "rx_errors_label", "RxERR or nothing", "RxERR")
-        rx_errors = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "rx_errors", "integer", None, None, _INTEGER)) if fields[5] else None
-        tx_bytes_label = "TxCNT" if fields[6] == "TxCNT" else rt.literal_field(fields[6], address, 7, "tx_bytes_label", "TxCNT or nothing", "TxCNT")
-        tx_bytes = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "tx_bytes", "integer", None, None, _INTEGER)) if fields[7] else None
-        rx_bytes_label = "RxCNT" if fields[8] == "RxCNT" else rt.literal_field(fields[8], address, 9, "rx_bytes_label", "RxCNT or nothing", "RxCNT")
-        rx_bytes = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "rx_bytes", "integer", None, None, _INTEGER)) if fields[9] else None
-        malformed_label = "MLFRMPKT" if fields[10] == "MLFRMPKT" else rt.literal_field(fields[10], address, 11, "malformed_label", "MLFRMPKT or nothing", "MLFRMPKT")
-        malformed_packets = (_INTEGER.get(fields[11]) or rt.integer_field(fields[11], address, 12, "malformed_packets", "integer", None, None, _INTEGER)) if fields[11] else None
-        clock_increment_label = "DTMS" if fields[12] == "DTMS" else rt.literal_field(fields[12], address, 13, "clock_increment_label", "DTMS or nothing", "DTMS")
-        clock_increment = (_INTEGER.get(fields[13]) or rt.integer_field(fields[13], address, 14, "clock_increment", "integer", None, None, _INTEGER)) if fields[13] else None
-        time_in_gll_label = "DTIN" if fields[14] == "DTIN" else rt.literal_field(fields[14], address, 15, "time_in_gll_label", "DTIN or nothing", "DTIN")
-        max_time_in_gll = (_INTEGER.get(fields[15]) or rt.integer_field(fields[15], address, 16, "max_time_in_gll", "integer", None, None, _INTEGER)) if fields[15] else None
-        total_time_in_gll = (_INTEGER.get(fields[16]) or rt.integer_field(fields[16], address, 17, "total_time_in_gll", "integer", None, None, _INTEGER)) if fields[16] else None
-        time_outside_gll_label = "DTOUT" if fields[17] == "DTOUT" else rt.literal_field(fields[17], address, 18, "time_outside_gll_label", "DTOUT or nothing", "DTOUT")
-        max_time_outside_gll = (_INTEGER.get(fields[18]) or rt.integer_field(fields[18], address, 19, "max_time_outside_gll", "integer", None, None, _INTEGER)) if fields[18] else None
-        total_time_outside_gll = (_INTEGER.get(fields[19]) or rt.integer_field(fields[19], address, 20, "total_time_outside_gll", "integer", None, None, _INTEGER)) if fields[19] else None
-        time_delta_label = "HATMD" if fields[20] == "HATMD" else rt.literal_field(fields[20], address, 21, "time_delta_label", "HATMD or nothing", "HATMD")
-        host_chip_time_delta = (_INTEGER.get(fields[21]) or rt.integer_field(fields[21], address, 22, "host_chip_time_delta", "integer", None, None, _INTEGER)) if fields[21] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, tx_errors_label, tx_errors, rx_errors_label, rx_errors, tx_bytes_label, tx_bytes, rx_bytes_label, rx_bytes, malformed_label, malformed_packets, clock_increment_label, clock_increment, time_in_gll_label, max_time_in_gll, total_time_in_gll, time_outside_gll_label, max_time_outside_gll, total_time_outside_gll, time_delta_label, host_chip_time_delta, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.tx_errors_label),
-            rt.text_of(self.tx_errors),
-            rt.text_of(self.rx_errors_label),
-            rt.text_of(self.rx_errors),
-            rt.text_of(self.tx_bytes_label),
-            rt.text_of(self.tx_bytes),
-            rt.text_of(self.rx_bytes_label),
-            rt.text_of(self.rx_bytes),
-            rt.text_of(self.malformed_label),
-            rt.text_of(self.malformed_packets),
-            rt.text_of(self.clock_increment_label),
-            rt.text_of(self.clock_increment),
-            rt.text_of(self.time_in_gll_label),
-            rt.text_of(self.max_time_in_gll),
-            rt.text_of(self.total_time_in_gll),
-            rt.text_of(self.time_outside_gll_label),
-            rt.text_of(self.max_time_outside_gll),
-            rt.text_of(self.total_time_outside_gll),
-            rt.text_of(self.time_delta_label),
-            rt.text_of(self.host_chip_time_delta),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"tx_errors_label":' + show(self.tx_errors_label),
-            '"tx_errors":' + show(self.tx_errors),
-            '"rx_errors_label":' + show(self.rx_errors_label),
-            '"rx_errors":' + show(self.rx_errors),
-            '"tx_bytes_label":' + show(self.tx_bytes_label),
-            '"tx_bytes":' + show(self.tx_bytes),
-            '"rx_bytes_label":' + show(self.rx_bytes_label),
-            '"rx_bytes":' + show(self.rx_bytes),
-            '"malformed_label":' + show(self.malformed_label),
-            '"malformed_packets":' + show(self.malformed_packets),
-            '"clock_increment_label":' + show(self.clock_increment_label),
-            '"clock_increment":' + show(self.clock_increment),
-            '"time_in_gll_label":' + show(self.time_in_gll_label),
-            '"max_time_in_gll":' + show(self.max_time_in_gll),
-            '"total_time_in_gll":' + show(self.total_time_in_gll),
-            '"time_outside_gll_label":' + show(self.time_outside_gll_label),
-            '"max_time_outside_gll":' + show(self.max_time_outside_gll),
-            '"total_time_outside_gll":' + show(self.total_time_outside_gll),
-            '"time_delta_label":' + show(self.time_delta_label),
-            '"host_chip_time_delta":' + show(self.host_chip_time_delta),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tx_errors_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tx_errors"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rx_errors_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rx_errors"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tx_bytes_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tx_bytes"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rx_bytes_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rx_bytes"), 1)
-        out += rt.json_texts(rt.json_member(fields, "malformed_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "malformed_packets"), 1)
-        out += rt.json_texts(rt.json_member(fields, "clock_increment_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "clock_increment"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_in_gll_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "max_time_in_gll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "total_time_in_gll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_outside_gll_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "max_time_outside_gll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "total_time_outside_gll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_delta_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "host_chip_time_delta"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PglorSioV0:
-    """PGLOR_SIO (Version 0, without malformed packets and cumulative times): Broadcom serial link status.
+class PglorSioV0(rt.Sentence):
+    """PGLOR_SIO (Version 0, without malformed packets and cumulative times): Broadcom serial link
+    status.
 
     The older layout with one value each for DTIN and DTOUT and no MLFRMPKT counter.
-
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_SIO"
@@ -228,6 +127,27 @@ class PglorSioV0:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_SIO", "proprietary", "$", 18, 18, (
+        rt.LiteralField("version", "0 or nothing", "0"),
+        rt.KeywordField("sentence_id", "SIO", "SIO"),
+        rt.LiteralField("tx_errors_label", "TxERR or nothing", "TxERR"),
+        rt.IntegerField("tx_errors", "integer"),
+        rt.LiteralField("rx_errors_label", "RxERR or nothing", "RxERR"),
+        rt.IntegerField("rx_errors", "integer"),
+        rt.LiteralField("tx_bytes_label", "TxCNT or nothing", "TxCNT"),
+        rt.IntegerField("tx_bytes", "integer"),
+        rt.LiteralField("rx_bytes_label", "RxCNT or nothing", "RxCNT"),
+        rt.IntegerField("rx_bytes", "integer"),
+        rt.LiteralField("clock_increment_label", "DTMS or nothing", "DTMS"),
+        rt.IntegerField("clock_increment", "integer"),
+        rt.LiteralField("time_in_gll_label", "DTIN or nothing", "DTIN"),
+        rt.IntegerField("max_time_in_gll", "integer"),
+        rt.LiteralField("time_outside_gll_label", "DTOUT or nothing", "DTOUT"),
+        rt.IntegerField("max_time_outside_gll", "integer"),
+        rt.LiteralField("time_delta_label", "HATMD or nothing", "HATMD"),
+        rt.IntegerField("host_chip_time_delta", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
     """Sentence version: Version of the SIO layout, 0."""
     sentence_id: str = "SIO"
@@ -251,7 +171,8 @@ class PglorSioV0:
     clock_increment_label: str | None = None
     """Label DTMS: Label of the next field."""
     clock_increment: rt.Number | None = None
-    """Platform clock increment [ms]: Increase of the platform clock since the last position report."""
+    """Platform clock increment [ms]: Increase of the platform clock since the last position
+    report."""
     time_in_gll_label: str | None = None
     """Label DTIN: Label of the next fields."""
     max_time_in_gll: rt.Number | None = None
@@ -263,124 +184,14 @@ class PglorSioV0:
     time_delta_label: str | None = None
     """Label HATMD: Label of the next field."""
     host_chip_time_delta: rt.Number | None = None
-    """Host/chip time delta: Difference between host and chip time seen in the heartbeats; a value staying outside +/-500 points to a serious communication problem."""
+    """Host/chip time delta: Difference between host and chip time seen in the heartbeats; a value
+    staying outside +/-500 points to a serious communication problem."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorSioV0:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 18:
-            raise rt.too_few(address, "PGLOR_SIO", 18, count)
-        if count > 18:
-            raise rt.too_many(address, "PGLOR_SIO", 18, count)
-        version = "0" if fields[0] == "0" else rt.literal_field(fields[0], address, 1, "version", "0 or nothing", "0")
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "SIO", "SIO")
-        tx_errors_label = "TxERR" if fields[2] == "TxERR" else rt.literal_field(fields[2], address, 3, "tx_errors_label", "TxERR or nothing", "TxERR")
-        tx_errors = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "tx_errors", "integer", None, None, _INTEGER)) if fields[3] else None
-        rx_errors_label = "RxERR" if fields[4] == "RxERR" else rt.literal_field(fields[4], address, 5, "rx_errors_label", "RxERR or nothing", "RxERR")
-        rx_errors = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "rx_errors", "integer", None, None, _INTEGER)) if fields[5] else None
-        tx_bytes_label = "TxCNT" if fields[6] == "TxCNT" else rt.literal_field(fields[6], address, 7, "tx_bytes_label", "TxCNT or nothing", "TxCNT")
-        tx_bytes = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "tx_bytes", "integer", None, None, _INTEGER)) if fields[7] else None
-        rx_bytes_label = "RxCNT" if fields[8] == "RxCNT" else rt.literal_field(fields[8], address, 9, "rx_bytes_label", "RxCNT or nothing", "RxCNT")
-        rx_bytes = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "rx_bytes", "integer", None, None, _INTEGER)) if fields[9] else None
-        clock_increment_label = "DTMS" if fields[10] == "DTMS" else rt.literal_field(fields[10], address, 11, "clock_increment_label", "DTMS or nothing", "DTMS")
-        clock_increment = (_INTEGER.get(fields[11]) or rt.integer_field(fields[11], address, 12, "clock_increment", "integer", None, None, _INTEGER)) if fields[11] else None
-        time_in_gll_label = "DTIN" if fields[12] == "DTIN" else rt.literal_field(fields[12], address, 13, "time_in_gll_label", "DTIN or nothing", "DTIN")
-        max_time_in_gll = (_INTEGER.get(fields[13]) or rt.integer_field(fields[13], address, 14, "max_time_in_gll", "integer", None, None, _INTEGER)) if fields[13] else None
-        time_outside_gll_label = "DTOUT" if fields[14] == "DTOUT" else rt.literal_field(fields[14], address, 15, "time_outside_gll_label", "DTOUT or nothing", "DTOUT")
-        max_time_outside_gll = (_INTEGER.get(fields[15]) or rt.integer_field(fields[15], address, 16, "max_time_outside_gll", "integer", None, None, _INTEGER)) if fields[15] else None
-        time_delta_label = "HATMD" if fields[16] == "HATMD" else rt.literal_field(fields[16], address, 17, "time_delta_label", "HATMD or nothing", "HATMD")
-        host_chip_time_delta = (_INTEGER.get(fields[17]) or rt.integer_field(fields[17], address, 18, "host_chip_time_delta", "integer", None, None, _INTEGER)) if fields[17] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, tx_errors_label, tx_errors, rx_errors_label, rx_errors, tx_bytes_label, tx_bytes, rx_bytes_label, rx_bytes, clock_increment_label, clock_increment, time_in_gll_label, max_time_in_gll, time_outside_gll_label, max_time_outside_gll, time_delta_label, host_chip_time_delta, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.tx_errors_label),
-            rt.text_of(self.tx_errors),
-            rt.text_of(self.rx_errors_label),
-            rt.text_of(self.rx_errors),
-            rt.text_of(self.tx_bytes_label),
-            rt.text_of(self.tx_bytes),
-            rt.text_of(self.rx_bytes_label),
-            rt.text_of(self.rx_bytes),
-            rt.text_of(self.clock_increment_label),
-            rt.text_of(self.clock_increment),
-            rt.text_of(self.time_in_gll_label),
-            rt.text_of(self.max_time_in_gll),
-            rt.text_of(self.time_outside_gll_label),
-            rt.text_of(self.max_time_outside_gll),
-            rt.text_of(self.time_delta_label),
-            rt.text_of(self.host_chip_time_delta),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"tx_errors_label":' + show(self.tx_errors_label),
-            '"tx_errors":' + show(self.tx_errors),
-            '"rx_errors_label":' + show(self.rx_errors_label),
-            '"rx_errors":' + show(self.rx_errors),
-            '"tx_bytes_label":' + show(self.tx_bytes_label),
-            '"tx_bytes":' + show(self.tx_bytes),
-            '"rx_bytes_label":' + show(self.rx_bytes_label),
-            '"rx_bytes":' + show(self.rx_bytes),
-            '"clock_increment_label":' + show(self.clock_increment_label),
-            '"clock_increment":' + show(self.clock_increment),
-            '"time_in_gll_label":' + show(self.time_in_gll_label),
-            '"max_time_in_gll":' + show(self.max_time_in_gll),
-            '"time_outside_gll_label":' + show(self.time_outside_gll_label),
-            '"max_time_outside_gll":' + show(self.max_time_outside_gll),
-            '"time_delta_label":' + show(self.time_delta_label),
-            '"host_chip_time_delta":' + show(self.host_chip_time_delta),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tx_errors_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tx_errors"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rx_errors_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rx_errors"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tx_bytes_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tx_bytes"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rx_bytes_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rx_bytes"), 1)
-        out += rt.json_texts(rt.json_member(fields, "clock_increment_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "clock_increment"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_in_gll_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "max_time_in_gll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_outside_gll_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "max_time_outside_gll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_delta_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "host_chip_time_delta"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PglorSio, PglorSioV0, )

@@ -16,26 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import BroadcomGlorConfidence, BroadcomGlorLocationRequest, BroadcomGlorPowerSave, BroadcomGlorVelTrackQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PglorStaExtraEntry:
-    """One entry of further fields (0 to 16 per sentence)."""
-
-    value: str | None = None
-    """Field: One field, kept as received."""
-
-
-@dataclass(slots=True)
-class PglorSta:
+class PglorSta(rt.Sentence):
     """PGLOR_STA: Broadcom GLL status.
 
-    Example (log_gpsd): $PGLOR,9,STA,000145.00,-0.001,0.000,211,1,4,0,P,F,L,0,C,3,S,00000002,0,5,R,000833F4,TPEF,16,89374,LC,,,*64
+    Example (log_gpsd):
+    $PGLOR,9,STA,000145.00,-0.001,0.000,211,1,4,0,P,F,L,0,C,3,S,00000002,0,5,R,000833F4,TPEF,16,89374,LC,,,*64
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_STA"
@@ -46,8 +33,48 @@ class PglorSta:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_STA", "proprietary", "$", 17, 33, (
+        rt.IntegerField("version", "integer"),
+        rt.KeywordField("sentence_id", "STA", "STA"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("rtc_initial_error", "decimal number"),
+        rt.DecimalField("rtc_uncertainty", "decimal number"),
+        rt.DecimalField("oscillator_offset", "decimal number"),
+        rt.DecimalField("oscillator_uncertainty", "decimal number"),
+        rt.DecimalField("position_uncertainty", "decimal number"),
+        rt.EnumField(
+            "velocity_track_quality",
+            "broadcom_glor_vel_track_quality code (0 1 2 3)",
+            BroadcomGlorVelTrackQuality,
+        ),
+        rt.LiteralField("power_label", "P or nothing", "P"),
+        rt.EnumField(
+            "power_save",
+            "broadcom_glor_power_save code (D F S G SG)",
+            BroadcomGlorPowerSave,
+        ),
+        rt.LiteralField("location_label", "L or nothing", "L"),
+        rt.EnumField(
+            "location_request",
+            "broadcom_glor_location_request code (0 1)",
+            BroadcomGlorLocationRequest,
+        ),
+        rt.LiteralField("confidence_label", "C or nothing", "C"),
+        rt.EnumField(
+            "confidence",
+            "broadcom_glor_confidence code (0 1 2 3)",
+            BroadcomGlorConfidence,
+        ),
+        rt.LiteralField("source_label", "S or nothing", "S"),
+        rt.HexField("source", "hex number"),
+        rt.Group("extra", None, (
+            rt.TextField("value", "text"),
+        ), 0, 16),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: rt.Number | None = None
-    """Sentence version: Version of the STA layout (0 and 2 documented; receivers send 6, 9 and 10 with more fields at the end)."""
+    """Sentence version: Version of the STA layout (0 and 2 documented; receivers send 6, 9 and 10
+    with more fields at the end)."""
     sentence_id: str = "STA"
     """Sentence identifier: Identifies the status sentence."""
     time: rt.Time | None = None
@@ -63,7 +90,8 @@ class PglorSta:
     position_uncertainty: rt.Number | None = None
     """Position uncertainty [m]: Uncertainty of the position."""
     velocity_track_quality: BroadcomGlorVelTrackQuality | str | None = None
-    """Velocity and track quality: Quality of the internal velocity and track, independent of RMC."""
+    """Velocity and track quality: Quality of the internal velocity and track, independent of
+    RMC."""
     power_label: str | None = None
     """Label P: Label of the power saving state."""
     power_save: BroadcomGlorPowerSave | str | None = None
@@ -83,130 +111,11 @@ class PglorSta:
     extra: list[str | None] = field(default_factory=list)
     """Further fields: 0 to 16 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorSta:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 17) // 1, 16)
-        optional = count - 17 - repeats * 1
-        if count < 17 or optional > 0:
-            rt.split_group(address, "PGLOR_STA", "extra", count, 17, 1, 0, 16, 0)
-        version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "version", "integer", None, None, _INTEGER)) if fields[0] else None
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "STA", "STA")
-        time = (_TIME.get(fields[2]) or rt.time_field(fields[2], address, 3, "time", "time hhmmss[.s]", _TIME)) if fields[2] else None
-        rtc_initial_error = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "rtc_initial_error", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        rtc_uncertainty = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "rtc_uncertainty", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        oscillator_offset = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "oscillator_offset", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        oscillator_uncertainty = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "oscillator_uncertainty", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        position_uncertainty = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "position_uncertainty", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        velocity_track_quality = BroadcomGlorVelTrackQuality.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "velocity_track_quality", "broadcom_glor_vel_track_quality code (0 1 2 3)", BroadcomGlorVelTrackQuality.BY_CODE, "digits", 1, 1)
-        power_label = "P" if fields[9] == "P" else rt.literal_field(fields[9], address, 10, "power_label", "P or nothing", "P")
-        power_save = BroadcomGlorPowerSave.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "power_save", "broadcom_glor_power_save code (D F S G SG)", BroadcomGlorPowerSave.BY_CODE, "letters", 1, 2)
-        location_label = "L" if fields[11] == "L" else rt.literal_field(fields[11], address, 12, "location_label", "L or nothing", "L")
-        location_request = BroadcomGlorLocationRequest.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "location_request", "broadcom_glor_location_request code (0 1)", BroadcomGlorLocationRequest.BY_CODE, "digits", 1, 1)
-        confidence_label = "C" if fields[13] == "C" else rt.literal_field(fields[13], address, 14, "confidence_label", "C or nothing", "C")
-        confidence = BroadcomGlorConfidence.BY_CODE.get(fields[14]) or rt.enum_field(fields[14], address, 15, "confidence", "broadcom_glor_confidence code (0 1 2 3)", BroadcomGlorConfidence.BY_CODE, "digits", 1, 1)
-        source_label = "S" if fields[15] == "S" else rt.literal_field(fields[15], address, 16, "source_label", "S or nothing", "S")
-        source = (_HEX.get(fields[16]) or rt.hex_field(fields[16], address, 17, "source", "hex number", _HEX)) if fields[16] else None
-        extra: list[str | None] = []
-        pos = 17
-        for entry in range(repeats):
-            extra.append(rt.text_field(fields[pos], address, pos + 1, f"extra[{entry + 1}].value", "text", None))
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, time, rtc_initial_error, rtc_uncertainty, oscillator_offset, oscillator_uncertainty, position_uncertainty, velocity_track_quality, power_label, power_save, location_label, location_request, confidence_label, confidence, source_label, source, extra, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.time),
-            rt.text_of(self.rtc_initial_error),
-            rt.text_of(self.rtc_uncertainty),
-            rt.text_of(self.oscillator_offset),
-            rt.text_of(self.oscillator_uncertainty),
-            rt.text_of(self.position_uncertainty),
-            rt.text_of(self.velocity_track_quality),
-            rt.text_of(self.power_label),
-            rt.text_of(self.power_save),
-            rt.text_of(self.location_label),
-            rt.text_of(self.location_request),
-            rt.text_of(self.confidence_label),
-            rt.text_of(self.confidence),
-            rt.text_of(self.source_label),
-            rt.text_of(self.source),
-        ]
-        for entry in self.extra:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"time":' + show(self.time),
-            '"rtc_initial_error":' + show(self.rtc_initial_error),
-            '"rtc_uncertainty":' + show(self.rtc_uncertainty),
-            '"oscillator_offset":' + show(self.oscillator_offset),
-            '"oscillator_uncertainty":' + show(self.oscillator_uncertainty),
-            '"position_uncertainty":' + show(self.position_uncertainty),
-            '"velocity_track_quality":' + show(self.velocity_track_quality),
-            '"power_label":' + show(self.power_label),
-            '"power_save":' + show(self.power_save),
-            '"location_label":' + show(self.location_label),
-            '"location_request":' + show(self.location_request),
-            '"confidence_label":' + show(self.confidence_label),
-            '"confidence":' + show(self.confidence),
-            '"source_label":' + show(self.source_label),
-            '"source":' + show(self.source),
-            '"extra":[' + ",".join(show(entry) for entry in self.extra) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rtc_initial_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rtc_uncertainty"), 1)
-        out += rt.json_texts(rt.json_member(fields, "oscillator_offset"), 1)
-        out += rt.json_texts(rt.json_member(fields, "oscillator_uncertainty"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_uncertainty"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_track_quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "power_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "power_save"), 1)
-        out += rt.json_texts(rt.json_member(fields, "location_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "location_request"), 1)
-        out += rt.json_texts(rt.json_member(fields, "confidence_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "confidence"), 1)
-        out += rt.json_texts(rt.json_member(fields, "source_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "source"), 1)
-        for entry in rt.json_list(fields, "extra"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PglorSta, )

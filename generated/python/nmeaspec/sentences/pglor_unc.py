@@ -14,17 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PglorUnc:
+class PglorUnc(rt.Sentence):
     """PGLOR_UNC: Broadcom fix uncertainties.
 
-    Example (log_gpsd): $PGLOR,1,UNC,000145.00,0.011,4.0,3.0,0.11,71.74,4.0,4.0,0.0*1F
+    Example (log_gpsd):
+    $PGLOR,1,UNC,000145.00,0.011,4.0,3.0,0.11,71.74,4.0,4.0,0.0*1F
     """
 
     SENTENCE: ClassVar[str] = "PGLOR_UNC"
@@ -35,8 +31,23 @@ class PglorUnc:
     SELECTOR_AT: ClassVar[int] = 1
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_UNC", "proprietary", "$", 11, 11, (
+        rt.IntegerField("version", "integer"),
+        rt.KeywordField("sentence_id", "UNC", "UNC"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("time_uncertainty", "decimal number"),
+        rt.DecimalField("horizontal_uncertainty", "decimal number"),
+        rt.DecimalField("vertical_uncertainty", "decimal number"),
+        rt.DecimalField("speed_rms", "decimal number"),
+        rt.DecimalField("heading_rms", "decimal number"),
+        rt.DecimalField("ellipse_major", "decimal number"),
+        rt.DecimalField("ellipse_minor", "decimal number"),
+        rt.DecimalField("ellipse_orientation", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: rt.Number | None = None
-    """Sentence version: Version of the UNC layout (0 in the documentation, 1 on the receivers seen; same fields)."""
+    """Sentence version: Version of the UNC layout (0 in the documentation, 1 on the receivers seen;
+    same fields)."""
     sentence_id: str = "UNC"
     """Sentence identifier: Identifies the uncertainty sentence."""
     time: rt.Time | None = None
@@ -52,100 +63,20 @@ class PglorUnc:
     heading_rms: rt.Number | None = None
     """Heading error [deg]: Estimated root-mean-square error of the heading."""
     ellipse_major: rt.Number | None = None
-    """Error ellipse semi-major axis [m]: Semi-major axis of the one-sigma horizontal error ellipse."""
+    """Error ellipse semi-major axis [m]: Semi-major axis of the one-sigma horizontal error
+    ellipse."""
     ellipse_minor: rt.Number | None = None
-    """Error ellipse semi-minor axis [m]: Semi-minor axis of the one-sigma horizontal error ellipse."""
+    """Error ellipse semi-minor axis [m]: Semi-minor axis of the one-sigma horizontal error
+    ellipse."""
     ellipse_orientation: rt.Number | None = None
-    """Error ellipse orientation [deg]: Orientation of the semi-major axis, degrees from true north."""
+    """Error ellipse orientation [deg]: Orientation of the semi-major axis, degrees from true
+    north."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PglorUnc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "PGLOR_UNC", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "PGLOR_UNC", 11, count)
-        version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "version", "integer", None, None, _INTEGER)) if fields[0] else None
-        sentence_id = rt.keyword_field(fields[1], address, 2, "sentence_id", "UNC", "UNC")
-        time = (_TIME.get(fields[2]) or rt.time_field(fields[2], address, 3, "time", "time hhmmss[.s]", _TIME)) if fields[2] else None
-        time_uncertainty = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "time_uncertainty", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        horizontal_uncertainty = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "horizontal_uncertainty", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        vertical_uncertainty = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "vertical_uncertainty", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        speed_rms = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed_rms", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        heading_rms = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "heading_rms", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        ellipse_major = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "ellipse_major", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        ellipse_minor = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "ellipse_minor", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        ellipse_orientation = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "ellipse_orientation", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, sentence_id, time, time_uncertainty, horizontal_uncertainty, vertical_uncertainty, speed_rms, heading_rms, ellipse_major, ellipse_minor, ellipse_orientation, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.sentence_id),
-            rt.text_of(self.time),
-            rt.text_of(self.time_uncertainty),
-            rt.text_of(self.horizontal_uncertainty),
-            rt.text_of(self.vertical_uncertainty),
-            rt.text_of(self.speed_rms),
-            rt.text_of(self.heading_rms),
-            rt.text_of(self.ellipse_major),
-            rt.text_of(self.ellipse_minor),
-            rt.text_of(self.ellipse_orientation),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGLOR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"sentence_id":' + show(self.sentence_id),
-            '"time":' + show(self.time),
-            '"time_uncertainty":' + show(self.time_uncertainty),
-            '"horizontal_uncertainty":' + show(self.horizontal_uncertainty),
-            '"vertical_uncertainty":' + show(self.vertical_uncertainty),
-            '"speed_rms":' + show(self.speed_rms),
-            '"heading_rms":' + show(self.heading_rms),
-            '"ellipse_major":' + show(self.ellipse_major),
-            '"ellipse_minor":' + show(self.ellipse_minor),
-            '"ellipse_orientation":' + show(self.ellipse_orientation),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_uncertainty"), 1)
-        out += rt.json_texts(rt.json_member(fields, "horizontal_uncertainty"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vertical_uncertainty"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_rms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_rms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ellipse_major"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ellipse_minor"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ellipse_orientation"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PglorUnc, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGRMB: Garmin DGPS beacon information.
 
-Status of the DGPS beacon receiver: tuned frequency, bit rate, SNR, data quality, distance to
-the reference station and, on later sensors, the correction source and DGPS mode.
+Status of the DGPS beacon receiver: tuned frequency, bit rate, SNR, data quality, distance to the
+reference station and, on later sensors, the correction source and DGPS mode.
 """
 
 from __future__ import annotations
@@ -15,18 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GarminDgpsMode, GarminDgpsSource
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_325: dict[Any, Any] = rt.known("decimal 0..325")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_100: dict[Any, Any] = rt.known("integer 0..100")
-_INTEGER_0_TO_31: dict[Any, Any] = rt.known("integer 0..31")
-
 
 @dataclass(slots=True)
-class Pgrmb:
+class Pgrmb(rt.Sentence):
     """PGRMB: Garmin DGPS beacon information.
-
     """
 
     SENTENCE: ClassVar[str] = "PGRMB"
@@ -36,130 +28,51 @@ class Pgrmb:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMB", "proprietary", "$", 6, 9, (
+        rt.DecimalField("frequency", "decimal number 0..325", 0, 325),
+        rt.IntegerField("bit_rate", "integer"),
+        rt.IntegerField("snr", "integer 0..31", 0, 31),
+        rt.IntegerField("quality", "integer 0..100", 0, 100),
+        rt.DecimalField("distance", "decimal number"),
+        rt.LiteralField("distance_unit", "K or nothing", "K"),
+        rt.TextField("reserved", "text", optional=True),
+        rt.EnumField(
+            "fix_source",
+            "garmin_dgps_source code (R W N)",
+            GarminDgpsSource,
+            optional=True,
+        ),
+        rt.EnumField("dgps_mode", "garmin_dgps_mode code (A W R N)", GarminDgpsMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     frequency: rt.Number | None = None
-    """Beacon tune frequency [kHz]: Beacon frequency, 0.0 or 283.5 to 325.0 kHz in 0.5 kHz steps (no effect on GPS 16x/18x)."""
+    """Beacon tune frequency [kHz]: Beacon frequency, 0.0 or 283.5 to 325.0 kHz in 0.5 kHz steps (no
+    effect on GPS 16x/18x)."""
     bit_rate: rt.Number | None = None
-    """Beacon bit rate [bit/s]: Beacon bit rate, 0, 25, 50, 100 or 200 (no effect on GPS 16x/18x)."""
+    """Beacon bit rate [bit/s]: Beacon bit rate, 0, 25, 50, 100 or 200 (no effect on GPS
+    16x/18x)."""
     snr: rt.Number | None = None
     """Beacon SNR: Beacon signal to noise ratio, 0 to 31 (no effect on GPS 16x/18x)."""
     quality: rt.Number | None = None
     """Beacon data quality: Beacon data quality, 0 to 100 (no effect on GPS 16x/18x)."""
     distance: rt.Number | None = None
-    """Distance to the reference station [km]: Distance to the beacon reference station in kilometres."""
+    """Distance to the reference station [km]: Distance to the beacon reference station in
+    kilometres."""
     distance_unit: str | None = None
     """Distance unit: Unit of the distance, K for kilometres."""
     reserved: str | None | rt._Absent = rt.ABSENT
-    """Unused field: A field the GPS 16x/18x manuals list with no effect; its old meaning is not given."""
+    """Unused field: A field the GPS 16x/18x manuals list with no effect; its old meaning is not
+    given."""
     fix_source: GarminDgpsSource | str | None | rt._Absent = rt.ABSENT
     """DGPS fix source: R RTCM, W WAAS, N not a differential fix (GPS 16x/18x)."""
     dgps_mode: GarminDgpsMode | str | None | rt._Absent = rt.ABSENT
     """DGPS mode: A automatic, W WAAS only, R RTCM only, N none (GPS 16x/18x)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmb:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "PGRMB", 6, count)
-        if count > 9:
-            raise rt.too_many(address, "PGRMB", 9, count)
-        optional = count - 6
-        frequency = (_DECIMAL_0_TO_325.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "frequency", "decimal number 0..325", 0, 325, _DECIMAL_0_TO_325)) if fields[0] else None
-        bit_rate = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "bit_rate", "integer", None, None, _INTEGER)) if fields[1] else None
-        snr = (_INTEGER_0_TO_31.get(fields[2]) or rt.integer_field(fields[2], address, 3, "snr", "integer 0..31", 0, 31, _INTEGER_0_TO_31)) if fields[2] else None
-        quality = (_INTEGER_0_TO_100.get(fields[3]) or rt.integer_field(fields[3], address, 4, "quality", "integer 0..100", 0, 100, _INTEGER_0_TO_100)) if fields[3] else None
-        distance = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "distance", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        distance_unit = "K" if fields[5] == "K" else rt.literal_field(fields[5], address, 6, "distance_unit", "K or nothing", "K")
-        reserved: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            reserved = rt.text_field(fields[6], address, 7, "reserved", "text", None)
-        fix_source: GarminDgpsSource | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            fix_source = GarminDgpsSource.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "fix_source", "garmin_dgps_source code (R W N)", GarminDgpsSource.BY_CODE, "letters", 1, 1)
-        dgps_mode: GarminDgpsMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            dgps_mode = GarminDgpsMode.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "dgps_mode", "garmin_dgps_mode code (A W R N)", GarminDgpsMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(frequency, bit_rate, snr, quality, distance, distance_unit, reserved, fix_source, dgps_mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.frequency),
-            rt.text_of(self.bit_rate),
-            rt.text_of(self.snr),
-            rt.text_of(self.quality),
-            rt.text_of(self.distance),
-            rt.text_of(self.distance_unit),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.dgps_mode is not rt.ABSENT:
-            last = 2
-        elif self.fix_source is not rt.ABSENT:
-            last = 1
-        elif self.reserved is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.reserved)]
-        if last >= 1:
-            out += [rt.text_of(self.fix_source)]
-        if last >= 2:
-            out += [rt.text_of(self.dgps_mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMB",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"frequency":' + show(self.frequency),
-            '"bit_rate":' + show(self.bit_rate),
-            '"snr":' + show(self.snr),
-            '"quality":' + show(self.quality),
-            '"distance":' + show(self.distance),
-            '"distance_unit":' + show(self.distance_unit),
-        ]
-        if self.reserved is not rt.ABSENT:
-            parts.append('"reserved":' + show(self.reserved))
-        if self.fix_source is not rt.ABSENT:
-            parts.append('"fix_source":' + show(self.fix_source))
-        if self.dgps_mode is not rt.ABSENT:
-            parts.append('"dgps_mode":' + show(self.dgps_mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "frequency"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bit_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "snr"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance_unit"), 1)
-        if "reserved" in fields:
-            out += rt.json_texts(fields["reserved"], 1)
-        if "fix_source" in fields:
-            out += rt.json_texts(fields["fix_source"], 1)
-        if "dgps_mode" in fields:
-            out += rt.json_texts(fields["dgps_mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmb, )

@@ -3,12 +3,12 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGRMC: Garmin sensor configuration.
 
-Sets the sensor's fix mode, fixed altitude, earth datum (or a user datum), differential mode,
-NMEA baud rate, velocity filter and measurement pulse (PPS) output. The settings are kept in
-non-volatile memory. The sensor echoes the sentence when it is accepted; when a field is in
-error the echo carries the current values instead. $PGRMCE (PGRMCE) asks for the current values.
-An empty field leaves the setting unchanged. Baud rate and pulse mode changes take effect at the
-next power cycle or reset.
+Sets the sensor's fix mode, fixed altitude, earth datum (or a user datum), differential mode, NMEA
+baud rate, velocity filter and measurement pulse (PPS) output. The settings are kept in non-volatile
+memory. The sensor echoes the sentence when it is accepted; when a field is in error the echo
+carries the current values instead. $PGRMCE (PGRMCE) asks for the current values. An empty field
+leaves the setting unchanged. Baud rate and pulse mode changes take effect at the next power cycle
+or reset.
 """
 
 from __future__ import annotations
@@ -19,22 +19,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GarminBaud, GarminConfigFixMode, GarminDiffMode, GarminOffOn
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_285_TO_310: dict[Any, Any] = rt.known("decimal 285..310")
-_DECIMAL_6360000_TO_6380000: dict[Any, Any] = rt.known("decimal 6360000..6380000")
-_DECIMAL_MINUS_1500_TO_18000: dict[Any, Any] = rt.known("decimal -1500..18000")
-_DECIMAL_MINUS_5000_TO_5000: dict[Any, Any] = rt.known("decimal -5000..5000")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_255: dict[Any, Any] = rt.known("integer 0..255")
-_INTEGER_0_TO_48: dict[Any, Any] = rt.known("integer 0..48")
-_INTEGER_1_TO_30: dict[Any, Any] = rt.known("integer 1..30")
-
 
 @dataclass(slots=True)
-class Pgrmc:
+class Pgrmc(rt.Sentence):
     """PGRMC: Garmin sensor configuration.
 
-    Example (garmin_gps18x): $PGRMC,,,,,,,,,,4,,,,*7F
+    Example (garmin_gps18x):
+    $PGRMC,,,,,,,,,,4,,,,*7F
     """
 
     SENTENCE: ClassVar[str] = "PGRMC"
@@ -48,16 +39,37 @@ class Pgrmc:
         ("PGRMC", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMC", "proprietary", "$", 14, 14, (
+        rt.EnumField("fix_mode", "garmin_config_fix_mode code (A 2 3)", GarminConfigFixMode),
+        rt.DecimalField("altitude", "decimal number -1500..18000", -1500, 18000),
+        rt.IntegerField("datum", "integer of at least 0", 0, None),
+        rt.DecimalField("semi_major_axis", "decimal number 6360000..6380000", 6360000, 6380000),
+        rt.DecimalField("inverse_flattening", "decimal number 285..310", 285, 310),
+        rt.DecimalField("delta_x", "decimal number -5000..5000", -5000, 5000),
+        rt.DecimalField("delta_y", "decimal number -5000..5000", -5000, 5000),
+        rt.DecimalField("delta_z", "decimal number -5000..5000", -5000, 5000),
+        rt.EnumField("differential_mode", "garmin_diff_mode code (A D)", GarminDiffMode),
+        rt.EnumField("baud_rate", "garmin_baud code (1 2 3 4 5 6 7 8)", GarminBaud),
+        rt.IntegerField("velocity_filter", "integer 0..255", 0, 255),
+        rt.EnumField("pps_mode", "garmin_off_on code (1 2)", GarminOffOn),
+        rt.IntegerField("pps_length", "integer 0..48", 0, 48),
+        rt.IntegerField("dr_time", "integer 1..30", 1, 30),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     fix_mode: GarminConfigFixMode | str | None = None
-    """Fix mode: A automatic, 2 2D only (host supplies the altitude; not on the GPS 18x), 3 3D only."""
+    """Fix mode: A automatic, 2 2D only (host supplies the altitude; not on the GPS 18x), 3 3D
+    only."""
     altitude: rt.Number | None = None
     """Altitude [m]: Altitude above or below mean sea level, used for 2D fixes."""
     datum: rt.Number | None = None
-    """Earth datum index: Index of the earth datum in the manual's appendix A list; 96 selects the user datum of the next five fields, which must be empty for any other datum."""
+    """Earth datum index: Index of the earth datum in the manual's appendix A list; 96 selects the
+    user datum of the next five fields, which must be empty for any other datum."""
     semi_major_axis: rt.Number | None = None
-    """User datum semi-major axis [m]: Semi-major axis of the user datum ellipsoid, 0.001 m resolution."""
+    """User datum semi-major axis [m]: Semi-major axis of the user datum ellipsoid, 0.001 m
+    resolution."""
     inverse_flattening: rt.Number | None = None
-    """User datum inverse flattening: Inverse flattening factor of the user datum ellipsoid (resolution 1e-9)."""
+    """User datum inverse flattening: Inverse flattening factor of the user datum ellipsoid
+    (resolution 1e-9)."""
     delta_x: rt.Number | None = None
     """User datum delta X [m]: Earth-centred X offset of the user datum, 1 m resolution."""
     delta_y: rt.Number | None = None
@@ -65,118 +77,28 @@ class Pgrmc:
     delta_z: rt.Number | None = None
     """User datum delta Z [m]: Earth-centred Z offset of the user datum, 1 m resolution."""
     differential_mode: GarminDiffMode | str | None = None
-    """Differential mode: A automatic (differential fixes when available), D differential fixes only."""
+    """Differential mode: A automatic (differential fixes when available), D differential fixes
+    only."""
     baud_rate: GarminBaud | str | None = None
-    """NMEA baud rate: 3 = 4800, 4 = 9600, 5 = 19200, 6 = 300, 7 = 600, 8 = 38400 (GPS 18x-5Hz); older sensors also 1 = 1200, 2 = 2400."""
+    """NMEA baud rate: 3 = 4800, 4 = 9600, 5 = 19200, 6 = 300, 7 = 600, 8 = 38400 (GPS 18x-5Hz);
+    older sensors also 1 = 1200, 2 = 2400."""
     velocity_filter: rt.Number | None = None
-    """Velocity filter: 0 no filter, 1 automatic filter, 2-255 filter time constant in seconds (no effect on the GPS 18x)."""
+    """Velocity filter: 0 no filter, 1 automatic filter, 2-255 filter time constant in seconds (no
+    effect on the GPS 18x)."""
     pps_mode: GarminOffOn | str | None = None
     """Measurement pulse output: Pulse (PPS) output, 1 disabled, 2 enabled (1 Hz)."""
     pps_length: rt.Number | None = None
-    """Measurement pulse length: Pulse width n, the pulse lasting (n+1) x 20 ms (e.g. 4 = 100 ms)."""
+    """Measurement pulse length: Pulse width n, the pulse lasting (n+1) x 20 ms (e.g. 4 = 100
+    ms)."""
     dr_time: rt.Number | None = None
-    """Dead reckoning valid time [s]: Time the sensor keeps reporting dead-reckoned positions after losing the fix."""
+    """Dead reckoning valid time [s]: Time the sensor keeps reporting dead-reckoned positions after
+    losing the fix."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 14:
-            raise rt.too_few(address, "PGRMC", 14, count)
-        if count > 14:
-            raise rt.too_many(address, "PGRMC", 14, count)
-        fix_mode = GarminConfigFixMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "fix_mode", "garmin_config_fix_mode code (A 2 3)", GarminConfigFixMode.BY_CODE, "alnum", 1, 1)
-        altitude = (_DECIMAL_MINUS_1500_TO_18000.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "altitude", "decimal number -1500..18000", -1500, 18000, _DECIMAL_MINUS_1500_TO_18000)) if fields[1] else None
-        datum = (_INTEGER_0_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "datum", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[2] else None
-        semi_major_axis = (_DECIMAL_6360000_TO_6380000.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "semi_major_axis", "decimal number 6360000..6380000", 6360000, 6380000, _DECIMAL_6360000_TO_6380000)) if fields[3] else None
-        inverse_flattening = (_DECIMAL_285_TO_310.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "inverse_flattening", "decimal number 285..310", 285, 310, _DECIMAL_285_TO_310)) if fields[4] else None
-        delta_x = (_DECIMAL_MINUS_5000_TO_5000.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "delta_x", "decimal number -5000..5000", -5000, 5000, _DECIMAL_MINUS_5000_TO_5000)) if fields[5] else None
-        delta_y = (_DECIMAL_MINUS_5000_TO_5000.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "delta_y", "decimal number -5000..5000", -5000, 5000, _DECIMAL_MINUS_5000_TO_5000)) if fields[6] else None
-        delta_z = (_DECIMAL_MINUS_5000_TO_5000.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "delta_z", "decimal number -5000..5000", -5000, 5000, _DECIMAL_MINUS_5000_TO_5000)) if fields[7] else None
-        differential_mode = GarminDiffMode.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "differential_mode", "garmin_diff_mode code (A D)", GarminDiffMode.BY_CODE, "letters", 1, 1)
-        baud_rate = GarminBaud.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "baud_rate", "garmin_baud code (1 2 3 4 5 6 7 8)", GarminBaud.BY_CODE, "digits", 1, 1)
-        velocity_filter = (_INTEGER_0_TO_255.get(fields[10]) or rt.integer_field(fields[10], address, 11, "velocity_filter", "integer 0..255", 0, 255, _INTEGER_0_TO_255)) if fields[10] else None
-        pps_mode = GarminOffOn.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "pps_mode", "garmin_off_on code (1 2)", GarminOffOn.BY_CODE, "digits", 1, 1)
-        pps_length = (_INTEGER_0_TO_48.get(fields[12]) or rt.integer_field(fields[12], address, 13, "pps_length", "integer 0..48", 0, 48, _INTEGER_0_TO_48)) if fields[12] else None
-        dr_time = (_INTEGER_1_TO_30.get(fields[13]) or rt.integer_field(fields[13], address, 14, "dr_time", "integer 1..30", 1, 30, _INTEGER_1_TO_30)) if fields[13] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(fix_mode, altitude, datum, semi_major_axis, inverse_flattening, delta_x, delta_y, delta_z, differential_mode, baud_rate, velocity_filter, pps_mode, pps_length, dr_time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.fix_mode),
-            rt.text_of(self.altitude),
-            rt.text_of(self.datum),
-            rt.text_of(self.semi_major_axis),
-            rt.text_of(self.inverse_flattening),
-            rt.text_of(self.delta_x),
-            rt.text_of(self.delta_y),
-            rt.text_of(self.delta_z),
-            rt.text_of(self.differential_mode),
-            rt.text_of(self.baud_rate),
-            rt.text_of(self.velocity_filter),
-            rt.text_of(self.pps_mode),
-            rt.text_of(self.pps_length),
-            rt.text_of(self.dr_time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"fix_mode":' + show(self.fix_mode),
-            '"altitude":' + show(self.altitude),
-            '"datum":' + show(self.datum),
-            '"semi_major_axis":' + show(self.semi_major_axis),
-            '"inverse_flattening":' + show(self.inverse_flattening),
-            '"delta_x":' + show(self.delta_x),
-            '"delta_y":' + show(self.delta_y),
-            '"delta_z":' + show(self.delta_z),
-            '"differential_mode":' + show(self.differential_mode),
-            '"baud_rate":' + show(self.baud_rate),
-            '"velocity_filter":' + show(self.velocity_filter),
-            '"pps_mode":' + show(self.pps_mode),
-            '"pps_length":' + show(self.pps_length),
-            '"dr_time":' + show(self.dr_time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "fix_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "datum"), 1)
-        out += rt.json_texts(rt.json_member(fields, "semi_major_axis"), 1)
-        out += rt.json_texts(rt.json_member(fields, "inverse_flattening"), 1)
-        out += rt.json_texts(rt.json_member(fields, "delta_x"), 1)
-        out += rt.json_texts(rt.json_member(fields, "delta_y"), 1)
-        out += rt.json_texts(rt.json_member(fields, "delta_z"), 1)
-        out += rt.json_texts(rt.json_member(fields, "differential_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_filter"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pps_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pps_length"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dr_time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmc, )

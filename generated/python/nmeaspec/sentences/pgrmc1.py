@@ -5,9 +5,8 @@
 
 Sets the NMEA output period, binary phase output, position averaging, NMEA 2.30 mode indicator,
 WAAS, power save and the automatic power and pulse settings. Kept in non-volatile memory; echoed
-when accepted, answered with the current values when a field is in error; $PGRMC1E (PGRMC1E)
-asks for the current values. Changes apply at once except the binary output, which waits for a
-reset.
+when accepted, answered with the current values when a field is in error; $PGRMC1E (PGRMC1E) asks
+for the current values. Changes apply at once except the binary output, which waits for a reset.
 """
 
 from __future__ import annotations
@@ -18,17 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GarminOffOn, GarminPowerMode, GarminWaasMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO_325: dict[Any, Any] = rt.known("decimal 0..325")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_1_TO_900: dict[Any, Any] = rt.known("integer 1..900")
-
 
 @dataclass(slots=True)
-class Pgrmc1:
+class Pgrmc1(rt.Sentence):
     """PGRMC1: Garmin additional sensor configuration.
 
-    Example (garmin_gps18x): $PGRMC1,1,,,,,,2,W,,,,,*02
+    Example (garmin_gps18x):
+    $PGRMC1,1,,,,,,2,W,,,,,*02
     """
 
     SENTENCE: ClassVar[str] = "PGRMC1"
@@ -42,20 +37,40 @@ class Pgrmc1:
         ("PGRMC1", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMC1", "proprietary", "$", 12, 13, (
+        rt.IntegerField("output_time", "integer 1..900", 1, 900),
+        rt.EnumField("binary_output", "garmin_off_on code (1 2)", GarminOffOn),
+        rt.EnumField("position_averaging", "garmin_off_on code (1 2)", GarminOffOn),
+        rt.DecimalField("beacon_frequency", "decimal number 0..325", 0, 325),
+        rt.IntegerField("beacon_bit_rate", "integer"),
+        rt.EnumField("beacon_scanning", "garmin_off_on code (1 2)", GarminOffOn),
+        rt.EnumField("nmea_230", "garmin_off_on code (1 2)", GarminOffOn),
+        rt.EnumField("waas_mode", "garmin_waas_mode code (W N)", GarminWaasMode),
+        rt.EnumField("power_save", "garmin_power_mode code (P N)", GarminPowerMode),
+        rt.EnumField("adaptive_transmission", "garmin_off_on code (1 2)", GarminOffOn),
+        rt.EnumField("auto_power_off", "garmin_off_on code (1 2)", GarminOffOn),
+        rt.EnumField("power_on_external", "garmin_off_on code (1 2)", GarminOffOn),
+        rt.EnumField("pulse_auto_off", "garmin_off_on code (1 2)", GarminOffOn, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     output_time: rt.Number | None = None
-    """NMEA output time [s]: Seconds between two NMEA outputs (the GPS 18x-5Hz always outputs at 5 Hz)."""
+    """NMEA output time [s]: Seconds between two NMEA outputs (the GPS 18x-5Hz always outputs at 5
+    Hz)."""
     binary_output: GarminOffOn | str | None = None
-    """Binary phase output data: 1 off, 2 on (Garmin binary phase data instead of NMEA, from the next reset)."""
+    """Binary phase output data: 1 off, 2 on (Garmin binary phase data instead of NMEA, from the
+    next reset)."""
     position_averaging: GarminOffOn | str | None = None
     """Automatic position averaging when stopped: 1 off, 2 on."""
     beacon_frequency: rt.Number | None = None
-    """DGPS beacon frequency [kHz]: 0.0 or 283.5 to 325.0 kHz in 0.5 kHz steps; no effect on the GPS 18/18x."""
+    """DGPS beacon frequency [kHz]: 0.0 or 283.5 to 325.0 kHz in 0.5 kHz steps; no effect on the GPS
+    18/18x."""
     beacon_bit_rate: rt.Number | None = None
     """DGPS beacon bit rate [bit/s]: 0, 25, 50, 100 or 200; no effect on the GPS 18/18x."""
     beacon_scanning: GarminOffOn | str | None = None
     """DGPS beacon scanning: 1 off, 2 on; no effect on the GPS 18/18x."""
     nmea_230: GarminOffOn | str | None = None
-    """NMEA 2.30 mode indicator: 1 off (NMEA 2.0 sentences, the default), 2 on (mode indicator of NMEA 2.30 added)."""
+    """NMEA 2.30 mode indicator: 1 off (NMEA 2.0 sentences, the default), 2 on (mode indicator of
+    NMEA 2.30 added)."""
     waas_mode: GarminWaasMode | str | None = None
     """WAAS mode: W WAAS enabled, N WAAS disabled."""
     power_save: GarminPowerMode | str | None = None
@@ -67,115 +82,14 @@ class Pgrmc1:
     power_on_external: GarminOffOn | str | None = None
     """Power on with external charger: 1 off, 2 on."""
     pulse_auto_off: GarminOffOn | str | None | rt._Absent = rt.ABSENT
-    """Measurement pulse output auto off: 1 off, 2 on. Missing on older sensors (the GPS 10 sentence has 12 fields)."""
+    """Measurement pulse output auto off: 1 off, 2 on. Missing on older sensors (the GPS 10 sentence
+    has 12 fields)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmc1:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "PGRMC1", 12, count)
-        if count > 13:
-            raise rt.too_many(address, "PGRMC1", 13, count)
-        optional = count - 12
-        output_time = (_INTEGER_1_TO_900.get(fields[0]) or rt.integer_field(fields[0], address, 1, "output_time", "integer 1..900", 1, 900, _INTEGER_1_TO_900)) if fields[0] else None
-        binary_output = GarminOffOn.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "binary_output", "garmin_off_on code (1 2)", GarminOffOn.BY_CODE, "digits", 1, 1)
-        position_averaging = GarminOffOn.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "position_averaging", "garmin_off_on code (1 2)", GarminOffOn.BY_CODE, "digits", 1, 1)
-        beacon_frequency = (_DECIMAL_0_TO_325.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "beacon_frequency", "decimal number 0..325", 0, 325, _DECIMAL_0_TO_325)) if fields[3] else None
-        beacon_bit_rate = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "beacon_bit_rate", "integer", None, None, _INTEGER)) if fields[4] else None
-        beacon_scanning = GarminOffOn.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "beacon_scanning", "garmin_off_on code (1 2)", GarminOffOn.BY_CODE, "digits", 1, 1)
-        nmea_230 = GarminOffOn.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "nmea_230", "garmin_off_on code (1 2)", GarminOffOn.BY_CODE, "digits", 1, 1)
-        waas_mode = GarminWaasMode.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "waas_mode", "garmin_waas_mode code (W N)", GarminWaasMode.BY_CODE, "letters", 1, 1)
-        power_save = GarminPowerMode.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "power_save", "garmin_power_mode code (P N)", GarminPowerMode.BY_CODE, "letters", 1, 1)
-        adaptive_transmission = GarminOffOn.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "adaptive_transmission", "garmin_off_on code (1 2)", GarminOffOn.BY_CODE, "digits", 1, 1)
-        auto_power_off = GarminOffOn.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "auto_power_off", "garmin_off_on code (1 2)", GarminOffOn.BY_CODE, "digits", 1, 1)
-        power_on_external = GarminOffOn.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "power_on_external", "garmin_off_on code (1 2)", GarminOffOn.BY_CODE, "digits", 1, 1)
-        pulse_auto_off: GarminOffOn | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            pulse_auto_off = GarminOffOn.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "pulse_auto_off", "garmin_off_on code (1 2)", GarminOffOn.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(output_time, binary_output, position_averaging, beacon_frequency, beacon_bit_rate, beacon_scanning, nmea_230, waas_mode, power_save, adaptive_transmission, auto_power_off, power_on_external, pulse_auto_off, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.output_time),
-            rt.text_of(self.binary_output),
-            rt.text_of(self.position_averaging),
-            rt.text_of(self.beacon_frequency),
-            rt.text_of(self.beacon_bit_rate),
-            rt.text_of(self.beacon_scanning),
-            rt.text_of(self.nmea_230),
-            rt.text_of(self.waas_mode),
-            rt.text_of(self.power_save),
-            rt.text_of(self.adaptive_transmission),
-            rt.text_of(self.auto_power_off),
-            rt.text_of(self.power_on_external),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.pulse_auto_off is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.pulse_auto_off)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMC1",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"output_time":' + show(self.output_time),
-            '"binary_output":' + show(self.binary_output),
-            '"position_averaging":' + show(self.position_averaging),
-            '"beacon_frequency":' + show(self.beacon_frequency),
-            '"beacon_bit_rate":' + show(self.beacon_bit_rate),
-            '"beacon_scanning":' + show(self.beacon_scanning),
-            '"nmea_230":' + show(self.nmea_230),
-            '"waas_mode":' + show(self.waas_mode),
-            '"power_save":' + show(self.power_save),
-            '"adaptive_transmission":' + show(self.adaptive_transmission),
-            '"auto_power_off":' + show(self.auto_power_off),
-            '"power_on_external":' + show(self.power_on_external),
-        ]
-        if self.pulse_auto_off is not rt.ABSENT:
-            parts.append('"pulse_auto_off":' + show(self.pulse_auto_off))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "output_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "binary_output"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_averaging"), 1)
-        out += rt.json_texts(rt.json_member(fields, "beacon_frequency"), 1)
-        out += rt.json_texts(rt.json_member(fields, "beacon_bit_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "beacon_scanning"), 1)
-        out += rt.json_texts(rt.json_member(fields, "nmea_230"), 1)
-        out += rt.json_texts(rt.json_member(fields, "waas_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "power_save"), 1)
-        out += rt.json_texts(rt.json_member(fields, "adaptive_transmission"), 1)
-        out += rt.json_texts(rt.json_member(fields, "auto_power_off"), 1)
-        out += rt.json_texts(rt.json_member(fields, "power_on_external"), 1)
-        if "pulse_auto_off" in fields:
-            out += rt.json_texts(fields["pulse_auto_off"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmc1, )

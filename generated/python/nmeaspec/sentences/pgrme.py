@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGRME: Garmin estimated error information.
 
-Garmin's estimates of the horizontal, vertical and overall (spherical) position error, in
-metres, sent with every fix by Garmin sensors and handhelds.
+Garmin's estimates of the horizontal, vertical and overall (spherical) position error, in metres,
+sent with every fix by Garmin sensors and handhelds.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO_999_POINT_9: dict[Any, Any] = rt.known("decimal 0..999.9")
-
 
 @dataclass(slots=True)
-class Pgrme:
+class Pgrme(rt.Sentence):
     """PGRME: Garmin estimated error information.
 
-    Example (nmea_revealed): $PGRME,15.0,M,45.0,M,25.0,M*1C
+    Example (nmea_revealed):
+    $PGRME,15.0,M,45.0,M,25.0,M*1C
     """
 
     SENTENCE: ClassVar[str] = "PGRME"
@@ -33,6 +31,15 @@ class Pgrme:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRME", "proprietary", "$", 6, 6, (
+        rt.DecimalField("hpe", "decimal number 0..999.9", 0, Decimal("999.9")),
+        rt.LiteralField("hpe_unit", "M or nothing", "M"),
+        rt.DecimalField("vpe", "decimal number 0..999.9", 0, Decimal("999.9")),
+        rt.LiteralField("vpe_unit", "M or nothing", "M"),
+        rt.DecimalField("epe", "decimal number 0..999.9", 0, Decimal("999.9")),
+        rt.LiteralField("epe_unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     hpe: rt.Number | None = None
     """Estimated horizontal position error [m]: Estimated horizontal position error (HPE)."""
     hpe_unit: str | None = None
@@ -42,78 +49,16 @@ class Pgrme:
     vpe_unit: str | None = None
     """VPE unit: Unit of the VPE, M for metres."""
     epe: rt.Number | None = None
-    """Estimated position error [m]: Estimated overall position error (EPE), the spherical equivalent of HPE and VPE."""
+    """Estimated position error [m]: Estimated overall position error (EPE), the spherical
+    equivalent of HPE and VPE."""
     epe_unit: str | None = None
     """EPE unit: Unit of the EPE, M for metres."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrme:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "PGRME", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "PGRME", 6, count)
-        hpe = (_DECIMAL_0_TO_999_POINT_9.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "hpe", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[0] else None
-        hpe_unit = "M" if fields[1] == "M" else rt.literal_field(fields[1], address, 2, "hpe_unit", "M or nothing", "M")
-        vpe = (_DECIMAL_0_TO_999_POINT_9.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vpe", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[2] else None
-        vpe_unit = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "vpe_unit", "M or nothing", "M")
-        epe = (_DECIMAL_0_TO_999_POINT_9.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "epe", "decimal number 0..999.9", 0, Decimal("999.9"), _DECIMAL_0_TO_999_POINT_9)) if fields[4] else None
-        epe_unit = "M" if fields[5] == "M" else rt.literal_field(fields[5], address, 6, "epe_unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(hpe, hpe_unit, vpe, vpe_unit, epe, epe_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.hpe),
-            rt.text_of(self.hpe_unit),
-            rt.text_of(self.vpe),
-            rt.text_of(self.vpe_unit),
-            rt.text_of(self.epe),
-            rt.text_of(self.epe_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRME",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"hpe":' + show(self.hpe),
-            '"hpe_unit":' + show(self.hpe_unit),
-            '"vpe":' + show(self.vpe),
-            '"vpe_unit":' + show(self.vpe_unit),
-            '"epe":' + show(self.epe),
-            '"epe_unit":' + show(self.epe_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "hpe"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hpe_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vpe"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vpe_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "epe"), 1)
-        out += rt.json_texts(rt.json_member(fields, "epe_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrme, )

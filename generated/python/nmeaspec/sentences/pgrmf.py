@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGRMF: Garmin GPS fix data.
 
-Garmin's fix summary: GPS week and seconds, UTC date and time, leap seconds, position, fix mode
-and type, speed, course and rounded PDOP/TDOP in one sentence.
+Garmin's fix summary: GPS week and seconds, UTC date and time, leap seconds, position, fix mode and
+type, speed, course and rounded PDOP/TDOP in one sentence.
 """
 
 from __future__ import annotations
@@ -15,23 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GarminFixMode, GarminFixType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_1023: dict[Any, Any] = rt.known("integer 0..1023")
-_INTEGER_0_TO_1851: dict[Any, Any] = rt.known("integer 0..1851")
-_INTEGER_0_TO_359: dict[Any, Any] = rt.known("integer 0..359")
-_INTEGER_0_TO_604799: dict[Any, Any] = rt.known("integer 0..604799")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pgrmf:
+class Pgrmf(rt.Sentence):
     """PGRMF: Garmin GPS fix data.
-
     """
 
     SENTENCE: ClassVar[str] = "PGRMF"
@@ -41,6 +28,22 @@ class Pgrmf:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMF", "proprietary", "$", 15, 15, (
+        rt.IntegerField("gps_week", "integer 0..1023", 0, 1023),
+        rt.IntegerField("gps_seconds", "integer 0..604799", 0, 604799),
+        rt.DateField("date", "date ddmmyy"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.IntegerField("leap_seconds", "integer"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.EnumField("mode", "garmin_fix_mode code (M A)", GarminFixMode),
+        rt.EnumField("fix_type", "garmin_fix_type code (0 1 2)", GarminFixType),
+        rt.IntegerField("speed", "integer 0..1851", 0, 1851),
+        rt.IntegerField("course", "integer 0..359", 0, 359),
+        rt.IntegerField("pdop", "integer 0..9", 0, 9),
+        rt.IntegerField("tdop", "integer 0..9", 0, 9),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     gps_week: rt.Number | None = None
     """GPS week number: GPS week number (modulo 1024)."""
     gps_seconds: rt.Number | None = None
@@ -52,9 +55,11 @@ class Pgrmf:
     leap_seconds: rt.Number | None = None
     """Leap second count [s]: GPS leap second count (GPS-UTC)."""
     lat: rt.Coordinate | None = None
-    """Latitude: Latitude with its hemisphere (ddmm.mmmmm on the GPS 18x-5Hz); leading zeros are sent."""
+    """Latitude: Latitude with its hemisphere (ddmm.mmmmm on the GPS 18x-5Hz); leading zeros are
+    sent."""
     lon: rt.Coordinate | None = None
-    """Longitude: Longitude with its hemisphere (dddmm.mmmmm on the GPS 18x-5Hz); leading zeros are sent."""
+    """Longitude: Longitude with its hemisphere (dddmm.mmmmm on the GPS 18x-5Hz); leading zeros are
+    sent."""
     mode: GarminFixMode | str | None = None
     """Mode: M manual, A automatic."""
     fix_type: GarminFixType | str | None = None
@@ -68,102 +73,11 @@ class Pgrmf:
     tdop: rt.Number | None = None
     """TDOP: Time dilution of precision rounded to the nearest integer."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmf:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 15:
-            raise rt.too_few(address, "PGRMF", 15, count)
-        if count > 15:
-            raise rt.too_many(address, "PGRMF", 15, count)
-        gps_week = (_INTEGER_0_TO_1023.get(fields[0]) or rt.integer_field(fields[0], address, 1, "gps_week", "integer 0..1023", 0, 1023, _INTEGER_0_TO_1023)) if fields[0] else None
-        gps_seconds = (_INTEGER_0_TO_604799.get(fields[1]) or rt.integer_field(fields[1], address, 2, "gps_seconds", "integer 0..604799", 0, 604799, _INTEGER_0_TO_604799)) if fields[1] else None
-        date = (_DATE.get(fields[2]) or rt.date_field(fields[2], address, 3, "date", "date ddmmyy", _DATE)) if fields[2] else None
-        time = (_TIME.get(fields[3]) or rt.time_field(fields[3], address, 4, "time", "time hhmmss[.s]", _TIME)) if fields[3] else None
-        leap_seconds = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "leap_seconds", "integer", None, None, _INTEGER)) if fields[4] else None
-        lat = _LATITUDE.get((fields[5], fields[6])) or rt.coordinate_field(fields[5], fields[6], address, 6, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[7], fields[8])) or rt.coordinate_field(fields[7], fields[8], address, 8, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        mode = GarminFixMode.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "mode", "garmin_fix_mode code (M A)", GarminFixMode.BY_CODE, "letters", 1, 1)
-        fix_type = GarminFixType.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "fix_type", "garmin_fix_type code (0 1 2)", GarminFixType.BY_CODE, "digits", 1, 1)
-        speed = (_INTEGER_0_TO_1851.get(fields[11]) or rt.integer_field(fields[11], address, 12, "speed", "integer 0..1851", 0, 1851, _INTEGER_0_TO_1851)) if fields[11] else None
-        course = (_INTEGER_0_TO_359.get(fields[12]) or rt.integer_field(fields[12], address, 13, "course", "integer 0..359", 0, 359, _INTEGER_0_TO_359)) if fields[12] else None
-        pdop = (_INTEGER_0_TO_9.get(fields[13]) or rt.integer_field(fields[13], address, 14, "pdop", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[13] else None
-        tdop = (_INTEGER_0_TO_9.get(fields[14]) or rt.integer_field(fields[14], address, 15, "tdop", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[14] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(gps_week, gps_seconds, date, time, leap_seconds, lat, lon, mode, fix_type, speed, course, pdop, tdop, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.gps_week),
-            rt.text_of(self.gps_seconds),
-            rt.text_of(self.date),
-            rt.text_of(self.time),
-            rt.text_of(self.leap_seconds),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.mode),
-            rt.text_of(self.fix_type),
-            rt.text_of(self.speed),
-            rt.text_of(self.course),
-            rt.text_of(self.pdop),
-            rt.text_of(self.tdop),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMF",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"gps_week":' + show(self.gps_week),
-            '"gps_seconds":' + show(self.gps_seconds),
-            '"date":' + show(self.date),
-            '"time":' + show(self.time),
-            '"leap_seconds":' + show(self.leap_seconds),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"mode":' + show(self.mode),
-            '"fix_type":' + show(self.fix_type),
-            '"speed":' + show(self.speed),
-            '"course":' + show(self.course),
-            '"pdop":' + show(self.pdop),
-            '"tdop":' + show(self.tdop),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "gps_week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_seconds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "leap_seconds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fix_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tdop"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmf, )

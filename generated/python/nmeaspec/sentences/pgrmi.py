@@ -3,10 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGRMI: Garmin sensor initialization.
 
-Gives the sensor an approximate position and the UTC date and time for satellite acquisition,
-which restarts the acquisition, or commands a cold start (auto locate) or a reset. The sensor
-echoes the sentence when it has no error, else answers with its current values; $PGRMIE (PGRMIE)
-asks for them.
+Gives the sensor an approximate position and the UTC date and time for satellite acquisition, which
+restarts the acquisition, or commands a cold start (auto locate) or a reset. The sensor echoes the
+sentence when it has no error, else answers with its current values; $PGRMIE (PGRMIE) asks for them.
 """
 
 from __future__ import annotations
@@ -17,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GarminReceiverCommand
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pgrmi:
+class Pgrmi(rt.Sentence):
     """PGRMI: Garmin sensor initialization.
 
-    Example (garmin_gps18): $PGRMI,,,,,,,R*3F
+    Example (garmin_gps18):
+    $PGRMI,,,,,,,R*3F
     """
 
     SENTENCE: ClassVar[str] = "PGRMI"
@@ -42,8 +36,21 @@ class Pgrmi:
         ("PGRMI", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMI", "proprietary", "$", 7, 7, (
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField(
+            "receiver_command",
+            "garmin_receiver_command code (A R)",
+            GarminReceiverCommand,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     lat: rt.Coordinate | None = None
-    """Latitude: Approximate latitude with its hemisphere; leading zeros must be sent (ddmm.mmmmm on the 5 Hz models)."""
+    """Latitude: Approximate latitude with its hemisphere; leading zeros must be sent (ddmm.mmmmm on
+    the 5 Hz models)."""
     lon: rt.Coordinate | None = None
     """Longitude: Approximate longitude with its hemisphere; leading zeros must be sent."""
     date: rt.Date | None = None
@@ -51,72 +58,14 @@ class Pgrmi:
     time: rt.Time | None = None
     """UTC time: Current UTC time (hhmmss.s on the 5 Hz models)."""
     receiver_command: GarminReceiverCommand | str | None = None
-    """Receiver command: A auto locate (cold start), R unit reset; empty for a plain initialization."""
+    """Receiver command: A auto locate (cold start), R unit reset; empty for a plain
+    initialization."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmi:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PGRMI", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PGRMI", 7, count)
-        lat = _LATITUDE.get((fields[0], fields[1])) or rt.coordinate_field(fields[0], fields[1], address, 1, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        date = (_DATE.get(fields[4]) or rt.date_field(fields[4], address, 5, "date", "date ddmmyy", _DATE)) if fields[4] else None
-        time = (_TIME.get(fields[5]) or rt.time_field(fields[5], address, 6, "time", "time hhmmss[.s]", _TIME)) if fields[5] else None
-        receiver_command = GarminReceiverCommand.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "receiver_command", "garmin_receiver_command code (A R)", GarminReceiverCommand.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(lat, lon, date, time, receiver_command, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.date),
-            rt.text_of(self.time),
-            rt.text_of(self.receiver_command),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"date":' + show(self.date),
-            '"time":' + show(self.time),
-            '"receiver_command":' + show(self.receiver_command),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "receiver_command"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmi, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGRMM: Garmin map datum.
 
-Name of the map datum the Garmin receiver currently uses for its positions (used by Garmin
-MapSource for live plotting).
+Name of the map datum the Garmin receiver currently uses for its positions (used by Garmin MapSource
+for live plotting).
 """
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class Pgrmm:
+class Pgrmm(rt.Sentence):
     """PGRMM: Garmin map datum.
 
-    Example (log_marine_api): $PGRMM,WGS 84*06
+    Example (log_marine_api):
+    $PGRMM,WGS 84*06
     """
 
     SENTENCE: ClassVar[str] = "PGRMM"
@@ -29,57 +30,19 @@ class Pgrmm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMM", "proprietary", "$", 1, 1, (
+        rt.TextField("datum", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     datum: str | None = None
-    """Map datum: Datum name, of variable length, e.g. "WGS 84" or "NAD27 Canada"; may contain spaces."""
+    """Map datum: Datum name, of variable length, e.g. \"WGS 84\" or \"NAD27 Canada\"; may contain
+    spaces."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PGRMM", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PGRMM", 1, count)
-        datum = rt.text_field(fields[0], address, 1, "datum", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(datum, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.datum),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"datum":' + show(self.datum),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "datum"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmm, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGRMO: Garmin output sentence enable/disable.
 
-Enables or disables one output sentence, or all of them, restores the factory set, dumps the
-almanac (GPALM) or switches the port to Garmin binary mode. An invalid sentence name or mode
-makes the command do nothing; there is no answer.
+Enables or disables one output sentence, or all of them, restores the factory set, dumps the almanac
+(GPALM) or switches the port to Garmin binary mode. An invalid sentence name or mode makes the
+command do nothing; there is no answer.
 """
 
 from __future__ import annotations
@@ -18,10 +18,11 @@ from ..enums import GarminOutputMode
 
 
 @dataclass(slots=True)
-class Pgrmo:
+class Pgrmo(rt.Sentence):
     """PGRMO: Garmin output sentence enable/disable.
 
-    Example (garmin_gps15h): $PGRMO,GPALM,1*21
+    Example (garmin_gps15h):
+    $PGRMO,GPALM,1*21
     """
 
     SENTENCE: ClassVar[str] = "PGRMO"
@@ -31,63 +32,23 @@ class Pgrmo:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMO", "proprietary", "$", 2, 2, (
+        rt.TextField("target", "text of at most 5 characters", 5),
+        rt.EnumField("mode", "garmin_output_mode code (0 1 2 3 4 G)", GarminOutputMode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     target: str | None = None
-    """Target sentence: The sentence to act on, as it is output (e.g. PGRMT, GPGSV); not checked, and may be empty, for the modes that act on all sentences (2, 3, 4) and for G."""
+    """Target sentence: The sentence to act on, as it is output (e.g. PGRMT, GPGSV); not checked,
+    and may be empty, for the modes that act on all sentences (2, 3, 4) and for G."""
     mode: GarminOutputMode | str | None = None
-    """Target sentence mode: 0 disable, 1 enable, 2 disable all, 3 enable all but GPALM, 4 factory defaults, G Garmin binary mode."""
+    """Target sentence mode: 0 disable, 1 enable, 2 disable all, 3 enable all but GPALM, 4 factory
+    defaults, G Garmin binary mode."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmo:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PGRMO", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PGRMO", 2, count)
-        target = rt.text_field(fields[0], address, 1, "target", "text of at most 5 characters", 5)
-        mode = GarminOutputMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "garmin_output_mode code (0 1 2 3 4 G)", GarminOutputMode.BY_CODE, "alnum", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(target, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.target),
-            rt.text_of(self.mode),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"target":' + show(self.target),
-            '"mode":' + show(self.mode),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "target"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmo, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGRMT: Garmin sensor status information.
 
-Product name and software version with the results of the sensor's self tests, sent once a
-minute whatever the baud rate. Newer sensors (GPS 16x, 18x) fill only the first field and keep
-the others, empty, for compatibility.
+Product name and software version with the results of the sensor's self tests, sent once a minute
+whatever the baud rate. Newer sensors (GPS 16x, 18x) fill only the first field and keep the others,
+empty, for compatibility.
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GarminDataCollection, GarminPassFail, GarminRetainedLost
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Pgrmt:
+class Pgrmt(rt.Sentence):
     """PGRMT: Garmin sensor status information.
 
-    Example (log_gpsd): $PGRMT,GPS 15x-W software ver. 4.20,,,,,,,,*6A
+    Example (log_gpsd):
+    $PGRMT,GPS 15x-W software ver. 4.20,,,,,,,,*6A
     """
 
     SENTENCE: ClassVar[str] = "PGRMT"
@@ -34,8 +32,21 @@ class Pgrmt:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMT", "proprietary", "$", 9, 9, (
+        rt.TextField("product", "text"),
+        rt.EnumField("rom_checksum", "garmin_pass_fail code (P F)", GarminPassFail),
+        rt.EnumField("receiver_failure", "garmin_pass_fail code (P F)", GarminPassFail),
+        rt.EnumField("stored_data", "garmin_retained_lost code (R L)", GarminRetainedLost),
+        rt.EnumField("rtc", "garmin_retained_lost code (R L)", GarminRetainedLost),
+        rt.EnumField("oscillator_drift", "garmin_pass_fail code (P F)", GarminPassFail),
+        rt.EnumField("data_collection", "garmin_data_collection code (C)", GarminDataCollection),
+        rt.DecimalField("temperature", "decimal number"),
+        rt.EnumField("configuration_data", "garmin_retained_lost code (R L)", GarminRetainedLost),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     product: str | None = None
-    """Product and software version: Product, model and software version, of variable length (e.g. "GPS 18x VER 2.05")."""
+    """Product and software version: Product, model and software version, of variable length (e.g.
+    \"GPS 18x VER 2.05\")."""
     rom_checksum: GarminPassFail | str | None = None
     """ROM checksum test: P pass, F fail; empty on sensors that no longer report it."""
     receiver_failure: GarminPassFail | str | None = None
@@ -53,86 +64,11 @@ class Pgrmt:
     configuration_data: GarminRetainedLost | str | None = None
     """Configuration data: Board configuration data, R retained, L lost."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "PGRMT", 9, count)
-        if count > 9:
-            raise rt.too_many(address, "PGRMT", 9, count)
-        product = rt.text_field(fields[0], address, 1, "product", "text", None)
-        rom_checksum = GarminPassFail.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "rom_checksum", "garmin_pass_fail code (P F)", GarminPassFail.BY_CODE, "letters", 1, 1)
-        receiver_failure = GarminPassFail.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "receiver_failure", "garmin_pass_fail code (P F)", GarminPassFail.BY_CODE, "letters", 1, 1)
-        stored_data = GarminRetainedLost.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "stored_data", "garmin_retained_lost code (R L)", GarminRetainedLost.BY_CODE, "letters", 1, 1)
-        rtc = GarminRetainedLost.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "rtc", "garmin_retained_lost code (R L)", GarminRetainedLost.BY_CODE, "letters", 1, 1)
-        oscillator_drift = GarminPassFail.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "oscillator_drift", "garmin_pass_fail code (P F)", GarminPassFail.BY_CODE, "letters", 1, 1)
-        data_collection = GarminDataCollection.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "data_collection", "garmin_data_collection code (C)", GarminDataCollection.BY_CODE, "letters", 1, 1)
-        temperature = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "temperature", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        configuration_data = GarminRetainedLost.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "configuration_data", "garmin_retained_lost code (R L)", GarminRetainedLost.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(product, rom_checksum, receiver_failure, stored_data, rtc, oscillator_drift, data_collection, temperature, configuration_data, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.product),
-            rt.text_of(self.rom_checksum),
-            rt.text_of(self.receiver_failure),
-            rt.text_of(self.stored_data),
-            rt.text_of(self.rtc),
-            rt.text_of(self.oscillator_drift),
-            rt.text_of(self.data_collection),
-            rt.text_of(self.temperature),
-            rt.text_of(self.configuration_data),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"product":' + show(self.product),
-            '"rom_checksum":' + show(self.rom_checksum),
-            '"receiver_failure":' + show(self.receiver_failure),
-            '"stored_data":' + show(self.stored_data),
-            '"rtc":' + show(self.rtc),
-            '"oscillator_drift":' + show(self.oscillator_drift),
-            '"data_collection":' + show(self.data_collection),
-            '"temperature":' + show(self.temperature),
-            '"configuration_data":' + show(self.configuration_data),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "product"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rom_checksum"), 1)
-        out += rt.json_texts(rt.json_member(fields, "receiver_failure"), 1)
-        out += rt.json_texts(rt.json_member(fields, "stored_data"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rtc"), 1)
-        out += rt.json_texts(rt.json_member(fields, "oscillator_drift"), 1)
-        out += rt.json_texts(rt.json_member(fields, "data_collection"), 1)
-        out += rt.json_texts(rt.json_member(fields, "temperature"), 1)
-        out += rt.json_texts(rt.json_member(fields, "configuration_data"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmt, )

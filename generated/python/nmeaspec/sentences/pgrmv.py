@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_MINUS_514_POINT_4_TO_514_POINT_4: dict[Any, Any] = rt.known("decimal -514.4..514.4")
-_DECIMAL_MINUS_999_POINT_9_TO_9999_POINT_9: dict[Any, Any] = rt.known("decimal -999.9..9999.9")
-
 
 @dataclass(slots=True)
-class Pgrmv:
+class Pgrmv(rt.Sentence):
     """PGRMV: Garmin 3D velocity information.
 
-    Example (log_gpsd): $PGRMV,-2.5,-1.1,0.3*58
+    Example (log_gpsd):
+    $PGRMV,-2.5,-1.1,0.3*58
     """
 
     SENTENCE: ClassVar[str] = "PGRMV"
@@ -33,6 +30,27 @@ class Pgrmv:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMV", "proprietary", "$", 3, 3, (
+        rt.DecimalField(
+            "vel_east",
+            "decimal number -514.4..514.4",
+            Decimal("-514.4"),
+            Decimal("514.4"),
+        ),
+        rt.DecimalField(
+            "vel_north",
+            "decimal number -514.4..514.4",
+            Decimal("-514.4"),
+            Decimal("514.4"),
+        ),
+        rt.DecimalField(
+            "vel_up",
+            "decimal number -999.9..9999.9",
+            Decimal("-999.9"),
+            Decimal("9999.9"),
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     vel_east: rt.Number | None = None
     """True east velocity [m/s]: Velocity towards true east (negative westwards)."""
     vel_north: rt.Number | None = None
@@ -40,62 +58,11 @@ class Pgrmv:
     vel_up: rt.Number | None = None
     """Up velocity [m/s]: Vertical velocity, positive upwards."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmv:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PGRMV", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PGRMV", 3, count)
-        vel_east = (_DECIMAL_MINUS_514_POINT_4_TO_514_POINT_4.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "vel_east", "decimal number -514.4..514.4", Decimal("-514.4"), Decimal("514.4"), _DECIMAL_MINUS_514_POINT_4_TO_514_POINT_4)) if fields[0] else None
-        vel_north = (_DECIMAL_MINUS_514_POINT_4_TO_514_POINT_4.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "vel_north", "decimal number -514.4..514.4", Decimal("-514.4"), Decimal("514.4"), _DECIMAL_MINUS_514_POINT_4_TO_514_POINT_4)) if fields[1] else None
-        vel_up = (_DECIMAL_MINUS_999_POINT_9_TO_9999_POINT_9.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vel_up", "decimal number -999.9..9999.9", Decimal("-999.9"), Decimal("9999.9"), _DECIMAL_MINUS_999_POINT_9_TO_9999_POINT_9)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(vel_east, vel_north, vel_up, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.vel_east),
-            rt.text_of(self.vel_north),
-            rt.text_of(self.vel_up),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMV",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"vel_east":' + show(self.vel_east),
-            '"vel_north":' + show(self.vel_north),
-            '"vel_up":' + show(self.vel_up),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "vel_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vel_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vel_up"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmv, )

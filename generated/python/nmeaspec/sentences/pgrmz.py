@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGRMZ: Garmin altitude.
 
-Current altitude in feet with the dimension of the fix, sent by Garmin handhelds and plotters
-(and imitated by many aviation instruments to feed pressure altitude to moving-map software).
+Current altitude in feet with the dimension of the fix, sent by Garmin handhelds and plotters (and
+imitated by many aviation instruments to feed pressure altitude to moving-map software).
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import GarminFixDimension
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Pgrmz:
+class Pgrmz(rt.Sentence):
     """PGRMZ: Garmin altitude.
 
-    Example (nmea_revealed): $PGRMZ,2282,f,3*21
+    Example (nmea_revealed):
+    $PGRMZ,2282,f,3*21
     """
 
     SENTENCE: ClassVar[str] = "PGRMZ"
@@ -33,69 +31,25 @@ class Pgrmz:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMZ", "proprietary", "$", 3, 3, (
+        rt.DecimalField("altitude", "decimal number"),
+        rt.LiteralField("altitude_unit", "f or nothing", "f"),
+        rt.EnumField("fix_dimension", "garmin_fix_dimension code (1 2 3)", GarminFixDimension),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     altitude: rt.Number | None = None
-    """Altitude [ft]: Current altitude in feet (matches the mean-sea-level altitude of GGA in real logs); empty without a fix."""
+    """Altitude [ft]: Current altitude in feet (matches the mean-sea-level altitude of GGA in real
+    logs); empty without a fix."""
     altitude_unit: str | None = None
     """Altitude unit: Unit of the altitude, a lower-case f for feet."""
     fix_dimension: GarminFixDimension | str | None = None
     """Fix dimension: 1 no fix, 2 2D fix, 3 3D fix."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgrmz:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PGRMZ", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PGRMZ", 3, count)
-        altitude = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "altitude", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        altitude_unit = "f" if fields[1] == "f" else rt.literal_field(fields[1], address, 2, "altitude_unit", "f or nothing", "f")
-        fix_dimension = GarminFixDimension.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "fix_dimension", "garmin_fix_dimension code (1 2 3)", GarminFixDimension.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(altitude, altitude_unit, fix_dimension, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.altitude),
-            rt.text_of(self.altitude_unit),
-            rt.text_of(self.fix_dimension),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGRMZ",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"altitude":' + show(self.altitude),
-            '"altitude_unit":' + show(self.altitude_unit),
-            '"fix_dimension":' + show(self.fix_dimension),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fix_dimension"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmz, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PGTOP_11: GlobalTop antenna status.
 
-Antenna advisor of GlobalTop MTK modules (e.g. FGPMMOPA6H): reports whether the internal antenna
-or an external active antenna is used, or the active antenna is short-circuited. Meant for
-modules with an external active antenna.
+Antenna advisor of GlobalTop MTK modules (e.g. FGPMMOPA6H): reports whether the internal antenna or
+an external active antenna is used, or the active antenna is short-circuited. Meant for modules with
+an external active antenna.
 """
 
 from __future__ import annotations
@@ -18,10 +18,11 @@ from ..enums import MtkAntennaStatus
 
 
 @dataclass(slots=True)
-class Pgtop11:
+class Pgtop11(rt.Sentence):
     """PGTOP_11: GlobalTop antenna status.
 
-    Example (log_gpsbabel): $PGTOP,11,2*6E
+    Example (log_gpsbabel):
+    $PGTOP,11,2*6E
     """
 
     SENTENCE: ClassVar[str] = "PGTOP_11"
@@ -31,63 +32,22 @@ class Pgtop11:
     SELECTOR: ClassVar[str | None] = "11"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGTOP_11", "proprietary", "$", 2, 2, (
+        rt.KeywordField("function", "11", "11"),
+        rt.EnumField("status", "mtk_antenna_status code (1 2 3)", MtkAntennaStatus),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     function: str = "11"
     """Function type: Function (command) ID 11, antenna status."""
     status: MtkAntennaStatus | str | None = None
-    """Antenna status: 1 active antenna shorted, 2 internal antenna in use, 3 active antenna in use."""
+    """Antenna status: 1 active antenna shorted, 2 internal antenna in use, 3 active antenna in
+    use."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pgtop11:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PGTOP_11", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PGTOP_11", 2, count)
-        function = rt.keyword_field(fields[0], address, 1, "function", "11", "11")
-        status = MtkAntennaStatus.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "mtk_antenna_status code (1 2 3)", MtkAntennaStatus.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(function, status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.function),
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PGTOP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"function":' + show(self.function),
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "function"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pgtop11, )

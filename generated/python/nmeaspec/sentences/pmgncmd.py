@@ -4,8 +4,7 @@
 """PMGNCMD: Magellan transfer command.
 
 Asks a Magellan unit to send its stored waypoints, routes or track to the PC. Waypoints come as
-PMGNWPL sentences, routes as PMGNRTE sentences with their waypoints, the track as PMGNTRK
-sentences.
+PMGNWPL sentences, routes as PMGNRTE sentences with their waypoints, the track as PMGNTRK sentences.
 """
 
 from __future__ import annotations
@@ -18,10 +17,11 @@ from ..enums import MagellanCommand
 
 
 @dataclass(slots=True)
-class Pmgncmd:
+class Pmgncmd(rt.Sentence):
     """PMGNCMD: Magellan transfer command.
 
-    Example (magellan_fx324): $PMGNCMD,WAYPOINT,*5D
+    Example (magellan_fx324):
+    $PMGNCMD,TRACK,2*23
     """
 
     SENTENCE: ClassVar[str] = "PMGNCMD"
@@ -36,74 +36,22 @@ class Pmgncmd:
         ("PMGNTRK", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMGNCMD", "proprietary", "$", 1, 2, (
+        rt.EnumField("command", "magellan_command code (WAYPOINT ROUTE TRACK)", MagellanCommand),
+        rt.TextField("option", "text", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: MagellanCommand | str | None = None
     """Command: WAYPOINT, ROUTE or TRACK."""
     option: str | None | rt._Absent = rt.ABSENT
-    """Option: Command option; 2 after TRACK adds the date to every PMGNTRK point. Sent empty after WAYPOINT and ROUTE in the manual's examples."""
+    """Option: Command option; 2 after TRACK adds the date to every PMGNTRK point. Sent empty after
+    WAYPOINT and ROUTE in the manual's examples."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmgncmd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMGNCMD", 1, count)
-        if count > 2:
-            raise rt.too_many(address, "PMGNCMD", 2, count)
-        optional = count - 1
-        command = MagellanCommand.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "command", "magellan_command code (WAYPOINT ROUTE TRACK)", MagellanCommand.BY_CODE, "letters", 5, 8)
-        option: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            option = rt.text_field(fields[1], address, 2, "option", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, option, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.option is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.option)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMGNCMD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-        ]
-        if self.option is not rt.ABSENT:
-            parts.append('"option":' + show(self.option))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        if "option" in fields:
-            out += rt.json_texts(fields["option"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmgncmd, )

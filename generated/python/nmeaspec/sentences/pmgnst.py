@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMGNST: Magellan receiver status.
 
-Status line of Magellan receivers: firmware version, fix mode and flag, battery information and
-the satellite receiving current attention. Only partly described publicly.
+Status line of Magellan receivers: firmware version, fix mode and flag, battery information and the
+satellite receiving current attention. Only partly described publicly.
 """
 
 from __future__ import annotations
@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import MagellanFixFlag, MagellanFixMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Pmgnst:
+class Pmgnst(rt.Sentence):
     """PMGNST: Magellan receiver status.
 
-    Example (log_gpsd): $PMGNST,01.75,3,F,816,11.1,+00000,20*5E
+    Example (log_gpsd):
+    $PMGNST,01.75,3,F,816,11.1,+00000,20*5E
     """
 
     SENTENCE: ClassVar[str] = "PMGNST"
@@ -34,93 +31,38 @@ class Pmgnst:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMGNST", "proprietary", "$", 7, 7, (
+        rt.DecimalField("version", "decimal number"),
+        rt.EnumField("mode", "magellan_fix_mode code (1 2 3)", MagellanFixMode),
+        rt.EnumField("fix", "magellan_fix_flag code (T F)", MagellanFixFlag),
+        rt.IntegerField("unknown_1", "integer"),
+        rt.DecimalField("battery_time", "decimal number"),
+        rt.IntegerField("unknown_2", "integer"),
+        rt.IntegerField("prn", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: rt.Number | None = None
     """Firmware version: Firmware version number (the description marks it as probable)."""
     mode: MagellanFixMode | str | None = None
     """Fix mode: 1 no fix, 2 2D fix, 3 3D fix."""
     fix: MagellanFixFlag | str | None = None
-    """Fix flag: T when the receiver has a fix; F seen without a fix even while the mode field says 3."""
+    """Fix flag: T when the receiver has a fix; F seen without a fix even while the mode field says
+    3."""
     unknown_1: rt.Number | None = None
     """Unknown counter: A number that changes; its meaning is not published."""
     battery_time: rt.Number | None = None
     """Battery time left [h]: Time left on the GPS battery, hours."""
     unknown_2: rt.Number | None = None
-    """Unknown signed value: A signed number that changes (perhaps a frequency compensation); its meaning is not published."""
+    """Unknown signed value: A signed number that changes (perhaps a frequency compensation); its
+    meaning is not published."""
     prn: rt.Number | None = None
     """PRN in focus: PRN number of the satellite receiving current focus."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmgnst:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PMGNST", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PMGNST", 7, count)
-        version = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "version", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        mode = MagellanFixMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "magellan_fix_mode code (1 2 3)", MagellanFixMode.BY_CODE, "digits", 1, 1)
-        fix = MagellanFixFlag.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "fix", "magellan_fix_flag code (T F)", MagellanFixFlag.BY_CODE, "letters", 1, 1)
-        unknown_1 = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "unknown_1", "integer", None, None, _INTEGER)) if fields[3] else None
-        battery_time = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "battery_time", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        unknown_2 = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "unknown_2", "integer", None, None, _INTEGER)) if fields[5] else None
-        prn = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "prn", "integer", None, None, _INTEGER)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, mode, fix, unknown_1, battery_time, unknown_2, prn, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.mode),
-            rt.text_of(self.fix),
-            rt.text_of(self.unknown_1),
-            rt.text_of(self.battery_time),
-            rt.text_of(self.unknown_2),
-            rt.text_of(self.prn),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMGNST",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"mode":' + show(self.mode),
-            '"fix":' + show(self.fix),
-            '"unknown_1":' + show(self.unknown_1),
-            '"battery_time":' + show(self.battery_time),
-            '"unknown_2":' + show(self.unknown_2),
-            '"prn":' + show(self.prn),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fix"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unknown_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "battery_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unknown_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "prn"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmgnst, )

@@ -16,19 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import MagellanAltitudeUnit, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pmgntrk:
+class Pmgntrk(rt.Sentence):
     """PMGNTRK: Magellan track point.
 
-    Example (log_gpsbabel): $PMGNTRK,3002.731,N,09135.923,W,00000,M,172308.56,A,,250502*6C
+    Example (log_gpsbabel):
+    $PMGNTRK,3002.731,N,09135.923,W,00000,M,172308.56,A,,250502*6C
     """
 
     SENTENCE: ClassVar[str] = "PMGNTRK"
@@ -38,10 +32,23 @@ class Pmgntrk:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMGNTRK", "proprietary", "$", 9, 10, (
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.EnumField("altitude_unit", "magellan_altitude_unit code (F M)", MagellanAltitudeUnit),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.TextField("track_name", "text"),
+        rt.DateField("date", "date ddmmyy", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     lat: rt.Coordinate | None = None
-    """Latitude: Latitude with N/S; two decimals of minutes, more allowed while the sentence stays within 82 bytes."""
+    """Latitude: Latitude with N/S; two decimals of minutes, more allowed while the sentence stays
+    within 82 bytes."""
     lon: rt.Coordinate | None = None
-    """Longitude: Longitude with E/W; two decimals of minutes, more allowed while the sentence stays within 82 bytes."""
+    """Longitude: Longitude with E/W; two decimals of minutes, more allowed while the sentence stays
+    within 82 bytes."""
     altitude: rt.Number | None = None
     """Altitude: Altitude of the point, in the unit of the next field."""
     altitude_unit: MagellanAltitudeUnit | str | None = None
@@ -53,95 +60,14 @@ class Pmgntrk:
     track_name: str | None = None
     """Track name: Name of the track, for units that name their tracks; empty otherwise."""
     date: rt.Date | None | rt._Absent = rt.ABSENT
-    """UTC date: UTC date of the position; present (with its comma) only when the transfer was requested with $PMGNCMD,TRACK,2."""
+    """UTC date: UTC date of the position; present (with its comma) only when the transfer was
+    requested with $PMGNCMD,TRACK,2."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmgntrk:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "PMGNTRK", 9, count)
-        if count > 10:
-            raise rt.too_many(address, "PMGNTRK", 10, count)
-        optional = count - 9
-        lat = _LATITUDE.get((fields[0], fields[1])) or rt.coordinate_field(fields[0], fields[1], address, 1, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        altitude = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "altitude", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        altitude_unit = MagellanAltitudeUnit.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "altitude_unit", "magellan_altitude_unit code (F M)", MagellanAltitudeUnit.BY_CODE, "letters", 1, 1)
-        time = (_TIME.get(fields[6]) or rt.time_field(fields[6], address, 7, "time", "time hhmmss[.s]", _TIME)) if fields[6] else None
-        status = Status.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        track_name = rt.text_field(fields[8], address, 9, "track_name", "text", None)
-        date: rt.Date | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            date = (_DATE.get(fields[9]) or rt.date_field(fields[9], address, 10, "date", "date ddmmyy", _DATE)) if fields[9] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(lat, lon, altitude, altitude_unit, time, status, track_name, date, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.altitude),
-            rt.text_of(self.altitude_unit),
-            rt.text_of(self.time),
-            rt.text_of(self.status),
-            rt.text_of(self.track_name),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.date is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.date)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMGNTRK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"altitude":' + show(self.altitude),
-            '"altitude_unit":' + show(self.altitude_unit),
-            '"time":' + show(self.time),
-            '"status":' + show(self.status),
-            '"track_name":' + show(self.track_name),
-        ]
-        if self.date is not rt.ABSENT:
-            parts.append('"date":' + show(self.date))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "track_name"), 1)
-        if "date" in fields:
-            out += rt.json_texts(fields["date"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmgntrk, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMGNWPL: Magellan waypoint.
 
-One waypoint as a Magellan unit sends it to a PC (in answer to $PMGNCMD,WAYPOINT or with the
-routes) or receives it: position, altitude, name, comment, icon and, on some units, a type.
+One waypoint as a Magellan unit sends it to a PC (in answer to $PMGNCMD,WAYPOINT or with the routes)
+or receives it: position, altitude, name, comment, icon and, on some units, a type.
 """
 
 from __future__ import annotations
@@ -15,16 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import MagellanAltitudeUnit
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-
 
 @dataclass(slots=True)
-class Pmgnwpl:
+class Pmgnwpl(rt.Sentence):
     """PMGNWPL: Magellan waypoint.
-
     """
 
     SENTENCE: ClassVar[str] = "PMGNWPL"
@@ -34,8 +28,20 @@ class Pmgnwpl:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMGNWPL", "proprietary", "$", 9, 10, (
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.EnumField("altitude_unit", "magellan_altitude_unit code (F M)", MagellanAltitudeUnit),
+        rt.TextField("name", "text"),
+        rt.TextField("comment", "text"),
+        rt.TextField("icon", "text"),
+        rt.TextField("waypoint_type", "text", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     lat: rt.Coordinate | None = None
-    """Latitude: Latitude with N/S; two-digit degrees with leading zero, then minutes with their fraction."""
+    """Latitude: Latitude with N/S; two-digit degrees with leading zero, then minutes with their
+    fraction."""
     lon: rt.Coordinate | None = None
     """Longitude: Longitude with E/W; three-digit degrees, then minutes with their fraction."""
     altitude: rt.Number | None = None
@@ -51,93 +57,11 @@ class Pmgnwpl:
     waypoint_type: str | None | rt._Absent = rt.ABSENT
     """Waypoint type: Waypoint type indicator, used by some units only."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmgnwpl:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "PMGNWPL", 9, count)
-        if count > 10:
-            raise rt.too_many(address, "PMGNWPL", 10, count)
-        optional = count - 9
-        lat = _LATITUDE.get((fields[0], fields[1])) or rt.coordinate_field(fields[0], fields[1], address, 1, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        altitude = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "altitude", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        altitude_unit = MagellanAltitudeUnit.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "altitude_unit", "magellan_altitude_unit code (F M)", MagellanAltitudeUnit.BY_CODE, "letters", 1, 1)
-        name = rt.text_field(fields[6], address, 7, "name", "text", None)
-        comment = rt.text_field(fields[7], address, 8, "comment", "text", None)
-        icon = rt.text_field(fields[8], address, 9, "icon", "text", None)
-        waypoint_type: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            waypoint_type = rt.text_field(fields[9], address, 10, "waypoint_type", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(lat, lon, altitude, altitude_unit, name, comment, icon, waypoint_type, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.altitude),
-            rt.text_of(self.altitude_unit),
-            rt.text_of(self.name),
-            rt.text_of(self.comment),
-            rt.text_of(self.icon),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.waypoint_type is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.waypoint_type)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMGNWPL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"altitude":' + show(self.altitude),
-            '"altitude_unit":' + show(self.altitude_unit),
-            '"name":' + show(self.name),
-            '"comment":' + show(self.comment),
-            '"icon":' + show(self.icon),
-        ]
-        if self.waypoint_type is not rt.ABSENT:
-            parts.append('"waypoint_type":' + show(self.waypoint_type))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "comment"), 1)
-        out += rt.json_texts(rt.json_member(fields, "icon"), 1)
-        if "waypoint_type" in fields:
-            out += rt.json_texts(fields["waypoint_type"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmgnwpl, )

@@ -3,11 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK001: Acknowledgement of a PMTK command.
 
-The receiver's answer to a PMTK command packet: it names the packet type it answers and says
-whether the packet was invalid, unsupported, valid but failed, or valid and carried out. Most
-set commands and a few queries are acknowledged this way; the restart commands and the baud rate
-change are not (L80 manual). A few queries put their result after the flag (see variant
-sv_mask).
+The receiver's answer to a PMTK command packet: it names the packet type it answers and says whether
+the packet was invalid, unsupported, valid but failed, or valid and carried out. Most set commands
+and a few queries are acknowledged this way; the restart commands and the baud rate change are not
+(L80 manual). A few queries put their result after the flag (see variant sv_mask).
 """
 
 from __future__ import annotations
@@ -18,16 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import MtkAckFlag
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER_0_TO_999: dict[Any, Any] = rt.known("integer 0..999")
-
 
 @dataclass(slots=True)
-class Pmtk001:
+class Pmtk001(rt.Sentence):
     """PMTK001: Acknowledgement of a PMTK command.
 
-    Example (mtk_pmtk): $PMTK001,604,3*32
+    Example (mtk_pmtk):
+    $PMTK001,604,3*32
     """
 
     SENTENCE: ClassVar[str] = "PMTK001"
@@ -39,74 +35,35 @@ class Pmtk001:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = (("flag", "enum", "success"), )
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK001", "proprietary", "$", 2, 2, (
+        rt.IntegerField("command", "integer 0..999", 0, 999),
+        rt.EnumField("flag", "mtk_ack_flag code (0 1 2 3)", MtkAckFlag),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: rt.Number | None = None
-    """Acknowledged packet type: The packet type (command number) this acknowledgement answers, e.g. 220 for $PMTK220."""
+    """Acknowledged packet type: The packet type (command number) this acknowledgement answers, e.g.
+    220 for $PMTK220."""
     flag: MtkAckFlag | str | None = None
-    """Result flag: 0 invalid packet, 1 unsupported packet type, 2 valid but the action failed, 3 valid and done."""
+    """Result flag: 0 invalid packet, 1 unsupported packet type, 2 valid but the action failed, 3
+    valid and done."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk001:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PMTK001", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PMTK001", 2, count)
-        command = (_INTEGER_0_TO_999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "command", "integer 0..999", 0, 999, _INTEGER_0_TO_999)) if fields[0] else None
-        flag = MtkAckFlag.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "flag", "mtk_ack_flag code (0 1 2 3)", MtkAckFlag.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, flag, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-            rt.text_of(self.flag),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK001",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-            '"flag":' + show(self.flag),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        out += rt.json_texts(rt.json_member(fields, "flag"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class Pmtk001SvMask:
+class Pmtk001SvMask(rt.Sentence):
     """PMTK001 (Acknowledgement with a satellite bit mask): Acknowledgement of a PMTK command.
 
-    The answer to $PMTK660 and $PMTK661 (available ephemeris / almanac query): after the flag
-    comes a 32-bit mask, one bit per GPS PRN 1-32, of the satellites whose data will still be
-    valid after the interval the query gave.
+    The answer to $PMTK660 and $PMTK661 (available ephemeris / almanac query): after the flag comes
+    a 32-bit mask, one bit per GPS PRN 1-32, of the satellites whose data will still be valid after
+    the interval the query gave.
 
-    Example (mtk_ublox_it500): $PMTK001,660,3,40449464*17
+    Example (mtk_ublox_it500):
+    $PMTK001,660,3,40449464*17
     """
 
     SENTENCE: ClassVar[str] = "PMTK001"
@@ -118,69 +75,28 @@ class Pmtk001SvMask:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = (("flag", "enum", "success"), )
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK001", "proprietary", "$", 3, 3, (
+        rt.IntegerField("command", "integer 0..999", 0, 999),
+        rt.EnumField("flag", "mtk_ack_flag code (0 1 2 3)", MtkAckFlag),
+        rt.HexField("sv_mask", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: rt.Number | None = None
-    """Acknowledged packet type: The packet type (command number) this acknowledgement answers, e.g. 220 for $PMTK220."""
+    """Acknowledged packet type: The packet type (command number) this acknowledgement answers, e.g.
+    220 for $PMTK220."""
     flag: MtkAckFlag | str | None = None
-    """Result flag: 0 invalid packet, 1 unsupported packet type, 2 valid but the action failed, 3 valid and done."""
+    """Result flag: 0 invalid packet, 1 unsupported packet type, 2 valid but the action failed, 3
+    valid and done."""
     sv_mask: rt.Hex | None = None
-    """Satellite mask: 32 bits as 8 hex digits (the manual prints them in lower case). Read from the most significant bit: bit 31 is PRN 1, bit 0 is PRN 32; the manual's example 40449464 marks PRNs 2, 10, 14, 17, 20, 22, 26, 27 and 30."""
+    """Satellite mask: 32 bits as 8 hex digits (the manual prints them in lower case). Read from the
+    most significant bit: bit 31 is PRN 1, bit 0 is PRN 32; the manual's example 40449464 marks PRNs
+    2, 10, 14, 17, 20, 22, 26, 27 and 30."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk001SvMask:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PMTK001", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PMTK001", 3, count)
-        command = (_INTEGER_0_TO_999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "command", "integer 0..999", 0, 999, _INTEGER_0_TO_999)) if fields[0] else None
-        flag = MtkAckFlag.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "flag", "mtk_ack_flag code (0 1 2 3)", MtkAckFlag.BY_CODE, "digits", 1, 1)
-        sv_mask = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "sv_mask", "hex number", _HEX)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, flag, sv_mask, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-            rt.text_of(self.flag),
-            rt.text_of(self.sv_mask),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK001",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-            '"flag":' + show(self.flag),
-            '"sv_mask":' + show(self.sv_mask),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        out += rt.json_texts(rt.json_member(fields, "flag"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sv_mask"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk001, Pmtk001SvMask, )

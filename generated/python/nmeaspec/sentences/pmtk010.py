@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK010: System message.
 
-Sent by the receiver on its own to report a system event, above all that it has started up
-(after power-on, a restart command, or waking from standby), and on MT333x receivers that EPO
-aiding data may be sent or that normal mode has been resumed.
+Sent by the receiver on its own to report a system event, above all that it has started up (after
+power-on, a restart command, or waking from standby), and on MT333x receivers that EPO aiding data
+may be sent or that normal mode has been resumed.
 """
 
 from __future__ import annotations
@@ -18,10 +18,11 @@ from ..enums import MtkSystemMessage
 
 
 @dataclass(slots=True)
-class Pmtk010:
+class Pmtk010(rt.Sentence):
     """PMTK010: System message.
 
-    Example (log_gpsd): $PMTK010,001*2E
+    Example (log_gpsd):
+    $PMTK010,001*2E
     """
 
     SENTENCE: ClassVar[str] = "PMTK010"
@@ -31,57 +32,18 @@ class Pmtk010:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK010", "proprietary", "$", 1, 1, (
+        rt.EnumField("message", "mtk_system_message code (000 001 002 003)", MtkSystemMessage),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     message: MtkSystemMessage | str | None = None
     """System message: The event, three digits (001 startup)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk010:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK010", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK010", 1, count)
-        message = MtkSystemMessage.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "message", "mtk_system_message code (000 001 002 003)", MtkSystemMessage.BY_CODE, "digits", 3, 3)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(message, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK010",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message":' + show(self.message),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk010, )

@@ -15,10 +15,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class Pmtk011:
+class Pmtk011(rt.Sentence):
     """PMTK011: System text message.
 
-    Example (mtk_quectel_l80): $PMTK011,MTKGPS*08
+    Example (mtk_quectel_l80):
+    $PMTK011,MTKGPS*08
     """
 
     SENTENCE: ClassVar[str] = "PMTK011"
@@ -28,57 +29,19 @@ class Pmtk011:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK011", "proprietary", "$", 1, 1, (
+        rt.TextField("text", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     text: str | None = None
-    """Text: The system text; the documents only show MTKGPS, sent together with $PMTK010,001 at start-up."""
+    """Text: The system text; the documents only show MTKGPS, sent together with $PMTK010,001 at
+    start-up."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk011:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK011", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK011", 1, count)
-        text = rt.text_field(fields[0], address, 1, "text", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(text, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.text),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK011",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"text":' + show(self.text),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "text"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk011, )

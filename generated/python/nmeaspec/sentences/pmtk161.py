@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK161: Enter standby mode.
 
-PMTK_CMD_STANDBY_MODE: stops navigation and puts the receiver into a low-power standby state to
-save power. Any byte sent to the receiver wakes it up again, after which it announces its start
-with $PMTK010,001.
+PMTK_CMD_STANDBY_MODE: stops navigation and puts the receiver into a low-power standby state to save
+power. Any byte sent to the receiver wakes it up again, after which it announces its start with
+$PMTK010,001.
 """
 
 from __future__ import annotations
@@ -18,10 +18,11 @@ from ..enums import MtkStandbyType
 
 
 @dataclass(slots=True)
-class Pmtk161:
+class Pmtk161(rt.Sentence):
     """PMTK161: Enter standby mode.
 
-    Example (mtk_quectel_l80): $PMTK161,0*28
+    Example (mtk_quectel_l80):
+    $PMTK161,0*28
     """
 
     SENTENCE: ClassVar[str] = "PMTK161"
@@ -36,57 +37,19 @@ class Pmtk161:
         ("PMTK001", "sv_mask", (("command", "integer", 161), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK161", "proprietary", "$", 1, 1, (
+        rt.EnumField("type", "mtk_standby_type code (0 1)", MtkStandbyType),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     type: MtkStandbyType | str | None = None
-    """Standby type: 0 stop mode (called sleep mode by GlobalTop); the IT500 manual adds 1 sleep mode."""
+    """Standby type: 0 stop mode (called sleep mode by GlobalTop); the IT500 manual adds 1 sleep
+    mode."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk161:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK161", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK161", 1, count)
-        type = MtkStandbyType.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "type", "mtk_standby_type code (0 1)", MtkStandbyType.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(type, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.type),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK161",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"type":' + show(self.type),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk161, )

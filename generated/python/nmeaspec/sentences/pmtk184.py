@@ -15,10 +15,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class Pmtk184:
+class Pmtk184(rt.Sentence):
     """PMTK184: Erase LOCUS logger flash.
 
-    Example (mtk_quectel_l80): $PMTK184,1*22
+    Example (mtk_quectel_l80):
+    $PMTK184,1*22
     """
 
     SENTENCE: ClassVar[str] = "PMTK184"
@@ -33,57 +34,18 @@ class Pmtk184:
         ("PMTK001", "sv_mask", (("command", "integer", 184), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK184", "proprietary", "$", 1, 1, (
+        rt.LiteralField("type", "1 or nothing", "1"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     type: str | None = None
     """Erase type: Always 1, erase all logger data in the internal flash."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk184:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK184", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK184", 1, count)
-        type = "1" if fields[0] == "1" else rt.literal_field(fields[0], address, 1, "type", "1 or nothing", "1")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(type, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.type),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK184",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"type":' + show(self.type),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk184, )

@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK220: Set position fix interval (update rate).
 
-PMTK_SET_NMEA_UPDATERATE (PMTK_SET_POS_FIX): sets the time between two position fixes, and so
-the NMEA output rate: 1000 ms is 1 Hz, 200 ms 5 Hz, 100 ms 10 Hz. Same effect as $PMTK300. The
-receiver answers "action failed" when the sentences enabled cannot be sent at that rate at the
-current baud rate.
+PMTK_SET_NMEA_UPDATERATE (PMTK_SET_POS_FIX): sets the time between two position fixes, and so the
+NMEA output rate: 1000 ms is 1 Hz, 200 ms 5 Hz, 100 ms 10 Hz. Same effect as $PMTK300. The receiver
+answers "action failed" when the sentences enabled cannot be sent at that rate at the current baud
+rate.
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_100_TO_10000: dict[Any, Any] = rt.known("integer 100..10000")
-
 
 @dataclass(slots=True)
-class Pmtk220:
+class Pmtk220(rt.Sentence):
     """PMTK220: Set position fix interval (update rate).
 
-    Example (mtk_pmtk): $PMTK220,1000*1F
+    Example (mtk_pmtk):
+    $PMTK220,1000*1F
     """
 
     SENTENCE: ClassVar[str] = "PMTK220"
@@ -39,57 +37,18 @@ class Pmtk220:
         ("PMTK001", "sv_mask", (("command", "integer", 220), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK220", "proprietary", "$", 1, 1, (
+        rt.IntegerField("interval", "integer 100..10000", 100, 10000),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     interval: rt.Number | None = None
     """Fix interval [ms]: Position fix interval in milliseconds, 100 to 10000."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk220:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK220", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK220", 1, count)
-        interval = (_INTEGER_100_TO_10000.get(fields[0]) or rt.integer_field(fields[0], address, 1, "interval", "integer 100..10000", 100, 10000, _INTEGER_100_TO_10000)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(interval, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.interval),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK220",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"interval":' + show(self.interval),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "interval"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk220, )

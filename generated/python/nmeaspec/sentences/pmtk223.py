@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Pmtk223:
+class Pmtk223(rt.Sentence):
     """PMTK223: Set extended ephemeris reception.
 
-    Example (mtk_pmtk): $PMTK223,1,30,180000,60000*3C
+    Example (mtk_pmtk):
+    $PMTK223,1,30,180000,60000*3C
     """
 
     SENTENCE: ClassVar[str] = "PMTK223"
@@ -37,75 +35,30 @@ class Pmtk223:
         ("PMTK001", "sv_mask", (("command", "integer", 223), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK223", "proprietary", "$", 4, 4, (
+        rt.IntegerField("sv", "integer"),
+        rt.IntegerField("snr", "integer"),
+        rt.IntegerField("extension_threshold", "integer"),
+        rt.IntegerField("extension_gap", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     sv: rt.Number | None = None
-    """Satellites without ephemeris: The number of satellites lacking ephemeris data at which the reception time is extended."""
+    """Satellites without ephemeris: The number of satellites lacking ephemeris data at which the
+    reception time is extended."""
     snr: rt.Number | None = None
-    """SNR threshold [dB-Hz]: Ephemeris reception is enabled for satellites whose SNR is above this value."""
+    """SNR threshold [dB-Hz]: Ephemeris reception is enabled for satellites whose SNR is above this
+    value."""
     extension_threshold: rt.Number | None = None
-    """Extension time [ms]: How long the reception of ephemeris data is extended, in milliseconds."""
+    """Extension time [ms]: How long the reception of ephemeris data is extended, in
+    milliseconds."""
     extension_gap: rt.Number | None = None
     """Extension gap [ms]: Time between two extended ephemeris receptions, in milliseconds."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk223:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PMTK223", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PMTK223", 4, count)
-        sv = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "sv", "integer", None, None, _INTEGER)) if fields[0] else None
-        snr = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "snr", "integer", None, None, _INTEGER)) if fields[1] else None
-        extension_threshold = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "extension_threshold", "integer", None, None, _INTEGER)) if fields[2] else None
-        extension_gap = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "extension_gap", "integer", None, None, _INTEGER)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(sv, snr, extension_threshold, extension_gap, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sv),
-            rt.text_of(self.snr),
-            rt.text_of(self.extension_threshold),
-            rt.text_of(self.extension_gap),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK223",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sv":' + show(self.sv),
-            '"snr":' + show(self.snr),
-            '"extension_threshold":' + show(self.extension_threshold),
-            '"extension_gap":' + show(self.extension_gap),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sv"), 1)
-        out += rt.json_texts(rt.json_member(fields, "snr"), 1)
-        out += rt.json_texts(rt.json_member(fields, "extension_threshold"), 1)
-        out += rt.json_texts(rt.json_member(fields, "extension_gap"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk223, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK225: Set periodic power-saving mode.
 
-PMTK_SET_PERIODIC_MODE: puts the receiver into a periodic mode that alternates run and sleep
-(backup or standby) periods, into AlwaysLocate mode, or back to normal operation. The run and
-sleep times are only given for the periodic modes 1 and 2.
+PMTK_SET_PERIODIC_MODE: puts the receiver into a periodic mode that alternates run and sleep (backup
+or standby) periods, into AlwaysLocate mode, or back to normal operation. The run and sleep times
+are only given for the periodic modes 1 and 2.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import MtkPeriodicMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1000_TO_518400000: dict[Any, Any] = rt.known("integer 1000..518400000")
-_INTEGER__TO_518400000: dict[Any, Any] = rt.known("integer ..518400000")
-
 
 @dataclass(slots=True)
-class Pmtk225:
+class Pmtk225(rt.Sentence):
     """PMTK225: Set periodic power-saving mode.
 
-    Example (mtk_pmtk): $PMTK225,1,3000,12000,18000,72000*16
+    Example (mtk_pmtk):
+    $PMTK225,1,3000,12000,18000,72000*16
     """
 
     SENTENCE: ClassVar[str] = "PMTK225"
@@ -40,113 +37,46 @@ class Pmtk225:
         ("PMTK001", "sv_mask", (("command", "integer", 225), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK225", "proprietary", "$", 1, 5, (
+        rt.EnumField("mode", "mtk_periodic_mode code (0 1 2 4 8 9)", MtkPeriodicMode),
+        rt.IntegerField("run_time", "integer of at most 518400000", None, 518400000, optional=True),
+        rt.IntegerField("sleep_time", "integer 1000..518400000", 1000, 518400000, optional=True),
+        rt.IntegerField(
+            "second_run_time",
+            "integer of at most 518400000",
+            None,
+            518400000,
+            optional=True,
+        ),
+        rt.IntegerField(
+            "second_sleep_time",
+            "integer 1000..518400000",
+            1000,
+            518400000,
+            optional=True,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     mode: MtkPeriodicMode | str | None = None
-    """Operation mode: 0 normal, 1 periodic backup, 2 periodic standby, 4 perpetual backup, 8 AlwaysLocate standby, 9 AlwaysLocate backup."""
+    """Operation mode: 0 normal, 1 periodic backup, 2 periodic standby, 4 perpetual backup, 8
+    AlwaysLocate standby, 9 AlwaysLocate backup."""
     run_time: rt.Number | None | rt._Absent = rt.ABSENT
     """Run time [ms]: Time the receiver runs in each cycle, 0 (disabled) or 1000 to 518400000 ms."""
     sleep_time: rt.Number | None | rt._Absent = rt.ABSENT
     """Sleep time [ms]: Time the receiver sleeps in each cycle, 1000 to 518400000 ms."""
     second_run_time: rt.Number | None | rt._Absent = rt.ABSENT
-    """Second run time [ms]: Run time used while the receiver has no fix (cold start condition), to collect more ephemeris; 0 (disabled) or 1000 to 518400000 ms, longer than the first run time when not 0."""
+    """Second run time [ms]: Run time used while the receiver has no fix (cold start condition), to
+    collect more ephemeris; 0 (disabled) or 1000 to 518400000 ms, longer than the first run time
+    when not 0."""
     second_sleep_time: rt.Number | None | rt._Absent = rt.ABSENT
-    """Second sleep time [ms]: Sleep time used together with the second run time, 1000 to 518400000 ms."""
+    """Second sleep time [ms]: Sleep time used together with the second run time, 1000 to 518400000
+    ms."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk225:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK225", 1, count)
-        if count > 5:
-            raise rt.too_many(address, "PMTK225", 5, count)
-        optional = count - 1
-        mode = MtkPeriodicMode.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "mode", "mtk_periodic_mode code (0 1 2 4 8 9)", MtkPeriodicMode.BY_CODE, "digits", 1, 1)
-        run_time: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            run_time = (_INTEGER__TO_518400000.get(fields[1]) or rt.integer_field(fields[1], address, 2, "run_time", "integer of at most 518400000", None, 518400000, _INTEGER__TO_518400000)) if fields[1] else None
-        sleep_time: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            sleep_time = (_INTEGER_1000_TO_518400000.get(fields[2]) or rt.integer_field(fields[2], address, 3, "sleep_time", "integer 1000..518400000", 1000, 518400000, _INTEGER_1000_TO_518400000)) if fields[2] else None
-        second_run_time: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            second_run_time = (_INTEGER__TO_518400000.get(fields[3]) or rt.integer_field(fields[3], address, 4, "second_run_time", "integer of at most 518400000", None, 518400000, _INTEGER__TO_518400000)) if fields[3] else None
-        second_sleep_time: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            second_sleep_time = (_INTEGER_1000_TO_518400000.get(fields[4]) or rt.integer_field(fields[4], address, 5, "second_sleep_time", "integer 1000..518400000", 1000, 518400000, _INTEGER_1000_TO_518400000)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(mode, run_time, sleep_time, second_run_time, second_sleep_time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.mode),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.second_sleep_time is not rt.ABSENT:
-            last = 3
-        elif self.second_run_time is not rt.ABSENT:
-            last = 2
-        elif self.sleep_time is not rt.ABSENT:
-            last = 1
-        elif self.run_time is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.run_time)]
-        if last >= 1:
-            out += [rt.text_of(self.sleep_time)]
-        if last >= 2:
-            out += [rt.text_of(self.second_run_time)]
-        if last >= 3:
-            out += [rt.text_of(self.second_sleep_time)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK225",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"mode":' + show(self.mode),
-        ]
-        if self.run_time is not rt.ABSENT:
-            parts.append('"run_time":' + show(self.run_time))
-        if self.sleep_time is not rt.ABSENT:
-            parts.append('"sleep_time":' + show(self.sleep_time))
-        if self.second_run_time is not rt.ABSENT:
-            parts.append('"second_run_time":' + show(self.second_run_time))
-        if self.second_sleep_time is not rt.ABSENT:
-            parts.append('"second_sleep_time":' + show(self.second_sleep_time))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        if "run_time" in fields:
-            out += rt.json_texts(fields["run_time"], 1)
-        if "sleep_time" in fields:
-            out += rt.json_texts(fields["sleep_time"], 1)
-        if "second_run_time" in fields:
-            out += rt.json_texts(fields["second_run_time"], 1)
-        if "second_sleep_time" in fields:
-            out += rt.json_texts(fields["second_sleep_time"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk225, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK251: Set NMEA port baud rate.
 
-PMTK_SET_NMEA_BAUDRATE: changes the baud rate of the NMEA port. The receiver does not
-acknowledge it. On the L80 the setting returns to the default after a full cold start ($PMTK104)
-or standby ($PMTK161).
+PMTK_SET_NMEA_BAUDRATE: changes the baud rate of the NMEA port. The receiver does not acknowledge
+it. On the L80 the setting returns to the default after a full cold start ($PMTK104) or standby
+($PMTK161).
 """
 
 from __future__ import annotations
@@ -18,10 +18,11 @@ from ..enums import MtkBaud
 
 
 @dataclass(slots=True)
-class Pmtk251:
+class Pmtk251(rt.Sentence):
     """PMTK251: Set NMEA port baud rate.
 
-    Example (mtk_quectel_l80): $PMTK251,38400*27
+    Example (mtk_quectel_l80):
+    $PMTK251,38400*27
     """
 
     SENTENCE: ClassVar[str] = "PMTK251"
@@ -31,57 +32,19 @@ class Pmtk251:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK251", "proprietary", "$", 1, 1, (
+        rt.EnumField("baud", "mtk_baud code (0 4800 9600 14400 19200 38400 57600 115200)", MtkBaud),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     baud: MtkBaud | str | None = None
-    """Baud rate: 4800, 9600, 14400, 19200, 38400, 57600 or 115200 bit/s; 0 the default rate (Linx)."""
+    """Baud rate: 4800, 9600, 14400, 19200, 38400, 57600 or 115200 bit/s; 0 the default rate
+    (Linx)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk251:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK251", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK251", 1, count)
-        baud = MtkBaud.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "baud", "mtk_baud code (0 4800 9600 14400 19200 38400 57600 115200)", MtkBaud.BY_CODE, "digits", 1, 6)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(baud, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.baud),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK251",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"baud":' + show(self.baud),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "baud"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk251, )

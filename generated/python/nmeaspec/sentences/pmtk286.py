@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK286: Enable active interference cancellation.
 
-PMTK_SET_AIC_ENABLED: switches the active interference cancellation (AIC) function on or off.
-The L80 manual suggests sending a cold start first and then this command.
+PMTK_SET_AIC_ENABLED: switches the active interference cancellation (AIC) function on or off. The
+L80 manual suggests sending a cold start first and then this command.
 """
 
 from __future__ import annotations
@@ -17,10 +17,11 @@ from ..enums import MtkEnable
 
 
 @dataclass(slots=True)
-class Pmtk286:
+class Pmtk286(rt.Sentence):
     """PMTK286: Enable active interference cancellation.
 
-    Example (mtk_quectel_l80): $PMTK286,0*22
+    Example (mtk_quectel_l80):
+    $PMTK286,0*22
     """
 
     SENTENCE: ClassVar[str] = "PMTK286"
@@ -35,57 +36,18 @@ class Pmtk286:
         ("PMTK001", "sv_mask", (("command", "integer", 286), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK286", "proprietary", "$", 1, 1, (
+        rt.EnumField("enabled", "mtk_enable code (0 1)", MtkEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     enabled: MtkEnable | str | None = None
     """AIC: 0 disable, 1 enable."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk286:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK286", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK286", 1, count)
-        enabled = MtkEnable.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "enabled", "mtk_enable code (0 1)", MtkEnable.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(enabled, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.enabled),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK286",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"enabled":' + show(self.enabled),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "enabled"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk286, )

@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK314: Set NMEA sentence output rates.
 
-PMTK_API_SET_NMEA_OUTPUT: one field per supported sentence gives how often it is sent, as a
-number of position fixes between two outputs (0 off, 1 every fix, up to 5 every fifth fix). The
-single field -1 instead restores the default output set (variant restore_default). Acknowledged
-with $PMTK001; $PMTK414 reads the setting back.
+PMTK_API_SET_NMEA_OUTPUT: one field per supported sentence gives how often it is sent, as a number
+of position fixes between two outputs (0 off, 1 every fix, up to 5 every fifth fix). The single
+field -1 instead restores the default output set (variant restore_default). Acknowledged with
+$PMTK001; $PMTK414 reads the setting back.
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_5: dict[Any, Any] = rt.known("integer 0..5")
-
 
 @dataclass(slots=True)
-class Pmtk314:
+class Pmtk314(rt.Sentence):
     """PMTK314: Set NMEA sentence output rates.
 
-    Example (mtk_pmtk): $PMTK314,1,1,1,1,1,5,0,0,0,0,0,0,0,0,0,0,0,0,0*2C
+    Example (mtk_pmtk):
+    $PMTK314,1,1,1,1,1,5,0,0,0,0,0,0,0,0,0,0,0,0,0*2C
     """
 
     SENTENCE: ClassVar[str] = "PMTK314"
@@ -39,22 +37,53 @@ class Pmtk314:
         ("PMTK001", "sv_mask", (("command", "integer", 314), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK314", "proprietary", "$", 19, 19, (
+        rt.IntegerField("gll", "integer 0..5", 0, 5),
+        rt.IntegerField("rmc", "integer 0..5", 0, 5),
+        rt.IntegerField("vtg", "integer 0..5", 0, 5),
+        rt.IntegerField("gga", "integer 0..5", 0, 5),
+        rt.IntegerField("gsa", "integer 0..5", 0, 5),
+        rt.IntegerField("gsv", "integer 0..5", 0, 5),
+        rt.IntegerField("grs", "integer 0..5", 0, 5),
+        rt.IntegerField("gst", "integer 0..5", 0, 5),
+        rt.IntegerField("reserved_8", "integer 0..5", 0, 5),
+        rt.IntegerField("reserved_9", "integer 0..5", 0, 5),
+        rt.IntegerField("reserved_10", "integer 0..5", 0, 5),
+        rt.IntegerField("reserved_11", "integer 0..5", 0, 5),
+        rt.IntegerField("reserved_12", "integer 0..5", 0, 5),
+        rt.IntegerField("malm", "integer 0..5", 0, 5),
+        rt.IntegerField("meph", "integer 0..5", 0, 5),
+        rt.IntegerField("mdgp", "integer 0..5", 0, 5),
+        rt.IntegerField("mdbg", "integer 0..5", 0, 5),
+        rt.IntegerField("zda", "integer 0..5", 0, 5),
+        rt.IntegerField("mchn", "integer 0..5", 0, 5),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     gll: rt.Number | None = None
-    """GLL rate: Field 0: GLL (geographic position) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """GLL rate: Field 0: GLL (geographic position) output rate. 0 disables it, n (1 to 5) sends it
+    once every n position fixes."""
     rmc: rt.Number | None = None
-    """RMC rate: Field 1: RMC (recommended minimum data) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """RMC rate: Field 1: RMC (recommended minimum data) output rate. 0 disables it, n (1 to 5)
+    sends it once every n position fixes."""
     vtg: rt.Number | None = None
-    """VTG rate: Field 2: VTG (course and speed over ground) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """VTG rate: Field 2: VTG (course and speed over ground) output rate. 0 disables it, n (1 to 5)
+    sends it once every n position fixes."""
     gga: rt.Number | None = None
-    """GGA rate: Field 3: GGA (fix data) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """GGA rate: Field 3: GGA (fix data) output rate. 0 disables it, n (1 to 5) sends it once every
+    n position fixes."""
     gsa: rt.Number | None = None
-    """GSA rate: Field 4: GSA (DOP and active satellites) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """GSA rate: Field 4: GSA (DOP and active satellites) output rate. 0 disables it, n (1 to 5)
+    sends it once every n position fixes."""
     gsv: rt.Number | None = None
-    """GSV rate: Field 5: GSV (satellites in view) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """GSV rate: Field 5: GSV (satellites in view) output rate. 0 disables it, n (1 to 5) sends it
+    once every n position fixes."""
     grs: rt.Number | None = None
-    """GRS rate: Field 6: GRS (range residuals) output rate on the IT500 series; reserved (0) in the GlobalTop and L80 manuals. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """GRS rate: Field 6: GRS (range residuals) output rate on the IT500 series; reserved (0) in the
+    GlobalTop and L80 manuals. 0 disables it, n (1 to 5) sends it once every n position fixes."""
     gst: rt.Number | None = None
-    """GST rate: Field 7: GST (pseudorange error statistics) output rate on the IT500 series; reserved (0) in the GlobalTop and L80 manuals. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """GST rate: Field 7: GST (pseudorange error statistics) output rate on the IT500 series;
+    reserved (0) in the GlobalTop and L80 manuals. 0 disables it, n (1 to 5) sends it once every n
+    position fixes."""
     reserved_8: rt.Number | None = None
     """Reserved: Field 8: Reserved, 0."""
     reserved_9: rt.Number | None = None
@@ -66,147 +95,44 @@ class Pmtk314:
     reserved_12: rt.Number | None = None
     """Reserved: Field 12: Reserved, 0."""
     malm: rt.Number | None = None
-    """PMTKALM rate: Field 13: Almanac sentence PMTKALM; listed by the IT500 manual as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """PMTKALM rate: Field 13: Almanac sentence PMTKALM; listed by the IT500 manual as not
+    supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position
+    fixes."""
     meph: rt.Number | None = None
-    """PMTKEPH rate: Field 14: Ephemeris sentence PMTKEPH; listed by the IT500 manual as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """PMTKEPH rate: Field 14: Ephemeris sentence PMTKEPH; listed by the IT500 manual as not
+    supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position
+    fixes."""
     mdgp: rt.Number | None = None
-    """PMTKDGP rate: Field 15: Differential correction sentence PMTKDGP; listed by the IT500 manual as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """PMTKDGP rate: Field 15: Differential correction sentence PMTKDGP; listed by the IT500 manual
+    as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n
+    position fixes."""
     mdbg: rt.Number | None = None
-    """PMTKDBG rate: Field 16: MTK debug sentence PMTKDBG; listed by the IT500 manual as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """PMTKDBG rate: Field 16: MTK debug sentence PMTKDBG; listed by the IT500 manual as not
+    supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position
+    fixes."""
     zda: rt.Number | None = None
-    """ZDA rate: Field 17: ZDA (time and date) output rate (IT500 and L80 manuals; reserved in the GlobalTop A08 manual). 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """ZDA rate: Field 17: ZDA (time and date) output rate (IT500 and L80 manuals; reserved in the
+    GlobalTop A08 manual). 0 disables it, n (1 to 5) sends it once every n position fixes."""
     mchn: rt.Number | None = None
-    """PMTKCHN rate: Field 18: PMTKCHN (channel status) output rate (GlobalTop and IT500 manuals; reserved, 0, in the L80 manual). 0 disables it, n (1 to 5) sends it once every n position fixes."""
+    """PMTKCHN rate: Field 18: PMTKCHN (channel status) output rate (GlobalTop and IT500 manuals;
+    reserved, 0, in the L80 manual). 0 disables it, n (1 to 5) sends it once every n position
+    fixes."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk314:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 19:
-            raise rt.too_few(address, "PMTK314", 19, count)
-        if count > 19:
-            raise rt.too_many(address, "PMTK314", 19, count)
-        gll = (_INTEGER_0_TO_5.get(fields[0]) or rt.integer_field(fields[0], address, 1, "gll", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[0] else None
-        rmc = (_INTEGER_0_TO_5.get(fields[1]) or rt.integer_field(fields[1], address, 2, "rmc", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[1] else None
-        vtg = (_INTEGER_0_TO_5.get(fields[2]) or rt.integer_field(fields[2], address, 3, "vtg", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[2] else None
-        gga = (_INTEGER_0_TO_5.get(fields[3]) or rt.integer_field(fields[3], address, 4, "gga", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[3] else None
-        gsa = (_INTEGER_0_TO_5.get(fields[4]) or rt.integer_field(fields[4], address, 5, "gsa", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[4] else None
-        gsv = (_INTEGER_0_TO_5.get(fields[5]) or rt.integer_field(fields[5], address, 6, "gsv", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[5] else None
-        grs = (_INTEGER_0_TO_5.get(fields[6]) or rt.integer_field(fields[6], address, 7, "grs", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[6] else None
-        gst = (_INTEGER_0_TO_5.get(fields[7]) or rt.integer_field(fields[7], address, 8, "gst", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[7] else None
-        reserved_8 = (_INTEGER_0_TO_5.get(fields[8]) or rt.integer_field(fields[8], address, 9, "reserved_8", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[8] else None
-        reserved_9 = (_INTEGER_0_TO_5.get(fields[9]) or rt.integer_field(fields[9], address, 10, "reserved_9", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[9] else None
-        reserved_10 = (_INTEGER_0_TO_5.get(fields[10]) or rt.integer_field(fields[10], address, 11, "reserved_10", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[10] else None
-        reserved_11 = (_INTEGER_0_TO_5.get(fields[11]) or rt.integer_field(fields[11], address, 12, "reserved_11", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[11] else None
-        reserved_12 = (_INTEGER_0_TO_5.get(fields[12]) or rt.integer_field(fields[12], address, 13, "reserved_12", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[12] else None
-        malm = (_INTEGER_0_TO_5.get(fields[13]) or rt.integer_field(fields[13], address, 14, "malm", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[13] else None
-        meph = (_INTEGER_0_TO_5.get(fields[14]) or rt.integer_field(fields[14], address, 15, "meph", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[14] else None
-        mdgp = (_INTEGER_0_TO_5.get(fields[15]) or rt.integer_field(fields[15], address, 16, "mdgp", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[15] else None
-        mdbg = (_INTEGER_0_TO_5.get(fields[16]) or rt.integer_field(fields[16], address, 17, "mdbg", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[16] else None
-        zda = (_INTEGER_0_TO_5.get(fields[17]) or rt.integer_field(fields[17], address, 18, "zda", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[17] else None
-        mchn = (_INTEGER_0_TO_5.get(fields[18]) or rt.integer_field(fields[18], address, 19, "mchn", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[18] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(gll, rmc, vtg, gga, gsa, gsv, grs, gst, reserved_8, reserved_9, reserved_10, reserved_11, reserved_12, malm, meph, mdgp, mdbg, zda, mchn, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.gll),
-            rt.text_of(self.rmc),
-            rt.text_of(self.vtg),
-            rt.text_of(self.gga),
-            rt.text_of(self.gsa),
-            rt.text_of(self.gsv),
-            rt.text_of(self.grs),
-            rt.text_of(self.gst),
-            rt.text_of(self.reserved_8),
-            rt.text_of(self.reserved_9),
-            rt.text_of(self.reserved_10),
-            rt.text_of(self.reserved_11),
-            rt.text_of(self.reserved_12),
-            rt.text_of(self.malm),
-            rt.text_of(self.meph),
-            rt.text_of(self.mdgp),
-            rt.text_of(self.mdbg),
-            rt.text_of(self.zda),
-            rt.text_of(self.mchn),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK314",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"gll":' + show(self.gll),
-            '"rmc":' + show(self.rmc),
-            '"vtg":' + show(self.vtg),
-            '"gga":' + show(self.gga),
-            '"gsa":' + show(self.gsa),
-            '"gsv":' + show(self.gsv),
-            '"grs":' + show(self.grs),
-            '"gst":' + show(self.gst),
-            '"reserved_8":' + show(self.reserved_8),
-            '"reserved_9":' + show(self.reserved_9),
-            '"reserved_10":' + show(self.reserved_10),
-            '"reserved_11":' + show(self.reserved_11),
-            '"reserved_12":' + show(self.reserved_12),
-            '"malm":' + show(self.malm),
-            '"meph":' + show(self.meph),
-            '"mdgp":' + show(self.mdgp),
-            '"mdbg":' + show(self.mdbg),
-            '"zda":' + show(self.zda),
-            '"mchn":' + show(self.mchn),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "gll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rmc"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vtg"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gga"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gsa"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gsv"), 1)
-        out += rt.json_texts(rt.json_member(fields, "grs"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gst"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_8"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_9"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_10"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_11"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_12"), 1)
-        out += rt.json_texts(rt.json_member(fields, "malm"), 1)
-        out += rt.json_texts(rt.json_member(fields, "meph"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mdgp"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mdbg"), 1)
-        out += rt.json_texts(rt.json_member(fields, "zda"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mchn"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class Pmtk314RestoreDefault:
+class Pmtk314RestoreDefault(rt.Sentence):
     """PMTK314 (Restore default output): Set NMEA sentence output rates.
 
     The form $PMTK314,-1 that returns every sentence to the receiver's default rate.
 
-    Example (mtk_quectel_l80): $PMTK314,-1*04
+    Example (mtk_quectel_l80):
+    $PMTK314,-1*04
     """
 
     SENTENCE: ClassVar[str] = "PMTK314"
@@ -221,57 +147,18 @@ class Pmtk314RestoreDefault:
         ("PMTK001", "sv_mask", (("command", "integer", 314), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK314", "proprietary", "$", 1, 1, (
+        rt.KeywordField("restore", "-1", "-1"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     restore: str = "-1"
     """Restore marker: Always -1."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk314RestoreDefault:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK314", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK314", 1, count)
-        restore = rt.keyword_field(fields[0], address, 1, "restore", "-1", "-1")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(restore, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.restore),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK314",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"restore":' + show(self.restore),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "restore"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk314, Pmtk314RestoreDefault, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK353: Set GNSS search mode.
 
-PMTK_API_SET_GNSS_SEARCH_MODE (MT3333 and later multi-GNSS receivers): which satellite systems
-the receiver searches for and uses, one switch per system.
+PMTK_API_SET_GNSS_SEARCH_MODE (MT3333 and later multi-GNSS receivers): which satellite systems the
+receiver searches for and uses, one switch per system.
 """
 
 from __future__ import annotations
@@ -17,10 +17,11 @@ from ..enums import MtkEnable
 
 
 @dataclass(slots=True)
-class Pmtk353:
+class Pmtk353(rt.Sentence):
     """PMTK353: Set GNSS search mode.
 
-    Example (mtk_quectel_mc60): $PMTK353,0,1,0,0,0*2A
+    Example (mtk_quectel_mc60):
+    $PMTK353,0,1,0,0,0*2A
     """
 
     SENTENCE: ClassVar[str] = "PMTK353"
@@ -35,6 +36,14 @@ class Pmtk353:
         ("PMTK001", "sv_mask", (("command", "integer", 353), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK353", "proprietary", "$", 5, 5, (
+        rt.EnumField("gps", "mtk_enable code (0 1)", MtkEnable),
+        rt.EnumField("glonass", "mtk_enable code (0 1)", MtkEnable),
+        rt.EnumField("galileo", "mtk_enable code (0 1)", MtkEnable),
+        rt.EnumField("galileo_full", "mtk_enable code (0 1)", MtkEnable),
+        rt.EnumField("beidou", "mtk_enable code (0 1)", MtkEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     gps: MtkEnable | str | None = None
     """GPS: 1 search GPS satellites, 0 not."""
     glonass: MtkEnable | str | None = None
@@ -46,70 +55,11 @@ class Pmtk353:
     beidou: MtkEnable | str | None = None
     """BeiDou: 1 search BeiDou satellites, 0 not."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk353:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PMTK353", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PMTK353", 5, count)
-        gps = MtkEnable.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "gps", "mtk_enable code (0 1)", MtkEnable.BY_CODE, "digits", 1, 1)
-        glonass = MtkEnable.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "glonass", "mtk_enable code (0 1)", MtkEnable.BY_CODE, "digits", 1, 1)
-        galileo = MtkEnable.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "galileo", "mtk_enable code (0 1)", MtkEnable.BY_CODE, "digits", 1, 1)
-        galileo_full = MtkEnable.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "galileo_full", "mtk_enable code (0 1)", MtkEnable.BY_CODE, "digits", 1, 1)
-        beidou = MtkEnable.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "beidou", "mtk_enable code (0 1)", MtkEnable.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(gps, glonass, galileo, galileo_full, beidou, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.gps),
-            rt.text_of(self.glonass),
-            rt.text_of(self.galileo),
-            rt.text_of(self.galileo_full),
-            rt.text_of(self.beidou),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK353",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"gps":' + show(self.gps),
-            '"glonass":' + show(self.glonass),
-            '"galileo":' + show(self.galileo),
-            '"galileo_full":' + show(self.galileo_full),
-            '"beidou":' + show(self.beidou),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "gps"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glonass"), 1)
-        out += rt.json_texts(rt.json_member(fields, "galileo"), 1)
-        out += rt.json_texts(rt.json_member(fields, "galileo_full"), 1)
-        out += rt.json_texts(rt.json_member(fields, "beidou"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk353, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK386: Set static navigation threshold.
 
-PMTK_API_SET_STATIC_NAV_THD: when the measured speed is below the threshold, the receiver keeps
-the output position still and reports zero speed; 0 turns the function off. $PMTK447 reads it
-back ($PMTK527).
+PMTK_API_SET_STATIC_NAV_THD: when the measured speed is below the threshold, the receiver keeps the
+output position still and reports zero speed; 0 turns the function off. $PMTK447 reads it back
+($PMTK527).
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO_2: dict[Any, Any] = rt.known("decimal 0..2")
-
 
 @dataclass(slots=True)
-class Pmtk386:
+class Pmtk386(rt.Sentence):
     """PMTK386: Set static navigation threshold.
 
-    Example (mtk_linx_rxm_gps_fm): $PMTK386,1.2*3E
+    Example (mtk_linx_rxm_gps_fm):
+    $PMTK386,1.2*3E
     """
 
     SENTENCE: ClassVar[str] = "PMTK386"
@@ -38,57 +36,18 @@ class Pmtk386:
         ("PMTK001", "sv_mask", (("command", "integer", 386), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK386", "proprietary", "$", 1, 1, (
+        rt.DecimalField("threshold", "decimal number 0..2", 0, 2),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     threshold: rt.Number | None = None
     """Speed threshold [m/s]: Speed threshold in m/s, 0 to 2.0; 0 disables static navigation."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk386:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK386", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK386", 1, count)
-        threshold = (_DECIMAL_0_TO_2.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "threshold", "decimal number 0..2", 0, 2, _DECIMAL_0_TO_2)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(threshold, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.threshold),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK386",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"threshold":' + show(self.threshold),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "threshold"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk386, )

@@ -4,8 +4,8 @@
 """PMTK397: Set navigation speed threshold.
 
 PMTK_SET_NAV_SPEED_THRESHOLD (GlobalTop, MT3318/MT3329/MT3339): below the given speed the output
-position stays frozen. Useful against position drift in car navigation; for slow or stationary
-uses the manual suggests turning it off. $PMTK447 reads it back ($PMTK527).
+position stays frozen. Useful against position drift in car navigation; for slow or stationary uses
+the manual suggests turning it off. $PMTK447 reads it back ($PMTK527).
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Pmtk397:
+class Pmtk397(rt.Sentence):
     """PMTK397: Set navigation speed threshold.
 
-    Example (mtk_pmtk): $PMTK397,0.20*0F
+    Example (mtk_pmtk):
+    $PMTK397,0.20*0F
     """
 
     SENTENCE: ClassVar[str] = "PMTK397"
@@ -38,57 +36,18 @@ class Pmtk397:
         ("PMTK001", "sv_mask", (("command", "integer", 397), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK397", "proprietary", "$", 1, 1, (
+        rt.DecimalField("threshold", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     threshold: rt.Number | None = None
     """Speed threshold [m/s]: Navigation speed threshold in m/s."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk397:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK397", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK397", 1, count)
-        threshold = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "threshold", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(threshold, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.threshold),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK397",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"threshold":' + show(self.threshold),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "threshold"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk397, )

@@ -3,8 +3,7 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK500: Position fix interval (query answer).
 
-The answer to $PMTK400 (PMTK_DT_FIX_CTL), the position fix interval set with $PMTK300 or
-$PMTK220.
+The answer to $PMTK400 (PMTK_DT_FIX_CTL), the position fix interval set with $PMTK300 or $PMTK220.
 """
 
 from __future__ import annotations
@@ -14,16 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Pmtk500:
+class Pmtk500(rt.Sentence):
     """PMTK500: Position fix interval (query answer).
 
-    Example (mtk_quectel_l80): $PMTK500,1000,0,0,0,0*1A
+    Example (mtk_quectel_l80):
+    $PMTK500,1000,0,0,0,0*1A
     """
 
     SENTENCE: ClassVar[str] = "PMTK500"
@@ -33,6 +29,14 @@ class Pmtk500:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK500", "proprietary", "$", 5, 5, (
+        rt.IntegerField("fix_interval", "integer"),
+        rt.DecimalField("reserved_1", "decimal number"),
+        rt.DecimalField("reserved_2", "decimal number"),
+        rt.DecimalField("reserved_3", "decimal number"),
+        rt.DecimalField("reserved_4", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     fix_interval: rt.Number | None = None
     """Fix interval [ms]: Time between two position fixes, in milliseconds (more than 100)."""
     reserved_1: rt.Number | None = None
@@ -44,70 +48,11 @@ class Pmtk500:
     reserved_4: rt.Number | None = None
     """Reserved: Reserved, always 0."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk500:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PMTK500", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PMTK500", 5, count)
-        fix_interval = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "fix_interval", "integer", None, None, _INTEGER)) if fields[0] else None
-        reserved_1 = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "reserved_1", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        reserved_2 = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "reserved_2", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        reserved_3 = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "reserved_3", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        reserved_4 = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "reserved_4", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(fix_interval, reserved_1, reserved_2, reserved_3, reserved_4, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.fix_interval),
-            rt.text_of(self.reserved_1),
-            rt.text_of(self.reserved_2),
-            rt.text_of(self.reserved_3),
-            rt.text_of(self.reserved_4),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK500",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"fix_interval":' + show(self.fix_interval),
-            '"reserved_1":' + show(self.reserved_1),
-            '"reserved_2":' + show(self.reserved_2),
-            '"reserved_3":' + show(self.reserved_3),
-            '"reserved_4":' + show(self.reserved_4),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "fix_interval"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_3"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_4"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk500, )

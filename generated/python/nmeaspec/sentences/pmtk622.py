@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK622: Dump LOCUS logger data.
 
-PMTK_Q_LOCUS_DATA: asks the receiver to send the used part of its LOCUS logger flash, which it
-does as a series of $PMTKLOX lines (start, data lines, end).
+PMTK_Q_LOCUS_DATA: asks the receiver to send the used part of its LOCUS logger flash, which it does
+as a series of $PMTKLOX lines (start, data lines, end).
 """
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class Pmtk622:
+class Pmtk622(rt.Sentence):
     """PMTK622: Dump LOCUS logger data.
 
-    Example (mtk_quectel_l80): $PMTK622,1*29
+    Example (mtk_quectel_l80):
+    $PMTK622,1*29
     """
 
     SENTENCE: ClassVar[str] = "PMTK622"
@@ -37,57 +38,18 @@ class Pmtk622:
         ("PMTK001", "sv_mask", (("command", "integer", 622), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK622", "proprietary", "$", 1, 1, (
+        rt.LiteralField("type", "1 or nothing", "1"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     type: str | None = None
     """Dump type: 1, dump the part of the flash that holds data."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk622:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK622", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK622", 1, count)
-        type = "1" if fields[0] == "1" else rt.literal_field(fields[0], address, 1, "type", "1 or nothing", "1")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(type, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.type),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK622",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"type":' + show(self.type),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk622, )

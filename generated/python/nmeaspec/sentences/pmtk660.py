@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK660: Query satellites with ephemeris still valid.
 
-PMTK_Q_AVAILABLE_SV_EPH (MT3329): asks which GPS satellites will still have valid ephemeris
-after the given time; the acknowledgement carries the answer as a 32-bit satellite mask (PMTK001
-variant sv_mask).
+PMTK_Q_AVAILABLE_SV_EPH (MT3329): asks which GPS satellites will still have valid ephemeris after
+the given time; the acknowledgement carries the answer as a 32-bit satellite mask (PMTK001 variant
+sv_mask).
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO_7200: dict[Any, Any] = rt.known("integer 1..7200")
-
 
 @dataclass(slots=True)
-class Pmtk660:
+class Pmtk660(rt.Sentence):
     """PMTK660: Query satellites with ephemeris still valid.
 
-    Example (mtk_ublox_it500): $PMTK660,1800*17
+    Example (mtk_ublox_it500):
+    $PMTK660,1800*17
     """
 
     SENTENCE: ClassVar[str] = "PMTK660"
@@ -38,57 +36,18 @@ class Pmtk660:
         ("PMTK001", "sv_mask", (("command", "integer", 660), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK660", "proprietary", "$", 1, 1, (
+        rt.IntegerField("interval", "integer 1..7200", 1, 7200),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     interval: rt.Number | None = None
     """Time interval [s]: The time from now, in seconds, more than 0 and at most 7200 (2 hours)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk660:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK660", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK660", 1, count)
-        interval = (_INTEGER_1_TO_7200.get(fields[0]) or rt.integer_field(fields[0], address, 1, "interval", "integer 1..7200", 1, 7200, _INTEGER_1_TO_7200)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(interval, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.interval),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK660",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"interval":' + show(self.interval),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "interval"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk660, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTK705: Firmware release information.
 
-PMTK_DT_RELEASE, the answer to $PMTK605: the firmware release name and version, the build ID,
-the product model set by the module maker, and on SDK firmware the SDK version.
+PMTK_DT_RELEASE, the answer to $PMTK605: the firmware release name and version, the build ID, the
+product model set by the module maker, and on SDK firmware the SDK version.
 """
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class Pmtk705:
+class Pmtk705(rt.Sentence):
     """PMTK705: Firmware release information.
 
-    Example (log_gpsd): $PMTK705,AXN_2.51_3339_19071200,0002,QUECTEL-L70,1.0*32
+    Example (log_gpsd):
+    $PMTK705,AXN_2.51_3339_19071200,0002,QUECTEL-L70,1.0*32
     """
 
     SENTENCE: ClassVar[str] = "PMTK705"
@@ -29,86 +30,29 @@ class Pmtk705:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK705", "proprietary", "$", 3, 4, (
+        rt.TextField("release", "text"),
+        rt.TextField("build_id", "text"),
+        rt.TextField("product_model", "text"),
+        rt.TextField("sdk_version", "text", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     release: str | None = None
-    """Release string: Firmware release name and version: Mcore_x.x on MT3318, AXN_x.x on MT3329 and MT3339 (longer forms such as AXN_2.51_3339_19071200 add the chip and a build date)."""
+    """Release string: Firmware release name and version: Mcore_x.x on MT3318, AXN_x.x on MT3329 and
+    MT3339 (longer forms such as AXN_2.51_3339_19071200 add the chip and a build date)."""
     build_id: str | None = None
     """Build ID: Build identifier used for firmware version control (e.g. 0002)."""
     product_model: str | None = None
-    """Product model: The product model the module maker configured (e.g. QUECTEL-L70); the GlobalTop manual calls this field internal use."""
+    """Product model: The product model the module maker configured (e.g. QUECTEL-L70); the
+    GlobalTop manual calls this field internal use."""
     sdk_version: str | None | rt._Absent = rt.ABSENT
     """SDK version: The SDK version on firmware built with the SDK; may be empty or absent."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk705:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PMTK705", 3, count)
-        if count > 4:
-            raise rt.too_many(address, "PMTK705", 4, count)
-        optional = count - 3
-        release = rt.text_field(fields[0], address, 1, "release", "text", None)
-        build_id = rt.text_field(fields[1], address, 2, "build_id", "text", None)
-        product_model = rt.text_field(fields[2], address, 3, "product_model", "text", None)
-        sdk_version: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            sdk_version = rt.text_field(fields[3], address, 4, "sdk_version", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(release, build_id, product_model, sdk_version, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.release),
-            rt.text_of(self.build_id),
-            rt.text_of(self.product_model),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.sdk_version is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.sdk_version)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK705",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"release":' + show(self.release),
-            '"build_id":' + show(self.build_id),
-            '"product_model":' + show(self.product_model),
-        ]
-        if self.sdk_version is not rt.ABSENT:
-            parts.append('"sdk_version":' + show(self.sdk_version))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "release"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "product_model"), 1)
-        if "sdk_version" in fields:
-            out += rt.json_texts(fields["sdk_version"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk705, )

@@ -17,10 +17,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class Pmtk869Query:
+class Pmtk869Query(rt.Sentence):
     """PMTK869_QUERY: Query EASY function.
 
-    Example (mtk_linx_rxm_gps_fm): $PMTK869,0*29
+    Example (mtk_linx_rxm_gps_fm):
+    $PMTK869,0*29
     """
 
     SENTENCE: ClassVar[str] = "PMTK869_QUERY"
@@ -34,57 +35,18 @@ class Pmtk869Query:
         ("PMTK869_RESULT", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK869_QUERY", "proprietary", "$", 1, 1, (
+        rt.KeywordField("cmd_type", "0", "0"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     cmd_type: str = "0"
     """Command type: 0, query."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk869Query:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PMTK869_QUERY", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PMTK869_QUERY", 1, count)
-        cmd_type = rt.keyword_field(fields[0], address, 1, "cmd_type", "0", "0")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(cmd_type, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.cmd_type),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK869",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"cmd_type":' + show(self.cmd_type),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "cmd_type"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk869Query, )

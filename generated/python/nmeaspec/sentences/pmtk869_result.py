@@ -16,10 +16,11 @@ from ..enums import MtkEnable
 
 
 @dataclass(slots=True)
-class Pmtk869Result:
+class Pmtk869Result(rt.Sentence):
     """PMTK869_RESULT: EASY function state (query answer).
 
-    Example (mtk_linx_rxm_gps_fm): $PMTK869,2,0*37
+    Example (mtk_linx_rxm_gps_fm):
+    $PMTK869,2,0*37
     """
 
     SENTENCE: ClassVar[str] = "PMTK869_RESULT"
@@ -29,63 +30,21 @@ class Pmtk869Result:
     SELECTOR: ClassVar[str | None] = "2"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTK869_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("cmd_type", "2", "2"),
+        rt.EnumField("enabled", "mtk_enable code (0 1)", MtkEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     cmd_type: str = "2"
     """Command type: 2, result of a query."""
     enabled: MtkEnable | str | None = None
     """EASY: 0 disabled, 1 enabled."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtk869Result:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PMTK869_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PMTK869_RESULT", 2, count)
-        cmd_type = rt.keyword_field(fields[0], address, 1, "cmd_type", "2", "2")
-        enabled = MtkEnable.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "enabled", "mtk_enable code (0 1)", MtkEnable.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(cmd_type, enabled, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.cmd_type),
-            rt.text_of(self.enabled),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTK869",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"cmd_type":' + show(self.cmd_type),
-            '"enabled":' + show(self.enabled),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "cmd_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "enabled"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtk869Result, )

@@ -14,23 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class PmtkchnChannel:
-    """One entry of channels (1 to 32 per sentence)."""
-
-    channel: rt.Number | None = None
-    """Channel entry: Five digits per channel: pp satellite PRN, nn signal level (C/N0, dB-Hz), t channel state (as read by hobbyist decoders: 0 idle, 1 searching, 2 tracking); see the note."""
-
-
-@dataclass(slots=True)
-class Pmtkchn:
+class Pmtkchn(rt.Sentence):
     """PMTKCHN: Channel status.
 
-    Example (log_gpsd): $PMTKCHN,14001,29001,23001,02001,21001,11001,16001,28001,05001,20001,22001,18001,06001,19001,07001,09001,25001,08001,13001,30001,10001,03001,04001,27001,26001,01001,24001,15001,31001,17001,12001,32001*46
+    Example (log_gpsd):
+    $PMTKCHN,14001,29001,23001,02001,21001,11001,16001,28001,05001,20001,22001,18001,06001,19001,07001,09001,25001,08001,13001,30001,10001,03001,04001,27001,26001,01001,24001,15001,31001,17001,12001,32001*46
     """
 
     SENTENCE: ClassVar[str] = "PMTKCHN"
@@ -40,65 +30,20 @@ class Pmtkchn:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTKCHN", "proprietary", "$", 0, 32, (
+        rt.Group("channels", None, (
+            rt.IntegerField("channel", "integer"),
+        ), 1, 32),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     channels: list[rt.Number | None] = field(default_factory=list)
     """Channels: 1 to 32 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtkchn:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 0) // 1, 32)
-        optional = count - 0 - repeats * 1
-        if count < 1 or optional > 0:
-            rt.split_group(address, "PMTKCHN", "channels", count, 0, 1, 1, 32, 0)
-        channels: list[rt.Number | None] = []
-        pos = 0
-        for entry in range(repeats):
-            channels.append((_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"channels[{entry + 1}].channel", "integer", None, None, _INTEGER)) if fields[pos] else None)
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(channels, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-        ]
-        for entry in self.channels:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTKCHN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"channels":[' + ",".join(show(entry) for entry in self.channels) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        for entry in rt.json_list(fields, "channels"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtkchn, )

@@ -14,17 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_100: dict[Any, Any] = rt.known("integer 0..100")
-_INTEGER_0_TO_65535: dict[Any, Any] = rt.known("integer 0..65535")
-
 
 @dataclass(slots=True)
-class Pmtklog:
+class Pmtklog(rt.Sentence):
     """PMTKLOG: LOCUS logger status.
 
-    Example (mtk_ublox_it500): $PMTKLOG,456,0,11,31,2,0,0,0,3769,46*48
+    Example (mtk_ublox_it500):
+    $PMTKLOG,456,0,11,31,2,0,0,0,3769,46*48
     """
 
     SENTENCE: ClassVar[str] = "PMTKLOG"
@@ -34,14 +30,30 @@ class Pmtklog:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTKLOG", "proprietary", "$", 10, 10, (
+        rt.IntegerField("serial", "integer 0..65535", 0, 65535),
+        rt.IntegerField("type", "integer"),
+        rt.TextField("mode", "text"),
+        rt.IntegerField("content", "integer"),
+        rt.IntegerField("interval", "integer"),
+        rt.IntegerField("distance", "integer"),
+        rt.IntegerField("speed", "integer"),
+        rt.IntegerField("status", "integer"),
+        rt.IntegerField("records", "integer"),
+        rt.IntegerField("percent", "integer 0..100", 0, 100),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     serial: rt.Number | None = None
     """Logging serial number: Serial number of the logging session, 0 to 65535."""
     type: rt.Number | None = None
-    """Logging type: 0 overlap (the oldest records are overwritten when the flash is full), 1 full stop (logging stops)."""
+    """Logging type: 0 overlap (the oldest records are overwritten when the flash is full), 1 full
+    stop (logging stops)."""
     mode: str | None = None
-    """Logging mode: The logging mode bits; the manuals only name 0x08, interval logging, while their example prints 11."""
+    """Logging mode: The logging mode bits; the manuals only name 0x08, interval logging, while
+    their example prints 11."""
     content: rt.Number | None = None
-    """Logging contents: The configuration of what each record holds (not broken down by the manuals)."""
+    """Logging contents: The configuration of what each record holds (not broken down by the
+    manuals)."""
     interval: rt.Number | None = None
     """Interval setting: Logging interval, meaningful when interval mode is selected."""
     distance: rt.Number | None = None
@@ -49,96 +61,18 @@ class Pmtklog:
     speed: rt.Number | None = None
     """Speed setting: Logging speed, meaningful when speed mode is selected."""
     status: rt.Number | None = None
-    """Logging status: 1 logging stopped; logging in progress is 0 in the L80 manual and 2 in the IT500 manual."""
+    """Logging status: 1 logging stopped; logging in progress is 0 in the L80 manual and 2 in the
+    IT500 manual."""
     records: rt.Number | None = None
     """Number of records: Number of data records logged."""
     percent: rt.Number | None = None
     """Flash used [%]: Share of the logger's flash life used, 0 to 100 %."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pmtklog:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 10:
-            raise rt.too_few(address, "PMTKLOG", 10, count)
-        if count > 10:
-            raise rt.too_many(address, "PMTKLOG", 10, count)
-        serial = (_INTEGER_0_TO_65535.get(fields[0]) or rt.integer_field(fields[0], address, 1, "serial", "integer 0..65535", 0, 65535, _INTEGER_0_TO_65535)) if fields[0] else None
-        type = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "type", "integer", None, None, _INTEGER)) if fields[1] else None
-        mode = rt.text_field(fields[2], address, 3, "mode", "text", None)
-        content = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "content", "integer", None, None, _INTEGER)) if fields[3] else None
-        interval = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "interval", "integer", None, None, _INTEGER)) if fields[4] else None
-        distance = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "distance", "integer", None, None, _INTEGER)) if fields[5] else None
-        speed = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "speed", "integer", None, None, _INTEGER)) if fields[6] else None
-        status = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "status", "integer", None, None, _INTEGER)) if fields[7] else None
-        records = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "records", "integer", None, None, _INTEGER)) if fields[8] else None
-        percent = (_INTEGER_0_TO_100.get(fields[9]) or rt.integer_field(fields[9], address, 10, "percent", "integer 0..100", 0, 100, _INTEGER_0_TO_100)) if fields[9] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(serial, type, mode, content, interval, distance, speed, status, records, percent, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.serial),
-            rt.text_of(self.type),
-            rt.text_of(self.mode),
-            rt.text_of(self.content),
-            rt.text_of(self.interval),
-            rt.text_of(self.distance),
-            rt.text_of(self.speed),
-            rt.text_of(self.status),
-            rt.text_of(self.records),
-            rt.text_of(self.percent),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTKLOG",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"serial":' + show(self.serial),
-            '"type":' + show(self.type),
-            '"mode":' + show(self.mode),
-            '"content":' + show(self.content),
-            '"interval":' + show(self.interval),
-            '"distance":' + show(self.distance),
-            '"speed":' + show(self.speed),
-            '"status":' + show(self.status),
-            '"records":' + show(self.records),
-            '"percent":' + show(self.percent),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "serial"), 1)
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "content"), 1)
-        out += rt.json_texts(rt.json_member(fields, "interval"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "records"), 1)
-        out += rt.json_texts(rt.json_member(fields, "percent"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pmtklog, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PMTKLOX_DATA: LOCUS dump, data line.
 
-One data line of the LOCUS flash dump ($PMTK622): type 1, the line number, then the flash
-contents as 32-bit words of 8 hex digits (24 words per full line in the capture).
+One data line of the LOCUS flash dump ($PMTK622): type 1, the line number, then the flash contents
+as 32-bit words of 8 hex digits (24 words per full line in the capture).
 """
 
 from __future__ import annotations
@@ -14,24 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class PmtkloxDataWord:
-    """One entry of flash data words (1 to 24 per sentence)."""
-
-    word: rt.Hex | None = None
-    """Data word: Four bytes of the logger flash as 8 hex digits; the first line starts with the logger's header (configuration) and the records follow, their layout depending on the logged contents."""
-
-
-@dataclass(slots=True)
-class PmtkloxData:
+class PmtkloxData(rt.Sentence):
     """PMTKLOX_DATA: LOCUS dump, data line.
 
-    Example (log_gpsbabel): $PMTKLOX,1,1,6DD08A50,02BC3E4C,42973FE4,C25B0438,7CD08A50,02B93E4C,42933FE4,C25B0428,8BD08A50,02BC3E4C,42943FE4,C25A04DC,9AD08A50,02B73E4C,42903FE4,C25804C0,A9D08A50,02AA3E4C,42883FE4,C25704F9,B8D08A50,029E3E4C,42843FE4,C25404D3*26
+    Example (log_gpsbabel):
+    $PMTKLOX,1,1,6DD08A50,02BC3E4C,42973FE4,C25B0438,7CD08A50,02B93E4C,42933FE4,C25B0428,8BD08A50,02BC3E4C,42943FE4,C25A04DC,9AD08A50,02B73E4C,42903FE4,C25804C0,A9D08A50,02AA3E4C,42883FE4,C25704F9,B8D08A50,029E3E4C,42843FE4,C25404D3*26
     """
 
     SENTENCE: ClassVar[str] = "PMTKLOX_DATA"
@@ -41,6 +30,14 @@ class PmtkloxData:
     SELECTOR: ClassVar[str | None] = "1"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTKLOX_DATA", "proprietary", "$", 2, 26, (
+        rt.KeywordField("type", "1", "1"),
+        rt.IntegerField("line", "integer of at least 0", 0, None),
+        rt.Group("words", None, (
+            rt.HexField("word", "hex number"),
+        ), 1, 24),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     type: str = "1"
     """Line type: 1, a data line."""
     line: rt.Number | None = None
@@ -48,70 +45,11 @@ class PmtkloxData:
     words: list[rt.Hex | None] = field(default_factory=list)
     """Flash data words: 1 to 24 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PmtkloxData:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 1, 24)
-        optional = count - 2 - repeats * 1
-        if count < 3 or optional > 0:
-            rt.split_group(address, "PMTKLOX_DATA", "words", count, 2, 1, 1, 24, 0)
-        type = rt.keyword_field(fields[0], address, 1, "type", "1", "1")
-        line_ = (_INTEGER_0_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "line", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[1] else None
-        words: list[rt.Hex | None] = []
-        pos = 2
-        for entry in range(repeats):
-            words.append((_HEX.get(fields[pos]) or rt.hex_field(fields[pos], address, pos + 1, f"words[{entry + 1}].word", "hex number", _HEX)) if fields[pos] else None)
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(type, line_, words, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.type),
-            rt.text_of(self.line),
-        ]
-        for entry in self.words:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTKLOX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"type":' + show(self.type),
-            '"line":' + show(self.line),
-            '"words":[' + ",".join(show(entry) for entry in self.words) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "line"), 1)
-        for entry in rt.json_list(fields, "words"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PmtkloxData, )

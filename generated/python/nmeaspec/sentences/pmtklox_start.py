@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class PmtkloxStart:
+class PmtkloxStart(rt.Sentence):
     """PMTKLOX_START: LOCUS dump, first line.
 
-    Example (log_gpsbabel): $PMTKLOX,0,3*5A
+    Example (log_gpsbabel):
+    $PMTKLOX,0,3*5A
     """
 
     SENTENCE: ClassVar[str] = "PMTKLOX_START"
@@ -32,63 +30,22 @@ class PmtkloxStart:
     SELECTOR: ClassVar[str | None] = "0"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMTKLOX_START", "proprietary", "$", 2, 2, (
+        rt.KeywordField("type", "0", "0"),
+        rt.IntegerField("lines", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     type: str = "0"
     """Line type: 0, start of the dump."""
     lines: rt.Number | None = None
-    """Number of data lines: How many $PMTKLOX,1 data lines follow (3 in the capture, numbered 0 to 2)."""
+    """Number of data lines: How many $PMTKLOX,1 data lines follow (3 in the capture, numbered 0 to
+    2)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PmtkloxStart:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PMTKLOX_START", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PMTKLOX_START", 2, count)
-        type = rt.keyword_field(fields[0], address, 1, "type", "0", "0")
-        lines = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "lines", "integer", None, None, _INTEGER)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(type, lines, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.type),
-            rt.text_of(self.lines),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PMTKLOX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"type":' + show(self.type),
-            '"lines":' + show(self.lines),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lines"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PmtkloxStart, )

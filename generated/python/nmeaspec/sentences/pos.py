@@ -4,8 +4,7 @@
 """POS: Device position and ship dimensions.
 
 Where a device (e.g. a GNSS antenna or radar) is mounted on the ship and the ship's width and
-length; either a report of the current settings or a command to change them (IEC 61162-1 edition
-4).
+length; either a report of the current settings or a command to change them (IEC 61162-1 edition 4).
 """
 
 from __future__ import annotations
@@ -16,15 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import PosSentenceStatus, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-
 
 @dataclass(slots=True)
-class Pos:
+class Pos(rt.Sentence):
     """POS: Device position and ship dimensions.
-
     """
 
     SENTENCE: ClassVar[str] = "POS"
@@ -34,11 +28,25 @@ class Pos:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("POS", "standard", "$", 10, 10, (
+        rt.TextField("equipment_id", "text of at most 2 characters", 2),
+        rt.IntegerField("equipment_number", "integer 0..99", 0, 99),
+        rt.EnumField("position_validity", "status code (A V)", Status),
+        rt.DecimalField("pos_x", "decimal number"),
+        rt.DecimalField("pos_y", "decimal number"),
+        rt.DecimalField("pos_z", "decimal number"),
+        rt.EnumField("dimensions_validity", "status code (A V)", Status),
+        rt.DecimalField("ship_width", "decimal number"),
+        rt.DecimalField("ship_length", "decimal number"),
+        rt.EnumField("sentence_status", "pos_sentence_status code (R C)", PosSentenceStatus),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     equipment_id: str | None = None
-    """Equipment identification: Two-character identification of the device type the position belongs to (a talker-style ID such as GP or AI)."""
+    """Equipment identification: Two-character identification of the device type the position
+    belongs to (a talker-style ID such as GP or AI)."""
     equipment_number: rt.Number | None = None
     """Equipment number: Number of the device among several of the same type, 00-99."""
     position_validity: Status | str | None = None
@@ -56,92 +64,14 @@ class Pos:
     ship_length: rt.Number | None = None
     """Ship's length [m]: Length of the ship, metres."""
     sentence_status: PosSentenceStatus | str | None = None
-    """Sentence status flag: R = report of the current settings, C = configuration command to change them."""
+    """Sentence status flag: R = report of the current settings, C = configuration command to change
+    them."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pos:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 10:
-            raise rt.too_few(address, "POS", 10, count)
-        if count > 10:
-            raise rt.too_many(address, "POS", 10, count)
-        equipment_id = rt.text_field(fields[0], address, 1, "equipment_id", "text of at most 2 characters", 2)
-        equipment_number = (_INTEGER_0_TO_99.get(fields[1]) or rt.integer_field(fields[1], address, 2, "equipment_number", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[1] else None
-        position_validity = Status.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "position_validity", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        pos_x = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "pos_x", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        pos_y = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "pos_y", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        pos_z = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "pos_z", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        dimensions_validity = Status.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "dimensions_validity", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        ship_width = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "ship_width", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        ship_length = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "ship_length", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        sentence_status = PosSentenceStatus.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "sentence_status", "pos_sentence_status code (R C)", PosSentenceStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], equipment_id, equipment_number, position_validity, pos_x, pos_y, pos_z, dimensions_validity, ship_width, ship_length, sentence_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.equipment_id),
-            rt.text_of(self.equipment_number),
-            rt.text_of(self.position_validity),
-            rt.text_of(self.pos_x),
-            rt.text_of(self.pos_y),
-            rt.text_of(self.pos_z),
-            rt.text_of(self.dimensions_validity),
-            rt.text_of(self.ship_width),
-            rt.text_of(self.ship_length),
-            rt.text_of(self.sentence_status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "POS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"equipment_id":' + show(self.equipment_id),
-            '"equipment_number":' + show(self.equipment_number),
-            '"position_validity":' + show(self.position_validity),
-            '"pos_x":' + show(self.pos_x),
-            '"pos_y":' + show(self.pos_y),
-            '"pos_z":' + show(self.pos_z),
-            '"dimensions_validity":' + show(self.dimensions_validity),
-            '"ship_width":' + show(self.ship_width),
-            '"ship_length":' + show(self.ship_length),
-            '"sentence_status":' + show(self.sentence_status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "equipment_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "equipment_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_validity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pos_x"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pos_y"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pos_z"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dimensions_validity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ship_width"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ship_length"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pos, )

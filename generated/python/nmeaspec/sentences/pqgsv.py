@@ -4,8 +4,8 @@
 """PQGSV: Satellites in view (BeiDou/QZSS).
 
 GSV sentence of Quectel cellular modules with GNSS (EC21, EC25, EG25) for the BeiDou or QZSS
-satellites that NMEA 4.11 would send as BDGSV/GBGSV or GQGSV: the GSV fields, the signal ID,
-then one more field, the system ID.
+satellites that NMEA 4.11 would send as BDGSV/GBGSV or GQGSV: the GSV fields, the signal ID, then
+one more field, the system ID.
 """
 
 from __future__ import annotations
@@ -15,11 +15,6 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 from ..enums import SignalId, SystemId
-
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_359: dict[Any, Any] = rt.known("integer 0..359")
-_INTEGER_0_TO_90: dict[Any, Any] = rt.known("integer 0..90")
 
 
 @dataclass(slots=True)
@@ -37,10 +32,11 @@ class PqgsvSatellite:
 
 
 @dataclass(slots=True)
-class Pqgsv:
+class Pqgsv(rt.Sentence):
     """PQGSV: Satellites in view (BeiDou/QZSS).
 
-    Example (log_gpsd): $PQGSV,4,1,15,02,20,116,,03,,,,05,34,137,,07,06,045,,0,4*58
+    Example (log_gpsd):
+    $PQGSV,4,1,15,02,20,116,,03,,,,05,34,137,,07,06,045,,0,4*58
     """
 
     SENTENCE: ClassVar[str] = "PQGSV"
@@ -50,6 +46,20 @@ class Pqgsv:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQGSV", "proprietary", "$", 5, 21, (
+        rt.IntegerField("message_count", "integer"),
+        rt.IntegerField("message_number", "integer"),
+        rt.IntegerField("satellites_in_view", "integer"),
+        rt.Group("satellites", PqgsvSatellite, (
+            rt.IntegerField("prn", "integer"),
+            rt.IntegerField("elevation", "integer 0..90", 0, 90),
+            rt.IntegerField("azimuth", "integer 0..359", 0, 359),
+            rt.IntegerField("snr", "integer"),
+        ), 0, 4),
+        rt.EnumField("signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", SignalId),
+        rt.EnumField("system", "system_id code (1 2 3 4 5 6 F)", SystemId),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     message_count: rt.Number | None = None
     """Number of sentences: Sentences in this set."""
     message_number: rt.Number | None = None
@@ -63,92 +73,11 @@ class Pqgsv:
     system: SystemId | str | None = None
     """GNSS system ID: NMEA 4.11 system ID of the satellites: 4 BeiDou or 5 QZSS."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqgsv:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 5) // 4, 4)
-        optional = count - 5 - repeats * 4
-        if count < 5 or optional > 0:
-            rt.split_group(address, "PQGSV", "satellites", count, 5, 4, 0, 4, 0)
-        message_count = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "message_count", "integer", None, None, _INTEGER)) if fields[0] else None
-        message_number = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "message_number", "integer", None, None, _INTEGER)) if fields[1] else None
-        satellites_in_view = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "satellites_in_view", "integer", None, None, _INTEGER)) if fields[2] else None
-        satellites: list[PqgsvSatellite] = []
-        pos = 3
-        for entry in range(repeats):
-            satellites.append(PqgsvSatellite(
-                (_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None,
-                (_INTEGER_0_TO_90.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].elevation", "integer 0..90", 0, 90, _INTEGER_0_TO_90)) if fields[pos + 1] else None,
-                (_INTEGER_0_TO_359.get(fields[pos + 2]) or rt.integer_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].azimuth", "integer 0..359", 0, 359, _INTEGER_0_TO_359)) if fields[pos + 2] else None,
-                (_INTEGER.get(fields[pos + 3]) or rt.integer_field(fields[pos + 3], address, pos + 4, f"satellites[{entry + 1}].snr", "integer", None, None, _INTEGER)) if fields[pos + 3] else None,
-            ))
-            pos += 4
-        signal_id = SignalId.BY_CODE.get(fields[pos]) or rt.enum_field(fields[pos], address, pos + 1, "signal_id", "signal_id code (0 1 2 3 4 5 6 7 8 9 A B C)", SignalId.BY_CODE, "alnum", 1, 1)
-        system = SystemId.BY_CODE.get(fields[pos + 1]) or rt.enum_field(fields[pos + 1], address, pos + 2, "system", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(message_count, message_number, satellites_in_view, satellites, signal_id, system, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message_count),
-            rt.text_of(self.message_number),
-            rt.text_of(self.satellites_in_view),
-        ]
-        for entry in self.satellites:
-            out += [rt.text_of(entry.prn), rt.text_of(entry.elevation), rt.text_of(entry.azimuth), rt.text_of(entry.snr)]
-        out.append(rt.text_of(self.signal_id))
-        out.append(rt.text_of(self.system))
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQGSV",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message_count":' + show(self.message_count),
-            '"message_number":' + show(self.message_number),
-            '"satellites_in_view":' + show(self.satellites_in_view),
-            '"satellites":[' + ",".join(
-                "{" + '"prn":' + show(entry.prn) + ',"elevation":' + show(entry.elevation) + ',"azimuth":' + show(entry.azimuth) + ',"snr":' + show(entry.snr) + "}"
-                for entry in self.satellites) + "]",
-            '"signal_id":' + show(self.signal_id),
-            '"system":' + show(self.system),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites_in_view"), 1)
-        for entry in rt.json_list(fields, "satellites"):
-            out += rt.json_texts(rt.json_member(entry, "prn"), 1)
-            out += rt.json_texts(rt.json_member(entry, "elevation"), 1)
-            out += rt.json_texts(rt.json_member(entry, "azimuth"), 1)
-            out += rt.json_texts(rt.json_member(entry, "snr"), 1)
-        out += rt.json_texts(rt.json_member(fields, "signal_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "system"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqgsv, )

@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelAntennaPower, QuectelAntennaStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Pqtmantennastatus:
+class Pqtmantennastatus(rt.Sentence):
     """PQTMANTENNASTATUS: Antenna status.
 
-    Example (quectel_lg290p): $PQTMANTENNASTATUS,1,1,1*4E
+    Example (quectel_lg290p):
+    $PQTMANTENNASTATUS,1,1,1*4E
     """
 
     SENTENCE: ClassVar[str] = "PQTMANTENNASTATUS"
@@ -32,6 +30,12 @@ class Pqtmantennastatus:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMANTENNASTATUS", "proprietary", "$", 3, 3, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.EnumField("status", "quectel_antenna_status code (0 1 2 3)", QuectelAntennaStatus),
+        rt.EnumField("power", "quectel_antenna_power code (0 1 2)", QuectelAntennaPower),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     status: QuectelAntennaStatus | str | None = None
@@ -39,62 +43,11 @@ class Pqtmantennastatus:
     power: QuectelAntennaPower | str | None = None
     """Antenna power: Whether the antenna is powered."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmantennastatus:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMANTENNASTATUS", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMANTENNASTATUS", 3, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        status = QuectelAntennaStatus.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "quectel_antenna_status code (0 1 2 3)", QuectelAntennaStatus.BY_CODE, "digits", 1, 1)
-        power = QuectelAntennaPower.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "power", "quectel_antenna_power code (0 1 2)", QuectelAntennaPower.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, status, power, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.status),
-            rt.text_of(self.power),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMANTENNASTATUS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"status":' + show(self.status),
-            '"power":' + show(self.power),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "power"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmantennastatus, )

@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO_6_POINT_5535: dict[Any, Any] = rt.known("decimal 0..6.5535")
-_DECIMAL_MINUS_200_TO_200: dict[Any, Any] = rt.known("decimal -200..200")
-
 
 @dataclass(slots=True)
-class Pqtmcfgantdelta:
+class Pqtmcfgantdelta(rt.Sentence):
     """PQTMCFGANTDELTA: Configure antenna offset.
 
-    Example (quectel_lg290p): $PQTMCFGANTDELTA,W,0.0000,0.0000,0.0000*10
+    Example (quectel_lg290p):
+    $PQTMCFGANTDELTA,W,0.0000,0.0000,0.0000*10
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGANTDELTA"
@@ -39,6 +36,13 @@ class Pqtmcfgantdelta:
         ("PQTMCFGANTDELTA_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGANTDELTA", "proprietary", "$", 4, 4, (
+        rt.KeywordField("access", "W", "W"),
+        rt.DecimalField("east", "decimal number -200..200", -200, 200),
+        rt.DecimalField("north", "decimal number -200..200", -200, 200),
+        rt.DecimalField("height", "decimal number 0..6.5535", 0, Decimal("6.5535")),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     east: rt.Number | None = None
@@ -46,77 +50,24 @@ class Pqtmcfgantdelta:
     north: rt.Number | None = None
     """North offset [m]: North offset from the reference point to the antenna (default 0)."""
     height: rt.Number | None = None
-    """Height offset [m]: Height of the antenna above the reference point, sent in RTCM 1006 (DF028) (default 0)."""
+    """Height offset [m]: Height of the antenna above the reference point, sent in RTCM 1006 (DF028)
+    (default 0)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgantdelta:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PQTMCFGANTDELTA", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PQTMCFGANTDELTA", 4, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        east = (_DECIMAL_MINUS_200_TO_200.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "east", "decimal number -200..200", -200, 200, _DECIMAL_MINUS_200_TO_200)) if fields[1] else None
-        north = (_DECIMAL_MINUS_200_TO_200.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "north", "decimal number -200..200", -200, 200, _DECIMAL_MINUS_200_TO_200)) if fields[2] else None
-        height = (_DECIMAL_0_TO_6_POINT_5535.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "height", "decimal number 0..6.5535", 0, Decimal("6.5535"), _DECIMAL_0_TO_6_POINT_5535)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, east, north, height, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.east),
-            rt.text_of(self.north),
-            rt.text_of(self.height),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGANTDELTA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"east":' + show(self.east),
-            '"north":' + show(self.north),
-            '"height":' + show(self.height),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgantdeltaRead:
+class PqtmcfgantdeltaRead(rt.Sentence):
     """PQTMCFGANTDELTA (Read the setting): Configure antenna offset.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGANTDELTA,R*27
+    Example (quectel_lg290p):
+    $PQTMCFGANTDELTA,R*27
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGANTDELTA"
@@ -132,57 +83,18 @@ class PqtmcfgantdeltaRead:
         ("PQTMCFGANTDELTA_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGANTDELTA", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgantdeltaRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGANTDELTA", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGANTDELTA", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGANTDELTA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgantdelta, PqtmcfgantdeltaRead, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGANTDELTA_RESULT: Configure antenna offset: result.
 
-The answer of the module to $PQTMCFGANTDELTA (section 2.3.47): OK followed by the current
-settings when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGANTDELTA (section 2.3.47): OK followed by the current settings
+when the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO_6_POINT_5535: dict[Any, Any] = rt.known("decimal 0..6.5535")
-_DECIMAL_MINUS_200_TO_200: dict[Any, Any] = rt.known("decimal -200..200")
-
 
 @dataclass(slots=True)
-class PqtmcfgantdeltaResult:
+class PqtmcfgantdeltaResult(rt.Sentence):
     """PQTMCFGANTDELTA_RESULT: Configure antenna offset: result.
 
-    Example (quectel_lg290p): $PQTMCFGANTDELTA,OK,0.0000,0.0000,0.0000*43
+    Example (quectel_lg290p):
+    $PQTMCFGANTDELTA,OK,0.0000,0.0000,0.0000*43
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGANTDELTA_RESULT"
@@ -35,6 +32,13 @@ class PqtmcfgantdeltaResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGANTDELTA_RESULT", "proprietary", "$", 4, 4, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.DecimalField("east", "decimal number -200..200", -200, 200),
+        rt.DecimalField("north", "decimal number -200..200", -200, 200),
+        rt.DecimalField("height", "decimal number 0..6.5535", 0, Decimal("6.5535")),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     east: rt.Number | None = None
@@ -42,77 +46,24 @@ class PqtmcfgantdeltaResult:
     north: rt.Number | None = None
     """North offset [m]: North offset from the reference point to the antenna (default 0)."""
     height: rt.Number | None = None
-    """Height offset [m]: Height of the antenna above the reference point, sent in RTCM 1006 (DF028) (default 0)."""
+    """Height offset [m]: Height of the antenna above the reference point, sent in RTCM 1006 (DF028)
+    (default 0)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgantdeltaResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PQTMCFGANTDELTA_RESULT", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PQTMCFGANTDELTA_RESULT", 4, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        east = (_DECIMAL_MINUS_200_TO_200.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "east", "decimal number -200..200", -200, 200, _DECIMAL_MINUS_200_TO_200)) if fields[1] else None
-        north = (_DECIMAL_MINUS_200_TO_200.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "north", "decimal number -200..200", -200, 200, _DECIMAL_MINUS_200_TO_200)) if fields[2] else None
-        height = (_DECIMAL_0_TO_6_POINT_5535.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "height", "decimal number 0..6.5535", 0, Decimal("6.5535"), _DECIMAL_0_TO_6_POINT_5535)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, east, north, height, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.east),
-            rt.text_of(self.north),
-            rt.text_of(self.height),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGANTDELTA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"east":' + show(self.east),
-            '"north":' + show(self.north),
-            '"height":' + show(self.height),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgantdeltaResultAck:
+class PqtmcfgantdeltaResultAck(rt.Sentence):
     """PQTMCFGANTDELTA_RESULT (Write acknowledged): Configure antenna offset: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGANTDELTA,OK*71
+    Example (quectel_lg290p):
+    $PQTMCFGANTDELTA,OK*71
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGANTDELTA_RESULT"
@@ -122,65 +73,25 @@ class PqtmcfgantdeltaResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGANTDELTA_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgantdeltaResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGANTDELTA_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGANTDELTA_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGANTDELTA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgantdeltaResultError:
+class PqtmcfgantdeltaResultError(rt.Sentence):
     """PQTMCFGANTDELTA_RESULT (Command failed): Configure antenna offset: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGANTDELTA_RESULT"
@@ -192,63 +103,21 @@ class PqtmcfgantdeltaResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGANTDELTA_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgantdeltaResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGANTDELTA_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGANTDELTA_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGANTDELTA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgantdeltaResult, PqtmcfgantdeltaResultAck, PqtmcfgantdeltaResultError, )

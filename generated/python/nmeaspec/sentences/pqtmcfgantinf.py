@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_255: dict[Any, Any] = rt.known("integer 0..255")
-
 
 @dataclass(slots=True)
-class Pqtmcfgantinf:
+class Pqtmcfgantinf(rt.Sentence):
     """PQTMCFGANTINF: Configure antenna information.
 
-    Example (quectel_lg290p): $PQTMCFGANTINF,W,,0,*27
+    Example (quectel_lg290p):
+    $PQTMCFGANTINF,W,,0,*27
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGANTINF"
@@ -37,84 +35,39 @@ class Pqtmcfgantinf:
         ("PQTMCFGANTINF_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGANTINF", "proprietary", "$", 4, 4, (
+        rt.KeywordField("access", "W", "W"),
+        rt.TextField("description", "text of at most 31 characters", 31),
+        rt.IntegerField("setup_id", "integer 0..255", 0, 255),
+        rt.TextField("serial_number", "text of at most 31 characters", 31),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     description: str | None = None
-    """Antenna description: Antenna descriptor sent in RTCM 1033 (DF030), up to 31 characters; empty by default."""
+    """Antenna description: Antenna descriptor sent in RTCM 1033 (DF030), up to 31 characters; empty
+    by default."""
     setup_id: rt.Number | None = None
     """Antenna setup ID: Antenna setup ID sent in RTCM 1033 (DF031), default 0."""
     serial_number: str | None = None
-    """Antenna serial number: Antenna serial number sent in RTCM 1033 (DF033), up to 31 characters; empty by default."""
+    """Antenna serial number: Antenna serial number sent in RTCM 1033 (DF033), up to 31 characters;
+    empty by default."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgantinf:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PQTMCFGANTINF", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PQTMCFGANTINF", 4, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        description = rt.text_field(fields[1], address, 2, "description", "text of at most 31 characters", 31)
-        setup_id = (_INTEGER_0_TO_255.get(fields[2]) or rt.integer_field(fields[2], address, 3, "setup_id", "integer 0..255", 0, 255, _INTEGER_0_TO_255)) if fields[2] else None
-        serial_number = rt.text_field(fields[3], address, 4, "serial_number", "text of at most 31 characters", 31)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, description, setup_id, serial_number, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.description),
-            rt.text_of(self.setup_id),
-            rt.text_of(self.serial_number),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGANTINF",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"description":' + show(self.description),
-            '"setup_id":' + show(self.setup_id),
-            '"serial_number":' + show(self.serial_number),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "description"), 1)
-        out += rt.json_texts(rt.json_member(fields, "setup_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "serial_number"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgantinfRead:
+class PqtmcfgantinfRead(rt.Sentence):
     """PQTMCFGANTINF (Read the setting): Configure antenna information.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGANTINF,R*3E
+    Example (quectel_lg290p):
+    $PQTMCFGANTINF,R*3E
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGANTINF"
@@ -130,57 +83,18 @@ class PqtmcfgantinfRead:
         ("PQTMCFGANTINF_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGANTINF", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgantinfRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGANTINF", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGANTINF", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGANTINF",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgantinf, PqtmcfgantinfRead, )

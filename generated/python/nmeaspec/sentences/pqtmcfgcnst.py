@@ -16,10 +16,11 @@ from ..enums import QuectelEnable
 
 
 @dataclass(slots=True)
-class Pqtmcfgcnst:
+class Pqtmcfgcnst(rt.Sentence):
     """PQTMCFGCNST: Configure constellations.
 
-    Example (quectel_lg290p): $PQTMCFGCNST,W,1,1,1,1,0,0*2B
+    Example (quectel_lg290p):
+    $PQTMCFGCNST,W,1,1,1,1,0,0*2B
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGCNST"
@@ -35,6 +36,16 @@ class Pqtmcfgcnst:
         ("PQTMCFGCNST_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGCNST", "proprietary", "$", 7, 7, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField("gps", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("glonass", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("galileo", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("bds", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("qzss", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("navic", "quectel_enable code (0 1)", QuectelEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     gps: QuectelEnable | str | None = None
@@ -50,87 +61,21 @@ class Pqtmcfgcnst:
     navic: QuectelEnable | str | None = None
     """NavIC enabled: NavIC on or off."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgcnst:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PQTMCFGCNST", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGCNST", 7, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        gps = QuectelEnable.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "gps", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        glonass = QuectelEnable.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "glonass", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        galileo = QuectelEnable.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "galileo", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        bds = QuectelEnable.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "bds", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        qzss = QuectelEnable.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "qzss", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        navic = QuectelEnable.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "navic", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, gps, glonass, galileo, bds, qzss, navic, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.gps),
-            rt.text_of(self.glonass),
-            rt.text_of(self.galileo),
-            rt.text_of(self.bds),
-            rt.text_of(self.qzss),
-            rt.text_of(self.navic),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGCNST",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"gps":' + show(self.gps),
-            '"glonass":' + show(self.glonass),
-            '"galileo":' + show(self.galileo),
-            '"bds":' + show(self.bds),
-            '"qzss":' + show(self.qzss),
-            '"navic":' + show(self.navic),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glonass"), 1)
-        out += rt.json_texts(rt.json_member(fields, "galileo"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "qzss"), 1)
-        out += rt.json_texts(rt.json_member(fields, "navic"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgcnstRead:
+class PqtmcfgcnstRead(rt.Sentence):
     """PQTMCFGCNST (Read the setting): Configure constellations.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGCNST,R*2E
+    Example (quectel_lg290p):
+    $PQTMCFGCNST,R*2E
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGCNST"
@@ -146,57 +91,18 @@ class PqtmcfgcnstRead:
         ("PQTMCFGCNST_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGCNST", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgcnstRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGCNST", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGCNST", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGCNST",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgcnst, PqtmcfgcnstRead, )

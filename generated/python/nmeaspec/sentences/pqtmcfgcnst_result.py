@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGCNST_RESULT: Configure constellations: result.
 
-The answer of the module to $PQTMCFGCNST (section 2.3.30): OK followed by the current settings
-when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGCNST (section 2.3.30): OK followed by the current settings when
+the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -17,10 +17,11 @@ from ..enums import QuectelEnable, QuectelErrorCode
 
 
 @dataclass(slots=True)
-class PqtmcfgcnstResult:
+class PqtmcfgcnstResult(rt.Sentence):
     """PQTMCFGCNST_RESULT: Configure constellations: result.
 
-    Example (quectel_lg290p): $PQTMCFGCNST,OK,1,1,1,1,0,0*78
+    Example (quectel_lg290p):
+    $PQTMCFGCNST,OK,1,1,1,1,0,0*78
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGCNST_RESULT"
@@ -30,6 +31,16 @@ class PqtmcfgcnstResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGCNST_RESULT", "proprietary", "$", 7, 7, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.EnumField("gps", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("glonass", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("galileo", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("bds", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("qzss", "quectel_enable code (0 1)", QuectelEnable),
+        rt.EnumField("navic", "quectel_enable code (0 1)", QuectelEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     gps: QuectelEnable | str | None = None
@@ -45,87 +56,21 @@ class PqtmcfgcnstResult:
     navic: QuectelEnable | str | None = None
     """NavIC enabled: NavIC on or off."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgcnstResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PQTMCFGCNST_RESULT", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGCNST_RESULT", 7, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        gps = QuectelEnable.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "gps", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        glonass = QuectelEnable.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "glonass", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        galileo = QuectelEnable.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "galileo", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        bds = QuectelEnable.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "bds", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        qzss = QuectelEnable.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "qzss", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        navic = QuectelEnable.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "navic", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, gps, glonass, galileo, bds, qzss, navic, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.gps),
-            rt.text_of(self.glonass),
-            rt.text_of(self.galileo),
-            rt.text_of(self.bds),
-            rt.text_of(self.qzss),
-            rt.text_of(self.navic),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGCNST",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"gps":' + show(self.gps),
-            '"glonass":' + show(self.glonass),
-            '"galileo":' + show(self.galileo),
-            '"bds":' + show(self.bds),
-            '"qzss":' + show(self.qzss),
-            '"navic":' + show(self.navic),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glonass"), 1)
-        out += rt.json_texts(rt.json_member(fields, "galileo"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "qzss"), 1)
-        out += rt.json_texts(rt.json_member(fields, "navic"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgcnstResultAck:
+class PqtmcfgcnstResultAck(rt.Sentence):
     """PQTMCFGCNST_RESULT (Write acknowledged): Configure constellations: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGCNST,OK*78
+    Example (quectel_lg290p):
+    $PQTMCFGCNST,OK*78
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGCNST_RESULT"
@@ -135,65 +80,25 @@ class PqtmcfgcnstResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGCNST_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgcnstResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGCNST_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGCNST_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGCNST",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgcnstResultError:
+class PqtmcfgcnstResultError(rt.Sentence):
     """PQTMCFGCNST_RESULT (Command failed): Configure constellations: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGCNST_RESULT"
@@ -205,63 +110,21 @@ class PqtmcfgcnstResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGCNST_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgcnstResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGCNST_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGCNST_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGCNST",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgcnstResult, PqtmcfgcnstResultAck, PqtmcfgcnstResultError, )

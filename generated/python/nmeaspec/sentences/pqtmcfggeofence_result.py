@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGGEOFENCE_RESULT: Configure geofence: result.
 
-The answer of the module to $PQTMCFGGEOFENCE (section 2.3.17): OK followed by the current
-settings when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGGEOFENCE (section 2.3.17): OK followed by the current settings
+when the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,19 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelEnable, QuectelErrorCode, QuectelGeofenceShape
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_MINUS_180_TO_180: dict[Any, Any] = rt.known("decimal -180..180")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_3: dict[Any, Any] = rt.known("integer 0..3")
-
 
 @dataclass(slots=True)
-class PqtmcfggeofenceResult:
+class PqtmcfggeofenceResult(rt.Sentence):
     """PQTMCFGGEOFENCE_RESULT: Configure geofence: result.
 
-    Example (quectel_lg290p): $PQTMCFGGEOFENCE,OK,0,1,0,0,31.451248,117.451245,100.5*4B
+    Example (quectel_lg290p):
+    $PQTMCFGGEOFENCE,OK,0,1,0,0,31.451248,117.451245,100.5*4B
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGGEOFENCE_RESULT"
@@ -37,6 +31,27 @@ class PqtmcfggeofenceResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGGEOFENCE_RESULT", "proprietary", "$", 3, 13, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.IntegerField("index", "integer 0..3", 0, 3),
+        rt.EnumField("mode", "quectel_enable code (0 1)", QuectelEnable),
+        rt.IntegerField("reserved", "integer", optional=True),
+        rt.EnumField(
+            "shape",
+            "quectel_geofence_shape code (0 1 2 3)",
+            QuectelGeofenceShape,
+            optional=True,
+        ),
+        rt.DecimalField("lat0", "decimal number -90..90", -90, 90, optional=True),
+        rt.DecimalField("lon0", "decimal number -180..180", -180, 180, optional=True),
+        rt.DecimalField("lat1_or_radius", "decimal number", optional=True),
+        rt.DecimalField("lon1", "decimal number -180..180", -180, 180, optional=True),
+        rt.DecimalField("lat2", "decimal number -90..90", -90, 90, optional=True),
+        rt.DecimalField("lon2", "decimal number -180..180", -180, 180, optional=True),
+        rt.DecimalField("lat3", "decimal number -90..90", -90, 90, optional=True),
+        rt.DecimalField("lon3", "decimal number -180..180", -180, 180, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     index: rt.Number | None = None
@@ -52,7 +67,8 @@ class PqtmcfggeofenceResult:
     lon0: rt.Number | None | rt._Absent = rt.ABSENT
     """Longitude 0 [deg]: Longitude of the first point; negative west."""
     lat1_or_radius: rt.Number | None | rt._Absent = rt.ABSENT
-    """Latitude 1 or radius: For a circle given by its radius, the radius in metres; otherwise the latitude of the second point in degrees."""
+    """Latitude 1 or radius: For a circle given by its radius, the radius in metres; otherwise the
+    latitude of the second point in degrees."""
     lon1: rt.Number | None | rt._Absent = rt.ABSENT
     """Longitude 1 [deg]: Longitude of the second point."""
     lat2: rt.Number | None | rt._Absent = rt.ABSENT
@@ -64,185 +80,21 @@ class PqtmcfggeofenceResult:
     lon3: rt.Number | None | rt._Absent = rt.ABSENT
     """Longitude 3 [deg]: Longitude of the fourth point."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfggeofenceResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGGEOFENCE_RESULT", 3, count)
-        if count > 13:
-            raise rt.too_many(address, "PQTMCFGGEOFENCE_RESULT", 13, count)
-        optional = count - 3
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        index = (_INTEGER_0_TO_3.get(fields[1]) or rt.integer_field(fields[1], address, 2, "index", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[1] else None
-        mode = QuectelEnable.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "mode", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        reserved: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            reserved = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "reserved", "integer", None, None, _INTEGER)) if fields[3] else None
-        shape: QuectelGeofenceShape | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            shape = QuectelGeofenceShape.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "shape", "quectel_geofence_shape code (0 1 2 3)", QuectelGeofenceShape.BY_CODE, "digits", 1, 1)
-        lat0: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            lat0 = (_DECIMAL_MINUS_90_TO_90.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "lat0", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[5] else None
-        lon0: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            lon0 = (_DECIMAL_MINUS_180_TO_180.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "lon0", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[6] else None
-        lat1_or_radius: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 5:
-            lat1_or_radius = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "lat1_or_radius", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        lon1: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 6:
-            lon1 = (_DECIMAL_MINUS_180_TO_180.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "lon1", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[8] else None
-        lat2: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 7:
-            lat2 = (_DECIMAL_MINUS_90_TO_90.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "lat2", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[9] else None
-        lon2: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 8:
-            lon2 = (_DECIMAL_MINUS_180_TO_180.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "lon2", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[10] else None
-        lat3: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 9:
-            lat3 = (_DECIMAL_MINUS_90_TO_90.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "lat3", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[11] else None
-        lon3: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 10:
-            lon3 = (_DECIMAL_MINUS_180_TO_180.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "lon3", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[12] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, index, mode, reserved, shape, lat0, lon0, lat1_or_radius, lon1, lat2, lon2, lat3, lon3, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.index),
-            rt.text_of(self.mode),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.lon3 is not rt.ABSENT:
-            last = 9
-        elif self.lat3 is not rt.ABSENT:
-            last = 8
-        elif self.lon2 is not rt.ABSENT:
-            last = 7
-        elif self.lat2 is not rt.ABSENT:
-            last = 6
-        elif self.lon1 is not rt.ABSENT:
-            last = 5
-        elif self.lat1_or_radius is not rt.ABSENT:
-            last = 4
-        elif self.lon0 is not rt.ABSENT:
-            last = 3
-        elif self.lat0 is not rt.ABSENT:
-            last = 2
-        elif self.shape is not rt.ABSENT:
-            last = 1
-        elif self.reserved is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.reserved)]
-        if last >= 1:
-            out += [rt.text_of(self.shape)]
-        if last >= 2:
-            out += [rt.text_of(self.lat0)]
-        if last >= 3:
-            out += [rt.text_of(self.lon0)]
-        if last >= 4:
-            out += [rt.text_of(self.lat1_or_radius)]
-        if last >= 5:
-            out += [rt.text_of(self.lon1)]
-        if last >= 6:
-            out += [rt.text_of(self.lat2)]
-        if last >= 7:
-            out += [rt.text_of(self.lon2)]
-        if last >= 8:
-            out += [rt.text_of(self.lat3)]
-        if last >= 9:
-            out += [rt.text_of(self.lon3)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGGEOFENCE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"index":' + show(self.index),
-            '"mode":' + show(self.mode),
-        ]
-        if self.reserved is not rt.ABSENT:
-            parts.append('"reserved":' + show(self.reserved))
-        if self.shape is not rt.ABSENT:
-            parts.append('"shape":' + show(self.shape))
-        if self.lat0 is not rt.ABSENT:
-            parts.append('"lat0":' + show(self.lat0))
-        if self.lon0 is not rt.ABSENT:
-            parts.append('"lon0":' + show(self.lon0))
-        if self.lat1_or_radius is not rt.ABSENT:
-            parts.append('"lat1_or_radius":' + show(self.lat1_or_radius))
-        if self.lon1 is not rt.ABSENT:
-            parts.append('"lon1":' + show(self.lon1))
-        if self.lat2 is not rt.ABSENT:
-            parts.append('"lat2":' + show(self.lat2))
-        if self.lon2 is not rt.ABSENT:
-            parts.append('"lon2":' + show(self.lon2))
-        if self.lat3 is not rt.ABSENT:
-            parts.append('"lat3":' + show(self.lat3))
-        if self.lon3 is not rt.ABSENT:
-            parts.append('"lon3":' + show(self.lon3))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        if "reserved" in fields:
-            out += rt.json_texts(fields["reserved"], 1)
-        if "shape" in fields:
-            out += rt.json_texts(fields["shape"], 1)
-        if "lat0" in fields:
-            out += rt.json_texts(fields["lat0"], 1)
-        if "lon0" in fields:
-            out += rt.json_texts(fields["lon0"], 1)
-        if "lat1_or_radius" in fields:
-            out += rt.json_texts(fields["lat1_or_radius"], 1)
-        if "lon1" in fields:
-            out += rt.json_texts(fields["lon1"], 1)
-        if "lat2" in fields:
-            out += rt.json_texts(fields["lat2"], 1)
-        if "lon2" in fields:
-            out += rt.json_texts(fields["lon2"], 1)
-        if "lat3" in fields:
-            out += rt.json_texts(fields["lat3"], 1)
-        if "lon3" in fields:
-            out += rt.json_texts(fields["lon3"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfggeofenceResultAck:
+class PqtmcfggeofenceResultAck(rt.Sentence):
     """PQTMCFGGEOFENCE_RESULT (Write acknowledged): Configure geofence: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGGEOFENCE,OK*74
+    Example (quectel_lg290p):
+    $PQTMCFGGEOFENCE,OK*74
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGGEOFENCE_RESULT"
@@ -252,65 +104,25 @@ class PqtmcfggeofenceResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGGEOFENCE_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfggeofenceResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGGEOFENCE_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGGEOFENCE_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGGEOFENCE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfggeofenceResultError:
+class PqtmcfggeofenceResultError(rt.Sentence):
     """PQTMCFGGEOFENCE_RESULT (Command failed): Configure geofence: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGGEOFENCE_RESULT"
@@ -322,63 +134,21 @@ class PqtmcfggeofenceResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGGEOFENCE_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfggeofenceResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGGEOFENCE_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGGEOFENCE_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGGEOFENCE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfggeofenceResult, PqtmcfggeofenceResultAck, PqtmcfggeofenceResultError, )

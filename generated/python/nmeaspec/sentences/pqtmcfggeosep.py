@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelGeosepMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_MINUS_1000_TO_1000: dict[Any, Any] = rt.known("decimal -1000..1000")
-
 
 @dataclass(slots=True)
-class Pqtmcfggeosep:
+class Pqtmcfggeosep(rt.Sentence):
     """PQTMCFGGEOSEP: Configure geoidal separation.
 
-    Example (quectel_lg290p): $PQTMCFGGEOSEP,W,0,0.0000*04
+    Example (quectel_lg290p):
+    $PQTMCFGGEOSEP,W,0,0.0000*04
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGGEOSEP"
@@ -38,6 +36,12 @@ class Pqtmcfggeosep:
         ("PQTMCFGGEOSEP_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGGEOSEP", "proprietary", "$", 3, 3, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField("mode", "quectel_geosep_mode code (0 1)", QuectelGeosepMode),
+        rt.DecimalField("separation", "decimal number -1000..1000", -1000, 1000),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     mode: QuectelGeosepMode | str | None = None
@@ -45,71 +49,21 @@ class Pqtmcfggeosep:
     separation: rt.Number | None = None
     """Geoidal separation [m]: The value used in manual mode (default 0)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfggeosep:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGGEOSEP", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMCFGGEOSEP", 3, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        mode = QuectelGeosepMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "quectel_geosep_mode code (0 1)", QuectelGeosepMode.BY_CODE, "digits", 1, 1)
-        separation = (_DECIMAL_MINUS_1000_TO_1000.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "separation", "decimal number -1000..1000", -1000, 1000, _DECIMAL_MINUS_1000_TO_1000)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, mode, separation, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.mode),
-            rt.text_of(self.separation),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGGEOSEP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"mode":' + show(self.mode),
-            '"separation":' + show(self.separation),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "separation"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfggeosepRead:
+class PqtmcfggeosepRead(rt.Sentence):
     """PQTMCFGGEOSEP (Read the setting): Configure geoidal separation.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGGEOSEP,R*2F
+    Example (quectel_lg290p):
+    $PQTMCFGGEOSEP,R*2F
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGGEOSEP"
@@ -125,57 +79,18 @@ class PqtmcfggeosepRead:
         ("PQTMCFGGEOSEP_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGGEOSEP", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfggeosepRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGGEOSEP", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGGEOSEP", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGGEOSEP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfggeosep, PqtmcfggeosepRead, )

@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode, QuectelGeosepMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_MINUS_1000_TO_1000: dict[Any, Any] = rt.known("decimal -1000..1000")
-
 
 @dataclass(slots=True)
-class PqtmcfggeosepResult:
+class PqtmcfggeosepResult(rt.Sentence):
     """PQTMCFGGEOSEP_RESULT: Configure geoidal separation: result.
 
-    Example (quectel_lg290p): $PQTMCFGGEOSEP,OK,0,0.0000*57
+    Example (quectel_lg290p):
+    $PQTMCFGGEOSEP,OK,0,0.0000*57
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGGEOSEP_RESULT"
@@ -33,6 +31,12 @@ class PqtmcfggeosepResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGGEOSEP_RESULT", "proprietary", "$", 3, 3, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.EnumField("mode", "quectel_geosep_mode code (0 1)", QuectelGeosepMode),
+        rt.DecimalField("separation", "decimal number -1000..1000", -1000, 1000),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     mode: QuectelGeosepMode | str | None = None
@@ -40,71 +44,21 @@ class PqtmcfggeosepResult:
     separation: rt.Number | None = None
     """Geoidal separation [m]: The value used in manual mode (default 0)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfggeosepResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGGEOSEP_RESULT", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMCFGGEOSEP_RESULT", 3, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        mode = QuectelGeosepMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "quectel_geosep_mode code (0 1)", QuectelGeosepMode.BY_CODE, "digits", 1, 1)
-        separation = (_DECIMAL_MINUS_1000_TO_1000.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "separation", "decimal number -1000..1000", -1000, 1000, _DECIMAL_MINUS_1000_TO_1000)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, mode, separation, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.mode),
-            rt.text_of(self.separation),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGGEOSEP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"mode":' + show(self.mode),
-            '"separation":' + show(self.separation),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "separation"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfggeosepResultAck:
+class PqtmcfggeosepResultAck(rt.Sentence):
     """PQTMCFGGEOSEP_RESULT (Write acknowledged): Configure geoidal separation: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGGEOSEP,OK*79
+    Example (quectel_lg290p):
+    $PQTMCFGGEOSEP,OK*79
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGGEOSEP_RESULT"
@@ -114,65 +68,25 @@ class PqtmcfggeosepResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGGEOSEP_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfggeosepResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGGEOSEP_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGGEOSEP_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGGEOSEP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfggeosepResultError:
+class PqtmcfggeosepResultError(rt.Sentence):
     """PQTMCFGGEOSEP_RESULT (Command failed): Configure geoidal separation: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGGEOSEP_RESULT"
@@ -184,63 +98,21 @@ class PqtmcfggeosepResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGGEOSEP_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfggeosepResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGGEOSEP_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGGEOSEP_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGGEOSEP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfggeosepResult, PqtmcfggeosepResultAck, PqtmcfggeosepResultError, )

@@ -14,17 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelPortType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_1200: dict[Any, Any] = rt.known("integer 0..1200")
-_INTEGER_1_TO_3: dict[Any, Any] = rt.known("integer 1..3")
-
 
 @dataclass(slots=True)
-class Pqtmcfgmsgrate:
+class Pqtmcfgmsgrate(rt.Sentence):
     """PQTMCFGMSGRATE: Configure message output rate.
 
-    Example (quectel_lg290p): $PQTMCFGMSGRATE,W,GGA,1*0A
+    Example (quectel_lg290p):
+    $PQTMCFGMSGRATE,W,PQTMEPE,1,2*1D
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGMSGRATE"
@@ -41,95 +37,41 @@ class Pqtmcfgmsgrate:
         ("PQTMCFGMSGRATE_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGMSGRATE", "proprietary", "$", 3, 4, (
+        rt.KeywordField("access", "W", "W"),
+        rt.TextField("message", "text"),
+        rt.IntegerField("rate", "integer 0..1200", 0, 1200),
+        rt.IntegerField("version_or_offset", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     message: str | None = None
-    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."""
+    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output
+    (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message
+    (0AB2...)."""
     rate: rt.Number | None = None
-    """Output rate: Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."""
+    """Output rate: Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM
+    messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."""
     version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-    """Message version or time offset: For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
+    """Message version or time offset: For a PQTM message its version (required for PQTM messages);
+    for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgmsgrate:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGMSGRATE", 3, count)
-        if count > 4:
-            raise rt.too_many(address, "PQTMCFGMSGRATE", 4, count)
-        optional = count - 3
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        message = rt.text_field(fields[1], address, 2, "message", "text", None)
-        rate = (_INTEGER_0_TO_1200.get(fields[2]) or rt.integer_field(fields[2], address, 3, "rate", "integer 0..1200", 0, 1200, _INTEGER_0_TO_1200)) if fields[2] else None
-        version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            version_or_offset = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "version_or_offset", "integer", None, None, _INTEGER)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, message, rate, version_or_offset, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.message),
-            rt.text_of(self.rate),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.version_or_offset is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.version_or_offset)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGMSGRATE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"message":' + show(self.message),
-            '"rate":' + show(self.rate),
-        ]
-        if self.version_or_offset is not rt.ABSENT:
-            parts.append('"version_or_offset":' + show(self.version_or_offset))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate"), 1)
-        if "version_or_offset" in fields:
-            out += rt.json_texts(fields["version_or_offset"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgmsgratePort:
+class PqtmcfgmsgratePort(rt.Sentence):
     """PQTMCFGMSGRATE (Rate on a given port): Configure message output rate.
 
     Sets the rate of a message on the given port.
 
-    Example (quectel_lg290p): $PQTMCFGMSGRATE,W,1,1,GGA,1*0A
+    Example (quectel_lg290p):
+    $PQTMCFGMSGRATE,W,1,1,0AB2,1,1*57
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGMSGRATE"
@@ -146,6 +88,15 @@ class PqtmcfgmsgratePort:
         ("PQTMCFGMSGRATE_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGMSGRATE", "proprietary", "$", 5, 6, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField("port_type", "quectel_port_type code (1)", QuectelPortType),
+        rt.IntegerField("port_id", "integer 1..3", 1, 3),
+        rt.TextField("message", "text"),
+        rt.IntegerField("rate", "integer 0..1200", 0, 1200),
+        rt.IntegerField("version_or_offset", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     port_type: QuectelPortType | str | None = None
@@ -153,100 +104,31 @@ class PqtmcfgmsgratePort:
     port_id: rt.Number | None = None
     """Port ID: UART number, 1 to 3."""
     message: str | None = None
-    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."""
+    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output
+    (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message
+    (0AB2...)."""
     rate: rt.Number | None = None
-    """Output rate: Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."""
+    """Output rate: Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM
+    messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."""
     version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-    """Message version or time offset: For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
+    """Message version or time offset: For a PQTM message its version (required for PQTM messages);
+    for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgmsgratePort:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PQTMCFGMSGRATE", 5, count)
-        if count > 6:
-            raise rt.too_many(address, "PQTMCFGMSGRATE", 6, count)
-        optional = count - 5
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        port_type = QuectelPortType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "port_type", "quectel_port_type code (1)", QuectelPortType.BY_CODE, "digits", 1, 1)
-        port_id = (_INTEGER_1_TO_3.get(fields[2]) or rt.integer_field(fields[2], address, 3, "port_id", "integer 1..3", 1, 3, _INTEGER_1_TO_3)) if fields[2] else None
-        message = rt.text_field(fields[3], address, 4, "message", "text", None)
-        rate = (_INTEGER_0_TO_1200.get(fields[4]) or rt.integer_field(fields[4], address, 5, "rate", "integer 0..1200", 0, 1200, _INTEGER_0_TO_1200)) if fields[4] else None
-        version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            version_or_offset = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "version_or_offset", "integer", None, None, _INTEGER)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, port_type, port_id, message, rate, version_or_offset, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.port_type),
-            rt.text_of(self.port_id),
-            rt.text_of(self.message),
-            rt.text_of(self.rate),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.version_or_offset is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.version_or_offset)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGMSGRATE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"port_type":' + show(self.port_type),
-            '"port_id":' + show(self.port_id),
-            '"message":' + show(self.message),
-            '"rate":' + show(self.rate),
-        ]
-        if self.version_or_offset is not rt.ABSENT:
-            parts.append('"version_or_offset":' + show(self.version_or_offset))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate"), 1)
-        if "version_or_offset" in fields:
-            out += rt.json_texts(fields["version_or_offset"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgmsgrateReadPort:
+class PqtmcfgmsgrateReadPort(rt.Sentence):
     """PQTMCFGMSGRATE (Read the rate on a given port): Configure message output rate.
 
     Asks for the rate of a message on the given port.
 
-    Example (quectel_lg290p): $PQTMCFGMSGRATE,R,1,1,GGA*12
+    Example (quectel_lg290p):
+    $PQTMCFGMSGRATE,R,1,1,0AB2,1*4F
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGMSGRATE"
@@ -263,6 +145,14 @@ class PqtmcfgmsgrateReadPort:
         ("PQTMCFGMSGRATE_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGMSGRATE", "proprietary", "$", 4, 5, (
+        rt.KeywordField("access", "R", "R"),
+        rt.EnumField("port_type", "quectel_port_type code (1)", QuectelPortType),
+        rt.IntegerField("port_id", "integer 1..3", 1, 3),
+        rt.TextField("message", "text"),
+        rt.IntegerField("version_or_offset", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     port_type: QuectelPortType | str | None = None
@@ -270,95 +160,29 @@ class PqtmcfgmsgrateReadPort:
     port_id: rt.Number | None = None
     """Port ID: UART number, 1 to 3."""
     message: str | None = None
-    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."""
+    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output
+    (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message
+    (0AB2...)."""
     version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-    """Message version or time offset: For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
+    """Message version or time offset: For a PQTM message its version (required for PQTM messages);
+    for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgmsgrateReadPort:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PQTMCFGMSGRATE", 4, count)
-        if count > 5:
-            raise rt.too_many(address, "PQTMCFGMSGRATE", 5, count)
-        optional = count - 4
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        port_type = QuectelPortType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "port_type", "quectel_port_type code (1)", QuectelPortType.BY_CODE, "digits", 1, 1)
-        port_id = (_INTEGER_1_TO_3.get(fields[2]) or rt.integer_field(fields[2], address, 3, "port_id", "integer 1..3", 1, 3, _INTEGER_1_TO_3)) if fields[2] else None
-        message = rt.text_field(fields[3], address, 4, "message", "text", None)
-        version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            version_or_offset = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "version_or_offset", "integer", None, None, _INTEGER)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, port_type, port_id, message, version_or_offset, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.port_type),
-            rt.text_of(self.port_id),
-            rt.text_of(self.message),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.version_or_offset is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.version_or_offset)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGMSGRATE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"port_type":' + show(self.port_type),
-            '"port_id":' + show(self.port_id),
-            '"message":' + show(self.message),
-        ]
-        if self.version_or_offset is not rt.ABSENT:
-            parts.append('"version_or_offset":' + show(self.version_or_offset))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        if "version_or_offset" in fields:
-            out += rt.json_texts(fields["version_or_offset"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgmsgrateRead:
+class PqtmcfgmsgrateRead(rt.Sentence):
     """PQTMCFGMSGRATE (Read the setting): Configure message output rate.
 
     Asks for the rate of a message on the current port (the port variant of the answer carries a
     port).
 
-    Example (quectel_lg290p): $PQTMCFGMSGRATE,R,GGA*12
+    Example (quectel_lg290p):
+    $PQTMCFGMSGRATE,R,PQTMEPE,2*05
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGMSGRATE"
@@ -375,80 +199,27 @@ class PqtmcfgmsgrateRead:
         ("PQTMCFGMSGRATE_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGMSGRATE", "proprietary", "$", 2, 3, (
+        rt.KeywordField("access", "R", "R"),
+        rt.TextField("message", "text"),
+        rt.IntegerField("version_or_offset", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     message: str | None = None
-    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."""
+    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output
+    (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message
+    (0AB2...)."""
     version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-    """Message version or time offset: For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
+    """Message version or time offset: For a PQTM message its version (required for PQTM messages);
+    for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgmsgrateRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGMSGRATE", 2, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMCFGMSGRATE", 3, count)
-        optional = count - 2
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        message = rt.text_field(fields[1], address, 2, "message", "text", None)
-        version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            version_or_offset = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "version_or_offset", "integer", None, None, _INTEGER)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, message, version_or_offset, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.message),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.version_or_offset is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.version_or_offset)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGMSGRATE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"message":' + show(self.message),
-        ]
-        if self.version_or_offset is not rt.ABSENT:
-            parts.append('"version_or_offset":' + show(self.version_or_offset))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        if "version_or_offset" in fields:
-            out += rt.json_texts(fields["version_or_offset"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgmsgrate, PqtmcfgmsgratePort, PqtmcfgmsgrateReadPort, PqtmcfgmsgrateRead, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGMSGRATE_RESULT: Configure message output rate: result.
 
-The answer of the module to $PQTMCFGMSGRATE (section 2.3.15): OK followed by the current
-settings when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGMSGRATE (section 2.3.15): OK followed by the current settings
+when the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,17 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode, QuectelPortType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_1200: dict[Any, Any] = rt.known("integer 0..1200")
-_INTEGER_1_TO_3: dict[Any, Any] = rt.known("integer 1..3")
-
 
 @dataclass(slots=True)
-class PqtmcfgmsgrateResult:
+class PqtmcfgmsgrateResult(rt.Sentence):
     """PQTMCFGMSGRATE_RESULT: Configure message output rate: result.
 
-    Example (quectel_lg290p): $PQTMCFGMSGRATE,OK,GGA,1*59
+    Example (quectel_lg290p):
+    $PQTMCFGMSGRATE,OK,PQTMEPE,1,2*4E
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGMSGRATE_RESULT"
@@ -35,95 +31,41 @@ class PqtmcfgmsgrateResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGMSGRATE_RESULT", "proprietary", "$", 3, 4, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.TextField("message", "text"),
+        rt.IntegerField("rate", "integer 0..1200", 0, 1200),
+        rt.IntegerField("version_or_offset", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     message: str | None = None
-    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."""
+    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output
+    (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message
+    (0AB2...)."""
     rate: rt.Number | None = None
-    """Output rate: Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."""
+    """Output rate: Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM
+    messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."""
     version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-    """Message version or time offset: For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
+    """Message version or time offset: For a PQTM message its version (required for PQTM messages);
+    for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgmsgrateResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGMSGRATE_RESULT", 3, count)
-        if count > 4:
-            raise rt.too_many(address, "PQTMCFGMSGRATE_RESULT", 4, count)
-        optional = count - 3
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        message = rt.text_field(fields[1], address, 2, "message", "text", None)
-        rate = (_INTEGER_0_TO_1200.get(fields[2]) or rt.integer_field(fields[2], address, 3, "rate", "integer 0..1200", 0, 1200, _INTEGER_0_TO_1200)) if fields[2] else None
-        version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            version_or_offset = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "version_or_offset", "integer", None, None, _INTEGER)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, message, rate, version_or_offset, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.message),
-            rt.text_of(self.rate),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.version_or_offset is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.version_or_offset)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGMSGRATE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"message":' + show(self.message),
-            '"rate":' + show(self.rate),
-        ]
-        if self.version_or_offset is not rt.ABSENT:
-            parts.append('"version_or_offset":' + show(self.version_or_offset))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate"), 1)
-        if "version_or_offset" in fields:
-            out += rt.json_texts(fields["version_or_offset"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgmsgrateResultPort:
+class PqtmcfgmsgrateResultPort(rt.Sentence):
     """PQTMCFGMSGRATE_RESULT (Rate on a given port): Configure message output rate: result.
 
     The rate of a message on the port named in the read.
 
-    Example (quectel_lg290p): $PQTMCFGMSGRATE,OK,1,1,0AB2,1,1*04
+    Example (quectel_lg290p):
+    $PQTMCFGMSGRATE,OK,1,1,0AB2,1,1*04
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGMSGRATE_RESULT"
@@ -133,6 +75,15 @@ class PqtmcfgmsgrateResultPort:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGMSGRATE_RESULT", "proprietary", "$", 5, 6, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.EnumField("port_type", "quectel_port_type code (1)", QuectelPortType),
+        rt.IntegerField("port_id", "integer 1..3", 1, 3),
+        rt.TextField("message", "text"),
+        rt.IntegerField("rate", "integer 0..1200", 0, 1200),
+        rt.IntegerField("version_or_offset", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     port_type: QuectelPortType | str | None = None
@@ -140,100 +91,31 @@ class PqtmcfgmsgrateResultPort:
     port_id: rt.Number | None = None
     """Port ID: UART number, 1 to 3."""
     message: str | None = None
-    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."""
+    """Message: The message to configure: a standard sentence (GGA, RMC...), a PQTM output
+    (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message
+    (0AB2...)."""
     rate: rt.Number | None = None
-    """Output rate: Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."""
+    """Output rate: Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM
+    messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."""
     version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-    """Message version or time offset: For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
+    """Message version or time offset: For a PQTM message its version (required for PQTM messages);
+    for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgmsgrateResultPort:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PQTMCFGMSGRATE_RESULT", 5, count)
-        if count > 6:
-            raise rt.too_many(address, "PQTMCFGMSGRATE_RESULT", 6, count)
-        optional = count - 5
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        port_type = QuectelPortType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "port_type", "quectel_port_type code (1)", QuectelPortType.BY_CODE, "digits", 1, 1)
-        port_id = (_INTEGER_1_TO_3.get(fields[2]) or rt.integer_field(fields[2], address, 3, "port_id", "integer 1..3", 1, 3, _INTEGER_1_TO_3)) if fields[2] else None
-        message = rt.text_field(fields[3], address, 4, "message", "text", None)
-        rate = (_INTEGER_0_TO_1200.get(fields[4]) or rt.integer_field(fields[4], address, 5, "rate", "integer 0..1200", 0, 1200, _INTEGER_0_TO_1200)) if fields[4] else None
-        version_or_offset: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            version_or_offset = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "version_or_offset", "integer", None, None, _INTEGER)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, port_type, port_id, message, rate, version_or_offset, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.port_type),
-            rt.text_of(self.port_id),
-            rt.text_of(self.message),
-            rt.text_of(self.rate),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.version_or_offset is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.version_or_offset)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGMSGRATE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"port_type":' + show(self.port_type),
-            '"port_id":' + show(self.port_id),
-            '"message":' + show(self.message),
-            '"rate":' + show(self.rate),
-        ]
-        if self.version_or_offset is not rt.ABSENT:
-            parts.append('"version_or_offset":' + show(self.version_or_offset))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate"), 1)
-        if "version_or_offset" in fields:
-            out += rt.json_texts(fields["version_or_offset"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgmsgrateResultAck:
+class PqtmcfgmsgrateResultAck(rt.Sentence):
     """PQTMCFGMSGRATE_RESULT (Write acknowledged): Configure message output rate: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGMSGRATE,OK*29
+    Example (quectel_lg290p):
+    $PQTMCFGMSGRATE,OK*29
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGMSGRATE_RESULT"
@@ -243,65 +125,25 @@ class PqtmcfgmsgrateResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGMSGRATE_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgmsgrateResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGMSGRATE_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGMSGRATE_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGMSGRATE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgmsgrateResultError:
+class PqtmcfgmsgrateResultError(rt.Sentence):
     """PQTMCFGMSGRATE_RESULT (Command failed): Configure message output rate: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGMSGRATE_RESULT"
@@ -313,63 +155,21 @@ class PqtmcfgmsgrateResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGMSGRATE_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgmsgrateResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGMSGRATE_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGMSGRATE_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGMSGRATE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgmsgrateResult, PqtmcfgmsgrateResultPort, PqtmcfgmsgrateResultAck, PqtmcfgmsgrateResultError, )

@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_3: dict[Any, Any] = rt.known("integer 0..3")
-_INTEGER_0_TO_8: dict[Any, Any] = rt.known("integer 0..8")
-
 
 @dataclass(slots=True)
-class Pqtmcfgnmeadp:
+class Pqtmcfgnmeadp(rt.Sentence):
     """PQTMCFGNMEADP: Configure NMEA decimal places.
 
-    Example (quectel_lg290p): $PQTMCFGNMEADP,W,3,8,3,2,3,2*39
+    Example (quectel_lg290p):
+    $PQTMCFGNMEADP,W,3,8,3,2,3,2*39
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGNMEADP"
@@ -39,6 +36,16 @@ class Pqtmcfgnmeadp:
         ("PQTMCFGNMEADP_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGNMEADP", "proprietary", "$", 7, 7, (
+        rt.KeywordField("access", "W", "W"),
+        rt.IntegerField("utc_decimals", "integer 0..3", 0, 3),
+        rt.IntegerField("position_decimals", "integer 0..8", 0, 8),
+        rt.IntegerField("altitude_decimals", "integer 0..3", 0, 3),
+        rt.IntegerField("dop_decimals", "integer 0..3", 0, 3),
+        rt.IntegerField("speed_decimals", "integer 0..3", 0, 3),
+        rt.IntegerField("cog_decimals", "integer 0..3", 0, 3),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     utc_decimals: rt.Number | None = None
@@ -54,87 +61,21 @@ class Pqtmcfgnmeadp:
     cog_decimals: rt.Number | None = None
     """COG decimals: Decimals of the course over ground (default 2)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgnmeadp:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PQTMCFGNMEADP", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGNMEADP", 7, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        utc_decimals = (_INTEGER_0_TO_3.get(fields[1]) or rt.integer_field(fields[1], address, 2, "utc_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[1] else None
-        position_decimals = (_INTEGER_0_TO_8.get(fields[2]) or rt.integer_field(fields[2], address, 3, "position_decimals", "integer 0..8", 0, 8, _INTEGER_0_TO_8)) if fields[2] else None
-        altitude_decimals = (_INTEGER_0_TO_3.get(fields[3]) or rt.integer_field(fields[3], address, 4, "altitude_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[3] else None
-        dop_decimals = (_INTEGER_0_TO_3.get(fields[4]) or rt.integer_field(fields[4], address, 5, "dop_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[4] else None
-        speed_decimals = (_INTEGER_0_TO_3.get(fields[5]) or rt.integer_field(fields[5], address, 6, "speed_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[5] else None
-        cog_decimals = (_INTEGER_0_TO_3.get(fields[6]) or rt.integer_field(fields[6], address, 7, "cog_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, utc_decimals, position_decimals, altitude_decimals, dop_decimals, speed_decimals, cog_decimals, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.utc_decimals),
-            rt.text_of(self.position_decimals),
-            rt.text_of(self.altitude_decimals),
-            rt.text_of(self.dop_decimals),
-            rt.text_of(self.speed_decimals),
-            rt.text_of(self.cog_decimals),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGNMEADP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"utc_decimals":' + show(self.utc_decimals),
-            '"position_decimals":' + show(self.position_decimals),
-            '"altitude_decimals":' + show(self.altitude_decimals),
-            '"dop_decimals":' + show(self.dop_decimals),
-            '"speed_decimals":' + show(self.speed_decimals),
-            '"cog_decimals":' + show(self.cog_decimals),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "utc_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dop_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cog_decimals"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgnmeadpRead:
+class PqtmcfgnmeadpRead(rt.Sentence):
     """PQTMCFGNMEADP (Read the setting): Configure NMEA decimal places.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGNMEADP,R*37
+    Example (quectel_lg290p):
+    $PQTMCFGNMEADP,R*37
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGNMEADP"
@@ -150,57 +91,18 @@ class PqtmcfgnmeadpRead:
         ("PQTMCFGNMEADP_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGNMEADP", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgnmeadpRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGNMEADP", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGNMEADP", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGNMEADP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgnmeadp, PqtmcfgnmeadpRead, )

@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_3: dict[Any, Any] = rt.known("integer 0..3")
-_INTEGER_0_TO_8: dict[Any, Any] = rt.known("integer 0..8")
-
 
 @dataclass(slots=True)
-class PqtmcfgnmeadpResult:
+class PqtmcfgnmeadpResult(rt.Sentence):
     """PQTMCFGNMEADP_RESULT: Configure NMEA decimal places: result.
 
-    Example (quectel_lg290p): $PQTMCFGNMEADP,OK,3,8,3,2,3,2*6A
+    Example (quectel_lg290p):
+    $PQTMCFGNMEADP,OK,3,8,3,2,3,2*6A
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGNMEADP_RESULT"
@@ -34,6 +31,16 @@ class PqtmcfgnmeadpResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGNMEADP_RESULT", "proprietary", "$", 7, 7, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.IntegerField("utc_decimals", "integer 0..3", 0, 3),
+        rt.IntegerField("position_decimals", "integer 0..8", 0, 8),
+        rt.IntegerField("altitude_decimals", "integer 0..3", 0, 3),
+        rt.IntegerField("dop_decimals", "integer 0..3", 0, 3),
+        rt.IntegerField("speed_decimals", "integer 0..3", 0, 3),
+        rt.IntegerField("cog_decimals", "integer 0..3", 0, 3),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     utc_decimals: rt.Number | None = None
@@ -49,87 +56,21 @@ class PqtmcfgnmeadpResult:
     cog_decimals: rt.Number | None = None
     """COG decimals: Decimals of the course over ground (default 2)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgnmeadpResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PQTMCFGNMEADP_RESULT", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGNMEADP_RESULT", 7, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        utc_decimals = (_INTEGER_0_TO_3.get(fields[1]) or rt.integer_field(fields[1], address, 2, "utc_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[1] else None
-        position_decimals = (_INTEGER_0_TO_8.get(fields[2]) or rt.integer_field(fields[2], address, 3, "position_decimals", "integer 0..8", 0, 8, _INTEGER_0_TO_8)) if fields[2] else None
-        altitude_decimals = (_INTEGER_0_TO_3.get(fields[3]) or rt.integer_field(fields[3], address, 4, "altitude_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[3] else None
-        dop_decimals = (_INTEGER_0_TO_3.get(fields[4]) or rt.integer_field(fields[4], address, 5, "dop_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[4] else None
-        speed_decimals = (_INTEGER_0_TO_3.get(fields[5]) or rt.integer_field(fields[5], address, 6, "speed_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[5] else None
-        cog_decimals = (_INTEGER_0_TO_3.get(fields[6]) or rt.integer_field(fields[6], address, 7, "cog_decimals", "integer 0..3", 0, 3, _INTEGER_0_TO_3)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, utc_decimals, position_decimals, altitude_decimals, dop_decimals, speed_decimals, cog_decimals, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.utc_decimals),
-            rt.text_of(self.position_decimals),
-            rt.text_of(self.altitude_decimals),
-            rt.text_of(self.dop_decimals),
-            rt.text_of(self.speed_decimals),
-            rt.text_of(self.cog_decimals),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGNMEADP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"utc_decimals":' + show(self.utc_decimals),
-            '"position_decimals":' + show(self.position_decimals),
-            '"altitude_decimals":' + show(self.altitude_decimals),
-            '"dop_decimals":' + show(self.dop_decimals),
-            '"speed_decimals":' + show(self.speed_decimals),
-            '"cog_decimals":' + show(self.cog_decimals),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "utc_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dop_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_decimals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cog_decimals"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgnmeadpResultAck:
+class PqtmcfgnmeadpResultAck(rt.Sentence):
     """PQTMCFGNMEADP_RESULT (Write acknowledged): Configure NMEA decimal places: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGNMEADP,OK*61
+    Example (quectel_lg290p):
+    $PQTMCFGNMEADP,OK*61
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGNMEADP_RESULT"
@@ -139,65 +80,25 @@ class PqtmcfgnmeadpResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGNMEADP_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgnmeadpResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGNMEADP_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGNMEADP_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGNMEADP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgnmeadpResultError:
+class PqtmcfgnmeadpResultError(rt.Sentence):
     """PQTMCFGNMEADP_RESULT (Command failed): Configure NMEA decimal places: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGNMEADP_RESULT"
@@ -209,63 +110,21 @@ class PqtmcfgnmeadpResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGNMEADP_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgnmeadpResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGNMEADP_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGNMEADP_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGNMEADP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgnmeadpResult, PqtmcfgnmeadpResultAck, PqtmcfgnmeadpResultError, )

@@ -16,10 +16,11 @@ from ..enums import QuectelGsvTalker
 
 
 @dataclass(slots=True)
-class Pqtmcfgnmeatid:
+class Pqtmcfgnmeatid(rt.Sentence):
     """PQTMCFGNMEATID: Configure NMEA talker ID.
 
-    Example (quectel_lg290p): $PQTMCFGNMEATID,W,GP,0*58
+    Example (quectel_lg290p):
+    $PQTMCFGNMEATID,W,GP,0*58
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGNMEATID"
@@ -35,78 +36,35 @@ class Pqtmcfgnmeatid:
         ("PQTMCFGNMEATID_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGNMEATID", "proprietary", "$", 3, 3, (
+        rt.KeywordField("access", "W", "W"),
+        rt.TextField("main_talker", "text of at most 2 characters", 2),
+        rt.EnumField("gsv_talker", "quectel_gsv_talker code (0 1)", QuectelGsvTalker),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     main_talker: str | None = None
-    """Main talker ID: Talker ID of every standard sentence but GSV: two characters, or 00 for automatic (chosen from the constellations)."""
+    """Main talker ID: Talker ID of every standard sentence but GSV: two characters, or 00 for
+    automatic (chosen from the constellations)."""
     gsv_talker: QuectelGsvTalker | str | None = None
     """GSV talker ID: Talker ID of GSV."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgnmeatid:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGNMEATID", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMCFGNMEATID", 3, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        main_talker = rt.text_field(fields[1], address, 2, "main_talker", "text of at most 2 characters", 2)
-        gsv_talker = QuectelGsvTalker.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "gsv_talker", "quectel_gsv_talker code (0 1)", QuectelGsvTalker.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, main_talker, gsv_talker, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.main_talker),
-            rt.text_of(self.gsv_talker),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGNMEATID",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"main_talker":' + show(self.main_talker),
-            '"gsv_talker":' + show(self.gsv_talker),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "main_talker"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gsv_talker"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgnmeatidRead:
+class PqtmcfgnmeatidRead(rt.Sentence):
     """PQTMCFGNMEATID (Read the setting): Configure NMEA talker ID.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGNMEATID,R*7A
+    Example (quectel_lg290p):
+    $PQTMCFGNMEATID,R*7A
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGNMEATID"
@@ -122,57 +80,18 @@ class PqtmcfgnmeatidRead:
         ("PQTMCFGNMEATID_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGNMEATID", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgnmeatidRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGNMEATID", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGNMEATID", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGNMEATID",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgnmeatid, PqtmcfgnmeatidRead, )

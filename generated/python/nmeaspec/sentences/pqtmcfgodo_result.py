@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGODO_RESULT: Configure odometer: result.
 
-The answer of the module to $PQTMCFGODO (section 2.3.33): OK followed by the current settings
-when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGODO (section 2.3.33): OK followed by the current settings when
+the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelEnable, QuectelErrorCode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class PqtmcfgodoResult:
+class PqtmcfgodoResult(rt.Sentence):
     """PQTMCFGODO_RESULT: Configure odometer: result.
 
-    Example (quectel_lg290p): $PQTMCFGODO,OK,1,10.5*1D
+    Example (quectel_lg290p):
+    $PQTMCFGODO,OK,1,10.5*1D
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGODO_RESULT"
@@ -33,6 +31,12 @@ class PqtmcfgodoResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGODO_RESULT", "proprietary", "$", 3, 3, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.EnumField("state", "quectel_enable code (0 1)", QuectelEnable),
+        rt.DecimalField("initial_distance", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     state: QuectelEnable | str | None = None
@@ -40,71 +44,21 @@ class PqtmcfgodoResult:
     initial_distance: rt.Number | None = None
     """Initial distance [m]: Distance added to the accumulated one (default 0)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgodoResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGODO_RESULT", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMCFGODO_RESULT", 3, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        state = QuectelEnable.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "state", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        initial_distance = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "initial_distance", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, state, initial_distance, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.state),
-            rt.text_of(self.initial_distance),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGODO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"state":' + show(self.state),
-            '"initial_distance":' + show(self.initial_distance),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "state"), 1)
-        out += rt.json_texts(rt.json_member(fields, "initial_distance"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgodoResultAck:
+class PqtmcfgodoResultAck(rt.Sentence):
     """PQTMCFGODO_RESULT (Write acknowledged): Configure odometer: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGODO,OK*36
+    Example (quectel_lg290p):
+    $PQTMCFGODO,OK*36
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGODO_RESULT"
@@ -114,65 +68,25 @@ class PqtmcfgodoResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGODO_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgodoResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGODO_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGODO_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGODO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgodoResultError:
+class PqtmcfgodoResultError(rt.Sentence):
     """PQTMCFGODO_RESULT (Command failed): Configure odometer: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGODO_RESULT"
@@ -184,63 +98,21 @@ class PqtmcfgodoResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGODO_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgodoResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGODO_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGODO_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGODO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgodoResult, PqtmcfgodoResultAck, PqtmcfgodoResultError, )

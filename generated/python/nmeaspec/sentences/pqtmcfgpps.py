@@ -14,17 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelEnable, QuectelPpsMode, QuectelPpsPolarity
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_900: dict[Any, Any] = rt.known("integer 0..900")
-_INTEGER_1_TO_1: dict[Any, Any] = rt.known("integer 1..1")
-
 
 @dataclass(slots=True)
-class Pqtmcfgpps:
+class Pqtmcfgpps(rt.Sentence):
     """PQTMCFGPPS: Configure PPS.
 
-    Example (quectel_lg290p): $PQTMCFGPPS,W,1,1,100,1,1,0*73
+    Example (quectel_lg290p):
+    $PQTMCFGPPS,W,1,1,100,1,1,0*73
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPPS"
@@ -40,6 +36,21 @@ class Pqtmcfgpps:
         ("PQTMCFGPPS_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPPS", "proprietary", "$", 3, 7, (
+        rt.KeywordField("access", "W", "W"),
+        rt.IntegerField("index", "integer 1..1", 1, 1),
+        rt.EnumField("enable", "quectel_enable code (0 1)", QuectelEnable),
+        rt.IntegerField("duration", "integer 0..900", 0, 900, optional=True),
+        rt.EnumField("mode", "quectel_pps_mode code (1 2)", QuectelPpsMode, optional=True),
+        rt.EnumField(
+            "polarity",
+            "quectel_pps_polarity code (0 1)",
+            QuectelPpsPolarity,
+            optional=True,
+        ),
+        rt.IntegerField("reserved", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     index: rt.Number | None = None
@@ -55,119 +66,21 @@ class Pqtmcfgpps:
     reserved: rt.Number | None | rt._Absent = rt.ABSENT
     """Reserved: Reserved; always 0."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgpps:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGPPS", 3, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGPPS", 7, count)
-        optional = count - 3
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        index = (_INTEGER_1_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "index", "integer 1..1", 1, 1, _INTEGER_1_TO_1)) if fields[1] else None
-        enable = QuectelEnable.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "enable", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        duration: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            duration = (_INTEGER_0_TO_900.get(fields[3]) or rt.integer_field(fields[3], address, 4, "duration", "integer 0..900", 0, 900, _INTEGER_0_TO_900)) if fields[3] else None
-        mode: QuectelPpsMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            mode = QuectelPpsMode.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "mode", "quectel_pps_mode code (1 2)", QuectelPpsMode.BY_CODE, "digits", 1, 1)
-        polarity: QuectelPpsPolarity | str | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            polarity = QuectelPpsPolarity.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "polarity", "quectel_pps_polarity code (0 1)", QuectelPpsPolarity.BY_CODE, "digits", 1, 1)
-        reserved: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            reserved = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "reserved", "integer", None, None, _INTEGER)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, index, enable, duration, mode, polarity, reserved, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.index),
-            rt.text_of(self.enable),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.reserved is not rt.ABSENT:
-            last = 3
-        elif self.polarity is not rt.ABSENT:
-            last = 2
-        elif self.mode is not rt.ABSENT:
-            last = 1
-        elif self.duration is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.duration)]
-        if last >= 1:
-            out += [rt.text_of(self.mode)]
-        if last >= 2:
-            out += [rt.text_of(self.polarity)]
-        if last >= 3:
-            out += [rt.text_of(self.reserved)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPPS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"index":' + show(self.index),
-            '"enable":' + show(self.enable),
-        ]
-        if self.duration is not rt.ABSENT:
-            parts.append('"duration":' + show(self.duration))
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        if self.polarity is not rt.ABSENT:
-            parts.append('"polarity":' + show(self.polarity))
-        if self.reserved is not rt.ABSENT:
-            parts.append('"reserved":' + show(self.reserved))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "enable"), 1)
-        if "duration" in fields:
-            out += rt.json_texts(fields["duration"], 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        if "polarity" in fields:
-            out += rt.json_texts(fields["polarity"], 1)
-        if "reserved" in fields:
-            out += rt.json_texts(fields["reserved"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgppsRead:
+class PqtmcfgppsRead(rt.Sentence):
     """PQTMCFGPPS (Read the setting): Configure PPS.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGPPS,R,1*6A
+    Example (quectel_lg290p):
+    $PQTMCFGPPS,R,1*6A
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPPS"
@@ -183,63 +96,21 @@ class PqtmcfgppsRead:
         ("PQTMCFGPPS_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPPS", "proprietary", "$", 2, 2, (
+        rt.KeywordField("access", "R", "R"),
+        rt.IntegerField("index", "integer 1..1", 1, 1),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     index: rt.Number | None = None
     """PPS index: Which PPS output; only 1 (PPS1) is listed."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgppsRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGPPS", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGPPS", 2, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        index = (_INTEGER_1_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "index", "integer 1..1", 1, 1, _INTEGER_1_TO_1)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, index, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.index),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPPS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"index":' + show(self.index),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "index"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgpps, PqtmcfgppsRead, )

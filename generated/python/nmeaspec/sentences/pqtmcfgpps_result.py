@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGPPS_RESULT: Configure PPS: result.
 
-The answer of the module to $PQTMCFGPPS (section 2.3.11): OK followed by the current settings
-when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGPPS (section 2.3.11): OK followed by the current settings when
+the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,17 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelEnable, QuectelErrorCode, QuectelPpsMode, QuectelPpsPolarity
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_900: dict[Any, Any] = rt.known("integer 0..900")
-_INTEGER_1_TO_1: dict[Any, Any] = rt.known("integer 1..1")
-
 
 @dataclass(slots=True)
-class PqtmcfgppsResult:
+class PqtmcfgppsResult(rt.Sentence):
     """PQTMCFGPPS_RESULT: Configure PPS: result.
 
-    Example (quectel_lg290p): $PQTMCFGPPS,OK,1,1,100,1,1,0*20
+    Example (quectel_lg290p):
+    $PQTMCFGPPS,OK,1,1,100,1,1,0*20
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPPS_RESULT"
@@ -35,6 +31,21 @@ class PqtmcfgppsResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPPS_RESULT", "proprietary", "$", 3, 7, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.IntegerField("index", "integer 1..1", 1, 1),
+        rt.EnumField("enable", "quectel_enable code (0 1)", QuectelEnable),
+        rt.IntegerField("duration", "integer 0..900", 0, 900, optional=True),
+        rt.EnumField("mode", "quectel_pps_mode code (1 2)", QuectelPpsMode, optional=True),
+        rt.EnumField(
+            "polarity",
+            "quectel_pps_polarity code (0 1)",
+            QuectelPpsPolarity,
+            optional=True,
+        ),
+        rt.IntegerField("reserved", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     index: rt.Number | None = None
@@ -50,119 +61,21 @@ class PqtmcfgppsResult:
     reserved: rt.Number | None | rt._Absent = rt.ABSENT
     """Reserved: Reserved; always 0."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgppsResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGPPS_RESULT", 3, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGPPS_RESULT", 7, count)
-        optional = count - 3
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        index = (_INTEGER_1_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "index", "integer 1..1", 1, 1, _INTEGER_1_TO_1)) if fields[1] else None
-        enable = QuectelEnable.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "enable", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        duration: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            duration = (_INTEGER_0_TO_900.get(fields[3]) or rt.integer_field(fields[3], address, 4, "duration", "integer 0..900", 0, 900, _INTEGER_0_TO_900)) if fields[3] else None
-        mode: QuectelPpsMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            mode = QuectelPpsMode.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "mode", "quectel_pps_mode code (1 2)", QuectelPpsMode.BY_CODE, "digits", 1, 1)
-        polarity: QuectelPpsPolarity | str | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            polarity = QuectelPpsPolarity.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "polarity", "quectel_pps_polarity code (0 1)", QuectelPpsPolarity.BY_CODE, "digits", 1, 1)
-        reserved: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            reserved = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "reserved", "integer", None, None, _INTEGER)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, index, enable, duration, mode, polarity, reserved, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.index),
-            rt.text_of(self.enable),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.reserved is not rt.ABSENT:
-            last = 3
-        elif self.polarity is not rt.ABSENT:
-            last = 2
-        elif self.mode is not rt.ABSENT:
-            last = 1
-        elif self.duration is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.duration)]
-        if last >= 1:
-            out += [rt.text_of(self.mode)]
-        if last >= 2:
-            out += [rt.text_of(self.polarity)]
-        if last >= 3:
-            out += [rt.text_of(self.reserved)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPPS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"index":' + show(self.index),
-            '"enable":' + show(self.enable),
-        ]
-        if self.duration is not rt.ABSENT:
-            parts.append('"duration":' + show(self.duration))
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        if self.polarity is not rt.ABSENT:
-            parts.append('"polarity":' + show(self.polarity))
-        if self.reserved is not rt.ABSENT:
-            parts.append('"reserved":' + show(self.reserved))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "enable"), 1)
-        if "duration" in fields:
-            out += rt.json_texts(fields["duration"], 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        if "polarity" in fields:
-            out += rt.json_texts(fields["polarity"], 1)
-        if "reserved" in fields:
-            out += rt.json_texts(fields["reserved"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgppsResultAck:
+class PqtmcfgppsResultAck(rt.Sentence):
     """PQTMCFGPPS_RESULT (Write acknowledged): Configure PPS: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGPPS,OK*21
+    Example (quectel_lg290p):
+    $PQTMCFGPPS,OK*21
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPPS_RESULT"
@@ -172,65 +85,25 @@ class PqtmcfgppsResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPPS_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgppsResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGPPS_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGPPS_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPPS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgppsResultError:
+class PqtmcfgppsResultError(rt.Sentence):
     """PQTMCFGPPS_RESULT (Command failed): Configure PPS: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPPS_RESULT"
@@ -242,63 +115,21 @@ class PqtmcfgppsResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPPS_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgppsResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGPPS_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGPPS_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPPS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgppsResult, PqtmcfgppsResultAck, PqtmcfgppsResultError, )

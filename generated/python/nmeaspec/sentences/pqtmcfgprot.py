@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelPortType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER_1_TO_3: dict[Any, Any] = rt.known("integer 1..3")
-
 
 @dataclass(slots=True)
-class Pqtmcfgprot:
+class Pqtmcfgprot(rt.Sentence):
     """PQTMCFGPROT: Configure port protocols.
 
-    Example (quectel_lg290p): $PQTMCFGPROT,W,1,1,00000005,00000005*38
+    Example (quectel_lg290p):
+    $PQTMCFGPROT,W,1,1,00000005,00000005*38
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPROT"
@@ -39,6 +36,14 @@ class Pqtmcfgprot:
         ("PQTMCFGPROT_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPROT", "proprietary", "$", 5, 5, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField("port_type", "quectel_port_type code (1)", QuectelPortType),
+        rt.IntegerField("port_id", "integer 1..3", 1, 3),
+        rt.HexField("input_protocols", "hex number"),
+        rt.HexField("output_protocols", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     port_type: QuectelPortType | str | None = None
@@ -46,83 +51,27 @@ class Pqtmcfgprot:
     port_id: rt.Number | None = None
     """Port ID: Port number; for a UART 1 to 3."""
     input_protocols: rt.Hex | None = None
-    """Input protocols: Protocols the port reads (32 bits as 8 hex digits); default 00000005 (NMEA and RTCM3)."""
+    """Input protocols: Protocols the port reads (32 bits as 8 hex digits); default 00000005 (NMEA
+    and RTCM3)."""
     output_protocols: rt.Hex | None = None
-    """Output protocols: Protocols the port writes (32 bits as 8 hex digits); default 00000005 (NMEA and RTCM3)."""
+    """Output protocols: Protocols the port writes (32 bits as 8 hex digits); default 00000005 (NMEA
+    and RTCM3)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgprot:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PQTMCFGPROT", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PQTMCFGPROT", 5, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        port_type = QuectelPortType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "port_type", "quectel_port_type code (1)", QuectelPortType.BY_CODE, "digits", 1, 1)
-        port_id = (_INTEGER_1_TO_3.get(fields[2]) or rt.integer_field(fields[2], address, 3, "port_id", "integer 1..3", 1, 3, _INTEGER_1_TO_3)) if fields[2] else None
-        input_protocols = (_HEX.get(fields[3]) or rt.hex_field(fields[3], address, 4, "input_protocols", "hex number", _HEX)) if fields[3] else None
-        output_protocols = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "output_protocols", "hex number", _HEX)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, port_type, port_id, input_protocols, output_protocols, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.port_type),
-            rt.text_of(self.port_id),
-            rt.text_of(self.input_protocols),
-            rt.text_of(self.output_protocols),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPROT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"port_type":' + show(self.port_type),
-            '"port_id":' + show(self.port_id),
-            '"input_protocols":' + show(self.input_protocols),
-            '"output_protocols":' + show(self.output_protocols),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "input_protocols"), 1)
-        out += rt.json_texts(rt.json_member(fields, "output_protocols"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgprotRead:
+class PqtmcfgprotRead(rt.Sentence):
     """PQTMCFGPROT (Read the setting): Configure port protocols.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGPROT,R,1,1*3D
+    Example (quectel_lg290p):
+    $PQTMCFGPROT,R,1,1*3D
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPROT"
@@ -138,6 +87,12 @@ class PqtmcfgprotRead:
         ("PQTMCFGPROT_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPROT", "proprietary", "$", 3, 3, (
+        rt.KeywordField("access", "R", "R"),
+        rt.EnumField("port_type", "quectel_port_type code (1)", QuectelPortType),
+        rt.IntegerField("port_id", "integer 1..3", 1, 3),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     port_type: QuectelPortType | str | None = None
@@ -145,62 +100,11 @@ class PqtmcfgprotRead:
     port_id: rt.Number | None = None
     """Port ID: Port number; for a UART 1 to 3."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgprotRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGPROT", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMCFGPROT", 3, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        port_type = QuectelPortType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "port_type", "quectel_port_type code (1)", QuectelPortType.BY_CODE, "digits", 1, 1)
-        port_id = (_INTEGER_1_TO_3.get(fields[2]) or rt.integer_field(fields[2], address, 3, "port_id", "integer 1..3", 1, 3, _INTEGER_1_TO_3)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, port_type, port_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.port_type),
-            rt.text_of(self.port_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPROT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"port_type":' + show(self.port_type),
-            '"port_id":' + show(self.port_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgprot, PqtmcfgprotRead, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGPROT_RESULT: Configure port protocols: result.
 
-The answer of the module to $PQTMCFGPROT (section 2.3.12): OK followed by the current settings
-when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGPROT (section 2.3.12): OK followed by the current settings when
+the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode, QuectelPortType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER_1_TO_3: dict[Any, Any] = rt.known("integer 1..3")
-
 
 @dataclass(slots=True)
-class PqtmcfgprotResult:
+class PqtmcfgprotResult(rt.Sentence):
     """PQTMCFGPROT_RESULT: Configure port protocols: result.
 
-    Example (quectel_lg290p): $PQTMCFGPROT,OK,1,1,00000005,00000005*6B
+    Example (quectel_lg290p):
+    $PQTMCFGPROT,OK,1,1,00000005,00000005*6B
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPROT_RESULT"
@@ -34,6 +31,14 @@ class PqtmcfgprotResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPROT_RESULT", "proprietary", "$", 5, 5, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.EnumField("port_type", "quectel_port_type code (1)", QuectelPortType),
+        rt.IntegerField("port_id", "integer 1..3", 1, 3),
+        rt.HexField("input_protocols", "hex number"),
+        rt.HexField("output_protocols", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     port_type: QuectelPortType | str | None = None
@@ -41,83 +46,27 @@ class PqtmcfgprotResult:
     port_id: rt.Number | None = None
     """Port ID: Port number; for a UART 1 to 3."""
     input_protocols: rt.Hex | None = None
-    """Input protocols: Protocols the port reads (32 bits as 8 hex digits); default 00000005 (NMEA and RTCM3)."""
+    """Input protocols: Protocols the port reads (32 bits as 8 hex digits); default 00000005 (NMEA
+    and RTCM3)."""
     output_protocols: rt.Hex | None = None
-    """Output protocols: Protocols the port writes (32 bits as 8 hex digits); default 00000005 (NMEA and RTCM3)."""
+    """Output protocols: Protocols the port writes (32 bits as 8 hex digits); default 00000005 (NMEA
+    and RTCM3)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgprotResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PQTMCFGPROT_RESULT", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PQTMCFGPROT_RESULT", 5, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        port_type = QuectelPortType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "port_type", "quectel_port_type code (1)", QuectelPortType.BY_CODE, "digits", 1, 1)
-        port_id = (_INTEGER_1_TO_3.get(fields[2]) or rt.integer_field(fields[2], address, 3, "port_id", "integer 1..3", 1, 3, _INTEGER_1_TO_3)) if fields[2] else None
-        input_protocols = (_HEX.get(fields[3]) or rt.hex_field(fields[3], address, 4, "input_protocols", "hex number", _HEX)) if fields[3] else None
-        output_protocols = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "output_protocols", "hex number", _HEX)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, port_type, port_id, input_protocols, output_protocols, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.port_type),
-            rt.text_of(self.port_id),
-            rt.text_of(self.input_protocols),
-            rt.text_of(self.output_protocols),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPROT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"port_type":' + show(self.port_type),
-            '"port_id":' + show(self.port_id),
-            '"input_protocols":' + show(self.input_protocols),
-            '"output_protocols":' + show(self.output_protocols),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "input_protocols"), 1)
-        out += rt.json_texts(rt.json_member(fields, "output_protocols"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgprotResultAck:
+class PqtmcfgprotResultAck(rt.Sentence):
     """PQTMCFGPROT_RESULT (Write acknowledged): Configure port protocols: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGPROT,OK*6B
+    Example (quectel_lg290p):
+    $PQTMCFGPROT,OK*6B
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPROT_RESULT"
@@ -127,65 +76,25 @@ class PqtmcfgprotResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPROT_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgprotResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGPROT_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGPROT_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPROT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgprotResultError:
+class PqtmcfgprotResultError(rt.Sentence):
     """PQTMCFGPROT_RESULT (Command failed): Configure port protocols: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGPROT_RESULT"
@@ -197,63 +106,21 @@ class PqtmcfgprotResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGPROT_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgprotResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGPROT_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGPROT_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGPROT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgprotResult, PqtmcfgprotResultAck, PqtmcfgprotResultError, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGRTCM_RESULT: Configure RTCM output: result.
 
-The answer of the module to $PQTMCFGRTCM (section 2.3.39): OK followed by the current settings
-when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGRTCM (section 2.3.39): OK followed by the current settings when
+the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,18 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode, QuectelRtcmEphMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER_0_TO_0: dict[Any, Any] = rt.known("integer 0..0")
-_INTEGER_0_TO_7200: dict[Any, Any] = rt.known("integer 0..7200")
-_INTEGER_3_TO_7: dict[Any, Any] = rt.known("integer 3..7")
-
 
 @dataclass(slots=True)
-class PqtmcfgrtcmResult:
+class PqtmcfgrtcmResult(rt.Sentence):
     """PQTMCFGRTCM_RESULT: Configure RTCM output: result.
 
-    Example (quectel_lg290p): $PQTMCFGRTCM,OK,4,0,-90.0,07,06,1,0*68
+    Example (quectel_lg290p):
+    $PQTMCFGRTCM,OK,4,0,-90.0,07,06,1,0*68
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGRTCM_RESULT"
@@ -36,6 +31,17 @@ class PqtmcfgrtcmResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGRTCM_RESULT", "proprietary", "$", 8, 8, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.IntegerField("msm_type", "integer 3..7", 3, 7),
+        rt.IntegerField("msm_mode", "integer 0..0", 0, 0),
+        rt.DecimalField("msm_elevation", "decimal number -90..90", -90, 90),
+        rt.TextField("reserved1", "text"),
+        rt.TextField("reserved2", "text"),
+        rt.EnumField("eph_mode", "quectel_rtcm_eph_mode code (0 1 2 3)", QuectelRtcmEphMode),
+        rt.IntegerField("eph_interval", "integer 0..7200", 0, 7200),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     msm_type: rt.Number | None = None
@@ -43,7 +49,8 @@ class PqtmcfgrtcmResult:
     msm_mode: rt.Number | None = None
     """MSM mode: Output when no satellite is tracked; always 0 (no MSM output then)."""
     msm_elevation: rt.Number | None = None
-    """MSM elevation threshold [deg]: Satellites below this elevation are left out of the MSM messages; -90.0 (default) means no limit."""
+    """MSM elevation threshold [deg]: Satellites below this elevation are left out of the MSM
+    messages; -90.0 (default) means no limit."""
     reserved1: str | None = None
     """Reserved: Reserved; default 07 (written with two digits)."""
     reserved2: str | None = None
@@ -53,91 +60,21 @@ class PqtmcfgrtcmResult:
     eph_interval: rt.Number | None = None
     """Ephemeris interval [s]: Interval of the periodic ephemeris output (mode 2 only)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgrtcmResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "PQTMCFGRTCM_RESULT", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "PQTMCFGRTCM_RESULT", 8, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        msm_type = (_INTEGER_3_TO_7.get(fields[1]) or rt.integer_field(fields[1], address, 2, "msm_type", "integer 3..7", 3, 7, _INTEGER_3_TO_7)) if fields[1] else None
-        msm_mode = (_INTEGER_0_TO_0.get(fields[2]) or rt.integer_field(fields[2], address, 3, "msm_mode", "integer 0..0", 0, 0, _INTEGER_0_TO_0)) if fields[2] else None
-        msm_elevation = (_DECIMAL_MINUS_90_TO_90.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "msm_elevation", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[3] else None
-        reserved1 = rt.text_field(fields[4], address, 5, "reserved1", "text", None)
-        reserved2 = rt.text_field(fields[5], address, 6, "reserved2", "text", None)
-        eph_mode = QuectelRtcmEphMode.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "eph_mode", "quectel_rtcm_eph_mode code (0 1 2 3)", QuectelRtcmEphMode.BY_CODE, "digits", 1, 1)
-        eph_interval = (_INTEGER_0_TO_7200.get(fields[7]) or rt.integer_field(fields[7], address, 8, "eph_interval", "integer 0..7200", 0, 7200, _INTEGER_0_TO_7200)) if fields[7] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, msm_type, msm_mode, msm_elevation, reserved1, reserved2, eph_mode, eph_interval, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.msm_type),
-            rt.text_of(self.msm_mode),
-            rt.text_of(self.msm_elevation),
-            rt.text_of(self.reserved1),
-            rt.text_of(self.reserved2),
-            rt.text_of(self.eph_mode),
-            rt.text_of(self.eph_interval),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGRTCM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"msm_type":' + show(self.msm_type),
-            '"msm_mode":' + show(self.msm_mode),
-            '"msm_elevation":' + show(self.msm_elevation),
-            '"reserved1":' + show(self.reserved1),
-            '"reserved2":' + show(self.reserved2),
-            '"eph_mode":' + show(self.eph_mode),
-            '"eph_interval":' + show(self.eph_interval),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "msm_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "msm_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "msm_elevation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "eph_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "eph_interval"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgrtcmResultAck:
+class PqtmcfgrtcmResultAck(rt.Sentence):
     """PQTMCFGRTCM_RESULT (Write acknowledged): Configure RTCM output: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGRTCM,OK*7A
+    Example (quectel_lg290p):
+    $PQTMCFGRTCM,OK*7A
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGRTCM_RESULT"
@@ -147,65 +84,25 @@ class PqtmcfgrtcmResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGRTCM_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgrtcmResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGRTCM_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGRTCM_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGRTCM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgrtcmResultError:
+class PqtmcfgrtcmResultError(rt.Sentence):
     """PQTMCFGRTCM_RESULT (Command failed): Configure RTCM output: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGRTCM_RESULT"
@@ -217,63 +114,21 @@ class PqtmcfgrtcmResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGRTCM_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgrtcmResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGRTCM_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGRTCM_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGRTCM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgrtcmResult, PqtmcfgrtcmResultAck, PqtmcfgrtcmResultError, )

@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelRtkDiffMode, QuectelRtkRelMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO_600: dict[Any, Any] = rt.known("integer 1..600")
-
 
 @dataclass(slots=True)
-class Pqtmcfgrtk:
+class Pqtmcfgrtk(rt.Sentence):
     """PQTMCFGRTK: Configure RTK.
 
-    Example (quectel_lg290p): $PQTMCFGRTK,W,1,1*6C
+    Example (quectel_lg290p):
+    $PQTMCFGRTK,W,1,1,60*46
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGRTK"
@@ -38,6 +36,13 @@ class Pqtmcfgrtk:
         ("PQTMCFGRTK_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGRTK", "proprietary", "$", 3, 4, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField("diff_mode", "quectel_rtk_diff_mode code (0 1 2)", QuectelRtkDiffMode),
+        rt.EnumField("rel_mode", "quectel_rtk_rel_mode code (1 2)", QuectelRtkRelMode),
+        rt.IntegerField("timeout", "integer 1..600", 1, 600, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     diff_mode: QuectelRtkDiffMode | str | None = None
@@ -47,86 +52,21 @@ class Pqtmcfgrtk:
     timeout: rt.Number | None | rt._Absent = rt.ABSENT
     """Maximum differential age [s]: Oldest correction age an RTK fix may use (default 120)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgrtk:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGRTK", 3, count)
-        if count > 4:
-            raise rt.too_many(address, "PQTMCFGRTK", 4, count)
-        optional = count - 3
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        diff_mode = QuectelRtkDiffMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "diff_mode", "quectel_rtk_diff_mode code (0 1 2)", QuectelRtkDiffMode.BY_CODE, "digits", 1, 1)
-        rel_mode = QuectelRtkRelMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "rel_mode", "quectel_rtk_rel_mode code (1 2)", QuectelRtkRelMode.BY_CODE, "digits", 1, 1)
-        timeout: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            timeout = (_INTEGER_1_TO_600.get(fields[3]) or rt.integer_field(fields[3], address, 4, "timeout", "integer 1..600", 1, 600, _INTEGER_1_TO_600)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, diff_mode, rel_mode, timeout, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.diff_mode),
-            rt.text_of(self.rel_mode),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.timeout is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.timeout)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGRTK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"diff_mode":' + show(self.diff_mode),
-            '"rel_mode":' + show(self.rel_mode),
-        ]
-        if self.timeout is not rt.ABSENT:
-            parts.append('"timeout":' + show(self.timeout))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "diff_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rel_mode"), 1)
-        if "timeout" in fields:
-            out += rt.json_texts(fields["timeout"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgrtkRead:
+class PqtmcfgrtkRead(rt.Sentence):
     """PQTMCFGRTK (Read the setting): Configure RTK.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGRTK,R*69
+    Example (quectel_lg290p):
+    $PQTMCFGRTK,R*69
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGRTK"
@@ -142,57 +82,18 @@ class PqtmcfgrtkRead:
         ("PQTMCFGRTK_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGRTK", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgrtkRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGRTK", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGRTK", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGRTK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgrtk, PqtmcfgrtkRead, )

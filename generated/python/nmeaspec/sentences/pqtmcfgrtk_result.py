@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGRTK_RESULT: Configure RTK: result.
 
-The answer of the module to $PQTMCFGRTK (section 2.3.29): OK followed by the current settings
-when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGRTK (section 2.3.29): OK followed by the current settings when
+the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode, QuectelRtkDiffMode, QuectelRtkRelMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO_600: dict[Any, Any] = rt.known("integer 1..600")
-
 
 @dataclass(slots=True)
-class PqtmcfgrtkResult:
+class PqtmcfgrtkResult(rt.Sentence):
     """PQTMCFGRTK_RESULT: Configure RTK: result.
 
-    Example (quectel_lg290p): $PQTMCFGRTK,OK,1,1,120*20
+    Example (quectel_lg290p):
+    $PQTMCFGRTK,OK,1,1,120*20
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGRTK_RESULT"
@@ -33,6 +31,13 @@ class PqtmcfgrtkResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGRTK_RESULT", "proprietary", "$", 3, 4, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.EnumField("diff_mode", "quectel_rtk_diff_mode code (0 1 2)", QuectelRtkDiffMode),
+        rt.EnumField("rel_mode", "quectel_rtk_rel_mode code (1 2)", QuectelRtkRelMode),
+        rt.IntegerField("timeout", "integer 1..600", 1, 600, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     diff_mode: QuectelRtkDiffMode | str | None = None
@@ -42,86 +47,21 @@ class PqtmcfgrtkResult:
     timeout: rt.Number | None | rt._Absent = rt.ABSENT
     """Maximum differential age [s]: Oldest correction age an RTK fix may use (default 120)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgrtkResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGRTK_RESULT", 3, count)
-        if count > 4:
-            raise rt.too_many(address, "PQTMCFGRTK_RESULT", 4, count)
-        optional = count - 3
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        diff_mode = QuectelRtkDiffMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "diff_mode", "quectel_rtk_diff_mode code (0 1 2)", QuectelRtkDiffMode.BY_CODE, "digits", 1, 1)
-        rel_mode = QuectelRtkRelMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "rel_mode", "quectel_rtk_rel_mode code (1 2)", QuectelRtkRelMode.BY_CODE, "digits", 1, 1)
-        timeout: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            timeout = (_INTEGER_1_TO_600.get(fields[3]) or rt.integer_field(fields[3], address, 4, "timeout", "integer 1..600", 1, 600, _INTEGER_1_TO_600)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, diff_mode, rel_mode, timeout, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.diff_mode),
-            rt.text_of(self.rel_mode),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.timeout is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.timeout)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGRTK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"diff_mode":' + show(self.diff_mode),
-            '"rel_mode":' + show(self.rel_mode),
-        ]
-        if self.timeout is not rt.ABSENT:
-            parts.append('"timeout":' + show(self.timeout))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "diff_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rel_mode"), 1)
-        if "timeout" in fields:
-            out += rt.json_texts(fields["timeout"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgrtkResultAck:
+class PqtmcfgrtkResultAck(rt.Sentence):
     """PQTMCFGRTK_RESULT (Write acknowledged): Configure RTK: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGRTK,OK*3F
+    Example (quectel_lg290p):
+    $PQTMCFGRTK,OK*3F
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGRTK_RESULT"
@@ -131,65 +71,25 @@ class PqtmcfgrtkResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGRTK_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgrtkResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGRTK_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGRTK_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGRTK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgrtkResultError:
+class PqtmcfgrtkResultError(rt.Sentence):
     """PQTMCFGRTK_RESULT (Command failed): Configure RTK: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGRTK_RESULT"
@@ -201,63 +101,21 @@ class PqtmcfgrtkResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGRTK_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgrtkResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGRTK_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGRTK_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGRTK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgrtkResult, PqtmcfgrtkResultAck, PqtmcfgrtkResultError, )

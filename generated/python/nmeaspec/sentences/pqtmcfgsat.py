@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SystemId
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-
 
 @dataclass(slots=True)
-class Pqtmcfgsat:
+class Pqtmcfgsat(rt.Sentence):
     """PQTMCFGSAT: Configure satellite mask.
 
-    Example (quectel_lg290p): $PQTMCFGSAT,W,1,1,FFFFFFFF*4B
+    Example (quectel_lg290p):
+    $PQTMCFGSAT,W,4,1,BFFCBFFF,1C003FFF*60
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSAT"
@@ -38,101 +36,44 @@ class Pqtmcfgsat:
         ("PQTMCFGSAT_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSAT", "proprietary", "$", 4, 5, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField("system", "system_id code (1 2 3 4 5 6 F)", SystemId),
+        rt.HexField("signal", "hex number"),
+        rt.HexField("mask_low", "hex number"),
+        rt.HexField("mask_high", "hex number", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     system: SystemId | str | None = None
     """GNSS system: Constellation (NMEA system ID numbering: 1 GPS to 6 NavIC)."""
     signal: rt.Hex | None = None
-    """Signal: Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A, Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo E5a, BDS B2I or QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 Galileo E6, BDS B1C or QZSS L6; 5 BDS B2a; 6 BDS B2b. The answer writes it with two digits (01)."""
+    """Signal: Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A,
+    Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo E5a, BDS B2I or
+    QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 Galileo E6, BDS B1C or QZSS L6; 5 BDS
+    B2a; 6 BDS B2b. The answer writes it with two digits (01)."""
     mask_low: rt.Hex | None = None
     """Satellite mask, low word: One bit per satellite, bit 0 for PRN 1 (32 bits)."""
     mask_high: rt.Hex | None | rt._Absent = rt.ABSENT
-    """Satellite mask, high word: Bit 0 for PRN 33; Galileo and BDS only, left out for the other systems."""
+    """Satellite mask, high word: Bit 0 for PRN 33; Galileo and BDS only, left out for the other
+    systems."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgsat:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PQTMCFGSAT", 4, count)
-        if count > 5:
-            raise rt.too_many(address, "PQTMCFGSAT", 5, count)
-        optional = count - 4
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        system = SystemId.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "system", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
-        signal = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "signal", "hex number", _HEX)) if fields[2] else None
-        mask_low = (_HEX.get(fields[3]) or rt.hex_field(fields[3], address, 4, "mask_low", "hex number", _HEX)) if fields[3] else None
-        mask_high: rt.Hex | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mask_high = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "mask_high", "hex number", _HEX)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, system, signal, mask_low, mask_high, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.system),
-            rt.text_of(self.signal),
-            rt.text_of(self.mask_low),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mask_high is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mask_high)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSAT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"system":' + show(self.system),
-            '"signal":' + show(self.signal),
-            '"mask_low":' + show(self.mask_low),
-        ]
-        if self.mask_high is not rt.ABSENT:
-            parts.append('"mask_high":' + show(self.mask_high))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "signal"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mask_low"), 1)
-        if "mask_high" in fields:
-            out += rt.json_texts(fields["mask_high"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgsatRead:
+class PqtmcfgsatRead(rt.Sentence):
     """PQTMCFGSAT (Read the setting): Configure satellite mask.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGSAT,R,1,1*62
+    Example (quectel_lg290p):
+    $PQTMCFGSAT,R,1,1*62
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSAT"
@@ -148,69 +89,27 @@ class PqtmcfgsatRead:
         ("PQTMCFGSAT_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSAT", "proprietary", "$", 3, 3, (
+        rt.KeywordField("access", "R", "R"),
+        rt.EnumField("system", "system_id code (1 2 3 4 5 6 F)", SystemId),
+        rt.HexField("signal", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     system: SystemId | str | None = None
     """GNSS system: Constellation (NMEA system ID numbering: 1 GPS to 6 NavIC)."""
     signal: rt.Hex | None = None
-    """Signal: Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A, Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo E5a, BDS B2I or QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 Galileo E6, BDS B1C or QZSS L6; 5 BDS B2a; 6 BDS B2b. The answer writes it with two digits (01)."""
+    """Signal: Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A,
+    Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo E5a, BDS B2I or
+    QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 Galileo E6, BDS B1C or QZSS L6; 5 BDS
+    B2a; 6 BDS B2b. The answer writes it with two digits (01)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsatRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGSAT", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMCFGSAT", 3, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        system = SystemId.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "system", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
-        signal = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "signal", "hex number", _HEX)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, system, signal, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.system),
-            rt.text_of(self.signal),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSAT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"system":' + show(self.system),
-            '"signal":' + show(self.signal),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "signal"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgsat, PqtmcfgsatRead, )

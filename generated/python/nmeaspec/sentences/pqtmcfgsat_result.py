@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGSAT_RESULT: Configure satellite mask: result.
 
-The answer of the module to $PQTMCFGSAT (section 2.3.37): OK followed by the current settings
-when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGSAT (section 2.3.37): OK followed by the current settings when
+the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode, SystemId
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-
 
 @dataclass(slots=True)
-class PqtmcfgsatResult:
+class PqtmcfgsatResult(rt.Sentence):
     """PQTMCFGSAT_RESULT: Configure satellite mask: result.
 
-    Example (quectel_lg290p): $PQTMCFGSAT,OK,1,01,FFFFFFFF*28
+    Example (quectel_lg290p):
+    $PQTMCFGSAT,OK,1,01,FFFFFFFF*28
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSAT_RESULT"
@@ -33,101 +31,44 @@ class PqtmcfgsatResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSAT_RESULT", "proprietary", "$", 4, 5, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.EnumField("system", "system_id code (1 2 3 4 5 6 F)", SystemId),
+        rt.HexField("signal", "hex number"),
+        rt.HexField("mask_low", "hex number"),
+        rt.HexField("mask_high", "hex number", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     system: SystemId | str | None = None
     """GNSS system: Constellation (NMEA system ID numbering: 1 GPS to 6 NavIC)."""
     signal: rt.Hex | None = None
-    """Signal: Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A, Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo E5a, BDS B2I or QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 Galileo E6, BDS B1C or QZSS L6; 5 BDS B2a; 6 BDS B2b. The answer writes it with two digits (01)."""
+    """Signal: Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A,
+    Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo E5a, BDS B2I or
+    QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 Galileo E6, BDS B1C or QZSS L6; 5 BDS
+    B2a; 6 BDS B2b. The answer writes it with two digits (01)."""
     mask_low: rt.Hex | None = None
     """Satellite mask, low word: One bit per satellite, bit 0 for PRN 1 (32 bits)."""
     mask_high: rt.Hex | None | rt._Absent = rt.ABSENT
-    """Satellite mask, high word: Bit 0 for PRN 33; Galileo and BDS only, left out for the other systems."""
+    """Satellite mask, high word: Bit 0 for PRN 33; Galileo and BDS only, left out for the other
+    systems."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsatResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PQTMCFGSAT_RESULT", 4, count)
-        if count > 5:
-            raise rt.too_many(address, "PQTMCFGSAT_RESULT", 5, count)
-        optional = count - 4
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        system = SystemId.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "system", "system_id code (1 2 3 4 5 6 F)", SystemId.BY_CODE, "alnum", 1, 1)
-        signal = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "signal", "hex number", _HEX)) if fields[2] else None
-        mask_low = (_HEX.get(fields[3]) or rt.hex_field(fields[3], address, 4, "mask_low", "hex number", _HEX)) if fields[3] else None
-        mask_high: rt.Hex | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mask_high = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "mask_high", "hex number", _HEX)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, system, signal, mask_low, mask_high, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.system),
-            rt.text_of(self.signal),
-            rt.text_of(self.mask_low),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mask_high is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mask_high)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSAT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"system":' + show(self.system),
-            '"signal":' + show(self.signal),
-            '"mask_low":' + show(self.mask_low),
-        ]
-        if self.mask_high is not rt.ABSENT:
-            parts.append('"mask_high":' + show(self.mask_high))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "signal"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mask_low"), 1)
-        if "mask_high" in fields:
-            out += rt.json_texts(fields["mask_high"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgsatResultAck:
+class PqtmcfgsatResultAck(rt.Sentence):
     """PQTMCFGSAT_RESULT (Write acknowledged): Configure satellite mask: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGSAT,OK*34
+    Example (quectel_lg290p):
+    $PQTMCFGSAT,OK*34
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSAT_RESULT"
@@ -137,65 +78,25 @@ class PqtmcfgsatResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSAT_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsatResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGSAT_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGSAT_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSAT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgsatResultError:
+class PqtmcfgsatResultError(rt.Sentence):
     """PQTMCFGSAT_RESULT (Command failed): Configure satellite mask: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSAT_RESULT"
@@ -207,63 +108,21 @@ class PqtmcfgsatResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSAT_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsatResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGSAT_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGSAT_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSAT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgsatResult, PqtmcfgsatResultAck, PqtmcfgsatResultError, )

@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_2: dict[Any, Any] = rt.known("integer 0..2")
-
 
 @dataclass(slots=True)
-class Pqtmcfgsiggrp:
+class Pqtmcfgsiggrp(rt.Sentence):
     """PQTMCFGSIGGRP: Configure signal group.
 
-    Example (quectel_lg290p): $PQTMCFGSIGGRP,W,1*24
+    Example (quectel_lg290p):
+    $PQTMCFGSIGGRP,W,1*24
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSIGGRP"
@@ -37,72 +35,32 @@ class Pqtmcfgsiggrp:
         ("PQTMCFGSIGGRP_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSIGGRP", "proprietary", "$", 2, 2, (
+        rt.KeywordField("access", "W", "W"),
+        rt.IntegerField("group", "integer 0..2", 0, 2),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     group: rt.Number | None = None
-    """Signal group: Signal group number: 0 on LG290P(03) and LG680P(03); 0 (antenna 2 off), 1 (default) or 2 on LG580P(03)."""
+    """Signal group: Signal group number: 0 on LG290P(03) and LG680P(03); 0 (antenna 2 off), 1
+    (default) or 2 on LG580P(03)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgsiggrp:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGSIGGRP", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGSIGGRP", 2, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        group = (_INTEGER_0_TO_2.get(fields[1]) or rt.integer_field(fields[1], address, 2, "group", "integer 0..2", 0, 2, _INTEGER_0_TO_2)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, group, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.group),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSIGGRP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"group":' + show(self.group),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "group"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgsiggrpRead:
+class PqtmcfgsiggrpRead(rt.Sentence):
     """PQTMCFGSIGGRP (Read the setting): Configure signal group.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGSIGGRP,R*3C
+    Example (quectel_lg290p):
+    $PQTMCFGSIGGRP,R*3C
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSIGGRP"
@@ -118,57 +76,18 @@ class PqtmcfgsiggrpRead:
         ("PQTMCFGSIGGRP_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSIGGRP", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsiggrpRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGSIGGRP", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGSIGGRP", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSIGGRP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgsiggrp, PqtmcfgsiggrpRead, )

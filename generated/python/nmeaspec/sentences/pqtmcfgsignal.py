@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-
 
 @dataclass(slots=True)
-class Pqtmcfgsignal:
+class Pqtmcfgsignal(rt.Sentence):
     """PQTMCFGSIGNAL: Configure signals.
 
-    Example (quectel_lg290p): $PQTMCFGSIGNAL,W,7,3,F,3F,7,1*0E
+    Example (quectel_lg290p):
+    $PQTMCFGSIGNAL,W,7,3,F,3F,7,1*0E
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSIGNAL"
@@ -37,6 +35,16 @@ class Pqtmcfgsignal:
         ("PQTMCFGSIGNAL_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSIGNAL", "proprietary", "$", 7, 7, (
+        rt.KeywordField("access", "W", "W"),
+        rt.HexField("gps_signals", "hex number"),
+        rt.HexField("glonass_signals", "hex number"),
+        rt.HexField("galileo_signals", "hex number"),
+        rt.HexField("bds_signals", "hex number"),
+        rt.HexField("qzss_signals", "hex number"),
+        rt.HexField("navic_signals", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     gps_signals: rt.Hex | None = None
@@ -52,87 +60,21 @@ class Pqtmcfgsignal:
     navic_signals: rt.Hex | None = None
     """NavIC signals: NavIC signal mask."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgsignal:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PQTMCFGSIGNAL", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGSIGNAL", 7, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        gps_signals = (_HEX.get(fields[1]) or rt.hex_field(fields[1], address, 2, "gps_signals", "hex number", _HEX)) if fields[1] else None
-        glonass_signals = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "glonass_signals", "hex number", _HEX)) if fields[2] else None
-        galileo_signals = (_HEX.get(fields[3]) or rt.hex_field(fields[3], address, 4, "galileo_signals", "hex number", _HEX)) if fields[3] else None
-        bds_signals = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "bds_signals", "hex number", _HEX)) if fields[4] else None
-        qzss_signals = (_HEX.get(fields[5]) or rt.hex_field(fields[5], address, 6, "qzss_signals", "hex number", _HEX)) if fields[5] else None
-        navic_signals = (_HEX.get(fields[6]) or rt.hex_field(fields[6], address, 7, "navic_signals", "hex number", _HEX)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, gps_signals, glonass_signals, galileo_signals, bds_signals, qzss_signals, navic_signals, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.gps_signals),
-            rt.text_of(self.glonass_signals),
-            rt.text_of(self.galileo_signals),
-            rt.text_of(self.bds_signals),
-            rt.text_of(self.qzss_signals),
-            rt.text_of(self.navic_signals),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSIGNAL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"gps_signals":' + show(self.gps_signals),
-            '"glonass_signals":' + show(self.glonass_signals),
-            '"galileo_signals":' + show(self.galileo_signals),
-            '"bds_signals":' + show(self.bds_signals),
-            '"qzss_signals":' + show(self.qzss_signals),
-            '"navic_signals":' + show(self.navic_signals),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glonass_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "galileo_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bds_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "qzss_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "navic_signals"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgsignalRead:
+class PqtmcfgsignalRead(rt.Sentence):
     """PQTMCFGSIGNAL (Read the setting): Configure signals.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGSIGNAL,R*3A
+    Example (quectel_lg290p):
+    $PQTMCFGSIGNAL,R*3A
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSIGNAL"
@@ -148,57 +90,18 @@ class PqtmcfgsignalRead:
         ("PQTMCFGSIGNAL_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSIGNAL", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsignalRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGSIGNAL", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGSIGNAL", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSIGNAL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgsignal, PqtmcfgsignalRead, )

@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-
 
 @dataclass(slots=True)
-class PqtmcfgsignalResult:
+class PqtmcfgsignalResult(rt.Sentence):
     """PQTMCFGSIGNAL_RESULT: Configure signals: result.
 
-    Example (quectel_lg290p): $PQTMCFGSIGNAL,OK,07,03,0F,3F,07,01*6D
+    Example (quectel_lg290p):
+    $PQTMCFGSIGNAL,OK,07,03,0F,3F,07,01*6D
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSIGNAL_RESULT"
@@ -33,6 +31,16 @@ class PqtmcfgsignalResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSIGNAL_RESULT", "proprietary", "$", 7, 7, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.HexField("gps_signals", "hex number"),
+        rt.HexField("glonass_signals", "hex number"),
+        rt.HexField("galileo_signals", "hex number"),
+        rt.HexField("bds_signals", "hex number"),
+        rt.HexField("qzss_signals", "hex number"),
+        rt.HexField("navic_signals", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     gps_signals: rt.Hex | None = None
@@ -48,87 +56,21 @@ class PqtmcfgsignalResult:
     navic_signals: rt.Hex | None = None
     """NavIC signals: NavIC signal mask."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsignalResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PQTMCFGSIGNAL_RESULT", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGSIGNAL_RESULT", 7, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        gps_signals = (_HEX.get(fields[1]) or rt.hex_field(fields[1], address, 2, "gps_signals", "hex number", _HEX)) if fields[1] else None
-        glonass_signals = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "glonass_signals", "hex number", _HEX)) if fields[2] else None
-        galileo_signals = (_HEX.get(fields[3]) or rt.hex_field(fields[3], address, 4, "galileo_signals", "hex number", _HEX)) if fields[3] else None
-        bds_signals = (_HEX.get(fields[4]) or rt.hex_field(fields[4], address, 5, "bds_signals", "hex number", _HEX)) if fields[4] else None
-        qzss_signals = (_HEX.get(fields[5]) or rt.hex_field(fields[5], address, 6, "qzss_signals", "hex number", _HEX)) if fields[5] else None
-        navic_signals = (_HEX.get(fields[6]) or rt.hex_field(fields[6], address, 7, "navic_signals", "hex number", _HEX)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, gps_signals, glonass_signals, galileo_signals, bds_signals, qzss_signals, navic_signals, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.gps_signals),
-            rt.text_of(self.glonass_signals),
-            rt.text_of(self.galileo_signals),
-            rt.text_of(self.bds_signals),
-            rt.text_of(self.qzss_signals),
-            rt.text_of(self.navic_signals),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSIGNAL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"gps_signals":' + show(self.gps_signals),
-            '"glonass_signals":' + show(self.glonass_signals),
-            '"galileo_signals":' + show(self.galileo_signals),
-            '"bds_signals":' + show(self.bds_signals),
-            '"qzss_signals":' + show(self.qzss_signals),
-            '"navic_signals":' + show(self.navic_signals),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glonass_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "galileo_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bds_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "qzss_signals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "navic_signals"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgsignalResultAck:
+class PqtmcfgsignalResultAck(rt.Sentence):
     """PQTMCFGSIGNAL_RESULT (Write acknowledged): Configure signals: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGSIGNAL,OK*6C
+    Example (quectel_lg290p):
+    $PQTMCFGSIGNAL,OK*6C
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSIGNAL_RESULT"
@@ -138,65 +80,25 @@ class PqtmcfgsignalResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSIGNAL_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsignalResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGSIGNAL_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGSIGNAL_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSIGNAL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgsignalResultError:
+class PqtmcfgsignalResultError(rt.Sentence):
     """PQTMCFGSIGNAL_RESULT (Command failed): Configure signals: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSIGNAL_RESULT"
@@ -208,63 +110,21 @@ class PqtmcfgsignalResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSIGNAL_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsignalResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGSIGNAL_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGSIGNAL_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSIGNAL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfgsignalResult, PqtmcfgsignalResultAck, PqtmcfgsignalResultError, )

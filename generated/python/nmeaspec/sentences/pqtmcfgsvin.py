@@ -15,18 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelSvinMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_10: dict[Any, Any] = rt.known("decimal 0..10")
-_DECIMAL_0_TO_1000: dict[Any, Any] = rt.known("decimal 0..1000")
-_INTEGER_0_TO_86400: dict[Any, Any] = rt.known("integer 0..86400")
-
 
 @dataclass(slots=True)
-class Pqtmcfgsvin:
+class Pqtmcfgsvin(rt.Sentence):
     """PQTMCFGSVIN: Configure survey-in.
 
-    Example (quectel_lg290p): $PQTMCFGSVIN,W,1,3600,1.2,0,0,0*0A
+    Example (quectel_lg290p):
+    $PQTMCFGSVIN,W,1,3600,1.2,0,0,0,2.5*0F
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSVIN"
@@ -42,6 +37,17 @@ class Pqtmcfgsvin:
         ("PQTMCFGSVIN_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSVIN", "proprietary", "$", 7, 8, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField("mode", "quectel_svin_mode code (0 1 2)", QuectelSvinMode),
+        rt.IntegerField("min_fixes", "integer 0..86400", 0, 86400),
+        rt.DecimalField("accuracy_limit", "decimal number 0..1000", 0, 1000),
+        rt.DecimalField("ecef_x", "decimal number"),
+        rt.DecimalField("ecef_y", "decimal number"),
+        rt.DecimalField("ecef_z", "decimal number"),
+        rt.DecimalField("distance", "decimal number 0..10", 0, 10, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     mode: QuectelSvinMode | str | None = None
@@ -57,104 +63,24 @@ class Pqtmcfgsvin:
     ecef_z: rt.Number | None = None
     """ECEF Z [m]: WGS84 ECEF Z of the antenna (fixed mode)."""
     distance: rt.Number | None | rt._Absent = rt.ABSENT
-    """Distance threshold [m]: Survey-in only: a new result replaces the previous one only when they are further apart than this (default 0: always the latest)."""
+    """Distance threshold [m]: Survey-in only: a new result replaces the previous one only when they
+    are further apart than this (default 0: always the latest)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgsvin:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PQTMCFGSVIN", 7, count)
-        if count > 8:
-            raise rt.too_many(address, "PQTMCFGSVIN", 8, count)
-        optional = count - 7
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        mode = QuectelSvinMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "quectel_svin_mode code (0 1 2)", QuectelSvinMode.BY_CODE, "digits", 1, 1)
-        min_fixes = (_INTEGER_0_TO_86400.get(fields[2]) or rt.integer_field(fields[2], address, 3, "min_fixes", "integer 0..86400", 0, 86400, _INTEGER_0_TO_86400)) if fields[2] else None
-        accuracy_limit = (_DECIMAL_0_TO_1000.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "accuracy_limit", "decimal number 0..1000", 0, 1000, _DECIMAL_0_TO_1000)) if fields[3] else None
-        ecef_x = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "ecef_x", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        ecef_y = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "ecef_y", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        ecef_z = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "ecef_z", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        distance: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            distance = (_DECIMAL_0_TO_10.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "distance", "decimal number 0..10", 0, 10, _DECIMAL_0_TO_10)) if fields[7] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, mode, min_fixes, accuracy_limit, ecef_x, ecef_y, ecef_z, distance, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.mode),
-            rt.text_of(self.min_fixes),
-            rt.text_of(self.accuracy_limit),
-            rt.text_of(self.ecef_x),
-            rt.text_of(self.ecef_y),
-            rt.text_of(self.ecef_z),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.distance is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.distance)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSVIN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"mode":' + show(self.mode),
-            '"min_fixes":' + show(self.min_fixes),
-            '"accuracy_limit":' + show(self.accuracy_limit),
-            '"ecef_x":' + show(self.ecef_x),
-            '"ecef_y":' + show(self.ecef_y),
-            '"ecef_z":' + show(self.ecef_z),
-        ]
-        if self.distance is not rt.ABSENT:
-            parts.append('"distance":' + show(self.distance))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "min_fixes"), 1)
-        out += rt.json_texts(rt.json_member(fields, "accuracy_limit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ecef_x"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ecef_y"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ecef_z"), 1)
-        if "distance" in fields:
-            out += rt.json_texts(fields["distance"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgsvinRead:
+class PqtmcfgsvinRead(rt.Sentence):
     """PQTMCFGSVIN (Read the setting): Configure survey-in.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGSVIN,R*26
+    Example (quectel_lg290p):
+    $PQTMCFGSVIN,R*26
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGSVIN"
@@ -170,57 +96,18 @@ class PqtmcfgsvinRead:
         ("PQTMCFGSVIN_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGSVIN", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgsvinRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGSVIN", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGSVIN", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGSVIN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgsvin, PqtmcfgsvinRead, )

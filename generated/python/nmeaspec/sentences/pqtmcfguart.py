@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelBaudRate, QuectelFlowControl, QuectelParity, QuectelStopBits, QuectelUartIndex
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_8_TO_8: dict[Any, Any] = rt.known("integer 8..8")
-
 
 @dataclass(slots=True)
-class Pqtmcfguart:
+class Pqtmcfguart(rt.Sentence):
     """PQTMCFGUART: Configure UART.
 
-    Example (quectel_lg290p): $PQTMCFGUART,W,1,115200,8,0,1,0*0C
+    Example (quectel_lg290p):
+    $PQTMCFGUART,W,1,115200,8,0,1,0*0C
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGUART"
@@ -40,6 +38,20 @@ class Pqtmcfguart:
         ("PQTMCFGUART_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGUART", "proprietary", "$", 7, 7, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField("index", "quectel_uart_index code (1 2 3)", QuectelUartIndex),
+        rt.EnumField(
+            "baud_rate",
+            "quectel_baud_rate code (9600 115200 230400 460800 921600)",
+            QuectelBaudRate,
+        ),
+        rt.IntegerField("data_bits", "integer 8..8", 8, 8),
+        rt.EnumField("parity", "quectel_parity code (0 1 2 3 4)", QuectelParity),
+        rt.EnumField("stop_bits", "quectel_stop_bits code (1 2)", QuectelStopBits),
+        rt.EnumField("flow_control", "quectel_flow_control code (0)", QuectelFlowControl),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     index: QuectelUartIndex | str | None = None
@@ -55,87 +67,21 @@ class Pqtmcfguart:
     flow_control: QuectelFlowControl | str | None = None
     """Flow control: Flow control of the port."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfguart:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PQTMCFGUART", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGUART", 7, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        index = QuectelUartIndex.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "index", "quectel_uart_index code (1 2 3)", QuectelUartIndex.BY_CODE, "digits", 1, 1)
-        baud_rate = QuectelBaudRate.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", QuectelBaudRate.BY_CODE, "digits", 4, 6)
-        data_bits = (_INTEGER_8_TO_8.get(fields[3]) or rt.integer_field(fields[3], address, 4, "data_bits", "integer 8..8", 8, 8, _INTEGER_8_TO_8)) if fields[3] else None
-        parity = QuectelParity.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "parity", "quectel_parity code (0 1 2 3 4)", QuectelParity.BY_CODE, "digits", 1, 1)
-        stop_bits = QuectelStopBits.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "stop_bits", "quectel_stop_bits code (1 2)", QuectelStopBits.BY_CODE, "digits", 1, 1)
-        flow_control = QuectelFlowControl.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "flow_control", "quectel_flow_control code (0)", QuectelFlowControl.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, index, baud_rate, data_bits, parity, stop_bits, flow_control, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.index),
-            rt.text_of(self.baud_rate),
-            rt.text_of(self.data_bits),
-            rt.text_of(self.parity),
-            rt.text_of(self.stop_bits),
-            rt.text_of(self.flow_control),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGUART",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"index":' + show(self.index),
-            '"baud_rate":' + show(self.baud_rate),
-            '"data_bits":' + show(self.data_bits),
-            '"parity":' + show(self.parity),
-            '"stop_bits":' + show(self.stop_bits),
-            '"flow_control":' + show(self.flow_control),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "data_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "parity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "stop_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "flow_control"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfguartCurrentBaud:
+class PqtmcfguartCurrentBaud(rt.Sentence):
     """PQTMCFGUART (Baud rate of the current port): Configure UART.
 
     Sets only the baud rate of the port the command arrives on.
 
-    Example (quectel_lg290p): $PQTMCFGUART,W,115200*18
+    Example (quectel_lg290p):
+    $PQTMCFGUART,W,115200*18
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGUART"
@@ -151,72 +97,35 @@ class PqtmcfguartCurrentBaud:
         ("PQTMCFGUART_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGUART", "proprietary", "$", 2, 2, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField(
+            "baud_rate",
+            "quectel_baud_rate code (9600 115200 230400 460800 921600)",
+            QuectelBaudRate,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     baud_rate: QuectelBaudRate | str | None = None
     """Baud rate [bit/s]: Baud rate of the port."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfguartCurrentBaud:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGUART", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGUART", 2, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        baud_rate = QuectelBaudRate.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", QuectelBaudRate.BY_CODE, "digits", 4, 6)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, baud_rate, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.baud_rate),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGUART",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"baud_rate":' + show(self.baud_rate),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud_rate"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfguartCurrentFull:
+class PqtmcfguartCurrentFull(rt.Sentence):
     """PQTMCFGUART (All settings of the current port): Configure UART.
 
     Sets every line setting of the port the command arrives on.
 
-    Example (quectel_lg290p): $PQTMCFGUART,W,115200,8,0,1,0*11
+    Example (quectel_lg290p):
+    $PQTMCFGUART,W,115200,8,0,1,0*11
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGUART"
@@ -232,6 +141,19 @@ class PqtmcfguartCurrentFull:
         ("PQTMCFGUART_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGUART", "proprietary", "$", 6, 6, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField(
+            "baud_rate",
+            "quectel_baud_rate code (9600 115200 230400 460800 921600)",
+            QuectelBaudRate,
+        ),
+        rt.IntegerField("data_bits", "integer 8..8", 8, 8),
+        rt.EnumField("parity", "quectel_parity code (0 1 2 3 4)", QuectelParity),
+        rt.EnumField("stop_bits", "quectel_stop_bits code (1 2)", QuectelStopBits),
+        rt.EnumField("flow_control", "quectel_flow_control code (0)", QuectelFlowControl),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     baud_rate: QuectelBaudRate | str | None = None
@@ -245,83 +167,21 @@ class PqtmcfguartCurrentFull:
     flow_control: QuectelFlowControl | str | None = None
     """Flow control: Flow control of the port."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfguartCurrentFull:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "PQTMCFGUART", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "PQTMCFGUART", 6, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        baud_rate = QuectelBaudRate.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", QuectelBaudRate.BY_CODE, "digits", 4, 6)
-        data_bits = (_INTEGER_8_TO_8.get(fields[2]) or rt.integer_field(fields[2], address, 3, "data_bits", "integer 8..8", 8, 8, _INTEGER_8_TO_8)) if fields[2] else None
-        parity = QuectelParity.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "parity", "quectel_parity code (0 1 2 3 4)", QuectelParity.BY_CODE, "digits", 1, 1)
-        stop_bits = QuectelStopBits.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "stop_bits", "quectel_stop_bits code (1 2)", QuectelStopBits.BY_CODE, "digits", 1, 1)
-        flow_control = QuectelFlowControl.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "flow_control", "quectel_flow_control code (0)", QuectelFlowControl.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, baud_rate, data_bits, parity, stop_bits, flow_control, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.baud_rate),
-            rt.text_of(self.data_bits),
-            rt.text_of(self.parity),
-            rt.text_of(self.stop_bits),
-            rt.text_of(self.flow_control),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGUART",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"baud_rate":' + show(self.baud_rate),
-            '"data_bits":' + show(self.data_bits),
-            '"parity":' + show(self.parity),
-            '"stop_bits":' + show(self.stop_bits),
-            '"flow_control":' + show(self.flow_control),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "data_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "parity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "stop_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "flow_control"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfguartPortBaud:
+class PqtmcfguartPortBaud(rt.Sentence):
     """PQTMCFGUART (Baud rate of a given port): Configure UART.
 
     Sets only the baud rate of the given port.
 
-    Example (quectel_lg290p): $PQTMCFGUART,W,1,115200*05
+    Example (quectel_lg290p):
+    $PQTMCFGUART,W,1,115200*05
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGUART"
@@ -337,6 +197,16 @@ class PqtmcfguartPortBaud:
         ("PQTMCFGUART_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGUART", "proprietary", "$", 3, 3, (
+        rt.KeywordField("access", "W", "W"),
+        rt.EnumField("index", "quectel_uart_index code (1 2 3)", QuectelUartIndex),
+        rt.EnumField(
+            "baud_rate",
+            "quectel_baud_rate code (9600 115200 230400 460800 921600)",
+            QuectelBaudRate,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     index: QuectelUartIndex | str | None = None
@@ -344,71 +214,21 @@ class PqtmcfguartPortBaud:
     baud_rate: QuectelBaudRate | str | None = None
     """Baud rate [bit/s]: Baud rate of the port."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfguartPortBaud:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMCFGUART", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMCFGUART", 3, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        index = QuectelUartIndex.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "index", "quectel_uart_index code (1 2 3)", QuectelUartIndex.BY_CODE, "digits", 1, 1)
-        baud_rate = QuectelBaudRate.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", QuectelBaudRate.BY_CODE, "digits", 4, 6)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, index, baud_rate, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.index),
-            rt.text_of(self.baud_rate),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGUART",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"index":' + show(self.index),
-            '"baud_rate":' + show(self.baud_rate),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud_rate"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfguartRead:
+class PqtmcfguartRead(rt.Sentence):
     """PQTMCFGUART (Read the setting): Configure UART.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGUART,R*36
+    Example (quectel_lg290p):
+    $PQTMCFGUART,R,1*2B
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGUART"
@@ -424,74 +244,21 @@ class PqtmcfguartRead:
         ("PQTMCFGUART_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGUART", "proprietary", "$", 1, 2, (
+        rt.KeywordField("access", "R", "R"),
+        rt.EnumField("index", "quectel_uart_index code (1 2 3)", QuectelUartIndex, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     index: QuectelUartIndex | str | None | rt._Absent = rt.ABSENT
     """UART index: The port to read; the current port when absent."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfguartRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGUART", 1, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGUART", 2, count)
-        optional = count - 1
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        index: QuectelUartIndex | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            index = QuectelUartIndex.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "index", "quectel_uart_index code (1 2 3)", QuectelUartIndex.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, index, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.index is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.index)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGUART",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        if self.index is not rt.ABSENT:
-            parts.append('"index":' + show(self.index))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        if "index" in fields:
-            out += rt.json_texts(fields["index"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfguart, PqtmcfguartCurrentBaud, PqtmcfguartCurrentFull, PqtmcfguartPortBaud, PqtmcfguartRead, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGUART_RESULT: Configure UART: result.
 
-The answer of the module to $PQTMCFGUART (section 2.3.10): OK followed by the current settings
-when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMCFGUART (section 2.3.10): OK followed by the current settings when
+the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelBaudRate, QuectelErrorCode, QuectelFlowControl, QuectelParity, QuectelStopBits, QuectelUartIndex
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_8_TO_8: dict[Any, Any] = rt.known("integer 8..8")
-
 
 @dataclass(slots=True)
-class PqtmcfguartResult:
+class PqtmcfguartResult(rt.Sentence):
     """PQTMCFGUART_RESULT: Configure UART: result.
 
-    Example (quectel_lg290p): $PQTMCFGUART,OK,1,115200,8,0,1,0*5F
+    Example (quectel_lg290p):
+    $PQTMCFGUART,OK,1,115200,8,0,1,0*5F
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGUART_RESULT"
@@ -33,6 +31,20 @@ class PqtmcfguartResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGUART_RESULT", "proprietary", "$", 7, 7, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.EnumField("index", "quectel_uart_index code (1 2 3)", QuectelUartIndex),
+        rt.EnumField(
+            "baud_rate",
+            "quectel_baud_rate code (9600 115200 230400 460800 921600)",
+            QuectelBaudRate,
+        ),
+        rt.IntegerField("data_bits", "integer 8..8", 8, 8),
+        rt.EnumField("parity", "quectel_parity code (0 1 2 3 4)", QuectelParity),
+        rt.EnumField("stop_bits", "quectel_stop_bits code (1 2)", QuectelStopBits),
+        rt.EnumField("flow_control", "quectel_flow_control code (0)", QuectelFlowControl),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     index: QuectelUartIndex | str | None = None
@@ -48,87 +60,21 @@ class PqtmcfguartResult:
     flow_control: QuectelFlowControl | str | None = None
     """Flow control: Flow control of the port."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfguartResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PQTMCFGUART_RESULT", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PQTMCFGUART_RESULT", 7, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        index = QuectelUartIndex.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "index", "quectel_uart_index code (1 2 3)", QuectelUartIndex.BY_CODE, "digits", 1, 1)
-        baud_rate = QuectelBaudRate.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "baud_rate", "quectel_baud_rate code (9600 115200 230400 460800 921600)", QuectelBaudRate.BY_CODE, "digits", 4, 6)
-        data_bits = (_INTEGER_8_TO_8.get(fields[3]) or rt.integer_field(fields[3], address, 4, "data_bits", "integer 8..8", 8, 8, _INTEGER_8_TO_8)) if fields[3] else None
-        parity = QuectelParity.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "parity", "quectel_parity code (0 1 2 3 4)", QuectelParity.BY_CODE, "digits", 1, 1)
-        stop_bits = QuectelStopBits.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "stop_bits", "quectel_stop_bits code (1 2)", QuectelStopBits.BY_CODE, "digits", 1, 1)
-        flow_control = QuectelFlowControl.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "flow_control", "quectel_flow_control code (0)", QuectelFlowControl.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, index, baud_rate, data_bits, parity, stop_bits, flow_control, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.index),
-            rt.text_of(self.baud_rate),
-            rt.text_of(self.data_bits),
-            rt.text_of(self.parity),
-            rt.text_of(self.stop_bits),
-            rt.text_of(self.flow_control),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGUART",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"index":' + show(self.index),
-            '"baud_rate":' + show(self.baud_rate),
-            '"data_bits":' + show(self.data_bits),
-            '"parity":' + show(self.parity),
-            '"stop_bits":' + show(self.stop_bits),
-            '"flow_control":' + show(self.flow_control),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "index"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "data_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "parity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "stop_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "flow_control"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfguartResultAck:
+class PqtmcfguartResultAck(rt.Sentence):
     """PQTMCFGUART_RESULT (Write acknowledged): Configure UART: result.
 
     The answer to a successful write (W) form: the word OK alone.
 
-    Example (quectel_lg290p): $PQTMCFGUART,OK*60
+    Example (quectel_lg290p):
+    $PQTMCFGUART,OK*60
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGUART_RESULT"
@@ -138,65 +84,25 @@ class PqtmcfguartResultAck:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGUART_RESULT", "proprietary", "$", 1, 1, (
+        rt.KeywordField("status", "OK", "OK"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfguartResultAck:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGUART_RESULT", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGUART_RESULT", 1, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGUART",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfguartResultError:
+class PqtmcfguartResultError(rt.Sentence):
     """PQTMCFGUART_RESULT (Command failed): Configure UART: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGUART_RESULT"
@@ -208,63 +114,21 @@ class PqtmcfguartResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGUART_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfguartResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGUART_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGUART_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGUART",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmcfguartResult, PqtmcfguartResultAck, PqtmcfguartResultError, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGWN: Configure reference week number.
 
-Sets or reads the reference GPS week from which week numbers are resolved (up to 1024 weeks
-later); a week number from the ephemeris takes precedence.
+Sets or reads the reference GPS week from which week numbers are resolved (up to 1024 weeks later);
+a week number from the ephemeris takes precedence.
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO_65535: dict[Any, Any] = rt.known("integer 1..65535")
-
 
 @dataclass(slots=True)
-class Pqtmcfgwn:
+class Pqtmcfgwn(rt.Sentence):
     """PQTMCFGWN: Configure reference week number.
 
-    Example (quectel_lg290p): $PQTMCFGWN,W,2346*17
+    Example (quectel_lg290p):
+    $PQTMCFGWN,W,2346*17
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGWN"
@@ -38,72 +36,31 @@ class Pqtmcfgwn:
         ("PQTMCFGWN_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGWN", "proprietary", "$", 2, 2, (
+        rt.KeywordField("access", "W", "W"),
+        rt.IntegerField("week", "integer 1..65535", 1, 65535),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "W"
     """Write: W: the write (set) form of the command."""
     week: rt.Number | None = None
     """Reference week [week]: GPS week number including rollovers (default 2200)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmcfgwn:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMCFGWN", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMCFGWN", 2, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "W", "W")
-        week = (_INTEGER_1_TO_65535.get(fields[1]) or rt.integer_field(fields[1], address, 2, "week", "integer 1..65535", 1, 65535, _INTEGER_1_TO_65535)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, week, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.week),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGWN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"week":' + show(self.week),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "week"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmcfgwnRead:
+class PqtmcfgwnRead(rt.Sentence):
     """PQTMCFGWN (Read the setting): Configure reference week number.
 
     Asks for the current setting; the answer is OK followed by the setting.
 
-    Example (quectel_lg290p): $PQTMCFGWN,R*3D
+    Example (quectel_lg290p):
+    $PQTMCFGWN,R*3D
     """
 
     SENTENCE: ClassVar[str] = "PQTMCFGWN"
@@ -119,57 +76,18 @@ class PqtmcfgwnRead:
         ("PQTMCFGWN_RESULT", "error", ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMCFGWN", "proprietary", "$", 1, 1, (
+        rt.KeywordField("access", "R", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R: the read (get) form of the command; the module answers with the current setting."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmcfgwnRead:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PQTMCFGWN", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PQTMCFGWN", 1, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMCFGWN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmcfgwn, PqtmcfgwnRead, )

@@ -13,16 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Pqtmdop:
+class Pqtmdop(rt.Sentence):
     """PQTMDOP: Dilution of precision.
 
-    Example (quectel_lg290p): $PQTMDOP,1,570643000,1.01,0.88,0.49,0.73,0.50,0.36,0.35*7C
+    Example (quectel_lg290p):
+    $PQTMDOP,1,570643000,1.01,0.88,0.49,0.73,0.50,0.36,0.35*7C
     """
 
     SENTENCE: ClassVar[str] = "PQTMDOP"
@@ -32,6 +29,18 @@ class Pqtmdop:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMDOP", "proprietary", "$", 9, 9, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.IntegerField("tow", "integer"),
+        rt.DecimalField("gdop", "decimal number"),
+        rt.DecimalField("pdop", "decimal number"),
+        rt.DecimalField("tdop", "decimal number"),
+        rt.DecimalField("vdop", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("ndop", "decimal number"),
+        rt.DecimalField("edop", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     tow: rt.Number | None = None
@@ -51,86 +60,11 @@ class Pqtmdop:
     edop: rt.Number | None = None
     """Easting DOP: Easting DOP; 99.99 when invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmdop:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "PQTMDOP", 9, count)
-        if count > 9:
-            raise rt.too_many(address, "PQTMDOP", 9, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        tow = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "tow", "integer", None, None, _INTEGER)) if fields[1] else None
-        gdop = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "gdop", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        pdop = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "pdop", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        tdop = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "tdop", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        vdop = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "vdop", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        hdop = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "hdop", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        ndop = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "ndop", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        edop = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "edop", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, tow, gdop, pdop, tdop, vdop, hdop, ndop, edop, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.tow),
-            rt.text_of(self.gdop),
-            rt.text_of(self.pdop),
-            rt.text_of(self.tdop),
-            rt.text_of(self.vdop),
-            rt.text_of(self.hdop),
-            rt.text_of(self.ndop),
-            rt.text_of(self.edop),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMDOP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"tow":' + show(self.tow),
-            '"gdop":' + show(self.gdop),
-            '"pdop":' + show(self.pdop),
-            '"tdop":' + show(self.tdop),
-            '"vdop":' + show(self.vdop),
-            '"hdop":' + show(self.hdop),
-            '"ndop":' + show(self.ndop),
-            '"edop":' + show(self.edop),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tow"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ndop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "edop"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmdop, )

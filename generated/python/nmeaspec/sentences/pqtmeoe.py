@@ -13,16 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pqtmeoe:
+class Pqtmeoe(rt.Sentence):
     """PQTMEOE: End of epoch.
 
-    Example (quectel_lg290p): $PQTMEOE,1,190423.000,20241224,2346,212681000*65
+    Example (quectel_lg290p):
+    $PQTMEOE,1,190423.000,20241224,2346,212681000*65
     """
 
     SENTENCE: ClassVar[str] = "PQTMEOE"
@@ -32,6 +29,14 @@ class Pqtmeoe:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMEOE", "proprietary", "$", 5, 5, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.TimeField("utc", "time hhmmss[.s]"),
+        rt.TextField("date", "text of at most 8 characters", 8),
+        rt.IntegerField("week", "integer"),
+        rt.IntegerField("tow", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     utc: rt.Time | None = None
@@ -43,70 +48,11 @@ class Pqtmeoe:
     tow: rt.Number | None = None
     """Time of week [ms]: GPS time of week; empty when invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmeoe:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PQTMEOE", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PQTMEOE", 5, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        utc = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "utc", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = rt.text_field(fields[2], address, 3, "date", "text of at most 8 characters", 8)
-        week = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "week", "integer", None, None, _INTEGER)) if fields[3] else None
-        tow = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "tow", "integer", None, None, _INTEGER)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, utc, date, week, tow, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.utc),
-            rt.text_of(self.date),
-            rt.text_of(self.week),
-            rt.text_of(self.tow),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMEOE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"utc":' + show(self.utc),
-            '"date":' + show(self.date),
-            '"week":' + show(self.week),
-            '"tow":' + show(self.tow),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "utc"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tow"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmeoe, )

@@ -13,16 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Pqtmepe:
+class Pqtmepe(rt.Sentence):
     """PQTMEPE: Estimated position error.
 
-    Example (quectel_lg290p): $PQTMEPE,2,1.000,1.000,1.000,1.414,1.732*52
+    Example (quectel_lg290p):
+    $PQTMEPE,2,1.000,1.000,1.000,1.414,1.732*52
     """
 
     SENTENCE: ClassVar[str] = "PQTMEPE"
@@ -32,6 +29,15 @@ class Pqtmepe:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMEPE", "proprietary", "$", 6, 6, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.DecimalField("north", "decimal number"),
+        rt.DecimalField("east", "decimal number"),
+        rt.DecimalField("down", "decimal number"),
+        rt.DecimalField("horizontal", "decimal number"),
+        rt.DecimalField("spherical", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 2 for the layout described here."""
     north: rt.Number | None = None
@@ -45,74 +51,11 @@ class Pqtmepe:
     spherical: rt.Number | None = None
     """3D error [m]: Estimated 3D error."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmepe:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "PQTMEPE", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "PQTMEPE", 6, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        north = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "north", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        east = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "east", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        down = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "down", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        horizontal = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "horizontal", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        spherical = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "spherical", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, north, east, down, horizontal, spherical, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.north),
-            rt.text_of(self.east),
-            rt.text_of(self.down),
-            rt.text_of(self.horizontal),
-            rt.text_of(self.spherical),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMEPE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"north":' + show(self.north),
-            '"east":' + show(self.east),
-            '"down":' + show(self.down),
-            '"horizontal":' + show(self.horizontal),
-            '"spherical":' + show(self.spherical),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "down"), 1)
-        out += rt.json_texts(rt.json_member(fields, "horizontal"), 1)
-        out += rt.json_texts(rt.json_member(fields, "spherical"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmepe, )

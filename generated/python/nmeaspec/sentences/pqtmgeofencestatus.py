@@ -14,24 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelGeofenceState
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PqtmgeofencestatusState:
-    """One entry of geofence states (4 to 4 per sentence)."""
-
-    state: QuectelGeofenceState | str | None = None
-    """State: State of geofence N (0 to 3); unknown while there is no fix."""
-
-
-@dataclass(slots=True)
-class Pqtmgeofencestatus:
+class Pqtmgeofencestatus(rt.Sentence):
     """PQTMGEOFENCESTATUS: Geofence status.
 
-    Example (quectel_lg290p): $PQTMGEOFENCESTATUS,1,124521.000,1,2,2,2*27
+    Example (quectel_lg290p):
+    $PQTMGEOFENCESTATUS,1,124521.000,1,2,2,2*27
     """
 
     SENTENCE: ClassVar[str] = "PQTMGEOFENCESTATUS"
@@ -41,6 +30,14 @@ class Pqtmgeofencestatus:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMGEOFENCESTATUS", "proprietary", "$", 2, 6, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.Group("states", None, (
+            rt.EnumField("state", "quectel_geofence_state code (0 1 2)", QuectelGeofenceState),
+        ), 4, 4),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     time: rt.Time | None = None
@@ -48,70 +45,11 @@ class Pqtmgeofencestatus:
     states: list[QuectelGeofenceState | str | None] = field(default_factory=list)
     """Geofence states: 4 to 4 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmgeofencestatus:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 1, 4)
-        optional = count - 2 - repeats * 1
-        if count < 6 or optional > 0:
-            rt.split_group(address, "PQTMGEOFENCESTATUS", "states", count, 2, 1, 4, 4, 0)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        states: list[QuectelGeofenceState | str | None] = []
-        pos = 2
-        for entry in range(repeats):
-            states.append(QuectelGeofenceState.BY_CODE.get(fields[pos]) or rt.enum_field(fields[pos], address, pos + 1, f"states[{entry + 1}].state", "quectel_geofence_state code (0 1 2)", QuectelGeofenceState.BY_CODE, "digits", 1, 1))
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, time, states, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.time),
-        ]
-        for entry in self.states:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMGEOFENCESTATUS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"time":' + show(self.time),
-            '"states":[' + ",".join(show(entry) for entry in self.states) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        for entry in rt.json_list(fields, "states"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmgeofencestatus, )

@@ -15,21 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelSolutionType, QuectelTimeReference, QuectelTimeStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_360: dict[Any, Any] = rt.known("decimal 0..360")
-_DECIMAL_MINUS_180_TO_180: dict[Any, Any] = rt.known("decimal -180..180")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_4095: dict[Any, Any] = rt.known("integer 0..4095")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pqtmnav:
+class Pqtmnav(rt.Sentence):
     """PQTMNAV: Navigation information.
 
-    Example (quectel_lg290p): $PQTMNAV,1,1,1,190423.000,20241224,212681000,2346,18,,,12,,31.45874521,117.41532415,45.1254,-6.1245,,,1.2451,2.1254,5.1242,,,290,1.0,,78,56,,,,,,,1.2101,1.2148,0.4578,1.1547,,,45.124,,*43
+    Example (quectel_lg290p):
+    $PQTMNAV,1,1,1,190423.000,20241224,212681000,2346,18,,,12,,31.45874521,117.41532415,45.1254,-6.1245,,,1.2451,2.1254,5.1242,,,290,1.0,,78,56,,,,,,,1.2101,1.2148,0.4578,1.1547,,,45.124,,*43
     """
 
     SENTENCE: ClassVar[str] = "PQTMNAV"
@@ -39,6 +31,56 @@ class Pqtmnav:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMNAV", "proprietary", "$", 43, 43, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.EnumField("time_status", "quectel_time_status code (0 1)", QuectelTimeStatus),
+        rt.EnumField("time_reference", "quectel_time_reference code (1 4)", QuectelTimeReference),
+        rt.TimeField("utc", "time hhmmss[.s]"),
+        rt.TextField("date", "text of at most 8 characters", 8),
+        rt.IntegerField("tow", "integer"),
+        rt.IntegerField("week", "integer"),
+        rt.IntegerField("leap_seconds", "integer"),
+        rt.TextField("reserved1", "text"),
+        rt.TextField("reserved2", "text"),
+        rt.EnumField(
+            "solution_type",
+            "quectel_solution_type code (0 1 2 5 8 12)",
+            QuectelSolutionType,
+        ),
+        rt.TextField("reserved3", "text"),
+        rt.DecimalField("latitude", "decimal number -90..90", -90, 90),
+        rt.DecimalField("longitude", "decimal number -180..180", -180, 180),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.DecimalField("separation", "decimal number"),
+        rt.TextField("reserved4", "text"),
+        rt.TextField("reserved5", "text"),
+        rt.DecimalField("lat_std", "decimal number"),
+        rt.DecimalField("lon_std", "decimal number"),
+        rt.DecimalField("alt_std", "decimal number"),
+        rt.TextField("reserved6", "text"),
+        rt.TextField("reserved7", "text"),
+        rt.IntegerField("diff_station", "integer 0..4095", 0, 4095),
+        rt.DecimalField("diff_age", "decimal number"),
+        rt.TextField("reserved8", "text"),
+        rt.IntegerField("satellites_in_view", "integer"),
+        rt.IntegerField("satellites_used", "integer"),
+        rt.TextField("reserved9", "text"),
+        rt.TextField("reserved10", "text"),
+        rt.TextField("reserved11", "text"),
+        rt.TextField("reserved12", "text"),
+        rt.TextField("reserved13", "text"),
+        rt.TextField("reserved14", "text"),
+        rt.DecimalField("h_vel", "decimal number"),
+        rt.DecimalField("v_vel", "decimal number"),
+        rt.DecimalField("h_vel_std", "decimal number"),
+        rt.DecimalField("v_vel_std", "decimal number"),
+        rt.TextField("reserved15", "text"),
+        rt.TextField("reserved16", "text"),
+        rt.DecimalField("course", "decimal number 0..360", 0, 360),
+        rt.TextField("reserved17", "text"),
+        rt.TextField("reserved18", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     time_status: QuectelTimeStatus | str | None = None
@@ -70,7 +112,8 @@ class Pqtmnav:
     altitude: rt.Number | None = None
     """Altitude [m]: Height above mean sea level; empty when invalid."""
     separation: rt.Number | None = None
-    """Geoidal separation [m]: Geoid minus ellipsoid, negative when mean sea level lies below the WGS84 ellipsoid; empty when invalid."""
+    """Geoidal separation [m]: Geoid minus ellipsoid, negative when mean sea level lies below the
+    WGS84 ellipsoid; empty when invalid."""
     reserved4: str | None = None
     """Reserved: Reserved; always empty."""
     reserved5: str | None = None
@@ -126,222 +169,11 @@ class Pqtmnav:
     reserved18: str | None = None
     """Reserved: Reserved; always empty."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmnav:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 43:
-            raise rt.too_few(address, "PQTMNAV", 43, count)
-        if count > 43:
-            raise rt.too_many(address, "PQTMNAV", 43, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        time_status = QuectelTimeStatus.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "time_status", "quectel_time_status code (0 1)", QuectelTimeStatus.BY_CODE, "digits", 1, 1)
-        time_reference = QuectelTimeReference.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "time_reference", "quectel_time_reference code (1 4)", QuectelTimeReference.BY_CODE, "digits", 1, 1)
-        utc = (_TIME.get(fields[3]) or rt.time_field(fields[3], address, 4, "utc", "time hhmmss[.s]", _TIME)) if fields[3] else None
-        date = rt.text_field(fields[4], address, 5, "date", "text of at most 8 characters", 8)
-        tow = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "tow", "integer", None, None, _INTEGER)) if fields[5] else None
-        week = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "week", "integer", None, None, _INTEGER)) if fields[6] else None
-        leap_seconds = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "leap_seconds", "integer", None, None, _INTEGER)) if fields[7] else None
-        reserved1 = rt.text_field(fields[8], address, 9, "reserved1", "text", None)
-        reserved2 = rt.text_field(fields[9], address, 10, "reserved2", "text", None)
-        solution_type = QuectelSolutionType.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "solution_type", "quectel_solution_type code (0 1 2 5 8 12)", QuectelSolutionType.BY_CODE, "digits", 1, 2)
-        reserved3 = rt.text_field(fields[11], address, 12, "reserved3", "text", None)
-        latitude = (_DECIMAL_MINUS_90_TO_90.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "latitude", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[12] else None
-        longitude = (_DECIMAL_MINUS_180_TO_180.get(fields[13]) or rt.decimal_field(fields[13], address, 14, "longitude", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[13] else None
-        altitude = (_DECIMAL.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "altitude", "decimal number", None, None, _DECIMAL)) if fields[14] else None
-        separation = (_DECIMAL.get(fields[15]) or rt.decimal_field(fields[15], address, 16, "separation", "decimal number", None, None, _DECIMAL)) if fields[15] else None
-        reserved4 = rt.text_field(fields[16], address, 17, "reserved4", "text", None)
-        reserved5 = rt.text_field(fields[17], address, 18, "reserved5", "text", None)
-        lat_std = (_DECIMAL.get(fields[18]) or rt.decimal_field(fields[18], address, 19, "lat_std", "decimal number", None, None, _DECIMAL)) if fields[18] else None
-        lon_std = (_DECIMAL.get(fields[19]) or rt.decimal_field(fields[19], address, 20, "lon_std", "decimal number", None, None, _DECIMAL)) if fields[19] else None
-        alt_std = (_DECIMAL.get(fields[20]) or rt.decimal_field(fields[20], address, 21, "alt_std", "decimal number", None, None, _DECIMAL)) if fields[20] else None
-        reserved6 = rt.text_field(fields[21], address, 22, "reserved6", "text", None)
-        reserved7 = rt.text_field(fields[22], address, 23, "reserved7", "text", None)
-        diff_station = (_INTEGER_0_TO_4095.get(fields[23]) or rt.integer_field(fields[23], address, 24, "diff_station", "integer 0..4095", 0, 4095, _INTEGER_0_TO_4095)) if fields[23] else None
-        diff_age = (_DECIMAL.get(fields[24]) or rt.decimal_field(fields[24], address, 25, "diff_age", "decimal number", None, None, _DECIMAL)) if fields[24] else None
-        reserved8 = rt.text_field(fields[25], address, 26, "reserved8", "text", None)
-        satellites_in_view = (_INTEGER.get(fields[26]) or rt.integer_field(fields[26], address, 27, "satellites_in_view", "integer", None, None, _INTEGER)) if fields[26] else None
-        satellites_used = (_INTEGER.get(fields[27]) or rt.integer_field(fields[27], address, 28, "satellites_used", "integer", None, None, _INTEGER)) if fields[27] else None
-        reserved9 = rt.text_field(fields[28], address, 29, "reserved9", "text", None)
-        reserved10 = rt.text_field(fields[29], address, 30, "reserved10", "text", None)
-        reserved11 = rt.text_field(fields[30], address, 31, "reserved11", "text", None)
-        reserved12 = rt.text_field(fields[31], address, 32, "reserved12", "text", None)
-        reserved13 = rt.text_field(fields[32], address, 33, "reserved13", "text", None)
-        reserved14 = rt.text_field(fields[33], address, 34, "reserved14", "text", None)
-        h_vel = (_DECIMAL.get(fields[34]) or rt.decimal_field(fields[34], address, 35, "h_vel", "decimal number", None, None, _DECIMAL)) if fields[34] else None
-        v_vel = (_DECIMAL.get(fields[35]) or rt.decimal_field(fields[35], address, 36, "v_vel", "decimal number", None, None, _DECIMAL)) if fields[35] else None
-        h_vel_std = (_DECIMAL.get(fields[36]) or rt.decimal_field(fields[36], address, 37, "h_vel_std", "decimal number", None, None, _DECIMAL)) if fields[36] else None
-        v_vel_std = (_DECIMAL.get(fields[37]) or rt.decimal_field(fields[37], address, 38, "v_vel_std", "decimal number", None, None, _DECIMAL)) if fields[37] else None
-        reserved15 = rt.text_field(fields[38], address, 39, "reserved15", "text", None)
-        reserved16 = rt.text_field(fields[39], address, 40, "reserved16", "text", None)
-        course = (_DECIMAL_0_TO_360.get(fields[40]) or rt.decimal_field(fields[40], address, 41, "course", "decimal number 0..360", 0, 360, _DECIMAL_0_TO_360)) if fields[40] else None
-        reserved17 = rt.text_field(fields[41], address, 42, "reserved17", "text", None)
-        reserved18 = rt.text_field(fields[42], address, 43, "reserved18", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, time_status, time_reference, utc, date, tow, week, leap_seconds, reserved1, reserved2, solution_type, reserved3, latitude, longitude, altitude, separation, reserved4, reserved5, lat_std, lon_std, alt_std, reserved6, reserved7, diff_station, diff_age, reserved8, satellites_in_view, satellites_used, reserved9, reserved10, reserved11, reserved12, reserved13, reserved14, h_vel, v_vel, h_vel_std, v_vel_std, reserved15, reserved16, course, reserved17, reserved18, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.time_status),
-            rt.text_of(self.time_reference),
-            rt.text_of(self.utc),
-            rt.text_of(self.date),
-            rt.text_of(self.tow),
-            rt.text_of(self.week),
-            rt.text_of(self.leap_seconds),
-            rt.text_of(self.reserved1),
-            rt.text_of(self.reserved2),
-            rt.text_of(self.solution_type),
-            rt.text_of(self.reserved3),
-            rt.text_of(self.latitude),
-            rt.text_of(self.longitude),
-            rt.text_of(self.altitude),
-            rt.text_of(self.separation),
-            rt.text_of(self.reserved4),
-            rt.text_of(self.reserved5),
-            rt.text_of(self.lat_std),
-            rt.text_of(self.lon_std),
-            rt.text_of(self.alt_std),
-            rt.text_of(self.reserved6),
-            rt.text_of(self.reserved7),
-            rt.text_of(self.diff_station),
-            rt.text_of(self.diff_age),
-            rt.text_of(self.reserved8),
-            rt.text_of(self.satellites_in_view),
-            rt.text_of(self.satellites_used),
-            rt.text_of(self.reserved9),
-            rt.text_of(self.reserved10),
-            rt.text_of(self.reserved11),
-            rt.text_of(self.reserved12),
-            rt.text_of(self.reserved13),
-            rt.text_of(self.reserved14),
-            rt.text_of(self.h_vel),
-            rt.text_of(self.v_vel),
-            rt.text_of(self.h_vel_std),
-            rt.text_of(self.v_vel_std),
-            rt.text_of(self.reserved15),
-            rt.text_of(self.reserved16),
-            rt.text_of(self.course),
-            rt.text_of(self.reserved17),
-            rt.text_of(self.reserved18),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMNAV",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"time_status":' + show(self.time_status),
-            '"time_reference":' + show(self.time_reference),
-            '"utc":' + show(self.utc),
-            '"date":' + show(self.date),
-            '"tow":' + show(self.tow),
-            '"week":' + show(self.week),
-            '"leap_seconds":' + show(self.leap_seconds),
-            '"reserved1":' + show(self.reserved1),
-            '"reserved2":' + show(self.reserved2),
-            '"solution_type":' + show(self.solution_type),
-            '"reserved3":' + show(self.reserved3),
-            '"latitude":' + show(self.latitude),
-            '"longitude":' + show(self.longitude),
-            '"altitude":' + show(self.altitude),
-            '"separation":' + show(self.separation),
-            '"reserved4":' + show(self.reserved4),
-            '"reserved5":' + show(self.reserved5),
-            '"lat_std":' + show(self.lat_std),
-            '"lon_std":' + show(self.lon_std),
-            '"alt_std":' + show(self.alt_std),
-            '"reserved6":' + show(self.reserved6),
-            '"reserved7":' + show(self.reserved7),
-            '"diff_station":' + show(self.diff_station),
-            '"diff_age":' + show(self.diff_age),
-            '"reserved8":' + show(self.reserved8),
-            '"satellites_in_view":' + show(self.satellites_in_view),
-            '"satellites_used":' + show(self.satellites_used),
-            '"reserved9":' + show(self.reserved9),
-            '"reserved10":' + show(self.reserved10),
-            '"reserved11":' + show(self.reserved11),
-            '"reserved12":' + show(self.reserved12),
-            '"reserved13":' + show(self.reserved13),
-            '"reserved14":' + show(self.reserved14),
-            '"h_vel":' + show(self.h_vel),
-            '"v_vel":' + show(self.v_vel),
-            '"h_vel_std":' + show(self.h_vel_std),
-            '"v_vel_std":' + show(self.v_vel_std),
-            '"reserved15":' + show(self.reserved15),
-            '"reserved16":' + show(self.reserved16),
-            '"course":' + show(self.course),
-            '"reserved17":' + show(self.reserved17),
-            '"reserved18":' + show(self.reserved18),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "utc"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tow"), 1)
-        out += rt.json_texts(rt.json_member(fields, "week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "leap_seconds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "solution_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved3"), 1)
-        out += rt.json_texts(rt.json_member(fields, "latitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "longitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "separation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved4"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved5"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "alt_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved6"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved7"), 1)
-        out += rt.json_texts(rt.json_member(fields, "diff_station"), 1)
-        out += rt.json_texts(rt.json_member(fields, "diff_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved8"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites_in_view"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites_used"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved9"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved10"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved11"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved12"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved13"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved14"), 1)
-        out += rt.json_texts(rt.json_member(fields, "h_vel"), 1)
-        out += rt.json_texts(rt.json_member(fields, "v_vel"), 1)
-        out += rt.json_texts(rt.json_member(fields, "h_vel_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "v_vel_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved15"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved16"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved17"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved18"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmnav, )

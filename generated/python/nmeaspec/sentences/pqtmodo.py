@@ -14,17 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelEnable
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pqtmodo:
+class Pqtmodo(rt.Sentence):
     """PQTMODO: Odometer.
 
-    Example (quectel_lg290p): $PQTMODO,1,120635.000,1,112.3*6E
+    Example (quectel_lg290p):
+    $PQTMODO,1,120635.000,1,112.3*6E
     """
 
     SENTENCE: ClassVar[str] = "PQTMODO"
@@ -34,6 +30,13 @@ class Pqtmodo:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMODO", "proprietary", "$", 4, 4, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("state", "quectel_enable code (0 1)", QuectelEnable),
+        rt.DecimalField("distance", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     time: rt.Time | None = None
@@ -41,68 +44,14 @@ class Pqtmodo:
     state: QuectelEnable | str | None = None
     """State: Odometer on or off."""
     distance: rt.Number | None = None
-    """Distance [m]: Distance accumulated since the last reset plus the initial distance of PQTMCFGODO; not kept across power cycles."""
+    """Distance [m]: Distance accumulated since the last reset plus the initial distance of
+    PQTMCFGODO; not kept across power cycles."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmodo:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PQTMODO", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PQTMODO", 4, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        state = QuectelEnable.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "state", "quectel_enable code (0 1)", QuectelEnable.BY_CODE, "digits", 1, 1)
-        distance = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "distance", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, time, state, distance, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.time),
-            rt.text_of(self.state),
-            rt.text_of(self.distance),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMODO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"time":' + show(self.time),
-            '"state":' + show(self.state),
-            '"distance":' + show(self.distance),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "state"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmodo, )

@@ -13,16 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Pqtmpl:
+class Pqtmpl(rt.Sentence):
     """PQTMPL: Protection levels.
 
-    Example (quectel_lg290p): $PQTMPL,1,55045200,5.00,1,1,2879,2718,4766,5344,4323,10902,,,*1C
+    Example (quectel_lg290p):
+    $PQTMPL,1,55045200,5.00,1,1,2879,2718,4766,5344,4323,10902,,,*1C
     """
 
     SENTENCE: ClassVar[str] = "PQTMPL"
@@ -32,6 +29,23 @@ class Pqtmpl:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMPL", "proprietary", "$", 14, 14, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.IntegerField("tow", "integer"),
+        rt.DecimalField("probability", "decimal number"),
+        rt.IntegerField("reserved1", "integer"),
+        rt.IntegerField("reserved2", "integer"),
+        rt.IntegerField("pl_pos_north", "integer"),
+        rt.IntegerField("pl_pos_east", "integer"),
+        rt.IntegerField("pl_pos_down", "integer"),
+        rt.IntegerField("pl_vel_north", "integer"),
+        rt.IntegerField("pl_vel_east", "integer"),
+        rt.IntegerField("pl_vel_down", "integer"),
+        rt.TextField("reserved3", "text"),
+        rt.TextField("reserved4", "text"),
+        rt.IntegerField("pl_time", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     tow: rt.Number | None = None
@@ -61,106 +75,11 @@ class Pqtmpl:
     pl_time: rt.Number | None = None
     """Time protection level [ns]: Empty when invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmpl:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 14:
-            raise rt.too_few(address, "PQTMPL", 14, count)
-        if count > 14:
-            raise rt.too_many(address, "PQTMPL", 14, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        tow = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "tow", "integer", None, None, _INTEGER)) if fields[1] else None
-        probability = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "probability", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        reserved1 = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "reserved1", "integer", None, None, _INTEGER)) if fields[3] else None
-        reserved2 = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "reserved2", "integer", None, None, _INTEGER)) if fields[4] else None
-        pl_pos_north = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "pl_pos_north", "integer", None, None, _INTEGER)) if fields[5] else None
-        pl_pos_east = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "pl_pos_east", "integer", None, None, _INTEGER)) if fields[6] else None
-        pl_pos_down = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "pl_pos_down", "integer", None, None, _INTEGER)) if fields[7] else None
-        pl_vel_north = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "pl_vel_north", "integer", None, None, _INTEGER)) if fields[8] else None
-        pl_vel_east = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "pl_vel_east", "integer", None, None, _INTEGER)) if fields[9] else None
-        pl_vel_down = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "pl_vel_down", "integer", None, None, _INTEGER)) if fields[10] else None
-        reserved3 = rt.text_field(fields[11], address, 12, "reserved3", "text", None)
-        reserved4 = rt.text_field(fields[12], address, 13, "reserved4", "text", None)
-        pl_time = (_INTEGER.get(fields[13]) or rt.integer_field(fields[13], address, 14, "pl_time", "integer", None, None, _INTEGER)) if fields[13] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, tow, probability, reserved1, reserved2, pl_pos_north, pl_pos_east, pl_pos_down, pl_vel_north, pl_vel_east, pl_vel_down, reserved3, reserved4, pl_time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.tow),
-            rt.text_of(self.probability),
-            rt.text_of(self.reserved1),
-            rt.text_of(self.reserved2),
-            rt.text_of(self.pl_pos_north),
-            rt.text_of(self.pl_pos_east),
-            rt.text_of(self.pl_pos_down),
-            rt.text_of(self.pl_vel_north),
-            rt.text_of(self.pl_vel_east),
-            rt.text_of(self.pl_vel_down),
-            rt.text_of(self.reserved3),
-            rt.text_of(self.reserved4),
-            rt.text_of(self.pl_time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMPL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"tow":' + show(self.tow),
-            '"probability":' + show(self.probability),
-            '"reserved1":' + show(self.reserved1),
-            '"reserved2":' + show(self.reserved2),
-            '"pl_pos_north":' + show(self.pl_pos_north),
-            '"pl_pos_east":' + show(self.pl_pos_east),
-            '"pl_pos_down":' + show(self.pl_pos_down),
-            '"pl_vel_north":' + show(self.pl_vel_north),
-            '"pl_vel_east":' + show(self.pl_vel_east),
-            '"pl_vel_down":' + show(self.pl_vel_down),
-            '"reserved3":' + show(self.reserved3),
-            '"reserved4":' + show(self.reserved4),
-            '"pl_time":' + show(self.pl_time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tow"), 1)
-        out += rt.json_texts(rt.json_member(fields, "probability"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pl_pos_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pl_pos_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pl_pos_down"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pl_vel_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pl_vel_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pl_vel_down"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved3"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved4"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pl_time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmpl, )

@@ -14,19 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelFixType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_MINUS_180_TO_180: dict[Any, Any] = rt.known("decimal -180..180")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pqtmpvt:
+class Pqtmpvt(rt.Sentence):
     """PQTMPVT: Position, velocity and time.
 
-    Example (quectel_lg290p): $PQTMPVT,1,1000,20221225,163355.000,,0,00,,,,,,,,,,,99.99,99.99*79
+    Example (quectel_lg290p):
+    $PQTMPVT,1,31075000,20221225,083737.000,,3,09,18,31.12738291,117.26372910,34.212,5.267,3.212,2.928,0.238,4.346,34.12,2.16,4.38*51
     """
 
     SENTENCE: ClassVar[str] = "PQTMPVT"
@@ -36,6 +30,28 @@ class Pqtmpvt:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMPVT", "proprietary", "$", 19, 19, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.IntegerField("tow", "integer"),
+        rt.TextField("date", "text of at most 8 characters", 8),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("reserved", "text"),
+        rt.EnumField("fix_type", "quectel_fix_type code (0 1 2 3)", QuectelFixType),
+        rt.IntegerField("satellites", "integer"),
+        rt.IntegerField("leap_seconds", "integer"),
+        rt.DecimalField("latitude", "decimal number -90..90", -90, 90),
+        rt.DecimalField("longitude", "decimal number -180..180", -180, 180),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.DecimalField("separation", "decimal number"),
+        rt.DecimalField("vel_north", "decimal number"),
+        rt.DecimalField("vel_east", "decimal number"),
+        rt.DecimalField("vel_down", "decimal number"),
+        rt.DecimalField("speed", "decimal number"),
+        rt.DecimalField("heading", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("pdop", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     tow: rt.Number | None = None
@@ -75,126 +91,11 @@ class Pqtmpvt:
     pdop: rt.Number | None = None
     """PDOP: Position dilution of precision; 99.99 when invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmpvt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 19:
-            raise rt.too_few(address, "PQTMPVT", 19, count)
-        if count > 19:
-            raise rt.too_many(address, "PQTMPVT", 19, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        tow = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "tow", "integer", None, None, _INTEGER)) if fields[1] else None
-        date = rt.text_field(fields[2], address, 3, "date", "text of at most 8 characters", 8)
-        time = (_TIME.get(fields[3]) or rt.time_field(fields[3], address, 4, "time", "time hhmmss[.s]", _TIME)) if fields[3] else None
-        reserved = rt.text_field(fields[4], address, 5, "reserved", "text", None)
-        fix_type = QuectelFixType.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "fix_type", "quectel_fix_type code (0 1 2 3)", QuectelFixType.BY_CODE, "digits", 1, 1)
-        satellites = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "satellites", "integer", None, None, _INTEGER)) if fields[6] else None
-        leap_seconds = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "leap_seconds", "integer", None, None, _INTEGER)) if fields[7] else None
-        latitude = (_DECIMAL_MINUS_90_TO_90.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "latitude", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[8] else None
-        longitude = (_DECIMAL_MINUS_180_TO_180.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "longitude", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[9] else None
-        altitude = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "altitude", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        separation = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "separation", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        vel_north = (_DECIMAL.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "vel_north", "decimal number", None, None, _DECIMAL)) if fields[12] else None
-        vel_east = (_DECIMAL.get(fields[13]) or rt.decimal_field(fields[13], address, 14, "vel_east", "decimal number", None, None, _DECIMAL)) if fields[13] else None
-        vel_down = (_DECIMAL.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "vel_down", "decimal number", None, None, _DECIMAL)) if fields[14] else None
-        speed = (_DECIMAL.get(fields[15]) or rt.decimal_field(fields[15], address, 16, "speed", "decimal number", None, None, _DECIMAL)) if fields[15] else None
-        heading = (_DECIMAL.get(fields[16]) or rt.decimal_field(fields[16], address, 17, "heading", "decimal number", None, None, _DECIMAL)) if fields[16] else None
-        hdop = (_DECIMAL.get(fields[17]) or rt.decimal_field(fields[17], address, 18, "hdop", "decimal number", None, None, _DECIMAL)) if fields[17] else None
-        pdop = (_DECIMAL.get(fields[18]) or rt.decimal_field(fields[18], address, 19, "pdop", "decimal number", None, None, _DECIMAL)) if fields[18] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, tow, date, time, reserved, fix_type, satellites, leap_seconds, latitude, longitude, altitude, separation, vel_north, vel_east, vel_down, speed, heading, hdop, pdop, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.tow),
-            rt.text_of(self.date),
-            rt.text_of(self.time),
-            rt.text_of(self.reserved),
-            rt.text_of(self.fix_type),
-            rt.text_of(self.satellites),
-            rt.text_of(self.leap_seconds),
-            rt.text_of(self.latitude),
-            rt.text_of(self.longitude),
-            rt.text_of(self.altitude),
-            rt.text_of(self.separation),
-            rt.text_of(self.vel_north),
-            rt.text_of(self.vel_east),
-            rt.text_of(self.vel_down),
-            rt.text_of(self.speed),
-            rt.text_of(self.heading),
-            rt.text_of(self.hdop),
-            rt.text_of(self.pdop),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMPVT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"tow":' + show(self.tow),
-            '"date":' + show(self.date),
-            '"time":' + show(self.time),
-            '"reserved":' + show(self.reserved),
-            '"fix_type":' + show(self.fix_type),
-            '"satellites":' + show(self.satellites),
-            '"leap_seconds":' + show(self.leap_seconds),
-            '"latitude":' + show(self.latitude),
-            '"longitude":' + show(self.longitude),
-            '"altitude":' + show(self.altitude),
-            '"separation":' + show(self.separation),
-            '"vel_north":' + show(self.vel_north),
-            '"vel_east":' + show(self.vel_east),
-            '"vel_down":' + show(self.vel_down),
-            '"speed":' + show(self.speed),
-            '"heading":' + show(self.heading),
-            '"hdop":' + show(self.hdop),
-            '"pdop":' + show(self.pdop),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tow"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fix_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "leap_seconds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "latitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "longitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "separation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vel_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vel_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vel_down"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmpvt, )

@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelSvinValid
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Pqtmsvinstatus:
+class Pqtmsvinstatus(rt.Sentence):
     """PQTMSVINSTATUS: Survey-in status.
 
-    Example (quectel_lg290p): $PQTMSVINSTATUS,1,1000,1,,01,20,100,-2484434.3645,4875976.9741,3266161.3412,1.2415*3C
+    Example (quectel_lg290p):
+    $PQTMSVINSTATUS,1,1000,1,,01,20,100,-2484434.3645,4875976.9741,3266161.3412,1.2415*3C
     """
 
     SENTENCE: ClassVar[str] = "PQTMSVINSTATUS"
@@ -33,6 +30,20 @@ class Pqtmsvinstatus:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMSVINSTATUS", "proprietary", "$", 11, 11, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.IntegerField("tow", "integer"),
+        rt.EnumField("valid", "quectel_svin_valid code (0 1 2)", QuectelSvinValid),
+        rt.TextField("reserved0", "text"),
+        rt.TextField("reserved1", "text"),
+        rt.IntegerField("observations", "integer"),
+        rt.IntegerField("min_fixes", "integer"),
+        rt.DecimalField("mean_x", "decimal number"),
+        rt.DecimalField("mean_y", "decimal number"),
+        rt.DecimalField("mean_z", "decimal number"),
+        rt.DecimalField("mean_accuracy", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     tow: rt.Number | None = None
@@ -56,94 +67,11 @@ class Pqtmsvinstatus:
     mean_accuracy: rt.Number | None = None
     """Mean accuracy [m]: Accuracy of the current mean position."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmsvinstatus:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "PQTMSVINSTATUS", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "PQTMSVINSTATUS", 11, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        tow = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "tow", "integer", None, None, _INTEGER)) if fields[1] else None
-        valid = QuectelSvinValid.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "valid", "quectel_svin_valid code (0 1 2)", QuectelSvinValid.BY_CODE, "digits", 1, 1)
-        reserved0 = rt.text_field(fields[3], address, 4, "reserved0", "text", None)
-        reserved1 = rt.text_field(fields[4], address, 5, "reserved1", "text", None)
-        observations = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "observations", "integer", None, None, _INTEGER)) if fields[5] else None
-        min_fixes = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "min_fixes", "integer", None, None, _INTEGER)) if fields[6] else None
-        mean_x = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "mean_x", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        mean_y = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "mean_y", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        mean_z = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "mean_z", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        mean_accuracy = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "mean_accuracy", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, tow, valid, reserved0, reserved1, observations, min_fixes, mean_x, mean_y, mean_z, mean_accuracy, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.tow),
-            rt.text_of(self.valid),
-            rt.text_of(self.reserved0),
-            rt.text_of(self.reserved1),
-            rt.text_of(self.observations),
-            rt.text_of(self.min_fixes),
-            rt.text_of(self.mean_x),
-            rt.text_of(self.mean_y),
-            rt.text_of(self.mean_z),
-            rt.text_of(self.mean_accuracy),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMSVINSTATUS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"tow":' + show(self.tow),
-            '"valid":' + show(self.valid),
-            '"reserved0":' + show(self.reserved0),
-            '"reserved1":' + show(self.reserved1),
-            '"observations":' + show(self.observations),
-            '"min_fixes":' + show(self.min_fixes),
-            '"mean_x":' + show(self.mean_x),
-            '"mean_y":' + show(self.mean_y),
-            '"mean_z":' + show(self.mean_z),
-            '"mean_accuracy":' + show(self.mean_accuracy),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tow"), 1)
-        out += rt.json_texts(rt.json_member(fields, "valid"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved0"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "observations"), 1)
-        out += rt.json_texts(rt.json_member(fields, "min_fixes"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mean_x"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mean_y"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mean_z"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mean_accuracy"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmsvinstatus, )

@@ -14,20 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelHeadingQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_360: dict[Any, Any] = rt.known("decimal 0..360")
-_DECIMAL_MINUS_180_TO_180: dict[Any, Any] = rt.known("decimal -180..180")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pqtmtar:
+class Pqtmtar(rt.Sentence):
     """PQTMTAR: Time and attitude.
 
-    Example (quectel_lg290p): $PQTMTAR,1,165034.000,4,,0.860,1.124780,1.254125,50.968541,0.254125,0.125485,0.012547,21*52
+    Example (quectel_lg290p):
+    $PQTMTAR,1,165034.000,4,,0.860,1.124780,1.254125,50.968541,0.254125,0.125485,0.012547,21*52
     """
 
     SENTENCE: ClassVar[str] = "PQTMTAR"
@@ -37,6 +30,25 @@ class Pqtmtar:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMTAR", "proprietary", "$", 12, 12, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField(
+            "quality",
+            "quectel_heading_quality code (0 1 2 3 4 5)",
+            QuectelHeadingQuality,
+        ),
+        rt.TextField("reserved", "text"),
+        rt.DecimalField("baseline", "decimal number"),
+        rt.DecimalField("pitch", "decimal number -90..90", -90, 90),
+        rt.DecimalField("roll", "decimal number -180..180", -180, 180),
+        rt.DecimalField("heading", "decimal number 0..360", 0, 360),
+        rt.DecimalField("pitch_accuracy", "decimal number"),
+        rt.DecimalField("roll_accuracy", "decimal number"),
+        rt.DecimalField("heading_accuracy", "decimal number"),
+        rt.IntegerField("satellites", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     time: rt.Time | None = None
@@ -62,98 +74,11 @@ class Pqtmtar:
     satellites: rt.Number | None = None
     """Satellites used: Satellites used in the heading solution."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmtar:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "PQTMTAR", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "PQTMTAR", 12, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        quality = QuectelHeadingQuality.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "quality", "quectel_heading_quality code (0 1 2 3 4 5)", QuectelHeadingQuality.BY_CODE, "digits", 1, 1)
-        reserved = rt.text_field(fields[3], address, 4, "reserved", "text", None)
-        baseline = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "baseline", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        pitch = (_DECIMAL_MINUS_90_TO_90.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "pitch", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[5] else None
-        roll = (_DECIMAL_MINUS_180_TO_180.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "roll", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[6] else None
-        heading = (_DECIMAL_0_TO_360.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "heading", "decimal number 0..360", 0, 360, _DECIMAL_0_TO_360)) if fields[7] else None
-        pitch_accuracy = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "pitch_accuracy", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        roll_accuracy = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "roll_accuracy", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        heading_accuracy = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "heading_accuracy", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        satellites = (_INTEGER.get(fields[11]) or rt.integer_field(fields[11], address, 12, "satellites", "integer", None, None, _INTEGER)) if fields[11] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, time, quality, reserved, baseline, pitch, roll, heading, pitch_accuracy, roll_accuracy, heading_accuracy, satellites, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.time),
-            rt.text_of(self.quality),
-            rt.text_of(self.reserved),
-            rt.text_of(self.baseline),
-            rt.text_of(self.pitch),
-            rt.text_of(self.roll),
-            rt.text_of(self.heading),
-            rt.text_of(self.pitch_accuracy),
-            rt.text_of(self.roll_accuracy),
-            rt.text_of(self.heading_accuracy),
-            rt.text_of(self.satellites),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMTAR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"time":' + show(self.time),
-            '"quality":' + show(self.quality),
-            '"reserved":' + show(self.reserved),
-            '"baseline":' + show(self.baseline),
-            '"pitch":' + show(self.pitch),
-            '"roll":' + show(self.roll),
-            '"heading":' + show(self.heading),
-            '"pitch_accuracy":' + show(self.pitch_accuracy),
-            '"roll_accuracy":' + show(self.roll_accuracy),
-            '"heading_accuracy":' + show(self.heading_accuracy),
-            '"satellites":' + show(self.satellites),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baseline"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmtar, )

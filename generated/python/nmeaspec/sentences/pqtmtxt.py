@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelTextId
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_1_TO_99: dict[Any, Any] = rt.known("integer 1..99")
-
 
 @dataclass(slots=True)
-class Pqtmtxt:
+class Pqtmtxt(rt.Sentence):
     """PQTMTXT: Text message.
 
-    Example (quectel_lg290p): $PQTMTXT,1,01,01,01,0x105f0cf810417c00*1B
+    Example (quectel_lg290p):
+    $PQTMTXT,1,01,01,01,0x105f0cf810417c00*1B
     """
 
     SENTENCE: ClassVar[str] = "PQTMTXT"
@@ -33,6 +30,14 @@ class Pqtmtxt:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMTXT", "proprietary", "$", 5, 5, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.IntegerField("total", "integer 1..99", 1, 99),
+        rt.IntegerField("number", "integer 1..99", 1, 99),
+        rt.EnumField("text_id", "quectel_text_id code (01 02 03)", QuectelTextId),
+        rt.TextField("text", "text of at most 57 characters", 57),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     total: rt.Number | None = None
@@ -44,70 +49,11 @@ class Pqtmtxt:
     text: str | None = None
     """Text: The text, at most 57 characters."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmtxt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PQTMTXT", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PQTMTXT", 5, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        total = (_INTEGER_1_TO_99.get(fields[1]) or rt.integer_field(fields[1], address, 2, "total", "integer 1..99", 1, 99, _INTEGER_1_TO_99)) if fields[1] else None
-        number = (_INTEGER_1_TO_99.get(fields[2]) or rt.integer_field(fields[2], address, 3, "number", "integer 1..99", 1, 99, _INTEGER_1_TO_99)) if fields[2] else None
-        text_id = QuectelTextId.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "text_id", "quectel_text_id code (01 02 03)", QuectelTextId.BY_CODE, "digits", 2, 2)
-        text = rt.text_field(fields[4], address, 5, "text", "text of at most 57 characters", 57)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, total, number, text_id, text, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.total),
-            rt.text_of(self.number),
-            rt.text_of(self.text_id),
-            rt.text_of(self.text),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMTXT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"total":' + show(self.total),
-            '"number":' + show(self.number),
-            '"text_id":' + show(self.text_id),
-            '"text":' + show(self.text),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "total"), 1)
-        out += rt.json_texts(rt.json_member(fields, "number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "text_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "text"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmtxt, )

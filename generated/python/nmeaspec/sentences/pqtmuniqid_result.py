@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMUNIQID_RESULT: Module unique ID: result.
 
-The answer of the module to $PQTMUNIQID (section 2.3.6): OK followed by the current settings
-when the command was a read, OK alone after a write, or ERROR with an error code.
+The answer of the module to $PQTMUNIQID (section 2.3.6): OK followed by the current settings when
+the command was a read, OK alone after a write, or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import QuectelErrorCode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class PqtmuniqidResult:
+class PqtmuniqidResult(rt.Sentence):
     """PQTMUNIQID_RESULT: Module unique ID: result.
 
-    Example (quectel_lg290p): $PQTMUNIQID,OK,16,81D62010EE0AF375BDF5952CDC3757A1*3E
+    Example (quectel_lg290p):
+    $PQTMUNIQID,OK,16,81D62010EE0AF375BDF5952CDC3757A1*3E
     """
 
     SENTENCE: ClassVar[str] = "PQTMUNIQID_RESULT"
@@ -33,77 +31,32 @@ class PqtmuniqidResult:
     SELECTOR: ClassVar[str | None] = "OK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMUNIQID_RESULT", "proprietary", "$", 3, 3, (
+        rt.KeywordField("status", "OK", "OK"),
+        rt.IntegerField("length", "integer"),
+        rt.TextField("unique_id", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "OK"
     """Success: OK: the module accepted and carried out the command."""
     length: rt.Number | None = None
     """ID length [byte]: Length of the unique ID in bytes."""
     unique_id: str | None = None
-    """Unique ID: The module unique ID in hexadecimal (2 digits per byte; longer than a 64-bit number, hence kept as text)."""
+    """Unique ID: The module unique ID in hexadecimal (2 digits per byte; longer than a 64-bit
+    number, hence kept as text)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmuniqidResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMUNIQID_RESULT", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMUNIQID_RESULT", 3, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "OK", "OK")
-        length = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "length", "integer", None, None, _INTEGER)) if fields[1] else None
-        unique_id = rt.text_field(fields[2], address, 3, "unique_id", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, length, unique_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.length),
-            rt.text_of(self.unique_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMUNIQID",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"length":' + show(self.length),
-            '"unique_id":' + show(self.unique_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "length"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unique_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmuniqidResultError:
+class PqtmuniqidResultError(rt.Sentence):
     """PQTMUNIQID_RESULT (Command failed): Module unique ID: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMUNIQID_RESULT"
@@ -115,63 +68,21 @@ class PqtmuniqidResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMUNIQID_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmuniqidResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMUNIQID_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMUNIQID_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMUNIQID",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmuniqidResult, PqtmuniqidResultError, )

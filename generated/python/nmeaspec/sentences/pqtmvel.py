@@ -14,18 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_359_POINT_999: dict[Any, Any] = rt.known("decimal 0..359.999")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Pqtmvel:
+class Pqtmvel(rt.Sentence):
     """PQTMVEL: Velocity.
 
-    Example (quectel_lg290p): $PQTMVEL,1,154512.100,1.251,2.452,1.245,2.752,3.021,180.512,0.124,0.254,0.250*67
+    Example (quectel_lg290p):
+    $PQTMVEL,1,154512.100,1.251,2.452,1.245,2.752,3.021,180.512,0.124,0.254,0.250*67
     """
 
     SENTENCE: ClassVar[str] = "PQTMVEL"
@@ -35,6 +30,20 @@ class Pqtmvel:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMVEL", "proprietary", "$", 11, 11, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("vel_north", "decimal number"),
+        rt.DecimalField("vel_east", "decimal number"),
+        rt.DecimalField("vel_down", "decimal number"),
+        rt.DecimalField("ground_speed", "decimal number"),
+        rt.DecimalField("speed", "decimal number"),
+        rt.DecimalField("course", "decimal number 0..359.999", 0, Decimal("359.999")),
+        rt.DecimalField("ground_speed_accuracy", "decimal number"),
+        rt.DecimalField("speed_accuracy", "decimal number"),
+        rt.DecimalField("course_accuracy", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     time: rt.Time | None = None
@@ -58,94 +67,11 @@ class Pqtmvel:
     course_accuracy: rt.Number | None = None
     """Course accuracy [deg]: Estimated accuracy of the course."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmvel:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "PQTMVEL", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "PQTMVEL", 11, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        vel_north = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vel_north", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        vel_east = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "vel_east", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        vel_down = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "vel_down", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        ground_speed = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "ground_speed", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        speed = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        course = (_DECIMAL_0_TO_359_POINT_999.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "course", "decimal number 0..359.999", 0, Decimal("359.999"), _DECIMAL_0_TO_359_POINT_999)) if fields[7] else None
-        ground_speed_accuracy = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "ground_speed_accuracy", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        speed_accuracy = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "speed_accuracy", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        course_accuracy = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "course_accuracy", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, time, vel_north, vel_east, vel_down, ground_speed, speed, course, ground_speed_accuracy, speed_accuracy, course_accuracy, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.time),
-            rt.text_of(self.vel_north),
-            rt.text_of(self.vel_east),
-            rt.text_of(self.vel_down),
-            rt.text_of(self.ground_speed),
-            rt.text_of(self.speed),
-            rt.text_of(self.course),
-            rt.text_of(self.ground_speed_accuracy),
-            rt.text_of(self.speed_accuracy),
-            rt.text_of(self.course_accuracy),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMVEL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"time":' + show(self.time),
-            '"vel_north":' + show(self.vel_north),
-            '"vel_east":' + show(self.vel_east),
-            '"vel_down":' + show(self.vel_down),
-            '"ground_speed":' + show(self.ground_speed),
-            '"speed":' + show(self.speed),
-            '"course":' + show(self.course),
-            '"ground_speed_accuracy":' + show(self.ground_speed_accuracy),
-            '"speed_accuracy":' + show(self.speed_accuracy),
-            '"course_accuracy":' + show(self.course_accuracy),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vel_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vel_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vel_down"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ground_speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ground_speed_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_accuracy"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course_accuracy"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmvel, )

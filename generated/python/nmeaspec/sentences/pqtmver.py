@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Pqtmver:
+class Pqtmver(rt.Sentence):
     """PQTMVER: Firmware version.
 
-    Example (quectel_lg290p): $PQTMVER,1,MODULE,LG290P03AANR01A03S,2024/04/30,10:53:07*32
+    Example (quectel_lg290p):
+    $PQTMVER,1,MODULE,LG290P03AANR01A03S,2024/04/30,10:53:07*32
     """
 
     SENTENCE: ClassVar[str] = "PQTMVER"
@@ -31,6 +29,14 @@ class Pqtmver:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMVER", "proprietary", "$", 5, 5, (
+        rt.IntegerField("msg_version", "integer"),
+        rt.TextField("version_name", "text"),
+        rt.TextField("version", "text"),
+        rt.TextField("build_date", "text"),
+        rt.TextField("build_time", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_version: rt.Number | None = None
     """Message version: Version of the message layout; 1 for the layout described here."""
     version_name: str | None = None
@@ -42,80 +48,22 @@ class Pqtmver:
     build_time: str | None = None
     """Build time: Firmware build time."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pqtmver:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PQTMVER", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PQTMVER", 5, count)
-        msg_version = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "msg_version", "integer", None, None, _INTEGER)) if fields[0] else None
-        version_name = rt.text_field(fields[1], address, 2, "version_name", "text", None)
-        version = rt.text_field(fields[2], address, 3, "version", "text", None)
-        build_date = rt.text_field(fields[3], address, 4, "build_date", "text", None)
-        build_time = rt.text_field(fields[4], address, 5, "build_time", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_version, version_name, version, build_date, build_time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_version),
-            rt.text_of(self.version_name),
-            rt.text_of(self.version),
-            rt.text_of(self.build_date),
-            rt.text_of(self.build_time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMVER",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_version":' + show(self.msg_version),
-            '"version_name":' + show(self.version_name),
-            '"version":' + show(self.version),
-            '"build_date":' + show(self.build_date),
-            '"build_time":' + show(self.build_time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "version_name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmverLegacy:
+class PqtmverLegacy(rt.Sentence):
     """PQTMVER (Without message version): Firmware version.
 
     Older firmware (e.g. L89) sends three fields: the version string with a MODULE_ prefix, the
     build date and the build time.
 
-    Example (quectel_gpsd_notes): $PQTMVER,MODULE_L89HANR01A06S,2022/07/28,18:27:04*7A
+    Example (quectel_gpsd_notes):
+    $PQTMVER,MODULE_L89HANR01A06S,2022/07/28,18:27:04*7A
     """
 
     SENTENCE: ClassVar[str] = "PQTMVER"
@@ -125,6 +73,12 @@ class PqtmverLegacy:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMVER", "proprietary", "$", 3, 3, (
+        rt.TextField("version", "text"),
+        rt.TextField("build_date", "text"),
+        rt.TextField("build_time", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
     """Version: Firmware version string, prefixed MODULE_."""
     build_date: str | None = None
@@ -132,62 +86,11 @@ class PqtmverLegacy:
     build_time: str | None = None
     """Build time: Firmware build time."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmverLegacy:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMVER", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMVER", 3, count)
-        version = rt.text_field(fields[0], address, 1, "version", "text", None)
-        build_date = rt.text_field(fields[1], address, 2, "build_date", "text", None)
-        build_time = rt.text_field(fields[2], address, 3, "build_time", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, build_date, build_time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.build_date),
-            rt.text_of(self.build_time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMVER",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"build_date":' + show(self.build_date),
-            '"build_time":' + show(self.build_time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pqtmver, PqtmverLegacy, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMVERNO_RESULT: Firmware version: result.
 
-The answer to $PQTMVERNO (section 2.3.9): the firmware version with its build date and time (no
-OK word), or ERROR with an error code.
+The answer to $PQTMVERNO (section 2.3.9): the firmware version with its build date and time (no OK
+word), or ERROR with an error code.
 """
 
 from __future__ import annotations
@@ -17,10 +17,11 @@ from ..enums import QuectelErrorCode
 
 
 @dataclass(slots=True)
-class PqtmvernoResult:
+class PqtmvernoResult(rt.Sentence):
     """PQTMVERNO_RESULT: Firmware version: result.
 
-    Example (quectel_lg290p): $PQTMVERNO,LG290P03AANR01A03S,2024/04/30,10:53:07*18
+    Example (quectel_lg290p):
+    $PQTMVERNO,LG290P03AANR01A03S,2024/04/30,10:53:07*18
     """
 
     SENTENCE: ClassVar[str] = "PQTMVERNO_RESULT"
@@ -30,6 +31,12 @@ class PqtmvernoResult:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMVERNO_RESULT", "proprietary", "$", 3, 3, (
+        rt.TextField("version", "text"),
+        rt.TextField("build_date", "text"),
+        rt.TextField("build_time", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     version: str | None = None
     """Firmware version: Firmware version string."""
     build_date: str | None = None
@@ -37,70 +44,18 @@ class PqtmvernoResult:
     build_time: str | None = None
     """Build time: Firmware build time, hours:minutes:seconds."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmvernoResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PQTMVERNO_RESULT", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PQTMVERNO_RESULT", 3, count)
-        version = rt.text_field(fields[0], address, 1, "version", "text", None)
-        build_date = rt.text_field(fields[1], address, 2, "build_date", "text", None)
-        build_time = rt.text_field(fields[2], address, 3, "build_time", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(version, build_date, build_time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.version),
-            rt.text_of(self.build_date),
-            rt.text_of(self.build_time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMVERNO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"version":' + show(self.version),
-            '"build_date":' + show(self.build_date),
-            '"build_time":' + show(self.build_time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PqtmvernoResultError:
+class PqtmvernoResultError(rt.Sentence):
     """PQTMVERNO_RESULT (Command failed): Firmware version: result.
 
     The module could not carry out the command and says why.
-
     """
 
     SENTENCE: ClassVar[str] = "PQTMVERNO_RESULT"
@@ -112,63 +67,21 @@ class PqtmvernoResultError:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = "error"
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQTMVERNO_RESULT", "proprietary", "$", 2, 2, (
+        rt.KeywordField("status", "ERROR", "ERROR"),
+        rt.EnumField("error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     status: str = "ERROR"
     """Failure: ERROR: the module rejected the command or could not carry it out."""
     error_code: QuectelErrorCode | str | None = None
     """Error code: Why the command failed (table 5 of the protocol specification)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqtmvernoResultError:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PQTMVERNO_RESULT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PQTMVERNO_RESULT", 2, count)
-        status = rt.keyword_field(fields[0], address, 1, "status", "ERROR", "ERROR")
-        error_code = QuectelErrorCode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "error_code", "quectel_error_code code (1 2 3)", QuectelErrorCode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(status, error_code, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.error_code),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQTMVERNO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"error_code":' + show(self.error_code),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "error_code"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqtmvernoResult, PqtmvernoResultError, )

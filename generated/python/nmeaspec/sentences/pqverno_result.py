@@ -16,10 +16,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class PqvernoResult:
+class PqvernoResult(rt.Sentence):
     """PQVERNO_RESULT: Firmware version (older modules): result.
 
-    Example (log_gpsd): $PQVERNO,R,L70BGR03A05S,2019/10/09,21:12*23
+    Example (log_gpsd):
+    $PQVERNO,R,L70BGR03A05S,2019/10/09,21:12*23
     """
 
     SENTENCE: ClassVar[str] = "PQVERNO_RESULT"
@@ -29,6 +30,13 @@ class PqvernoResult:
     SELECTOR: ClassVar[str | None] = "R"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PQVERNO_RESULT", "proprietary", "$", 4, 4, (
+        rt.KeywordField("access", "R", "R"),
+        rt.TextField("version", "text"),
+        rt.TextField("build_date", "text"),
+        rt.TextField("build_time", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     access: str = "R"
     """Read: R, echoed from the query."""
     version: str | None = None
@@ -38,66 +46,11 @@ class PqvernoResult:
     build_time: str | None = None
     """Build time: Release time, hours:minutes."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PqvernoResult:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PQVERNO_RESULT", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PQVERNO_RESULT", 4, count)
-        access = rt.keyword_field(fields[0], address, 1, "access", "R", "R")
-        version = rt.text_field(fields[1], address, 2, "version", "text", None)
-        build_date = rt.text_field(fields[2], address, 3, "build_date", "text", None)
-        build_time = rt.text_field(fields[3], address, 4, "build_time", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(access, version, build_date, build_time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.access),
-            rt.text_of(self.version),
-            rt.text_of(self.build_date),
-            rt.text_of(self.build_time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PQVERNO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"access":' + show(self.access),
-            '"version":' + show(self.version),
-            '"build_date":' + show(self.build_date),
-            '"build_time":' + show(self.build_time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "access"), 1)
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PqvernoResult, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PRC: Propulsion remote control status.
 
-Engine order on a propulsion remote control system: lever position, RPM and pitch demand, where
-the order is given and which engine or shaft it controls. Gives the detail that ETL lacks; sent
-at regular intervals.
+Engine order on a propulsion remote control system: lever position, RPM and pitch demand, where the
+order is given and which engine or shaft it controls. Gives the detail that ETL lacks; sent at
+regular intervals.
 """
 
 from __future__ import annotations
@@ -16,16 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import PrcOperatingLocation, PrcPitchMode, PrcRpmMode, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_MINUS_100_TO_100: dict[Any, Any] = rt.known("decimal -100..100")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class Prc:
+class Prc(rt.Sentence):
     """PRC: Propulsion remote control status.
-
     """
 
     SENTENCE: ClassVar[str] = "PRC"
@@ -35,11 +29,27 @@ class Prc:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PRC", "standard", "$", 8, 8, (
+        rt.DecimalField("lever_position", "decimal number -100..100", -100, 100),
+        rt.EnumField("lever_status", "status code (A V)", Status),
+        rt.DecimalField("rpm_demand", "decimal number"),
+        rt.EnumField("rpm_mode", "prc_rpm_mode code (P R V)", PrcRpmMode),
+        rt.DecimalField("pitch_demand", "decimal number"),
+        rt.EnumField("pitch_mode", "prc_pitch_mode code (P D V)", PrcPitchMode),
+        rt.EnumField(
+            "operating_location",
+            "prc_operating_location code (B P S C E W)",
+            PrcOperatingLocation,
+        ),
+        rt.IntegerField("engine_number", "integer of at least 0", 0, None),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     lever_position: rt.Number | None = None
-    """Lever demand position [%]: Telegraph lever demand, -100 (full astern) through 0 (stop) to 100 (full ahead) per cent."""
+    """Lever demand position [%]: Telegraph lever demand, -100 (full astern) through 0 (stop) to 100
+    (full ahead) per cent."""
     lever_status: Status | str | None = None
     """Lever demand status: A = data valid, V = data invalid."""
     rpm_demand: rt.Number | None = None
@@ -51,86 +61,18 @@ class Prc:
     pitch_mode: PrcPitchMode | str | None = None
     """Pitch mode indicator: P = per cent, D = degrees, V = data invalid."""
     operating_location: PrcOperatingLocation | str | None = None
-    """Operating location: B = bridge, P = port wing, S = starboard wing, C = engine control room, E = engine side/local, W = wing."""
+    """Operating location: B = bridge, P = port wing, S = starboard wing, C = engine control room, E
+    = engine side/local, W = wing."""
     engine_number: rt.Number | None = None
-    """Engine or shaft number: Engine or propeller shaft controlled, numbered from the centre line: 0 = single or centre line, odd = starboard, even = port (one character; Furuno prints 00 to 99)."""
+    """Engine or shaft number: Engine or propeller shaft controlled, numbered from the centre line:
+    0 = single or centre line, odd = starboard, even = port (one character; Furuno prints 00 to
+    99)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Prc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "PRC", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "PRC", 8, count)
-        lever_position = (_DECIMAL_MINUS_100_TO_100.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "lever_position", "decimal number -100..100", -100, 100, _DECIMAL_MINUS_100_TO_100)) if fields[0] else None
-        lever_status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "lever_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        rpm_demand = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "rpm_demand", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        rpm_mode = PrcRpmMode.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "rpm_mode", "prc_rpm_mode code (P R V)", PrcRpmMode.BY_CODE, "letters", 1, 1)
-        pitch_demand = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "pitch_demand", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        pitch_mode = PrcPitchMode.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "pitch_mode", "prc_pitch_mode code (P D V)", PrcPitchMode.BY_CODE, "letters", 1, 1)
-        operating_location = PrcOperatingLocation.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "operating_location", "prc_operating_location code (B P S C E W)", PrcOperatingLocation.BY_CODE, "letters", 1, 1)
-        engine_number = (_INTEGER_0_TO.get(fields[7]) or rt.integer_field(fields[7], address, 8, "engine_number", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[7] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], lever_position, lever_status, rpm_demand, rpm_mode, pitch_demand, pitch_mode, operating_location, engine_number, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.lever_position),
-            rt.text_of(self.lever_status),
-            rt.text_of(self.rpm_demand),
-            rt.text_of(self.rpm_mode),
-            rt.text_of(self.pitch_demand),
-            rt.text_of(self.pitch_mode),
-            rt.text_of(self.operating_location),
-            rt.text_of(self.engine_number),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "PRC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"lever_position":' + show(self.lever_position),
-            '"lever_status":' + show(self.lever_status),
-            '"rpm_demand":' + show(self.rpm_demand),
-            '"rpm_mode":' + show(self.rpm_mode),
-            '"pitch_demand":' + show(self.pitch_demand),
-            '"pitch_mode":' + show(self.pitch_mode),
-            '"operating_location":' + show(self.operating_location),
-            '"engine_number":' + show(self.engine_number),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "lever_position"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lever_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rpm_demand"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rpm_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch_demand"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "operating_location"), 1)
-        out += rt.json_texts(rt.json_member(fields, "engine_number"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Prc, )

@@ -4,10 +4,10 @@
 """PSRF100: Set serial port A.
 
 SiRF input message ID 100: selects the protocol of serial port A (TXA/RXA), SiRF binary or NMEA
-0183, and sets its communication parameters (baud rate, data bits, stop bits, parity). It is
-mostly used to switch the receiver back to the SiRF binary protocol, which has a richer command
-set. The accepted values are kept in battery-backed SRAM and the receiver restarts with them
-(SiRF NMEA reference; only "SRAM" survives of the Russian text).
+0183, and sets its communication parameters (baud rate, data bits, stop bits, parity). It is mostly
+used to switch the receiver back to the SiRF binary protocol, which has a richer command set. The
+accepted values are kept in battery-backed SRAM and the receiver restarts with them (SiRF NMEA
+reference; only "SRAM" survives of the Russian text).
 """
 
 from __future__ import annotations
@@ -18,16 +18,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SirfBaud, SirfParity, SirfProtocol
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_1: dict[Any, Any] = rt.known("integer 0..1")
-_INTEGER_7_TO_8: dict[Any, Any] = rt.known("integer 7..8")
-
 
 @dataclass(slots=True)
-class Psrf100:
+class Psrf100(rt.Sentence):
     """PSRF100: Set serial port A.
 
-    Example (globalsat): $PSRF100,0,9600,8,1,0*0C
+    Example (globalsat):
+    $PSRF100,0,9600,8,1,0*0C
     """
 
     SENTENCE: ClassVar[str] = "PSRF100"
@@ -37,6 +34,14 @@ class Psrf100:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSRF100", "proprietary", "$", 5, 5, (
+        rt.EnumField("protocol", "sirf_protocol code (0 1)", SirfProtocol),
+        rt.EnumField("baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud),
+        rt.IntegerField("data_bits", "integer 7..8", 7, 8),
+        rt.IntegerField("stop_bits", "integer 0..1", 0, 1),
+        rt.EnumField("parity", "sirf_parity code (0 1 2)", SirfParity),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     protocol: SirfProtocol | str | None = None
     """Protocol: Protocol to run on port A."""
     baud: SirfBaud | str | None = None
@@ -44,74 +49,16 @@ class Psrf100:
     data_bits: rt.Number | None = None
     """Data bits: Data bits per character, 8 or 7; the SiRF binary protocol works with 8 only."""
     stop_bits: rt.Number | None = None
-    """Stop bits: Stop bits, listed as 0 or 1. The example sets 1 for one stop bit ("8,N,1"); what 0 selects is not explained in the surviving text."""
+    """Stop bits: Stop bits, listed as 0 or 1. The example sets 1 for one stop bit (\"8,N,1\"); what
+    0 selects is not explained in the surviving text."""
     parity: SirfParity | str | None = None
     """Parity: Parity, 0 none, 1 odd, 2 even."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psrf100:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PSRF100", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PSRF100", 5, count)
-        protocol = SirfProtocol.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "protocol", "sirf_protocol code (0 1)", SirfProtocol.BY_CODE, "digits", 1, 1)
-        baud = SirfBaud.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud.BY_CODE, "digits", 4, 5)
-        data_bits = (_INTEGER_7_TO_8.get(fields[2]) or rt.integer_field(fields[2], address, 3, "data_bits", "integer 7..8", 7, 8, _INTEGER_7_TO_8)) if fields[2] else None
-        stop_bits = (_INTEGER_0_TO_1.get(fields[3]) or rt.integer_field(fields[3], address, 4, "stop_bits", "integer 0..1", 0, 1, _INTEGER_0_TO_1)) if fields[3] else None
-        parity = SirfParity.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "parity", "sirf_parity code (0 1 2)", SirfParity.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(protocol, baud, data_bits, stop_bits, parity, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.protocol),
-            rt.text_of(self.baud),
-            rt.text_of(self.data_bits),
-            rt.text_of(self.stop_bits),
-            rt.text_of(self.parity),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF100",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"protocol":' + show(self.protocol),
-            '"baud":' + show(self.baud),
-            '"data_bits":' + show(self.data_bits),
-            '"stop_bits":' + show(self.stop_bits),
-            '"parity":' + show(self.parity),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "protocol"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud"), 1)
-        out += rt.json_texts(rt.json_member(fields, "data_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "stop_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "parity"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psrf100, )

@@ -3,11 +3,11 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSRF102: Set DGPS serial port B.
 
-SiRF input message ID 102: sets the communication parameters of serial port B (RXB), the input
-on which the receiver takes RTCM differential corrections, to match the DGPS source. Port B
-defaults to 9600 baud, 8 data bits, stop bits 0 (as printed) and no parity (the word for the
-parity was lost; SiRF NMEA reference). The accepted values are kept in battery-backed SRAM and
-the receiver restarts with them (SiRF NMEA reference).
+SiRF input message ID 102: sets the communication parameters of serial port B (RXB), the input on
+which the receiver takes RTCM differential corrections, to match the DGPS source. Port B defaults to
+9600 baud, 8 data bits, stop bits 0 (as printed) and no parity (the word for the parity was lost;
+SiRF NMEA reference). The accepted values are kept in battery-backed SRAM and the receiver restarts
+with them (SiRF NMEA reference).
 """
 
 from __future__ import annotations
@@ -18,16 +18,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SirfBaud, SirfParity
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_1: dict[Any, Any] = rt.known("integer 0..1")
-_INTEGER_8_TO_8: dict[Any, Any] = rt.known("integer 8..8")
-
 
 @dataclass(slots=True)
-class Psrf102:
+class Psrf102(rt.Sentence):
     """PSRF102: Set DGPS serial port B.
 
-    Example (globalsat): $PSRF102,9600,8,1,0*12
+    Example (globalsat):
+    $PSRF102,9600,8,1,0*12
     """
 
     SENTENCE: ClassVar[str] = "PSRF102"
@@ -37,75 +34,28 @@ class Psrf102:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSRF102", "proprietary", "$", 4, 4, (
+        rt.EnumField("baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud),
+        rt.IntegerField("data_bits", "integer 8..8", 8, 8),
+        rt.IntegerField("stop_bits", "integer 0..1", 0, 1),
+        rt.EnumField("parity", "sirf_parity code (0 1 2)", SirfParity),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     baud: SirfBaud | str | None = None
     """Baud rate [bit/s]: Port B speed, 1200 to 38400 bit/s; default 9600."""
     data_bits: rt.Number | None = None
     """Data bits: Data bits per character; only 8 is listed (the default)."""
     stop_bits: rt.Number | None = None
-    """Stop bits: Stop bits, listed as 0 or 1; the default is printed as 0 while the example writes 1 for one stop bit ("8,N,1"). The surviving text does not explain 0."""
+    """Stop bits: Stop bits, listed as 0 or 1; the default is printed as 0 while the example writes
+    1 for one stop bit (\"8,N,1\"). The surviving text does not explain 0."""
     parity: SirfParity | str | None = None
     """Parity: Parity, 0 none (default), 1 odd, 2 even."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psrf102:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PSRF102", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PSRF102", 4, count)
-        baud = SirfBaud.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "baud", "sirf_baud code (1200 2400 4800 9600 19200 38400)", SirfBaud.BY_CODE, "digits", 4, 5)
-        data_bits = (_INTEGER_8_TO_8.get(fields[1]) or rt.integer_field(fields[1], address, 2, "data_bits", "integer 8..8", 8, 8, _INTEGER_8_TO_8)) if fields[1] else None
-        stop_bits = (_INTEGER_0_TO_1.get(fields[2]) or rt.integer_field(fields[2], address, 3, "stop_bits", "integer 0..1", 0, 1, _INTEGER_0_TO_1)) if fields[2] else None
-        parity = SirfParity.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "parity", "sirf_parity code (0 1 2)", SirfParity.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(baud, data_bits, stop_bits, parity, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.baud),
-            rt.text_of(self.data_bits),
-            rt.text_of(self.stop_bits),
-            rt.text_of(self.parity),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF102",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"baud":' + show(self.baud),
-            '"data_bits":' + show(self.data_bits),
-            '"stop_bits":' + show(self.stop_bits),
-            '"parity":' + show(self.parity),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "baud"), 1)
-        out += rt.json_texts(rt.json_member(fields, "data_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "stop_bits"), 1)
-        out += rt.json_texts(rt.json_member(fields, "parity"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psrf102, )

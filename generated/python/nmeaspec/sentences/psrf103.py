@@ -4,9 +4,9 @@
 """PSRF103: Query or set the rate of a standard NMEA sentence.
 
 SiRF input message ID 103: controls the standard sentences GGA, GLL, GSA, GSV, RMC and VTG. A
-sentence can be polled once or given a periodic output rate (0 disables it), and its checksum
-can be switched on or off for hosts that do not want it. The settings are kept in battery-backed
-memory (SiRF NMEA reference). A query is answered by the selected standard sentence.
+sentence can be polled once or given a periodic output rate (0 disables it), and its checksum can be
+switched on or off for hosts that do not want it. The settings are kept in battery-backed memory
+(SiRF NMEA reference). A query is answered by the selected standard sentence.
 """
 
 from __future__ import annotations
@@ -17,15 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SirfChecksumEnable, SirfChecksumEnableDigit, SirfNmeaMessage, SirfNmeaMessageDigit, SirfRateMode, SirfRateModeDigit
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_255: dict[Any, Any] = rt.known("integer 0..255")
-
 
 @dataclass(slots=True)
-class Psrf103:
+class Psrf103(rt.Sentence):
     """PSRF103: Query or set the rate of a standard NMEA sentence.
 
-    Example (globalsat): $PSRF103,00,01,00,01*25
+    Example (globalsat):
+    $PSRF103,00,01,00,01*25
     """
 
     SENTENCE: ClassVar[str] = "PSRF103"
@@ -50,84 +48,36 @@ class Psrf103:
         ("VTG", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSRF103", "proprietary", "$", 4, 4, (
+        rt.EnumField("message", "sirf_nmea_message code (00 01 02 03 04 05)", SirfNmeaMessage),
+        rt.EnumField("mode", "sirf_rate_mode code (00 01)", SirfRateMode),
+        rt.IntegerField("rate", "integer 0..255", 0, 255),
+        rt.EnumField("checksum_mode", "sirf_checksum_enable code (00 01)", SirfChecksumEnable),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     message: SirfNmeaMessage | str | None = None
     """Message: The standard sentence to query or schedule, 00 GGA to 05 VTG."""
     mode: SirfRateMode | str | None = None
     """Mode: 00 sets the rate, 01 queries the sentence once."""
     rate: rt.Number | None = None
-    """Output period [s]: Seconds between two outputs of the sentence in set-rate mode; 0 turns it off, 255 is the maximum. Ignored by a query."""
+    """Output period [s]: Seconds between two outputs of the sentence in set-rate mode; 0 turns it
+    off, 255 is the maximum. Ignored by a query."""
     checksum_mode: SirfChecksumEnable | str | None = None
     """Checksum enable: Whether the sentence is sent with a checksum, 00 no, 01 yes."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psrf103:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PSRF103", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PSRF103", 4, count)
-        message = SirfNmeaMessage.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "message", "sirf_nmea_message code (00 01 02 03 04 05)", SirfNmeaMessage.BY_CODE, "digits", 2, 2)
-        mode = SirfRateMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "sirf_rate_mode code (00 01)", SirfRateMode.BY_CODE, "digits", 2, 2)
-        rate = (_INTEGER_0_TO_255.get(fields[2]) or rt.integer_field(fields[2], address, 3, "rate", "integer 0..255", 0, 255, _INTEGER_0_TO_255)) if fields[2] else None
-        checksum_mode = SirfChecksumEnable.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "checksum_mode", "sirf_checksum_enable code (00 01)", SirfChecksumEnable.BY_CODE, "digits", 2, 2)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(message, mode, rate, checksum_mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message),
-            rt.text_of(self.mode),
-            rt.text_of(self.rate),
-            rt.text_of(self.checksum_mode),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF103",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message":' + show(self.message),
-            '"mode":' + show(self.mode),
-            '"rate":' + show(self.rate),
-            '"checksum_mode":' + show(self.checksum_mode),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "checksum_mode"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class Psrf103ShortCodes:
+class Psrf103ShortCodes(rt.Sentence):
     """PSRF103 (One-digit selectors): Query or set the rate of a standard NMEA sentence.
 
-    The same command with the selectors written with one digit, as the manual's argument list
-    gives them (message 0-5, mode 0/1, checksum 0/1).
-
+    The same command with the selectors written with one digit, as the manual's argument list gives
+    them (message 0-5, mode 0/1, checksum 0/1).
     """
 
     SENTENCE: ClassVar[str] = "PSRF103"
@@ -152,75 +102,33 @@ class Psrf103ShortCodes:
         ("VTG", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSRF103", "proprietary", "$", 4, 4, (
+        rt.EnumField("message", "sirf_nmea_message_digit code (0 1 2 3 4 5)", SirfNmeaMessageDigit),
+        rt.EnumField("mode", "sirf_rate_mode_digit code (0 1)", SirfRateModeDigit),
+        rt.IntegerField("rate", "integer 0..255", 0, 255),
+        rt.EnumField(
+            "checksum_mode",
+            "sirf_checksum_enable_digit code (0 1)",
+            SirfChecksumEnableDigit,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     message: SirfNmeaMessageDigit | str | None = None
-    """Message: The standard sentence to query or schedule: 0 GGA, 1 GLL, 2 GSA, 3 GSV, 4 RMC, 5 VTG."""
+    """Message: The standard sentence to query or schedule: 0 GGA, 1 GLL, 2 GSA, 3 GSV, 4 RMC, 5
+    VTG."""
     mode: SirfRateModeDigit | str | None = None
     """Mode: 0 sets the rate, 1 queries the sentence once."""
     rate: rt.Number | None = None
-    """Output period [s]: Seconds between two outputs of the sentence in set-rate mode; 0 turns it off, 255 is the maximum. Ignored by a query."""
+    """Output period [s]: Seconds between two outputs of the sentence in set-rate mode; 0 turns it
+    off, 255 is the maximum. Ignored by a query."""
     checksum_mode: SirfChecksumEnableDigit | str | None = None
     """Checksum enable: Whether the sentence is sent with a checksum, 0 no, 1 yes."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psrf103ShortCodes:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PSRF103", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PSRF103", 4, count)
-        message = SirfNmeaMessageDigit.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "message", "sirf_nmea_message_digit code (0 1 2 3 4 5)", SirfNmeaMessageDigit.BY_CODE, "digits", 1, 1)
-        mode = SirfRateModeDigit.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "sirf_rate_mode_digit code (0 1)", SirfRateModeDigit.BY_CODE, "digits", 1, 1)
-        rate = (_INTEGER_0_TO_255.get(fields[2]) or rt.integer_field(fields[2], address, 3, "rate", "integer 0..255", 0, 255, _INTEGER_0_TO_255)) if fields[2] else None
-        checksum_mode = SirfChecksumEnableDigit.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "checksum_mode", "sirf_checksum_enable_digit code (0 1)", SirfChecksumEnableDigit.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(message, mode, rate, checksum_mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message),
-            rt.text_of(self.mode),
-            rt.text_of(self.rate),
-            rt.text_of(self.checksum_mode),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF103",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message":' + show(self.message),
-            '"mode":' + show(self.mode),
-            '"rate":' + show(self.rate),
-            '"checksum_mode":' + show(self.checksum_mode),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "checksum_mode"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psrf103, Psrf103ShortCodes, )

@@ -4,8 +4,8 @@
 """PSRF104: Navigation initialisation, latitude/longitude/altitude.
 
 SiRF input message ID 104: the same restart as $PSRF101, with the approximate position given as
-geodetic latitude, longitude and altitude instead of ECEF coordinates (purpose partly
-reconstructed, SiRF NMEA reference).
+geodetic latitude, longitude and altitude instead of ECEF coordinates (purpose partly reconstructed,
+SiRF NMEA reference).
 """
 
 from __future__ import annotations
@@ -15,22 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_MINUS_180_TO_180: dict[Any, Any] = rt.known("decimal -180..180")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER_0_TO_604799: dict[Any, Any] = rt.known("integer 0..604799")
-_INTEGER_0_TO_65535: dict[Any, Any] = rt.known("integer 0..65535")
-_INTEGER_0_TO_7: dict[Any, Any] = rt.known("integer 0..7")
-_INTEGER_1_TO_12: dict[Any, Any] = rt.known("integer 1..12")
-_INTEGER_MINUS_2147483648_TO_2147483647: dict[Any, Any] = rt.known("integer -2147483648..2147483647")
-
 
 @dataclass(slots=True)
-class Psrf104:
+class Psrf104(rt.Sentence):
     """PSRF104: Navigation initialisation, latitude/longitude/altitude.
 
-    Example (globalsat): $PSRF104,37.3875111,-121.97232,0,96000,237759,922,12,3*37
+    Example (globalsat):
+    $PSRF104,37.3875111,-121.97232,0,96000,237759,922,12,3*37
     """
 
     SENTENCE: ClassVar[str] = "PSRF104"
@@ -40,99 +31,51 @@ class Psrf104:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSRF104", "proprietary", "$", 8, 8, (
+        rt.DecimalField("latitude", "decimal number -90..90", -90, 90),
+        rt.DecimalField("longitude", "decimal number -180..180", -180, 180),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.IntegerField("clock_offset", "integer -2147483648..2147483647", -2147483648, 2147483647),
+        rt.IntegerField("time_of_week", "integer 0..604799", 0, 604799),
+        rt.IntegerField("week", "integer 0..65535", 0, 65535),
+        rt.IntegerField("channels", "integer 1..12", 1, 12),
+        rt.IntegerField("reset_cfg", "integer 0..7", 0, 7),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     latitude: rt.Number | None = None
-    """Latitude [deg]: Latitude in decimal degrees, positive north, negative south (sign convention from the SiRF NMEA reference)."""
+    """Latitude [deg]: Latitude in decimal degrees, positive north, negative south (sign convention
+    from the SiRF NMEA reference)."""
     longitude: rt.Number | None = None
-    """Longitude [deg]: Longitude in decimal degrees, positive east, negative west (SiRF NMEA reference)."""
+    """Longitude [deg]: Longitude in decimal degrees, positive east, negative west (SiRF NMEA
+    reference)."""
     altitude: rt.Number | None = None
-    """Altitude [m]: Altitude in metres; SiRF gives heights above the WGS-84 ellipsoid (SiRF NMEA reference; the datum word was lost)."""
+    """Altitude [m]: Altitude in metres; SiRF gives heights above the WGS-84 ellipsoid (SiRF NMEA
+    reference; the datum word was lost)."""
     clock_offset: rt.Number | None = None
-    """Clock offset [Hz]: Receiver clock offset (frequency) in Hz; 0 makes the receiver use its last saved value (SiRF NMEA reference). The manual gives 75000 for GSP1 and 95000 for GSP1/LX as the typical values; its examples use 96000."""
+    """Clock offset [Hz]: Receiver clock offset (frequency) in Hz; 0 makes the receiver use its last
+    saved value (SiRF NMEA reference). The manual gives 75000 for GSP1 and 95000 for GSP1/LX as the
+    typical values; its examples use 96000."""
     time_of_week: rt.Number | None = None
-    """GPS time of week [s]: GPS time of week in seconds (UINT32 in the manual; a GPS week has 604800 s)."""
+    """GPS time of week [s]: GPS time of week in seconds (UINT32 in the manual; a GPS week has
+    604800 s)."""
     week: rt.Number | None = None
-    """GPS week number: GPS week number (UINT16). The examples use the full count without roll-over (921, 922)."""
+    """GPS week number: GPS week number (UINT16). The examples use the full count without roll-over
+    (921, 922)."""
     channels: rt.Number | None = None
-    """Channel count: Number of receiver channels to use, 1-12, default and maximum 12. Fewer channels lower the processor load (SiRF NMEA reference)."""
+    """Channel count: Number of receiver channels to use, 1-12, default and maximum 12. Fewer
+    channels lower the processor load (SiRF NMEA reference)."""
     reset_cfg: rt.Number | None = None
-    """Reset configuration: Reset configuration bit mask (UBYTE, written in decimal): bit 0 (0x01) the initialisation data are valid, set for warm and hot starts; bit 1 (0x02) clear the ephemerides, set for a warm start; bit 2 (0x04) clear the memory, set for a cold start. Only the masks and "= 1" survive in the manual; the bit names are reconstructed (SiRF NMEA reference). The examples send 3 (data valid and clear ephemerides: warm start with the given data)."""
+    """Reset configuration: Reset configuration bit mask (UBYTE, written in decimal): bit 0 (0x01)
+    the initialisation data are valid, set for warm and hot starts; bit 1 (0x02) clear the
+    ephemerides, set for a warm start; bit 2 (0x04) clear the memory, set for a cold start. Only the
+    masks and \"= 1\" survive in the manual; the bit names are reconstructed (SiRF NMEA reference).
+    The examples send 3 (data valid and clear ephemerides: warm start with the given data)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psrf104:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "PSRF104", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "PSRF104", 8, count)
-        latitude = (_DECIMAL_MINUS_90_TO_90.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "latitude", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[0] else None
-        longitude = (_DECIMAL_MINUS_180_TO_180.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "longitude", "decimal number -180..180", -180, 180, _DECIMAL_MINUS_180_TO_180)) if fields[1] else None
-        altitude = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "altitude", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        clock_offset = (_INTEGER_MINUS_2147483648_TO_2147483647.get(fields[3]) or rt.integer_field(fields[3], address, 4, "clock_offset", "integer -2147483648..2147483647", -2147483648, 2147483647, _INTEGER_MINUS_2147483648_TO_2147483647)) if fields[3] else None
-        time_of_week = (_INTEGER_0_TO_604799.get(fields[4]) or rt.integer_field(fields[4], address, 5, "time_of_week", "integer 0..604799", 0, 604799, _INTEGER_0_TO_604799)) if fields[4] else None
-        week = (_INTEGER_0_TO_65535.get(fields[5]) or rt.integer_field(fields[5], address, 6, "week", "integer 0..65535", 0, 65535, _INTEGER_0_TO_65535)) if fields[5] else None
-        channels = (_INTEGER_1_TO_12.get(fields[6]) or rt.integer_field(fields[6], address, 7, "channels", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[6] else None
-        reset_cfg = (_INTEGER_0_TO_7.get(fields[7]) or rt.integer_field(fields[7], address, 8, "reset_cfg", "integer 0..7", 0, 7, _INTEGER_0_TO_7)) if fields[7] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(latitude, longitude, altitude, clock_offset, time_of_week, week, channels, reset_cfg, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.latitude),
-            rt.text_of(self.longitude),
-            rt.text_of(self.altitude),
-            rt.text_of(self.clock_offset),
-            rt.text_of(self.time_of_week),
-            rt.text_of(self.week),
-            rt.text_of(self.channels),
-            rt.text_of(self.reset_cfg),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF104",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"latitude":' + show(self.latitude),
-            '"longitude":' + show(self.longitude),
-            '"altitude":' + show(self.altitude),
-            '"clock_offset":' + show(self.clock_offset),
-            '"time_of_week":' + show(self.time_of_week),
-            '"week":' + show(self.week),
-            '"channels":' + show(self.channels),
-            '"reset_cfg":' + show(self.reset_cfg),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "latitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "longitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "clock_offset"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_of_week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "channels"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reset_cfg"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psrf104, )

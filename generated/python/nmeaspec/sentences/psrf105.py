@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSRF105: Switch development data messages on/off.
 
-SiRF input message ID 105: turns the receiver's development (debug) messages on or off. With
-them on, the receiver explains why it rejects an input command, typically a wrong checksum or an
-argument out of range (SiRF NMEA reference; the Russian explanation was lost in extraction). The
-format of these debug messages is not documented.
+SiRF input message ID 105: turns the receiver's development (debug) messages on or off. With them
+on, the receiver explains why it rejects an input command, typically a wrong checksum or an argument
+out of range (SiRF NMEA reference; the Russian explanation was lost in extraction). The format of
+these debug messages is not documented.
 """
 
 from __future__ import annotations
@@ -19,10 +19,11 @@ from ..enums import SirfDebug
 
 
 @dataclass(slots=True)
-class Psrf105:
+class Psrf105(rt.Sentence):
     """PSRF105: Switch development data messages on/off.
 
-    Example (globalsat): $PSRF105,1*3E
+    Example (globalsat):
+    $PSRF105,1*3E
     """
 
     SENTENCE: ClassVar[str] = "PSRF105"
@@ -32,57 +33,18 @@ class Psrf105:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSRF105", "proprietary", "$", 1, 1, (
+        rt.EnumField("debug", "sirf_debug code (0 1)", SirfDebug),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     debug: SirfDebug | str | None = None
     """Development data: 1 switches the development data messages on, 0 off."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psrf105:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PSRF105", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PSRF105", 1, count)
-        debug = SirfDebug.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "debug", "sirf_debug code (0 1)", SirfDebug.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(debug, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.debug),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF105",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"debug":' + show(self.debug),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "debug"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psrf105, )

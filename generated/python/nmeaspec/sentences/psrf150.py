@@ -4,10 +4,10 @@
 """PSRF150: OkToSend.
 
 SiRF output message 150, OkToSend. The GS501 manual only names it: it is the first message the
-receiver sends after start-up in NMEA mode (MID 18 in the binary protocol). Its layout is not
-given there; the single field is reconstructed (SiRF NMEA reference): it tells the host whether
-the receiver is ready to take commands, and is also sent when the receiver enters or leaves a
-power-saving state.
+receiver sends after start-up in NMEA mode (MID 18 in the binary protocol). Its layout is not given
+there; the single field is reconstructed (SiRF NMEA reference): it tells the host whether the
+receiver is ready to take commands, and is also sent when the receiver enters or leaves a power-
+saving state.
 """
 
 from __future__ import annotations
@@ -20,9 +20,8 @@ from ..enums import SirfOkToSend
 
 
 @dataclass(slots=True)
-class Psrf150:
+class Psrf150(rt.Sentence):
     """PSRF150: OkToSend.
-
     """
 
     SENTENCE: ClassVar[str] = "PSRF150"
@@ -32,57 +31,19 @@ class Psrf150:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSRF150", "proprietary", "$", 1, 1, (
+        rt.EnumField("ok_to_send", "sirf_ok_to_send code (0 1)", SirfOkToSend),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     ok_to_send: SirfOkToSend | str | None = None
-    """OkToSend: 1 the receiver is ready to accept input, 0 it is going to sleep (SiRF NMEA reference)."""
+    """OkToSend: 1 the receiver is ready to accept input, 0 it is going to sleep (SiRF NMEA
+    reference)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psrf150:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PSRF150", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PSRF150", 1, count)
-        ok_to_send = SirfOkToSend.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "ok_to_send", "sirf_ok_to_send code (0 1)", SirfOkToSend.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(ok_to_send, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.ok_to_send),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRF150",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"ok_to_send":' + show(self.ok_to_send),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "ok_to_send"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psrf150, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSRFEPE: SiRF estimated position errors.
 
-SiRF (SiRFNavIII, SiRFstar IV/V) accuracy estimates: HDOP with the estimated horizontal and
-vertical position errors, the speed error and the heading error of the current fix. Enabled by
-giving the EPE message a rate with SiRF message 129.
+SiRF (SiRFNavIII, SiRFstar IV/V) accuracy estimates: HDOP with the estimated horizontal and vertical
+position errors, the speed error and the heading error of the current fix. Enabled by giving the EPE
+message a rate with SiRF message 129.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Psrfepe:
+class Psrfepe(rt.Sentence):
     """PSRFEPE: SiRF estimated position errors.
 
-    Example (log_gpsd): $PSRFEPE,074150.799,V,,,,,*23
+    Example (log_gpsd):
+    $PSRFEPE,074157.799,A,1.1,24.65,25.14,0.1,61.5*29
     """
 
     SENTENCE: ClassVar[str] = "PSRFEPE"
@@ -35,6 +32,16 @@ class Psrfepe:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSRFEPE", "proprietary", "$", 7, 7, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("ehpe", "decimal number"),
+        rt.DecimalField("evpe", "decimal number"),
+        rt.DecimalField("ehve", "decimal number"),
+        rt.DecimalField("ehe", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     time: rt.Time | None = None
     """UTC time: UTC time of the fix the estimates belong to."""
     status: Status | str | None = None
@@ -46,82 +53,16 @@ class Psrfepe:
     evpe: rt.Number | None = None
     """Estimated vertical position error [m]: Estimated vertical position error (EVPE)."""
     ehve: rt.Number | None = None
-    """Estimated velocity error [m/s]: Estimated horizontal velocity (speed over ground) error (EHVE)."""
+    """Estimated velocity error [m/s]: Estimated horizontal velocity (speed over ground) error
+    (EHVE)."""
     ehe: rt.Number | None = None
     """Estimated heading error [deg]: Estimated heading error (EHE)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psrfepe:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PSRFEPE", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PSRFEPE", 7, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        hdop = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "hdop", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        ehpe = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "ehpe", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        evpe = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "evpe", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        ehve = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "ehve", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        ehe = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "ehe", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(time, status, hdop, ehpe, evpe, ehve, ehe, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.status),
-            rt.text_of(self.hdop),
-            rt.text_of(self.ehpe),
-            rt.text_of(self.evpe),
-            rt.text_of(self.ehve),
-            rt.text_of(self.ehe),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSRFEPE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"status":' + show(self.status),
-            '"hdop":' + show(self.hdop),
-            '"ehpe":' + show(self.ehpe),
-            '"evpe":' + show(self.evpe),
-            '"ehve":' + show(self.ehve),
-            '"ehe":' + show(self.ehe),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ehpe"), 1)
-        out += rt.json_texts(rt.json_member(fields, "evpe"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ehve"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ehe"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psrfepe, )

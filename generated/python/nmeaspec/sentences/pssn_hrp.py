@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSSN_HRP: Heading, roll and pitch (HRP).
 
-Attitude of a multi-antenna Septentrio receiver (AsteRx, mosaic-H): UTC time and date, heading,
-roll and pitch with their standard deviations, the number of satellites, the attitude mode and
-the magnetic variation.
+Attitude of a multi-antenna Septentrio receiver (AsteRx, mosaic-H): UTC time and date, heading, roll
+and pitch with their standard deviations, the number of satellites, the attitude mode and the
+magnetic variation.
 """
 
 from __future__ import annotations
@@ -16,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import EastWest
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PssnHrp:
+class PssnHrp(rt.Sentence):
     """PSSN_HRP: Heading, roll and pitch (HRP).
 
-    Example (pynmeagps): $PSSN,HRP,104751.00,230324,23.455,1.954,0.0125,0.123,0.0234,0.03765,11,0,4.56453,W*20
+    Example (pynmeagps):
+    $PSSN,HRP,104751.00,230324,23.455,1.954,0.0125,0.123,0.0234,0.03765,11,0,4.56453,W*20
     """
 
     SENTENCE: ClassVar[str] = "PSSN_HRP"
@@ -37,6 +32,22 @@ class PssnHrp:
     SELECTOR: ClassVar[str | None] = "HRP"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSSN_HRP", "proprietary", "$", 13, 13, (
+        rt.KeywordField("keyword", "HRP", "HRP"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.DecimalField("heading", "decimal number"),
+        rt.DecimalField("roll", "decimal number"),
+        rt.DecimalField("pitch", "decimal number"),
+        rt.DecimalField("heading_std", "decimal number"),
+        rt.DecimalField("roll_std", "decimal number"),
+        rt.DecimalField("pitch_std", "decimal number"),
+        rt.IntegerField("satellites", "integer"),
+        rt.IntegerField("attitude_mode", "integer"),
+        rt.DecimalField("mag_var", "decimal number"),
+        rt.EnumField("mag_var_dir", "east_west code (E W)", EastWest),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "HRP"
     """Message: Message keyword."""
     time: rt.Time | None = None
@@ -46,120 +57,32 @@ class PssnHrp:
     heading: rt.Number | None = None
     """Heading [deg]: Heading in degrees, relative to true north."""
     roll: rt.Number | None = None
-    """Roll [deg]: Roll angle in degrees; empty when the antenna setup gives no roll (two antennas)."""
+    """Roll [deg]: Roll angle in degrees; empty when the antenna setup gives no roll (two
+    antennas)."""
     pitch: rt.Number | None = None
     """Pitch [deg]: Pitch angle in degrees."""
     heading_std: rt.Number | None = None
     """Heading standard deviation [deg]: Standard deviation of the heading, in degrees."""
     roll_std: rt.Number | None = None
-    """Roll standard deviation [deg]: Standard deviation of the roll, in degrees; empty when no roll is computed."""
+    """Roll standard deviation [deg]: Standard deviation of the roll, in degrees; empty when no roll
+    is computed."""
     pitch_std: rt.Number | None = None
     """Pitch standard deviation [deg]: Standard deviation of the pitch, in degrees."""
     satellites: rt.Number | None = None
     """Satellites used: Number of satellites used in the attitude computation."""
     attitude_mode: rt.Number | None = None
-    """Attitude mode: Attitude mode of the receiver (the field list gives no table of its values)."""
+    """Attitude mode: Attitude mode of the receiver (the field list gives no table of its
+    values)."""
     mag_var: rt.Number | None = None
     """Magnetic variation [deg]: Magnetic variation in degrees."""
     mag_var_dir: EastWest | str | None = None
     """Magnetic variation direction: Direction of the magnetic variation, E or W."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PssnHrp:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 13:
-            raise rt.too_few(address, "PSSN_HRP", 13, count)
-        if count > 13:
-            raise rt.too_many(address, "PSSN_HRP", 13, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "HRP", "HRP")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = (_DATE.get(fields[2]) or rt.date_field(fields[2], address, 3, "date", "date ddmmyy", _DATE)) if fields[2] else None
-        heading = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "heading", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        roll = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "roll", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        pitch = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "pitch", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        heading_std = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "heading_std", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        roll_std = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "roll_std", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        pitch_std = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "pitch_std", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        satellites = (_INTEGER.get(fields[9]) or rt.integer_field(fields[9], address, 10, "satellites", "integer", None, None, _INTEGER)) if fields[9] else None
-        attitude_mode = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "attitude_mode", "integer", None, None, _INTEGER)) if fields[10] else None
-        mag_var = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "mag_var", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        mag_var_dir = EastWest.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "mag_var_dir", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, heading, roll, pitch, heading_std, roll_std, pitch_std, satellites, attitude_mode, mag_var, mag_var_dir, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.heading),
-            rt.text_of(self.roll),
-            rt.text_of(self.pitch),
-            rt.text_of(self.heading_std),
-            rt.text_of(self.roll_std),
-            rt.text_of(self.pitch_std),
-            rt.text_of(self.satellites),
-            rt.text_of(self.attitude_mode),
-            rt.text_of(self.mag_var),
-            rt.text_of(self.mag_var_dir),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSSN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"heading":' + show(self.heading),
-            '"roll":' + show(self.roll),
-            '"pitch":' + show(self.pitch),
-            '"heading_std":' + show(self.heading_std),
-            '"roll_std":' + show(self.roll_std),
-            '"pitch_std":' + show(self.pitch_std),
-            '"satellites":' + show(self.satellites),
-            '"attitude_mode":' + show(self.attitude_mode),
-            '"mag_var":' + show(self.mag_var),
-            '"mag_var_dir":' + show(self.mag_var_dir),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch_std"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "attitude_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mag_var"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mag_var_dir"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PssnHrp, )

@@ -16,19 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SeptentrioBaseMotion, SeptentrioBaselineQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_360: dict[Any, Any] = rt.known("decimal 0..360")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PssnRbd:
+class PssnRbd(rt.Sentence):
     """PSSN_RBD: Rover-base direction (RBD).
-
     """
 
     SENTENCE: ClassVar[str] = "PSSN_RBD"
@@ -38,6 +29,24 @@ class PssnRbd:
     SELECTOR: ClassVar[str | None] = "RBD"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSSN_RBD", "proprietary", "$", 11, 11, (
+        rt.KeywordField("keyword", "RBD", "RBD"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.DecimalField("azimuth", "decimal number 0..360", 0, 360),
+        rt.DecimalField("elevation", "decimal number -90..90", -90, 90),
+        rt.IntegerField("satellites", "integer"),
+        rt.EnumField(
+            "quality",
+            "septentrio_baseline_quality code (0 2 4 5)",
+            SeptentrioBaselineQuality,
+        ),
+        rt.EnumField("base_motion", "septentrio_base_motion code (0 1)", SeptentrioBaseMotion),
+        rt.DecimalField("correction_age", "decimal number"),
+        rt.TextField("rover_serial", "text"),
+        rt.IntegerField("base_id", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "RBD"
     """Message: Message keyword."""
     time: rt.Time | None = None
@@ -45,13 +54,15 @@ class PssnRbd:
     date: rt.Date | None = None
     """Date: UTC date of the baseline solution."""
     azimuth: rt.Number | None = None
-    """Azimuth of the base [deg]: Azimuth of the base seen from the rover, degrees true, 0 to 360 increasing towards east."""
+    """Azimuth of the base [deg]: Azimuth of the base seen from the rover, degrees true, 0 to 360
+    increasing towards east."""
     elevation: rt.Number | None = None
     """Elevation of the base [deg]: Elevation of the base seen from the rover, -90 to 90 degrees."""
     satellites: rt.Number | None = None
     """Satellites used: Number of satellites used to compute the baseline."""
     quality: SeptentrioBaselineQuality | str | None = None
-    """Quality indicator: Kind of baseline solution (0 invalid, 2 DGPS, 4 RTK fixed, 5 RTK float)."""
+    """Quality indicator: Kind of baseline solution (0 invalid, 2 DGPS, 4 RTK fixed, 5 RTK
+    float)."""
     base_motion: SeptentrioBaseMotion | str | None = None
     """Base motion indicator: 0 static base, 1 moving base."""
     correction_age: rt.Number | None = None
@@ -61,94 +72,11 @@ class PssnRbd:
     base_id: rt.Number | None = None
     """Base station ID: ID of the base station."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PssnRbd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "PSSN_RBD", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "PSSN_RBD", 11, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "RBD", "RBD")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = (_DATE.get(fields[2]) or rt.date_field(fields[2], address, 3, "date", "date ddmmyy", _DATE)) if fields[2] else None
-        azimuth = (_DECIMAL_0_TO_360.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "azimuth", "decimal number 0..360", 0, 360, _DECIMAL_0_TO_360)) if fields[3] else None
-        elevation = (_DECIMAL_MINUS_90_TO_90.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "elevation", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[4] else None
-        satellites = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "satellites", "integer", None, None, _INTEGER)) if fields[5] else None
-        quality = SeptentrioBaselineQuality.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "quality", "septentrio_baseline_quality code (0 2 4 5)", SeptentrioBaselineQuality.BY_CODE, "digits", 1, 1)
-        base_motion = SeptentrioBaseMotion.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "base_motion", "septentrio_base_motion code (0 1)", SeptentrioBaseMotion.BY_CODE, "digits", 1, 1)
-        correction_age = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "correction_age", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        rover_serial = rt.text_field(fields[9], address, 10, "rover_serial", "text", None)
-        base_id = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "base_id", "integer", None, None, _INTEGER)) if fields[10] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, azimuth, elevation, satellites, quality, base_motion, correction_age, rover_serial, base_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.azimuth),
-            rt.text_of(self.elevation),
-            rt.text_of(self.satellites),
-            rt.text_of(self.quality),
-            rt.text_of(self.base_motion),
-            rt.text_of(self.correction_age),
-            rt.text_of(self.rover_serial),
-            rt.text_of(self.base_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSSN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"azimuth":' + show(self.azimuth),
-            '"elevation":' + show(self.elevation),
-            '"satellites":' + show(self.satellites),
-            '"quality":' + show(self.quality),
-            '"base_motion":' + show(self.base_motion),
-            '"correction_age":' + show(self.correction_age),
-            '"rover_serial":' + show(self.rover_serial),
-            '"base_id":' + show(self.base_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "azimuth"), 1)
-        out += rt.json_texts(rt.json_member(fields, "elevation"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "base_motion"), 1)
-        out += rt.json_texts(rt.json_member(fields, "correction_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rover_serial"), 1)
-        out += rt.json_texts(rt.json_member(fields, "base_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PssnRbd, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSSN_RBP: Rover-base position (RBP).
 
-Rover-to-base baseline vector in local north, east and up components, with the number of
-satellites, the solution quality, whether the base moves, the correction age, the rover's serial
-number and the base station ID.
+Rover-to-base baseline vector in local north, east and up components, with the number of satellites,
+the solution quality, whether the base moves, the correction age, the rover's serial number and the
+base station ID.
 """
 
 from __future__ import annotations
@@ -16,17 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SeptentrioBaseMotion, SeptentrioBaselineQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PssnRbp:
+class PssnRbp(rt.Sentence):
     """PSSN_RBP: Rover-base position (RBP).
-
     """
 
     SENTENCE: ClassVar[str] = "PSSN_RBP"
@@ -36,6 +29,25 @@ class PssnRbp:
     SELECTOR: ClassVar[str | None] = "RBP"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSSN_RBP", "proprietary", "$", 12, 12, (
+        rt.KeywordField("keyword", "RBP", "RBP"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.DecimalField("north", "decimal number"),
+        rt.DecimalField("east", "decimal number"),
+        rt.DecimalField("up", "decimal number"),
+        rt.IntegerField("satellites", "integer"),
+        rt.EnumField(
+            "quality",
+            "septentrio_baseline_quality code (0 2 4 5)",
+            SeptentrioBaselineQuality,
+        ),
+        rt.EnumField("base_motion", "septentrio_base_motion code (0 1)", SeptentrioBaseMotion),
+        rt.DecimalField("correction_age", "decimal number"),
+        rt.TextField("rover_serial", "text"),
+        rt.IntegerField("base_id", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "RBP"
     """Message: Message keyword."""
     time: rt.Time | None = None
@@ -43,15 +55,19 @@ class PssnRbp:
     date: rt.Date | None = None
     """Date: UTC date of the baseline solution."""
     north: rt.Number | None = None
-    """North component [m]: North (true) component of the baseline, positive when the base is north of the rover, in metres."""
+    """North component [m]: North (true) component of the baseline, positive when the base is north
+    of the rover, in metres."""
     east: rt.Number | None = None
-    """East component [m]: East component of the baseline, positive when the base is east of the rover, in metres."""
+    """East component [m]: East component of the baseline, positive when the base is east of the
+    rover, in metres."""
     up: rt.Number | None = None
-    """Up component [m]: Up component of the baseline, positive when the base is higher than the rover, in metres."""
+    """Up component [m]: Up component of the baseline, positive when the base is higher than the
+    rover, in metres."""
     satellites: rt.Number | None = None
     """Satellites used: Number of satellites used to compute the baseline."""
     quality: SeptentrioBaselineQuality | str | None = None
-    """Quality indicator: Kind of baseline solution (0 invalid, 2 DGPS, 4 RTK fixed, 5 RTK float)."""
+    """Quality indicator: Kind of baseline solution (0 invalid, 2 DGPS, 4 RTK fixed, 5 RTK
+    float)."""
     base_motion: SeptentrioBaseMotion | str | None = None
     """Base motion indicator: 0 static base, 1 moving base."""
     correction_age: rt.Number | None = None
@@ -61,98 +77,11 @@ class PssnRbp:
     base_id: rt.Number | None = None
     """Base station ID: ID of the base station."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PssnRbp:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "PSSN_RBP", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "PSSN_RBP", 12, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "RBP", "RBP")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = (_DATE.get(fields[2]) or rt.date_field(fields[2], address, 3, "date", "date ddmmyy", _DATE)) if fields[2] else None
-        north = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "north", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        east = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "east", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        up = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "up", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        satellites = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "satellites", "integer", None, None, _INTEGER)) if fields[6] else None
-        quality = SeptentrioBaselineQuality.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "quality", "septentrio_baseline_quality code (0 2 4 5)", SeptentrioBaselineQuality.BY_CODE, "digits", 1, 1)
-        base_motion = SeptentrioBaseMotion.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "base_motion", "septentrio_base_motion code (0 1)", SeptentrioBaseMotion.BY_CODE, "digits", 1, 1)
-        correction_age = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "correction_age", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        rover_serial = rt.text_field(fields[10], address, 11, "rover_serial", "text", None)
-        base_id = (_INTEGER.get(fields[11]) or rt.integer_field(fields[11], address, 12, "base_id", "integer", None, None, _INTEGER)) if fields[11] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, north, east, up, satellites, quality, base_motion, correction_age, rover_serial, base_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.north),
-            rt.text_of(self.east),
-            rt.text_of(self.up),
-            rt.text_of(self.satellites),
-            rt.text_of(self.quality),
-            rt.text_of(self.base_motion),
-            rt.text_of(self.correction_age),
-            rt.text_of(self.rover_serial),
-            rt.text_of(self.base_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSSN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"north":' + show(self.north),
-            '"east":' + show(self.east),
-            '"up":' + show(self.up),
-            '"satellites":' + show(self.satellites),
-            '"quality":' + show(self.quality),
-            '"base_motion":' + show(self.base_motion),
-            '"correction_age":' + show(self.correction_age),
-            '"rover_serial":' + show(self.rover_serial),
-            '"base_id":' + show(self.base_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "up"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "base_motion"), 1)
-        out += rt.json_texts(rt.json_member(fields, "correction_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rover_serial"), 1)
-        out += rt.json_texts(rt.json_member(fields, "base_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PssnRbp, )

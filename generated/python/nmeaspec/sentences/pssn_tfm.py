@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSSN_TFM: Used RTCM coordinate transformation messages (TFM).
 
-Which RTCM 3 coordinate transformation messages (1021 to 1027) the receiver has received and
-applied in its position, with the height indicator of message 1021/1022.
+Which RTCM 3 coordinate transformation messages (1021 to 1027) the receiver has received and applied
+in its position, with the height indicator of message 1021/1022.
 """
 
 from __future__ import annotations
@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PssnTfm:
+class PssnTfm(rt.Sentence):
     """PSSN_TFM: Used RTCM coordinate transformation messages (TFM).
 
-    Example (septentrio): $PSSN,TFM,104751.00,2,1021,1023,1025*5F
+    Example (septentrio):
+    $PSSN,TFM,104751.00,2,1021,1023,1025*5F
     """
 
     SENTENCE: ClassVar[str] = "PSSN_TFM"
@@ -33,87 +30,37 @@ class PssnTfm:
     SELECTOR: ClassVar[str | None] = "TFM"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSSN_TFM", "proprietary", "$", 6, 6, (
+        rt.KeywordField("keyword", "TFM", "TFM"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.IntegerField("height_indicator", "integer"),
+        rt.IntegerField("msg_1021_1022", "integer"),
+        rt.IntegerField("msg_1023_1024", "integer"),
+        rt.IntegerField("msg_1025_1027", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "TFM"
     """Message: Message keyword."""
     time: rt.Time | None = None
     """UTC time: UTC time."""
     height_indicator: rt.Number | None = None
-    """Height indicator: Copy of the height indicator of RTCM message 1021 or 1022; empty when unknown."""
+    """Height indicator: Copy of the height indicator of RTCM message 1021 or 1022; empty when
+    unknown."""
     msg_1021_1022: rt.Number | None = None
-    """Message 1021/1022 used: 1021 or 1022, the one of these (mutually exclusive) messages in use; empty when neither is used."""
+    """Message 1021/1022 used: 1021 or 1022, the one of these (mutually exclusive) messages in use;
+    empty when neither is used."""
     msg_1023_1024: rt.Number | None = None
-    """Message 1023/1024 used: 1023 or 1024, the one of these (mutually exclusive) messages in use; empty when neither is used."""
+    """Message 1023/1024 used: 1023 or 1024, the one of these (mutually exclusive) messages in use;
+    empty when neither is used."""
     msg_1025_1027: rt.Number | None = None
-    """Message 1025/1026/1027 used: 1025, 1026 or 1027, the one of these (mutually exclusive) messages in use; empty when none is used."""
+    """Message 1025/1026/1027 used: 1025, 1026 or 1027, the one of these (mutually exclusive)
+    messages in use; empty when none is used."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PssnTfm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "PSSN_TFM", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "PSSN_TFM", 6, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "TFM", "TFM")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        height_indicator = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "height_indicator", "integer", None, None, _INTEGER)) if fields[2] else None
-        msg_1021_1022 = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "msg_1021_1022", "integer", None, None, _INTEGER)) if fields[3] else None
-        msg_1023_1024 = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "msg_1023_1024", "integer", None, None, _INTEGER)) if fields[4] else None
-        msg_1025_1027 = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "msg_1025_1027", "integer", None, None, _INTEGER)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, height_indicator, msg_1021_1022, msg_1023_1024, msg_1025_1027, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.height_indicator),
-            rt.text_of(self.msg_1021_1022),
-            rt.text_of(self.msg_1023_1024),
-            rt.text_of(self.msg_1025_1027),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSSN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"height_indicator":' + show(self.height_indicator),
-            '"msg_1021_1022":' + show(self.msg_1021_1022),
-            '"msg_1023_1024":' + show(self.msg_1023_1024),
-            '"msg_1025_1027":' + show(self.msg_1025_1027),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height_indicator"), 1)
-        out += rt.json_texts(rt.json_member(fields, "msg_1021_1022"), 1)
-        out += rt.json_texts(rt.json_member(fields, "msg_1023_1024"), 1)
-        out += rt.json_texts(rt.json_member(fields, "msg_1025_1027"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PssnTfm, )

@@ -4,9 +4,8 @@
 """PSTI_030: Recommended minimum 3D GNSS data.
 
 SkyTraq's RTK counterpart of RMC: time, date, status, a high-resolution position (7 decimals of
-minutes), altitude above mean sea level, the east/north/up velocity, the mode indicator and the
-age and ratio of the RTK solution. Sent by SkyTraq RTK receivers (PX1122R, PX1172R, S2525F8-BD-
-RTK).
+minutes), altitude above mean sea level, the east/north/up velocity, the mode indicator and the age
+and ratio of the RTK solution. Sent by SkyTraq RTK receivers (PX1122R, PX1172R, S2525F8-BD-RTK).
 """
 
 from __future__ import annotations
@@ -18,20 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SkytraqMode, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_MINUS_9999_POINT_999_TO_17999_POINT_999: dict[Any, Any] = rt.known("decimal -9999.999..17999.999")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Psti030:
+class Psti030(rt.Sentence):
     """PSTI_030: Recommended minimum 3D GNSS data.
 
-    Example (skytraq_rtk): $PSTI,030,033010.000,A,2447.0895508,N,12100.5234656,E,94.615,0.00,-0.01,0.04,111219,R,0.999,3.724*1A
+    Example (skytraq_rtk):
+    $PSTI,030,033010.000,A,2447.0895508,N,12100.5234656,E,94.615,0.00,-0.01,0.04,111219,R,0.999,3.724*1A
     """
 
     SENTENCE: ClassVar[str] = "PSTI_030"
@@ -41,6 +33,27 @@ class Psti030:
     SELECTOR: ClassVar[str | None] = "030"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTI_030", "proprietary", "$", 15, 15, (
+        rt.KeywordField("keyword", "030", "030"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField(
+            "altitude",
+            "decimal number -9999.999..17999.999",
+            Decimal("-9999.999"),
+            Decimal("17999.999"),
+        ),
+        rt.DecimalField("velocity_east", "decimal number"),
+        rt.DecimalField("velocity_north", "decimal number"),
+        rt.DecimalField("velocity_up", "decimal number"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.EnumField("mode", "skytraq_mode code (A D E F M N O P R S)", SkytraqMode),
+        rt.DecimalField("rtk_age", "decimal number"),
+        rt.DecimalField("rtk_ratio", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "030"
     """Message ID: Identifies this message among the SkyTraq $PSTI sentences."""
     time: rt.Time | None = None
@@ -50,7 +63,8 @@ class Psti030:
     lat: rt.Coordinate | None = None
     """Latitude: Latitude with seven decimals of minutes, leading zeros sent, and its hemisphere."""
     lon: rt.Coordinate | None = None
-    """Longitude: Longitude with seven decimals of minutes, leading zeros sent, and its hemisphere."""
+    """Longitude: Longitude with seven decimals of minutes, leading zeros sent, and its
+    hemisphere."""
     altitude: rt.Number | None = None
     """Altitude [m]: Altitude above mean sea level (geoid)."""
     velocity_east: rt.Number | None = None
@@ -62,108 +76,18 @@ class Psti030:
     date: rt.Date | None = None
     """UTC date: UTC date of the position fix."""
     mode: SkytraqMode | str | None = None
-    """Mode indicator: Kind of solution; R fixed RTK, F float RTK, A autonomous, D differential, N not valid."""
+    """Mode indicator: Kind of solution; R fixed RTK, F float RTK, A autonomous, D differential, N
+    not valid."""
     rtk_age: rt.Number | None = None
     """RTK age [s]: Age of the differential (RTK) corrections."""
     rtk_ratio: rt.Number | None = None
     """RTK ratio: Ratio factor of the ambiguity resolution (AR) validation test."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psti030:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 15:
-            raise rt.too_few(address, "PSTI_030", 15, count)
-        if count > 15:
-            raise rt.too_many(address, "PSTI_030", 15, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "030", "030")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        status = Status.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        lat = _LATITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[5], fields[6])) or rt.coordinate_field(fields[5], fields[6], address, 6, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        altitude = (_DECIMAL_MINUS_9999_POINT_999_TO_17999_POINT_999.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "altitude", "decimal number -9999.999..17999.999", Decimal("-9999.999"), Decimal("17999.999"), _DECIMAL_MINUS_9999_POINT_999_TO_17999_POINT_999)) if fields[7] else None
-        velocity_east = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "velocity_east", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        velocity_north = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "velocity_north", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        velocity_up = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "velocity_up", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        date = (_DATE.get(fields[11]) or rt.date_field(fields[11], address, 12, "date", "date ddmmyy", _DATE)) if fields[11] else None
-        mode = SkytraqMode.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "mode", "skytraq_mode code (A D E F M N O P R S)", SkytraqMode.BY_CODE, "letters", 1, 1)
-        rtk_age = (_DECIMAL.get(fields[13]) or rt.decimal_field(fields[13], address, 14, "rtk_age", "decimal number", None, None, _DECIMAL)) if fields[13] else None
-        rtk_ratio = (_DECIMAL.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "rtk_ratio", "decimal number", None, None, _DECIMAL)) if fields[14] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, status, lat, lon, altitude, velocity_east, velocity_north, velocity_up, date, mode, rtk_age, rtk_ratio, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.status),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.altitude),
-            rt.text_of(self.velocity_east),
-            rt.text_of(self.velocity_north),
-            rt.text_of(self.velocity_up),
-            rt.text_of(self.date),
-            rt.text_of(self.mode),
-            rt.text_of(self.rtk_age),
-            rt.text_of(self.rtk_ratio),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"status":' + show(self.status),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"altitude":' + show(self.altitude),
-            '"velocity_east":' + show(self.velocity_east),
-            '"velocity_north":' + show(self.velocity_north),
-            '"velocity_up":' + show(self.velocity_up),
-            '"date":' + show(self.date),
-            '"mode":' + show(self.mode),
-            '"rtk_age":' + show(self.rtk_age),
-            '"rtk_ratio":' + show(self.rtk_ratio),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_up"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rtk_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rtk_ratio"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psti030, )

@@ -4,8 +4,8 @@
 """PSTI_032: RTK baseline data.
 
 Relative position of the rover with respect to the base station of an RTK solution: the
-east/north/up projections of the baseline vector, its length and course, with the solution's
-status and mode. Sent by SkyTraq RTK receivers.
+east/north/up projections of the baseline vector, its length and course, with the solution's status
+and mode. Sent by SkyTraq RTK receivers.
 """
 
 from __future__ import annotations
@@ -16,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SkytraqMode, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_360: dict[Any, Any] = rt.known("decimal 0..360")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Psti032:
+class Psti032(rt.Sentence):
     """PSTI_032: RTK baseline data.
 
-    Example (skytraq_rtk): $PSTI,032,033010.000,111219,A,R,-4.968,-10.817,-1.849,12.046,204.67,,,,,*39
+    Example (skytraq_rtk):
+    $PSTI,032,033010.000,111219,A,R,-4.968,-10.817,-1.849,12.046,204.67,,,,,*39
     """
 
     SENTENCE: ClassVar[str] = "PSTI_032"
@@ -37,6 +32,24 @@ class Psti032:
     SELECTOR: ClassVar[str | None] = "032"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTI_032", "proprietary", "$", 15, 15, (
+        rt.KeywordField("keyword", "032", "032"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.EnumField("mode", "skytraq_mode code (A D E F M N O P R S)", SkytraqMode),
+        rt.DecimalField("baseline_east", "decimal number"),
+        rt.DecimalField("baseline_north", "decimal number"),
+        rt.DecimalField("baseline_up", "decimal number"),
+        rt.DecimalField("baseline_length", "decimal number"),
+        rt.DecimalField("baseline_course", "decimal number 0..360", 0, 360),
+        rt.TextField("reserved_1", "text"),
+        rt.TextField("reserved_2", "text"),
+        rt.TextField("reserved_3", "text"),
+        rt.TextField("reserved_4", "text"),
+        rt.TextField("reserved_5", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "032"
     """Message ID: Identifies this message among the SkyTraq $PSTI sentences."""
     time: rt.Time | None = None
@@ -68,110 +81,11 @@ class Psti032:
     reserved_5: str | None = None
     """Reserved: Reserved, sent empty."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psti032:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 15:
-            raise rt.too_few(address, "PSTI_032", 15, count)
-        if count > 15:
-            raise rt.too_many(address, "PSTI_032", 15, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "032", "032")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = (_DATE.get(fields[2]) or rt.date_field(fields[2], address, 3, "date", "date ddmmyy", _DATE)) if fields[2] else None
-        status = Status.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        mode = SkytraqMode.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "mode", "skytraq_mode code (A D E F M N O P R S)", SkytraqMode.BY_CODE, "letters", 1, 1)
-        baseline_east = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "baseline_east", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        baseline_north = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "baseline_north", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        baseline_up = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "baseline_up", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        baseline_length = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "baseline_length", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        baseline_course = (_DECIMAL_0_TO_360.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "baseline_course", "decimal number 0..360", 0, 360, _DECIMAL_0_TO_360)) if fields[9] else None
-        reserved_1 = rt.text_field(fields[10], address, 11, "reserved_1", "text", None)
-        reserved_2 = rt.text_field(fields[11], address, 12, "reserved_2", "text", None)
-        reserved_3 = rt.text_field(fields[12], address, 13, "reserved_3", "text", None)
-        reserved_4 = rt.text_field(fields[13], address, 14, "reserved_4", "text", None)
-        reserved_5 = rt.text_field(fields[14], address, 15, "reserved_5", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, status, mode, baseline_east, baseline_north, baseline_up, baseline_length, baseline_course, reserved_1, reserved_2, reserved_3, reserved_4, reserved_5, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.status),
-            rt.text_of(self.mode),
-            rt.text_of(self.baseline_east),
-            rt.text_of(self.baseline_north),
-            rt.text_of(self.baseline_up),
-            rt.text_of(self.baseline_length),
-            rt.text_of(self.baseline_course),
-            rt.text_of(self.reserved_1),
-            rt.text_of(self.reserved_2),
-            rt.text_of(self.reserved_3),
-            rt.text_of(self.reserved_4),
-            rt.text_of(self.reserved_5),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"status":' + show(self.status),
-            '"mode":' + show(self.mode),
-            '"baseline_east":' + show(self.baseline_east),
-            '"baseline_north":' + show(self.baseline_north),
-            '"baseline_up":' + show(self.baseline_up),
-            '"baseline_length":' + show(self.baseline_length),
-            '"baseline_course":' + show(self.baseline_course),
-            '"reserved_1":' + show(self.reserved_1),
-            '"reserved_2":' + show(self.reserved_2),
-            '"reserved_3":' + show(self.reserved_3),
-            '"reserved_4":' + show(self.reserved_4),
-            '"reserved_5":' + show(self.reserved_5),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baseline_east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baseline_north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baseline_up"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baseline_length"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baseline_course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_3"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_4"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_5"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psti032, )

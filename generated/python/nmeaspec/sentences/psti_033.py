@@ -3,10 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSTI_033: RTK raw measurement monitoring data.
 
-Cycle-slip counts of the raw carrier phase measurements used by the RTK engine, for the rover or
-for the base receiver: a total, then for GPS, BeiDou, Galileo and GLONASS the number of cycle-
-slipped measurements on each of two frequencies. A rover sends one line for itself and one for
-its base.
+Cycle-slip counts of the raw carrier phase measurements used by the RTK engine, for the rover or for
+the base receiver: a total, then for GPS, BeiDou, Galileo and GLONASS the number of cycle-slipped
+measurements on each of two frequencies. A rover sends one line for itself and one for its base.
 """
 
 from __future__ import annotations
@@ -17,17 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SkytraqReceiverRole
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Psti033:
+class Psti033(rt.Sentence):
     """PSTI_033: RTK raw measurement monitoring data.
 
-    Example (log_gpsd): $PSTI,033,003832.000,290322,2,R,0,G,0,0,,,C,0,0,,,E,0,0,,,R,0,0,,,*5D
+    Example (log_gpsd):
+    $PSTI,033,003832.000,290322,2,R,0,G,0,0,,,C,0,0,,,E,0,0,,,R,0,0,,,*5D
     """
 
     SENTENCE: ClassVar[str] = "PSTI_033"
@@ -37,6 +32,36 @@ class Psti033:
     SELECTOR: ClassVar[str | None] = "033"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTI_033", "proprietary", "$", 26, 27, (
+        rt.KeywordField("keyword", "033", "033"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.IntegerField("version", "integer"),
+        rt.EnumField("receiver", "skytraq_receiver_role code (R B)", SkytraqReceiverRole),
+        rt.IntegerField("total_slips", "integer"),
+        rt.LiteralField("gps_system", "G or nothing", "G"),
+        rt.IntegerField("gps_l1_slips", "integer"),
+        rt.IntegerField("gps_l2_slips", "integer"),
+        rt.TextField("gps_reserved_1", "text"),
+        rt.TextField("gps_reserved_2", "text"),
+        rt.LiteralField("bds_system", "C or nothing", "C"),
+        rt.IntegerField("bds_b1_slips", "integer"),
+        rt.IntegerField("bds_b2_slips", "integer"),
+        rt.TextField("bds_reserved_1", "text"),
+        rt.TextField("bds_reserved_2", "text"),
+        rt.LiteralField("gal_system", "E or nothing", "E"),
+        rt.IntegerField("gal_e1_slips", "integer"),
+        rt.IntegerField("gal_e5b_slips", "integer"),
+        rt.TextField("gal_reserved_1", "text"),
+        rt.TextField("gal_reserved_2", "text"),
+        rt.LiteralField("glo_system", "R or nothing", "R"),
+        rt.IntegerField("glo_g1_slips", "integer"),
+        rt.IntegerField("glo_g2_slips", "integer"),
+        rt.TextField("glo_reserved_1", "text"),
+        rt.TextField("glo_reserved_2", "text"),
+        rt.TextField("reserved_end", "text", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "033"
     """Message ID: Identifies this message among the SkyTraq $PSTI sentences."""
     time: rt.Time | None = None
@@ -48,7 +73,8 @@ class Psti033:
     receiver: SkytraqReceiverRole | str | None = None
     """Receiver: R when the counts are those of the rover, B when they are those of the base."""
     total_slips: rt.Number | None = None
-    """Total cycle slips: Total number of cycle-slipped raw measurements, all systems and frequencies."""
+    """Total cycle slips: Total number of cycle-slipped raw measurements, all systems and
+    frequencies."""
     gps_system: str | None = None
     """GPS system ID: The letter G, opening the GPS block."""
     gps_l1_slips: rt.Number | None = None
@@ -92,169 +118,11 @@ class Psti033:
     reserved_end: str | None | rt._Absent = rt.ABSENT
     """Reserved: A trailing empty field sent by the PX1172RH, absent from gpsd's field list."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psti033:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 26:
-            raise rt.too_few(address, "PSTI_033", 26, count)
-        if count > 27:
-            raise rt.too_many(address, "PSTI_033", 27, count)
-        optional = count - 26
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "033", "033")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = (_DATE.get(fields[2]) or rt.date_field(fields[2], address, 3, "date", "date ddmmyy", _DATE)) if fields[2] else None
-        version = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "version", "integer", None, None, _INTEGER)) if fields[3] else None
-        receiver = SkytraqReceiverRole.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "receiver", "skytraq_receiver_role code (R B)", SkytraqReceiverRole.BY_CODE, "letters", 1, 1)
-        total_slips = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "total_slips", "integer", None, None, _INTEGER)) if fields[5] else None
-        gps_system = "G" if fields[6] == "G" else rt.literal_field(fields[6], address, 7, "gps_system", "G or nothing", "G")
-        gps_l1_slips = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "gps_l1_slips", "integer", None, None, _INTEGER)) if fields[7] else None
-        gps_l2_slips = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "gps_l2_slips", "integer", None, None, _INTEGER)) if fields[8] else None
-        gps_reserved_1 = rt.text_field(fields[9], address, 10, "gps_reserved_1", "text", None)
-        gps_reserved_2 = rt.text_field(fields[10], address, 11, "gps_reserved_2", "text", None)
-        bds_system = "C" if fields[11] == "C" else rt.literal_field(fields[11], address, 12, "bds_system", "C or nothing", "C")
-        bds_b1_slips = (_INTEGER.get(fields[12]) or rt.integer_field(fields[12], address, 13, "bds_b1_slips", "integer", None, None, _INTEGER)) if fields[12] else None
-        bds_b2_slips = (_INTEGER.get(fields[13]) or rt.integer_field(fields[13], address, 14, "bds_b2_slips", "integer", None, None, _INTEGER)) if fields[13] else None
-        bds_reserved_1 = rt.text_field(fields[14], address, 15, "bds_reserved_1", "text", None)
-        bds_reserved_2 = rt.text_field(fields[15], address, 16, "bds_reserved_2", "text", None)
-        gal_system = "E" if fields[16] == "E" else rt.literal_field(fields[16], address, 17, "gal_system", "E or nothing", "E")
-        gal_e1_slips = (_INTEGER.get(fields[17]) or rt.integer_field(fields[17], address, 18, "gal_e1_slips", "integer", None, None, _INTEGER)) if fields[17] else None
-        gal_e5b_slips = (_INTEGER.get(fields[18]) or rt.integer_field(fields[18], address, 19, "gal_e5b_slips", "integer", None, None, _INTEGER)) if fields[18] else None
-        gal_reserved_1 = rt.text_field(fields[19], address, 20, "gal_reserved_1", "text", None)
-        gal_reserved_2 = rt.text_field(fields[20], address, 21, "gal_reserved_2", "text", None)
-        glo_system = "R" if fields[21] == "R" else rt.literal_field(fields[21], address, 22, "glo_system", "R or nothing", "R")
-        glo_g1_slips = (_INTEGER.get(fields[22]) or rt.integer_field(fields[22], address, 23, "glo_g1_slips", "integer", None, None, _INTEGER)) if fields[22] else None
-        glo_g2_slips = (_INTEGER.get(fields[23]) or rt.integer_field(fields[23], address, 24, "glo_g2_slips", "integer", None, None, _INTEGER)) if fields[23] else None
-        glo_reserved_1 = rt.text_field(fields[24], address, 25, "glo_reserved_1", "text", None)
-        glo_reserved_2 = rt.text_field(fields[25], address, 26, "glo_reserved_2", "text", None)
-        reserved_end: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            reserved_end = rt.text_field(fields[26], address, 27, "reserved_end", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, version, receiver, total_slips, gps_system, gps_l1_slips, gps_l2_slips, gps_reserved_1, gps_reserved_2, bds_system, bds_b1_slips, bds_b2_slips, bds_reserved_1, bds_reserved_2, gal_system, gal_e1_slips, gal_e5b_slips, gal_reserved_1, gal_reserved_2, glo_system, glo_g1_slips, glo_g2_slips, glo_reserved_1, glo_reserved_2, reserved_end, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.version),
-            rt.text_of(self.receiver),
-            rt.text_of(self.total_slips),
-            rt.text_of(self.gps_system),
-            rt.text_of(self.gps_l1_slips),
-            rt.text_of(self.gps_l2_slips),
-            rt.text_of(self.gps_reserved_1),
-            rt.text_of(self.gps_reserved_2),
-            rt.text_of(self.bds_system),
-            rt.text_of(self.bds_b1_slips),
-            rt.text_of(self.bds_b2_slips),
-            rt.text_of(self.bds_reserved_1),
-            rt.text_of(self.bds_reserved_2),
-            rt.text_of(self.gal_system),
-            rt.text_of(self.gal_e1_slips),
-            rt.text_of(self.gal_e5b_slips),
-            rt.text_of(self.gal_reserved_1),
-            rt.text_of(self.gal_reserved_2),
-            rt.text_of(self.glo_system),
-            rt.text_of(self.glo_g1_slips),
-            rt.text_of(self.glo_g2_slips),
-            rt.text_of(self.glo_reserved_1),
-            rt.text_of(self.glo_reserved_2),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.reserved_end is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.reserved_end)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"version":' + show(self.version),
-            '"receiver":' + show(self.receiver),
-            '"total_slips":' + show(self.total_slips),
-            '"gps_system":' + show(self.gps_system),
-            '"gps_l1_slips":' + show(self.gps_l1_slips),
-            '"gps_l2_slips":' + show(self.gps_l2_slips),
-            '"gps_reserved_1":' + show(self.gps_reserved_1),
-            '"gps_reserved_2":' + show(self.gps_reserved_2),
-            '"bds_system":' + show(self.bds_system),
-            '"bds_b1_slips":' + show(self.bds_b1_slips),
-            '"bds_b2_slips":' + show(self.bds_b2_slips),
-            '"bds_reserved_1":' + show(self.bds_reserved_1),
-            '"bds_reserved_2":' + show(self.bds_reserved_2),
-            '"gal_system":' + show(self.gal_system),
-            '"gal_e1_slips":' + show(self.gal_e1_slips),
-            '"gal_e5b_slips":' + show(self.gal_e5b_slips),
-            '"gal_reserved_1":' + show(self.gal_reserved_1),
-            '"gal_reserved_2":' + show(self.gal_reserved_2),
-            '"glo_system":' + show(self.glo_system),
-            '"glo_g1_slips":' + show(self.glo_g1_slips),
-            '"glo_g2_slips":' + show(self.glo_g2_slips),
-            '"glo_reserved_1":' + show(self.glo_reserved_1),
-            '"glo_reserved_2":' + show(self.glo_reserved_2),
-        ]
-        if self.reserved_end is not rt.ABSENT:
-            parts.append('"reserved_end":' + show(self.reserved_end))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "receiver"), 1)
-        out += rt.json_texts(rt.json_member(fields, "total_slips"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_l1_slips"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_l2_slips"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_reserved_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_reserved_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bds_system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bds_b1_slips"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bds_b2_slips"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bds_reserved_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bds_reserved_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gal_system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gal_e1_slips"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gal_e5b_slips"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gal_reserved_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gal_reserved_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glo_system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glo_g1_slips"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glo_g2_slips"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glo_reserved_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glo_reserved_2"), 1)
-        if "reserved_end" in fields:
-            out += rt.json_texts(fields["reserved_end"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psti033, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSTI_036: Heading, pitch and roll.
 
-Attitude of the baseline between the two antennas of a SkyTraq dual-antenna (moving base)
-receiver such as the PX1172RH: heading, pitch and roll with the mode of the solution. The angles
-are meaningful when the mode is R (fixed RTK baseline).
+Attitude of the baseline between the two antennas of a SkyTraq dual-antenna (moving base) receiver
+such as the PX1172RH: heading, pitch and roll with the mode of the solution. The angles are
+meaningful when the mode is R (fixed RTK baseline).
 """
 
 from __future__ import annotations
@@ -16,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SkytraqMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL_0_TO_360: dict[Any, Any] = rt.known("decimal 0..360")
-_DECIMAL_MINUS_90_TO_90: dict[Any, Any] = rt.known("decimal -90..90")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Psti036:
+class Psti036(rt.Sentence):
     """PSTI_036: Heading, pitch and roll.
 
-    Example (log_gpsd): $PSTI,036,003832.000,290322,244.28,2.77,0.00,R*5D
+    Example (log_gpsd):
+    $PSTI,036,003832.000,290322,244.28,2.77,0.00,R*5D
     """
 
     SENTENCE: ClassVar[str] = "PSTI_036"
@@ -37,6 +32,16 @@ class Psti036:
     SELECTOR: ClassVar[str | None] = "036"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTI_036", "proprietary", "$", 7, 7, (
+        rt.KeywordField("keyword", "036", "036"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.DecimalField("heading", "decimal number 0..360", 0, 360),
+        rt.DecimalField("pitch", "decimal number -90..90", -90, 90),
+        rt.DecimalField("roll", "decimal number -90..90", -90, 90),
+        rt.EnumField("mode", "skytraq_mode code (A D E F M N O P R S)", SkytraqMode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "036"
     """Message ID: Identifies this message among the SkyTraq $PSTI sentences."""
     time: rt.Time | None = None
@@ -50,80 +55,14 @@ class Psti036:
     roll: rt.Number | None = None
     """Roll [deg]: Roll angle, -90 to 90 degrees; a two-antenna receiver reports 0.00."""
     mode: SkytraqMode | str | None = None
-    """Mode indicator: Kind of baseline solution; the angles are valid with R (fixed RTK), N means not valid."""
+    """Mode indicator: Kind of baseline solution; the angles are valid with R (fixed RTK), N means
+    not valid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psti036:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PSTI_036", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PSTI_036", 7, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "036", "036")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = (_DATE.get(fields[2]) or rt.date_field(fields[2], address, 3, "date", "date ddmmyy", _DATE)) if fields[2] else None
-        heading = (_DECIMAL_0_TO_360.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "heading", "decimal number 0..360", 0, 360, _DECIMAL_0_TO_360)) if fields[3] else None
-        pitch = (_DECIMAL_MINUS_90_TO_90.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "pitch", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[4] else None
-        roll = (_DECIMAL_MINUS_90_TO_90.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "roll", "decimal number -90..90", -90, 90, _DECIMAL_MINUS_90_TO_90)) if fields[5] else None
-        mode = SkytraqMode.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "mode", "skytraq_mode code (A D E F M N O P R S)", SkytraqMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, heading, pitch, roll, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.heading),
-            rt.text_of(self.pitch),
-            rt.text_of(self.roll),
-            rt.text_of(self.mode),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"heading":' + show(self.heading),
-            '"pitch":' + show(self.pitch),
-            '"roll":' + show(self.roll),
-            '"mode":' + show(self.mode),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psti036, )

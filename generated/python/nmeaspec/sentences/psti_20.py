@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSTI_20: Dead reckoning status.
 
-State of the dead reckoning engine of a SkyTraq DR receiver (PX1175RD/PX1175RDP): calibration of
-the DR solution and of the gyroscope, sensor input, odometer pulse count and scale, travel
-direction, whether the position is a GNSS fix or dead reckoned, the gyroscope bias and the
-rotation rate. Several values only apply with an odometer (ADR) and are fixed without one (ODR).
+State of the dead reckoning engine of a SkyTraq DR receiver (PX1175RD/PX1175RDP): calibration of the
+DR solution and of the gyroscope, sensor input, odometer pulse count and scale, travel direction,
+whether the position is a GNSS fix or dead reckoned, the gyroscope bias and the rotation rate.
+Several values only apply with an odometer (ADR) and are fixed without one (ODR).
 """
 
 from __future__ import annotations
@@ -17,16 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SkytraqAvailability, SkytraqCalibration, SkytraqDirection, SkytraqDrMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Psti20:
+class Psti20(rt.Sentence):
     """PSTI_20: Dead reckoning status.
 
-    Example (skytraq_px1175rdp): $PSTI,20,1,1,1,5,A,0,0,-58.48,20.14,0.01,1.01*73
+    Example (skytraq_px1175rdp):
+    $PSTI,20,1,1,1,5,A,0,0,-58.48,20.14,0.01,1.01*73
     """
 
     SENTENCE: ClassVar[str] = "PSTI_20"
@@ -36,8 +33,24 @@ class Psti20:
     SELECTOR: ClassVar[str | None] = "20"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTI_20", "proprietary", "$", 12, 12, (
+        rt.KeywordField("keyword", "20", "20"),
+        rt.EnumField("dr_calibration", "skytraq_calibration code (0 1)", SkytraqCalibration),
+        rt.EnumField("gyro_calibration", "skytraq_calibration code (0 1)", SkytraqCalibration),
+        rt.EnumField("sensor_input", "skytraq_availability code (0 1)", SkytraqAvailability),
+        rt.IntegerField("odometer_pulses", "integer"),
+        rt.EnumField("position_mode", "skytraq_dr_mode code (A E N)", SkytraqDrMode),
+        rt.EnumField("backward", "skytraq_direction code (0 1)", SkytraqDirection),
+        rt.EnumField("antenna", "skytraq_availability code (0 1)", SkytraqAvailability),
+        rt.DecimalField("gyro_bias", "decimal number"),
+        rt.DecimalField("odometer_scale", "decimal number"),
+        rt.DecimalField("rotation_rate", "decimal number"),
+        rt.DecimalField("distance_per_second", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "20"
-    """Message ID: Identifies this message among the SkyTraq $PSTI sentences (two digits, unlike the RTK messages)."""
+    """Message ID: Identifies this message among the SkyTraq $PSTI sentences (two digits, unlike the
+    RTK messages)."""
     dr_calibration: SkytraqCalibration | str | None = None
     """DR calibration status: 1 when the dead reckoning is calibrated, 0 when not."""
     gyro_calibration: SkytraqCalibration | str | None = None
@@ -45,114 +58,31 @@ class Psti20:
     sensor_input: SkytraqAvailability | str | None = None
     """Sensor input: 1 when the sensor input is available, 0 when not."""
     odometer_pulses: rt.Number | None = None
-    """Odometer pulse count [pulses]: Odometer pulses counted (ADR); always 0 without odometer (ODR)."""
+    """Odometer pulse count [pulses]: Odometer pulses counted (ADR); always 0 without odometer
+    (ODR)."""
     position_mode: SkytraqDrMode | str | None = None
     """Position mode: A for a GNSS fix, E for a dead reckoned position, N for no valid data."""
     backward: SkytraqDirection | str | None = None
-    """Backward status: 1 when the backward input is active and the vehicle moves backward (ADR); 0 moving forward, always 0 for ODR."""
+    """Backward status: 1 when the backward input is active and the vehicle moves backward (ADR); 0
+    moving forward, always 0 for ODR."""
     antenna: SkytraqAvailability | str | None = None
     """Antenna detection: Reserved; 1 antenna present, 0 antenna absent."""
     gyro_bias: rt.Number | None = None
     """Z-axis gyroscope bias [0.002 V]: Bias of the z-axis gyroscope, in units of 0.002 V."""
     odometer_scale: rt.Number | None = None
-    """Odometer scale factor [cm/pulse]: Distance per odometer pulse (ADR); 100 without odometer (ODR)."""
+    """Odometer scale factor [cm/pulse]: Distance per odometer pulse (ADR); 100 without odometer
+    (ODR)."""
     rotation_rate: rt.Number | None = None
     """Z-axis rotation rate [deg/s]: Rotation rate about the z axis."""
     distance_per_second: rt.Number | None = None
-    """Distance per second [m]: Distance moved during the last second (ADR); 0 without odometer (ODR)."""
+    """Distance per second [m]: Distance moved during the last second (ADR); 0 without odometer
+    (ODR)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Psti20:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "PSTI_20", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "PSTI_20", 12, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "20", "20")
-        dr_calibration = SkytraqCalibration.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "dr_calibration", "skytraq_calibration code (0 1)", SkytraqCalibration.BY_CODE, "digits", 1, 1)
-        gyro_calibration = SkytraqCalibration.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "gyro_calibration", "skytraq_calibration code (0 1)", SkytraqCalibration.BY_CODE, "digits", 1, 1)
-        sensor_input = SkytraqAvailability.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "sensor_input", "skytraq_availability code (0 1)", SkytraqAvailability.BY_CODE, "digits", 1, 1)
-        odometer_pulses = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "odometer_pulses", "integer", None, None, _INTEGER)) if fields[4] else None
-        position_mode = SkytraqDrMode.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "position_mode", "skytraq_dr_mode code (A E N)", SkytraqDrMode.BY_CODE, "letters", 1, 1)
-        backward = SkytraqDirection.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "backward", "skytraq_direction code (0 1)", SkytraqDirection.BY_CODE, "digits", 1, 1)
-        antenna = SkytraqAvailability.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "antenna", "skytraq_availability code (0 1)", SkytraqAvailability.BY_CODE, "digits", 1, 1)
-        gyro_bias = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "gyro_bias", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        odometer_scale = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "odometer_scale", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        rotation_rate = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "rotation_rate", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        distance_per_second = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "distance_per_second", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, dr_calibration, gyro_calibration, sensor_input, odometer_pulses, position_mode, backward, antenna, gyro_bias, odometer_scale, rotation_rate, distance_per_second, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.dr_calibration),
-            rt.text_of(self.gyro_calibration),
-            rt.text_of(self.sensor_input),
-            rt.text_of(self.odometer_pulses),
-            rt.text_of(self.position_mode),
-            rt.text_of(self.backward),
-            rt.text_of(self.antenna),
-            rt.text_of(self.gyro_bias),
-            rt.text_of(self.odometer_scale),
-            rt.text_of(self.rotation_rate),
-            rt.text_of(self.distance_per_second),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"dr_calibration":' + show(self.dr_calibration),
-            '"gyro_calibration":' + show(self.gyro_calibration),
-            '"sensor_input":' + show(self.sensor_input),
-            '"odometer_pulses":' + show(self.odometer_pulses),
-            '"position_mode":' + show(self.position_mode),
-            '"backward":' + show(self.backward),
-            '"antenna":' + show(self.antenna),
-            '"gyro_bias":' + show(self.gyro_bias),
-            '"odometer_scale":' + show(self.odometer_scale),
-            '"rotation_rate":' + show(self.rotation_rate),
-            '"distance_per_second":' + show(self.distance_per_second),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dr_calibration"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gyro_calibration"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sensor_input"), 1)
-        out += rt.json_texts(rt.json_member(fields, "odometer_pulses"), 1)
-        out += rt.json_texts(rt.json_member(fields, "position_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "backward"), 1)
-        out += rt.json_texts(rt.json_member(fields, "antenna"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gyro_bias"), 1)
-        out += rt.json_texts(rt.json_member(fields, "odometer_scale"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rotation_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance_per_second"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Psti20, )

@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_15: dict[Any, Any] = rt.known("integer 0..15")
-
 
 @dataclass(slots=True)
-class Pstmcold:
+class Pstmcold(rt.Sentence):
     """PSTMCOLD: Cold start.
 
-    Example (teseo): $PSTMCOLD,6
+    Example (teseo):
+    $PSTMCOLD,6
     """
 
     SENTENCE: ClassVar[str] = "PSTMCOLD"
@@ -33,68 +31,22 @@ class Pstmcold:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMCOLD", "proprietary", "$", 0, 1, (
+        rt.IntegerField("mask", "integer 0..15", 0, 15, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     mask: rt.Number | None | rt._Absent = rt.ABSENT
-    """Erase mask: Which data to invalidate before the start: 0x1 almanac, 0x2 ephemerides, 0x4 position, 0x8 time; several may be combined (e.g. 0xD). Only the selected data is invalidated. When the argument is absent the receiver uses 0xE (ephemerides, time and position). The manual calls the argument an integer and writes it in decimal in its examples (6; 15 for a full cold start, i.e. 0xF), so it is modelled as a decimal integer carrying the bitmask."""
+    """Erase mask: Which data to invalidate before the start: 0x1 almanac, 0x2 ephemerides, 0x4
+    position, 0x8 time; several may be combined (e.g. 0xD). Only the selected data is invalidated.
+    When the argument is absent the receiver uses 0xE (ephemerides, time and position). The manual
+    calls the argument an integer and writes it in decimal in its examples (6; 15 for a full cold
+    start, i.e. 0xF), so it is modelled as a decimal integer carrying the bitmask."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pstmcold:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 0:
-            raise rt.too_few(address, "PSTMCOLD", 0, count)
-        if count > 1:
-            raise rt.too_many(address, "PSTMCOLD", 1, count)
-        optional = count - 0
-        mask: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mask = (_INTEGER_0_TO_15.get(fields[0]) or rt.integer_field(fields[0], address, 1, "mask", "integer 0..15", 0, 15, _INTEGER_0_TO_15)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(mask, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mask is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mask)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMCOLD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-        ]
-        if self.mask is not rt.ABSENT:
-            parts.append('"mask":' + show(self.mask))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        if "mask" in fields:
-            out += rt.json_texts(fields["mask"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pstmcold, )

@@ -15,15 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TeseoRtcStatus, TeseoTimeValidity
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PstmgetrtctimeReply:
+class PstmgetrtctimeReply(rt.Sentence):
     """PSTMGETRTCTIME_REPLY: RTC time and status.
-
     """
 
     SENTENCE: ClassVar[str] = "PSTMGETRTCTIME_REPLY"
@@ -33,8 +28,20 @@ class PstmgetrtctimeReply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMGETRTCTIME_REPLY", "proprietary", "$", 4, 4, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.EnumField("rtc_status", "teseo_rtc_status code (0 1 2)", TeseoRtcStatus),
+        rt.EnumField(
+            "time_validity",
+            "teseo_time_validity code (0 1 2 3 4 5 6 7 8)",
+            TeseoTimeValidity,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     time: rt.Time | None = None
-    """RTC time: Current time read from the RTC; the manual gives the layout hhmmss.ms without saying how many fraction digits."""
+    """RTC time: Current time read from the RTC; the manual gives the layout hhmmss.ms without
+    saying how many fraction digits."""
     date: rt.Date | None = None
     """RTC date: Current date read from the RTC."""
     rtc_status: TeseoRtcStatus | str | None = None
@@ -42,66 +49,11 @@ class PstmgetrtctimeReply:
     time_validity: TeseoTimeValidity | str | None = None
     """Time validity: Source and quality of the time, 0 (no time) to 8 (ephemeris time)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PstmgetrtctimeReply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PSTMGETRTCTIME_REPLY", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PSTMGETRTCTIME_REPLY", 4, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        date = (_DATE.get(fields[1]) or rt.date_field(fields[1], address, 2, "date", "date ddmmyy", _DATE)) if fields[1] else None
-        rtc_status = TeseoRtcStatus.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "rtc_status", "teseo_rtc_status code (0 1 2)", TeseoRtcStatus.BY_CODE, "digits", 1, 1)
-        time_validity = TeseoTimeValidity.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "time_validity", "teseo_time_validity code (0 1 2 3 4 5 6 7 8)", TeseoTimeValidity.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(time, date, rtc_status, time_validity, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.rtc_status),
-            rt.text_of(self.time_validity),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMGETRTCTIME",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"rtc_status":' + show(self.rtc_status),
-            '"time_validity":' + show(self.time_validity),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rtc_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_validity"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PstmgetrtctimeReply, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSTMGETSWVER_REPLY: Software version.
 
-Answer to $PSTMGETSWVER: the version of the GNSS library built into the firmware, the compiler
-type and the build date and time.
+Answer to $PSTMGETSWVER: the version of the GNSS library built into the firmware, the compiler type
+and the build date and time.
 """
 
 from __future__ import annotations
@@ -17,9 +17,8 @@ from ..enums import TeseoCompilerType
 
 
 @dataclass(slots=True)
-class PstmgetswverReply:
+class PstmgetswverReply(rt.Sentence):
     """PSTMGETSWVER_REPLY: Software version.
-
     """
 
     SENTENCE: ClassVar[str] = "PSTMGETSWVER_REPLY"
@@ -29,75 +28,30 @@ class PstmgetswverReply:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMGETSWVER_REPLY", "proprietary", "$", 4, 4, (
+        rt.TextField("library_version", "text"),
+        rt.EnumField("compiler", "teseo_compiler_type code (ARM GNU)", TeseoCompilerType),
+        rt.TextField("build_date", "text"),
+        rt.TextField("build_time", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     library_version: str | None = None
-    """GNSS library version: The fixed text "GNSSLIB_" joined by the underscore to the library version X.X.X.X in one wire field, e.g. GNSSLIB_7.1.1.15."""
+    """GNSS library version: The fixed text \"GNSSLIB_\" joined by the underscore to the library
+    version X.X.X.X in one wire field, e.g. GNSSLIB_7.1.1.15."""
     compiler: TeseoCompilerType | str | None = None
     """Compiler type: Compiler that built the library, ARM or GNU."""
     build_date: str | None = None
-    """Build date: Compilation date as text with spaces, e.g. "Sept 04 2008": although the format column says mm dd yyyy, the example gives the month as an English abbreviation (the style of the C compiler's __DATE__)."""
+    """Build date: Compilation date as text with spaces, e.g. \"Sept 04 2008\": although the format
+    column says mm dd yyyy, the example gives the month as an English abbreviation (the style of the
+    C compiler's __DATE__)."""
     build_time: str | None = None
     """Build time: Compilation time with colons, e.g. 13:15:03 (not the NMEA hhmmss time form)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PstmgetswverReply:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "PSTMGETSWVER_REPLY", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "PSTMGETSWVER_REPLY", 4, count)
-        library_version = rt.text_field(fields[0], address, 1, "library_version", "text", None)
-        compiler = TeseoCompilerType.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "compiler", "teseo_compiler_type code (ARM GNU)", TeseoCompilerType.BY_CODE, "letters", 3, 3)
-        build_date = rt.text_field(fields[2], address, 3, "build_date", "text", None)
-        build_time = rt.text_field(fields[3], address, 4, "build_time", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(library_version, compiler, build_date, build_time, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.library_version),
-            rt.text_of(self.compiler),
-            rt.text_of(self.build_date),
-            rt.text_of(self.build_time),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMGETSWVER",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"library_version":' + show(self.library_version),
-            '"compiler":' + show(self.compiler),
-            '"build_date":' + show(self.build_date),
-            '"build_time":' + show(self.build_time),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "library_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "compiler"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "build_time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PstmgetswverReply, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSTMNMEAONOFF: NMEA output on/off.
 
-Stops or starts the output of the NMEA messages. With the argument the output takes the given
-state; a request for the state it is already in is rejected without effect. Without the argument
-(the original syntax, still supported) the command toggles the output. No answer is documented.
+Stops or starts the output of the NMEA messages. With the argument the output takes the given state;
+a request for the state it is already in is rejected without effect. Without the argument (the
+original syntax, still supported) the command toggles the output. No answer is documented.
 """
 
 from __future__ import annotations
@@ -18,10 +18,11 @@ from ..enums import TeseoNmeaOnOff
 
 
 @dataclass(slots=True)
-class Pstmnmeaonoff:
+class Pstmnmeaonoff(rt.Sentence):
     """PSTMNMEAONOFF: NMEA output on/off.
 
-    Example (teseo): $PSTMNMEAONOFF,0
+    Example (teseo):
+    $PSTMNMEAONOFF,0
     """
 
     SENTENCE: ClassVar[str] = "PSTMNMEAONOFF"
@@ -31,68 +32,19 @@ class Pstmnmeaonoff:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMNMEAONOFF", "proprietary", "$", 0, 1, (
+        rt.EnumField("on_off", "teseo_nmea_on_off code (0 1)", TeseoNmeaOnOff, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     on_off: TeseoNmeaOnOff | str | None | rt._Absent = rt.ABSENT
-    """Output state: 0 stops the NMEA output, 1 starts it. Added in software version 7.1.9.29; when absent the output toggles."""
+    """Output state: 0 stops the NMEA output, 1 starts it. Added in software version 7.1.9.29; when
+    absent the output toggles."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pstmnmeaonoff:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 0:
-            raise rt.too_few(address, "PSTMNMEAONOFF", 0, count)
-        if count > 1:
-            raise rt.too_many(address, "PSTMNMEAONOFF", 1, count)
-        optional = count - 0
-        on_off: TeseoNmeaOnOff | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            on_off = TeseoNmeaOnOff.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "on_off", "teseo_nmea_on_off code (0 1)", TeseoNmeaOnOff.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(on_off, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.on_off is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.on_off)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMNMEAONOFF",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-        ]
-        if self.on_off is not rt.ABSENT:
-            parts.append('"on_off":' + show(self.on_off))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        if "on_off" in fields:
-            out += rt.json_texts(fields["on_off"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pstmnmeaonoff, )

@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSTMSET: Get parameter answer, printed form.
 
-The $PSTMGETPAR answer as the manual's example prints it, under the address $PSTMSET: the block
-and parameter read and the parameter's value. The documented syntax of the same answer uses the
-address $PSTMSETPAR (see PSTMSETPAR); which of the two the firmware sends is not certain, so
-both are accepted.
+The $PSTMGETPAR answer as the manual's example prints it, under the address $PSTMSET: the block and
+parameter read and the parameter's value. The documented syntax of the same answer uses the address
+$PSTMSETPAR (see PSTMSETPAR); which of the two the firmware sends is not certain, so both are
+accepted.
 """
 
 from __future__ import annotations
@@ -16,16 +16,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO_99: dict[Any, Any] = rt.known("decimal 0..99")
-_INTEGER_1000_TO_3999: dict[Any, Any] = rt.known("integer 1000..3999")
-_INTEGER_1400_TO_3403: dict[Any, Any] = rt.known("integer 1400..3403")
-
 
 @dataclass(slots=True)
-class Pstmset:
+class Pstmset(rt.Sentence):
     """PSTMSET: Get parameter answer, printed form.
-
     """
 
     SENTENCE: ClassVar[str] = "PSTMSET"
@@ -35,73 +29,35 @@ class Pstmset:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMSET", "proprietary", "$", 2, 2, (
+        rt.IntegerField("block_param", "integer 1000..3999", 1000, 3999),
+        rt.TextField("value", "text of at most 80 characters", 80),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     block_param: rt.Number | None = None
-    """Configuration block and parameter ID: The configuration block digit (1 current, 2 default, 3 saved in NVM) followed, without a separator, by the 3-digit CDB parameter ID that was read."""
+    """Configuration block and parameter ID: The configuration block digit (1 current, 2 default, 3
+    saved in NVM) followed, without a separator, by the 3-digit CDB parameter ID that was read."""
     value: str | None = None
-    """Parameter value: The value in the parameter's wire encoding (teseo_cdb): hex without "0x" for integer parameters, decimal for real ones, text for parameter 500. The four DOP values of parameters 400-403 are covered by the variant dop."""
+    """Parameter value: The value in the parameter's wire encoding (teseo_cdb): hex without \"0x\"
+    for integer parameters, decimal for real ones, text for parameter 500. The four DOP values of
+    parameters 400-403 are covered by the variant dop."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pstmset:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PSTMSET", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PSTMSET", 2, count)
-        block_param = (_INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)) if fields[0] else None
-        value = rt.text_field(fields[1], address, 2, "value", "text of at most 80 characters", 80)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(block_param, value, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.block_param),
-            rt.text_of(self.value),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSET",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"block_param":' + show(self.block_param),
-            '"value":' + show(self.value),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "block_param"), 1)
-        out += rt.json_texts(rt.json_member(fields, "value"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PstmsetDop:
+class PstmsetDop(rt.Sentence):
     """PSTMSET (DOP thresholds): Get parameter answer, printed form.
 
     Answer for the DOP threshold parameters 400-403, whose value is four decimal numbers in four
     wire fields.
 
-    Example (teseo): $PSTMSET,1403,15,12,12,18
+    Example (teseo):
+    $PSTMSET,1403,15,12,12,18
     """
 
     SENTENCE: ClassVar[str] = "PSTMSET"
@@ -111,8 +67,17 @@ class PstmsetDop:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMSET", "proprietary", "$", 5, 5, (
+        rt.IntegerField("block_param", "integer 1400..3403", 1400, 3403),
+        rt.DecimalField("pdop", "decimal number 0..99", 0, 99),
+        rt.DecimalField("vdop", "decimal number 0..99", 0, 99),
+        rt.DecimalField("hdop", "decimal number 0..99", 0, 99),
+        rt.DecimalField("gdop", "decimal number 0..99", 0, 99),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     block_param: rt.Number | None = None
-    """Configuration block and parameter ID: Configuration block digit followed by the DOP parameter ID 400-403 (e.g. 1403 = block 1, start 3D DOP)."""
+    """Configuration block and parameter ID: Configuration block digit followed by the DOP parameter
+    ID 400-403 (e.g. 1403 = block 1, start 3D DOP)."""
     pdop: rt.Number | None = None
     """PDOP threshold: Position DOP threshold (P), decimal."""
     vdop: rt.Number | None = None
@@ -122,70 +87,11 @@ class PstmsetDop:
     gdop: rt.Number | None = None
     """GDOP threshold: Geometric DOP threshold (G), decimal."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PstmsetDop:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PSTMSET", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PSTMSET", 5, count)
-        block_param = (_INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)) if fields[0] else None
-        pdop = (_DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[1] else None
-        vdop = (_DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[2] else None
-        hdop = (_DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[3] else None
-        gdop = (_DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(block_param, pdop, vdop, hdop, gdop, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.block_param),
-            rt.text_of(self.pdop),
-            rt.text_of(self.vdop),
-            rt.text_of(self.hdop),
-            rt.text_of(self.gdop),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSET",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"block_param":' + show(self.block_param),
-            '"pdop":' + show(self.pdop),
-            '"vdop":' + show(self.vdop),
-            '"hdop":' + show(self.hdop),
-            '"gdop":' + show(self.gdop),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "block_param"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gdop"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pstmset, PstmsetDop, )

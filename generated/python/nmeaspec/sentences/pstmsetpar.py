@@ -4,11 +4,10 @@
 """PSTMSETPAR: Set configuration parameter (also the $PSTMGETPAR answer).
 
 Sets one parameter of the configuration data block (table teseo_cdb) to the given value, or
-sets/clears some of its bits. Only the current configuration in RAM is written; the change is
-lost at reset unless $PSTMSAVEPAR follows. The receiver answers $PSTMSETPAROK or
-$PSTMSETPARERROR. The same sentence, without the mode, is also the receiver's answer to
-$PSTMGETPAR: it then carries the value read from the block the command named. Wrong values can
-degrade or stop the receiver.
+sets/clears some of its bits. Only the current configuration in RAM is written; the change is lost
+at reset unless $PSTMSAVEPAR follows. The receiver answers $PSTMSETPAROK or $PSTMSETPARERROR. The
+same sentence, without the mode, is also the receiver's answer to $PSTMGETPAR: it then carries the
+value read from the block the command named. Wrong values can degrade or stop the receiver.
 """
 
 from __future__ import annotations
@@ -19,17 +18,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TeseoSetparMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO_99: dict[Any, Any] = rt.known("decimal 0..99")
-_INTEGER_1000_TO_3999: dict[Any, Any] = rt.known("integer 1000..3999")
-_INTEGER_1400_TO_3403: dict[Any, Any] = rt.known("integer 1400..3403")
-
 
 @dataclass(slots=True)
-class Pstmsetpar:
+class Pstmsetpar(rt.Sentence):
     """PSTMSETPAR: Set configuration parameter (also the $PSTMGETPAR answer).
 
-    Example (teseo): $PSTMSETPAR,1121,10*
+    Example (teseo):
+    $PSTMSETPAR,1121,10*
     """
 
     SENTENCE: ClassVar[str] = "PSTMSETPAR"
@@ -44,90 +39,43 @@ class Pstmsetpar:
         ("PSTMSETPARERROR", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMSETPAR", "proprietary", "$", 2, 3, (
+        rt.IntegerField("block_param", "integer 1000..3999", 1000, 3999),
+        rt.TextField("value", "text of at most 80 characters", 80),
+        rt.EnumField("mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     block_param: rt.Number | None = None
-    """Configuration block and parameter ID: One wire field made of the configuration block digit b followed, without a comma or a space, by the 3-digit CDB parameter ID nnn (e.g. 1121 = block 1, parameter 121). Blocks: 1 current configuration (RAM), 2 factory defaults, 3 configuration saved in NVM. When setting, the block digit is ignored (only the current configuration can be written) and only kept for the same syntax as $PSTMGETPAR; in the $PSTMGETPAR answer it is the block that was read."""
+    """Configuration block and parameter ID: One wire field made of the configuration block digit b
+    followed, without a comma or a space, by the 3-digit CDB parameter ID nnn (e.g. 1121 = block 1,
+    parameter 121). Blocks: 1 current configuration (RAM), 2 factory defaults, 3 configuration saved
+    in NVM. When setting, the block digit is ignored (only the current configuration can be written)
+    and only kept for the same syntax as $PSTMGETPAR; in the $PSTMGETPAR answer it is the block that
+    was read."""
     value: str | None = None
-    """Parameter value: The value, 1 to 80 bytes, written as the parameter requires (teseo_cdb encoding): hex digits without "0x" for every integer parameter (e.g. 10 = 0x10), decimal for the real parameters (301-303), plain text for the text message (500). The four DOP values of parameters 400-403 take four wire fields and are covered by the variant dop."""
+    """Parameter value: The value, 1 to 80 bytes, written as the parameter requires (teseo_cdb
+    encoding): hex digits without \"0x\" for every integer parameter (e.g. 10 = 0x10), decimal for
+    the real parameters (301-303), plain text for the text message (500). The four DOP values of
+    parameters 400-403 take four wire fields and are covered by the variant dop."""
     mode: TeseoSetparMode | str | None | rt._Absent = rt.ABSENT
-    """Write mode: How the value is combined with the stored one: 0 replace (also when absent), 1 bitwise OR (set the given bits), 2 bitwise AND with the inverted value (clear the given bits). Only in the command; the $PSTMGETPAR answer has no mode."""
+    """Write mode: How the value is combined with the stored one: 0 replace (also when absent), 1
+    bitwise OR (set the given bits), 2 bitwise AND with the inverted value (clear the given bits).
+    Only in the command; the $PSTMGETPAR answer has no mode."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pstmsetpar:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PSTMSETPAR", 2, count)
-        if count > 3:
-            raise rt.too_many(address, "PSTMSETPAR", 3, count)
-        optional = count - 2
-        block_param = (_INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)) if fields[0] else None
-        value = rt.text_field(fields[1], address, 2, "value", "text of at most 80 characters", 80)
-        mode: TeseoSetparMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = TeseoSetparMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(block_param, value, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.block_param),
-            rt.text_of(self.value),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSETPAR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"block_param":' + show(self.block_param),
-            '"value":' + show(self.value),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "block_param"), 1)
-        out += rt.json_texts(rt.json_member(fields, "value"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class PstmsetparDop:
+class PstmsetparDop(rt.Sentence):
     """PSTMSETPAR (DOP thresholds): Set configuration parameter (also the $PSTMGETPAR answer).
 
     Layout for the DOP threshold parameters 400-403, whose value is four decimal numbers (PDOP,
-    VDOP, HDOP, GDOP thresholds, each 0 to 99) in four wire fields. The manual requires decimal,
-    not hex, for these parameters.
-
+    VDOP, HDOP, GDOP thresholds, each 0 to 99) in four wire fields. The manual requires decimal, not
+    hex, for these parameters.
     """
 
     SENTENCE: ClassVar[str] = "PSTMSETPAR"
@@ -142,8 +90,18 @@ class PstmsetparDop:
         ("PSTMSETPARERROR", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMSETPAR", "proprietary", "$", 5, 6, (
+        rt.IntegerField("block_param", "integer 1400..3403", 1400, 3403),
+        rt.DecimalField("pdop", "decimal number 0..99", 0, 99),
+        rt.DecimalField("vdop", "decimal number 0..99", 0, 99),
+        rt.DecimalField("hdop", "decimal number 0..99", 0, 99),
+        rt.DecimalField("gdop", "decimal number 0..99", 0, 99),
+        rt.EnumField("mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     block_param: rt.Number | None = None
-    """Configuration block and parameter ID: Configuration block digit followed by the DOP parameter ID 400-403 (e.g. 1403 = block 1, start 3D DOP)."""
+    """Configuration block and parameter ID: Configuration block digit followed by the DOP parameter
+    ID 400-403 (e.g. 1403 = block 1, start 3D DOP)."""
     pdop: rt.Number | None = None
     """PDOP threshold: Position DOP threshold (P), decimal."""
     vdop: rt.Number | None = None
@@ -153,87 +111,14 @@ class PstmsetparDop:
     gdop: rt.Number | None = None
     """GDOP threshold: Geometric DOP threshold (G), decimal."""
     mode: TeseoSetparMode | str | None | rt._Absent = rt.ABSENT
-    """Write mode: Optional write mode as in the main layout; the manual does not exclude it for the DOP parameters, although bitwise modes make no sense for them."""
+    """Write mode: Optional write mode as in the main layout; the manual does not exclude it for the
+    DOP parameters, although bitwise modes make no sense for them."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PstmsetparDop:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PSTMSETPAR", 5, count)
-        if count > 6:
-            raise rt.too_many(address, "PSTMSETPAR", 6, count)
-        optional = count - 5
-        block_param = (_INTEGER_1400_TO_3403.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1400..3403", 1400, 3403, _INTEGER_1400_TO_3403)) if fields[0] else None
-        pdop = (_DECIMAL_0_TO_99.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "pdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[1] else None
-        vdop = (_DECIMAL_0_TO_99.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[2] else None
-        hdop = (_DECIMAL_0_TO_99.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "hdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[3] else None
-        gdop = (_DECIMAL_0_TO_99.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "gdop", "decimal number 0..99", 0, 99, _DECIMAL_0_TO_99)) if fields[4] else None
-        mode: TeseoSetparMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = TeseoSetparMode.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "mode", "teseo_setpar_mode code (0 1 2)", TeseoSetparMode.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(block_param, pdop, vdop, hdop, gdop, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.block_param),
-            rt.text_of(self.pdop),
-            rt.text_of(self.vdop),
-            rt.text_of(self.hdop),
-            rt.text_of(self.gdop),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSETPAR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"block_param":' + show(self.block_param),
-            '"pdop":' + show(self.pdop),
-            '"vdop":' + show(self.vdop),
-            '"hdop":' + show(self.hdop),
-            '"gdop":' + show(self.gdop),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "block_param"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gdop"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pstmsetpar, PstmsetparDop, )

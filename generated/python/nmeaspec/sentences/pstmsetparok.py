@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1000_TO_3999: dict[Any, Any] = rt.known("integer 1000..3999")
-
 
 @dataclass(slots=True)
-class Pstmsetparok:
+class Pstmsetparok(rt.Sentence):
     """PSTMSETPAROK: Set parameter accepted.
 
-    Example (teseo): $PSTMSETPAROK,1121*
+    Example (teseo):
+    $PSTMSETPAROK,1121*
     """
 
     SENTENCE: ClassVar[str] = "PSTMSETPAROK"
@@ -31,57 +29,20 @@ class Pstmsetparok:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMSETPAROK", "proprietary", "$", 1, 1, (
+        rt.IntegerField("block_param", "integer 1000..3999", 1000, 3999),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     block_param: rt.Number | None = None
-    """Configuration block and parameter ID: The configuration block digit followed, without a separator, by the 3-digit CDB parameter ID, as given in the command (e.g. 1121 = block 1, parameter 121)."""
+    """Configuration block and parameter ID: The configuration block digit followed, without a
+    separator, by the 3-digit CDB parameter ID, as given in the command (e.g. 1121 = block 1,
+    parameter 121)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pstmsetparok:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PSTMSETPAROK", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PSTMSETPAROK", 1, count)
-        block_param = (_INTEGER_1000_TO_3999.get(fields[0]) or rt.integer_field(fields[0], address, 1, "block_param", "integer 1000..3999", 1000, 3999, _INTEGER_1000_TO_3999)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(block_param, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.block_param),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMSETPAROK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"block_param":' + show(self.block_param),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "block_param"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pstmsetparok, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PSTMTESTRF: ST RF test data.
 
-Named only as bit 18 of the NMEA message list (CDB 201), without description (by its name, RF
-test data). Switched on and off by bit 18 (mask 0x40000) of CDB parameter 201.
+Named only as bit 18 of the NMEA message list (CDB 201), without description (by its name, RF test
+data). Switched on and off by bit 18 (mask 0x40000) of CDB parameter 201.
 """
 
 from __future__ import annotations
@@ -16,17 +16,8 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class PstmtestrfValue:
-    """One entry of fields (0 to 64 per sentence)."""
-
-    value: str | None = None
-    """Field: One field of the message, as received."""
-
-
-@dataclass(slots=True)
-class Pstmtestrf:
+class Pstmtestrf(rt.Sentence):
     """PSTMTESTRF: ST RF test data.
-
     """
 
     SENTENCE: ClassVar[str] = "PSTMTESTRF"
@@ -36,65 +27,20 @@ class Pstmtestrf:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTMTESTRF", "proprietary", "$", 0, 64, (
+        rt.Group("values", None, (
+            rt.TextField("value", "text"),
+        ), 0, 64),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     values: list[str | None] = field(default_factory=list)
     """Fields: 0 to 64 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pstmtestrf:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 0) // 1, 64)
-        optional = count - 0 - repeats * 1
-        if optional > 0:
-            rt.split_group(address, "PSTMTESTRF", "values", count, 0, 1, 0, 64, 0)
-        values: list[str | None] = []
-        pos = 0
-        for entry in range(repeats):
-            values.append(rt.text_field(fields[pos], address, pos + 1, f"values[{entry + 1}].value", "text", None))
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(values, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-        ]
-        for entry in self.values:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PSTMTESTRF",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"values":[' + ",".join(show(entry) for entry in self.values) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        for entry in rt.json_list(fields, "values"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pstmtestrf, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PTNL_AVR: Time, yaw, tilt/roll and range for moving baseline RTK.
 
-Attitude of the vector between the two antennas of a moving baseline RTK system: yaw, and tilt
-or roll depending on how the antennas are mounted, each followed by its label, then the range
-between the antennas, the kind of solution, PDOP and satellites used.
+Attitude of the vector between the two antennas of a moving baseline RTK system: yaw, and tilt or
+roll depending on how the antennas are mounted, each followed by its label, then the range between
+the antennas, the kind of solution, PDOP and satellites used.
 """
 
 from __future__ import annotations
@@ -16,17 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrimbleGpsQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PtnlAvr:
+class PtnlAvr(rt.Sentence):
     """PTNL_AVR: Time, yaw, tilt/roll and range for moving baseline RTK.
 
-    Example (trimble_nmea): $PTNL,AVR,212405.20,+52.1531,Yaw,-0.0806,Tilt,,,12.575,3,1.4,16*39
+    Example (trimble_nmea):
+    $PTNL,AVR,212405.20,+52.1531,Yaw,-0.0806,Tilt,,,12.575,3,1.4,16*39
     """
 
     SENTENCE: ClassVar[str] = "PTNL_AVR"
@@ -36,6 +32,25 @@ class PtnlAvr:
     SELECTOR: ClassVar[str | None] = "AVR"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNL_AVR", "proprietary", "$", 12, 12, (
+        rt.KeywordField("keyword", "AVR", "AVR"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("yaw", "decimal number"),
+        rt.LiteralField("yaw_label", "Yaw or nothing", "Yaw"),
+        rt.DecimalField("tilt", "decimal number"),
+        rt.LiteralField("tilt_label", "Tilt or nothing", "Tilt"),
+        rt.DecimalField("roll", "decimal number"),
+        rt.LiteralField("roll_label", "Roll or nothing", "Roll"),
+        rt.DecimalField("range", "decimal number"),
+        rt.EnumField(
+            "quality",
+            "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)",
+            TrimbleGpsQuality,
+        ),
+        rt.DecimalField("pdop", "decimal number"),
+        rt.IntegerField("satellites", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "AVR"
     """Message ID: Identifies this message among the Trimble $PTNL sentences."""
     time: rt.Time | None = None
@@ -49,110 +64,25 @@ class PtnlAvr:
     tilt_label: str | None = None
     """Tilt label: The word Tilt, empty with the tilt."""
     roll: rt.Number | None = None
-    """Roll [deg]: Roll angle; empty when the tilt is reported instead (older guides call these two fields reserved)."""
+    """Roll [deg]: Roll angle; empty when the tilt is reported instead (older guides call these two
+    fields reserved)."""
     roll_label: str | None = None
     """Roll label: The word Roll, empty with the roll."""
     range: rt.Number | None = None
     """Range [m]: Range between the two antennas."""
     quality: TrimbleGpsQuality | str | None = None
-    """GPS quality indicator: Kind of solution (0 invalid, 1 autonomous, 2 RTK float, 3 RTK fixed, 4 DGPS)."""
+    """GPS quality indicator: Kind of solution (0 invalid, 1 autonomous, 2 RTK float, 3 RTK fixed, 4
+    DGPS)."""
     pdop: rt.Number | None = None
     """PDOP: Position dilution of precision."""
     satellites: rt.Number | None = None
     """Satellites used: Number of satellites used in the solution."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PtnlAvr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "PTNL_AVR", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "PTNL_AVR", 12, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "AVR", "AVR")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        yaw = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "yaw", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        yaw_label = "Yaw" if fields[3] == "Yaw" else rt.literal_field(fields[3], address, 4, "yaw_label", "Yaw or nothing", "Yaw")
-        tilt = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "tilt", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        tilt_label = "Tilt" if fields[5] == "Tilt" else rt.literal_field(fields[5], address, 6, "tilt_label", "Tilt or nothing", "Tilt")
-        roll = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "roll", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        roll_label = "Roll" if fields[7] == "Roll" else rt.literal_field(fields[7], address, 8, "roll_label", "Roll or nothing", "Roll")
-        range = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "range", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        quality = TrimbleGpsQuality.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", TrimbleGpsQuality.BY_CODE, "digits", 1, 2)
-        pdop = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "pdop", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        satellites = (_INTEGER.get(fields[11]) or rt.integer_field(fields[11], address, 12, "satellites", "integer", None, None, _INTEGER)) if fields[11] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, yaw, yaw_label, tilt, tilt_label, roll, roll_label, range, quality, pdop, satellites, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.yaw),
-            rt.text_of(self.yaw_label),
-            rt.text_of(self.tilt),
-            rt.text_of(self.tilt_label),
-            rt.text_of(self.roll),
-            rt.text_of(self.roll_label),
-            rt.text_of(self.range),
-            rt.text_of(self.quality),
-            rt.text_of(self.pdop),
-            rt.text_of(self.satellites),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"yaw":' + show(self.yaw),
-            '"yaw_label":' + show(self.yaw_label),
-            '"tilt":' + show(self.tilt),
-            '"tilt_label":' + show(self.tilt_label),
-            '"roll":' + show(self.roll),
-            '"roll_label":' + show(self.roll_label),
-            '"range":' + show(self.range),
-            '"quality":' + show(self.quality),
-            '"pdop":' + show(self.pdop),
-            '"satellites":' + show(self.satellites),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "yaw"), 1)
-        out += rt.json_texts(rt.json_member(fields, "yaw_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tilt"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tilt_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll"), 1)
-        out += rt.json_texts(rt.json_member(fields, "roll_label"), 1)
-        out += rt.json_texts(rt.json_member(fields, "range"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PtnlAvr, )

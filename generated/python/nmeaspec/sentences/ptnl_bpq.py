@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PTNL_BPQ: Base station position and quality indicator.
 
-Position and quality of the (moving) base antenna, for a receiver in heading mode that must
-report the base antenna on the same port as its heading sentence.
+Position and quality of the (moving) base antenna, for a receiver in heading mode that must report
+the base antenna on the same port as its heading sentence.
 """
 
 from __future__ import annotations
@@ -15,18 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrimbleBpqQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PtnlBpq:
+class PtnlBpq(rt.Sentence):
     """PTNL_BPQ: Base station position and quality indicator.
 
-    Example (trimble_nmea): $PTNL,BPQ,224445.06,021207,3723.09383914,N,12200.32620132,W,EHT-5.923,M,5*
+    Example (trimble_nmea):
+    $PTNL,BPQ,224445.06,021207,3723.09383914,N,12200.32620132,W,EHT-5.923,M,5*
     """
 
     SENTENCE: ClassVar[str] = "PTNL_BPQ"
@@ -36,6 +31,17 @@ class PtnlBpq:
     SELECTOR: ClassVar[str | None] = "BPQ"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNL_BPQ", "proprietary", "$", 10, 10, (
+        rt.KeywordField("keyword", "BPQ", "BPQ"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.TextField("height", "text"),
+        rt.LiteralField("height_unit", "M or nothing", "M"),
+        rt.EnumField("quality", "trimble_bpq_quality code (0 1 2 4 5)", TrimbleBpqQuality),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "BPQ"
     """Message ID: Identifies this message among the Trimble $PTNL sentences."""
     time: rt.Time | None = None
@@ -47,88 +53,19 @@ class PtnlBpq:
     lon: rt.Coordinate | None = None
     """Longitude: Longitude of the base antenna (three digits of degrees), and its hemisphere."""
     height: str | None = None
-    """Ellipsoidal height: Height of the base antenna above the ellipsoid, written with the prefix EHT, e.g. EHT-5.923."""
+    """Ellipsoidal height: Height of the base antenna above the ellipsoid, written with the prefix
+    EHT, e.g. EHT-5.923."""
     height_unit: str | None = None
     """Height unit: M, the height is in meters."""
     quality: TrimbleBpqQuality | str | None = None
-    """Quality indicator: Quality of the base position (its own numbering); always 0 with CMRx or sCMRx corrections."""
+    """Quality indicator: Quality of the base position (its own numbering); always 0 with CMRx or
+    sCMRx corrections."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PtnlBpq:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 10:
-            raise rt.too_few(address, "PTNL_BPQ", 10, count)
-        if count > 10:
-            raise rt.too_many(address, "PTNL_BPQ", 10, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "BPQ", "BPQ")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = (_DATE.get(fields[2]) or rt.date_field(fields[2], address, 3, "date", "date ddmmyy", _DATE)) if fields[2] else None
-        lat = _LATITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[5], fields[6])) or rt.coordinate_field(fields[5], fields[6], address, 6, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        height = rt.text_field(fields[7], address, 8, "height", "text", None)
-        height_unit = "M" if fields[8] == "M" else rt.literal_field(fields[8], address, 9, "height_unit", "M or nothing", "M")
-        quality = TrimbleBpqQuality.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "quality", "trimble_bpq_quality code (0 1 2 4 5)", TrimbleBpqQuality.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, lat, lon, height, height_unit, quality, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.height),
-            rt.text_of(self.height_unit),
-            rt.text_of(self.quality),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"height":' + show(self.height),
-            '"height_unit":' + show(self.height_unit),
-            '"quality":' + show(self.quality),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "height"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PtnlBpq, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PTNL_EVT: Event marker data.
 
-Time of an external event (a pulse on an event marker input) to the microsecond, with the port,
-a running count of events on that port, the GPS week and day, and the current leap seconds. One
+Time of an external event (a pulse on an event marker input) to the microsecond, with the port, a
+running count of events on that port, the GPS week and day, and the current leap seconds. One
 sentence per event.
 """
 
@@ -15,18 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_6: dict[Any, Any] = rt.known("integer 0..6")
-_INTEGER_1_TO_2: dict[Any, Any] = rt.known("integer 1..2")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PtnlEvt:
+class PtnlEvt(rt.Sentence):
     """PTNL_EVT: Event marker data.
 
-    Example (trimble_nmea): $PTNL,EVT,221212.000008,1,5026,1893,1,17*4F
+    Example (trimble_nmea):
+    $PTNL,EVT,221212.000008,1,5026,1893,1,17*4F
     """
 
     SENTENCE: ClassVar[str] = "PTNL_EVT"
@@ -36,6 +31,16 @@ class PtnlEvt:
     SELECTOR: ClassVar[str | None] = "EVT"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNL_EVT", "proprietary", "$", 7, 7, (
+        rt.KeywordField("keyword", "EVT", "EVT"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.IntegerField("port", "integer 1..2", 1, 2),
+        rt.IntegerField("event_number", "integer"),
+        rt.IntegerField("week", "integer"),
+        rt.IntegerField("day_of_week", "integer 0..6", 0, 6),
+        rt.IntegerField("leap_seconds", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "EVT"
     """Message ID: Identifies this message among the Trimble $PTNL sentences."""
     time: rt.Time | None = None
@@ -51,78 +56,11 @@ class PtnlEvt:
     leap_seconds: rt.Number | None = None
     """Leap seconds [s]: Offset between GPS time and UTC (18 s since 2017)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PtnlEvt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PTNL_EVT", 7, count)
-        if count > 7:
-            raise rt.too_many(address, "PTNL_EVT", 7, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "EVT", "EVT")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        port = (_INTEGER_1_TO_2.get(fields[2]) or rt.integer_field(fields[2], address, 3, "port", "integer 1..2", 1, 2, _INTEGER_1_TO_2)) if fields[2] else None
-        event_number = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "event_number", "integer", None, None, _INTEGER)) if fields[3] else None
-        week = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "week", "integer", None, None, _INTEGER)) if fields[4] else None
-        day_of_week = (_INTEGER_0_TO_6.get(fields[5]) or rt.integer_field(fields[5], address, 6, "day_of_week", "integer 0..6", 0, 6, _INTEGER_0_TO_6)) if fields[5] else None
-        leap_seconds = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "leap_seconds", "integer", None, None, _INTEGER)) if fields[6] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, port, event_number, week, day_of_week, leap_seconds, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.port),
-            rt.text_of(self.event_number),
-            rt.text_of(self.week),
-            rt.text_of(self.day_of_week),
-            rt.text_of(self.leap_seconds),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"port":' + show(self.port),
-            '"event_number":' + show(self.event_number),
-            '"week":' + show(self.week),
-            '"day_of_week":' + show(self.day_of_week),
-            '"leap_seconds":' + show(self.leap_seconds),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port"), 1)
-        out += rt.json_texts(rt.json_member(fields, "event_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "day_of_week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "leap_seconds"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PtnlEvt, )

@@ -4,10 +4,9 @@
 """PTNL_GGK: Time, position, position type and DOP.
 
 Trimble's high-precision position sentence: UTC time and date, latitude and longitude with up to
-eight decimals of minutes, the kind of solution, satellites used, PDOP and the ellipsoidal
-height, always an ellipsoid height even when a geoid model is loaded. Longer than the 80
-characters of NMEA 0183. Latitude and longitude are in the datum of the selected reference
-frame.
+eight decimals of minutes, the kind of solution, satellites used, PDOP and the ellipsoidal height,
+always an ellipsoid height even when a geoid model is loaded. Longer than the 80 characters of NMEA
+0183. Latitude and longitude are in the datum of the selected reference frame.
 """
 
 from __future__ import annotations
@@ -18,18 +17,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrimbleGpsQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PtnlGgk:
+class PtnlGgk(rt.Sentence):
     """PTNL_GGK: Time, position, position type and DOP.
-
     """
 
     SENTENCE: ClassVar[str] = "PTNL_GGK"
@@ -39,111 +30,53 @@ class PtnlGgk:
     SELECTOR: ClassVar[str | None] = "GGK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNL_GGK", "proprietary", "$", 12, 12, (
+        rt.KeywordField("keyword", "GGK", "GGK"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("date", "text"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.EnumField(
+            "quality",
+            "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)",
+            TrimbleGpsQuality,
+        ),
+        rt.IntegerField("satellites", "integer"),
+        rt.DecimalField("pdop", "decimal number"),
+        rt.TextField("height", "text"),
+        rt.LiteralField("height_unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "GGK"
     """Message ID: Identifies this message among the Trimble $PTNL sentences."""
     time: rt.Time | None = None
     """UTC time: UTC time of the position fix; the hours always take two digits."""
     date: str | None = None
-    """UTC date: UTC date of the position fix, six digits. Older guides give mmddyy, current receiver help ddmmyy (see the notes); kept as text because the order depends on the firmware."""
+    """UTC date: UTC date of the position fix, six digits. Older guides give mmddyy, current
+    receiver help ddmmyy (see the notes); kept as text because the order depends on the firmware."""
     lat: rt.Coordinate | None = None
     """Latitude: Latitude in degrees and decimal minutes, and its hemisphere."""
     lon: rt.Coordinate | None = None
     """Longitude: Longitude in degrees (three digits) and decimal minutes, and its hemisphere."""
     quality: TrimbleGpsQuality | str | None = None
-    """GPS quality indicator: Kind of solution, 0 invalid to 15 (Trimble numbering, not the GGA one)."""
+    """GPS quality indicator: Kind of solution, 0 invalid to 15 (Trimble numbering, not the GGA
+    one)."""
     satellites: rt.Number | None = None
-    """Satellites used: Number of satellites used in the fix (may differ from the number in view)."""
+    """Satellites used: Number of satellites used in the fix (may differ from the number in
+    view)."""
     pdop: rt.Number | None = None
-    """PDOP: Position dilution of precision of the fix (older guides just say "DOP of fix")."""
+    """PDOP: Position dilution of precision of the fix (older guides just say \"DOP of fix\")."""
     height: str | None = None
-    """Ellipsoidal height: Height of the antenna above the ellipsoid, written with the prefix EHT and a sign, e.g. EHT-6.777 (kept as text because of the prefix)."""
+    """Ellipsoidal height: Height of the antenna above the ellipsoid, written with the prefix EHT
+    and a sign, e.g. EHT-6.777 (kept as text because of the prefix)."""
     height_unit: str | None = None
     """Height unit: M, the height is in meters."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PtnlGgk:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "PTNL_GGK", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "PTNL_GGK", 12, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "GGK", "GGK")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = rt.text_field(fields[2], address, 3, "date", "text", None)
-        lat = _LATITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[5], fields[6])) or rt.coordinate_field(fields[5], fields[6], address, 6, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        quality = TrimbleGpsQuality.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", TrimbleGpsQuality.BY_CODE, "digits", 1, 2)
-        satellites = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "satellites", "integer", None, None, _INTEGER)) if fields[8] else None
-        pdop = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "pdop", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        height = rt.text_field(fields[10], address, 11, "height", "text", None)
-        height_unit = "M" if fields[11] == "M" else rt.literal_field(fields[11], address, 12, "height_unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, lat, lon, quality, satellites, pdop, height, height_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.quality),
-            rt.text_of(self.satellites),
-            rt.text_of(self.pdop),
-            rt.text_of(self.height),
-            rt.text_of(self.height_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"quality":' + show(self.quality),
-            '"satellites":' + show(self.satellites),
-            '"pdop":' + show(self.pdop),
-            '"height":' + show(self.height),
-            '"height_unit":' + show(self.height_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PtnlGgk, )

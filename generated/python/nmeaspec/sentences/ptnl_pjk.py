@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PTNL_PJK: Local coordinate position output.
 
-Position as northing and easting in the projection of the coordinate system loaded in the
-receiver (see $PTNL,PJT), with the kind of solution, satellites used, DOP and the height. Longer
-than the 80 characters of NMEA 0183. Without a coordinate system the northing, easting and
-height fields are empty.
+Position as northing and easting in the projection of the coordinate system loaded in the receiver
+(see $PTNL,PJT), with the kind of solution, satellites used, DOP and the height. Longer than the 80
+characters of NMEA 0183. Without a coordinate system the northing, easting and height fields are
+empty.
 """
 
 from __future__ import annotations
@@ -17,17 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrimbleGpsQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PtnlPjk:
+class PtnlPjk(rt.Sentence):
     """PTNL_PJK: Local coordinate position output.
 
-    Example (trimble_r7_r8): $PTNL,PJK,010717.00,081796,+732646.511,N,+1731051.091,E,1,05,2.7,EHT-28.345,M*7C
+    Example (trimble_r7_r8):
+    $PTNL,PJK,010717.00,081796,+732646.511,N,+1731051.091,E,1,05,2.7,EHT-28.345,M*7C
     """
 
     SENTENCE: ClassVar[str] = "PTNL_PJK"
@@ -37,6 +33,25 @@ class PtnlPjk:
     SELECTOR: ClassVar[str | None] = "PJK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNL_PJK", "proprietary", "$", 12, 12, (
+        rt.KeywordField("keyword", "PJK", "PJK"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("date", "text"),
+        rt.DecimalField("northing", "decimal number"),
+        rt.LiteralField("northing_dir", "N or nothing", "N"),
+        rt.DecimalField("easting", "decimal number"),
+        rt.LiteralField("easting_dir", "E or nothing", "E"),
+        rt.EnumField(
+            "quality",
+            "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)",
+            TrimbleGpsQuality,
+        ),
+        rt.IntegerField("satellites", "integer"),
+        rt.DecimalField("dop", "decimal number"),
+        rt.TextField("height", "text"),
+        rt.LiteralField("height_unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "PJK"
     """Message ID: Identifies this message among the Trimble $PTNL sentences."""
     time: rt.Time | None = None
@@ -58,102 +73,16 @@ class PtnlPjk:
     dop: rt.Number | None = None
     """DOP: Dilution of precision of the fix."""
     height: str | None = None
-    """Height: Height with a prefix and a sign: EHT for an ellipsoidal height, GHT for a height above the geoid (when a geoid model is loaded), e.g. EHT-28.345."""
+    """Height: Height with a prefix and a sign: EHT for an ellipsoidal height, GHT for a height
+    above the geoid (when a geoid model is loaded), e.g. EHT-28.345."""
     height_unit: str | None = None
     """Height unit: M, the height is in meters."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PtnlPjk:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "PTNL_PJK", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "PTNL_PJK", 12, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "PJK", "PJK")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = rt.text_field(fields[2], address, 3, "date", "text", None)
-        northing = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "northing", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        northing_dir = "N" if fields[4] == "N" else rt.literal_field(fields[4], address, 5, "northing_dir", "N or nothing", "N")
-        easting = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "easting", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        easting_dir = "E" if fields[6] == "E" else rt.literal_field(fields[6], address, 7, "easting_dir", "E or nothing", "E")
-        quality = TrimbleGpsQuality.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", TrimbleGpsQuality.BY_CODE, "digits", 1, 2)
-        satellites = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "satellites", "integer", None, None, _INTEGER)) if fields[8] else None
-        dop = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "dop", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        height = rt.text_field(fields[10], address, 11, "height", "text", None)
-        height_unit = "M" if fields[11] == "M" else rt.literal_field(fields[11], address, 12, "height_unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, northing, northing_dir, easting, easting_dir, quality, satellites, dop, height, height_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.northing),
-            rt.text_of(self.northing_dir),
-            rt.text_of(self.easting),
-            rt.text_of(self.easting_dir),
-            rt.text_of(self.quality),
-            rt.text_of(self.satellites),
-            rt.text_of(self.dop),
-            rt.text_of(self.height),
-            rt.text_of(self.height_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"northing":' + show(self.northing),
-            '"northing_dir":' + show(self.northing_dir),
-            '"easting":' + show(self.easting),
-            '"easting_dir":' + show(self.easting_dir),
-            '"quality":' + show(self.quality),
-            '"satellites":' + show(self.satellites),
-            '"dop":' + show(self.dop),
-            '"height":' + show(self.height),
-            '"height_unit":' + show(self.height_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "northing"), 1)
-        out += rt.json_texts(rt.json_member(fields, "northing_dir"), 1)
-        out += rt.json_texts(rt.json_member(fields, "easting"), 1)
-        out += rt.json_texts(rt.json_member(fields, "easting_dir"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height"), 1)
-        out += rt.json_texts(rt.json_member(fields, "height_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PtnlPjk, )

@@ -15,9 +15,8 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class PtnlPjt:
+class PtnlPjt(rt.Sentence):
     """PTNL_PJT: Projection type.
-
     """
 
     SENTENCE: ClassVar[str] = "PTNL_PJT"
@@ -27,86 +26,29 @@ class PtnlPjt:
     SELECTOR: ClassVar[str | None] = "PJT"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNL_PJT", "proprietary", "$", 3, 4, (
+        rt.KeywordField("keyword", "PJT", "PJT"),
+        rt.TextField("coordinate_system", "text"),
+        rt.TextField("projection", "text"),
+        rt.TextField("reserved", "text", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "PJT"
     """Message ID: Identifies this message among the Trimble $PTNL sentences."""
     coordinate_system: str | None = None
-    """Coordinate system name: Name of the coordinate system, may hold several words (e.g. NAD83(Conus))."""
+    """Coordinate system name: Name of the coordinate system, may hold several words (e.g.
+    NAD83(Conus))."""
     projection: str | None = None
-    """Projection name: Name of the projection or zone, may hold several words (e.g. California Zone 4 0404)."""
+    """Projection name: Name of the projection or zone, may hold several words (e.g. California Zone
+    4 0404)."""
     reserved: str | None | rt._Absent = rt.ABSENT
     """Reserved: An empty field before the checksum, present in the printed example."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PtnlPjt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PTNL_PJT", 3, count)
-        if count > 4:
-            raise rt.too_many(address, "PTNL_PJT", 4, count)
-        optional = count - 3
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "PJT", "PJT")
-        coordinate_system = rt.text_field(fields[1], address, 2, "coordinate_system", "text", None)
-        projection = rt.text_field(fields[2], address, 3, "projection", "text", None)
-        reserved: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            reserved = rt.text_field(fields[3], address, 4, "reserved", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, coordinate_system, projection, reserved, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.coordinate_system),
-            rt.text_of(self.projection),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.reserved is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.reserved)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"coordinate_system":' + show(self.coordinate_system),
-            '"projection":' + show(self.projection),
-        ]
-        if self.reserved is not rt.ABSENT:
-            parts.append('"reserved":' + show(self.reserved))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "coordinate_system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "projection"), 1)
-        if "reserved" in fields:
-            out += rt.json_texts(fields["reserved"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PtnlPjt, )

@@ -15,17 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrimbleGpsQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PtnlVgk:
+class PtnlVgk(rt.Sentence):
     """PTNL_VGK: Vector information.
 
-    Example (trimble_r7_r8): $PTNL,VGK,160159.00,010997,-0000.161,00009.985,-0000.002,3,07,1.4,M*0B
+    Example (trimble_r7_r8):
+    $PTNL,VGK,160159.00,010997,-0000.161,00009.985,-0000.002,3,07,1.4,M*0B
     """
 
     SENTENCE: ClassVar[str] = "PTNL_VGK"
@@ -35,6 +31,23 @@ class PtnlVgk:
     SELECTOR: ClassVar[str | None] = "VGK"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNL_VGK", "proprietary", "$", 10, 10, (
+        rt.KeywordField("keyword", "VGK", "VGK"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("date", "text"),
+        rt.DecimalField("east", "decimal number"),
+        rt.DecimalField("north", "decimal number"),
+        rt.DecimalField("up", "decimal number"),
+        rt.EnumField(
+            "quality",
+            "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)",
+            TrimbleGpsQuality,
+        ),
+        rt.IntegerField("satellites", "integer"),
+        rt.DecimalField("dop", "decimal number"),
+        rt.LiteralField("unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "VGK"
     """Message ID: Identifies this message among the Trimble $PTNL sentences."""
     time: rt.Time | None = None
@@ -56,90 +69,11 @@ class PtnlVgk:
     unit: str | None = None
     """Unit: M, the vector components are in meters."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PtnlVgk:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 10:
-            raise rt.too_few(address, "PTNL_VGK", 10, count)
-        if count > 10:
-            raise rt.too_many(address, "PTNL_VGK", 10, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "VGK", "VGK")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = rt.text_field(fields[2], address, 3, "date", "text", None)
-        east = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "east", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        north = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "north", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        up = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "up", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        quality = TrimbleGpsQuality.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", TrimbleGpsQuality.BY_CODE, "digits", 1, 2)
-        satellites = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "satellites", "integer", None, None, _INTEGER)) if fields[7] else None
-        dop = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "dop", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        unit = "M" if fields[9] == "M" else rt.literal_field(fields[9], address, 10, "unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, east, north, up, quality, satellites, dop, unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.east),
-            rt.text_of(self.north),
-            rt.text_of(self.up),
-            rt.text_of(self.quality),
-            rt.text_of(self.satellites),
-            rt.text_of(self.dop),
-            rt.text_of(self.unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"east":' + show(self.east),
-            '"north":' + show(self.north),
-            '"up":' + show(self.up),
-            '"quality":' + show(self.quality),
-            '"satellites":' + show(self.satellites),
-            '"dop":' + show(self.dop),
-            '"unit":' + show(self.unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "east"), 1)
-        out += rt.json_texts(rt.json_member(fields, "north"), 1)
-        out += rt.json_texts(rt.json_member(fields, "up"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PtnlVgk, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PTNL_VHD: Heading information.
 
-Azimuth, vertical angle and range of the vector between two antennas, each with its rate of
-change, from a moving baseline (two-antenna) solution or, on some receivers, from the vector to
-the static or moving base of the correction stream.
+Azimuth, vertical angle and range of the vector between two antennas, each with its rate of change,
+from a moving baseline (two-antenna) solution or, on some receivers, from the vector to the static
+or moving base of the correction stream.
 """
 
 from __future__ import annotations
@@ -16,17 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrimbleGpsQuality
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PtnlVhd:
+class PtnlVhd(rt.Sentence):
     """PTNL_VHD: Heading information.
 
-    Example (trimble_nmea): $PTNL,VHD,030556.00,093098,187.718,-22.138,-76.929,-5.015,0.033,0.006,3,07,2.4,M*22
+    Example (trimble_nmea):
+    $PTNL,VHD,030556.00,093098,187.718,-22.138,-76.929,-5.015,0.033,0.006,3,07,2.4,M*22
     """
 
     SENTENCE: ClassVar[str] = "PTNL_VHD"
@@ -36,6 +32,26 @@ class PtnlVhd:
     SELECTOR: ClassVar[str | None] = "VHD"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNL_VHD", "proprietary", "$", 13, 13, (
+        rt.KeywordField("keyword", "VHD", "VHD"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TextField("date", "text"),
+        rt.DecimalField("azimuth", "decimal number"),
+        rt.DecimalField("azimuth_rate", "decimal number"),
+        rt.DecimalField("vertical_angle", "decimal number"),
+        rt.DecimalField("vertical_angle_rate", "decimal number"),
+        rt.DecimalField("range", "decimal number"),
+        rt.DecimalField("range_rate", "decimal number"),
+        rt.EnumField(
+            "quality",
+            "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)",
+            TrimbleGpsQuality,
+        ),
+        rt.IntegerField("satellites", "integer"),
+        rt.DecimalField("pdop", "decimal number"),
+        rt.LiteralField("unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     keyword: str = "VHD"
     """Message ID: Identifies this message among the Trimble $PTNL sentences."""
     time: rt.Time | None = None
@@ -63,102 +79,11 @@ class PtnlVhd:
     unit: str | None = None
     """Unit: M, the range is in meters."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PtnlVhd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 13:
-            raise rt.too_few(address, "PTNL_VHD", 13, count)
-        if count > 13:
-            raise rt.too_many(address, "PTNL_VHD", 13, count)
-        keyword = rt.keyword_field(fields[0], address, 1, "keyword", "VHD", "VHD")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = rt.text_field(fields[2], address, 3, "date", "text", None)
-        azimuth = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "azimuth", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        azimuth_rate = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "azimuth_rate", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        vertical_angle = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "vertical_angle", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        vertical_angle_rate = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "vertical_angle_rate", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        range = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "range", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        range_rate = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "range_rate", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        quality = TrimbleGpsQuality.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "quality", "trimble_gps_quality code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", TrimbleGpsQuality.BY_CODE, "digits", 1, 2)
-        satellites = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "satellites", "integer", None, None, _INTEGER)) if fields[10] else None
-        pdop = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "pdop", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        unit = "M" if fields[12] == "M" else rt.literal_field(fields[12], address, 13, "unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(keyword, time, date, azimuth, azimuth_rate, vertical_angle, vertical_angle_rate, range, range_rate, quality, satellites, pdop, unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.keyword),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.azimuth),
-            rt.text_of(self.azimuth_rate),
-            rt.text_of(self.vertical_angle),
-            rt.text_of(self.vertical_angle_rate),
-            rt.text_of(self.range),
-            rt.text_of(self.range_rate),
-            rt.text_of(self.quality),
-            rt.text_of(self.satellites),
-            rt.text_of(self.pdop),
-            rt.text_of(self.unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"keyword":' + show(self.keyword),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"azimuth":' + show(self.azimuth),
-            '"azimuth_rate":' + show(self.azimuth_rate),
-            '"vertical_angle":' + show(self.vertical_angle),
-            '"vertical_angle_rate":' + show(self.vertical_angle_rate),
-            '"range":' + show(self.range),
-            '"range_rate":' + show(self.range_rate),
-            '"quality":' + show(self.quality),
-            '"satellites":' + show(self.satellites),
-            '"pdop":' + show(self.pdop),
-            '"unit":' + show(self.unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "keyword"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "azimuth"), 1)
-        out += rt.json_texts(rt.json_member(fields, "azimuth_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vertical_angle"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vertical_angle_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "range"), 1)
-        out += rt.json_texts(rt.json_member(fields, "range_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PtnlVhd, )

@@ -4,10 +4,9 @@
 """PTNLDG: Beacon and L-band correction receiver status.
 
 Status of the receiver's differential correction channel, beacon (RTCM over MF radio) or L-band
-satellite: signal strength, SNR, frequency, bit rate, channel number, tracking state, whether
-the channel supplies the corrections in use, and a tracking performance figure. One sentence per
-channel, at most once per second. Unlike most Trimble sentences its address has no comma
-(PTNLDG).
+satellite: signal strength, SNR, frequency, bit rate, channel number, tracking state, whether the
+channel supplies the corrections in use, and a tracking performance figure. One sentence per
+channel, at most once per second. Unlike most Trimble sentences its address has no comma (PTNLDG).
 """
 
 from __future__ import annotations
@@ -18,17 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrimbleDgChannelUsed, TrimbleDgTracking
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-
 
 @dataclass(slots=True)
-class Ptnldg:
+class Ptnldg(rt.Sentence):
     """PTNLDG: Beacon and L-band correction receiver status.
 
-    Example (trimble_nmea): $PTNLDG,44.0,33.0,287.0,100,0,4,1,0,,,*3E
+    Example (trimble_nmea):
+    $PTNLDG,44.0,33.0,287.0,100,0,4,1,0,,,*3E
     """
 
     SENTENCE: ClassVar[str] = "PTNLDG"
@@ -38,8 +33,23 @@ class Ptnldg:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNLDG", "proprietary", "$", 11, 11, (
+        rt.DecimalField("signal_strength", "decimal number"),
+        rt.DecimalField("snr", "decimal number"),
+        rt.DecimalField("frequency", "decimal number"),
+        rt.IntegerField("bit_rate", "integer"),
+        rt.IntegerField("channel", "integer 0..99", 0, 99),
+        rt.EnumField("tracking", "trimble_dg_tracking code (0 1 2 3 4 5)", TrimbleDgTracking),
+        rt.EnumField("used", "trimble_dg_channel_used code (0 1)", TrimbleDgChannelUsed),
+        rt.IntegerField("performance", "integer"),
+        rt.TextField("reserved_1", "text"),
+        rt.TextField("reserved_2", "text"),
+        rt.TextField("reserved_3", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     signal_strength: rt.Number | None = None
-    """Signal strength [dBuV/m]: Channel signal strength, in 1 dBuV/m steps: the field intensity for a beacon, the ADC input level for an L-band satellite."""
+    """Signal strength [dBuV/m]: Channel signal strength, in 1 dBuV/m steps: the field intensity for
+    a beacon, the ADC input level for an L-band satellite."""
     snr: rt.Number | None = None
     """SNR [dB]: Signal to noise ratio of the channel."""
     frequency: rt.Number | None = None
@@ -47,13 +57,17 @@ class Ptnldg:
     bit_rate: rt.Number | None = None
     """Bit rate [bit/s]: Channel bit rate."""
     channel: rt.Number | None = None
-    """Channel number: Channel number; 0 for the beacon channel and 2 for L-band, as on the DSM 232 receivers."""
+    """Channel number: Channel number; 0 for the beacon channel and 2 for L-band, as on the DSM 232
+    receivers."""
     tracking: TrimbleDgTracking | str | None = None
     """Tracking status: State of the channel, 0 idle to 5 disabled."""
     used: TrimbleDgChannelUsed | str | None = None
-    """Channel used: 1 when the channel's RTCM corrections are used for the DGPS position, else 0."""
+    """Channel used: 1 when the channel's RTCM corrections are used for the DGPS position, else
+    0."""
     performance: rt.Number | None = None
-    """Tracking performance: For a beacon, the word error rate (current help: a percentage; AgGPS guide: errors in the last 255 words); for L-band, the time since the last sync in tenths of seconds, 0 to 255."""
+    """Tracking performance: For a beacon, the word error rate (current help: a percentage; AgGPS
+    guide: errors in the last 255 words); for L-band, the time since the last sync in tenths of
+    seconds, 0 to 255."""
     reserved_1: str | None = None
     """Reserved: Empty field."""
     reserved_2: str | None = None
@@ -61,94 +75,11 @@ class Ptnldg:
     reserved_3: str | None = None
     """Reserved: Empty field."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ptnldg:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "PTNLDG", 11, count)
-        if count > 11:
-            raise rt.too_many(address, "PTNLDG", 11, count)
-        signal_strength = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "signal_strength", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        snr = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "snr", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        frequency = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "frequency", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        bit_rate = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "bit_rate", "integer", None, None, _INTEGER)) if fields[3] else None
-        channel = (_INTEGER_0_TO_99.get(fields[4]) or rt.integer_field(fields[4], address, 5, "channel", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[4] else None
-        tracking = TrimbleDgTracking.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "tracking", "trimble_dg_tracking code (0 1 2 3 4 5)", TrimbleDgTracking.BY_CODE, "digits", 1, 1)
-        used = TrimbleDgChannelUsed.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "used", "trimble_dg_channel_used code (0 1)", TrimbleDgChannelUsed.BY_CODE, "digits", 1, 1)
-        performance = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "performance", "integer", None, None, _INTEGER)) if fields[7] else None
-        reserved_1 = rt.text_field(fields[8], address, 9, "reserved_1", "text", None)
-        reserved_2 = rt.text_field(fields[9], address, 10, "reserved_2", "text", None)
-        reserved_3 = rt.text_field(fields[10], address, 11, "reserved_3", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(signal_strength, snr, frequency, bit_rate, channel, tracking, used, performance, reserved_1, reserved_2, reserved_3, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.signal_strength),
-            rt.text_of(self.snr),
-            rt.text_of(self.frequency),
-            rt.text_of(self.bit_rate),
-            rt.text_of(self.channel),
-            rt.text_of(self.tracking),
-            rt.text_of(self.used),
-            rt.text_of(self.performance),
-            rt.text_of(self.reserved_1),
-            rt.text_of(self.reserved_2),
-            rt.text_of(self.reserved_3),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNLDG",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"signal_strength":' + show(self.signal_strength),
-            '"snr":' + show(self.snr),
-            '"frequency":' + show(self.frequency),
-            '"bit_rate":' + show(self.bit_rate),
-            '"channel":' + show(self.channel),
-            '"tracking":' + show(self.tracking),
-            '"used":' + show(self.used),
-            '"performance":' + show(self.performance),
-            '"reserved_1":' + show(self.reserved_1),
-            '"reserved_2":' + show(self.reserved_2),
-            '"reserved_3":' + show(self.reserved_3),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "signal_strength"), 1)
-        out += rt.json_texts(rt.json_member(fields, "snr"), 1)
-        out += rt.json_texts(rt.json_member(fields, "frequency"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bit_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "channel"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tracking"), 1)
-        out += rt.json_texts(rt.json_member(fields, "used"), 1)
-        out += rt.json_texts(rt.json_member(fields, "performance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved_3"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ptnldg, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PTNLID: Receiver identification (older receivers).
 
-Identification of an older Trimble (AgGPS, DSM) or OmniSTAR receiver: machine ID, product ID,
-major and minor firmware release numbers and firmware release date. When enabled it is sent
-every 30 seconds.
+Identification of an older Trimble (AgGPS, DSM) or OmniSTAR receiver: machine ID, product ID, major
+and minor firmware release numbers and firmware release date. When enabled it is sent every 30
+seconds.
 """
 
 from __future__ import annotations
@@ -15,14 +15,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Ptnlid:
+class Ptnlid(rt.Sentence):
     """PTNLID: Receiver identification (older receivers).
-
     """
 
     SENTENCE: ClassVar[str] = "PTNLID"
@@ -32,6 +28,14 @@ class Ptnlid:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNLID", "proprietary", "$", 5, 5, (
+        rt.IntegerField("machine_id", "integer"),
+        rt.IntegerField("product_id", "integer"),
+        rt.IntegerField("firmware_major", "integer"),
+        rt.IntegerField("firmware_minor", "integer"),
+        rt.TextField("firmware_date", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     machine_id: rt.Number | None = None
     """Machine ID: Machine ID of the receiver."""
     product_id: rt.Number | None = None
@@ -43,70 +47,11 @@ class Ptnlid:
     firmware_date: str | None = None
     """Firmware release date: Release date of the firmware, day/month/year with slashes."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ptnlid:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "PTNLID", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "PTNLID", 5, count)
-        machine_id = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "machine_id", "integer", None, None, _INTEGER)) if fields[0] else None
-        product_id = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "product_id", "integer", None, None, _INTEGER)) if fields[1] else None
-        firmware_major = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "firmware_major", "integer", None, None, _INTEGER)) if fields[2] else None
-        firmware_minor = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "firmware_minor", "integer", None, None, _INTEGER)) if fields[3] else None
-        firmware_date = rt.text_field(fields[4], address, 5, "firmware_date", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(machine_id, product_id, firmware_major, firmware_minor, firmware_date, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.machine_id),
-            rt.text_of(self.product_id),
-            rt.text_of(self.firmware_major),
-            rt.text_of(self.firmware_minor),
-            rt.text_of(self.firmware_date),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNLID",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"machine_id":' + show(self.machine_id),
-            '"product_id":' + show(self.product_id),
-            '"firmware_major":' + show(self.firmware_major),
-            '"firmware_minor":' + show(self.firmware_minor),
-            '"firmware_date":' + show(self.firmware_date),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "machine_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "product_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "firmware_major"), 1)
-        out += rt.json_texts(rt.json_member(fields, "firmware_minor"), 1)
-        out += rt.json_texts(rt.json_member(fields, "firmware_date"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ptnlid, )

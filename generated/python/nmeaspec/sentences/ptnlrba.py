@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PTNLRBA: Antenna status (Ericsson GRU 04).
 
-Antenna status report of Trimble-firmware timing receivers (Ericsson GRU 04 01/02, ST Teseo III
-with Trimble firmware), sent every second among the NMEA output. In Trimble's query/set/response
-naming, R marks a response and BA the antenna status.
+Antenna status report of Trimble-firmware timing receivers (Ericsson GRU 04 01/02, ST Teseo III with
+Trimble firmware), sent every second among the NMEA output. In Trimble's query/set/response naming,
+R marks a response and BA the antenna status.
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrimbleAntennaStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Ptnlrba:
+class Ptnlrba(rt.Sentence):
     """PTNLRBA: Antenna status (Ericsson GRU 04).
 
-    Example (log_gpsd): $PTNLRBA,1,0*56
+    Example (log_gpsd):
+    $PTNLRBA,1,0*56
     """
 
     SENTENCE: ClassVar[str] = "PTNLRBA"
@@ -34,63 +32,22 @@ class Ptnlrba:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNLRBA", "proprietary", "$", 2, 2, (
+        rt.EnumField("antenna_status", "trimble_antenna_status code (0 1)", TrimbleAntennaStatus),
+        rt.IntegerField("flag", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     antenna_status: TrimbleAntennaStatus | str | None = None
     """Antenna status: 1 when the antenna is good, 0 on an antenna fault."""
     flag: rt.Number | None = None
-    """Additional flag: A second status flag whose meaning is not documented; 0 in the observed log."""
+    """Additional flag: A second status flag whose meaning is not documented; 0 in the observed
+    log."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ptnlrba:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PTNLRBA", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PTNLRBA", 2, count)
-        antenna_status = TrimbleAntennaStatus.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "antenna_status", "trimble_antenna_status code (0 1)", TrimbleAntennaStatus.BY_CODE, "digits", 1, 1)
-        flag = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "flag", "integer", None, None, _INTEGER)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(antenna_status, flag, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.antenna_status),
-            rt.text_of(self.flag),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNLRBA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"antenna_status":' + show(self.antenna_status),
-            '"flag":' + show(self.flag),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "antenna_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "flag"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ptnlrba, )

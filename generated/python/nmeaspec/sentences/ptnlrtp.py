@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PTNLRTP: Receiver temperature (Ericsson GRU 04).
 
-Internal temperature report of Trimble-firmware timing receivers (Ericsson GRU 04 01/02), sent
-every second among the NMEA output.
+Internal temperature report of Trimble-firmware timing receivers (Ericsson GRU 04 01/02), sent every
+second among the NMEA output.
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Ptnlrtp:
+class Ptnlrtp(rt.Sentence):
     """PTNLRTP: Receiver temperature (Ericsson GRU 04).
 
-    Example (log_gpsd): $PTNLRTP,T,21.35,3.0*2E
+    Example (log_gpsd):
+    $PTNLRTP,T,21.35,3.0*2E
     """
 
     SENTENCE: ClassVar[str] = "PTNLRTP"
@@ -32,69 +30,25 @@ class Ptnlrtp:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNLRTP", "proprietary", "$", 3, 3, (
+        rt.LiteralField("type", "T or nothing", "T"),
+        rt.DecimalField("temperature", "decimal number"),
+        rt.DecimalField("precision", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     type: str | None = None
     """Type: Always T (temperature)."""
     temperature: rt.Number | None = None
     """Temperature [degC]: Receiver internal temperature, in degrees Celsius."""
     precision: rt.Number | None = None
-    """Precision: Precision or accuracy figure of the temperature measurement (meaning not documented)."""
+    """Precision: Precision or accuracy figure of the temperature measurement (meaning not
+    documented)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ptnlrtp:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PTNLRTP", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PTNLRTP", 3, count)
-        type = "T" if fields[0] == "T" else rt.literal_field(fields[0], address, 1, "type", "T or nothing", "T")
-        temperature = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "temperature", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        precision = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "precision", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(type, temperature, precision, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.type),
-            rt.text_of(self.temperature),
-            rt.text_of(self.precision),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNLRTP",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"type":' + show(self.type),
-            '"temperature":' + show(self.temperature),
-            '"precision":' + show(self.precision),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "temperature"), 1)
-        out += rt.json_texts(rt.json_member(fields, "precision"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ptnlrtp, )

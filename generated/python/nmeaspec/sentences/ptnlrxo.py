@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrimbleOscillatorLock
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Ptnlrxo:
+class Ptnlrxo(rt.Sentence):
     """PTNLRXO: Crystal oscillator status (Ericsson GRU 04).
 
-    Example (log_gpsd): $PTNLRXO,1,-270.721*70
+    Example (log_gpsd):
+    $PTNLRXO,1,-270.721*70
     """
 
     SENTENCE: ClassVar[str] = "PTNLRXO"
@@ -33,63 +31,21 @@ class Ptnlrxo:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNLRXO", "proprietary", "$", 2, 2, (
+        rt.EnumField("lock", "trimble_oscillator_lock code (0 1)", TrimbleOscillatorLock),
+        rt.DecimalField("offset", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     lock: TrimbleOscillatorLock | str | None = None
     """Oscillator lock status: 1 when the oscillator is locked, 0 when unlocked."""
     offset: rt.Number | None = None
     """Frequency offset [ppb]: Frequency offset of the oscillator, in parts per billion."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ptnlrxo:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PTNLRXO", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PTNLRXO", 2, count)
-        lock = TrimbleOscillatorLock.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "lock", "trimble_oscillator_lock code (0 1)", TrimbleOscillatorLock.BY_CODE, "digits", 1, 1)
-        offset = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "offset", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(lock, offset, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.lock),
-            rt.text_of(self.offset),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNLRXO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"lock":' + show(self.lock),
-            '"offset":' + show(self.offset),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "lock"), 1)
-        out += rt.json_texts(rt.json_member(fields, "offset"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ptnlrxo, )

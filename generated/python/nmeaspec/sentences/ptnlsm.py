@@ -14,14 +14,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_1023: dict[Any, Any] = rt.known("integer 0..1023")
-
 
 @dataclass(slots=True)
-class Ptnlsm:
+class Ptnlsm(rt.Sentence):
     """PTNLSM: RTCM special message (older receivers).
-
     """
 
     SENTENCE: ClassVar[str] = "PTNLSM"
@@ -31,80 +27,25 @@ class Ptnlsm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNLSM", "proprietary", "$", 2, 3, (
+        rt.IntegerField("station_id", "integer 0..1023", 0, 1023),
+        rt.TextField("message", "text"),
+        rt.TextField("reserved", "text", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     station_id: rt.Number | None = None
-    """Reference station ID: Reference station ID, 0 to 1023, always four digits with leading zeros."""
+    """Reference station ID: Reference station ID, 0 to 1023, always four digits with leading
+    zeros."""
     message: str | None = None
     """Message text: The ASCII text of the RTCM type 16 message."""
     reserved: str | None | rt._Absent = rt.ABSENT
     """Reserved: An empty field before the checksum, present in the printed example."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ptnlsm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PTNLSM", 2, count)
-        if count > 3:
-            raise rt.too_many(address, "PTNLSM", 3, count)
-        optional = count - 2
-        station_id = (_INTEGER_0_TO_1023.get(fields[0]) or rt.integer_field(fields[0], address, 1, "station_id", "integer 0..1023", 0, 1023, _INTEGER_0_TO_1023)) if fields[0] else None
-        message = rt.text_field(fields[1], address, 2, "message", "text", None)
-        reserved: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            reserved = rt.text_field(fields[2], address, 3, "reserved", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(station_id, message, reserved, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.station_id),
-            rt.text_of(self.message),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.reserved is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.reserved)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNLSM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"station_id":' + show(self.station_id),
-            '"message":' + show(self.message),
-        ]
-        if self.reserved is not rt.ABSENT:
-            parts.append('"reserved":' + show(self.reserved))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "station_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        if "reserved" in fields:
-            out += rt.json_texts(fields["reserved"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ptnlsm, )

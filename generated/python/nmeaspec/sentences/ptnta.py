@@ -3,10 +3,10 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PTNTA: iSync clock time and status.
 
-Status sentence of the Spectratime iSync GPS-disciplined rubidium clocks (GRClok, LNRClok): date
-and time, oscillator state, the measured interval between the reference PPS and the clock's PPS,
-the fine phase comparator, the synchronisation state and how the GPS messages and the date/time
-transfer are doing.
+Status sentence of the Spectratime iSync GPS-disciplined rubidium clocks (GRClok, LNRClok): date and
+time, oscillator state, the measured interval between the reference PPS and the clock's PPS, the
+fine phase comparator, the synchronisation state and how the GPS messages and the date/time transfer
+are doing.
 """
 
 from __future__ import annotations
@@ -17,15 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SpectratimeGpsMessages, SpectratimeIsyncStatus, SpectratimeOscQuality, SpectratimeTimeTransfer
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Ptnta:
+class Ptnta(rt.Sentence):
     """PTNTA: iSync clock time and status.
 
-    Example (spectratime_isync): $PTNTA,20000102173852,1,T4,,,6,1,0*32
+    Example (log_gpsd):
+    $PTNTA,20160203131536,2,T4,000000066,+108,3,0,3*18
     """
 
     SENTENCE: ClassVar[str] = "PTNTA"
@@ -35,99 +33,55 @@ class Ptnta:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNTA", "proprietary", "$", 8, 8, (
+        rt.TextField("datetime", "text"),
+        rt.EnumField("osc_quality", "spectratime_osc_quality code (0 1 2)", SpectratimeOscQuality),
+        rt.LiteralField("format", "T4 or nothing", "T4"),
+        rt.IntegerField("pps_interval", "integer"),
+        rt.IntegerField("fine_phase", "integer"),
+        rt.EnumField(
+            "status",
+            "spectratime_isync_status code (0 1 2 3 4 5 6 7 8 9)",
+            SpectratimeIsyncStatus,
+        ),
+        rt.EnumField(
+            "gps_messages",
+            "spectratime_gps_messages code (0 1 2 3)",
+            SpectratimeGpsMessages,
+        ),
+        rt.EnumField(
+            "time_transfer",
+            "spectratime_time_transfer code (0 1 2 3)",
+            SpectratimeTimeTransfer,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     datetime: str | None = None
-    """Date and time: Date and time of the clock as one 14-digit number, year, month, day, hour, minute, second."""
+    """Date and time: Date and time of the clock as one 14-digit number, year, month, day, hour,
+    minute, second."""
     osc_quality: SpectratimeOscQuality | str | None = None
     """Oscillator quality: 0 warming up, 1 free running, 2 disciplined."""
     format: str | None = None
     """Format indicator: Always T4, the layout described here."""
     pps_interval: rt.Number | None = None
-    """PPS interval [ns]: Interval from the reference PPS to the output PPS; empty without a PPS reference."""
+    """PPS interval [ns]: Interval from the reference PPS to the output PPS; empty without a PPS
+    reference."""
     fine_phase: rt.Number | None = None
-    """Fine phase [ns]: Reading of the fine phase comparator, roughly in nanoseconds; close to -500 or +500 when not disciplined, empty without a PPS reference."""
+    """Fine phase [ns]: Reading of the fine phase comparator, roughly in nanoseconds; close to -500
+    or +500 when not disciplined, empty without a PPS reference."""
     status: SpectratimeIsyncStatus | str | None = None
     """iSync status: Synchronisation state, 0 to 9."""
     gps_messages: SpectratimeGpsMessages | str | None = None
-    """GPS messages indicator: Whether the GPS messages are taken into account and how correct they are, 0 to 3."""
+    """GPS messages indicator: Whether the GPS messages are taken into account and how correct they
+    are, 0 to 3."""
     time_transfer: SpectratimeTimeTransfer | str | None = None
     """Date/time transfer quality: Source and freshness of the date and time, 0 to 3."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ptnta:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "PTNTA", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "PTNTA", 8, count)
-        datetime = rt.text_field(fields[0], address, 1, "datetime", "text", None)
-        osc_quality = SpectratimeOscQuality.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "osc_quality", "spectratime_osc_quality code (0 1 2)", SpectratimeOscQuality.BY_CODE, "digits", 1, 1)
-        format = "T4" if fields[2] == "T4" else rt.literal_field(fields[2], address, 3, "format", "T4 or nothing", "T4")
-        pps_interval = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "pps_interval", "integer", None, None, _INTEGER)) if fields[3] else None
-        fine_phase = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "fine_phase", "integer", None, None, _INTEGER)) if fields[4] else None
-        status = SpectratimeIsyncStatus.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "status", "spectratime_isync_status code (0 1 2 3 4 5 6 7 8 9)", SpectratimeIsyncStatus.BY_CODE, "digits", 1, 1)
-        gps_messages = SpectratimeGpsMessages.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "gps_messages", "spectratime_gps_messages code (0 1 2 3)", SpectratimeGpsMessages.BY_CODE, "digits", 1, 1)
-        time_transfer = SpectratimeTimeTransfer.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "time_transfer", "spectratime_time_transfer code (0 1 2 3)", SpectratimeTimeTransfer.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(datetime, osc_quality, format, pps_interval, fine_phase, status, gps_messages, time_transfer, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.datetime),
-            rt.text_of(self.osc_quality),
-            rt.text_of(self.format),
-            rt.text_of(self.pps_interval),
-            rt.text_of(self.fine_phase),
-            rt.text_of(self.status),
-            rt.text_of(self.gps_messages),
-            rt.text_of(self.time_transfer),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PTNTA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"datetime":' + show(self.datetime),
-            '"osc_quality":' + show(self.osc_quality),
-            '"format":' + show(self.format),
-            '"pps_interval":' + show(self.pps_interval),
-            '"fine_phase":' + show(self.fine_phase),
-            '"status":' + show(self.status),
-            '"gps_messages":' + show(self.gps_messages),
-            '"time_transfer":' + show(self.time_transfer),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "datetime"), 1)
-        out += rt.json_texts(rt.json_member(fields, "osc_quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "format"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pps_interval"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fine_phase"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_messages"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_transfer"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ptnta, )

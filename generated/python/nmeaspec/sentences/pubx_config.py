@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PUBX_CONFIG: Set u-blox port protocols and baud rate.
 
-u-blox proprietary message 41 (NMEA-PUBX-CONFIG): sets the input and output protocols and the
-baud rate of one I/O port. The new baud rate applies at once, so the host must switch too; the
-receiver sends no NMEA answer.
+u-blox proprietary message 41 (NMEA-PUBX-CONFIG): sets the input and output protocols and the baud
+rate of one I/O port. The new baud rate applies at once, so the host must switch too; the receiver
+sends no NMEA answer.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import UbloxAutobauding, UbloxPort
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class PubxConfig:
+class PubxConfig(rt.Sentence):
     """PUBX_CONFIG: Set u-blox port protocols and baud rate.
 
-    Example (ublox_m8): $PUBX,41,1,0007,0003,19200,0*25
+    Example (ublox_m8):
+    $PUBX,41,1,0007,0003,19200,0*25
     """
 
     SENTENCE: ClassVar[str] = "PUBX_CONFIG"
@@ -35,87 +32,36 @@ class PubxConfig:
     SELECTOR: ClassVar[str | None] = "41"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PUBX_CONFIG", "proprietary", "$", 6, 6, (
+        rt.KeywordField("msg_id", "41", "41"),
+        rt.EnumField("port_id", "ublox_port code (0 1 2 3 4)", UbloxPort),
+        rt.HexField("in_proto", "hex number"),
+        rt.HexField("out_proto", "hex number"),
+        rt.IntegerField("baud_rate", "integer of at least 0", 0, None),
+        rt.EnumField("autobauding", "ublox_autobauding code (0 1)", UbloxAutobauding),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_id: str = "41"
     """Message identifier: Proprietary message number 41."""
     port_id: UbloxPort | str | None = None
     """Port: The port to configure (0 DDC, 1 UART 1, 2 UART 2, 3 USB, 4 SPI)."""
     in_proto: rt.Hex | None = None
-    """Input protocol mask: Protocols accepted on the port, one bit each (bit 0 UBX, 1 NMEA, 2 RTCM 2, 5 RTCM 3)."""
+    """Input protocol mask: Protocols accepted on the port, one bit each (bit 0 UBX, 1 NMEA, 2 RTCM
+    2, 5 RTCM 3)."""
     out_proto: rt.Hex | None = None
-    """Output protocol mask: Protocols sent on the port, one bit each (bit 0 UBX, 1 NMEA, 5 RTCM 3)."""
+    """Output protocol mask: Protocols sent on the port, one bit each (bit 0 UBX, 1 NMEA, 5 RTCM
+    3)."""
     baud_rate: rt.Number | None = None
-    """Baud rate [bit/s]: Serial baud rate of the port (e.g. 9600, 19200, 115200); meaningless for USB and DDC."""
+    """Baud rate [bit/s]: Serial baud rate of the port (e.g. 9600, 19200, 115200); meaningless for
+    USB and DDC."""
     autobauding: UbloxAutobauding | str | None = None
     """Autobauding: 0 fixed rate, 1 automatic baud rate detection."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PubxConfig:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "PUBX_CONFIG", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "PUBX_CONFIG", 6, count)
-        msg_id = rt.keyword_field(fields[0], address, 1, "msg_id", "41", "41")
-        port_id = UbloxPort.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "port_id", "ublox_port code (0 1 2 3 4)", UbloxPort.BY_CODE, "digits", 1, 1)
-        in_proto = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "in_proto", "hex number", _HEX)) if fields[2] else None
-        out_proto = (_HEX.get(fields[3]) or rt.hex_field(fields[3], address, 4, "out_proto", "hex number", _HEX)) if fields[3] else None
-        baud_rate = (_INTEGER_0_TO.get(fields[4]) or rt.integer_field(fields[4], address, 5, "baud_rate", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[4] else None
-        autobauding = UbloxAutobauding.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "autobauding", "ublox_autobauding code (0 1)", UbloxAutobauding.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_id, port_id, in_proto, out_proto, baud_rate, autobauding, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_id),
-            rt.text_of(self.port_id),
-            rt.text_of(self.in_proto),
-            rt.text_of(self.out_proto),
-            rt.text_of(self.baud_rate),
-            rt.text_of(self.autobauding),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PUBX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_id":' + show(self.msg_id),
-            '"port_id":' + show(self.port_id),
-            '"in_proto":' + show(self.in_proto),
-            '"out_proto":' + show(self.out_proto),
-            '"baud_rate":' + show(self.baud_rate),
-            '"autobauding":' + show(self.autobauding),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "in_proto"), 1)
-        out += rt.json_texts(rt.json_member(fields, "out_proto"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud_rate"), 1)
-        out += rt.json_texts(rt.json_member(fields, "autobauding"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PubxConfig, )

@@ -3,11 +3,11 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PUBX_POSITION: u-blox latitude/longitude position data.
 
-u-blox proprietary message 00 (NMEA-PUBX-POSITION): the navigation solution in one sentence,
-with the accuracy estimates, velocity, DOP values and satellite count that the standard
-sentences spread over several lines. The receiver sends it at the rate set for it (PUBX,40 or
-UBX configuration) or once in answer to the poll $PUBX,00 (PUBX_POSITION_POLL). The position
-refers to the selected datum (WGS 84 by default).
+u-blox proprietary message 00 (NMEA-PUBX-POSITION): the navigation solution in one sentence, with
+the accuracy estimates, velocity, DOP values and satellite count that the standard sentences spread
+over several lines. The receiver sends it at the rate set for it (PUBX,40 or UBX configuration) or
+once in answer to the poll $PUBX,00 (PUBX_POSITION_POLL). The position refers to the selected datum
+(WGS 84 by default).
 """
 
 from __future__ import annotations
@@ -18,20 +18,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import UbloxNavStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PubxPosition:
+class PubxPosition(rt.Sentence):
     """PUBX_POSITION: u-blox latitude/longitude position data.
 
-    Example (ublox_m8): $PUBX,00,081350.00,4717.113210,N,00833.915187,E,546.589,G3,2.1,2.0,0.007,77.52,0.007,,0.92,1.19,0.77,9,0,0*5F
+    Example (ublox_m8):
+    $PUBX,00,081350.00,4717.113210,N,00833.915187,E,546.589,G3,2.1,2.0,0.007,77.52,0.007,,0.92,1.19,0.77,9,0,0*5F
     """
 
     SENTENCE: ClassVar[str] = "PUBX_POSITION"
@@ -41,8 +34,34 @@ class PubxPosition:
     SELECTOR: ClassVar[str | None] = "00"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PUBX_POSITION", "proprietary", "$", 20, 20, (
+        rt.KeywordField("msg_id", "00", "00"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("alt_ref", "decimal number"),
+        rt.EnumField(
+            "nav_status",
+            "ublox_nav_status code (NF DR G2 G3 D2 D3 RK TT)",
+            UbloxNavStatus,
+        ),
+        rt.DecimalField("h_acc", "decimal number"),
+        rt.DecimalField("v_acc", "decimal number"),
+        rt.DecimalField("sog", "decimal number"),
+        rt.DecimalField("cog", "decimal number"),
+        rt.DecimalField("v_vel", "decimal number"),
+        rt.DecimalField("diff_age", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("vdop", "decimal number"),
+        rt.DecimalField("tdop", "decimal number"),
+        rt.IntegerField("num_svs", "integer of at least 0", 0, None),
+        rt.IntegerField("reserved", "integer"),
+        rt.IntegerField("dr_used", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_id: str = "00"
-    """Message identifier: Proprietary message number 00 that selects this layout among the PUBX messages."""
+    """Message identifier: Proprietary message number 00 that selects this layout among the PUBX
+    messages."""
     time: rt.Time | None = None
     """UTC time: UTC time of the navigation solution."""
     lat: rt.Coordinate | None = None
@@ -50,21 +69,27 @@ class PubxPosition:
     lon: rt.Coordinate | None = None
     """Longitude: Longitude in degrees and minutes, with its E/W indicator."""
     alt_ref: rt.Number | None = None
-    """Altitude above the datum ellipsoid [m]: Height above the ellipsoid of the selected (user) datum."""
+    """Altitude above the datum ellipsoid [m]: Height above the ellipsoid of the selected (user)
+    datum."""
     nav_status: UbloxNavStatus | str | None = None
-    """Navigation status: Kind of solution, e.g. NF no fix, G3 stand-alone 3D, D3 differential 3D."""
+    """Navigation status: Kind of solution, e.g. NF no fix, G3 stand-alone 3D, D3 differential
+    3D."""
     h_acc: rt.Number | None = None
-    """Horizontal accuracy estimate [m]: Estimated horizontal accuracy of the position; very large without a fix."""
+    """Horizontal accuracy estimate [m]: Estimated horizontal accuracy of the position; very large
+    without a fix."""
     v_acc: rt.Number | None = None
-    """Vertical accuracy estimate [m]: Estimated vertical accuracy of the position; very large without a fix."""
+    """Vertical accuracy estimate [m]: Estimated vertical accuracy of the position; very large
+    without a fix."""
     sog: rt.Number | None = None
     """Speed over ground [km/h]: Horizontal speed in kilometres per hour."""
     cog: rt.Number | None = None
     """Course over ground [deg]: Course over ground, degrees true."""
     v_vel: rt.Number | None = None
-    """Vertical velocity [m/s]: Vertical speed; the u-blox M8 description counts it positive downwards (see notes)."""
+    """Vertical velocity [m/s]: Vertical speed; the u-blox M8 description counts it positive
+    downwards (see notes)."""
     diff_age: rt.Number | None = None
-    """Age of differential corrections [s]: Age of the differential corrections in use; empty when the solution is not differential."""
+    """Age of differential corrections [s]: Age of the differential corrections in use; empty when
+    the solution is not differential."""
     hdop: rt.Number | None = None
     """HDOP: Horizontal dilution of precision."""
     vdop: rt.Number | None = None
@@ -74,126 +99,17 @@ class PubxPosition:
     num_svs: rt.Number | None = None
     """Satellites used: Number of satellites used in the navigation solution."""
     reserved: rt.Number | None = None
-    """Reserved: Reserved, sent as 0 by u-blox M8 (the ANTARIS generation put the count of GLONASS satellites used here, always 0)."""
+    """Reserved: Reserved, sent as 0 by u-blox M8 (the ANTARIS generation put the count of GLONASS
+    satellites used here, always 0)."""
     dr_used: rt.Number | None = None
-    """Dead reckoning used: Dead reckoning indicator ("DR used"); 0 when no dead reckoning contributed to the solution."""
+    """Dead reckoning used: Dead reckoning indicator (\"DR used\"); 0 when no dead reckoning
+    contributed to the solution."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PubxPosition:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 20:
-            raise rt.too_few(address, "PUBX_POSITION", 20, count)
-        if count > 20:
-            raise rt.too_many(address, "PUBX_POSITION", 20, count)
-        msg_id = rt.keyword_field(fields[0], address, 1, "msg_id", "00", "00")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        lat = _LATITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[4], fields[5])) or rt.coordinate_field(fields[4], fields[5], address, 5, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        alt_ref = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "alt_ref", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        nav_status = UbloxNavStatus.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "nav_status", "ublox_nav_status code (NF DR G2 G3 D2 D3 RK TT)", UbloxNavStatus.BY_CODE, "alnum", 2, 2)
-        h_acc = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "h_acc", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        v_acc = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "v_acc", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        sog = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "sog", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        cog = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "cog", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        v_vel = (_DECIMAL.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "v_vel", "decimal number", None, None, _DECIMAL)) if fields[12] else None
-        diff_age = (_DECIMAL.get(fields[13]) or rt.decimal_field(fields[13], address, 14, "diff_age", "decimal number", None, None, _DECIMAL)) if fields[13] else None
-        hdop = (_DECIMAL.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "hdop", "decimal number", None, None, _DECIMAL)) if fields[14] else None
-        vdop = (_DECIMAL.get(fields[15]) or rt.decimal_field(fields[15], address, 16, "vdop", "decimal number", None, None, _DECIMAL)) if fields[15] else None
-        tdop = (_DECIMAL.get(fields[16]) or rt.decimal_field(fields[16], address, 17, "tdop", "decimal number", None, None, _DECIMAL)) if fields[16] else None
-        num_svs = (_INTEGER_0_TO.get(fields[17]) or rt.integer_field(fields[17], address, 18, "num_svs", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[17] else None
-        reserved = (_INTEGER.get(fields[18]) or rt.integer_field(fields[18], address, 19, "reserved", "integer", None, None, _INTEGER)) if fields[18] else None
-        dr_used = (_INTEGER.get(fields[19]) or rt.integer_field(fields[19], address, 20, "dr_used", "integer", None, None, _INTEGER)) if fields[19] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_id, time, lat, lon, alt_ref, nav_status, h_acc, v_acc, sog, cog, v_vel, diff_age, hdop, vdop, tdop, num_svs, reserved, dr_used, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_id),
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.alt_ref),
-            rt.text_of(self.nav_status),
-            rt.text_of(self.h_acc),
-            rt.text_of(self.v_acc),
-            rt.text_of(self.sog),
-            rt.text_of(self.cog),
-            rt.text_of(self.v_vel),
-            rt.text_of(self.diff_age),
-            rt.text_of(self.hdop),
-            rt.text_of(self.vdop),
-            rt.text_of(self.tdop),
-            rt.text_of(self.num_svs),
-            rt.text_of(self.reserved),
-            rt.text_of(self.dr_used),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PUBX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_id":' + show(self.msg_id),
-            '"time":' + show(self.time),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"alt_ref":' + show(self.alt_ref),
-            '"nav_status":' + show(self.nav_status),
-            '"h_acc":' + show(self.h_acc),
-            '"v_acc":' + show(self.v_acc),
-            '"sog":' + show(self.sog),
-            '"cog":' + show(self.cog),
-            '"v_vel":' + show(self.v_vel),
-            '"diff_age":' + show(self.diff_age),
-            '"hdop":' + show(self.hdop),
-            '"vdop":' + show(self.vdop),
-            '"tdop":' + show(self.tdop),
-            '"num_svs":' + show(self.num_svs),
-            '"reserved":' + show(self.reserved),
-            '"dr_used":' + show(self.dr_used),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "alt_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "nav_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "h_acc"), 1)
-        out += rt.json_texts(rt.json_member(fields, "v_acc"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sog"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cog"), 1)
-        out += rt.json_texts(rt.json_member(fields, "v_vel"), 1)
-        out += rt.json_texts(rt.json_member(fields, "diff_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "num_svs"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reserved"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dr_used"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PubxPosition, )

@@ -16,10 +16,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class PubxPositionPoll:
+class PubxPositionPoll(rt.Sentence):
     """PUBX_POSITION_POLL: Poll the u-blox position message.
 
-    Example (ublox_ardusimple_pubx): $PUBX,00*33
+    Example (ublox_ardusimple_pubx):
+    $PUBX,00*33
     """
 
     SENTENCE: ClassVar[str] = "PUBX_POSITION_POLL"
@@ -33,57 +34,18 @@ class PubxPositionPoll:
         ("PUBX_POSITION", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PUBX_POSITION_POLL", "proprietary", "$", 1, 1, (
+        rt.KeywordField("msg_id", "00", "00"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_id: str = "00"
     """Message identifier: Number of the message to poll, 00 (position)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PubxPositionPoll:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "PUBX_POSITION_POLL", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "PUBX_POSITION_POLL", 1, count)
-        msg_id = rt.keyword_field(fields[0], address, 1, "msg_id", "00", "00")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PUBX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_id":' + show(self.msg_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PubxPositionPoll, )

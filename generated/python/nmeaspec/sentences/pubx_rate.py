@@ -3,10 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PUBX_RATE: Set the u-blox NMEA message output rate per port.
 
-u-blox proprietary message 40 (NMEA-PUBX-RATE): sets, for one NMEA message, how often it is sent
-on each of the receiver's I/O ports, in navigation solutions between two outputs (0 = off, 1 =
-every solution). The change is made in the current configuration; the receiver sends no NMEA
-answer.
+u-blox proprietary message 40 (NMEA-PUBX-RATE): sets, for one NMEA message, how often it is sent on
+each of the receiver's I/O ports, in navigation solutions between two outputs (0 = off, 1 = every
+solution). The change is made in the current configuration; the receiver sends no NMEA answer.
 """
 
 from __future__ import annotations
@@ -16,16 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class PubxRate:
+class PubxRate(rt.Sentence):
     """PUBX_RATE: Set the u-blox NMEA message output rate per port.
 
-    Example (ublox_m8): $PUBX,40,GLL,1,0,0,0,0,0*5D
+    Example (ublox_m8):
+    $PUBX,40,GLL,1,0,0,0,0,0*5D
     """
 
     SENTENCE: ClassVar[str] = "PUBX_RATE"
@@ -35,10 +31,22 @@ class PubxRate:
     SELECTOR: ClassVar[str | None] = "40"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PUBX_RATE", "proprietary", "$", 7, 8, (
+        rt.KeywordField("msg_id", "40", "40"),
+        rt.TextField("msg", "text of at most 3 characters", 3),
+        rt.IntegerField("rate_ddc", "integer of at least 0", 0, None),
+        rt.IntegerField("rate_uart1", "integer of at least 0", 0, None),
+        rt.IntegerField("rate_uart2", "integer of at least 0", 0, None),
+        rt.IntegerField("rate_usb", "integer of at least 0", 0, None),
+        rt.IntegerField("rate_spi", "integer of at least 0", 0, None),
+        rt.IntegerField("reserved", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_id: str = "40"
     """Message identifier: Proprietary message number 40."""
     msg: str | None = None
-    """NMEA message: The message whose rate is set, by its three-letter sentence formatter (e.g. GLL, GSV, ZDA)."""
+    """NMEA message: The message whose rate is set, by its three-letter sentence formatter (e.g.
+    GLL, GSV, ZDA)."""
     rate_ddc: rt.Number | None = None
     """Rate on DDC: Output rate on the DDC (I2C) port, 0 = off."""
     rate_uart1: rt.Number | None = None
@@ -52,93 +60,11 @@ class PubxRate:
     reserved: rt.Number | None | rt._Absent = rt.ABSENT
     """Reserved: Reserved, always 0 (a sixth port slot)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PubxRate:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 7:
-            raise rt.too_few(address, "PUBX_RATE", 7, count)
-        if count > 8:
-            raise rt.too_many(address, "PUBX_RATE", 8, count)
-        optional = count - 7
-        msg_id = rt.keyword_field(fields[0], address, 1, "msg_id", "40", "40")
-        msg = rt.text_field(fields[1], address, 2, "msg", "text of at most 3 characters", 3)
-        rate_ddc = (_INTEGER_0_TO.get(fields[2]) or rt.integer_field(fields[2], address, 3, "rate_ddc", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[2] else None
-        rate_uart1 = (_INTEGER_0_TO.get(fields[3]) or rt.integer_field(fields[3], address, 4, "rate_uart1", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[3] else None
-        rate_uart2 = (_INTEGER_0_TO.get(fields[4]) or rt.integer_field(fields[4], address, 5, "rate_uart2", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[4] else None
-        rate_usb = (_INTEGER_0_TO.get(fields[5]) or rt.integer_field(fields[5], address, 6, "rate_usb", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[5] else None
-        rate_spi = (_INTEGER_0_TO.get(fields[6]) or rt.integer_field(fields[6], address, 7, "rate_spi", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[6] else None
-        reserved: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            reserved = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "reserved", "integer", None, None, _INTEGER)) if fields[7] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_id, msg, rate_ddc, rate_uart1, rate_uart2, rate_usb, rate_spi, reserved, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_id),
-            rt.text_of(self.msg),
-            rt.text_of(self.rate_ddc),
-            rt.text_of(self.rate_uart1),
-            rt.text_of(self.rate_uart2),
-            rt.text_of(self.rate_usb),
-            rt.text_of(self.rate_spi),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.reserved is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.reserved)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PUBX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_id":' + show(self.msg_id),
-            '"msg":' + show(self.msg),
-            '"rate_ddc":' + show(self.rate_ddc),
-            '"rate_uart1":' + show(self.rate_uart1),
-            '"rate_uart2":' + show(self.rate_uart2),
-            '"rate_usb":' + show(self.rate_usb),
-            '"rate_spi":' + show(self.rate_spi),
-        ]
-        if self.reserved is not rt.ABSENT:
-            parts.append('"reserved":' + show(self.reserved))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "msg"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate_ddc"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate_uart1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate_uart2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate_usb"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rate_spi"), 1)
-        if "reserved" in fields:
-            out += rt.json_texts(fields["reserved"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PubxRate, )

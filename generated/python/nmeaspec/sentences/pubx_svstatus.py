@@ -4,8 +4,8 @@
 """PUBX_SVSTATUS: u-blox satellite status.
 
 u-blox proprietary message 03 (NMEA-PUBX-SVSTATUS): one sentence listing every tracked satellite
-with its use in the solution, azimuth, elevation, signal strength and carrier lock time. Sent at
-its configured rate or once in answer to the poll $PUBX,03 (PUBX_SVSTATUS_POLL).
+with its use in the solution, azimuth, elevation, signal strength and carrier lock time. Sent at its
+configured rate or once in answer to the poll $PUBX,03 (PUBX_SVSTATUS_POLL).
 """
 
 from __future__ import annotations
@@ -16,19 +16,14 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import UbloxSvStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_INTEGER_0_TO_359: dict[Any, Any] = rt.known("integer 0..359")
-_INTEGER_0_TO_90: dict[Any, Any] = rt.known("integer 0..90")
-
 
 @dataclass(slots=True)
 class PubxSvstatusSatellite:
     """One entry of tracked satellites (0 to 64 per sentence)."""
 
     sv_id: rt.Number | None = None
-    """Satellite ID: Satellite number (the NMEA numbering the receiver is set to; GPS 1-32, SBAS and other systems above)."""
+    """Satellite ID: Satellite number (the NMEA numbering the receiver is set to; GPS 1-32, SBAS and
+    other systems above)."""
     status: UbloxSvStatus | str | None = None
     """Satellite usage: - not used, U used in the solution, e ephemeris available but not used."""
     azimuth: rt.Number | None = None
@@ -38,14 +33,16 @@ class PubxSvstatusSatellite:
     cno: rt.Number | None = None
     """Signal strength [dB-Hz]: Carrier to noise density ratio (C/N0)."""
     lock_time: rt.Number | None = None
-    """Carrier lock time [s]: Time the carrier has been locked; 0 means code lock only. The count saturates (64 s on u-blox M8, 255 s on ANTARIS)."""
+    """Carrier lock time [s]: Time the carrier has been locked; 0 means code lock only. The count
+    saturates (64 s on u-blox M8, 255 s on ANTARIS)."""
 
 
 @dataclass(slots=True)
-class PubxSvstatus:
+class PubxSvstatus(rt.Sentence):
     """PUBX_SVSTATUS: u-blox satellite status.
 
-    Example (ublox_m8): $PUBX,03,11,23,-,,,45,010,29,-,,,46,013,07,-,,,42,015,08,U,067,31,42,025,10,U,195,33,46,026,18,U,326,08,39,026,17,-,,,32,015,26,U,306,66,48,025,27,U,073,10,36,026,28,U,089,61,46,024,15,-,,,39,014*0D
+    Example (log_pynmeagps):
+    $PUBX,03,23,1,-,014,06,08,000,12,U,207,43,28,009,14,-,049,06,,000,15,-,171,44,23,000,17,-,064,32,16,000,19,-,094,33,,000,20,U,251,20,31,038,21,-,354,04,,000,23,U,251,27,31,064,24,U,268,89,26,000,25,-,223,05,,000,48,-,,,15,000,52,-,,,28,013,65,-,176,07,,000,66,U,223,57,35,064,67,-,315,42,23,000,68,-,341,00,29,000,75,-,057,37,,000,76,U,303,78,18,000,77,-,253,27,21,000,84,-,018,19,,000,85,-,078,22,,000,86,-,121,01,,000*02
     """
 
     SENTENCE: ClassVar[str] = "PUBX_SVSTATUS"
@@ -55,91 +52,32 @@ class PubxSvstatus:
     SELECTOR: ClassVar[str | None] = "03"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PUBX_SVSTATUS", "proprietary", "$", 2, 386, (
+        rt.KeywordField("msg_id", "03", "03"),
+        rt.IntegerField("num_sv", "integer of at least 0", 0, None),
+        rt.Group("satellites", PubxSvstatusSatellite, (
+            rt.IntegerField("sv_id", "integer"),
+            rt.EnumField("status", "ublox_sv_status code (- U e)", UbloxSvStatus),
+            rt.IntegerField("azimuth", "integer 0..359", 0, 359),
+            rt.IntegerField("elevation", "integer 0..90", 0, 90),
+            rt.IntegerField("cno", "integer"),
+            rt.IntegerField("lock_time", "integer of at least 0", 0, None),
+        ), 0, 64),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_id: str = "03"
-    """Message identifier: Proprietary message number 03 that selects this layout among the PUBX messages."""
+    """Message identifier: Proprietary message number 03 that selects this layout among the PUBX
+    messages."""
     num_sv: rt.Number | None = None
     """Satellites tracked: Number of satellites that follow, one group of six fields each."""
     satellites: list[PubxSvstatusSatellite] = field(default_factory=list)
     """Tracked satellites: 0 to 64 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PubxSvstatus:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 6, 64)
-        optional = count - 2 - repeats * 6
-        if count < 2 or optional > 0:
-            rt.split_group(address, "PUBX_SVSTATUS", "satellites", count, 2, 6, 0, 64, 0)
-        msg_id = rt.keyword_field(fields[0], address, 1, "msg_id", "03", "03")
-        num_sv = (_INTEGER_0_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "num_sv", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[1] else None
-        satellites: list[PubxSvstatusSatellite] = []
-        pos = 2
-        for entry in range(repeats):
-            satellites.append(PubxSvstatusSatellite(
-                (_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].sv_id", "integer", None, None, _INTEGER)) if fields[pos] else None,
-                UbloxSvStatus.BY_CODE.get(fields[pos + 1]) or rt.enum_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].status", "ublox_sv_status code (- U e)", UbloxSvStatus.BY_CODE, "letters", 1, 1),
-                (_INTEGER_0_TO_359.get(fields[pos + 2]) or rt.integer_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].azimuth", "integer 0..359", 0, 359, _INTEGER_0_TO_359)) if fields[pos + 2] else None,
-                (_INTEGER_0_TO_90.get(fields[pos + 3]) or rt.integer_field(fields[pos + 3], address, pos + 4, f"satellites[{entry + 1}].elevation", "integer 0..90", 0, 90, _INTEGER_0_TO_90)) if fields[pos + 3] else None,
-                (_INTEGER.get(fields[pos + 4]) or rt.integer_field(fields[pos + 4], address, pos + 5, f"satellites[{entry + 1}].cno", "integer", None, None, _INTEGER)) if fields[pos + 4] else None,
-                (_INTEGER_0_TO.get(fields[pos + 5]) or rt.integer_field(fields[pos + 5], address, pos + 6, f"satellites[{entry + 1}].lock_time", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[pos + 5] else None,
-            ))
-            pos += 6
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_id, num_sv, satellites, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_id),
-            rt.text_of(self.num_sv),
-        ]
-        for entry in self.satellites:
-            out += [rt.text_of(entry.sv_id), rt.text_of(entry.status), rt.text_of(entry.azimuth), rt.text_of(entry.elevation), rt.text_of(entry.cno), rt.text_of(entry.lock_time)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PUBX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_id":' + show(self.msg_id),
-            '"num_sv":' + show(self.num_sv),
-            '"satellites":[' + ",".join(
-                "{" + '"sv_id":' + show(entry.sv_id) + ',"status":' + show(entry.status) + ',"azimuth":' + show(entry.azimuth) + ',"elevation":' + show(entry.elevation) + ',"cno":' + show(entry.cno) + ',"lock_time":' + show(entry.lock_time) + "}"
-                for entry in self.satellites) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "num_sv"), 1)
-        for entry in rt.json_list(fields, "satellites"):
-            out += rt.json_texts(rt.json_member(entry, "sv_id"), 1)
-            out += rt.json_texts(rt.json_member(entry, "status"), 1)
-            out += rt.json_texts(rt.json_member(entry, "azimuth"), 1)
-            out += rt.json_texts(rt.json_member(entry, "elevation"), 1)
-            out += rt.json_texts(rt.json_member(entry, "cno"), 1)
-            out += rt.json_texts(rt.json_member(entry, "lock_time"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PubxSvstatus, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PUBX_TIME: u-blox time of day and clock information.
 
-u-blox proprietary message 04 (NMEA-PUBX-TIME): UTC time and date, UTC time of week and week
-number, the leap second count and the receiver clock bias, drift and time pulse granularity.
-Sent at its configured rate or once in answer to the poll $PUBX,04 (PUBX_TIME_POLL).
+u-blox proprietary message 04 (NMEA-PUBX-TIME): UTC time and date, UTC time of week and week number,
+the leap second count and the receiver clock bias, drift and time pulse granularity. Sent at its
+configured rate or once in answer to the poll $PUBX,04 (PUBX_TIME_POLL).
 """
 
 from __future__ import annotations
@@ -15,18 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PubxTime:
+class PubxTime(rt.Sentence):
     """PUBX_TIME: u-blox time of day and clock information.
 
-    Example (log_hazer): $PUBX,04,180229.00,200821,496948.99,2171,18,-21782203,376.950,21*3D
+    Example (log_hazer):
+    $PUBX,04,180229.00,200821,496948.99,2171,18,-21782203,376.950,21*3D
     """
 
     SENTENCE: ClassVar[str] = "PUBX_TIME"
@@ -36,8 +31,22 @@ class PubxTime:
     SELECTOR: ClassVar[str | None] = "04"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PUBX_TIME", "proprietary", "$", 9, 10, (
+        rt.KeywordField("msg_id", "04", "04"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.DecimalField("utc_tow", "decimal number"),
+        rt.IntegerField("utc_week", "integer"),
+        rt.TextField("leap_seconds", "text of at most 4 characters", 4),
+        rt.IntegerField("clock_bias", "integer"),
+        rt.DecimalField("clock_drift", "decimal number"),
+        rt.IntegerField("tp_granularity", "integer"),
+        rt.TextField("empty_end", "text", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_id: str = "04"
-    """Message identifier: Proprietary message number 04 that selects this layout among the PUBX messages."""
+    """Message identifier: Proprietary message number 04 that selects this layout among the PUBX
+    messages."""
     time: rt.Time | None = None
     """UTC time: UTC time of day."""
     date: rt.Date | None = None
@@ -47,111 +56,25 @@ class PubxTime:
     utc_week: rt.Number | None = None
     """UTC week number: UTC week number, counted on beyond 1023 (no rollover)."""
     leap_seconds: str | None = None
-    """Leap seconds: GPS-UTC leap second count. A trailing D marks the firmware default value; without it the value was received from the satellites (e.g. 15D, 18). Not supported before protocol version 13.01."""
+    """Leap seconds: GPS-UTC leap second count. A trailing D marks the firmware default value;
+    without it the value was received from the satellites (e.g. 15D, 18). Not supported before
+    protocol version 13.01."""
     clock_bias: rt.Number | None = None
     """Receiver clock bias [ns]: Receiver clock bias."""
     clock_drift: rt.Number | None = None
     """Receiver clock drift [ns/s]: Receiver clock drift."""
     tp_granularity: rt.Number | None = None
-    """Time pulse granularity [ns]: Time pulse granularity, the quantization error of the time pulse."""
+    """Time pulse granularity [ns]: Time pulse granularity, the quantization error of the time
+    pulse."""
     empty_end: str | None | rt._Absent = rt.ABSENT
-    """Trailing empty field: The description's structure line and example end with an empty field before the checksum ("tpGran,*cs"); real receivers do not send it."""
+    """Trailing empty field: The description's structure line and example end with an empty field
+    before the checksum (\"tpGran,*cs\"); real receivers do not send it."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PubxTime:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "PUBX_TIME", 9, count)
-        if count > 10:
-            raise rt.too_many(address, "PUBX_TIME", 10, count)
-        optional = count - 9
-        msg_id = rt.keyword_field(fields[0], address, 1, "msg_id", "04", "04")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        date = (_DATE.get(fields[2]) or rt.date_field(fields[2], address, 3, "date", "date ddmmyy", _DATE)) if fields[2] else None
-        utc_tow = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "utc_tow", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        utc_week = (_INTEGER.get(fields[4]) or rt.integer_field(fields[4], address, 5, "utc_week", "integer", None, None, _INTEGER)) if fields[4] else None
-        leap_seconds = rt.text_field(fields[5], address, 6, "leap_seconds", "text of at most 4 characters", 4)
-        clock_bias = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "clock_bias", "integer", None, None, _INTEGER)) if fields[6] else None
-        clock_drift = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "clock_drift", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        tp_granularity = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "tp_granularity", "integer", None, None, _INTEGER)) if fields[8] else None
-        empty_end: str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            empty_end = rt.text_field(fields[9], address, 10, "empty_end", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_id, time, date, utc_tow, utc_week, leap_seconds, clock_bias, clock_drift, tp_granularity, empty_end, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_id),
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            rt.text_of(self.utc_tow),
-            rt.text_of(self.utc_week),
-            rt.text_of(self.leap_seconds),
-            rt.text_of(self.clock_bias),
-            rt.text_of(self.clock_drift),
-            rt.text_of(self.tp_granularity),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.empty_end is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.empty_end)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PUBX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_id":' + show(self.msg_id),
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"utc_tow":' + show(self.utc_tow),
-            '"utc_week":' + show(self.utc_week),
-            '"leap_seconds":' + show(self.leap_seconds),
-            '"clock_bias":' + show(self.clock_bias),
-            '"clock_drift":' + show(self.clock_drift),
-            '"tp_granularity":' + show(self.tp_granularity),
-        ]
-        if self.empty_end is not rt.ABSENT:
-            parts.append('"empty_end":' + show(self.empty_end))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "utc_tow"), 1)
-        out += rt.json_texts(rt.json_member(fields, "utc_week"), 1)
-        out += rt.json_texts(rt.json_member(fields, "leap_seconds"), 1)
-        out += rt.json_texts(rt.json_member(fields, "clock_bias"), 1)
-        out += rt.json_texts(rt.json_member(fields, "clock_drift"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tp_granularity"), 1)
-        if "empty_end" in fields:
-            out += rt.json_texts(fields["empty_end"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PubxTime, )

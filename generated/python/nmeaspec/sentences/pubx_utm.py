@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """PUBX_UTM: u-blox UTM position data.
 
-u-blox proprietary message 01 of the ANTARIS generation: the PUBX,00 solution with the position
-as UTM easting and northing instead of latitude and longitude. Later u-blox receivers no longer
-list it.
+u-blox proprietary message 01 of the ANTARIS generation: the PUBX,00 solution with the position as
+UTM easting and northing instead of latitude and longitude. Later u-blox receivers no longer list
+it.
 """
 
 from __future__ import annotations
@@ -17,20 +17,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import EastWest, NorthSouth, UbloxNavStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_359_POINT_99: dict[Any, Any] = rt.known("decimal 0..359.99")
-_DECIMAL_0_TO_9999: dict[Any, Any] = rt.known("decimal 0..9999")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class PubxUtm:
+class PubxUtm(rt.Sentence):
     """PUBX_UTM: u-blox UTM position data.
 
-    Example (nmea_revealed): $PUBX,01,075142.00,467125.245,E,5236949.763,N,498.235,G3,2.1,1.9,0.005,85.63,0.000,,0.78,0.90,0.52,12,0,0*65
+    Example (nmea_revealed):
+    $PUBX,01,075142.00,467125.245,E,5236949.763,N,498.235,G3,2.1,1.9,0.005,85.63,0.000,,0.78,0.90,0.52,12,0,0*65
     """
 
     SENTENCE: ClassVar[str] = "PUBX_UTM"
@@ -40,8 +33,36 @@ class PubxUtm:
     SELECTOR: ClassVar[str | None] = "01"
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PUBX_UTM", "proprietary", "$", 20, 20, (
+        rt.KeywordField("msg_id", "01", "01"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DecimalField("easting", "decimal number"),
+        rt.EnumField("east_west", "east_west code (E W)", EastWest),
+        rt.DecimalField("northing", "decimal number"),
+        rt.EnumField("north_south", "north_south code (N S)", NorthSouth),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.EnumField(
+            "nav_status",
+            "ublox_nav_status code (NF DR G2 G3 D2 D3 RK TT)",
+            UbloxNavStatus,
+        ),
+        rt.DecimalField("h_acc", "decimal number 0..9999", 0, 9999),
+        rt.DecimalField("v_acc", "decimal number 0..9999", 0, 9999),
+        rt.DecimalField("sog", "decimal number"),
+        rt.DecimalField("cog", "decimal number 0..359.99", 0, Decimal("359.99")),
+        rt.DecimalField("v_vel", "decimal number"),
+        rt.DecimalField("diff_age", "decimal number"),
+        rt.DecimalField("hdop", "decimal number"),
+        rt.DecimalField("vdop", "decimal number"),
+        rt.DecimalField("tdop", "decimal number"),
+        rt.IntegerField("gps_used", "integer of at least 0", 0, None),
+        rt.IntegerField("glonass_used", "integer"),
+        rt.IntegerField("dr_used", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     msg_id: str = "01"
-    """Message identifier: Proprietary message number 01 that selects this layout among the PUBX messages."""
+    """Message identifier: Proprietary message number 01 that selects this layout among the PUBX
+    messages."""
     time: rt.Time | None = None
     """UTC time: UTC time of the solution."""
     easting: rt.Number | None = None
@@ -53,7 +74,8 @@ class PubxUtm:
     north_south: NorthSouth | str | None = None
     """Hemisphere: N or S hemisphere."""
     altitude: rt.Number | None = None
-    """Altitude [m]: Altitude; the FV-25 manual calls it height above the ellipsoid, NMEA Revealed altitude above mean sea level."""
+    """Altitude [m]: Altitude; the FV-25 manual calls it height above the ellipsoid, NMEA Revealed
+    altitude above mean sea level."""
     nav_status: UbloxNavStatus | str | None = None
     """Navigation status: Kind of solution (NF, DR, G2, G3, D2, D3)."""
     h_acc: rt.Number | None = None
@@ -67,7 +89,8 @@ class PubxUtm:
     v_vel: rt.Number | None = None
     """Vertical velocity [m/s]: Vertical speed, positive upwards according to the FV-25 manual."""
     diff_age: rt.Number | None = None
-    """Age of differential corrections [s]: Age of the DGPS corrections; empty when none are used."""
+    """Age of differential corrections [s]: Age of the DGPS corrections; empty when none are
+    used."""
     hdop: rt.Number | None = None
     """HDOP: Horizontal dilution of precision."""
     vdop: rt.Number | None = None
@@ -79,132 +102,14 @@ class PubxUtm:
     glonass_used: rt.Number | None = None
     """GLONASS satellites used: Number of GLONASS satellites used, always 0."""
     dr_used: rt.Number | None = None
-    """Dead reckoning used: Dead reckoning indicator (named DR by NMEA Revealed; the last field of the FV-25 syntax line)."""
+    """Dead reckoning used: Dead reckoning indicator (named DR by NMEA Revealed; the last field of
+    the FV-25 syntax line)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> PubxUtm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 20:
-            raise rt.too_few(address, "PUBX_UTM", 20, count)
-        if count > 20:
-            raise rt.too_many(address, "PUBX_UTM", 20, count)
-        msg_id = rt.keyword_field(fields[0], address, 1, "msg_id", "01", "01")
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        easting = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "easting", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        east_west = EastWest.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "east_west", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        northing = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "northing", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        north_south = NorthSouth.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "north_south", "north_south code (N S)", NorthSouth.BY_CODE, "letters", 1, 1)
-        altitude = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "altitude", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        nav_status = UbloxNavStatus.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "nav_status", "ublox_nav_status code (NF DR G2 G3 D2 D3 RK TT)", UbloxNavStatus.BY_CODE, "alnum", 2, 2)
-        h_acc = (_DECIMAL_0_TO_9999.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "h_acc", "decimal number 0..9999", 0, 9999, _DECIMAL_0_TO_9999)) if fields[8] else None
-        v_acc = (_DECIMAL_0_TO_9999.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "v_acc", "decimal number 0..9999", 0, 9999, _DECIMAL_0_TO_9999)) if fields[9] else None
-        sog = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "sog", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        cog = (_DECIMAL_0_TO_359_POINT_99.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "cog", "decimal number 0..359.99", 0, Decimal("359.99"), _DECIMAL_0_TO_359_POINT_99)) if fields[11] else None
-        v_vel = (_DECIMAL.get(fields[12]) or rt.decimal_field(fields[12], address, 13, "v_vel", "decimal number", None, None, _DECIMAL)) if fields[12] else None
-        diff_age = (_DECIMAL.get(fields[13]) or rt.decimal_field(fields[13], address, 14, "diff_age", "decimal number", None, None, _DECIMAL)) if fields[13] else None
-        hdop = (_DECIMAL.get(fields[14]) or rt.decimal_field(fields[14], address, 15, "hdop", "decimal number", None, None, _DECIMAL)) if fields[14] else None
-        vdop = (_DECIMAL.get(fields[15]) or rt.decimal_field(fields[15], address, 16, "vdop", "decimal number", None, None, _DECIMAL)) if fields[15] else None
-        tdop = (_DECIMAL.get(fields[16]) or rt.decimal_field(fields[16], address, 17, "tdop", "decimal number", None, None, _DECIMAL)) if fields[16] else None
-        gps_used = (_INTEGER_0_TO.get(fields[17]) or rt.integer_field(fields[17], address, 18, "gps_used", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[17] else None
-        glonass_used = (_INTEGER.get(fields[18]) or rt.integer_field(fields[18], address, 19, "glonass_used", "integer", None, None, _INTEGER)) if fields[18] else None
-        dr_used = (_INTEGER.get(fields[19]) or rt.integer_field(fields[19], address, 20, "dr_used", "integer", None, None, _INTEGER)) if fields[19] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(msg_id, time, easting, east_west, northing, north_south, altitude, nav_status, h_acc, v_acc, sog, cog, v_vel, diff_age, hdop, vdop, tdop, gps_used, glonass_used, dr_used, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msg_id),
-            rt.text_of(self.time),
-            rt.text_of(self.easting),
-            rt.text_of(self.east_west),
-            rt.text_of(self.northing),
-            rt.text_of(self.north_south),
-            rt.text_of(self.altitude),
-            rt.text_of(self.nav_status),
-            rt.text_of(self.h_acc),
-            rt.text_of(self.v_acc),
-            rt.text_of(self.sog),
-            rt.text_of(self.cog),
-            rt.text_of(self.v_vel),
-            rt.text_of(self.diff_age),
-            rt.text_of(self.hdop),
-            rt.text_of(self.vdop),
-            rt.text_of(self.tdop),
-            rt.text_of(self.gps_used),
-            rt.text_of(self.glonass_used),
-            rt.text_of(self.dr_used),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PUBX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msg_id":' + show(self.msg_id),
-            '"time":' + show(self.time),
-            '"easting":' + show(self.easting),
-            '"east_west":' + show(self.east_west),
-            '"northing":' + show(self.northing),
-            '"north_south":' + show(self.north_south),
-            '"altitude":' + show(self.altitude),
-            '"nav_status":' + show(self.nav_status),
-            '"h_acc":' + show(self.h_acc),
-            '"v_acc":' + show(self.v_acc),
-            '"sog":' + show(self.sog),
-            '"cog":' + show(self.cog),
-            '"v_vel":' + show(self.v_vel),
-            '"diff_age":' + show(self.diff_age),
-            '"hdop":' + show(self.hdop),
-            '"vdop":' + show(self.vdop),
-            '"tdop":' + show(self.tdop),
-            '"gps_used":' + show(self.gps_used),
-            '"glonass_used":' + show(self.glonass_used),
-            '"dr_used":' + show(self.dr_used),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msg_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "easting"), 1)
-        out += rt.json_texts(rt.json_member(fields, "east_west"), 1)
-        out += rt.json_texts(rt.json_member(fields, "northing"), 1)
-        out += rt.json_texts(rt.json_member(fields, "north_south"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "nav_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "h_acc"), 1)
-        out += rt.json_texts(rt.json_member(fields, "v_acc"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sog"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cog"), 1)
-        out += rt.json_texts(rt.json_member(fields, "v_vel"), 1)
-        out += rt.json_texts(rt.json_member(fields, "diff_age"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "tdop"), 1)
-        out += rt.json_texts(rt.json_member(fields, "gps_used"), 1)
-        out += rt.json_texts(rt.json_member(fields, "glonass_used"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dr_used"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (PubxUtm, )

@@ -15,18 +15,11 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class R00Waypoint:
-    """One entry of waypoints (0 to 14 per sentence)."""
-
-    waypoint: str | None = None
-    """Waypoint ID: Identifier of a waypoint of the active route."""
-
-
-@dataclass(slots=True)
-class R00:
+class R00(rt.Sentence):
     """R00: Waypoints in active route.
 
-    Example (marnav): $GPR00,EGLL,EGLM,EGTB,EGUB,EGTK,MBOT,EGTB,,,,,,,*58
+    Example (marnav):
+    $GPR00,EGLL,EGLM,EGTB,EGUB,EGTK,MBOT,EGTB,,,,,,,*58
     """
 
     SENTENCE: ClassVar[str] = "R00"
@@ -36,68 +29,23 @@ class R00:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("R00", "standard", "$", 0, 14, (
+        rt.Group("waypoints", None, (
+            rt.TextField("waypoint", "text"),
+        ), 0, 14),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     waypoints: list[str | None] = field(default_factory=list)
     """Waypoints: 0 to 14 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> R00:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 0) // 1, 14)
-        optional = count - 0 - repeats * 1
-        if optional > 0:
-            rt.split_group(address, "R00", "waypoints", count, 0, 1, 0, 14, 0)
-        waypoints: list[str | None] = []
-        pos = 0
-        for entry in range(repeats):
-            waypoints.append(rt.text_field(fields[pos], address, pos + 1, f"waypoints[{entry + 1}].waypoint", "text", None))
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], waypoints, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-        ]
-        for entry in self.waypoints:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "R00",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"waypoints":[' + ",".join(show(entry) for entry in self.waypoints) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        for entry in rt.json_list(fields, "waypoints"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (R00, )

@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import RlmMessageCode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Rlm:
+class Rlm(rt.Sentence):
     """RLM: Return link message.
 
-    Example (geos5): $GPRLM,123456789ABCD12,000128.00,3,333344445555666677778888*64
+    Example (geos5):
+    $GPRLM,123456789ABCD12,000128.00,3,333344445555666677778888*64
     """
 
     SENTENCE: ClassVar[str] = "RLM"
@@ -33,6 +30,17 @@ class Rlm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RLM", "standard", "$", 4, 4, (
+        rt.HexField("beacon_id", "hex number"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField(
+            "message_code",
+            "rlm_message_code code (0 1 2 3 4 5 6 7 8 9 A B C D E F)",
+            RlmMessageCode,
+        ),
+        rt.TextField("message_body", "text of at most 24 characters", 24),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -41,70 +49,17 @@ class Rlm:
     time: rt.Time | None = None
     """Time of reception: UTC time at which the return link message was received."""
     message_code: RlmMessageCode | str | None = None
-    """Message code: RLM service, one hex digit (1 acknowledgement, 2 command, 3 message, F test, others reserved)."""
+    """Message code: RLM service, one hex digit (1 acknowledgement, 2 command, 3 message, F test,
+    others reserved)."""
     message_body: str | None = None
-    """Message body: Parameters of the message in hex: 4 hex digits (16 bits) for a short message, 24 hex digits (96 bits) for a long one. Kept as text because 96 bits exceed the hex type."""
+    """Message body: Parameters of the message in hex: 4 hex digits (16 bits) for a short message,
+    24 hex digits (96 bits) for a long one. Kept as text because 96 bits exceed the hex type."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rlm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "RLM", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "RLM", 4, count)
-        beacon_id = (_HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "beacon_id", "hex number", _HEX)) if fields[0] else None
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        message_code = RlmMessageCode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "message_code", "rlm_message_code code (0 1 2 3 4 5 6 7 8 9 A B C D E F)", RlmMessageCode.BY_CODE, "alnum", 1, 1)
-        message_body = rt.text_field(fields[3], address, 4, "message_body", "text of at most 24 characters", 24)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], beacon_id, time, message_code, message_body, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.beacon_id),
-            rt.text_of(self.time),
-            rt.text_of(self.message_code),
-            rt.text_of(self.message_body),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RLM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"beacon_id":' + show(self.beacon_id),
-            '"time":' + show(self.time),
-            '"message_code":' + show(self.message_code),
-            '"message_body":' + show(self.message_body),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "beacon_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_body"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rlm, )

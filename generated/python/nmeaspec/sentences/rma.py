@@ -15,17 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import EastWest, PosMode, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-
 
 @dataclass(slots=True)
-class Rma:
+class Rma(rt.Sentence):
     """RMA: Recommended minimum specific Loran-C data.
 
-    Example (log_pynmeagps): $GPRMA,A,5327.03942,N,11214.42462,W,,,23.1,23,14.8,W*58
+    Example (log_pynmeagps):
+    $GPRMA,A,5327.03942,N,11214.42462,W,,,23.1,23,14.8,W*58
     """
 
     SENTENCE: ClassVar[str] = "RMA"
@@ -35,6 +31,19 @@ class Rma:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMA", "standard", "$", 11, 12, (
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("time_difference_a", "decimal number"),
+        rt.DecimalField("time_difference_b", "decimal number"),
+        rt.DecimalField("speed", "decimal number"),
+        rt.DecimalField("course", "decimal number"),
+        rt.DecimalField("mag_var", "decimal number"),
+        rt.EnumField("mag_var_dir", "east_west code (E W)", EastWest),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -55,105 +64,17 @@ class Rma:
     mag_var: rt.Number | None = None
     """Magnetic variation [deg]: Magnetic variation, degrees."""
     mag_var_dir: EastWest | str | None = None
-    """Magnetic variation direction: E = easterly (subtract from true course), W = westerly (add to true course)."""
+    """Magnetic variation direction: E = easterly (subtract from true course), W = westerly (add to
+    true course)."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
-    """Mode indicator (NMEA 2.3): Positioning mode (A autonomous, D differential, E estimated, M manual input, S simulator, N not valid); the status is V for every mode but A and D."""
+    """Mode indicator (NMEA 2.3): Positioning mode (A autonomous, D differential, E estimated, M
+    manual input, S simulator, N not valid); the status is V for every mode but A and D."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rma:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "RMA", 11, count)
-        if count > 12:
-            raise rt.too_many(address, "RMA", 12, count)
-        optional = count - 11
-        status = Status.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        time_difference_a = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "time_difference_a", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        time_difference_b = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "time_difference_b", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        speed = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "speed", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        course = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "course", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        mag_var = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "mag_var", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        mag_var_dir = EastWest.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "mag_var_dir", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], status, lat, lon, time_difference_a, time_difference_b, speed, course, mag_var, mag_var_dir, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.time_difference_a),
-            rt.text_of(self.time_difference_b),
-            rt.text_of(self.speed),
-            rt.text_of(self.course),
-            rt.text_of(self.mag_var),
-            rt.text_of(self.mag_var_dir),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RMA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"time_difference_a":' + show(self.time_difference_a),
-            '"time_difference_b":' + show(self.time_difference_b),
-            '"speed":' + show(self.speed),
-            '"course":' + show(self.course),
-            '"mag_var":' + show(self.mag_var),
-            '"mag_var_dir":' + show(self.mag_var_dir),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "time_difference_a"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_difference_b"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mag_var"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mag_var_dir"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rma, )

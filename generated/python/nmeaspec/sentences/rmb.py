@@ -4,8 +4,8 @@
 """RMB: Recommended minimum navigation information.
 
 Navigation to the active destination waypoint: data status, cross-track error and direction to
-steer, origin and destination waypoints, destination position, range, bearing and closing
-velocity, and arrival status.
+steer, origin and destination waypoints, destination position, range, bearing and closing velocity,
+and arrival status.
 """
 
 from __future__ import annotations
@@ -16,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import LeftRight, PosMode, RmbArrivalStatus, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-
 
 @dataclass(slots=True)
-class Rmb:
+class Rmb(rt.Sentence):
     """RMB: Recommended minimum navigation information.
 
-    Example (log_marine_api): $GPRMB,A,0.20,R,A003,A002,6004.099,N,01940.515,E,0.310,180.1,-0.3,V,D*68
+    Example (log_marine_api):
+    $GPRMB,A,0.20,R,A003,A002,6004.099,N,01940.515,E,0.310,180.1,-0.3,V,D*68
     """
 
     SENTENCE: ClassVar[str] = "RMB"
@@ -37,17 +32,34 @@ class Rmb:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMB", "standard", "$", 13, 14, (
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.DecimalField("cross_track_error", "decimal number of at least 0", 0, None),
+        rt.EnumField("steer_direction", "left_right code (L R)", LeftRight),
+        rt.TextField("origin_waypoint", "text"),
+        rt.TextField("destination_waypoint", "text"),
+        rt.LatitudeField("destination_lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("destination_lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("range_to_destination", "decimal number of at least 0", 0, None),
+        rt.DecimalField("bearing_to_destination", "decimal number of at least 0", 0, None),
+        rt.DecimalField("closing_velocity", "decimal number"),
+        rt.EnumField("arrival_status", "rmb_arrival_status code (A V)", RmbArrivalStatus),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     status: Status | str | None = None
     """Data status: A = data valid, V = navigation receiver warning."""
     cross_track_error: rt.Number | None = None
-    """Cross-track error [nmi]: Magnitude of the cross-track error, nautical miles; the standard caps the value at 9.99."""
+    """Cross-track error [nmi]: Magnitude of the cross-track error, nautical miles; the standard
+    caps the value at 9.99."""
     steer_direction: LeftRight | str | None = None
     """Direction to steer: Direction to steer to regain the track, L or R."""
     origin_waypoint: str | None = None
-    """Origin waypoint ID: Identifier of the origin (FROM) waypoint; empty when navigating to a single waypoint."""
+    """Origin waypoint ID: Identifier of the origin (FROM) waypoint; empty when navigating to a
+    single waypoint."""
     destination_waypoint: str | None = None
     """Destination waypoint ID: Identifier of the destination (TO) waypoint."""
     destination_lat: rt.Coordinate | None = None
@@ -55,119 +67,25 @@ class Rmb:
     destination_lon: rt.Coordinate | None = None
     """Destination longitude: Longitude of the destination waypoint and hemisphere (E/W)."""
     range_to_destination: rt.Number | None = None
-    """Range to destination [nmi]: Distance to the destination, nautical miles; the standard caps the value at 999.9."""
+    """Range to destination [nmi]: Distance to the destination, nautical miles; the standard caps
+    the value at 999.9."""
     bearing_to_destination: rt.Number | None = None
-    """Bearing to destination [deg]: Bearing from the present position to the destination, degrees true."""
+    """Bearing to destination [deg]: Bearing from the present position to the destination, degrees
+    true."""
     closing_velocity: rt.Number | None = None
-    """Destination closing velocity [knots]: Speed towards the destination, knots; negative when moving away from it (Garmin sends e.g. -0.3)."""
+    """Destination closing velocity [knots]: Speed towards the destination, knots; negative when
+    moving away from it (Garmin sends e.g. -0.3)."""
     arrival_status: RmbArrivalStatus | str | None = None
     """Arrival status: A = arrival circle entered or perpendicular passed, V = not arrived."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
-    """Mode indicator (NMEA 2.3): Positioning system mode indicator (NMEA 2.3 and later; absent before)."""
+    """Mode indicator (NMEA 2.3): Positioning system mode indicator (NMEA 2.3 and later; absent
+    before)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rmb:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 13:
-            raise rt.too_few(address, "RMB", 13, count)
-        if count > 14:
-            raise rt.too_many(address, "RMB", 14, count)
-        optional = count - 13
-        status = Status.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        cross_track_error = (_DECIMAL_0_TO.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "cross_track_error", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[1] else None
-        steer_direction = LeftRight.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "steer_direction", "left_right code (L R)", LeftRight.BY_CODE, "letters", 1, 1)
-        origin_waypoint = rt.text_field(fields[3], address, 4, "origin_waypoint", "text", None)
-        destination_waypoint = rt.text_field(fields[4], address, 5, "destination_waypoint", "text", None)
-        destination_lat = _LATITUDE.get((fields[5], fields[6])) or rt.coordinate_field(fields[5], fields[6], address, 6, "destination_lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        destination_lon = _LONGITUDE.get((fields[7], fields[8])) or rt.coordinate_field(fields[7], fields[8], address, 8, "destination_lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        range_to_destination = (_DECIMAL_0_TO.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "range_to_destination", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[9] else None
-        bearing_to_destination = (_DECIMAL_0_TO.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "bearing_to_destination", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[10] else None
-        closing_velocity = (_DECIMAL.get(fields[11]) or rt.decimal_field(fields[11], address, 12, "closing_velocity", "decimal number", None, None, _DECIMAL)) if fields[11] else None
-        arrival_status = RmbArrivalStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "arrival_status", "rmb_arrival_status code (A V)", RmbArrivalStatus.BY_CODE, "letters", 1, 1)
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[13]) or rt.enum_field(fields[13], address, 14, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], status, cross_track_error, steer_direction, origin_waypoint, destination_waypoint, destination_lat, destination_lon, range_to_destination, bearing_to_destination, closing_velocity, arrival_status, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.cross_track_error),
-            rt.text_of(self.steer_direction),
-            rt.text_of(self.origin_waypoint),
-            rt.text_of(self.destination_waypoint),
-            *rt.coordinate_texts(self.destination_lat),
-            *rt.coordinate_texts(self.destination_lon),
-            rt.text_of(self.range_to_destination),
-            rt.text_of(self.bearing_to_destination),
-            rt.text_of(self.closing_velocity),
-            rt.text_of(self.arrival_status),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RMB",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"cross_track_error":' + show(self.cross_track_error),
-            '"steer_direction":' + show(self.steer_direction),
-            '"origin_waypoint":' + show(self.origin_waypoint),
-            '"destination_waypoint":' + show(self.destination_waypoint),
-            '"destination_lat":' + show(self.destination_lat),
-            '"destination_lon":' + show(self.destination_lon),
-            '"range_to_destination":' + show(self.range_to_destination),
-            '"bearing_to_destination":' + show(self.bearing_to_destination),
-            '"closing_velocity":' + show(self.closing_velocity),
-            '"arrival_status":' + show(self.arrival_status),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cross_track_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "steer_direction"), 1)
-        out += rt.json_texts(rt.json_member(fields, "origin_waypoint"), 1)
-        out += rt.json_texts(rt.json_member(fields, "destination_waypoint"), 1)
-        out += rt.json_texts(rt.json_member(fields, "destination_lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "destination_lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "range_to_destination"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_to_destination"), 1)
-        out += rt.json_texts(rt.json_member(fields, "closing_velocity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "arrival_status"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rmb, )

@@ -16,20 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import EastWest, NavStatus, NorthSouth, PosMode, RmcMagVarDir, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_359_POINT_9: dict[Any, Any] = rt.known("decimal 0..359.9")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Rmc:
+class Rmc(rt.Sentence):
     """RMC: Recommended minimum specific GNSS data.
 
-    Example (geos5): $GPRMC,142353.00,V,,,,,,,300518,,,N*70
+    Example (geos5):
+    $GNRMC,102348.00,V,5550.608356,N,03732.248949,E,000.00000,325.5,300518,,,N,V*24
     """
 
     SENTENCE: ClassVar[str] = "RMC"
@@ -39,13 +32,28 @@ class Rmc:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMC", "standard", "$", 11, 13, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("speed", "decimal number"),
+        rt.DecimalField("course", "decimal number 0..359.9", 0, Decimal("359.9")),
+        rt.DateField("date", "date ddmmyy"),
+        rt.DecimalField("mag_var", "decimal number"),
+        rt.EnumField("mag_var_dir", "rmc_mag_var_dir code (E W)", RmcMagVarDir),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+        rt.EnumField("nav_status", "nav_status code (S C U V)", NavStatus, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the position fix."""
     status: Status | str | None = None
-    """Data status: A when the data are valid, V for a receiver warning. GeoS-5 sets V exactly when the mode indicator is N."""
+    """Data status: A when the data are valid, V for a receiver warning. GeoS-5 sets V exactly when
+    the mode indicator is N."""
     lat: rt.Coordinate | None = None
     """Latitude: Latitude and hemisphere (N/S)."""
     lon: rt.Coordinate | None = None
@@ -57,132 +65,35 @@ class Rmc:
     date: rt.Date | None = None
     """Date: UTC date of the fix."""
     mag_var: rt.Number | None = None
-    """Magnetic variation [deg]: Magnetic variation in degrees (ST gives a maximum of 090.0); empty on GeoS-5, GS501 and GlobalSat, which do not support it."""
+    """Magnetic variation [deg]: Magnetic variation in degrees (ST gives a maximum of 090.0); empty
+    on GeoS-5, GS501 and GlobalSat, which do not support it."""
     mag_var_dir: RmcMagVarDir | str | None = None
-    """Magnetic variation direction: E or W; easterly variation subtracts from the true course, westerly adds to it."""
+    """Magnetic variation direction: E or W; easterly variation subtracts from the true course,
+    westerly adds to it."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
     """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3)."""
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
-    """Navigational status (NMEA 4.10): Navigational status (integrity) indicator; GeoS-5 does not compute it and always sends V."""
+    """Navigational status (NMEA 4.10): Navigational status (integrity) indicator; GeoS-5 does not
+    compute it and always sends V."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rmc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "RMC", 11, count)
-        if count > 13:
-            raise rt.too_many(address, "RMC", 13, count)
-        optional = count - 11
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        lat = _LATITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[4], fields[5])) or rt.coordinate_field(fields[4], fields[5], address, 5, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        speed = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        course = (_DECIMAL_0_TO_359_POINT_9.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "course", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[7] else None
-        date = (_DATE.get(fields[8]) or rt.date_field(fields[8], address, 9, "date", "date ddmmyy", _DATE)) if fields[8] else None
-        mag_var = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "mag_var", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        mag_var_dir = RmcMagVarDir.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "mag_var_dir", "rmc_mag_var_dir code (E W)", RmcMagVarDir.BY_CODE, "letters", 1, 1)
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            nav_status = NavStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, status, lat, lon, speed, course, date, mag_var, mag_var_dir, mode, nav_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.status),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.speed),
-            rt.text_of(self.course),
-            rt.text_of(self.date),
-            rt.text_of(self.mag_var),
-            rt.text_of(self.mag_var_dir),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.nav_status is not rt.ABSENT:
-            last = 1
-        elif self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        if last >= 1:
-            out += [rt.text_of(self.nav_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RMC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"status":' + show(self.status),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"speed":' + show(self.speed),
-            '"course":' + show(self.course),
-            '"date":' + show(self.date),
-            '"mag_var":' + show(self.mag_var),
-            '"mag_var_dir":' + show(self.mag_var_dir),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        if self.nav_status is not rt.ABSENT:
-            parts.append('"nav_status":' + show(self.nav_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mag_var"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mag_var_dir"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        if "nav_status" in fields:
-            out += rt.json_texts(fields["nav_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class RmcSentinel:
+class RmcSentinel(rt.Sentence):
     """RMC (Out-of-range position (no-fix sentinel)): Recommended minimum specific GNSS data.
 
     Some receivers fill the position fields with an impossible value while they have no fix
-    (36000.0000,N,72000.0000,E: 360 and 720 degrees). Such a line is kept rather than rejected,
-    with the position fields as the plain numbers sent, so that no wrong position is ever
-    reported; the main layout rejects them.
+    (36000.0000,N,72000.0000,E: 360 and 720 degrees). Such a line is kept rather than rejected, with
+    the position fields as the plain numbers sent, so that no wrong position is ever reported; the
+    main layout rejects them.
 
-    Example (log_gpsd): $GPRMC,000452.981,V,36000.0000,N,72000.0000,E,0.000000,,190120,,*32
+    Example (log_gpsd):
+    $GPRMC,000452.981,V,36000.0000,N,72000.0000,E,0.000000,,190120,,*32
     """
 
     SENTENCE: ClassVar[str] = "RMC"
@@ -192,19 +103,39 @@ class RmcSentinel:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMC", "standard", "$", 11, 13, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.DecimalField("lat_value", "decimal number"),
+        rt.EnumField("lat_hemisphere", "north_south code (N S)", NorthSouth),
+        rt.DecimalField("lon_value", "decimal number"),
+        rt.EnumField("lon_hemisphere", "east_west code (E W)", EastWest),
+        rt.DecimalField("speed", "decimal number"),
+        rt.DecimalField("course", "decimal number 0..359.9", 0, Decimal("359.9")),
+        rt.DateField("date", "date ddmmyy"),
+        rt.DecimalField("mag_var", "decimal number"),
+        rt.EnumField("mag_var_dir", "rmc_mag_var_dir code (E W)", RmcMagVarDir),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+        rt.EnumField("nav_status", "nav_status code (S C U V)", NavStatus, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the position fix."""
     status: Status | str | None = None
-    """Data status: A when the data are valid, V for a receiver warning. GeoS-5 sets V exactly when the mode indicator is N."""
+    """Data status: A when the data are valid, V for a receiver warning. GeoS-5 sets V exactly when
+    the mode indicator is N."""
     lat_value: rt.Number | None = None
-    """Latitude as sent: The latitude field as the receiver sent it, a number that is no latitude (36000.0000 reads as 360 degrees); kept as a plain number so that it is never taken for a position."""
+    """Latitude as sent: The latitude field as the receiver sent it, a number that is no latitude
+    (36000.0000 reads as 360 degrees); kept as a plain number so that it is never taken for a
+    position."""
     lat_hemisphere: NorthSouth | str | None = None
     """Latitude hemisphere: Hemisphere letter of the latitude field."""
     lon_value: rt.Number | None = None
-    """Longitude as sent: The longitude field as the receiver sent it, kept as a plain number (72000.0000 reads as 720 degrees)."""
+    """Longitude as sent: The longitude field as the receiver sent it, kept as a plain number
+    (72000.0000 reads as 720 degrees)."""
     lon_hemisphere: EastWest | str | None = None
     """Longitude hemisphere: Hemisphere letter of the longitude field."""
     speed: rt.Number | None = None
@@ -214,128 +145,22 @@ class RmcSentinel:
     date: rt.Date | None = None
     """Date: UTC date of the fix."""
     mag_var: rt.Number | None = None
-    """Magnetic variation [deg]: Magnetic variation in degrees (ST gives a maximum of 090.0); empty on GeoS-5, GS501 and GlobalSat, which do not support it."""
+    """Magnetic variation [deg]: Magnetic variation in degrees (ST gives a maximum of 090.0); empty
+    on GeoS-5, GS501 and GlobalSat, which do not support it."""
     mag_var_dir: RmcMagVarDir | str | None = None
-    """Magnetic variation direction: E or W; easterly variation subtracts from the true course, westerly adds to it."""
+    """Magnetic variation direction: E or W; easterly variation subtracts from the true course,
+    westerly adds to it."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
     """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3)."""
     nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
-    """Navigational status (NMEA 4.10): Navigational status (integrity) indicator; GeoS-5 does not compute it and always sends V."""
+    """Navigational status (NMEA 4.10): Navigational status (integrity) indicator; GeoS-5 does not
+    compute it and always sends V."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> RmcSentinel:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 11:
-            raise rt.too_few(address, "RMC", 11, count)
-        if count > 13:
-            raise rt.too_many(address, "RMC", 13, count)
-        optional = count - 11
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        lat_value = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "lat_value", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        lat_hemisphere = NorthSouth.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "lat_hemisphere", "north_south code (N S)", NorthSouth.BY_CODE, "letters", 1, 1)
-        lon_value = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "lon_value", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        lon_hemisphere = EastWest.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "lon_hemisphere", "east_west code (E W)", EastWest.BY_CODE, "letters", 1, 1)
-        speed = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        course = (_DECIMAL_0_TO_359_POINT_9.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "course", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[7] else None
-        date = (_DATE.get(fields[8]) or rt.date_field(fields[8], address, 9, "date", "date ddmmyy", _DATE)) if fields[8] else None
-        mag_var = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "mag_var", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        mag_var_dir = RmcMagVarDir.BY_CODE.get(fields[10]) or rt.enum_field(fields[10], address, 11, "mag_var_dir", "rmc_mag_var_dir code (E W)", RmcMagVarDir.BY_CODE, "letters", 1, 1)
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        nav_status: NavStatus | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            nav_status = NavStatus.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "nav_status", "nav_status code (S C U V)", NavStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, status, lat_value, lat_hemisphere, lon_value, lon_hemisphere, speed, course, date, mag_var, mag_var_dir, mode, nav_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.status),
-            rt.text_of(self.lat_value),
-            rt.text_of(self.lat_hemisphere),
-            rt.text_of(self.lon_value),
-            rt.text_of(self.lon_hemisphere),
-            rt.text_of(self.speed),
-            rt.text_of(self.course),
-            rt.text_of(self.date),
-            rt.text_of(self.mag_var),
-            rt.text_of(self.mag_var_dir),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.nav_status is not rt.ABSENT:
-            last = 1
-        elif self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        if last >= 1:
-            out += [rt.text_of(self.nav_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RMC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"status":' + show(self.status),
-            '"lat_value":' + show(self.lat_value),
-            '"lat_hemisphere":' + show(self.lat_hemisphere),
-            '"lon_value":' + show(self.lon_value),
-            '"lon_hemisphere":' + show(self.lon_hemisphere),
-            '"speed":' + show(self.speed),
-            '"course":' + show(self.course),
-            '"date":' + show(self.date),
-            '"mag_var":' + show(self.mag_var),
-            '"mag_var_dir":' + show(self.mag_var_dir),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        if self.nav_status is not rt.ABSENT:
-            parts.append('"nav_status":' + show(self.nav_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_value"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat_hemisphere"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_value"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lon_hemisphere"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mag_var"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mag_var_dir"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        if "nav_status" in fields:
-            out += rt.json_texts(fields["nav_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rmc, RmcSentinel, )

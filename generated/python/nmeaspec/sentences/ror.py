@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ROR: Rudder order status.
 
-Rudder angle ordered for the starboard (or single) and port rudders, and where the order comes
-from. Like RSA the value is relative: negative means bow turns to port.
+Rudder angle ordered for the starboard (or single) and port rudders, and where the order comes from.
+Like RSA the value is relative: negative means bow turns to port.
 """
 
 from __future__ import annotations
@@ -15,14 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import PrcOperatingLocation, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Ror:
+class Ror(rt.Sentence):
     """ROR: Rudder order status.
-
     """
 
     SENTENCE: ClassVar[str] = "ROR"
@@ -32,11 +28,28 @@ class Ror:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ROR", "standard", "$", 5, 9, (
+        rt.DecimalField("starboard_order", "decimal number"),
+        rt.EnumField("starboard_status", "status code (A V)", Status),
+        rt.DecimalField("port_order", "decimal number"),
+        rt.EnumField("port_status", "status code (A V)", Status),
+        rt.EnumField(
+            "command_location",
+            "prc_operating_location code (B P S C E W)",
+            PrcOperatingLocation,
+        ),
+        rt.DecimalField("center_order", "decimal number", optional=True),
+        rt.EnumField("center_status", "status code (A V)", Status, optional=True),
+        rt.DecimalField("bow_order", "decimal number", optional=True),
+        rt.EnumField("bow_status", "status code (A V)", Status, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     starboard_order: rt.Number | None = None
-    """Starboard (or single) rudder order: Rudder order for the starboard or single rudder; "-" = bow turns to port (Furuno -90.0 to 90.0)."""
+    """Starboard (or single) rudder order: Rudder order for the starboard or single rudder; \"-\" =
+    bow turns to port (Furuno -90.0 to 90.0)."""
     starboard_status: Status | str | None = None
     """Starboard order status: A = valid, V = invalid."""
     port_order: rt.Number | None = None
@@ -44,128 +57,23 @@ class Ror:
     port_status: Status | str | None = None
     """Port order status: A = valid, V = invalid."""
     command_location: PrcOperatingLocation | str | None = None
-    """Command source location: B = bridge, P = port wing, S = starboard wing, C = engine control room, E = engine side/local, W = wing."""
+    """Command source location: B = bridge, P = port wing, S = starboard wing, C = engine control
+    room, E = engine side/local, W = wing."""
     center_order: rt.Number | None | rt._Absent = rt.ABSENT
     """Centre rudder order: Rudder order for a centre rudder (IEC 61162-1 edition 6, see notes)."""
     center_status: Status | str | None | rt._Absent = rt.ABSENT
     """Centre order status: A = valid, V = invalid."""
     bow_order: rt.Number | None | rt._Absent = rt.ABSENT
-    """Bow or other rudder order: Rudder order for a bow (or other) rudder (IEC 61162-1 edition 6, see notes)."""
+    """Bow or other rudder order: Rudder order for a bow (or other) rudder (IEC 61162-1 edition 6,
+    see notes)."""
     bow_status: Status | str | None | rt._Absent = rt.ABSENT
     """Bow order status: A = valid, V = invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ror:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "ROR", 5, count)
-        if count > 9:
-            raise rt.too_many(address, "ROR", 9, count)
-        optional = count - 5
-        starboard_order = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "starboard_order", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        starboard_status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "starboard_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        port_order = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "port_order", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        port_status = Status.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "port_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        command_location = PrcOperatingLocation.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "command_location", "prc_operating_location code (B P S C E W)", PrcOperatingLocation.BY_CODE, "letters", 1, 1)
-        center_order: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            center_order = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "center_order", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        center_status: Status | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            center_status = Status.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "center_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        bow_order: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            bow_order = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "bow_order", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        bow_status: Status | str | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            bow_status = Status.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "bow_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], starboard_order, starboard_status, port_order, port_status, command_location, center_order, center_status, bow_order, bow_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.starboard_order),
-            rt.text_of(self.starboard_status),
-            rt.text_of(self.port_order),
-            rt.text_of(self.port_status),
-            rt.text_of(self.command_location),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.bow_status is not rt.ABSENT:
-            last = 3
-        elif self.bow_order is not rt.ABSENT:
-            last = 2
-        elif self.center_status is not rt.ABSENT:
-            last = 1
-        elif self.center_order is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.center_order)]
-        if last >= 1:
-            out += [rt.text_of(self.center_status)]
-        if last >= 2:
-            out += [rt.text_of(self.bow_order)]
-        if last >= 3:
-            out += [rt.text_of(self.bow_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ROR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"starboard_order":' + show(self.starboard_order),
-            '"starboard_status":' + show(self.starboard_status),
-            '"port_order":' + show(self.port_order),
-            '"port_status":' + show(self.port_status),
-            '"command_location":' + show(self.command_location),
-        ]
-        if self.center_order is not rt.ABSENT:
-            parts.append('"center_order":' + show(self.center_order))
-        if self.center_status is not rt.ABSENT:
-            parts.append('"center_status":' + show(self.center_status))
-        if self.bow_order is not rt.ABSENT:
-            parts.append('"bow_order":' + show(self.bow_order))
-        if self.bow_status is not rt.ABSENT:
-            parts.append('"bow_status":' + show(self.bow_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "starboard_order"), 1)
-        out += rt.json_texts(rt.json_member(fields, "starboard_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_order"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "command_location"), 1)
-        if "center_order" in fields:
-            out += rt.json_texts(fields["center_order"], 1)
-        if "center_status" in fields:
-            out += rt.json_texts(fields["center_status"], 1)
-        if "bow_order" in fields:
-            out += rt.json_texts(fields["bow_order"], 1)
-        if "bow_status" in fields:
-            out += rt.json_texts(fields["bow_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ror, )

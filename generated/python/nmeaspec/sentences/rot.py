@@ -3,8 +3,7 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ROT: Rate of turn.
 
-Rate and direction of turn of the vessel, degrees per minute; negative when the bow turns to
-port.
+Rate and direction of turn of the vessel, degrees per minute; negative when the bow turns to port.
 """
 
 from __future__ import annotations
@@ -15,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Rot:
+class Rot(rt.Sentence):
     """ROT: Rate of turn.
 
-    Example (log_gpsd): $HEROT,0.0,A*2B
+    Example (log_gpsd):
+    $HEROT,0.0,A*2B
     """
 
     SENTENCE: ClassVar[str] = "ROT"
@@ -33,66 +30,25 @@ class Rot:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ROT", "standard", "$", 2, 2, (
+        rt.DecimalField("rate_of_turn", "decimal number"),
+        rt.EnumField("status", "status code (A V)", Status),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     rate_of_turn: rt.Number | None = None
-    """Rate of turn [deg/min]: Rate of turn, degrees per minute; "-" = bow turns to port. Furuno documents -9999.9 to 9999.9 (RD-50: -9999.99 to 9999.99)."""
+    """Rate of turn [deg/min]: Rate of turn, degrees per minute; \"-\" = bow turns to port. Furuno
+    documents -9999.9 to 9999.9 (RD-50: -9999.99 to 9999.99)."""
     status: Status | str | None = None
     """Status: A = data valid, V = data invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rot:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "ROT", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "ROT", 2, count)
-        rate_of_turn = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "rate_of_turn", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], rate_of_turn, status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.rate_of_turn),
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ROT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"rate_of_turn":' + show(self.rate_of_turn),
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "rate_of_turn"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rot, )

@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import RpmSource, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class Rpm:
+class Rpm(rt.Sentence):
     """RPM: Revolutions.
 
-    Example (go_nmea): $RCRPM,S,0,74.6,30.0,A*56
+    Example (go_nmea):
+    $RCRPM,S,0,74.6,30.0,A*56
     """
 
     SENTENCE: ClassVar[str] = "RPM"
@@ -33,84 +30,34 @@ class Rpm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RPM", "standard", "$", 5, 5, (
+        rt.EnumField("source", "rpm_source code (S E)", RpmSource),
+        rt.IntegerField("number", "integer of at least 0", 0, None),
+        rt.DecimalField("speed", "decimal number"),
+        rt.DecimalField("pitch", "decimal number"),
+        rt.EnumField("status", "status code (A V)", Status),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     source: RpmSource | str | None = None
     """Source: S = shaft, E = engine."""
     number: rt.Number | None = None
-    """Engine or shaft number: Engine or shaft number, counted from the centre line; 0 = single or on the centre line, odd = starboard, even = port."""
+    """Engine or shaft number: Engine or shaft number, counted from the centre line; 0 = single or
+    on the centre line, odd = starboard, even = port."""
     speed: rt.Number | None = None
-    """Speed [rpm]: Revolutions per minute; "-" = counter-clockwise."""
+    """Speed [rpm]: Revolutions per minute; \"-\" = counter-clockwise."""
     pitch: rt.Number | None = None
-    """Propeller pitch [%]: Propeller pitch, per cent of maximum (-100 to 100); "-" = astern."""
+    """Propeller pitch [%]: Propeller pitch, per cent of maximum (-100 to 100); \"-\" = astern."""
     status: Status | str | None = None
     """Status: A = data valid, V = data invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rpm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "RPM", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "RPM", 5, count)
-        source = RpmSource.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "source", "rpm_source code (S E)", RpmSource.BY_CODE, "letters", 1, 1)
-        number = (_INTEGER_0_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "number", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[1] else None
-        speed = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "speed", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        pitch = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "pitch", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        status = Status.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], source, number, speed, pitch, status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.source),
-            rt.text_of(self.number),
-            rt.text_of(self.speed),
-            rt.text_of(self.pitch),
-            rt.text_of(self.status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RPM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"source":' + show(self.source),
-            '"number":' + show(self.number),
-            '"speed":' + show(self.speed),
-            '"pitch":' + show(self.pitch),
-            '"status":' + show(self.status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "source"), 1)
-        out += rt.json_texts(rt.json_member(fields, "number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch"), 1)
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rpm, )

@@ -4,8 +4,8 @@
 """RRT: Report route transfer.
 
 Tells a device that a route (the monitored route or an alternate route for editing) has been
-transferred to it, or reports how the transferred route file was received and what the
-application made of it; with type Q an ECDIS asks for the routes to be sent again.
+transferred to it, or reports how the transferred route file was received and what the application
+made of it; with type Q an ECDIS asks for the routes to be sent again.
 """
 
 from __future__ import annotations
@@ -18,9 +18,8 @@ from ..enums import RrtApplicationStatus, RrtFileStatus, RrtTransferType
 
 
 @dataclass(slots=True)
-class Rrt:
+class Rrt(rt.Sentence):
     """RRT: Report route transfer.
-
     """
 
     SENTENCE: ClassVar[str] = "RRT"
@@ -30,90 +29,46 @@ class Rrt:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RRT", "standard", "$", 6, 6, (
+        rt.EnumField("transfer_type", "rrt_transfer_type code (M A Q)", RrtTransferType),
+        rt.TextField("route_name", "text"),
+        rt.TextField("route_version", "text"),
+        rt.TextField("waypoint_id", "text"),
+        rt.EnumField("file_status", "rrt_file_status code (A E)", RrtFileStatus),
+        rt.EnumField(
+            "application_status",
+            "rrt_application_status code (A V P N)",
+            RrtApplicationStatus,
+        ),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     transfer_type: RrtTransferType | str | None = None
-    """Transfer type: M = monitored route, A = alternate route for editing, Q = query for any route."""
+    """Transfer type: M = monitored route, A = alternate route for editing, Q = query for any
+    route."""
     route_name: str | None = None
-    """Route name: Name of the transferred route, at most 30 characters; empty in a query or when no route is monitored."""
+    """Route name: Name of the transferred route, at most 30 characters; empty in a query or when no
+    route is monitored."""
     route_version: str | None = None
-    """Route version: Version of the transferred route, at most 20 characters; empty in a query or when no route is monitored."""
+    """Route version: Version of the transferred route, at most 20 characters; empty in a query or
+    when no route is monitored."""
     waypoint_id: str | None = None
-    """Current waypoint: Identifier of the current waypoint of the monitored route, at most 10 characters; empty for alternate routes."""
+    """Current waypoint: Identifier of the current waypoint of the monitored route, at most 10
+    characters; empty for alternate routes."""
     file_status: RrtFileStatus | str | None = None
-    """File transfer status: A = route file received, E = reception error; empty when only announcing a transfer."""
+    """File transfer status: A = route file received, E = reception error; empty when only
+    announcing a transfer."""
     application_status: RrtApplicationStatus | str | None = None
-    """Application status: A = accepted, V = rejected, P = pending, N = not applicable; empty when only announcing a transfer."""
+    """Application status: A = accepted, V = rejected, P = pending, N = not applicable; empty when
+    only announcing a transfer."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rrt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "RRT", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "RRT", 6, count)
-        transfer_type = RrtTransferType.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "transfer_type", "rrt_transfer_type code (M A Q)", RrtTransferType.BY_CODE, "letters", 1, 1)
-        route_name = rt.text_field(fields[1], address, 2, "route_name", "text", None)
-        route_version = rt.text_field(fields[2], address, 3, "route_version", "text", None)
-        waypoint_id = rt.text_field(fields[3], address, 4, "waypoint_id", "text", None)
-        file_status = RrtFileStatus.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "file_status", "rrt_file_status code (A E)", RrtFileStatus.BY_CODE, "letters", 1, 1)
-        application_status = RrtApplicationStatus.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "application_status", "rrt_application_status code (A V P N)", RrtApplicationStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], transfer_type, route_name, route_version, waypoint_id, file_status, application_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.transfer_type),
-            rt.text_of(self.route_name),
-            rt.text_of(self.route_version),
-            rt.text_of(self.waypoint_id),
-            rt.text_of(self.file_status),
-            rt.text_of(self.application_status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RRT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"transfer_type":' + show(self.transfer_type),
-            '"route_name":' + show(self.route_name),
-            '"route_version":' + show(self.route_version),
-            '"waypoint_id":' + show(self.waypoint_id),
-            '"file_status":' + show(self.file_status),
-            '"application_status":' + show(self.application_status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "transfer_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "route_name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "route_version"), 1)
-        out += rt.json_texts(rt.json_member(fields, "waypoint_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "file_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "application_status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rrt, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """RSA: Rudder sensor angle.
 
-Rudder angle from the rudder angle sensors of a single rudder or of starboard and port rudders.
-The value is relative and without unit: proportional to the rudder angle but not necessarily
-equal to it in degrees; negative means bow turns to port.
+Rudder angle from the rudder angle sensors of a single rudder or of starboard and port rudders. The
+value is relative and without unit: proportional to the rudder angle but not necessarily equal to it
+in degrees; negative means bow turns to port.
 """
 
 from __future__ import annotations
@@ -16,15 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Rsa:
+class Rsa(rt.Sentence):
     """RSA: Rudder sensor angle.
 
-    Example (go_nmea): $IIRSA,10.5,A,0.4,A*70
+    Example (go_nmea):
+    $IIRSA,10.5,A,0.4,A*70
     """
 
     SENTENCE: ClassVar[str] = "RSA"
@@ -34,134 +32,46 @@ class Rsa:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RSA", "standard", "$", 4, 8, (
+        rt.DecimalField("starboard_rudder", "decimal number"),
+        rt.EnumField("starboard_status", "status code (A V)", Status),
+        rt.DecimalField("port_rudder", "decimal number"),
+        rt.EnumField("port_status", "status code (A V)", Status),
+        rt.DecimalField("center_rudder", "decimal number", optional=True),
+        rt.EnumField("center_status", "status code (A V)", Status, optional=True),
+        rt.DecimalField("bow_rudder", "decimal number", optional=True),
+        rt.EnumField("bow_status", "status code (A V)", Status, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     starboard_rudder: rt.Number | None = None
-    """Starboard (or single) rudder sensor: Starboard or single rudder sensor value, relative; "-" = bow turns to port (Furuno RD-50 -180.0 to 180.0)."""
+    """Starboard (or single) rudder sensor: Starboard or single rudder sensor value, relative; \"-\"
+    = bow turns to port (Furuno RD-50 -180.0 to 180.0)."""
     starboard_status: Status | str | None = None
     """Starboard rudder status: A = data valid, V = data invalid; should not be empty."""
     port_rudder: rt.Number | None = None
     """Port rudder sensor: Port rudder sensor value, relative; empty on single-rudder vessels."""
     port_status: Status | str | None = None
-    """Port rudder status: A = data valid, V = data invalid; on single-rudder vessels often empty or V."""
+    """Port rudder status: A = data valid, V = data invalid; on single-rudder vessels often empty or
+    V."""
     center_rudder: rt.Number | None | rt._Absent = rt.ABSENT
-    """Centre rudder sensor: Centre rudder sensor value, relative (IEC 61162-1 edition 6, see notes)."""
+    """Centre rudder sensor: Centre rudder sensor value, relative (IEC 61162-1 edition 6, see
+    notes)."""
     center_status: Status | str | None | rt._Absent = rt.ABSENT
     """Centre rudder status: A = data valid, V = data invalid."""
     bow_rudder: rt.Number | None | rt._Absent = rt.ABSENT
-    """Bow or other rudder sensor: Bow (or other) rudder sensor value, relative (IEC 61162-1 edition 6, see notes)."""
+    """Bow or other rudder sensor: Bow (or other) rudder sensor value, relative (IEC 61162-1 edition
+    6, see notes)."""
     bow_status: Status | str | None | rt._Absent = rt.ABSENT
     """Bow rudder status: A = data valid, V = data invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rsa:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "RSA", 4, count)
-        if count > 8:
-            raise rt.too_many(address, "RSA", 8, count)
-        optional = count - 4
-        starboard_rudder = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "starboard_rudder", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        starboard_status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "starboard_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        port_rudder = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "port_rudder", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        port_status = Status.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "port_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        center_rudder: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            center_rudder = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "center_rudder", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        center_status: Status | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            center_status = Status.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "center_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        bow_rudder: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            bow_rudder = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "bow_rudder", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        bow_status: Status | str | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            bow_status = Status.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "bow_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], starboard_rudder, starboard_status, port_rudder, port_status, center_rudder, center_status, bow_rudder, bow_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.starboard_rudder),
-            rt.text_of(self.starboard_status),
-            rt.text_of(self.port_rudder),
-            rt.text_of(self.port_status),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.bow_status is not rt.ABSENT:
-            last = 3
-        elif self.bow_rudder is not rt.ABSENT:
-            last = 2
-        elif self.center_status is not rt.ABSENT:
-            last = 1
-        elif self.center_rudder is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.center_rudder)]
-        if last >= 1:
-            out += [rt.text_of(self.center_status)]
-        if last >= 2:
-            out += [rt.text_of(self.bow_rudder)]
-        if last >= 3:
-            out += [rt.text_of(self.bow_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RSA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"starboard_rudder":' + show(self.starboard_rudder),
-            '"starboard_status":' + show(self.starboard_status),
-            '"port_rudder":' + show(self.port_rudder),
-            '"port_status":' + show(self.port_status),
-        ]
-        if self.center_rudder is not rt.ABSENT:
-            parts.append('"center_rudder":' + show(self.center_rudder))
-        if self.center_status is not rt.ABSENT:
-            parts.append('"center_status":' + show(self.center_status))
-        if self.bow_rudder is not rt.ABSENT:
-            parts.append('"bow_rudder":' + show(self.bow_rudder))
-        if self.bow_status is not rt.ABSENT:
-            parts.append('"bow_status":' + show(self.bow_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "starboard_rudder"), 1)
-        out += rt.json_texts(rt.json_member(fields, "starboard_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_rudder"), 1)
-        out += rt.json_texts(rt.json_member(fields, "port_status"), 1)
-        if "center_rudder" in fields:
-            out += rt.json_texts(fields["center_rudder"], 1)
-        if "center_status" in fields:
-            out += rt.json_texts(fields["center_status"], 1)
-        if "bow_rudder" in fields:
-            out += rt.json_texts(fields["bow_rudder"], 1)
-        if "bow_status" in fields:
-            out += rt.json_texts(fields["bow_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rsa, )

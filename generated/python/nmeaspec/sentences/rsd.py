@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import RsdDisplayRotation, TtmUnits
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Rsd:
+class Rsd(rt.Sentence):
     """RSD: Radar system data.
 
-    Example (marine_api): $RARSD,12,90,24,45,6,270,12,315,6.5,118,96,N,N*5A
+    Example (marine_api):
+    $RARSD,12,90,24,45,6,270,12,315,6.5,118,96,N,N*5A
     """
 
     SENTENCE: ClassVar[str] = "RSD"
@@ -33,6 +31,22 @@ class Rsd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RSD", "standard", "$", 13, 13, (
+        rt.DecimalField("origin1_range", "decimal number"),
+        rt.DecimalField("origin1_bearing", "decimal number"),
+        rt.DecimalField("vrm1", "decimal number"),
+        rt.DecimalField("ebl1", "decimal number"),
+        rt.DecimalField("origin2_range", "decimal number"),
+        rt.DecimalField("origin2_bearing", "decimal number"),
+        rt.DecimalField("vrm2", "decimal number"),
+        rt.DecimalField("ebl2", "decimal number"),
+        rt.DecimalField("cursor_range", "decimal number"),
+        rt.DecimalField("cursor_bearing", "decimal number"),
+        rt.DecimalField("range_scale", "decimal number"),
+        rt.EnumField("range_units", "ttm_units code (K N S)", TtmUnits),
+        rt.EnumField("display_rotation", "rsd_display_rotation code (C H N)", RsdDisplayRotation),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -63,102 +77,11 @@ class Rsd:
     display_rotation: RsdDisplayRotation | str | None = None
     """Display rotation: C = course up, H = heading up, N = north up."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rsd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 13:
-            raise rt.too_few(address, "RSD", 13, count)
-        if count > 13:
-            raise rt.too_many(address, "RSD", 13, count)
-        origin1_range = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "origin1_range", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        origin1_bearing = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "origin1_bearing", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        vrm1 = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "vrm1", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        ebl1 = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "ebl1", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        origin2_range = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "origin2_range", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        origin2_bearing = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "origin2_bearing", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        vrm2 = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "vrm2", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        ebl2 = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "ebl2", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        cursor_range = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "cursor_range", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        cursor_bearing = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "cursor_bearing", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        range_scale = (_DECIMAL.get(fields[10]) or rt.decimal_field(fields[10], address, 11, "range_scale", "decimal number", None, None, _DECIMAL)) if fields[10] else None
-        range_units = TtmUnits.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "range_units", "ttm_units code (K N S)", TtmUnits.BY_CODE, "letters", 1, 1)
-        display_rotation = RsdDisplayRotation.BY_CODE.get(fields[12]) or rt.enum_field(fields[12], address, 13, "display_rotation", "rsd_display_rotation code (C H N)", RsdDisplayRotation.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], origin1_range, origin1_bearing, vrm1, ebl1, origin2_range, origin2_bearing, vrm2, ebl2, cursor_range, cursor_bearing, range_scale, range_units, display_rotation, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.origin1_range),
-            rt.text_of(self.origin1_bearing),
-            rt.text_of(self.vrm1),
-            rt.text_of(self.ebl1),
-            rt.text_of(self.origin2_range),
-            rt.text_of(self.origin2_bearing),
-            rt.text_of(self.vrm2),
-            rt.text_of(self.ebl2),
-            rt.text_of(self.cursor_range),
-            rt.text_of(self.cursor_bearing),
-            rt.text_of(self.range_scale),
-            rt.text_of(self.range_units),
-            rt.text_of(self.display_rotation),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RSD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"origin1_range":' + show(self.origin1_range),
-            '"origin1_bearing":' + show(self.origin1_bearing),
-            '"vrm1":' + show(self.vrm1),
-            '"ebl1":' + show(self.ebl1),
-            '"origin2_range":' + show(self.origin2_range),
-            '"origin2_bearing":' + show(self.origin2_bearing),
-            '"vrm2":' + show(self.vrm2),
-            '"ebl2":' + show(self.ebl2),
-            '"cursor_range":' + show(self.cursor_range),
-            '"cursor_bearing":' + show(self.cursor_bearing),
-            '"range_scale":' + show(self.range_scale),
-            '"range_units":' + show(self.range_units),
-            '"display_rotation":' + show(self.display_rotation),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "origin1_range"), 1)
-        out += rt.json_texts(rt.json_member(fields, "origin1_bearing"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vrm1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ebl1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "origin2_range"), 1)
-        out += rt.json_texts(rt.json_member(fields, "origin2_bearing"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vrm2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ebl2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cursor_range"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cursor_bearing"), 1)
-        out += rt.json_texts(rt.json_member(fields, "range_scale"), 1)
-        out += rt.json_texts(rt.json_member(fields, "range_units"), 1)
-        out += rt.json_texts(rt.json_member(fields, "display_rotation"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rsd, )

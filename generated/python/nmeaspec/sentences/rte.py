@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """RTE: Routes.
 
-Waypoint identifiers of a route, in route order; a long route is split over several sentences of
-a numbered set.
+Waypoint identifiers of a route, in route order; a long route is split over several sentences of a
+numbered set.
 """
 
 from __future__ import annotations
@@ -15,23 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import RteMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
-
 
 @dataclass(slots=True)
-class RteWaypoint:
-    """One entry of waypoints (0 to 32 per sentence)."""
-
-    waypoint: str | None = None
-    """Waypoint ID: Identifier of a waypoint of the route."""
-
-
-@dataclass(slots=True)
-class Rte:
+class Rte(rt.Sentence):
     """RTE: Routes.
 
-    Example (log_marine_api): $GPRTE,1,1,c,A003-A001 1,A003,A002,A001*54
+    Example (log_pynmeagps):
+    $GPRTE,2,1,c,0,PBRCPK,PBRTO,PTELGR,PPLAND,PYAMBU,PPFAIR,PWARRN,PMORTL,PLISMR*73
     """
 
     SENTENCE: ClassVar[str] = "RTE"
@@ -41,6 +31,16 @@ class Rte:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RTE", "standard", "$", 4, 36, (
+        rt.IntegerField("message_count", "integer of at least 1", 1, None),
+        rt.IntegerField("message_number", "integer of at least 1", 1, None),
+        rt.EnumField("route_mode", "rte_mode code (c w)", RteMode),
+        rt.TextField("route_id", "text"),
+        rt.Group("waypoints", None, (
+            rt.TextField("waypoint", "text"),
+        ), 0, 32),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -49,84 +49,19 @@ class Rte:
     message_number: rt.Number | None = None
     """Sentence number: Number of this sentence within the set, starting at 1."""
     route_mode: RteMode | str | None = None
-    """Message mode: c = complete route (all waypoints); w = working route (the waypoint just left, the one steered to, then the rest)."""
+    """Message mode: c = complete route (all waypoints); w = working route (the waypoint just left,
+    the one steered to, then the rest)."""
     route_id: str | None = None
-    """Route ID: Name or number of the route (Garmin sends 0 or an empty field for the active route, or a name such as "A003-A001 1")."""
+    """Route ID: Name or number of the route (Garmin sends 0 or an empty field for the active route,
+    or a name such as \"A003-A001 1\")."""
     waypoints: list[str | None] = field(default_factory=list)
     """Waypoints: 0 to 32 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Rte:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 4) // 1, 32)
-        optional = count - 4 - repeats * 1
-        if count < 4 or optional > 0:
-            rt.split_group(address, "RTE", "waypoints", count, 4, 1, 0, 32, 0)
-        message_count = (_INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "message_count", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[0] else None
-        message_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "message_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
-        route_mode = RteMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "route_mode", "rte_mode code (c w)", RteMode.BY_CODE, "letters", 1, 1)
-        route_id = rt.text_field(fields[3], address, 4, "route_id", "text", None)
-        waypoints: list[str | None] = []
-        pos = 4
-        for entry in range(repeats):
-            waypoints.append(rt.text_field(fields[pos], address, pos + 1, f"waypoints[{entry + 1}].waypoint", "text", None))
-            pos += 1
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], message_count, message_number, route_mode, route_id, waypoints, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message_count),
-            rt.text_of(self.message_number),
-            rt.text_of(self.route_mode),
-            rt.text_of(self.route_id),
-        ]
-        for entry in self.waypoints:
-            out += [rt.text_of(entry)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "RTE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message_count":' + show(self.message_count),
-            '"message_number":' + show(self.message_number),
-            '"route_mode":' + show(self.route_mode),
-            '"route_id":' + show(self.route_id),
-            '"waypoints":[' + ",".join(show(entry) for entry in self.waypoints) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "route_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "route_id"), 1)
-        for entry in rt.json_list(fields, "waypoints"):
-            out += rt.json_texts(entry, 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Rte, )

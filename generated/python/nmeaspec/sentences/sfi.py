@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """SFI: Scanning frequency information.
 
-Sets the frequencies (or channels) and modes a scanning receiver scans, listed in scanning
-order, and acknowledges setting commands; long lists span several sentences. For DSC distress
-and safety watch only six channels are scanned in one sequence.
+Sets the frequencies (or channels) and modes a scanning receiver scans, listed in scanning order,
+and acknowledges setting commands; long lists span several sentences. For DSC distress and safety
+watch only six channels are scanned in one sequence.
 """
 
 from __future__ import annotations
@@ -16,24 +16,22 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import FsiMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
-
 
 @dataclass(slots=True)
 class SfiFrequencie:
     """One entry of scanned frequencies (0 to 6 per sentence)."""
 
     frequency: str | None = None
-    """Frequency or channel: Six-digit frequency or ITU channel, coded as in FSI (100 Hz units for MF/HF, 3cccc, 4bbccc, 90xccc for VHF)."""
+    """Frequency or channel: Six-digit frequency or ITU channel, coded as in FSI (100 Hz units for
+    MF/HF, 3cccc, 4bbccc, 90xccc for VHF)."""
     mode: FsiMode | str | None = None
-    """Mode of operation: Emission class and terminal of this frequency; empty for no information."""
+    """Mode of operation: Emission class and terminal of this frequency; empty for no
+    information."""
 
 
 @dataclass(slots=True)
-class Sfi:
+class Sfi(rt.Sentence):
     """SFI: Scanning frequency information.
-
     """
 
     SENTENCE: ClassVar[str] = "SFI"
@@ -43,6 +41,15 @@ class Sfi:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("SFI", "standard", "$", 2, 14, (
+        rt.IntegerField("total_sentences", "integer of at least 1", 1, None),
+        rt.IntegerField("sentence_number", "integer of at least 1", 1, None),
+        rt.Group("frequencies", SfiFrequencie, (
+            rt.TextField("frequency", "text"),
+            rt.EnumField("mode", "fsi_mode code (d e m o q s t w x { |)", FsiMode),
+        ), 0, 6),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -53,76 +60,11 @@ class Sfi:
     frequencies: list[SfiFrequencie] = field(default_factory=list)
     """Scanned frequencies: 0 to 6 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Sfi:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 2) // 2, 6)
-        optional = count - 2 - repeats * 2
-        if count < 2 or optional > 0:
-            rt.split_group(address, "SFI", "frequencies", count, 2, 2, 0, 6, 0)
-        total_sentences = (_INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "total_sentences", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[0] else None
-        sentence_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
-        frequencies: list[SfiFrequencie] = []
-        pos = 2
-        for entry in range(repeats):
-            frequencies.append(SfiFrequencie(
-                rt.text_field(fields[pos], address, pos + 1, f"frequencies[{entry + 1}].frequency", "text", None),
-                FsiMode.BY_CODE.get(fields[pos + 1]) or rt.enum_field(fields[pos + 1], address, pos + 2, f"frequencies[{entry + 1}].mode", "fsi_mode code (d e m o q s t w x { |)", FsiMode.BY_CODE, "letters", 1, 1),
-            ))
-            pos += 2
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], total_sentences, sentence_number, frequencies, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.total_sentences),
-            rt.text_of(self.sentence_number),
-        ]
-        for entry in self.frequencies:
-            out += [rt.text_of(entry.frequency), rt.text_of(entry.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "SFI",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"total_sentences":' + show(self.total_sentences),
-            '"sentence_number":' + show(self.sentence_number),
-            '"frequencies":[' + ",".join(
-                "{" + '"frequency":' + show(entry.frequency) + ',"mode":' + show(entry.mode) + "}"
-                for entry in self.frequencies) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "total_sentences"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        for entry in rt.json_list(fields, "frequencies"):
-            out += rt.json_texts(rt.json_member(entry, "frequency"), 1)
-            out += rt.json_texts(rt.json_member(entry, "mode"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Sfi, )

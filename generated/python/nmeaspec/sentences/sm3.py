@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """SM3: SafetyNET message, circular area address.
 
-Qualifying data of an Inmarsat-C SafetyNET (EGC) message addressed to a circular area (service
-codes 14, 24, 44: shore-to-ship distress alert, warning, SAR coordination): status,
-identification, priority, time of reception, centre and radius.
+Qualifying data of an Inmarsat-C SafetyNET (EGC) message addressed to a circular area (service codes
+14, 24, 44: shore-to-ship distress alert, warning, SAR coordination): status, identification,
+priority, time of reception, centre and radius.
 """
 
 from __future__ import annotations
@@ -16,22 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import Sm1MsiStatus, Sm1OceanRegion, Sm1Priority
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_23: dict[Any, Any] = rt.known("integer 0..23")
-_INTEGER_0_TO_59: dict[Any, Any] = rt.known("integer 0..59")
-_INTEGER_0_TO_999999: dict[Any, Any] = rt.known("integer 0..999999")
-_INTEGER_1_TO_12: dict[Any, Any] = rt.known("integer 1..12")
-_INTEGER_1_TO_31: dict[Any, Any] = rt.known("integer 1..31")
-_INTEGER__TO_999: dict[Any, Any] = rt.known("integer ..999")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-
 
 @dataclass(slots=True)
-class Sm3:
+class Sm3(rt.Sentence):
     """SM3: SafetyNET message, circular area address.
-
     """
 
     SENTENCE: ClassVar[str] = "SM3"
@@ -41,25 +29,52 @@ class Sm3:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("SM3", "standard", "$", 18, 18, (
+        rt.EnumField("msi_status", "sm1_msi_status code (A V)", Sm1MsiStatus),
+        rt.IntegerField("unique_message_number", "integer 0..999999", 0, 999999),
+        rt.IntegerField("les_sequence_number", "integer"),
+        rt.IntegerField("les_id", "integer"),
+        rt.EnumField("ocean_region", "sm1_ocean_region code (0 1 2 3 8 9)", Sm1OceanRegion),
+        rt.EnumField("priority", "sm1_priority code (1 2 3 9)", Sm1Priority),
+        rt.IntegerField("service_code", "integer"),
+        rt.IntegerField("presentation_code", "integer"),
+        rt.IntegerField("year", "integer"),
+        rt.IntegerField("month", "integer 1..12", 1, 12),
+        rt.IntegerField("day", "integer 1..31", 1, 31),
+        rt.IntegerField("hour", "integer 0..23", 0, 23),
+        rt.IntegerField("minute", "integer 0..59", 0, 59),
+        rt.LatitudeField("center_lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("center_lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.IntegerField("radius", "integer of at most 999", None, 999),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     msi_status: Sm1MsiStatus | str | None = None
-    """MSI status: A = the whole MSI message was received completely and correctly, V = not complete."""
+    """MSI status: A = the whole MSI message was received completely and correctly, V = not
+    complete."""
     unique_message_number: rt.Number | None = None
-    """Unique message number: Number the receiving EGC terminal gives the message, at most 6 digits, never empty; the SMB sentences that carry the body repeat it."""
+    """Unique message number: Number the receiving EGC terminal gives the message, at most 6 digits,
+    never empty; the SMB sentences that carry the body repeat it."""
     les_sequence_number: rt.Number | None = None
-    """LES message sequence number: Sequence number the originating land earth station (LES) gave the message, six digits; empty if received in error or unknown."""
+    """LES message sequence number: Sequence number the originating land earth station (LES) gave
+    the message, six digits; empty if received in error or unknown."""
     les_id: rt.Number | None = None
-    """LES identifier: Three-digit numeric identifier of the originating land earth station; empty if unknown."""
+    """LES identifier: Three-digit numeric identifier of the originating land earth station; empty
+    if unknown."""
     ocean_region: Sm1OceanRegion | str | None = None
-    """Ocean region code: Satellite ocean region that relayed the message, 0 = AOR-W, 1 = AOR-E, 2 = POR, 3 = IOR, 8 = unknown, 9 = all."""
+    """Ocean region code: Satellite ocean region that relayed the message, 0 = AOR-W, 1 = AOR-E, 2 =
+    POR, 3 = IOR, 8 = unknown, 9 = all."""
     priority: Sm1Priority | str | None = None
     """Priority code: 1 = safety, 2 = urgency, 3 = distress, 9 = unknown."""
     service_code: rt.Number | None = None
-    """Service code: Type of message, 14 = shore-to-ship distress alert, 24 = navigational, meteorological or piracy warning, 44 = SAR coordination, each to a circular area; empty for other values."""
+    """Service code: Type of message, 14 = shore-to-ship distress alert, 24 = navigational,
+    meteorological or piracy warning, 44 = SAR coordination, each to a circular area; empty for
+    other values."""
     presentation_code: rt.Number | None = None
-    """Presentation code: Language (character set) of the message, 00 = International Alphabet No. 5."""
+    """Presentation code: Language (character set) of the message, 00 = International Alphabet No.
+    5."""
     year: rt.Number | None = None
     """Year: Year the message was received (UTC)."""
     month: rt.Number | None = None
@@ -71,120 +86,20 @@ class Sm3:
     minute: rt.Number | None = None
     """Minute: Minute the message was received (UTC)."""
     center_lat: rt.Coordinate | None = None
-    """Centre latitude: Latitude of the centre of the addressed circle, N/S (whole degrees in practice); empty if received in error."""
+    """Centre latitude: Latitude of the centre of the addressed circle, N/S (whole degrees in
+    practice); empty if received in error."""
     center_lon: rt.Coordinate | None = None
-    """Centre longitude: Longitude of the centre of the addressed circle, E/W; empty if received in error."""
+    """Centre longitude: Longitude of the centre of the addressed circle, E/W; empty if received in
+    error."""
     radius: rt.Number | None = None
-    """Radius [nmi]: Radius of the addressed circle in nautical miles, at most 999; empty if received in error."""
+    """Radius [nmi]: Radius of the addressed circle in nautical miles, at most 999; empty if
+    received in error."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Sm3:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 18:
-            raise rt.too_few(address, "SM3", 18, count)
-        if count > 18:
-            raise rt.too_many(address, "SM3", 18, count)
-        msi_status = Sm1MsiStatus.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "msi_status", "sm1_msi_status code (A V)", Sm1MsiStatus.BY_CODE, "letters", 1, 1)
-        unique_message_number = (_INTEGER_0_TO_999999.get(fields[1]) or rt.integer_field(fields[1], address, 2, "unique_message_number", "integer 0..999999", 0, 999999, _INTEGER_0_TO_999999)) if fields[1] else None
-        les_sequence_number = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "les_sequence_number", "integer", None, None, _INTEGER)) if fields[2] else None
-        les_id = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "les_id", "integer", None, None, _INTEGER)) if fields[3] else None
-        ocean_region = Sm1OceanRegion.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "ocean_region", "sm1_ocean_region code (0 1 2 3 8 9)", Sm1OceanRegion.BY_CODE, "digits", 1, 1)
-        priority = Sm1Priority.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "priority", "sm1_priority code (1 2 3 9)", Sm1Priority.BY_CODE, "digits", 1, 1)
-        service_code = (_INTEGER.get(fields[6]) or rt.integer_field(fields[6], address, 7, "service_code", "integer", None, None, _INTEGER)) if fields[6] else None
-        presentation_code = (_INTEGER.get(fields[7]) or rt.integer_field(fields[7], address, 8, "presentation_code", "integer", None, None, _INTEGER)) if fields[7] else None
-        year = (_INTEGER.get(fields[8]) or rt.integer_field(fields[8], address, 9, "year", "integer", None, None, _INTEGER)) if fields[8] else None
-        month = (_INTEGER_1_TO_12.get(fields[9]) or rt.integer_field(fields[9], address, 10, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[9] else None
-        day = (_INTEGER_1_TO_31.get(fields[10]) or rt.integer_field(fields[10], address, 11, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)) if fields[10] else None
-        hour = (_INTEGER_0_TO_23.get(fields[11]) or rt.integer_field(fields[11], address, 12, "hour", "integer 0..23", 0, 23, _INTEGER_0_TO_23)) if fields[11] else None
-        minute = (_INTEGER_0_TO_59.get(fields[12]) or rt.integer_field(fields[12], address, 13, "minute", "integer 0..59", 0, 59, _INTEGER_0_TO_59)) if fields[12] else None
-        center_lat = _LATITUDE.get((fields[13], fields[14])) or rt.coordinate_field(fields[13], fields[14], address, 14, "center_lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        center_lon = _LONGITUDE.get((fields[15], fields[16])) or rt.coordinate_field(fields[15], fields[16], address, 16, "center_lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        radius = (_INTEGER__TO_999.get(fields[17]) or rt.integer_field(fields[17], address, 18, "radius", "integer of at most 999", None, 999, _INTEGER__TO_999)) if fields[17] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], msi_status, unique_message_number, les_sequence_number, les_id, ocean_region, priority, service_code, presentation_code, year, month, day, hour, minute, center_lat, center_lon, radius, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.msi_status),
-            rt.text_of(self.unique_message_number),
-            rt.text_of(self.les_sequence_number),
-            rt.text_of(self.les_id),
-            rt.text_of(self.ocean_region),
-            rt.text_of(self.priority),
-            rt.text_of(self.service_code),
-            rt.text_of(self.presentation_code),
-            rt.text_of(self.year),
-            rt.text_of(self.month),
-            rt.text_of(self.day),
-            rt.text_of(self.hour),
-            rt.text_of(self.minute),
-            *rt.coordinate_texts(self.center_lat),
-            *rt.coordinate_texts(self.center_lon),
-            rt.text_of(self.radius),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "SM3",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"msi_status":' + show(self.msi_status),
-            '"unique_message_number":' + show(self.unique_message_number),
-            '"les_sequence_number":' + show(self.les_sequence_number),
-            '"les_id":' + show(self.les_id),
-            '"ocean_region":' + show(self.ocean_region),
-            '"priority":' + show(self.priority),
-            '"service_code":' + show(self.service_code),
-            '"presentation_code":' + show(self.presentation_code),
-            '"year":' + show(self.year),
-            '"month":' + show(self.month),
-            '"day":' + show(self.day),
-            '"hour":' + show(self.hour),
-            '"minute":' + show(self.minute),
-            '"center_lat":' + show(self.center_lat),
-            '"center_lon":' + show(self.center_lon),
-            '"radius":' + show(self.radius),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "msi_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unique_message_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "les_sequence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "les_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ocean_region"), 1)
-        out += rt.json_texts(rt.json_member(fields, "priority"), 1)
-        out += rt.json_texts(rt.json_member(fields, "service_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "presentation_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "year"), 1)
-        out += rt.json_texts(rt.json_member(fields, "month"), 1)
-        out += rt.json_texts(rt.json_member(fields, "day"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hour"), 1)
-        out += rt.json_texts(rt.json_member(fields, "minute"), 1)
-        out += rt.json_texts(rt.json_member(fields, "center_lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "center_lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "radius"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Sm3, )

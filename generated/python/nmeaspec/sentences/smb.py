@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """SMB: IMO SafetyNET message body.
 
-The text of an Inmarsat-C SafetyNET (EGC) maritime safety information message whose qualifying
-data came in the preceding SM1, SM2, SM3 or SM4 sentence; linked to it by the unique message
-number. Long texts span several sentences, concatenated in sentence order.
+The text of an Inmarsat-C SafetyNET (EGC) maritime safety information message whose qualifying data
+came in the preceding SM1, SM2, SM3 or SM4 sentence; linked to it by the unique message number. Long
+texts span several sentences, concatenated in sentence order.
 """
 
 from __future__ import annotations
@@ -15,17 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_INTEGER_0_TO_999999: dict[Any, Any] = rt.known("integer 0..999999")
-_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
-
 
 @dataclass(slots=True)
-class Smb:
+class Smb(rt.Sentence):
     """SMB: IMO SafetyNET message body.
 
-    Example (pynmeagps): $CSSMB,008,001,0,123456,FROM:Maritime Rescue Coordination Centre xxx^0D)0ATO:*48
+    Example (pynmeagps):
+    $CSSMB,008,001,0,123456,FROM:Maritime Rescue Coordination Centre xxx^0D)0ATO:*48
     """
 
     SENTENCE: ClassVar[str] = "SMB"
@@ -35,6 +31,14 @@ class Smb:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("SMB", "standard", "$", 5, 5, (
+        rt.IntegerField("total_sentences", "integer of at least 1", 1, None),
+        rt.IntegerField("sentence_number", "integer of at least 1", 1, None),
+        rt.IntegerField("sequential_message_id", "integer 0..9", 0, 9),
+        rt.IntegerField("unique_message_number", "integer 0..999999", 0, 999999),
+        rt.TextField("message_body", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -43,76 +47,21 @@ class Smb:
     sentence_number: rt.Number | None = None
     """Sentence number: Number of this sentence, 001 to 999."""
     sequential_message_id: rt.Number | None = None
-    """Sequential message identifier: Links the sentences of one message, 0 to 9; empty only when the body fits in one sentence."""
+    """Sequential message identifier: Links the sentences of one message, 0 to 9; empty only when
+    the body fits in one sentence."""
     unique_message_number: rt.Number | None = None
-    """Unique message number: The number the EGC terminal gave the message, as in the SM1 to SM4 sentence; never empty."""
+    """Unique message number: The number the EGC terminal gave the message, as in the SM1 to SM4
+    sentence; never empty."""
     message_body: str | None = None
-    """Message body: Part of the MSI text. Reserved characters are sent as ^ and two hex digits (^0D^0A for a line break); characters the terminal received in error are replaced by an underscore."""
+    """Message body: Part of the MSI text. Reserved characters are sent as ^ and two hex digits
+    (^0D^0A for a line break); characters the terminal received in error are replaced by an
+    underscore."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Smb:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "SMB", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "SMB", 5, count)
-        total_sentences = (_INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "total_sentences", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[0] else None
-        sentence_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
-        sequential_message_id = (_INTEGER_0_TO_9.get(fields[2]) or rt.integer_field(fields[2], address, 3, "sequential_message_id", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[2] else None
-        unique_message_number = (_INTEGER_0_TO_999999.get(fields[3]) or rt.integer_field(fields[3], address, 4, "unique_message_number", "integer 0..999999", 0, 999999, _INTEGER_0_TO_999999)) if fields[3] else None
-        message_body = rt.text_field(fields[4], address, 5, "message_body", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], total_sentences, sentence_number, sequential_message_id, unique_message_number, message_body, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.total_sentences),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.sequential_message_id),
-            rt.text_of(self.unique_message_number),
-            rt.text_of(self.message_body),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "SMB",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"total_sentences":' + show(self.total_sentences),
-            '"sentence_number":' + show(self.sentence_number),
-            '"sequential_message_id":' + show(self.sequential_message_id),
-            '"unique_message_number":' + show(self.unique_message_number),
-            '"message_body":' + show(self.message_body),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "total_sentences"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sequential_message_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unique_message_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_body"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Smb, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """SPW: Security password sentence.
 
-Authenticates the sentence that follows it (e.g. EPV, SSD) with a password. It must come
-immediately before the protected sentence (within about 1 s); when the password is refused the
-receiver answers with NAK (access denied) and ignores the protected sentence.
+Authenticates the sentence that follows it (e.g. EPV, SSD) with a password. It must come immediately
+before the protected sentence (within about 1 s); when the password is refused the receiver answers
+with NAK (access denied) and ignores the protected sentence.
 """
 
 from __future__ import annotations
@@ -18,10 +18,11 @@ from ..enums import SpwPasswordLevel
 
 
 @dataclass(slots=True)
-class Spw:
+class Spw(rt.Sentence):
     """SPW: Security password sentence.
 
-    Example (pynmeagps): $IISPW,EPV,211000001,2,SESAME*1A
+    Example (pynmeagps):
+    $IISPW,EPV,211000001,2,SESAME*1A
     """
 
     SENTENCE: ClassVar[str] = "SPW"
@@ -31,6 +32,13 @@ class Spw:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("SPW", "standard", "$", 4, 4, (
+        rt.TextField("protected_sentence", "text"),
+        rt.TextField("unique_id", "text"),
+        rt.EnumField("password_level", "spw_password_level code (1 2)", SpwPasswordLevel),
+        rt.TextField("password", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -43,66 +51,11 @@ class Spw:
     password: str | None = None
     """Password: The password in plain text, up to 32 characters."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Spw:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "SPW", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "SPW", 4, count)
-        protected_sentence = rt.text_field(fields[0], address, 1, "protected_sentence", "text", None)
-        unique_id = rt.text_field(fields[1], address, 2, "unique_id", "text", None)
-        password_level = SpwPasswordLevel.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "password_level", "spw_password_level code (1 2)", SpwPasswordLevel.BY_CODE, "digits", 1, 1)
-        password = rt.text_field(fields[3], address, 4, "password", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], protected_sentence, unique_id, password_level, password, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.protected_sentence),
-            rt.text_of(self.unique_id),
-            rt.text_of(self.password_level),
-            rt.text_of(self.password),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "SPW",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"protected_sentence":' + show(self.protected_sentence),
-            '"unique_id":' + show(self.unique_id),
-            '"password_level":' + show(self.password_level),
-            '"password":' + show(self.password),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "protected_sentence"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unique_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "password_level"), 1)
-        out += rt.json_texts(rt.json_member(fields, "password"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Spw, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """SSD: AIS ship static data.
 
-Static data entered into (or queried from) a shipboard AIS unit: call sign, name, the position
-of the reference point on the hull, the DTE indicator and the source of the data. The unit sends
-them in ITU-R M.1371 messages (message 5 and others).
+Static data entered into (or queried from) a shipboard AIS unit: call sign, name, the position of
+the reference point on the hull, the DTE indicator and the source of the data. The unit sends them
+in ITU-R M.1371 messages (message 5 and others).
 """
 
 from __future__ import annotations
@@ -16,15 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import SsdDte
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_511: dict[Any, Any] = rt.known("integer 0..511")
-_INTEGER_0_TO_63: dict[Any, Any] = rt.known("integer 0..63")
-
 
 @dataclass(slots=True)
-class Ssd:
+class Ssd(rt.Sentence):
     """SSD: AIS ship static data.
-
     """
 
     SENTENCE: ClassVar[str] = "SSD"
@@ -34,102 +29,51 @@ class Ssd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("SSD", "standard", "$", 8, 8, (
+        rt.TextField("call_sign", "text of at most 7 characters", 7),
+        rt.TextField("ship_name", "text of at most 20 characters", 20),
+        rt.IntegerField("ref_a", "integer 0..511", 0, 511),
+        rt.IntegerField("ref_b", "integer 0..511", 0, 511),
+        rt.IntegerField("ref_c", "integer 0..63", 0, 63),
+        rt.IntegerField("ref_d", "integer 0..63", 0, 63),
+        rt.EnumField("dte", "ssd_dte code (0 1)", SsdDte),
+        rt.TextField("source_id", "text of at most 2 characters", 2),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     call_sign: str | None = None
-    """Call sign: Ship's call sign, 1-7 characters; "@@@@@@@" = not available, empty = unchanged."""
+    """Call sign: Ship's call sign, 1-7 characters; \"@@@@@@@\" = not available, empty =
+    unchanged."""
     ship_name: str | None = None
-    """Ship name: Ship's name, 1-20 characters of the AIS six-bit character set (reserved NMEA characters are written with the ^ escape); "@@@@@@@@@@@@@@@@@@@@" = not available, empty = unchanged."""
+    """Ship name: Ship's name, 1-20 characters of the AIS six-bit character set (reserved NMEA
+    characters are written with the ^ escape); \"@@@@@@@@@@@@@@@@@@@@\" = not available, empty =
+    unchanged."""
     ref_a: rt.Number | None = None
-    """Reference point distance A [m]: Distance from the bow to the reference point of the reported position, 0-511 m; empty = unchanged."""
+    """Reference point distance A [m]: Distance from the bow to the reference point of the reported
+    position, 0-511 m; empty = unchanged."""
     ref_b: rt.Number | None = None
-    """Reference point distance B [m]: Distance from the stern to the reference point, 0-511 m; A + B is the ship's length."""
+    """Reference point distance B [m]: Distance from the stern to the reference point, 0-511 m; A +
+    B is the ship's length."""
     ref_c: rt.Number | None = None
-    """Reference point distance C [m]: Distance from the port side to the reference point, 0-63 m."""
+    """Reference point distance C [m]: Distance from the port side to the reference point, 0-63
+    m."""
     ref_d: rt.Number | None = None
-    """Reference point distance D [m]: Distance from the starboard side to the reference point, 0-63 m; C + D is the ship's beam."""
+    """Reference point distance D [m]: Distance from the starboard side to the reference point, 0-63
+    m; C + D is the ship's beam."""
     dte: SsdDte | str | None = None
-    """DTE indicator: 0 = keyboard and display available for AIS text messages, 1 = not available."""
+    """DTE indicator: 0 = keyboard and display available for AIS text messages, 1 = not
+    available."""
     source_id: str | None = None
-    """Source identifier: Talker ID of the position source (e.g. GP, or AI for the AIS unit's internal source) the reference-point distances apply to."""
+    """Source identifier: Talker ID of the position source (e.g. GP, or AI for the AIS unit's
+    internal source) the reference-point distances apply to."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ssd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "SSD", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "SSD", 8, count)
-        call_sign = rt.text_field(fields[0], address, 1, "call_sign", "text of at most 7 characters", 7)
-        ship_name = rt.text_field(fields[1], address, 2, "ship_name", "text of at most 20 characters", 20)
-        ref_a = (_INTEGER_0_TO_511.get(fields[2]) or rt.integer_field(fields[2], address, 3, "ref_a", "integer 0..511", 0, 511, _INTEGER_0_TO_511)) if fields[2] else None
-        ref_b = (_INTEGER_0_TO_511.get(fields[3]) or rt.integer_field(fields[3], address, 4, "ref_b", "integer 0..511", 0, 511, _INTEGER_0_TO_511)) if fields[3] else None
-        ref_c = (_INTEGER_0_TO_63.get(fields[4]) or rt.integer_field(fields[4], address, 5, "ref_c", "integer 0..63", 0, 63, _INTEGER_0_TO_63)) if fields[4] else None
-        ref_d = (_INTEGER_0_TO_63.get(fields[5]) or rt.integer_field(fields[5], address, 6, "ref_d", "integer 0..63", 0, 63, _INTEGER_0_TO_63)) if fields[5] else None
-        dte = SsdDte.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "dte", "ssd_dte code (0 1)", SsdDte.BY_CODE, "digits", 1, 1)
-        source_id = rt.text_field(fields[7], address, 8, "source_id", "text of at most 2 characters", 2)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], call_sign, ship_name, ref_a, ref_b, ref_c, ref_d, dte, source_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.call_sign),
-            rt.text_of(self.ship_name),
-            rt.text_of(self.ref_a),
-            rt.text_of(self.ref_b),
-            rt.text_of(self.ref_c),
-            rt.text_of(self.ref_d),
-            rt.text_of(self.dte),
-            rt.text_of(self.source_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "SSD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"call_sign":' + show(self.call_sign),
-            '"ship_name":' + show(self.ship_name),
-            '"ref_a":' + show(self.ref_a),
-            '"ref_b":' + show(self.ref_b),
-            '"ref_c":' + show(self.ref_c),
-            '"ref_d":' + show(self.ref_d),
-            '"dte":' + show(self.dte),
-            '"source_id":' + show(self.source_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "call_sign"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ship_name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ref_a"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ref_b"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ref_c"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ref_d"), 1)
-        out += rt.json_texts(rt.json_member(fields, "dte"), 1)
-        out += rt.json_texts(rt.json_member(fields, "source_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ssd, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """STN: Multiple data ID.
 
-Sent just before each sentence of a talker that combines several sources (e.g. a dual-frequency
-echo sounder or an integrating system), so that the listener knows which source the next
-sentence comes from.
+Sent just before each sentence of a talker that combines several sources (e.g. a dual-frequency echo
+sounder or an integrating system), so that the listener knows which source the next sentence comes
+from.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-
 
 @dataclass(slots=True)
-class Stn:
+class Stn(rt.Sentence):
     """STN: Multiple data ID.
 
-    Example (log_pynmeagps): $GPSTN,34*75
+    Example (log_pynmeagps):
+    $GPSTN,34*75
     """
 
     SENTENCE: ClassVar[str] = "STN"
@@ -33,60 +31,21 @@ class Stn:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("STN", "standard", "$", 1, 1, (
+        rt.IntegerField("talker_id_number", "integer 0..99", 0, 99),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     talker_id_number: rt.Number | None = None
     """Talker ID number: Number of the source the following sentence comes from, 00-99."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Stn:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 1:
-            raise rt.too_few(address, "STN", 1, count)
-        if count > 1:
-            raise rt.too_many(address, "STN", 1, count)
-        talker_id_number = (_INTEGER_0_TO_99.get(fields[0]) or rt.integer_field(fields[0], address, 1, "talker_id_number", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[0] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], talker_id_number, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.talker_id_number),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "STN",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"talker_id_number":' + show(self.talker_id_number),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "talker_id_number"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Stn, )

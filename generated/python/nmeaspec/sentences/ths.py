@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """THS: True heading and status.
 
-Heading of the vessel relative to true north with a mode indicator telling whether it can be
-used. It replaces HDT, which has no status.
+Heading of the vessel relative to true north with a mode indicator telling whether it can be used.
+It replaces HDT, which has no status.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import ThsMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Ths:
+class Ths(rt.Sentence):
     """THS: True heading and status.
 
-    Example (log_gpsd): $GNTHS,244.28,A*11
+    Example (log_gpsd):
+    $GNTHS,244.28,A*11
     """
 
     SENTENCE: ClassVar[str] = "THS"
@@ -33,66 +31,25 @@ class Ths:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("THS", "standard", "$", 2, 2, (
+        rt.DecimalField("heading", "decimal number"),
+        rt.EnumField("mode", "ths_mode code (A E M S V)", ThsMode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     heading: rt.Number | None = None
     """True heading [deg]: Heading, degrees true (Furuno documents 0.00 to 360.00)."""
     mode: ThsMode | str | None = None
-    """Mode indicator: A = autonomous, E = estimated (dead reckoning), M = manual input, S = simulator, V = data not valid."""
+    """Mode indicator: A = autonomous, E = estimated (dead reckoning), M = manual input, S =
+    simulator, V = data not valid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ths:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "THS", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "THS", 2, count)
-        heading = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heading", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        mode = ThsMode.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "mode", "ths_mode code (A E M S V)", ThsMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], heading, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.heading),
-            rt.text_of(self.mode),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "THS",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"heading":' + show(self.heading),
-            '"mode":' + show(self.mode),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "heading"), 1)
-        out += rt.json_texts(rt.json_member(fields, "mode"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ths, )

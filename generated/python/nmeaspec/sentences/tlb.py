@@ -14,25 +14,24 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
 class TlbLabel:
     """One entry of target labels (1 to 20 per sentence)."""
 
     target_number: rt.Number | None = None
-    """Target number: Number of the target the label belongs to, as reported by the device (written x.x)."""
+    """Target number: Number of the target the label belongs to, as reported by the device (written
+    x.x)."""
     label: str | None = None
     """Label: Label assigned to the target."""
 
 
 @dataclass(slots=True)
-class Tlb:
+class Tlb(rt.Sentence):
     """TLB: Target label.
 
-    Example (marine_api): $RATLB,1,SHIPONE,2,SHIPTWO,3,SHIPTHREE*3D
+    Example (marine_api):
+    $RATLB,1,SHIPONE,2,SHIPTWO,3,SHIPTHREE*3D
     """
 
     SENTENCE: ClassVar[str] = "TLB"
@@ -42,74 +41,24 @@ class Tlb:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TLB", "standard", "$", 0, 40, (
+        rt.Group("labels", TlbLabel, (
+            rt.DecimalField("target_number", "decimal number of at least 0", 0, None),
+            rt.TextField("label", "text"),
+        ), 1, 20),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     labels: list[TlbLabel] = field(default_factory=list)
     """Target labels: 1 to 20 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Tlb:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 0) // 2, 20)
-        optional = count - 0 - repeats * 2
-        if count < 2 or optional > 0:
-            rt.split_group(address, "TLB", "labels", count, 0, 2, 1, 20, 0)
-        labels: list[TlbLabel] = []
-        pos = 0
-        for entry in range(repeats):
-            labels.append(TlbLabel(
-                (_DECIMAL_0_TO.get(fields[pos]) or rt.decimal_field(fields[pos], address, pos + 1, f"labels[{entry + 1}].target_number", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[pos] else None,
-                rt.text_field(fields[pos + 1], address, pos + 2, f"labels[{entry + 1}].label", "text", None),
-            ))
-            pos += 2
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], labels, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-        ]
-        for entry in self.labels:
-            out += [rt.text_of(entry.target_number), rt.text_of(entry.label)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "TLB",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"labels":[' + ",".join(
-                "{" + '"target_number":' + show(entry.target_number) + ',"label":' + show(entry.label) + "}"
-                for entry in self.labels) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        for entry in rt.json_list(fields, "labels"):
-            out += rt.json_texts(rt.json_member(entry, "target_number"), 1)
-            out += rt.json_texts(rt.json_member(entry, "label"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Tlb, )

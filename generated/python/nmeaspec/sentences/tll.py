@@ -14,18 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TtmTargetStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Tll:
+class Tll(rt.Sentence):
     """TLL: Target latitude and longitude.
 
-    Example (marine_api): $RATLL,01,3731.51205,N,02436.00000,E,ANDROS,163700.86,T,*25
+    Example (go_nmea):
+    $RATLL,1,3646.54266,N,00235.37778,W,test,020915,L,R*78
     """
 
     SENTENCE: ClassVar[str] = "TLL"
@@ -35,15 +30,27 @@ class Tll:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TLL", "standard", "$", 9, 9, (
+        rt.IntegerField("target_number", "integer of at least 0", 0, None),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.TextField("target_name", "text"),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("target_status", "ttm_target_status code (L Q T)", TtmTargetStatus),
+        rt.LiteralField("reference_target", "R or nothing", "R"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     target_number: rt.Number | None = None
     """Target number: Number of the target, 00-99, as in TTM."""
     lat: rt.Coordinate | None = None
-    """Target latitude: Latitude of the target; the number of decimals of the minutes depends on the equipment."""
+    """Target latitude: Latitude of the target; the number of decimals of the minutes depends on the
+    equipment."""
     lon: rt.Coordinate | None = None
-    """Target longitude: Longitude of the target; the number of decimals of the minutes depends on the equipment."""
+    """Target longitude: Longitude of the target; the number of decimals of the minutes depends on
+    the equipment."""
     target_name: str | None = None
     """Target name: Name or label of the target, often empty."""
     time: rt.Time | None = None
@@ -51,80 +58,14 @@ class Tll:
     target_status: TtmTargetStatus | str | None = None
     """Target status: L = lost, Q = query (being acquired), T = tracking."""
     reference_target: str | None = None
-    """Reference target: R when the target is a reference target used to compute own ship's position or speed, empty otherwise."""
+    """Reference target: R when the target is a reference target used to compute own ship's position
+    or speed, empty otherwise."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Tll:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "TLL", 9, count)
-        if count > 9:
-            raise rt.too_many(address, "TLL", 9, count)
-        target_number = (_INTEGER_0_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "target_number", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[0] else None
-        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        target_name = rt.text_field(fields[5], address, 6, "target_name", "text", None)
-        time = (_TIME.get(fields[6]) or rt.time_field(fields[6], address, 7, "time", "time hhmmss[.s]", _TIME)) if fields[6] else None
-        target_status = TtmTargetStatus.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "target_status", "ttm_target_status code (L Q T)", TtmTargetStatus.BY_CODE, "letters", 1, 1)
-        reference_target = "R" if fields[8] == "R" else rt.literal_field(fields[8], address, 9, "reference_target", "R or nothing", "R")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], target_number, lat, lon, target_name, time, target_status, reference_target, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.target_number),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.target_name),
-            rt.text_of(self.time),
-            rt.text_of(self.target_status),
-            rt.text_of(self.reference_target),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "TLL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"target_number":' + show(self.target_number),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"target_name":' + show(self.target_name),
-            '"time":' + show(self.time),
-            '"target_status":' + show(self.target_status),
-            '"reference_target":' + show(self.reference_target),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "target_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "target_name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "target_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reference_target"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Tll, )

@@ -15,15 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import HscSentenceStatus, PrcOperatingLocation, PrcPitchMode, PrcRpmMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class Trc:
+class Trc(rt.Sentence):
     """TRC: Thruster control data.
-
     """
 
     SENTENCE: ClassVar[str] = "TRC"
@@ -33,102 +28,50 @@ class Trc:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TRC", "standard", "$", 8, 8, (
+        rt.IntegerField("thruster_number", "integer of at least 0", 0, None),
+        rt.DecimalField("rpm_demand", "decimal number"),
+        rt.EnumField("rpm_mode", "prc_rpm_mode code (P R V)", PrcRpmMode),
+        rt.DecimalField("pitch_demand", "decimal number"),
+        rt.EnumField("pitch_mode", "prc_pitch_mode code (P D V)", PrcPitchMode),
+        rt.DecimalField("azimuth_demand", "decimal number"),
+        rt.EnumField(
+            "operating_location",
+            "prc_operating_location code (B P S C E W)",
+            PrcOperatingLocation,
+        ),
+        rt.EnumField("sentence_status", "hsc_sentence_status code (R C)", HscSentenceStatus),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     thruster_number: rt.Number | None = None
-    """Thruster number: Number of the thruster; odd = bow thruster, even = stern thruster (Furuno 01 to 99)."""
+    """Thruster number: Number of the thruster; odd = bow thruster, even = stern thruster (Furuno 01
+    to 99)."""
     rpm_demand: rt.Number | None = None
-    """RPM demand: RPM demand, in the unit given by the RPM mode; "-" = port."""
+    """RPM demand: RPM demand, in the unit given by the RPM mode; \"-\" = port."""
     rpm_mode: PrcRpmMode | str | None = None
-    """RPM mode indicator: P = per cent, R = revolutions per minute, V = data invalid; should not be empty."""
+    """RPM mode indicator: P = per cent, R = revolutions per minute, V = data invalid; should not be
+    empty."""
     pitch_demand: rt.Number | None = None
-    """Pitch demand: Pitch demand, in the unit given by the pitch mode; "-" = port."""
+    """Pitch demand: Pitch demand, in the unit given by the pitch mode; \"-\" = port."""
     pitch_mode: PrcPitchMode | str | None = None
     """Pitch mode indicator: P = per cent, D = degrees, V = data invalid."""
     azimuth_demand: rt.Number | None = None
     """Azimuth demand [deg]: Direction of thrust, degrees (0 to 360); may be empty."""
     operating_location: PrcOperatingLocation | str | None = None
-    """Operating location: B = bridge, P = port wing, S = starboard wing, C = engine control room, E = engine side/local, W = wing; should not be empty."""
+    """Operating location: B = bridge, P = port wing, S = starboard wing, C = engine control room, E
+    = engine side/local, W = wing; should not be empty."""
     sentence_status: HscSentenceStatus | str | None = None
-    """Sentence status flag: R = report of current settings (reply to a query), C = command changing them; without C the line is not a command."""
+    """Sentence status flag: R = report of current settings (reply to a query), C = command changing
+    them; without C the line is not a command."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Trc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "TRC", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "TRC", 8, count)
-        thruster_number = (_INTEGER_0_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "thruster_number", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[0] else None
-        rpm_demand = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "rpm_demand", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        rpm_mode = PrcRpmMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "rpm_mode", "prc_rpm_mode code (P R V)", PrcRpmMode.BY_CODE, "letters", 1, 1)
-        pitch_demand = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "pitch_demand", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        pitch_mode = PrcPitchMode.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "pitch_mode", "prc_pitch_mode code (P D V)", PrcPitchMode.BY_CODE, "letters", 1, 1)
-        azimuth_demand = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "azimuth_demand", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        operating_location = PrcOperatingLocation.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "operating_location", "prc_operating_location code (B P S C E W)", PrcOperatingLocation.BY_CODE, "letters", 1, 1)
-        sentence_status = HscSentenceStatus.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "sentence_status", "hsc_sentence_status code (R C)", HscSentenceStatus.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], thruster_number, rpm_demand, rpm_mode, pitch_demand, pitch_mode, azimuth_demand, operating_location, sentence_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.thruster_number),
-            rt.text_of(self.rpm_demand),
-            rt.text_of(self.rpm_mode),
-            rt.text_of(self.pitch_demand),
-            rt.text_of(self.pitch_mode),
-            rt.text_of(self.azimuth_demand),
-            rt.text_of(self.operating_location),
-            rt.text_of(self.sentence_status),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "TRC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"thruster_number":' + show(self.thruster_number),
-            '"rpm_demand":' + show(self.rpm_demand),
-            '"rpm_mode":' + show(self.rpm_mode),
-            '"pitch_demand":' + show(self.pitch_demand),
-            '"pitch_mode":' + show(self.pitch_mode),
-            '"azimuth_demand":' + show(self.azimuth_demand),
-            '"operating_location":' + show(self.operating_location),
-            '"sentence_status":' + show(self.sentence_status),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "thruster_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rpm_demand"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rpm_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch_demand"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "azimuth_demand"), 1)
-        out += rt.json_texts(rt.json_member(fields, "operating_location"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_status"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Trc, )

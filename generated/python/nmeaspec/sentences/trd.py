@@ -14,15 +14,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import PrcPitchMode, PrcRpmMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-
 
 @dataclass(slots=True)
-class Trd:
+class Trd(rt.Sentence):
     """TRD: Thruster response data.
-
     """
 
     SENTENCE: ClassVar[str] = "TRD"
@@ -32,90 +27,38 @@ class Trd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TRD", "standard", "$", 6, 6, (
+        rt.IntegerField("thruster_number", "integer of at least 0", 0, None),
+        rt.DecimalField("rpm_response", "decimal number"),
+        rt.EnumField("rpm_mode", "prc_rpm_mode code (P R V)", PrcRpmMode),
+        rt.DecimalField("pitch_response", "decimal number"),
+        rt.EnumField("pitch_mode", "prc_pitch_mode code (P D V)", PrcPitchMode),
+        rt.DecimalField("azimuth_response", "decimal number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     thruster_number: rt.Number | None = None
-    """Thruster number: Number of the thruster; odd = bow thruster, even = stern thruster (Furuno 01 to 99)."""
+    """Thruster number: Number of the thruster; odd = bow thruster, even = stern thruster (Furuno 01
+    to 99)."""
     rpm_response: rt.Number | None = None
     """RPM response: RPM response, in the unit given by the RPM mode (Furuno -999.9 to 999.9)."""
     rpm_mode: PrcRpmMode | str | None = None
-    """RPM mode indicator: P = per cent, R = revolutions per minute, V = data invalid; should not be empty."""
+    """RPM mode indicator: P = per cent, R = revolutions per minute, V = data invalid; should not be
+    empty."""
     pitch_response: rt.Number | None = None
-    """Pitch response: Pitch response, in the unit given by the pitch mode; "-" = port."""
+    """Pitch response: Pitch response, in the unit given by the pitch mode; \"-\" = port."""
     pitch_mode: PrcPitchMode | str | None = None
     """Pitch mode indicator: P = per cent, D = degrees, V = data invalid; should not be empty."""
     azimuth_response: rt.Number | None = None
     """Azimuth response [deg]: Direction of thrust, degrees (0 to 360); may be empty."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Trd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "TRD", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "TRD", 6, count)
-        thruster_number = (_INTEGER_0_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "thruster_number", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[0] else None
-        rpm_response = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "rpm_response", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        rpm_mode = PrcRpmMode.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "rpm_mode", "prc_rpm_mode code (P R V)", PrcRpmMode.BY_CODE, "letters", 1, 1)
-        pitch_response = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "pitch_response", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        pitch_mode = PrcPitchMode.BY_CODE.get(fields[4]) or rt.enum_field(fields[4], address, 5, "pitch_mode", "prc_pitch_mode code (P D V)", PrcPitchMode.BY_CODE, "letters", 1, 1)
-        azimuth_response = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "azimuth_response", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], thruster_number, rpm_response, rpm_mode, pitch_response, pitch_mode, azimuth_response, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.thruster_number),
-            rt.text_of(self.rpm_response),
-            rt.text_of(self.rpm_mode),
-            rt.text_of(self.pitch_response),
-            rt.text_of(self.pitch_mode),
-            rt.text_of(self.azimuth_response),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "TRD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"thruster_number":' + show(self.thruster_number),
-            '"rpm_response":' + show(self.rpm_response),
-            '"rpm_mode":' + show(self.rpm_mode),
-            '"pitch_response":' + show(self.pitch_response),
-            '"pitch_mode":' + show(self.pitch_mode),
-            '"azimuth_response":' + show(self.azimuth_response),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "thruster_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rpm_response"), 1)
-        out += rt.json_texts(rt.json_member(fields, "rpm_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch_response"), 1)
-        out += rt.json_texts(rt.json_member(fields, "pitch_mode"), 1)
-        out += rt.json_texts(rt.json_member(fields, "azimuth_response"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Trd, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """TRF: Transit fix data.
 
-A position fix from the TRANSIT (Navy Navigation Satellite) Doppler system, with the quality
-figures of the pass it came from. TRANSIT ended in 1996 and NMEA 2.3 dropped the sentence.
+A position fix from the TRANSIT (Navy Navigation Satellite) Doppler system, with the quality figures
+of the pass it came from. TRANSIT ended in 1996 and NMEA 2.3 dropped the sentence.
 """
 
 from __future__ import annotations
@@ -15,19 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Trf:
+class Trf(rt.Sentence):
     """TRF: Transit fix data.
-
     """
 
     SENTENCE: ClassVar[str] = "TRF"
@@ -37,6 +28,19 @@ class Trf:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TRF", "standard", "$", 12, 12, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("elevation_angle", "decimal number"),
+        rt.DecimalField("iterations", "decimal number"),
+        rt.DecimalField("doppler_intervals", "decimal number"),
+        rt.DecimalField("update_distance", "decimal number"),
+        rt.IntegerField("satellite_id", "integer"),
+        rt.EnumField("data_validity", "status code (A V)", Status),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -61,90 +65,11 @@ class Trf:
     data_validity: Status | str | None = None
     """Data validity: A = data valid, V = data invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Trf:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 12:
-            raise rt.too_few(address, "TRF", 12, count)
-        if count > 12:
-            raise rt.too_many(address, "TRF", 12, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        date = (_DATE.get(fields[1]) or rt.date_field(fields[1], address, 2, "date", "date ddmmyy", _DATE)) if fields[1] else None
-        lat = _LATITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[4], fields[5])) or rt.coordinate_field(fields[4], fields[5], address, 5, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        elevation_angle = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "elevation_angle", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        iterations = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "iterations", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        doppler_intervals = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "doppler_intervals", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        update_distance = (_DECIMAL.get(fields[9]) or rt.decimal_field(fields[9], address, 10, "update_distance", "decimal number", None, None, _DECIMAL)) if fields[9] else None
-        satellite_id = (_INTEGER.get(fields[10]) or rt.integer_field(fields[10], address, 11, "satellite_id", "integer", None, None, _INTEGER)) if fields[10] else None
-        data_validity = Status.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "data_validity", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, date, lat, lon, elevation_angle, iterations, doppler_intervals, update_distance, satellite_id, data_validity, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.date),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.elevation_angle),
-            rt.text_of(self.iterations),
-            rt.text_of(self.doppler_intervals),
-            rt.text_of(self.update_distance),
-            rt.text_of(self.satellite_id),
-            rt.text_of(self.data_validity),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "TRF",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"date":' + show(self.date),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"elevation_angle":' + show(self.elevation_angle),
-            '"iterations":' + show(self.iterations),
-            '"doppler_intervals":' + show(self.doppler_intervals),
-            '"update_distance":' + show(self.update_distance),
-            '"satellite_id":' + show(self.satellite_id),
-            '"data_validity":' + show(self.data_validity),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "elevation_angle"), 1)
-        out += rt.json_texts(rt.json_member(fields, "iterations"), 1)
-        out += rt.json_texts(rt.json_member(fields, "doppler_intervals"), 1)
-        out += rt.json_texts(rt.json_member(fields, "update_distance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellite_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "data_validity"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Trf, )

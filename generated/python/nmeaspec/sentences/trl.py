@@ -15,17 +15,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TrlReason
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_10: dict[Any, Any] = rt.known("integer 0..10")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_INTEGER_1_TO_10: dict[Any, Any] = rt.known("integer 1..10")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Trl:
+class Trl(rt.Sentence):
     """TRL: AIS transmitter-non-functioning log.
-
     """
 
     SENTENCE: ClassVar[str] = "TRL"
@@ -35,17 +28,31 @@ class Trl:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TRL", "standard", "$", 8, 8, (
+        rt.IntegerField("entry_count", "integer 0..10", 0, 10),
+        rt.IntegerField("entry_number", "integer 1..10", 1, 10),
+        rt.IntegerField("sequence_id", "integer 0..9", 0, 9),
+        rt.TextField("switch_off_date", "text of at most 8 characters", 8),
+        rt.TimeField("switch_off_time", "time hhmmss[.s]"),
+        rt.TextField("switch_on_date", "text of at most 8 characters", 8),
+        rt.TimeField("switch_on_time", "time hhmmss[.s]"),
+        rt.EnumField("reason", "trl_reason code (1 2 3 4 5)", TrlReason),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     entry_count: rt.Number | None = None
-    """Total number of log entries: Number of log entries, 0-10; with 0 all other fields are empty."""
+    """Total number of log entries: Number of log entries, 0-10; with 0 all other fields are
+    empty."""
     entry_number: rt.Number | None = None
     """Log entry number: Number of this entry, 1-10; empty when there is none."""
     sequence_id: rt.Number | None = None
-    """Sequential message identifier: Identifier 0-9 shared by the sentences of one reply; may be empty."""
+    """Sequential message identifier: Identifier 0-9 shared by the sentences of one reply; may be
+    empty."""
     switch_off_date: str | None = None
-    """Switch-off date: UTC date at which transmission stopped, day, month and four-digit year (8 digits, ddmmyyyy)."""
+    """Switch-off date: UTC date at which transmission stopped, day, month and four-digit year (8
+    digits, ddmmyyyy)."""
     switch_off_time: rt.Time | None = None
     """Switch-off time: UTC time at which transmission stopped."""
     switch_on_date: str | None = None
@@ -53,84 +60,14 @@ class Trl:
     switch_on_time: rt.Time | None = None
     """Switch-on time: UTC time at which transmission resumed."""
     reason: TrlReason | str | None = None
-    """Reason code: 1 power off, 2 silent mode, 3 switched off by channel management, 4 malfunction, 5 invalid configuration."""
+    """Reason code: 1 power off, 2 silent mode, 3 switched off by channel management, 4 malfunction,
+    5 invalid configuration."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Trl:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "TRL", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "TRL", 8, count)
-        entry_count = (_INTEGER_0_TO_10.get(fields[0]) or rt.integer_field(fields[0], address, 1, "entry_count", "integer 0..10", 0, 10, _INTEGER_0_TO_10)) if fields[0] else None
-        entry_number = (_INTEGER_1_TO_10.get(fields[1]) or rt.integer_field(fields[1], address, 2, "entry_number", "integer 1..10", 1, 10, _INTEGER_1_TO_10)) if fields[1] else None
-        sequence_id = (_INTEGER_0_TO_9.get(fields[2]) or rt.integer_field(fields[2], address, 3, "sequence_id", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[2] else None
-        switch_off_date = rt.text_field(fields[3], address, 4, "switch_off_date", "text of at most 8 characters", 8)
-        switch_off_time = (_TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "switch_off_time", "time hhmmss[.s]", _TIME)) if fields[4] else None
-        switch_on_date = rt.text_field(fields[5], address, 6, "switch_on_date", "text of at most 8 characters", 8)
-        switch_on_time = (_TIME.get(fields[6]) or rt.time_field(fields[6], address, 7, "switch_on_time", "time hhmmss[.s]", _TIME)) if fields[6] else None
-        reason = TrlReason.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "reason", "trl_reason code (1 2 3 4 5)", TrlReason.BY_CODE, "digits", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], entry_count, entry_number, sequence_id, switch_off_date, switch_off_time, switch_on_date, switch_on_time, reason, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.entry_count),
-            rt.text_of(self.entry_number),
-            rt.text_of(self.sequence_id),
-            rt.text_of(self.switch_off_date),
-            rt.text_of(self.switch_off_time),
-            rt.text_of(self.switch_on_date),
-            rt.text_of(self.switch_on_time),
-            rt.text_of(self.reason),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "TRL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"entry_count":' + show(self.entry_count),
-            '"entry_number":' + show(self.entry_number),
-            '"sequence_id":' + show(self.sequence_id),
-            '"switch_off_date":' + show(self.switch_off_date),
-            '"switch_off_time":' + show(self.switch_off_time),
-            '"switch_on_date":' + show(self.switch_on_date),
-            '"switch_on_time":' + show(self.switch_on_time),
-            '"reason":' + show(self.reason),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "entry_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "entry_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sequence_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "switch_off_date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "switch_off_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "switch_on_date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "switch_on_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reason"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Trl, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """TTD: Tracked target data.
 
-Compact binary report of the targets tracked by a radar, carried as armored six-bit text like an
-AIS payload; a report longer than one sentence spans several. An encapsulation sentence (starts
-with '!').
+Compact binary report of the targets tracked by a radar, carried as armored six-bit text like an AIS
+payload; a report longer than one sentence spans several. An encapsulation sentence (starts with
+'!').
 """
 
 from __future__ import annotations
@@ -15,17 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER_0_TO_5: dict[Any, Any] = rt.known("integer 0..5")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-
 
 @dataclass(slots=True)
-class Ttd:
+class Ttd(rt.Sentence):
     """TTD: Tracked target data.
 
-    Example (go_nmea): !RATTD,1A,01,1,177KQJ5000G?tO`K>RA1wUbN0TKH,0*72
+    Example (go_nmea):
+    !RATTD,1A,01,1,177KQJ5000G?tO`K>RA1wUbN0TKH,0*72
     """
 
     SENTENCE: ClassVar[str] = "TTD"
@@ -35,84 +31,35 @@ class Ttd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TTD", "standard", "!", 5, 5, (
+        rt.HexField("sentence_count", "hex number"),
+        rt.HexField("sentence_number", "hex number"),
+        rt.IntegerField("message_id", "integer 0..9", 0, 9),
+        rt.TextField("payload", "text"),
+        rt.IntegerField("fill_bits", "integer 0..5", 0, 5),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     sentence_count: rt.Hex | None = None
-    """Total number of sentences: Number of sentences needed for the whole report, in hex (01-FF)."""
+    """Total number of sentences: Number of sentences needed for the whole report, in hex
+    (01-FF)."""
     sentence_number: rt.Hex | None = None
     """Sentence number: Number of this sentence within the report, in hex (01-FF)."""
     message_id: rt.Number | None = None
     """Sequential message identifier: Ties the sentences of one report together (0-9)."""
     payload: str | None = None
-    """Encapsulated tracked target data: The tracked target records in six-bit ASCII armoring (6 bits per character); decoding the bits is left to the application."""
+    """Encapsulated tracked target data: The tracked target records in six-bit ASCII armoring (6
+    bits per character); decoding the bits is left to the application."""
     fill_bits: rt.Number | None = None
     """Fill bits: Number of bits (0-5) added to the last payload character; they are not data."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ttd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "TTD", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "TTD", 5, count)
-        sentence_count = (_HEX.get(fields[0]) or rt.hex_field(fields[0], address, 1, "sentence_count", "hex number", _HEX)) if fields[0] else None
-        sentence_number = (_HEX.get(fields[1]) or rt.hex_field(fields[1], address, 2, "sentence_number", "hex number", _HEX)) if fields[1] else None
-        message_id = (_INTEGER_0_TO_9.get(fields[2]) or rt.integer_field(fields[2], address, 3, "message_id", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[2] else None
-        payload = rt.text_field(fields[3], address, 4, "payload", "text", None)
-        fill_bits = (_INTEGER_0_TO_5.get(fields[4]) or rt.integer_field(fields[4], address, 5, "fill_bits", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[4] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], sentence_count, sentence_number, message_id, payload, fill_bits, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.sentence_count),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.message_id),
-            rt.text_of(self.payload),
-            rt.text_of(self.fill_bits),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("!", self.talker + "TTD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"sentence_count":' + show(self.sentence_count),
-            '"sentence_number":' + show(self.sentence_number),
-            '"message_id":' + show(self.message_id),
-            '"payload":' + show(self.payload),
-            '"fill_bits":' + show(self.fill_bits),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "sentence_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "payload"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fill_bits"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ttd, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """TTM: Tracked target message.
 
-Data of one target tracked by a radar/ARPA: range and bearing from own ship, the target's speed
-and course, closest point of approach, name, tracking status and, from NMEA 0183 v3, the time of
-the data and how the target was acquired. One sentence per target.
+Data of one target tracked by a radar/ARPA: range and bearing from own ship, the target's speed and
+course, closest point of approach, name, tracking status and, from NMEA 0183 v3, the time of the
+data and how the target was acquired. One sentence per target.
 """
 
 from __future__ import annotations
@@ -16,18 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import TtmAcquisition, TtmReference, TtmTargetStatus, TtmUnits
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-_INTEGER_0_TO: dict[Any, Any] = rt.known("integer 0..")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Ttm:
+class Ttm(rt.Sentence):
     """TTM: Tracked target message.
 
-    Example (aerorust_nmea): $RATTM,01,0.2,190.8,T,12.1,109.7,T,0.1,0.5,N,TGT01,T,,100021.00,A*79
+    Example (aerorust_nmea):
+    $RATTM,01,0.2,190.8,T,12.1,109.7,T,0.1,0.5,N,TGT01,T,,100021.00,A*79
     """
 
     SENTENCE: ClassVar[str] = "TTM"
@@ -37,162 +32,74 @@ class Ttm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TTM", "standard", "$", 13, 15, (
+        rt.IntegerField("target_number", "integer of at least 0", 0, None),
+        rt.DecimalField("target_distance", "decimal number of at least 0", 0, None),
+        rt.DecimalField("bearing", "decimal number"),
+        rt.EnumField("bearing_reference", "ttm_reference code (T R)", TtmReference),
+        rt.DecimalField("target_speed", "decimal number of at least 0", 0, None),
+        rt.DecimalField("target_course", "decimal number"),
+        rt.EnumField("course_reference", "ttm_reference code (T R)", TtmReference),
+        rt.DecimalField("cpa_distance", "decimal number"),
+        rt.DecimalField("time_to_cpa", "decimal number"),
+        rt.EnumField("units", "ttm_units code (K N S)", TtmUnits),
+        rt.TextField("target_name", "text"),
+        rt.EnumField("target_status", "ttm_target_status code (L Q T)", TtmTargetStatus),
+        rt.LiteralField("reference_target", "R or nothing", "R"),
+        rt.TimeField("time", "time hhmmss[.s]", optional=True),
+        rt.EnumField("acquisition", "ttm_acquisition code (A M R)", TtmAcquisition, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     target_number: rt.Number | None = None
-    """Target number: Number the radar gives the target, normally 00-99 (Furuno's FCR-21x9 counts up to 999)."""
+    """Target number: Number the radar gives the target, normally 00-99 (Furuno's FCR-21x9 counts up
+    to 999)."""
     target_distance: rt.Number | None = None
-    """Target distance: Distance of the target from own ship, in the unit of the units field (nautical miles, kilometres or statute miles)."""
+    """Target distance: Distance of the target from own ship, in the unit of the units field
+    (nautical miles, kilometres or statute miles)."""
     bearing: rt.Number | None = None
-    """Bearing from own ship [deg]: Bearing of the target from own ship, true or relative as the next field says."""
+    """Bearing from own ship [deg]: Bearing of the target from own ship, true or relative as the
+    next field says."""
     bearing_reference: TtmReference | str | None = None
     """Bearing reference: T = degrees true, R = relative to own ship's heading."""
     target_speed: rt.Number | None = None
-    """Target speed: Speed of the target, in the speed unit of the units field (km/h, knots or mph)."""
+    """Target speed: Speed of the target, in the speed unit of the units field (km/h, knots or
+    mph)."""
     target_course: rt.Number | None = None
     """Target course [deg]: Course of the target, true or relative as the next field says."""
     course_reference: TtmReference | str | None = None
     """Course reference: T = degrees true, R = relative to own ship's heading."""
     cpa_distance: rt.Number | None = None
-    """Distance of closest point of approach: Distance at the closest point of approach (CPA), in the distance unit of the units field."""
+    """Distance of closest point of approach: Distance at the closest point of approach (CPA), in
+    the distance unit of the units field."""
     time_to_cpa: rt.Number | None = None
-    """Time to CPA [min]: Minutes until the closest point of approach; negative when the CPA lies in the past (the distance is increasing)."""
+    """Time to CPA [min]: Minutes until the closest point of approach; negative when the CPA lies in
+    the past (the distance is increasing)."""
     units: TtmUnits | str | None = None
-    """Speed and distance units: K = kilometres and km/h, N = nautical miles and knots, S = statute miles and mph."""
+    """Speed and distance units: K = kilometres and km/h, N = nautical miles and knots, S = statute
+    miles and mph."""
     target_name: str | None = None
-    """Target name: Name or label of the target (free text; Furuno calls it user data), often empty."""
+    """Target name: Name or label of the target (free text; Furuno calls it user data), often
+    empty."""
     target_status: TtmTargetStatus | str | None = None
     """Target status: L = lost, Q = query (being acquired), T = tracking."""
     reference_target: str | None = None
-    """Reference target: R when the target is a reference target used to compute own ship's position or speed, empty otherwise."""
+    """Reference target: R when the target is a reference target used to compute own ship's position
+    or speed, empty otherwise."""
     time: rt.Time | None | rt._Absent = rt.ABSENT
-    """UTC time of data (NMEA 3.01): UTC time of the target data (NMEA 0183 v3 and later); several radars leave it empty."""
+    """UTC time of data (NMEA 3.01): UTC time of the target data (NMEA 0183 v3 and later); several
+    radars leave it empty."""
     acquisition: TtmAcquisition | str | None | rt._Absent = rt.ABSENT
-    """Type of acquisition (NMEA 3.01): A = automatic, M = manual, R = reported (NMEA 0183 v3 and later)."""
+    """Type of acquisition (NMEA 3.01): A = automatic, M = manual, R = reported (NMEA 0183 v3 and
+    later)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ttm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 13:
-            raise rt.too_few(address, "TTM", 13, count)
-        if count > 15:
-            raise rt.too_many(address, "TTM", 15, count)
-        optional = count - 13
-        target_number = (_INTEGER_0_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "target_number", "integer of at least 0", 0, None, _INTEGER_0_TO)) if fields[0] else None
-        target_distance = (_DECIMAL_0_TO.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "target_distance", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[1] else None
-        bearing = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "bearing", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        bearing_reference = TtmReference.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "bearing_reference", "ttm_reference code (T R)", TtmReference.BY_CODE, "letters", 1, 1)
-        target_speed = (_DECIMAL_0_TO.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "target_speed", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[4] else None
-        target_course = (_DECIMAL.get(fields[5]) or rt.decimal_field(fields[5], address, 6, "target_course", "decimal number", None, None, _DECIMAL)) if fields[5] else None
-        course_reference = TtmReference.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "course_reference", "ttm_reference code (T R)", TtmReference.BY_CODE, "letters", 1, 1)
-        cpa_distance = (_DECIMAL.get(fields[7]) or rt.decimal_field(fields[7], address, 8, "cpa_distance", "decimal number", None, None, _DECIMAL)) if fields[7] else None
-        time_to_cpa = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "time_to_cpa", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        units = TtmUnits.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "units", "ttm_units code (K N S)", TtmUnits.BY_CODE, "letters", 1, 1)
-        target_name = rt.text_field(fields[10], address, 11, "target_name", "text", None)
-        target_status = TtmTargetStatus.BY_CODE.get(fields[11]) or rt.enum_field(fields[11], address, 12, "target_status", "ttm_target_status code (L Q T)", TtmTargetStatus.BY_CODE, "letters", 1, 1)
-        reference_target = "R" if fields[12] == "R" else rt.literal_field(fields[12], address, 13, "reference_target", "R or nothing", "R")
-        time: rt.Time | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            time = (_TIME.get(fields[13]) or rt.time_field(fields[13], address, 14, "time", "time hhmmss[.s]", _TIME)) if fields[13] else None
-        acquisition: TtmAcquisition | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            acquisition = TtmAcquisition.BY_CODE.get(fields[14]) or rt.enum_field(fields[14], address, 15, "acquisition", "ttm_acquisition code (A M R)", TtmAcquisition.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], target_number, target_distance, bearing, bearing_reference, target_speed, target_course, course_reference, cpa_distance, time_to_cpa, units, target_name, target_status, reference_target, time, acquisition, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.target_number),
-            rt.text_of(self.target_distance),
-            rt.text_of(self.bearing),
-            rt.text_of(self.bearing_reference),
-            rt.text_of(self.target_speed),
-            rt.text_of(self.target_course),
-            rt.text_of(self.course_reference),
-            rt.text_of(self.cpa_distance),
-            rt.text_of(self.time_to_cpa),
-            rt.text_of(self.units),
-            rt.text_of(self.target_name),
-            rt.text_of(self.target_status),
-            rt.text_of(self.reference_target),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.acquisition is not rt.ABSENT:
-            last = 1
-        elif self.time is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.time)]
-        if last >= 1:
-            out += [rt.text_of(self.acquisition)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "TTM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"target_number":' + show(self.target_number),
-            '"target_distance":' + show(self.target_distance),
-            '"bearing":' + show(self.bearing),
-            '"bearing_reference":' + show(self.bearing_reference),
-            '"target_speed":' + show(self.target_speed),
-            '"target_course":' + show(self.target_course),
-            '"course_reference":' + show(self.course_reference),
-            '"cpa_distance":' + show(self.cpa_distance),
-            '"time_to_cpa":' + show(self.time_to_cpa),
-            '"units":' + show(self.units),
-            '"target_name":' + show(self.target_name),
-            '"target_status":' + show(self.target_status),
-            '"reference_target":' + show(self.reference_target),
-        ]
-        if self.time is not rt.ABSENT:
-            parts.append('"time":' + show(self.time))
-        if self.acquisition is not rt.ABSENT:
-            parts.append('"acquisition":' + show(self.acquisition))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "target_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "target_distance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing"), 1)
-        out += rt.json_texts(rt.json_member(fields, "bearing_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "target_speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "target_course"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course_reference"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cpa_distance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_to_cpa"), 1)
-        out += rt.json_texts(rt.json_member(fields, "units"), 1)
-        out += rt.json_texts(rt.json_member(fields, "target_name"), 1)
-        out += rt.json_texts(rt.json_member(fields, "target_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "reference_target"), 1)
-        if "time" in fields:
-            out += rt.json_texts(fields["time"], 1)
-        if "acquisition" in fields:
-            out += rt.json_texts(fields["acquisition"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ttm, )

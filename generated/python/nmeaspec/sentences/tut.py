@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """TUT: Transmission of multi-language text.
 
-Text in any language, coded as hex digits: like TXT, with a source identifier and a translation
-code that says how the hex body is to be read (Unicode, ASCII, an ISO 8859 part or a proprietary
-table for predefined messages). Long texts span several sentences.
+Text in any language, coded as hex digits: like TXT, with a source identifier and a translation code
+that says how the hex body is to be read (Unicode, ASCII, an ISO 8859 part or a proprietary table
+for predefined messages). Long texts span several sentences.
 """
 
 from __future__ import annotations
@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-
 
 @dataclass(slots=True)
-class Tut:
+class Tut(rt.Sentence):
     """TUT: Transmission of multi-language text.
 
-    Example (swiftnmea): $INTUT,SD,01,01,1,A,5368616C6C6F7720576174657221*4B
+    Example (swiftnmea):
+    $INTUT,SD,01,01,1,A,5368616C6C6F7720576174657221*4B
     """
 
     SENTENCE: ClassVar[str] = "TUT"
@@ -34,6 +31,15 @@ class Tut:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TUT", "standard", "$", 6, 6, (
+        rt.TextField("source_id", "text"),
+        rt.HexField("total_sentences", "hex number"),
+        rt.HexField("sentence_number", "hex number"),
+        rt.IntegerField("sequential_message_id", "integer 0..9", 0, 9),
+        rt.TextField("translation_code", "text"),
+        rt.TextField("text_body", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -46,78 +52,18 @@ class Tut:
     sequential_message_id: rt.Number | None = None
     """Sequential message identifier: Links the sentences of one message, 0 to 9."""
     translation_code: str | None = None
-    """Translation code: How the body is coded: U = Unicode (ISO 10646-1, 4 hex digits a character), A = ASCII (2 hex digits a character), 1 to 16 = part of ISO 8859, Pxxx = proprietary (user-defined) table."""
+    """Translation code: How the body is coded: U = Unicode (ISO 10646-1, 4 hex digits a character),
+    A = ASCII (2 hex digits a character), 1 to 16 = part of ISO 8859, Pxxx = proprietary
+    (user-defined) table."""
     text_body: str | None = None
-    """Text body: The text as hex digits in the coding of the translation code (e.g. 0041 = "A" in Unicode)."""
+    """Text body: The text as hex digits in the coding of the translation code (e.g. 0041 = \"A\" in
+    Unicode)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Tut:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "TUT", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "TUT", 6, count)
-        source_id = rt.text_field(fields[0], address, 1, "source_id", "text", None)
-        total_sentences = (_HEX.get(fields[1]) or rt.hex_field(fields[1], address, 2, "total_sentences", "hex number", _HEX)) if fields[1] else None
-        sentence_number = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "sentence_number", "hex number", _HEX)) if fields[2] else None
-        sequential_message_id = (_INTEGER_0_TO_9.get(fields[3]) or rt.integer_field(fields[3], address, 4, "sequential_message_id", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[3] else None
-        translation_code = rt.text_field(fields[4], address, 5, "translation_code", "text", None)
-        text_body = rt.text_field(fields[5], address, 6, "text_body", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], source_id, total_sentences, sentence_number, sequential_message_id, translation_code, text_body, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.source_id),
-            rt.text_of(self.total_sentences),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.sequential_message_id),
-            rt.text_of(self.translation_code),
-            rt.text_of(self.text_body),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "TUT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"source_id":' + show(self.source_id),
-            '"total_sentences":' + show(self.total_sentences),
-            '"sentence_number":' + show(self.sentence_number),
-            '"sequential_message_id":' + show(self.sequential_message_id),
-            '"translation_code":' + show(self.translation_code),
-            '"text_body":' + show(self.text_body),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "source_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "total_sentences"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sequential_message_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "translation_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "text_body"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Tut, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """TXT: Text transmission.
 
-A short text message; longer texts are split over several sentences that share the text
-identifier. GNSS receivers use it for start-up banners (firmware, hardware, protocol version)
-and antenna status.
+A short text message; longer texts are split over several sentences that share the text identifier.
+GNSS receivers use it for start-up banners (firmware, hardware, protocol version) and antenna
+status.
 """
 
 from __future__ import annotations
@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-_INTEGER_1_TO_99: dict[Any, Any] = rt.known("integer 1..99")
-
 
 @dataclass(slots=True)
-class Txt:
+class Txt(rt.Sentence):
     """TXT: Text transmission.
 
-    Example (log_gpsd): $GPTXT,01,01,01,ANTENNA OK*35
+    Example (log_gpsd):
+    $GPTXT,01,01,01,ANTENNA OK*35
     """
 
     SENTENCE: ClassVar[str] = "TXT"
@@ -34,6 +31,13 @@ class Txt:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("TXT", "standard", "$", 4, 4, (
+        rt.IntegerField("total_sentences", "integer 1..99", 1, 99),
+        rt.IntegerField("sentence_number", "integer 1..99", 1, 99),
+        rt.IntegerField("text_identifier", "integer 0..99", 0, 99),
+        rt.TextField("text", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -42,70 +46,17 @@ class Txt:
     sentence_number: rt.Number | None = None
     """Sentence number: Number of this sentence within the text, 01-99."""
     text_identifier: rt.Number | None = None
-    """Text identifier: Identifies the text (the standard: 01-99). u-blox uses it as a severity: 00 error, 01 warning, 02 notice, 07 user output."""
+    """Text identifier: Identifies the text (the standard: 01-99). u-blox uses it as a severity: 00
+    error, 01 warning, 02 notice, 07 user output."""
     text: str | None = None
-    """Text: The text, printable ASCII; reserved characters are sent as ^ and two hex digits. The 82-character sentence limit leaves room for 61 characters."""
+    """Text: The text, printable ASCII; reserved characters are sent as ^ and two hex digits. The
+    82-character sentence limit leaves room for 61 characters."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Txt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "TXT", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "TXT", 4, count)
-        total_sentences = (_INTEGER_1_TO_99.get(fields[0]) or rt.integer_field(fields[0], address, 1, "total_sentences", "integer 1..99", 1, 99, _INTEGER_1_TO_99)) if fields[0] else None
-        sentence_number = (_INTEGER_1_TO_99.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer 1..99", 1, 99, _INTEGER_1_TO_99)) if fields[1] else None
-        text_identifier = (_INTEGER_0_TO_99.get(fields[2]) or rt.integer_field(fields[2], address, 3, "text_identifier", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[2] else None
-        text = rt.text_field(fields[3], address, 4, "text", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], total_sentences, sentence_number, text_identifier, text, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.total_sentences),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.text_identifier),
-            rt.text_of(self.text),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "TXT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"total_sentences":' + show(self.total_sentences),
-            '"sentence_number":' + show(self.sentence_number),
-            '"text_identifier":' + show(self.text_identifier),
-            '"text":' + show(self.text),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "total_sentences"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "text_identifier"), 1)
-        out += rt.json_texts(rt.json_member(fields, "text"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Txt, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """UID: User identification code transmission.
 
-Sends one or two user identification codes to a system, which uses them to identify the user,
-check that a request is allowed and possibly account for it.
+Sends one or two user identification codes to a system, which uses them to identify the user, check
+that a request is allowed and possibly account for it.
 """
 
 from __future__ import annotations
@@ -16,9 +16,8 @@ from .. import runtime as rt
 
 
 @dataclass(slots=True)
-class Uid:
+class Uid(rt.Sentence):
     """UID: User identification code transmission.
-
     """
 
     SENTENCE: ClassVar[str] = "UID"
@@ -28,66 +27,26 @@ class Uid:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("UID", "standard", "$", 2, 2, (
+        rt.TextField("code_1", "text"),
+        rt.TextField("code_2", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     code_1: str | None = None
-    """User identification code 1: The user identification code, up to 20 letters and digits (A-Z, a-z, 0-9)."""
+    """User identification code 1: The user identification code, up to 20 letters and digits (A-Z,
+    a-z, 0-9)."""
     code_2: str | None = None
-    """User identification code 2: An optional second code that identifies the user or the project further; empty when not used."""
+    """User identification code 2: An optional second code that identifies the user or the project
+    further; empty when not used."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Uid:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "UID", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "UID", 2, count)
-        code_1 = rt.text_field(fields[0], address, 1, "code_1", "text", None)
-        code_2 = rt.text_field(fields[1], address, 2, "code_2", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], code_1, code_2, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.code_1),
-            rt.text_of(self.code_2),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "UID",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"code_1":' + show(self.code_1),
-            '"code_2":' + show(self.code_2),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "code_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "code_2"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Uid, )

@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Vbw:
+class Vbw(rt.Sentence):
     """VBW: Dual ground/water speed.
 
-    Example (log_pynmeagps): $GPVBW,12.3,0.07,A,11.78,0.12,A*6F
+    Example (marine_api):
+    $IIVBW,11.0,02.0,A,06.0,03.0,A,05.3,A,01.0,A*43
     """
 
     SENTENCE: ClassVar[str] = "VBW"
@@ -33,146 +31,54 @@ class Vbw:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VBW", "standard", "$", 6, 10, (
+        rt.DecimalField("water_speed_longitudinal", "decimal number"),
+        rt.DecimalField("water_speed_transverse", "decimal number"),
+        rt.EnumField("water_speed_status", "status code (A V)", Status),
+        rt.DecimalField("ground_speed_longitudinal", "decimal number"),
+        rt.DecimalField("ground_speed_transverse", "decimal number"),
+        rt.EnumField("ground_speed_status", "status code (A V)", Status),
+        rt.DecimalField("stern_water_speed_transverse", "decimal number", optional=True),
+        rt.EnumField("stern_water_speed_status", "status code (A V)", Status, optional=True),
+        rt.DecimalField("stern_ground_speed_transverse", "decimal number", optional=True),
+        rt.EnumField("stern_ground_speed_status", "status code (A V)", Status, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     water_speed_longitudinal: rt.Number | None = None
-    """Longitudinal water speed [knots]: Speed through the water along the keel, knots; negative means astern."""
+    """Longitudinal water speed [knots]: Speed through the water along the keel, knots; negative
+    means astern."""
     water_speed_transverse: rt.Number | None = None
-    """Transverse water speed [knots]: Speed through the water across the keel, knots; negative means to port."""
+    """Transverse water speed [knots]: Speed through the water across the keel, knots; negative
+    means to port."""
     water_speed_status: Status | str | None = None
     """Water speed status: A = water speeds valid, V = invalid."""
     ground_speed_longitudinal: rt.Number | None = None
-    """Longitudinal ground speed [knots]: Speed over the ground along the keel, knots; negative means astern."""
+    """Longitudinal ground speed [knots]: Speed over the ground along the keel, knots; negative
+    means astern."""
     ground_speed_transverse: rt.Number | None = None
-    """Transverse ground speed [knots]: Speed over the ground across the keel, knots; negative means to port."""
+    """Transverse ground speed [knots]: Speed over the ground across the keel, knots; negative means
+    to port."""
     ground_speed_status: Status | str | None = None
     """Ground speed status: A = ground speeds valid, V = invalid."""
     stern_water_speed_transverse: rt.Number | None | rt._Absent = rt.ABSENT
-    """Stern transverse water speed [knots] (NMEA 3.0): Transverse speed through the water measured at the stern, knots; negative means to port (NMEA v3.0 and later)."""
+    """Stern transverse water speed [knots] (NMEA 3.0): Transverse speed through the water measured
+    at the stern, knots; negative means to port (NMEA v3.0 and later)."""
     stern_water_speed_status: Status | str | None | rt._Absent = rt.ABSENT
     """Stern water speed status (NMEA 3.0): A = stern water speed valid, V = invalid."""
     stern_ground_speed_transverse: rt.Number | None | rt._Absent = rt.ABSENT
-    """Stern transverse ground speed [knots] (NMEA 3.0): Transverse speed over the ground measured at the stern, knots; negative means to port (NMEA v3.0 and later)."""
+    """Stern transverse ground speed [knots] (NMEA 3.0): Transverse speed over the ground measured
+    at the stern, knots; negative means to port (NMEA v3.0 and later)."""
     stern_ground_speed_status: Status | str | None | rt._Absent = rt.ABSENT
     """Stern ground speed status (NMEA 3.0): A = stern ground speed valid, V = invalid."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Vbw:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "VBW", 6, count)
-        if count > 10:
-            raise rt.too_many(address, "VBW", 10, count)
-        optional = count - 6
-        water_speed_longitudinal = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "water_speed_longitudinal", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        water_speed_transverse = (_DECIMAL.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "water_speed_transverse", "decimal number", None, None, _DECIMAL)) if fields[1] else None
-        water_speed_status = Status.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "water_speed_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        ground_speed_longitudinal = (_DECIMAL.get(fields[3]) or rt.decimal_field(fields[3], address, 4, "ground_speed_longitudinal", "decimal number", None, None, _DECIMAL)) if fields[3] else None
-        ground_speed_transverse = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "ground_speed_transverse", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        ground_speed_status = Status.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "ground_speed_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        stern_water_speed_transverse: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            stern_water_speed_transverse = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "stern_water_speed_transverse", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        stern_water_speed_status: Status | str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            stern_water_speed_status = Status.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "stern_water_speed_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        stern_ground_speed_transverse: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            stern_ground_speed_transverse = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "stern_ground_speed_transverse", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        stern_ground_speed_status: Status | str | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            stern_ground_speed_status = Status.BY_CODE.get(fields[9]) or rt.enum_field(fields[9], address, 10, "stern_ground_speed_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], water_speed_longitudinal, water_speed_transverse, water_speed_status, ground_speed_longitudinal, ground_speed_transverse, ground_speed_status, stern_water_speed_transverse, stern_water_speed_status, stern_ground_speed_transverse, stern_ground_speed_status, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.water_speed_longitudinal),
-            rt.text_of(self.water_speed_transverse),
-            rt.text_of(self.water_speed_status),
-            rt.text_of(self.ground_speed_longitudinal),
-            rt.text_of(self.ground_speed_transverse),
-            rt.text_of(self.ground_speed_status),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.stern_ground_speed_status is not rt.ABSENT:
-            last = 3
-        elif self.stern_ground_speed_transverse is not rt.ABSENT:
-            last = 2
-        elif self.stern_water_speed_status is not rt.ABSENT:
-            last = 1
-        elif self.stern_water_speed_transverse is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.stern_water_speed_transverse)]
-        if last >= 1:
-            out += [rt.text_of(self.stern_water_speed_status)]
-        if last >= 2:
-            out += [rt.text_of(self.stern_ground_speed_transverse)]
-        if last >= 3:
-            out += [rt.text_of(self.stern_ground_speed_status)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VBW",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"water_speed_longitudinal":' + show(self.water_speed_longitudinal),
-            '"water_speed_transverse":' + show(self.water_speed_transverse),
-            '"water_speed_status":' + show(self.water_speed_status),
-            '"ground_speed_longitudinal":' + show(self.ground_speed_longitudinal),
-            '"ground_speed_transverse":' + show(self.ground_speed_transverse),
-            '"ground_speed_status":' + show(self.ground_speed_status),
-        ]
-        if self.stern_water_speed_transverse is not rt.ABSENT:
-            parts.append('"stern_water_speed_transverse":' + show(self.stern_water_speed_transverse))
-        if self.stern_water_speed_status is not rt.ABSENT:
-            parts.append('"stern_water_speed_status":' + show(self.stern_water_speed_status))
-        if self.stern_ground_speed_transverse is not rt.ABSENT:
-            parts.append('"stern_ground_speed_transverse":' + show(self.stern_ground_speed_transverse))
-        if self.stern_ground_speed_status is not rt.ABSENT:
-            parts.append('"stern_ground_speed_status":' + show(self.stern_ground_speed_status))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "water_speed_longitudinal"), 1)
-        out += rt.json_texts(rt.json_member(fields, "water_speed_transverse"), 1)
-        out += rt.json_texts(rt.json_member(fields, "water_speed_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ground_speed_longitudinal"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ground_speed_transverse"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ground_speed_status"), 1)
-        if "stern_water_speed_transverse" in fields:
-            out += rt.json_texts(fields["stern_water_speed_transverse"], 1)
-        if "stern_water_speed_status" in fields:
-            out += rt.json_texts(fields["stern_water_speed_status"], 1)
-        if "stern_ground_speed_transverse" in fields:
-            out += rt.json_texts(fields["stern_ground_speed_transverse"], 1)
-        if "stern_ground_speed_status" in fields:
-            out += rt.json_texts(fields["stern_ground_speed_status"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Vbw, )

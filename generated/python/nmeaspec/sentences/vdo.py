@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """VDO: AIS own-vessel report.
 
-An AIS message that this station itself sent (or would send) over the VHF data link, such as its
-own position report, in the same armored six-bit form as VDM.
+An AIS message that this station itself sent (or would send) over the VHF data link, such as its own
+position report, in the same armored six-bit form as VDM.
 """
 
 from __future__ import annotations
@@ -15,17 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AisChannel
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_5: dict[Any, Any] = rt.known("integer 0..5")
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_INTEGER_1_TO_9: dict[Any, Any] = rt.known("integer 1..9")
-
 
 @dataclass(slots=True)
-class Vdo:
+class Vdo(rt.Sentence):
     """VDO: AIS own-vessel report.
 
-    Example (log_gpsd): !AIVDO,1,1,,,B3aC3LP00063aj7RNpl03wSUwP06,0*43
+    Example (log_gpsd):
+    !AIVDO,2,1,4,B,8h2=Vg@0GwwfOANA>AB0OwvlFR06EuOwgr27wnSwe7wvlOwwsAwwnSGm,0*63
     """
 
     SENTENCE: ClassVar[str] = "VDO"
@@ -35,90 +31,40 @@ class Vdo:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VDO", "standard", "!", 6, 6, (
+        rt.IntegerField("fragment_count", "integer 1..9", 1, 9),
+        rt.IntegerField("fragment_number", "integer 1..9", 1, 9),
+        rt.IntegerField("message_id", "integer 0..9", 0, 9),
+        rt.EnumField("channel", "ais_channel code (A B 1 2)", AisChannel),
+        rt.TextField("payload", "text"),
+        rt.IntegerField("fill_bits", "integer 0..5", 0, 5),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     fragment_count: rt.Number | None = None
-    """Number of fragments: How many sentences carry this message; a payload longer than one sentence holds is split."""
+    """Number of fragments: How many sentences carry this message; a payload longer than one
+    sentence holds is split."""
     fragment_number: rt.Number | None = None
     """Fragment number: Which fragment of the message this sentence is, from 1."""
     message_id: rt.Number | None = None
-    """Sequential message ID: Ties the fragments of one multi-sentence message together (0-9, cycling); empty when the message fits in one sentence."""
+    """Sequential message ID: Ties the fragments of one multi-sentence message together (0-9,
+    cycling); empty when the message fits in one sentence."""
     channel: AisChannel | str | None = None
     """AIS channel: Radio channel, A or B (some receivers write 1 or 2); may be empty."""
     payload: str | None = None
-    """Encapsulated payload: The AIS message bits (or this fragment of them) in six-bit ASCII armoring: each character carries 6 bits. Decoding the bits is left to an AIS decoder."""
+    """Encapsulated payload: The AIS message bits (or this fragment of them) in six-bit ASCII
+    armoring: each character carries 6 bits. Decoding the bits is left to an AIS decoder."""
     fill_bits: rt.Number | None = None
-    """Fill bits: Number of bits (0-5) added to the last payload character to make its 6 bits; they are not part of the message."""
+    """Fill bits: Number of bits (0-5) added to the last payload character to make its 6 bits; they
+    are not part of the message."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Vdo:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "VDO", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "VDO", 6, count)
-        fragment_count = (_INTEGER_1_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "fragment_count", "integer 1..9", 1, 9, _INTEGER_1_TO_9)) if fields[0] else None
-        fragment_number = (_INTEGER_1_TO_9.get(fields[1]) or rt.integer_field(fields[1], address, 2, "fragment_number", "integer 1..9", 1, 9, _INTEGER_1_TO_9)) if fields[1] else None
-        message_id = (_INTEGER_0_TO_9.get(fields[2]) or rt.integer_field(fields[2], address, 3, "message_id", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[2] else None
-        channel = AisChannel.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "channel", "ais_channel code (A B 1 2)", AisChannel.BY_CODE, "alnum", 1, 1)
-        payload = rt.text_field(fields[4], address, 5, "payload", "text", None)
-        fill_bits = (_INTEGER_0_TO_5.get(fields[5]) or rt.integer_field(fields[5], address, 6, "fill_bits", "integer 0..5", 0, 5, _INTEGER_0_TO_5)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], fragment_count, fragment_number, message_id, channel, payload, fill_bits, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.fragment_count),
-            rt.text_of(self.fragment_number),
-            rt.text_of(self.message_id),
-            rt.text_of(self.channel),
-            rt.text_of(self.payload),
-            rt.text_of(self.fill_bits),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("!", self.talker + "VDO",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"fragment_count":' + show(self.fragment_count),
-            '"fragment_number":' + show(self.fragment_number),
-            '"message_id":' + show(self.message_id),
-            '"channel":' + show(self.channel),
-            '"payload":' + show(self.payload),
-            '"fill_bits":' + show(self.fill_bits),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "fragment_count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fragment_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "channel"), 1)
-        out += rt.json_texts(rt.json_member(fields, "payload"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fill_bits"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Vdo, )

@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Vdr:
+class Vdr(rt.Sentence):
     """VDR: Set and drift.
 
-    Example (signalk_nmea0183): $IIVDR,10.1,T,12.3,M,1.2,N*3A
+    Example (signalk_nmea0183):
+    $IIVDR,10.1,T,12.3,M,1.2,N*3A
     """
 
     SENTENCE: ClassVar[str] = "VDR"
@@ -33,6 +30,15 @@ class Vdr:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VDR", "standard", "$", 6, 6, (
+        rt.DecimalField("direction_true", "decimal number of at least 0", 0, None),
+        rt.LiteralField("direction_true_ref", "T or nothing", "T"),
+        rt.DecimalField("direction_magnetic", "decimal number of at least 0", 0, None),
+        rt.LiteralField("direction_magnetic_ref", "M or nothing", "M"),
+        rt.DecimalField("current_speed", "decimal number"),
+        rt.LiteralField("current_speed_unit", "N or nothing", "N"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -49,74 +55,11 @@ class Vdr:
     current_speed_unit: str | None = None
     """Knots unit: N, knots."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Vdr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "VDR", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "VDR", 6, count)
-        direction_true = (_DECIMAL_0_TO.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "direction_true", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[0] else None
-        direction_true_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "direction_true_ref", "T or nothing", "T")
-        direction_magnetic = (_DECIMAL_0_TO.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "direction_magnetic", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[2] else None
-        direction_magnetic_ref = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "direction_magnetic_ref", "M or nothing", "M")
-        current_speed = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "current_speed", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        current_speed_unit = "N" if fields[5] == "N" else rt.literal_field(fields[5], address, 6, "current_speed_unit", "N or nothing", "N")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], direction_true, direction_true_ref, direction_magnetic, direction_magnetic_ref, current_speed, current_speed_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.direction_true),
-            rt.text_of(self.direction_true_ref),
-            rt.text_of(self.direction_magnetic),
-            rt.text_of(self.direction_magnetic_ref),
-            rt.text_of(self.current_speed),
-            rt.text_of(self.current_speed_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VDR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"direction_true":' + show(self.direction_true),
-            '"direction_true_ref":' + show(self.direction_true_ref),
-            '"direction_magnetic":' + show(self.direction_magnetic),
-            '"direction_magnetic_ref":' + show(self.direction_magnetic_ref),
-            '"current_speed":' + show(self.current_speed),
-            '"current_speed_unit":' + show(self.current_speed_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "direction_true"), 1)
-        out += rt.json_texts(rt.json_member(fields, "direction_true_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "direction_magnetic"), 1)
-        out += rt.json_texts(rt.json_member(fields, "direction_magnetic_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "current_speed"), 1)
-        out += rt.json_texts(rt.json_member(fields, "current_speed_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Vdr, )

@@ -4,9 +4,9 @@
 """VER: Version.
 
 Identification and version of a device: type, vendor, unique identifier, serial number, model,
-software and hardware revision. Sent in reply to a query (some equipment also sends it at power-
-up); when the texts do not fit in one sentence they are split over several, whose text fields
-are concatenated in sentence order.
+software and hardware revision. Sent in reply to a query (some equipment also sends it at power-up);
+when the texts do not fit in one sentence they are split over several, whose text fields are
+concatenated in sentence order.
 """
 
 from __future__ import annotations
@@ -16,15 +16,10 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_9: dict[Any, Any] = rt.known("integer 0..9")
-_INTEGER_1_TO: dict[Any, Any] = rt.known("integer 1..")
-
 
 @dataclass(slots=True)
-class Ver:
+class Ver(rt.Sentence):
     """VER: Version.
-
     """
 
     SENTENCE: ClassVar[str] = "VER"
@@ -34,6 +29,19 @@ class Ver:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VER", "standard", "$", 10, 10, (
+        rt.IntegerField("total_sentences", "integer of at least 1", 1, None),
+        rt.IntegerField("sentence_number", "integer of at least 1", 1, None),
+        rt.TextField("device_type", "text"),
+        rt.TextField("vendor_id", "text"),
+        rt.TextField("unique_id", "text"),
+        rt.TextField("serial_number", "text"),
+        rt.TextField("model_code", "text"),
+        rt.TextField("software_revision", "text"),
+        rt.TextField("hardware_revision", "text"),
+        rt.IntegerField("sequential_message_id", "integer 0..9", 0, 9),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -42,13 +50,19 @@ class Ver:
     sentence_number: rt.Number | None = None
     """Sentence number: Number of this sentence within the message, 1 to 9."""
     device_type: str | None = None
-    """Device type: What the device was designed for, as a two-character talker identifier (e.g. GP, AI); it stays the same even when the user changes the talker ID. May be empty in the sentences after the first."""
+    """Device type: What the device was designed for, as a two-character talker identifier (e.g. GP,
+    AI); it stays the same even when the user changes the talker ID. May be empty in the sentences
+    after the first."""
     vendor_id: str | None = None
-    """Vendor identification: Vendor, either the NMEA 0183 three-character manufacturer mnemonic or the NMEA 2000 numeric manufacturer code, at most 5 characters. May be empty in the sentences after the first."""
+    """Vendor identification: Vendor, either the NMEA 0183 three-character manufacturer mnemonic or
+    the NMEA 2000 numeric manufacturer code, at most 5 characters. May be empty in the sentences
+    after the first."""
     unique_id: str | None = None
-    """Unique identifier: Identifier of the station for system-level identification, at most 15 characters; repeated in every sentence of the message."""
+    """Unique identifier: Identifier of the station for system-level identification, at most 15
+    characters; repeated in every sentence of the message."""
     serial_number: str | None = None
-    """Manufacturer's serial number: The manufacturer's internal serial number of the unit (not necessarily the one printed on it); continued across sentences."""
+    """Manufacturer's serial number: The manufacturer's internal serial number of the unit (not
+    necessarily the one printed on it); continued across sentences."""
     model_code: str | None = None
     """Model code: Model (product) code; continued across sentences."""
     software_revision: str | None = None
@@ -56,92 +70,14 @@ class Ver:
     hardware_revision: str | None = None
     """Hardware revision: Hardware revision; continued across sentences."""
     sequential_message_id: rt.Number | None = None
-    """Sequential message identifier: Links the sentences of one message, 0 to 9; may be empty when the message is a single sentence."""
+    """Sequential message identifier: Links the sentences of one message, 0 to 9; may be empty when
+    the message is a single sentence."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ver:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 10:
-            raise rt.too_few(address, "VER", 10, count)
-        if count > 10:
-            raise rt.too_many(address, "VER", 10, count)
-        total_sentences = (_INTEGER_1_TO.get(fields[0]) or rt.integer_field(fields[0], address, 1, "total_sentences", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[0] else None
-        sentence_number = (_INTEGER_1_TO.get(fields[1]) or rt.integer_field(fields[1], address, 2, "sentence_number", "integer of at least 1", 1, None, _INTEGER_1_TO)) if fields[1] else None
-        device_type = rt.text_field(fields[2], address, 3, "device_type", "text", None)
-        vendor_id = rt.text_field(fields[3], address, 4, "vendor_id", "text", None)
-        unique_id = rt.text_field(fields[4], address, 5, "unique_id", "text", None)
-        serial_number = rt.text_field(fields[5], address, 6, "serial_number", "text", None)
-        model_code = rt.text_field(fields[6], address, 7, "model_code", "text", None)
-        software_revision = rt.text_field(fields[7], address, 8, "software_revision", "text", None)
-        hardware_revision = rt.text_field(fields[8], address, 9, "hardware_revision", "text", None)
-        sequential_message_id = (_INTEGER_0_TO_9.get(fields[9]) or rt.integer_field(fields[9], address, 10, "sequential_message_id", "integer 0..9", 0, 9, _INTEGER_0_TO_9)) if fields[9] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], total_sentences, sentence_number, device_type, vendor_id, unique_id, serial_number, model_code, software_revision, hardware_revision, sequential_message_id, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.total_sentences),
-            rt.text_of(self.sentence_number),
-            rt.text_of(self.device_type),
-            rt.text_of(self.vendor_id),
-            rt.text_of(self.unique_id),
-            rt.text_of(self.serial_number),
-            rt.text_of(self.model_code),
-            rt.text_of(self.software_revision),
-            rt.text_of(self.hardware_revision),
-            rt.text_of(self.sequential_message_id),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VER",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"total_sentences":' + show(self.total_sentences),
-            '"sentence_number":' + show(self.sentence_number),
-            '"device_type":' + show(self.device_type),
-            '"vendor_id":' + show(self.vendor_id),
-            '"unique_id":' + show(self.unique_id),
-            '"serial_number":' + show(self.serial_number),
-            '"model_code":' + show(self.model_code),
-            '"software_revision":' + show(self.software_revision),
-            '"hardware_revision":' + show(self.hardware_revision),
-            '"sequential_message_id":' + show(self.sequential_message_id),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "total_sentences"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sentence_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "device_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "vendor_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unique_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "serial_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "model_code"), 1)
-        out += rt.json_texts(rt.json_member(fields, "software_revision"), 1)
-        out += rt.json_texts(rt.json_member(fields, "hardware_revision"), 1)
-        out += rt.json_texts(rt.json_member(fields, "sequential_message_id"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ver, )

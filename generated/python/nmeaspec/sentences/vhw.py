@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """VHW: Water speed and heading.
 
-The heading the vessel points to (true and magnetic) and its speed through the water in knots
-and km/h.
+The heading the vessel points to (true and magnetic) and its speed through the water in knots and
+km/h.
 """
 
 from __future__ import annotations
@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Vhw:
+class Vhw(rt.Sentence):
     """VHW: Water speed and heading.
 
-    Example (log_gpsd): $SDVHW,231.3,T,229.9,M,6.6,N,12.3,K*71
+    Example (log_gpsd):
+    $SDVHW,231.3,T,229.9,M,6.6,N,12.3,K*71
     """
 
     SENTENCE: ClassVar[str] = "VHW"
@@ -33,6 +30,17 @@ class Vhw:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VHW", "standard", "$", 8, 8, (
+        rt.DecimalField("heading_true", "decimal number of at least 0", 0, None),
+        rt.LiteralField("heading_true_ref", "T or nothing", "T"),
+        rt.DecimalField("heading_magnetic", "decimal number of at least 0", 0, None),
+        rt.LiteralField("heading_magnetic_ref", "M or nothing", "M"),
+        rt.DecimalField("speed_knots", "decimal number"),
+        rt.LiteralField("speed_knots_unit", "N or nothing", "N"),
+        rt.DecimalField("speed_kmh", "decimal number"),
+        rt.LiteralField("speed_kmh_unit", "K or nothing", "K"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -45,90 +53,21 @@ class Vhw:
     heading_magnetic_ref: str | None = None
     """Magnetic reference: M, degrees magnetic."""
     speed_knots: rt.Number | None = None
-    """Speed through water, knots [knots]: Speed of the vessel relative to the water in knots (Furuno allows negative values, astern)."""
+    """Speed through water, knots [knots]: Speed of the vessel relative to the water in knots
+    (Furuno allows negative values, astern)."""
     speed_knots_unit: str | None = None
     """Knots unit: N, knots."""
     speed_kmh: rt.Number | None = None
-    """Speed through water, km/h [km/h]: Speed of the vessel relative to the water in kilometres per hour."""
+    """Speed through water, km/h [km/h]: Speed of the vessel relative to the water in kilometres per
+    hour."""
     speed_kmh_unit: str | None = None
     """Km/h unit: K, kilometres per hour."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Vhw:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "VHW", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "VHW", 8, count)
-        heading_true = (_DECIMAL_0_TO.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "heading_true", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[0] else None
-        heading_true_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "heading_true_ref", "T or nothing", "T")
-        heading_magnetic = (_DECIMAL_0_TO.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "heading_magnetic", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[2] else None
-        heading_magnetic_ref = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "heading_magnetic_ref", "M or nothing", "M")
-        speed_knots = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "speed_knots", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        speed_knots_unit = "N" if fields[5] == "N" else rt.literal_field(fields[5], address, 6, "speed_knots_unit", "N or nothing", "N")
-        speed_kmh = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed_kmh", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        speed_kmh_unit = "K" if fields[7] == "K" else rt.literal_field(fields[7], address, 8, "speed_kmh_unit", "K or nothing", "K")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], heading_true, heading_true_ref, heading_magnetic, heading_magnetic_ref, speed_knots, speed_knots_unit, speed_kmh, speed_kmh_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.heading_true),
-            rt.text_of(self.heading_true_ref),
-            rt.text_of(self.heading_magnetic),
-            rt.text_of(self.heading_magnetic_ref),
-            rt.text_of(self.speed_knots),
-            rt.text_of(self.speed_knots_unit),
-            rt.text_of(self.speed_kmh),
-            rt.text_of(self.speed_kmh_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VHW",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"heading_true":' + show(self.heading_true),
-            '"heading_true_ref":' + show(self.heading_true_ref),
-            '"heading_magnetic":' + show(self.heading_magnetic),
-            '"heading_magnetic_ref":' + show(self.heading_magnetic_ref),
-            '"speed_knots":' + show(self.speed_knots),
-            '"speed_knots_unit":' + show(self.speed_knots_unit),
-            '"speed_kmh":' + show(self.speed_kmh),
-            '"speed_kmh_unit":' + show(self.speed_kmh_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "heading_true"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_true_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_magnetic"), 1)
-        out += rt.json_texts(rt.json_member(fields, "heading_magnetic_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_knots"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_knots_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_kmh"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_kmh_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Vhw, )

@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Vlw:
+class Vlw(rt.Sentence):
     """VLW: Dual ground/water distance.
 
-    Example (log_gpsd): $SDVLW,,N,545.6,N,1109.4,N,393.6,N*44
+    Example (log_gpsd):
+    $SDVLW,,N,545.6,N,1109.4,N,393.6,N*44
     """
 
     SENTENCE: ClassVar[str] = "VLW"
@@ -32,6 +30,17 @@ class Vlw:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VLW", "standard", "$", 4, 8, (
+        rt.DecimalField("total_water_distance", "decimal number"),
+        rt.LiteralField("total_water_distance_unit", "N or nothing", "N"),
+        rt.DecimalField("trip_water_distance", "decimal number"),
+        rt.LiteralField("trip_water_distance_unit", "N or nothing", "N"),
+        rt.DecimalField("total_ground_distance", "decimal number", optional=True),
+        rt.LiteralField("total_ground_distance_unit", "N or nothing", "N", optional=True),
+        rt.DecimalField("trip_ground_distance", "decimal number", optional=True),
+        rt.LiteralField("trip_ground_distance_unit", "N or nothing", "N", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -40,126 +49,26 @@ class Vlw:
     total_water_distance_unit: str | None = None
     """Total water distance unit: N, nautical miles."""
     trip_water_distance: rt.Number | None = None
-    """Water distance since reset [nmi]: Distance through the water since the last reset (trip log), nautical miles."""
+    """Water distance since reset [nmi]: Distance through the water since the last reset (trip log),
+    nautical miles."""
     trip_water_distance_unit: str | None = None
     """Trip water distance unit: N, nautical miles."""
     total_ground_distance: rt.Number | None | rt._Absent = rt.ABSENT
-    """Total ground distance [nmi] (NMEA 4.00): Total cumulative distance over the ground, nautical miles (NMEA v4.00 and later)."""
+    """Total ground distance [nmi] (NMEA 4.00): Total cumulative distance over the ground, nautical
+    miles (NMEA v4.00 and later)."""
     total_ground_distance_unit: str | None | rt._Absent = rt.ABSENT
     """Total ground distance unit (NMEA 4.00): N, nautical miles."""
     trip_ground_distance: rt.Number | None | rt._Absent = rt.ABSENT
-    """Ground distance since reset [nmi] (NMEA 4.00): Distance over the ground since the last reset, nautical miles (NMEA v4.00 and later)."""
+    """Ground distance since reset [nmi] (NMEA 4.00): Distance over the ground since the last reset,
+    nautical miles (NMEA v4.00 and later)."""
     trip_ground_distance_unit: str | None | rt._Absent = rt.ABSENT
     """Trip ground distance unit (NMEA 4.00): N, nautical miles."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Vlw:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "VLW", 4, count)
-        if count > 8:
-            raise rt.too_many(address, "VLW", 8, count)
-        optional = count - 4
-        total_water_distance = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "total_water_distance", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        total_water_distance_unit = "N" if fields[1] == "N" else rt.literal_field(fields[1], address, 2, "total_water_distance_unit", "N or nothing", "N")
-        trip_water_distance = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "trip_water_distance", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        trip_water_distance_unit = "N" if fields[3] == "N" else rt.literal_field(fields[3], address, 4, "trip_water_distance_unit", "N or nothing", "N")
-        total_ground_distance: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            total_ground_distance = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "total_ground_distance", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        total_ground_distance_unit: str | None | rt._Absent = rt.ABSENT
-        if optional >= 2:
-            total_ground_distance_unit = "N" if fields[5] == "N" else rt.literal_field(fields[5], address, 6, "total_ground_distance_unit", "N or nothing", "N")
-        trip_ground_distance: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 3:
-            trip_ground_distance = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "trip_ground_distance", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        trip_ground_distance_unit: str | None | rt._Absent = rt.ABSENT
-        if optional >= 4:
-            trip_ground_distance_unit = "N" if fields[7] == "N" else rt.literal_field(fields[7], address, 8, "trip_ground_distance_unit", "N or nothing", "N")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], total_water_distance, total_water_distance_unit, trip_water_distance, trip_water_distance_unit, total_ground_distance, total_ground_distance_unit, trip_ground_distance, trip_ground_distance_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.total_water_distance),
-            rt.text_of(self.total_water_distance_unit),
-            rt.text_of(self.trip_water_distance),
-            rt.text_of(self.trip_water_distance_unit),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.trip_ground_distance_unit is not rt.ABSENT:
-            last = 3
-        elif self.trip_ground_distance is not rt.ABSENT:
-            last = 2
-        elif self.total_ground_distance_unit is not rt.ABSENT:
-            last = 1
-        elif self.total_ground_distance is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.total_ground_distance)]
-        if last >= 1:
-            out += [rt.text_of(self.total_ground_distance_unit)]
-        if last >= 2:
-            out += [rt.text_of(self.trip_ground_distance)]
-        if last >= 3:
-            out += [rt.text_of(self.trip_ground_distance_unit)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VLW",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"total_water_distance":' + show(self.total_water_distance),
-            '"total_water_distance_unit":' + show(self.total_water_distance_unit),
-            '"trip_water_distance":' + show(self.trip_water_distance),
-            '"trip_water_distance_unit":' + show(self.trip_water_distance_unit),
-        ]
-        if self.total_ground_distance is not rt.ABSENT:
-            parts.append('"total_ground_distance":' + show(self.total_ground_distance))
-        if self.total_ground_distance_unit is not rt.ABSENT:
-            parts.append('"total_ground_distance_unit":' + show(self.total_ground_distance_unit))
-        if self.trip_ground_distance is not rt.ABSENT:
-            parts.append('"trip_ground_distance":' + show(self.trip_ground_distance))
-        if self.trip_ground_distance_unit is not rt.ABSENT:
-            parts.append('"trip_ground_distance_unit":' + show(self.trip_ground_distance_unit))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "total_water_distance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "total_water_distance_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "trip_water_distance"), 1)
-        out += rt.json_texts(rt.json_member(fields, "trip_water_distance_unit"), 1)
-        if "total_ground_distance" in fields:
-            out += rt.json_texts(fields["total_ground_distance"], 1)
-        if "total_ground_distance_unit" in fields:
-            out += rt.json_texts(fields["total_ground_distance_unit"], 1)
-        if "trip_ground_distance" in fields:
-            out += rt.json_texts(fields["trip_ground_distance"], 1)
-        if "trip_ground_distance_unit" in fields:
-            out += rt.json_texts(fields["trip_ground_distance_unit"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Vlw, )

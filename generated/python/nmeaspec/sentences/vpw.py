@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """VPW: Speed measured parallel to wind.
 
-The component of the vessel's speed along the wind direction (velocity made good to windward),
-in knots and m/s; negative means downwind.
+The component of the vessel's speed along the wind direction (velocity made good to windward), in
+knots and m/s; negative means downwind.
 """
 
 from __future__ import annotations
@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Vpw:
+class Vpw(rt.Sentence):
     """VPW: Speed measured parallel to wind.
 
-    Example (log_marine_api): $IIVPW,00.00,N,,*31
+    Example (signalk_nmea0183):
+    $IIVPW,4.5,N,6.7,M*52
     """
 
     SENTENCE: ClassVar[str] = "VPW"
@@ -32,78 +30,32 @@ class Vpw:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VPW", "standard", "$", 4, 4, (
+        rt.DecimalField("speed_knots", "decimal number"),
+        rt.LiteralField("speed_knots_unit", "N or nothing", "N"),
+        rt.DecimalField("speed_ms", "decimal number"),
+        rt.LiteralField("speed_ms_unit", "M or nothing", "M"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     speed_knots: rt.Number | None = None
-    """Speed parallel to wind, knots [knots]: Speed component parallel to the true wind in knots; negative means downwind."""
+    """Speed parallel to wind, knots [knots]: Speed component parallel to the true wind in knots;
+    negative means downwind."""
     speed_knots_unit: str | None = None
     """Knots unit: N, knots."""
     speed_ms: rt.Number | None = None
-    """Speed parallel to wind, m/s [m/s]: The same speed in metres per second; negative means downwind."""
+    """Speed parallel to wind, m/s [m/s]: The same speed in metres per second; negative means
+    downwind."""
     speed_ms_unit: str | None = None
     """Metres per second unit: M, metres per second."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Vpw:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "VPW", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "VPW", 4, count)
-        speed_knots = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "speed_knots", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        speed_knots_unit = "N" if fields[1] == "N" else rt.literal_field(fields[1], address, 2, "speed_knots_unit", "N or nothing", "N")
-        speed_ms = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "speed_ms", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        speed_ms_unit = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "speed_ms_unit", "M or nothing", "M")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], speed_knots, speed_knots_unit, speed_ms, speed_ms_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.speed_knots),
-            rt.text_of(self.speed_knots_unit),
-            rt.text_of(self.speed_ms),
-            rt.text_of(self.speed_ms_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VPW",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"speed_knots":' + show(self.speed_knots),
-            '"speed_knots_unit":' + show(self.speed_knots_unit),
-            '"speed_ms":' + show(self.speed_ms),
-            '"speed_ms_unit":' + show(self.speed_ms_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "speed_knots"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_knots_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_ms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_ms_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Vpw, )

@@ -15,21 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import VsdNavStatus
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-_INTEGER_0_TO_12: dict[Any, Any] = rt.known("integer 0..12")
-_INTEGER_0_TO_15: dict[Any, Any] = rt.known("integer 0..15")
-_INTEGER_0_TO_255: dict[Any, Any] = rt.known("integer 0..255")
-_INTEGER_0_TO_31: dict[Any, Any] = rt.known("integer 0..31")
-_INTEGER_0_TO_8191: dict[Any, Any] = rt.known("integer 0..8191")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Vsd:
+class Vsd(rt.Sentence):
     """VSD: AIS voyage static data.
 
-    Example (go_nmea): $RAVSD,0,4.5,6,@@@@@@@@@@@@@@@@@@@@,220516,01,02,8,*6E
+    Example (go_nmea):
+    $RAVSD,0,4.5,6,@@@@@@@@@@@@@@@@@@@@,220516,01,02,8,*6E
     """
 
     SENTENCE: ClassVar[str] = "VSD"
@@ -39,17 +31,34 @@ class Vsd:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VSD", "standard", "$", 9, 9, (
+        rt.IntegerField("ship_type", "integer 0..255", 0, 255),
+        rt.DecimalField("draught", "decimal number of at least 0", 0, None),
+        rt.IntegerField("persons", "integer 0..8191", 0, 8191),
+        rt.TextField("destination", "text of at most 20 characters", 20),
+        rt.TimeField("eta_time", "time hhmmss[.s]"),
+        rt.IntegerField("eta_day", "integer 0..31", 0, 31),
+        rt.IntegerField("eta_month", "integer 0..12", 0, 12),
+        rt.EnumField(
+            "nav_status",
+            "vsd_nav_status code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)",
+            VsdNavStatus,
+        ),
+        rt.IntegerField("regional_flags", "integer 0..15", 0, 15),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     ship_type: rt.Number | None = None
-    """Type of ship and cargo: Type of ship and cargo category, 0-255 (ITU-R M.1371 codes, e.g. 36 sailing, 70 cargo); empty = unchanged."""
+    """Type of ship and cargo: Type of ship and cargo category, 0-255 (ITU-R M.1371 codes, e.g. 36
+    sailing, 70 cargo); empty = unchanged."""
     draught: rt.Number | None = None
     """Maximum present static draught [m]: Maximum present static draught, 0-25.5 m."""
     persons: rt.Number | None = None
     """Persons on board: Persons on board, 0-8191."""
     destination: str | None = None
-    """Destination: Destination, 1-20 characters; "@@@@@@@@@@@@@@@@@@@@" = not available."""
+    """Destination: Destination, 1-20 characters; \"@@@@@@@@@@@@@@@@@@@@\" = not available."""
     eta_time: rt.Time | None = None
     """ETA time: Estimated UTC time of arrival at the destination."""
     eta_day: rt.Number | None = None
@@ -57,90 +66,16 @@ class Vsd:
     eta_month: rt.Number | None = None
     """ETA month: Estimated month of arrival, 01-12 (00 = not available)."""
     nav_status: VsdNavStatus | str | None = None
-    """Navigational status: AIS navigational status, 0-15 (0 under way using engine, 1 at anchor, 5 moored, 8 under way sailing, 15 not defined)."""
+    """Navigational status: AIS navigational status, 0-15 (0 under way using engine, 1 at anchor, 5
+    moored, 8 under way sailing, 15 not defined)."""
     regional_flags: rt.Number | None = None
     """Regional application flags: Regional application flags, 0-15 (kept for regional use)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Vsd:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "VSD", 9, count)
-        if count > 9:
-            raise rt.too_many(address, "VSD", 9, count)
-        ship_type = (_INTEGER_0_TO_255.get(fields[0]) or rt.integer_field(fields[0], address, 1, "ship_type", "integer 0..255", 0, 255, _INTEGER_0_TO_255)) if fields[0] else None
-        draught = (_DECIMAL_0_TO.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "draught", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[1] else None
-        persons = (_INTEGER_0_TO_8191.get(fields[2]) or rt.integer_field(fields[2], address, 3, "persons", "integer 0..8191", 0, 8191, _INTEGER_0_TO_8191)) if fields[2] else None
-        destination = rt.text_field(fields[3], address, 4, "destination", "text of at most 20 characters", 20)
-        eta_time = (_TIME.get(fields[4]) or rt.time_field(fields[4], address, 5, "eta_time", "time hhmmss[.s]", _TIME)) if fields[4] else None
-        eta_day = (_INTEGER_0_TO_31.get(fields[5]) or rt.integer_field(fields[5], address, 6, "eta_day", "integer 0..31", 0, 31, _INTEGER_0_TO_31)) if fields[5] else None
-        eta_month = (_INTEGER_0_TO_12.get(fields[6]) or rt.integer_field(fields[6], address, 7, "eta_month", "integer 0..12", 0, 12, _INTEGER_0_TO_12)) if fields[6] else None
-        nav_status = VsdNavStatus.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "nav_status", "vsd_nav_status code (0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)", VsdNavStatus.BY_CODE, "digits", 1, 2)
-        regional_flags = (_INTEGER_0_TO_15.get(fields[8]) or rt.integer_field(fields[8], address, 9, "regional_flags", "integer 0..15", 0, 15, _INTEGER_0_TO_15)) if fields[8] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], ship_type, draught, persons, destination, eta_time, eta_day, eta_month, nav_status, regional_flags, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.ship_type),
-            rt.text_of(self.draught),
-            rt.text_of(self.persons),
-            rt.text_of(self.destination),
-            rt.text_of(self.eta_time),
-            rt.text_of(self.eta_day),
-            rt.text_of(self.eta_month),
-            rt.text_of(self.nav_status),
-            rt.text_of(self.regional_flags),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VSD",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"ship_type":' + show(self.ship_type),
-            '"draught":' + show(self.draught),
-            '"persons":' + show(self.persons),
-            '"destination":' + show(self.destination),
-            '"eta_time":' + show(self.eta_time),
-            '"eta_day":' + show(self.eta_day),
-            '"eta_month":' + show(self.eta_month),
-            '"nav_status":' + show(self.nav_status),
-            '"regional_flags":' + show(self.regional_flags),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "ship_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "draught"), 1)
-        out += rt.json_texts(rt.json_member(fields, "persons"), 1)
-        out += rt.json_texts(rt.json_member(fields, "destination"), 1)
-        out += rt.json_texts(rt.json_member(fields, "eta_time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "eta_day"), 1)
-        out += rt.json_texts(rt.json_member(fields, "eta_month"), 1)
-        out += rt.json_texts(rt.json_member(fields, "nav_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "regional_flags"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Vsd, )

@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import PosMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_359_POINT_9: dict[Any, Any] = rt.known("decimal 0..359.9")
-
 
 @dataclass(slots=True)
-class Vtg:
+class Vtg(rt.Sentence):
     """VTG: Course over ground and ground speed.
 
-    Example (geos5): $GPVTG,224.5,T,,,0000.0,N,0000.0,K,A*41
+    Example (comnav):
+    $GPVTG,213.710,T,213.710,M,0.304,N,0.563,K,A*24
     """
 
     SENTENCE: ClassVar[str] = "VTG"
@@ -35,6 +32,18 @@ class Vtg:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VTG", "standard", "$", 8, 9, (
+        rt.DecimalField("course_true", "decimal number 0..359.9", 0, Decimal("359.9")),
+        rt.LiteralField("course_true_ref", "T or nothing", "T"),
+        rt.DecimalField("course_magnetic", "decimal number 0..359.9", 0, Decimal("359.9")),
+        rt.LiteralField("course_magnetic_ref", "M or nothing", "M"),
+        rt.DecimalField("speed_knots", "decimal number"),
+        rt.LiteralField("speed_knots_unit", "N or nothing", "N"),
+        rt.DecimalField("speed_kmh", "decimal number"),
+        rt.LiteralField("speed_kmh_unit", "K or nothing", "K"),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -43,9 +52,11 @@ class Vtg:
     course_true_ref: str | None = None
     """True course reference: T, the preceding course is relative to true north."""
     course_magnetic: rt.Number | None = None
-    """Course over ground, magnetic [deg]: Course over ground, degrees magnetic (ComNav - true course plus magnetic variation). Empty on GeoS-5, ST, GS501 and GlobalSat."""
+    """Course over ground, magnetic [deg]: Course over ground, degrees magnetic (ComNav - true
+    course plus magnetic variation). Empty on GeoS-5, ST, GS501 and GlobalSat."""
     course_magnetic_ref: str | None = None
-    """Magnetic course reference: M, the preceding course is relative to magnetic north. GeoS-5 leaves it empty together with the magnetic course."""
+    """Magnetic course reference: M, the preceding course is relative to magnetic north. GeoS-5
+    leaves it empty together with the magnetic course."""
     speed_knots: rt.Number | None = None
     """Speed over ground, knots [knots]: Speed over ground in knots."""
     speed_knots_unit: str | None = None
@@ -55,99 +66,14 @@ class Vtg:
     speed_kmh_unit: str | None = None
     """Km/h unit: K, kilometres per hour."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
-    """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3). GeoS-5 uses the letters of its GLL table (A D E G M N)."""
+    """Mode indicator (NMEA 2.3): Positioning system mode indicator (absent before NMEA v2.3).
+    GeoS-5 uses the letters of its GLL table (A D E G M N)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Vtg:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "VTG", 8, count)
-        if count > 9:
-            raise rt.too_many(address, "VTG", 9, count)
-        optional = count - 8
-        course_true = (_DECIMAL_0_TO_359_POINT_9.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "course_true", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[0] else None
-        course_true_ref = "T" if fields[1] == "T" else rt.literal_field(fields[1], address, 2, "course_true_ref", "T or nothing", "T")
-        course_magnetic = (_DECIMAL_0_TO_359_POINT_9.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "course_magnetic", "decimal number 0..359.9", 0, Decimal("359.9"), _DECIMAL_0_TO_359_POINT_9)) if fields[2] else None
-        course_magnetic_ref = "M" if fields[3] == "M" else rt.literal_field(fields[3], address, 4, "course_magnetic_ref", "M or nothing", "M")
-        speed_knots = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "speed_knots", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        speed_knots_unit = "N" if fields[5] == "N" else rt.literal_field(fields[5], address, 6, "speed_knots_unit", "N or nothing", "N")
-        speed_kmh = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed_kmh", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        speed_kmh_unit = "K" if fields[7] == "K" else rt.literal_field(fields[7], address, 8, "speed_kmh_unit", "K or nothing", "K")
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[8]) or rt.enum_field(fields[8], address, 9, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], course_true, course_true_ref, course_magnetic, course_magnetic_ref, speed_knots, speed_knots_unit, speed_kmh, speed_kmh_unit, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.course_true),
-            rt.text_of(self.course_true_ref),
-            rt.text_of(self.course_magnetic),
-            rt.text_of(self.course_magnetic_ref),
-            rt.text_of(self.speed_knots),
-            rt.text_of(self.speed_knots_unit),
-            rt.text_of(self.speed_kmh),
-            rt.text_of(self.speed_kmh_unit),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VTG",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"course_true":' + show(self.course_true),
-            '"course_true_ref":' + show(self.course_true_ref),
-            '"course_magnetic":' + show(self.course_magnetic),
-            '"course_magnetic_ref":' + show(self.course_magnetic_ref),
-            '"speed_knots":' + show(self.speed_knots),
-            '"speed_knots_unit":' + show(self.speed_knots_unit),
-            '"speed_kmh":' + show(self.speed_kmh),
-            '"speed_kmh_unit":' + show(self.speed_kmh_unit),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "course_true"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course_true_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course_magnetic"), 1)
-        out += rt.json_texts(rt.json_member(fields, "course_magnetic_ref"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_knots"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_knots_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_kmh"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_kmh_unit"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Vtg, )

@@ -3,9 +3,9 @@
 # Regenerate: make generate (python3 -m generator generate)
 """VWT: True wind speed and angle.
 
-True wind relative to the vessel's heading and referenced to the water (the apparent wind minus
-the vessel's motion through the water): the angle from the bow, 0 to 180 degrees to port or
-starboard, and the speed in knots, m/s and km/h.
+True wind relative to the vessel's heading and referenced to the water (the apparent wind minus the
+vessel's motion through the water): the angle from the bow, 0 to 180 degrees to port or starboard,
+and the speed in knots, m/s and km/h.
 """
 
 from __future__ import annotations
@@ -16,16 +16,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import LeftRight
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_DECIMAL_0_TO_180: dict[Any, Any] = rt.known("decimal 0..180")
-
 
 @dataclass(slots=True)
-class Vwt:
+class Vwt(rt.Sentence):
     """VWT: True wind speed and angle.
 
-    Example (log_marine_api): $IIVWT,088,L,24.7,N,12.6,M,,*2E
+    Example (signalk_nmea0183):
+    $IIVWT,030.,R,10.1,N,05.2,M,018.7,K*75
     """
 
     SENTENCE: ClassVar[str] = "VWT"
@@ -35,13 +32,26 @@ class Vwt:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("VWT", "standard", "$", 8, 8, (
+        rt.DecimalField("wind_angle", "decimal number 0..180", 0, 180),
+        rt.EnumField("wind_side", "left_right code (L R)", LeftRight),
+        rt.DecimalField("speed_knots", "decimal number"),
+        rt.LiteralField("speed_knots_unit", "N or nothing", "N"),
+        rt.DecimalField("speed_ms", "decimal number"),
+        rt.LiteralField("speed_ms_unit", "M or nothing", "M"),
+        rt.DecimalField("speed_kmh", "decimal number"),
+        rt.LiteralField("speed_kmh_unit", "K or nothing", "K"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     wind_angle: rt.Number | None = None
-    """Wind angle [deg]: True wind angle measured from the bow, 0 to 180 degrees towards the side given next."""
+    """Wind angle [deg]: True wind angle measured from the bow, 0 to 180 degrees towards the side
+    given next."""
     wind_side: LeftRight | str | None = None
-    """Left or right of bow: L = the wind comes from the port side (left of the bow), R = from the starboard side."""
+    """Left or right of bow: L = the wind comes from the port side (left of the bow), R = from the
+    starboard side."""
     speed_knots: rt.Number | None = None
     """Wind speed, knots [knots]: Wind speed in knots."""
     speed_knots_unit: str | None = None
@@ -51,86 +61,16 @@ class Vwt:
     speed_ms_unit: str | None = None
     """Metres per second unit: M, metres per second."""
     speed_kmh: rt.Number | None = None
-    """Wind speed, km/h [km/h]: Wind speed in kilometres per hour (Airmar rounds it to whole km/h)."""
+    """Wind speed, km/h [km/h]: Wind speed in kilometres per hour (Airmar rounds it to whole
+    km/h)."""
     speed_kmh_unit: str | None = None
     """Km/h unit: K, kilometres per hour."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Vwt:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 8:
-            raise rt.too_few(address, "VWT", 8, count)
-        if count > 8:
-            raise rt.too_many(address, "VWT", 8, count)
-        wind_angle = (_DECIMAL_0_TO_180.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "wind_angle", "decimal number 0..180", 0, 180, _DECIMAL_0_TO_180)) if fields[0] else None
-        wind_side = LeftRight.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "wind_side", "left_right code (L R)", LeftRight.BY_CODE, "letters", 1, 1)
-        speed_knots = (_DECIMAL.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "speed_knots", "decimal number", None, None, _DECIMAL)) if fields[2] else None
-        speed_knots_unit = "N" if fields[3] == "N" else rt.literal_field(fields[3], address, 4, "speed_knots_unit", "N or nothing", "N")
-        speed_ms = (_DECIMAL.get(fields[4]) or rt.decimal_field(fields[4], address, 5, "speed_ms", "decimal number", None, None, _DECIMAL)) if fields[4] else None
-        speed_ms_unit = "M" if fields[5] == "M" else rt.literal_field(fields[5], address, 6, "speed_ms_unit", "M or nothing", "M")
-        speed_kmh = (_DECIMAL.get(fields[6]) or rt.decimal_field(fields[6], address, 7, "speed_kmh", "decimal number", None, None, _DECIMAL)) if fields[6] else None
-        speed_kmh_unit = "K" if fields[7] == "K" else rt.literal_field(fields[7], address, 8, "speed_kmh_unit", "K or nothing", "K")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], wind_angle, wind_side, speed_knots, speed_knots_unit, speed_ms, speed_ms_unit, speed_kmh, speed_kmh_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.wind_angle),
-            rt.text_of(self.wind_side),
-            rt.text_of(self.speed_knots),
-            rt.text_of(self.speed_knots_unit),
-            rt.text_of(self.speed_ms),
-            rt.text_of(self.speed_ms_unit),
-            rt.text_of(self.speed_kmh),
-            rt.text_of(self.speed_kmh_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "VWT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"wind_angle":' + show(self.wind_angle),
-            '"wind_side":' + show(self.wind_side),
-            '"speed_knots":' + show(self.speed_knots),
-            '"speed_knots_unit":' + show(self.speed_knots_unit),
-            '"speed_ms":' + show(self.speed_ms),
-            '"speed_ms_unit":' + show(self.speed_ms_unit),
-            '"speed_kmh":' + show(self.speed_kmh),
-            '"speed_kmh_unit":' + show(self.speed_kmh_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "wind_angle"), 1)
-        out += rt.json_texts(rt.json_member(fields, "wind_side"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_knots"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_knots_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_ms"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_ms_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_kmh"), 1)
-        out += rt.json_texts(rt.json_member(fields, "speed_kmh_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Vwt, )

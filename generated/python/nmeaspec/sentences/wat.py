@@ -16,15 +16,10 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import WatAlarmCondition, WatMessageType, WatOverride, WatSystem
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Wat:
+class Wat(rt.Sentence):
     """WAT: Water level detection.
-
     """
 
     SENTENCE: ClassVar[str] = "WAT"
@@ -34,108 +29,51 @@ class Wat:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("WAT", "standard", "$", 9, 9, (
+        rt.EnumField("message_type", "wat_message_type code (S E F)", WatMessageType),
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("system", "wat_system code (WL BI HD OT)", WatSystem),
+        rt.TextField("location_1", "text"),
+        rt.TextField("location_2", "text"),
+        rt.IntegerField("point_number", "integer"),
+        rt.EnumField("condition", "wat_alarm_condition code (N H J L K X)", WatAlarmCondition),
+        rt.EnumField("override", "wat_override code (O N)", WatOverride),
+        rt.TextField("description", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     message_type: WatMessageType | str | None = None
-    """Message type: S status of a section, E status of one detector (or an event), F fault in the system."""
+    """Message type: S status of a section, E status of one detector (or an event), F fault in the
+    system."""
     time: rt.Time | None = None
     """Time stamp: UTC time at which the status was valid; may be empty."""
     system: WatSystem | str | None = None
-    """Type of water alarm: System that detects the water: WL water level detection, BI high bilge level, HD leakage at a hull door, OT other."""
+    """Type of water alarm: System that detects the water: WL water level detection, BI high bilge
+    level, HD leakage at a hull door, OT other."""
     location_1: str | None = None
-    """First location indicator: Where the detection point is (two characters, content not defined by the standard)."""
+    """First location indicator: Where the detection point is (two characters, content not defined
+    by the standard)."""
     location_2: str | None = None
-    """Second location indicator: Second part of the location (two characters); both location fields together identify the source of the alarm."""
+    """Second location indicator: Second part of the location (two characters); both location fields
+    together identify the source of the alarm."""
     point_number: rt.Number | None = None
-    """Detection point number or count: Type E: number of the detection point; type S: number of activated or faulty points in the section."""
+    """Detection point number or count: Type E: number of the detection point; type S: number of
+    activated or faulty points in the section."""
     condition: WatAlarmCondition | str | None = None
-    """Alarm condition: N normal, H high, J extreme high, L low, K extreme low, X fault; ignored for section status."""
+    """Alarm condition: N normal, H high, J extreme high, L low, K extreme low, X fault; ignored for
+    section status."""
     override: WatOverride | str | None = None
     """Override setting: O override, N normal."""
     description: str | None = None
     """Description text: Optional text or detection point tag."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Wat:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 9:
-            raise rt.too_few(address, "WAT", 9, count)
-        if count > 9:
-            raise rt.too_many(address, "WAT", 9, count)
-        message_type = WatMessageType.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "message_type", "wat_message_type code (S E F)", WatMessageType.BY_CODE, "letters", 1, 1)
-        time = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        system = WatSystem.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "system", "wat_system code (WL BI HD OT)", WatSystem.BY_CODE, "letters", 2, 2)
-        location_1 = rt.text_field(fields[3], address, 4, "location_1", "text", None)
-        location_2 = rt.text_field(fields[4], address, 5, "location_2", "text", None)
-        point_number = (_INTEGER.get(fields[5]) or rt.integer_field(fields[5], address, 6, "point_number", "integer", None, None, _INTEGER)) if fields[5] else None
-        condition = WatAlarmCondition.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "condition", "wat_alarm_condition code (N H J L K X)", WatAlarmCondition.BY_CODE, "letters", 1, 1)
-        override = WatOverride.BY_CODE.get(fields[7]) or rt.enum_field(fields[7], address, 8, "override", "wat_override code (O N)", WatOverride.BY_CODE, "letters", 1, 1)
-        description = rt.text_field(fields[8], address, 9, "description", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], message_type, time, system, location_1, location_2, point_number, condition, override, description, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message_type),
-            rt.text_of(self.time),
-            rt.text_of(self.system),
-            rt.text_of(self.location_1),
-            rt.text_of(self.location_2),
-            rt.text_of(self.point_number),
-            rt.text_of(self.condition),
-            rt.text_of(self.override),
-            rt.text_of(self.description),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "WAT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message_type":' + show(self.message_type),
-            '"time":' + show(self.time),
-            '"system":' + show(self.system),
-            '"location_1":' + show(self.location_1),
-            '"location_2":' + show(self.location_2),
-            '"point_number":' + show(self.point_number),
-            '"condition":' + show(self.condition),
-            '"override":' + show(self.override),
-            '"description":' + show(self.description),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message_type"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "system"), 1)
-        out += rt.json_texts(rt.json_member(fields, "location_1"), 1)
-        out += rt.json_texts(rt.json_member(fields, "location_2"), 1)
-        out += rt.json_texts(rt.json_member(fields, "point_number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "condition"), 1)
-        out += rt.json_texts(rt.json_member(fields, "override"), 1)
-        out += rt.json_texts(rt.json_member(fields, "description"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Wat, )

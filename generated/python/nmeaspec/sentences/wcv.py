@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """WCV: Waypoint closure velocity.
 
-Velocity component of the vessel towards a waypoint (the speed at which the distance to it
-shrinks), in knots.
+Velocity component of the vessel towards a waypoint (the speed at which the distance to it shrinks),
+in knots.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import PosMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
-class Wcv:
+class Wcv(rt.Sentence):
     """WCV: Waypoint closure velocity.
 
-    Example (marnav): $GPWCV,12.3,N,POINT1*54
+    Example (marnav):
+    $GPWCV,12.3,N,POINT1*54
     """
 
     SENTENCE: ClassVar[str] = "WCV"
@@ -33,89 +31,32 @@ class Wcv:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("WCV", "standard", "$", 3, 4, (
+        rt.DecimalField("velocity", "decimal number"),
+        rt.LiteralField("velocity_unit", "N or nothing", "N"),
+        rt.TextField("waypoint", "text"),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     velocity: rt.Number | None = None
-    """Closure velocity [knots]: Velocity component towards the waypoint, knots (negative when moving away, as in RMB)."""
+    """Closure velocity [knots]: Velocity component towards the waypoint, knots (negative when
+    moving away, as in RMB)."""
     velocity_unit: str | None = None
     """Velocity unit: N = knots."""
     waypoint: str | None = None
     """Waypoint ID: Identifier of the waypoint."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
-    """Mode indicator (NMEA 2.3): Positioning system mode indicator (NMEA 2.3 and later; absent before). Furuno says it is never empty."""
+    """Mode indicator (NMEA 2.3): Positioning system mode indicator (NMEA 2.3 and later; absent
+    before). Furuno says it is never empty."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Wcv:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "WCV", 3, count)
-        if count > 4:
-            raise rt.too_many(address, "WCV", 4, count)
-        optional = count - 3
-        velocity = (_DECIMAL.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "velocity", "decimal number", None, None, _DECIMAL)) if fields[0] else None
-        velocity_unit = "N" if fields[1] == "N" else rt.literal_field(fields[1], address, 2, "velocity_unit", "N or nothing", "N")
-        waypoint = rt.text_field(fields[2], address, 3, "waypoint", "text", None)
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], velocity, velocity_unit, waypoint, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.velocity),
-            rt.text_of(self.velocity_unit),
-            rt.text_of(self.waypoint),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "WCV",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"velocity":' + show(self.velocity),
-            '"velocity_unit":' + show(self.velocity_unit),
-            '"waypoint":' + show(self.waypoint),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "velocity"), 1)
-        out += rt.json_texts(rt.json_member(fields, "velocity_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "waypoint"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Wcv, )

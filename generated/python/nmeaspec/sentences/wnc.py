@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Wnc:
+class Wnc(rt.Sentence):
     """WNC: Distance, waypoint to waypoint.
 
-    Example (aerorust_nmea): $GPWNC,200.00,N,370.40,K,Dest,Origin*58
+    Example (aerorust_nmea):
+    $GPWNC,200.00,N,370.40,K,Dest,Origin*58
     """
 
     SENTENCE: ClassVar[str] = "WNC"
@@ -31,6 +29,15 @@ class Wnc:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("WNC", "standard", "$", 6, 6, (
+        rt.DecimalField("distance_nmi", "decimal number of at least 0", 0, None),
+        rt.LiteralField("distance_nmi_unit", "N or nothing", "N"),
+        rt.DecimalField("distance_km", "decimal number of at least 0", 0, None),
+        rt.LiteralField("distance_km_unit", "K or nothing", "K"),
+        rt.TextField("to_waypoint", "text"),
+        rt.TextField("from_waypoint", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -47,74 +54,11 @@ class Wnc:
     from_waypoint: str | None = None
     """FROM waypoint ID: Identifier of the FROM (origin) waypoint."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Wnc:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "WNC", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "WNC", 6, count)
-        distance_nmi = (_DECIMAL_0_TO.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "distance_nmi", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[0] else None
-        distance_nmi_unit = "N" if fields[1] == "N" else rt.literal_field(fields[1], address, 2, "distance_nmi_unit", "N or nothing", "N")
-        distance_km = (_DECIMAL_0_TO.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "distance_km", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[2] else None
-        distance_km_unit = "K" if fields[3] == "K" else rt.literal_field(fields[3], address, 4, "distance_km_unit", "K or nothing", "K")
-        to_waypoint = rt.text_field(fields[4], address, 5, "to_waypoint", "text", None)
-        from_waypoint = rt.text_field(fields[5], address, 6, "from_waypoint", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], distance_nmi, distance_nmi_unit, distance_km, distance_km_unit, to_waypoint, from_waypoint, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.distance_nmi),
-            rt.text_of(self.distance_nmi_unit),
-            rt.text_of(self.distance_km),
-            rt.text_of(self.distance_km_unit),
-            rt.text_of(self.to_waypoint),
-            rt.text_of(self.from_waypoint),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "WNC",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"distance_nmi":' + show(self.distance_nmi),
-            '"distance_nmi_unit":' + show(self.distance_nmi_unit),
-            '"distance_km":' + show(self.distance_km),
-            '"distance_km_unit":' + show(self.distance_km_unit),
-            '"to_waypoint":' + show(self.to_waypoint),
-            '"from_waypoint":' + show(self.from_waypoint),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "distance_nmi"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance_nmi_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance_km"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance_km_unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "to_waypoint"), 1)
-        out += rt.json_texts(rt.json_member(fields, "from_waypoint"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Wnc, )

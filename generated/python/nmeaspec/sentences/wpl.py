@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """WPL: Waypoint location.
 
-Latitude, longitude and identifier of a waypoint (used to list or transfer waypoints, e.g. those
-of a route).
+Latitude, longitude and identifier of a waypoint (used to list or transfer waypoints, e.g. those of
+a route).
 """
 
 from __future__ import annotations
@@ -14,16 +14,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-
 
 @dataclass(slots=True)
-class Wpl:
+class Wpl(rt.Sentence):
     """WPL: Waypoint location.
 
-    Example (log_marine_api): $GPWPL,6004.407,N,01939.993,E,A003*39
+    Example (log_marine_api):
+    $GPWPL,6004.407,N,01939.993,E,A003*39
     """
 
     SENTENCE: ClassVar[str] = "WPL"
@@ -33,6 +30,12 @@ class Wpl:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("WPL", "standard", "$", 5, 5, (
+        rt.LatitudeField("waypoint_lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("waypoint_lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.TextField("waypoint", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -43,62 +46,11 @@ class Wpl:
     waypoint: str | None = None
     """Waypoint ID: Identifier (name) of the waypoint."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Wpl:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "WPL", 5, count)
-        if count > 5:
-            raise rt.too_many(address, "WPL", 5, count)
-        waypoint_lat = _LATITUDE.get((fields[0], fields[1])) or rt.coordinate_field(fields[0], fields[1], address, 1, "waypoint_lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        waypoint_lon = _LONGITUDE.get((fields[2], fields[3])) or rt.coordinate_field(fields[2], fields[3], address, 3, "waypoint_lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        waypoint = rt.text_field(fields[4], address, 5, "waypoint", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], waypoint_lat, waypoint_lon, waypoint, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            *rt.coordinate_texts(self.waypoint_lat),
-            *rt.coordinate_texts(self.waypoint_lon),
-            rt.text_of(self.waypoint),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "WPL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"waypoint_lat":' + show(self.waypoint_lat),
-            '"waypoint_lon":' + show(self.waypoint_lon),
-            '"waypoint":' + show(self.waypoint),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "waypoint_lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "waypoint_lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "waypoint"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Wpl, )

@@ -4,8 +4,8 @@
 """XDR: Transducer measurements.
 
 Readings of one or more transducers (temperature, pressure, angles, humidity, voltages and other
-physical quantities), each as a set of four fields: type, value, unit and name. The number of
-sets varies from line to line.
+physical quantities), each as a set of four fields: type, value, unit and name. The number of sets
+varies from line to line.
 """
 
 from __future__ import annotations
@@ -16,29 +16,31 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import XdrTransducerType, XdrUnit
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-
 
 @dataclass(slots=True)
 class XdrMeasurement:
     """One entry of transducer measurements (1 to 10 per sentence)."""
 
     transducer_type: XdrTransducerType | str | None = None
-    """Transducer type: Quantity measured (A angle, C temperature, P pressure, H humidity, G generic, ...); it decides how the unit letter reads."""
+    """Transducer type: Quantity measured (A angle, C temperature, P pressure, H humidity, G
+    generic, ...); it decides how the unit letter reads."""
     measurement: rt.Number | None = None
-    """Measurement: The measured value, signed (negative angles are anticlockwise, negative pressure is vacuum); empty when the transducer has no reading."""
+    """Measurement: The measured value, signed (negative angles are anticlockwise, negative pressure
+    is vacuum); empty when the transducer has no reading."""
     unit: XdrUnit | str | None = None
-    """Unit of measurement: Unit letter of the value, read together with the transducer type (e.g. D degrees, C Celsius, B bars, P percent); empty for generic values."""
+    """Unit of measurement: Unit letter of the value, read together with the transducer type (e.g. D
+    degrees, C Celsius, B bars, P percent); empty for generic values."""
     name: str | None = None
-    """Transducer name: Free name of the transducer chosen by the manufacturer or installer (PTCH, ROLL, AIRTEMP, Barometer, or a number)."""
+    """Transducer name: Free name of the transducer chosen by the manufacturer or installer (PTCH,
+    ROLL, AIRTEMP, Barometer, or a number)."""
 
 
 @dataclass(slots=True)
-class Xdr:
+class Xdr(rt.Sentence):
     """XDR: Transducer measurements.
 
-    Example (log_gpsd): $IIXDR,C,,C,AIRTEMP,A,-1.0,D,HEEL,A,2.9,D,TRIM,P,,B,BARO,A,-3.9,D,RUDDER*29
+    Example (log_gpsd):
+    $IIXDR,C,,C,AIRTEMP,A,-1.0,D,HEEL,A,2.9,D,TRIM,P,,B,BARO,A,-3.9,D,RUDDER*29
     """
 
     SENTENCE: ClassVar[str] = "XDR"
@@ -48,78 +50,30 @@ class Xdr:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("XDR", "standard", "$", 0, 40, (
+        rt.Group("measurements", XdrMeasurement, (
+            rt.EnumField(
+                "transducer_type",
+                "xdr_transducer_type code (A C D F G H I N P R S T U V)",
+                XdrTransducerType,
+            ),
+            rt.DecimalField("measurement", "decimal number"),
+            rt.EnumField("unit", "xdr_unit code (A B C D H I K M N P R S V)", XdrUnit),
+            rt.TextField("name", "text"),
+        ), 1, 10),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     measurements: list[XdrMeasurement] = field(default_factory=list)
     """Transducer measurements: 1 to 10 entries."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Xdr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 0) // 4, 10)
-        optional = count - 0 - repeats * 4
-        if count < 4 or optional > 0:
-            rt.split_group(address, "XDR", "measurements", count, 0, 4, 1, 10, 0)
-        measurements: list[XdrMeasurement] = []
-        pos = 0
-        for entry in range(repeats):
-            measurements.append(XdrMeasurement(
-                XdrTransducerType.BY_CODE.get(fields[pos]) or rt.enum_field(fields[pos], address, pos + 1, f"measurements[{entry + 1}].transducer_type", "xdr_transducer_type code (A C D F G H I N P R S T U V)", XdrTransducerType.BY_CODE, "letters", 1, 1),
-                (_DECIMAL.get(fields[pos + 1]) or rt.decimal_field(fields[pos + 1], address, pos + 2, f"measurements[{entry + 1}].measurement", "decimal number", None, None, _DECIMAL)) if fields[pos + 1] else None,
-                XdrUnit.BY_CODE.get(fields[pos + 2]) or rt.enum_field(fields[pos + 2], address, pos + 3, f"measurements[{entry + 1}].unit", "xdr_unit code (A B C D H I K M N P R S V)", XdrUnit.BY_CODE, "letters", 1, 1),
-                rt.text_field(fields[pos + 3], address, pos + 4, f"measurements[{entry + 1}].name", "text", None),
-            ))
-            pos += 4
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], measurements, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-        ]
-        for entry in self.measurements:
-            out += [rt.text_of(entry.transducer_type), rt.text_of(entry.measurement), rt.text_of(entry.unit), rt.text_of(entry.name)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "XDR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"measurements":[' + ",".join(
-                "{" + '"transducer_type":' + show(entry.transducer_type) + ',"measurement":' + show(entry.measurement) + ',"unit":' + show(entry.unit) + ',"name":' + show(entry.name) + "}"
-                for entry in self.measurements) + "]",
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        for entry in rt.json_list(fields, "measurements"):
-            out += rt.json_texts(rt.json_member(entry, "transducer_type"), 1)
-            out += rt.json_texts(rt.json_member(entry, "measurement"), 1)
-            out += rt.json_texts(rt.json_member(entry, "unit"), 1)
-            out += rt.json_texts(rt.json_member(entry, "name"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Xdr, )

@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """XTE: Cross-track error, measured.
 
-Cross-track error: distance of the vessel from the intended track line, with the direction to
-steer back to it, and the receiver's status flags.
+Cross-track error: distance of the vessel from the intended track line, with the direction to steer
+back to it, and the receiver's status flags.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import LeftRight, PosMode, Status
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Xte:
+class Xte(rt.Sentence):
     """XTE: Cross-track error, measured.
 
-    Example (log_marine_api): $IIXTE,A,A,5.36,R,N*67
+    Example (log_marine_api):
+    $IIXTE,A,A,5.36,R,N*67
     """
 
     SENTENCE: ClassVar[str] = "XTE"
@@ -33,13 +31,24 @@ class Xte:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("XTE", "standard", "$", 5, 6, (
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.EnumField("cycle_lock_status", "status code (A V)", Status),
+        rt.DecimalField("cross_track_error", "decimal number of at least 0", 0, None),
+        rt.EnumField("steer_direction", "left_right code (L R)", LeftRight),
+        rt.LiteralField("cross_track_error_unit", "N or nothing", "N"),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode, optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     status: Status | str | None = None
-    """Data status: A = data valid; V = Loran-C blink or SNR warning, or the general warning of other navigation systems (no reliable fix)."""
+    """Data status: A = data valid; V = Loran-C blink or SNR warning, or the general warning of
+    other navigation systems (no reliable fix)."""
     cycle_lock_status: Status | str | None = None
-    """Cycle lock status: A = valid or not used; V = Loran-C cycle lock warning. GNSS receivers have no cycle lock; Garmin repeats the first status (V,V without a route)."""
+    """Cycle lock status: A = valid or not used; V = Loran-C cycle lock warning. GNSS receivers have
+    no cycle lock; Garmin repeats the first status (V,V without a route)."""
     cross_track_error: rt.Number | None = None
     """Cross-track error [nmi]: Magnitude of the cross-track error, nautical miles."""
     steer_direction: LeftRight | str | None = None
@@ -47,87 +56,14 @@ class Xte:
     cross_track_error_unit: str | None = None
     """Cross-track error unit: N = nautical miles; sent even when the other fields are empty."""
     mode: PosMode | str | None | rt._Absent = rt.ABSENT
-    """Mode indicator (NMEA 2.3): Positioning system mode indicator (NMEA 2.3 and later; absent before)."""
+    """Mode indicator (NMEA 2.3): Positioning system mode indicator (NMEA 2.3 and later; absent
+    before)."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Xte:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 5:
-            raise rt.too_few(address, "XTE", 5, count)
-        if count > 6:
-            raise rt.too_many(address, "XTE", 6, count)
-        optional = count - 5
-        status = Status.BY_CODE.get(fields[0]) or rt.enum_field(fields[0], address, 1, "status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        cycle_lock_status = Status.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "cycle_lock_status", "status code (A V)", Status.BY_CODE, "letters", 1, 1)
-        cross_track_error = (_DECIMAL_0_TO.get(fields[2]) or rt.decimal_field(fields[2], address, 3, "cross_track_error", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[2] else None
-        steer_direction = LeftRight.BY_CODE.get(fields[3]) or rt.enum_field(fields[3], address, 4, "steer_direction", "left_right code (L R)", LeftRight.BY_CODE, "letters", 1, 1)
-        cross_track_error_unit = "N" if fields[4] == "N" else rt.literal_field(fields[4], address, 5, "cross_track_error_unit", "N or nothing", "N")
-        mode: PosMode | str | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            mode = PosMode.BY_CODE.get(fields[5]) or rt.enum_field(fields[5], address, 6, "mode", "pos_mode code (A D E F G M N P R S)", PosMode.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], status, cycle_lock_status, cross_track_error, steer_direction, cross_track_error_unit, mode, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.status),
-            rt.text_of(self.cycle_lock_status),
-            rt.text_of(self.cross_track_error),
-            rt.text_of(self.steer_direction),
-            rt.text_of(self.cross_track_error_unit),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.mode is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.mode)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "XTE",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"status":' + show(self.status),
-            '"cycle_lock_status":' + show(self.cycle_lock_status),
-            '"cross_track_error":' + show(self.cross_track_error),
-            '"steer_direction":' + show(self.steer_direction),
-            '"cross_track_error_unit":' + show(self.cross_track_error_unit),
-        ]
-        if self.mode is not rt.ABSENT:
-            parts.append('"mode":' + show(self.mode))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cycle_lock_status"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cross_track_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "steer_direction"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cross_track_error_unit"), 1)
-        if "mode" in fields:
-            out += rt.json_texts(fields["mode"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Xte, )

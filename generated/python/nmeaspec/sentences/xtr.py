@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """XTR: Cross-track error, dead reckoning.
 
-Cross-track error computed from a dead-reckoned position, with the direction to steer back to
-the track.
+Cross-track error computed from a dead-reckoned position, with the direction to steer back to the
+track.
 """
 
 from __future__ import annotations
@@ -15,15 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import LeftRight
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-
 
 @dataclass(slots=True)
-class Xtr:
+class Xtr(rt.Sentence):
     """XTR: Cross-track error, dead reckoning.
 
-    Example (marnav): $GPXTR,1.2,,N*06
+    Example (marnav):
+    $GPXTR,1.2,,N*06
     """
 
     SENTENCE: ClassVar[str] = "XTR"
@@ -33,6 +31,12 @@ class Xtr:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("XTR", "standard", "$", 3, 3, (
+        rt.DecimalField("cross_track_error", "decimal number of at least 0", 0, None),
+        rt.EnumField("steer_direction", "left_right code (L R)", LeftRight),
+        rt.LiteralField("cross_track_error_unit", "N or nothing", "N"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -43,62 +47,11 @@ class Xtr:
     cross_track_error_unit: str | None = None
     """Cross-track error unit: N = nautical miles."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Xtr:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "XTR", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "XTR", 3, count)
-        cross_track_error = (_DECIMAL_0_TO.get(fields[0]) or rt.decimal_field(fields[0], address, 1, "cross_track_error", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[0] else None
-        steer_direction = LeftRight.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "steer_direction", "left_right code (L R)", LeftRight.BY_CODE, "letters", 1, 1)
-        cross_track_error_unit = "N" if fields[2] == "N" else rt.literal_field(fields[2], address, 3, "cross_track_error_unit", "N or nothing", "N")
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], cross_track_error, steer_direction, cross_track_error_unit, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.cross_track_error),
-            rt.text_of(self.steer_direction),
-            rt.text_of(self.cross_track_error_unit),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "XTR",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"cross_track_error":' + show(self.cross_track_error),
-            '"steer_direction":' + show(self.steer_direction),
-            '"cross_track_error_unit":' + show(self.cross_track_error_unit),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "cross_track_error"), 1)
-        out += rt.json_texts(rt.json_member(fields, "steer_direction"), 1)
-        out += rt.json_texts(rt.json_member(fields, "cross_track_error_unit"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Xtr, )

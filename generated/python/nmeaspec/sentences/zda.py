@@ -13,20 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_59: dict[Any, Any] = rt.known("integer 0..59")
-_INTEGER_1_TO_12: dict[Any, Any] = rt.known("integer 1..12")
-_INTEGER_1_TO_31: dict[Any, Any] = rt.known("integer 1..31")
-_INTEGER_MINUS_13_TO_13: dict[Any, Any] = rt.known("integer -13..13")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Zda:
+class Zda(rt.Sentence):
     """ZDA: Time and date.
 
-    Example (geos5): $GPZDA,072914.00,31,05,2018,+00,00*48
+    Example (geos5):
+    $GPZDA,072914.00,31,05,2018,+00,00*48
     """
 
     SENTENCE: ClassVar[str] = "ZDA"
@@ -36,6 +29,15 @@ class Zda:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ZDA", "standard", "$", 6, 6, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.IntegerField("day", "integer 1..31", 1, 31),
+        rt.IntegerField("month", "integer 1..12", 1, 12),
+        rt.IntegerField("year", "integer"),
+        rt.IntegerField("local_zone_hours", "integer -13..13", -13, 13),
+        rt.IntegerField("local_zone_minutes", "integer 0..59", 0, 59),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -48,78 +50,18 @@ class Zda:
     year: rt.Number | None = None
     """Year: Year, four digits (UTC)."""
     local_zone_hours: rt.Number | None = None
-    """Local zone hours: Local zone offset hours, signed (GeoS-5 sends +00). Local time = UTC + the offset, where the offset is hours and minutes taken together with the sign of the hours. Empty on GS501 and ComNav, which do not support it."""
+    """Local zone hours: Local zone offset hours, signed (GeoS-5 sends +00). Local time = UTC + the
+    offset, where the offset is hours and minutes taken together with the sign of the hours. Empty
+    on GS501 and ComNav, which do not support it."""
     local_zone_minutes: rt.Number | None = None
-    """Local zone minutes: Local zone offset minutes, 00-59, with the sign of the hours. Empty on GS501 and ComNav."""
+    """Local zone minutes: Local zone offset minutes, 00-59, with the sign of the hours. Empty on
+    GS501 and ComNav."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Zda:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 6:
-            raise rt.too_few(address, "ZDA", 6, count)
-        if count > 6:
-            raise rt.too_many(address, "ZDA", 6, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        day = (_INTEGER_1_TO_31.get(fields[1]) or rt.integer_field(fields[1], address, 2, "day", "integer 1..31", 1, 31, _INTEGER_1_TO_31)) if fields[1] else None
-        month = (_INTEGER_1_TO_12.get(fields[2]) or rt.integer_field(fields[2], address, 3, "month", "integer 1..12", 1, 12, _INTEGER_1_TO_12)) if fields[2] else None
-        year = (_INTEGER.get(fields[3]) or rt.integer_field(fields[3], address, 4, "year", "integer", None, None, _INTEGER)) if fields[3] else None
-        local_zone_hours = (_INTEGER_MINUS_13_TO_13.get(fields[4]) or rt.integer_field(fields[4], address, 5, "local_zone_hours", "integer -13..13", -13, 13, _INTEGER_MINUS_13_TO_13)) if fields[4] else None
-        local_zone_minutes = (_INTEGER_0_TO_59.get(fields[5]) or rt.integer_field(fields[5], address, 6, "local_zone_minutes", "integer 0..59", 0, 59, _INTEGER_0_TO_59)) if fields[5] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, day, month, year, local_zone_hours, local_zone_minutes, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.day),
-            rt.text_of(self.month),
-            rt.text_of(self.year),
-            rt.text_of(self.local_zone_hours),
-            rt.text_of(self.local_zone_minutes),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ZDA",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"day":' + show(self.day),
-            '"month":' + show(self.month),
-            '"year":' + show(self.year),
-            '"local_zone_hours":' + show(self.local_zone_hours),
-            '"local_zone_minutes":' + show(self.local_zone_minutes),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "day"), 1)
-        out += rt.json_texts(rt.json_member(fields, "month"), 1)
-        out += rt.json_texts(rt.json_member(fields, "year"), 1)
-        out += rt.json_texts(rt.json_member(fields, "local_zone_hours"), 1)
-        out += rt.json_texts(rt.json_member(fields, "local_zone_minutes"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Zda, )

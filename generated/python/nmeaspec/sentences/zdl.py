@@ -3,8 +3,8 @@
 # Regenerate: make generate (python3 -m generator generate)
 """ZDL: Time and distance to variable point.
 
-Time and distance to a point of the passage (collision, turning, wheel-over or reference point)
-and the kind of point.
+Time and distance to a point of the passage (collision, turning, wheel-over or reference point) and
+the kind of point.
 """
 
 from __future__ import annotations
@@ -15,16 +15,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import ZdlPointType
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DECIMAL_0_TO: dict[Any, Any] = rt.known("decimal 0..")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Zdl:
+class Zdl(rt.Sentence):
     """ZDL: Time and distance to variable point.
 
-    Example (marnav): $GPZDL,000000,0.0,R*15
+    Example (marnav):
+    $GPZDL,000000,0.0,R*15
     """
 
     SENTENCE: ClassVar[str] = "ZDL"
@@ -34,72 +31,28 @@ class Zdl:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ZDL", "standard", "$", 3, 3, (
+        rt.TimeField("time_to_point", "time hhmmss[.s]"),
+        rt.DecimalField("distance_to_point", "decimal number of at least 0", 0, None),
+        rt.EnumField("point_type", "zdl_point_type code (C T R W)", ZdlPointType),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time_to_point: rt.Time | None = None
-    """Time to point: Time to reach the point, as hours, minutes and seconds (a duration; the hours run from 00 to 99)."""
+    """Time to point: Time to reach the point, as hours, minutes and seconds (a duration; the hours
+    run from 00 to 99)."""
     distance_to_point: rt.Number | None = None
     """Distance to point [nmi]: Distance to the point, nautical miles."""
     point_type: ZdlPointType | str | None = None
     """Type of point: C = collision, T = turning point, R = reference (general), W = wheel-over."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Zdl:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "ZDL", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "ZDL", 3, count)
-        time_to_point = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time_to_point", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        distance_to_point = (_DECIMAL_0_TO.get(fields[1]) or rt.decimal_field(fields[1], address, 2, "distance_to_point", "decimal number of at least 0", 0, None, _DECIMAL_0_TO)) if fields[1] else None
-        point_type = ZdlPointType.BY_CODE.get(fields[2]) or rt.enum_field(fields[2], address, 3, "point_type", "zdl_point_type code (C T R W)", ZdlPointType.BY_CODE, "letters", 1, 1)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time_to_point, distance_to_point, point_type, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time_to_point),
-            rt.text_of(self.distance_to_point),
-            rt.text_of(self.point_type),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ZDL",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time_to_point":' + show(self.time_to_point),
-            '"distance_to_point":' + show(self.distance_to_point),
-            '"point_type":' + show(self.point_type),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time_to_point"), 1)
-        out += rt.json_texts(rt.json_member(fields, "distance_to_point"), 1)
-        out += rt.json_texts(rt.json_member(fields, "point_type"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Zdl, )

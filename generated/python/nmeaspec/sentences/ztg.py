@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Ztg:
+class Ztg(rt.Sentence):
     """ZTG: UTC and time to destination waypoint.
 
-    Example (aerorust_nmea): $GPZTG,145832.12,042359.17,WPT*24
+    Example (aerorust_nmea):
+    $GPZTG,145832.12,042359.17,WPT*24
     """
 
     SENTENCE: ClassVar[str] = "ZTG"
@@ -31,72 +29,28 @@ class Ztg:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ZTG", "standard", "$", 3, 3, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.TimeField("time_to_go", "time hhmmss[.s]"),
+        rt.TextField("destination_waypoint", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
     time: rt.Time | None = None
     """UTC time: UTC time of the observation."""
     time_to_go: rt.Time | None = None
-    """Time to go: Time remaining to the destination waypoint, as hours, minutes and seconds (a duration; Furuno gives hours 00-99)."""
+    """Time to go: Time remaining to the destination waypoint, as hours, minutes and seconds (a
+    duration; Furuno gives hours 00-99)."""
     destination_waypoint: str | None = None
     """Destination waypoint ID: Identifier of the destination waypoint."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Ztg:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "ZTG", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "ZTG", 3, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        time_to_go = (_TIME.get(fields[1]) or rt.time_field(fields[1], address, 2, "time_to_go", "time hhmmss[.s]", _TIME)) if fields[1] else None
-        destination_waypoint = rt.text_field(fields[2], address, 3, "destination_waypoint", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, time_to_go, destination_waypoint, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            rt.text_of(self.time_to_go),
-            rt.text_of(self.destination_waypoint),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "ZTG",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"time_to_go":' + show(self.time_to_go),
-            '"destination_waypoint":' + show(self.destination_waypoint),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "time_to_go"), 1)
-        out += rt.json_texts(rt.json_member(fields, "destination_waypoint"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Ztg, )

@@ -14,6 +14,9 @@ class AcmeBaud(CodeEnum):
     """ACME baud rate: Serial port speed."""
 
     BY_CODE: ClassVar[dict[str, AcmeBaud]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     BAUD_4800 = "4800"
     """4800 baud. (acme)"""
     BAUD_9600 = "9600"
@@ -24,6 +27,9 @@ class FixQuality(CodeEnum):
     """Fix quality: Kind of solution."""
 
     BY_CODE: ClassVar[dict[str, FixQuality]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     INVALID = "0"
     """No fix. (nmea0183)"""
     AUTONOMOUS = "1"
@@ -36,6 +42,9 @@ class SystemMode(CodeEnum):
     """Mode per system: One character per satellite system."""
 
     BY_CODE: ClassVar[dict[str, SystemMode]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
     AUTONOMOUS = "A"
     """Autonomous. (nmea0183)"""
     DIFFERENTIAL = "D"
@@ -45,9 +54,12 @@ class SystemMode(CodeEnum):
 
 
 AcmeBaud.BY_CODE = {member.value: member for member in AcmeBaud}
+AcmeBaud.CODE_CLASS, AcmeBaud.MIN_LEN, AcmeBaud.MAX_LEN = "digits", 4, 4
 
 
 FixQuality.BY_CODE = {member.value: member for member in FixQuality}
+FixQuality.CODE_CLASS, FixQuality.MIN_LEN, FixQuality.MAX_LEN = "digits", 1, 1
 
 
 SystemMode.BY_CODE = {member.value: member for member in SystemMode}
+SystemMode.CODE_CLASS, SystemMode.MIN_LEN, SystemMode.MAX_LEN = "letters", 1, 1

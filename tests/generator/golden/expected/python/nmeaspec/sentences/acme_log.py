@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class AcmeLog:
+class AcmeLog(rt.Sentence):
     """ACME_LOG: Request a log.
 
-    Example (acme): LOG GPFIX 1
+    Example (acme):
+    LOG GPFIX 1
     """
 
     SENTENCE: ClassVar[str] = "ACME_LOG"
@@ -37,7 +35,11 @@ class AcmeLog:
         ("PACMACK", None, (("command", "text", "LOG"), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
-    FIELD_IDS: ClassVar[tuple[str, ...]] = ("message", "period", )
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("ACME_LOG", "text", "$", 2, 2, (
+        rt.TextField("message", "text"),
+        rt.IntegerField("period", "integer"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     as_received: str | None = None
     """The command as received; written back in its letter case when the words still match."""
@@ -46,59 +48,9 @@ class AcmeLog:
     period: rt.Number | None = None
     """Period [s]: Seconds between outputs."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: ClassVar[str | None] = None
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> AcmeLog:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "ACME_LOG", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "ACME_LOG", 2, count)
-        message = rt.text_field(fields[0], address, 1, "message", "text", None)
-        period = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "period", "integer", None, None, _INTEGER)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(line, message, period, [])
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.message),
-            rt.text_of(self.period),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The command text, words separated by single spaces; no line ending."""
-        return rt.assemble_text("LOG", rt.with_problems(self.fields(), self.problems),
-                                self.as_received)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, True)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        if not values:
-            return rt.words_json(self.FIELD_IDS, self.to_sentence())
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"message":' + show(self.message),
-            '"period":' + show(self.period),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "message"), 1)
-        out += rt.json_texts(rt.json_member(fields, "period"), 1)
-        return out
 
 
 LAYOUTS: tuple[Any, ...] = (AcmeLog, )

@@ -14,22 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import FixQuality, SystemMode
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_DATE: dict[Any, Any] = rt.known("date")
-_DECIMAL: dict[Any, Any] = rt.known("decimal")
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_0_TO_99: dict[Any, Any] = rt.known("integer 0..99")
-_LATITUDE: dict[Any, Any] = rt.known("latitude")
-_LONGITUDE: dict[Any, Any] = rt.known("longitude")
-_TIME: dict[Any, Any] = rt.known("time")
-
 
 @dataclass(slots=True)
-class Fix:
+class Fix(rt.Sentence):
     """FIX: Fix with every field type.
 
-    Example (nmea0183): $GPFIX,123519.50,4807.038,N,01131.000,E,230394,1,08,-12.5,1F,Q,M,AD,HELLO,5*69
+    Example (nmea0183):
+    $GPFIX,123519.50,4807.038,N,01131.000,E,230394,1,08,-12.5,1F,Q,M,AD,HELLO,5*69
     """
 
     SENTENCE: ClassVar[str] = "FIX"
@@ -39,6 +30,22 @@ class Fix:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("FIX", "standard", "$", 14, 15, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DateField("date", "date ddmmyy"),
+        rt.EnumField("quality", "fix_quality code (0 1 2)", FixQuality),
+        rt.IntegerField("satellites", "integer 0..99", 0, 99),
+        rt.DecimalField("altitude", "decimal number"),
+        rt.HexField("flags", "hex number"),
+        rt.CharField("grade", "one character"),
+        rt.LiteralField("unit", "M or nothing", "M"),
+        rt.EnumCharsField("modes", "system_mode codes (A D N)", SystemMode, 4),
+        rt.TextField("note", "text of at most 20 characters", 20),
+        rt.IntegerField("extra", "integer", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -69,122 +76,21 @@ class Fix:
     extra: rt.Number | None | rt._Absent = rt.ABSENT
     """Extra (NMEA 4.10): A field added by NMEA 4.10."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Fix:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 14:
-            raise rt.too_few(address, "FIX", 14, count)
-        if count > 15:
-            raise rt.too_many(address, "FIX", 15, count)
-        optional = count - 14
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        lon = _LONGITUDE.get((fields[3], fields[4])) or rt.coordinate_field(fields[3], fields[4], address, 4, "lon", "longitude dddmm.mmmm", "hemisphere E or W", "EW", _LONGITUDE)
-        date = (_DATE.get(fields[5]) or rt.date_field(fields[5], address, 6, "date", "date ddmmyy", _DATE)) if fields[5] else None
-        quality = FixQuality.BY_CODE.get(fields[6]) or rt.enum_field(fields[6], address, 7, "quality", "fix_quality code (0 1 2)", FixQuality.BY_CODE, "digits", 1, 1)
-        satellites = (_INTEGER_0_TO_99.get(fields[7]) or rt.integer_field(fields[7], address, 8, "satellites", "integer 0..99", 0, 99, _INTEGER_0_TO_99)) if fields[7] else None
-        altitude = (_DECIMAL.get(fields[8]) or rt.decimal_field(fields[8], address, 9, "altitude", "decimal number", None, None, _DECIMAL)) if fields[8] else None
-        flags = (_HEX.get(fields[9]) or rt.hex_field(fields[9], address, 10, "flags", "hex number", _HEX)) if fields[9] else None
-        grade = rt.char_field(fields[10], address, 11, "grade", "one character")
-        unit = "M" if fields[11] == "M" else rt.literal_field(fields[11], address, 12, "unit", "M or nothing", "M")
-        modes = rt.enum_chars_field(fields[12], address, 13, "modes", "system_mode codes (A D N)", SystemMode.BY_CODE, "letters", 4)
-        note = rt.text_field(fields[13], address, 14, "note", "text of at most 20 characters", 20)
-        extra: rt.Number | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            extra = (_INTEGER.get(fields[14]) or rt.integer_field(fields[14], address, 15, "extra", "integer", None, None, _INTEGER)) if fields[14] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, lat, lon, date, quality, satellites, altitude, flags, grade, unit, modes, note, extra, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.lat),
-            *rt.coordinate_texts(self.lon),
-            rt.text_of(self.date),
-            rt.text_of(self.quality),
-            rt.text_of(self.satellites),
-            rt.text_of(self.altitude),
-            rt.text_of(self.flags),
-            rt.text_of(self.grade),
-            rt.text_of(self.unit),
-            rt.text_of(self.modes),
-            rt.text_of(self.note),
-        ]
-        # Optional trailing fields are written up to the last one present.
-        if self.extra is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.extra)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "FIX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"lat":' + show(self.lat),
-            '"lon":' + show(self.lon),
-            '"date":' + show(self.date),
-            '"quality":' + show(self.quality),
-            '"satellites":' + show(self.satellites),
-            '"altitude":' + show(self.altitude),
-            '"flags":' + show(self.flags),
-            '"grade":' + show(self.grade),
-            '"unit":' + show(self.unit),
-            '"modes":' + show(self.modes),
-            '"note":' + show(self.note),
-        ]
-        if self.extra is not rt.ABSENT:
-            parts.append('"extra":' + show(self.extra))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        out += rt.json_texts(rt.json_member(fields, "lon"), 2)
-        out += rt.json_texts(rt.json_member(fields, "date"), 1)
-        out += rt.json_texts(rt.json_member(fields, "quality"), 1)
-        out += rt.json_texts(rt.json_member(fields, "satellites"), 1)
-        out += rt.json_texts(rt.json_member(fields, "altitude"), 1)
-        out += rt.json_texts(rt.json_member(fields, "flags"), 1)
-        out += rt.json_texts(rt.json_member(fields, "grade"), 1)
-        out += rt.json_texts(rt.json_member(fields, "unit"), 1)
-        out += rt.json_texts(rt.json_member(fields, "modes"), 1)
-        out += rt.json_texts(rt.json_member(fields, "note"), 1)
-        if "extra" in fields:
-            out += rt.json_texts(fields["extra"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 @dataclass(slots=True)
-class FixShort:
+class FixShort(rt.Sentence):
     """FIX (Time and latitude only): Fix with every field type.
 
     A second layout under the same address.
 
-    Example (nmea0183): $GPFIX,123519.50,4807.038,N*1A
+    Example (nmea0183):
+    $GPFIX,123519.50,4807.038,N*1A
     """
 
     SENTENCE: ClassVar[str] = "FIX"
@@ -194,6 +100,11 @@ class FixShort:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("FIX", "standard", "$", 3, 3, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -202,58 +113,11 @@ class FixShort:
     lat: rt.Coordinate | None = None
     """Latitude: Latitude and hemisphere."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> FixShort:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "FIX", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "FIX", 3, count)
-        time = (_TIME.get(fields[0]) or rt.time_field(fields[0], address, 1, "time", "time hhmmss[.s]", _TIME)) if fields[0] else None
-        lat = _LATITUDE.get((fields[1], fields[2])) or rt.coordinate_field(fields[1], fields[2], address, 2, "lat", "latitude ddmm.mmmm", "hemisphere N or S", "NS", _LATITUDE)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], time, lat, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.time),
-            *rt.coordinate_texts(self.lat),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "FIX",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"time":' + show(self.time),
-            '"lat":' + show(self.lat),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "time"), 1)
-        out += rt.json_texts(rt.json_member(fields, "lat"), 2)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Fix, FixShort, )

@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER_0_TO_1: dict[Any, Any] = rt.known("integer 0..1")
-
 
 @dataclass(slots=True)
-class Pacmack:
+class Pacmack(rt.Sentence):
     """PACMACK: Acknowledgement.
 
-    Example (acme): $PACMACK,SET,1*25
+    Example (acme):
+    $PACMACK,SET,1*25
     """
 
     SENTENCE: ClassVar[str] = "PACMACK"
@@ -33,63 +31,21 @@ class Pacmack:
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     OUTCOME: ClassVar[rt.Outcome] = (("ok", "integer", 1), )
     """What this reply reports: "error", or success when one of these field tests holds."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PACMACK", "proprietary", "$", 2, 2, (
+        rt.TextField("command", "text of at most 8 characters", 8),
+        rt.IntegerField("ok", "integer 0..1", 0, 1),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     command: str | None = None
     """Command: The command answered."""
     ok: rt.Number | None = None
     """Accepted: 1 when the command was accepted."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pacmack:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 2:
-            raise rt.too_few(address, "PACMACK", 2, count)
-        if count > 2:
-            raise rt.too_many(address, "PACMACK", 2, count)
-        command = rt.text_field(fields[0], address, 1, "command", "text of at most 8 characters", 8)
-        ok = (_INTEGER_0_TO_1.get(fields[1]) or rt.integer_field(fields[1], address, 2, "ok", "integer 0..1", 0, 1, _INTEGER_0_TO_1)) if fields[1] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(command, ok, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.command),
-            rt.text_of(self.ok),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PACMACK",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"command":' + show(self.command),
-            '"ok":' + show(self.ok),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "command"), 1)
-        out += rt.json_texts(rt.json_member(fields, "ok"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pacmack, )

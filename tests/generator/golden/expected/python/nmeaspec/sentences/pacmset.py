@@ -14,15 +14,13 @@ from typing import Any, ClassVar
 from .. import runtime as rt
 from ..enums import AcmeBaud
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-
 
 @dataclass(slots=True)
-class Pacmset:
+class Pacmset(rt.Sentence):
     """PACMSET: Set a parameter.
 
-    Example (acme): $PACMSET,BAUD,4800,C3*1F
+    Example (acme):
+    $PACMSET,BAUD,4800,C3*1F
     """
 
     SENTENCE: ClassVar[str] = "PACMSET"
@@ -36,6 +34,12 @@ class Pacmset:
         ("PACMACK", None, (("command", "text", "SET"), )),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("PACMSET", "proprietary", "$", 3, 3, (
+        rt.KeywordField("what", "BAUD", "BAUD"),
+        rt.EnumField("baud", "acme_baud code (4800 9600)", AcmeBaud),
+        rt.HexField("outputs", "hex number"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
     what: str = "BAUD"
     """What: The parameter set."""
     baud: AcmeBaud | str | None = None
@@ -43,62 +47,11 @@ class Pacmset:
     outputs: rt.Hex | None = None
     """Outputs: The sentences to send."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Pacmset:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 3:
-            raise rt.too_few(address, "PACMSET", 3, count)
-        if count > 3:
-            raise rt.too_many(address, "PACMSET", 3, count)
-        what = rt.keyword_field(fields[0], address, 1, "what", "BAUD", "BAUD")
-        baud = AcmeBaud.BY_CODE.get(fields[1]) or rt.enum_field(fields[1], address, 2, "baud", "acme_baud code (4800 9600)", AcmeBaud.BY_CODE, "digits", 4, 4)
-        outputs = (_HEX.get(fields[2]) or rt.hex_field(fields[2], address, 3, "outputs", "hex number", _HEX)) if fields[2] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(what, baud, outputs, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.what),
-            rt.text_of(self.baud),
-            rt.text_of(self.outputs),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", "PACMSET",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"what":' + show(self.what),
-            '"baud":' + show(self.baud),
-            '"outputs":' + show(self.outputs),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "what"), 1)
-        out += rt.json_texts(rt.json_member(fields, "baud"), 1)
-        out += rt.json_texts(rt.json_member(fields, "outputs"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Pacmset, )

@@ -13,11 +13,6 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_HEX: dict[Any, Any] = rt.known("hex")
-_INTEGER: dict[Any, Any] = rt.known("integer")
-_INTEGER_1_TO_9: dict[Any, Any] = rt.known("integer 1..9")
-
 
 @dataclass(slots=True)
 class SatSatellite:
@@ -34,10 +29,11 @@ class SatSatellite:
 
 
 @dataclass(slots=True)
-class Sat:
+class Sat(rt.Sentence):
     """SAT: Satellites, a repeated group.
 
-    Example (nmea0183): $GPSAT,2,1,07,12,40,083,46,25,,,,1*5D
+    Example (nmea0183):
+    $GPSAT,2,1,07,12,40,083,46,25,,,,1*5D
     """
 
     SENTENCE: ClassVar[str] = "SAT"
@@ -47,6 +43,19 @@ class Sat:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("SAT", "standard", "$", 3, 20, (
+        rt.IntegerField("total", "integer 1..9", 1, 9),
+        rt.IntegerField("number", "integer 1..9", 1, 9),
+        rt.IntegerField("in_view", "integer"),
+        rt.Group("satellites", SatSatellite, (
+            rt.IntegerField("prn", "integer"),
+            rt.IntegerField("elevation", "integer"),
+            rt.IntegerField("azimuth", "integer"),
+            rt.IntegerField("snr", "integer"),
+        ), 0, 4),
+        rt.HexField("signal", "hex number", optional=True),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -61,98 +70,11 @@ class Sat:
     signal: rt.Hex | None | rt._Absent = rt.ABSENT
     """Signal ID (NMEA 4.10): Signal."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Sat:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        # The group takes what the other fields leave, up to its maximum; rt.split_group reports
-        # a sentence where that does not add up.
-        repeats = min((count - 3) // 4, 4)
-        optional = count - 3 - repeats * 4
-        if count < 3 or optional > 1:
-            rt.split_group(address, "SAT", "satellites", count, 3, 4, 0, 4, 1)
-        total = (_INTEGER_1_TO_9.get(fields[0]) or rt.integer_field(fields[0], address, 1, "total", "integer 1..9", 1, 9, _INTEGER_1_TO_9)) if fields[0] else None
-        number = (_INTEGER_1_TO_9.get(fields[1]) or rt.integer_field(fields[1], address, 2, "number", "integer 1..9", 1, 9, _INTEGER_1_TO_9)) if fields[1] else None
-        in_view = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "in_view", "integer", None, None, _INTEGER)) if fields[2] else None
-        satellites: list[SatSatellite] = []
-        pos = 3
-        for entry in range(repeats):
-            satellites.append(SatSatellite(
-                (_INTEGER.get(fields[pos]) or rt.integer_field(fields[pos], address, pos + 1, f"satellites[{entry + 1}].prn", "integer", None, None, _INTEGER)) if fields[pos] else None,
-                (_INTEGER.get(fields[pos + 1]) or rt.integer_field(fields[pos + 1], address, pos + 2, f"satellites[{entry + 1}].elevation", "integer", None, None, _INTEGER)) if fields[pos + 1] else None,
-                (_INTEGER.get(fields[pos + 2]) or rt.integer_field(fields[pos + 2], address, pos + 3, f"satellites[{entry + 1}].azimuth", "integer", None, None, _INTEGER)) if fields[pos + 2] else None,
-                (_INTEGER.get(fields[pos + 3]) or rt.integer_field(fields[pos + 3], address, pos + 4, f"satellites[{entry + 1}].snr", "integer", None, None, _INTEGER)) if fields[pos + 3] else None,
-            ))
-            pos += 4
-        signal: rt.Hex | None | rt._Absent = rt.ABSENT
-        if optional >= 1:
-            signal = (_HEX.get(fields[pos]) or rt.hex_field(fields[pos], address, pos + 1, "signal", "hex number", _HEX)) if fields[pos] else None
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], total, number, in_view, satellites, signal, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.total),
-            rt.text_of(self.number),
-            rt.text_of(self.in_view),
-        ]
-        for entry in self.satellites:
-            out += [rt.text_of(entry.prn), rt.text_of(entry.elevation), rt.text_of(entry.azimuth), rt.text_of(entry.snr)]
-        # Optional trailing fields are written up to the last one present.
-        if self.signal is not rt.ABSENT:
-            last = 0
-        else:
-            last = -1
-        if last >= 0:
-            out += [rt.text_of(self.signal)]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("$", self.talker + "SAT",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"total":' + show(self.total),
-            '"number":' + show(self.number),
-            '"in_view":' + show(self.in_view),
-            '"satellites":[' + ",".join(
-                "{" + '"prn":' + show(entry.prn) + ',"elevation":' + show(entry.elevation) + ',"azimuth":' + show(entry.azimuth) + ',"snr":' + show(entry.snr) + "}"
-                for entry in self.satellites) + "]",
-        ]
-        if self.signal is not rt.ABSENT:
-            parts.append('"signal":' + show(self.signal))
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "total"), 1)
-        out += rt.json_texts(rt.json_member(fields, "number"), 1)
-        out += rt.json_texts(rt.json_member(fields, "in_view"), 1)
-        for entry in rt.json_list(fields, "satellites"):
-            out += rt.json_texts(rt.json_member(entry, "prn"), 1)
-            out += rt.json_texts(rt.json_member(entry, "elevation"), 1)
-            out += rt.json_texts(rt.json_member(entry, "azimuth"), 1)
-            out += rt.json_texts(rt.json_member(entry, "snr"), 1)
-        if "signal" in fields:
-            out += rt.json_texts(fields["signal"], 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Sat, )

@@ -13,15 +13,13 @@ from typing import Any, ClassVar
 
 from .. import runtime as rt
 
-# Values already read, by wire text, one table per field rule (see rt.known).
-_INTEGER: dict[Any, Any] = rt.known("integer")
-
 
 @dataclass(slots=True)
-class Xdm:
+class Xdm(rt.Sentence):
     """XDM: An encapsulation sentence.
 
-    Example (nmea0183): !AIXDM,1,1,,13nUgBWP01PkHvDU7<kC4wvJ2>`<*5B
+    Example (nmea0183):
+    !AIXDM,1,1,,13nUgBWP01PkHvDU7<kC4wvJ2>`<*5B
     """
 
     SENTENCE: ClassVar[str] = "XDM"
@@ -31,6 +29,13 @@ class Xdm:
     SELECTOR: ClassVar[str | None] = None
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("XDM", "standard", "!", 4, 4, (
+        rt.IntegerField("count", "integer"),
+        rt.IntegerField("fragment", "integer"),
+        rt.IntegerField("message_id", "integer"),
+        rt.TextField("payload", "text"),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
 
     talker: str = "GP"
     """Talker ID (GP, GL, GN, ...)."""
@@ -43,66 +48,11 @@ class Xdm:
     payload: str | None = None
     """Payload: Armored payload."""
     problems: list[rt.NmeaError] = field(default_factory=list)
-    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their text."""
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
     checksum: str | None = "upper"
-    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or None."""
-
-    @classmethod
-    def parse_fields(cls, address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> Xdm:
-        """Decode the fields after the address; raises rt.NmeaError naming the field at fault."""
-        count = len(fields)
-        if count < 4:
-            raise rt.too_few(address, "XDM", 4, count)
-        if count > 4:
-            raise rt.too_many(address, "XDM", 4, count)
-        count_ = (_INTEGER.get(fields[0]) or rt.integer_field(fields[0], address, 1, "count", "integer", None, None, _INTEGER)) if fields[0] else None
-        fragment = (_INTEGER.get(fields[1]) or rt.integer_field(fields[1], address, 2, "fragment", "integer", None, None, _INTEGER)) if fields[1] else None
-        message_id = (_INTEGER.get(fields[2]) or rt.integer_field(fields[2], address, 3, "message_id", "integer", None, None, _INTEGER)) if fields[2] else None
-        payload = rt.text_field(fields[3], address, 4, "payload", "text", None)
-        # Every value at once, in the order of the fields above: one pass through __init__.
-        return cls(address[:-3], count_, fragment, message_id, payload, [], checksum)
-
-    def fields(self) -> list[str]:
-        """The wire text of every field after the address."""
-        out: list[str] = [
-            rt.text_of(self.count),
-            rt.text_of(self.fragment),
-            rt.text_of(self.message_id),
-            rt.text_of(self.payload),
-        ]
-        return out
-
-    def to_sentence(self) -> str:
-        """The sentence text, checksum included unless `checksum` is None; no line ending."""
-        return rt.assemble("!", self.talker + "XDM",
-                           rt.with_problems(self.fields(), self.problems), self.checksum)
-
-    def to_bytes(self) -> bytes:
-        """The exact bytes to send, CR LF included, once every field has been checked the way a
-        receiver would read it; raises rt.NmeaError naming the field at fault."""
-        return rt.checked_bytes(self.to_sentence(), self.parse_fields, False)
-
-    def fields_json(self, values: bool = False) -> str:
-        """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
-        show = rt.value_json if values else rt.text_json
-        parts: list[str] = [
-            '"count":' + show(self.count),
-            '"fragment":' + show(self.fragment),
-            '"message_id":' + show(self.message_id),
-            '"payload":' + show(self.payload),
-        ]
-        return "{" + ",".join(parts) + "}"
-
-    @staticmethod
-    def fields_from_json(fields: dict[str, Any]) -> list[str]:
-        """The wire fields described by a `fields` object of the tools' lossless JSON."""
-        out: list[str] = []
-        out += rt.json_texts(rt.json_member(fields, "count"), 1)
-        out += rt.json_texts(rt.json_member(fields, "fragment"), 1)
-        out += rt.json_texts(rt.json_member(fields, "message_id"), 1)
-        out += rt.json_texts(rt.json_member(fields, "payload"), 1)
-        return out
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
 
 
 LAYOUTS: tuple[Any, ...] = (Xdm, )
