@@ -1,4 +1,5 @@
-"""Turns the validated YAML documents into the intermediate model and runs the semantic checks."""
+"""Turns the validated YAML documents into the intermediate model, resolves it (resolve.py) and
+runs the semantic checks (checks.py)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
 from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Field, Group, Item, Layout,
                     Manual, Note, Origin, Outcome, Parameter, ReplyRule, Sentence, Spec, TableDef)
+from .resolve import resolve
 
 
 def load_spec(spec_dir: Path) -> Spec:
@@ -52,6 +54,7 @@ def load_spec(spec_dir: Path) -> Spec:
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
                 bitfields=[_bitfield(d) for d in docs["bitfields"]], tables=[_table(d) for d in docs["tables"]])
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
+    resolve(spec)
     errors = checks.run(spec, by_file)
     if errors:
         raise SpecErrors(errors)

@@ -10,6 +10,7 @@ from decimal import InvalidOperation
 from typing import Any
 
 from . import reference
+from .resolve import checksum_ok
 from .errors import SpecError
 from .loader import Document
 from .model import Example, Field, Group, Layout, Origin, Sentence, Spec, fixed_point
@@ -32,7 +33,6 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
     _unique(spec, report)
     _distinct_names(spec, report)
     manual_ids = {m.id for m in spec.manuals}
-    spec.enum_by_id = {e.id: e for e in spec.enums}
     for enum in spec.enums:
         _check_enum(enum, manual_ids, report)
     for bitfield in spec.bitfields:
@@ -43,7 +43,7 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
         _check_manuals(sentence.manuals, manual_ids, sentence.origin, report, "manuals")
         _check_proprietary(spec, sentence, manual_ids, report)
         for layout in sentence.layouts:
-            _resolve_layout(spec, sentence, layout, manual_ids, report)
+            _check_layout(spec, sentence, layout, manual_ids, report)
     if report.errors:
         return report.errors
     _check_cli(spec, report)
@@ -123,13 +123,9 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
                     report(item.origin, "S015", f"keyword field {item.id}: write the word in upper case", "value")
     if sentence.reply_ids and sentence.kind != "command":
         report(sentence.origin, "S011", "only commands have replies", "replies")
-    sentence.replies = []
     for rule in sentence.reply_rules:
-        rule.sentence = spec.sentence(rule.sentence_id)
         if rule.sentence is None:
             report(rule.origin, "S011", f"unknown reply sentence {rule.sentence_id!r}")
-        elif rule.sentence not in sentence.replies:
-            sentence.replies.append(rule.sentence)
     if any(layout.outcome for layout in sentence.layouts) and sentence.kind != "reply":
         report(sentence.origin, "S011", "only replies have an `outcome`", "sentence")
 
@@ -200,20 +196,15 @@ def _check_table(spec: Spec, table: Any, manual_ids: set[str], report: _Reporter
     _check_manuals(table.manuals, manual_ids, table.origin, report, "manuals")
     numbers: set[int] = set()
     ids: set[str] = set()
-    bitfields = {b.id: b for b in spec.bitfields}
     for p in table.parameters:
         if p.number in numbers or p.id in ids:
             report(p.origin, "S001", f"parameter {p.number} ({p.id}) appears twice in table {table.id}", "number")
         numbers.add(p.number)
         ids.add(p.id)
-        if p.enum_id is not None:
-            p.enum = spec.enum_by_id.get(p.enum_id)
-            if p.enum is None:
-                report(p.origin, "S002", f"parameter {p.id} refers to unknown enum {p.enum_id!r}", "enum")
-        if p.bitfield_id is not None:
-            p.bitfield = bitfields.get(p.bitfield_id)
-            if p.bitfield is None:
-                report(p.origin, "S002", f"parameter {p.id} refers to unknown bitfield {p.bitfield_id!r}", "bitfield")
+        if p.enum_id is not None and p.enum is None:
+            report(p.origin, "S002", f"parameter {p.id} refers to unknown enum {p.enum_id!r}", "enum")
+        if p.bitfield_id is not None and p.bitfield is None:
+            report(p.origin, "S002", f"parameter {p.id} refers to unknown bitfield {p.bitfield_id!r}", "bitfield")
         if p.encoding == "decimal_list" and not p.count:
             report(p.origin, "S007", f"parameter {p.id}: a decimal_list needs `count`", "encoding")
 
@@ -278,12 +269,10 @@ RESERVED_FIELD_IDS = frozenset({
 }) | frozenset(keyword.kwlist)
 
 
-def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: set[str],
-                    report: _Reporter) -> None:
+def _check_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: set[str],
+                  report: _Reporter) -> None:
     ids: set[str] = set()
-    index = 1
     seen_optional = False
-    seen_group = False
     groups = 0
     for item in layout.items:
         if item.id in ids:
@@ -296,13 +285,10 @@ def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: 
                        "group" if isinstance(item, Group) and name == item.id else "id")
         if isinstance(item, Group):
             groups += 1
-            seen_group = True
-            item.wire_index = index
             if item.min > item.max:
                 report(item.origin, "S005", f"group {item.id}: min {item.min} exceeds max {item.max}", "min")
             if seen_optional:
                 report(item.origin, "S004", f"group {item.id} follows an optional field", "group")
-            offset = 1
             inner: set[str] = set()
             for f in item.fields:
                 if f.id in inner:
@@ -310,20 +296,14 @@ def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: 
                 inner.add(f.id)
                 if f.is_optional:
                     report(f.origin, "S004", "a field inside a group cannot be optional", "id")
-                f.group = item
-                f.wire_index = offset
-                offset += f.wire_width
-                _resolve_field(spec, f, manual_ids, report)
-            index += item.min * item.width
+                _check_field(f, manual_ids, report)
             continue
-        item.wire_index = index
-        index += item.wire_width
         if item.is_optional:
             seen_optional = True
         elif seen_optional:
             report(item.origin, "S004", f"required field {item.id} follows an optional field; optional "
                    "fields must be trailing", "id")
-        _resolve_field(spec, item, manual_ids, report)
+        _check_field(item, manual_ids, report)
     if groups > 1:
         report(layout.origin, "S005", f"{sentence.id} has {groups} groups; a layout takes at most one")
     group = layout.group
@@ -335,13 +315,11 @@ def _resolve_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: 
     if versions != sorted(versions, key=VERSION_ORDER.index):
         report(layout.origin, "S004", f"{sentence.id}: optional fields must be in the order of the NMEA "
                "versions that added them")
-    del seen_group
 
 
-def _resolve_field(spec: Spec, f: Field, manual_ids: set[str], report: _Reporter) -> None:
+def _check_field(f: Field, manual_ids: set[str], report: _Reporter) -> None:
     _check_manuals(f.manuals, manual_ids, f.origin, report, "manuals")
     if f.bitfield_id is not None:
-        f.bitfield = next((b for b in spec.bitfields if b.id == f.bitfield_id), None)
         if f.bitfield is None:
             report(f.origin, "S002", f"field {f.id} refers to unknown bitfield {f.bitfield_id!r}", "bitfield")
         elif f.type not in ("hex", "integer"):
@@ -349,7 +327,6 @@ def _resolve_field(spec: Spec, f: Field, manual_ids: set[str], report: _Reporter
     if f.type == "keyword" and not (f.value or "").strip():
         report(f.origin, "S007", f"keyword field {f.id} needs its word in `value`", "value")
     if f.enum_id is not None:
-        f.enum = spec.enum_by_id.get(f.enum_id)
         if f.enum is None:
             report(f.origin, "S002", f"field {f.id} refers to unknown enum {f.enum_id!r}", "enum")
         elif f.type == "enum_chars" and f.enum.max_len != 1:
@@ -367,8 +344,6 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
     o = example.origin
     if example.manual not in manual_ids:
         report(o, "S003", f"unknown manual {example.manual!r}", "manual")
-    example.checksum_ok = sentence.framing == "text" or "*" not in example.raw and example.raw.startswith("$") \
-        or _checksum_ok(example.raw)
     if example.checksum_ok and example.corrected and example.corrected == example.raw:
         report(o, "S008", "the correction is the manual's text itself", "corrected")
         return
@@ -379,7 +354,7 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
     if example.unrecoverable:
         return
     if example.corrected and sentence.framing != "text" and "*" in example.corrected \
-            and not _checksum_ok(example.corrected):
+            and not checksum_ok(example.corrected):
         report(o, "S008", f"the correction's checksum fails too (computed {_computed(example.corrected)})",
                "corrected")
         return
@@ -417,20 +392,6 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
         elif got[key] != want[key]:
             report(o, "S008", f"{key} decodes to {json.dumps(got[key])}, expect says {json.dumps(want[key])}",
                    "expect", key)
-
-
-def _checksum_ok(line: str) -> bool:
-    """Whether a `$` line's checksum holds; a bare '*' (checksum left out, as ST's manual writes
-    its commands) holds too."""
-    if line.startswith("$") and line.endswith("*") and line.count("*") == 1:
-        return True
-    star = line.rfind("*")
-    if not line or line[0] not in "$!" or star < 0 or len(line) != star + 3:
-        return False
-    try:
-        return int(line[star + 1:], 16) == reference.rt.checksum(line[1:star])
-    except ValueError:
-        return False
 
 
 def _computed(line: str) -> str:

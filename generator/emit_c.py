@@ -15,6 +15,7 @@ import jinja2
 
 from . import emit_vectors, pairing
 from .emit import TEMPLATES, header
+from .field_types import TYPES
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, fixed_point, fmt_num
 
 C_KEYWORDS = frozenset("""
@@ -26,19 +27,8 @@ volatile while bool true false _Bool _Complex _Imaginary
 # Struct members every layout has besides its fields.
 RESERVED_MEMBERS = frozenset({"talker", "checksum", "optional_count", "as_received", "problems"})
 
-C_TYPES = {
-    "integer": "nmea_number", "decimal": "nmea_number", "hex": "nmea_hex", "time": "nmea_time",
-    "date": "nmea_date", "latitude": "nmea_coordinate", "longitude": "nmea_coordinate", "char": "char",
-    "literal": "bool", "enum": "nmea_enum", "enum_chars": "nmea_text", "text": "nmea_text",
-    "keyword": None,  # a fixed word: the layout says it, nothing to store
-}
-
-# What "no value" looks like for each C type, for the member docs.
-EMPTY = {
-    "nmea_number": "present false", "nmea_hex": "present false", "nmea_time": "present false",
-    "nmea_date": "present false", "nmea_coordinate": "present false", "nmea_enum": "present false",
-    "char": "0", "bool": "false", "nmea_text": "length 0",
-}
+# The C member type of each field type (None: a keyword, which the layout implies).
+C_TYPES = {name: t.c_type for name, t in TYPES.items()}
 
 
 MAX_PROBLEMS = 8  # NMEA_MAX_PROBLEMS, the reference's runtime.MAX_PROBLEMS
@@ -154,7 +144,7 @@ class Ranges:
 
 
 # The field_type constant of each field type (templates/c/runtime.c).
-FIELD_TYPES = {t: "FIELD_" + t.upper() for t in C_TYPES}
+FIELD_TYPES = {name: "FIELD_" + name.upper() for name in TYPES}
 
 
 def field_arg(f: Field, ranges: Ranges) -> str:
@@ -185,37 +175,29 @@ def fast_call(f: Field, target: str, ranges: Ranges) -> str:
     """The fast path's call that reads field `f` into `target` from the line at `p` (see
     fast_frame in the runtime): read_call without the names errors need."""
     t = f.type
+    name = TYPES[t].c_fast
     if t == "keyword":
         return f"fast_keyword(&p, {c_str(f.value or '')})"
     if t in ("integer", "decimal"):
-        return f"fast_{t}(&p, &{target}, {ranges.ref(f)})"
-    if t in ("hex", "time", "date", "char", "latitude", "longitude"):
-        return f"fast_{t}(&p, &{target})"
+        return f"fast_{name}(&p, &{target}, {ranges.ref(f)})"
     if t == "literal":
         return f"fast_literal(&p, &{target}, {c_str(f.value or '')})"
-    if t == "text":
-        return f"fast_text(&p, &{target}, {f.max_length or 0})"
-    assert f.enum is not None
+    if t in ("text", "enum_chars"):
+        table = f"&{enum_def(f.enum)}, " if f.enum is not None else ""
+        return f"fast_{name}(&p, &{target}, {table}{f.max_length or 0})"
     if t == "enum":
+        assert f.enum is not None
         return f"fast_enum(&p, &{target}, &{enum_def(f.enum)})"
-    return f"fast_enum_chars(&p, &{target}, &{enum_def(f.enum)}, {f.max_length or 0})"
+    return f"fast_{name}(&p, &{target})"
 
 
-# The C writer of each field type: put_<name>, and the fast path's fast_put_<name>.
-WRITER_NAMES = {
-    "keyword": "keyword", "integer": "number", "decimal": "number", "hex": "hex", "time": "time",
-    "date": "date", "latitude": "coordinate", "longitude": "coordinate", "char": "char_field",
-    "literal": "literal", "text": "text_field", "enum_chars": "text_field", "enum": "enum",
-}
-
-
-def put_call(f: Field, target: str, fast: bool = False) -> str:
-    """The call that writes field `f` (its comma and text) with writer `w`; `fast`: with the fast
-    path's fast_writer `w`, false when the general writer must write the sentence (the fast
-    writers also take a keyword's or literal's length)."""
+def fast_put_call(f: Field, target: str) -> str:
+    """The fast path's call that writes field `f` (its comma and text) with its fast_writer `w`:
+    false when the general writer must write the sentence (a keyword's or literal's length is
+    given with it)."""
     t = f.type
     word = f.value or ""
-    word_args = f"{c_str(word)}, {len(word.encode())}" if fast else c_str(word)
+    word_args = f"{c_str(word)}, {len(word.encode())}"
     if t == "keyword":
         args = word_args
     elif t == "literal":
@@ -227,16 +209,14 @@ def put_call(f: Field, target: str, fast: bool = False) -> str:
         args = f"&{target}, &{enum_def(f.enum)}"
     else:
         args = f"&{target}"
-    writer = "&w" if fast else "w"
-    return f"{'fast_put_' if fast else 'put_'}{WRITER_NAMES[t]}({writer}, {args})"
+    return f"fast_put_{TYPES[t].c_put}(&w, {args})"
 
 
 def member_doc(f: Field) -> list[str]:
     unit = f" [{f.unit}]" if f.unit else ""
     fmt = f" ({f.format})" if f.format else ""
     since = f" (NMEA {f.since}, optional)" if f.since else (" (optional)" if f.optional else "")
-    ctype = C_TYPES[f.type]
-    empty = EMPTY[ctype] if ctype else ""
+    empty = TYPES[f.type].c_empty
     extra = ""
     if f.type == "literal":
         extra = f' True when the field holds "{f.value}".'
@@ -269,7 +249,7 @@ def field_view(f: Field, base: str, ranges: Ranges, owner: str | None) -> dict:
         "doc": member_doc(f) if stored else [],
         "init": field_init(f, owner, ranges),
         "fast": fast_call(f, target, ranges),
-        "fast_put": put_call(f, target, fast=True),
+        "fast_put": fast_put_call(f, target),
     }
 
 

@@ -10,13 +10,8 @@ import jinja2
 
 from . import emit_vectors
 from .emit import TEMPLATES, header
+from .field_types import TYPES
 from .model import Field, Group, Layout, Manual, ReplyRule, Sentence, Spec
-
-TYPE_NAMES = {
-    "integer": "integer", "decimal": "decimal", "hex": "hex", "time": "UTC time", "date": "date",
-    "latitude": "latitude + N/S", "longitude": "longitude + E/W", "char": "character",
-    "literal": "literal", "keyword": "keyword", "enum": "enum", "enum_chars": "enum characters", "text": "text",
-}
 
 
 def cell(text: str | None) -> str:
@@ -27,7 +22,7 @@ def cell(text: str | None) -> str:
 
 
 def type_cell(f: Field) -> str:
-    name = TYPE_NAMES[f.type]
+    name = TYPES[f.type].doc_name
     if f.enum is not None:
         return f"{name} [{f.enum.id}](../enums/{f.enum.id}.md)"
     if f.bitfield is not None:

@@ -10,17 +10,14 @@ import jinja2
 
 from . import emit_vectors, pairing
 from .emit import TEMPLATES, header
+from .field_types import TYPES
 from .model import Field, Group, Layout, Sentence, Spec, fmt_num
 
 PACKAGE = "nmeaspec"
 
 
 def py_type(f: Field) -> str:
-    base = {
-        "integer": "rt.Number", "decimal": "rt.Number", "hex": "rt.Hex", "time": "rt.Time",
-        "date": "rt.Date", "latitude": "rt.Coordinate", "longitude": "rt.Coordinate", "char": "str",
-        "literal": "str", "text": "str", "keyword": "str",
-    }.get(f.type)
+    base = TYPES[f.type].python_type
     if base is None:
         assert f.enum is not None
         base = f"{f.enum.camel} | str" if f.type == "enum" else f"list[{f.enum.camel} | str]"
@@ -28,14 +25,6 @@ def py_type(f: Field) -> str:
         return base + (" | rt._Absent" if f.is_optional else "")
     return base + " | None" + (" | rt._Absent" if f.is_optional else "")
 
-
-# The runtime's FieldSpec class of each field type.
-SPEC_CLASSES = {
-    "integer": "IntegerField", "decimal": "DecimalField", "hex": "HexField", "time": "TimeField",
-    "date": "DateField", "latitude": "LatitudeField", "longitude": "LongitudeField", "char": "CharField",
-    "literal": "LiteralField", "keyword": "KeywordField", "text": "TextField", "enum": "EnumField",
-    "enum_chars": "EnumCharsField",
-}
 
 WIDTH = 100  # the longest line of the generated Python
 
@@ -58,7 +47,7 @@ def field_spec(f: Field) -> list[str]:
         args.append(str(f.max_length))
     if f.is_optional:
         args.append("optional=True")
-    return call_lines(f"rt.{SPEC_CLASSES[t]}", args, 8, ",")
+    return call_lines(f"rt.{TYPES[t].python_spec}", args, 8, ",")
 
 
 def call_lines(function: str, args: list[str], indent: int, end: str = "") -> list[str]:

@@ -13,21 +13,15 @@ import jinja2
 
 from . import emit_vectors, pairing
 from .emit import TEMPLATES, header
+from .field_types import TYPES
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
 from .rust_features import Gates, cfg, with_cfg
 
 CRATE = "nmeaspec"
 RUNTIME_MODULES = ["mod", "error", "fast", "frame", "layout", "serialize", "stream", "table", "types", "write", "json"]
 
-# Expected texts the runtime's readers hold for the types whose description is fixed.
-FIXED_EXPECTED = {
-    "hex": "hex number",
-    "time": "time hhmmss[.s]",
-    "date": "date ddmmyy",
-    "char": "one character",
-    "latitude": "latitude ddmm.mmmm",
-    "longitude": "longitude dddmm.mmmm",
-}
+# The types whose expected text the runtime's readers hold (it does not depend on the field).
+FIXED_EXPECTED = frozenset(name for name, t in TYPES.items() if t.expected is not None)
 
 KEYWORDS = {
     "as", "break", "const", "continue", "crate", "else", "enum", "extern", "false", "fn", "for", "if", "impl",
@@ -115,18 +109,15 @@ def one_line(text: str) -> str:
 
 
 def base_type(f: Field) -> str:
-    t = f.type
-    simple = {"integer": "Number", "decimal": "Number", "hex": "Hex", "time": "Time", "date": "Date",
-              "latitude": "Coordinate", "longitude": "Coordinate", "char": "char", "literal": "&'a str",
-              "text": "&'a str"}
-    if t in simple:
-        return simple[t]
+    simple = TYPES[f.type].rust_type
+    if simple is not None:
+        return simple
     assert f.enum is not None
-    return f"Code<'a, {f.enum.camel}>" if t == "enum" else f"CodeChars<'a, {f.enum.camel}>"
+    return f"Code<'a, {f.enum.camel}>" if f.type == "enum" else f"CodeChars<'a, {f.enum.camel}>"
 
 
 def borrows(f: Field) -> bool:
-    return f.type in ("literal", "text", "enum", "enum_chars")
+    return f.enum is not None or "'a" in (TYPES[f.type].rust_type or "")
 
 
 def is_text(sentence: Sentence) -> bool:
@@ -165,7 +156,6 @@ def read_call(f: Field) -> tuple[str, list[str]]:
     t = f.type
     name = rust_str(f.id)
     if t in FIXED_EXPECTED:
-        assert f.expected == FIXED_EXPECTED[t], (f.expected, t)
         if t in ("latitude", "longitude"):
             assert f.hemisphere_expected == ("hemisphere N or S" if t == "latitude" else "hemisphere E or W")
         return f"f.{t}", [name]
@@ -475,7 +465,7 @@ def placeholders(f: Field) -> list[str]:
     """How the manual writes a field's wire text, one string per wire field."""
     t = f.type
     if t in ("latitude", "longitude"):
-        fmt = f.format or ("ddmm.mm" if t == "latitude" else "dddmm.mm")
+        fmt = f.format or TYPES[t].placeholder
         parts = fmt.split(",")
         return parts if len(parts) == 2 else [parts[0], "a"]
     if f.format:
@@ -485,8 +475,7 @@ def placeholders(f: Field) -> list[str]:
     if t == "enum":
         assert f.enum is not None
         return ["x" * f.enum.max_len if f.enum.code_class == "digits" else "a" * f.enum.max_len]
-    return [{"integer": "x", "decimal": "x.x", "hex": "h", "time": "hhmmss.ss", "date": "ddmmyy", "char": "a",
-             "enum_chars": "c--c", "text": "c--c"}[t]]
+    return [TYPES[t].placeholder]
 
 
 def diagram(sentence: Sentence, layout: Layout) -> list[str]:

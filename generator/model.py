@@ -12,10 +12,8 @@ from decimal import Decimal
 from pathlib import Path
 from typing import Any
 
+from .field_types import TYPES
 from .paths import ROOT
-
-# Wire fields each spec type takes.
-WIRE_WIDTH = {"latitude": 2, "longitude": 2}
 
 # The NMEA version a parser must assume for fields without `since`.
 BASE_VERSION = "2.0"
@@ -124,7 +122,7 @@ class Field:
 
     @property
     def wire_width(self) -> int:
-        return WIRE_WIDTH.get(self.type, 1)
+        return TYPES[self.type].wire_width
 
     @property
     def is_optional(self) -> bool:
@@ -134,6 +132,9 @@ class Field:
     def expected(self) -> str:
         """What a bad_field error says the field should hold (the value part of lat/lon)."""
         t = self.type
+        fixed = TYPES[t].expected
+        if fixed is not None:
+            return fixed
         if t in ("integer", "decimal"):
             what = "integer" if t == "integer" else "decimal number"
             if self.min is not None and self.max is not None:
@@ -143,18 +144,6 @@ class Field:
             if self.max is not None:
                 return f"{what} of at most {fmt_num(self.max)}"
             return what
-        if t == "hex":
-            return "hex number"
-        if t == "time":
-            return "time hhmmss[.s]"
-        if t == "date":
-            return "date ddmmyy"
-        if t == "latitude":
-            return "latitude ddmm.mmmm"
-        if t == "longitude":
-            return "longitude dddmm.mmmm"
-        if t == "char":
-            return "one character"
         if t == "literal":
             return f"{self.value} or nothing"
         if t == "keyword":
@@ -231,7 +220,7 @@ class ReplyRule:
     sentence_id: str
     when: dict[str, Any]
     origin: Origin
-    sentence: Sentence | None = None     # resolved by the checks
+    sentence: Sentence | None = None     # derived by resolve()
 
 
 @dataclass
@@ -358,7 +347,7 @@ class Sentence:
     kind: str = "standard"       # standard, command, reply or output
     vendor: str | None = None
     reply_rules: list[ReplyRule] = field(default_factory=list)
-    replies: list[Sentence] = field(default_factory=list)   # resolved, each reply sentence once
+    replies: list[Sentence] = field(default_factory=list)   # derived by resolve(): each reply sentence once
 
     @property
     def reply_ids(self) -> list[str]:

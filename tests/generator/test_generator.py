@@ -13,6 +13,7 @@ from generator.build import load_spec
 from generator.emit import render_all
 from generator.errors import SpecErrors
 from generator import emit_docs, reference
+from generator.field_types import TYPES
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEC = ROOT / "spec"
@@ -33,6 +34,31 @@ def test_spec_is_valid(spec) -> None:
 def _fixture_header(path: Path) -> tuple[str, str]:
     lines = path.read_text().splitlines()
     return lines[0].split(":", 1)[1].strip(), lines[1].split(":", 1)[1].strip()
+
+
+def test_the_registry_knows_every_field_type_of_the_schema() -> None:
+    schema = json.loads((SPEC / "schema" / "sentence.schema.json").read_text(encoding="utf-8"))
+    named: set[str] = set()
+
+    def walk(node: object) -> None:  # every "type": {"enum": [...]} of the field definitions
+        if isinstance(node, dict):
+            if isinstance(node.get("type"), dict) and "enum" in node["type"] and "keyword" in node["type"]["enum"]:
+                named.update(node["type"]["enum"])
+            for value in node.values():
+                walk(value)
+        elif isinstance(node, list):
+            for value in node:
+                walk(value)
+
+    walk(schema)
+    assert named == set(TYPES)
+    # and every runtime has the pieces the registry names
+    python = (ROOT / "templates" / "python" / "runtime.py").read_text(encoding="utf-8")
+    c = (ROOT / "templates" / "c" / "runtime.c").read_text(encoding="utf-8")
+    for t in TYPES.values():
+        assert f"class {t.python_spec}(" in python, t.name
+        assert f"FIELD_{t.name.upper()}," in c or f"FIELD_{t.name.upper()}\n" in c, t.name
+        assert f" fast_{t.c_fast}(" in c and f" fast_put_{t.c_put}(" in c, t.name
 
 
 @pytest.mark.parametrize("fixture", sorted(BAD.glob("*.yaml")), ids=lambda p: p.stem)

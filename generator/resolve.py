@@ -1,0 +1,75 @@
+"""The resolve pass: the facts of the model derived from what the YAML says, before any check.
+
+Loading (build.py) turns each document into model objects holding what the file says; this pass
+links them (a field's enum and bitfield, a table parameter's, a command's reply sentences) and
+works out where each field is on the wire (its 1-based index, its group) and whether each
+example's checksum holds. The checks (checks.py)
+then only judge: a reference left unlinked here is an error they report, with its file and line.
+"""
+
+from __future__ import annotations
+
+from . import reference
+from .model import Field, Group, Layout, Spec
+
+
+def resolve(spec: Spec) -> None:
+    spec.enum_by_id = {e.id: e for e in spec.enums}
+    bitfields = {b.id: b for b in spec.bitfields}
+    for table in spec.tables:
+        for p in table.parameters:
+            p.enum = spec.enum_by_id.get(p.enum_id) if p.enum_id is not None else None
+            p.bitfield = bitfields.get(p.bitfield_id) if p.bitfield_id is not None else None
+    sentences = {s.id: s for s in spec.sentences}
+    for sentence in spec.sentences:
+        sentence.replies = []
+        for rule in sentence.reply_rules:
+            rule.sentence = sentences.get(rule.sentence_id)
+            if rule.sentence is not None and rule.sentence not in sentence.replies:
+                sentence.replies.append(rule.sentence)
+        for example in sentence.examples:
+            example.checksum_ok = (sentence.framing == "text" or "*" not in example.raw and example.raw.startswith("$")
+                                   or checksum_ok(example.raw))
+        for layout in sentence.layouts:
+            _place(layout)
+            for f in _fields(layout):
+                f.enum = spec.enum_by_id.get(f.enum_id) if f.enum_id is not None else None
+                f.bitfield = bitfields.get(f.bitfield_id) if f.bitfield_id is not None else None
+
+
+def checksum_ok(line: str) -> bool:
+    """Whether a `$` line's checksum holds; a bare '*' (checksum left out, as ST's manual writes
+    its commands) holds too."""
+    if line.startswith("$") and line.endswith("*") and line.count("*") == 1:
+        return True
+    star = line.rfind("*")
+    if not line or line[0] not in "$!" or star < 0 or len(line) != star + 3:
+        return False
+    try:
+        return int(line[star + 1:], 16) == reference.rt.checksum(line[1:star])
+    except ValueError:
+        return False
+
+
+def _place(layout: Layout) -> None:
+    """Each item's 1-based wire index (a group's first entry at its place, its fields' within an
+    entry) and each grouped field's group."""
+    index = 1
+    for item in layout.items:
+        item.wire_index = index
+        if isinstance(item, Group):
+            offset = 1
+            for f in item.fields:
+                f.group = item
+                f.wire_index = offset
+                offset += f.wire_width
+            index += item.min * item.width
+        else:
+            index += item.wire_width
+
+
+def _fields(layout: Layout) -> list[Field]:
+    out: list[Field] = []
+    for item in layout.items:
+        out += item.fields if isinstance(item, Group) else [item]
+    return out
