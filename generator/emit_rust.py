@@ -704,6 +704,8 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         "framing": fmt_const(4, "const FRAMING: Framing", framing_expr(sentence)),
         "words": fmt_const_slice(4, "const WORDS: &'static [(&'static str, usize)]",
                                  [f"({rust_str(it['field'].id)}, {it['width']})" for it in items]) if text else [],
+        "json": json_const(items),
+        "visit": visit_lines(items),
         "init": init,
         "fast": fast,
         "fast_path": sentence.fast_path and not text,
@@ -718,6 +720,42 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         "selector": layout.selector,
         "text": text,
     }
+
+
+def visit_lines(items: list[dict]) -> list[str]:
+    """The body of a layout's `visit`: each item into the sink, optional ones while on the wire."""
+    lines: list[str] = []
+    for it in items:
+        optional = it.get("optional")
+        indent = 12 if optional else 8
+        key = rust_str(it["field"].id if it.get("field") is not None else it["group"].id)
+        method = {"keyword": "keyword", "values": "values", "texts": "texts", "entries": "entries"}.get(
+            it["kind"], "field")
+        value = it["word"] if it["kind"] == "keyword" else f"&self.{it['ident']}"
+        call = fmt_call(indent, "", f"sink.{method}", [key, value], "?;", False)
+        lines += [f"        if self.trailing >= {optional['index']} {{", *call, "        }"] if optional else call
+    return lines
+
+
+def json_const(items: list[dict]) -> list[str]:
+    """`const JSON`: the JsonMember of each item (what reading decode's JSON back looks for), as
+    rustfmt writes it."""
+    members: list[tuple[str, list[str]]] = []
+    for it in items:
+        if it["kind"] in ("values", "texts"):
+            members.append(("JsonMember::Values", [rust_str(it["group"].id), str(it["group"].fields[0].wire_width)]))
+        elif it["kind"] == "entries":
+            pairs = ", ".join(f"({rust_str(f.id)}, {f.wire_width})" for f in it["group"].fields)
+            members.append(("JsonMember::Entries", [rust_str(it["group"].id), f"&[{pairs}]"]))
+        else:
+            kind = "Optional" if it.get("optional") else "Field"
+            members.append((f"JsonMember::{kind}", [rust_str(it["field"].id), str(it["field"].wire_width)]))
+    decl = "const JSON: &'static [JsonMember]"
+    lines = fmt_const_slice(4, decl, [f"{name}({', '.join(args)})" for name, args in members])
+    if all(len(line) <= WIDTH for line in lines):
+        return lines
+    return [f"    {decl} = &[", *(line for name, args in members for line in fmt_call(8, "", name, args, ",", False)),
+            "    ];"]
 
 
 def fast_reader(sentence: Sentence, items: list[dict]) -> list[str]:
@@ -755,7 +793,7 @@ def shape_lines(sentence: Sentence, layout: Layout) -> list[str]:
 
 
 def module_imports(views: list[dict]) -> list[str]:
-    runtime = {"Checksum", "Error", "Fields", "Framing", "JsonFields", "Layout", "Shape", "WireWriter"}
+    runtime = {"Checksum", "Error", "FieldSink", "Fields", "Framing", "JsonMember", "Layout", "Shape"}
     enums: set[str] = set()
     for view in views:
         if view["group"] is not None:
@@ -765,11 +803,9 @@ def module_imports(views: list[dict]) -> list[str]:
         if any(it["kind"] == "texts" for it in view["items"]):
             runtime.add("Texts")
         if view["entries"]:
-            runtime.add("Reader")
-        if not view["text"]:
-            runtime.add("ByteWriter")
-            if view["fast_path"]:
-                runtime |= {"FastReader", "Read"}
+            runtime |= {"Entry", "Reader"}
+        if not view["text"] and view["fast_path"]:
+            runtime |= {"FastReader", "Read"}
         fields = [it["field"] for it in view["items"] if it["kind"] == "field"]
         fields += [it["group"].fields[0] for it in view["items"] if it["kind"] == "values"]
         fields += [fv["field"] for e in view["entries"] for fv in e["fields"]]
@@ -787,7 +823,6 @@ def module_imports(views: list[dict]) -> list[str]:
     lines: list[str] = []
     if enums:
         lines += fmt_use("crate::enums", rust_sorted(enums))
-    lines += ['#[cfg(feature = "std")]', "use crate::runtime::json;"]
     lines += fmt_use("crate::runtime", rust_sorted(runtime))
     lines += ["use crate::LayoutId;"]
     return lines

@@ -8,8 +8,8 @@ use super::fast::{FastReader, Read, Unsure};
 use super::frame::{is_command_word, is_standard_address, Fields, Frame, Shape, MAX_LINE};
 use super::types::Checksum;
 use super::write::{
-    write_json_str, write_sentence, write_sentence_with, write_words_json, ByteWriter, Discard, JsonEscape, JsonFields,
-    Latin1Bytes, SameUpper, WireWriter,
+    write_json_str, write_sentence, write_sentence_with, write_words_json, ByteWriter, Discard, FieldSink, JsonEscape,
+    JsonFields, Latin1Bytes, SameUpper, WireWriter,
 };
 
 /// How a sentence is framed and addressed.
@@ -35,6 +35,20 @@ impl Framing {
             Self::Standard | Self::Proprietary(_) => "$",
         }
     }
+}
+
+/// A member of a layout's `fields` object, in wire order: what reading decode's JSON back into
+/// wire fields looks for (`Layout::fields_from_json`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JsonMember {
+    /// A field: its key and how many wire fields it takes.
+    Field(&'static str, usize),
+    /// An optional trailing field, left out of the object when it is not on the wire.
+    Optional(&'static str, usize),
+    /// A group of one field: an array of its values.
+    Values(&'static str, usize),
+    /// A group of several fields: an array of objects with these members.
+    Entries(&'static str, &'static [(&'static str, usize)]),
 }
 
 /// What a sentence is for.
@@ -83,6 +97,8 @@ pub trait Layout<'a>: Sized {
     /// A text command's fields and the words each takes: the keys of its lossless JSON, which
     /// shows the words as written.
     const WORDS: &'static [(&'static str, usize)] = &[];
+    /// The members of its `fields` object in decode's JSON.
+    const JSON: &'static [JsonMember];
 
     /// Decodes the fields after the address; the error names the field at fault.
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>>;
@@ -113,22 +129,51 @@ pub trait Layout<'a>: Sized {
         None
     }
 
+    /// Writes every field after the address into `sink`, in wire order: the wire (each field
+    /// preceded by `,`, a space in a text command) or the `fields` object of the tools' JSON.
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result;
+
     /// Writes every field after the address, each preceded by `,` (a space in a text command).
-    fn write_fields<W: Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result;
+    fn write_fields<W: Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
+        self.visit(w)
+    }
 
     /// [`Layout::write_fields`] into a byte buffer without `fmt`, when the text is ASCII;
-    /// `None`: leave it to `write_fields` (a text command always does).
+    /// `None`: leave it to `write_fields`.
+    #[inline]
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        let _ = w;
-        None
+        self.visit(w).ok()
     }
 
     /// Writes the members of the `fields` object of the tools' JSON.
-    fn write_json_fields<W: Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result;
+    fn write_json_fields<W: Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
+        self.visit(j)
+    }
 
     /// Appends the wire fields described by a `fields` object of decode's lossless JSON.
     #[cfg(feature = "std")]
-    fn fields_from_json(fields: &super::json::Value, out: &mut super::json::WireFields) -> Result<(), Error<'static>>;
+    fn fields_from_json(fields: &super::json::Value, out: &mut super::json::WireFields) -> Result<(), Error<'static>> {
+        use super::json::list;
+        for member in Self::JSON {
+            match *member {
+                JsonMember::Field(key, width) => out.member(fields, key, width)?,
+                JsonMember::Optional(key, width) => out.optional(fields, key, width)?,
+                JsonMember::Values(key, width) => {
+                    for value in list(fields, key)? {
+                        out.value(value, width)?;
+                    }
+                }
+                JsonMember::Entries(key, members) => {
+                    for entry in list(fields, key)? {
+                        for &(key, width) in members {
+                            out.member(entry, key, width)?;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
 
     /// Parses a whole line (a trailing LF or CR LF is allowed) that must be this sentence.
     fn parse_line(line: &'a str) -> Result<Self, Error<'a>> {

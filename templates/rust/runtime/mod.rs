@@ -27,7 +27,7 @@ pub use frame::{
     checksum, first_word, is_command_word, is_standard_address, Blanks, FieldIter, Fields, Frame, GroupShape, Reader,
     Shape, MAX_LINE, MAX_PROBLEMS,
 };
-pub use layout::{build, strip_line_ending, Framing, Generic, Kind, Layout, ReplyOutcome, BUILD_CAPACITY};
+pub use layout::{build, strip_line_ending, Framing, Generic, JsonMember, Kind, Layout, ReplyOutcome, BUILD_CAPACITY};
 pub use table::{Encoding, ParamValue, Parameter, ParameterError, Problem, Table};
 pub use types::{
     upper_eq, Ascii, Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Group, Hex, Number,
@@ -35,5 +35,5 @@ pub use types::{
 };
 pub use write::{
     write_json_char, write_json_display, write_json_str, write_sentence, write_sentence_with, write_words_json,
-    ByteWriter, Discard, FieldValue, JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
+    ByteWriter, Discard, Entry, FieldSink, FieldValue, JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
 };

@@ -969,6 +969,101 @@ pub fn write_json_display<W: Write + ?Sized>(w: &mut W, value: &dyn fmt::Display
     w.write_char('"')
 }
 
+/// Where the fields of a layout go, in wire order: the wire ([`WireWriter`], or [`ByteWriter`]
+/// without `fmt`) or the `fields` object of the tools' JSON ([`JsonFields`]). Each layout and
+/// group entry writes itself once, into any of them (`Layout::visit`, [`Entry::visit`]); the
+/// wire writers pass the keys over.
+pub trait FieldSink {
+    /// A field under its key.
+    fn field<T: FieldValue>(&mut self, key: &str, value: &Option<T>) -> fmt::Result;
+    /// A keyword (the word that picks the layout).
+    fn keyword(&mut self, key: &str, word: &str) -> fmt::Result;
+    /// The values of a group of one field.
+    fn values<T: FieldValue>(&mut self, key: &str, values: &[Option<T>]) -> fmt::Result;
+    /// The values of a group of one text field.
+    fn texts(&mut self, key: &str, values: &Texts<'_>) -> fmt::Result;
+    /// The entries of a group of several fields.
+    fn entries<T: Entry>(&mut self, key: &str, entries: &[T]) -> fmt::Result;
+}
+
+/// One entry of a repeated group of several fields (a struct generated from the spec).
+pub trait Entry {
+    /// Writes the entry's fields into `sink`.
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result;
+}
+
+impl<W: Write + ?Sized> FieldSink for WireWriter<'_, W> {
+    #[inline]
+    fn field<T: FieldValue>(&mut self, _: &str, value: &Option<T>) -> fmt::Result {
+        WireWriter::field(self, value)
+    }
+
+    fn keyword(&mut self, _: &str, word: &str) -> fmt::Result {
+        WireWriter::keyword(self, word)
+    }
+
+    fn values<T: FieldValue>(&mut self, _: &str, values: &[Option<T>]) -> fmt::Result {
+        self.fields(values)
+    }
+
+    fn texts(&mut self, _: &str, values: &Texts<'_>) -> fmt::Result {
+        WireWriter::texts(self, values)
+    }
+
+    fn entries<T: Entry>(&mut self, _: &str, entries: &[T]) -> fmt::Result {
+        entries.iter().try_for_each(|entry| entry.visit(self))
+    }
+}
+
+/// `Err` where the byte writer gives up (the text is not ASCII, or the buffer is full).
+impl FieldSink for ByteWriter<'_> {
+    #[inline]
+    fn field<T: FieldValue>(&mut self, _: &str, value: &Option<T>) -> fmt::Result {
+        ByteWriter::field(self, value).ok_or(fmt::Error)
+    }
+
+    #[inline]
+    fn keyword(&mut self, _: &str, word: &str) -> fmt::Result {
+        ByteWriter::keyword(self, word).ok_or(fmt::Error)
+    }
+
+    #[inline]
+    fn values<T: FieldValue>(&mut self, _: &str, values: &[Option<T>]) -> fmt::Result {
+        self.fields(values).ok_or(fmt::Error)
+    }
+
+    fn texts(&mut self, _: &str, values: &Texts<'_>) -> fmt::Result {
+        ByteWriter::texts(self, values).ok_or(fmt::Error)
+    }
+
+    #[inline]
+    fn entries<T: Entry>(&mut self, _: &str, entries: &[T]) -> fmt::Result {
+        entries.iter().try_for_each(|entry| entry.visit(self))
+    }
+}
+
+impl<W: Write + ?Sized> FieldSink for JsonFields<'_, W> {
+    fn field<T: FieldValue>(&mut self, key: &str, value: &Option<T>) -> fmt::Result {
+        JsonFields::field(self, key, value)
+    }
+
+    fn keyword(&mut self, key: &str, word: &str) -> fmt::Result {
+        JsonFields::keyword(self, key, word)
+    }
+
+    fn values<T: FieldValue>(&mut self, key: &str, values: &[Option<T>]) -> fmt::Result {
+        JsonFields::values(self, key, values)
+    }
+
+    fn texts(&mut self, key: &str, values: &Texts<'_>) -> fmt::Result {
+        JsonFields::texts(self, key, values)
+    }
+
+    fn entries<T: Entry>(&mut self, key: &str, entries: &[T]) -> fmt::Result {
+        JsonFields::entries(self, key, entries, |entry, object| entry.visit(object))
+    }
+}
+
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;

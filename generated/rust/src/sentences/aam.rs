@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{AamArrivalCircle, AamPerpendicular};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -72,6 +70,13 @@ impl<'a> Layout<'a> for Aam<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "AAM", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("arrival_circle", 1),
+        JsonMember::Field("perpendicular", 1),
+        JsonMember::Field("arrival_radius", 1),
+        JsonMember::Field("arrival_radius_unit", 1),
+        JsonMember::Field("waypoint", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -94,40 +99,12 @@ impl<'a> Layout<'a> for Aam<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.arrival_circle)?;
-        w.field(&self.perpendicular)?;
-        w.field(&self.arrival_radius)?;
-        w.field(&self.arrival_radius_unit)?;
-        w.field(&self.waypoint)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.arrival_circle)?;
-        w.field(&self.perpendicular)?;
-        w.field(&self.arrival_radius)?;
-        w.field(&self.arrival_radius_unit)?;
-        w.field(&self.waypoint)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("arrival_circle", &self.arrival_circle)?;
-        j.field("perpendicular", &self.perpendicular)?;
-        j.field("arrival_radius", &self.arrival_radius)?;
-        j.field("arrival_radius_unit", &self.arrival_radius_unit)?;
-        j.field("waypoint", &self.waypoint)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "arrival_circle", 1)?;
-        out.member(fields, "perpendicular", 1)?;
-        out.member(fields, "arrival_radius", 1)?;
-        out.member(fields, "arrival_radius_unit", 1)?;
-        out.member(fields, "waypoint", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("arrival_circle", &self.arrival_circle)?;
+        sink.field("perpendicular", &self.perpendicular)?;
+        sink.field("arrival_radius", &self.arrival_radius)?;
+        sink.field("arrival_radius_unit", &self.arrival_radius_unit)?;
+        sink.field("waypoint", &self.waypoint)?;
         Ok(())
     }
 }

@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{AbkAckType, AbkChannel};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -76,6 +74,13 @@ impl<'a> Layout<'a> for Abk<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ABK", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("mmsi", 1),
+        JsonMember::Field("channel", 1),
+        JsonMember::Field("message_id", 1),
+        JsonMember::Field("sequence_number", 1),
+        JsonMember::Field("ack_type", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -98,40 +103,12 @@ impl<'a> Layout<'a> for Abk<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.mmsi)?;
-        w.field(&self.channel)?;
-        w.field(&self.message_id)?;
-        w.field(&self.sequence_number)?;
-        w.field(&self.ack_type)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.mmsi)?;
-        w.field(&self.channel)?;
-        w.field(&self.message_id)?;
-        w.field(&self.sequence_number)?;
-        w.field(&self.ack_type)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("mmsi", &self.mmsi)?;
-        j.field("channel", &self.channel)?;
-        j.field("message_id", &self.message_id)?;
-        j.field("sequence_number", &self.sequence_number)?;
-        j.field("ack_type", &self.ack_type)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "mmsi", 1)?;
-        out.member(fields, "channel", 1)?;
-        out.member(fields, "message_id", 1)?;
-        out.member(fields, "sequence_number", 1)?;
-        out.member(fields, "ack_type", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("mmsi", &self.mmsi)?;
+        sink.field("channel", &self.channel)?;
+        sink.field("message_id", &self.message_id)?;
+        sink.field("sequence_number", &self.sequence_number)?;
+        sink.field("ack_type", &self.ack_type)?;
         Ok(())
     }
 }

@@ -12,10 +12,8 @@
 use core::fmt;
 
 use crate::enums::AbmChannel;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -85,6 +83,16 @@ impl<'a> Layout<'a> for Abm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Encapsulated;
     const SHAPE: Shape = Shape { sentence: "ABM", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sentence_count", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("message_id", 1),
+        JsonMember::Field("mmsi", 1),
+        JsonMember::Field("channel", 1),
+        JsonMember::Field("message_type", 1),
+        JsonMember::Field("payload", 1),
+        JsonMember::Field("fill_bits", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -111,52 +119,15 @@ impl<'a> Layout<'a> for Abm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sentence_count)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.message_id)?;
-        w.field(&self.mmsi)?;
-        w.field(&self.channel)?;
-        w.field(&self.message_type)?;
-        w.field(&self.payload)?;
-        w.field(&self.fill_bits)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sentence_count)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.message_id)?;
-        w.field(&self.mmsi)?;
-        w.field(&self.channel)?;
-        w.field(&self.message_type)?;
-        w.field(&self.payload)?;
-        w.field(&self.fill_bits)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sentence_count", &self.sentence_count)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("message_id", &self.message_id)?;
-        j.field("mmsi", &self.mmsi)?;
-        j.field("channel", &self.channel)?;
-        j.field("message_type", &self.message_type)?;
-        j.field("payload", &self.payload)?;
-        j.field("fill_bits", &self.fill_bits)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sentence_count", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "message_id", 1)?;
-        out.member(fields, "mmsi", 1)?;
-        out.member(fields, "channel", 1)?;
-        out.member(fields, "message_type", 1)?;
-        out.member(fields, "payload", 1)?;
-        out.member(fields, "fill_bits", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sentence_count", &self.sentence_count)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("message_id", &self.message_id)?;
+        sink.field("mmsi", &self.mmsi)?;
+        sink.field("channel", &self.channel)?;
+        sink.field("message_type", &self.message_type)?;
+        sink.field("payload", &self.payload)?;
+        sink.field("fill_bits", &self.fill_bits)?;
         Ok(())
     }
 }

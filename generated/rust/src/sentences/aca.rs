@@ -12,11 +12,9 @@
 use core::fmt;
 
 use crate::enums::{AcaBandwidth, AcaInUse, AcaInfoSource, AcaPowerLevel, AcaTxrxMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -97,6 +95,23 @@ impl<'a> Layout<'a> for Aca<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ACA", fixed: 19, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sequence_number", 1),
+        JsonMember::Field("ne_lat", 2),
+        JsonMember::Field("ne_lon", 2),
+        JsonMember::Field("sw_lat", 2),
+        JsonMember::Field("sw_lon", 2),
+        JsonMember::Field("transition_zone", 1),
+        JsonMember::Field("channel_a", 1),
+        JsonMember::Field("channel_a_bandwidth", 1),
+        JsonMember::Field("channel_b", 1),
+        JsonMember::Field("channel_b_bandwidth", 1),
+        JsonMember::Field("txrx_mode", 1),
+        JsonMember::Field("power_level", 1),
+        JsonMember::Field("info_source", 1),
+        JsonMember::Field("in_use", 1),
+        JsonMember::Field("in_use_time", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -130,80 +145,22 @@ impl<'a> Layout<'a> for Aca<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sequence_number)?;
-        w.field(&self.ne_lat)?;
-        w.field(&self.ne_lon)?;
-        w.field(&self.sw_lat)?;
-        w.field(&self.sw_lon)?;
-        w.field(&self.transition_zone)?;
-        w.field(&self.channel_a)?;
-        w.field(&self.channel_a_bandwidth)?;
-        w.field(&self.channel_b)?;
-        w.field(&self.channel_b_bandwidth)?;
-        w.field(&self.txrx_mode)?;
-        w.field(&self.power_level)?;
-        w.field(&self.info_source)?;
-        w.field(&self.in_use)?;
-        w.field(&self.in_use_time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sequence_number)?;
-        w.field(&self.ne_lat)?;
-        w.field(&self.ne_lon)?;
-        w.field(&self.sw_lat)?;
-        w.field(&self.sw_lon)?;
-        w.field(&self.transition_zone)?;
-        w.field(&self.channel_a)?;
-        w.field(&self.channel_a_bandwidth)?;
-        w.field(&self.channel_b)?;
-        w.field(&self.channel_b_bandwidth)?;
-        w.field(&self.txrx_mode)?;
-        w.field(&self.power_level)?;
-        w.field(&self.info_source)?;
-        w.field(&self.in_use)?;
-        w.field(&self.in_use_time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sequence_number", &self.sequence_number)?;
-        j.field("ne_lat", &self.ne_lat)?;
-        j.field("ne_lon", &self.ne_lon)?;
-        j.field("sw_lat", &self.sw_lat)?;
-        j.field("sw_lon", &self.sw_lon)?;
-        j.field("transition_zone", &self.transition_zone)?;
-        j.field("channel_a", &self.channel_a)?;
-        j.field("channel_a_bandwidth", &self.channel_a_bandwidth)?;
-        j.field("channel_b", &self.channel_b)?;
-        j.field("channel_b_bandwidth", &self.channel_b_bandwidth)?;
-        j.field("txrx_mode", &self.txrx_mode)?;
-        j.field("power_level", &self.power_level)?;
-        j.field("info_source", &self.info_source)?;
-        j.field("in_use", &self.in_use)?;
-        j.field("in_use_time", &self.in_use_time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sequence_number", 1)?;
-        out.member(fields, "ne_lat", 2)?;
-        out.member(fields, "ne_lon", 2)?;
-        out.member(fields, "sw_lat", 2)?;
-        out.member(fields, "sw_lon", 2)?;
-        out.member(fields, "transition_zone", 1)?;
-        out.member(fields, "channel_a", 1)?;
-        out.member(fields, "channel_a_bandwidth", 1)?;
-        out.member(fields, "channel_b", 1)?;
-        out.member(fields, "channel_b_bandwidth", 1)?;
-        out.member(fields, "txrx_mode", 1)?;
-        out.member(fields, "power_level", 1)?;
-        out.member(fields, "info_source", 1)?;
-        out.member(fields, "in_use", 1)?;
-        out.member(fields, "in_use_time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sequence_number", &self.sequence_number)?;
+        sink.field("ne_lat", &self.ne_lat)?;
+        sink.field("ne_lon", &self.ne_lon)?;
+        sink.field("sw_lat", &self.sw_lat)?;
+        sink.field("sw_lon", &self.sw_lon)?;
+        sink.field("transition_zone", &self.transition_zone)?;
+        sink.field("channel_a", &self.channel_a)?;
+        sink.field("channel_a_bandwidth", &self.channel_a_bandwidth)?;
+        sink.field("channel_b", &self.channel_b)?;
+        sink.field("channel_b_bandwidth", &self.channel_b_bandwidth)?;
+        sink.field("txrx_mode", &self.txrx_mode)?;
+        sink.field("power_level", &self.power_level)?;
+        sink.field("info_source", &self.info_source)?;
+        sink.field("in_use", &self.in_use)?;
+        sink.field("in_use_time", &self.in_use_time)?;
         Ok(())
     }
 }

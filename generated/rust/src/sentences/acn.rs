@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::AcnAlertCommand;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -77,6 +75,14 @@ impl<'a> Layout<'a> for Acn<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ACN", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("manufacturer", 1),
+        JsonMember::Field("alert_id", 1),
+        JsonMember::Field("alert_instance", 1),
+        JsonMember::Field("command", 1),
+        JsonMember::Field("status_flag", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -99,44 +105,13 @@ impl<'a> Layout<'a> for Acn<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.manufacturer)?;
-        w.field(&self.alert_id)?;
-        w.field(&self.alert_instance)?;
-        w.field(&self.command)?;
-        w.field(&self.status_flag)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.manufacturer)?;
-        w.field(&self.alert_id)?;
-        w.field(&self.alert_instance)?;
-        w.field(&self.command)?;
-        w.field(&self.status_flag)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("manufacturer", &self.manufacturer)?;
-        j.field("alert_id", &self.alert_id)?;
-        j.field("alert_instance", &self.alert_instance)?;
-        j.field("command", &self.command)?;
-        j.field("status_flag", &self.status_flag)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "manufacturer", 1)?;
-        out.member(fields, "alert_id", 1)?;
-        out.member(fields, "alert_instance", 1)?;
-        out.member(fields, "command", 1)?;
-        out.member(fields, "status_flag", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("manufacturer", &self.manufacturer)?;
+        sink.field("alert_id", &self.alert_id)?;
+        sink.field("alert_instance", &self.alert_instance)?;
+        sink.field("command", &self.command)?;
+        sink.field("status_flag", &self.status_flag)?;
         Ok(())
     }
 }

@@ -9,10 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -66,6 +64,14 @@ impl<'a> Layout<'a> for Acs<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ACS", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sequence_number", 1),
+        JsonMember::Field("mmsi", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("day", 1),
+        JsonMember::Field("month", 1),
+        JsonMember::Field("year", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -89,44 +95,13 @@ impl<'a> Layout<'a> for Acs<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sequence_number)?;
-        w.field(&self.mmsi)?;
-        w.field(&self.time)?;
-        w.field(&self.day)?;
-        w.field(&self.month)?;
-        w.field(&self.year)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sequence_number)?;
-        w.field(&self.mmsi)?;
-        w.field(&self.time)?;
-        w.field(&self.day)?;
-        w.field(&self.month)?;
-        w.field(&self.year)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sequence_number", &self.sequence_number)?;
-        j.field("mmsi", &self.mmsi)?;
-        j.field("time", &self.time)?;
-        j.field("day", &self.day)?;
-        j.field("month", &self.month)?;
-        j.field("year", &self.year)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sequence_number", 1)?;
-        out.member(fields, "mmsi", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "day", 1)?;
-        out.member(fields, "month", 1)?;
-        out.member(fields, "year", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sequence_number", &self.sequence_number)?;
+        sink.field("mmsi", &self.mmsi)?;
+        sink.field("time", &self.time)?;
+        sink.field("day", &self.day)?;
+        sink.field("month", &self.month)?;
+        sink.field("year", &self.year)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::AbkChannel;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -90,6 +88,20 @@ impl<'a> Layout<'a> for Air<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "AIR", fixed: 8, optional: 4, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("station1_mmsi", 1),
+        JsonMember::Field("station1_message1", 1),
+        JsonMember::Field("station1_message1_subsection", 1),
+        JsonMember::Field("station1_message2", 1),
+        JsonMember::Field("station1_message2_subsection", 1),
+        JsonMember::Field("station2_mmsi", 1),
+        JsonMember::Field("station2_message", 1),
+        JsonMember::Field("station2_message_subsection", 1),
+        JsonMember::Optional("channel", 1),
+        JsonMember::Optional("station1_message1_slot", 1),
+        JsonMember::Optional("station1_message2_slot", 1),
+        JsonMember::Optional("station2_message_slot", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -139,92 +151,27 @@ impl<'a> Layout<'a> for Air<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.station1_mmsi)?;
-        w.field(&self.station1_message1)?;
-        w.field(&self.station1_message1_subsection)?;
-        w.field(&self.station1_message2)?;
-        w.field(&self.station1_message2_subsection)?;
-        w.field(&self.station2_mmsi)?;
-        w.field(&self.station2_message)?;
-        w.field(&self.station2_message_subsection)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("station1_mmsi", &self.station1_mmsi)?;
+        sink.field("station1_message1", &self.station1_message1)?;
+        sink.field("station1_message1_subsection", &self.station1_message1_subsection)?;
+        sink.field("station1_message2", &self.station1_message2)?;
+        sink.field("station1_message2_subsection", &self.station1_message2_subsection)?;
+        sink.field("station2_mmsi", &self.station2_mmsi)?;
+        sink.field("station2_message", &self.station2_message)?;
+        sink.field("station2_message_subsection", &self.station2_message_subsection)?;
         if self.trailing >= 1 {
-            w.field(&self.channel)?;
+            sink.field("channel", &self.channel)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.station1_message1_slot)?;
+            sink.field("station1_message1_slot", &self.station1_message1_slot)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.station1_message2_slot)?;
+            sink.field("station1_message2_slot", &self.station1_message2_slot)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.station2_message_slot)?;
+            sink.field("station2_message_slot", &self.station2_message_slot)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.station1_mmsi)?;
-        w.field(&self.station1_message1)?;
-        w.field(&self.station1_message1_subsection)?;
-        w.field(&self.station1_message2)?;
-        w.field(&self.station1_message2_subsection)?;
-        w.field(&self.station2_mmsi)?;
-        w.field(&self.station2_message)?;
-        w.field(&self.station2_message_subsection)?;
-        if self.trailing >= 1 {
-            w.field(&self.channel)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.station1_message1_slot)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.station1_message2_slot)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.station2_message_slot)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("station1_mmsi", &self.station1_mmsi)?;
-        j.field("station1_message1", &self.station1_message1)?;
-        j.field("station1_message1_subsection", &self.station1_message1_subsection)?;
-        j.field("station1_message2", &self.station1_message2)?;
-        j.field("station1_message2_subsection", &self.station1_message2_subsection)?;
-        j.field("station2_mmsi", &self.station2_mmsi)?;
-        j.field("station2_message", &self.station2_message)?;
-        j.field("station2_message_subsection", &self.station2_message_subsection)?;
-        if self.trailing >= 1 {
-            j.field("channel", &self.channel)?;
-        }
-        if self.trailing >= 2 {
-            j.field("station1_message1_slot", &self.station1_message1_slot)?;
-        }
-        if self.trailing >= 3 {
-            j.field("station1_message2_slot", &self.station1_message2_slot)?;
-        }
-        if self.trailing >= 4 {
-            j.field("station2_message_slot", &self.station2_message_slot)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "station1_mmsi", 1)?;
-        out.member(fields, "station1_message1", 1)?;
-        out.member(fields, "station1_message1_subsection", 1)?;
-        out.member(fields, "station1_message2", 1)?;
-        out.member(fields, "station1_message2_subsection", 1)?;
-        out.member(fields, "station2_mmsi", 1)?;
-        out.member(fields, "station2_message", 1)?;
-        out.member(fields, "station2_message_subsection", 1)?;
-        out.optional(fields, "channel", 1)?;
-        out.optional(fields, "station1_message1_slot", 1)?;
-        out.optional(fields, "station1_message2_slot", 1)?;
-        out.optional(fields, "station2_message_slot", 1)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time};
 use crate::LayoutId;
 
 /// AKD: Acknowledge detail alarm condition.
@@ -74,6 +70,16 @@ impl<'a> Layout<'a> for Akd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "AKD", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("source_system", 1),
+        JsonMember::Field("source_subsystem", 1),
+        JsonMember::Field("source_instance", 1),
+        JsonMember::Field("alarm_type", 1),
+        JsonMember::Field("ack_system", 1),
+        JsonMember::Field("ack_subsystem", 1),
+        JsonMember::Field("ack_instance", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -98,52 +104,15 @@ impl<'a> Layout<'a> for Akd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.source_system)?;
-        w.field(&self.source_subsystem)?;
-        w.field(&self.source_instance)?;
-        w.field(&self.alarm_type)?;
-        w.field(&self.ack_system)?;
-        w.field(&self.ack_subsystem)?;
-        w.field(&self.ack_instance)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.source_system)?;
-        w.field(&self.source_subsystem)?;
-        w.field(&self.source_instance)?;
-        w.field(&self.alarm_type)?;
-        w.field(&self.ack_system)?;
-        w.field(&self.ack_subsystem)?;
-        w.field(&self.ack_instance)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("source_system", &self.source_system)?;
-        j.field("source_subsystem", &self.source_subsystem)?;
-        j.field("source_instance", &self.source_instance)?;
-        j.field("alarm_type", &self.alarm_type)?;
-        j.field("ack_system", &self.ack_system)?;
-        j.field("ack_subsystem", &self.ack_subsystem)?;
-        j.field("ack_instance", &self.ack_instance)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "source_system", 1)?;
-        out.member(fields, "source_subsystem", 1)?;
-        out.member(fields, "source_instance", 1)?;
-        out.member(fields, "alarm_type", 1)?;
-        out.member(fields, "ack_system", 1)?;
-        out.member(fields, "ack_subsystem", 1)?;
-        out.member(fields, "ack_instance", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("source_system", &self.source_system)?;
+        sink.field("source_subsystem", &self.source_subsystem)?;
+        sink.field("source_instance", &self.source_instance)?;
+        sink.field("alarm_type", &self.alarm_type)?;
+        sink.field("ack_system", &self.ack_system)?;
+        sink.field("ack_subsystem", &self.ack_subsystem)?;
+        sink.field("ack_instance", &self.ack_instance)?;
         Ok(())
     }
 }

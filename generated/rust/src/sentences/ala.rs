@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{AlaAckState, AlaCondition};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -85,6 +83,16 @@ impl<'a> Layout<'a> for Ala<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ALA", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("source_system", 1),
+        JsonMember::Field("source_subsystem", 1),
+        JsonMember::Field("instance", 1),
+        JsonMember::Field("alarm_type", 1),
+        JsonMember::Field("condition", 1),
+        JsonMember::Field("ack_state", 1),
+        JsonMember::Field("description", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -109,52 +117,15 @@ impl<'a> Layout<'a> for Ala<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.source_system)?;
-        w.field(&self.source_subsystem)?;
-        w.field(&self.instance)?;
-        w.field(&self.alarm_type)?;
-        w.field(&self.condition)?;
-        w.field(&self.ack_state)?;
-        w.field(&self.description)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.source_system)?;
-        w.field(&self.source_subsystem)?;
-        w.field(&self.instance)?;
-        w.field(&self.alarm_type)?;
-        w.field(&self.condition)?;
-        w.field(&self.ack_state)?;
-        w.field(&self.description)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("source_system", &self.source_system)?;
-        j.field("source_subsystem", &self.source_subsystem)?;
-        j.field("instance", &self.instance)?;
-        j.field("alarm_type", &self.alarm_type)?;
-        j.field("condition", &self.condition)?;
-        j.field("ack_state", &self.ack_state)?;
-        j.field("description", &self.description)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "source_system", 1)?;
-        out.member(fields, "source_subsystem", 1)?;
-        out.member(fields, "instance", 1)?;
-        out.member(fields, "alarm_type", 1)?;
-        out.member(fields, "condition", 1)?;
-        out.member(fields, "ack_state", 1)?;
-        out.member(fields, "description", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("source_system", &self.source_system)?;
+        sink.field("source_subsystem", &self.source_subsystem)?;
+        sink.field("instance", &self.instance)?;
+        sink.field("alarm_type", &self.alarm_type)?;
+        sink.field("condition", &self.condition)?;
+        sink.field("ack_state", &self.ack_state)?;
+        sink.field("description", &self.description)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Reader,
-    Shape, WireWriter,
+    Bound, Checksum, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
+    Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -42,37 +40,14 @@ impl<'a> AlcAlert<'a> {
             revision_counter: f.integer("revision_counter", "integer", Range::ANY)?,
         })
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.manufacturer)?;
-        w.field(&self.alert_id)?;
-        w.field(&self.alert_instance)?;
-        w.field(&self.revision_counter)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.manufacturer)?;
-        w.field(&self.alert_id)?;
-        w.field(&self.alert_instance)?;
-        w.field(&self.revision_counter)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("manufacturer", &self.manufacturer)?;
-        j.field("alert_id", &self.alert_id)?;
-        j.field("alert_instance", &self.alert_instance)?;
-        j.field("revision_counter", &self.revision_counter)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "manufacturer", 1)?;
-        out.member(entry, "alert_id", 1)?;
-        out.member(entry, "alert_instance", 1)?;
-        out.member(entry, "revision_counter", 1)?;
+impl Entry for AlcAlert<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("manufacturer", &self.manufacturer)?;
+        sink.field("alert_id", &self.alert_id)?;
+        sink.field("alert_instance", &self.alert_instance)?;
+        sink.field("revision_counter", &self.revision_counter)?;
         Ok(())
     }
 }
@@ -139,6 +114,16 @@ impl<'a> Layout<'a> for Alc<'a> {
         optional: 0,
         group: Some(GroupShape { id: "alerts", width: 4, min: 0, max: 10 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sentence_count", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("sequence_id", 1),
+        JsonMember::Field("entry_count", 1),
+        JsonMember::Entries(
+            "alerts",
+            &[("manufacturer", 1), ("alert_id", 1), ("alert_instance", 1), ("revision_counter", 1)],
+        ),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -162,46 +147,12 @@ impl<'a> Layout<'a> for Alc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sentence_count)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequence_id)?;
-        w.field(&self.entry_count)?;
-        for entry in &self.alerts {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sentence_count)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequence_id)?;
-        w.field(&self.entry_count)?;
-        for entry in &self.alerts {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sentence_count", &self.sentence_count)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("sequence_id", &self.sequence_id)?;
-        j.field("entry_count", &self.entry_count)?;
-        j.entries("alerts", &self.alerts, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sentence_count", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "sequence_id", 1)?;
-        out.member(fields, "entry_count", 1)?;
-        for entry in json::list(fields, "alerts")? {
-            AlcAlert::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sentence_count", &self.sentence_count)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("sequence_id", &self.sequence_id)?;
+        sink.field("entry_count", &self.entry_count)?;
+        sink.entries("alerts", &self.alerts)?;
         Ok(())
     }
 }

@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::{AlfCategory, AlfPriority, AlfState};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -100,6 +97,21 @@ impl<'a> Layout<'a> for Alf<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ALF", fixed: 13, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sentence_count", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("sequence_id", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("category", 1),
+        JsonMember::Field("priority", 1),
+        JsonMember::Field("state", 1),
+        JsonMember::Field("manufacturer", 1),
+        JsonMember::Field("alert_id", 1),
+        JsonMember::Field("alert_instance", 1),
+        JsonMember::Field("revision_counter", 1),
+        JsonMember::Field("escalation_counter", 1),
+        JsonMember::Field("text", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -130,72 +142,20 @@ impl<'a> Layout<'a> for Alf<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sentence_count)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequence_id)?;
-        w.field(&self.time)?;
-        w.field(&self.category)?;
-        w.field(&self.priority)?;
-        w.field(&self.state)?;
-        w.field(&self.manufacturer)?;
-        w.field(&self.alert_id)?;
-        w.field(&self.alert_instance)?;
-        w.field(&self.revision_counter)?;
-        w.field(&self.escalation_counter)?;
-        w.field(&self.text)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sentence_count)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequence_id)?;
-        w.field(&self.time)?;
-        w.field(&self.category)?;
-        w.field(&self.priority)?;
-        w.field(&self.state)?;
-        w.field(&self.manufacturer)?;
-        w.field(&self.alert_id)?;
-        w.field(&self.alert_instance)?;
-        w.field(&self.revision_counter)?;
-        w.field(&self.escalation_counter)?;
-        w.field(&self.text)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sentence_count", &self.sentence_count)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("sequence_id", &self.sequence_id)?;
-        j.field("time", &self.time)?;
-        j.field("category", &self.category)?;
-        j.field("priority", &self.priority)?;
-        j.field("state", &self.state)?;
-        j.field("manufacturer", &self.manufacturer)?;
-        j.field("alert_id", &self.alert_id)?;
-        j.field("alert_instance", &self.alert_instance)?;
-        j.field("revision_counter", &self.revision_counter)?;
-        j.field("escalation_counter", &self.escalation_counter)?;
-        j.field("text", &self.text)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sentence_count", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "sequence_id", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "category", 1)?;
-        out.member(fields, "priority", 1)?;
-        out.member(fields, "state", 1)?;
-        out.member(fields, "manufacturer", 1)?;
-        out.member(fields, "alert_id", 1)?;
-        out.member(fields, "alert_instance", 1)?;
-        out.member(fields, "revision_counter", 1)?;
-        out.member(fields, "escalation_counter", 1)?;
-        out.member(fields, "text", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sentence_count", &self.sentence_count)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("sequence_id", &self.sequence_id)?;
+        sink.field("time", &self.time)?;
+        sink.field("category", &self.category)?;
+        sink.field("priority", &self.priority)?;
+        sink.field("state", &self.state)?;
+        sink.field("manufacturer", &self.manufacturer)?;
+        sink.field("alert_id", &self.alert_id)?;
+        sink.field("alert_instance", &self.alert_instance)?;
+        sink.field("revision_counter", &self.revision_counter)?;
+        sink.field("escalation_counter", &self.escalation_counter)?;
+        sink.field("text", &self.text)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, Group, GroupShape, Hex, JsonFields, Layout, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// ALK: SeaTalk datagram.
@@ -71,6 +67,7 @@ impl<'a> Layout<'a> for Alk<'a> {
         optional: 0,
         group: Some(GroupShape { id: "data", width: 1, min: 0, max: 23 }),
     };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("command", 1), JsonMember::Values("data", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -89,30 +86,9 @@ impl<'a> Layout<'a> for Alk<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.command)?;
-        w.fields(&self.data)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.command)?;
-        w.fields(&self.data)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("command", &self.command)?;
-        j.values("data", &self.data)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "command", 1)?;
-        for value in json::list(fields, "data")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("command", &self.command)?;
+        sink.values("data", &self.data)?;
         Ok(())
     }
 }

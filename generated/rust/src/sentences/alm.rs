@@ -10,10 +10,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, Hex, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -93,6 +91,23 @@ impl<'a> Layout<'a> for Alm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ALM", fixed: 15, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("total_sentences", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("prn", 1),
+        JsonMember::Field("gps_week", 1),
+        JsonMember::Field("sv_health", 1),
+        JsonMember::Field("eccentricity", 1),
+        JsonMember::Field("reference_time", 1),
+        JsonMember::Field("inclination", 1),
+        JsonMember::Field("right_ascension_rate", 1),
+        JsonMember::Field("sqrt_semi_major_axis", 1),
+        JsonMember::Field("perigee_argument", 1),
+        JsonMember::Field("ascending_node_longitude", 1),
+        JsonMember::Field("mean_anomaly", 1),
+        JsonMember::Field("clock_af0", 1),
+        JsonMember::Field("clock_af1", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -124,80 +139,22 @@ impl<'a> Layout<'a> for Alm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.prn)?;
-        w.field(&self.gps_week)?;
-        w.field(&self.sv_health)?;
-        w.field(&self.eccentricity)?;
-        w.field(&self.reference_time)?;
-        w.field(&self.inclination)?;
-        w.field(&self.right_ascension_rate)?;
-        w.field(&self.sqrt_semi_major_axis)?;
-        w.field(&self.perigee_argument)?;
-        w.field(&self.ascending_node_longitude)?;
-        w.field(&self.mean_anomaly)?;
-        w.field(&self.clock_af0)?;
-        w.field(&self.clock_af1)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.prn)?;
-        w.field(&self.gps_week)?;
-        w.field(&self.sv_health)?;
-        w.field(&self.eccentricity)?;
-        w.field(&self.reference_time)?;
-        w.field(&self.inclination)?;
-        w.field(&self.right_ascension_rate)?;
-        w.field(&self.sqrt_semi_major_axis)?;
-        w.field(&self.perigee_argument)?;
-        w.field(&self.ascending_node_longitude)?;
-        w.field(&self.mean_anomaly)?;
-        w.field(&self.clock_af0)?;
-        w.field(&self.clock_af1)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("total_sentences", &self.total_sentences)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("prn", &self.prn)?;
-        j.field("gps_week", &self.gps_week)?;
-        j.field("sv_health", &self.sv_health)?;
-        j.field("eccentricity", &self.eccentricity)?;
-        j.field("reference_time", &self.reference_time)?;
-        j.field("inclination", &self.inclination)?;
-        j.field("right_ascension_rate", &self.right_ascension_rate)?;
-        j.field("sqrt_semi_major_axis", &self.sqrt_semi_major_axis)?;
-        j.field("perigee_argument", &self.perigee_argument)?;
-        j.field("ascending_node_longitude", &self.ascending_node_longitude)?;
-        j.field("mean_anomaly", &self.mean_anomaly)?;
-        j.field("clock_af0", &self.clock_af0)?;
-        j.field("clock_af1", &self.clock_af1)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "total_sentences", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "prn", 1)?;
-        out.member(fields, "gps_week", 1)?;
-        out.member(fields, "sv_health", 1)?;
-        out.member(fields, "eccentricity", 1)?;
-        out.member(fields, "reference_time", 1)?;
-        out.member(fields, "inclination", 1)?;
-        out.member(fields, "right_ascension_rate", 1)?;
-        out.member(fields, "sqrt_semi_major_axis", 1)?;
-        out.member(fields, "perigee_argument", 1)?;
-        out.member(fields, "ascending_node_longitude", 1)?;
-        out.member(fields, "mean_anomaly", 1)?;
-        out.member(fields, "clock_af0", 1)?;
-        out.member(fields, "clock_af1", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("total_sentences", &self.total_sentences)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("prn", &self.prn)?;
+        sink.field("gps_week", &self.gps_week)?;
+        sink.field("sv_health", &self.sv_health)?;
+        sink.field("eccentricity", &self.eccentricity)?;
+        sink.field("reference_time", &self.reference_time)?;
+        sink.field("inclination", &self.inclination)?;
+        sink.field("right_ascension_rate", &self.right_ascension_rate)?;
+        sink.field("sqrt_semi_major_axis", &self.sqrt_semi_major_axis)?;
+        sink.field("perigee_argument", &self.perigee_argument)?;
+        sink.field("ascending_node_longitude", &self.ascending_node_longitude)?;
+        sink.field("mean_anomaly", &self.mean_anomaly)?;
+        sink.field("clock_af0", &self.clock_af0)?;
+        sink.field("clock_af1", &self.clock_af1)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{AlrAckState, AlrCondition};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -75,6 +73,13 @@ impl<'a> Layout<'a> for Alr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ALR", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("alarm_number", 1),
+        JsonMember::Field("condition", 1),
+        JsonMember::Field("ack_state", 1),
+        JsonMember::Field("description", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -96,40 +101,12 @@ impl<'a> Layout<'a> for Alr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.alarm_number)?;
-        w.field(&self.condition)?;
-        w.field(&self.ack_state)?;
-        w.field(&self.description)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.alarm_number)?;
-        w.field(&self.condition)?;
-        w.field(&self.ack_state)?;
-        w.field(&self.description)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("alarm_number", &self.alarm_number)?;
-        j.field("condition", &self.condition)?;
-        j.field("ack_state", &self.ack_state)?;
-        j.field("description", &self.description)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "alarm_number", 1)?;
-        out.member(fields, "condition", 1)?;
-        out.member(fields, "ack_state", 1)?;
-        out.member(fields, "description", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("alarm_number", &self.alarm_number)?;
+        sink.field("condition", &self.condition)?;
+        sink.field("ack_state", &self.ack_state)?;
+        sink.field("description", &self.description)?;
         Ok(())
     }
 }

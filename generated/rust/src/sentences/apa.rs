@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{AamArrivalCircle, AamPerpendicular, ApbBearingRef, LeftRight, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -86,6 +84,18 @@ impl<'a> Layout<'a> for Apa<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "APA", fixed: 10, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("cycle_lock_status", 1),
+        JsonMember::Field("cross_track_error", 1),
+        JsonMember::Field("steer_direction", 1),
+        JsonMember::Field("cross_track_error_unit", 1),
+        JsonMember::Field("arrival_circle", 1),
+        JsonMember::Field("perpendicular", 1),
+        JsonMember::Field("bearing_origin_to_destination", 1),
+        JsonMember::Field("bearing_origin_to_destination_ref", 1),
+        JsonMember::Field("destination_waypoint", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -114,60 +124,17 @@ impl<'a> Layout<'a> for Apa<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.status)?;
-        w.field(&self.cycle_lock_status)?;
-        w.field(&self.cross_track_error)?;
-        w.field(&self.steer_direction)?;
-        w.field(&self.cross_track_error_unit)?;
-        w.field(&self.arrival_circle)?;
-        w.field(&self.perpendicular)?;
-        w.field(&self.bearing_origin_to_destination)?;
-        w.field(&self.bearing_origin_to_destination_ref)?;
-        w.field(&self.destination_waypoint)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.status)?;
-        w.field(&self.cycle_lock_status)?;
-        w.field(&self.cross_track_error)?;
-        w.field(&self.steer_direction)?;
-        w.field(&self.cross_track_error_unit)?;
-        w.field(&self.arrival_circle)?;
-        w.field(&self.perpendicular)?;
-        w.field(&self.bearing_origin_to_destination)?;
-        w.field(&self.bearing_origin_to_destination_ref)?;
-        w.field(&self.destination_waypoint)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("status", &self.status)?;
-        j.field("cycle_lock_status", &self.cycle_lock_status)?;
-        j.field("cross_track_error", &self.cross_track_error)?;
-        j.field("steer_direction", &self.steer_direction)?;
-        j.field("cross_track_error_unit", &self.cross_track_error_unit)?;
-        j.field("arrival_circle", &self.arrival_circle)?;
-        j.field("perpendicular", &self.perpendicular)?;
-        j.field("bearing_origin_to_destination", &self.bearing_origin_to_destination)?;
-        j.field("bearing_origin_to_destination_ref", &self.bearing_origin_to_destination_ref)?;
-        j.field("destination_waypoint", &self.destination_waypoint)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "cycle_lock_status", 1)?;
-        out.member(fields, "cross_track_error", 1)?;
-        out.member(fields, "steer_direction", 1)?;
-        out.member(fields, "cross_track_error_unit", 1)?;
-        out.member(fields, "arrival_circle", 1)?;
-        out.member(fields, "perpendicular", 1)?;
-        out.member(fields, "bearing_origin_to_destination", 1)?;
-        out.member(fields, "bearing_origin_to_destination_ref", 1)?;
-        out.member(fields, "destination_waypoint", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("status", &self.status)?;
+        sink.field("cycle_lock_status", &self.cycle_lock_status)?;
+        sink.field("cross_track_error", &self.cross_track_error)?;
+        sink.field("steer_direction", &self.steer_direction)?;
+        sink.field("cross_track_error_unit", &self.cross_track_error_unit)?;
+        sink.field("arrival_circle", &self.arrival_circle)?;
+        sink.field("perpendicular", &self.perpendicular)?;
+        sink.field("bearing_origin_to_destination", &self.bearing_origin_to_destination)?;
+        sink.field("bearing_origin_to_destination_ref", &self.bearing_origin_to_destination_ref)?;
+        sink.field("destination_waypoint", &self.destination_waypoint)?;
         Ok(())
     }
 }

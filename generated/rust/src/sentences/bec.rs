@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::PosMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -89,6 +87,19 @@ impl<'a> Layout<'a> for Bec<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "BEC", fixed: 12, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("waypoint_lat", 2),
+        JsonMember::Field("waypoint_lon", 2),
+        JsonMember::Field("bearing_true", 1),
+        JsonMember::Field("bearing_true_ref", 1),
+        JsonMember::Field("bearing_magnetic", 1),
+        JsonMember::Field("bearing_magnetic_ref", 1),
+        JsonMember::Field("distance", 1),
+        JsonMember::Field("distance_unit", 1),
+        JsonMember::Field("waypoint", 1),
+        JsonMember::Optional("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -120,70 +131,20 @@ impl<'a> Layout<'a> for Bec<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.waypoint_lat)?;
-        w.field(&self.waypoint_lon)?;
-        w.field(&self.bearing_true)?;
-        w.field(&self.bearing_true_ref)?;
-        w.field(&self.bearing_magnetic)?;
-        w.field(&self.bearing_magnetic_ref)?;
-        w.field(&self.distance)?;
-        w.field(&self.distance_unit)?;
-        w.field(&self.waypoint)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("waypoint_lat", &self.waypoint_lat)?;
+        sink.field("waypoint_lon", &self.waypoint_lon)?;
+        sink.field("bearing_true", &self.bearing_true)?;
+        sink.field("bearing_true_ref", &self.bearing_true_ref)?;
+        sink.field("bearing_magnetic", &self.bearing_magnetic)?;
+        sink.field("bearing_magnetic_ref", &self.bearing_magnetic_ref)?;
+        sink.field("distance", &self.distance)?;
+        sink.field("distance_unit", &self.distance_unit)?;
+        sink.field("waypoint", &self.waypoint)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.waypoint_lat)?;
-        w.field(&self.waypoint_lon)?;
-        w.field(&self.bearing_true)?;
-        w.field(&self.bearing_true_ref)?;
-        w.field(&self.bearing_magnetic)?;
-        w.field(&self.bearing_magnetic_ref)?;
-        w.field(&self.distance)?;
-        w.field(&self.distance_unit)?;
-        w.field(&self.waypoint)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("waypoint_lat", &self.waypoint_lat)?;
-        j.field("waypoint_lon", &self.waypoint_lon)?;
-        j.field("bearing_true", &self.bearing_true)?;
-        j.field("bearing_true_ref", &self.bearing_true_ref)?;
-        j.field("bearing_magnetic", &self.bearing_magnetic)?;
-        j.field("bearing_magnetic_ref", &self.bearing_magnetic_ref)?;
-        j.field("distance", &self.distance)?;
-        j.field("distance_unit", &self.distance_unit)?;
-        j.field("waypoint", &self.waypoint)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "waypoint_lat", 2)?;
-        out.member(fields, "waypoint_lon", 2)?;
-        out.member(fields, "bearing_true", 1)?;
-        out.member(fields, "bearing_true_ref", 1)?;
-        out.member(fields, "bearing_magnetic", 1)?;
-        out.member(fields, "bearing_magnetic_ref", 1)?;
-        out.member(fields, "distance", 1)?;
-        out.member(fields, "distance_unit", 1)?;
-        out.member(fields, "waypoint", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }

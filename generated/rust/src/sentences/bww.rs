@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// BWW: Bearing, waypoint to waypoint.
@@ -72,6 +68,14 @@ impl<'a> Layout<'a> for Bww<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "BWW", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("bearing_true", 1),
+        JsonMember::Field("bearing_true_ref", 1),
+        JsonMember::Field("bearing_magnetic", 1),
+        JsonMember::Field("bearing_magnetic_ref", 1),
+        JsonMember::Field("to_waypoint", 1),
+        JsonMember::Field("from_waypoint", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -95,44 +99,13 @@ impl<'a> Layout<'a> for Bww<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.bearing_true)?;
-        w.field(&self.bearing_true_ref)?;
-        w.field(&self.bearing_magnetic)?;
-        w.field(&self.bearing_magnetic_ref)?;
-        w.field(&self.to_waypoint)?;
-        w.field(&self.from_waypoint)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.bearing_true)?;
-        w.field(&self.bearing_true_ref)?;
-        w.field(&self.bearing_magnetic)?;
-        w.field(&self.bearing_magnetic_ref)?;
-        w.field(&self.to_waypoint)?;
-        w.field(&self.from_waypoint)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("bearing_true", &self.bearing_true)?;
-        j.field("bearing_true_ref", &self.bearing_true_ref)?;
-        j.field("bearing_magnetic", &self.bearing_magnetic)?;
-        j.field("bearing_magnetic_ref", &self.bearing_magnetic_ref)?;
-        j.field("to_waypoint", &self.to_waypoint)?;
-        j.field("from_waypoint", &self.from_waypoint)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "bearing_true", 1)?;
-        out.member(fields, "bearing_true_ref", 1)?;
-        out.member(fields, "bearing_magnetic", 1)?;
-        out.member(fields, "bearing_magnetic_ref", 1)?;
-        out.member(fields, "to_waypoint", 1)?;
-        out.member(fields, "from_waypoint", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("bearing_true", &self.bearing_true)?;
+        sink.field("bearing_true_ref", &self.bearing_true_ref)?;
+        sink.field("bearing_magnetic", &self.bearing_magnetic)?;
+        sink.field("bearing_magnetic_ref", &self.bearing_magnetic_ref)?;
+        sink.field("to_waypoint", &self.to_waypoint)?;
+        sink.field("from_waypoint", &self.from_waypoint)?;
         Ok(())
     }
 }

@@ -12,9 +12,7 @@
 use core::fmt;
 
 use crate::enums::ComnavLogMessage;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// COMNAV_LOG: Request periodic output of an NMEA message.
@@ -76,6 +74,8 @@ impl<'a> Layout<'a> for ComnavLog<'a> {
     const FRAMING: Framing = Framing::Text("LOG");
     const SHAPE: Shape = Shape { sentence: "COMNAV_LOG", fixed: 3, optional: 0, group: None };
     const WORDS: &'static [(&'static str, usize)] = &[("message", 1), ("trigger", 1), ("period", 1)];
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("message", 1), JsonMember::Field("trigger", 1), JsonMember::Field("period", 1)];
 
     fn parse_fields(fields: Fields<'a>, _checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -91,25 +91,10 @@ impl<'a> Layout<'a> for ComnavLog<'a> {
         self.as_received
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message)?;
-        w.keyword("ONTIME")?;
-        w.field(&self.period)?;
-        Ok(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message", &self.message)?;
-        j.keyword("trigger", "ONTIME")?;
-        j.field("period", &self.period)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message", 1)?;
-        out.member(fields, "trigger", 1)?;
-        out.member(fields, "period", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message", &self.message)?;
+        sink.keyword("trigger", "ONTIME")?;
+        sink.field("period", &self.period)?;
         Ok(())
     }
 }

@@ -13,9 +13,7 @@
 use core::fmt;
 
 use crate::enums::{ComnavTalkerId, ComnavTalkerSentence};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// COMNAV_NMEATALKER: Set, list or reset the NMEA talker IDs.
@@ -65,6 +63,7 @@ impl<'a> Layout<'a> for ComnavNmeatalker<'a> {
     const FRAMING: Framing = Framing::Text("NMEATALKER");
     const SHAPE: Shape = Shape { sentence: "COMNAV_NMEATALKER", fixed: 2, optional: 0, group: None };
     const WORDS: &'static [(&'static str, usize)] = &[("message", 1), ("talker_id", 1)];
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("message", 1), JsonMember::Field("talker_id", 1)];
 
     fn parse_fields(fields: Fields<'a>, _checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -79,22 +78,9 @@ impl<'a> Layout<'a> for ComnavNmeatalker<'a> {
         self.as_received
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message)?;
-        w.field(&self.talker_id)?;
-        Ok(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message", &self.message)?;
-        j.field("talker_id", &self.talker_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message", 1)?;
-        out.member(fields, "talker_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message", &self.message)?;
+        sink.field("talker_id", &self.talker_id)?;
         Ok(())
     }
 }
@@ -154,6 +140,7 @@ impl<'a> Layout<'a> for ComnavNmeatalkerList<'a> {
     const FRAMING: Framing = Framing::Text("NMEATALKER");
     const SHAPE: Shape = Shape { sentence: "COMNAV_NMEATALKER", fixed: 1, optional: 0, group: None };
     const WORDS: &'static [(&'static str, usize)] = &[("subcommand", 1)];
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("subcommand", 1)];
 
     fn parse_fields(fields: Fields<'a>, _checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -167,19 +154,8 @@ impl<'a> Layout<'a> for ComnavNmeatalkerList<'a> {
         self.as_received
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("LIST")?;
-        Ok(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("subcommand", "LIST")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "subcommand", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("subcommand", "LIST")?;
         Ok(())
     }
 }
@@ -238,6 +214,7 @@ impl<'a> Layout<'a> for ComnavNmeatalkerReset<'a> {
     const FRAMING: Framing = Framing::Text("NMEATALKER");
     const SHAPE: Shape = Shape { sentence: "COMNAV_NMEATALKER", fixed: 1, optional: 0, group: None };
     const WORDS: &'static [(&'static str, usize)] = &[("subcommand", 1)];
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("subcommand", 1)];
 
     fn parse_fields(fields: Fields<'a>, _checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -251,19 +228,8 @@ impl<'a> Layout<'a> for ComnavNmeatalkerReset<'a> {
         self.as_received
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("RESET")?;
-        Ok(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("subcommand", "RESET")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "subcommand", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("subcommand", "RESET")?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{CurDirectionReference, CurHeadingReference, CurSpeedReference, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -91,6 +89,19 @@ impl<'a> Layout<'a> for Cur<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "CUR", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("validity", 1),
+        JsonMember::Field("data_set_number", 1),
+        JsonMember::Field("layer_number", 1),
+        JsonMember::Field("current_depth", 1),
+        JsonMember::Field("current_direction", 1),
+        JsonMember::Field("direction_reference", 1),
+        JsonMember::Field("current_speed", 1),
+        JsonMember::Field("reference_layer_depth", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("heading_reference", 1),
+        JsonMember::Field("speed_reference", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -120,64 +131,18 @@ impl<'a> Layout<'a> for Cur<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.validity)?;
-        w.field(&self.data_set_number)?;
-        w.field(&self.layer_number)?;
-        w.field(&self.current_depth)?;
-        w.field(&self.current_direction)?;
-        w.field(&self.direction_reference)?;
-        w.field(&self.current_speed)?;
-        w.field(&self.reference_layer_depth)?;
-        w.field(&self.heading)?;
-        w.field(&self.heading_reference)?;
-        w.field(&self.speed_reference)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.validity)?;
-        w.field(&self.data_set_number)?;
-        w.field(&self.layer_number)?;
-        w.field(&self.current_depth)?;
-        w.field(&self.current_direction)?;
-        w.field(&self.direction_reference)?;
-        w.field(&self.current_speed)?;
-        w.field(&self.reference_layer_depth)?;
-        w.field(&self.heading)?;
-        w.field(&self.heading_reference)?;
-        w.field(&self.speed_reference)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("validity", &self.validity)?;
-        j.field("data_set_number", &self.data_set_number)?;
-        j.field("layer_number", &self.layer_number)?;
-        j.field("current_depth", &self.current_depth)?;
-        j.field("current_direction", &self.current_direction)?;
-        j.field("direction_reference", &self.direction_reference)?;
-        j.field("current_speed", &self.current_speed)?;
-        j.field("reference_layer_depth", &self.reference_layer_depth)?;
-        j.field("heading", &self.heading)?;
-        j.field("heading_reference", &self.heading_reference)?;
-        j.field("speed_reference", &self.speed_reference)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "validity", 1)?;
-        out.member(fields, "data_set_number", 1)?;
-        out.member(fields, "layer_number", 1)?;
-        out.member(fields, "current_depth", 1)?;
-        out.member(fields, "current_direction", 1)?;
-        out.member(fields, "direction_reference", 1)?;
-        out.member(fields, "current_speed", 1)?;
-        out.member(fields, "reference_layer_depth", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "heading_reference", 1)?;
-        out.member(fields, "speed_reference", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("validity", &self.validity)?;
+        sink.field("data_set_number", &self.data_set_number)?;
+        sink.field("layer_number", &self.layer_number)?;
+        sink.field("current_depth", &self.current_depth)?;
+        sink.field("current_direction", &self.current_direction)?;
+        sink.field("direction_reference", &self.direction_reference)?;
+        sink.field("current_speed", &self.current_speed)?;
+        sink.field("reference_layer_depth", &self.reference_layer_depth)?;
+        sink.field("heading", &self.heading)?;
+        sink.field("heading_reference", &self.heading_reference)?;
+        sink.field("speed_reference", &self.speed_reference)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// DBS: Depth below surface.
@@ -74,6 +70,14 @@ impl<'a> Layout<'a> for Dbs<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "DBS", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("depth_feet", 1),
+        JsonMember::Field("depth_feet_unit", 1),
+        JsonMember::Field("depth_metres", 1),
+        JsonMember::Field("depth_metres_unit", 1),
+        JsonMember::Field("depth_fathoms", 1),
+        JsonMember::Field("depth_fathoms_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -96,44 +100,13 @@ impl<'a> Layout<'a> for Dbs<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.depth_feet)?;
-        w.field(&self.depth_feet_unit)?;
-        w.field(&self.depth_metres)?;
-        w.field(&self.depth_metres_unit)?;
-        w.field(&self.depth_fathoms)?;
-        w.field(&self.depth_fathoms_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.depth_feet)?;
-        w.field(&self.depth_feet_unit)?;
-        w.field(&self.depth_metres)?;
-        w.field(&self.depth_metres_unit)?;
-        w.field(&self.depth_fathoms)?;
-        w.field(&self.depth_fathoms_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("depth_feet", &self.depth_feet)?;
-        j.field("depth_feet_unit", &self.depth_feet_unit)?;
-        j.field("depth_metres", &self.depth_metres)?;
-        j.field("depth_metres_unit", &self.depth_metres_unit)?;
-        j.field("depth_fathoms", &self.depth_fathoms)?;
-        j.field("depth_fathoms_unit", &self.depth_fathoms_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "depth_feet", 1)?;
-        out.member(fields, "depth_feet_unit", 1)?;
-        out.member(fields, "depth_metres", 1)?;
-        out.member(fields, "depth_metres_unit", 1)?;
-        out.member(fields, "depth_fathoms", 1)?;
-        out.member(fields, "depth_fathoms_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("depth_feet", &self.depth_feet)?;
+        sink.field("depth_feet_unit", &self.depth_feet_unit)?;
+        sink.field("depth_metres", &self.depth_metres)?;
+        sink.field("depth_metres_unit", &self.depth_metres_unit)?;
+        sink.field("depth_fathoms", &self.depth_fathoms)?;
+        sink.field("depth_fathoms_unit", &self.depth_fathoms_unit)?;
         Ok(())
     }
 }

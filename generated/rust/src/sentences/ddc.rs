@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{DdcCommandMode, DdcPreset, FsiSentenceStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -73,6 +71,13 @@ impl<'a> Layout<'a> for Ddc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "DDC", fixed: 4, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("dimming_preset", 1),
+        JsonMember::Field("brightness", 1),
+        JsonMember::Field("color_palette", 1),
+        JsonMember::Field("sentence_status", 1),
+        JsonMember::Optional("command_mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -97,46 +102,14 @@ impl<'a> Layout<'a> for Ddc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.dimming_preset)?;
-        w.field(&self.brightness)?;
-        w.field(&self.color_palette)?;
-        w.field(&self.sentence_status)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("dimming_preset", &self.dimming_preset)?;
+        sink.field("brightness", &self.brightness)?;
+        sink.field("color_palette", &self.color_palette)?;
+        sink.field("sentence_status", &self.sentence_status)?;
         if self.trailing >= 1 {
-            w.field(&self.command_mode)?;
+            sink.field("command_mode", &self.command_mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.dimming_preset)?;
-        w.field(&self.brightness)?;
-        w.field(&self.color_palette)?;
-        w.field(&self.sentence_status)?;
-        if self.trailing >= 1 {
-            w.field(&self.command_mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("dimming_preset", &self.dimming_preset)?;
-        j.field("brightness", &self.brightness)?;
-        j.field("color_palette", &self.color_palette)?;
-        j.field("sentence_status", &self.sentence_status)?;
-        if self.trailing >= 1 {
-            j.field("command_mode", &self.command_mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "dimming_preset", 1)?;
-        out.member(fields, "brightness", 1)?;
-        out.member(fields, "color_palette", 1)?;
-        out.member(fields, "sentence_status", 1)?;
-        out.optional(fields, "command_mode", 1)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{DorMessageType, DorStatus, DorSwitchSetting, DorSystem};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -89,6 +87,17 @@ impl<'a> Layout<'a> for Dor<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "DOR", fixed: 9, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("message_type", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("system", 1),
+        JsonMember::Field("division_1", 1),
+        JsonMember::Field("division_2", 1),
+        JsonMember::Field("door_number", 1),
+        JsonMember::Field("door_status", 1),
+        JsonMember::Field("switch_setting", 1),
+        JsonMember::Field("description", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -114,56 +123,16 @@ impl<'a> Layout<'a> for Dor<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message_type)?;
-        w.field(&self.time)?;
-        w.field(&self.system)?;
-        w.field(&self.division_1)?;
-        w.field(&self.division_2)?;
-        w.field(&self.door_number)?;
-        w.field(&self.door_status)?;
-        w.field(&self.switch_setting)?;
-        w.field(&self.description)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.message_type)?;
-        w.field(&self.time)?;
-        w.field(&self.system)?;
-        w.field(&self.division_1)?;
-        w.field(&self.division_2)?;
-        w.field(&self.door_number)?;
-        w.field(&self.door_status)?;
-        w.field(&self.switch_setting)?;
-        w.field(&self.description)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message_type", &self.message_type)?;
-        j.field("time", &self.time)?;
-        j.field("system", &self.system)?;
-        j.field("division_1", &self.division_1)?;
-        j.field("division_2", &self.division_2)?;
-        j.field("door_number", &self.door_number)?;
-        j.field("door_status", &self.door_status)?;
-        j.field("switch_setting", &self.switch_setting)?;
-        j.field("description", &self.description)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message_type", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "system", 1)?;
-        out.member(fields, "division_1", 1)?;
-        out.member(fields, "division_2", 1)?;
-        out.member(fields, "door_number", 1)?;
-        out.member(fields, "door_status", 1)?;
-        out.member(fields, "switch_setting", 1)?;
-        out.member(fields, "description", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message_type", &self.message_type)?;
+        sink.field("time", &self.time)?;
+        sink.field("system", &self.system)?;
+        sink.field("division_1", &self.division_1)?;
+        sink.field("division_2", &self.division_2)?;
+        sink.field("door_number", &self.door_number)?;
+        sink.field("door_status", &self.door_status)?;
+        sink.field("switch_setting", &self.switch_setting)?;
+        sink.field("description", &self.description)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// DPT: Depth.
@@ -74,6 +70,8 @@ impl<'a> Layout<'a> for Dpt<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "DPT", fixed: 2, optional: 1, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("depth", 1), JsonMember::Field("offset", 1), JsonMember::Optional("max_range_scale", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -96,38 +94,12 @@ impl<'a> Layout<'a> for Dpt<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.depth)?;
-        w.field(&self.offset)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("depth", &self.depth)?;
+        sink.field("offset", &self.offset)?;
         if self.trailing >= 1 {
-            w.field(&self.max_range_scale)?;
+            sink.field("max_range_scale", &self.max_range_scale)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.depth)?;
-        w.field(&self.offset)?;
-        if self.trailing >= 1 {
-            w.field(&self.max_range_scale)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("depth", &self.depth)?;
-        j.field("offset", &self.offset)?;
-        if self.trailing >= 1 {
-            j.field("max_range_scale", &self.max_range_scale)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "depth", 1)?;
-        out.member(fields, "offset", 1)?;
-        out.optional(fields, "max_range_scale", 1)?;
         Ok(())
     }
 }

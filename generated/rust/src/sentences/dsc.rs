@@ -12,9 +12,7 @@
 use core::fmt;
 
 use crate::enums::{DscAcknowledgement, DscCategory, DscDistressNature, DscFormat};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// DSC: Digital selective calling information.
@@ -98,6 +96,19 @@ impl<'a> Layout<'a> for Dsc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "DSC", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("format_specifier", 1),
+        JsonMember::Field("station_address", 1),
+        JsonMember::Field("category", 1),
+        JsonMember::Field("distress_or_telecommand1", 1),
+        JsonMember::Field("comm_type_or_telecommand2", 1),
+        JsonMember::Field("position_or_channel", 1),
+        JsonMember::Field("time_or_phone", 1),
+        JsonMember::Field("distress_mmsi", 1),
+        JsonMember::Field("distress_nature", 1),
+        JsonMember::Field("acknowledgement", 1),
+        JsonMember::Field("expansion", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -125,64 +136,18 @@ impl<'a> Layout<'a> for Dsc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.format_specifier)?;
-        w.field(&self.station_address)?;
-        w.field(&self.category)?;
-        w.field(&self.distress_or_telecommand1)?;
-        w.field(&self.comm_type_or_telecommand2)?;
-        w.field(&self.position_or_channel)?;
-        w.field(&self.time_or_phone)?;
-        w.field(&self.distress_mmsi)?;
-        w.field(&self.distress_nature)?;
-        w.field(&self.acknowledgement)?;
-        w.field(&self.expansion)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.format_specifier)?;
-        w.field(&self.station_address)?;
-        w.field(&self.category)?;
-        w.field(&self.distress_or_telecommand1)?;
-        w.field(&self.comm_type_or_telecommand2)?;
-        w.field(&self.position_or_channel)?;
-        w.field(&self.time_or_phone)?;
-        w.field(&self.distress_mmsi)?;
-        w.field(&self.distress_nature)?;
-        w.field(&self.acknowledgement)?;
-        w.field(&self.expansion)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("format_specifier", &self.format_specifier)?;
-        j.field("station_address", &self.station_address)?;
-        j.field("category", &self.category)?;
-        j.field("distress_or_telecommand1", &self.distress_or_telecommand1)?;
-        j.field("comm_type_or_telecommand2", &self.comm_type_or_telecommand2)?;
-        j.field("position_or_channel", &self.position_or_channel)?;
-        j.field("time_or_phone", &self.time_or_phone)?;
-        j.field("distress_mmsi", &self.distress_mmsi)?;
-        j.field("distress_nature", &self.distress_nature)?;
-        j.field("acknowledgement", &self.acknowledgement)?;
-        j.field("expansion", &self.expansion)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "format_specifier", 1)?;
-        out.member(fields, "station_address", 1)?;
-        out.member(fields, "category", 1)?;
-        out.member(fields, "distress_or_telecommand1", 1)?;
-        out.member(fields, "comm_type_or_telecommand2", 1)?;
-        out.member(fields, "position_or_channel", 1)?;
-        out.member(fields, "time_or_phone", 1)?;
-        out.member(fields, "distress_mmsi", 1)?;
-        out.member(fields, "distress_nature", 1)?;
-        out.member(fields, "acknowledgement", 1)?;
-        out.member(fields, "expansion", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("format_specifier", &self.format_specifier)?;
+        sink.field("station_address", &self.station_address)?;
+        sink.field("category", &self.category)?;
+        sink.field("distress_or_telecommand1", &self.distress_or_telecommand1)?;
+        sink.field("comm_type_or_telecommand2", &self.comm_type_or_telecommand2)?;
+        sink.field("position_or_channel", &self.position_or_channel)?;
+        sink.field("time_or_phone", &self.time_or_phone)?;
+        sink.field("distress_mmsi", &self.distress_mmsi)?;
+        sink.field("distress_nature", &self.distress_nature)?;
+        sink.field("acknowledgement", &self.acknowledgement)?;
+        sink.field("expansion", &self.expansion)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::{DseCode, DseQueryFlag};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range,
-    Reader, Shape, WireWriter,
+    Bound, Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Range, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -34,29 +32,12 @@ impl<'a> DseDataSet<'a> {
     fn read(f: &mut Reader<'a>) -> Result<Self, Error<'a>> {
         Ok(Self { code: f.code("code")?, data: f.text("data", "text", None)? })
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.code)?;
-        w.field(&self.data)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.code)?;
-        w.field(&self.data)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("code", &self.code)?;
-        j.field("data", &self.data)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "code", 1)?;
-        out.member(entry, "data", 1)?;
+impl Entry for DseDataSet<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("code", &self.code)?;
+        sink.field("data", &self.data)?;
         Ok(())
     }
 }
@@ -121,6 +102,13 @@ impl<'a> Layout<'a> for Dse<'a> {
         optional: 0,
         group: Some(GroupShape { id: "data_sets", width: 2, min: 1, max: 8 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sentence_count", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("query_flag", 1),
+        JsonMember::Field("vessel_mmsi", 1),
+        JsonMember::Entries("data_sets", &[("code", 1), ("data", 1)]),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -142,46 +130,12 @@ impl<'a> Layout<'a> for Dse<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sentence_count)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.query_flag)?;
-        w.field(&self.vessel_mmsi)?;
-        for entry in &self.data_sets {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sentence_count)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.query_flag)?;
-        w.field(&self.vessel_mmsi)?;
-        for entry in &self.data_sets {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sentence_count", &self.sentence_count)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("query_flag", &self.query_flag)?;
-        j.field("vessel_mmsi", &self.vessel_mmsi)?;
-        j.entries("data_sets", &self.data_sets, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sentence_count", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "query_flag", 1)?;
-        out.member(fields, "vessel_mmsi", 1)?;
-        for entry in json::list(fields, "data_sets")? {
-            DseDataSet::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sentence_count", &self.sentence_count)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("query_flag", &self.query_flag)?;
+        sink.field("vessel_mmsi", &self.vessel_mmsi)?;
+        sink.entries("data_sets", &self.data_sets)?;
         Ok(())
     }
 }

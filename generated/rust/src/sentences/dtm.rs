@@ -9,11 +9,7 @@
 use core::fmt;
 
 use crate::enums::{DtmDatum, DtmLatOffsetDir, DtmLonOffsetDir};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// DTM: Datum reference.
@@ -82,6 +78,16 @@ impl<'a> Layout<'a> for Dtm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "DTM", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("local_datum", 1),
+        JsonMember::Field("local_datum_subdivision", 1),
+        JsonMember::Field("lat_offset", 1),
+        JsonMember::Field("lat_offset_dir", 1),
+        JsonMember::Field("lon_offset", 1),
+        JsonMember::Field("lon_offset_dir", 1),
+        JsonMember::Field("altitude_offset", 1),
+        JsonMember::Field("reference_datum", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -106,52 +112,15 @@ impl<'a> Layout<'a> for Dtm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.local_datum)?;
-        w.field(&self.local_datum_subdivision)?;
-        w.field(&self.lat_offset)?;
-        w.field(&self.lat_offset_dir)?;
-        w.field(&self.lon_offset)?;
-        w.field(&self.lon_offset_dir)?;
-        w.field(&self.altitude_offset)?;
-        w.field(&self.reference_datum)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.local_datum)?;
-        w.field(&self.local_datum_subdivision)?;
-        w.field(&self.lat_offset)?;
-        w.field(&self.lat_offset_dir)?;
-        w.field(&self.lon_offset)?;
-        w.field(&self.lon_offset_dir)?;
-        w.field(&self.altitude_offset)?;
-        w.field(&self.reference_datum)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("local_datum", &self.local_datum)?;
-        j.field("local_datum_subdivision", &self.local_datum_subdivision)?;
-        j.field("lat_offset", &self.lat_offset)?;
-        j.field("lat_offset_dir", &self.lat_offset_dir)?;
-        j.field("lon_offset", &self.lon_offset)?;
-        j.field("lon_offset_dir", &self.lon_offset_dir)?;
-        j.field("altitude_offset", &self.altitude_offset)?;
-        j.field("reference_datum", &self.reference_datum)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "local_datum", 1)?;
-        out.member(fields, "local_datum_subdivision", 1)?;
-        out.member(fields, "lat_offset", 1)?;
-        out.member(fields, "lat_offset_dir", 1)?;
-        out.member(fields, "lon_offset", 1)?;
-        out.member(fields, "lon_offset_dir", 1)?;
-        out.member(fields, "altitude_offset", 1)?;
-        out.member(fields, "reference_datum", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("local_datum", &self.local_datum)?;
+        sink.field("local_datum_subdivision", &self.local_datum_subdivision)?;
+        sink.field("lat_offset", &self.lat_offset)?;
+        sink.field("lat_offset_dir", &self.lat_offset_dir)?;
+        sink.field("lon_offset", &self.lon_offset)?;
+        sink.field("lon_offset_dir", &self.lon_offset_dir)?;
+        sink.field("altitude_offset", &self.altitude_offset)?;
+        sink.field("reference_datum", &self.reference_datum)?;
         Ok(())
     }
 }
@@ -213,6 +182,8 @@ impl<'a> Layout<'a> for DtmShort<'a> {
     const VARIANT: Option<&'static str> = Some("short");
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "DTM", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("local_datum", 1), JsonMember::Field("local_datum_subdivision", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -231,28 +202,9 @@ impl<'a> Layout<'a> for DtmShort<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.local_datum)?;
-        w.field(&self.local_datum_subdivision)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.local_datum)?;
-        w.field(&self.local_datum_subdivision)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("local_datum", &self.local_datum)?;
-        j.field("local_datum_subdivision", &self.local_datum_subdivision)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "local_datum", 1)?;
-        out.member(fields, "local_datum_subdivision", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("local_datum", &self.local_datum)?;
+        sink.field("local_datum_subdivision", &self.local_datum_subdivision)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::FsiSentenceStatus;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -76,6 +74,13 @@ impl<'a> Layout<'a> for Epv<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "EPV", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sentence_status", 1),
+        JsonMember::Field("equipment_type", 1),
+        JsonMember::Field("unique_id", 1),
+        JsonMember::Field("property_id", 1),
+        JsonMember::Field("value", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -97,40 +102,12 @@ impl<'a> Layout<'a> for Epv<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sentence_status)?;
-        w.field(&self.equipment_type)?;
-        w.field(&self.unique_id)?;
-        w.field(&self.property_id)?;
-        w.field(&self.value)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sentence_status)?;
-        w.field(&self.equipment_type)?;
-        w.field(&self.unique_id)?;
-        w.field(&self.property_id)?;
-        w.field(&self.value)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sentence_status", &self.sentence_status)?;
-        j.field("equipment_type", &self.equipment_type)?;
-        j.field("unique_id", &self.unique_id)?;
-        j.field("property_id", &self.property_id)?;
-        j.field("value", &self.value)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sentence_status", 1)?;
-        out.member(fields, "equipment_type", 1)?;
-        out.member(fields, "unique_id", 1)?;
-        out.member(fields, "property_id", 1)?;
-        out.member(fields, "value", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sentence_status", &self.sentence_status)?;
+        sink.field("equipment_type", &self.equipment_type)?;
+        sink.field("unique_id", &self.unique_id)?;
+        sink.field("property_id", &self.property_id)?;
+        sink.field("value", &self.value)?;
         Ok(())
     }
 }

@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::{EtlMessageType, EtlSubTelegraph, EtlTelegraphPosition, PrcOperatingLocation};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -71,6 +68,14 @@ impl<'a> Layout<'a> for Etl<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ETL", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("event_time", 1),
+        JsonMember::Field("message_type", 1),
+        JsonMember::Field("telegraph_position", 1),
+        JsonMember::Field("sub_telegraph", 1),
+        JsonMember::Field("operating_location", 1),
+        JsonMember::Field("engine_number", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -93,44 +98,13 @@ impl<'a> Layout<'a> for Etl<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.event_time)?;
-        w.field(&self.message_type)?;
-        w.field(&self.telegraph_position)?;
-        w.field(&self.sub_telegraph)?;
-        w.field(&self.operating_location)?;
-        w.field(&self.engine_number)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.event_time)?;
-        w.field(&self.message_type)?;
-        w.field(&self.telegraph_position)?;
-        w.field(&self.sub_telegraph)?;
-        w.field(&self.operating_location)?;
-        w.field(&self.engine_number)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("event_time", &self.event_time)?;
-        j.field("message_type", &self.message_type)?;
-        j.field("telegraph_position", &self.telegraph_position)?;
-        j.field("sub_telegraph", &self.sub_telegraph)?;
-        j.field("operating_location", &self.operating_location)?;
-        j.field("engine_number", &self.engine_number)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "event_time", 1)?;
-        out.member(fields, "message_type", 1)?;
-        out.member(fields, "telegraph_position", 1)?;
-        out.member(fields, "sub_telegraph", 1)?;
-        out.member(fields, "operating_location", 1)?;
-        out.member(fields, "engine_number", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("event_time", &self.event_time)?;
+        sink.field("message_type", &self.message_type)?;
+        sink.field("telegraph_position", &self.telegraph_position)?;
+        sink.field("sub_telegraph", &self.sub_telegraph)?;
+        sink.field("operating_location", &self.operating_location)?;
+        sink.field("engine_number", &self.engine_number)?;
         Ok(())
     }
 }

@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{AlrAckState, FirCondition, FirMessageType, FirSystem};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -84,6 +82,17 @@ impl<'a> Layout<'a> for Fir<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "FIR", fixed: 9, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("message_type", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("system", 1),
+        JsonMember::Field("division_1", 1),
+        JsonMember::Field("division_2", 1),
+        JsonMember::Field("detector_number", 1),
+        JsonMember::Field("condition", 1),
+        JsonMember::Field("ack_state", 1),
+        JsonMember::Field("description", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -109,56 +118,16 @@ impl<'a> Layout<'a> for Fir<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message_type)?;
-        w.field(&self.time)?;
-        w.field(&self.system)?;
-        w.field(&self.division_1)?;
-        w.field(&self.division_2)?;
-        w.field(&self.detector_number)?;
-        w.field(&self.condition)?;
-        w.field(&self.ack_state)?;
-        w.field(&self.description)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.message_type)?;
-        w.field(&self.time)?;
-        w.field(&self.system)?;
-        w.field(&self.division_1)?;
-        w.field(&self.division_2)?;
-        w.field(&self.detector_number)?;
-        w.field(&self.condition)?;
-        w.field(&self.ack_state)?;
-        w.field(&self.description)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message_type", &self.message_type)?;
-        j.field("time", &self.time)?;
-        j.field("system", &self.system)?;
-        j.field("division_1", &self.division_1)?;
-        j.field("division_2", &self.division_2)?;
-        j.field("detector_number", &self.detector_number)?;
-        j.field("condition", &self.condition)?;
-        j.field("ack_state", &self.ack_state)?;
-        j.field("description", &self.description)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message_type", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "system", 1)?;
-        out.member(fields, "division_1", 1)?;
-        out.member(fields, "division_2", 1)?;
-        out.member(fields, "detector_number", 1)?;
-        out.member(fields, "condition", 1)?;
-        out.member(fields, "ack_state", 1)?;
-        out.member(fields, "description", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message_type", &self.message_type)?;
+        sink.field("time", &self.time)?;
+        sink.field("system", &self.system)?;
+        sink.field("division_1", &self.division_1)?;
+        sink.field("division_2", &self.division_2)?;
+        sink.field("detector_number", &self.detector_number)?;
+        sink.field("condition", &self.condition)?;
+        sink.field("ack_state", &self.ack_state)?;
+        sink.field("description", &self.description)?;
         Ok(())
     }
 }

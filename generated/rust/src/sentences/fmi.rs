@@ -10,10 +10,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, Hex, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Checksum, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -92,6 +90,20 @@ impl<'a> Layout<'a> for Fmi<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "FMI", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("latitude", 1),
+        JsonMember::Field("longitude", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("roll", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("yaw", 1),
+        JsonMember::Field("hrms", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("differential_age", 1),
+        JsonMember::Field("nav_mode", 1),
+        JsonMember::Field("status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -120,68 +132,19 @@ impl<'a> Layout<'a> for Fmi<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.roll)?;
-        w.field(&self.pitch)?;
-        w.field(&self.yaw)?;
-        w.field(&self.hrms)?;
-        w.field(&self.satellites)?;
-        w.field(&self.differential_age)?;
-        w.field(&self.nav_mode)?;
-        w.field(&self.status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.roll)?;
-        w.field(&self.pitch)?;
-        w.field(&self.yaw)?;
-        w.field(&self.hrms)?;
-        w.field(&self.satellites)?;
-        w.field(&self.differential_age)?;
-        w.field(&self.nav_mode)?;
-        w.field(&self.status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("latitude", &self.latitude)?;
-        j.field("longitude", &self.longitude)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("roll", &self.roll)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("yaw", &self.yaw)?;
-        j.field("hrms", &self.hrms)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("differential_age", &self.differential_age)?;
-        j.field("nav_mode", &self.nav_mode)?;
-        j.field("status", &self.status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "latitude", 1)?;
-        out.member(fields, "longitude", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "roll", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "yaw", 1)?;
-        out.member(fields, "hrms", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "differential_age", 1)?;
-        out.member(fields, "nav_mode", 1)?;
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("latitude", &self.latitude)?;
+        sink.field("longitude", &self.longitude)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("roll", &self.roll)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("yaw", &self.yaw)?;
+        sink.field("hrms", &self.hrms)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("differential_age", &self.differential_age)?;
+        sink.field("nav_mode", &self.nav_mode)?;
+        sink.field("status", &self.status)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{FsiMode, FsiSentenceStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -83,6 +81,13 @@ impl<'a> Layout<'a> for Fsi<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "FSI", fixed: 4, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("transmit_frequency", 1),
+        JsonMember::Field("receive_frequency", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("power_level", 1),
+        JsonMember::Optional("sentence_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -107,46 +112,14 @@ impl<'a> Layout<'a> for Fsi<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.transmit_frequency)?;
-        w.field(&self.receive_frequency)?;
-        w.field(&self.mode)?;
-        w.field(&self.power_level)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("transmit_frequency", &self.transmit_frequency)?;
+        sink.field("receive_frequency", &self.receive_frequency)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("power_level", &self.power_level)?;
         if self.trailing >= 1 {
-            w.field(&self.sentence_status)?;
+            sink.field("sentence_status", &self.sentence_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.transmit_frequency)?;
-        w.field(&self.receive_frequency)?;
-        w.field(&self.mode)?;
-        w.field(&self.power_level)?;
-        if self.trailing >= 1 {
-            w.field(&self.sentence_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("transmit_frequency", &self.transmit_frequency)?;
-        j.field("receive_frequency", &self.receive_frequency)?;
-        j.field("mode", &self.mode)?;
-        j.field("power_level", &self.power_level)?;
-        if self.trailing >= 1 {
-            j.field("sentence_status", &self.sentence_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "transmit_frequency", 1)?;
-        out.member(fields, "receive_frequency", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "power_level", 1)?;
-        out.optional(fields, "sentence_status", 1)?;
         Ok(())
     }
 }

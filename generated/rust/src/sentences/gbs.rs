@@ -12,10 +12,8 @@
 use core::fmt;
 
 use crate::enums::{SignalId, SystemId};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -99,6 +97,18 @@ impl<'a> Layout<'a> for Gbs<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GBS", fixed: 8, optional: 2, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat_error", 1),
+        JsonMember::Field("lon_error", 1),
+        JsonMember::Field("alt_error", 1),
+        JsonMember::Field("failed_satellite", 1),
+        JsonMember::Field("missed_detection_probability", 1),
+        JsonMember::Field("bias", 1),
+        JsonMember::Field("bias_std_dev", 1),
+        JsonMember::Optional("system_id", 1),
+        JsonMember::Optional("signal_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -131,72 +141,21 @@ impl<'a> Layout<'a> for Gbs<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.lat_error)?;
-        w.field(&self.lon_error)?;
-        w.field(&self.alt_error)?;
-        w.field(&self.failed_satellite)?;
-        w.field(&self.missed_detection_probability)?;
-        w.field(&self.bias)?;
-        w.field(&self.bias_std_dev)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("lat_error", &self.lat_error)?;
+        sink.field("lon_error", &self.lon_error)?;
+        sink.field("alt_error", &self.alt_error)?;
+        sink.field("failed_satellite", &self.failed_satellite)?;
+        sink.field("missed_detection_probability", &self.missed_detection_probability)?;
+        sink.field("bias", &self.bias)?;
+        sink.field("bias_std_dev", &self.bias_std_dev)?;
         if self.trailing >= 1 {
-            w.field(&self.system_id)?;
+            sink.field("system_id", &self.system_id)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.signal_id)?;
+            sink.field("signal_id", &self.signal_id)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.lat_error)?;
-        w.field(&self.lon_error)?;
-        w.field(&self.alt_error)?;
-        w.field(&self.failed_satellite)?;
-        w.field(&self.missed_detection_probability)?;
-        w.field(&self.bias)?;
-        w.field(&self.bias_std_dev)?;
-        if self.trailing >= 1 {
-            w.field(&self.system_id)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.signal_id)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("lat_error", &self.lat_error)?;
-        j.field("lon_error", &self.lon_error)?;
-        j.field("alt_error", &self.alt_error)?;
-        j.field("failed_satellite", &self.failed_satellite)?;
-        j.field("missed_detection_probability", &self.missed_detection_probability)?;
-        j.field("bias", &self.bias)?;
-        j.field("bias_std_dev", &self.bias_std_dev)?;
-        if self.trailing >= 1 {
-            j.field("system_id", &self.system_id)?;
-        }
-        if self.trailing >= 2 {
-            j.field("signal_id", &self.signal_id)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat_error", 1)?;
-        out.member(fields, "lon_error", 1)?;
-        out.member(fields, "alt_error", 1)?;
-        out.member(fields, "failed_satellite", 1)?;
-        out.member(fields, "missed_detection_probability", 1)?;
-        out.member(fields, "bias", 1)?;
-        out.member(fields, "bias_std_dev", 1)?;
-        out.optional(fields, "system_id", 1)?;
-        out.optional(fields, "signal_id", 1)?;
         Ok(())
     }
 }
@@ -271,6 +230,15 @@ impl<'a> Layout<'a> for GbsUnits<'a> {
     const VARIANT: Option<&'static str> = Some("units");
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GBS", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat_error", 1),
+        JsonMember::Field("lat_error_unit", 1),
+        JsonMember::Field("lon_error", 1),
+        JsonMember::Field("lon_error_unit", 1),
+        JsonMember::Field("alt_error", 1),
+        JsonMember::Field("alt_error_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -294,48 +262,14 @@ impl<'a> Layout<'a> for GbsUnits<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.lat_error)?;
-        w.field(&self.lat_error_unit)?;
-        w.field(&self.lon_error)?;
-        w.field(&self.lon_error_unit)?;
-        w.field(&self.alt_error)?;
-        w.field(&self.alt_error_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.lat_error)?;
-        w.field(&self.lat_error_unit)?;
-        w.field(&self.lon_error)?;
-        w.field(&self.lon_error_unit)?;
-        w.field(&self.alt_error)?;
-        w.field(&self.alt_error_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("lat_error", &self.lat_error)?;
-        j.field("lat_error_unit", &self.lat_error_unit)?;
-        j.field("lon_error", &self.lon_error)?;
-        j.field("lon_error_unit", &self.lon_error_unit)?;
-        j.field("alt_error", &self.alt_error)?;
-        j.field("alt_error_unit", &self.alt_error_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat_error", 1)?;
-        out.member(fields, "lat_error_unit", 1)?;
-        out.member(fields, "lon_error", 1)?;
-        out.member(fields, "lon_error_unit", 1)?;
-        out.member(fields, "alt_error", 1)?;
-        out.member(fields, "alt_error_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("lat_error", &self.lat_error)?;
+        sink.field("lat_error_unit", &self.lat_error_unit)?;
+        sink.field("lon_error", &self.lon_error)?;
+        sink.field("lon_error_unit", &self.lon_error_unit)?;
+        sink.field("alt_error", &self.alt_error)?;
+        sink.field("alt_error_unit", &self.alt_error_unit)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, Group, GroupShape, Hex, JsonFields, Layout, Shape, Time, WireWriter,
+    Checksum, Error, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -78,6 +76,8 @@ impl<'a> Layout<'a> for Gen<'a> {
         optional: 0,
         group: Some(GroupShape { id: "words", width: 1, min: 0, max: 8 }),
     };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("index", 1), JsonMember::Field("time", 1), JsonMember::Values("words", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -97,34 +97,10 @@ impl<'a> Layout<'a> for Gen<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.index)?;
-        w.field(&self.time)?;
-        w.fields(&self.words)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.index)?;
-        w.field(&self.time)?;
-        w.fields(&self.words)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("index", &self.index)?;
-        j.field("time", &self.time)?;
-        j.values("words", &self.words)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "index", 1)?;
-        out.member(fields, "time", 1)?;
-        for value in json::list(fields, "words")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("index", &self.index)?;
+        sink.field("time", &self.time)?;
+        sink.values("words", &self.words)?;
         Ok(())
     }
 }

@@ -14,9 +14,7 @@
 use core::fmt;
 
 use crate::enums::Geos5CommandWord;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// GEOS5_COMMAND: GeoS-5 input command.
@@ -69,6 +67,7 @@ impl<'a> Layout<'a> for Geos5Command<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("GPSGG");
     const SHAPE: Shape = Shape { sentence: "GEOS5_COMMAND", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("command", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -82,24 +81,8 @@ impl<'a> Layout<'a> for Geos5Command<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.command)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.command)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("command", &self.command)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "command", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("command", &self.command)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Read, Shape};
 use crate::LayoutId;
 
 /// GEOS5_JAMDET: GeoS-5 jamming detected.
@@ -64,6 +60,7 @@ impl<'a> Layout<'a> for Geos5Jamdet<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("GPSGG");
     const SHAPE: Shape = Shape { sentence: "GEOS5_JAMDET", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("keyword", 1), JsonMember::Field("reserved", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -86,28 +83,9 @@ impl<'a> Layout<'a> for Geos5Jamdet<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("JAMDET")?;
-        w.field(&self.reserved)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("JAMDET")?;
-        w.field(&self.reserved)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "JAMDET")?;
-        j.field("reserved", &self.reserved)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "reserved", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "JAMDET")?;
+        sink.field("reserved", &self.reserved)?;
         Ok(())
     }
 }

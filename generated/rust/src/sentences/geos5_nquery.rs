@@ -12,10 +12,8 @@
 use core::fmt;
 
 use crate::enums::{Geos5MessageRate, Geos5NmeaVersion, Geos5OutputRate};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -115,6 +113,22 @@ impl<'a> Layout<'a> for Geos5Nquery<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("GPSGG");
     const SHAPE: Shape = Shape { sentence: "GEOS5_NQUERY", fixed: 14, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("port", 1),
+        JsonMember::Field("output_rate", 1),
+        JsonMember::Field("nmea_version", 1),
+        JsonMember::Field("gga_rate", 1),
+        JsonMember::Field("gll_rate", 1),
+        JsonMember::Field("gsa_rate", 1),
+        JsonMember::Field("gsv_rate", 1),
+        JsonMember::Field("rmc_rate", 1),
+        JsonMember::Field("vtg_rate", 1),
+        JsonMember::Field("gns_rate", 1),
+        JsonMember::Field("zda_rate", 1),
+        JsonMember::Field("dtm_rate", 1),
+        JsonMember::Field("rlm_rate", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -141,76 +155,21 @@ impl<'a> Layout<'a> for Geos5Nquery<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("NQUERY")?;
-        w.field(&self.port)?;
-        w.field(&self.output_rate)?;
-        w.field(&self.nmea_version)?;
-        w.field(&self.gga_rate)?;
-        w.field(&self.gll_rate)?;
-        w.field(&self.gsa_rate)?;
-        w.field(&self.gsv_rate)?;
-        w.field(&self.rmc_rate)?;
-        w.field(&self.vtg_rate)?;
-        w.field(&self.gns_rate)?;
-        w.field(&self.zda_rate)?;
-        w.field(&self.dtm_rate)?;
-        w.field(&self.rlm_rate)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("NQUERY")?;
-        w.field(&self.port)?;
-        w.field(&self.output_rate)?;
-        w.field(&self.nmea_version)?;
-        w.field(&self.gga_rate)?;
-        w.field(&self.gll_rate)?;
-        w.field(&self.gsa_rate)?;
-        w.field(&self.gsv_rate)?;
-        w.field(&self.rmc_rate)?;
-        w.field(&self.vtg_rate)?;
-        w.field(&self.gns_rate)?;
-        w.field(&self.zda_rate)?;
-        w.field(&self.dtm_rate)?;
-        w.field(&self.rlm_rate)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "NQUERY")?;
-        j.field("port", &self.port)?;
-        j.field("output_rate", &self.output_rate)?;
-        j.field("nmea_version", &self.nmea_version)?;
-        j.field("gga_rate", &self.gga_rate)?;
-        j.field("gll_rate", &self.gll_rate)?;
-        j.field("gsa_rate", &self.gsa_rate)?;
-        j.field("gsv_rate", &self.gsv_rate)?;
-        j.field("rmc_rate", &self.rmc_rate)?;
-        j.field("vtg_rate", &self.vtg_rate)?;
-        j.field("gns_rate", &self.gns_rate)?;
-        j.field("zda_rate", &self.zda_rate)?;
-        j.field("dtm_rate", &self.dtm_rate)?;
-        j.field("rlm_rate", &self.rlm_rate)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "port", 1)?;
-        out.member(fields, "output_rate", 1)?;
-        out.member(fields, "nmea_version", 1)?;
-        out.member(fields, "gga_rate", 1)?;
-        out.member(fields, "gll_rate", 1)?;
-        out.member(fields, "gsa_rate", 1)?;
-        out.member(fields, "gsv_rate", 1)?;
-        out.member(fields, "rmc_rate", 1)?;
-        out.member(fields, "vtg_rate", 1)?;
-        out.member(fields, "gns_rate", 1)?;
-        out.member(fields, "zda_rate", 1)?;
-        out.member(fields, "dtm_rate", 1)?;
-        out.member(fields, "rlm_rate", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "NQUERY")?;
+        sink.field("port", &self.port)?;
+        sink.field("output_rate", &self.output_rate)?;
+        sink.field("nmea_version", &self.nmea_version)?;
+        sink.field("gga_rate", &self.gga_rate)?;
+        sink.field("gll_rate", &self.gll_rate)?;
+        sink.field("gsa_rate", &self.gsa_rate)?;
+        sink.field("gsv_rate", &self.gsv_rate)?;
+        sink.field("rmc_rate", &self.rmc_rate)?;
+        sink.field("vtg_rate", &self.vtg_rate)?;
+        sink.field("gns_rate", &self.gns_rate)?;
+        sink.field("zda_rate", &self.zda_rate)?;
+        sink.field("dtm_rate", &self.dtm_rate)?;
+        sink.field("rlm_rate", &self.rlm_rate)?;
         Ok(())
     }
 }

@@ -13,9 +13,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Date, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Date, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// GEOS5_RQUERY: GeoS-5 software version, telemetry and configuration.
@@ -85,6 +83,15 @@ impl<'a> Layout<'a> for Geos5Rquery<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("GPSGG");
     const SHAPE: Shape = Shape { sentence: "GEOS5_RQUERY", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("receiver_name", 1),
+        JsonMember::Field("software_version", 1),
+        JsonMember::Field("software_date", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("config_1", 1),
+        JsonMember::Field("config_2", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -104,48 +111,14 @@ impl<'a> Layout<'a> for Geos5Rquery<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("RQUERY")?;
-        w.field(&self.receiver_name)?;
-        w.field(&self.software_version)?;
-        w.field(&self.software_date)?;
-        w.field(&self.status)?;
-        w.field(&self.config_1)?;
-        w.field(&self.config_2)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("RQUERY")?;
-        w.field(&self.receiver_name)?;
-        w.field(&self.software_version)?;
-        w.field(&self.software_date)?;
-        w.field(&self.status)?;
-        w.field(&self.config_1)?;
-        w.field(&self.config_2)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "RQUERY")?;
-        j.field("receiver_name", &self.receiver_name)?;
-        j.field("software_version", &self.software_version)?;
-        j.field("software_date", &self.software_date)?;
-        j.field("status", &self.status)?;
-        j.field("config_1", &self.config_1)?;
-        j.field("config_2", &self.config_2)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "receiver_name", 1)?;
-        out.member(fields, "software_version", 1)?;
-        out.member(fields, "software_date", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "config_1", 1)?;
-        out.member(fields, "config_2", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "RQUERY")?;
+        sink.field("receiver_name", &self.receiver_name)?;
+        sink.field("software_version", &self.software_version)?;
+        sink.field("software_date", &self.software_date)?;
+        sink.field("status", &self.status)?;
+        sink.field("config_1", &self.config_1)?;
+        sink.field("config_2", &self.config_2)?;
         Ok(())
     }
 }

@@ -12,10 +12,8 @@
 use core::fmt;
 
 use crate::enums::GfaIntegrity;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, CodeChars, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Checksum, CodeChars, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -84,6 +82,17 @@ impl<'a> Layout<'a> for Gfa<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GFA", fixed: 9, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("hpl", 1),
+        JsonMember::Field("vpl", 1),
+        JsonMember::Field("semi_major_std", 1),
+        JsonMember::Field("semi_minor_std", 1),
+        JsonMember::Field("orientation", 1),
+        JsonMember::Field("alt_std", 1),
+        JsonMember::Field("selected_accuracy", 1),
+        JsonMember::Field("integrity", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -109,56 +118,16 @@ impl<'a> Layout<'a> for Gfa<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.hpl)?;
-        w.field(&self.vpl)?;
-        w.field(&self.semi_major_std)?;
-        w.field(&self.semi_minor_std)?;
-        w.field(&self.orientation)?;
-        w.field(&self.alt_std)?;
-        w.field(&self.selected_accuracy)?;
-        w.field(&self.integrity)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.hpl)?;
-        w.field(&self.vpl)?;
-        w.field(&self.semi_major_std)?;
-        w.field(&self.semi_minor_std)?;
-        w.field(&self.orientation)?;
-        w.field(&self.alt_std)?;
-        w.field(&self.selected_accuracy)?;
-        w.field(&self.integrity)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("hpl", &self.hpl)?;
-        j.field("vpl", &self.vpl)?;
-        j.field("semi_major_std", &self.semi_major_std)?;
-        j.field("semi_minor_std", &self.semi_minor_std)?;
-        j.field("orientation", &self.orientation)?;
-        j.field("alt_std", &self.alt_std)?;
-        j.field("selected_accuracy", &self.selected_accuracy)?;
-        j.field("integrity", &self.integrity)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "hpl", 1)?;
-        out.member(fields, "vpl", 1)?;
-        out.member(fields, "semi_major_std", 1)?;
-        out.member(fields, "semi_minor_std", 1)?;
-        out.member(fields, "orientation", 1)?;
-        out.member(fields, "alt_std", 1)?;
-        out.member(fields, "selected_accuracy", 1)?;
-        out.member(fields, "integrity", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("hpl", &self.hpl)?;
+        sink.field("vpl", &self.vpl)?;
+        sink.field("semi_major_std", &self.semi_major_std)?;
+        sink.field("semi_minor_std", &self.semi_minor_std)?;
+        sink.field("orientation", &self.orientation)?;
+        sink.field("alt_std", &self.alt_std)?;
+        sink.field("selected_accuracy", &self.selected_accuracy)?;
+        sink.field("integrity", &self.integrity)?;
         Ok(())
     }
 }

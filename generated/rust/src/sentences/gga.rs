@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::GgaQuality;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number,
-    Range, Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number,
+    Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -102,6 +100,21 @@ impl<'a> Layout<'a> for Gga<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GGA", fixed: 13, optional: 2, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("altitude_unit", 1),
+        JsonMember::Field("geoid_separation", 1),
+        JsonMember::Field("geoid_separation_unit", 1),
+        JsonMember::Field("dgps_age", 1),
+        JsonMember::Optional("dgps_station", 1),
+        JsonMember::Optional("vdop", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -165,84 +178,24 @@ impl<'a> Layout<'a> for Gga<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_unit)?;
-        w.field(&self.geoid_separation)?;
-        w.field(&self.geoid_separation_unit)?;
-        w.field(&self.dgps_age)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("altitude_unit", &self.altitude_unit)?;
+        sink.field("geoid_separation", &self.geoid_separation)?;
+        sink.field("geoid_separation_unit", &self.geoid_separation_unit)?;
+        sink.field("dgps_age", &self.dgps_age)?;
         if self.trailing >= 1 {
-            w.field(&self.dgps_station)?;
+            sink.field("dgps_station", &self.dgps_station)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.vdop)?;
+            sink.field("vdop", &self.vdop)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_unit)?;
-        w.field(&self.geoid_separation)?;
-        w.field(&self.geoid_separation_unit)?;
-        w.field(&self.dgps_age)?;
-        if self.trailing >= 1 {
-            w.field(&self.dgps_station)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.vdop)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("quality", &self.quality)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("altitude_unit", &self.altitude_unit)?;
-        j.field("geoid_separation", &self.geoid_separation)?;
-        j.field("geoid_separation_unit", &self.geoid_separation_unit)?;
-        j.field("dgps_age", &self.dgps_age)?;
-        if self.trailing >= 1 {
-            j.field("dgps_station", &self.dgps_station)?;
-        }
-        if self.trailing >= 2 {
-            j.field("vdop", &self.vdop)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "altitude_unit", 1)?;
-        out.member(fields, "geoid_separation", 1)?;
-        out.member(fields, "geoid_separation_unit", 1)?;
-        out.member(fields, "dgps_age", 1)?;
-        out.optional(fields, "dgps_station", 1)?;
-        out.optional(fields, "vdop", 1)?;
         Ok(())
     }
 }

@@ -12,11 +12,9 @@
 use core::fmt;
 
 use crate::enums::GlcSignalStatus;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Reader,
-    Shape, WireWriter,
+    Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
+    Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -39,29 +37,12 @@ impl<'a> GlcTimeDifference<'a> {
             signal_status: f.code("signal_status")?,
         })
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time_difference)?;
-        w.field(&self.signal_status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time_difference)?;
-        w.field(&self.signal_status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time_difference", &self.time_difference)?;
-        j.field("signal_status", &self.signal_status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "time_difference", 1)?;
-        out.member(entry, "signal_status", 1)?;
+impl Entry for GlcTimeDifference<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time_difference", &self.time_difference)?;
+        sink.field("signal_status", &self.signal_status)?;
         Ok(())
     }
 }
@@ -128,6 +109,12 @@ impl<'a> Layout<'a> for Glc<'a> {
         optional: 0,
         group: Some(GroupShape { id: "time_differences", width: 2, min: 5, max: 5 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("gri", 1),
+        JsonMember::Field("master_toa", 1),
+        JsonMember::Field("master_status", 1),
+        JsonMember::Entries("time_differences", &[("time_difference", 1), ("signal_status", 1)]),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -148,42 +135,11 @@ impl<'a> Layout<'a> for Glc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.gri)?;
-        w.field(&self.master_toa)?;
-        w.field(&self.master_status)?;
-        for entry in &self.time_differences {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.gri)?;
-        w.field(&self.master_toa)?;
-        w.field(&self.master_status)?;
-        for entry in &self.time_differences {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("gri", &self.gri)?;
-        j.field("master_toa", &self.master_toa)?;
-        j.field("master_status", &self.master_status)?;
-        j.entries("time_differences", &self.time_differences, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "gri", 1)?;
-        out.member(fields, "master_toa", 1)?;
-        out.member(fields, "master_status", 1)?;
-        for entry in json::list(fields, "time_differences")? {
-            GlcTimeDifference::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("gri", &self.gri)?;
+        sink.field("master_toa", &self.master_toa)?;
+        sink.field("master_status", &self.master_status)?;
+        sink.entries("time_differences", &self.time_differences)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 use core::fmt;
 
 use crate::enums::{EastWest, NorthSouth, PosMode, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range,
-    Read, Shape, Time, WireWriter,
+    Checksum, Code, Coordinate, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -75,6 +73,13 @@ impl<'a> Layout<'a> for Gll<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GLL", fixed: 6, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Optional("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -114,46 +119,14 @@ impl<'a> Layout<'a> for Gll<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.time)?;
-        w.field(&self.status)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("time", &self.time)?;
+        sink.field("status", &self.status)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("time", &self.time)?;
-        j.field("status", &self.status)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "status", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }
@@ -233,6 +206,15 @@ impl<'a> Layout<'a> for GllSentinel<'a> {
     const VARIANT: Option<&'static str> = Some("sentinel");
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GLL", fixed: 6, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("lat_value", 1),
+        JsonMember::Field("lat_hemisphere", 1),
+        JsonMember::Field("lon_value", 1),
+        JsonMember::Field("lon_hemisphere", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Optional("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -276,54 +258,16 @@ impl<'a> Layout<'a> for GllSentinel<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.lat_value)?;
-        w.field(&self.lat_hemisphere)?;
-        w.field(&self.lon_value)?;
-        w.field(&self.lon_hemisphere)?;
-        w.field(&self.time)?;
-        w.field(&self.status)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("lat_value", &self.lat_value)?;
+        sink.field("lat_hemisphere", &self.lat_hemisphere)?;
+        sink.field("lon_value", &self.lon_value)?;
+        sink.field("lon_hemisphere", &self.lon_hemisphere)?;
+        sink.field("time", &self.time)?;
+        sink.field("status", &self.status)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.lat_value)?;
-        w.field(&self.lat_hemisphere)?;
-        w.field(&self.lon_value)?;
-        w.field(&self.lon_hemisphere)?;
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("lat_value", &self.lat_value)?;
-        j.field("lat_hemisphere", &self.lat_hemisphere)?;
-        j.field("lon_value", &self.lon_value)?;
-        j.field("lon_hemisphere", &self.lon_hemisphere)?;
-        j.field("time", &self.time)?;
-        j.field("status", &self.status)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "lat_value", 1)?;
-        out.member(fields, "lat_hemisphere", 1)?;
-        out.member(fields, "lon_value", 1)?;
-        out.member(fields, "lon_hemisphere", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "status", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }

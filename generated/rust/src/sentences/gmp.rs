@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::GnsMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, CodeChars, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, CodeChars, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -94,6 +91,20 @@ impl<'a> Layout<'a> for Gmp<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GMP", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("projection", 1),
+        JsonMember::Field("zone", 1),
+        JsonMember::Field("grid_north", 1),
+        JsonMember::Field("grid_east", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("geoid_separation", 1),
+        JsonMember::Field("dgps_age", 1),
+        JsonMember::Field("dgps_station", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -122,68 +133,19 @@ impl<'a> Layout<'a> for Gmp<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.projection)?;
-        w.field(&self.zone)?;
-        w.field(&self.grid_north)?;
-        w.field(&self.grid_east)?;
-        w.field(&self.mode)?;
-        w.field(&self.satellites)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.geoid_separation)?;
-        w.field(&self.dgps_age)?;
-        w.field(&self.dgps_station)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.projection)?;
-        w.field(&self.zone)?;
-        w.field(&self.grid_north)?;
-        w.field(&self.grid_east)?;
-        w.field(&self.mode)?;
-        w.field(&self.satellites)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.geoid_separation)?;
-        w.field(&self.dgps_age)?;
-        w.field(&self.dgps_station)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("projection", &self.projection)?;
-        j.field("zone", &self.zone)?;
-        j.field("grid_north", &self.grid_north)?;
-        j.field("grid_east", &self.grid_east)?;
-        j.field("mode", &self.mode)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("geoid_separation", &self.geoid_separation)?;
-        j.field("dgps_age", &self.dgps_age)?;
-        j.field("dgps_station", &self.dgps_station)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "projection", 1)?;
-        out.member(fields, "zone", 1)?;
-        out.member(fields, "grid_north", 1)?;
-        out.member(fields, "grid_east", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "geoid_separation", 1)?;
-        out.member(fields, "dgps_age", 1)?;
-        out.member(fields, "dgps_station", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("projection", &self.projection)?;
+        sink.field("zone", &self.zone)?;
+        sink.field("grid_north", &self.grid_north)?;
+        sink.field("grid_east", &self.grid_east)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("geoid_separation", &self.geoid_separation)?;
+        sink.field("dgps_age", &self.dgps_age)?;
+        sink.field("dgps_station", &self.dgps_station)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::{GnsMode, NavStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, CodeChars, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout,
-    Number, Range, Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, CodeChars, Coordinate, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout,
+    Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -98,6 +96,19 @@ impl<'a> Layout<'a> for Gns<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GNS", fixed: 12, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("geoid_separation", 1),
+        JsonMember::Field("dgps_age", 1),
+        JsonMember::Field("dgps_station", 1),
+        JsonMember::Optional("nav_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -151,70 +162,20 @@ impl<'a> Layout<'a> for Gns<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.mode)?;
-        w.field(&self.satellites)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.geoid_separation)?;
-        w.field(&self.dgps_age)?;
-        w.field(&self.dgps_station)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("geoid_separation", &self.geoid_separation)?;
+        sink.field("dgps_age", &self.dgps_age)?;
+        sink.field("dgps_station", &self.dgps_station)?;
         if self.trailing >= 1 {
-            w.field(&self.nav_status)?;
+            sink.field("nav_status", &self.nav_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.mode)?;
-        w.field(&self.satellites)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.geoid_separation)?;
-        w.field(&self.dgps_age)?;
-        w.field(&self.dgps_station)?;
-        if self.trailing >= 1 {
-            w.field(&self.nav_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("mode", &self.mode)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("geoid_separation", &self.geoid_separation)?;
-        j.field("dgps_age", &self.dgps_age)?;
-        j.field("dgps_station", &self.dgps_station)?;
-        if self.trailing >= 1 {
-            j.field("nav_status", &self.nav_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "geoid_separation", 1)?;
-        out.member(fields, "dgps_age", 1)?;
-        out.member(fields, "dgps_station", 1)?;
-        out.optional(fields, "nav_status", 1)?;
         Ok(())
     }
 }
@@ -303,6 +264,18 @@ impl<'a> Layout<'a> for GnsAux<'a> {
     const VARIANT: Option<&'static str> = Some("aux");
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GNS", fixed: 11, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("geoid_separation", 1),
+        JsonMember::Field("dgps_age", 1),
+        JsonMember::Field("dgps_station", 1),
+        JsonMember::Optional("nav_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -354,66 +327,19 @@ impl<'a> Layout<'a> for GnsAux<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.satellites)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.geoid_separation)?;
-        w.field(&self.dgps_age)?;
-        w.field(&self.dgps_station)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("geoid_separation", &self.geoid_separation)?;
+        sink.field("dgps_age", &self.dgps_age)?;
+        sink.field("dgps_station", &self.dgps_station)?;
         if self.trailing >= 1 {
-            w.field(&self.nav_status)?;
+            sink.field("nav_status", &self.nav_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.satellites)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.geoid_separation)?;
-        w.field(&self.dgps_age)?;
-        w.field(&self.dgps_station)?;
-        if self.trailing >= 1 {
-            w.field(&self.nav_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("geoid_separation", &self.geoid_separation)?;
-        j.field("dgps_age", &self.dgps_age)?;
-        j.field("dgps_station", &self.dgps_station)?;
-        if self.trailing >= 1 {
-            j.field("nav_status", &self.nav_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "geoid_separation", 1)?;
-        out.member(fields, "dgps_age", 1)?;
-        out.member(fields, "dgps_station", 1)?;
-        out.optional(fields, "nav_status", 1)?;
         Ok(())
     }
 }

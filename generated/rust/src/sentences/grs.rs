@@ -12,11 +12,9 @@
 use core::fmt;
 
 use crate::enums::{GrsMode, SignalId, SystemId};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Shape,
-    Time, WireWriter,
+    Checksum, Code, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -90,6 +88,13 @@ impl<'a> Layout<'a> for Grs<'a> {
         optional: 2,
         group: Some(GroupShape { id: "residuals", width: 1, min: 12, max: 12 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Values("residuals", 1),
+        JsonMember::Optional("system_id", 1),
+        JsonMember::Optional("signal_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, extra) = fields.shape(&Self::SHAPE)?;
@@ -119,54 +124,16 @@ impl<'a> Layout<'a> for Grs<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.mode)?;
-        w.fields(&self.residuals)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("mode", &self.mode)?;
+        sink.values("residuals", &self.residuals)?;
         if self.trailing >= 1 {
-            w.field(&self.system_id)?;
+            sink.field("system_id", &self.system_id)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.signal_id)?;
+            sink.field("signal_id", &self.signal_id)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.mode)?;
-        w.fields(&self.residuals)?;
-        if self.trailing >= 1 {
-            w.field(&self.system_id)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.signal_id)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("mode", &self.mode)?;
-        j.values("residuals", &self.residuals)?;
-        if self.trailing >= 1 {
-            j.field("system_id", &self.system_id)?;
-        }
-        if self.trailing >= 2 {
-            j.field("signal_id", &self.signal_id)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "mode", 1)?;
-        for value in json::list(fields, "residuals")? {
-            out.value(value, 1)?;
-        }
-        out.optional(fields, "system_id", 1)?;
-        out.optional(fields, "signal_id", 1)?;
         Ok(())
     }
 }

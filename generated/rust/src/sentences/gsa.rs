@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{GsaFixType, GsaSelectionMode, SystemId};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number,
-    Range, Read, Shape, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -92,6 +90,15 @@ impl<'a> Layout<'a> for Gsa<'a> {
         optional: 1,
         group: Some(GroupShape { id: "prns", width: 1, min: 12, max: 12 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("selection_mode", 1),
+        JsonMember::Field("fix_type", 1),
+        JsonMember::Values("prns", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Optional("system_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, extra) = fields.shape(&Self::SHAPE)?;
@@ -135,56 +142,16 @@ impl<'a> Layout<'a> for Gsa<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("selection_mode", &self.selection_mode)?;
+        sink.field("fix_type", &self.fix_type)?;
+        sink.values("prns", &self.prns)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("vdop", &self.vdop)?;
         if self.trailing >= 1 {
-            w.field(&self.system_id)?;
+            sink.field("system_id", &self.system_id)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        if self.trailing >= 1 {
-            w.field(&self.system_id)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("selection_mode", &self.selection_mode)?;
-        j.field("fix_type", &self.fix_type)?;
-        j.values("prns", &self.prns)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("vdop", &self.vdop)?;
-        if self.trailing >= 1 {
-            j.field("system_id", &self.system_id)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "selection_mode", 1)?;
-        out.member(fields, "fix_type", 1)?;
-        for value in json::list(fields, "prns")? {
-            out.value(value, 1)?;
-        }
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.optional(fields, "system_id", 1)?;
         Ok(())
     }
 }
@@ -264,6 +231,14 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         optional: 0,
         group: Some(GroupShape { id: "prns", width: 1, min: 0, max: 11 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("selection_mode", 1),
+        JsonMember::Field("fix_type", 1),
+        JsonMember::Values("prns", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("vdop", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -299,46 +274,13 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("selection_mode", &self.selection_mode)?;
-        j.field("fix_type", &self.fix_type)?;
-        j.values("prns", &self.prns)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("vdop", &self.vdop)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "selection_mode", 1)?;
-        out.member(fields, "fix_type", 1)?;
-        for value in json::list(fields, "prns")? {
-            out.value(value, 1)?;
-        }
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "vdop", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("selection_mode", &self.selection_mode)?;
+        sink.field("fix_type", &self.fix_type)?;
+        sink.values("prns", &self.prns)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("vdop", &self.vdop)?;
         Ok(())
     }
 }
@@ -414,6 +356,15 @@ impl<'a> Layout<'a> for GsaWideSystem<'a> {
         optional: 0,
         group: Some(GroupShape { id: "prns", width: 1, min: 13, max: 24 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("selection_mode", 1),
+        JsonMember::Field("fix_type", 1),
+        JsonMember::Values("prns", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Field("system_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -451,50 +402,14 @@ impl<'a> Layout<'a> for GsaWideSystem<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.system_id)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.system_id)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("selection_mode", &self.selection_mode)?;
-        j.field("fix_type", &self.fix_type)?;
-        j.values("prns", &self.prns)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("vdop", &self.vdop)?;
-        j.field("system_id", &self.system_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "selection_mode", 1)?;
-        out.member(fields, "fix_type", 1)?;
-        for value in json::list(fields, "prns")? {
-            out.value(value, 1)?;
-        }
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.member(fields, "system_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("selection_mode", &self.selection_mode)?;
+        sink.field("fix_type", &self.fix_type)?;
+        sink.values("prns", &self.prns)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("vdop", &self.vdop)?;
+        sink.field("system_id", &self.system_id)?;
         Ok(())
     }
 }
@@ -566,6 +481,14 @@ impl<'a> Layout<'a> for GsaWide<'a> {
         optional: 0,
         group: Some(GroupShape { id: "prns", width: 1, min: 13, max: 24 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("selection_mode", 1),
+        JsonMember::Field("fix_type", 1),
+        JsonMember::Values("prns", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("vdop", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -601,46 +524,13 @@ impl<'a> Layout<'a> for GsaWide<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("selection_mode", &self.selection_mode)?;
-        j.field("fix_type", &self.fix_type)?;
-        j.values("prns", &self.prns)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("vdop", &self.vdop)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "selection_mode", 1)?;
-        out.member(fields, "fix_type", 1)?;
-        for value in json::list(fields, "prns")? {
-            out.value(value, 1)?;
-        }
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "vdop", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("selection_mode", &self.selection_mode)?;
+        sink.field("fix_type", &self.fix_type)?;
+        sink.values("prns", &self.prns)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("vdop", &self.vdop)?;
         Ok(())
     }
 }
@@ -722,6 +612,15 @@ impl<'a> Layout<'a> for GsaExtraDop<'a> {
         optional: 0,
         group: Some(GroupShape { id: "prns", width: 1, min: 12, max: 12 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("selection_mode", 1),
+        JsonMember::Field("fix_type", 1),
+        JsonMember::Values("prns", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Field("fourth_dop", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -759,50 +658,14 @@ impl<'a> Layout<'a> for GsaExtraDop<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.fourth_dop)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.selection_mode)?;
-        w.field(&self.fix_type)?;
-        w.fields(&self.prns)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.fourth_dop)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("selection_mode", &self.selection_mode)?;
-        j.field("fix_type", &self.fix_type)?;
-        j.values("prns", &self.prns)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("vdop", &self.vdop)?;
-        j.field("fourth_dop", &self.fourth_dop)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "selection_mode", 1)?;
-        out.member(fields, "fix_type", 1)?;
-        for value in json::list(fields, "prns")? {
-            out.value(value, 1)?;
-        }
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.member(fields, "fourth_dop", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("selection_mode", &self.selection_mode)?;
+        sink.field("fix_type", &self.fix_type)?;
+        sink.values("prns", &self.prns)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("vdop", &self.vdop)?;
+        sink.field("fourth_dop", &self.fourth_dop)?;
         Ok(())
     }
 }

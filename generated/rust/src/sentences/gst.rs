@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, Time,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -75,6 +72,16 @@ impl<'a> Layout<'a> for Gst<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "GST", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("rms", 1),
+        JsonMember::Field("semi_major_std", 1),
+        JsonMember::Field("semi_minor_std", 1),
+        JsonMember::Field("orientation", 1),
+        JsonMember::Field("lat_std", 1),
+        JsonMember::Field("lon_std", 1),
+        JsonMember::Field("alt_std", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -114,52 +121,15 @@ impl<'a> Layout<'a> for Gst<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.rms)?;
-        w.field(&self.semi_major_std)?;
-        w.field(&self.semi_minor_std)?;
-        w.field(&self.orientation)?;
-        w.field(&self.lat_std)?;
-        w.field(&self.lon_std)?;
-        w.field(&self.alt_std)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.rms)?;
-        w.field(&self.semi_major_std)?;
-        w.field(&self.semi_minor_std)?;
-        w.field(&self.orientation)?;
-        w.field(&self.lat_std)?;
-        w.field(&self.lon_std)?;
-        w.field(&self.alt_std)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("rms", &self.rms)?;
-        j.field("semi_major_std", &self.semi_major_std)?;
-        j.field("semi_minor_std", &self.semi_minor_std)?;
-        j.field("orientation", &self.orientation)?;
-        j.field("lat_std", &self.lat_std)?;
-        j.field("lon_std", &self.lon_std)?;
-        j.field("alt_std", &self.alt_std)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "rms", 1)?;
-        out.member(fields, "semi_major_std", 1)?;
-        out.member(fields, "semi_minor_std", 1)?;
-        out.member(fields, "orientation", 1)?;
-        out.member(fields, "lat_std", 1)?;
-        out.member(fields, "lon_std", 1)?;
-        out.member(fields, "alt_std", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("rms", &self.rms)?;
+        sink.field("semi_major_std", &self.semi_major_std)?;
+        sink.field("semi_minor_std", &self.semi_minor_std)?;
+        sink.field("orientation", &self.orientation)?;
+        sink.field("lat_std", &self.lat_std)?;
+        sink.field("lon_std", &self.lon_std)?;
+        sink.field("alt_std", &self.alt_std)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::SignalId;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout,
-    Number, Range, Read, Reader, Shape, WireWriter,
+    Bound, Checksum, Code, Entry, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout,
+    Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -56,37 +54,14 @@ impl GsvSatellite {
         self.snr = f.integer(Range::between(Bound::int(0), Bound::int(99)))?;
         Ok(())
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.prn)?;
-        w.field(&self.elevation)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.snr)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.prn)?;
-        w.field(&self.elevation)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.snr)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("prn", &self.prn)?;
-        j.field("elevation", &self.elevation)?;
-        j.field("azimuth", &self.azimuth)?;
-        j.field("snr", &self.snr)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "prn", 1)?;
-        out.member(entry, "elevation", 1)?;
-        out.member(entry, "azimuth", 1)?;
-        out.member(entry, "snr", 1)?;
+impl Entry for GsvSatellite {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("prn", &self.prn)?;
+        sink.field("elevation", &self.elevation)?;
+        sink.field("azimuth", &self.azimuth)?;
+        sink.field("snr", &self.snr)?;
         Ok(())
     }
 }
@@ -156,6 +131,13 @@ impl<'a> Layout<'a> for Gsv<'a> {
         optional: 1,
         group: Some(GroupShape { id: "satellites", width: 4, min: 0, max: 4 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("message_count", 1),
+        JsonMember::Field("message_number", 1),
+        JsonMember::Field("satellites_in_view", 1),
+        JsonMember::Entries("satellites", &[("prn", 1), ("elevation", 1), ("azimuth", 1), ("snr", 1)]),
+        JsonMember::Optional("signal_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, extra) = fields.shape(&Self::SHAPE)?;
@@ -196,52 +178,14 @@ impl<'a> Layout<'a> for Gsv<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message_count)?;
-        w.field(&self.message_number)?;
-        w.field(&self.satellites_in_view)?;
-        for entry in &self.satellites {
-            entry.write_fields(w)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message_count", &self.message_count)?;
+        sink.field("message_number", &self.message_number)?;
+        sink.field("satellites_in_view", &self.satellites_in_view)?;
+        sink.entries("satellites", &self.satellites)?;
         if self.trailing >= 1 {
-            w.field(&self.signal_id)?;
+            sink.field("signal_id", &self.signal_id)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.message_count)?;
-        w.field(&self.message_number)?;
-        w.field(&self.satellites_in_view)?;
-        for entry in &self.satellites {
-            entry.put_fields(w)?;
-        }
-        if self.trailing >= 1 {
-            w.field(&self.signal_id)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message_count", &self.message_count)?;
-        j.field("message_number", &self.message_number)?;
-        j.field("satellites_in_view", &self.satellites_in_view)?;
-        j.entries("satellites", &self.satellites, |entry, j| entry.write_json_fields(j))?;
-        if self.trailing >= 1 {
-            j.field("signal_id", &self.signal_id)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message_count", 1)?;
-        out.member(fields, "message_number", 1)?;
-        out.member(fields, "satellites_in_view", 1)?;
-        for entry in json::list(fields, "satellites")? {
-            GsvSatellite::fields_from_json(entry, out)?;
-        }
-        out.optional(fields, "signal_id", 1)?;
         Ok(())
     }
 }

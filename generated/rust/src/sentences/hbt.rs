@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::HbtEquipmentStatus;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -68,6 +66,11 @@ impl<'a> Layout<'a> for Hbt<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HBT", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("repeat_interval", 1),
+        JsonMember::Field("equipment_status", 1),
+        JsonMember::Field("sequence_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -87,32 +90,10 @@ impl<'a> Layout<'a> for Hbt<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.repeat_interval)?;
-        w.field(&self.equipment_status)?;
-        w.field(&self.sequence_id)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.repeat_interval)?;
-        w.field(&self.equipment_status)?;
-        w.field(&self.sequence_id)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("repeat_interval", &self.repeat_interval)?;
-        j.field("equipment_status", &self.equipment_status)?;
-        j.field("sequence_id", &self.sequence_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "repeat_interval", 1)?;
-        out.member(fields, "equipment_status", 1)?;
-        out.member(fields, "sequence_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("repeat_interval", &self.repeat_interval)?;
+        sink.field("equipment_status", &self.equipment_status)?;
+        sink.field("sequence_id", &self.sequence_id)?;
         Ok(())
     }
 }

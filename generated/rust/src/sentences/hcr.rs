@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{HcrCorrectionState, ThsMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -66,6 +64,12 @@ impl<'a> Layout<'a> for Hcr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HCR", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("correction_state", 1),
+        JsonMember::Field("correction_value", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -90,36 +94,11 @@ impl<'a> Layout<'a> for Hcr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.heading)?;
-        w.field(&self.mode)?;
-        w.field(&self.correction_state)?;
-        w.field(&self.correction_value)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.heading)?;
-        w.field(&self.mode)?;
-        w.field(&self.correction_state)?;
-        w.field(&self.correction_value)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("heading", &self.heading)?;
-        j.field("mode", &self.mode)?;
-        j.field("correction_state", &self.correction_state)?;
-        j.field("correction_value", &self.correction_value)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "correction_state", 1)?;
-        out.member(fields, "correction_value", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("heading", &self.heading)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("correction_state", &self.correction_state)?;
+        sink.field("correction_value", &self.correction_value)?;
         Ok(())
     }
 }

@@ -11,11 +11,7 @@
 use core::fmt;
 
 use crate::enums::EastWest;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// HDG: Heading, deviation and variation.
@@ -77,6 +73,13 @@ impl<'a> Layout<'a> for Hdg<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HDG", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("deviation", 1),
+        JsonMember::Field("deviation_dir", 1),
+        JsonMember::Field("variation", 1),
+        JsonMember::Field("variation_dir", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -98,40 +101,12 @@ impl<'a> Layout<'a> for Hdg<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.heading)?;
-        w.field(&self.deviation)?;
-        w.field(&self.deviation_dir)?;
-        w.field(&self.variation)?;
-        w.field(&self.variation_dir)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.heading)?;
-        w.field(&self.deviation)?;
-        w.field(&self.deviation_dir)?;
-        w.field(&self.variation)?;
-        w.field(&self.variation_dir)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("heading", &self.heading)?;
-        j.field("deviation", &self.deviation)?;
-        j.field("deviation_dir", &self.deviation_dir)?;
-        j.field("variation", &self.variation)?;
-        j.field("variation_dir", &self.variation_dir)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "deviation", 1)?;
-        out.member(fields, "deviation_dir", 1)?;
-        out.member(fields, "variation", 1)?;
-        out.member(fields, "variation_dir", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("heading", &self.heading)?;
+        sink.field("deviation", &self.deviation)?;
+        sink.field("deviation_dir", &self.deviation_dir)?;
+        sink.field("variation", &self.variation)?;
+        sink.field("variation_dir", &self.variation_dir)?;
         Ok(())
     }
 }

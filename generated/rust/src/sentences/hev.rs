@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// HEV: Heave.
@@ -68,6 +64,7 @@ impl<'a> Layout<'a> for Hev<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HEV", fixed: 1, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("heave", 1), JsonMember::Optional("spare", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -89,34 +86,11 @@ impl<'a> Layout<'a> for Hev<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.heave)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("heave", &self.heave)?;
         if self.trailing >= 1 {
-            w.field(&self.spare)?;
+            sink.field("spare", &self.spare)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.heave)?;
-        if self.trailing >= 1 {
-            w.field(&self.spare)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("heave", &self.heave)?;
-        if self.trailing >= 1 {
-            j.field("spare", &self.spare)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "heave", 1)?;
-        out.optional(fields, "spare", 1)?;
         Ok(())
     }
 }

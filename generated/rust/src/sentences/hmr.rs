@@ -11,11 +11,7 @@
 use core::fmt;
 
 use crate::enums::{EastWest, HmrDifferenceStatus, HtcHeadingReference, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// HMR: Heading monitor receive.
@@ -94,6 +90,25 @@ impl<'a> Layout<'a> for Hmr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HMR", fixed: 17, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sensor1_id", 1),
+        JsonMember::Field("sensor2_id", 1),
+        JsonMember::Field("set_difference", 1),
+        JsonMember::Field("actual_difference", 1),
+        JsonMember::Field("difference_status", 1),
+        JsonMember::Field("sensor1_heading", 1),
+        JsonMember::Field("sensor1_status", 1),
+        JsonMember::Field("sensor1_reference", 1),
+        JsonMember::Field("sensor1_deviation", 1),
+        JsonMember::Field("sensor1_deviation_dir", 1),
+        JsonMember::Field("sensor2_heading", 1),
+        JsonMember::Field("sensor2_status", 1),
+        JsonMember::Field("sensor2_reference", 1),
+        JsonMember::Field("sensor2_deviation", 1),
+        JsonMember::Field("sensor2_deviation_dir", 1),
+        JsonMember::Field("variation", 1),
+        JsonMember::Field("variation_dir", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -127,88 +142,24 @@ impl<'a> Layout<'a> for Hmr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sensor1_id)?;
-        w.field(&self.sensor2_id)?;
-        w.field(&self.set_difference)?;
-        w.field(&self.actual_difference)?;
-        w.field(&self.difference_status)?;
-        w.field(&self.sensor1_heading)?;
-        w.field(&self.sensor1_status)?;
-        w.field(&self.sensor1_reference)?;
-        w.field(&self.sensor1_deviation)?;
-        w.field(&self.sensor1_deviation_dir)?;
-        w.field(&self.sensor2_heading)?;
-        w.field(&self.sensor2_status)?;
-        w.field(&self.sensor2_reference)?;
-        w.field(&self.sensor2_deviation)?;
-        w.field(&self.sensor2_deviation_dir)?;
-        w.field(&self.variation)?;
-        w.field(&self.variation_dir)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sensor1_id)?;
-        w.field(&self.sensor2_id)?;
-        w.field(&self.set_difference)?;
-        w.field(&self.actual_difference)?;
-        w.field(&self.difference_status)?;
-        w.field(&self.sensor1_heading)?;
-        w.field(&self.sensor1_status)?;
-        w.field(&self.sensor1_reference)?;
-        w.field(&self.sensor1_deviation)?;
-        w.field(&self.sensor1_deviation_dir)?;
-        w.field(&self.sensor2_heading)?;
-        w.field(&self.sensor2_status)?;
-        w.field(&self.sensor2_reference)?;
-        w.field(&self.sensor2_deviation)?;
-        w.field(&self.sensor2_deviation_dir)?;
-        w.field(&self.variation)?;
-        w.field(&self.variation_dir)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sensor1_id", &self.sensor1_id)?;
-        j.field("sensor2_id", &self.sensor2_id)?;
-        j.field("set_difference", &self.set_difference)?;
-        j.field("actual_difference", &self.actual_difference)?;
-        j.field("difference_status", &self.difference_status)?;
-        j.field("sensor1_heading", &self.sensor1_heading)?;
-        j.field("sensor1_status", &self.sensor1_status)?;
-        j.field("sensor1_reference", &self.sensor1_reference)?;
-        j.field("sensor1_deviation", &self.sensor1_deviation)?;
-        j.field("sensor1_deviation_dir", &self.sensor1_deviation_dir)?;
-        j.field("sensor2_heading", &self.sensor2_heading)?;
-        j.field("sensor2_status", &self.sensor2_status)?;
-        j.field("sensor2_reference", &self.sensor2_reference)?;
-        j.field("sensor2_deviation", &self.sensor2_deviation)?;
-        j.field("sensor2_deviation_dir", &self.sensor2_deviation_dir)?;
-        j.field("variation", &self.variation)?;
-        j.field("variation_dir", &self.variation_dir)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sensor1_id", 1)?;
-        out.member(fields, "sensor2_id", 1)?;
-        out.member(fields, "set_difference", 1)?;
-        out.member(fields, "actual_difference", 1)?;
-        out.member(fields, "difference_status", 1)?;
-        out.member(fields, "sensor1_heading", 1)?;
-        out.member(fields, "sensor1_status", 1)?;
-        out.member(fields, "sensor1_reference", 1)?;
-        out.member(fields, "sensor1_deviation", 1)?;
-        out.member(fields, "sensor1_deviation_dir", 1)?;
-        out.member(fields, "sensor2_heading", 1)?;
-        out.member(fields, "sensor2_status", 1)?;
-        out.member(fields, "sensor2_reference", 1)?;
-        out.member(fields, "sensor2_deviation", 1)?;
-        out.member(fields, "sensor2_deviation_dir", 1)?;
-        out.member(fields, "variation", 1)?;
-        out.member(fields, "variation_dir", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sensor1_id", &self.sensor1_id)?;
+        sink.field("sensor2_id", &self.sensor2_id)?;
+        sink.field("set_difference", &self.set_difference)?;
+        sink.field("actual_difference", &self.actual_difference)?;
+        sink.field("difference_status", &self.difference_status)?;
+        sink.field("sensor1_heading", &self.sensor1_heading)?;
+        sink.field("sensor1_status", &self.sensor1_status)?;
+        sink.field("sensor1_reference", &self.sensor1_reference)?;
+        sink.field("sensor1_deviation", &self.sensor1_deviation)?;
+        sink.field("sensor1_deviation_dir", &self.sensor1_deviation_dir)?;
+        sink.field("sensor2_heading", &self.sensor2_heading)?;
+        sink.field("sensor2_status", &self.sensor2_status)?;
+        sink.field("sensor2_reference", &self.sensor2_reference)?;
+        sink.field("sensor2_deviation", &self.sensor2_deviation)?;
+        sink.field("sensor2_deviation_dir", &self.sensor2_deviation_dir)?;
+        sink.field("variation", &self.variation)?;
+        sink.field("variation_dir", &self.variation_dir)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// HMS: Heading monitor set.
@@ -60,6 +56,11 @@ impl<'a> Layout<'a> for Hms<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HMS", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sensor1_id", 1),
+        JsonMember::Field("sensor2_id", 1),
+        JsonMember::Field("max_difference", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -80,32 +81,10 @@ impl<'a> Layout<'a> for Hms<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sensor1_id)?;
-        w.field(&self.sensor2_id)?;
-        w.field(&self.max_difference)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sensor1_id)?;
-        w.field(&self.sensor2_id)?;
-        w.field(&self.max_difference)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sensor1_id", &self.sensor1_id)?;
-        j.field("sensor2_id", &self.sensor2_id)?;
-        j.field("max_difference", &self.max_difference)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sensor1_id", 1)?;
-        out.member(fields, "sensor2_id", 1)?;
-        out.member(fields, "max_difference", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sensor1_id", &self.sensor1_id)?;
+        sink.field("sensor2_id", &self.sensor2_id)?;
+        sink.field("max_difference", &self.max_difference)?;
         Ok(())
     }
 }

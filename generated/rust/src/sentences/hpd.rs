@@ -10,11 +10,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// HPD: Positioning and heading information (Unicore).
@@ -99,6 +95,25 @@ impl<'a> Layout<'a> for Hpd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HPD", fixed: 17, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("gps_week", 1),
+        JsonMember::Field("gps_seconds", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("track", 1),
+        JsonMember::Field("latitude", 1),
+        JsonMember::Field("longitude", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("velocity_east", 1),
+        JsonMember::Field("velocity_north", 1),
+        JsonMember::Field("velocity_up", 1),
+        JsonMember::Field("velocity_delta_east", 1),
+        JsonMember::Field("velocity_delta_north", 1),
+        JsonMember::Field("velocity_delta_up", 1),
+        JsonMember::Field("baseline", 1),
+        JsonMember::Field("satellites_master", 1),
+        JsonMember::Field("satellites_slave", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -132,88 +147,24 @@ impl<'a> Layout<'a> for Hpd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.gps_week)?;
-        w.field(&self.gps_seconds)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.track)?;
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.velocity_east)?;
-        w.field(&self.velocity_north)?;
-        w.field(&self.velocity_up)?;
-        w.field(&self.velocity_delta_east)?;
-        w.field(&self.velocity_delta_north)?;
-        w.field(&self.velocity_delta_up)?;
-        w.field(&self.baseline)?;
-        w.field(&self.satellites_master)?;
-        w.field(&self.satellites_slave)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.gps_week)?;
-        w.field(&self.gps_seconds)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.track)?;
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.velocity_east)?;
-        w.field(&self.velocity_north)?;
-        w.field(&self.velocity_up)?;
-        w.field(&self.velocity_delta_east)?;
-        w.field(&self.velocity_delta_north)?;
-        w.field(&self.velocity_delta_up)?;
-        w.field(&self.baseline)?;
-        w.field(&self.satellites_master)?;
-        w.field(&self.satellites_slave)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("gps_week", &self.gps_week)?;
-        j.field("gps_seconds", &self.gps_seconds)?;
-        j.field("heading", &self.heading)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("track", &self.track)?;
-        j.field("latitude", &self.latitude)?;
-        j.field("longitude", &self.longitude)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("velocity_east", &self.velocity_east)?;
-        j.field("velocity_north", &self.velocity_north)?;
-        j.field("velocity_up", &self.velocity_up)?;
-        j.field("velocity_delta_east", &self.velocity_delta_east)?;
-        j.field("velocity_delta_north", &self.velocity_delta_north)?;
-        j.field("velocity_delta_up", &self.velocity_delta_up)?;
-        j.field("baseline", &self.baseline)?;
-        j.field("satellites_master", &self.satellites_master)?;
-        j.field("satellites_slave", &self.satellites_slave)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "gps_week", 1)?;
-        out.member(fields, "gps_seconds", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "track", 1)?;
-        out.member(fields, "latitude", 1)?;
-        out.member(fields, "longitude", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "velocity_east", 1)?;
-        out.member(fields, "velocity_north", 1)?;
-        out.member(fields, "velocity_up", 1)?;
-        out.member(fields, "velocity_delta_east", 1)?;
-        out.member(fields, "velocity_delta_north", 1)?;
-        out.member(fields, "velocity_delta_up", 1)?;
-        out.member(fields, "baseline", 1)?;
-        out.member(fields, "satellites_master", 1)?;
-        out.member(fields, "satellites_slave", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("gps_week", &self.gps_week)?;
+        sink.field("gps_seconds", &self.gps_seconds)?;
+        sink.field("heading", &self.heading)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("track", &self.track)?;
+        sink.field("latitude", &self.latitude)?;
+        sink.field("longitude", &self.longitude)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("velocity_east", &self.velocity_east)?;
+        sink.field("velocity_north", &self.velocity_north)?;
+        sink.field("velocity_up", &self.velocity_up)?;
+        sink.field("velocity_delta_east", &self.velocity_delta_east)?;
+        sink.field("velocity_delta_north", &self.velocity_delta_north)?;
+        sink.field("velocity_delta_up", &self.velocity_delta_up)?;
+        sink.field("baseline", &self.baseline)?;
+        sink.field("satellites_master", &self.satellites_master)?;
+        sink.field("satellites_slave", &self.satellites_slave)?;
         Ok(())
     }
 }

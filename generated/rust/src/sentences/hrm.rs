@@ -12,11 +12,8 @@
 use core::fmt;
 
 use crate::enums::{HscSentenceStatus, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -98,6 +95,21 @@ impl<'a> Layout<'a> for Hrm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HRM", fixed: 10, optional: 3, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("heel_angle", 1),
+        JsonMember::Field("roll_period", 1),
+        JsonMember::Field("roll_amplitude_port", 1),
+        JsonMember::Field("roll_amplitude_starboard", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("peak_hold_port", 1),
+        JsonMember::Field("peak_hold_starboard", 1),
+        JsonMember::Field("peak_hold_reset_time", 1),
+        JsonMember::Field("peak_hold_reset_day", 1),
+        JsonMember::Field("peak_hold_reset_month", 1),
+        JsonMember::Optional("peak_hold_reset_year", 1),
+        JsonMember::Optional("heel_alert_threshold", 1),
+        JsonMember::Optional("sentence_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -138,90 +150,26 @@ impl<'a> Layout<'a> for Hrm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.heel_angle)?;
-        w.field(&self.roll_period)?;
-        w.field(&self.roll_amplitude_port)?;
-        w.field(&self.roll_amplitude_starboard)?;
-        w.field(&self.status)?;
-        w.field(&self.peak_hold_port)?;
-        w.field(&self.peak_hold_starboard)?;
-        w.field(&self.peak_hold_reset_time)?;
-        w.field(&self.peak_hold_reset_day)?;
-        w.field(&self.peak_hold_reset_month)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("heel_angle", &self.heel_angle)?;
+        sink.field("roll_period", &self.roll_period)?;
+        sink.field("roll_amplitude_port", &self.roll_amplitude_port)?;
+        sink.field("roll_amplitude_starboard", &self.roll_amplitude_starboard)?;
+        sink.field("status", &self.status)?;
+        sink.field("peak_hold_port", &self.peak_hold_port)?;
+        sink.field("peak_hold_starboard", &self.peak_hold_starboard)?;
+        sink.field("peak_hold_reset_time", &self.peak_hold_reset_time)?;
+        sink.field("peak_hold_reset_day", &self.peak_hold_reset_day)?;
+        sink.field("peak_hold_reset_month", &self.peak_hold_reset_month)?;
         if self.trailing >= 1 {
-            w.field(&self.peak_hold_reset_year)?;
+            sink.field("peak_hold_reset_year", &self.peak_hold_reset_year)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.heel_alert_threshold)?;
+            sink.field("heel_alert_threshold", &self.heel_alert_threshold)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.sentence_status)?;
+            sink.field("sentence_status", &self.sentence_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.heel_angle)?;
-        w.field(&self.roll_period)?;
-        w.field(&self.roll_amplitude_port)?;
-        w.field(&self.roll_amplitude_starboard)?;
-        w.field(&self.status)?;
-        w.field(&self.peak_hold_port)?;
-        w.field(&self.peak_hold_starboard)?;
-        w.field(&self.peak_hold_reset_time)?;
-        w.field(&self.peak_hold_reset_day)?;
-        w.field(&self.peak_hold_reset_month)?;
-        if self.trailing >= 1 {
-            w.field(&self.peak_hold_reset_year)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.heel_alert_threshold)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.sentence_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("heel_angle", &self.heel_angle)?;
-        j.field("roll_period", &self.roll_period)?;
-        j.field("roll_amplitude_port", &self.roll_amplitude_port)?;
-        j.field("roll_amplitude_starboard", &self.roll_amplitude_starboard)?;
-        j.field("status", &self.status)?;
-        j.field("peak_hold_port", &self.peak_hold_port)?;
-        j.field("peak_hold_starboard", &self.peak_hold_starboard)?;
-        j.field("peak_hold_reset_time", &self.peak_hold_reset_time)?;
-        j.field("peak_hold_reset_day", &self.peak_hold_reset_day)?;
-        j.field("peak_hold_reset_month", &self.peak_hold_reset_month)?;
-        if self.trailing >= 1 {
-            j.field("peak_hold_reset_year", &self.peak_hold_reset_year)?;
-        }
-        if self.trailing >= 2 {
-            j.field("heel_alert_threshold", &self.heel_alert_threshold)?;
-        }
-        if self.trailing >= 3 {
-            j.field("sentence_status", &self.sentence_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "heel_angle", 1)?;
-        out.member(fields, "roll_period", 1)?;
-        out.member(fields, "roll_amplitude_port", 1)?;
-        out.member(fields, "roll_amplitude_starboard", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "peak_hold_port", 1)?;
-        out.member(fields, "peak_hold_starboard", 1)?;
-        out.member(fields, "peak_hold_reset_time", 1)?;
-        out.member(fields, "peak_hold_reset_day", 1)?;
-        out.member(fields, "peak_hold_reset_month", 1)?;
-        out.optional(fields, "peak_hold_reset_year", 1)?;
-        out.optional(fields, "heel_alert_threshold", 1)?;
-        out.optional(fields, "sentence_status", 1)?;
         Ok(())
     }
 }

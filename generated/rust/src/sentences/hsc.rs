@@ -10,11 +10,7 @@
 use core::fmt;
 
 use crate::enums::HscSentenceStatus;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// HSC: Heading steering command.
@@ -75,6 +71,13 @@ impl<'a> Layout<'a> for Hsc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HSC", fixed: 4, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("heading_true", 1),
+        JsonMember::Field("heading_true_ref", 1),
+        JsonMember::Field("heading_magnetic", 1),
+        JsonMember::Field("heading_magnetic_ref", 1),
+        JsonMember::Optional("sentence_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -99,46 +102,14 @@ impl<'a> Layout<'a> for Hsc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.heading_true)?;
-        w.field(&self.heading_true_ref)?;
-        w.field(&self.heading_magnetic)?;
-        w.field(&self.heading_magnetic_ref)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("heading_true", &self.heading_true)?;
+        sink.field("heading_true_ref", &self.heading_true_ref)?;
+        sink.field("heading_magnetic", &self.heading_magnetic)?;
+        sink.field("heading_magnetic_ref", &self.heading_magnetic_ref)?;
         if self.trailing >= 1 {
-            w.field(&self.sentence_status)?;
+            sink.field("sentence_status", &self.sentence_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.heading_true)?;
-        w.field(&self.heading_true_ref)?;
-        w.field(&self.heading_magnetic)?;
-        w.field(&self.heading_magnetic_ref)?;
-        if self.trailing >= 1 {
-            w.field(&self.sentence_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("heading_true", &self.heading_true)?;
-        j.field("heading_true_ref", &self.heading_true_ref)?;
-        j.field("heading_magnetic", &self.heading_magnetic)?;
-        j.field("heading_magnetic_ref", &self.heading_magnetic_ref)?;
-        if self.trailing >= 1 {
-            j.field("sentence_status", &self.sentence_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "heading_true", 1)?;
-        out.member(fields, "heading_true_ref", 1)?;
-        out.member(fields, "heading_magnetic", 1)?;
-        out.member(fields, "heading_magnetic_ref", 1)?;
-        out.optional(fields, "sentence_status", 1)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{HscSentenceStatus, HtcHeadingReference, HtcOverride, HtcSteeringMode, HtcTurnMode, LeftRight};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -105,6 +103,22 @@ impl<'a> Layout<'a> for Htc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "HTC", fixed: 13, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("override", 1),
+        JsonMember::Field("rudder_angle", 1),
+        JsonMember::Field("rudder_direction", 1),
+        JsonMember::Field("steering_mode", 1),
+        JsonMember::Field("turn_mode", 1),
+        JsonMember::Field("rudder_limit", 1),
+        JsonMember::Field("off_heading_limit", 1),
+        JsonMember::Field("turn_radius", 1),
+        JsonMember::Field("turn_rate", 1),
+        JsonMember::Field("heading_to_steer", 1),
+        JsonMember::Field("off_track_limit", 1),
+        JsonMember::Field("track", 1),
+        JsonMember::Field("heading_reference", 1),
+        JsonMember::Optional("sentence_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -140,82 +154,23 @@ impl<'a> Layout<'a> for Htc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.r#override)?;
-        w.field(&self.rudder_angle)?;
-        w.field(&self.rudder_direction)?;
-        w.field(&self.steering_mode)?;
-        w.field(&self.turn_mode)?;
-        w.field(&self.rudder_limit)?;
-        w.field(&self.off_heading_limit)?;
-        w.field(&self.turn_radius)?;
-        w.field(&self.turn_rate)?;
-        w.field(&self.heading_to_steer)?;
-        w.field(&self.off_track_limit)?;
-        w.field(&self.track)?;
-        w.field(&self.heading_reference)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("override", &self.r#override)?;
+        sink.field("rudder_angle", &self.rudder_angle)?;
+        sink.field("rudder_direction", &self.rudder_direction)?;
+        sink.field("steering_mode", &self.steering_mode)?;
+        sink.field("turn_mode", &self.turn_mode)?;
+        sink.field("rudder_limit", &self.rudder_limit)?;
+        sink.field("off_heading_limit", &self.off_heading_limit)?;
+        sink.field("turn_radius", &self.turn_radius)?;
+        sink.field("turn_rate", &self.turn_rate)?;
+        sink.field("heading_to_steer", &self.heading_to_steer)?;
+        sink.field("off_track_limit", &self.off_track_limit)?;
+        sink.field("track", &self.track)?;
+        sink.field("heading_reference", &self.heading_reference)?;
         if self.trailing >= 1 {
-            w.field(&self.sentence_status)?;
+            sink.field("sentence_status", &self.sentence_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.r#override)?;
-        w.field(&self.rudder_angle)?;
-        w.field(&self.rudder_direction)?;
-        w.field(&self.steering_mode)?;
-        w.field(&self.turn_mode)?;
-        w.field(&self.rudder_limit)?;
-        w.field(&self.off_heading_limit)?;
-        w.field(&self.turn_radius)?;
-        w.field(&self.turn_rate)?;
-        w.field(&self.heading_to_steer)?;
-        w.field(&self.off_track_limit)?;
-        w.field(&self.track)?;
-        w.field(&self.heading_reference)?;
-        if self.trailing >= 1 {
-            w.field(&self.sentence_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("override", &self.r#override)?;
-        j.field("rudder_angle", &self.rudder_angle)?;
-        j.field("rudder_direction", &self.rudder_direction)?;
-        j.field("steering_mode", &self.steering_mode)?;
-        j.field("turn_mode", &self.turn_mode)?;
-        j.field("rudder_limit", &self.rudder_limit)?;
-        j.field("off_heading_limit", &self.off_heading_limit)?;
-        j.field("turn_radius", &self.turn_radius)?;
-        j.field("turn_rate", &self.turn_rate)?;
-        j.field("heading_to_steer", &self.heading_to_steer)?;
-        j.field("off_track_limit", &self.off_track_limit)?;
-        j.field("track", &self.track)?;
-        j.field("heading_reference", &self.heading_reference)?;
-        if self.trailing >= 1 {
-            j.field("sentence_status", &self.sentence_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "override", 1)?;
-        out.member(fields, "rudder_angle", 1)?;
-        out.member(fields, "rudder_direction", 1)?;
-        out.member(fields, "steering_mode", 1)?;
-        out.member(fields, "turn_mode", 1)?;
-        out.member(fields, "rudder_limit", 1)?;
-        out.member(fields, "off_heading_limit", 1)?;
-        out.member(fields, "turn_radius", 1)?;
-        out.member(fields, "turn_rate", 1)?;
-        out.member(fields, "heading_to_steer", 1)?;
-        out.member(fields, "off_track_limit", 1)?;
-        out.member(fields, "track", 1)?;
-        out.member(fields, "heading_reference", 1)?;
-        out.optional(fields, "sentence_status", 1)?;
         Ok(())
     }
 }

@@ -12,11 +12,8 @@
 use core::fmt;
 
 use crate::enums::LlqQuality;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -90,6 +87,19 @@ impl<'a> Layout<'a> for Llq<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "LLQ", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("easting", 1),
+        JsonMember::Field("easting_unit", 1),
+        JsonMember::Field("northing", 1),
+        JsonMember::Field("northing_unit", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("position_quality", 1),
+        JsonMember::Field("height", 1),
+        JsonMember::Field("height_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -117,64 +127,18 @@ impl<'a> Layout<'a> for Llq<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.easting)?;
-        w.field(&self.easting_unit)?;
-        w.field(&self.northing)?;
-        w.field(&self.northing_unit)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.position_quality)?;
-        w.field(&self.height)?;
-        w.field(&self.height_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.easting)?;
-        w.field(&self.easting_unit)?;
-        w.field(&self.northing)?;
-        w.field(&self.northing_unit)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.position_quality)?;
-        w.field(&self.height)?;
-        w.field(&self.height_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("easting", &self.easting)?;
-        j.field("easting_unit", &self.easting_unit)?;
-        j.field("northing", &self.northing)?;
-        j.field("northing_unit", &self.northing_unit)?;
-        j.field("quality", &self.quality)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("position_quality", &self.position_quality)?;
-        j.field("height", &self.height)?;
-        j.field("height_unit", &self.height_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "easting", 1)?;
-        out.member(fields, "easting_unit", 1)?;
-        out.member(fields, "northing", 1)?;
-        out.member(fields, "northing_unit", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "position_quality", 1)?;
-        out.member(fields, "height", 1)?;
-        out.member(fields, "height_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("easting", &self.easting)?;
+        sink.field("easting_unit", &self.easting_unit)?;
+        sink.field("northing", &self.northing)?;
+        sink.field("northing_unit", &self.northing_unit)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("position_quality", &self.position_quality)?;
+        sink.field("height", &self.height)?;
+        sink.field("height_unit", &self.height_unit)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// LR1: AIS long-range reply 1.
@@ -66,6 +62,14 @@ impl<'a> Layout<'a> for Lr1<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "LR1", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sequence_number", 1),
+        JsonMember::Field("responder_mmsi", 1),
+        JsonMember::Field("requestor_mmsi", 1),
+        JsonMember::Field("ship_name", 1),
+        JsonMember::Field("call_sign", 1),
+        JsonMember::Field("imo_number", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -89,44 +93,13 @@ impl<'a> Layout<'a> for Lr1<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sequence_number)?;
-        w.field(&self.responder_mmsi)?;
-        w.field(&self.requestor_mmsi)?;
-        w.field(&self.ship_name)?;
-        w.field(&self.call_sign)?;
-        w.field(&self.imo_number)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sequence_number)?;
-        w.field(&self.responder_mmsi)?;
-        w.field(&self.requestor_mmsi)?;
-        w.field(&self.ship_name)?;
-        w.field(&self.call_sign)?;
-        w.field(&self.imo_number)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sequence_number", &self.sequence_number)?;
-        j.field("responder_mmsi", &self.responder_mmsi)?;
-        j.field("requestor_mmsi", &self.requestor_mmsi)?;
-        j.field("ship_name", &self.ship_name)?;
-        j.field("call_sign", &self.call_sign)?;
-        j.field("imo_number", &self.imo_number)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sequence_number", 1)?;
-        out.member(fields, "responder_mmsi", 1)?;
-        out.member(fields, "requestor_mmsi", 1)?;
-        out.member(fields, "ship_name", 1)?;
-        out.member(fields, "call_sign", 1)?;
-        out.member(fields, "imo_number", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sequence_number", &self.sequence_number)?;
+        sink.field("responder_mmsi", &self.responder_mmsi)?;
+        sink.field("requestor_mmsi", &self.requestor_mmsi)?;
+        sink.field("ship_name", &self.ship_name)?;
+        sink.field("call_sign", &self.call_sign)?;
+        sink.field("imo_number", &self.imo_number)?;
         Ok(())
     }
 }

@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -77,6 +74,18 @@ impl<'a> Layout<'a> for Lr2<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "LR2", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sequence_number", 1),
+        JsonMember::Field("responder_mmsi", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("cog", 1),
+        JsonMember::Field("cog_ref", 1),
+        JsonMember::Field("sog", 1),
+        JsonMember::Field("sog_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -104,60 +113,17 @@ impl<'a> Layout<'a> for Lr2<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sequence_number)?;
-        w.field(&self.responder_mmsi)?;
-        w.field(&self.date)?;
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.cog)?;
-        w.field(&self.cog_ref)?;
-        w.field(&self.sog)?;
-        w.field(&self.sog_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sequence_number)?;
-        w.field(&self.responder_mmsi)?;
-        w.field(&self.date)?;
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.cog)?;
-        w.field(&self.cog_ref)?;
-        w.field(&self.sog)?;
-        w.field(&self.sog_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sequence_number", &self.sequence_number)?;
-        j.field("responder_mmsi", &self.responder_mmsi)?;
-        j.field("date", &self.date)?;
-        j.field("time", &self.time)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("cog", &self.cog)?;
-        j.field("cog_ref", &self.cog_ref)?;
-        j.field("sog", &self.sog)?;
-        j.field("sog_unit", &self.sog_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sequence_number", 1)?;
-        out.member(fields, "responder_mmsi", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "cog", 1)?;
-        out.member(fields, "cog_ref", 1)?;
-        out.member(fields, "sog", 1)?;
-        out.member(fields, "sog_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sequence_number", &self.sequence_number)?;
+        sink.field("responder_mmsi", &self.responder_mmsi)?;
+        sink.field("date", &self.date)?;
+        sink.field("time", &self.time)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("cog", &self.cog)?;
+        sink.field("cog_ref", &self.cog_ref)?;
+        sink.field("sog", &self.sog)?;
+        sink.field("sog_unit", &self.sog_unit)?;
         Ok(())
     }
 }

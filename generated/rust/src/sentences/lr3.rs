@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Date, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Date, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -77,6 +74,19 @@ impl<'a> Layout<'a> for Lr3<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "LR3", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sequence_number", 1),
+        JsonMember::Field("responder_mmsi", 1),
+        JsonMember::Field("destination", 1),
+        JsonMember::Field("eta_date", 1),
+        JsonMember::Field("eta_time", 1),
+        JsonMember::Field("draught", 1),
+        JsonMember::Field("ship_cargo", 1),
+        JsonMember::Field("length", 1),
+        JsonMember::Field("breadth", 1),
+        JsonMember::Field("ship_type", 1),
+        JsonMember::Field("persons", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -105,64 +115,18 @@ impl<'a> Layout<'a> for Lr3<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sequence_number)?;
-        w.field(&self.responder_mmsi)?;
-        w.field(&self.destination)?;
-        w.field(&self.eta_date)?;
-        w.field(&self.eta_time)?;
-        w.field(&self.draught)?;
-        w.field(&self.ship_cargo)?;
-        w.field(&self.length)?;
-        w.field(&self.breadth)?;
-        w.field(&self.ship_type)?;
-        w.field(&self.persons)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sequence_number)?;
-        w.field(&self.responder_mmsi)?;
-        w.field(&self.destination)?;
-        w.field(&self.eta_date)?;
-        w.field(&self.eta_time)?;
-        w.field(&self.draught)?;
-        w.field(&self.ship_cargo)?;
-        w.field(&self.length)?;
-        w.field(&self.breadth)?;
-        w.field(&self.ship_type)?;
-        w.field(&self.persons)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sequence_number", &self.sequence_number)?;
-        j.field("responder_mmsi", &self.responder_mmsi)?;
-        j.field("destination", &self.destination)?;
-        j.field("eta_date", &self.eta_date)?;
-        j.field("eta_time", &self.eta_time)?;
-        j.field("draught", &self.draught)?;
-        j.field("ship_cargo", &self.ship_cargo)?;
-        j.field("length", &self.length)?;
-        j.field("breadth", &self.breadth)?;
-        j.field("ship_type", &self.ship_type)?;
-        j.field("persons", &self.persons)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sequence_number", 1)?;
-        out.member(fields, "responder_mmsi", 1)?;
-        out.member(fields, "destination", 1)?;
-        out.member(fields, "eta_date", 1)?;
-        out.member(fields, "eta_time", 1)?;
-        out.member(fields, "draught", 1)?;
-        out.member(fields, "ship_cargo", 1)?;
-        out.member(fields, "length", 1)?;
-        out.member(fields, "breadth", 1)?;
-        out.member(fields, "ship_type", 1)?;
-        out.member(fields, "persons", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sequence_number", &self.sequence_number)?;
+        sink.field("responder_mmsi", &self.responder_mmsi)?;
+        sink.field("destination", &self.destination)?;
+        sink.field("eta_date", &self.eta_date)?;
+        sink.field("eta_time", &self.eta_time)?;
+        sink.field("draught", &self.draught)?;
+        sink.field("ship_cargo", &self.ship_cargo)?;
+        sink.field("length", &self.length)?;
+        sink.field("breadth", &self.breadth)?;
+        sink.field("ship_type", &self.ship_type)?;
+        sink.field("persons", &self.persons)?;
         Ok(())
     }
 }

@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::{LrfFunction, LrfReplyStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, CodeChars, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    WireWriter,
+    Bound, Checksum, CodeChars, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -72,6 +69,13 @@ impl<'a> Layout<'a> for Lrf<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "LRF", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sequence_number", 1),
+        JsonMember::Field("requestor_mmsi", 1),
+        JsonMember::Field("requestor_name", 1),
+        JsonMember::Field("function_request", 1),
+        JsonMember::Field("reply_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -94,40 +98,12 @@ impl<'a> Layout<'a> for Lrf<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sequence_number)?;
-        w.field(&self.requestor_mmsi)?;
-        w.field(&self.requestor_name)?;
-        w.field(&self.function_request)?;
-        w.field(&self.reply_status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sequence_number)?;
-        w.field(&self.requestor_mmsi)?;
-        w.field(&self.requestor_name)?;
-        w.field(&self.function_request)?;
-        w.field(&self.reply_status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sequence_number", &self.sequence_number)?;
-        j.field("requestor_mmsi", &self.requestor_mmsi)?;
-        j.field("requestor_name", &self.requestor_name)?;
-        j.field("function_request", &self.function_request)?;
-        j.field("reply_status", &self.reply_status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sequence_number", 1)?;
-        out.member(fields, "requestor_mmsi", 1)?;
-        out.member(fields, "requestor_name", 1)?;
-        out.member(fields, "function_request", 1)?;
-        out.member(fields, "reply_status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sequence_number", &self.sequence_number)?;
+        sink.field("requestor_mmsi", &self.requestor_mmsi)?;
+        sink.field("requestor_name", &self.requestor_name)?;
+        sink.field("function_request", &self.function_request)?;
+        sink.field("reply_status", &self.reply_status)?;
         Ok(())
     }
 }

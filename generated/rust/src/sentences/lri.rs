@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::LriControlFlag;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -77,6 +74,16 @@ impl<'a> Layout<'a> for Lri<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "LRI", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sequence_number", 1),
+        JsonMember::Field("control_flag", 1),
+        JsonMember::Field("requestor_mmsi", 1),
+        JsonMember::Field("destination_mmsi", 1),
+        JsonMember::Field("ne_lat", 2),
+        JsonMember::Field("ne_lon", 2),
+        JsonMember::Field("sw_lat", 2),
+        JsonMember::Field("sw_lon", 2),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -102,52 +109,15 @@ impl<'a> Layout<'a> for Lri<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sequence_number)?;
-        w.field(&self.control_flag)?;
-        w.field(&self.requestor_mmsi)?;
-        w.field(&self.destination_mmsi)?;
-        w.field(&self.ne_lat)?;
-        w.field(&self.ne_lon)?;
-        w.field(&self.sw_lat)?;
-        w.field(&self.sw_lon)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sequence_number)?;
-        w.field(&self.control_flag)?;
-        w.field(&self.requestor_mmsi)?;
-        w.field(&self.destination_mmsi)?;
-        w.field(&self.ne_lat)?;
-        w.field(&self.ne_lon)?;
-        w.field(&self.sw_lat)?;
-        w.field(&self.sw_lon)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sequence_number", &self.sequence_number)?;
-        j.field("control_flag", &self.control_flag)?;
-        j.field("requestor_mmsi", &self.requestor_mmsi)?;
-        j.field("destination_mmsi", &self.destination_mmsi)?;
-        j.field("ne_lat", &self.ne_lat)?;
-        j.field("ne_lon", &self.ne_lon)?;
-        j.field("sw_lat", &self.sw_lat)?;
-        j.field("sw_lon", &self.sw_lon)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sequence_number", 1)?;
-        out.member(fields, "control_flag", 1)?;
-        out.member(fields, "requestor_mmsi", 1)?;
-        out.member(fields, "destination_mmsi", 1)?;
-        out.member(fields, "ne_lat", 2)?;
-        out.member(fields, "ne_lon", 2)?;
-        out.member(fields, "sw_lat", 2)?;
-        out.member(fields, "sw_lon", 2)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sequence_number", &self.sequence_number)?;
+        sink.field("control_flag", &self.control_flag)?;
+        sink.field("requestor_mmsi", &self.requestor_mmsi)?;
+        sink.field("destination_mmsi", &self.destination_mmsi)?;
+        sink.field("ne_lat", &self.ne_lat)?;
+        sink.field("ne_lon", &self.ne_lon)?;
+        sink.field("sw_lat", &self.sw_lat)?;
+        sink.field("sw_lon", &self.sw_lon)?;
         Ok(())
     }
 }

@@ -10,11 +10,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// MDA: Meteorological composite.
@@ -108,6 +104,28 @@ impl<'a> Layout<'a> for Mda<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "MDA", fixed: 20, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("pressure_inhg", 1),
+        JsonMember::Field("pressure_inhg_unit", 1),
+        JsonMember::Field("pressure_bar", 1),
+        JsonMember::Field("pressure_bar_unit", 1),
+        JsonMember::Field("air_temperature", 1),
+        JsonMember::Field("air_temperature_unit", 1),
+        JsonMember::Field("water_temperature", 1),
+        JsonMember::Field("water_temperature_unit", 1),
+        JsonMember::Field("relative_humidity", 1),
+        JsonMember::Field("absolute_humidity", 1),
+        JsonMember::Field("dew_point", 1),
+        JsonMember::Field("dew_point_unit", 1),
+        JsonMember::Field("wind_direction_true", 1),
+        JsonMember::Field("wind_direction_true_ref", 1),
+        JsonMember::Field("wind_direction_magnetic", 1),
+        JsonMember::Field("wind_direction_magnetic_ref", 1),
+        JsonMember::Field("wind_speed_knots", 1),
+        JsonMember::Field("wind_speed_knots_unit", 1),
+        JsonMember::Field("wind_speed_ms", 1),
+        JsonMember::Field("wind_speed_ms_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -147,100 +165,27 @@ impl<'a> Layout<'a> for Mda<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.pressure_inhg)?;
-        w.field(&self.pressure_inhg_unit)?;
-        w.field(&self.pressure_bar)?;
-        w.field(&self.pressure_bar_unit)?;
-        w.field(&self.air_temperature)?;
-        w.field(&self.air_temperature_unit)?;
-        w.field(&self.water_temperature)?;
-        w.field(&self.water_temperature_unit)?;
-        w.field(&self.relative_humidity)?;
-        w.field(&self.absolute_humidity)?;
-        w.field(&self.dew_point)?;
-        w.field(&self.dew_point_unit)?;
-        w.field(&self.wind_direction_true)?;
-        w.field(&self.wind_direction_true_ref)?;
-        w.field(&self.wind_direction_magnetic)?;
-        w.field(&self.wind_direction_magnetic_ref)?;
-        w.field(&self.wind_speed_knots)?;
-        w.field(&self.wind_speed_knots_unit)?;
-        w.field(&self.wind_speed_ms)?;
-        w.field(&self.wind_speed_ms_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.pressure_inhg)?;
-        w.field(&self.pressure_inhg_unit)?;
-        w.field(&self.pressure_bar)?;
-        w.field(&self.pressure_bar_unit)?;
-        w.field(&self.air_temperature)?;
-        w.field(&self.air_temperature_unit)?;
-        w.field(&self.water_temperature)?;
-        w.field(&self.water_temperature_unit)?;
-        w.field(&self.relative_humidity)?;
-        w.field(&self.absolute_humidity)?;
-        w.field(&self.dew_point)?;
-        w.field(&self.dew_point_unit)?;
-        w.field(&self.wind_direction_true)?;
-        w.field(&self.wind_direction_true_ref)?;
-        w.field(&self.wind_direction_magnetic)?;
-        w.field(&self.wind_direction_magnetic_ref)?;
-        w.field(&self.wind_speed_knots)?;
-        w.field(&self.wind_speed_knots_unit)?;
-        w.field(&self.wind_speed_ms)?;
-        w.field(&self.wind_speed_ms_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("pressure_inhg", &self.pressure_inhg)?;
-        j.field("pressure_inhg_unit", &self.pressure_inhg_unit)?;
-        j.field("pressure_bar", &self.pressure_bar)?;
-        j.field("pressure_bar_unit", &self.pressure_bar_unit)?;
-        j.field("air_temperature", &self.air_temperature)?;
-        j.field("air_temperature_unit", &self.air_temperature_unit)?;
-        j.field("water_temperature", &self.water_temperature)?;
-        j.field("water_temperature_unit", &self.water_temperature_unit)?;
-        j.field("relative_humidity", &self.relative_humidity)?;
-        j.field("absolute_humidity", &self.absolute_humidity)?;
-        j.field("dew_point", &self.dew_point)?;
-        j.field("dew_point_unit", &self.dew_point_unit)?;
-        j.field("wind_direction_true", &self.wind_direction_true)?;
-        j.field("wind_direction_true_ref", &self.wind_direction_true_ref)?;
-        j.field("wind_direction_magnetic", &self.wind_direction_magnetic)?;
-        j.field("wind_direction_magnetic_ref", &self.wind_direction_magnetic_ref)?;
-        j.field("wind_speed_knots", &self.wind_speed_knots)?;
-        j.field("wind_speed_knots_unit", &self.wind_speed_knots_unit)?;
-        j.field("wind_speed_ms", &self.wind_speed_ms)?;
-        j.field("wind_speed_ms_unit", &self.wind_speed_ms_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "pressure_inhg", 1)?;
-        out.member(fields, "pressure_inhg_unit", 1)?;
-        out.member(fields, "pressure_bar", 1)?;
-        out.member(fields, "pressure_bar_unit", 1)?;
-        out.member(fields, "air_temperature", 1)?;
-        out.member(fields, "air_temperature_unit", 1)?;
-        out.member(fields, "water_temperature", 1)?;
-        out.member(fields, "water_temperature_unit", 1)?;
-        out.member(fields, "relative_humidity", 1)?;
-        out.member(fields, "absolute_humidity", 1)?;
-        out.member(fields, "dew_point", 1)?;
-        out.member(fields, "dew_point_unit", 1)?;
-        out.member(fields, "wind_direction_true", 1)?;
-        out.member(fields, "wind_direction_true_ref", 1)?;
-        out.member(fields, "wind_direction_magnetic", 1)?;
-        out.member(fields, "wind_direction_magnetic_ref", 1)?;
-        out.member(fields, "wind_speed_knots", 1)?;
-        out.member(fields, "wind_speed_knots_unit", 1)?;
-        out.member(fields, "wind_speed_ms", 1)?;
-        out.member(fields, "wind_speed_ms_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("pressure_inhg", &self.pressure_inhg)?;
+        sink.field("pressure_inhg_unit", &self.pressure_inhg_unit)?;
+        sink.field("pressure_bar", &self.pressure_bar)?;
+        sink.field("pressure_bar_unit", &self.pressure_bar_unit)?;
+        sink.field("air_temperature", &self.air_temperature)?;
+        sink.field("air_temperature_unit", &self.air_temperature_unit)?;
+        sink.field("water_temperature", &self.water_temperature)?;
+        sink.field("water_temperature_unit", &self.water_temperature_unit)?;
+        sink.field("relative_humidity", &self.relative_humidity)?;
+        sink.field("absolute_humidity", &self.absolute_humidity)?;
+        sink.field("dew_point", &self.dew_point)?;
+        sink.field("dew_point_unit", &self.dew_point_unit)?;
+        sink.field("wind_direction_true", &self.wind_direction_true)?;
+        sink.field("wind_direction_true_ref", &self.wind_direction_true_ref)?;
+        sink.field("wind_direction_magnetic", &self.wind_direction_magnetic)?;
+        sink.field("wind_direction_magnetic_ref", &self.wind_direction_magnetic_ref)?;
+        sink.field("wind_speed_knots", &self.wind_speed_knots)?;
+        sink.field("wind_speed_knots_unit", &self.wind_speed_knots_unit)?;
+        sink.field("wind_speed_ms", &self.wind_speed_ms)?;
+        sink.field("wind_speed_ms_unit", &self.wind_speed_ms_unit)?;
         Ok(())
     }
 }

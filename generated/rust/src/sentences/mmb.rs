@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// MMB: Barometer.
@@ -68,6 +64,12 @@ impl<'a> Layout<'a> for Mmb<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "MMB", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("pressure_inhg", 1),
+        JsonMember::Field("pressure_inhg_unit", 1),
+        JsonMember::Field("pressure_bar", 1),
+        JsonMember::Field("pressure_bar_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -88,36 +90,11 @@ impl<'a> Layout<'a> for Mmb<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.pressure_inhg)?;
-        w.field(&self.pressure_inhg_unit)?;
-        w.field(&self.pressure_bar)?;
-        w.field(&self.pressure_bar_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.pressure_inhg)?;
-        w.field(&self.pressure_inhg_unit)?;
-        w.field(&self.pressure_bar)?;
-        w.field(&self.pressure_bar_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("pressure_inhg", &self.pressure_inhg)?;
-        j.field("pressure_inhg_unit", &self.pressure_inhg_unit)?;
-        j.field("pressure_bar", &self.pressure_bar)?;
-        j.field("pressure_bar_unit", &self.pressure_bar_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "pressure_inhg", 1)?;
-        out.member(fields, "pressure_inhg_unit", 1)?;
-        out.member(fields, "pressure_bar", 1)?;
-        out.member(fields, "pressure_bar_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("pressure_inhg", &self.pressure_inhg)?;
+        sink.field("pressure_inhg_unit", &self.pressure_inhg_unit)?;
+        sink.field("pressure_bar", &self.pressure_bar)?;
+        sink.field("pressure_bar_unit", &self.pressure_bar_unit)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{MobBattery, MobPositionSource, MobStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, Fields, Framing, Hex, JsonFields, Layout, Number, Range,
-    Shape, Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Number, Range,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -94,6 +92,20 @@ impl<'a> Layout<'a> for Mob<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "MOB", fixed: 14, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("emitter_id", 1),
+        JsonMember::Field("mob_status", 1),
+        JsonMember::Field("activation_time", 1),
+        JsonMember::Field("position_source", 1),
+        JsonMember::Field("position_day", 1),
+        JsonMember::Field("position_time", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("cog", 1),
+        JsonMember::Field("sog", 1),
+        JsonMember::Field("mmsi", 1),
+        JsonMember::Field("battery", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -122,68 +134,19 @@ impl<'a> Layout<'a> for Mob<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.emitter_id)?;
-        w.field(&self.mob_status)?;
-        w.field(&self.activation_time)?;
-        w.field(&self.position_source)?;
-        w.field(&self.position_day)?;
-        w.field(&self.position_time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.cog)?;
-        w.field(&self.sog)?;
-        w.field(&self.mmsi)?;
-        w.field(&self.battery)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.emitter_id)?;
-        w.field(&self.mob_status)?;
-        w.field(&self.activation_time)?;
-        w.field(&self.position_source)?;
-        w.field(&self.position_day)?;
-        w.field(&self.position_time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.cog)?;
-        w.field(&self.sog)?;
-        w.field(&self.mmsi)?;
-        w.field(&self.battery)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("emitter_id", &self.emitter_id)?;
-        j.field("mob_status", &self.mob_status)?;
-        j.field("activation_time", &self.activation_time)?;
-        j.field("position_source", &self.position_source)?;
-        j.field("position_day", &self.position_day)?;
-        j.field("position_time", &self.position_time)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("cog", &self.cog)?;
-        j.field("sog", &self.sog)?;
-        j.field("mmsi", &self.mmsi)?;
-        j.field("battery", &self.battery)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "emitter_id", 1)?;
-        out.member(fields, "mob_status", 1)?;
-        out.member(fields, "activation_time", 1)?;
-        out.member(fields, "position_source", 1)?;
-        out.member(fields, "position_day", 1)?;
-        out.member(fields, "position_time", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "cog", 1)?;
-        out.member(fields, "sog", 1)?;
-        out.member(fields, "mmsi", 1)?;
-        out.member(fields, "battery", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("emitter_id", &self.emitter_id)?;
+        sink.field("mob_status", &self.mob_status)?;
+        sink.field("activation_time", &self.activation_time)?;
+        sink.field("position_source", &self.position_source)?;
+        sink.field("position_day", &self.position_day)?;
+        sink.field("position_time", &self.position_time)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("cog", &self.cog)?;
+        sink.field("sog", &self.sog)?;
+        sink.field("mmsi", &self.mmsi)?;
+        sink.field("battery", &self.battery)?;
         Ok(())
     }
 }

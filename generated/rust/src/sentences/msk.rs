@@ -10,11 +10,7 @@
 use core::fmt;
 
 use crate::enums::{MskAutoManual, PosSentenceStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// MSK: Beacon receiver interface.
@@ -83,6 +79,15 @@ impl<'a> Layout<'a> for Msk<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "MSK", fixed: 5, optional: 2, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("frequency", 1),
+        JsonMember::Field("frequency_mode", 1),
+        JsonMember::Field("bit_rate", 1),
+        JsonMember::Field("bit_rate_mode", 1),
+        JsonMember::Field("mss_interval", 1),
+        JsonMember::Optional("channel", 1),
+        JsonMember::Optional("sentence_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -112,60 +117,18 @@ impl<'a> Layout<'a> for Msk<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.frequency)?;
-        w.field(&self.frequency_mode)?;
-        w.field(&self.bit_rate)?;
-        w.field(&self.bit_rate_mode)?;
-        w.field(&self.mss_interval)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("frequency", &self.frequency)?;
+        sink.field("frequency_mode", &self.frequency_mode)?;
+        sink.field("bit_rate", &self.bit_rate)?;
+        sink.field("bit_rate_mode", &self.bit_rate_mode)?;
+        sink.field("mss_interval", &self.mss_interval)?;
         if self.trailing >= 1 {
-            w.field(&self.channel)?;
+            sink.field("channel", &self.channel)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.sentence_status)?;
+            sink.field("sentence_status", &self.sentence_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.frequency)?;
-        w.field(&self.frequency_mode)?;
-        w.field(&self.bit_rate)?;
-        w.field(&self.bit_rate_mode)?;
-        w.field(&self.mss_interval)?;
-        if self.trailing >= 1 {
-            w.field(&self.channel)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.sentence_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("frequency", &self.frequency)?;
-        j.field("frequency_mode", &self.frequency_mode)?;
-        j.field("bit_rate", &self.bit_rate)?;
-        j.field("bit_rate_mode", &self.bit_rate_mode)?;
-        j.field("mss_interval", &self.mss_interval)?;
-        if self.trailing >= 1 {
-            j.field("channel", &self.channel)?;
-        }
-        if self.trailing >= 2 {
-            j.field("sentence_status", &self.sentence_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "frequency", 1)?;
-        out.member(fields, "frequency_mode", 1)?;
-        out.member(fields, "bit_rate", 1)?;
-        out.member(fields, "bit_rate_mode", 1)?;
-        out.member(fields, "mss_interval", 1)?;
-        out.optional(fields, "channel", 1)?;
-        out.optional(fields, "sentence_status", 1)?;
         Ok(())
     }
 }

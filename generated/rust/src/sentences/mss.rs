@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// MSS: Beacon receiver signal status.
@@ -75,6 +71,13 @@ impl<'a> Layout<'a> for Mss<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "MSS", fixed: 4, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("signal_strength", 1),
+        JsonMember::Field("snr", 1),
+        JsonMember::Field("frequency", 1),
+        JsonMember::Field("bit_rate", 1),
+        JsonMember::Optional("channel", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -99,46 +102,14 @@ impl<'a> Layout<'a> for Mss<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.signal_strength)?;
-        w.field(&self.snr)?;
-        w.field(&self.frequency)?;
-        w.field(&self.bit_rate)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("signal_strength", &self.signal_strength)?;
+        sink.field("snr", &self.snr)?;
+        sink.field("frequency", &self.frequency)?;
+        sink.field("bit_rate", &self.bit_rate)?;
         if self.trailing >= 1 {
-            w.field(&self.channel)?;
+            sink.field("channel", &self.channel)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.signal_strength)?;
-        w.field(&self.snr)?;
-        w.field(&self.frequency)?;
-        w.field(&self.bit_rate)?;
-        if self.trailing >= 1 {
-            w.field(&self.channel)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("signal_strength", &self.signal_strength)?;
-        j.field("snr", &self.snr)?;
-        j.field("frequency", &self.frequency)?;
-        j.field("bit_rate", &self.bit_rate)?;
-        if self.trailing >= 1 {
-            j.field("channel", &self.channel)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "signal_strength", 1)?;
-        out.member(fields, "snr", 1)?;
-        out.member(fields, "frequency", 1)?;
-        out.member(fields, "bit_rate", 1)?;
-        out.optional(fields, "channel", 1)?;
         Ok(())
     }
 }

@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// MTW: Water temperature.
@@ -63,6 +59,8 @@ impl<'a> Layout<'a> for Mtw<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "MTW", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("temperature", 1), JsonMember::Field("temperature_unit", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -81,28 +79,9 @@ impl<'a> Layout<'a> for Mtw<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.temperature)?;
-        w.field(&self.temperature_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.temperature)?;
-        w.field(&self.temperature_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("temperature", &self.temperature)?;
-        j.field("temperature_unit", &self.temperature_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "temperature", 1)?;
-        out.member(fields, "temperature_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("temperature", &self.temperature)?;
+        sink.field("temperature_unit", &self.temperature_unit)?;
         Ok(())
     }
 }

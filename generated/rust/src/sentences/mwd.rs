@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// MWD: Wind direction and speed.
@@ -78,6 +74,16 @@ impl<'a> Layout<'a> for Mwd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "MWD", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("direction_true", 1),
+        JsonMember::Field("direction_true_ref", 1),
+        JsonMember::Field("direction_magnetic", 1),
+        JsonMember::Field("direction_magnetic_ref", 1),
+        JsonMember::Field("speed_knots", 1),
+        JsonMember::Field("speed_knots_unit", 1),
+        JsonMember::Field("speed_ms", 1),
+        JsonMember::Field("speed_ms_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -104,52 +110,15 @@ impl<'a> Layout<'a> for Mwd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.direction_true)?;
-        w.field(&self.direction_true_ref)?;
-        w.field(&self.direction_magnetic)?;
-        w.field(&self.direction_magnetic_ref)?;
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_ms)?;
-        w.field(&self.speed_ms_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.direction_true)?;
-        w.field(&self.direction_true_ref)?;
-        w.field(&self.direction_magnetic)?;
-        w.field(&self.direction_magnetic_ref)?;
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_ms)?;
-        w.field(&self.speed_ms_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("direction_true", &self.direction_true)?;
-        j.field("direction_true_ref", &self.direction_true_ref)?;
-        j.field("direction_magnetic", &self.direction_magnetic)?;
-        j.field("direction_magnetic_ref", &self.direction_magnetic_ref)?;
-        j.field("speed_knots", &self.speed_knots)?;
-        j.field("speed_knots_unit", &self.speed_knots_unit)?;
-        j.field("speed_ms", &self.speed_ms)?;
-        j.field("speed_ms_unit", &self.speed_ms_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "direction_true", 1)?;
-        out.member(fields, "direction_true_ref", 1)?;
-        out.member(fields, "direction_magnetic", 1)?;
-        out.member(fields, "direction_magnetic_ref", 1)?;
-        out.member(fields, "speed_knots", 1)?;
-        out.member(fields, "speed_knots_unit", 1)?;
-        out.member(fields, "speed_ms", 1)?;
-        out.member(fields, "speed_ms_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("direction_true", &self.direction_true)?;
+        sink.field("direction_true_ref", &self.direction_true_ref)?;
+        sink.field("direction_magnetic", &self.direction_magnetic)?;
+        sink.field("direction_magnetic_ref", &self.direction_magnetic_ref)?;
+        sink.field("speed_knots", &self.speed_knots)?;
+        sink.field("speed_knots_unit", &self.speed_knots_unit)?;
+        sink.field("speed_ms", &self.speed_ms)?;
+        sink.field("speed_ms_unit", &self.speed_ms_unit)?;
         Ok(())
     }
 }

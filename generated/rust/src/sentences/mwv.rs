@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{MwvReference, MwvSpeedUnit, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -73,6 +71,13 @@ impl<'a> Layout<'a> for Mwv<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "MWV", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("wind_angle", 1),
+        JsonMember::Field("reference", 1),
+        JsonMember::Field("wind_speed", 1),
+        JsonMember::Field("wind_speed_unit", 1),
+        JsonMember::Field("status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -94,40 +99,12 @@ impl<'a> Layout<'a> for Mwv<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.wind_angle)?;
-        w.field(&self.reference)?;
-        w.field(&self.wind_speed)?;
-        w.field(&self.wind_speed_unit)?;
-        w.field(&self.status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.wind_angle)?;
-        w.field(&self.reference)?;
-        w.field(&self.wind_speed)?;
-        w.field(&self.wind_speed_unit)?;
-        w.field(&self.status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("wind_angle", &self.wind_angle)?;
-        j.field("reference", &self.reference)?;
-        j.field("wind_speed", &self.wind_speed)?;
-        j.field("wind_speed_unit", &self.wind_speed_unit)?;
-        j.field("status", &self.status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "wind_angle", 1)?;
-        out.member(fields, "reference", 1)?;
-        out.member(fields, "wind_speed", 1)?;
-        out.member(fields, "wind_speed_unit", 1)?;
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("wind_angle", &self.wind_angle)?;
+        sink.field("reference", &self.reference)?;
+        sink.field("wind_speed", &self.wind_speed)?;
+        sink.field("wind_speed_unit", &self.wind_speed_unit)?;
+        sink.field("status", &self.status)?;
         Ok(())
     }
 }

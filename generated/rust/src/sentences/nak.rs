@@ -10,9 +10,7 @@
 use core::fmt;
 
 use crate::enums::NakReason;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// NAK: Negative acknowledgement.
@@ -74,6 +72,13 @@ impl<'a> Layout<'a> for Nak<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "NAK", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("talker_id", 1),
+        JsonMember::Field("formatter", 1),
+        JsonMember::Field("unique_id", 1),
+        JsonMember::Field("reason", 1),
+        JsonMember::Field("text", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -95,40 +100,12 @@ impl<'a> Layout<'a> for Nak<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.talker_id)?;
-        w.field(&self.formatter)?;
-        w.field(&self.unique_id)?;
-        w.field(&self.reason)?;
-        w.field(&self.text)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.talker_id)?;
-        w.field(&self.formatter)?;
-        w.field(&self.unique_id)?;
-        w.field(&self.reason)?;
-        w.field(&self.text)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("talker_id", &self.talker_id)?;
-        j.field("formatter", &self.formatter)?;
-        j.field("unique_id", &self.unique_id)?;
-        j.field("reason", &self.reason)?;
-        j.field("text", &self.text)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "talker_id", 1)?;
-        out.member(fields, "formatter", 1)?;
-        out.member(fields, "unique_id", 1)?;
-        out.member(fields, "reason", 1)?;
-        out.member(fields, "text", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("talker_id", &self.talker_id)?;
+        sink.field("formatter", &self.formatter)?;
+        sink.field("unique_id", &self.unique_id)?;
+        sink.field("reason", &self.reason)?;
+        sink.field("text", &self.text)?;
         Ok(())
     }
 }

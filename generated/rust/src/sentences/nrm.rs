@@ -10,9 +10,7 @@
 use core::fmt;
 
 use crate::enums::{FsiSentenceStatus, NrmFunction, NrxFrequency};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// NRM: NAVTEX receiver mask.
@@ -73,6 +71,13 @@ impl<'a> Layout<'a> for Nrm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "NRM", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("function_code", 1),
+        JsonMember::Field("frequency_index", 1),
+        JsonMember::Field("coverage_area_mask", 1),
+        JsonMember::Field("message_type_mask", 1),
+        JsonMember::Field("sentence_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -94,40 +99,12 @@ impl<'a> Layout<'a> for Nrm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.function_code)?;
-        w.field(&self.frequency_index)?;
-        w.field(&self.coverage_area_mask)?;
-        w.field(&self.message_type_mask)?;
-        w.field(&self.sentence_status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.function_code)?;
-        w.field(&self.frequency_index)?;
-        w.field(&self.coverage_area_mask)?;
-        w.field(&self.message_type_mask)?;
-        w.field(&self.sentence_status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("function_code", &self.function_code)?;
-        j.field("frequency_index", &self.frequency_index)?;
-        j.field("coverage_area_mask", &self.coverage_area_mask)?;
-        j.field("message_type_mask", &self.message_type_mask)?;
-        j.field("sentence_status", &self.sentence_status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "function_code", 1)?;
-        out.member(fields, "frequency_index", 1)?;
-        out.member(fields, "coverage_area_mask", 1)?;
-        out.member(fields, "message_type_mask", 1)?;
-        out.member(fields, "sentence_status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("function_code", &self.function_code)?;
+        sink.field("frequency_index", &self.frequency_index)?;
+        sink.field("coverage_area_mask", &self.coverage_area_mask)?;
+        sink.field("message_type_mask", &self.message_type_mask)?;
+        sink.field("sentence_status", &self.sentence_status)?;
         Ok(())
     }
 }

@@ -12,11 +12,8 @@
 use core::fmt;
 
 use crate::enums::{NrxFrequency, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -101,6 +98,21 @@ impl<'a> Layout<'a> for Nrx<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "NRX", fixed: 13, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("total_sentences", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("sequential_message_id", 1),
+        JsonMember::Field("message_code", 1),
+        JsonMember::Field("frequency_index", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("day", 1),
+        JsonMember::Field("month", 1),
+        JsonMember::Field("year", 1),
+        JsonMember::Field("total_characters", 1),
+        JsonMember::Field("bad_characters", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("message_body", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -131,72 +143,20 @@ impl<'a> Layout<'a> for Nrx<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequential_message_id)?;
-        w.field(&self.message_code)?;
-        w.field(&self.frequency_index)?;
-        w.field(&self.time)?;
-        w.field(&self.day)?;
-        w.field(&self.month)?;
-        w.field(&self.year)?;
-        w.field(&self.total_characters)?;
-        w.field(&self.bad_characters)?;
-        w.field(&self.status)?;
-        w.field(&self.message_body)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequential_message_id)?;
-        w.field(&self.message_code)?;
-        w.field(&self.frequency_index)?;
-        w.field(&self.time)?;
-        w.field(&self.day)?;
-        w.field(&self.month)?;
-        w.field(&self.year)?;
-        w.field(&self.total_characters)?;
-        w.field(&self.bad_characters)?;
-        w.field(&self.status)?;
-        w.field(&self.message_body)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("total_sentences", &self.total_sentences)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("sequential_message_id", &self.sequential_message_id)?;
-        j.field("message_code", &self.message_code)?;
-        j.field("frequency_index", &self.frequency_index)?;
-        j.field("time", &self.time)?;
-        j.field("day", &self.day)?;
-        j.field("month", &self.month)?;
-        j.field("year", &self.year)?;
-        j.field("total_characters", &self.total_characters)?;
-        j.field("bad_characters", &self.bad_characters)?;
-        j.field("status", &self.status)?;
-        j.field("message_body", &self.message_body)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "total_sentences", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "sequential_message_id", 1)?;
-        out.member(fields, "message_code", 1)?;
-        out.member(fields, "frequency_index", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "day", 1)?;
-        out.member(fields, "month", 1)?;
-        out.member(fields, "year", 1)?;
-        out.member(fields, "total_characters", 1)?;
-        out.member(fields, "bad_characters", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "message_body", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("total_sentences", &self.total_sentences)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("sequential_message_id", &self.sequential_message_id)?;
+        sink.field("message_code", &self.message_code)?;
+        sink.field("frequency_index", &self.frequency_index)?;
+        sink.field("time", &self.time)?;
+        sink.field("day", &self.day)?;
+        sink.field("month", &self.month)?;
+        sink.field("year", &self.year)?;
+        sink.field("total_characters", &self.total_characters)?;
+        sink.field("bad_characters", &self.bad_characters)?;
+        sink.field("status", &self.status)?;
+        sink.field("message_body", &self.message_body)?;
         Ok(())
     }
 }
@@ -267,6 +227,18 @@ impl<'a> Layout<'a> for NrxNx700<'a> {
     const VARIANT: Option<&'static str> = Some("nx700");
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "NRX", fixed: 10, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("message_code", 1),
+        JsonMember::Field("line_number", 1),
+        JsonMember::Field("line_count", 1),
+        JsonMember::Field("frequency_khz", 1),
+        JsonMember::Field("day", 1),
+        JsonMember::Field("month", 1),
+        JsonMember::Field("year", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("error_rate", 1),
+        JsonMember::Field("message_body", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -293,60 +265,17 @@ impl<'a> Layout<'a> for NrxNx700<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message_code)?;
-        w.field(&self.line_number)?;
-        w.field(&self.line_count)?;
-        w.field(&self.frequency_khz)?;
-        w.field(&self.day)?;
-        w.field(&self.month)?;
-        w.field(&self.year)?;
-        w.field(&self.time)?;
-        w.field(&self.error_rate)?;
-        w.field(&self.message_body)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.message_code)?;
-        w.field(&self.line_number)?;
-        w.field(&self.line_count)?;
-        w.field(&self.frequency_khz)?;
-        w.field(&self.day)?;
-        w.field(&self.month)?;
-        w.field(&self.year)?;
-        w.field(&self.time)?;
-        w.field(&self.error_rate)?;
-        w.field(&self.message_body)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message_code", &self.message_code)?;
-        j.field("line_number", &self.line_number)?;
-        j.field("line_count", &self.line_count)?;
-        j.field("frequency_khz", &self.frequency_khz)?;
-        j.field("day", &self.day)?;
-        j.field("month", &self.month)?;
-        j.field("year", &self.year)?;
-        j.field("time", &self.time)?;
-        j.field("error_rate", &self.error_rate)?;
-        j.field("message_body", &self.message_body)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message_code", 1)?;
-        out.member(fields, "line_number", 1)?;
-        out.member(fields, "line_count", 1)?;
-        out.member(fields, "frequency_khz", 1)?;
-        out.member(fields, "day", 1)?;
-        out.member(fields, "month", 1)?;
-        out.member(fields, "year", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "error_rate", 1)?;
-        out.member(fields, "message_body", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message_code", &self.message_code)?;
+        sink.field("line_number", &self.line_number)?;
+        sink.field("line_count", &self.line_count)?;
+        sink.field("frequency_khz", &self.frequency_khz)?;
+        sink.field("day", &self.day)?;
+        sink.field("month", &self.month)?;
+        sink.field("year", &self.year)?;
+        sink.field("time", &self.time)?;
+        sink.field("error_rate", &self.error_rate)?;
+        sink.field("message_body", &self.message_body)?;
         Ok(())
     }
 }

@@ -12,9 +12,7 @@
 use core::fmt;
 
 use crate::enums::{NsrIntegrity, NsrPlausibility, NsrStwMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// NSR: Navigation status report.
@@ -97,6 +95,21 @@ impl<'a> Layout<'a> for Nsr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "NSR", fixed: 13, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("heading_integrity", 1),
+        JsonMember::Field("heading_plausibility", 1),
+        JsonMember::Field("position_integrity", 1),
+        JsonMember::Field("position_plausibility", 1),
+        JsonMember::Field("stw_integrity", 1),
+        JsonMember::Field("stw_plausibility", 1),
+        JsonMember::Field("sog_cog_integrity", 1),
+        JsonMember::Field("sog_cog_plausibility", 1),
+        JsonMember::Field("depth_integrity", 1),
+        JsonMember::Field("depth_plausibility", 1),
+        JsonMember::Field("stw_mode", 1),
+        JsonMember::Field("time_integrity", 1),
+        JsonMember::Field("time_plausibility", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -126,72 +139,20 @@ impl<'a> Layout<'a> for Nsr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.heading_integrity)?;
-        w.field(&self.heading_plausibility)?;
-        w.field(&self.position_integrity)?;
-        w.field(&self.position_plausibility)?;
-        w.field(&self.stw_integrity)?;
-        w.field(&self.stw_plausibility)?;
-        w.field(&self.sog_cog_integrity)?;
-        w.field(&self.sog_cog_plausibility)?;
-        w.field(&self.depth_integrity)?;
-        w.field(&self.depth_plausibility)?;
-        w.field(&self.stw_mode)?;
-        w.field(&self.time_integrity)?;
-        w.field(&self.time_plausibility)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.heading_integrity)?;
-        w.field(&self.heading_plausibility)?;
-        w.field(&self.position_integrity)?;
-        w.field(&self.position_plausibility)?;
-        w.field(&self.stw_integrity)?;
-        w.field(&self.stw_plausibility)?;
-        w.field(&self.sog_cog_integrity)?;
-        w.field(&self.sog_cog_plausibility)?;
-        w.field(&self.depth_integrity)?;
-        w.field(&self.depth_plausibility)?;
-        w.field(&self.stw_mode)?;
-        w.field(&self.time_integrity)?;
-        w.field(&self.time_plausibility)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("heading_integrity", &self.heading_integrity)?;
-        j.field("heading_plausibility", &self.heading_plausibility)?;
-        j.field("position_integrity", &self.position_integrity)?;
-        j.field("position_plausibility", &self.position_plausibility)?;
-        j.field("stw_integrity", &self.stw_integrity)?;
-        j.field("stw_plausibility", &self.stw_plausibility)?;
-        j.field("sog_cog_integrity", &self.sog_cog_integrity)?;
-        j.field("sog_cog_plausibility", &self.sog_cog_plausibility)?;
-        j.field("depth_integrity", &self.depth_integrity)?;
-        j.field("depth_plausibility", &self.depth_plausibility)?;
-        j.field("stw_mode", &self.stw_mode)?;
-        j.field("time_integrity", &self.time_integrity)?;
-        j.field("time_plausibility", &self.time_plausibility)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "heading_integrity", 1)?;
-        out.member(fields, "heading_plausibility", 1)?;
-        out.member(fields, "position_integrity", 1)?;
-        out.member(fields, "position_plausibility", 1)?;
-        out.member(fields, "stw_integrity", 1)?;
-        out.member(fields, "stw_plausibility", 1)?;
-        out.member(fields, "sog_cog_integrity", 1)?;
-        out.member(fields, "sog_cog_plausibility", 1)?;
-        out.member(fields, "depth_integrity", 1)?;
-        out.member(fields, "depth_plausibility", 1)?;
-        out.member(fields, "stw_mode", 1)?;
-        out.member(fields, "time_integrity", 1)?;
-        out.member(fields, "time_plausibility", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("heading_integrity", &self.heading_integrity)?;
+        sink.field("heading_plausibility", &self.heading_plausibility)?;
+        sink.field("position_integrity", &self.position_integrity)?;
+        sink.field("position_plausibility", &self.position_plausibility)?;
+        sink.field("stw_integrity", &self.stw_integrity)?;
+        sink.field("stw_plausibility", &self.stw_plausibility)?;
+        sink.field("sog_cog_integrity", &self.sog_cog_integrity)?;
+        sink.field("sog_cog_plausibility", &self.sog_cog_plausibility)?;
+        sink.field("depth_integrity", &self.depth_integrity)?;
+        sink.field("depth_plausibility", &self.depth_plausibility)?;
+        sink.field("stw_mode", &self.stw_mode)?;
+        sink.field("time_integrity", &self.time_integrity)?;
+        sink.field("time_plausibility", &self.time_plausibility)?;
         Ok(())
     }
 }

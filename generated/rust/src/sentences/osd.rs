@@ -10,11 +10,7 @@
 use core::fmt;
 
 use crate::enums::{OsdReference, Status, TtmUnits};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// OSD: Own ship data.
@@ -82,6 +78,17 @@ impl<'a> Layout<'a> for Osd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "OSD", fixed: 9, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("heading_status", 1),
+        JsonMember::Field("course", 1),
+        JsonMember::Field("course_reference", 1),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("speed_reference", 1),
+        JsonMember::Field("set", 1),
+        JsonMember::Field("drift", 1),
+        JsonMember::Field("speed_units", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -107,56 +114,16 @@ impl<'a> Layout<'a> for Osd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.heading)?;
-        w.field(&self.heading_status)?;
-        w.field(&self.course)?;
-        w.field(&self.course_reference)?;
-        w.field(&self.speed)?;
-        w.field(&self.speed_reference)?;
-        w.field(&self.set)?;
-        w.field(&self.drift)?;
-        w.field(&self.speed_units)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.heading)?;
-        w.field(&self.heading_status)?;
-        w.field(&self.course)?;
-        w.field(&self.course_reference)?;
-        w.field(&self.speed)?;
-        w.field(&self.speed_reference)?;
-        w.field(&self.set)?;
-        w.field(&self.drift)?;
-        w.field(&self.speed_units)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("heading", &self.heading)?;
-        j.field("heading_status", &self.heading_status)?;
-        j.field("course", &self.course)?;
-        j.field("course_reference", &self.course_reference)?;
-        j.field("speed", &self.speed)?;
-        j.field("speed_reference", &self.speed_reference)?;
-        j.field("set", &self.set)?;
-        j.field("drift", &self.drift)?;
-        j.field("speed_units", &self.speed_units)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "heading_status", 1)?;
-        out.member(fields, "course", 1)?;
-        out.member(fields, "course_reference", 1)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "speed_reference", 1)?;
-        out.member(fields, "set", 1)?;
-        out.member(fields, "drift", 1)?;
-        out.member(fields, "speed_units", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("heading", &self.heading)?;
+        sink.field("heading_status", &self.heading_status)?;
+        sink.field("course", &self.course)?;
+        sink.field("course_reference", &self.course_reference)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("speed_reference", &self.speed_reference)?;
+        sink.field("set", &self.set)?;
+        sink.field("drift", &self.drift)?;
+        sink.field("speed_units", &self.speed_units)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{AirohaAidingType, AirohaGnssSystem};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -70,6 +68,12 @@ impl<'a> Layout<'a> for Pair010<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR010");
     const SHAPE: Shape = Shape { sentence: "PAIR010", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("type", 1),
+        JsonMember::Field("system", 1),
+        JsonMember::Field("week", 1),
+        JsonMember::Field("tow", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -96,36 +100,11 @@ impl<'a> Layout<'a> for Pair010<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.r#type)?;
-        w.field(&self.system)?;
-        w.field(&self.week)?;
-        w.field(&self.tow)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.r#type)?;
-        w.field(&self.system)?;
-        w.field(&self.week)?;
-        w.field(&self.tow)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("type", &self.r#type)?;
-        j.field("system", &self.system)?;
-        j.field("week", &self.week)?;
-        j.field("tow", &self.tow)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "type", 1)?;
-        out.member(fields, "system", 1)?;
-        out.member(fields, "week", 1)?;
-        out.member(fields, "tow", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("type", &self.r#type)?;
+        sink.field("system", &self.system)?;
+        sink.field("week", &self.week)?;
+        sink.field("tow", &self.tow)?;
         Ok(())
     }
 }

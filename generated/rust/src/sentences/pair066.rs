@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::AirohaEnable;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -74,6 +72,14 @@ impl<'a> Layout<'a> for Pair066<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR066");
     const SHAPE: Shape = Shape { sentence: "PAIR066", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("gps", 1),
+        JsonMember::Field("glonass", 1),
+        JsonMember::Field("galileo", 1),
+        JsonMember::Field("beidou", 1),
+        JsonMember::Field("qzss", 1),
+        JsonMember::Field("reserved", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -92,44 +98,13 @@ impl<'a> Layout<'a> for Pair066<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.gps)?;
-        w.field(&self.glonass)?;
-        w.field(&self.galileo)?;
-        w.field(&self.beidou)?;
-        w.field(&self.qzss)?;
-        w.field(&self.reserved)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.gps)?;
-        w.field(&self.glonass)?;
-        w.field(&self.galileo)?;
-        w.field(&self.beidou)?;
-        w.field(&self.qzss)?;
-        w.field(&self.reserved)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("gps", &self.gps)?;
-        j.field("glonass", &self.glonass)?;
-        j.field("galileo", &self.galileo)?;
-        j.field("beidou", &self.beidou)?;
-        j.field("qzss", &self.qzss)?;
-        j.field("reserved", &self.reserved)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "gps", 1)?;
-        out.member(fields, "glonass", 1)?;
-        out.member(fields, "galileo", 1)?;
-        out.member(fields, "beidou", 1)?;
-        out.member(fields, "qzss", 1)?;
-        out.member(fields, "reserved", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("gps", &self.gps)?;
+        sink.field("glonass", &self.glonass)?;
+        sink.field("galileo", &self.galileo)?;
+        sink.field("beidou", &self.beidou)?;
+        sink.field("qzss", &self.qzss)?;
+        sink.field("reserved", &self.reserved)?;
         Ok(())
     }
 }

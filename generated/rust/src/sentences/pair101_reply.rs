@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::{AirohaEnable, AirohaNmeaOutputMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PAIR101_REPLY: NMEA output mode.
@@ -59,6 +57,7 @@ impl<'a> Layout<'a> for Pair101Reply<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR101");
     const SHAPE: Shape = Shape { sentence: "PAIR101_REPLY", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("nmea_mode", 1), JsonMember::Field("proprietary", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -73,28 +72,9 @@ impl<'a> Layout<'a> for Pair101Reply<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.nmea_mode)?;
-        w.field(&self.proprietary)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.nmea_mode)?;
-        w.field(&self.proprietary)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("nmea_mode", &self.nmea_mode)?;
-        j.field("proprietary", &self.proprietary)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "nmea_mode", 1)?;
-        out.member(fields, "proprietary", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("nmea_mode", &self.nmea_mode)?;
+        sink.field("proprietary", &self.proprietary)?;
         Ok(())
     }
 }

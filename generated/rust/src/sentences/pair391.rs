@@ -10,9 +10,7 @@
 use core::fmt;
 
 use crate::enums::AirohaEnable;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PAIR391: Switch jamming detection.
@@ -62,6 +60,7 @@ impl<'a> Layout<'a> for Pair391<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR391");
     const SHAPE: Shape = Shape { sentence: "PAIR391", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("enabled", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -75,24 +74,8 @@ impl<'a> Layout<'a> for Pair391<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.enabled)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.enabled)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("enabled", &self.enabled)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "enabled", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("enabled", &self.enabled)?;
         Ok(())
     }
 }

@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::{AirohaEasyStatus, AirohaEnable};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PAIR491_REPLY: EASY state.
@@ -62,6 +60,7 @@ impl<'a> Layout<'a> for Pair491Reply<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR491");
     const SHAPE: Shape = Shape { sentence: "PAIR491_REPLY", fixed: 1, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("enabled", 1), JsonMember::Optional("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -79,34 +78,11 @@ impl<'a> Layout<'a> for Pair491Reply<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.enabled)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("enabled", &self.enabled)?;
         if self.trailing >= 1 {
-            w.field(&self.status)?;
+            sink.field("status", &self.status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.enabled)?;
-        if self.trailing >= 1 {
-            w.field(&self.status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("enabled", &self.enabled)?;
-        if self.trailing >= 1 {
-            j.field("status", &self.status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "enabled", 1)?;
-        out.optional(fields, "status", 1)?;
         Ok(())
     }
 }

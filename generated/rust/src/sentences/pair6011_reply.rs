@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::{AirohaDrMessage, AirohaEnable};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PAIR6011_REPLY: Output of a DR message.
@@ -59,6 +57,7 @@ impl<'a> Layout<'a> for Pair6011Reply<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR6011");
     const SHAPE: Shape = Shape { sentence: "PAIR6011_REPLY", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("type", 1), JsonMember::Field("state", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -73,28 +72,9 @@ impl<'a> Layout<'a> for Pair6011Reply<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.r#type)?;
-        w.field(&self.state)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.r#type)?;
-        w.field(&self.state)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("type", &self.r#type)?;
-        j.field("state", &self.state)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "type", 1)?;
-        out.member(fields, "state", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("type", &self.r#type)?;
+        sink.field("state", &self.state)?;
         Ok(())
     }
 }

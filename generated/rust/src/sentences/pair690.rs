@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::AirohaPeriodicMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -72,6 +70,13 @@ impl<'a> Layout<'a> for Pair690<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR690");
     const SHAPE: Shape = Shape { sentence: "PAIR690", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("first_run", 1),
+        JsonMember::Field("first_sleep", 1),
+        JsonMember::Field("second_run", 1),
+        JsonMember::Field("second_sleep", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -93,40 +98,12 @@ impl<'a> Layout<'a> for Pair690<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.mode)?;
-        w.field(&self.first_run)?;
-        w.field(&self.first_sleep)?;
-        w.field(&self.second_run)?;
-        w.field(&self.second_sleep)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.mode)?;
-        w.field(&self.first_run)?;
-        w.field(&self.first_sleep)?;
-        w.field(&self.second_run)?;
-        w.field(&self.second_sleep)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("mode", &self.mode)?;
-        j.field("first_run", &self.first_run)?;
-        j.field("first_sleep", &self.first_sleep)?;
-        j.field("second_run", &self.second_run)?;
-        j.field("second_sleep", &self.second_sleep)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "first_run", 1)?;
-        out.member(fields, "first_sleep", 1)?;
-        out.member(fields, "second_run", 1)?;
-        out.member(fields, "second_sleep", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("mode", &self.mode)?;
+        sink.field("first_run", &self.first_run)?;
+        sink.field("first_sleep", &self.first_sleep)?;
+        sink.field("second_run", &self.second_run)?;
+        sink.field("second_sleep", &self.second_sleep)?;
         Ok(())
     }
 }

@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::AirohaPpsType;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -64,6 +62,7 @@ impl<'a> Layout<'a> for Pair752<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR752");
     const SHAPE: Shape = Shape { sentence: "PAIR752", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("pps_type", 1), JsonMember::Field("pulse_width", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -78,28 +77,9 @@ impl<'a> Layout<'a> for Pair752<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.pps_type)?;
-        w.field(&self.pulse_width)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.pps_type)?;
-        w.field(&self.pulse_width)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("pps_type", &self.pps_type)?;
-        j.field("pulse_width", &self.pulse_width)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "pps_type", 1)?;
-        out.member(fields, "pulse_width", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("pps_type", &self.pps_type)?;
+        sink.field("pulse_width", &self.pulse_width)?;
         Ok(())
     }
 }

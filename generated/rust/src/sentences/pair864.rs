@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::AirohaBaud;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -66,6 +64,8 @@ impl<'a> Layout<'a> for Pair864<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR864");
     const SHAPE: Shape = Shape { sentence: "PAIR864", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("port_type", 1), JsonMember::Field("port_index", 1), JsonMember::Field("baud", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -81,32 +81,10 @@ impl<'a> Layout<'a> for Pair864<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.port_type)?;
-        w.field(&self.port_index)?;
-        w.field(&self.baud)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.port_type)?;
-        w.field(&self.port_index)?;
-        w.field(&self.baud)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("port_type", &self.port_type)?;
-        j.field("port_index", &self.port_index)?;
-        j.field("baud", &self.baud)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "port_type", 1)?;
-        out.member(fields, "port_index", 1)?;
-        out.member(fields, "baud", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("port_type", &self.port_type)?;
+        sink.field("port_index", &self.port_index)?;
+        sink.field("baud", &self.baud)?;
         Ok(())
     }
 }

@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PAIR866: Set UART flow control.
@@ -66,6 +62,8 @@ impl<'a> Layout<'a> for Pair866 {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR866");
     const SHAPE: Shape = Shape { sentence: "PAIR866", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("port_type", 1), JsonMember::Field("port_index", 1), JsonMember::Field("flow_control", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -81,32 +79,10 @@ impl<'a> Layout<'a> for Pair866 {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.port_type)?;
-        w.field(&self.port_index)?;
-        w.field(&self.flow_control)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.port_type)?;
-        w.field(&self.port_index)?;
-        w.field(&self.flow_control)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("port_type", &self.port_type)?;
-        j.field("port_index", &self.port_index)?;
-        j.field("flow_control", &self.flow_control)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "port_type", 1)?;
-        out.member(fields, "port_index", 1)?;
-        out.member(fields, "flow_control", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("port_type", &self.port_type)?;
+        sink.field("port_index", &self.port_index)?;
+        sink.field("flow_control", &self.flow_control)?;
         Ok(())
     }
 }

@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PAIR867: Query UART flow control.
@@ -63,6 +59,7 @@ impl<'a> Layout<'a> for Pair867 {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR867");
     const SHAPE: Shape = Shape { sentence: "PAIR867", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("port_type", 1), JsonMember::Field("port_index", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -77,28 +74,9 @@ impl<'a> Layout<'a> for Pair867 {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.port_type)?;
-        w.field(&self.port_index)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.port_type)?;
-        w.field(&self.port_index)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("port_type", &self.port_type)?;
-        j.field("port_index", &self.port_index)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "port_type", 1)?;
-        out.member(fields, "port_index", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("port_type", &self.port_type)?;
+        sink.field("port_index", &self.port_index)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 use core::fmt;
 
 use crate::enums::AirohaGeofenceConfidence;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range,
-    Reader, Shape, WireWriter,
+    Bound, Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Range, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -37,33 +35,13 @@ impl Pair891ReplyFence {
             radius: f.decimal("radius", "decimal number of at least 0", Range::at_least(Bound::int(0)))?,
         })
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.radius)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.radius)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("radius", &self.radius)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "lat", 1)?;
-        out.member(entry, "lon", 1)?;
-        out.member(entry, "radius", 1)?;
+impl Entry for Pair891ReplyFence {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("radius", &self.radius)?;
         Ok(())
     }
 }
@@ -120,6 +98,11 @@ impl<'a> Layout<'a> for Pair891Reply<'a> {
         optional: 0,
         group: Some(GroupShape { id: "fences", width: 3, min: 0, max: 4 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("count", 1),
+        JsonMember::Field("confidence", 1),
+        JsonMember::Entries("fences", &[("lat", 1), ("lon", 1), ("radius", 1)]),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -135,38 +118,10 @@ impl<'a> Layout<'a> for Pair891Reply<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.count)?;
-        w.field(&self.confidence)?;
-        for entry in &self.fences {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.count)?;
-        w.field(&self.confidence)?;
-        for entry in &self.fences {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("count", &self.count)?;
-        j.field("confidence", &self.confidence)?;
-        j.entries("fences", &self.fences, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "count", 1)?;
-        out.member(fields, "confidence", 1)?;
-        for entry in json::list(fields, "fences")? {
-            Pair891ReplyFence::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("count", &self.count)?;
+        sink.field("confidence", &self.confidence)?;
+        sink.entries("fences", &self.fences)?;
         Ok(())
     }
 }

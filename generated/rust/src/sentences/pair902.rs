@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::AirohaEnable;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PAIR902: Set the LOCUS save mode.
@@ -63,6 +61,7 @@ impl<'a> Layout<'a> for Pair902<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR902");
     const SHAPE: Shape = Shape { sentence: "PAIR902", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("mode", 1), JsonMember::Field("check_3d", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -77,28 +76,9 @@ impl<'a> Layout<'a> for Pair902<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.mode)?;
-        w.field(&self.check_3d)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.mode)?;
-        w.field(&self.check_3d)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("mode", &self.mode)?;
-        j.field("check_3d", &self.check_3d)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "check_3d", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("mode", &self.mode)?;
+        sink.field("check_3d", &self.check_3d)?;
         Ok(())
     }
 }

@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::AirohaEnable;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PAIR903_REPLY: LOCUS save mode.
@@ -60,6 +58,7 @@ impl<'a> Layout<'a> for Pair903Reply<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR903");
     const SHAPE: Shape = Shape { sentence: "PAIR903_REPLY", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("mode", 1), JsonMember::Field("check_3d", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -74,28 +73,9 @@ impl<'a> Layout<'a> for Pair903Reply<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.mode)?;
-        w.field(&self.check_3d)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.mode)?;
-        w.field(&self.check_3d)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("mode", &self.mode)?;
-        j.field("check_3d", &self.check_3d)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "check_3d", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("mode", &self.mode)?;
+        sink.field("check_3d", &self.check_3d)?;
         Ok(())
     }
 }

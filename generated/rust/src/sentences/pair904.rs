@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::AirohaLocusThreshold;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -66,6 +64,7 @@ impl<'a> Layout<'a> for Pair904<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PAIR904");
     const SHAPE: Shape = Shape { sentence: "PAIR904", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("threshold_kind", 1), JsonMember::Field("threshold", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -80,28 +79,9 @@ impl<'a> Layout<'a> for Pair904<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.threshold_kind)?;
-        w.field(&self.threshold)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.threshold_kind)?;
-        w.field(&self.threshold)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("threshold_kind", &self.threshold_kind)?;
-        j.field("threshold", &self.threshold)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "threshold_kind", 1)?;
-        out.member(fields, "threshold", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("threshold_kind", &self.threshold_kind)?;
+        sink.field("threshold", &self.threshold)?;
         Ok(())
     }
 }

@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::AshtechPort;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PASHQ_SAT: Query satellite status (SAT).
@@ -67,6 +65,7 @@ impl<'a> Layout<'a> for PashqSat<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PASHQ");
     const SHAPE: Shape = Shape { sentence: "PASHQ_SAT", fixed: 1, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("keyword", 1), JsonMember::Optional("port", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -84,34 +83,11 @@ impl<'a> Layout<'a> for PashqSat<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("SAT")?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "SAT")?;
         if self.trailing >= 1 {
-            w.field(&self.port)?;
+            sink.field("port", &self.port)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("SAT")?;
-        if self.trailing >= 1 {
-            w.field(&self.port)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "SAT")?;
-        if self.trailing >= 1 {
-            j.field("port", &self.port)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.optional(fields, "port", 1)?;
         Ok(())
     }
 }

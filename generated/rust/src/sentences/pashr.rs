@@ -12,11 +12,8 @@
 use core::fmt;
 
 use crate::enums::{AshtechRt300Alignment, AshtechRt300Quality};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -83,6 +80,19 @@ impl<'a> Layout<'a> for Pashr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PASHR");
     const SHAPE: Shape = Shape { sentence: "PASHR", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("heading_true", 1),
+        JsonMember::Field("roll", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("reserved", 1),
+        JsonMember::Field("roll_accuracy", 1),
+        JsonMember::Field("pitch_accuracy", 1),
+        JsonMember::Field("heading_accuracy", 1),
+        JsonMember::Field("gnss_quality", 1),
+        JsonMember::Field("imu_alignment", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -123,64 +133,18 @@ impl<'a> Layout<'a> for Pashr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.heading)?;
-        w.field(&self.heading_true)?;
-        w.field(&self.roll)?;
-        w.field(&self.pitch)?;
-        w.field(&self.reserved)?;
-        w.field(&self.roll_accuracy)?;
-        w.field(&self.pitch_accuracy)?;
-        w.field(&self.heading_accuracy)?;
-        w.field(&self.gnss_quality)?;
-        w.field(&self.imu_alignment)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.heading)?;
-        w.field(&self.heading_true)?;
-        w.field(&self.roll)?;
-        w.field(&self.pitch)?;
-        w.field(&self.reserved)?;
-        w.field(&self.roll_accuracy)?;
-        w.field(&self.pitch_accuracy)?;
-        w.field(&self.heading_accuracy)?;
-        w.field(&self.gnss_quality)?;
-        w.field(&self.imu_alignment)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("heading", &self.heading)?;
-        j.field("heading_true", &self.heading_true)?;
-        j.field("roll", &self.roll)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("reserved", &self.reserved)?;
-        j.field("roll_accuracy", &self.roll_accuracy)?;
-        j.field("pitch_accuracy", &self.pitch_accuracy)?;
-        j.field("heading_accuracy", &self.heading_accuracy)?;
-        j.field("gnss_quality", &self.gnss_quality)?;
-        j.field("imu_alignment", &self.imu_alignment)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "heading_true", 1)?;
-        out.member(fields, "roll", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "reserved", 1)?;
-        out.member(fields, "roll_accuracy", 1)?;
-        out.member(fields, "pitch_accuracy", 1)?;
-        out.member(fields, "heading_accuracy", 1)?;
-        out.member(fields, "gnss_quality", 1)?;
-        out.member(fields, "imu_alignment", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("heading", &self.heading)?;
+        sink.field("heading_true", &self.heading_true)?;
+        sink.field("roll", &self.roll)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("reserved", &self.reserved)?;
+        sink.field("roll_accuracy", &self.roll_accuracy)?;
+        sink.field("pitch_accuracy", &self.pitch_accuracy)?;
+        sink.field("heading_accuracy", &self.heading_accuracy)?;
+        sink.field("gnss_quality", &self.gnss_quality)?;
+        sink.field("imu_alignment", &self.imu_alignment)?;
         Ok(())
     }
 }

@@ -11,11 +11,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -81,6 +78,16 @@ impl<'a> Layout<'a> for PashrAtt {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PASHR");
     const SHAPE: Shape = Shape { sentence: "PASHR_ATT", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("week_time", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("roll", 1),
+        JsonMember::Field("carrier_rms", 1),
+        JsonMember::Field("baseline_rms", 1),
+        JsonMember::Field("ambiguity", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -120,52 +127,15 @@ impl<'a> Layout<'a> for PashrAtt {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ATT")?;
-        w.field(&self.week_time)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        w.field(&self.carrier_rms)?;
-        w.field(&self.baseline_rms)?;
-        w.field(&self.ambiguity)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ATT")?;
-        w.field(&self.week_time)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        w.field(&self.carrier_rms)?;
-        w.field(&self.baseline_rms)?;
-        w.field(&self.ambiguity)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "ATT")?;
-        j.field("week_time", &self.week_time)?;
-        j.field("heading", &self.heading)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("roll", &self.roll)?;
-        j.field("carrier_rms", &self.carrier_rms)?;
-        j.field("baseline_rms", &self.baseline_rms)?;
-        j.field("ambiguity", &self.ambiguity)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "week_time", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "roll", 1)?;
-        out.member(fields, "carrier_rms", 1)?;
-        out.member(fields, "baseline_rms", 1)?;
-        out.member(fields, "ambiguity", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "ATT")?;
+        sink.field("week_time", &self.week_time)?;
+        sink.field("heading", &self.heading)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("roll", &self.roll)?;
+        sink.field("carrier_rms", &self.carrier_rms)?;
+        sink.field("baseline_rms", &self.baseline_rms)?;
+        sink.field("ambiguity", &self.ambiguity)?;
         Ok(())
     }
 }

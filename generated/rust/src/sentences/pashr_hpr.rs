@@ -13,11 +13,9 @@
 use core::fmt;
 
 use crate::enums::AshtechHprMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, Time, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -91,6 +89,19 @@ impl<'a> Layout<'a> for PashrHpr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PASHR");
     const SHAPE: Shape = Shape { sentence: "PASHR_HPR", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("roll", 1),
+        JsonMember::Field("carrier_rms", 1),
+        JsonMember::Field("baseline_rms", 1),
+        JsonMember::Field("ambiguity", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("antenna_setup", 1),
+        JsonMember::Field("pdop", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -135,64 +146,18 @@ impl<'a> Layout<'a> for PashrHpr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("HPR")?;
-        w.field(&self.time)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        w.field(&self.carrier_rms)?;
-        w.field(&self.baseline_rms)?;
-        w.field(&self.ambiguity)?;
-        w.field(&self.mode)?;
-        w.field(&self.antenna_setup)?;
-        w.field(&self.pdop)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("HPR")?;
-        w.field(&self.time)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        w.field(&self.carrier_rms)?;
-        w.field(&self.baseline_rms)?;
-        w.field(&self.ambiguity)?;
-        w.field(&self.mode)?;
-        w.field(&self.antenna_setup)?;
-        w.field(&self.pdop)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "HPR")?;
-        j.field("time", &self.time)?;
-        j.field("heading", &self.heading)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("roll", &self.roll)?;
-        j.field("carrier_rms", &self.carrier_rms)?;
-        j.field("baseline_rms", &self.baseline_rms)?;
-        j.field("ambiguity", &self.ambiguity)?;
-        j.field("mode", &self.mode)?;
-        j.field("antenna_setup", &self.antenna_setup)?;
-        j.field("pdop", &self.pdop)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "roll", 1)?;
-        out.member(fields, "carrier_rms", 1)?;
-        out.member(fields, "baseline_rms", 1)?;
-        out.member(fields, "ambiguity", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "antenna_setup", 1)?;
-        out.member(fields, "pdop", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "HPR")?;
+        sink.field("time", &self.time)?;
+        sink.field("heading", &self.heading)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("roll", &self.roll)?;
+        sink.field("carrier_rms", &self.carrier_rms)?;
+        sink.field("baseline_rms", &self.baseline_rms)?;
+        sink.field("ambiguity", &self.ambiguity)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("antenna_setup", &self.antenna_setup)?;
+        sink.field("pdop", &self.pdop)?;
         Ok(())
     }
 }

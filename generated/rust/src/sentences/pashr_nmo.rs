@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::AshtechPort;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range,
-    Reader, Shape, WireWriter,
+    Bound, Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Range, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -37,29 +35,12 @@ impl<'a> PashrNmoMessage<'a> {
             rate: f.decimal("rate", "decimal number 0..999", Range::between(Bound::int(0), Bound::int(999)))?,
         })
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message", &self.message)?;
-        j.field("rate", &self.rate)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "message", 1)?;
-        out.member(entry, "rate", 1)?;
+impl Entry for PashrNmoMessage<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message", &self.message)?;
+        sink.field("rate", &self.rate)?;
         Ok(())
     }
 }
@@ -125,6 +106,14 @@ impl<'a> Layout<'a> for PashrNmo<'a> {
         optional: 0,
         group: Some(GroupShape { id: "messages", width: 2, min: 0, max: 64 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("port", 1),
+        JsonMember::Field("baud_code", 1),
+        JsonMember::Field("period", 1),
+        JsonMember::Field("count", 1),
+        JsonMember::Entries("messages", &[("message", 1), ("rate", 1)]),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -143,50 +132,13 @@ impl<'a> Layout<'a> for PashrNmo<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("NMO")?;
-        w.field(&self.port)?;
-        w.field(&self.baud_code)?;
-        w.field(&self.period)?;
-        w.field(&self.count)?;
-        for entry in &self.messages {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("NMO")?;
-        w.field(&self.port)?;
-        w.field(&self.baud_code)?;
-        w.field(&self.period)?;
-        w.field(&self.count)?;
-        for entry in &self.messages {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "NMO")?;
-        j.field("port", &self.port)?;
-        j.field("baud_code", &self.baud_code)?;
-        j.field("period", &self.period)?;
-        j.field("count", &self.count)?;
-        j.entries("messages", &self.messages, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "port", 1)?;
-        out.member(fields, "baud_code", 1)?;
-        out.member(fields, "period", 1)?;
-        out.member(fields, "count", 1)?;
-        for entry in json::list(fields, "messages")? {
-            PashrNmoMessage::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "NMO")?;
+        sink.field("port", &self.port)?;
+        sink.field("baud_code", &self.baud_code)?;
+        sink.field("period", &self.period)?;
+        sink.field("count", &self.count)?;
+        sink.entries("messages", &self.messages)?;
         Ok(())
     }
 }

@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PASHR_PEM: Position elevation mask (PEM).
@@ -62,6 +58,7 @@ impl<'a> Layout<'a> for PashrPem {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PASHR");
     const SHAPE: Shape = Shape { sentence: "PASHR_PEM", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("keyword", 1), JsonMember::Field("mask", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -76,28 +73,9 @@ impl<'a> Layout<'a> for PashrPem {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("PEM")?;
-        w.field(&self.mask)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("PEM")?;
-        w.field(&self.mask)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "PEM")?;
-        j.field("mask", &self.mask)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "mask", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "PEM")?;
+        sink.field("mask", &self.mask)?;
         Ok(())
     }
 }

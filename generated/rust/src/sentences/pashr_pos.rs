@@ -13,11 +13,9 @@
 use core::fmt;
 
 use crate::enums::AshtechPosSolution;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number,
-    Range, Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number,
+    Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -97,6 +95,24 @@ impl<'a> Layout<'a> for PashrPos<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PASHR");
     const SHAPE: Shape = Shape { sentence: "PASHR_POS", fixed: 18, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("solution", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("correction_age", 1),
+        JsonMember::Field("course", 1),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("vertical_velocity", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Field("tdop", 1),
+        JsonMember::Field("base_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -158,84 +174,23 @@ impl<'a> Layout<'a> for PashrPos<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("POS")?;
-        w.field(&self.solution)?;
-        w.field(&self.satellites)?;
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.altitude)?;
-        w.field(&self.correction_age)?;
-        w.field(&self.course)?;
-        w.field(&self.speed)?;
-        w.field(&self.vertical_velocity)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.tdop)?;
-        w.field(&self.base_id)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("POS")?;
-        w.field(&self.solution)?;
-        w.field(&self.satellites)?;
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.altitude)?;
-        w.field(&self.correction_age)?;
-        w.field(&self.course)?;
-        w.field(&self.speed)?;
-        w.field(&self.vertical_velocity)?;
-        w.field(&self.pdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.tdop)?;
-        w.field(&self.base_id)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "POS")?;
-        j.field("solution", &self.solution)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("time", &self.time)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("correction_age", &self.correction_age)?;
-        j.field("course", &self.course)?;
-        j.field("speed", &self.speed)?;
-        j.field("vertical_velocity", &self.vertical_velocity)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("vdop", &self.vdop)?;
-        j.field("tdop", &self.tdop)?;
-        j.field("base_id", &self.base_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "solution", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "correction_age", 1)?;
-        out.member(fields, "course", 1)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "vertical_velocity", 1)?;
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.member(fields, "tdop", 1)?;
-        out.member(fields, "base_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "POS")?;
+        sink.field("solution", &self.solution)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("time", &self.time)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("correction_age", &self.correction_age)?;
+        sink.field("course", &self.course)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("vertical_velocity", &self.vertical_velocity)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("vdop", &self.vdop)?;
+        sink.field("tdop", &self.tdop)?;
+        sink.field("base_id", &self.base_id)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::AshtechSvUsed;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout,
-    Number, Range, Read, Reader, Shape, WireWriter,
+    Bound, Checksum, Code, Entry, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout,
+    Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -58,41 +56,15 @@ impl<'a> PashrSatSatellite<'a> {
         self.used = f.code()?;
         Ok(())
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.prn)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.elevation)?;
-        w.field(&self.snr)?;
-        w.field(&self.used)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.prn)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.elevation)?;
-        w.field(&self.snr)?;
-        w.field(&self.used)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("prn", &self.prn)?;
-        j.field("azimuth", &self.azimuth)?;
-        j.field("elevation", &self.elevation)?;
-        j.field("snr", &self.snr)?;
-        j.field("used", &self.used)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "prn", 1)?;
-        out.member(entry, "azimuth", 1)?;
-        out.member(entry, "elevation", 1)?;
-        out.member(entry, "snr", 1)?;
-        out.member(entry, "used", 1)?;
+impl Entry for PashrSatSatellite<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("prn", &self.prn)?;
+        sink.field("azimuth", &self.azimuth)?;
+        sink.field("elevation", &self.elevation)?;
+        sink.field("snr", &self.snr)?;
+        sink.field("used", &self.used)?;
         Ok(())
     }
 }
@@ -153,6 +125,11 @@ impl<'a> Layout<'a> for PashrSat<'a> {
         optional: 0,
         group: Some(GroupShape { id: "satellites", width: 5, min: 0, max: 64 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("count", 1),
+        JsonMember::Entries("satellites", &[("prn", 1), ("azimuth", 1), ("elevation", 1), ("snr", 1), ("used", 1)]),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -177,38 +154,10 @@ impl<'a> Layout<'a> for PashrSat<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("SAT")?;
-        w.field(&self.count)?;
-        for entry in &self.satellites {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("SAT")?;
-        w.field(&self.count)?;
-        for entry in &self.satellites {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "SAT")?;
-        j.field("count", &self.count)?;
-        j.entries("satellites", &self.satellites, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "count", 1)?;
-        for entry in json::list(fields, "satellites")? {
-            PashrSatSatellite::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "SAT")?;
+        sink.field("count", &self.count)?;
+        sink.entries("satellites", &self.satellites)?;
         Ok(())
     }
 }

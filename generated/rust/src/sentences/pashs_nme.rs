@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{AshtechNmeMessage, AshtechOnOff, AshtechPort};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -80,6 +78,13 @@ impl<'a> Layout<'a> for PashsNme<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PASHS");
     const SHAPE: Shape = Shape { sentence: "PASHS_NME", fixed: 4, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("message", 1),
+        JsonMember::Field("port", 1),
+        JsonMember::Field("state", 1),
+        JsonMember::Optional("rate", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -101,46 +106,14 @@ impl<'a> Layout<'a> for PashsNme<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("NME")?;
-        w.field(&self.message)?;
-        w.field(&self.port)?;
-        w.field(&self.state)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "NME")?;
+        sink.field("message", &self.message)?;
+        sink.field("port", &self.port)?;
+        sink.field("state", &self.state)?;
         if self.trailing >= 1 {
-            w.field(&self.rate)?;
+            sink.field("rate", &self.rate)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("NME")?;
-        w.field(&self.message)?;
-        w.field(&self.port)?;
-        w.field(&self.state)?;
-        if self.trailing >= 1 {
-            w.field(&self.rate)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "NME")?;
-        j.field("message", &self.message)?;
-        j.field("port", &self.port)?;
-        j.field("state", &self.state)?;
-        if self.trailing >= 1 {
-            j.field("rate", &self.rate)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "message", 1)?;
-        out.member(fields, "port", 1)?;
-        out.member(fields, "state", 1)?;
-        out.optional(fields, "rate", 1)?;
         Ok(())
     }
 }
@@ -202,6 +175,8 @@ impl<'a> Layout<'a> for PashsNmePeriod {
     const VARIANT: Option<&'static str> = Some("period");
     const FRAMING: Framing = Framing::Proprietary("PASHS");
     const SHAPE: Shape = Shape { sentence: "PASHS_NME", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("keyword", 1), JsonMember::Field("per", 1), JsonMember::Field("period", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -218,32 +193,10 @@ impl<'a> Layout<'a> for PashsNmePeriod {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("NME")?;
-        w.keyword("PER")?;
-        w.field(&self.period)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("NME")?;
-        w.keyword("PER")?;
-        w.field(&self.period)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "NME")?;
-        j.keyword("per", "PER")?;
-        j.field("period", &self.period)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "per", 1)?;
-        out.member(fields, "period", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "NME")?;
+        sink.keyword("per", "PER")?;
+        sink.field("period", &self.period)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{FurunoEridePpsSync, FurunoErideTimeStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -78,6 +76,15 @@ impl<'a> Layout<'a> for Perdcrw<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PERDCRW");
     const SHAPE: Shape = Shape { sentence: "PERDCRW", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("command", 1),
+        JsonMember::Field("date_time", 1),
+        JsonMember::Field("time_status", 1),
+        JsonMember::Field("leap_update", 1),
+        JsonMember::Field("leap_seconds", 1),
+        JsonMember::Field("future_leap_seconds", 1),
+        JsonMember::Field("pps_sync", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -112,48 +119,14 @@ impl<'a> Layout<'a> for Perdcrw<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("TPS1")?;
-        w.field(&self.date_time)?;
-        w.field(&self.time_status)?;
-        w.field(&self.leap_update)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.future_leap_seconds)?;
-        w.field(&self.pps_sync)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("TPS1")?;
-        w.field(&self.date_time)?;
-        w.field(&self.time_status)?;
-        w.field(&self.leap_update)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.future_leap_seconds)?;
-        w.field(&self.pps_sync)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("command", "TPS1")?;
-        j.field("date_time", &self.date_time)?;
-        j.field("time_status", &self.time_status)?;
-        j.field("leap_update", &self.leap_update)?;
-        j.field("leap_seconds", &self.leap_seconds)?;
-        j.field("future_leap_seconds", &self.future_leap_seconds)?;
-        j.field("pps_sync", &self.pps_sync)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "command", 1)?;
-        out.member(fields, "date_time", 1)?;
-        out.member(fields, "time_status", 1)?;
-        out.member(fields, "leap_update", 1)?;
-        out.member(fields, "leap_seconds", 1)?;
-        out.member(fields, "future_leap_seconds", 1)?;
-        out.member(fields, "pps_sync", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("command", "TPS1")?;
+        sink.field("date_time", &self.date_time)?;
+        sink.field("time_status", &self.time_status)?;
+        sink.field("leap_update", &self.leap_update)?;
+        sink.field("leap_seconds", &self.leap_seconds)?;
+        sink.field("future_leap_seconds", &self.future_leap_seconds)?;
+        sink.field("pps_sync", &self.pps_sync)?;
         Ok(())
     }
 }

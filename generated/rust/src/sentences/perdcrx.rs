@@ -13,11 +13,9 @@ use core::fmt;
 use crate::enums::{
     FurunoErideOnOff, FurunoEridePolarity, FurunoEridePpsMode, FurunoEridePpsPeriod, FurunoEridePpsType,
 };
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -91,6 +89,19 @@ impl<'a> Layout<'a> for Perdcrx<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PERDCRX");
     const SHAPE: Shape = Shape { sentence: "PERDCRX", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("command", 1),
+        JsonMember::Field("pps_status", 1),
+        JsonMember::Field("pps_mode", 1),
+        JsonMember::Field("period", 1),
+        JsonMember::Field("pulse_width", 1),
+        JsonMember::Field("cable_delay", 1),
+        JsonMember::Field("polarity", 1),
+        JsonMember::Field("pps_type", 1),
+        JsonMember::Field("estimated_accuracy", 1),
+        JsonMember::Field("sawtooth", 1),
+        JsonMember::Field("accuracy_threshold", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -141,64 +152,18 @@ impl<'a> Layout<'a> for Perdcrx<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("TPS2")?;
-        w.field(&self.pps_status)?;
-        w.field(&self.pps_mode)?;
-        w.field(&self.period)?;
-        w.field(&self.pulse_width)?;
-        w.field(&self.cable_delay)?;
-        w.field(&self.polarity)?;
-        w.field(&self.pps_type)?;
-        w.field(&self.estimated_accuracy)?;
-        w.field(&self.sawtooth)?;
-        w.field(&self.accuracy_threshold)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("TPS2")?;
-        w.field(&self.pps_status)?;
-        w.field(&self.pps_mode)?;
-        w.field(&self.period)?;
-        w.field(&self.pulse_width)?;
-        w.field(&self.cable_delay)?;
-        w.field(&self.polarity)?;
-        w.field(&self.pps_type)?;
-        w.field(&self.estimated_accuracy)?;
-        w.field(&self.sawtooth)?;
-        w.field(&self.accuracy_threshold)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("command", "TPS2")?;
-        j.field("pps_status", &self.pps_status)?;
-        j.field("pps_mode", &self.pps_mode)?;
-        j.field("period", &self.period)?;
-        j.field("pulse_width", &self.pulse_width)?;
-        j.field("cable_delay", &self.cable_delay)?;
-        j.field("polarity", &self.polarity)?;
-        j.field("pps_type", &self.pps_type)?;
-        j.field("estimated_accuracy", &self.estimated_accuracy)?;
-        j.field("sawtooth", &self.sawtooth)?;
-        j.field("accuracy_threshold", &self.accuracy_threshold)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "command", 1)?;
-        out.member(fields, "pps_status", 1)?;
-        out.member(fields, "pps_mode", 1)?;
-        out.member(fields, "period", 1)?;
-        out.member(fields, "pulse_width", 1)?;
-        out.member(fields, "cable_delay", 1)?;
-        out.member(fields, "polarity", 1)?;
-        out.member(fields, "pps_type", 1)?;
-        out.member(fields, "estimated_accuracy", 1)?;
-        out.member(fields, "sawtooth", 1)?;
-        out.member(fields, "accuracy_threshold", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("command", "TPS2")?;
+        sink.field("pps_status", &self.pps_status)?;
+        sink.field("pps_mode", &self.pps_mode)?;
+        sink.field("period", &self.period)?;
+        sink.field("pulse_width", &self.pulse_width)?;
+        sink.field("cable_delay", &self.cable_delay)?;
+        sink.field("polarity", &self.polarity)?;
+        sink.field("pps_type", &self.pps_type)?;
+        sink.field("estimated_accuracy", &self.estimated_accuracy)?;
+        sink.field("sawtooth", &self.sawtooth)?;
+        sink.field("accuracy_threshold", &self.accuracy_threshold)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::{FurunoEridePositionMode, FurunoErideTraimSolution, FurunoErideTraimStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -84,6 +82,18 @@ impl<'a> Layout<'a> for Perdcry<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PERDCRY");
     const SHAPE: Shape = Shape { sentence: "PERDCRY", fixed: 10, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("command", 1),
+        JsonMember::Field("position_mode", 1),
+        JsonMember::Field("sigma", 1),
+        JsonMember::Field("sigma_threshold", 1),
+        JsonMember::Field("survey_time", 1),
+        JsonMember::Field("time_threshold", 1),
+        JsonMember::Field("traim_solution", 1),
+        JsonMember::Field("traim_status", 1),
+        JsonMember::Field("removed_satellites", 1),
+        JsonMember::Field("receiver_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -126,60 +136,17 @@ impl<'a> Layout<'a> for Perdcry<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("TPS3")?;
-        w.field(&self.position_mode)?;
-        w.field(&self.sigma)?;
-        w.field(&self.sigma_threshold)?;
-        w.field(&self.survey_time)?;
-        w.field(&self.time_threshold)?;
-        w.field(&self.traim_solution)?;
-        w.field(&self.traim_status)?;
-        w.field(&self.removed_satellites)?;
-        w.field(&self.receiver_status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("TPS3")?;
-        w.field(&self.position_mode)?;
-        w.field(&self.sigma)?;
-        w.field(&self.sigma_threshold)?;
-        w.field(&self.survey_time)?;
-        w.field(&self.time_threshold)?;
-        w.field(&self.traim_solution)?;
-        w.field(&self.traim_status)?;
-        w.field(&self.removed_satellites)?;
-        w.field(&self.receiver_status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("command", "TPS3")?;
-        j.field("position_mode", &self.position_mode)?;
-        j.field("sigma", &self.sigma)?;
-        j.field("sigma_threshold", &self.sigma_threshold)?;
-        j.field("survey_time", &self.survey_time)?;
-        j.field("time_threshold", &self.time_threshold)?;
-        j.field("traim_solution", &self.traim_solution)?;
-        j.field("traim_status", &self.traim_status)?;
-        j.field("removed_satellites", &self.removed_satellites)?;
-        j.field("receiver_status", &self.receiver_status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "command", 1)?;
-        out.member(fields, "position_mode", 1)?;
-        out.member(fields, "sigma", 1)?;
-        out.member(fields, "sigma_threshold", 1)?;
-        out.member(fields, "survey_time", 1)?;
-        out.member(fields, "time_threshold", 1)?;
-        out.member(fields, "traim_solution", 1)?;
-        out.member(fields, "traim_status", 1)?;
-        out.member(fields, "removed_satellites", 1)?;
-        out.member(fields, "receiver_status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("command", "TPS3")?;
+        sink.field("position_mode", &self.position_mode)?;
+        sink.field("sigma", &self.sigma)?;
+        sink.field("sigma_threshold", &self.sigma_threshold)?;
+        sink.field("survey_time", &self.survey_time)?;
+        sink.field("time_threshold", &self.time_threshold)?;
+        sink.field("traim_solution", &self.traim_solution)?;
+        sink.field("traim_status", &self.traim_status)?;
+        sink.field("removed_satellites", &self.removed_satellites)?;
+        sink.field("receiver_status", &self.receiver_status)?;
         Ok(())
     }
 }

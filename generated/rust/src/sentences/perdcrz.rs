@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{FurunoErideFreqMode, FurunoErideOnOff};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -89,6 +87,20 @@ impl<'a> Layout<'a> for Perdcrz<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PERDCRZ");
     const SHAPE: Shape = Shape { sentence: "PERDCRZ", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("command", 1),
+        JsonMember::Field("freq_mode", 1),
+        JsonMember::Field("freq_status", 1),
+        JsonMember::Field("gclk_accurate", 1),
+        JsonMember::Field("phase_delay", 1),
+        JsonMember::Field("phase_delay_change", 1),
+        JsonMember::Field("lock_count", 1),
+        JsonMember::Field("lockoff_count", 1),
+        JsonMember::Field("reserved", 1),
+        JsonMember::Field("id_tag", 1),
+        JsonMember::Field("gclk_setting_1", 1),
+        JsonMember::Field("gclk_setting_2", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -141,68 +153,19 @@ impl<'a> Layout<'a> for Perdcrz<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("TPS4")?;
-        w.field(&self.freq_mode)?;
-        w.field(&self.freq_status)?;
-        w.field(&self.gclk_accurate)?;
-        w.field(&self.phase_delay)?;
-        w.field(&self.phase_delay_change)?;
-        w.field(&self.lock_count)?;
-        w.field(&self.lockoff_count)?;
-        w.field(&self.reserved)?;
-        w.field(&self.id_tag)?;
-        w.field(&self.gclk_setting_1)?;
-        w.field(&self.gclk_setting_2)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("TPS4")?;
-        w.field(&self.freq_mode)?;
-        w.field(&self.freq_status)?;
-        w.field(&self.gclk_accurate)?;
-        w.field(&self.phase_delay)?;
-        w.field(&self.phase_delay_change)?;
-        w.field(&self.lock_count)?;
-        w.field(&self.lockoff_count)?;
-        w.field(&self.reserved)?;
-        w.field(&self.id_tag)?;
-        w.field(&self.gclk_setting_1)?;
-        w.field(&self.gclk_setting_2)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("command", "TPS4")?;
-        j.field("freq_mode", &self.freq_mode)?;
-        j.field("freq_status", &self.freq_status)?;
-        j.field("gclk_accurate", &self.gclk_accurate)?;
-        j.field("phase_delay", &self.phase_delay)?;
-        j.field("phase_delay_change", &self.phase_delay_change)?;
-        j.field("lock_count", &self.lock_count)?;
-        j.field("lockoff_count", &self.lockoff_count)?;
-        j.field("reserved", &self.reserved)?;
-        j.field("id_tag", &self.id_tag)?;
-        j.field("gclk_setting_1", &self.gclk_setting_1)?;
-        j.field("gclk_setting_2", &self.gclk_setting_2)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "command", 1)?;
-        out.member(fields, "freq_mode", 1)?;
-        out.member(fields, "freq_status", 1)?;
-        out.member(fields, "gclk_accurate", 1)?;
-        out.member(fields, "phase_delay", 1)?;
-        out.member(fields, "phase_delay_change", 1)?;
-        out.member(fields, "lock_count", 1)?;
-        out.member(fields, "lockoff_count", 1)?;
-        out.member(fields, "reserved", 1)?;
-        out.member(fields, "id_tag", 1)?;
-        out.member(fields, "gclk_setting_1", 1)?;
-        out.member(fields, "gclk_setting_2", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("command", "TPS4")?;
+        sink.field("freq_mode", &self.freq_mode)?;
+        sink.field("freq_status", &self.freq_status)?;
+        sink.field("gclk_accurate", &self.gclk_accurate)?;
+        sink.field("phase_delay", &self.phase_delay)?;
+        sink.field("phase_delay_change", &self.phase_delay_change)?;
+        sink.field("lock_count", &self.lock_count)?;
+        sink.field("lockoff_count", &self.lockoff_count)?;
+        sink.field("reserved", &self.reserved)?;
+        sink.field("id_tag", &self.id_tag)?;
+        sink.field("gclk_setting_1", &self.gclk_setting_1)?;
+        sink.field("gclk_setting_2", &self.gclk_setting_2)?;
         Ok(())
     }
 }

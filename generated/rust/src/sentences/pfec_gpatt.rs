@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -62,6 +59,12 @@ impl<'a> Layout<'a> for PfecGpatt {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PFEC");
     const SHAPE: Shape = Shape { sentence: "PFEC_GPATT", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("roll", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -88,36 +91,11 @@ impl<'a> Layout<'a> for PfecGpatt {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("GPatt")?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("GPatt")?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "GPatt")?;
-        j.field("heading", &self.heading)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("roll", &self.roll)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "roll", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "GPatt")?;
+        sink.field("heading", &self.heading)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("roll", &self.roll)?;
         Ok(())
     }
 }

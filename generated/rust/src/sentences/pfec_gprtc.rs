@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -67,6 +64,12 @@ impl<'a> Layout<'a> for PfecGprtc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PFEC");
     const SHAPE: Shape = Shape { sentence: "PFEC_GPRTC", fixed: 3, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("route", 1),
+        JsonMember::Field("comment", 1),
+        JsonMember::Optional("route_name", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -99,42 +102,13 @@ impl<'a> Layout<'a> for PfecGprtc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("GPrtc")?;
-        w.field(&self.route)?;
-        w.field(&self.comment)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "GPrtc")?;
+        sink.field("route", &self.route)?;
+        sink.field("comment", &self.comment)?;
         if self.trailing >= 1 {
-            w.field(&self.route_name)?;
+            sink.field("route_name", &self.route_name)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("GPrtc")?;
-        w.field(&self.route)?;
-        w.field(&self.comment)?;
-        if self.trailing >= 1 {
-            w.field(&self.route_name)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "GPrtc")?;
-        j.field("route", &self.route)?;
-        j.field("comment", &self.comment)?;
-        if self.trailing >= 1 {
-            j.field("route_name", &self.route_name)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "route", 1)?;
-        out.member(fields, "comment", 1)?;
-        out.optional(fields, "route_name", 1)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range,
-    Read, Shape, Time, WireWriter,
+    Bound, Checksum, Coordinate, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range,
+    Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -83,6 +81,19 @@ impl<'a> Layout<'a> for PfecGpwpl<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PFEC");
     const SHAPE: Shape = Shape { sentence: "PFEC_GPWPL", fixed: 9, optional: 4, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("name", 1),
+        JsonMember::Field("color", 1),
+        JsonMember::Field("comment", 1),
+        JsonMember::Field("displayed", 1),
+        JsonMember::Optional("time", 1),
+        JsonMember::Optional("day", 1),
+        JsonMember::Optional("month", 1),
+        JsonMember::Optional("year", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -147,88 +158,26 @@ impl<'a> Layout<'a> for PfecGpwpl<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("GPwpl")?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.name)?;
-        w.field(&self.color)?;
-        w.field(&self.comment)?;
-        w.field(&self.displayed)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "GPwpl")?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("name", &self.name)?;
+        sink.field("color", &self.color)?;
+        sink.field("comment", &self.comment)?;
+        sink.field("displayed", &self.displayed)?;
         if self.trailing >= 1 {
-            w.field(&self.time)?;
+            sink.field("time", &self.time)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.day)?;
+            sink.field("day", &self.day)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.month)?;
+            sink.field("month", &self.month)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.year)?;
+            sink.field("year", &self.year)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("GPwpl")?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.name)?;
-        w.field(&self.color)?;
-        w.field(&self.comment)?;
-        w.field(&self.displayed)?;
-        if self.trailing >= 1 {
-            w.field(&self.time)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.day)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.month)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.year)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "GPwpl")?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("name", &self.name)?;
-        j.field("color", &self.color)?;
-        j.field("comment", &self.comment)?;
-        j.field("displayed", &self.displayed)?;
-        if self.trailing >= 1 {
-            j.field("time", &self.time)?;
-        }
-        if self.trailing >= 2 {
-            j.field("day", &self.day)?;
-        }
-        if self.trailing >= 3 {
-            j.field("month", &self.month)?;
-        }
-        if self.trailing >= 4 {
-            j.field("year", &self.year)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "name", 1)?;
-        out.member(fields, "color", 1)?;
-        out.member(fields, "comment", 1)?;
-        out.member(fields, "displayed", 1)?;
-        out.optional(fields, "time", 1)?;
-        out.optional(fields, "day", 1)?;
-        out.optional(fields, "month", 1)?;
-        out.optional(fields, "year", 1)?;
         Ok(())
     }
 }

@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -69,6 +66,12 @@ impl<'a> Layout<'a> for PglorFix<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGLOR");
     const SHAPE: Shape = Shape { sentence: "PGLOR_FIX", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("ttff_request", 1),
+        JsonMember::Field("ttff_start", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -95,36 +98,11 @@ impl<'a> Layout<'a> for PglorFix<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("FIX")?;
-        w.field(&self.ttff_request)?;
-        w.field(&self.ttff_start)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("FIX")?;
-        w.field(&self.ttff_request)?;
-        w.field(&self.ttff_start)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "FIX")?;
-        j.field("ttff_request", &self.ttff_request)?;
-        j.field("ttff_start", &self.ttff_start)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "ttff_request", 1)?;
-        out.member(fields, "ttff_start", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "FIX")?;
+        sink.field("ttff_request", &self.ttff_request)?;
+        sink.field("ttff_start", &self.ttff_start)?;
         Ok(())
     }
 }

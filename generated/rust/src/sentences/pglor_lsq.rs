@@ -10,11 +10,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Coordinate, Error, FastReader, Fields, Framing, GroupShape, JsonFields, Layout, Number,
-    Range, Read, Shape, Texts, Time, WireWriter,
+    Checksum, Coordinate, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range,
+    Read, Shape, Texts, Time,
 };
 use crate::LayoutId;
 
@@ -106,6 +104,26 @@ impl<'a> Layout<'a> for PglorLsq<'a> {
         optional: 0,
         group: Some(GroupShape { id: "extra", width: 1, min: 0, max: 4 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("horizontal_error", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("altitude_error", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Field("horizontal_speed", 1),
+        JsonMember::Field("horizontal_speed_error", 1),
+        JsonMember::Field("vertical_speed", 1),
+        JsonMember::Field("vertical_speed_error", 1),
+        JsonMember::Field("track", 1),
+        JsonMember::Field("track_error", 1),
+        JsonMember::Field("satellites_used", 1),
+        JsonMember::Values("extra", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -160,94 +178,25 @@ impl<'a> Layout<'a> for PglorLsq<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("LSQ")?;
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.horizontal_error)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_error)?;
-        w.field(&self.vdop)?;
-        w.field(&self.horizontal_speed)?;
-        w.field(&self.horizontal_speed_error)?;
-        w.field(&self.vertical_speed)?;
-        w.field(&self.vertical_speed_error)?;
-        w.field(&self.track)?;
-        w.field(&self.track_error)?;
-        w.field(&self.satellites_used)?;
-        w.texts(&self.extra)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("LSQ")?;
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.horizontal_error)?;
-        w.field(&self.hdop)?;
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_error)?;
-        w.field(&self.vdop)?;
-        w.field(&self.horizontal_speed)?;
-        w.field(&self.horizontal_speed_error)?;
-        w.field(&self.vertical_speed)?;
-        w.field(&self.vertical_speed_error)?;
-        w.field(&self.track)?;
-        w.field(&self.track_error)?;
-        w.field(&self.satellites_used)?;
-        w.texts(&self.extra)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "LSQ")?;
-        j.field("time", &self.time)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("horizontal_error", &self.horizontal_error)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("altitude_error", &self.altitude_error)?;
-        j.field("vdop", &self.vdop)?;
-        j.field("horizontal_speed", &self.horizontal_speed)?;
-        j.field("horizontal_speed_error", &self.horizontal_speed_error)?;
-        j.field("vertical_speed", &self.vertical_speed)?;
-        j.field("vertical_speed_error", &self.vertical_speed_error)?;
-        j.field("track", &self.track)?;
-        j.field("track_error", &self.track_error)?;
-        j.field("satellites_used", &self.satellites_used)?;
-        j.texts("extra", &self.extra)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "horizontal_error", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "altitude_error", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.member(fields, "horizontal_speed", 1)?;
-        out.member(fields, "horizontal_speed_error", 1)?;
-        out.member(fields, "vertical_speed", 1)?;
-        out.member(fields, "vertical_speed_error", 1)?;
-        out.member(fields, "track", 1)?;
-        out.member(fields, "track_error", 1)?;
-        out.member(fields, "satellites_used", 1)?;
-        for value in json::list(fields, "extra")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "LSQ")?;
+        sink.field("time", &self.time)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("horizontal_error", &self.horizontal_error)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("altitude_error", &self.altitude_error)?;
+        sink.field("vdop", &self.vdop)?;
+        sink.field("horizontal_speed", &self.horizontal_speed)?;
+        sink.field("horizontal_speed_error", &self.horizontal_speed_error)?;
+        sink.field("vertical_speed", &self.vertical_speed)?;
+        sink.field("vertical_speed_error", &self.vertical_speed_error)?;
+        sink.field("track", &self.track)?;
+        sink.field("track_error", &self.track_error)?;
+        sink.field("satellites_used", &self.satellites_used)?;
+        sink.texts("extra", &self.extra)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, GroupShape, JsonFields, Layout, Number, Range, Read,
-    Shape, Texts, Time, WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range, Read,
+    Shape, Texts, Time,
 };
 use crate::LayoutId;
 
@@ -86,6 +84,20 @@ impl<'a> Layout<'a> for PglorPwr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGLOR");
     const SHAPE: Shape = Shape { sentence: "PGLOR_PWR", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("current_label", 1),
+        JsonMember::Field("current", 1),
+        JsonMember::Field("rf_on_label", 1),
+        JsonMember::Field("rf_on_time", 1),
+        JsonMember::Field("osc_on_label", 1),
+        JsonMember::Field("osc_on_time", 1),
+        JsonMember::Field("interval_label", 1),
+        JsonMember::Field("interval", 1),
+        JsonMember::Field("time_label", 1),
+        JsonMember::Field("time", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -128,68 +140,19 @@ impl<'a> Layout<'a> for PglorPwr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("PWR")?;
-        w.field(&self.current_label)?;
-        w.field(&self.current)?;
-        w.field(&self.rf_on_label)?;
-        w.field(&self.rf_on_time)?;
-        w.field(&self.osc_on_label)?;
-        w.field(&self.osc_on_time)?;
-        w.field(&self.interval_label)?;
-        w.field(&self.interval)?;
-        w.field(&self.time_label)?;
-        w.field(&self.time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("PWR")?;
-        w.field(&self.current_label)?;
-        w.field(&self.current)?;
-        w.field(&self.rf_on_label)?;
-        w.field(&self.rf_on_time)?;
-        w.field(&self.osc_on_label)?;
-        w.field(&self.osc_on_time)?;
-        w.field(&self.interval_label)?;
-        w.field(&self.interval)?;
-        w.field(&self.time_label)?;
-        w.field(&self.time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "PWR")?;
-        j.field("current_label", &self.current_label)?;
-        j.field("current", &self.current)?;
-        j.field("rf_on_label", &self.rf_on_label)?;
-        j.field("rf_on_time", &self.rf_on_time)?;
-        j.field("osc_on_label", &self.osc_on_label)?;
-        j.field("osc_on_time", &self.osc_on_time)?;
-        j.field("interval_label", &self.interval_label)?;
-        j.field("interval", &self.interval)?;
-        j.field("time_label", &self.time_label)?;
-        j.field("time", &self.time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "current_label", 1)?;
-        out.member(fields, "current", 1)?;
-        out.member(fields, "rf_on_label", 1)?;
-        out.member(fields, "rf_on_time", 1)?;
-        out.member(fields, "osc_on_label", 1)?;
-        out.member(fields, "osc_on_time", 1)?;
-        out.member(fields, "interval_label", 1)?;
-        out.member(fields, "interval", 1)?;
-        out.member(fields, "time_label", 1)?;
-        out.member(fields, "time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "PWR")?;
+        sink.field("current_label", &self.current_label)?;
+        sink.field("current", &self.current)?;
+        sink.field("rf_on_label", &self.rf_on_label)?;
+        sink.field("rf_on_time", &self.rf_on_time)?;
+        sink.field("osc_on_label", &self.osc_on_label)?;
+        sink.field("osc_on_time", &self.osc_on_time)?;
+        sink.field("interval_label", &self.interval_label)?;
+        sink.field("interval", &self.interval)?;
+        sink.field("time_label", &self.time_label)?;
+        sink.field("time", &self.time)?;
         Ok(())
     }
 }
@@ -275,6 +238,24 @@ impl<'a> Layout<'a> for PglorPwrV2<'a> {
     const VARIANT: Option<&'static str> = Some("v2");
     const FRAMING: Framing = Framing::Proprietary("PGLOR");
     const SHAPE: Shape = Shape { sentence: "PGLOR_PWR", fixed: 16, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("power_label", 1),
+        JsonMember::Field("average_power", 1),
+        JsonMember::Field("rf_on_label", 1),
+        JsonMember::Field("rf_on_time", 1),
+        JsonMember::Field("run_label", 1),
+        JsonMember::Field("run_time", 1),
+        JsonMember::Field("osc_on_label", 1),
+        JsonMember::Field("osc_on_time", 1),
+        JsonMember::Field("sleep_label", 1),
+        JsonMember::Field("sleep_time", 1),
+        JsonMember::Field("interval_label", 1),
+        JsonMember::Field("interval", 1),
+        JsonMember::Field("time_label", 1),
+        JsonMember::Field("time", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -325,84 +306,23 @@ impl<'a> Layout<'a> for PglorPwrV2<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("PWR")?;
-        w.field(&self.power_label)?;
-        w.field(&self.average_power)?;
-        w.field(&self.rf_on_label)?;
-        w.field(&self.rf_on_time)?;
-        w.field(&self.run_label)?;
-        w.field(&self.run_time)?;
-        w.field(&self.osc_on_label)?;
-        w.field(&self.osc_on_time)?;
-        w.field(&self.sleep_label)?;
-        w.field(&self.sleep_time)?;
-        w.field(&self.interval_label)?;
-        w.field(&self.interval)?;
-        w.field(&self.time_label)?;
-        w.field(&self.time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("PWR")?;
-        w.field(&self.power_label)?;
-        w.field(&self.average_power)?;
-        w.field(&self.rf_on_label)?;
-        w.field(&self.rf_on_time)?;
-        w.field(&self.run_label)?;
-        w.field(&self.run_time)?;
-        w.field(&self.osc_on_label)?;
-        w.field(&self.osc_on_time)?;
-        w.field(&self.sleep_label)?;
-        w.field(&self.sleep_time)?;
-        w.field(&self.interval_label)?;
-        w.field(&self.interval)?;
-        w.field(&self.time_label)?;
-        w.field(&self.time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "PWR")?;
-        j.field("power_label", &self.power_label)?;
-        j.field("average_power", &self.average_power)?;
-        j.field("rf_on_label", &self.rf_on_label)?;
-        j.field("rf_on_time", &self.rf_on_time)?;
-        j.field("run_label", &self.run_label)?;
-        j.field("run_time", &self.run_time)?;
-        j.field("osc_on_label", &self.osc_on_label)?;
-        j.field("osc_on_time", &self.osc_on_time)?;
-        j.field("sleep_label", &self.sleep_label)?;
-        j.field("sleep_time", &self.sleep_time)?;
-        j.field("interval_label", &self.interval_label)?;
-        j.field("interval", &self.interval)?;
-        j.field("time_label", &self.time_label)?;
-        j.field("time", &self.time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "power_label", 1)?;
-        out.member(fields, "average_power", 1)?;
-        out.member(fields, "rf_on_label", 1)?;
-        out.member(fields, "rf_on_time", 1)?;
-        out.member(fields, "run_label", 1)?;
-        out.member(fields, "run_time", 1)?;
-        out.member(fields, "osc_on_label", 1)?;
-        out.member(fields, "osc_on_time", 1)?;
-        out.member(fields, "sleep_label", 1)?;
-        out.member(fields, "sleep_time", 1)?;
-        out.member(fields, "interval_label", 1)?;
-        out.member(fields, "interval", 1)?;
-        out.member(fields, "time_label", 1)?;
-        out.member(fields, "time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "PWR")?;
+        sink.field("power_label", &self.power_label)?;
+        sink.field("average_power", &self.average_power)?;
+        sink.field("rf_on_label", &self.rf_on_label)?;
+        sink.field("rf_on_time", &self.rf_on_time)?;
+        sink.field("run_label", &self.run_label)?;
+        sink.field("run_time", &self.run_time)?;
+        sink.field("osc_on_label", &self.osc_on_label)?;
+        sink.field("osc_on_time", &self.osc_on_time)?;
+        sink.field("sleep_label", &self.sleep_label)?;
+        sink.field("sleep_time", &self.sleep_time)?;
+        sink.field("interval_label", &self.interval_label)?;
+        sink.field("interval", &self.interval)?;
+        sink.field("time_label", &self.time_label)?;
+        sink.field("time", &self.time)?;
         Ok(())
     }
 }
@@ -490,6 +410,21 @@ impl<'a> Layout<'a> for PglorPwrV4<'a> {
         optional: 0,
         group: Some(GroupShape { id: "extra", width: 1, min: 0, max: 16 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("current_label", 1),
+        JsonMember::Field("current", 1),
+        JsonMember::Field("rf_on_label", 1),
+        JsonMember::Field("rf_on_time", 1),
+        JsonMember::Field("osc_on_label", 1),
+        JsonMember::Field("osc_on_time", 1),
+        JsonMember::Field("interval_label", 1),
+        JsonMember::Field("interval", 1),
+        JsonMember::Field("time_label", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Values("extra", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -534,74 +469,20 @@ impl<'a> Layout<'a> for PglorPwrV4<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("PWR")?;
-        w.field(&self.current_label)?;
-        w.field(&self.current)?;
-        w.field(&self.rf_on_label)?;
-        w.field(&self.rf_on_time)?;
-        w.field(&self.osc_on_label)?;
-        w.field(&self.osc_on_time)?;
-        w.field(&self.interval_label)?;
-        w.field(&self.interval)?;
-        w.field(&self.time_label)?;
-        w.field(&self.time)?;
-        w.texts(&self.extra)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("PWR")?;
-        w.field(&self.current_label)?;
-        w.field(&self.current)?;
-        w.field(&self.rf_on_label)?;
-        w.field(&self.rf_on_time)?;
-        w.field(&self.osc_on_label)?;
-        w.field(&self.osc_on_time)?;
-        w.field(&self.interval_label)?;
-        w.field(&self.interval)?;
-        w.field(&self.time_label)?;
-        w.field(&self.time)?;
-        w.texts(&self.extra)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "PWR")?;
-        j.field("current_label", &self.current_label)?;
-        j.field("current", &self.current)?;
-        j.field("rf_on_label", &self.rf_on_label)?;
-        j.field("rf_on_time", &self.rf_on_time)?;
-        j.field("osc_on_label", &self.osc_on_label)?;
-        j.field("osc_on_time", &self.osc_on_time)?;
-        j.field("interval_label", &self.interval_label)?;
-        j.field("interval", &self.interval)?;
-        j.field("time_label", &self.time_label)?;
-        j.field("time", &self.time)?;
-        j.texts("extra", &self.extra)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "current_label", 1)?;
-        out.member(fields, "current", 1)?;
-        out.member(fields, "rf_on_label", 1)?;
-        out.member(fields, "rf_on_time", 1)?;
-        out.member(fields, "osc_on_label", 1)?;
-        out.member(fields, "osc_on_time", 1)?;
-        out.member(fields, "interval_label", 1)?;
-        out.member(fields, "interval", 1)?;
-        out.member(fields, "time_label", 1)?;
-        out.member(fields, "time", 1)?;
-        for value in json::list(fields, "extra")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "PWR")?;
+        sink.field("current_label", &self.current_label)?;
+        sink.field("current", &self.current)?;
+        sink.field("rf_on_label", &self.rf_on_label)?;
+        sink.field("rf_on_time", &self.rf_on_time)?;
+        sink.field("osc_on_label", &self.osc_on_label)?;
+        sink.field("osc_on_time", &self.osc_on_time)?;
+        sink.field("interval_label", &self.interval_label)?;
+        sink.field("interval", &self.interval)?;
+        sink.field("time_label", &self.time_label)?;
+        sink.field("time", &self.time)?;
+        sink.texts("extra", &self.extra)?;
         Ok(())
     }
 }

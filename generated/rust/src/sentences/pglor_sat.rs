@@ -10,11 +10,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, Group, GroupShape, Hex, JsonFields, Layout,
-    Number, Range, Read, Reader, Shape, WireWriter,
+    Bound, Checksum, Entry, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout,
+    Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -48,33 +46,13 @@ impl<'a> PglorSatSatellite<'a> {
         self.info = f.hex()?;
         Ok(())
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.satellite)?;
-        w.field(&self.cn0)?;
-        w.field(&self.info)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.satellite)?;
-        w.field(&self.cn0)?;
-        w.field(&self.info)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("satellite", &self.satellite)?;
-        j.field("cn0", &self.cn0)?;
-        j.field("info", &self.info)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "satellite", 1)?;
-        out.member(entry, "cn0", 1)?;
-        out.member(entry, "info", 1)?;
+impl Entry for PglorSatSatellite<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("satellite", &self.satellite)?;
+        sink.field("cn0", &self.cn0)?;
+        sink.field("info", &self.info)?;
         Ok(())
     }
 }
@@ -140,6 +118,13 @@ impl<'a> Layout<'a> for PglorSat<'a> {
         optional: 0,
         group: Some(GroupShape { id: "satellites", width: 3, min: 0, max: 16 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("total_sentences", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Entries("satellites", &[("satellite", 1), ("cn0", 1), ("info", 1)]),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -168,46 +153,12 @@ impl<'a> Layout<'a> for PglorSat<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("SAT")?;
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        for entry in &self.satellites {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("SAT")?;
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        for entry in &self.satellites {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "SAT")?;
-        j.field("total_sentences", &self.total_sentences)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.entries("satellites", &self.satellites, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "total_sentences", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        for entry in json::list(fields, "satellites")? {
-            PglorSatSatellite::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "SAT")?;
+        sink.field("total_sentences", &self.total_sentences)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.entries("satellites", &self.satellites)?;
         Ok(())
     }
 }
@@ -249,33 +200,13 @@ impl<'a> PglorSatV1Satellite<'a> {
         self.info = f.hex()?;
         Ok(())
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.satellite)?;
-        w.field(&self.cn0)?;
-        w.field(&self.info)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.satellite)?;
-        w.field(&self.cn0)?;
-        w.field(&self.info)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("satellite", &self.satellite)?;
-        j.field("cn0", &self.cn0)?;
-        j.field("info", &self.info)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "satellite", 1)?;
-        out.member(entry, "cn0", 1)?;
-        out.member(entry, "info", 1)?;
+impl Entry for PglorSatV1Satellite<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("satellite", &self.satellite)?;
+        sink.field("cn0", &self.cn0)?;
+        sink.field("info", &self.info)?;
         Ok(())
     }
 }
@@ -328,6 +259,11 @@ impl<'a> Layout<'a> for PglorSatV1<'a> {
         optional: 0,
         group: Some(GroupShape { id: "satellites", width: 3, min: 0, max: 24 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Entries("satellites", &[("satellite", 1), ("cn0", 1), ("info", 1)]),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -352,38 +288,10 @@ impl<'a> Layout<'a> for PglorSatV1<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("SAT")?;
-        for entry in &self.satellites {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("SAT")?;
-        for entry in &self.satellites {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "SAT")?;
-        j.entries("satellites", &self.satellites, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        for entry in json::list(fields, "satellites")? {
-            PglorSatV1Satellite::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "SAT")?;
+        sink.entries("satellites", &self.satellites)?;
         Ok(())
     }
 }
@@ -424,33 +332,13 @@ impl PglorSatV0Satellite {
         self.info = f.hex()?;
         Ok(())
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.prn)?;
-        w.field(&self.cn0)?;
-        w.field(&self.info)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.prn)?;
-        w.field(&self.cn0)?;
-        w.field(&self.info)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("prn", &self.prn)?;
-        j.field("cn0", &self.cn0)?;
-        j.field("info", &self.info)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "prn", 1)?;
-        out.member(entry, "cn0", 1)?;
-        out.member(entry, "info", 1)?;
+impl Entry for PglorSatV0Satellite {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("prn", &self.prn)?;
+        sink.field("cn0", &self.cn0)?;
+        sink.field("info", &self.info)?;
         Ok(())
     }
 }
@@ -503,6 +391,11 @@ impl<'a> Layout<'a> for PglorSatV0<'a> {
         optional: 0,
         group: Some(GroupShape { id: "satellites", width: 3, min: 0, max: 24 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Entries("satellites", &[("prn", 1), ("cn0", 1), ("info", 1)]),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -527,38 +420,10 @@ impl<'a> Layout<'a> for PglorSatV0<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("SAT")?;
-        for entry in &self.satellites {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("SAT")?;
-        for entry in &self.satellites {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "SAT")?;
-        j.entries("satellites", &self.satellites, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        for entry in json::list(fields, "satellites")? {
-            PglorSatV0Satellite::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "SAT")?;
+        sink.entries("satellites", &self.satellites)?;
         Ok(())
     }
 }

@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -108,6 +105,30 @@ impl<'a> Layout<'a> for PglorSio<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGLOR");
     const SHAPE: Shape = Shape { sentence: "PGLOR_SIO", fixed: 22, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("tx_errors_label", 1),
+        JsonMember::Field("tx_errors", 1),
+        JsonMember::Field("rx_errors_label", 1),
+        JsonMember::Field("rx_errors", 1),
+        JsonMember::Field("tx_bytes_label", 1),
+        JsonMember::Field("tx_bytes", 1),
+        JsonMember::Field("rx_bytes_label", 1),
+        JsonMember::Field("rx_bytes", 1),
+        JsonMember::Field("malformed_label", 1),
+        JsonMember::Field("malformed_packets", 1),
+        JsonMember::Field("clock_increment_label", 1),
+        JsonMember::Field("clock_increment", 1),
+        JsonMember::Field("time_in_gll_label", 1),
+        JsonMember::Field("max_time_in_gll", 1),
+        JsonMember::Field("total_time_in_gll", 1),
+        JsonMember::Field("time_outside_gll_label", 1),
+        JsonMember::Field("max_time_outside_gll", 1),
+        JsonMember::Field("total_time_outside_gll", 1),
+        JsonMember::Field("time_delta_label", 1),
+        JsonMember::Field("host_chip_time_delta", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -170,108 +191,29 @@ impl<'a> Layout<'a> for PglorSio<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("SIO")?;
-        w.field(&self.tx_errors_label)?;
-        w.field(&self.tx_errors)?;
-        w.field(&self.rx_errors_label)?;
-        w.field(&self.rx_errors)?;
-        w.field(&self.tx_bytes_label)?;
-        w.field(&self.tx_bytes)?;
-        w.field(&self.rx_bytes_label)?;
-        w.field(&self.rx_bytes)?;
-        w.field(&self.malformed_label)?;
-        w.field(&self.malformed_packets)?;
-        w.field(&self.clock_increment_label)?;
-        w.field(&self.clock_increment)?;
-        w.field(&self.time_in_gll_label)?;
-        w.field(&self.max_time_in_gll)?;
-        w.field(&self.total_time_in_gll)?;
-        w.field(&self.time_outside_gll_label)?;
-        w.field(&self.max_time_outside_gll)?;
-        w.field(&self.total_time_outside_gll)?;
-        w.field(&self.time_delta_label)?;
-        w.field(&self.host_chip_time_delta)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("SIO")?;
-        w.field(&self.tx_errors_label)?;
-        w.field(&self.tx_errors)?;
-        w.field(&self.rx_errors_label)?;
-        w.field(&self.rx_errors)?;
-        w.field(&self.tx_bytes_label)?;
-        w.field(&self.tx_bytes)?;
-        w.field(&self.rx_bytes_label)?;
-        w.field(&self.rx_bytes)?;
-        w.field(&self.malformed_label)?;
-        w.field(&self.malformed_packets)?;
-        w.field(&self.clock_increment_label)?;
-        w.field(&self.clock_increment)?;
-        w.field(&self.time_in_gll_label)?;
-        w.field(&self.max_time_in_gll)?;
-        w.field(&self.total_time_in_gll)?;
-        w.field(&self.time_outside_gll_label)?;
-        w.field(&self.max_time_outside_gll)?;
-        w.field(&self.total_time_outside_gll)?;
-        w.field(&self.time_delta_label)?;
-        w.field(&self.host_chip_time_delta)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "SIO")?;
-        j.field("tx_errors_label", &self.tx_errors_label)?;
-        j.field("tx_errors", &self.tx_errors)?;
-        j.field("rx_errors_label", &self.rx_errors_label)?;
-        j.field("rx_errors", &self.rx_errors)?;
-        j.field("tx_bytes_label", &self.tx_bytes_label)?;
-        j.field("tx_bytes", &self.tx_bytes)?;
-        j.field("rx_bytes_label", &self.rx_bytes_label)?;
-        j.field("rx_bytes", &self.rx_bytes)?;
-        j.field("malformed_label", &self.malformed_label)?;
-        j.field("malformed_packets", &self.malformed_packets)?;
-        j.field("clock_increment_label", &self.clock_increment_label)?;
-        j.field("clock_increment", &self.clock_increment)?;
-        j.field("time_in_gll_label", &self.time_in_gll_label)?;
-        j.field("max_time_in_gll", &self.max_time_in_gll)?;
-        j.field("total_time_in_gll", &self.total_time_in_gll)?;
-        j.field("time_outside_gll_label", &self.time_outside_gll_label)?;
-        j.field("max_time_outside_gll", &self.max_time_outside_gll)?;
-        j.field("total_time_outside_gll", &self.total_time_outside_gll)?;
-        j.field("time_delta_label", &self.time_delta_label)?;
-        j.field("host_chip_time_delta", &self.host_chip_time_delta)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "tx_errors_label", 1)?;
-        out.member(fields, "tx_errors", 1)?;
-        out.member(fields, "rx_errors_label", 1)?;
-        out.member(fields, "rx_errors", 1)?;
-        out.member(fields, "tx_bytes_label", 1)?;
-        out.member(fields, "tx_bytes", 1)?;
-        out.member(fields, "rx_bytes_label", 1)?;
-        out.member(fields, "rx_bytes", 1)?;
-        out.member(fields, "malformed_label", 1)?;
-        out.member(fields, "malformed_packets", 1)?;
-        out.member(fields, "clock_increment_label", 1)?;
-        out.member(fields, "clock_increment", 1)?;
-        out.member(fields, "time_in_gll_label", 1)?;
-        out.member(fields, "max_time_in_gll", 1)?;
-        out.member(fields, "total_time_in_gll", 1)?;
-        out.member(fields, "time_outside_gll_label", 1)?;
-        out.member(fields, "max_time_outside_gll", 1)?;
-        out.member(fields, "total_time_outside_gll", 1)?;
-        out.member(fields, "time_delta_label", 1)?;
-        out.member(fields, "host_chip_time_delta", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "SIO")?;
+        sink.field("tx_errors_label", &self.tx_errors_label)?;
+        sink.field("tx_errors", &self.tx_errors)?;
+        sink.field("rx_errors_label", &self.rx_errors_label)?;
+        sink.field("rx_errors", &self.rx_errors)?;
+        sink.field("tx_bytes_label", &self.tx_bytes_label)?;
+        sink.field("tx_bytes", &self.tx_bytes)?;
+        sink.field("rx_bytes_label", &self.rx_bytes_label)?;
+        sink.field("rx_bytes", &self.rx_bytes)?;
+        sink.field("malformed_label", &self.malformed_label)?;
+        sink.field("malformed_packets", &self.malformed_packets)?;
+        sink.field("clock_increment_label", &self.clock_increment_label)?;
+        sink.field("clock_increment", &self.clock_increment)?;
+        sink.field("time_in_gll_label", &self.time_in_gll_label)?;
+        sink.field("max_time_in_gll", &self.max_time_in_gll)?;
+        sink.field("total_time_in_gll", &self.total_time_in_gll)?;
+        sink.field("time_outside_gll_label", &self.time_outside_gll_label)?;
+        sink.field("max_time_outside_gll", &self.max_time_outside_gll)?;
+        sink.field("total_time_outside_gll", &self.total_time_outside_gll)?;
+        sink.field("time_delta_label", &self.time_delta_label)?;
+        sink.field("host_chip_time_delta", &self.host_chip_time_delta)?;
         Ok(())
     }
 }
@@ -358,6 +300,26 @@ impl<'a> Layout<'a> for PglorSioV0<'a> {
     const VARIANT: Option<&'static str> = Some("v0");
     const FRAMING: Framing = Framing::Proprietary("PGLOR");
     const SHAPE: Shape = Shape { sentence: "PGLOR_SIO", fixed: 18, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("tx_errors_label", 1),
+        JsonMember::Field("tx_errors", 1),
+        JsonMember::Field("rx_errors_label", 1),
+        JsonMember::Field("rx_errors", 1),
+        JsonMember::Field("tx_bytes_label", 1),
+        JsonMember::Field("tx_bytes", 1),
+        JsonMember::Field("rx_bytes_label", 1),
+        JsonMember::Field("rx_bytes", 1),
+        JsonMember::Field("clock_increment_label", 1),
+        JsonMember::Field("clock_increment", 1),
+        JsonMember::Field("time_in_gll_label", 1),
+        JsonMember::Field("max_time_in_gll", 1),
+        JsonMember::Field("time_outside_gll_label", 1),
+        JsonMember::Field("max_time_outside_gll", 1),
+        JsonMember::Field("time_delta_label", 1),
+        JsonMember::Field("host_chip_time_delta", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -412,92 +374,25 @@ impl<'a> Layout<'a> for PglorSioV0<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("SIO")?;
-        w.field(&self.tx_errors_label)?;
-        w.field(&self.tx_errors)?;
-        w.field(&self.rx_errors_label)?;
-        w.field(&self.rx_errors)?;
-        w.field(&self.tx_bytes_label)?;
-        w.field(&self.tx_bytes)?;
-        w.field(&self.rx_bytes_label)?;
-        w.field(&self.rx_bytes)?;
-        w.field(&self.clock_increment_label)?;
-        w.field(&self.clock_increment)?;
-        w.field(&self.time_in_gll_label)?;
-        w.field(&self.max_time_in_gll)?;
-        w.field(&self.time_outside_gll_label)?;
-        w.field(&self.max_time_outside_gll)?;
-        w.field(&self.time_delta_label)?;
-        w.field(&self.host_chip_time_delta)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("SIO")?;
-        w.field(&self.tx_errors_label)?;
-        w.field(&self.tx_errors)?;
-        w.field(&self.rx_errors_label)?;
-        w.field(&self.rx_errors)?;
-        w.field(&self.tx_bytes_label)?;
-        w.field(&self.tx_bytes)?;
-        w.field(&self.rx_bytes_label)?;
-        w.field(&self.rx_bytes)?;
-        w.field(&self.clock_increment_label)?;
-        w.field(&self.clock_increment)?;
-        w.field(&self.time_in_gll_label)?;
-        w.field(&self.max_time_in_gll)?;
-        w.field(&self.time_outside_gll_label)?;
-        w.field(&self.max_time_outside_gll)?;
-        w.field(&self.time_delta_label)?;
-        w.field(&self.host_chip_time_delta)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "SIO")?;
-        j.field("tx_errors_label", &self.tx_errors_label)?;
-        j.field("tx_errors", &self.tx_errors)?;
-        j.field("rx_errors_label", &self.rx_errors_label)?;
-        j.field("rx_errors", &self.rx_errors)?;
-        j.field("tx_bytes_label", &self.tx_bytes_label)?;
-        j.field("tx_bytes", &self.tx_bytes)?;
-        j.field("rx_bytes_label", &self.rx_bytes_label)?;
-        j.field("rx_bytes", &self.rx_bytes)?;
-        j.field("clock_increment_label", &self.clock_increment_label)?;
-        j.field("clock_increment", &self.clock_increment)?;
-        j.field("time_in_gll_label", &self.time_in_gll_label)?;
-        j.field("max_time_in_gll", &self.max_time_in_gll)?;
-        j.field("time_outside_gll_label", &self.time_outside_gll_label)?;
-        j.field("max_time_outside_gll", &self.max_time_outside_gll)?;
-        j.field("time_delta_label", &self.time_delta_label)?;
-        j.field("host_chip_time_delta", &self.host_chip_time_delta)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "tx_errors_label", 1)?;
-        out.member(fields, "tx_errors", 1)?;
-        out.member(fields, "rx_errors_label", 1)?;
-        out.member(fields, "rx_errors", 1)?;
-        out.member(fields, "tx_bytes_label", 1)?;
-        out.member(fields, "tx_bytes", 1)?;
-        out.member(fields, "rx_bytes_label", 1)?;
-        out.member(fields, "rx_bytes", 1)?;
-        out.member(fields, "clock_increment_label", 1)?;
-        out.member(fields, "clock_increment", 1)?;
-        out.member(fields, "time_in_gll_label", 1)?;
-        out.member(fields, "max_time_in_gll", 1)?;
-        out.member(fields, "time_outside_gll_label", 1)?;
-        out.member(fields, "max_time_outside_gll", 1)?;
-        out.member(fields, "time_delta_label", 1)?;
-        out.member(fields, "host_chip_time_delta", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "SIO")?;
+        sink.field("tx_errors_label", &self.tx_errors_label)?;
+        sink.field("tx_errors", &self.tx_errors)?;
+        sink.field("rx_errors_label", &self.rx_errors_label)?;
+        sink.field("rx_errors", &self.rx_errors)?;
+        sink.field("tx_bytes_label", &self.tx_bytes_label)?;
+        sink.field("tx_bytes", &self.tx_bytes)?;
+        sink.field("rx_bytes_label", &self.rx_bytes_label)?;
+        sink.field("rx_bytes", &self.rx_bytes)?;
+        sink.field("clock_increment_label", &self.clock_increment_label)?;
+        sink.field("clock_increment", &self.clock_increment)?;
+        sink.field("time_in_gll_label", &self.time_in_gll_label)?;
+        sink.field("max_time_in_gll", &self.max_time_in_gll)?;
+        sink.field("time_outside_gll_label", &self.time_outside_gll_label)?;
+        sink.field("max_time_outside_gll", &self.max_time_outside_gll)?;
+        sink.field("time_delta_label", &self.time_delta_label)?;
+        sink.field("host_chip_time_delta", &self.host_chip_time_delta)?;
         Ok(())
     }
 }

@@ -13,11 +13,9 @@ use core::fmt;
 use crate::enums::{
     BroadcomGlorConfidence, BroadcomGlorLocationRequest, BroadcomGlorPowerSave, BroadcomGlorVelTrackQuality,
 };
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, GroupShape, Hex, JsonFields, Layout, Number, Range,
-    Read, Shape, Texts, Time, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember, Layout, Number, Range,
+    Read, Shape, Texts, Time,
 };
 use crate::LayoutId;
 
@@ -109,6 +107,26 @@ impl<'a> Layout<'a> for PglorSta<'a> {
         optional: 0,
         group: Some(GroupShape { id: "extra", width: 1, min: 0, max: 16 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("rtc_initial_error", 1),
+        JsonMember::Field("rtc_uncertainty", 1),
+        JsonMember::Field("oscillator_offset", 1),
+        JsonMember::Field("oscillator_uncertainty", 1),
+        JsonMember::Field("position_uncertainty", 1),
+        JsonMember::Field("velocity_track_quality", 1),
+        JsonMember::Field("power_label", 1),
+        JsonMember::Field("power_save", 1),
+        JsonMember::Field("location_label", 1),
+        JsonMember::Field("location_request", 1),
+        JsonMember::Field("confidence_label", 1),
+        JsonMember::Field("confidence", 1),
+        JsonMember::Field("source_label", 1),
+        JsonMember::Field("source", 1),
+        JsonMember::Values("extra", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -163,94 +181,25 @@ impl<'a> Layout<'a> for PglorSta<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("STA")?;
-        w.field(&self.time)?;
-        w.field(&self.rtc_initial_error)?;
-        w.field(&self.rtc_uncertainty)?;
-        w.field(&self.oscillator_offset)?;
-        w.field(&self.oscillator_uncertainty)?;
-        w.field(&self.position_uncertainty)?;
-        w.field(&self.velocity_track_quality)?;
-        w.field(&self.power_label)?;
-        w.field(&self.power_save)?;
-        w.field(&self.location_label)?;
-        w.field(&self.location_request)?;
-        w.field(&self.confidence_label)?;
-        w.field(&self.confidence)?;
-        w.field(&self.source_label)?;
-        w.field(&self.source)?;
-        w.texts(&self.extra)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("STA")?;
-        w.field(&self.time)?;
-        w.field(&self.rtc_initial_error)?;
-        w.field(&self.rtc_uncertainty)?;
-        w.field(&self.oscillator_offset)?;
-        w.field(&self.oscillator_uncertainty)?;
-        w.field(&self.position_uncertainty)?;
-        w.field(&self.velocity_track_quality)?;
-        w.field(&self.power_label)?;
-        w.field(&self.power_save)?;
-        w.field(&self.location_label)?;
-        w.field(&self.location_request)?;
-        w.field(&self.confidence_label)?;
-        w.field(&self.confidence)?;
-        w.field(&self.source_label)?;
-        w.field(&self.source)?;
-        w.texts(&self.extra)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "STA")?;
-        j.field("time", &self.time)?;
-        j.field("rtc_initial_error", &self.rtc_initial_error)?;
-        j.field("rtc_uncertainty", &self.rtc_uncertainty)?;
-        j.field("oscillator_offset", &self.oscillator_offset)?;
-        j.field("oscillator_uncertainty", &self.oscillator_uncertainty)?;
-        j.field("position_uncertainty", &self.position_uncertainty)?;
-        j.field("velocity_track_quality", &self.velocity_track_quality)?;
-        j.field("power_label", &self.power_label)?;
-        j.field("power_save", &self.power_save)?;
-        j.field("location_label", &self.location_label)?;
-        j.field("location_request", &self.location_request)?;
-        j.field("confidence_label", &self.confidence_label)?;
-        j.field("confidence", &self.confidence)?;
-        j.field("source_label", &self.source_label)?;
-        j.field("source", &self.source)?;
-        j.texts("extra", &self.extra)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "rtc_initial_error", 1)?;
-        out.member(fields, "rtc_uncertainty", 1)?;
-        out.member(fields, "oscillator_offset", 1)?;
-        out.member(fields, "oscillator_uncertainty", 1)?;
-        out.member(fields, "position_uncertainty", 1)?;
-        out.member(fields, "velocity_track_quality", 1)?;
-        out.member(fields, "power_label", 1)?;
-        out.member(fields, "power_save", 1)?;
-        out.member(fields, "location_label", 1)?;
-        out.member(fields, "location_request", 1)?;
-        out.member(fields, "confidence_label", 1)?;
-        out.member(fields, "confidence", 1)?;
-        out.member(fields, "source_label", 1)?;
-        out.member(fields, "source", 1)?;
-        for value in json::list(fields, "extra")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "STA")?;
+        sink.field("time", &self.time)?;
+        sink.field("rtc_initial_error", &self.rtc_initial_error)?;
+        sink.field("rtc_uncertainty", &self.rtc_uncertainty)?;
+        sink.field("oscillator_offset", &self.oscillator_offset)?;
+        sink.field("oscillator_uncertainty", &self.oscillator_uncertainty)?;
+        sink.field("position_uncertainty", &self.position_uncertainty)?;
+        sink.field("velocity_track_quality", &self.velocity_track_quality)?;
+        sink.field("power_label", &self.power_label)?;
+        sink.field("power_save", &self.power_save)?;
+        sink.field("location_label", &self.location_label)?;
+        sink.field("location_request", &self.location_request)?;
+        sink.field("confidence_label", &self.confidence_label)?;
+        sink.field("confidence", &self.confidence)?;
+        sink.field("source_label", &self.source_label)?;
+        sink.field("source", &self.source)?;
+        sink.texts("extra", &self.extra)?;
         Ok(())
     }
 }

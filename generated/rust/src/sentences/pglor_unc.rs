@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, Time,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -86,6 +83,19 @@ impl<'a> Layout<'a> for PglorUnc {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGLOR");
     const SHAPE: Shape = Shape { sentence: "PGLOR_UNC", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("sentence_id", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("time_uncertainty", 1),
+        JsonMember::Field("horizontal_uncertainty", 1),
+        JsonMember::Field("vertical_uncertainty", 1),
+        JsonMember::Field("speed_rms", 1),
+        JsonMember::Field("heading_rms", 1),
+        JsonMember::Field("ellipse_major", 1),
+        JsonMember::Field("ellipse_minor", 1),
+        JsonMember::Field("ellipse_orientation", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -126,64 +136,18 @@ impl<'a> Layout<'a> for PglorUnc {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.keyword("UNC")?;
-        w.field(&self.time)?;
-        w.field(&self.time_uncertainty)?;
-        w.field(&self.horizontal_uncertainty)?;
-        w.field(&self.vertical_uncertainty)?;
-        w.field(&self.speed_rms)?;
-        w.field(&self.heading_rms)?;
-        w.field(&self.ellipse_major)?;
-        w.field(&self.ellipse_minor)?;
-        w.field(&self.ellipse_orientation)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.keyword("UNC")?;
-        w.field(&self.time)?;
-        w.field(&self.time_uncertainty)?;
-        w.field(&self.horizontal_uncertainty)?;
-        w.field(&self.vertical_uncertainty)?;
-        w.field(&self.speed_rms)?;
-        w.field(&self.heading_rms)?;
-        w.field(&self.ellipse_major)?;
-        w.field(&self.ellipse_minor)?;
-        w.field(&self.ellipse_orientation)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.keyword("sentence_id", "UNC")?;
-        j.field("time", &self.time)?;
-        j.field("time_uncertainty", &self.time_uncertainty)?;
-        j.field("horizontal_uncertainty", &self.horizontal_uncertainty)?;
-        j.field("vertical_uncertainty", &self.vertical_uncertainty)?;
-        j.field("speed_rms", &self.speed_rms)?;
-        j.field("heading_rms", &self.heading_rms)?;
-        j.field("ellipse_major", &self.ellipse_major)?;
-        j.field("ellipse_minor", &self.ellipse_minor)?;
-        j.field("ellipse_orientation", &self.ellipse_orientation)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "sentence_id", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "time_uncertainty", 1)?;
-        out.member(fields, "horizontal_uncertainty", 1)?;
-        out.member(fields, "vertical_uncertainty", 1)?;
-        out.member(fields, "speed_rms", 1)?;
-        out.member(fields, "heading_rms", 1)?;
-        out.member(fields, "ellipse_major", 1)?;
-        out.member(fields, "ellipse_minor", 1)?;
-        out.member(fields, "ellipse_orientation", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.keyword("sentence_id", "UNC")?;
+        sink.field("time", &self.time)?;
+        sink.field("time_uncertainty", &self.time_uncertainty)?;
+        sink.field("horizontal_uncertainty", &self.horizontal_uncertainty)?;
+        sink.field("vertical_uncertainty", &self.vertical_uncertainty)?;
+        sink.field("speed_rms", &self.speed_rms)?;
+        sink.field("heading_rms", &self.heading_rms)?;
+        sink.field("ellipse_major", &self.ellipse_major)?;
+        sink.field("ellipse_minor", &self.ellipse_minor)?;
+        sink.field("ellipse_orientation", &self.ellipse_orientation)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::{GarminDgpsMode, GarminDgpsSource};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -78,6 +76,17 @@ impl<'a> Layout<'a> for Pgrmb<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGRMB");
     const SHAPE: Shape = Shape { sentence: "PGRMB", fixed: 6, optional: 3, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("frequency", 1),
+        JsonMember::Field("bit_rate", 1),
+        JsonMember::Field("snr", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("distance", 1),
+        JsonMember::Field("distance_unit", 1),
+        JsonMember::Optional("reserved", 1),
+        JsonMember::Optional("fix_source", 1),
+        JsonMember::Optional("dgps_mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -133,74 +142,22 @@ impl<'a> Layout<'a> for Pgrmb<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.frequency)?;
-        w.field(&self.bit_rate)?;
-        w.field(&self.snr)?;
-        w.field(&self.quality)?;
-        w.field(&self.distance)?;
-        w.field(&self.distance_unit)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("frequency", &self.frequency)?;
+        sink.field("bit_rate", &self.bit_rate)?;
+        sink.field("snr", &self.snr)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("distance", &self.distance)?;
+        sink.field("distance_unit", &self.distance_unit)?;
         if self.trailing >= 1 {
-            w.field(&self.reserved)?;
+            sink.field("reserved", &self.reserved)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.fix_source)?;
+            sink.field("fix_source", &self.fix_source)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.dgps_mode)?;
+            sink.field("dgps_mode", &self.dgps_mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.frequency)?;
-        w.field(&self.bit_rate)?;
-        w.field(&self.snr)?;
-        w.field(&self.quality)?;
-        w.field(&self.distance)?;
-        w.field(&self.distance_unit)?;
-        if self.trailing >= 1 {
-            w.field(&self.reserved)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.fix_source)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.dgps_mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("frequency", &self.frequency)?;
-        j.field("bit_rate", &self.bit_rate)?;
-        j.field("snr", &self.snr)?;
-        j.field("quality", &self.quality)?;
-        j.field("distance", &self.distance)?;
-        j.field("distance_unit", &self.distance_unit)?;
-        if self.trailing >= 1 {
-            j.field("reserved", &self.reserved)?;
-        }
-        if self.trailing >= 2 {
-            j.field("fix_source", &self.fix_source)?;
-        }
-        if self.trailing >= 3 {
-            j.field("dgps_mode", &self.dgps_mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "frequency", 1)?;
-        out.member(fields, "bit_rate", 1)?;
-        out.member(fields, "snr", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "distance", 1)?;
-        out.member(fields, "distance_unit", 1)?;
-        out.optional(fields, "reserved", 1)?;
-        out.optional(fields, "fix_source", 1)?;
-        out.optional(fields, "dgps_mode", 1)?;
         Ok(())
     }
 }

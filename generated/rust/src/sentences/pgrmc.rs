@@ -14,10 +14,8 @@
 use core::fmt;
 
 use crate::enums::{GarminBaud, GarminConfigFixMode, GarminDiffMode, GarminOffOn};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -107,6 +105,22 @@ impl<'a> Layout<'a> for Pgrmc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGRMC");
     const SHAPE: Shape = Shape { sentence: "PGRMC", fixed: 14, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("fix_mode", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("datum", 1),
+        JsonMember::Field("semi_major_axis", 1),
+        JsonMember::Field("inverse_flattening", 1),
+        JsonMember::Field("delta_x", 1),
+        JsonMember::Field("delta_y", 1),
+        JsonMember::Field("delta_z", 1),
+        JsonMember::Field("differential_mode", 1),
+        JsonMember::Field("baud_rate", 1),
+        JsonMember::Field("velocity_filter", 1),
+        JsonMember::Field("pps_mode", 1),
+        JsonMember::Field("pps_length", 1),
+        JsonMember::Field("dr_time", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -146,76 +160,21 @@ impl<'a> Layout<'a> for Pgrmc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.fix_mode)?;
-        w.field(&self.altitude)?;
-        w.field(&self.datum)?;
-        w.field(&self.semi_major_axis)?;
-        w.field(&self.inverse_flattening)?;
-        w.field(&self.delta_x)?;
-        w.field(&self.delta_y)?;
-        w.field(&self.delta_z)?;
-        w.field(&self.differential_mode)?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.velocity_filter)?;
-        w.field(&self.pps_mode)?;
-        w.field(&self.pps_length)?;
-        w.field(&self.dr_time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.fix_mode)?;
-        w.field(&self.altitude)?;
-        w.field(&self.datum)?;
-        w.field(&self.semi_major_axis)?;
-        w.field(&self.inverse_flattening)?;
-        w.field(&self.delta_x)?;
-        w.field(&self.delta_y)?;
-        w.field(&self.delta_z)?;
-        w.field(&self.differential_mode)?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.velocity_filter)?;
-        w.field(&self.pps_mode)?;
-        w.field(&self.pps_length)?;
-        w.field(&self.dr_time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("fix_mode", &self.fix_mode)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("datum", &self.datum)?;
-        j.field("semi_major_axis", &self.semi_major_axis)?;
-        j.field("inverse_flattening", &self.inverse_flattening)?;
-        j.field("delta_x", &self.delta_x)?;
-        j.field("delta_y", &self.delta_y)?;
-        j.field("delta_z", &self.delta_z)?;
-        j.field("differential_mode", &self.differential_mode)?;
-        j.field("baud_rate", &self.baud_rate)?;
-        j.field("velocity_filter", &self.velocity_filter)?;
-        j.field("pps_mode", &self.pps_mode)?;
-        j.field("pps_length", &self.pps_length)?;
-        j.field("dr_time", &self.dr_time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "fix_mode", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "datum", 1)?;
-        out.member(fields, "semi_major_axis", 1)?;
-        out.member(fields, "inverse_flattening", 1)?;
-        out.member(fields, "delta_x", 1)?;
-        out.member(fields, "delta_y", 1)?;
-        out.member(fields, "delta_z", 1)?;
-        out.member(fields, "differential_mode", 1)?;
-        out.member(fields, "baud_rate", 1)?;
-        out.member(fields, "velocity_filter", 1)?;
-        out.member(fields, "pps_mode", 1)?;
-        out.member(fields, "pps_length", 1)?;
-        out.member(fields, "dr_time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("fix_mode", &self.fix_mode)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("datum", &self.datum)?;
+        sink.field("semi_major_axis", &self.semi_major_axis)?;
+        sink.field("inverse_flattening", &self.inverse_flattening)?;
+        sink.field("delta_x", &self.delta_x)?;
+        sink.field("delta_y", &self.delta_y)?;
+        sink.field("delta_z", &self.delta_z)?;
+        sink.field("differential_mode", &self.differential_mode)?;
+        sink.field("baud_rate", &self.baud_rate)?;
+        sink.field("velocity_filter", &self.velocity_filter)?;
+        sink.field("pps_mode", &self.pps_mode)?;
+        sink.field("pps_length", &self.pps_length)?;
+        sink.field("dr_time", &self.dr_time)?;
         Ok(())
     }
 }

@@ -13,10 +13,8 @@
 use core::fmt;
 
 use crate::enums::{GarminOffOn, GarminPowerMode, GarminWaasMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -103,6 +101,21 @@ impl<'a> Layout<'a> for Pgrmc1<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGRMC1");
     const SHAPE: Shape = Shape { sentence: "PGRMC1", fixed: 12, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("output_time", 1),
+        JsonMember::Field("binary_output", 1),
+        JsonMember::Field("position_averaging", 1),
+        JsonMember::Field("beacon_frequency", 1),
+        JsonMember::Field("beacon_bit_rate", 1),
+        JsonMember::Field("beacon_scanning", 1),
+        JsonMember::Field("nmea_230", 1),
+        JsonMember::Field("waas_mode", 1),
+        JsonMember::Field("power_save", 1),
+        JsonMember::Field("adaptive_transmission", 1),
+        JsonMember::Field("auto_power_off", 1),
+        JsonMember::Field("power_on_external", 1),
+        JsonMember::Optional("pulse_auto_off", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -132,78 +145,22 @@ impl<'a> Layout<'a> for Pgrmc1<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.output_time)?;
-        w.field(&self.binary_output)?;
-        w.field(&self.position_averaging)?;
-        w.field(&self.beacon_frequency)?;
-        w.field(&self.beacon_bit_rate)?;
-        w.field(&self.beacon_scanning)?;
-        w.field(&self.nmea_230)?;
-        w.field(&self.waas_mode)?;
-        w.field(&self.power_save)?;
-        w.field(&self.adaptive_transmission)?;
-        w.field(&self.auto_power_off)?;
-        w.field(&self.power_on_external)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("output_time", &self.output_time)?;
+        sink.field("binary_output", &self.binary_output)?;
+        sink.field("position_averaging", &self.position_averaging)?;
+        sink.field("beacon_frequency", &self.beacon_frequency)?;
+        sink.field("beacon_bit_rate", &self.beacon_bit_rate)?;
+        sink.field("beacon_scanning", &self.beacon_scanning)?;
+        sink.field("nmea_230", &self.nmea_230)?;
+        sink.field("waas_mode", &self.waas_mode)?;
+        sink.field("power_save", &self.power_save)?;
+        sink.field("adaptive_transmission", &self.adaptive_transmission)?;
+        sink.field("auto_power_off", &self.auto_power_off)?;
+        sink.field("power_on_external", &self.power_on_external)?;
         if self.trailing >= 1 {
-            w.field(&self.pulse_auto_off)?;
+            sink.field("pulse_auto_off", &self.pulse_auto_off)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.output_time)?;
-        w.field(&self.binary_output)?;
-        w.field(&self.position_averaging)?;
-        w.field(&self.beacon_frequency)?;
-        w.field(&self.beacon_bit_rate)?;
-        w.field(&self.beacon_scanning)?;
-        w.field(&self.nmea_230)?;
-        w.field(&self.waas_mode)?;
-        w.field(&self.power_save)?;
-        w.field(&self.adaptive_transmission)?;
-        w.field(&self.auto_power_off)?;
-        w.field(&self.power_on_external)?;
-        if self.trailing >= 1 {
-            w.field(&self.pulse_auto_off)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("output_time", &self.output_time)?;
-        j.field("binary_output", &self.binary_output)?;
-        j.field("position_averaging", &self.position_averaging)?;
-        j.field("beacon_frequency", &self.beacon_frequency)?;
-        j.field("beacon_bit_rate", &self.beacon_bit_rate)?;
-        j.field("beacon_scanning", &self.beacon_scanning)?;
-        j.field("nmea_230", &self.nmea_230)?;
-        j.field("waas_mode", &self.waas_mode)?;
-        j.field("power_save", &self.power_save)?;
-        j.field("adaptive_transmission", &self.adaptive_transmission)?;
-        j.field("auto_power_off", &self.auto_power_off)?;
-        j.field("power_on_external", &self.power_on_external)?;
-        if self.trailing >= 1 {
-            j.field("pulse_auto_off", &self.pulse_auto_off)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "output_time", 1)?;
-        out.member(fields, "binary_output", 1)?;
-        out.member(fields, "position_averaging", 1)?;
-        out.member(fields, "beacon_frequency", 1)?;
-        out.member(fields, "beacon_bit_rate", 1)?;
-        out.member(fields, "beacon_scanning", 1)?;
-        out.member(fields, "nmea_230", 1)?;
-        out.member(fields, "waas_mode", 1)?;
-        out.member(fields, "power_save", 1)?;
-        out.member(fields, "adaptive_transmission", 1)?;
-        out.member(fields, "auto_power_off", 1)?;
-        out.member(fields, "power_on_external", 1)?;
-        out.optional(fields, "pulse_auto_off", 1)?;
         Ok(())
     }
 }

@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -72,6 +69,14 @@ impl<'a> Layout<'a> for Pgrme<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGRME");
     const SHAPE: Shape = Shape { sentence: "PGRME", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("hpe", 1),
+        JsonMember::Field("hpe_unit", 1),
+        JsonMember::Field("vpe", 1),
+        JsonMember::Field("vpe_unit", 1),
+        JsonMember::Field("epe", 1),
+        JsonMember::Field("epe_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -102,44 +107,13 @@ impl<'a> Layout<'a> for Pgrme<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.hpe)?;
-        w.field(&self.hpe_unit)?;
-        w.field(&self.vpe)?;
-        w.field(&self.vpe_unit)?;
-        w.field(&self.epe)?;
-        w.field(&self.epe_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.hpe)?;
-        w.field(&self.hpe_unit)?;
-        w.field(&self.vpe)?;
-        w.field(&self.vpe_unit)?;
-        w.field(&self.epe)?;
-        w.field(&self.epe_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("hpe", &self.hpe)?;
-        j.field("hpe_unit", &self.hpe_unit)?;
-        j.field("vpe", &self.vpe)?;
-        j.field("vpe_unit", &self.vpe_unit)?;
-        j.field("epe", &self.epe)?;
-        j.field("epe_unit", &self.epe_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "hpe", 1)?;
-        out.member(fields, "hpe_unit", 1)?;
-        out.member(fields, "vpe", 1)?;
-        out.member(fields, "vpe_unit", 1)?;
-        out.member(fields, "epe", 1)?;
-        out.member(fields, "epe_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("hpe", &self.hpe)?;
+        sink.field("hpe_unit", &self.hpe_unit)?;
+        sink.field("vpe", &self.vpe)?;
+        sink.field("vpe_unit", &self.vpe_unit)?;
+        sink.field("epe", &self.epe)?;
+        sink.field("epe_unit", &self.epe_unit)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::{GarminFixMode, GarminFixType};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Date, Error, FastReader, Fields, Framing, JsonFields, Layout,
-    Number, Range, Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number,
+    Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -83,6 +81,21 @@ impl<'a> Layout<'a> for Pgrmf<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGRMF");
     const SHAPE: Shape = Shape { sentence: "PGRMF", fixed: 15, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("gps_week", 1),
+        JsonMember::Field("gps_seconds", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("leap_seconds", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("fix_type", 1),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("course", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("tdop", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -128,72 +141,20 @@ impl<'a> Layout<'a> for Pgrmf<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.gps_week)?;
-        w.field(&self.gps_seconds)?;
-        w.field(&self.date)?;
-        w.field(&self.time)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.mode)?;
-        w.field(&self.fix_type)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.pdop)?;
-        w.field(&self.tdop)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.gps_week)?;
-        w.field(&self.gps_seconds)?;
-        w.field(&self.date)?;
-        w.field(&self.time)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.mode)?;
-        w.field(&self.fix_type)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.pdop)?;
-        w.field(&self.tdop)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("gps_week", &self.gps_week)?;
-        j.field("gps_seconds", &self.gps_seconds)?;
-        j.field("date", &self.date)?;
-        j.field("time", &self.time)?;
-        j.field("leap_seconds", &self.leap_seconds)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("mode", &self.mode)?;
-        j.field("fix_type", &self.fix_type)?;
-        j.field("speed", &self.speed)?;
-        j.field("course", &self.course)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("tdop", &self.tdop)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "gps_week", 1)?;
-        out.member(fields, "gps_seconds", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "leap_seconds", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "fix_type", 1)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "course", 1)?;
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "tdop", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("gps_week", &self.gps_week)?;
+        sink.field("gps_seconds", &self.gps_seconds)?;
+        sink.field("date", &self.date)?;
+        sink.field("time", &self.time)?;
+        sink.field("leap_seconds", &self.leap_seconds)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("fix_type", &self.fix_type)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("course", &self.course)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("tdop", &self.tdop)?;
         Ok(())
     }
 }

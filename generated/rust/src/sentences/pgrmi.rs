@@ -12,10 +12,8 @@
 use core::fmt;
 
 use crate::enums::GarminReceiverCommand;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Coordinate, Date, Error, Fields, Framing, JsonFields, Layout, Shape, Time, WireWriter,
+    Checksum, Code, Coordinate, Date, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -78,6 +76,13 @@ impl<'a> Layout<'a> for Pgrmi<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGRMI");
     const SHAPE: Shape = Shape { sentence: "PGRMI", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("receiver_command", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -95,40 +100,12 @@ impl<'a> Layout<'a> for Pgrmi<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.date)?;
-        w.field(&self.time)?;
-        w.field(&self.receiver_command)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.date)?;
-        w.field(&self.time)?;
-        w.field(&self.receiver_command)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("date", &self.date)?;
-        j.field("time", &self.time)?;
-        j.field("receiver_command", &self.receiver_command)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "receiver_command", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("date", &self.date)?;
+        sink.field("time", &self.time)?;
+        sink.field("receiver_command", &self.receiver_command)?;
         Ok(())
     }
 }

@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::{GarminDataCollection, GarminPassFail, GarminRetainedLost};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -81,6 +78,17 @@ impl<'a> Layout<'a> for Pgrmt<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGRMT");
     const SHAPE: Shape = Shape { sentence: "PGRMT", fixed: 9, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("product", 1),
+        JsonMember::Field("rom_checksum", 1),
+        JsonMember::Field("receiver_failure", 1),
+        JsonMember::Field("stored_data", 1),
+        JsonMember::Field("rtc", 1),
+        JsonMember::Field("oscillator_drift", 1),
+        JsonMember::Field("data_collection", 1),
+        JsonMember::Field("temperature", 1),
+        JsonMember::Field("configuration_data", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -117,56 +125,16 @@ impl<'a> Layout<'a> for Pgrmt<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.product)?;
-        w.field(&self.rom_checksum)?;
-        w.field(&self.receiver_failure)?;
-        w.field(&self.stored_data)?;
-        w.field(&self.rtc)?;
-        w.field(&self.oscillator_drift)?;
-        w.field(&self.data_collection)?;
-        w.field(&self.temperature)?;
-        w.field(&self.configuration_data)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.product)?;
-        w.field(&self.rom_checksum)?;
-        w.field(&self.receiver_failure)?;
-        w.field(&self.stored_data)?;
-        w.field(&self.rtc)?;
-        w.field(&self.oscillator_drift)?;
-        w.field(&self.data_collection)?;
-        w.field(&self.temperature)?;
-        w.field(&self.configuration_data)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("product", &self.product)?;
-        j.field("rom_checksum", &self.rom_checksum)?;
-        j.field("receiver_failure", &self.receiver_failure)?;
-        j.field("stored_data", &self.stored_data)?;
-        j.field("rtc", &self.rtc)?;
-        j.field("oscillator_drift", &self.oscillator_drift)?;
-        j.field("data_collection", &self.data_collection)?;
-        j.field("temperature", &self.temperature)?;
-        j.field("configuration_data", &self.configuration_data)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "product", 1)?;
-        out.member(fields, "rom_checksum", 1)?;
-        out.member(fields, "receiver_failure", 1)?;
-        out.member(fields, "stored_data", 1)?;
-        out.member(fields, "rtc", 1)?;
-        out.member(fields, "oscillator_drift", 1)?;
-        out.member(fields, "data_collection", 1)?;
-        out.member(fields, "temperature", 1)?;
-        out.member(fields, "configuration_data", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("product", &self.product)?;
+        sink.field("rom_checksum", &self.rom_checksum)?;
+        sink.field("receiver_failure", &self.receiver_failure)?;
+        sink.field("stored_data", &self.stored_data)?;
+        sink.field("rtc", &self.rtc)?;
+        sink.field("oscillator_drift", &self.oscillator_drift)?;
+        sink.field("data_collection", &self.data_collection)?;
+        sink.field("temperature", &self.temperature)?;
+        sink.field("configuration_data", &self.configuration_data)?;
         Ok(())
     }
 }

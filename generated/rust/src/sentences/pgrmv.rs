@@ -8,11 +8,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -63,6 +60,8 @@ impl<'a> Layout<'a> for Pgrmv {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGRMV");
     const SHAPE: Shape = Shape { sentence: "PGRMV", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("vel_east", 1), JsonMember::Field("vel_north", 1), JsonMember::Field("vel_up", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -99,32 +98,10 @@ impl<'a> Layout<'a> for Pgrmv {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.vel_east)?;
-        w.field(&self.vel_north)?;
-        w.field(&self.vel_up)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.vel_east)?;
-        w.field(&self.vel_north)?;
-        w.field(&self.vel_up)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("vel_east", &self.vel_east)?;
-        j.field("vel_north", &self.vel_north)?;
-        j.field("vel_up", &self.vel_up)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "vel_east", 1)?;
-        out.member(fields, "vel_north", 1)?;
-        out.member(fields, "vel_up", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("vel_east", &self.vel_east)?;
+        sink.field("vel_north", &self.vel_north)?;
+        sink.field("vel_up", &self.vel_up)?;
         Ok(())
     }
 }

@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::GarminFixDimension;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -67,6 +64,11 @@ impl<'a> Layout<'a> for Pgrmz<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGRMZ");
     const SHAPE: Shape = Shape { sentence: "PGRMZ", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("altitude_unit", 1),
+        JsonMember::Field("fix_dimension", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -91,32 +93,10 @@ impl<'a> Layout<'a> for Pgrmz<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_unit)?;
-        w.field(&self.fix_dimension)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_unit)?;
-        w.field(&self.fix_dimension)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("altitude", &self.altitude)?;
-        j.field("altitude_unit", &self.altitude_unit)?;
-        j.field("fix_dimension", &self.fix_dimension)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "altitude_unit", 1)?;
-        out.member(fields, "fix_dimension", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("altitude", &self.altitude)?;
+        sink.field("altitude_unit", &self.altitude_unit)?;
+        sink.field("fix_dimension", &self.fix_dimension)?;
         Ok(())
     }
 }

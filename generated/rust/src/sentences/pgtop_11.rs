@@ -11,11 +11,7 @@
 use core::fmt;
 
 use crate::enums::MtkAntennaStatus;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Read, Shape};
 use crate::LayoutId;
 
 /// PGTOP_11: GlobalTop antenna status.
@@ -67,6 +63,7 @@ impl<'a> Layout<'a> for Pgtop11<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PGTOP");
     const SHAPE: Shape = Shape { sentence: "PGTOP_11", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("function", 1), JsonMember::Field("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -89,28 +86,9 @@ impl<'a> Layout<'a> for Pgtop11<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("11")?;
-        w.field(&self.status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("11")?;
-        w.field(&self.status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("function", "11")?;
-        j.field("status", &self.status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "function", 1)?;
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("function", "11")?;
+        sink.field("status", &self.status)?;
         Ok(())
     }
 }

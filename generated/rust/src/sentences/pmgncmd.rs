@@ -11,9 +11,7 @@
 use core::fmt;
 
 use crate::enums::MagellanCommand;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PMGNCMD: Magellan transfer command.
@@ -70,6 +68,7 @@ impl<'a> Layout<'a> for Pmgncmd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMGNCMD");
     const SHAPE: Shape = Shape { sentence: "PMGNCMD", fixed: 1, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("command", 1), JsonMember::Optional("option", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -87,34 +86,11 @@ impl<'a> Layout<'a> for Pmgncmd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.command)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("command", &self.command)?;
         if self.trailing >= 1 {
-            w.field(&self.option)?;
+            sink.field("option", &self.option)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.command)?;
-        if self.trailing >= 1 {
-            w.field(&self.option)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("command", &self.command)?;
-        if self.trailing >= 1 {
-            j.field("option", &self.option)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "command", 1)?;
-        out.optional(fields, "option", 1)?;
         Ok(())
     }
 }

@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::{MagellanFixFlag, MagellanFixMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -75,6 +72,15 @@ impl<'a> Layout<'a> for Pmgnst<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMGNST");
     const SHAPE: Shape = Shape { sentence: "PMGNST", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("version", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("fix", 1),
+        JsonMember::Field("unknown_1", 1),
+        JsonMember::Field("battery_time", 1),
+        JsonMember::Field("unknown_2", 1),
+        JsonMember::Field("prn", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -107,48 +113,14 @@ impl<'a> Layout<'a> for Pmgnst<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.field(&self.mode)?;
-        w.field(&self.fix)?;
-        w.field(&self.unknown_1)?;
-        w.field(&self.battery_time)?;
-        w.field(&self.unknown_2)?;
-        w.field(&self.prn)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.field(&self.mode)?;
-        w.field(&self.fix)?;
-        w.field(&self.unknown_1)?;
-        w.field(&self.battery_time)?;
-        w.field(&self.unknown_2)?;
-        w.field(&self.prn)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.field("mode", &self.mode)?;
-        j.field("fix", &self.fix)?;
-        j.field("unknown_1", &self.unknown_1)?;
-        j.field("battery_time", &self.battery_time)?;
-        j.field("unknown_2", &self.unknown_2)?;
-        j.field("prn", &self.prn)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "fix", 1)?;
-        out.member(fields, "unknown_1", 1)?;
-        out.member(fields, "battery_time", 1)?;
-        out.member(fields, "unknown_2", 1)?;
-        out.member(fields, "prn", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("fix", &self.fix)?;
+        sink.field("unknown_1", &self.unknown_1)?;
+        sink.field("battery_time", &self.battery_time)?;
+        sink.field("unknown_2", &self.unknown_2)?;
+        sink.field("prn", &self.prn)?;
         Ok(())
     }
 }

@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::{MagellanAltitudeUnit, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Coordinate, Date, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    Time, WireWriter,
+    Checksum, Code, Coordinate, Date, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -84,6 +81,16 @@ impl<'a> Layout<'a> for Pmgntrk<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMGNTRK");
     const SHAPE: Shape = Shape { sentence: "PMGNTRK", fixed: 9, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("altitude_unit", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("track_name", 1),
+        JsonMember::Optional("date", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -107,58 +114,17 @@ impl<'a> Layout<'a> for Pmgntrk<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_unit)?;
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.track_name)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("altitude_unit", &self.altitude_unit)?;
+        sink.field("time", &self.time)?;
+        sink.field("status", &self.status)?;
+        sink.field("track_name", &self.track_name)?;
         if self.trailing >= 1 {
-            w.field(&self.date)?;
+            sink.field("date", &self.date)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_unit)?;
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.track_name)?;
-        if self.trailing >= 1 {
-            w.field(&self.date)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("altitude_unit", &self.altitude_unit)?;
-        j.field("time", &self.time)?;
-        j.field("status", &self.status)?;
-        j.field("track_name", &self.track_name)?;
-        if self.trailing >= 1 {
-            j.field("date", &self.date)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "altitude_unit", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "track_name", 1)?;
-        out.optional(fields, "date", 1)?;
         Ok(())
     }
 }

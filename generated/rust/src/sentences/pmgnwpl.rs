@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::MagellanAltitudeUnit;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    WireWriter,
+    Checksum, Code, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -74,6 +71,16 @@ impl<'a> Layout<'a> for Pmgnwpl<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMGNWPL");
     const SHAPE: Shape = Shape { sentence: "PMGNWPL", fixed: 9, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("altitude_unit", 1),
+        JsonMember::Field("name", 1),
+        JsonMember::Field("comment", 1),
+        JsonMember::Field("icon", 1),
+        JsonMember::Optional("waypoint_type", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -97,58 +104,17 @@ impl<'a> Layout<'a> for Pmgnwpl<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_unit)?;
-        w.field(&self.name)?;
-        w.field(&self.comment)?;
-        w.field(&self.icon)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("altitude_unit", &self.altitude_unit)?;
+        sink.field("name", &self.name)?;
+        sink.field("comment", &self.comment)?;
+        sink.field("icon", &self.icon)?;
         if self.trailing >= 1 {
-            w.field(&self.waypoint_type)?;
+            sink.field("waypoint_type", &self.waypoint_type)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.altitude)?;
-        w.field(&self.altitude_unit)?;
-        w.field(&self.name)?;
-        w.field(&self.comment)?;
-        w.field(&self.icon)?;
-        if self.trailing >= 1 {
-            w.field(&self.waypoint_type)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("altitude_unit", &self.altitude_unit)?;
-        j.field("name", &self.name)?;
-        j.field("comment", &self.comment)?;
-        j.field("icon", &self.icon)?;
-        if self.trailing >= 1 {
-            j.field("waypoint_type", &self.waypoint_type)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "altitude_unit", 1)?;
-        out.member(fields, "name", 1)?;
-        out.member(fields, "comment", 1)?;
-        out.member(fields, "icon", 1)?;
-        out.optional(fields, "waypoint_type", 1)?;
         Ok(())
     }
 }

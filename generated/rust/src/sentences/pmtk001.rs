@@ -13,11 +13,8 @@
 use core::fmt;
 
 use crate::enums::MtkAckFlag;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Number, Range, Shape,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -72,6 +69,7 @@ impl<'a> Layout<'a> for Pmtk001<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTK001");
     const SHAPE: Shape = Shape { sentence: "PMTK001", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("command", 1), JsonMember::Field("flag", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -86,28 +84,9 @@ impl<'a> Layout<'a> for Pmtk001<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.command)?;
-        w.field(&self.flag)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.command)?;
-        w.field(&self.flag)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("command", &self.command)?;
-        j.field("flag", &self.flag)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "command", 1)?;
-        out.member(fields, "flag", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("command", &self.command)?;
+        sink.field("flag", &self.flag)?;
         Ok(())
     }
 }
@@ -172,6 +151,8 @@ impl<'a> Layout<'a> for Pmtk001SvMask<'a> {
     const VARIANT: Option<&'static str> = Some("sv_mask");
     const FRAMING: Framing = Framing::Proprietary("PMTK001");
     const SHAPE: Shape = Shape { sentence: "PMTK001", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("command", 1), JsonMember::Field("flag", 1), JsonMember::Field("sv_mask", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -187,32 +168,10 @@ impl<'a> Layout<'a> for Pmtk001SvMask<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.command)?;
-        w.field(&self.flag)?;
-        w.field(&self.sv_mask)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.command)?;
-        w.field(&self.flag)?;
-        w.field(&self.sv_mask)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("command", &self.command)?;
-        j.field("flag", &self.flag)?;
-        j.field("sv_mask", &self.sv_mask)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "command", 1)?;
-        out.member(fields, "flag", 1)?;
-        out.member(fields, "sv_mask", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("command", &self.command)?;
+        sink.field("flag", &self.flag)?;
+        sink.field("sv_mask", &self.sv_mask)?;
         Ok(())
     }
 }

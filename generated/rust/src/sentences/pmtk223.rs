@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PMTK223: Set extended ephemeris reception.
@@ -71,6 +67,12 @@ impl<'a> Layout<'a> for Pmtk223 {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTK223");
     const SHAPE: Shape = Shape { sentence: "PMTK223", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("sv", 1),
+        JsonMember::Field("snr", 1),
+        JsonMember::Field("extension_threshold", 1),
+        JsonMember::Field("extension_gap", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -87,36 +89,11 @@ impl<'a> Layout<'a> for Pmtk223 {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sv)?;
-        w.field(&self.snr)?;
-        w.field(&self.extension_threshold)?;
-        w.field(&self.extension_gap)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sv)?;
-        w.field(&self.snr)?;
-        w.field(&self.extension_threshold)?;
-        w.field(&self.extension_gap)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sv", &self.sv)?;
-        j.field("snr", &self.snr)?;
-        j.field("extension_threshold", &self.extension_threshold)?;
-        j.field("extension_gap", &self.extension_gap)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "sv", 1)?;
-        out.member(fields, "snr", 1)?;
-        out.member(fields, "extension_threshold", 1)?;
-        out.member(fields, "extension_gap", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sv", &self.sv)?;
+        sink.field("snr", &self.snr)?;
+        sink.field("extension_threshold", &self.extension_threshold)?;
+        sink.field("extension_gap", &self.extension_gap)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::MtkPeriodicMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -82,6 +80,13 @@ impl<'a> Layout<'a> for Pmtk225<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTK225");
     const SHAPE: Shape = Shape { sentence: "PMTK225", fixed: 1, optional: 4, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("mode", 1),
+        JsonMember::Optional("run_time", 1),
+        JsonMember::Optional("sleep_time", 1),
+        JsonMember::Optional("second_run_time", 1),
+        JsonMember::Optional("second_sleep_time", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -121,64 +126,20 @@ impl<'a> Layout<'a> for Pmtk225<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.mode)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("mode", &self.mode)?;
         if self.trailing >= 1 {
-            w.field(&self.run_time)?;
+            sink.field("run_time", &self.run_time)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.sleep_time)?;
+            sink.field("sleep_time", &self.sleep_time)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.second_run_time)?;
+            sink.field("second_run_time", &self.second_run_time)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.second_sleep_time)?;
+            sink.field("second_sleep_time", &self.second_sleep_time)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.mode)?;
-        if self.trailing >= 1 {
-            w.field(&self.run_time)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.sleep_time)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.second_run_time)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.second_sleep_time)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("mode", &self.mode)?;
-        if self.trailing >= 1 {
-            j.field("run_time", &self.run_time)?;
-        }
-        if self.trailing >= 2 {
-            j.field("sleep_time", &self.sleep_time)?;
-        }
-        if self.trailing >= 3 {
-            j.field("second_run_time", &self.second_run_time)?;
-        }
-        if self.trailing >= 4 {
-            j.field("second_sleep_time", &self.second_sleep_time)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "mode", 1)?;
-        out.optional(fields, "run_time", 1)?;
-        out.optional(fields, "sleep_time", 1)?;
-        out.optional(fields, "second_run_time", 1)?;
-        out.optional(fields, "second_sleep_time", 1)?;
         Ok(())
     }
 }

@@ -10,9 +10,7 @@
 use core::fmt;
 
 use crate::enums::MtkEnable;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PMTK353: Set GNSS search mode.
@@ -70,6 +68,13 @@ impl<'a> Layout<'a> for Pmtk353<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTK353");
     const SHAPE: Shape = Shape { sentence: "PMTK353", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("gps", 1),
+        JsonMember::Field("glonass", 1),
+        JsonMember::Field("galileo", 1),
+        JsonMember::Field("galileo_full", 1),
+        JsonMember::Field("beidou", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -87,40 +92,12 @@ impl<'a> Layout<'a> for Pmtk353<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.gps)?;
-        w.field(&self.glonass)?;
-        w.field(&self.galileo)?;
-        w.field(&self.galileo_full)?;
-        w.field(&self.beidou)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.gps)?;
-        w.field(&self.glonass)?;
-        w.field(&self.galileo)?;
-        w.field(&self.galileo_full)?;
-        w.field(&self.beidou)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("gps", &self.gps)?;
-        j.field("glonass", &self.glonass)?;
-        j.field("galileo", &self.galileo)?;
-        j.field("galileo_full", &self.galileo_full)?;
-        j.field("beidou", &self.beidou)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "gps", 1)?;
-        out.member(fields, "glonass", 1)?;
-        out.member(fields, "galileo", 1)?;
-        out.member(fields, "galileo_full", 1)?;
-        out.member(fields, "beidou", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("gps", &self.gps)?;
+        sink.field("glonass", &self.glonass)?;
+        sink.field("galileo", &self.galileo)?;
+        sink.field("galileo_full", &self.galileo_full)?;
+        sink.field("beidou", &self.beidou)?;
         Ok(())
     }
 }

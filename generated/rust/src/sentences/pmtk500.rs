@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PMTK500: Position fix interval (query answer).
@@ -68,6 +64,13 @@ impl<'a> Layout<'a> for Pmtk500 {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTK500");
     const SHAPE: Shape = Shape { sentence: "PMTK500", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("fix_interval", 1),
+        JsonMember::Field("reserved_1", 1),
+        JsonMember::Field("reserved_2", 1),
+        JsonMember::Field("reserved_3", 1),
+        JsonMember::Field("reserved_4", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -85,40 +88,12 @@ impl<'a> Layout<'a> for Pmtk500 {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.fix_interval)?;
-        w.field(&self.reserved_1)?;
-        w.field(&self.reserved_2)?;
-        w.field(&self.reserved_3)?;
-        w.field(&self.reserved_4)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.fix_interval)?;
-        w.field(&self.reserved_1)?;
-        w.field(&self.reserved_2)?;
-        w.field(&self.reserved_3)?;
-        w.field(&self.reserved_4)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("fix_interval", &self.fix_interval)?;
-        j.field("reserved_1", &self.reserved_1)?;
-        j.field("reserved_2", &self.reserved_2)?;
-        j.field("reserved_3", &self.reserved_3)?;
-        j.field("reserved_4", &self.reserved_4)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "fix_interval", 1)?;
-        out.member(fields, "reserved_1", 1)?;
-        out.member(fields, "reserved_2", 1)?;
-        out.member(fields, "reserved_3", 1)?;
-        out.member(fields, "reserved_4", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("fix_interval", &self.fix_interval)?;
+        sink.field("reserved_1", &self.reserved_1)?;
+        sink.field("reserved_2", &self.reserved_2)?;
+        sink.field("reserved_3", &self.reserved_3)?;
+        sink.field("reserved_4", &self.reserved_4)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PMTK514: NMEA sentence output rates (query answer).
@@ -112,6 +108,27 @@ impl<'a> Layout<'a> for Pmtk514 {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTK514");
     const SHAPE: Shape = Shape { sentence: "PMTK514", fixed: 19, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("gll", 1),
+        JsonMember::Field("rmc", 1),
+        JsonMember::Field("vtg", 1),
+        JsonMember::Field("gga", 1),
+        JsonMember::Field("gsa", 1),
+        JsonMember::Field("gsv", 1),
+        JsonMember::Field("grs", 1),
+        JsonMember::Field("gst", 1),
+        JsonMember::Field("reserved_8", 1),
+        JsonMember::Field("reserved_9", 1),
+        JsonMember::Field("reserved_10", 1),
+        JsonMember::Field("reserved_11", 1),
+        JsonMember::Field("reserved_12", 1),
+        JsonMember::Field("malm", 1),
+        JsonMember::Field("meph", 1),
+        JsonMember::Field("mdgp", 1),
+        JsonMember::Field("mdbg", 1),
+        JsonMember::Field("zda", 1),
+        JsonMember::Field("mchn", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -143,96 +160,26 @@ impl<'a> Layout<'a> for Pmtk514 {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.gll)?;
-        w.field(&self.rmc)?;
-        w.field(&self.vtg)?;
-        w.field(&self.gga)?;
-        w.field(&self.gsa)?;
-        w.field(&self.gsv)?;
-        w.field(&self.grs)?;
-        w.field(&self.gst)?;
-        w.field(&self.reserved_8)?;
-        w.field(&self.reserved_9)?;
-        w.field(&self.reserved_10)?;
-        w.field(&self.reserved_11)?;
-        w.field(&self.reserved_12)?;
-        w.field(&self.malm)?;
-        w.field(&self.meph)?;
-        w.field(&self.mdgp)?;
-        w.field(&self.mdbg)?;
-        w.field(&self.zda)?;
-        w.field(&self.mchn)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.gll)?;
-        w.field(&self.rmc)?;
-        w.field(&self.vtg)?;
-        w.field(&self.gga)?;
-        w.field(&self.gsa)?;
-        w.field(&self.gsv)?;
-        w.field(&self.grs)?;
-        w.field(&self.gst)?;
-        w.field(&self.reserved_8)?;
-        w.field(&self.reserved_9)?;
-        w.field(&self.reserved_10)?;
-        w.field(&self.reserved_11)?;
-        w.field(&self.reserved_12)?;
-        w.field(&self.malm)?;
-        w.field(&self.meph)?;
-        w.field(&self.mdgp)?;
-        w.field(&self.mdbg)?;
-        w.field(&self.zda)?;
-        w.field(&self.mchn)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("gll", &self.gll)?;
-        j.field("rmc", &self.rmc)?;
-        j.field("vtg", &self.vtg)?;
-        j.field("gga", &self.gga)?;
-        j.field("gsa", &self.gsa)?;
-        j.field("gsv", &self.gsv)?;
-        j.field("grs", &self.grs)?;
-        j.field("gst", &self.gst)?;
-        j.field("reserved_8", &self.reserved_8)?;
-        j.field("reserved_9", &self.reserved_9)?;
-        j.field("reserved_10", &self.reserved_10)?;
-        j.field("reserved_11", &self.reserved_11)?;
-        j.field("reserved_12", &self.reserved_12)?;
-        j.field("malm", &self.malm)?;
-        j.field("meph", &self.meph)?;
-        j.field("mdgp", &self.mdgp)?;
-        j.field("mdbg", &self.mdbg)?;
-        j.field("zda", &self.zda)?;
-        j.field("mchn", &self.mchn)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "gll", 1)?;
-        out.member(fields, "rmc", 1)?;
-        out.member(fields, "vtg", 1)?;
-        out.member(fields, "gga", 1)?;
-        out.member(fields, "gsa", 1)?;
-        out.member(fields, "gsv", 1)?;
-        out.member(fields, "grs", 1)?;
-        out.member(fields, "gst", 1)?;
-        out.member(fields, "reserved_8", 1)?;
-        out.member(fields, "reserved_9", 1)?;
-        out.member(fields, "reserved_10", 1)?;
-        out.member(fields, "reserved_11", 1)?;
-        out.member(fields, "reserved_12", 1)?;
-        out.member(fields, "malm", 1)?;
-        out.member(fields, "meph", 1)?;
-        out.member(fields, "mdgp", 1)?;
-        out.member(fields, "mdbg", 1)?;
-        out.member(fields, "zda", 1)?;
-        out.member(fields, "mchn", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("gll", &self.gll)?;
+        sink.field("rmc", &self.rmc)?;
+        sink.field("vtg", &self.vtg)?;
+        sink.field("gga", &self.gga)?;
+        sink.field("gsa", &self.gsa)?;
+        sink.field("gsv", &self.gsv)?;
+        sink.field("grs", &self.grs)?;
+        sink.field("gst", &self.gst)?;
+        sink.field("reserved_8", &self.reserved_8)?;
+        sink.field("reserved_9", &self.reserved_9)?;
+        sink.field("reserved_10", &self.reserved_10)?;
+        sink.field("reserved_11", &self.reserved_11)?;
+        sink.field("reserved_12", &self.reserved_12)?;
+        sink.field("malm", &self.malm)?;
+        sink.field("meph", &self.meph)?;
+        sink.field("mdgp", &self.mdgp)?;
+        sink.field("mdbg", &self.mdbg)?;
+        sink.field("zda", &self.zda)?;
+        sink.field("mchn", &self.mchn)?;
         Ok(())
     }
 }

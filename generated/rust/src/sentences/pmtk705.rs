@@ -9,9 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PMTK705: Firmware release information.
@@ -70,6 +68,12 @@ impl<'a> Layout<'a> for Pmtk705<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTK705");
     const SHAPE: Shape = Shape { sentence: "PMTK705", fixed: 3, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("release", 1),
+        JsonMember::Field("build_id", 1),
+        JsonMember::Field("product_model", 1),
+        JsonMember::Optional("sdk_version", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -89,42 +93,13 @@ impl<'a> Layout<'a> for Pmtk705<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.release)?;
-        w.field(&self.build_id)?;
-        w.field(&self.product_model)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("release", &self.release)?;
+        sink.field("build_id", &self.build_id)?;
+        sink.field("product_model", &self.product_model)?;
         if self.trailing >= 1 {
-            w.field(&self.sdk_version)?;
+            sink.field("sdk_version", &self.sdk_version)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.release)?;
-        w.field(&self.build_id)?;
-        w.field(&self.product_model)?;
-        if self.trailing >= 1 {
-            w.field(&self.sdk_version)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("release", &self.release)?;
-        j.field("build_id", &self.build_id)?;
-        j.field("product_model", &self.product_model)?;
-        if self.trailing >= 1 {
-            j.field("sdk_version", &self.sdk_version)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "release", 1)?;
-        out.member(fields, "build_id", 1)?;
-        out.member(fields, "product_model", 1)?;
-        out.optional(fields, "sdk_version", 1)?;
         Ok(())
     }
 }

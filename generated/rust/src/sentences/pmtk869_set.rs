@@ -10,9 +10,7 @@
 use core::fmt;
 
 use crate::enums::MtkEnable;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PMTK869_SET: Enable or disable EASY function.
@@ -65,6 +63,7 @@ impl<'a> Layout<'a> for Pmtk869Set<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTK869");
     const SHAPE: Shape = Shape { sentence: "PMTK869_SET", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("cmd_type", 1), JsonMember::Field("enabled", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -79,28 +78,9 @@ impl<'a> Layout<'a> for Pmtk869Set<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("1")?;
-        w.field(&self.enabled)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("1")?;
-        w.field(&self.enabled)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("cmd_type", "1")?;
-        j.field("enabled", &self.enabled)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "cmd_type", 1)?;
-        out.member(fields, "enabled", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("cmd_type", "1")?;
+        sink.field("enabled", &self.enabled)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range,
-    Read, Shape, WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
+    Read, Shape,
 };
 use crate::LayoutId;
 
@@ -68,6 +66,7 @@ impl<'a> Layout<'a> for Pmtkchn {
         optional: 0,
         group: Some(GroupShape { id: "channels", width: 1, min: 1, max: 32 }),
     };
+    const JSON: &'static [JsonMember] = &[JsonMember::Values("channels", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -88,26 +87,8 @@ impl<'a> Layout<'a> for Pmtkchn {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.fields(&self.channels)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.fields(&self.channels)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.values("channels", &self.channels)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        for value in json::list(fields, "channels")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.values("channels", &self.channels)?;
         Ok(())
     }
 }

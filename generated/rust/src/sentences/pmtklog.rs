@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PMTKLOG: LOCUS logger status.
@@ -82,6 +78,18 @@ impl<'a> Layout<'a> for Pmtklog<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTKLOG");
     const SHAPE: Shape = Shape { sentence: "PMTKLOG", fixed: 10, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("serial", 1),
+        JsonMember::Field("type", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("content", 1),
+        JsonMember::Field("interval", 1),
+        JsonMember::Field("distance", 1),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("records", 1),
+        JsonMember::Field("percent", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -104,60 +112,17 @@ impl<'a> Layout<'a> for Pmtklog<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.serial)?;
-        w.field(&self.r#type)?;
-        w.field(&self.mode)?;
-        w.field(&self.content)?;
-        w.field(&self.interval)?;
-        w.field(&self.distance)?;
-        w.field(&self.speed)?;
-        w.field(&self.status)?;
-        w.field(&self.records)?;
-        w.field(&self.percent)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.serial)?;
-        w.field(&self.r#type)?;
-        w.field(&self.mode)?;
-        w.field(&self.content)?;
-        w.field(&self.interval)?;
-        w.field(&self.distance)?;
-        w.field(&self.speed)?;
-        w.field(&self.status)?;
-        w.field(&self.records)?;
-        w.field(&self.percent)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("serial", &self.serial)?;
-        j.field("type", &self.r#type)?;
-        j.field("mode", &self.mode)?;
-        j.field("content", &self.content)?;
-        j.field("interval", &self.interval)?;
-        j.field("distance", &self.distance)?;
-        j.field("speed", &self.speed)?;
-        j.field("status", &self.status)?;
-        j.field("records", &self.records)?;
-        j.field("percent", &self.percent)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "serial", 1)?;
-        out.member(fields, "type", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "content", 1)?;
-        out.member(fields, "interval", 1)?;
-        out.member(fields, "distance", 1)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "records", 1)?;
-        out.member(fields, "percent", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("serial", &self.serial)?;
+        sink.field("type", &self.r#type)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("content", &self.content)?;
+        sink.field("interval", &self.interval)?;
+        sink.field("distance", &self.distance)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("status", &self.status)?;
+        sink.field("records", &self.records)?;
+        sink.field("percent", &self.percent)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, Group, GroupShape, Hex, JsonFields, Layout, Number, Range,
-    Shape, WireWriter,
+    Bound, Checksum, Error, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout, Number, Range,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -72,6 +70,8 @@ impl<'a> Layout<'a> for PmtkloxData {
         optional: 0,
         group: Some(GroupShape { id: "words", width: 1, min: 1, max: 24 }),
     };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("type", 1), JsonMember::Field("line", 1), JsonMember::Values("words", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -87,34 +87,10 @@ impl<'a> Layout<'a> for PmtkloxData {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("1")?;
-        w.field(&self.line)?;
-        w.fields(&self.words)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("1")?;
-        w.field(&self.line)?;
-        w.fields(&self.words)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("type", "1")?;
-        j.field("line", &self.line)?;
-        j.values("words", &self.words)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "type", 1)?;
-        out.member(fields, "line", 1)?;
-        for value in json::list(fields, "words")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("type", "1")?;
+        sink.field("line", &self.line)?;
+        sink.values("words", &self.words)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{PosSentenceStatus, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -79,6 +77,18 @@ impl<'a> Layout<'a> for Pos<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "POS", fixed: 10, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("equipment_id", 1),
+        JsonMember::Field("equipment_number", 1),
+        JsonMember::Field("position_validity", 1),
+        JsonMember::Field("pos_x", 1),
+        JsonMember::Field("pos_y", 1),
+        JsonMember::Field("pos_z", 1),
+        JsonMember::Field("dimensions_validity", 1),
+        JsonMember::Field("ship_width", 1),
+        JsonMember::Field("ship_length", 1),
+        JsonMember::Field("sentence_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -106,60 +116,17 @@ impl<'a> Layout<'a> for Pos<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.equipment_id)?;
-        w.field(&self.equipment_number)?;
-        w.field(&self.position_validity)?;
-        w.field(&self.pos_x)?;
-        w.field(&self.pos_y)?;
-        w.field(&self.pos_z)?;
-        w.field(&self.dimensions_validity)?;
-        w.field(&self.ship_width)?;
-        w.field(&self.ship_length)?;
-        w.field(&self.sentence_status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.equipment_id)?;
-        w.field(&self.equipment_number)?;
-        w.field(&self.position_validity)?;
-        w.field(&self.pos_x)?;
-        w.field(&self.pos_y)?;
-        w.field(&self.pos_z)?;
-        w.field(&self.dimensions_validity)?;
-        w.field(&self.ship_width)?;
-        w.field(&self.ship_length)?;
-        w.field(&self.sentence_status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("equipment_id", &self.equipment_id)?;
-        j.field("equipment_number", &self.equipment_number)?;
-        j.field("position_validity", &self.position_validity)?;
-        j.field("pos_x", &self.pos_x)?;
-        j.field("pos_y", &self.pos_y)?;
-        j.field("pos_z", &self.pos_z)?;
-        j.field("dimensions_validity", &self.dimensions_validity)?;
-        j.field("ship_width", &self.ship_width)?;
-        j.field("ship_length", &self.ship_length)?;
-        j.field("sentence_status", &self.sentence_status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "equipment_id", 1)?;
-        out.member(fields, "equipment_number", 1)?;
-        out.member(fields, "position_validity", 1)?;
-        out.member(fields, "pos_x", 1)?;
-        out.member(fields, "pos_y", 1)?;
-        out.member(fields, "pos_z", 1)?;
-        out.member(fields, "dimensions_validity", 1)?;
-        out.member(fields, "ship_width", 1)?;
-        out.member(fields, "ship_length", 1)?;
-        out.member(fields, "sentence_status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("equipment_id", &self.equipment_id)?;
+        sink.field("equipment_number", &self.equipment_number)?;
+        sink.field("position_validity", &self.position_validity)?;
+        sink.field("pos_x", &self.pos_x)?;
+        sink.field("pos_y", &self.pos_y)?;
+        sink.field("pos_z", &self.pos_z)?;
+        sink.field("dimensions_validity", &self.dimensions_validity)?;
+        sink.field("ship_width", &self.ship_width)?;
+        sink.field("ship_length", &self.ship_length)?;
+        sink.field("sentence_status", &self.sentence_status)?;
         Ok(())
     }
 }

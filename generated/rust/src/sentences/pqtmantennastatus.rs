@@ -9,11 +9,8 @@
 use core::fmt;
 
 use crate::enums::{QuectelAntennaPower, QuectelAntennaStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -65,6 +62,8 @@ impl<'a> Layout<'a> for Pqtmantennastatus<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMANTENNASTATUS");
     const SHAPE: Shape = Shape { sentence: "PQTMANTENNASTATUS", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("msg_version", 1), JsonMember::Field("status", 1), JsonMember::Field("power", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -89,32 +88,10 @@ impl<'a> Layout<'a> for Pqtmantennastatus<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.status)?;
-        w.field(&self.power)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.status)?;
-        w.field(&self.power)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("status", &self.status)?;
-        j.field("power", &self.power)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "power", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("status", &self.status)?;
+        sink.field("power", &self.power)?;
         Ok(())
     }
 }

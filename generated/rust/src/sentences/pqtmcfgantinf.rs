@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGANTINF: Configure antenna information.
@@ -70,6 +66,12 @@ impl<'a> Layout<'a> for Pqtmcfgantinf<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGANTINF");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGANTINF", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("description", 1),
+        JsonMember::Field("setup_id", 1),
+        JsonMember::Field("serial_number", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -86,36 +88,11 @@ impl<'a> Layout<'a> for Pqtmcfgantinf<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.description)?;
-        w.field(&self.setup_id)?;
-        w.field(&self.serial_number)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.description)?;
-        w.field(&self.setup_id)?;
-        w.field(&self.serial_number)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("description", &self.description)?;
-        j.field("setup_id", &self.setup_id)?;
-        j.field("serial_number", &self.serial_number)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "description", 1)?;
-        out.member(fields, "setup_id", 1)?;
-        out.member(fields, "serial_number", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("description", &self.description)?;
+        sink.field("setup_id", &self.setup_id)?;
+        sink.field("serial_number", &self.serial_number)?;
         Ok(())
     }
 }
@@ -174,6 +151,7 @@ impl<'a> Layout<'a> for PqtmcfgantinfRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGANTINF");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGANTINF", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -187,24 +165,8 @@ impl<'a> Layout<'a> for PqtmcfgantinfRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::QuectelEnable;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGCNST: Configure constellations.
@@ -73,6 +71,15 @@ impl<'a> Layout<'a> for Pqtmcfgcnst<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGCNST");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGCNST", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("gps", 1),
+        JsonMember::Field("glonass", 1),
+        JsonMember::Field("galileo", 1),
+        JsonMember::Field("bds", 1),
+        JsonMember::Field("qzss", 1),
+        JsonMember::Field("navic", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -92,48 +99,14 @@ impl<'a> Layout<'a> for Pqtmcfgcnst<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.gps)?;
-        w.field(&self.glonass)?;
-        w.field(&self.galileo)?;
-        w.field(&self.bds)?;
-        w.field(&self.qzss)?;
-        w.field(&self.navic)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.gps)?;
-        w.field(&self.glonass)?;
-        w.field(&self.galileo)?;
-        w.field(&self.bds)?;
-        w.field(&self.qzss)?;
-        w.field(&self.navic)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("gps", &self.gps)?;
-        j.field("glonass", &self.glonass)?;
-        j.field("galileo", &self.galileo)?;
-        j.field("bds", &self.bds)?;
-        j.field("qzss", &self.qzss)?;
-        j.field("navic", &self.navic)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "gps", 1)?;
-        out.member(fields, "glonass", 1)?;
-        out.member(fields, "galileo", 1)?;
-        out.member(fields, "bds", 1)?;
-        out.member(fields, "qzss", 1)?;
-        out.member(fields, "navic", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("gps", &self.gps)?;
+        sink.field("glonass", &self.glonass)?;
+        sink.field("galileo", &self.galileo)?;
+        sink.field("bds", &self.bds)?;
+        sink.field("qzss", &self.qzss)?;
+        sink.field("navic", &self.navic)?;
         Ok(())
     }
 }
@@ -192,6 +165,7 @@ impl<'a> Layout<'a> for PqtmcfgcnstRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGCNST");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGCNST", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -205,24 +179,8 @@ impl<'a> Layout<'a> for PqtmcfgcnstRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

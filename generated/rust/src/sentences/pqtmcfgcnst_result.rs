@@ -10,9 +10,7 @@
 use core::fmt;
 
 use crate::enums::{QuectelEnable, QuectelErrorCode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGCNST_RESULT: Configure constellations: result.
@@ -72,6 +70,15 @@ impl<'a> Layout<'a> for PqtmcfgcnstResult<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGCNST");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGCNST_RESULT", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("gps", 1),
+        JsonMember::Field("glonass", 1),
+        JsonMember::Field("galileo", 1),
+        JsonMember::Field("bds", 1),
+        JsonMember::Field("qzss", 1),
+        JsonMember::Field("navic", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -91,48 +98,14 @@ impl<'a> Layout<'a> for PqtmcfgcnstResult<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.gps)?;
-        w.field(&self.glonass)?;
-        w.field(&self.galileo)?;
-        w.field(&self.bds)?;
-        w.field(&self.qzss)?;
-        w.field(&self.navic)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.gps)?;
-        w.field(&self.glonass)?;
-        w.field(&self.galileo)?;
-        w.field(&self.bds)?;
-        w.field(&self.qzss)?;
-        w.field(&self.navic)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("gps", &self.gps)?;
-        j.field("glonass", &self.glonass)?;
-        j.field("galileo", &self.galileo)?;
-        j.field("bds", &self.bds)?;
-        j.field("qzss", &self.qzss)?;
-        j.field("navic", &self.navic)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "gps", 1)?;
-        out.member(fields, "glonass", 1)?;
-        out.member(fields, "galileo", 1)?;
-        out.member(fields, "bds", 1)?;
-        out.member(fields, "qzss", 1)?;
-        out.member(fields, "navic", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("gps", &self.gps)?;
+        sink.field("glonass", &self.glonass)?;
+        sink.field("galileo", &self.galileo)?;
+        sink.field("bds", &self.bds)?;
+        sink.field("qzss", &self.qzss)?;
+        sink.field("navic", &self.navic)?;
         Ok(())
     }
 }
@@ -188,6 +161,7 @@ impl<'a> Layout<'a> for PqtmcfgcnstResultAck {
     const VARIANT: Option<&'static str> = Some("ack");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGCNST");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGCNST_RESULT", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -201,24 +175,8 @@ impl<'a> Layout<'a> for PqtmcfgcnstResultAck {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
         Ok(())
     }
 }
@@ -270,6 +228,7 @@ impl<'a> Layout<'a> for PqtmcfgcnstResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGCNST");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGCNST_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -284,28 +243,9 @@ impl<'a> Layout<'a> for PqtmcfgcnstResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGFIXRATE: Configure fix interval.
@@ -64,6 +60,7 @@ impl<'a> Layout<'a> for Pqtmcfgfixrate {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGFIXRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGFIXRATE", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1), JsonMember::Field("fix_interval", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -78,28 +75,9 @@ impl<'a> Layout<'a> for Pqtmcfgfixrate {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.fix_interval)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.fix_interval)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("fix_interval", &self.fix_interval)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "fix_interval", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("fix_interval", &self.fix_interval)?;
         Ok(())
     }
 }
@@ -158,6 +136,7 @@ impl<'a> Layout<'a> for PqtmcfgfixrateRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGFIXRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGFIXRATE", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -171,24 +150,8 @@ impl<'a> Layout<'a> for PqtmcfgfixrateRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{QuectelEnable, QuectelGeofenceShape};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -94,6 +92,21 @@ impl<'a> Layout<'a> for Pqtmcfggeofence<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGGEOFENCE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGGEOFENCE", fixed: 3, optional: 10, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("index", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Optional("reserved", 1),
+        JsonMember::Optional("shape", 1),
+        JsonMember::Optional("lat0", 1),
+        JsonMember::Optional("lon0", 1),
+        JsonMember::Optional("lat1_or_radius", 1),
+        JsonMember::Optional("lon1", 1),
+        JsonMember::Optional("lat2", 1),
+        JsonMember::Optional("lon2", 1),
+        JsonMember::Optional("lat3", 1),
+        JsonMember::Optional("lon3", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -153,132 +166,40 @@ impl<'a> Layout<'a> for Pqtmcfggeofence<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.index)?;
-        w.field(&self.mode)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("index", &self.index)?;
+        sink.field("mode", &self.mode)?;
         if self.trailing >= 1 {
-            w.field(&self.reserved)?;
+            sink.field("reserved", &self.reserved)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.shape)?;
+            sink.field("shape", &self.shape)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.lat0)?;
+            sink.field("lat0", &self.lat0)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.lon0)?;
+            sink.field("lon0", &self.lon0)?;
         }
         if self.trailing >= 5 {
-            w.field(&self.lat1_or_radius)?;
+            sink.field("lat1_or_radius", &self.lat1_or_radius)?;
         }
         if self.trailing >= 6 {
-            w.field(&self.lon1)?;
+            sink.field("lon1", &self.lon1)?;
         }
         if self.trailing >= 7 {
-            w.field(&self.lat2)?;
+            sink.field("lat2", &self.lat2)?;
         }
         if self.trailing >= 8 {
-            w.field(&self.lon2)?;
+            sink.field("lon2", &self.lon2)?;
         }
         if self.trailing >= 9 {
-            w.field(&self.lat3)?;
+            sink.field("lat3", &self.lat3)?;
         }
         if self.trailing >= 10 {
-            w.field(&self.lon3)?;
+            sink.field("lon3", &self.lon3)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.index)?;
-        w.field(&self.mode)?;
-        if self.trailing >= 1 {
-            w.field(&self.reserved)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.shape)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.lat0)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.lon0)?;
-        }
-        if self.trailing >= 5 {
-            w.field(&self.lat1_or_radius)?;
-        }
-        if self.trailing >= 6 {
-            w.field(&self.lon1)?;
-        }
-        if self.trailing >= 7 {
-            w.field(&self.lat2)?;
-        }
-        if self.trailing >= 8 {
-            w.field(&self.lon2)?;
-        }
-        if self.trailing >= 9 {
-            w.field(&self.lat3)?;
-        }
-        if self.trailing >= 10 {
-            w.field(&self.lon3)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("index", &self.index)?;
-        j.field("mode", &self.mode)?;
-        if self.trailing >= 1 {
-            j.field("reserved", &self.reserved)?;
-        }
-        if self.trailing >= 2 {
-            j.field("shape", &self.shape)?;
-        }
-        if self.trailing >= 3 {
-            j.field("lat0", &self.lat0)?;
-        }
-        if self.trailing >= 4 {
-            j.field("lon0", &self.lon0)?;
-        }
-        if self.trailing >= 5 {
-            j.field("lat1_or_radius", &self.lat1_or_radius)?;
-        }
-        if self.trailing >= 6 {
-            j.field("lon1", &self.lon1)?;
-        }
-        if self.trailing >= 7 {
-            j.field("lat2", &self.lat2)?;
-        }
-        if self.trailing >= 8 {
-            j.field("lon2", &self.lon2)?;
-        }
-        if self.trailing >= 9 {
-            j.field("lat3", &self.lat3)?;
-        }
-        if self.trailing >= 10 {
-            j.field("lon3", &self.lon3)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "index", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.optional(fields, "reserved", 1)?;
-        out.optional(fields, "shape", 1)?;
-        out.optional(fields, "lat0", 1)?;
-        out.optional(fields, "lon0", 1)?;
-        out.optional(fields, "lat1_or_radius", 1)?;
-        out.optional(fields, "lon1", 1)?;
-        out.optional(fields, "lat2", 1)?;
-        out.optional(fields, "lon2", 1)?;
-        out.optional(fields, "lat3", 1)?;
-        out.optional(fields, "lon3", 1)?;
         Ok(())
     }
 }
@@ -339,6 +260,7 @@ impl<'a> Layout<'a> for PqtmcfggeofenceRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGGEOFENCE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGGEOFENCE", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1), JsonMember::Field("index", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -353,28 +275,9 @@ impl<'a> Layout<'a> for PqtmcfggeofenceRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        w.field(&self.index)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        w.field(&self.index)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        j.field("index", &self.index)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "index", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
+        sink.field("index", &self.index)?;
         Ok(())
     }
 }

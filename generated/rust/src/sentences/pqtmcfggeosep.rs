@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::QuectelGeosepMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -67,6 +65,8 @@ impl<'a> Layout<'a> for Pqtmcfggeosep<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGGEOSEP");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGGEOSEP", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("access", 1), JsonMember::Field("mode", 1), JsonMember::Field("separation", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -83,32 +83,10 @@ impl<'a> Layout<'a> for Pqtmcfggeosep<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.mode)?;
-        w.field(&self.separation)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.mode)?;
-        w.field(&self.separation)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("mode", &self.mode)?;
-        j.field("separation", &self.separation)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "separation", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("mode", &self.mode)?;
+        sink.field("separation", &self.separation)?;
         Ok(())
     }
 }
@@ -167,6 +145,7 @@ impl<'a> Layout<'a> for PqtmcfggeosepRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGGEOSEP");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGGEOSEP", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -180,24 +159,8 @@ impl<'a> Layout<'a> for PqtmcfggeosepRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::QuectelPortType;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -77,6 +75,12 @@ impl<'a> Layout<'a> for Pqtmcfgmsgrate<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGMSGRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGMSGRATE", fixed: 3, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("message", 1),
+        JsonMember::Field("rate", 1),
+        JsonMember::Optional("version_or_offset", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -96,42 +100,13 @@ impl<'a> Layout<'a> for Pqtmcfgmsgrate<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("message", &self.message)?;
+        sink.field("rate", &self.rate)?;
         if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
+            sink.field("version_or_offset", &self.version_or_offset)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
-        if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("message", &self.message)?;
-        j.field("rate", &self.rate)?;
-        if self.trailing >= 1 {
-            j.field("version_or_offset", &self.version_or_offset)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "message", 1)?;
-        out.member(fields, "rate", 1)?;
-        out.optional(fields, "version_or_offset", 1)?;
         Ok(())
     }
 }
@@ -208,6 +183,14 @@ impl<'a> Layout<'a> for PqtmcfgmsgratePort<'a> {
     const VARIANT: Option<&'static str> = Some("port");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGMSGRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGMSGRATE", fixed: 5, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("port_type", 1),
+        JsonMember::Field("port_id", 1),
+        JsonMember::Field("message", 1),
+        JsonMember::Field("rate", 1),
+        JsonMember::Optional("version_or_offset", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -229,50 +212,15 @@ impl<'a> Layout<'a> for PqtmcfgmsgratePort<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("port_type", &self.port_type)?;
+        sink.field("port_id", &self.port_id)?;
+        sink.field("message", &self.message)?;
+        sink.field("rate", &self.rate)?;
         if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
+            sink.field("version_or_offset", &self.version_or_offset)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
-        if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("port_type", &self.port_type)?;
-        j.field("port_id", &self.port_id)?;
-        j.field("message", &self.message)?;
-        j.field("rate", &self.rate)?;
-        if self.trailing >= 1 {
-            j.field("version_or_offset", &self.version_or_offset)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "port_type", 1)?;
-        out.member(fields, "port_id", 1)?;
-        out.member(fields, "message", 1)?;
-        out.member(fields, "rate", 1)?;
-        out.optional(fields, "version_or_offset", 1)?;
         Ok(())
     }
 }
@@ -346,6 +294,13 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateReadPort<'a> {
     const VARIANT: Option<&'static str> = Some("read_port");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGMSGRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGMSGRATE", fixed: 4, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("port_type", 1),
+        JsonMember::Field("port_id", 1),
+        JsonMember::Field("message", 1),
+        JsonMember::Optional("version_or_offset", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -366,46 +321,14 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateReadPort<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        w.field(&self.message)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
+        sink.field("port_type", &self.port_type)?;
+        sink.field("port_id", &self.port_id)?;
+        sink.field("message", &self.message)?;
         if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
+            sink.field("version_or_offset", &self.version_or_offset)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        w.field(&self.message)?;
-        if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        j.field("port_type", &self.port_type)?;
-        j.field("port_id", &self.port_id)?;
-        j.field("message", &self.message)?;
-        if self.trailing >= 1 {
-            j.field("version_or_offset", &self.version_or_offset)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "port_type", 1)?;
-        out.member(fields, "port_id", 1)?;
-        out.member(fields, "message", 1)?;
-        out.optional(fields, "version_or_offset", 1)?;
         Ok(())
     }
 }
@@ -476,6 +399,11 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateRead<'a> {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGMSGRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGMSGRATE", fixed: 2, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("message", 1),
+        JsonMember::Optional("version_or_offset", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -494,38 +422,12 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateRead<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        w.field(&self.message)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
+        sink.field("message", &self.message)?;
         if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
+            sink.field("version_or_offset", &self.version_or_offset)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        w.field(&self.message)?;
-        if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        j.field("message", &self.message)?;
-        if self.trailing >= 1 {
-            j.field("version_or_offset", &self.version_or_offset)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "message", 1)?;
-        out.optional(fields, "version_or_offset", 1)?;
         Ok(())
     }
 }

@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{QuectelErrorCode, QuectelPortType};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -76,6 +74,12 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateResult<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGMSGRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGMSGRATE_RESULT", fixed: 3, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("message", 1),
+        JsonMember::Field("rate", 1),
+        JsonMember::Optional("version_or_offset", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -95,42 +99,13 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateResult<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("message", &self.message)?;
+        sink.field("rate", &self.rate)?;
         if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
+            sink.field("version_or_offset", &self.version_or_offset)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
-        if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("message", &self.message)?;
-        j.field("rate", &self.rate)?;
-        if self.trailing >= 1 {
-            j.field("version_or_offset", &self.version_or_offset)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "message", 1)?;
-        out.member(fields, "rate", 1)?;
-        out.optional(fields, "version_or_offset", 1)?;
         Ok(())
     }
 }
@@ -204,6 +179,14 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateResultPort<'a> {
     const VARIANT: Option<&'static str> = Some("port");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGMSGRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGMSGRATE_RESULT", fixed: 5, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("port_type", 1),
+        JsonMember::Field("port_id", 1),
+        JsonMember::Field("message", 1),
+        JsonMember::Field("rate", 1),
+        JsonMember::Optional("version_or_offset", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -225,50 +208,15 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateResultPort<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("port_type", &self.port_type)?;
+        sink.field("port_id", &self.port_id)?;
+        sink.field("message", &self.message)?;
+        sink.field("rate", &self.rate)?;
         if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
+            sink.field("version_or_offset", &self.version_or_offset)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        w.field(&self.message)?;
-        w.field(&self.rate)?;
-        if self.trailing >= 1 {
-            w.field(&self.version_or_offset)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("port_type", &self.port_type)?;
-        j.field("port_id", &self.port_id)?;
-        j.field("message", &self.message)?;
-        j.field("rate", &self.rate)?;
-        if self.trailing >= 1 {
-            j.field("version_or_offset", &self.version_or_offset)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "port_type", 1)?;
-        out.member(fields, "port_id", 1)?;
-        out.member(fields, "message", 1)?;
-        out.member(fields, "rate", 1)?;
-        out.optional(fields, "version_or_offset", 1)?;
         Ok(())
     }
 }
@@ -324,6 +272,7 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateResultAck {
     const VARIANT: Option<&'static str> = Some("ack");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGMSGRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGMSGRATE_RESULT", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -337,24 +286,8 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateResultAck {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
         Ok(())
     }
 }
@@ -406,6 +339,7 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGMSGRATE");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGMSGRATE_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -420,28 +354,9 @@ impl<'a> Layout<'a> for PqtmcfgmsgrateResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGNMEADP: Configure NMEA decimal places.
@@ -76,6 +72,15 @@ impl<'a> Layout<'a> for Pqtmcfgnmeadp {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGNMEADP");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGNMEADP", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("utc_decimals", 1),
+        JsonMember::Field("position_decimals", 1),
+        JsonMember::Field("altitude_decimals", 1),
+        JsonMember::Field("dop_decimals", 1),
+        JsonMember::Field("speed_decimals", 1),
+        JsonMember::Field("cog_decimals", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -98,48 +103,14 @@ impl<'a> Layout<'a> for Pqtmcfgnmeadp {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.utc_decimals)?;
-        w.field(&self.position_decimals)?;
-        w.field(&self.altitude_decimals)?;
-        w.field(&self.dop_decimals)?;
-        w.field(&self.speed_decimals)?;
-        w.field(&self.cog_decimals)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.utc_decimals)?;
-        w.field(&self.position_decimals)?;
-        w.field(&self.altitude_decimals)?;
-        w.field(&self.dop_decimals)?;
-        w.field(&self.speed_decimals)?;
-        w.field(&self.cog_decimals)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("utc_decimals", &self.utc_decimals)?;
-        j.field("position_decimals", &self.position_decimals)?;
-        j.field("altitude_decimals", &self.altitude_decimals)?;
-        j.field("dop_decimals", &self.dop_decimals)?;
-        j.field("speed_decimals", &self.speed_decimals)?;
-        j.field("cog_decimals", &self.cog_decimals)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "utc_decimals", 1)?;
-        out.member(fields, "position_decimals", 1)?;
-        out.member(fields, "altitude_decimals", 1)?;
-        out.member(fields, "dop_decimals", 1)?;
-        out.member(fields, "speed_decimals", 1)?;
-        out.member(fields, "cog_decimals", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("utc_decimals", &self.utc_decimals)?;
+        sink.field("position_decimals", &self.position_decimals)?;
+        sink.field("altitude_decimals", &self.altitude_decimals)?;
+        sink.field("dop_decimals", &self.dop_decimals)?;
+        sink.field("speed_decimals", &self.speed_decimals)?;
+        sink.field("cog_decimals", &self.cog_decimals)?;
         Ok(())
     }
 }
@@ -198,6 +169,7 @@ impl<'a> Layout<'a> for PqtmcfgnmeadpRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGNMEADP");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGNMEADP", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -211,24 +183,8 @@ impl<'a> Layout<'a> for PqtmcfgnmeadpRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::QuectelErrorCode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -74,6 +72,15 @@ impl<'a> Layout<'a> for PqtmcfgnmeadpResult {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGNMEADP");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGNMEADP_RESULT", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("utc_decimals", 1),
+        JsonMember::Field("position_decimals", 1),
+        JsonMember::Field("altitude_decimals", 1),
+        JsonMember::Field("dop_decimals", 1),
+        JsonMember::Field("speed_decimals", 1),
+        JsonMember::Field("cog_decimals", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -96,48 +103,14 @@ impl<'a> Layout<'a> for PqtmcfgnmeadpResult {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.utc_decimals)?;
-        w.field(&self.position_decimals)?;
-        w.field(&self.altitude_decimals)?;
-        w.field(&self.dop_decimals)?;
-        w.field(&self.speed_decimals)?;
-        w.field(&self.cog_decimals)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.utc_decimals)?;
-        w.field(&self.position_decimals)?;
-        w.field(&self.altitude_decimals)?;
-        w.field(&self.dop_decimals)?;
-        w.field(&self.speed_decimals)?;
-        w.field(&self.cog_decimals)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("utc_decimals", &self.utc_decimals)?;
-        j.field("position_decimals", &self.position_decimals)?;
-        j.field("altitude_decimals", &self.altitude_decimals)?;
-        j.field("dop_decimals", &self.dop_decimals)?;
-        j.field("speed_decimals", &self.speed_decimals)?;
-        j.field("cog_decimals", &self.cog_decimals)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "utc_decimals", 1)?;
-        out.member(fields, "position_decimals", 1)?;
-        out.member(fields, "altitude_decimals", 1)?;
-        out.member(fields, "dop_decimals", 1)?;
-        out.member(fields, "speed_decimals", 1)?;
-        out.member(fields, "cog_decimals", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("utc_decimals", &self.utc_decimals)?;
+        sink.field("position_decimals", &self.position_decimals)?;
+        sink.field("altitude_decimals", &self.altitude_decimals)?;
+        sink.field("dop_decimals", &self.dop_decimals)?;
+        sink.field("speed_decimals", &self.speed_decimals)?;
+        sink.field("cog_decimals", &self.cog_decimals)?;
         Ok(())
     }
 }
@@ -193,6 +166,7 @@ impl<'a> Layout<'a> for PqtmcfgnmeadpResultAck {
     const VARIANT: Option<&'static str> = Some("ack");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGNMEADP");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGNMEADP_RESULT", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -206,24 +180,8 @@ impl<'a> Layout<'a> for PqtmcfgnmeadpResultAck {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
         Ok(())
     }
 }
@@ -275,6 +233,7 @@ impl<'a> Layout<'a> for PqtmcfgnmeadpResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGNMEADP");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGNMEADP_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -289,28 +248,9 @@ impl<'a> Layout<'a> for PqtmcfgnmeadpResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::QuectelGsvTalker;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGNMEATID: Configure NMEA talker ID.
@@ -66,6 +64,8 @@ impl<'a> Layout<'a> for Pqtmcfgnmeatid<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGNMEATID");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGNMEATID", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("access", 1), JsonMember::Field("main_talker", 1), JsonMember::Field("gsv_talker", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -81,32 +81,10 @@ impl<'a> Layout<'a> for Pqtmcfgnmeatid<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.main_talker)?;
-        w.field(&self.gsv_talker)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.main_talker)?;
-        w.field(&self.gsv_talker)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("main_talker", &self.main_talker)?;
-        j.field("gsv_talker", &self.gsv_talker)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "main_talker", 1)?;
-        out.member(fields, "gsv_talker", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("main_talker", &self.main_talker)?;
+        sink.field("gsv_talker", &self.gsv_talker)?;
         Ok(())
     }
 }
@@ -165,6 +143,7 @@ impl<'a> Layout<'a> for PqtmcfgnmeatidRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGNMEATID");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGNMEATID", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -178,24 +157,8 @@ impl<'a> Layout<'a> for PqtmcfgnmeatidRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

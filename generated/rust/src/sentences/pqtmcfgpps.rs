@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::{QuectelEnable, QuectelPpsMode, QuectelPpsPolarity};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -78,6 +76,15 @@ impl<'a> Layout<'a> for Pqtmcfgpps<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGPPS");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGPPS", fixed: 3, optional: 4, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("index", 1),
+        JsonMember::Field("enable", 1),
+        JsonMember::Optional("duration", 1),
+        JsonMember::Optional("mode", 1),
+        JsonMember::Optional("polarity", 1),
+        JsonMember::Optional("reserved", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -109,72 +116,22 @@ impl<'a> Layout<'a> for Pqtmcfgpps<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.index)?;
-        w.field(&self.enable)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("index", &self.index)?;
+        sink.field("enable", &self.enable)?;
         if self.trailing >= 1 {
-            w.field(&self.duration)?;
+            sink.field("duration", &self.duration)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.polarity)?;
+            sink.field("polarity", &self.polarity)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.reserved)?;
+            sink.field("reserved", &self.reserved)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.index)?;
-        w.field(&self.enable)?;
-        if self.trailing >= 1 {
-            w.field(&self.duration)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.mode)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.polarity)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.reserved)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("index", &self.index)?;
-        j.field("enable", &self.enable)?;
-        if self.trailing >= 1 {
-            j.field("duration", &self.duration)?;
-        }
-        if self.trailing >= 2 {
-            j.field("mode", &self.mode)?;
-        }
-        if self.trailing >= 3 {
-            j.field("polarity", &self.polarity)?;
-        }
-        if self.trailing >= 4 {
-            j.field("reserved", &self.reserved)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "index", 1)?;
-        out.member(fields, "enable", 1)?;
-        out.optional(fields, "duration", 1)?;
-        out.optional(fields, "mode", 1)?;
-        out.optional(fields, "polarity", 1)?;
-        out.optional(fields, "reserved", 1)?;
         Ok(())
     }
 }
@@ -235,6 +192,7 @@ impl<'a> Layout<'a> for PqtmcfgppsRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGPPS");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGPPS", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1), JsonMember::Field("index", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -249,28 +207,9 @@ impl<'a> Layout<'a> for PqtmcfgppsRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        w.field(&self.index)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        w.field(&self.index)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        j.field("index", &self.index)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "index", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
+        sink.field("index", &self.index)?;
         Ok(())
     }
 }

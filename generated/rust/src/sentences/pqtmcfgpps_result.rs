@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{QuectelEnable, QuectelErrorCode, QuectelPpsMode, QuectelPpsPolarity};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -77,6 +75,15 @@ impl<'a> Layout<'a> for PqtmcfgppsResult<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGPPS");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGPPS_RESULT", fixed: 3, optional: 4, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("index", 1),
+        JsonMember::Field("enable", 1),
+        JsonMember::Optional("duration", 1),
+        JsonMember::Optional("mode", 1),
+        JsonMember::Optional("polarity", 1),
+        JsonMember::Optional("reserved", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -108,72 +115,22 @@ impl<'a> Layout<'a> for PqtmcfgppsResult<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.index)?;
-        w.field(&self.enable)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("index", &self.index)?;
+        sink.field("enable", &self.enable)?;
         if self.trailing >= 1 {
-            w.field(&self.duration)?;
+            sink.field("duration", &self.duration)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.polarity)?;
+            sink.field("polarity", &self.polarity)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.reserved)?;
+            sink.field("reserved", &self.reserved)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.index)?;
-        w.field(&self.enable)?;
-        if self.trailing >= 1 {
-            w.field(&self.duration)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.mode)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.polarity)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.reserved)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("index", &self.index)?;
-        j.field("enable", &self.enable)?;
-        if self.trailing >= 1 {
-            j.field("duration", &self.duration)?;
-        }
-        if self.trailing >= 2 {
-            j.field("mode", &self.mode)?;
-        }
-        if self.trailing >= 3 {
-            j.field("polarity", &self.polarity)?;
-        }
-        if self.trailing >= 4 {
-            j.field("reserved", &self.reserved)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "index", 1)?;
-        out.member(fields, "enable", 1)?;
-        out.optional(fields, "duration", 1)?;
-        out.optional(fields, "mode", 1)?;
-        out.optional(fields, "polarity", 1)?;
-        out.optional(fields, "reserved", 1)?;
         Ok(())
     }
 }
@@ -229,6 +186,7 @@ impl<'a> Layout<'a> for PqtmcfgppsResultAck {
     const VARIANT: Option<&'static str> = Some("ack");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGPPS");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGPPS_RESULT", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -242,24 +200,8 @@ impl<'a> Layout<'a> for PqtmcfgppsResultAck {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
         Ok(())
     }
 }
@@ -311,6 +253,7 @@ impl<'a> Layout<'a> for PqtmcfgppsResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGPPS");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGPPS_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -325,28 +268,9 @@ impl<'a> Layout<'a> for PqtmcfgppsResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

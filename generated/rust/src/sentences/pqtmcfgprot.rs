@@ -9,11 +9,8 @@
 use core::fmt;
 
 use crate::enums::QuectelPortType;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Number, Range, Shape,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -76,6 +73,13 @@ impl<'a> Layout<'a> for Pqtmcfgprot<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGPROT");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGPROT", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("port_type", 1),
+        JsonMember::Field("port_id", 1),
+        JsonMember::Field("input_protocols", 1),
+        JsonMember::Field("output_protocols", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -93,40 +97,12 @@ impl<'a> Layout<'a> for Pqtmcfgprot<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        w.field(&self.input_protocols)?;
-        w.field(&self.output_protocols)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        w.field(&self.input_protocols)?;
-        w.field(&self.output_protocols)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("port_type", &self.port_type)?;
-        j.field("port_id", &self.port_id)?;
-        j.field("input_protocols", &self.input_protocols)?;
-        j.field("output_protocols", &self.output_protocols)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "port_type", 1)?;
-        out.member(fields, "port_id", 1)?;
-        out.member(fields, "input_protocols", 1)?;
-        out.member(fields, "output_protocols", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("port_type", &self.port_type)?;
+        sink.field("port_id", &self.port_id)?;
+        sink.field("input_protocols", &self.input_protocols)?;
+        sink.field("output_protocols", &self.output_protocols)?;
         Ok(())
     }
 }
@@ -189,6 +165,8 @@ impl<'a> Layout<'a> for PqtmcfgprotRead<'a> {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGPROT");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGPROT", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("access", 1), JsonMember::Field("port_type", 1), JsonMember::Field("port_id", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -204,32 +182,10 @@ impl<'a> Layout<'a> for PqtmcfgprotRead<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        w.field(&self.port_type)?;
-        w.field(&self.port_id)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        j.field("port_type", &self.port_type)?;
-        j.field("port_id", &self.port_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "port_type", 1)?;
-        out.member(fields, "port_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
+        sink.field("port_type", &self.port_type)?;
+        sink.field("port_id", &self.port_id)?;
         Ok(())
     }
 }

@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::QuectelRtcmEphMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -78,6 +76,16 @@ impl<'a> Layout<'a> for Pqtmcfgrtcm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGRTCM");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGRTCM", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("msm_type", 1),
+        JsonMember::Field("msm_mode", 1),
+        JsonMember::Field("msm_elevation", 1),
+        JsonMember::Field("reserved1", 1),
+        JsonMember::Field("reserved2", 1),
+        JsonMember::Field("eph_mode", 1),
+        JsonMember::Field("eph_interval", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -100,52 +108,15 @@ impl<'a> Layout<'a> for Pqtmcfgrtcm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.msm_type)?;
-        w.field(&self.msm_mode)?;
-        w.field(&self.msm_elevation)?;
-        w.field(&self.reserved1)?;
-        w.field(&self.reserved2)?;
-        w.field(&self.eph_mode)?;
-        w.field(&self.eph_interval)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.msm_type)?;
-        w.field(&self.msm_mode)?;
-        w.field(&self.msm_elevation)?;
-        w.field(&self.reserved1)?;
-        w.field(&self.reserved2)?;
-        w.field(&self.eph_mode)?;
-        w.field(&self.eph_interval)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("msm_type", &self.msm_type)?;
-        j.field("msm_mode", &self.msm_mode)?;
-        j.field("msm_elevation", &self.msm_elevation)?;
-        j.field("reserved1", &self.reserved1)?;
-        j.field("reserved2", &self.reserved2)?;
-        j.field("eph_mode", &self.eph_mode)?;
-        j.field("eph_interval", &self.eph_interval)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "msm_type", 1)?;
-        out.member(fields, "msm_mode", 1)?;
-        out.member(fields, "msm_elevation", 1)?;
-        out.member(fields, "reserved1", 1)?;
-        out.member(fields, "reserved2", 1)?;
-        out.member(fields, "eph_mode", 1)?;
-        out.member(fields, "eph_interval", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("msm_type", &self.msm_type)?;
+        sink.field("msm_mode", &self.msm_mode)?;
+        sink.field("msm_elevation", &self.msm_elevation)?;
+        sink.field("reserved1", &self.reserved1)?;
+        sink.field("reserved2", &self.reserved2)?;
+        sink.field("eph_mode", &self.eph_mode)?;
+        sink.field("eph_interval", &self.eph_interval)?;
         Ok(())
     }
 }
@@ -204,6 +175,7 @@ impl<'a> Layout<'a> for PqtmcfgrtcmRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGRTCM");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGRTCM", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -217,24 +189,8 @@ impl<'a> Layout<'a> for PqtmcfgrtcmRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

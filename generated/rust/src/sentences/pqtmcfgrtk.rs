@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::{QuectelRtkDiffMode, QuectelRtkRelMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -73,6 +71,12 @@ impl<'a> Layout<'a> for Pqtmcfgrtk<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGRTK");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGRTK", fixed: 3, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("diff_mode", 1),
+        JsonMember::Field("rel_mode", 1),
+        JsonMember::Optional("timeout", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -92,42 +96,13 @@ impl<'a> Layout<'a> for Pqtmcfgrtk<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.diff_mode)?;
-        w.field(&self.rel_mode)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("diff_mode", &self.diff_mode)?;
+        sink.field("rel_mode", &self.rel_mode)?;
         if self.trailing >= 1 {
-            w.field(&self.timeout)?;
+            sink.field("timeout", &self.timeout)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.diff_mode)?;
-        w.field(&self.rel_mode)?;
-        if self.trailing >= 1 {
-            w.field(&self.timeout)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("diff_mode", &self.diff_mode)?;
-        j.field("rel_mode", &self.rel_mode)?;
-        if self.trailing >= 1 {
-            j.field("timeout", &self.timeout)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "diff_mode", 1)?;
-        out.member(fields, "rel_mode", 1)?;
-        out.optional(fields, "timeout", 1)?;
         Ok(())
     }
 }
@@ -186,6 +161,7 @@ impl<'a> Layout<'a> for PqtmcfgrtkRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGRTK");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGRTK", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -199,24 +175,8 @@ impl<'a> Layout<'a> for PqtmcfgrtkRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::SystemId;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGSAT: Configure satellite mask.
@@ -76,6 +74,13 @@ impl<'a> Layout<'a> for Pqtmcfgsat<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSAT");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSAT", fixed: 4, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("system", 1),
+        JsonMember::Field("signal", 1),
+        JsonMember::Field("mask_low", 1),
+        JsonMember::Optional("mask_high", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -96,46 +101,14 @@ impl<'a> Layout<'a> for Pqtmcfgsat<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.system)?;
-        w.field(&self.signal)?;
-        w.field(&self.mask_low)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("system", &self.system)?;
+        sink.field("signal", &self.signal)?;
+        sink.field("mask_low", &self.mask_low)?;
         if self.trailing >= 1 {
-            w.field(&self.mask_high)?;
+            sink.field("mask_high", &self.mask_high)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.system)?;
-        w.field(&self.signal)?;
-        w.field(&self.mask_low)?;
-        if self.trailing >= 1 {
-            w.field(&self.mask_high)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("system", &self.system)?;
-        j.field("signal", &self.signal)?;
-        j.field("mask_low", &self.mask_low)?;
-        if self.trailing >= 1 {
-            j.field("mask_high", &self.mask_high)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "system", 1)?;
-        out.member(fields, "signal", 1)?;
-        out.member(fields, "mask_low", 1)?;
-        out.optional(fields, "mask_high", 1)?;
         Ok(())
     }
 }
@@ -201,6 +174,8 @@ impl<'a> Layout<'a> for PqtmcfgsatRead<'a> {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSAT");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSAT", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("access", 1), JsonMember::Field("system", 1), JsonMember::Field("signal", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -216,32 +191,10 @@ impl<'a> Layout<'a> for PqtmcfgsatRead<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        w.field(&self.system)?;
-        w.field(&self.signal)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        w.field(&self.system)?;
-        w.field(&self.signal)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        j.field("system", &self.system)?;
-        j.field("signal", &self.signal)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "system", 1)?;
-        out.member(fields, "signal", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
+        sink.field("system", &self.system)?;
+        sink.field("signal", &self.signal)?;
         Ok(())
     }
 }

@@ -8,9 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGSIGNAL: Configure signals.
@@ -78,6 +76,15 @@ impl<'a> Layout<'a> for Pqtmcfgsignal {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSIGNAL");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSIGNAL", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("gps_signals", 1),
+        JsonMember::Field("glonass_signals", 1),
+        JsonMember::Field("galileo_signals", 1),
+        JsonMember::Field("bds_signals", 1),
+        JsonMember::Field("qzss_signals", 1),
+        JsonMember::Field("navic_signals", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -97,48 +104,14 @@ impl<'a> Layout<'a> for Pqtmcfgsignal {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.gps_signals)?;
-        w.field(&self.glonass_signals)?;
-        w.field(&self.galileo_signals)?;
-        w.field(&self.bds_signals)?;
-        w.field(&self.qzss_signals)?;
-        w.field(&self.navic_signals)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.gps_signals)?;
-        w.field(&self.glonass_signals)?;
-        w.field(&self.galileo_signals)?;
-        w.field(&self.bds_signals)?;
-        w.field(&self.qzss_signals)?;
-        w.field(&self.navic_signals)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("gps_signals", &self.gps_signals)?;
-        j.field("glonass_signals", &self.glonass_signals)?;
-        j.field("galileo_signals", &self.galileo_signals)?;
-        j.field("bds_signals", &self.bds_signals)?;
-        j.field("qzss_signals", &self.qzss_signals)?;
-        j.field("navic_signals", &self.navic_signals)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "gps_signals", 1)?;
-        out.member(fields, "glonass_signals", 1)?;
-        out.member(fields, "galileo_signals", 1)?;
-        out.member(fields, "bds_signals", 1)?;
-        out.member(fields, "qzss_signals", 1)?;
-        out.member(fields, "navic_signals", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("gps_signals", &self.gps_signals)?;
+        sink.field("glonass_signals", &self.glonass_signals)?;
+        sink.field("galileo_signals", &self.galileo_signals)?;
+        sink.field("bds_signals", &self.bds_signals)?;
+        sink.field("qzss_signals", &self.qzss_signals)?;
+        sink.field("navic_signals", &self.navic_signals)?;
         Ok(())
     }
 }
@@ -197,6 +170,7 @@ impl<'a> Layout<'a> for PqtmcfgsignalRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSIGNAL");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSIGNAL", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -210,24 +184,8 @@ impl<'a> Layout<'a> for PqtmcfgsignalRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

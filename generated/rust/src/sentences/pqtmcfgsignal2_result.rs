@@ -10,9 +10,7 @@
 use core::fmt;
 
 use crate::enums::QuectelErrorCode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGSIGNAL2_RESULT: Configure antenna 2 signals: result.
@@ -78,6 +76,15 @@ impl<'a> Layout<'a> for Pqtmcfgsignal2Result {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSIGNAL2");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSIGNAL2_RESULT", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("gps_signals", 1),
+        JsonMember::Field("glonass_signals", 1),
+        JsonMember::Field("galileo_signals", 1),
+        JsonMember::Field("bds_signals", 1),
+        JsonMember::Field("qzss_signals", 1),
+        JsonMember::Field("navic_signals", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -97,48 +104,14 @@ impl<'a> Layout<'a> for Pqtmcfgsignal2Result {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.gps_signals)?;
-        w.field(&self.glonass_signals)?;
-        w.field(&self.galileo_signals)?;
-        w.field(&self.bds_signals)?;
-        w.field(&self.qzss_signals)?;
-        w.field(&self.navic_signals)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.gps_signals)?;
-        w.field(&self.glonass_signals)?;
-        w.field(&self.galileo_signals)?;
-        w.field(&self.bds_signals)?;
-        w.field(&self.qzss_signals)?;
-        w.field(&self.navic_signals)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("gps_signals", &self.gps_signals)?;
-        j.field("glonass_signals", &self.glonass_signals)?;
-        j.field("galileo_signals", &self.galileo_signals)?;
-        j.field("bds_signals", &self.bds_signals)?;
-        j.field("qzss_signals", &self.qzss_signals)?;
-        j.field("navic_signals", &self.navic_signals)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "gps_signals", 1)?;
-        out.member(fields, "glonass_signals", 1)?;
-        out.member(fields, "galileo_signals", 1)?;
-        out.member(fields, "bds_signals", 1)?;
-        out.member(fields, "qzss_signals", 1)?;
-        out.member(fields, "navic_signals", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("gps_signals", &self.gps_signals)?;
+        sink.field("glonass_signals", &self.glonass_signals)?;
+        sink.field("galileo_signals", &self.galileo_signals)?;
+        sink.field("bds_signals", &self.bds_signals)?;
+        sink.field("qzss_signals", &self.qzss_signals)?;
+        sink.field("navic_signals", &self.navic_signals)?;
         Ok(())
     }
 }
@@ -194,6 +167,7 @@ impl<'a> Layout<'a> for Pqtmcfgsignal2ResultAck {
     const VARIANT: Option<&'static str> = Some("ack");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSIGNAL2");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSIGNAL2_RESULT", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -207,24 +181,8 @@ impl<'a> Layout<'a> for Pqtmcfgsignal2ResultAck {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
         Ok(())
     }
 }
@@ -276,6 +234,7 @@ impl<'a> Layout<'a> for Pqtmcfgsignal2ResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSIGNAL2");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSIGNAL2_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -290,28 +249,9 @@ impl<'a> Layout<'a> for Pqtmcfgsignal2ResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

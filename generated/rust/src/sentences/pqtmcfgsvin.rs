@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::QuectelSvinMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -83,6 +81,16 @@ impl<'a> Layout<'a> for Pqtmcfgsvin<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSVIN");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSVIN", fixed: 7, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("min_fixes", 1),
+        JsonMember::Field("accuracy_limit", 1),
+        JsonMember::Field("ecef_x", 1),
+        JsonMember::Field("ecef_y", 1),
+        JsonMember::Field("ecef_z", 1),
+        JsonMember::Optional("distance", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -108,58 +116,17 @@ impl<'a> Layout<'a> for Pqtmcfgsvin<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.mode)?;
-        w.field(&self.min_fixes)?;
-        w.field(&self.accuracy_limit)?;
-        w.field(&self.ecef_x)?;
-        w.field(&self.ecef_y)?;
-        w.field(&self.ecef_z)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("mode", &self.mode)?;
+        sink.field("min_fixes", &self.min_fixes)?;
+        sink.field("accuracy_limit", &self.accuracy_limit)?;
+        sink.field("ecef_x", &self.ecef_x)?;
+        sink.field("ecef_y", &self.ecef_y)?;
+        sink.field("ecef_z", &self.ecef_z)?;
         if self.trailing >= 1 {
-            w.field(&self.distance)?;
+            sink.field("distance", &self.distance)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.mode)?;
-        w.field(&self.min_fixes)?;
-        w.field(&self.accuracy_limit)?;
-        w.field(&self.ecef_x)?;
-        w.field(&self.ecef_y)?;
-        w.field(&self.ecef_z)?;
-        if self.trailing >= 1 {
-            w.field(&self.distance)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("mode", &self.mode)?;
-        j.field("min_fixes", &self.min_fixes)?;
-        j.field("accuracy_limit", &self.accuracy_limit)?;
-        j.field("ecef_x", &self.ecef_x)?;
-        j.field("ecef_y", &self.ecef_y)?;
-        j.field("ecef_z", &self.ecef_z)?;
-        if self.trailing >= 1 {
-            j.field("distance", &self.distance)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "min_fixes", 1)?;
-        out.member(fields, "accuracy_limit", 1)?;
-        out.member(fields, "ecef_x", 1)?;
-        out.member(fields, "ecef_y", 1)?;
-        out.member(fields, "ecef_z", 1)?;
-        out.optional(fields, "distance", 1)?;
         Ok(())
     }
 }
@@ -218,6 +185,7 @@ impl<'a> Layout<'a> for PqtmcfgsvinRead {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSVIN");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSVIN", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -231,24 +199,8 @@ impl<'a> Layout<'a> for PqtmcfgsvinRead {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         Ok(())
     }
 }

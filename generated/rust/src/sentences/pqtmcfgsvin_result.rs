@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{QuectelErrorCode, QuectelSvinMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -80,6 +78,16 @@ impl<'a> Layout<'a> for PqtmcfgsvinResult<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSVIN");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSVIN_RESULT", fixed: 7, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("min_fixes", 1),
+        JsonMember::Field("accuracy_limit", 1),
+        JsonMember::Field("ecef_x", 1),
+        JsonMember::Field("ecef_y", 1),
+        JsonMember::Field("ecef_z", 1),
+        JsonMember::Optional("distance", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -105,58 +113,17 @@ impl<'a> Layout<'a> for PqtmcfgsvinResult<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.mode)?;
-        w.field(&self.min_fixes)?;
-        w.field(&self.accuracy_limit)?;
-        w.field(&self.ecef_x)?;
-        w.field(&self.ecef_y)?;
-        w.field(&self.ecef_z)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("mode", &self.mode)?;
+        sink.field("min_fixes", &self.min_fixes)?;
+        sink.field("accuracy_limit", &self.accuracy_limit)?;
+        sink.field("ecef_x", &self.ecef_x)?;
+        sink.field("ecef_y", &self.ecef_y)?;
+        sink.field("ecef_z", &self.ecef_z)?;
         if self.trailing >= 1 {
-            w.field(&self.distance)?;
+            sink.field("distance", &self.distance)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.mode)?;
-        w.field(&self.min_fixes)?;
-        w.field(&self.accuracy_limit)?;
-        w.field(&self.ecef_x)?;
-        w.field(&self.ecef_y)?;
-        w.field(&self.ecef_z)?;
-        if self.trailing >= 1 {
-            w.field(&self.distance)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("mode", &self.mode)?;
-        j.field("min_fixes", &self.min_fixes)?;
-        j.field("accuracy_limit", &self.accuracy_limit)?;
-        j.field("ecef_x", &self.ecef_x)?;
-        j.field("ecef_y", &self.ecef_y)?;
-        j.field("ecef_z", &self.ecef_z)?;
-        if self.trailing >= 1 {
-            j.field("distance", &self.distance)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "min_fixes", 1)?;
-        out.member(fields, "accuracy_limit", 1)?;
-        out.member(fields, "ecef_x", 1)?;
-        out.member(fields, "ecef_y", 1)?;
-        out.member(fields, "ecef_z", 1)?;
-        out.optional(fields, "distance", 1)?;
         Ok(())
     }
 }
@@ -212,6 +179,7 @@ impl<'a> Layout<'a> for PqtmcfgsvinResultAck {
     const VARIANT: Option<&'static str> = Some("ack");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSVIN");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSVIN_RESULT", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -225,24 +193,8 @@ impl<'a> Layout<'a> for PqtmcfgsvinResultAck {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
         Ok(())
     }
 }
@@ -294,6 +246,7 @@ impl<'a> Layout<'a> for PqtmcfgsvinResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGSVIN");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGSVIN_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -308,28 +261,9 @@ impl<'a> Layout<'a> for PqtmcfgsvinResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

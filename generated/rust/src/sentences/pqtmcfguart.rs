@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{QuectelBaudRate, QuectelFlowControl, QuectelParity, QuectelStopBits, QuectelUartIndex};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -79,6 +77,15 @@ impl<'a> Layout<'a> for Pqtmcfguart<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGUART");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGUART", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("index", 1),
+        JsonMember::Field("baud_rate", 1),
+        JsonMember::Field("data_bits", 1),
+        JsonMember::Field("parity", 1),
+        JsonMember::Field("stop_bits", 1),
+        JsonMember::Field("flow_control", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -98,48 +105,14 @@ impl<'a> Layout<'a> for Pqtmcfguart<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.index)?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.parity)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.flow_control)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.index)?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.parity)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.flow_control)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("index", &self.index)?;
-        j.field("baud_rate", &self.baud_rate)?;
-        j.field("data_bits", &self.data_bits)?;
-        j.field("parity", &self.parity)?;
-        j.field("stop_bits", &self.stop_bits)?;
-        j.field("flow_control", &self.flow_control)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "index", 1)?;
-        out.member(fields, "baud_rate", 1)?;
-        out.member(fields, "data_bits", 1)?;
-        out.member(fields, "parity", 1)?;
-        out.member(fields, "stop_bits", 1)?;
-        out.member(fields, "flow_control", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("index", &self.index)?;
+        sink.field("baud_rate", &self.baud_rate)?;
+        sink.field("data_bits", &self.data_bits)?;
+        sink.field("parity", &self.parity)?;
+        sink.field("stop_bits", &self.stop_bits)?;
+        sink.field("flow_control", &self.flow_control)?;
         Ok(())
     }
 }
@@ -200,6 +173,7 @@ impl<'a> Layout<'a> for PqtmcfguartCurrentBaud<'a> {
     const VARIANT: Option<&'static str> = Some("current_baud");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGUART");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGUART", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1), JsonMember::Field("baud_rate", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -214,28 +188,9 @@ impl<'a> Layout<'a> for PqtmcfguartCurrentBaud<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.baud_rate)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.baud_rate)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("baud_rate", &self.baud_rate)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "baud_rate", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("baud_rate", &self.baud_rate)?;
         Ok(())
     }
 }
@@ -304,6 +259,14 @@ impl<'a> Layout<'a> for PqtmcfguartCurrentFull<'a> {
     const VARIANT: Option<&'static str> = Some("current_full");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGUART");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGUART", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("baud_rate", 1),
+        JsonMember::Field("data_bits", 1),
+        JsonMember::Field("parity", 1),
+        JsonMember::Field("stop_bits", 1),
+        JsonMember::Field("flow_control", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -322,44 +285,13 @@ impl<'a> Layout<'a> for PqtmcfguartCurrentFull<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.parity)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.flow_control)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.parity)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.flow_control)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("baud_rate", &self.baud_rate)?;
-        j.field("data_bits", &self.data_bits)?;
-        j.field("parity", &self.parity)?;
-        j.field("stop_bits", &self.stop_bits)?;
-        j.field("flow_control", &self.flow_control)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "baud_rate", 1)?;
-        out.member(fields, "data_bits", 1)?;
-        out.member(fields, "parity", 1)?;
-        out.member(fields, "stop_bits", 1)?;
-        out.member(fields, "flow_control", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("baud_rate", &self.baud_rate)?;
+        sink.field("data_bits", &self.data_bits)?;
+        sink.field("parity", &self.parity)?;
+        sink.field("stop_bits", &self.stop_bits)?;
+        sink.field("flow_control", &self.flow_control)?;
         Ok(())
     }
 }
@@ -422,6 +354,8 @@ impl<'a> Layout<'a> for PqtmcfguartPortBaud<'a> {
     const VARIANT: Option<&'static str> = Some("port_baud");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGUART");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGUART", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("access", 1), JsonMember::Field("index", 1), JsonMember::Field("baud_rate", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -437,32 +371,10 @@ impl<'a> Layout<'a> for PqtmcfguartPortBaud<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("W")?;
-        w.field(&self.index)?;
-        w.field(&self.baud_rate)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("W")?;
-        w.field(&self.index)?;
-        w.field(&self.baud_rate)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "W")?;
-        j.field("index", &self.index)?;
-        j.field("baud_rate", &self.baud_rate)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "index", 1)?;
-        out.member(fields, "baud_rate", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "W")?;
+        sink.field("index", &self.index)?;
+        sink.field("baud_rate", &self.baud_rate)?;
         Ok(())
     }
 }
@@ -526,6 +438,7 @@ impl<'a> Layout<'a> for PqtmcfguartRead<'a> {
     const VARIANT: Option<&'static str> = Some("read");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGUART");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGUART", fixed: 1, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("access", 1), JsonMember::Optional("index", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -543,34 +456,11 @@ impl<'a> Layout<'a> for PqtmcfguartRead<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
         if self.trailing >= 1 {
-            w.field(&self.index)?;
+            sink.field("index", &self.index)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        if self.trailing >= 1 {
-            w.field(&self.index)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        if self.trailing >= 1 {
-            j.field("index", &self.index)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.optional(fields, "index", 1)?;
         Ok(())
     }
 }

@@ -12,10 +12,8 @@ use core::fmt;
 use crate::enums::{
     QuectelBaudRate, QuectelErrorCode, QuectelFlowControl, QuectelParity, QuectelStopBits, QuectelUartIndex,
 };
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -76,6 +74,15 @@ impl<'a> Layout<'a> for PqtmcfguartResult<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGUART");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGUART_RESULT", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("index", 1),
+        JsonMember::Field("baud_rate", 1),
+        JsonMember::Field("data_bits", 1),
+        JsonMember::Field("parity", 1),
+        JsonMember::Field("stop_bits", 1),
+        JsonMember::Field("flow_control", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -95,48 +102,14 @@ impl<'a> Layout<'a> for PqtmcfguartResult<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.index)?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.parity)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.flow_control)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.index)?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.parity)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.flow_control)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("index", &self.index)?;
-        j.field("baud_rate", &self.baud_rate)?;
-        j.field("data_bits", &self.data_bits)?;
-        j.field("parity", &self.parity)?;
-        j.field("stop_bits", &self.stop_bits)?;
-        j.field("flow_control", &self.flow_control)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "index", 1)?;
-        out.member(fields, "baud_rate", 1)?;
-        out.member(fields, "data_bits", 1)?;
-        out.member(fields, "parity", 1)?;
-        out.member(fields, "stop_bits", 1)?;
-        out.member(fields, "flow_control", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("index", &self.index)?;
+        sink.field("baud_rate", &self.baud_rate)?;
+        sink.field("data_bits", &self.data_bits)?;
+        sink.field("parity", &self.parity)?;
+        sink.field("stop_bits", &self.stop_bits)?;
+        sink.field("flow_control", &self.flow_control)?;
         Ok(())
     }
 }
@@ -192,6 +165,7 @@ impl<'a> Layout<'a> for PqtmcfguartResultAck {
     const VARIANT: Option<&'static str> = Some("ack");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGUART");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGUART_RESULT", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -205,24 +179,8 @@ impl<'a> Layout<'a> for PqtmcfguartResultAck {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
         Ok(())
     }
 }
@@ -274,6 +232,7 @@ impl<'a> Layout<'a> for PqtmcfguartResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMCFGUART");
     const SHAPE: Shape = Shape { sentence: "PQTMCFGUART_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -288,28 +247,9 @@ impl<'a> Layout<'a> for PqtmcfguartResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

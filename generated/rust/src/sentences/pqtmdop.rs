@@ -8,11 +8,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -75,6 +72,17 @@ impl<'a> Layout<'a> for Pqtmdop {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMDOP");
     const SHAPE: Shape = Shape { sentence: "PQTMDOP", fixed: 9, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("tow", 1),
+        JsonMember::Field("gdop", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("tdop", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("ndop", 1),
+        JsonMember::Field("edop", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -111,56 +119,16 @@ impl<'a> Layout<'a> for Pqtmdop {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.tow)?;
-        w.field(&self.gdop)?;
-        w.field(&self.pdop)?;
-        w.field(&self.tdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.ndop)?;
-        w.field(&self.edop)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.tow)?;
-        w.field(&self.gdop)?;
-        w.field(&self.pdop)?;
-        w.field(&self.tdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.ndop)?;
-        w.field(&self.edop)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("tow", &self.tow)?;
-        j.field("gdop", &self.gdop)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("tdop", &self.tdop)?;
-        j.field("vdop", &self.vdop)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("ndop", &self.ndop)?;
-        j.field("edop", &self.edop)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "tow", 1)?;
-        out.member(fields, "gdop", 1)?;
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "tdop", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "ndop", 1)?;
-        out.member(fields, "edop", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("tow", &self.tow)?;
+        sink.field("gdop", &self.gdop)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("tdop", &self.tdop)?;
+        sink.field("vdop", &self.vdop)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("ndop", &self.ndop)?;
+        sink.field("edop", &self.edop)?;
         Ok(())
     }
 }

@@ -8,11 +8,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, Time,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -67,6 +64,13 @@ impl<'a> Layout<'a> for Pqtmeoe<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMEOE");
     const SHAPE: Shape = Shape { sentence: "PQTMEOE", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("utc", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("week", 1),
+        JsonMember::Field("tow", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -95,40 +99,12 @@ impl<'a> Layout<'a> for Pqtmeoe<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.utc)?;
-        w.field(&self.date)?;
-        w.field(&self.week)?;
-        w.field(&self.tow)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.utc)?;
-        w.field(&self.date)?;
-        w.field(&self.week)?;
-        w.field(&self.tow)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("utc", &self.utc)?;
-        j.field("date", &self.date)?;
-        j.field("week", &self.week)?;
-        j.field("tow", &self.tow)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "utc", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "week", 1)?;
-        out.member(fields, "tow", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("utc", &self.utc)?;
+        sink.field("date", &self.date)?;
+        sink.field("week", &self.week)?;
+        sink.field("tow", &self.tow)?;
         Ok(())
     }
 }

@@ -8,11 +8,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -69,6 +66,14 @@ impl<'a> Layout<'a> for Pqtmepe {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMEPE");
     const SHAPE: Shape = Shape { sentence: "PQTMEPE", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("north", 1),
+        JsonMember::Field("east", 1),
+        JsonMember::Field("down", 1),
+        JsonMember::Field("horizontal", 1),
+        JsonMember::Field("spherical", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -99,44 +104,13 @@ impl<'a> Layout<'a> for Pqtmepe {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.north)?;
-        w.field(&self.east)?;
-        w.field(&self.down)?;
-        w.field(&self.horizontal)?;
-        w.field(&self.spherical)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.north)?;
-        w.field(&self.east)?;
-        w.field(&self.down)?;
-        w.field(&self.horizontal)?;
-        w.field(&self.spherical)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("north", &self.north)?;
-        j.field("east", &self.east)?;
-        j.field("down", &self.down)?;
-        j.field("horizontal", &self.horizontal)?;
-        j.field("spherical", &self.spherical)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "north", 1)?;
-        out.member(fields, "east", 1)?;
-        out.member(fields, "down", 1)?;
-        out.member(fields, "horizontal", 1)?;
-        out.member(fields, "spherical", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("north", &self.north)?;
+        sink.field("east", &self.east)?;
+        sink.field("down", &self.down)?;
+        sink.field("horizontal", &self.horizontal)?;
+        sink.field("spherical", &self.spherical)?;
         Ok(())
     }
 }

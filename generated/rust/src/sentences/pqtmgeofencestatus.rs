@@ -9,11 +9,9 @@
 use core::fmt;
 
 use crate::enums::QuectelGeofenceState;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number,
-    Range, Read, Shape, Time, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -71,6 +69,8 @@ impl<'a> Layout<'a> for Pqtmgeofencestatus<'a> {
         optional: 0,
         group: Some(GroupShape { id: "states", width: 1, min: 4, max: 4 }),
     };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("msg_version", 1), JsonMember::Field("time", 1), JsonMember::Values("states", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -95,34 +95,10 @@ impl<'a> Layout<'a> for Pqtmgeofencestatus<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.time)?;
-        w.fields(&self.states)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.time)?;
-        w.fields(&self.states)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("time", &self.time)?;
-        j.values("states", &self.states)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "time", 1)?;
-        for value in json::list(fields, "states")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("time", &self.time)?;
+        sink.values("states", &self.states)?;
         Ok(())
     }
 }

@@ -8,9 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQTMGNSSSTOP: Stop GNSS engine.
@@ -55,6 +53,7 @@ impl<'a> Layout<'a> for Pqtmgnssstop {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMGNSSSTOP");
     const SHAPE: Shape = Shape { sentence: "PQTMGNSSSTOP", fixed: 0, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -66,20 +65,7 @@ impl<'a> Layout<'a> for Pqtmgnssstop {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, _w: &mut WireWriter<'_, W>) -> fmt::Result {
-        Ok(())
-    }
-
-    fn put_fields(&self, _w: &mut ByteWriter<'_>) -> Option<()> {
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, _j: &mut JsonFields<'_, W>) -> fmt::Result {
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(_fields: &json::Value, _out: &mut json::WireFields) -> Result<(), Error<'static>> {
+    fn visit<S: FieldSink>(&self, _sink: &mut S) -> fmt::Result {
         Ok(())
     }
 }

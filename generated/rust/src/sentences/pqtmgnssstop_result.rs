@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::QuectelErrorCode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQTMGNSSSTOP_RESULT: Stop GNSS engine: result.
@@ -58,6 +56,7 @@ impl<'a> Layout<'a> for PqtmgnssstopResult {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMGNSSSTOP");
     const SHAPE: Shape = Shape { sentence: "PQTMGNSSSTOP_RESULT", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -71,24 +70,8 @@ impl<'a> Layout<'a> for PqtmgnssstopResult {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
         Ok(())
     }
 }
@@ -140,6 +123,7 @@ impl<'a> Layout<'a> for PqtmgnssstopResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMGNSSSTOP");
     const SHAPE: Shape = Shape { sentence: "PQTMGNSSSTOP_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -154,28 +138,9 @@ impl<'a> Layout<'a> for PqtmgnssstopResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::{QuectelSolutionType, QuectelTimeReference, QuectelTimeStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, Time, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -148,6 +146,51 @@ impl<'a> Layout<'a> for Pqtmnav<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMNAV");
     const SHAPE: Shape = Shape { sentence: "PQTMNAV", fixed: 43, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("time_status", 1),
+        JsonMember::Field("time_reference", 1),
+        JsonMember::Field("utc", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("tow", 1),
+        JsonMember::Field("week", 1),
+        JsonMember::Field("leap_seconds", 1),
+        JsonMember::Field("reserved1", 1),
+        JsonMember::Field("reserved2", 1),
+        JsonMember::Field("solution_type", 1),
+        JsonMember::Field("reserved3", 1),
+        JsonMember::Field("latitude", 1),
+        JsonMember::Field("longitude", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("separation", 1),
+        JsonMember::Field("reserved4", 1),
+        JsonMember::Field("reserved5", 1),
+        JsonMember::Field("lat_std", 1),
+        JsonMember::Field("lon_std", 1),
+        JsonMember::Field("alt_std", 1),
+        JsonMember::Field("reserved6", 1),
+        JsonMember::Field("reserved7", 1),
+        JsonMember::Field("diff_station", 1),
+        JsonMember::Field("diff_age", 1),
+        JsonMember::Field("reserved8", 1),
+        JsonMember::Field("satellites_in_view", 1),
+        JsonMember::Field("satellites_used", 1),
+        JsonMember::Field("reserved9", 1),
+        JsonMember::Field("reserved10", 1),
+        JsonMember::Field("reserved11", 1),
+        JsonMember::Field("reserved12", 1),
+        JsonMember::Field("reserved13", 1),
+        JsonMember::Field("reserved14", 1),
+        JsonMember::Field("h_vel", 1),
+        JsonMember::Field("v_vel", 1),
+        JsonMember::Field("h_vel_std", 1),
+        JsonMember::Field("v_vel_std", 1),
+        JsonMember::Field("reserved15", 1),
+        JsonMember::Field("reserved16", 1),
+        JsonMember::Field("course", 1),
+        JsonMember::Field("reserved17", 1),
+        JsonMember::Field("reserved18", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -255,192 +298,50 @@ impl<'a> Layout<'a> for Pqtmnav<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.time_status)?;
-        w.field(&self.time_reference)?;
-        w.field(&self.utc)?;
-        w.field(&self.date)?;
-        w.field(&self.tow)?;
-        w.field(&self.week)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.reserved1)?;
-        w.field(&self.reserved2)?;
-        w.field(&self.solution_type)?;
-        w.field(&self.reserved3)?;
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.separation)?;
-        w.field(&self.reserved4)?;
-        w.field(&self.reserved5)?;
-        w.field(&self.lat_std)?;
-        w.field(&self.lon_std)?;
-        w.field(&self.alt_std)?;
-        w.field(&self.reserved6)?;
-        w.field(&self.reserved7)?;
-        w.field(&self.diff_station)?;
-        w.field(&self.diff_age)?;
-        w.field(&self.reserved8)?;
-        w.field(&self.satellites_in_view)?;
-        w.field(&self.satellites_used)?;
-        w.field(&self.reserved9)?;
-        w.field(&self.reserved10)?;
-        w.field(&self.reserved11)?;
-        w.field(&self.reserved12)?;
-        w.field(&self.reserved13)?;
-        w.field(&self.reserved14)?;
-        w.field(&self.h_vel)?;
-        w.field(&self.v_vel)?;
-        w.field(&self.h_vel_std)?;
-        w.field(&self.v_vel_std)?;
-        w.field(&self.reserved15)?;
-        w.field(&self.reserved16)?;
-        w.field(&self.course)?;
-        w.field(&self.reserved17)?;
-        w.field(&self.reserved18)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.time_status)?;
-        w.field(&self.time_reference)?;
-        w.field(&self.utc)?;
-        w.field(&self.date)?;
-        w.field(&self.tow)?;
-        w.field(&self.week)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.reserved1)?;
-        w.field(&self.reserved2)?;
-        w.field(&self.solution_type)?;
-        w.field(&self.reserved3)?;
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.separation)?;
-        w.field(&self.reserved4)?;
-        w.field(&self.reserved5)?;
-        w.field(&self.lat_std)?;
-        w.field(&self.lon_std)?;
-        w.field(&self.alt_std)?;
-        w.field(&self.reserved6)?;
-        w.field(&self.reserved7)?;
-        w.field(&self.diff_station)?;
-        w.field(&self.diff_age)?;
-        w.field(&self.reserved8)?;
-        w.field(&self.satellites_in_view)?;
-        w.field(&self.satellites_used)?;
-        w.field(&self.reserved9)?;
-        w.field(&self.reserved10)?;
-        w.field(&self.reserved11)?;
-        w.field(&self.reserved12)?;
-        w.field(&self.reserved13)?;
-        w.field(&self.reserved14)?;
-        w.field(&self.h_vel)?;
-        w.field(&self.v_vel)?;
-        w.field(&self.h_vel_std)?;
-        w.field(&self.v_vel_std)?;
-        w.field(&self.reserved15)?;
-        w.field(&self.reserved16)?;
-        w.field(&self.course)?;
-        w.field(&self.reserved17)?;
-        w.field(&self.reserved18)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("time_status", &self.time_status)?;
-        j.field("time_reference", &self.time_reference)?;
-        j.field("utc", &self.utc)?;
-        j.field("date", &self.date)?;
-        j.field("tow", &self.tow)?;
-        j.field("week", &self.week)?;
-        j.field("leap_seconds", &self.leap_seconds)?;
-        j.field("reserved1", &self.reserved1)?;
-        j.field("reserved2", &self.reserved2)?;
-        j.field("solution_type", &self.solution_type)?;
-        j.field("reserved3", &self.reserved3)?;
-        j.field("latitude", &self.latitude)?;
-        j.field("longitude", &self.longitude)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("separation", &self.separation)?;
-        j.field("reserved4", &self.reserved4)?;
-        j.field("reserved5", &self.reserved5)?;
-        j.field("lat_std", &self.lat_std)?;
-        j.field("lon_std", &self.lon_std)?;
-        j.field("alt_std", &self.alt_std)?;
-        j.field("reserved6", &self.reserved6)?;
-        j.field("reserved7", &self.reserved7)?;
-        j.field("diff_station", &self.diff_station)?;
-        j.field("diff_age", &self.diff_age)?;
-        j.field("reserved8", &self.reserved8)?;
-        j.field("satellites_in_view", &self.satellites_in_view)?;
-        j.field("satellites_used", &self.satellites_used)?;
-        j.field("reserved9", &self.reserved9)?;
-        j.field("reserved10", &self.reserved10)?;
-        j.field("reserved11", &self.reserved11)?;
-        j.field("reserved12", &self.reserved12)?;
-        j.field("reserved13", &self.reserved13)?;
-        j.field("reserved14", &self.reserved14)?;
-        j.field("h_vel", &self.h_vel)?;
-        j.field("v_vel", &self.v_vel)?;
-        j.field("h_vel_std", &self.h_vel_std)?;
-        j.field("v_vel_std", &self.v_vel_std)?;
-        j.field("reserved15", &self.reserved15)?;
-        j.field("reserved16", &self.reserved16)?;
-        j.field("course", &self.course)?;
-        j.field("reserved17", &self.reserved17)?;
-        j.field("reserved18", &self.reserved18)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "time_status", 1)?;
-        out.member(fields, "time_reference", 1)?;
-        out.member(fields, "utc", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "tow", 1)?;
-        out.member(fields, "week", 1)?;
-        out.member(fields, "leap_seconds", 1)?;
-        out.member(fields, "reserved1", 1)?;
-        out.member(fields, "reserved2", 1)?;
-        out.member(fields, "solution_type", 1)?;
-        out.member(fields, "reserved3", 1)?;
-        out.member(fields, "latitude", 1)?;
-        out.member(fields, "longitude", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "separation", 1)?;
-        out.member(fields, "reserved4", 1)?;
-        out.member(fields, "reserved5", 1)?;
-        out.member(fields, "lat_std", 1)?;
-        out.member(fields, "lon_std", 1)?;
-        out.member(fields, "alt_std", 1)?;
-        out.member(fields, "reserved6", 1)?;
-        out.member(fields, "reserved7", 1)?;
-        out.member(fields, "diff_station", 1)?;
-        out.member(fields, "diff_age", 1)?;
-        out.member(fields, "reserved8", 1)?;
-        out.member(fields, "satellites_in_view", 1)?;
-        out.member(fields, "satellites_used", 1)?;
-        out.member(fields, "reserved9", 1)?;
-        out.member(fields, "reserved10", 1)?;
-        out.member(fields, "reserved11", 1)?;
-        out.member(fields, "reserved12", 1)?;
-        out.member(fields, "reserved13", 1)?;
-        out.member(fields, "reserved14", 1)?;
-        out.member(fields, "h_vel", 1)?;
-        out.member(fields, "v_vel", 1)?;
-        out.member(fields, "h_vel_std", 1)?;
-        out.member(fields, "v_vel_std", 1)?;
-        out.member(fields, "reserved15", 1)?;
-        out.member(fields, "reserved16", 1)?;
-        out.member(fields, "course", 1)?;
-        out.member(fields, "reserved17", 1)?;
-        out.member(fields, "reserved18", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("time_status", &self.time_status)?;
+        sink.field("time_reference", &self.time_reference)?;
+        sink.field("utc", &self.utc)?;
+        sink.field("date", &self.date)?;
+        sink.field("tow", &self.tow)?;
+        sink.field("week", &self.week)?;
+        sink.field("leap_seconds", &self.leap_seconds)?;
+        sink.field("reserved1", &self.reserved1)?;
+        sink.field("reserved2", &self.reserved2)?;
+        sink.field("solution_type", &self.solution_type)?;
+        sink.field("reserved3", &self.reserved3)?;
+        sink.field("latitude", &self.latitude)?;
+        sink.field("longitude", &self.longitude)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("separation", &self.separation)?;
+        sink.field("reserved4", &self.reserved4)?;
+        sink.field("reserved5", &self.reserved5)?;
+        sink.field("lat_std", &self.lat_std)?;
+        sink.field("lon_std", &self.lon_std)?;
+        sink.field("alt_std", &self.alt_std)?;
+        sink.field("reserved6", &self.reserved6)?;
+        sink.field("reserved7", &self.reserved7)?;
+        sink.field("diff_station", &self.diff_station)?;
+        sink.field("diff_age", &self.diff_age)?;
+        sink.field("reserved8", &self.reserved8)?;
+        sink.field("satellites_in_view", &self.satellites_in_view)?;
+        sink.field("satellites_used", &self.satellites_used)?;
+        sink.field("reserved9", &self.reserved9)?;
+        sink.field("reserved10", &self.reserved10)?;
+        sink.field("reserved11", &self.reserved11)?;
+        sink.field("reserved12", &self.reserved12)?;
+        sink.field("reserved13", &self.reserved13)?;
+        sink.field("reserved14", &self.reserved14)?;
+        sink.field("h_vel", &self.h_vel)?;
+        sink.field("v_vel", &self.v_vel)?;
+        sink.field("h_vel_std", &self.h_vel_std)?;
+        sink.field("v_vel_std", &self.v_vel_std)?;
+        sink.field("reserved15", &self.reserved15)?;
+        sink.field("reserved16", &self.reserved16)?;
+        sink.field("course", &self.course)?;
+        sink.field("reserved17", &self.reserved17)?;
+        sink.field("reserved18", &self.reserved18)?;
         Ok(())
     }
 }

@@ -9,11 +9,8 @@
 use core::fmt;
 
 use crate::enums::QuectelEnable;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -67,6 +64,12 @@ impl<'a> Layout<'a> for Pqtmodo<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMODO");
     const SHAPE: Shape = Shape { sentence: "PQTMODO", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("state", 1),
+        JsonMember::Field("distance", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -93,36 +96,11 @@ impl<'a> Layout<'a> for Pqtmodo<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.time)?;
-        w.field(&self.state)?;
-        w.field(&self.distance)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.time)?;
-        w.field(&self.state)?;
-        w.field(&self.distance)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("time", &self.time)?;
-        j.field("state", &self.state)?;
-        j.field("distance", &self.distance)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "state", 1)?;
-        out.member(fields, "distance", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("time", &self.time)?;
+        sink.field("state", &self.state)?;
+        sink.field("distance", &self.distance)?;
         Ok(())
     }
 }

@@ -8,11 +8,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -86,6 +83,22 @@ impl<'a> Layout<'a> for Pqtmpl<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMPL");
     const SHAPE: Shape = Shape { sentence: "PQTMPL", fixed: 14, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("tow", 1),
+        JsonMember::Field("probability", 1),
+        JsonMember::Field("reserved1", 1),
+        JsonMember::Field("reserved2", 1),
+        JsonMember::Field("pl_pos_north", 1),
+        JsonMember::Field("pl_pos_east", 1),
+        JsonMember::Field("pl_pos_down", 1),
+        JsonMember::Field("pl_vel_north", 1),
+        JsonMember::Field("pl_vel_east", 1),
+        JsonMember::Field("pl_vel_down", 1),
+        JsonMember::Field("reserved3", 1),
+        JsonMember::Field("reserved4", 1),
+        JsonMember::Field("pl_time", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -132,76 +145,21 @@ impl<'a> Layout<'a> for Pqtmpl<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.tow)?;
-        w.field(&self.probability)?;
-        w.field(&self.reserved1)?;
-        w.field(&self.reserved2)?;
-        w.field(&self.pl_pos_north)?;
-        w.field(&self.pl_pos_east)?;
-        w.field(&self.pl_pos_down)?;
-        w.field(&self.pl_vel_north)?;
-        w.field(&self.pl_vel_east)?;
-        w.field(&self.pl_vel_down)?;
-        w.field(&self.reserved3)?;
-        w.field(&self.reserved4)?;
-        w.field(&self.pl_time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.tow)?;
-        w.field(&self.probability)?;
-        w.field(&self.reserved1)?;
-        w.field(&self.reserved2)?;
-        w.field(&self.pl_pos_north)?;
-        w.field(&self.pl_pos_east)?;
-        w.field(&self.pl_pos_down)?;
-        w.field(&self.pl_vel_north)?;
-        w.field(&self.pl_vel_east)?;
-        w.field(&self.pl_vel_down)?;
-        w.field(&self.reserved3)?;
-        w.field(&self.reserved4)?;
-        w.field(&self.pl_time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("tow", &self.tow)?;
-        j.field("probability", &self.probability)?;
-        j.field("reserved1", &self.reserved1)?;
-        j.field("reserved2", &self.reserved2)?;
-        j.field("pl_pos_north", &self.pl_pos_north)?;
-        j.field("pl_pos_east", &self.pl_pos_east)?;
-        j.field("pl_pos_down", &self.pl_pos_down)?;
-        j.field("pl_vel_north", &self.pl_vel_north)?;
-        j.field("pl_vel_east", &self.pl_vel_east)?;
-        j.field("pl_vel_down", &self.pl_vel_down)?;
-        j.field("reserved3", &self.reserved3)?;
-        j.field("reserved4", &self.reserved4)?;
-        j.field("pl_time", &self.pl_time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "tow", 1)?;
-        out.member(fields, "probability", 1)?;
-        out.member(fields, "reserved1", 1)?;
-        out.member(fields, "reserved2", 1)?;
-        out.member(fields, "pl_pos_north", 1)?;
-        out.member(fields, "pl_pos_east", 1)?;
-        out.member(fields, "pl_pos_down", 1)?;
-        out.member(fields, "pl_vel_north", 1)?;
-        out.member(fields, "pl_vel_east", 1)?;
-        out.member(fields, "pl_vel_down", 1)?;
-        out.member(fields, "reserved3", 1)?;
-        out.member(fields, "reserved4", 1)?;
-        out.member(fields, "pl_time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("tow", &self.tow)?;
+        sink.field("probability", &self.probability)?;
+        sink.field("reserved1", &self.reserved1)?;
+        sink.field("reserved2", &self.reserved2)?;
+        sink.field("pl_pos_north", &self.pl_pos_north)?;
+        sink.field("pl_pos_east", &self.pl_pos_east)?;
+        sink.field("pl_pos_down", &self.pl_pos_down)?;
+        sink.field("pl_vel_north", &self.pl_vel_north)?;
+        sink.field("pl_vel_east", &self.pl_vel_east)?;
+        sink.field("pl_vel_down", &self.pl_vel_down)?;
+        sink.field("reserved3", &self.reserved3)?;
+        sink.field("reserved4", &self.reserved4)?;
+        sink.field("pl_time", &self.pl_time)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 use core::fmt;
 
 use crate::enums::QuectelFixType;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, Time, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -96,6 +94,27 @@ impl<'a> Layout<'a> for Pqtmpvt<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMPVT");
     const SHAPE: Shape = Shape { sentence: "PQTMPVT", fixed: 19, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("tow", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("reserved", 1),
+        JsonMember::Field("fix_type", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("leap_seconds", 1),
+        JsonMember::Field("latitude", 1),
+        JsonMember::Field("longitude", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("separation", 1),
+        JsonMember::Field("vel_north", 1),
+        JsonMember::Field("vel_east", 1),
+        JsonMember::Field("vel_down", 1),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("pdop", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -154,96 +173,26 @@ impl<'a> Layout<'a> for Pqtmpvt<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.tow)?;
-        w.field(&self.date)?;
-        w.field(&self.time)?;
-        w.field(&self.reserved)?;
-        w.field(&self.fix_type)?;
-        w.field(&self.satellites)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.separation)?;
-        w.field(&self.vel_north)?;
-        w.field(&self.vel_east)?;
-        w.field(&self.vel_down)?;
-        w.field(&self.speed)?;
-        w.field(&self.heading)?;
-        w.field(&self.hdop)?;
-        w.field(&self.pdop)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.tow)?;
-        w.field(&self.date)?;
-        w.field(&self.time)?;
-        w.field(&self.reserved)?;
-        w.field(&self.fix_type)?;
-        w.field(&self.satellites)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.separation)?;
-        w.field(&self.vel_north)?;
-        w.field(&self.vel_east)?;
-        w.field(&self.vel_down)?;
-        w.field(&self.speed)?;
-        w.field(&self.heading)?;
-        w.field(&self.hdop)?;
-        w.field(&self.pdop)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("tow", &self.tow)?;
-        j.field("date", &self.date)?;
-        j.field("time", &self.time)?;
-        j.field("reserved", &self.reserved)?;
-        j.field("fix_type", &self.fix_type)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("leap_seconds", &self.leap_seconds)?;
-        j.field("latitude", &self.latitude)?;
-        j.field("longitude", &self.longitude)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("separation", &self.separation)?;
-        j.field("vel_north", &self.vel_north)?;
-        j.field("vel_east", &self.vel_east)?;
-        j.field("vel_down", &self.vel_down)?;
-        j.field("speed", &self.speed)?;
-        j.field("heading", &self.heading)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("pdop", &self.pdop)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "tow", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "reserved", 1)?;
-        out.member(fields, "fix_type", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "leap_seconds", 1)?;
-        out.member(fields, "latitude", 1)?;
-        out.member(fields, "longitude", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "separation", 1)?;
-        out.member(fields, "vel_north", 1)?;
-        out.member(fields, "vel_east", 1)?;
-        out.member(fields, "vel_down", 1)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "pdop", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("tow", &self.tow)?;
+        sink.field("date", &self.date)?;
+        sink.field("time", &self.time)?;
+        sink.field("reserved", &self.reserved)?;
+        sink.field("fix_type", &self.fix_type)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("leap_seconds", &self.leap_seconds)?;
+        sink.field("latitude", &self.latitude)?;
+        sink.field("longitude", &self.longitude)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("separation", &self.separation)?;
+        sink.field("vel_north", &self.vel_north)?;
+        sink.field("vel_east", &self.vel_east)?;
+        sink.field("vel_down", &self.vel_down)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("heading", &self.heading)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("pdop", &self.pdop)?;
         Ok(())
     }
 }

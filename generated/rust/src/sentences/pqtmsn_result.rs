@@ -9,11 +9,7 @@
 use core::fmt;
 
 use crate::enums::QuectelErrorCode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PQTMSN_RESULT: Module serial number: result.
@@ -66,6 +62,12 @@ impl<'a> Layout<'a> for PqtmsnResult<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMSN");
     const SHAPE: Shape = Shape { sentence: "PQTMSN_RESULT", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("reserved", 1),
+        JsonMember::Field("length", 1),
+        JsonMember::Field("serial_number", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -82,36 +84,11 @@ impl<'a> Layout<'a> for PqtmsnResult<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.reserved)?;
-        w.field(&self.length)?;
-        w.field(&self.serial_number)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.reserved)?;
-        w.field(&self.length)?;
-        w.field(&self.serial_number)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("reserved", &self.reserved)?;
-        j.field("length", &self.length)?;
-        j.field("serial_number", &self.serial_number)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "reserved", 1)?;
-        out.member(fields, "length", 1)?;
-        out.member(fields, "serial_number", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("reserved", &self.reserved)?;
+        sink.field("length", &self.length)?;
+        sink.field("serial_number", &self.serial_number)?;
         Ok(())
     }
 }
@@ -163,6 +140,7 @@ impl<'a> Layout<'a> for PqtmsnResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMSN");
     const SHAPE: Shape = Shape { sentence: "PQTMSN_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -177,28 +155,9 @@ impl<'a> Layout<'a> for PqtmsnResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

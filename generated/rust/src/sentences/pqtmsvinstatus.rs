@@ -9,11 +9,8 @@
 use core::fmt;
 
 use crate::enums::QuectelSvinValid;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -80,6 +77,19 @@ impl<'a> Layout<'a> for Pqtmsvinstatus<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMSVINSTATUS");
     const SHAPE: Shape = Shape { sentence: "PQTMSVINSTATUS", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("tow", 1),
+        JsonMember::Field("valid", 1),
+        JsonMember::Field("reserved0", 1),
+        JsonMember::Field("reserved1", 1),
+        JsonMember::Field("observations", 1),
+        JsonMember::Field("min_fixes", 1),
+        JsonMember::Field("mean_x", 1),
+        JsonMember::Field("mean_y", 1),
+        JsonMember::Field("mean_z", 1),
+        JsonMember::Field("mean_accuracy", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -120,64 +130,18 @@ impl<'a> Layout<'a> for Pqtmsvinstatus<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.tow)?;
-        w.field(&self.valid)?;
-        w.field(&self.reserved0)?;
-        w.field(&self.reserved1)?;
-        w.field(&self.observations)?;
-        w.field(&self.min_fixes)?;
-        w.field(&self.mean_x)?;
-        w.field(&self.mean_y)?;
-        w.field(&self.mean_z)?;
-        w.field(&self.mean_accuracy)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.tow)?;
-        w.field(&self.valid)?;
-        w.field(&self.reserved0)?;
-        w.field(&self.reserved1)?;
-        w.field(&self.observations)?;
-        w.field(&self.min_fixes)?;
-        w.field(&self.mean_x)?;
-        w.field(&self.mean_y)?;
-        w.field(&self.mean_z)?;
-        w.field(&self.mean_accuracy)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("tow", &self.tow)?;
-        j.field("valid", &self.valid)?;
-        j.field("reserved0", &self.reserved0)?;
-        j.field("reserved1", &self.reserved1)?;
-        j.field("observations", &self.observations)?;
-        j.field("min_fixes", &self.min_fixes)?;
-        j.field("mean_x", &self.mean_x)?;
-        j.field("mean_y", &self.mean_y)?;
-        j.field("mean_z", &self.mean_z)?;
-        j.field("mean_accuracy", &self.mean_accuracy)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "tow", 1)?;
-        out.member(fields, "valid", 1)?;
-        out.member(fields, "reserved0", 1)?;
-        out.member(fields, "reserved1", 1)?;
-        out.member(fields, "observations", 1)?;
-        out.member(fields, "min_fixes", 1)?;
-        out.member(fields, "mean_x", 1)?;
-        out.member(fields, "mean_y", 1)?;
-        out.member(fields, "mean_z", 1)?;
-        out.member(fields, "mean_accuracy", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("tow", &self.tow)?;
+        sink.field("valid", &self.valid)?;
+        sink.field("reserved0", &self.reserved0)?;
+        sink.field("reserved1", &self.reserved1)?;
+        sink.field("observations", &self.observations)?;
+        sink.field("min_fixes", &self.min_fixes)?;
+        sink.field("mean_x", &self.mean_x)?;
+        sink.field("mean_y", &self.mean_y)?;
+        sink.field("mean_z", &self.mean_z)?;
+        sink.field("mean_accuracy", &self.mean_accuracy)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 use core::fmt;
 
 use crate::enums::QuectelHeadingQuality;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, Time, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -82,6 +80,20 @@ impl<'a> Layout<'a> for Pqtmtar<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMTAR");
     const SHAPE: Shape = Shape { sentence: "PQTMTAR", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("reserved", 1),
+        JsonMember::Field("baseline", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("roll", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("pitch_accuracy", 1),
+        JsonMember::Field("roll_accuracy", 1),
+        JsonMember::Field("heading_accuracy", 1),
+        JsonMember::Field("satellites", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -124,68 +136,19 @@ impl<'a> Layout<'a> for Pqtmtar<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.time)?;
-        w.field(&self.quality)?;
-        w.field(&self.reserved)?;
-        w.field(&self.baseline)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch_accuracy)?;
-        w.field(&self.roll_accuracy)?;
-        w.field(&self.heading_accuracy)?;
-        w.field(&self.satellites)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.time)?;
-        w.field(&self.quality)?;
-        w.field(&self.reserved)?;
-        w.field(&self.baseline)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch_accuracy)?;
-        w.field(&self.roll_accuracy)?;
-        w.field(&self.heading_accuracy)?;
-        w.field(&self.satellites)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("time", &self.time)?;
-        j.field("quality", &self.quality)?;
-        j.field("reserved", &self.reserved)?;
-        j.field("baseline", &self.baseline)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("roll", &self.roll)?;
-        j.field("heading", &self.heading)?;
-        j.field("pitch_accuracy", &self.pitch_accuracy)?;
-        j.field("roll_accuracy", &self.roll_accuracy)?;
-        j.field("heading_accuracy", &self.heading_accuracy)?;
-        j.field("satellites", &self.satellites)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "reserved", 1)?;
-        out.member(fields, "baseline", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "roll", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "pitch_accuracy", 1)?;
-        out.member(fields, "roll_accuracy", 1)?;
-        out.member(fields, "heading_accuracy", 1)?;
-        out.member(fields, "satellites", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("time", &self.time)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("reserved", &self.reserved)?;
+        sink.field("baseline", &self.baseline)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("roll", &self.roll)?;
+        sink.field("heading", &self.heading)?;
+        sink.field("pitch_accuracy", &self.pitch_accuracy)?;
+        sink.field("roll_accuracy", &self.roll_accuracy)?;
+        sink.field("heading_accuracy", &self.heading_accuracy)?;
+        sink.field("satellites", &self.satellites)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 use core::fmt;
 
 use crate::enums::QuectelTextId;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -68,6 +66,13 @@ impl<'a> Layout<'a> for Pqtmtxt<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMTXT");
     const SHAPE: Shape = Shape { sentence: "PQTMTXT", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("total", 1),
+        JsonMember::Field("number", 1),
+        JsonMember::Field("text_id", 1),
+        JsonMember::Field("text", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -96,40 +101,12 @@ impl<'a> Layout<'a> for Pqtmtxt<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.total)?;
-        w.field(&self.number)?;
-        w.field(&self.text_id)?;
-        w.field(&self.text)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.total)?;
-        w.field(&self.number)?;
-        w.field(&self.text_id)?;
-        w.field(&self.text)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("total", &self.total)?;
-        j.field("number", &self.number)?;
-        j.field("text_id", &self.text_id)?;
-        j.field("text", &self.text)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "total", 1)?;
-        out.member(fields, "number", 1)?;
-        out.member(fields, "text_id", 1)?;
-        out.member(fields, "text", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("total", &self.total)?;
+        sink.field("number", &self.number)?;
+        sink.field("text_id", &self.text_id)?;
+        sink.field("text", &self.text)?;
         Ok(())
     }
 }

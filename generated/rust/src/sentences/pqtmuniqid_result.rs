@@ -10,11 +10,7 @@
 use core::fmt;
 
 use crate::enums::QuectelErrorCode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PQTMUNIQID_RESULT: Module unique ID: result.
@@ -67,6 +63,8 @@ impl<'a> Layout<'a> for PqtmuniqidResult<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMUNIQID");
     const SHAPE: Shape = Shape { sentence: "PQTMUNIQID_RESULT", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("status", 1), JsonMember::Field("length", 1), JsonMember::Field("unique_id", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -82,32 +80,10 @@ impl<'a> Layout<'a> for PqtmuniqidResult<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("OK")?;
-        w.field(&self.length)?;
-        w.field(&self.unique_id)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("OK")?;
-        w.field(&self.length)?;
-        w.field(&self.unique_id)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "OK")?;
-        j.field("length", &self.length)?;
-        j.field("unique_id", &self.unique_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "length", 1)?;
-        out.member(fields, "unique_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "OK")?;
+        sink.field("length", &self.length)?;
+        sink.field("unique_id", &self.unique_id)?;
         Ok(())
     }
 }
@@ -159,6 +135,7 @@ impl<'a> Layout<'a> for PqtmuniqidResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMUNIQID");
     const SHAPE: Shape = Shape { sentence: "PQTMUNIQID_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -173,28 +150,9 @@ impl<'a> Layout<'a> for PqtmuniqidResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

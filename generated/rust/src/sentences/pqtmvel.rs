@@ -8,11 +8,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Bound, Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -79,6 +77,19 @@ impl<'a> Layout<'a> for Pqtmvel {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMVEL");
     const SHAPE: Shape = Shape { sentence: "PQTMVEL", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("vel_north", 1),
+        JsonMember::Field("vel_east", 1),
+        JsonMember::Field("vel_down", 1),
+        JsonMember::Field("ground_speed", 1),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("course", 1),
+        JsonMember::Field("ground_speed_accuracy", 1),
+        JsonMember::Field("speed_accuracy", 1),
+        JsonMember::Field("course_accuracy", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -120,64 +131,18 @@ impl<'a> Layout<'a> for Pqtmvel {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.time)?;
-        w.field(&self.vel_north)?;
-        w.field(&self.vel_east)?;
-        w.field(&self.vel_down)?;
-        w.field(&self.ground_speed)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.ground_speed_accuracy)?;
-        w.field(&self.speed_accuracy)?;
-        w.field(&self.course_accuracy)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.time)?;
-        w.field(&self.vel_north)?;
-        w.field(&self.vel_east)?;
-        w.field(&self.vel_down)?;
-        w.field(&self.ground_speed)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.ground_speed_accuracy)?;
-        w.field(&self.speed_accuracy)?;
-        w.field(&self.course_accuracy)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("time", &self.time)?;
-        j.field("vel_north", &self.vel_north)?;
-        j.field("vel_east", &self.vel_east)?;
-        j.field("vel_down", &self.vel_down)?;
-        j.field("ground_speed", &self.ground_speed)?;
-        j.field("speed", &self.speed)?;
-        j.field("course", &self.course)?;
-        j.field("ground_speed_accuracy", &self.ground_speed_accuracy)?;
-        j.field("speed_accuracy", &self.speed_accuracy)?;
-        j.field("course_accuracy", &self.course_accuracy)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "vel_north", 1)?;
-        out.member(fields, "vel_east", 1)?;
-        out.member(fields, "vel_down", 1)?;
-        out.member(fields, "ground_speed", 1)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "course", 1)?;
-        out.member(fields, "ground_speed_accuracy", 1)?;
-        out.member(fields, "speed_accuracy", 1)?;
-        out.member(fields, "course_accuracy", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("time", &self.time)?;
+        sink.field("vel_north", &self.vel_north)?;
+        sink.field("vel_east", &self.vel_east)?;
+        sink.field("vel_down", &self.vel_down)?;
+        sink.field("ground_speed", &self.ground_speed)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("course", &self.course)?;
+        sink.field("ground_speed_accuracy", &self.ground_speed_accuracy)?;
+        sink.field("speed_accuracy", &self.speed_accuracy)?;
+        sink.field("course_accuracy", &self.course_accuracy)?;
         Ok(())
     }
 }

@@ -8,11 +8,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -67,6 +64,13 @@ impl<'a> Layout<'a> for Pqtmver<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMVER");
     const SHAPE: Shape = Shape { sentence: "PQTMVER", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_version", 1),
+        JsonMember::Field("version_name", 1),
+        JsonMember::Field("version", 1),
+        JsonMember::Field("build_date", 1),
+        JsonMember::Field("build_time", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -95,40 +99,12 @@ impl<'a> Layout<'a> for Pqtmver<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msg_version)?;
-        w.field(&self.version_name)?;
-        w.field(&self.version)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msg_version)?;
-        w.field(&self.version_name)?;
-        w.field(&self.version)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msg_version", &self.msg_version)?;
-        j.field("version_name", &self.version_name)?;
-        j.field("version", &self.version)?;
-        j.field("build_date", &self.build_date)?;
-        j.field("build_time", &self.build_time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_version", 1)?;
-        out.member(fields, "version_name", 1)?;
-        out.member(fields, "version", 1)?;
-        out.member(fields, "build_date", 1)?;
-        out.member(fields, "build_time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msg_version", &self.msg_version)?;
+        sink.field("version_name", &self.version_name)?;
+        sink.field("version", &self.version)?;
+        sink.field("build_date", &self.build_date)?;
+        sink.field("build_time", &self.build_time)?;
         Ok(())
     }
 }
@@ -188,6 +164,8 @@ impl<'a> Layout<'a> for PqtmverLegacy<'a> {
     const VARIANT: Option<&'static str> = Some("legacy");
     const FRAMING: Framing = Framing::Proprietary("PQTMVER");
     const SHAPE: Shape = Shape { sentence: "PQTMVER", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("version", 1), JsonMember::Field("build_date", 1), JsonMember::Field("build_time", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -212,32 +190,10 @@ impl<'a> Layout<'a> for PqtmverLegacy<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.field("build_date", &self.build_date)?;
-        j.field("build_time", &self.build_time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "build_date", 1)?;
-        out.member(fields, "build_time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.field("build_date", &self.build_date)?;
+        sink.field("build_time", &self.build_time)?;
         Ok(())
     }
 }

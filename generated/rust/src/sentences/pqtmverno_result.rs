@@ -10,9 +10,7 @@
 use core::fmt;
 
 use crate::enums::QuectelErrorCode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQTMVERNO_RESULT: Firmware version: result.
@@ -63,6 +61,8 @@ impl<'a> Layout<'a> for PqtmvernoResult<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQTMVERNO");
     const SHAPE: Shape = Shape { sentence: "PQTMVERNO_RESULT", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("version", 1), JsonMember::Field("build_date", 1), JsonMember::Field("build_time", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -78,32 +78,10 @@ impl<'a> Layout<'a> for PqtmvernoResult<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.version)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.version)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("version", &self.version)?;
-        j.field("build_date", &self.build_date)?;
-        j.field("build_time", &self.build_time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "version", 1)?;
-        out.member(fields, "build_date", 1)?;
-        out.member(fields, "build_time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("version", &self.version)?;
+        sink.field("build_date", &self.build_date)?;
+        sink.field("build_time", &self.build_time)?;
         Ok(())
     }
 }
@@ -155,6 +133,7 @@ impl<'a> Layout<'a> for PqtmvernoResultError<'a> {
     const VARIANT: Option<&'static str> = Some("error");
     const FRAMING: Framing = Framing::Proprietary("PQTMVERNO");
     const SHAPE: Shape = Shape { sentence: "PQTMVERNO_RESULT", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("status", 1), JsonMember::Field("error_code", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -169,28 +148,9 @@ impl<'a> Layout<'a> for PqtmvernoResultError<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("ERROR")?;
-        w.field(&self.error_code)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("status", "ERROR")?;
-        j.field("error_code", &self.error_code)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "error_code", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("status", "ERROR")?;
+        sink.field("error_code", &self.error_code)?;
         Ok(())
     }
 }

@@ -9,9 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PQVERNO_RESULT: Firmware version (older modules): result.
@@ -65,6 +63,12 @@ impl<'a> Layout<'a> for PqvernoResult<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PQVERNO");
     const SHAPE: Shape = Shape { sentence: "PQVERNO_RESULT", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("access", 1),
+        JsonMember::Field("version", 1),
+        JsonMember::Field("build_date", 1),
+        JsonMember::Field("build_time", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -81,36 +85,11 @@ impl<'a> Layout<'a> for PqvernoResult<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("R")?;
-        w.field(&self.version)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("R")?;
-        w.field(&self.version)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("access", "R")?;
-        j.field("version", &self.version)?;
-        j.field("build_date", &self.build_date)?;
-        j.field("build_time", &self.build_time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "access", 1)?;
-        out.member(fields, "version", 1)?;
-        out.member(fields, "build_date", 1)?;
-        out.member(fields, "build_time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("access", "R")?;
+        sink.field("version", &self.version)?;
+        sink.field("build_date", &self.build_date)?;
+        sink.field("build_time", &self.build_time)?;
         Ok(())
     }
 }

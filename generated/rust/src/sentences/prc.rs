@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{PrcOperatingLocation, PrcPitchMode, PrcRpmMode, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -77,6 +75,16 @@ impl<'a> Layout<'a> for Prc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "PRC", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("lever_position", 1),
+        JsonMember::Field("lever_status", 1),
+        JsonMember::Field("rpm_demand", 1),
+        JsonMember::Field("rpm_mode", 1),
+        JsonMember::Field("pitch_demand", 1),
+        JsonMember::Field("pitch_mode", 1),
+        JsonMember::Field("operating_location", 1),
+        JsonMember::Field("engine_number", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -102,52 +110,15 @@ impl<'a> Layout<'a> for Prc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.lever_position)?;
-        w.field(&self.lever_status)?;
-        w.field(&self.rpm_demand)?;
-        w.field(&self.rpm_mode)?;
-        w.field(&self.pitch_demand)?;
-        w.field(&self.pitch_mode)?;
-        w.field(&self.operating_location)?;
-        w.field(&self.engine_number)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.lever_position)?;
-        w.field(&self.lever_status)?;
-        w.field(&self.rpm_demand)?;
-        w.field(&self.rpm_mode)?;
-        w.field(&self.pitch_demand)?;
-        w.field(&self.pitch_mode)?;
-        w.field(&self.operating_location)?;
-        w.field(&self.engine_number)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("lever_position", &self.lever_position)?;
-        j.field("lever_status", &self.lever_status)?;
-        j.field("rpm_demand", &self.rpm_demand)?;
-        j.field("rpm_mode", &self.rpm_mode)?;
-        j.field("pitch_demand", &self.pitch_demand)?;
-        j.field("pitch_mode", &self.pitch_mode)?;
-        j.field("operating_location", &self.operating_location)?;
-        j.field("engine_number", &self.engine_number)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "lever_position", 1)?;
-        out.member(fields, "lever_status", 1)?;
-        out.member(fields, "rpm_demand", 1)?;
-        out.member(fields, "rpm_mode", 1)?;
-        out.member(fields, "pitch_demand", 1)?;
-        out.member(fields, "pitch_mode", 1)?;
-        out.member(fields, "operating_location", 1)?;
-        out.member(fields, "engine_number", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("lever_position", &self.lever_position)?;
+        sink.field("lever_status", &self.lever_status)?;
+        sink.field("rpm_demand", &self.rpm_demand)?;
+        sink.field("rpm_mode", &self.rpm_mode)?;
+        sink.field("pitch_demand", &self.pitch_demand)?;
+        sink.field("pitch_mode", &self.pitch_mode)?;
+        sink.field("operating_location", &self.operating_location)?;
+        sink.field("engine_number", &self.engine_number)?;
         Ok(())
     }
 }

@@ -13,10 +13,8 @@
 use core::fmt;
 
 use crate::enums::{SirfBaud, SirfParity, SirfProtocol};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -76,6 +74,13 @@ impl<'a> Layout<'a> for Psrf100<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSRF100");
     const SHAPE: Shape = Shape { sentence: "PSRF100", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("protocol", 1),
+        JsonMember::Field("baud", 1),
+        JsonMember::Field("data_bits", 1),
+        JsonMember::Field("stop_bits", 1),
+        JsonMember::Field("parity", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -93,40 +98,12 @@ impl<'a> Layout<'a> for Psrf100<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.protocol)?;
-        w.field(&self.baud)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.parity)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.protocol)?;
-        w.field(&self.baud)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.parity)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("protocol", &self.protocol)?;
-        j.field("baud", &self.baud)?;
-        j.field("data_bits", &self.data_bits)?;
-        j.field("stop_bits", &self.stop_bits)?;
-        j.field("parity", &self.parity)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "protocol", 1)?;
-        out.member(fields, "baud", 1)?;
-        out.member(fields, "data_bits", 1)?;
-        out.member(fields, "stop_bits", 1)?;
-        out.member(fields, "parity", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("protocol", &self.protocol)?;
+        sink.field("baud", &self.baud)?;
+        sink.field("data_bits", &self.data_bits)?;
+        sink.field("stop_bits", &self.stop_bits)?;
+        sink.field("parity", &self.parity)?;
         Ok(())
     }
 }

@@ -13,10 +13,8 @@
 use core::fmt;
 
 use crate::enums::{SirfBaud, SirfParity};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -74,6 +72,12 @@ impl<'a> Layout<'a> for Psrf102<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSRF102");
     const SHAPE: Shape = Shape { sentence: "PSRF102", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("baud", 1),
+        JsonMember::Field("data_bits", 1),
+        JsonMember::Field("stop_bits", 1),
+        JsonMember::Field("parity", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -90,36 +94,11 @@ impl<'a> Layout<'a> for Psrf102<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.baud)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.parity)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.baud)?;
-        w.field(&self.data_bits)?;
-        w.field(&self.stop_bits)?;
-        w.field(&self.parity)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("baud", &self.baud)?;
-        j.field("data_bits", &self.data_bits)?;
-        j.field("stop_bits", &self.stop_bits)?;
-        j.field("parity", &self.parity)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "baud", 1)?;
-        out.member(fields, "data_bits", 1)?;
-        out.member(fields, "stop_bits", 1)?;
-        out.member(fields, "parity", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("baud", &self.baud)?;
+        sink.field("data_bits", &self.data_bits)?;
+        sink.field("stop_bits", &self.stop_bits)?;
+        sink.field("parity", &self.parity)?;
         Ok(())
     }
 }

@@ -14,10 +14,8 @@ use core::fmt;
 use crate::enums::{
     SirfChecksumEnable, SirfChecksumEnableDigit, SirfNmeaMessage, SirfNmeaMessageDigit, SirfRateMode, SirfRateModeDigit,
 };
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -77,6 +75,12 @@ impl<'a> Layout<'a> for Psrf103<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSRF103");
     const SHAPE: Shape = Shape { sentence: "PSRF103", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("message", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("rate", 1),
+        JsonMember::Field("checksum_mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -93,36 +97,11 @@ impl<'a> Layout<'a> for Psrf103<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message)?;
-        w.field(&self.mode)?;
-        w.field(&self.rate)?;
-        w.field(&self.checksum_mode)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.message)?;
-        w.field(&self.mode)?;
-        w.field(&self.rate)?;
-        w.field(&self.checksum_mode)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message", &self.message)?;
-        j.field("mode", &self.mode)?;
-        j.field("rate", &self.rate)?;
-        j.field("checksum_mode", &self.checksum_mode)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "rate", 1)?;
-        out.member(fields, "checksum_mode", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message", &self.message)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("rate", &self.rate)?;
+        sink.field("checksum_mode", &self.checksum_mode)?;
         Ok(())
     }
 }
@@ -183,6 +162,12 @@ impl<'a> Layout<'a> for Psrf103ShortCodes<'a> {
     const VARIANT: Option<&'static str> = Some("short_codes");
     const FRAMING: Framing = Framing::Proprietary("PSRF103");
     const SHAPE: Shape = Shape { sentence: "PSRF103", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("message", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("rate", 1),
+        JsonMember::Field("checksum_mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -199,36 +184,11 @@ impl<'a> Layout<'a> for Psrf103ShortCodes<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message)?;
-        w.field(&self.mode)?;
-        w.field(&self.rate)?;
-        w.field(&self.checksum_mode)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.message)?;
-        w.field(&self.mode)?;
-        w.field(&self.rate)?;
-        w.field(&self.checksum_mode)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message", &self.message)?;
-        j.field("mode", &self.mode)?;
-        j.field("rate", &self.rate)?;
-        j.field("checksum_mode", &self.checksum_mode)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "rate", 1)?;
-        out.member(fields, "checksum_mode", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message", &self.message)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("rate", &self.rate)?;
+        sink.field("checksum_mode", &self.checksum_mode)?;
         Ok(())
     }
 }

@@ -10,11 +10,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PSRF104: Navigation initialisation, latitude/longitude/altitude.
@@ -90,6 +86,16 @@ impl<'a> Layout<'a> for Psrf104 {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSRF104");
     const SHAPE: Shape = Shape { sentence: "PSRF104", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("latitude", 1),
+        JsonMember::Field("longitude", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("clock_offset", 1),
+        JsonMember::Field("time_of_week", 1),
+        JsonMember::Field("week", 1),
+        JsonMember::Field("channels", 1),
+        JsonMember::Field("reset_cfg", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -117,52 +123,15 @@ impl<'a> Layout<'a> for Psrf104 {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.clock_offset)?;
-        w.field(&self.time_of_week)?;
-        w.field(&self.week)?;
-        w.field(&self.channels)?;
-        w.field(&self.reset_cfg)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.latitude)?;
-        w.field(&self.longitude)?;
-        w.field(&self.altitude)?;
-        w.field(&self.clock_offset)?;
-        w.field(&self.time_of_week)?;
-        w.field(&self.week)?;
-        w.field(&self.channels)?;
-        w.field(&self.reset_cfg)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("latitude", &self.latitude)?;
-        j.field("longitude", &self.longitude)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("clock_offset", &self.clock_offset)?;
-        j.field("time_of_week", &self.time_of_week)?;
-        j.field("week", &self.week)?;
-        j.field("channels", &self.channels)?;
-        j.field("reset_cfg", &self.reset_cfg)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "latitude", 1)?;
-        out.member(fields, "longitude", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "clock_offset", 1)?;
-        out.member(fields, "time_of_week", 1)?;
-        out.member(fields, "week", 1)?;
-        out.member(fields, "channels", 1)?;
-        out.member(fields, "reset_cfg", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("latitude", &self.latitude)?;
+        sink.field("longitude", &self.longitude)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("clock_offset", &self.clock_offset)?;
+        sink.field("time_of_week", &self.time_of_week)?;
+        sink.field("week", &self.week)?;
+        sink.field("channels", &self.channels)?;
+        sink.field("reset_cfg", &self.reset_cfg)?;
         Ok(())
     }
 }

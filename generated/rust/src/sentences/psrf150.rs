@@ -13,11 +13,7 @@
 use core::fmt;
 
 use crate::enums::SirfOkToSend;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Read, Shape};
 use crate::LayoutId;
 
 /// PSRF150: OkToSend.
@@ -62,6 +58,7 @@ impl<'a> Layout<'a> for Psrf150<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSRF150");
     const SHAPE: Shape = Shape { sentence: "PSRF150", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("ok_to_send", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -82,24 +79,8 @@ impl<'a> Layout<'a> for Psrf150<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.ok_to_send)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.ok_to_send)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("ok_to_send", &self.ok_to_send)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "ok_to_send", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("ok_to_send", &self.ok_to_send)?;
         Ok(())
     }
 }

@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::Status;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -77,6 +74,15 @@ impl<'a> Layout<'a> for Psrfepe<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSRFEPE");
     const SHAPE: Shape = Shape { sentence: "PSRFEPE", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("ehpe", 1),
+        JsonMember::Field("evpe", 1),
+        JsonMember::Field("ehve", 1),
+        JsonMember::Field("ehe", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -109,48 +115,14 @@ impl<'a> Layout<'a> for Psrfepe<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.hdop)?;
-        w.field(&self.ehpe)?;
-        w.field(&self.evpe)?;
-        w.field(&self.ehve)?;
-        w.field(&self.ehe)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.hdop)?;
-        w.field(&self.ehpe)?;
-        w.field(&self.evpe)?;
-        w.field(&self.ehve)?;
-        w.field(&self.ehe)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("status", &self.status)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("ehpe", &self.ehpe)?;
-        j.field("evpe", &self.evpe)?;
-        j.field("ehve", &self.ehve)?;
-        j.field("ehe", &self.ehe)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "ehpe", 1)?;
-        out.member(fields, "evpe", 1)?;
-        out.member(fields, "ehve", 1)?;
-        out.member(fields, "ehe", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("status", &self.status)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("ehpe", &self.ehpe)?;
+        sink.field("evpe", &self.evpe)?;
+        sink.field("ehve", &self.ehve)?;
+        sink.field("ehe", &self.ehe)?;
         Ok(())
     }
 }

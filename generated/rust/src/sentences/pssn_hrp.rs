@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::EastWest;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, Time, WireWriter,
+    Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -92,6 +90,21 @@ impl<'a> Layout<'a> for PssnHrp<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSSN");
     const SHAPE: Shape = Shape { sentence: "PSSN_HRP", fixed: 13, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("roll", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("heading_std", 1),
+        JsonMember::Field("roll_std", 1),
+        JsonMember::Field("pitch_std", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("attitude_mode", 1),
+        JsonMember::Field("mag_var", 1),
+        JsonMember::Field("mag_var_dir", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -136,72 +149,20 @@ impl<'a> Layout<'a> for PssnHrp<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("HRP")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.heading)?;
-        w.field(&self.roll)?;
-        w.field(&self.pitch)?;
-        w.field(&self.heading_std)?;
-        w.field(&self.roll_std)?;
-        w.field(&self.pitch_std)?;
-        w.field(&self.satellites)?;
-        w.field(&self.attitude_mode)?;
-        w.field(&self.mag_var)?;
-        w.field(&self.mag_var_dir)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("HRP")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.heading)?;
-        w.field(&self.roll)?;
-        w.field(&self.pitch)?;
-        w.field(&self.heading_std)?;
-        w.field(&self.roll_std)?;
-        w.field(&self.pitch_std)?;
-        w.field(&self.satellites)?;
-        w.field(&self.attitude_mode)?;
-        w.field(&self.mag_var)?;
-        w.field(&self.mag_var_dir)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "HRP")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("heading", &self.heading)?;
-        j.field("roll", &self.roll)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("heading_std", &self.heading_std)?;
-        j.field("roll_std", &self.roll_std)?;
-        j.field("pitch_std", &self.pitch_std)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("attitude_mode", &self.attitude_mode)?;
-        j.field("mag_var", &self.mag_var)?;
-        j.field("mag_var_dir", &self.mag_var_dir)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "roll", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "heading_std", 1)?;
-        out.member(fields, "roll_std", 1)?;
-        out.member(fields, "pitch_std", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "attitude_mode", 1)?;
-        out.member(fields, "mag_var", 1)?;
-        out.member(fields, "mag_var_dir", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "HRP")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("heading", &self.heading)?;
+        sink.field("roll", &self.roll)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("heading_std", &self.heading_std)?;
+        sink.field("roll_std", &self.roll_std)?;
+        sink.field("pitch_std", &self.pitch_std)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("attitude_mode", &self.attitude_mode)?;
+        sink.field("mag_var", &self.mag_var)?;
+        sink.field("mag_var_dir", &self.mag_var_dir)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{SeptentrioBaseMotion, SeptentrioBaselineQuality};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range,
-    Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range,
+    Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -80,6 +78,19 @@ impl<'a> Layout<'a> for PssnRbd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSSN");
     const SHAPE: Shape = Shape { sentence: "PSSN_RBD", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("azimuth", 1),
+        JsonMember::Field("elevation", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("base_motion", 1),
+        JsonMember::Field("correction_age", 1),
+        JsonMember::Field("rover_serial", 1),
+        JsonMember::Field("base_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -121,64 +132,18 @@ impl<'a> Layout<'a> for PssnRbd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("RBD")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.elevation)?;
-        w.field(&self.satellites)?;
-        w.field(&self.quality)?;
-        w.field(&self.base_motion)?;
-        w.field(&self.correction_age)?;
-        w.field(&self.rover_serial)?;
-        w.field(&self.base_id)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("RBD")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.elevation)?;
-        w.field(&self.satellites)?;
-        w.field(&self.quality)?;
-        w.field(&self.base_motion)?;
-        w.field(&self.correction_age)?;
-        w.field(&self.rover_serial)?;
-        w.field(&self.base_id)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "RBD")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("azimuth", &self.azimuth)?;
-        j.field("elevation", &self.elevation)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("quality", &self.quality)?;
-        j.field("base_motion", &self.base_motion)?;
-        j.field("correction_age", &self.correction_age)?;
-        j.field("rover_serial", &self.rover_serial)?;
-        j.field("base_id", &self.base_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "azimuth", 1)?;
-        out.member(fields, "elevation", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "base_motion", 1)?;
-        out.member(fields, "correction_age", 1)?;
-        out.member(fields, "rover_serial", 1)?;
-        out.member(fields, "base_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "RBD")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("azimuth", &self.azimuth)?;
+        sink.field("elevation", &self.elevation)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("base_motion", &self.base_motion)?;
+        sink.field("correction_age", &self.correction_age)?;
+        sink.field("rover_serial", &self.rover_serial)?;
+        sink.field("base_id", &self.base_id)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{SeptentrioBaseMotion, SeptentrioBaselineQuality};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, Time, WireWriter,
+    Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -81,6 +79,20 @@ impl<'a> Layout<'a> for PssnRbv<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSSN");
     const SHAPE: Shape = Shape { sentence: "PSSN_RBV", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("north_rate", 1),
+        JsonMember::Field("east_rate", 1),
+        JsonMember::Field("up_rate", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("base_motion", 1),
+        JsonMember::Field("correction_age", 1),
+        JsonMember::Field("rover_serial", 1),
+        JsonMember::Field("base_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -123,68 +135,19 @@ impl<'a> Layout<'a> for PssnRbv<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("RBV")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.north_rate)?;
-        w.field(&self.east_rate)?;
-        w.field(&self.up_rate)?;
-        w.field(&self.satellites)?;
-        w.field(&self.quality)?;
-        w.field(&self.base_motion)?;
-        w.field(&self.correction_age)?;
-        w.field(&self.rover_serial)?;
-        w.field(&self.base_id)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("RBV")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.north_rate)?;
-        w.field(&self.east_rate)?;
-        w.field(&self.up_rate)?;
-        w.field(&self.satellites)?;
-        w.field(&self.quality)?;
-        w.field(&self.base_motion)?;
-        w.field(&self.correction_age)?;
-        w.field(&self.rover_serial)?;
-        w.field(&self.base_id)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "RBV")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("north_rate", &self.north_rate)?;
-        j.field("east_rate", &self.east_rate)?;
-        j.field("up_rate", &self.up_rate)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("quality", &self.quality)?;
-        j.field("base_motion", &self.base_motion)?;
-        j.field("correction_age", &self.correction_age)?;
-        j.field("rover_serial", &self.rover_serial)?;
-        j.field("base_id", &self.base_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "north_rate", 1)?;
-        out.member(fields, "east_rate", 1)?;
-        out.member(fields, "up_rate", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "base_motion", 1)?;
-        out.member(fields, "correction_age", 1)?;
-        out.member(fields, "rover_serial", 1)?;
-        out.member(fields, "base_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "RBV")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("north_rate", &self.north_rate)?;
+        sink.field("east_rate", &self.east_rate)?;
+        sink.field("up_rate", &self.up_rate)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("base_motion", &self.base_motion)?;
+        sink.field("correction_age", &self.correction_age)?;
+        sink.field("rover_serial", &self.rover_serial)?;
+        sink.field("base_id", &self.base_id)?;
         Ok(())
     }
 }

@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape, Time,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -76,6 +73,14 @@ impl<'a> Layout<'a> for PssnTfm {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSSN");
     const SHAPE: Shape = Shape { sentence: "PSSN_TFM", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("height_indicator", 1),
+        JsonMember::Field("msg_1021_1022", 1),
+        JsonMember::Field("msg_1023_1024", 1),
+        JsonMember::Field("msg_1025_1027", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -106,44 +111,13 @@ impl<'a> Layout<'a> for PssnTfm {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("TFM")?;
-        w.field(&self.time)?;
-        w.field(&self.height_indicator)?;
-        w.field(&self.msg_1021_1022)?;
-        w.field(&self.msg_1023_1024)?;
-        w.field(&self.msg_1025_1027)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("TFM")?;
-        w.field(&self.time)?;
-        w.field(&self.height_indicator)?;
-        w.field(&self.msg_1021_1022)?;
-        w.field(&self.msg_1023_1024)?;
-        w.field(&self.msg_1025_1027)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "TFM")?;
-        j.field("time", &self.time)?;
-        j.field("height_indicator", &self.height_indicator)?;
-        j.field("msg_1021_1022", &self.msg_1021_1022)?;
-        j.field("msg_1023_1024", &self.msg_1023_1024)?;
-        j.field("msg_1025_1027", &self.msg_1025_1027)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "height_indicator", 1)?;
-        out.member(fields, "msg_1021_1022", 1)?;
-        out.member(fields, "msg_1023_1024", 1)?;
-        out.member(fields, "msg_1025_1027", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "TFM")?;
+        sink.field("time", &self.time)?;
+        sink.field("height_indicator", &self.height_indicator)?;
+        sink.field("msg_1021_1022", &self.msg_1021_1022)?;
+        sink.field("msg_1023_1024", &self.msg_1023_1024)?;
+        sink.field("msg_1025_1027", &self.msg_1025_1027)?;
         Ok(())
     }
 }

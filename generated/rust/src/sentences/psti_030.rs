@@ -12,11 +12,9 @@
 use core::fmt;
 
 use crate::enums::{SkytraqMode, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Date, Error, FastReader, Fields, Framing, JsonFields, Layout,
-    Number, Range, Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number,
+    Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -93,6 +91,21 @@ impl<'a> Layout<'a> for Psti030<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTI");
     const SHAPE: Shape = Shape { sentence: "PSTI_030", fixed: 15, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("velocity_east", 1),
+        JsonMember::Field("velocity_north", 1),
+        JsonMember::Field("velocity_up", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("rtk_age", 1),
+        JsonMember::Field("rtk_ratio", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -141,72 +154,20 @@ impl<'a> Layout<'a> for Psti030<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("030")?;
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.altitude)?;
-        w.field(&self.velocity_east)?;
-        w.field(&self.velocity_north)?;
-        w.field(&self.velocity_up)?;
-        w.field(&self.date)?;
-        w.field(&self.mode)?;
-        w.field(&self.rtk_age)?;
-        w.field(&self.rtk_ratio)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("030")?;
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.altitude)?;
-        w.field(&self.velocity_east)?;
-        w.field(&self.velocity_north)?;
-        w.field(&self.velocity_up)?;
-        w.field(&self.date)?;
-        w.field(&self.mode)?;
-        w.field(&self.rtk_age)?;
-        w.field(&self.rtk_ratio)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "030")?;
-        j.field("time", &self.time)?;
-        j.field("status", &self.status)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("velocity_east", &self.velocity_east)?;
-        j.field("velocity_north", &self.velocity_north)?;
-        j.field("velocity_up", &self.velocity_up)?;
-        j.field("date", &self.date)?;
-        j.field("mode", &self.mode)?;
-        j.field("rtk_age", &self.rtk_age)?;
-        j.field("rtk_ratio", &self.rtk_ratio)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "velocity_east", 1)?;
-        out.member(fields, "velocity_north", 1)?;
-        out.member(fields, "velocity_up", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "rtk_age", 1)?;
-        out.member(fields, "rtk_ratio", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "030")?;
+        sink.field("time", &self.time)?;
+        sink.field("status", &self.status)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("velocity_east", &self.velocity_east)?;
+        sink.field("velocity_north", &self.velocity_north)?;
+        sink.field("velocity_up", &self.velocity_up)?;
+        sink.field("date", &self.date)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("rtk_age", &self.rtk_age)?;
+        sink.field("rtk_ratio", &self.rtk_ratio)?;
         Ok(())
     }
 }

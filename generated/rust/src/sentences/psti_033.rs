@@ -12,11 +12,9 @@
 use core::fmt;
 
 use crate::enums::SkytraqReceiverRole;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, Time, WireWriter,
+    Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -125,6 +123,35 @@ impl<'a> Layout<'a> for Psti033<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTI");
     const SHAPE: Shape = Shape { sentence: "PSTI_033", fixed: 26, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("version", 1),
+        JsonMember::Field("receiver", 1),
+        JsonMember::Field("total_slips", 1),
+        JsonMember::Field("gps_system", 1),
+        JsonMember::Field("gps_l1_slips", 1),
+        JsonMember::Field("gps_l2_slips", 1),
+        JsonMember::Field("gps_reserved_1", 1),
+        JsonMember::Field("gps_reserved_2", 1),
+        JsonMember::Field("bds_system", 1),
+        JsonMember::Field("bds_b1_slips", 1),
+        JsonMember::Field("bds_b2_slips", 1),
+        JsonMember::Field("bds_reserved_1", 1),
+        JsonMember::Field("bds_reserved_2", 1),
+        JsonMember::Field("gal_system", 1),
+        JsonMember::Field("gal_e1_slips", 1),
+        JsonMember::Field("gal_e5b_slips", 1),
+        JsonMember::Field("gal_reserved_1", 1),
+        JsonMember::Field("gal_reserved_2", 1),
+        JsonMember::Field("glo_system", 1),
+        JsonMember::Field("glo_g1_slips", 1),
+        JsonMember::Field("glo_g2_slips", 1),
+        JsonMember::Field("glo_reserved_1", 1),
+        JsonMember::Field("glo_reserved_2", 1),
+        JsonMember::Optional("reserved_end", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -203,134 +230,36 @@ impl<'a> Layout<'a> for Psti033<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("033")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.version)?;
-        w.field(&self.receiver)?;
-        w.field(&self.total_slips)?;
-        w.field(&self.gps_system)?;
-        w.field(&self.gps_l1_slips)?;
-        w.field(&self.gps_l2_slips)?;
-        w.field(&self.gps_reserved_1)?;
-        w.field(&self.gps_reserved_2)?;
-        w.field(&self.bds_system)?;
-        w.field(&self.bds_b1_slips)?;
-        w.field(&self.bds_b2_slips)?;
-        w.field(&self.bds_reserved_1)?;
-        w.field(&self.bds_reserved_2)?;
-        w.field(&self.gal_system)?;
-        w.field(&self.gal_e1_slips)?;
-        w.field(&self.gal_e5b_slips)?;
-        w.field(&self.gal_reserved_1)?;
-        w.field(&self.gal_reserved_2)?;
-        w.field(&self.glo_system)?;
-        w.field(&self.glo_g1_slips)?;
-        w.field(&self.glo_g2_slips)?;
-        w.field(&self.glo_reserved_1)?;
-        w.field(&self.glo_reserved_2)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "033")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("version", &self.version)?;
+        sink.field("receiver", &self.receiver)?;
+        sink.field("total_slips", &self.total_slips)?;
+        sink.field("gps_system", &self.gps_system)?;
+        sink.field("gps_l1_slips", &self.gps_l1_slips)?;
+        sink.field("gps_l2_slips", &self.gps_l2_slips)?;
+        sink.field("gps_reserved_1", &self.gps_reserved_1)?;
+        sink.field("gps_reserved_2", &self.gps_reserved_2)?;
+        sink.field("bds_system", &self.bds_system)?;
+        sink.field("bds_b1_slips", &self.bds_b1_slips)?;
+        sink.field("bds_b2_slips", &self.bds_b2_slips)?;
+        sink.field("bds_reserved_1", &self.bds_reserved_1)?;
+        sink.field("bds_reserved_2", &self.bds_reserved_2)?;
+        sink.field("gal_system", &self.gal_system)?;
+        sink.field("gal_e1_slips", &self.gal_e1_slips)?;
+        sink.field("gal_e5b_slips", &self.gal_e5b_slips)?;
+        sink.field("gal_reserved_1", &self.gal_reserved_1)?;
+        sink.field("gal_reserved_2", &self.gal_reserved_2)?;
+        sink.field("glo_system", &self.glo_system)?;
+        sink.field("glo_g1_slips", &self.glo_g1_slips)?;
+        sink.field("glo_g2_slips", &self.glo_g2_slips)?;
+        sink.field("glo_reserved_1", &self.glo_reserved_1)?;
+        sink.field("glo_reserved_2", &self.glo_reserved_2)?;
         if self.trailing >= 1 {
-            w.field(&self.reserved_end)?;
+            sink.field("reserved_end", &self.reserved_end)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("033")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.version)?;
-        w.field(&self.receiver)?;
-        w.field(&self.total_slips)?;
-        w.field(&self.gps_system)?;
-        w.field(&self.gps_l1_slips)?;
-        w.field(&self.gps_l2_slips)?;
-        w.field(&self.gps_reserved_1)?;
-        w.field(&self.gps_reserved_2)?;
-        w.field(&self.bds_system)?;
-        w.field(&self.bds_b1_slips)?;
-        w.field(&self.bds_b2_slips)?;
-        w.field(&self.bds_reserved_1)?;
-        w.field(&self.bds_reserved_2)?;
-        w.field(&self.gal_system)?;
-        w.field(&self.gal_e1_slips)?;
-        w.field(&self.gal_e5b_slips)?;
-        w.field(&self.gal_reserved_1)?;
-        w.field(&self.gal_reserved_2)?;
-        w.field(&self.glo_system)?;
-        w.field(&self.glo_g1_slips)?;
-        w.field(&self.glo_g2_slips)?;
-        w.field(&self.glo_reserved_1)?;
-        w.field(&self.glo_reserved_2)?;
-        if self.trailing >= 1 {
-            w.field(&self.reserved_end)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "033")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("version", &self.version)?;
-        j.field("receiver", &self.receiver)?;
-        j.field("total_slips", &self.total_slips)?;
-        j.field("gps_system", &self.gps_system)?;
-        j.field("gps_l1_slips", &self.gps_l1_slips)?;
-        j.field("gps_l2_slips", &self.gps_l2_slips)?;
-        j.field("gps_reserved_1", &self.gps_reserved_1)?;
-        j.field("gps_reserved_2", &self.gps_reserved_2)?;
-        j.field("bds_system", &self.bds_system)?;
-        j.field("bds_b1_slips", &self.bds_b1_slips)?;
-        j.field("bds_b2_slips", &self.bds_b2_slips)?;
-        j.field("bds_reserved_1", &self.bds_reserved_1)?;
-        j.field("bds_reserved_2", &self.bds_reserved_2)?;
-        j.field("gal_system", &self.gal_system)?;
-        j.field("gal_e1_slips", &self.gal_e1_slips)?;
-        j.field("gal_e5b_slips", &self.gal_e5b_slips)?;
-        j.field("gal_reserved_1", &self.gal_reserved_1)?;
-        j.field("gal_reserved_2", &self.gal_reserved_2)?;
-        j.field("glo_system", &self.glo_system)?;
-        j.field("glo_g1_slips", &self.glo_g1_slips)?;
-        j.field("glo_g2_slips", &self.glo_g2_slips)?;
-        j.field("glo_reserved_1", &self.glo_reserved_1)?;
-        j.field("glo_reserved_2", &self.glo_reserved_2)?;
-        if self.trailing >= 1 {
-            j.field("reserved_end", &self.reserved_end)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "version", 1)?;
-        out.member(fields, "receiver", 1)?;
-        out.member(fields, "total_slips", 1)?;
-        out.member(fields, "gps_system", 1)?;
-        out.member(fields, "gps_l1_slips", 1)?;
-        out.member(fields, "gps_l2_slips", 1)?;
-        out.member(fields, "gps_reserved_1", 1)?;
-        out.member(fields, "gps_reserved_2", 1)?;
-        out.member(fields, "bds_system", 1)?;
-        out.member(fields, "bds_b1_slips", 1)?;
-        out.member(fields, "bds_b2_slips", 1)?;
-        out.member(fields, "bds_reserved_1", 1)?;
-        out.member(fields, "bds_reserved_2", 1)?;
-        out.member(fields, "gal_system", 1)?;
-        out.member(fields, "gal_e1_slips", 1)?;
-        out.member(fields, "gal_e5b_slips", 1)?;
-        out.member(fields, "gal_reserved_1", 1)?;
-        out.member(fields, "gal_reserved_2", 1)?;
-        out.member(fields, "glo_system", 1)?;
-        out.member(fields, "glo_g1_slips", 1)?;
-        out.member(fields, "glo_g2_slips", 1)?;
-        out.member(fields, "glo_reserved_1", 1)?;
-        out.member(fields, "glo_reserved_2", 1)?;
-        out.optional(fields, "reserved_end", 1)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{SkytraqMode, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range,
-    Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range,
+    Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -93,6 +91,23 @@ impl<'a> Layout<'a> for Psti035<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTI");
     const SHAPE: Shape = Shape { sentence: "PSTI_035", fixed: 15, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("mode", 1),
+        JsonMember::Field("baseline_east", 1),
+        JsonMember::Field("baseline_north", 1),
+        JsonMember::Field("baseline_up", 1),
+        JsonMember::Field("baseline_length", 1),
+        JsonMember::Field("baseline_course", 1),
+        JsonMember::Field("reserved_1", 1),
+        JsonMember::Field("reserved_2", 1),
+        JsonMember::Field("reserved_3", 1),
+        JsonMember::Field("reserved_4", 1),
+        JsonMember::Field("reserved_5", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -142,80 +157,22 @@ impl<'a> Layout<'a> for Psti035<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("035")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.status)?;
-        w.field(&self.mode)?;
-        w.field(&self.baseline_east)?;
-        w.field(&self.baseline_north)?;
-        w.field(&self.baseline_up)?;
-        w.field(&self.baseline_length)?;
-        w.field(&self.baseline_course)?;
-        w.field(&self.reserved_1)?;
-        w.field(&self.reserved_2)?;
-        w.field(&self.reserved_3)?;
-        w.field(&self.reserved_4)?;
-        w.field(&self.reserved_5)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("035")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.status)?;
-        w.field(&self.mode)?;
-        w.field(&self.baseline_east)?;
-        w.field(&self.baseline_north)?;
-        w.field(&self.baseline_up)?;
-        w.field(&self.baseline_length)?;
-        w.field(&self.baseline_course)?;
-        w.field(&self.reserved_1)?;
-        w.field(&self.reserved_2)?;
-        w.field(&self.reserved_3)?;
-        w.field(&self.reserved_4)?;
-        w.field(&self.reserved_5)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "035")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("status", &self.status)?;
-        j.field("mode", &self.mode)?;
-        j.field("baseline_east", &self.baseline_east)?;
-        j.field("baseline_north", &self.baseline_north)?;
-        j.field("baseline_up", &self.baseline_up)?;
-        j.field("baseline_length", &self.baseline_length)?;
-        j.field("baseline_course", &self.baseline_course)?;
-        j.field("reserved_1", &self.reserved_1)?;
-        j.field("reserved_2", &self.reserved_2)?;
-        j.field("reserved_3", &self.reserved_3)?;
-        j.field("reserved_4", &self.reserved_4)?;
-        j.field("reserved_5", &self.reserved_5)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "mode", 1)?;
-        out.member(fields, "baseline_east", 1)?;
-        out.member(fields, "baseline_north", 1)?;
-        out.member(fields, "baseline_up", 1)?;
-        out.member(fields, "baseline_length", 1)?;
-        out.member(fields, "baseline_course", 1)?;
-        out.member(fields, "reserved_1", 1)?;
-        out.member(fields, "reserved_2", 1)?;
-        out.member(fields, "reserved_3", 1)?;
-        out.member(fields, "reserved_4", 1)?;
-        out.member(fields, "reserved_5", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "035")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("status", &self.status)?;
+        sink.field("mode", &self.mode)?;
+        sink.field("baseline_east", &self.baseline_east)?;
+        sink.field("baseline_north", &self.baseline_north)?;
+        sink.field("baseline_up", &self.baseline_up)?;
+        sink.field("baseline_length", &self.baseline_length)?;
+        sink.field("baseline_course", &self.baseline_course)?;
+        sink.field("reserved_1", &self.reserved_1)?;
+        sink.field("reserved_2", &self.reserved_2)?;
+        sink.field("reserved_3", &self.reserved_3)?;
+        sink.field("reserved_4", &self.reserved_4)?;
+        sink.field("reserved_5", &self.reserved_5)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::SkytraqMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range,
-    Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range,
+    Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -78,6 +76,15 @@ impl<'a> Layout<'a> for Psti036<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTI");
     const SHAPE: Shape = Shape { sentence: "PSTI_036", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("heading", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("roll", 1),
+        JsonMember::Field("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -110,48 +117,14 @@ impl<'a> Layout<'a> for Psti036<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("036")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        w.field(&self.mode)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("036")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.heading)?;
-        w.field(&self.pitch)?;
-        w.field(&self.roll)?;
-        w.field(&self.mode)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "036")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("heading", &self.heading)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("roll", &self.roll)?;
-        j.field("mode", &self.mode)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "heading", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "roll", 1)?;
-        out.member(fields, "mode", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "036")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("heading", &self.heading)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("roll", &self.roll)?;
+        sink.field("mode", &self.mode)?;
         Ok(())
     }
 }

@@ -12,11 +12,8 @@
 use core::fmt;
 
 use crate::enums::{SkytraqAvailability, SkytraqCalibration, SkytraqDirection, SkytraqDrMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -93,6 +90,20 @@ impl<'a> Layout<'a> for Psti20<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTI");
     const SHAPE: Shape = Shape { sentence: "PSTI_20", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("dr_calibration", 1),
+        JsonMember::Field("gyro_calibration", 1),
+        JsonMember::Field("sensor_input", 1),
+        JsonMember::Field("odometer_pulses", 1),
+        JsonMember::Field("position_mode", 1),
+        JsonMember::Field("backward", 1),
+        JsonMember::Field("antenna", 1),
+        JsonMember::Field("gyro_bias", 1),
+        JsonMember::Field("odometer_scale", 1),
+        JsonMember::Field("rotation_rate", 1),
+        JsonMember::Field("distance_per_second", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -135,68 +146,19 @@ impl<'a> Layout<'a> for Psti20<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("20")?;
-        w.field(&self.dr_calibration)?;
-        w.field(&self.gyro_calibration)?;
-        w.field(&self.sensor_input)?;
-        w.field(&self.odometer_pulses)?;
-        w.field(&self.position_mode)?;
-        w.field(&self.backward)?;
-        w.field(&self.antenna)?;
-        w.field(&self.gyro_bias)?;
-        w.field(&self.odometer_scale)?;
-        w.field(&self.rotation_rate)?;
-        w.field(&self.distance_per_second)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("20")?;
-        w.field(&self.dr_calibration)?;
-        w.field(&self.gyro_calibration)?;
-        w.field(&self.sensor_input)?;
-        w.field(&self.odometer_pulses)?;
-        w.field(&self.position_mode)?;
-        w.field(&self.backward)?;
-        w.field(&self.antenna)?;
-        w.field(&self.gyro_bias)?;
-        w.field(&self.odometer_scale)?;
-        w.field(&self.rotation_rate)?;
-        w.field(&self.distance_per_second)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "20")?;
-        j.field("dr_calibration", &self.dr_calibration)?;
-        j.field("gyro_calibration", &self.gyro_calibration)?;
-        j.field("sensor_input", &self.sensor_input)?;
-        j.field("odometer_pulses", &self.odometer_pulses)?;
-        j.field("position_mode", &self.position_mode)?;
-        j.field("backward", &self.backward)?;
-        j.field("antenna", &self.antenna)?;
-        j.field("gyro_bias", &self.gyro_bias)?;
-        j.field("odometer_scale", &self.odometer_scale)?;
-        j.field("rotation_rate", &self.rotation_rate)?;
-        j.field("distance_per_second", &self.distance_per_second)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "dr_calibration", 1)?;
-        out.member(fields, "gyro_calibration", 1)?;
-        out.member(fields, "sensor_input", 1)?;
-        out.member(fields, "odometer_pulses", 1)?;
-        out.member(fields, "position_mode", 1)?;
-        out.member(fields, "backward", 1)?;
-        out.member(fields, "antenna", 1)?;
-        out.member(fields, "gyro_bias", 1)?;
-        out.member(fields, "odometer_scale", 1)?;
-        out.member(fields, "rotation_rate", 1)?;
-        out.member(fields, "distance_per_second", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "20")?;
+        sink.field("dr_calibration", &self.dr_calibration)?;
+        sink.field("gyro_calibration", &self.gyro_calibration)?;
+        sink.field("sensor_input", &self.sensor_input)?;
+        sink.field("odometer_pulses", &self.odometer_pulses)?;
+        sink.field("position_mode", &self.position_mode)?;
+        sink.field("backward", &self.backward)?;
+        sink.field("antenna", &self.antenna)?;
+        sink.field("gyro_bias", &self.gyro_bias)?;
+        sink.field("odometer_scale", &self.odometer_scale)?;
+        sink.field("rotation_rate", &self.rotation_rate)?;
+        sink.field("distance_per_second", &self.distance_per_second)?;
         Ok(())
     }
 }

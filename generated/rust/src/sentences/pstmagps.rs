@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, GroupShape, JsonFields, Layout, Read, Shape, Texts,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Read, Shape, Texts,
 };
 use crate::LayoutId;
 
@@ -60,6 +57,7 @@ impl<'a> Layout<'a> for Pstmagps<'a> {
         optional: 0,
         group: Some(GroupShape { id: "values", width: 1, min: 0, max: 64 }),
     };
+    const JSON: &'static [JsonMember] = &[JsonMember::Values("values", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -80,26 +78,8 @@ impl<'a> Layout<'a> for Pstmagps<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.texts(&self.values)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.texts(&self.values)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.texts("values", &self.values)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        for value in json::list(fields, "values")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.texts("values", &self.values)?;
         Ok(())
     }
 }

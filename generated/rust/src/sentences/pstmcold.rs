@@ -10,11 +10,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PSTMCOLD: Cold start.
@@ -71,6 +67,7 @@ impl<'a> Layout<'a> for Pstmcold {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTMCOLD");
     const SHAPE: Shape = Shape { sentence: "PSTMCOLD", fixed: 0, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Optional("mask", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -87,30 +84,10 @@ impl<'a> Layout<'a> for Pstmcold {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
         if self.trailing >= 1 {
-            w.field(&self.mask)?;
+            sink.field("mask", &self.mask)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        if self.trailing >= 1 {
-            w.field(&self.mask)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        if self.trailing >= 1 {
-            j.field("mask", &self.mask)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.optional(fields, "mask", 1)?;
         Ok(())
     }
 }

@@ -10,11 +10,7 @@
 use core::fmt;
 
 use crate::enums::{TeseoRtcStatus, TeseoTimeValidity};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Date, Error, Fields, Framing, JsonFields, Layout, Shape, Time, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Date, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape, Time};
 use crate::LayoutId;
 
 /// PSTMGETRTCTIME_REPLY: RTC time and status.
@@ -62,6 +58,12 @@ impl<'a> Layout<'a> for PstmgetrtctimeReply<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTMGETRTCTIME");
     const SHAPE: Shape = Shape { sentence: "PSTMGETRTCTIME_REPLY", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("rtc_status", 1),
+        JsonMember::Field("time_validity", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -78,36 +80,11 @@ impl<'a> Layout<'a> for PstmgetrtctimeReply<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.rtc_status)?;
-        w.field(&self.time_validity)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.rtc_status)?;
-        w.field(&self.time_validity)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("rtc_status", &self.rtc_status)?;
-        j.field("time_validity", &self.time_validity)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "rtc_status", 1)?;
-        out.member(fields, "time_validity", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("rtc_status", &self.rtc_status)?;
+        sink.field("time_validity", &self.time_validity)?;
         Ok(())
     }
 }

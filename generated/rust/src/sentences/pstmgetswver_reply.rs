@@ -10,9 +10,7 @@
 use core::fmt;
 
 use crate::enums::TeseoCompilerType;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PSTMGETSWVER_REPLY: Software version.
@@ -62,6 +60,12 @@ impl<'a> Layout<'a> for PstmgetswverReply<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTMGETSWVER");
     const SHAPE: Shape = Shape { sentence: "PSTMGETSWVER_REPLY", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("library_version", 1),
+        JsonMember::Field("compiler", 1),
+        JsonMember::Field("build_date", 1),
+        JsonMember::Field("build_time", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -78,36 +82,11 @@ impl<'a> Layout<'a> for PstmgetswverReply<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.library_version)?;
-        w.field(&self.compiler)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.library_version)?;
-        w.field(&self.compiler)?;
-        w.field(&self.build_date)?;
-        w.field(&self.build_time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("library_version", &self.library_version)?;
-        j.field("compiler", &self.compiler)?;
-        j.field("build_date", &self.build_date)?;
-        j.field("build_time", &self.build_time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "library_version", 1)?;
-        out.member(fields, "compiler", 1)?;
-        out.member(fields, "build_date", 1)?;
-        out.member(fields, "build_time", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("library_version", &self.library_version)?;
+        sink.field("compiler", &self.compiler)?;
+        sink.field("build_date", &self.build_date)?;
+        sink.field("build_time", &self.build_time)?;
         Ok(())
     }
 }

@@ -11,9 +11,7 @@
 use core::fmt;
 
 use crate::enums::TeseoNmeaOnOff;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PSTMNMEAONOFF: NMEA output on/off.
@@ -65,6 +63,7 @@ impl<'a> Layout<'a> for Pstmnmeaonoff<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTMNMEAONOFF");
     const SHAPE: Shape = Shape { sentence: "PSTMNMEAONOFF", fixed: 0, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Optional("on_off", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -81,30 +80,10 @@ impl<'a> Layout<'a> for Pstmnmeaonoff<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
         if self.trailing >= 1 {
-            w.field(&self.on_off)?;
+            sink.field("on_off", &self.on_off)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        if self.trailing >= 1 {
-            w.field(&self.on_off)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        if self.trailing >= 1 {
-            j.field("on_off", &self.on_off)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.optional(fields, "on_off", 1)?;
         Ok(())
     }
 }

@@ -11,11 +11,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PSTMSET: Get parameter answer, printed form.
@@ -63,6 +59,7 @@ impl<'a> Layout<'a> for Pstmset<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTMSET");
     const SHAPE: Shape = Shape { sentence: "PSTMSET", fixed: 2, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("block_param", 1), JsonMember::Field("value", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -78,28 +75,9 @@ impl<'a> Layout<'a> for Pstmset<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.block_param)?;
-        w.field(&self.value)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.block_param)?;
-        w.field(&self.value)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("block_param", &self.block_param)?;
-        j.field("value", &self.value)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "block_param", 1)?;
-        out.member(fields, "value", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("block_param", &self.block_param)?;
+        sink.field("value", &self.value)?;
         Ok(())
     }
 }
@@ -164,6 +142,13 @@ impl<'a> Layout<'a> for PstmsetDop {
     const VARIANT: Option<&'static str> = Some("dop");
     const FRAMING: Framing = Framing::Proprietary("PSTMSET");
     const SHAPE: Shape = Shape { sentence: "PSTMSET", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("block_param", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("gdop", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -182,40 +167,12 @@ impl<'a> Layout<'a> for PstmsetDop {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.block_param)?;
-        w.field(&self.pdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.gdop)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.block_param)?;
-        w.field(&self.pdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.gdop)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("block_param", &self.block_param)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("vdop", &self.vdop)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("gdop", &self.gdop)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "block_param", 1)?;
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "gdop", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("block_param", &self.block_param)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("vdop", &self.vdop)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("gdop", &self.gdop)?;
         Ok(())
     }
 }

@@ -14,10 +14,8 @@
 use core::fmt;
 
 use crate::enums::TeseoSetparMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -89,6 +87,8 @@ impl<'a> Layout<'a> for Pstmsetpar<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PSTMSETPAR");
     const SHAPE: Shape = Shape { sentence: "PSTMSETPAR", fixed: 2, optional: 1, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("block_param", 1), JsonMember::Field("value", 1), JsonMember::Optional("mode", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -108,38 +108,12 @@ impl<'a> Layout<'a> for Pstmsetpar<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.block_param)?;
-        w.field(&self.value)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("block_param", &self.block_param)?;
+        sink.field("value", &self.value)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.block_param)?;
-        w.field(&self.value)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("block_param", &self.block_param)?;
-        j.field("value", &self.value)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "block_param", 1)?;
-        out.member(fields, "value", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }
@@ -208,6 +182,14 @@ impl<'a> Layout<'a> for PstmsetparDop<'a> {
     const VARIANT: Option<&'static str> = Some("dop");
     const FRAMING: Framing = Framing::Proprietary("PSTMSETPAR");
     const SHAPE: Shape = Shape { sentence: "PSTMSETPAR", fixed: 5, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("block_param", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("gdop", 1),
+        JsonMember::Optional("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -230,50 +212,15 @@ impl<'a> Layout<'a> for PstmsetparDop<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.block_param)?;
-        w.field(&self.pdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.gdop)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("block_param", &self.block_param)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("vdop", &self.vdop)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("gdop", &self.gdop)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.block_param)?;
-        w.field(&self.pdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.hdop)?;
-        w.field(&self.gdop)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("block_param", &self.block_param)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("vdop", &self.vdop)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("gdop", &self.gdop)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "block_param", 1)?;
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "gdop", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }

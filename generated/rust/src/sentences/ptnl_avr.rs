@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::TrimbleGpsQuality;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -89,6 +86,20 @@ impl<'a> Layout<'a> for PtnlAvr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNL");
     const SHAPE: Shape = Shape { sentence: "PTNL_AVR", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("yaw", 1),
+        JsonMember::Field("yaw_label", 1),
+        JsonMember::Field("tilt", 1),
+        JsonMember::Field("tilt_label", 1),
+        JsonMember::Field("roll", 1),
+        JsonMember::Field("roll_label", 1),
+        JsonMember::Field("range", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("satellites", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -131,68 +142,19 @@ impl<'a> Layout<'a> for PtnlAvr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("AVR")?;
-        w.field(&self.time)?;
-        w.field(&self.yaw)?;
-        w.field(&self.yaw_label)?;
-        w.field(&self.tilt)?;
-        w.field(&self.tilt_label)?;
-        w.field(&self.roll)?;
-        w.field(&self.roll_label)?;
-        w.field(&self.range)?;
-        w.field(&self.quality)?;
-        w.field(&self.pdop)?;
-        w.field(&self.satellites)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("AVR")?;
-        w.field(&self.time)?;
-        w.field(&self.yaw)?;
-        w.field(&self.yaw_label)?;
-        w.field(&self.tilt)?;
-        w.field(&self.tilt_label)?;
-        w.field(&self.roll)?;
-        w.field(&self.roll_label)?;
-        w.field(&self.range)?;
-        w.field(&self.quality)?;
-        w.field(&self.pdop)?;
-        w.field(&self.satellites)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "AVR")?;
-        j.field("time", &self.time)?;
-        j.field("yaw", &self.yaw)?;
-        j.field("yaw_label", &self.yaw_label)?;
-        j.field("tilt", &self.tilt)?;
-        j.field("tilt_label", &self.tilt_label)?;
-        j.field("roll", &self.roll)?;
-        j.field("roll_label", &self.roll_label)?;
-        j.field("range", &self.range)?;
-        j.field("quality", &self.quality)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("satellites", &self.satellites)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "yaw", 1)?;
-        out.member(fields, "yaw_label", 1)?;
-        out.member(fields, "tilt", 1)?;
-        out.member(fields, "tilt_label", 1)?;
-        out.member(fields, "roll", 1)?;
-        out.member(fields, "roll_label", 1)?;
-        out.member(fields, "range", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "satellites", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "AVR")?;
+        sink.field("time", &self.time)?;
+        sink.field("yaw", &self.yaw)?;
+        sink.field("yaw_label", &self.yaw_label)?;
+        sink.field("tilt", &self.tilt)?;
+        sink.field("tilt_label", &self.tilt_label)?;
+        sink.field("roll", &self.roll)?;
+        sink.field("roll_label", &self.roll_label)?;
+        sink.field("range", &self.range)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("satellites", &self.satellites)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::TrimbleBpqQuality;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Coordinate, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape,
-    Time, WireWriter,
+    Checksum, Code, Coordinate, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Read, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -79,6 +77,16 @@ impl<'a> Layout<'a> for PtnlBpq<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNL");
     const SHAPE: Shape = Shape { sentence: "PTNL_BPQ", fixed: 10, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("height", 1),
+        JsonMember::Field("height_unit", 1),
+        JsonMember::Field("quality", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -113,52 +121,15 @@ impl<'a> Layout<'a> for PtnlBpq<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("BPQ")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.height)?;
-        w.field(&self.height_unit)?;
-        w.field(&self.quality)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("BPQ")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.height)?;
-        w.field(&self.height_unit)?;
-        w.field(&self.quality)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "BPQ")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("height", &self.height)?;
-        j.field("height_unit", &self.height_unit)?;
-        j.field("quality", &self.quality)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "height", 1)?;
-        out.member(fields, "height_unit", 1)?;
-        out.member(fields, "quality", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "BPQ")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("height", &self.height)?;
+        sink.field("height_unit", &self.height_unit)?;
+        sink.field("quality", &self.quality)?;
         Ok(())
     }
 }

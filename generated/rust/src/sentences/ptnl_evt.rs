@@ -10,11 +10,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Bound, Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -76,6 +74,15 @@ impl<'a> Layout<'a> for PtnlEvt {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNL");
     const SHAPE: Shape = Shape { sentence: "PTNL_EVT", fixed: 7, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("port", 1),
+        JsonMember::Field("event_number", 1),
+        JsonMember::Field("week", 1),
+        JsonMember::Field("day_of_week", 1),
+        JsonMember::Field("leap_seconds", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -108,48 +115,14 @@ impl<'a> Layout<'a> for PtnlEvt {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("EVT")?;
-        w.field(&self.time)?;
-        w.field(&self.port)?;
-        w.field(&self.event_number)?;
-        w.field(&self.week)?;
-        w.field(&self.day_of_week)?;
-        w.field(&self.leap_seconds)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("EVT")?;
-        w.field(&self.time)?;
-        w.field(&self.port)?;
-        w.field(&self.event_number)?;
-        w.field(&self.week)?;
-        w.field(&self.day_of_week)?;
-        w.field(&self.leap_seconds)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "EVT")?;
-        j.field("time", &self.time)?;
-        j.field("port", &self.port)?;
-        j.field("event_number", &self.event_number)?;
-        j.field("week", &self.week)?;
-        j.field("day_of_week", &self.day_of_week)?;
-        j.field("leap_seconds", &self.leap_seconds)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "port", 1)?;
-        out.member(fields, "event_number", 1)?;
-        out.member(fields, "week", 1)?;
-        out.member(fields, "day_of_week", 1)?;
-        out.member(fields, "leap_seconds", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "EVT")?;
+        sink.field("time", &self.time)?;
+        sink.field("port", &self.port)?;
+        sink.field("event_number", &self.event_number)?;
+        sink.field("week", &self.week)?;
+        sink.field("day_of_week", &self.day_of_week)?;
+        sink.field("leap_seconds", &self.leap_seconds)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::TrimbleGpsQuality;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range,
-    Read, Shape, Time, WireWriter,
+    Checksum, Code, Coordinate, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -81,6 +79,18 @@ impl<'a> Layout<'a> for PtnlGgkSync<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNL");
     const SHAPE: Shape = Shape { sentence: "PTNL_GGK_SYNC", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("height", 1),
+        JsonMember::Field("height_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -119,60 +129,17 @@ impl<'a> Layout<'a> for PtnlGgkSync<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("GGK_SYNC")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.pdop)?;
-        w.field(&self.height)?;
-        w.field(&self.height_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("GGK_SYNC")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.pdop)?;
-        w.field(&self.height)?;
-        w.field(&self.height_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "GGK_SYNC")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("quality", &self.quality)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("height", &self.height)?;
-        j.field("height_unit", &self.height_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "height", 1)?;
-        out.member(fields, "height_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "GGK_SYNC")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("height", &self.height)?;
+        sink.field("height_unit", &self.height_unit)?;
         Ok(())
     }
 }

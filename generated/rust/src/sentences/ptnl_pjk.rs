@@ -12,11 +12,8 @@
 use core::fmt;
 
 use crate::enums::TrimbleGpsQuality;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -90,6 +87,20 @@ impl<'a> Layout<'a> for PtnlPjk<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNL");
     const SHAPE: Shape = Shape { sentence: "PTNL_PJK", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("northing", 1),
+        JsonMember::Field("northing_dir", 1),
+        JsonMember::Field("easting", 1),
+        JsonMember::Field("easting_dir", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("dop", 1),
+        JsonMember::Field("height", 1),
+        JsonMember::Field("height_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -132,68 +143,19 @@ impl<'a> Layout<'a> for PtnlPjk<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("PJK")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.northing)?;
-        w.field(&self.northing_dir)?;
-        w.field(&self.easting)?;
-        w.field(&self.easting_dir)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.dop)?;
-        w.field(&self.height)?;
-        w.field(&self.height_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("PJK")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.northing)?;
-        w.field(&self.northing_dir)?;
-        w.field(&self.easting)?;
-        w.field(&self.easting_dir)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.dop)?;
-        w.field(&self.height)?;
-        w.field(&self.height_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "PJK")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("northing", &self.northing)?;
-        j.field("northing_dir", &self.northing_dir)?;
-        j.field("easting", &self.easting)?;
-        j.field("easting_dir", &self.easting_dir)?;
-        j.field("quality", &self.quality)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("dop", &self.dop)?;
-        j.field("height", &self.height)?;
-        j.field("height_unit", &self.height_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "northing", 1)?;
-        out.member(fields, "northing_dir", 1)?;
-        out.member(fields, "easting", 1)?;
-        out.member(fields, "easting_dir", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "dop", 1)?;
-        out.member(fields, "height", 1)?;
-        out.member(fields, "height_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "PJK")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("northing", &self.northing)?;
+        sink.field("northing_dir", &self.northing_dir)?;
+        sink.field("easting", &self.easting)?;
+        sink.field("easting_dir", &self.easting_dir)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("dop", &self.dop)?;
+        sink.field("height", &self.height)?;
+        sink.field("height_unit", &self.height_unit)?;
         Ok(())
     }
 }

@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Read, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Read, Shape};
 use crate::LayoutId;
 
 /// PTNL_PJT: Projection type.
@@ -64,6 +60,12 @@ impl<'a> Layout<'a> for PtnlPjt<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNL");
     const SHAPE: Shape = Shape { sentence: "PTNL_PJT", fixed: 3, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("coordinate_system", 1),
+        JsonMember::Field("projection", 1),
+        JsonMember::Optional("reserved", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -96,42 +98,13 @@ impl<'a> Layout<'a> for PtnlPjt<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("PJT")?;
-        w.field(&self.coordinate_system)?;
-        w.field(&self.projection)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "PJT")?;
+        sink.field("coordinate_system", &self.coordinate_system)?;
+        sink.field("projection", &self.projection)?;
         if self.trailing >= 1 {
-            w.field(&self.reserved)?;
+            sink.field("reserved", &self.reserved)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("PJT")?;
-        w.field(&self.coordinate_system)?;
-        w.field(&self.projection)?;
-        if self.trailing >= 1 {
-            w.field(&self.reserved)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "PJT")?;
-        j.field("coordinate_system", &self.coordinate_system)?;
-        j.field("projection", &self.projection)?;
-        if self.trailing >= 1 {
-            j.field("reserved", &self.reserved)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "coordinate_system", 1)?;
-        out.member(fields, "projection", 1)?;
-        out.optional(fields, "reserved", 1)?;
         Ok(())
     }
 }

@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::TrimbleGpsQuality;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -81,6 +78,18 @@ impl<'a> Layout<'a> for PtnlVgk<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNL");
     const SHAPE: Shape = Shape { sentence: "PTNL_VGK", fixed: 10, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("east", 1),
+        JsonMember::Field("north", 1),
+        JsonMember::Field("up", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("dop", 1),
+        JsonMember::Field("unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -119,60 +128,17 @@ impl<'a> Layout<'a> for PtnlVgk<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("VGK")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.east)?;
-        w.field(&self.north)?;
-        w.field(&self.up)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.dop)?;
-        w.field(&self.unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("VGK")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.east)?;
-        w.field(&self.north)?;
-        w.field(&self.up)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.dop)?;
-        w.field(&self.unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "VGK")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("east", &self.east)?;
-        j.field("north", &self.north)?;
-        j.field("up", &self.up)?;
-        j.field("quality", &self.quality)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("dop", &self.dop)?;
-        j.field("unit", &self.unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "east", 1)?;
-        out.member(fields, "north", 1)?;
-        out.member(fields, "up", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "dop", 1)?;
-        out.member(fields, "unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "VGK")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("east", &self.east)?;
+        sink.field("north", &self.north)?;
+        sink.field("up", &self.up)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("dop", &self.dop)?;
+        sink.field("unit", &self.unit)?;
         Ok(())
     }
 }

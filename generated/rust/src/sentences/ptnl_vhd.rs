@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::TrimbleGpsQuality;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -89,6 +86,21 @@ impl<'a> Layout<'a> for PtnlVhd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNL");
     const SHAPE: Shape = Shape { sentence: "PTNL_VHD", fixed: 13, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("keyword", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("azimuth", 1),
+        JsonMember::Field("azimuth_rate", 1),
+        JsonMember::Field("vertical_angle", 1),
+        JsonMember::Field("vertical_angle_rate", 1),
+        JsonMember::Field("range", 1),
+        JsonMember::Field("range_rate", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("pdop", 1),
+        JsonMember::Field("unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -133,72 +145,20 @@ impl<'a> Layout<'a> for PtnlVhd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("VHD")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.azimuth_rate)?;
-        w.field(&self.vertical_angle)?;
-        w.field(&self.vertical_angle_rate)?;
-        w.field(&self.range)?;
-        w.field(&self.range_rate)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.pdop)?;
-        w.field(&self.unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("VHD")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.azimuth_rate)?;
-        w.field(&self.vertical_angle)?;
-        w.field(&self.vertical_angle_rate)?;
-        w.field(&self.range)?;
-        w.field(&self.range_rate)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.pdop)?;
-        w.field(&self.unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("keyword", "VHD")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("azimuth", &self.azimuth)?;
-        j.field("azimuth_rate", &self.azimuth_rate)?;
-        j.field("vertical_angle", &self.vertical_angle)?;
-        j.field("vertical_angle_rate", &self.vertical_angle_rate)?;
-        j.field("range", &self.range)?;
-        j.field("range_rate", &self.range_rate)?;
-        j.field("quality", &self.quality)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("pdop", &self.pdop)?;
-        j.field("unit", &self.unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "keyword", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "azimuth", 1)?;
-        out.member(fields, "azimuth_rate", 1)?;
-        out.member(fields, "vertical_angle", 1)?;
-        out.member(fields, "vertical_angle_rate", 1)?;
-        out.member(fields, "range", 1)?;
-        out.member(fields, "range_rate", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "pdop", 1)?;
-        out.member(fields, "unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("keyword", "VHD")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("azimuth", &self.azimuth)?;
+        sink.field("azimuth_rate", &self.azimuth_rate)?;
+        sink.field("vertical_angle", &self.vertical_angle)?;
+        sink.field("vertical_angle_rate", &self.vertical_angle_rate)?;
+        sink.field("range", &self.range)?;
+        sink.field("range_rate", &self.range_rate)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("pdop", &self.pdop)?;
+        sink.field("unit", &self.unit)?;
         Ok(())
     }
 }

@@ -13,11 +13,9 @@
 use core::fmt;
 
 use crate::enums::{TrimbleDgChannelUsed, TrimbleDgTracking};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -92,6 +90,19 @@ impl<'a> Layout<'a> for Ptnldg<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNLDG");
     const SHAPE: Shape = Shape { sentence: "PTNLDG", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("signal_strength", 1),
+        JsonMember::Field("snr", 1),
+        JsonMember::Field("frequency", 1),
+        JsonMember::Field("bit_rate", 1),
+        JsonMember::Field("channel", 1),
+        JsonMember::Field("tracking", 1),
+        JsonMember::Field("used", 1),
+        JsonMember::Field("performance", 1),
+        JsonMember::Field("reserved_1", 1),
+        JsonMember::Field("reserved_2", 1),
+        JsonMember::Field("reserved_3", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -132,64 +143,18 @@ impl<'a> Layout<'a> for Ptnldg<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.signal_strength)?;
-        w.field(&self.snr)?;
-        w.field(&self.frequency)?;
-        w.field(&self.bit_rate)?;
-        w.field(&self.channel)?;
-        w.field(&self.tracking)?;
-        w.field(&self.used)?;
-        w.field(&self.performance)?;
-        w.field(&self.reserved_1)?;
-        w.field(&self.reserved_2)?;
-        w.field(&self.reserved_3)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.signal_strength)?;
-        w.field(&self.snr)?;
-        w.field(&self.frequency)?;
-        w.field(&self.bit_rate)?;
-        w.field(&self.channel)?;
-        w.field(&self.tracking)?;
-        w.field(&self.used)?;
-        w.field(&self.performance)?;
-        w.field(&self.reserved_1)?;
-        w.field(&self.reserved_2)?;
-        w.field(&self.reserved_3)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("signal_strength", &self.signal_strength)?;
-        j.field("snr", &self.snr)?;
-        j.field("frequency", &self.frequency)?;
-        j.field("bit_rate", &self.bit_rate)?;
-        j.field("channel", &self.channel)?;
-        j.field("tracking", &self.tracking)?;
-        j.field("used", &self.used)?;
-        j.field("performance", &self.performance)?;
-        j.field("reserved_1", &self.reserved_1)?;
-        j.field("reserved_2", &self.reserved_2)?;
-        j.field("reserved_3", &self.reserved_3)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "signal_strength", 1)?;
-        out.member(fields, "snr", 1)?;
-        out.member(fields, "frequency", 1)?;
-        out.member(fields, "bit_rate", 1)?;
-        out.member(fields, "channel", 1)?;
-        out.member(fields, "tracking", 1)?;
-        out.member(fields, "used", 1)?;
-        out.member(fields, "performance", 1)?;
-        out.member(fields, "reserved_1", 1)?;
-        out.member(fields, "reserved_2", 1)?;
-        out.member(fields, "reserved_3", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("signal_strength", &self.signal_strength)?;
+        sink.field("snr", &self.snr)?;
+        sink.field("frequency", &self.frequency)?;
+        sink.field("bit_rate", &self.bit_rate)?;
+        sink.field("channel", &self.channel)?;
+        sink.field("tracking", &self.tracking)?;
+        sink.field("used", &self.used)?;
+        sink.field("performance", &self.performance)?;
+        sink.field("reserved_1", &self.reserved_1)?;
+        sink.field("reserved_2", &self.reserved_2)?;
+        sink.field("reserved_3", &self.reserved_3)?;
         Ok(())
     }
 }

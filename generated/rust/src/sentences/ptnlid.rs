@@ -10,11 +10,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -65,6 +62,13 @@ impl<'a> Layout<'a> for Ptnlid<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNLID");
     const SHAPE: Shape = Shape { sentence: "PTNLID", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("machine_id", 1),
+        JsonMember::Field("product_id", 1),
+        JsonMember::Field("firmware_major", 1),
+        JsonMember::Field("firmware_minor", 1),
+        JsonMember::Field("firmware_date", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -93,40 +97,12 @@ impl<'a> Layout<'a> for Ptnlid<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.machine_id)?;
-        w.field(&self.product_id)?;
-        w.field(&self.firmware_major)?;
-        w.field(&self.firmware_minor)?;
-        w.field(&self.firmware_date)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.machine_id)?;
-        w.field(&self.product_id)?;
-        w.field(&self.firmware_major)?;
-        w.field(&self.firmware_minor)?;
-        w.field(&self.firmware_date)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("machine_id", &self.machine_id)?;
-        j.field("product_id", &self.product_id)?;
-        j.field("firmware_major", &self.firmware_major)?;
-        j.field("firmware_minor", &self.firmware_minor)?;
-        j.field("firmware_date", &self.firmware_date)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "machine_id", 1)?;
-        out.member(fields, "product_id", 1)?;
-        out.member(fields, "firmware_major", 1)?;
-        out.member(fields, "firmware_minor", 1)?;
-        out.member(fields, "firmware_date", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("machine_id", &self.machine_id)?;
+        sink.field("product_id", &self.product_id)?;
+        sink.field("firmware_major", &self.firmware_major)?;
+        sink.field("firmware_minor", &self.firmware_minor)?;
+        sink.field("firmware_date", &self.firmware_date)?;
         Ok(())
     }
 }

@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -66,6 +63,8 @@ impl<'a> Layout<'a> for Ptnlrtp<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNLRTP");
     const SHAPE: Shape = Shape { sentence: "PTNLRTP", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("type", 1), JsonMember::Field("temperature", 1), JsonMember::Field("precision", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -90,32 +89,10 @@ impl<'a> Layout<'a> for Ptnlrtp<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.r#type)?;
-        w.field(&self.temperature)?;
-        w.field(&self.precision)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.r#type)?;
-        w.field(&self.temperature)?;
-        w.field(&self.precision)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("type", &self.r#type)?;
-        j.field("temperature", &self.temperature)?;
-        j.field("precision", &self.precision)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "type", 1)?;
-        out.member(fields, "temperature", 1)?;
-        out.member(fields, "precision", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("type", &self.r#type)?;
+        sink.field("temperature", &self.temperature)?;
+        sink.field("precision", &self.precision)?;
         Ok(())
     }
 }

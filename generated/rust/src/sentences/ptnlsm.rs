@@ -9,11 +9,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Bound, Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -63,6 +60,8 @@ impl<'a> Layout<'a> for Ptnlsm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNLSM");
     const SHAPE: Shape = Shape { sentence: "PTNLSM", fixed: 2, optional: 1, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("station_id", 1), JsonMember::Field("message", 1), JsonMember::Optional("reserved", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -93,38 +92,12 @@ impl<'a> Layout<'a> for Ptnlsm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.station_id)?;
-        w.field(&self.message)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("station_id", &self.station_id)?;
+        sink.field("message", &self.message)?;
         if self.trailing >= 1 {
-            w.field(&self.reserved)?;
+            sink.field("reserved", &self.reserved)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.station_id)?;
-        w.field(&self.message)?;
-        if self.trailing >= 1 {
-            w.field(&self.reserved)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("station_id", &self.station_id)?;
-        j.field("message", &self.message)?;
-        if self.trailing >= 1 {
-            j.field("reserved", &self.reserved)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "station_id", 1)?;
-        out.member(fields, "message", 1)?;
-        out.optional(fields, "reserved", 1)?;
         Ok(())
     }
 }

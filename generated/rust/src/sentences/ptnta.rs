@@ -12,11 +12,8 @@
 use core::fmt;
 
 use crate::enums::{SpectratimeGpsMessages, SpectratimeIsyncStatus, SpectratimeOscQuality, SpectratimeTimeTransfer};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    WireWriter,
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -84,6 +81,16 @@ impl<'a> Layout<'a> for Ptnta<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PTNTA");
     const SHAPE: Shape = Shape { sentence: "PTNTA", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("datetime", 1),
+        JsonMember::Field("osc_quality", 1),
+        JsonMember::Field("format", 1),
+        JsonMember::Field("pps_interval", 1),
+        JsonMember::Field("fine_phase", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("gps_messages", 1),
+        JsonMember::Field("time_transfer", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -118,52 +125,15 @@ impl<'a> Layout<'a> for Ptnta<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.datetime)?;
-        w.field(&self.osc_quality)?;
-        w.field(&self.format)?;
-        w.field(&self.pps_interval)?;
-        w.field(&self.fine_phase)?;
-        w.field(&self.status)?;
-        w.field(&self.gps_messages)?;
-        w.field(&self.time_transfer)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.datetime)?;
-        w.field(&self.osc_quality)?;
-        w.field(&self.format)?;
-        w.field(&self.pps_interval)?;
-        w.field(&self.fine_phase)?;
-        w.field(&self.status)?;
-        w.field(&self.gps_messages)?;
-        w.field(&self.time_transfer)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("datetime", &self.datetime)?;
-        j.field("osc_quality", &self.osc_quality)?;
-        j.field("format", &self.format)?;
-        j.field("pps_interval", &self.pps_interval)?;
-        j.field("fine_phase", &self.fine_phase)?;
-        j.field("status", &self.status)?;
-        j.field("gps_messages", &self.gps_messages)?;
-        j.field("time_transfer", &self.time_transfer)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "datetime", 1)?;
-        out.member(fields, "osc_quality", 1)?;
-        out.member(fields, "format", 1)?;
-        out.member(fields, "pps_interval", 1)?;
-        out.member(fields, "fine_phase", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "gps_messages", 1)?;
-        out.member(fields, "time_transfer", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("datetime", &self.datetime)?;
+        sink.field("osc_quality", &self.osc_quality)?;
+        sink.field("format", &self.format)?;
+        sink.field("pps_interval", &self.pps_interval)?;
+        sink.field("fine_phase", &self.fine_phase)?;
+        sink.field("status", &self.status)?;
+        sink.field("gps_messages", &self.gps_messages)?;
+        sink.field("time_transfer", &self.time_transfer)?;
         Ok(())
     }
 }

@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::{UbloxAutobauding, UbloxPort};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Number, Range, Shape,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -80,6 +77,14 @@ impl<'a> Layout<'a> for PubxConfig<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PUBX");
     const SHAPE: Shape = Shape { sentence: "PUBX_CONFIG", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_id", 1),
+        JsonMember::Field("port_id", 1),
+        JsonMember::Field("in_proto", 1),
+        JsonMember::Field("out_proto", 1),
+        JsonMember::Field("baud_rate", 1),
+        JsonMember::Field("autobauding", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -98,44 +103,13 @@ impl<'a> Layout<'a> for PubxConfig<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("41")?;
-        w.field(&self.port_id)?;
-        w.field(&self.in_proto)?;
-        w.field(&self.out_proto)?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.autobauding)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("41")?;
-        w.field(&self.port_id)?;
-        w.field(&self.in_proto)?;
-        w.field(&self.out_proto)?;
-        w.field(&self.baud_rate)?;
-        w.field(&self.autobauding)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("msg_id", "41")?;
-        j.field("port_id", &self.port_id)?;
-        j.field("in_proto", &self.in_proto)?;
-        j.field("out_proto", &self.out_proto)?;
-        j.field("baud_rate", &self.baud_rate)?;
-        j.field("autobauding", &self.autobauding)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_id", 1)?;
-        out.member(fields, "port_id", 1)?;
-        out.member(fields, "in_proto", 1)?;
-        out.member(fields, "out_proto", 1)?;
-        out.member(fields, "baud_rate", 1)?;
-        out.member(fields, "autobauding", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("msg_id", "41")?;
+        sink.field("port_id", &self.port_id)?;
+        sink.field("in_proto", &self.in_proto)?;
+        sink.field("out_proto", &self.out_proto)?;
+        sink.field("baud_rate", &self.baud_rate)?;
+        sink.field("autobauding", &self.autobauding)?;
         Ok(())
     }
 }

@@ -13,11 +13,9 @@
 use core::fmt;
 
 use crate::enums::UbloxNavStatus;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, FastReader, Fields, Framing, JsonFields, Layout, Number,
-    Range, Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number,
+    Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -111,6 +109,26 @@ impl<'a> Layout<'a> for PubxPosition<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PUBX");
     const SHAPE: Shape = Shape { sentence: "PUBX_POSITION", fixed: 20, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_id", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("alt_ref", 1),
+        JsonMember::Field("nav_status", 1),
+        JsonMember::Field("h_acc", 1),
+        JsonMember::Field("v_acc", 1),
+        JsonMember::Field("sog", 1),
+        JsonMember::Field("cog", 1),
+        JsonMember::Field("v_vel", 1),
+        JsonMember::Field("diff_age", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Field("tdop", 1),
+        JsonMember::Field("num_svs", 1),
+        JsonMember::Field("reserved", 1),
+        JsonMember::Field("dr_used", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -165,92 +183,25 @@ impl<'a> Layout<'a> for PubxPosition<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("00")?;
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.alt_ref)?;
-        w.field(&self.nav_status)?;
-        w.field(&self.h_acc)?;
-        w.field(&self.v_acc)?;
-        w.field(&self.sog)?;
-        w.field(&self.cog)?;
-        w.field(&self.v_vel)?;
-        w.field(&self.diff_age)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.tdop)?;
-        w.field(&self.num_svs)?;
-        w.field(&self.reserved)?;
-        w.field(&self.dr_used)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("00")?;
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.alt_ref)?;
-        w.field(&self.nav_status)?;
-        w.field(&self.h_acc)?;
-        w.field(&self.v_acc)?;
-        w.field(&self.sog)?;
-        w.field(&self.cog)?;
-        w.field(&self.v_vel)?;
-        w.field(&self.diff_age)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.tdop)?;
-        w.field(&self.num_svs)?;
-        w.field(&self.reserved)?;
-        w.field(&self.dr_used)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("msg_id", "00")?;
-        j.field("time", &self.time)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("alt_ref", &self.alt_ref)?;
-        j.field("nav_status", &self.nav_status)?;
-        j.field("h_acc", &self.h_acc)?;
-        j.field("v_acc", &self.v_acc)?;
-        j.field("sog", &self.sog)?;
-        j.field("cog", &self.cog)?;
-        j.field("v_vel", &self.v_vel)?;
-        j.field("diff_age", &self.diff_age)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("vdop", &self.vdop)?;
-        j.field("tdop", &self.tdop)?;
-        j.field("num_svs", &self.num_svs)?;
-        j.field("reserved", &self.reserved)?;
-        j.field("dr_used", &self.dr_used)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_id", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "alt_ref", 1)?;
-        out.member(fields, "nav_status", 1)?;
-        out.member(fields, "h_acc", 1)?;
-        out.member(fields, "v_acc", 1)?;
-        out.member(fields, "sog", 1)?;
-        out.member(fields, "cog", 1)?;
-        out.member(fields, "v_vel", 1)?;
-        out.member(fields, "diff_age", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.member(fields, "tdop", 1)?;
-        out.member(fields, "num_svs", 1)?;
-        out.member(fields, "reserved", 1)?;
-        out.member(fields, "dr_used", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("msg_id", "00")?;
+        sink.field("time", &self.time)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("alt_ref", &self.alt_ref)?;
+        sink.field("nav_status", &self.nav_status)?;
+        sink.field("h_acc", &self.h_acc)?;
+        sink.field("v_acc", &self.v_acc)?;
+        sink.field("sog", &self.sog)?;
+        sink.field("cog", &self.cog)?;
+        sink.field("v_vel", &self.v_vel)?;
+        sink.field("diff_age", &self.diff_age)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("vdop", &self.vdop)?;
+        sink.field("tdop", &self.tdop)?;
+        sink.field("num_svs", &self.num_svs)?;
+        sink.field("reserved", &self.reserved)?;
+        sink.field("dr_used", &self.dr_used)?;
         Ok(())
     }
 }

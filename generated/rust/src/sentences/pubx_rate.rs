@@ -11,11 +11,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// PUBX_RATE: Set the u-blox NMEA message output rate per port.
@@ -83,6 +79,16 @@ impl<'a> Layout<'a> for PubxRate<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PUBX");
     const SHAPE: Shape = Shape { sentence: "PUBX_RATE", fixed: 7, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_id", 1),
+        JsonMember::Field("msg", 1),
+        JsonMember::Field("rate_ddc", 1),
+        JsonMember::Field("rate_uart1", 1),
+        JsonMember::Field("rate_uart2", 1),
+        JsonMember::Field("rate_usb", 1),
+        JsonMember::Field("rate_spi", 1),
+        JsonMember::Optional("reserved", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -106,58 +112,17 @@ impl<'a> Layout<'a> for PubxRate<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("40")?;
-        w.field(&self.msg)?;
-        w.field(&self.rate_ddc)?;
-        w.field(&self.rate_uart1)?;
-        w.field(&self.rate_uart2)?;
-        w.field(&self.rate_usb)?;
-        w.field(&self.rate_spi)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("msg_id", "40")?;
+        sink.field("msg", &self.msg)?;
+        sink.field("rate_ddc", &self.rate_ddc)?;
+        sink.field("rate_uart1", &self.rate_uart1)?;
+        sink.field("rate_uart2", &self.rate_uart2)?;
+        sink.field("rate_usb", &self.rate_usb)?;
+        sink.field("rate_spi", &self.rate_spi)?;
         if self.trailing >= 1 {
-            w.field(&self.reserved)?;
+            sink.field("reserved", &self.reserved)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("40")?;
-        w.field(&self.msg)?;
-        w.field(&self.rate_ddc)?;
-        w.field(&self.rate_uart1)?;
-        w.field(&self.rate_uart2)?;
-        w.field(&self.rate_usb)?;
-        w.field(&self.rate_spi)?;
-        if self.trailing >= 1 {
-            w.field(&self.reserved)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("msg_id", "40")?;
-        j.field("msg", &self.msg)?;
-        j.field("rate_ddc", &self.rate_ddc)?;
-        j.field("rate_uart1", &self.rate_uart1)?;
-        j.field("rate_uart2", &self.rate_uart2)?;
-        j.field("rate_usb", &self.rate_usb)?;
-        j.field("rate_spi", &self.rate_spi)?;
-        if self.trailing >= 1 {
-            j.field("reserved", &self.reserved)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_id", 1)?;
-        out.member(fields, "msg", 1)?;
-        out.member(fields, "rate_ddc", 1)?;
-        out.member(fields, "rate_uart1", 1)?;
-        out.member(fields, "rate_uart2", 1)?;
-        out.member(fields, "rate_usb", 1)?;
-        out.member(fields, "rate_spi", 1)?;
-        out.optional(fields, "reserved", 1)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::UbloxSvStatus;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, Group, GroupShape, JsonFields, Layout,
-    Number, Range, Read, Reader, Shape, WireWriter,
+    Bound, Checksum, Code, Entry, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout,
+    Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -61,45 +59,16 @@ impl<'a> PubxSvstatusSatellite<'a> {
         self.lock_time = f.integer(Range::at_least(Bound::int(0)))?;
         Ok(())
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.sv_id)?;
-        w.field(&self.status)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.elevation)?;
-        w.field(&self.cno)?;
-        w.field(&self.lock_time)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.sv_id)?;
-        w.field(&self.status)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.elevation)?;
-        w.field(&self.cno)?;
-        w.field(&self.lock_time)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("sv_id", &self.sv_id)?;
-        j.field("status", &self.status)?;
-        j.field("azimuth", &self.azimuth)?;
-        j.field("elevation", &self.elevation)?;
-        j.field("cno", &self.cno)?;
-        j.field("lock_time", &self.lock_time)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "sv_id", 1)?;
-        out.member(entry, "status", 1)?;
-        out.member(entry, "azimuth", 1)?;
-        out.member(entry, "elevation", 1)?;
-        out.member(entry, "cno", 1)?;
-        out.member(entry, "lock_time", 1)?;
+impl Entry for PubxSvstatusSatellite<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("sv_id", &self.sv_id)?;
+        sink.field("status", &self.status)?;
+        sink.field("azimuth", &self.azimuth)?;
+        sink.field("elevation", &self.elevation)?;
+        sink.field("cno", &self.cno)?;
+        sink.field("lock_time", &self.lock_time)?;
         Ok(())
     }
 }
@@ -159,6 +128,14 @@ impl<'a> Layout<'a> for PubxSvstatus<'a> {
         optional: 0,
         group: Some(GroupShape { id: "satellites", width: 6, min: 0, max: 64 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_id", 1),
+        JsonMember::Field("num_sv", 1),
+        JsonMember::Entries(
+            "satellites",
+            &[("sv_id", 1), ("status", 1), ("azimuth", 1), ("elevation", 1), ("cno", 1), ("lock_time", 1)],
+        ),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -183,38 +160,10 @@ impl<'a> Layout<'a> for PubxSvstatus<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("03")?;
-        w.field(&self.num_sv)?;
-        for entry in &self.satellites {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("03")?;
-        w.field(&self.num_sv)?;
-        for entry in &self.satellites {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("msg_id", "03")?;
-        j.field("num_sv", &self.num_sv)?;
-        j.entries("satellites", &self.satellites, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_id", 1)?;
-        out.member(fields, "num_sv", 1)?;
-        for entry in json::list(fields, "satellites")? {
-            PubxSvstatusSatellite::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("msg_id", "03")?;
+        sink.field("num_sv", &self.num_sv)?;
+        sink.entries("satellites", &self.satellites)?;
         Ok(())
     }
 }

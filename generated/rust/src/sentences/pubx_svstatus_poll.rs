@@ -9,9 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PUBX_SVSTATUS_POLL: Poll the u-blox satellite status message.
@@ -62,6 +60,7 @@ impl<'a> Layout<'a> for PubxSvstatusPoll {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PUBX");
     const SHAPE: Shape = Shape { sentence: "PUBX_SVSTATUS_POLL", fixed: 1, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("msg_id", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -75,24 +74,8 @@ impl<'a> Layout<'a> for PubxSvstatusPoll {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("03")?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("03")?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("msg_id", "03")?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("msg_id", "03")?;
         Ok(())
     }
 }

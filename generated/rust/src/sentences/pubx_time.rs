@@ -10,11 +10,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Date, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Checksum, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -89,6 +86,18 @@ impl<'a> Layout<'a> for PubxTime<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PUBX");
     const SHAPE: Shape = Shape { sentence: "PUBX_TIME", fixed: 9, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_id", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("utc_tow", 1),
+        JsonMember::Field("utc_week", 1),
+        JsonMember::Field("leap_seconds", 1),
+        JsonMember::Field("clock_bias", 1),
+        JsonMember::Field("clock_drift", 1),
+        JsonMember::Field("tp_granularity", 1),
+        JsonMember::Optional("empty_end", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -133,66 +142,19 @@ impl<'a> Layout<'a> for PubxTime<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("04")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.utc_tow)?;
-        w.field(&self.utc_week)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.clock_bias)?;
-        w.field(&self.clock_drift)?;
-        w.field(&self.tp_granularity)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("msg_id", "04")?;
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("utc_tow", &self.utc_tow)?;
+        sink.field("utc_week", &self.utc_week)?;
+        sink.field("leap_seconds", &self.leap_seconds)?;
+        sink.field("clock_bias", &self.clock_bias)?;
+        sink.field("clock_drift", &self.clock_drift)?;
+        sink.field("tp_granularity", &self.tp_granularity)?;
         if self.trailing >= 1 {
-            w.field(&self.empty_end)?;
+            sink.field("empty_end", &self.empty_end)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("04")?;
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.utc_tow)?;
-        w.field(&self.utc_week)?;
-        w.field(&self.leap_seconds)?;
-        w.field(&self.clock_bias)?;
-        w.field(&self.clock_drift)?;
-        w.field(&self.tp_granularity)?;
-        if self.trailing >= 1 {
-            w.field(&self.empty_end)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("msg_id", "04")?;
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("utc_tow", &self.utc_tow)?;
-        j.field("utc_week", &self.utc_week)?;
-        j.field("leap_seconds", &self.leap_seconds)?;
-        j.field("clock_bias", &self.clock_bias)?;
-        j.field("clock_drift", &self.clock_drift)?;
-        j.field("tp_granularity", &self.tp_granularity)?;
-        if self.trailing >= 1 {
-            j.field("empty_end", &self.empty_end)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_id", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "utc_tow", 1)?;
-        out.member(fields, "utc_week", 1)?;
-        out.member(fields, "leap_seconds", 1)?;
-        out.member(fields, "clock_bias", 1)?;
-        out.member(fields, "clock_drift", 1)?;
-        out.member(fields, "tp_granularity", 1)?;
-        out.optional(fields, "empty_end", 1)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{EastWest, NorthSouth, UbloxNavStatus};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, Time, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -106,6 +104,28 @@ impl<'a> Layout<'a> for PubxUtm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PUBX");
     const SHAPE: Shape = Shape { sentence: "PUBX_UTM", fixed: 20, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msg_id", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("easting", 1),
+        JsonMember::Field("east_west", 1),
+        JsonMember::Field("northing", 1),
+        JsonMember::Field("north_south", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("nav_status", 1),
+        JsonMember::Field("h_acc", 1),
+        JsonMember::Field("v_acc", 1),
+        JsonMember::Field("sog", 1),
+        JsonMember::Field("cog", 1),
+        JsonMember::Field("v_vel", 1),
+        JsonMember::Field("diff_age", 1),
+        JsonMember::Field("hdop", 1),
+        JsonMember::Field("vdop", 1),
+        JsonMember::Field("tdop", 1),
+        JsonMember::Field("gps_used", 1),
+        JsonMember::Field("glonass_used", 1),
+        JsonMember::Field("dr_used", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -164,100 +184,27 @@ impl<'a> Layout<'a> for PubxUtm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("01")?;
-        w.field(&self.time)?;
-        w.field(&self.easting)?;
-        w.field(&self.east_west)?;
-        w.field(&self.northing)?;
-        w.field(&self.north_south)?;
-        w.field(&self.altitude)?;
-        w.field(&self.nav_status)?;
-        w.field(&self.h_acc)?;
-        w.field(&self.v_acc)?;
-        w.field(&self.sog)?;
-        w.field(&self.cog)?;
-        w.field(&self.v_vel)?;
-        w.field(&self.diff_age)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.tdop)?;
-        w.field(&self.gps_used)?;
-        w.field(&self.glonass_used)?;
-        w.field(&self.dr_used)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("01")?;
-        w.field(&self.time)?;
-        w.field(&self.easting)?;
-        w.field(&self.east_west)?;
-        w.field(&self.northing)?;
-        w.field(&self.north_south)?;
-        w.field(&self.altitude)?;
-        w.field(&self.nav_status)?;
-        w.field(&self.h_acc)?;
-        w.field(&self.v_acc)?;
-        w.field(&self.sog)?;
-        w.field(&self.cog)?;
-        w.field(&self.v_vel)?;
-        w.field(&self.diff_age)?;
-        w.field(&self.hdop)?;
-        w.field(&self.vdop)?;
-        w.field(&self.tdop)?;
-        w.field(&self.gps_used)?;
-        w.field(&self.glonass_used)?;
-        w.field(&self.dr_used)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("msg_id", "01")?;
-        j.field("time", &self.time)?;
-        j.field("easting", &self.easting)?;
-        j.field("east_west", &self.east_west)?;
-        j.field("northing", &self.northing)?;
-        j.field("north_south", &self.north_south)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("nav_status", &self.nav_status)?;
-        j.field("h_acc", &self.h_acc)?;
-        j.field("v_acc", &self.v_acc)?;
-        j.field("sog", &self.sog)?;
-        j.field("cog", &self.cog)?;
-        j.field("v_vel", &self.v_vel)?;
-        j.field("diff_age", &self.diff_age)?;
-        j.field("hdop", &self.hdop)?;
-        j.field("vdop", &self.vdop)?;
-        j.field("tdop", &self.tdop)?;
-        j.field("gps_used", &self.gps_used)?;
-        j.field("glonass_used", &self.glonass_used)?;
-        j.field("dr_used", &self.dr_used)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msg_id", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "easting", 1)?;
-        out.member(fields, "east_west", 1)?;
-        out.member(fields, "northing", 1)?;
-        out.member(fields, "north_south", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "nav_status", 1)?;
-        out.member(fields, "h_acc", 1)?;
-        out.member(fields, "v_acc", 1)?;
-        out.member(fields, "sog", 1)?;
-        out.member(fields, "cog", 1)?;
-        out.member(fields, "v_vel", 1)?;
-        out.member(fields, "diff_age", 1)?;
-        out.member(fields, "hdop", 1)?;
-        out.member(fields, "vdop", 1)?;
-        out.member(fields, "tdop", 1)?;
-        out.member(fields, "gps_used", 1)?;
-        out.member(fields, "glonass_used", 1)?;
-        out.member(fields, "dr_used", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("msg_id", "01")?;
+        sink.field("time", &self.time)?;
+        sink.field("easting", &self.easting)?;
+        sink.field("east_west", &self.east_west)?;
+        sink.field("northing", &self.northing)?;
+        sink.field("north_south", &self.north_south)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("nav_status", &self.nav_status)?;
+        sink.field("h_acc", &self.h_acc)?;
+        sink.field("v_acc", &self.v_acc)?;
+        sink.field("sog", &self.sog)?;
+        sink.field("cog", &self.cog)?;
+        sink.field("v_vel", &self.v_vel)?;
+        sink.field("diff_age", &self.diff_age)?;
+        sink.field("hdop", &self.hdop)?;
+        sink.field("vdop", &self.vdop)?;
+        sink.field("tdop", &self.tdop)?;
+        sink.field("gps_used", &self.gps_used)?;
+        sink.field("glonass_used", &self.glonass_used)?;
+        sink.field("dr_used", &self.dr_used)?;
         Ok(())
     }
 }

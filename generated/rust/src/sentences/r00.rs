@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, GroupShape, JsonFields, Layout, Shape, Texts, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Shape, Texts};
 use crate::LayoutId;
 
 /// R00: Waypoints in active route.
@@ -66,6 +62,7 @@ impl<'a> Layout<'a> for R00<'a> {
         optional: 0,
         group: Some(GroupShape { id: "waypoints", width: 1, min: 0, max: 14 }),
     };
+    const JSON: &'static [JsonMember] = &[JsonMember::Values("waypoints", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -83,26 +80,8 @@ impl<'a> Layout<'a> for R00<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.texts(&self.waypoints)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.texts(&self.waypoints)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.texts("waypoints", &self.waypoints)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        for value in json::list(fields, "waypoints")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.texts("waypoints", &self.waypoints)?;
         Ok(())
     }
 }

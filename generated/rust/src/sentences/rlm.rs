@@ -9,11 +9,7 @@
 use core::fmt;
 
 use crate::enums::RlmMessageCode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, Time, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape, Time};
 use crate::LayoutId;
 
 /// RLM: Return link message.
@@ -69,6 +65,12 @@ impl<'a> Layout<'a> for Rlm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RLM", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("beacon_id", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("message_code", 1),
+        JsonMember::Field("message_body", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -89,36 +91,11 @@ impl<'a> Layout<'a> for Rlm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.beacon_id)?;
-        w.field(&self.time)?;
-        w.field(&self.message_code)?;
-        w.field(&self.message_body)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.beacon_id)?;
-        w.field(&self.time)?;
-        w.field(&self.message_code)?;
-        w.field(&self.message_body)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("beacon_id", &self.beacon_id)?;
-        j.field("time", &self.time)?;
-        j.field("message_code", &self.message_code)?;
-        j.field("message_body", &self.message_body)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "beacon_id", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "message_code", 1)?;
-        out.member(fields, "message_body", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("beacon_id", &self.beacon_id)?;
+        sink.field("time", &self.time)?;
+        sink.field("message_code", &self.message_code)?;
+        sink.field("message_body", &self.message_body)?;
         Ok(())
     }
 }

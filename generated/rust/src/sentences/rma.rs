@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::{EastWest, PosMode, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    WireWriter,
+    Checksum, Code, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -89,6 +86,18 @@ impl<'a> Layout<'a> for Rma<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RMA", fixed: 11, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("time_difference_a", 1),
+        JsonMember::Field("time_difference_b", 1),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("course", 1),
+        JsonMember::Field("mag_var", 1),
+        JsonMember::Field("mag_var_dir", 1),
+        JsonMember::Optional("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -118,66 +127,19 @@ impl<'a> Layout<'a> for Rma<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.status)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.time_difference_a)?;
-        w.field(&self.time_difference_b)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.mag_var)?;
-        w.field(&self.mag_var_dir)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("status", &self.status)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("time_difference_a", &self.time_difference_a)?;
+        sink.field("time_difference_b", &self.time_difference_b)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("course", &self.course)?;
+        sink.field("mag_var", &self.mag_var)?;
+        sink.field("mag_var_dir", &self.mag_var_dir)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.status)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.time_difference_a)?;
-        w.field(&self.time_difference_b)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.mag_var)?;
-        w.field(&self.mag_var_dir)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("status", &self.status)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("time_difference_a", &self.time_difference_a)?;
-        j.field("time_difference_b", &self.time_difference_b)?;
-        j.field("speed", &self.speed)?;
-        j.field("course", &self.course)?;
-        j.field("mag_var", &self.mag_var)?;
-        j.field("mag_var_dir", &self.mag_var_dir)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "time_difference_a", 1)?;
-        out.member(fields, "time_difference_b", 1)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "course", 1)?;
-        out.member(fields, "mag_var", 1)?;
-        out.member(fields, "mag_var_dir", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }

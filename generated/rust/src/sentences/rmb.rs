@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::{LeftRight, PosMode, RmbArrivalStatus, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -98,6 +95,20 @@ impl<'a> Layout<'a> for Rmb<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RMB", fixed: 13, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("cross_track_error", 1),
+        JsonMember::Field("steer_direction", 1),
+        JsonMember::Field("origin_waypoint", 1),
+        JsonMember::Field("destination_waypoint", 1),
+        JsonMember::Field("destination_lat", 2),
+        JsonMember::Field("destination_lon", 2),
+        JsonMember::Field("range_to_destination", 1),
+        JsonMember::Field("bearing_to_destination", 1),
+        JsonMember::Field("closing_velocity", 1),
+        JsonMember::Field("arrival_status", 1),
+        JsonMember::Optional("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -132,74 +143,21 @@ impl<'a> Layout<'a> for Rmb<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.status)?;
-        w.field(&self.cross_track_error)?;
-        w.field(&self.steer_direction)?;
-        w.field(&self.origin_waypoint)?;
-        w.field(&self.destination_waypoint)?;
-        w.field(&self.destination_lat)?;
-        w.field(&self.destination_lon)?;
-        w.field(&self.range_to_destination)?;
-        w.field(&self.bearing_to_destination)?;
-        w.field(&self.closing_velocity)?;
-        w.field(&self.arrival_status)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("status", &self.status)?;
+        sink.field("cross_track_error", &self.cross_track_error)?;
+        sink.field("steer_direction", &self.steer_direction)?;
+        sink.field("origin_waypoint", &self.origin_waypoint)?;
+        sink.field("destination_waypoint", &self.destination_waypoint)?;
+        sink.field("destination_lat", &self.destination_lat)?;
+        sink.field("destination_lon", &self.destination_lon)?;
+        sink.field("range_to_destination", &self.range_to_destination)?;
+        sink.field("bearing_to_destination", &self.bearing_to_destination)?;
+        sink.field("closing_velocity", &self.closing_velocity)?;
+        sink.field("arrival_status", &self.arrival_status)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.status)?;
-        w.field(&self.cross_track_error)?;
-        w.field(&self.steer_direction)?;
-        w.field(&self.origin_waypoint)?;
-        w.field(&self.destination_waypoint)?;
-        w.field(&self.destination_lat)?;
-        w.field(&self.destination_lon)?;
-        w.field(&self.range_to_destination)?;
-        w.field(&self.bearing_to_destination)?;
-        w.field(&self.closing_velocity)?;
-        w.field(&self.arrival_status)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("status", &self.status)?;
-        j.field("cross_track_error", &self.cross_track_error)?;
-        j.field("steer_direction", &self.steer_direction)?;
-        j.field("origin_waypoint", &self.origin_waypoint)?;
-        j.field("destination_waypoint", &self.destination_waypoint)?;
-        j.field("destination_lat", &self.destination_lat)?;
-        j.field("destination_lon", &self.destination_lon)?;
-        j.field("range_to_destination", &self.range_to_destination)?;
-        j.field("bearing_to_destination", &self.bearing_to_destination)?;
-        j.field("closing_velocity", &self.closing_velocity)?;
-        j.field("arrival_status", &self.arrival_status)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "cross_track_error", 1)?;
-        out.member(fields, "steer_direction", 1)?;
-        out.member(fields, "origin_waypoint", 1)?;
-        out.member(fields, "destination_waypoint", 1)?;
-        out.member(fields, "destination_lat", 2)?;
-        out.member(fields, "destination_lon", 2)?;
-        out.member(fields, "range_to_destination", 1)?;
-        out.member(fields, "bearing_to_destination", 1)?;
-        out.member(fields, "closing_velocity", 1)?;
-        out.member(fields, "arrival_status", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }

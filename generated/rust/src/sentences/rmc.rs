@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::{EastWest, NavStatus, NorthSouth, PosMode, RmcMagVarDir, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Date, Error, FastReader, Fields, Framing, JsonFields, Layout,
-    Number, Range, Read, Shape, Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number,
+    Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -93,6 +91,19 @@ impl<'a> Layout<'a> for Rmc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RMC", fixed: 11, optional: 2, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("course", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("mag_var", 1),
+        JsonMember::Field("mag_var_dir", 1),
+        JsonMember::Optional("mode", 1),
+        JsonMember::Optional("nav_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -151,76 +162,22 @@ impl<'a> Layout<'a> for Rmc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.date)?;
-        w.field(&self.mag_var)?;
-        w.field(&self.mag_var_dir)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("status", &self.status)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("course", &self.course)?;
+        sink.field("date", &self.date)?;
+        sink.field("mag_var", &self.mag_var)?;
+        sink.field("mag_var_dir", &self.mag_var_dir)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.nav_status)?;
+            sink.field("nav_status", &self.nav_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.date)?;
-        w.field(&self.mag_var)?;
-        w.field(&self.mag_var_dir)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.nav_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("status", &self.status)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("speed", &self.speed)?;
-        j.field("course", &self.course)?;
-        j.field("date", &self.date)?;
-        j.field("mag_var", &self.mag_var)?;
-        j.field("mag_var_dir", &self.mag_var_dir)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        if self.trailing >= 2 {
-            j.field("nav_status", &self.nav_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "course", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "mag_var", 1)?;
-        out.member(fields, "mag_var_dir", 1)?;
-        out.optional(fields, "mode", 1)?;
-        out.optional(fields, "nav_status", 1)?;
         Ok(())
     }
 }
@@ -316,6 +273,21 @@ impl<'a> Layout<'a> for RmcSentinel<'a> {
     const VARIANT: Option<&'static str> = Some("sentinel");
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RMC", fixed: 11, optional: 2, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("lat_value", 1),
+        JsonMember::Field("lat_hemisphere", 1),
+        JsonMember::Field("lon_value", 1),
+        JsonMember::Field("lon_hemisphere", 1),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("course", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("mag_var", 1),
+        JsonMember::Field("mag_var_dir", 1),
+        JsonMember::Optional("mode", 1),
+        JsonMember::Optional("nav_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -378,84 +350,24 @@ impl<'a> Layout<'a> for RmcSentinel<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.lat_value)?;
-        w.field(&self.lat_hemisphere)?;
-        w.field(&self.lon_value)?;
-        w.field(&self.lon_hemisphere)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.date)?;
-        w.field(&self.mag_var)?;
-        w.field(&self.mag_var_dir)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("status", &self.status)?;
+        sink.field("lat_value", &self.lat_value)?;
+        sink.field("lat_hemisphere", &self.lat_hemisphere)?;
+        sink.field("lon_value", &self.lon_value)?;
+        sink.field("lon_hemisphere", &self.lon_hemisphere)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("course", &self.course)?;
+        sink.field("date", &self.date)?;
+        sink.field("mag_var", &self.mag_var)?;
+        sink.field("mag_var_dir", &self.mag_var_dir)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.nav_status)?;
+            sink.field("nav_status", &self.nav_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.status)?;
-        w.field(&self.lat_value)?;
-        w.field(&self.lat_hemisphere)?;
-        w.field(&self.lon_value)?;
-        w.field(&self.lon_hemisphere)?;
-        w.field(&self.speed)?;
-        w.field(&self.course)?;
-        w.field(&self.date)?;
-        w.field(&self.mag_var)?;
-        w.field(&self.mag_var_dir)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.nav_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("status", &self.status)?;
-        j.field("lat_value", &self.lat_value)?;
-        j.field("lat_hemisphere", &self.lat_hemisphere)?;
-        j.field("lon_value", &self.lon_value)?;
-        j.field("lon_hemisphere", &self.lon_hemisphere)?;
-        j.field("speed", &self.speed)?;
-        j.field("course", &self.course)?;
-        j.field("date", &self.date)?;
-        j.field("mag_var", &self.mag_var)?;
-        j.field("mag_var_dir", &self.mag_var_dir)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        if self.trailing >= 2 {
-            j.field("nav_status", &self.nav_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "status", 1)?;
-        out.member(fields, "lat_value", 1)?;
-        out.member(fields, "lat_hemisphere", 1)?;
-        out.member(fields, "lon_value", 1)?;
-        out.member(fields, "lon_hemisphere", 1)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "course", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "mag_var", 1)?;
-        out.member(fields, "mag_var_dir", 1)?;
-        out.optional(fields, "mode", 1)?;
-        out.optional(fields, "nav_status", 1)?;
         Ok(())
     }
 }

@@ -10,11 +10,7 @@
 use core::fmt;
 
 use crate::enums::{PrcOperatingLocation, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// ROR: Rudder order status.
@@ -80,6 +76,17 @@ impl<'a> Layout<'a> for Ror<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ROR", fixed: 5, optional: 4, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("starboard_order", 1),
+        JsonMember::Field("starboard_status", 1),
+        JsonMember::Field("port_order", 1),
+        JsonMember::Field("port_status", 1),
+        JsonMember::Field("command_location", 1),
+        JsonMember::Optional("center_order", 1),
+        JsonMember::Optional("center_status", 1),
+        JsonMember::Optional("bow_order", 1),
+        JsonMember::Optional("bow_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -117,80 +124,24 @@ impl<'a> Layout<'a> for Ror<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.starboard_order)?;
-        w.field(&self.starboard_status)?;
-        w.field(&self.port_order)?;
-        w.field(&self.port_status)?;
-        w.field(&self.command_location)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("starboard_order", &self.starboard_order)?;
+        sink.field("starboard_status", &self.starboard_status)?;
+        sink.field("port_order", &self.port_order)?;
+        sink.field("port_status", &self.port_status)?;
+        sink.field("command_location", &self.command_location)?;
         if self.trailing >= 1 {
-            w.field(&self.center_order)?;
+            sink.field("center_order", &self.center_order)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.center_status)?;
+            sink.field("center_status", &self.center_status)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.bow_order)?;
+            sink.field("bow_order", &self.bow_order)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.bow_status)?;
+            sink.field("bow_status", &self.bow_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.starboard_order)?;
-        w.field(&self.starboard_status)?;
-        w.field(&self.port_order)?;
-        w.field(&self.port_status)?;
-        w.field(&self.command_location)?;
-        if self.trailing >= 1 {
-            w.field(&self.center_order)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.center_status)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.bow_order)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.bow_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("starboard_order", &self.starboard_order)?;
-        j.field("starboard_status", &self.starboard_status)?;
-        j.field("port_order", &self.port_order)?;
-        j.field("port_status", &self.port_status)?;
-        j.field("command_location", &self.command_location)?;
-        if self.trailing >= 1 {
-            j.field("center_order", &self.center_order)?;
-        }
-        if self.trailing >= 2 {
-            j.field("center_status", &self.center_status)?;
-        }
-        if self.trailing >= 3 {
-            j.field("bow_order", &self.bow_order)?;
-        }
-        if self.trailing >= 4 {
-            j.field("bow_status", &self.bow_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "starboard_order", 1)?;
-        out.member(fields, "starboard_status", 1)?;
-        out.member(fields, "port_order", 1)?;
-        out.member(fields, "port_status", 1)?;
-        out.member(fields, "command_location", 1)?;
-        out.optional(fields, "center_order", 1)?;
-        out.optional(fields, "center_status", 1)?;
-        out.optional(fields, "bow_order", 1)?;
-        out.optional(fields, "bow_status", 1)?;
         Ok(())
     }
 }

@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::{RpmSource, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -70,6 +68,13 @@ impl<'a> Layout<'a> for Rpm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RPM", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("source", 1),
+        JsonMember::Field("number", 1),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("pitch", 1),
+        JsonMember::Field("status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -91,40 +96,12 @@ impl<'a> Layout<'a> for Rpm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.source)?;
-        w.field(&self.number)?;
-        w.field(&self.speed)?;
-        w.field(&self.pitch)?;
-        w.field(&self.status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.source)?;
-        w.field(&self.number)?;
-        w.field(&self.speed)?;
-        w.field(&self.pitch)?;
-        w.field(&self.status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("source", &self.source)?;
-        j.field("number", &self.number)?;
-        j.field("speed", &self.speed)?;
-        j.field("pitch", &self.pitch)?;
-        j.field("status", &self.status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "source", 1)?;
-        out.member(fields, "number", 1)?;
-        out.member(fields, "speed", 1)?;
-        out.member(fields, "pitch", 1)?;
-        out.member(fields, "status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("source", &self.source)?;
+        sink.field("number", &self.number)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("pitch", &self.pitch)?;
+        sink.field("status", &self.status)?;
         Ok(())
     }
 }

@@ -11,9 +11,7 @@
 use core::fmt;
 
 use crate::enums::{RrtApplicationStatus, RrtFileStatus, RrtTransferType};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// RRT: Report route transfer.
@@ -73,6 +71,14 @@ impl<'a> Layout<'a> for Rrt<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RRT", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("transfer_type", 1),
+        JsonMember::Field("route_name", 1),
+        JsonMember::Field("route_version", 1),
+        JsonMember::Field("waypoint_id", 1),
+        JsonMember::Field("file_status", 1),
+        JsonMember::Field("application_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -95,44 +101,13 @@ impl<'a> Layout<'a> for Rrt<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.transfer_type)?;
-        w.field(&self.route_name)?;
-        w.field(&self.route_version)?;
-        w.field(&self.waypoint_id)?;
-        w.field(&self.file_status)?;
-        w.field(&self.application_status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.transfer_type)?;
-        w.field(&self.route_name)?;
-        w.field(&self.route_version)?;
-        w.field(&self.waypoint_id)?;
-        w.field(&self.file_status)?;
-        w.field(&self.application_status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("transfer_type", &self.transfer_type)?;
-        j.field("route_name", &self.route_name)?;
-        j.field("route_version", &self.route_version)?;
-        j.field("waypoint_id", &self.waypoint_id)?;
-        j.field("file_status", &self.file_status)?;
-        j.field("application_status", &self.application_status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "transfer_type", 1)?;
-        out.member(fields, "route_name", 1)?;
-        out.member(fields, "route_version", 1)?;
-        out.member(fields, "waypoint_id", 1)?;
-        out.member(fields, "file_status", 1)?;
-        out.member(fields, "application_status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("transfer_type", &self.transfer_type)?;
+        sink.field("route_name", &self.route_name)?;
+        sink.field("route_version", &self.route_version)?;
+        sink.field("waypoint_id", &self.waypoint_id)?;
+        sink.field("file_status", &self.file_status)?;
+        sink.field("application_status", &self.application_status)?;
         Ok(())
     }
 }

@@ -11,11 +11,7 @@
 use core::fmt;
 
 use crate::enums::Status;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// RSA: Rudder sensor angle.
@@ -86,6 +82,16 @@ impl<'a> Layout<'a> for Rsa<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RSA", fixed: 4, optional: 4, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("starboard_rudder", 1),
+        JsonMember::Field("starboard_status", 1),
+        JsonMember::Field("port_rudder", 1),
+        JsonMember::Field("port_status", 1),
+        JsonMember::Optional("center_rudder", 1),
+        JsonMember::Optional("center_status", 1),
+        JsonMember::Optional("bow_rudder", 1),
+        JsonMember::Optional("bow_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -122,76 +128,23 @@ impl<'a> Layout<'a> for Rsa<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.starboard_rudder)?;
-        w.field(&self.starboard_status)?;
-        w.field(&self.port_rudder)?;
-        w.field(&self.port_status)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("starboard_rudder", &self.starboard_rudder)?;
+        sink.field("starboard_status", &self.starboard_status)?;
+        sink.field("port_rudder", &self.port_rudder)?;
+        sink.field("port_status", &self.port_status)?;
         if self.trailing >= 1 {
-            w.field(&self.center_rudder)?;
+            sink.field("center_rudder", &self.center_rudder)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.center_status)?;
+            sink.field("center_status", &self.center_status)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.bow_rudder)?;
+            sink.field("bow_rudder", &self.bow_rudder)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.bow_status)?;
+            sink.field("bow_status", &self.bow_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.starboard_rudder)?;
-        w.field(&self.starboard_status)?;
-        w.field(&self.port_rudder)?;
-        w.field(&self.port_status)?;
-        if self.trailing >= 1 {
-            w.field(&self.center_rudder)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.center_status)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.bow_rudder)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.bow_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("starboard_rudder", &self.starboard_rudder)?;
-        j.field("starboard_status", &self.starboard_status)?;
-        j.field("port_rudder", &self.port_rudder)?;
-        j.field("port_status", &self.port_status)?;
-        if self.trailing >= 1 {
-            j.field("center_rudder", &self.center_rudder)?;
-        }
-        if self.trailing >= 2 {
-            j.field("center_status", &self.center_status)?;
-        }
-        if self.trailing >= 3 {
-            j.field("bow_rudder", &self.bow_rudder)?;
-        }
-        if self.trailing >= 4 {
-            j.field("bow_status", &self.bow_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "starboard_rudder", 1)?;
-        out.member(fields, "starboard_status", 1)?;
-        out.member(fields, "port_rudder", 1)?;
-        out.member(fields, "port_status", 1)?;
-        out.optional(fields, "center_rudder", 1)?;
-        out.optional(fields, "center_status", 1)?;
-        out.optional(fields, "bow_rudder", 1)?;
-        out.optional(fields, "bow_status", 1)?;
         Ok(())
     }
 }

@@ -10,11 +10,7 @@
 use core::fmt;
 
 use crate::enums::{RsdDisplayRotation, TtmUnits};
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// RSD: Radar system data.
@@ -88,6 +84,21 @@ impl<'a> Layout<'a> for Rsd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "RSD", fixed: 13, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("origin1_range", 1),
+        JsonMember::Field("origin1_bearing", 1),
+        JsonMember::Field("vrm1", 1),
+        JsonMember::Field("ebl1", 1),
+        JsonMember::Field("origin2_range", 1),
+        JsonMember::Field("origin2_bearing", 1),
+        JsonMember::Field("vrm2", 1),
+        JsonMember::Field("ebl2", 1),
+        JsonMember::Field("cursor_range", 1),
+        JsonMember::Field("cursor_bearing", 1),
+        JsonMember::Field("range_scale", 1),
+        JsonMember::Field("range_units", 1),
+        JsonMember::Field("display_rotation", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -117,72 +128,20 @@ impl<'a> Layout<'a> for Rsd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.origin1_range)?;
-        w.field(&self.origin1_bearing)?;
-        w.field(&self.vrm1)?;
-        w.field(&self.ebl1)?;
-        w.field(&self.origin2_range)?;
-        w.field(&self.origin2_bearing)?;
-        w.field(&self.vrm2)?;
-        w.field(&self.ebl2)?;
-        w.field(&self.cursor_range)?;
-        w.field(&self.cursor_bearing)?;
-        w.field(&self.range_scale)?;
-        w.field(&self.range_units)?;
-        w.field(&self.display_rotation)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.origin1_range)?;
-        w.field(&self.origin1_bearing)?;
-        w.field(&self.vrm1)?;
-        w.field(&self.ebl1)?;
-        w.field(&self.origin2_range)?;
-        w.field(&self.origin2_bearing)?;
-        w.field(&self.vrm2)?;
-        w.field(&self.ebl2)?;
-        w.field(&self.cursor_range)?;
-        w.field(&self.cursor_bearing)?;
-        w.field(&self.range_scale)?;
-        w.field(&self.range_units)?;
-        w.field(&self.display_rotation)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("origin1_range", &self.origin1_range)?;
-        j.field("origin1_bearing", &self.origin1_bearing)?;
-        j.field("vrm1", &self.vrm1)?;
-        j.field("ebl1", &self.ebl1)?;
-        j.field("origin2_range", &self.origin2_range)?;
-        j.field("origin2_bearing", &self.origin2_bearing)?;
-        j.field("vrm2", &self.vrm2)?;
-        j.field("ebl2", &self.ebl2)?;
-        j.field("cursor_range", &self.cursor_range)?;
-        j.field("cursor_bearing", &self.cursor_bearing)?;
-        j.field("range_scale", &self.range_scale)?;
-        j.field("range_units", &self.range_units)?;
-        j.field("display_rotation", &self.display_rotation)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "origin1_range", 1)?;
-        out.member(fields, "origin1_bearing", 1)?;
-        out.member(fields, "vrm1", 1)?;
-        out.member(fields, "ebl1", 1)?;
-        out.member(fields, "origin2_range", 1)?;
-        out.member(fields, "origin2_bearing", 1)?;
-        out.member(fields, "vrm2", 1)?;
-        out.member(fields, "ebl2", 1)?;
-        out.member(fields, "cursor_range", 1)?;
-        out.member(fields, "cursor_bearing", 1)?;
-        out.member(fields, "range_scale", 1)?;
-        out.member(fields, "range_units", 1)?;
-        out.member(fields, "display_rotation", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("origin1_range", &self.origin1_range)?;
+        sink.field("origin1_bearing", &self.origin1_bearing)?;
+        sink.field("vrm1", &self.vrm1)?;
+        sink.field("ebl1", &self.ebl1)?;
+        sink.field("origin2_range", &self.origin2_range)?;
+        sink.field("origin2_bearing", &self.origin2_bearing)?;
+        sink.field("vrm2", &self.vrm2)?;
+        sink.field("ebl2", &self.ebl2)?;
+        sink.field("cursor_range", &self.cursor_range)?;
+        sink.field("cursor_bearing", &self.cursor_bearing)?;
+        sink.field("range_scale", &self.range_scale)?;
+        sink.field("range_units", &self.range_units)?;
+        sink.field("display_rotation", &self.display_rotation)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::RteMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, GroupShape, JsonFields, Layout, Number, Range, Shape,
-    Texts, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range, Shape,
+    Texts,
 };
 use crate::LayoutId;
 
@@ -80,6 +78,13 @@ impl<'a> Layout<'a> for Rte<'a> {
         optional: 0,
         group: Some(GroupShape { id: "waypoints", width: 1, min: 0, max: 32 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("message_count", 1),
+        JsonMember::Field("message_number", 1),
+        JsonMember::Field("route_mode", 1),
+        JsonMember::Field("route_id", 1),
+        JsonMember::Values("waypoints", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -101,42 +106,12 @@ impl<'a> Layout<'a> for Rte<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message_count)?;
-        w.field(&self.message_number)?;
-        w.field(&self.route_mode)?;
-        w.field(&self.route_id)?;
-        w.texts(&self.waypoints)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.message_count)?;
-        w.field(&self.message_number)?;
-        w.field(&self.route_mode)?;
-        w.field(&self.route_id)?;
-        w.texts(&self.waypoints)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message_count", &self.message_count)?;
-        j.field("message_number", &self.message_number)?;
-        j.field("route_mode", &self.route_mode)?;
-        j.field("route_id", &self.route_id)?;
-        j.texts("waypoints", &self.waypoints)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message_count", 1)?;
-        out.member(fields, "message_number", 1)?;
-        out.member(fields, "route_mode", 1)?;
-        out.member(fields, "route_id", 1)?;
-        for value in json::list(fields, "waypoints")? {
-            out.value(value, 1)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message_count", &self.message_count)?;
+        sink.field("message_number", &self.message_number)?;
+        sink.field("route_mode", &self.route_mode)?;
+        sink.field("route_id", &self.route_id)?;
+        sink.texts("waypoints", &self.waypoints)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::FsiMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range,
-    Reader, Shape, WireWriter,
+    Bound, Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Range, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -34,29 +32,12 @@ impl<'a> SfiFrequencie<'a> {
     fn read(f: &mut Reader<'a>) -> Result<Self, Error<'a>> {
         Ok(Self { frequency: f.text("frequency", "text", None)?, mode: f.code("mode")? })
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.frequency)?;
-        w.field(&self.mode)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.frequency)?;
-        w.field(&self.mode)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("frequency", &self.frequency)?;
-        j.field("mode", &self.mode)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "frequency", 1)?;
-        out.member(entry, "mode", 1)?;
+impl Entry for SfiFrequencie<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("frequency", &self.frequency)?;
+        sink.field("mode", &self.mode)?;
         Ok(())
     }
 }
@@ -112,6 +93,11 @@ impl<'a> Layout<'a> for Sfi<'a> {
         optional: 0,
         group: Some(GroupShape { id: "frequencies", width: 2, min: 0, max: 6 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("total_sentences", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Entries("frequencies", &[("frequency", 1), ("mode", 1)]),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -131,38 +117,10 @@ impl<'a> Layout<'a> for Sfi<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        for entry in &self.frequencies {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        for entry in &self.frequencies {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("total_sentences", &self.total_sentences)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.entries("frequencies", &self.frequencies, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "total_sentences", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        for entry in json::list(fields, "frequencies")? {
-            SfiFrequencie::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("total_sentences", &self.total_sentences)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.entries("frequencies", &self.frequencies)?;
         Ok(())
     }
 }

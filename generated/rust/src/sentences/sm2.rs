@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{Sm1MsiStatus, Sm1OceanRegion, Sm1Priority, Sm2Subject};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -99,6 +97,24 @@ impl<'a> Layout<'a> for Sm2<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "SM2", fixed: 16, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msi_status", 1),
+        JsonMember::Field("unique_message_number", 1),
+        JsonMember::Field("les_sequence_number", 1),
+        JsonMember::Field("les_id", 1),
+        JsonMember::Field("ocean_region", 1),
+        JsonMember::Field("priority", 1),
+        JsonMember::Field("service_code", 1),
+        JsonMember::Field("presentation_code", 1),
+        JsonMember::Field("year", 1),
+        JsonMember::Field("month", 1),
+        JsonMember::Field("day", 1),
+        JsonMember::Field("hour", 1),
+        JsonMember::Field("minute", 1),
+        JsonMember::Field("navarea", 1),
+        JsonMember::Field("coastal_warning_area", 1),
+        JsonMember::Field("subject_indicator", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -132,84 +148,23 @@ impl<'a> Layout<'a> for Sm2<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msi_status)?;
-        w.field(&self.unique_message_number)?;
-        w.field(&self.les_sequence_number)?;
-        w.field(&self.les_id)?;
-        w.field(&self.ocean_region)?;
-        w.field(&self.priority)?;
-        w.field(&self.service_code)?;
-        w.field(&self.presentation_code)?;
-        w.field(&self.year)?;
-        w.field(&self.month)?;
-        w.field(&self.day)?;
-        w.field(&self.hour)?;
-        w.field(&self.minute)?;
-        w.field(&self.navarea)?;
-        w.field(&self.coastal_warning_area)?;
-        w.field(&self.subject_indicator)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msi_status)?;
-        w.field(&self.unique_message_number)?;
-        w.field(&self.les_sequence_number)?;
-        w.field(&self.les_id)?;
-        w.field(&self.ocean_region)?;
-        w.field(&self.priority)?;
-        w.field(&self.service_code)?;
-        w.field(&self.presentation_code)?;
-        w.field(&self.year)?;
-        w.field(&self.month)?;
-        w.field(&self.day)?;
-        w.field(&self.hour)?;
-        w.field(&self.minute)?;
-        w.field(&self.navarea)?;
-        w.field(&self.coastal_warning_area)?;
-        w.field(&self.subject_indicator)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msi_status", &self.msi_status)?;
-        j.field("unique_message_number", &self.unique_message_number)?;
-        j.field("les_sequence_number", &self.les_sequence_number)?;
-        j.field("les_id", &self.les_id)?;
-        j.field("ocean_region", &self.ocean_region)?;
-        j.field("priority", &self.priority)?;
-        j.field("service_code", &self.service_code)?;
-        j.field("presentation_code", &self.presentation_code)?;
-        j.field("year", &self.year)?;
-        j.field("month", &self.month)?;
-        j.field("day", &self.day)?;
-        j.field("hour", &self.hour)?;
-        j.field("minute", &self.minute)?;
-        j.field("navarea", &self.navarea)?;
-        j.field("coastal_warning_area", &self.coastal_warning_area)?;
-        j.field("subject_indicator", &self.subject_indicator)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msi_status", 1)?;
-        out.member(fields, "unique_message_number", 1)?;
-        out.member(fields, "les_sequence_number", 1)?;
-        out.member(fields, "les_id", 1)?;
-        out.member(fields, "ocean_region", 1)?;
-        out.member(fields, "priority", 1)?;
-        out.member(fields, "service_code", 1)?;
-        out.member(fields, "presentation_code", 1)?;
-        out.member(fields, "year", 1)?;
-        out.member(fields, "month", 1)?;
-        out.member(fields, "day", 1)?;
-        out.member(fields, "hour", 1)?;
-        out.member(fields, "minute", 1)?;
-        out.member(fields, "navarea", 1)?;
-        out.member(fields, "coastal_warning_area", 1)?;
-        out.member(fields, "subject_indicator", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msi_status", &self.msi_status)?;
+        sink.field("unique_message_number", &self.unique_message_number)?;
+        sink.field("les_sequence_number", &self.les_sequence_number)?;
+        sink.field("les_id", &self.les_id)?;
+        sink.field("ocean_region", &self.ocean_region)?;
+        sink.field("priority", &self.priority)?;
+        sink.field("service_code", &self.service_code)?;
+        sink.field("presentation_code", &self.presentation_code)?;
+        sink.field("year", &self.year)?;
+        sink.field("month", &self.month)?;
+        sink.field("day", &self.day)?;
+        sink.field("hour", &self.hour)?;
+        sink.field("minute", &self.minute)?;
+        sink.field("navarea", &self.navarea)?;
+        sink.field("coastal_warning_area", &self.coastal_warning_area)?;
+        sink.field("subject_indicator", &self.subject_indicator)?;
         Ok(())
     }
 }

@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::{Sm1MsiStatus, Sm1OceanRegion, Sm1Priority};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -101,6 +98,25 @@ impl<'a> Layout<'a> for Sm4<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "SM4", fixed: 19, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("msi_status", 1),
+        JsonMember::Field("unique_message_number", 1),
+        JsonMember::Field("les_sequence_number", 1),
+        JsonMember::Field("les_id", 1),
+        JsonMember::Field("ocean_region", 1),
+        JsonMember::Field("priority", 1),
+        JsonMember::Field("service_code", 1),
+        JsonMember::Field("presentation_code", 1),
+        JsonMember::Field("year", 1),
+        JsonMember::Field("month", 1),
+        JsonMember::Field("day", 1),
+        JsonMember::Field("hour", 1),
+        JsonMember::Field("minute", 1),
+        JsonMember::Field("sw_lat", 2),
+        JsonMember::Field("sw_lon", 2),
+        JsonMember::Field("extent_north", 1),
+        JsonMember::Field("extent_east", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -135,88 +151,24 @@ impl<'a> Layout<'a> for Sm4<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.msi_status)?;
-        w.field(&self.unique_message_number)?;
-        w.field(&self.les_sequence_number)?;
-        w.field(&self.les_id)?;
-        w.field(&self.ocean_region)?;
-        w.field(&self.priority)?;
-        w.field(&self.service_code)?;
-        w.field(&self.presentation_code)?;
-        w.field(&self.year)?;
-        w.field(&self.month)?;
-        w.field(&self.day)?;
-        w.field(&self.hour)?;
-        w.field(&self.minute)?;
-        w.field(&self.sw_lat)?;
-        w.field(&self.sw_lon)?;
-        w.field(&self.extent_north)?;
-        w.field(&self.extent_east)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.msi_status)?;
-        w.field(&self.unique_message_number)?;
-        w.field(&self.les_sequence_number)?;
-        w.field(&self.les_id)?;
-        w.field(&self.ocean_region)?;
-        w.field(&self.priority)?;
-        w.field(&self.service_code)?;
-        w.field(&self.presentation_code)?;
-        w.field(&self.year)?;
-        w.field(&self.month)?;
-        w.field(&self.day)?;
-        w.field(&self.hour)?;
-        w.field(&self.minute)?;
-        w.field(&self.sw_lat)?;
-        w.field(&self.sw_lon)?;
-        w.field(&self.extent_north)?;
-        w.field(&self.extent_east)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("msi_status", &self.msi_status)?;
-        j.field("unique_message_number", &self.unique_message_number)?;
-        j.field("les_sequence_number", &self.les_sequence_number)?;
-        j.field("les_id", &self.les_id)?;
-        j.field("ocean_region", &self.ocean_region)?;
-        j.field("priority", &self.priority)?;
-        j.field("service_code", &self.service_code)?;
-        j.field("presentation_code", &self.presentation_code)?;
-        j.field("year", &self.year)?;
-        j.field("month", &self.month)?;
-        j.field("day", &self.day)?;
-        j.field("hour", &self.hour)?;
-        j.field("minute", &self.minute)?;
-        j.field("sw_lat", &self.sw_lat)?;
-        j.field("sw_lon", &self.sw_lon)?;
-        j.field("extent_north", &self.extent_north)?;
-        j.field("extent_east", &self.extent_east)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "msi_status", 1)?;
-        out.member(fields, "unique_message_number", 1)?;
-        out.member(fields, "les_sequence_number", 1)?;
-        out.member(fields, "les_id", 1)?;
-        out.member(fields, "ocean_region", 1)?;
-        out.member(fields, "priority", 1)?;
-        out.member(fields, "service_code", 1)?;
-        out.member(fields, "presentation_code", 1)?;
-        out.member(fields, "year", 1)?;
-        out.member(fields, "month", 1)?;
-        out.member(fields, "day", 1)?;
-        out.member(fields, "hour", 1)?;
-        out.member(fields, "minute", 1)?;
-        out.member(fields, "sw_lat", 2)?;
-        out.member(fields, "sw_lon", 2)?;
-        out.member(fields, "extent_north", 1)?;
-        out.member(fields, "extent_east", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("msi_status", &self.msi_status)?;
+        sink.field("unique_message_number", &self.unique_message_number)?;
+        sink.field("les_sequence_number", &self.les_sequence_number)?;
+        sink.field("les_id", &self.les_id)?;
+        sink.field("ocean_region", &self.ocean_region)?;
+        sink.field("priority", &self.priority)?;
+        sink.field("service_code", &self.service_code)?;
+        sink.field("presentation_code", &self.presentation_code)?;
+        sink.field("year", &self.year)?;
+        sink.field("month", &self.month)?;
+        sink.field("day", &self.day)?;
+        sink.field("hour", &self.hour)?;
+        sink.field("minute", &self.minute)?;
+        sink.field("sw_lat", &self.sw_lat)?;
+        sink.field("sw_lon", &self.sw_lon)?;
+        sink.field("extent_north", &self.extent_north)?;
+        sink.field("extent_east", &self.extent_east)?;
         Ok(())
     }
 }

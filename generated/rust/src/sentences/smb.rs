@@ -10,11 +10,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// SMB: IMO SafetyNET message body.
@@ -76,6 +72,13 @@ impl<'a> Layout<'a> for Smb<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "SMB", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("total_sentences", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("sequential_message_id", 1),
+        JsonMember::Field("unique_message_number", 1),
+        JsonMember::Field("message_body", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -99,40 +102,12 @@ impl<'a> Layout<'a> for Smb<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequential_message_id)?;
-        w.field(&self.unique_message_number)?;
-        w.field(&self.message_body)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequential_message_id)?;
-        w.field(&self.unique_message_number)?;
-        w.field(&self.message_body)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("total_sentences", &self.total_sentences)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("sequential_message_id", &self.sequential_message_id)?;
-        j.field("unique_message_number", &self.unique_message_number)?;
-        j.field("message_body", &self.message_body)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "total_sentences", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "sequential_message_id", 1)?;
-        out.member(fields, "unique_message_number", 1)?;
-        out.member(fields, "message_body", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("total_sentences", &self.total_sentences)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("sequential_message_id", &self.sequential_message_id)?;
+        sink.field("unique_message_number", &self.unique_message_number)?;
+        sink.field("message_body", &self.message_body)?;
         Ok(())
     }
 }

@@ -11,9 +11,7 @@
 use core::fmt;
 
 use crate::enums::SpwPasswordLevel;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// SPW: Security password sentence.
@@ -69,6 +67,12 @@ impl<'a> Layout<'a> for Spw<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "SPW", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("protected_sentence", 1),
+        JsonMember::Field("unique_id", 1),
+        JsonMember::Field("password_level", 1),
+        JsonMember::Field("password", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -89,36 +93,11 @@ impl<'a> Layout<'a> for Spw<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.protected_sentence)?;
-        w.field(&self.unique_id)?;
-        w.field(&self.password_level)?;
-        w.field(&self.password)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.protected_sentence)?;
-        w.field(&self.unique_id)?;
-        w.field(&self.password_level)?;
-        w.field(&self.password)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("protected_sentence", &self.protected_sentence)?;
-        j.field("unique_id", &self.unique_id)?;
-        j.field("password_level", &self.password_level)?;
-        j.field("password", &self.password)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "protected_sentence", 1)?;
-        out.member(fields, "unique_id", 1)?;
-        out.member(fields, "password_level", 1)?;
-        out.member(fields, "password", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("protected_sentence", &self.protected_sentence)?;
+        sink.field("unique_id", &self.unique_id)?;
+        sink.field("password_level", &self.password_level)?;
+        sink.field("password", &self.password)?;
         Ok(())
     }
 }

@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::SsdDte;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -79,6 +77,16 @@ impl<'a> Layout<'a> for Ssd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "SSD", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("call_sign", 1),
+        JsonMember::Field("ship_name", 1),
+        JsonMember::Field("ref_a", 1),
+        JsonMember::Field("ref_b", 1),
+        JsonMember::Field("ref_c", 1),
+        JsonMember::Field("ref_d", 1),
+        JsonMember::Field("dte", 1),
+        JsonMember::Field("source_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -103,52 +111,15 @@ impl<'a> Layout<'a> for Ssd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.call_sign)?;
-        w.field(&self.ship_name)?;
-        w.field(&self.ref_a)?;
-        w.field(&self.ref_b)?;
-        w.field(&self.ref_c)?;
-        w.field(&self.ref_d)?;
-        w.field(&self.dte)?;
-        w.field(&self.source_id)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.call_sign)?;
-        w.field(&self.ship_name)?;
-        w.field(&self.ref_a)?;
-        w.field(&self.ref_b)?;
-        w.field(&self.ref_c)?;
-        w.field(&self.ref_d)?;
-        w.field(&self.dte)?;
-        w.field(&self.source_id)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("call_sign", &self.call_sign)?;
-        j.field("ship_name", &self.ship_name)?;
-        j.field("ref_a", &self.ref_a)?;
-        j.field("ref_b", &self.ref_b)?;
-        j.field("ref_c", &self.ref_c)?;
-        j.field("ref_d", &self.ref_d)?;
-        j.field("dte", &self.dte)?;
-        j.field("source_id", &self.source_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "call_sign", 1)?;
-        out.member(fields, "ship_name", 1)?;
-        out.member(fields, "ref_a", 1)?;
-        out.member(fields, "ref_b", 1)?;
-        out.member(fields, "ref_c", 1)?;
-        out.member(fields, "ref_d", 1)?;
-        out.member(fields, "dte", 1)?;
-        out.member(fields, "source_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("call_sign", &self.call_sign)?;
+        sink.field("ship_name", &self.ship_name)?;
+        sink.field("ref_a", &self.ref_a)?;
+        sink.field("ref_b", &self.ref_b)?;
+        sink.field("ref_c", &self.ref_c)?;
+        sink.field("ref_d", &self.ref_d)?;
+        sink.field("dte", &self.dte)?;
+        sink.field("source_id", &self.source_id)?;
         Ok(())
     }
 }

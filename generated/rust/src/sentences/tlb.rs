@@ -9,11 +9,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Reader,
-    Shape, WireWriter,
+    Bound, Checksum, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
+    Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -39,29 +37,12 @@ impl<'a> TlbLabel<'a> {
             label: f.text("label", "text", None)?,
         })
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.target_number)?;
-        w.field(&self.label)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.target_number)?;
-        w.field(&self.label)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("target_number", &self.target_number)?;
-        j.field("label", &self.label)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "target_number", 1)?;
-        out.member(entry, "label", 1)?;
+impl Entry for TlbLabel<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("target_number", &self.target_number)?;
+        sink.field("label", &self.label)?;
         Ok(())
     }
 }
@@ -117,6 +98,7 @@ impl<'a> Layout<'a> for Tlb<'a> {
         optional: 0,
         group: Some(GroupShape { id: "labels", width: 2, min: 1, max: 20 }),
     };
+    const JSON: &'static [JsonMember] = &[JsonMember::Entries("labels", &[("target_number", 1), ("label", 1)])];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -134,30 +116,8 @@ impl<'a> Layout<'a> for Tlb<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        for entry in &self.labels {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        for entry in &self.labels {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.entries("labels", &self.labels, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        for entry in json::list(fields, "labels")? {
-            TlbLabel::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.entries("labels", &self.labels)?;
         Ok(())
     }
 }

@@ -9,11 +9,9 @@
 use core::fmt;
 
 use crate::enums::TtmTargetStatus;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Coordinate, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    Time, WireWriter,
+    Bound, Checksum, Code, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -77,6 +75,15 @@ impl<'a> Layout<'a> for Tll<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "TLL", fixed: 9, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("target_number", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("target_name", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("target_status", 1),
+        JsonMember::Field("reference_target", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -100,48 +107,14 @@ impl<'a> Layout<'a> for Tll<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.target_number)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.target_name)?;
-        w.field(&self.time)?;
-        w.field(&self.target_status)?;
-        w.field(&self.reference_target)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.target_number)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.target_name)?;
-        w.field(&self.time)?;
-        w.field(&self.target_status)?;
-        w.field(&self.reference_target)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("target_number", &self.target_number)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("target_name", &self.target_name)?;
-        j.field("time", &self.time)?;
-        j.field("target_status", &self.target_status)?;
-        j.field("reference_target", &self.reference_target)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "target_number", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "target_name", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "target_status", 1)?;
-        out.member(fields, "reference_target", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("target_number", &self.target_number)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("target_name", &self.target_name)?;
+        sink.field("time", &self.time)?;
+        sink.field("target_status", &self.target_status)?;
+        sink.field("reference_target", &self.reference_target)?;
         Ok(())
     }
 }

@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{HscSentenceStatus, PrcOperatingLocation, PrcPitchMode, PrcRpmMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -75,6 +73,16 @@ impl<'a> Layout<'a> for Trc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "TRC", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("thruster_number", 1),
+        JsonMember::Field("rpm_demand", 1),
+        JsonMember::Field("rpm_mode", 1),
+        JsonMember::Field("pitch_demand", 1),
+        JsonMember::Field("pitch_mode", 1),
+        JsonMember::Field("azimuth_demand", 1),
+        JsonMember::Field("operating_location", 1),
+        JsonMember::Field("sentence_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -99,52 +107,15 @@ impl<'a> Layout<'a> for Trc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.thruster_number)?;
-        w.field(&self.rpm_demand)?;
-        w.field(&self.rpm_mode)?;
-        w.field(&self.pitch_demand)?;
-        w.field(&self.pitch_mode)?;
-        w.field(&self.azimuth_demand)?;
-        w.field(&self.operating_location)?;
-        w.field(&self.sentence_status)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.thruster_number)?;
-        w.field(&self.rpm_demand)?;
-        w.field(&self.rpm_mode)?;
-        w.field(&self.pitch_demand)?;
-        w.field(&self.pitch_mode)?;
-        w.field(&self.azimuth_demand)?;
-        w.field(&self.operating_location)?;
-        w.field(&self.sentence_status)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("thruster_number", &self.thruster_number)?;
-        j.field("rpm_demand", &self.rpm_demand)?;
-        j.field("rpm_mode", &self.rpm_mode)?;
-        j.field("pitch_demand", &self.pitch_demand)?;
-        j.field("pitch_mode", &self.pitch_mode)?;
-        j.field("azimuth_demand", &self.azimuth_demand)?;
-        j.field("operating_location", &self.operating_location)?;
-        j.field("sentence_status", &self.sentence_status)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "thruster_number", 1)?;
-        out.member(fields, "rpm_demand", 1)?;
-        out.member(fields, "rpm_mode", 1)?;
-        out.member(fields, "pitch_demand", 1)?;
-        out.member(fields, "pitch_mode", 1)?;
-        out.member(fields, "azimuth_demand", 1)?;
-        out.member(fields, "operating_location", 1)?;
-        out.member(fields, "sentence_status", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("thruster_number", &self.thruster_number)?;
+        sink.field("rpm_demand", &self.rpm_demand)?;
+        sink.field("rpm_mode", &self.rpm_mode)?;
+        sink.field("pitch_demand", &self.pitch_demand)?;
+        sink.field("pitch_mode", &self.pitch_mode)?;
+        sink.field("azimuth_demand", &self.azimuth_demand)?;
+        sink.field("operating_location", &self.operating_location)?;
+        sink.field("sentence_status", &self.sentence_status)?;
         Ok(())
     }
 }

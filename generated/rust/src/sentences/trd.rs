@@ -9,10 +9,8 @@
 use core::fmt;
 
 use crate::enums::{PrcPitchMode, PrcRpmMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -67,6 +65,14 @@ impl<'a> Layout<'a> for Trd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "TRD", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("thruster_number", 1),
+        JsonMember::Field("rpm_response", 1),
+        JsonMember::Field("rpm_mode", 1),
+        JsonMember::Field("pitch_response", 1),
+        JsonMember::Field("pitch_mode", 1),
+        JsonMember::Field("azimuth_response", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -89,44 +95,13 @@ impl<'a> Layout<'a> for Trd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.thruster_number)?;
-        w.field(&self.rpm_response)?;
-        w.field(&self.rpm_mode)?;
-        w.field(&self.pitch_response)?;
-        w.field(&self.pitch_mode)?;
-        w.field(&self.azimuth_response)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.thruster_number)?;
-        w.field(&self.rpm_response)?;
-        w.field(&self.rpm_mode)?;
-        w.field(&self.pitch_response)?;
-        w.field(&self.pitch_mode)?;
-        w.field(&self.azimuth_response)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("thruster_number", &self.thruster_number)?;
-        j.field("rpm_response", &self.rpm_response)?;
-        j.field("rpm_mode", &self.rpm_mode)?;
-        j.field("pitch_response", &self.pitch_response)?;
-        j.field("pitch_mode", &self.pitch_mode)?;
-        j.field("azimuth_response", &self.azimuth_response)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "thruster_number", 1)?;
-        out.member(fields, "rpm_response", 1)?;
-        out.member(fields, "rpm_mode", 1)?;
-        out.member(fields, "pitch_response", 1)?;
-        out.member(fields, "pitch_mode", 1)?;
-        out.member(fields, "azimuth_response", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("thruster_number", &self.thruster_number)?;
+        sink.field("rpm_response", &self.rpm_response)?;
+        sink.field("rpm_mode", &self.rpm_mode)?;
+        sink.field("pitch_response", &self.pitch_response)?;
+        sink.field("pitch_mode", &self.pitch_mode)?;
+        sink.field("azimuth_response", &self.azimuth_response)?;
         Ok(())
     }
 }

@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::Status;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Coordinate, Date, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape,
-    Time, WireWriter,
+    Checksum, Code, Coordinate, Date, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -76,6 +73,18 @@ impl<'a> Layout<'a> for Trf<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "TRF", fixed: 12, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("elevation_angle", 1),
+        JsonMember::Field("iterations", 1),
+        JsonMember::Field("doppler_intervals", 1),
+        JsonMember::Field("update_distance", 1),
+        JsonMember::Field("satellite_id", 1),
+        JsonMember::Field("data_validity", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -102,60 +111,17 @@ impl<'a> Layout<'a> for Trf<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.elevation_angle)?;
-        w.field(&self.iterations)?;
-        w.field(&self.doppler_intervals)?;
-        w.field(&self.update_distance)?;
-        w.field(&self.satellite_id)?;
-        w.field(&self.data_validity)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.date)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.elevation_angle)?;
-        w.field(&self.iterations)?;
-        w.field(&self.doppler_intervals)?;
-        w.field(&self.update_distance)?;
-        w.field(&self.satellite_id)?;
-        w.field(&self.data_validity)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("date", &self.date)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("elevation_angle", &self.elevation_angle)?;
-        j.field("iterations", &self.iterations)?;
-        j.field("doppler_intervals", &self.doppler_intervals)?;
-        j.field("update_distance", &self.update_distance)?;
-        j.field("satellite_id", &self.satellite_id)?;
-        j.field("data_validity", &self.data_validity)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "elevation_angle", 1)?;
-        out.member(fields, "iterations", 1)?;
-        out.member(fields, "doppler_intervals", 1)?;
-        out.member(fields, "update_distance", 1)?;
-        out.member(fields, "satellite_id", 1)?;
-        out.member(fields, "data_validity", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("date", &self.date)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("elevation_angle", &self.elevation_angle)?;
+        sink.field("iterations", &self.iterations)?;
+        sink.field("doppler_intervals", &self.doppler_intervals)?;
+        sink.field("update_distance", &self.update_distance)?;
+        sink.field("satellite_id", &self.satellite_id)?;
+        sink.field("data_validity", &self.data_validity)?;
         Ok(())
     }
 }

@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::TrlReason;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -75,6 +72,16 @@ impl<'a> Layout<'a> for Trl<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "TRL", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("entry_count", 1),
+        JsonMember::Field("entry_number", 1),
+        JsonMember::Field("sequence_id", 1),
+        JsonMember::Field("switch_off_date", 1),
+        JsonMember::Field("switch_off_time", 1),
+        JsonMember::Field("switch_on_date", 1),
+        JsonMember::Field("switch_on_time", 1),
+        JsonMember::Field("reason", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -99,52 +106,15 @@ impl<'a> Layout<'a> for Trl<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.entry_count)?;
-        w.field(&self.entry_number)?;
-        w.field(&self.sequence_id)?;
-        w.field(&self.switch_off_date)?;
-        w.field(&self.switch_off_time)?;
-        w.field(&self.switch_on_date)?;
-        w.field(&self.switch_on_time)?;
-        w.field(&self.reason)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.entry_count)?;
-        w.field(&self.entry_number)?;
-        w.field(&self.sequence_id)?;
-        w.field(&self.switch_off_date)?;
-        w.field(&self.switch_off_time)?;
-        w.field(&self.switch_on_date)?;
-        w.field(&self.switch_on_time)?;
-        w.field(&self.reason)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("entry_count", &self.entry_count)?;
-        j.field("entry_number", &self.entry_number)?;
-        j.field("sequence_id", &self.sequence_id)?;
-        j.field("switch_off_date", &self.switch_off_date)?;
-        j.field("switch_off_time", &self.switch_off_time)?;
-        j.field("switch_on_date", &self.switch_on_date)?;
-        j.field("switch_on_time", &self.switch_on_time)?;
-        j.field("reason", &self.reason)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "entry_count", 1)?;
-        out.member(fields, "entry_number", 1)?;
-        out.member(fields, "sequence_id", 1)?;
-        out.member(fields, "switch_off_date", 1)?;
-        out.member(fields, "switch_off_time", 1)?;
-        out.member(fields, "switch_on_date", 1)?;
-        out.member(fields, "switch_on_time", 1)?;
-        out.member(fields, "reason", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("entry_count", &self.entry_count)?;
+        sink.field("entry_number", &self.entry_number)?;
+        sink.field("sequence_id", &self.sequence_id)?;
+        sink.field("switch_off_date", &self.switch_off_date)?;
+        sink.field("switch_off_time", &self.switch_off_time)?;
+        sink.field("switch_on_date", &self.switch_on_date)?;
+        sink.field("switch_on_time", &self.switch_on_time)?;
+        sink.field("reason", &self.reason)?;
         Ok(())
     }
 }

@@ -11,11 +11,8 @@
 use core::fmt;
 
 use crate::enums::{TtmAcquisition, TtmReference, TtmTargetStatus, TtmUnits};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -109,6 +106,23 @@ impl<'a> Layout<'a> for Ttm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "TTM", fixed: 13, optional: 2, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("target_number", 1),
+        JsonMember::Field("target_distance", 1),
+        JsonMember::Field("bearing", 1),
+        JsonMember::Field("bearing_reference", 1),
+        JsonMember::Field("target_speed", 1),
+        JsonMember::Field("target_course", 1),
+        JsonMember::Field("course_reference", 1),
+        JsonMember::Field("cpa_distance", 1),
+        JsonMember::Field("time_to_cpa", 1),
+        JsonMember::Field("units", 1),
+        JsonMember::Field("target_name", 1),
+        JsonMember::Field("target_status", 1),
+        JsonMember::Field("reference_target", 1),
+        JsonMember::Optional("time", 1),
+        JsonMember::Optional("acquisition", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -147,92 +161,26 @@ impl<'a> Layout<'a> for Ttm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.target_number)?;
-        w.field(&self.target_distance)?;
-        w.field(&self.bearing)?;
-        w.field(&self.bearing_reference)?;
-        w.field(&self.target_speed)?;
-        w.field(&self.target_course)?;
-        w.field(&self.course_reference)?;
-        w.field(&self.cpa_distance)?;
-        w.field(&self.time_to_cpa)?;
-        w.field(&self.units)?;
-        w.field(&self.target_name)?;
-        w.field(&self.target_status)?;
-        w.field(&self.reference_target)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("target_number", &self.target_number)?;
+        sink.field("target_distance", &self.target_distance)?;
+        sink.field("bearing", &self.bearing)?;
+        sink.field("bearing_reference", &self.bearing_reference)?;
+        sink.field("target_speed", &self.target_speed)?;
+        sink.field("target_course", &self.target_course)?;
+        sink.field("course_reference", &self.course_reference)?;
+        sink.field("cpa_distance", &self.cpa_distance)?;
+        sink.field("time_to_cpa", &self.time_to_cpa)?;
+        sink.field("units", &self.units)?;
+        sink.field("target_name", &self.target_name)?;
+        sink.field("target_status", &self.target_status)?;
+        sink.field("reference_target", &self.reference_target)?;
         if self.trailing >= 1 {
-            w.field(&self.time)?;
+            sink.field("time", &self.time)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.acquisition)?;
+            sink.field("acquisition", &self.acquisition)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.target_number)?;
-        w.field(&self.target_distance)?;
-        w.field(&self.bearing)?;
-        w.field(&self.bearing_reference)?;
-        w.field(&self.target_speed)?;
-        w.field(&self.target_course)?;
-        w.field(&self.course_reference)?;
-        w.field(&self.cpa_distance)?;
-        w.field(&self.time_to_cpa)?;
-        w.field(&self.units)?;
-        w.field(&self.target_name)?;
-        w.field(&self.target_status)?;
-        w.field(&self.reference_target)?;
-        if self.trailing >= 1 {
-            w.field(&self.time)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.acquisition)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("target_number", &self.target_number)?;
-        j.field("target_distance", &self.target_distance)?;
-        j.field("bearing", &self.bearing)?;
-        j.field("bearing_reference", &self.bearing_reference)?;
-        j.field("target_speed", &self.target_speed)?;
-        j.field("target_course", &self.target_course)?;
-        j.field("course_reference", &self.course_reference)?;
-        j.field("cpa_distance", &self.cpa_distance)?;
-        j.field("time_to_cpa", &self.time_to_cpa)?;
-        j.field("units", &self.units)?;
-        j.field("target_name", &self.target_name)?;
-        j.field("target_status", &self.target_status)?;
-        j.field("reference_target", &self.reference_target)?;
-        if self.trailing >= 1 {
-            j.field("time", &self.time)?;
-        }
-        if self.trailing >= 2 {
-            j.field("acquisition", &self.acquisition)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "target_number", 1)?;
-        out.member(fields, "target_distance", 1)?;
-        out.member(fields, "bearing", 1)?;
-        out.member(fields, "bearing_reference", 1)?;
-        out.member(fields, "target_speed", 1)?;
-        out.member(fields, "target_course", 1)?;
-        out.member(fields, "course_reference", 1)?;
-        out.member(fields, "cpa_distance", 1)?;
-        out.member(fields, "time_to_cpa", 1)?;
-        out.member(fields, "units", 1)?;
-        out.member(fields, "target_name", 1)?;
-        out.member(fields, "target_status", 1)?;
-        out.member(fields, "reference_target", 1)?;
-        out.optional(fields, "time", 1)?;
-        out.optional(fields, "acquisition", 1)?;
         Ok(())
     }
 }

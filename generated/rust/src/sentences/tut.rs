@@ -10,10 +10,8 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, Hex, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -77,6 +75,14 @@ impl<'a> Layout<'a> for Tut<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "TUT", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("source_id", 1),
+        JsonMember::Field("total_sentences", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("sequential_message_id", 1),
+        JsonMember::Field("translation_code", 1),
+        JsonMember::Field("text_body", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -100,44 +106,13 @@ impl<'a> Layout<'a> for Tut<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.source_id)?;
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequential_message_id)?;
-        w.field(&self.translation_code)?;
-        w.field(&self.text_body)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.source_id)?;
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.sequential_message_id)?;
-        w.field(&self.translation_code)?;
-        w.field(&self.text_body)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("source_id", &self.source_id)?;
-        j.field("total_sentences", &self.total_sentences)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("sequential_message_id", &self.sequential_message_id)?;
-        j.field("translation_code", &self.translation_code)?;
-        j.field("text_body", &self.text_body)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "source_id", 1)?;
-        out.member(fields, "total_sentences", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "sequential_message_id", 1)?;
-        out.member(fields, "translation_code", 1)?;
-        out.member(fields, "text_body", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("source_id", &self.source_id)?;
+        sink.field("total_sentences", &self.total_sentences)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("sequential_message_id", &self.sequential_message_id)?;
+        sink.field("translation_code", &self.translation_code)?;
+        sink.field("text_body", &self.text_body)?;
         Ok(())
     }
 }

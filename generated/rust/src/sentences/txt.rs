@@ -10,11 +10,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// TXT: Text transmission.
@@ -72,6 +68,12 @@ impl<'a> Layout<'a> for Txt<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "TXT", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("total_sentences", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("text_identifier", 1),
+        JsonMember::Field("text", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -95,36 +97,11 @@ impl<'a> Layout<'a> for Txt<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.text_identifier)?;
-        w.field(&self.text)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.text_identifier)?;
-        w.field(&self.text)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("total_sentences", &self.total_sentences)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("text_identifier", &self.text_identifier)?;
-        j.field("text", &self.text)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "total_sentences", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "text_identifier", 1)?;
-        out.member(fields, "text", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("total_sentences", &self.total_sentences)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("text_identifier", &self.text_identifier)?;
+        sink.field("text", &self.text)?;
         Ok(())
     }
 }

@@ -10,11 +10,7 @@
 use core::fmt;
 
 use crate::enums::Status;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// VBW: Dual ground/water speed.
@@ -90,6 +86,18 @@ impl<'a> Layout<'a> for Vbw<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "VBW", fixed: 6, optional: 4, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("water_speed_longitudinal", 1),
+        JsonMember::Field("water_speed_transverse", 1),
+        JsonMember::Field("water_speed_status", 1),
+        JsonMember::Field("ground_speed_longitudinal", 1),
+        JsonMember::Field("ground_speed_transverse", 1),
+        JsonMember::Field("ground_speed_status", 1),
+        JsonMember::Optional("stern_water_speed_transverse", 1),
+        JsonMember::Optional("stern_water_speed_status", 1),
+        JsonMember::Optional("stern_ground_speed_transverse", 1),
+        JsonMember::Optional("stern_ground_speed_status", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -130,84 +138,25 @@ impl<'a> Layout<'a> for Vbw<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.water_speed_longitudinal)?;
-        w.field(&self.water_speed_transverse)?;
-        w.field(&self.water_speed_status)?;
-        w.field(&self.ground_speed_longitudinal)?;
-        w.field(&self.ground_speed_transverse)?;
-        w.field(&self.ground_speed_status)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("water_speed_longitudinal", &self.water_speed_longitudinal)?;
+        sink.field("water_speed_transverse", &self.water_speed_transverse)?;
+        sink.field("water_speed_status", &self.water_speed_status)?;
+        sink.field("ground_speed_longitudinal", &self.ground_speed_longitudinal)?;
+        sink.field("ground_speed_transverse", &self.ground_speed_transverse)?;
+        sink.field("ground_speed_status", &self.ground_speed_status)?;
         if self.trailing >= 1 {
-            w.field(&self.stern_water_speed_transverse)?;
+            sink.field("stern_water_speed_transverse", &self.stern_water_speed_transverse)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.stern_water_speed_status)?;
+            sink.field("stern_water_speed_status", &self.stern_water_speed_status)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.stern_ground_speed_transverse)?;
+            sink.field("stern_ground_speed_transverse", &self.stern_ground_speed_transverse)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.stern_ground_speed_status)?;
+            sink.field("stern_ground_speed_status", &self.stern_ground_speed_status)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.water_speed_longitudinal)?;
-        w.field(&self.water_speed_transverse)?;
-        w.field(&self.water_speed_status)?;
-        w.field(&self.ground_speed_longitudinal)?;
-        w.field(&self.ground_speed_transverse)?;
-        w.field(&self.ground_speed_status)?;
-        if self.trailing >= 1 {
-            w.field(&self.stern_water_speed_transverse)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.stern_water_speed_status)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.stern_ground_speed_transverse)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.stern_ground_speed_status)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("water_speed_longitudinal", &self.water_speed_longitudinal)?;
-        j.field("water_speed_transverse", &self.water_speed_transverse)?;
-        j.field("water_speed_status", &self.water_speed_status)?;
-        j.field("ground_speed_longitudinal", &self.ground_speed_longitudinal)?;
-        j.field("ground_speed_transverse", &self.ground_speed_transverse)?;
-        j.field("ground_speed_status", &self.ground_speed_status)?;
-        if self.trailing >= 1 {
-            j.field("stern_water_speed_transverse", &self.stern_water_speed_transverse)?;
-        }
-        if self.trailing >= 2 {
-            j.field("stern_water_speed_status", &self.stern_water_speed_status)?;
-        }
-        if self.trailing >= 3 {
-            j.field("stern_ground_speed_transverse", &self.stern_ground_speed_transverse)?;
-        }
-        if self.trailing >= 4 {
-            j.field("stern_ground_speed_status", &self.stern_ground_speed_status)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "water_speed_longitudinal", 1)?;
-        out.member(fields, "water_speed_transverse", 1)?;
-        out.member(fields, "water_speed_status", 1)?;
-        out.member(fields, "ground_speed_longitudinal", 1)?;
-        out.member(fields, "ground_speed_transverse", 1)?;
-        out.member(fields, "ground_speed_status", 1)?;
-        out.optional(fields, "stern_water_speed_transverse", 1)?;
-        out.optional(fields, "stern_water_speed_status", 1)?;
-        out.optional(fields, "stern_ground_speed_transverse", 1)?;
-        out.optional(fields, "stern_ground_speed_status", 1)?;
         Ok(())
     }
 }

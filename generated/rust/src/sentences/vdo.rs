@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::AisChannel;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -77,6 +75,14 @@ impl<'a> Layout<'a> for Vdo<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Encapsulated;
     const SHAPE: Shape = Shape { sentence: "VDO", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("fragment_count", 1),
+        JsonMember::Field("fragment_number", 1),
+        JsonMember::Field("message_id", 1),
+        JsonMember::Field("channel", 1),
+        JsonMember::Field("payload", 1),
+        JsonMember::Field("fill_bits", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -101,44 +107,13 @@ impl<'a> Layout<'a> for Vdo<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.fragment_count)?;
-        w.field(&self.fragment_number)?;
-        w.field(&self.message_id)?;
-        w.field(&self.channel)?;
-        w.field(&self.payload)?;
-        w.field(&self.fill_bits)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.fragment_count)?;
-        w.field(&self.fragment_number)?;
-        w.field(&self.message_id)?;
-        w.field(&self.channel)?;
-        w.field(&self.payload)?;
-        w.field(&self.fill_bits)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("fragment_count", &self.fragment_count)?;
-        j.field("fragment_number", &self.fragment_number)?;
-        j.field("message_id", &self.message_id)?;
-        j.field("channel", &self.channel)?;
-        j.field("payload", &self.payload)?;
-        j.field("fill_bits", &self.fill_bits)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "fragment_count", 1)?;
-        out.member(fields, "fragment_number", 1)?;
-        out.member(fields, "message_id", 1)?;
-        out.member(fields, "channel", 1)?;
-        out.member(fields, "payload", 1)?;
-        out.member(fields, "fill_bits", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("fragment_count", &self.fragment_count)?;
+        sink.field("fragment_number", &self.fragment_number)?;
+        sink.field("message_id", &self.message_id)?;
+        sink.field("channel", &self.channel)?;
+        sink.field("payload", &self.payload)?;
+        sink.field("fill_bits", &self.fill_bits)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// VDR: Set and drift.
@@ -72,6 +68,14 @@ impl<'a> Layout<'a> for Vdr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "VDR", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("direction_true", 1),
+        JsonMember::Field("direction_true_ref", 1),
+        JsonMember::Field("direction_magnetic", 1),
+        JsonMember::Field("direction_magnetic_ref", 1),
+        JsonMember::Field("current_speed", 1),
+        JsonMember::Field("current_speed_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -96,44 +100,13 @@ impl<'a> Layout<'a> for Vdr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.direction_true)?;
-        w.field(&self.direction_true_ref)?;
-        w.field(&self.direction_magnetic)?;
-        w.field(&self.direction_magnetic_ref)?;
-        w.field(&self.current_speed)?;
-        w.field(&self.current_speed_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.direction_true)?;
-        w.field(&self.direction_true_ref)?;
-        w.field(&self.direction_magnetic)?;
-        w.field(&self.direction_magnetic_ref)?;
-        w.field(&self.current_speed)?;
-        w.field(&self.current_speed_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("direction_true", &self.direction_true)?;
-        j.field("direction_true_ref", &self.direction_true_ref)?;
-        j.field("direction_magnetic", &self.direction_magnetic)?;
-        j.field("direction_magnetic_ref", &self.direction_magnetic_ref)?;
-        j.field("current_speed", &self.current_speed)?;
-        j.field("current_speed_unit", &self.current_speed_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "direction_true", 1)?;
-        out.member(fields, "direction_true_ref", 1)?;
-        out.member(fields, "direction_magnetic", 1)?;
-        out.member(fields, "direction_magnetic_ref", 1)?;
-        out.member(fields, "current_speed", 1)?;
-        out.member(fields, "current_speed_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("direction_true", &self.direction_true)?;
+        sink.field("direction_true_ref", &self.direction_true_ref)?;
+        sink.field("direction_magnetic", &self.direction_magnetic)?;
+        sink.field("direction_magnetic_ref", &self.direction_magnetic_ref)?;
+        sink.field("current_speed", &self.current_speed)?;
+        sink.field("current_speed_unit", &self.current_speed_unit)?;
         Ok(())
     }
 }

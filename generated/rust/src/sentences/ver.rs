@@ -11,11 +11,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// VER: Version.
@@ -85,6 +81,18 @@ impl<'a> Layout<'a> for Ver<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "VER", fixed: 10, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("total_sentences", 1),
+        JsonMember::Field("sentence_number", 1),
+        JsonMember::Field("device_type", 1),
+        JsonMember::Field("vendor_id", 1),
+        JsonMember::Field("unique_id", 1),
+        JsonMember::Field("serial_number", 1),
+        JsonMember::Field("model_code", 1),
+        JsonMember::Field("software_revision", 1),
+        JsonMember::Field("hardware_revision", 1),
+        JsonMember::Field("sequential_message_id", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -112,60 +120,17 @@ impl<'a> Layout<'a> for Ver<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.device_type)?;
-        w.field(&self.vendor_id)?;
-        w.field(&self.unique_id)?;
-        w.field(&self.serial_number)?;
-        w.field(&self.model_code)?;
-        w.field(&self.software_revision)?;
-        w.field(&self.hardware_revision)?;
-        w.field(&self.sequential_message_id)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.total_sentences)?;
-        w.field(&self.sentence_number)?;
-        w.field(&self.device_type)?;
-        w.field(&self.vendor_id)?;
-        w.field(&self.unique_id)?;
-        w.field(&self.serial_number)?;
-        w.field(&self.model_code)?;
-        w.field(&self.software_revision)?;
-        w.field(&self.hardware_revision)?;
-        w.field(&self.sequential_message_id)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("total_sentences", &self.total_sentences)?;
-        j.field("sentence_number", &self.sentence_number)?;
-        j.field("device_type", &self.device_type)?;
-        j.field("vendor_id", &self.vendor_id)?;
-        j.field("unique_id", &self.unique_id)?;
-        j.field("serial_number", &self.serial_number)?;
-        j.field("model_code", &self.model_code)?;
-        j.field("software_revision", &self.software_revision)?;
-        j.field("hardware_revision", &self.hardware_revision)?;
-        j.field("sequential_message_id", &self.sequential_message_id)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "total_sentences", 1)?;
-        out.member(fields, "sentence_number", 1)?;
-        out.member(fields, "device_type", 1)?;
-        out.member(fields, "vendor_id", 1)?;
-        out.member(fields, "unique_id", 1)?;
-        out.member(fields, "serial_number", 1)?;
-        out.member(fields, "model_code", 1)?;
-        out.member(fields, "software_revision", 1)?;
-        out.member(fields, "hardware_revision", 1)?;
-        out.member(fields, "sequential_message_id", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("total_sentences", &self.total_sentences)?;
+        sink.field("sentence_number", &self.sentence_number)?;
+        sink.field("device_type", &self.device_type)?;
+        sink.field("vendor_id", &self.vendor_id)?;
+        sink.field("unique_id", &self.unique_id)?;
+        sink.field("serial_number", &self.serial_number)?;
+        sink.field("model_code", &self.model_code)?;
+        sink.field("software_revision", &self.software_revision)?;
+        sink.field("hardware_revision", &self.hardware_revision)?;
+        sink.field("sequential_message_id", &self.sequential_message_id)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// VHW: Water speed and heading.
@@ -78,6 +74,16 @@ impl<'a> Layout<'a> for Vhw<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "VHW", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("heading_true", 1),
+        JsonMember::Field("heading_true_ref", 1),
+        JsonMember::Field("heading_magnetic", 1),
+        JsonMember::Field("heading_magnetic_ref", 1),
+        JsonMember::Field("speed_knots", 1),
+        JsonMember::Field("speed_knots_unit", 1),
+        JsonMember::Field("speed_kmh", 1),
+        JsonMember::Field("speed_kmh_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -103,52 +109,15 @@ impl<'a> Layout<'a> for Vhw<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.heading_true)?;
-        w.field(&self.heading_true_ref)?;
-        w.field(&self.heading_magnetic)?;
-        w.field(&self.heading_magnetic_ref)?;
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_kmh)?;
-        w.field(&self.speed_kmh_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.heading_true)?;
-        w.field(&self.heading_true_ref)?;
-        w.field(&self.heading_magnetic)?;
-        w.field(&self.heading_magnetic_ref)?;
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_kmh)?;
-        w.field(&self.speed_kmh_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("heading_true", &self.heading_true)?;
-        j.field("heading_true_ref", &self.heading_true_ref)?;
-        j.field("heading_magnetic", &self.heading_magnetic)?;
-        j.field("heading_magnetic_ref", &self.heading_magnetic_ref)?;
-        j.field("speed_knots", &self.speed_knots)?;
-        j.field("speed_knots_unit", &self.speed_knots_unit)?;
-        j.field("speed_kmh", &self.speed_kmh)?;
-        j.field("speed_kmh_unit", &self.speed_kmh_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "heading_true", 1)?;
-        out.member(fields, "heading_true_ref", 1)?;
-        out.member(fields, "heading_magnetic", 1)?;
-        out.member(fields, "heading_magnetic_ref", 1)?;
-        out.member(fields, "speed_knots", 1)?;
-        out.member(fields, "speed_knots_unit", 1)?;
-        out.member(fields, "speed_kmh", 1)?;
-        out.member(fields, "speed_kmh_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("heading_true", &self.heading_true)?;
+        sink.field("heading_true_ref", &self.heading_true_ref)?;
+        sink.field("heading_magnetic", &self.heading_magnetic)?;
+        sink.field("heading_magnetic_ref", &self.heading_magnetic_ref)?;
+        sink.field("speed_knots", &self.speed_knots)?;
+        sink.field("speed_knots_unit", &self.speed_knots_unit)?;
+        sink.field("speed_kmh", &self.speed_kmh)?;
+        sink.field("speed_kmh_unit", &self.speed_kmh_unit)?;
         Ok(())
     }
 }

@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// VLW: Dual ground/water distance.
@@ -82,6 +78,16 @@ impl<'a> Layout<'a> for Vlw<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "VLW", fixed: 4, optional: 4, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("total_water_distance", 1),
+        JsonMember::Field("total_water_distance_unit", 1),
+        JsonMember::Field("trip_water_distance", 1),
+        JsonMember::Field("trip_water_distance_unit", 1),
+        JsonMember::Optional("total_ground_distance", 1),
+        JsonMember::Optional("total_ground_distance_unit", 1),
+        JsonMember::Optional("trip_ground_distance", 1),
+        JsonMember::Optional("trip_ground_distance_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -118,76 +124,23 @@ impl<'a> Layout<'a> for Vlw<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.total_water_distance)?;
-        w.field(&self.total_water_distance_unit)?;
-        w.field(&self.trip_water_distance)?;
-        w.field(&self.trip_water_distance_unit)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("total_water_distance", &self.total_water_distance)?;
+        sink.field("total_water_distance_unit", &self.total_water_distance_unit)?;
+        sink.field("trip_water_distance", &self.trip_water_distance)?;
+        sink.field("trip_water_distance_unit", &self.trip_water_distance_unit)?;
         if self.trailing >= 1 {
-            w.field(&self.total_ground_distance)?;
+            sink.field("total_ground_distance", &self.total_ground_distance)?;
         }
         if self.trailing >= 2 {
-            w.field(&self.total_ground_distance_unit)?;
+            sink.field("total_ground_distance_unit", &self.total_ground_distance_unit)?;
         }
         if self.trailing >= 3 {
-            w.field(&self.trip_ground_distance)?;
+            sink.field("trip_ground_distance", &self.trip_ground_distance)?;
         }
         if self.trailing >= 4 {
-            w.field(&self.trip_ground_distance_unit)?;
+            sink.field("trip_ground_distance_unit", &self.trip_ground_distance_unit)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.total_water_distance)?;
-        w.field(&self.total_water_distance_unit)?;
-        w.field(&self.trip_water_distance)?;
-        w.field(&self.trip_water_distance_unit)?;
-        if self.trailing >= 1 {
-            w.field(&self.total_ground_distance)?;
-        }
-        if self.trailing >= 2 {
-            w.field(&self.total_ground_distance_unit)?;
-        }
-        if self.trailing >= 3 {
-            w.field(&self.trip_ground_distance)?;
-        }
-        if self.trailing >= 4 {
-            w.field(&self.trip_ground_distance_unit)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("total_water_distance", &self.total_water_distance)?;
-        j.field("total_water_distance_unit", &self.total_water_distance_unit)?;
-        j.field("trip_water_distance", &self.trip_water_distance)?;
-        j.field("trip_water_distance_unit", &self.trip_water_distance_unit)?;
-        if self.trailing >= 1 {
-            j.field("total_ground_distance", &self.total_ground_distance)?;
-        }
-        if self.trailing >= 2 {
-            j.field("total_ground_distance_unit", &self.total_ground_distance_unit)?;
-        }
-        if self.trailing >= 3 {
-            j.field("trip_ground_distance", &self.trip_ground_distance)?;
-        }
-        if self.trailing >= 4 {
-            j.field("trip_ground_distance_unit", &self.trip_ground_distance_unit)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "total_water_distance", 1)?;
-        out.member(fields, "total_water_distance_unit", 1)?;
-        out.member(fields, "trip_water_distance", 1)?;
-        out.member(fields, "trip_water_distance_unit", 1)?;
-        out.optional(fields, "total_ground_distance", 1)?;
-        out.optional(fields, "total_ground_distance_unit", 1)?;
-        out.optional(fields, "trip_ground_distance", 1)?;
-        out.optional(fields, "trip_ground_distance_unit", 1)?;
         Ok(())
     }
 }

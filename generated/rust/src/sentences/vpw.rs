@@ -9,11 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// VPW: Speed measured parallel to wind.
@@ -70,6 +66,12 @@ impl<'a> Layout<'a> for Vpw<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "VPW", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("speed_knots", 1),
+        JsonMember::Field("speed_knots_unit", 1),
+        JsonMember::Field("speed_ms", 1),
+        JsonMember::Field("speed_ms_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -90,36 +92,11 @@ impl<'a> Layout<'a> for Vpw<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_ms)?;
-        w.field(&self.speed_ms_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_ms)?;
-        w.field(&self.speed_ms_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("speed_knots", &self.speed_knots)?;
-        j.field("speed_knots_unit", &self.speed_knots_unit)?;
-        j.field("speed_ms", &self.speed_ms)?;
-        j.field("speed_ms_unit", &self.speed_ms_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "speed_knots", 1)?;
-        out.member(fields, "speed_knots_unit", 1)?;
-        out.member(fields, "speed_ms", 1)?;
-        out.member(fields, "speed_ms_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("speed_knots", &self.speed_knots)?;
+        sink.field("speed_knots_unit", &self.speed_knots_unit)?;
+        sink.field("speed_ms", &self.speed_ms)?;
+        sink.field("speed_ms_unit", &self.speed_ms_unit)?;
         Ok(())
     }
 }

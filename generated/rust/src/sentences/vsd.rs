@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::VsdNavStatus;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -82,6 +79,17 @@ impl<'a> Layout<'a> for Vsd<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "VSD", fixed: 9, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("ship_type", 1),
+        JsonMember::Field("draught", 1),
+        JsonMember::Field("persons", 1),
+        JsonMember::Field("destination", 1),
+        JsonMember::Field("eta_time", 1),
+        JsonMember::Field("eta_day", 1),
+        JsonMember::Field("eta_month", 1),
+        JsonMember::Field("nav_status", 1),
+        JsonMember::Field("regional_flags", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -108,56 +116,16 @@ impl<'a> Layout<'a> for Vsd<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.ship_type)?;
-        w.field(&self.draught)?;
-        w.field(&self.persons)?;
-        w.field(&self.destination)?;
-        w.field(&self.eta_time)?;
-        w.field(&self.eta_day)?;
-        w.field(&self.eta_month)?;
-        w.field(&self.nav_status)?;
-        w.field(&self.regional_flags)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.ship_type)?;
-        w.field(&self.draught)?;
-        w.field(&self.persons)?;
-        w.field(&self.destination)?;
-        w.field(&self.eta_time)?;
-        w.field(&self.eta_day)?;
-        w.field(&self.eta_month)?;
-        w.field(&self.nav_status)?;
-        w.field(&self.regional_flags)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("ship_type", &self.ship_type)?;
-        j.field("draught", &self.draught)?;
-        j.field("persons", &self.persons)?;
-        j.field("destination", &self.destination)?;
-        j.field("eta_time", &self.eta_time)?;
-        j.field("eta_day", &self.eta_day)?;
-        j.field("eta_month", &self.eta_month)?;
-        j.field("nav_status", &self.nav_status)?;
-        j.field("regional_flags", &self.regional_flags)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "ship_type", 1)?;
-        out.member(fields, "draught", 1)?;
-        out.member(fields, "persons", 1)?;
-        out.member(fields, "destination", 1)?;
-        out.member(fields, "eta_time", 1)?;
-        out.member(fields, "eta_day", 1)?;
-        out.member(fields, "eta_month", 1)?;
-        out.member(fields, "nav_status", 1)?;
-        out.member(fields, "regional_flags", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("ship_type", &self.ship_type)?;
+        sink.field("draught", &self.draught)?;
+        sink.field("persons", &self.persons)?;
+        sink.field("destination", &self.destination)?;
+        sink.field("eta_time", &self.eta_time)?;
+        sink.field("eta_day", &self.eta_day)?;
+        sink.field("eta_month", &self.eta_month)?;
+        sink.field("nav_status", &self.nav_status)?;
+        sink.field("regional_flags", &self.regional_flags)?;
         Ok(())
     }
 }

@@ -10,11 +10,9 @@
 use core::fmt;
 
 use crate::enums::PosMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read,
-    Shape, WireWriter,
+    Bound, Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read,
+    Shape,
 };
 use crate::LayoutId;
 
@@ -86,6 +84,17 @@ impl<'a> Layout<'a> for Vtg<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "VTG", fixed: 8, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("course_true", 1),
+        JsonMember::Field("course_true_ref", 1),
+        JsonMember::Field("course_magnetic", 1),
+        JsonMember::Field("course_magnetic_ref", 1),
+        JsonMember::Field("speed_knots", 1),
+        JsonMember::Field("speed_knots_unit", 1),
+        JsonMember::Field("speed_kmh", 1),
+        JsonMember::Field("speed_kmh_unit", 1),
+        JsonMember::Optional("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -138,62 +147,18 @@ impl<'a> Layout<'a> for Vtg<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.course_true)?;
-        w.field(&self.course_true_ref)?;
-        w.field(&self.course_magnetic)?;
-        w.field(&self.course_magnetic_ref)?;
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_kmh)?;
-        w.field(&self.speed_kmh_unit)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("course_true", &self.course_true)?;
+        sink.field("course_true_ref", &self.course_true_ref)?;
+        sink.field("course_magnetic", &self.course_magnetic)?;
+        sink.field("course_magnetic_ref", &self.course_magnetic_ref)?;
+        sink.field("speed_knots", &self.speed_knots)?;
+        sink.field("speed_knots_unit", &self.speed_knots_unit)?;
+        sink.field("speed_kmh", &self.speed_kmh)?;
+        sink.field("speed_kmh_unit", &self.speed_kmh_unit)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.course_true)?;
-        w.field(&self.course_true_ref)?;
-        w.field(&self.course_magnetic)?;
-        w.field(&self.course_magnetic_ref)?;
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_kmh)?;
-        w.field(&self.speed_kmh_unit)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("course_true", &self.course_true)?;
-        j.field("course_true_ref", &self.course_true_ref)?;
-        j.field("course_magnetic", &self.course_magnetic)?;
-        j.field("course_magnetic_ref", &self.course_magnetic_ref)?;
-        j.field("speed_knots", &self.speed_knots)?;
-        j.field("speed_knots_unit", &self.speed_knots_unit)?;
-        j.field("speed_kmh", &self.speed_kmh)?;
-        j.field("speed_kmh_unit", &self.speed_kmh_unit)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "course_true", 1)?;
-        out.member(fields, "course_true_ref", 1)?;
-        out.member(fields, "course_magnetic", 1)?;
-        out.member(fields, "course_magnetic_ref", 1)?;
-        out.member(fields, "speed_knots", 1)?;
-        out.member(fields, "speed_knots_unit", 1)?;
-        out.member(fields, "speed_kmh", 1)?;
-        out.member(fields, "speed_kmh_unit", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }

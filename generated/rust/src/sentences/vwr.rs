@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::LeftRight;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -79,6 +77,16 @@ impl<'a> Layout<'a> for Vwr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "VWR", fixed: 8, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("wind_angle", 1),
+        JsonMember::Field("wind_side", 1),
+        JsonMember::Field("speed_knots", 1),
+        JsonMember::Field("speed_knots_unit", 1),
+        JsonMember::Field("speed_ms", 1),
+        JsonMember::Field("speed_ms_unit", 1),
+        JsonMember::Field("speed_kmh", 1),
+        JsonMember::Field("speed_kmh_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -104,52 +112,15 @@ impl<'a> Layout<'a> for Vwr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.wind_angle)?;
-        w.field(&self.wind_side)?;
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_ms)?;
-        w.field(&self.speed_ms_unit)?;
-        w.field(&self.speed_kmh)?;
-        w.field(&self.speed_kmh_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.wind_angle)?;
-        w.field(&self.wind_side)?;
-        w.field(&self.speed_knots)?;
-        w.field(&self.speed_knots_unit)?;
-        w.field(&self.speed_ms)?;
-        w.field(&self.speed_ms_unit)?;
-        w.field(&self.speed_kmh)?;
-        w.field(&self.speed_kmh_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("wind_angle", &self.wind_angle)?;
-        j.field("wind_side", &self.wind_side)?;
-        j.field("speed_knots", &self.speed_knots)?;
-        j.field("speed_knots_unit", &self.speed_knots_unit)?;
-        j.field("speed_ms", &self.speed_ms)?;
-        j.field("speed_ms_unit", &self.speed_ms_unit)?;
-        j.field("speed_kmh", &self.speed_kmh)?;
-        j.field("speed_kmh_unit", &self.speed_kmh_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "wind_angle", 1)?;
-        out.member(fields, "wind_side", 1)?;
-        out.member(fields, "speed_knots", 1)?;
-        out.member(fields, "speed_knots_unit", 1)?;
-        out.member(fields, "speed_ms", 1)?;
-        out.member(fields, "speed_ms_unit", 1)?;
-        out.member(fields, "speed_kmh", 1)?;
-        out.member(fields, "speed_kmh_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("wind_angle", &self.wind_angle)?;
+        sink.field("wind_side", &self.wind_side)?;
+        sink.field("speed_knots", &self.speed_knots)?;
+        sink.field("speed_knots_unit", &self.speed_knots_unit)?;
+        sink.field("speed_ms", &self.speed_ms)?;
+        sink.field("speed_ms_unit", &self.speed_ms_unit)?;
+        sink.field("speed_kmh", &self.speed_kmh)?;
+        sink.field("speed_kmh_unit", &self.speed_kmh_unit)?;
         Ok(())
     }
 }

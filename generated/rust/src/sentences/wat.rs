@@ -11,10 +11,8 @@
 use core::fmt;
 
 use crate::enums::{WatAlarmCondition, WatMessageType, WatOverride, WatSystem};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time, WireWriter,
+    Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -81,6 +79,17 @@ impl<'a> Layout<'a> for Wat<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "WAT", fixed: 9, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("message_type", 1),
+        JsonMember::Field("time", 1),
+        JsonMember::Field("system", 1),
+        JsonMember::Field("location_1", 1),
+        JsonMember::Field("location_2", 1),
+        JsonMember::Field("point_number", 1),
+        JsonMember::Field("condition", 1),
+        JsonMember::Field("override", 1),
+        JsonMember::Field("description", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -106,56 +115,16 @@ impl<'a> Layout<'a> for Wat<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message_type)?;
-        w.field(&self.time)?;
-        w.field(&self.system)?;
-        w.field(&self.location_1)?;
-        w.field(&self.location_2)?;
-        w.field(&self.point_number)?;
-        w.field(&self.condition)?;
-        w.field(&self.r#override)?;
-        w.field(&self.description)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.message_type)?;
-        w.field(&self.time)?;
-        w.field(&self.system)?;
-        w.field(&self.location_1)?;
-        w.field(&self.location_2)?;
-        w.field(&self.point_number)?;
-        w.field(&self.condition)?;
-        w.field(&self.r#override)?;
-        w.field(&self.description)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message_type", &self.message_type)?;
-        j.field("time", &self.time)?;
-        j.field("system", &self.system)?;
-        j.field("location_1", &self.location_1)?;
-        j.field("location_2", &self.location_2)?;
-        j.field("point_number", &self.point_number)?;
-        j.field("condition", &self.condition)?;
-        j.field("override", &self.r#override)?;
-        j.field("description", &self.description)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message_type", 1)?;
-        out.member(fields, "time", 1)?;
-        out.member(fields, "system", 1)?;
-        out.member(fields, "location_1", 1)?;
-        out.member(fields, "location_2", 1)?;
-        out.member(fields, "point_number", 1)?;
-        out.member(fields, "condition", 1)?;
-        out.member(fields, "override", 1)?;
-        out.member(fields, "description", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message_type", &self.message_type)?;
+        sink.field("time", &self.time)?;
+        sink.field("system", &self.system)?;
+        sink.field("location_1", &self.location_1)?;
+        sink.field("location_2", &self.location_2)?;
+        sink.field("point_number", &self.point_number)?;
+        sink.field("condition", &self.condition)?;
+        sink.field("override", &self.r#override)?;
+        sink.field("description", &self.description)?;
         Ok(())
     }
 }

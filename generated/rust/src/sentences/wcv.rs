@@ -10,11 +10,7 @@
 use core::fmt;
 
 use crate::enums::PosMode;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// WCV: Waypoint closure velocity.
@@ -74,6 +70,12 @@ impl<'a> Layout<'a> for Wcv<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "WCV", fixed: 3, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("velocity", 1),
+        JsonMember::Field("velocity_unit", 1),
+        JsonMember::Field("waypoint", 1),
+        JsonMember::Optional("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -97,42 +99,13 @@ impl<'a> Layout<'a> for Wcv<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.velocity)?;
-        w.field(&self.velocity_unit)?;
-        w.field(&self.waypoint)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("velocity", &self.velocity)?;
+        sink.field("velocity_unit", &self.velocity_unit)?;
+        sink.field("waypoint", &self.waypoint)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.velocity)?;
-        w.field(&self.velocity_unit)?;
-        w.field(&self.waypoint)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("velocity", &self.velocity)?;
-        j.field("velocity_unit", &self.velocity_unit)?;
-        j.field("waypoint", &self.waypoint)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "velocity", 1)?;
-        out.member(fields, "velocity_unit", 1)?;
-        out.member(fields, "waypoint", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }

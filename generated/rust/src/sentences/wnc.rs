@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// WNC: Distance, waypoint to waypoint.
@@ -70,6 +66,14 @@ impl<'a> Layout<'a> for Wnc<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "WNC", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("distance_nmi", 1),
+        JsonMember::Field("distance_nmi_unit", 1),
+        JsonMember::Field("distance_km", 1),
+        JsonMember::Field("distance_km_unit", 1),
+        JsonMember::Field("to_waypoint", 1),
+        JsonMember::Field("from_waypoint", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -92,44 +96,13 @@ impl<'a> Layout<'a> for Wnc<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.distance_nmi)?;
-        w.field(&self.distance_nmi_unit)?;
-        w.field(&self.distance_km)?;
-        w.field(&self.distance_km_unit)?;
-        w.field(&self.to_waypoint)?;
-        w.field(&self.from_waypoint)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.distance_nmi)?;
-        w.field(&self.distance_nmi_unit)?;
-        w.field(&self.distance_km)?;
-        w.field(&self.distance_km_unit)?;
-        w.field(&self.to_waypoint)?;
-        w.field(&self.from_waypoint)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("distance_nmi", &self.distance_nmi)?;
-        j.field("distance_nmi_unit", &self.distance_nmi_unit)?;
-        j.field("distance_km", &self.distance_km)?;
-        j.field("distance_km_unit", &self.distance_km_unit)?;
-        j.field("to_waypoint", &self.to_waypoint)?;
-        j.field("from_waypoint", &self.from_waypoint)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "distance_nmi", 1)?;
-        out.member(fields, "distance_nmi_unit", 1)?;
-        out.member(fields, "distance_km", 1)?;
-        out.member(fields, "distance_km_unit", 1)?;
-        out.member(fields, "to_waypoint", 1)?;
-        out.member(fields, "from_waypoint", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("distance_nmi", &self.distance_nmi)?;
+        sink.field("distance_nmi_unit", &self.distance_nmi_unit)?;
+        sink.field("distance_km", &self.distance_km)?;
+        sink.field("distance_km_unit", &self.distance_km_unit)?;
+        sink.field("to_waypoint", &self.to_waypoint)?;
+        sink.field("from_waypoint", &self.from_waypoint)?;
         Ok(())
     }
 }

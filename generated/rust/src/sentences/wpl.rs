@@ -9,9 +9,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Coordinate, Error, Fields, Framing, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Coordinate, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// WPL: Waypoint location.
@@ -64,6 +62,8 @@ impl<'a> Layout<'a> for Wpl<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "WPL", fixed: 5, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("waypoint_lat", 2), JsonMember::Field("waypoint_lon", 2), JsonMember::Field("waypoint", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -83,32 +83,10 @@ impl<'a> Layout<'a> for Wpl<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.waypoint_lat)?;
-        w.field(&self.waypoint_lon)?;
-        w.field(&self.waypoint)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.waypoint_lat)?;
-        w.field(&self.waypoint_lon)?;
-        w.field(&self.waypoint)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("waypoint_lat", &self.waypoint_lat)?;
-        j.field("waypoint_lon", &self.waypoint_lon)?;
-        j.field("waypoint", &self.waypoint)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "waypoint_lat", 2)?;
-        out.member(fields, "waypoint_lon", 2)?;
-        out.member(fields, "waypoint", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("waypoint_lat", &self.waypoint_lat)?;
+        sink.field("waypoint_lon", &self.waypoint_lon)?;
+        sink.field("waypoint", &self.waypoint)?;
         Ok(())
     }
 }

@@ -11,11 +11,9 @@
 use core::fmt;
 
 use crate::enums::{XdrTransducerType, XdrUnit};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    ByteWriter, Checksum, Code, Error, Fields, Framing, Group, GroupShape, JsonFields, Layout, Number, Range, Reader,
-    Shape, WireWriter,
+    Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
+    Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -46,37 +44,14 @@ impl<'a> XdrMeasurement<'a> {
             name: f.text("name", "text", None)?,
         })
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.transducer_type)?;
-        w.field(&self.measurement)?;
-        w.field(&self.unit)?;
-        w.field(&self.name)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.transducer_type)?;
-        w.field(&self.measurement)?;
-        w.field(&self.unit)?;
-        w.field(&self.name)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("transducer_type", &self.transducer_type)?;
-        j.field("measurement", &self.measurement)?;
-        j.field("unit", &self.unit)?;
-        j.field("name", &self.name)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "transducer_type", 1)?;
-        out.member(entry, "measurement", 1)?;
-        out.member(entry, "unit", 1)?;
-        out.member(entry, "name", 1)?;
+impl Entry for XdrMeasurement<'_> {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("transducer_type", &self.transducer_type)?;
+        sink.field("measurement", &self.measurement)?;
+        sink.field("unit", &self.unit)?;
+        sink.field("name", &self.name)?;
         Ok(())
     }
 }
@@ -133,6 +108,8 @@ impl<'a> Layout<'a> for Xdr<'a> {
         optional: 0,
         group: Some(GroupShape { id: "measurements", width: 4, min: 1, max: 10 }),
     };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Entries("measurements", &[("transducer_type", 1), ("measurement", 1), ("unit", 1), ("name", 1)])];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
@@ -150,30 +127,8 @@ impl<'a> Layout<'a> for Xdr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        for entry in &self.measurements {
-            entry.write_fields(w)?;
-        }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        for entry in &self.measurements {
-            entry.put_fields(w)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.entries("measurements", &self.measurements, |entry, j| entry.write_json_fields(j))?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        for entry in json::list(fields, "measurements")? {
-            XdrMeasurement::fields_from_json(entry, out)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.entries("measurements", &self.measurements)?;
         Ok(())
     }
 }

@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::{LeftRight, PosMode, Status};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -79,6 +77,14 @@ impl<'a> Layout<'a> for Xte<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "XTE", fixed: 5, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("status", 1),
+        JsonMember::Field("cycle_lock_status", 1),
+        JsonMember::Field("cross_track_error", 1),
+        JsonMember::Field("steer_direction", 1),
+        JsonMember::Field("cross_track_error_unit", 1),
+        JsonMember::Optional("mode", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -105,50 +111,15 @@ impl<'a> Layout<'a> for Xte<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.status)?;
-        w.field(&self.cycle_lock_status)?;
-        w.field(&self.cross_track_error)?;
-        w.field(&self.steer_direction)?;
-        w.field(&self.cross_track_error_unit)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("status", &self.status)?;
+        sink.field("cycle_lock_status", &self.cycle_lock_status)?;
+        sink.field("cross_track_error", &self.cross_track_error)?;
+        sink.field("steer_direction", &self.steer_direction)?;
+        sink.field("cross_track_error_unit", &self.cross_track_error_unit)?;
         if self.trailing >= 1 {
-            w.field(&self.mode)?;
+            sink.field("mode", &self.mode)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.status)?;
-        w.field(&self.cycle_lock_status)?;
-        w.field(&self.cross_track_error)?;
-        w.field(&self.steer_direction)?;
-        w.field(&self.cross_track_error_unit)?;
-        if self.trailing >= 1 {
-            w.field(&self.mode)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("status", &self.status)?;
-        j.field("cycle_lock_status", &self.cycle_lock_status)?;
-        j.field("cross_track_error", &self.cross_track_error)?;
-        j.field("steer_direction", &self.steer_direction)?;
-        j.field("cross_track_error_unit", &self.cross_track_error_unit)?;
-        if self.trailing >= 1 {
-            j.field("mode", &self.mode)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "status", 1)?;
-        out.member(fields, "cycle_lock_status", 1)?;
-        out.member(fields, "cross_track_error", 1)?;
-        out.member(fields, "steer_direction", 1)?;
-        out.member(fields, "cross_track_error_unit", 1)?;
-        out.optional(fields, "mode", 1)?;
         Ok(())
     }
 }

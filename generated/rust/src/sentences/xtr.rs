@@ -10,10 +10,8 @@
 use core::fmt;
 
 use crate::enums::LeftRight;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -67,6 +65,11 @@ impl<'a> Layout<'a> for Xtr<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "XTR", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("cross_track_error", 1),
+        JsonMember::Field("steer_direction", 1),
+        JsonMember::Field("cross_track_error_unit", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -87,32 +90,10 @@ impl<'a> Layout<'a> for Xtr<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.cross_track_error)?;
-        w.field(&self.steer_direction)?;
-        w.field(&self.cross_track_error_unit)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.cross_track_error)?;
-        w.field(&self.steer_direction)?;
-        w.field(&self.cross_track_error_unit)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("cross_track_error", &self.cross_track_error)?;
-        j.field("steer_direction", &self.steer_direction)?;
-        j.field("cross_track_error_unit", &self.cross_track_error_unit)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "cross_track_error", 1)?;
-        out.member(fields, "steer_direction", 1)?;
-        out.member(fields, "cross_track_error_unit", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("cross_track_error", &self.cross_track_error)?;
+        sink.field("steer_direction", &self.steer_direction)?;
+        sink.field("cross_track_error_unit", &self.cross_track_error_unit)?;
         Ok(())
     }
 }

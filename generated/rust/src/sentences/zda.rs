@@ -8,11 +8,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, FastReader, Fields, Framing, JsonFields, Layout, Number, Range, Read, Shape,
-    Time, WireWriter,
+    Bound, Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -74,6 +72,14 @@ impl<'a> Layout<'a> for Zda<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ZDA", fixed: 6, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("day", 1),
+        JsonMember::Field("month", 1),
+        JsonMember::Field("year", 1),
+        JsonMember::Field("local_zone_hours", 1),
+        JsonMember::Field("local_zone_minutes", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -111,44 +117,13 @@ impl<'a> Layout<'a> for Zda<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.day)?;
-        w.field(&self.month)?;
-        w.field(&self.year)?;
-        w.field(&self.local_zone_hours)?;
-        w.field(&self.local_zone_minutes)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.day)?;
-        w.field(&self.month)?;
-        w.field(&self.year)?;
-        w.field(&self.local_zone_hours)?;
-        w.field(&self.local_zone_minutes)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("day", &self.day)?;
-        j.field("month", &self.month)?;
-        j.field("year", &self.year)?;
-        j.field("local_zone_hours", &self.local_zone_hours)?;
-        j.field("local_zone_minutes", &self.local_zone_minutes)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "day", 1)?;
-        out.member(fields, "month", 1)?;
-        out.member(fields, "year", 1)?;
-        out.member(fields, "local_zone_hours", 1)?;
-        out.member(fields, "local_zone_minutes", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("day", &self.day)?;
+        sink.field("month", &self.month)?;
+        sink.field("year", &self.year)?;
+        sink.field("local_zone_hours", &self.local_zone_hours)?;
+        sink.field("local_zone_minutes", &self.local_zone_minutes)?;
         Ok(())
     }
 }

@@ -10,11 +10,8 @@
 use core::fmt;
 
 use crate::enums::ZdlPointType;
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, Time,
-    WireWriter,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -69,6 +66,11 @@ impl<'a> Layout<'a> for Zdl<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ZDL", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time_to_point", 1),
+        JsonMember::Field("distance_to_point", 1),
+        JsonMember::Field("point_type", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -89,32 +91,10 @@ impl<'a> Layout<'a> for Zdl<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time_to_point)?;
-        w.field(&self.distance_to_point)?;
-        w.field(&self.point_type)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time_to_point)?;
-        w.field(&self.distance_to_point)?;
-        w.field(&self.point_type)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time_to_point", &self.time_to_point)?;
-        j.field("distance_to_point", &self.distance_to_point)?;
-        j.field("point_type", &self.point_type)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time_to_point", 1)?;
-        out.member(fields, "distance_to_point", 1)?;
-        out.member(fields, "point_type", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time_to_point", &self.time_to_point)?;
+        sink.field("distance_to_point", &self.distance_to_point)?;
+        sink.field("point_type", &self.point_type)?;
         Ok(())
     }
 }

@@ -8,9 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Shape, Time, WireWriter};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape, Time};
 use crate::LayoutId;
 
 /// ZFO: UTC and time from origin waypoint.
@@ -63,6 +61,8 @@ impl<'a> Layout<'a> for Zfo<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "ZFO", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("time", 1), JsonMember::Field("elapsed_time", 1), JsonMember::Field("origin_waypoint", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -82,32 +82,10 @@ impl<'a> Layout<'a> for Zfo<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.elapsed_time)?;
-        w.field(&self.origin_waypoint)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.elapsed_time)?;
-        w.field(&self.origin_waypoint)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("elapsed_time", &self.elapsed_time)?;
-        j.field("origin_waypoint", &self.origin_waypoint)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "elapsed_time", 1)?;
-        out.member(fields, "origin_waypoint", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("elapsed_time", &self.elapsed_time)?;
+        sink.field("origin_waypoint", &self.origin_waypoint)?;
         Ok(())
     }
 }

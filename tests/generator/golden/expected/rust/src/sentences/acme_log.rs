@@ -8,9 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// ACME_LOG: Request a log.
@@ -64,6 +62,7 @@ impl<'a> Layout<'a> for AcmeLog<'a> {
     const FRAMING: Framing = Framing::Text("LOG");
     const SHAPE: Shape = Shape { sentence: "ACME_LOG", fixed: 2, optional: 0, group: None };
     const WORDS: &'static [(&'static str, usize)] = &[("message", 1), ("period", 1)];
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("message", 1), JsonMember::Field("period", 1)];
 
     fn parse_fields(fields: Fields<'a>, _checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -78,22 +77,9 @@ impl<'a> Layout<'a> for AcmeLog<'a> {
         self.as_received
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.message)?;
-        w.field(&self.period)?;
-        Ok(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("message", &self.message)?;
-        j.field("period", &self.period)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "message", 1)?;
-        out.member(fields, "period", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("message", &self.message)?;
+        sink.field("period", &self.period)?;
         Ok(())
     }
 }

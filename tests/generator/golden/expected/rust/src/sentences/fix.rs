@@ -9,11 +9,9 @@
 use core::fmt;
 
 use crate::enums::{FixQuality, SystemMode};
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Code, CodeChars, Coordinate, Date, Error, Fields, Framing, Hex, JsonFields, Layout,
-    Number, Range, Shape, Time, WireWriter,
+    Bound, Checksum, Code, CodeChars, Coordinate, Date, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout,
+    Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -90,6 +88,21 @@ impl<'a> Layout<'a> for Fix<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "FIX", fixed: 14, optional: 1, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("quality", 1),
+        JsonMember::Field("satellites", 1),
+        JsonMember::Field("altitude", 1),
+        JsonMember::Field("flags", 1),
+        JsonMember::Field("grade", 1),
+        JsonMember::Field("unit", 1),
+        JsonMember::Field("modes", 1),
+        JsonMember::Field("note", 1),
+        JsonMember::Optional("extra", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (_, extra) = fields.shape(&Self::SHAPE)?;
@@ -122,78 +135,22 @@ impl<'a> Layout<'a> for Fix<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.date)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.altitude)?;
-        w.field(&self.flags)?;
-        w.field(&self.grade)?;
-        w.field(&self.unit)?;
-        w.field(&self.modes)?;
-        w.field(&self.note)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("date", &self.date)?;
+        sink.field("quality", &self.quality)?;
+        sink.field("satellites", &self.satellites)?;
+        sink.field("altitude", &self.altitude)?;
+        sink.field("flags", &self.flags)?;
+        sink.field("grade", &self.grade)?;
+        sink.field("unit", &self.unit)?;
+        sink.field("modes", &self.modes)?;
+        sink.field("note", &self.note)?;
         if self.trailing >= 1 {
-            w.field(&self.extra)?;
+            sink.field("extra", &self.extra)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        w.field(&self.lon)?;
-        w.field(&self.date)?;
-        w.field(&self.quality)?;
-        w.field(&self.satellites)?;
-        w.field(&self.altitude)?;
-        w.field(&self.flags)?;
-        w.field(&self.grade)?;
-        w.field(&self.unit)?;
-        w.field(&self.modes)?;
-        w.field(&self.note)?;
-        if self.trailing >= 1 {
-            w.field(&self.extra)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("lat", &self.lat)?;
-        j.field("lon", &self.lon)?;
-        j.field("date", &self.date)?;
-        j.field("quality", &self.quality)?;
-        j.field("satellites", &self.satellites)?;
-        j.field("altitude", &self.altitude)?;
-        j.field("flags", &self.flags)?;
-        j.field("grade", &self.grade)?;
-        j.field("unit", &self.unit)?;
-        j.field("modes", &self.modes)?;
-        j.field("note", &self.note)?;
-        if self.trailing >= 1 {
-            j.field("extra", &self.extra)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat", 2)?;
-        out.member(fields, "lon", 2)?;
-        out.member(fields, "date", 1)?;
-        out.member(fields, "quality", 1)?;
-        out.member(fields, "satellites", 1)?;
-        out.member(fields, "altitude", 1)?;
-        out.member(fields, "flags", 1)?;
-        out.member(fields, "grade", 1)?;
-        out.member(fields, "unit", 1)?;
-        out.member(fields, "modes", 1)?;
-        out.member(fields, "note", 1)?;
-        out.optional(fields, "extra", 1)?;
         Ok(())
     }
 }
@@ -252,6 +209,7 @@ impl<'a> Layout<'a> for FixShort<'a> {
     const VARIANT: Option<&'static str> = Some("short");
     const FRAMING: Framing = Framing::Standard;
     const SHAPE: Shape = Shape { sentence: "FIX", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[JsonMember::Field("time", 1), JsonMember::Field("lat", 2)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -270,28 +228,9 @@ impl<'a> Layout<'a> for FixShort<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.time)?;
-        w.field(&self.lat)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("time", &self.time)?;
-        j.field("lat", &self.lat)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "time", 1)?;
-        out.member(fields, "lat", 2)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("lat", &self.lat)?;
         Ok(())
     }
 }

@@ -9,9 +9,7 @@
 use core::fmt;
 
 use crate::enums::AcmeBaud;
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{ByteWriter, Checksum, Code, Error, Fields, Framing, Hex, JsonFields, Layout, Shape, WireWriter};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
 use crate::LayoutId;
 
 /// PACMSET: Set a parameter.
@@ -66,6 +64,8 @@ impl<'a> Layout<'a> for Pacmset<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PACMSET");
     const SHAPE: Shape = Shape { sentence: "PACMSET", fixed: 3, optional: 0, group: None };
+    const JSON: &'static [JsonMember] =
+        &[JsonMember::Field("what", 1), JsonMember::Field("baud", 1), JsonMember::Field("outputs", 1)];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -81,32 +81,10 @@ impl<'a> Layout<'a> for Pacmset<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.keyword("BAUD")?;
-        w.field(&self.baud)?;
-        w.field(&self.outputs)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.keyword("BAUD")?;
-        w.field(&self.baud)?;
-        w.field(&self.outputs)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.keyword("what", "BAUD")?;
-        j.field("baud", &self.baud)?;
-        j.field("outputs", &self.outputs)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "what", 1)?;
-        out.member(fields, "baud", 1)?;
-        out.member(fields, "outputs", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.keyword("what", "BAUD")?;
+        sink.field("baud", &self.baud)?;
+        sink.field("outputs", &self.outputs)?;
         Ok(())
     }
 }

@@ -8,11 +8,9 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
 use crate::runtime::{
-    Bound, ByteWriter, Checksum, Error, Fields, Framing, Group, GroupShape, Hex, JsonFields, Layout, Number, Range,
-    Reader, Shape, WireWriter,
+    Bound, Checksum, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout, Number,
+    Range, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -39,37 +37,14 @@ impl SatSatellite {
             snr: f.integer("snr", "integer", Range::ANY)?,
         })
     }
+}
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.prn)?;
-        w.field(&self.elevation)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.snr)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.prn)?;
-        w.field(&self.elevation)?;
-        w.field(&self.azimuth)?;
-        w.field(&self.snr)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("prn", &self.prn)?;
-        j.field("elevation", &self.elevation)?;
-        j.field("azimuth", &self.azimuth)?;
-        j.field("snr", &self.snr)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(entry: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(entry, "prn", 1)?;
-        out.member(entry, "elevation", 1)?;
-        out.member(entry, "azimuth", 1)?;
-        out.member(entry, "snr", 1)?;
+impl Entry for SatSatellite {
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("prn", &self.prn)?;
+        sink.field("elevation", &self.elevation)?;
+        sink.field("azimuth", &self.azimuth)?;
+        sink.field("snr", &self.snr)?;
         Ok(())
     }
 }
@@ -135,6 +110,13 @@ impl<'a> Layout<'a> for Sat<'a> {
         optional: 1,
         group: Some(GroupShape { id: "satellites", width: 4, min: 0, max: 4 }),
     };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("total", 1),
+        JsonMember::Field("number", 1),
+        JsonMember::Field("in_view", 1),
+        JsonMember::Entries("satellites", &[("prn", 1), ("elevation", 1), ("azimuth", 1), ("snr", 1)]),
+        JsonMember::Optional("signal", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         let (repeats, extra) = fields.shape(&Self::SHAPE)?;
@@ -159,52 +141,14 @@ impl<'a> Layout<'a> for Sat<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.total)?;
-        w.field(&self.number)?;
-        w.field(&self.in_view)?;
-        for entry in &self.satellites {
-            entry.write_fields(w)?;
-        }
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("total", &self.total)?;
+        sink.field("number", &self.number)?;
+        sink.field("in_view", &self.in_view)?;
+        sink.entries("satellites", &self.satellites)?;
         if self.trailing >= 1 {
-            w.field(&self.signal)?;
+            sink.field("signal", &self.signal)?;
         }
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.total)?;
-        w.field(&self.number)?;
-        w.field(&self.in_view)?;
-        for entry in &self.satellites {
-            entry.put_fields(w)?;
-        }
-        if self.trailing >= 1 {
-            w.field(&self.signal)?;
-        }
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("total", &self.total)?;
-        j.field("number", &self.number)?;
-        j.field("in_view", &self.in_view)?;
-        j.entries("satellites", &self.satellites, |entry, j| entry.write_json_fields(j))?;
-        if self.trailing >= 1 {
-            j.field("signal", &self.signal)?;
-        }
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "total", 1)?;
-        out.member(fields, "number", 1)?;
-        out.member(fields, "in_view", 1)?;
-        for entry in json::list(fields, "satellites")? {
-            SatSatellite::fields_from_json(entry, out)?;
-        }
-        out.optional(fields, "signal", 1)?;
         Ok(())
     }
 }

@@ -8,11 +8,7 @@
 
 use core::fmt;
 
-#[cfg(feature = "std")]
-use crate::runtime::json;
-use crate::runtime::{
-    ByteWriter, Checksum, Error, Fields, Framing, JsonFields, Layout, Number, Range, Shape, WireWriter,
-};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
 use crate::LayoutId;
 
 /// XDM: An encapsulation sentence.
@@ -66,6 +62,12 @@ impl<'a> Layout<'a> for Xdm<'a> {
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Encapsulated;
     const SHAPE: Shape = Shape { sentence: "XDM", fixed: 4, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("count", 1),
+        JsonMember::Field("fragment", 1),
+        JsonMember::Field("message_id", 1),
+        JsonMember::Field("payload", 1),
+    ];
 
     fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
         fields.shape(&Self::SHAPE)?;
@@ -86,36 +88,11 @@ impl<'a> Layout<'a> for Xdm<'a> {
         self.checksum
     }
 
-    fn write_fields<W: fmt::Write + ?Sized>(&self, w: &mut WireWriter<'_, W>) -> fmt::Result {
-        w.field(&self.count)?;
-        w.field(&self.fragment)?;
-        w.field(&self.message_id)?;
-        w.field(&self.payload)?;
-        Ok(())
-    }
-
-    fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
-        w.field(&self.count)?;
-        w.field(&self.fragment)?;
-        w.field(&self.message_id)?;
-        w.field(&self.payload)?;
-        Some(())
-    }
-
-    fn write_json_fields<W: fmt::Write + ?Sized>(&self, j: &mut JsonFields<'_, W>) -> fmt::Result {
-        j.field("count", &self.count)?;
-        j.field("fragment", &self.fragment)?;
-        j.field("message_id", &self.message_id)?;
-        j.field("payload", &self.payload)?;
-        Ok(())
-    }
-
-    #[cfg(feature = "std")]
-    fn fields_from_json(fields: &json::Value, out: &mut json::WireFields) -> Result<(), Error<'static>> {
-        out.member(fields, "count", 1)?;
-        out.member(fields, "fragment", 1)?;
-        out.member(fields, "message_id", 1)?;
-        out.member(fields, "payload", 1)?;
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("count", &self.count)?;
+        sink.field("fragment", &self.fragment)?;
+        sink.field("message_id", &self.message_id)?;
+        sink.field("payload", &self.payload)?;
         Ok(())
     }
 }
