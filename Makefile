@@ -10,7 +10,7 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build test test-steps test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
+.PHONY: generate validate check build footprint test test-steps test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-differential
 
@@ -153,6 +153,12 @@ BENCH_PY_LINES ?= 100000
 
 bench: build
 	python3 bench/run.py --rounds $(BENCH_ROUNDS) --lines $(BENCH_LINES) --python-lines $(BENCH_PY_LINES)
+
+# `make footprint` (not part of `make test`): the C pair's code size at -Os and sizeof(nmea_sentence),
+# for a five-sentence subset and the whole spec (tools/footprint.py; FOOTPRINT_FLAGS for a cross build,
+# e.g. FOOTPRINT_FLAGS='--cc arm-none-eabi-gcc --cflags "-mcpu=cortex-m4 -mthumb"').
+footprint: $(STAMP)
+	$(PY) tools/footprint.py $(FOOTPRINT_FLAGS)
 
 # --- fuzzing ---------------------------------------------------------------------------------
 # `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds, then replays what they

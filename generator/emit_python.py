@@ -64,10 +64,14 @@ def call_lines(function: str, args: list[str], indent: int, end: str = "") -> li
 
 
 def _split_str(arg: str, width: int) -> list[str]:
-    """A JSON string literal `arg` as implicitly joined literals of at most `width` characters."""
-    if len(arg) <= width or not arg.startswith('"'):
+    """A JSON string literal `arg` (or a keyword argument `name="..."`) as implicitly joined
+    literals of at most `width` characters."""
+    name, _, literal = arg.partition("=") if arg[:1].isalpha() and '="' in arg else ("", "", arg)
+    if len(arg) <= width or not literal.startswith('"'):
         return [arg]
-    text = json.loads(arg)
+    if name:
+        return [f"{name}=(", *("    " + part for part in _split_str(literal, width - 4)), ")"]
+    text = json.loads(literal)
     parts: list[str] = []
     while text:
         cut = len(text)
@@ -77,6 +81,47 @@ def _split_str(arg: str, width: int) -> list[str]:
         parts.append(json.dumps(text[:cut]))
         text = text[cut:]
     return parts
+
+
+def py_call(function: str, args: list[str], indent: int, end: str = "") -> str:
+    """call_lines for a template: the lines joined, all but the first indented by `indent`."""
+    return ("\n" + " " * indent).join(call_lines(function, args, indent, end))
+
+
+def py_import(module: str, names: list[str], indent: int, reexport: bool = True) -> str:
+    """`from module import A, ...` (`reexport`: `A as A`), in parentheses a name a line when it is
+    longer than WIDTH."""
+    names = [f"{n} as {n}" if reexport else n for n in names]
+    one = f"from {module} import {', '.join(names)}"
+    if indent + len(one) <= WIDTH:
+        return one
+    pad = "\n" + " " * (indent + 4)
+    return f"from {module} import (" + "".join(f"{pad}{n}," for n in names) + "\n" + " " * indent + ")"
+
+
+def py_tuple(items: list[str], indent: int, used: int = 0, end: str = "", brackets: str = "()") -> str:
+    """A tuple of `items` (or, `brackets` "{}", a dict of "key: value" items) that `used`
+    characters precede: on its line when it fits in WIDTH, else an item a line."""
+    one = f"{brackets[0]}{', '.join(items)}{',' if len(items) == 1 and brackets == '()' else ''}{brackets[1]}{end}"
+    if indent + used + len(one) <= WIDTH:
+        return one
+    pad = "\n" + " " * (indent + 4)
+    return brackets[0] + "".join(f"{pad}{item}," for item in items) + "\n" + " " * indent + brackets[1] + end
+
+
+def py_str(text: str, indent: int, used: int = 0) -> str:
+    """A string literal of `text` that `used` characters precede on a line indented by `indent`:
+    one literal when it fits in WIDTH, else pieces in parentheses, a line each."""
+    literal = json.dumps(text)
+    if indent + used + len(literal) + 1 <= WIDTH:
+        return literal
+    pad = "\n" + " " * (indent + 4)
+    return "(" + pad + pad.join(_split_str(literal, WIDTH - indent - 4)) + "\n" + " " * indent + ")"
+
+
+def py_doc(text: str, indent: int) -> str:
+    """A docstring of `text` wrapped to WIDTH, all but its first line indented by `indent`."""
+    return ("\n" + " " * indent).join(docstring(text, indent))
 
 
 def docstring(text: str, indent: int) -> list[str]:
@@ -182,7 +227,8 @@ def _outcome(layout: Layout) -> str | None:
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    env.globals.update(py=py_literal, json=json)
+    env.globals.update(py=py_literal, json=json, py_call=py_call, py_str=py_str, py_doc=py_doc,
+                       py_import=py_import, py_tuple=py_tuple)
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
     runtime = (TEMPLATES / "python" / "runtime.py").read_text(encoding="utf-8")

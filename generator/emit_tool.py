@@ -8,7 +8,7 @@ import re
 import jinja2
 
 from .emit import TEMPLATES, header
-from .emit_python import PACKAGE, py_literal
+from .emit_python import PACKAGE, py_call, py_literal, py_str
 from .model import Spec
 
 
@@ -61,7 +61,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     vendors = [m for m in spec.manuals if any(c["vendor"] == m.id for c in commands)]
     files = {
         f"{base}/commands.py": env.get_template("python/commands.py.j2").render(
-            header=header(spec, "#"), commands=commands, shortcuts=shortcuts, vendors=vendors, py=py_literal),
+            header=header(spec, "#"), commands=commands, shortcuts=shortcuts, vendors=vendors, py=py_literal,
+            py_call=py_call, py_str=py_str),
         f"{base}/tool.py": header(spec, "#", ["templates/python/tool.py"])
         + (TEMPLATES / "python" / "tool.py").read_text(encoding="utf-8"),
     }

@@ -43,12 +43,23 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
     # The common case first: a `$` sentence in printable ASCII whose checksum matches, decoded
     # without building a Frame; anything else takes the general path below, which reports it.
     star = len(line) - 3
-    if line[:1] == "$" and line.find("*") == star and len(line) <= runtime.MAX_LINE and line.isascii() \
-            and line.isprintable():
+    if (
+        line[:1] == "$"
+        and line.find("*") == star
+        and len(line) <= runtime.MAX_LINE
+        and line.isascii()
+        and line.isprintable()
+    ):
         body = line[1:star]
-        sent = line[star + 1:]
+        sent = line[star + 1 :]
         computed = runtime.checksum(body)
-        checksum = "upper" if sent == _UPPER_HEX[computed] else "lower" if sent == _LOWER_HEX[computed] else None
+        checksum = (
+            "upper"
+            if sent == _UPPER_HEX[computed]
+            else "lower"
+            if sent == _LOWER_HEX[computed]
+            else None
+        )
         fields = body.split(",")
         address = fields[0]
         if checksum is not None and address.isalnum():
@@ -77,7 +88,9 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
     frame = runtime.frame(line, require_checksum)
     checksum = runtime.checksum_case(frame.checksum)
     address = frame.address
-    layouts = (BY_ADDRESS.get(address) or sentences.by_address(address)) if frame.start == "$" else None
+    layouts = (
+        (BY_ADDRESS.get(address) or sentences.by_address(address)) if frame.start == "$" else None
+    )
     if layouts is not None and not runtime.claimed(layouts, frame.fields):
         layouts = None
     if layouts is None and runtime.is_standard_address(frame.start, address):
@@ -100,15 +113,20 @@ _UPPER_HEX = [f"{value:02X}" for value in range(256)]
 _LOWER_HEX = [f"{value:02x}" for value in range(256)]
 
 
-def _lenient(layouts: tuple[Any, ...], address: str, fields: list[str], checksum: str | None,
-             err: NmeaError) -> Any:
+def _lenient(
+    layouts: tuple[Any, ...], address: str, fields: list[str], checksum: str | None, err: NmeaError
+) -> Any:
     """Parse again with every field that does not fit left empty, one at a time; a field that is
     already empty and still does not fit, or one problem more than MAX_PROBLEMS, ends the attempt
     with its error."""
     fields = list(fields)
     problems: list[NmeaError] = []
-    while err.kind == "bad_field" and err.field is not None and fields[err.field - 1] \
-            and len(problems) < runtime.MAX_PROBLEMS:
+    while (
+        err.kind == "bad_field"
+        and err.field is not None
+        and fields[err.field - 1]
+        and len(problems) < runtime.MAX_PROBLEMS
+    ):
         problems.append(err)
         fields[err.field - 1] = ""
         try:
@@ -121,8 +139,9 @@ def _lenient(layouts: tuple[Any, ...], address: str, fields: list[str], checksum
     raise err
 
 
-def _first_fit(layouts: tuple[Any, ...], address: str, fields: list[str], checksum: str | None,
-               line: str) -> Any:
+def _first_fit(
+    layouts: tuple[Any, ...], address: str, fields: list[str], checksum: str | None, line: str
+) -> Any:
     """The first layout that parses the fields. When none does, the error of the layouts whose
     keyword the line holds in its place (else of all): the first bad field, else the first error."""
     errors = []
@@ -153,27 +172,38 @@ def to_json(sentence: Any, values: bool = False) -> str:
     text = sentence.to_sentence()
     if isinstance(sentence, Generic):
         fields = "[" + ",".join(runtime.json_str(f) for f in sentence.fields) + "]"
-        head = (f'{{"ok":true,"start":{runtime.json_str(sentence.start)},"address":{runtime.json_str(sentence.address)},'
-                '"talker":null,"sentence":null,"variant":null,"fields":')
+        head = (
+            f'{{"ok":true,"start":{runtime.json_str(sentence.start)},"address":{runtime.json_str(sentence.address)},'
+            '"talker":null,"sentence":null,"variant":null,"fields":'
+        )
     else:
         if sentence.ADDRESS is None:
-            start, address, talker = text[0], sentence.talker + sentence.SENTENCE, runtime.json_str(sentence.talker)
+            start, address, talker = (
+                text[0],
+                sentence.talker + sentence.SENTENCE,
+                runtime.json_str(sentence.talker),
+            )
         elif sentence.checksum is None and not text.startswith("$"):
             start, address, talker = "", runtime.first_word(text), "null"
         else:
             start, address, talker = "$", sentence.ADDRESS, "null"
-        head = (f'{{"ok":true,"start":"{start}","address":{runtime.json_str(address)},"talker":{talker},'
-                f'"sentence":"{sentence.SENTENCE}","variant":{runtime.json_opt(sentence.VARIANT)},"fields":')
+        head = (
+            f'{{"ok":true,"start":"{start}","address":{runtime.json_str(address)},"talker":{talker},'
+            f'"sentence":"{sentence.SENTENCE}","variant":{runtime.json_opt(sentence.VARIANT)},"fields":'
+        )
         fields = sentence.fields_json(values)
         if sentence.problems:
-            fields += ',"problems":[' + ",".join(runtime.problem_json(p) for p in sentence.problems) + "]"
+            fields += (
+                ',"problems":[' + ",".join(runtime.problem_json(p) for p in sentence.problems) + "]"
+            )
     star = text.rfind("*") if sentence.checksum is not None else -1
-    checksum = runtime.json_opt(text[star + 1:] if star >= 0 else None)
+    checksum = runtime.json_opt(text[star + 1 :] if star >= 0 else None)
     return f'{head}{fields},"checksum":{checksum}}}'
 
 
-def decode_json(line: str | bytes, values: bool = False, lenient: bool = False,
-                require_checksum: bool = False) -> str:
+def decode_json(
+    line: str | bytes, values: bool = False, lenient: bool = False, require_checksum: bool = False
+) -> str:
     """`decode`'s output for one line: the sentence as JSON, or the error as JSON."""
     try:
         return to_json(parse(line, lenient, require_checksum), values)
@@ -192,9 +222,16 @@ def from_json(obj: Any) -> Any:
         start = runtime.json_str_member(obj, "start")
         if start not in ("$", "!"):
             raise runtime.bad_json('"start" is not "$" or "!"')
-        return Generic(runtime.json_word(obj, "address"), [runtime.json_text(f) for f in fields], start, checksum)
+        return Generic(
+            runtime.json_word(obj, "address"),
+            [runtime.json_text(f) for f in fields],
+            start,
+            checksum,
+        )
     variant = runtime.json_opt_text(obj, "variant")
-    layout = next((lay for lay in sentences.layouts(sentence_id) or () if lay.VARIANT == variant), None)
+    layout = next(
+        (lay for lay in sentences.layouts(sentence_id) or () if lay.VARIANT == variant), None
+    )
     if layout is None:
         raise runtime.bad_json(f'unknown sentence "{sentence_id}"')
     fields = runtime.json_member(obj, "fields")
@@ -223,7 +260,11 @@ def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum:
         if not isinstance(index, int) or isinstance(index, bool) or not 1 <= index <= len(texts):
             raise runtime.bad_json('a problem\'s "field" is not the index of a field')
         texts[index - 1] = runtime.json_text(runtime.json_member(problem, "text"))
-    address = runtime.json_word(obj, "talker") + layout.SENTENCE if layout.ADDRESS is None else layout.ADDRESS
+    address = (
+        runtime.json_word(obj, "talker") + layout.SENTENCE
+        if layout.ADDRESS is None
+        else layout.ADDRESS
+    )
     try:
         return _first_fit((layout,), address, texts, checksum, "")
     except NmeaError as err:

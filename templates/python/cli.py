@@ -14,8 +14,10 @@ from . import decode_json, encode_json
 from .runtime import json_too_deep
 from .stream import json_lines
 
-USAGE = ("usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] | encode\n"
-         "       (reads stdin, writes stdout)\n")
+USAGE = (
+    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] | encode\n"
+    "       (reads stdin, writes stdout)\n"
+)
 FLAGS = ("--values", "--lenient", "--require-checksum")
 
 
@@ -30,11 +32,18 @@ def lines(data: bytes) -> list[str]:
 def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else argv
     verb, flags = (args[0], args[1:]) if args else ("", [])
-    if verb in ("decode", "stream") and all(f in FLAGS for f in flags) and len(set(flags)) == len(flags):
+    if (
+        verb in ("decode", "stream")
+        and all(f in FLAGS for f in flags)
+        and len(set(flags)) == len(flags)
+    ):
         values, lenient, required = (f in flags for f in FLAGS)
         out: Iterator[str]
         if verb == "decode":
-            out = (decode_json(line, values, lenient, required) for line in lines(sys.stdin.buffer.read()))
+            out = (
+                decode_json(line, values, lenient, required)
+                for line in lines(sys.stdin.buffer.read())
+            )
         else:
             out = json_lines(sys.stdin.buffer, values, lenient=lenient, require_checksum=required)
         write = sys.stdout.buffer.write

@@ -16,7 +16,7 @@ MAX_LINE: Final = 1024
 """Longest line (without its line ending) the parser accepts."""
 
 MAX_PROBLEMS: Final = 8
-"""Most fields lenient parsing leaves empty in one sentence (the C and Rust structs hold as many)."""
+"""Most fields lenient parsing leaves empty in one sentence (as many as C and Rust keep)."""
 
 MAX_DIGITS: Final = 18
 """Most digits a number may have, so that every runtime holds it in a signed 64-bit integer."""
@@ -27,8 +27,15 @@ _HEX_DIGITS: Final = frozenset("0123456789abcdefABCDEF")
 class NmeaError(ValueError):
     """A line that is not a valid sentence, or a sentence that does not fit its layout."""
 
-    def __init__(self, kind: str, message: str, address: str | None = None,
-                 field: int | None = None, name: str | None = None, text: str | None = None) -> None:
+    def __init__(
+        self,
+        kind: str,
+        message: str,
+        address: str | None = None,
+        field: int | None = None,
+        name: str | None = None,
+        text: str | None = None,
+    ) -> None:
         super().__init__(message)
         self.kind = kind
         self.message = message
@@ -44,9 +51,11 @@ class NmeaError(ValueError):
         return f"{self.kind}: {where}: {self.message}"
 
     def to_json(self) -> str:
-        return (f'{{"ok":false,"error":{{"kind":{json_str(self.kind)},"address":{json_opt(self.address)},'
-                f'"field":{"null" if self.field is None else self.field},"name":{json_opt(self.name)},'
-                f'"message":{json_str(self.message)}}}}}')
+        return (
+            f'{{"ok":false,"error":{{"kind":{json_str(self.kind)},"address":{json_opt(self.address)},'
+            f'"field":{"null" if self.field is None else self.field},"name":{json_opt(self.name)},'
+            f'"message":{json_str(self.message)}}}}}'
+        )
 
 
 class _Absent:
@@ -110,8 +119,10 @@ def frame(line: str, require_checksum: bool = False) -> Frame:
     if not line.isascii() or not line.isprintable():
         for offset, ch in enumerate(line):
             if not " " <= ch <= "~":
-                raise NmeaError("not_a_sentence",
-                                f"byte 0x{ord(ch):02x} at offset {offset} is not printable ASCII")
+                raise NmeaError(
+                    "not_a_sentence",
+                    f"byte 0x{ord(ch):02x} at offset {offset} is not printable ASCII",
+                )
     star = line.find("*")
     body = line[1:] if star < 0 else line[1:star]
     parts = body.split(",")
@@ -119,16 +130,25 @@ def frame(line: str, require_checksum: bool = False) -> Frame:
     named = address if address.isalnum() else None
     sent = None
     if star >= 0:
-        sent = line[star + 1:]
+        sent = line[star + 1 :]
         # A bare '*' leaves the checksum out, as ST's manual writes its commands.
         if sent:
-            if len(sent) != 2 or sent[0] not in _HEX_DIGITS or sent[1] not in _HEX_DIGITS \
-                    or (sent != sent.upper() and sent != sent.lower()):
-                raise NmeaError("bad_checksum",
-                                f"checksum {json_str(sent)} is not two hex digits of one letter case", named)
+            if (
+                len(sent) != 2
+                or sent[0] not in _HEX_DIGITS
+                or sent[1] not in _HEX_DIGITS
+                or (sent != sent.upper() and sent != sent.lower())
+            ):
+                raise NmeaError(
+                    "bad_checksum",
+                    f"checksum {json_str(sent)} is not two hex digits of one letter case",
+                    named,
+                )
             computed = checksum(body)
             if int(sent, 16) != computed:
-                raise NmeaError("checksum_mismatch", f"checksum is {sent}, computed {computed:02X}", named)
+                raise NmeaError(
+                    "checksum_mismatch", f"checksum is {sent}, computed {computed:02X}", named
+                )
     if named is None:
         raise NmeaError("not_a_sentence", f"address {json_str(address)} is not letters and digits")
     if require_checksum and not sent:
@@ -142,7 +162,9 @@ def text_frame(line: str) -> Frame:
         raise NmeaError("too_long", f"line is {len(line)} bytes, the limit is {MAX_LINE}")
     for offset, ch in enumerate(line):
         if not " " <= ch <= "~":
-            raise NmeaError("not_a_sentence", f"byte 0x{ord(ch):02x} at offset {offset} is not printable ASCII")
+            raise NmeaError(
+                "not_a_sentence", f"byte 0x{ord(ch):02x} at offset {offset} is not printable ASCII"
+            )
     words = line.split(" ")
     return Frame("", words[0], words[1:], None)
 
@@ -255,7 +277,9 @@ class Number(_Value):
     __slots__ = ()
     __match_args__ = _FIELDS = ("digits", "scale", "width", "sign", "point")
 
-    def __init__(self, digits: int, scale: int = 0, width: int = 1, sign: str = "", point: bool = False) -> None:
+    def __init__(
+        self, digits: int, scale: int = 0, width: int = 1, sign: str = "", point: bool = False
+    ) -> None:
         self._parts = (digits, scale, width, sign, point)
 
     @property
@@ -281,12 +305,12 @@ class Number(_Value):
     @staticmethod
     def _parts_of(text: str) -> tuple[int, int, int, str, bool]:
         sign = text[0] if text[0] == "+" or text[0] == "-" else ""
-        whole, point, frac = text[len(sign):].partition(".")
+        whole, point, frac = text[len(sign) :].partition(".")
         return int(whole + frac), len(frac), len(whole), sign, bool(point)
 
     @staticmethod
     def _text_of(digits: int, scale: int, width: int, sign: str, point: bool) -> str:
-        whole, frac = divmod(digits, 10 ** scale)
+        whole, frac = divmod(digits, 10**scale)
         out = sign + (str(whole).zfill(width) if width else "")
         if point:
             out += "." + (str(frac).zfill(scale) if scale else "")
@@ -319,7 +343,7 @@ class Number(_Value):
 
 def decimal_json(digits: int, scale: int, negative: bool) -> str:
     """A JSON number for digits * 10^-scale, without leading or trailing zeros."""
-    whole, frac = divmod(digits, 10 ** scale)
+    whole, frac = divmod(digits, 10**scale)
     text = str(whole)
     if frac:
         text += "." + str(frac).zfill(scale).rstrip("0")
@@ -339,8 +363,12 @@ def parse_number(text: str, integer: bool) -> Number | None:
         return None
     if not (whole + frac) or len(whole) + len(frac) > MAX_DIGITS:
         return None
-    if (whole and not whole.isdigit()) or (frac and not frac.isdigit()) or not whole.isascii() \
-            or not frac.isascii():
+    if (
+        (whole and not whole.isdigit())
+        or (frac and not frac.isdigit())
+        or not whole.isascii()
+        or not frac.isascii()
+    ):
         return None
     return Number._read(text)  # type: ignore[no-any-return]
 
@@ -401,8 +429,15 @@ class Time(_Value):
     __slots__ = ()
     __match_args__ = _FIELDS = ("hour", "minute", "second", "fraction", "fraction_digits", "point")
 
-    def __init__(self, hour: int, minute: int, second: int, fraction: int = 0, fraction_digits: int = 0,
-                 point: bool = False) -> None:
+    def __init__(
+        self,
+        hour: int,
+        minute: int,
+        second: int,
+        fraction: int = 0,
+        fraction_digits: int = 0,
+        point: bool = False,
+    ) -> None:
         self._parts = (hour, minute, second, fraction, fraction_digits, point)
 
     @property
@@ -432,12 +467,19 @@ class Time(_Value):
     @staticmethod
     def _parts_of(text: str) -> tuple[int, int, int, int, int, bool]:
         clock, point, frac = text.partition(".")
-        return (int(clock[0:2]), int(clock[2:4]), int(clock[4:6]), int(frac) if frac else 0, len(frac),
-                bool(point))
+        return (
+            int(clock[0:2]),
+            int(clock[2:4]),
+            int(clock[4:6]),
+            int(frac) if frac else 0,
+            len(frac),
+            bool(point),
+        )
 
     @staticmethod
-    def _text_of(hour: int, minute: int, second: int, fraction: int,
-                 fraction_digits: int, point: bool) -> str:
+    def _text_of(
+        hour: int, minute: int, second: int, fraction: int, fraction_digits: int, point: bool
+    ) -> str:
         out = f"{hour:02d}{minute:02d}{second:02d}"
         if point:
             out += "." + (str(fraction).zfill(fraction_digits) if fraction_digits else "")
@@ -511,7 +553,9 @@ class Coordinate(_Value):
     __slots__ = ("_hemisphere",)
     __match_args__ = _FIELDS = ("degrees", "minutes", "hemisphere", "degree_digits")
 
-    def __init__(self, degrees: int, minutes: Number, hemisphere: str, degree_digits: int = 2) -> None:
+    def __init__(
+        self, degrees: int, minutes: Number, hemisphere: str, degree_digits: int = 2
+    ) -> None:
         self._parts = (degrees, minutes, hemisphere, degree_digits)
         self._hemisphere = hemisphere
 
@@ -546,8 +590,12 @@ class Coordinate(_Value):
             whole, point, frac = self._text.partition(".")
             degree_text = whole[:-2]
             minutes = Number._read(whole[-2:] + point + frac)
-            parts = self._parts = (int(degree_text) if degree_text else 0, minutes, self._hemisphere,
-                                   len(degree_text))
+            parts = self._parts = (
+                int(degree_text) if degree_text else 0,
+                minutes,
+                self._hemisphere,
+                len(degree_text),
+            )
             return parts
 
     def text(self) -> str:
@@ -556,7 +604,9 @@ class Coordinate(_Value):
             return self._text
         except AttributeError:
             degrees, minutes, _, degree_digits = self._parts
-            text: str = (str(degrees).zfill(degree_digits) if degree_digits else "") + minutes.text()
+            text: str = (
+                str(degrees).zfill(degree_digits) if degree_digits else ""
+            ) + minutes.text()
             self._text = text
             return text
 
@@ -615,10 +665,19 @@ class CodeEnum(Enum):
         return self._value_  # type: ignore[no-any-return]
 
 
+def by_code(enum: type[CodeEnum]) -> dict[str, Any]:
+    """An enum's members by wire code (its BY_CODE)."""
+    return {member.value: member for member in enum}
+
+
 def holds_selector(layout: Any, fields: list[str]) -> bool:
     """Whether the fields hold the layout's keyword (SELECTOR) in its place, ignoring case."""
     at = getattr(layout, "SELECTOR_AT", 0)
-    return layout.SELECTOR is not None and at < len(fields) and fields[at].upper() == layout.SELECTOR.upper()
+    return (
+        layout.SELECTOR is not None
+        and at < len(fields)
+        and fields[at].upper() == layout.SELECTOR.upper()
+    )
 
 
 def claimed(layouts: tuple[Any, ...], fields: list[str]) -> bool:
@@ -640,23 +699,33 @@ def holds(sentence: Any, test: FieldTest) -> bool:
     field_id, kind, want = test
     value = getattr(sentence, field_id, None)
     if kind == "integer":
-        return isinstance(value, Number) and value.scale == 0 and not value.point and \
-            (-value.digits if value.sign == "-" else value.digits) == want
+        return (
+            isinstance(value, Number)
+            and value.scale == 0
+            and not value.point
+            and (-value.digits if value.sign == "-" else value.digits) == want
+        )
     if kind == "enum":
         return isinstance(value, CodeEnum) and value.id == want
     return isinstance(value, str) and value == want
 
 
 def reply_outcome(command: Any, sentence: Any) -> str | None:
-    """"ok" or "error" when `sentence` (decoded) answers `command` (a command class or instance),
+    """ "ok" or "error" when `sentence` (decoded) answers `command` (a command class or instance),
     None when it does not answer it."""
     sentence_id, variant = getattr(sentence, "SENTENCE", None), getattr(sentence, "VARIANT", None)
     for reply_id, reply_variant, tests in getattr(command, "REPLY_RULES", ()):
-        if reply_id == sentence_id and reply_variant == variant and all(holds(sentence, t) for t in tests):
+        if (
+            reply_id == sentence_id
+            and reply_variant == variant
+            and all(holds(sentence, t) for t in tests)
+        ):
             outcome = getattr(sentence, "OUTCOME", None)
             if outcome is None:
                 return "ok"
-            return "ok" if outcome != "error" and any(holds(sentence, t) for t in outcome) else "error"
+            return (
+                "ok" if outcome != "error" and any(holds(sentence, t) for t in outcome) else "error"
+            )
     return None
 
 
@@ -693,13 +762,17 @@ def json_opt(text: str | None) -> str:
 
 
 def bad_field(address: str, index: int, name: str, expected: str, text: str) -> NmeaError:
-    return NmeaError("bad_field", f"expected {expected}, found {json_str(text)}", address, index, name, text)
+    return NmeaError(
+        "bad_field", f"expected {expected}, found {json_str(text)}", address, index, name, text
+    )
 
 
 def problem_json(problem: NmeaError) -> str:
     """A field lenient parsing left empty: where it is, its text as received, and why."""
-    return (f'{{"field":{problem.field},"name":{json_opt(problem.name)},"text":{json_opt(problem.text)},'
-            f'"message":{json_str(problem.message)}}}')
+    return (
+        f'{{"field":{problem.field},"name":{json_opt(problem.name)},"text":{json_opt(problem.text)},'
+        f'"message":{json_str(problem.message)}}}'
+    )
 
 
 def with_problems(fields: list[str], problems: list[NmeaError]) -> list[str]:
@@ -714,22 +787,39 @@ def with_problems(fields: list[str], problems: list[NmeaError]) -> list[str]:
 
 
 def too_few(address: str, sentence: str, need: int, found: int) -> NmeaError:
-    return NmeaError("too_few_fields", f"{sentence} needs at least {need} fields, found {found}", address)
+    return NmeaError(
+        "too_few_fields", f"{sentence} needs at least {need} fields, found {found}", address
+    )
 
 
 def too_many(address: str, sentence: str, limit: int, found: int) -> NmeaError:
-    return NmeaError("too_many_fields", f"{sentence} takes at most {limit} fields, found {found}", address)
+    return NmeaError(
+        "too_many_fields", f"{sentence} takes at most {limit} fields, found {found}", address
+    )
 
 
 def group_cut(address: str, sentence: str, group: str, width: int, left: int) -> NmeaError:
-    return NmeaError("too_few_fields",
-                     f"{sentence} {group} entries take {width} fields each, {left} left over", address)
+    return NmeaError(
+        "too_few_fields",
+        f"{sentence} {group} entries take {width} fields each, {left} left over",
+        address,
+    )
 
 
-def split_group(address: str, sentence: str, group: str, count: int, fixed: int, width: int,
-                minimum: int, maximum: int, optional: int) -> tuple[int, int]:
+def split_group(
+    address: str,
+    sentence: str,
+    group: str,
+    count: int,
+    fixed: int,
+    width: int,
+    minimum: int,
+    maximum: int,
+    optional: int,
+) -> tuple[int, int]:
     """How many times the layout's repeated group occurs in a sentence of `count` fields and how
-    many optional trailing fields follow it. `fixed` counts the required fields outside the group."""
+    many optional trailing fields follow it. `fixed` counts the required fields outside the
+    group."""
     rest = count - fixed
     if rest < minimum * width:
         raise too_few(address, sentence, fixed + minimum * width, count)
@@ -743,11 +833,12 @@ def split_group(address: str, sentence: str, group: str, count: int, fixed: int,
 
 
 MAX_JSON_DEPTH: Final = 500
-"""Deepest nesting of arrays and objects `encode` reads; deeper input is "not JSON" in every tool."""
+"""Deepest nesting of arrays and objects `encode` reads; deeper is "not JSON" in every tool."""
 
 
 def json_too_deep(text: str) -> bool:
-    """Whether `text` opens more than MAX_JSON_DEPTH arrays and objects at once (outside strings)."""
+    """Whether `text` opens more than MAX_JSON_DEPTH arrays and objects at once (outside
+    strings)."""
     depth = 0
     in_string = escaped = False
     for ch in text:
@@ -809,7 +900,9 @@ def remember(table: dict[Any, Any] | None, key: Any, value: Any) -> None:
         table[key] = value
 
 
-def _within(text: str, integer: bool, low: Decimal | int | None, high: Decimal | int | None) -> bool:
+def _within(
+    text: str, integer: bool, low: Decimal | int | None, high: Decimal | int | None
+) -> bool:
     """Whether a number's text (already checked) lies in [low, high], compared exactly."""
     if low is None and high is None:
         return True
@@ -817,9 +910,16 @@ def _within(text: str, integer: bool, low: Decimal | int | None, high: Decimal |
     return (low is None or value >= low) and (high is None or value <= high)
 
 
-def integer_field(text: str, address: str, index: int, name: str, expected: str,
-                  low: Decimal | int | None = None, high: Decimal | int | None = None,
-                  table: dict[str, Number] | None = None) -> Number | None:
+def integer_field(
+    text: str,
+    address: str,
+    index: int,
+    name: str,
+    expected: str,
+    low: Decimal | int | None = None,
+    high: Decimal | int | None = None,
+    table: dict[str, Number] | None = None,
+) -> Number | None:
     if not text:
         return None
     number = parse_number(text, integer=True)
@@ -829,9 +929,16 @@ def integer_field(text: str, address: str, index: int, name: str, expected: str,
     return number
 
 
-def decimal_field(text: str, address: str, index: int, name: str, expected: str,
-                  low: Decimal | int | None = None, high: Decimal | int | None = None,
-                  table: dict[str, Number] | None = None) -> Number | None:
+def decimal_field(
+    text: str,
+    address: str,
+    index: int,
+    name: str,
+    expected: str,
+    low: Decimal | int | None = None,
+    high: Decimal | int | None = None,
+    table: dict[str, Number] | None = None,
+) -> Number | None:
     if not text:
         return None
     number = parse_number(text, integer=False)
@@ -841,8 +948,14 @@ def decimal_field(text: str, address: str, index: int, name: str, expected: str,
     return number
 
 
-def hex_field(text: str, address: str, index: int, name: str, expected: str,
-              table: dict[str, Hex] | None = None) -> Hex | None:
+def hex_field(
+    text: str,
+    address: str,
+    index: int,
+    name: str,
+    expected: str,
+    table: dict[str, Hex] | None = None,
+) -> Hex | None:
     if not text:
         return None
     value = parse_hex(text)
@@ -852,8 +965,14 @@ def hex_field(text: str, address: str, index: int, name: str, expected: str,
     return value
 
 
-def time_field(text: str, address: str, index: int, name: str, expected: str,
-               table: dict[str, Time] | None = None) -> Time | None:
+def time_field(
+    text: str,
+    address: str,
+    index: int,
+    name: str,
+    expected: str,
+    table: dict[str, Time] | None = None,
+) -> Time | None:
     if not text:
         return None
     value = parse_time(text)
@@ -863,8 +982,14 @@ def time_field(text: str, address: str, index: int, name: str, expected: str,
     return value
 
 
-def date_field(text: str, address: str, index: int, name: str, expected: str,
-               table: dict[str, Date] | None = None) -> Date | None:
+def date_field(
+    text: str,
+    address: str,
+    index: int,
+    name: str,
+    expected: str,
+    table: dict[str, Date] | None = None,
+) -> Date | None:
     if not text:
         return None
     value = parse_date(text)
@@ -874,9 +999,17 @@ def date_field(text: str, address: str, index: int, name: str, expected: str,
     return value
 
 
-def coordinate_field(text: str, hemisphere: str, address: str, index: int, name: str,
-                     expected: str, hemisphere_expected: str, hemispheres: str,
-                     table: dict[tuple[str, str], Coordinate] | None = None) -> Coordinate | None:
+def coordinate_field(
+    text: str,
+    hemisphere: str,
+    address: str,
+    index: int,
+    name: str,
+    expected: str,
+    hemisphere_expected: str,
+    hemispheres: str,
+    table: dict[tuple[str, str], Coordinate] | None = None,
+) -> Coordinate | None:
     """Latitude (hemispheres "NS") or longitude ("EW"): a value field and a hemisphere field,
     both empty or both set."""
     latitude = hemispheres == "NS"
@@ -902,8 +1035,9 @@ def char_field(text: str, address: str, index: int, name: str, expected: str) ->
     return text
 
 
-def literal_field(text: str, address: str, index: int, name: str, expected: str,
-                  literal: str) -> str | None:
+def literal_field(
+    text: str, address: str, index: int, name: str, expected: str, literal: str
+) -> str | None:
     if not text:
         return None
     if text != literal:
@@ -911,16 +1045,24 @@ def literal_field(text: str, address: str, index: int, name: str, expected: str,
     return text
 
 
-def keyword_field(text: str, address: str, index: int, name: str, expected: str, keyword: str,
-                  ignore_case: bool = False) -> str:
+def keyword_field(
+    text: str,
+    address: str,
+    index: int,
+    name: str,
+    expected: str,
+    keyword: str,
+    ignore_case: bool = False,
+) -> str:
     """A fixed word that must be there (it picks the layout); returned in the spec's spelling."""
     if text != keyword and not (ignore_case and text.upper() == keyword):
         raise bad_field(address, index, name, expected, text)
     return keyword
 
 
-def text_field(text: str, address: str, index: int, name: str, expected: str,
-               max_length: int | None = None) -> str | None:
+def text_field(
+    text: str, address: str, index: int, name: str, expected: str, max_length: int | None = None
+) -> str | None:
     if not text:
         return None
     if max_length is not None and len(text) > max_length:
@@ -928,9 +1070,18 @@ def text_field(text: str, address: str, index: int, name: str, expected: str,
     return text
 
 
-def enum_field(text: str, address: str, index: int, name: str, expected: str,
-               by_code: dict[str, Any], code_class: str, min_len: int,
-               max_len: int, ignore_case: bool = False) -> Any:
+def enum_field(
+    text: str,
+    address: str,
+    index: int,
+    name: str,
+    expected: str,
+    by_code: dict[str, Any],
+    code_class: str,
+    min_len: int,
+    max_len: int,
+    ignore_case: bool = False,
+) -> Any:
     """An enum member for a known code, the code itself for a well-formed unknown one."""
     if not text:
         return None
@@ -942,8 +1093,16 @@ def enum_field(text: str, address: str, index: int, name: str, expected: str,
     return text
 
 
-def enum_chars_field(text: str, address: str, index: int, name: str, expected: str,
-                     by_code: dict[str, Any], code_class: str, max_length: int | None) -> list[Any] | None:
+def enum_chars_field(
+    text: str,
+    address: str,
+    index: int,
+    name: str,
+    expected: str,
+    by_code: dict[str, Any],
+    code_class: str,
+    max_length: int | None,
+) -> list[Any] | None:
     """A run of one-character codes (GNS mode "ANNN"): one member or unknown code per character."""
     if not text:
         return None
@@ -1050,12 +1209,15 @@ def json_text(value: Any) -> str:
     if not isinstance(value, str):
         raise bad_json("a field value is not a string or null")
     if not (value.isascii() and value.isprintable()) or "," in value or "*" in value:
-        raise bad_json(f"field text {json_str(value)} holds ',', '*' or a byte outside printable ASCII")
+        raise bad_json(
+            f"field text {json_str(value)} holds ',', '*' or a byte outside printable ASCII"
+        )
     return value
 
 
 def checksum_case(text: str | None) -> str | None:
-    """How a received checksum was written: None (absent), "empty" (a bare '*'), "lower" or "upper"."""
+    """How a received checksum was written: None (absent), "empty" (a bare '*'), "lower" or
+    "upper"."""
     if text is None:
         return None
     if not text:
@@ -1141,7 +1303,9 @@ class Parameter:
         if self.max_length is not None and len(text) > self.max_length:
             raise ValueError(f"{where}: text longer than {self.max_length}")
         if not (text.isascii() and text.isprintable()) or any(ch in ",*$!" for ch in text):
-            raise ValueError(f"{where}: text holds ',', '*', '$', '!' or a byte outside printable ASCII")
+            raise ValueError(
+                f"{where}: text holds ',', '*', '$', '!' or a byte outside printable ASCII"
+            )
         return [text]
 
     def _check_range(self, number: Any, where: str) -> None:
@@ -1200,8 +1364,14 @@ class _Memo(FieldSpec):
 class IntegerField(_Memo):
     __slots__ = ("low", "high")
 
-    def __init__(self, id: str, expected: str, low: Decimal | int | None = None,
-                 high: Decimal | int | None = None, optional: bool = False) -> None:
+    def __init__(
+        self,
+        id: str,
+        expected: str,
+        low: Decimal | int | None = None,
+        high: Decimal | int | None = None,
+        optional: bool = False,
+    ) -> None:
         super().__init__(id, expected, _rule("integer", low, high), optional)
         self.low, self.high = low, high
 
@@ -1209,15 +1379,22 @@ class IntegerField(_Memo):
         text = fields[pos]
         if not text:
             return None
-        return self.memo.get(text) or integer_field(text, address, pos + 1, name, self.expected, self.low,
-                                                    self.high, self.memo)
+        return self.memo.get(text) or integer_field(
+            text, address, pos + 1, name, self.expected, self.low, self.high, self.memo
+        )
 
 
 class DecimalField(IntegerField):
     __slots__ = ()
 
-    def __init__(self, id: str, expected: str, low: Decimal | int | None = None,
-                 high: Decimal | int | None = None, optional: bool = False) -> None:
+    def __init__(
+        self,
+        id: str,
+        expected: str,
+        low: Decimal | int | None = None,
+        high: Decimal | int | None = None,
+        optional: bool = False,
+    ) -> None:
         _Memo.__init__(self, id, expected, _rule("decimal", low, high), optional)
         self.low, self.high = low, high
 
@@ -1225,8 +1402,9 @@ class DecimalField(IntegerField):
         text = fields[pos]
         if not text:
             return None
-        return self.memo.get(text) or decimal_field(text, address, pos + 1, name, self.expected, self.low,
-                                                    self.high, self.memo)
+        return self.memo.get(text) or decimal_field(
+            text, address, pos + 1, name, self.expected, self.low, self.high, self.memo
+        )
 
 
 def _coordinate_pair(value: Any) -> tuple[str, str]:
@@ -1249,8 +1427,14 @@ class HexField(_Memo):
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
         text = fields[pos]
-        return (self.memo.get(text) or hex_field(text, address, pos + 1, name, self.expected, self.memo)) \
-            if text else None
+        return (
+            (
+                self.memo.get(text)
+                or hex_field(text, address, pos + 1, name, self.expected, self.memo)
+            )
+            if text
+            else None
+        )
 
 
 class TimeField(_Memo):
@@ -1261,8 +1445,14 @@ class TimeField(_Memo):
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
         text = fields[pos]
-        return (self.memo.get(text) or time_field(text, address, pos + 1, name, self.expected, self.memo)) \
-            if text else None
+        return (
+            (
+                self.memo.get(text)
+                or time_field(text, address, pos + 1, name, self.expected, self.memo)
+            )
+            if text
+            else None
+        )
 
 
 class DateField(_Memo):
@@ -1273,8 +1463,14 @@ class DateField(_Memo):
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
         text = fields[pos]
-        return (self.memo.get(text) or date_field(text, address, pos + 1, name, self.expected, self.memo)) \
-            if text else None
+        return (
+            (
+                self.memo.get(text)
+                or date_field(text, address, pos + 1, name, self.expected, self.memo)
+            )
+            if text
+            else None
+        )
 
 
 class LatitudeField(_Memo):
@@ -1284,14 +1480,27 @@ class LatitudeField(_Memo):
     width_of = 2
     HEMISPHERES: ClassVar[str] = "NS"
 
-    def __init__(self, id: str, expected: str, hemisphere_expected: str, optional: bool = False) -> None:
-        super().__init__(id, expected, "latitude" if self.HEMISPHERES == "NS" else "longitude", optional)
+    def __init__(
+        self, id: str, expected: str, hemisphere_expected: str, optional: bool = False
+    ) -> None:
+        super().__init__(
+            id, expected, "latitude" if self.HEMISPHERES == "NS" else "longitude", optional
+        )
         self.hemisphere_expected = hemisphere_expected
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
         pair = (fields[pos], fields[pos + 1])
-        return self.memo.get(pair) or coordinate_field(pair[0], pair[1], address, pos + 1, name, self.expected,
-                                                       self.hemisphere_expected, self.HEMISPHERES, self.memo)
+        return self.memo.get(pair) or coordinate_field(
+            pair[0],
+            pair[1],
+            address,
+            pos + 1,
+            name,
+            self.expected,
+            self.hemisphere_expected,
+            self.HEMISPHERES,
+            self.memo,
+        )
 
 
 class LongitudeField(LatitudeField):
@@ -1317,8 +1526,11 @@ class LiteralField(FieldSpec):
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
         text = fields[pos]
-        return self.word if text == self.word else literal_field(text, address, pos + 1, name, self.expected,
-                                                                 self.word)
+        return (
+            self.word
+            if text == self.word
+            else literal_field(text, address, pos + 1, name, self.expected, self.word)
+        )
 
     def known(self) -> dict[Any, Any]:
         return {self.word: self.word}
@@ -1334,7 +1546,9 @@ class KeywordField(LiteralField):
         self.ignore_case = False
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
-        return keyword_field(fields[pos], address, pos + 1, name, self.expected, self.word, self.ignore_case)
+        return keyword_field(
+            fields[pos], address, pos + 1, name, self.expected, self.word, self.ignore_case
+        )
 
     def known(self) -> dict[Any, Any]:
         return _NOTHING_KNOWN if self.ignore_case else {self.word: self.word}
@@ -1343,7 +1557,9 @@ class KeywordField(LiteralField):
 class TextField(FieldSpec):
     __slots__ = ("max_length",)
 
-    def __init__(self, id: str, expected: str, max_length: int | None = None, optional: bool = False) -> None:
+    def __init__(
+        self, id: str, expected: str, max_length: int | None = None, optional: bool = False
+    ) -> None:
         super().__init__(id, expected, optional)
         self.max_length = max_length
 
@@ -1365,10 +1581,29 @@ class EnumField(FieldSpec):
         text = fields[pos]
         e = self.enum
         if self.ignore_case:
-            return enum_field(text, address, pos + 1, name, self.expected, e.BY_CODE, e.CODE_CLASS, e.MIN_LEN,
-                              e.MAX_LEN, True)
-        return e.BY_CODE.get(text) or enum_field(text, address, pos + 1, name, self.expected, e.BY_CODE,
-                                                 e.CODE_CLASS, e.MIN_LEN, e.MAX_LEN)
+            return enum_field(
+                text,
+                address,
+                pos + 1,
+                name,
+                self.expected,
+                e.BY_CODE,
+                e.CODE_CLASS,
+                e.MIN_LEN,
+                e.MAX_LEN,
+                True,
+            )
+        return e.BY_CODE.get(text) or enum_field(
+            text,
+            address,
+            pos + 1,
+            name,
+            self.expected,
+            e.BY_CODE,
+            e.CODE_CLASS,
+            e.MIN_LEN,
+            e.MAX_LEN,
+        )
 
     def known(self) -> dict[Any, Any]:
         return _NOTHING_KNOWN if self.ignore_case else self.enum.BY_CODE
@@ -1379,16 +1614,30 @@ class EnumCharsField(FieldSpec):
 
     __slots__ = ("enum", "max_length")
 
-    def __init__(self, id: str, expected: str, enum: Any, max_length: int | None = None,
-                 optional: bool = False) -> None:
+    def __init__(
+        self,
+        id: str,
+        expected: str,
+        enum: Any,
+        max_length: int | None = None,
+        optional: bool = False,
+    ) -> None:
         super().__init__(id, expected, optional)
         self.enum = enum
         self.max_length = max_length
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
         e = self.enum
-        return enum_chars_field(fields[pos], address, pos + 1, name, self.expected, e.BY_CODE, e.CODE_CLASS,
-                                self.max_length)
+        return enum_chars_field(
+            fields[pos],
+            address,
+            pos + 1,
+            name,
+            self.expected,
+            e.BY_CODE,
+            e.CODE_CLASS,
+            self.max_length,
+        )
 
 
 class Group:
@@ -1397,7 +1646,9 @@ class Group:
 
     __slots__ = ("id", "entry", "fields", "minimum", "maximum", "width")
 
-    def __init__(self, id: str, entry: Any, fields: tuple[FieldSpec, ...], minimum: int, maximum: int) -> None:
+    def __init__(
+        self, id: str, entry: Any, fields: tuple[FieldSpec, ...], minimum: int, maximum: int
+    ) -> None:
         self.id, self.entry, self.fields = id, entry, fields
         self.minimum, self.maximum = minimum, maximum
         self.width = 0
@@ -1416,11 +1667,29 @@ class Layout:
     Python function that reads each field in its place (looking its text up among the values
     already read first) and makes the instance, as dataclasses compiles __init__."""
 
-    __slots__ = ("sentence", "kind", "start", "fixed", "max_fields", "items", "group", "optional_max",
-                 "field_ids", "parse", "write")
+    __slots__ = (
+        "sentence",
+        "kind",
+        "start",
+        "fixed",
+        "max_fields",
+        "items",
+        "group",
+        "optional_max",
+        "field_ids",
+        "parse",
+        "write",
+    )
 
-    def __init__(self, sentence: str, kind: str, start: str, fixed: int, max_fields: int,
-                 items: tuple[FieldSpec | Group, ...]) -> None:
+    def __init__(
+        self,
+        sentence: str,
+        kind: str,
+        start: str,
+        fixed: int,
+        max_fields: int,
+        items: tuple[FieldSpec | Group, ...],
+    ) -> None:
         self.sentence, self.kind, self.start = sentence, kind, start
         self.fixed, self.max_fields, self.items = fixed, max_fields, items
         self.group = next((item for item in items if isinstance(item, Group)), None)
@@ -1439,48 +1708,75 @@ class Layout:
     def _compile(self) -> Callable[..., Any]:
         """parse(cls, address, fields, checksum, line): an instance of `cls` read from the wire
         fields after the address; raises NmeaError naming the field at fault."""
-        names: dict[str, Any] = {"too_few": too_few, "too_many": too_many, "split_group": split_group,
-                                 "ABSENT": ABSENT, "NmeaError": NmeaError}
+        names: dict[str, Any] = {
+            "too_few": too_few,
+            "too_many": too_many,
+            "split_group": split_group,
+            "ABSENT": ABSENT,
+            "NmeaError": NmeaError,
+        }
 
         def read(spec: FieldSpec, n: str, pos: str, name: str) -> str:
             """The expression that reads `spec` at wire index `pos` (an expression)."""
             names[f"known{n}"], names[f"read{n}"] = spec.known().get, spec.read
             text = f"(fields[{pos}], fields[{pos} + 1])" if spec.width == 2 else f"fields[{pos}]"
             expr = f"known{n}({text}) or read{n}(fields, {pos}, address, {name})"
-            return f"({expr}) if {text} else None" if isinstance(spec, _Memo) and spec.width == 1 else expr
+            return (
+                f"({expr}) if {text} else None"
+                if isinstance(spec, _Memo) and spec.width == 1
+                else expr
+            )
 
         group = self.group
         code = ["def parse(cls, address, fields, checksum, line):", "    count = len(fields)"]
         if group is None:
-            code += [f"    if count < {self.fixed}:",
-                     f"        raise too_few(address, {self.sentence!r}, {self.fixed}, count)",
-                     f"    if count > {self.max_fields}:",
-                     f"        raise too_many(address, {self.sentence!r}, {self.max_fields}, count)",
-                     f"    optional = count - {self.fixed}"]
+            code += [
+                f"    if count < {self.fixed}:",
+                f"        raise too_few(address, {self.sentence!r}, {self.fixed}, count)",
+                f"    if count > {self.max_fields}:",
+                f"        raise too_many(address, {self.sentence!r}, {self.max_fields}, count)",
+                f"    optional = count - {self.fixed}",
+            ]
         else:
-            code.append(f"    repeats, optional = split_group(address, {self.sentence!r}, {group.id!r}, count, "
-                        f"{self.fixed}, {group.width}, {group.minimum}, {group.maximum}, {self.optional_max})")
+            code.append(
+                f"    repeats, optional = split_group(address, {self.sentence!r}, {group.id!r}, count, "
+                f"{self.fixed}, {group.width}, {group.minimum}, {group.maximum}, {self.optional_max})"
+            )
         values, at, pos = [], 0, "0"
         for n, item in enumerate(self.items):
             values.append(f"v{n}")
             if isinstance(item, Group):
-                code += [f"    v{n} = []", f"    pos = {at}", "    try:", "        for n in range(repeats):"]
+                code += [
+                    f"    v{n} = []",
+                    f"    pos = {at}",
+                    "    try:",
+                    "        for n in range(repeats):",
+                ]
                 if item.entry is None:
                     (f,) = item.fields
                     code.append(f"            v{n}.append({read(f, f'{n}_0', 'pos', repr(f.id))})")
                 else:
                     names[f"entry{n}"] = item.entry
-                    args = ", ".join(read(f, f"{n}_{k}", f"pos + {f.offset}", repr(f.id))
-                                     for k, f in enumerate(item.fields))
+                    args = ", ".join(
+                        read(f, f"{n}_{k}", f"pos + {f.offset}", repr(f.id))
+                        for k, f in enumerate(item.fields)
+                    )
                     code.append(f"            v{n}.append(entry{n}({args}))")
-                code += [f"            pos += {item.width}", "    except NmeaError as error:",
-                         f"        error.name = f\"{item.id}[{{n + 1}}].{{error.name}}\"", "        raise"]
+                code += [
+                    f"            pos += {item.width}",
+                    "    except NmeaError as error:",
+                    f'        error.name = f"{item.id}[{{n + 1}}].{{error.name}}"',
+                    "        raise",
+                ]
                 at, pos = 0, "pos"
                 continue
             place = f"{pos} + {at}" if pos == "pos" else str(at)
             if item.optional_index:
-                code += [f"    v{n} = ABSENT", f"    if optional >= {item.optional_index}:",
-                         f"        v{n} = {read(item, str(n), place, repr(item.id))}"]
+                code += [
+                    f"    v{n} = ABSENT",
+                    f"    if optional >= {item.optional_index}:",
+                    f"        v{n} = {read(item, str(n), place, repr(item.id))}",
+                ]
             else:
                 code.append(f"    v{n} = {read(item, str(n), place, repr(item.id))}")
             at += item.width
@@ -1500,7 +1796,9 @@ class Layout:
             return f"*pair({value})" if spec.width == 2 else f"text_of({value})"
 
         code = ["def write(s):", "    out = []"]
-        trailing = [item for item in self.items if isinstance(item, FieldSpec) and item.optional_index]
+        trailing = [
+            item for item in self.items if isinstance(item, FieldSpec) and item.optional_index
+        ]
         for item in self.items:
             if isinstance(item, Group):
                 if item.entry is None:
@@ -1512,11 +1810,16 @@ class Layout:
                 code.append(f"    out += [{texts(item, f's.{item.id}')}]")
         if trailing:
             for n, item in enumerate(reversed(trailing)):
-                code += [f"    {'if' if n == 0 else 'elif'} s.{item.id} is not ABSENT:",
-                         f"        last = {item.optional_index}"]
+                code += [
+                    f"    {'if' if n == 0 else 'elif'} s.{item.id} is not ABSENT:",
+                    f"        last = {item.optional_index}",
+                ]
             code += ["    else:", "        last = 0"]
             for item in trailing:
-                code += [f"    if last >= {item.optional_index}:", f"        out += [{texts(item, f's.{item.id}')}]"]
+                code += [
+                    f"    if last >= {item.optional_index}:",
+                    f"        out += [{texts(item, f's.{item.id}')}]",
+                ]
         code.append("    return out")
         exec("\n".join(code), names)  # noqa: S102 (source made above from the layout's own items)
         write: Callable[[Any], list[str]] = names["write"]
@@ -1532,8 +1835,12 @@ class Layout:
                 if item.entry is None:
                     shown = ",".join(show(value) for value in entries)
                 else:
-                    shown = ",".join("{" + ",".join(f'"{f.id}":' + show(getattr(entry, f.id)) for f in item.fields)
-                                     + "}" for entry in entries)
+                    shown = ",".join(
+                        "{"
+                        + ",".join(f'"{f.id}":' + show(getattr(entry, f.id)) for f in item.fields)
+                        + "}"
+                        for entry in entries
+                    )
                 parts.append(f'"{item.id}":[{shown}]')
                 continue
             value = getattr(sentence, item.id)
@@ -1577,8 +1884,13 @@ class Sentence:
     problems: list[NmeaError]
 
     @classmethod
-    def parse_fields(cls: type[SentenceT], address: str, fields: list[str], checksum: str | None = "upper",
-                     line: str | None = None) -> SentenceT:
+    def parse_fields(
+        cls: type[SentenceT],
+        address: str,
+        fields: list[str],
+        checksum: str | None = "upper",
+        line: str | None = None,
+    ) -> SentenceT:
         """Decode the fields after the address; raises NmeaError naming the field at fault."""
         sentence: SentenceT = cls.LAYOUT.parse(cls, address, fields, checksum, line)
         return sentence
@@ -1594,7 +1906,11 @@ class Sentence:
         fields = with_problems(layout.write(self), self.problems)
         if layout.kind == "text":
             return assemble_text(self.ADDRESS or "", fields, getattr(self, "as_received"))
-        address = getattr(self, "talker") + self.SENTENCE if layout.kind == "standard" else self.ADDRESS or ""
+        address = (
+            getattr(self, "talker") + self.SENTENCE
+            if layout.kind == "standard"
+            else self.ADDRESS or ""
+        )
         return assemble(layout.start, address, fields, getattr(self, "checksum"))
 
     def to_bytes(self) -> bytes:

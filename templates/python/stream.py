@@ -72,8 +72,11 @@ def _chunks(source: BinaryIO | Any | Iterable[bytes], size: int) -> Iterator[byt
         yield from source
 
 
-def lines(source: BinaryIO | Any | Iterable[bytes], chunk_size: int = 4096) -> Iterator[bytes | int]:
-    """The framed lines of a file, socket or iterable of byte chunks (an int for an overlong line)."""
+def lines(
+    source: BinaryIO | Any | Iterable[bytes], chunk_size: int = 4096
+) -> Iterator[bytes | int]:
+    """The framed lines of a file, socket or iterable of byte chunks (an int for an overlong
+    line)."""
     framer = Framer()
     for chunk in _chunks(source, chunk_size):
         yield from framer.feed(chunk)
@@ -97,7 +100,13 @@ def sentences(source: BinaryIO | Any | Iterable[bytes], **options: bool) -> Iter
             yield err
 
 
-def json_lines(source: BinaryIO | Any | Iterable[bytes], values: bool = False, **options: bool) -> Iterator[str]:
+def json_lines(
+    source: BinaryIO | Any | Iterable[bytes], values: bool = False, **options: bool
+) -> Iterator[str]:
     """The `stream` verb: the JSON of `decode` for every framed item."""
     for item in lines(source):
-        yield too_long(item).to_json() if isinstance(item, int) else decode_json(item, values, **options)
+        yield (
+            too_long(item).to_json()
+            if isinstance(item, int)
+            else decode_json(item, values, **options)
+        )

@@ -106,17 +106,23 @@ class Summary:
 
     def write(self, out: IO[str]) -> None:
         total_errors = sum(self.errors.values())
-        out.write(f"{self.lines} lines: {sum(self.sentences.values())} sentences, "
-                  f"{sum(self.unknown.values())} unknown, {total_errors} errors\n")
-        for title, counts in (("sentences", self.sentences), ("unknown", self.unknown), ("errors", self.errors)):
+        out.write(
+            f"{self.lines} lines: {sum(self.sentences.values())} sentences, "
+            f"{sum(self.unknown.values())} unknown, {total_errors} errors\n"
+        )
+        for title, counts in (
+            ("sentences", self.sentences),
+            ("unknown", self.unknown),
+            ("errors", self.errors),
+        ):
             if counts:
                 ranked = sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))
-                width = max(len(k) for k, _ in ranked[:self.LIMIT])
+                width = max(len(k) for k, _ in ranked[: self.LIMIT])
                 out.write(f"{title}:\n")
-                for key, count in ranked[:self.LIMIT]:
+                for key, count in ranked[: self.LIMIT]:
                     out.write(f"  {key:<{width}}  {count}\n")
                 if len(ranked) > self.LIMIT:
-                    rest = ranked[self.LIMIT:]
+                    rest = ranked[self.LIMIT :]
                     out.write(f"  ... {len(rest)} more, {sum(c for _, c in rest)} lines\n")
 
 
@@ -139,7 +145,9 @@ class Progress:
     def _draw(self) -> None:
         share = min(self.done / self.total, 1.0)
         bar = "#" * int(share * 30)
-        self.out.write(f"\r[{bar:<30}] {share:4.0%} {self.done / 1e6:.1f}/{self.total / 1e6:.1f} MB")
+        self.out.write(
+            f"\r[{bar:<30}] {share:4.0%} {self.done / 1e6:.1f}/{self.total / 1e6:.1f} MB"
+        )
         self.out.flush()
 
     def finish(self) -> None:
@@ -155,8 +163,9 @@ def _chunks(source: IO[bytes], progress: Progress | None, size: int = 1 << 16) -
         yield chunk
 
 
-def records(chunks: Iterable[bytes], wanted: set[str] | None, summary: Summary,
-            lenient: bool = False) -> Iterator[dict[str, Any]]:
+def records(
+    chunks: Iterable[bytes], wanted: set[str] | None, summary: Summary, lenient: bool = False
+) -> Iterator[dict[str, Any]]:
     """Each sentence as {line, talker, sentence, fields}, counted in `summary`; errors are only
     counted. `wanted`: the sentence ids (or addresses of unknown sentences) to keep."""
     for number, item in enumerate(lines(chunks), 1):
@@ -186,7 +195,9 @@ def _row(record: dict[str, Any], fields: list[str] | None) -> list[Any]:
     return [record[f] if f in SPECIAL_FIELDS else record["fields"].get(f) for f in fields]
 
 
-def write_table(rows: Iterable[list[Any]], header: list[str], out: IO[str], block: int = 200) -> None:
+def write_table(
+    rows: Iterable[list[Any]], header: list[str], out: IO[str], block: int = 200
+) -> None:
     """Aligned columns, printed a block of rows at a time so that a long log streams; a column
     only ever widens. The last column is not padded."""
     widths = [len(h) for h in header]
@@ -196,8 +207,12 @@ def write_table(rows: Iterable[list[Any]], header: list[str], out: IO[str], bloc
             for i, text in enumerate(cells[:-1]):
                 widths[i] = max(widths[i], len(text))
         for cells in batch:
-            out.write("  ".join(t.ljust(w) for t, w in zip(cells[:-1], widths)) + ("  " if len(cells) > 1 else "")
-                      + cells[-1] + "\n")
+            out.write(
+                "  ".join(t.ljust(w) for t, w in zip(cells[:-1], widths))
+                + ("  " if len(cells) > 1 else "")
+                + cells[-1]
+                + "\n"
+            )
 
     batch: list[list[str]] = [header]
     for row in rows:
@@ -210,7 +225,11 @@ def write_table(rows: Iterable[list[Any]], header: list[str], out: IO[str], bloc
 
 def show(args: argparse.Namespace) -> int:
     fields = [f.strip() for f in args.fields.split(",") if f.strip()] if args.fields else None
-    wanted = {s.strip().upper() for s in args.sentences.split(",") if s.strip()} if args.sentences else None
+    wanted = (
+        {s.strip().upper() for s in args.sentences.split(",") if s.strip()}
+        if args.sentences
+        else None
+    )
     if args.log == "-":
         source: IO[bytes] = sys.stdin.buffer
         size = None
@@ -239,7 +258,11 @@ def show(args: argparse.Namespace) -> int:
             for record in stream:
                 writer.writerow([_text(v) for v in _row(record, fields)])
         else:
-            write_table((_row(r, fields) for r in stream), fields or ["line", "talker", "sentence", "fields"], out)
+            write_table(
+                (_row(r, fields) for r in stream),
+                fields or ["line", "talker", "sentence", "fields"],
+                out,
+            )
         out.flush()
     except BrokenPipeError:  # `nmea show log | head`
         sys.stdout = io.TextIOWrapper(io.BytesIO())
@@ -303,8 +326,12 @@ def list_commands(vendor: str | None) -> str:
         for command in (c for c in COMMANDS if c.vendor == vendor_id):
             out.append(f"  {usage_of(command):<40} {_short(command.doc)}")
             for a in _typed(command):
-                choices = f" ({', '.join(_kebab(m.id) for m in a.enum)})" if a.enum is not None else ""
-                out.append(f"      {a.id.upper()}: {a.type}{', optional' if a.optional else ''}{choices}. {_short(a.doc)}")
+                choices = (
+                    f" ({', '.join(_kebab(m.id) for m in a.enum)})" if a.enum is not None else ""
+                )
+                out.append(
+                    f"      {a.id.upper()}: {a.type}{', optional' if a.optional else ''}{choices}. {_short(a.doc)}"
+                )
         groups: dict[str, list[Shortcut]] = {}
         for s in (s for s in SHORTCUTS if s.vendor == vendor_id):
             groups.setdefault(s.words[0], []).append(s)
@@ -312,15 +339,18 @@ def list_commands(vendor: str | None) -> str:
             out.append("  shortcuts:")
         for name, shortcuts in groups.items():
             args = "|".join(" ".join(s.words[1:]) for s in shortcuts)
-            doc = shortcuts[0].doc if len(shortcuts) == 1 else \
-                f"{shortcuts[0].command} {' '.join(k.upper() for k, _ in shortcuts[0].values)} " \
+            doc = (
+                shortcuts[0].doc
+                if len(shortcuts) == 1
+                else f"{shortcuts[0].command} {' '.join(k.upper() for k, _ in shortcuts[0].values)} "
                 + "|".join(v for s in shortcuts for _, v in s.values)
+            )
             out.append(f"  {(name + ' ' + args).strip():<40} {_short(doc)}")
     return "\n".join(out) + "\n"
 
 
 def _short(text: str, limit: int = 90) -> str:
-    return text if len(text) <= limit else text[:limit - 1].rstrip() + "…"
+    return text if len(text) <= limit else text[: limit - 1].rstrip() + "…"
 
 
 def _split_options(words: list[str]) -> tuple[list[str], dict[str, str]]:
@@ -348,12 +378,22 @@ def build(vendor: str, words: list[str], checksum: bool = True) -> bytes:
     if not words:
         raise ToolError("which command? see nmea command --list " + vendor)
     positional, named = _split_options(words)
-    shortcut = next((s for s in SHORTCUTS if s.vendor == vendor and list(s.words) == [w.lower() for w in positional]),
-                    None)
+    shortcut = next(
+        (
+            s
+            for s in SHORTCUTS
+            if s.vendor == vendor and list(s.words) == [w.lower() for w in positional]
+        ),
+        None,
+    )
     if shortcut is not None:
         positional, named = [shortcut.command], {**dict(shortcut.values), **named}
     elif any(s.vendor == vendor and s.words[0] == positional[0].lower() for s in SHORTCUTS):
-        choices = [" ".join(s.words[1:]) for s in SHORTCUTS if s.vendor == vendor and s.words[0] == positional[0].lower()]
+        choices = [
+            " ".join(s.words[1:])
+            for s in SHORTCUTS
+            if s.vendor == vendor and s.words[0] == positional[0].lower()
+        ]
         raise ToolError(f"{positional[0]} takes one of: {', '.join(choices)}")
     name = positional[0].lower()
     command = next((c for c in COMMANDS if c.vendor == vendor and c.name == name), None)
@@ -375,7 +415,9 @@ def build(vendor: str, words: list[str], checksum: bool = True) -> bytes:
         raise ToolError(f"too many arguments; usage: {usage_of(command)}")
     for key, value in named.items():
         if key not in {a.id for a in typed}:
-            raise ToolError(f"{command.name} has no argument --{key.replace('_', '-')}; usage: {usage_of(command)}")
+            raise ToolError(
+                f"{command.name} has no argument --{key.replace('_', '-')}; usage: {usage_of(command)}"
+            )
         if key in values and values[key] != value:
             raise ToolError(f"{key} given twice")
         values[key] = value
@@ -390,13 +432,15 @@ def build(vendor: str, words: list[str], checksum: bool = True) -> bytes:
             break
         else:
             raise ToolError(f"missing {a.id.upper()}; usage: {usage_of(command)}")
-    later = [a.id for a in command.arguments[len(texts):] if a.id in values]
+    later = [a.id for a in command.arguments[len(texts) :] if a.id in values]
     if later:
         raise ToolError(f"{', '.join(later)} needs the optional arguments before it")
     address = command.layout.ADDRESS
     try:
         if command.text:
-            sentence = command.layout.parse_fields(address, texts, None, " ".join([address, *texts]))
+            sentence = command.layout.parse_fields(
+                address, texts, None, " ".join([address, *texts])
+            )
         else:
             sentence = command.layout.parse_fields(address, texts, "upper" if checksum else None)
         data: bytes = sentence.to_bytes()
@@ -423,30 +467,64 @@ def command(args: argparse.Namespace) -> int:
 
 def parser() -> argparse.ArgumentParser:
     top = argparse.ArgumentParser(
-        prog="nmea", formatter_class=argparse.RawDescriptionHelpFormatter,
+        prog="nmea",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
         description="Read NMEA 0183 logs and build GNSS receiver commands.",
-        epilog="`nmea LOG` is `nmea show LOG`.\n\n" + SHOW_EXAMPLES + "\n" + COMMAND_EXAMPLES)
+        epilog="`nmea LOG` is `nmea show LOG`.\n\n" + SHOW_EXAMPLES + "\n" + COMMAND_EXAMPLES,
+    )
     verbs = top.add_subparsers(dest="verb", metavar="show|command")
-    s = verbs.add_parser("show", help="print the sentences of a log (a file, or - for stdin)",
-                         formatter_class=argparse.RawDescriptionHelpFormatter, epilog=SHOW_EXAMPLES)
+    s = verbs.add_parser(
+        "show",
+        help="print the sentences of a log (a file, or - for stdin)",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=SHOW_EXAMPLES,
+    )
     s.add_argument("log", nargs="?", default="-", help="the log file, or - (the default) for stdin")
     form = s.add_mutually_exclusive_group()
-    form.add_argument("--json", dest="format", action="store_const", const="json", help="JSON lines")
-    form.add_argument("--csv", dest="format", action="store_const", const="csv", help="CSV with a header row")
-    s.add_argument("--fields", metavar="F,F...", help="the columns: field ids, line, talker, sentence")
+    form.add_argument(
+        "--json", dest="format", action="store_const", const="json", help="JSON lines"
+    )
+    form.add_argument(
+        "--csv", dest="format", action="store_const", const="csv", help="CSV with a header row"
+    )
+    s.add_argument(
+        "--fields", metavar="F,F...", help="the columns: field ids, line, talker, sentence"
+    )
     s.add_argument("--sentences", metavar="S,S...", help="only these sentences (GGA,RMC or PSTMTG)")
-    s.add_argument("--lenient", action="store_true", help="keep sentences with fields that do not fit (left empty)")
-    s.add_argument("--progress", action="store_true", default=None, help="a progress bar on stderr (default: "
-                   "when stderr is a terminal and the file is large)")
-    s.add_argument("--no-progress", dest="progress", action="store_false", help="never a progress bar")
+    s.add_argument(
+        "--lenient",
+        action="store_true",
+        help="keep sentences with fields that do not fit (left empty)",
+    )
+    s.add_argument(
+        "--progress",
+        action="store_true",
+        default=None,
+        help="a progress bar on stderr (default: when stderr is a terminal and the file is large)",
+    )
+    s.add_argument(
+        "--no-progress", dest="progress", action="store_false", help="never a progress bar"
+    )
     s.add_argument("-q", "--quiet", action="store_true", help="no summary on stderr")
     s.set_defaults(format="table", run=show)
-    c = verbs.add_parser("command", help="print the bytes of a vendor command",
-                         formatter_class=argparse.RawDescriptionHelpFormatter, epilog=COMMAND_EXAMPLES)
-    c.add_argument("--list", action="store_true", help="list the commands (of one vendor) with their arguments")
-    c.add_argument("--no-checksum", action="store_true", help="send a '$' command without its checksum")
-    c.add_argument("words", nargs=argparse.REMAINDER, metavar="VENDOR NAME [ARGS]",
-                   help=f"vendors: {', '.join(VENDORS)}")
+    c = verbs.add_parser(
+        "command",
+        help="print the bytes of a vendor command",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=COMMAND_EXAMPLES,
+    )
+    c.add_argument(
+        "--list", action="store_true", help="list the commands (of one vendor) with their arguments"
+    )
+    c.add_argument(
+        "--no-checksum", action="store_true", help="send a '$' command without its checksum"
+    )
+    c.add_argument(
+        "words",
+        nargs=argparse.REMAINDER,
+        metavar="VENDOR NAME [ARGS]",
+        help=f"vendors: {', '.join(VENDORS)}",
+    )
     c.set_defaults(run=command)
     return top
 
@@ -458,13 +536,18 @@ def main(argv: list[str] | None = None) -> int:
     if not args or args[0] not in ("show", "command", "-h", "--help"):
         args.insert(0, "show")
     try:
-        if args[0] == "command":  # its options may come anywhere; `--field value` belong to the command
+        if (
+            args[0] == "command"
+        ):  # its options may come anywhere; `--field value` belong to the command
             flags = [a for a in args[1:] if a in ("--list", "--no-checksum", "-h", "--help")]
             if "-h" in flags or "--help" in flags:
                 parser().parse_args(["command", "--help"])
             words = [a for a in args[1:] if a not in flags]
-            return command(argparse.Namespace(list="--list" in flags, no_checksum="--no-checksum" in flags,
-                                              words=words))
+            return command(
+                argparse.Namespace(
+                    list="--list" in flags, no_checksum="--no-checksum" in flags, words=words
+                )
+            )
         parsed = parser().parse_args(args)
         result: int = parsed.run(parsed)
         return result

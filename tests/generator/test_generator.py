@@ -102,6 +102,19 @@ def test_every_generated_file_has_a_header(spec) -> None:
         assert "DO NOT EDIT" in content[:400], path
 
 
+def test_generated_python_modules_keep_to_100_columns(spec) -> None:
+    """The modules made from the spec read like hand-written code: no line over 100 characters
+    but a manual's example sentence quoted whole in a docstring."""
+    for path, content in render_all(spec).items():
+        if not path.startswith("python/nmeaspec/") or not path.endswith(".py") or "/" in path[len("python/nmeaspec/"):] \
+                and not path.startswith("python/nmeaspec/sentences/"):
+            continue
+        if path.rsplit("/", 1)[1] in ("runtime.py", "api.py", "tool.py", "stream.py", "cli.py"):
+            continue  # hand-written (templates/python), formatted by hand
+        for number, line in enumerate(content.splitlines(), 1):
+            assert len(line) <= 100 or line.lstrip().startswith(("$", "!")), f"{path}:{number}: {line}"
+
+
 def test_vectors_cover_every_example(spec) -> None:
     files = render_all(spec)
     vectors = [json.loads(line) for line in files["vectors/examples.jsonl"].splitlines()]

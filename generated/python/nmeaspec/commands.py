@@ -52,998 +52,3630 @@ VENDORS: dict[str, str] = {
     "globalsat": "GlobalSat receivers (SiRF), NMEA reference",
     "comnav": "ComNav (SinoGNSS), NMEA messages",
     "magellan_fx324": "Magellan FX324 MAP user manual, NMEA 183 output (versions 1.5, 2.0 and 2.3)",
-    "ashtech": "Spectra Precision (Ashtech) ProFlex 800 reference manual, set and query command library and data output ($PASHS, $PASHQ, $PASHR)",
-    "mtk_pmtk": "GlobalTop PMTK command packet, Rev. A08 (MTK NMEA packet protocol for MT3318, MT3329, MT3339)",
-    "ublox_m8": "u-blox 8 / u-blox M8 receiver description including protocol specification (UBX-13003221), NMEA proprietary PUBX messages",
-    "garmin_gps18x": "Garmin GPS 18x technical specifications (190-00879-08 rev. B), NMEA 0183 input and output sentences",
-    "airoha_pair": "Quectel LC29H & LC79H series GNSS protocol specification, PAIR messages (commands of the chipset supplier, Airoha AG3335/AG3352)",
-    "quectel_lg290p": "Quectel LG290P(03) & LGx80P(03) series GNSS protocol specification V1.1 (2025-07-25), PQTM messages",
+    "ashtech": (
+        "Spectra Precision (Ashtech) ProFlex 800 reference manual, set and query command library "
+        "and data output ($PASHS, $PASHQ, $PASHR)"
+    ),
+    "mtk_pmtk": (
+        "GlobalTop PMTK command packet, Rev. A08 (MTK NMEA packet protocol for MT3318, MT3329, "
+        "MT3339)"
+    ),
+    "ublox_m8": (
+        "u-blox 8 / u-blox M8 receiver description including protocol specification "
+        "(UBX-13003221), NMEA proprietary PUBX messages"
+    ),
+    "garmin_gps18x": (
+        "Garmin GPS 18x technical specifications (190-00879-08 rev. B), NMEA 0183 input and output "
+        "sentences"
+    ),
+    "airoha_pair": (
+        "Quectel LC29H & LC79H series GNSS protocol specification, PAIR messages (commands of the "
+        "chipset supplier, Airoha AG3335/AG3352)"
+    ),
+    "quectel_lg290p": (
+        "Quectel LG290P(03) & LGx80P(03) series GNSS protocol specification V1.1 (2025-07-25), "
+        "PQTM messages"
+    ),
 }
 
 COMMANDS: tuple[Command, ...] = (
-    Command("comnav", "log", sentences.ComnavLog, "Request periodic output of an NMEA message", (
-        Argument("message", "enum", "The NMEA log to output (manual Table 2).", enum=enums.ComnavLogMessage),
-        Argument("trigger", "keyword", "The word ONTIME, output at a fixed time interval; the only trigger the manual shows.", value="ONTIME"),
-        Argument("period", "decimal", "Interval between two outputs in seconds."),
-    ), text=True),
-    Command("comnav", "nmeatalker", sentences.ComnavNmeatalker, "Set, list or reset the NMEA talker IDs", (
-        Argument("message", "enum", "The sentence whose talker ID is set, or ALL for all nine.", enum=enums.ComnavTalkerSentence),
-        Argument("talker_id", "enum", "The talker ID to use (GN, GP, BD, GL, GA), or AUTO to follow the constellations of the current solution.", enum=enums.ComnavTalkerId),
-    ), text=True),
-    Command("comnav", "nmeatalker-list", sentences.ComnavNmeatalkerList, "List the talker IDs", (
-        Argument("subcommand", "keyword", "The word LIST.", value="LIST"),
-    ), text=True),
-    Command("comnav", "nmeatalker-reset", sentences.ComnavNmeatalkerReset, "Reset the talker IDs", (
-        Argument("subcommand", "keyword", "The word RESET.", value="RESET"),
-    ), text=True),
-    Command("geos5", "command", sentences.Geos5Command, "GeoS-5 input command", (
-        Argument("command", "enum", "The 6-character command word, e.g. BDR115 (115200 bit/s), GGA ON, RATE10 or ELEV05.", enum=enums.Geos5CommandWord),
-    )),
-    Command("geos5", "nquery-request", sentences.Geos5NqueryRequest, "GeoS-5 request for the set and rates of NMEA sentences", (
-        Argument("keyword", "keyword", "The request word; like every GeoS-5 command word it is 6 characters and the only field.", value="NQUERY"),
-    )),
-    Command("geos5", "rquery-request", sentences.Geos5RqueryRequest, "GeoS-5 request for software version, telemetry and configuration", (
-        Argument("keyword", "keyword", "The request word; like every GeoS-5 command word it is 6 characters and the only field.", value="RQUERY"),
-    )),
-    Command("airoha_pair", "pair002", sentences.Pair002, "Power on the GNSS subsystem", (
-    )),
-    Command("airoha_pair", "pair003", sentences.Pair003, "Power off the GNSS subsystem", (
-    )),
-    Command("airoha_pair", "pair004", sentences.Pair004, "Hot start", (
-    )),
-    Command("airoha_pair", "pair005", sentences.Pair005, "Warm start", (
-    )),
-    Command("airoha_pair", "pair006", sentences.Pair006, "Cold start", (
-    )),
-    Command("airoha_pair", "pair007", sentences.Pair007, "Full cold start", (
-    )),
-    Command("airoha_pair", "pair050", sentences.Pair050, "Set the position fix interval", (
-        Argument("interval", "integer", "Time between two position fixes; 1000 ms (1 Hz) is the default."),
-    )),
-    Command("airoha_pair", "pair051", sentences.Pair051, "Query the position fix interval", (
-    )),
-    Command("airoha_pair", "pair058", sentences.Pair058, "Set the minimum SNR", (
-        Argument("min_snr", "integer", "Satellites weaker than this are not used in the solution; default 9."),
-    )),
-    Command("airoha_pair", "pair059", sentences.Pair059, "Query the minimum SNR", (
-    )),
-    Command("airoha_pair", "pair062", sentences.Pair062, "Set the output rate of a standard sentence", (
-        Argument("type", "enum", "Standard sentence concerned; -1 for all of them.", enum=enums.AirohaNmeaType),
-        Argument("rate", "integer", "0 switches the sentence off, n outputs it once every n fixes; default 1."),
-    )),
-    Command("airoha_pair", "pair063", sentences.Pair063, "Query the output rate of a standard sentence", (
-        Argument("type", "enum", "Standard sentence concerned; -1 for all of them.", enum=enums.AirohaNmeaType),
-    )),
-    Command("airoha_pair", "pair066", sentences.Pair066, "Set the GNSS search mode", (
-        Argument("gps", "enum", "Search for GPS satellites.", enum=enums.AirohaEnable),
-        Argument("glonass", "enum", "Search for GLONASS satellites.", enum=enums.AirohaEnable),
-        Argument("galileo", "enum", "Search for Galileo satellites.", enum=enums.AirohaEnable),
-        Argument("beidou", "enum", "Search for BDS satellites.", enum=enums.AirohaEnable),
-        Argument("qzss", "enum", "Search for QZSS satellites.", enum=enums.AirohaEnable),
-        Argument("reserved", "integer", "Reserved, always 0 (pynmeagps names it NavIC)."),
-    )),
-    Command("airoha_pair", "pair067", sentences.Pair067, "Query the GNSS search mode", (
-    )),
-    Command("airoha_pair", "pair070", sentences.Pair070, "Set the static navigation speed threshold", (
-        Argument("threshold", "integer", "Threshold in decimetres per second; default 0 (off)."),
-    )),
-    Command("airoha_pair", "pair071", sentences.Pair071, "Query the static navigation speed threshold", (
-    )),
-    Command("airoha_pair", "pair072", sentences.Pair072, "Set the elevation mask", (
-        Argument("elevation", "integer", "Satellites below this elevation are not used for the fix; default 5."),
-    )),
-    Command("airoha_pair", "pair073", sentences.Pair073, "Query the elevation mask", (
-    )),
-    Command("airoha_pair", "pair074", sentences.Pair074, "Switch active interference cancellation", (
-        Argument("enabled", "enum", "Active interference cancellation off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair075", sentences.Pair075, "Query active interference cancellation", (
-    )),
-    Command("airoha_pair", "pair080", sentences.Pair080, "Set the navigation mode", (
-        Argument("mode", "enum", "Dynamic model of the position engine.", enum=enums.AirohaNavMode),
-    )),
-    Command("airoha_pair", "pair081", sentences.Pair081, "Query the navigation mode", (
-    )),
-    Command("airoha_pair", "pair086", sentences.Pair086, "Set the debug log output", (
-        Argument("level", "enum", "Debug log output level.", enum=enums.AirohaDebugLog),
-    )),
-    Command("airoha_pair", "pair087", sentences.Pair087, "Query the debug log output", (
-    )),
-    Command("airoha_pair", "pair098", sentences.Pair098, "Set the coordinate precision", (
-        Argument("precision", "enum", "Decimals of the coordinates and altitude in the NMEA output.", enum=enums.AirohaPosPrecision),
-    )),
-    Command("airoha_pair", "pair099", sentences.Pair099, "Query the coordinate precision", (
-    )),
-    Command("airoha_pair", "pair100", sentences.Pair100, "Set the NMEA output mode", (
-        Argument("nmea_mode", "enum", "Standard NMEA output off, version 4.10 or version 3.01.", enum=enums.AirohaNmeaOutputMode),
-        Argument("proprietary", "enum", "Output of the chip's proprietary sentences; off by default.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair101", sentences.Pair101, "Query the NMEA output mode", (
-    )),
-    Command("airoha_pair", "pair104", sentences.Pair104, "Set dual-band reception", (
-        Argument("enabled", "enum", "L1 + L5 reception off or on (on by default).", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair105", sentences.Pair105, "Query dual-band reception", (
-    )),
-    Command("airoha_pair", "pair154", sentences.Pair154, "Switch RLM output", (
-        Argument("enabled", "enum", "Galileo return link message output off or on (output at 1 Hz).", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair155", sentences.Pair155, "Query RLM output", (
-    )),
-    Command("airoha_pair", "pair158", sentences.Pair158, "Switch BDS B1C tracking", (
-        Argument("enabled", "enum", "BDS B1C tracking off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair382", sentences.Pair382, "Lock system sleep", (
-        Argument("enabled", "enum", "0 releases the lock, 1 keeps the system awake.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair391", sentences.Pair391, "Switch jamming detection", (
-        Argument("enabled", "enum", "Detection off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair400", sentences.Pair400, "Set the DGPS correction source", (
-        Argument("mode", "enum", "Where differential corrections come from.", enum=enums.AirohaDgpsMode),
-    )),
-    Command("airoha_pair", "pair401", sentences.Pair401, "Query the DGPS correction source", (
-    )),
-    Command("airoha_pair", "pair410", sentences.Pair410, "Switch SBAS", (
-        Argument("enabled", "enum", "SBAS satellite search off or on (on by default).", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair411", sentences.Pair411, "Query SBAS", (
-    )),
-    Command("airoha_pair", "pair420", sentences.Pair420, "Switch QZSS SLAS", (
-        Argument("enabled", "enum", "QZSS SLAS corrections off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair421", sentences.Pair421, "Query QZSS SLAS", (
-    )),
-    Command("airoha_pair", "pair432", sentences.Pair432, "Set the RTCM output mode", (
-        Argument("mode", "enum", "RTCM 3 observation output: off, MSM4 or MSM7.", enum=enums.AirohaRtcmMode),
-    )),
-    Command("airoha_pair", "pair433", sentences.Pair433, "Query the RTCM output mode", (
-    )),
-    Command("airoha_pair", "pair434", sentences.Pair434, "Switch RTCM antenna reference point output", (
-        Argument("enabled", "enum", "RTCM message 1005 (stationary antenna reference point) off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair435", sentences.Pair435, "Query RTCM antenna reference point output", (
-    )),
-    Command("airoha_pair", "pair436", sentences.Pair436, "Switch RTCM ephemeris output", (
-        Argument("enabled", "enum", "RTCM ephemeris messages (1019, 1020, 1042, 1044, 1046) off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair437", sentences.Pair437, "Query RTCM ephemeris output", (
-    )),
-    Command("airoha_pair", "pair490", sentences.Pair490, "Switch EASY", (
-        Argument("enabled", "enum", "EASY orbit prediction off or on (on by default).", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair491", sentences.Pair491, "Query EASY", (
-    )),
-    Command("airoha_pair", "pair511", sentences.Pair511, "Save navigation data", (
-    )),
-    Command("airoha_pair", "pair512", sentences.Pair512, "Clear navigation data", (
-    )),
-    Command("airoha_pair", "pair513", sentences.Pair513, "Save settings", (
-    )),
-    Command("airoha_pair", "pair6010", sentences.Pair6010, "Set the output of a DR message", (
-        Argument("type", "enum", "DR message concerned.", enum=enums.AirohaDrMessage),
-        Argument("state", "enum", "Output of the message off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair6011", sentences.Pair6011, "Query the output of a DR message", (
-        Argument("type", "enum", "DR message concerned.", enum=enums.AirohaDrMessage),
-    )),
-    Command("airoha_pair", "pair650", sentences.Pair650, "Enter RTC (backup) mode", (
-        Argument("duration", "integer", "Time in backup mode: 0 (no timer, wake by pin) or 10 to 62208000 s (two years)."),
-    )),
-    Command("airoha_pair", "pair680", sentences.Pair680, "Switch the GPS low power mode", (
-        Argument("enabled", "enum", "GPS low power mode off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair681", sentences.Pair681, "Query the GPS low power mode", (
-    )),
-    Command("airoha_pair", "pair690", sentences.Pair690, "Set periodic power saving", (
-        Argument("mode", "enum", "Periodic mode off, smart or strict.", enum=enums.AirohaPeriodicMode),
-        Argument("first_run", "integer", "Run time after waking up, while a fix is obtained."),
-        Argument("first_sleep", "integer", "Sleep time after a fix was obtained or attempted."),
-        Argument("second_run", "integer", "Run time when there is no signal; 0 only together with a second sleep time of 0."),
-        Argument("second_sleep", "integer", "Sleep time when there is no signal; 0 only together with a second run time of 0."),
-    )),
-    Command("airoha_pair", "pair691", sentences.Pair691, "Query periodic power saving", (
-    )),
-    Command("airoha_pair", "pair730", sentences.Pair730, "Switch the fitness low power mode", (
-        Argument("enabled", "enum", "Fitness low power mode off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair731", sentences.Pair731, "Query the fitness low power mode", (
-    )),
-    Command("airoha_pair", "pair732", sentences.Pair732, "Switch the adaptive low power mode", (
-        Argument("enabled", "enum", "Adaptive low power mode off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair733", sentences.Pair733, "Query the adaptive low power mode", (
-    )),
-    Command("airoha_pair", "pair752", sentences.Pair752, "Configure the PPS output", (
-        Argument("pps_type", "enum", "Condition for the pulse.", enum=enums.AirohaPpsType),
-        Argument("pulse_width", "integer", "Width of the pulse; default 100 ms."),
-    )),
-    Command("airoha_pair", "pair864", sentences.Pair864, "Set the UART baud rate", (
-        Argument("port_type", "integer", "Hardware port type: 0 = UART."),
-        Argument("port_index", "integer", "Index of the port: 0 = UART0 (the NMEA port)."),
-        Argument("baud", "enum", "Port speed in bit/s; 115200 by default.", enum=enums.AirohaBaud),
-    )),
-    Command("airoha_pair", "pair865", sentences.Pair865, "Query the UART baud rate", (
-        Argument("port_type", "integer", "Hardware port type: 0 = UART."),
-        Argument("port_index", "integer", "Index of the port: 0 = UART0 (the NMEA port)."),
-    )),
-    Command("airoha_pair", "pair866", sentences.Pair866, "Set UART flow control", (
-        Argument("port_type", "integer", "Hardware port type: 0 = UART."),
-        Argument("port_index", "integer", "Index of the port: 0 = UART0 (the NMEA port)."),
-        Argument("flow_control", "integer", "Flow-control setting of the port (0 is the state the fixtures read back; the value list is not in the documents read)."),
-    )),
-    Command("airoha_pair", "pair867", sentences.Pair867, "Query UART flow control", (
-        Argument("port_type", "integer", "Hardware port type: 0 = UART."),
-        Argument("port_index", "integer", "Index of the port: 0 = UART0 (the NMEA port)."),
-    )),
-    Command("airoha_pair", "pair890", sentences.Pair890, "Configure geofences", (
-        Argument("count", "integer", "Number of circular fences that follow; 0 switches geofencing off."),
-        Argument("confidence", "enum", "Confidence required before a fence state is reported.", enum=enums.AirohaGeofenceConfidence),
-    )),
-    Command("airoha_pair", "pair891", sentences.Pair891, "Query geofences", (
-    )),
-    Command("airoha_pair", "pair900", sentences.Pair900, "Switch LOCUS logging", (
-        Argument("enabled", "enum", "LOCUS logging off or on.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair901", sentences.Pair901, "Query LOCUS logging", (
-    )),
-    Command("airoha_pair", "pair902", sentences.Pair902, "Set the LOCUS save mode", (
-        Argument("mode", "hex", "Bit mask of the events that store a record (airoha_locus_mode)."),
-        Argument("check_3d", "enum", "When on, only 3D fixes are stored.", enum=enums.AirohaEnable),
-    )),
-    Command("airoha_pair", "pair903", sentences.Pair903, "Query the LOCUS save mode", (
-    )),
-    Command("airoha_pair", "pair904", sentences.Pair904, "Set a LOCUS threshold", (
-        Argument("threshold_kind", "enum", "Time, speed or distance threshold.", enum=enums.AirohaLocusThreshold),
-        Argument("threshold", "integer", "Seconds (1-43200), metres per second (1-100) or metres (1-50000), after the kind."),
-    )),
-    Command("airoha_pair", "pair905", sentences.Pair905, "Query a LOCUS threshold", (
-        Argument("threshold_kind", "enum", "Time, speed or distance threshold.", enum=enums.AirohaLocusThreshold),
-    )),
-    Command("airoha_pair", "pair906", sentences.Pair906, "Clear LOCUS data", (
-        Argument("type", "enum", "What is erased.", enum=enums.AirohaLocusClear),
-    )),
-    Command("airoha_pair", "pair907", sentences.Pair907, "Log the current fix", (
-    )),
-    Command("airoha_pair", "pair908", sentences.Pair908, "Dump LOCUS data", (
-        Argument("format", "enum", "Dump format.", enum=enums.AirohaLocusFormat),
-    )),
-    Command("airoha_pair", "pair909", sentences.Pair909, "Query the LOCUS record count", (
-    )),
-    Command("ashtech", "pashq-att", sentences.PashqAtt, "Query heading, pitch and roll (ATT)", (
-        Argument("keyword", "keyword", "Query keyword.", value="ATT"),
-    )),
-    Command("ashtech", "pashq-elm", sentences.PashqElm, "Query the elevation mask (ELM)", (
-        Argument("keyword", "keyword", "Query keyword.", value="ELM"),
-    )),
-    Command("ashtech", "pashq-nmo", sentences.PashqNmo, "Query NMEA message output settings (NMO)", (
-        Argument("keyword", "keyword", "Query keyword.", value="NMO"),
-        Argument("port", "enum", "The port whose message settings are returned.", enum=enums.AshtechPort),
-    )),
-    Command("ashtech", "pashq-pem", sentences.PashqPem, "Query the position elevation mask (PEM)", (
-        Argument("keyword", "keyword", "Query keyword.", value="PEM"),
-    )),
-    Command("ashtech", "pashq-pop", sentences.PashqPop, "Query the internal update rate (POP)", (
-        Argument("keyword", "keyword", "Query keyword.", value="POP"),
-    )),
-    Command("ashtech", "pashq-pos", sentences.PashqPos, "Query the computed position (POS)", (
-        Argument("keyword", "keyword", "Query keyword.", value="POS"),
-        Argument("port", "enum", "Port on which the answer is to be sent; when absent, the port the query came from.", enum=enums.AshtechPort, optional=True),
-    )),
-    Command("ashtech", "pashq-ptt", sentences.PashqPtt, "Query the PPS time tag (PTT)", (
-        Argument("keyword", "keyword", "Query keyword.", value="PTT"),
-        Argument("port", "enum", "Port on which the answer is to be sent; when absent, the port the query came from.", enum=enums.AshtechPort, optional=True),
-    )),
-    Command("ashtech", "pashq-sat", sentences.PashqSat, "Query satellite status (SAT)", (
-        Argument("keyword", "keyword", "Query keyword.", value="SAT"),
-        Argument("port", "enum", "Port on which the answer is to be sent; when absent, the port the query came from.", enum=enums.AshtechPort, optional=True),
-    )),
-    Command("ashtech", "pashq-sba", sentences.PashqSba, "Query the SBAS tracking status (SBA)", (
-        Argument("keyword", "keyword", "Query keyword.", value="SBA"),
-    )),
-    Command("ashtech", "pashs-nme", sentences.PashsNme, "Enable or disable an NMEA output message (NME)", (
-        Argument("keyword", "keyword", "Command keyword.", value="NME"),
-        Argument("message", "enum", "The message to switch (GGA, RMC, ..., ATT, POS, SAT, PTT, TTT).", enum=enums.AshtechNmeMessage),
-        Argument("port", "enum", "Port, or storage, that outputs the message.", enum=enums.AshtechPort),
-        Argument("state", "enum", "ON enables the message, OFF disables it.", enum=enums.AshtechOnOff),
-        Argument("rate", "decimal", "Output period of this message in seconds: 0.05 (needs a 20 Hz update rate, $PASHS,POP,20), 0.1 to 0.4 (with the F option), 0.5 to 0.9, or 1 to 999.", optional=True),
-    )),
-    Command("ashtech", "pashs-nme-period", sentences.PashsNmePeriod, "Default output period", (
-        Argument("keyword", "keyword", "Command keyword.", value="NME"),
-        Argument("per", "keyword", "Selects the default-period form of the command.", value="PER"),
-        Argument("period", "decimal", "Default output period in seconds (0.1 to 999 on the Z-Family; 0.1 steps below 1 s, 1 s steps above)."),
-    )),
-    Command("garmin_gps18x", "pgrmc", sentences.Pgrmc, "Garmin sensor configuration", (
-        Argument("fix_mode", "enum", "A automatic, 2 2D only (host supplies the altitude; not on the GPS 18x), 3 3D only.", enum=enums.GarminConfigFixMode),
-        Argument("altitude", "decimal", "Altitude above or below mean sea level, used for 2D fixes."),
-        Argument("datum", "integer", "Index of the earth datum in the manual's appendix A list; 96 selects the user datum of the next five fields, which must be empty for any other datum."),
-        Argument("semi_major_axis", "decimal", "Semi-major axis of the user datum ellipsoid, 0.001 m resolution."),
-        Argument("inverse_flattening", "decimal", "Inverse flattening factor of the user datum ellipsoid (resolution 1e-9)."),
-        Argument("delta_x", "decimal", "Earth-centred X offset of the user datum, 1 m resolution."),
-        Argument("delta_y", "decimal", "Earth-centred Y offset of the user datum, 1 m resolution."),
-        Argument("delta_z", "decimal", "Earth-centred Z offset of the user datum, 1 m resolution."),
-        Argument("differential_mode", "enum", "A automatic (differential fixes when available), D differential fixes only.", enum=enums.GarminDiffMode),
-        Argument("baud_rate", "enum", "3 = 4800, 4 = 9600, 5 = 19200, 6 = 300, 7 = 600, 8 = 38400 (GPS 18x-5Hz); older sensors also 1 = 1200, 2 = 2400.", enum=enums.GarminBaud),
-        Argument("velocity_filter", "integer", "0 no filter, 1 automatic filter, 2-255 filter time constant in seconds (no effect on the GPS 18x)."),
-        Argument("pps_mode", "enum", "Pulse (PPS) output, 1 disabled, 2 enabled (1 Hz).", enum=enums.GarminOffOn),
-        Argument("pps_length", "integer", "Pulse width n, the pulse lasting (n+1) x 20 ms (e.g. 4 = 100 ms)."),
-        Argument("dr_time", "integer", "Time the sensor keeps reporting dead-reckoned positions after losing the fix."),
-    )),
-    Command("garmin_gps18x", "pgrmc1", sentences.Pgrmc1, "Garmin additional sensor configuration", (
-        Argument("output_time", "integer", "Seconds between two NMEA outputs (the GPS 18x-5Hz always outputs at 5 Hz)."),
-        Argument("binary_output", "enum", "1 off, 2 on (Garmin binary phase data instead of NMEA, from the next reset).", enum=enums.GarminOffOn),
-        Argument("position_averaging", "enum", "1 off, 2 on.", enum=enums.GarminOffOn),
-        Argument("beacon_frequency", "decimal", "0.0 or 283.5 to 325.0 kHz in 0.5 kHz steps; no effect on the GPS 18/18x."),
-        Argument("beacon_bit_rate", "integer", "0, 25, 50, 100 or 200; no effect on the GPS 18/18x."),
-        Argument("beacon_scanning", "enum", "1 off, 2 on; no effect on the GPS 18/18x.", enum=enums.GarminOffOn),
-        Argument("nmea_230", "enum", "1 off (NMEA 2.0 sentences, the default), 2 on (mode indicator of NMEA 2.30 added).", enum=enums.GarminOffOn),
-        Argument("waas_mode", "enum", "W WAAS enabled, N WAAS disabled.", enum=enums.GarminWaasMode),
-        Argument("power_save", "enum", "P power save, N normal.", enum=enums.GarminPowerMode),
-        Argument("adaptive_transmission", "enum", "1 off, 2 on.", enum=enums.GarminOffOn),
-        Argument("auto_power_off", "enum", "1 off, 2 on.", enum=enums.GarminOffOn),
-        Argument("power_on_external", "enum", "1 off, 2 on.", enum=enums.GarminOffOn),
-        Argument("pulse_auto_off", "enum", "1 off, 2 on.", enum=enums.GarminOffOn, optional=True),
-    )),
-    Command("garmin_gps18x", "pgrmc1e", sentences.Pgrmc1e, "Garmin additional sensor configuration query", (
-    )),
-    Command("garmin_gps18x", "pgrmce", sentences.Pgrmce, "Garmin sensor configuration query", (
-    )),
-    Command("garmin_gps18x", "pgrmi", sentences.Pgrmi, "Garmin sensor initialization", (
-        Argument("lat", "latitude", "Approximate latitude with its hemisphere; leading zeros must be sent (ddmm.mmmmm on the 5 Hz models)."),
-        Argument("lon", "longitude", "Approximate longitude with its hemisphere; leading zeros must be sent."),
-        Argument("date", "date", "Current UTC date."),
-        Argument("time", "time", "Current UTC time (hhmmss.s on the 5 Hz models)."),
-        Argument("receiver_command", "enum", "A auto locate (cold start), R unit reset; empty for a plain initialization.", enum=enums.GarminReceiverCommand),
-    )),
-    Command("garmin_gps18x", "pgrmie", sentences.Pgrmie, "Garmin sensor initialization query", (
-    )),
-    Command("garmin_gps18x", "pgrmo", sentences.Pgrmo, "Garmin output sentence enable/disable", (
-        Argument("target", "text", "The sentence to act on, as it is output (e.g. PGRMT, GPGSV); not checked, and may be empty, for the modes that act on all sentences (2, 3, 4) and for G."),
-        Argument("mode", "enum", "0 disable, 1 enable, 2 disable all, 3 enable all but GPALM, 4 factory defaults, G Garmin binary mode.", enum=enums.GarminOutputMode),
-    )),
-    Command("magellan_fx324", "pmgncmd", sentences.Pmgncmd, "Magellan transfer command", (
-        Argument("command", "enum", "WAYPOINT, ROUTE or TRACK.", enum=enums.MagellanCommand),
-        Argument("option", "text", "Command option; 2 after TRACK adds the date to every PMGNTRK point.", optional=True),
-    )),
-    Command("mtk_pmtk", "pmtk000", sentences.Pmtk000, "Test packet", (
-    )),
-    Command("mtk_pmtk", "pmtk101", sentences.Pmtk101, "Hot restart", (
-    )),
-    Command("mtk_pmtk", "pmtk102", sentences.Pmtk102, "Warm restart", (
-    )),
-    Command("mtk_pmtk", "pmtk103", sentences.Pmtk103, "Cold restart", (
-    )),
-    Command("mtk_pmtk", "pmtk104", sentences.Pmtk104, "Full cold restart (factory reset)", (
-    )),
-    Command("mtk_pmtk", "pmtk161", sentences.Pmtk161, "Enter standby mode", (
-        Argument("type", "enum", "0 stop mode (called sleep mode by GlobalTop); the IT500 manual adds 1 sleep mode.", enum=enums.MtkStandbyType),
-    )),
-    Command("mtk_pmtk", "pmtk183", sentences.Pmtk183, "Query LOCUS logger status", (
-    )),
-    Command("mtk_pmtk", "pmtk184", sentences.Pmtk184, "Erase LOCUS logger flash", (
-        Argument("type", "literal", "Always 1, erase all logger data in the internal flash.", value="1"),
-    )),
-    Command("mtk_pmtk", "pmtk185", sentences.Pmtk185, "Start or stop LOCUS logging", (
-        Argument("status", "enum", "0 start logging, 1 stop logging.", enum=enums.MtkLocusLogger),
-    )),
-    Command("mtk_pmtk", "pmtk220", sentences.Pmtk220, "Set position fix interval (update rate)", (
-        Argument("interval", "integer", "Position fix interval in milliseconds, 100 to 10000."),
-    )),
-    Command("mtk_pmtk", "pmtk223", sentences.Pmtk223, "Set extended ephemeris reception", (
-        Argument("sv", "integer", "The number of satellites lacking ephemeris data at which the reception time is extended."),
-        Argument("snr", "integer", "Ephemeris reception is enabled for satellites whose SNR is above this value."),
-        Argument("extension_threshold", "integer", "How long the reception of ephemeris data is extended, in milliseconds."),
-        Argument("extension_gap", "integer", "Time between two extended ephemeris receptions, in milliseconds."),
-    )),
-    Command("mtk_pmtk", "pmtk225", sentences.Pmtk225, "Set periodic power-saving mode", (
-        Argument("mode", "enum", "0 normal, 1 periodic backup, 2 periodic standby, 4 perpetual backup, 8 AlwaysLocate standby, 9 AlwaysLocate backup.", enum=enums.MtkPeriodicMode),
-        Argument("run_time", "integer", "Time the receiver runs in each cycle, 0 (disabled) or 1000 to 518400000 ms.", optional=True),
-        Argument("sleep_time", "integer", "Time the receiver sleeps in each cycle, 1000 to 518400000 ms.", optional=True),
-        Argument("second_run_time", "integer", "Run time used while the receiver has no fix (cold start condition), to collect more ephemeris; 0 (disabled) or 1000 to 518400000 ms, longer than the first run time when not 0.", optional=True),
-        Argument("second_sleep_time", "integer", "Sleep time used together with the second run time, 1000 to 518400000 ms.", optional=True),
-    )),
-    Command("mtk_pmtk", "pmtk251", sentences.Pmtk251, "Set NMEA port baud rate", (
-        Argument("baud", "enum", "4800, 9600, 14400, 19200, 38400, 57600 or 115200 bit/s; 0 the default rate (Linx).", enum=enums.MtkBaud),
-    )),
-    Command("mtk_pmtk", "pmtk286", sentences.Pmtk286, "Enable active interference cancellation", (
-        Argument("enabled", "enum", "0 disable, 1 enable.", enum=enums.MtkEnable),
-    )),
-    Command("mtk_pmtk", "pmtk300", sentences.Pmtk300, "Set position fix control", (
-        Argument("fix_interval", "integer", "Position fix interval in milliseconds, more than 100."),
-        Argument("reserved_1", "decimal", "Reserved, 0."),
-        Argument("reserved_2", "decimal", "Reserved, 0."),
-        Argument("reserved_3", "decimal", "Reserved, 0."),
-        Argument("reserved_4", "decimal", "Reserved, 0."),
-    )),
-    Command("mtk_pmtk", "pmtk301", sentences.Pmtk301, "Set DGPS mode", (
-        Argument("mode", "enum", "0 no DGPS, 1 RTCM, 2 SBAS (WAAS).", enum=enums.MtkDgpsMode),
-    )),
-    Command("mtk_pmtk", "pmtk313", sentences.Pmtk313, "Enable SBAS search", (
-        Argument("enabled", "enum", "0 disable, 1 enable.", enum=enums.MtkEnable),
-    )),
-    Command("mtk_pmtk", "pmtk314", sentences.Pmtk314, "Set NMEA sentence output rates", (
-        Argument("gll", "integer", "Field 0: GLL (geographic position) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("rmc", "integer", "Field 1: RMC (recommended minimum data) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("vtg", "integer", "Field 2: VTG (course and speed over ground) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("gga", "integer", "Field 3: GGA (fix data) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("gsa", "integer", "Field 4: GSA (DOP and active satellites) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("gsv", "integer", "Field 5: GSV (satellites in view) output rate. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("grs", "integer", "Field 6: GRS (range residuals) output rate on the IT500 series; reserved (0) in the GlobalTop and L80 manuals. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("gst", "integer", "Field 7: GST (pseudorange error statistics) output rate on the IT500 series; reserved (0) in the GlobalTop and L80 manuals. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("reserved_8", "integer", "Field 8: Reserved, 0."),
-        Argument("reserved_9", "integer", "Field 9: Reserved, 0."),
-        Argument("reserved_10", "integer", "Field 10: Reserved, 0."),
-        Argument("reserved_11", "integer", "Field 11: Reserved, 0."),
-        Argument("reserved_12", "integer", "Field 12: Reserved, 0."),
-        Argument("malm", "integer", "Field 13: Almanac sentence PMTKALM; listed by the IT500 manual as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("meph", "integer", "Field 14: Ephemeris sentence PMTKEPH; listed by the IT500 manual as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("mdgp", "integer", "Field 15: Differential correction sentence PMTKDGP; listed by the IT500 manual as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("mdbg", "integer", "Field 16: MTK debug sentence PMTKDBG; listed by the IT500 manual as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("zda", "integer", "Field 17: ZDA (time and date) output rate (IT500 and L80 manuals; reserved in the GlobalTop A08 manual). 0 disables it, n (1 to 5) sends it once every n position fixes."),
-        Argument("mchn", "integer", "Field 18: PMTKCHN (channel status) output rate (GlobalTop and IT500 manuals; reserved, 0, in the L80 manual). 0 disables it, n (1 to 5) sends it once every n position fixes."),
-    )),
-    Command("mtk_pmtk", "pmtk314-restore-default", sentences.Pmtk314RestoreDefault, "Restore default output", (
-        Argument("restore", "keyword", "Always -1.", value="-1"),
-    )),
-    Command("mtk_pmtk", "pmtk319", sentences.Pmtk319, "Set SBAS mode", (
-        Argument("mode", "enum", "0 testing mode, 1 integrity mode.", enum=enums.MtkSbasMode),
-    )),
-    Command("mtk_pmtk", "pmtk353", sentences.Pmtk353, "Set GNSS search mode", (
-        Argument("gps", "enum", "1 search GPS satellites, 0 not.", enum=enums.MtkEnable),
-        Argument("glonass", "enum", "1 search GLONASS satellites, 0 not.", enum=enums.MtkEnable),
-        Argument("galileo", "enum", "1 search Galileo satellites, 0 not.", enum=enums.MtkEnable),
-        Argument("galileo_full", "enum", "1 use Galileo satellites for the fix as well (not only search), 0 not.", enum=enums.MtkEnable),
-        Argument("beidou", "enum", "1 search BeiDou satellites, 0 not.", enum=enums.MtkEnable),
-    )),
-    Command("mtk_pmtk", "pmtk386", sentences.Pmtk386, "Set static navigation threshold", (
-        Argument("threshold", "decimal", "Speed threshold in m/s, 0 to 2.0; 0 disables static navigation."),
-    )),
-    Command("mtk_pmtk", "pmtk397", sentences.Pmtk397, "Set navigation speed threshold", (
-        Argument("threshold", "decimal", "Navigation speed threshold in m/s."),
-    )),
-    Command("mtk_pmtk", "pmtk400", sentences.Pmtk400, "Query position fix interval", (
-    )),
-    Command("mtk_pmtk", "pmtk401", sentences.Pmtk401, "Query DGPS mode", (
-    )),
-    Command("mtk_pmtk", "pmtk413", sentences.Pmtk413, "Query SBAS enabled", (
-    )),
-    Command("mtk_pmtk", "pmtk414", sentences.Pmtk414, "Query NMEA output rates", (
-    )),
-    Command("mtk_pmtk", "pmtk447", sentences.Pmtk447, "Query navigation speed threshold", (
-    )),
-    Command("mtk_pmtk", "pmtk605", sentences.Pmtk605, "Query firmware release", (
-    )),
-    Command("mtk_pmtk", "pmtk622", sentences.Pmtk622, "Dump LOCUS logger data", (
-        Argument("type", "literal", "1, dump the part of the flash that holds data.", value="1"),
-    )),
-    Command("mtk_pmtk", "pmtk660", sentences.Pmtk660, "Query satellites with ephemeris still valid", (
-        Argument("interval", "integer", "The time from now, in seconds, more than 0 and at most 7200 (2 hours)."),
-    )),
-    Command("mtk_pmtk", "pmtk661", sentences.Pmtk661, "Query satellites with almanac still valid", (
-        Argument("interval", "integer", "The time from now, in days, more than 0."),
-    )),
-    Command("mtk_pmtk", "pmtk869-query", sentences.Pmtk869Query, "Query EASY function", (
-        Argument("cmd_type", "keyword", "0, query.", value="0"),
-    )),
-    Command("mtk_pmtk", "pmtk869-set", sentences.Pmtk869Set, "Enable or disable EASY function", (
-        Argument("cmd_type", "keyword", "1, set.", value="1"),
-        Argument("enabled", "enum", "0 disable, 1 enable.", enum=enums.MtkEnable),
-    )),
-    Command("quectel_lg290p", "pqtmcfgantdelta", sentences.Pqtmcfgantdelta, "Configure antenna offset", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("east", "decimal", "East offset from the reference point to the antenna (default 0)."),
-        Argument("north", "decimal", "North offset from the reference point to the antenna (default 0)."),
-        Argument("height", "decimal", "Height of the antenna above the reference point, sent in RTCM 1006 (DF028) (default 0)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgantdelta-read", sentences.PqtmcfgantdeltaRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgantinf", sentences.Pqtmcfgantinf, "Configure antenna information", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("description", "text", "Antenna descriptor sent in RTCM 1033 (DF030), up to 31 characters; empty by default."),
-        Argument("setup_id", "integer", "Antenna setup ID sent in RTCM 1033 (DF031), default 0."),
-        Argument("serial_number", "text", "Antenna serial number sent in RTCM 1033 (DF033), up to 31 characters; empty by default."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgantinf-read", sentences.PqtmcfgantinfRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgbld", sentences.Pqtmcfgbld, "Configure antenna baseline", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("distance", "decimal", "Distance between the antennas; 0 (default) lets the software find it."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgbld-read", sentences.PqtmcfgbldRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgcnrthd", sentences.Pqtmcfgcnrthd, "Configure C/N0 threshold", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("threshold", "decimal", "Minimum C/N0; 0 means no limit (default 10.0)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgcnrthd-read", sentences.PqtmcfgcnrthdRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgcnst", sentences.Pqtmcfgcnst, "Configure constellations", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("gps", "enum", "GPS on or off.", enum=enums.QuectelEnable),
-        Argument("glonass", "enum", "GLONASS on or off.", enum=enums.QuectelEnable),
-        Argument("galileo", "enum", "Galileo on or off.", enum=enums.QuectelEnable),
-        Argument("bds", "enum", "BDS on or off.", enum=enums.QuectelEnable),
-        Argument("qzss", "enum", "QZSS on or off.", enum=enums.QuectelEnable),
-        Argument("navic", "enum", "NavIC on or off.", enum=enums.QuectelEnable),
-    )),
-    Command("quectel_lg290p", "pqtmcfgcnst-read", sentences.PqtmcfgcnstRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgelethd", sentences.Pqtmcfgelethd, "Configure elevation threshold", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("elevation", "decimal", "Minimum satellite elevation; -90.0 means no limit (default 5.0)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgelethd-read", sentences.PqtmcfgelethdRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgfixrate", sentences.Pqtmcfgfixrate, "Configure fix interval", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("fix_interval", "integer", "Time between two fixes."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgfixrate-read", sentences.PqtmcfgfixrateRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfggeofence", sentences.Pqtmcfggeofence, "Configure geofence", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("index", "integer", "Which of the four geofences."),
-        Argument("mode", "enum", "Geofence on or off; when off, the following fields are left out.", enum=enums.QuectelEnable),
-        Argument("reserved", "integer", "Reserved; always 0.", optional=True),
-        Argument("shape", "enum", "How the points are read.", enum=enums.QuectelGeofenceShape, optional=True),
-        Argument("lat0", "decimal", "Latitude of the first point (the centre of a circle); negative south.", optional=True),
-        Argument("lon0", "decimal", "Longitude of the first point; negative west.", optional=True),
-        Argument("lat1_or_radius", "decimal", "For a circle given by its radius, the radius in metres; otherwise the latitude of the second point in degrees.", optional=True),
-        Argument("lon1", "decimal", "Longitude of the second point.", optional=True),
-        Argument("lat2", "decimal", "Latitude of the third point.", optional=True),
-        Argument("lon2", "decimal", "Longitude of the third point.", optional=True),
-        Argument("lat3", "decimal", "Latitude of the fourth point.", optional=True),
-        Argument("lon3", "decimal", "Longitude of the fourth point.", optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfggeofence-read", sentences.PqtmcfggeofenceRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-        Argument("index", "integer", "Which of the four geofences."),
-    )),
-    Command("quectel_lg290p", "pqtmcfggeosep", sentences.Pqtmcfggeosep, "Configure geoidal separation", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("mode", "enum", "Built-in geoid or the given value.", enum=enums.QuectelGeosepMode),
-        Argument("separation", "decimal", "The value used in manual mode (default 0)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfggeosep-read", sentences.PqtmcfggeosepRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgmsgrate", sentences.Pqtmcfgmsgrate, "Configure message output rate", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("message", "text", "The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."),
-        Argument("rate", "integer", "Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."),
-        Argument("version_or_offset", "integer", "For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others.", optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfgmsgrate-port", sentences.PqtmcfgmsgratePort, "Rate on a given port", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("port_type", "enum", "Kind of port.", enum=enums.QuectelPortType),
-        Argument("port_id", "integer", "UART number, 1 to 3."),
-        Argument("message", "text", "The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."),
-        Argument("rate", "integer", "Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw messages."),
-        Argument("version_or_offset", "integer", "For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others.", optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfgmsgrate-read-port", sentences.PqtmcfgmsgrateReadPort, "Read the rate on a given port", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-        Argument("port_type", "enum", "Kind of port.", enum=enums.QuectelPortType),
-        Argument("port_id", "integer", "UART number, 1 to 3."),
-        Argument("message", "text", "The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."),
-        Argument("version_or_offset", "integer", "For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others.", optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfgmsgrate-read", sentences.PqtmcfgmsgrateRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-        Argument("message", "text", "The message to configure: a standard sentence (GGA, RMC...), a PQTM output (PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC raw message (0AB2...)."),
-        Argument("version_or_offset", "integer", "For a PQTM message its version (required for PQTM messages); for an RTCM MSM message its time offset in fixes, 0 to rate-1; absent for the others.", optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfgnmeadp", sentences.Pqtmcfgnmeadp, "Configure NMEA decimal places", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("utc_decimals", "integer", "Decimals of the UTC seconds in standard sentences (default 3)."),
-        Argument("position_decimals", "integer", "Decimals of latitude and longitude minutes (default 8)."),
-        Argument("altitude_decimals", "integer", "Decimals of altitude and geoidal separation (default 3)."),
-        Argument("dop_decimals", "integer", "Decimals of the DOP values (default 2)."),
-        Argument("speed_decimals", "integer", "Decimals of speeds (default 3)."),
-        Argument("cog_decimals", "integer", "Decimals of the course over ground (default 2)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgnmeadp-read", sentences.PqtmcfgnmeadpRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgnmeatid", sentences.Pqtmcfgnmeatid, "Configure NMEA talker ID", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("main_talker", "text", "Talker ID of every standard sentence but GSV: two characters, or 00 for automatic (chosen from the constellations)."),
-        Argument("gsv_talker", "enum", "Talker ID of GSV.", enum=enums.QuectelGsvTalker),
-    )),
-    Command("quectel_lg290p", "pqtmcfgnmeatid-read", sentences.PqtmcfgnmeatidRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgodo", sentences.Pqtmcfgodo, "Configure odometer", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("state", "enum", "Odometer on or off.", enum=enums.QuectelEnable),
-        Argument("initial_distance", "decimal", "Distance added to the accumulated one (default 0)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgodo-read", sentences.PqtmcfgodoRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgpps", sentences.Pqtmcfgpps, "Configure PPS", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("index", "integer", "Which PPS output; only 1 (PPS1) is listed."),
-        Argument("enable", "enum", "PPS output on or off; when off, the following fields are left out.", enum=enums.QuectelEnable),
-        Argument("duration", "integer", "Length of the pulse (default 100 ms).", optional=True),
-        Argument("mode", "enum", "When the pulse is sent.", enum=enums.QuectelPpsMode, optional=True),
-        Argument("polarity", "enum", "Active level of the pulse.", enum=enums.QuectelPpsPolarity, optional=True),
-        Argument("reserved", "integer", "Reserved; always 0.", optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfgpps-read", sentences.PqtmcfgppsRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-        Argument("index", "integer", "Which PPS output; only 1 (PPS1) is listed."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgprot", sentences.Pqtmcfgprot, "Configure port protocols", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("port_type", "enum", "Kind of port.", enum=enums.QuectelPortType),
-        Argument("port_id", "integer", "Port number; for a UART 1 to 3."),
-        Argument("input_protocols", "hex", "Protocols the port reads (32 bits as 8 hex digits); default 00000005 (NMEA and RTCM3)."),
-        Argument("output_protocols", "hex", "Protocols the port writes (32 bits as 8 hex digits); default 00000005 (NMEA and RTCM3)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgprot-read", sentences.PqtmcfgprotRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-        Argument("port_type", "enum", "Kind of port.", enum=enums.QuectelPortType),
-        Argument("port_id", "integer", "Port number; for a UART 1 to 3."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrcvrmode", sentences.Pqtmcfgrcvrmode, "Configure receiver mode", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("mode", "enum", "Working mode.", enum=enums.QuectelReceiverMode),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrcvrmode-read", sentences.PqtmcfgrcvrmodeRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrsid", sentences.Pqtmcfgrsid, "Configure reference station ID", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("station_id", "integer", "Station ID (default 290)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrsid-read", sentences.PqtmcfgrsidRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrtcm", sentences.Pqtmcfgrtcm, "Configure RTCM output", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("msm_type", "integer", "RTCM MSM type, 3 to 7 for MSM3 to MSM7 (default 4)."),
-        Argument("msm_mode", "integer", "Output when no satellite is tracked; always 0 (no MSM output then)."),
-        Argument("msm_elevation", "decimal", "Satellites below this elevation are left out of the MSM messages; -90.0 (default) means no limit."),
-        Argument("reserved1", "text", "Reserved; default 07 (written with two digits)."),
-        Argument("reserved2", "text", "Reserved; default 06 (written with two digits)."),
-        Argument("eph_mode", "enum", "When ephemeris messages are sent.", enum=enums.QuectelRtcmEphMode),
-        Argument("eph_interval", "integer", "Interval of the periodic ephemeris output (mode 2 only)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrtcm-read", sentences.PqtmcfgrtcmRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrtk", sentences.Pqtmcfgrtk, "Configure RTK", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("diff_mode", "enum", "How corrections are used.", enum=enums.QuectelRtkDiffMode),
-        Argument("rel_mode", "enum", "Used only in auto mode once RTK is reached.", enum=enums.QuectelRtkRelMode),
-        Argument("timeout", "integer", "Oldest correction age an RTK fix may use (default 120).", optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrtk-read", sentences.PqtmcfgrtkRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrtksrctype", sentences.Pqtmcfgrtksrctype, "Configure RTK source type", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("source_type", "enum", "Differential source type.", enum=enums.QuectelRtkSourceType),
-    )),
-    Command("quectel_lg290p", "pqtmcfgrtksrctype-read", sentences.PqtmcfgrtksrctypeRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsat", sentences.Pqtmcfgsat, "Configure satellite mask", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("system", "enum", "Constellation (NMEA system ID numbering: 1 GPS to 6 NavIC).", enum=enums.SystemId),
-        Argument("signal", "hex", "Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A, Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo E5a, BDS B2I or QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 Galileo E6, BDS B1C or QZSS L6; 5 BDS B2a; 6 BDS B2b."),
-        Argument("mask_low", "hex", "One bit per satellite, bit 0 for PRN 1 (32 bits)."),
-        Argument("mask_high", "hex", "Bit 0 for PRN 33; Galileo and BDS only, left out for the other systems.", optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsat-read", sentences.PqtmcfgsatRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-        Argument("system", "enum", "Constellation (NMEA system ID numbering: 1 GPS to 6 NavIC).", enum=enums.SystemId),
-        Argument("signal", "hex", "Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A, Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo E5a, BDS B2I or QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 Galileo E6, BDS B1C or QZSS L6; 5 BDS B2a; 6 BDS B2b."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsbas", sentences.Pqtmcfgsbas, "Configure SBAS", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("systems", "hex", "One bit per SBAS system (default 003F)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsbas-read", sentences.PqtmcfgsbasRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsiggrp", sentences.Pqtmcfgsiggrp, "Configure signal group", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("group", "integer", "Signal group number: 0 on LG290P(03) and LG680P(03); 0 (antenna 2 off), 1 (default) or 2 on LG580P(03)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsiggrp-read", sentences.PqtmcfgsiggrpRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsignal", sentences.Pqtmcfgsignal, "Configure signals", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("gps_signals", "hex", "GPS signal mask."),
-        Argument("glonass_signals", "hex", "GLONASS signal mask."),
-        Argument("galileo_signals", "hex", "Galileo signal mask."),
-        Argument("bds_signals", "hex", "BDS signal mask."),
-        Argument("qzss_signals", "hex", "QZSS signal mask."),
-        Argument("navic_signals", "hex", "NavIC signal mask."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsignal-read", sentences.PqtmcfgsignalRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsignal2", sentences.Pqtmcfgsignal2, "Configure antenna 2 signals", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("gps_signals", "hex", "GPS signal mask."),
-        Argument("glonass_signals", "hex", "GLONASS signal mask."),
-        Argument("galileo_signals", "hex", "Galileo signal mask."),
-        Argument("bds_signals", "hex", "BDS signal mask."),
-        Argument("qzss_signals", "hex", "QZSS signal mask."),
-        Argument("navic_signals", "hex", "NavIC signal mask."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsignal2-read", sentences.Pqtmcfgsignal2Read, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsvin", sentences.Pqtmcfgsvin, "Configure survey-in", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("mode", "enum", "Survey-in, fixed position, or off.", enum=enums.QuectelSvinMode),
-        Argument("min_fixes", "integer", "Minimum number of fixes averaged in survey-in mode."),
-        Argument("accuracy_limit", "decimal", "Required 3D accuracy in survey-in mode; 0 means no limit (default)."),
-        Argument("ecef_x", "decimal", "WGS84 ECEF X of the antenna (fixed mode)."),
-        Argument("ecef_y", "decimal", "WGS84 ECEF Y of the antenna (fixed mode)."),
-        Argument("ecef_z", "decimal", "WGS84 ECEF Z of the antenna (fixed mode)."),
-        Argument("distance", "decimal", "Survey-in only: a new result replaces the previous one only when they are further apart than this (default 0: always the latest).", optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfgsvin-read", sentences.PqtmcfgsvinRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcfguart", sentences.Pqtmcfguart, "Configure UART", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("index", "enum", "The serial port the setting applies to.", enum=enums.QuectelUartIndex),
-        Argument("baud_rate", "enum", "Baud rate of the port.", enum=enums.QuectelBaudRate),
-        Argument("data_bits", "integer", "Data bits per character; only 8 is listed."),
-        Argument("parity", "enum", "Parity of the port.", enum=enums.QuectelParity),
-        Argument("stop_bits", "enum", "Number of stop bits.", enum=enums.QuectelStopBits),
-        Argument("flow_control", "enum", "Flow control of the port.", enum=enums.QuectelFlowControl),
-    )),
-    Command("quectel_lg290p", "pqtmcfguart-current-baud", sentences.PqtmcfguartCurrentBaud, "Baud rate of the current port", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("baud_rate", "enum", "Baud rate of the port.", enum=enums.QuectelBaudRate),
-    )),
-    Command("quectel_lg290p", "pqtmcfguart-current-full", sentences.PqtmcfguartCurrentFull, "All settings of the current port", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("baud_rate", "enum", "Baud rate of the port.", enum=enums.QuectelBaudRate),
-        Argument("data_bits", "integer", "Data bits per character; only 8 is listed."),
-        Argument("parity", "enum", "Parity of the port.", enum=enums.QuectelParity),
-        Argument("stop_bits", "enum", "Number of stop bits.", enum=enums.QuectelStopBits),
-        Argument("flow_control", "enum", "Flow control of the port.", enum=enums.QuectelFlowControl),
-    )),
-    Command("quectel_lg290p", "pqtmcfguart-port-baud", sentences.PqtmcfguartPortBaud, "Baud rate of a given port", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("index", "enum", "The serial port the setting applies to.", enum=enums.QuectelUartIndex),
-        Argument("baud_rate", "enum", "Baud rate of the port.", enum=enums.QuectelBaudRate),
-    )),
-    Command("quectel_lg290p", "pqtmcfguart-read", sentences.PqtmcfguartRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-        Argument("index", "enum", "The port to read; the current port when absent.", enum=enums.QuectelUartIndex, optional=True),
-    )),
-    Command("quectel_lg290p", "pqtmcfgwn", sentences.Pqtmcfgwn, "Configure reference week number", (
-        Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
-        Argument("week", "integer", "GPS week number including rollovers (default 2200)."),
-    )),
-    Command("quectel_lg290p", "pqtmcfgwn-read", sentences.PqtmcfgwnRead, "Read the setting", (
-        Argument("access", "keyword", "R: the read (get) form of the command; the module answers with the current setting.", value="R"),
-    )),
-    Command("quectel_lg290p", "pqtmcold", sentences.Pqtmcold, "Cold start", (
-    )),
-    Command("quectel_lg290p", "pqtmdebugoff", sentences.Pqtmdebugoff, "Debug log off", (
-    )),
-    Command("quectel_lg290p", "pqtmdebugon", sentences.Pqtmdebugon, "Debug log on", (
-    )),
-    Command("quectel_lg290p", "pqtmgnssstart", sentences.Pqtmgnssstart, "Start GNSS engine", (
-    )),
-    Command("quectel_lg290p", "pqtmgnssstop", sentences.Pqtmgnssstop, "Stop GNSS engine", (
-    )),
-    Command("quectel_lg290p", "pqtmhot", sentences.Pqtmhot, "Hot start", (
-    )),
-    Command("quectel_lg290p", "pqtmresetodo", sentences.Pqtmresetodo, "Reset odometer", (
-    )),
-    Command("quectel_lg290p", "pqtmrestorepar", sentences.Pqtmrestorepar, "Restore default configuration", (
-    )),
-    Command("quectel_lg290p", "pqtmsavepar", sentences.Pqtmsavepar, "Save configuration", (
-    )),
-    Command("quectel_lg290p", "pqtmsn", sentences.Pqtmsn, "Query module serial number", (
-    )),
-    Command("quectel_lg290p", "pqtmsrr", sentences.Pqtmsrr, "System reset and reboot", (
-    )),
-    Command("quectel_lg290p", "pqtmuniqid", sentences.Pqtmuniqid, "Query module unique ID", (
-    )),
-    Command("quectel_lg290p", "pqtmverno", sentences.Pqtmverno, "Query firmware version", (
-    )),
-    Command("quectel_lg290p", "pqtmwarm", sentences.Pqtmwarm, "Warm start", (
-    )),
-    Command("quectel_lg290p", "pqverno", sentences.Pqverno, "Query firmware version (older modules)", (
-        Argument("access", "keyword", "R: read.", value="R"),
-    )),
-    Command("globalsat", "psrf100", sentences.Psrf100, "Set serial port A", (
-        Argument("protocol", "enum", "Protocol to run on port A.", enum=enums.SirfProtocol),
-        Argument("baud", "enum", "Port A speed, 1200 to 38400 bit/s.", enum=enums.SirfBaud),
-        Argument("data_bits", "integer", "Data bits per character, 8 or 7; the SiRF binary protocol works with 8 only."),
-        Argument("stop_bits", "integer", "Stop bits, listed as 0 or 1."),
-        Argument("parity", "enum", "Parity, 0 none, 1 odd, 2 even.", enum=enums.SirfParity),
-    )),
-    Command("globalsat", "psrf101", sentences.Psrf101, "Navigation initialisation, ECEF", (
-        Argument("x", "integer", "ECEF X coordinate of the approximate position, metres (unit from the SiRF NMEA reference)."),
-        Argument("y", "integer", "ECEF Y coordinate, metres (SiRF NMEA reference)."),
-        Argument("z", "integer", "ECEF Z coordinate, metres (SiRF NMEA reference)."),
-        Argument("clock_offset", "integer", "Receiver clock offset (frequency) in Hz; 0 makes the receiver use its last saved value (SiRF NMEA reference)."),
-        Argument("time_of_week", "integer", "GPS time of week in seconds (UINT32 in the manual; a GPS week has 604800 s)."),
-        Argument("week", "integer", "GPS week number (UINT16)."),
-        Argument("channels", "integer", "Number of receiver channels to use, 1-12, default and maximum 12."),
-        Argument("reset_cfg", "integer", "Reset configuration bit mask (UBYTE, written in decimal): bit 0 (0x01) the initialisation data are valid, set for warm and hot starts; bit 1 (0x02) clear the ephemerides, set for a warm start; bit 2 (0x04) clear the memory, set for a cold start."),
-    )),
-    Command("globalsat", "psrf102", sentences.Psrf102, "Set DGPS serial port B", (
-        Argument("baud", "enum", "Port B speed, 1200 to 38400 bit/s; default 9600.", enum=enums.SirfBaud),
-        Argument("data_bits", "integer", "Data bits per character; only 8 is listed (the default)."),
-        Argument("stop_bits", "integer", "Stop bits, listed as 0 or 1; the default is printed as 0 while the example writes 1 for one stop bit (\"8,N,1\")."),
-        Argument("parity", "enum", "Parity, 0 none (default), 1 odd, 2 even.", enum=enums.SirfParity),
-    )),
-    Command("globalsat", "psrf103", sentences.Psrf103, "Query or set the rate of a standard NMEA sentence", (
-        Argument("message", "enum", "The standard sentence to query or schedule, 00 GGA to 05 VTG.", enum=enums.SirfNmeaMessage),
-        Argument("mode", "enum", "00 sets the rate, 01 queries the sentence once.", enum=enums.SirfRateMode),
-        Argument("rate", "integer", "Seconds between two outputs of the sentence in set-rate mode; 0 turns it off, 255 is the maximum."),
-        Argument("checksum_mode", "enum", "Whether the sentence is sent with a checksum, 00 no, 01 yes.", enum=enums.SirfChecksumEnable),
-    )),
-    Command("globalsat", "psrf103-short-codes", sentences.Psrf103ShortCodes, "One-digit selectors", (
-        Argument("message", "enum", "The standard sentence to query or schedule: 0 GGA, 1 GLL, 2 GSA, 3 GSV, 4 RMC, 5 VTG.", enum=enums.SirfNmeaMessageDigit),
-        Argument("mode", "enum", "0 sets the rate, 1 queries the sentence once.", enum=enums.SirfRateModeDigit),
-        Argument("rate", "integer", "Seconds between two outputs of the sentence in set-rate mode; 0 turns it off, 255 is the maximum."),
-        Argument("checksum_mode", "enum", "Whether the sentence is sent with a checksum, 0 no, 1 yes.", enum=enums.SirfChecksumEnableDigit),
-    )),
-    Command("globalsat", "psrf104", sentences.Psrf104, "Navigation initialisation, latitude/longitude/altitude", (
-        Argument("latitude", "decimal", "Latitude in decimal degrees, positive north, negative south (sign convention from the SiRF NMEA reference)."),
-        Argument("longitude", "decimal", "Longitude in decimal degrees, positive east, negative west (SiRF NMEA reference)."),
-        Argument("altitude", "decimal", "Altitude in metres; SiRF gives heights above the WGS-84 ellipsoid (SiRF NMEA reference; the datum word was lost)."),
-        Argument("clock_offset", "integer", "Receiver clock offset (frequency) in Hz; 0 makes the receiver use its last saved value (SiRF NMEA reference)."),
-        Argument("time_of_week", "integer", "GPS time of week in seconds (UINT32 in the manual; a GPS week has 604800 s)."),
-        Argument("week", "integer", "GPS week number (UINT16)."),
-        Argument("channels", "integer", "Number of receiver channels to use, 1-12, default and maximum 12."),
-        Argument("reset_cfg", "integer", "Reset configuration bit mask (UBYTE, written in decimal): bit 0 (0x01) the initialisation data are valid, set for warm and hot starts; bit 1 (0x02) clear the ephemerides, set for a warm start; bit 2 (0x04) clear the memory, set for a cold start."),
-    )),
-    Command("globalsat", "psrf105", sentences.Psrf105, "Switch development data messages on/off", (
-        Argument("debug", "enum", "1 switches the development data messages on, 0 off.", enum=enums.SirfDebug),
-    )),
-    Command("teseo", "pstmclralms", sentences.Pstmclralms, "Clear all almanacs", (
-    )),
-    Command("teseo", "pstmclrephs", sentences.Pstmclrephs, "Clear all ephemerides", (
-    )),
-    Command("teseo", "pstmcold", sentences.Pstmcold, "Cold start", (
-        Argument("mask", "integer", "Which data to invalidate before the start: 0x1 almanac, 0x2 ephemerides, 0x4 position, 0x8 time; several may be combined (e.g. 0xD).", optional=True),
-    )),
-    Command("teseo", "pstmgetpar", sentences.Pstmgetpar, "Get configuration parameter", (
-        Argument("block_param", "integer", "One wire field made of the configuration block digit b followed, without a comma or a space, by the 3-digit CDB parameter ID nnn (e.g. 1403 = block 1, parameter 403)."),
-    )),
-    Command("teseo", "pstmgetrtctime", sentences.Pstmgetrtctime, "Get RTC time", (
-    )),
-    Command("teseo", "pstmgetswver", sentences.Pstmgetswver, "Get software version", (
-    )),
-    Command("teseo", "pstmhot", sentences.Pstmhot, "Hot start", (
-    )),
-    Command("teseo", "pstmnmeaonoff", sentences.Pstmnmeaonoff, "NMEA output on/off", (
-        Argument("on_off", "enum", "0 stops the NMEA output, 1 starts it.", enum=enums.TeseoNmeaOnOff, optional=True),
-    )),
-    Command("teseo", "pstmrestorepar", sentences.Pstmrestorepar, "Restore factory parameters", (
-    )),
-    Command("teseo", "pstmsavepar", sentences.Pstmsavepar, "Save parameters", (
-    )),
-    Command("teseo", "pstmsetpar", sentences.Pstmsetpar, "Set configuration parameter (also the $PSTMGETPAR answer)", (
-        Argument("block_param", "integer", "One wire field made of the configuration block digit b followed, without a comma or a space, by the 3-digit CDB parameter ID nnn (e.g. 1121 = block 1, parameter 121)."),
-        Argument("value", "text", "The value, 1 to 80 bytes, written as the parameter requires (teseo_cdb encoding): hex digits without \"0x\" for every integer parameter (e.g. 10 = 0x10), decimal for the real parameters (301-303), plain text for the text message (500)."),
-        Argument("mode", "enum", "How the value is combined with the stored one: 0 replace (also when absent), 1 bitwise OR (set the given bits), 2 bitwise AND with the inverted value (clear the given bits).", enum=enums.TeseoSetparMode, optional=True),
-    )),
-    Command("teseo", "pstmsetpar-dop", sentences.PstmsetparDop, "DOP thresholds", (
-        Argument("block_param", "integer", "Configuration block digit followed by the DOP parameter ID 400-403 (e.g. 1403 = block 1, start 3D DOP)."),
-        Argument("pdop", "decimal", "Position DOP threshold (P), decimal."),
-        Argument("vdop", "decimal", "Vertical DOP threshold (V), decimal."),
-        Argument("hdop", "decimal", "Horizontal DOP threshold (H), decimal."),
-        Argument("gdop", "decimal", "Geometric DOP threshold (G), decimal."),
-        Argument("mode", "enum", "Optional write mode as in the main layout; the manual does not exclude it for the DOP parameters, although bitwise modes make no sense for them.", enum=enums.TeseoSetparMode, optional=True),
-    )),
-    Command("teseo", "pstmwarm", sentences.Pstmwarm, "Warm start", (
-    )),
-    Command("ublox_m8", "pubx-config", sentences.PubxConfig, "Set u-blox port protocols and baud rate", (
-        Argument("msg_id", "keyword", "Proprietary message number 41.", value="41"),
-        Argument("port_id", "enum", "The port to configure (0 DDC, 1 UART 1, 2 UART 2, 3 USB, 4 SPI).", enum=enums.UbloxPort),
-        Argument("in_proto", "hex", "Protocols accepted on the port, one bit each (bit 0 UBX, 1 NMEA, 2 RTCM 2, 5 RTCM 3)."),
-        Argument("out_proto", "hex", "Protocols sent on the port, one bit each (bit 0 UBX, 1 NMEA, 5 RTCM 3)."),
-        Argument("baud_rate", "integer", "Serial baud rate of the port (e.g. 9600, 19200, 115200); meaningless for USB and DDC."),
-        Argument("autobauding", "enum", "0 fixed rate, 1 automatic baud rate detection.", enum=enums.UbloxAutobauding),
-    )),
-    Command("ublox_m8", "pubx-position-poll", sentences.PubxPositionPoll, "Poll the u-blox position message", (
-        Argument("msg_id", "keyword", "Number of the message to poll, 00 (position).", value="00"),
-    )),
-    Command("ublox_m8", "pubx-rate", sentences.PubxRate, "Set the u-blox NMEA message output rate per port", (
-        Argument("msg_id", "keyword", "Proprietary message number 40.", value="40"),
-        Argument("msg", "text", "The message whose rate is set, by its three-letter sentence formatter (e.g. GLL, GSV, ZDA)."),
-        Argument("rate_ddc", "integer", "Output rate on the DDC (I2C) port, 0 = off."),
-        Argument("rate_uart1", "integer", "Output rate on UART 1, 0 = off."),
-        Argument("rate_uart2", "integer", "Output rate on UART 2, 0 = off."),
-        Argument("rate_usb", "integer", "Output rate on the USB port, 0 = off."),
-        Argument("rate_spi", "integer", "Output rate on the SPI port, 0 = off."),
-        Argument("reserved", "integer", "Reserved, always 0 (a sixth port slot).", optional=True),
-    )),
-    Command("ublox_m8", "pubx-svstatus-poll", sentences.PubxSvstatusPoll, "Poll the u-blox satellite status message", (
-        Argument("msg_id", "keyword", "Number of the message to poll, 03 (satellite status).", value="03"),
-    )),
-    Command("ublox_m8", "pubx-time-poll", sentences.PubxTimePoll, "Poll the u-blox time message", (
-        Argument("msg_id", "keyword", "Number of the message to poll, 04 (time of day and clock).", value="04"),
-    )),
+    Command(
+        "comnav", "log", sentences.ComnavLog,
+        "Request periodic output of an NMEA message",
+        (
+            Argument(
+                "message",
+                "enum",
+                "The NMEA log to output (manual Table 2).",
+                enum=enums.ComnavLogMessage,
+            ),
+            Argument(
+                "trigger",
+                "keyword",
+                "The word ONTIME, output at a fixed time interval; the only trigger the manual "
+                "shows.",
+                value="ONTIME",
+            ),
+            Argument("period", "decimal", "Interval between two outputs in seconds."),
+        ),
+        text=True,
+    ),
+    Command(
+        "comnav", "nmeatalker", sentences.ComnavNmeatalker,
+        "Set, list or reset the NMEA talker IDs",
+        (
+            Argument(
+                "message",
+                "enum",
+                "The sentence whose talker ID is set, or ALL for all nine.",
+                enum=enums.ComnavTalkerSentence,
+            ),
+            Argument(
+                "talker_id",
+                "enum",
+                "The talker ID to use (GN, GP, BD, GL, GA), or AUTO to follow the constellations "
+                "of the current solution.",
+                enum=enums.ComnavTalkerId,
+            ),
+        ),
+        text=True,
+    ),
+    Command(
+        "comnav", "nmeatalker-list", sentences.ComnavNmeatalkerList,
+        "List the talker IDs",
+        (
+            Argument("subcommand", "keyword", "The word LIST.", value="LIST"),
+        ),
+        text=True,
+    ),
+    Command(
+        "comnav", "nmeatalker-reset", sentences.ComnavNmeatalkerReset,
+        "Reset the talker IDs",
+        (
+            Argument("subcommand", "keyword", "The word RESET.", value="RESET"),
+        ),
+        text=True,
+    ),
+    Command(
+        "geos5", "command", sentences.Geos5Command,
+        "GeoS-5 input command",
+        (
+            Argument(
+                "command",
+                "enum",
+                "The 6-character command word, e.g. BDR115 (115200 bit/s), GGA ON, RATE10 or "
+                "ELEV05.",
+                enum=enums.Geos5CommandWord,
+            ),
+        ),
+    ),
+    Command(
+        "geos5", "nquery-request", sentences.Geos5NqueryRequest,
+        "GeoS-5 request for the set and rates of NMEA sentences",
+        (
+            Argument(
+                "keyword",
+                "keyword",
+                "The request word; like every GeoS-5 command word it is 6 characters and the only "
+                "field.",
+                value="NQUERY",
+            ),
+        ),
+    ),
+    Command(
+        "geos5", "rquery-request", sentences.Geos5RqueryRequest,
+        "GeoS-5 request for software version, telemetry and configuration",
+        (
+            Argument(
+                "keyword",
+                "keyword",
+                "The request word; like every GeoS-5 command word it is 6 characters and the only "
+                "field.",
+                value="RQUERY",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair002", sentences.Pair002,
+        "Power on the GNSS subsystem",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair003", sentences.Pair003,
+        "Power off the GNSS subsystem",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair004", sentences.Pair004,
+        "Hot start",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair005", sentences.Pair005,
+        "Warm start",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair006", sentences.Pair006,
+        "Cold start",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair007", sentences.Pair007,
+        "Full cold start",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair050", sentences.Pair050,
+        "Set the position fix interval",
+        (
+            Argument(
+                "interval",
+                "integer",
+                "Time between two position fixes; 1000 ms (1 Hz) is the default.",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair051", sentences.Pair051,
+        "Query the position fix interval",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair058", sentences.Pair058,
+        "Set the minimum SNR",
+        (
+            Argument(
+                "min_snr",
+                "integer",
+                "Satellites weaker than this are not used in the solution; default 9.",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair059", sentences.Pair059,
+        "Query the minimum SNR",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair062", sentences.Pair062,
+        "Set the output rate of a standard sentence",
+        (
+            Argument(
+                "type",
+                "enum",
+                "Standard sentence concerned; -1 for all of them.",
+                enum=enums.AirohaNmeaType,
+            ),
+            Argument(
+                "rate",
+                "integer",
+                "0 switches the sentence off, n outputs it once every n fixes; default 1.",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair063", sentences.Pair063,
+        "Query the output rate of a standard sentence",
+        (
+            Argument(
+                "type",
+                "enum",
+                "Standard sentence concerned; -1 for all of them.",
+                enum=enums.AirohaNmeaType,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair066", sentences.Pair066,
+        "Set the GNSS search mode",
+        (
+            Argument("gps", "enum", "Search for GPS satellites.", enum=enums.AirohaEnable),
+            Argument("glonass", "enum", "Search for GLONASS satellites.", enum=enums.AirohaEnable),
+            Argument("galileo", "enum", "Search for Galileo satellites.", enum=enums.AirohaEnable),
+            Argument("beidou", "enum", "Search for BDS satellites.", enum=enums.AirohaEnable),
+            Argument("qzss", "enum", "Search for QZSS satellites.", enum=enums.AirohaEnable),
+            Argument("reserved", "integer", "Reserved, always 0 (pynmeagps names it NavIC)."),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair067", sentences.Pair067,
+        "Query the GNSS search mode",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair070", sentences.Pair070,
+        "Set the static navigation speed threshold",
+        (
+            Argument(
+                "threshold",
+                "integer",
+                "Threshold in decimetres per second; default 0 (off).",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair071", sentences.Pair071,
+        "Query the static navigation speed threshold",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair072", sentences.Pair072,
+        "Set the elevation mask",
+        (
+            Argument(
+                "elevation",
+                "integer",
+                "Satellites below this elevation are not used for the fix; default 5.",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair073", sentences.Pair073,
+        "Query the elevation mask",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair074", sentences.Pair074,
+        "Switch active interference cancellation",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "Active interference cancellation off or on.",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair075", sentences.Pair075,
+        "Query active interference cancellation",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair080", sentences.Pair080,
+        "Set the navigation mode",
+        (
+            Argument(
+                "mode",
+                "enum",
+                "Dynamic model of the position engine.",
+                enum=enums.AirohaNavMode,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair081", sentences.Pair081,
+        "Query the navigation mode",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair086", sentences.Pair086,
+        "Set the debug log output",
+        (
+            Argument("level", "enum", "Debug log output level.", enum=enums.AirohaDebugLog),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair087", sentences.Pair087,
+        "Query the debug log output",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair098", sentences.Pair098,
+        "Set the coordinate precision",
+        (
+            Argument(
+                "precision",
+                "enum",
+                "Decimals of the coordinates and altitude in the NMEA output.",
+                enum=enums.AirohaPosPrecision,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair099", sentences.Pair099,
+        "Query the coordinate precision",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair100", sentences.Pair100,
+        "Set the NMEA output mode",
+        (
+            Argument(
+                "nmea_mode",
+                "enum",
+                "Standard NMEA output off, version 4.10 or version 3.01.",
+                enum=enums.AirohaNmeaOutputMode,
+            ),
+            Argument(
+                "proprietary",
+                "enum",
+                "Output of the chip's proprietary sentences; off by default.",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair101", sentences.Pair101,
+        "Query the NMEA output mode",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair104", sentences.Pair104,
+        "Set dual-band reception",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "L1 + L5 reception off or on (on by default).",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair105", sentences.Pair105,
+        "Query dual-band reception",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair154", sentences.Pair154,
+        "Switch RLM output",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "Galileo return link message output off or on (output at 1 Hz).",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair155", sentences.Pair155,
+        "Query RLM output",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair158", sentences.Pair158,
+        "Switch BDS B1C tracking",
+        (
+            Argument("enabled", "enum", "BDS B1C tracking off or on.", enum=enums.AirohaEnable),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair382", sentences.Pair382,
+        "Lock system sleep",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "0 releases the lock, 1 keeps the system awake.",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair391", sentences.Pair391,
+        "Switch jamming detection",
+        (
+            Argument("enabled", "enum", "Detection off or on.", enum=enums.AirohaEnable),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair400", sentences.Pair400,
+        "Set the DGPS correction source",
+        (
+            Argument(
+                "mode",
+                "enum",
+                "Where differential corrections come from.",
+                enum=enums.AirohaDgpsMode,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair401", sentences.Pair401,
+        "Query the DGPS correction source",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair410", sentences.Pair410,
+        "Switch SBAS",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "SBAS satellite search off or on (on by default).",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair411", sentences.Pair411,
+        "Query SBAS",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair420", sentences.Pair420,
+        "Switch QZSS SLAS",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "QZSS SLAS corrections off or on.",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair421", sentences.Pair421,
+        "Query QZSS SLAS",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair432", sentences.Pair432,
+        "Set the RTCM output mode",
+        (
+            Argument(
+                "mode",
+                "enum",
+                "RTCM 3 observation output: off, MSM4 or MSM7.",
+                enum=enums.AirohaRtcmMode,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair433", sentences.Pair433,
+        "Query the RTCM output mode",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair434", sentences.Pair434,
+        "Switch RTCM antenna reference point output",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "RTCM message 1005 (stationary antenna reference point) off or on.",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair435", sentences.Pair435,
+        "Query RTCM antenna reference point output",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair436", sentences.Pair436,
+        "Switch RTCM ephemeris output",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "RTCM ephemeris messages (1019, 1020, 1042, 1044, 1046) off or on.",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair437", sentences.Pair437,
+        "Query RTCM ephemeris output",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair490", sentences.Pair490,
+        "Switch EASY",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "EASY orbit prediction off or on (on by default).",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair491", sentences.Pair491,
+        "Query EASY",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair511", sentences.Pair511,
+        "Save navigation data",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair512", sentences.Pair512,
+        "Clear navigation data",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair513", sentences.Pair513,
+        "Save settings",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair6010", sentences.Pair6010,
+        "Set the output of a DR message",
+        (
+            Argument("type", "enum", "DR message concerned.", enum=enums.AirohaDrMessage),
+            Argument("state", "enum", "Output of the message off or on.", enum=enums.AirohaEnable),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair6011", sentences.Pair6011,
+        "Query the output of a DR message",
+        (
+            Argument("type", "enum", "DR message concerned.", enum=enums.AirohaDrMessage),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair650", sentences.Pair650,
+        "Enter RTC (backup) mode",
+        (
+            Argument(
+                "duration",
+                "integer",
+                "Time in backup mode: 0 (no timer, wake by pin) or 10 to 62208000 s (two years).",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair680", sentences.Pair680,
+        "Switch the GPS low power mode",
+        (
+            Argument("enabled", "enum", "GPS low power mode off or on.", enum=enums.AirohaEnable),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair681", sentences.Pair681,
+        "Query the GPS low power mode",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair690", sentences.Pair690,
+        "Set periodic power saving",
+        (
+            Argument(
+                "mode",
+                "enum",
+                "Periodic mode off, smart or strict.",
+                enum=enums.AirohaPeriodicMode,
+            ),
+            Argument("first_run", "integer", "Run time after waking up, while a fix is obtained."),
+            Argument("first_sleep", "integer", "Sleep time after a fix was obtained or attempted."),
+            Argument(
+                "second_run",
+                "integer",
+                "Run time when there is no signal; 0 only together with a second sleep time of 0.",
+            ),
+            Argument(
+                "second_sleep",
+                "integer",
+                "Sleep time when there is no signal; 0 only together with a second run time of 0.",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair691", sentences.Pair691,
+        "Query periodic power saving",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair730", sentences.Pair730,
+        "Switch the fitness low power mode",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "Fitness low power mode off or on.",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair731", sentences.Pair731,
+        "Query the fitness low power mode",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair732", sentences.Pair732,
+        "Switch the adaptive low power mode",
+        (
+            Argument(
+                "enabled",
+                "enum",
+                "Adaptive low power mode off or on.",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair733", sentences.Pair733,
+        "Query the adaptive low power mode",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair752", sentences.Pair752,
+        "Configure the PPS output",
+        (
+            Argument("pps_type", "enum", "Condition for the pulse.", enum=enums.AirohaPpsType),
+            Argument("pulse_width", "integer", "Width of the pulse; default 100 ms."),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair864", sentences.Pair864,
+        "Set the UART baud rate",
+        (
+            Argument("port_type", "integer", "Hardware port type: 0 = UART."),
+            Argument("port_index", "integer", "Index of the port: 0 = UART0 (the NMEA port)."),
+            Argument(
+                "baud",
+                "enum",
+                "Port speed in bit/s; 115200 by default.",
+                enum=enums.AirohaBaud,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair865", sentences.Pair865,
+        "Query the UART baud rate",
+        (
+            Argument("port_type", "integer", "Hardware port type: 0 = UART."),
+            Argument("port_index", "integer", "Index of the port: 0 = UART0 (the NMEA port)."),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair866", sentences.Pair866,
+        "Set UART flow control",
+        (
+            Argument("port_type", "integer", "Hardware port type: 0 = UART."),
+            Argument("port_index", "integer", "Index of the port: 0 = UART0 (the NMEA port)."),
+            Argument(
+                "flow_control",
+                "integer",
+                "Flow-control setting of the port (0 is the state the fixtures read back; the "
+                "value list is not in the documents read).",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair867", sentences.Pair867,
+        "Query UART flow control",
+        (
+            Argument("port_type", "integer", "Hardware port type: 0 = UART."),
+            Argument("port_index", "integer", "Index of the port: 0 = UART0 (the NMEA port)."),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair890", sentences.Pair890,
+        "Configure geofences",
+        (
+            Argument(
+                "count",
+                "integer",
+                "Number of circular fences that follow; 0 switches geofencing off.",
+            ),
+            Argument(
+                "confidence",
+                "enum",
+                "Confidence required before a fence state is reported.",
+                enum=enums.AirohaGeofenceConfidence,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair891", sentences.Pair891,
+        "Query geofences",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair900", sentences.Pair900,
+        "Switch LOCUS logging",
+        (
+            Argument("enabled", "enum", "LOCUS logging off or on.", enum=enums.AirohaEnable),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair901", sentences.Pair901,
+        "Query LOCUS logging",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair902", sentences.Pair902,
+        "Set the LOCUS save mode",
+        (
+            Argument(
+                "mode",
+                "hex",
+                "Bit mask of the events that store a record (airoha_locus_mode).",
+            ),
+            Argument(
+                "check_3d",
+                "enum",
+                "When on, only 3D fixes are stored.",
+                enum=enums.AirohaEnable,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair903", sentences.Pair903,
+        "Query the LOCUS save mode",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair904", sentences.Pair904,
+        "Set a LOCUS threshold",
+        (
+            Argument(
+                "threshold_kind",
+                "enum",
+                "Time, speed or distance threshold.",
+                enum=enums.AirohaLocusThreshold,
+            ),
+            Argument(
+                "threshold",
+                "integer",
+                "Seconds (1-43200), metres per second (1-100) or metres (1-50000), after the kind.",
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair905", sentences.Pair905,
+        "Query a LOCUS threshold",
+        (
+            Argument(
+                "threshold_kind",
+                "enum",
+                "Time, speed or distance threshold.",
+                enum=enums.AirohaLocusThreshold,
+            ),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair906", sentences.Pair906,
+        "Clear LOCUS data",
+        (
+            Argument("type", "enum", "What is erased.", enum=enums.AirohaLocusClear),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair907", sentences.Pair907,
+        "Log the current fix",
+        (
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair908", sentences.Pair908,
+        "Dump LOCUS data",
+        (
+            Argument("format", "enum", "Dump format.", enum=enums.AirohaLocusFormat),
+        ),
+    ),
+    Command(
+        "airoha_pair", "pair909", sentences.Pair909,
+        "Query the LOCUS record count",
+        (
+        ),
+    ),
+    Command(
+        "ashtech", "pashq-att", sentences.PashqAtt,
+        "Query heading, pitch and roll (ATT)",
+        (
+            Argument("keyword", "keyword", "Query keyword.", value="ATT"),
+        ),
+    ),
+    Command(
+        "ashtech", "pashq-elm", sentences.PashqElm,
+        "Query the elevation mask (ELM)",
+        (
+            Argument("keyword", "keyword", "Query keyword.", value="ELM"),
+        ),
+    ),
+    Command(
+        "ashtech", "pashq-nmo", sentences.PashqNmo,
+        "Query NMEA message output settings (NMO)",
+        (
+            Argument("keyword", "keyword", "Query keyword.", value="NMO"),
+            Argument(
+                "port",
+                "enum",
+                "The port whose message settings are returned.",
+                enum=enums.AshtechPort,
+            ),
+        ),
+    ),
+    Command(
+        "ashtech", "pashq-pem", sentences.PashqPem,
+        "Query the position elevation mask (PEM)",
+        (
+            Argument("keyword", "keyword", "Query keyword.", value="PEM"),
+        ),
+    ),
+    Command(
+        "ashtech", "pashq-pop", sentences.PashqPop,
+        "Query the internal update rate (POP)",
+        (
+            Argument("keyword", "keyword", "Query keyword.", value="POP"),
+        ),
+    ),
+    Command(
+        "ashtech", "pashq-pos", sentences.PashqPos,
+        "Query the computed position (POS)",
+        (
+            Argument("keyword", "keyword", "Query keyword.", value="POS"),
+            Argument(
+                "port",
+                "enum",
+                "Port on which the answer is to be sent; when absent, the port the query came "
+                "from.",
+                enum=enums.AshtechPort,
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "ashtech", "pashq-ptt", sentences.PashqPtt,
+        "Query the PPS time tag (PTT)",
+        (
+            Argument("keyword", "keyword", "Query keyword.", value="PTT"),
+            Argument(
+                "port",
+                "enum",
+                "Port on which the answer is to be sent; when absent, the port the query came "
+                "from.",
+                enum=enums.AshtechPort,
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "ashtech", "pashq-sat", sentences.PashqSat,
+        "Query satellite status (SAT)",
+        (
+            Argument("keyword", "keyword", "Query keyword.", value="SAT"),
+            Argument(
+                "port",
+                "enum",
+                "Port on which the answer is to be sent; when absent, the port the query came "
+                "from.",
+                enum=enums.AshtechPort,
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "ashtech", "pashq-sba", sentences.PashqSba,
+        "Query the SBAS tracking status (SBA)",
+        (
+            Argument("keyword", "keyword", "Query keyword.", value="SBA"),
+        ),
+    ),
+    Command(
+        "ashtech", "pashs-nme", sentences.PashsNme,
+        "Enable or disable an NMEA output message (NME)",
+        (
+            Argument("keyword", "keyword", "Command keyword.", value="NME"),
+            Argument(
+                "message",
+                "enum",
+                "The message to switch (GGA, RMC, ..., ATT, POS, SAT, PTT, TTT).",
+                enum=enums.AshtechNmeMessage,
+            ),
+            Argument(
+                "port",
+                "enum",
+                "Port, or storage, that outputs the message.",
+                enum=enums.AshtechPort,
+            ),
+            Argument(
+                "state",
+                "enum",
+                "ON enables the message, OFF disables it.",
+                enum=enums.AshtechOnOff,
+            ),
+            Argument(
+                "rate",
+                "decimal",
+                "Output period of this message in seconds: 0.05 (needs a 20 Hz update rate, "
+                "$PASHS,POP,20), 0.1 to 0.4 (with the F option), 0.5 to 0.9, or 1 to 999.",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "ashtech", "pashs-nme-period", sentences.PashsNmePeriod,
+        "Default output period",
+        (
+            Argument("keyword", "keyword", "Command keyword.", value="NME"),
+            Argument(
+                "per",
+                "keyword",
+                "Selects the default-period form of the command.",
+                value="PER",
+            ),
+            Argument(
+                "period",
+                "decimal",
+                "Default output period in seconds (0.1 to 999 on the Z-Family; 0.1 steps below 1 "
+                "s, 1 s steps above).",
+            ),
+        ),
+    ),
+    Command(
+        "garmin_gps18x", "pgrmc", sentences.Pgrmc,
+        "Garmin sensor configuration",
+        (
+            Argument(
+                "fix_mode",
+                "enum",
+                "A automatic, 2 2D only (host supplies the altitude; not on the GPS 18x), 3 3D "
+                "only.",
+                enum=enums.GarminConfigFixMode,
+            ),
+            Argument(
+                "altitude",
+                "decimal",
+                "Altitude above or below mean sea level, used for 2D fixes.",
+            ),
+            Argument(
+                "datum",
+                "integer",
+                "Index of the earth datum in the manual's appendix A list; 96 selects the user "
+                "datum of the next five fields, which must be empty for any other datum.",
+            ),
+            Argument(
+                "semi_major_axis",
+                "decimal",
+                "Semi-major axis of the user datum ellipsoid, 0.001 m resolution.",
+            ),
+            Argument(
+                "inverse_flattening",
+                "decimal",
+                "Inverse flattening factor of the user datum ellipsoid (resolution 1e-9).",
+            ),
+            Argument(
+                "delta_x",
+                "decimal",
+                "Earth-centred X offset of the user datum, 1 m resolution.",
+            ),
+            Argument(
+                "delta_y",
+                "decimal",
+                "Earth-centred Y offset of the user datum, 1 m resolution.",
+            ),
+            Argument(
+                "delta_z",
+                "decimal",
+                "Earth-centred Z offset of the user datum, 1 m resolution.",
+            ),
+            Argument(
+                "differential_mode",
+                "enum",
+                "A automatic (differential fixes when available), D differential fixes only.",
+                enum=enums.GarminDiffMode,
+            ),
+            Argument(
+                "baud_rate",
+                "enum",
+                "3 = 4800, 4 = 9600, 5 = 19200, 6 = 300, 7 = 600, 8 = 38400 (GPS 18x-5Hz); older "
+                "sensors also 1 = 1200, 2 = 2400.",
+                enum=enums.GarminBaud,
+            ),
+            Argument(
+                "velocity_filter",
+                "integer",
+                "0 no filter, 1 automatic filter, 2-255 filter time constant in seconds (no "
+                "effect on the GPS 18x).",
+            ),
+            Argument(
+                "pps_mode",
+                "enum",
+                "Pulse (PPS) output, 1 disabled, 2 enabled (1 Hz).",
+                enum=enums.GarminOffOn,
+            ),
+            Argument(
+                "pps_length",
+                "integer",
+                "Pulse width n, the pulse lasting (n+1) x 20 ms (e.g. 4 = 100 ms).",
+            ),
+            Argument(
+                "dr_time",
+                "integer",
+                "Time the sensor keeps reporting dead-reckoned positions after losing the fix.",
+            ),
+        ),
+    ),
+    Command(
+        "garmin_gps18x", "pgrmc1", sentences.Pgrmc1,
+        "Garmin additional sensor configuration",
+        (
+            Argument(
+                "output_time",
+                "integer",
+                "Seconds between two NMEA outputs (the GPS 18x-5Hz always outputs at 5 Hz).",
+            ),
+            Argument(
+                "binary_output",
+                "enum",
+                "1 off, 2 on (Garmin binary phase data instead of NMEA, from the next reset).",
+                enum=enums.GarminOffOn,
+            ),
+            Argument("position_averaging", "enum", "1 off, 2 on.", enum=enums.GarminOffOn),
+            Argument(
+                "beacon_frequency",
+                "decimal",
+                "0.0 or 283.5 to 325.0 kHz in 0.5 kHz steps; no effect on the GPS 18/18x.",
+            ),
+            Argument(
+                "beacon_bit_rate",
+                "integer",
+                "0, 25, 50, 100 or 200; no effect on the GPS 18/18x.",
+            ),
+            Argument(
+                "beacon_scanning",
+                "enum",
+                "1 off, 2 on; no effect on the GPS 18/18x.",
+                enum=enums.GarminOffOn,
+            ),
+            Argument(
+                "nmea_230",
+                "enum",
+                "1 off (NMEA 2.0 sentences, the default), 2 on (mode indicator of NMEA 2.30 "
+                "added).",
+                enum=enums.GarminOffOn,
+            ),
+            Argument(
+                "waas_mode",
+                "enum",
+                "W WAAS enabled, N WAAS disabled.",
+                enum=enums.GarminWaasMode,
+            ),
+            Argument("power_save", "enum", "P power save, N normal.", enum=enums.GarminPowerMode),
+            Argument("adaptive_transmission", "enum", "1 off, 2 on.", enum=enums.GarminOffOn),
+            Argument("auto_power_off", "enum", "1 off, 2 on.", enum=enums.GarminOffOn),
+            Argument("power_on_external", "enum", "1 off, 2 on.", enum=enums.GarminOffOn),
+            Argument(
+                "pulse_auto_off",
+                "enum",
+                "1 off, 2 on.",
+                enum=enums.GarminOffOn,
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "garmin_gps18x", "pgrmc1e", sentences.Pgrmc1e,
+        "Garmin additional sensor configuration query",
+        (
+        ),
+    ),
+    Command(
+        "garmin_gps18x", "pgrmce", sentences.Pgrmce,
+        "Garmin sensor configuration query",
+        (
+        ),
+    ),
+    Command(
+        "garmin_gps18x", "pgrmi", sentences.Pgrmi,
+        "Garmin sensor initialization",
+        (
+            Argument(
+                "lat",
+                "latitude",
+                "Approximate latitude with its hemisphere; leading zeros must be sent (ddmm.mmmmm "
+                "on the 5 Hz models).",
+            ),
+            Argument(
+                "lon",
+                "longitude",
+                "Approximate longitude with its hemisphere; leading zeros must be sent.",
+            ),
+            Argument("date", "date", "Current UTC date."),
+            Argument("time", "time", "Current UTC time (hhmmss.s on the 5 Hz models)."),
+            Argument(
+                "receiver_command",
+                "enum",
+                "A auto locate (cold start), R unit reset; empty for a plain initialization.",
+                enum=enums.GarminReceiverCommand,
+            ),
+        ),
+    ),
+    Command(
+        "garmin_gps18x", "pgrmie", sentences.Pgrmie,
+        "Garmin sensor initialization query",
+        (
+        ),
+    ),
+    Command(
+        "garmin_gps18x", "pgrmo", sentences.Pgrmo,
+        "Garmin output sentence enable/disable",
+        (
+            Argument(
+                "target",
+                "text",
+                "The sentence to act on, as it is output (e.g. PGRMT, GPGSV); not checked, and "
+                "may be empty, for the modes that act on all sentences (2, 3, 4) and for G.",
+            ),
+            Argument(
+                "mode",
+                "enum",
+                "0 disable, 1 enable, 2 disable all, 3 enable all but GPALM, 4 factory defaults, "
+                "G Garmin binary mode.",
+                enum=enums.GarminOutputMode,
+            ),
+        ),
+    ),
+    Command(
+        "magellan_fx324", "pmgncmd", sentences.Pmgncmd,
+        "Magellan transfer command",
+        (
+            Argument("command", "enum", "WAYPOINT, ROUTE or TRACK.", enum=enums.MagellanCommand),
+            Argument(
+                "option",
+                "text",
+                "Command option; 2 after TRACK adds the date to every PMGNTRK point.",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk000", sentences.Pmtk000,
+        "Test packet",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk101", sentences.Pmtk101,
+        "Hot restart",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk102", sentences.Pmtk102,
+        "Warm restart",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk103", sentences.Pmtk103,
+        "Cold restart",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk104", sentences.Pmtk104,
+        "Full cold restart (factory reset)",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk161", sentences.Pmtk161,
+        "Enter standby mode",
+        (
+            Argument(
+                "type",
+                "enum",
+                "0 stop mode (called sleep mode by GlobalTop); the IT500 manual adds 1 sleep mode.",
+                enum=enums.MtkStandbyType,
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk183", sentences.Pmtk183,
+        "Query LOCUS logger status",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk184", sentences.Pmtk184,
+        "Erase LOCUS logger flash",
+        (
+            Argument(
+                "type",
+                "literal",
+                "Always 1, erase all logger data in the internal flash.",
+                value="1",
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk185", sentences.Pmtk185,
+        "Start or stop LOCUS logging",
+        (
+            Argument(
+                "status",
+                "enum",
+                "0 start logging, 1 stop logging.",
+                enum=enums.MtkLocusLogger,
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk220", sentences.Pmtk220,
+        "Set position fix interval (update rate)",
+        (
+            Argument("interval", "integer", "Position fix interval in milliseconds, 100 to 10000."),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk223", sentences.Pmtk223,
+        "Set extended ephemeris reception",
+        (
+            Argument(
+                "sv",
+                "integer",
+                "The number of satellites lacking ephemeris data at which the reception time is "
+                "extended.",
+            ),
+            Argument(
+                "snr",
+                "integer",
+                "Ephemeris reception is enabled for satellites whose SNR is above this value.",
+            ),
+            Argument(
+                "extension_threshold",
+                "integer",
+                "How long the reception of ephemeris data is extended, in milliseconds.",
+            ),
+            Argument(
+                "extension_gap",
+                "integer",
+                "Time between two extended ephemeris receptions, in milliseconds.",
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk225", sentences.Pmtk225,
+        "Set periodic power-saving mode",
+        (
+            Argument(
+                "mode",
+                "enum",
+                "0 normal, 1 periodic backup, 2 periodic standby, 4 perpetual backup, 8 "
+                "AlwaysLocate standby, 9 AlwaysLocate backup.",
+                enum=enums.MtkPeriodicMode,
+            ),
+            Argument(
+                "run_time",
+                "integer",
+                "Time the receiver runs in each cycle, 0 (disabled) or 1000 to 518400000 ms.",
+                optional=True,
+            ),
+            Argument(
+                "sleep_time",
+                "integer",
+                "Time the receiver sleeps in each cycle, 1000 to 518400000 ms.",
+                optional=True,
+            ),
+            Argument(
+                "second_run_time",
+                "integer",
+                "Run time used while the receiver has no fix (cold start condition), to collect "
+                "more ephemeris; 0 (disabled) or 1000 to 518400000 ms, longer than the first run "
+                "time when not 0.",
+                optional=True,
+            ),
+            Argument(
+                "second_sleep_time",
+                "integer",
+                "Sleep time used together with the second run time, 1000 to 518400000 ms.",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk251", sentences.Pmtk251,
+        "Set NMEA port baud rate",
+        (
+            Argument(
+                "baud",
+                "enum",
+                "4800, 9600, 14400, 19200, 38400, 57600 or 115200 bit/s; 0 the default rate "
+                "(Linx).",
+                enum=enums.MtkBaud,
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk286", sentences.Pmtk286,
+        "Enable active interference cancellation",
+        (
+            Argument("enabled", "enum", "0 disable, 1 enable.", enum=enums.MtkEnable),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk300", sentences.Pmtk300,
+        "Set position fix control",
+        (
+            Argument(
+                "fix_interval",
+                "integer",
+                "Position fix interval in milliseconds, more than 100.",
+            ),
+            Argument("reserved_1", "decimal", "Reserved, 0."),
+            Argument("reserved_2", "decimal", "Reserved, 0."),
+            Argument("reserved_3", "decimal", "Reserved, 0."),
+            Argument("reserved_4", "decimal", "Reserved, 0."),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk301", sentences.Pmtk301,
+        "Set DGPS mode",
+        (
+            Argument("mode", "enum", "0 no DGPS, 1 RTCM, 2 SBAS (WAAS).", enum=enums.MtkDgpsMode),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk313", sentences.Pmtk313,
+        "Enable SBAS search",
+        (
+            Argument("enabled", "enum", "0 disable, 1 enable.", enum=enums.MtkEnable),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk314", sentences.Pmtk314,
+        "Set NMEA sentence output rates",
+        (
+            Argument(
+                "gll",
+                "integer",
+                "Field 0: GLL (geographic position) output rate. 0 disables it, n (1 to 5) sends "
+                "it once every n position fixes.",
+            ),
+            Argument(
+                "rmc",
+                "integer",
+                "Field 1: RMC (recommended minimum data) output rate. 0 disables it, n (1 to 5) "
+                "sends it once every n position fixes.",
+            ),
+            Argument(
+                "vtg",
+                "integer",
+                "Field 2: VTG (course and speed over ground) output rate. 0 disables it, n (1 to "
+                "5) sends it once every n position fixes.",
+            ),
+            Argument(
+                "gga",
+                "integer",
+                "Field 3: GGA (fix data) output rate. 0 disables it, n (1 to 5) sends it once "
+                "every n position fixes.",
+            ),
+            Argument(
+                "gsa",
+                "integer",
+                "Field 4: GSA (DOP and active satellites) output rate. 0 disables it, n (1 to 5) "
+                "sends it once every n position fixes.",
+            ),
+            Argument(
+                "gsv",
+                "integer",
+                "Field 5: GSV (satellites in view) output rate. 0 disables it, n (1 to 5) sends "
+                "it once every n position fixes.",
+            ),
+            Argument(
+                "grs",
+                "integer",
+                "Field 6: GRS (range residuals) output rate on the IT500 series; reserved (0) in "
+                "the GlobalTop and L80 manuals. 0 disables it, n (1 to 5) sends it once every n "
+                "position fixes.",
+            ),
+            Argument(
+                "gst",
+                "integer",
+                "Field 7: GST (pseudorange error statistics) output rate on the IT500 series; "
+                "reserved (0) in the GlobalTop and L80 manuals. 0 disables it, n (1 to 5) sends "
+                "it once every n position fixes.",
+            ),
+            Argument("reserved_8", "integer", "Field 8: Reserved, 0."),
+            Argument("reserved_9", "integer", "Field 9: Reserved, 0."),
+            Argument("reserved_10", "integer", "Field 10: Reserved, 0."),
+            Argument("reserved_11", "integer", "Field 11: Reserved, 0."),
+            Argument("reserved_12", "integer", "Field 12: Reserved, 0."),
+            Argument(
+                "malm",
+                "integer",
+                "Field 13: Almanac sentence PMTKALM; listed by the IT500 manual as not supported, "
+                "reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every n position "
+                "fixes.",
+            ),
+            Argument(
+                "meph",
+                "integer",
+                "Field 14: Ephemeris sentence PMTKEPH; listed by the IT500 manual as not "
+                "supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every "
+                "n position fixes.",
+            ),
+            Argument(
+                "mdgp",
+                "integer",
+                "Field 15: Differential correction sentence PMTKDGP; listed by the IT500 manual "
+                "as not supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it "
+                "once every n position fixes.",
+            ),
+            Argument(
+                "mdbg",
+                "integer",
+                "Field 16: MTK debug sentence PMTKDBG; listed by the IT500 manual as not "
+                "supported, reserved (0) elsewhere. 0 disables it, n (1 to 5) sends it once every "
+                "n position fixes.",
+            ),
+            Argument(
+                "zda",
+                "integer",
+                "Field 17: ZDA (time and date) output rate (IT500 and L80 manuals; reserved in "
+                "the GlobalTop A08 manual). 0 disables it, n (1 to 5) sends it once every n "
+                "position fixes.",
+            ),
+            Argument(
+                "mchn",
+                "integer",
+                "Field 18: PMTKCHN (channel status) output rate (GlobalTop and IT500 manuals; "
+                "reserved, 0, in the L80 manual). 0 disables it, n (1 to 5) sends it once every n "
+                "position fixes.",
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk314-restore-default", sentences.Pmtk314RestoreDefault,
+        "Restore default output",
+        (
+            Argument("restore", "keyword", "Always -1.", value="-1"),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk319", sentences.Pmtk319,
+        "Set SBAS mode",
+        (
+            Argument("mode", "enum", "0 testing mode, 1 integrity mode.", enum=enums.MtkSbasMode),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk353", sentences.Pmtk353,
+        "Set GNSS search mode",
+        (
+            Argument("gps", "enum", "1 search GPS satellites, 0 not.", enum=enums.MtkEnable),
+            Argument(
+                "glonass",
+                "enum",
+                "1 search GLONASS satellites, 0 not.",
+                enum=enums.MtkEnable,
+            ),
+            Argument(
+                "galileo",
+                "enum",
+                "1 search Galileo satellites, 0 not.",
+                enum=enums.MtkEnable,
+            ),
+            Argument(
+                "galileo_full",
+                "enum",
+                "1 use Galileo satellites for the fix as well (not only search), 0 not.",
+                enum=enums.MtkEnable,
+            ),
+            Argument("beidou", "enum", "1 search BeiDou satellites, 0 not.", enum=enums.MtkEnable),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk386", sentences.Pmtk386,
+        "Set static navigation threshold",
+        (
+            Argument(
+                "threshold",
+                "decimal",
+                "Speed threshold in m/s, 0 to 2.0; 0 disables static navigation.",
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk397", sentences.Pmtk397,
+        "Set navigation speed threshold",
+        (
+            Argument("threshold", "decimal", "Navigation speed threshold in m/s."),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk400", sentences.Pmtk400,
+        "Query position fix interval",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk401", sentences.Pmtk401,
+        "Query DGPS mode",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk413", sentences.Pmtk413,
+        "Query SBAS enabled",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk414", sentences.Pmtk414,
+        "Query NMEA output rates",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk447", sentences.Pmtk447,
+        "Query navigation speed threshold",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk605", sentences.Pmtk605,
+        "Query firmware release",
+        (
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk622", sentences.Pmtk622,
+        "Dump LOCUS logger data",
+        (
+            Argument(
+                "type",
+                "literal",
+                "1, dump the part of the flash that holds data.",
+                value="1",
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk660", sentences.Pmtk660,
+        "Query satellites with ephemeris still valid",
+        (
+            Argument(
+                "interval",
+                "integer",
+                "The time from now, in seconds, more than 0 and at most 7200 (2 hours).",
+            ),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk661", sentences.Pmtk661,
+        "Query satellites with almanac still valid",
+        (
+            Argument("interval", "integer", "The time from now, in days, more than 0."),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk869-query", sentences.Pmtk869Query,
+        "Query EASY function",
+        (
+            Argument("cmd_type", "keyword", "0, query.", value="0"),
+        ),
+    ),
+    Command(
+        "mtk_pmtk", "pmtk869-set", sentences.Pmtk869Set,
+        "Enable or disable EASY function",
+        (
+            Argument("cmd_type", "keyword", "1, set.", value="1"),
+            Argument("enabled", "enum", "0 disable, 1 enable.", enum=enums.MtkEnable),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgantdelta", sentences.Pqtmcfgantdelta,
+        "Configure antenna offset",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "east",
+                "decimal",
+                "East offset from the reference point to the antenna (default 0).",
+            ),
+            Argument(
+                "north",
+                "decimal",
+                "North offset from the reference point to the antenna (default 0).",
+            ),
+            Argument(
+                "height",
+                "decimal",
+                "Height of the antenna above the reference point, sent in RTCM 1006 (DF028) "
+                "(default 0).",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgantdelta-read", sentences.PqtmcfgantdeltaRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgantinf", sentences.Pqtmcfgantinf,
+        "Configure antenna information",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "description",
+                "text",
+                "Antenna descriptor sent in RTCM 1033 (DF030), up to 31 characters; empty by "
+                "default.",
+            ),
+            Argument(
+                "setup_id",
+                "integer",
+                "Antenna setup ID sent in RTCM 1033 (DF031), default 0.",
+            ),
+            Argument(
+                "serial_number",
+                "text",
+                "Antenna serial number sent in RTCM 1033 (DF033), up to 31 characters; empty by "
+                "default.",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgantinf-read", sentences.PqtmcfgantinfRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgbld", sentences.Pqtmcfgbld,
+        "Configure antenna baseline",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "distance",
+                "decimal",
+                "Distance between the antennas; 0 (default) lets the software find it.",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgbld-read", sentences.PqtmcfgbldRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgcnrthd", sentences.Pqtmcfgcnrthd,
+        "Configure C/N0 threshold",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("threshold", "decimal", "Minimum C/N0; 0 means no limit (default 10.0)."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgcnrthd-read", sentences.PqtmcfgcnrthdRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgcnst", sentences.Pqtmcfgcnst,
+        "Configure constellations",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("gps", "enum", "GPS on or off.", enum=enums.QuectelEnable),
+            Argument("glonass", "enum", "GLONASS on or off.", enum=enums.QuectelEnable),
+            Argument("galileo", "enum", "Galileo on or off.", enum=enums.QuectelEnable),
+            Argument("bds", "enum", "BDS on or off.", enum=enums.QuectelEnable),
+            Argument("qzss", "enum", "QZSS on or off.", enum=enums.QuectelEnable),
+            Argument("navic", "enum", "NavIC on or off.", enum=enums.QuectelEnable),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgcnst-read", sentences.PqtmcfgcnstRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgelethd", sentences.Pqtmcfgelethd,
+        "Configure elevation threshold",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "elevation",
+                "decimal",
+                "Minimum satellite elevation; -90.0 means no limit (default 5.0).",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgelethd-read", sentences.PqtmcfgelethdRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgfixrate", sentences.Pqtmcfgfixrate,
+        "Configure fix interval",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("fix_interval", "integer", "Time between two fixes."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgfixrate-read", sentences.PqtmcfgfixrateRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfggeofence", sentences.Pqtmcfggeofence,
+        "Configure geofence",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("index", "integer", "Which of the four geofences."),
+            Argument(
+                "mode",
+                "enum",
+                "Geofence on or off; when off, the following fields are left out.",
+                enum=enums.QuectelEnable,
+            ),
+            Argument("reserved", "integer", "Reserved; always 0.", optional=True),
+            Argument(
+                "shape",
+                "enum",
+                "How the points are read.",
+                enum=enums.QuectelGeofenceShape,
+                optional=True,
+            ),
+            Argument(
+                "lat0",
+                "decimal",
+                "Latitude of the first point (the centre of a circle); negative south.",
+                optional=True,
+            ),
+            Argument(
+                "lon0",
+                "decimal",
+                "Longitude of the first point; negative west.",
+                optional=True,
+            ),
+            Argument(
+                "lat1_or_radius",
+                "decimal",
+                "For a circle given by its radius, the radius in metres; otherwise the latitude "
+                "of the second point in degrees.",
+                optional=True,
+            ),
+            Argument("lon1", "decimal", "Longitude of the second point.", optional=True),
+            Argument("lat2", "decimal", "Latitude of the third point.", optional=True),
+            Argument("lon2", "decimal", "Longitude of the third point.", optional=True),
+            Argument("lat3", "decimal", "Latitude of the fourth point.", optional=True),
+            Argument("lon3", "decimal", "Longitude of the fourth point.", optional=True),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfggeofence-read", sentences.PqtmcfggeofenceRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+            Argument("index", "integer", "Which of the four geofences."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfggeosep", sentences.Pqtmcfggeosep,
+        "Configure geoidal separation",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "mode",
+                "enum",
+                "Built-in geoid or the given value.",
+                enum=enums.QuectelGeosepMode,
+            ),
+            Argument("separation", "decimal", "The value used in manual mode (default 0)."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfggeosep-read", sentences.PqtmcfggeosepRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgmsgrate", sentences.Pqtmcfgmsgrate,
+        "Configure message output rate",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "message",
+                "text",
+                "The message to configure: a standard sentence (GGA, RMC...), a PQTM output "
+                "(PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC "
+                "raw message (0AB2...).",
+            ),
+            Argument(
+                "rate",
+                "integer",
+                "Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM "
+                "messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw "
+                "messages.",
+            ),
+            Argument(
+                "version_or_offset",
+                "integer",
+                "For a PQTM message its version (required for PQTM messages); for an RTCM MSM "
+                "message its time offset in fixes, 0 to rate-1; absent for the others.",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgmsgrate-port", sentences.PqtmcfgmsgratePort,
+        "Rate on a given port",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("port_type", "enum", "Kind of port.", enum=enums.QuectelPortType),
+            Argument("port_id", "integer", "UART number, 1 to 3."),
+            Argument(
+                "message",
+                "text",
+                "The message to configure: a standard sentence (GGA, RMC...), a PQTM output "
+                "(PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC "
+                "raw message (0AB2...).",
+            ),
+            Argument(
+                "rate",
+                "integer",
+                "Send the message once every N fixes; 0 stops it. 0-255 for NMEA and PQTM "
+                "messages, 1-1200 for RTCM station and MSM messages, 1 for ephemeris and raw "
+                "messages.",
+            ),
+            Argument(
+                "version_or_offset",
+                "integer",
+                "For a PQTM message its version (required for PQTM messages); for an RTCM MSM "
+                "message its time offset in fixes, 0 to rate-1; absent for the others.",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgmsgrate-read-port", sentences.PqtmcfgmsgrateReadPort,
+        "Read the rate on a given port",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+            Argument("port_type", "enum", "Kind of port.", enum=enums.QuectelPortType),
+            Argument("port_id", "integer", "UART number, 1 to 3."),
+            Argument(
+                "message",
+                "text",
+                "The message to configure: a standard sentence (GGA, RMC...), a PQTM output "
+                "(PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC "
+                "raw message (0AB2...).",
+            ),
+            Argument(
+                "version_or_offset",
+                "integer",
+                "For a PQTM message its version (required for PQTM messages); for an RTCM MSM "
+                "message its time offset in fixes, 0 to rate-1; absent for the others.",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgmsgrate-read", sentences.PqtmcfgmsgrateRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+            Argument(
+                "message",
+                "text",
+                "The message to configure: a standard sentence (GGA, RMC...), a PQTM output "
+                "(PQTMEPE...), an RTCM message (RTCM3-1005, RTCM3-107X...) or the hex ID of a QGC "
+                "raw message (0AB2...).",
+            ),
+            Argument(
+                "version_or_offset",
+                "integer",
+                "For a PQTM message its version (required for PQTM messages); for an RTCM MSM "
+                "message its time offset in fixes, 0 to rate-1; absent for the others.",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgnmeadp", sentences.Pqtmcfgnmeadp,
+        "Configure NMEA decimal places",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "utc_decimals",
+                "integer",
+                "Decimals of the UTC seconds in standard sentences (default 3).",
+            ),
+            Argument(
+                "position_decimals",
+                "integer",
+                "Decimals of latitude and longitude minutes (default 8).",
+            ),
+            Argument(
+                "altitude_decimals",
+                "integer",
+                "Decimals of altitude and geoidal separation (default 3).",
+            ),
+            Argument("dop_decimals", "integer", "Decimals of the DOP values (default 2)."),
+            Argument("speed_decimals", "integer", "Decimals of speeds (default 3)."),
+            Argument("cog_decimals", "integer", "Decimals of the course over ground (default 2)."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgnmeadp-read", sentences.PqtmcfgnmeadpRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgnmeatid", sentences.Pqtmcfgnmeatid,
+        "Configure NMEA talker ID",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "main_talker",
+                "text",
+                "Talker ID of every standard sentence but GSV: two characters, or 00 for "
+                "automatic (chosen from the constellations).",
+            ),
+            Argument("gsv_talker", "enum", "Talker ID of GSV.", enum=enums.QuectelGsvTalker),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgnmeatid-read", sentences.PqtmcfgnmeatidRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgodo", sentences.Pqtmcfgodo,
+        "Configure odometer",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("state", "enum", "Odometer on or off.", enum=enums.QuectelEnable),
+            Argument(
+                "initial_distance",
+                "decimal",
+                "Distance added to the accumulated one (default 0).",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgodo-read", sentences.PqtmcfgodoRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgpps", sentences.Pqtmcfgpps,
+        "Configure PPS",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("index", "integer", "Which PPS output; only 1 (PPS1) is listed."),
+            Argument(
+                "enable",
+                "enum",
+                "PPS output on or off; when off, the following fields are left out.",
+                enum=enums.QuectelEnable,
+            ),
+            Argument("duration", "integer", "Length of the pulse (default 100 ms).", optional=True),
+            Argument(
+                "mode",
+                "enum",
+                "When the pulse is sent.",
+                enum=enums.QuectelPpsMode,
+                optional=True,
+            ),
+            Argument(
+                "polarity",
+                "enum",
+                "Active level of the pulse.",
+                enum=enums.QuectelPpsPolarity,
+                optional=True,
+            ),
+            Argument("reserved", "integer", "Reserved; always 0.", optional=True),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgpps-read", sentences.PqtmcfgppsRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+            Argument("index", "integer", "Which PPS output; only 1 (PPS1) is listed."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgprot", sentences.Pqtmcfgprot,
+        "Configure port protocols",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("port_type", "enum", "Kind of port.", enum=enums.QuectelPortType),
+            Argument("port_id", "integer", "Port number; for a UART 1 to 3."),
+            Argument(
+                "input_protocols",
+                "hex",
+                "Protocols the port reads (32 bits as 8 hex digits); default 00000005 (NMEA and "
+                "RTCM3).",
+            ),
+            Argument(
+                "output_protocols",
+                "hex",
+                "Protocols the port writes (32 bits as 8 hex digits); default 00000005 (NMEA and "
+                "RTCM3).",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgprot-read", sentences.PqtmcfgprotRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+            Argument("port_type", "enum", "Kind of port.", enum=enums.QuectelPortType),
+            Argument("port_id", "integer", "Port number; for a UART 1 to 3."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrcvrmode", sentences.Pqtmcfgrcvrmode,
+        "Configure receiver mode",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("mode", "enum", "Working mode.", enum=enums.QuectelReceiverMode),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrcvrmode-read", sentences.PqtmcfgrcvrmodeRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrsid", sentences.Pqtmcfgrsid,
+        "Configure reference station ID",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("station_id", "integer", "Station ID (default 290)."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrsid-read", sentences.PqtmcfgrsidRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrtcm", sentences.Pqtmcfgrtcm,
+        "Configure RTCM output",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("msm_type", "integer", "RTCM MSM type, 3 to 7 for MSM3 to MSM7 (default 4)."),
+            Argument(
+                "msm_mode",
+                "integer",
+                "Output when no satellite is tracked; always 0 (no MSM output then).",
+            ),
+            Argument(
+                "msm_elevation",
+                "decimal",
+                "Satellites below this elevation are left out of the MSM messages; -90.0 "
+                "(default) means no limit.",
+            ),
+            Argument("reserved1", "text", "Reserved; default 07 (written with two digits)."),
+            Argument("reserved2", "text", "Reserved; default 06 (written with two digits)."),
+            Argument(
+                "eph_mode",
+                "enum",
+                "When ephemeris messages are sent.",
+                enum=enums.QuectelRtcmEphMode,
+            ),
+            Argument(
+                "eph_interval",
+                "integer",
+                "Interval of the periodic ephemeris output (mode 2 only).",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrtcm-read", sentences.PqtmcfgrtcmRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrtk", sentences.Pqtmcfgrtk,
+        "Configure RTK",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "diff_mode",
+                "enum",
+                "How corrections are used.",
+                enum=enums.QuectelRtkDiffMode,
+            ),
+            Argument(
+                "rel_mode",
+                "enum",
+                "Used only in auto mode once RTK is reached.",
+                enum=enums.QuectelRtkRelMode,
+            ),
+            Argument(
+                "timeout",
+                "integer",
+                "Oldest correction age an RTK fix may use (default 120).",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrtk-read", sentences.PqtmcfgrtkRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrtksrctype", sentences.Pqtmcfgrtksrctype,
+        "Configure RTK source type",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "source_type",
+                "enum",
+                "Differential source type.",
+                enum=enums.QuectelRtkSourceType,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgrtksrctype-read", sentences.PqtmcfgrtksrctypeRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsat", sentences.Pqtmcfgsat,
+        "Configure satellite mask",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "system",
+                "enum",
+                "Constellation (NMEA system ID numbering: 1 GPS to 6 NavIC).",
+                enum=enums.SystemId,
+            ),
+            Argument(
+                "signal",
+                "hex",
+                "Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A, "
+                "Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo "
+                "E5a, BDS B2I or QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 "
+                "Galileo E6, BDS B1C or QZSS L6; 5 BDS B2a; 6 BDS B2b.",
+            ),
+            Argument("mask_low", "hex", "One bit per satellite, bit 0 for PRN 1 (32 bits)."),
+            Argument(
+                "mask_high",
+                "hex",
+                "Bit 0 for PRN 33; Galileo and BDS only, left out for the other systems.",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsat-read", sentences.PqtmcfgsatRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+            Argument(
+                "system",
+                "enum",
+                "Constellation (NMEA system ID numbering: 1 GPS to 6 NavIC).",
+                enum=enums.SystemId,
+            ),
+            Argument(
+                "signal",
+                "hex",
+                "Signal of that constellation, numbered per system: 1 GPS L1 C/A, GLONASS G1 C/A, "
+                "Galileo E1, BDS B1I, QZSS L1 C/A or NavIC L5; 2 GPS L2C, GLONASS G2 C/A, Galileo "
+                "E5a, BDS B2I or QZSS L2C; 3 GPS L5-Q, Galileo E5b, BDS B3I or QZSS L5-Q; 4 "
+                "Galileo E6, BDS B1C or QZSS L6; 5 BDS B2a; 6 BDS B2b.",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsbas", sentences.Pqtmcfgsbas,
+        "Configure SBAS",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("systems", "hex", "One bit per SBAS system (default 003F)."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsbas-read", sentences.PqtmcfgsbasRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsiggrp", sentences.Pqtmcfgsiggrp,
+        "Configure signal group",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "group",
+                "integer",
+                "Signal group number: 0 on LG290P(03) and LG680P(03); 0 (antenna 2 off), 1 "
+                "(default) or 2 on LG580P(03).",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsiggrp-read", sentences.PqtmcfgsiggrpRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsignal", sentences.Pqtmcfgsignal,
+        "Configure signals",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("gps_signals", "hex", "GPS signal mask."),
+            Argument("glonass_signals", "hex", "GLONASS signal mask."),
+            Argument("galileo_signals", "hex", "Galileo signal mask."),
+            Argument("bds_signals", "hex", "BDS signal mask."),
+            Argument("qzss_signals", "hex", "QZSS signal mask."),
+            Argument("navic_signals", "hex", "NavIC signal mask."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsignal-read", sentences.PqtmcfgsignalRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsignal2", sentences.Pqtmcfgsignal2,
+        "Configure antenna 2 signals",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("gps_signals", "hex", "GPS signal mask."),
+            Argument("glonass_signals", "hex", "GLONASS signal mask."),
+            Argument("galileo_signals", "hex", "Galileo signal mask."),
+            Argument("bds_signals", "hex", "BDS signal mask."),
+            Argument("qzss_signals", "hex", "QZSS signal mask."),
+            Argument("navic_signals", "hex", "NavIC signal mask."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsignal2-read", sentences.Pqtmcfgsignal2Read,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsvin", sentences.Pqtmcfgsvin,
+        "Configure survey-in",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "mode",
+                "enum",
+                "Survey-in, fixed position, or off.",
+                enum=enums.QuectelSvinMode,
+            ),
+            Argument("min_fixes", "integer", "Minimum number of fixes averaged in survey-in mode."),
+            Argument(
+                "accuracy_limit",
+                "decimal",
+                "Required 3D accuracy in survey-in mode; 0 means no limit (default).",
+            ),
+            Argument("ecef_x", "decimal", "WGS84 ECEF X of the antenna (fixed mode)."),
+            Argument("ecef_y", "decimal", "WGS84 ECEF Y of the antenna (fixed mode)."),
+            Argument("ecef_z", "decimal", "WGS84 ECEF Z of the antenna (fixed mode)."),
+            Argument(
+                "distance",
+                "decimal",
+                "Survey-in only: a new result replaces the previous one only when they are "
+                "further apart than this (default 0: always the latest).",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgsvin-read", sentences.PqtmcfgsvinRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfguart", sentences.Pqtmcfguart,
+        "Configure UART",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "index",
+                "enum",
+                "The serial port the setting applies to.",
+                enum=enums.QuectelUartIndex,
+            ),
+            Argument("baud_rate", "enum", "Baud rate of the port.", enum=enums.QuectelBaudRate),
+            Argument("data_bits", "integer", "Data bits per character; only 8 is listed."),
+            Argument("parity", "enum", "Parity of the port.", enum=enums.QuectelParity),
+            Argument("stop_bits", "enum", "Number of stop bits.", enum=enums.QuectelStopBits),
+            Argument(
+                "flow_control",
+                "enum",
+                "Flow control of the port.",
+                enum=enums.QuectelFlowControl,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfguart-current-baud", sentences.PqtmcfguartCurrentBaud,
+        "Baud rate of the current port",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("baud_rate", "enum", "Baud rate of the port.", enum=enums.QuectelBaudRate),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfguart-current-full", sentences.PqtmcfguartCurrentFull,
+        "All settings of the current port",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("baud_rate", "enum", "Baud rate of the port.", enum=enums.QuectelBaudRate),
+            Argument("data_bits", "integer", "Data bits per character; only 8 is listed."),
+            Argument("parity", "enum", "Parity of the port.", enum=enums.QuectelParity),
+            Argument("stop_bits", "enum", "Number of stop bits.", enum=enums.QuectelStopBits),
+            Argument(
+                "flow_control",
+                "enum",
+                "Flow control of the port.",
+                enum=enums.QuectelFlowControl,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfguart-port-baud", sentences.PqtmcfguartPortBaud,
+        "Baud rate of a given port",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument(
+                "index",
+                "enum",
+                "The serial port the setting applies to.",
+                enum=enums.QuectelUartIndex,
+            ),
+            Argument("baud_rate", "enum", "Baud rate of the port.", enum=enums.QuectelBaudRate),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfguart-read", sentences.PqtmcfguartRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+            Argument(
+                "index",
+                "enum",
+                "The port to read; the current port when absent.",
+                enum=enums.QuectelUartIndex,
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgwn", sentences.Pqtmcfgwn,
+        "Configure reference week number",
+        (
+            Argument("access", "keyword", "W: the write (set) form of the command.", value="W"),
+            Argument("week", "integer", "GPS week number including rollovers (default 2200)."),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcfgwn-read", sentences.PqtmcfgwnRead,
+        "Read the setting",
+        (
+            Argument(
+                "access",
+                "keyword",
+                "R: the read (get) form of the command; the module answers with the current "
+                "setting.",
+                value="R",
+            ),
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmcold", sentences.Pqtmcold,
+        "Cold start",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmdebugoff", sentences.Pqtmdebugoff,
+        "Debug log off",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmdebugon", sentences.Pqtmdebugon,
+        "Debug log on",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmgnssstart", sentences.Pqtmgnssstart,
+        "Start GNSS engine",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmgnssstop", sentences.Pqtmgnssstop,
+        "Stop GNSS engine",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmhot", sentences.Pqtmhot,
+        "Hot start",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmresetodo", sentences.Pqtmresetodo,
+        "Reset odometer",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmrestorepar", sentences.Pqtmrestorepar,
+        "Restore default configuration",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmsavepar", sentences.Pqtmsavepar,
+        "Save configuration",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmsn", sentences.Pqtmsn,
+        "Query module serial number",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmsrr", sentences.Pqtmsrr,
+        "System reset and reboot",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmuniqid", sentences.Pqtmuniqid,
+        "Query module unique ID",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmverno", sentences.Pqtmverno,
+        "Query firmware version",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqtmwarm", sentences.Pqtmwarm,
+        "Warm start",
+        (
+        ),
+    ),
+    Command(
+        "quectel_lg290p", "pqverno", sentences.Pqverno,
+        "Query firmware version (older modules)",
+        (
+            Argument("access", "keyword", "R: read.", value="R"),
+        ),
+    ),
+    Command(
+        "globalsat", "psrf100", sentences.Psrf100,
+        "Set serial port A",
+        (
+            Argument("protocol", "enum", "Protocol to run on port A.", enum=enums.SirfProtocol),
+            Argument("baud", "enum", "Port A speed, 1200 to 38400 bit/s.", enum=enums.SirfBaud),
+            Argument(
+                "data_bits",
+                "integer",
+                "Data bits per character, 8 or 7; the SiRF binary protocol works with 8 only.",
+            ),
+            Argument("stop_bits", "integer", "Stop bits, listed as 0 or 1."),
+            Argument("parity", "enum", "Parity, 0 none, 1 odd, 2 even.", enum=enums.SirfParity),
+        ),
+    ),
+    Command(
+        "globalsat", "psrf101", sentences.Psrf101,
+        "Navigation initialisation, ECEF",
+        (
+            Argument(
+                "x",
+                "integer",
+                "ECEF X coordinate of the approximate position, metres (unit from the SiRF NMEA "
+                "reference).",
+            ),
+            Argument("y", "integer", "ECEF Y coordinate, metres (SiRF NMEA reference)."),
+            Argument("z", "integer", "ECEF Z coordinate, metres (SiRF NMEA reference)."),
+            Argument(
+                "clock_offset",
+                "integer",
+                "Receiver clock offset (frequency) in Hz; 0 makes the receiver use its last saved "
+                "value (SiRF NMEA reference).",
+            ),
+            Argument(
+                "time_of_week",
+                "integer",
+                "GPS time of week in seconds (UINT32 in the manual; a GPS week has 604800 s).",
+            ),
+            Argument("week", "integer", "GPS week number (UINT16)."),
+            Argument(
+                "channels",
+                "integer",
+                "Number of receiver channels to use, 1-12, default and maximum 12.",
+            ),
+            Argument(
+                "reset_cfg",
+                "integer",
+                "Reset configuration bit mask (UBYTE, written in decimal): bit 0 (0x01) the "
+                "initialisation data are valid, set for warm and hot starts; bit 1 (0x02) clear "
+                "the ephemerides, set for a warm start; bit 2 (0x04) clear the memory, set for a "
+                "cold start.",
+            ),
+        ),
+    ),
+    Command(
+        "globalsat", "psrf102", sentences.Psrf102,
+        "Set DGPS serial port B",
+        (
+            Argument(
+                "baud",
+                "enum",
+                "Port B speed, 1200 to 38400 bit/s; default 9600.",
+                enum=enums.SirfBaud,
+            ),
+            Argument(
+                "data_bits",
+                "integer",
+                "Data bits per character; only 8 is listed (the default).",
+            ),
+            Argument(
+                "stop_bits",
+                "integer",
+                "Stop bits, listed as 0 or 1; the default is printed as 0 while the example "
+                "writes 1 for one stop bit (\"8,N,1\").",
+            ),
+            Argument(
+                "parity",
+                "enum",
+                "Parity, 0 none (default), 1 odd, 2 even.",
+                enum=enums.SirfParity,
+            ),
+        ),
+    ),
+    Command(
+        "globalsat", "psrf103", sentences.Psrf103,
+        "Query or set the rate of a standard NMEA sentence",
+        (
+            Argument(
+                "message",
+                "enum",
+                "The standard sentence to query or schedule, 00 GGA to 05 VTG.",
+                enum=enums.SirfNmeaMessage,
+            ),
+            Argument(
+                "mode",
+                "enum",
+                "00 sets the rate, 01 queries the sentence once.",
+                enum=enums.SirfRateMode,
+            ),
+            Argument(
+                "rate",
+                "integer",
+                "Seconds between two outputs of the sentence in set-rate mode; 0 turns it off, "
+                "255 is the maximum.",
+            ),
+            Argument(
+                "checksum_mode",
+                "enum",
+                "Whether the sentence is sent with a checksum, 00 no, 01 yes.",
+                enum=enums.SirfChecksumEnable,
+            ),
+        ),
+    ),
+    Command(
+        "globalsat", "psrf103-short-codes", sentences.Psrf103ShortCodes,
+        "One-digit selectors",
+        (
+            Argument(
+                "message",
+                "enum",
+                "The standard sentence to query or schedule: 0 GGA, 1 GLL, 2 GSA, 3 GSV, 4 RMC, 5 "
+                "VTG.",
+                enum=enums.SirfNmeaMessageDigit,
+            ),
+            Argument(
+                "mode",
+                "enum",
+                "0 sets the rate, 1 queries the sentence once.",
+                enum=enums.SirfRateModeDigit,
+            ),
+            Argument(
+                "rate",
+                "integer",
+                "Seconds between two outputs of the sentence in set-rate mode; 0 turns it off, "
+                "255 is the maximum.",
+            ),
+            Argument(
+                "checksum_mode",
+                "enum",
+                "Whether the sentence is sent with a checksum, 0 no, 1 yes.",
+                enum=enums.SirfChecksumEnableDigit,
+            ),
+        ),
+    ),
+    Command(
+        "globalsat", "psrf104", sentences.Psrf104,
+        "Navigation initialisation, latitude/longitude/altitude",
+        (
+            Argument(
+                "latitude",
+                "decimal",
+                "Latitude in decimal degrees, positive north, negative south (sign convention "
+                "from the SiRF NMEA reference).",
+            ),
+            Argument(
+                "longitude",
+                "decimal",
+                "Longitude in decimal degrees, positive east, negative west (SiRF NMEA reference).",
+            ),
+            Argument(
+                "altitude",
+                "decimal",
+                "Altitude in metres; SiRF gives heights above the WGS-84 ellipsoid (SiRF NMEA "
+                "reference; the datum word was lost).",
+            ),
+            Argument(
+                "clock_offset",
+                "integer",
+                "Receiver clock offset (frequency) in Hz; 0 makes the receiver use its last saved "
+                "value (SiRF NMEA reference).",
+            ),
+            Argument(
+                "time_of_week",
+                "integer",
+                "GPS time of week in seconds (UINT32 in the manual; a GPS week has 604800 s).",
+            ),
+            Argument("week", "integer", "GPS week number (UINT16)."),
+            Argument(
+                "channels",
+                "integer",
+                "Number of receiver channels to use, 1-12, default and maximum 12.",
+            ),
+            Argument(
+                "reset_cfg",
+                "integer",
+                "Reset configuration bit mask (UBYTE, written in decimal): bit 0 (0x01) the "
+                "initialisation data are valid, set for warm and hot starts; bit 1 (0x02) clear "
+                "the ephemerides, set for a warm start; bit 2 (0x04) clear the memory, set for a "
+                "cold start.",
+            ),
+        ),
+    ),
+    Command(
+        "globalsat", "psrf105", sentences.Psrf105,
+        "Switch development data messages on/off",
+        (
+            Argument(
+                "debug",
+                "enum",
+                "1 switches the development data messages on, 0 off.",
+                enum=enums.SirfDebug,
+            ),
+        ),
+    ),
+    Command(
+        "teseo", "pstmclralms", sentences.Pstmclralms,
+        "Clear all almanacs",
+        (
+        ),
+    ),
+    Command(
+        "teseo", "pstmclrephs", sentences.Pstmclrephs,
+        "Clear all ephemerides",
+        (
+        ),
+    ),
+    Command(
+        "teseo", "pstmcold", sentences.Pstmcold,
+        "Cold start",
+        (
+            Argument(
+                "mask",
+                "integer",
+                "Which data to invalidate before the start: 0x1 almanac, 0x2 ephemerides, 0x4 "
+                "position, 0x8 time; several may be combined (e.g. 0xD).",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "teseo", "pstmgetpar", sentences.Pstmgetpar,
+        "Get configuration parameter",
+        (
+            Argument(
+                "block_param",
+                "integer",
+                "One wire field made of the configuration block digit b followed, without a comma "
+                "or a space, by the 3-digit CDB parameter ID nnn (e.g. 1403 = block 1, parameter "
+                "403).",
+            ),
+        ),
+    ),
+    Command(
+        "teseo", "pstmgetrtctime", sentences.Pstmgetrtctime,
+        "Get RTC time",
+        (
+        ),
+    ),
+    Command(
+        "teseo", "pstmgetswver", sentences.Pstmgetswver,
+        "Get software version",
+        (
+        ),
+    ),
+    Command(
+        "teseo", "pstmhot", sentences.Pstmhot,
+        "Hot start",
+        (
+        ),
+    ),
+    Command(
+        "teseo", "pstmnmeaonoff", sentences.Pstmnmeaonoff,
+        "NMEA output on/off",
+        (
+            Argument(
+                "on_off",
+                "enum",
+                "0 stops the NMEA output, 1 starts it.",
+                enum=enums.TeseoNmeaOnOff,
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "teseo", "pstmrestorepar", sentences.Pstmrestorepar,
+        "Restore factory parameters",
+        (
+        ),
+    ),
+    Command(
+        "teseo", "pstmsavepar", sentences.Pstmsavepar,
+        "Save parameters",
+        (
+        ),
+    ),
+    Command(
+        "teseo", "pstmsetpar", sentences.Pstmsetpar,
+        "Set configuration parameter (also the $PSTMGETPAR answer)",
+        (
+            Argument(
+                "block_param",
+                "integer",
+                "One wire field made of the configuration block digit b followed, without a comma "
+                "or a space, by the 3-digit CDB parameter ID nnn (e.g. 1121 = block 1, parameter "
+                "121).",
+            ),
+            Argument(
+                "value",
+                "text",
+                "The value, 1 to 80 bytes, written as the parameter requires (teseo_cdb "
+                "encoding): hex digits without \"0x\" for every integer parameter (e.g. 10 = "
+                "0x10), decimal for the real parameters (301-303), plain text for the text "
+                "message (500).",
+            ),
+            Argument(
+                "mode",
+                "enum",
+                "How the value is combined with the stored one: 0 replace (also when absent), 1 "
+                "bitwise OR (set the given bits), 2 bitwise AND with the inverted value (clear "
+                "the given bits).",
+                enum=enums.TeseoSetparMode,
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "teseo", "pstmsetpar-dop", sentences.PstmsetparDop,
+        "DOP thresholds",
+        (
+            Argument(
+                "block_param",
+                "integer",
+                "Configuration block digit followed by the DOP parameter ID 400-403 (e.g. 1403 = "
+                "block 1, start 3D DOP).",
+            ),
+            Argument("pdop", "decimal", "Position DOP threshold (P), decimal."),
+            Argument("vdop", "decimal", "Vertical DOP threshold (V), decimal."),
+            Argument("hdop", "decimal", "Horizontal DOP threshold (H), decimal."),
+            Argument("gdop", "decimal", "Geometric DOP threshold (G), decimal."),
+            Argument(
+                "mode",
+                "enum",
+                "Optional write mode as in the main layout; the manual does not exclude it for "
+                "the DOP parameters, although bitwise modes make no sense for them.",
+                enum=enums.TeseoSetparMode,
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "teseo", "pstmwarm", sentences.Pstmwarm,
+        "Warm start",
+        (
+        ),
+    ),
+    Command(
+        "ublox_m8", "pubx-config", sentences.PubxConfig,
+        "Set u-blox port protocols and baud rate",
+        (
+            Argument("msg_id", "keyword", "Proprietary message number 41.", value="41"),
+            Argument(
+                "port_id",
+                "enum",
+                "The port to configure (0 DDC, 1 UART 1, 2 UART 2, 3 USB, 4 SPI).",
+                enum=enums.UbloxPort,
+            ),
+            Argument(
+                "in_proto",
+                "hex",
+                "Protocols accepted on the port, one bit each (bit 0 UBX, 1 NMEA, 2 RTCM 2, 5 "
+                "RTCM 3).",
+            ),
+            Argument(
+                "out_proto",
+                "hex",
+                "Protocols sent on the port, one bit each (bit 0 UBX, 1 NMEA, 5 RTCM 3).",
+            ),
+            Argument(
+                "baud_rate",
+                "integer",
+                "Serial baud rate of the port (e.g. 9600, 19200, 115200); meaningless for USB and "
+                "DDC.",
+            ),
+            Argument(
+                "autobauding",
+                "enum",
+                "0 fixed rate, 1 automatic baud rate detection.",
+                enum=enums.UbloxAutobauding,
+            ),
+        ),
+    ),
+    Command(
+        "ublox_m8", "pubx-position-poll", sentences.PubxPositionPoll,
+        "Poll the u-blox position message",
+        (
+            Argument(
+                "msg_id",
+                "keyword",
+                "Number of the message to poll, 00 (position).",
+                value="00",
+            ),
+        ),
+    ),
+    Command(
+        "ublox_m8", "pubx-rate", sentences.PubxRate,
+        "Set the u-blox NMEA message output rate per port",
+        (
+            Argument("msg_id", "keyword", "Proprietary message number 40.", value="40"),
+            Argument(
+                "msg",
+                "text",
+                "The message whose rate is set, by its three-letter sentence formatter (e.g. GLL, "
+                "GSV, ZDA).",
+            ),
+            Argument("rate_ddc", "integer", "Output rate on the DDC (I2C) port, 0 = off."),
+            Argument("rate_uart1", "integer", "Output rate on UART 1, 0 = off."),
+            Argument("rate_uart2", "integer", "Output rate on UART 2, 0 = off."),
+            Argument("rate_usb", "integer", "Output rate on the USB port, 0 = off."),
+            Argument("rate_spi", "integer", "Output rate on the SPI port, 0 = off."),
+            Argument(
+                "reserved",
+                "integer",
+                "Reserved, always 0 (a sixth port slot).",
+                optional=True,
+            ),
+        ),
+    ),
+    Command(
+        "ublox_m8", "pubx-svstatus-poll", sentences.PubxSvstatusPoll,
+        "Poll the u-blox satellite status message",
+        (
+            Argument(
+                "msg_id",
+                "keyword",
+                "Number of the message to poll, 03 (satellite status).",
+                value="03",
+            ),
+        ),
+    ),
+    Command(
+        "ublox_m8", "pubx-time-poll", sentences.PubxTimePoll,
+        "Poll the u-blox time message",
+        (
+            Argument(
+                "msg_id",
+                "keyword",
+                "Number of the message to poll, 04 (time of day and clock).",
+                value="04",
+            ),
+        ),
+    ),
 )
 
 SHORTCUTS: tuple[Shortcut, ...] = (
-    Shortcut("geos5", ('binary-protocol',), "command", (('command', 'SWPROT'),), "Switch the receiver port that runs the NMEA protocol to the receiver's binary protocol (section 4.1); the manual does not say which port when both run NMEA, presumably the one that receives the command."),
-    Shortcut("geos5", ('save-almanacs',), "command", (('command', 'SAVEFL'),), "Save the almanacs to Flash (section 4.2)."),
-    Shortcut("geos5", ('cold-start',), "command", (('command', 'CSTART'),), "Cold start of the receiver (section 4.3)."),
-    Shortcut("geos5", ('warm-start',), "command", (('command', 'WSTART'),), "Warm start of the receiver (section 4.4)."),
-    Shortcut("geos5", ('hot-start',), "command", (('command', 'HSTART'),), "Hot start of the receiver (section 4.5)."),
-    Shortcut("geos5", ('set-baud', '4800'), "command", (('command', 'BDR004'),), "Set the serial port baud rate to 4800 bit/s (section 4.8, table 8)."),
-    Shortcut("geos5", ('set-baud', '9600'), "command", (('command', 'BDR009'),), "Set the serial port baud rate to 9600 bit/s (section 4.8, table 8)."),
-    Shortcut("geos5", ('set-baud', '19200'), "command", (('command', 'BDR019'),), "Set the serial port baud rate to 19200 bit/s (section 4.8, table 8)."),
-    Shortcut("geos5", ('set-baud', '38400'), "command", (('command', 'BDR038'),), "Set the serial port baud rate to 38400 bit/s (section 4.8, table 8)."),
-    Shortcut("geos5", ('set-baud', '57600'), "command", (('command', 'BDR057'),), "Set the serial port baud rate to 57600 bit/s (section 4.8, table 8)."),
-    Shortcut("geos5", ('set-baud', '115200'), "command", (('command', 'BDR115'),), "Set the serial port baud rate to 115200 bit/s (section 4.8, table 8)."),
-    Shortcut("geos5", ('set-baud', '230400'), "command", (('command', 'BDR230'),), "Set the serial port baud rate to 230400 bit/s (section 4.8, table 8)."),
-    Shortcut("geos5", ('set-baud', '460800'), "command", (('command', 'BDR460'),), "Set the serial port baud rate to 460800 bit/s (section 4.8, table 8)."),
-    Shortcut("geos5", ('set-baud', '921600'), "command", (('command', 'BDR921'),), "Set the serial port baud rate to 921600 bit/s (section 4.8, table 8)."),
-    Shortcut("geos5", ('set-stop-bits', '1'), "command", (('command', 'STOP01'),), "Set the serial port to 1 stop bit (section 4.9, table 9)."),
-    Shortcut("geos5", ('set-stop-bits', '2'), "command", (('command', 'STOP02'),), "Set the serial port to 2 stop bits (section 4.9, table 9)."),
-    Shortcut("geos5", ('output', 'gga', 'on'), "command", (('command', 'GGA ON'),), "Switch the GGA and GNS (one switch for both) sentence output on (section 4.10)."),
-    Shortcut("geos5", ('output', 'gga', 'off'), "command", (('command', 'GGAOFF'),), "Switch the GGA and GNS (one switch for both) sentence output off (section 4.10)."),
-    Shortcut("geos5", ('output', 'gll', 'on'), "command", (('command', 'GLL ON'),), "Switch the GLL sentence output on (section 4.11)."),
-    Shortcut("geos5", ('output', 'gll', 'off'), "command", (('command', 'GLLOFF'),), "Switch the GLL sentence output off (section 4.11)."),
-    Shortcut("geos5", ('output', 'gsa', 'on'), "command", (('command', 'GSA ON'),), "Switch the GSA sentence output on (section 4.12)."),
-    Shortcut("geos5", ('output', 'gsa', 'off'), "command", (('command', 'GSAOFF'),), "Switch the GSA sentence output off (section 4.12)."),
-    Shortcut("geos5", ('output', 'gsv', 'on'), "command", (('command', 'GSV ON'),), "Switch the GSV sentence output on (section 4.13)."),
-    Shortcut("geos5", ('output', 'gsv', 'off'), "command", (('command', 'GSVOFF'),), "Switch the GSV sentence output off (section 4.13)."),
-    Shortcut("geos5", ('output', 'rmc', 'on'), "command", (('command', 'RMC ON'),), "Switch the RMC sentence output on (section 4.14)."),
-    Shortcut("geos5", ('output', 'rmc', 'off'), "command", (('command', 'RMCOFF'),), "Switch the RMC sentence output off (section 4.14)."),
-    Shortcut("geos5", ('output', 'vtg', 'on'), "command", (('command', 'VTG ON'),), "Switch the VTG sentence output on (section 4.15)."),
-    Shortcut("geos5", ('output', 'vtg', 'off'), "command", (('command', 'VTGOFF'),), "Switch the VTG sentence output off (section 4.15)."),
-    Shortcut("geos5", ('output', 'zda', 'on'), "command", (('command', 'ZDA ON'),), "Switch the ZDA sentence output on (section 4.16)."),
-    Shortcut("geos5", ('output', 'zda', 'off'), "command", (('command', 'ZDAOFF'),), "Switch the ZDA sentence output off (section 4.16)."),
-    Shortcut("geos5", ('output', 'dtm', 'on'), "command", (('command', 'DTM ON'),), "Switch the DTM sentence output on (section 4.17)."),
-    Shortcut("geos5", ('output', 'dtm', 'off'), "command", (('command', 'DTMOFF'),), "Switch the DTM sentence output off (section 4.17)."),
-    Shortcut("geos5", ('output', 'rlm', 'on'), "command", (('command', 'RLM ON'),), "Switch the RLM (Galileo return link message) sentence output on (section 4.18)."),
-    Shortcut("geos5", ('output', 'rlm', 'off'), "command", (('command', 'RLMOFF'),), "Switch the RLM (Galileo return link message) sentence output off (section 4.18)."),
-    Shortcut("geos5", ('set-nmea-version', '2'), "command", (('command', 'NMEAV2'),), "Make the standard sentences follow NMEA 0183 v2.x (section 4.19; the manual prints the word as \"NMEA V2\", see the notes of GEOS5_COMMAND)."),
-    Shortcut("geos5", ('set-nmea-version', '4.10'), "command", (('command', 'NMEAV4'),), "Make the standard sentences follow NMEA 0183 v4.10 (section 4.19; printed as \"NMEA V4\")."),
-    Shortcut("geos5", ('set-rate', '1'), "command", (('command', 'RATE01'),), "Set the navigation output data rate to 1 Hz (section 4.20, table 20)."),
-    Shortcut("geos5", ('set-rate', '2'), "command", (('command', 'RATE02'),), "Set the navigation output data rate to 2 Hz (section 4.20, table 20)."),
-    Shortcut("geos5", ('set-rate', '5'), "command", (('command', 'RATE05'),), "Set the navigation output data rate to 5 Hz (section 4.20, table 20)."),
-    Shortcut("geos5", ('set-rate', '10'), "command", (('command', 'RATE10'),), "Set the navigation output data rate to 10 Hz (section 4.20, table 20)."),
-    Shortcut("geos5", ('power-saving', 'on'), "command", (('command', 'PSM ON'),), "Enable the power-saving mode (section 4.21, table 21)."),
-    Shortcut("geos5", ('power-saving', 'off'), "command", (('command', 'PSMOFF'),), "Disable the power-saving mode (section 4.21, table 21): the receiver leaves it in both the ACTIVE and the SLEEP state, in either mode."),
-    Shortcut("geos5", ('set-elevation-mask', '5'), "command", (('command', 'ELEV05'),), "Set the satellite elevation mask to 5 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '6'), "command", (('command', 'ELEV06'),), "Set the satellite elevation mask to 6 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '7'), "command", (('command', 'ELEV07'),), "Set the satellite elevation mask to 7 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '8'), "command", (('command', 'ELEV08'),), "Set the satellite elevation mask to 8 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '9'), "command", (('command', 'ELEV09'),), "Set the satellite elevation mask to 9 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '10'), "command", (('command', 'ELEV10'),), "Set the satellite elevation mask to 10 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '11'), "command", (('command', 'ELEV11'),), "Set the satellite elevation mask to 11 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '12'), "command", (('command', 'ELEV12'),), "Set the satellite elevation mask to 12 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '13'), "command", (('command', 'ELEV13'),), "Set the satellite elevation mask to 13 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '14'), "command", (('command', 'ELEV14'),), "Set the satellite elevation mask to 14 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-elevation-mask', '15'), "command", (('command', 'ELEV15'),), "Set the satellite elevation mask to 15 degrees: satellites lower than the mask are not used in the navigation solution (section 4.22, table 22)."),
-    Shortcut("geos5", ('set-datum', 'pz90'), "command", (('command', 'DATP90'),), "Compute the navigation output in the PZ-90.11 datum (section 4.23)."),
-    Shortcut("geos5", ('set-datum', 'wgs84'), "command", (('command', 'DATW84'),), "Compute the navigation output in the WGS-84 datum (section 4.23)."),
-    Shortcut("geos5", ('set-systems', 'gps'), "command", (('command', 'NVSGPS'),), "Navigate with GPS only (section 4.24)."),
-    Shortcut("geos5", ('set-systems', 'glonass'), "command", (('command', 'NVSGLN'),), "Navigate with GLONASS only (section 4.24)."),
-    Shortcut("geos5", ('set-systems', 'mixed'), "command", (('command', 'NVSMIX'),), "Navigate with the combined GLONASS + GPS + Galileo constellations (section 4.24)."),
-    Shortcut("mtk_pmtk", ('set-baud', 'default'), "pmtk251", (('baud', '0'),), "The receiver's default rate (9600 bit/s on the Linx module)."),
+    Shortcut(
+        "geos5",
+        ('binary-protocol',),
+        "command",
+        (('command', 'SWPROT'),),
+        "Switch the receiver port that runs the NMEA protocol to the receiver's binary protocol "
+        "(section 4.1); the manual does not say which port when both run NMEA, presumably the one "
+        "that receives the command.",
+    ),
+    Shortcut(
+        "geos5",
+        ('save-almanacs',),
+        "command",
+        (('command', 'SAVEFL'),),
+        "Save the almanacs to Flash (section 4.2).",
+    ),
+    Shortcut(
+        "geos5",
+        ('cold-start',),
+        "command",
+        (('command', 'CSTART'),),
+        "Cold start of the receiver (section 4.3).",
+    ),
+    Shortcut(
+        "geos5",
+        ('warm-start',),
+        "command",
+        (('command', 'WSTART'),),
+        "Warm start of the receiver (section 4.4).",
+    ),
+    Shortcut(
+        "geos5",
+        ('hot-start',),
+        "command",
+        (('command', 'HSTART'),),
+        "Hot start of the receiver (section 4.5).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-baud', '4800'),
+        "command",
+        (('command', 'BDR004'),),
+        "Set the serial port baud rate to 4800 bit/s (section 4.8, table 8).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-baud', '9600'),
+        "command",
+        (('command', 'BDR009'),),
+        "Set the serial port baud rate to 9600 bit/s (section 4.8, table 8).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-baud', '19200'),
+        "command",
+        (('command', 'BDR019'),),
+        "Set the serial port baud rate to 19200 bit/s (section 4.8, table 8).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-baud', '38400'),
+        "command",
+        (('command', 'BDR038'),),
+        "Set the serial port baud rate to 38400 bit/s (section 4.8, table 8).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-baud', '57600'),
+        "command",
+        (('command', 'BDR057'),),
+        "Set the serial port baud rate to 57600 bit/s (section 4.8, table 8).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-baud', '115200'),
+        "command",
+        (('command', 'BDR115'),),
+        "Set the serial port baud rate to 115200 bit/s (section 4.8, table 8).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-baud', '230400'),
+        "command",
+        (('command', 'BDR230'),),
+        "Set the serial port baud rate to 230400 bit/s (section 4.8, table 8).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-baud', '460800'),
+        "command",
+        (('command', 'BDR460'),),
+        "Set the serial port baud rate to 460800 bit/s (section 4.8, table 8).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-baud', '921600'),
+        "command",
+        (('command', 'BDR921'),),
+        "Set the serial port baud rate to 921600 bit/s (section 4.8, table 8).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-stop-bits', '1'),
+        "command",
+        (('command', 'STOP01'),),
+        "Set the serial port to 1 stop bit (section 4.9, table 9).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-stop-bits', '2'),
+        "command",
+        (('command', 'STOP02'),),
+        "Set the serial port to 2 stop bits (section 4.9, table 9).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'gga', 'on'),
+        "command",
+        (('command', 'GGA ON'),),
+        "Switch the GGA and GNS (one switch for both) sentence output on (section 4.10).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'gga', 'off'),
+        "command",
+        (('command', 'GGAOFF'),),
+        "Switch the GGA and GNS (one switch for both) sentence output off (section 4.10).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'gll', 'on'),
+        "command",
+        (('command', 'GLL ON'),),
+        "Switch the GLL sentence output on (section 4.11).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'gll', 'off'),
+        "command",
+        (('command', 'GLLOFF'),),
+        "Switch the GLL sentence output off (section 4.11).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'gsa', 'on'),
+        "command",
+        (('command', 'GSA ON'),),
+        "Switch the GSA sentence output on (section 4.12).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'gsa', 'off'),
+        "command",
+        (('command', 'GSAOFF'),),
+        "Switch the GSA sentence output off (section 4.12).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'gsv', 'on'),
+        "command",
+        (('command', 'GSV ON'),),
+        "Switch the GSV sentence output on (section 4.13).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'gsv', 'off'),
+        "command",
+        (('command', 'GSVOFF'),),
+        "Switch the GSV sentence output off (section 4.13).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'rmc', 'on'),
+        "command",
+        (('command', 'RMC ON'),),
+        "Switch the RMC sentence output on (section 4.14).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'rmc', 'off'),
+        "command",
+        (('command', 'RMCOFF'),),
+        "Switch the RMC sentence output off (section 4.14).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'vtg', 'on'),
+        "command",
+        (('command', 'VTG ON'),),
+        "Switch the VTG sentence output on (section 4.15).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'vtg', 'off'),
+        "command",
+        (('command', 'VTGOFF'),),
+        "Switch the VTG sentence output off (section 4.15).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'zda', 'on'),
+        "command",
+        (('command', 'ZDA ON'),),
+        "Switch the ZDA sentence output on (section 4.16).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'zda', 'off'),
+        "command",
+        (('command', 'ZDAOFF'),),
+        "Switch the ZDA sentence output off (section 4.16).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'dtm', 'on'),
+        "command",
+        (('command', 'DTM ON'),),
+        "Switch the DTM sentence output on (section 4.17).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'dtm', 'off'),
+        "command",
+        (('command', 'DTMOFF'),),
+        "Switch the DTM sentence output off (section 4.17).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'rlm', 'on'),
+        "command",
+        (('command', 'RLM ON'),),
+        "Switch the RLM (Galileo return link message) sentence output on (section 4.18).",
+    ),
+    Shortcut(
+        "geos5",
+        ('output', 'rlm', 'off'),
+        "command",
+        (('command', 'RLMOFF'),),
+        "Switch the RLM (Galileo return link message) sentence output off (section 4.18).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-nmea-version', '2'),
+        "command",
+        (('command', 'NMEAV2'),),
+        "Make the standard sentences follow NMEA 0183 v2.x (section 4.19; the manual prints the "
+        "word as \"NMEA V2\", see the notes of GEOS5_COMMAND).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-nmea-version', '4.10'),
+        "command",
+        (('command', 'NMEAV4'),),
+        "Make the standard sentences follow NMEA 0183 v4.10 (section 4.19; printed as \"NMEA "
+        "V4\").",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-rate', '1'),
+        "command",
+        (('command', 'RATE01'),),
+        "Set the navigation output data rate to 1 Hz (section 4.20, table 20).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-rate', '2'),
+        "command",
+        (('command', 'RATE02'),),
+        "Set the navigation output data rate to 2 Hz (section 4.20, table 20).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-rate', '5'),
+        "command",
+        (('command', 'RATE05'),),
+        "Set the navigation output data rate to 5 Hz (section 4.20, table 20).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-rate', '10'),
+        "command",
+        (('command', 'RATE10'),),
+        "Set the navigation output data rate to 10 Hz (section 4.20, table 20).",
+    ),
+    Shortcut(
+        "geos5",
+        ('power-saving', 'on'),
+        "command",
+        (('command', 'PSM ON'),),
+        "Enable the power-saving mode (section 4.21, table 21).",
+    ),
+    Shortcut(
+        "geos5",
+        ('power-saving', 'off'),
+        "command",
+        (('command', 'PSMOFF'),),
+        "Disable the power-saving mode (section 4.21, table 21): the receiver leaves it in both "
+        "the ACTIVE and the SLEEP state, in either mode.",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '5'),
+        "command",
+        (('command', 'ELEV05'),),
+        "Set the satellite elevation mask to 5 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '6'),
+        "command",
+        (('command', 'ELEV06'),),
+        "Set the satellite elevation mask to 6 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '7'),
+        "command",
+        (('command', 'ELEV07'),),
+        "Set the satellite elevation mask to 7 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '8'),
+        "command",
+        (('command', 'ELEV08'),),
+        "Set the satellite elevation mask to 8 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '9'),
+        "command",
+        (('command', 'ELEV09'),),
+        "Set the satellite elevation mask to 9 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '10'),
+        "command",
+        (('command', 'ELEV10'),),
+        "Set the satellite elevation mask to 10 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '11'),
+        "command",
+        (('command', 'ELEV11'),),
+        "Set the satellite elevation mask to 11 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '12'),
+        "command",
+        (('command', 'ELEV12'),),
+        "Set the satellite elevation mask to 12 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '13'),
+        "command",
+        (('command', 'ELEV13'),),
+        "Set the satellite elevation mask to 13 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '14'),
+        "command",
+        (('command', 'ELEV14'),),
+        "Set the satellite elevation mask to 14 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-elevation-mask', '15'),
+        "command",
+        (('command', 'ELEV15'),),
+        "Set the satellite elevation mask to 15 degrees: satellites lower than the mask are not "
+        "used in the navigation solution (section 4.22, table 22).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-datum', 'pz90'),
+        "command",
+        (('command', 'DATP90'),),
+        "Compute the navigation output in the PZ-90.11 datum (section 4.23).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-datum', 'wgs84'),
+        "command",
+        (('command', 'DATW84'),),
+        "Compute the navigation output in the WGS-84 datum (section 4.23).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-systems', 'gps'),
+        "command",
+        (('command', 'NVSGPS'),),
+        "Navigate with GPS only (section 4.24).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-systems', 'glonass'),
+        "command",
+        (('command', 'NVSGLN'),),
+        "Navigate with GLONASS only (section 4.24).",
+    ),
+    Shortcut(
+        "geos5",
+        ('set-systems', 'mixed'),
+        "command",
+        (('command', 'NVSMIX'),),
+        "Navigate with the combined GLONASS + GPS + Galileo constellations (section 4.24).",
+    ),
+    Shortcut(
+        "mtk_pmtk",
+        ('set-baud', 'default'),
+        "pmtk251",
+        (('baud', '0'),),
+        "The receiver's default rate (9600 bit/s on the Linx module).",
+    ),
     Shortcut("mtk_pmtk", ('set-baud', '4800'), "pmtk251", (('baud', '4800'),), "4800 bit/s."),
-    Shortcut("mtk_pmtk", ('set-baud', '9600'), "pmtk251", (('baud', '9600'),), "9600 bit/s (the L80 default)."),
+    Shortcut(
+        "mtk_pmtk",
+        ('set-baud', '9600'),
+        "pmtk251",
+        (('baud', '9600'),),
+        "9600 bit/s (the L80 default).",
+    ),
     Shortcut("mtk_pmtk", ('set-baud', '14400'), "pmtk251", (('baud', '14400'),), "14400 bit/s."),
     Shortcut("mtk_pmtk", ('set-baud', '19200'), "pmtk251", (('baud', '19200'),), "19200 bit/s."),
     Shortcut("mtk_pmtk", ('set-baud', '38400'), "pmtk251", (('baud', '38400'),), "38400 bit/s."),

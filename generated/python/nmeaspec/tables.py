@@ -19,7 +19,10 @@ TESEO_CDB: dict[int, Parameter] = {
         size=1, count=None, minimum=0, maximum=2,
         max_length=None, default="2", unit=None,
         enum=None, bitfield=None,
-        doc="Selects the UART used as the NMEA port (the manual does not map the numbers to physical ports).",
+        doc=(
+            "Selects the UART used as the NMEA port (the manual does not map the numbers to "
+            "physical ports)."
+        ),
     ),
     102: Parameter(
         102, "nmea_baud_rate", "NMEA port baud rate", "hex",
@@ -33,7 +36,12 @@ TESEO_CDB: dict[int, Parameter] = {
         size=1, count=None, minimum=0, maximum=15,
         max_length=None, default="E", unit=None,
         enum=None, bitfield=bitfields.TeseoColdStartMask,
-        doc="Which data the COLD START command erases: a bitmask where a set bit erases that data (teseo_cold_start_mask). Any combination is allowed; the manual's table names 0xF (almanac, ephemerides, time and position) and the default 0xE (ephemerides, time and position).",
+        doc=(
+            "Which data the COLD START command erases: a bitmask where a set bit erases that data "
+            "(teseo_cold_start_mask). Any combination is allowed; the manual's table names 0xF "
+            "(almanac, ephemerides, time and position) and the default 0xE (ephemerides, time and "
+            "position)."
+        ),
     ),
     121: Parameter(
         121, "nmea_gsv_period", "NMEA GSV period", "hex",
@@ -54,63 +62,110 @@ TESEO_CDB: dict[int, Parameter] = {
         size=4, count=None, minimum=0, maximum=4294967295,
         max_length=None, default="84356", unit=None,
         enum=None, bitfield=bitfields.TeseoNmeaMsgList,
-        doc="Switches each periodic message of the NMEA port on and off, one bit each (teseo_nmea_msg_list). Range 0x00000000 to 0xFFFFFFFF (printed 0x0000.0000 to 0xFFFF.FFFF).",
+        doc=(
+            "Switches each periodic message of the NMEA port on and off, one bit each "
+            "(teseo_nmea_msg_list). Range 0x00000000 to 0xFFFFFFFF (printed 0x0000.0000 to "
+            "0xFFFF.FFFF)."
+        ),
     ),
     301: Parameter(
         301, "pps_pulse_duration", "PPS pulse duration", "decimal",
         size=8, count=None, minimum=None, maximum=1.0,
         max_length=None, default="0.5", unit="s",
         enum=None, bitfield=None,
-        doc="Width of the PPS pulse: the time from the PPS rising edge to the next falling edge, or from the falling to the rising edge when the polarity is inverted (CDB 200 bit 25). At most 1.0 s (the manual gives no lower limit). Stored as an 8-byte real.",
+        doc=(
+            "Width of the PPS pulse: the time from the PPS rising edge to the next falling edge, "
+            "or from the falling to the rising edge when the polarity is inverted (CDB 200 bit "
+            "25). At most 1.0 s (the manual gives no lower limit). Stored as an 8-byte real."
+        ),
     ),
     302: Parameter(
         302, "pps_delay_correction", "PPS delay correction", "decimal",
         size=8, count=None, minimum=None, maximum=1.0,
         max_length=None, default="0.0", unit="s",
         enum=None, bitfield=None,
-        doc="Time correction of the PPS signal that compensates the delay of the cables and the RF chain. At most 1.0 s (the manual gives no lower limit and does not say whether it may be negative). Stored as an 8-byte real.",
+        doc=(
+            "Time correction of the PPS signal that compensates the delay of the cables and the RF "
+            "chain. At most 1.0 s (the manual gives no lower limit and does not say whether it may "
+            "be negative). Stored as an 8-byte real."
+        ),
     ),
     303: Parameter(
         303, "gnss_fix_period", "GNSS fix period", "decimal",
         size=8, count=None, minimum=0.2, maximum=None,
         max_length=None, default="1.0", unit="s",
         enum=None, bitfield=None,
-        doc="Time between two successive position fixes (the fix rate of the GNSS library). Must be greater than 0.2 s (the manual's bound is exclusive; min records it as inclusive). Stored as an 8-byte real.",
+        doc=(
+            "Time between two successive position fixes (the fix rate of the GNSS library). Must "
+            "be greater than 0.2 s (the manual's bound is exclusive; min records it as inclusive). "
+            "Stored as an 8-byte real."
+        ),
     ),
     400: Parameter(
         400, "dop_2d_threshold", "2D DOP threshold", "decimal_list",
         size=4, count=4, minimum=0, maximum=99,
         max_length=None, default="15,12,12,18", unit=None,
         enum=None, bitfield=None,
-        doc="DOP thresholds under which a 2D fix counts as valid, used after the GNSS start phase: four values P (PDOP), V (VDOP), H (HDOP) and G (GDOP), each 0 to 99, written in decimal and separated by commas in that order (the order of the manual's table and of its GETPAR example).",
+        doc=(
+            "DOP thresholds under which a 2D fix counts as valid, used after the GNSS start phase: "
+            "four values P (PDOP), V (VDOP), H (HDOP) and G (GDOP), each 0 to 99, written in "
+            "decimal and separated by commas in that order (the order of the manual's table and of "
+            "its GETPAR example)."
+        ),
     ),
     401: Parameter(
         401, "dop_3d_threshold", "3D DOP threshold", "decimal_list",
         size=4, count=4, minimum=0, maximum=99,
         max_length=None, default="15,12,12,18", unit=None,
         enum=None, bitfield=None,
-        doc="DOP thresholds under which a 3D fix counts as valid, used after the GNSS start phase: P, V, H and G (PDOP, VDOP, HDOP, GDOP), each 0 to 99, decimal, comma separated.",
+        doc=(
+            "DOP thresholds under which a 3D fix counts as valid, used after the GNSS start phase: "
+            "P, V, H and G (PDOP, VDOP, HDOP, GDOP), each 0 to 99, decimal, comma separated."
+        ),
     ),
     402: Parameter(
         402, "start_dop_2d_threshold", "Start 2D DOP threshold", "decimal_list",
         size=4, count=4, minimum=0, maximum=99,
         max_length=None, default="15,12,12,18", unit=None,
         enum=None, bitfield=None,
-        doc="DOP thresholds under which a 2D fix counts as valid during the GNSS start phase: P, V, H and G (PDOP, VDOP, HDOP, GDOP), each 0 to 99, decimal, comma separated.",
+        doc=(
+            "DOP thresholds under which a 2D fix counts as valid during the GNSS start phase: P, "
+            "V, H and G (PDOP, VDOP, HDOP, GDOP), each 0 to 99, decimal, comma separated."
+        ),
     ),
     403: Parameter(
         403, "start_dop_3d_threshold", "Start 3D DOP threshold", "decimal_list",
         size=4, count=4, minimum=0, maximum=99,
         max_length=None, default="15,12,12,18", unit=None,
         enum=None, bitfield=None,
-        doc="DOP thresholds under which a 3D fix counts as valid during the GNSS start phase: P, V, H and G (PDOP, VDOP, HDOP, GDOP), each 0 to 99, decimal, comma separated. The manual's $PSTMGETPAR example reads it as 15,12,12,18.",
+        doc=(
+            "DOP thresholds under which a 3D fix counts as valid during the GNSS start phase: P, "
+            "V, H and G (PDOP, VDOP, HDOP, GDOP), each 0 to 99, decimal, comma separated. The "
+            "manual's $PSTMGETPAR example reads it as 15,12,12,18."
+        ),
     ),
     500: Parameter(
         500, "text_message", "Text message", "text",
         size=88, count=None, minimum=None, maximum=None,
         max_length=80, default=None, unit=None,
         enum=None, bitfield=None,
-        doc="ASCII text sent on the NMEA port at start-up when CDB 200 bit 9 (configured text) is set, e.g. a product name or a configuration marker. The block holds 88 bytes, but a $PSTMSETPAR value is limited to 80 bytes; the text cannot hold the NMEA delimiters (\",\", \"*\", \"$\"). The default is product specific (the manual says \"arbitrary configuration\").",
+        doc=(
+            "ASCII text sent on the NMEA port at start-up when CDB 200 bit 9 (configured text) is "
+            "set, e.g. a product name or a configuration marker. The block holds 88 bytes, but a "
+            "$PSTMSETPAR value is limited to 80 bytes; the text cannot hold the NMEA delimiters "
+            "(\",\", \"*\", \"$\"). The default is product specific (the manual says \"arbitrary "
+            "configuration\")."
+        ),
     ),
 }
-"""ST Teseo configuration data block (CDB): Operating parameters of the GNSS software, read with $PSTMGETPAR and written with $PSTMSETPAR (argument block_param = configuration block digit followed by the 3-digit number below). Three blocks exist: 1 the current configuration in RAM (the only one SETPAR writes; loaded at start-up from NVM when a valid saved block exists, else from the defaults), 2 the factory defaults built into the firmware, 3 the block saved in backup NVM by $PSTMSAVEPAR ($PSTMRESTOREPAR invalidates it). On the wire every integer parameter is hex without "0x", real parameters are decimal, the DOP thresholds are four decimal values and the text message is plain text (the manual's table prints the real values with a decimal comma, e.g. 0,5; on the wire a point is assumed, the NMEA convention, since a comma separates fields). Changes are lost at reset unless saved; parameters the manual does not describe are reserved and must not be changed, since wrong values can degrade or stop the receiver."""
+"""ST Teseo configuration data block (CDB): Operating parameters of the GNSS software, read with
+$PSTMGETPAR and written with $PSTMSETPAR (argument block_param = configuration block digit followed
+by the 3-digit number below). Three blocks exist: 1 the current configuration in RAM (the only one
+SETPAR writes; loaded at start-up from NVM when a valid saved block exists, else from the defaults),
+2 the factory defaults built into the firmware, 3 the block saved in backup NVM by $PSTMSAVEPAR
+($PSTMRESTOREPAR invalidates it). On the wire every integer parameter is hex without \"0x\", real
+parameters are decimal, the DOP thresholds are four decimal values and the text message is plain
+text (the manual's table prints the real values with a decimal comma, e.g. 0,5; on the wire a point
+is assumed, the NMEA convention, since a comma separates fields). Changes are lost at reset unless
+saved; parameters the manual does not describe are reserved and must not be changed, since wrong
+values can degrade or stop the receiver."""

@@ -16,561 +16,1320 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from .aam import Aam as Aam
+
     from .abk import Abk as Abk
+
     from .abm import Abm as Abm
+
     from .aca import Aca as Aca
+
     from .ack import Ack as Ack
+
     from .acn import Acn as Acn
+
     from .acs import Acs as Acs
+
     from .air import Air as Air
+
     from .akd import Akd as Akd
+
     from .ala import Ala as Ala
+
     from .alc import Alc as Alc
+
     from .alf import Alf as Alf
+
     from .alk import Alk as Alk
+
     from .alm import Alm as Alm
+
     from .alr import Alr as Alr
+
     from .apa import Apa as Apa
+
     from .apb import Apb as Apb
+
     from .arc import Arc as Arc
+
     from .bbm import Bbm as Bbm
+
     from .bec import Bec as Bec
+
     from .bod import Bod as Bod
+
     from .bwc import Bwc as Bwc
+
     from .bwr import Bwr as Bwr
+
     from .bww import Bww as Bww
+
     from .cur import Cur as Cur
+
     from .dbk import Dbk as Dbk
+
     from .dbs import Dbs as Dbs
+
     from .dbt import Dbt as Dbt
+
     from .ddc import Ddc as Ddc
+
     from .dor import Dor as Dor
+
     from .dpt import Dpt as Dpt
+
     from .dsc import Dsc as Dsc
+
     from .dse import Dse as Dse
+
     from .dtm import Dtm as Dtm, DtmShort as DtmShort
+
     from .epv import Epv as Epv
+
     from .etl import Etl as Etl
+
     from .eve import Eve as Eve
+
     from .fir import Fir as Fir
+
     from .fmi import Fmi as Fmi
+
     from .fsi import Fsi as Fsi
+
     from .gbs import Gbs as Gbs, GbsUnits as GbsUnits
+
     from .gen import Gen as Gen
+
     from .gfa import Gfa as Gfa
+
     from .gga import Gga as Gga
+
     from .glc import Glc as Glc
+
     from .gll import Gll as Gll, GllSentinel as GllSentinel
+
     from .gmp import Gmp as Gmp
+
     from .gns import Gns as Gns, GnsAux as GnsAux
+
     from .grs import Grs as Grs
-    from .gsa import Gsa as Gsa, GsaShort as GsaShort, GsaWideSystem as GsaWideSystem, GsaWide as GsaWide, GsaExtraDop as GsaExtraDop
+
+    from .gsa import (
+        Gsa as Gsa,
+        GsaShort as GsaShort,
+        GsaWideSystem as GsaWideSystem,
+        GsaWide as GsaWide,
+        GsaExtraDop as GsaExtraDop,
+    )
+
     from .gst import Gst as Gst
+
     from .gsv import Gsv as Gsv
+
     from .hbt import Hbt as Hbt
+
     from .hcr import Hcr as Hcr
+
     from .hdg import Hdg as Hdg
+
     from .hdm import Hdm as Hdm
+
     from .hdt import Hdt as Hdt
+
     from .hev import Hev as Hev
+
     from .hmr import Hmr as Hmr
+
     from .hms import Hms as Hms
+
     from .hpd import Hpd as Hpd
+
     from .hpr import Hpr as Hpr
+
     from .hrm import Hrm as Hrm
+
     from .hsc import Hsc as Hsc
+
     from .hss import Hss as Hss
+
     from .htc import Htc as Htc
+
     from .htd import Htd as Htd
+
     from .llq import Llq as Llq
+
     from .lr1 import Lr1 as Lr1
+
     from .lr2 import Lr2 as Lr2
+
     from .lr3 import Lr3 as Lr3
+
     from .lrf import Lrf as Lrf
+
     from .lri import Lri as Lri
+
     from .mda import Mda as Mda
+
     from .mmb import Mmb as Mmb
+
     from .mob import Mob as Mob
+
     from .msk import Msk as Msk
+
     from .mss import Mss as Mss
+
     from .mta import Mta as Mta
+
     from .mtw import Mtw as Mtw
+
     from .mwd import Mwd as Mwd
+
     from .mwv import Mwv as Mwv
+
     from .nak import Nak as Nak
+
     from .nrm import Nrm as Nrm
+
     from .nrx import Nrx as Nrx, NrxNx700 as NrxNx700
+
     from .nsr import Nsr as Nsr
+
     from .osd import Osd as Osd
+
     from .pos import Pos as Pos
+
     from .prc import Prc as Prc
+
     from .r00 import R00 as R00
+
     from .rlm import Rlm as Rlm
+
     from .rma import Rma as Rma
+
     from .rmb import Rmb as Rmb
+
     from .rmc import Rmc as Rmc, RmcSentinel as RmcSentinel
+
     from .ror import Ror as Ror
+
     from .rot import Rot as Rot
+
     from .rpm import Rpm as Rpm
+
     from .rrt import Rrt as Rrt
+
     from .rsa import Rsa as Rsa
+
     from .rsd import Rsd as Rsd
+
     from .rte import Rte as Rte
+
     from .sfi import Sfi as Sfi
+
     from .sm1 import Sm1 as Sm1
+
     from .sm2 import Sm2 as Sm2
+
     from .sm3 import Sm3 as Sm3
+
     from .sm4 import Sm4 as Sm4
+
     from .smb import Smb as Smb
+
     from .spw import Spw as Spw
+
     from .ssd import Ssd as Ssd
+
     from .stn import Stn as Stn
+
     from .ths import Ths as Ths
+
     from .tlb import Tlb as Tlb
+
     from .tll import Tll as Tll
+
     from .tra import Tra as Tra
+
     from .trc import Trc as Trc
+
     from .trd import Trd as Trd
+
     from .trf import Trf as Trf
+
     from .trl import Trl as Trl
+
     from .ttd import Ttd as Ttd
+
     from .ttm import Ttm as Ttm
+
     from .tut import Tut as Tut
+
     from .txt import Txt as Txt
+
     from .uid import Uid as Uid
+
     from .vbw import Vbw as Vbw
+
     from .vdm import Vdm as Vdm
+
     from .vdo import Vdo as Vdo
+
     from .vdr import Vdr as Vdr
+
     from .ver import Ver as Ver
+
     from .vhw import Vhw as Vhw
+
     from .vlw import Vlw as Vlw
+
     from .vpw import Vpw as Vpw
+
     from .vsd import Vsd as Vsd
+
     from .vtg import Vtg as Vtg
+
     from .vwr import Vwr as Vwr
+
     from .vwt import Vwt as Vwt
+
     from .wat import Wat as Wat
+
     from .wcv import Wcv as Wcv
+
     from .wnc import Wnc as Wnc
+
     from .wpl import Wpl as Wpl
+
     from .xdr import Xdr as Xdr
+
     from .xte import Xte as Xte
+
     from .xtr import Xtr as Xtr
+
     from .zda import Zda as Zda
+
     from .zdl import Zdl as Zdl
+
     from .zfo import Zfo as Zfo
+
     from .ztg import Ztg as Ztg
+
     from .comnav_log import ComnavLog as ComnavLog
-    from .comnav_nmeatalker import ComnavNmeatalker as ComnavNmeatalker, ComnavNmeatalkerList as ComnavNmeatalkerList, ComnavNmeatalkerReset as ComnavNmeatalkerReset
+
+    from .comnav_nmeatalker import (
+        ComnavNmeatalker as ComnavNmeatalker,
+        ComnavNmeatalkerList as ComnavNmeatalkerList,
+        ComnavNmeatalkerReset as ComnavNmeatalkerReset,
+    )
+
     from .geos5_command import Geos5Command as Geos5Command
+
     from .geos5_jamdet import Geos5Jamdet as Geos5Jamdet
+
     from .geos5_nquery import Geos5Nquery as Geos5Nquery
+
     from .geos5_nquery_request import Geos5NqueryRequest as Geos5NqueryRequest
+
     from .geos5_rquery import Geos5Rquery as Geos5Rquery
+
     from .geos5_rquery_request import Geos5RqueryRequest as Geos5RqueryRequest
+
     from .pair001 import Pair001 as Pair001
+
     from .pair002 import Pair002 as Pair002
+
     from .pair003 import Pair003 as Pair003
+
     from .pair004 import Pair004 as Pair004
+
     from .pair005 import Pair005 as Pair005
+
     from .pair006 import Pair006 as Pair006
+
     from .pair007 import Pair007 as Pair007
+
     from .pair010 import Pair010 as Pair010
+
     from .pair050 import Pair050 as Pair050
+
     from .pair051 import Pair051 as Pair051
+
     from .pair051_reply import Pair051Reply as Pair051Reply
+
     from .pair058 import Pair058 as Pair058
+
     from .pair059 import Pair059 as Pair059
+
     from .pair059_reply import Pair059Reply as Pair059Reply
+
     from .pair062 import Pair062 as Pair062
+
     from .pair063 import Pair063 as Pair063
+
     from .pair063_reply import Pair063Reply as Pair063Reply
+
     from .pair066 import Pair066 as Pair066
+
     from .pair067 import Pair067 as Pair067
+
     from .pair067_reply import Pair067Reply as Pair067Reply
+
     from .pair070 import Pair070 as Pair070
+
     from .pair071 import Pair071 as Pair071
+
     from .pair071_reply import Pair071Reply as Pair071Reply
+
     from .pair072 import Pair072 as Pair072
+
     from .pair073 import Pair073 as Pair073
+
     from .pair073_reply import Pair073Reply as Pair073Reply
+
     from .pair074 import Pair074 as Pair074
+
     from .pair075 import Pair075 as Pair075
+
     from .pair075_reply import Pair075Reply as Pair075Reply
+
     from .pair080 import Pair080 as Pair080
+
     from .pair081 import Pair081 as Pair081
+
     from .pair081_reply import Pair081Reply as Pair081Reply
+
     from .pair086 import Pair086 as Pair086
+
     from .pair087 import Pair087 as Pair087
+
     from .pair087_reply import Pair087Reply as Pair087Reply
+
     from .pair098 import Pair098 as Pair098
+
     from .pair099 import Pair099 as Pair099
+
     from .pair099_reply import Pair099Reply as Pair099Reply
+
     from .pair100 import Pair100 as Pair100
+
     from .pair101 import Pair101 as Pair101
+
     from .pair101_reply import Pair101Reply as Pair101Reply
+
     from .pair104 import Pair104 as Pair104
+
     from .pair105 import Pair105 as Pair105
+
     from .pair105_reply import Pair105Reply as Pair105Reply
+
     from .pair154 import Pair154 as Pair154
+
     from .pair155 import Pair155 as Pair155
+
     from .pair155_reply import Pair155Reply as Pair155Reply
+
     from .pair158 import Pair158 as Pair158
+
     from .pair382 import Pair382 as Pair382
+
     from .pair391 import Pair391 as Pair391
+
     from .pair400 import Pair400 as Pair400
+
     from .pair401 import Pair401 as Pair401
+
     from .pair401_reply import Pair401Reply as Pair401Reply
+
     from .pair410 import Pair410 as Pair410
+
     from .pair411 import Pair411 as Pair411
+
     from .pair411_reply import Pair411Reply as Pair411Reply
+
     from .pair420 import Pair420 as Pair420
+
     from .pair421 import Pair421 as Pair421
+
     from .pair421_reply import Pair421Reply as Pair421Reply
+
     from .pair432 import Pair432 as Pair432
+
     from .pair433 import Pair433 as Pair433
+
     from .pair433_reply import Pair433Reply as Pair433Reply
+
     from .pair434 import Pair434 as Pair434
+
     from .pair435 import Pair435 as Pair435
+
     from .pair435_reply import Pair435Reply as Pair435Reply
+
     from .pair436 import Pair436 as Pair436
+
     from .pair437 import Pair437 as Pair437
+
     from .pair437_reply import Pair437Reply as Pair437Reply
+
     from .pair490 import Pair490 as Pair490
+
     from .pair491 import Pair491 as Pair491
+
     from .pair491_reply import Pair491Reply as Pair491Reply
+
     from .pair511 import Pair511 as Pair511
+
     from .pair512 import Pair512 as Pair512
+
     from .pair513 import Pair513 as Pair513
+
     from .pair6010 import Pair6010 as Pair6010
+
     from .pair6011 import Pair6011 as Pair6011
+
     from .pair6011_reply import Pair6011Reply as Pair6011Reply
+
     from .pair650 import Pair650 as Pair650
+
     from .pair680 import Pair680 as Pair680
+
     from .pair681 import Pair681 as Pair681
+
     from .pair681_reply import Pair681Reply as Pair681Reply
+
     from .pair690 import Pair690 as Pair690
+
     from .pair691 import Pair691 as Pair691
+
     from .pair691_reply import Pair691Reply as Pair691Reply
+
     from .pair730 import Pair730 as Pair730
+
     from .pair731 import Pair731 as Pair731
+
     from .pair731_reply import Pair731Reply as Pair731Reply
+
     from .pair732 import Pair732 as Pair732
+
     from .pair733 import Pair733 as Pair733
+
     from .pair733_reply import Pair733Reply as Pair733Reply
+
     from .pair752 import Pair752 as Pair752
+
     from .pair864 import Pair864 as Pair864
+
     from .pair865 import Pair865 as Pair865
+
     from .pair865_reply import Pair865Reply as Pair865Reply
+
     from .pair866 import Pair866 as Pair866
+
     from .pair867 import Pair867 as Pair867
+
     from .pair867_reply import Pair867Reply as Pair867Reply
+
     from .pair890 import Pair890 as Pair890
+
     from .pair891 import Pair891 as Pair891
+
     from .pair891_reply import Pair891Reply as Pair891Reply
+
     from .pair900 import Pair900 as Pair900
+
     from .pair901 import Pair901 as Pair901
+
     from .pair901_reply import Pair901Reply as Pair901Reply
+
     from .pair902 import Pair902 as Pair902
+
     from .pair903 import Pair903 as Pair903
+
     from .pair903_reply import Pair903Reply as Pair903Reply
+
     from .pair904 import Pair904 as Pair904
+
     from .pair905 import Pair905 as Pair905
+
     from .pair906 import Pair906 as Pair906
+
     from .pair907 import Pair907 as Pair907
+
     from .pair908 import Pair908 as Pair908
+
     from .pair909 import Pair909 as Pair909
+
     from .pair909_reply import Pair909Reply as Pair909Reply
+
     from .pairspf import Pairspf as Pairspf
+
     from .pairspf5 import Pairspf5 as Pairspf5
+
     from .pashq_att import PashqAtt as PashqAtt
+
     from .pashq_elm import PashqElm as PashqElm
+
     from .pashq_nmo import PashqNmo as PashqNmo
+
     from .pashq_pem import PashqPem as PashqPem
+
     from .pashq_pop import PashqPop as PashqPop
+
     from .pashq_pos import PashqPos as PashqPos
+
     from .pashq_ptt import PashqPtt as PashqPtt
+
     from .pashq_sat import PashqSat as PashqSat
+
     from .pashq_sba import PashqSba as PashqSba
+
     from .pashr import Pashr as Pashr
+
     from .pashr_ack import PashrAck as PashrAck
+
     from .pashr_att import PashrAtt as PashrAtt
+
     from .pashr_elm import PashrElm as PashrElm
+
     from .pashr_hpr import PashrHpr as PashrHpr
+
     from .pashr_nak import PashrNak as PashrNak
+
     from .pashr_nmo import PashrNmo as PashrNmo
+
     from .pashr_pem import PashrPem as PashrPem
+
     from .pashr_pop import PashrPop as PashrPop
+
     from .pashr_pos import PashrPos as PashrPos
+
     from .pashr_ptt import PashrPtt as PashrPtt
+
     from .pashr_sat import PashrSat as PashrSat
+
     from .pashr_sba import PashrSba as PashrSba
+
     from .pashr_ttt import PashrTtt as PashrTtt
+
     from .pashs_nme import PashsNme as PashsNme, PashsNmePeriod as PashsNmePeriod
+
     from .perdcrw import Perdcrw as Perdcrw
+
     from .perdcrx import Perdcrx as Perdcrx
+
     from .perdcry import Perdcry as Perdcry
+
     from .perdcrz import Perdcrz as Perdcrz
+
     from .pfec_gpatt import PfecGpatt as PfecGpatt
+
     from .pfec_gphve import PfecGphve as PfecGphve
+
     from .pfec_gprtc import PfecGprtc as PfecGprtc
+
     from .pfec_gpwpl import PfecGpwpl as PfecGpwpl
+
     from .pfec_gpxfr import PfecGpxfr as PfecGpxfr
+
     from .pglor_fix import PglorFix as PglorFix
+
     from .pglor_lsq import PglorLsq as PglorLsq
+
     from .pglor_pwr import PglorPwr as PglorPwr, PglorPwrV2 as PglorPwrV2, PglorPwrV4 as PglorPwrV4
+
     from .pglor_sat import PglorSat as PglorSat, PglorSatV1 as PglorSatV1, PglorSatV0 as PglorSatV0
+
     from .pglor_sio import PglorSio as PglorSio, PglorSioV0 as PglorSioV0
+
     from .pglor_sta import PglorSta as PglorSta
+
     from .pglor_unc import PglorUnc as PglorUnc
+
     from .pgrmb import Pgrmb as Pgrmb
+
     from .pgrmc import Pgrmc as Pgrmc
+
     from .pgrmc1 import Pgrmc1 as Pgrmc1
+
     from .pgrmc1e import Pgrmc1e as Pgrmc1e
+
     from .pgrmce import Pgrmce as Pgrmce
+
     from .pgrme import Pgrme as Pgrme
+
     from .pgrmf import Pgrmf as Pgrmf
+
     from .pgrmi import Pgrmi as Pgrmi
+
     from .pgrmie import Pgrmie as Pgrmie
+
     from .pgrmm import Pgrmm as Pgrmm
+
     from .pgrmo import Pgrmo as Pgrmo
+
     from .pgrmt import Pgrmt as Pgrmt
+
     from .pgrmv import Pgrmv as Pgrmv
+
     from .pgrmz import Pgrmz as Pgrmz
+
     from .pgtop_11 import Pgtop11 as Pgtop11
+
     from .pmgncmd import Pmgncmd as Pmgncmd
+
     from .pmgnst import Pmgnst as Pmgnst
+
     from .pmgntrk import Pmgntrk as Pmgntrk
+
     from .pmgnwpl import Pmgnwpl as Pmgnwpl
+
     from .pmtk000 import Pmtk000 as Pmtk000
+
     from .pmtk001 import Pmtk001 as Pmtk001, Pmtk001SvMask as Pmtk001SvMask
+
     from .pmtk010 import Pmtk010 as Pmtk010
+
     from .pmtk011 import Pmtk011 as Pmtk011
+
     from .pmtk101 import Pmtk101 as Pmtk101
+
     from .pmtk102 import Pmtk102 as Pmtk102
+
     from .pmtk103 import Pmtk103 as Pmtk103
+
     from .pmtk104 import Pmtk104 as Pmtk104
+
     from .pmtk161 import Pmtk161 as Pmtk161
+
     from .pmtk183 import Pmtk183 as Pmtk183
+
     from .pmtk184 import Pmtk184 as Pmtk184
+
     from .pmtk185 import Pmtk185 as Pmtk185
+
     from .pmtk220 import Pmtk220 as Pmtk220
+
     from .pmtk223 import Pmtk223 as Pmtk223
+
     from .pmtk225 import Pmtk225 as Pmtk225
+
     from .pmtk251 import Pmtk251 as Pmtk251
+
     from .pmtk286 import Pmtk286 as Pmtk286
+
     from .pmtk300 import Pmtk300 as Pmtk300
+
     from .pmtk301 import Pmtk301 as Pmtk301
+
     from .pmtk313 import Pmtk313 as Pmtk313
+
     from .pmtk314 import Pmtk314 as Pmtk314, Pmtk314RestoreDefault as Pmtk314RestoreDefault
+
     from .pmtk319 import Pmtk319 as Pmtk319
+
     from .pmtk353 import Pmtk353 as Pmtk353
+
     from .pmtk386 import Pmtk386 as Pmtk386
+
     from .pmtk397 import Pmtk397 as Pmtk397
+
     from .pmtk400 import Pmtk400 as Pmtk400
+
     from .pmtk401 import Pmtk401 as Pmtk401
+
     from .pmtk413 import Pmtk413 as Pmtk413
+
     from .pmtk414 import Pmtk414 as Pmtk414
+
     from .pmtk447 import Pmtk447 as Pmtk447
+
     from .pmtk500 import Pmtk500 as Pmtk500
+
     from .pmtk501 import Pmtk501 as Pmtk501
+
     from .pmtk513 import Pmtk513 as Pmtk513
+
     from .pmtk514 import Pmtk514 as Pmtk514
+
     from .pmtk527 import Pmtk527 as Pmtk527
+
     from .pmtk605 import Pmtk605 as Pmtk605
+
     from .pmtk622 import Pmtk622 as Pmtk622
+
     from .pmtk660 import Pmtk660 as Pmtk660
+
     from .pmtk661 import Pmtk661 as Pmtk661
+
     from .pmtk705 import Pmtk705 as Pmtk705
+
     from .pmtk869_query import Pmtk869Query as Pmtk869Query
+
     from .pmtk869_result import Pmtk869Result as Pmtk869Result
+
     from .pmtk869_set import Pmtk869Set as Pmtk869Set
+
     from .pmtkchn import Pmtkchn as Pmtkchn
+
     from .pmtklog import Pmtklog as Pmtklog
+
     from .pmtklox_data import PmtkloxData as PmtkloxData
+
     from .pmtklox_end import PmtkloxEnd as PmtkloxEnd
+
     from .pmtklox_start import PmtkloxStart as PmtkloxStart
+
     from .pqgsv import Pqgsv as Pqgsv
+
     from .pqtmantennastatus import Pqtmantennastatus as Pqtmantennastatus
-    from .pqtmcfgantdelta import Pqtmcfgantdelta as Pqtmcfgantdelta, PqtmcfgantdeltaRead as PqtmcfgantdeltaRead
-    from .pqtmcfgantdelta_result import PqtmcfgantdeltaResult as PqtmcfgantdeltaResult, PqtmcfgantdeltaResultAck as PqtmcfgantdeltaResultAck, PqtmcfgantdeltaResultError as PqtmcfgantdeltaResultError
-    from .pqtmcfgantinf import Pqtmcfgantinf as Pqtmcfgantinf, PqtmcfgantinfRead as PqtmcfgantinfRead
-    from .pqtmcfgantinf_result import PqtmcfgantinfResult as PqtmcfgantinfResult, PqtmcfgantinfResultAck as PqtmcfgantinfResultAck, PqtmcfgantinfResultError as PqtmcfgantinfResultError
+
+    from .pqtmcfgantdelta import (
+        Pqtmcfgantdelta as Pqtmcfgantdelta,
+        PqtmcfgantdeltaRead as PqtmcfgantdeltaRead,
+    )
+
+    from .pqtmcfgantdelta_result import (
+        PqtmcfgantdeltaResult as PqtmcfgantdeltaResult,
+        PqtmcfgantdeltaResultAck as PqtmcfgantdeltaResultAck,
+        PqtmcfgantdeltaResultError as PqtmcfgantdeltaResultError,
+    )
+
+    from .pqtmcfgantinf import (
+        Pqtmcfgantinf as Pqtmcfgantinf,
+        PqtmcfgantinfRead as PqtmcfgantinfRead,
+    )
+
+    from .pqtmcfgantinf_result import (
+        PqtmcfgantinfResult as PqtmcfgantinfResult,
+        PqtmcfgantinfResultAck as PqtmcfgantinfResultAck,
+        PqtmcfgantinfResultError as PqtmcfgantinfResultError,
+    )
+
     from .pqtmcfgbld import Pqtmcfgbld as Pqtmcfgbld, PqtmcfgbldRead as PqtmcfgbldRead
-    from .pqtmcfgbld_result import PqtmcfgbldResult as PqtmcfgbldResult, PqtmcfgbldResultAck as PqtmcfgbldResultAck, PqtmcfgbldResultError as PqtmcfgbldResultError
-    from .pqtmcfgcnrthd import Pqtmcfgcnrthd as Pqtmcfgcnrthd, PqtmcfgcnrthdRead as PqtmcfgcnrthdRead
-    from .pqtmcfgcnrthd_result import PqtmcfgcnrthdResult as PqtmcfgcnrthdResult, PqtmcfgcnrthdResultAck as PqtmcfgcnrthdResultAck, PqtmcfgcnrthdResultError as PqtmcfgcnrthdResultError
+
+    from .pqtmcfgbld_result import (
+        PqtmcfgbldResult as PqtmcfgbldResult,
+        PqtmcfgbldResultAck as PqtmcfgbldResultAck,
+        PqtmcfgbldResultError as PqtmcfgbldResultError,
+    )
+
+    from .pqtmcfgcnrthd import (
+        Pqtmcfgcnrthd as Pqtmcfgcnrthd,
+        PqtmcfgcnrthdRead as PqtmcfgcnrthdRead,
+    )
+
+    from .pqtmcfgcnrthd_result import (
+        PqtmcfgcnrthdResult as PqtmcfgcnrthdResult,
+        PqtmcfgcnrthdResultAck as PqtmcfgcnrthdResultAck,
+        PqtmcfgcnrthdResultError as PqtmcfgcnrthdResultError,
+    )
+
     from .pqtmcfgcnst import Pqtmcfgcnst as Pqtmcfgcnst, PqtmcfgcnstRead as PqtmcfgcnstRead
-    from .pqtmcfgcnst_result import PqtmcfgcnstResult as PqtmcfgcnstResult, PqtmcfgcnstResultAck as PqtmcfgcnstResultAck, PqtmcfgcnstResultError as PqtmcfgcnstResultError
-    from .pqtmcfgelethd import Pqtmcfgelethd as Pqtmcfgelethd, PqtmcfgelethdRead as PqtmcfgelethdRead
-    from .pqtmcfgelethd_result import PqtmcfgelethdResult as PqtmcfgelethdResult, PqtmcfgelethdResultAck as PqtmcfgelethdResultAck, PqtmcfgelethdResultError as PqtmcfgelethdResultError
-    from .pqtmcfgfixrate import Pqtmcfgfixrate as Pqtmcfgfixrate, PqtmcfgfixrateRead as PqtmcfgfixrateRead
-    from .pqtmcfgfixrate_result import PqtmcfgfixrateResult as PqtmcfgfixrateResult, PqtmcfgfixrateResultAck as PqtmcfgfixrateResultAck, PqtmcfgfixrateResultError as PqtmcfgfixrateResultError
-    from .pqtmcfggeofence import Pqtmcfggeofence as Pqtmcfggeofence, PqtmcfggeofenceRead as PqtmcfggeofenceRead
-    from .pqtmcfggeofence_result import PqtmcfggeofenceResult as PqtmcfggeofenceResult, PqtmcfggeofenceResultAck as PqtmcfggeofenceResultAck, PqtmcfggeofenceResultError as PqtmcfggeofenceResultError
-    from .pqtmcfggeosep import Pqtmcfggeosep as Pqtmcfggeosep, PqtmcfggeosepRead as PqtmcfggeosepRead
-    from .pqtmcfggeosep_result import PqtmcfggeosepResult as PqtmcfggeosepResult, PqtmcfggeosepResultAck as PqtmcfggeosepResultAck, PqtmcfggeosepResultError as PqtmcfggeosepResultError
-    from .pqtmcfgmsgrate import Pqtmcfgmsgrate as Pqtmcfgmsgrate, PqtmcfgmsgratePort as PqtmcfgmsgratePort, PqtmcfgmsgrateReadPort as PqtmcfgmsgrateReadPort, PqtmcfgmsgrateRead as PqtmcfgmsgrateRead
-    from .pqtmcfgmsgrate_result import PqtmcfgmsgrateResult as PqtmcfgmsgrateResult, PqtmcfgmsgrateResultPort as PqtmcfgmsgrateResultPort, PqtmcfgmsgrateResultAck as PqtmcfgmsgrateResultAck, PqtmcfgmsgrateResultError as PqtmcfgmsgrateResultError
-    from .pqtmcfgnmeadp import Pqtmcfgnmeadp as Pqtmcfgnmeadp, PqtmcfgnmeadpRead as PqtmcfgnmeadpRead
-    from .pqtmcfgnmeadp_result import PqtmcfgnmeadpResult as PqtmcfgnmeadpResult, PqtmcfgnmeadpResultAck as PqtmcfgnmeadpResultAck, PqtmcfgnmeadpResultError as PqtmcfgnmeadpResultError
-    from .pqtmcfgnmeatid import Pqtmcfgnmeatid as Pqtmcfgnmeatid, PqtmcfgnmeatidRead as PqtmcfgnmeatidRead
-    from .pqtmcfgnmeatid_result import PqtmcfgnmeatidResult as PqtmcfgnmeatidResult, PqtmcfgnmeatidResultAck as PqtmcfgnmeatidResultAck, PqtmcfgnmeatidResultError as PqtmcfgnmeatidResultError
+
+    from .pqtmcfgcnst_result import (
+        PqtmcfgcnstResult as PqtmcfgcnstResult,
+        PqtmcfgcnstResultAck as PqtmcfgcnstResultAck,
+        PqtmcfgcnstResultError as PqtmcfgcnstResultError,
+    )
+
+    from .pqtmcfgelethd import (
+        Pqtmcfgelethd as Pqtmcfgelethd,
+        PqtmcfgelethdRead as PqtmcfgelethdRead,
+    )
+
+    from .pqtmcfgelethd_result import (
+        PqtmcfgelethdResult as PqtmcfgelethdResult,
+        PqtmcfgelethdResultAck as PqtmcfgelethdResultAck,
+        PqtmcfgelethdResultError as PqtmcfgelethdResultError,
+    )
+
+    from .pqtmcfgfixrate import (
+        Pqtmcfgfixrate as Pqtmcfgfixrate,
+        PqtmcfgfixrateRead as PqtmcfgfixrateRead,
+    )
+
+    from .pqtmcfgfixrate_result import (
+        PqtmcfgfixrateResult as PqtmcfgfixrateResult,
+        PqtmcfgfixrateResultAck as PqtmcfgfixrateResultAck,
+        PqtmcfgfixrateResultError as PqtmcfgfixrateResultError,
+    )
+
+    from .pqtmcfggeofence import (
+        Pqtmcfggeofence as Pqtmcfggeofence,
+        PqtmcfggeofenceRead as PqtmcfggeofenceRead,
+    )
+
+    from .pqtmcfggeofence_result import (
+        PqtmcfggeofenceResult as PqtmcfggeofenceResult,
+        PqtmcfggeofenceResultAck as PqtmcfggeofenceResultAck,
+        PqtmcfggeofenceResultError as PqtmcfggeofenceResultError,
+    )
+
+    from .pqtmcfggeosep import (
+        Pqtmcfggeosep as Pqtmcfggeosep,
+        PqtmcfggeosepRead as PqtmcfggeosepRead,
+    )
+
+    from .pqtmcfggeosep_result import (
+        PqtmcfggeosepResult as PqtmcfggeosepResult,
+        PqtmcfggeosepResultAck as PqtmcfggeosepResultAck,
+        PqtmcfggeosepResultError as PqtmcfggeosepResultError,
+    )
+
+    from .pqtmcfgmsgrate import (
+        Pqtmcfgmsgrate as Pqtmcfgmsgrate,
+        PqtmcfgmsgratePort as PqtmcfgmsgratePort,
+        PqtmcfgmsgrateReadPort as PqtmcfgmsgrateReadPort,
+        PqtmcfgmsgrateRead as PqtmcfgmsgrateRead,
+    )
+
+    from .pqtmcfgmsgrate_result import (
+        PqtmcfgmsgrateResult as PqtmcfgmsgrateResult,
+        PqtmcfgmsgrateResultPort as PqtmcfgmsgrateResultPort,
+        PqtmcfgmsgrateResultAck as PqtmcfgmsgrateResultAck,
+        PqtmcfgmsgrateResultError as PqtmcfgmsgrateResultError,
+    )
+
+    from .pqtmcfgnmeadp import (
+        Pqtmcfgnmeadp as Pqtmcfgnmeadp,
+        PqtmcfgnmeadpRead as PqtmcfgnmeadpRead,
+    )
+
+    from .pqtmcfgnmeadp_result import (
+        PqtmcfgnmeadpResult as PqtmcfgnmeadpResult,
+        PqtmcfgnmeadpResultAck as PqtmcfgnmeadpResultAck,
+        PqtmcfgnmeadpResultError as PqtmcfgnmeadpResultError,
+    )
+
+    from .pqtmcfgnmeatid import (
+        Pqtmcfgnmeatid as Pqtmcfgnmeatid,
+        PqtmcfgnmeatidRead as PqtmcfgnmeatidRead,
+    )
+
+    from .pqtmcfgnmeatid_result import (
+        PqtmcfgnmeatidResult as PqtmcfgnmeatidResult,
+        PqtmcfgnmeatidResultAck as PqtmcfgnmeatidResultAck,
+        PqtmcfgnmeatidResultError as PqtmcfgnmeatidResultError,
+    )
+
     from .pqtmcfgodo import Pqtmcfgodo as Pqtmcfgodo, PqtmcfgodoRead as PqtmcfgodoRead
-    from .pqtmcfgodo_result import PqtmcfgodoResult as PqtmcfgodoResult, PqtmcfgodoResultAck as PqtmcfgodoResultAck, PqtmcfgodoResultError as PqtmcfgodoResultError
+
+    from .pqtmcfgodo_result import (
+        PqtmcfgodoResult as PqtmcfgodoResult,
+        PqtmcfgodoResultAck as PqtmcfgodoResultAck,
+        PqtmcfgodoResultError as PqtmcfgodoResultError,
+    )
+
     from .pqtmcfgpps import Pqtmcfgpps as Pqtmcfgpps, PqtmcfgppsRead as PqtmcfgppsRead
-    from .pqtmcfgpps_result import PqtmcfgppsResult as PqtmcfgppsResult, PqtmcfgppsResultAck as PqtmcfgppsResultAck, PqtmcfgppsResultError as PqtmcfgppsResultError
+
+    from .pqtmcfgpps_result import (
+        PqtmcfgppsResult as PqtmcfgppsResult,
+        PqtmcfgppsResultAck as PqtmcfgppsResultAck,
+        PqtmcfgppsResultError as PqtmcfgppsResultError,
+    )
+
     from .pqtmcfgprot import Pqtmcfgprot as Pqtmcfgprot, PqtmcfgprotRead as PqtmcfgprotRead
-    from .pqtmcfgprot_result import PqtmcfgprotResult as PqtmcfgprotResult, PqtmcfgprotResultAck as PqtmcfgprotResultAck, PqtmcfgprotResultError as PqtmcfgprotResultError
-    from .pqtmcfgrcvrmode import Pqtmcfgrcvrmode as Pqtmcfgrcvrmode, PqtmcfgrcvrmodeRead as PqtmcfgrcvrmodeRead
-    from .pqtmcfgrcvrmode_result import PqtmcfgrcvrmodeResult as PqtmcfgrcvrmodeResult, PqtmcfgrcvrmodeResultAck as PqtmcfgrcvrmodeResultAck, PqtmcfgrcvrmodeResultError as PqtmcfgrcvrmodeResultError
+
+    from .pqtmcfgprot_result import (
+        PqtmcfgprotResult as PqtmcfgprotResult,
+        PqtmcfgprotResultAck as PqtmcfgprotResultAck,
+        PqtmcfgprotResultError as PqtmcfgprotResultError,
+    )
+
+    from .pqtmcfgrcvrmode import (
+        Pqtmcfgrcvrmode as Pqtmcfgrcvrmode,
+        PqtmcfgrcvrmodeRead as PqtmcfgrcvrmodeRead,
+    )
+
+    from .pqtmcfgrcvrmode_result import (
+        PqtmcfgrcvrmodeResult as PqtmcfgrcvrmodeResult,
+        PqtmcfgrcvrmodeResultAck as PqtmcfgrcvrmodeResultAck,
+        PqtmcfgrcvrmodeResultError as PqtmcfgrcvrmodeResultError,
+    )
+
     from .pqtmcfgrsid import Pqtmcfgrsid as Pqtmcfgrsid, PqtmcfgrsidRead as PqtmcfgrsidRead
-    from .pqtmcfgrsid_result import PqtmcfgrsidResult as PqtmcfgrsidResult, PqtmcfgrsidResultAck as PqtmcfgrsidResultAck, PqtmcfgrsidResultError as PqtmcfgrsidResultError
+
+    from .pqtmcfgrsid_result import (
+        PqtmcfgrsidResult as PqtmcfgrsidResult,
+        PqtmcfgrsidResultAck as PqtmcfgrsidResultAck,
+        PqtmcfgrsidResultError as PqtmcfgrsidResultError,
+    )
+
     from .pqtmcfgrtcm import Pqtmcfgrtcm as Pqtmcfgrtcm, PqtmcfgrtcmRead as PqtmcfgrtcmRead
-    from .pqtmcfgrtcm_result import PqtmcfgrtcmResult as PqtmcfgrtcmResult, PqtmcfgrtcmResultAck as PqtmcfgrtcmResultAck, PqtmcfgrtcmResultError as PqtmcfgrtcmResultError
+
+    from .pqtmcfgrtcm_result import (
+        PqtmcfgrtcmResult as PqtmcfgrtcmResult,
+        PqtmcfgrtcmResultAck as PqtmcfgrtcmResultAck,
+        PqtmcfgrtcmResultError as PqtmcfgrtcmResultError,
+    )
+
     from .pqtmcfgrtk import Pqtmcfgrtk as Pqtmcfgrtk, PqtmcfgrtkRead as PqtmcfgrtkRead
-    from .pqtmcfgrtk_result import PqtmcfgrtkResult as PqtmcfgrtkResult, PqtmcfgrtkResultAck as PqtmcfgrtkResultAck, PqtmcfgrtkResultError as PqtmcfgrtkResultError
-    from .pqtmcfgrtksrctype import Pqtmcfgrtksrctype as Pqtmcfgrtksrctype, PqtmcfgrtksrctypeRead as PqtmcfgrtksrctypeRead
-    from .pqtmcfgrtksrctype_result import PqtmcfgrtksrctypeResult as PqtmcfgrtksrctypeResult, PqtmcfgrtksrctypeResultAck as PqtmcfgrtksrctypeResultAck, PqtmcfgrtksrctypeResultError as PqtmcfgrtksrctypeResultError
+
+    from .pqtmcfgrtk_result import (
+        PqtmcfgrtkResult as PqtmcfgrtkResult,
+        PqtmcfgrtkResultAck as PqtmcfgrtkResultAck,
+        PqtmcfgrtkResultError as PqtmcfgrtkResultError,
+    )
+
+    from .pqtmcfgrtksrctype import (
+        Pqtmcfgrtksrctype as Pqtmcfgrtksrctype,
+        PqtmcfgrtksrctypeRead as PqtmcfgrtksrctypeRead,
+    )
+
+    from .pqtmcfgrtksrctype_result import (
+        PqtmcfgrtksrctypeResult as PqtmcfgrtksrctypeResult,
+        PqtmcfgrtksrctypeResultAck as PqtmcfgrtksrctypeResultAck,
+        PqtmcfgrtksrctypeResultError as PqtmcfgrtksrctypeResultError,
+    )
+
     from .pqtmcfgsat import Pqtmcfgsat as Pqtmcfgsat, PqtmcfgsatRead as PqtmcfgsatRead
-    from .pqtmcfgsat_result import PqtmcfgsatResult as PqtmcfgsatResult, PqtmcfgsatResultAck as PqtmcfgsatResultAck, PqtmcfgsatResultError as PqtmcfgsatResultError
+
+    from .pqtmcfgsat_result import (
+        PqtmcfgsatResult as PqtmcfgsatResult,
+        PqtmcfgsatResultAck as PqtmcfgsatResultAck,
+        PqtmcfgsatResultError as PqtmcfgsatResultError,
+    )
+
     from .pqtmcfgsbas import Pqtmcfgsbas as Pqtmcfgsbas, PqtmcfgsbasRead as PqtmcfgsbasRead
-    from .pqtmcfgsbas_result import PqtmcfgsbasResult as PqtmcfgsbasResult, PqtmcfgsbasResultAck as PqtmcfgsbasResultAck, PqtmcfgsbasResultError as PqtmcfgsbasResultError
-    from .pqtmcfgsiggrp import Pqtmcfgsiggrp as Pqtmcfgsiggrp, PqtmcfgsiggrpRead as PqtmcfgsiggrpRead
-    from .pqtmcfgsiggrp_result import PqtmcfgsiggrpResult as PqtmcfgsiggrpResult, PqtmcfgsiggrpResultAck as PqtmcfgsiggrpResultAck, PqtmcfgsiggrpResultError as PqtmcfgsiggrpResultError
-    from .pqtmcfgsignal import Pqtmcfgsignal as Pqtmcfgsignal, PqtmcfgsignalRead as PqtmcfgsignalRead
-    from .pqtmcfgsignal2 import Pqtmcfgsignal2 as Pqtmcfgsignal2, Pqtmcfgsignal2Read as Pqtmcfgsignal2Read
-    from .pqtmcfgsignal2_result import Pqtmcfgsignal2Result as Pqtmcfgsignal2Result, Pqtmcfgsignal2ResultAck as Pqtmcfgsignal2ResultAck, Pqtmcfgsignal2ResultError as Pqtmcfgsignal2ResultError
-    from .pqtmcfgsignal_result import PqtmcfgsignalResult as PqtmcfgsignalResult, PqtmcfgsignalResultAck as PqtmcfgsignalResultAck, PqtmcfgsignalResultError as PqtmcfgsignalResultError
+
+    from .pqtmcfgsbas_result import (
+        PqtmcfgsbasResult as PqtmcfgsbasResult,
+        PqtmcfgsbasResultAck as PqtmcfgsbasResultAck,
+        PqtmcfgsbasResultError as PqtmcfgsbasResultError,
+    )
+
+    from .pqtmcfgsiggrp import (
+        Pqtmcfgsiggrp as Pqtmcfgsiggrp,
+        PqtmcfgsiggrpRead as PqtmcfgsiggrpRead,
+    )
+
+    from .pqtmcfgsiggrp_result import (
+        PqtmcfgsiggrpResult as PqtmcfgsiggrpResult,
+        PqtmcfgsiggrpResultAck as PqtmcfgsiggrpResultAck,
+        PqtmcfgsiggrpResultError as PqtmcfgsiggrpResultError,
+    )
+
+    from .pqtmcfgsignal import (
+        Pqtmcfgsignal as Pqtmcfgsignal,
+        PqtmcfgsignalRead as PqtmcfgsignalRead,
+    )
+
+    from .pqtmcfgsignal2 import (
+        Pqtmcfgsignal2 as Pqtmcfgsignal2,
+        Pqtmcfgsignal2Read as Pqtmcfgsignal2Read,
+    )
+
+    from .pqtmcfgsignal2_result import (
+        Pqtmcfgsignal2Result as Pqtmcfgsignal2Result,
+        Pqtmcfgsignal2ResultAck as Pqtmcfgsignal2ResultAck,
+        Pqtmcfgsignal2ResultError as Pqtmcfgsignal2ResultError,
+    )
+
+    from .pqtmcfgsignal_result import (
+        PqtmcfgsignalResult as PqtmcfgsignalResult,
+        PqtmcfgsignalResultAck as PqtmcfgsignalResultAck,
+        PqtmcfgsignalResultError as PqtmcfgsignalResultError,
+    )
+
     from .pqtmcfgsvin import Pqtmcfgsvin as Pqtmcfgsvin, PqtmcfgsvinRead as PqtmcfgsvinRead
-    from .pqtmcfgsvin_result import PqtmcfgsvinResult as PqtmcfgsvinResult, PqtmcfgsvinResultAck as PqtmcfgsvinResultAck, PqtmcfgsvinResultError as PqtmcfgsvinResultError
-    from .pqtmcfguart import Pqtmcfguart as Pqtmcfguart, PqtmcfguartCurrentBaud as PqtmcfguartCurrentBaud, PqtmcfguartCurrentFull as PqtmcfguartCurrentFull, PqtmcfguartPortBaud as PqtmcfguartPortBaud, PqtmcfguartRead as PqtmcfguartRead
-    from .pqtmcfguart_result import PqtmcfguartResult as PqtmcfguartResult, PqtmcfguartResultAck as PqtmcfguartResultAck, PqtmcfguartResultError as PqtmcfguartResultError
+
+    from .pqtmcfgsvin_result import (
+        PqtmcfgsvinResult as PqtmcfgsvinResult,
+        PqtmcfgsvinResultAck as PqtmcfgsvinResultAck,
+        PqtmcfgsvinResultError as PqtmcfgsvinResultError,
+    )
+
+    from .pqtmcfguart import (
+        Pqtmcfguart as Pqtmcfguart,
+        PqtmcfguartCurrentBaud as PqtmcfguartCurrentBaud,
+        PqtmcfguartCurrentFull as PqtmcfguartCurrentFull,
+        PqtmcfguartPortBaud as PqtmcfguartPortBaud,
+        PqtmcfguartRead as PqtmcfguartRead,
+    )
+
+    from .pqtmcfguart_result import (
+        PqtmcfguartResult as PqtmcfguartResult,
+        PqtmcfguartResultAck as PqtmcfguartResultAck,
+        PqtmcfguartResultError as PqtmcfguartResultError,
+    )
+
     from .pqtmcfgwn import Pqtmcfgwn as Pqtmcfgwn, PqtmcfgwnRead as PqtmcfgwnRead
-    from .pqtmcfgwn_result import PqtmcfgwnResult as PqtmcfgwnResult, PqtmcfgwnResultAck as PqtmcfgwnResultAck, PqtmcfgwnResultError as PqtmcfgwnResultError
+
+    from .pqtmcfgwn_result import (
+        PqtmcfgwnResult as PqtmcfgwnResult,
+        PqtmcfgwnResultAck as PqtmcfgwnResultAck,
+        PqtmcfgwnResultError as PqtmcfgwnResultError,
+    )
+
     from .pqtmcold import Pqtmcold as Pqtmcold
+
     from .pqtmdebugoff import Pqtmdebugoff as Pqtmdebugoff
-    from .pqtmdebugoff_result import PqtmdebugoffResult as PqtmdebugoffResult, PqtmdebugoffResultError as PqtmdebugoffResultError
+
+    from .pqtmdebugoff_result import (
+        PqtmdebugoffResult as PqtmdebugoffResult,
+        PqtmdebugoffResultError as PqtmdebugoffResultError,
+    )
+
     from .pqtmdebugon import Pqtmdebugon as Pqtmdebugon
-    from .pqtmdebugon_result import PqtmdebugonResult as PqtmdebugonResult, PqtmdebugonResultError as PqtmdebugonResultError
+
+    from .pqtmdebugon_result import (
+        PqtmdebugonResult as PqtmdebugonResult,
+        PqtmdebugonResultError as PqtmdebugonResultError,
+    )
+
     from .pqtmdop import Pqtmdop as Pqtmdop
+
     from .pqtmeoe import Pqtmeoe as Pqtmeoe
+
     from .pqtmepe import Pqtmepe as Pqtmepe
+
     from .pqtmgeofencestatus import Pqtmgeofencestatus as Pqtmgeofencestatus
+
     from .pqtmgnssstart import Pqtmgnssstart as Pqtmgnssstart
-    from .pqtmgnssstart_result import PqtmgnssstartResult as PqtmgnssstartResult, PqtmgnssstartResultError as PqtmgnssstartResultError
+
+    from .pqtmgnssstart_result import (
+        PqtmgnssstartResult as PqtmgnssstartResult,
+        PqtmgnssstartResultError as PqtmgnssstartResultError,
+    )
+
     from .pqtmgnssstop import Pqtmgnssstop as Pqtmgnssstop
-    from .pqtmgnssstop_result import PqtmgnssstopResult as PqtmgnssstopResult, PqtmgnssstopResultError as PqtmgnssstopResultError
+
+    from .pqtmgnssstop_result import (
+        PqtmgnssstopResult as PqtmgnssstopResult,
+        PqtmgnssstopResultError as PqtmgnssstopResultError,
+    )
+
     from .pqtmhot import Pqtmhot as Pqtmhot
+
     from .pqtmnav import Pqtmnav as Pqtmnav
+
     from .pqtmodo import Pqtmodo as Pqtmodo
+
     from .pqtmpl import Pqtmpl as Pqtmpl
+
     from .pqtmpvt import Pqtmpvt as Pqtmpvt
+
     from .pqtmresetodo import Pqtmresetodo as Pqtmresetodo
-    from .pqtmresetodo_result import PqtmresetodoResult as PqtmresetodoResult, PqtmresetodoResultError as PqtmresetodoResultError
+
+    from .pqtmresetodo_result import (
+        PqtmresetodoResult as PqtmresetodoResult,
+        PqtmresetodoResultError as PqtmresetodoResultError,
+    )
+
     from .pqtmrestorepar import Pqtmrestorepar as Pqtmrestorepar
-    from .pqtmrestorepar_result import PqtmrestoreparResult as PqtmrestoreparResult, PqtmrestoreparResultError as PqtmrestoreparResultError
+
+    from .pqtmrestorepar_result import (
+        PqtmrestoreparResult as PqtmrestoreparResult,
+        PqtmrestoreparResultError as PqtmrestoreparResultError,
+    )
+
     from .pqtmsavepar import Pqtmsavepar as Pqtmsavepar
-    from .pqtmsavepar_result import PqtmsaveparResult as PqtmsaveparResult, PqtmsaveparResultError as PqtmsaveparResultError
+
+    from .pqtmsavepar_result import (
+        PqtmsaveparResult as PqtmsaveparResult,
+        PqtmsaveparResultError as PqtmsaveparResultError,
+    )
+
     from .pqtmsn import Pqtmsn as Pqtmsn
+
     from .pqtmsn_result import PqtmsnResult as PqtmsnResult, PqtmsnResultError as PqtmsnResultError
+
     from .pqtmsrr import Pqtmsrr as Pqtmsrr
+
     from .pqtmsvinstatus import Pqtmsvinstatus as Pqtmsvinstatus
+
     from .pqtmtar import Pqtmtar as Pqtmtar
+
     from .pqtmtxt import Pqtmtxt as Pqtmtxt
+
     from .pqtmuniqid import Pqtmuniqid as Pqtmuniqid
-    from .pqtmuniqid_result import PqtmuniqidResult as PqtmuniqidResult, PqtmuniqidResultError as PqtmuniqidResultError
+
+    from .pqtmuniqid_result import (
+        PqtmuniqidResult as PqtmuniqidResult,
+        PqtmuniqidResultError as PqtmuniqidResultError,
+    )
+
     from .pqtmvel import Pqtmvel as Pqtmvel
+
     from .pqtmver import Pqtmver as Pqtmver, PqtmverLegacy as PqtmverLegacy
+
     from .pqtmverno import Pqtmverno as Pqtmverno
-    from .pqtmverno_result import PqtmvernoResult as PqtmvernoResult, PqtmvernoResultError as PqtmvernoResultError
+
+    from .pqtmverno_result import (
+        PqtmvernoResult as PqtmvernoResult,
+        PqtmvernoResultError as PqtmvernoResultError,
+    )
+
     from .pqtmwarm import Pqtmwarm as Pqtmwarm
+
     from .pqverno import Pqverno as Pqverno
+
     from .pqverno_result import PqvernoResult as PqvernoResult
+
     from .psrf100 import Psrf100 as Psrf100
+
     from .psrf101 import Psrf101 as Psrf101
+
     from .psrf102 import Psrf102 as Psrf102
+
     from .psrf103 import Psrf103 as Psrf103, Psrf103ShortCodes as Psrf103ShortCodes
+
     from .psrf104 import Psrf104 as Psrf104
+
     from .psrf105 import Psrf105 as Psrf105
+
     from .psrf150 import Psrf150 as Psrf150
+
     from .psrfepe import Psrfepe as Psrfepe
+
     from .pssn_hrp import PssnHrp as PssnHrp
+
     from .pssn_rbd import PssnRbd as PssnRbd
+
     from .pssn_rbp import PssnRbp as PssnRbp
+
     from .pssn_rbv import PssnRbv as PssnRbv
+
     from .pssn_tfm import PssnTfm as PssnTfm
+
     from .psti_030 import Psti030 as Psti030
+
     from .psti_032 import Psti032 as Psti032
+
     from .psti_033 import Psti033 as Psti033
+
     from .psti_035 import Psti035 as Psti035
+
     from .psti_036 import Psti036 as Psti036
+
     from .psti_20 import Psti20 as Psti20
+
     from .pstmagps import Pstmagps as Pstmagps
+
     from .pstmalmanac import Pstmalmanac as Pstmalmanac
+
     from .pstmclralms import Pstmclralms as Pstmclralms
+
     from .pstmclrephs import Pstmclrephs as Pstmclrephs
+
     from .pstmcold import Pstmcold as Pstmcold
+
     from .pstmcorr import Pstmcorr as Pstmcorr
+
     from .pstmdiff import Pstmdiff as Pstmdiff
+
     from .pstmeph import Pstmeph as Pstmeph
+
     from .pstmgetpar import Pstmgetpar as Pstmgetpar
+
     from .pstmgetparerror import Pstmgetparerror as Pstmgetparerror
+
     from .pstmgetrtctime import Pstmgetrtctime as Pstmgetrtctime
+
     from .pstmgetrtctime_reply import PstmgetrtctimeReply as PstmgetrtctimeReply
+
     from .pstmgetswver import Pstmgetswver as Pstmgetswver
+
     from .pstmgetswver_reply import PstmgetswverReply as PstmgetswverReply
+
     from .pstmhot import Pstmhot as Pstmhot
+
     from .pstmkfcov import Pstmkfcov as Pstmkfcov
+
     from .pstmnmeaonoff import Pstmnmeaonoff as Pstmnmeaonoff
+
     from .pstmpa import Pstmpa as Pstmpa
+
     from .pstmpres import Pstmpres as Pstmpres
+
     from .pstmres import Pstmres as Pstmres
+
     from .pstmrestorepar import Pstmrestorepar as Pstmrestorepar
+
     from .pstmrf import Pstmrf as Pstmrf
+
     from .pstmsat import Pstmsat as Pstmsat
+
     from .pstmsavepar import Pstmsavepar as Pstmsavepar
+
     from .pstmsbas import Pstmsbas as Pstmsbas
+
     from .pstmsbascorr import Pstmsbascorr as Pstmsbascorr
+
     from .pstmset import Pstmset as Pstmset, PstmsetDop as PstmsetDop
+
     from .pstmsetpar import Pstmsetpar as Pstmsetpar, PstmsetparDop as PstmsetparDop
+
     from .pstmsetparerror import Pstmsetparerror as Pstmsetparerror
+
     from .pstmsetparok import Pstmsetparok as Pstmsetparok
+
     from .pstmtestrf import Pstmtestrf as Pstmtestrf
+
     from .pstmtg import Pstmtg as Pstmtg
+
     from .pstmtim import Pstmtim as Pstmtim
+
     from .pstmts import Pstmts as Pstmts
+
     from .pstmver import Pstmver as Pstmver
+
     from .pstmvres import Pstmvres as Pstmvres
+
     from .pstmwaas import Pstmwaas as Pstmwaas
+
     from .pstmwarm import Pstmwarm as Pstmwarm
+
     from .ptnl_avr import PtnlAvr as PtnlAvr
+
     from .ptnl_bpq import PtnlBpq as PtnlBpq
+
     from .ptnl_evt import PtnlEvt as PtnlEvt
+
     from .ptnl_ggk import PtnlGgk as PtnlGgk
+
     from .ptnl_ggk_sync import PtnlGgkSync as PtnlGgkSync
+
     from .ptnl_pjk import PtnlPjk as PtnlPjk
+
     from .ptnl_pjt import PtnlPjt as PtnlPjt
+
     from .ptnl_vgk import PtnlVgk as PtnlVgk
+
     from .ptnl_vhd import PtnlVhd as PtnlVhd
+
     from .ptnldg import Ptnldg as Ptnldg
+
     from .ptnlev import Ptnlev as Ptnlev
+
     from .ptnlid import Ptnlid as Ptnlid
+
     from .ptnlrba import Ptnlrba as Ptnlrba
+
     from .ptnlrtp import Ptnlrtp as Ptnlrtp
+
     from .ptnlrxo import Ptnlrxo as Ptnlrxo
+
     from .ptnlsm import Ptnlsm as Ptnlsm
+
     from .ptnta import Ptnta as Ptnta
+
     from .pubx_config import PubxConfig as PubxConfig
+
     from .pubx_position import PubxPosition as PubxPosition
+
     from .pubx_position_poll import PubxPositionPoll as PubxPositionPoll
+
     from .pubx_rate import PubxRate as PubxRate
+
     from .pubx_svstatus import PubxSvstatus as PubxSvstatus
+
     from .pubx_svstatus_poll import PubxSvstatusPoll as PubxSvstatusPoll
+
     from .pubx_time import PubxTime as PubxTime
+
     from .pubx_time_poll import PubxTimePoll as PubxTimePoll
+
     from .pubx_utm import PubxUtm as PubxUtm
+
 
 # Each sentence's module, and the module of each class.
 _MODULES: dict[str, str] = {
@@ -1967,281 +2726,520 @@ _ENCAPSULATED_IDS = frozenset({
     "VDO",
 })
 _ADDRESS_LAYOUTS: dict[str, tuple[str, ...]] = {
-    "GPSGG": ("Geos5Jamdet", "Geos5Nquery", "Geos5NqueryRequest", "Geos5Rquery", "Geos5RqueryRequest", "Geos5Command", ),
-    "PAIR001": ("Pair001", ),
-    "PAIR002": ("Pair002", ),
-    "PAIR003": ("Pair003", ),
-    "PAIR004": ("Pair004", ),
-    "PAIR005": ("Pair005", ),
-    "PAIR006": ("Pair006", ),
-    "PAIR007": ("Pair007", ),
-    "PAIR010": ("Pair010", ),
-    "PAIR050": ("Pair050", ),
-    "PAIR051": ("Pair051", "Pair051Reply", ),
-    "PAIR058": ("Pair058", ),
-    "PAIR059": ("Pair059", "Pair059Reply", ),
-    "PAIR062": ("Pair062", ),
-    "PAIR063": ("Pair063", "Pair063Reply", ),
-    "PAIR066": ("Pair066", ),
-    "PAIR067": ("Pair067", "Pair067Reply", ),
-    "PAIR070": ("Pair070", ),
-    "PAIR071": ("Pair071", "Pair071Reply", ),
-    "PAIR072": ("Pair072", ),
-    "PAIR073": ("Pair073", "Pair073Reply", ),
-    "PAIR074": ("Pair074", ),
-    "PAIR075": ("Pair075", "Pair075Reply", ),
-    "PAIR080": ("Pair080", ),
-    "PAIR081": ("Pair081", "Pair081Reply", ),
-    "PAIR086": ("Pair086", ),
-    "PAIR087": ("Pair087", "Pair087Reply", ),
-    "PAIR098": ("Pair098", ),
-    "PAIR099": ("Pair099", "Pair099Reply", ),
-    "PAIR100": ("Pair100", ),
-    "PAIR101": ("Pair101", "Pair101Reply", ),
-    "PAIR104": ("Pair104", ),
-    "PAIR105": ("Pair105", "Pair105Reply", ),
-    "PAIR154": ("Pair154", ),
-    "PAIR155": ("Pair155", "Pair155Reply", ),
-    "PAIR158": ("Pair158", ),
-    "PAIR382": ("Pair382", ),
-    "PAIR391": ("Pair391", ),
-    "PAIR400": ("Pair400", ),
-    "PAIR401": ("Pair401", "Pair401Reply", ),
-    "PAIR410": ("Pair410", ),
-    "PAIR411": ("Pair411", "Pair411Reply", ),
-    "PAIR420": ("Pair420", ),
-    "PAIR421": ("Pair421", "Pair421Reply", ),
-    "PAIR432": ("Pair432", ),
-    "PAIR433": ("Pair433", "Pair433Reply", ),
-    "PAIR434": ("Pair434", ),
-    "PAIR435": ("Pair435", "Pair435Reply", ),
-    "PAIR436": ("Pair436", ),
-    "PAIR437": ("Pair437", "Pair437Reply", ),
-    "PAIR490": ("Pair490", ),
-    "PAIR491": ("Pair491", "Pair491Reply", ),
-    "PAIR511": ("Pair511", ),
-    "PAIR512": ("Pair512", ),
-    "PAIR513": ("Pair513", ),
-    "PAIR6010": ("Pair6010", ),
-    "PAIR6011": ("Pair6011", "Pair6011Reply", ),
-    "PAIR650": ("Pair650", ),
-    "PAIR680": ("Pair680", ),
-    "PAIR681": ("Pair681", "Pair681Reply", ),
-    "PAIR690": ("Pair690", ),
-    "PAIR691": ("Pair691", "Pair691Reply", ),
-    "PAIR730": ("Pair730", ),
-    "PAIR731": ("Pair731", "Pair731Reply", ),
-    "PAIR732": ("Pair732", ),
-    "PAIR733": ("Pair733", "Pair733Reply", ),
-    "PAIR752": ("Pair752", ),
-    "PAIR864": ("Pair864", ),
-    "PAIR865": ("Pair865", "Pair865Reply", ),
-    "PAIR866": ("Pair866", ),
-    "PAIR867": ("Pair867", "Pair867Reply", ),
-    "PAIR890": ("Pair890", ),
-    "PAIR891": ("Pair891", "Pair891Reply", ),
-    "PAIR900": ("Pair900", ),
-    "PAIR901": ("Pair901", "Pair901Reply", ),
-    "PAIR902": ("Pair902", ),
-    "PAIR903": ("Pair903", "Pair903Reply", ),
-    "PAIR904": ("Pair904", ),
-    "PAIR905": ("Pair905", ),
-    "PAIR906": ("Pair906", ),
-    "PAIR907": ("Pair907", ),
-    "PAIR908": ("Pair908", ),
-    "PAIR909": ("Pair909", "Pair909Reply", ),
-    "PAIRSPF": ("Pairspf", ),
-    "PAIRSPF5": ("Pairspf5", ),
-    "PASHQ": ("PashqAtt", "PashqElm", "PashqNmo", "PashqPem", "PashqPop", "PashqPos", "PashqPtt", "PashqSat", "PashqSba", ),
-    "PASHR": ("PashrAck", "PashrAtt", "PashrElm", "PashrHpr", "PashrNak", "PashrNmo", "PashrPem", "PashrPop", "PashrPos", "PashrPtt", "PashrSat", "PashrSba", "PashrTtt", "Pashr", ),
-    "PASHS": ("PashsNme", "PashsNmePeriod", ),
-    "PERDCRW": ("Perdcrw", ),
-    "PERDCRX": ("Perdcrx", ),
-    "PERDCRY": ("Perdcry", ),
-    "PERDCRZ": ("Perdcrz", ),
-    "PFEC": ("PfecGpatt", "PfecGphve", "PfecGprtc", "PfecGpwpl", "PfecGpxfr", ),
-    "PGLOR": ("PglorFix", "PglorLsq", "PglorPwr", "PglorPwrV2", "PglorPwrV4", "PglorSat", "PglorSatV1", "PglorSatV0", "PglorSio", "PglorSioV0", "PglorSta", "PglorUnc", ),
-    "PGRMB": ("Pgrmb", ),
-    "PGRMC": ("Pgrmc", ),
-    "PGRMC1": ("Pgrmc1", ),
-    "PGRMC1E": ("Pgrmc1e", ),
-    "PGRMCE": ("Pgrmce", ),
-    "PGRME": ("Pgrme", ),
-    "PGRMF": ("Pgrmf", ),
-    "PGRMI": ("Pgrmi", ),
-    "PGRMIE": ("Pgrmie", ),
-    "PGRMM": ("Pgrmm", ),
-    "PGRMO": ("Pgrmo", ),
-    "PGRMT": ("Pgrmt", ),
-    "PGRMV": ("Pgrmv", ),
-    "PGRMZ": ("Pgrmz", ),
-    "PGTOP": ("Pgtop11", ),
-    "PMGNCMD": ("Pmgncmd", ),
-    "PMGNST": ("Pmgnst", ),
-    "PMGNTRK": ("Pmgntrk", ),
-    "PMGNWPL": ("Pmgnwpl", ),
-    "PMTK000": ("Pmtk000", ),
-    "PMTK001": ("Pmtk001", "Pmtk001SvMask", ),
-    "PMTK010": ("Pmtk010", ),
-    "PMTK011": ("Pmtk011", ),
-    "PMTK101": ("Pmtk101", ),
-    "PMTK102": ("Pmtk102", ),
-    "PMTK103": ("Pmtk103", ),
-    "PMTK104": ("Pmtk104", ),
-    "PMTK161": ("Pmtk161", ),
-    "PMTK183": ("Pmtk183", ),
-    "PMTK184": ("Pmtk184", ),
-    "PMTK185": ("Pmtk185", ),
-    "PMTK220": ("Pmtk220", ),
-    "PMTK223": ("Pmtk223", ),
-    "PMTK225": ("Pmtk225", ),
-    "PMTK251": ("Pmtk251", ),
-    "PMTK286": ("Pmtk286", ),
-    "PMTK300": ("Pmtk300", ),
-    "PMTK301": ("Pmtk301", ),
-    "PMTK313": ("Pmtk313", ),
-    "PMTK314": ("Pmtk314RestoreDefault", "Pmtk314", ),
-    "PMTK319": ("Pmtk319", ),
-    "PMTK353": ("Pmtk353", ),
-    "PMTK386": ("Pmtk386", ),
-    "PMTK397": ("Pmtk397", ),
-    "PMTK400": ("Pmtk400", ),
-    "PMTK401": ("Pmtk401", ),
-    "PMTK413": ("Pmtk413", ),
-    "PMTK414": ("Pmtk414", ),
-    "PMTK447": ("Pmtk447", ),
-    "PMTK500": ("Pmtk500", ),
-    "PMTK501": ("Pmtk501", ),
-    "PMTK513": ("Pmtk513", ),
-    "PMTK514": ("Pmtk514", ),
-    "PMTK527": ("Pmtk527", ),
-    "PMTK605": ("Pmtk605", ),
-    "PMTK622": ("Pmtk622", ),
-    "PMTK660": ("Pmtk660", ),
-    "PMTK661": ("Pmtk661", ),
-    "PMTK705": ("Pmtk705", ),
-    "PMTK869": ("Pmtk869Query", "Pmtk869Result", "Pmtk869Set", ),
-    "PMTKCHN": ("Pmtkchn", ),
-    "PMTKLOG": ("Pmtklog", ),
-    "PMTKLOX": ("PmtkloxData", "PmtkloxEnd", "PmtkloxStart", ),
-    "PQGSV": ("Pqgsv", ),
-    "PQTMANTENNASTATUS": ("Pqtmantennastatus", ),
-    "PQTMCFGANTDELTA": ("Pqtmcfgantdelta", "PqtmcfgantdeltaRead", "PqtmcfgantdeltaResult", "PqtmcfgantdeltaResultAck", "PqtmcfgantdeltaResultError", ),
-    "PQTMCFGANTINF": ("Pqtmcfgantinf", "PqtmcfgantinfRead", "PqtmcfgantinfResult", "PqtmcfgantinfResultAck", "PqtmcfgantinfResultError", ),
-    "PQTMCFGBLD": ("Pqtmcfgbld", "PqtmcfgbldRead", "PqtmcfgbldResult", "PqtmcfgbldResultAck", "PqtmcfgbldResultError", ),
-    "PQTMCFGCNRTHD": ("Pqtmcfgcnrthd", "PqtmcfgcnrthdRead", "PqtmcfgcnrthdResult", "PqtmcfgcnrthdResultAck", "PqtmcfgcnrthdResultError", ),
-    "PQTMCFGCNST": ("Pqtmcfgcnst", "PqtmcfgcnstRead", "PqtmcfgcnstResult", "PqtmcfgcnstResultAck", "PqtmcfgcnstResultError", ),
-    "PQTMCFGELETHD": ("Pqtmcfgelethd", "PqtmcfgelethdRead", "PqtmcfgelethdResult", "PqtmcfgelethdResultAck", "PqtmcfgelethdResultError", ),
-    "PQTMCFGFIXRATE": ("Pqtmcfgfixrate", "PqtmcfgfixrateRead", "PqtmcfgfixrateResult", "PqtmcfgfixrateResultAck", "PqtmcfgfixrateResultError", ),
-    "PQTMCFGGEOFENCE": ("Pqtmcfggeofence", "PqtmcfggeofenceRead", "PqtmcfggeofenceResult", "PqtmcfggeofenceResultAck", "PqtmcfggeofenceResultError", ),
-    "PQTMCFGGEOSEP": ("Pqtmcfggeosep", "PqtmcfggeosepRead", "PqtmcfggeosepResult", "PqtmcfggeosepResultAck", "PqtmcfggeosepResultError", ),
-    "PQTMCFGMSGRATE": ("Pqtmcfgmsgrate", "PqtmcfgmsgratePort", "PqtmcfgmsgrateReadPort", "PqtmcfgmsgrateRead", "PqtmcfgmsgrateResult", "PqtmcfgmsgrateResultPort", "PqtmcfgmsgrateResultAck", "PqtmcfgmsgrateResultError", ),
-    "PQTMCFGNMEADP": ("Pqtmcfgnmeadp", "PqtmcfgnmeadpRead", "PqtmcfgnmeadpResult", "PqtmcfgnmeadpResultAck", "PqtmcfgnmeadpResultError", ),
-    "PQTMCFGNMEATID": ("Pqtmcfgnmeatid", "PqtmcfgnmeatidRead", "PqtmcfgnmeatidResult", "PqtmcfgnmeatidResultAck", "PqtmcfgnmeatidResultError", ),
-    "PQTMCFGODO": ("Pqtmcfgodo", "PqtmcfgodoRead", "PqtmcfgodoResult", "PqtmcfgodoResultAck", "PqtmcfgodoResultError", ),
-    "PQTMCFGPPS": ("Pqtmcfgpps", "PqtmcfgppsRead", "PqtmcfgppsResult", "PqtmcfgppsResultAck", "PqtmcfgppsResultError", ),
-    "PQTMCFGPROT": ("Pqtmcfgprot", "PqtmcfgprotRead", "PqtmcfgprotResult", "PqtmcfgprotResultAck", "PqtmcfgprotResultError", ),
-    "PQTMCFGRCVRMODE": ("Pqtmcfgrcvrmode", "PqtmcfgrcvrmodeRead", "PqtmcfgrcvrmodeResult", "PqtmcfgrcvrmodeResultAck", "PqtmcfgrcvrmodeResultError", ),
-    "PQTMCFGRSID": ("Pqtmcfgrsid", "PqtmcfgrsidRead", "PqtmcfgrsidResult", "PqtmcfgrsidResultAck", "PqtmcfgrsidResultError", ),
-    "PQTMCFGRTCM": ("Pqtmcfgrtcm", "PqtmcfgrtcmRead", "PqtmcfgrtcmResult", "PqtmcfgrtcmResultAck", "PqtmcfgrtcmResultError", ),
-    "PQTMCFGRTK": ("Pqtmcfgrtk", "PqtmcfgrtkRead", "PqtmcfgrtkResult", "PqtmcfgrtkResultAck", "PqtmcfgrtkResultError", ),
-    "PQTMCFGRTKSRCTYPE": ("Pqtmcfgrtksrctype", "PqtmcfgrtksrctypeRead", "PqtmcfgrtksrctypeResult", "PqtmcfgrtksrctypeResultAck", "PqtmcfgrtksrctypeResultError", ),
-    "PQTMCFGSAT": ("Pqtmcfgsat", "PqtmcfgsatRead", "PqtmcfgsatResult", "PqtmcfgsatResultAck", "PqtmcfgsatResultError", ),
-    "PQTMCFGSBAS": ("Pqtmcfgsbas", "PqtmcfgsbasRead", "PqtmcfgsbasResult", "PqtmcfgsbasResultAck", "PqtmcfgsbasResultError", ),
-    "PQTMCFGSIGGRP": ("Pqtmcfgsiggrp", "PqtmcfgsiggrpRead", "PqtmcfgsiggrpResult", "PqtmcfgsiggrpResultAck", "PqtmcfgsiggrpResultError", ),
-    "PQTMCFGSIGNAL": ("Pqtmcfgsignal", "PqtmcfgsignalRead", "PqtmcfgsignalResult", "PqtmcfgsignalResultAck", "PqtmcfgsignalResultError", ),
-    "PQTMCFGSIGNAL2": ("Pqtmcfgsignal2", "Pqtmcfgsignal2Read", "Pqtmcfgsignal2Result", "Pqtmcfgsignal2ResultAck", "Pqtmcfgsignal2ResultError", ),
-    "PQTMCFGSVIN": ("Pqtmcfgsvin", "PqtmcfgsvinRead", "PqtmcfgsvinResult", "PqtmcfgsvinResultAck", "PqtmcfgsvinResultError", ),
-    "PQTMCFGUART": ("Pqtmcfguart", "PqtmcfguartCurrentBaud", "PqtmcfguartCurrentFull", "PqtmcfguartPortBaud", "PqtmcfguartRead", "PqtmcfguartResult", "PqtmcfguartResultAck", "PqtmcfguartResultError", ),
-    "PQTMCFGWN": ("Pqtmcfgwn", "PqtmcfgwnRead", "PqtmcfgwnResult", "PqtmcfgwnResultAck", "PqtmcfgwnResultError", ),
-    "PQTMCOLD": ("Pqtmcold", ),
-    "PQTMDEBUGOFF": ("PqtmdebugoffResult", "PqtmdebugoffResultError", "Pqtmdebugoff", ),
-    "PQTMDEBUGON": ("PqtmdebugonResult", "PqtmdebugonResultError", "Pqtmdebugon", ),
-    "PQTMDOP": ("Pqtmdop", ),
-    "PQTMEOE": ("Pqtmeoe", ),
-    "PQTMEPE": ("Pqtmepe", ),
-    "PQTMGEOFENCESTATUS": ("Pqtmgeofencestatus", ),
-    "PQTMGNSSSTART": ("PqtmgnssstartResult", "PqtmgnssstartResultError", "Pqtmgnssstart", ),
-    "PQTMGNSSSTOP": ("PqtmgnssstopResult", "PqtmgnssstopResultError", "Pqtmgnssstop", ),
-    "PQTMHOT": ("Pqtmhot", ),
-    "PQTMNAV": ("Pqtmnav", ),
-    "PQTMODO": ("Pqtmodo", ),
-    "PQTMPL": ("Pqtmpl", ),
-    "PQTMPVT": ("Pqtmpvt", ),
-    "PQTMRESETODO": ("PqtmresetodoResult", "PqtmresetodoResultError", "Pqtmresetodo", ),
-    "PQTMRESTOREPAR": ("PqtmrestoreparResult", "PqtmrestoreparResultError", "Pqtmrestorepar", ),
-    "PQTMSAVEPAR": ("PqtmsaveparResult", "PqtmsaveparResultError", "Pqtmsavepar", ),
-    "PQTMSN": ("PqtmsnResult", "PqtmsnResultError", "Pqtmsn", ),
-    "PQTMSRR": ("Pqtmsrr", ),
-    "PQTMSVINSTATUS": ("Pqtmsvinstatus", ),
-    "PQTMTAR": ("Pqtmtar", ),
-    "PQTMTXT": ("Pqtmtxt", ),
-    "PQTMUNIQID": ("PqtmuniqidResult", "PqtmuniqidResultError", "Pqtmuniqid", ),
-    "PQTMVEL": ("Pqtmvel", ),
-    "PQTMVER": ("Pqtmver", "PqtmverLegacy", ),
-    "PQTMVERNO": ("PqtmvernoResultError", "Pqtmverno", "PqtmvernoResult", ),
-    "PQTMWARM": ("Pqtmwarm", ),
-    "PQVERNO": ("Pqverno", "PqvernoResult", ),
-    "PSRF100": ("Psrf100", ),
-    "PSRF101": ("Psrf101", ),
-    "PSRF102": ("Psrf102", ),
-    "PSRF103": ("Psrf103", "Psrf103ShortCodes", ),
-    "PSRF104": ("Psrf104", ),
-    "PSRF105": ("Psrf105", ),
-    "PSRF150": ("Psrf150", ),
-    "PSRFEPE": ("Psrfepe", ),
-    "PSSN": ("PssnHrp", "PssnRbd", "PssnRbp", "PssnRbv", "PssnTfm", ),
-    "PSTI": ("Psti030", "Psti032", "Psti033", "Psti035", "Psti036", "Psti20", ),
-    "PSTMAGPS": ("Pstmagps", ),
-    "PSTMALMANAC": ("Pstmalmanac", ),
-    "PSTMCLRALMS": ("Pstmclralms", ),
-    "PSTMCLREPHS": ("Pstmclrephs", ),
-    "PSTMCOLD": ("Pstmcold", ),
-    "PSTMCORR": ("Pstmcorr", ),
-    "PSTMDIFF": ("Pstmdiff", ),
-    "PSTMEPH": ("Pstmeph", ),
-    "PSTMGETPAR": ("Pstmgetpar", ),
-    "PSTMGETPARERROR": ("Pstmgetparerror", ),
-    "PSTMGETRTCTIME": ("Pstmgetrtctime", "PstmgetrtctimeReply", ),
-    "PSTMGETSWVER": ("Pstmgetswver", "PstmgetswverReply", ),
-    "PSTMHOT": ("Pstmhot", ),
-    "PSTMKFCOV": ("Pstmkfcov", ),
-    "PSTMNMEAONOFF": ("Pstmnmeaonoff", ),
-    "PSTMPA": ("Pstmpa", ),
-    "PSTMPRES": ("Pstmpres", ),
-    "PSTMRES": ("Pstmres", ),
-    "PSTMRESTOREPAR": ("Pstmrestorepar", ),
-    "PSTMRF": ("Pstmrf", ),
-    "PSTMSAT": ("Pstmsat", ),
-    "PSTMSAVEPAR": ("Pstmsavepar", ),
-    "PSTMSBAS": ("Pstmsbas", ),
-    "PSTMSBASCORR": ("Pstmsbascorr", ),
-    "PSTMSET": ("Pstmset", "PstmsetDop", ),
-    "PSTMSETPAR": ("Pstmsetpar", "PstmsetparDop", ),
-    "PSTMSETPARERROR": ("Pstmsetparerror", ),
-    "PSTMSETPAROK": ("Pstmsetparok", ),
-    "PSTMTESTRF": ("Pstmtestrf", ),
-    "PSTMTG": ("Pstmtg", ),
-    "PSTMTIM": ("Pstmtim", ),
-    "PSTMTS": ("Pstmts", ),
-    "PSTMVER": ("Pstmver", ),
-    "PSTMVRES": ("Pstmvres", ),
-    "PSTMWAAS": ("Pstmwaas", ),
-    "PSTMWARM": ("Pstmwarm", ),
-    "PTNL": ("PtnlAvr", "PtnlBpq", "PtnlEvt", "PtnlGgk", "PtnlGgkSync", "PtnlPjk", "PtnlPjt", "PtnlVgk", "PtnlVhd", ),
-    "PTNLDG": ("Ptnldg", ),
-    "PTNLEV": ("Ptnlev", ),
-    "PTNLID": ("Ptnlid", ),
-    "PTNLRBA": ("Ptnlrba", ),
-    "PTNLRTP": ("Ptnlrtp", ),
-    "PTNLRXO": ("Ptnlrxo", ),
-    "PTNLSM": ("Ptnlsm", ),
-    "PTNTA": ("Ptnta", ),
-    "PUBX": ("PubxConfig", "PubxPosition", "PubxPositionPoll", "PubxRate", "PubxSvstatus", "PubxSvstatusPoll", "PubxTime", "PubxTimePoll", "PubxUtm", ),
+    "GPSGG": (
+        "Geos5Jamdet",
+        "Geos5Nquery",
+        "Geos5NqueryRequest",
+        "Geos5Rquery",
+        "Geos5RqueryRequest",
+        "Geos5Command",
+    ),
+    "PAIR001": ("Pair001",),
+    "PAIR002": ("Pair002",),
+    "PAIR003": ("Pair003",),
+    "PAIR004": ("Pair004",),
+    "PAIR005": ("Pair005",),
+    "PAIR006": ("Pair006",),
+    "PAIR007": ("Pair007",),
+    "PAIR010": ("Pair010",),
+    "PAIR050": ("Pair050",),
+    "PAIR051": ("Pair051", "Pair051Reply"),
+    "PAIR058": ("Pair058",),
+    "PAIR059": ("Pair059", "Pair059Reply"),
+    "PAIR062": ("Pair062",),
+    "PAIR063": ("Pair063", "Pair063Reply"),
+    "PAIR066": ("Pair066",),
+    "PAIR067": ("Pair067", "Pair067Reply"),
+    "PAIR070": ("Pair070",),
+    "PAIR071": ("Pair071", "Pair071Reply"),
+    "PAIR072": ("Pair072",),
+    "PAIR073": ("Pair073", "Pair073Reply"),
+    "PAIR074": ("Pair074",),
+    "PAIR075": ("Pair075", "Pair075Reply"),
+    "PAIR080": ("Pair080",),
+    "PAIR081": ("Pair081", "Pair081Reply"),
+    "PAIR086": ("Pair086",),
+    "PAIR087": ("Pair087", "Pair087Reply"),
+    "PAIR098": ("Pair098",),
+    "PAIR099": ("Pair099", "Pair099Reply"),
+    "PAIR100": ("Pair100",),
+    "PAIR101": ("Pair101", "Pair101Reply"),
+    "PAIR104": ("Pair104",),
+    "PAIR105": ("Pair105", "Pair105Reply"),
+    "PAIR154": ("Pair154",),
+    "PAIR155": ("Pair155", "Pair155Reply"),
+    "PAIR158": ("Pair158",),
+    "PAIR382": ("Pair382",),
+    "PAIR391": ("Pair391",),
+    "PAIR400": ("Pair400",),
+    "PAIR401": ("Pair401", "Pair401Reply"),
+    "PAIR410": ("Pair410",),
+    "PAIR411": ("Pair411", "Pair411Reply"),
+    "PAIR420": ("Pair420",),
+    "PAIR421": ("Pair421", "Pair421Reply"),
+    "PAIR432": ("Pair432",),
+    "PAIR433": ("Pair433", "Pair433Reply"),
+    "PAIR434": ("Pair434",),
+    "PAIR435": ("Pair435", "Pair435Reply"),
+    "PAIR436": ("Pair436",),
+    "PAIR437": ("Pair437", "Pair437Reply"),
+    "PAIR490": ("Pair490",),
+    "PAIR491": ("Pair491", "Pair491Reply"),
+    "PAIR511": ("Pair511",),
+    "PAIR512": ("Pair512",),
+    "PAIR513": ("Pair513",),
+    "PAIR6010": ("Pair6010",),
+    "PAIR6011": ("Pair6011", "Pair6011Reply"),
+    "PAIR650": ("Pair650",),
+    "PAIR680": ("Pair680",),
+    "PAIR681": ("Pair681", "Pair681Reply"),
+    "PAIR690": ("Pair690",),
+    "PAIR691": ("Pair691", "Pair691Reply"),
+    "PAIR730": ("Pair730",),
+    "PAIR731": ("Pair731", "Pair731Reply"),
+    "PAIR732": ("Pair732",),
+    "PAIR733": ("Pair733", "Pair733Reply"),
+    "PAIR752": ("Pair752",),
+    "PAIR864": ("Pair864",),
+    "PAIR865": ("Pair865", "Pair865Reply"),
+    "PAIR866": ("Pair866",),
+    "PAIR867": ("Pair867", "Pair867Reply"),
+    "PAIR890": ("Pair890",),
+    "PAIR891": ("Pair891", "Pair891Reply"),
+    "PAIR900": ("Pair900",),
+    "PAIR901": ("Pair901", "Pair901Reply"),
+    "PAIR902": ("Pair902",),
+    "PAIR903": ("Pair903", "Pair903Reply"),
+    "PAIR904": ("Pair904",),
+    "PAIR905": ("Pair905",),
+    "PAIR906": ("Pair906",),
+    "PAIR907": ("Pair907",),
+    "PAIR908": ("Pair908",),
+    "PAIR909": ("Pair909", "Pair909Reply"),
+    "PAIRSPF": ("Pairspf",),
+    "PAIRSPF5": ("Pairspf5",),
+    "PASHQ": (
+        "PashqAtt",
+        "PashqElm",
+        "PashqNmo",
+        "PashqPem",
+        "PashqPop",
+        "PashqPos",
+        "PashqPtt",
+        "PashqSat",
+        "PashqSba",
+    ),
+    "PASHR": (
+        "PashrAck",
+        "PashrAtt",
+        "PashrElm",
+        "PashrHpr",
+        "PashrNak",
+        "PashrNmo",
+        "PashrPem",
+        "PashrPop",
+        "PashrPos",
+        "PashrPtt",
+        "PashrSat",
+        "PashrSba",
+        "PashrTtt",
+        "Pashr",
+    ),
+    "PASHS": ("PashsNme", "PashsNmePeriod"),
+    "PERDCRW": ("Perdcrw",),
+    "PERDCRX": ("Perdcrx",),
+    "PERDCRY": ("Perdcry",),
+    "PERDCRZ": ("Perdcrz",),
+    "PFEC": ("PfecGpatt", "PfecGphve", "PfecGprtc", "PfecGpwpl", "PfecGpxfr"),
+    "PGLOR": (
+        "PglorFix",
+        "PglorLsq",
+        "PglorPwr",
+        "PglorPwrV2",
+        "PglorPwrV4",
+        "PglorSat",
+        "PglorSatV1",
+        "PglorSatV0",
+        "PglorSio",
+        "PglorSioV0",
+        "PglorSta",
+        "PglorUnc",
+    ),
+    "PGRMB": ("Pgrmb",),
+    "PGRMC": ("Pgrmc",),
+    "PGRMC1": ("Pgrmc1",),
+    "PGRMC1E": ("Pgrmc1e",),
+    "PGRMCE": ("Pgrmce",),
+    "PGRME": ("Pgrme",),
+    "PGRMF": ("Pgrmf",),
+    "PGRMI": ("Pgrmi",),
+    "PGRMIE": ("Pgrmie",),
+    "PGRMM": ("Pgrmm",),
+    "PGRMO": ("Pgrmo",),
+    "PGRMT": ("Pgrmt",),
+    "PGRMV": ("Pgrmv",),
+    "PGRMZ": ("Pgrmz",),
+    "PGTOP": ("Pgtop11",),
+    "PMGNCMD": ("Pmgncmd",),
+    "PMGNST": ("Pmgnst",),
+    "PMGNTRK": ("Pmgntrk",),
+    "PMGNWPL": ("Pmgnwpl",),
+    "PMTK000": ("Pmtk000",),
+    "PMTK001": ("Pmtk001", "Pmtk001SvMask"),
+    "PMTK010": ("Pmtk010",),
+    "PMTK011": ("Pmtk011",),
+    "PMTK101": ("Pmtk101",),
+    "PMTK102": ("Pmtk102",),
+    "PMTK103": ("Pmtk103",),
+    "PMTK104": ("Pmtk104",),
+    "PMTK161": ("Pmtk161",),
+    "PMTK183": ("Pmtk183",),
+    "PMTK184": ("Pmtk184",),
+    "PMTK185": ("Pmtk185",),
+    "PMTK220": ("Pmtk220",),
+    "PMTK223": ("Pmtk223",),
+    "PMTK225": ("Pmtk225",),
+    "PMTK251": ("Pmtk251",),
+    "PMTK286": ("Pmtk286",),
+    "PMTK300": ("Pmtk300",),
+    "PMTK301": ("Pmtk301",),
+    "PMTK313": ("Pmtk313",),
+    "PMTK314": ("Pmtk314RestoreDefault", "Pmtk314"),
+    "PMTK319": ("Pmtk319",),
+    "PMTK353": ("Pmtk353",),
+    "PMTK386": ("Pmtk386",),
+    "PMTK397": ("Pmtk397",),
+    "PMTK400": ("Pmtk400",),
+    "PMTK401": ("Pmtk401",),
+    "PMTK413": ("Pmtk413",),
+    "PMTK414": ("Pmtk414",),
+    "PMTK447": ("Pmtk447",),
+    "PMTK500": ("Pmtk500",),
+    "PMTK501": ("Pmtk501",),
+    "PMTK513": ("Pmtk513",),
+    "PMTK514": ("Pmtk514",),
+    "PMTK527": ("Pmtk527",),
+    "PMTK605": ("Pmtk605",),
+    "PMTK622": ("Pmtk622",),
+    "PMTK660": ("Pmtk660",),
+    "PMTK661": ("Pmtk661",),
+    "PMTK705": ("Pmtk705",),
+    "PMTK869": ("Pmtk869Query", "Pmtk869Result", "Pmtk869Set"),
+    "PMTKCHN": ("Pmtkchn",),
+    "PMTKLOG": ("Pmtklog",),
+    "PMTKLOX": ("PmtkloxData", "PmtkloxEnd", "PmtkloxStart"),
+    "PQGSV": ("Pqgsv",),
+    "PQTMANTENNASTATUS": ("Pqtmantennastatus",),
+    "PQTMCFGANTDELTA": (
+        "Pqtmcfgantdelta",
+        "PqtmcfgantdeltaRead",
+        "PqtmcfgantdeltaResult",
+        "PqtmcfgantdeltaResultAck",
+        "PqtmcfgantdeltaResultError",
+    ),
+    "PQTMCFGANTINF": (
+        "Pqtmcfgantinf",
+        "PqtmcfgantinfRead",
+        "PqtmcfgantinfResult",
+        "PqtmcfgantinfResultAck",
+        "PqtmcfgantinfResultError",
+    ),
+    "PQTMCFGBLD": (
+        "Pqtmcfgbld",
+        "PqtmcfgbldRead",
+        "PqtmcfgbldResult",
+        "PqtmcfgbldResultAck",
+        "PqtmcfgbldResultError",
+    ),
+    "PQTMCFGCNRTHD": (
+        "Pqtmcfgcnrthd",
+        "PqtmcfgcnrthdRead",
+        "PqtmcfgcnrthdResult",
+        "PqtmcfgcnrthdResultAck",
+        "PqtmcfgcnrthdResultError",
+    ),
+    "PQTMCFGCNST": (
+        "Pqtmcfgcnst",
+        "PqtmcfgcnstRead",
+        "PqtmcfgcnstResult",
+        "PqtmcfgcnstResultAck",
+        "PqtmcfgcnstResultError",
+    ),
+    "PQTMCFGELETHD": (
+        "Pqtmcfgelethd",
+        "PqtmcfgelethdRead",
+        "PqtmcfgelethdResult",
+        "PqtmcfgelethdResultAck",
+        "PqtmcfgelethdResultError",
+    ),
+    "PQTMCFGFIXRATE": (
+        "Pqtmcfgfixrate",
+        "PqtmcfgfixrateRead",
+        "PqtmcfgfixrateResult",
+        "PqtmcfgfixrateResultAck",
+        "PqtmcfgfixrateResultError",
+    ),
+    "PQTMCFGGEOFENCE": (
+        "Pqtmcfggeofence",
+        "PqtmcfggeofenceRead",
+        "PqtmcfggeofenceResult",
+        "PqtmcfggeofenceResultAck",
+        "PqtmcfggeofenceResultError",
+    ),
+    "PQTMCFGGEOSEP": (
+        "Pqtmcfggeosep",
+        "PqtmcfggeosepRead",
+        "PqtmcfggeosepResult",
+        "PqtmcfggeosepResultAck",
+        "PqtmcfggeosepResultError",
+    ),
+    "PQTMCFGMSGRATE": (
+        "Pqtmcfgmsgrate",
+        "PqtmcfgmsgratePort",
+        "PqtmcfgmsgrateReadPort",
+        "PqtmcfgmsgrateRead",
+        "PqtmcfgmsgrateResult",
+        "PqtmcfgmsgrateResultPort",
+        "PqtmcfgmsgrateResultAck",
+        "PqtmcfgmsgrateResultError",
+    ),
+    "PQTMCFGNMEADP": (
+        "Pqtmcfgnmeadp",
+        "PqtmcfgnmeadpRead",
+        "PqtmcfgnmeadpResult",
+        "PqtmcfgnmeadpResultAck",
+        "PqtmcfgnmeadpResultError",
+    ),
+    "PQTMCFGNMEATID": (
+        "Pqtmcfgnmeatid",
+        "PqtmcfgnmeatidRead",
+        "PqtmcfgnmeatidResult",
+        "PqtmcfgnmeatidResultAck",
+        "PqtmcfgnmeatidResultError",
+    ),
+    "PQTMCFGODO": (
+        "Pqtmcfgodo",
+        "PqtmcfgodoRead",
+        "PqtmcfgodoResult",
+        "PqtmcfgodoResultAck",
+        "PqtmcfgodoResultError",
+    ),
+    "PQTMCFGPPS": (
+        "Pqtmcfgpps",
+        "PqtmcfgppsRead",
+        "PqtmcfgppsResult",
+        "PqtmcfgppsResultAck",
+        "PqtmcfgppsResultError",
+    ),
+    "PQTMCFGPROT": (
+        "Pqtmcfgprot",
+        "PqtmcfgprotRead",
+        "PqtmcfgprotResult",
+        "PqtmcfgprotResultAck",
+        "PqtmcfgprotResultError",
+    ),
+    "PQTMCFGRCVRMODE": (
+        "Pqtmcfgrcvrmode",
+        "PqtmcfgrcvrmodeRead",
+        "PqtmcfgrcvrmodeResult",
+        "PqtmcfgrcvrmodeResultAck",
+        "PqtmcfgrcvrmodeResultError",
+    ),
+    "PQTMCFGRSID": (
+        "Pqtmcfgrsid",
+        "PqtmcfgrsidRead",
+        "PqtmcfgrsidResult",
+        "PqtmcfgrsidResultAck",
+        "PqtmcfgrsidResultError",
+    ),
+    "PQTMCFGRTCM": (
+        "Pqtmcfgrtcm",
+        "PqtmcfgrtcmRead",
+        "PqtmcfgrtcmResult",
+        "PqtmcfgrtcmResultAck",
+        "PqtmcfgrtcmResultError",
+    ),
+    "PQTMCFGRTK": (
+        "Pqtmcfgrtk",
+        "PqtmcfgrtkRead",
+        "PqtmcfgrtkResult",
+        "PqtmcfgrtkResultAck",
+        "PqtmcfgrtkResultError",
+    ),
+    "PQTMCFGRTKSRCTYPE": (
+        "Pqtmcfgrtksrctype",
+        "PqtmcfgrtksrctypeRead",
+        "PqtmcfgrtksrctypeResult",
+        "PqtmcfgrtksrctypeResultAck",
+        "PqtmcfgrtksrctypeResultError",
+    ),
+    "PQTMCFGSAT": (
+        "Pqtmcfgsat",
+        "PqtmcfgsatRead",
+        "PqtmcfgsatResult",
+        "PqtmcfgsatResultAck",
+        "PqtmcfgsatResultError",
+    ),
+    "PQTMCFGSBAS": (
+        "Pqtmcfgsbas",
+        "PqtmcfgsbasRead",
+        "PqtmcfgsbasResult",
+        "PqtmcfgsbasResultAck",
+        "PqtmcfgsbasResultError",
+    ),
+    "PQTMCFGSIGGRP": (
+        "Pqtmcfgsiggrp",
+        "PqtmcfgsiggrpRead",
+        "PqtmcfgsiggrpResult",
+        "PqtmcfgsiggrpResultAck",
+        "PqtmcfgsiggrpResultError",
+    ),
+    "PQTMCFGSIGNAL": (
+        "Pqtmcfgsignal",
+        "PqtmcfgsignalRead",
+        "PqtmcfgsignalResult",
+        "PqtmcfgsignalResultAck",
+        "PqtmcfgsignalResultError",
+    ),
+    "PQTMCFGSIGNAL2": (
+        "Pqtmcfgsignal2",
+        "Pqtmcfgsignal2Read",
+        "Pqtmcfgsignal2Result",
+        "Pqtmcfgsignal2ResultAck",
+        "Pqtmcfgsignal2ResultError",
+    ),
+    "PQTMCFGSVIN": (
+        "Pqtmcfgsvin",
+        "PqtmcfgsvinRead",
+        "PqtmcfgsvinResult",
+        "PqtmcfgsvinResultAck",
+        "PqtmcfgsvinResultError",
+    ),
+    "PQTMCFGUART": (
+        "Pqtmcfguart",
+        "PqtmcfguartCurrentBaud",
+        "PqtmcfguartCurrentFull",
+        "PqtmcfguartPortBaud",
+        "PqtmcfguartRead",
+        "PqtmcfguartResult",
+        "PqtmcfguartResultAck",
+        "PqtmcfguartResultError",
+    ),
+    "PQTMCFGWN": (
+        "Pqtmcfgwn",
+        "PqtmcfgwnRead",
+        "PqtmcfgwnResult",
+        "PqtmcfgwnResultAck",
+        "PqtmcfgwnResultError",
+    ),
+    "PQTMCOLD": ("Pqtmcold",),
+    "PQTMDEBUGOFF": ("PqtmdebugoffResult", "PqtmdebugoffResultError", "Pqtmdebugoff"),
+    "PQTMDEBUGON": ("PqtmdebugonResult", "PqtmdebugonResultError", "Pqtmdebugon"),
+    "PQTMDOP": ("Pqtmdop",),
+    "PQTMEOE": ("Pqtmeoe",),
+    "PQTMEPE": ("Pqtmepe",),
+    "PQTMGEOFENCESTATUS": ("Pqtmgeofencestatus",),
+    "PQTMGNSSSTART": ("PqtmgnssstartResult", "PqtmgnssstartResultError", "Pqtmgnssstart"),
+    "PQTMGNSSSTOP": ("PqtmgnssstopResult", "PqtmgnssstopResultError", "Pqtmgnssstop"),
+    "PQTMHOT": ("Pqtmhot",),
+    "PQTMNAV": ("Pqtmnav",),
+    "PQTMODO": ("Pqtmodo",),
+    "PQTMPL": ("Pqtmpl",),
+    "PQTMPVT": ("Pqtmpvt",),
+    "PQTMRESETODO": ("PqtmresetodoResult", "PqtmresetodoResultError", "Pqtmresetodo"),
+    "PQTMRESTOREPAR": ("PqtmrestoreparResult", "PqtmrestoreparResultError", "Pqtmrestorepar"),
+    "PQTMSAVEPAR": ("PqtmsaveparResult", "PqtmsaveparResultError", "Pqtmsavepar"),
+    "PQTMSN": ("PqtmsnResult", "PqtmsnResultError", "Pqtmsn"),
+    "PQTMSRR": ("Pqtmsrr",),
+    "PQTMSVINSTATUS": ("Pqtmsvinstatus",),
+    "PQTMTAR": ("Pqtmtar",),
+    "PQTMTXT": ("Pqtmtxt",),
+    "PQTMUNIQID": ("PqtmuniqidResult", "PqtmuniqidResultError", "Pqtmuniqid"),
+    "PQTMVEL": ("Pqtmvel",),
+    "PQTMVER": ("Pqtmver", "PqtmverLegacy"),
+    "PQTMVERNO": ("PqtmvernoResultError", "Pqtmverno", "PqtmvernoResult"),
+    "PQTMWARM": ("Pqtmwarm",),
+    "PQVERNO": ("Pqverno", "PqvernoResult"),
+    "PSRF100": ("Psrf100",),
+    "PSRF101": ("Psrf101",),
+    "PSRF102": ("Psrf102",),
+    "PSRF103": ("Psrf103", "Psrf103ShortCodes"),
+    "PSRF104": ("Psrf104",),
+    "PSRF105": ("Psrf105",),
+    "PSRF150": ("Psrf150",),
+    "PSRFEPE": ("Psrfepe",),
+    "PSSN": ("PssnHrp", "PssnRbd", "PssnRbp", "PssnRbv", "PssnTfm"),
+    "PSTI": ("Psti030", "Psti032", "Psti033", "Psti035", "Psti036", "Psti20"),
+    "PSTMAGPS": ("Pstmagps",),
+    "PSTMALMANAC": ("Pstmalmanac",),
+    "PSTMCLRALMS": ("Pstmclralms",),
+    "PSTMCLREPHS": ("Pstmclrephs",),
+    "PSTMCOLD": ("Pstmcold",),
+    "PSTMCORR": ("Pstmcorr",),
+    "PSTMDIFF": ("Pstmdiff",),
+    "PSTMEPH": ("Pstmeph",),
+    "PSTMGETPAR": ("Pstmgetpar",),
+    "PSTMGETPARERROR": ("Pstmgetparerror",),
+    "PSTMGETRTCTIME": ("Pstmgetrtctime", "PstmgetrtctimeReply"),
+    "PSTMGETSWVER": ("Pstmgetswver", "PstmgetswverReply"),
+    "PSTMHOT": ("Pstmhot",),
+    "PSTMKFCOV": ("Pstmkfcov",),
+    "PSTMNMEAONOFF": ("Pstmnmeaonoff",),
+    "PSTMPA": ("Pstmpa",),
+    "PSTMPRES": ("Pstmpres",),
+    "PSTMRES": ("Pstmres",),
+    "PSTMRESTOREPAR": ("Pstmrestorepar",),
+    "PSTMRF": ("Pstmrf",),
+    "PSTMSAT": ("Pstmsat",),
+    "PSTMSAVEPAR": ("Pstmsavepar",),
+    "PSTMSBAS": ("Pstmsbas",),
+    "PSTMSBASCORR": ("Pstmsbascorr",),
+    "PSTMSET": ("Pstmset", "PstmsetDop"),
+    "PSTMSETPAR": ("Pstmsetpar", "PstmsetparDop"),
+    "PSTMSETPARERROR": ("Pstmsetparerror",),
+    "PSTMSETPAROK": ("Pstmsetparok",),
+    "PSTMTESTRF": ("Pstmtestrf",),
+    "PSTMTG": ("Pstmtg",),
+    "PSTMTIM": ("Pstmtim",),
+    "PSTMTS": ("Pstmts",),
+    "PSTMVER": ("Pstmver",),
+    "PSTMVRES": ("Pstmvres",),
+    "PSTMWAAS": ("Pstmwaas",),
+    "PSTMWARM": ("Pstmwarm",),
+    "PTNL": (
+        "PtnlAvr",
+        "PtnlBpq",
+        "PtnlEvt",
+        "PtnlGgk",
+        "PtnlGgkSync",
+        "PtnlPjk",
+        "PtnlPjt",
+        "PtnlVgk",
+        "PtnlVhd",
+    ),
+    "PTNLDG": ("Ptnldg",),
+    "PTNLEV": ("Ptnlev",),
+    "PTNLID": ("Ptnlid",),
+    "PTNLRBA": ("Ptnlrba",),
+    "PTNLRTP": ("Ptnlrtp",),
+    "PTNLRXO": ("Ptnlrxo",),
+    "PTNLSM": ("Ptnlsm",),
+    "PTNTA": ("Ptnta",),
+    "PUBX": (
+        "PubxConfig",
+        "PubxPosition",
+        "PubxPositionPoll",
+        "PubxRate",
+        "PubxSvstatus",
+        "PubxSvstatusPoll",
+        "PubxTime",
+        "PubxTimePoll",
+        "PubxUtm",
+    ),
 }
 _COMMAND_LAYOUTS: dict[str, tuple[str, ...]] = {
-    "LOG": ("ComnavLog", ),
-    "NMEATALKER": ("ComnavNmeatalkerList", "ComnavNmeatalkerReset", "ComnavNmeatalker", ),
+    "LOG": ("ComnavLog",),
+    "NMEATALKER": ("ComnavNmeatalkerList", "ComnavNmeatalkerReset", "ComnavNmeatalker"),
 }
 
 LAYOUTS: dict[str, tuple[Any, ...]] = {}

@@ -75,5 +75,5 @@ class Abm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Abm, )
+LAYOUTS: tuple[Any, ...] = (Abm,)
 """The layouts of ABM, in the order the parser tries them."""

@@ -48,5 +48,5 @@ class Ack(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ack, )
+LAYOUTS: tuple[Any, ...] = (Ack,)
 """The layouts of ACK, in the order the parser tries them."""

@@ -65,5 +65,5 @@ class Acn(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Acn, )
+LAYOUTS: tuple[Any, ...] = (Acn,)
 """The layouts of ACN, in the order the parser tries them."""

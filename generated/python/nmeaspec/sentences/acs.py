@@ -60,5 +60,5 @@ class Acs(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Acs, )
+LAYOUTS: tuple[Any, ...] = (Acs,)
 """The layouts of ACS, in the order the parser tries them."""

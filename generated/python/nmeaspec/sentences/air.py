@@ -86,5 +86,5 @@ class Air(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Air, )
+LAYOUTS: tuple[Any, ...] = (Air,)
 """The layouts of AIR, in the order the parser tries them."""

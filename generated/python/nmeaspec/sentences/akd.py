@@ -69,5 +69,5 @@ class Akd(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Akd, )
+LAYOUTS: tuple[Any, ...] = (Akd,)
 """The layouts of AKD, in the order the parser tries them."""

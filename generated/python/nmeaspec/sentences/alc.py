@@ -82,5 +82,5 @@ class Alc(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Alc, )
+LAYOUTS: tuple[Any, ...] = (Alc,)
 """The layouts of ALC, in the order the parser tries them."""

@@ -53,5 +53,5 @@ class Alk(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Alk, )
+LAYOUTS: tuple[Any, ...] = (Alk,)
 """The layouts of ALK, in the order the parser tries them."""

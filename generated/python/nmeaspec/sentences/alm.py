@@ -93,5 +93,5 @@ class Alm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Alm, )
+LAYOUTS: tuple[Any, ...] = (Alm,)
 """The layouts of ALM, in the order the parser tries them."""

@@ -62,5 +62,5 @@ class Arc(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Arc, )
+LAYOUTS: tuple[Any, ...] = (Arc,)
 """The layouts of ARC, in the order the parser tries them."""

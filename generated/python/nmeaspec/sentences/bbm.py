@@ -70,5 +70,5 @@ class Bbm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Bbm, )
+LAYOUTS: tuple[Any, ...] = (Bbm,)
 """The layouts of BBM, in the order the parser tries them."""

@@ -79,5 +79,5 @@ class Bec(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Bec, )
+LAYOUTS: tuple[Any, ...] = (Bec,)
 """The layouts of BEC, in the order the parser tries them."""

@@ -65,5 +65,5 @@ class Bod(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Bod, )
+LAYOUTS: tuple[Any, ...] = (Bod,)
 """The layouts of BOD, in the order the parser tries them."""

@@ -79,5 +79,5 @@ class Bwc(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Bwc, )
+LAYOUTS: tuple[Any, ...] = (Bwc,)
 """The layouts of BWC, in the order the parser tries them."""

@@ -79,5 +79,5 @@ class Bwr(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Bwr, )
+LAYOUTS: tuple[Any, ...] = (Bwr,)
 """The layouts of BWR, in the order the parser tries them."""

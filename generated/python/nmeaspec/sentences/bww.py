@@ -62,5 +62,5 @@ class Bww(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Bww, )
+LAYOUTS: tuple[Any, ...] = (Bww,)
 """The layouts of BWW, in the order the parser tries them."""

@@ -64,5 +64,5 @@ class Dbk(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Dbk, )
+LAYOUTS: tuple[Any, ...] = (Dbk,)
 """The layouts of DBK, in the order the parser tries them."""

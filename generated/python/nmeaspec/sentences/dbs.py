@@ -64,5 +64,5 @@ class Dbs(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Dbs, )
+LAYOUTS: tuple[Any, ...] = (Dbs,)
 """The layouts of DBS, in the order the parser tries them."""

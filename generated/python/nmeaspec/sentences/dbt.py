@@ -64,5 +64,5 @@ class Dbt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Dbt, )
+LAYOUTS: tuple[Any, ...] = (Dbt,)
 """The layouts of DBT, in the order the parser tries them."""

@@ -58,5 +58,5 @@ class Dpt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Dpt, )
+LAYOUTS: tuple[Any, ...] = (Dpt,)
 """The layouts of DPT, in the order the parser tries them."""

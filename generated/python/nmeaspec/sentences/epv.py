@@ -64,5 +64,5 @@ class Epv(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Epv, )
+LAYOUTS: tuple[Any, ...] = (Epv,)
 """The layouts of EPV, in the order the parser tries them."""

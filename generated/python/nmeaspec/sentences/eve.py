@@ -53,5 +53,5 @@ class Eve(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Eve, )
+LAYOUTS: tuple[Any, ...] = (Eve,)
 """The layouts of EVE, in the order the parser tries them."""

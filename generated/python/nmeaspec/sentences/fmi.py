@@ -87,5 +87,5 @@ class Fmi(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Fmi, )
+LAYOUTS: tuple[Any, ...] = (Fmi,)
 """The layouts of FMI, in the order the parser tries them."""

@@ -59,5 +59,5 @@ class Gen(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Gen, )
+LAYOUTS: tuple[Any, ...] = (Gen,)
 """The layouts of GEN, in the order the parser tries them."""

@@ -49,5 +49,5 @@ class Geos5Jamdet(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Geos5Jamdet, )
+LAYOUTS: tuple[Any, ...] = (Geos5Jamdet,)
 """The layouts of GEOS5_JAMDET, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Geos5NqueryRequest(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "GPSGG"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "NQUERY"
-    REPLIES: ClassVar[tuple[str, ...]] = ("GEOS5_NQUERY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("GEOS5_NQUERY",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("GEOS5_NQUERY", None, ()),
@@ -49,5 +49,5 @@ class Geos5NqueryRequest(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Geos5NqueryRequest, )
+LAYOUTS: tuple[Any, ...] = (Geos5NqueryRequest,)
 """The layouts of GEOS5_NQUERY_REQUEST, in the order the parser tries them."""

@@ -70,5 +70,5 @@ class Geos5Rquery(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Geos5Rquery, )
+LAYOUTS: tuple[Any, ...] = (Geos5Rquery,)
 """The layouts of GEOS5_RQUERY, in the order the parser tries them."""

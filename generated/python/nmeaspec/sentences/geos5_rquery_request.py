@@ -28,7 +28,7 @@ class Geos5RqueryRequest(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "GPSGG"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "RQUERY"
-    REPLIES: ClassVar[tuple[str, ...]] = ("GEOS5_RQUERY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("GEOS5_RQUERY",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("GEOS5_RQUERY", None, ()),
@@ -49,5 +49,5 @@ class Geos5RqueryRequest(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Geos5RqueryRequest, )
+LAYOUTS: tuple[Any, ...] = (Geos5RqueryRequest,)
 """The layouts of GEOS5_RQUERY_REQUEST, in the order the parser tries them."""

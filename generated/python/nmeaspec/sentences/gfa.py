@@ -78,5 +78,5 @@ class Gfa(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Gfa, )
+LAYOUTS: tuple[Any, ...] = (Gfa,)
 """The layouts of GFA, in the order the parser tries them."""

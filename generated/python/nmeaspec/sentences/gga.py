@@ -95,5 +95,5 @@ class Gga(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Gga, )
+LAYOUTS: tuple[Any, ...] = (Gga,)
 """The layouts of GGA, in the order the parser tries them."""

@@ -76,5 +76,5 @@ class Glc(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Glc, )
+LAYOUTS: tuple[Any, ...] = (Glc,)
 """The layouts of GLC, in the order the parser tries them."""

@@ -88,5 +88,5 @@ class Gmp(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Gmp, )
+LAYOUTS: tuple[Any, ...] = (Gmp,)
 """The layouts of GMP, in the order the parser tries them."""

@@ -69,5 +69,5 @@ class Gst(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Gst, )
+LAYOUTS: tuple[Any, ...] = (Gst,)
 """The layouts of GST, in the order the parser tries them."""

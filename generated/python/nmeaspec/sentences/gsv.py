@@ -92,5 +92,5 @@ class Gsv(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Gsv, )
+LAYOUTS: tuple[Any, ...] = (Gsv,)
 """The layouts of GSV, in the order the parser tries them."""

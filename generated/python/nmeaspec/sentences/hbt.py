@@ -56,5 +56,5 @@ class Hbt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hbt, )
+LAYOUTS: tuple[Any, ...] = (Hbt,)
 """The layouts of HBT, in the order the parser tries them."""

@@ -65,5 +65,5 @@ class Hdg(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hdg, )
+LAYOUTS: tuple[Any, ...] = (Hdg,)
 """The layouts of HDG, in the order the parser tries them."""

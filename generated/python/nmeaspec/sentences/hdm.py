@@ -51,5 +51,5 @@ class Hdm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hdm, )
+LAYOUTS: tuple[Any, ...] = (Hdm,)
 """The layouts of HDM, in the order the parser tries them."""

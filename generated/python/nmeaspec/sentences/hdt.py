@@ -46,5 +46,5 @@ class Hdt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hdt, )
+LAYOUTS: tuple[Any, ...] = (Hdt,)
 """The layouts of HDT, in the order the parser tries them."""

@@ -51,5 +51,5 @@ class Hev(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hev, )
+LAYOUTS: tuple[Any, ...] = (Hev,)
 """The layouts of HEV, in the order the parser tries them."""

@@ -50,5 +50,5 @@ class Hms(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hms, )
+LAYOUTS: tuple[Any, ...] = (Hms,)
 """The layouts of HMS, in the order the parser tries them."""

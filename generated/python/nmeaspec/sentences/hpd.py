@@ -99,5 +99,5 @@ class Hpd(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hpd, )
+LAYOUTS: tuple[Any, ...] = (Hpd,)
 """The layouts of HPD, in the order the parser tries them."""

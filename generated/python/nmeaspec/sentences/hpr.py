@@ -70,5 +70,5 @@ class Hpr(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hpr, )
+LAYOUTS: tuple[Any, ...] = (Hpr,)
 """The layouts of HPR, in the order the parser tries them."""

@@ -66,5 +66,5 @@ class Hsc(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hsc, )
+LAYOUTS: tuple[Any, ...] = (Hsc,)
 """The layouts of HSC, in the order the parser tries them."""

@@ -52,5 +52,5 @@ class Hss(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Hss, )
+LAYOUTS: tuple[Any, ...] = (Hss,)
 """The layouts of HSS, in the order the parser tries them."""

@@ -81,5 +81,5 @@ class Llq(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Llq, )
+LAYOUTS: tuple[Any, ...] = (Llq,)
 """The layouts of LLQ, in the order the parser tries them."""

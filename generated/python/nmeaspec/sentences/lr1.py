@@ -59,5 +59,5 @@ class Lr1(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Lr1, )
+LAYOUTS: tuple[Any, ...] = (Lr1,)
 """The layouts of LR1, in the order the parser tries them."""

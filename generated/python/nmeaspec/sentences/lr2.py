@@ -72,5 +72,5 @@ class Lr2(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Lr2, )
+LAYOUTS: tuple[Any, ...] = (Lr2,)
 """The layouts of LR2, in the order the parser tries them."""

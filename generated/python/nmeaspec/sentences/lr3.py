@@ -74,5 +74,5 @@ class Lr3(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Lr3, )
+LAYOUTS: tuple[Any, ...] = (Lr3,)
 """The layouts of LR3, in the order the parser tries them."""

@@ -69,5 +69,5 @@ class Lri(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Lri, )
+LAYOUTS: tuple[Any, ...] = (Lri,)
 """The layouts of LRI, in the order the parser tries them."""

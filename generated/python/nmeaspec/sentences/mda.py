@@ -111,5 +111,5 @@ class Mda(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Mda, )
+LAYOUTS: tuple[Any, ...] = (Mda,)
 """The layouts of MDA, in the order the parser tries them."""

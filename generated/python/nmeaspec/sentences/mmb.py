@@ -57,5 +57,5 @@ class Mmb(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Mmb, )
+LAYOUTS: tuple[Any, ...] = (Mmb,)
 """The layouts of MMB, in the order the parser tries them."""

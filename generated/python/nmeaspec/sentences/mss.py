@@ -61,5 +61,5 @@ class Mss(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Mss, )
+LAYOUTS: tuple[Any, ...] = (Mss,)
 """The layouts of MSS, in the order the parser tries them."""

@@ -49,5 +49,5 @@ class Mta(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Mta, )
+LAYOUTS: tuple[Any, ...] = (Mta,)
 """The layouts of MTA, in the order the parser tries them."""

@@ -50,5 +50,5 @@ class Mtw(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Mtw, )
+LAYOUTS: tuple[Any, ...] = (Mtw,)
 """The layouts of MTW, in the order the parser tries them."""

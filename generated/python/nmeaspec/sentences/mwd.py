@@ -70,5 +70,5 @@ class Mwd(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Mwd, )
+LAYOUTS: tuple[Any, ...] = (Mwd,)
 """The layouts of MWD, in the order the parser tries them."""

@@ -65,5 +65,5 @@ class Nak(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Nak, )
+LAYOUTS: tuple[Any, ...] = (Nak,)
 """The layouts of NAK, in the order the parser tries them."""

@@ -52,5 +52,5 @@ class Pair001(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair001, )
+LAYOUTS: tuple[Any, ...] = (Pair001,)
 """The layouts of PAIR001, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair002(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR002"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 2), )),
@@ -44,5 +44,5 @@ class Pair002(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair002, )
+LAYOUTS: tuple[Any, ...] = (Pair002,)
 """The layouts of PAIR002, in the order the parser tries them."""

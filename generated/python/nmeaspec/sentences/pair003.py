@@ -28,7 +28,7 @@ class Pair003(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR003"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 3), )),
@@ -45,5 +45,5 @@ class Pair003(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair003, )
+LAYOUTS: tuple[Any, ...] = (Pair003,)
 """The layouts of PAIR003, in the order the parser tries them."""

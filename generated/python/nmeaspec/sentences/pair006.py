@@ -27,7 +27,7 @@ class Pair006(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR006"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 6), )),
@@ -44,5 +44,5 @@ class Pair006(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair006, )
+LAYOUTS: tuple[Any, ...] = (Pair006,)
 """The layouts of PAIR006, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair007(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR007"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 7), )),
@@ -44,5 +44,5 @@ class Pair007(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair007, )
+LAYOUTS: tuple[Any, ...] = (Pair007,)
 """The layouts of PAIR007, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair050(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR050"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 50), )),
@@ -47,5 +47,5 @@ class Pair050(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair050, )
+LAYOUTS: tuple[Any, ...] = (Pair050,)
 """The layouts of PAIR050, in the order the parser tries them."""

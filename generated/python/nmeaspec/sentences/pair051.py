@@ -27,7 +27,7 @@ class Pair051(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR051"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR051_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR051_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 51), )),
@@ -45,5 +45,5 @@ class Pair051(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair051, )
+LAYOUTS: tuple[Any, ...] = (Pair051,)
 """The layouts of PAIR051, in the order the parser tries them."""

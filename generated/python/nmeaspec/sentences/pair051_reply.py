@@ -43,5 +43,5 @@ class Pair051Reply(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair051Reply, )
+LAYOUTS: tuple[Any, ...] = (Pair051Reply,)
 """The layouts of PAIR051_REPLY, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair059(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR059"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR059_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR059_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 59), )),
@@ -45,5 +45,5 @@ class Pair059(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair059, )
+LAYOUTS: tuple[Any, ...] = (Pair059,)
 """The layouts of PAIR059, in the order the parser tries them."""

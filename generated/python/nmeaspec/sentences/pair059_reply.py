@@ -43,5 +43,5 @@ class Pair059Reply(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair059Reply, )
+LAYOUTS: tuple[Any, ...] = (Pair059Reply,)
 """The layouts of PAIR059_REPLY, in the order the parser tries them."""

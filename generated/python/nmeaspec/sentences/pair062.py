@@ -29,7 +29,7 @@ class Pair062(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR062"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 62), )),
@@ -52,5 +52,5 @@ class Pair062(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair062, )
+LAYOUTS: tuple[Any, ...] = (Pair062,)
 """The layouts of PAIR062, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pair063(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR063"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR063_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR063_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 63), )),
@@ -49,5 +49,5 @@ class Pair063(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair063, )
+LAYOUTS: tuple[Any, ...] = (Pair063,)
 """The layouts of PAIR063, in the order the parser tries them."""

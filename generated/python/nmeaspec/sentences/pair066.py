@@ -29,7 +29,7 @@ class Pair066(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR066"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 66), )),
@@ -64,5 +64,5 @@ class Pair066(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair066, )
+LAYOUTS: tuple[Any, ...] = (Pair066,)
 """The layouts of PAIR066, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair067(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR067"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR067_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR067_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 67), )),
@@ -45,5 +45,5 @@ class Pair067(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair067, )
+LAYOUTS: tuple[Any, ...] = (Pair067,)
 """The layouts of PAIR067, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pair070(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR070"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 70), )),
@@ -48,5 +48,5 @@ class Pair070(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair070, )
+LAYOUTS: tuple[Any, ...] = (Pair070,)
 """The layouts of PAIR070, in the order the parser tries them."""

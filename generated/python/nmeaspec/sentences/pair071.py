@@ -27,7 +27,7 @@ class Pair071(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR071"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR071_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR071_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 71), )),
@@ -45,5 +45,5 @@ class Pair071(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair071, )
+LAYOUTS: tuple[Any, ...] = (Pair071,)
 """The layouts of PAIR071, in the order the parser tries them."""

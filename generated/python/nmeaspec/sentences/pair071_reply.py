@@ -43,5 +43,5 @@ class Pair071Reply(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair071Reply, )
+LAYOUTS: tuple[Any, ...] = (Pair071Reply,)
 """The layouts of PAIR071_REPLY, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair072(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR072"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 72), )),
@@ -47,5 +47,5 @@ class Pair072(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair072, )
+LAYOUTS: tuple[Any, ...] = (Pair072,)
 """The layouts of PAIR072, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair073(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR073"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR073_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR073_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 73), )),
@@ -45,5 +45,5 @@ class Pair073(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair073, )
+LAYOUTS: tuple[Any, ...] = (Pair073,)
 """The layouts of PAIR073, in the order the parser tries them."""

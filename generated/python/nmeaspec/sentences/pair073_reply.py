@@ -43,5 +43,5 @@ class Pair073Reply(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair073Reply, )
+LAYOUTS: tuple[Any, ...] = (Pair073Reply,)
 """The layouts of PAIR073_REPLY, in the order the parser tries them."""

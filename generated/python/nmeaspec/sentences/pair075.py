@@ -27,7 +27,7 @@ class Pair075(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR075"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR075_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR075_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 75), )),
@@ -45,5 +45,5 @@ class Pair075(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair075, )
+LAYOUTS: tuple[Any, ...] = (Pair075,)
 """The layouts of PAIR075, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair081(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR081"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR081_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR081_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 81), )),
@@ -45,5 +45,5 @@ class Pair081(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair081, )
+LAYOUTS: tuple[Any, ...] = (Pair081,)
 """The layouts of PAIR081, in the order the parser tries them."""

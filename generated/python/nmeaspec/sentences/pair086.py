@@ -28,7 +28,7 @@ class Pair086(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR086"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 86), )),
@@ -48,5 +48,5 @@ class Pair086(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair086, )
+LAYOUTS: tuple[Any, ...] = (Pair086,)
 """The layouts of PAIR086, in the order the parser tries them."""

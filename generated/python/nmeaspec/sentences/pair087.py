@@ -27,7 +27,7 @@ class Pair087(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR087"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR087_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR087_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 87), )),
@@ -45,5 +45,5 @@ class Pair087(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair087, )
+LAYOUTS: tuple[Any, ...] = (Pair087,)
 """The layouts of PAIR087, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair099(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR099"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR099_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR099_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 99), )),
@@ -45,5 +45,5 @@ class Pair099(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair099, )
+LAYOUTS: tuple[Any, ...] = (Pair099,)
 """The layouts of PAIR099, in the order the parser tries them."""

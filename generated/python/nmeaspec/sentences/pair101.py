@@ -27,7 +27,7 @@ class Pair101(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR101"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR101_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR101_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 101), )),
@@ -45,5 +45,5 @@ class Pair101(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair101, )
+LAYOUTS: tuple[Any, ...] = (Pair101,)
 """The layouts of PAIR101, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair105(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR105"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR105_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR105_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 105), )),
@@ -45,5 +45,5 @@ class Pair105(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair105, )
+LAYOUTS: tuple[Any, ...] = (Pair105,)
 """The layouts of PAIR105, in the order the parser tries them."""

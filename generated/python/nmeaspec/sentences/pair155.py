@@ -27,7 +27,7 @@ class Pair155(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR155"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR155_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR155_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 155), )),
@@ -45,5 +45,5 @@ class Pair155(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair155, )
+LAYOUTS: tuple[Any, ...] = (Pair155,)
 """The layouts of PAIR155, in the order the parser tries them."""

@@ -29,7 +29,7 @@ class Pair391(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR391"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIRSPF", "PAIRSPF5", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIRSPF", "PAIRSPF5")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 391), )),
@@ -51,5 +51,5 @@ class Pair391(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair391, )
+LAYOUTS: tuple[Any, ...] = (Pair391,)
 """The layouts of PAIR391, in the order the parser tries them."""

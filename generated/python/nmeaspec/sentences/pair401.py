@@ -27,7 +27,7 @@ class Pair401(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR401"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR401_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR401_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 401), )),
@@ -45,5 +45,5 @@ class Pair401(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair401, )
+LAYOUTS: tuple[Any, ...] = (Pair401,)
 """The layouts of PAIR401, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair411(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR411"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR411_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR411_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 411), )),
@@ -45,5 +45,5 @@ class Pair411(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair411, )
+LAYOUTS: tuple[Any, ...] = (Pair411,)
 """The layouts of PAIR411, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pair420(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR420"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 420), )),
@@ -48,5 +48,5 @@ class Pair420(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair420, )
+LAYOUTS: tuple[Any, ...] = (Pair420,)
 """The layouts of PAIR420, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair421(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR421"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR421_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR421_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 421), )),
@@ -45,5 +45,5 @@ class Pair421(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair421, )
+LAYOUTS: tuple[Any, ...] = (Pair421,)
 """The layouts of PAIR421, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair433(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR433"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR433_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR433_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 433), )),
@@ -45,5 +45,5 @@ class Pair433(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair433, )
+LAYOUTS: tuple[Any, ...] = (Pair433,)
 """The layouts of PAIR433, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pair434(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR434"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 434), )),
@@ -48,5 +48,5 @@ class Pair434(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair434, )
+LAYOUTS: tuple[Any, ...] = (Pair434,)
 """The layouts of PAIR434, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair435(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR435"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR435_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR435_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 435), )),
@@ -45,5 +45,5 @@ class Pair435(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair435, )
+LAYOUTS: tuple[Any, ...] = (Pair435,)
 """The layouts of PAIR435, in the order the parser tries them."""

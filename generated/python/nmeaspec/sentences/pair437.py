@@ -27,7 +27,7 @@ class Pair437(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR437"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR437_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR437_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 437), )),
@@ -45,5 +45,5 @@ class Pair437(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair437, )
+LAYOUTS: tuple[Any, ...] = (Pair437,)
 """The layouts of PAIR437, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair491(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR491"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR491_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR491_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 491), )),
@@ -45,5 +45,5 @@ class Pair491(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair491, )
+LAYOUTS: tuple[Any, ...] = (Pair491,)
 """The layouts of PAIR491, in the order the parser tries them."""

@@ -29,7 +29,7 @@ class Pair650(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR650"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 650), )),
@@ -50,5 +50,5 @@ class Pair650(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair650, )
+LAYOUTS: tuple[Any, ...] = (Pair650,)
 """The layouts of PAIR650, in the order the parser tries them."""

@@ -29,7 +29,7 @@ class Pair680(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR680"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 680), )),
@@ -49,5 +49,5 @@ class Pair680(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair680, )
+LAYOUTS: tuple[Any, ...] = (Pair680,)
 """The layouts of PAIR680, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair681(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR681"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR681_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR681_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 681), )),
@@ -45,5 +45,5 @@ class Pair681(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair681, )
+LAYOUTS: tuple[Any, ...] = (Pair681,)
 """The layouts of PAIR681, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair691(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR691"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR691_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR691_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 691), )),
@@ -45,5 +45,5 @@ class Pair691(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair691, )
+LAYOUTS: tuple[Any, ...] = (Pair691,)
 """The layouts of PAIR691, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair731(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR731"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR731_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR731_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 731), )),
@@ -45,5 +45,5 @@ class Pair731(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair731, )
+LAYOUTS: tuple[Any, ...] = (Pair731,)
 """The layouts of PAIR731, in the order the parser tries them."""

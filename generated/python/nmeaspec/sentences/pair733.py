@@ -27,7 +27,7 @@ class Pair733(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR733"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR733_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR733_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 733), )),
@@ -45,5 +45,5 @@ class Pair733(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair733, )
+LAYOUTS: tuple[Any, ...] = (Pair733,)
 """The layouts of PAIR733, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pair864(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR864"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 864), )),
@@ -58,5 +58,5 @@ class Pair864(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair864, )
+LAYOUTS: tuple[Any, ...] = (Pair864,)
 """The layouts of PAIR864, in the order the parser tries them."""

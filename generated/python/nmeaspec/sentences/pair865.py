@@ -27,7 +27,7 @@ class Pair865(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR865"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR865_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR865_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 865), )),
@@ -51,5 +51,5 @@ class Pair865(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair865, )
+LAYOUTS: tuple[Any, ...] = (Pair865,)
 """The layouts of PAIR865, in the order the parser tries them."""

@@ -48,5 +48,5 @@ class Pair865Reply(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair865Reply, )
+LAYOUTS: tuple[Any, ...] = (Pair865Reply,)
 """The layouts of PAIR865_REPLY, in the order the parser tries them."""

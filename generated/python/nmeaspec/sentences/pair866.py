@@ -27,7 +27,7 @@ class Pair866(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR866"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 866), )),
@@ -54,5 +54,5 @@ class Pair866(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair866, )
+LAYOUTS: tuple[Any, ...] = (Pair866,)
 """The layouts of PAIR866, in the order the parser tries them."""

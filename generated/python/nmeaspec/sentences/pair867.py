@@ -27,7 +27,7 @@ class Pair867(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR867"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR867_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR867_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 867), )),
@@ -51,5 +51,5 @@ class Pair867(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair867, )
+LAYOUTS: tuple[Any, ...] = (Pair867,)
 """The layouts of PAIR867, in the order the parser tries them."""

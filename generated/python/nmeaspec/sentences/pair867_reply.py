@@ -44,5 +44,5 @@ class Pair867Reply(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair867Reply, )
+LAYOUTS: tuple[Any, ...] = (Pair867Reply,)
 """The layouts of PAIR867_REPLY, in the order the parser tries them."""

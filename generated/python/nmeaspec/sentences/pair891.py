@@ -27,7 +27,7 @@ class Pair891(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR891"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR891_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR891_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 891), )),
@@ -45,5 +45,5 @@ class Pair891(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair891, )
+LAYOUTS: tuple[Any, ...] = (Pair891,)
 """The layouts of PAIR891, in the order the parser tries them."""

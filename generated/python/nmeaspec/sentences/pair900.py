@@ -29,7 +29,7 @@ class Pair900(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR900"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 900), )),
@@ -49,5 +49,5 @@ class Pair900(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair900, )
+LAYOUTS: tuple[Any, ...] = (Pair900,)
 """The layouts of PAIR900, in the order the parser tries them."""

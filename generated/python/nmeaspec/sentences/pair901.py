@@ -27,7 +27,7 @@ class Pair901(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR901"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR901_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR901_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 901), )),
@@ -45,5 +45,5 @@ class Pair901(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair901, )
+LAYOUTS: tuple[Any, ...] = (Pair901,)
 """The layouts of PAIR901, in the order the parser tries them."""

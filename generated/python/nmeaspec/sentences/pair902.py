@@ -28,7 +28,7 @@ class Pair902(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR902"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 902), )),
@@ -51,5 +51,5 @@ class Pair902(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair902, )
+LAYOUTS: tuple[Any, ...] = (Pair902,)
 """The layouts of PAIR902, in the order the parser tries them."""

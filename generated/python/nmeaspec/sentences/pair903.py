@@ -27,7 +27,7 @@ class Pair903(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR903"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR903_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR903_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 903), )),
@@ -45,5 +45,5 @@ class Pair903(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair903, )
+LAYOUTS: tuple[Any, ...] = (Pair903,)
 """The layouts of PAIR903, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair907(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR907"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 907), )),
@@ -44,5 +44,5 @@ class Pair907(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair907, )
+LAYOUTS: tuple[Any, ...] = (Pair907,)
 """The layouts of PAIR907, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pair909(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PAIR909"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR909_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PAIR001", "PAIR909_REPLY")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PAIR001", None, (("command", "integer", 909), )),
@@ -45,5 +45,5 @@ class Pair909(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair909, )
+LAYOUTS: tuple[Any, ...] = (Pair909,)
 """The layouts of PAIR909, in the order the parser tries them."""

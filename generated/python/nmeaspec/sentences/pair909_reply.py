@@ -43,5 +43,5 @@ class Pair909Reply(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pair909Reply, )
+LAYOUTS: tuple[Any, ...] = (Pair909Reply,)
 """The layouts of PAIR909_REPLY, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class PashqAtt(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHQ"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "ATT"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_ATT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_ATT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PASHR_ATT", None, ()),
@@ -47,5 +47,5 @@ class PashqAtt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashqAtt, )
+LAYOUTS: tuple[Any, ...] = (PashqAtt,)
 """The layouts of PASHQ_ATT, in the order the parser tries them."""

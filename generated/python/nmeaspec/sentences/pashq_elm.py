@@ -27,7 +27,7 @@ class PashqElm(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHQ"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "ELM"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_ELM", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_ELM",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PASHR_ELM", None, ()),
@@ -47,5 +47,5 @@ class PashqElm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashqElm, )
+LAYOUTS: tuple[Any, ...] = (PashqElm,)
 """The layouts of PASHQ_ELM, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class PashqNmo(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHQ"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "NMO"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_NMO", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_NMO",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PASHR_NMO", None, ()),
@@ -55,5 +55,5 @@ class PashqNmo(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashqNmo, )
+LAYOUTS: tuple[Any, ...] = (PashqNmo,)
 """The layouts of PASHQ_NMO, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class PashqPem(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHQ"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "PEM"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_PEM", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_PEM",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PASHR_PEM", None, ()),
@@ -47,5 +47,5 @@ class PashqPem(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashqPem, )
+LAYOUTS: tuple[Any, ...] = (PashqPem,)
 """The layouts of PASHQ_PEM, in the order the parser tries them."""

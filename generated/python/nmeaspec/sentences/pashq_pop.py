@@ -27,7 +27,7 @@ class PashqPop(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHQ"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "POP"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_POP", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_POP",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PASHR_POP", None, ()),
@@ -47,5 +47,5 @@ class PashqPop(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashqPop, )
+LAYOUTS: tuple[Any, ...] = (PashqPop,)
 """The layouts of PASHQ_POP, in the order the parser tries them."""

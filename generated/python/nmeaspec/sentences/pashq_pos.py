@@ -28,7 +28,7 @@ class PashqPos(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHQ"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "POS"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_POS", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_POS",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PASHR_POS", None, ()),
@@ -57,5 +57,5 @@ class PashqPos(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashqPos, )
+LAYOUTS: tuple[Any, ...] = (PashqPos,)
 """The layouts of PASHQ_POS, in the order the parser tries them."""

@@ -29,7 +29,7 @@ class PashqPtt(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHQ"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "PTT"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_PTT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_PTT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PASHR_PTT", None, ()),
@@ -58,5 +58,5 @@ class PashqPtt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashqPtt, )
+LAYOUTS: tuple[Any, ...] = (PashqPtt,)
 """The layouts of PASHQ_PTT, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class PashqSat(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHQ"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "SAT"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_SAT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_SAT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PASHR_SAT", None, ()),
@@ -57,5 +57,5 @@ class PashqSat(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashqSat, )
+LAYOUTS: tuple[Any, ...] = (PashqSat,)
 """The layouts of PASHQ_SAT, in the order the parser tries them."""

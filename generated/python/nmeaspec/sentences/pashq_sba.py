@@ -27,7 +27,7 @@ class PashqSba(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHQ"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "SBA"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_SBA", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PASHR_SBA",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PASHR_SBA", None, ()),
@@ -47,5 +47,5 @@ class PashqSba(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashqSba, )
+LAYOUTS: tuple[Any, ...] = (PashqSba,)
 """The layouts of PASHQ_SBA, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class PashrAck(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrAck, )
+LAYOUTS: tuple[Any, ...] = (PashrAck,)
 """The layouts of PASHR_ACK, in the order the parser tries them."""

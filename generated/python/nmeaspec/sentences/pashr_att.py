@@ -69,5 +69,5 @@ class PashrAtt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrAtt, )
+LAYOUTS: tuple[Any, ...] = (PashrAtt,)
 """The layouts of PASHR_ATT, in the order the parser tries them."""

@@ -47,5 +47,5 @@ class PashrElm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrElm, )
+LAYOUTS: tuple[Any, ...] = (PashrElm,)
 """The layouts of PASHR_ELM, in the order the parser tries them."""

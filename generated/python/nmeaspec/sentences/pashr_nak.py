@@ -46,5 +46,5 @@ class PashrNak(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrNak, )
+LAYOUTS: tuple[Any, ...] = (PashrNak,)
 """The layouts of PASHR_NAK, in the order the parser tries them."""

@@ -80,5 +80,5 @@ class PashrNmo(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrNmo, )
+LAYOUTS: tuple[Any, ...] = (PashrNmo,)
 """The layouts of PASHR_NMO, in the order the parser tries them."""

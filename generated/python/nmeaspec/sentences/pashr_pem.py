@@ -47,5 +47,5 @@ class PashrPem(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrPem, )
+LAYOUTS: tuple[Any, ...] = (PashrPem,)
 """The layouts of PASHR_PEM, in the order the parser tries them."""

@@ -46,5 +46,5 @@ class PashrPop(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrPop, )
+LAYOUTS: tuple[Any, ...] = (PashrPop,)
 """The layouts of PASHR_POP, in the order the parser tries them."""

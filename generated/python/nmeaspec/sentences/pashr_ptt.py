@@ -51,5 +51,5 @@ class PashrPtt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrPtt, )
+LAYOUTS: tuple[Any, ...] = (PashrPtt,)
 """The layouts of PASHR_PTT, in the order the parser tries them."""

@@ -78,5 +78,5 @@ class PashrSat(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrSat, )
+LAYOUTS: tuple[Any, ...] = (PashrSat,)
 """The layouts of PASHR_SAT, in the order the parser tries them."""

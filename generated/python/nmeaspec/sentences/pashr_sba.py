@@ -48,5 +48,5 @@ class PashrSba(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrSba, )
+LAYOUTS: tuple[Any, ...] = (PashrSba,)
 """The layouts of PASHR_SBA, in the order the parser tries them."""

@@ -51,5 +51,5 @@ class PashrTtt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PashrTtt, )
+LAYOUTS: tuple[Any, ...] = (PashrTtt,)
 """The layouts of PASHR_TTT, in the order the parser tries them."""

@@ -50,5 +50,5 @@ class PfecGpatt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PfecGpatt, )
+LAYOUTS: tuple[Any, ...] = (PfecGpatt,)
 """The layouts of PFEC_GPATT, in the order the parser tries them."""

@@ -47,5 +47,5 @@ class PfecGphve(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PfecGphve, )
+LAYOUTS: tuple[Any, ...] = (PfecGphve,)
 """The layouts of PFEC_GPHVE, in the order the parser tries them."""

@@ -51,5 +51,5 @@ class PfecGprtc(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PfecGprtc, )
+LAYOUTS: tuple[Any, ...] = (PfecGprtc,)
 """The layouts of PFEC_GPRTC, in the order the parser tries them."""

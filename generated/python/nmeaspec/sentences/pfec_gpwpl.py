@@ -74,5 +74,5 @@ class PfecGpwpl(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PfecGpwpl, )
+LAYOUTS: tuple[Any, ...] = (PfecGpwpl,)
 """The layouts of PFEC_GPWPL, in the order the parser tries them."""

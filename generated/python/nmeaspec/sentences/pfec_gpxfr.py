@@ -50,5 +50,5 @@ class PfecGpxfr(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PfecGpxfr, )
+LAYOUTS: tuple[Any, ...] = (PfecGpxfr,)
 """The layouts of PFEC_GPXFR, in the order the parser tries them."""

@@ -55,5 +55,5 @@ class PglorFix(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PglorFix, )
+LAYOUTS: tuple[Any, ...] = (PglorFix,)
 """The layouts of PGLOR_FIX, in the order the parser tries them."""

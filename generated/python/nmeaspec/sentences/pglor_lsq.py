@@ -100,5 +100,5 @@ class PglorLsq(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PglorLsq, )
+LAYOUTS: tuple[Any, ...] = (PglorLsq,)
 """The layouts of PGLOR_LSQ, in the order the parser tries them."""

@@ -230,5 +230,5 @@ class PglorPwrV4(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PglorPwr, PglorPwrV2, PglorPwrV4, )
+LAYOUTS: tuple[Any, ...] = (PglorPwr, PglorPwrV2, PglorPwrV4)
 """The layouts of PGLOR_PWR, in the order the parser tries them."""

@@ -182,5 +182,5 @@ class PglorSatV0(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PglorSat, PglorSatV1, PglorSatV0, )
+LAYOUTS: tuple[Any, ...] = (PglorSat, PglorSatV1, PglorSatV0)
 """The layouts of PGLOR_SAT, in the order the parser tries them."""

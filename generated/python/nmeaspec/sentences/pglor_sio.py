@@ -194,5 +194,5 @@ class PglorSioV0(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PglorSio, PglorSioV0, )
+LAYOUTS: tuple[Any, ...] = (PglorSio, PglorSioV0)
 """The layouts of PGLOR_SIO, in the order the parser tries them."""

@@ -79,5 +79,5 @@ class PglorUnc(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PglorUnc, )
+LAYOUTS: tuple[Any, ...] = (PglorUnc,)
 """The layouts of PGLOR_UNC, in the order the parser tries them."""

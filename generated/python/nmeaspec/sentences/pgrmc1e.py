@@ -28,7 +28,7 @@ class Pgrmc1e(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PGRMC1E"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PGRMC1", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PGRMC1",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PGRMC1", None, ()),
@@ -45,5 +45,5 @@ class Pgrmc1e(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pgrmc1e, )
+LAYOUTS: tuple[Any, ...] = (Pgrmc1e,)
 """The layouts of PGRMC1E, in the order the parser tries them."""

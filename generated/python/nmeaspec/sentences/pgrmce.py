@@ -28,7 +28,7 @@ class Pgrmce(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PGRMCE"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PGRMC", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PGRMC",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PGRMC", None, ()),
@@ -45,5 +45,5 @@ class Pgrmce(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pgrmce, )
+LAYOUTS: tuple[Any, ...] = (Pgrmce,)
 """The layouts of PGRMCE, in the order the parser tries them."""

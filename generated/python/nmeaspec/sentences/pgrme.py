@@ -61,5 +61,5 @@ class Pgrme(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pgrme, )
+LAYOUTS: tuple[Any, ...] = (Pgrme,)
 """The layouts of PGRME, in the order the parser tries them."""

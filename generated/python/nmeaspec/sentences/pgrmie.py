@@ -28,7 +28,7 @@ class Pgrmie(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PGRMIE"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PGRMI", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PGRMI",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PGRMI", None, ()),
@@ -45,5 +45,5 @@ class Pgrmie(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pgrmie, )
+LAYOUTS: tuple[Any, ...] = (Pgrmie,)
 """The layouts of PGRMIE, in the order the parser tries them."""

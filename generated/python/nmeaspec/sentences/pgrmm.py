@@ -45,5 +45,5 @@ class Pgrmm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pgrmm, )
+LAYOUTS: tuple[Any, ...] = (Pgrmm,)
 """The layouts of PGRMM, in the order the parser tries them."""

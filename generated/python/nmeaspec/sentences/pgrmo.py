@@ -51,5 +51,5 @@ class Pgrmo(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pgrmo, )
+LAYOUTS: tuple[Any, ...] = (Pgrmo,)
 """The layouts of PGRMO, in the order the parser tries them."""

@@ -65,5 +65,5 @@ class Pgrmv(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pgrmv, )
+LAYOUTS: tuple[Any, ...] = (Pgrmv,)
 """The layouts of PGRMV, in the order the parser tries them."""

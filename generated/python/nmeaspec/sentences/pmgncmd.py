@@ -29,7 +29,7 @@ class Pmgncmd(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMGNCMD"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMGNWPL", "PMGNTRK", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMGNWPL", "PMGNTRK")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMGNWPL", None, ()),
@@ -54,5 +54,5 @@ class Pmgncmd(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmgncmd, )
+LAYOUTS: tuple[Any, ...] = (Pmgncmd,)
 """The layouts of PMGNCMD, in the order the parser tries them."""

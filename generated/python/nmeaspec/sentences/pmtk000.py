@@ -27,7 +27,7 @@ class Pmtk000(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK000"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 0), )),
@@ -45,5 +45,5 @@ class Pmtk000(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk000, )
+LAYOUTS: tuple[Any, ...] = (Pmtk000,)
 """The layouts of PMTK000, in the order the parser tries them."""

@@ -99,5 +99,5 @@ class Pmtk001SvMask(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk001, Pmtk001SvMask, )
+LAYOUTS: tuple[Any, ...] = (Pmtk001, Pmtk001SvMask)
 """The layouts of PMTK001, in the order the parser tries them."""

@@ -44,5 +44,5 @@ class Pmtk011(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk011, )
+LAYOUTS: tuple[Any, ...] = (Pmtk011,)
 """The layouts of PMTK011, in the order the parser tries them."""

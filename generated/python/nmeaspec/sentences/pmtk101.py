@@ -29,7 +29,7 @@ class Pmtk101(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK101"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK010", "PMTK011", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK010", "PMTK011")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK010", None, ()),
@@ -47,5 +47,5 @@ class Pmtk101(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk101, )
+LAYOUTS: tuple[Any, ...] = (Pmtk101,)
 """The layouts of PMTK101, in the order the parser tries them."""

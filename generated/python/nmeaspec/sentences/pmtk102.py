@@ -28,7 +28,7 @@ class Pmtk102(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK102"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK010", "PMTK011", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK010", "PMTK011")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK010", None, ()),
@@ -46,5 +46,5 @@ class Pmtk102(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk102, )
+LAYOUTS: tuple[Any, ...] = (Pmtk102,)
 """The layouts of PMTK102, in the order the parser tries them."""

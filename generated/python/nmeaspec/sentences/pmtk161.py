@@ -30,7 +30,7 @@ class Pmtk161(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK161"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 161), )),
@@ -52,5 +52,5 @@ class Pmtk161(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk161, )
+LAYOUTS: tuple[Any, ...] = (Pmtk161,)
 """The layouts of PMTK161, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pmtk183(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK183"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTKLOG", "PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTKLOG", "PMTK001")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTKLOG", None, ()),
@@ -47,5 +47,5 @@ class Pmtk183(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk183, )
+LAYOUTS: tuple[Any, ...] = (Pmtk183,)
 """The layouts of PMTK183, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pmtk184(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK184"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 184), )),
@@ -48,5 +48,5 @@ class Pmtk184(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk184, )
+LAYOUTS: tuple[Any, ...] = (Pmtk184,)
 """The layouts of PMTK184, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pmtk185(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK185"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 185), )),
@@ -49,5 +49,5 @@ class Pmtk185(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk185, )
+LAYOUTS: tuple[Any, ...] = (Pmtk185,)
 """The layouts of PMTK185, in the order the parser tries them."""

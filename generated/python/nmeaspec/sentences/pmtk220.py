@@ -30,7 +30,7 @@ class Pmtk220(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK220"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 220), )),
@@ -51,5 +51,5 @@ class Pmtk220(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk220, )
+LAYOUTS: tuple[Any, ...] = (Pmtk220,)
 """The layouts of PMTK220, in the order the parser tries them."""

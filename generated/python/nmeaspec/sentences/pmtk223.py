@@ -28,7 +28,7 @@ class Pmtk223(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK223"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 223), )),
@@ -61,5 +61,5 @@ class Pmtk223(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk223, )
+LAYOUTS: tuple[Any, ...] = (Pmtk223,)
 """The layouts of PMTK223, in the order the parser tries them."""

@@ -30,7 +30,7 @@ class Pmtk225(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK225"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 225), )),
@@ -79,5 +79,5 @@ class Pmtk225(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk225, )
+LAYOUTS: tuple[Any, ...] = (Pmtk225,)
 """The layouts of PMTK225, in the order the parser tries them."""

@@ -47,5 +47,5 @@ class Pmtk251(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk251, )
+LAYOUTS: tuple[Any, ...] = (Pmtk251,)
 """The layouts of PMTK251, in the order the parser tries them."""

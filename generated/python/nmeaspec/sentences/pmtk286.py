@@ -29,7 +29,7 @@ class Pmtk286(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK286"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 286), )),
@@ -50,5 +50,5 @@ class Pmtk286(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk286, )
+LAYOUTS: tuple[Any, ...] = (Pmtk286,)
 """The layouts of PMTK286, in the order the parser tries them."""

@@ -29,7 +29,7 @@ class Pmtk300(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK300"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 300), )),
@@ -62,5 +62,5 @@ class Pmtk300(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk300, )
+LAYOUTS: tuple[Any, ...] = (Pmtk300,)
 """The layouts of PMTK300, in the order the parser tries them."""

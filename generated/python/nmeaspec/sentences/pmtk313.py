@@ -29,7 +29,7 @@ class Pmtk313(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK313"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 313), )),
@@ -50,5 +50,5 @@ class Pmtk313(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk313, )
+LAYOUTS: tuple[Any, ...] = (Pmtk313,)
 """The layouts of PMTK313, in the order the parser tries them."""

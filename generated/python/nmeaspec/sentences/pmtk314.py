@@ -30,7 +30,7 @@ class Pmtk314(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK314"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 314), )),
@@ -140,7 +140,7 @@ class Pmtk314RestoreDefault(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK314"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "-1"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 314), )),
@@ -161,5 +161,5 @@ class Pmtk314RestoreDefault(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk314, Pmtk314RestoreDefault, )
+LAYOUTS: tuple[Any, ...] = (Pmtk314, Pmtk314RestoreDefault)
 """The layouts of PMTK314, in the order the parser tries them."""

@@ -29,7 +29,7 @@ class Pmtk319(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK319"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 319), )),
@@ -50,5 +50,5 @@ class Pmtk319(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk319, )
+LAYOUTS: tuple[Any, ...] = (Pmtk319,)
 """The layouts of PMTK319, in the order the parser tries them."""

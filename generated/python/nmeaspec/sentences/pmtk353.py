@@ -29,7 +29,7 @@ class Pmtk353(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK353"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 353), )),
@@ -62,5 +62,5 @@ class Pmtk353(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk353, )
+LAYOUTS: tuple[Any, ...] = (Pmtk353,)
 """The layouts of PMTK353, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pmtk400(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK400"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK500", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK500",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK500", None, ()),
@@ -44,5 +44,5 @@ class Pmtk400(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk400, )
+LAYOUTS: tuple[Any, ...] = (Pmtk400,)
 """The layouts of PMTK400, in the order the parser tries them."""

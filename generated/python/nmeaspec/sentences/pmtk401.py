@@ -27,7 +27,7 @@ class Pmtk401(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK401"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK501", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK501",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK501", None, ()),
@@ -44,5 +44,5 @@ class Pmtk401(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk401, )
+LAYOUTS: tuple[Any, ...] = (Pmtk401,)
 """The layouts of PMTK401, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pmtk413(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK413"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK513", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK513",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK513", None, ()),
@@ -44,5 +44,5 @@ class Pmtk413(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk413, )
+LAYOUTS: tuple[Any, ...] = (Pmtk413,)
 """The layouts of PMTK413, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pmtk414(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK414"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK514", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK514",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK514", None, ()),
@@ -44,5 +44,5 @@ class Pmtk414(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk414, )
+LAYOUTS: tuple[Any, ...] = (Pmtk414,)
 """The layouts of PMTK414, in the order the parser tries them."""

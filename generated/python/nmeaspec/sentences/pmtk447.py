@@ -27,7 +27,7 @@ class Pmtk447(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK447"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK527", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK527",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK527", None, ()),
@@ -44,5 +44,5 @@ class Pmtk447(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk447, )
+LAYOUTS: tuple[Any, ...] = (Pmtk447,)
 """The layouts of PMTK447, in the order the parser tries them."""

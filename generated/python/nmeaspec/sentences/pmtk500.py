@@ -55,5 +55,5 @@ class Pmtk500(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk500, )
+LAYOUTS: tuple[Any, ...] = (Pmtk500,)
 """The layouts of PMTK500, in the order the parser tries them."""

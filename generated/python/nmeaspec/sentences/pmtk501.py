@@ -44,5 +44,5 @@ class Pmtk501(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk501, )
+LAYOUTS: tuple[Any, ...] = (Pmtk501,)
 """The layouts of PMTK501, in the order the parser tries them."""

@@ -44,5 +44,5 @@ class Pmtk513(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk513, )
+LAYOUTS: tuple[Any, ...] = (Pmtk513,)
 """The layouts of PMTK513, in the order the parser tries them."""

@@ -115,5 +115,5 @@ class Pmtk514(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk514, )
+LAYOUTS: tuple[Any, ...] = (Pmtk514,)
 """The layouts of PMTK514, in the order the parser tries them."""

@@ -44,5 +44,5 @@ class Pmtk527(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk527, )
+LAYOUTS: tuple[Any, ...] = (Pmtk527,)
 """The layouts of PMTK527, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pmtk605(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK605"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK705", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK705",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK705", None, ()),
@@ -44,5 +44,5 @@ class Pmtk605(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk605, )
+LAYOUTS: tuple[Any, ...] = (Pmtk605,)
 """The layouts of PMTK605, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pmtk622(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK622"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTKLOX_START", "PMTKLOX_DATA", "PMTKLOX_END", "PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTKLOX_START", "PMTKLOX_DATA", "PMTKLOX_END", "PMTK001")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTKLOX_START", None, ()),
@@ -52,5 +52,5 @@ class Pmtk622(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk622, )
+LAYOUTS: tuple[Any, ...] = (Pmtk622,)
 """The layouts of PMTK622, in the order the parser tries them."""

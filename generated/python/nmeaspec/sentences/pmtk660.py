@@ -29,7 +29,7 @@ class Pmtk660(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK660"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 660), )),
@@ -50,5 +50,5 @@ class Pmtk660(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk660, )
+LAYOUTS: tuple[Any, ...] = (Pmtk660,)
 """The layouts of PMTK660, in the order the parser tries them."""

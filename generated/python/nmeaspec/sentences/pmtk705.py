@@ -55,5 +55,5 @@ class Pmtk705(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk705, )
+LAYOUTS: tuple[Any, ...] = (Pmtk705,)
 """The layouts of PMTK705, in the order the parser tries them."""

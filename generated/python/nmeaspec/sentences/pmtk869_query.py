@@ -29,7 +29,7 @@ class Pmtk869Query(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK869"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "0"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK869_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK869_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK869_RESULT", None, ()),
@@ -49,5 +49,5 @@ class Pmtk869Query(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk869Query, )
+LAYOUTS: tuple[Any, ...] = (Pmtk869Query,)
 """The layouts of PMTK869_QUERY, in the order the parser tries them."""

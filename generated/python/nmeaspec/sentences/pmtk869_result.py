@@ -47,5 +47,5 @@ class Pmtk869Result(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk869Result, )
+LAYOUTS: tuple[Any, ...] = (Pmtk869Result,)
 """The layouts of PMTK869_RESULT, in the order the parser tries them."""

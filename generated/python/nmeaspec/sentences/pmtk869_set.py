@@ -29,7 +29,7 @@ class Pmtk869Set(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMTK869"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "1"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PMTK001",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PMTK001", None, (("command", "integer", 869), )),
@@ -53,5 +53,5 @@ class Pmtk869Set(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtk869Set, )
+LAYOUTS: tuple[Any, ...] = (Pmtk869Set,)
 """The layouts of PMTK869_SET, in the order the parser tries them."""

@@ -46,5 +46,5 @@ class Pmtkchn(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtkchn, )
+LAYOUTS: tuple[Any, ...] = (Pmtkchn,)
 """The layouts of PMTKCHN, in the order the parser tries them."""

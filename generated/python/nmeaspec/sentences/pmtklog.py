@@ -75,5 +75,5 @@ class Pmtklog(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pmtklog, )
+LAYOUTS: tuple[Any, ...] = (Pmtklog,)
 """The layouts of PMTKLOG, in the order the parser tries them."""

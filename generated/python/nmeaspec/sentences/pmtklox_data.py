@@ -52,5 +52,5 @@ class PmtkloxData(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PmtkloxData, )
+LAYOUTS: tuple[Any, ...] = (PmtkloxData,)
 """The layouts of PMTKLOX_DATA, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class PmtkloxEnd(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PmtkloxEnd, )
+LAYOUTS: tuple[Any, ...] = (PmtkloxEnd,)
 """The layouts of PMTKLOX_END, in the order the parser tries them."""

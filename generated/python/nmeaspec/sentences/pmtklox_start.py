@@ -48,5 +48,5 @@ class PmtkloxStart(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PmtkloxStart, )
+LAYOUTS: tuple[Any, ...] = (PmtkloxStart,)
 """The layouts of PMTKLOX_START, in the order the parser tries them."""

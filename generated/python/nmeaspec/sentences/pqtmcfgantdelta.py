@@ -28,7 +28,7 @@ class Pqtmcfgantdelta(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGANTDELTA"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGANTDELTA_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGANTDELTA_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGANTDELTA_RESULT", None, ()),
@@ -75,7 +75,7 @@ class PqtmcfgantdeltaRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGANTDELTA"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGANTDELTA_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGANTDELTA_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGANTDELTA_RESULT", None, ()),
@@ -97,5 +97,5 @@ class PqtmcfgantdeltaRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgantdelta, PqtmcfgantdeltaRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgantdelta, PqtmcfgantdeltaRead)
 """The layouts of PQTMCFGANTDELTA, in the order the parser tries them."""

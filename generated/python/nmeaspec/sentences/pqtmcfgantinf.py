@@ -27,7 +27,7 @@ class Pqtmcfgantinf(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGANTINF"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGANTINF_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGANTINF_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGANTINF_RESULT", None, ()),
@@ -75,7 +75,7 @@ class PqtmcfgantinfRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGANTINF"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGANTINF_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGANTINF_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGANTINF_RESULT", None, ()),
@@ -97,5 +97,5 @@ class PqtmcfgantinfRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgantinf, PqtmcfgantinfRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgantinf, PqtmcfgantinfRead)
 """The layouts of PQTMCFGANTINF, in the order the parser tries them."""

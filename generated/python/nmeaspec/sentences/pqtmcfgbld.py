@@ -28,7 +28,7 @@ class Pqtmcfgbld(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGBLD"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGBLD_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGBLD_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGBLD_RESULT", None, ()),
@@ -68,7 +68,7 @@ class PqtmcfgbldRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGBLD"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGBLD_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGBLD_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGBLD_RESULT", None, ()),
@@ -90,5 +90,5 @@ class PqtmcfgbldRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgbld, PqtmcfgbldRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgbld, PqtmcfgbldRead)
 """The layouts of PQTMCFGBLD, in the order the parser tries them."""

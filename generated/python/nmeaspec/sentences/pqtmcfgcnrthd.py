@@ -27,7 +27,7 @@ class Pqtmcfgcnrthd(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGCNRTHD"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGCNRTHD_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGCNRTHD_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGCNRTHD_RESULT", None, ()),
@@ -67,7 +67,7 @@ class PqtmcfgcnrthdRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGCNRTHD"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGCNRTHD_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGCNRTHD_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGCNRTHD_RESULT", None, ()),
@@ -89,5 +89,5 @@ class PqtmcfgcnrthdRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgcnrthd, PqtmcfgcnrthdRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgcnrthd, PqtmcfgcnrthdRead)
 """The layouts of PQTMCFGCNRTHD, in the order the parser tries them."""

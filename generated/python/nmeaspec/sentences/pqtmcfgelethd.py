@@ -27,7 +27,7 @@ class Pqtmcfgelethd(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGELETHD"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGELETHD_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGELETHD_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGELETHD_RESULT", None, ()),
@@ -68,7 +68,7 @@ class PqtmcfgelethdRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGELETHD"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGELETHD_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGELETHD_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGELETHD_RESULT", None, ()),
@@ -90,5 +90,5 @@ class PqtmcfgelethdRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgelethd, PqtmcfgelethdRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgelethd, PqtmcfgelethdRead)
 """The layouts of PQTMCFGELETHD, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pqtmcfgfixrate(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGFIXRATE"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGFIXRATE_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGFIXRATE_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGFIXRATE_RESULT", None, ()),
@@ -67,7 +67,7 @@ class PqtmcfgfixrateRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGFIXRATE"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGFIXRATE_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGFIXRATE_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGFIXRATE_RESULT", None, ()),
@@ -89,5 +89,5 @@ class PqtmcfgfixrateRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgfixrate, PqtmcfgfixrateRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgfixrate, PqtmcfgfixrateRead)
 """The layouts of PQTMCFGFIXRATE, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pqtmcfgnmeadp(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGNMEADP"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGNMEADP_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGNMEADP_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGNMEADP_RESULT", None, ()),
@@ -83,7 +83,7 @@ class PqtmcfgnmeadpRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGNMEADP"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGNMEADP_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGNMEADP_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGNMEADP_RESULT", None, ()),
@@ -105,5 +105,5 @@ class PqtmcfgnmeadpRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgnmeadp, PqtmcfgnmeadpRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgnmeadp, PqtmcfgnmeadpRead)
 """The layouts of PQTMCFGNMEADP, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pqtmcfgodo(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGODO"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGODO_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGODO_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGODO_RESULT", None, ()),
@@ -71,7 +71,7 @@ class PqtmcfgodoRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGODO"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGODO_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGODO_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGODO_RESULT", None, ()),
@@ -93,5 +93,5 @@ class PqtmcfgodoRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgodo, PqtmcfgodoRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgodo, PqtmcfgodoRead)
 """The layouts of PQTMCFGODO, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pqtmcfgrsid(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGRSID"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGRSID_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGRSID_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGRSID_RESULT", None, ()),
@@ -67,7 +67,7 @@ class PqtmcfgrsidRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGRSID"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGRSID_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGRSID_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGRSID_RESULT", None, ()),
@@ -89,5 +89,5 @@ class PqtmcfgrsidRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgrsid, PqtmcfgrsidRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgrsid, PqtmcfgrsidRead)
 """The layouts of PQTMCFGRSID, in the order the parser tries them."""

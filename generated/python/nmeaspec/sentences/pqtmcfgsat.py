@@ -28,7 +28,7 @@ class Pqtmcfgsat(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSAT"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSAT_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSAT_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSAT_RESULT", None, ()),
@@ -81,7 +81,7 @@ class PqtmcfgsatRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSAT"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSAT_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSAT_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSAT_RESULT", None, ()),
@@ -112,5 +112,5 @@ class PqtmcfgsatRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgsat, PqtmcfgsatRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgsat, PqtmcfgsatRead)
 """The layouts of PQTMCFGSAT, in the order the parser tries them."""

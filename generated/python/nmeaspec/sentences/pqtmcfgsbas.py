@@ -27,7 +27,7 @@ class Pqtmcfgsbas(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSBAS"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSBAS_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSBAS_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSBAS_RESULT", None, ()),
@@ -67,7 +67,7 @@ class PqtmcfgsbasRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSBAS"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSBAS_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSBAS_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSBAS_RESULT", None, ()),
@@ -89,5 +89,5 @@ class PqtmcfgsbasRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgsbas, PqtmcfgsbasRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgsbas, PqtmcfgsbasRead)
 """The layouts of PQTMCFGSBAS, in the order the parser tries them."""

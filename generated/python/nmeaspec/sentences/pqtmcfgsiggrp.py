@@ -27,7 +27,7 @@ class Pqtmcfgsiggrp(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSIGGRP"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGGRP_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGGRP_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSIGGRP_RESULT", None, ()),
@@ -68,7 +68,7 @@ class PqtmcfgsiggrpRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSIGGRP"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGGRP_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGGRP_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSIGGRP_RESULT", None, ()),
@@ -90,5 +90,5 @@ class PqtmcfgsiggrpRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgsiggrp, PqtmcfgsiggrpRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgsiggrp, PqtmcfgsiggrpRead)
 """The layouts of PQTMCFGSIGGRP, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pqtmcfgsignal(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSIGNAL"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGNAL_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGNAL_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSIGNAL_RESULT", None, ()),
@@ -82,7 +82,7 @@ class PqtmcfgsignalRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSIGNAL"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGNAL_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGNAL_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSIGNAL_RESULT", None, ()),
@@ -104,5 +104,5 @@ class PqtmcfgsignalRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgsignal, PqtmcfgsignalRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgsignal, PqtmcfgsignalRead)
 """The layouts of PQTMCFGSIGNAL, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pqtmcfgsignal2(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSIGNAL2"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGNAL2_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGNAL2_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSIGNAL2_RESULT", None, ()),
@@ -83,7 +83,7 @@ class Pqtmcfgsignal2Read(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGSIGNAL2"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGNAL2_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGSIGNAL2_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGSIGNAL2_RESULT", None, ()),
@@ -105,5 +105,5 @@ class Pqtmcfgsignal2Read(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgsignal2, Pqtmcfgsignal2Read, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgsignal2, Pqtmcfgsignal2Read)
 """The layouts of PQTMCFGSIGNAL2, in the order the parser tries them."""

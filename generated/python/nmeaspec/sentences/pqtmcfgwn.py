@@ -28,7 +28,7 @@ class Pqtmcfgwn(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGWN"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "W"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGWN_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGWN_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGWN_RESULT", None, ()),
@@ -68,7 +68,7 @@ class PqtmcfgwnRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGWN"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGWN_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGWN_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMCFGWN_RESULT", None, ()),
@@ -90,5 +90,5 @@ class PqtmcfgwnRead(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcfgwn, PqtmcfgwnRead, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcfgwn, PqtmcfgwnRead)
 """The layouts of PQTMCFGWN, in the order the parser tries them."""

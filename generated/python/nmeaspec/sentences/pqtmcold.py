@@ -40,5 +40,5 @@ class Pqtmcold(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmcold, )
+LAYOUTS: tuple[Any, ...] = (Pqtmcold,)
 """The layouts of PQTMCOLD, in the order the parser tries them."""

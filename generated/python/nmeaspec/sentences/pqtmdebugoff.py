@@ -27,7 +27,7 @@ class Pqtmdebugoff(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMDEBUGOFF"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMDEBUGOFF_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMDEBUGOFF_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMDEBUGOFF_RESULT", None, ()),
@@ -45,5 +45,5 @@ class Pqtmdebugoff(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmdebugoff, )
+LAYOUTS: tuple[Any, ...] = (Pqtmdebugoff,)
 """The layouts of PQTMDEBUGOFF, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pqtmdebugon(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMDEBUGON"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMDEBUGON_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMDEBUGON_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMDEBUGON_RESULT", None, ()),
@@ -45,5 +45,5 @@ class Pqtmdebugon(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmdebugon, )
+LAYOUTS: tuple[Any, ...] = (Pqtmdebugon,)
 """The layouts of PQTMDEBUGON, in the order the parser tries them."""

@@ -67,5 +67,5 @@ class Pqtmdop(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmdop, )
+LAYOUTS: tuple[Any, ...] = (Pqtmdop,)
 """The layouts of PQTMDOP, in the order the parser tries them."""

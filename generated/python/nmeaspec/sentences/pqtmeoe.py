@@ -55,5 +55,5 @@ class Pqtmeoe(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmeoe, )
+LAYOUTS: tuple[Any, ...] = (Pqtmeoe,)
 """The layouts of PQTMEOE, in the order the parser tries them."""

@@ -58,5 +58,5 @@ class Pqtmepe(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmepe, )
+LAYOUTS: tuple[Any, ...] = (Pqtmepe,)
 """The layouts of PQTMEPE, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pqtmgnssstart(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMGNSSSTART"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMGNSSSTART_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMGNSSSTART_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMGNSSSTART_RESULT", None, ()),
@@ -45,5 +45,5 @@ class Pqtmgnssstart(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmgnssstart, )
+LAYOUTS: tuple[Any, ...] = (Pqtmgnssstart,)
 """The layouts of PQTMGNSSSTART, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pqtmgnssstop(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMGNSSSTOP"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMGNSSSTOP_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMGNSSSTOP_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMGNSSSTOP_RESULT", None, ()),
@@ -45,5 +45,5 @@ class Pqtmgnssstop(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmgnssstop, )
+LAYOUTS: tuple[Any, ...] = (Pqtmgnssstop,)
 """The layouts of PQTMGNSSSTOP, in the order the parser tries them."""

@@ -40,5 +40,5 @@ class Pqtmhot(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmhot, )
+LAYOUTS: tuple[Any, ...] = (Pqtmhot,)
 """The layouts of PQTMHOT, in the order the parser tries them."""

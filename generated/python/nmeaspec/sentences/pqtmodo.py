@@ -54,5 +54,5 @@ class Pqtmodo(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmodo, )
+LAYOUTS: tuple[Any, ...] = (Pqtmodo,)
 """The layouts of PQTMODO, in the order the parser tries them."""

@@ -82,5 +82,5 @@ class Pqtmpl(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmpl, )
+LAYOUTS: tuple[Any, ...] = (Pqtmpl,)
 """The layouts of PQTMPL, in the order the parser tries them."""

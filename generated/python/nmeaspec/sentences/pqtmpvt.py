@@ -98,5 +98,5 @@ class Pqtmpvt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmpvt, )
+LAYOUTS: tuple[Any, ...] = (Pqtmpvt,)
 """The layouts of PQTMPVT, in the order the parser tries them."""

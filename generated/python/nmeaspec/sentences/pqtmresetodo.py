@@ -28,7 +28,7 @@ class Pqtmresetodo(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMRESETODO"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMRESETODO_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMRESETODO_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMRESETODO_RESULT", None, ()),
@@ -46,5 +46,5 @@ class Pqtmresetodo(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmresetodo, )
+LAYOUTS: tuple[Any, ...] = (Pqtmresetodo,)
 """The layouts of PQTMRESETODO, in the order the parser tries them."""

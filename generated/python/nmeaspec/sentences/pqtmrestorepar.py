@@ -27,7 +27,7 @@ class Pqtmrestorepar(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMRESTOREPAR"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMRESTOREPAR_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMRESTOREPAR_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMRESTOREPAR_RESULT", None, ()),
@@ -45,5 +45,5 @@ class Pqtmrestorepar(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmrestorepar, )
+LAYOUTS: tuple[Any, ...] = (Pqtmrestorepar,)
 """The layouts of PQTMRESTOREPAR, in the order the parser tries them."""

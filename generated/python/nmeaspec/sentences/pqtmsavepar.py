@@ -28,7 +28,7 @@ class Pqtmsavepar(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMSAVEPAR"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMSAVEPAR_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMSAVEPAR_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMSAVEPAR_RESULT", None, ()),
@@ -46,5 +46,5 @@ class Pqtmsavepar(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmsavepar, )
+LAYOUTS: tuple[Any, ...] = (Pqtmsavepar,)
 """The layouts of PQTMSAVEPAR, in the order the parser tries them."""

@@ -27,7 +27,7 @@ class Pqtmsn(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMSN"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMSN_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMSN_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMSN_RESULT", None, ()),
@@ -45,5 +45,5 @@ class Pqtmsn(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmsn, )
+LAYOUTS: tuple[Any, ...] = (Pqtmsn,)
 """The layouts of PQTMSN, in the order the parser tries them."""

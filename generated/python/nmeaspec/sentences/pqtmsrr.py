@@ -40,5 +40,5 @@ class Pqtmsrr(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmsrr, )
+LAYOUTS: tuple[Any, ...] = (Pqtmsrr,)
 """The layouts of PQTMSRR, in the order the parser tries them."""

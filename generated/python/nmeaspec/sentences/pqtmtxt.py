@@ -56,5 +56,5 @@ class Pqtmtxt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmtxt, )
+LAYOUTS: tuple[Any, ...] = (Pqtmtxt,)
 """The layouts of PQTMTXT, in the order the parser tries them."""

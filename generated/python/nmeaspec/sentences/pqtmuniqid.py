@@ -27,7 +27,7 @@ class Pqtmuniqid(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMUNIQID"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMUNIQID_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMUNIQID_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMUNIQID_RESULT", None, ()),
@@ -45,5 +45,5 @@ class Pqtmuniqid(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmuniqid, )
+LAYOUTS: tuple[Any, ...] = (Pqtmuniqid,)
 """The layouts of PQTMUNIQID, in the order the parser tries them."""

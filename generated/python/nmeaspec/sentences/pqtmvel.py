@@ -74,5 +74,5 @@ class Pqtmvel(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmvel, )
+LAYOUTS: tuple[Any, ...] = (Pqtmvel,)
 """The layouts of PQTMVEL, in the order the parser tries them."""

@@ -93,5 +93,5 @@ class PqtmverLegacy(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmver, PqtmverLegacy, )
+LAYOUTS: tuple[Any, ...] = (Pqtmver, PqtmverLegacy)
 """The layouts of PQTMVER, in the order the parser tries them."""

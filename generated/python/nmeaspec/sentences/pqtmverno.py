@@ -27,7 +27,7 @@ class Pqtmverno(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMVERNO"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMVERNO_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQTMVERNO_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQTMVERNO_RESULT", None, ()),
@@ -45,5 +45,5 @@ class Pqtmverno(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmverno, )
+LAYOUTS: tuple[Any, ...] = (Pqtmverno,)
 """The layouts of PQTMVERNO, in the order the parser tries them."""

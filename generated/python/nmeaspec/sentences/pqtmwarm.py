@@ -40,5 +40,5 @@ class Pqtmwarm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqtmwarm, )
+LAYOUTS: tuple[Any, ...] = (Pqtmwarm,)
 """The layouts of PQTMWARM, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pqverno(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQVERNO"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PQVERNO_RESULT", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PQVERNO_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PQVERNO_RESULT", None, ()),
@@ -48,5 +48,5 @@ class Pqverno(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pqverno, )
+LAYOUTS: tuple[Any, ...] = (Pqverno,)
 """The layouts of PQVERNO, in the order the parser tries them."""

@@ -53,5 +53,5 @@ class PqvernoResult(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PqvernoResult, )
+LAYOUTS: tuple[Any, ...] = (PqvernoResult,)
 """The layouts of PQVERNO_RESULT, in the order the parser tries them."""

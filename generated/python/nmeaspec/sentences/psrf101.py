@@ -77,5 +77,5 @@ class Psrf101(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Psrf101, )
+LAYOUTS: tuple[Any, ...] = (Psrf101,)
 """The layouts of PSRF101, in the order the parser tries them."""

@@ -78,5 +78,5 @@ class Psrf104(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Psrf104, )
+LAYOUTS: tuple[Any, ...] = (Psrf104,)
 """The layouts of PSRF104, in the order the parser tries them."""

@@ -47,5 +47,5 @@ class Psrf105(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Psrf105, )
+LAYOUTS: tuple[Any, ...] = (Psrf105,)
 """The layouts of PSRF105, in the order the parser tries them."""

@@ -46,5 +46,5 @@ class Psrf150(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Psrf150, )
+LAYOUTS: tuple[Any, ...] = (Psrf150,)
 """The layouts of PSRF150, in the order the parser tries them."""

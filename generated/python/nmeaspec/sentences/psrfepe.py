@@ -65,5 +65,5 @@ class Psrfepe(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Psrfepe, )
+LAYOUTS: tuple[Any, ...] = (Psrfepe,)
 """The layouts of PSRFEPE, in the order the parser tries them."""

@@ -85,5 +85,5 @@ class PssnHrp(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PssnHrp, )
+LAYOUTS: tuple[Any, ...] = (PssnHrp,)
 """The layouts of PSSN_HRP, in the order the parser tries them."""

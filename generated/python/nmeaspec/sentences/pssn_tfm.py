@@ -63,5 +63,5 @@ class PssnTfm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PssnTfm, )
+LAYOUTS: tuple[Any, ...] = (PssnTfm,)
 """The layouts of PSSN_TFM, in the order the parser tries them."""

@@ -65,5 +65,5 @@ class Psti036(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Psti036, )
+LAYOUTS: tuple[Any, ...] = (Psti036,)
 """The layouts of PSTI_036, in the order the parser tries them."""

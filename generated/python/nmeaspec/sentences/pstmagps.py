@@ -43,5 +43,5 @@ class Pstmagps(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmagps, )
+LAYOUTS: tuple[Any, ...] = (Pstmagps,)
 """The layouts of PSTMAGPS, in the order the parser tries them."""

@@ -42,5 +42,5 @@ class Pstmalmanac(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmalmanac, )
+LAYOUTS: tuple[Any, ...] = (Pstmalmanac,)
 """The layouts of PSTMALMANAC, in the order the parser tries them."""

@@ -41,5 +41,5 @@ class Pstmclralms(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmclralms, )
+LAYOUTS: tuple[Any, ...] = (Pstmclralms,)
 """The layouts of PSTMCLRALMS, in the order the parser tries them."""

@@ -41,5 +41,5 @@ class Pstmclrephs(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmclrephs, )
+LAYOUTS: tuple[Any, ...] = (Pstmclrephs,)
 """The layouts of PSTMCLREPHS, in the order the parser tries them."""

@@ -49,5 +49,5 @@ class Pstmcold(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmcold, )
+LAYOUTS: tuple[Any, ...] = (Pstmcold,)
 """The layouts of PSTMCOLD, in the order the parser tries them."""

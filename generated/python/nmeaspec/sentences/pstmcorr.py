@@ -43,5 +43,5 @@ class Pstmcorr(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmcorr, )
+LAYOUTS: tuple[Any, ...] = (Pstmcorr,)
 """The layouts of PSTMCORR, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class Pstmdiff(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmdiff, )
+LAYOUTS: tuple[Any, ...] = (Pstmdiff,)
 """The layouts of PSTMDIFF, in the order the parser tries them."""

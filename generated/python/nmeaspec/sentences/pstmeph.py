@@ -42,5 +42,5 @@ class Pstmeph(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmeph, )
+LAYOUTS: tuple[Any, ...] = (Pstmeph,)
 """The layouts of PSTMEPH, in the order the parser tries them."""

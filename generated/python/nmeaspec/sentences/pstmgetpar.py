@@ -29,7 +29,7 @@ class Pstmgetpar(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PSTMGETPAR"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PSTMSETPAR", "PSTMSET", "PSTMGETPARERROR", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PSTMSETPAR", "PSTMSET", "PSTMGETPARERROR")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PSTMSETPAR", None, ()),
@@ -56,5 +56,5 @@ class Pstmgetpar(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmgetpar, )
+LAYOUTS: tuple[Any, ...] = (Pstmgetpar,)
 """The layouts of PSTMGETPAR, in the order the parser tries them."""

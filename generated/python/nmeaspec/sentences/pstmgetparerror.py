@@ -39,5 +39,5 @@ class Pstmgetparerror(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmgetparerror, )
+LAYOUTS: tuple[Any, ...] = (Pstmgetparerror,)
 """The layouts of PSTMGETPARERROR, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pstmgetrtctime(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PSTMGETRTCTIME"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PSTMGETRTCTIME_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PSTMGETRTCTIME_REPLY",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PSTMGETRTCTIME_REPLY", None, ()),
@@ -45,5 +45,5 @@ class Pstmgetrtctime(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmgetrtctime, )
+LAYOUTS: tuple[Any, ...] = (Pstmgetrtctime,)
 """The layouts of PSTMGETRTCTIME, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pstmgetswver(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PSTMGETSWVER"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("PSTMGETSWVER_REPLY", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PSTMGETSWVER_REPLY",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PSTMGETSWVER_REPLY", None, ()),
@@ -45,5 +45,5 @@ class Pstmgetswver(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmgetswver, )
+LAYOUTS: tuple[Any, ...] = (Pstmgetswver,)
 """The layouts of PSTMGETSWVER, in the order the parser tries them."""

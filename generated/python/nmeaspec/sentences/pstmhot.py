@@ -42,5 +42,5 @@ class Pstmhot(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmhot, )
+LAYOUTS: tuple[Any, ...] = (Pstmhot,)
 """The layouts of PSTMHOT, in the order the parser tries them."""

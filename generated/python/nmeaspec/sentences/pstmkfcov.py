@@ -43,5 +43,5 @@ class Pstmkfcov(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmkfcov, )
+LAYOUTS: tuple[Any, ...] = (Pstmkfcov,)
 """The layouts of PSTMKFCOV, in the order the parser tries them."""

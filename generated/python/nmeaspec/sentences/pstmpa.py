@@ -43,5 +43,5 @@ class Pstmpa(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmpa, )
+LAYOUTS: tuple[Any, ...] = (Pstmpa,)
 """The layouts of PSTMPA, in the order the parser tries them."""

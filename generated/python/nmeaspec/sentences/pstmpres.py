@@ -43,5 +43,5 @@ class Pstmpres(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmpres, )
+LAYOUTS: tuple[Any, ...] = (Pstmpres,)
 """The layouts of PSTMPRES, in the order the parser tries them."""

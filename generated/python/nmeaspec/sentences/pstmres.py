@@ -43,5 +43,5 @@ class Pstmres(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmres, )
+LAYOUTS: tuple[Any, ...] = (Pstmres,)
 """The layouts of PSTMRES, in the order the parser tries them."""

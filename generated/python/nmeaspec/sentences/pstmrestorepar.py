@@ -42,5 +42,5 @@ class Pstmrestorepar(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmrestorepar, )
+LAYOUTS: tuple[Any, ...] = (Pstmrestorepar,)
 """The layouts of PSTMRESTOREPAR, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class Pstmrf(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmrf, )
+LAYOUTS: tuple[Any, ...] = (Pstmrf,)
 """The layouts of PSTMRF, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class Pstmsat(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmsat, )
+LAYOUTS: tuple[Any, ...] = (Pstmsat,)
 """The layouts of PSTMSAT, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class Pstmsavepar(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmsavepar, )
+LAYOUTS: tuple[Any, ...] = (Pstmsavepar,)
 """The layouts of PSTMSAVEPAR, in the order the parser tries them."""

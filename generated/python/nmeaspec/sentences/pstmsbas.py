@@ -43,5 +43,5 @@ class Pstmsbas(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmsbas, )
+LAYOUTS: tuple[Any, ...] = (Pstmsbas,)
 """The layouts of PSTMSBAS, in the order the parser tries them."""

@@ -42,5 +42,5 @@ class Pstmsbascorr(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmsbascorr, )
+LAYOUTS: tuple[Any, ...] = (Pstmsbascorr,)
 """The layouts of PSTMSBASCORR, in the order the parser tries them."""

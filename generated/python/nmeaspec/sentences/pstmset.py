@@ -94,5 +94,5 @@ class PstmsetDop(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmset, PstmsetDop, )
+LAYOUTS: tuple[Any, ...] = (Pstmset, PstmsetDop)
 """The layouts of PSTMSET, in the order the parser tries them."""

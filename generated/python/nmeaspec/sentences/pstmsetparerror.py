@@ -39,5 +39,5 @@ class Pstmsetparerror(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmsetparerror, )
+LAYOUTS: tuple[Any, ...] = (Pstmsetparerror,)
 """The layouts of PSTMSETPARERROR, in the order the parser tries them."""

@@ -45,5 +45,5 @@ class Pstmsetparok(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmsetparok, )
+LAYOUTS: tuple[Any, ...] = (Pstmsetparok,)
 """The layouts of PSTMSETPAROK, in the order the parser tries them."""

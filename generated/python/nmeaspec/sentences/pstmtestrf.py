@@ -43,5 +43,5 @@ class Pstmtestrf(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmtestrf, )
+LAYOUTS: tuple[Any, ...] = (Pstmtestrf,)
 """The layouts of PSTMTESTRF, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class Pstmtg(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmtg, )
+LAYOUTS: tuple[Any, ...] = (Pstmtg,)
 """The layouts of PSTMTG, in the order the parser tries them."""

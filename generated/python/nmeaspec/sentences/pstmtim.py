@@ -43,5 +43,5 @@ class Pstmtim(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmtim, )
+LAYOUTS: tuple[Any, ...] = (Pstmtim,)
 """The layouts of PSTMTIM, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class Pstmts(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmts, )
+LAYOUTS: tuple[Any, ...] = (Pstmts,)
 """The layouts of PSTMTS, in the order the parser tries them."""

@@ -42,5 +42,5 @@ class Pstmver(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmver, )
+LAYOUTS: tuple[Any, ...] = (Pstmver,)
 """The layouts of PSTMVER, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class Pstmvres(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmvres, )
+LAYOUTS: tuple[Any, ...] = (Pstmvres,)
 """The layouts of PSTMVRES, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class Pstmwaas(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmwaas, )
+LAYOUTS: tuple[Any, ...] = (Pstmwaas,)
 """The layouts of PSTMWAAS, in the order the parser tries them."""

@@ -43,5 +43,5 @@ class Pstmwarm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pstmwarm, )
+LAYOUTS: tuple[Any, ...] = (Pstmwarm,)
 """The layouts of PSTMWARM, in the order the parser tries them."""

@@ -63,5 +63,5 @@ class PtnlEvt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PtnlEvt, )
+LAYOUTS: tuple[Any, ...] = (PtnlEvt,)
 """The layouts of PTNL_EVT, in the order the parser tries them."""

@@ -51,5 +51,5 @@ class PtnlPjt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PtnlPjt, )
+LAYOUTS: tuple[Any, ...] = (PtnlPjt,)
 """The layouts of PTNL_PJT, in the order the parser tries them."""

@@ -44,5 +44,5 @@ class Ptnlev(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ptnlev, )
+LAYOUTS: tuple[Any, ...] = (Ptnlev,)
 """The layouts of PTNLEV, in the order the parser tries them."""

@@ -54,5 +54,5 @@ class Ptnlid(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ptnlid, )
+LAYOUTS: tuple[Any, ...] = (Ptnlid,)
 """The layouts of PTNLID, in the order the parser tries them."""

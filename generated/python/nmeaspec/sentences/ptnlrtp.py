@@ -51,5 +51,5 @@ class Ptnlrtp(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ptnlrtp, )
+LAYOUTS: tuple[Any, ...] = (Ptnlrtp,)
 """The layouts of PTNLRTP, in the order the parser tries them."""

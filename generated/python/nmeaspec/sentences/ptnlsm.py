@@ -48,5 +48,5 @@ class Ptnlsm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ptnlsm, )
+LAYOUTS: tuple[Any, ...] = (Ptnlsm,)
 """The layouts of PTNLSM, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class PubxPositionPoll(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PUBX"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "00"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PUBX_POSITION", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PUBX_POSITION",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PUBX_POSITION", None, ()),
@@ -48,5 +48,5 @@ class PubxPositionPoll(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PubxPositionPoll, )
+LAYOUTS: tuple[Any, ...] = (PubxPositionPoll,)
 """The layouts of PUBX_POSITION_POLL, in the order the parser tries them."""

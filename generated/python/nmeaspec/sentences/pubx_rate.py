@@ -67,5 +67,5 @@ class PubxRate(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PubxRate, )
+LAYOUTS: tuple[Any, ...] = (PubxRate,)
 """The layouts of PUBX_RATE, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class PubxSvstatusPoll(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PUBX"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "03"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PUBX_SVSTATUS", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PUBX_SVSTATUS",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PUBX_SVSTATUS", None, ()),
@@ -48,5 +48,5 @@ class PubxSvstatusPoll(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PubxSvstatusPoll, )
+LAYOUTS: tuple[Any, ...] = (PubxSvstatusPoll,)
 """The layouts of PUBX_SVSTATUS_POLL, in the order the parser tries them."""

@@ -77,5 +77,5 @@ class PubxTime(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PubxTime, )
+LAYOUTS: tuple[Any, ...] = (PubxTime,)
 """The layouts of PUBX_TIME, in the order the parser tries them."""

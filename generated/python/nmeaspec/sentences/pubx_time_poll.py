@@ -27,7 +27,7 @@ class PubxTimePoll(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PUBX"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "04"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PUBX_TIME", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PUBX_TIME",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PUBX_TIME", None, ()),
@@ -47,5 +47,5 @@ class PubxTimePoll(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (PubxTimePoll, )
+LAYOUTS: tuple[Any, ...] = (PubxTimePoll,)
 """The layouts of PUBX_TIME_POLL, in the order the parser tries them."""

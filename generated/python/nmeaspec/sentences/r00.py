@@ -48,5 +48,5 @@ class R00(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (R00, )
+LAYOUTS: tuple[Any, ...] = (R00,)
 """The layouts of R00, in the order the parser tries them."""

@@ -62,5 +62,5 @@ class Rlm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Rlm, )
+LAYOUTS: tuple[Any, ...] = (Rlm,)
 """The layouts of RLM, in the order the parser tries them."""

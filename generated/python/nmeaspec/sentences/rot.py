@@ -51,5 +51,5 @@ class Rot(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Rot, )
+LAYOUTS: tuple[Any, ...] = (Rot,)
 """The layouts of ROT, in the order the parser tries them."""

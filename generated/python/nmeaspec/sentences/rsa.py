@@ -74,5 +74,5 @@ class Rsa(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Rsa, )
+LAYOUTS: tuple[Any, ...] = (Rsa,)
 """The layouts of RSA, in the order the parser tries them."""

@@ -64,5 +64,5 @@ class Rte(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Rte, )
+LAYOUTS: tuple[Any, ...] = (Rte,)
 """The layouts of RTE, in the order the parser tries them."""

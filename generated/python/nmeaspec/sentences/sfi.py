@@ -67,5 +67,5 @@ class Sfi(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Sfi, )
+LAYOUTS: tuple[Any, ...] = (Sfi,)
 """The layouts of SFI, in the order the parser tries them."""

@@ -64,5 +64,5 @@ class Smb(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Smb, )
+LAYOUTS: tuple[Any, ...] = (Smb,)
 """The layouts of SMB, in the order the parser tries them."""

@@ -58,5 +58,5 @@ class Spw(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Spw, )
+LAYOUTS: tuple[Any, ...] = (Spw,)
 """The layouts of SPW, in the order the parser tries them."""

@@ -76,5 +76,5 @@ class Ssd(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ssd, )
+LAYOUTS: tuple[Any, ...] = (Ssd,)
 """The layouts of SSD, in the order the parser tries them."""

@@ -48,5 +48,5 @@ class Stn(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Stn, )
+LAYOUTS: tuple[Any, ...] = (Stn,)
 """The layouts of STN, in the order the parser tries them."""

@@ -52,5 +52,5 @@ class Ths(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ths, )
+LAYOUTS: tuple[Any, ...] = (Ths,)
 """The layouts of THS, in the order the parser tries them."""

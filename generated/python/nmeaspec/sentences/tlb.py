@@ -61,5 +61,5 @@ class Tlb(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Tlb, )
+LAYOUTS: tuple[Any, ...] = (Tlb,)
 """The layouts of TLB, in the order the parser tries them."""

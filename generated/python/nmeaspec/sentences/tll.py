@@ -68,5 +68,5 @@ class Tll(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Tll, )
+LAYOUTS: tuple[Any, ...] = (Tll,)
 """The layouts of TLL, in the order the parser tries them."""

@@ -66,5 +66,5 @@ class Tra(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Tra, )
+LAYOUTS: tuple[Any, ...] = (Tra,)
 """The layouts of TRA, in the order the parser tries them."""

@@ -72,5 +72,5 @@ class Trf(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Trf, )
+LAYOUTS: tuple[Any, ...] = (Trf,)
 """The layouts of TRF, in the order the parser tries them."""

@@ -70,5 +70,5 @@ class Trl(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Trl, )
+LAYOUTS: tuple[Any, ...] = (Trl,)
 """The layouts of TRL, in the order the parser tries them."""

@@ -62,5 +62,5 @@ class Ttd(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ttd, )
+LAYOUTS: tuple[Any, ...] = (Ttd,)
 """The layouts of TTD, in the order the parser tries them."""

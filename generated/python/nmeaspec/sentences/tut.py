@@ -66,5 +66,5 @@ class Tut(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Tut, )
+LAYOUTS: tuple[Any, ...] = (Tut,)
 """The layouts of TUT, in the order the parser tries them."""

@@ -59,5 +59,5 @@ class Txt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Txt, )
+LAYOUTS: tuple[Any, ...] = (Txt,)
 """The layouts of TXT, in the order the parser tries them."""

@@ -49,5 +49,5 @@ class Uid(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Uid, )
+LAYOUTS: tuple[Any, ...] = (Uid,)
 """The layouts of UID, in the order the parser tries them."""

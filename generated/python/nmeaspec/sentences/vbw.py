@@ -81,5 +81,5 @@ class Vbw(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vbw, )
+LAYOUTS: tuple[Any, ...] = (Vbw,)
 """The layouts of VBW, in the order the parser tries them."""

@@ -67,5 +67,5 @@ class Vdm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vdm, )
+LAYOUTS: tuple[Any, ...] = (Vdm,)
 """The layouts of VDM, in the order the parser tries them."""

@@ -67,5 +67,5 @@ class Vdo(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vdo, )
+LAYOUTS: tuple[Any, ...] = (Vdo,)
 """The layouts of VDO, in the order the parser tries them."""

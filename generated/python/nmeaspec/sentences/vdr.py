@@ -62,5 +62,5 @@ class Vdr(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vdr, )
+LAYOUTS: tuple[Any, ...] = (Vdr,)
 """The layouts of VDR, in the order the parser tries them."""

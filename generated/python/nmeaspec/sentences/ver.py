@@ -80,5 +80,5 @@ class Ver(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ver, )
+LAYOUTS: tuple[Any, ...] = (Ver,)
 """The layouts of VER, in the order the parser tries them."""

@@ -70,5 +70,5 @@ class Vhw(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vhw, )
+LAYOUTS: tuple[Any, ...] = (Vhw,)
 """The layouts of VHW, in the order the parser tries them."""

@@ -71,5 +71,5 @@ class Vlw(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vlw, )
+LAYOUTS: tuple[Any, ...] = (Vlw,)
 """The layouts of VLW, in the order the parser tries them."""

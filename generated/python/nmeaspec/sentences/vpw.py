@@ -58,5 +58,5 @@ class Vpw(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vpw, )
+LAYOUTS: tuple[Any, ...] = (Vpw,)
 """The layouts of VPW, in the order the parser tries them."""

@@ -78,5 +78,5 @@ class Vsd(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vsd, )
+LAYOUTS: tuple[Any, ...] = (Vsd,)
 """The layouts of VSD, in the order the parser tries them."""

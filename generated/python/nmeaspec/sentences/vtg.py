@@ -76,5 +76,5 @@ class Vtg(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vtg, )
+LAYOUTS: tuple[Any, ...] = (Vtg,)
 """The layouts of VTG, in the order the parser tries them."""

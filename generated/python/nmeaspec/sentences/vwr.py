@@ -72,5 +72,5 @@ class Vwr(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vwr, )
+LAYOUTS: tuple[Any, ...] = (Vwr,)
 """The layouts of VWR, in the order the parser tries them."""

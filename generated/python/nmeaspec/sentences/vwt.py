@@ -73,5 +73,5 @@ class Vwt(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Vwt, )
+LAYOUTS: tuple[Any, ...] = (Vwt,)
 """The layouts of VWT, in the order the parser tries them."""

@@ -59,5 +59,5 @@ class Wcv(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Wcv, )
+LAYOUTS: tuple[Any, ...] = (Wcv,)
 """The layouts of WCV, in the order the parser tries them."""

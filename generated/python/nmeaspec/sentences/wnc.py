@@ -61,5 +61,5 @@ class Wnc(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Wnc, )
+LAYOUTS: tuple[Any, ...] = (Wnc,)
 """The layouts of WNC, in the order the parser tries them."""

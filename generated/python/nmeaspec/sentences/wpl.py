@@ -53,5 +53,5 @@ class Wpl(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Wpl, )
+LAYOUTS: tuple[Any, ...] = (Wpl,)
 """The layouts of WPL, in the order the parser tries them."""

@@ -54,5 +54,5 @@ class Xtr(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Xtr, )
+LAYOUTS: tuple[Any, ...] = (Xtr,)
 """The layouts of XTR, in the order the parser tries them."""

@@ -64,5 +64,5 @@ class Zda(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Zda, )
+LAYOUTS: tuple[Any, ...] = (Zda,)
 """The layouts of ZDA, in the order the parser tries them."""

@@ -55,5 +55,5 @@ class Zdl(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Zdl, )
+LAYOUTS: tuple[Any, ...] = (Zdl,)
 """The layouts of ZDL, in the order the parser tries them."""

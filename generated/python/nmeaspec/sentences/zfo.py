@@ -53,5 +53,5 @@ class Zfo(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Zfo, )
+LAYOUTS: tuple[Any, ...] = (Zfo,)
 """The layouts of ZFO, in the order the parser tries them."""

@@ -53,5 +53,5 @@ class Ztg(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Ztg, )
+LAYOUTS: tuple[Any, ...] = (Ztg,)
 """The layouts of ZTG, in the order the parser tries them."""

@@ -5,7 +5,8 @@
 
     >>> Geos5StatusWord(0x00083037).antenna_telemetry   # doctest: +SKIP
 
-Bits the manuals leave unnamed are reserved and simply not described; they never make a value invalid.
+Bits the manuals leave unnamed are reserved and simply not described; they never make a value
+invalid.
 """
 
 from __future__ import annotations
@@ -21,12 +22,12 @@ class AcmeOutputs:
 
     @property
     def fix(self) -> int:
-        """Bit 0: FIX sentence.        """
+        """Bit 0: FIX sentence."""
         return (self.value >> 0) & 0x1
 
     @property
     def sat(self) -> int:
-        """Bit 1: SAT sentence.        """
+        """Bit 1: SAT sentence."""
         return (self.value >> 1) & 0x1
 
     @property
@@ -41,5 +42,6 @@ class AcmeOutputs:
         out: dict[str, str | int] = {}
         out["fix"] = self.fix
         out["sat"] = self.sat
-        out["rate"] = { 0: "one_hz", 1: "five_hz", }.get(self.rate, self.rate)
+        value, names = self.rate, {0: "one_hz", 1: "five_hz"}
+        out["rate"] = names.get(value, value)
         return out

@@ -51,15 +51,24 @@ VENDORS: dict[str, str] = {
 }
 
 COMMANDS: tuple[Command, ...] = (
-    Command("acme", "log", sentences.AcmeLog, "Request a log", (
-        Argument("message", "text", "The log to output."),
-        Argument("period", "integer", "Seconds between outputs."),
-    ), text=True),
-    Command("acme", "pacmset", sentences.Pacmset, "Set a parameter", (
-        Argument("what", "keyword", "The parameter set.", value="BAUD"),
-        Argument("baud", "enum", "The new speed.", enum=enums.AcmeBaud),
-        Argument("outputs", "hex", "The sentences to send."),
-    )),
+    Command(
+        "acme", "log", sentences.AcmeLog,
+        "Request a log",
+        (
+            Argument("message", "text", "The log to output."),
+            Argument("period", "integer", "Seconds between outputs."),
+        ),
+        text=True,
+    ),
+    Command(
+        "acme", "pacmset", sentences.Pacmset,
+        "Set a parameter",
+        (
+            Argument("what", "keyword", "The parameter set.", value="BAUD"),
+            Argument("baud", "enum", "The new speed.", enum=enums.AcmeBaud),
+            Argument("outputs", "hex", "The sentences to send."),
+        ),
+    ),
 )
 
 SHORTCUTS: tuple[Shortcut, ...] = (

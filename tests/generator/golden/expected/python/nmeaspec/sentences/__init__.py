@@ -16,11 +16,17 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from .fix import Fix as Fix, FixShort as FixShort
+
     from .sat import Sat as Sat
+
     from .xdm import Xdm as Xdm
+
     from .acme_log import AcmeLog as AcmeLog
+
     from .pacmack import Pacmack as Pacmack
+
     from .pacmset import Pacmset as Pacmset
+
 
 # Each sentence's module, and the module of each class.
 _MODULES: dict[str, str] = {
@@ -51,11 +57,11 @@ _ENCAPSULATED_IDS = frozenset({
     "XDM",
 })
 _ADDRESS_LAYOUTS: dict[str, tuple[str, ...]] = {
-    "PACMACK": ("Pacmack", ),
-    "PACMSET": ("Pacmset", ),
+    "PACMACK": ("Pacmack",),
+    "PACMSET": ("Pacmset",),
 }
 _COMMAND_LAYOUTS: dict[str, tuple[str, ...]] = {
-    "LOG": ("AcmeLog", ),
+    "LOG": ("AcmeLog",),
 }
 
 LAYOUTS: dict[str, tuple[Any, ...]] = {}

@@ -27,7 +27,7 @@ class AcmeLog(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "LOG"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
-    REPLIES: ClassVar[tuple[str, ...]] = ("FIX", "PACMACK", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("FIX", "PACMACK")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("FIX", None, ()),
@@ -53,5 +53,5 @@ class AcmeLog(rt.Sentence):
     checksum: ClassVar[str | None] = None
 
 
-LAYOUTS: tuple[Any, ...] = (AcmeLog, )
+LAYOUTS: tuple[Any, ...] = (AcmeLog,)
 """The layouts of ACME_LOG, in the order the parser tries them."""

@@ -48,5 +48,5 @@ class Pacmack(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pacmack, )
+LAYOUTS: tuple[Any, ...] = (Pacmack,)
 """The layouts of PACMACK, in the order the parser tries them."""

@@ -28,7 +28,7 @@ class Pacmset(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PACMSET"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "BAUD"
-    REPLIES: ClassVar[tuple[str, ...]] = ("PACMACK", )
+    REPLIES: ClassVar[tuple[str, ...]] = ("PACMACK",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
         ("PACMACK", None, (("command", "text", "SET"), )),
@@ -54,5 +54,5 @@ class Pacmset(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Pacmset, )
+LAYOUTS: tuple[Any, ...] = (Pacmset,)
 """The layouts of PACMSET, in the order the parser tries them."""

@@ -77,5 +77,5 @@ class Sat(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Sat, )
+LAYOUTS: tuple[Any, ...] = (Sat,)
 """The layouts of SAT, in the order the parser tries them."""

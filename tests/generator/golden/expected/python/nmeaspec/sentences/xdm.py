@@ -55,5 +55,5 @@ class Xdm(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Xdm, )
+LAYOUTS: tuple[Any, ...] = (Xdm,)
 """The layouts of XDM, in the order the parser tries them."""
