@@ -144,9 +144,9 @@ def _field(f: Field, fields: list[str], pos: int, address: str, name: str, ignor
     index = pos + 1
     t = f.type
     if t == "integer":
-        return rt.integer_field(text, address, index, name, f.expected, _bound(f.min), _bound(f.max))
+        return rt.number_field(text, True, address, index, name, f.expected, _bound(f.min), _bound(f.max))
     if t == "decimal":
-        return rt.decimal_field(text, address, index, name, f.expected, _bound(f.min), _bound(f.max))
+        return rt.number_field(text, False, address, index, name, f.expected, _bound(f.min), _bound(f.max))
     if t == "hex":
         return rt.hex_field(text, address, index, name, f.expected)
     if t == "time":

@@ -910,8 +910,9 @@ def _within(
     return (low is None or value >= low) and (high is None or value <= high)
 
 
-def integer_field(
+def number_field(
     text: str,
+    integer: bool,
     address: str,
     index: int,
     name: str,
@@ -920,29 +921,11 @@ def integer_field(
     high: Decimal | int | None = None,
     table: dict[str, Number] | None = None,
 ) -> Number | None:
+    """An integer (`integer`) or decimal field, in [low, high] when they are given."""
     if not text:
         return None
-    number = parse_number(text, integer=True)
-    if number is None or not _within(text, True, low, high):
-        raise bad_field(address, index, name, expected, text)
-    remember(table, text, number)
-    return number
-
-
-def decimal_field(
-    text: str,
-    address: str,
-    index: int,
-    name: str,
-    expected: str,
-    low: Decimal | int | None = None,
-    high: Decimal | int | None = None,
-    table: dict[str, Number] | None = None,
-) -> Number | None:
-    if not text:
-        return None
-    number = parse_number(text, integer=False)
-    if number is None or not _within(text, False, low, high):
+    number = parse_number(text, integer)
+    if number is None or not _within(text, integer, low, high):
         raise bad_field(address, index, name, expected, text)
     remember(table, text, number)
     return number
@@ -1362,7 +1345,10 @@ class _Memo(FieldSpec):
 
 
 class IntegerField(_Memo):
+    """An integer field, in [low, high] when they are given (DecimalField: a decimal number)."""
+
     __slots__ = ("low", "high")
+    KIND: ClassVar[str] = "integer"
 
     def __init__(
         self,
@@ -1372,39 +1358,17 @@ class IntegerField(_Memo):
         high: Decimal | int | None = None,
         optional: bool = False,
     ) -> None:
-        super().__init__(id, expected, _rule("integer", low, high), optional)
+        super().__init__(id, expected, _rule(self.KIND, low, high), optional)
         self.low, self.high = low, high
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
-        text = fields[pos]
-        if not text:
-            return None
-        return self.memo.get(text) or integer_field(
-            text, address, pos + 1, name, self.expected, self.low, self.high, self.memo
-        )
+        integer, args = self.KIND == "integer", (self.expected, self.low, self.high, self.memo)
+        return number_field(fields[pos], integer, address, pos + 1, name, *args)
 
 
 class DecimalField(IntegerField):
     __slots__ = ()
-
-    def __init__(
-        self,
-        id: str,
-        expected: str,
-        low: Decimal | int | None = None,
-        high: Decimal | int | None = None,
-        optional: bool = False,
-    ) -> None:
-        _Memo.__init__(self, id, expected, _rule("decimal", low, high), optional)
-        self.low, self.high = low, high
-
-    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
-        text = fields[pos]
-        if not text:
-            return None
-        return self.memo.get(text) or decimal_field(
-            text, address, pos + 1, name, self.expected, self.low, self.high, self.memo
-        )
+    KIND = "decimal"
 
 
 def _coordinate_pair(value: Any) -> tuple[str, str]:
@@ -1419,58 +1383,36 @@ def _rule(kind: str, low: Decimal | int | None, high: Decimal | int | None) -> s
     return f"{kind} {'' if low is None else low}..{'' if high is None else high}"
 
 
-class HexField(_Memo):
+class _Parsed(_Memo):
+    """A field one parser of the runtime reads whole (hex, time, date)."""
+
     __slots__ = ()
+    KIND: ClassVar[str]
 
     def __init__(self, id: str, expected: str, optional: bool = False) -> None:
-        super().__init__(id, expected, "hex", optional)
+        super().__init__(id, expected, self.KIND, optional)
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
-        text = fields[pos]
-        return (
-            (
-                self.memo.get(text)
-                or hex_field(text, address, pos + 1, name, self.expected, self.memo)
-            )
-            if text
-            else None
-        )
+        parse: Callable[..., Any] = _PARSERS[self.KIND]
+        return parse(fields[pos], address, pos + 1, name, self.expected, self.memo)
 
 
-class TimeField(_Memo):
+_PARSERS: dict[str, Callable[..., Any]] = {"hex": hex_field, "time": time_field, "date": date_field}
+
+
+class HexField(_Parsed):
     __slots__ = ()
-
-    def __init__(self, id: str, expected: str, optional: bool = False) -> None:
-        super().__init__(id, expected, "time", optional)
-
-    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
-        text = fields[pos]
-        return (
-            (
-                self.memo.get(text)
-                or time_field(text, address, pos + 1, name, self.expected, self.memo)
-            )
-            if text
-            else None
-        )
+    KIND = "hex"
 
 
-class DateField(_Memo):
+class TimeField(_Parsed):
     __slots__ = ()
+    KIND = "time"
 
-    def __init__(self, id: str, expected: str, optional: bool = False) -> None:
-        super().__init__(id, expected, "date", optional)
 
-    def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
-        text = fields[pos]
-        return (
-            (
-                self.memo.get(text)
-                or date_field(text, address, pos + 1, name, self.expected, self.memo)
-            )
-            if text
-            else None
-        )
+class DateField(_Parsed):
+    __slots__ = ()
+    KIND = "date"
 
 
 class LatitudeField(_Memo):
@@ -1489,18 +1431,8 @@ class LatitudeField(_Memo):
         self.hemisphere_expected = hemisphere_expected
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
-        pair = (fields[pos], fields[pos + 1])
-        return self.memo.get(pair) or coordinate_field(
-            pair[0],
-            pair[1],
-            address,
-            pos + 1,
-            name,
-            self.expected,
-            self.hemisphere_expected,
-            self.HEMISPHERES,
-            self.memo,
-        )
+        args = (self.expected, self.hemisphere_expected, self.HEMISPHERES, self.memo)
+        return coordinate_field(fields[pos], fields[pos + 1], address, pos + 1, name, *args)
 
 
 class LongitudeField(LatitudeField):
@@ -1525,12 +1457,7 @@ class LiteralField(FieldSpec):
         self.word = word
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
-        text = fields[pos]
-        return (
-            self.word
-            if text == self.word
-            else literal_field(text, address, pos + 1, name, self.expected, self.word)
-        )
+        return literal_field(fields[pos], address, pos + 1, name, self.expected, self.word)
 
     def known(self) -> dict[Any, Any]:
         return {self.word: self.word}
@@ -1578,32 +1505,9 @@ class EnumField(FieldSpec):
         self.ignore_case = False
 
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
-        text = fields[pos]
         e = self.enum
-        if self.ignore_case:
-            return enum_field(
-                text,
-                address,
-                pos + 1,
-                name,
-                self.expected,
-                e.BY_CODE,
-                e.CODE_CLASS,
-                e.MIN_LEN,
-                e.MAX_LEN,
-                True,
-            )
-        return e.BY_CODE.get(text) or enum_field(
-            text,
-            address,
-            pos + 1,
-            name,
-            self.expected,
-            e.BY_CODE,
-            e.CODE_CLASS,
-            e.MIN_LEN,
-            e.MAX_LEN,
-        )
+        table = (e.BY_CODE, e.CODE_CLASS, e.MIN_LEN, e.MAX_LEN, self.ignore_case)
+        return enum_field(fields[pos], address, pos + 1, name, self.expected, *table)
 
     def known(self) -> dict[Any, Any]:
         return _NOTHING_KNOWN if self.ignore_case else self.enum.BY_CODE
