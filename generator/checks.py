@@ -130,6 +130,9 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
         report(sentence.origin, "S011", "only replies have an `outcome`", "sentence")
 
 
+# Most digits a number field holds in every runtime (NMEA_MAX_DIGITS, runtime.MAX_DIGITS).
+MAX_DIGITS = 18
+
 # The field types a reply's `when` and `outcome` may test: values a program compares exactly.
 PAIRING_TYPES = ("integer", "enum", "text", "char")
 
@@ -290,12 +293,18 @@ def _check_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: se
             if seen_optional:
                 report(item.origin, "S004", f"group {item.id} follows an optional field", "group")
             inner: set[str] = set()
+            count_id = f"{item.id}_count"  # the C member that counts the entries
+            if any(other.id == count_id for other in layout.items):
+                report(item.origin, "S014", f"{count_id!r} is the name of the count of group {item.id}; choose "
+                       "another id", "group")
             for f in item.fields:
                 if f.id in inner:
                     report(f.origin, "S001", f"{f.id!r} appears twice in group {item.id}", "id")
                 inner.add(f.id)
                 if f.is_optional:
                     report(f.origin, "S004", "a field inside a group cannot be optional", "id")
+                if f.type == "keyword":
+                    report(f.origin, "S004", "a group cannot hold a keyword (a keyword picks the layout)", "type")
                 _check_field(f, manual_ids, report)
             continue
         if item.is_optional:
@@ -333,6 +342,12 @@ def _check_field(f: Field, manual_ids: set[str], report: _Reporter) -> None:
             report(f.origin, "S002", f"enum_chars field {f.id} needs an enum of one-character codes", "enum")
     if f.min is not None and f.max is not None and f.min > f.max:
         report(f.origin, "S007", f"field {f.id}: min {f.min} exceeds max {f.max}", "min")
+    for key, bound in (("min", f.min), ("max", f.max)):
+        if bound is not None:
+            digits, scale = fixed_point(bound)
+            if scale > MAX_DIGITS or abs(digits) >= 10**MAX_DIGITS:
+                report(f.origin, "S007", f"field {f.id}: {key} {bound} needs more than the {MAX_DIGITS} digits "
+                       "a number holds", key)
     if (f.min is not None or f.max is not None) and f.type not in ("integer", "decimal"):
         report(f.origin, "S007", f"field {f.id}: min/max apply to integer and decimal fields only", "min")
     if f.max_length is not None and f.type not in ("text", "enum_chars"):

@@ -24,9 +24,6 @@ long register restrict return short signed sizeof static struct switch typedef u
 volatile while bool true false _Bool _Complex _Imaginary
 """.split())
 
-# Struct members every layout has besides its fields.
-RESERVED_MEMBERS = frozenset({"talker", "checksum", "optional_count", "as_received", "problems"})
-
 # The C member type of each field type (None: a keyword, which the layout implies).
 C_TYPES = {name: t.c_type for name, t in TYPES.items()}
 
@@ -89,11 +86,8 @@ def entry_type(sentence: Sentence, layout: Layout, group: Group) -> str:
 
 
 def _fixed(value: float) -> tuple[int, int]:
-    """(digits, scale) with digits * 10^-scale == value."""
-    digits, scale = fixed_point(value)
-    if scale > 18 or abs(digits) >= 10**18:
-        raise ValueError(f"bound {fmt_num(value)} needs more than the 18 digits of nmea_number")
-    return digits, scale
+    """(digits, scale) with digits * 10^-scale == value (at most 18 digits: checks.py, S007)."""
+    return fixed_point(value)
 
 
 def _range_word(value: float) -> str:
@@ -273,24 +267,15 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
     snake = sentence.layout_snake(layout)
     group = layout.group
     kind = sentence.wire_kind
-    if kind == "text" and group is not None:
-        raise ValueError(f"{sentence.id}: a text command cannot have a repeated group")
     before: list[dict] = []
     after: list[dict] = []
     optional: list[dict] = []
-    names = set()
     seen_group = False
-    for item in layout.items:
+    for item in layout.items:  # (checks.py keeps ids off the members every struct has: S014)
         if isinstance(item, Group):
             seen_group = True
-            names.add(member(item.id))
-            names.add(member(item.id) + "_count")
             continue
         view = field_view(item, "s->", ranges, f"nmea_{snake}")
-        if view["member"] is not None:
-            if view["member"] in names or view["member"] in RESERVED_MEMBERS:
-                raise ValueError(f"{sentence.id}: field id {item.id!r} collides with a generated C member")
-            names.add(view["member"])
         if item.is_optional:
             optional.append(view)
         elif seen_group:
@@ -613,10 +598,7 @@ def _opt_str(value: object) -> str:
 def table_view(t: TableDef) -> dict:
     name = f"nmea_{t.id}"
     params = []
-    for i, p in enumerate(t.parameters):
-        for what, value in (("size", p.size), ("count", p.count), ("max_length", p.max_length)):
-            if value is not None and not 0 <= value <= 255:
-                raise ValueError(f"parameter {t.id}.{p.id}: {what} {value} does not fit nmea_parameter")
+    for i, p in enumerate(t.parameters):  # (size, count and max_length fit a byte: the schema)
         init = ", ".join([
             str(p.number), c_str(p.id), c_str(p.name), ENCODINGS[p.encoding], str(p.size or 0), str(p.count or 0),
             range_init(p.min, p.max), str(p.max_length or 0), _opt_str(p.default), _opt_str(p.unit),

@@ -31,10 +31,6 @@ KEYWORDS = {
     "gen",
 }
 
-# Names a layout struct already uses for its own members (checks.py reserves them for every
-# language; asserted here too).
-RESERVED_FIELDS = {"talker", "trailing", "checksum", "as_received"}
-
 # Names the sentence modules import from the runtime; generated type names must differ.
 RUNTIME_NAMES = {
     "Bound", "Checksum", "Code", "CodeChars", "Coordinate", "Date", "Error", "Fields", "Group", "Hex",
@@ -585,8 +581,6 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     for item in layout.items:
         if isinstance(item, Group):
             g = item
-            assert not text, f"{sentence.id}: a text command cannot have a repeated group ({g.id})"
-            assert all(f.type != "keyword" for f in g.fields), f"{sentence.id}: keyword in group {g.id}"
             if g.single and g.fields[0].type == "text":
                 # Kept as the wire text: a struct stays small whatever the group's maximum.
                 f = g.fields[0]
@@ -647,9 +641,6 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
             view["kind"] = "field"
         view["optional"] = optional
         items.append(view)
-    for it in items:
-        some_id = it["field"].id if it.get("field") is not None else it["group"].id
-        assert some_id not in RESERVED_FIELDS, f"{sentence.id}: {some_id} is a reserved name in the Rust structs"
     group = layout.group
     optional = [it for it in items if it.get("optional")]
     binding = ("repeats" if group else "_", "extra" if optional else "_")

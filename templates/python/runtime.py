@@ -1632,7 +1632,10 @@ class Layout:
             )
 
         group = self.group
-        code = ["def parse(cls, address, fields, checksum, line):", "    count = len(fields)"]
+        code = [
+            'def parse(cls, address, fields, checksum="upper", line=None):',
+            "    count = len(fields)",
+        ]
         if group is None:
             code += [
                 f"    if count < {self.fixed}:",
@@ -1729,6 +1732,24 @@ class Layout:
         write: Callable[[Any], list[str]] = names["write"]
         return write
 
+    def sentence_writer(self, address: str) -> Callable[[Any], str]:
+        """to_sentence(sentence): its text (see Sentence.to_sentence), `address` that of a
+        proprietary sentence or text command."""
+        write, start, suffix = self.write, self.start, self.sentence
+
+        def text_command(s: Any) -> str:
+            return assemble_text(address, with_problems(write(s), s.problems), s.as_received)
+
+        def standard(s: Any) -> str:
+            return assemble(
+                start, s.talker + suffix, with_problems(write(s), s.problems), s.checksum
+            )
+
+        def proprietary(s: Any) -> str:
+            return assemble(start, address, with_problems(write(s), s.problems), s.checksum)
+
+        return {"text": text_command, "standard": standard}.get(self.kind, proprietary)
+
     def json(self, sentence: Any, values: bool) -> str:
         """The `fields` object of the tools' JSON (`values`: decoded values instead of texts)."""
         show = value_json if values else text_json
@@ -1787,6 +1808,16 @@ class Sentence:
     ADDRESS: ClassVar[str | None]
     problems: list[NmeaError]
 
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        """A sentence class takes its layout's compiled reader and writer as its own methods:
+        no call in between on the hot path."""
+        super().__init_subclass__(**kwargs)
+        layout = cls.__dict__.get("LAYOUT")
+        if layout is not None:
+            cls.parse_fields = classmethod(layout.parse)  # type: ignore[assignment]
+            cls.fields = layout.write  # type: ignore[method-assign]
+            cls.to_sentence = layout.sentence_writer(cls.ADDRESS or "")  # type: ignore[method-assign]
+
     @classmethod
     def parse_fields(
         cls: type[SentenceT],
@@ -1806,16 +1837,7 @@ class Sentence:
     def to_sentence(self) -> str:
         """The sentence text, checksum included unless `checksum` is None (a text command: its
         words separated by single spaces); no line ending."""
-        layout = self.LAYOUT
-        fields = with_problems(layout.write(self), self.problems)
-        if layout.kind == "text":
-            return assemble_text(self.ADDRESS or "", fields, getattr(self, "as_received"))
-        address = (
-            getattr(self, "talker") + self.SENTENCE
-            if layout.kind == "standard"
-            else self.ADDRESS or ""
-        )
-        return assemble(layout.start, address, fields, getattr(self, "checksum"))
+        return self.LAYOUT.sentence_writer(self.ADDRESS or "")(self)
 
     def to_bytes(self) -> bytes:
         """The exact bytes to send, CR LF included, once every field has been checked the way a
