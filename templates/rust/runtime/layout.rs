@@ -140,7 +140,6 @@ pub trait Layout<'a>: Sized {
 
     /// [`Layout::write_fields`] into a byte buffer without `fmt`, when the text is ASCII;
     /// `None`: leave it to `write_fields`.
-    #[inline]
     fn put_fields(&self, w: &mut ByteWriter<'_>) -> Option<()> {
         self.visit(w).ok()
     }
