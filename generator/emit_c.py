@@ -620,27 +620,6 @@ def table_view(t: TableDef) -> dict:
     }
 
 
-def cased_runs() -> list[tuple[int, int, int]]:
-    """The characters above U+00FF that Python's str.upper() changes, as runs (first, last,
-    step): how the reference decides that a JSON checksum is written in lower case."""
-    points = [c for c in range(0x100, 0x110000) if chr(c).upper() != chr(c)]
-    runs: list[tuple[int, int, int]] = []
-    i = 0
-    while i < len(points):
-        first = points[i]
-        if i + 1 < len(points) and points[i + 1] - first in (1, 2):
-            step = points[i + 1] - first
-            j = i + 1
-            while j + 1 < len(points) and points[j + 1] - points[j] == step:
-                j += 1
-            runs.append((first, points[j], step))
-            i = j + 1
-        else:
-            runs.append((first, first, 1))
-            i += 1
-    return runs
-
-
 def vector_view(record: dict) -> dict:
     def lit(key: str) -> str:
         value = record.get(key)
@@ -724,7 +703,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "bitfields": bitfields, "tables": tables, "dispatch": dispatch,
         "hashes": {name: perfect_hash([int(e["code"], 16) for e in dispatch[name]])
                    for name in ("standard", "encapsulated") if dispatch[name]},
-        "commands": [v for v in views if v["replies"]], "cased_runs": cased_runs(),
+        "commands": [v for v in views if v["replies"]],
         "pairings": reply_pairings(spec), "judged": reply_judgements(spec),
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),

@@ -3100,26 +3100,8 @@ static bool json_text_member(nmea_json obj, const char *key, bool nullable, nmea
     return true;
 }
 
-/* Whether Python's str.upper() changes the character `cp` (CASED_RUNS, generated from the
-   reference's Unicode data, lists those above 0xFF). */
-static bool changes_in_upper_case(long cp)
-{
-    size_t lo = 0, hi = sizeof CASED_RUNS / sizeof CASED_RUNS[0];
-    if (cp <= 0xFF)
-        return (cp >= 'a' && cp <= 'z') || cp == 0xB5 || (cp >= 0xDF && cp != 0xF7);
-    while (lo < hi) { /* the last run starting at or below cp */
-        size_t mid = (lo + hi) / 2;
-        if (CASED_RUNS[mid][0] <= (unsigned long)cp)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo > 0 && (unsigned long)cp <= CASED_RUNS[lo - 1][1]
-        && ((unsigned long)cp - CASED_RUNS[lo - 1][0]) % CASED_RUNS[lo - 1][2] == 0;
-}
-
 /* How the "checksum" of decode's JSON says to write the checksum: null (none), "" (a bare '*'),
-   lower case (when the text has a character str.upper() changes) or upper case. */
+   lower case (when the text has a letter from a to z) or upper case. */
 static bool json_checksum_style(nmea_json root, nmea_checksum_style *style, nmea_error *err)
 {
     nmea_json v;
@@ -3135,7 +3117,7 @@ static bool json_checksum_style(nmea_json root, nmea_checksum_style *style, nmea
         return bad_json(err, "\"%s\" is not a string or null", "checksum");
     *style = v.end - v.p == 2 ? NMEA_CHECKSUM_EMPTY : NMEA_CHECKSUM_UPPER;
     for (p = v.p + 1; json_char_at(&p, v.end, &cp);)
-        if (changes_in_upper_case(cp))
+        if (cp >= 'a' && cp <= 'z')
             *style = NMEA_CHECKSUM_LOWER;
     return true;
 }

@@ -1205,7 +1205,9 @@ def checksum_case(text: str | None) -> str | None:
         return None
     if not text:
         return "empty"
-    return "lower" if text != text.upper() else "upper"
+    if text.isascii():  # upper() changes exactly the letters a to z
+        return "lower" if text != text.upper() else "upper"
+    return "lower" if any("a" <= c <= "z" for c in text) else "upper"
 
 
 def assemble_text(address: str, fields: list[str], as_received: str | None) -> str:

@@ -173,3 +173,21 @@ def test_fuzz_regressions() -> None:
             data = path.read_bytes()
             check_stream(data)
             agreed(["stream", "--lenient"], data)
+
+
+def test_encode_takes_the_checksum_case_from_ascii_letters() -> None:
+    """decode's "checksum" says how encode writes the checksum: lower case when it holds a letter
+    from a to z (whatever else it holds), else upper case; the three tools agree."""
+    body = "GPGLL,5550.6135,N,03732.2515,E,075140.00,A,A"
+    total = 0
+    for byte in body.encode():
+        total ^= byte
+    decoded = json.loads(agreed(["decode"], f"${body}*{total:02X}\n".encode()))
+    cases = {"6a": "lower", "\u00df": "upper", "\u00dfx": "lower", "AB": "upper", "": "empty"}
+    data = "".join(json.dumps(dict(decoded, checksum=text), separators=(",", ":")) + "\n" for text in cases)
+    lines = agreed(["encode"], data.encode()).decode().splitlines()
+    assert len(lines) == len(cases), lines
+    for line, want in zip(lines, cases.values()):
+        digits = line[line.rfind("*") + 1:]
+        assert {"empty": digits == "", "upper": digits == f"{total:02X}", "lower": digits == f"{total:02x}"}[want], \
+            (want, line)

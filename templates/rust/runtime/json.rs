@@ -321,13 +321,13 @@ pub fn str_member<'v>(obj: &'v Value, key: &str) -> Result<&'v str, Error<'stati
     }
 }
 
-/// How a received checksum was written: absent, empty (a bare `*`), or lower case when
-/// upper-casing changes it.
+/// How a received checksum was written: absent, empty (a bare `*`), or lower case when it has
+/// a letter from `a` to `z`.
 pub fn checksum_case(text: Option<&str>) -> Checksum {
     match text {
         None => Checksum::None,
         Some("") => Checksum::Empty,
-        Some(t) if t.chars().any(|c| c.to_uppercase().ne(Some(c))) => Checksum::Lower,
+        Some(t) if t.bytes().any(|b| b.is_ascii_lowercase()) => Checksum::Lower,
         Some(_) => Checksum::Upper,
     }
 }
@@ -485,7 +485,10 @@ mod tests {
             err.to_string(),
             r#"bad_json: line: field text "a,b" holds ',', '*' or a byte outside printable ASCII"#
         );
-        assert_eq!(checksum_case(Some("\u{df}")), Checksum::Lower);
+        // lower case when it holds a letter from a to z, whatever else it holds
+        assert_eq!(checksum_case(Some("\u{df}")), Checksum::Upper);
+        assert_eq!(checksum_case(Some("\u{df}x")), Checksum::Lower);
+        assert_eq!(checksum_case(Some("4f")), Checksum::Lower);
         assert_eq!(checksum_case(Some("4F")), Checksum::Upper);
         assert_eq!(checksum_case(Some("")), Checksum::Empty);
     }
