@@ -25,6 +25,11 @@ def environment() -> jinja2.Environment:
     return env
 
 
+def char_literal(value: str) -> str:
+    """A C or Rust character literal of one printable ASCII character (a reply's `char` value)."""
+    return "'" + {"'": "\\'", "\\": "\\\\"}.get(value, value) + "'"
+
+
 def header(spec: Spec, comment: str, sources: list[str] | None = None) -> str:
     """The DO NOT EDIT banner every generated file starts with."""
     names = sources if sources is not None else ["spec/"]

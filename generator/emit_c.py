@@ -14,7 +14,7 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import TEMPLATES, header
+from .emit import TEMPLATES, char_literal, header
 from .field_types import TYPES
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, fixed_point, fmt_num
 
@@ -85,11 +85,6 @@ def entry_type(sentence: Sentence, layout: Layout, group: Group) -> str:
 # Value ranges
 
 
-def _fixed(value: float) -> tuple[int, int]:
-    """(digits, scale) with digits * 10^-scale == value (at most 18 digits: checks.py, S007)."""
-    return fixed_point(value)
-
-
 def _range_word(value: float) -> str:
     text = fmt_num(value)
     return text.replace("-", "minus_").replace(".", "p")
@@ -99,10 +94,10 @@ def range_init(low: float | None, high: float | None) -> str:
     """The initializer of an nmea_range."""
     parts = []
     if low is not None:
-        digits, scale = _fixed(low)
+        digits, scale = fixed_point(low)  # (at most 18 digits: checks.py, S007)
         parts += [".has_min = true", f".min = {digits}"] + ([f".min_scale = {scale}"] if scale else [])
     if high is not None:
-        digits, scale = _fixed(high)
+        digits, scale = fixed_point(high)
         parts += [".has_max = true", f".max = {digits}"] + ([f".max_scale = {scale}"] if scale else [])
     return "{" + ", ".join(parts) + "}" if parts else "{0}"
 
@@ -364,10 +359,6 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "start": sentence.start,
         "fast": kind != "text" and sentence.fast_path,
         "address": c_str(sentence.address or ""),
-        "command": c_str((sentence.address or "").upper()),
-        "selector": c_str(layout.selector.upper()) if layout.selector is not None else "NULL",  # upper_is
-        "selector_at": layout.selector_at,
-        "variant": c_str(layout.id) if layout.id else "NULL",
         "example": c_comment(example.line) if example and example.line else None,
         "example_manual": example.manual if example else None,
         "doc": doc_lines(layout.doc if layout.id else sentence.doc),
@@ -424,11 +415,6 @@ def reply_test(condition: pairing.Condition, target: str) -> str:
     if f.type == "text":
         return f"text_is({target}, {c_str(value)})"
     return f"{target} == {char_literal(value)}"
-
-
-def char_literal(value: str) -> str:
-    """A C character literal of one printable ASCII character."""
-    return "'" + {"'": "\\'", "\\": "\\\\"}.get(value, value) + "'"
 
 
 def reply_pairings(spec: Spec) -> list[dict]:

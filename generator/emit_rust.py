@@ -12,7 +12,7 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import TEMPLATES, header
+from .emit import TEMPLATES, char_literal, header
 from .field_types import TYPES
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
 from .rust_features import Gates, cfg, with_cfg
@@ -32,13 +32,19 @@ KEYWORDS = {
 }
 
 # Names the sentence modules import from the runtime; generated type names must differ.
-RUNTIME_NAMES = {
-    "Bound", "Checksum", "Code", "CodeChars", "Coordinate", "Date", "Error", "Fields", "Group", "Hex",
-    "JsonFields", "Layout", "Name", "Number", "Range", "Reader", "Shape", "GroupShape", "Time", "WireWriter",
-    "Sentence", "Generic", "LayoutId", "Frame", "Option", "Result", "Self", "Framing", "Kind", "Parameter",
-    "Table", "Encoding", "Texts", "Parsed", "Options", "Problems", "FieldProblem", "Blanks", "Framer", "Item",
-    "FastReader", "Read", "Unsure", "ByteWriter", "ReplyOutcome",
-}
+def _runtime_exports() -> set[str]:
+    """The type names runtime/mod.rs exports (`pub use module::{A, B};`), read from it."""
+    text = (TEMPLATES / "rust" / "runtime" / "mod.rs").read_text(encoding="utf-8")
+    names = set()
+    for group in re.findall(r"pub use \w+::\{([^}]*)\}", text):
+        names |= {n.strip() for n in group.split(",") if n.strip()[:1].isupper()}
+    return names
+
+
+# Names the sentence modules and lib.rs use, which generated type names must not take: the
+# runtime's exports, lib.rs's own types and the prelude's.
+RUNTIME_NAMES = _runtime_exports() | {"Sentence", "Generic", "LayoutId", "Option", "Result", "Self", "Parsed",
+                                      "Options", "Framer", "Item"}
 
 
 def ident(name: str) -> str:
@@ -346,12 +352,7 @@ def reply_test(condition: pairing.Condition, target: str) -> str:
         return f"{target} == Some(Code::Known(crate::enums::{f.enum.camel}::{variant}))"
     if f.type == "text":
         return f"{target} == Some({rust_str(value)})"
-    return f"{target} == Some({rust_char(value)})"
-
-
-def rust_char(value: str) -> str:
-    """A Rust character literal of one printable ASCII character."""
-    return "'" + {"'": "\\'", "\\": "\\\\"}.get(value, value) + "'"
+    return f"{target} == Some({char_literal(value)})"
 
 
 def reply_pairing_arms(spec: Spec) -> tuple[list[str], list[str]]:
@@ -400,16 +401,6 @@ def fmt_tuple(indent: int, items: list[str], suffix: str) -> list[str]:
     if len(one) <= WIDTH:
         return [one]
     return [f"{pad}(", *[f"{pad}    {i}," for i in items], f"{pad}){suffix}"]
-
-
-def fmt_array(indent: int, decl: str, items: list[str]) -> list[str]:
-    pad = " " * indent
-    array = f"[{', '.join(items)}];"
-    if len(pad) + len(decl) + 3 + len(array) <= WIDTH:
-        return [f"{pad}{decl} = {array}"]
-    if len(pad) + 4 + len(array) <= WIDTH:
-        return [f"{pad}{decl} =", f"{pad}    {array}"]
-    return [f"{pad}{decl} = [", *[f"{pad}    {i}," for i in items], f"{pad}];"]
 
 
 def rust_sorted(names: set[str]) -> list[str]:

@@ -1324,7 +1324,7 @@ class FieldSpec:
         """The value of the field at `pos` of `fields`; raises NmeaError naming `name`."""
         raise NotImplementedError
 
-    def known(self) -> dict[Any, Any]:
+    def known_values(self) -> dict[Any, Any]:
         """Values by wire text that read() would give for them (looked up first: a dict lookup
         is most of what reading a field costs then)."""
         return _NOTHING_KNOWN
@@ -1342,7 +1342,7 @@ class _Memo(FieldSpec):
         super().__init__(id, expected, optional)
         self.memo = known(rule)
 
-    def known(self) -> dict[Any, Any]:
+    def known_values(self) -> dict[Any, Any]:
         return self.memo
 
 
@@ -1461,7 +1461,7 @@ class LiteralField(FieldSpec):
     def read(self, fields: list[str], pos: int, address: str, name: str) -> Any:
         return literal_field(fields[pos], address, pos + 1, name, self.expected, self.word)
 
-    def known(self) -> dict[Any, Any]:
+    def known_values(self) -> dict[Any, Any]:
         return {self.word: self.word}
 
 
@@ -1479,7 +1479,7 @@ class KeywordField(LiteralField):
             fields[pos], address, pos + 1, name, self.expected, self.word, self.ignore_case
         )
 
-    def known(self) -> dict[Any, Any]:
+    def known_values(self) -> dict[Any, Any]:
         return _NOTHING_KNOWN if self.ignore_case else {self.word: self.word}
 
 
@@ -1511,7 +1511,7 @@ class EnumField(FieldSpec):
         table = (e.BY_CODE, e.CODE_CLASS, e.MIN_LEN, e.MAX_LEN, self.ignore_case)
         return enum_field(fields[pos], address, pos + 1, name, self.expected, *table)
 
-    def known(self) -> dict[Any, Any]:
+    def known_values(self) -> dict[Any, Any]:
         return _NOTHING_KNOWN if self.ignore_case else self.enum.BY_CODE
 
 
@@ -1624,7 +1624,7 @@ class Layout:
 
         def read(spec: FieldSpec, n: str, pos: str, name: str) -> str:
             """The expression that reads `spec` at wire index `pos` (an expression)."""
-            names[f"known{n}"], names[f"read{n}"] = spec.known().get, spec.read
+            names[f"known{n}"], names[f"read{n}"] = spec.known_values().get, spec.read
             text = f"(fields[{pos}], fields[{pos} + 1])" if spec.width == 2 else f"fields[{pos}]"
             expr = f"known{n}({text}) or read{n}(fields, {pos}, address, {name})"
             return (
