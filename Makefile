@@ -10,7 +10,7 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build footprint test test-steps test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
+.PHONY: generate validate check build footprint release-check changelog test test-steps test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-differential
 
@@ -66,7 +66,7 @@ test:
 	$(MAKE) --no-print-directory -j2 --output-sync=target test-steps
 
 test-steps: check test-generator test-python test-c test-c-memory test-rust test-tools test-workflows test-bench-smoke \
-        fuzz-smoke
+        fuzz-smoke release-check
 
 test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
@@ -142,6 +142,17 @@ test-bench-smoke: $(STAMP)
 # and the HTML site in headless Chromium.
 test-workflows: $(STAMP) $(DOCS_STAMP)
 	$(PY) -m pytest -q tests/workflows
+
+# --- releases ---------------------------------------------------------------------------------
+# `make release-check` (part of `make test`): one version (VERSION) and one license everywhere, the
+# Python sdist and wheel built, `twine check`ed and installed into a fresh venv, `cargo package`
+# of the crate (tools/release_check.py; from copies in build/release). `make changelog` rewrites
+# CHANGELOG.md from the git history: the spec diff of each release against the one before.
+release-check: build $(STAMP)
+	$(PY) tools/release_check.py
+
+changelog: $(STAMP)
+	$(PY) tools/changelog.py
 
 # --- benchmarks ------------------------------------------------------------------------------
 # `make bench` (not part of `make test`): ours in C, Rust and Python, the ceiling and the peers

@@ -10,7 +10,7 @@ import textwrap
 from pathlib import Path
 
 from .errors import SpecErrors
-from .paths import ROOT
+from .paths import ROOT, VERSION
 
 PROG = "nmeaspec-gen"
 
@@ -35,6 +35,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog=PROG, formatter_class=_formatter, epilog=EPILOG,
         description="NMEA 0183 spec -> C, Python and Rust codecs, Markdown docs and test vectors.")
+    parser.add_argument("--version", action="version", version=f"{PROG} {VERSION}")
     parser.add_argument("--spec", type=Path, default=ROOT / "spec", help="spec directory (default: %(default)s)")
     verbs = parser.add_subparsers(dest="verb", required=True, metavar="VERB")
 

@@ -320,17 +320,20 @@ def _examples(old: Spec, new: Spec, log: _Log) -> None:
 
 # --- output ------------------------------------------------------------------------------------
 
-def markdown(changes: list[Change], old_name: str, new_name: str) -> str:
+def markdown(changes: list[Change], old_name: str, new_name: str, title: str | None = None,
+             level: int = 1) -> str:
+    """The changelog as Markdown: a heading of `level` (`title`, by default the two names), then
+    the counts and a section per kind of change."""
     breaking = sum(c.breaking for c in changes)
-    lines = [f"# API changelog: {old_name} -> {new_name}", ""]
+    lines = [f"{'#' * level} {title or f'API changelog: {old_name} -> {new_name}'}", ""]
     if not changes:
         return "\n".join(lines + ["No change to the generated API.", ""])
     lines += [f"{len(changes)} change(s): {breaking} BREAKING, {len(changes) - breaking} compatible.", ""]
-    for kind, title in SECTIONS.items():
+    for kind, section in SECTIONS.items():
         ours = [c for c in changes if c.kind == kind]
         if not ours:
             continue
-        lines += [f"## {title}", ""]
+        lines += [f"{'#' * (level + 1)} {section}", ""]
         ours.sort(key=lambda c: (not c.breaking, c.subject))
         lines += [f"- {'**BREAKING**' if c.breaking else 'compatible'}: {c.change}" for c in ours]
         lines.append("")

@@ -9,7 +9,7 @@ from collections import Counter
 import jinja2
 
 from . import emit_vectors
-from .emit import TEMPLATES, header
+from .emit import TEMPLATES, markdown_banner
 from .field_types import TYPES
 from .model import Field, Group, Layout, Manual, ReplyRule, Sentence, Spec
 
@@ -135,7 +135,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     def banner_of(sources: list[str] | None) -> str:
         """The DO NOT EDIT banner as an HTML comment; a page about one item names the files it is
         made from, so that editing one YAML file does not rewrite every page's banner."""
-        return "<!-- " + " | ".join(header(spec, "", sources).strip().splitlines()) + " -->\n"
+        return markdown_banner(spec, sources)
 
     banner = banner_of(None)
     files["docs/README.md"] = env.get_template("docs/index.md.j2").render(

@@ -1,15 +1,18 @@
-"""Build files that let another project use the generated code the way its ecosystem expects:
-a CMakeLists.txt beside the C pair (the Python pyproject.toml and the Rust Cargo.toml come with
-their emitters)."""
+"""Build and release files that let another project use the generated code the way its ecosystem
+expects: a CMakeLists.txt beside the C pair, and the license texts in each package folder (the
+Python pyproject.toml and the Rust Cargo.toml come with their emitters)."""
 
 from __future__ import annotations
 
 import jinja2
 
-from .emit import TEMPLATES, header
+from .emit import header, license_texts
 from .model import Spec
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    cmake = (TEMPLATES / "c" / "CMakeLists.txt").read_text(encoding="utf-8")
-    return {"c/CMakeLists.txt": header(spec, "#", ["templates/c/CMakeLists.txt"]) + cmake}
+    files = {"c/CMakeLists.txt": env.get_template("c/CMakeLists.txt.j2").render(
+        header=header(spec, "#", ["templates/c/CMakeLists.txt.j2"]))}
+    for folder in ("c", "python", "rust"):
+        files.update(license_texts(folder))
+    return files

@@ -9,7 +9,7 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import TEMPLATES, header
+from .emit import TEMPLATES, header, package_readme
 from .field_types import TYPES
 from .model import Field, Group, Layout, Sentence, Spec, fmt_num
 
@@ -265,6 +265,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         header=header(spec, "#"), sentences=spec.sentences, enums=spec.enums)
     files["python/pyproject.toml"] = env.get_template("python/pyproject.toml.j2").render(
         header=header(spec, "#", ["templates/python/pyproject.toml.j2"]), package=PACKAGE)
+    files["python/README.md"] = package_readme(spec, env, "python/README.md.j2", package=PACKAGE)
     files["python/tests/test_examples.py"] = env.get_template("python/test_examples.py.j2").render(
         header=header(spec, "#"), vectors=[v for v in emit_vectors.example_vectors(spec)], package=PACKAGE,
         json=json, reply_cases=pairing.reply_cases(spec))

@@ -12,7 +12,7 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import TEMPLATES, char_literal, header
+from .emit import TEMPLATES, char_literal, header, package_readme
 from .field_types import TYPES
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
 from .rust_features import Gates, cfg, with_cfg
@@ -1142,6 +1142,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                      "    ];"])
     files[f"{base}/Cargo.toml"] = env.get_template("rust/Cargo.toml.j2").render(
         header=header(spec, "#", ["templates/rust/Cargo.toml.j2"]), crate=CRATE, vendors=gates.features)
+    files[f"{base}/README.md"] = package_readme(spec, env, "rust/README.md.j2", crate=CRATE)
     rustfmt = (TEMPLATES / "rust" / "rustfmt.toml").read_text(encoding="utf-8")
     files[f"{base}/rustfmt.toml"] = header(spec, "#", ["templates/rust/rustfmt.toml"]) + "\n" + rustfmt
     files[f"{base}/tests/examples.rs"] = env.get_template("rust/examples.rs.j2").render(

@@ -132,8 +132,8 @@ def rename_files(files: dict[str, str], spec: Spec, prefix: str | None, namespac
     keep = spec_ids(spec)
     out: dict[str, str] = {}
     for path, content in files.items():
-        if path.endswith(".jsonl"):            # test vectors: wire texts and JSON ids only
-            out[path] = content
+        if path.endswith(".jsonl") or "/LICENSE-" in path:   # test vectors (wire texts and JSON ids only)
+            out[path] = content                                  # and the license texts, verbatim
             continue
         if prefix not in (None, DEFAULT_PREFIX):
             if path.startswith("c/") and path.endswith((".c", ".h")):

@@ -31,3 +31,8 @@ def find_root() -> Path:
 
 
 ROOT = find_root()
+# The release of the project and of everything it generates, defined once in the checkout's VERSION.
+VERSION = (ROOT / "VERSION").read_text(encoding="utf-8").strip()
+# The license of the project and of everything it generates; its texts are LICENSE-* at the root.
+LICENSE = "MIT OR Apache-2.0"
+LICENSE_FILES = ("LICENSE-MIT", "LICENSE-APACHE")

@@ -201,8 +201,12 @@ int main(int argc, char **argv)
         t.encode = false;
     } else if (argc == 2 && strcmp(argv[1], "encode") == 0) {
         t.encode = true;
+    } else if (argc == 2 && strcmp(argv[1], "--version") == 0) {
+        puts("nmea-c " NMEA_VERSION);
+        return 0;
     } else {
-        fputs("usage: nmea-c decode|stream [--values] [--lenient] [--require-checksum] | encode\n"
+        fputs("usage: nmea-c decode|stream [--values] [--lenient] [--require-checksum] | encode"
+              " | --version\n"
               "       (reads stdin, writes stdout)\n",
               stderr);
         return 2;

@@ -10,12 +10,12 @@ import json
 import sys
 from collections.abc import Iterator
 
-from . import decode_json, encode_json
+from . import __version__, decode_json, encode_json
 from .runtime import json_too_deep
 from .stream import json_lines
 
 USAGE = (
-    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] | encode\n"
+    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] | encode | --version\n"
     "       (reads stdin, writes stdout)\n"
 )
 FLAGS = ("--values", "--lenient", "--require-checksum")
@@ -49,6 +49,9 @@ def main(argv: list[str] | None = None) -> int:
         write = sys.stdout.buffer.write
         for text in out:
             write(text.encode("latin-1") + b"\n")
+        return 0
+    if verb == "--version" and not flags:
+        print(f"nmea-py {__version__}")
         return 0
     if verb == "encode" and not flags:
         for line in lines(sys.stdin.buffer.read()):

@@ -19,6 +19,7 @@ from collections import Counter
 from collections.abc import Iterable, Iterator
 from typing import IO, Any
 
+from . import __version__
 from .api import Generic, parse
 from .commands import COMMANDS, SHORTCUTS, VENDORS, Command, Shortcut
 from .runtime import NmeaError
@@ -472,6 +473,7 @@ def parser() -> argparse.ArgumentParser:
         description="Read NMEA 0183 logs and build GNSS receiver commands.",
         epilog="`nmea LOG` is `nmea show LOG`.\n\n" + SHOW_EXAMPLES + "\n" + COMMAND_EXAMPLES,
     )
+    top.add_argument("--version", action="version", version=f"nmea {__version__}")
     verbs = top.add_subparsers(dest="verb", metavar="show|command")
     s = verbs.add_parser(
         "show",
@@ -533,7 +535,7 @@ def main(argv: list[str] | None = None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
     if not args and sys.stdin.isatty():  # `nmea` alone at a prompt: nothing to read, say how
         args = ["--help"]
-    if not args or args[0] not in ("show", "command", "-h", "--help"):
+    if not args or args[0] not in ("show", "command", "-h", "--help", "--version"):
         args.insert(0, "show")
     try:
         if (

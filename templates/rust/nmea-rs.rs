@@ -13,8 +13,9 @@ use nmeaspec::runtime::MAX_LINE;
 use nmeaspec::stream::{Framer, Item};
 use nmeaspec::{write_decoded_with, write_encoded, Error, Options};
 
-const USAGE: &str = "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] | encode\n       \
-                     (reads stdin, writes stdout)\n";
+const USAGE: &str =
+    "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] | encode | --version\n       \
+     (reads stdin, writes stdout)\n";
 const BUFFER: usize = 1 << 16;
 
 /// Writes output lines: each is formatted into a reused buffer, then written as Latin-1 bytes (as
@@ -162,6 +163,10 @@ fn main() -> ExitCode {
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let result = match args.as_slice() {
         ["encode"] => encode(),
+        ["--version"] => {
+            println!("nmea-rs {}", nmeaspec::VERSION);
+            return ExitCode::SUCCESS;
+        }
         [verb @ ("decode" | "stream"), flags @ ..] if flags_ok(flags) => {
             let values = flags.contains(&"--values");
             let options = Options {

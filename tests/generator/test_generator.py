@@ -96,10 +96,17 @@ def test_generation_is_deterministic(spec) -> None:
 
 
 def test_every_generated_file_has_a_header(spec) -> None:
-    for path, content in render_all(spec).items():
-        if path.endswith((".jsonl", "py.typed")):
+    """The banner and the license of every generated file but the ones whose format has no comments
+    and the license texts themselves (verbatim, in each package folder)."""
+    files = render_all(spec)
+    for path, content in files.items():
+        if path.endswith((".jsonl", "py.typed")) or "/LICENSE-" in path:
             continue
         assert "DO NOT EDIT" in content[:400], path
+        assert "SPDX-License-Identifier: MIT OR Apache-2.0" in content[:400], path
+    for package in ("c", "python", "rust"):
+        for name in ("LICENSE-MIT", "LICENSE-APACHE"):
+            assert files[f"{package}/{name}"] == (ROOT / name).read_text(encoding="utf-8")
 
 
 def test_generated_python_modules_keep_to_100_columns(spec) -> None:
