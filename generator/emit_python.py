@@ -233,7 +233,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files: dict[str, str] = {}
     runtime = (TEMPLATES / "python" / "runtime.py").read_text(encoding="utf-8")
     files[f"{base}/runtime.py"] = header(spec, "#", ["templates/python/runtime.py"]) + runtime
-    for module in ("api", "cli", "stream"):
+    for module in ("api", "cli", "stream", "receiver"):
         text = (TEMPLATES / "python" / f"{module}.py").read_text(encoding="utf-8")
         files[f"{base}/{module}.py"] = header(spec, "#", [f"templates/python/{module}.py"]) + text
     files[f"{base}/__main__.py"] = header(spec, "#", ["templates/python/cli.py"]) + \

@@ -2,8 +2,10 @@
 
     nmea show LOG|-        a table, JSON lines or CSV of the sentences, a summary on stderr
     nmea command ...       the bytes of a vendor command, checked field by field
+    nmea listen --port P   the sentences of a live receiver (needs pyserial)
+    nmea send --port P ... a vendor command sent to a receiver, and its reply
 
-Standard library only; the contract tool for other programs is `nmea-py` (cli.py), not this one.
+Standard library only (listen and send import pyserial when they run); the contract tool for other programs is `nmea-py` (cli.py), not this one.
 """
 
 from __future__ import annotations
@@ -17,11 +19,13 @@ import sys
 import time
 from collections import Counter
 from collections.abc import Iterable, Iterator
+from itertools import islice
 from typing import IO, Any
 
 from . import __version__
 from .api import Generic, parse
 from .commands import COMMANDS, SHORTCUTS, VENDORS, Command, Shortcut
+from .receiver import Receiver, ReceiverError, ReplyTimeout, check_baud
 from .runtime import NmeaError
 from .stream import lines, too_long
 
@@ -53,8 +57,25 @@ value id. The bytes are written to stdout with CR LF, ready for the serial port.
 """
 
 
+LIVE_EXAMPLES = """\
+examples (a receiver on a serial port; pip install 'nmeaspec[serial]'):
+  nmea listen --port /dev/ttyUSB0 --baud 9600               every sentence, until Ctrl-C
+  nmea listen --port /dev/ttyUSB0 --sentences GGA --fields time,lat,lon,quality --log raw.nmea
+  nmea listen --port COM3 --json --count 20                  20 sentences, then stop
+  nmea send --port /dev/ttyUSB0 mtk_pmtk pmtk220 200         5 Hz; prints the reply
+  nmea send --port /dev/ttyUSB0 --baud 115200 quectel_lg290p pqtmcfgfixrate 100 --timeout 2
+
+`send` builds the command as `nmea command` does, writes it and waits for the reply that the
+spec pairs with it (e.g. $PMTK001,220,3 for $PMTK220). Exit status: 0 the reply says OK, 1 it
+reports an error, 2 no reply within --timeout (or a mistake on the command line), 3 the port
+cannot be used. --show-all prints the sentences that came meanwhile; --log keeps every byte.
+"""
+
+
 class ToolError(Exception):
     """A mistake on the command line: printed without a traceback, exit status 2."""
+
+    status = 2
 
 
 # --------------------------------------------------------------------------------------------
@@ -167,9 +188,17 @@ def _chunks(source: IO[bytes], progress: Progress | None, size: int = 1 << 16) -
 def records(
     chunks: Iterable[bytes], wanted: set[str] | None, summary: Summary, lenient: bool = False
 ) -> Iterator[dict[str, Any]]:
-    """Each sentence as {line, talker, sentence, fields}, counted in `summary`; errors are only
-    counted. `wanted`: the sentence ids (or addresses of unknown sentences) to keep."""
-    for number, item in enumerate(lines(chunks), 1):
+    """Each sentence of a byte stream as {line, talker, sentence, fields}, counted in `summary`;
+    errors are only counted. `wanted`: the sentence ids (or addresses of unknown sentences) to
+    keep."""
+    return framed_records(lines(chunks), wanted, summary, lenient)
+
+
+def framed_records(
+    items: Iterable[bytes | int], wanted: set[str] | None, summary: Summary, lenient: bool = False
+) -> Iterator[dict[str, Any]]:
+    """records() of lines already framed (an int: the length of an overlong line)."""
+    for number, item in enumerate(items, 1):
         summary.lines += 1
         try:
             if isinstance(item, int):
@@ -178,16 +207,22 @@ def records(
         except NmeaError as err:
             summary.errors[err.kind] += 1
             continue
+        name, talker, fields = describe(sentence)
         if isinstance(sentence, Generic):
-            summary.unknown[sentence.address] += 1
-            name, talker, fields = sentence.address, None, {"fields": sentence.fields}
+            summary.unknown[name] += 1
         else:
-            summary.sentences[sentence.SENTENCE] += 1
-            name = sentence.SENTENCE
-            talker = getattr(sentence, "talker", None)
-            fields = _plain(json.loads(sentence.fields_json(True)))
+            summary.sentences[name] += 1
         if wanted is None or name in wanted:
             yield {"line": number, "talker": talker, "sentence": name, "fields": fields}
+
+
+def describe(sentence: Any) -> tuple[str, str | None, dict[str, Any]]:
+    """A decoded sentence's name (its id, or the address of a generic one), its talker and its
+    fields as plain values."""
+    if isinstance(sentence, Generic):
+        return sentence.address, None, {"fields": sentence.fields}
+    fields = _plain(json.loads(sentence.fields_json(True)))
+    return sentence.SENTENCE, getattr(sentence, "talker", None), fields
 
 
 def _row(record: dict[str, Any], fields: list[str] | None) -> list[Any]:
@@ -197,10 +232,12 @@ def _row(record: dict[str, Any], fields: list[str] | None) -> list[Any]:
 
 
 def write_table(
-    rows: Iterable[list[Any]], header: list[str], out: IO[str], block: int = 200
+    rows: Iterable[list[Any]], header: list[str], out: IO[str], block: int = 200, live: bool = False
 ) -> None:
     """Aligned columns, printed a block of rows at a time so that a long log streams; a column
-    only ever widens. The last column is not padded."""
+    only ever widens. The last column is not padded. `live`: every row as it comes, flushed."""
+    if live:
+        block = 1
     widths = [len(h) for h in header]
 
     def flush(batch: list[list[str]]) -> None:
@@ -214,6 +251,8 @@ def write_table(
                 + cells[-1]
                 + "\n"
             )
+        if live:
+            out.flush()
 
     batch: list[list[str]] = [header]
     for row in rows:
@@ -224,13 +263,56 @@ def write_table(
     flush(batch)
 
 
-def show(args: argparse.Namespace) -> int:
+def view_of(args: argparse.Namespace) -> tuple[list[str] | None, set[str] | None]:
+    """The columns (--fields) and the sentences (--sentences) asked for."""
     fields = [f.strip() for f in args.fields.split(",") if f.strip()] if args.fields else None
     wanted = (
         {s.strip().upper() for s in args.sentences.split(",") if s.strip()}
         if args.sentences
         else None
     )
+    return fields, wanted
+
+
+def write_records(
+    stream: Iterable[dict[str, Any]],
+    form: str,
+    fields: list[str] | None,
+    out: IO[str],
+    live: bool = False,
+) -> None:
+    """The records as a table, JSON lines or CSV (`form`); `live`: each flushed as it comes."""
+    if form == "json":
+        for record in stream:
+            if fields is not None:
+                record = {f: _row(record, [f])[0] for f in fields}
+            out.write(json.dumps(record, ensure_ascii=False) + "\n")
+            if live:
+                out.flush()
+    elif form == "csv":
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(fields or ["line", "talker", "sentence", "fields"])
+        for record in stream:
+            writer.writerow([_text(v) for v in _row(record, fields)])
+            if live:
+                out.flush()
+    else:
+        write_table(
+            (_row(r, fields) for r in stream),
+            fields or ["line", "talker", "sentence", "fields"],
+            out,
+            live=live,
+        )
+    out.flush()
+
+
+def _quiet_stdout() -> None:
+    """After a broken pipe (`nmea show log | head`): no error when Python flushes stdout."""
+    sys.stdout = io.TextIOWrapper(io.BytesIO())
+
+
+def show(args: argparse.Namespace) -> int:
+    fields, wanted = view_of(args)
     if args.log == "-":
         source: IO[bytes] = sys.stdin.buffer
         size = None
@@ -246,27 +328,10 @@ def show(args: argparse.Namespace) -> int:
     progress = Progress(size or 0, sys.stderr) if bar and size else None
     summary = Summary()
     stream = records(_chunks(source, progress), wanted, summary, args.lenient)
-    out = sys.stdout
     try:
-        if args.format == "json":
-            for record in stream:
-                if fields is not None:
-                    record = {f: _row(record, [f])[0] for f in fields}
-                out.write(json.dumps(record, ensure_ascii=False) + "\n")
-        elif args.format == "csv":
-            writer = csv.writer(out, lineterminator="\n")
-            writer.writerow(fields or ["line", "talker", "sentence", "fields"])
-            for record in stream:
-                writer.writerow([_text(v) for v in _row(record, fields)])
-        else:
-            write_table(
-                (_row(r, fields) for r in stream),
-                fields or ["line", "talker", "sentence", "fields"],
-                out,
-            )
-        out.flush()
+        write_records(stream, args.format, fields, sys.stdout)
     except BrokenPipeError:  # `nmea show log | head`
-        sys.stdout = io.TextIOWrapper(io.BytesIO())
+        _quiet_stdout()
         return 0
     finally:
         if source is not sys.stdin.buffer:
@@ -306,7 +371,10 @@ def _enum_code(argument: Any, given: str) -> str:
     for member in argument.enum:
         if member.id == key or member.value.lower() == given.lower():
             return str(member.value)
-    codes = ", ".join(_kebab(m.id) for m in argument.enum)
+    codes = ", ".join(
+        _kebab(m.id) if _kebab(m.id) == str(m.value).lower() else f"{m.value} ({_kebab(m.id)})"
+        for m in argument.enum
+    )
     raise ToolError(f"{argument.id}: {given!r} is not one of {codes}")
 
 
@@ -375,6 +443,13 @@ def _split_options(words: list[str]) -> tuple[list[str], dict[str, str]]:
 
 def build(vendor: str, words: list[str], checksum: bool = True) -> bytes:
     """The bytes of the command `words` (name and arguments) of `vendor`; raises ToolError."""
+    data: bytes = build_sentence(vendor, words, checksum).to_bytes()
+    return data
+
+
+def build_sentence(vendor: str, words: list[str], checksum: bool = True) -> Any:
+    """The command sentence `words` (name and arguments) of `vendor`, every field checked;
+    raises ToolError."""
     vendor = _vendor(vendor)
     if not words:
         raise ToolError("which command? see nmea command --list " + vendor)
@@ -444,9 +519,13 @@ def build(vendor: str, words: list[str], checksum: bool = True) -> bytes:
             )
         else:
             sentence = command.layout.parse_fields(address, texts, "upper" if checksum else None)
-        data: bytes = sentence.to_bytes()
-        return data
+        sentence.to_bytes()
+        return sentence
     except NmeaError as err:
+        if err.kind == "bad_field" and err.name:
+            raise ToolError(
+                f"{command.name} {err.name}: {err.message}; usage: {usage_of(command)}"
+            ) from None
         raise ToolError(str(err)) from None
 
 
@@ -464,17 +543,228 @@ def command(args: argparse.Namespace) -> int:
 
 
 # --------------------------------------------------------------------------------------------
+# listen, send: a receiver on a serial port (pyserial, imported only by these verbs)
+
+
+class PortProblem(ToolError):
+    """The port cannot be opened or used, or pyserial is missing: exit status 3."""
+
+    status = 3
+
+
+def _baud(text: str) -> int:
+    try:
+        return check_baud(text)
+    except ValueError as err:
+        raise ToolError(f"--baud {err}") from None
+
+
+def _seconds(option: str, text: str | float | None) -> float | None:
+    if text is None:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not value > 0 or value == float("inf"):
+        raise ToolError(f"{option} {text!r}: give a number of seconds above 0")
+    return value
+
+
+def _open_port(port: str | None, baud: int, **options: Any) -> Receiver:
+    if not port:
+        raise ToolError("which port? give --port DEVICE, e.g. --port /dev/ttyUSB0")
+    try:
+        return Receiver.open(port, baud, **options)
+    except ReceiverError as err:
+        raise PortProblem(str(err)) from None
+
+
+def _open_log(path: str | None) -> IO[bytes] | None:
+    if path is None:
+        return None
+    try:
+        return open(path, "ab")
+    except OSError as err:
+        raise ToolError(f"cannot write {path}: {err.strerror}") from None
+
+
+def listen(args: argparse.Namespace) -> int:
+    fields, wanted = view_of(args)
+    baud = _baud(args.baud)
+    duration = _seconds("--duration", args.duration)
+    if args.count is not None and args.count <= 0:
+        raise ToolError(f"--count {args.count}: give a number of sentences above 0")
+    summary = Summary()
+    with _open_port(args.port, baud) as receiver:
+        receiver.log = log = _open_log(args.log)
+        stream = framed_records(receiver.lines(duration), wanted, summary, args.lenient)
+        if args.count is not None:
+            stream = islice(stream, args.count)
+        try:
+            write_records(stream, args.format, fields, sys.stdout, live=True)
+        except KeyboardInterrupt:  # Ctrl-C: the normal way to stop
+            sys.stdout.flush()
+        except BrokenPipeError:  # `nmea listen ... | head`
+            _quiet_stdout()
+            return 0
+        except ReceiverError as err:
+            raise PortProblem(str(err)) from None
+        finally:
+            if log is not None:
+                log.close()
+    if not args.quiet:
+        summary.write(sys.stderr)
+    return 0
+
+
+SEND_OPTIONS = {"--port": "port", "--baud": "baud", "--timeout": "timeout", "--log": "log"}
+SEND_FLAGS = {"--show-all": "show_all"}
+
+
+def _arguments_of(vendor: str, name: str) -> set[str]:
+    """The argument ids of the command (or of the shortcut's commands) that `name` names."""
+    vendor, name = vendor.lower(), name.lower()
+    names = {name} | {s.command for s in SHORTCUTS if s.vendor == vendor and s.words[0] == name}
+    return {a.id for c in COMMANDS if c.vendor == vendor and c.name in names for a in c.arguments}
+
+
+def send_options(argv: list[str]) -> argparse.Namespace:
+    """`nmea send`'s own options, anywhere on the line, and the command's words. After VENDOR
+    NAME an option that is also an argument of that command is the command's
+    (`mtk_pmtk pmtk251 --baud 115200`)."""
+    values: dict[str, Any] = {"port": None, "baud": "9600", "timeout": "5", "log": None}
+    values["show_all"] = False
+    words: list[str] = []
+    i = 0
+    while i < len(argv):
+        word = argv[i]
+        key, eq, value = word.partition("=")
+        mine = key in SEND_OPTIONS or (key in SEND_FLAGS and not eq)
+        if mine and len(words) >= 2 and key[2:].replace("-", "_") in _arguments_of(*words[:2]):
+            mine = False
+        if not mine:
+            words.append(word)
+        elif key in SEND_FLAGS:
+            values[SEND_FLAGS[key]] = True
+        else:
+            if not eq:
+                if i + 1 >= len(argv):
+                    raise ToolError(f"{key} needs a value")
+                i += 1
+                value = argv[i]
+            values[SEND_OPTIONS[key]] = value
+        i += 1
+    return argparse.Namespace(words=words, **values)
+
+
+def _line_of(data: bytes) -> str:
+    return data.decode("latin-1").rstrip("\r\n")
+
+
+def _meanwhile(items: list[Any], out: IO[str]) -> None:
+    for item in items:
+        if isinstance(item, NmeaError):
+            out.write(f"  ({item.kind}: {item})\n")
+        else:
+            name, _, fields = describe(item)
+            out.write(f"  {name}  {_summary(fields)}\n")
+
+
+def send(args: argparse.Namespace) -> int:
+    if len(args.words) < 2:
+        raise ToolError("give VENDOR NAME [ARGS]; see nmea command --list")
+    timeout = _seconds("--timeout", args.timeout)
+    assert timeout is not None
+    baud = _baud(args.baud)
+    sentence = build_sentence(args.words[0], args.words[1:])
+    if not args.port:
+        raise ToolError("which port? give --port DEVICE, e.g. --port /dev/ttyUSB0")
+    out = sys.stdout
+    with _open_port(args.port, baud, errors="yield") as receiver:
+        receiver.log = log = _open_log(args.log)
+        try:
+            data = receiver.write(sentence)
+            out.write(f"> {_line_of(data)}\n")
+            if not getattr(sentence, "REPLY_RULES", ()):
+                out.write(f"nothing answers {sentence.SENTENCE} in the spec: sent, not waiting\n")
+                return 0
+            out.flush()
+            reply = receiver.wait_reply(sentence, timeout)
+        except ReplyTimeout as err:
+            if args.show_all:
+                _meanwhile(err.received, out)
+            out.flush()
+            sys.stderr.write(f"nmea: {err}\n")
+            return 2
+        except ReceiverError as err:
+            raise PortProblem(str(err)) from None
+        finally:
+            if log is not None:
+                log.close()
+    if args.show_all:
+        _meanwhile(reply.received, out)
+    name, _, fields = describe(reply.sentence)
+    out.write(f"< {_line_of(reply.line)}\n{reply.outcome}: {name}  {_summary(fields)}\n")
+    out.flush()
+    return 0 if reply.ok else 1
+
+
+# --------------------------------------------------------------------------------------------
+
+
+def _view_options(verb: argparse.ArgumentParser) -> None:
+    """The options of what `show` and `listen` print."""
+    form = verb.add_mutually_exclusive_group()
+    form.add_argument(
+        "--json", dest="format", action="store_const", const="json", help="JSON lines"
+    )
+    form.add_argument(
+        "--csv", dest="format", action="store_const", const="csv", help="CSV with a header row"
+    )
+    verb.add_argument(
+        "--fields", metavar="F,F...", help="the columns: field ids, line, talker, sentence"
+    )
+    verb.add_argument(
+        "--sentences", metavar="S,S...", help="only these sentences (GGA,RMC or PSTMTG)"
+    )
+    verb.add_argument(
+        "--lenient",
+        action="store_true",
+        help="keep sentences with fields that do not fit (left empty)",
+    )
+    verb.add_argument("-q", "--quiet", action="store_true", help="no summary on stderr")
+
+
+def _port_options(verb: argparse.ArgumentParser) -> None:
+    verb.add_argument(
+        "--port",
+        metavar="DEVICE",
+        help="the serial port: /dev/ttyUSB0, COM3, or a pyserial URL such as socket://host:port",
+    )
+    verb.add_argument(
+        "--baud", default="9600", metavar="N", help="its speed in bit/s (default: 9600)"
+    )
+    verb.add_argument(
+        "--log", metavar="FILE", help="append every byte received to FILE, exactly as it came"
+    )
 
 
 def parser() -> argparse.ArgumentParser:
     top = argparse.ArgumentParser(
         prog="nmea",
         formatter_class=argparse.RawDescriptionHelpFormatter,
-        description="Read NMEA 0183 logs and build GNSS receiver commands.",
-        epilog="`nmea LOG` is `nmea show LOG`.\n\n" + SHOW_EXAMPLES + "\n" + COMMAND_EXAMPLES,
+        description="Read NMEA 0183 logs and live receivers, and build and send GNSS receiver "
+        "commands.",
+        epilog="`nmea LOG` is `nmea show LOG`.\n\n"
+        + SHOW_EXAMPLES
+        + "\n"
+        + COMMAND_EXAMPLES
+        + "\n"
+        + LIVE_EXAMPLES,
     )
     top.add_argument("--version", action="version", version=f"nmea {__version__}")
-    verbs = top.add_subparsers(dest="verb", metavar="show|command")
+    verbs = top.add_subparsers(dest="verb", metavar="show|command|listen|send")
     s = verbs.add_parser(
         "show",
         help="print the sentences of a log (a file, or - for stdin)",
@@ -482,22 +772,7 @@ def parser() -> argparse.ArgumentParser:
         epilog=SHOW_EXAMPLES,
     )
     s.add_argument("log", nargs="?", default="-", help="the log file, or - (the default) for stdin")
-    form = s.add_mutually_exclusive_group()
-    form.add_argument(
-        "--json", dest="format", action="store_const", const="json", help="JSON lines"
-    )
-    form.add_argument(
-        "--csv", dest="format", action="store_const", const="csv", help="CSV with a header row"
-    )
-    s.add_argument(
-        "--fields", metavar="F,F...", help="the columns: field ids, line, talker, sentence"
-    )
-    s.add_argument("--sentences", metavar="S,S...", help="only these sentences (GGA,RMC or PSTMTG)")
-    s.add_argument(
-        "--lenient",
-        action="store_true",
-        help="keep sentences with fields that do not fit (left empty)",
-    )
+    _view_options(s)
     s.add_argument(
         "--progress",
         action="store_true",
@@ -507,7 +782,6 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument(
         "--no-progress", dest="progress", action="store_false", help="never a progress bar"
     )
-    s.add_argument("-q", "--quiet", action="store_true", help="no summary on stderr")
     s.set_defaults(format="table", run=show)
     c = verbs.add_parser(
         "command",
@@ -528,34 +802,69 @@ def parser() -> argparse.ArgumentParser:
         help=f"vendors: {', '.join(VENDORS)}",
     )
     c.set_defaults(run=command)
+    li = verbs.add_parser(
+        "listen",
+        help="print the sentences of a live receiver on a serial port (needs pyserial)",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=LIVE_EXAMPLES,
+    )
+    _port_options(li)
+    li.add_argument("--count", type=int, metavar="N", help="stop after N sentences shown")
+    li.add_argument("--duration", metavar="S", help="stop after S seconds")
+    _view_options(li)
+    li.set_defaults(format="table", run=listen)
+    se = verbs.add_parser(
+        "send",
+        help="send a vendor command to a receiver and print its reply (needs pyserial)",
+        usage="nmea send --port DEVICE [--baud N] [--timeout S] [--show-all] [--log FILE] "
+        "VENDOR NAME [ARGS]",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=LIVE_EXAMPLES,
+    )
+    _port_options(se)
+    se.add_argument(
+        "--timeout", default="5", metavar="S", help="how long to wait for the reply (default: 5)"
+    )
+    se.add_argument(
+        "--show-all", action="store_true", help="print the sentences that come before the reply"
+    )
+    se.add_argument(
+        "words",
+        nargs=argparse.REMAINDER,
+        metavar="VENDOR NAME [ARGS]",
+        help="the command, as `nmea command` takes it",
+    )
     return top
+
+
+VERBS = ("show", "command", "listen", "send", "-h", "--help", "--version")
 
 
 def main(argv: list[str] | None = None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
     if not args and sys.stdin.isatty():  # `nmea` alone at a prompt: nothing to read, say how
         args = ["--help"]
-    if not args or args[0] not in ("show", "command", "-h", "--help", "--version"):
+    if not args or args[0] not in VERBS:
         args.insert(0, "show")
     try:
-        if (
-            args[0] == "command"
-        ):  # its options may come anywhere; `--field value` belong to the command
-            flags = [a for a in args[1:] if a in ("--list", "--no-checksum", "-h", "--help")]
-            if "-h" in flags or "--help" in flags:
-                parser().parse_args(["command", "--help"])
+        if args[0] in ("command", "send") and any(a in ("-h", "--help") for a in args[1:]):
+            parser().parse_args([args[0], "--help"])
+        if args[0] == "command":  # its options may come anywhere; `--field value` are the command's
+            flags = [a for a in args[1:] if a in ("--list", "--no-checksum")]
             words = [a for a in args[1:] if a not in flags]
             return command(
                 argparse.Namespace(
                     list="--list" in flags, no_checksum="--no-checksum" in flags, words=words
                 )
             )
+        if args[0] == "send":
+            return send(send_options(args[1:]))
         parsed = parser().parse_args(args)
         result: int = parsed.run(parsed)
         return result
     except ToolError as err:
         sys.stderr.write(f"nmea: {err}\n")
-        return 2
+        return err.status
     except KeyboardInterrupt:
         return 130
 

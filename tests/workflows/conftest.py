@@ -52,17 +52,29 @@ class Venv:
         run(self.python, "-m", "pip", "install", "--quiet", "--disable-pip-version-check", *args)
 
 
-@pytest.fixture(scope="session")
-def installed(tmp_path_factory: pytest.TempPathFactory) -> Venv:
-    """A fresh virtual environment with a copy of generated/python installed by pip, as a user
-    would (the wheel is built by setuptools from PyPI in an isolated build environment)."""
-    home = tmp_path_factory.mktemp("pyuser")
+def _install(tmp_path_factory: pytest.TempPathFactory, name: str, extra: str = "") -> Venv:
+    home = tmp_path_factory.mktemp(name)
     source = home / "nmeaspec-src"
     shutil.copytree(GENERATED / "python", source, ignore=shutil.ignore_patterns("__pycache__", ".pytest_cache"))
     venv.create(home / "venv", with_pip=True)
     env = Venv(home / "venv")
-    env.pip(source)
+    env.pip(f"{source}{extra}")
     return env
+
+
+@pytest.fixture(scope="session")
+def installed(tmp_path_factory: pytest.TempPathFactory) -> Venv:
+    """A fresh virtual environment with a copy of generated/python installed by pip, as a user
+    would (the wheel is built by setuptools from PyPI in an isolated build environment): the
+    standard library only, no extra."""
+    return _install(tmp_path_factory, "pyuser")
+
+
+@pytest.fixture(scope="session")
+def installed_serial(tmp_path_factory: pytest.TempPathFactory) -> Venv:
+    """The same with the serial extra (`pip install 'nmeaspec[serial]'`: pyserial from PyPI), for
+    `nmea listen` and `nmea send`."""
+    return _install(tmp_path_factory, "pyserialuser", "[serial]")
 
 
 def corpus_log(name: str) -> Path:
