@@ -2,6 +2,7 @@
 
     nmea show LOG|-        a table, JSON lines or CSV of the sentences, a summary on stderr
     nmea command ...       the bytes of a vendor command, checked field by field
+    nmea report LOG        the log as pictures in one HTML page (report.py; needs matplotlib)
 
 Standard library only; the contract tool for other programs is `nmea-py` (cli.py), not this one.
 """
@@ -156,6 +157,37 @@ class Progress:
         self.out.flush()
 
 
+def open_log(name: str) -> tuple[IO[bytes], int | None]:
+    """A log to read (a file, or - for stdin) and its size when it is a file."""
+    if name == "-":
+        return sys.stdin.buffer, None
+    try:
+        source = open(name, "rb")
+    except OSError as err:
+        raise ToolError(f"cannot read {name}: {err.strerror}") from None
+    return source, os.fstat(source.fileno()).st_size if os.path.isfile(name) else None
+
+
+def progress_for(requested: bool | None, size: int | None) -> Progress | None:
+    """The bar for a file of `size` bytes: as --progress/--no-progress say, else only where a
+    person watches, and only when it is worth it."""
+    if requested is None:
+        requested = sys.stderr.isatty() and size is not None and size >= 4 << 20
+    return Progress(size, sys.stderr) if requested and size else None
+
+
+def add_progress_options(verb: argparse.ArgumentParser) -> None:
+    verb.add_argument(
+        "--progress",
+        action="store_true",
+        default=None,
+        help="a progress bar on stderr (default: when stderr is a terminal and the file is large)",
+    )
+    verb.add_argument(
+        "--no-progress", dest="progress", action="store_false", help="never a progress bar"
+    )
+
+
 def _chunks(source: IO[bytes], progress: Progress | None, size: int = 1 << 16) -> Iterator[bytes]:
     while chunk := source.read(size):
         if progress is not None:
@@ -230,19 +262,8 @@ def show(args: argparse.Namespace) -> int:
         if args.sentences
         else None
     )
-    if args.log == "-":
-        source: IO[bytes] = sys.stdin.buffer
-        size = None
-    else:
-        try:
-            source = open(args.log, "rb")
-        except OSError as err:
-            raise ToolError(f"cannot read {args.log}: {err.strerror}") from None
-        size = os.fstat(source.fileno()).st_size if os.path.isfile(args.log) else None
-    bar = args.progress
-    if bar is None:  # a bar only where a person watches, and only when it is worth it
-        bar = sys.stderr.isatty() and size is not None and size >= 4 << 20
-    progress = Progress(size or 0, sys.stderr) if bar and size else None
+    source, size = open_log(args.log)
+    progress = progress_for(args.progress, size)
     summary = Summary()
     stream = records(_chunks(source, progress), wanted, summary, args.lenient)
     out = sys.stdout
@@ -472,7 +493,7 @@ def parser() -> argparse.ArgumentParser:
         description="Read NMEA 0183 logs and build GNSS receiver commands.",
         epilog="`nmea LOG` is `nmea show LOG`.\n\n" + SHOW_EXAMPLES + "\n" + COMMAND_EXAMPLES,
     )
-    verbs = top.add_subparsers(dest="verb", metavar="show|command")
+    verbs = top.add_subparsers(dest="verb", metavar="show|command|report")
     s = verbs.add_parser(
         "show",
         help="print the sentences of a log (a file, or - for stdin)",
@@ -496,15 +517,7 @@ def parser() -> argparse.ArgumentParser:
         action="store_true",
         help="keep sentences with fields that do not fit (left empty)",
     )
-    s.add_argument(
-        "--progress",
-        action="store_true",
-        default=None,
-        help="a progress bar on stderr (default: when stderr is a terminal and the file is large)",
-    )
-    s.add_argument(
-        "--no-progress", dest="progress", action="store_false", help="never a progress bar"
-    )
+    add_progress_options(s)
     s.add_argument("-q", "--quiet", action="store_true", help="no summary on stderr")
     s.set_defaults(format="table", run=show)
     c = verbs.add_parser(
@@ -526,6 +539,9 @@ def parser() -> argparse.ArgumentParser:
         help=f"vendors: {', '.join(VENDORS)}",
     )
     c.set_defaults(run=command)
+    from .report import add_parser as add_report  # here: report.py imports this module
+
+    add_report(verbs)
     return top
 
 
@@ -533,7 +549,7 @@ def main(argv: list[str] | None = None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
     if not args and sys.stdin.isatty():  # `nmea` alone at a prompt: nothing to read, say how
         args = ["--help"]
-    if not args or args[0] not in ("show", "command", "-h", "--help"):
+    if not args or args[0] not in ("show", "command", "report", "-h", "--help"):
         args.insert(0, "show")
     try:
         if (

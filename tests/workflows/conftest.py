@@ -52,17 +52,30 @@ class Venv:
         run(self.python, "-m", "pip", "install", "--quiet", "--disable-pip-version-check", *args)
 
 
-@pytest.fixture(scope="session")
-def installed(tmp_path_factory: pytest.TempPathFactory) -> Venv:
-    """A fresh virtual environment with a copy of generated/python installed by pip, as a user
-    would (the wheel is built by setuptools from PyPI in an isolated build environment)."""
+def _install(tmp_path_factory: pytest.TempPathFactory, extra: str = "") -> Venv:
     home = tmp_path_factory.mktemp("pyuser")
     source = home / "nmeaspec-src"
     shutil.copytree(GENERATED / "python", source, ignore=shutil.ignore_patterns("__pycache__", ".pytest_cache"))
     venv.create(home / "venv", with_pip=True)
     env = Venv(home / "venv")
-    env.pip(source)
+    if extra:  # the extra's packages at the versions requirements.txt pins for the tests
+        env.pip(f"{source}[{extra}]", "--constraint", ROOT / "requirements.txt")
+    else:
+        env.pip(source)
     return env
+
+
+@pytest.fixture(scope="session")
+def installed(tmp_path_factory: pytest.TempPathFactory) -> Venv:
+    """A fresh virtual environment with a copy of generated/python installed by pip, as a user
+    would (the wheel is built by setuptools from PyPI in an isolated build environment)."""
+    return _install(tmp_path_factory)
+
+
+@pytest.fixture(scope="session")
+def installed_report(tmp_path_factory: pytest.TempPathFactory) -> Venv:
+    """The same with the `report` extra (`pip install 'nmeaspec[report]'`: matplotlib)."""
+    return _install(tmp_path_factory, "report")
 
 
 def corpus_log(name: str) -> Path:
