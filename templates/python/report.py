@@ -262,6 +262,7 @@ class Log:
         self._epoch_tracked: set[tuple[str, int]] = set()  # with a C/N0 on some signal
         self._epoch_at: At | None = None
         self._open_sets: set[tuple[str, str]] = set()  # GSV sets still waiting for a sentence
+        self._sets_before = 0  # GSV sets of the epoch before
 
     # -- reading ------------------------------------------------------------------------------
 
@@ -276,8 +277,10 @@ class Log:
                 self._error(number, err, item)
                 continue
             self.add(number, sentence)
-        # a set cut short by the end of the log counts no satellites in view
-        self._end_epoch(counted=not self._open_sets)
+        # an epoch cut short by the end of the log (a set not finished, or fewer sets than the
+        # epoch before it) counts no satellites in view
+        whole = not self._open_sets and len(self._epoch_keys) >= self._sets_before
+        self._end_epoch(counted=whole)
 
     def _error(self, number: int, err: NmeaError, item: bytes | int) -> None:
         self.errors[err.kind] += 1
@@ -432,6 +435,7 @@ class Log:
             self.in_view.add((self._epoch_at, float(len(self._epoch_sats))))
         for sat in self._epoch_sats:
             self.tracked[sat] = sat in self._epoch_tracked
+        self._sets_before = len(self._epoch_keys)
         self._epoch_keys.clear()
         self._epoch_sats.clear()
         self._epoch_tracked.clear()
