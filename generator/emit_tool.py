@@ -1,5 +1,6 @@
-"""The `nmea` user tool of the Python package: the hand-written tool and the table of vendor commands
-it builds (generated from the command sentences and the `cli` shortcuts of their enums)."""
+"""The `nmea` user tool of the Python package: the hand-written tool (and its `report` verb) and the
+table of vendor commands it builds (generated from the command sentences and the `cli` shortcuts of
+their enums)."""
 
 from __future__ import annotations
 
@@ -65,5 +66,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             py_call=py_call, py_str=py_str),
         f"{base}/tool.py": header(spec, "#", ["templates/python/tool.py"])
         + (TEMPLATES / "python" / "tool.py").read_text(encoding="utf-8"),
+        f"{base}/report.py": header(spec, "#", ["templates/python/report.py"])
+        + (TEMPLATES / "python" / "report.py").read_text(encoding="utf-8"),
     }
     return files

@@ -4,6 +4,7 @@
     nmea command ...       the bytes of a vendor command, checked field by field
     nmea listen --port P   the sentences of a live receiver (needs pyserial)
     nmea send --port P ... a vendor command sent to a receiver, and its reply
+    nmea report LOG        the log as pictures in one HTML page (report.py; needs matplotlib)
 
 Standard library only (listen and send import pyserial when they run); the contract tool for other programs is `nmea-py` (cli.py), not this one.
 """
@@ -178,6 +179,37 @@ class Progress:
         self.out.flush()
 
 
+def open_log(name: str) -> tuple[IO[bytes], int | None]:
+    """A log to read (a file, or - for stdin) and its size when it is a file."""
+    if name == "-":
+        return sys.stdin.buffer, None
+    try:
+        source = open(name, "rb")
+    except OSError as err:
+        raise ToolError(f"cannot read {name}: {err.strerror}") from None
+    return source, os.fstat(source.fileno()).st_size if os.path.isfile(name) else None
+
+
+def progress_for(requested: bool | None, size: int | None) -> Progress | None:
+    """The bar for a file of `size` bytes: as --progress/--no-progress say, else only where a
+    person watches, and only when it is worth it."""
+    if requested is None:
+        requested = sys.stderr.isatty() and size is not None and size >= 4 << 20
+    return Progress(size, sys.stderr) if requested and size else None
+
+
+def add_progress_options(verb: argparse.ArgumentParser) -> None:
+    verb.add_argument(
+        "--progress",
+        action="store_true",
+        default=None,
+        help="a progress bar on stderr (default: when stderr is a terminal and the file is large)",
+    )
+    verb.add_argument(
+        "--no-progress", dest="progress", action="store_false", help="never a progress bar"
+    )
+
+
 def _chunks(source: IO[bytes], progress: Progress | None, size: int = 1 << 16) -> Iterator[bytes]:
     while chunk := source.read(size):
         if progress is not None:
@@ -313,19 +345,8 @@ def _quiet_stdout() -> None:
 
 def show(args: argparse.Namespace) -> int:
     fields, wanted = view_of(args)
-    if args.log == "-":
-        source: IO[bytes] = sys.stdin.buffer
-        size = None
-    else:
-        try:
-            source = open(args.log, "rb")
-        except OSError as err:
-            raise ToolError(f"cannot read {args.log}: {err.strerror}") from None
-        size = os.fstat(source.fileno()).st_size if os.path.isfile(args.log) else None
-    bar = args.progress
-    if bar is None:  # a bar only where a person watches, and only when it is worth it
-        bar = sys.stderr.isatty() and size is not None and size >= 4 << 20
-    progress = Progress(size or 0, sys.stderr) if bar and size else None
+    source, size = open_log(args.log)
+    progress = progress_for(args.progress, size)
     summary = Summary()
     stream = records(_chunks(source, progress), wanted, summary, args.lenient)
     try:
@@ -580,7 +601,7 @@ def _open_port(port: str | None, baud: int, **options: Any) -> Receiver:
         raise PortProblem(str(err)) from None
 
 
-def _open_log(path: str | None) -> IO[bytes] | None:
+def _append_log(path: str | None) -> IO[bytes] | None:
     if path is None:
         return None
     try:
@@ -597,7 +618,7 @@ def listen(args: argparse.Namespace) -> int:
         raise ToolError(f"--count {args.count}: give a number of sentences above 0")
     summary = Summary()
     with _open_port(args.port, baud) as receiver:
-        receiver.log = log = _open_log(args.log)
+        receiver.log = log = _append_log(args.log)
         stream = framed_records(receiver.lines(duration), wanted, summary, args.lenient)
         if args.count is not None:
             stream = islice(stream, args.count)
@@ -682,7 +703,7 @@ def send(args: argparse.Namespace) -> int:
         raise ToolError("which port? give --port DEVICE, e.g. --port /dev/ttyUSB0")
     out = sys.stdout
     with _open_port(args.port, baud, errors="yield") as receiver:
-        receiver.log = log = _open_log(args.log)
+        receiver.log = log = _append_log(args.log)
         try:
             data = receiver.write(sentence)
             out.write(f"> {_line_of(data)}\n")
@@ -764,7 +785,7 @@ def parser() -> argparse.ArgumentParser:
         + LIVE_EXAMPLES,
     )
     top.add_argument("--version", action="version", version=f"nmea {__version__}")
-    verbs = top.add_subparsers(dest="verb", metavar="show|command|listen|send")
+    verbs = top.add_subparsers(dest="verb", metavar="show|command|listen|send|report")
     s = verbs.add_parser(
         "show",
         help="print the sentences of a log (a file, or - for stdin)",
@@ -773,15 +794,7 @@ def parser() -> argparse.ArgumentParser:
     )
     s.add_argument("log", nargs="?", default="-", help="the log file, or - (the default) for stdin")
     _view_options(s)
-    s.add_argument(
-        "--progress",
-        action="store_true",
-        default=None,
-        help="a progress bar on stderr (default: when stderr is a terminal and the file is large)",
-    )
-    s.add_argument(
-        "--no-progress", dest="progress", action="store_false", help="never a progress bar"
-    )
+    add_progress_options(s)
     s.set_defaults(format="table", run=show)
     c = verbs.add_parser(
         "command",
@@ -834,10 +847,13 @@ def parser() -> argparse.ArgumentParser:
         metavar="VENDOR NAME [ARGS]",
         help="the command, as `nmea command` takes it",
     )
+    from .report import add_parser as add_report  # here: report.py imports this module
+
+    add_report(verbs)
     return top
 
 
-VERBS = ("show", "command", "listen", "send", "-h", "--help", "--version")
+VERBS = ("show", "command", "listen", "send", "report", "-h", "--help", "--version")
 
 
 def main(argv: list[str] | None = None) -> int:

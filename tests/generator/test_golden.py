@@ -23,8 +23,8 @@ EXPECTED = GOLDEN / "expected"
 # Generated files that are templates/ files as they are.
 VERBATIM = {
     "c/nmea_tool.c", "docs/json.md", "python/nmeaspec/api.py", "python/nmeaspec/cli.py",
-    "python/nmeaspec/receiver.py", "python/nmeaspec/runtime.py", "python/nmeaspec/stream.py",
-    "python/nmeaspec/tool.py",
+    "python/nmeaspec/receiver.py", "python/nmeaspec/report.py", "python/nmeaspec/runtime.py",
+    "python/nmeaspec/stream.py", "python/nmeaspec/tool.py",
     "rust/src/bin/nmea-rs.rs", "rust/tests/fast_path.rs",
 }
 # The C runtime is pasted into nmea.h / nmea.c: it is replaced by a line that names it.

@@ -58,7 +58,10 @@ def _install(tmp_path_factory: pytest.TempPathFactory, name: str, extra: str = "
     shutil.copytree(GENERATED / "python", source, ignore=shutil.ignore_patterns("__pycache__", ".pytest_cache"))
     venv.create(home / "venv", with_pip=True)
     env = Venv(home / "venv")
-    env.pip(f"{source}{extra}")
+    if extra:  # the extra's packages at the versions requirements.txt pins for the tests
+        env.pip(f"{source}[{extra}]", "--constraint", ROOT / "requirements.txt")
+    else:
+        env.pip(source)
     return env
 
 
@@ -72,9 +75,15 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Venv:
 
 @pytest.fixture(scope="session")
 def installed_serial(tmp_path_factory: pytest.TempPathFactory) -> Venv:
-    """The same with the serial extra (`pip install 'nmeaspec[serial]'`: pyserial from PyPI), for
-    `nmea listen` and `nmea send`."""
-    return _install(tmp_path_factory, "pyserialuser", "[serial]")
+    """The same with the serial extra (`pip install 'nmeaspec[serial]'`: pyserial), for `nmea
+    listen` and `nmea send`."""
+    return _install(tmp_path_factory, "pyserialuser", "serial")
+
+
+@pytest.fixture(scope="session")
+def installed_report(tmp_path_factory: pytest.TempPathFactory) -> Venv:
+    """The same with the `report` extra (`pip install 'nmeaspec[report]'`: matplotlib)."""
+    return _install(tmp_path_factory, "pyreportuser", "report")
 
 
 def corpus_log(name: str) -> Path:

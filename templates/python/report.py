@@ -1,0 +1,1121 @@
+"""`nmea report`: a receiver log as pictures, in one self-contained HTML page.
+
+    nmea report track.nmea -o track.html
+
+The page shows what a receiver's own viewer shows: the track, a sky plot, C/N0 per satellite over
+time, the fix quality, the satellites used and the DOPs over time, and the sentences and decode
+errors of the log. Nothing on it is fetched when it is viewed: the pictures are PNGs inside it.
+
+The log is read once, as a stream of decoded sentences, and what the pictures need is gathered as
+it goes. A series that grows past its limit is thinned (every other point dropped, and from then
+on only every second, fourth... point kept), so memory stays bounded however long the log is.
+The pictures are drawn by matplotlib, an optional dependency (`pip install 'nmeaspec[report]'`)
+imported only when a report is drawn: the rest of the package needs only the standard library.
+"""
+
+from __future__ import annotations
+
+import argparse
+import base64
+import html
+import io
+import itertools
+import math
+import os
+import statistics
+import sys
+import typing
+from collections import Counter
+from typing import TYPE_CHECKING, Any
+
+from .api import parse
+from .runtime import Coordinate, Date, NmeaError, Number, Time
+from .stream import lines, too_long
+from .tool import ToolError, _chunks, add_progress_options, open_log, progress_for
+
+if TYPE_CHECKING:  # matplotlib is optional: without it these are Any to mypy
+    from matplotlib.axes import Axes  # type: ignore[import-not-found, unused-ignore]
+    from matplotlib.figure import Figure  # type: ignore[import-not-found, unused-ignore]
+    from matplotlib.projections.polar import (  # type: ignore[import-not-found, unused-ignore]
+        PolarAxes,
+    )
+
+REPORT_EXAMPLES = """\
+examples:
+  nmea report track.nmea                     writes track.html in the current directory
+  nmea report track.nmea -o ~/track.html
+  nmea report --progress big.nmea -o big.html
+
+The page holds its pictures (PNG) and needs nothing else to be viewed. It needs matplotlib to be
+drawn: pip install 'nmeaspec[report]'.
+"""
+
+INSTALL_HINT = (
+    "nmea report draws with matplotlib, which is not installed: pip install 'nmeaspec[report]'"
+)
+
+# How much of a log the page keeps, whatever its length.
+SERIES_LIMIT = 4000  # points of a series over time (the thinning keeps them evenly spread)
+TRACK_LIMIT = 20000  # fixes of the track
+CN0_LIMIT = 1500  # C/N0 samples of one satellite signal
+TRAIL_LIMIT = 500  # sky positions of one satellite (kept only when they change)
+MAX_SATELLITES = 400  # satellites (and signals) followed; later ones are only counted
+MAX_KEYS = 500  # rows of the sentence table kept apart; the rest are counted together
+FIRST_ERRORS = 10  # error lines quoted
+COLUMNS = 400  # time columns of the C/N0 picture
+CN0_ROWS = 120  # satellite signals in the C/N0 picture (those with the most samples)
+
+# Satellite systems: the letter of a satellite's name (RINEX style), its name and colour.
+SYSTEMS: dict[str, tuple[str, str]] = {
+    "G": ("GPS", "#1f77b4"),
+    "R": ("GLONASS", "#d62728"),
+    "E": ("Galileo", "#2ca02c"),
+    "C": ("BeiDou", "#ff7f0e"),
+    "J": ("QZSS", "#9467bd"),
+    "I": ("NavIC", "#e377c2"),
+    "S": ("SBAS", "#8c564b"),
+    "?": ("other", "#7f7f7f"),
+}
+
+# Fix levels, in the order the quality chart stacks them, with their colours.
+LEVELS: dict[str, str] = {
+    "no fix": "#9e9e9e",
+    "dead reckoning": "#8c564b",
+    "2D": "#bcbd22",
+    "3D": "#1f77b4",
+    "autonomous": "#1f77b4",
+    "differential": "#17becf",
+    "precise": "#9467bd",
+    "RTK float": "#ff7f0e",
+    "RTK fixed": "#2ca02c",
+    "other": "#e377c2",
+}
+GGA_LEVELS = {
+    "0": "no fix",
+    "1": "autonomous",
+    "2": "differential",
+    "3": "precise",
+    "4": "RTK fixed",
+    "5": "RTK float",
+    "6": "dead reckoning",
+}
+MODE_LEVELS = {  # the mode letter of RMC, GLL and GNS
+    "N": "no fix",
+    "E": "dead reckoning",
+    "A": "autonomous",
+    "D": "differential",
+    "P": "precise",
+    "F": "RTK float",
+    "R": "RTK fixed",
+}
+GSA_LEVELS = {"1": "no fix", "2": "2D", "3": "3D"}
+# The sources of fixes and of the quality chart, the preferred first; sentences that carry UTC.
+FIX_SOURCES = ("GGA", "GNS", "RMC", "GLL")
+QUALITY_SOURCES = (*FIX_SOURCES, "GSA")
+TIMED = frozenset(("GGA", "GNS", "RMC", "GLL", "ZDA", "GST", "GBS", "GRS"))
+
+At = tuple[int, "float | None"]  # where a sample is: its line, and UTC seconds when known
+P = typing.TypeVar("P")
+
+
+class Thinned(typing.Generic[P]):
+    """The points of a series, at most `limit` of them: past the limit every other point is
+    dropped, and from then on only every `stride`-th point added is kept, so that the points stay
+    evenly spread over the log. The last point added is kept as well."""
+
+    def __init__(self, limit: int) -> None:
+        self.limit = limit
+        self.points: list[P] = []
+        self.stride = 1
+        self.added = 0
+        self.last: P | None = None
+
+    def add(self, point: P) -> None:
+        if self.added % self.stride == 0:
+            self.points.append(point)
+            if len(self.points) > self.limit:
+                del self.points[1::2]
+                self.stride *= 2
+        self.added += 1
+        self.last = point
+
+    def all(self) -> list[P]:
+        """The kept points, then the last one added."""
+        if self.last is None or (self.points and self.points[-1] is self.last):
+            return list(self.points)
+        return [*self.points, self.last]
+
+
+class Clock:
+    """UTC time of day from the sentences that carry it, in seconds, with the day counted on past
+    midnight: each time is put on the day that brings it within 12 hours of the previous one, so
+    23:59:59 then 00:00:00 is a second later (and a receiver whose clock steps back across
+    midnight goes back)."""
+
+    def __init__(self) -> None:
+        self.now: float | None = None
+        self.days = 0
+        self.low = math.inf
+        self.high = -math.inf
+
+    def see(self, time: Time) -> None:
+        seconds = time.hour * 3600 + time.minute * 60 + time.second
+        if time.fraction_digits:
+            seconds += time.fraction / 10**time.fraction_digits
+        value = seconds + self.days * 86400
+        if self.now is not None and value < self.now - 43200:
+            self.days += 1
+            value += 86400
+        elif self.now is not None and value > self.now + 43200:
+            self.days -= 1
+            value -= 86400
+        self.now = value
+        self.low = min(self.low, value)
+        self.high = max(self.high, value)
+
+
+def _num(value: Any) -> float | None:
+    """A decoded number as a float; None for an empty or absent field."""
+    return float(value) if isinstance(value, Number) else None
+
+
+def _code(value: Any) -> str | None:
+    """A decoded enum's wire code (an unknown code stays text); None for an empty field."""
+    if isinstance(value, str):
+        return value
+    code = getattr(value, "value", None)
+    return code if isinstance(code, str) else None
+
+
+def satellite(talker: str, prn: int) -> tuple[str, int]:
+    """A satellite's system letter and number from the talker and ID of a GSV entry: the talker
+    names the system, except GP and GN, whose IDs have the ranges of NMEA 0183 (1-32 GPS, 33-64
+    SBAS, 65-96 GLONASS) and those receivers use beyond them (QZSS 193-202, Galileo 301-336,
+    BeiDou 401-463)."""
+    if talker == "GL":
+        return "R", prn - 64 if 65 <= prn <= 96 else prn
+    if talker == "GA":
+        return "E", prn - 300 if 301 <= prn <= 336 else prn
+    if talker in ("GB", "BD"):
+        return "C", prn - 400 if 401 <= prn <= 463 else prn - 200 if 201 <= prn <= 263 else prn
+    if talker in ("GQ", "QZ"):
+        return "J", prn - 192 if 193 <= prn <= 202 else prn
+    if talker == "GI":
+        return "I", prn
+    if 1 <= prn <= 32:
+        return "G", prn
+    if 33 <= prn <= 64:
+        return "S", prn + 87
+    if 65 <= prn <= 96:
+        return "R", prn - 64
+    if 120 <= prn <= 158:
+        return "S", prn
+    if 193 <= prn <= 202:
+        return "J", prn - 192
+    if 301 <= prn <= 336:
+        return "E", prn - 300
+    if 401 <= prn <= 463:
+        return "C", prn - 400
+    return ("G", prn) if talker == "GP" else ("?", prn)
+
+
+def satellite_name(system: str, number: int) -> str:
+    return f"{system}{number:02d}"
+
+
+def _date_text(day: int, month: int, year: int) -> str | None:
+    if not (1 <= day <= 31 and 1 <= month <= 12):
+        return None
+    if year < 100:
+        year += 2000 if year < 80 else 1900
+    return f"{year:04d}-{month:02d}-{day:02d}"
+
+
+class Log:
+    """What a report shows of a log, gathered line by line (add) in bounded memory."""
+
+    def __init__(self) -> None:
+        self.lines = 0
+        self.decoded = 0
+        self.counts: Counter[tuple[str, str]] = Counter()  # (sentence id or address, talker)
+        self.names: dict[str, str] = {}
+        self.errors: Counter[str] = Counter()
+        self.first_errors: list[tuple[int, str, str, str]] = []
+        self.clock = Clock()
+        self.timed = 0
+        self.untimed = 0
+        self.dates: list[str] = []  # the first and the last date seen
+        self.tracks = {s: Thinned[tuple[At, float, float, str]](TRACK_LIMIT) for s in FIX_SOURCES}
+        self.quality = {s: Thinned[tuple[At, str]](SERIES_LIMIT) for s in QUALITY_SOURCES}
+        self.used = Thinned[tuple[At, float]](SERIES_LIMIT)
+        self.in_view = Thinned[tuple[At, float]](SERIES_LIMIT)
+        self.dops = {
+            name: Thinned[tuple[At, float]](SERIES_LIMIT)
+            for name in ("HDOP (GGA)", "HDOP", "PDOP", "VDOP")
+        }
+        self.cn0: dict[tuple[str, int, str], Thinned[tuple[At, float]]] = {}
+        self.trails: dict[tuple[str, int], Thinned[tuple[float, float]]] = {}
+        self.tracked: dict[tuple[str, int], bool] = {}  # whether it had a C/N0 in its last epoch
+        self.ignored_satellites = 0
+        self._epoch_keys: set[tuple[str, str]] = set()
+        self._epoch_sats: set[tuple[str, int]] = set()
+        self._epoch_tracked: set[tuple[str, int]] = set()  # with a C/N0 on some signal
+        self._epoch_at: At | None = None
+        self._open_sets: set[tuple[str, str]] = set()  # GSV sets still waiting for a sentence
+        self._sets_before = 0  # GSV sets of the epoch before
+
+    # -- reading ------------------------------------------------------------------------------
+
+    def read(self, items: typing.Iterable[bytes | int]) -> None:
+        for number, item in enumerate(items, 1):
+            self.lines += 1
+            try:
+                if isinstance(item, int):
+                    raise too_long(item)
+                sentence = parse(item)
+            except NmeaError as err:
+                self._error(number, err, item)
+                continue
+            self.add(number, sentence)
+        # an epoch cut short by the end of the log (a set not finished, or fewer sets than the
+        # epoch before it) counts no satellites in view
+        whole = not self._open_sets and len(self._epoch_keys) >= self._sets_before
+        self._end_epoch(counted=whole)
+
+    def _error(self, number: int, err: NmeaError, item: bytes | int) -> None:
+        self.errors[err.kind] += 1
+        if len(self.first_errors) < FIRST_ERRORS:
+            text = f"({item} bytes)" if isinstance(item, int) else _printable(item)
+            self.first_errors.append((number, err.kind, str(err), text))
+
+    def _count(self, name: str, talker: str, description: str) -> None:
+        key = (name, talker)
+        if key not in self.counts and len(self.counts) >= MAX_KEYS:
+            key = ("(others)", "")
+        self.counts[key] += 1
+        if name not in self.names and len(self.names) < MAX_KEYS:
+            self.names[name] = description
+
+    def add(self, number: int, sentence: Any) -> None:
+        """Take in one decoded sentence, the `number`th line of the log."""
+        self.decoded += 1
+        name = sentence.SENTENCE
+        if name is None:  # a well-formed sentence the spec does not describe
+            self._count(sentence.address, "", "not in the spec")
+            return
+        talker = getattr(sentence, "talker", "") if sentence.ADDRESS is None else ""
+        self._count(name, talker, _description(sentence))
+        if name in TIMED and isinstance(getattr(sentence, "time", None), Time):
+            self.clock.see(sentence.time)
+        handler = _HANDLERS.get(name)
+        if handler is not None:
+            handler(self, sentence, self._at(number), talker)
+
+    def _at(self, number: int) -> At:
+        if self.clock.now is None:
+            self.untimed += 1
+        else:
+            self.timed += 1
+        return number, self.clock.now
+
+    def _date(self, text: str | None) -> None:
+        if text is not None:
+            if not self.dates:
+                self.dates.append(text)
+            self.dates[1:] = [text]
+
+    def _fix(self, source: str, at: At, sentence: Any, level: str | None) -> None:
+        if level is None:
+            return
+        self.quality[source].add((at, level))
+        lat, lon = getattr(sentence, "lat", None), getattr(sentence, "lon", None)
+        if level != "no fix" and isinstance(lat, Coordinate) and isinstance(lon, Coordinate):
+            point = (lat.decimal_degrees, lon.decimal_degrees)
+            if point != (0.0, 0.0):  # a receiver's placeholder, not a place
+                self.tracks[source].add((at, point[0], point[1], level))
+
+    @staticmethod
+    def _once(series: Thinned[tuple[At, float]], at: At, value: float | None) -> None:
+        """A value per epoch: several sentences of one epoch (GSA per system) give it once."""
+        if value is None:
+            return
+        last = series.last
+        if last is not None and at[1] is not None and last[0][1] == at[1]:
+            return
+        series.add((at, value))
+
+    def _gga(self, s: Any, at: At, talker: str) -> None:
+        code = _code(s.quality)
+        self._fix("GGA", at, s, None if code is None else GGA_LEVELS.get(code, "other"))
+        self._once(self.used, at, _num(s.satellites))
+        self._once(self.dops["HDOP (GGA)"], at, _num(s.hdop))
+
+    def _gns(self, s: Any, at: At, talker: str) -> None:
+        modes = getattr(s, "mode", None)
+        levels = [MODE_LEVELS.get(c, "other") for c in (_code(m) for m in modes or ()) if c]
+        ranked = list(LEVELS)
+        self._fix("GNS", at, s, max(levels, key=ranked.index) if levels else None)
+        self._once(self.used, at, _num(s.satellites))
+        self._once(self.dops["HDOP (GGA)"], at, _num(s.hdop))
+
+    def _rmc_gll(self, source: str, s: Any, at: At) -> None:
+        status, mode = _code(s.status), _code(s.mode)
+        if status == "V":
+            level: str | None = "no fix"
+        elif mode is not None:
+            level = MODE_LEVELS.get(mode, "other")
+        else:
+            level = "autonomous" if status == "A" else None
+        self._fix(source, at, s, level)
+
+    def _rmc(self, s: Any, at: At, talker: str) -> None:
+        self._rmc_gll("RMC", s, at)
+        if isinstance(s.date, Date):
+            self._date(_date_text(s.date.day, s.date.month, s.date.year))
+
+    def _gll(self, s: Any, at: At, talker: str) -> None:
+        self._rmc_gll("GLL", s, at)
+
+    def _zda(self, s: Any, at: At, talker: str) -> None:
+        day, month, year = _num(s.day), _num(s.month), _num(s.year)
+        if day is not None and month is not None and year is not None:
+            self._date(_date_text(int(day), int(month), int(year)))
+
+    def _gsa(self, s: Any, at: At, talker: str) -> None:
+        code = _code(s.fix_type)
+        if code is not None:
+            series = self.quality["GSA"]
+            level = GSA_LEVELS.get(code, "other")
+            last = series.last
+            if last is None or at[1] is None or last[0][1] != at[1] or last[1] != level:
+                series.add((at, level))
+        for name in ("HDOP", "PDOP", "VDOP"):
+            self._once(self.dops[name], at, _num(getattr(s, name.lower())))
+
+    def _gsv(self, s: Any, at: At, talker: str) -> None:
+        signal = _code(s.signal_id) or ""
+        key = (talker, signal)
+        if _num(s.message_number) == 1 and key in self._epoch_keys:
+            self._end_epoch()
+        if self._epoch_at is None:
+            self._epoch_at = at
+        self._epoch_keys.add(key)
+        number, count = _num(s.message_number), _num(s.message_count)
+        if number is not None and count is not None and number < count:
+            self._open_sets.add(key)
+        else:
+            self._open_sets.discard(key)
+        for entry in s.satellites:
+            prn = _num(entry.prn)
+            if prn is None:
+                continue
+            sat = satellite(talker, int(prn))
+            if sat not in self.trails and len(self.trails) >= MAX_SATELLITES:
+                self.ignored_satellites += 1
+                continue
+            self._epoch_sats.add(sat)
+            elevation, azimuth, snr = _num(entry.elevation), _num(entry.azimuth), _num(entry.snr)
+            trail = self.trails.setdefault(sat, Thinned(TRAIL_LIMIT))
+            if azimuth is not None and elevation is not None and 0 <= elevation <= 90:
+                place = (azimuth, elevation)
+                if trail.last != place:
+                    trail.add(place)
+            if snr:  # 0 is what some receivers send for a satellite they do not track
+                self._epoch_tracked.add(sat)
+                cn0 = self.cn0.get((*sat, signal))
+                if cn0 is None and len(self.cn0) < MAX_SATELLITES:
+                    cn0 = self.cn0[(*sat, signal)] = Thinned(CN0_LIMIT)
+                if cn0 is not None:
+                    cn0.add((at, snr))
+
+    def _end_epoch(self, counted: bool = True) -> None:
+        """An epoch's GSV sets are over: the satellites they reported make the count in view, and
+        those with a C/N0 on any signal were tracked."""
+        if counted and self._epoch_at is not None and self._epoch_sats:
+            self.in_view.add((self._epoch_at, float(len(self._epoch_sats))))
+        for sat in self._epoch_sats:
+            self.tracked[sat] = sat in self._epoch_tracked
+        self._sets_before = len(self._epoch_keys)
+        self._epoch_keys.clear()
+        self._epoch_sats.clear()
+        self._epoch_tracked.clear()
+        self._open_sets.clear()
+        self._epoch_at = None
+
+
+_HANDLERS: dict[str, typing.Callable[[Log, Any, At, str], None]] = {
+    "GGA": Log._gga,
+    "GNS": Log._gns,
+    "RMC": Log._rmc,
+    "GLL": Log._gll,
+    "ZDA": Log._zda,
+    "GSA": Log._gsa,
+    "GSV": Log._gsv,
+}
+
+
+def _description(sentence: Any) -> str:
+    """The title of a sentence class: "Global positioning system fix data" for GGA."""
+    first = (type(sentence).__doc__ or "").strip().split("\n", 1)[0]
+    return first.partition(": ")[2].rstrip(".") or first
+
+
+def _printable(line: bytes, limit: int = 120) -> str:
+    text = line.decode("latin-1")
+    text = "".join(c if c.isprintable() else f"\\x{ord(c):02x}" for c in text)
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+# --------------------------------------------------------------------------------------------
+# the pictures
+
+
+class Axis:
+    """The time axis of the charts: UTC time of day when most samples have one, else the line."""
+
+    NICE = (1, 2, 5, 10, 15, 30, 60, 120, 300, 600, 900, 1800, 3600, 7200, 10800, 21600, 43200)
+
+    def __init__(self, log: Log) -> None:
+        total = log.timed + log.untimed
+        self.utc = log.timed > 0 and log.timed >= 0.9 * total
+        self.dropped = log.untimed if self.utc else 0
+        date = f", {log.dates[0]}" if log.dates else ""
+        self.label = f"UTC{date}" if self.utc else "line of the log"
+
+    def x(self, at: At) -> float | None:
+        return at[1] if self.utc else float(at[0])
+
+    def points(self, series: typing.Iterable[tuple[At, P]]) -> tuple[list[float], list[P]]:
+        xs: list[float] = []
+        values: list[P] = []
+        for at, value in series:
+            x = self.x(at)
+            if x is not None:
+                xs.append(x)
+                values.append(value)
+        return xs, values
+
+    def style(self, ax: Axes, low: float, high: float) -> None:
+        ax.set_xlabel(self.label)
+        if not self.utc:
+            return
+        from matplotlib.ticker import (  # type: ignore[import-not-found, unused-ignore]
+            FuncFormatter,
+            MultipleLocator,
+        )
+
+        span = max(high - low, 1.0)
+        step = next((n for n in self.NICE if span / n <= 8), 86400)
+        ax.xaxis.set_major_locator(MultipleLocator(step))
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda value, _: clock_text(value, step < 60)))
+
+
+def clock_text(seconds: float, with_seconds: bool = True) -> str:
+    day, rest = divmod(seconds, 86400)
+    hours, rest = divmod(int(rest), 3600)
+    minutes, secs = divmod(rest, 60)
+    text = f"{hours:02d}:{minutes:02d}" + (f":{secs:02d}" if with_seconds else "")
+    return f"{text} {int(day):+d}d" if day else text
+
+
+def _figure(width: float, height: float) -> Figure:
+    from matplotlib.figure import Figure  # type: ignore[import-not-found, unused-ignore]
+
+    figure = Figure(figsize=(width, height), layout="constrained")
+    return figure
+
+
+def _png(figure: Figure) -> str:
+    """The picture as a data: URI (no date or software in it: the same log, the same bytes)."""
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=DPI, metadata={"Software": None})
+    return "data:image/png;base64," + base64.b64encode(buffer.getvalue()).decode("ascii")
+
+
+DPI = 130
+
+
+def _source(log: Log, sources: tuple[str, ...], series: dict[str, Thinned[Any]]) -> str | None:
+    """The preferred source that has samples."""
+    return next((s for s in sources if series[s].added), None)
+
+
+def draw_track(log: Log, axis: Axis) -> tuple[str, str] | None:
+    """The track in metres east and north of its centre (equal aspect), coloured by fix level."""
+    source = _source(log, FIX_SOURCES, log.tracks)
+    if source is None:
+        return None
+    points = log.tracks[source].all()
+    lats = [p[1] for p in points]
+    lons = [p[2] for p in points]
+    if max(lons) - min(lons) > 180:  # across the antimeridian
+        lons = [lon + 360 if lon < 0 else lon for lon in lons]
+    lat0 = (max(lats) + min(lats)) / 2
+    lon0 = (max(lons) + min(lons)) / 2
+    metres = math.pi / 180 * 6371008.8
+    east = [(lon - lon0) * metres * math.cos(math.radians(lat0)) for lon in lons]
+    north = [(lat - lat0) * metres for lat in lats]
+    extent = max(max(east) - min(east), max(north) - min(north))
+    unit, scale = ("km", 1000.0) if extent > 5000 else ("m", 1.0)
+    east = [e / scale for e in east]
+    north = [n / scale for n in north]
+    figure = _figure(5.6, 5.4)
+    ax = figure.add_subplot()
+    ax.plot(east, north, color="#b0b0b0", linewidth=0.8, zorder=1)
+    levels = [p[3] for p in points]
+    for level, colour in LEVELS.items():
+        chosen = [i for i, lv in enumerate(levels) if lv == level]
+        if chosen:
+            ax.scatter(
+                [east[i] for i in chosen],
+                [north[i] for i in chosen],
+                s=7,
+                color=colour,
+                label=f"{level} ({len(chosen)})",
+                zorder=2,
+                linewidths=0,
+            )
+    ax.scatter(
+        east[:1],
+        north[:1],
+        marker="^",
+        s=110,
+        color="#2ca02c",
+        edgecolors="black",
+        label="start",
+        zorder=3,
+    )
+    ax.scatter(
+        east[-1:],
+        north[-1:],
+        marker="s",
+        s=80,
+        color="#d62728",
+        edgecolors="black",
+        label="end",
+        zorder=3,
+    )
+    if extent < 2.0:  # one place: a few metres around it
+        ax.set_xlim(-1.5, 1.5)
+        ax.set_ylim(-1.5, 1.5)
+        ax.set_aspect("equal", adjustable="box")
+    else:
+        ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"east [{unit}]")
+    ax.set_ylabel(f"north [{unit}]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="best", framealpha=0.85)
+    ax.set_title(
+        f"centre {_degrees(lat0, 'NS')}, {_degrees(lon0 if lon0 <= 180 else lon0 - 360, 'EW')}",
+        fontsize=10,
+    )
+    size = f"{extent / scale:.3g} {unit}"
+    caption = (
+        f"{log.tracks[source].added} fixes from {source}"
+        + (f" (every {log.tracks[source].stride}th drawn)" if log.tracks[source].stride > 1 else "")
+        + f"; the track spans {size}. Start ▲, end ■."
+    )
+    return _png(figure), caption
+
+
+def _degrees(value: float, hemispheres: str) -> str:
+    return f"{abs(value):.5f}° {hemispheres[0] if value >= 0 else hemispheres[1]}"
+
+
+def draw_sky(log: Log) -> tuple[str, str] | None:
+    """Azimuth and elevation of every satellite: its trail over the log, a dot where it was last
+    (filled when it was tracked, with a C/N0), coloured by system."""
+    sats = sorted((sat, t) for sat, t in log.trails.items() if t.last is not None)
+    if not sats:
+        return None
+    figure = _figure(5.6, 5.4)
+    ax = typing.cast("PolarAxes", figure.add_subplot(projection="polar"))
+    ax.set_theta_zero_location("N")
+    ax.set_theta_direction(-1)
+    ax.set_rlim(0, 90)
+    ax.set_yticks([30, 60, 90], ["60°", "30°", "0°"], fontsize=7, color="#666")
+    ax.set_xticks(
+        [math.radians(a) for a in range(0, 360, 45)], ["N", "NE", "E", "SE", "S", "SW", "W", "NW"]
+    )
+    ax.set_rlabel_position(112)
+    ax.grid(alpha=0.4)
+    systems: Counter[str] = Counter()
+    for (system, number), trail in sats:
+        colour = SYSTEMS[system][1]
+        systems[system] += 1
+        points = trail.all()
+        for piece in _pieces(points):
+            if len(piece) > 1:
+                theta = _unwrapped([math.radians(az) for az, _ in piece])
+                ax.plot(theta, [90 - el for _, el in piece], color=colour, linewidth=1.2, alpha=0.5)
+        theta = [math.radians(az) for az, _ in points]
+        radius = [90 - el for _, el in points]
+        tracked = log.tracked.get((system, number), False)
+        ax.scatter(
+            theta[-1:],
+            radius[-1:],
+            s=60,
+            color=colour if tracked else "white",
+            edgecolors=colour,
+            linewidths=1.5,
+            zorder=3,
+        )
+        ax.annotate(
+            satellite_name(system, number),
+            (theta[-1], radius[-1]),
+            fontsize=7,
+            xytext=(5, 4),
+            textcoords="offset points",
+            color="#222",
+        )
+    for system, count in sorted(systems.items(), key=lambda kv: list(SYSTEMS).index(kv[0])):
+        name, colour = SYSTEMS[system]
+        ax.scatter([], [], s=40, color=colour, label=f"{name} ({count})")
+    figure.legend(loc="outside lower center", ncols=min(len(systems), 5), fontsize=8, frameon=False)
+    caption = (
+        f"{len(sats)} satellites in GSV. Lines: where each was over the log; dots: where it was "
+        "last seen, filled when it was tracked then (it had a C/N0)."
+    )
+    if log.ignored_satellites:
+        caption += f" {log.ignored_satellites} entries of satellites past the first {MAX_SATELLITES} are left out."
+    return _png(figure), caption
+
+
+def _pieces(points: list[tuple[float, float]]) -> list[list[tuple[float, float]]]:
+    """A satellite's trail cut where it jumps more than 10 degrees across the sky (a receiver
+    that reported a wrong place, or a satellite gone and back): no line is drawn across a jump."""
+    pieces: list[list[tuple[float, float]]] = []
+    for point in points:
+        if pieces and _apart(pieces[-1][-1], point) <= 10:
+            pieces[-1].append(point)
+        else:
+            pieces.append([point])
+    return pieces
+
+
+def _apart(a: tuple[float, float], b: tuple[float, float]) -> float:
+    """The angle in degrees between two (azimuth, elevation) directions."""
+    (az1, el1), (az2, el2) = [(math.radians(az), math.radians(el)) for az, el in (a, b)]
+    cosine = math.sin(el1) * math.sin(el2) + math.cos(el1) * math.cos(el2) * math.cos(az1 - az2)
+    return math.degrees(math.acos(max(-1.0, min(1.0, cosine))))
+
+
+def _unwrapped(theta: list[float]) -> list[float]:
+    """Angles made continuous (359 degrees then 1 is 361): a line across north stays short."""
+    out = theta[:1]
+    for angle in theta[1:]:
+        turns = round((out[-1] - angle) / math.tau)
+        out.append(angle + turns * math.tau)
+    return out
+
+
+def draw_cn0(log: Log, axis: Axis) -> tuple[str, str] | None:
+    """C/N0 of every satellite signal over time: a row each, a column per stretch of time."""
+    series: list[tuple[tuple[str, int, str], list[float], list[float]]] = []
+    for key, samples in log.cn0.items():
+        xs, values = axis.points(samples.all())
+        if xs:
+            series.append((key, xs, values))
+    if not series:
+        return None
+    hidden = 0
+    if len(series) > CN0_ROWS:
+        series.sort(key=lambda s: -log.cn0[s[0]].added)
+        hidden = len(series) - CN0_ROWS
+        series = series[:CN0_ROWS]
+    order = list(SYSTEMS)
+    series.sort(key=lambda s: (order.index(s[0][0]), s[0][1], s[0][2]))
+    signals: Counter[tuple[str, int]] = Counter((k[0], k[1]) for k, _, _ in series)
+    labels = [
+        satellite_name(k[0], k[1]) + (f" sig {k[2]}" if signals[(k[0], k[1])] > 1 else "")
+        for k, _, _ in series
+    ]
+    every = sorted({x for _, xs, _ in series for x in xs})
+    steps = [b - a for a, b in itertools.pairwise(every) if b > a]
+    step = statistics.median(steps) if steps else 1.0
+    low, high = every[0] - step / 2, every[-1] + step / 2
+    columns = max(1, min(COLUMNS, round((high - low) / step)))
+    width = (high - low) / columns
+    grid: list[list[float]] = []
+    for _, xs, values in series:
+        sums = [0.0] * columns
+        counts = [0] * columns
+        for x, value in zip(xs, values):
+            column = min(columns - 1, max(0, int((x - low) / width)))
+            sums[column] += value
+            counts[column] += 1
+        grid.append([s / c if c else math.nan for s, c in zip(sums, counts)])
+    edges = [low + i * width for i in range(columns + 1)]
+    rows = len(series)
+    figure = _figure(11.0, 1.4 + 0.16 * max(rows, 6))
+    ax = figure.add_subplot()
+    mesh = ax.pcolormesh(edges, list(range(rows + 1)), grid, cmap="viridis", vmin=15, vmax=55)
+    figure.colorbar(mesh, ax=ax, label="C/N0 [dB-Hz]", pad=0.01, aspect=30)
+    ax.set_yticks([i + 0.5 for i in range(rows)], labels, fontsize=7 if rows > 30 else 8)
+    for tick, (key, _, _) in zip(ax.get_yticklabels(), series):
+        tick.set_color(SYSTEMS[key[0]][1])
+    ax.set_ylim(rows, 0)
+    ax.set_facecolor("#f4f4f4")
+    axis.style(ax, low, high)
+    caption = (
+        f"{rows} satellite signals with a C/N0 in GSV, coloured by dB-Hz (blank: not tracked)"
+        + (f"; {hidden} more with fewer samples are left out" if hidden else "")
+        + ". Labels are coloured by system."
+    )
+    return _png(figure), caption
+
+
+def draw_quality(log: Log, axis: Axis) -> tuple[str, str] | None:
+    """Fix level, satellites used and in view, and DOPs over time, one above the other: the
+    charts that have something to show."""
+    source = _source(log, QUALITY_SOURCES, log.quality)
+    quality_x, quality = axis.points(log.quality[source].all()) if source else ([], [])
+    used = axis.points(log.used.all())
+    view = axis.points(log.in_view.all())
+    hdop = "HDOP (GGA)" if log.dops["HDOP (GGA)"].added else "HDOP"
+    dops = {name.split()[0]: axis.points(log.dops[name].all()) for name in (hdop, "PDOP", "VDOP")}
+    dops = {name: xy for name, xy in dops.items() if xy[0]}
+    present = [lv for lv in LEVELS if lv in set(quality)]
+    charts = [
+        (name, height)
+        for name, height, shown in (
+            ("fix", 0.5 + 0.28 * len(present), bool(quality_x)),
+            ("satellites", 1.9, bool(used[0] or view[0])),
+            ("dop", 1.9, bool(dops)),
+        )
+        if shown
+    ]
+    if not charts:
+        return None
+    figure = _figure(11.0, 0.9 + sum(h for _, h in charts))
+    axes = figure.subplots(
+        len(charts), 1, sharex=True, height_ratios=[h for _, h in charts], squeeze=False
+    )[:, 0]
+    every: list[float] = []
+    missing = []
+    for (name, _), ax in zip(charts, axes):
+        if name == "fix":
+            ys = [present.index(lv) for lv in quality]
+            ax.step(quality_x, ys, where="post", color="#c8c8c8", linewidth=1, zorder=1)
+            ax.scatter(
+                quality_x, ys, c=[LEVELS[lv] for lv in quality], s=10, zorder=2, linewidths=0
+            )
+            ax.set_yticks(range(len(present)), present, fontsize=8)
+            ax.set_ylim(-0.6, len(present) - 0.4)
+            ax.set_title(f"fix ({source})", fontsize=9, loc="left")
+            every += quality_x
+        elif name == "satellites":
+            peak = 1.0
+            for (xs, values), label, colour in (
+                (view, "in view (GSV)", "#9e9e9e"),
+                (used, "used (GGA)", "#1f77b4"),
+            ):
+                if xs:
+                    ax.step(
+                        xs,
+                        values,
+                        where="post",
+                        color=colour,
+                        label=label,
+                        linewidth=1.3,
+                        marker="o" if len(xs) <= 60 else None,
+                        markersize=3,
+                    )
+                    peak = max(peak, *values)
+                    every += xs
+            ax.set_ylim(0, peak * 1.15)
+            ax.set_title("satellites", fontsize=9, loc="left")
+        else:
+            colours = {"HDOP": "#1f77b4", "PDOP": "#ff7f0e", "VDOP": "#2ca02c"}
+            peak = 0.0
+            for label, (xs, values) in dops.items():
+                ax.plot(
+                    xs,
+                    values,
+                    color=colours[label],
+                    linewidth=1.2,
+                    label=label,
+                    marker="o" if len(xs) <= 60 else None,
+                    markersize=3,
+                )
+                peak = max(peak, *values)
+                every += xs
+            ax.set_ylim(0, min(max(peak * 1.1, 2.0), 20.0))
+            clipped = " (above 20 not drawn)" if peak > 20 else ""
+            ax.set_title(f"dilution of precision{clipped}", fontsize=9, loc="left")
+        if name != "fix":
+            ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.005, 1.0), frameon=False)
+        ax.grid(alpha=0.3)
+    for name, text in (
+        ("fix", "fix quality (GGA, GNS, RMC, GLL, GSA)"),
+        ("satellites", "satellite counts (GGA, GNS, GSV)"),
+        ("dop", "DOPs (GGA, GNS, GSA)"),
+    ):
+        if name not in {n for n, _ in charts}:
+            missing.append(text)
+    low, high = min(every), max(every)
+    span = (high - low) * 0.01 or 0.5
+    axes[-1].set_xlim(low - span, high + span)
+    axis.style(axes[-1], low, high)
+    caption = "Fix level, satellites used and in view, and DOPs over time."
+    if missing:
+        caption += f" Not in this log: {'; '.join(missing)}."
+    if axis.dropped:
+        caption += f" {axis.dropped} samples before the first UTC time are left out."
+    return _png(figure), caption
+
+
+# --------------------------------------------------------------------------------------------
+# the page
+
+STYLE = """
+body { font: 15px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; color: #1d232a;
+  background: #eef1f4; margin: 0; }
+main { max-width: 1180px; margin: 0 auto; padding: 18px 20px 40px; }
+h1 { font-size: 24px; margin: 6px 0 2px; word-break: break-all; }
+h2 { font-size: 18px; margin: 0 0 10px; }
+nav a { margin-right: 14px; color: #1f5fa8; text-decoration: none; font-size: 14px; }
+section { background: #fff; border-radius: 8px; padding: 16px 18px; margin: 16px 0;
+  box-shadow: 0 1px 3px rgba(0,0,0,.08); }
+.pair { display: grid; grid-template-columns: repeat(auto-fit, minmax(430px, 1fr)); gap: 16px; }
+.pair section { margin: 0; }
+img { max-width: 100%; height: auto; display: block; margin: 0 auto; }
+.caption, .empty { color: #56606b; font-size: 13px; margin: 8px 0 0; }
+.empty { font-size: 15px; padding: 30px 0; text-align: center; }
+.tiles { display: grid; grid-template-columns: repeat(auto-fit, minmax(150px, 1fr)); gap: 10px; }
+.tile { background: #f6f8fa; border-radius: 6px; padding: 8px 12px; }
+.tile b { display: block; font-size: 19px; }
+.tile span { color: #56606b; font-size: 12px; }
+table { border-collapse: collapse; width: 100%; font-size: 14px; margin-bottom: 12px; }
+th, td { text-align: left; padding: 4px 10px; border-bottom: 1px solid #e4e7eb; vertical-align: top; }
+th { background: #f6f8fa; font-weight: 600; }
+td.n { text-align: right; font-variant-numeric: tabular-nums; }
+code { font-size: 12.5px; word-break: break-all; }
+.bad { color: #b42318; }
+"""
+
+
+def _tile(value: str, label: str, css: str = "") -> str:
+    return (
+        f'<div class="tile"><b{css}>{html.escape(value)}</b><span>{html.escape(label)}</span></div>'
+    )
+
+
+def _section(anchor: str, title: str, picture: tuple[str, str] | None, empty: str, alt: str) -> str:
+    if picture is None:
+        body = f'<p class="empty">{html.escape(empty)}</p>'
+    else:
+        uri, caption = picture
+        body = (
+            f'<img src="{uri}" alt="{html.escape(alt)}">'
+            f'<p class="caption">{html.escape(caption)}</p>'
+        )
+    return f'<section id="{anchor}"><h2>{html.escape(title)}</h2>{body}</section>'
+
+
+def _summary(log: Log, name: str) -> str:
+    errors = sum(log.errors.values())
+    unknown = sum(
+        n for (key, talker), n in log.counts.items() if log.names.get(key) == "not in the spec"
+    )
+    share = log.decoded / log.lines if log.lines else 0.0
+    tiles = [
+        _tile(f"{log.lines:,}", "lines"),
+        _tile(f"{log.decoded:,}", f"sentences ({share:.1%} of the lines)"),
+        _tile(f"{errors:,}", "decode errors", ' class="bad"' if errors else ""),
+        _tile(f"{unknown:,}", "sentences not in the spec"),
+    ]
+    if log.clock.now is not None:
+        low, high = log.clock.low, log.clock.high
+        tiles.append(_tile(f"{clock_text(low)} – {clock_text(high)}", "UTC"))
+        tiles.append(_tile(_duration(high - low), "duration"))
+    if log.dates:
+        tiles.append(_tile(" – ".join(dict.fromkeys(log.dates)), "date (RMC, ZDA)"))
+    source = _source(log, FIX_SOURCES, log.tracks)
+    fixes = log.tracks[source].added if source else 0
+    tiles.append(_tile(f"{fixes:,}", f"fixes ({source})" if source else "fixes"))
+    systems = Counter(system for system, _ in log.trails)
+    if systems:
+        seen = ", ".join(
+            f"{SYSTEMS[s][0]} {n}"
+            for s, n in sorted(systems.items(), key=lambda kv: list(SYSTEMS).index(kv[0]))
+        )
+        tiles.append(_tile(str(len(log.trails)), f"satellites seen: {seen}"))
+    return '<section id="summary"><div class="tiles">' + "".join(tiles) + "</div></section>"
+
+
+def _duration(seconds: float) -> str:
+    seconds = round(seconds)
+    hours, rest = divmod(seconds, 3600)
+    minutes, secs = divmod(rest, 60)
+    return f"{hours} h {minutes:02d} min" if hours else f"{minutes} min {secs:02d} s"
+
+
+def _tables(log: Log) -> str:
+    total = sum(log.counts.values()) or 1
+    rows = []
+    for (name, talker), count in sorted(log.counts.items(), key=lambda kv: (-kv[1], kv[0])):
+        rows.append(
+            f"<tr><td>{html.escape(name)}</td><td>{html.escape(talker)}</td>"
+            f"<td>{html.escape(log.names.get(name, ''))}</td>"
+            f'<td class="n">{count:,}</td><td class="n">{count / total:.1%}</td></tr>'
+        )
+    out = [
+        '<section id="sentences"><h2>Sentences</h2>',
+        "<table><tr><th>sentence</th><th>talker</th><th>what it is</th>"
+        + '<th class="n">count</th><th class="n">share</th></tr>',
+        *rows,
+        "</table>",
+    ]
+    if log.errors:
+        out.append('<h2>Decode errors</h2><table><tr><th>kind</th><th class="n">lines</th></tr>')
+        for kind, count in sorted(log.errors.items(), key=lambda kv: (-kv[1], kv[0])):
+            out.append(f'<tr><td>{html.escape(kind)}</td><td class="n">{count:,}</td></tr>')
+        out.append("</table>")
+        out.append(
+            f"<table><tr><th>line</th><th>kind</th><th>first {len(log.first_errors)} errors</th></tr>"
+        )
+        for number, kind, message, text in log.first_errors:
+            out.append(
+                f'<tr><td class="n">{number}</td><td>{html.escape(kind)}</td>'
+                f"<td>{html.escape(message)}<br><code>{html.escape(text)}</code></td></tr>"
+            )
+        out.append("</table>")
+    else:
+        out.append('<p class="caption">No decode errors.</p>')
+    out.append("</section>")
+    return "".join(out)
+
+
+def page(log: Log, name: str) -> str:
+    """The whole report as one HTML page."""
+    axis = Axis(log)
+    track = draw_track(log, axis)
+    sky = draw_sky(log)
+    cn0 = draw_cn0(log, axis)
+    quality = draw_quality(log, axis)
+    title = f"nmea report: {name}"
+    nav = "".join(
+        f'<a href="#{anchor}">{text}</a>'
+        for anchor, text in (
+            ("track", "Track"),
+            ("sky", "Sky"),
+            ("cn0", "C/N0"),
+            ("quality", "Fix and DOP"),
+            ("sentences", "Sentences and errors"),
+        )
+    )
+    return "".join(
+        [
+            '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">',
+            '<meta name="viewport" content="width=device-width, initial-scale=1">',
+            f"<title>{html.escape(title)}</title><style>{STYLE}</style></head><body><main>",
+            f"<h1>{html.escape(name)}</h1><nav>{nav}</nav>",
+            _summary(log, name),
+            '<div class="pair">',
+            _section(
+                "track",
+                "Track",
+                track,
+                "No position fixes in this log (no GGA, GNS, RMC or GLL with a valid fix).",
+                "the track of the fixes",
+            ),
+            _section(
+                "sky",
+                "Sky plot",
+                sky,
+                "No satellite positions in this log (no GSV with elevation and azimuth).",
+                "sky plot of the satellites",
+            ),
+            "</div>",
+            _section(
+                "cn0",
+                "C/N0 per satellite",
+                cn0,
+                "No signal strengths in this log (no GSV with a C/N0).",
+                "C/N0 of each satellite over time",
+            ),
+            _section(
+                "quality",
+                "Fix quality, satellites and DOP",
+                quality,
+                "No fix quality, "
+                "satellite counts or DOPs in this log (no GGA, GNS, RMC, GLL, GSA or GSV).",
+                "fix quality, satellites and DOP over time",
+            ),
+            _tables(log),
+            "</main></body></html>\n",
+        ]
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# the verb
+
+
+def _check_matplotlib() -> None:
+    try:
+        import matplotlib  # type: ignore[import-not-found, unused-ignore]  # noqa: F401
+    except ImportError:
+        raise ToolError(INSTALL_HINT) from None
+
+
+def report(args: argparse.Namespace) -> int:
+    _check_matplotlib()  # before reading a long log for nothing
+    source, size = open_log(args.log)
+    name = "stdin" if args.log == "-" else os.path.basename(args.log)
+    output = args.output or (
+        "report.html" if args.log == "-" else os.path.splitext(name)[0] + ".html"
+    )
+    progress = progress_for(args.progress, size)
+    log = Log()
+    try:
+        log.read(lines(_chunks(source, progress)))
+    finally:
+        if source is not sys.stdin.buffer:
+            source.close()
+    if progress is not None:
+        progress.finish()
+    if log.lines == 0:
+        raise ToolError(f"{args.log} is empty")
+    if log.decoded == 0:
+        kind = log.errors.most_common(1)[0][0]
+        raise ToolError(
+            f"{args.log} is not an NMEA log: none of its {log.lines} lines decodes ({kind})"
+        )
+    text = page(log, name)
+    try:
+        if output == "-":
+            sys.stdout.write(text)
+            sys.stdout.flush()
+        else:
+            with open(output, "w", encoding="utf-8") as out:
+                out.write(text)
+    except OSError as err:
+        raise ToolError(f"cannot write {output}: {err.strerror}") from None
+    if not args.quiet:
+        errors = sum(log.errors.values())
+        sys.stderr.write(
+            f"wrote {output}: {log.lines} lines, {log.decoded} sentences, {errors} errors\n"
+        )
+    return 0
+
+
+def add_parser(verbs: Any) -> None:
+    """The `report` verb of `nmea` (tool.py)."""
+    r = verbs.add_parser(
+        "report",
+        help="draw a log as one HTML page: track, sky plot, C/N0, fix quality, errors",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=REPORT_EXAMPLES,
+    )
+    r.add_argument("log", help="the log file, or - for stdin")
+    r.add_argument(
+        "-o",
+        "--output",
+        metavar="HTML",
+        help="the page to write (default: the log's name with .html, here; - for stdout)",
+    )
+    add_progress_options(r)
+    r.add_argument("-q", "--quiet", action="store_true", help="no summary line on stderr")
+    r.set_defaults(run=report)
