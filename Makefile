@@ -208,7 +208,7 @@ fuzz-differential: build
 
 # Fault injection over every real log (fuzz/faults.py, tests/agreement/test_faults.py): each kind of
 # damage with seeds 1..FAULT_SEEDS, every rate times FAULT_RATE; the figures go to
-# build/reports/faults.md (docs/reliability.md). About four minutes a seed on two cores.
+# build/reports/faults.md (docs/reliability.md). About three minutes a seed on two cores.
 FAULT_SEEDS ?= 3
 FAULT_RATE  ?= 1
 
