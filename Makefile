@@ -12,7 +12,7 @@ CARGO_TARGET := build/rust-target
 
 .PHONY: generate validate check build footprint release-check changelog test test-steps test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
-        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-differential
+        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-differential fuzz-faults
 
 $(STAMP): requirements.txt
 	python3 -m venv $(VENV)
@@ -173,17 +173,20 @@ footprint: $(STAMP)
 
 # --- fuzzing ---------------------------------------------------------------------------------
 # `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds, then replays what they
-# found through the three tools (fuzz/differential.py). `make fuzz-smoke` is the short run of
-# `make test`. Crashes land in build/fuzz/crash-*; copy each into fuzz/regressions/.
+# found through the three tools (fuzz/differential.py), then damages every real log the way a
+# serial line does (fuzz-faults). `make fuzz-smoke` is the short run of `make test` (whose
+# test-tools already runs the short fault injection). Crashes land in build/fuzz/crash-*; copy
+# each into fuzz/regressions/.
 FUZZ_SECONDS ?= 300
 FUZZ := build/fuzz
 FUZZ_FLAGS = -max_total_time=$(FUZZ_SECONDS) -max_len=1100 -timeout=10 -print_final_stats=1
 CLANG ?= clang
 
 fuzz-smoke:
-	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD=--dev
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD=--dev FUZZ_FAULTS=
 
-fuzz: fuzz-c fuzz-rust fuzz-python fuzz-differential
+FUZZ_FAULTS ?= fuzz-faults
+fuzz: fuzz-c fuzz-rust fuzz-python fuzz-differential $(FUZZ_FAULTS)
 
 fuzz-seeds: $(STAMP)
 	@rm -rf $(FUZZ)/seeds
@@ -213,6 +216,15 @@ fuzz-rust: fuzz-seeds
 
 fuzz-differential: build
 	$(PY) fuzz/differential.py $(FUZZ)/seeds $(FUZZ)/corpus-c $(FUZZ)/corpus-python $(FUZZ)/corpus-rust fuzz/regressions
+
+# Fault injection over every real log (fuzz/faults.py, tests/agreement/test_faults.py): each kind of
+# damage with seeds 1..FAULT_SEEDS, every rate times FAULT_RATE; the figures go to
+# build/reports/faults.md (docs/reliability.md). About three minutes a seed on two cores.
+FAULT_SEEDS ?= 3
+FAULT_RATE  ?= 1
+
+fuzz-faults: build $(STAMP)
+	FAULT_LOGS=all FAULT_SEEDS=$(FAULT_SEEDS) FAULT_RATE=$(FAULT_RATE) $(PY) -m pytest -q tests/agreement/test_faults.py
 
 clean:
 	rm -rf build
