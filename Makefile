@@ -12,7 +12,7 @@ CARGO_TARGET := build/rust-target
 
 .PHONY: generate validate check build footprint release-check changelog test test-steps test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
-        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-differential fuzz-faults
+        fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
 $(STAMP): requirements.txt
 	python3 -m venv $(VENV)
@@ -172,21 +172,25 @@ footprint: $(STAMP)
 	$(PY) tools/footprint.py $(FOOTPRINT_FLAGS)
 
 # --- fuzzing ---------------------------------------------------------------------------------
-# `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds, then replays what they
-# found through the three tools (fuzz/differential.py), then damages every real log the way a
-# serial line does (fuzz-faults). `make fuzz-smoke` is the short run of `make test` (whose
-# test-tools already runs the short fault injection). Crashes land in build/fuzz/crash-*; copy
-# each into fuzz/regressions/.
+# `make fuzz FUZZ_SECONDS=N` runs each coverage-guided target for N seconds (C, Rust, the C and Rust
+# codecs side by side in one process, Python; `make -j2 fuzz` runs two at a time), then replays
+# what they found through the three tools (fuzz/differential.py), damages every real log the way a
+# serial line does (fuzz-faults) and streams 1 GB through the three stream readers (fuzz-memory).
+# The targets mutate sentences field by field (fuzz/c/field_mutator.c). `make fuzz-smoke` is the
+# short run of `make test` (whose test-tools runs the short fault injection and memory check).
+# Crashes land in build/fuzz/crash-*; copy each into fuzz/regressions/.
 FUZZ_SECONDS ?= 300
 FUZZ := build/fuzz
 FUZZ_FLAGS = -max_total_time=$(FUZZ_SECONDS) -max_len=1100 -timeout=10 -print_final_stats=1
 CLANG ?= clang
 
 fuzz-smoke:
-	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD=--dev FUZZ_FAULTS=
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD=--dev FUZZ_LONG= \
+		INPROCESS_CORPUS=$(FUZZ)/corpus-inprocess-smoke INPROCESS_SEEDS=
 
-FUZZ_FAULTS ?= fuzz-faults
-fuzz: fuzz-c fuzz-rust fuzz-python fuzz-differential $(FUZZ_FAULTS)
+# The long runs of what `make test` checks briefly (fault injection, bounded memory).
+FUZZ_LONG ?= fuzz-faults fuzz-memory
+fuzz: fuzz-c fuzz-rust fuzz-inprocess fuzz-python fuzz-differential $(FUZZ_LONG)
 
 fuzz-seeds: $(STAMP)
 	@rm -rf $(FUZZ)/seeds
@@ -195,7 +199,7 @@ fuzz-seeds: $(STAMP)
 fuzz-c: fuzz-seeds
 	@mkdir -p $(FUZZ)/corpus-c
 	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -DNMEA_TEST_HOOKS -Igenerated/c \
-		-o $(FUZZ)/fuzz-c generated/c/nmea.c fuzz/c/fuzz_nmea.c
+		-o $(FUZZ)/fuzz-c generated/c/nmea.c fuzz/c/fuzz_nmea.c fuzz/c/field_mutator.c
 	$(FUZZ)/fuzz-c $(FUZZ_FLAGS) -artifact_prefix=$(FUZZ)/crash-c- $(FUZZ)/corpus-c $(FUZZ)/seeds
 
 fuzz-python: fuzz-seeds
@@ -214,8 +218,21 @@ fuzz-rust: fuzz-seeds
 	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) --fuzz-dir fuzz/rust nmea -- \
 		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-rust- $(CURDIR)/$(FUZZ)/corpus-rust $(CURDIR)/$(FUZZ)/seeds
 
+# The in-process differential: the C pair (built by fuzz/rust/build.rs) and the Rust crate in one
+# target, every answer compared byte for byte (fuzz/rust/fuzz_targets/differential.rs). The smoke
+# run (an unoptimized build, a few hundred inputs a second) starts from the regressions only.
+INPROCESS_CORPUS ?= $(FUZZ)/corpus-inprocess
+INPROCESS_SEEDS ?= $(CURDIR)/$(FUZZ)/seeds
+fuzz-inprocess: fuzz-seeds
+	@command -v cargo-fuzz >/dev/null || cargo install --quiet --locked cargo-fuzz --version $(CARGO_FUZZ_VERSION)
+	@mkdir -p $(INPROCESS_CORPUS)
+	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) --fuzz-dir fuzz/rust differential -- \
+		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-inprocess- $(CURDIR)/$(INPROCESS_CORPUS) $(INPROCESS_SEEDS) \
+		$(CURDIR)/fuzz/regressions
+
 fuzz-differential: build
-	$(PY) fuzz/differential.py $(FUZZ)/seeds $(FUZZ)/corpus-c $(FUZZ)/corpus-python $(FUZZ)/corpus-rust fuzz/regressions
+	$(PY) fuzz/differential.py $(FUZZ)/seeds $(FUZZ)/corpus-c $(FUZZ)/corpus-python $(FUZZ)/corpus-rust $(FUZZ)/corpus-inprocess \
+		fuzz/regressions
 
 # Fault injection over every real log (fuzz/faults.py, tests/agreement/test_faults.py): each kind of
 # damage with seeds 1..FAULT_SEEDS, every rate times FAULT_RATE; the figures go to
@@ -225,6 +242,13 @@ FAULT_RATE  ?= 1
 
 fuzz-faults: build $(STAMP)
 	FAULT_LOGS=all FAULT_SEEDS=$(FAULT_SEEDS) FAULT_RATE=$(FAULT_RATE) $(PY) -m pytest -q tests/agreement/test_faults.py
+
+# Bounded memory: a generated stream of MEMORY_SIZE (real lines, garbage, overlong lines, a last
+# line that never ends) through the three `stream` verbs, peak RSS against a 16 MB stream's
+# (fuzz/bounded_memory.py; tests/agreement/test_bounded_memory.py is the short run).
+MEMORY_SIZE ?= 1G
+fuzz-memory: build $(STAMP)
+	$(PY) fuzz/bounded_memory.py --size 16M --size $(MEMORY_SIZE)
 
 clean:
 	rm -rf build

@@ -1,6 +1,8 @@
 """Seed corpus for the fuzzers: every example of the manuals (intact and damaged), the edge
-cases, a sample of every real log, random sentences of every layout, and decode's JSON of some
-of them (the fuzz targets also read their input as JSON). One file per input, no line ending.
+cases, a sample of every real log, random sentences of every layout, decode's JSON of some
+of them (the fuzz targets also read their input as JSON), and the corpus the last campaign grew
+(fuzz/corpus.tar.xz, minimized), so that each run starts where the last one stopped. One file
+per input, no line ending.
 
 Usage: python fuzz/seeds.py OUT_DIR
 """
@@ -10,6 +12,7 @@ from __future__ import annotations
 import hashlib
 import json
 import sys
+import tarfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -41,7 +44,18 @@ def seeds() -> list[bytes]:
         out += logged[::step][:PER_LOG]
     out += [reference.decode_json(spec, line).encode() for line in lines[:400]]
     out += sorted(p.read_bytes() for p in (ROOT / "fuzz" / "regressions").glob("*") if p.is_file())
+    out += campaign_corpus()
     return [s for s in dict.fromkeys(out) if s]
+
+
+def campaign_corpus() -> list[bytes]:
+    """The inputs of fuzz/corpus.tar.xz (written by fuzz/keep_corpus.py after a campaign)."""
+    path = ROOT / "fuzz" / "corpus.tar.xz"
+    if not path.is_file():
+        return []
+    with tarfile.open(path) as archive:
+        return [archive.extractfile(m).read() for m in sorted(archive.getmembers(), key=lambda m: m.name)
+                if m.isfile()]
 
 
 def main() -> None:

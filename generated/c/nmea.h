@@ -24809,7 +24809,7 @@ typedef struct {
 /* Parsing and writing */
 
 /**
- * Parses one line (without its line ending) into `out`: a known sentence into its layout, any
+ * Parses one line (a trailing LF or CR LF is allowed) into `out`: a known sentence into its layout, any
  * other well-formed line into out->as.generic. A line that does not start with '$' or '!' and
  * whose first word is, ignoring case, the word of a text command is that command. The layouts a
  * line may have (a standard sentence's, or those of every proprietary sentence with its address,

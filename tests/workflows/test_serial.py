@@ -431,8 +431,11 @@ def test_listen_count_and_formats(installed_serial: Venv, simulate: Any, tmp_pat
 
 def test_listen_until_ctrl_c(installed_serial: Venv, simulate: Any) -> None:
     sim = simulate({})
+    # As at a terminal: SIGINT not ignored (a shell's background job inherits it ignored, and
+    # Python then installs no KeyboardInterrupt handler).
     process = subprocess.Popen([installed_serial.bin / "nmea", "listen", "--port", sim.path, "--fields", "sentence"],
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         assert process.stdout is not None
         header = process.stdout.readline()

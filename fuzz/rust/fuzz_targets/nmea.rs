@@ -171,3 +171,12 @@ fuzz_target!(|data: &[u8]| {
     as_json(data);
     as_stream(data);
 });
+
+extern "C" {
+    /// fuzz/c/field_mutator.c: sentences mutated field by field, their checksums made right again.
+    fn nmea_fuzz_mutate(data: *mut u8, size: usize, max_size: usize, seed: u32) -> usize;
+}
+
+libfuzzer_sys::fuzz_mutator!(|data: &mut [u8], size: usize, max_size: usize, seed: u32| {
+    unsafe { nmea_fuzz_mutate(data.as_mut_ptr(), size, max_size, seed) }
+});

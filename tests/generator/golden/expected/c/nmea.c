@@ -100,10 +100,20 @@ NMEA_INTERNAL bool frame_command(nmea_wire *wire, const char *line, size_t len, 
     return true;
 }
 
+/* The length of a line without one trailing LF or CR LF: the parsers take a line as it was read,
+   as the Rust and Python ones do. A framed overlong line has no bytes (NULL): not read. */
+static size_t without_line_ending(const char *line, size_t len)
+{
+    if (line && len && line[len - 1] == '\n')
+        len -= len > 1 && line[len - 2] == '\r' ? 2 : 1;
+    return len;
+}
+
 /* nmea_parse_<layout>: the line framed as layout `l` says, then read into `out`, a struct of it. */
 static bool parse_with(const layout *l, void *out, const char *line, size_t len, nmea_error *err)
 {
     nmea_wire wire;
+    len = without_line_ending(line, len);
     if (l->kind == LAYOUT_STANDARD)
         return frame_known(&wire, line, len, l->start, l->sentence, err) && read_with(l, out, &wire, err);
     if (l->kind == LAYOUT_PROPRIETARY)
@@ -792,6 +802,7 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
    problem is read the same way leniently. */
 bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
+    len = without_line_ending(line, len);
 #ifndef NMEA_NO_FAST_PATH
     if (fast_parse(out, line, len))
         return true;
@@ -802,7 +813,7 @@ bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_
 #ifdef NMEA_TEST_HOOKS
 bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
 {
-    return parse_general(out, line, len, options, err);
+    return parse_general(out, line, without_line_ending(line, len), options, err);
 }
 #endif
 

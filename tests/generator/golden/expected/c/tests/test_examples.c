@@ -139,6 +139,11 @@ static bool check(const example *ex)
         }
         n = nmea_decode_json_ex(ex->line, strlen(ex->line), false, &lenient, json, sizeof json);
         ok = same(ex, "decode --lenient", json, n, ex->decode) && ok;
+        n = strlen(ex->line); /* the line as it was read: one CR LF is not part of it */
+        memcpy(json, ex->line, n);
+        memcpy(json + n, "\r\n", 2);
+        n = nmea_decode_json(json, n + 2, false, buf, sizeof buf);
+        ok = same(ex, "decode of the line with its CR LF", buf, n, ex->decode) && ok;
         n = nmea_build(&s, buf, sizeof buf, &err);
         if (n == 0) {
             n = nmea_error_to_json(&err, buf, sizeof buf);

@@ -1,0 +1,52 @@
+"""Keeps what a fuzz campaign grew: merges the corpora of the C target and of the in-process
+differential (C and Rust coverage in one) into a minimal set with libFuzzer's -merge=1, and writes
+it to fuzz/corpus.tar.xz (files named by their SHA-1, sorted, no timestamps: the same set gives the
+same archive), which fuzz/seeds.py adds to every target's seeds.
+
+    python fuzz/keep_corpus.py FUZZER_BINARY... -- CORPUS_DIR...
+"""
+
+from __future__ import annotations
+
+import hashlib
+import io
+import subprocess
+import sys
+import tarfile
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+ARCHIVE = ROOT / "fuzz" / "corpus.tar.xz"
+
+
+def merged(binary: str, corpora: list[str]) -> dict[str, bytes]:
+    with tempfile.TemporaryDirectory(prefix="nmeaspec-merge-") as tmp:
+        subprocess.run([binary, "-merge=1", "-max_len=1100", "-timeout=10", tmp, *corpora], check=True,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        return {hashlib.sha1(p.read_bytes()).hexdigest(): p.read_bytes() for p in Path(tmp).iterdir()}
+
+
+def main() -> int:
+    args = sys.argv[1:]
+    if "--" not in args:
+        raise SystemExit(__doc__)
+    split = args.index("--")
+    binaries, corpora = args[:split], [c for c in args[split + 1:] if Path(c).is_dir()]
+    keep: dict[str, bytes] = {}
+    for binary in binaries:
+        keep.update(merged(binary, corpora))
+    buffer = io.BytesIO()
+    with tarfile.open(fileobj=buffer, mode="w:xz") as archive:
+        for name in sorted(keep):
+            info = tarfile.TarInfo(name)
+            info.size = len(keep[name])
+            archive.addfile(info, io.BytesIO(keep[name]))
+    ARCHIVE.write_bytes(buffer.getvalue())
+    print(f"{ARCHIVE.relative_to(ROOT)}: {len(keep)} inputs, {sum(map(len, keep.values())):,} bytes, "
+          f"{len(buffer.getvalue()):,} compressed")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,106 @@
+//! The in-process differential: the generated C pair (built by build.rs) and the Rust crate are
+//! given the same input, and every answer must be byte-identical:
+//! - decode's JSON of the input as a line (the lossless and the values form; strict, lenient,
+//!   requiring a checksum, both): accept or reject, the error kind and message, every field;
+//! - encode's output for the input as a line of JSON: the re-serialized sentence or the error,
+//!   and whether the line is a failure line that encode skips;
+//! - the stream framer's items for the input fed whole and in chunks of sizes taken from it.
+//! Python stays in the replay differential (fuzz/differential.py).
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+use nmeaspec::runtime::json::{Value, SKIP_CHECK_DEPTH};
+use nmeaspec::stream::{Framer, Item};
+use nmeaspec::Options;
+use std::fmt::Write;
+
+extern "C" {
+    fn shim_decode(line: *const u8, len: usize, values: i32, lenient: i32, required: i32, out: *mut u8, cap: usize) -> usize;
+    fn shim_encode(json: *const u8, len: usize, out: *mut u8, cap: usize) -> usize;
+    fn shim_frame(data: *const u8, len: usize, chunk: usize, out: *mut u8, cap: usize) -> usize;
+    fn nmea_fuzz_mutate(data: *mut u8, size: usize, max_size: usize, seed: u32) -> usize;
+}
+
+const INPUT_MAX: usize = 4096;
+const OUT: usize = 64 * 1024;
+
+fn c_text(f: impl FnOnce(*mut u8, usize) -> usize) -> Option<Vec<u8>> {
+    let mut out = vec![0u8; OUT];
+    let n = f(out.as_mut_ptr(), OUT);
+    if n == usize::MAX {
+        return None;
+    }
+    out.truncate(n);
+    Some(out)
+}
+
+/// A tool's output line as the bytes it writes: each character is one byte (Latin-1).
+fn latin1(text: &str) -> Vec<u8> {
+    text.chars().map(|ch| ch as u32 as u8).collect()
+}
+
+fn decode(data: &[u8]) {
+    for values in [false, true] {
+        for (lenient, required) in [(false, false), (true, false), (false, true), (true, true)] {
+            let c = c_text(|out, cap| unsafe {
+                shim_decode(data.as_ptr(), data.len(), values.into(), lenient.into(), required.into(), out, cap)
+            })
+            .unwrap();
+            let rust = nmeaspec::decode_json_with(data, values, Options { lenient, require_checksum: required });
+            assert!(
+                c == latin1(&rust),
+                "decode (values {values}, lenient {lenient}, require_checksum {required}):\n   C: {}\nRust: {rust}",
+                String::from_utf8_lossy(&c)
+            );
+        }
+    }
+}
+
+fn encode(data: &[u8]) {
+    if data.len() > INPUT_MAX || data.contains(&b'\n') {
+        return; // the tools read JSON a line at a time
+    }
+    let c = c_text(|out, cap| unsafe { shim_encode(data.as_ptr(), data.len(), out, cap) });
+    // What nmea-rs encode does with the line (templates/rust/nmea-rs.rs).
+    let value = Value::parse_nested(data, SKIP_CHECK_DEPTH).map(|(value, _)| value);
+    let skipped = value.as_ref().and_then(|v| v.get("ok")) == Some(&Value::Bool(false));
+    assert_eq!(c.is_none(), skipped, "encode: C skips the line: {}, Rust: {skipped}", c.is_none());
+    if let Some(c) = c {
+        let mut rust = String::new();
+        nmeaspec::write_encoded(&mut rust, value.as_ref()).unwrap();
+        let rust = latin1(&rust);
+        assert!(c == rust, "encode:\n   C: {:?}\nRust: {:?}", String::from_utf8_lossy(&c), String::from_utf8_lossy(&rust));
+    }
+}
+
+fn frame(data: &[u8], chunk: usize) {
+    let c = c_text(|out, cap| unsafe { shim_frame(data.as_ptr(), data.len(), chunk, out, cap) }).unwrap();
+    let mut rust = Vec::new();
+    let mut put = |item: Item<'_>| match item {
+        Item::Line(line) => {
+            let mut head = String::new();
+            let _ = write!(head, "L{}:", line.len());
+            rust.extend_from_slice(head.as_bytes());
+            rust.extend_from_slice(line);
+        }
+        Item::TooLong(len) => rust.extend_from_slice(format!("T{len};").as_bytes()),
+    };
+    let mut framer = Framer::new();
+    for piece in data.chunks(chunk.max(1)) {
+        framer.feed(piece, &mut put);
+    }
+    if let Some(item) = framer.finish() {
+        put(item);
+    }
+    assert!(c == rust, "framing in chunks of {chunk}:\n   C: {:?}\nRust: {:?}", String::from_utf8_lossy(&c), String::from_utf8_lossy(&rust));
+}
+
+fuzz_target!(|data: &[u8]| {
+    decode(data);
+    encode(data);
+    frame(data, data.len().max(1));
+    frame(data, 1 + data.first().copied().unwrap_or(0) as usize % 7);
+});
+
+libfuzzer_sys::fuzz_mutator!(|data: &mut [u8], size: usize, max_size: usize, seed: u32| {
+    unsafe { nmea_fuzz_mutate(data.as_mut_ptr(), size, max_size, seed) }
+});
