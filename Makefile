@@ -186,7 +186,7 @@ CLANG ?= clang
 
 fuzz-smoke:
 	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD=--dev FUZZ_LONG= \
-		INPROCESS_CORPUS=$(FUZZ)/corpus-inprocess-smoke INPROCESS_SEEDS=
+		INPROCESS_CORPUS=$(FUZZ)/corpus-inprocess-smoke INPROCESS_SEEDS= SEED_FLAGS=--no-corpus
 
 # The long runs of what `make test` checks briefly (fault injection, bounded memory).
 FUZZ_LONG ?= fuzz-faults fuzz-memory
@@ -194,7 +194,7 @@ fuzz: fuzz-c fuzz-rust fuzz-inprocess fuzz-python fuzz-differential $(FUZZ_LONG)
 
 fuzz-seeds: $(STAMP)
 	@rm -rf $(FUZZ)/seeds
-	$(PY) fuzz/seeds.py $(FUZZ)/seeds
+	$(PY) fuzz/seeds.py $(FUZZ)/seeds $(SEED_FLAGS)
 
 fuzz-c: fuzz-seeds
 	@mkdir -p $(FUZZ)/corpus-c
@@ -211,11 +211,14 @@ CARGO_FUZZ_VERSION := 0.13.2
 # The smoke run builds the Rust target unoptimized (--dev): minutes less to compile, and 15
 # seconds of fuzzing check the same; the campaign (`make fuzz`) builds it optimized.
 CARGO_FUZZ_BUILD ?=
+# The Rust targets' sanitizer: AddressSanitizer by default; the crate forbids unsafe code, so a long
+# campaign may take `none` for more executions (the C pair has its own ASan target).
+CARGO_FUZZ_SANITIZER ?= address
 
 fuzz-rust: fuzz-seeds
 	@command -v cargo-fuzz >/dev/null || cargo install --quiet --locked cargo-fuzz --version $(CARGO_FUZZ_VERSION)
 	@mkdir -p $(FUZZ)/corpus-rust
-	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) --fuzz-dir fuzz/rust nmea -- \
+	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) -s $(CARGO_FUZZ_SANITIZER) --fuzz-dir fuzz/rust nmea -- \
 		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-rust- $(CURDIR)/$(FUZZ)/corpus-rust $(CURDIR)/$(FUZZ)/seeds
 
 # The in-process differential: the C pair (built by fuzz/rust/build.rs) and the Rust crate in one
@@ -226,7 +229,7 @@ INPROCESS_SEEDS ?= $(CURDIR)/$(FUZZ)/seeds
 fuzz-inprocess: fuzz-seeds
 	@command -v cargo-fuzz >/dev/null || cargo install --quiet --locked cargo-fuzz --version $(CARGO_FUZZ_VERSION)
 	@mkdir -p $(INPROCESS_CORPUS)
-	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) --fuzz-dir fuzz/rust differential -- \
+	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) -s $(CARGO_FUZZ_SANITIZER) --fuzz-dir fuzz/rust differential -- \
 		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-inprocess- $(CURDIR)/$(INPROCESS_CORPUS) $(INPROCESS_SEEDS) \
 		$(CURDIR)/fuzz/regressions
 

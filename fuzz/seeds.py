@@ -4,7 +4,8 @@ of them (the fuzz targets also read their input as JSON), and the corpus the las
 (fuzz/corpus.tar.xz, minimized), so that each run starts where the last one stopped. One file
 per input, no line ending.
 
-Usage: python fuzz/seeds.py OUT_DIR
+Usage: python fuzz/seeds.py OUT_DIR [--no-corpus]   (--no-corpus: without the campaign's corpus,
+for the short run of make test)
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ CORPUS = ROOT.parent / "shared" / "corpus" / "real"
 PER_LOG = 40
 
 
-def seeds() -> list[bytes]:
+def seeds(with_corpus: bool = True) -> list[bytes]:
     spec = load_spec(ROOT / "spec")
     lines: list[str] = []
     for record in map(json.loads, (ROOT / "generated" / "vectors" / "examples.jsonl").read_text().splitlines()):
@@ -44,7 +45,8 @@ def seeds() -> list[bytes]:
         out += logged[::step][:PER_LOG]
     out += [reference.decode_json(spec, line).encode() for line in lines[:400]]
     out += sorted(p.read_bytes() for p in (ROOT / "fuzz" / "regressions").glob("*") if p.is_file())
-    out += campaign_corpus()
+    if with_corpus:
+        out += campaign_corpus()
     return [s for s in dict.fromkeys(out) if s]
 
 
@@ -61,7 +63,7 @@ def campaign_corpus() -> list[bytes]:
 def main() -> None:
     target = Path(sys.argv[1])
     target.mkdir(parents=True, exist_ok=True)
-    for seed in seeds():
+    for seed in seeds(with_corpus="--no-corpus" not in sys.argv[2:]):
         (target / hashlib.sha1(seed).hexdigest()).write_bytes(seed)
 
 

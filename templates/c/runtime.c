@@ -1182,7 +1182,7 @@ static int enum_find(const nmea_enum_def *def, const char *p, size_t n)
     size_t k;
     for (i = 0; i < def->count; i++) {
         const char *code = def->codes[i].code;
-        for (k = 0; k < n && code[k] == p[k]; k++)
+        for (k = 0; k < n && code[k] != 0 && code[k] == p[k]; k++) /* a NUL in `p` ends no code */
             continue;
         if (k == n && code[n] == 0)
             return i;

@@ -575,26 +575,21 @@ def draw_track(log: Log, axis: Axis) -> tuple[str, str] | None:
                 zorder=2,
                 linewidths=0,
             )
-    ax.scatter(
-        east[:1],
-        north[:1],
-        marker="^",
-        s=110,
-        color="#2ca02c",
-        edgecolors="black",
-        label="start",
-        zorder=3,
+    ends = (
+        (slice(None, 1), "^", 110, "#2ca02c", "start"),
+        (slice(-1, None), "s", 80, "#d62728", "end"),
     )
-    ax.scatter(
-        east[-1:],
-        north[-1:],
-        marker="s",
-        s=80,
-        color="#d62728",
-        edgecolors="black",
-        label="end",
-        zorder=3,
-    )
+    for end, marker, area, colour, label in ends:
+        ax.scatter(
+            east[end],
+            north[end],
+            marker=marker,
+            s=area,
+            color=colour,
+            edgecolors="black",
+            label=label,
+            zorder=3,
+        )
     if extent < 2.0:  # one place: a few metres around it
         ax.set_xlim(-1.5, 1.5)
         ax.set_ylim(-1.5, 1.5)
