@@ -132,9 +132,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                for domain, title in DOMAINS.items()]
     env.globals["domain_titles"] = DOMAINS
     files: dict[str, str] = {}
+    # A page about one item names the files it is made from in its banner, so that editing one
+    # YAML file does not rewrite every page's banner.
     def banner_of(sources: list[str] | None) -> str:
-        """The DO NOT EDIT banner as an HTML comment; a page about one item names the files it is
-        made from, so that editing one YAML file does not rewrite every page's banner."""
         return markdown_banner(spec, sources)
 
     banner = banner_of(None)

@@ -8,11 +8,12 @@ import jinja2
 
 from .emit import header, license_texts
 from .model import Spec
+from .paths import PACKAGE_FOLDERS
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files = {"c/CMakeLists.txt": env.get_template("c/CMakeLists.txt.j2").render(
         header=header(spec, "#", ["templates/c/CMakeLists.txt.j2"]))}
-    for folder in ("c", "python", "rust"):
+    for folder in PACKAGE_FOLDERS:
         files.update(license_texts(folder))
     return files

@@ -36,3 +36,5 @@ VERSION = (ROOT / "VERSION").read_text(encoding="utf-8").strip()
 # The license of the project and of everything it generates; its texts are LICENSE-* at the root.
 LICENSE = "MIT OR Apache-2.0"
 LICENSE_FILES = ("LICENSE-MIT", "LICENSE-APACHE")
+# The folders of the output that are packages of their own: each carries the license texts.
+PACKAGE_FOLDERS = ("c", "python", "rust")

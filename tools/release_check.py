@@ -24,11 +24,12 @@ import zipfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from generator.paths import LICENSE, LICENSE_FILES, PACKAGE_FOLDERS  # noqa: E402
+
 GENERATED = ROOT / "generated"
 OUT = ROOT / "build" / "release"
-LICENSE = "MIT OR Apache-2.0"
-LICENSE_FILES = ("LICENSE-MIT", "LICENSE-APACHE")
-PACKAGES = ("c", "python", "rust")
 
 problems: list[str] = []
 
@@ -78,7 +79,7 @@ def versions(version: str) -> None:
 
 def licenses() -> None:
     texts = {name: (ROOT / name).read_text(encoding="utf-8") for name in LICENSE_FILES}
-    for package in PACKAGES:
+    for package in PACKAGE_FOLDERS:
         for name, text in texts.items():
             path = GENERATED / package / name
             check(path.is_file() and path.read_text(encoding="utf-8") == text,

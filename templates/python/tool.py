@@ -771,6 +771,11 @@ def _port_options(verb: argparse.ArgumentParser) -> None:
     )
 
 
+def _command_words(verb: argparse.ArgumentParser, help: str) -> None:
+    """VENDOR NAME [ARGS]: a command as `command` and `send` take it."""
+    verb.add_argument("words", nargs=argparse.REMAINDER, metavar="VENDOR NAME [ARGS]", help=help)
+
+
 def parser() -> argparse.ArgumentParser:
     top = argparse.ArgumentParser(
         prog="nmea",
@@ -808,12 +813,7 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument(
         "--no-checksum", action="store_true", help="send a '$' command without its checksum"
     )
-    c.add_argument(
-        "words",
-        nargs=argparse.REMAINDER,
-        metavar="VENDOR NAME [ARGS]",
-        help=f"vendors: {', '.join(VENDORS)}",
-    )
+    _command_words(c, f"vendors: {', '.join(VENDORS)}")
     c.set_defaults(run=command)
     li = verbs.add_parser(
         "listen",
@@ -841,12 +841,7 @@ def parser() -> argparse.ArgumentParser:
     se.add_argument(
         "--show-all", action="store_true", help="print the sentences that come before the reply"
     )
-    se.add_argument(
-        "words",
-        nargs=argparse.REMAINDER,
-        metavar="VENDOR NAME [ARGS]",
-        help="the command, as `nmea command` takes it",
-    )
+    _command_words(se, "the command, as `nmea command` takes it")
     from .report import add_parser as add_report  # here: report.py imports this module
 
     add_report(verbs)
