@@ -10,7 +10,7 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build footprint release-check changelog test test-steps test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
+.PHONY: generate validate check build footprint release-check changelog test test-steps test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
@@ -65,11 +65,28 @@ docs-site: $(DOCS_STAMP)
 test:
 	$(MAKE) --no-print-directory -j2 --output-sync=target test-steps
 
-test-steps: check test-generator test-python test-c test-c-memory test-rust test-tools test-workflows test-bench-smoke \
+test-steps: check test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows test-bench-smoke \
         fuzz-smoke release-check
 
 test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
+
+# The hand-written runtimes on their own, where they live (runtime/README.md): the C runtime's unit
+# tests under the sanitizers and without JSON, the Rust runtime crate's tests, clippy and rustfmt
+# with and without std, and the Python runtime's tests. Nothing generated is needed.
+test-runtimes: $(STAMP)
+	@mkdir -p build/c
+	$(CC) $(SANITIZE) -o build/c/test_runtime runtime/c/test_runtime.c
+	build/c/test_runtime
+	$(CC) $(CFLAGS) -DNMEA_NO_JSON -o build/c/test_runtime_small runtime/c/test_runtime.c
+	build/c/test_runtime_small
+	cargo test --quiet --manifest-path runtime/rust/Cargo.toml --target-dir $(CARGO_TARGET)
+	cargo test --quiet --manifest-path runtime/rust/Cargo.toml --no-default-features --target-dir $(CARGO_TARGET)
+	cargo clippy --quiet --manifest-path runtime/rust/Cargo.toml --all-targets --target-dir $(CARGO_TARGET) -- -D warnings
+	cargo clippy --quiet --manifest-path runtime/rust/Cargo.toml --all-targets --no-default-features \
+		--target-dir $(CARGO_TARGET) -- -D warnings
+	cargo fmt --manifest-path runtime/rust/Cargo.toml --check
+	$(PY) -m pytest -q runtime/python/tests
 
 test-python: $(STAMP)
 	cd generated/python && ../../$(PY) -m pytest -q tests

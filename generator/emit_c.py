@@ -1,4 +1,4 @@
-"""C emitter: one nmea.h / nmea.c pair (the hand-written runtime of templates/c, then per
+"""C emitter: one nmea.h / nmea.c pair (the hand-written runtime of runtime/c, then per
 sentence layout a struct and a descriptor table that the runtime's one reader, writer and JSON
 form interpret, plus a fast reader and writer for the sentences on the fast path), the nmea-c
 tool and the example tests.
@@ -14,7 +14,7 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import TEMPLATES, char_literal, header
+from .emit import CONTRACT, RUNTIME, char_literal, header, runtime_file
 from .field_types import TYPES
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, fixed_point, fmt_num
 
@@ -28,7 +28,8 @@ volatile while bool true false _Bool _Complex _Imaginary
 C_TYPES = {name: t.c_type for name, t in TYPES.items()}
 
 
-MAX_PROBLEMS = 8  # NMEA_MAX_PROBLEMS, the reference's runtime.MAX_PROBLEMS
+MAX_LINE = CONTRACT["limits"]["max_line"]  # NMEA_MAX_LINE
+MAX_PROBLEMS = CONTRACT["limits"]["max_problems"]  # NMEA_MAX_PROBLEMS
 
 
 def c_str(text: str) -> str:
@@ -132,7 +133,7 @@ class Ranges:
 # Per-field calls
 
 
-# The field_type constant of each field type (templates/c/runtime.c).
+# The field_type constant of each field type (runtime/c/runtime.c).
 FIELD_TYPES = {name: "FIELD_" + name.upper() for name in TYPES}
 
 
@@ -482,7 +483,7 @@ def enum_view(e: EnumDef) -> dict:
 
 
 def json_max(spec: Spec, views: list[dict]) -> int:
-    """A buffer size that holds the decode JSON (or error JSON) of any line of at most 1024
+    """A buffer size that holds the decode JSON (or error JSON) of any line of at most MAX_LINE
     bytes: every wire byte costs at most `per_byte` output bytes (an enum_chars code becomes its
     quoted id), every wire field at most `per_field` more (its key and punctuation). Lenient
     decoding adds up to MAX_PROBLEMS problems: their texts (wire bytes shown twice, the second
@@ -498,7 +499,7 @@ def json_max(spec: Spec, views: list[dict]) -> int:
               if isinstance(item, Group)]
     expected = max([len(c_str(f.expected)) for f in all_fields] + [0])
     per_problem = max(groups + [0]) + 8 + per_field + 2 * expected + 64
-    return 1024 + 1024 * per_byte + fields * per_field + 6 * 1024 + MAX_PROBLEMS * per_problem
+    return MAX_LINE * (1 + per_byte + 6) + fields * per_field + MAX_PROBLEMS * per_problem
 
 
 def _all_fields(layout: Layout) -> list[Field]:
@@ -681,9 +682,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "id": c_str(s.id),
         "layouts": [v for v in views if v["sentence"] is s],
     } for s in spec.sentences]
-    runtime_h = (TEMPLATES / "c" / "runtime.h").read_text(encoding="utf-8")
-    runtime_c = (TEMPLATES / "c" / "runtime.c").read_text(encoding="utf-8")
-    tool_c = (TEMPLATES / "c" / "tool.c").read_text(encoding="utf-8")
+    runtime_h = (RUNTIME / "c" / "runtime.h").read_text(encoding="utf-8")
+    runtime_c = (RUNTIME / "c" / "runtime.c").read_text(encoding="utf-8")
     context = {
         "enums": enums, "layouts": views, "sentences": sentences, "ranges": ranges.all,
         "bitfields": bitfields, "tables": tables, "dispatch": dispatch,
@@ -699,7 +699,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files = {
         "c/nmea.h": env.get_template("c/nmea.h.j2").render(header=header(spec, "//"), **context),
         "c/nmea.c": env.get_template("c/nmea.c.j2").render(header=header(spec, "//"), **context),
-        "c/nmea_tool.c": header(spec, "//", ["templates/c/tool.c"]) + tool_c,
+        "c/nmea_tool.c": runtime_file(spec, "//", "c/tool.c"),
         "c/tests/test_examples.c": env.get_template("c/test_examples.c.j2").render(
             header=header(spec, "//"), vectors=[vector_view(r) for r in emit_vectors.example_vectors(spec)],
             commands=context["commands"], bitfields=bitfields, tables=tables,

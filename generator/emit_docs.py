@@ -9,7 +9,7 @@ from collections import Counter
 import jinja2
 
 from . import emit_vectors
-from .emit import TEMPLATES, markdown_banner
+from .emit import RUNTIME, markdown_banner
 from .field_types import TYPES
 from .model import Field, Group, Layout, Manual, ReplyRule, Sentence, Spec
 
@@ -165,7 +165,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files.update(_indexes(spec, env, banner))
     files["docs/errata.md"] = env.get_template("docs/errata.md.j2").render(
         banner=banner, spec=spec, vectors=[v for v in vectors if v["status"] != "intact"], counts=counts)
-    files["docs/json.md"] = banner_of(["templates/docs/json.md"]) + (TEMPLATES / "docs" / "json.md").read_text(encoding="utf-8")
+    files["docs/json.md"] = banner_of(["runtime/json.md"]) + (RUNTIME / "json.md").read_text(encoding="utf-8")
     return files
 
 

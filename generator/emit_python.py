@@ -9,7 +9,7 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import TEMPLATES, header, package_readme
+from .emit import header, package_readme, runtime_file
 from .field_types import TYPES
 from .model import Field, Group, Layout, Sentence, Spec, fmt_num
 
@@ -231,12 +231,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                        py_import=py_import, py_tuple=py_tuple)
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
-    runtime = (TEMPLATES / "python" / "runtime.py").read_text(encoding="utf-8")
-    files[f"{base}/runtime.py"] = header(spec, "#", ["templates/python/runtime.py"]) + runtime
-    for module in ("api", "cli", "stream", "receiver"):
-        text = (TEMPLATES / "python" / f"{module}.py").read_text(encoding="utf-8")
-        files[f"{base}/{module}.py"] = header(spec, "#", [f"templates/python/{module}.py"]) + text
-    files[f"{base}/__main__.py"] = header(spec, "#", ["templates/python/cli.py"]) + \
+    for module in ("runtime", "api", "cli", "stream", "receiver"):
+        files[f"{base}/{module}.py"] = runtime_file(spec, "#", f"python/{module}.py")
+    files[f"{base}/__main__.py"] = header(spec, "#", ["runtime/python/cli.py"]) + \
         "from .cli import main\n\nraise SystemExit(main())\n"
     files[f"{base}/py.typed"] = ""
     files[f"{base}/enums.py"] = env.get_template("python/enums.py.j2").render(

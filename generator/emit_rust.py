@@ -1,6 +1,6 @@
 """Rust emitter: the crate `nmeaspec` (no dependencies, `#![no_std]` unless the `std` feature is
 on) with a struct, parser, serializer and command builder per sentence layout over the
-hand-written runtime in templates/rust/runtime, the bitfields and parameter tables, the `nmea-rs`
+hand-written runtime in runtime/rust/src, the bitfields and parameter tables, the `nmea-rs`
 tool and a test over the manuals' examples."""
 
 from __future__ import annotations
@@ -12,13 +12,14 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import TEMPLATES, char_literal, header, package_readme
+from .emit import RUNTIME, char_literal, header, package_readme, runtime_file
 from .field_types import TYPES
 from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
 from .rust_features import Gates, cfg, with_cfg
 
 CRATE = "nmeaspec"
-RUNTIME_MODULES = ["mod", "error", "fast", "frame", "layout", "serialize", "stream", "table", "types", "write", "json"]
+# The runtime crate's modules (runtime/rust/src), copied into the generated crate as src/runtime.
+RUNTIME_MODULES = sorted(path.stem for path in (RUNTIME / "rust" / "src").glob("*.rs"))
 
 # The types whose expected text the runtime's readers hold (it does not depend on the field).
 FIXED_EXPECTED = frozenset(name for name, t in TYPES.items() if t.expected is not None)
@@ -34,7 +35,7 @@ KEYWORDS = {
 # Names the sentence modules import from the runtime; generated type names must differ.
 def _runtime_exports() -> set[str]:
     """The type names runtime/mod.rs exports (`pub use module::{A, B};`), read from it."""
-    text = (TEMPLATES / "rust" / "runtime" / "mod.rs").read_text(encoding="utf-8")
+    text = (RUNTIME / "rust" / "src" / "mod.rs").read_text(encoding="utf-8")
     names = set()
     for group in re.findall(r"pub use \w+::\{([^}]*)\}", text):
         names |= {n.strip() for n in group.split(",") if n.strip()[:1].isupper()}
@@ -199,7 +200,7 @@ def fast_call(f: Field) -> tuple[str, list[str]]:
 
 
 # ---------------------------------------------------------------------------------------------
-# Formatting: the statements come out as rustfmt would write them (templates/rust/rustfmt.toml:
+# Formatting: the statements come out as rustfmt would write them (runtime/rust/rustfmt.toml:
 # max_width 120, use_small_heuristics Max), so that `cargo fmt --check` passes on the crate.
 
 WIDTH = 120
@@ -1013,13 +1014,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     base = "rust"
     files: dict[str, str] = {}
     for module in RUNTIME_MODULES:
-        source = f"templates/rust/runtime/{module}.rs"
-        text = (TEMPLATES / "rust" / "runtime" / f"{module}.rs").read_text(encoding="utf-8")
-        files[f"{base}/src/runtime/{module}.rs"] = header(spec, "//", [source]) + "\n" + text
-    tool = (TEMPLATES / "rust" / "nmea-rs.rs").read_text(encoding="utf-8")
-    files[f"{base}/src/bin/nmea-rs.rs"] = header(spec, "//", ["templates/rust/nmea-rs.rs"]) + "\n" + tool
-    fast_path = (TEMPLATES / "rust" / "fast_path.rs").read_text(encoding="utf-8")
-    files[f"{base}/tests/fast_path.rs"] = header(spec, "//", ["templates/rust/fast_path.rs"]) + "\n" + fast_path
+        files[f"{base}/src/runtime/{module}.rs"] = runtime_file(spec, "//", f"rust/src/{module}.rs", blank_line=True)
+    files[f"{base}/src/bin/nmea-rs.rs"] = runtime_file(spec, "//", "rust/crate/bin/nmea-rs.rs", blank_line=True)
+    files[f"{base}/tests/fast_path.rs"] = runtime_file(spec, "//", "rust/crate/tests/fast_path.rs", blank_line=True)
 
     gates = Gates(spec)
     layouts = []
@@ -1143,8 +1140,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/Cargo.toml"] = env.get_template("rust/Cargo.toml.j2").render(
         header=header(spec, "#", ["templates/rust/Cargo.toml.j2"]), crate=CRATE, vendors=gates.features)
     files[f"{base}/README.md"] = package_readme(spec, env, "rust/README.md.j2", crate=CRATE)
-    rustfmt = (TEMPLATES / "rust" / "rustfmt.toml").read_text(encoding="utf-8")
-    files[f"{base}/rustfmt.toml"] = header(spec, "#", ["templates/rust/rustfmt.toml"]) + "\n" + rustfmt
+    files[f"{base}/rustfmt.toml"] = runtime_file(spec, "#", "rust/rustfmt.toml", blank_line=True)
     files[f"{base}/tests/examples.rs"] = env.get_template("rust/examples.rs.j2").render(
         header=header(spec, "//"), vectors=[{"rust": example_lines(v), "cfg": gates.sentence(spec.sentence(v["sentence"]))} for v in vectors],
         crate=CRATE, reply_cases=reply_case_lines(spec, gates))

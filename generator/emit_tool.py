@@ -8,7 +8,7 @@ import re
 
 import jinja2
 
-from .emit import TEMPLATES, header
+from .emit import header, runtime_file
 from .emit_python import PACKAGE, py_call, py_literal, py_str
 from .model import Spec
 
@@ -64,9 +64,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         f"{base}/commands.py": env.get_template("python/commands.py.j2").render(
             header=header(spec, "#"), commands=commands, shortcuts=shortcuts, vendors=vendors, py=py_literal,
             py_call=py_call, py_str=py_str),
-        f"{base}/tool.py": header(spec, "#", ["templates/python/tool.py"])
-        + (TEMPLATES / "python" / "tool.py").read_text(encoding="utf-8"),
-        f"{base}/report.py": header(spec, "#", ["templates/python/report.py"])
-        + (TEMPLATES / "python" / "report.py").read_text(encoding="utf-8"),
+        f"{base}/tool.py": runtime_file(spec, "#", "python/tool.py"),
+        f"{base}/report.py": runtime_file(spec, "#", "python/report.py"),
     }
     return files

@@ -1,7 +1,7 @@
 """The field-type registry: everything that differs by the type of a field, in one place.
 
 A spec field has one of the types below (spec/schema lists the same names). What a type reads
-and accepts is behaviour, written once per runtime (templates/*/runtime*, generator/reference.py);
+and accepts is behaviour, written once per runtime (runtime/, generator/reference.py);
 what the generator needs to know about a type to name, describe and call that behaviour is here:
 how many wire fields it spans, what an error says it takes when that does not depend on the field,
 how the docs name it, how a manual writes it, and per language the type that holds its value and

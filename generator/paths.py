@@ -1,9 +1,10 @@
-"""Where the generator finds its templates/ and spec/ (schema included).
+"""Where the generator finds its templates/, the hand-written runtimes (runtime/) and spec/ (schema
+included).
 
 They live in the project checkout next to generator/. A checkout run (`python -m generator`) or an
 editable install (`pip install -e .`) finds them there; a plain install (`pip install .`) has only
 the Python code, so it uses $NMEASPEC_ROOT or the nearest directory at or above the current one
-that holds templates/ and spec/schema/: run `nmeaspec-gen` from inside the checkout.
+that holds templates/, runtime/ and spec/schema/: run `nmeaspec-gen` from inside the checkout.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from pathlib import Path
 
 
 def _is_root(path: Path) -> bool:
-    return (path / "templates").is_dir() and (path / "spec" / "schema").is_dir()
+    return all((path / folder).is_dir() for folder in ("templates", "runtime", "spec/schema"))
 
 
 def find_root() -> Path:

@@ -2,7 +2,7 @@
 
 The generator uses it to check every example against its expected values, and to compute the
 JSON that the generated tests of every language must reproduce. It is deliberately independent
-of the templates: generated code that disagrees with it is wrong.
+of the runtimes: generated code that disagrees with it is wrong.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from .model import Field, Group, Layout, Sentence, Spec
 
 
 def _load_runtime() -> ModuleType:
-    path = ROOT / "templates" / "python" / "runtime.py"
+    path = ROOT / "runtime" / "python" / "runtime.py"
     spec = importlib.util.spec_from_file_location("_nmea_reference_runtime", path)
     assert spec and spec.loader
     module = importlib.util.module_from_spec(spec)

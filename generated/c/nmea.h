@@ -56,7 +56,7 @@ extern "C" {
 #define NMEA_JSON_MAX 91100
 
 /*
- * Runtime types (hand-written: templates/c/runtime.h).
+ * Runtime types (hand-written: runtime/c/runtime.h).
  *
  * Conventions of the whole API:
  * - No heap, no global mutable state: every struct is owned by the caller, every function is

@@ -53,8 +53,8 @@ def test_the_registry_knows_every_field_type_of_the_schema() -> None:
     walk(schema)
     assert named == set(TYPES)
     # and every runtime has the pieces the registry names
-    python = (ROOT / "templates" / "python" / "runtime.py").read_text(encoding="utf-8")
-    c = (ROOT / "templates" / "c" / "runtime.c").read_text(encoding="utf-8")
+    python = (ROOT / "runtime" / "python" / "runtime.py").read_text(encoding="utf-8")
+    c = (ROOT / "runtime" / "c" / "runtime.c").read_text(encoding="utf-8")
     for t in TYPES.values():
         assert f"class {t.python_spec}(" in python, t.name
         assert f"FIELD_{t.name.upper()}," in c or f"FIELD_{t.name.upper()}\n" in c, t.name
@@ -112,7 +112,7 @@ def test_every_generated_file_has_a_header(spec) -> None:
 def test_generated_python_modules_keep_to_100_columns(spec) -> None:
     """The modules made from the spec read like hand-written code: no line over 100 characters
     but a manual's example sentence quoted whole in a docstring."""
-    hand_written = {"runtime.py", "api.py", "tool.py", "report.py", "stream.py", "cli.py", "receiver.py"}  # templates/python
+    hand_written = {"runtime.py", "api.py", "tool.py", "report.py", "stream.py", "cli.py", "receiver.py"}  # runtime/python
     for path, content in render_all(spec).items():
         if not path.startswith("python/nmeaspec/") or not path.endswith(".py") \
                 or path.rsplit("/", 1)[1] in hand_written:

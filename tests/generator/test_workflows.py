@@ -420,7 +420,7 @@ print("both packages parse")
 
 def test_generator_console_script(copies: Path, python_env: Path) -> None:
     """`pip install` the generator (a copy of the checkout's pyproject.toml and generator/) and run
-    `nmeaspec-gen` from inside the checkout: it finds spec/ and templates/ there."""
+    `nmeaspec-gen` from inside the checkout: it finds spec/, templates/ and runtime/ there."""
     src = copies / "generator-src"
     shutil.copytree(ROOT / "generator", src / "generator", ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copy(ROOT / "pyproject.toml", src)

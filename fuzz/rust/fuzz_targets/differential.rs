@@ -60,7 +60,7 @@ fn encode(data: &[u8]) {
         return; // the tools read JSON a line at a time
     }
     let c = c_text(|out, cap| unsafe { shim_encode(data.as_ptr(), data.len(), out, cap) });
-    // What nmea-rs encode does with the line (templates/rust/nmea-rs.rs).
+    // What nmea-rs encode does with the line (runtime/rust/crate/bin/nmea-rs.rs).
     let value = Value::parse_nested(data, SKIP_CHECK_DEPTH).map(|(value, _)| value);
     let skipped = value.as_ref().and_then(|v| v.get("ok")) == Some(&Value::Bool(false));
     assert_eq!(c.is_none(), skipped, "encode: C skips the line: {}, Rust: {skipped}", c.is_none());

@@ -8,7 +8,7 @@
 
 #include "nmea.h"
 
-/* templates/c/runtime.c */
+/* runtime/c/runtime.c */
 
 /* ========================================================================================== */
 /* Generated from the spec */

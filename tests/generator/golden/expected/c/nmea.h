@@ -58,7 +58,7 @@ extern "C" {
 /** This build has no configuration parameter tables (nor the nmea_param_ functions). */
 #define NMEA_NO_TABLES
 
-/* templates/c/runtime.h */
+/* runtime/c/runtime.h */
 
 /* ------------------------------------------------------------------------------------------ */
 /* Lookup tables (spec/enums): a C enum of the known codes and the table, nmea_<enum>_def. */

@@ -104,7 +104,7 @@ impl fmt::Display for Name {
 #[derive(Clone, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Message<'a> {
-    /// `line is N bytes, the limit is 1024`
+    /// `line is N bytes, the limit is MAX_LINE`
     LineTooLong {
         /// Bytes in the line (without its line ending).
         length: usize,

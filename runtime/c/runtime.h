@@ -1,5 +1,5 @@
 /*
- * Runtime types (hand-written: templates/c/runtime.h).
+ * Runtime types (hand-written: runtime/c/runtime.h).
  *
  * Conventions of the whole API:
  * - No heap, no global mutable state: every struct is owned by the caller, every function is

@@ -1,5 +1,5 @@
 /*
- * Runtime (hand-written: templates/c/runtime.c): framing, checksum, field types, errors, JSON.
+ * Runtime (hand-written: runtime/c/runtime.c): framing, checksum, field types, errors, JSON.
  *
  * The acceptance rules and messages here are shared byte for byte with the Python and Rust
  * runtimes (see docs/json.md). Everything below is static: the generated per-sentence code at
@@ -382,8 +382,9 @@ static void set_address(nmea_error *err, nmea_text address, const char *suffix)
 
 void nmea_error_too_long(nmea_error *err, size_t len)
 {
-    fail(err, NMEA_ERR_TOO_LONG, "line is %n bytes, the limit is 1024");
+    fail(err, NMEA_ERR_TOO_LONG, "line is %n bytes, the limit is %n");
     err->num[0] = len;
+    err->num[1] = NMEA_MAX_LINE;
 }
 
 #ifndef NMEA_NO_JSON

@@ -1,7 +1,7 @@
 /*
  * nmea-c: `decode` NMEA lines to JSON, `encode` that JSON back to sentences, `stream` a byte
  * stream that may hold garbage, cut lines or sentences run together (hand-written:
- * templates/c/tool.c). Same behaviour, byte for byte, as nmea-py and nmea-rs; see docs/json.md.
+ * runtime/c/tool.c). Same behaviour, byte for byte, as nmea-py and nmea-rs; see docs/json.md.
  *
  *     nmea-c decode [--values] [--lenient] [--require-checksum]   stdin: NMEA lines
  *     nmea-c stream [--values] [--lenient] [--require-checksum]   stdin: any bytes

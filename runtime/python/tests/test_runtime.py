@@ -1,0 +1,93 @@
+"""Unit tests of the Python runtime on its own (make test-runtimes): runtime/python/runtime.py
+imported as it is, without any generated sentence module. The same cases as runtime/c/test_runtime.c."""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+
+import pytest
+
+_PATH = Path(__file__).resolve().parents[1] / "runtime.py"
+_SPEC = importlib.util.spec_from_file_location("nmea_runtime_under_test", _PATH)
+assert _SPEC and _SPEC.loader
+rt = importlib.util.module_from_spec(_SPEC)
+sys.modules[_SPEC.name] = rt
+_SPEC.loader.exec_module(rt)
+
+
+def test_a_sentence_frames() -> None:
+    f = rt.frame("$GPGLL,5550.6135,N,03732.2515,E,075241.00,A,A*6E")
+    assert (f.start, f.address, len(f.fields), f.checksum) == ("$", "GPGLL", 7, "6E")
+    assert rt.frame("$PSTMSAVEPAR*58").fields == []
+    assert rt.frame("$GPGLL,1*4d").checksum == "4d"
+    assert rt.frame("$GPTXT,hello").checksum is None
+
+
+@pytest.mark.parametrize(
+    "line, kind, message",
+    [
+        ("", "not_a_sentence", "empty line"),
+        ("GPGGA,1*00", "not_a_sentence", "line does not start with '$' or '!'"),
+        (
+            "$GPGLL,5550.6135,N,03732.2515,E,075241.00,A,A*6C",
+            "checksum_mismatch",
+            "checksum is 6C, computed 6E",
+        ),
+        ("$GPGLL,1*4D4", "bad_checksum", 'checksum "4D4" is not two hex digits of one letter case'),
+        ("$GP\x01GLL,1", "not_a_sentence", "byte 0x01 at offset 3 is not printable ASCII"),
+        (
+            "$" + "A" * rt.MAX_LINE,
+            "too_long",
+            f"line is {rt.MAX_LINE + 1} bytes, the limit is {rt.MAX_LINE}",
+        ),
+    ],
+)
+def test_a_bad_line_is_refused_with_its_kind_and_message(
+    line: str, kind: str, message: str
+) -> None:
+    with pytest.raises(rt.NmeaError) as caught:
+        rt.frame(line)
+    assert (caught.value.kind, caught.value.message) == (kind, message)
+
+
+def test_a_missing_checksum_is_refused_when_one_is_required() -> None:
+    with pytest.raises(rt.NmeaError) as caught:
+        rt.frame("$GPGLL,1", require_checksum=True)
+    assert (caught.value.kind, caught.value.message) == (
+        "missing_checksum",
+        "the sentence has no checksum",
+    )
+
+
+def test_checksum_is_the_xor_of_the_body() -> None:
+    assert rt.checksum("GPGLL,1") == 0x4D
+    assert rt.checksum("PSTMSAVEPAR") == 0x58
+    assert rt.checksum("A" * 9) == ord("A")
+
+
+def test_numbers_keep_their_text() -> None:
+    number = rt.parse_decimal("-007.50")
+    assert number is not None
+    assert (number.digits, number.scale, number.width, number.sign, number.point) == (
+        750,
+        2,
+        3,
+        "-",
+        True,
+    )
+    assert rt.parse_decimal("1.2.3") is None
+    assert rt.parse_integer("1.5") is None
+    assert rt.parse_integer("9" * rt.MAX_DIGITS) is not None
+    assert rt.parse_integer("9" * (rt.MAX_DIGITS + 1)) is None
+
+
+def test_error_json() -> None:
+    error = rt.NmeaError(
+        "bad_field", 'expected integer 0..99, found "x"', "GPGSV", 3, "satellites_in_view", "x"
+    )
+    assert error.to_json() == (
+        '{"ok":false,"error":{"kind":"bad_field","address":"GPGSV","field":3,"name":"satellites_in_view",'
+        '"message":"expected integer 0..99, found \\"x\\""}}'
+    )

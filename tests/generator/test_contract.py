@@ -1,0 +1,96 @@
+"""The runtimes keep to the contract (runtime/contract.yaml): the same limits, error kinds and
+messages in runtime/c, runtime/rust and runtime/python, in the C emitter and in json.md's table."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+import yaml
+
+from generator import emit_c
+
+RUNTIME = Path(__file__).resolve().parents[2] / "runtime"
+CONTRACT = yaml.safe_load((RUNTIME / "contract.yaml").read_text(encoding="utf-8"))
+LIMITS = CONTRACT["limits"]
+
+C_HEADER = (RUNTIME / "c" / "runtime.h").read_text(encoding="utf-8")
+C_SOURCE = (RUNTIME / "c" / "runtime.c").read_text(encoding="utf-8")
+RUST = "\n".join(p.read_text(encoding="utf-8") for p in sorted((RUNTIME / "rust" / "src").glob("*.rs")))
+PYTHON = (RUNTIME / "python" / "runtime.py").read_text(encoding="utf-8")
+SOURCES = {"c": C_SOURCE, "rust": RUST, "python": PYTHON}
+
+
+def one(pattern: str, text: str) -> str:
+    found = re.findall(pattern, text, re.S)
+    assert len(found) == 1, f"{pattern!r}: found {found}"
+    return found[0]
+
+
+@pytest.mark.parametrize("limit", sorted(LIMITS))
+def test_limits(limit: str) -> None:
+    value = LIMITS[limit]
+    name = limit.upper()
+    assert int(one(rf"#define NMEA_{name} (\d+)", C_HEADER)) == value
+    assert int(one(rf"pub const {name}: usize = (\d+);", RUST)) == value
+    assert int(one(rf"\n{name}: Final = (\d+)", PYTHON)) == value
+
+
+def test_the_c_runtime_writes_the_line_limit_by_its_name() -> None:
+    assert not re.search(rf"\b{LIMITS['max_line']}\b", C_SOURCE), "runtime.c: use NMEA_MAX_LINE"
+
+
+def test_the_c_emitter_takes_its_limits_from_the_contract() -> None:
+    assert emit_c.MAX_PROBLEMS == LIMITS["max_problems"]
+
+
+def snake(camel: str) -> str:
+    return re.sub(r"(?<!^)([A-Z])", r"_\1", camel).lower()
+
+
+def test_error_kinds() -> None:
+    kinds = CONTRACT["kinds"]
+    own = CONTRACT["api_only_kinds"]
+    c_enum = one(r"typedef enum \{([^}]*)\} nmea_error_kind;", C_HEADER)
+    c_kinds = [k.lower() for k in re.findall(r"NMEA_ERR_(\w+)", c_enum)]
+    c_names = re.findall(r'"(\w+)"', one(r"ERROR_KINDS\[\] = \{([^}]*)\}", C_SOURCE))
+    assert c_names == c_kinds, "nmea_error_kind_name's table follows the C enum"
+    assert sorted(c_kinds) == sorted(kinds + own["c"])
+    rust_enum = one(r"pub enum ErrorKind \{([^}]*)\}", RUST)
+    rust_kinds = [snake(k) for k in re.findall(r"^\s*(\w+),", rust_enum, re.M)]
+    assert sorted(rust_kinds) == sorted(kinds + own["rust"])
+    error_rs = (RUNTIME / "rust" / "src" / "error.rs").read_text(encoding="utf-8")
+    as_str = one(r"pub const fn as_str\(self\) -> &'static str \{(.*?)\n    \}", error_rs)
+    rust_names = dict(re.findall(r'Self::(\w+) => "(\w+)"', as_str))
+    assert {snake(variant): name for variant, name in rust_names.items()} == {k: k for k in rust_kinds}
+    python_kinds = set(re.findall(r'NmeaError\(\s*"(\w+)"', PYTHON))
+    assert python_kinds == set(kinds + own["python"])
+
+
+def fragments(message: str) -> list[str]:
+    """The literal runs of a message pattern, quotes around a {quoted} part left out."""
+    runs = re.split(r"\{\w+\}", message)
+    return [run.strip(' "') for run in runs if len(run.strip(' "')) >= 3]
+
+
+@pytest.mark.parametrize("row", CONTRACT["messages"], ids=lambda r: r["message"])
+def test_every_runtime_writes_the_message(row: dict[str, str]) -> None:
+    for language, source in SOURCES.items():
+        for run in fragments(row["message"]):
+            assert run in source, f"{language} runtime: no {run!r} (of the message {row['message']!r})"
+
+
+def test_json_md_tells_the_contract() -> None:
+    text = (RUNTIME / "json.md").read_text(encoding="utf-8")
+    table = text[text.index("| kind | when | message |"):]
+    rows = [[cell.strip() for cell in line.strip("|").split("|")]
+            for line in table.splitlines()[2:] if line.startswith("| `")]
+    assert len(rows) == len(CONTRACT["messages"])
+    for (kind, when, message), row in zip(rows, CONTRACT["messages"]):
+        assert kind == f"`{row['kind']}`"
+        assert when == row["when"].format(**LIMITS)
+        parts = re.split(r"(\{\w+\})", row["message"])
+        pattern = "".join(str(LIMITS[p[1:-1]]) if p[1:-1] in LIMITS else ".+?" if p.startswith("{")
+                          else re.escape(p) for p in parts)
+        assert re.fullmatch(f"`{pattern}`", message), (message, row["message"])
