@@ -184,7 +184,7 @@ bench: build
 
 # `make footprint` (not part of `make test`): the C pair's code size at -Os and sizeof(nmea_sentence),
 # for a five-sentence subset and the whole spec (tools/footprint.py; FOOTPRINT_FLAGS for a cross build,
-# e.g. FOOTPRINT_FLAGS='--cc arm-none-eabi-gcc --cflags "-mcpu=cortex-m4 -mthumb"').
+# e.g. FOOTPRINT_FLAGS='--cc arm-none-eabi-gcc --cflags "-mcpu=cortex-m4 -mthumb" --ldflags "--specs=nano.specs --specs=nosys.specs"').
 footprint: $(STAMP)
 	$(PY) tools/footprint.py $(FOOTPRINT_FLAGS)
 

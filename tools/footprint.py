@@ -74,7 +74,7 @@ int main(void)
 }
 """
 EMPTY = "int main(void) { return 0; }\n"
-SECTIONS = ["-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections"]
+SECTIONS = ["-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections", "-no-pie"]  # no PIE: its relocations are not code
 
 
 def linked_size(cc: list[str], cflags: list[str], ldflags: list[str], sources: list[Path], flags: list[str],
