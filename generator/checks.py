@@ -46,6 +46,7 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
             _check_layout(spec, sentence, layout, manual_ids, report)
     if report.errors:
         return report.errors
+    _generated_names(spec, report)
     _check_cli(spec, report)
     for sentence in spec.sentences:
         _check_replies(sentence, report)
@@ -70,6 +71,16 @@ def _distinct_names(spec: Spec, report: _Reporter) -> None:
                 report(item.origin, "S013", f"{kind} {item.id} has the name of {other}; rename it "
                        f"(e.g. {item.id}_code)", kind)
             owners[item.id] = f"{kind} {item.id}"
+
+
+def _generated_names(spec: Spec, report: _Reporter) -> None:
+    """The names each emitter builds from the spec's ids (C identifiers, Rust types, the tool's
+    command names) must not be shared by two things, nor taken from a runtime."""
+    from . import emit_c, emit_rust, emit_tool  # the emitters know their names; they import no checks
+
+    for emitter in (emit_c, emit_rust, emit_tool):
+        for origin, message in emitter.name_clashes(spec):
+            report(origin, "S016", f"{message}; rename one of them")
 
 
 def _unique(spec: Spec, report: _Reporter) -> None:

@@ -14,9 +14,9 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import CONTRACT, RUNTIME, char_literal, header, runtime_file
+from .emit import CONTRACT, RUNTIME, NameClaims, char_literal, header, runtime_file
 from .field_types import TYPES
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, fixed_point, fmt_num
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Origin, Sentence, Spec, TableDef, fixed_point, fmt_num
 
 C_KEYWORDS = frozenset("""
 auto break case char const continue default do double else enum extern float for goto if inline int
@@ -509,37 +509,39 @@ def _all_fields(layout: Layout) -> list[Field]:
     return out
 
 
-def _check_names(spec: Spec, views: list[dict], bitfields: list[dict], tables: list[dict]) -> None:
-    """Generated identifiers must not collide (they are built from frozen spec ids)."""
-    seen: dict[str, str] = {}
-
-    def claim(name: str, what: str) -> None:
-        if name in seen and seen[name] != what:
-            raise ValueError(f"C name {name} of {what} collides with {seen[name]}")
-        seen[name] = what
-
+def name_clashes(spec: Spec) -> list[tuple[Origin, str]]:
+    """The C identifiers built from the spec's ids that two things would share."""
+    ranges = Ranges()
+    names = NameClaims("C")
     for e in spec.enums:
-        claim(enum_type(e), f"enum {e.id}")
+        names.claim(enum_type(e), f"enum {e.id}", e.origin)
         for v in e.values:
-            claim(enum_const(e, v.id), f"enum value {e.id}.{v.id}")
-    for v in views:
-        claim(v["type"], f"layout {v['name']}")
-        claim(v["const"], f"layout {v['name']}")
-        for prefix in ("nmea_parse_", "nmea_serialize_", "nmea_build_"):
-            claim(prefix + v["name"], f"layout {v['name']}")
-        if v["group"] and v["group"]["entry_type"]:
-            claim(v["group"]["entry_type"], f"group {v['name']}.{v['group']['group'].id}")
-    for b in bitfields:
+            names.claim(enum_const(e, v.id), f"enum value {e.id}.{v.id}", v.origin)
+    for s in spec.sentences:
+        for lay in s.layouts:
+            v = layout_view(s, lay, ranges)
+            what = f"layout {v['name']}"
+            for name in (v["type"], v["const"], *(prefix + v["name"] for prefix in ("nmea_parse_", "nmea_serialize_",
+                                                                                      "nmea_build_"))):
+                names.claim(name, what, lay.origin)
+            if v["group"] and v["group"]["entry_type"]:
+                group = v["group"]["group"]
+                names.claim(v["group"]["entry_type"], f"group {v['name']}.{group.id}", group.origin)
+    for bitfield in spec.bitfields:
+        b = bitfield_view(bitfield)
         for bits in b["bits"]:
-            claim(bits["function"], f"bits {b['bitfield'].id}.{bits['bits'].id}")
-            claim(bits["mask"], f"bits {b['bitfield'].id}.{bits['bits'].id}")
+            what = f"bits {bitfield.id}.{bits['bits'].id}"
+            names.claim(bits["function"], what, bits["bits"].origin)
+            names.claim(bits["mask"], what, bits["bits"].origin)
             for value in bits["values"]:
-                claim(value["const"], f"bits {b['bitfield'].id}.{bits['bits'].id} = {value['value']}")
-    for t in tables:
-        claim(t["name"], f"table {t['table'].id}")
-        claim(t["count"], f"table {t['table'].id}")
-        for param in t["parameters"]:
-            claim(param["macro"], f"parameter {t['table'].id}.{param['parameter'].id}")
+                names.claim(value["const"], f"{what} = {value['value']}", bits["bits"].origin)
+    for table in spec.tables:
+        view = table_view(table)
+        names.claim(view["name"], f"table {table.id}", table.origin)
+        names.claim(view["count"], f"table {table.id}", table.origin)
+        for param in view["parameters"]:
+            names.claim(param["macro"], f"parameter {table.id}.{param['parameter'].id}", param["parameter"].origin)
+    return names.clashes
 
 
 # ------------------------------------------------------------------------------------------------
@@ -674,7 +676,6 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     enums = [enum_view(e) for e in spec.enums]
     bitfields = [bitfield_view(b) for b in spec.bitfields]
     tables = [table_view(t) for t in spec.tables]
-    _check_names(spec, views, bitfields, tables)
     dispatch = _dispatch(spec, views)
     sentences = [{
         "sentence": s,

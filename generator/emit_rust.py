@@ -12,9 +12,9 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import RUNTIME, char_literal, header, package_readme, runtime_file
+from .emit import RUNTIME, NameClaims, char_literal, header, package_readme, runtime_file
 from .field_types import TYPES
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Origin, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
 from .rust_features import Gates, cfg, with_cfg
 
 CRATE = "nmeaspec"
@@ -811,26 +811,33 @@ def module_imports(views: list[dict]) -> list[str]:
     return lines
 
 
-def check_names(spec: Spec) -> None:
-    taken: dict[str, str] = {}
+def name_clashes(spec: Spec) -> list[tuple[Origin, str]]:
+    """The Rust names built from the spec's ids that two things, or a thing and the runtime, would
+    share (reported by generator/checks.py, S016)."""
+    names = NameClaims("Rust")
+    names.owners.update({name: "the runtime" for name in RUNTIME_NAMES})
     for e in spec.enums:
-        taken[e.camel] = f"enum {e.id}"
+        names.claim(e.camel, f"enum {e.id}", e.origin)
     for s in spec.sentences:
         for lay in s.layouts:
-            name = s.layout_camel(lay)
-            assert name not in taken, f"{name} ({s.id}) clashes with {taken[name]}"
-            taken[name] = f"sentence {s.id}"
+            names.claim(s.layout_camel(lay), f"layout {s.layout_snake(lay)}", lay.origin)
             g = lay.group
-            if g is not None and not g.single:
-                entry = entry_name(s, lay, g)
-                assert entry not in taken or taken[entry].startswith(f"entry of {s.id}"), entry
-                taken[entry] = f"entry of {s.id}"
-    for name, what in taken.items():
-        assert name not in RUNTIME_NAMES, f"{what} would be named {name}, a name of the Rust runtime"
+            if g is not None and not g.single:  # the layouts of a sentence may share an entry type
+                names.claim(entry_name(s, lay, g), f"the entries of group {g.id} of sentence {s.id}", g.origin)
     for b in spec.bitfields:
-        assert b.camel != "Hex", f"bitfield {b.id} would be named Hex, a name of the Rust runtime"
+        names.claim(b.camel, f"bitfield {b.id}", b.origin)
+        constants = NameClaims("Rust")
+        for bits in b.bits:
+            for v in bits.values:
+                constants.claim(f"{bits.id}_{v.id}".upper(), f"value {v.id} of bits {bits.id} of bitfield {b.id}",
+                                bits.origin)
+        names.clashes += constants.clashes
     for t in spec.tables:
-        assert all(p.id != "table" for p in t.parameters), f"table {t.id}: a parameter named table clashes with TABLE"
+        for param in t.parameters:
+            if param.id == "table":
+                names.clashes.append((param.origin, f"parameter {param.id} of table {t.id} would be named TABLE, the "
+                                      "name of the table itself"))
+    return names.clashes
 
 
 def enum_view(e: EnumDef) -> dict:
@@ -891,8 +898,6 @@ def bitfield_view(b: BitfieldDef, on_integers: bool) -> dict:
         for v in bits.values:
             constants.append({"name": f"{bits.id}_{v.id}".upper(), "value": str(v.value),
                               "doc": doc_lines(f"`{bits.id}` = {v.value}: {v.doc}", 92)})
-    names = [c["name"] for c in constants]
-    assert len(names) == len(set(names)), f"bitfield {b.id}: value constants clash: {names}"
     return {
         "name": b.camel, "type": bits_type, "doc": doc_lines(f"{b.name} ({b.width} bits): {b.doc}"),
         "ranges": ranges, "constants": constants,
@@ -1009,7 +1014,6 @@ def example_lines(v: dict) -> list[str]:
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    check_names(spec)
     env.globals.update(rust_str=rust_str, rust_raw=rust_raw, one_line=one_line)
     base = "rust"
     files: dict[str, str] = {}
