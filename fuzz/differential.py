@@ -33,7 +33,11 @@ def inputs(paths: list[str]) -> list[bytes]:
         if not path.exists():  # a fuzzer that has not run yet
             continue
         files = sorted(p for p in path.rglob("*") if p.is_file()) if path.is_dir() else [path]
-        out += [p.read_bytes() for p in files]
+        for file in files:
+            try:
+                out.append(file.read_bytes())
+            except FileNotFoundError:  # a fuzzer still running replaced it by a smaller input
+                continue
     return out
 
 
