@@ -111,16 +111,16 @@
 #   spec/enums/teseo_nmea_on_off.yaml, spec/enums/teseo_rtc_status.yaml,
 #   spec/enums/teseo_setpar_mode.yaml, spec/enums/teseo_time_validity.yaml,
 #   spec/enums/ths_mode.yaml, spec/enums/trimble_antenna_status.yaml,
-#   spec/enums/trimble_bpq_quality.yaml, spec/enums/trimble_dg_channel_used.yaml,
-#   spec/enums/trimble_dg_tracking.yaml, spec/enums/trimble_gps_quality.yaml,
-#   spec/enums/trimble_oscillator_lock.yaml, spec/enums/trl_reason.yaml,
-#   spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
+#   spec/enums/trimble_bpq_quality.yaml, spec/enums/trimble_copernicus_version_part.yaml,
+#   spec/enums/trimble_dg_channel_used.yaml, spec/enums/trimble_dg_tracking.yaml,
+#   spec/enums/trimble_gps_quality.yaml, spec/enums/trimble_oscillator_lock.yaml,
+#   spec/enums/trl_reason.yaml, spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
 #   spec/enums/ttm_target_status.yaml, spec/enums/ttm_units.yaml, spec/enums/ublox_autobauding.yaml,
 #   spec/enums/ublox_nav_status.yaml, spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml,
 #   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 #   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 #   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-#   (digest 413ca1b7b16ba3f1)
+#   (digest 082b2baae3bc4d88)
 # Regenerate: make generate (python3 -m generator generate)
 """The spec's lookup tables. A member's value is its wire code; `.id` is the spec's id."""
 
@@ -4915,6 +4915,21 @@ class TrimbleBpqQuality(CodeEnum):
     """OmniSTAR XP or HP, CenterPoint RTX, RTK float or Location RTK. (trimble_nmea)"""
 
 
+class TrimbleCopernicusVersionPart(CodeEnum):
+    """Trimble Copernicus version query target: Which version the $PTNLQVR query asks for."""
+
+    BY_CODE: ClassVar[dict[str, TrimbleCopernicusVersionPart]]
+    CODE_CLASS: ClassVar[str]
+    MIN_LEN: ClassVar[int]
+    MAX_LEN: ClassVar[int]
+    APPLICATION = "S"
+    """Application firmware. (trimble_copernicus)"""
+    HARDWARE = "H"
+    """Hardware. (trimble_copernicus)"""
+    NAVIGATION = "N"
+    """Navigation (GPS engine) firmware. (trimble_copernicus)"""
+
+
 class TrimbleDgChannelUsed(CodeEnum):
     """Trimble PTNLDG channel used as correction source: Whether the channel of $PTNLDG supplies the
     RTCM corrections used for the DGPS position."""
@@ -6625,6 +6640,11 @@ TrimbleAntennaStatus.MIN_LEN, TrimbleAntennaStatus.MAX_LEN = 1, 1
 TrimbleBpqQuality.BY_CODE = by_code(TrimbleBpqQuality)
 TrimbleBpqQuality.CODE_CLASS = "digits"
 TrimbleBpqQuality.MIN_LEN, TrimbleBpqQuality.MAX_LEN = 1, 1
+
+
+TrimbleCopernicusVersionPart.BY_CODE = by_code(TrimbleCopernicusVersionPart)
+TrimbleCopernicusVersionPart.CODE_CLASS = "letters"
+TrimbleCopernicusVersionPart.MIN_LEN, TrimbleCopernicusVersionPart.MAX_LEN = 1, 1
 
 
 TrimbleDgChannelUsed.BY_CODE = by_code(TrimbleDgChannelUsed)

@@ -112,16 +112,16 @@
 //   spec/enums/teseo_nmea_on_off.yaml, spec/enums/teseo_rtc_status.yaml,
 //   spec/enums/teseo_setpar_mode.yaml, spec/enums/teseo_time_validity.yaml,
 //   spec/enums/ths_mode.yaml, spec/enums/trimble_antenna_status.yaml,
-//   spec/enums/trimble_bpq_quality.yaml, spec/enums/trimble_dg_channel_used.yaml,
-//   spec/enums/trimble_dg_tracking.yaml, spec/enums/trimble_gps_quality.yaml,
-//   spec/enums/trimble_oscillator_lock.yaml, spec/enums/trl_reason.yaml,
-//   spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
+//   spec/enums/trimble_bpq_quality.yaml, spec/enums/trimble_copernicus_version_part.yaml,
+//   spec/enums/trimble_dg_channel_used.yaml, spec/enums/trimble_dg_tracking.yaml,
+//   spec/enums/trimble_gps_quality.yaml, spec/enums/trimble_oscillator_lock.yaml,
+//   spec/enums/trl_reason.yaml, spec/enums/ttm_acquisition.yaml, spec/enums/ttm_reference.yaml,
 //   spec/enums/ttm_target_status.yaml, spec/enums/ttm_units.yaml,
 //   spec/enums/ublox_autobauding.yaml, spec/enums/ublox_nav_status.yaml,
 //   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 413ca1b7b16ba3f1)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 082b2baae3bc4d88)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -14924,6 +14924,57 @@ impl CodeEnum for TrimbleBpqQuality {
             Self::SbasOrVbs => "sbas_or_vbs",
             Self::RtkFixed => "rtk_fixed",
             Self::FloatOrHighPrecision => "float_or_high_precision",
+        }
+    }
+}
+
+/// Trimble Copernicus version query target: Which version the $PTNLQVR query asks for.
+#[cfg(feature = "trimble_copernicus")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TrimbleCopernicusVersionPart {
+    /// Application firmware.
+    Application,
+    /// Hardware.
+    Hardware,
+    /// Navigation (GPS engine) firmware.
+    Navigation,
+}
+
+#[cfg(feature = "trimble_copernicus")]
+impl CodeEnum for TrimbleCopernicusVersionPart {
+    const EXPECTED: &'static str = "trimble_copernicus_version_part code (S H N)";
+    const EXPECTED_CHARS: &'static str = "trimble_copernicus_version_part codes (S H N)";
+    const CLASS: CodeClass = CodeClass::Letters;
+    const MIN_LEN: usize = 1;
+    const MAX_LEN: usize = 1;
+    const ALL: &'static [Self] = &[Self::Application, Self::Hardware, Self::Navigation];
+
+    fn from_code(code: &str) -> Option<Self> {
+        Self::from_code_bytes(code.as_bytes())
+    }
+
+    fn from_code_bytes(code: &[u8]) -> Option<Self> {
+        match code {
+            b"S" => Some(Self::Application),
+            b"H" => Some(Self::Hardware),
+            b"N" => Some(Self::Navigation),
+            _ => None,
+        }
+    }
+
+    fn code(self) -> &'static str {
+        match self {
+            Self::Application => "S",
+            Self::Hardware => "H",
+            Self::Navigation => "N",
+        }
+    }
+
+    fn id(self) -> &'static str {
+        match self {
+            Self::Application => "application",
+            Self::Hardware => "hardware",
+            Self::Navigation => "navigation",
         }
     }
 }
