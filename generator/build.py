@@ -10,7 +10,7 @@ from typing import Any
 from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
-from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Field, Group, Item, Layout,
+from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Field, GenericMessage, Group, Item, Layout,
                     Manual, Note, Origin, Outcome, Parameter, ReplyRule, Sentence, Spec, TableDef)
 from .resolve import resolve
 
@@ -46,13 +46,17 @@ def load_spec(spec_dir: Path) -> Spec:
     if errors:
         raise SpecErrors(errors)
 
-    manuals = [Manual(**m) for m in docs["manuals"][0].data["manuals"]]
+    manuals_doc = docs["manuals"][0]
+    manuals = [Manual(**m) for m in manuals_doc.data["manuals"]]
+    generic = [GenericMessage(**g, origin=Origin(str(manuals_doc.path), ("generic", i)))
+               for i, g in enumerate(manuals_doc.data.get("generic", []))]
     enums = [_enum(d) for d in docs["enums"]]
     sentences = [_sentence(d) for d in docs["sentences"]]
     spec = Spec(manuals, enums, sentences,
                 sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences") for d in docs[kind]],
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
-                bitfields=[_bitfield(d) for d in docs["bitfields"]], tables=[_table(d) for d in docs["tables"]])
+                bitfields=[_bitfield(d) for d in docs["bitfields"]], tables=[_table(d) for d in docs["tables"]],
+                generic=generic)
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     resolve(spec)
     errors = checks.run(spec, by_file)

@@ -47,6 +47,7 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
     if report.errors:
         return report.errors
     _generated_names(spec, report)
+    _check_generic(spec, report)
     _check_cli(spec, report)
     for sentence in spec.sentences:
         _check_replies(sentence, report)
@@ -81,6 +82,27 @@ def _generated_names(spec: Spec, report: _Reporter) -> None:
     for emitter in (emit_c, emit_rust, emit_tool):
         for origin, message in emitter.name_clashes(spec):
             report(origin, "S016", f"{message}; rename one of them")
+
+
+def _check_generic(spec: Spec, report: _Reporter) -> None:
+    """What manuals.yaml says stays generic must: its example is a real line (checksum right, the
+    message it names) that no layout of the spec reads."""
+    for g in spec.generic:
+        line = g.example
+        if not line.startswith(g.message):
+            report(g.origin, "S017", f"the example does not start with {g.message}", "example")
+            continue
+        try:
+            frame, found = reference.candidates(spec, line)
+        except reference.rt.NmeaError as err:
+            report(g.origin, "S017", f"the example is not a sentence: {err.message}", "example")
+            continue
+        if frame.checksum is None or not checksum_ok(line):
+            report(g.origin, "S017", "the example's checksum is missing or wrong", "example")
+        elif found:
+            names = ", ".join(sorted({s.id for s, _ in found}))
+            report(g.origin, "S017", f"{g.message} is no longer generic ({names} reads it): remove it from the list",
+                   "message")
 
 
 def _unique(spec: Spec, report: _Reporter) -> None:

@@ -199,7 +199,8 @@ def _indexes(spec: Spec, env: jinja2.Environment, banner: str) -> dict[str, str]
                 for x in shortcuts if x["vendor"] == m.id]})
     return {
         "docs/sentences.md": env.get_template("docs/sentences.md.j2").render(banner=banner, sentences=sentences),
-        "docs/vendors.md": env.get_template("docs/vendors.md.j2").render(banner=banner, vendors=vendors),
+        "docs/vendors.md": env.get_template("docs/vendors.md.j2").render(banner=banner, vendors=vendors,
+                                                                            generic=spec.generic),
         "docs/commands.md": env.get_template("docs/commands.md.j2").render(banner=banner, vendors=by_vendor),
     }
 

@@ -37,6 +37,18 @@ class Manual:
 
 
 @dataclass
+class GenericMessage:
+    """A proprietary message real receivers send that stays a generic sentence: no public document
+    gives its layout (spec/manuals.yaml, `generic`)."""
+    message: str
+    vendor: str
+    example: str
+    where: str
+    why: str
+    origin: Origin
+
+
+@dataclass
 class EnumValue:
     code: str
     id: str
@@ -496,6 +508,7 @@ class Spec:
     file_digests: dict[str, str] = field(default_factory=dict)
     bitfields: list[BitfieldDef] = field(default_factory=list)
     tables: list[TableDef] = field(default_factory=list)
+    generic: list[GenericMessage] = field(default_factory=list)
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
 
     def digest_of(self, sources: list[str]) -> str:
