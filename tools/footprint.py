@@ -50,8 +50,13 @@ def object_size(cc: list[str], cflags: list[str], source: Path, flags: list[str]
     """(text, data) of nmea.c compiled with `flags`."""
     obj = work / "nmea.o"
     subprocess.run([*cc, "-std=c99", "-Os", *cflags, *flags, "-c", "-o", str(obj), str(source / "nmea.c")], check=True)
-    size = subprocess.run(["size", str(obj)], check=True, capture_output=True, text=True).stdout.splitlines()[-1]
-    text, data = size.split()[:2]
+    return sizes(obj)
+
+
+def sizes(binary: Path) -> tuple[int, int]:
+    """`size`'s text and data of an object or a program."""
+    line = subprocess.run(["size", str(binary)], check=True, capture_output=True, text=True).stdout.splitlines()[-1]
+    text, data = line.split()[:2]
     return int(text), int(data)
 
 
@@ -83,9 +88,7 @@ def linked_size(cc: list[str], cflags: list[str], ldflags: list[str], sources: l
     exe = work / "program.elf"
     subprocess.run([*cc, "-std=c99", "-Os", *cflags, *flags, *SECTIONS, *ldflags, "-o", str(exe),
                     *map(str, sources)], check=True)
-    size = subprocess.run(["size", str(exe)], check=True, capture_output=True, text=True).stdout.splitlines()[-1]
-    text, data = size.split()[:2]
-    return int(text) + int(data)
+    return sum(sizes(exe))
 
 
 def firmware_size(cc: list[str], cflags: list[str], ldflags: list[str], source: Path, flags: list[str],
