@@ -287,24 +287,31 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         single = group.single
         etype = entry_type(sentence, layout, group)
         if single:
-            fields = [field_view(group.fields[0], f"s->{member(group.id)}[i]", ranges, None)]
+            fields = [field_view(group.fields[0], "value", ranges, None)]
         else:
             fields = [field_view(f, "e->", ranges, etype) for f in group.fields]
         stored = [v for v in fields if v["member"] is not None]
         value_type = (C_TYPES[group.fields[0].type] if single else etype) if stored else None
+        name = member(group.id)
+        # The entries of a group that holds values stay on the wire (nmea_entries), read one at a
+        # time by its accessor; a group of keywords only is counted.
+        count = (f"{name}.count" if stored else f"{name}_count") if not group.is_fixed else None
         group_view = {
             "group": group,
             "id": c_str(group.id),
-            "member": member(group.id) if stored else None,
-            "count": None if group.is_fixed else member(group.id) + "_count",
+            "member": name if stored else None,
+            "count": count,
+            "count_member": f"{name}_count" if count and not stored else None,
             "entry_type": None if single or not stored else etype,
             "value_type": value_type,
+            "accessor": f"nmea_{snake}_{name}_at" if stored else None,
             "single": single,
             "fields": fields,
             "stored": stored,
             "doc": doc_lines(f"{group.name}: {group.doc} " + (
-                f"Always {group.max} entries." if group.is_fixed else
-                f"{group.min} to {group.max} entries; {member(group.id)}_count of them are on the wire.")),
+                f"Always {group.max} entries" if group.is_fixed else f"{group.min} to {group.max} entries") + (
+                f"; entry i is read by nmea_{snake}_{name}_at (nmea_entries)." if stored else
+                "." if group.is_fixed else f"; {name}_count of them are on the wire.")),
         }
     struct = f"nmea_{snake}"
     ordered = before + after + optional
@@ -320,7 +327,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
             ("single", "true" if group.single else "false"),
             ("offset", f"offsetof({struct}, {member(group.id)})" if group_view["stored"] else "NO_MEMBER"),
             ("entry_size", f"sizeof({group_view['value_type']})" if group_view["stored"] else 0),
-            ("count_offset", "NO_MEMBER" if group.is_fixed else f"offsetof({struct}, {member(group.id)}_count)"),
+            ("count_offset", f"offsetof({struct}, {group_view['count']})" if group_view["count"] else "NO_MEMBER"),
         ])
     head_member = {"standard": "talker", "text": "as_received"}.get(kind)
     layout_init = _designated([
@@ -524,9 +531,11 @@ def name_clashes(spec: Spec) -> list[tuple[Origin, str]]:
             for name in (v["type"], v["const"], *(prefix + v["name"] for prefix in ("nmea_parse_", "nmea_serialize_",
                                                                                       "nmea_build_"))):
                 names.claim(name, what, lay.origin)
-            if v["group"] and v["group"]["entry_type"]:
+            if v["group"]:
                 group = v["group"]["group"]
-                names.claim(v["group"]["entry_type"], f"group {v['name']}.{group.id}", group.origin)
+                for name in (v["group"]["entry_type"], v["group"]["accessor"]):
+                    if name:
+                        names.claim(name, f"group {v['name']}.{group.id}", group.origin)
     for bitfield in spec.bitfields:
         b = bitfield_view(bitfield)
         for bits in b["bits"]:
@@ -704,6 +713,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "c/tests/test_examples.c": env.get_template("c/test_examples.c.j2").render(
             header=header(spec, "//"), vectors=[vector_view(r) for r in emit_vectors.example_vectors(spec)],
             commands=context["commands"], bitfields=bitfields, tables=tables,
+            grouped=[v for v in context["layouts"] if v["group"] and v["group"]["accessor"]],
             reply_cases=[{"const": layout_const(c.command, c.layout), "line": c_str(c.line), "what": c_comment(
                 f"{c.line} to {c.command.id}"), "expect": {"ok": "NMEA_REPLY_OK", "error": "NMEA_REPLY_ERROR"}.get(
                 c.outcome or "", "NMEA_REPLY_NONE")} for c in pairing.reply_cases(spec)]),

@@ -222,23 +222,6 @@ def fmt_call(indent: int, prefix: str, callee: str, args: list[str], suffix: str
     return [f"{pad}{prefix}{callee}(", *[f"{pad}    {a}," for a in args], f"{pad}){suffix}"]
 
 
-def fmt_group_read(indent: int, leading: list[str], callee: str, args: list[str]) -> list[str]:
-    """`f.group_into(leading…, |f| callee(args))?;` (the group is read in place; `leading`: the
-    target, and the group's id for the general reader, and `repeats`) as rustfmt writes it: on one
-    line, else with the closure's body in a block after the other arguments, else one argument per
-    line."""
-    pad = " " * indent
-    body = f"{callee}({', '.join(args)})"
-    one = f"{pad}f.group_into({', '.join([*leading, f'|f| {body}'])})?;"
-    if len(one) <= WIDTH:
-        return [one]
-    head = f"{pad}f.group_into({', '.join(leading)}, |f| {{"
-    if len(head) <= WIDTH:  # the closure overflows into a block
-        return [head, *fmt_call(indent + 4, "", callee, args, "", False), f"{pad}}})?;"]
-    return [f"{pad}f.group_into(", *[f"{pad}    {arg}," for arg in leading],
-            *fmt_call(indent + 4, "|f| ", callee, args, ",", False), f"{pad})?;"]
-
-
 def fmt_struct(indent: int, prefix: str, name: str, members: list[tuple[str, str]], suffix: str) -> list[str]:
     pad = " " * indent
     literal = f"{name} {{ {', '.join(f'{k}: {v}' for k, v in members)} }}{suffix}"
@@ -588,14 +571,24 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
             elif g.single:
                 f = g.fields[0]
                 callee, args = read_call(f)
-                read = fmt_group_read(8, [f"&mut out.{ident(g.id)}", rust_str(g.id), "repeats"], callee, args)
-                fast = fmt_group_read(8, [f"&mut self.{ident(g.id)}", "repeats"], *fast_call(f))
+                reader = f"read_{sentence.layout_snake(layout)}_{g.id}"
+                value = f"Option<{base_type(f)}>"
+                # The general reader of one value, named: the values stay on the wire and a
+                # parsed sentence reads them again with it.
+                value_reader = {"name": reader, "type": value, "body": fmt_call(4, "", callee, args, "", False),
+                                "group": g}
+                read = fmt_call(8, f"out.{ident(g.id)} = ", "f.entries",
+                                [rust_str(g.id), "repeats", str(f.wire_width), reader], "?;", True)
+                fast_callee, fast_args = fast_call(f)
+                fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.values",
+                                ["repeats", f"|f| {fast_callee}({', '.join(fast_args)})", reader], "?;", True)
                 unit = f" [{f.unit}]" if f.unit else ""
                 items.append({"kind": "values", "group": g, "ident": ident(g.id), "read": read, "fast": fast,
-                              "optional": None,
-                              "type": f"Group<Option<{base_type(f)}>, {g.max}>", "width": f.wire_width,
+                              "optional": None, "value_reader": value_reader,
+                              "type": f"Entries<'a, {value}>", "width": f.wire_width,
                               "doc": doc_lines(f"{g.name}: {g.min} to {g.max} values of {f.name.lower()}{unit}: "
-                                               f"{f.doc}", 92) + bits_doc(f)})
+                                               f"{f.doc} Kept as received, read by `iter()` and `get(i)`.", 92)
+                              + bits_doc(f)})
             else:
                 entry = entry_name(sentence, layout, g)
                 fields = [field_view(f, 12, f"{ident(f.id)}: ", "?,", False) for f in g.fields]
@@ -605,15 +598,16 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                              for line in fmt_call(8, f"self.{ident(f.id)} = ", *fast_call(f), "?;", True)]
                 entries.append({"name": entry, "group": g, "fields": fields, "lifetime": lifetime,
                                 "type": entry_type, "read": entry_read(fields), "read_fast": read_fast})
-                read = fmt_call(8, "", "f.group_into",
-                                [f"&mut out.{ident(g.id)}", rust_str(g.id), "repeats", f"{entry}::read"], "?;", False)
-                fast = fmt_call(8, "", "f.entries_into", [f"&mut self.{ident(g.id)}", "repeats", f"{entry}::read_fast"],
-                                "?;", False)
+                read = fmt_call(8, f"out.{ident(g.id)} = ", "f.entries",
+                                [rust_str(g.id), "repeats", str(g.width), f"{entry}::read"], "?;", True)
+                fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.entries",
+                                ["repeats", f"{entry}::read_fast", f"{entry}::read"], "?;", True)
                 items.append({"kind": "entries", "group": g, "ident": ident(g.id), "entry": entry, "read": read,
                               "fast": fast,
                               "optional": None, "lifetime": lifetime,
-                              "type": f"Group<{entry_type}, {g.max}>",
-                              "doc": doc_lines(f"{g.name}: {g.min} to {g.max} entries.", 92)})
+                              "type": f"Entries<'a, {entry_type}>",
+                              "doc": doc_lines(f"{g.name}: {g.min} to {g.max} entries, kept as received: read "
+                                               "them by `iter()` and `get(i)`.", 92)})
             continue
         optional = None
         if item.is_optional:
@@ -652,11 +646,8 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     assert len(init[0]) <= WIDTH
     fast = fast_reader(sentence, items) if sentence.fast_path and not text else []
     lifetime = (not sentence.is_proprietary or text
-                or any(it["kind"] in ("field", "values") and borrows(it["field"] if it["kind"] == "field"
-                                                                     else it["group"].fields[0])
-                       for it in items)
-                or any(it.get("lifetime") for it in items if it["kind"] == "entries")
-                or any(it["kind"] == "texts" for it in items))
+                or any(it["kind"] == "field" and borrows(it["field"]) for it in items)
+                or any(it["kind"] in ("texts", "values", "entries") for it in items))
     keywords = [it["field"] for it in items if it["kind"] == "keyword"]
     reader = "fields.reader().ignoring_case()" if text else "fields.reader()"
     if text:
@@ -677,6 +668,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         "example_from": (manual.title if manual else example.manual) if example else None,
         "items": items,
         "entries": entries,
+        "value_readers": [it["value_reader"] for it in items if it["kind"] == "values"],
         "group": group,
         "optional": optional,
         "optional_names": ", ".join(f"`{it['field'].id}`" for it in optional),
@@ -782,7 +774,7 @@ def module_imports(views: list[dict]) -> list[str]:
         if view["group"] is not None:
             runtime.add("GroupShape")
         if any(it["kind"] in ("values", "entries") for it in view["items"]):
-            runtime.add("Group")
+            runtime |= {"Entries", "Reader"}
         if any(it["kind"] == "texts" for it in view["items"]):
             runtime.add("Texts")
         if view["entries"]:

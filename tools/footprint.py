@@ -6,8 +6,8 @@
 
 For each build it generates the C pair (`generate --only ...` into a temporary directory, or
 generated/c for the full spec), compiles nmea.c alone at -Os with -DNMEA_NO_JSON, with and
-without -DNMEA_NO_FAST_PATH, and reports `size`'s text and data of the object. sizeof is measured
-by compiling a probe with the host compiler (the struct layout of the target can differ).
+without -DNMEA_NO_FAST_PATH, and reports `size`'s text and data of the object, and
+sizeof(nmea_sentence) as the target's compiler lays it out (a probe object's one array).
 
 The object holds every function of the pair; a firmware links only what it calls. The `linked`
 columns are what a program that reads a receiver (the stream framer and nmea_parse, nothing else)
@@ -27,13 +27,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 SUBSET = "GGA,RMC,GSV,GSA,VTG"
 
-PROBE = """#include <stdio.h>
-#include "nmea.h"
-int main(void)
-{
-    printf("%zu\\n", sizeof(nmea_sentence));
-    return 0;
-}
+PROBE = """#include "nmea.h"
+char sentence_probe[sizeof(nmea_sentence)];
 """
 
 
@@ -101,12 +96,15 @@ def firmware_size(cc: list[str], cflags: list[str], ldflags: list[str], source: 
     return with_nmea - linked_size(cc, cflags, ldflags, [work / "empty.c"], [], work)
 
 
-def sentence_size(source: Path, work: Path) -> int:
+def sentence_size(cc: list[str], cflags: list[str], source: Path, work: Path) -> int:
+    """sizeof(nmea_sentence) on the target: the one zeroed array of a probe object (its bss)."""
     probe = work / "probe.c"
     probe.write_text(PROBE, encoding="utf-8")
-    exe = work / "probe"
-    subprocess.run(["cc", "-std=c99", "-I", str(source), "-o", str(exe), str(probe)], check=True)
-    return int(subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout)
+    obj = work / "probe.o"
+    subprocess.run([*cc, "-std=c99", *cflags, "-fno-common", "-I", str(source), "-c", "-o", str(obj), str(probe)],
+                   check=True)
+    line = subprocess.run(["size", str(obj)], check=True, capture_output=True, text=True).stdout.splitlines()[-1]
+    return int(line.split()[2])
 
 
 def main() -> int:
@@ -129,7 +127,7 @@ def main() -> int:
             linked_small = firmware_size(cc, cflags, ldflags, source, ["-DNMEA_NO_JSON", "-DNMEA_NO_FAST_PATH"], work)
             linked_fast = firmware_size(cc, cflags, ldflags, source, ["-DNMEA_NO_JSON"], work)
             print(f"| {name} | {small:,} | {fast:,} | {data:,} | {linked_small:,} | {linked_fast:,} "
-                  f"| {sentence_size(source, work):,} |")
+                  f"| {sentence_size(cc, cflags, source, work):,} |")
     return 0
 
 

@@ -2392,6 +2392,21 @@ NMEA_HOT bool fast_put_text_field(fast_writer *w, nmea_text t)
     return fast_sep(w) && fast_put_mem(w, t.ptr, t.len);
 }
 
+/* The `fields` wire fields of a group's entries as received (nmea_entries.wire): false when the
+   wire does not hold that many, or lenient parsing read some as empty, for the general writer. */
+NMEA_HOT bool fast_put_entries(fast_writer *w, const nmea_entries *e, size_t fields)
+{
+    nmea_text wire = e->wire;
+    size_t i, seps = 0;
+    if (!fields)
+        return true;
+    if (!wire.ptr || e->blanks)
+        return false;
+    for (i = 0; i < wire.len; i++)
+        seps += wire.ptr[i] == ',';
+    return seps + 1 == fields && fast_sep(w) && fast_put_mem(w, wire.ptr, wire.len);
+}
+
 #ifndef NMEA_NO_JSON
 static void put_json_cstr(nmea_writer *w, const char *s)
 {
@@ -3465,8 +3480,8 @@ typedef struct {
     uint16_t min;
     uint16_t max;
     bool single;           /* one field an entry: the JSON lists its values without keys */
-    uint16_t offset;       /* of the entries' array (NO_MEMBER: none, the entries hold only keywords) */
-    uint16_t entry_size;
+    uint16_t offset;       /* of its nmea_entries (NO_MEMBER: none, the entries hold only keywords) */
+    uint16_t entry_size;   /* of an entry of nmea_entries.items */
     uint16_t count_offset; /* of the uint8_t entry count (NO_MEMBER: always `max` entries) */
 } layout_group;
 
@@ -3536,14 +3551,15 @@ static size_t optional_of(const layout *l, const void *s)
     return l->optional_count == NO_MEMBER ? 0 : *(const uint8_t *)const_member_at(s, l->optional_count);
 }
 
-static const void *entry_at(const layout_group *g, const void *s, size_t i)
+/* The entries of a layout's group (NULL: it stores nothing, its entries hold only keywords). */
+static const nmea_entries *entries_in(const layout_group *g, const void *s)
 {
-    return g->offset == NO_MEMBER ? s : const_member_at(s, (uint16_t)(g->offset + i * g->entry_size));
+    return g->offset == NO_MEMBER ? NULL : (const nmea_entries *)const_member_at(s, g->offset);
 }
 
-static bool read_field(nmea_reader *r, const layout_field *f, void *entry)
+/* Reads field `f` into `out`, a value of its type (nothing for a keyword). */
+static bool read_field(nmea_reader *r, const layout_field *f, void *out)
 {
-    void *out = member_at(entry, f->offset);
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
         return read_keyword(r, f->id, f->expected, f->arg);
@@ -3579,9 +3595,91 @@ static bool read_fields(nmea_reader *r, const layout_field *f, size_t n, void *e
 {
     size_t i;
     for (i = 0; i < n; i++)
-        if (!read_field(r, &f[i], entry))
+        if (!read_field(r, &f[i], member_at(entry, f[i].offset)))
             return false;
     return true;
+}
+
+/* Any value a field holds, for reading one field of a group entry on its own. */
+typedef union {
+    nmea_number number;
+    nmea_hex hex;
+    nmea_time time;
+    nmea_date date;
+    nmea_coordinate coordinate;
+    char c;
+    bool literal;
+    nmea_text text;
+    nmea_enum enumeration;
+} field_value;
+
+/* The size of the value of field `f` (0: a keyword holds none). */
+static size_t field_size(const layout_field *f)
+{
+    switch ((field_type)f->type) {
+    case FIELD_KEYWORD:
+        return 0;
+    case FIELD_INTEGER:
+    case FIELD_DECIMAL:
+        return sizeof(nmea_number);
+    case FIELD_HEX:
+        return sizeof(nmea_hex);
+    case FIELD_TIME:
+        return sizeof(nmea_time);
+    case FIELD_DATE:
+        return sizeof(nmea_date);
+    case FIELD_LATITUDE:
+    case FIELD_LONGITUDE:
+        return sizeof(nmea_coordinate);
+    case FIELD_CHAR:
+        return sizeof(char);
+    case FIELD_LITERAL:
+        return sizeof(bool);
+    case FIELD_TEXT:
+    case FIELD_ENUM_CHARS:
+        return sizeof(nmea_text);
+    case FIELD_ENUM:
+        return sizeof(nmea_enum);
+    }
+    return 0;
+}
+
+/* The end of the `n` fields (n > 0) that start at `p`, before `end`. */
+static const char *fields_end(const char *p, const char *end, char sep, size_t n)
+{
+    for (;; p++) {
+        while (p < end && *p != sep)
+            p++;
+        if (p == end || --n == 0)
+            return p;
+    }
+}
+
+/* Reads a parsed sentence's group entries again, field by field, from their wire text. */
+typedef struct {
+    nmea_reader r;
+    nmea_error err;
+} entry_reader;
+
+static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i);
+
+/* The next field `f` of an entry, into `out`, as parsing read it (lenient parsing's blanks
+   included). A field that does not read (in a struct the parser did not make) is empty. */
+static void reread_field(entry_reader *c, const layout_field *f, void *out)
+{
+    const char *next = c->r.next;
+    unsigned index = c->r.index;
+    size_t size = field_size(f);
+
+    if (size)
+        memset(out, 0, size);
+    if (read_field(&c->r, f, out))
+        return;
+    if (size)
+        memset(out, 0, size);
+    c->r.next = fields_end(next, c->r.end, c->r.sep, f->width);
+    c->r.next += c->r.next < c->r.end;
+    c->r.index = index + f->width;
 }
 
 /* Reads the wire into `s`, a struct of layout `l`. */
@@ -3607,10 +3705,22 @@ NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nme
     if (!read_fields(&r, l->fields, l->before, s))
         return false;
     if (g) {
+        const char *start = r.next;
+        unsigned first = r.index;
+        field_value value;
+        size_t j;
         for (i = 0; i < repeats; i++) {
             reader_entry(&r, g->id, i);
-            if (!read_fields(&r, g->fields, g->field_count, (void *)entry_at(g, s, i)))
-                return false;
+            for (j = 0; j < g->field_count; j++)
+                if (!read_field(&r, &g->fields[j], &value))
+                    return false;
+        }
+        if (g->offset != NO_MEMBER) { /* the entries stay on the wire, read when asked for */
+            nmea_entries *e = (nmea_entries *)member_at(s, g->offset);
+            e->wire = text_span(start, repeats ? fields_end(start, r.end, r.sep, repeats * g->width) : start);
+            for (j = 0; j < wire->blanks; j++)
+                if (wire->blank[j] > first && wire->blank[j] <= r.index)
+                    e->blank[e->blanks++] = (uint16_t)(wire->blank[j] - first);
         }
         if (g->count_offset != NO_MEMBER)
             *(uint8_t *)member_at(s, g->count_offset) = (uint8_t)repeats;
@@ -3619,9 +3729,59 @@ NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nme
     return read_fields(&r, l->fields + l->before, l->after + present, s);
 }
 
-static void write_field(nmea_writer *w, const layout_field *f, const void *entry)
+/* Starts `c` at entry `i` of the group of layout `l` whose entries `e` holds on the wire; false
+   when the wire ends before it. */
+static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i)
 {
-    const void *in = const_member_at(entry, f->offset);
+    nmea_wire w;
+    const char *p = e->wire.ptr, *end = p ? p + e->wire.len : NULL;
+    size_t skip;
+
+    memset(&w, 0, sizeof w);
+    w.sep = l->kind == LAYOUT_TEXT ? ' ' : ',';
+    w.ignore_case = l->kind == LAYOUT_TEXT;
+    for (skip = i * l->group->width; skip > 0; skip--) {
+        p = fields_end(p, end, w.sep, 1);
+        if (p == end)
+            return false;
+        p++;
+    }
+    if (p == NULL || (p == end && i > 0))
+        return false;
+    w.fields = text_span(p, end);
+    reader_start(&c->r, &w, l->sentence, &c->err);
+    c->r.index = (unsigned)(i * l->group->width); /* the blanks count from the first entry */
+    c->r.blank = e->blank;
+    c->r.blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;
+    return true;
+}
+
+/* Entry `i` of the group of `s`, a struct of layout `l`, into `out` (an entry, or the value of a
+   group of one field): false when the group has fewer entries. */
+NMEA_OUTLINE bool entry_of(const layout *l, const void *s, size_t i, void *out)
+{
+    const layout_group *g = l->group;
+    const nmea_entries *e = entries_in(g, s);
+    entry_reader c;
+    size_t j;
+
+    if (i >= entries_of(g, s))
+        return false;
+    if (e->items) {
+        memcpy(out, (const char *)e->items + i * g->entry_size, g->entry_size);
+        return true;
+    }
+    memset(out, 0, g->entry_size);
+    if (!entry_reader_at(&c, l, e, i))
+        return true; /* past what the wire holds: an empty entry */
+    for (j = 0; j < g->field_count; j++)
+        reread_field(&c, &g->fields[j], member_at(out, g->fields[j].offset));
+    return true;
+}
+
+/* Writes field `f` (its separator and text) from `in`, a value of its type. */
+static void write_field(nmea_writer *w, const layout_field *f, const void *in)
+{
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
         put_keyword(w, f->arg);
@@ -3663,7 +3823,37 @@ static void write_fields(nmea_writer *w, const layout_field *f, size_t n, const 
 {
     size_t i;
     for (i = 0; i < n; i++)
-        write_field(w, &f[i], entry);
+        write_field(w, &f[i], const_member_at(entry, f[i].offset));
+}
+
+/* The entries of a group: from the caller's array, else their fields as received (a field a
+   problem names is written with the problem's text, which is the same). The fields of entries
+   neither holds are empty; a group of keywords writes its keywords. */
+static void write_entries(nmea_writer *w, const layout_group *g, const void *s)
+{
+    const nmea_entries *e = entries_in(g, s);
+    size_t i, n = entries_of(g, s);
+    const char *p, *end, *stop;
+
+    if (e && e->items) {
+        for (i = 0; i < n; i++)
+            write_fields(w, g->fields, g->field_count, (const char *)e->items + i * g->entry_size);
+        return;
+    }
+    if (!e) {
+        for (i = 0; i < n; i++)
+            write_fields(w, g->fields, g->field_count, s);
+        return;
+    }
+    p = e->wire.ptr;
+    end = p ? p + e->wire.len : NULL;
+    for (i = 0; i < n * g->width; i++) {
+        stop = fields_end(p, end, w->sep, 1);
+        /* (a field lenient parsing read as empty is written empty, or as its problem's text) */
+        if (!put_sep(w) && stop != p && !(e->blanks && is_blank(e->blank, e->blanks, (unsigned)i + 1)))
+            put_text(w, text_span(p, stop));
+        p = stop < end ? stop + 1 : stop;
+    }
 }
 
 /* Writes `s`, a struct of layout `l`, with the texts of its `problems` (NULL: none) in their
@@ -3671,7 +3861,6 @@ static void write_fields(nmea_writer *w, const layout_field *f, size_t n, const 
 NMEA_OUTLINE void write_with(nmea_writer *w, const layout *l, const void *s, const nmea_problems *problems)
 {
     const layout_group *g = l->group;
-    size_t i, n;
 
     if (l->kind == LAYOUT_STANDARD)
         begin_sentence(w, l->start, *(const nmea_text *)const_member_at(s, l->head), l->sentence, problems);
@@ -3681,8 +3870,7 @@ NMEA_OUTLINE void write_with(nmea_writer *w, const layout *l, const void *s, con
         begin_text(w, l->address, *(const nmea_text *)const_member_at(s, l->head), problems);
     write_fields(w, l->fields, l->before, s);
     if (g)
-        for (i = 0, n = entries_of(g, s); i < n; i++)
-            write_fields(w, g->fields, g->field_count, entry_at(g, s, i));
+        write_entries(w, g, s);
     write_fields(w, l->fields + l->before, l->after + optional_of(l, s), s);
     if (l->kind == LAYOUT_TEXT)
         end_text(w);
@@ -3712,10 +3900,10 @@ static size_t build_with(const layout *l, const void *s, const nmea_problems *pr
 }
 
 #ifndef NMEA_NO_JSON
-/* A field in the JSON under `key` (NULL: a value of a group's array). */
-static void json_field(nmea_writer *w, const char *key, const layout_field *f, const void *entry, bool values)
+/* A field in the JSON under `key` (NULL: a value of a group's array), from `in`, a value of its
+   type. */
+static void json_field(nmea_writer *w, const char *key, const layout_field *f, const void *in, bool values)
 {
-    const void *in = const_member_at(entry, f->offset);
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
         json_keyword(w, key, f->arg, values);
@@ -3759,7 +3947,7 @@ static void json_fields(nmea_writer *w, const layout_field *f, size_t n, const v
 {
     size_t i;
     for (i = 0; i < n; i++)
-        json_field(w, f[i].id, &f[i], entry, values);
+        json_field(w, f[i].id, &f[i], const_member_at(entry, f[i].offset), values);
 }
 
 /* The lossless fields of a text command written back as received: each word as written, under
@@ -3788,7 +3976,44 @@ static void json_words_as_written(nmea_writer *w, const layout *l, const void *s
     size_t i, count = l->before + optional_of(l, s);
     for (i = 0; i < count; i++)
         if (!problems || !json_problem_word(w, l->fields[i].id, problems, (unsigned)i + 1))
-            json_field(w, l->fields[i].id, &l->fields[i], s, false);
+            json_field(w, l->fields[i].id, &l->fields[i], const_member_at(s, l->fields[i].offset), false);
+}
+
+/* The entries of the group of `s`, a struct of layout `l`: from the caller's array, else read
+   again from the wire field by field. */
+static void json_entries(nmea_writer *w, const layout *l, const void *s, bool values)
+{
+    const layout_group *g = l->group;
+    const nmea_entries *e = entries_in(g, s);
+    size_t i, j, n = entries_of(g, s);
+    bool on_wire = false;
+    entry_reader c;
+    field_value value;
+    const void *in;
+
+    memset(&c, 0, sizeof c);
+    json_open(w, g->id, '[');
+    for (i = 0; i < n; i++) {
+        if (!e || !e->items)
+            on_wire = i == 0 ? e && entry_reader_at(&c, l, e, 0) : on_wire && c.r.next < c.r.end;
+        if (!g->single)
+            json_open(w, NULL, '{');
+        for (j = 0; j < g->field_count; j++) {
+            const layout_field *f = &g->fields[j];
+            if (e && e->items) {
+                in = (const char *)e->items + i * g->entry_size + f->offset;
+            } else {
+                memset(&value, 0, sizeof value);
+                if (on_wire)
+                    reread_field(&c, f, &value);
+                in = &value;
+            }
+            json_field(w, g->single ? NULL : f->id, f, in, values);
+        }
+        if (!g->single)
+            json_close(w, '}');
+    }
+    json_close(w, ']');
 }
 
 /* The decode JSON of `s`, a struct of layout `l`, with its `problems` (NULL: none). */
@@ -3798,7 +4023,6 @@ NMEA_OUTLINE void json_with(nmea_writer *w, const layout *l, const void *s, cons
     const layout_group *g = l->group;
     nmea_writer sentence = writer_of(NULL, 0);
     nmea_checksum_style checksum = NMEA_CHECKSUM_NONE;
-    size_t i, n;
 
     write_with(&sentence, l, s, problems);
     if (l->checksum != NO_MEMBER)
@@ -3820,19 +4044,8 @@ NMEA_OUTLINE void json_with(nmea_writer *w, const layout *l, const void *s, cons
         }
     }
     json_fields(w, l->fields, l->before, s, values);
-    if (g) {
-        json_open(w, g->id, '[');
-        for (i = 0, n = entries_of(g, s); i < n; i++) {
-            if (g->single) {
-                json_field(w, NULL, g->fields, entry_at(g, s, i), values);
-            } else {
-                json_open(w, NULL, '{');
-                json_fields(w, g->fields, g->field_count, entry_at(g, s, i), values);
-                json_close(w, '}');
-            }
-        }
-        json_close(w, ']');
-    }
+    if (g)
+        json_entries(w, l, s, values);
     json_fields(w, l->fields + l->before, l->after + optional_of(l, s), s, values);
     json_end_sentence(w, &sentence, checksum, problems);
 }
@@ -7274,13 +7487,18 @@ static const layout_field alc_group_fields[] = {
 static const layout_group alc_group = {
     .id = "alerts", .fields = alc_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 10,
     .single = false, .offset = offsetof(nmea_alc, alerts), .entry_size = sizeof(nmea_alc_alert),
-    .count_offset = offsetof(nmea_alc, alerts_count),
+    .count_offset = offsetof(nmea_alc, alerts.count),
 };
 static const layout alc_layout = {
     .sentence = "ALC", .fields = alc_fields, .group = &alc_group, .before = 4, .fixed = 4, .max_fields = 44,
     .size = sizeof(nmea_alc), .head = offsetof(nmea_alc, talker), .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_alc, checksum), .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_alc_alerts_at(const nmea_alc *s, size_t i, nmea_alc_alert *out)
+{
+    return entry_of(&alc_layout, s, i, out);
+}
 
 bool nmea_parse_alc(nmea_alc *out, const char *line, size_t len, nmea_error *err)
 {
@@ -7352,13 +7570,18 @@ static const layout_field alk_group_fields[] = {
 static const layout_group alk_group = {
     .id = "data", .fields = alk_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 23, .single = true,
     .offset = offsetof(nmea_alk, data), .entry_size = sizeof(nmea_hex),
-    .count_offset = offsetof(nmea_alk, data_count),
+    .count_offset = offsetof(nmea_alk, data.count),
 };
 static const layout alk_layout = {
     .sentence = "ALK", .fields = alk_fields, .group = &alk_group, .before = 1, .fixed = 1, .max_fields = 24,
     .size = sizeof(nmea_alk), .head = offsetof(nmea_alk, talker), .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_alk, checksum), .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_alk_data_at(const nmea_alk *s, size_t i, nmea_hex *out)
+{
+    return entry_of(&alk_layout, s, i, out);
+}
 
 bool nmea_parse_alk(nmea_alk *out, const char *line, size_t len, nmea_error *err)
 {
@@ -8088,13 +8311,18 @@ static const layout_field dse_group_fields[] = {
 static const layout_group dse_group = {
     .id = "data_sets", .fields = dse_group_fields, .field_count = 2, .width = 2, .min = 1, .max = 8,
     .single = false, .offset = offsetof(nmea_dse, data_sets), .entry_size = sizeof(nmea_dse_data_set),
-    .count_offset = offsetof(nmea_dse, data_sets_count),
+    .count_offset = offsetof(nmea_dse, data_sets.count),
 };
 static const layout dse_layout = {
     .sentence = "DSE", .fields = dse_fields, .group = &dse_group, .before = 4, .fixed = 4, .max_fields = 20,
     .size = sizeof(nmea_dse), .head = offsetof(nmea_dse, talker), .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_dse, checksum), .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_dse_data_sets_at(const nmea_dse *s, size_t i, nmea_dse_data_set *out)
+{
+    return entry_of(&dse_layout, s, i, out);
+}
 
 bool nmea_parse_dse(nmea_dse *out, const char *line, size_t len, nmea_error *err)
 {
@@ -8473,13 +8701,18 @@ static const layout_field gen_group_fields[] = {
 static const layout_group gen_group = {
     .id = "words", .fields = gen_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 8, .single = true,
     .offset = offsetof(nmea_gen, words), .entry_size = sizeof(nmea_hex),
-    .count_offset = offsetof(nmea_gen, words_count),
+    .count_offset = offsetof(nmea_gen, words.count),
 };
 static const layout gen_layout = {
     .sentence = "GEN", .fields = gen_fields, .group = &gen_group, .before = 2, .fixed = 2, .max_fields = 10,
     .size = sizeof(nmea_gen), .head = offsetof(nmea_gen, talker), .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_gen, checksum), .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_gen_words_at(const nmea_gen *s, size_t i, nmea_hex *out)
+{
+    return entry_of(&gen_layout, s, i, out);
+}
 
 bool nmea_parse_gen(nmea_gen *out, const char *line, size_t len, nmea_error *err)
 {
@@ -8656,6 +8889,11 @@ static const layout glc_layout = {
     .size = sizeof(nmea_glc), .head = offsetof(nmea_glc, talker), .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_glc, checksum), .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_glc_time_differences_at(const nmea_glc *s, size_t i, nmea_glc_time_difference *out)
+{
+    return entry_of(&glc_layout, s, i, out);
+}
 
 bool nmea_parse_glc(nmea_glc *out, const char *line, size_t len, nmea_error *err)
 {
@@ -9085,6 +9323,11 @@ static const layout grs_layout = {
     .kind = LAYOUT_STANDARD, .start = '$',
 };
 
+bool nmea_grs_residuals_at(const nmea_grs *s, size_t i, nmea_number *out)
+{
+    return entry_of(&grs_layout, s, i, out);
+}
+
 bool nmea_parse_grs(nmea_grs *out, const char *line, size_t len, nmea_error *err)
 {
     return parse_with(&grs_layout, out, line, len, err);
@@ -9132,6 +9375,8 @@ static const layout gsa_layout = {
 static fast_result gsa_fast(nmea_gsa *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_number value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 5, 1, 12, 12, 1, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -9142,10 +9387,12 @@ static fast_result gsa_fast(nmea_gsa *s, const char *line, const char *p, const 
     if (!fast_enum(&p, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_enum(&p, &s->fix_type, &nmea_gsa_fix_type_def))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_integer(&p, &s->prns[i], NULL))
+        if (!fast_integer(&p, &value, NULL))
             return FAST_UNSURE;
     }
+    s->prns.wire = text_span(group, repeats ? p - 1 : p);
     if (!fast_decimal(&p, &s->pdop, NULL)
         || !fast_decimal(&p, &s->hdop, NULL)
         || !fast_decimal(&p, &s->vdop, NULL)
@@ -9166,9 +9413,16 @@ static size_t gsa_fast_write(const nmea_gsa *s, char *buf, size_t cap)
     if (!fast_put_enum(&w, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_put_enum(&w, &s->fix_type, &nmea_gsa_fix_type_def))
         return 0;
-    for (i = 0; i < 12; i++) {
-        if (!fast_put_number(&w, &s->prns[i]))
+    if (!s->prns.items) {
+        if (!fast_put_entries(&w, &s->prns, 12 * 1u))
             return 0;
+    } else {
+        for (i = 0; i < 12; i++) {
+            nmea_number value = ((const nmea_number *)s->prns.items)[i];
+
+            if (!fast_put_number(&w, &value))
+                return 0;
+        }
     }
     if (!fast_put_number(&w, &s->pdop)
         || !fast_put_number(&w, &s->hdop)
@@ -9176,6 +9430,11 @@ static size_t gsa_fast_write(const nmea_gsa *s, char *buf, size_t cap)
         || (s->optional_count >= 1 && !fast_put_enum(&w, &s->system_id, &nmea_system_id_def)))
         return 0;
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_gsa_prns_at(const nmea_gsa *s, size_t i, nmea_number *out)
+{
+    return entry_of(&gsa_layout, s, i, out);
 }
 
 bool nmea_parse_gsa(nmea_gsa *out, const char *line, size_t len, nmea_error *err)
@@ -9216,7 +9475,7 @@ static const layout_field gsa_short_group_fields[] = {
 static const layout_group gsa_short_group = {
     .id = "prns", .fields = gsa_short_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 11,
     .single = true, .offset = offsetof(nmea_gsa_short, prns), .entry_size = sizeof(nmea_number),
-    .count_offset = offsetof(nmea_gsa_short, prns_count),
+    .count_offset = offsetof(nmea_gsa_short, prns.count),
 };
 static const layout gsa_short_layout = {
     .sentence = "GSA", .variant = "short", .fields = gsa_short_fields, .group = &gsa_short_group, .before = 2,
@@ -9230,6 +9489,8 @@ static const layout gsa_short_layout = {
 static fast_result gsa_short_fast(nmea_gsa_short *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_number value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 5, 1, 0, 11, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -9240,11 +9501,13 @@ static fast_result gsa_short_fast(nmea_gsa_short *s, const char *line, const cha
     if (!fast_enum(&p, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_enum(&p, &s->fix_type, &nmea_gsa_fix_type_def))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_integer(&p, &s->prns[i], NULL))
+        if (!fast_integer(&p, &value, NULL))
             return FAST_UNSURE;
     }
-    s->prns_count = (uint8_t)repeats;
+    s->prns.wire = text_span(group, repeats ? p - 1 : p);
+    s->prns.count = (uint8_t)repeats;
     if (!fast_decimal(&p, &s->pdop, NULL)
         || !fast_decimal(&p, &s->hdop, NULL)
         || !fast_decimal(&p, &s->vdop, NULL))
@@ -9264,15 +9527,27 @@ static size_t gsa_short_fast_write(const nmea_gsa_short *s, char *buf, size_t ca
     if (!fast_put_enum(&w, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_put_enum(&w, &s->fix_type, &nmea_gsa_fix_type_def))
         return 0;
-    for (i = 0; i < s->prns_count && i < 11; i++) {
-        if (!fast_put_number(&w, &s->prns[i]))
+    if (!s->prns.items) {
+        if (!fast_put_entries(&w, &s->prns, (s->prns.count < 11 ? s->prns.count : 11) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->prns.count < 11 ? s->prns.count : 11); i++) {
+            nmea_number value = ((const nmea_number *)s->prns.items)[i];
+
+            if (!fast_put_number(&w, &value))
+                return 0;
+        }
     }
     if (!fast_put_number(&w, &s->pdop)
         || !fast_put_number(&w, &s->hdop)
         || !fast_put_number(&w, &s->vdop))
         return 0;
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_gsa_short_prns_at(const nmea_gsa_short *s, size_t i, nmea_number *out)
+{
+    return entry_of(&gsa_short_layout, s, i, out);
 }
 
 bool nmea_parse_gsa_short(nmea_gsa_short *out, const char *line, size_t len, nmea_error *err)
@@ -9312,7 +9587,7 @@ static const layout_field gsa_wide_system_group_fields[] = {
 static const layout_group gsa_wide_system_group = {
     .id = "prns", .fields = gsa_wide_system_group_fields, .field_count = 1, .width = 1, .min = 13, .max = 24,
     .single = true, .offset = offsetof(nmea_gsa_wide_system, prns), .entry_size = sizeof(nmea_number),
-    .count_offset = offsetof(nmea_gsa_wide_system, prns_count),
+    .count_offset = offsetof(nmea_gsa_wide_system, prns.count),
 };
 static const layout gsa_wide_system_layout = {
     .sentence = "GSA", .variant = "wide_system", .fields = gsa_wide_system_fields,
@@ -9327,6 +9602,8 @@ static const layout gsa_wide_system_layout = {
 static fast_result gsa_wide_system_fast(nmea_gsa_wide_system *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_number value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 6, 1, 13, 24, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -9337,11 +9614,13 @@ static fast_result gsa_wide_system_fast(nmea_gsa_wide_system *s, const char *lin
     if (!fast_enum(&p, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_enum(&p, &s->fix_type, &nmea_gsa_fix_type_def))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_integer(&p, &s->prns[i], NULL))
+        if (!fast_integer(&p, &value, NULL))
             return FAST_UNSURE;
     }
-    s->prns_count = (uint8_t)repeats;
+    s->prns.wire = text_span(group, repeats ? p - 1 : p);
+    s->prns.count = (uint8_t)repeats;
     if (!fast_decimal(&p, &s->pdop, NULL)
         || !fast_decimal(&p, &s->hdop, NULL)
         || !fast_decimal(&p, &s->vdop, NULL)
@@ -9362,9 +9641,16 @@ static size_t gsa_wide_system_fast_write(const nmea_gsa_wide_system *s, char *bu
     if (!fast_put_enum(&w, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_put_enum(&w, &s->fix_type, &nmea_gsa_fix_type_def))
         return 0;
-    for (i = 0; i < s->prns_count && i < 24; i++) {
-        if (!fast_put_number(&w, &s->prns[i]))
+    if (!s->prns.items) {
+        if (!fast_put_entries(&w, &s->prns, (s->prns.count < 24 ? s->prns.count : 24) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->prns.count < 24 ? s->prns.count : 24); i++) {
+            nmea_number value = ((const nmea_number *)s->prns.items)[i];
+
+            if (!fast_put_number(&w, &value))
+                return 0;
+        }
     }
     if (!fast_put_number(&w, &s->pdop)
         || !fast_put_number(&w, &s->hdop)
@@ -9372,6 +9658,11 @@ static size_t gsa_wide_system_fast_write(const nmea_gsa_wide_system *s, char *bu
         || !fast_put_enum(&w, &s->system_id, &nmea_system_id_def))
         return 0;
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_gsa_wide_system_prns_at(const nmea_gsa_wide_system *s, size_t i, nmea_number *out)
+{
+    return entry_of(&gsa_wide_system_layout, s, i, out);
 }
 
 bool nmea_parse_gsa_wide_system(nmea_gsa_wide_system *out, const char *line, size_t len, nmea_error *err)
@@ -9410,7 +9701,7 @@ static const layout_field gsa_wide_group_fields[] = {
 static const layout_group gsa_wide_group = {
     .id = "prns", .fields = gsa_wide_group_fields, .field_count = 1, .width = 1, .min = 13, .max = 24,
     .single = true, .offset = offsetof(nmea_gsa_wide, prns), .entry_size = sizeof(nmea_number),
-    .count_offset = offsetof(nmea_gsa_wide, prns_count),
+    .count_offset = offsetof(nmea_gsa_wide, prns.count),
 };
 static const layout gsa_wide_layout = {
     .sentence = "GSA", .variant = "wide", .fields = gsa_wide_fields, .group = &gsa_wide_group, .before = 2,
@@ -9424,6 +9715,8 @@ static const layout gsa_wide_layout = {
 static fast_result gsa_wide_fast(nmea_gsa_wide *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_number value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 5, 1, 13, 24, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -9434,11 +9727,13 @@ static fast_result gsa_wide_fast(nmea_gsa_wide *s, const char *line, const char 
     if (!fast_enum(&p, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_enum(&p, &s->fix_type, &nmea_gsa_fix_type_def))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_integer(&p, &s->prns[i], NULL))
+        if (!fast_integer(&p, &value, NULL))
             return FAST_UNSURE;
     }
-    s->prns_count = (uint8_t)repeats;
+    s->prns.wire = text_span(group, repeats ? p - 1 : p);
+    s->prns.count = (uint8_t)repeats;
     if (!fast_decimal(&p, &s->pdop, NULL)
         || !fast_decimal(&p, &s->hdop, NULL)
         || !fast_decimal(&p, &s->vdop, NULL))
@@ -9458,15 +9753,27 @@ static size_t gsa_wide_fast_write(const nmea_gsa_wide *s, char *buf, size_t cap)
     if (!fast_put_enum(&w, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_put_enum(&w, &s->fix_type, &nmea_gsa_fix_type_def))
         return 0;
-    for (i = 0; i < s->prns_count && i < 24; i++) {
-        if (!fast_put_number(&w, &s->prns[i]))
+    if (!s->prns.items) {
+        if (!fast_put_entries(&w, &s->prns, (s->prns.count < 24 ? s->prns.count : 24) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->prns.count < 24 ? s->prns.count : 24); i++) {
+            nmea_number value = ((const nmea_number *)s->prns.items)[i];
+
+            if (!fast_put_number(&w, &value))
+                return 0;
+        }
     }
     if (!fast_put_number(&w, &s->pdop)
         || !fast_put_number(&w, &s->hdop)
         || !fast_put_number(&w, &s->vdop))
         return 0;
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_gsa_wide_prns_at(const nmea_gsa_wide *s, size_t i, nmea_number *out)
+{
+    return entry_of(&gsa_wide_layout, s, i, out);
 }
 
 bool nmea_parse_gsa_wide(nmea_gsa_wide *out, const char *line, size_t len, nmea_error *err)
@@ -9522,6 +9829,8 @@ static const layout gsa_extra_dop_layout = {
 static fast_result gsa_extra_dop_fast(nmea_gsa_extra_dop *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_number value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 6, 1, 12, 12, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -9532,10 +9841,12 @@ static fast_result gsa_extra_dop_fast(nmea_gsa_extra_dop *s, const char *line, c
     if (!fast_enum(&p, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_enum(&p, &s->fix_type, &nmea_gsa_fix_type_def))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_integer(&p, &s->prns[i], NULL))
+        if (!fast_integer(&p, &value, NULL))
             return FAST_UNSURE;
     }
+    s->prns.wire = text_span(group, repeats ? p - 1 : p);
     if (!fast_decimal(&p, &s->pdop, NULL)
         || !fast_decimal(&p, &s->hdop, NULL)
         || !fast_decimal(&p, &s->vdop, NULL)
@@ -9556,9 +9867,16 @@ static size_t gsa_extra_dop_fast_write(const nmea_gsa_extra_dop *s, char *buf, s
     if (!fast_put_enum(&w, &s->selection_mode, &nmea_gsa_selection_mode_def)
         || !fast_put_enum(&w, &s->fix_type, &nmea_gsa_fix_type_def))
         return 0;
-    for (i = 0; i < 12; i++) {
-        if (!fast_put_number(&w, &s->prns[i]))
+    if (!s->prns.items) {
+        if (!fast_put_entries(&w, &s->prns, 12 * 1u))
             return 0;
+    } else {
+        for (i = 0; i < 12; i++) {
+            nmea_number value = ((const nmea_number *)s->prns.items)[i];
+
+            if (!fast_put_number(&w, &value))
+                return 0;
+        }
     }
     if (!fast_put_number(&w, &s->pdop)
         || !fast_put_number(&w, &s->hdop)
@@ -9566,6 +9884,11 @@ static size_t gsa_extra_dop_fast_write(const nmea_gsa_extra_dop *s, char *buf, s
         || !fast_put_number(&w, &s->fourth_dop))
         return 0;
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_gsa_extra_dop_prns_at(const nmea_gsa_extra_dop *s, size_t i, nmea_number *out)
+{
+    return entry_of(&gsa_extra_dop_layout, s, i, out);
 }
 
 bool nmea_parse_gsa_extra_dop(nmea_gsa_extra_dop *out, const char *line, size_t len, nmea_error *err)
@@ -9691,7 +10014,7 @@ static const layout_field gsv_group_fields[] = {
 static const layout_group gsv_group = {
     .id = "satellites", .fields = gsv_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
     .single = false, .offset = offsetof(nmea_gsv, satellites), .entry_size = sizeof(nmea_gsv_satellite),
-    .count_offset = offsetof(nmea_gsv, satellites_count),
+    .count_offset = offsetof(nmea_gsv, satellites.count),
 };
 static const layout gsv_layout = {
     .sentence = "GSV", .fields = gsv_fields, .group = &gsv_group, .before = 3, .optional = 1, .fixed = 3,
@@ -9705,6 +10028,8 @@ static const layout gsv_layout = {
 static fast_result gsv_fast(nmea_gsv *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_gsv_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 3, 4, 0, 4, 1, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -9716,16 +10041,16 @@ static fast_result gsv_fast(nmea_gsv *s, const char *line, const char *p, const 
         || !fast_integer(&p, &s->message_number, &range_from_1)
         || !fast_integer(&p, &s->satellites_in_view, &range_from_0))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        nmea_gsv_satellite *e = &s->satellites[i];
-
         if (!fast_integer(&p, &e->prn, NULL)
             || !fast_integer(&p, &e->elevation, &range_minus_90_to_90)
             || !fast_integer(&p, &e->azimuth, &range_0_to_360)
             || !fast_integer(&p, &e->snr, &range_0_to_99))
             return FAST_UNSURE;
     }
-    s->satellites_count = (uint8_t)repeats;
+    s->satellites.wire = text_span(group, repeats ? p - 1 : p);
+    s->satellites.count = (uint8_t)repeats;
     if (s->optional_count >= 1 && !fast_enum(&p, &s->signal_id, &nmea_signal_id_def))
         return FAST_UNSURE;
     return p == end ? FAST_OK : FAST_UNSURE;
@@ -9744,18 +10069,28 @@ static size_t gsv_fast_write(const nmea_gsv *s, char *buf, size_t cap)
         || !fast_put_number(&w, &s->message_number)
         || !fast_put_number(&w, &s->satellites_in_view))
         return 0;
-    for (i = 0; i < s->satellites_count && i < 4; i++) {
-        const nmea_gsv_satellite *e = &s->satellites[i];
-
-        if (!fast_put_number(&w, &e->prn)
-            || !fast_put_number(&w, &e->elevation)
-            || !fast_put_number(&w, &e->azimuth)
-            || !fast_put_number(&w, &e->snr))
+    if (!s->satellites.items) {
+        if (!fast_put_entries(&w, &s->satellites, (s->satellites.count < 4 ? s->satellites.count : 4) * 4u))
             return 0;
+    } else {
+        for (i = 0; i < (s->satellites.count < 4 ? s->satellites.count : 4); i++) {
+            const nmea_gsv_satellite *e = &((const nmea_gsv_satellite *)s->satellites.items)[i];
+
+            if (!fast_put_number(&w, &e->prn)
+                || !fast_put_number(&w, &e->elevation)
+                || !fast_put_number(&w, &e->azimuth)
+                || !fast_put_number(&w, &e->snr))
+                return 0;
+        }
     }
     if (s->optional_count >= 1 && !fast_put_enum(&w, &s->signal_id, &nmea_signal_id_def))
         return 0;
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_gsv_satellites_at(const nmea_gsv *s, size_t i, nmea_gsv_satellite *out)
+{
+    return entry_of(&gsv_layout, s, i, out);
 }
 
 bool nmea_parse_gsv(nmea_gsv *out, const char *line, size_t len, nmea_error *err)
@@ -11173,13 +11508,18 @@ static const layout_field r00_group_fields[] = {
 static const layout_group r00_group = {
     .id = "waypoints", .fields = r00_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 14,
     .single = true, .offset = offsetof(nmea_r00, waypoints), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_r00, waypoints_count),
+    .count_offset = offsetof(nmea_r00, waypoints.count),
 };
 static const layout r00_layout = {
     .sentence = "R00", .fields = NO_FIELDS, .group = &r00_group, .max_fields = 14, .size = sizeof(nmea_r00),
     .head = offsetof(nmea_r00, talker), .optional_count = NO_MEMBER, .checksum = offsetof(nmea_r00, checksum),
     .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_r00_waypoints_at(const nmea_r00 *s, size_t i, nmea_text *out)
+{
+    return entry_of(&r00_layout, s, i, out);
+}
 
 bool nmea_parse_r00(nmea_r00 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -11730,13 +12070,18 @@ static const layout_field rte_group_fields[] = {
 static const layout_group rte_group = {
     .id = "waypoints", .fields = rte_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 32,
     .single = true, .offset = offsetof(nmea_rte, waypoints), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_rte, waypoints_count),
+    .count_offset = offsetof(nmea_rte, waypoints.count),
 };
 static const layout rte_layout = {
     .sentence = "RTE", .fields = rte_fields, .group = &rte_group, .before = 4, .fixed = 4, .max_fields = 36,
     .size = sizeof(nmea_rte), .head = offsetof(nmea_rte, talker), .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_rte, checksum), .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_rte_waypoints_at(const nmea_rte *s, size_t i, nmea_text *out)
+{
+    return entry_of(&rte_layout, s, i, out);
+}
 
 bool nmea_parse_rte(nmea_rte *out, const char *line, size_t len, nmea_error *err)
 {
@@ -11767,13 +12112,18 @@ static const layout_field sfi_group_fields[] = {
 static const layout_group sfi_group = {
     .id = "frequencies", .fields = sfi_group_fields, .field_count = 2, .width = 2, .min = 0, .max = 6,
     .single = false, .offset = offsetof(nmea_sfi, frequencies), .entry_size = sizeof(nmea_sfi_frequencie),
-    .count_offset = offsetof(nmea_sfi, frequencies_count),
+    .count_offset = offsetof(nmea_sfi, frequencies.count),
 };
 static const layout sfi_layout = {
     .sentence = "SFI", .fields = sfi_fields, .group = &sfi_group, .before = 2, .fixed = 2, .max_fields = 14,
     .size = sizeof(nmea_sfi), .head = offsetof(nmea_sfi, talker), .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_sfi, checksum), .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_sfi_frequencies_at(const nmea_sfi *s, size_t i, nmea_sfi_frequencie *out)
+{
+    return entry_of(&sfi_layout, s, i, out);
+}
 
 bool nmea_parse_sfi(nmea_sfi *out, const char *line, size_t len, nmea_error *err)
 {
@@ -12127,13 +12477,18 @@ static const layout_field tlb_group_fields[] = {
 static const layout_group tlb_group = {
     .id = "labels", .fields = tlb_group_fields, .field_count = 2, .width = 2, .min = 1, .max = 20,
     .single = false, .offset = offsetof(nmea_tlb, labels), .entry_size = sizeof(nmea_tlb_label),
-    .count_offset = offsetof(nmea_tlb, labels_count),
+    .count_offset = offsetof(nmea_tlb, labels.count),
 };
 static const layout tlb_layout = {
     .sentence = "TLB", .fields = NO_FIELDS, .group = &tlb_group, .max_fields = 40, .size = sizeof(nmea_tlb),
     .head = offsetof(nmea_tlb, talker), .optional_count = NO_MEMBER, .checksum = offsetof(nmea_tlb, checksum),
     .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_tlb_labels_at(const nmea_tlb *s, size_t i, nmea_tlb_label *out)
+{
+    return entry_of(&tlb_layout, s, i, out);
+}
 
 bool nmea_parse_tlb(nmea_tlb *out, const char *line, size_t len, nmea_error *err)
 {
@@ -13153,13 +13508,18 @@ static const layout_field xdr_group_fields[] = {
 static const layout_group xdr_group = {
     .id = "measurements", .fields = xdr_group_fields, .field_count = 4, .width = 4, .min = 1, .max = 10,
     .single = false, .offset = offsetof(nmea_xdr, measurements), .entry_size = sizeof(nmea_xdr_measurement),
-    .count_offset = offsetof(nmea_xdr, measurements_count),
+    .count_offset = offsetof(nmea_xdr, measurements.count),
 };
 static const layout xdr_layout = {
     .sentence = "XDR", .fields = NO_FIELDS, .group = &xdr_group, .max_fields = 40, .size = sizeof(nmea_xdr),
     .head = offsetof(nmea_xdr, talker), .optional_count = NO_MEMBER, .checksum = offsetof(nmea_xdr, checksum),
     .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_xdr_measurements_at(const nmea_xdr *s, size_t i, nmea_xdr_measurement *out)
+{
+    return entry_of(&xdr_layout, s, i, out);
+}
 
 bool nmea_parse_xdr(nmea_xdr *out, const char *line, size_t len, nmea_error *err)
 {
@@ -16585,13 +16945,18 @@ static const layout_field pair890_group_fields[] = {
 static const layout_group pair890_group = {
     .id = "fences", .fields = pair890_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 4,
     .single = false, .offset = offsetof(nmea_pair890, fences), .entry_size = sizeof(nmea_pair890_fence),
-    .count_offset = offsetof(nmea_pair890, fences_count),
+    .count_offset = offsetof(nmea_pair890, fences.count),
 };
 static const layout pair890_layout = {
     .sentence = "PAIR890", .address = "PAIR890", .fields = pair890_fields, .group = &pair890_group, .before = 2,
     .fixed = 2, .max_fields = 14, .size = sizeof(nmea_pair890), .head = NO_MEMBER, .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_pair890, checksum), .kind = LAYOUT_PROPRIETARY, .start = '$',
 };
+
+bool nmea_pair890_fences_at(const nmea_pair890 *s, size_t i, nmea_pair890_fence *out)
+{
+    return entry_of(&pair890_layout, s, i, out);
+}
 
 bool nmea_parse_pair890(nmea_pair890 *out, const char *line, size_t len, nmea_error *err)
 {
@@ -16651,7 +17016,7 @@ static const layout_field pair891_reply_group_fields[] = {
 static const layout_group pair891_reply_group = {
     .id = "fences", .fields = pair891_reply_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 4,
     .single = false, .offset = offsetof(nmea_pair891_reply, fences),
-    .entry_size = sizeof(nmea_pair891_reply_fence), .count_offset = offsetof(nmea_pair891_reply, fences_count),
+    .entry_size = sizeof(nmea_pair891_reply_fence), .count_offset = offsetof(nmea_pair891_reply, fences.count),
 };
 static const layout pair891_reply_layout = {
     .sentence = "PAIR891_REPLY", .address = "PAIR891", .fields = pair891_reply_fields,
@@ -16659,6 +17024,11 @@ static const layout pair891_reply_layout = {
     .head = NO_MEMBER, .optional_count = NO_MEMBER, .checksum = offsetof(nmea_pair891_reply, checksum),
     .kind = LAYOUT_PROPRIETARY, .start = '$',
 };
+
+bool nmea_pair891_reply_fences_at(const nmea_pair891_reply *s, size_t i, nmea_pair891_reply_fence *out)
+{
+    return entry_of(&pair891_reply_layout, s, i, out);
+}
 
 bool nmea_parse_pair891_reply(nmea_pair891_reply *out, const char *line, size_t len, nmea_error *err)
 {
@@ -17826,7 +18196,7 @@ static const layout_field pashr_nmo_group_fields[] = {
 static const layout_group pashr_nmo_group = {
     .id = "messages", .fields = pashr_nmo_group_fields, .field_count = 2, .width = 2, .min = 0, .max = 64,
     .single = false, .offset = offsetof(nmea_pashr_nmo, messages), .entry_size = sizeof(nmea_pashr_nmo_message),
-    .count_offset = offsetof(nmea_pashr_nmo, messages_count),
+    .count_offset = offsetof(nmea_pashr_nmo, messages.count),
 };
 static const layout pashr_nmo_layout = {
     .sentence = "PASHR_NMO", .address = "PASHR", .selector = "NMO", .fields = pashr_nmo_fields,
@@ -17834,6 +18204,11 @@ static const layout pashr_nmo_layout = {
     .size = sizeof(nmea_pashr_nmo), .head = NO_MEMBER, .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_pashr_nmo, checksum), .kind = LAYOUT_PROPRIETARY, .start = '$',
 };
+
+bool nmea_pashr_nmo_messages_at(const nmea_pashr_nmo *s, size_t i, nmea_pashr_nmo_message *out)
+{
+    return entry_of(&pashr_nmo_layout, s, i, out);
+}
 
 bool nmea_parse_pashr_nmo(nmea_pashr_nmo *out, const char *line, size_t len, nmea_error *err)
 {
@@ -18110,7 +18485,7 @@ static const layout_field pashr_sat_group_fields[] = {
 static const layout_group pashr_sat_group = {
     .id = "satellites", .fields = pashr_sat_group_fields, .field_count = 5, .width = 5, .min = 0, .max = 64,
     .single = false, .offset = offsetof(nmea_pashr_sat, satellites),
-    .entry_size = sizeof(nmea_pashr_sat_satellite), .count_offset = offsetof(nmea_pashr_sat, satellites_count),
+    .entry_size = sizeof(nmea_pashr_sat_satellite), .count_offset = offsetof(nmea_pashr_sat, satellites.count),
 };
 static const layout pashr_sat_layout = {
     .sentence = "PASHR_SAT", .address = "PASHR", .selector = "SAT", .fields = pashr_sat_fields,
@@ -18124,6 +18499,8 @@ static const layout pashr_sat_layout = {
 static fast_result pashr_sat_fast(nmea_pashr_sat *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_pashr_sat_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 2, 5, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -18134,9 +18511,8 @@ static fast_result pashr_sat_fast(nmea_pashr_sat *s, const char *line, const cha
     if (!fast_keyword(&p, "SAT")
         || !fast_integer(&p, &s->count, &range_from_0))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        nmea_pashr_sat_satellite *e = &s->satellites[i];
-
         if (!fast_integer(&p, &e->prn, NULL)
             || !fast_integer(&p, &e->azimuth, &range_0_to_359)
             || !fast_integer(&p, &e->elevation, &range_0_to_90)
@@ -18144,7 +18520,8 @@ static fast_result pashr_sat_fast(nmea_pashr_sat *s, const char *line, const cha
             || !fast_enum(&p, &e->used, &nmea_ashtech_sv_used_def))
             return FAST_UNSURE;
     }
-    s->satellites_count = (uint8_t)repeats;
+    s->satellites.wire = text_span(group, repeats ? p - 1 : p);
+    s->satellites.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -18160,17 +18537,27 @@ static size_t pashr_sat_fast_write(const nmea_pashr_sat *s, char *buf, size_t ca
     if (!fast_put_keyword(&w, "SAT", 3)
         || !fast_put_number(&w, &s->count))
         return 0;
-    for (i = 0; i < s->satellites_count && i < 64; i++) {
-        const nmea_pashr_sat_satellite *e = &s->satellites[i];
-
-        if (!fast_put_number(&w, &e->prn)
-            || !fast_put_number(&w, &e->azimuth)
-            || !fast_put_number(&w, &e->elevation)
-            || !fast_put_number(&w, &e->snr)
-            || !fast_put_enum(&w, &e->used, &nmea_ashtech_sv_used_def))
+    if (!s->satellites.items) {
+        if (!fast_put_entries(&w, &s->satellites, (s->satellites.count < 64 ? s->satellites.count : 64) * 5u))
             return 0;
+    } else {
+        for (i = 0; i < (s->satellites.count < 64 ? s->satellites.count : 64); i++) {
+            const nmea_pashr_sat_satellite *e = &((const nmea_pashr_sat_satellite *)s->satellites.items)[i];
+
+            if (!fast_put_number(&w, &e->prn)
+                || !fast_put_number(&w, &e->azimuth)
+                || !fast_put_number(&w, &e->elevation)
+                || !fast_put_number(&w, &e->snr)
+                || !fast_put_enum(&w, &e->used, &nmea_ashtech_sv_used_def))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pashr_sat_satellites_at(const nmea_pashr_sat *s, size_t i, nmea_pashr_sat_satellite *out)
+{
+    return entry_of(&pashr_sat_layout, s, i, out);
 }
 
 bool nmea_parse_pashr_sat(nmea_pashr_sat *out, const char *line, size_t len, nmea_error *err)
@@ -19212,7 +19599,7 @@ static const layout_field pglor_lsq_group_fields[] = {
 static const layout_group pglor_lsq_group = {
     .id = "extra", .fields = pglor_lsq_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 4,
     .single = true, .offset = offsetof(nmea_pglor_lsq, extra), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pglor_lsq, extra_count),
+    .count_offset = offsetof(nmea_pglor_lsq, extra.count),
 };
 static const layout pglor_lsq_layout = {
     .sentence = "PGLOR_LSQ", .address = "PGLOR", .selector = "LSQ", .fields = pglor_lsq_fields,
@@ -19226,6 +19613,8 @@ static const layout pglor_lsq_layout = {
 static fast_result pglor_lsq_fast(nmea_pglor_lsq *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 19, 1, 0, 4, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -19251,11 +19640,13 @@ static fast_result pglor_lsq_fast(nmea_pglor_lsq *s, const char *line, const cha
         || !fast_decimal(&p, &s->track_error, NULL)
         || !fast_integer(&p, &s->satellites_used, NULL))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->extra[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->extra_count = (uint8_t)repeats;
+    s->extra.wire = text_span(group, repeats ? p - 1 : p);
+    s->extra.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -19286,11 +19677,23 @@ static size_t pglor_lsq_fast_write(const nmea_pglor_lsq *s, char *buf, size_t ca
         || !fast_put_number(&w, &s->track_error)
         || !fast_put_number(&w, &s->satellites_used))
         return 0;
-    for (i = 0; i < s->extra_count && i < 4; i++) {
-        if (!fast_put_text_field(&w, s->extra[i]))
+    if (!s->extra.items) {
+        if (!fast_put_entries(&w, &s->extra, (s->extra.count < 4 ? s->extra.count : 4) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->extra.count < 4 ? s->extra.count : 4); i++) {
+            nmea_text value = ((const nmea_text *)s->extra.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pglor_lsq_extra_at(const nmea_pglor_lsq *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pglor_lsq_layout, s, i, out);
 }
 
 bool nmea_parse_pglor_lsq(nmea_pglor_lsq *out, const char *line, size_t len, nmea_error *err)
@@ -19544,7 +19947,7 @@ static const layout_field pglor_pwr_v4_group_fields[] = {
 static const layout_group pglor_pwr_v4_group = {
     .id = "extra", .fields = pglor_pwr_v4_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 16,
     .single = true, .offset = offsetof(nmea_pglor_pwr_v4, extra), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pglor_pwr_v4, extra_count),
+    .count_offset = offsetof(nmea_pglor_pwr_v4, extra.count),
 };
 static const layout pglor_pwr_v4_layout = {
     .sentence = "PGLOR_PWR", .address = "PGLOR", .variant = "v4", .selector = "PWR",
@@ -19558,6 +19961,8 @@ static const layout pglor_pwr_v4_layout = {
 static fast_result pglor_pwr_v4_fast(nmea_pglor_pwr_v4 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 12, 1, 0, 16, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -19578,11 +19983,13 @@ static fast_result pglor_pwr_v4_fast(nmea_pglor_pwr_v4 *s, const char *line, con
         || !fast_literal(&p, &s->time_label, "UTC")
         || !fast_time(&p, &s->time))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->extra[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->extra_count = (uint8_t)repeats;
+    s->extra.wire = text_span(group, repeats ? p - 1 : p);
+    s->extra.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -19608,11 +20015,23 @@ static size_t pglor_pwr_v4_fast_write(const nmea_pglor_pwr_v4 *s, char *buf, siz
         || !fast_put_literal(&w, s->time_label, "UTC", 3)
         || !fast_put_time(&w, &s->time))
         return 0;
-    for (i = 0; i < s->extra_count && i < 16; i++) {
-        if (!fast_put_text_field(&w, s->extra[i]))
+    if (!s->extra.items) {
+        if (!fast_put_entries(&w, &s->extra, (s->extra.count < 16 ? s->extra.count : 16) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->extra.count < 16 ? s->extra.count : 16); i++) {
+            nmea_text value = ((const nmea_text *)s->extra.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pglor_pwr_v4_extra_at(const nmea_pglor_pwr_v4 *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pglor_pwr_v4_layout, s, i, out);
 }
 
 bool nmea_parse_pglor_pwr_v4(nmea_pglor_pwr_v4 *out, const char *line, size_t len, nmea_error *err)
@@ -19654,7 +20073,7 @@ static const layout_field pglor_sat_group_fields[] = {
 static const layout_group pglor_sat_group = {
     .id = "satellites", .fields = pglor_sat_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 16,
     .single = false, .offset = offsetof(nmea_pglor_sat, satellites),
-    .entry_size = sizeof(nmea_pglor_sat_satellite), .count_offset = offsetof(nmea_pglor_sat, satellites_count),
+    .entry_size = sizeof(nmea_pglor_sat_satellite), .count_offset = offsetof(nmea_pglor_sat, satellites.count),
 };
 static const layout pglor_sat_layout = {
     .sentence = "PGLOR_SAT", .address = "PGLOR", .selector = "SAT", .fields = pglor_sat_fields,
@@ -19668,6 +20087,8 @@ static const layout pglor_sat_layout = {
 static fast_result pglor_sat_fast(nmea_pglor_sat *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_pglor_sat_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 4, 3, 0, 16, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -19680,15 +20101,15 @@ static fast_result pglor_sat_fast(nmea_pglor_sat *s, const char *line, const cha
         || !fast_integer(&p, &s->total_sentences, &range_from_1)
         || !fast_integer(&p, &s->sentence_number, &range_from_1))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        nmea_pglor_sat_satellite *e = &s->satellites[i];
-
         if (!fast_text(&p, &e->satellite, 4)
             || !fast_integer(&p, &e->cn0, NULL)
             || !fast_hex(&p, &e->info))
             return FAST_UNSURE;
     }
-    s->satellites_count = (uint8_t)repeats;
+    s->satellites.wire = text_span(group, repeats ? p - 1 : p);
+    s->satellites.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -19706,15 +20127,25 @@ static size_t pglor_sat_fast_write(const nmea_pglor_sat *s, char *buf, size_t ca
         || !fast_put_number(&w, &s->total_sentences)
         || !fast_put_number(&w, &s->sentence_number))
         return 0;
-    for (i = 0; i < s->satellites_count && i < 16; i++) {
-        const nmea_pglor_sat_satellite *e = &s->satellites[i];
-
-        if (!fast_put_text_field(&w, e->satellite)
-            || !fast_put_number(&w, &e->cn0)
-            || !fast_put_hex(&w, &e->info))
+    if (!s->satellites.items) {
+        if (!fast_put_entries(&w, &s->satellites, (s->satellites.count < 16 ? s->satellites.count : 16) * 3u))
             return 0;
+    } else {
+        for (i = 0; i < (s->satellites.count < 16 ? s->satellites.count : 16); i++) {
+            const nmea_pglor_sat_satellite *e = &((const nmea_pglor_sat_satellite *)s->satellites.items)[i];
+
+            if (!fast_put_text_field(&w, e->satellite)
+                || !fast_put_number(&w, &e->cn0)
+                || !fast_put_hex(&w, &e->info))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pglor_sat_satellites_at(const nmea_pglor_sat *s, size_t i, nmea_pglor_sat_satellite *out)
+{
+    return entry_of(&pglor_sat_layout, s, i, out);
 }
 
 bool nmea_parse_pglor_sat(nmea_pglor_sat *out, const char *line, size_t len, nmea_error *err)
@@ -19753,7 +20184,7 @@ static const layout_group pglor_sat_v1_group = {
     .id = "satellites", .fields = pglor_sat_v1_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 24,
     .single = false, .offset = offsetof(nmea_pglor_sat_v1, satellites),
     .entry_size = sizeof(nmea_pglor_sat_v1_satellite),
-    .count_offset = offsetof(nmea_pglor_sat_v1, satellites_count),
+    .count_offset = offsetof(nmea_pglor_sat_v1, satellites.count),
 };
 static const layout pglor_sat_v1_layout = {
     .sentence = "PGLOR_SAT", .address = "PGLOR", .variant = "v1", .selector = "SAT",
@@ -19767,6 +20198,8 @@ static const layout pglor_sat_v1_layout = {
 static fast_result pglor_sat_v1_fast(nmea_pglor_sat_v1 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_pglor_sat_v1_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 2, 3, 0, 24, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -19777,15 +20210,15 @@ static fast_result pglor_sat_v1_fast(nmea_pglor_sat_v1 *s, const char *line, con
     if (!fast_literal(&p, &s->version, "1")
         || !fast_keyword(&p, "SAT"))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        nmea_pglor_sat_v1_satellite *e = &s->satellites[i];
-
         if (!fast_text(&p, &e->satellite, 4)
             || !fast_integer(&p, &e->cn0, NULL)
             || !fast_hex(&p, &e->info))
             return FAST_UNSURE;
     }
-    s->satellites_count = (uint8_t)repeats;
+    s->satellites.wire = text_span(group, repeats ? p - 1 : p);
+    s->satellites.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -19801,15 +20234,25 @@ static size_t pglor_sat_v1_fast_write(const nmea_pglor_sat_v1 *s, char *buf, siz
     if (!fast_put_literal(&w, s->version, "1", 1)
         || !fast_put_keyword(&w, "SAT", 3))
         return 0;
-    for (i = 0; i < s->satellites_count && i < 24; i++) {
-        const nmea_pglor_sat_v1_satellite *e = &s->satellites[i];
-
-        if (!fast_put_text_field(&w, e->satellite)
-            || !fast_put_number(&w, &e->cn0)
-            || !fast_put_hex(&w, &e->info))
+    if (!s->satellites.items) {
+        if (!fast_put_entries(&w, &s->satellites, (s->satellites.count < 24 ? s->satellites.count : 24) * 3u))
             return 0;
+    } else {
+        for (i = 0; i < (s->satellites.count < 24 ? s->satellites.count : 24); i++) {
+            const nmea_pglor_sat_v1_satellite *e = &((const nmea_pglor_sat_v1_satellite *)s->satellites.items)[i];
+
+            if (!fast_put_text_field(&w, e->satellite)
+                || !fast_put_number(&w, &e->cn0)
+                || !fast_put_hex(&w, &e->info))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pglor_sat_v1_satellites_at(const nmea_pglor_sat_v1 *s, size_t i, nmea_pglor_sat_v1_satellite *out)
+{
+    return entry_of(&pglor_sat_v1_layout, s, i, out);
 }
 
 bool nmea_parse_pglor_sat_v1(nmea_pglor_sat_v1 *out, const char *line, size_t len, nmea_error *err)
@@ -19848,7 +20291,7 @@ static const layout_group pglor_sat_v0_group = {
     .id = "satellites", .fields = pglor_sat_v0_group_fields, .field_count = 3, .width = 3, .min = 0, .max = 24,
     .single = false, .offset = offsetof(nmea_pglor_sat_v0, satellites),
     .entry_size = sizeof(nmea_pglor_sat_v0_satellite),
-    .count_offset = offsetof(nmea_pglor_sat_v0, satellites_count),
+    .count_offset = offsetof(nmea_pglor_sat_v0, satellites.count),
 };
 static const layout pglor_sat_v0_layout = {
     .sentence = "PGLOR_SAT", .address = "PGLOR", .variant = "v0", .selector = "SAT",
@@ -19862,6 +20305,8 @@ static const layout pglor_sat_v0_layout = {
 static fast_result pglor_sat_v0_fast(nmea_pglor_sat_v0 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_pglor_sat_v0_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 2, 3, 0, 24, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -19872,15 +20317,15 @@ static fast_result pglor_sat_v0_fast(nmea_pglor_sat_v0 *s, const char *line, con
     if (!fast_literal(&p, &s->version, "0")
         || !fast_keyword(&p, "SAT"))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        nmea_pglor_sat_v0_satellite *e = &s->satellites[i];
-
         if (!fast_integer(&p, &e->prn, NULL)
             || !fast_integer(&p, &e->cn0, NULL)
             || !fast_hex(&p, &e->info))
             return FAST_UNSURE;
     }
-    s->satellites_count = (uint8_t)repeats;
+    s->satellites.wire = text_span(group, repeats ? p - 1 : p);
+    s->satellites.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -19896,15 +20341,25 @@ static size_t pglor_sat_v0_fast_write(const nmea_pglor_sat_v0 *s, char *buf, siz
     if (!fast_put_literal(&w, s->version, "0", 1)
         || !fast_put_keyword(&w, "SAT", 3))
         return 0;
-    for (i = 0; i < s->satellites_count && i < 24; i++) {
-        const nmea_pglor_sat_v0_satellite *e = &s->satellites[i];
-
-        if (!fast_put_number(&w, &e->prn)
-            || !fast_put_number(&w, &e->cn0)
-            || !fast_put_hex(&w, &e->info))
+    if (!s->satellites.items) {
+        if (!fast_put_entries(&w, &s->satellites, (s->satellites.count < 24 ? s->satellites.count : 24) * 3u))
             return 0;
+    } else {
+        for (i = 0; i < (s->satellites.count < 24 ? s->satellites.count : 24); i++) {
+            const nmea_pglor_sat_v0_satellite *e = &((const nmea_pglor_sat_v0_satellite *)s->satellites.items)[i];
+
+            if (!fast_put_number(&w, &e->prn)
+                || !fast_put_number(&w, &e->cn0)
+                || !fast_put_hex(&w, &e->info))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pglor_sat_v0_satellites_at(const nmea_pglor_sat_v0 *s, size_t i, nmea_pglor_sat_v0_satellite *out)
+{
+    return entry_of(&pglor_sat_v0_layout, s, i, out);
 }
 
 bool nmea_parse_pglor_sat_v0(nmea_pglor_sat_v0 *out, const char *line, size_t len, nmea_error *err)
@@ -20199,7 +20654,7 @@ static const layout_field pglor_sta_group_fields[] = {
 static const layout_group pglor_sta_group = {
     .id = "extra", .fields = pglor_sta_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 16,
     .single = true, .offset = offsetof(nmea_pglor_sta, extra), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pglor_sta, extra_count),
+    .count_offset = offsetof(nmea_pglor_sta, extra.count),
 };
 static const layout pglor_sta_layout = {
     .sentence = "PGLOR_STA", .address = "PGLOR", .selector = "STA", .fields = pglor_sta_fields,
@@ -20213,6 +20668,8 @@ static const layout pglor_sta_layout = {
 static fast_result pglor_sta_fast(nmea_pglor_sta *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 17, 1, 0, 16, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -20238,11 +20695,13 @@ static fast_result pglor_sta_fast(nmea_pglor_sta *s, const char *line, const cha
         || !fast_literal(&p, &s->source_label, "S")
         || !fast_hex(&p, &s->source))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->extra[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->extra_count = (uint8_t)repeats;
+    s->extra.wire = text_span(group, repeats ? p - 1 : p);
+    s->extra.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -20273,11 +20732,23 @@ static size_t pglor_sta_fast_write(const nmea_pglor_sta *s, char *buf, size_t ca
         || !fast_put_literal(&w, s->source_label, "S", 1)
         || !fast_put_hex(&w, &s->source))
         return 0;
-    for (i = 0; i < s->extra_count && i < 16; i++) {
-        if (!fast_put_text_field(&w, s->extra[i]))
+    if (!s->extra.items) {
+        if (!fast_put_entries(&w, &s->extra, (s->extra.count < 16 ? s->extra.count : 16) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->extra.count < 16 ? s->extra.count : 16); i++) {
+            nmea_text value = ((const nmea_text *)s->extra.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pglor_sta_extra_at(const nmea_pglor_sta *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pglor_sta_layout, s, i, out);
 }
 
 bool nmea_parse_pglor_sta(nmea_pglor_sta *out, const char *line, size_t len, nmea_error *err)
@@ -22847,7 +23318,7 @@ static const layout_field pmtkchn_group_fields[] = {
 static const layout_group pmtkchn_group = {
     .id = "channels", .fields = pmtkchn_group_fields, .field_count = 1, .width = 1, .min = 1, .max = 32,
     .single = true, .offset = offsetof(nmea_pmtkchn, channels), .entry_size = sizeof(nmea_number),
-    .count_offset = offsetof(nmea_pmtkchn, channels_count),
+    .count_offset = offsetof(nmea_pmtkchn, channels.count),
 };
 static const layout pmtkchn_layout = {
     .sentence = "PMTKCHN", .address = "PMTKCHN", .fields = NO_FIELDS, .group = &pmtkchn_group, .max_fields = 32,
@@ -22860,6 +23331,8 @@ static const layout pmtkchn_layout = {
 static fast_result pmtkchn_fast(nmea_pmtkchn *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_number value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 1, 32, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -22867,11 +23340,13 @@ static fast_result pmtkchn_fast(nmea_pmtkchn *s, const char *line, const char *p
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_integer(&p, &s->channels[i], NULL))
+        if (!fast_integer(&p, &value, NULL))
             return FAST_UNSURE;
     }
-    s->channels_count = (uint8_t)repeats;
+    s->channels.wire = text_span(group, repeats ? p - 1 : p);
+    s->channels.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -22884,11 +23359,23 @@ static size_t pmtkchn_fast_write(const nmea_pmtkchn *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PMTKCHN"))
         return 0;
-    for (i = 0; i < s->channels_count && i < 32; i++) {
-        if (!fast_put_number(&w, &s->channels[i]))
+    if (!s->channels.items) {
+        if (!fast_put_entries(&w, &s->channels, (s->channels.count < 32 ? s->channels.count : 32) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->channels.count < 32 ? s->channels.count : 32); i++) {
+            nmea_number value = ((const nmea_number *)s->channels.items)[i];
+
+            if (!fast_put_number(&w, &value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pmtkchn_channels_at(const nmea_pmtkchn *s, size_t i, nmea_number *out)
+{
+    return entry_of(&pmtkchn_layout, s, i, out);
 }
 
 bool nmea_parse_pmtkchn(nmea_pmtkchn *out, const char *line, size_t len, nmea_error *err)
@@ -22964,7 +23451,7 @@ static const layout_field pmtklox_data_group_fields[] = {
 static const layout_group pmtklox_data_group = {
     .id = "words", .fields = pmtklox_data_group_fields, .field_count = 1, .width = 1, .min = 1, .max = 24,
     .single = true, .offset = offsetof(nmea_pmtklox_data, words), .entry_size = sizeof(nmea_hex),
-    .count_offset = offsetof(nmea_pmtklox_data, words_count),
+    .count_offset = offsetof(nmea_pmtklox_data, words.count),
 };
 static const layout pmtklox_data_layout = {
     .sentence = "PMTKLOX_DATA", .address = "PMTKLOX", .selector = "1", .fields = pmtklox_data_fields,
@@ -22972,6 +23459,11 @@ static const layout pmtklox_data_layout = {
     .size = sizeof(nmea_pmtklox_data), .head = NO_MEMBER, .optional_count = NO_MEMBER,
     .checksum = offsetof(nmea_pmtklox_data, checksum), .kind = LAYOUT_PROPRIETARY, .start = '$',
 };
+
+bool nmea_pmtklox_data_words_at(const nmea_pmtklox_data *s, size_t i, nmea_hex *out)
+{
+    return entry_of(&pmtklox_data_layout, s, i, out);
+}
 
 bool nmea_parse_pmtklox_data(nmea_pmtklox_data *out, const char *line, size_t len, nmea_error *err)
 {
@@ -23070,7 +23562,7 @@ static const layout_field pqgsv_group_fields[] = {
 static const layout_group pqgsv_group = {
     .id = "satellites", .fields = pqgsv_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
     .single = false, .offset = offsetof(nmea_pqgsv, satellites), .entry_size = sizeof(nmea_pqgsv_satellite),
-    .count_offset = offsetof(nmea_pqgsv, satellites_count),
+    .count_offset = offsetof(nmea_pqgsv, satellites.count),
 };
 static const layout pqgsv_layout = {
     .sentence = "PQGSV", .address = "PQGSV", .fields = pqgsv_fields, .group = &pqgsv_group, .before = 3,
@@ -23084,6 +23576,8 @@ static const layout pqgsv_layout = {
 static fast_result pqgsv_fast(nmea_pqgsv *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_pqgsv_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 5, 4, 0, 4, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -23095,16 +23589,16 @@ static fast_result pqgsv_fast(nmea_pqgsv *s, const char *line, const char *p, co
         || !fast_integer(&p, &s->message_number, NULL)
         || !fast_integer(&p, &s->satellites_in_view, NULL))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        nmea_pqgsv_satellite *e = &s->satellites[i];
-
         if (!fast_integer(&p, &e->prn, NULL)
             || !fast_integer(&p, &e->elevation, &range_0_to_90)
             || !fast_integer(&p, &e->azimuth, &range_0_to_359)
             || !fast_integer(&p, &e->snr, NULL))
             return FAST_UNSURE;
     }
-    s->satellites_count = (uint8_t)repeats;
+    s->satellites.wire = text_span(group, repeats ? p - 1 : p);
+    s->satellites.count = (uint8_t)repeats;
     if (!fast_enum(&p, &s->signal_id, &nmea_signal_id_def)
         || !fast_enum(&p, &s->system, &nmea_system_id_def))
         return FAST_UNSURE;
@@ -23124,19 +23618,29 @@ static size_t pqgsv_fast_write(const nmea_pqgsv *s, char *buf, size_t cap)
         || !fast_put_number(&w, &s->message_number)
         || !fast_put_number(&w, &s->satellites_in_view))
         return 0;
-    for (i = 0; i < s->satellites_count && i < 4; i++) {
-        const nmea_pqgsv_satellite *e = &s->satellites[i];
-
-        if (!fast_put_number(&w, &e->prn)
-            || !fast_put_number(&w, &e->elevation)
-            || !fast_put_number(&w, &e->azimuth)
-            || !fast_put_number(&w, &e->snr))
+    if (!s->satellites.items) {
+        if (!fast_put_entries(&w, &s->satellites, (s->satellites.count < 4 ? s->satellites.count : 4) * 4u))
             return 0;
+    } else {
+        for (i = 0; i < (s->satellites.count < 4 ? s->satellites.count : 4); i++) {
+            const nmea_pqgsv_satellite *e = &((const nmea_pqgsv_satellite *)s->satellites.items)[i];
+
+            if (!fast_put_number(&w, &e->prn)
+                || !fast_put_number(&w, &e->elevation)
+                || !fast_put_number(&w, &e->azimuth)
+                || !fast_put_number(&w, &e->snr))
+                return 0;
+        }
     }
     if (!fast_put_enum(&w, &s->signal_id, &nmea_signal_id_def)
         || !fast_put_enum(&w, &s->system, &nmea_system_id_def))
         return 0;
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pqgsv_satellites_at(const nmea_pqgsv *s, size_t i, nmea_pqgsv_satellite *out)
+{
+    return entry_of(&pqgsv_layout, s, i, out);
 }
 
 bool nmea_parse_pqgsv(nmea_pqgsv *out, const char *line, size_t len, nmea_error *err)
@@ -28295,6 +28799,8 @@ static const layout pqtmgeofencestatus_layout = {
 static fast_result pqtmgeofencestatus_fast(nmea_pqtmgeofencestatus *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_enum value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 2, 1, 4, 4, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -28305,10 +28811,12 @@ static fast_result pqtmgeofencestatus_fast(nmea_pqtmgeofencestatus *s, const cha
     if (!fast_integer(&p, &s->msg_version, NULL)
         || !fast_time(&p, &s->time))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_enum(&p, &s->states[i], &nmea_quectel_geofence_state_def))
+        if (!fast_enum(&p, &value, &nmea_quectel_geofence_state_def))
             return FAST_UNSURE;
     }
+    s->states.wire = text_span(group, repeats ? p - 1 : p);
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -28324,11 +28832,23 @@ static size_t pqtmgeofencestatus_fast_write(const nmea_pqtmgeofencestatus *s, ch
     if (!fast_put_number(&w, &s->msg_version)
         || !fast_put_time(&w, &s->time))
         return 0;
-    for (i = 0; i < 4; i++) {
-        if (!fast_put_enum(&w, &s->states[i], &nmea_quectel_geofence_state_def))
+    if (!s->states.items) {
+        if (!fast_put_entries(&w, &s->states, 4 * 1u))
             return 0;
+    } else {
+        for (i = 0; i < 4; i++) {
+            nmea_enum value = ((const nmea_enum *)s->states.items)[i];
+
+            if (!fast_put_enum(&w, &value, &nmea_quectel_geofence_state_def))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pqtmgeofencestatus_states_at(const nmea_pqtmgeofencestatus *s, size_t i, nmea_enum *out)
+{
+    return entry_of(&pqtmgeofencestatus_layout, s, i, out);
 }
 
 bool nmea_parse_pqtmgeofencestatus(nmea_pqtmgeofencestatus *out, const char *line, size_t len, nmea_error *err)
@@ -31732,7 +32252,7 @@ static const layout_field pstmagps_group_fields[] = {
 static const layout_group pstmagps_group = {
     .id = "values", .fields = pstmagps_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmagps, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmagps, values_count),
+    .count_offset = offsetof(nmea_pstmagps, values.count),
 };
 static const layout pstmagps_layout = {
     .sentence = "PSTMAGPS", .address = "PSTMAGPS", .fields = NO_FIELDS, .group = &pstmagps_group,
@@ -31745,6 +32265,8 @@ static const layout pstmagps_layout = {
 static fast_result pstmagps_fast(nmea_pstmagps *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -31752,11 +32274,13 @@ static fast_result pstmagps_fast(nmea_pstmagps *s, const char *line, const char 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -31769,11 +32293,23 @@ static size_t pstmagps_fast_write(const nmea_pstmagps *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMAGPS"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmagps_values_at(const nmea_pstmagps *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmagps_layout, s, i, out);
 }
 
 bool nmea_parse_pstmagps(nmea_pstmagps *out, const char *line, size_t len, nmea_error *err)
@@ -31805,7 +32341,7 @@ static const layout_field pstmalmanac_group_fields[] = {
 static const layout_group pstmalmanac_group = {
     .id = "values", .fields = pstmalmanac_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmalmanac, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmalmanac, values_count),
+    .count_offset = offsetof(nmea_pstmalmanac, values.count),
 };
 static const layout pstmalmanac_layout = {
     .sentence = "PSTMALMANAC", .address = "PSTMALMANAC", .fields = NO_FIELDS, .group = &pstmalmanac_group,
@@ -31818,6 +32354,8 @@ static const layout pstmalmanac_layout = {
 static fast_result pstmalmanac_fast(nmea_pstmalmanac *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -31825,11 +32363,13 @@ static fast_result pstmalmanac_fast(nmea_pstmalmanac *s, const char *line, const
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -31842,11 +32382,23 @@ static size_t pstmalmanac_fast_write(const nmea_pstmalmanac *s, char *buf, size_
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMALMANAC"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmalmanac_values_at(const nmea_pstmalmanac *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmalmanac_layout, s, i, out);
 }
 
 bool nmea_parse_pstmalmanac(nmea_pstmalmanac *out, const char *line, size_t len, nmea_error *err)
@@ -31960,7 +32512,7 @@ static const layout_field pstmcorr_group_fields[] = {
 static const layout_group pstmcorr_group = {
     .id = "values", .fields = pstmcorr_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmcorr, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmcorr, values_count),
+    .count_offset = offsetof(nmea_pstmcorr, values.count),
 };
 static const layout pstmcorr_layout = {
     .sentence = "PSTMCORR", .address = "PSTMCORR", .fields = NO_FIELDS, .group = &pstmcorr_group,
@@ -31973,6 +32525,8 @@ static const layout pstmcorr_layout = {
 static fast_result pstmcorr_fast(nmea_pstmcorr *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -31980,11 +32534,13 @@ static fast_result pstmcorr_fast(nmea_pstmcorr *s, const char *line, const char 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -31997,11 +32553,23 @@ static size_t pstmcorr_fast_write(const nmea_pstmcorr *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMCORR"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmcorr_values_at(const nmea_pstmcorr *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmcorr_layout, s, i, out);
 }
 
 bool nmea_parse_pstmcorr(nmea_pstmcorr *out, const char *line, size_t len, nmea_error *err)
@@ -32103,7 +32671,7 @@ static const layout_field pstmdiff_group_fields[] = {
 static const layout_group pstmdiff_group = {
     .id = "values", .fields = pstmdiff_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmdiff, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmdiff, values_count),
+    .count_offset = offsetof(nmea_pstmdiff, values.count),
 };
 static const layout pstmdiff_layout = {
     .sentence = "PSTMDIFF", .address = "PSTMDIFF", .fields = NO_FIELDS, .group = &pstmdiff_group,
@@ -32116,6 +32684,8 @@ static const layout pstmdiff_layout = {
 static fast_result pstmdiff_fast(nmea_pstmdiff *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -32123,11 +32693,13 @@ static fast_result pstmdiff_fast(nmea_pstmdiff *s, const char *line, const char 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -32140,11 +32712,23 @@ static size_t pstmdiff_fast_write(const nmea_pstmdiff *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMDIFF"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmdiff_values_at(const nmea_pstmdiff *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmdiff_layout, s, i, out);
 }
 
 bool nmea_parse_pstmdiff(nmea_pstmdiff *out, const char *line, size_t len, nmea_error *err)
@@ -32176,7 +32760,7 @@ static const layout_field pstmeph_group_fields[] = {
 static const layout_group pstmeph_group = {
     .id = "values", .fields = pstmeph_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmeph, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmeph, values_count),
+    .count_offset = offsetof(nmea_pstmeph, values.count),
 };
 static const layout pstmeph_layout = {
     .sentence = "PSTMEPH", .address = "PSTMEPH", .fields = NO_FIELDS, .group = &pstmeph_group, .max_fields = 64,
@@ -32189,6 +32773,8 @@ static const layout pstmeph_layout = {
 static fast_result pstmeph_fast(nmea_pstmeph *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -32196,11 +32782,13 @@ static fast_result pstmeph_fast(nmea_pstmeph *s, const char *line, const char *p
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -32213,11 +32801,23 @@ static size_t pstmeph_fast_write(const nmea_pstmeph *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMEPH"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmeph_values_at(const nmea_pstmeph *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmeph_layout, s, i, out);
 }
 
 bool nmea_parse_pstmeph(nmea_pstmeph *out, const char *line, size_t len, nmea_error *err)
@@ -32442,7 +33042,7 @@ static const layout_field pstmkfcov_group_fields[] = {
 static const layout_group pstmkfcov_group = {
     .id = "values", .fields = pstmkfcov_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmkfcov, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmkfcov, values_count),
+    .count_offset = offsetof(nmea_pstmkfcov, values.count),
 };
 static const layout pstmkfcov_layout = {
     .sentence = "PSTMKFCOV", .address = "PSTMKFCOV", .fields = NO_FIELDS, .group = &pstmkfcov_group,
@@ -32455,6 +33055,8 @@ static const layout pstmkfcov_layout = {
 static fast_result pstmkfcov_fast(nmea_pstmkfcov *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -32462,11 +33064,13 @@ static fast_result pstmkfcov_fast(nmea_pstmkfcov *s, const char *line, const cha
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -32479,11 +33083,23 @@ static size_t pstmkfcov_fast_write(const nmea_pstmkfcov *s, char *buf, size_t ca
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMKFCOV"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmkfcov_values_at(const nmea_pstmkfcov *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmkfcov_layout, s, i, out);
 }
 
 bool nmea_parse_pstmkfcov(nmea_pstmkfcov *out, const char *line, size_t len, nmea_error *err)
@@ -32545,7 +33161,7 @@ static const layout_field pstmpa_group_fields[] = {
 static const layout_group pstmpa_group = {
     .id = "values", .fields = pstmpa_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmpa, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmpa, values_count),
+    .count_offset = offsetof(nmea_pstmpa, values.count),
 };
 static const layout pstmpa_layout = {
     .sentence = "PSTMPA", .address = "PSTMPA", .fields = NO_FIELDS, .group = &pstmpa_group, .max_fields = 64,
@@ -32558,6 +33174,8 @@ static const layout pstmpa_layout = {
 static fast_result pstmpa_fast(nmea_pstmpa *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -32565,11 +33183,13 @@ static fast_result pstmpa_fast(nmea_pstmpa *s, const char *line, const char *p, 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -32582,11 +33202,23 @@ static size_t pstmpa_fast_write(const nmea_pstmpa *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMPA"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmpa_values_at(const nmea_pstmpa *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmpa_layout, s, i, out);
 }
 
 bool nmea_parse_pstmpa(nmea_pstmpa *out, const char *line, size_t len, nmea_error *err)
@@ -32618,7 +33250,7 @@ static const layout_field pstmpres_group_fields[] = {
 static const layout_group pstmpres_group = {
     .id = "values", .fields = pstmpres_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmpres, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmpres, values_count),
+    .count_offset = offsetof(nmea_pstmpres, values.count),
 };
 static const layout pstmpres_layout = {
     .sentence = "PSTMPRES", .address = "PSTMPRES", .fields = NO_FIELDS, .group = &pstmpres_group,
@@ -32631,6 +33263,8 @@ static const layout pstmpres_layout = {
 static fast_result pstmpres_fast(nmea_pstmpres *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -32638,11 +33272,13 @@ static fast_result pstmpres_fast(nmea_pstmpres *s, const char *line, const char 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -32655,11 +33291,23 @@ static size_t pstmpres_fast_write(const nmea_pstmpres *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMPRES"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmpres_values_at(const nmea_pstmpres *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmpres_layout, s, i, out);
 }
 
 bool nmea_parse_pstmpres(nmea_pstmpres *out, const char *line, size_t len, nmea_error *err)
@@ -32691,7 +33339,7 @@ static const layout_field pstmres_group_fields[] = {
 static const layout_group pstmres_group = {
     .id = "values", .fields = pstmres_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmres, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmres, values_count),
+    .count_offset = offsetof(nmea_pstmres, values.count),
 };
 static const layout pstmres_layout = {
     .sentence = "PSTMRES", .address = "PSTMRES", .fields = NO_FIELDS, .group = &pstmres_group, .max_fields = 64,
@@ -32704,6 +33352,8 @@ static const layout pstmres_layout = {
 static fast_result pstmres_fast(nmea_pstmres *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -32711,11 +33361,13 @@ static fast_result pstmres_fast(nmea_pstmres *s, const char *line, const char *p
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -32728,11 +33380,23 @@ static size_t pstmres_fast_write(const nmea_pstmres *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMRES"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmres_values_at(const nmea_pstmres *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmres_layout, s, i, out);
 }
 
 bool nmea_parse_pstmres(nmea_pstmres *out, const char *line, size_t len, nmea_error *err)
@@ -32790,7 +33454,7 @@ static const layout_field pstmrf_group_fields[] = {
 static const layout_group pstmrf_group = {
     .id = "values", .fields = pstmrf_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmrf, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmrf, values_count),
+    .count_offset = offsetof(nmea_pstmrf, values.count),
 };
 static const layout pstmrf_layout = {
     .sentence = "PSTMRF", .address = "PSTMRF", .fields = NO_FIELDS, .group = &pstmrf_group, .max_fields = 64,
@@ -32803,6 +33467,8 @@ static const layout pstmrf_layout = {
 static fast_result pstmrf_fast(nmea_pstmrf *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -32810,11 +33476,13 @@ static fast_result pstmrf_fast(nmea_pstmrf *s, const char *line, const char *p, 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -32827,11 +33495,23 @@ static size_t pstmrf_fast_write(const nmea_pstmrf *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMRF"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmrf_values_at(const nmea_pstmrf *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmrf_layout, s, i, out);
 }
 
 bool nmea_parse_pstmrf(nmea_pstmrf *out, const char *line, size_t len, nmea_error *err)
@@ -32863,7 +33543,7 @@ static const layout_field pstmsat_group_fields[] = {
 static const layout_group pstmsat_group = {
     .id = "values", .fields = pstmsat_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmsat, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmsat, values_count),
+    .count_offset = offsetof(nmea_pstmsat, values.count),
 };
 static const layout pstmsat_layout = {
     .sentence = "PSTMSAT", .address = "PSTMSAT", .fields = NO_FIELDS, .group = &pstmsat_group, .max_fields = 64,
@@ -32876,6 +33556,8 @@ static const layout pstmsat_layout = {
 static fast_result pstmsat_fast(nmea_pstmsat *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -32883,11 +33565,13 @@ static fast_result pstmsat_fast(nmea_pstmsat *s, const char *line, const char *p
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -32900,11 +33584,23 @@ static size_t pstmsat_fast_write(const nmea_pstmsat *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMSAT"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmsat_values_at(const nmea_pstmsat *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmsat_layout, s, i, out);
 }
 
 bool nmea_parse_pstmsat(nmea_pstmsat *out, const char *line, size_t len, nmea_error *err)
@@ -32962,7 +33658,7 @@ static const layout_field pstmsbas_group_fields[] = {
 static const layout_group pstmsbas_group = {
     .id = "values", .fields = pstmsbas_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmsbas, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmsbas, values_count),
+    .count_offset = offsetof(nmea_pstmsbas, values.count),
 };
 static const layout pstmsbas_layout = {
     .sentence = "PSTMSBAS", .address = "PSTMSBAS", .fields = NO_FIELDS, .group = &pstmsbas_group,
@@ -32975,6 +33671,8 @@ static const layout pstmsbas_layout = {
 static fast_result pstmsbas_fast(nmea_pstmsbas *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -32982,11 +33680,13 @@ static fast_result pstmsbas_fast(nmea_pstmsbas *s, const char *line, const char 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -32999,11 +33699,23 @@ static size_t pstmsbas_fast_write(const nmea_pstmsbas *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMSBAS"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmsbas_values_at(const nmea_pstmsbas *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmsbas_layout, s, i, out);
 }
 
 bool nmea_parse_pstmsbas(nmea_pstmsbas *out, const char *line, size_t len, nmea_error *err)
@@ -33035,7 +33747,7 @@ static const layout_field pstmsbascorr_group_fields[] = {
 static const layout_group pstmsbascorr_group = {
     .id = "values", .fields = pstmsbascorr_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmsbascorr, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmsbascorr, values_count),
+    .count_offset = offsetof(nmea_pstmsbascorr, values.count),
 };
 static const layout pstmsbascorr_layout = {
     .sentence = "PSTMSBASCORR", .address = "PSTMSBASCORR", .fields = NO_FIELDS, .group = &pstmsbascorr_group,
@@ -33048,6 +33760,8 @@ static const layout pstmsbascorr_layout = {
 static fast_result pstmsbascorr_fast(nmea_pstmsbascorr *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -33055,11 +33769,13 @@ static fast_result pstmsbascorr_fast(nmea_pstmsbascorr *s, const char *line, con
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -33072,11 +33788,23 @@ static size_t pstmsbascorr_fast_write(const nmea_pstmsbascorr *s, char *buf, siz
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMSBASCORR"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmsbascorr_values_at(const nmea_pstmsbascorr *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmsbascorr_layout, s, i, out);
 }
 
 bool nmea_parse_pstmsbascorr(nmea_pstmsbascorr *out, const char *line, size_t len, nmea_error *err)
@@ -33288,7 +34016,7 @@ static const layout_field pstmtestrf_group_fields[] = {
 static const layout_group pstmtestrf_group = {
     .id = "values", .fields = pstmtestrf_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmtestrf, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmtestrf, values_count),
+    .count_offset = offsetof(nmea_pstmtestrf, values.count),
 };
 static const layout pstmtestrf_layout = {
     .sentence = "PSTMTESTRF", .address = "PSTMTESTRF", .fields = NO_FIELDS, .group = &pstmtestrf_group,
@@ -33301,6 +34029,8 @@ static const layout pstmtestrf_layout = {
 static fast_result pstmtestrf_fast(nmea_pstmtestrf *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -33308,11 +34038,13 @@ static fast_result pstmtestrf_fast(nmea_pstmtestrf *s, const char *line, const c
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -33325,11 +34057,23 @@ static size_t pstmtestrf_fast_write(const nmea_pstmtestrf *s, char *buf, size_t 
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMTESTRF"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmtestrf_values_at(const nmea_pstmtestrf *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmtestrf_layout, s, i, out);
 }
 
 bool nmea_parse_pstmtestrf(nmea_pstmtestrf *out, const char *line, size_t len, nmea_error *err)
@@ -33361,7 +34105,7 @@ static const layout_field pstmtg_group_fields[] = {
 static const layout_group pstmtg_group = {
     .id = "values", .fields = pstmtg_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmtg, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmtg, values_count),
+    .count_offset = offsetof(nmea_pstmtg, values.count),
 };
 static const layout pstmtg_layout = {
     .sentence = "PSTMTG", .address = "PSTMTG", .fields = NO_FIELDS, .group = &pstmtg_group, .max_fields = 64,
@@ -33374,6 +34118,8 @@ static const layout pstmtg_layout = {
 static fast_result pstmtg_fast(nmea_pstmtg *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -33381,11 +34127,13 @@ static fast_result pstmtg_fast(nmea_pstmtg *s, const char *line, const char *p, 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -33398,11 +34146,23 @@ static size_t pstmtg_fast_write(const nmea_pstmtg *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMTG"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmtg_values_at(const nmea_pstmtg *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmtg_layout, s, i, out);
 }
 
 bool nmea_parse_pstmtg(nmea_pstmtg *out, const char *line, size_t len, nmea_error *err)
@@ -33434,7 +34194,7 @@ static const layout_field pstmtim_group_fields[] = {
 static const layout_group pstmtim_group = {
     .id = "values", .fields = pstmtim_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmtim, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmtim, values_count),
+    .count_offset = offsetof(nmea_pstmtim, values.count),
 };
 static const layout pstmtim_layout = {
     .sentence = "PSTMTIM", .address = "PSTMTIM", .fields = NO_FIELDS, .group = &pstmtim_group, .max_fields = 64,
@@ -33447,6 +34207,8 @@ static const layout pstmtim_layout = {
 static fast_result pstmtim_fast(nmea_pstmtim *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -33454,11 +34216,13 @@ static fast_result pstmtim_fast(nmea_pstmtim *s, const char *line, const char *p
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -33471,11 +34235,23 @@ static size_t pstmtim_fast_write(const nmea_pstmtim *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMTIM"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmtim_values_at(const nmea_pstmtim *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmtim_layout, s, i, out);
 }
 
 bool nmea_parse_pstmtim(nmea_pstmtim *out, const char *line, size_t len, nmea_error *err)
@@ -33507,7 +34283,7 @@ static const layout_field pstmts_group_fields[] = {
 static const layout_group pstmts_group = {
     .id = "values", .fields = pstmts_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmts, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmts, values_count),
+    .count_offset = offsetof(nmea_pstmts, values.count),
 };
 static const layout pstmts_layout = {
     .sentence = "PSTMTS", .address = "PSTMTS", .fields = NO_FIELDS, .group = &pstmts_group, .max_fields = 64,
@@ -33520,6 +34296,8 @@ static const layout pstmts_layout = {
 static fast_result pstmts_fast(nmea_pstmts *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -33527,11 +34305,13 @@ static fast_result pstmts_fast(nmea_pstmts *s, const char *line, const char *p, 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -33544,11 +34324,23 @@ static size_t pstmts_fast_write(const nmea_pstmts *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMTS"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmts_values_at(const nmea_pstmts *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmts_layout, s, i, out);
 }
 
 bool nmea_parse_pstmts(nmea_pstmts *out, const char *line, size_t len, nmea_error *err)
@@ -33580,7 +34372,7 @@ static const layout_field pstmver_group_fields[] = {
 static const layout_group pstmver_group = {
     .id = "values", .fields = pstmver_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmver, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmver, values_count),
+    .count_offset = offsetof(nmea_pstmver, values.count),
 };
 static const layout pstmver_layout = {
     .sentence = "PSTMVER", .address = "PSTMVER", .fields = NO_FIELDS, .group = &pstmver_group, .max_fields = 64,
@@ -33593,6 +34385,8 @@ static const layout pstmver_layout = {
 static fast_result pstmver_fast(nmea_pstmver *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -33600,11 +34394,13 @@ static fast_result pstmver_fast(nmea_pstmver *s, const char *line, const char *p
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -33617,11 +34413,23 @@ static size_t pstmver_fast_write(const nmea_pstmver *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMVER"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmver_values_at(const nmea_pstmver *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmver_layout, s, i, out);
 }
 
 bool nmea_parse_pstmver(nmea_pstmver *out, const char *line, size_t len, nmea_error *err)
@@ -33653,7 +34461,7 @@ static const layout_field pstmvres_group_fields[] = {
 static const layout_group pstmvres_group = {
     .id = "values", .fields = pstmvres_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmvres, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmvres, values_count),
+    .count_offset = offsetof(nmea_pstmvres, values.count),
 };
 static const layout pstmvres_layout = {
     .sentence = "PSTMVRES", .address = "PSTMVRES", .fields = NO_FIELDS, .group = &pstmvres_group,
@@ -33666,6 +34474,8 @@ static const layout pstmvres_layout = {
 static fast_result pstmvres_fast(nmea_pstmvres *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -33673,11 +34483,13 @@ static fast_result pstmvres_fast(nmea_pstmvres *s, const char *line, const char 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -33690,11 +34502,23 @@ static size_t pstmvres_fast_write(const nmea_pstmvres *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMVRES"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmvres_values_at(const nmea_pstmvres *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmvres_layout, s, i, out);
 }
 
 bool nmea_parse_pstmvres(nmea_pstmvres *out, const char *line, size_t len, nmea_error *err)
@@ -33726,7 +34550,7 @@ static const layout_field pstmwaas_group_fields[] = {
 static const layout_group pstmwaas_group = {
     .id = "values", .fields = pstmwaas_group_fields, .field_count = 1, .width = 1, .min = 0, .max = 64,
     .single = true, .offset = offsetof(nmea_pstmwaas, values), .entry_size = sizeof(nmea_text),
-    .count_offset = offsetof(nmea_pstmwaas, values_count),
+    .count_offset = offsetof(nmea_pstmwaas, values.count),
 };
 static const layout pstmwaas_layout = {
     .sentence = "PSTMWAAS", .address = "PSTMWAAS", .fields = NO_FIELDS, .group = &pstmwaas_group,
@@ -33739,6 +34563,8 @@ static const layout pstmwaas_layout = {
 static fast_result pstmwaas_fast(nmea_pstmwaas *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_text value; /* each value is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 0, 1, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -33746,11 +34572,13 @@ static fast_result pstmwaas_fast(nmea_pstmwaas *s, const char *line, const char 
     (void)line;
     s->checksum = NMEA_CHECKSUM_UPPER;
     (void)optional;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        if (!fast_text(&p, &s->values[i], 0))
+        if (!fast_text(&p, &value, 0))
             return FAST_UNSURE;
     }
-    s->values_count = (uint8_t)repeats;
+    s->values.wire = text_span(group, repeats ? p - 1 : p);
+    s->values.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -33763,11 +34591,23 @@ static size_t pstmwaas_fast_write(const nmea_pstmwaas *s, char *buf, size_t cap)
 
     if (!fast_begin(&w, buf, cap, '$', nmea_text_of(NULL), "PSTMWAAS"))
         return 0;
-    for (i = 0; i < s->values_count && i < 64; i++) {
-        if (!fast_put_text_field(&w, s->values[i]))
+    if (!s->values.items) {
+        if (!fast_put_entries(&w, &s->values, (s->values.count < 64 ? s->values.count : 64) * 1u))
             return 0;
+    } else {
+        for (i = 0; i < (s->values.count < 64 ? s->values.count : 64); i++) {
+            nmea_text value = ((const nmea_text *)s->values.items)[i];
+
+            if (!fast_put_text_field(&w, value))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pstmwaas_values_at(const nmea_pstmwaas *s, size_t i, nmea_text *out)
+{
+    return entry_of(&pstmwaas_layout, s, i, out);
 }
 
 bool nmea_parse_pstmwaas(nmea_pstmwaas *out, const char *line, size_t len, nmea_error *err)
@@ -35811,7 +36651,7 @@ static const layout_group pubx_svstatus_group = {
     .id = "satellites", .fields = pubx_svstatus_group_fields, .field_count = 6, .width = 6, .min = 0, .max = 64,
     .single = false, .offset = offsetof(nmea_pubx_svstatus, satellites),
     .entry_size = sizeof(nmea_pubx_svstatus_satellite),
-    .count_offset = offsetof(nmea_pubx_svstatus, satellites_count),
+    .count_offset = offsetof(nmea_pubx_svstatus, satellites.count),
 };
 static const layout pubx_svstatus_layout = {
     .sentence = "PUBX_SVSTATUS", .address = "PUBX", .selector = "03", .fields = pubx_svstatus_fields,
@@ -35825,6 +36665,8 @@ static const layout pubx_svstatus_layout = {
 static fast_result pubx_svstatus_fast(nmea_pubx_svstatus *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
+    nmea_pubx_svstatus_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
+    const char *group;
 
     if (!fast_group_count(count, 2, 6, 0, 64, 0, &repeats, &optional))
         return FAST_NOT_THIS;
@@ -35835,9 +36677,8 @@ static fast_result pubx_svstatus_fast(nmea_pubx_svstatus *s, const char *line, c
     if (!fast_keyword(&p, "03")
         || !fast_integer(&p, &s->num_sv, &range_from_0))
         return FAST_UNSURE;
+    group = p;
     for (i = 0; i < repeats; i++) {
-        nmea_pubx_svstatus_satellite *e = &s->satellites[i];
-
         if (!fast_integer(&p, &e->sv_id, NULL)
             || !fast_enum(&p, &e->status, &nmea_ublox_sv_status_def)
             || !fast_integer(&p, &e->azimuth, &range_0_to_359)
@@ -35846,7 +36687,8 @@ static fast_result pubx_svstatus_fast(nmea_pubx_svstatus *s, const char *line, c
             || !fast_integer(&p, &e->lock_time, &range_from_0))
             return FAST_UNSURE;
     }
-    s->satellites_count = (uint8_t)repeats;
+    s->satellites.wire = text_span(group, repeats ? p - 1 : p);
+    s->satellites.count = (uint8_t)repeats;
     return p == end ? FAST_OK : FAST_UNSURE;
 }
 
@@ -35862,18 +36704,28 @@ static size_t pubx_svstatus_fast_write(const nmea_pubx_svstatus *s, char *buf, s
     if (!fast_put_keyword(&w, "03", 2)
         || !fast_put_number(&w, &s->num_sv))
         return 0;
-    for (i = 0; i < s->satellites_count && i < 64; i++) {
-        const nmea_pubx_svstatus_satellite *e = &s->satellites[i];
-
-        if (!fast_put_number(&w, &e->sv_id)
-            || !fast_put_enum(&w, &e->status, &nmea_ublox_sv_status_def)
-            || !fast_put_number(&w, &e->azimuth)
-            || !fast_put_number(&w, &e->elevation)
-            || !fast_put_number(&w, &e->cno)
-            || !fast_put_number(&w, &e->lock_time))
+    if (!s->satellites.items) {
+        if (!fast_put_entries(&w, &s->satellites, (s->satellites.count < 64 ? s->satellites.count : 64) * 6u))
             return 0;
+    } else {
+        for (i = 0; i < (s->satellites.count < 64 ? s->satellites.count : 64); i++) {
+            const nmea_pubx_svstatus_satellite *e = &((const nmea_pubx_svstatus_satellite *)s->satellites.items)[i];
+
+            if (!fast_put_number(&w, &e->sv_id)
+                || !fast_put_enum(&w, &e->status, &nmea_ublox_sv_status_def)
+                || !fast_put_number(&w, &e->azimuth)
+                || !fast_put_number(&w, &e->elevation)
+                || !fast_put_number(&w, &e->cno)
+                || !fast_put_number(&w, &e->lock_time))
+                return 0;
+        }
     }
     return fast_end(&w, s->checksum);
+}
+
+bool nmea_pubx_svstatus_satellites_at(const nmea_pubx_svstatus *s, size_t i, nmea_pubx_svstatus_satellite *out)
+{
+    return entry_of(&pubx_svstatus_layout, s, i, out);
 }
 
 bool nmea_parse_pubx_svstatus(nmea_pubx_svstatus *out, const char *line, size_t len, nmea_error *err)

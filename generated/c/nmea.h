@@ -290,6 +290,24 @@ typedef struct {
     nmea_problem list[NMEA_MAX_PROBLEMS];
 } nmea_problems;
 
+/**
+ * The entries of a repeated group (GSV's satellites, ...). A parsed sentence keeps them as
+ * received: `wire` is the text of their fields (separators between them, none around), and
+ * nmea_<layout>_<group>_at reads entry i when it is asked for. A sentence struct is thus the
+ * size of its other fields however many entries its group may take. A sentence to build points
+ * `items` at the caller's array of `count` entries (the group's entry struct, or the value type
+ * of a group of one field), which must outlive the struct; `items` wins over `wire`. A group of
+ * a fixed number of entries always has that many (those neither array nor wire holds are
+ * empty).
+ */
+typedef struct {
+    const void *items;
+    nmea_text wire;
+    uint8_t count;
+    uint8_t blanks;                    /* lenient parsing: how many fields of `wire` it read as empty, */
+    uint16_t blank[NMEA_MAX_PROBLEMS]; /* and which (1-based in `wire`) */
+} nmea_entries;
+
 /** A problem's message ("expected ..., found \"TEXT\""); returns its length (0 when it does not
     fit). */
 size_t nmea_problem_message(const nmea_problem *p, char *buf, size_t cap);
@@ -7255,12 +7273,16 @@ typedef struct {
     /* Number of alert entries (x.x): Number of alert entries carried in this sentence (Furuno
        0-3); 0 when no alert is active. Empty: present false. */
     nmea_number entry_count;
-    /* Alert entries: Alert entries 0 to 10 entries; alerts_count of them are on the wire. */
-    nmea_alc_alert alerts[10];
-    uint8_t alerts_count;
+    /* Alert entries: Alert entries 0 to 10 entries; entry i is read by nmea_alc_alerts_at
+       (nmea_entries). */
+    nmea_entries alerts;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_alc;
+
+/* Entry `i` of ALC alerts, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_alc_alerts_at(const nmea_alc *s, size_t i, nmea_alc_alert *out);
 
 /*
  * ALF: Alert sentence.
@@ -7331,12 +7353,16 @@ typedef struct {
     /* Command byte (hh): SeaTalk command (datagram type), e.g. 9C compass heading and rudder
        position, 52 speed over ground. Empty: present false. */
     nmea_hex command;
-    /* Datagram bytes: Datagram bytes 0 to 23 entries; data_count of them are on the wire. */
-    nmea_hex data[23];
-    uint8_t data_count;
+    /* Datagram bytes: Datagram bytes 0 to 23 entries; entry i is read by nmea_alk_data_at
+       (nmea_entries). */
+    nmea_entries data;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_alk;
+
+/* Entry `i` of ALK data, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_alk_data_at(const nmea_alk *s, size_t i, nmea_hex *out);
 
 /*
  * ALM: GPS almanac data.
@@ -8131,12 +8157,16 @@ typedef struct {
     /* Vessel MMSI (xxxxxxxxxx): MMSI of the vessel, 10 digits as in the DSC address (a 9-digit
        MMSI with a trailing 0). Empty: length 0. */
     nmea_text vessel_mmsi;
-    /* Data sets: Data sets 1 to 8 entries; data_sets_count of them are on the wire. */
-    nmea_dse_data_set data_sets[8];
-    uint8_t data_sets_count;
+    /* Data sets: Data sets 1 to 8 entries; entry i is read by nmea_dse_data_sets_at
+       (nmea_entries). */
+    nmea_entries data_sets;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_dse;
+
+/* Entry `i` of DSE data_sets, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_dse_data_sets_at(const nmea_dse *s, size_t i, nmea_dse_data_set *out);
 
 /*
  * DTM: Datum reference.
@@ -8526,12 +8556,15 @@ typedef struct {
     nmea_hex index;
     /* Time stamp (hhmmss.ss): UTC time of the data. Empty: present false. */
     nmea_time time;
-    /* Data words: Data words 0 to 8 entries; words_count of them are on the wire. */
-    nmea_hex words[8];
-    uint8_t words_count;
+    /* Data words: Data words 0 to 8 entries; entry i is read by nmea_gen_words_at (nmea_entries). */
+    nmea_entries words;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_gen;
+
+/* Entry `i` of GEN words, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_gen_words_at(const nmea_gen *s, size_t i, nmea_hex *out);
 
 /*
  * GFA: GNSS fix accuracy and integrity.
@@ -8668,11 +8701,15 @@ typedef struct {
        present false. */
     nmea_enum master_status;
     /* Time differences: Time differences 1 to 5, always five slots; unused ones are empty. Always
-       5 entries. */
-    nmea_glc_time_difference time_differences[5];
+       5 entries; entry i is read by nmea_glc_time_differences_at (nmea_entries). */
+    nmea_entries time_differences;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_glc;
+
+/* Entry `i` of GLC time_differences, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_glc_time_differences_at(const nmea_glc *s, size_t i, nmea_glc_time_difference *out);
 
 /*
  * GLL: Geographic position, latitude/longitude.
@@ -8918,8 +8955,9 @@ typedef struct {
     /* Residual mode (x): 0 = residuals used to compute the matching position, 1 = residuals
        recomputed after it. Values: nmea_grs_mode (table nmea_grs_mode_def). Empty: present false. */
     nmea_enum mode;
-    /* Range residuals: Twelve slots; unused ones are empty. Always 12 entries. */
-    nmea_number residuals[12];
+    /* Range residuals: Twelve slots; unused ones are empty. Always 12 entries; entry i is read by
+       nmea_grs_residuals_at (nmea_entries). */
+    nmea_entries residuals;
     /* GNSS system ID (h) (NMEA 4.10, optional): Constellation of the satellites of this line (NMEA
        4.10 and later). Values: nmea_system_id (table nmea_system_id_def). Empty: present false. */
     nmea_enum system_id;
@@ -8932,6 +8970,10 @@ typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_grs;
+
+/* Entry `i` of GRS residuals, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_grs_residuals_at(const nmea_grs *s, size_t i, nmea_number *out);
 
 /*
  * GSA: GNSS DOP and active satellites.
@@ -8951,8 +8993,9 @@ typedef struct {
     /* Fix type: 1 = no fix, 2 = 2D fix, 3 = 3D fix. Values: nmea_gsa_fix_type (table
        nmea_gsa_fix_type_def). Empty: present false. */
     nmea_enum fix_type;
-    /* Satellites used in the solution: Satellites used in the solution Always 12 entries. */
-    nmea_number prns[12];
+    /* Satellites used in the solution: Satellites used in the solution Always 12 entries; entry i
+       is read by nmea_gsa_prns_at (nmea_entries). */
+    nmea_entries prns;
     /* PDOP (x.x): Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
        fix). Empty: present false. */
     nmea_number pdop;
@@ -8971,6 +9014,10 @@ typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_gsa;
+
+/* Entry `i` of GSA prns, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_gsa_prns_at(const nmea_gsa *s, size_t i, nmea_number *out);
 
 /*
  * GSA (Fewer than 12 PRN slots): GNSS DOP and active satellites.
@@ -8991,10 +9038,9 @@ typedef struct {
     /* Fix type: 1 = no fix, 2 = 2D fix, 3 = 3D fix. Values: nmea_gsa_fix_type (table
        nmea_gsa_fix_type_def). Empty: present false. */
     nmea_enum fix_type;
-    /* Satellites used in the solution: Satellites used in the solution 0 to 11 entries; prns_count
-       of them are on the wire. */
-    nmea_number prns[11];
-    uint8_t prns_count;
+    /* Satellites used in the solution: Satellites used in the solution 0 to 11 entries; entry i is
+       read by nmea_gsa_short_prns_at (nmea_entries). */
+    nmea_entries prns;
     /* PDOP (x.x): Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
        fix). Empty: present false. */
     nmea_number pdop;
@@ -9007,6 +9053,10 @@ typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_gsa_short;
+
+/* Entry `i` of GSA_SHORT prns, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_gsa_short_prns_at(const nmea_gsa_short *s, size_t i, nmea_number *out);
 
 /*
  * GSA (More than 12 PRN slots, with the system ID): GNSS DOP and active satellites.
@@ -9025,10 +9075,9 @@ typedef struct {
     /* Fix type: 1 = no fix, 2 = 2D fix, 3 = 3D fix. Values: nmea_gsa_fix_type (table
        nmea_gsa_fix_type_def). Empty: present false. */
     nmea_enum fix_type;
-    /* Satellites used in the solution: Satellites used in the solution 13 to 24 entries;
-       prns_count of them are on the wire. */
-    nmea_number prns[24];
-    uint8_t prns_count;
+    /* Satellites used in the solution: Satellites used in the solution 13 to 24 entries; entry i
+       is read by nmea_gsa_wide_system_prns_at (nmea_entries). */
+    nmea_entries prns;
     /* PDOP (x.x): Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
        fix). Empty: present false. */
     nmea_number pdop;
@@ -9045,6 +9094,10 @@ typedef struct {
     nmea_checksum_style checksum;
 } nmea_gsa_wide_system;
 
+/* Entry `i` of GSA_WIDE_SYSTEM prns, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_gsa_wide_system_prns_at(const nmea_gsa_wide_system *s, size_t i, nmea_number *out);
+
 /*
  * GSA (More than 12 PRN slots): GNSS DOP and active satellites.
  *
@@ -9060,10 +9113,9 @@ typedef struct {
     /* Fix type: 1 = no fix, 2 = 2D fix, 3 = 3D fix. Values: nmea_gsa_fix_type (table
        nmea_gsa_fix_type_def). Empty: present false. */
     nmea_enum fix_type;
-    /* Satellites used in the solution: Satellites used in the solution 13 to 24 entries;
-       prns_count of them are on the wire. */
-    nmea_number prns[24];
-    uint8_t prns_count;
+    /* Satellites used in the solution: Satellites used in the solution 13 to 24 entries; entry i
+       is read by nmea_gsa_wide_prns_at (nmea_entries). */
+    nmea_entries prns;
     /* PDOP (x.x): Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
        fix). Empty: present false. */
     nmea_number pdop;
@@ -9076,6 +9128,10 @@ typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_gsa_wide;
+
+/* Entry `i` of GSA_WIDE prns, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_gsa_wide_prns_at(const nmea_gsa_wide *s, size_t i, nmea_number *out);
 
 /*
  * GSA (A fourth DOP value): GNSS DOP and active satellites.
@@ -9095,8 +9151,9 @@ typedef struct {
     /* Fix type: 1 = no fix, 2 = 2D fix, 3 = 3D fix. Values: nmea_gsa_fix_type (table
        nmea_gsa_fix_type_def). Empty: present false. */
     nmea_enum fix_type;
-    /* Satellites used in the solution: Satellites used in the solution Always 12 entries. */
-    nmea_number prns[12];
+    /* Satellites used in the solution: Satellites used in the solution Always 12 entries; entry i
+       is read by nmea_gsa_extra_dop_prns_at (nmea_entries). */
+    nmea_entries prns;
     /* PDOP (x.x): Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
        fix). Empty: present false. */
     nmea_number pdop;
@@ -9112,6 +9169,10 @@ typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_gsa_extra_dop;
+
+/* Entry `i` of GSA_EXTRA_DOP prns, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_gsa_extra_dop_prns_at(const nmea_gsa_extra_dop *s, size_t i, nmea_number *out);
 
 /*
  * GST: GNSS pseudorange error statistics.
@@ -9191,10 +9252,9 @@ typedef struct {
     /* Satellites in view (xx): Total number of satellites in view reported by the set (may differ
        from the number used in the solution). Empty: present false. */
     nmea_number satellites_in_view;
-    /* Satellites in view: Satellites in view 0 to 4 entries; satellites_count of them are on the
-       wire. */
-    nmea_gsv_satellite satellites[4];
-    uint8_t satellites_count;
+    /* Satellites in view: Satellites in view 0 to 4 entries; entry i is read by
+       nmea_gsv_satellites_at (nmea_entries). */
+    nmea_entries satellites;
     /* Signal ID (h) (NMEA 4.10, optional): Signal the set reports, meaning per system (NMEA v4.10
        and later). Values: nmea_signal_id (table nmea_signal_id_def). Empty: present false. */
     nmea_enum signal_id;
@@ -9203,6 +9263,10 @@ typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_gsv;
+
+/* Entry `i` of GSV satellites, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_gsv_satellites_at(const nmea_gsv *s, size_t i, nmea_gsv_satellite *out);
 
 /*
  * HBT: Heartbeat supervision sentence.
@@ -10662,12 +10726,15 @@ typedef struct {
     /* Talker ID ("GP", "GN", ...). */
     nmea_text talker;
     /* Waypoints: Waypoint identifiers in route order; unused slots are empty. 0 to 14 entries;
-       waypoints_count of them are on the wire. */
-    nmea_text waypoints[14];
-    uint8_t waypoints_count;
+       entry i is read by nmea_r00_waypoints_at (nmea_entries). */
+    nmea_entries waypoints;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_r00;
+
+/* Entry `i` of R00 waypoints, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_r00_waypoints_at(const nmea_r00 *s, size_t i, nmea_text *out);
 
 /*
  * RLM: Return link message.
@@ -11146,12 +11213,15 @@ typedef struct {
     nmea_text route_id;
     /* Waypoints: Waypoint identifiers of the route in order, as many as fit in the sentence (at
        most 32 in the 82 characters the standard allows; real devices send up to 10). 0 to 32
-       entries; waypoints_count of them are on the wire. */
-    nmea_text waypoints[32];
-    uint8_t waypoints_count;
+       entries; entry i is read by nmea_rte_waypoints_at (nmea_entries). */
+    nmea_entries waypoints;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_rte;
+
+/* Entry `i` of RTE waypoints, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_rte_waypoints_at(const nmea_rte *s, size_t i, nmea_text *out);
 
 /* One entry of SFI frequencies. */
 typedef struct {
@@ -11178,13 +11248,16 @@ typedef struct {
     nmea_number total_sentences;
     /* Sentence number (x.x): Number of this sentence in the list. Empty: present false. */
     nmea_number sentence_number;
-    /* Scanned frequencies: Scanned frequencies 0 to 6 entries; frequencies_count of them are on
-       the wire. */
-    nmea_sfi_frequencie frequencies[6];
-    uint8_t frequencies_count;
+    /* Scanned frequencies: Scanned frequencies 0 to 6 entries; entry i is read by
+       nmea_sfi_frequencies_at (nmea_entries). */
+    nmea_entries frequencies;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_sfi;
+
+/* Entry `i` of SFI frequencies, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_sfi_frequencies_at(const nmea_sfi *s, size_t i, nmea_sfi_frequencie *out);
 
 /*
  * SM1: SafetyNET message, all ships/NAVAREA.
@@ -11581,12 +11654,16 @@ typedef struct {
 typedef struct {
     /* Talker ID ("GP", "GN", ...). */
     nmea_text talker;
-    /* Target labels: Target labels 1 to 20 entries; labels_count of them are on the wire. */
-    nmea_tlb_label labels[20];
-    uint8_t labels_count;
+    /* Target labels: Target labels 1 to 20 entries; entry i is read by nmea_tlb_labels_at
+       (nmea_entries). */
+    nmea_entries labels;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_tlb;
+
+/* Entry `i` of TLB labels, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_tlb_labels_at(const nmea_tlb *s, size_t i, nmea_tlb_label *out);
 
 /*
  * TLL: Target latitude and longitude.
@@ -12576,12 +12653,15 @@ typedef struct {
     nmea_text talker;
     /* Transducer measurements: One set per transducer, as many as fit in the sentence (at most 10
        in the 82 characters the standard allows; real instruments send 1 to 5). 1 to 10 entries;
-       measurements_count of them are on the wire. */
-    nmea_xdr_measurement measurements[10];
-    uint8_t measurements_count;
+       entry i is read by nmea_xdr_measurements_at (nmea_entries). */
+    nmea_entries measurements;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_xdr;
+
+/* Entry `i` of XDR measurements, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_xdr_measurements_at(const nmea_xdr *s, size_t i, nmea_xdr_measurement *out);
 
 /*
  * XTE: Cross-track error, measured.
@@ -14486,12 +14566,15 @@ typedef struct {
        nmea_airoha_geofence_confidence (table nmea_airoha_geofence_confidence_def). Empty: present
        false. */
     nmea_enum confidence;
-    /* Fences: Fences 0 to 4 entries; fences_count of them are on the wire. */
-    nmea_pair890_fence fences[4];
-    uint8_t fences_count;
+    /* Fences: Fences 0 to 4 entries; entry i is read by nmea_pair890_fences_at (nmea_entries). */
+    nmea_entries fences;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pair890;
+
+/* Entry `i` of PAIR890 fences, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pair890_fences_at(const nmea_pair890 *s, size_t i, nmea_pair890_fence *out);
 
 /*
  * PAIR891: Query geofences.
@@ -14532,12 +14615,16 @@ typedef struct {
        nmea_airoha_geofence_confidence (table nmea_airoha_geofence_confidence_def). Empty: present
        false. */
     nmea_enum confidence;
-    /* Fences: Fences 0 to 4 entries; fences_count of them are on the wire. */
-    nmea_pair891_reply_fence fences[4];
-    uint8_t fences_count;
+    /* Fences: Fences 0 to 4 entries; entry i is read by nmea_pair891_reply_fences_at
+       (nmea_entries). */
+    nmea_entries fences;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pair891_reply;
+
+/* Entry `i` of PAIR891_REPLY fences, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pair891_reply_fences_at(const nmea_pair891_reply *s, size_t i, nmea_pair891_reply_fence *out);
 
 /*
  * PAIR900: Switch LOCUS logging.
@@ -15087,12 +15174,16 @@ typedef struct {
     nmea_number period;
     /* Number of messages: Number of message entries that follow. Empty: present false. */
     nmea_number count;
-    /* Messages: Messages 0 to 64 entries; messages_count of them are on the wire. */
-    nmea_pashr_nmo_message messages[64];
-    uint8_t messages_count;
+    /* Messages: Messages 0 to 64 entries; entry i is read by nmea_pashr_nmo_messages_at
+       (nmea_entries). */
+    nmea_entries messages;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pashr_nmo;
+
+/* Entry `i` of PASHR_NMO messages, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pashr_nmo_messages_at(const nmea_pashr_nmo *s, size_t i, nmea_pashr_nmo_message *out);
 
 /*
  * PASHR_PEM: Position elevation mask (PEM).
@@ -15227,12 +15318,16 @@ typedef struct {
     /* Satellites locked: Number of satellites locked, which is the number of satellite entries
        that follow. Empty: present false. */
     nmea_number count;
-    /* Satellites: Satellites 0 to 64 entries; satellites_count of them are on the wire. */
-    nmea_pashr_sat_satellite satellites[64];
-    uint8_t satellites_count;
+    /* Satellites: Satellites 0 to 64 entries; entry i is read by nmea_pashr_sat_satellites_at
+       (nmea_entries). */
+    nmea_entries satellites;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pashr_sat;
+
+/* Entry `i` of PASHR_SAT satellites, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pashr_sat_satellites_at(const nmea_pashr_sat *s, size_t i, nmea_pashr_sat_satellite *out);
 
 /*
  * PASHR_SBA: SBAS tracking status (SBA).
@@ -15652,12 +15747,16 @@ typedef struct {
        view and from those used by the filtered fix of GGA. Empty: present false. */
     nmea_number satellites_used;
     /* Undocumented trailing fields: Fields after the satellite count, sent by version 1 receivers;
-       their meaning is not documented. 0 to 4 entries; extra_count of them are on the wire. */
-    nmea_text extra[4];
-    uint8_t extra_count;
+       their meaning is not documented. 0 to 4 entries; entry i is read by nmea_pglor_lsq_extra_at
+       (nmea_entries). */
+    nmea_entries extra;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pglor_lsq;
+
+/* Entry `i` of PGLOR_LSQ extra, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pglor_lsq_extra_at(const nmea_pglor_lsq *s, size_t i, nmea_text *out);
 
 /*
  * PGLOR_PWR: Broadcom power consumption report.
@@ -15780,12 +15879,16 @@ typedef struct {
     /* UTC time (hhmmss.ss): UTC time of the report. Empty: present false. */
     nmea_time time;
     /* Undocumented fields: The label/value pairs after the UTC time (GNSSmA, CPUTm, COPTm, SrchTm,
-       TrkTm, ...), kept as text. 0 to 16 entries; extra_count of them are on the wire. */
-    nmea_text extra[16];
-    uint8_t extra_count;
+       TrkTm, ...), kept as text. 0 to 16 entries; entry i is read by nmea_pglor_pwr_v4_extra_at
+       (nmea_entries). */
+    nmea_entries extra;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pglor_pwr_v4;
+
+/* Entry `i` of PGLOR_PWR_V4 extra, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pglor_pwr_v4_extra_at(const nmea_pglor_pwr_v4 *s, size_t i, nmea_text *out);
 
 /* One entry of PGLOR_SAT satellites. */
 typedef struct {
@@ -15821,13 +15924,16 @@ typedef struct {
     /* Sentence number: Position of this sentence in the series, starting at 1. Empty: present
        false. */
     nmea_number sentence_number;
-    /* Satellites: One entry per satellite. 0 to 16 entries; satellites_count of them are on the
-       wire. */
-    nmea_pglor_sat_satellite satellites[16];
-    uint8_t satellites_count;
+    /* Satellites: One entry per satellite. 0 to 16 entries; entry i is read by
+       nmea_pglor_sat_satellites_at (nmea_entries). */
+    nmea_entries satellites;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pglor_sat;
+
+/* Entry `i` of PGLOR_SAT satellites, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pglor_sat_satellites_at(const nmea_pglor_sat *s, size_t i, nmea_pglor_sat_satellite *out);
 
 /* One entry of PGLOR_SAT_V1 satellites. */
 typedef struct {
@@ -15852,13 +15958,16 @@ typedef struct {
 typedef struct {
     /* Sentence version: Version of the SAT layout, 1. True when the field holds "1". Empty: false. */
     bool version;
-    /* Satellites: One entry per satellite. 0 to 24 entries; satellites_count of them are on the
-       wire. */
-    nmea_pglor_sat_v1_satellite satellites[24];
-    uint8_t satellites_count;
+    /* Satellites: One entry per satellite. 0 to 24 entries; entry i is read by
+       nmea_pglor_sat_v1_satellites_at (nmea_entries). */
+    nmea_entries satellites;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pglor_sat_v1;
+
+/* Entry `i` of PGLOR_SAT_V1 satellites, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pglor_sat_v1_satellites_at(const nmea_pglor_sat_v1 *s, size_t i, nmea_pglor_sat_v1_satellite *out);
 
 /* One entry of PGLOR_SAT_V0 satellites. */
 typedef struct {
@@ -15882,13 +15991,16 @@ typedef struct {
 typedef struct {
     /* Sentence version: Version of the SAT layout, 0. True when the field holds "0". Empty: false. */
     bool version;
-    /* Satellites: One entry per satellite. 0 to 24 entries; satellites_count of them are on the
-       wire. */
-    nmea_pglor_sat_v0_satellite satellites[24];
-    uint8_t satellites_count;
+    /* Satellites: One entry per satellite. 0 to 24 entries; entry i is read by
+       nmea_pglor_sat_v0_satellites_at (nmea_entries). */
+    nmea_entries satellites;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pglor_sat_v0;
+
+/* Entry `i` of PGLOR_SAT_V0 satellites, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pglor_sat_v0_satellites_at(const nmea_pglor_sat_v0 *s, size_t i, nmea_pglor_sat_v0_satellite *out);
 
 /*
  * PGLOR_SIO: Broadcom serial link status.
@@ -16054,13 +16166,16 @@ typedef struct {
     nmea_hex source;
     /* Further fields: The fields after the position source: one more in version 0, three more in
        version 2 (a number, the label R and a hexadecimal value), more in later versions. Their
-       meaning is not given in the pages read, so they are kept as text. 0 to 16 entries;
-       extra_count of them are on the wire. */
-    nmea_text extra[16];
-    uint8_t extra_count;
+       meaning is not given in the pages read, so they are kept as text. 0 to 16 entries; entry i
+       is read by nmea_pglor_sta_extra_at (nmea_entries). */
+    nmea_entries extra;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pglor_sta;
+
+/* Entry `i` of PGLOR_STA extra, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pglor_sta_extra_at(const nmea_pglor_sta *s, size_t i, nmea_text *out);
 
 /*
  * PGLOR_UNC: Broadcom fix uncertainties.
@@ -17549,12 +17664,16 @@ typedef struct {
  * Example (log_gpsd): $PMTKCHN,14001,29001,23001,02001,21001,11001,16001,28001,05001,20001,22001,18001,06001,19001,07001,09001,25001,08001,13001,30001,10001,03001,04001,27001,26001,01001,24001,15001,31001,17001,12001,32001*46
  */
 typedef struct {
-    /* Channels: Channels 1 to 32 entries; channels_count of them are on the wire. */
-    nmea_number channels[32];
-    uint8_t channels_count;
+    /* Channels: Channels 1 to 32 entries; entry i is read by nmea_pmtkchn_channels_at
+       (nmea_entries). */
+    nmea_entries channels;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pmtkchn;
+
+/* Entry `i` of PMTKCHN channels, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pmtkchn_channels_at(const nmea_pmtkchn *s, size_t i, nmea_number *out);
 
 /*
  * PMTKLOG: LOCUS logger status.
@@ -17607,12 +17726,16 @@ typedef struct {
 typedef struct {
     /* Line number: Number of this data line, counting from 0. Empty: present false. */
     nmea_number line;
-    /* Flash data words: Flash data words 1 to 24 entries; words_count of them are on the wire. */
-    nmea_hex words[24];
-    uint8_t words_count;
+    /* Flash data words: Flash data words 1 to 24 entries; entry i is read by
+       nmea_pmtklox_data_words_at (nmea_entries). */
+    nmea_entries words;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pmtklox_data;
+
+/* Entry `i` of PMTKLOX_DATA words, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pmtklox_data_words_at(const nmea_pmtklox_data *s, size_t i, nmea_hex *out);
 
 /*
  * PMTKLOX_END: LOCUS dump, last line.
@@ -17670,9 +17793,9 @@ typedef struct {
     nmea_number message_number;
     /* Satellites in view: Satellites of the system in view. Empty: present false. */
     nmea_number satellites_in_view;
-    /* Satellites: Satellites 0 to 4 entries; satellites_count of them are on the wire. */
-    nmea_pqgsv_satellite satellites[4];
-    uint8_t satellites_count;
+    /* Satellites: Satellites 0 to 4 entries; entry i is read by nmea_pqgsv_satellites_at
+       (nmea_entries). */
+    nmea_entries satellites;
     /* Signal ID (h): NMEA 4.10 signal ID. Values: nmea_signal_id (table nmea_signal_id_def).
        Empty: present false. */
     nmea_enum signal_id;
@@ -17682,6 +17805,10 @@ typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pqgsv;
+
+/* Entry `i` of PQGSV satellites, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pqgsv_satellites_at(const nmea_pqgsv *s, size_t i, nmea_pqgsv_satellite *out);
 
 /*
  * PQTMANTENNASTATUS: Antenna status.
@@ -20387,11 +20514,16 @@ typedef struct {
     nmea_number msg_version;
     /* UTC time (hhmmss.sss): UTC time of the data. Empty: present false. */
     nmea_time time;
-    /* Geofence states: Geofence states Always 4 entries. */
-    nmea_enum states[4];
+    /* Geofence states: Geofence states Always 4 entries; entry i is read by
+       nmea_pqtmgeofencestatus_states_at (nmea_entries). */
+    nmea_entries states;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pqtmgeofencestatus;
+
+/* Entry `i` of PQTMGEOFENCESTATUS states, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pqtmgeofencestatus_states_at(const nmea_pqtmgeofencestatus *s, size_t i, nmea_enum *out);
 
 /*
  * PQTMGNSSSTART: Start GNSS engine.
@@ -21979,12 +22111,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmagps_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmagps;
+
+/* Entry `i` of PSTMAGPS values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmagps_values_at(const nmea_pstmagps *s, size_t i, nmea_text *out);
 
 /*
  * PSTMALMANAC: ST almanac data.
@@ -21993,12 +22128,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmalmanac_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmalmanac;
+
+/* Entry `i` of PSTMALMANAC values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmalmanac_values_at(const nmea_pstmalmanac *s, size_t i, nmea_text *out);
 
 /*
  * PSTMCLRALMS: Clear all almanacs.
@@ -22058,12 +22196,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmcorr_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmcorr;
+
+/* Entry `i` of PSTMCORR values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmcorr_values_at(const nmea_pstmcorr *s, size_t i, nmea_text *out);
 
 /*
  * PSTMCPU: ST CPU usage.
@@ -22095,12 +22236,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmdiff_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmdiff;
+
+/* Entry `i` of PSTMDIFF values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmdiff_values_at(const nmea_pstmdiff *s, size_t i, nmea_text *out);
 
 /*
  * PSTMEPH: ST ephemeris data.
@@ -22109,12 +22253,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmeph_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmeph;
+
+/* Entry `i` of PSTMEPH values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmeph_values_at(const nmea_pstmeph *s, size_t i, nmea_text *out);
 
 /*
  * PSTMGETPAR: Get configuration parameter.
@@ -22242,12 +22389,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmkfcov_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmkfcov;
+
+/* Entry `i` of PSTMKFCOV values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmkfcov_values_at(const nmea_pstmkfcov *s, size_t i, nmea_text *out);
 
 /*
  * PSTMNMEAONOFF: NMEA output on/off.
@@ -22278,12 +22428,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmpa_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmpa;
+
+/* Entry `i` of PSTMPA values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmpa_values_at(const nmea_pstmpa *s, size_t i, nmea_text *out);
 
 /*
  * PSTMPRES: ST position residuals.
@@ -22293,12 +22446,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmpres_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmpres;
+
+/* Entry `i` of PSTMPRES values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmpres_values_at(const nmea_pstmpres *s, size_t i, nmea_text *out);
 
 /*
  * PSTMRES: ST residuals.
@@ -22308,12 +22464,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmres_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmres;
+
+/* Entry `i` of PSTMRES values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmres_values_at(const nmea_pstmres *s, size_t i, nmea_text *out);
 
 /*
  * PSTMRESTOREPAR: Restore factory parameters.
@@ -22337,12 +22496,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmrf_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmrf;
+
+/* Entry `i` of PSTMRF values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmrf_values_at(const nmea_pstmrf *s, size_t i, nmea_text *out);
 
 /*
  * PSTMSAT: ST satellite information.
@@ -22352,12 +22514,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmsat_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmsat;
+
+/* Entry `i` of PSTMSAT values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmsat_values_at(const nmea_pstmsat *s, size_t i, nmea_text *out);
 
 /*
  * PSTMSAVEPAR: Save parameters.
@@ -22382,12 +22547,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmsbas_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmsbas;
+
+/* Entry `i` of PSTMSBAS values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmsbas_values_at(const nmea_pstmsbas *s, size_t i, nmea_text *out);
 
 /*
  * PSTMSBASCORR: ST satellite correction data.
@@ -22396,12 +22564,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmsbascorr_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmsbascorr;
+
+/* Entry `i` of PSTMSBASCORR values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmsbascorr_values_at(const nmea_pstmsbascorr *s, size_t i, nmea_text *out);
 
 /*
  * PSTMSET: Get parameter answer, printed form.
@@ -22548,12 +22719,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmtestrf_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmtestrf;
+
+/* Entry `i` of PSTMTESTRF values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmtestrf_values_at(const nmea_pstmtestrf *s, size_t i, nmea_text *out);
 
 /*
  * PSTMTG: ST time and satellites used.
@@ -22563,12 +22737,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmtg_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmtg;
+
+/* Entry `i` of PSTMTG values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmtg_values_at(const nmea_pstmtg *s, size_t i, nmea_text *out);
 
 /*
  * PSTMTIM: ST system time.
@@ -22578,12 +22755,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmtim_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmtim;
+
+/* Entry `i` of PSTMTIM values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmtim_values_at(const nmea_pstmtim *s, size_t i, nmea_text *out);
 
 /*
  * PSTMTS: ST tracked satellite data.
@@ -22593,12 +22773,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmts_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmts;
+
+/* Entry `i` of PSTMTS values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmts_values_at(const nmea_pstmts *s, size_t i, nmea_text *out);
 
 /*
  * PSTMVER: ST version string.
@@ -22607,12 +22790,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmver_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmver;
+
+/* Entry `i` of PSTMVER values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmver_values_at(const nmea_pstmver *s, size_t i, nmea_text *out);
 
 /*
  * PSTMVRES: ST velocity residuals.
@@ -22622,12 +22808,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmvres_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmvres;
+
+/* Entry `i` of PSTMVRES values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmvres_values_at(const nmea_pstmvres *s, size_t i, nmea_text *out);
 
 /*
  * PSTMWAAS: ST WAAS data.
@@ -22637,12 +22826,15 @@ typedef struct {
  */
 typedef struct {
     /* Fields: The message's fields, kept as raw text because the manual does not give the format.
-       0 to 64 entries; values_count of them are on the wire. */
-    nmea_text values[64];
-    uint8_t values_count;
+       0 to 64 entries; entry i is read by nmea_pstmwaas_values_at (nmea_entries). */
+    nmea_entries values;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pstmwaas;
+
+/* Entry `i` of PSTMWAAS values, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pstmwaas_values_at(const nmea_pstmwaas *s, size_t i, nmea_text *out);
 
 /*
  * PSTMWARM: Warm start.
@@ -23572,12 +23764,15 @@ typedef struct {
        present false. */
     nmea_number num_sv;
     /* Tracked satellites: One entry per tracked satellite, as many as the count says. 0 to 64
-       entries; satellites_count of them are on the wire. */
-    nmea_pubx_svstatus_satellite satellites[64];
-    uint8_t satellites_count;
+       entries; entry i is read by nmea_pubx_svstatus_satellites_at (nmea_entries). */
+    nmea_entries satellites;
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_pubx_svstatus;
+
+/* Entry `i` of PUBX_SVSTATUS satellites, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_pubx_svstatus_satellites_at(const nmea_pubx_svstatus *s, size_t i, nmea_pubx_svstatus_satellite *out);
 
 /*
  * PUBX_SVSTATUS_POLL: Poll the u-blox satellite status message.

@@ -2382,6 +2382,21 @@ NMEA_HOT bool fast_put_text_field(fast_writer *w, nmea_text t)
     return fast_sep(w) && fast_put_mem(w, t.ptr, t.len);
 }
 
+/* The `fields` wire fields of a group's entries as received (nmea_entries.wire): false when the
+   wire does not hold that many, or lenient parsing read some as empty, for the general writer. */
+NMEA_HOT bool fast_put_entries(fast_writer *w, const nmea_entries *e, size_t fields)
+{
+    nmea_text wire = e->wire;
+    size_t i, seps = 0;
+    if (!fields)
+        return true;
+    if (!wire.ptr || e->blanks)
+        return false;
+    for (i = 0; i < wire.len; i++)
+        seps += wire.ptr[i] == ',';
+    return seps + 1 == fields && fast_sep(w) && fast_put_mem(w, wire.ptr, wire.len);
+}
+
 #ifndef NMEA_NO_JSON
 static void put_json_cstr(nmea_writer *w, const char *s)
 {
@@ -3455,8 +3470,8 @@ typedef struct {
     uint16_t min;
     uint16_t max;
     bool single;           /* one field an entry: the JSON lists its values without keys */
-    uint16_t offset;       /* of the entries' array (NO_MEMBER: none, the entries hold only keywords) */
-    uint16_t entry_size;
+    uint16_t offset;       /* of its nmea_entries (NO_MEMBER: none, the entries hold only keywords) */
+    uint16_t entry_size;   /* of an entry of nmea_entries.items */
     uint16_t count_offset; /* of the uint8_t entry count (NO_MEMBER: always `max` entries) */
 } layout_group;
 
@@ -3526,14 +3541,15 @@ static size_t optional_of(const layout *l, const void *s)
     return l->optional_count == NO_MEMBER ? 0 : *(const uint8_t *)const_member_at(s, l->optional_count);
 }
 
-static const void *entry_at(const layout_group *g, const void *s, size_t i)
+/* The entries of a layout's group (NULL: it stores nothing, its entries hold only keywords). */
+static const nmea_entries *entries_in(const layout_group *g, const void *s)
 {
-    return g->offset == NO_MEMBER ? s : const_member_at(s, (uint16_t)(g->offset + i * g->entry_size));
+    return g->offset == NO_MEMBER ? NULL : (const nmea_entries *)const_member_at(s, g->offset);
 }
 
-static bool read_field(nmea_reader *r, const layout_field *f, void *entry)
+/* Reads field `f` into `out`, a value of its type (nothing for a keyword). */
+static bool read_field(nmea_reader *r, const layout_field *f, void *out)
 {
-    void *out = member_at(entry, f->offset);
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
         return read_keyword(r, f->id, f->expected, f->arg);
@@ -3569,9 +3585,91 @@ static bool read_fields(nmea_reader *r, const layout_field *f, size_t n, void *e
 {
     size_t i;
     for (i = 0; i < n; i++)
-        if (!read_field(r, &f[i], entry))
+        if (!read_field(r, &f[i], member_at(entry, f[i].offset)))
             return false;
     return true;
+}
+
+/* Any value a field holds, for reading one field of a group entry on its own. */
+typedef union {
+    nmea_number number;
+    nmea_hex hex;
+    nmea_time time;
+    nmea_date date;
+    nmea_coordinate coordinate;
+    char c;
+    bool literal;
+    nmea_text text;
+    nmea_enum enumeration;
+} field_value;
+
+/* The size of the value of field `f` (0: a keyword holds none). */
+static size_t field_size(const layout_field *f)
+{
+    switch ((field_type)f->type) {
+    case FIELD_KEYWORD:
+        return 0;
+    case FIELD_INTEGER:
+    case FIELD_DECIMAL:
+        return sizeof(nmea_number);
+    case FIELD_HEX:
+        return sizeof(nmea_hex);
+    case FIELD_TIME:
+        return sizeof(nmea_time);
+    case FIELD_DATE:
+        return sizeof(nmea_date);
+    case FIELD_LATITUDE:
+    case FIELD_LONGITUDE:
+        return sizeof(nmea_coordinate);
+    case FIELD_CHAR:
+        return sizeof(char);
+    case FIELD_LITERAL:
+        return sizeof(bool);
+    case FIELD_TEXT:
+    case FIELD_ENUM_CHARS:
+        return sizeof(nmea_text);
+    case FIELD_ENUM:
+        return sizeof(nmea_enum);
+    }
+    return 0;
+}
+
+/* The end of the `n` fields (n > 0) that start at `p`, before `end`. */
+static const char *fields_end(const char *p, const char *end, char sep, size_t n)
+{
+    for (;; p++) {
+        while (p < end && *p != sep)
+            p++;
+        if (p == end || --n == 0)
+            return p;
+    }
+}
+
+/* Reads a parsed sentence's group entries again, field by field, from their wire text. */
+typedef struct {
+    nmea_reader r;
+    nmea_error err;
+} entry_reader;
+
+static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i);
+
+/* The next field `f` of an entry, into `out`, as parsing read it (lenient parsing's blanks
+   included). A field that does not read (in a struct the parser did not make) is empty. */
+static void reread_field(entry_reader *c, const layout_field *f, void *out)
+{
+    const char *next = c->r.next;
+    unsigned index = c->r.index;
+    size_t size = field_size(f);
+
+    if (size)
+        memset(out, 0, size);
+    if (read_field(&c->r, f, out))
+        return;
+    if (size)
+        memset(out, 0, size);
+    c->r.next = fields_end(next, c->r.end, c->r.sep, f->width);
+    c->r.next += c->r.next < c->r.end;
+    c->r.index = index + f->width;
 }
 
 /* Reads the wire into `s`, a struct of layout `l`. */
@@ -3597,10 +3695,22 @@ NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nme
     if (!read_fields(&r, l->fields, l->before, s))
         return false;
     if (g) {
+        const char *start = r.next;
+        unsigned first = r.index;
+        field_value value;
+        size_t j;
         for (i = 0; i < repeats; i++) {
             reader_entry(&r, g->id, i);
-            if (!read_fields(&r, g->fields, g->field_count, (void *)entry_at(g, s, i)))
-                return false;
+            for (j = 0; j < g->field_count; j++)
+                if (!read_field(&r, &g->fields[j], &value))
+                    return false;
+        }
+        if (g->offset != NO_MEMBER) { /* the entries stay on the wire, read when asked for */
+            nmea_entries *e = (nmea_entries *)member_at(s, g->offset);
+            e->wire = text_span(start, repeats ? fields_end(start, r.end, r.sep, repeats * g->width) : start);
+            for (j = 0; j < wire->blanks; j++)
+                if (wire->blank[j] > first && wire->blank[j] <= r.index)
+                    e->blank[e->blanks++] = (uint16_t)(wire->blank[j] - first);
         }
         if (g->count_offset != NO_MEMBER)
             *(uint8_t *)member_at(s, g->count_offset) = (uint8_t)repeats;
@@ -3609,9 +3719,59 @@ NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nme
     return read_fields(&r, l->fields + l->before, l->after + present, s);
 }
 
-static void write_field(nmea_writer *w, const layout_field *f, const void *entry)
+/* Starts `c` at entry `i` of the group of layout `l` whose entries `e` holds on the wire; false
+   when the wire ends before it. */
+static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i)
 {
-    const void *in = const_member_at(entry, f->offset);
+    nmea_wire w;
+    const char *p = e->wire.ptr, *end = p ? p + e->wire.len : NULL;
+    size_t skip;
+
+    memset(&w, 0, sizeof w);
+    w.sep = l->kind == LAYOUT_TEXT ? ' ' : ',';
+    w.ignore_case = l->kind == LAYOUT_TEXT;
+    for (skip = i * l->group->width; skip > 0; skip--) {
+        p = fields_end(p, end, w.sep, 1);
+        if (p == end)
+            return false;
+        p++;
+    }
+    if (p == NULL || (p == end && i > 0))
+        return false;
+    w.fields = text_span(p, end);
+    reader_start(&c->r, &w, l->sentence, &c->err);
+    c->r.index = (unsigned)(i * l->group->width); /* the blanks count from the first entry */
+    c->r.blank = e->blank;
+    c->r.blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;
+    return true;
+}
+
+/* Entry `i` of the group of `s`, a struct of layout `l`, into `out` (an entry, or the value of a
+   group of one field): false when the group has fewer entries. */
+NMEA_OUTLINE bool entry_of(const layout *l, const void *s, size_t i, void *out)
+{
+    const layout_group *g = l->group;
+    const nmea_entries *e = entries_in(g, s);
+    entry_reader c;
+    size_t j;
+
+    if (i >= entries_of(g, s))
+        return false;
+    if (e->items) {
+        memcpy(out, (const char *)e->items + i * g->entry_size, g->entry_size);
+        return true;
+    }
+    memset(out, 0, g->entry_size);
+    if (!entry_reader_at(&c, l, e, i))
+        return true; /* past what the wire holds: an empty entry */
+    for (j = 0; j < g->field_count; j++)
+        reread_field(&c, &g->fields[j], member_at(out, g->fields[j].offset));
+    return true;
+}
+
+/* Writes field `f` (its separator and text) from `in`, a value of its type. */
+static void write_field(nmea_writer *w, const layout_field *f, const void *in)
+{
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
         put_keyword(w, f->arg);
@@ -3653,7 +3813,37 @@ static void write_fields(nmea_writer *w, const layout_field *f, size_t n, const 
 {
     size_t i;
     for (i = 0; i < n; i++)
-        write_field(w, &f[i], entry);
+        write_field(w, &f[i], const_member_at(entry, f[i].offset));
+}
+
+/* The entries of a group: from the caller's array, else their fields as received (a field a
+   problem names is written with the problem's text, which is the same). The fields of entries
+   neither holds are empty; a group of keywords writes its keywords. */
+static void write_entries(nmea_writer *w, const layout_group *g, const void *s)
+{
+    const nmea_entries *e = entries_in(g, s);
+    size_t i, n = entries_of(g, s);
+    const char *p, *end, *stop;
+
+    if (e && e->items) {
+        for (i = 0; i < n; i++)
+            write_fields(w, g->fields, g->field_count, (const char *)e->items + i * g->entry_size);
+        return;
+    }
+    if (!e) {
+        for (i = 0; i < n; i++)
+            write_fields(w, g->fields, g->field_count, s);
+        return;
+    }
+    p = e->wire.ptr;
+    end = p ? p + e->wire.len : NULL;
+    for (i = 0; i < n * g->width; i++) {
+        stop = fields_end(p, end, w->sep, 1);
+        /* (a field lenient parsing read as empty is written empty, or as its problem's text) */
+        if (!put_sep(w) && stop != p && !(e->blanks && is_blank(e->blank, e->blanks, (unsigned)i + 1)))
+            put_text(w, text_span(p, stop));
+        p = stop < end ? stop + 1 : stop;
+    }
 }
 
 /* Writes `s`, a struct of layout `l`, with the texts of its `problems` (NULL: none) in their
@@ -3661,7 +3851,6 @@ static void write_fields(nmea_writer *w, const layout_field *f, size_t n, const 
 NMEA_OUTLINE void write_with(nmea_writer *w, const layout *l, const void *s, const nmea_problems *problems)
 {
     const layout_group *g = l->group;
-    size_t i, n;
 
     if (l->kind == LAYOUT_STANDARD)
         begin_sentence(w, l->start, *(const nmea_text *)const_member_at(s, l->head), l->sentence, problems);
@@ -3671,8 +3860,7 @@ NMEA_OUTLINE void write_with(nmea_writer *w, const layout *l, const void *s, con
         begin_text(w, l->address, *(const nmea_text *)const_member_at(s, l->head), problems);
     write_fields(w, l->fields, l->before, s);
     if (g)
-        for (i = 0, n = entries_of(g, s); i < n; i++)
-            write_fields(w, g->fields, g->field_count, entry_at(g, s, i));
+        write_entries(w, g, s);
     write_fields(w, l->fields + l->before, l->after + optional_of(l, s), s);
     if (l->kind == LAYOUT_TEXT)
         end_text(w);
@@ -3702,10 +3890,10 @@ static size_t build_with(const layout *l, const void *s, const nmea_problems *pr
 }
 
 #ifndef NMEA_NO_JSON
-/* A field in the JSON under `key` (NULL: a value of a group's array). */
-static void json_field(nmea_writer *w, const char *key, const layout_field *f, const void *entry, bool values)
+/* A field in the JSON under `key` (NULL: a value of a group's array), from `in`, a value of its
+   type. */
+static void json_field(nmea_writer *w, const char *key, const layout_field *f, const void *in, bool values)
 {
-    const void *in = const_member_at(entry, f->offset);
     switch ((field_type)f->type) {
     case FIELD_KEYWORD:
         json_keyword(w, key, f->arg, values);
@@ -3749,7 +3937,7 @@ static void json_fields(nmea_writer *w, const layout_field *f, size_t n, const v
 {
     size_t i;
     for (i = 0; i < n; i++)
-        json_field(w, f[i].id, &f[i], entry, values);
+        json_field(w, f[i].id, &f[i], const_member_at(entry, f[i].offset), values);
 }
 
 /* The lossless fields of a text command written back as received: each word as written, under
@@ -3778,7 +3966,44 @@ static void json_words_as_written(nmea_writer *w, const layout *l, const void *s
     size_t i, count = l->before + optional_of(l, s);
     for (i = 0; i < count; i++)
         if (!problems || !json_problem_word(w, l->fields[i].id, problems, (unsigned)i + 1))
-            json_field(w, l->fields[i].id, &l->fields[i], s, false);
+            json_field(w, l->fields[i].id, &l->fields[i], const_member_at(s, l->fields[i].offset), false);
+}
+
+/* The entries of the group of `s`, a struct of layout `l`: from the caller's array, else read
+   again from the wire field by field. */
+static void json_entries(nmea_writer *w, const layout *l, const void *s, bool values)
+{
+    const layout_group *g = l->group;
+    const nmea_entries *e = entries_in(g, s);
+    size_t i, j, n = entries_of(g, s);
+    bool on_wire = false;
+    entry_reader c;
+    field_value value;
+    const void *in;
+
+    memset(&c, 0, sizeof c);
+    json_open(w, g->id, '[');
+    for (i = 0; i < n; i++) {
+        if (!e || !e->items)
+            on_wire = i == 0 ? e && entry_reader_at(&c, l, e, 0) : on_wire && c.r.next < c.r.end;
+        if (!g->single)
+            json_open(w, NULL, '{');
+        for (j = 0; j < g->field_count; j++) {
+            const layout_field *f = &g->fields[j];
+            if (e && e->items) {
+                in = (const char *)e->items + i * g->entry_size + f->offset;
+            } else {
+                memset(&value, 0, sizeof value);
+                if (on_wire)
+                    reread_field(&c, f, &value);
+                in = &value;
+            }
+            json_field(w, g->single ? NULL : f->id, f, in, values);
+        }
+        if (!g->single)
+            json_close(w, '}');
+    }
+    json_close(w, ']');
 }
 
 /* The decode JSON of `s`, a struct of layout `l`, with its `problems` (NULL: none). */
@@ -3788,7 +4013,6 @@ NMEA_OUTLINE void json_with(nmea_writer *w, const layout *l, const void *s, cons
     const layout_group *g = l->group;
     nmea_writer sentence = writer_of(NULL, 0);
     nmea_checksum_style checksum = NMEA_CHECKSUM_NONE;
-    size_t i, n;
 
     write_with(&sentence, l, s, problems);
     if (l->checksum != NO_MEMBER)
@@ -3810,19 +4034,8 @@ NMEA_OUTLINE void json_with(nmea_writer *w, const layout *l, const void *s, cons
         }
     }
     json_fields(w, l->fields, l->before, s, values);
-    if (g) {
-        json_open(w, g->id, '[');
-        for (i = 0, n = entries_of(g, s); i < n; i++) {
-            if (g->single) {
-                json_field(w, NULL, g->fields, entry_at(g, s, i), values);
-            } else {
-                json_open(w, NULL, '{');
-                json_fields(w, g->fields, g->field_count, entry_at(g, s, i), values);
-                json_close(w, '}');
-            }
-        }
-        json_close(w, ']');
-    }
+    if (g)
+        json_entries(w, l, s, values);
     json_fields(w, l->fields + l->before, l->after + optional_of(l, s), s, values);
     json_end_sentence(w, &sentence, checksum, problems);
 }

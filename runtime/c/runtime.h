@@ -233,6 +233,24 @@ typedef struct {
     nmea_problem list[NMEA_MAX_PROBLEMS];
 } nmea_problems;
 
+/**
+ * The entries of a repeated group (GSV's satellites, ...). A parsed sentence keeps them as
+ * received: `wire` is the text of their fields (separators between them, none around), and
+ * nmea_<layout>_<group>_at reads entry i when it is asked for. A sentence struct is thus the
+ * size of its other fields however many entries its group may take. A sentence to build points
+ * `items` at the caller's array of `count` entries (the group's entry struct, or the value type
+ * of a group of one field), which must outlive the struct; `items` wins over `wire`. A group of
+ * a fixed number of entries always has that many (those neither array nor wire holds are
+ * empty).
+ */
+typedef struct {
+    const void *items;
+    nmea_text wire;
+    uint8_t count;
+    uint8_t blanks;                    /* lenient parsing: how many fields of `wire` it read as empty, */
+    uint16_t blank[NMEA_MAX_PROBLEMS]; /* and which (1-based in `wire`) */
+} nmea_entries;
+
 /** A problem's message ("expected ..., found \"TEXT\""); returns its length (0 when it does not
     fit). */
 size_t nmea_problem_message(const nmea_problem *p, char *buf, size_t cap);

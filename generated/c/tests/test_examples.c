@@ -6122,6 +6122,486 @@ static bool built(const example *ex, const char *got, size_t len, const char *li
 
 static char json[NMEA_JSON_MAX];
 
+/* Reads every entry of the group of `s` through its accessor and gives them back as the caller's
+   items, with the wire forgotten: false when the accessor does not yield as many entries as the
+   group counts. A sentence without a group is left as it is. */
+static bool regroup(nmea_sentence *s)
+{
+    size_t i = 0;
+    switch (s->id) {
+    case NMEA_SENTENCE_ALC: {
+        static nmea_alc_alert items[10];
+        while (i < 10 && nmea_alc_alerts_at(&s->as.alc, i, &items[i]))
+            i++;
+        s->as.alc.alerts.items = items;
+        s->as.alc.alerts.wire = nmea_text_of(NULL);
+        return i == s->as.alc.alerts.count
+               && !nmea_alc_alerts_at(&s->as.alc, i, &items[0]);
+    }
+    case NMEA_SENTENCE_ALK: {
+        static nmea_hex items[23];
+        while (i < 23 && nmea_alk_data_at(&s->as.alk, i, &items[i]))
+            i++;
+        s->as.alk.data.items = items;
+        s->as.alk.data.wire = nmea_text_of(NULL);
+        return i == s->as.alk.data.count
+               && !nmea_alk_data_at(&s->as.alk, i, &items[0]);
+    }
+    case NMEA_SENTENCE_DSE: {
+        static nmea_dse_data_set items[8];
+        while (i < 8 && nmea_dse_data_sets_at(&s->as.dse, i, &items[i]))
+            i++;
+        s->as.dse.data_sets.items = items;
+        s->as.dse.data_sets.wire = nmea_text_of(NULL);
+        return i == s->as.dse.data_sets.count
+               && !nmea_dse_data_sets_at(&s->as.dse, i, &items[0]);
+    }
+    case NMEA_SENTENCE_GEN: {
+        static nmea_hex items[8];
+        while (i < 8 && nmea_gen_words_at(&s->as.gen, i, &items[i]))
+            i++;
+        s->as.gen.words.items = items;
+        s->as.gen.words.wire = nmea_text_of(NULL);
+        return i == s->as.gen.words.count
+               && !nmea_gen_words_at(&s->as.gen, i, &items[0]);
+    }
+    case NMEA_SENTENCE_GLC: {
+        static nmea_glc_time_difference items[5];
+        while (i < 5 && nmea_glc_time_differences_at(&s->as.glc, i, &items[i]))
+            i++;
+        s->as.glc.time_differences.items = items;
+        s->as.glc.time_differences.wire = nmea_text_of(NULL);
+        return i == 5
+               && !nmea_glc_time_differences_at(&s->as.glc, i, &items[0]);
+    }
+    case NMEA_SENTENCE_GRS: {
+        static nmea_number items[12];
+        while (i < 12 && nmea_grs_residuals_at(&s->as.grs, i, &items[i]))
+            i++;
+        s->as.grs.residuals.items = items;
+        s->as.grs.residuals.wire = nmea_text_of(NULL);
+        return i == 12
+               && !nmea_grs_residuals_at(&s->as.grs, i, &items[0]);
+    }
+    case NMEA_SENTENCE_GSA: {
+        static nmea_number items[12];
+        while (i < 12 && nmea_gsa_prns_at(&s->as.gsa, i, &items[i]))
+            i++;
+        s->as.gsa.prns.items = items;
+        s->as.gsa.prns.wire = nmea_text_of(NULL);
+        return i == 12
+               && !nmea_gsa_prns_at(&s->as.gsa, i, &items[0]);
+    }
+    case NMEA_SENTENCE_GSA_SHORT: {
+        static nmea_number items[11];
+        while (i < 11 && nmea_gsa_short_prns_at(&s->as.gsa_short, i, &items[i]))
+            i++;
+        s->as.gsa_short.prns.items = items;
+        s->as.gsa_short.prns.wire = nmea_text_of(NULL);
+        return i == s->as.gsa_short.prns.count
+               && !nmea_gsa_short_prns_at(&s->as.gsa_short, i, &items[0]);
+    }
+    case NMEA_SENTENCE_GSA_WIDE_SYSTEM: {
+        static nmea_number items[24];
+        while (i < 24 && nmea_gsa_wide_system_prns_at(&s->as.gsa_wide_system, i, &items[i]))
+            i++;
+        s->as.gsa_wide_system.prns.items = items;
+        s->as.gsa_wide_system.prns.wire = nmea_text_of(NULL);
+        return i == s->as.gsa_wide_system.prns.count
+               && !nmea_gsa_wide_system_prns_at(&s->as.gsa_wide_system, i, &items[0]);
+    }
+    case NMEA_SENTENCE_GSA_WIDE: {
+        static nmea_number items[24];
+        while (i < 24 && nmea_gsa_wide_prns_at(&s->as.gsa_wide, i, &items[i]))
+            i++;
+        s->as.gsa_wide.prns.items = items;
+        s->as.gsa_wide.prns.wire = nmea_text_of(NULL);
+        return i == s->as.gsa_wide.prns.count
+               && !nmea_gsa_wide_prns_at(&s->as.gsa_wide, i, &items[0]);
+    }
+    case NMEA_SENTENCE_GSA_EXTRA_DOP: {
+        static nmea_number items[12];
+        while (i < 12 && nmea_gsa_extra_dop_prns_at(&s->as.gsa_extra_dop, i, &items[i]))
+            i++;
+        s->as.gsa_extra_dop.prns.items = items;
+        s->as.gsa_extra_dop.prns.wire = nmea_text_of(NULL);
+        return i == 12
+               && !nmea_gsa_extra_dop_prns_at(&s->as.gsa_extra_dop, i, &items[0]);
+    }
+    case NMEA_SENTENCE_GSV: {
+        static nmea_gsv_satellite items[4];
+        while (i < 4 && nmea_gsv_satellites_at(&s->as.gsv, i, &items[i]))
+            i++;
+        s->as.gsv.satellites.items = items;
+        s->as.gsv.satellites.wire = nmea_text_of(NULL);
+        return i == s->as.gsv.satellites.count
+               && !nmea_gsv_satellites_at(&s->as.gsv, i, &items[0]);
+    }
+    case NMEA_SENTENCE_R00: {
+        static nmea_text items[14];
+        while (i < 14 && nmea_r00_waypoints_at(&s->as.r00, i, &items[i]))
+            i++;
+        s->as.r00.waypoints.items = items;
+        s->as.r00.waypoints.wire = nmea_text_of(NULL);
+        return i == s->as.r00.waypoints.count
+               && !nmea_r00_waypoints_at(&s->as.r00, i, &items[0]);
+    }
+    case NMEA_SENTENCE_RTE: {
+        static nmea_text items[32];
+        while (i < 32 && nmea_rte_waypoints_at(&s->as.rte, i, &items[i]))
+            i++;
+        s->as.rte.waypoints.items = items;
+        s->as.rte.waypoints.wire = nmea_text_of(NULL);
+        return i == s->as.rte.waypoints.count
+               && !nmea_rte_waypoints_at(&s->as.rte, i, &items[0]);
+    }
+    case NMEA_SENTENCE_SFI: {
+        static nmea_sfi_frequencie items[6];
+        while (i < 6 && nmea_sfi_frequencies_at(&s->as.sfi, i, &items[i]))
+            i++;
+        s->as.sfi.frequencies.items = items;
+        s->as.sfi.frequencies.wire = nmea_text_of(NULL);
+        return i == s->as.sfi.frequencies.count
+               && !nmea_sfi_frequencies_at(&s->as.sfi, i, &items[0]);
+    }
+    case NMEA_SENTENCE_TLB: {
+        static nmea_tlb_label items[20];
+        while (i < 20 && nmea_tlb_labels_at(&s->as.tlb, i, &items[i]))
+            i++;
+        s->as.tlb.labels.items = items;
+        s->as.tlb.labels.wire = nmea_text_of(NULL);
+        return i == s->as.tlb.labels.count
+               && !nmea_tlb_labels_at(&s->as.tlb, i, &items[0]);
+    }
+    case NMEA_SENTENCE_XDR: {
+        static nmea_xdr_measurement items[10];
+        while (i < 10 && nmea_xdr_measurements_at(&s->as.xdr, i, &items[i]))
+            i++;
+        s->as.xdr.measurements.items = items;
+        s->as.xdr.measurements.wire = nmea_text_of(NULL);
+        return i == s->as.xdr.measurements.count
+               && !nmea_xdr_measurements_at(&s->as.xdr, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PAIR890: {
+        static nmea_pair890_fence items[4];
+        while (i < 4 && nmea_pair890_fences_at(&s->as.pair890, i, &items[i]))
+            i++;
+        s->as.pair890.fences.items = items;
+        s->as.pair890.fences.wire = nmea_text_of(NULL);
+        return i == s->as.pair890.fences.count
+               && !nmea_pair890_fences_at(&s->as.pair890, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PAIR891_REPLY: {
+        static nmea_pair891_reply_fence items[4];
+        while (i < 4 && nmea_pair891_reply_fences_at(&s->as.pair891_reply, i, &items[i]))
+            i++;
+        s->as.pair891_reply.fences.items = items;
+        s->as.pair891_reply.fences.wire = nmea_text_of(NULL);
+        return i == s->as.pair891_reply.fences.count
+               && !nmea_pair891_reply_fences_at(&s->as.pair891_reply, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PASHR_NMO: {
+        static nmea_pashr_nmo_message items[64];
+        while (i < 64 && nmea_pashr_nmo_messages_at(&s->as.pashr_nmo, i, &items[i]))
+            i++;
+        s->as.pashr_nmo.messages.items = items;
+        s->as.pashr_nmo.messages.wire = nmea_text_of(NULL);
+        return i == s->as.pashr_nmo.messages.count
+               && !nmea_pashr_nmo_messages_at(&s->as.pashr_nmo, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PASHR_SAT: {
+        static nmea_pashr_sat_satellite items[64];
+        while (i < 64 && nmea_pashr_sat_satellites_at(&s->as.pashr_sat, i, &items[i]))
+            i++;
+        s->as.pashr_sat.satellites.items = items;
+        s->as.pashr_sat.satellites.wire = nmea_text_of(NULL);
+        return i == s->as.pashr_sat.satellites.count
+               && !nmea_pashr_sat_satellites_at(&s->as.pashr_sat, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PGLOR_LSQ: {
+        static nmea_text items[4];
+        while (i < 4 && nmea_pglor_lsq_extra_at(&s->as.pglor_lsq, i, &items[i]))
+            i++;
+        s->as.pglor_lsq.extra.items = items;
+        s->as.pglor_lsq.extra.wire = nmea_text_of(NULL);
+        return i == s->as.pglor_lsq.extra.count
+               && !nmea_pglor_lsq_extra_at(&s->as.pglor_lsq, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PGLOR_PWR_V4: {
+        static nmea_text items[16];
+        while (i < 16 && nmea_pglor_pwr_v4_extra_at(&s->as.pglor_pwr_v4, i, &items[i]))
+            i++;
+        s->as.pglor_pwr_v4.extra.items = items;
+        s->as.pglor_pwr_v4.extra.wire = nmea_text_of(NULL);
+        return i == s->as.pglor_pwr_v4.extra.count
+               && !nmea_pglor_pwr_v4_extra_at(&s->as.pglor_pwr_v4, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PGLOR_SAT: {
+        static nmea_pglor_sat_satellite items[16];
+        while (i < 16 && nmea_pglor_sat_satellites_at(&s->as.pglor_sat, i, &items[i]))
+            i++;
+        s->as.pglor_sat.satellites.items = items;
+        s->as.pglor_sat.satellites.wire = nmea_text_of(NULL);
+        return i == s->as.pglor_sat.satellites.count
+               && !nmea_pglor_sat_satellites_at(&s->as.pglor_sat, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PGLOR_SAT_V1: {
+        static nmea_pglor_sat_v1_satellite items[24];
+        while (i < 24 && nmea_pglor_sat_v1_satellites_at(&s->as.pglor_sat_v1, i, &items[i]))
+            i++;
+        s->as.pglor_sat_v1.satellites.items = items;
+        s->as.pglor_sat_v1.satellites.wire = nmea_text_of(NULL);
+        return i == s->as.pglor_sat_v1.satellites.count
+               && !nmea_pglor_sat_v1_satellites_at(&s->as.pglor_sat_v1, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PGLOR_SAT_V0: {
+        static nmea_pglor_sat_v0_satellite items[24];
+        while (i < 24 && nmea_pglor_sat_v0_satellites_at(&s->as.pglor_sat_v0, i, &items[i]))
+            i++;
+        s->as.pglor_sat_v0.satellites.items = items;
+        s->as.pglor_sat_v0.satellites.wire = nmea_text_of(NULL);
+        return i == s->as.pglor_sat_v0.satellites.count
+               && !nmea_pglor_sat_v0_satellites_at(&s->as.pglor_sat_v0, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PGLOR_STA: {
+        static nmea_text items[16];
+        while (i < 16 && nmea_pglor_sta_extra_at(&s->as.pglor_sta, i, &items[i]))
+            i++;
+        s->as.pglor_sta.extra.items = items;
+        s->as.pglor_sta.extra.wire = nmea_text_of(NULL);
+        return i == s->as.pglor_sta.extra.count
+               && !nmea_pglor_sta_extra_at(&s->as.pglor_sta, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PMTKCHN: {
+        static nmea_number items[32];
+        while (i < 32 && nmea_pmtkchn_channels_at(&s->as.pmtkchn, i, &items[i]))
+            i++;
+        s->as.pmtkchn.channels.items = items;
+        s->as.pmtkchn.channels.wire = nmea_text_of(NULL);
+        return i == s->as.pmtkchn.channels.count
+               && !nmea_pmtkchn_channels_at(&s->as.pmtkchn, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PMTKLOX_DATA: {
+        static nmea_hex items[24];
+        while (i < 24 && nmea_pmtklox_data_words_at(&s->as.pmtklox_data, i, &items[i]))
+            i++;
+        s->as.pmtklox_data.words.items = items;
+        s->as.pmtklox_data.words.wire = nmea_text_of(NULL);
+        return i == s->as.pmtklox_data.words.count
+               && !nmea_pmtklox_data_words_at(&s->as.pmtklox_data, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PQGSV: {
+        static nmea_pqgsv_satellite items[4];
+        while (i < 4 && nmea_pqgsv_satellites_at(&s->as.pqgsv, i, &items[i]))
+            i++;
+        s->as.pqgsv.satellites.items = items;
+        s->as.pqgsv.satellites.wire = nmea_text_of(NULL);
+        return i == s->as.pqgsv.satellites.count
+               && !nmea_pqgsv_satellites_at(&s->as.pqgsv, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PQTMGEOFENCESTATUS: {
+        static nmea_enum items[4];
+        while (i < 4 && nmea_pqtmgeofencestatus_states_at(&s->as.pqtmgeofencestatus, i, &items[i]))
+            i++;
+        s->as.pqtmgeofencestatus.states.items = items;
+        s->as.pqtmgeofencestatus.states.wire = nmea_text_of(NULL);
+        return i == 4
+               && !nmea_pqtmgeofencestatus_states_at(&s->as.pqtmgeofencestatus, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMAGPS: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmagps_values_at(&s->as.pstmagps, i, &items[i]))
+            i++;
+        s->as.pstmagps.values.items = items;
+        s->as.pstmagps.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmagps.values.count
+               && !nmea_pstmagps_values_at(&s->as.pstmagps, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMALMANAC: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmalmanac_values_at(&s->as.pstmalmanac, i, &items[i]))
+            i++;
+        s->as.pstmalmanac.values.items = items;
+        s->as.pstmalmanac.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmalmanac.values.count
+               && !nmea_pstmalmanac_values_at(&s->as.pstmalmanac, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMCORR: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmcorr_values_at(&s->as.pstmcorr, i, &items[i]))
+            i++;
+        s->as.pstmcorr.values.items = items;
+        s->as.pstmcorr.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmcorr.values.count
+               && !nmea_pstmcorr_values_at(&s->as.pstmcorr, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMDIFF: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmdiff_values_at(&s->as.pstmdiff, i, &items[i]))
+            i++;
+        s->as.pstmdiff.values.items = items;
+        s->as.pstmdiff.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmdiff.values.count
+               && !nmea_pstmdiff_values_at(&s->as.pstmdiff, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMEPH: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmeph_values_at(&s->as.pstmeph, i, &items[i]))
+            i++;
+        s->as.pstmeph.values.items = items;
+        s->as.pstmeph.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmeph.values.count
+               && !nmea_pstmeph_values_at(&s->as.pstmeph, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMKFCOV: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmkfcov_values_at(&s->as.pstmkfcov, i, &items[i]))
+            i++;
+        s->as.pstmkfcov.values.items = items;
+        s->as.pstmkfcov.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmkfcov.values.count
+               && !nmea_pstmkfcov_values_at(&s->as.pstmkfcov, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMPA: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmpa_values_at(&s->as.pstmpa, i, &items[i]))
+            i++;
+        s->as.pstmpa.values.items = items;
+        s->as.pstmpa.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmpa.values.count
+               && !nmea_pstmpa_values_at(&s->as.pstmpa, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMPRES: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmpres_values_at(&s->as.pstmpres, i, &items[i]))
+            i++;
+        s->as.pstmpres.values.items = items;
+        s->as.pstmpres.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmpres.values.count
+               && !nmea_pstmpres_values_at(&s->as.pstmpres, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMRES: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmres_values_at(&s->as.pstmres, i, &items[i]))
+            i++;
+        s->as.pstmres.values.items = items;
+        s->as.pstmres.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmres.values.count
+               && !nmea_pstmres_values_at(&s->as.pstmres, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMRF: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmrf_values_at(&s->as.pstmrf, i, &items[i]))
+            i++;
+        s->as.pstmrf.values.items = items;
+        s->as.pstmrf.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmrf.values.count
+               && !nmea_pstmrf_values_at(&s->as.pstmrf, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMSAT: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmsat_values_at(&s->as.pstmsat, i, &items[i]))
+            i++;
+        s->as.pstmsat.values.items = items;
+        s->as.pstmsat.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmsat.values.count
+               && !nmea_pstmsat_values_at(&s->as.pstmsat, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMSBAS: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmsbas_values_at(&s->as.pstmsbas, i, &items[i]))
+            i++;
+        s->as.pstmsbas.values.items = items;
+        s->as.pstmsbas.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmsbas.values.count
+               && !nmea_pstmsbas_values_at(&s->as.pstmsbas, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMSBASCORR: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmsbascorr_values_at(&s->as.pstmsbascorr, i, &items[i]))
+            i++;
+        s->as.pstmsbascorr.values.items = items;
+        s->as.pstmsbascorr.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmsbascorr.values.count
+               && !nmea_pstmsbascorr_values_at(&s->as.pstmsbascorr, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMTESTRF: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmtestrf_values_at(&s->as.pstmtestrf, i, &items[i]))
+            i++;
+        s->as.pstmtestrf.values.items = items;
+        s->as.pstmtestrf.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmtestrf.values.count
+               && !nmea_pstmtestrf_values_at(&s->as.pstmtestrf, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMTG: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmtg_values_at(&s->as.pstmtg, i, &items[i]))
+            i++;
+        s->as.pstmtg.values.items = items;
+        s->as.pstmtg.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmtg.values.count
+               && !nmea_pstmtg_values_at(&s->as.pstmtg, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMTIM: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmtim_values_at(&s->as.pstmtim, i, &items[i]))
+            i++;
+        s->as.pstmtim.values.items = items;
+        s->as.pstmtim.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmtim.values.count
+               && !nmea_pstmtim_values_at(&s->as.pstmtim, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMTS: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmts_values_at(&s->as.pstmts, i, &items[i]))
+            i++;
+        s->as.pstmts.values.items = items;
+        s->as.pstmts.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmts.values.count
+               && !nmea_pstmts_values_at(&s->as.pstmts, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMVER: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmver_values_at(&s->as.pstmver, i, &items[i]))
+            i++;
+        s->as.pstmver.values.items = items;
+        s->as.pstmver.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmver.values.count
+               && !nmea_pstmver_values_at(&s->as.pstmver, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMVRES: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmvres_values_at(&s->as.pstmvres, i, &items[i]))
+            i++;
+        s->as.pstmvres.values.items = items;
+        s->as.pstmvres.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmvres.values.count
+               && !nmea_pstmvres_values_at(&s->as.pstmvres, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PSTMWAAS: {
+        static nmea_text items[64];
+        while (i < 64 && nmea_pstmwaas_values_at(&s->as.pstmwaas, i, &items[i]))
+            i++;
+        s->as.pstmwaas.values.items = items;
+        s->as.pstmwaas.values.wire = nmea_text_of(NULL);
+        return i == s->as.pstmwaas.values.count
+               && !nmea_pstmwaas_values_at(&s->as.pstmwaas, i, &items[0]);
+    }
+    case NMEA_SENTENCE_PUBX_SVSTATUS: {
+        static nmea_pubx_svstatus_satellite items[64];
+        while (i < 64 && nmea_pubx_svstatus_satellites_at(&s->as.pubx_svstatus, i, &items[i]))
+            i++;
+        s->as.pubx_svstatus.satellites.items = items;
+        s->as.pubx_svstatus.satellites.wire = nmea_text_of(NULL);
+        return i == s->as.pubx_svstatus.satellites.count
+               && !nmea_pubx_svstatus_satellites_at(&s->as.pubx_svstatus, i, &items[0]);
+    }
+    default:
+        return true;
+    }
+}
+
 static bool check(const example *ex)
 {
     static const nmea_options lenient = {true, false, NULL}; /* nmea_decode_json_ex keeps the problems */
@@ -6162,6 +6642,15 @@ static bool check(const example *ex)
         memcpy(json + n, "\r\n", 2);
         n = nmea_decode_json(json, n + 2, false, buf, sizeof buf);
         ok = same(ex, "decode of the line with its CR LF", buf, n, ex->decode) && ok;
+        again = s;
+        if (!regroup(&again)) {
+            ok = same(ex, "the group's entries through its accessor", "", 0, NULL) && ok;
+        } else {
+            n = nmea_serialize(&again, buf, sizeof buf);
+            ok = same(ex, "serialize from the entries as items", buf, n, ex->line) && ok;
+            n = nmea_to_json(&again, false, buf, sizeof buf);
+            ok = same(ex, "decode from the entries as items", buf, n, ex->decode) && ok;
+        }
         n = nmea_build(&s, buf, sizeof buf, &err);
         if (n == 0) {
             n = nmea_error_to_json(&err, buf, sizeof buf);

@@ -65,8 +65,9 @@ use runtime::is_command_word;
 use runtime::json::{self, Value, WireFields};
 use runtime::{first_word, strip_line_ending, FastReader, Unsure};
 pub use runtime::{
-    Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Error, ErrorKind, FieldProblem, Fields, Frame, Framing,
-    Generic, Group, Hex, Kind, Layout, Name, Number, Problems, ReplyOutcome, Sign, Time, BUILD_CAPACITY, MAX_PROBLEMS,
+    Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Entries, EntryIter, Error, ErrorKind, FieldProblem, Fields,
+    Frame, Framing, Generic, Hex, Kind, Layout, Name, Number, Problems, ReplyOutcome, Sign, Texts, Time,
+    BUILD_CAPACITY, MAX_PROBLEMS,
 };
 
 pub use runtime::stream;
@@ -1096,13 +1097,13 @@ pub enum Sentence<'a> {
     Pmtk869Set(Pmtk869Set<'a>),
     /// PMTKCHN: Channel status.
     #[cfg(feature = "mtk_pmtk")]
-    Pmtkchn(Pmtkchn),
+    Pmtkchn(Pmtkchn<'a>),
     /// PMTKLOG: LOCUS logger status.
     #[cfg(feature = "mtk_pmtk")]
     Pmtklog(Pmtklog<'a>),
     /// PMTKLOX_DATA: LOCUS dump, data line.
     #[cfg(feature = "mtk_pmtk")]
-    PmtkloxData(PmtkloxData),
+    PmtkloxData(PmtkloxData<'a>),
     /// PMTKLOX_END: LOCUS dump, last line.
     #[cfg(feature = "mtk_pmtk")]
     PmtkloxEnd(PmtkloxEnd),
@@ -25447,8 +25448,8 @@ impl<'a> From<Pmtk869Set<'a>> for Sentence<'a> {
 }
 
 #[cfg(feature = "mtk_pmtk")]
-impl From<Pmtkchn> for Sentence<'_> {
-    fn from(sentence: Pmtkchn) -> Self {
+impl<'a> From<Pmtkchn<'a>> for Sentence<'a> {
+    fn from(sentence: Pmtkchn<'a>) -> Self {
         Self::Pmtkchn(sentence)
     }
 }
@@ -25461,8 +25462,8 @@ impl<'a> From<Pmtklog<'a>> for Sentence<'a> {
 }
 
 #[cfg(feature = "mtk_pmtk")]
-impl From<PmtkloxData> for Sentence<'_> {
-    fn from(sentence: PmtkloxData) -> Self {
+impl<'a> From<PmtkloxData<'a>> for Sentence<'a> {
+    fn from(sentence: PmtkloxData<'a>) -> Self {
         Self::PmtkloxData(sentence)
     }
 }

@@ -8,7 +8,7 @@
 
 use super::frame::{xor_of_bytes, GroupShape, Shape, MAX_LINE};
 use super::types::{
-    Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Sign, Texts, Time, MAX_DIGITS,
+    Code, CodeChars, CodeEnum, Coordinate, Date, Entries, Hex, Number, Range, ReadEntry, Sign, Texts, Time, MAX_DIGITS,
 };
 
 /// A fast reader's refusal: the general path must read the line. (No payload, so that a value
@@ -394,28 +394,45 @@ impl<'a> FastReader<'a> {
         Ok(Texts::new(core::str::from_utf8(text).map_err(|_| Unsure)?, count))
     }
 
-    /// Reads `count` entries of a repeated group of several fields into `entries` (emptied
-    /// first): `read` fills each default entry in its slot.
+    /// Reads `count` entries of a repeated group of several fields, each filled in a default
+    /// entry by `read_fast` to check it, and keeps them as received (read again with `read`,
+    /// the general reader, when asked for).
     #[inline(always)]
-    pub fn entries_into<T: Copy + Default, const N: usize>(
+    pub fn entries<T: Copy + Default>(
         &mut self,
-        entries: &mut Group<T, N>,
         count: usize,
-        mut read: impl FnMut(&mut T, &mut Self) -> Read<()>,
-    ) -> Read<()> {
-        entries.fill_in_place(count, |entry| read(entry, self))
+        mut read_fast: impl FnMut(&mut T, &mut Self) -> Read<()>,
+        read: ReadEntry<'a, T>,
+    ) -> Read<Entries<'a, T>> {
+        let start = self.at;
+        for _ in 0..count {
+            read_fast(&mut T::default(), self)?;
+        }
+        self.kept(start, count, read)
     }
 
-    /// Reads `count` values of a repeated group of one field with `read` into `values` (emptied
-    /// first).
+    /// Reads `count` values of a repeated group of one field with `read_fast` to check them, and
+    /// keeps them as received (read again with `read` when asked for).
     #[inline(always)]
-    pub fn group_into<T: Copy + Default, const N: usize>(
+    pub fn values<T: Copy + Default>(
         &mut self,
-        values: &mut Group<T, N>,
         count: usize,
-        mut read: impl FnMut(&mut Self) -> Read<T>,
-    ) -> Read<()> {
-        values.fill(count, |_| read(self))
+        mut read_fast: impl FnMut(&mut Self) -> Read<T>,
+        read: ReadEntry<'a, T>,
+    ) -> Read<Entries<'a, T>> {
+        let start = self.at;
+        for _ in 0..count {
+            read_fast(self)?;
+        }
+        self.kept(start, count, read)
+    }
+
+    /// The `count` entries read since `start`, as their wire text.
+    fn kept<T: Copy + Default>(&self, start: usize, count: usize, read: ReadEntry<'a, T>) -> Read<Entries<'a, T>> {
+        let end = if self.at > start { self.at - 1 } else { start };
+        let text = core::str::from_utf8(self.line.get(start..end).ok_or(Unsure)?).map_err(|_| Unsure)?;
+        let fields = if text.is_empty() && count == 0 { 0 } else { 1 + text.bytes().filter(|&b| b == b',').count() };
+        Ok(Entries::on_wire(Texts::new(text, fields), count, false, read))
     }
 }
 

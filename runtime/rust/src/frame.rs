@@ -5,8 +5,8 @@
 
 use super::error::{Error, Message, Name};
 use super::types::{
-    upper_eq, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Group, Hex, Number, Range, Sign, Texts, Time,
-    MAX_DIGITS,
+    upper_eq, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Entries, Hex, Number, Range, ReadEntry, Sign,
+    Texts, Time, MAX_DIGITS,
 };
 
 /// Longest line (without its line ending) the parser accepts.
@@ -41,6 +41,19 @@ impl Blanks {
     /// Whether no field is left empty.
     pub const fn is_empty(&self) -> bool {
         self.len == 0
+    }
+
+    /// The fields of this set among the `count` after wire field `first`, numbered from 1 there.
+    #[must_use]
+    pub fn within(&self, first: usize, count: usize) -> Self {
+        let mut out = Self::EMPTY;
+        for &at in &self.at[..usize::from(self.len)] {
+            let at = usize::from(at);
+            if at > first && at <= first + count {
+                out = out.with(at - first);
+            }
+        }
+        out
     }
 
     /// The same set with wire field `index` added (ignored once full).
@@ -468,6 +481,24 @@ impl<'a> Iterator for FieldIter<'a> {
 
 impl ExactSizeIterator for FieldIter<'_> {}
 
+/// The first `count` fields of `text` (all of it when it has fewer), without the separator after
+/// them.
+pub(crate) fn fields_text(text: &str, separator: u8, count: usize) -> &str {
+    if count == 0 {
+        return &text[..0];
+    }
+    let mut left = count;
+    for (at, &b) in text.as_bytes().iter().enumerate() {
+        if b == separator {
+            left -= 1;
+            if left == 0 {
+                return &text[..at];
+            }
+        }
+    }
+    text
+}
+
 /// Splits off the text before the next `separator` (all of `rest` when there is none).
 #[inline(always)]
 fn take<'a>(rest: &mut &'a str, separator: u8) -> &'a str {
@@ -531,39 +562,33 @@ impl<'a> Reader<'a> {
         Self { ignore_case: true, ..self }
     }
 
-    /// Reads `count` entries of the repeated group `id` with `read` (at most `N`).
-    #[inline(always)]
-    pub fn group<T: Copy + Default, const N: usize>(
-        &mut self,
-        id: &'static str,
-        count: usize,
-        mut read: impl FnMut(&mut Self) -> Result<T, Error<'a>>,
-    ) -> Result<Group<T, N>, Error<'a>> {
-        self.group = id;
-        let entries = Group::read(count, |entry| {
-            self.entry = entry;
-            read(self)
-        });
-        (self.group, self.entry) = ("", 0);
-        entries
+    /// A reader of `text` alone: the entries of a group as a parsed sentence keeps them, with the
+    /// fields lenient parsing read as empty (1-based in `text`).
+    pub(crate) const fn over(text: &'a str, separator: u8, blanks: Blanks) -> Self {
+        Self { address: "", rest: text, separator, blanks, ignore_case: false, index: 0, group: "", entry: 0 }
     }
 
-    /// [`Reader::group`] into `entries` in place (a layout's group is read without a copy).
+    /// Reads `count` entries of the repeated group `id`, each of `width` wire fields, with `read`,
+    /// and keeps them as received (read again with `read` when asked for).
     #[inline(always)]
-    pub fn group_into<T: Copy + Default, const N: usize>(
+    pub fn entries<T: Copy + Default>(
         &mut self,
-        entries: &mut Group<T, N>,
         id: &'static str,
         count: usize,
-        mut read: impl FnMut(&mut Self) -> Result<T, Error<'a>>,
-    ) -> Result<(), Error<'a>> {
+        width: usize,
+        read: ReadEntry<'a, T>,
+    ) -> Result<Entries<'a, T>, Error<'a>> {
+        let (start, first) = (self.rest, self.index);
         self.group = id;
-        let filled = entries.fill(count, |entry| {
+        for entry in 1..=count {
             self.entry = entry;
-            read(self)
-        });
+            read(self)?;
+        }
         (self.group, self.entry) = ("", 0);
-        filled
+        let fields = count * width;
+        let wire = Texts::joined(fields_text(start, self.separator, fields), fields, self.separator)
+            .blanking(self.blanks.within(first, fields));
+        Ok(Entries::on_wire(wire, count, self.ignore_case, read))
     }
 
     /// Reads `count` values of the repeated group `group` of one text field `id` (each at most

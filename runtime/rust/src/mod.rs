@@ -30,8 +30,8 @@ pub use frame::{
 pub use layout::{build, strip_line_ending, Framing, Generic, JsonMember, Kind, Layout, ReplyOutcome, BUILD_CAPACITY};
 pub use table::{Encoding, ParamValue, Parameter, ParameterError, Problem, Table};
 pub use types::{
-    upper_eq, Ascii, Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Group, Hex, Number,
-    Range, Sign, Texts, Time, MAX_DIGITS,
+    upper_eq, Ascii, Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Entries, EntryIter, Hex,
+    Number, Range, ReadEntry, Sign, Texts, Time, MAX_DIGITS,
 };
 pub use write::{
     write_json_char, write_json_display, write_json_str, write_sentence, write_sentence_with, write_words_json,

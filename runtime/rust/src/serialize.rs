@@ -7,7 +7,9 @@ use core::fmt;
 
 use serde::ser::{Serialize, SerializeStruct, Serializer};
 
-use super::{Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Fields, Generic, Group, Hex, Number, Texts, Time};
+use super::{
+    Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Entries, Fields, Generic, Hex, Number, Texts, Time,
+};
 
 impl Serialize for Number {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -82,7 +84,7 @@ impl Serialize for Texts<'_> {
     }
 }
 
-impl<T: Serialize, const N: usize> Serialize for Group<T, N> {
+impl<T: Serialize + Copy + Default> Serialize for Entries<'_, T> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         serializer.collect_seq(self.iter())
     }

@@ -4,7 +4,6 @@
 use core::cmp::Ordering;
 use core::fmt::{self, Write};
 use core::marker::PhantomData;
-use core::ops::{Deref, DerefMut};
 
 /// Most digits a number may have, so that it fits a signed 64-bit integer.
 pub const MAX_DIGITS: usize = 18;
@@ -865,8 +864,8 @@ impl<E: CodeEnum> fmt::Display for CodeChars<'_, E> {
 }
 
 /// The values of a repeated group of one text field, kept as received: their wire text (joined
-/// by `,`) and how many there are. Unlike [`Group`] it stays small whatever the group's maximum
-/// (ST's sentences take up to 64 raw values).
+/// by `,`) and how many there are. It stays small whatever the group's maximum (ST's sentences
+/// take up to 64 raw values).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Texts<'a> {
     text: &'a str,
@@ -912,6 +911,16 @@ impl<'a> Texts<'a> {
         self.text
     }
 
+    /// The separator between the values.
+    pub(crate) const fn separator(&self) -> u8 {
+        self.separator
+    }
+
+    /// The values lenient parsing reads as empty (1-based).
+    pub(crate) const fn blanks(&self) -> super::frame::Blanks {
+        self.blanks
+    }
+
     /// The values in order, `None` for an empty one.
     pub fn iter(&self) -> impl Iterator<Item = Option<&'a str>> + 'a {
         let (mut rest, separator, blanks) = (self.text, self.separator, self.blanks);
@@ -929,113 +938,135 @@ impl<'a> Texts<'a> {
     }
 }
 
-/// The entries of a repeated group: a fixed array sized by the group's maximum, and how many
-/// entries are on the wire. Dereferences to the slice of those entries.
+/// How an entry of a repeated group is read from its wire fields (the layout's own reader).
+pub type ReadEntry<'a, T> = fn(&mut super::frame::Reader<'a>) -> Result<T, super::error::Error<'a>>;
+
+/// The entries of a repeated group (GSV's satellites, GSA's satellite IDs, ...). A parsed
+/// sentence keeps them as received, their wire text, and reads each one when it is asked for: a
+/// sentence stays small whatever the group's maximum (PUBX,03 takes 64 entries). A sentence to
+/// build holds the caller's slice ([`Entries::from_items`]).
 #[derive(Clone, Copy)]
-pub struct Group<T, const N: usize> {
-    items: [T; N],
-    len: usize,
+pub struct Entries<'a, T> {
+    /// The entries' wire fields, lenient parsing's blanks included.
+    wire: Texts<'a>,
+    count: usize,
+    ignore_case: bool,
+    read: Option<ReadEntry<'a, T>>,
+    items: &'a [T],
 }
 
-impl<T: Copy + Default, const N: usize> Default for Group<T, N> {
+impl<T> Default for Entries<'_, T> {
     fn default() -> Self {
-        Self { items: [T::default(); N], len: 0 }
+        Self { wire: Texts::new("", 0), count: 0, ignore_case: false, read: None, items: &[] }
     }
 }
 
-impl<T: Copy + Default, const N: usize> Group<T, N> {
-    /// Reads `count` entries (at most `N`) with `read`, which gets the 1-based entry number.
-    #[inline(always)]
-    pub fn read<E>(count: usize, mut read: impl FnMut(usize) -> Result<T, E>) -> Result<Self, E> {
-        let mut group = Self::default();
-        for (i, slot) in group.items.iter_mut().take(count).enumerate() {
-            *slot = read(i + 1)?;
-            group.len = i + 1;
+impl<'a, T: Copy + Default> Entries<'a, T> {
+    /// The entries of a sentence to build.
+    pub const fn from_items(items: &'a [T]) -> Self {
+        Self { wire: Texts::joined("", 0, b','), count: items.len(), ignore_case: false, read: None, items }
+    }
+
+    /// `count` entries as received: `wire` holds their fields, read back with `read`.
+    pub(crate) const fn on_wire(wire: Texts<'a>, count: usize, ignore_case: bool, read: ReadEntry<'a, T>) -> Self {
+        Self { wire, count, ignore_case, read: Some(read), items: &[] }
+    }
+
+    /// How many entries there are.
+    pub const fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Whether there are none.
+    pub const fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// The entries' fields as received (joined by `,`), or `None` for entries built from a
+    /// slice.
+    pub fn as_wire(&self) -> Option<&'a str> {
+        self.read.map(|_| self.wire.as_str())
+    }
+
+    /// The wire fields of entries read from a line (`None` for entries built from a slice).
+    pub(crate) fn wire(&self) -> Option<&Texts<'a>> {
+        self.read.map(|_| &self.wire)
+    }
+
+    /// The caller's entries (empty for entries read from a line).
+    pub const fn items(&self) -> &'a [T] {
+        self.items
+    }
+
+    /// Entry `index` (0-based), or `None` past the last.
+    pub fn get(&self, index: usize) -> Option<T> {
+        self.iter().nth(index)
+    }
+
+    /// The entries in order.
+    pub fn iter(&self) -> EntryIter<'a, T> {
+        let reader = super::frame::Reader::over(self.wire.as_str(), self.wire.separator(), self.wire.blanks());
+        EntryIter {
+            reader: if self.ignore_case { reader.ignoring_case() } else { reader },
+            read: self.read,
+            items: self.items,
+            next: 0,
+            count: self.count,
         }
-        Ok(group)
     }
+}
 
-    /// Reads `count` entries (at most `N`) with `read` into this group, emptied first: each
-    /// entry is written in its slot, the group is not moved.
-    #[inline(always)]
-    pub fn fill<E>(&mut self, count: usize, mut read: impl FnMut(usize) -> Result<T, E>) -> Result<(), E> {
-        self.len = 0;
-        for (i, slot) in self.items.iter_mut().take(count).enumerate() {
-            *slot = read(i + 1)?;
-            self.len = i + 1;
+/// The entries of an [`Entries`], in order.
+#[derive(Clone, Debug)]
+pub struct EntryIter<'a, T> {
+    reader: super::frame::Reader<'a>,
+    read: Option<ReadEntry<'a, T>>,
+    items: &'a [T],
+    next: usize,
+    count: usize,
+}
+
+impl<T: Copy + Default> Iterator for EntryIter<'_, T> {
+    type Item = T;
+
+    fn next(&mut self) -> Option<T> {
+        if self.next >= self.count {
+            return None;
         }
-        Ok(())
-    }
-
-    /// [`Group::fill`] with `read` filling each entry in its slot (reset to the default first).
-    #[inline(always)]
-    pub fn fill_in_place<E>(&mut self, count: usize, mut read: impl FnMut(&mut T) -> Result<(), E>) -> Result<(), E> {
-        self.len = 0;
-        for (i, slot) in self.items.iter_mut().take(count).enumerate() {
-            *slot = T::default();
-            read(slot)?;
-            self.len = i + 1;
-        }
-        Ok(())
-    }
-
-    /// Appends an entry; gives it back when the group is full.
-    pub fn push(&mut self, item: T) -> Result<(), T> {
-        match self.items.get_mut(self.len) {
-            Some(slot) => {
-                *slot = item;
-                self.len += 1;
-                Ok(())
-            }
-            None => Err(item),
+        self.next += 1;
+        match self.read {
+            // A parsed sentence's entries read as they did when it was parsed.
+            Some(read) => Some(read(&mut self.reader).unwrap_or_default()),
+            None => self.items.get(self.next - 1).copied(),
         }
     }
 
-    /// Removes every entry.
-    pub fn clear(&mut self) {
-        self.len = 0;
-    }
-
-    /// The most entries the group holds.
-    pub const fn capacity(&self) -> usize {
-        N
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.count - self.next;
+        (if self.read.is_some() { left } else { left.min(self.items.len().saturating_sub(self.next)) }, Some(left))
     }
 }
 
-impl<T, const N: usize> Deref for Group<T, N> {
-    type Target = [T];
-
-    fn deref(&self) -> &[T] {
-        &self.items[..self.len]
-    }
-}
-
-impl<T, const N: usize> DerefMut for Group<T, N> {
-    fn deref_mut(&mut self) -> &mut [T] {
-        &mut self.items[..self.len]
-    }
-}
-
-impl<T: PartialEq, const N: usize> PartialEq for Group<T, N> {
-    fn eq(&self, other: &Self) -> bool {
-        **self == **other
-    }
-}
-
-impl<T: Eq, const N: usize> Eq for Group<T, N> {}
-
-impl<T: fmt::Debug, const N: usize> fmt::Debug for Group<T, N> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_list().entries(self.iter()).finish()
-    }
-}
-
-impl<'g, T, const N: usize> IntoIterator for &'g Group<T, N> {
-    type Item = &'g T;
-    type IntoIter = core::slice::Iter<'g, T>;
+impl<'a, T: Copy + Default> IntoIterator for &Entries<'a, T> {
+    type Item = T;
+    type IntoIter = EntryIter<'a, T>;
 
     fn into_iter(self) -> Self::IntoIter {
         self.iter()
+    }
+}
+
+impl<T: Copy + Default + PartialEq> PartialEq for Entries<'_, T> {
+    fn eq(&self, other: &Self) -> bool {
+        self.count == other.count && self.iter().eq(other.iter())
+    }
+}
+
+impl<T: Copy + Default + Eq> Eq for Entries<'_, T> {}
+
+impl<T: Copy + Default + fmt::Debug> fmt::Debug for Entries<'_, T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
     }
 }
 
@@ -1076,5 +1107,38 @@ mod tests {
         assert!(Coordinate::parse("8960.000001", 2, 90).is_none());
         assert!(Coordinate::parse("9100.0", 2, 90).is_none());
         assert_eq!(Coordinate::parse("50.1", 2, 90).map(|c| c.degree_digits), Some(0));
+    }
+
+    /// A group of pairs (an integer 0..99, then any text), as a layout's reader reads one entry.
+    fn pair<'a>(f: &mut super::super::frame::Reader<'a>) -> Result<(Option<Number>, &'a str), super::super::Error<'a>> {
+        let number = f.integer("n", "integer 0..99", Range::between(Bound::int(0), Bound::int(99)))?;
+        Ok((number, f.text("t", "text", None)?.unwrap_or("")))
+    }
+
+    #[test]
+    fn entries_read_from_the_wire_as_parsed() {
+        use super::super::frame::{Blanks, Reader};
+        let mut f = Reader::over("07,a,x1,b,42,", b',', Blanks::EMPTY.with(3));
+        let entries = f.entries("pairs", 3, 2, pair).unwrap();
+        assert_eq!(entries.len(), 3);
+        assert_eq!(entries.as_wire(), Some("07,a,x1,b,42,"));
+        let n = |text| Number::parse(text, true);
+        // wire field 3 ("x1") was read as empty (lenient parsing's blank): so it reads again
+        let read: [(Option<Number>, &str); 3] = [(n("07"), "a"), (None, "b"), (n("42"), "")];
+        assert!(entries.iter().eq(read));
+        assert_eq!(entries.get(1), Some((None, "b")));
+        assert_eq!(entries.get(3), None);
+        // the same entries given by the caller are equal to them
+        assert_eq!(entries, Entries::from_items(&read));
+        assert_ne!(entries, Entries::from_items(&read[..2]));
+        assert_eq!(Entries::from_items(&read).as_wire(), None);
+    }
+
+    #[test]
+    fn a_bad_entry_is_refused_where_it_is() {
+        use super::super::frame::{Blanks, Reader};
+        let mut f = Reader::over("07,a,100,b", b',', Blanks::EMPTY);
+        let err = f.entries("pairs", 2, 2, pair).unwrap_err();
+        assert_eq!(err.kind(), super::super::ErrorKind::BadField);
     }
 }

@@ -5,7 +5,8 @@ use core::fmt::{self, Write};
 use super::error::Problems;
 use super::frame;
 use super::types::{
-    Ascii, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Hex, Number, Sign, Texts, Time, MAX_DIGITS, POW10,
+    Ascii, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Entries, Hex, Number, Sign, Texts, Time, MAX_DIGITS,
+    POW10,
 };
 
 /// A field value: how it is written on the wire and in both JSON forms of the tools.
@@ -701,8 +702,13 @@ impl<'b> ByteWriter<'b> {
         values.iter().try_for_each(|value| self.field(value))
     }
 
-    /// Each value of a group of one text field.
+    /// Each value of a group of one text field (as received in one piece, when lenient parsing
+    /// left none of them empty).
     pub fn texts(&mut self, values: &Texts<'_>) -> Option<()> {
+        if values.blanks().is_empty() && !values.is_empty() && values.separator() == b',' {
+            self.put(b",")?;
+            return self.str(values.as_str());
+        }
         values.iter().try_for_each(|value| self.field(&value))
     }
 
@@ -881,14 +887,14 @@ impl<'w, W: Write + ?Sized> JsonFields<'w, W> {
     }
 
     /// A group of one field: an array of bare values.
-    pub fn values<T: FieldValue>(&mut self, key: &str, values: &[Option<T>]) -> fmt::Result {
+    pub fn values<T: FieldValue + Copy>(&mut self, key: &str, values: &Entries<'_, Option<T>>) -> fmt::Result {
         self.key(key)?;
         self.out.write_char('[')?;
         for (i, value) in values.iter().enumerate() {
             if i > 0 {
                 self.out.write_char(',')?;
             }
-            self.value(value)?;
+            self.value(&value)?;
         }
         self.out.write_char(']')
     }
@@ -907,10 +913,10 @@ impl<'w, W: Write + ?Sized> JsonFields<'w, W> {
     }
 
     /// A group of several fields: an array of objects, each written by `entry`.
-    pub fn entries<T>(
+    pub fn entries<T: Copy + Default>(
         &mut self,
         key: &str,
-        entries: &[T],
+        entries: &Entries<'_, T>,
         mut entry: impl FnMut(&T, &mut JsonFields<'_, W>) -> fmt::Result,
     ) -> fmt::Result {
         self.key(key)?;
@@ -920,7 +926,7 @@ impl<'w, W: Write + ?Sized> JsonFields<'w, W> {
                 self.out.write_char(',')?;
             }
             let mut object = JsonFields::begin(&mut *self.out, self.values)?;
-            entry(item, &mut object)?;
+            entry(&item, &mut object)?;
             object.end()?;
         }
         self.out.write_char(']')
@@ -979,11 +985,11 @@ pub trait FieldSink {
     /// A keyword (the word that picks the layout).
     fn keyword(&mut self, key: &str, word: &str) -> fmt::Result;
     /// The values of a group of one field.
-    fn values<T: FieldValue>(&mut self, key: &str, values: &[Option<T>]) -> fmt::Result;
+    fn values<T: FieldValue + Copy>(&mut self, key: &str, values: &Entries<'_, Option<T>>) -> fmt::Result;
     /// The values of a group of one text field.
     fn texts(&mut self, key: &str, values: &Texts<'_>) -> fmt::Result;
     /// The entries of a group of several fields.
-    fn entries<T: Entry>(&mut self, key: &str, entries: &[T]) -> fmt::Result;
+    fn entries<T: Entry + Copy + Default>(&mut self, key: &str, entries: &Entries<'_, T>) -> fmt::Result;
 }
 
 /// One entry of a repeated group of several fields (a struct generated from the spec).
@@ -1002,16 +1008,22 @@ impl<W: Write + ?Sized> FieldSink for WireWriter<'_, W> {
         WireWriter::keyword(self, word)
     }
 
-    fn values<T: FieldValue>(&mut self, _: &str, values: &[Option<T>]) -> fmt::Result {
-        self.fields(values)
+    fn values<T: FieldValue + Copy>(&mut self, _: &str, values: &Entries<'_, Option<T>>) -> fmt::Result {
+        match values.wire() {
+            Some(wire) => WireWriter::texts(self, wire),
+            None => self.fields(values.items()),
+        }
     }
 
     fn texts(&mut self, _: &str, values: &Texts<'_>) -> fmt::Result {
         WireWriter::texts(self, values)
     }
 
-    fn entries<T: Entry>(&mut self, _: &str, entries: &[T]) -> fmt::Result {
-        entries.iter().try_for_each(|entry| entry.visit(self))
+    fn entries<T: Entry + Copy + Default>(&mut self, _: &str, entries: &Entries<'_, T>) -> fmt::Result {
+        match entries.wire() {
+            Some(wire) => WireWriter::texts(self, wire),
+            None => entries.items().iter().try_for_each(|entry| entry.visit(self)),
+        }
     }
 }
 
@@ -1028,8 +1040,12 @@ impl FieldSink for ByteWriter<'_> {
     }
 
     #[inline]
-    fn values<T: FieldValue>(&mut self, _: &str, values: &[Option<T>]) -> fmt::Result {
-        self.fields(values).ok_or(fmt::Error)
+    fn values<T: FieldValue + Copy>(&mut self, _: &str, values: &Entries<'_, Option<T>>) -> fmt::Result {
+        match values.wire() {
+            Some(wire) => ByteWriter::texts(self, wire),
+            None => self.fields(values.items()),
+        }
+        .ok_or(fmt::Error)
     }
 
     fn texts(&mut self, _: &str, values: &Texts<'_>) -> fmt::Result {
@@ -1037,8 +1053,11 @@ impl FieldSink for ByteWriter<'_> {
     }
 
     #[inline]
-    fn entries<T: Entry>(&mut self, _: &str, entries: &[T]) -> fmt::Result {
-        entries.iter().try_for_each(|entry| entry.visit(self))
+    fn entries<T: Entry + Copy + Default>(&mut self, _: &str, entries: &Entries<'_, T>) -> fmt::Result {
+        match entries.wire() {
+            Some(wire) => ByteWriter::texts(self, wire).ok_or(fmt::Error),
+            None => entries.items().iter().try_for_each(|entry| entry.visit(self)),
+        }
     }
 }
 
@@ -1051,7 +1070,7 @@ impl<W: Write + ?Sized> FieldSink for JsonFields<'_, W> {
         JsonFields::keyword(self, key, word)
     }
 
-    fn values<T: FieldValue>(&mut self, key: &str, values: &[Option<T>]) -> fmt::Result {
+    fn values<T: FieldValue + Copy>(&mut self, key: &str, values: &Entries<'_, Option<T>>) -> fmt::Result {
         JsonFields::values(self, key, values)
     }
 
@@ -1059,7 +1078,7 @@ impl<W: Write + ?Sized> FieldSink for JsonFields<'_, W> {
         JsonFields::texts(self, key, values)
     }
 
-    fn entries<T: Entry>(&mut self, key: &str, entries: &[T]) -> fmt::Result {
+    fn entries<T: Entry + Copy + Default>(&mut self, key: &str, entries: &Entries<'_, T>) -> fmt::Result {
         JsonFields::entries(self, key, entries, |entry, object| entry.visit(object))
     }
 }

@@ -12,7 +12,7 @@
 use core::fmt;
 
 use crate::runtime::{
-    Bound, Checksum, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
+    Bound, Checksum, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range,
     Reader, Shape,
 };
 use crate::LayoutId;
@@ -85,8 +85,8 @@ pub struct Alc<'a> {
     /// Number of alert entries: Number of alert entries carried in this sentence (Furuno 0-3); 0
     /// when no alert is active.
     pub entry_count: Option<Number>,
-    /// Alert entries: 0 to 10 entries.
-    pub alerts: Group<AlcAlert<'a>, 10>,
+    /// Alert entries: 0 to 10 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub alerts: Entries<'a, AlcAlert<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -136,7 +136,7 @@ impl<'a> Layout<'a> for Alc<'a> {
             f.integer("sentence_number", "integer 1..99", Range::between(Bound::int(1), Bound::int(99)))?;
         out.sequence_id = f.integer("sequence_id", "integer 0..99", Range::between(Bound::int(0), Bound::int(99)))?;
         out.entry_count = f.integer("entry_count", "integer", Range::ANY)?;
-        f.group_into(&mut out.alerts, "alerts", repeats, AlcAlert::read)?;
+        out.alerts = f.entries("alerts", repeats, 4, AlcAlert::read)?;
         Ok(out)
     }
 

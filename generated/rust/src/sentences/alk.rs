@@ -10,8 +10,15 @@
 
 use core::fmt;
 
-use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout, Shape};
+use crate::runtime::{
+    Checksum, Entries, Error, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember, Layout, Reader, Shape,
+};
 use crate::LayoutId;
+
+/// Reads one value of datagram bytes: a parsed sentence reads its values again with it.
+fn read_alk_data<'a>(f: &mut Reader<'a>) -> Result<Option<Hex>, Error<'a>> {
+    f.hex("byte")
+}
 
 /// ALK: SeaTalk datagram.
 ///
@@ -38,8 +45,9 @@ pub struct Alk<'a> {
     /// 52 speed over ground.
     pub command: Option<Hex>,
     /// Datagram bytes: 0 to 23 values of data byte: Next byte of the datagram, two hex digits (the
-    /// first is SeaTalk's attribute byte, whose low nibble gives the count of further bytes).
-    pub data: Group<Option<Hex>, 23>,
+    /// first is SeaTalk's attribute byte, whose low nibble gives the count of further bytes). Kept
+    /// as received, read by `iter()` and `get(i)`.
+    pub data: Entries<'a, Option<Hex>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -75,7 +83,7 @@ impl<'a> Layout<'a> for Alk<'a> {
         let mut f = fields.reader();
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.command = f.hex("command")?;
-        f.group_into(&mut out.data, "data", repeats, |f| f.hex("byte"))?;
+        out.data = f.entries("data", repeats, 1, read_alk_data)?;
         Ok(out)
     }
 

@@ -13,7 +13,7 @@ use core::fmt;
 
 use crate::enums::{DseCode, DseQueryFlag};
 use crate::runtime::{
-    Bound, Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Bound, Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number,
     Range, Reader, Shape,
 };
 use crate::LayoutId;
@@ -74,8 +74,8 @@ pub struct Dse<'a> {
     /// Vessel MMSI: MMSI of the vessel, 10 digits as in the DSC address (a 9-digit MMSI with a
     /// trailing 0).
     pub vessel_mmsi: Option<&'a str>,
-    /// Data sets: 1 to 8 entries.
-    pub data_sets: Group<DseDataSet<'a>, 8>,
+    /// Data sets: 1 to 8 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub data_sets: Entries<'a, DseDataSet<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -120,7 +120,7 @@ impl<'a> Layout<'a> for Dse<'a> {
         out.sentence_number = f.integer("sentence_number", "integer of at least 1", Range::at_least(Bound::int(1)))?;
         out.query_flag = f.code("query_flag")?;
         out.vessel_mmsi = f.text("vessel_mmsi", "text of at most 10 characters", Some(10))?;
-        f.group_into(&mut out.data_sets, "data_sets", repeats, DseDataSet::read)?;
+        out.data_sets = f.entries("data_sets", repeats, 2, DseDataSet::read)?;
         Ok(out)
     }
 

@@ -13,9 +13,14 @@
 use core::fmt;
 
 use crate::runtime::{
-    Checksum, Error, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout, Shape, Time,
+    Checksum, Entries, Error, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember, Layout, Reader, Shape, Time,
 };
 use crate::LayoutId;
+
+/// Reads one value of data words: a parsed sentence reads its values again with it.
+fn read_gen_words<'a>(f: &mut Reader<'a>) -> Result<Option<Hex>, Error<'a>> {
+    f.hex("word")
+}
 
 /// GEN: Generic binary information.
 ///
@@ -47,8 +52,9 @@ pub struct Gen<'a> {
     /// Time stamp: UTC time of the data.
     pub time: Option<Time>,
     /// Data words: 0 to 8 values of data word: 16 bits of data as four hex digits; empty means no
-    /// update for that word (the index still advances).
-    pub words: Group<Option<Hex>, 8>,
+    /// update for that word (the index still advances). Kept as received, read by `iter()` and
+    /// `get(i)`.
+    pub words: Entries<'a, Option<Hex>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -86,7 +92,7 @@ impl<'a> Layout<'a> for Gen<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.index = f.hex("index")?;
         out.time = f.time("time")?;
-        f.group_into(&mut out.words, "words", repeats, |f| f.hex("word"))?;
+        out.words = f.entries("words", repeats, 1, read_gen_words)?;
         Ok(out)
     }
 

@@ -14,7 +14,7 @@ use core::fmt;
 
 use crate::enums::GlcSignalStatus;
 use crate::runtime::{
-    Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
+    Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range,
     Reader, Shape,
 };
 use crate::LayoutId;
@@ -80,8 +80,8 @@ pub struct Glc<'a> {
     /// Master TOA signal status: Signal status of the master TOA (A valid, B blink, C cycle, S SNR
     /// warning).
     pub master_status: Option<Code<'a, GlcSignalStatus>>,
-    /// Time differences: 5 to 5 entries.
-    pub time_differences: Group<GlcTimeDifference<'a>, 5>,
+    /// Time differences: 5 to 5 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub time_differences: Entries<'a, GlcTimeDifference<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -124,7 +124,7 @@ impl<'a> Layout<'a> for Glc<'a> {
         out.gri = f.integer("gri", "integer", Range::ANY)?;
         out.master_toa = f.decimal("master_toa", "decimal number", Range::ANY)?;
         out.master_status = f.code("master_status")?;
-        f.group_into(&mut out.time_differences, "time_differences", repeats, GlcTimeDifference::read)?;
+        out.time_differences = f.entries("time_differences", repeats, 2, GlcTimeDifference::read)?;
         Ok(out)
     }
 

@@ -15,10 +15,15 @@ use core::fmt;
 
 use crate::enums::{GrsMode, SignalId, SystemId};
 use crate::runtime::{
-    Checksum, Code, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range, Shape,
-    Time,
+    Checksum, Code, Entries, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range, Reader,
+    Shape, Time,
 };
 use crate::LayoutId;
+
+/// Reads one value of range residuals: a parsed sentence reads its values again with it.
+fn read_grs_residuals<'a>(f: &mut Reader<'a>) -> Result<Option<Number>, Error<'a>> {
+    f.decimal("residual", "decimal number", Range::ANY)
+}
 
 /// GRS: GNSS range residuals.
 ///
@@ -51,8 +56,8 @@ pub struct Grs<'a> {
     pub mode: Option<Code<'a, GrsMode>>,
     /// Range residuals: 12 to 12 values of range residual \[m\]: Range residual of one satellite,
     /// metres: calculated range minus measured range. Beyond +/-99.9 m the decimals are dropped
-    /// (-103.7 becomes -103); at most +/-999.
-    pub residuals: Group<Option<Number>, 12>,
+    /// (-103.7 becomes -103); at most +/-999. Kept as received, read by `iter()` and `get(i)`.
+    pub residuals: Entries<'a, Option<Number>>,
     /// GNSS system ID (NMEA 4.10, optional): Constellation of the satellites of this line (NMEA
     /// 4.10 and later).
     pub system_id: Option<Code<'a, SystemId>>,
@@ -104,9 +109,7 @@ impl<'a> Layout<'a> for Grs<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.time = f.time("time")?;
         out.mode = f.code("mode")?;
-        f.group_into(&mut out.residuals, "residuals", repeats, |f| {
-            f.decimal("residual", "decimal number", Range::ANY)
-        })?;
+        out.residuals = f.entries("residuals", repeats, 1, read_grs_residuals)?;
         if extra >= 1 {
             out.system_id = f.code("system_id")?;
             out.trailing = 1;

@@ -14,10 +14,15 @@ use core::fmt;
 
 use crate::enums::{GsaFixType, GsaSelectionMode, SystemId};
 use crate::runtime::{
-    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
-    Range, Read, Shape,
+    Checksum, Code, Entries, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number,
+    Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
+
+/// Reads one value of satellites used in the solution: a parsed sentence reads its values again with it.
+fn read_gsa_prns<'a>(f: &mut Reader<'a>) -> Result<Option<Number>, Error<'a>> {
+    f.integer("prn", "integer", Range::ANY)
+}
 
 /// GSA: GNSS DOP and active satellites.
 ///
@@ -49,8 +54,9 @@ pub struct Gsa<'a> {
     /// the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN -
     /// 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and
     /// QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou
-    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96.
-    pub prns: Group<Option<Number>, 12>,
+    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96. Kept as received, read by `iter()` and
+    /// `get(i)`.
+    pub prns: Entries<'a, Option<Number>>,
     /// PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix).
     pub pdop: Option<Number>,
     /// HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
@@ -108,7 +114,7 @@ impl<'a> Layout<'a> for Gsa<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.selection_mode = f.code("selection_mode")?;
         out.fix_type = f.code("fix_type")?;
-        f.group_into(&mut out.prns, "prns", repeats, |f| f.integer("prn", "integer", Range::ANY))?;
+        out.prns = f.entries("prns", repeats, 1, read_gsa_prns)?;
         out.pdop = f.decimal("pdop", "decimal number", Range::ANY)?;
         out.hdop = f.decimal("hdop", "decimal number", Range::ANY)?;
         out.vdop = f.decimal("vdop", "decimal number", Range::ANY)?;
@@ -125,7 +131,7 @@ impl<'a> Layout<'a> for Gsa<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        f.group_into(&mut self.prns, repeats, |f| f.integer(Range::ANY))?;
+        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;
@@ -165,6 +171,11 @@ impl fmt::Display for Gsa<'_> {
     }
 }
 
+/// Reads one value of satellites used in the solution: a parsed sentence reads its values again with it.
+fn read_gsa_short_prns<'a>(f: &mut Reader<'a>) -> Result<Option<Number>, Error<'a>> {
+    f.integer("prn", "integer", Range::ANY)
+}
+
 /// GSA (Fewer than 12 PRN slots).
 ///
 /// Teseo's manual prints a GN continuation line with only 10 PRN slots and an intact checksum
@@ -196,8 +207,9 @@ pub struct GsaShort<'a> {
     /// the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN -
     /// 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and
     /// QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou
-    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96.
-    pub prns: Group<Option<Number>, 11>,
+    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96. Kept as received, read by `iter()` and
+    /// `get(i)`.
+    pub prns: Entries<'a, Option<Number>>,
     /// PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix).
     pub pdop: Option<Number>,
     /// HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
@@ -248,7 +260,7 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.selection_mode = f.code("selection_mode")?;
         out.fix_type = f.code("fix_type")?;
-        f.group_into(&mut out.prns, "prns", repeats, |f| f.integer("prn", "integer", Range::ANY))?;
+        out.prns = f.entries("prns", repeats, 1, read_gsa_short_prns)?;
         out.pdop = f.decimal("pdop", "decimal number", Range::ANY)?;
         out.hdop = f.decimal("hdop", "decimal number", Range::ANY)?;
         out.vdop = f.decimal("vdop", "decimal number", Range::ANY)?;
@@ -261,7 +273,7 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        f.group_into(&mut self.prns, repeats, |f| f.integer(Range::ANY))?;
+        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_short_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;
@@ -294,6 +306,11 @@ impl fmt::Display for GsaShort<'_> {
     }
 }
 
+/// Reads one value of satellites used in the solution: a parsed sentence reads its values again with it.
+fn read_gsa_wide_system_prns<'a>(f: &mut Reader<'a>) -> Result<Option<Number>, Error<'a>> {
+    f.integer("prn", "integer", Range::ANY)
+}
+
 /// GSA (More than 12 PRN slots, with the system ID).
 ///
 /// NMEA 0183 fixes the list at 12 slots and has a receiver using more satellites send a second GSA;
@@ -319,8 +336,9 @@ pub struct GsaWideSystem<'a> {
     /// the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN -
     /// 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and
     /// QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou
-    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96.
-    pub prns: Group<Option<Number>, 24>,
+    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96. Kept as received, read by `iter()` and
+    /// `get(i)`.
+    pub prns: Entries<'a, Option<Number>>,
     /// PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix).
     pub pdop: Option<Number>,
     /// HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
@@ -374,7 +392,7 @@ impl<'a> Layout<'a> for GsaWideSystem<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.selection_mode = f.code("selection_mode")?;
         out.fix_type = f.code("fix_type")?;
-        f.group_into(&mut out.prns, "prns", repeats, |f| f.integer("prn", "integer", Range::ANY))?;
+        out.prns = f.entries("prns", repeats, 1, read_gsa_wide_system_prns)?;
         out.pdop = f.decimal("pdop", "decimal number", Range::ANY)?;
         out.hdop = f.decimal("hdop", "decimal number", Range::ANY)?;
         out.vdop = f.decimal("vdop", "decimal number", Range::ANY)?;
@@ -388,7 +406,7 @@ impl<'a> Layout<'a> for GsaWideSystem<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        f.group_into(&mut self.prns, repeats, |f| f.integer(Range::ANY))?;
+        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_wide_system_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;
@@ -423,6 +441,11 @@ impl fmt::Display for GsaWideSystem<'_> {
     }
 }
 
+/// Reads one value of satellites used in the solution: a parsed sentence reads its values again with it.
+fn read_gsa_wide_prns<'a>(f: &mut Reader<'a>) -> Result<Option<Number>, Error<'a>> {
+    f.integer("prn", "integer", Range::ANY)
+}
+
 /// GSA (More than 12 PRN slots).
 ///
 /// As wide_system, without the system ID (NMEA before 4.10): 13 to 24 slots, then the three DOPs.
@@ -446,8 +469,9 @@ pub struct GsaWide<'a> {
     /// the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN -
     /// 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and
     /// QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou
-    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96.
-    pub prns: Group<Option<Number>, 24>,
+    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96. Kept as received, read by `iter()` and
+    /// `get(i)`.
+    pub prns: Entries<'a, Option<Number>>,
     /// PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix).
     pub pdop: Option<Number>,
     /// HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
@@ -498,7 +522,7 @@ impl<'a> Layout<'a> for GsaWide<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.selection_mode = f.code("selection_mode")?;
         out.fix_type = f.code("fix_type")?;
-        f.group_into(&mut out.prns, "prns", repeats, |f| f.integer("prn", "integer", Range::ANY))?;
+        out.prns = f.entries("prns", repeats, 1, read_gsa_wide_prns)?;
         out.pdop = f.decimal("pdop", "decimal number", Range::ANY)?;
         out.hdop = f.decimal("hdop", "decimal number", Range::ANY)?;
         out.vdop = f.decimal("vdop", "decimal number", Range::ANY)?;
@@ -511,7 +535,7 @@ impl<'a> Layout<'a> for GsaWide<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        f.group_into(&mut self.prns, repeats, |f| f.integer(Range::ANY))?;
+        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_wide_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;
@@ -544,6 +568,11 @@ impl fmt::Display for GsaWide<'_> {
     }
 }
 
+/// Reads one value of satellites used in the solution: a parsed sentence reads its values again with it.
+fn read_gsa_extra_dop_prns<'a>(f: &mut Reader<'a>) -> Result<Option<Number>, Error<'a>> {
+    f.integer("prn", "integer", Range::ANY)
+}
+
 /// GSA (A fourth DOP value).
 ///
 /// A BeiDou receiver (gpsd's beidou-bd log) sends 12 PRN slots, PDOP, HDOP and VDOP and then a
@@ -574,8 +603,9 @@ pub struct GsaExtraDop<'a> {
     /// the solution; unused slots are empty. Numbering (see notes): GPS 1-32, SBAS 33-64 (PRN -
     /// 87), GLONASS 65-88 (slot + 64); in NMEA v2.x output GeoS-5 also uses Galileo 101-136 and
     /// QZSS 193-197, in v4.10 output Galileo 1-36 and QZSS 1-5 (PRN - 192); GS501 uses BeiDou
-    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96.
-    pub prns: Group<Option<Number>, 12>,
+    /// 121-157, ComNav BeiDou 141-177 and GLONASS 65-96. Kept as received, read by `iter()` and
+    /// `get(i)`.
+    pub prns: Entries<'a, Option<Number>>,
     /// PDOP: Position dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a fix).
     pub pdop: Option<Number>,
     /// HDOP: Horizontal dilution of precision (Teseo: maximum 99.0; GeoS-5 prints 9.9 without a
@@ -630,7 +660,7 @@ impl<'a> Layout<'a> for GsaExtraDop<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.selection_mode = f.code("selection_mode")?;
         out.fix_type = f.code("fix_type")?;
-        f.group_into(&mut out.prns, "prns", repeats, |f| f.integer("prn", "integer", Range::ANY))?;
+        out.prns = f.entries("prns", repeats, 1, read_gsa_extra_dop_prns)?;
         out.pdop = f.decimal("pdop", "decimal number", Range::ANY)?;
         out.hdop = f.decimal("hdop", "decimal number", Range::ANY)?;
         out.vdop = f.decimal("vdop", "decimal number", Range::ANY)?;
@@ -644,7 +674,7 @@ impl<'a> Layout<'a> for GsaExtraDop<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        f.group_into(&mut self.prns, repeats, |f| f.integer(Range::ANY))?;
+        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_extra_dop_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;

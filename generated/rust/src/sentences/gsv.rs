@@ -12,8 +12,8 @@ use core::fmt;
 
 use crate::enums::SignalId;
 use crate::runtime::{
-    Bound, Checksum, Code, Entry, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout,
-    Number, Range, Read, Reader, Shape,
+    Bound, Checksum, Code, Entries, Entry, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember,
+    Layout, Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -96,8 +96,8 @@ pub struct Gsv<'a> {
     /// Satellites in view: Total number of satellites in view reported by the set (may differ from
     /// the number used in the solution).
     pub satellites_in_view: Option<Number>,
-    /// Satellites in view: 0 to 4 entries.
-    pub satellites: Group<GsvSatellite, 4>,
+    /// Satellites in view: 0 to 4 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub satellites: Entries<'a, GsvSatellite>,
     /// Signal ID (NMEA 4.10, optional): Signal the set reports, meaning per system (NMEA v4.10 and
     /// later).
     pub signal_id: Option<Code<'a, SignalId>>,
@@ -148,7 +148,7 @@ impl<'a> Layout<'a> for Gsv<'a> {
         out.message_number = f.integer("message_number", "integer of at least 1", Range::at_least(Bound::int(1)))?;
         out.satellites_in_view =
             f.integer("satellites_in_view", "integer of at least 0", Range::at_least(Bound::int(0)))?;
-        f.group_into(&mut out.satellites, "satellites", repeats, GsvSatellite::read)?;
+        out.satellites = f.entries("satellites", repeats, 4, GsvSatellite::read)?;
         if extra >= 1 {
             out.signal_id = f.code("signal_id")?;
             out.trailing = 1;
@@ -163,7 +163,7 @@ impl<'a> Layout<'a> for Gsv<'a> {
         self.message_count = f.integer(Range::at_least(Bound::int(1)))?;
         self.message_number = f.integer(Range::at_least(Bound::int(1)))?;
         self.satellites_in_view = f.integer(Range::at_least(Bound::int(0)))?;
-        f.entries_into(&mut self.satellites, repeats, GsvSatellite::read_fast)?;
+        self.satellites = f.entries(repeats, GsvSatellite::read_fast, GsvSatellite::read)?;
         if extra >= 1 {
             self.signal_id = f.code()?;
             self.trailing = 1;

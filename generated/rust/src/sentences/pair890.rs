@@ -14,7 +14,7 @@ use core::fmt;
 
 use crate::enums::AirohaGeofenceConfidence;
 use crate::runtime::{
-    Bound, Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Bound, Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number,
     Range, Reader, Shape,
 };
 use crate::LayoutId;
@@ -74,8 +74,8 @@ pub struct Pair890<'a> {
     pub count: Option<Number>,
     /// Confidence level: Confidence required before a fence state is reported.
     pub confidence: Option<Code<'a, AirohaGeofenceConfidence>>,
-    /// Fences: 0 to 4 entries.
-    pub fences: Group<Pair890Fence, 4>,
+    /// Fences: 0 to 4 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub fences: Entries<'a, Pair890Fence>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -119,7 +119,7 @@ impl<'a> Layout<'a> for Pair890<'a> {
         let mut out = Self { checksum, ..Self::default() };
         out.count = f.integer("count", "integer 0..4", Range::between(Bound::int(0), Bound::int(4)))?;
         out.confidence = f.code("confidence")?;
-        f.group_into(&mut out.fences, "fences", repeats, Pair890Fence::read)?;
+        out.fences = f.entries("fences", repeats, 3, Pair890Fence::read)?;
         Ok(out)
     }
 

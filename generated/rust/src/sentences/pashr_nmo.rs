@@ -13,7 +13,7 @@ use core::fmt;
 
 use crate::enums::AshtechPort;
 use crate::runtime::{
-    Bound, Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Bound, Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number,
     Range, Reader, Shape,
 };
 use crate::LayoutId;
@@ -77,8 +77,8 @@ pub struct PashrNmo<'a> {
     pub period: Option<Number>,
     /// Number of messages: Number of message entries that follow.
     pub count: Option<Number>,
-    /// Messages: 0 to 64 entries.
-    pub messages: Group<PashrNmoMessage<'a>, 64>,
+    /// Messages: 0 to 64 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub messages: Entries<'a, PashrNmoMessage<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -125,7 +125,7 @@ impl<'a> Layout<'a> for PashrNmo<'a> {
         out.baud_code = f.integer("baud_code", "integer 0..15", Range::between(Bound::int(0), Bound::int(15)))?;
         out.period = f.decimal("period", "decimal number 0..999", Range::between(Bound::int(0), Bound::int(999)))?;
         out.count = f.integer("count", "integer of at least 0", Range::at_least(Bound::int(0)))?;
-        f.group_into(&mut out.messages, "messages", repeats, PashrNmoMessage::read)?;
+        out.messages = f.entries("messages", repeats, 2, PashrNmoMessage::read)?;
         Ok(out)
     }
 

@@ -14,8 +14,8 @@ use core::fmt;
 
 use crate::enums::AshtechSvUsed;
 use crate::runtime::{
-    Bound, Checksum, Code, Entry, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout,
-    Number, Range, Read, Reader, Shape,
+    Bound, Checksum, Code, Entries, Entry, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember,
+    Layout, Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -97,8 +97,8 @@ pub struct PashrSat<'a> {
     /// Satellites locked: Number of satellites locked, which is the number of satellite entries
     /// that follow.
     pub count: Option<Number>,
-    /// Satellites: 0 to 64 entries.
-    pub satellites: Group<PashrSatSatellite<'a>, 64>,
+    /// Satellites: 0 to 64 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub satellites: Entries<'a, PashrSatSatellite<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -139,7 +139,7 @@ impl<'a> Layout<'a> for PashrSat<'a> {
         let mut out = Self { checksum, ..Self::default() };
         f.keyword("keyword", "SAT")?;
         out.count = f.integer("count", "integer of at least 0", Range::at_least(Bound::int(0)))?;
-        f.group_into(&mut out.satellites, "satellites", repeats, PashrSatSatellite::read)?;
+        out.satellites = f.entries("satellites", repeats, 5, PashrSatSatellite::read)?;
         Ok(out)
     }
 
@@ -148,7 +148,7 @@ impl<'a> Layout<'a> for PashrSat<'a> {
         self.checksum = Checksum::Upper;
         f.keyword("SAT")?;
         self.count = f.integer(Range::at_least(Bound::int(0)))?;
-        f.entries_into(&mut self.satellites, repeats, PashrSatSatellite::read_fast)?;
+        self.satellites = f.entries(repeats, PashrSatSatellite::read_fast, PashrSatSatellite::read)?;
         f.end()
     }
 

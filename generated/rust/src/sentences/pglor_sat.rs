@@ -13,8 +13,8 @@
 use core::fmt;
 
 use crate::runtime::{
-    Bound, Checksum, Entry, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout,
-    Number, Range, Read, Reader, Shape,
+    Bound, Checksum, Entries, Entry, Error, FastReader, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember,
+    Layout, Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -90,8 +90,8 @@ pub struct PglorSat<'a> {
     pub total_sentences: Option<Number>,
     /// Sentence number: Position of this sentence in the series, starting at 1.
     pub sentence_number: Option<Number>,
-    /// Satellites: 0 to 16 entries.
-    pub satellites: Group<PglorSatSatellite<'a>, 16>,
+    /// Satellites: 0 to 16 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub satellites: Entries<'a, PglorSatSatellite<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -136,7 +136,7 @@ impl<'a> Layout<'a> for PglorSat<'a> {
         f.keyword("sentence_id", "SAT")?;
         out.total_sentences = f.integer("total_sentences", "integer of at least 1", Range::at_least(Bound::int(1)))?;
         out.sentence_number = f.integer("sentence_number", "integer of at least 1", Range::at_least(Bound::int(1)))?;
-        f.group_into(&mut out.satellites, "satellites", repeats, PglorSatSatellite::read)?;
+        out.satellites = f.entries("satellites", repeats, 3, PglorSatSatellite::read)?;
         Ok(out)
     }
 
@@ -147,7 +147,7 @@ impl<'a> Layout<'a> for PglorSat<'a> {
         f.keyword("SAT")?;
         self.total_sentences = f.integer(Range::at_least(Bound::int(1)))?;
         self.sentence_number = f.integer(Range::at_least(Bound::int(1)))?;
-        f.entries_into(&mut self.satellites, repeats, PglorSatSatellite::read_fast)?;
+        self.satellites = f.entries(repeats, PglorSatSatellite::read_fast, PglorSatSatellite::read)?;
         f.end()
     }
 
@@ -231,8 +231,8 @@ impl Entry for PglorSatV1Satellite<'_> {
 pub struct PglorSatV1<'a> {
     /// Sentence version: Version of the SAT layout, 1.
     pub version: Option<&'a str>,
-    /// Satellites: 0 to 24 entries.
-    pub satellites: Group<PglorSatV1Satellite<'a>, 24>,
+    /// Satellites: 0 to 24 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub satellites: Entries<'a, PglorSatV1Satellite<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -273,7 +273,7 @@ impl<'a> Layout<'a> for PglorSatV1<'a> {
         let mut out = Self { checksum, ..Self::default() };
         out.version = f.literal("version", "1 or nothing", "1")?;
         f.keyword("sentence_id", "SAT")?;
-        f.group_into(&mut out.satellites, "satellites", repeats, PglorSatV1Satellite::read)?;
+        out.satellites = f.entries("satellites", repeats, 3, PglorSatV1Satellite::read)?;
         Ok(out)
     }
 
@@ -282,7 +282,7 @@ impl<'a> Layout<'a> for PglorSatV1<'a> {
         self.checksum = Checksum::Upper;
         self.version = f.literal("1")?;
         f.keyword("SAT")?;
-        f.entries_into(&mut self.satellites, repeats, PglorSatV1Satellite::read_fast)?;
+        self.satellites = f.entries(repeats, PglorSatV1Satellite::read_fast, PglorSatV1Satellite::read)?;
         f.end()
     }
 
@@ -363,8 +363,8 @@ impl Entry for PglorSatV0Satellite {
 pub struct PglorSatV0<'a> {
     /// Sentence version: Version of the SAT layout, 0.
     pub version: Option<&'a str>,
-    /// Satellites: 0 to 24 entries.
-    pub satellites: Group<PglorSatV0Satellite, 24>,
+    /// Satellites: 0 to 24 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub satellites: Entries<'a, PglorSatV0Satellite>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -405,7 +405,7 @@ impl<'a> Layout<'a> for PglorSatV0<'a> {
         let mut out = Self { checksum, ..Self::default() };
         out.version = f.literal("version", "0 or nothing", "0")?;
         f.keyword("sentence_id", "SAT")?;
-        f.group_into(&mut out.satellites, "satellites", repeats, PglorSatV0Satellite::read)?;
+        out.satellites = f.entries("satellites", repeats, 3, PglorSatV0Satellite::read)?;
         Ok(out)
     }
 
@@ -414,7 +414,7 @@ impl<'a> Layout<'a> for PglorSatV0<'a> {
         self.checksum = Checksum::Upper;
         self.version = f.literal("0")?;
         f.keyword("SAT")?;
-        f.entries_into(&mut self.satellites, repeats, PglorSatV0Satellite::read_fast)?;
+        self.satellites = f.entries(repeats, PglorSatV0Satellite::read_fast, PglorSatV0Satellite::read)?;
         f.end()
     }
 

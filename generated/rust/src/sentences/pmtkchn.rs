@@ -11,10 +11,15 @@
 use core::fmt;
 
 use crate::runtime::{
-    Checksum, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
-    Read, Shape,
+    Checksum, Entries, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range,
+    Read, Reader, Shape,
 };
 use crate::LayoutId;
+
+/// Reads one value of channels: a parsed sentence reads its values again with it.
+fn read_pmtkchn_channels<'a>(f: &mut Reader<'a>) -> Result<Option<Number>, Error<'a>> {
+    f.integer("channel", "integer", Range::ANY)
+}
 
 /// PMTKCHN: Channel status.
 ///
@@ -34,18 +39,18 @@ use crate::LayoutId;
 /// ```
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Pmtkchn {
+pub struct Pmtkchn<'a> {
     /// Channels: 1 to 32 values of channel entry: Five digits per channel: pp satellite PRN, nn
     /// signal level (C/N0, dB-Hz), t channel state (as read by hobbyist decoders: 0 idle, 1
-    /// searching, 2 tracking); see the note.
-    pub channels: Group<Option<Number>, 32>,
+    /// searching, 2 tracking); see the note. Kept as received, read by `iter()` and `get(i)`.
+    pub channels: Entries<'a, Option<Number>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
 
-impl Pmtkchn {
+impl<'a> Pmtkchn<'a> {
     /// Parses a whole `$PMTKCHN` line with this layout; a trailing LF or CR LF is allowed.
-    pub fn parse(line: &str) -> Result<Self, Error<'_>> {
+    pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
     }
 
@@ -57,7 +62,7 @@ impl Pmtkchn {
     }
 }
 
-impl<'a> Layout<'a> for Pmtkchn {
+impl<'a> Layout<'a> for Pmtkchn<'a> {
     const SENTENCE: &'static str = "PMTKCHN";
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTKCHN");
@@ -73,14 +78,14 @@ impl<'a> Layout<'a> for Pmtkchn {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
         let mut f = fields.reader();
         let mut out = Self { checksum, ..Self::default() };
-        f.group_into(&mut out.channels, "channels", repeats, |f| f.integer("channel", "integer", Range::ANY))?;
+        out.channels = f.entries("channels", repeats, 1, read_pmtkchn_channels)?;
         Ok(out)
     }
 
     #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
     fn read_fast(&mut self, mut f: FastReader<'a>, repeats: usize, _extra: usize) -> Read<()> {
         self.checksum = Checksum::Upper;
-        f.group_into(&mut self.channels, repeats, |f| f.integer(Range::ANY))?;
+        self.channels = f.values(repeats, |f| f.integer(Range::ANY), read_pmtkchn_channels)?;
         f.end()
     }
 
@@ -94,7 +99,7 @@ impl<'a> Layout<'a> for Pmtkchn {
     }
 }
 
-impl fmt::Display for Pmtkchn {
+impl fmt::Display for Pmtkchn<'_> {
     /// The sentence text, checksum included unless it is `Checksum::None`; no line ending.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         self.write_sentence(f)

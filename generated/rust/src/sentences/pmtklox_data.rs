@@ -11,10 +11,15 @@
 use core::fmt;
 
 use crate::runtime::{
-    Bound, Checksum, Error, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout, Number, Range,
-    Shape,
+    Bound, Checksum, Entries, Error, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember, Layout, Number, Range,
+    Reader, Shape,
 };
 use crate::LayoutId;
+
+/// Reads one value of flash data words: a parsed sentence reads its values again with it.
+fn read_pmtklox_data_words<'a>(f: &mut Reader<'a>) -> Result<Option<Hex>, Error<'a>> {
+    f.hex("word")
+}
 
 /// PMTKLOX_DATA: LOCUS dump, data line.
 ///
@@ -36,20 +41,21 @@ use crate::LayoutId;
 /// ```
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct PmtkloxData {
+pub struct PmtkloxData<'a> {
     /// Line number: Number of this data line, counting from 0.
     pub line: Option<Number>,
     /// Flash data words: 1 to 24 values of data word: Four bytes of the logger flash as 8 hex
     /// digits; the first line starts with the logger's header (configuration) and the records
-    /// follow, their layout depending on the logged contents.
-    pub words: Group<Option<Hex>, 24>,
+    /// follow, their layout depending on the logged contents. Kept as received, read by `iter()`
+    /// and `get(i)`.
+    pub words: Entries<'a, Option<Hex>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
 
-impl PmtkloxData {
+impl<'a> PmtkloxData<'a> {
     /// Parses a whole `$PMTKLOX` line with this layout; a trailing LF or CR LF is allowed.
-    pub fn parse(line: &str) -> Result<Self, Error<'_>> {
+    pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
         Self::parse_line(line)
     }
 
@@ -61,7 +67,7 @@ impl PmtkloxData {
     }
 }
 
-impl<'a> Layout<'a> for PmtkloxData {
+impl<'a> Layout<'a> for PmtkloxData<'a> {
     const SENTENCE: &'static str = "PMTKLOX_DATA";
     const VARIANT: Option<&'static str> = None;
     const FRAMING: Framing = Framing::Proprietary("PMTKLOX");
@@ -80,7 +86,7 @@ impl<'a> Layout<'a> for PmtkloxData {
         let mut out = Self { checksum, ..Self::default() };
         f.keyword("type", "1")?;
         out.line = f.integer("line", "integer of at least 0", Range::at_least(Bound::int(0)))?;
-        f.group_into(&mut out.words, "words", repeats, |f| f.hex("word"))?;
+        out.words = f.entries("words", repeats, 1, read_pmtklox_data_words)?;
         Ok(out)
     }
 
@@ -96,7 +102,7 @@ impl<'a> Layout<'a> for PmtkloxData {
     }
 }
 
-impl fmt::Display for PmtkloxData {
+impl fmt::Display for PmtkloxData<'_> {
     /// The sentence text, checksum included unless it is `Checksum::None`; no line ending.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         self.write_sentence(f)

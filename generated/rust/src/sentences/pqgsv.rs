@@ -14,8 +14,8 @@ use core::fmt;
 
 use crate::enums::{SignalId, SystemId};
 use crate::runtime::{
-    Bound, Checksum, Code, Entry, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout,
-    Number, Range, Read, Reader, Shape,
+    Bound, Checksum, Code, Entries, Entry, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember,
+    Layout, Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -90,8 +90,8 @@ pub struct Pqgsv<'a> {
     pub message_number: Option<Number>,
     /// Satellites in view: Satellites of the system in view.
     pub satellites_in_view: Option<Number>,
-    /// Satellites: 0 to 4 entries.
-    pub satellites: Group<PqgsvSatellite, 4>,
+    /// Satellites: 0 to 4 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub satellites: Entries<'a, PqgsvSatellite>,
     /// Signal ID: NMEA 4.10 signal ID.
     pub signal_id: Option<Code<'a, SignalId>>,
     /// GNSS system ID: NMEA 4.11 system ID of the satellites: 4 BeiDou or 5 QZSS.
@@ -140,7 +140,7 @@ impl<'a> Layout<'a> for Pqgsv<'a> {
         out.message_count = f.integer("message_count", "integer", Range::ANY)?;
         out.message_number = f.integer("message_number", "integer", Range::ANY)?;
         out.satellites_in_view = f.integer("satellites_in_view", "integer", Range::ANY)?;
-        f.group_into(&mut out.satellites, "satellites", repeats, PqgsvSatellite::read)?;
+        out.satellites = f.entries("satellites", repeats, 4, PqgsvSatellite::read)?;
         out.signal_id = f.code("signal_id")?;
         out.system = f.code("system")?;
         Ok(out)
@@ -152,7 +152,7 @@ impl<'a> Layout<'a> for Pqgsv<'a> {
         self.message_count = f.integer(Range::ANY)?;
         self.message_number = f.integer(Range::ANY)?;
         self.satellites_in_view = f.integer(Range::ANY)?;
-        f.entries_into(&mut self.satellites, repeats, PqgsvSatellite::read_fast)?;
+        self.satellites = f.entries(repeats, PqgsvSatellite::read_fast, PqgsvSatellite::read)?;
         self.signal_id = f.code()?;
         self.system = f.code()?;
         f.end()

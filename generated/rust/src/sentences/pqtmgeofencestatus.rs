@@ -12,10 +12,15 @@ use core::fmt;
 
 use crate::enums::QuectelGeofenceState;
 use crate::runtime::{
-    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
-    Range, Read, Shape, Time,
+    Checksum, Code, Entries, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number,
+    Range, Read, Reader, Shape, Time,
 };
 use crate::LayoutId;
+
+/// Reads one value of geofence states: a parsed sentence reads its values again with it.
+fn read_pqtmgeofencestatus_states<'a>(f: &mut Reader<'a>) -> Result<Option<Code<'a, QuectelGeofenceState>>, Error<'a>> {
+    f.code("state")
+}
 
 /// PQTMGEOFENCESTATUS: Geofence status.
 ///
@@ -40,8 +45,8 @@ pub struct Pqtmgeofencestatus<'a> {
     /// UTC time: UTC time of the data.
     pub time: Option<Time>,
     /// Geofence states: 4 to 4 values of state: State of geofence N (0 to 3); unknown while there
-    /// is no fix.
-    pub states: Group<Option<Code<'a, QuectelGeofenceState>>, 4>,
+    /// is no fix. Kept as received, read by `iter()` and `get(i)`.
+    pub states: Entries<'a, Option<Code<'a, QuectelGeofenceState>>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -80,7 +85,7 @@ impl<'a> Layout<'a> for Pqtmgeofencestatus<'a> {
         let mut out = Self { checksum, ..Self::default() };
         out.msg_version = f.integer("msg_version", "integer", Range::ANY)?;
         out.time = f.time("time")?;
-        f.group_into(&mut out.states, "states", repeats, |f| f.code("state"))?;
+        out.states = f.entries("states", repeats, 1, read_pqtmgeofencestatus_states)?;
         Ok(out)
     }
 
@@ -89,7 +94,7 @@ impl<'a> Layout<'a> for Pqtmgeofencestatus<'a> {
         self.checksum = Checksum::Upper;
         self.msg_version = f.integer(Range::ANY)?;
         self.time = f.time()?;
-        f.group_into(&mut self.states, repeats, |f| f.code())?;
+        self.states = f.values(repeats, |f| f.code(), read_pqtmgeofencestatus_states)?;
         f.end()
     }
 

@@ -14,8 +14,8 @@ use core::fmt;
 
 use crate::enums::UbloxSvStatus;
 use crate::runtime::{
-    Bound, Checksum, Code, Entry, Error, FastReader, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout,
-    Number, Range, Read, Reader, Shape,
+    Bound, Checksum, Code, Entries, Entry, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember,
+    Layout, Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -100,8 +100,8 @@ impl Entry for PubxSvstatusSatellite<'_> {
 pub struct PubxSvstatus<'a> {
     /// Satellites tracked: Number of satellites that follow, one group of six fields each.
     pub num_sv: Option<Number>,
-    /// Tracked satellites: 0 to 64 entries.
-    pub satellites: Group<PubxSvstatusSatellite<'a>, 64>,
+    /// Tracked satellites: 0 to 64 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub satellites: Entries<'a, PubxSvstatusSatellite<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -145,7 +145,7 @@ impl<'a> Layout<'a> for PubxSvstatus<'a> {
         let mut out = Self { checksum, ..Self::default() };
         f.keyword("msg_id", "03")?;
         out.num_sv = f.integer("num_sv", "integer of at least 0", Range::at_least(Bound::int(0)))?;
-        f.group_into(&mut out.satellites, "satellites", repeats, PubxSvstatusSatellite::read)?;
+        out.satellites = f.entries("satellites", repeats, 6, PubxSvstatusSatellite::read)?;
         Ok(out)
     }
 
@@ -154,7 +154,7 @@ impl<'a> Layout<'a> for PubxSvstatus<'a> {
         self.checksum = Checksum::Upper;
         f.keyword("03")?;
         self.num_sv = f.integer(Range::at_least(Bound::int(0)))?;
-        f.entries_into(&mut self.satellites, repeats, PubxSvstatusSatellite::read_fast)?;
+        self.satellites = f.entries(repeats, PubxSvstatusSatellite::read_fast, PubxSvstatusSatellite::read)?;
         f.end()
     }
 

@@ -13,7 +13,7 @@ use core::fmt;
 
 use crate::enums::FsiMode;
 use crate::runtime::{
-    Bound, Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number,
+    Bound, Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number,
     Range, Reader, Shape,
 };
 use crate::LayoutId;
@@ -64,8 +64,8 @@ pub struct Sfi<'a> {
     pub total_sentences: Option<Number>,
     /// Sentence number: Number of this sentence in the list.
     pub sentence_number: Option<Number>,
-    /// Scanned frequencies: 0 to 6 entries.
-    pub frequencies: Group<SfiFrequencie<'a>, 6>,
+    /// Scanned frequencies: 0 to 6 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub frequencies: Entries<'a, SfiFrequencie<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -106,7 +106,7 @@ impl<'a> Layout<'a> for Sfi<'a> {
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
         out.total_sentences = f.integer("total_sentences", "integer of at least 1", Range::at_least(Bound::int(1)))?;
         out.sentence_number = f.integer("sentence_number", "integer of at least 1", Range::at_least(Bound::int(1)))?;
-        f.group_into(&mut out.frequencies, "frequencies", repeats, SfiFrequencie::read)?;
+        out.frequencies = f.entries("frequencies", repeats, 2, SfiFrequencie::read)?;
         Ok(out)
     }
 

@@ -11,7 +11,7 @@
 use core::fmt;
 
 use crate::runtime::{
-    Bound, Checksum, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
+    Bound, Checksum, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range,
     Reader, Shape,
 };
 use crate::LayoutId;
@@ -69,8 +69,8 @@ impl Entry for TlbLabel<'_> {
 pub struct Tlb<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).
     pub talker: &'a str,
-    /// Target labels: 1 to 20 entries.
-    pub labels: Group<TlbLabel<'a>, 20>,
+    /// Target labels: 1 to 20 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub labels: Entries<'a, TlbLabel<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -105,7 +105,7 @@ impl<'a> Layout<'a> for Tlb<'a> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
         let mut f = fields.reader();
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
-        f.group_into(&mut out.labels, "labels", repeats, TlbLabel::read)?;
+        out.labels = f.entries("labels", repeats, 2, TlbLabel::read)?;
         Ok(out)
     }
 

@@ -14,7 +14,7 @@ use core::fmt;
 
 use crate::enums::{XdrTransducerType, XdrUnit};
 use crate::runtime::{
-    Checksum, Code, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, JsonMember, Layout, Number, Range,
+    Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range,
     Reader, Shape,
 };
 use crate::LayoutId;
@@ -80,8 +80,9 @@ impl Entry for XdrMeasurement<'_> {
 pub struct Xdr<'a> {
     /// Talker ID (`GP`, `GL`, `GN`, …).
     pub talker: &'a str,
-    /// Transducer measurements: 1 to 10 entries.
-    pub measurements: Group<XdrMeasurement<'a>, 10>,
+    /// Transducer measurements: 1 to 10 entries, kept as received: read them by `iter()` and
+    /// `get(i)`.
+    pub measurements: Entries<'a, XdrMeasurement<'a>>,
     /// How the checksum is written.
     pub checksum: Checksum,
 }
@@ -117,7 +118,7 @@ impl<'a> Layout<'a> for Xdr<'a> {
         let (repeats, _) = fields.shape(&Self::SHAPE)?;
         let mut f = fields.reader();
         let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
-        f.group_into(&mut out.measurements, "measurements", repeats, XdrMeasurement::read)?;
+        out.measurements = f.entries("measurements", repeats, 4, XdrMeasurement::read)?;
         Ok(out)
     }
 

@@ -212,7 +212,7 @@ static const layout_field sat_group_fields[] = {
 static const layout_group sat_group = {
     .id = "satellites", .fields = sat_group_fields, .field_count = 4, .width = 4, .min = 0, .max = 4,
     .single = false, .offset = offsetof(nmea_sat, satellites), .entry_size = sizeof(nmea_sat_satellite),
-    .count_offset = offsetof(nmea_sat, satellites_count),
+    .count_offset = offsetof(nmea_sat, satellites.count),
 };
 static const layout sat_layout = {
     .sentence = "SAT", .fields = sat_fields, .group = &sat_group, .before = 3, .optional = 1, .fixed = 3,
@@ -220,6 +220,11 @@ static const layout sat_layout = {
     .optional_count = offsetof(nmea_sat, optional_count), .checksum = offsetof(nmea_sat, checksum),
     .kind = LAYOUT_STANDARD, .start = '$',
 };
+
+bool nmea_sat_satellites_at(const nmea_sat *s, size_t i, nmea_sat_satellite *out)
+{
+    return entry_of(&sat_layout, s, i, out);
+}
 
 bool nmea_parse_sat(nmea_sat *out, const char *line, size_t len, nmea_error *err)
 {

@@ -233,9 +233,9 @@ typedef struct {
     nmea_number number;
     /* Satellites in view (xx): Satellites in view. Empty: present false. */
     nmea_number in_view;
-    /* Satellites: Satellites 0 to 4 entries; satellites_count of them are on the wire. */
-    nmea_sat_satellite satellites[4];
-    uint8_t satellites_count;
+    /* Satellites: Satellites 0 to 4 entries; entry i is read by nmea_sat_satellites_at
+       (nmea_entries). */
+    nmea_entries satellites;
     /* Signal ID (h) (NMEA 4.10, optional): Signal. Empty: present false. */
     nmea_hex signal;
     /* How many of the optional trailing fields (signal) are on the wire. */
@@ -243,6 +243,10 @@ typedef struct {
     /* How the checksum is written (or that there is none). */
     nmea_checksum_style checksum;
 } nmea_sat;
+
+/* Entry `i` of SAT satellites, from the wire or the caller's items; false when
+   there are fewer. */
+bool nmea_sat_satellites_at(const nmea_sat *s, size_t i, nmea_sat_satellite *out);
 
 /*
  * XDM: An encapsulation sentence.

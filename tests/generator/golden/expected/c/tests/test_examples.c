@@ -104,6 +104,27 @@ static bool built(const example *ex, const char *got, size_t len, const char *li
 
 static char json[NMEA_JSON_MAX];
 
+/* Reads every entry of the group of `s` through its accessor and gives them back as the caller's
+   items, with the wire forgotten: false when the accessor does not yield as many entries as the
+   group counts. A sentence without a group is left as it is. */
+static bool regroup(nmea_sentence *s)
+{
+    size_t i = 0;
+    switch (s->id) {
+    case NMEA_SENTENCE_SAT: {
+        static nmea_sat_satellite items[4];
+        while (i < 4 && nmea_sat_satellites_at(&s->as.sat, i, &items[i]))
+            i++;
+        s->as.sat.satellites.items = items;
+        s->as.sat.satellites.wire = nmea_text_of(NULL);
+        return i == s->as.sat.satellites.count
+               && !nmea_sat_satellites_at(&s->as.sat, i, &items[0]);
+    }
+    default:
+        return true;
+    }
+}
+
 static bool check(const example *ex)
 {
     static const nmea_options lenient = {true, false, NULL}; /* nmea_decode_json_ex keeps the problems */
@@ -144,6 +165,15 @@ static bool check(const example *ex)
         memcpy(json + n, "\r\n", 2);
         n = nmea_decode_json(json, n + 2, false, buf, sizeof buf);
         ok = same(ex, "decode of the line with its CR LF", buf, n, ex->decode) && ok;
+        again = s;
+        if (!regroup(&again)) {
+            ok = same(ex, "the group's entries through its accessor", "", 0, NULL) && ok;
+        } else {
+            n = nmea_serialize(&again, buf, sizeof buf);
+            ok = same(ex, "serialize from the entries as items", buf, n, ex->line) && ok;
+            n = nmea_to_json(&again, false, buf, sizeof buf);
+            ok = same(ex, "decode from the entries as items", buf, n, ex->decode) && ok;
+        }
         n = nmea_build(&s, buf, sizeof buf, &err);
         if (n == 0) {
             n = nmea_error_to_json(&err, buf, sizeof buf);

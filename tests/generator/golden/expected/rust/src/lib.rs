@@ -65,8 +65,9 @@ use runtime::is_command_word;
 use runtime::json::{self, Value, WireFields};
 use runtime::{first_word, strip_line_ending, FastReader, Unsure};
 pub use runtime::{
-    Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Error, ErrorKind, FieldProblem, Fields, Frame, Framing,
-    Generic, Group, Hex, Kind, Layout, Name, Number, Problems, ReplyOutcome, Sign, Time, BUILD_CAPACITY, MAX_PROBLEMS,
+    Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Entries, EntryIter, Error, ErrorKind, FieldProblem, Fields,
+    Frame, Framing, Generic, Hex, Kind, Layout, Name, Number, Problems, ReplyOutcome, Sign, Texts, Time,
+    BUILD_CAPACITY, MAX_PROBLEMS,
 };
 
 pub use runtime::stream;

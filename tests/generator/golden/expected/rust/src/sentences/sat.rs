@@ -10,7 +10,7 @@
 use core::fmt;
 
 use crate::runtime::{
-    Bound, Checksum, Entry, Error, FieldSink, Fields, Framing, Group, GroupShape, Hex, JsonMember, Layout, Number,
+    Bound, Checksum, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember, Layout, Number,
     Range, Reader, Shape,
 };
 use crate::LayoutId;
@@ -76,8 +76,8 @@ pub struct Sat<'a> {
     pub number: Option<Number>,
     /// Satellites in view: Satellites in view.
     pub in_view: Option<Number>,
-    /// Satellites: 0 to 4 entries.
-    pub satellites: Group<SatSatellite, 4>,
+    /// Satellites: 0 to 4 entries, kept as received: read them by `iter()` and `get(i)`.
+    pub satellites: Entries<'a, SatSatellite>,
     /// Signal ID (NMEA 4.10, optional): Signal.
     pub signal: Option<Hex>,
     /// How many of the optional trailing fields (`signal`) are on the wire,
@@ -126,7 +126,7 @@ impl<'a> Layout<'a> for Sat<'a> {
         out.total = f.integer("total", "integer 1..9", Range::between(Bound::int(1), Bound::int(9)))?;
         out.number = f.integer("number", "integer 1..9", Range::between(Bound::int(1), Bound::int(9)))?;
         out.in_view = f.integer("in_view", "integer", Range::ANY)?;
-        f.group_into(&mut out.satellites, "satellites", repeats, SatSatellite::read)?;
+        out.satellites = f.entries("satellites", repeats, 4, SatSatellite::read)?;
         if extra >= 1 {
             out.signal = f.hex("signal")?;
             out.trailing = 1;
