@@ -581,7 +581,8 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                                 [rust_str(g.id), "repeats", str(f.wire_width), reader], "?;", True)
                 fast_callee, fast_args = fast_call(f)
                 fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.values",
-                                ["repeats", f"|f| {fast_callee}({', '.join(fast_args)})", reader], "?;", True)
+                                ["repeats", str(f.wire_width), f"|f| {fast_callee}({', '.join(fast_args)})", reader],
+                                "?;", True)
                 unit = f" [{f.unit}]" if f.unit else ""
                 items.append({"kind": "values", "group": g, "ident": ident(g.id), "read": read, "fast": fast,
                               "optional": None, "value_reader": value_reader,
@@ -601,7 +602,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.entries",
                                 [rust_str(g.id), "repeats", str(g.width), f"{entry}::read"], "?;", True)
                 fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.entries",
-                                ["repeats", f"{entry}::read_fast", f"{entry}::read"], "?;", True)
+                                ["repeats", str(g.width), f"{entry}::read_fast", f"{entry}::read"], "?;", True)
                 items.append({"kind": "entries", "group": g, "ident": ident(g.id), "entry": entry, "read": read,
                               "fast": fast,
                               "optional": None, "lifetime": lifetime,

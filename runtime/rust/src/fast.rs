@@ -394,13 +394,14 @@ impl<'a> FastReader<'a> {
         Ok(Texts::new(core::str::from_utf8(text).map_err(|_| Unsure)?, count))
     }
 
-    /// Reads `count` entries of a repeated group of several fields, each filled in a default
-    /// entry by `read_fast` to check it, and keeps them as received (read again with `read`,
-    /// the general reader, when asked for).
+    /// Reads `count` entries of `width` wire fields of a repeated group of several fields, each
+    /// filled in a default entry by `read_fast` to check it, and keeps them as received (read
+    /// again with `read`, the general reader, when asked for).
     #[inline(always)]
     pub fn entries<T: Copy + Default>(
         &mut self,
         count: usize,
+        width: usize,
         mut read_fast: impl FnMut(&mut T, &mut Self) -> Read<()>,
         read: ReadEntry<'a, T>,
     ) -> Read<Entries<'a, T>> {
@@ -408,15 +409,17 @@ impl<'a> FastReader<'a> {
         for _ in 0..count {
             read_fast(&mut T::default(), self)?;
         }
-        self.kept(start, count, read)
+        self.kept(start, count, width, read)
     }
 
-    /// Reads `count` values of a repeated group of one field with `read_fast` to check them, and
-    /// keeps them as received (read again with `read` when asked for).
+    /// Reads `count` values of `width` wire fields of a repeated group of one field with
+    /// `read_fast` to check them, and keeps them as received (read again with `read` when asked
+    /// for).
     #[inline(always)]
     pub fn values<T: Copy + Default>(
         &mut self,
         count: usize,
+        width: usize,
         mut read_fast: impl FnMut(&mut Self) -> Read<T>,
         read: ReadEntry<'a, T>,
     ) -> Read<Entries<'a, T>> {
@@ -424,15 +427,21 @@ impl<'a> FastReader<'a> {
         for _ in 0..count {
             read_fast(self)?;
         }
-        self.kept(start, count, read)
+        self.kept(start, count, width, read)
     }
 
-    /// The `count` entries read since `start`, as their wire text.
-    fn kept<T: Copy + Default>(&self, start: usize, count: usize, read: ReadEntry<'a, T>) -> Read<Entries<'a, T>> {
-        let end = if self.at > start { self.at - 1 } else { start };
+    /// The `count` entries of `width` wire fields read since `start`, as their wire text.
+    #[inline(always)]
+    fn kept<T: Copy + Default>(
+        &self,
+        start: usize,
+        count: usize,
+        width: usize,
+        read: ReadEntry<'a, T>,
+    ) -> Read<Entries<'a, T>> {
+        let end = if count > 0 { self.at - 1 } else { start };
         let text = core::str::from_utf8(self.line.get(start..end).ok_or(Unsure)?).map_err(|_| Unsure)?;
-        let fields = if text.is_empty() && count == 0 { 0 } else { 1 + text.bytes().filter(|&b| b == b',').count() };
-        Ok(Entries::on_wire(Texts::new(text, fields), count, false, read))
+        Ok(Entries::on_wire(Texts::new(text, count * width), count, false, read))
     }
 }
 

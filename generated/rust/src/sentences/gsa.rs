@@ -131,7 +131,7 @@ impl<'a> Layout<'a> for Gsa<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_prns)?;
+        self.prns = f.values(repeats, 1, |f| f.integer(Range::ANY), read_gsa_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;
@@ -273,7 +273,7 @@ impl<'a> Layout<'a> for GsaShort<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_short_prns)?;
+        self.prns = f.values(repeats, 1, |f| f.integer(Range::ANY), read_gsa_short_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;
@@ -406,7 +406,7 @@ impl<'a> Layout<'a> for GsaWideSystem<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_wide_system_prns)?;
+        self.prns = f.values(repeats, 1, |f| f.integer(Range::ANY), read_gsa_wide_system_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;
@@ -535,7 +535,7 @@ impl<'a> Layout<'a> for GsaWide<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_wide_prns)?;
+        self.prns = f.values(repeats, 1, |f| f.integer(Range::ANY), read_gsa_wide_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;
@@ -674,7 +674,7 @@ impl<'a> Layout<'a> for GsaExtraDop<'a> {
         self.checksum = Checksum::Upper;
         self.selection_mode = f.code()?;
         self.fix_type = f.code()?;
-        self.prns = f.values(repeats, |f| f.integer(Range::ANY), read_gsa_extra_dop_prns)?;
+        self.prns = f.values(repeats, 1, |f| f.integer(Range::ANY), read_gsa_extra_dop_prns)?;
         self.pdop = f.decimal(Range::ANY)?;
         self.hdop = f.decimal(Range::ANY)?;
         self.vdop = f.decimal(Range::ANY)?;

@@ -163,7 +163,7 @@ impl<'a> Layout<'a> for Gsv<'a> {
         self.message_count = f.integer(Range::at_least(Bound::int(1)))?;
         self.message_number = f.integer(Range::at_least(Bound::int(1)))?;
         self.satellites_in_view = f.integer(Range::at_least(Bound::int(0)))?;
-        self.satellites = f.entries(repeats, GsvSatellite::read_fast, GsvSatellite::read)?;
+        self.satellites = f.entries(repeats, 4, GsvSatellite::read_fast, GsvSatellite::read)?;
         if extra >= 1 {
             self.signal_id = f.code()?;
             self.trailing = 1;

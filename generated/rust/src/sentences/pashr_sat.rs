@@ -148,7 +148,7 @@ impl<'a> Layout<'a> for PashrSat<'a> {
         self.checksum = Checksum::Upper;
         f.keyword("SAT")?;
         self.count = f.integer(Range::at_least(Bound::int(0)))?;
-        self.satellites = f.entries(repeats, PashrSatSatellite::read_fast, PashrSatSatellite::read)?;
+        self.satellites = f.entries(repeats, 5, PashrSatSatellite::read_fast, PashrSatSatellite::read)?;
         f.end()
     }
 

@@ -147,7 +147,7 @@ impl<'a> Layout<'a> for PglorSat<'a> {
         f.keyword("SAT")?;
         self.total_sentences = f.integer(Range::at_least(Bound::int(1)))?;
         self.sentence_number = f.integer(Range::at_least(Bound::int(1)))?;
-        self.satellites = f.entries(repeats, PglorSatSatellite::read_fast, PglorSatSatellite::read)?;
+        self.satellites = f.entries(repeats, 3, PglorSatSatellite::read_fast, PglorSatSatellite::read)?;
         f.end()
     }
 
@@ -282,7 +282,7 @@ impl<'a> Layout<'a> for PglorSatV1<'a> {
         self.checksum = Checksum::Upper;
         self.version = f.literal("1")?;
         f.keyword("SAT")?;
-        self.satellites = f.entries(repeats, PglorSatV1Satellite::read_fast, PglorSatV1Satellite::read)?;
+        self.satellites = f.entries(repeats, 3, PglorSatV1Satellite::read_fast, PglorSatV1Satellite::read)?;
         f.end()
     }
 
@@ -414,7 +414,7 @@ impl<'a> Layout<'a> for PglorSatV0<'a> {
         self.checksum = Checksum::Upper;
         self.version = f.literal("0")?;
         f.keyword("SAT")?;
-        self.satellites = f.entries(repeats, PglorSatV0Satellite::read_fast, PglorSatV0Satellite::read)?;
+        self.satellites = f.entries(repeats, 3, PglorSatV0Satellite::read_fast, PglorSatV0Satellite::read)?;
         f.end()
     }
 

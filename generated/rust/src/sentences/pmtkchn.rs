@@ -85,7 +85,7 @@ impl<'a> Layout<'a> for Pmtkchn<'a> {
     #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
     fn read_fast(&mut self, mut f: FastReader<'a>, repeats: usize, _extra: usize) -> Read<()> {
         self.checksum = Checksum::Upper;
-        self.channels = f.values(repeats, |f| f.integer(Range::ANY), read_pmtkchn_channels)?;
+        self.channels = f.values(repeats, 1, |f| f.integer(Range::ANY), read_pmtkchn_channels)?;
         f.end()
     }
 

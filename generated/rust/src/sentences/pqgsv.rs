@@ -152,7 +152,7 @@ impl<'a> Layout<'a> for Pqgsv<'a> {
         self.message_count = f.integer(Range::ANY)?;
         self.message_number = f.integer(Range::ANY)?;
         self.satellites_in_view = f.integer(Range::ANY)?;
-        self.satellites = f.entries(repeats, PqgsvSatellite::read_fast, PqgsvSatellite::read)?;
+        self.satellites = f.entries(repeats, 4, PqgsvSatellite::read_fast, PqgsvSatellite::read)?;
         self.signal_id = f.code()?;
         self.system = f.code()?;
         f.end()

@@ -94,7 +94,7 @@ impl<'a> Layout<'a> for Pqtmgeofencestatus<'a> {
         self.checksum = Checksum::Upper;
         self.msg_version = f.integer(Range::ANY)?;
         self.time = f.time()?;
-        self.states = f.values(repeats, |f| f.code(), read_pqtmgeofencestatus_states)?;
+        self.states = f.values(repeats, 1, |f| f.code(), read_pqtmgeofencestatus_states)?;
         f.end()
     }
 

@@ -154,7 +154,7 @@ impl<'a> Layout<'a> for PubxSvstatus<'a> {
         self.checksum = Checksum::Upper;
         f.keyword("03")?;
         self.num_sv = f.integer(Range::at_least(Bound::int(0)))?;
-        self.satellites = f.entries(repeats, PubxSvstatusSatellite::read_fast, PubxSvstatusSatellite::read)?;
+        self.satellites = f.entries(repeats, 6, PubxSvstatusSatellite::read_fast, PubxSvstatusSatellite::read)?;
         f.end()
     }
 
