@@ -3,7 +3,10 @@ differential (C and Rust coverage in one) into a minimal set with libFuzzer's -m
 it to fuzz/corpus.tar.xz (files named by their SHA-1, sorted, no timestamps: the same set gives the
 same archive), which fuzz/seeds.py adds to every target's seeds.
 
-    python fuzz/keep_corpus.py FUZZER_BINARY... -- CORPUS_DIR...
+    python fuzz/keep_corpus.py [--add] FUZZER_BINARY... -- CORPUS_DIR...
+
+With --add, every input the archive holds stays, and only inputs that reach what none of them
+reaches are added (a merge into the archive's inputs rather than a minimal set of all).
 """
 
 from __future__ import annotations
@@ -20,8 +23,20 @@ ROOT = Path(__file__).resolve().parent.parent
 ARCHIVE = ROOT / "fuzz" / "corpus.tar.xz"
 
 
-def merged(binary: str, corpora: list[str]) -> dict[str, bytes]:
+def archived() -> dict[str, bytes]:
+    """The inputs fuzz/corpus.tar.xz holds, by name."""
+    if not ARCHIVE.exists():
+        return {}
+    with tarfile.open(ARCHIVE, mode="r:xz") as archive:
+        members = [m for m in archive.getmembers() if m.isfile()]
+        return {m.name: archive.extractfile(m).read() for m in members}  # type: ignore[union-attr]
+
+
+def merged(binary: str, corpora: list[str], start: dict[str, bytes]) -> dict[str, bytes]:
+    """The inputs of `corpora` that add coverage for `binary` to those of `start`, and `start`."""
     with tempfile.TemporaryDirectory(prefix="nmeaspec-merge-") as tmp:
+        for name, data in start.items():
+            (Path(tmp) / name).write_bytes(data)
         subprocess.run([binary, "-merge=1", "-max_len=1100", "-timeout=10", tmp, *corpora], check=True,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         return {hashlib.sha1(p.read_bytes()).hexdigest(): p.read_bytes() for p in Path(tmp).iterdir()}
@@ -29,13 +44,16 @@ def merged(binary: str, corpora: list[str]) -> dict[str, bytes]:
 
 def main() -> int:
     args = sys.argv[1:]
+    add = "--add" in args[:1]
+    args = args[1:] if add else args
     if "--" not in args:
         raise SystemExit(__doc__)
     split = args.index("--")
     binaries, corpora = args[:split], [c for c in args[split + 1:] if Path(c).is_dir()]
-    keep: dict[str, bytes] = {}
+    start = archived() if add else {}
+    keep: dict[str, bytes] = dict(start)
     for binary in binaries:
-        keep.update(merged(binary, corpora))
+        keep.update(merged(binary, corpora, start))
     buffer = io.BytesIO()
     with tarfile.open(fileobj=buffer, mode="w:xz") as archive:
         for name in sorted(keep):
