@@ -48,11 +48,17 @@ def object_size(cc: list[str], cflags: list[str], source: Path, flags: list[str]
     return sizes(obj)
 
 
+def size_columns(binary: Path) -> tuple[int, int, int]:
+    """`size`'s text, data and bss of an object or a program."""
+    line = subprocess.run(["size", str(binary)], check=True, capture_output=True, text=True).stdout.splitlines()[-1]
+    text, data, bss = line.split()[:3]
+    return int(text), int(data), int(bss)
+
+
 def sizes(binary: Path) -> tuple[int, int]:
     """`size`'s text and data of an object or a program."""
-    line = subprocess.run(["size", str(binary)], check=True, capture_output=True, text=True).stdout.splitlines()[-1]
-    text, data = line.split()[:2]
-    return int(text), int(data)
+    text, data, _ = size_columns(binary)
+    return text, data
 
 
 FIRMWARE = """#include "nmea.h"
@@ -103,8 +109,7 @@ def sentence_size(cc: list[str], cflags: list[str], source: Path, work: Path) ->
     obj = work / "probe.o"
     subprocess.run([*cc, "-std=c99", *cflags, "-fno-common", "-I", str(source), "-c", "-o", str(obj), str(probe)],
                    check=True)
-    line = subprocess.run(["size", str(obj)], check=True, capture_output=True, text=True).stdout.splitlines()[-1]
-    return int(line.split()[2])
+    return size_columns(obj)[2]
 
 
 def main() -> int:
