@@ -694,7 +694,12 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     } for s in spec.sentences]
     runtime_h = (RUNTIME / "c" / "runtime.h").read_text(encoding="utf-8")
     runtime_c = (RUNTIME / "c" / "runtime.c").read_text(encoding="utf-8")
+    # The fast path reads a standard-looking line by its last three letters ($GPGSV: GSV); only a
+    # proprietary address whose last three letters name a standard sentence must be told apart.
+    standard_ids = {e["sort"] for e in dispatch["standard"]}
+    shadowing = [e for e in dispatch["talker_like"] if e["sort"][2:] in standard_ids]
     context = {
+        "shadowing_talker_like": bool(shadowing),
         "enums": enums, "layouts": views, "sentences": sentences, "ranges": ranges.all,
         "bitfields": bitfields, "tables": tables, "dispatch": dispatch,
         "hashes": {name: perfect_hash([int(e["code"], 16) for e in dispatch[name]])

@@ -1088,6 +1088,22 @@ static bool all_digits(const char *p, size_t n)
     return true;
 }
 
+/* A time whose first six bytes at `t` are digits, with `frac` fraction digits worth `fraction`:
+   checked and stored in `out`. */
+NMEA_HOT bool time_of(const char *t, uint32_t fraction, size_t frac, bool point, nmea_time *out)
+{
+    out->hour = (uint8_t)two_digits(t);
+    out->minute = (uint8_t)two_digits(t + 2);
+    out->second = (uint8_t)two_digits(t + 4);
+    if (out->hour > 23 || out->minute > 59 || out->second > 60)
+        return false;
+    out->fraction = fraction;
+    out->fraction_digits = (uint8_t)frac;
+    out->point = point;
+    out->present = true;
+    return true;
+}
+
 /* hhmmss[.f...], at most 9 fraction digits. */
 static bool parse_time(nmea_text t, nmea_time *out)
 {
@@ -1103,34 +1119,50 @@ static bool parse_time(nmea_text t, nmea_time *out)
         for (i = 0; i < frac; i++)
             fraction = fraction * 10 + (uint32_t)(t.ptr[7 + i] - '0');
     }
-    out->hour = (uint8_t)two_digits(t.ptr);
-    out->minute = (uint8_t)two_digits(t.ptr + 2);
-    out->second = (uint8_t)two_digits(t.ptr + 4);
-    if (out->hour > 23 || out->minute > 59 || out->second > 60)
-        return false;
-    out->fraction = fraction;
-    out->fraction_digits = (uint8_t)frac;
-    out->point = point;
-    out->present = true;
-    return true;
+    return time_of(t.ptr, fraction, frac, point, out);
 }
 
 /* ddmmyy */
-static bool parse_date(nmea_text t, nmea_date *out)
+/* A date whose six bytes at `t` are digits: checked and stored in `out`. */
+NMEA_HOT bool date_of(const char *t, nmea_date *out)
 {
-    if (t.len != 6 || !all_digits(t.ptr, 6))
-        return false;
-    out->day = (uint8_t)two_digits(t.ptr);
-    out->month = (uint8_t)two_digits(t.ptr + 2);
-    out->year = (uint8_t)two_digits(t.ptr + 4);
+    out->day = (uint8_t)two_digits(t);
+    out->month = (uint8_t)two_digits(t + 2);
+    out->year = (uint8_t)two_digits(t + 4);
     if (out->day < 1 || out->day > 31 || out->month < 1 || out->month > 12)
         return false;
     out->present = true;
     return true;
 }
 
+static bool parse_date(nmea_text t, nmea_date *out)
+{
+    return t.len == 6 && all_digits(t.ptr, 6) && date_of(t.ptr, out);
+}
+
 /* ddmm.mmmm (latitude) or dddmm.mmmm (longitude): the two digits before the point are whole
    minutes, the digits before them degrees. */
+/* A coordinate's value read as `whole` digits before the point (worth `whole_value`) and `frac`
+   after it (the minutes, fraction included, worth `minutes`): checked and stored in `out`. */
+NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes, size_t frac, bool point,
+                            unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
+{
+    if (whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_MAX_DIGITS - 2)
+        return false;
+    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
+        return false;
+    out->degrees = (uint16_t)(whole_value / 100);
+    out->degree_digits = (uint8_t)(whole - 2);
+    out->minutes.digits = (int64_t)minutes;
+    out->minutes.scale = (uint8_t)frac;
+    out->minutes.width = 2;
+    out->minutes.sign = 0;
+    out->minutes.point = point;
+    out->minutes.present = true;
+    out->present = true;
+    return true;
+}
+
 static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
     const char *p = t.ptr, *end = t.ptr + t.len, *point = NULL;
@@ -1146,20 +1178,8 @@ static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned m
             minutes = minutes * 10 + (uint64_t)(*p - '0');
         frac = (size_t)(p - point - 1);
     }
-    if (p != end || whole < 2 || whole > 2 + max_degree_digits || frac > NMEA_MAX_DIGITS - 2)
-        return false;
-    if (whole_value / 100 > max_degrees || minutes > (uint64_t)(60 * POW10[frac]))
-        return false;
-    out->degrees = (uint16_t)(whole_value / 100);
-    out->degree_digits = (uint8_t)(whole - 2);
-    out->minutes.digits = (int64_t)minutes;
-    out->minutes.scale = (uint8_t)frac;
-    out->minutes.width = 2;
-    out->minutes.sign = 0;
-    out->minutes.point = point != NULL;
-    out->minutes.present = true;
-    out->present = true;
-    return true;
+    return p == end && coordinate_of(whole_value, whole, minutes, frac, point != NULL, max_degree_digits, max_degrees,
+                                     out);
 }
 
 /* Whether a code the table does not know is still well formed for it: the same length range
@@ -1707,10 +1727,13 @@ NMEA_HOT bool fast_printable_span(const char **p, nmea_text *out)
 }
 
 /* An integer or decimal field in one pass: empty, or an optional '-', digits and (`integer`
-   false) at most one point, NMEA_MAX_DIGITS digits in all, in `range`. */
-NMEA_HOT bool fast_number(const char **p, nmea_number *out, const nmea_range *range, bool integer)
+   false) at most one point, NMEA_MAX_DIGITS digits in all, in `range`. This general form takes
+   the fields fast_number leaves to it: a sign, or a point first. Returns where the next field
+   starts, or NULL. (Not a pointer to the caller's position: that would keep it out of a
+   register in every field's reader.) */
+NMEA_RARE const char *fast_signed_number(const char *q, nmea_number *out, const nmea_range *range, bool integer)
 {
-    const char *q = *p, *digits_start, *point = NULL;
+    const char *digits_start, *point = NULL;
     uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
     unsigned digit;      /* unsigned: a byte below '0' wraps to a large value */
     size_t whole, count;
@@ -1726,7 +1749,7 @@ NMEA_HOT bool fast_number(const char **p, nmea_number *out, const nmea_range *ra
             digits = digits * 10 + digit;
     count = (size_t)(q - digits_start) - (point != NULL);
     if ((*q != ',' && *q != '*') || count > NMEA_MAX_DIGITS || (count == 0 && (point || n.sign)))
-        return false;
+        return NULL;
     if (count) {
         n.digits = (int64_t)digits;
         n.scale = (uint8_t)(count - whole);
@@ -1734,9 +1757,49 @@ NMEA_HOT bool fast_number(const char **p, nmea_number *out, const nmea_range *ra
         n.point = point != NULL;
         n.present = true;
         if (!in_range(&n, range))
-            return false;
+            return NULL;
         *out = n;
     }
+    return q + 1;
+}
+
+/* fast_signed_number for the fields nearly every sentence holds: empty, or starting with a
+   digit. Such a number has no sign and at least one digit, which spares the checks of both. */
+NMEA_HOT bool fast_number(const char **p, nmea_number *out, const nmea_range *range, bool integer)
+{
+    const char *start = *p, *q = start, *point = NULL;
+    uint64_t digits;
+    unsigned digit = (unsigned)(unsigned char)*q - '0'; /* unsigned: a byte below '0' wraps */
+    size_t whole, count;
+    nmea_number n;
+
+    if (digit >= 10) {
+        q = *q != ',' && *q != '*' ? fast_signed_number(q, out, range, integer) : q + 1;
+        if (!q)
+            return false;
+        *p = q;
+        return true;
+    }
+    for (digits = digit, q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
+        digits = digits * 10 + digit;
+    whole = (size_t)(q - start);
+    count = whole;
+    if (!integer && *q == '.') {
+        for (point = q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
+            digits = digits * 10 + digit;
+        count = (size_t)(q - start) - 1;
+    }
+    if ((*q != ',' && *q != '*') || count > NMEA_MAX_DIGITS)
+        return false;
+    n.digits = (int64_t)digits;
+    n.scale = (uint8_t)(count - whole);
+    n.width = (uint8_t)whole;
+    n.sign = 0;
+    n.point = point != NULL;
+    n.present = true;
+    if (!in_range(&n, range))
+        return false;
+    *out = n;
     *p = q + 1;
     return true;
 }
@@ -1757,28 +1820,85 @@ NMEA_HOT bool fast_hex(const char **p, nmea_hex *out)
     return !t.len || parse_hex(t, out);
 }
 
+/* A time field in one pass, as parse_time reads it. (Each byte is read only while the ones before
+   it are digits, so nothing past the field's separator is read.) */
 NMEA_HOT bool fast_time(const char **p, nmea_time *out)
 {
-    nmea_text t = fast_span(p);
-    return !t.len || parse_time(t, out);
+    const char *t = *p, *q;
+    uint32_t fraction = 0;
+    unsigned digit; /* unsigned: a byte below '0' wraps to a large value */
+    size_t frac = 0;
+    bool point;
+
+    if (*t == ',' || *t == '*') {
+        *p = t + 1;
+        return true;
+    }
+    for (q = t; q < t + 6; q++)
+        if (!is_digit(*q))
+            return false;
+    point = *q == '.';
+    if (point) {
+        for (q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
+            fraction = fraction * 10 + digit; /* wraps past 9 digits, which are refused */
+        frac = (size_t)(q - t) - 7;
+        if (frac > 9)
+            return false;
+    }
+    if (*q != ',' && *q != '*')
+        return false;
+    *p = q + 1;
+    return time_of(t, fraction, frac, point, out);
 }
 
+/* A date field in one pass, as parse_date reads it (nothing past its separator is read). */
 NMEA_HOT bool fast_date(const char **p, nmea_date *out)
 {
-    nmea_text t = fast_span(p);
-    return !t.len || parse_date(t, out);
+    const char *t = *p, *q;
+
+    if (*t == ',' || *t == '*') {
+        *p = t + 1;
+        return true;
+    }
+    for (q = t; q < t + 6; q++)
+        if (!is_digit(*q))
+            return false;
+    if (*q != ',' && *q != '*')
+        return false;
+    *p = q + 1;
+    return date_of(t, out);
 }
 
+/* A value field and a hemisphere field in one pass, as read_coordinate reads them. (The
+   hemisphere's field has a separator of its own, so the value never ends at the final '*'.) */
 NMEA_HOT bool fast_coordinate(const char **p, nmea_coordinate *out, char positive, char negative,
                               unsigned max_degree_digits, unsigned max_degrees)
 {
-    nmea_text value = fast_span(p), hemisphere = fast_span(p);
-    if (!value.len)
-        return !hemisphere.len;
-    if (hemisphere.len != 1 || (hemisphere.ptr[0] != positive && hemisphere.ptr[0] != negative)
-        || !parse_coordinate(value, max_degree_digits, max_degrees, out))
+    const char *start = *p, *q = start, *point = NULL;
+    uint64_t whole_value = 0, minutes; /* unsigned: digits too many for them are refused below */
+    unsigned digit;                    /* unsigned: a byte below '0' wraps to a large value */
+    size_t whole, frac = 0;
+
+    for (; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
+        whole_value = whole_value * 10 + digit;
+    whole = (size_t)(q - start);
+    minutes = whole_value % 100;
+    if (*q == '.') {
+        for (point = q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
+            minutes = minutes * 10 + digit;
+        frac = (size_t)(q - point - 1);
+    }
+    if (*q != ',' && *q != '*')
         return false;
-    out->hemisphere = hemisphere.ptr[0];
+    if (q == start) { /* no value: no hemisphere either */
+        *p = q + 2;
+        return q[1] == ',' || q[1] == '*';
+    }
+    if ((q[1] != positive && q[1] != negative) || (q[2] != ',' && q[2] != '*')
+        || !coordinate_of(whole_value, whole, minutes, frac, point != NULL, max_degree_digits, max_degrees, out))
+        return false;
+    out->hemisphere = q[1];
+    *p = q + 3;
     return true;
 }
 

@@ -592,7 +592,10 @@ NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len)
     if (!fast_frame(line, len, &count))
         return false;
     out->problems = NULL;
-    if (line[6] == ',' && line[1] != 'P') { /* a talker and a sentence id, or a look-alike */
+    /* A talker and a sentence id, or a proprietary look-alike ($GPSGG): one whose last three
+       letters name no standard sentence is left to the general path by find_standard, and the
+       others are looked up here (the generator knows which exist). */
+    if (line[6] == ',' && line[1] != 'P') {
         if (!is_alnum(line[1]) || !is_alnum(line[2]))
             return false;
         layouts = find_standard(line + 3);
