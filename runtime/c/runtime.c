@@ -3580,8 +3580,9 @@ typedef struct {
     uint16_t max_length;  /* text, enum_chars: most characters (0: any number) */
 } layout_field;
 
-/* The fields of a layout without any (its `fields` point here, never NULL: no arithmetic on it). */
-static const layout_field NO_FIELDS[1];
+/* The fields of a layout without any (its `fields` point here, never NULL: no arithmetic on it;
+   a spec in which every layout has fields leaves it unused). */
+NMEA_INTERNAL const layout_field NO_FIELDS[1];
 
 /* An offset of a member a layout does not have. */
 #define NO_MEMBER 0xFFFFu

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -188,3 +189,67 @@ def test_what_stays_generic_must(message: str, example: str, error: str, tmp_pat
         load_spec(tmp_path / "spec")
     assert [(e.rule, error in e.message) for e in caught.value.errors] == [("S017", True)], \
         [str(e) for e in caught.value.errors]
+
+
+def _with_checksum(body: str) -> str:
+    sum = 0
+    for c in body.encode():
+        sum ^= c
+    return f"${body}*{sum:02X}"
+
+
+@pytest.mark.parametrize("address, shadows", [("XXFIX", True), ("GPXYZ", False)])
+def test_a_proprietary_look_alike_of_a_standard_sentence(address: str, shadows: bool, tmp_path: Path) -> None:
+    """A proprietary address of five letters reads like a talker and a sentence id. The C fast
+    path looks such addresses up only when one names a standard sentence ($XXFIX beside FIX);
+    either way the look-alike reads with its own layout (even a line FIX's layout would read too)
+    and the standard sentence with its own, on the fast path and the general one."""
+    golden = Path(__file__).with_name("golden") / "spec"
+    shutil.copytree(golden, tmp_path / "spec")
+    look_alike = _with_checksum(f"{address},123519.50,4807.038,N")  # as FIX's second example
+    (tmp_path / "spec" / "proprietary" / f"{address.lower()}.yaml").write_text(f"""sentence: {address}
+address: {address}
+framing: sentence
+kind: output
+vendor: acme
+name: A look-alike
+doc: A proprietary sentence whose address reads like a talker and a standard sentence id.
+manuals: [acme]
+fields:
+  - {{id: first, name: First, type: text, doc: A word.}}
+  - {{id: second, name: Second, type: text, doc: A word.}}
+  - {{id: third, name: Third, type: text, doc: A word.}}
+examples:
+  - manual: acme
+    where: a test
+    raw: "{look_alike}"
+    expect: {{first: "123519.50", second: "4807.038", third: N}}
+""")
+    files = render_all(load_spec(tmp_path / "spec"))
+    fast_parse = files["c/nmea.c"].split("bool fast_parse(", 1)[1].split("\n}\n", 1)[0]
+    assert ("find_layouts(TALKER_LIKE" in fast_parse) == shadows
+    for name in ("nmea.h", "nmea.c"):
+        (tmp_path / name).write_text(files[f"c/{name}"])
+    standard = "$GPFIX,123519.50,4807.038,N,01131.000,E,230394,1,08,-12.5,1F,Q,M,AD,HELLO,5*69"  # fix.yaml
+    (tmp_path / "main.c").write_text(f"""#include <stdio.h>
+#include <string.h>
+#include "nmea.h"
+static int check(const char *line, nmea_sentence_id want)
+{{
+    nmea_sentence s;
+    nmea_error err;
+    int failed = 0;
+    if (!nmea_parse(&s, line, strlen(line), &err) || s.id != want)
+        failed |= 1;
+    if (!nmea_parse_general(&s, line, strlen(line), NULL, &err) || s.id != want)
+        failed |= 2;
+    return failed;
+}}
+int main(void)
+{{
+    return check("{look_alike}", NMEA_SENTENCE_{address}) | check("{standard}", NMEA_SENTENCE_FIX) << 2;
+}}
+""")
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Werror", "-DNMEA_TEST_HOOKS", "-o", str(tmp_path / "main"),
+                    str(tmp_path / "main.c"), str(tmp_path / "nmea.c")], check=True)
+    assert subprocess.run([str(tmp_path / "main")]).returncode == 0

@@ -33,6 +33,12 @@ fn take_digits(line: &[u8], mut at: usize, value: &mut u64) -> usize {
     at
 }
 
+/// Whether `b` ends a field: `,` or `*` (one test: `,` is `*` + 2).
+#[inline(always)]
+const fn is_separator(b: u8) -> bool {
+    b.wrapping_sub(b'*') & !2 == 0
+}
+
 const ONES: u64 = 0x0101_0101_0101_0101;
 const LOW7: u64 = 0x7f7f_7f7f_7f7f_7f7f;
 
@@ -183,7 +189,7 @@ impl<'a> FastReader<'a> {
     fn span(&mut self) -> Read<&'a [u8]> {
         let (line, start) = (self.line, self.at);
         let rest = line.get(start..).ok_or(Unsure)?;
-        let len = rest.iter().position(|&b| b == b',' || b == b'*').ok_or(Unsure)?;
+        let len = rest.iter().position(|&b| is_separator(b)).ok_or(Unsure)?;
         self.at = start + len + 1;
         Ok(&rest[..len])
     }
@@ -226,36 +232,42 @@ impl<'a> FastReader<'a> {
     }
 
     /// A number in one pass over its bytes, as [`Number::parse`] reads it: a sign, digits and
-    /// (not for an `integer`) at most one point, [`MAX_DIGITS`] digits at most.
+    /// (not for an `integer`) at most one point, [`MAX_DIGITS`] digits at most. This is the form
+    /// of nearly every field, empty or starting with a digit (no sign, at least one digit, which
+    /// spares the checks of both); [`FastReader::signed_number`] takes the others.
     #[inline(always)]
     fn number(&mut self, range: Range, integer: bool) -> Read<Option<Number>> {
-        let (line, at) = (self.line, self.at);
-        let (sign, start) = match line.get(at) {
-            Some(b'0'..=b'9') => (Sign::Implicit, at),
-            Some(b',' | b'*') => {
-                self.at = at + 1;
+        let (line, start) = (self.line, self.at);
+        let first = *line.get(start).ok_or(Unsure)?;
+        let digit = first.wrapping_sub(b'0');
+        if digit > 9 {
+            if is_separator(first) {
+                self.at = start + 1;
                 return Ok(None);
             }
-            Some(b'-') => (Sign::Minus, at + 1),
-            Some(b'+') => (Sign::Plus, at + 1),
-            _ => (Sign::Implicit, at), // a point, or what the checks below refuse
-        };
-        let mut digits = 0u64;
-        let mut end = take_digits(line, start, &mut digits);
+            let (number, next) = signed_number(line, start, integer).ok_or(Unsure)?;
+            self.at = next;
+            return if range.contains(number) { Ok(Some(number)) } else { Err(Unsure) };
+        }
+        let mut digits = u64::from(digit);
+        let mut end = take_digits(line, start + 1, &mut digits);
         let whole = end - start;
         let point = !integer && line.get(end) == Some(&b'.');
         if point {
             end = take_digits(line, end + 1, &mut digits);
         }
         let count = end - start - usize::from(point);
-        if !matches!(line.get(end), Some(b',' | b'*')) || count > MAX_DIGITS {
+        if !line.get(end).is_some_and(|&b| is_separator(b)) || count > MAX_DIGITS {
             return Err(Unsure);
         }
         self.at = end + 1;
-        if count == 0 {
-            return Err(Unsure); // a sign or a point alone
-        }
-        let number = Number { digits: digits as i64, scale: (count - whole) as u8, width: whole as u8, sign, point };
+        let number = Number {
+            digits: digits as i64,
+            scale: (count - whole) as u8,
+            width: whole as u8,
+            sign: Sign::Implicit,
+            point,
+        };
         if range.contains(number) {
             Ok(Some(number))
         } else {
@@ -279,16 +291,40 @@ impl<'a> FastReader<'a> {
         self.parsed(Hex::parse_bytes)
     }
 
-    /// A time `hhmmss[.s…]`.
+    /// A time `hhmmss[.s…]` in one pass, as [`Time::parse_bytes`] reads it.
     #[inline(always)]
     pub fn time(&mut self) -> Read<Option<Time>> {
-        self.parsed(Time::parse_bytes)
+        let (line, start) = (self.line, self.at);
+        if line.get(start).is_some_and(|&b| is_separator(b)) {
+            self.at = start + 1;
+            return Ok(None);
+        }
+        let (mut end, mut fraction, point) = (start + 6, 0u64, line.get(start + 6) == Some(&b'.'));
+        if point {
+            end = take_digits(line, start + 7, &mut fraction);
+        }
+        let frac = end.saturating_sub(start + 7);
+        if !line.get(end).is_some_and(|&b| is_separator(b)) || frac > 9 {
+            return Err(Unsure);
+        }
+        self.at = end + 1;
+        let digits = line.get(start..start + 6).ok_or(Unsure)?;
+        Time::from_parts(digits, fraction as u32, frac, point).map(Some).ok_or(Unsure)
     }
 
-    /// A date `ddmmyy`.
+    /// A date `ddmmyy` in one pass, as [`Date::parse_bytes`] reads it.
     #[inline(always)]
     pub fn date(&mut self) -> Read<Option<Date>> {
-        self.parsed(Date::parse_bytes)
+        let (line, start) = (self.line, self.at);
+        if line.get(start).is_some_and(|&b| is_separator(b)) {
+            self.at = start + 1;
+            return Ok(None);
+        }
+        if !line.get(start + 6).is_some_and(|&b| is_separator(b)) {
+            return Err(Unsure);
+        }
+        self.at = start + 7;
+        Date::from_parts(line.get(start..start + 6).ok_or(Unsure)?).map(Some).ok_or(Unsure)
     }
 
     /// One printable ASCII character.
@@ -362,14 +398,30 @@ impl<'a> FastReader<'a> {
         self.coordinate(3, 180, [b'E', b'W'])
     }
 
+    /// The value and hemisphere fields in one pass, as [`Coordinate::parse_bytes`] and the
+    /// hemisphere check read them.
     #[inline(always)]
     fn coordinate(&mut self, degree_digits: usize, max_degrees: u8, hemispheres: [u8; 2]) -> Read<Option<Coordinate>> {
-        let text = self.span()?;
-        let hemisphere = self.span()?;
-        match (text, hemisphere) {
-            ([], []) => Ok(None),
-            (_, &[h]) if hemispheres.contains(&h) => {
-                let mut value = Coordinate::parse_bytes(text, degree_digits, max_degrees).ok_or(Unsure)?;
+        let (line, start) = (self.line, self.at);
+        let mut whole_value = 0u64;
+        let mut end = take_digits(line, start, &mut whole_value);
+        let whole = end - start;
+        let mut minutes = whole_value % 100;
+        let point = line.get(end) == Some(&b'.');
+        if point {
+            end = take_digits(line, end + 1, &mut minutes);
+        }
+        let frac = end - start - whole - usize::from(point);
+        match (line.get(end), line.get(end + 1), line.get(end + 2)) {
+            (Some(b',' | b'*'), Some(b',' | b'*'), _) if end == start => {
+                self.at = end + 2;
+                Ok(None)
+            }
+            (Some(b',' | b'*'), Some(&h), Some(b',' | b'*')) if end > start && hemispheres.contains(&h) => {
+                self.at = end + 3;
+                let mut value =
+                    Coordinate::from_parts(whole_value, whole, minutes, frac, point, degree_digits, max_degrees)
+                        .ok_or(Unsure)?;
                 value.hemisphere = char::from(h);
                 Ok(Some(value))
             }
@@ -391,7 +443,7 @@ impl<'a> FastReader<'a> {
             end = self.at - 1;
         }
         let text = self.line.get(start..end).ok_or(Unsure)?;
-        Ok(Texts::new(core::str::from_utf8(text).map_err(|_| Unsure)?, count))
+        Ok(Texts::ascii(text, count))
     }
 
     /// Reads `count` entries of `width` wire fields of a repeated group of several fields, each
@@ -440,9 +492,36 @@ impl<'a> FastReader<'a> {
         read: ReadEntry<'a, T>,
     ) -> Read<Entries<'a, T>> {
         let end = if count > 0 { self.at - 1 } else { start };
-        let text = core::str::from_utf8(self.line.get(start..end).ok_or(Unsure)?).map_err(|_| Unsure)?;
-        Ok(Entries::on_wire(Texts::new(text, count * width), count, false, read))
+        let text = self.line.get(start..end).ok_or(Unsure)?;
+        Ok(Entries::on_wire(Texts::ascii(text, count * width), count, false, read))
     }
+}
+
+/// [`FastReader::number`] of a field at `at` that starts with a sign or a point (or that no
+/// number reader takes), before its range is checked: the number and where the next field
+/// starts. (Neither the range nor the reader is passed: either would be written out to memory
+/// before every field, for this rare call.)
+#[cold]
+#[inline(never)]
+fn signed_number(line: &[u8], at: usize, integer: bool) -> Option<(Number, usize)> {
+    let (sign, start) = match line.get(at) {
+        Some(b'-') => (Sign::Minus, at + 1),
+        Some(b'+') => (Sign::Plus, at + 1),
+        _ => (Sign::Implicit, at), // a point, or what the checks below refuse
+    };
+    let mut digits = 0u64;
+    let mut end = take_digits(line, start, &mut digits);
+    let whole = end - start;
+    let point = !integer && line.get(end) == Some(&b'.');
+    if point {
+        end = take_digits(line, end + 1, &mut digits);
+    }
+    let count = end - start - usize::from(point);
+    if !line.get(end).is_some_and(|&b| is_separator(b)) || count > MAX_DIGITS || count == 0 {
+        return None; // not a number, too long, or a sign or a point alone
+    }
+    let number = Number { digits: digits as i64, scale: (count - whole) as u8, width: whole as u8, sign, point };
+    Some((number, end + 1))
 }
 
 #[cfg(test)]

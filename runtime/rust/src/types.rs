@@ -487,9 +487,6 @@ impl Time {
         if frac.len() > 9 {
             return None;
         }
-        let hour = two_digits(c[0], c[1])?;
-        let minute = two_digits(c[2], c[3])?;
-        let second = two_digits(c[4], c[5])?;
         let mut fraction = 0u32;
         for &b in frac {
             if !b.is_ascii_digit() {
@@ -497,10 +494,20 @@ impl Time {
             }
             fraction = fraction * 10 + u32::from(b - b'0');
         }
+        Self::from_parts(c, fraction, frac.len(), point)
+    }
+
+    /// The time whose `hhmmss` are the first six bytes of `c`, with `frac` fraction digits (at
+    /// most 9) worth `fraction`: `None` when those bytes are not digits or out of range.
+    #[inline(always)]
+    pub(crate) fn from_parts(c: &[u8], fraction: u32, frac: usize, point: bool) -> Option<Self> {
+        let hour = two_digits(*c.first()?, *c.get(1)?)?;
+        let minute = two_digits(*c.get(2)?, *c.get(3)?)?;
+        let second = two_digits(*c.get(4)?, *c.get(5)?)?;
         if hour > 23 || minute > 59 || second > 60 {
             return None;
         }
-        Some(Self { hour, minute, second, fraction, fraction_digits: frac.len() as u8, point })
+        Some(Self { hour, minute, second, fraction, fraction_digits: frac as u8, point })
     }
 
     /// Seconds since midnight, fraction included.
@@ -578,7 +585,16 @@ impl Date {
         if b.len() != 6 {
             return None;
         }
-        let (day, month, year) = (two_digits(b[0], b[1])?, two_digits(b[2], b[3])?, two_digits(b[4], b[5])?);
+        Self::from_parts(b)
+    }
+
+    /// The date whose `ddmmyy` are the first six bytes of `b`: `None` when those bytes are not
+    /// digits or out of range.
+    #[inline(always)]
+    pub(crate) fn from_parts(b: &[u8]) -> Option<Self> {
+        let day = two_digits(*b.first()?, *b.get(1)?)?;
+        let month = two_digits(*b.get(2)?, *b.get(3)?)?;
+        let year = two_digits(*b.get(4)?, *b.get(5)?)?;
         if !(1..=31).contains(&day) || !(1..=12).contains(&month) {
             return None;
         }
@@ -644,15 +660,42 @@ impl Coordinate {
         if whole.len() < 2 || whole.len() > 2 + max_degree_digits || frac.len() > MAX_DIGITS - 2 {
             return None;
         }
-        let (degree_text, minute_text) = whole.split_at(whole.len() - 2);
-        // At most 3 degree digits and 18 of minutes (checked above): no overflow.
-        let degrees = append_digits(0, degree_text)?;
-        let digits = append_digits(append_digits(0, minute_text)?, frac)?;
-        if degrees > i64::from(max_degrees) || digits > 60 * POW10[frac.len()] {
+        // At most 5 whole digits and 16 after the point (checked above): no overflow.
+        let whole_value = append_digits(0, whole)?;
+        let minutes = append_digits(whole_value % 100, frac)?;
+        Self::from_parts(
+            whole_value as u64,
+            whole.len(),
+            minutes as u64,
+            frac.len(),
+            point,
+            max_degree_digits,
+            max_degrees,
+        )
+    }
+
+    /// The coordinate whose value field has `whole` digits before the point worth `whole_value`
+    /// and `frac` after it (the minutes, fraction included, worth `minutes`): `None` when the
+    /// counts or the values are out of range. The hemisphere is left empty (`'\0'`).
+    #[inline(always)]
+    pub(crate) fn from_parts(
+        whole_value: u64,
+        whole: usize,
+        minutes: u64,
+        frac: usize,
+        point: bool,
+        max_degree_digits: usize,
+        max_degrees: u8,
+    ) -> Option<Self> {
+        if whole < 2 || whole > 2 + max_degree_digits || frac > MAX_DIGITS - 2 {
             return None;
         }
-        let minutes = Number { digits, scale: frac.len() as u8, width: 2, sign: Sign::Implicit, point };
-        Some(Self { degrees: degrees as u8, minutes, hemisphere: '\0', degree_digits: degree_text.len() as u8 })
+        let degrees = whole_value / 100;
+        if degrees > u64::from(max_degrees) || minutes > 60 * POW10[frac] as u64 {
+            return None;
+        }
+        let minutes = Number { digits: minutes as i64, scale: frac as u8, width: 2, sign: Sign::Implicit, point };
+        Some(Self { degrees: degrees as u8, minutes, hemisphere: '\0', degree_digits: (whole - 2) as u8 })
     }
 
     /// Signed decimal degrees (south and west negative).
@@ -865,10 +908,12 @@ impl<E: CodeEnum> fmt::Display for CodeChars<'_, E> {
 
 /// The values of a repeated group of one text field, kept as received: their wire text (joined
 /// by `,`) and how many there are. It stays small whatever the group's maximum (ST's sentences
-/// take up to 64 raw values).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// take up to 64 raw values). The text is kept as the line's bytes, which are UTF-8 (a `&str`
+/// given, or what the fast path checked is printable ASCII): parsing does not pay for making
+/// them a `&str`, which [`Texts::as_str`] does when it is asked for.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Texts<'a> {
-    text: &'a str,
+    text: &'a [u8],
     count: usize,
     separator: u8,
     blanks: super::frame::Blanks,
@@ -888,7 +933,12 @@ impl<'a> Texts<'a> {
 
     /// `count` values joined by `separator`.
     pub(crate) const fn joined(text: &'a str, count: usize, separator: u8) -> Self {
-        Self { text, count, separator, blanks: super::frame::Blanks::EMPTY }
+        Self { text: text.as_bytes(), count, separator, blanks: super::frame::Blanks::EMPTY }
+    }
+
+    /// `count` values joined by `,` in bytes the fast path has read as printable ASCII.
+    pub(crate) const fn ascii(text: &'a [u8], count: usize) -> Self {
+        Self { text, count, separator: b',', blanks: super::frame::Blanks::EMPTY }
     }
 
     /// The same values with the entries in `blanks` (1-based) read as empty (lenient parsing).
@@ -908,6 +958,14 @@ impl<'a> Texts<'a> {
 
     /// The values as received, joined by `,`.
     pub const fn as_str(&self) -> &'a str {
+        match core::str::from_utf8(self.text) {
+            Ok(text) => text,
+            Err(_) => "", // not reached: the text is always UTF-8
+        }
+    }
+
+    /// [`Texts::as_str`] as the bytes it is made of.
+    pub(crate) const fn as_bytes(&self) -> &'a [u8] {
         self.text
     }
 
@@ -923,7 +981,7 @@ impl<'a> Texts<'a> {
 
     /// The values in order, `None` for an empty one.
     pub fn iter(&self) -> impl Iterator<Item = Option<&'a str>> + 'a {
-        let (mut rest, separator, blanks) = (self.text, self.separator, self.blanks);
+        let (mut rest, separator, blanks) = (self.as_str(), self.separator, self.blanks);
         (1..=self.count).map(move |entry| {
             let value = match rest.bytes().position(|b| b == separator) {
                 Some(at) => {
@@ -935,6 +993,17 @@ impl<'a> Texts<'a> {
             };
             (!value.is_empty() && (blanks.is_empty() || !blanks.contains(entry))).then_some(value)
         })
+    }
+}
+
+impl fmt::Debug for Texts<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Texts")
+            .field("text", &self.as_str())
+            .field("count", &self.count)
+            .field("separator", &self.separator)
+            .field("blanks", &self.blanks)
+            .finish()
     }
 }
 

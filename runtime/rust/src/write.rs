@@ -707,7 +707,7 @@ impl<'b> ByteWriter<'b> {
     pub fn texts(&mut self, values: &Texts<'_>) -> Option<()> {
         if values.blanks().is_empty() && !values.is_empty() && values.separator() == b',' {
             self.put(b",")?;
-            return self.str(values.as_str());
+            return self.put(values.as_bytes());
         }
         values.iter().try_for_each(|value| self.field(&value))
     }
