@@ -1774,7 +1774,9 @@ NMEA_RARE const char *fast_signed_number(const char *q, nmea_number *out, const 
 }
 
 /* fast_signed_number for the fields nearly every sentence holds: empty, or starting with a
-   digit. Such a number has no sign and at least one digit, which spares the checks of both. */
+   digit. Such a number has no sign and at least one digit, which spares the checks of both. (It
+   fills the number as quick_number does; a helper shared by the two cost 5 instructions a line
+   on the bench corpus, half a percent.) */
 NMEA_HOT bool fast_number(const char **p, nmea_number *out, const nmea_range *range, bool integer)
 {
     const char *start = *p, *q = start, *point = NULL;
