@@ -33,13 +33,26 @@ def archived() -> dict[str, bytes]:
 
 
 def merged(binary: str, corpora: list[str], start: dict[str, bytes]) -> dict[str, bytes]:
-    """The inputs of `corpora` that add coverage for `binary` to those of `start`, and `start`."""
+    """The inputs of `corpora` that add coverage for `binary` to those of `start`, and `start`.
+    The corpora are read from copies: a fuzzer still running on one replaces its inputs as it
+    shrinks them, and libFuzzer's merge, given a file that has gone, retries it for ever."""
     with tempfile.TemporaryDirectory(prefix="nmeaspec-merge-") as tmp:
+        kept, copies = Path(tmp) / "kept", Path(tmp) / "corpora"
+        kept.mkdir()
         for name, data in start.items():
-            (Path(tmp) / name).write_bytes(data)
-        subprocess.run([binary, "-merge=1", "-max_len=1100", "-timeout=10", tmp, *corpora], check=True,
+            (kept / name).write_bytes(data)
+        for i, corpus in enumerate(corpora):
+            copy = copies / str(i)
+            copy.mkdir(parents=True)
+            for path in Path(corpus).iterdir():
+                try:
+                    (copy / path.name).write_bytes(path.read_bytes())
+                except (FileNotFoundError, IsADirectoryError):
+                    continue  # removed by a running fuzzer since it was listed
+        subprocess.run([binary, "-merge=1", "-max_len=1100", "-timeout=10", str(kept),
+                        *(str(copies / str(i)) for i in range(len(corpora)))], check=True,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        return {hashlib.sha1(p.read_bytes()).hexdigest(): p.read_bytes() for p in Path(tmp).iterdir()}
+        return {hashlib.sha1(p.read_bytes()).hexdigest(): p.read_bytes() for p in kept.iterdir()}
 
 
 def main() -> int:
