@@ -1132,8 +1132,7 @@ static bool parse_time(nmea_text t, nmea_time *out)
     return time_of(t.ptr, fraction, frac, point, out);
 }
 
-/* ddmmyy */
-/* A date whose six bytes at `t` are digits: checked and stored in `out`. */
+/* A date ddmmyy whose six bytes at `t` are digits: checked and stored in `out`. */
 NMEA_HOT bool date_of(const char *t, nmea_date *out)
 {
     out->day = (uint8_t)two_digits(t);
@@ -1150,8 +1149,6 @@ static bool parse_date(nmea_text t, nmea_date *out)
     return t.len == 6 && all_digits(t.ptr, 6) && date_of(t.ptr, out);
 }
 
-/* ddmm.mmmm (latitude) or dddmm.mmmm (longitude): the two digits before the point are whole
-   minutes, the digits before them degrees. */
 /* A coordinate's value read as `whole` digits before the point (worth `whole_value`) and `frac`
    after it (the minutes, fraction included, worth `minutes`): checked and stored in `out`. */
 NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes, size_t frac, bool point,
@@ -1173,6 +1170,8 @@ NMEA_HOT bool coordinate_of(uint64_t whole_value, size_t whole, uint64_t minutes
     return true;
 }
 
+/* ddmm.mmmm (latitude) or dddmm.mmmm (longitude): the two digits before the point are whole
+   minutes, the digits before them degrees. */
 static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned max_degrees, nmea_coordinate *out)
 {
     const char *p = t.ptr, *end = t.ptr + t.len, *point = NULL;
@@ -1832,8 +1831,8 @@ NMEA_HOT bool fast_hex(const char **p, nmea_hex *out)
     return !t.len || parse_hex(t, out);
 }
 
-/* A time field in one pass, as parse_time reads it. (Each byte is read only while the ones before
-   it are digits, so nothing past the field's separator is read.) */
+/* A time field in one pass, as parse_time reads it. (all_digits stops at the first byte that is
+   not a digit, so nothing past the field's separator is read.) */
 NMEA_HOT bool fast_time(const char **p, nmea_time *out)
 {
     const char *t = *p, *q;
@@ -1846,9 +1845,9 @@ NMEA_HOT bool fast_time(const char **p, nmea_time *out)
         *p = t + 1;
         return true;
     }
-    for (q = t; q < t + 6; q++)
-        if (!is_digit(*q))
-            return false;
+    if (!all_digits(t, 6))
+        return false;
+    q = t + 6;
     point = *q == '.';
     if (point) {
         for (q++; (digit = (unsigned)(unsigned char)*q - '0') < 10; q++)
@@ -1866,18 +1865,15 @@ NMEA_HOT bool fast_time(const char **p, nmea_time *out)
 /* A date field in one pass, as parse_date reads it (nothing past its separator is read). */
 NMEA_HOT bool fast_date(const char **p, nmea_date *out)
 {
-    const char *t = *p, *q;
+    const char *t = *p;
 
     if (*t == ',' || *t == '*') {
         *p = t + 1;
         return true;
     }
-    for (q = t; q < t + 6; q++)
-        if (!is_digit(*q))
-            return false;
-    if (*q != ',' && *q != '*')
+    if (!all_digits(t, 6) || (t[6] != ',' && t[6] != '*'))
         return false;
-    *p = q + 1;
+    *p = t + 7;
     return date_of(t, out);
 }
 

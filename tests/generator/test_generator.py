@@ -191,13 +191,6 @@ def test_what_stays_generic_must(message: str, example: str, error: str, tmp_pat
         [str(e) for e in caught.value.errors]
 
 
-def _with_checksum(body: str) -> str:
-    sum = 0
-    for c in body.encode():
-        sum ^= c
-    return f"${body}*{sum:02X}"
-
-
 @pytest.mark.parametrize("address, shadows", [("XXFIX", True), ("GPXYZ", False)])
 def test_a_proprietary_look_alike_of_a_standard_sentence(address: str, shadows: bool, tmp_path: Path) -> None:
     """A proprietary address of five letters reads like a talker and a sentence id. The C fast
@@ -206,7 +199,8 @@ def test_a_proprietary_look_alike_of_a_standard_sentence(address: str, shadows: 
     and the standard sentence with its own, on the fast path and the general one."""
     golden = Path(__file__).with_name("golden") / "spec"
     shutil.copytree(golden, tmp_path / "spec")
-    look_alike = _with_checksum(f"{address},123519.50,4807.038,N")  # as FIX's second example
+    body = f"{address},123519.50,4807.038,N"  # as FIX's second example
+    look_alike = f"${body}*{reference.rt.checksum(body):02X}"
     (tmp_path / "spec" / "proprietary" / f"{address.lower()}.yaml").write_text(f"""sentence: {address}
 address: {address}
 framing: sentence

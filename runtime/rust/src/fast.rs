@@ -412,12 +412,17 @@ impl<'a> FastReader<'a> {
             end = take_digits(line, end + 1, &mut minutes);
         }
         let frac = end - start - whole - usize::from(point);
-        match (line.get(end), line.get(end + 1), line.get(end + 2)) {
-            (Some(b',' | b'*'), Some(b',' | b'*'), _) if end == start => {
-                self.at = end + 2;
-                Ok(None)
-            }
-            (Some(b',' | b'*'), Some(&h), Some(b',' | b'*')) if end > start && hemispheres.contains(&h) => {
+        let ends_field = |at: usize| line.get(at).is_some_and(|&b| is_separator(b));
+        if !ends_field(end) {
+            return Err(Unsure);
+        }
+        if end == start {
+            // no value: no hemisphere either
+            self.at = end + 2;
+            return if ends_field(end + 1) { Ok(None) } else { Err(Unsure) };
+        }
+        match line.get(end + 1) {
+            Some(&h) if hemispheres.contains(&h) && ends_field(end + 2) => {
                 self.at = end + 3;
                 let mut value =
                     Coordinate::from_parts(whole_value, whole, minutes, frac, point, degree_digits, max_degrees)
