@@ -2263,13 +2263,31 @@ typedef struct {
     const char *limit; /* buf + cap - FAST_ROOM */
 } fast_writer;
 
-/* `n` bytes the caller has made room for. */
+/* `n` bytes the caller has made room for: a word at a time, the last word overlapping the one
+   before it, so that nothing is read or written outside the n bytes (a byte loop was a fifth
+   of the writer's instructions). */
 NMEA_HOT void fast_copy(fast_writer *w, const char *s, size_t n)
 {
     char *p = w->p;
+    uint64_t word;
+    uint32_t half;
     size_t i;
-    for (i = 0; i < n; i++)
-        p[i] = s[i];
+    if (n >= 8) {
+        for (i = 0; i + 8 < n; i += 8) {
+            memcpy(&word, s + i, 8);
+            memcpy(p + i, &word, 8);
+        }
+        memcpy(&word, s + n - 8, 8);
+        memcpy(p + n - 8, &word, 8);
+    } else if (n >= 4) {
+        memcpy(&half, s, 4);
+        memcpy(p, &half, 4);
+        memcpy(&half, s + n - 4, 4);
+        memcpy(p + n - 4, &half, 4);
+    } else {
+        for (i = 0; i < n; i++)
+            p[i] = s[i];
+    }
     w->p = p + n;
 }
 
@@ -2515,19 +2533,23 @@ NMEA_HOT bool fast_put_text_field(fast_writer *w, nmea_text t)
 NMEA_HOT bool fast_put_entries(fast_writer *w, const nmea_entries *e, size_t fields)
 {
     const char *p = e->wire.ptr;
+    char *out;
     size_t i = 0, n = e->wire.len, seps = 0;
     uint64_t word;
     if (!fields)
         return true;
-    if (!p || e->blanks)
+    if (!p || e->blanks || !fast_sep(w) || (n && (w->p > w->limit || n > (size_t)(w->limit - w->p))))
         return false;
-    for (; i + 8 <= n; i += 8) { /* the commas 8 bytes at a time, as fast_frame counts them */
+    out = w->p;
+    for (; i + 8 <= n; i += 8) { /* copied and their commas counted 8 bytes at a time */
         memcpy(&word, p + i, 8);
+        memcpy(out + i, &word, 8);
         seps += count_bytes(zero_bytes(word ^ (',' * BYTES_ONES)));
     }
     for (; i < n; i++)
-        seps += p[i] == ',';
-    return seps + 1 == fields && fast_sep(w) && fast_put_mem(w, p, n);
+        seps += (out[i] = p[i]) == ',';
+    w->p = out + n;
+    return seps + 1 == fields; /* else the general writer writes the sentence again */
 }
 
 #ifndef NMEA_NO_JSON

@@ -165,8 +165,8 @@ typedef struct {
     uint16_t degrees;
     uint8_t degree_digits;
     char hemisphere;
+    bool present; /* before `minutes`, in the padding its alignment leaves: 24 bytes, not 32 */
     nmea_number minutes;
-    bool present;
 } nmea_coordinate;
 
 /** Which characters a code unknown to the spec may use to be kept rather than rejected. */
