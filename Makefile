@@ -10,7 +10,7 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build footprint release-check changelog test test-steps test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
+.PHONY: generate validate check build footprint release-check changelog test test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
@@ -62,8 +62,12 @@ docs-site: $(DOCS_STAMP)
 # --- tests -----------------------------------------------------------------------------------
 
 # Two at a time (the CI machine has two cores; most steps use one), each step's output kept together.
-test:
+# tools/system_deps.sh first installs (or names) the system packages the steps need.
+test: system-deps
 	$(MAKE) --no-print-directory -j2 --output-sync=target test-steps
+
+system-deps:
+	tools/system_deps.sh
 
 test-steps: check test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows test-bench-smoke \
         fuzz-smoke release-check
