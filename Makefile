@@ -10,7 +10,7 @@ CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build footprint release-check changelog test test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
+.PHONY: generate validate check build footprint release-check changelog test test-quick test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
@@ -75,6 +75,13 @@ test-steps: check test-runtimes test-generator test-python test-c test-c-memory 
 test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
 
+# The edit loop (under two minutes): generated/ up to date, the generator's tests and golden files
+# without the ones that build or generate whole copies, and the manuals' examples in Python.
+test-quick: $(STAMP)
+	$(PY) -m generator check
+	$(PY) -m pytest -q -m "not slow" tests/generator
+	cd generated/python && ../../$(PY) -m pytest -q tests
+
 # The hand-written runtimes on their own, where they live (runtime/README.md): the C runtime's unit
 # tests under the sanitizers and without JSON, the Rust runtime crate's tests, clippy and rustfmt
 # with and without std, and the Python runtime's tests. Nothing generated is needed.
@@ -106,8 +113,9 @@ test-c: $(STAMP)
 	build/c/test_examples
 	build/c/test_examples_general
 
-# The C test program and the C tool under AddressSanitizer + UndefinedBehaviorSanitizer, and under
-# valgrind, over the examples, the edge cases and every real log.
+# The C test program and the C tool under AddressSanitizer + UndefinedBehaviorSanitizer over the
+# examples, the edge cases and every real log, and under valgrind over the examples, the edge cases
+# and the first five lines of each kind (sentence and address, or error) of every real log.
 SANITIZE := -std=c99 -Wall -Wextra -Werror -pedantic -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer \
             -DNMEA_TEST_HOOKS
 MEMORY_INPUTS := tests/agreement/edge_cases.txt $(sort $(wildcard ../shared/corpus/real/*/*.nmea))
@@ -132,7 +140,7 @@ test-c-memory: $(STAMP)
 	$(CC) -std=c99 -O1 -g -o build/c/nmea-c-debug build/c/nmea-debug.o generated/c/nmea_tool.c
 	$(CC) -std=c99 -O1 -g -o build/c/test_examples_debug build/c/nmea-debug.o generated/c/tests/test_examples.c
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_examples_debug > /dev/null
-	head -c 2000000 build/c/asan.jsonl | head -n -1 > build/c/valgrind.jsonl
+	$(PY) tools/distinct_lines.py 5 < build/c/asan.jsonl > build/c/valgrind.jsonl
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug decode < tests/agreement/edge_cases.txt > /dev/null
 	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug encode < build/c/valgrind.jsonl > /dev/null
 

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import hashlib
 import json
+import pickle
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -25,6 +27,7 @@ class Document:
     path: Path
     data: Any
     lines: dict[Path_, int] = field(default_factory=dict)
+    digest: str = ""           # of the file's text: the same text validates the same way
 
     def line(self, where: Path_) -> int:
         """The line of `where`, or of its nearest ancestor that has one."""
@@ -58,8 +61,17 @@ def _record_lines(node: yaml.Node, where: Path_, lines: dict[Path_, int]) -> Non
 _LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
+# The documents this process has parsed, by the digest of their text, pickled (a copy loads several
+# times faster than YAML parses): tests and tools load the same unchanged files many times.
+_PARSED: dict[str, bytes] = {}
+
+
 def load_document(path: Path) -> Document:
     text = path.read_text(encoding="utf-8")
+    digest = hashlib.sha256(text.encode()).hexdigest()
+    if digest in _PARSED:
+        data, lines = pickle.loads(_PARSED[digest])
+        return Document(path, data, lines, digest)
     loader = _LOADER(text)
     try:  # parsed once: the nodes give the lines, the data is built from them
         node = loader.get_single_node()
@@ -73,21 +85,30 @@ def load_document(path: Path) -> Document:
     lines: dict[Path_, int] = {}
     if node is not None:
         _record_lines(node, (), lines)
-    return Document(path, data, lines)
+    _PARSED[digest] = pickle.dumps((data, lines), pickle.HIGHEST_PROTOCOL)
+    return Document(path, data, lines, digest)
 
 
-_SCHEMAS: dict[str, Any] = {}
+_VALIDATORS: dict[str, jsonschema.Draft202012Validator] = {}
+# (schema, document digest) of the documents this process found valid: schema validation is most
+# of the time of a load, and tests and tools load the same unchanged files many times.
+_VALID: set[tuple[str, str]] = set()
 
 
 def schema_errors(doc: Document, schema_name: str) -> list[SpecError]:
     """Every place where `doc` breaks the JSON Schema `schema_name`."""
-    if schema_name not in _SCHEMAS:
-        _SCHEMAS[schema_name] = json.loads((SCHEMA_DIR / schema_name).read_text(encoding="utf-8"))
-    validator = jsonschema.Draft202012Validator(_SCHEMAS[schema_name])
+    if (schema_name, doc.digest) in _VALID:
+        return []
+    validator = _VALIDATORS.get(schema_name)
+    if validator is None:
+        schema = json.loads((SCHEMA_DIR / schema_name).read_text(encoding="utf-8"))
+        validator = _VALIDATORS[schema_name] = jsonschema.Draft202012Validator(schema)
     errors = []
     for err in sorted(validator.iter_errors(doc.data), key=lambda e: (list(map(str, e.absolute_path)), e.message)):
         where = tuple(err.absolute_path)
         errors.append(doc.error(where, _schema_message(err), "schema"))
+    if not errors and doc.digest:
+        _VALID.add((schema_name, doc.digest))
     return errors
 
 

@@ -90,16 +90,19 @@ def test_every_error_is_reported_at_once(tmp_path: Path) -> None:
     assert {e.rule for e in caught.value.errors} == {"S002", "S003"}
 
 
-def test_generation_is_deterministic(spec) -> None:
-    first = render_all(spec)
-    second = render_all(load_spec(SPEC))
-    assert first == second
+@pytest.fixture(scope="module")
+def files(spec) -> dict[str, str]:
+    """The generated files of the real spec, rendered once for the tests that read them."""
+    return render_all(spec)
 
 
-def test_every_generated_file_has_a_header(spec) -> None:
+def test_generation_is_deterministic(files) -> None:
+    assert render_all(load_spec(SPEC)) == files
+
+
+def test_every_generated_file_has_a_header(files) -> None:
     """The banner and the license of every generated file but the ones whose format has no comments
     and the license texts themselves (verbatim, in each package folder)."""
-    files = render_all(spec)
     for path, content in files.items():
         if path.endswith((".jsonl", "py.typed")) or "/LICENSE-" in path:
             continue
@@ -110,11 +113,11 @@ def test_every_generated_file_has_a_header(spec) -> None:
             assert files[f"{package}/{name}"] == (ROOT / name).read_text(encoding="utf-8")
 
 
-def test_generated_python_modules_keep_to_100_columns(spec) -> None:
+def test_generated_python_modules_keep_to_100_columns(files) -> None:
     """The modules made from the spec read like hand-written code: no line over 100 characters
     but a manual's example sentence quoted whole in a docstring."""
     hand_written = {"runtime.py", "api.py", "tool.py", "report.py", "stream.py", "cli.py", "receiver.py"}  # runtime/python
-    for path, content in render_all(spec).items():
+    for path, content in files.items():
         if not path.startswith("python/nmeaspec/") or not path.endswith(".py") \
                 or path.rsplit("/", 1)[1] in hand_written:
             continue
@@ -122,8 +125,7 @@ def test_generated_python_modules_keep_to_100_columns(spec) -> None:
             assert len(line) <= 100 or line.lstrip().startswith(("$", "!")), f"{path}:{number}: {line}"
 
 
-def test_vectors_cover_every_example(spec) -> None:
-    files = render_all(spec)
+def test_vectors_cover_every_example(spec, files) -> None:
     vectors = [json.loads(line) for line in files["vectors/examples.jsonl"].splitlines()]
     assert len(vectors) == sum(len(s.examples) for s in spec.sentences)
     for v in vectors:
