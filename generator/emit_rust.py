@@ -13,16 +13,14 @@ import jinja2
 
 from . import emit_vectors, pairing
 from .emit import RUNTIME, NameClaims, char_literal, header, package_readme, runtime_file
-from .field_types import TYPES
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Origin, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
+from .field_types import codes_expected
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Origin, Sentence, Spec, TableDef, camel
+from .numbers import fixed_point
 from .rust_features import Gates, cfg, with_cfg
 
 CRATE = "nmeaspec"
 # The runtime crate's modules (runtime/rust/src), copied into the generated crate as src/runtime.
 RUNTIME_MODULES = sorted(path.stem for path in (RUNTIME / "rust" / "src").glob("*.rs"))
-
-# The types whose expected text the runtime's readers hold (it does not depend on the field).
-FIXED_EXPECTED = frozenset(name for name, t in TYPES.items() if t.expected is not None)
 
 KEYWORDS = {
     "as", "break", "const", "continue", "crate", "else", "enum", "extern", "false", "fn", "for", "if", "impl",
@@ -112,15 +110,13 @@ def one_line(text: str) -> str:
 
 
 def base_type(f: Field) -> str:
-    simple = TYPES[f.type].rust_type
-    if simple is not None:
-        return simple
-    assert f.enum is not None
-    return f"Code<'a, {f.enum.camel}>" if f.type == "enum" else f"CodeChars<'a, {f.enum.camel}>"
+    rust_type = f.field_type.rust_type
+    assert rust_type is not None, f.type
+    return rust_type.format(enum=f.enum.camel if f.enum else "")
 
 
 def borrows(f: Field) -> bool:
-    return f.enum is not None or "'a" in (TYPES[f.type].rust_type or "")
+    return "'a" in (f.field_type.rust_type or "")
 
 
 def is_text(sentence: Sentence) -> bool:
@@ -154,49 +150,30 @@ def max_len(value: int | None) -> str:
     return "None" if value is None else f"Some({value})"
 
 
-def read_call(f: Field) -> tuple[str, list[str]]:
-    """The reader call that takes field `f` from reader `f`: method and arguments."""
-    t = f.type
-    name = rust_str(f.id)
-    if t in FIXED_EXPECTED:
-        if t in ("latitude", "longitude"):
-            assert f.hemisphere_expected == ("hemisphere N or S" if t == "latitude" else "hemisphere E or W")
-        return f"f.{t}", [name]
-    if t in ("integer", "decimal"):
-        return f"f.{t}", [name, rust_str(f.expected), range_expr(f)]
-    if t == "literal":
-        return "f.literal", [name, rust_str(f.expected), rust_str(f.value or "")]
-    if t == "text":
-        return "f.text", [name, rust_str(f.expected), max_len(f.max_length)]
-    if t == "keyword":
-        assert f.expected == f.value
-        return "f.keyword", [name, rust_str(f.value or "")]
-    assert f.enum is not None
-    if t == "enum":
-        assert f.expected == enum_expected(f.enum, False)
-        return "f.code", [name]
-    assert f.expected == enum_expected(f.enum, True)
-    return "f.code_chars", [name, max_len(f.max_length)]
+def rust_arg(word: str, f: Field) -> str | None:
+    """A word of the registry's argument vocabulary (field_types.py) as a Rust reader argument for
+    `f`; None for what the reader knows from its type (a coordinate's hemispheres, an enum)."""
+    if word == "range":
+        return range_expr(f)
+    if word == "word":
+        return rust_str(f.value or "")
+    if word == "max_length":
+        return max_len(f.max_length)
+    assert word in ("hemisphere", "table"), word
+    return None
 
 
 def fast_call(f: Field) -> tuple[str, list[str]]:
     """The fast path's reader call that takes field `f` from `f` (a FastReader, see
     runtime/fast.rs): read_call without the names and texts that errors need."""
-    t = f.type
-    if t in FIXED_EXPECTED:
-        return f"f.{t}", []
-    if t in ("integer", "decimal"):
-        return f"f.{t}", [range_expr(f)]
-    if t == "literal":
-        return "f.literal", [rust_str(f.value or "")]
-    if t == "text":
-        return "f.text", [max_len(f.max_length)]
-    if t == "keyword":
-        return "f.keyword", [rust_str(f.value or "")]
-    assert f.enum is not None
-    if t == "enum":
-        return "f.code", []
-    return "f.code_chars", [max_len(f.max_length)]
+    t = f.field_type
+    return f"f.{t.rust_method}", [a for a in (rust_arg(word, f) for word in t.args) if a is not None]
+
+
+def read_call(f: Field) -> tuple[str, list[str]]:
+    """The reader call that takes field `f` from reader `f`: method and arguments."""
+    method, args = fast_call(f)
+    return method, [rust_str(f.id), *([rust_str(f.expected)] if f.field_type.rust_expected else []), *args]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -327,15 +304,17 @@ def gates_all(vendors: set[str | None]) -> str:
 def reply_test(condition: pairing.Condition, target: str) -> str:
     """The Rust test that the member `target` (an Option) holds a reply's `when` or `outcome` value."""
     f, value = condition.field, condition.value
-    if f.type == "integer":
+    pairing = f.field_type.pairing
+    if pairing == "number":
         return f"{target}.is_some_and(|n| n.is_integer({int(value)}))"
-    if f.type == "enum":
+    if pairing == "code":
         assert f.enum is not None
         variant = camel(str(value))
         variant = "Self_" if variant == "Self" else variant
         return f"{target} == Some(Code::Known(crate::enums::{f.enum.camel}::{variant}))"
-    if f.type == "text":
+    if pairing == "string":
         return f"{target} == Some({rust_str(value)})"
+    assert pairing == "character", f.type
     return f"{target} == Some({char_literal(value)})"
 
 
@@ -414,11 +393,6 @@ def fmt_use(path: str, names: list[str], prefix: str = "use") -> list[str]:
     return [f"{prefix} {path}::{{", *lines, "};"]
 
 
-def enum_expected(e: EnumDef, chars: bool) -> str:
-    codes = " ".join(v.code for v in e.values)
-    return f"{e.id} code{'s' if chars else ''} ({codes})"
-
-
 def field_doc(f: Field) -> list[str]:
     title = f.name + (f" [{f.unit}]" if f.unit else "")
     if f.since:
@@ -430,23 +404,6 @@ def field_doc(f: Field) -> list[str]:
 
 # ---------------------------------------------------------------------------------------------
 # The field diagram of a layout, AeroRust nmea style
-
-
-def placeholders(f: Field) -> list[str]:
-    """How the manual writes a field's wire text, one string per wire field."""
-    t = f.type
-    if t in ("latitude", "longitude"):
-        fmt = f.format or TYPES[t].placeholder
-        parts = fmt.split(",")
-        return parts if len(parts) == 2 else [parts[0], "a"]
-    if f.format:
-        return [f.format]
-    if t in ("literal", "keyword"):
-        return [f.value or "a"]
-    if t == "enum":
-        assert f.enum is not None
-        return ["x" * f.enum.max_len if f.enum.code_class == "digits" else "a" * f.enum.max_len]
-    return [TYPES[t].placeholder]
 
 
 def diagram(sentence: Sentence, layout: Layout) -> list[str]:
@@ -464,14 +421,14 @@ def diagram(sentence: Sentence, layout: Layout) -> list[str]:
             shown = 1 if collapse else item.max
             for _ in range(shown):
                 for f in item.fields:
-                    for text in placeholders(f):
+                    for text in f.field_type.placeholders(f):
                         parts.append((index, text))
                         index += 1
             if collapse:
                 parts.append((None, "..."))
                 index += (item.max - 1) * item.width
             continue
-        for text in placeholders(item):
+        for text in item.field_type.placeholders(item):
             parts.append((index, text))
             index += 1
     if is_text(sentence):
@@ -556,7 +513,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     for item in layout.items:
         if isinstance(item, Group):
             g = item
-            if g.single and g.fields[0].type == "text":
+            if g.single and g.fields[0].field_type.verbatim:
                 # Kept as the wire text: a struct stays small whatever the group's maximum.
                 f = g.fields[0]
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.texts",
@@ -616,7 +573,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
             optional_index += 1
             optional = {"wire": optional_wire, "index": optional_index}
         indent = 12 if optional else 8
-        if item.type == "keyword":
+        if item.field_type.keyword:
             callee, args = read_call(item)
             view = {"field": item, "ident": ident(item.id), "read": fmt_call(indent, "", callee, args, "?;", False),
                     "fast": fmt_call(indent, "", *fast_call(item), "?;", False),
@@ -790,7 +747,7 @@ def module_imports(views: list[dict]) -> list[str]:
             for name in ("Number", "Hex", "Time", "Date", "Coordinate", "CodeChars", "Code"):
                 if t == name or t.startswith(name + "<"):
                     runtime.add(name)
-            if f.type in ("integer", "decimal"):
+            if f.field_type.numeric:
                 runtime.add("Range")
                 if f.min is not None or f.max is not None:
                     runtime.add("Bound")
@@ -846,8 +803,8 @@ def enum_view(e: EnumDef) -> dict:
         "name": e.camel,
         "doc": doc_lines(f"{e.name}: {e.doc}"),
         "variants": variants,
-        "expected": fmt_const(4, "const EXPECTED: &'static str", rust_str(enum_expected(e, False))),
-        "expected_chars": fmt_const(4, "const EXPECTED_CHARS: &'static str", rust_str(enum_expected(e, True))),
+        "expected": fmt_const(4, "const EXPECTED: &'static str", rust_str(codes_expected(e, False))),
+        "expected_chars": fmt_const(4, "const EXPECTED_CHARS: &'static str", rust_str(codes_expected(e, True))),
         "class": {"digits": "Digits", "letters": "Letters", "alnum": "Alnum"}[e.code_class],
         "all": fmt_const_slice(4, "const ALL: &'static [Self]", [f"Self::{v['name']}" for v in variants]),
     }
@@ -967,7 +924,7 @@ def command_example(spec: Spec) -> dict | None:
     for item in lay.items:
         if isinstance(item, Group) or item.is_optional:
             continue
-        texts += [item.value or ""] if item.type == "keyword" else [""] * item.wire_width
+        texts += [item.value or ""] if item.field_type.keyword else [""] * item.wire_width
     if s.framing == "text":
         line = " ".join([s.address or "", *texts])
     else:
@@ -1049,14 +1006,14 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         header=header(spec, "//", [e.origin.file for e in spec.enums]), enums=[{**enum_view(e), "cfg": gates.enum(e.id)} for e in spec.enums])
     files[f"{base}/src/bitfields.rs"] = env.get_template("rust/bitfields.rs.j2").render(
         header=header(spec, "//", [b.origin.file for b in spec.bitfields]),
-        bitfields=[{"cfg": gates.bitfield(b.id)} | bitfield_view(b, any(f.bitfield is b and f.type == "integer" for s in spec.sentences
+        bitfields=[{"cfg": gates.bitfield(b.id)} | bitfield_view(b, any(f.bitfield is b and f.field_type.numeric for s in spec.sentences
                                         for lay in s.layouts for f in all_fields(lay)))
                    for b in spec.bitfields],
-        uses_numbers=any(f.bitfield is not None and f.type == "integer" for s in spec.sentences
+        uses_numbers=any(f.bitfield is not None and f.field_type.numeric for s in spec.sentences
                          for lay in s.layouts for f in all_fields(lay)),
         hex_cfg=gates.union([gates.bitfield(b.id) for b in spec.bitfields]),
         number_cfg=gates.union([gates.bitfield(f.bitfield.id) for s in spec.sentences for lay in s.layouts
-                                for f in all_fields(lay) if f.bitfield is not None and f.type == "integer"]))
+                                for f in all_fields(lay) if f.bitfield is not None and f.field_type.numeric]))
     files[f"{base}/src/tables.rs"] = env.get_template("rust/tables.rs.j2").render(
         header=header(spec, "//", [t.origin.file for t in spec.tables]), tables=[{**table_view(t), "cfg": gates.table(t.id)} for t in spec.tables],
         imports=fmt_use("crate::runtime", rust_sorted(
@@ -1072,7 +1029,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         v = max(candidates, key=lambda v: sum(1 for t in v["line"].split("*")[0].split(",") if t))
         s = spec.sentence(v["sentence"])
         lay = next(lay for lay in s.layouts if lay.id == v["variant"])
-        filled = [f for f in lay.fields if not f.is_optional and f.type != "keyword"
+        filled = [f for f in lay.fields if not f.is_optional and not f.field_type.keyword
                   and json.loads(v["decode"])["fields"].get(f.id)]
         if filled:
             first = {"line": v["line"], "layout": s.layout_camel(lay), "var": ident(s.id.lower()),

@@ -31,7 +31,8 @@ def command_views(spec: Spec) -> tuple[list[dict], list[dict]]:
         for layout in s.layouts:
             name = s.command_name(layout)
             arguments = [{"id": f.id, "type": f.type, "doc": _first_sentence(f.doc),
-                          "enum": f.enum.camel if f.enum else None, "value": f.value, "optional": f.is_optional}
+                          "enum": f.enum.camel if f.enum else None, "value": f.value, "optional": f.is_optional,
+                          "keyword": f.field_type.keyword}
                          for f in layout.fields]
             commands.append({"sentence": s, "layout_id": layout.id, "vendor": s.vendor, "name": name, "layout": s.layout_camel(layout),
                              "doc": _one_line(layout.name if layout.id else s.name), "arguments": arguments,
@@ -60,8 +61,8 @@ def usage(command: dict) -> str:
     keywords, which may be left out, in brackets)."""
     words = [command["name"]]
     for a in command["arguments"]:
-        word = (a["value"] or "").lower() if a["type"] == "keyword" else a["id"].upper()
-        words.append(f"[{word}]" if a["optional"] or a["type"] == "keyword" else word)
+        word = (a["value"] or "").lower() if a["keyword"] else a["id"].upper()
+        words.append(f"[{word}]" if a["optional"] or a["keyword"] else word)
     return " ".join(words)
 
 
