@@ -8,7 +8,7 @@ import json
 import keyword
 from typing import Any
 
-from . import reference
+from . import names, names_c, names_rust, reference
 from .resolve import checksum_ok
 from .errors import SpecError
 from .loader import Document
@@ -78,10 +78,8 @@ def _distinct_names(spec: Spec, report: _Reporter) -> None:
 def _generated_names(spec: Spec, report: _Reporter) -> None:
     """The names each emitter builds from the spec's ids (C identifiers, Rust types, the tool's
     command names) must not be shared by two things, nor taken from a runtime."""
-    from . import emit_c, emit_rust, emit_tool  # the emitters know their names; they import no checks
-
-    for emitter in (emit_c, emit_rust, emit_tool):
-        for origin, message in emitter.name_clashes(spec):
+    for clashes in (names_c.clashes, names_rust.clashes, names.command_clashes):
+        for origin, message in clashes(spec):
             report(origin, "S016", f"{message}; rename one of them")
 
 

@@ -14,15 +14,11 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import CONTRACT, RUNTIME, NameClaims, char_literal, header, runtime_file
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Origin, Sentence, Spec, TableDef
+from .emit import CONTRACT, RUNTIME, char_literal, header, runtime_file
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef
+from .names_c import (bits_const, bits_function, bits_mask, entry_type, enum_const, enum_def, enum_type,
+                      group_accessor, layout_const, layout_type, member, parameter_macro, table_count, table_name)
 from .numbers import fixed_point, fmt_num
-
-C_KEYWORDS = frozenset("""
-auto break case char const continue default do double else enum extern float for goto if inline int
-long register restrict return short signed sizeof static struct switch typedef union unsigned void
-volatile while bool true false _Bool _Complex _Imaginary
-""".split())
 
 MAX_LINE = CONTRACT["limits"]["max_line"]  # NMEA_MAX_LINE
 MAX_PROBLEMS = CONTRACT["limits"]["max_problems"]  # NMEA_MAX_PROBLEMS
@@ -50,32 +46,6 @@ def c_comment(text: str) -> str:
 
 def doc_lines(text: str, width: int = 92) -> list[str]:
     return textwrap.wrap(c_comment(" ".join(text.split())), width) or [""]
-
-
-def member(name: str) -> str:
-    return name + "_" if name in C_KEYWORDS else name
-
-
-def enum_type(e: EnumDef) -> str:
-    return f"nmea_{e.id}"
-
-
-def enum_def(e: EnumDef) -> str:
-    return f"nmea_{e.id}_def"
-
-
-def enum_const(e: EnumDef, value_id: str) -> str:
-    return f"NMEA_{e.id.upper()}_{value_id.upper()}"
-
-
-def layout_const(sentence: Sentence, layout: Layout) -> str:
-    return "NMEA_SENTENCE_" + sentence.layout_snake(layout).upper()
-
-
-def entry_type(sentence: Sentence, layout: Layout, group: Group) -> str:
-    """The struct of one entry of a repeated group: nmea_gsv_satellite for GSV's `satellites`."""
-    word = group.id[:-1] if group.id.endswith("s") else group.id + "_entry"
-    return f"nmea_{sentence.layout_snake(layout)}_{word}"
 
 
 # ------------------------------------------------------------------------------------------------
@@ -277,7 +247,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
             "count_member": f"{name}_count" if count and not stored else None,
             "entry_type": None if single or not stored else etype,
             "value_type": value_type,
-            "accessor": f"nmea_{snake}_{name}_at" if stored else None,
+            "accessor": group_accessor(sentence, layout, group) if stored else None,
             "single": single,
             "fields": fields,
             "stored": stored,
@@ -334,7 +304,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "layout": layout,
         "kind": kind,
         "name": snake,
-        "type": f"nmea_{snake}",
+        "type": layout_type(sentence, layout),
         "const": layout_const(sentence, layout),
         "id": c_str(sentence.id),
         "start": sentence.start,
@@ -491,59 +461,21 @@ def _all_fields(layout: Layout) -> list[Field]:
     return out
 
 
-def name_clashes(spec: Spec) -> list[tuple[Origin, str]]:
-    """The C identifiers built from the spec's ids that two things would share."""
-    ranges = Ranges()
-    names = NameClaims("C")
-    for e in spec.enums:
-        names.claim(enum_type(e), f"enum {e.id}", e.origin)
-        for v in e.values:
-            names.claim(enum_const(e, v.id), f"enum value {e.id}.{v.id}", v.origin)
-    for s in spec.sentences:
-        for lay in s.layouts:
-            v = layout_view(s, lay, ranges)
-            what = f"layout {v['name']}"
-            for name in (v["type"], v["const"], *(prefix + v["name"] for prefix in ("nmea_parse_", "nmea_serialize_",
-                                                                                      "nmea_build_"))):
-                names.claim(name, what, lay.origin)
-            if v["group"]:
-                group = v["group"]["group"]
-                for name in (v["group"]["entry_type"], v["group"]["accessor"]):
-                    if name:
-                        names.claim(name, f"group {v['name']}.{group.id}", group.origin)
-    for bitfield in spec.bitfields:
-        b = bitfield_view(bitfield)
-        for bits in b["bits"]:
-            what = f"bits {bitfield.id}.{bits['bits'].id}"
-            names.claim(bits["function"], what, bits["bits"].origin)
-            names.claim(bits["mask"], what, bits["bits"].origin)
-            for value in bits["values"]:
-                names.claim(value["const"], f"{what} = {value['value']}", bits["bits"].origin)
-    for table in spec.tables:
-        view = table_view(table)
-        names.claim(view["name"], f"table {table.id}", table.origin)
-        names.claim(view["count"], f"table {table.id}", table.origin)
-        for param in view["parameters"]:
-            names.claim(param["macro"], f"parameter {table.id}.{param['parameter'].id}", param["parameter"].origin)
-    return names.clashes
-
-
 # ------------------------------------------------------------------------------------------------
 # Bitfields and parameter tables
 
 
 def bitfield_view(b: BitfieldDef) -> dict:
-    prefix = f"nmea_{b.id}"
     bits = []
     for r in b.bits:
         wide = r.width > 32
-        values = [{"const": f"{prefix.upper()}_{r.id.upper()}_{v.id.upper()}", "value": v.value,
+        values = [{"const": bits_const(b, r, v), "value": v.value,
                    "doc": doc_lines(f"{v.value}: {v.doc}", 88)} for v in r.values]
         bits.append({
             "bits": r,
-            "function": f"{prefix}_{r.id}",
+            "function": bits_function(b, r),
             "type": "uint64_t" if wide else "uint32_t",
-            "mask": f"{prefix.upper()}_{r.id.upper()}_MASK",
+            "mask": bits_mask(b, r),
             "mask_value": f"UINT64_C(0x{r.mask:X})",
             "max_value": f"UINT64_C(0x{r.max_value:X})",
             "low": r.low,
@@ -569,7 +501,6 @@ def _opt_str(value: object) -> str:
 
 
 def table_view(t: TableDef) -> dict:
-    name = f"nmea_{t.id}"
     params = []
     for i, p in enumerate(t.parameters):  # (size, count and max_length fit a byte: the schema)
         init = ", ".join([
@@ -580,14 +511,14 @@ def table_view(t: TableDef) -> dict:
         params.append({
             "parameter": p,
             "init": "{" + init + "}",
-            "macro": f"{name.upper()}_{p.id.upper()}",
+            "macro": parameter_macro(t, p),
             "index": i,
             "doc": c_comment(f"{p.number}: {p.name}" + (f" [{p.unit}]" if p.unit else "")),
         })
     return {
         "table": t,
-        "name": name,
-        "count": f"{name.upper()}_COUNT",
+        "name": table_name(t),
+        "count": table_count(t),
         "doc": doc_lines(f"{t.id}: {t.name}. {t.doc}"),
         "parameters": params,
     }

@@ -12,46 +12,16 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import RUNTIME, NameClaims, char_literal, header, package_readme, runtime_file
+from .emit import RUNTIME, char_literal, header, package_readme, runtime_file
 from .field_types import codes_expected
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Origin, Sentence, Spec, TableDef, camel
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel
+from .names_rust import bits_const, entry_name, ident, parameter_const
 from .numbers import fixed_point
 from .rust_features import Gates, cfg, with_cfg
 
 CRATE = "nmeaspec"
 # The runtime crate's modules (runtime/rust/src), copied into the generated crate as src/runtime.
 RUNTIME_MODULES = sorted(path.stem for path in (RUNTIME / "rust" / "src").glob("*.rs"))
-
-KEYWORDS = {
-    "as", "break", "const", "continue", "crate", "else", "enum", "extern", "false", "fn", "for", "if", "impl",
-    "in", "let", "loop", "match", "mod", "move", "mut", "pub", "ref", "return", "self", "static", "struct",
-    "super", "trait", "true", "type", "unsafe", "use", "where", "while", "async", "await", "dyn", "abstract",
-    "become", "box", "do", "final", "macro", "override", "priv", "typeof", "unsized", "virtual", "yield", "try",
-    "gen",
-}
-
-# Names the sentence modules import from the runtime; generated type names must differ.
-def _runtime_exports() -> set[str]:
-    """The type names runtime/mod.rs exports (`pub use module::{A, B};`), read from it."""
-    text = (RUNTIME / "rust" / "src" / "mod.rs").read_text(encoding="utf-8")
-    names = set()
-    for group in re.findall(r"pub use \w+::\{([^}]*)\}", text):
-        names |= {n.strip() for n in group.split(",") if n.strip()[:1].isupper()}
-    return names
-
-
-# Names the sentence modules and lib.rs use, which generated type names must not take: the
-# runtime's exports, lib.rs's own types and the prelude's.
-RUNTIME_NAMES = _runtime_exports() | {"Sentence", "Generic", "LayoutId", "Option", "Result", "Self", "Parsed",
-                                      "Options", "Framer", "Item"}
-
-
-def ident(name: str) -> str:
-    """A Rust identifier for a spec id (raw when it is a keyword)."""
-    if name in ("self", "super", "crate", "Self"):
-        return name + "_"
-    return f"r#{name}" if name in KEYWORDS else name
-
 
 def rust_str(text: str) -> str:
     """A Rust string literal."""
@@ -476,11 +446,6 @@ def diagram(sentence: Sentence, layout: Layout) -> list[str]:
 # Views: everything the templates print, computed here
 
 
-def entry_name(sentence: Sentence, layout: Layout, group: Group) -> str:
-    word = group.camel
-    return sentence.layout_camel(layout) + (word[:-1] if word.endswith("s") else word + "Entry")
-
-
 def field_view(f: Field, indent: int, prefix: str, suffix: str, next_line: bool) -> dict:
     callee, args = read_call(f)
     return {
@@ -761,35 +726,6 @@ def module_imports(views: list[dict]) -> list[str]:
     return lines
 
 
-def name_clashes(spec: Spec) -> list[tuple[Origin, str]]:
-    """The Rust names built from the spec's ids that two things, or a thing and the runtime, would
-    share (reported by generator/checks.py, S016)."""
-    names = NameClaims("Rust")
-    names.owners.update({name: "the runtime" for name in RUNTIME_NAMES})
-    for e in spec.enums:
-        names.claim(e.camel, f"enum {e.id}", e.origin)
-    for s in spec.sentences:
-        for lay in s.layouts:
-            names.claim(s.layout_camel(lay), f"layout {s.layout_snake(lay)}", lay.origin)
-            g = lay.group
-            if g is not None and not g.single:  # the layouts of a sentence may share an entry type
-                names.claim(entry_name(s, lay, g), f"the entries of group {g.id} of sentence {s.id}", g.origin)
-    for b in spec.bitfields:
-        names.claim(b.camel, f"bitfield {b.id}", b.origin)
-        constants = NameClaims("Rust")
-        for bits in b.bits:
-            for v in bits.values:
-                constants.claim(f"{bits.id}_{v.id}".upper(), f"value {v.id} of bits {bits.id} of bitfield {b.id}",
-                                bits.origin)
-        names.clashes += constants.clashes
-    for t in spec.tables:
-        for param in t.parameters:
-            if param.id == "table":
-                names.clashes.append((param.origin, f"parameter {param.id} of table {t.id} would be named TABLE, the "
-                                      "name of the table itself"))
-    return names.clashes
-
-
 def enum_view(e: EnumDef) -> dict:
     variants = []
     for v in e.values:
@@ -846,7 +782,7 @@ def bitfield_view(b: BitfieldDef, on_integers: bool) -> dict:
                                  f"(its low {bits.width} bit{'s' if bits.width > 1 else ''}).", 92),
         })
         for v in bits.values:
-            constants.append({"name": f"{bits.id}_{v.id}".upper(), "value": str(v.value),
+            constants.append({"name": bits_const(bits, v), "value": str(v.value),
                               "doc": doc_lines(f"`{bits.id}` = {v.value}: {v.doc}", 92)})
     return {
         "name": b.camel, "type": bits_type, "doc": doc_lines(f"{b.name} ({b.width} bits): {b.doc}"),
@@ -890,7 +826,7 @@ def table_view(t: TableDef) -> dict:
             ("bitfield_id", opt(prm.bitfield_id, rust_str)),
         ]
         parameters.append({
-            "name": prm.id.upper(),
+            "name": parameter_const(prm),
             "doc": doc_lines(f"{prm.number}, {title}: {prm.doc}{effect}", 92) + links,
             "members": [f"        {k}: {v}," for k, v in members],
         })

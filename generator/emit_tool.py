@@ -8,9 +8,9 @@ import re
 
 import jinja2
 
-from .emit import NameClaims, header, runtime_file
+from .emit import header, runtime_file
 from .emit_python import PACKAGE, py_call, py_literal, py_str
-from .model import Origin, Spec
+from .model import Spec
 
 
 def _one_line(text: str) -> str:
@@ -43,17 +43,6 @@ def command_views(spec: Spec) -> tuple[list[dict], list[dict]]:
                         shortcuts.append({"vendor": s.vendor, "words": tuple(v.cli.split()), "command": name,
                                           "settings": ((f.id, v.code),), "doc": _first_sentence(v.doc)})
     return commands, shortcuts
-
-
-def name_clashes(spec: Spec) -> list[tuple[Origin, str]]:
-    """The names `nmea command VENDOR NAME` would know two commands of a vendor by (reported by
-    generator/checks.py, S016)."""
-    names = NameClaims("command")
-    for s in spec.sentences:
-        if s.kind == "command" and s.vendor is not None:
-            for layout in s.layouts:
-                names.claim(f"{s.vendor} {s.command_name(layout)}", f"layout {s.layout_snake(layout)}", layout.origin)
-    return names.clashes
 
 
 def usage(command: dict) -> str:
