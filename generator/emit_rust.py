@@ -7,7 +7,10 @@ from __future__ import annotations
 
 import json
 import re
+import subprocess
+import tempfile
 import textwrap
+from pathlib import Path
 
 import jinja2
 
@@ -147,109 +150,53 @@ def read_call(f: Field) -> tuple[str, list[str]]:
 
 
 # ---------------------------------------------------------------------------------------------
-# Formatting: the statements come out as rustfmt would write them (runtime/rust/rustfmt.toml:
-# max_width 120, use_small_heuristics Max), so that `cargo fmt --check` passes on the crate.
+# Statements, each on one line: rustfmt() breaks the long ones as it does every .rs file. It
+# leaves as written a construct it cannot fit in max_width (a test's long raw strings): those
+# few are broken here, as rustfmt would if it could.
+WIDTH = 120  # max_width of runtime/rust/rustfmt.toml
 
-WIDTH = 120
 
-
-def fmt_call(indent: int, prefix: str, callee: str, args: list[str], suffix: str, next_line: bool) -> list[str]:
-    """`prefix callee(args)suffix`: one line, else (for an assignment, `next_line`) the call on
-    the next line, else one argument per line."""
-    pad = " " * indent
-    call = f"{callee}({', '.join(args)})"
-    one = f"{pad}{prefix}{call}{suffix}"
-    # rustfmt keeps a `call()?` on the line only when it ends 2 columns short of the limit (a
-    # struct member of a one-letter name excepted); measured with rustfmt 1.9.
-    short_member = not next_line and len(prefix.rstrip(": ")) == 1
-    if len(one) <= (WIDTH if short_member or not suffix.startswith("?") else WIDTH - 2):
-        return [one]
-    if next_line and len(pad) + 4 + len(call) + len(suffix) <= WIDTH:
-        return [f"{pad}{prefix.rstrip()}", f"{pad}    {call}{suffix}"]
-    return [f"{pad}{prefix}{callee}(", *[f"{pad}    {a}," for a in args], f"{pad}){suffix}"]
+def fmt_call(indent: int, prefix: str, callee: str, args: list[str], suffix: str) -> list[str]:
+    """`prefix callee(args)suffix`."""
+    return [f"{' ' * indent}{prefix}{callee}({', '.join(args)}){suffix}"]
 
 
 def fmt_struct(indent: int, prefix: str, name: str, members: list[tuple[str, str]], suffix: str) -> list[str]:
-    pad = " " * indent
-    literal = f"{name} {{ {', '.join(f'{k}: {v}' for k, v in members)} }}{suffix}"
-    if len(pad) + len(prefix) + len(literal) <= WIDTH:
-        return [f"{pad}{prefix}{literal}"]
-    if prefix.endswith("= ") and len(pad) + 4 + len(literal) <= WIDTH:
-        return [f"{pad}{prefix.rstrip()}", f"{pad}    {literal}"]
-    return [f"{pad}{prefix}{name} {{", *[f"{pad}    {k}: {v}," for k, v in members], f"{pad}}}{suffix}"]
+    return [f"{' ' * indent}{prefix}{name} {{ {', '.join(f'{k}: {v}' for k, v in members)} }}{suffix}"]
 
 
 def fmt_const(indent: int, decl: str, value: str) -> list[str]:
-    pad = " " * indent
-    one = f"{pad}{decl} = {value};"
-    if len(one) <= WIDTH or len(pad) + 4 + len(value) + 1 > WIDTH:
-        return [one]
-    return [f"{pad}{decl} =", f"{pad}    {value};"]
+    return [f"{' ' * indent}{decl} = {value};"]
 
 
 def fmt_option(indent: int, key: str, value: str | None) -> list[str]:
-    """A struct member `key: Some(value),` (or `None`)."""
+    """A struct member `key: Some(value),` (or `None`), broken before a value too long for a line
+    (see WIDTH)."""
     pad = " " * indent
-    if value is None:
-        return [f"{pad}{key}: None,"]
-    one = f"{pad}{key}: Some({value}),"
-    if len(one) <= WIDTH:
-        return [one]
-    return [f"{pad}{key}: Some(", f"{pad}    {value},", f"{pad}),"]
+    one = f"{pad}{key}: {'None' if value is None else f'Some({value})'},"
+    return [one] if len(one) <= WIDTH else [f"{pad}{key}: Some(", f"{pad}    {value},", f"{pad}),"]
 
 
 def fmt_arm(indent: int, pattern: str, value: str) -> list[str]:
-    """A match arm `pattern => value,` as rustfmt writes it: on one line, else the value in a
-    block, else a `.map(…)` chain broken before the `.map`, else a call's one argument on its own
-    line."""
-    pad = " " * indent
-    one = f"{pad}{pattern} => {value},"
-    if len(one) <= WIDTH:
-        return [one]
-    if len(pad) + 4 + len(value) <= WIDTH:
-        return [f"{pad}{pattern} => {{", f"{pad}    {value}", f"{pad}}}"]
-    if ").map(" in value:
-        call, _, rest = value.partition(").map(")
-        return [f"{pad}{pattern} => {call})", f"{pad}    .map({rest},"]
-    callee, _, arg = value.partition("(")
-    return [f"{pad}{pattern} => {callee}(", f"{pad}    {arg[:-1]},", f"{pad}),"]
+    """A match arm `pattern => value,`."""
+    return [f"{' ' * indent}{pattern} => {value},"]
 
 
 def fmt_fast_arm(indent: int, pattern: str, layouts: list[str]) -> list[str]:
     """The match arm of the fast path's dispatch (lib.rs `read_sentence`) for an address with
     `layouts`: its first layout's reader, given the others."""
-    pad = " " * indent
-    rest = [f"LayoutId::{n}" for n in layouts[1:]]
-    call = f"read_layout::<{layouts[0]}, O>"
-    value = f"{call}(fields, line, &[{', '.join(rest)}])"
-    if len(f"{pad}{pattern} => {value},") <= WIDTH:
-        return [f"{pad}{pattern} => {value},"]
-    if len(pad) + 4 + len(value) <= WIDTH:
-        return [f"{pad}{pattern} => {{", f"{pad}    {value}", f"{pad}}}"]
-    return [f"{pad}{pattern} => {call}(", f"{pad}    fields,", f"{pad}    line,",
-            *fmt_slice(indent + 4, "", rest, ","), f"{pad}),"]
+    rest = ", ".join(f"LayoutId::{n}" for n in layouts[1:])
+    return fmt_arm(indent, pattern, f"read_layout::<{layouts[0]}, O>(fields, line, &[{rest}])")
 
 
 def fmt_const_slice(indent: int, decl: str, items: list[str]) -> list[str]:
-    """`decl = &[items];`: on one line, else the slice on the next line, else one item per line."""
-    lines = fmt_const(indent, decl, "&[" + ", ".join(items) + "]")
-    if all(len(line) <= WIDTH for line in lines):
-        return lines
-    return fmt_slice(indent, f"{decl} = ", items, ";")
-
-
-def fmt_bool_arm(indent: int, pattern: str, value: str) -> list[str]:
-    """A match arm whose value is `a && b && ...`, as rustfmt writes it: on one line, else in a
-    block, else one operand a line."""
-    pad = " " * indent
-    if len(f"{pad}{pattern} => {value},") <= WIDTH or len(pad) + 4 + len(value) <= WIDTH:
-        return fmt_arm(indent, pattern, value)
-    first, *rest = value.split(" && ")
-    return [f"{pad}{pattern} => {{", f"{pad}    {first}", *(f"{pad}        && {r}" for r in rest), f"{pad}}}"]
+    """`decl = &[items];`."""
+    return fmt_const(indent, decl, "&[" + ", ".join(items) + "]")
 
 
 def reply_case_lines(spec: Spec, gates: Gates) -> list[str]:
-    """The elements of tests/examples.rs's REPLY_CASES, as rustfmt writes them."""
+    """The elements of tests/examples.rs's REPLY_CASES (a reply's line can be too long for one: see
+    WIDTH)."""
     out: list[str] = []
     for case in pairing.reply_cases(spec):
         outcome = f"Some(ReplyOutcome::{case.outcome.capitalize()})" if case.outcome else "None"
@@ -297,7 +244,7 @@ def reply_pairing_arms(spec: Spec) -> tuple[list[str], list[str]]:
             binding = "s" if p.conditions else "_"
             tests = [reply_test(c, f"s.{ident(c.field.id)}") for c in p.conditions] or ["true"]
             reply_arms += [line for layout in command.layouts
-                           for line in with_cfg(12, gates_all({command.vendor, p.reply.vendor}), fmt_bool_arm(
+                           for line in with_cfg(12, gates_all({command.vendor, p.reply.vendor}), fmt_arm(
                                12, f"(LayoutId::{command.layout_camel(layout)}, "
                                f"Self::{p.reply.layout_camel(p.layout)}({binding}))", " && ".join(tests)))]
     outcome_arms: list[str] = []
@@ -316,24 +263,15 @@ def reply_pairing_arms(spec: Spec) -> tuple[list[str], list[str]]:
 
 
 def fmt_slice(indent: int, head: str, items: list[str], suffix: str) -> list[str]:
-    """`head&[items]suffix` (a match arm, a return), one item per line when it does not fit (a
-    match arm's body goes into a block first, when it fits there)."""
-    pad = " " * indent
-    body = f"&[{', '.join(items)}]"
-    one = f"{pad}{head}{body}{suffix}"
-    if len(one) <= WIDTH:
-        return [one]
-    if head.endswith("=> ") and suffix == "," and len(pad) + 4 + len(body) <= WIDTH:
-        return [f"{pad}{head}{{", f"{pad}    {body}", f"{pad}}}"]
-    return [f"{pad}{head}&[", *[f"{pad}    {i}," for i in items], f"{pad}]{suffix}"]
+    """`head&[items]suffix` (a match arm, a return)."""
+    return [f"{' ' * indent}{head}&[{', '.join(items)}]{suffix}"]
 
 
 def fmt_tuple(indent: int, items: list[str], suffix: str) -> list[str]:
+    """A tuple, one item a line when it is too long for a line (see WIDTH)."""
     pad = " " * indent
     one = f"{pad}({', '.join(items)}){suffix}"
-    if len(one) <= WIDTH:
-        return [one]
-    return [f"{pad}(", *[f"{pad}    {i}," for i in items], f"{pad}){suffix}"]
+    return [one] if len(one) <= WIDTH else [f"{pad}(", *[f"{pad}    {i}," for i in items], f"{pad}){suffix}"]
 
 
 def rust_sorted(names: set[str]) -> list[str]:
@@ -348,19 +286,7 @@ def rust_sorted(names: set[str]) -> list[str]:
 
 
 def fmt_use(path: str, names: list[str], prefix: str = "use") -> list[str]:
-    one = f"{prefix} {path}::{{{', '.join(names)}}};" if len(names) > 1 else f"{prefix} {path}::{names[0]};"
-    if len(one) < WIDTH - 1:
-        return [one]
-    lines, line = [], "   "
-    for i, name in enumerate(names):
-        part = f" {name},"
-        # rustfmt fills a line to 119 columns, the last one to 120 (its trailing comma is free)
-        if len(line) + len(part) > WIDTH - (i < len(names) - 1):
-            lines.append(line)
-            line = "   "
-        line += part
-    lines.append(line)
-    return [f"{prefix} {path}::{{", *lines, "};"]
+    return [f"{prefix} {path}::{{{', '.join(names)}}};" if len(names) > 1 else f"{prefix} {path}::{names[0]};"]
 
 
 def field_doc(f: Field) -> list[str]:
@@ -446,26 +372,21 @@ def diagram(sentence: Sentence, layout: Layout) -> list[str]:
 # Views: everything the templates print, computed here
 
 
-def field_view(f: Field, indent: int, prefix: str, suffix: str, next_line: bool) -> dict:
+def field_view(f: Field, indent: int, prefix: str, suffix: str) -> dict:
     callee, args = read_call(f)
     return {
         "field": f,
         "ident": ident(f.id),
         "type": f"Option<{base_type(f)}>",
-        "read": fmt_call(indent, prefix, callee, args, suffix, next_line),
+        "read": fmt_call(indent, prefix, callee, args, suffix),
         "width": f.wire_width,
         "doc": field_doc(f) + bits_doc(f),
     }
 
 
 def entry_read(fields: list[dict]) -> list[str]:
-    """`Ok(Self { field: read?, ... })` of an entry's reader, on one line when it fits."""
-    reads = [fv["read"] for fv in fields]
-    if all(len(r) == 1 for r in reads):
-        one = "        Ok(Self { " + ", ".join(r[0].strip().rstrip(",") for r in reads) + " })"
-        if len(one) <= WIDTH:
-            return [one]
-    return ["        Ok(Self {", *[line for r in reads for line in r], "        })"]
+    """`Ok(Self { field: read?, ... })` of an entry's reader."""
+    return ["        Ok(Self { " + ", ".join(line.strip().rstrip(",") for fv in fields for line in fv["read"]) + " })"]
 
 
 def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
@@ -483,8 +404,8 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 f = g.fields[0]
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.texts",
                                 [rust_str(g.id), rust_str(f.id), "repeats", rust_str(f.expected), max_len(f.max_length)],
-                                "?;", True)
-                fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.texts", ["repeats", max_len(f.max_length)], "?;", True)
+                                "?;")
+                fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.texts", ["repeats", max_len(f.max_length)], "?;")
                 items.append({"kind": "texts", "group": g, "ident": ident(g.id), "read": read, "fast": fast,
                               "optional": None,
                               "type": "Texts<'a>", "width": 1,
@@ -497,14 +418,14 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 value = f"Option<{base_type(f)}>"
                 # The general reader of one value, named: the values stay on the wire and a
                 # parsed sentence reads them again with it.
-                value_reader = {"name": reader, "type": value, "body": fmt_call(4, "", callee, args, "", False),
+                value_reader = {"name": reader, "type": value, "body": fmt_call(4, "", callee, args, ""),
                                 "group": g}
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.entries",
-                                [rust_str(g.id), "repeats", str(f.wire_width), reader], "?;", True)
+                                [rust_str(g.id), "repeats", str(f.wire_width), reader], "?;")
                 fast_callee, fast_args = fast_call(f)
                 fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.values",
                                 ["repeats", str(f.wire_width), f"|f| {fast_callee}({', '.join(fast_args)})", reader],
-                                "?;", True)
+                                "?;")
                 unit = f" [{f.unit}]" if f.unit else ""
                 items.append({"kind": "values", "group": g, "ident": ident(g.id), "read": read, "fast": fast,
                               "optional": None, "value_reader": value_reader,
@@ -514,17 +435,17 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                               + bits_doc(f)})
             else:
                 entry = entry_name(sentence, layout, g)
-                fields = [field_view(f, 12, f"{ident(f.id)}: ", "?,", False) for f in g.fields]
+                fields = [field_view(f, 12, f"{ident(f.id)}: ", "?,") for f in g.fields]
                 lifetime = any(borrows(f) for f in g.fields)
                 entry_type = entry + ("<'a>" if lifetime else "")
                 read_fast = [line for f in g.fields
-                             for line in fmt_call(8, f"self.{ident(f.id)} = ", *fast_call(f), "?;", True)]
+                             for line in fmt_call(8, f"self.{ident(f.id)} = ", *fast_call(f), "?;")]
                 entries.append({"name": entry, "group": g, "fields": fields, "lifetime": lifetime,
                                 "type": entry_type, "read": entry_read(fields), "read_fast": read_fast})
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.entries",
-                                [rust_str(g.id), "repeats", str(g.width), f"{entry}::read"], "?;", True)
+                                [rust_str(g.id), "repeats", str(g.width), f"{entry}::read"], "?;")
                 fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.entries",
-                                ["repeats", str(g.width), f"{entry}::read_fast", f"{entry}::read"], "?;", True)
+                                ["repeats", str(g.width), f"{entry}::read_fast", f"{entry}::read"], "?;")
                 items.append({"kind": "entries", "group": g, "ident": ident(g.id), "entry": entry, "read": read,
                               "fast": fast,
                               "optional": None, "lifetime": lifetime,
@@ -540,13 +461,13 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         indent = 12 if optional else 8
         if item.field_type.keyword:
             callee, args = read_call(item)
-            view = {"field": item, "ident": ident(item.id), "read": fmt_call(indent, "", callee, args, "?;", False),
-                    "fast": fmt_call(indent, "", *fast_call(item), "?;", False),
+            view = {"field": item, "ident": ident(item.id), "read": fmt_call(indent, "", callee, args, "?;"),
+                    "fast": fmt_call(indent, "", *fast_call(item), "?;"),
                     "width": 1, "word": rust_str(item.value or "")}
             view["kind"] = "keyword"
         else:
-            view = field_view(item, indent, f"out.{ident(item.id)} = ", "?;", True)
-            view["fast"] = fmt_call(indent, f"self.{ident(item.id)} = ", *fast_call(item), "?;", True)
+            view = field_view(item, indent, f"out.{ident(item.id)} = ", "?;")
+            view["fast"] = fmt_call(indent, f"self.{ident(item.id)} = ", *fast_call(item), "?;")
             view["kind"] = "field"
         view["optional"] = optional
         items.append(view)
@@ -566,7 +487,6 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     assigned = bool(members) or bool(optional)
     init = [f"        let {'mut ' if assigned else ''}out = Self {{ "
             + ", ".join(framing_members + (["..Self::default()"] if assigned else [])) + " };"]
-    assert len(init[0]) <= WIDTH
     fast = fast_reader(sentence, items) if sentence.fast_path and not text else []
     lifetime = (not sentence.is_proprietary or text
                 or any(it["kind"] == "field" and borrows(it["field"]) for it in items)
@@ -630,30 +550,24 @@ def visit_lines(items: list[dict]) -> list[str]:
         method = {"keyword": "keyword", "values": "values", "texts": "texts", "entries": "entries"}.get(
             it["kind"], "field")
         value = it["word"] if it["kind"] == "keyword" else f"&self.{it['ident']}"
-        call = fmt_call(indent, "", f"sink.{method}", [key, value], "?;", False)
+        call = fmt_call(indent, "", f"sink.{method}", [key, value], "?;")
         lines += [f"        if self.trailing >= {optional['index']} {{", *call, "        }"] if optional else call
     return lines
 
 
 def json_const(items: list[dict]) -> list[str]:
-    """`const JSON`: the JsonMember of each item (what reading decode's JSON back looks for), as
-    rustfmt writes it."""
-    members: list[tuple[str, list[str]]] = []
+    """`const JSON`: the JsonMember of each item (what reading decode's JSON back looks for)."""
+    members: list[str] = []
     for it in items:
         if it["kind"] in ("values", "texts"):
-            members.append(("JsonMember::Values", [rust_str(it["group"].id), str(it["group"].fields[0].wire_width)]))
+            members.append(f"JsonMember::Values({rust_str(it['group'].id)}, {it['group'].fields[0].wire_width})")
         elif it["kind"] == "entries":
             pairs = ", ".join(f"({rust_str(f.id)}, {f.wire_width})" for f in it["group"].fields)
-            members.append(("JsonMember::Entries", [rust_str(it["group"].id), f"&[{pairs}]"]))
+            members.append(f"JsonMember::Entries({rust_str(it['group'].id)}, &[{pairs}])")
         else:
             kind = "Optional" if it.get("optional") else "Field"
-            members.append((f"JsonMember::{kind}", [rust_str(it["field"].id), str(it["field"].wire_width)]))
-    decl = "const JSON: &'static [JsonMember]"
-    lines = fmt_const_slice(4, decl, [f"{name}({', '.join(args)})" for name, args in members])
-    if all(len(line) <= WIDTH for line in lines):
-        return lines
-    return [f"    {decl} = &[", *(line for name, args in members for line in fmt_call(8, "", name, args, ",", False)),
-            "    ];"]
+            members.append(f"JsonMember::{kind}({rust_str(it['field'].id)}, {it['field'].wire_width})")
+    return fmt_const_slice(4, "const JSON: &'static [JsonMember]", members)
 
 
 def fast_reader(sentence: Sentence, items: list[dict]) -> list[str]:
@@ -839,12 +753,9 @@ def table_view(t: TableDef) -> dict:
 
 
 def table_head(t: TableDef, names: list[str]) -> list[str]:
-    """`pub const TABLE: Table = Table { … };` as rustfmt writes it."""
+    """`pub const TABLE: Table = Table { … };`."""
     members = [("id", rust_str(t.id)), ("name", rust_str(t.name)), ("parameters", "&[" + ", ".join(names) + "]")]
-    lines = fmt_struct(4, "pub const TABLE: Table = ", "Table", members, ";")
-    if len(lines) == 1 or all(len(line) <= WIDTH for line in lines):
-        return lines
-    return [*lines[:-2], "        parameters: &[", *[f"            {n}," for n in names], "        ],", lines[-1]]
+    return fmt_struct(4, "pub const TABLE: Table = ", "Table", members, ";")
 
 
 def command_example(spec: Spec) -> dict | None:
@@ -1034,4 +945,23 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/tests/examples.rs"] = env.get_template("rust/examples.rs.j2").render(
         header=header(spec, "//"), vectors=[{"rust": example_lines(v), "cfg": gates.sentence(spec.sentence(v["sentence"]))} for v in vectors],
         crate=CRATE, reply_cases=reply_case_lines(spec, gates))
-    return files
+    return rustfmt(files)
+
+
+def rustfmt(files: dict[str, str]) -> dict[str, str]:
+    """`files` with every .rs file as rustfmt writes it under the crate's rustfmt.toml (so that
+    `cargo fmt --check` passes by construction): one rustfmt process over a copy of them in a
+    temporary directory."""
+    sources = [path for path in files if path.endswith(".rs")]
+    with tempfile.TemporaryDirectory() as tmp:
+        for path in sources:
+            (Path(tmp) / path).parent.mkdir(parents=True, exist_ok=True)
+            (Path(tmp) / path).write_text(files[path], encoding="utf-8")
+        command = ["rustfmt", "--edition", "2021", "--config-path", str(RUNTIME / "rust" / "rustfmt.toml"), *sources]
+        try:
+            run = subprocess.run(command, cwd=tmp, capture_output=True, text=True)
+        except FileNotFoundError:
+            raise SystemExit("generator: rustfmt is missing; install it with `rustup component add rustfmt`") from None
+        if run.returncode != 0:
+            raise SystemExit(f"generator: rustfmt failed on the generated Rust:\n{run.stderr}")
+        return files | {path: (Path(tmp) / path).read_text(encoding="utf-8") for path in sources}
