@@ -3,8 +3,9 @@ sentence layout a struct and a descriptor table that the runtime's one reader, w
 form interpret, plus a fast reader and writer for the sentences on the fast path), the nmea-c
 tool and the example tests.
 
-Everything the templates print is worked out here: C names, the descriptor rows, the fast path's
-call for each field, the value ranges; the templates only loop and print.
+Everything the templates print is worked out here: the descriptor rows, the fast path's call for
+each field (its reader and arguments from the field-type registry), the value ranges, with the C
+names of names_c.py; the templates only loop and print.
 """
 
 from __future__ import annotations

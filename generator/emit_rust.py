@@ -274,19 +274,10 @@ def fmt_tuple(indent: int, items: list[str], suffix: str) -> list[str]:
     return [one] if len(one) <= WIDTH else [f"{pad}(", *[f"{pad}    {i}," for i in items], f"{pad}){suffix}"]
 
 
-def rust_sorted(names: set[str]) -> list[str]:
-    """Names in rustfmt's order of a use list: snake case, then CamelCase, then CONSTANTS."""
-    def key(name: str) -> tuple[int, str]:
-        if name == "self":
-            return (0, name)
-        if name.isupper():
-            return (3, name)
-        return (2 if name[:1].isupper() else 1, name)
-    return sorted(names, key=key)
-
-
-def fmt_use(path: str, names: list[str], prefix: str = "use") -> list[str]:
-    return [f"{prefix} {path}::{{{', '.join(names)}}};" if len(names) > 1 else f"{prefix} {path}::{names[0]};"]
+def fmt_use(path: str, names: set[str], prefix: str = "use") -> list[str]:
+    """`use path::{names};` (rustfmt orders the names)."""
+    listed = ", ".join(sorted(names))
+    return [f"{prefix} {path}::{{{listed}}};" if len(names) > 1 else f"{prefix} {path}::{listed};"]
 
 
 def field_doc(f: Field) -> list[str]:
@@ -634,8 +625,8 @@ def module_imports(views: list[dict]) -> list[str]:
                 enums.add(f.enum.camel)
     lines: list[str] = []
     if enums:
-        lines += fmt_use("crate::enums", rust_sorted(enums))
-    lines += fmt_use("crate::runtime", rust_sorted(runtime))
+        lines += fmt_use("crate::enums", enums)
+    lines += fmt_use("crate::runtime", runtime)
     lines += ["use crate::LayoutId;"]
     return lines
 
@@ -844,7 +835,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                                                             ",")),
             })
     modules = [{"sentence": s, "module": sentence_module(s), "cfg": gates.sentence(s), "uses": fmt_use(
-        sentence_module(s), rust_sorted({s.layout_camel(lay) for lay in s.layouts}), "pub use")} for s in spec.sentences]
+        sentence_module(s), {s.layout_camel(lay) for lay in s.layouts}, "pub use")} for s in spec.sentences]
     # rustfmt sorts `mod` items by the name without `r#`, `use` items by the path as written.
     files[f"{base}/src/sentences/mod.rs"] = env.get_template("rust/sentences_mod.rs.j2").render(
         header=header(spec, "//"), sentences=sorted(modules, key=lambda m: m["module"].removeprefix("r#")),
@@ -863,10 +854,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                                 for f in all_fields(lay) if f.bitfield is not None and f.field_type.numeric]))
     files[f"{base}/src/tables.rs"] = env.get_template("rust/tables.rs.j2").render(
         header=header(spec, "//", [t.origin.file for t in spec.tables]), tables=[{**table_view(t), "cfg": gates.table(t.id)} for t in spec.tables],
-        imports=fmt_use("crate::runtime", rust_sorted(
-            {"Encoding", "Parameter", "Table"}
-            | ({"Bound"} if any(p.min is not None or p.max is not None for t in spec.tables for p in t.parameters)
-               else set()))) if spec.tables else [])
+        imports=fmt_use("crate::runtime", {"Encoding", "Parameter", "Table"} | (
+            {"Bound"} if any(p.min is not None or p.max is not None for t in spec.tables for p in t.parameters)
+            else set())) if spec.tables else [])
     vectors = emit_vectors.example_vectors(spec)
     intact = [v for v in vectors if v["line"]]
     first = None
@@ -932,8 +922,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         standard_like_arms=standard_like_arms, standard_fast_arms=standard_fast_arms,
         proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands, reply_arms=reply_arms, outcome_arms=outcome_arms,
-        runtime_uses=fmt_use("runtime", rust_sorted(
-            {"first_word", "strip_line_ending", "FastReader", "Unsure"})),
+        runtime_uses=fmt_use("runtime", {"first_word", "strip_line_ending", "FastReader", "Unsure"}),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],
