@@ -6,14 +6,15 @@ from __future__ import annotations
 
 import json
 import keyword
-from decimal import InvalidOperation
 from typing import Any
 
-from . import reference
+from . import names, names_c, names_rust, reference
 from .resolve import checksum_ok
 from .errors import SpecError
 from .loader import Document
-from .model import Example, Field, Group, Layout, Origin, Sentence, Spec, fixed_point
+from .field_types import TYPES
+from .model import Example, Field, Group, Layout, Origin, Sentence, Spec
+from .numbers import fixed_point
 
 VERSION_ORDER = ["2.0", "2.1", "2.2", "2.3", "3.0", "3.01", "4.00", "4.10", "4.11"]
 
@@ -77,10 +78,8 @@ def _distinct_names(spec: Spec, report: _Reporter) -> None:
 def _generated_names(spec: Spec, report: _Reporter) -> None:
     """The names each emitter builds from the spec's ids (C identifiers, Rust types, the tool's
     command names) must not be shared by two things, nor taken from a runtime."""
-    from . import emit_c, emit_rust, emit_tool  # the emitters know their names; they import no checks
-
-    for emitter in (emit_c, emit_rust, emit_tool):
-        for origin, message in emitter.name_clashes(spec):
+    for clashes in (names_c.clashes, names_rust.clashes, names.command_clashes):
+        for origin, message in clashes(spec):
             report(origin, "S016", f"{message}; rename one of them")
 
 
@@ -151,7 +150,7 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
                 if isinstance(item, Group) or item.wire_width != 1:
                     report(item.origin, "S015", "a text command's fields are single words: no groups, no "
                            "latitude or longitude", "id")
-                elif item.type == "keyword" and item.value and item.value != item.value.upper():
+                elif item.field_type.keyword and item.value and item.value != item.value.upper():
                     # Text commands match their words ignoring case, against the upper-case spelling.
                     report(item.origin, "S015", f"keyword field {item.id}: write the word in upper case", "value")
     if sentence.reply_ids and sentence.kind != "command":
@@ -166,23 +165,6 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
 # Most digits a number field holds in every runtime (NMEA_MAX_DIGITS, runtime.MAX_DIGITS).
 MAX_DIGITS = 18
 
-# The field types a reply's `when` and `outcome` may test: values a program compares exactly.
-PAIRING_TYPES = ("integer", "enum", "text", "char")
-
-
-def _pairing_value(f: Field, value: Any) -> str | None:
-    """Why `value` (expect form) cannot be a value of field `f` in a `when` or an `outcome`."""
-    if f.type not in PAIRING_TYPES:
-        return f"field {f.id} is {f.type}: a reply is paired or judged only by {', '.join(PAIRING_TYPES)} fields"
-    if f.type == "integer" and (isinstance(value, bool) or not isinstance(value, int)):
-        return f"field {f.id} is an integer: {value!r} is not one"
-    if f.type == "enum" and (f.enum is None or f.enum.by_id(str(value)) is None):
-        return f"{value!r} is not a value id of enum {f.enum.id if f.enum else '?'}"
-    if f.type in ("text", "char") and (not isinstance(value, str) or not value or (f.type == "char" and len(value) != 1)):
-        return f"field {f.id} is {f.type}: {value!r} is not one"
-    return None
-
-
 def _check_replies(sentence: Sentence, report: _Reporter) -> None:
     """A command's `when` names fields of its reply with values they can hold; a reply's `outcome`
     names a field of each layout it applies to."""
@@ -193,7 +175,7 @@ def _check_replies(sentence: Sentence, report: _Reporter) -> None:
             found = [f for layout in rule.sentence.layouts for f in layout.fields if f.id == field_id]
             if not found:
                 report(rule.origin, "S011", f"reply {rule.sentence_id} has no field {field_id!r}", "when", field_id)
-            elif (problem := _pairing_value(found[0], value)) is not None:
+            elif (problem := found[0].field_type.pairing_problem(found[0], value)) is not None:
                 report(rule.origin, "S011", problem, "when", field_id)
     for layout in sentence.layouts:
         outcome = layout.outcome
@@ -205,7 +187,7 @@ def _check_replies(sentence: Sentence, report: _Reporter) -> None:
             report(outcome.origin, "S011", f"{name} of {sentence.id} has no field {outcome.field_id!r}", "field")
             continue
         for i, value in enumerate(outcome.ok):
-            if (problem := _pairing_value(found[0], value)) is not None:
+            if (problem := found[0].field_type.pairing_problem(found[0], value)) is not None:
                 report(outcome.origin, "S011", problem, "ok", i)
 
 
@@ -336,7 +318,7 @@ def _check_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: se
                 inner.add(f.id)
                 if f.is_optional:
                     report(f.origin, "S004", "a field inside a group cannot be optional", "id")
-                if f.type == "keyword":
+                if f.field_type.keyword:
                     report(f.origin, "S004", "a group cannot hold a keyword (a keyword picks the layout)", "type")
                 _check_field(f, manual_ids, report)
             continue
@@ -364,15 +346,15 @@ def _check_field(f: Field, manual_ids: set[str], report: _Reporter) -> None:
     if f.bitfield_id is not None:
         if f.bitfield is None:
             report(f.origin, "S002", f"field {f.id} refers to unknown bitfield {f.bitfield_id!r}", "bitfield")
-        elif f.type not in ("hex", "integer"):
-            report(f.origin, "S012", f"field {f.id}: a bitfield applies to hex and integer fields", "bitfield")
-    if f.type == "keyword" and not (f.value or "").strip():
+        elif not f.field_type.bits:
+            report(f.origin, "S012", f"field {f.id}: a bitfield applies to {_types_that('bits')} fields", "bitfield")
+    if f.field_type.keyword and not (f.value or "").strip():
         report(f.origin, "S007", f"keyword field {f.id} needs its word in `value`", "value")
     if f.enum_id is not None:
         if f.enum is None:
             report(f.origin, "S002", f"field {f.id} refers to unknown enum {f.enum_id!r}", "enum")
-        elif f.type == "enum_chars" and f.enum.max_len != 1:
-            report(f.origin, "S002", f"enum_chars field {f.id} needs an enum of one-character codes", "enum")
+        elif f.field_type.per_char and f.enum.max_len != 1:
+            report(f.origin, "S002", f"{f.type} field {f.id} needs an enum of one-character codes", "enum")
     if f.min is not None and f.max is not None and f.min > f.max:
         report(f.origin, "S007", f"field {f.id}: min {f.min} exceeds max {f.max}", "min")
     for key, bound in (("min", f.min), ("max", f.max)):
@@ -381,10 +363,17 @@ def _check_field(f: Field, manual_ids: set[str], report: _Reporter) -> None:
             if scale > MAX_DIGITS or abs(digits) >= 10**MAX_DIGITS:
                 report(f.origin, "S007", f"field {f.id}: {key} {bound} needs more than the {MAX_DIGITS} digits "
                        "a number holds", key)
-    if (f.min is not None or f.max is not None) and f.type not in ("integer", "decimal"):
-        report(f.origin, "S007", f"field {f.id}: min/max apply to integer and decimal fields only", "min")
-    if f.max_length is not None and f.type not in ("text", "enum_chars"):
-        report(f.origin, "S007", f"field {f.id}: max_length applies to text and enum_chars only", "max_length")
+    if (f.min is not None or f.max is not None) and not f.field_type.numeric:
+        report(f.origin, "S007", f"field {f.id}: min/max apply to {_types_that('numeric')} fields only", "min")
+    if f.max_length is not None and not f.field_type.has_length:
+        report(f.origin, "S007", f"field {f.id}: max_length applies to {_types_that('has_length')} only",
+               "max_length")
+
+
+def _types_that(attribute: str) -> str:
+    """The field types with `attribute`, for a message: "text and enum_chars"."""
+    names = [t.name for t in TYPES.values() if getattr(t, attribute)]
+    return ", ".join(names[:-1]) + " and " + names[-1] if len(names) > 1 else names[0]
 
 
 def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids: set[str],
@@ -425,8 +414,10 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
         report(o, "S009", f"decodes with layout {found or 'main'}, the example says "
                f"{example.variant or 'main'}", "variant")
         return
-    expected = expect_json(decoded.layout, example.expect or {}, report, o)
-    if expected is None:
+    expected, problems = reference.expect_json(decoded.layout, example.expect or {})
+    for key, problem in problems:
+        report(o, "S008", problem, "expect", key)
+    if problems:
         return
     got = json.loads(reference.fields_json(decoded, values=True))
     want = json.loads(expected)
@@ -446,84 +437,3 @@ def _computed(line: str) -> str:
     star = line.find("*")
     body = line[1:star] if star >= 0 else line[1:]
     return f"{reference.rt.checksum(body):02X}"
-
-
-def expect_json(layout: Layout, expect: dict[str, Any], report: _Reporter | None = None,
-                origin: Origin | None = None) -> str | None:
-    """An example's `expect` in the decoded JSON form (`decode --values`), fields in wire order."""
-    items = {i.id: i for i in layout.items}
-    parts = []
-    ok = True
-    for item in layout.items:
-        if item.id not in expect:
-            continue
-        try:
-            parts.append(f'"{item.id}":{_expect_item(item, expect[item.id])}')
-        except (TypeError, ValueError, KeyError, InvalidOperation) as exc:
-            ok = False
-            if report and origin:
-                report(origin, "S008", f"expect value of {item.id} does not fit its type {_kind(item)}: {exc}",
-                       "expect", item.id)
-    for key in expect:
-        if key not in items and report and origin:
-            ok = False
-            report(origin, "S008", f"expect names {key}, which the layout does not have", "expect", key)
-    return "{" + ",".join(parts) + "}" if ok else None
-
-
-def _kind(item: Field | Group) -> str:
-    return "group" if isinstance(item, Group) else item.type
-
-
-def _expect_item(item: Field | Group, value: Any) -> str:
-    if isinstance(item, Group):
-        if not isinstance(value, list):
-            raise TypeError("a group expects a list")
-        if item.single:
-            return "[" + ",".join(_expect_value(item.fields[0], v) for v in value) + "]"
-        out = []
-        for entry in value:
-            if set(entry) != {f.id for f in item.fields}:
-                raise KeyError(f"entry keys {sorted(entry)} differ from the group's fields")
-            out.append("{" + ",".join(f'"{f.id}":{_expect_value(f, entry[f.id])}' for f in item.fields) + "}")
-        return "[" + ",".join(out) + "]"
-    return _expect_value(item, value)
-
-
-def _number_json(value: Any) -> str:
-    if isinstance(value, bool):
-        raise TypeError("a number, not a boolean")
-    digits, scale = fixed_point(str(value))
-    return reference.rt.decimal_json(abs(digits), scale, digits < 0)
-
-
-def _expect_value(f: Field, value: Any) -> str:
-    rt = reference.rt
-    if value is None:
-        return "null"
-    t = f.type
-    if t in ("integer", "decimal"):
-        return _number_json(value)
-    if t == "hex":
-        if not isinstance(value, int):
-            raise TypeError("hex expects an integer")
-        return str(value)
-    if t in ("time", "date", "char", "literal", "text", "keyword"):
-        if not isinstance(value, str):
-            raise TypeError(f"{t} expects a string")
-        return rt.json_str(value)
-    if t in ("latitude", "longitude"):
-        if set(value) != {"deg", "min", "hemi"}:
-            raise KeyError("expects {deg, min, hemi}")
-        return f'{{"deg":{int(value["deg"])},"min":{_number_json(value["min"])},"hemi":{rt.json_str(str(value["hemi"]))}}}'
-    assert f.enum is not None
-    if t == "enum":
-        if f.enum.by_id(str(value)) is None:
-            raise ValueError(f"{value!r} is not a value id of enum {f.enum.id}")
-        return rt.json_str(str(value))
-    if not isinstance(value, list):
-        raise TypeError("enum_chars expects a list of value ids")
-    for v in value:
-        if f.enum.by_id(str(v)) is None:
-            raise ValueError(f"{v!r} is not a value id of enum {f.enum.id}")
-    return "[" + ",".join(rt.json_str(str(v)) for v in value) + "]"

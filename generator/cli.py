@@ -135,7 +135,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _write(spec, args: argparse.Namespace) -> int:
-    from .emit import render_all
+    from .render import render_all
     from .naming import NamingError, check_names, rename_files
     from .selection import SelectionError, parse_selector, subset
 

@@ -1,14 +1,15 @@
-"""Runs every emitter over the model and returns the generated files (path -> content)."""
+"""What the emitters share: the templates' environment, the DO NOT EDIT banner, the hand-written
+runtime files and the contract they share, package READMEs and license texts. render.py runs the
+emitters."""
 
 from __future__ import annotations
 
 import textwrap
-from typing import Callable
 
 import jinja2
 import yaml
 
-from .model import Origin, Spec
+from .model import Spec
 from .paths import LICENSE, LICENSE_FILES, ROOT, VERSION
 
 TEMPLATES = ROOT / "templates"
@@ -49,21 +50,6 @@ def header(spec: Spec, comment: str, sources: list[str] | None = None) -> str:
     return "".join(f"{comment} {line}".rstrip() + "\n" for line in lines)
 
 
-class NameClaims:
-    """The identifiers a generated file declares and who declares each: a second owner of a name
-    is a clash, which the spec's checks report at the second owner (generator/checks.py, S016)."""
-
-    def __init__(self, language: str) -> None:
-        self.language = language
-        self.owners: dict[str, str] = {}
-        self.clashes: list[tuple[Origin, str]] = []
-
-    def claim(self, name: str, what: str, origin: Origin) -> None:
-        other = self.owners.setdefault(name, what)
-        if other != what:
-            self.clashes.append((origin, f"the {self.language} name {name} of {what} is also the name of {other}"))
-
-
 def runtime_file(spec: Spec, comment: str, path: str, blank_line: bool = False) -> str:
     """A hand-written runtime or tool file (runtime/<path>) as it is, under the DO NOT EDIT banner
     (and a blank line after it, where the language's formatter wants one)."""
@@ -89,18 +75,3 @@ def package_readme(spec: Spec, env: jinja2.Environment, template: str, **names: 
 def license_texts(folder: str) -> dict[str, str]:
     """The license texts, verbatim, for a package folder of the output (a package carries them)."""
     return {f"{folder}/{name}": (ROOT / name).read_text(encoding="utf-8") for name in LICENSE_FILES}
-
-
-def render_all(spec: Spec) -> dict[str, str]:
-    from . import emit_c, emit_docs, emit_packaging, emit_python, emit_rust, emit_tool, emit_vectors
-
-    env = environment()
-    files: dict[str, str] = {}
-    emitters: list[Callable[[Spec, jinja2.Environment], dict[str, str]]] = [
-        emit_vectors.emit, emit_python.emit, emit_tool.emit, emit_c.emit, emit_packaging.emit, emit_rust.emit, emit_docs.emit,
-    ]
-    for emitter in emitters:
-        for path, content in emitter(spec, env).items():
-            assert path not in files, path
-            files[path] = content
-    return files

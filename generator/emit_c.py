@@ -3,8 +3,9 @@ sentence layout a struct and a descriptor table that the runtime's one reader, w
 form interpret, plus a fast reader and writer for the sentences on the fast path), the nmea-c
 tool and the example tests.
 
-Everything the templates print is worked out here: C names, the descriptor rows, the fast path's
-call for each field, the value ranges; the templates only loop and print.
+Everything the templates print is worked out here: the descriptor rows, the fast path's call for
+each field (its reader and arguments from the field-type registry), the value ranges, with the C
+names of names_c.py; the templates only loop and print.
 """
 
 from __future__ import annotations
@@ -14,19 +15,11 @@ import textwrap
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import CONTRACT, RUNTIME, NameClaims, char_literal, header, runtime_file
-from .field_types import TYPES
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Origin, Sentence, Spec, TableDef, fixed_point, fmt_num
-
-C_KEYWORDS = frozenset("""
-auto break case char const continue default do double else enum extern float for goto if inline int
-long register restrict return short signed sizeof static struct switch typedef union unsigned void
-volatile while bool true false _Bool _Complex _Imaginary
-""".split())
-
-# The C member type of each field type (None: a keyword, which the layout implies).
-C_TYPES = {name: t.c_type for name, t in TYPES.items()}
-
+from .emit import CONTRACT, RUNTIME, char_literal, header, runtime_file
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef
+from .names_c import (bits_const, bits_function, bits_mask, entry_type, enum_const, enum_def, enum_type,
+                      group_accessor, layout_const, layout_type, member, parameter_macro, table_count, table_name)
+from .numbers import fixed_point, fmt_num
 
 MAX_LINE = CONTRACT["limits"]["max_line"]  # NMEA_MAX_LINE
 MAX_PROBLEMS = CONTRACT["limits"]["max_problems"]  # NMEA_MAX_PROBLEMS
@@ -54,32 +47,6 @@ def c_comment(text: str) -> str:
 
 def doc_lines(text: str, width: int = 92) -> list[str]:
     return textwrap.wrap(c_comment(" ".join(text.split())), width) or [""]
-
-
-def member(name: str) -> str:
-    return name + "_" if name in C_KEYWORDS else name
-
-
-def enum_type(e: EnumDef) -> str:
-    return f"nmea_{e.id}"
-
-
-def enum_def(e: EnumDef) -> str:
-    return f"nmea_{e.id}_def"
-
-
-def enum_const(e: EnumDef, value_id: str) -> str:
-    return f"NMEA_{e.id.upper()}_{value_id.upper()}"
-
-
-def layout_const(sentence: Sentence, layout: Layout) -> str:
-    return "NMEA_SENTENCE_" + sentence.layout_snake(layout).upper()
-
-
-def entry_type(sentence: Sentence, layout: Layout, group: Group) -> str:
-    """The struct of one entry of a repeated group: nmea_gsv_satellite for GSV's `satellites`."""
-    word = group.id[:-1] if group.id.endswith("s") else group.id + "_entry"
-    return f"nmea_{sentence.layout_snake(layout)}_{word}"
 
 
 # ------------------------------------------------------------------------------------------------
@@ -133,94 +100,71 @@ class Ranges:
 # Per-field calls
 
 
-# The field_type constant of each field type (runtime/c/runtime.c).
-FIELD_TYPES = {name: "FIELD_" + name.upper() for name in TYPES}
+
+
+def c_arg(word: str, f: Field, ranges: Ranges) -> str:
+    """A word of the registry's argument vocabulary (field_types.py) as a C argument for `f`."""
+    if word == "range":
+        return ranges.ref(f)
+    if word == "word":
+        return c_str(f.value or "")
+    if word == "hemisphere":
+        return c_str(f.field_type.hemisphere_expected)
+    if word == "table":
+        assert f.enum is not None
+        return f"&{enum_def(f.enum)}"
+    assert word == "max_length", word
+    return str(f.max_length or 0)
 
 
 def field_arg(f: Field, ranges: Ranges) -> str:
     """The `arg` of a field's layout_field: its range, enum table, word, or what its hemisphere
-    takes."""
-    t = f.type
-    if t in ("keyword", "literal"):
-        return c_str(f.value or "")
-    if t in ("integer", "decimal"):
-        return ranges.ref(f)
-    if t in ("latitude", "longitude"):
-        return c_str(f.hemisphere_expected)
-    if t in ("enum", "enum_chars"):
-        assert f.enum is not None
-        return f"&{enum_def(f.enum)}"
-    return "NULL"
+    takes (its max_length has a place of its own)."""
+    args = [c_arg(word, f, ranges) for word in f.field_type.args if word != "max_length"]
+    return args[0] if args else "NULL"
 
 
 def field_init(f: Field, owner: str | None, ranges: Ranges) -> str:
     """The layout_field initializer of `f`, a member of struct `owner` (None: stored at offset 0,
     the value of a single-field group)."""
-    offset = f"offsetof({owner}, {member(f.id)})" if owner and C_TYPES[f.type] else "0"
-    return (f"{{{c_str(f.id)}, {c_str(f.expected)}, {field_arg(f, ranges)}, {offset}, {FIELD_TYPES[f.type]}, "
+    offset = f"offsetof({owner}, {member(f.id)})" if owner and f.field_type.c_type else "0"
+    return (f"{{{c_str(f.id)}, {c_str(f.expected)}, {field_arg(f, ranges)}, {offset}, FIELD_{f.type.upper()}, "
             f"{f.wire_width}, {f.max_length or 0}}}")
 
 
 def fast_call(f: Field, target: str, ranges: Ranges) -> str:
     """The fast path's call that reads field `f` into `target` from the line at `p` (see
-    fast_frame in the runtime): read_call without the names errors need."""
-    t = f.type
-    name = TYPES[t].c_fast
-    if t == "keyword":
-        return f"fast_keyword(&p, {c_str(f.value or '')})"
-    if t in ("integer", "decimal"):
-        return f"fast_{name}(&p, &{target}, {ranges.ref(f)})"
-    if t == "literal":
-        return f"fast_literal(&p, &{target}, {c_str(f.value or '')})"
-    if t in ("text", "enum_chars"):
-        table = f"&{enum_def(f.enum)}, " if f.enum is not None else ""
-        return f"fast_{name}(&p, &{target}, {table}{f.max_length or 0})"
-    if t == "enum":
-        assert f.enum is not None
-        return f"fast_enum(&p, &{target}, &{enum_def(f.enum)})"
-    return f"fast_{name}(&p, &{target})"
+    fast_frame in the runtime): read_call without the names errors need (a coordinate's reader
+    knows its hemispheres)."""
+    t = f.field_type
+    args = ["&p"] + ([f"&{target}"] if t.c_type else [])
+    args += [c_arg(word, f, ranges) for word in t.args if word != "hemisphere"]
+    return f"fast_{t.c_fast}({', '.join(args)})"
 
 
 def fast_put_call(f: Field, target: str) -> str:
     """The fast path's call that writes field `f` (its comma and text) with its fast_writer `w`:
     false when the general writer must write the sentence (a keyword's or literal's length is
     given with it)."""
-    t = f.type
+    t = f.field_type
     word = f.value or ""
-    word_args = f"{c_str(word)}, {len(word.encode())}"
-    if t == "keyword":
-        args = word_args
-    elif t == "literal":
-        args = f"{target}, {word_args}"
-    elif t in ("char", "text", "enum_chars"):
-        args = target
-    elif t == "enum":
-        assert f.enum is not None
-        args = f"&{target}, &{enum_def(f.enum)}"
-    else:
-        args = f"&{target}"
-    return f"fast_put_{TYPES[t].c_put}(&w, {args})"
+    rendered = {"value": target, "&value": f"&{target}", "word": f"{c_str(word)}, {len(word.encode())}",
+                "table": f"&{enum_def(f.enum)}" if f.enum else ""}
+    return f"fast_put_{t.c_put}(&w, {', '.join(rendered[a] for a in t.c_put_args)})"
 
 
 def member_doc(f: Field) -> list[str]:
     unit = f" [{f.unit}]" if f.unit else ""
     fmt = f" ({f.format})" if f.format else ""
     since = f" (NMEA {f.since}, optional)" if f.since else (" (optional)" if f.optional else "")
-    empty = TYPES[f.type].c_empty
-    extra = ""
-    if f.type == "literal":
-        extra = f' True when the field holds "{f.value}".'
-    elif f.type == "enum":
-        assert f.enum is not None
-        extra = f" Values: {enum_type(f.enum)} (table {enum_def(f.enum)})."
-    elif f.type == "enum_chars":
-        assert f.enum is not None
-        extra = f" One code of {enum_type(f.enum)} per character (table {enum_def(f.enum)})."
+    t = f.field_type
+    extra = t.c_doc.format(value=f.value, enum_type=enum_type(f.enum) if f.enum else "",
+                           enum_table=enum_def(f.enum) if f.enum else "")
     if f.bitfield is not None:
         extra += f" Bits: nmea_{f.bitfield.id}_<bits>(value) (bitfield {f.bitfield.id})."
     doc = f.doc.strip()
     doc += "" if doc.endswith((".", "!", "?", ")")) or not doc else "."
-    return doc_lines(f"{f.name}{unit}{fmt}{since}: {doc}{extra} Empty: {empty}.")
+    return doc_lines(f"{f.name}{unit}{fmt}{since}: {doc}{extra} Empty: {t.c_empty}.")
 
 
 # ------------------------------------------------------------------------------------------------
@@ -231,11 +175,11 @@ def field_view(f: Field, base: str, ranges: Ranges, owner: str | None) -> dict:
     """A field of struct `owner` (None: the value of a single-field group), read and written on
     the fast path through `base` ("s->", "e->" or the entry itself)."""
     target = f"{base}{member(f.id)}" if base.endswith(("->", ".")) else base
-    stored = C_TYPES[f.type] is not None
+    stored = f.field_type.c_type is not None
     return {
         "field": f,
         "member": member(f.id) if stored else None,
-        "type": C_TYPES[f.type],
+        "type": f.field_type.c_type,
         "doc": member_doc(f) if stored else [],
         "init": field_init(f, owner, ranges),
         "fast": fast_call(f, target, ranges),
@@ -291,7 +235,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         else:
             fields = [field_view(f, "e->", ranges, etype) for f in group.fields]
         stored = [v for v in fields if v["member"] is not None]
-        value_type = (C_TYPES[group.fields[0].type] if single else etype) if stored else None
+        value_type = (group.fields[0].field_type.c_type if single else etype) if stored else None
         name = member(group.id)
         # The entries of a group that holds values stay on the wire (nmea_entries), read one at a
         # time by its accessor; a group of keywords only is counted.
@@ -304,7 +248,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
             "count_member": f"{name}_count" if count and not stored else None,
             "entry_type": None if single or not stored else etype,
             "value_type": value_type,
-            "accessor": f"nmea_{snake}_{name}_at" if stored else None,
+            "accessor": group_accessor(sentence, layout, group) if stored else None,
             "single": single,
             "fields": fields,
             "stored": stored,
@@ -361,7 +305,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "layout": layout,
         "kind": kind,
         "name": snake,
-        "type": f"nmea_{snake}",
+        "type": layout_type(sentence, layout),
         "const": layout_const(sentence, layout),
         "id": c_str(sentence.id),
         "start": sentence.start,
@@ -415,13 +359,15 @@ def _member_of(sentence: Sentence, layout: Layout, f: Field) -> str:
 def reply_test(condition: pairing.Condition, target: str) -> str:
     """The C test that the member `target` holds a reply's `when` or `outcome` value."""
     f, value = condition.field, condition.value
-    if f.type == "integer":
+    pairing = f.field_type.pairing
+    if pairing == "number":
         return f"integer_is({target}, {int(value)})"
-    if f.type == "enum":
+    if pairing == "code":
         assert f.enum is not None
         return f"({target}.present && {target}.value == {enum_const(f.enum, str(value))})"
-    if f.type == "text":
+    if pairing == "string":
         return f"text_is({target}, {c_str(value)})"
+    assert pairing == "character", f.type
     return f"{target} == {char_literal(value)}"
 
 
@@ -516,59 +462,21 @@ def _all_fields(layout: Layout) -> list[Field]:
     return out
 
 
-def name_clashes(spec: Spec) -> list[tuple[Origin, str]]:
-    """The C identifiers built from the spec's ids that two things would share."""
-    ranges = Ranges()
-    names = NameClaims("C")
-    for e in spec.enums:
-        names.claim(enum_type(e), f"enum {e.id}", e.origin)
-        for v in e.values:
-            names.claim(enum_const(e, v.id), f"enum value {e.id}.{v.id}", v.origin)
-    for s in spec.sentences:
-        for lay in s.layouts:
-            v = layout_view(s, lay, ranges)
-            what = f"layout {v['name']}"
-            for name in (v["type"], v["const"], *(prefix + v["name"] for prefix in ("nmea_parse_", "nmea_serialize_",
-                                                                                      "nmea_build_"))):
-                names.claim(name, what, lay.origin)
-            if v["group"]:
-                group = v["group"]["group"]
-                for name in (v["group"]["entry_type"], v["group"]["accessor"]):
-                    if name:
-                        names.claim(name, f"group {v['name']}.{group.id}", group.origin)
-    for bitfield in spec.bitfields:
-        b = bitfield_view(bitfield)
-        for bits in b["bits"]:
-            what = f"bits {bitfield.id}.{bits['bits'].id}"
-            names.claim(bits["function"], what, bits["bits"].origin)
-            names.claim(bits["mask"], what, bits["bits"].origin)
-            for value in bits["values"]:
-                names.claim(value["const"], f"{what} = {value['value']}", bits["bits"].origin)
-    for table in spec.tables:
-        view = table_view(table)
-        names.claim(view["name"], f"table {table.id}", table.origin)
-        names.claim(view["count"], f"table {table.id}", table.origin)
-        for param in view["parameters"]:
-            names.claim(param["macro"], f"parameter {table.id}.{param['parameter'].id}", param["parameter"].origin)
-    return names.clashes
-
-
 # ------------------------------------------------------------------------------------------------
 # Bitfields and parameter tables
 
 
 def bitfield_view(b: BitfieldDef) -> dict:
-    prefix = f"nmea_{b.id}"
     bits = []
     for r in b.bits:
         wide = r.width > 32
-        values = [{"const": f"{prefix.upper()}_{r.id.upper()}_{v.id.upper()}", "value": v.value,
+        values = [{"const": bits_const(b, r, v), "value": v.value,
                    "doc": doc_lines(f"{v.value}: {v.doc}", 88)} for v in r.values]
         bits.append({
             "bits": r,
-            "function": f"{prefix}_{r.id}",
+            "function": bits_function(b, r),
             "type": "uint64_t" if wide else "uint32_t",
-            "mask": f"{prefix.upper()}_{r.id.upper()}_MASK",
+            "mask": bits_mask(b, r),
             "mask_value": f"UINT64_C(0x{r.mask:X})",
             "max_value": f"UINT64_C(0x{r.max_value:X})",
             "low": r.low,
@@ -594,7 +502,6 @@ def _opt_str(value: object) -> str:
 
 
 def table_view(t: TableDef) -> dict:
-    name = f"nmea_{t.id}"
     params = []
     for i, p in enumerate(t.parameters):  # (size, count and max_length fit a byte: the schema)
         init = ", ".join([
@@ -605,14 +512,14 @@ def table_view(t: TableDef) -> dict:
         params.append({
             "parameter": p,
             "init": "{" + init + "}",
-            "macro": f"{name.upper()}_{p.id.upper()}",
+            "macro": parameter_macro(t, p),
             "index": i,
             "doc": c_comment(f"{p.number}: {p.name}" + (f" [{p.unit}]" if p.unit else "")),
         })
     return {
         "table": t,
-        "name": name,
-        "count": f"{name.upper()}_COUNT",
+        "name": table_name(t),
+        "count": table_count(t),
         "doc": doc_lines(f"{t.id}: {t.name}. {t.doc}"),
         "parameters": params,
     }

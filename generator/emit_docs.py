@@ -10,7 +10,6 @@ import jinja2
 
 from . import emit_vectors
 from .emit import RUNTIME, markdown_banner
-from .field_types import TYPES
 from .model import Field, Group, Layout, Manual, ReplyRule, Sentence, Spec
 
 
@@ -22,15 +21,13 @@ def cell(text: str | None) -> str:
 
 
 def type_cell(f: Field) -> str:
-    name = TYPES[f.type].doc_name
+    name = f.field_type.doc_name
     if f.enum is not None:
         return f"{name} [{f.enum.id}](../enums/{f.enum.id}.md)"
     if f.bitfield is not None:
         return f"{name} [{f.bitfield.id}](../bitfields/{f.bitfield.id}.md)"
-    if f.type == "keyword":
-        return f"keyword `{f.value}`"
-    if f.type == "literal":
-        return f"literal `{f.value}`"
+    if "word" in f.field_type.args:
+        return f"{name} `{f.value}`"
     if f.min is not None or f.max is not None:
         low = "" if f.min is None else _num(f.min)
         high = "" if f.max is None else _num(f.max)

@@ -10,20 +10,17 @@ import jinja2
 
 from . import emit_vectors, pairing
 from .emit import header, package_readme, runtime_file
-from .field_types import TYPES
-from .model import Field, Group, Layout, Sentence, Spec, fmt_num
+from .model import Field, Group, Layout, Sentence, Spec
+from .numbers import fmt_num
 
 PACKAGE = "nmeaspec"
 
 
 def py_type(f: Field) -> str:
-    base = TYPES[f.type].python_type
-    if base is None:
-        assert f.enum is not None
-        base = f"{f.enum.camel} | str" if f.type == "enum" else f"list[{f.enum.camel} | str]"
-    if f.type == "keyword":
-        return base + (" | rt._Absent" if f.is_optional else "")
-    return base + " | None" + (" | rt._Absent" if f.is_optional else "")
+    t = f.field_type
+    base = t.python_type.format(enum=f.enum.camel if f.enum else "")
+    absent = " | rt._Absent" if f.is_optional else ""
+    return base + absent if t.keyword else base + " | None" + absent
 
 
 WIDTH = 100  # the longest line of the generated Python
@@ -33,21 +30,27 @@ def field_spec(f: Field) -> list[str]:
     """The lines of the runtime's FieldSpec of `f` in a layout's items (a call with its id, what
     it takes and its type's arguments), each of at most WIDTH characters at an indent of 8."""
     args = [json.dumps(f.id), json.dumps(f.expected)]
-    t = f.type
-    if t in ("integer", "decimal") and (f.min is not None or f.max is not None):
-        args += [_bound(f.min), _bound(f.max)]
-    elif t in ("latitude", "longitude"):
-        args.append(json.dumps(f.hemisphere_expected))
-    elif t in ("literal", "keyword"):
-        args.append(json.dumps(f.value))
-    elif t in ("enum", "enum_chars"):
-        assert f.enum is not None
-        args.append(f.enum.camel)
-    if t in ("text", "enum_chars") and f.max_length is not None:
-        args.append(str(f.max_length))
+    for word in f.field_type.args:
+        args += _arg(word, f)
     if f.is_optional:
         args.append("optional=True")
-    return call_lines(f"rt.{TYPES[t].python_spec}", args, 8, ",")
+    return call_lines(f"rt.{f.field_type.python_spec}", args, 8, ",")
+
+
+def _arg(word: str, f: Field) -> list[str]:
+    """A word of the registry's argument vocabulary (field_types.py) as FieldSpec arguments for
+    `f` (none for a range or length the field does not give)."""
+    if word == "range":
+        return [_bound(f.min), _bound(f.max)] if f.min is not None or f.max is not None else []
+    if word == "word":
+        return [json.dumps(f.value)]
+    if word == "hemisphere":
+        return [json.dumps(f.field_type.hemisphere_expected)]
+    if word == "table":
+        assert f.enum is not None
+        return [f.enum.camel]
+    assert word == "max_length", word
+    return [str(f.max_length)] if f.max_length is not None else []
 
 
 def call_lines(function: str, args: list[str], indent: int, end: str = "") -> list[str]:
@@ -155,7 +158,7 @@ def entry_class(sentence: Sentence, layout: Layout, group: Group) -> str:
 
 def member_view(f: Field) -> dict:
     """A dataclass member of a field: its declaration and its docstring."""
-    default = "rt.ABSENT" if f.is_optional else (json.dumps(f.value) if f.type == "keyword" else "None")
+    default = "rt.ABSENT" if f.is_optional else (json.dumps(f.value) if f.field_type.keyword else "None")
     unit = f" [{f.unit}]" if f.unit else ""
     since = f" (NMEA {f.since})" if f.since else ""
     return {"line": f"{f.id}: {py_type(f)} = {default}", "doc": docstring(f"{f.name}{unit}{since}: {f.doc}", 4)}
@@ -210,8 +213,7 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
 def reply_test(condition: pairing.Condition) -> str:
     """A (field id, kind, value) triple that runtime.holds() interprets."""
     f = condition.field
-    kind = {"integer": "integer", "enum": "enum"}.get(f.type, "text")
-    return f"({json.dumps(f.id)}, {json.dumps(kind)}, {json.dumps(condition.value)})"
+    return f"({json.dumps(f.id)}, {json.dumps(f.field_type.python_pairing)}, {json.dumps(condition.value)})"
 
 
 def _outcome(layout: Layout) -> str | None:
@@ -245,7 +247,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             sentence=sentence,
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
             enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}),
-            uses_decimal=any(f.type in ("integer", "decimal") and "Decimal" in _bound(f.min) + _bound(f.max)
+            uses_decimal=any(f.field_type.numeric and "Decimal" in _bound(f.min) + _bound(f.max)
                              for lay in sentence.layouts for f in _all_fields(lay)))
     by_address = {s.address: spec.by_address(s.address) for s in spec.proprietary if s.framing == "sentence"}
     text_commands = {s.address.upper(): spec.text_command(s.address) for s in spec.proprietary if s.framing == "text"}

@@ -7,53 +7,24 @@ from __future__ import annotations
 
 import json
 import re
+import subprocess
+import tempfile
 import textwrap
+from pathlib import Path
 
 import jinja2
 
 from . import emit_vectors, pairing
-from .emit import RUNTIME, NameClaims, char_literal, header, package_readme, runtime_file
-from .field_types import TYPES
-from .model import BitfieldDef, EnumDef, Field, Group, Layout, Origin, Sentence, Spec, TableDef, camel, fixed_point, fmt_num
+from .emit import RUNTIME, char_literal, header, package_readme, runtime_file
+from .field_types import codes_expected
+from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, TableDef, camel
+from .names_rust import bits_const, entry_name, ident, parameter_const
+from .numbers import fixed_point
 from .rust_features import Gates, cfg, with_cfg
 
 CRATE = "nmeaspec"
 # The runtime crate's modules (runtime/rust/src), copied into the generated crate as src/runtime.
 RUNTIME_MODULES = sorted(path.stem for path in (RUNTIME / "rust" / "src").glob("*.rs"))
-
-# The types whose expected text the runtime's readers hold (it does not depend on the field).
-FIXED_EXPECTED = frozenset(name for name, t in TYPES.items() if t.expected is not None)
-
-KEYWORDS = {
-    "as", "break", "const", "continue", "crate", "else", "enum", "extern", "false", "fn", "for", "if", "impl",
-    "in", "let", "loop", "match", "mod", "move", "mut", "pub", "ref", "return", "self", "static", "struct",
-    "super", "trait", "true", "type", "unsafe", "use", "where", "while", "async", "await", "dyn", "abstract",
-    "become", "box", "do", "final", "macro", "override", "priv", "typeof", "unsized", "virtual", "yield", "try",
-    "gen",
-}
-
-# Names the sentence modules import from the runtime; generated type names must differ.
-def _runtime_exports() -> set[str]:
-    """The type names runtime/mod.rs exports (`pub use module::{A, B};`), read from it."""
-    text = (RUNTIME / "rust" / "src" / "mod.rs").read_text(encoding="utf-8")
-    names = set()
-    for group in re.findall(r"pub use \w+::\{([^}]*)\}", text):
-        names |= {n.strip() for n in group.split(",") if n.strip()[:1].isupper()}
-    return names
-
-
-# Names the sentence modules and lib.rs use, which generated type names must not take: the
-# runtime's exports, lib.rs's own types and the prelude's.
-RUNTIME_NAMES = _runtime_exports() | {"Sentence", "Generic", "LayoutId", "Option", "Result", "Self", "Parsed",
-                                      "Options", "Framer", "Item"}
-
-
-def ident(name: str) -> str:
-    """A Rust identifier for a spec id (raw when it is a keyword)."""
-    if name in ("self", "super", "crate", "Self"):
-        return name + "_"
-    return f"r#{name}" if name in KEYWORDS else name
-
 
 def rust_str(text: str) -> str:
     """A Rust string literal."""
@@ -112,15 +83,13 @@ def one_line(text: str) -> str:
 
 
 def base_type(f: Field) -> str:
-    simple = TYPES[f.type].rust_type
-    if simple is not None:
-        return simple
-    assert f.enum is not None
-    return f"Code<'a, {f.enum.camel}>" if f.type == "enum" else f"CodeChars<'a, {f.enum.camel}>"
+    rust_type = f.field_type.rust_type
+    assert rust_type is not None, f.type
+    return rust_type.format(enum=f.enum.camel if f.enum else "")
 
 
 def borrows(f: Field) -> bool:
-    return f.enum is not None or "'a" in (TYPES[f.type].rust_type or "")
+    return "'a" in (f.field_type.rust_type or "")
 
 
 def is_text(sentence: Sentence) -> bool:
@@ -154,155 +123,80 @@ def max_len(value: int | None) -> str:
     return "None" if value is None else f"Some({value})"
 
 
-def read_call(f: Field) -> tuple[str, list[str]]:
-    """The reader call that takes field `f` from reader `f`: method and arguments."""
-    t = f.type
-    name = rust_str(f.id)
-    if t in FIXED_EXPECTED:
-        if t in ("latitude", "longitude"):
-            assert f.hemisphere_expected == ("hemisphere N or S" if t == "latitude" else "hemisphere E or W")
-        return f"f.{t}", [name]
-    if t in ("integer", "decimal"):
-        return f"f.{t}", [name, rust_str(f.expected), range_expr(f)]
-    if t == "literal":
-        return "f.literal", [name, rust_str(f.expected), rust_str(f.value or "")]
-    if t == "text":
-        return "f.text", [name, rust_str(f.expected), max_len(f.max_length)]
-    if t == "keyword":
-        assert f.expected == f.value
-        return "f.keyword", [name, rust_str(f.value or "")]
-    assert f.enum is not None
-    if t == "enum":
-        assert f.expected == enum_expected(f.enum, False)
-        return "f.code", [name]
-    assert f.expected == enum_expected(f.enum, True)
-    return "f.code_chars", [name, max_len(f.max_length)]
+def rust_arg(word: str, f: Field) -> str | None:
+    """A word of the registry's argument vocabulary (field_types.py) as a Rust reader argument for
+    `f`; None for what the reader knows from its type (a coordinate's hemispheres, an enum)."""
+    if word == "range":
+        return range_expr(f)
+    if word == "word":
+        return rust_str(f.value or "")
+    if word == "max_length":
+        return max_len(f.max_length)
+    assert word in ("hemisphere", "table"), word
+    return None
 
 
 def fast_call(f: Field) -> tuple[str, list[str]]:
     """The fast path's reader call that takes field `f` from `f` (a FastReader, see
     runtime/fast.rs): read_call without the names and texts that errors need."""
-    t = f.type
-    if t in FIXED_EXPECTED:
-        return f"f.{t}", []
-    if t in ("integer", "decimal"):
-        return f"f.{t}", [range_expr(f)]
-    if t == "literal":
-        return "f.literal", [rust_str(f.value or "")]
-    if t == "text":
-        return "f.text", [max_len(f.max_length)]
-    if t == "keyword":
-        return "f.keyword", [rust_str(f.value or "")]
-    assert f.enum is not None
-    if t == "enum":
-        return "f.code", []
-    return "f.code_chars", [max_len(f.max_length)]
+    t = f.field_type
+    return f"f.{t.rust_method}", [a for a in (rust_arg(word, f) for word in t.args) if a is not None]
+
+
+def read_call(f: Field) -> tuple[str, list[str]]:
+    """The reader call that takes field `f` from reader `f`: method and arguments."""
+    method, args = fast_call(f)
+    return method, [rust_str(f.id), *([rust_str(f.expected)] if f.field_type.rust_expected else []), *args]
 
 
 # ---------------------------------------------------------------------------------------------
-# Formatting: the statements come out as rustfmt would write them (runtime/rust/rustfmt.toml:
-# max_width 120, use_small_heuristics Max), so that `cargo fmt --check` passes on the crate.
+# Statements, each on one line: rustfmt() breaks the long ones as it does every .rs file. It
+# leaves as written a construct it cannot fit in max_width (a test's long raw strings): those
+# few are broken here, as rustfmt would if it could.
+WIDTH = 120  # max_width of runtime/rust/rustfmt.toml
 
-WIDTH = 120
 
-
-def fmt_call(indent: int, prefix: str, callee: str, args: list[str], suffix: str, next_line: bool) -> list[str]:
-    """`prefix callee(args)suffix`: one line, else (for an assignment, `next_line`) the call on
-    the next line, else one argument per line."""
-    pad = " " * indent
-    call = f"{callee}({', '.join(args)})"
-    one = f"{pad}{prefix}{call}{suffix}"
-    # rustfmt keeps a `call()?` on the line only when it ends 2 columns short of the limit (a
-    # struct member of a one-letter name excepted); measured with rustfmt 1.9.
-    short_member = not next_line and len(prefix.rstrip(": ")) == 1
-    if len(one) <= (WIDTH if short_member or not suffix.startswith("?") else WIDTH - 2):
-        return [one]
-    if next_line and len(pad) + 4 + len(call) + len(suffix) <= WIDTH:
-        return [f"{pad}{prefix.rstrip()}", f"{pad}    {call}{suffix}"]
-    return [f"{pad}{prefix}{callee}(", *[f"{pad}    {a}," for a in args], f"{pad}){suffix}"]
+def fmt_call(indent: int, prefix: str, callee: str, args: list[str], suffix: str) -> list[str]:
+    """`prefix callee(args)suffix`."""
+    return [f"{' ' * indent}{prefix}{callee}({', '.join(args)}){suffix}"]
 
 
 def fmt_struct(indent: int, prefix: str, name: str, members: list[tuple[str, str]], suffix: str) -> list[str]:
-    pad = " " * indent
-    literal = f"{name} {{ {', '.join(f'{k}: {v}' for k, v in members)} }}{suffix}"
-    if len(pad) + len(prefix) + len(literal) <= WIDTH:
-        return [f"{pad}{prefix}{literal}"]
-    if prefix.endswith("= ") and len(pad) + 4 + len(literal) <= WIDTH:
-        return [f"{pad}{prefix.rstrip()}", f"{pad}    {literal}"]
-    return [f"{pad}{prefix}{name} {{", *[f"{pad}    {k}: {v}," for k, v in members], f"{pad}}}{suffix}"]
+    return [f"{' ' * indent}{prefix}{name} {{ {', '.join(f'{k}: {v}' for k, v in members)} }}{suffix}"]
 
 
 def fmt_const(indent: int, decl: str, value: str) -> list[str]:
-    pad = " " * indent
-    one = f"{pad}{decl} = {value};"
-    if len(one) <= WIDTH or len(pad) + 4 + len(value) + 1 > WIDTH:
-        return [one]
-    return [f"{pad}{decl} =", f"{pad}    {value};"]
+    return [f"{' ' * indent}{decl} = {value};"]
 
 
 def fmt_option(indent: int, key: str, value: str | None) -> list[str]:
-    """A struct member `key: Some(value),` (or `None`)."""
+    """A struct member `key: Some(value),` (or `None`), broken before a value too long for a line
+    (see WIDTH)."""
     pad = " " * indent
-    if value is None:
-        return [f"{pad}{key}: None,"]
-    one = f"{pad}{key}: Some({value}),"
-    if len(one) <= WIDTH:
-        return [one]
-    return [f"{pad}{key}: Some(", f"{pad}    {value},", f"{pad}),"]
+    one = f"{pad}{key}: {'None' if value is None else f'Some({value})'},"
+    return [one] if len(one) <= WIDTH else [f"{pad}{key}: Some(", f"{pad}    {value},", f"{pad}),"]
 
 
 def fmt_arm(indent: int, pattern: str, value: str) -> list[str]:
-    """A match arm `pattern => value,` as rustfmt writes it: on one line, else the value in a
-    block, else a `.map(…)` chain broken before the `.map`, else a call's one argument on its own
-    line."""
-    pad = " " * indent
-    one = f"{pad}{pattern} => {value},"
-    if len(one) <= WIDTH:
-        return [one]
-    if len(pad) + 4 + len(value) <= WIDTH:
-        return [f"{pad}{pattern} => {{", f"{pad}    {value}", f"{pad}}}"]
-    if ").map(" in value:
-        call, _, rest = value.partition(").map(")
-        return [f"{pad}{pattern} => {call})", f"{pad}    .map({rest},"]
-    callee, _, arg = value.partition("(")
-    return [f"{pad}{pattern} => {callee}(", f"{pad}    {arg[:-1]},", f"{pad}),"]
+    """A match arm `pattern => value,`."""
+    return [f"{' ' * indent}{pattern} => {value},"]
 
 
 def fmt_fast_arm(indent: int, pattern: str, layouts: list[str]) -> list[str]:
     """The match arm of the fast path's dispatch (lib.rs `read_sentence`) for an address with
     `layouts`: its first layout's reader, given the others."""
-    pad = " " * indent
-    rest = [f"LayoutId::{n}" for n in layouts[1:]]
-    call = f"read_layout::<{layouts[0]}, O>"
-    value = f"{call}(fields, line, &[{', '.join(rest)}])"
-    if len(f"{pad}{pattern} => {value},") <= WIDTH:
-        return [f"{pad}{pattern} => {value},"]
-    if len(pad) + 4 + len(value) <= WIDTH:
-        return [f"{pad}{pattern} => {{", f"{pad}    {value}", f"{pad}}}"]
-    return [f"{pad}{pattern} => {call}(", f"{pad}    fields,", f"{pad}    line,",
-            *fmt_slice(indent + 4, "", rest, ","), f"{pad}),"]
+    rest = ", ".join(f"LayoutId::{n}" for n in layouts[1:])
+    return fmt_arm(indent, pattern, f"read_layout::<{layouts[0]}, O>(fields, line, &[{rest}])")
 
 
 def fmt_const_slice(indent: int, decl: str, items: list[str]) -> list[str]:
-    """`decl = &[items];`: on one line, else the slice on the next line, else one item per line."""
-    lines = fmt_const(indent, decl, "&[" + ", ".join(items) + "]")
-    if all(len(line) <= WIDTH for line in lines):
-        return lines
-    return fmt_slice(indent, f"{decl} = ", items, ";")
-
-
-def fmt_bool_arm(indent: int, pattern: str, value: str) -> list[str]:
-    """A match arm whose value is `a && b && ...`, as rustfmt writes it: on one line, else in a
-    block, else one operand a line."""
-    pad = " " * indent
-    if len(f"{pad}{pattern} => {value},") <= WIDTH or len(pad) + 4 + len(value) <= WIDTH:
-        return fmt_arm(indent, pattern, value)
-    first, *rest = value.split(" && ")
-    return [f"{pad}{pattern} => {{", f"{pad}    {first}", *(f"{pad}        && {r}" for r in rest), f"{pad}}}"]
+    """`decl = &[items];`."""
+    return fmt_const(indent, decl, "&[" + ", ".join(items) + "]")
 
 
 def reply_case_lines(spec: Spec, gates: Gates) -> list[str]:
-    """The elements of tests/examples.rs's REPLY_CASES, as rustfmt writes them."""
+    """The elements of tests/examples.rs's REPLY_CASES (a reply's line can be too long for one: see
+    WIDTH)."""
     out: list[str] = []
     for case in pairing.reply_cases(spec):
         outcome = f"Some(ReplyOutcome::{case.outcome.capitalize()})" if case.outcome else "None"
@@ -327,15 +221,17 @@ def gates_all(vendors: set[str | None]) -> str:
 def reply_test(condition: pairing.Condition, target: str) -> str:
     """The Rust test that the member `target` (an Option) holds a reply's `when` or `outcome` value."""
     f, value = condition.field, condition.value
-    if f.type == "integer":
+    pairing = f.field_type.pairing
+    if pairing == "number":
         return f"{target}.is_some_and(|n| n.is_integer({int(value)}))"
-    if f.type == "enum":
+    if pairing == "code":
         assert f.enum is not None
         variant = camel(str(value))
         variant = "Self_" if variant == "Self" else variant
         return f"{target} == Some(Code::Known(crate::enums::{f.enum.camel}::{variant}))"
-    if f.type == "text":
+    if pairing == "string":
         return f"{target} == Some({rust_str(value)})"
+    assert pairing == "character", f.type
     return f"{target} == Some({char_literal(value)})"
 
 
@@ -348,7 +244,7 @@ def reply_pairing_arms(spec: Spec) -> tuple[list[str], list[str]]:
             binding = "s" if p.conditions else "_"
             tests = [reply_test(c, f"s.{ident(c.field.id)}") for c in p.conditions] or ["true"]
             reply_arms += [line for layout in command.layouts
-                           for line in with_cfg(12, gates_all({command.vendor, p.reply.vendor}), fmt_bool_arm(
+                           for line in with_cfg(12, gates_all({command.vendor, p.reply.vendor}), fmt_arm(
                                12, f"(LayoutId::{command.layout_camel(layout)}, "
                                f"Self::{p.reply.layout_camel(p.layout)}({binding}))", " && ".join(tests)))]
     outcome_arms: list[str] = []
@@ -367,56 +263,21 @@ def reply_pairing_arms(spec: Spec) -> tuple[list[str], list[str]]:
 
 
 def fmt_slice(indent: int, head: str, items: list[str], suffix: str) -> list[str]:
-    """`head&[items]suffix` (a match arm, a return), one item per line when it does not fit (a
-    match arm's body goes into a block first, when it fits there)."""
-    pad = " " * indent
-    body = f"&[{', '.join(items)}]"
-    one = f"{pad}{head}{body}{suffix}"
-    if len(one) <= WIDTH:
-        return [one]
-    if head.endswith("=> ") and suffix == "," and len(pad) + 4 + len(body) <= WIDTH:
-        return [f"{pad}{head}{{", f"{pad}    {body}", f"{pad}}}"]
-    return [f"{pad}{head}&[", *[f"{pad}    {i}," for i in items], f"{pad}]{suffix}"]
+    """`head&[items]suffix` (a match arm, a return)."""
+    return [f"{' ' * indent}{head}&[{', '.join(items)}]{suffix}"]
 
 
 def fmt_tuple(indent: int, items: list[str], suffix: str) -> list[str]:
+    """A tuple, one item a line when it is too long for a line (see WIDTH)."""
     pad = " " * indent
     one = f"{pad}({', '.join(items)}){suffix}"
-    if len(one) <= WIDTH:
-        return [one]
-    return [f"{pad}(", *[f"{pad}    {i}," for i in items], f"{pad}){suffix}"]
+    return [one] if len(one) <= WIDTH else [f"{pad}(", *[f"{pad}    {i}," for i in items], f"{pad}){suffix}"]
 
 
-def rust_sorted(names: set[str]) -> list[str]:
-    """Names in rustfmt's order of a use list: snake case, then CamelCase, then CONSTANTS."""
-    def key(name: str) -> tuple[int, str]:
-        if name == "self":
-            return (0, name)
-        if name.isupper():
-            return (3, name)
-        return (2 if name[:1].isupper() else 1, name)
-    return sorted(names, key=key)
-
-
-def fmt_use(path: str, names: list[str], prefix: str = "use") -> list[str]:
-    one = f"{prefix} {path}::{{{', '.join(names)}}};" if len(names) > 1 else f"{prefix} {path}::{names[0]};"
-    if len(one) < WIDTH - 1:
-        return [one]
-    lines, line = [], "   "
-    for i, name in enumerate(names):
-        part = f" {name},"
-        # rustfmt fills a line to 119 columns, the last one to 120 (its trailing comma is free)
-        if len(line) + len(part) > WIDTH - (i < len(names) - 1):
-            lines.append(line)
-            line = "   "
-        line += part
-    lines.append(line)
-    return [f"{prefix} {path}::{{", *lines, "};"]
-
-
-def enum_expected(e: EnumDef, chars: bool) -> str:
-    codes = " ".join(v.code for v in e.values)
-    return f"{e.id} code{'s' if chars else ''} ({codes})"
+def fmt_use(path: str, names: set[str], prefix: str = "use") -> list[str]:
+    """`use path::{names};` (rustfmt orders the names)."""
+    listed = ", ".join(sorted(names))
+    return [f"{prefix} {path}::{{{listed}}};" if len(names) > 1 else f"{prefix} {path}::{listed};"]
 
 
 def field_doc(f: Field) -> list[str]:
@@ -430,23 +291,6 @@ def field_doc(f: Field) -> list[str]:
 
 # ---------------------------------------------------------------------------------------------
 # The field diagram of a layout, AeroRust nmea style
-
-
-def placeholders(f: Field) -> list[str]:
-    """How the manual writes a field's wire text, one string per wire field."""
-    t = f.type
-    if t in ("latitude", "longitude"):
-        fmt = f.format or TYPES[t].placeholder
-        parts = fmt.split(",")
-        return parts if len(parts) == 2 else [parts[0], "a"]
-    if f.format:
-        return [f.format]
-    if t in ("literal", "keyword"):
-        return [f.value or "a"]
-    if t == "enum":
-        assert f.enum is not None
-        return ["x" * f.enum.max_len if f.enum.code_class == "digits" else "a" * f.enum.max_len]
-    return [TYPES[t].placeholder]
 
 
 def diagram(sentence: Sentence, layout: Layout) -> list[str]:
@@ -464,14 +308,14 @@ def diagram(sentence: Sentence, layout: Layout) -> list[str]:
             shown = 1 if collapse else item.max
             for _ in range(shown):
                 for f in item.fields:
-                    for text in placeholders(f):
+                    for text in f.field_type.placeholders(f):
                         parts.append((index, text))
                         index += 1
             if collapse:
                 parts.append((None, "..."))
                 index += (item.max - 1) * item.width
             continue
-        for text in placeholders(item):
+        for text in item.field_type.placeholders(item):
             parts.append((index, text))
             index += 1
     if is_text(sentence):
@@ -519,31 +363,21 @@ def diagram(sentence: Sentence, layout: Layout) -> list[str]:
 # Views: everything the templates print, computed here
 
 
-def entry_name(sentence: Sentence, layout: Layout, group: Group) -> str:
-    word = group.camel
-    return sentence.layout_camel(layout) + (word[:-1] if word.endswith("s") else word + "Entry")
-
-
-def field_view(f: Field, indent: int, prefix: str, suffix: str, next_line: bool) -> dict:
+def field_view(f: Field, indent: int, prefix: str, suffix: str) -> dict:
     callee, args = read_call(f)
     return {
         "field": f,
         "ident": ident(f.id),
         "type": f"Option<{base_type(f)}>",
-        "read": fmt_call(indent, prefix, callee, args, suffix, next_line),
+        "read": fmt_call(indent, prefix, callee, args, suffix),
         "width": f.wire_width,
         "doc": field_doc(f) + bits_doc(f),
     }
 
 
 def entry_read(fields: list[dict]) -> list[str]:
-    """`Ok(Self { field: read?, ... })` of an entry's reader, on one line when it fits."""
-    reads = [fv["read"] for fv in fields]
-    if all(len(r) == 1 for r in reads):
-        one = "        Ok(Self { " + ", ".join(r[0].strip().rstrip(",") for r in reads) + " })"
-        if len(one) <= WIDTH:
-            return [one]
-    return ["        Ok(Self {", *[line for r in reads for line in r], "        })"]
+    """`Ok(Self { field: read?, ... })` of an entry's reader."""
+    return ["        Ok(Self { " + ", ".join(line.strip().rstrip(",") for fv in fields for line in fv["read"]) + " })"]
 
 
 def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
@@ -556,13 +390,13 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     for item in layout.items:
         if isinstance(item, Group):
             g = item
-            if g.single and g.fields[0].type == "text":
+            if g.single and g.fields[0].field_type.verbatim:
                 # Kept as the wire text: a struct stays small whatever the group's maximum.
                 f = g.fields[0]
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.texts",
                                 [rust_str(g.id), rust_str(f.id), "repeats", rust_str(f.expected), max_len(f.max_length)],
-                                "?;", True)
-                fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.texts", ["repeats", max_len(f.max_length)], "?;", True)
+                                "?;")
+                fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.texts", ["repeats", max_len(f.max_length)], "?;")
                 items.append({"kind": "texts", "group": g, "ident": ident(g.id), "read": read, "fast": fast,
                               "optional": None,
                               "type": "Texts<'a>", "width": 1,
@@ -575,14 +409,14 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                 value = f"Option<{base_type(f)}>"
                 # The general reader of one value, named: the values stay on the wire and a
                 # parsed sentence reads them again with it.
-                value_reader = {"name": reader, "type": value, "body": fmt_call(4, "", callee, args, "", False),
+                value_reader = {"name": reader, "type": value, "body": fmt_call(4, "", callee, args, ""),
                                 "group": g}
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.entries",
-                                [rust_str(g.id), "repeats", str(f.wire_width), reader], "?;", True)
+                                [rust_str(g.id), "repeats", str(f.wire_width), reader], "?;")
                 fast_callee, fast_args = fast_call(f)
                 fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.values",
                                 ["repeats", str(f.wire_width), f"|f| {fast_callee}({', '.join(fast_args)})", reader],
-                                "?;", True)
+                                "?;")
                 unit = f" [{f.unit}]" if f.unit else ""
                 items.append({"kind": "values", "group": g, "ident": ident(g.id), "read": read, "fast": fast,
                               "optional": None, "value_reader": value_reader,
@@ -592,17 +426,17 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
                               + bits_doc(f)})
             else:
                 entry = entry_name(sentence, layout, g)
-                fields = [field_view(f, 12, f"{ident(f.id)}: ", "?,", False) for f in g.fields]
+                fields = [field_view(f, 12, f"{ident(f.id)}: ", "?,") for f in g.fields]
                 lifetime = any(borrows(f) for f in g.fields)
                 entry_type = entry + ("<'a>" if lifetime else "")
                 read_fast = [line for f in g.fields
-                             for line in fmt_call(8, f"self.{ident(f.id)} = ", *fast_call(f), "?;", True)]
+                             for line in fmt_call(8, f"self.{ident(f.id)} = ", *fast_call(f), "?;")]
                 entries.append({"name": entry, "group": g, "fields": fields, "lifetime": lifetime,
                                 "type": entry_type, "read": entry_read(fields), "read_fast": read_fast})
                 read = fmt_call(8, f"out.{ident(g.id)} = ", "f.entries",
-                                [rust_str(g.id), "repeats", str(g.width), f"{entry}::read"], "?;", True)
+                                [rust_str(g.id), "repeats", str(g.width), f"{entry}::read"], "?;")
                 fast = fmt_call(8, f"self.{ident(g.id)} = ", "f.entries",
-                                ["repeats", str(g.width), f"{entry}::read_fast", f"{entry}::read"], "?;", True)
+                                ["repeats", str(g.width), f"{entry}::read_fast", f"{entry}::read"], "?;")
                 items.append({"kind": "entries", "group": g, "ident": ident(g.id), "entry": entry, "read": read,
                               "fast": fast,
                               "optional": None, "lifetime": lifetime,
@@ -616,15 +450,15 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
             optional_index += 1
             optional = {"wire": optional_wire, "index": optional_index}
         indent = 12 if optional else 8
-        if item.type == "keyword":
+        if item.field_type.keyword:
             callee, args = read_call(item)
-            view = {"field": item, "ident": ident(item.id), "read": fmt_call(indent, "", callee, args, "?;", False),
-                    "fast": fmt_call(indent, "", *fast_call(item), "?;", False),
+            view = {"field": item, "ident": ident(item.id), "read": fmt_call(indent, "", callee, args, "?;"),
+                    "fast": fmt_call(indent, "", *fast_call(item), "?;"),
                     "width": 1, "word": rust_str(item.value or "")}
             view["kind"] = "keyword"
         else:
-            view = field_view(item, indent, f"out.{ident(item.id)} = ", "?;", True)
-            view["fast"] = fmt_call(indent, f"self.{ident(item.id)} = ", *fast_call(item), "?;", True)
+            view = field_view(item, indent, f"out.{ident(item.id)} = ", "?;")
+            view["fast"] = fmt_call(indent, f"self.{ident(item.id)} = ", *fast_call(item), "?;")
             view["kind"] = "field"
         view["optional"] = optional
         items.append(view)
@@ -644,7 +478,6 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
     assigned = bool(members) or bool(optional)
     init = [f"        let {'mut ' if assigned else ''}out = Self {{ "
             + ", ".join(framing_members + (["..Self::default()"] if assigned else [])) + " };"]
-    assert len(init[0]) <= WIDTH
     fast = fast_reader(sentence, items) if sentence.fast_path and not text else []
     lifetime = (not sentence.is_proprietary or text
                 or any(it["kind"] == "field" and borrows(it["field"]) for it in items)
@@ -708,30 +541,24 @@ def visit_lines(items: list[dict]) -> list[str]:
         method = {"keyword": "keyword", "values": "values", "texts": "texts", "entries": "entries"}.get(
             it["kind"], "field")
         value = it["word"] if it["kind"] == "keyword" else f"&self.{it['ident']}"
-        call = fmt_call(indent, "", f"sink.{method}", [key, value], "?;", False)
+        call = fmt_call(indent, "", f"sink.{method}", [key, value], "?;")
         lines += [f"        if self.trailing >= {optional['index']} {{", *call, "        }"] if optional else call
     return lines
 
 
 def json_const(items: list[dict]) -> list[str]:
-    """`const JSON`: the JsonMember of each item (what reading decode's JSON back looks for), as
-    rustfmt writes it."""
-    members: list[tuple[str, list[str]]] = []
+    """`const JSON`: the JsonMember of each item (what reading decode's JSON back looks for)."""
+    members: list[str] = []
     for it in items:
         if it["kind"] in ("values", "texts"):
-            members.append(("JsonMember::Values", [rust_str(it["group"].id), str(it["group"].fields[0].wire_width)]))
+            members.append(f"JsonMember::Values({rust_str(it['group'].id)}, {it['group'].fields[0].wire_width})")
         elif it["kind"] == "entries":
             pairs = ", ".join(f"({rust_str(f.id)}, {f.wire_width})" for f in it["group"].fields)
-            members.append(("JsonMember::Entries", [rust_str(it["group"].id), f"&[{pairs}]"]))
+            members.append(f"JsonMember::Entries({rust_str(it['group'].id)}, &[{pairs}])")
         else:
             kind = "Optional" if it.get("optional") else "Field"
-            members.append((f"JsonMember::{kind}", [rust_str(it["field"].id), str(it["field"].wire_width)]))
-    decl = "const JSON: &'static [JsonMember]"
-    lines = fmt_const_slice(4, decl, [f"{name}({', '.join(args)})" for name, args in members])
-    if all(len(line) <= WIDTH for line in lines):
-        return lines
-    return [f"    {decl} = &[", *(line for name, args in members for line in fmt_call(8, "", name, args, ",", False)),
-            "    ];"]
+            members.append(f"JsonMember::{kind}({rust_str(it['field'].id)}, {it['field'].wire_width})")
+    return fmt_const_slice(4, "const JSON: &'static [JsonMember]", members)
 
 
 def fast_reader(sentence: Sentence, items: list[dict]) -> list[str]:
@@ -790,7 +617,7 @@ def module_imports(views: list[dict]) -> list[str]:
             for name in ("Number", "Hex", "Time", "Date", "Coordinate", "CodeChars", "Code"):
                 if t == name or t.startswith(name + "<"):
                     runtime.add(name)
-            if f.type in ("integer", "decimal"):
+            if f.field_type.numeric:
                 runtime.add("Range")
                 if f.min is not None or f.max is not None:
                     runtime.add("Bound")
@@ -798,39 +625,10 @@ def module_imports(views: list[dict]) -> list[str]:
                 enums.add(f.enum.camel)
     lines: list[str] = []
     if enums:
-        lines += fmt_use("crate::enums", rust_sorted(enums))
-    lines += fmt_use("crate::runtime", rust_sorted(runtime))
+        lines += fmt_use("crate::enums", enums)
+    lines += fmt_use("crate::runtime", runtime)
     lines += ["use crate::LayoutId;"]
     return lines
-
-
-def name_clashes(spec: Spec) -> list[tuple[Origin, str]]:
-    """The Rust names built from the spec's ids that two things, or a thing and the runtime, would
-    share (reported by generator/checks.py, S016)."""
-    names = NameClaims("Rust")
-    names.owners.update({name: "the runtime" for name in RUNTIME_NAMES})
-    for e in spec.enums:
-        names.claim(e.camel, f"enum {e.id}", e.origin)
-    for s in spec.sentences:
-        for lay in s.layouts:
-            names.claim(s.layout_camel(lay), f"layout {s.layout_snake(lay)}", lay.origin)
-            g = lay.group
-            if g is not None and not g.single:  # the layouts of a sentence may share an entry type
-                names.claim(entry_name(s, lay, g), f"the entries of group {g.id} of sentence {s.id}", g.origin)
-    for b in spec.bitfields:
-        names.claim(b.camel, f"bitfield {b.id}", b.origin)
-        constants = NameClaims("Rust")
-        for bits in b.bits:
-            for v in bits.values:
-                constants.claim(f"{bits.id}_{v.id}".upper(), f"value {v.id} of bits {bits.id} of bitfield {b.id}",
-                                bits.origin)
-        names.clashes += constants.clashes
-    for t in spec.tables:
-        for param in t.parameters:
-            if param.id == "table":
-                names.clashes.append((param.origin, f"parameter {param.id} of table {t.id} would be named TABLE, the "
-                                      "name of the table itself"))
-    return names.clashes
 
 
 def enum_view(e: EnumDef) -> dict:
@@ -846,8 +644,8 @@ def enum_view(e: EnumDef) -> dict:
         "name": e.camel,
         "doc": doc_lines(f"{e.name}: {e.doc}"),
         "variants": variants,
-        "expected": fmt_const(4, "const EXPECTED: &'static str", rust_str(enum_expected(e, False))),
-        "expected_chars": fmt_const(4, "const EXPECTED_CHARS: &'static str", rust_str(enum_expected(e, True))),
+        "expected": fmt_const(4, "const EXPECTED: &'static str", rust_str(codes_expected(e, False))),
+        "expected_chars": fmt_const(4, "const EXPECTED_CHARS: &'static str", rust_str(codes_expected(e, True))),
         "class": {"digits": "Digits", "letters": "Letters", "alnum": "Alnum"}[e.code_class],
         "all": fmt_const_slice(4, "const ALL: &'static [Self]", [f"Self::{v['name']}" for v in variants]),
     }
@@ -889,7 +687,7 @@ def bitfield_view(b: BitfieldDef, on_integers: bool) -> dict:
                                  f"(its low {bits.width} bit{'s' if bits.width > 1 else ''}).", 92),
         })
         for v in bits.values:
-            constants.append({"name": f"{bits.id}_{v.id}".upper(), "value": str(v.value),
+            constants.append({"name": bits_const(bits, v), "value": str(v.value),
                               "doc": doc_lines(f"`{bits.id}` = {v.value}: {v.doc}", 92)})
     return {
         "name": b.camel, "type": bits_type, "doc": doc_lines(f"{b.name} ({b.width} bits): {b.doc}"),
@@ -933,7 +731,7 @@ def table_view(t: TableDef) -> dict:
             ("bitfield_id", opt(prm.bitfield_id, rust_str)),
         ]
         parameters.append({
-            "name": prm.id.upper(),
+            "name": parameter_const(prm),
             "doc": doc_lines(f"{prm.number}, {title}: {prm.doc}{effect}", 92) + links,
             "members": [f"        {k}: {v}," for k, v in members],
         })
@@ -946,12 +744,9 @@ def table_view(t: TableDef) -> dict:
 
 
 def table_head(t: TableDef, names: list[str]) -> list[str]:
-    """`pub const TABLE: Table = Table { … };` as rustfmt writes it."""
+    """`pub const TABLE: Table = Table { … };`."""
     members = [("id", rust_str(t.id)), ("name", rust_str(t.name)), ("parameters", "&[" + ", ".join(names) + "]")]
-    lines = fmt_struct(4, "pub const TABLE: Table = ", "Table", members, ";")
-    if len(lines) == 1 or all(len(line) <= WIDTH for line in lines):
-        return lines
-    return [*lines[:-2], "        parameters: &[", *[f"            {n}," for n in names], "        ],", lines[-1]]
+    return fmt_struct(4, "pub const TABLE: Table = ", "Table", members, ";")
 
 
 def command_example(spec: Spec) -> dict | None:
@@ -967,7 +762,7 @@ def command_example(spec: Spec) -> dict | None:
     for item in lay.items:
         if isinstance(item, Group) or item.is_optional:
             continue
-        texts += [item.value or ""] if item.type == "keyword" else [""] * item.wire_width
+        texts += [item.value or ""] if item.field_type.keyword else [""] * item.wire_width
     if s.framing == "text":
         line = " ".join([s.address or "", *texts])
     else:
@@ -1040,7 +835,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                                                             ",")),
             })
     modules = [{"sentence": s, "module": sentence_module(s), "cfg": gates.sentence(s), "uses": fmt_use(
-        sentence_module(s), rust_sorted({s.layout_camel(lay) for lay in s.layouts}), "pub use")} for s in spec.sentences]
+        sentence_module(s), {s.layout_camel(lay) for lay in s.layouts}, "pub use")} for s in spec.sentences]
     # rustfmt sorts `mod` items by the name without `r#`, `use` items by the path as written.
     files[f"{base}/src/sentences/mod.rs"] = env.get_template("rust/sentences_mod.rs.j2").render(
         header=header(spec, "//"), sentences=sorted(modules, key=lambda m: m["module"].removeprefix("r#")),
@@ -1049,20 +844,19 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         header=header(spec, "//", [e.origin.file for e in spec.enums]), enums=[{**enum_view(e), "cfg": gates.enum(e.id)} for e in spec.enums])
     files[f"{base}/src/bitfields.rs"] = env.get_template("rust/bitfields.rs.j2").render(
         header=header(spec, "//", [b.origin.file for b in spec.bitfields]),
-        bitfields=[{"cfg": gates.bitfield(b.id)} | bitfield_view(b, any(f.bitfield is b and f.type == "integer" for s in spec.sentences
+        bitfields=[{"cfg": gates.bitfield(b.id)} | bitfield_view(b, any(f.bitfield is b and f.field_type.numeric for s in spec.sentences
                                         for lay in s.layouts for f in all_fields(lay)))
                    for b in spec.bitfields],
-        uses_numbers=any(f.bitfield is not None and f.type == "integer" for s in spec.sentences
+        uses_numbers=any(f.bitfield is not None and f.field_type.numeric for s in spec.sentences
                          for lay in s.layouts for f in all_fields(lay)),
         hex_cfg=gates.union([gates.bitfield(b.id) for b in spec.bitfields]),
         number_cfg=gates.union([gates.bitfield(f.bitfield.id) for s in spec.sentences for lay in s.layouts
-                                for f in all_fields(lay) if f.bitfield is not None and f.type == "integer"]))
+                                for f in all_fields(lay) if f.bitfield is not None and f.field_type.numeric]))
     files[f"{base}/src/tables.rs"] = env.get_template("rust/tables.rs.j2").render(
         header=header(spec, "//", [t.origin.file for t in spec.tables]), tables=[{**table_view(t), "cfg": gates.table(t.id)} for t in spec.tables],
-        imports=fmt_use("crate::runtime", rust_sorted(
-            {"Encoding", "Parameter", "Table"}
-            | ({"Bound"} if any(p.min is not None or p.max is not None for t in spec.tables for p in t.parameters)
-               else set()))) if spec.tables else [])
+        imports=fmt_use("crate::runtime", {"Encoding", "Parameter", "Table"} | (
+            {"Bound"} if any(p.min is not None or p.max is not None for t in spec.tables for p in t.parameters)
+            else set())) if spec.tables else [])
     vectors = emit_vectors.example_vectors(spec)
     intact = [v for v in vectors if v["line"]]
     first = None
@@ -1072,7 +866,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         v = max(candidates, key=lambda v: sum(1 for t in v["line"].split("*")[0].split(",") if t))
         s = spec.sentence(v["sentence"])
         lay = next(lay for lay in s.layouts if lay.id == v["variant"])
-        filled = [f for f in lay.fields if not f.is_optional and f.type != "keyword"
+        filled = [f for f in lay.fields if not f.is_optional and not f.field_type.keyword
                   and json.loads(v["decode"])["fields"].get(f.id)]
         if filled:
             first = {"line": v["line"], "layout": s.layout_camel(lay), "var": ident(s.id.lower()),
@@ -1128,8 +922,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         standard_like_arms=standard_like_arms, standard_fast_arms=standard_fast_arms,
         proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands, reply_arms=reply_arms, outcome_arms=outcome_arms,
-        runtime_uses=fmt_use("runtime", rust_sorted(
-            {"first_word", "strip_line_ending", "FastReader", "Unsure"})),
+        runtime_uses=fmt_use("runtime", {"first_word", "strip_line_ending", "FastReader", "Unsure"}),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],
@@ -1141,4 +934,23 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files[f"{base}/tests/examples.rs"] = env.get_template("rust/examples.rs.j2").render(
         header=header(spec, "//"), vectors=[{"rust": example_lines(v), "cfg": gates.sentence(spec.sentence(v["sentence"]))} for v in vectors],
         crate=CRATE, reply_cases=reply_case_lines(spec, gates))
-    return files
+    return rustfmt(files)
+
+
+def rustfmt(files: dict[str, str]) -> dict[str, str]:
+    """`files` with every .rs file as rustfmt writes it under the crate's rustfmt.toml (so that
+    `cargo fmt --check` passes by construction): one rustfmt process over a copy of them in a
+    temporary directory."""
+    sources = [path for path in files if path.endswith(".rs")]
+    with tempfile.TemporaryDirectory() as tmp:
+        for path in sources:
+            (Path(tmp) / path).parent.mkdir(parents=True, exist_ok=True)
+            (Path(tmp) / path).write_text(files[path], encoding="utf-8")
+        command = ["rustfmt", "--edition", "2021", "--config-path", str(RUNTIME / "rust" / "rustfmt.toml"), *sources]
+        try:
+            run = subprocess.run(command, cwd=tmp, capture_output=True, text=True)
+        except FileNotFoundError:
+            raise SystemExit("generator: rustfmt is missing; install it with `rustup component add rustfmt`") from None
+        if run.returncode != 0:
+            raise SystemExit(f"generator: rustfmt failed on the generated Rust:\n{run.stderr}")
+        return files | {path: (Path(tmp) / path).read_text(encoding="utf-8") for path in sources}

@@ -8,9 +8,9 @@ import re
 
 import jinja2
 
-from .emit import NameClaims, header, runtime_file
+from .emit import header, runtime_file
 from .emit_python import PACKAGE, py_call, py_literal, py_str
-from .model import Origin, Spec
+from .model import Spec
 
 
 def _one_line(text: str) -> str:
@@ -31,7 +31,8 @@ def command_views(spec: Spec) -> tuple[list[dict], list[dict]]:
         for layout in s.layouts:
             name = s.command_name(layout)
             arguments = [{"id": f.id, "type": f.type, "doc": _first_sentence(f.doc),
-                          "enum": f.enum.camel if f.enum else None, "value": f.value, "optional": f.is_optional}
+                          "enum": f.enum.camel if f.enum else None, "value": f.value, "optional": f.is_optional,
+                          "keyword": f.field_type.keyword}
                          for f in layout.fields]
             commands.append({"sentence": s, "layout_id": layout.id, "vendor": s.vendor, "name": name, "layout": s.layout_camel(layout),
                              "doc": _one_line(layout.name if layout.id else s.name), "arguments": arguments,
@@ -44,24 +45,13 @@ def command_views(spec: Spec) -> tuple[list[dict], list[dict]]:
     return commands, shortcuts
 
 
-def name_clashes(spec: Spec) -> list[tuple[Origin, str]]:
-    """The names `nmea command VENDOR NAME` would know two commands of a vendor by (reported by
-    generator/checks.py, S016)."""
-    names = NameClaims("command")
-    for s in spec.sentences:
-        if s.kind == "command" and s.vendor is not None:
-            for layout in s.layouts:
-                names.claim(f"{s.vendor} {s.command_name(layout)}", f"layout {s.layout_snake(layout)}", layout.origin)
-    return names.clashes
-
-
 def usage(command: dict) -> str:
     """How `nmea command --list` writes a command: its name, then its arguments (optional ones and
     keywords, which may be left out, in brackets)."""
     words = [command["name"]]
     for a in command["arguments"]:
-        word = (a["value"] or "").lower() if a["type"] == "keyword" else a["id"].upper()
-        words.append(f"[{word}]" if a["optional"] or a["type"] == "keyword" else word)
+        word = (a["value"] or "").lower() if a["keyword"] else a["id"].upper()
+        words.append(f"[{word}]" if a["optional"] or a["keyword"] else word)
     return " ".join(words)
 
 

@@ -1,65 +1,312 @@
 """The field-type registry: everything that differs by the type of a field, in one place.
 
 A spec field has one of the types below (spec/schema lists the same names). What a type reads
-and accepts is behaviour, written once per runtime (runtime/, generator/reference.py);
-what the generator needs to know about a type to name, describe and call that behaviour is here:
-how many wire fields it spans, what an error says it takes when that does not depend on the field,
-how the docs name it, how a manual writes it, and per language the type that holds its value and
-the runtime piece that reads it. Adding a type means a row here and its behaviour in each runtime.
+and writes is behaviour, written once per runtime (runtime/c, runtime/rust, runtime/python);
+everything the generator needs to know about a type to check, describe and call that behaviour is
+here, and the model, the checks, the reference decoder and the emitters ask the type, never its
+name: how many wire fields it spans, what an error says it takes, how the docs name it and how a
+manual writes it, how an example's value is checked and written as JSON, how a reply is paired by
+it, and per language the type that holds its value and the runtime pieces that read and write it.
+
+What a reader or writer takes besides the text is said once, in a small vocabulary that each
+emitter renders in its language (`args`): "range" (a number's min and max), "word" (the field's
+`value`), "hemisphere" (what its hemisphere field takes), "table" (its enum's table), "max_length".
+
+Adding a field type touches: its entry in TYPES below (an instance of the kind it belongs to, or
+of a new FieldType subclass when no kind fits); its name in spec/schema/sentence.schema.json and
+its row in spec/README.md and runtime/json.md; its reader and writer in each runtime:
+runtime/python/runtime.py (reader function and FieldSpec class), runtime/c/runtime.h and
+runtime.c (its FIELD_ constant, its case in the layout reader and writer, fast_<c_fast> and
+fast_put_<c_put>), runtime/rust/src (the value type in types.rs, the Reader method in frame.rs,
+the FastReader method in fast.rs). No other file of generator/ changes.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from decimal import Decimal
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, Callable
+
+from .numbers import fixed_point, fmt_num
+
+if TYPE_CHECKING:
+    from .model import EnumDef, Field
+
+
+@dataclass
+class Reading:
+    """Where the reference decoder reads a field: what the Python runtime's readers take besides
+    the wire texts."""
+    rt: ModuleType                       # runtime/python/runtime.py
+    address: str
+    index: int                           # 1-based wire index of the field
+    name: str                            # the field's name in errors (group entries: g[2].f)
+    ignore_case: bool                    # text commands: words in any letter case
+    member: Callable[[str, str], Any]    # an enum member from its code and value id
 
 
 @dataclass(frozen=True)
 class FieldType:
+    """A type whose value is one wire text read as it is (time, date, char): the base of the kinds."""
     name: str
-    wire_width: int            # wire fields a value spans (a latitude and its hemisphere: 2)
-    expected: str | None       # what a bad_field error says it takes, when the type alone decides
     doc_name: str              # the Type column of the docs
     placeholder: str           # how a manual writes it, when the field gives no format
     c_type: str | None         # the C member's type (None: nothing stored, the layout implies it)
     c_empty: str               # what an empty field leaves in that member, for the member docs
     c_fast: str                # the C fast path's reader, fast_<c_fast>, and writer, fast_put_<c_put>
     c_put: str
-    rust_type: str | None      # the Rust member's type inside Option (enums: see rust_type())
-    python_type: str | None    # the Python member's type (enums: see python_type())
+    rust_type: str | None      # the Rust member's type inside Option ({enum}: its enum's Rust name)
+    python_type: str           # the Python member's type ({enum}: its enum's class)
     python_spec: str           # the Python runtime's FieldSpec class
+    reader: str = ""           # the Python runtime's reader, <reader>(text, address, index, name, expected, ...)
+    expected_text: str | None = None   # what a bad_field error says it takes, when the type alone decides
+    wire_width: int = 1        # wire fields a value spans (a latitude and its hemisphere: 2)
+    args: tuple[str, ...] = ()         # what its readers take besides the text (see the module's docstring)
+    c_put_args: tuple[str, ...] = ("&value",)   # what the C fast writer takes: "value", "&value" or args
+    c_doc: str = ""            # what the C member's docs add ({value}, {enum_type}, {enum_table})
+    rust_reader: str = ""      # the Rust Reader's and FastReader's method (default: the type's name)
+    rust_expected: bool = False        # the Rust reader takes the expected text (it cannot derive it)
+    pairing: str | None = None         # how a reply's `when` compares it: number, code, string, character
+    python_pairing: str = "text"       # the kind runtime.holds() compares it as
     memo: bool = False         # values are looked up by text first (see the runtimes' known tables)
+    keyword: bool = False      # a fixed word that picks the layout; nothing is stored
+    bits: bool = False         # a bitfield may name its bits
+    verbatim: bool = False     # the value is the wire text itself (Rust keeps a group of it as received)
+    per_char: bool = False     # codes: one one-character code per character
+    hemispheres: str = ""      # coordinates: the letters their hemisphere field takes, positive first
+
+    @property
+    def numeric(self) -> bool:
+        """A number with an optional range (min, max)."""
+        return "range" in self.args
+
+    @property
+    def coded(self) -> bool:
+        """Its values are codes of an enum."""
+        return "table" in self.args
+
+    @property
+    def has_length(self) -> bool:
+        return "max_length" in self.args
+
+    @property
+    def hemisphere_expected(self) -> str:
+        return f"hemisphere {self.hemispheres[0]} or {self.hemispheres[1]}"
+
+    @property
+    def rust_method(self) -> str:
+        return self.rust_reader or self.name
+
+    def expected(self, f: Field) -> str:
+        """What a bad_field error says field `f` should hold (the value part of a coordinate)."""
+        assert self.expected_text is not None, self.name
+        return self.expected_text
+
+    def read(self, f: Field, texts: list[str], at: Reading) -> Any:
+        """The reference decoder's value of `f` from its wire texts."""
+        return getattr(at.rt, self.reader)(texts[0], at.address, at.index, at.name, f.expected)
+
+    def expect_json(self, f: Field, value: Any, rt: ModuleType) -> str:
+        """An example's expected value (YAML `expect`, not None) as the decoded JSON; TypeError,
+        ValueError or KeyError when it cannot be a value of `f`."""
+        if not isinstance(value, str):
+            raise TypeError(f"{self.name} expects a string")
+        return rt.json_str(value)
+
+    def placeholders(self, f: Field) -> list[str]:
+        """How the manual writes the field's wire text, one string per wire field."""
+        return [f.format or self.placeholder]
+
+    def pairing_problem(self, f: Field, value: Any) -> str | None:
+        """Why `value` (expect form) cannot be a value of `f` in a reply's `when` or `outcome`."""
+        kinds = ", ".join(t.name for t in TYPES.values() if t.pairing)
+        return f"field {f.id} is {self.name}: a reply is paired or judged only by {kinds} fields"
+
+
+@dataclass(frozen=True)
+class CharType(FieldType):
+    def pairing_problem(self, f: Field, value: Any) -> str | None:
+        if not isinstance(value, str) or len(value) != 1:
+            return f"field {f.id} is {self.name}: {value!r} is not one"
+        return None
+
+
+@dataclass(frozen=True)
+class NumberType(FieldType):
+    """integer, decimal: a fixed-point number, within its range if the field gives one."""
+    integer: bool = False
+
+    def expected(self, f: Field) -> str:
+        what = "integer" if self.integer else "decimal number"
+        if f.min is not None and f.max is not None:
+            return f"{what} {fmt_num(f.min)}..{fmt_num(f.max)}"
+        if f.min is not None:
+            return f"{what} of at least {fmt_num(f.min)}"
+        if f.max is not None:
+            return f"{what} of at most {fmt_num(f.max)}"
+        return what
+
+    def read(self, f: Field, texts: list[str], at: Reading) -> Any:
+        low, high = (None if b is None else Decimal(str(b)) for b in (f.min, f.max))
+        return at.rt.number_field(texts[0], self.integer, at.address, at.index, at.name, f.expected, low, high)
+
+    def expect_json(self, f: Field, value: Any, rt: ModuleType) -> str:
+        return number_json(value, rt)
+
+    def pairing_problem(self, f: Field, value: Any) -> str | None:
+        if not self.pairing:
+            return super().pairing_problem(f, value)
+        if isinstance(value, bool) or not isinstance(value, int):
+            return f"field {f.id} is an integer: {value!r} is not one"
+        return None
+
+
+@dataclass(frozen=True)
+class HexType(FieldType):
+    def expect_json(self, f: Field, value: Any, rt: ModuleType) -> str:
+        if not isinstance(value, int):
+            raise TypeError(f"{self.name} expects an integer")
+        return str(value)
+
+
+@dataclass(frozen=True)
+class CoordinateType(FieldType):
+    """latitude, longitude: degrees and minutes, then a hemisphere field."""
+
+    def read(self, f: Field, texts: list[str], at: Reading) -> Any:
+        return at.rt.coordinate_field(texts[0], texts[1], at.address, at.index, at.name, f.expected,
+                                      self.hemisphere_expected, self.hemispheres)
+
+    def expect_json(self, f: Field, value: Any, rt: ModuleType) -> str:
+        if set(value) != {"deg", "min", "hemi"}:
+            raise KeyError("expects {deg, min, hemi}")
+        return (f'{{"deg":{int(value["deg"])},"min":{number_json(value["min"], rt)},'
+                f'"hemi":{rt.json_str(str(value["hemi"]))}}}')
+
+    def placeholders(self, f: Field) -> list[str]:
+        parts = (f.format or self.placeholder).split(",")
+        return parts if len(parts) == 2 else [parts[0], "a"]
+
+
+@dataclass(frozen=True)
+class WordType(FieldType):
+    """literal, keyword: the field's one word (`value`), or (a literal) nothing."""
+
+    def expected(self, f: Field) -> str:
+        return f.value or "" if self.keyword else f"{f.value} or nothing"
+
+    def read(self, f: Field, texts: list[str], at: Reading) -> Any:
+        if self.keyword:
+            return at.rt.keyword_field(texts[0], at.address, at.index, at.name, f.expected, f.value, at.ignore_case)
+        return at.rt.literal_field(texts[0], at.address, at.index, at.name, f.expected, f.value)
+
+    def placeholders(self, f: Field) -> list[str]:
+        return [f.format or f.value or "a"]
+
+
+@dataclass(frozen=True)
+class TextType(FieldType):
+    def expected(self, f: Field) -> str:
+        return f"text of at most {f.max_length} characters" if f.max_length else "text"
+
+    def read(self, f: Field, texts: list[str], at: Reading) -> Any:
+        return at.rt.text_field(texts[0], at.address, at.index, at.name, f.expected, f.max_length)
+
+    def pairing_problem(self, f: Field, value: Any) -> str | None:
+        if not isinstance(value, str) or not value:
+            return f"field {f.id} is {self.name}: {value!r} is not one"
+        return None
+
+
+@dataclass(frozen=True)
+class CodeType(FieldType):
+    """enum (one code), enum_chars (one one-character code per character)."""
+
+    def expected(self, f: Field) -> str:
+        assert f.enum is not None
+        return codes_expected(f.enum, self.per_char)
+
+    def read(self, f: Field, texts: list[str], at: Reading) -> Any:
+        e = f.enum
+        assert e is not None
+        by_code = {v.code: at.member(v.code, v.id) for v in e.values}
+        if self.per_char:
+            return at.rt.enum_chars_field(texts[0], at.address, at.index, at.name, f.expected, by_code,
+                                          e.code_class, f.max_length)
+        return at.rt.enum_field(texts[0], at.address, at.index, at.name, f.expected, by_code, e.code_class,
+                                e.min_len, e.max_len, at.ignore_case)
+
+    def expect_json(self, f: Field, value: Any, rt: ModuleType) -> str:
+        assert f.enum is not None
+        if self.per_char and not isinstance(value, list):
+            raise TypeError(f"{self.name} expects a list of value ids")
+        for v in value if self.per_char else [value]:
+            if f.enum.by_id(str(v)) is None:
+                raise ValueError(f"{v!r} is not a value id of enum {f.enum.id}")
+        if self.per_char:
+            return "[" + ",".join(rt.json_str(str(v)) for v in value) + "]"
+        return rt.json_str(str(value))
+
+    def placeholders(self, f: Field) -> list[str]:
+        if f.format or self.per_char:
+            return super().placeholders(f)
+        assert f.enum is not None
+        return [("x" if f.enum.code_class == "digits" else "a") * f.enum.max_len]
+
+    def pairing_problem(self, f: Field, value: Any) -> str | None:
+        if not self.pairing:
+            return super().pairing_problem(f, value)
+        if f.enum is None or f.enum.by_id(str(value)) is None:
+            return f"{value!r} is not a value id of enum {f.enum.id if f.enum else '?'}"
+        return None
+
+
+def codes_expected(enum: EnumDef, per_char: bool) -> str:
+    """What an enum field (`per_char`: an enum_chars field) of `enum` takes, in a bad_field error."""
+    return f"{enum.id} code{'s' if per_char else ''} ({' '.join(v.code for v in enum.values)})"
+
+
+def number_json(value: Any, rt: ModuleType) -> str:
+    """A spec number as the decoded JSON writes it."""
+    if isinstance(value, bool):
+        raise TypeError("a number, not a boolean")
+    digits, scale = fixed_point(str(value))
+    return rt.decimal_json(abs(digits), scale, digits < 0)
 
 
 TYPES: dict[str, FieldType] = {t.name: t for t in (
-    FieldType("integer", 1, None, "integer", "x", "nmea_number", "present false", "integer", "number",
-              "Number", "rt.Number", "IntegerField", memo=True),
-    FieldType("decimal", 1, None, "decimal", "x.x", "nmea_number", "present false", "decimal", "number",
-              "Number", "rt.Number", "DecimalField", memo=True),
-    FieldType("hex", 1, "hex number", "hex", "h", "nmea_hex", "present false", "hex", "hex",
-              "Hex", "rt.Hex", "HexField", memo=True),
-    FieldType("time", 1, "time hhmmss[.s]", "UTC time", "hhmmss.ss", "nmea_time", "present false", "time", "time",
-              "Time", "rt.Time", "TimeField", memo=True),
-    FieldType("date", 1, "date ddmmyy", "date", "ddmmyy", "nmea_date", "present false", "date", "date",
-              "Date", "rt.Date", "DateField", memo=True),
-    FieldType("latitude", 2, "latitude ddmm.mmmm", "latitude + N/S", "ddmm.mm", "nmea_coordinate", "present false",
-              "latitude", "coordinate", "Coordinate", "rt.Coordinate", "LatitudeField", memo=True),
-    FieldType("longitude", 2, "longitude dddmm.mmmm", "longitude + E/W", "dddmm.mm", "nmea_coordinate",
-              "present false", "longitude", "coordinate", "Coordinate", "rt.Coordinate", "LongitudeField",
-              memo=True),
-    FieldType("char", 1, "one character", "character", "a", "char", "0", "char", "char_field",
-              "char", "str", "CharField"),
-    FieldType("literal", 1, None, "literal", "a", "bool", "false", "literal", "literal",
-              "&'a str", "str", "LiteralField"),
-    FieldType("keyword", 1, None, "keyword", "a", None, "", "keyword", "keyword",
-              None, "str", "KeywordField"),
-    FieldType("text", 1, None, "text", "c--c", "nmea_text", "length 0", "text", "text_field",
-              "&'a str", "str", "TextField"),
-    FieldType("enum", 1, None, "enum", "x", "nmea_enum", "present false", "enum", "enum",
-              None, None, "EnumField"),
-    FieldType("enum_chars", 1, None, "enum characters", "c--c", "nmea_text", "length 0", "enum_chars", "text_field",
-              None, None, "EnumCharsField"),
+    NumberType("integer", "integer", "x", "nmea_number", "present false", "integer", "number", "Number",
+               "rt.Number", "IntegerField", args=("range",), rust_expected=True, pairing="number",
+               python_pairing="integer", memo=True, bits=True, integer=True),
+    NumberType("decimal", "decimal", "x.x", "nmea_number", "present false", "decimal", "number", "Number",
+               "rt.Number", "DecimalField", args=("range",), rust_expected=True, memo=True),
+    HexType("hex", "hex", "h", "nmea_hex", "present false", "hex", "hex", "Hex", "rt.Hex", "HexField",
+            reader="hex_field", expected_text="hex number", memo=True, bits=True),
+    FieldType("time", "UTC time", "hhmmss.ss", "nmea_time", "present false", "time", "time", "Time", "rt.Time",
+              "TimeField", reader="time_field", expected_text="time hhmmss[.s]", memo=True),
+    FieldType("date", "date", "ddmmyy", "nmea_date", "present false", "date", "date", "Date", "rt.Date",
+              "DateField", reader="date_field", expected_text="date ddmmyy", memo=True),
+    CoordinateType("latitude", "latitude + N/S", "ddmm.mm", "nmea_coordinate", "present false", "latitude",
+                   "coordinate", "Coordinate", "rt.Coordinate", "LatitudeField", wire_width=2,
+                   expected_text="latitude ddmm.mmmm", args=("hemisphere",), memo=True, hemispheres="NS"),
+    CoordinateType("longitude", "longitude + E/W", "dddmm.mm", "nmea_coordinate", "present false", "longitude",
+                   "coordinate", "Coordinate", "rt.Coordinate", "LongitudeField", wire_width=2,
+                   expected_text="longitude dddmm.mmmm", args=("hemisphere",), memo=True, hemispheres="EW"),
+    CharType("char", "character", "a", "char", "0", "char", "char_field", "char", "str", "CharField",
+             reader="char_field", expected_text="one character", c_put_args=("value",), pairing="character"),
+    WordType("literal", "literal", "a", "bool", "false", "literal", "literal", "&'a str", "str", "LiteralField",
+             args=("word",), c_put_args=("value", "word"), c_doc=' True when the field holds "{value}".',
+             rust_expected=True),
+    WordType("keyword", "keyword", "a", None, "", "keyword", "keyword", None, "str", "KeywordField",
+             args=("word",), c_put_args=("word",), keyword=True),
+    TextType("text", "text", "c--c", "nmea_text", "length 0", "text", "text_field", "&'a str", "str", "TextField",
+             args=("max_length",), c_put_args=("value",), rust_expected=True, pairing="string", verbatim=True),
+    CodeType("enum", "enum", "x", "nmea_enum", "present false", "enum", "enum", "Code<'a, {enum}>", "{enum} | str",
+             "EnumField", args=("table",), c_put_args=("&value", "table"), rust_reader="code", pairing="code",
+             python_pairing="enum", c_doc=" Values: {enum_type} (table {enum_table})."),
+    CodeType("enum_chars", "enum characters", "c--c", "nmea_text", "length 0", "enum_chars", "text_field",
+             "CodeChars<'a, {enum}>", "list[{enum} | str]", "EnumCharsField", args=("table", "max_length"),
+             c_put_args=("value",), rust_reader="code_chars", per_char=True,
+             c_doc=" One code of {enum_type} per character (table {enum_table})."),
 )}
-
-
-def field_type(name: str) -> FieldType:
-    return TYPES[name]

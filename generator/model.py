@@ -8,11 +8,9 @@ from __future__ import annotations
 
 import hashlib
 from dataclasses import dataclass, field
-from decimal import Decimal
-from pathlib import Path
 from typing import Any
 
-from .field_types import TYPES
+from .field_types import TYPES, FieldType
 from .paths import ROOT
 
 # The NMEA version a parser must assume for fields without `since`.
@@ -133,8 +131,12 @@ class Field:
     group: Group | None = None
 
     @property
+    def field_type(self) -> FieldType:
+        return TYPES[self.type]
+
+    @property
     def wire_width(self) -> int:
-        return TYPES[self.type].wire_width
+        return self.field_type.wire_width
 
     @property
     def is_optional(self) -> bool:
@@ -143,38 +145,7 @@ class Field:
     @property
     def expected(self) -> str:
         """What a bad_field error says the field should hold (the value part of lat/lon)."""
-        t = self.type
-        fixed = TYPES[t].expected
-        if fixed is not None:
-            return fixed
-        if t in ("integer", "decimal"):
-            what = "integer" if t == "integer" else "decimal number"
-            if self.min is not None and self.max is not None:
-                return f"{what} {fmt_num(self.min)}..{fmt_num(self.max)}"
-            if self.min is not None:
-                return f"{what} of at least {fmt_num(self.min)}"
-            if self.max is not None:
-                return f"{what} of at most {fmt_num(self.max)}"
-            return what
-        if t == "literal":
-            return f"{self.value} or nothing"
-        if t == "keyword":
-            return self.value or ""
-        if t in ("enum", "enum_chars"):
-            assert self.enum is not None
-            codes = " ".join(v.code for v in self.enum.values)
-            return f"{self.enum.id} code{'s' if t == 'enum_chars' else ''} ({codes})"
-        if t == "text":
-            return f"text of at most {self.max_length} characters" if self.max_length else "text"
-        raise AssertionError(t)
-
-    @property
-    def hemisphere_expected(self) -> str:
-        return "hemisphere N or S" if self.type == "latitude" else "hemisphere E or W"
-
-    @property
-    def hemispheres(self) -> str:
-        return "NS" if self.type == "latitude" else "EW"
+        return self.field_type.expected(self)
 
     @property
     def camel(self) -> str:
@@ -291,7 +262,7 @@ class Layout:
         for item in self.items:
             if isinstance(item, Group) or item.is_optional:
                 return None
-            if item.type == "keyword":
+            if item.field_type.keyword:
                 return at, str(item.value)
             at += item.wire_width
         return None
@@ -555,22 +526,6 @@ def _parse_order(sentences: list[Sentence]) -> list[tuple[Sentence, Layout]]:
     return [p for p in pairs if p[1].selector is not None] + [p for p in pairs if p[1].selector is None]
 
 
-def fixed_point(value: object) -> tuple[int, int]:
-    """A spec number (int, float or its text) as (digits, scale), signed, with
-    digits * 10^-scale == value and no negative scale: 1.50 -> (15, 1), -2 -> (-2, 0), 1E+2 -> (100, 0)."""
-    number = Decimal(fmt_num(value) if isinstance(value, float) else str(value))
-    sign, digits, exponent = number.as_tuple()
-    assert isinstance(exponent, int)
-    magnitude = int("".join(map(str, digits)) or "0")
-    if exponent > 0:
-        magnitude *= 10 ** exponent
-        exponent = 0
-    return (-magnitude if sign else magnitude), -exponent
-
-
 def camel(snake: str) -> str:
     return "".join(part[:1].upper() + part[1:] for part in snake.split("_"))
 
-
-def fmt_num(value: float) -> str:
-    return str(int(value)) if float(value).is_integer() else str(value)

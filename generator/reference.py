@@ -10,13 +10,13 @@ from __future__ import annotations
 import importlib.util
 import sys
 from dataclasses import dataclass
-from decimal import Decimal
-from pathlib import Path
+from decimal import InvalidOperation
 from types import ModuleType
 from typing import Any
 
-from .paths import ROOT
+from .field_types import Reading
 from .model import Field, Group, Layout, Sentence, Spec
+from .paths import ROOT
 
 
 def _load_runtime() -> ModuleType:
@@ -135,42 +135,47 @@ def _decode_layout(sentence: Sentence, layout: Layout, frame: Any) -> list[tuple
     return values
 
 
-def _bound(value: float | None) -> Decimal | None:
-    return None if value is None else Decimal(str(value))
-
-
 def _field(f: Field, fields: list[str], pos: int, address: str, name: str, ignore_case: bool) -> Any:
-    text = fields[pos]
-    index = pos + 1
-    t = f.type
-    if t == "integer":
-        return rt.number_field(text, True, address, index, name, f.expected, _bound(f.min), _bound(f.max))
-    if t == "decimal":
-        return rt.number_field(text, False, address, index, name, f.expected, _bound(f.min), _bound(f.max))
-    if t == "hex":
-        return rt.hex_field(text, address, index, name, f.expected)
-    if t == "time":
-        return rt.time_field(text, address, index, name, f.expected)
-    if t == "date":
-        return rt.date_field(text, address, index, name, f.expected)
-    if t in ("latitude", "longitude"):
-        return rt.coordinate_field(text, fields[pos + 1], address, index, name, f.expected,
-                                   f.hemisphere_expected, f.hemispheres)
-    if t == "char":
-        return rt.char_field(text, address, index, name, f.expected)
-    if t == "literal":
-        return rt.literal_field(text, address, index, name, f.expected, f.value)
-    if t == "text":
-        return rt.text_field(text, address, index, name, f.expected, f.max_length)
-    if t == "keyword":
-        return rt.keyword_field(text, address, index, name, f.expected, f.value, ignore_case)
-    assert f.enum is not None
-    by_code = {v.code: _EnumMember(v.code, v.id) for v in f.enum.values}
-    if t == "enum":
-        return rt.enum_field(text, address, index, name, f.expected, by_code, f.enum.code_class,
-                             f.enum.min_len, f.enum.max_len, ignore_case)
-    return rt.enum_chars_field(text, address, index, name, f.expected, by_code, f.enum.code_class,
-                               f.max_length)
+    at = Reading(rt, address, pos + 1, name, ignore_case, _EnumMember)
+    return f.field_type.read(f, fields[pos:pos + f.wire_width], at)
+
+
+def expect_json(layout: Layout, expect: dict[str, Any]) -> tuple[str, list[tuple[str, str]]]:
+    """An example's `expect` in the decoded JSON form (`decode --values`), fields in wire order,
+    and what is wrong with it: (key, message) for each value its field cannot hold and each key
+    the layout lacks."""
+    items = {i.id: i for i in layout.items}
+    parts = []
+    problems = []
+    for item in layout.items:
+        if item.id not in expect:
+            continue
+        try:
+            parts.append(f'"{item.id}":{_expect_item(item, expect[item.id])}')
+        except (TypeError, ValueError, KeyError, InvalidOperation) as exc:
+            kind = "group" if isinstance(item, Group) else item.type
+            problems.append((item.id, f"expect value of {item.id} does not fit its type {kind}: {exc}"))
+    problems += [(key, f"expect names {key}, which the layout does not have") for key in expect if key not in items]
+    return "{" + ",".join(parts) + "}", problems
+
+
+def _expect_item(item: Field | Group, value: Any) -> str:
+    if isinstance(item, Group):
+        if not isinstance(value, list):
+            raise TypeError("a group expects a list")
+        if item.single:
+            return "[" + ",".join(_expect_value(item.fields[0], v) for v in value) + "]"
+        out = []
+        for entry in value:
+            if set(entry) != {f.id for f in item.fields}:
+                raise KeyError(f"entry keys {sorted(entry)} differ from the group's fields")
+            out.append("{" + ",".join(f'"{f.id}":{_expect_value(f, entry[f.id])}' for f in item.fields) + "}")
+        return "[" + ",".join(out) + "]"
+    return _expect_value(item, value)
+
+
+def _expect_value(f: Field, value: Any) -> str:
+    return "null" if value is None else f.field_type.expect_json(f, value, rt)
 
 
 def _texts_json(texts: list[str]) -> str:

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from generator.build import load_spec
-from generator.emit import render_all
+from generator.render import render_all
 from generator.errors import SpecErrors
 from generator import emit_docs, reference
 from generator.field_types import TYPES

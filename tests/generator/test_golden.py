@@ -15,7 +15,8 @@ import shutil
 from pathlib import Path
 
 from generator.build import load_spec
-from generator.emit import RUNTIME, render_all
+from generator.emit import RUNTIME
+from generator.render import render_all
 
 GOLDEN = Path(__file__).with_name("golden")
 EXPECTED = GOLDEN / "expected"

@@ -1,0 +1,25 @@
+"""The emit pass: runs every emitter over the checked model and returns the generated files
+(path -> content)."""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import jinja2
+
+from . import emit_c, emit_docs, emit_packaging, emit_python, emit_rust, emit_tool, emit_vectors
+from .emit import environment
+from .model import Spec
+
+
+def render_all(spec: Spec) -> dict[str, str]:
+    env = environment()
+    files: dict[str, str] = {}
+    emitters: list[Callable[[Spec, jinja2.Environment], dict[str, str]]] = [
+        emit_vectors.emit, emit_python.emit, emit_tool.emit, emit_c.emit, emit_packaging.emit, emit_rust.emit, emit_docs.emit,
+    ]
+    for emitter in emitters:
+        for path, content in emitter(spec, env).items():
+            assert path not in files, path
+            files[path] = content
+    return files
