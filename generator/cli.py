@@ -196,7 +196,7 @@ def _new_manual(args: argparse.Namespace) -> int:
 
 
 def _new_sentence(spec, args: argparse.Namespace) -> int:
-    from .scaffold import ScaffoldError, sentence, target
+    from .scaffold import ScaffoldError, sentence, sentence_path
     if not args.manual:
         print(f"new {args.what}: give --manual (the manual that documents it)", file=sys.stderr)
         return 2
@@ -209,7 +209,7 @@ def _new_sentence(spec, args: argparse.Namespace) -> int:
     if not args.spec_extra:
         print(text, end="")
         return 0
-    path = target(args.spec_extra[-1], args.id)
+    path = sentence_path(args.spec_extra[-1], args.id)
     if path.exists():
         print(f"new {args.what}: {path} exists", file=sys.stderr)
         return 2

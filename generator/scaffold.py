@@ -41,8 +41,9 @@ def sentence(spec: Spec, sentence_id: str, manual: str, kind: str, address: str 
         raise ScaffoldError(f"give --address: {address!r} is not an address (letters and digits after $)")
     if spec.manual(manual) is None:
         raise ScaffoldError(f"unknown manual {manual!r}: add it first (`nmeaspec-gen new manual {manual} ...`)")
-    if spec.sentence(sentence_id) is not None:
-        raise ScaffoldError(f"{sentence_id} is already defined in {spec.sentence(sentence_id).source}")
+    existing = spec.sentence(sentence_id)
+    if existing is not None:
+        raise ScaffoldError(f"{sentence_id} is already defined in {existing.source}")
     body = f"{address},1"
     line = f"${body}*{rt.checksum(body):02X}"
     what = "a command the host sends" if kind == "command" else "a sentence the receiver sends"
@@ -69,5 +70,5 @@ examples:                          # the manual's example lines, verbatim, with 
 """
 
 
-def target(overlay: Path, sentence_id: str) -> Path:
+def sentence_path(overlay: Path, sentence_id: str) -> Path:
     return overlay / "proprietary" / f"{sentence_id.lower()}.yaml"
