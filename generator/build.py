@@ -4,6 +4,7 @@ runs the semantic checks (checks.py)."""
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -15,54 +16,119 @@ from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fi
 from .resolve import resolve
 
 
-def load_spec(spec_dir: Path) -> Spec:
-    """Load, schema-check, build and semantically check the spec; raise SpecErrors listing
-    every problem found."""
+# The folders of a spec tree, each with the kind of its files and their schema. An overlay
+# (--spec-extra) has the same layout, its manuals.yaml optional, and may extend the sentences of
+# the trees before it (extensions/: variants, notes and examples of a sentence defined elsewhere).
+LAYOUT = (("enums", "enums", "enum.schema.json"),
+          ("bitfields", "bitfields", "bitfield.schema.json"),
+          ("tables", "tables", "table.schema.json"),
+          ("standard", "sentences", "sentence.schema.json"),
+          ("proprietary", "sentences", "sentence.schema.json"),
+          ("extensions", "extensions", "extension.schema.json"))
+
+
+def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
+    """Load, schema-check, build and semantically check the spec, with the overlays `extras` laid
+    over it in order; raise SpecErrors listing every problem found.
+
+    A file is named in errors and in the generated files' headers by its path from the spec
+    directory's parent (spec/standard/gga.yaml) or, for an overlay, as the overlay was given
+    (my-nmea/proprietary/acme_pos.yaml)."""
     errors: list[SpecError] = []
-    root = spec_dir.parent
-    docs: dict[str, list[Document]] = {"manuals": [], "enums": [], "bitfields": [], "tables": [], "sentences": []}
-    files = [(spec_dir / "manuals.yaml", "manuals", "manuals.schema.json")]
-    for folder, kind, schema in (("enums", "enums", "enum.schema.json"),
-                                 ("bitfields", "bitfields", "bitfield.schema.json"),
-                                 ("tables", "tables", "table.schema.json"),
-                                 ("standard", "sentences", "sentence.schema.json"),
-                                 ("proprietary", "sentences", "sentence.schema.json")):
-        files += [(p, kind, schema) for p in sorted((spec_dir / folder).glob("*.yaml"))]
+    docs: dict[str, list[Document]] = {kind: [] for kind in ("manuals", "enums", "bitfields", "tables", "sentences",
+                                                             "extensions")}
     digest = hashlib.sha256()
     file_digests: dict[str, str] = {}
-    for path, kind, schema in files:
-        try:
-            doc = load_document(path)
-        except SpecError as err:
-            errors.append(err)
-            continue
-        doc.path = path.relative_to(root)
-        digest.update(str(doc.path).encode() + b"\0" + path.read_bytes())
-        file_digests[str(doc.path)] = hashlib.sha256(path.read_bytes()).hexdigest()
-        found = schema_errors(doc, schema)
-        errors += found
-        if not found:
-            docs[kind].append(doc)
+    for tree, names in [(spec_dir, spec_dir.parent), *((extra, None) for extra in extras)]:
+        for path, kind, schema in _tree_files(tree, required_manuals=names is not None):
+            name = path.relative_to(names) if names is not None else path
+            if str(name) in file_digests:  # an overlay given under the name of the tree before it
+                name = path.resolve()
+            try:
+                doc = load_document(path)
+            except SpecError as err:
+                errors.append(err)
+                continue
+            doc.path = name
+            data = path.read_bytes()
+            digest.update(str(name).encode() + b"\0" + data)
+            file_digests[str(name)] = hashlib.sha256(data).hexdigest()
+            found = schema_errors(doc, schema)
+            errors += found
+            if not found:
+                docs[kind].append(doc)
     if errors:
         raise SpecErrors(errors)
 
-    manuals_doc = docs["manuals"][0]
-    manuals = [Manual(**m) for m in manuals_doc.data["manuals"]]
-    generic = [GenericMessage(**g, origin=Origin(str(manuals_doc.path), ("generic", i)))
-               for i, g in enumerate(manuals_doc.data.get("generic", []))]
+    manuals = [Manual(**m) for d in docs["manuals"] for m in d.data["manuals"]]
+    generic = [GenericMessage(**g, origin=Origin(str(d.path), ("generic", i)))
+               for d in docs["manuals"] for i, g in enumerate(d.data.get("generic", []))]
     enums = [_enum(d) for d in docs["enums"]]
     sentences = [_sentence(d) for d in docs["sentences"]]
+    bitfields = [_bitfield(d) for d in docs["bitfields"]]
+    tables = [_table(d) for d in docs["tables"]]
+    errors = _clashes(docs, bitfields, tables) + _extend(sentences, docs["extensions"])
+    if errors:
+        raise SpecErrors(errors)
     spec = Spec(manuals, enums, sentences,
-                sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences") for d in docs[kind]],
+                sources=[str(d.path) for kind in ("enums", "bitfields", "tables", "sentences", "extensions")
+                         for d in docs[kind]],
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
-                bitfields=[_bitfield(d) for d in docs["bitfields"]], tables=[_table(d) for d in docs["tables"]],
-                generic=generic)
+                bitfields=bitfields, tables=tables, generic=generic)
     by_file = {str(d.path): d for kind in docs.values() for d in kind}
     resolve(spec)
     errors = checks.run(spec, by_file)
     if errors:
         raise SpecErrors(errors)
     return spec
+
+
+def _tree_files(tree: Path, required_manuals: bool) -> list[tuple[Path, str, str]]:
+    """The YAML files of a spec tree, each with its kind and schema, in load order."""
+    manuals = tree / "manuals.yaml"
+    files = [(manuals, "manuals", "manuals.schema.json")] if required_manuals or manuals.exists() else []
+    for folder, kind, schema in LAYOUT:
+        files += [(p, kind, schema) for p in sorted((tree / folder).glob("*.yaml"))]
+    return files
+
+
+def _clashes(docs: dict[str, list[Document]], bitfields: list[BitfieldDef], tables: list[TableDef]) -> list[SpecError]:
+    """Manuals, bitfields and tables defined twice (checks.py finds the sentences and enums): with
+    overlays, the second of two files that define one id, naming the first."""
+    errors = []
+    manuals: dict[str, str] = {}
+    for d in docs["manuals"]:
+        for i, m in enumerate(d.data["manuals"]):
+            if m["id"] in manuals:
+                errors.append(d.error(("manuals", i, "id"), f"manual {m['id']} is also defined in {manuals[m['id']]}",
+                                      "S001"))
+            manuals.setdefault(m["id"], str(d.path))
+    for kind, items in (("bitfield", bitfields), ("table", tables)):
+        seen: dict[str, str] = {}
+        for item in items:
+            if item.id in seen:
+                doc = next(d for d in docs[f"{kind}s"] if str(d.path) == item.origin.file)
+                errors.append(doc.error((kind,), f"{kind} {item.id} is also defined in {seen[item.id]}", "S001"))
+            seen.setdefault(item.id, item.origin.file)
+    return errors
+
+
+def _extend(sentences: list[Sentence], extensions: list[Document]) -> list[SpecError]:
+    """Add each extension's manuals, variants, notes and examples to the sentence it extends."""
+    errors = []
+    by_id = {s.id: s for s in sentences}
+    for doc in extensions:
+        d = doc.data
+        sentence = by_id.get(d["extends"])
+        if sentence is None:
+            errors.append(doc.error(("extends",), f"no sentence {d['extends']} to extend", "S046"))
+            continue
+        file = str(doc.path)
+        sentence.manuals += [m for m in d["manuals"] if m not in sentence.manuals]
+        sentence.variants += _variants(d, file, sentence.layout.outcome)
+        sentence.notes += _notes(d)
+        sentence.examples += _examples(d, file)
+    return errors
 
 
 def _enum(doc: Document) -> EnumDef:
@@ -124,22 +190,32 @@ def _sentence(doc: Document) -> Sentence:
     outcome = _outcome(d.get("outcome"), Origin(file, ("outcome",)))
     layout = Layout(None, d["name"], d["doc"], _items(d["fields"], file, ("fields",)), d["manuals"],
                     Origin(file, ("fields",)), outcome)
-    variants = [Layout(v["id"], v["name"], v["doc"], _items(v["fields"], file, ("variants", i, "fields")),
-                       v.get("manuals", d["manuals"]), Origin(file, ("variants", i)),
-                       _outcome(v["outcome"], Origin(file, ("variants", i, "outcome"))) if "outcome" in v else outcome)
-                for i, v in enumerate(d.get("variants", []))]
     rules = [ReplyRule(r, {}, Origin(file, ("replies", i))) if isinstance(r, str)
              else ReplyRule(r["sentence"], dict(r["when"]), Origin(file, ("replies", i)))
              for i, r in enumerate(d.get("replies", []))]
-    examples = [Example(e["manual"], e.get("where"), e["raw"], e.get("corrected"), e.get("reason"),
-                        e.get("unrecoverable"), e.get("variant"), e.get("expect"),
-                        Origin(file, ("examples", i)))
-                for i, e in enumerate(d.get("examples", []))]
-    notes = [Note(n["manuals"], n["text"]) for n in d.get("notes", [])]
     return Sentence(d["sentence"], d["name"], d["doc"], d.get("talkers", []), d["manuals"], layout,
-                    variants, notes, examples, Origin(file, ()), file, address=d.get("address"),
-                    framing=d.get("framing", "sentence"), start=d.get("start", "$"), domain=d.get("domain"), kind=d.get("kind", "standard"), vendor=d.get("vendor"),
+                    _variants(d, file, outcome), _notes(d), _examples(d, file), Origin(file, ()), file,
+                    address=d.get("address"), framing=d.get("framing", "sentence"), start=d.get("start", "$"),
+                    domain=d.get("domain"), kind=d.get("kind", "standard"), vendor=d.get("vendor"),
                     reply_rules=rules)
+
+
+def _variants(d: dict[str, Any], file: str, outcome: Outcome | None) -> list[Layout]:
+    """The `variants` of a sentence or an extension (a variant's manuals default to the file's)."""
+    return [Layout(v["id"], v["name"], v["doc"], _items(v["fields"], file, ("variants", i, "fields")),
+                   v.get("manuals", d["manuals"]), Origin(file, ("variants", i)),
+                   _outcome(v["outcome"], Origin(file, ("variants", i, "outcome"))) if "outcome" in v else outcome)
+            for i, v in enumerate(d.get("variants", []))]
+
+
+def _notes(d: dict[str, Any]) -> list[Note]:
+    return [Note(n["manuals"], n["text"]) for n in d.get("notes", [])]
+
+
+def _examples(d: dict[str, Any], file: str) -> list[Example]:
+    return [Example(e["manual"], e.get("where"), e["raw"], e.get("corrected"), e.get("reason"),
+                    e.get("unrecoverable"), e.get("variant"), e.get("expect"), Origin(file, ("examples", i)))
+            for i, e in enumerate(d.get("examples", []))]
 
 
 def _outcome(data: Any, origin: Origin) -> Outcome | None:

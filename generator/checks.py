@@ -100,7 +100,7 @@ def _check_generic(spec: Spec, report: _Reporter) -> None:
             report(g.origin, "S017", "the example's checksum is missing or wrong", "example")
         elif found:
             names = ", ".join(sorted({s.id for s, _ in found}))
-            report(g.origin, "S017", f"{g.message} is no longer generic ({names} reads it): remove it from the list",
+            report(g.origin, "S045", f"{g.message} is no longer generic ({names} reads it): remove it from the list",
                    "message")
 
 
@@ -127,23 +127,23 @@ def _unique(spec: Spec, report: _Reporter) -> None:
 def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], report: _Reporter) -> None:
     if not sentence.is_proprietary:
         if len(sentence.id) != 3 or not sentence.id.isalnum():
-            report(sentence.origin, "S010", f"standard sentence {sentence.id}: the id is the 3-character formatter; "
+            report(sentence.origin, "S034", f"standard sentence {sentence.id}: the id is the 3-character formatter; "
                    "a proprietary sentence needs `address`", "sentence")
         for key, value in (("kind", sentence.kind != "standard"), ("vendor", sentence.vendor), ("replies", sentence.reply_rules),
                            ("framing", sentence.framing != "sentence")):
             if value:
-                report(sentence.origin, "S010", f"standard sentence {sentence.id} cannot have `{key}`", key)
+                report(sentence.origin, "S035", f"standard sentence {sentence.id} cannot have `{key}`", key)
         if sentence.domain is None:
-            report(sentence.origin, "S010", f"standard sentence {sentence.id} needs a `domain` (for the docs index)",
+            report(sentence.origin, "S036", f"standard sentence {sentence.id} needs a `domain` (for the docs index)",
                    "sentence")
         return
     for key, value in (("start", sentence.start != "$"), ("domain", sentence.domain)):
         if value:
-            report(sentence.origin, "S010", f"proprietary sentence {sentence.id} cannot have `{key}`", key)
+            report(sentence.origin, "S037", f"proprietary sentence {sentence.id} cannot have `{key}`", key)
     if sentence.vendor not in manual_ids:
         report(sentence.origin, "S003", f"vendor {sentence.vendor!r} is not a manual id", "vendor")
     if sentence.framing == "text" and not (sentence.address or "").isalpha():
-        report(sentence.origin, "S010", "a text command's address is its command word: letters only", "address")
+        report(sentence.origin, "S038", "a text command's address is its command word: letters only", "address")
     if sentence.framing == "text":
         for layout in sentence.layouts:
             for item in layout.items:
@@ -152,14 +152,14 @@ def _check_proprietary(spec: Spec, sentence: Sentence, manual_ids: set[str], rep
                            "latitude or longitude", "id")
                 elif item.field_type.keyword and item.value and item.value != item.value.upper():
                     # Text commands match their words ignoring case, against the upper-case spelling.
-                    report(item.origin, "S015", f"keyword field {item.id}: write the word in upper case", "value")
+                    report(item.origin, "S039", f"keyword field {item.id}: write the word in upper case", "value")
     if sentence.reply_ids and sentence.kind != "command":
-        report(sentence.origin, "S011", "only commands have replies", "replies")
+        report(sentence.origin, "S040", "only commands have replies", "replies")
     for rule in sentence.reply_rules:
         if rule.sentence is None:
             report(rule.origin, "S011", f"unknown reply sentence {rule.sentence_id!r}")
     if any(layout.outcome for layout in sentence.layouts) and sentence.kind != "reply":
-        report(sentence.origin, "S011", "only replies have an `outcome`", "sentence")
+        report(sentence.origin, "S043", "only replies have an `outcome`", "sentence")
 
 
 # Most digits a number field holds in every runtime (NMEA_MAX_DIGITS, runtime.MAX_DIGITS).
@@ -174,9 +174,9 @@ def _check_replies(sentence: Sentence, report: _Reporter) -> None:
         for field_id, value in rule.when.items():
             found = [f for layout in rule.sentence.layouts for f in layout.fields if f.id == field_id]
             if not found:
-                report(rule.origin, "S011", f"reply {rule.sentence_id} has no field {field_id!r}", "when", field_id)
+                report(rule.origin, "S041", f"reply {rule.sentence_id} has no field {field_id!r}", "when", field_id)
             elif (problem := found[0].field_type.pairing_problem(found[0], value)) is not None:
-                report(rule.origin, "S011", problem, "when", field_id)
+                report(rule.origin, "S041", problem, "when", field_id)
     for layout in sentence.layouts:
         outcome = layout.outcome
         if outcome is None or outcome.field_id is None or outcome.origin is None:
@@ -184,11 +184,11 @@ def _check_replies(sentence: Sentence, report: _Reporter) -> None:
         found = [f for f in layout.fields if f.id == outcome.field_id]
         if not found:
             name = f"variant {layout.id}" if layout.id else "the main layout"
-            report(outcome.origin, "S011", f"{name} of {sentence.id} has no field {outcome.field_id!r}", "field")
+            report(outcome.origin, "S042", f"{name} of {sentence.id} has no field {outcome.field_id!r}", "field")
             continue
         for i, value in enumerate(outcome.ok):
             if (problem := found[0].field_type.pairing_problem(found[0], value)) is not None:
-                report(outcome.origin, "S011", problem, "ok", i)
+                report(outcome.origin, "S042", problem, "ok", i)
 
 
 def _check_bitfield(bitfield: Any, manual_ids: set[str], report: _Reporter) -> None:
@@ -200,10 +200,10 @@ def _check_bitfield(bitfield: Any, manual_ids: set[str], report: _Reporter) -> N
             report(b.origin, "S012", f"bits {b.label} do not fit a {bitfield.width}-bit value (write high:low)", "bits")
             continue
         if used & b.mask:
-            report(b.origin, "S012", f"bits {b.label} overlap bits named before", "bits")
+            report(b.origin, "S044", f"bits {b.label} overlap bits named before", "bits")
         used |= b.mask
         if b.id in ids:
-            report(b.origin, "S012", f"{b.id!r} appears twice in bitfield {bitfield.id}", "id")
+            report(b.origin, "S001", f"{b.id!r} appears twice in bitfield {bitfield.id}", "id")
         ids.add(b.id)
         for j, v in enumerate(b.values):
             if v.value >= 1 << b.width:
@@ -243,7 +243,7 @@ def _check_enum(enum: Any, manual_ids: set[str], report: _Reporter) -> None:
         if v.id in ids:
             report(v.origin, "S006", f"value id {v.id!r} appears twice in enum {enum.id}", "id")
         if any(ch in ",*$!" for ch in v.code) or v.code != v.code.strip():
-            report(v.origin, "S006", f"code {v.code!r} cannot hold ',', '*', '$', '!' or start or end with a space",
+            report(v.origin, "S024", f"code {v.code!r} cannot hold ',', '*', '$', '!' or start or end with a space",
                    "code")
         codes.add(v.code)
         ids.add(v.id)
@@ -268,11 +268,11 @@ def _check_cli(spec: Spec, report: _Reporter) -> None:
             if v.cli is None:
                 continue
             if enum.id not in takers:
-                report(v.origin, "S006", f"cli {v.cli!r}: no command takes enum {enum.id}", "cli")
+                report(v.origin, "S025", f"cli {v.cli!r}: no command takes enum {enum.id}", "cli")
             if v.cli in seen:
-                report(v.origin, "S006", f"cli {v.cli!r} appears twice in enum {enum.id}", "cli")
+                report(v.origin, "S026", f"cli {v.cli!r} appears twice in enum {enum.id}", "cli")
             if v.cli.split()[0] in commands:
-                report(v.origin, "S006", f"cli {v.cli!r} is named like a command", "cli")
+                report(v.origin, "S027", f"cli {v.cli!r} is named like a command", "cli")
             seen.add(v.cli)
 
 
@@ -304,7 +304,7 @@ def _check_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: se
         if isinstance(item, Group):
             groups += 1
             if item.min > item.max:
-                report(item.origin, "S005", f"group {item.id}: min {item.min} exceeds max {item.max}", "min")
+                report(item.origin, "S022", f"group {item.id}: min {item.min} exceeds max {item.max}", "min")
             if seen_optional:
                 report(item.origin, "S004", f"group {item.id} follows an optional field", "group")
             inner: set[str] = set()
@@ -317,9 +317,9 @@ def _check_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: se
                     report(f.origin, "S001", f"{f.id!r} appears twice in group {item.id}", "id")
                 inner.add(f.id)
                 if f.is_optional:
-                    report(f.origin, "S004", "a field inside a group cannot be optional", "id")
+                    report(f.origin, "S019", "a field inside a group cannot be optional", "id")
                 if f.field_type.keyword:
-                    report(f.origin, "S004", "a group cannot hold a keyword (a keyword picks the layout)", "type")
+                    report(f.origin, "S020", "a group cannot hold a keyword (a keyword picks the layout)", "type")
                 _check_field(f, manual_ids, report)
             continue
         if item.is_optional:
@@ -329,7 +329,7 @@ def _check_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: se
                    "fields must be trailing", "id")
         _check_field(item, manual_ids, report)
     if groups > 1:
-        report(layout.origin, "S005", f"{sentence.id} has {groups} groups; a layout takes at most one")
+        report(layout.origin, "S023", f"{sentence.id} has {groups} groups; a layout takes at most one")
     group = layout.group
     if group is not None and not group.is_fixed and layout.optional_count >= group.width:
         report(group.origin, "S005", f"group {group.id} repeats a variable number of times and is followed by "
@@ -337,7 +337,7 @@ def _check_layout(spec: Spec, sentence: Sentence, layout: Layout, manual_ids: se
                "field count unambiguous (or use a variant)", "group")
     versions = [f.since for f in layout.optional_fields if f.since]
     if versions != sorted(versions, key=VERSION_ORDER.index):
-        report(layout.origin, "S004", f"{sentence.id}: optional fields must be in the order of the NMEA "
+        report(layout.origin, "S021", f"{sentence.id}: optional fields must be in the order of the NMEA "
                "versions that added them")
 
 
@@ -347,21 +347,21 @@ def _check_field(f: Field, manual_ids: set[str], report: _Reporter) -> None:
         if f.bitfield is None:
             report(f.origin, "S002", f"field {f.id} refers to unknown bitfield {f.bitfield_id!r}", "bitfield")
         elif not f.field_type.bits:
-            report(f.origin, "S012", f"field {f.id}: a bitfield applies to {_types_that('bits')} fields", "bitfield")
+            report(f.origin, "S007", f"field {f.id}: a bitfield applies to {_types_that('bits')} fields", "bitfield")
     if f.field_type.keyword and not (f.value or "").strip():
         report(f.origin, "S007", f"keyword field {f.id} needs its word in `value`", "value")
     if f.enum_id is not None:
         if f.enum is None:
             report(f.origin, "S002", f"field {f.id} refers to unknown enum {f.enum_id!r}", "enum")
         elif f.field_type.per_char and f.enum.max_len != 1:
-            report(f.origin, "S002", f"{f.type} field {f.id} needs an enum of one-character codes", "enum")
+            report(f.origin, "S018", f"{f.type} field {f.id} needs an enum of one-character codes", "enum")
     if f.min is not None and f.max is not None and f.min > f.max:
-        report(f.origin, "S007", f"field {f.id}: min {f.min} exceeds max {f.max}", "min")
+        report(f.origin, "S028", f"field {f.id}: min {f.min} exceeds max {f.max}", "min")
     for key, bound in (("min", f.min), ("max", f.max)):
         if bound is not None:
             digits, scale = fixed_point(bound)
             if scale > MAX_DIGITS or abs(digits) >= 10**MAX_DIGITS:
-                report(f.origin, "S007", f"field {f.id}: {key} {bound} needs more than the {MAX_DIGITS} digits "
+                report(f.origin, "S029", f"field {f.id}: {key} {bound} needs more than the {MAX_DIGITS} digits "
                        "a number holds", key)
     if (f.min is not None or f.max is not None) and not f.field_type.numeric:
         report(f.origin, "S007", f"field {f.id}: min/max apply to {_types_that('numeric')} fields only", "min")
@@ -382,17 +382,17 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
     if example.manual not in manual_ids:
         report(o, "S003", f"unknown manual {example.manual!r}", "manual")
     if example.checksum_ok and example.corrected and example.corrected == example.raw:
-        report(o, "S008", "the correction is the manual's text itself", "corrected")
+        report(o, "S031", "the correction is the manual's text itself", "corrected")
         return
     if not example.checksum_ok and not (example.corrected or example.unrecoverable):
-        report(o, "S008", f"raw's checksum fails (computed {_computed(example.raw)}); give `corrected` and "
+        report(o, "S030", f"raw's checksum fails (computed {_computed(example.raw)}); give `corrected` and "
                "`reason`, or `unrecoverable`", "raw")
         return
     if example.unrecoverable:
         return
     if example.corrected and sentence.framing != "text" and "*" in example.corrected \
             and not checksum_ok(example.corrected):
-        report(o, "S008", f"the correction's checksum fails too (computed {_computed(example.corrected)})",
+        report(o, "S032", f"the correction's checksum fails too (computed {_computed(example.corrected)})",
                "corrected")
         return
     if example.variant is not None and example.variant not in variant_ids:
@@ -403,10 +403,10 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
     try:
         decoded = reference.decode(spec, line)
     except reference.rt.NmeaError as err:
-        report(o, "S008", f"does not decode: {err}", "corrected" if example.corrected else "raw")
+        report(o, "S033", f"does not decode: {err}", "corrected" if example.corrected else "raw")
         return
     if decoded.sentence is not sentence:
-        report(o, "S008", f"decodes as {decoded.sentence.id if decoded.sentence else 'an unknown sentence'}, "
+        report(o, "S033", f"decodes as {decoded.sentence.id if decoded.sentence else 'an unknown sentence'}, "
                f"not {sentence.id}", "raw")
         return
     if decoded.layout is None or decoded.layout.id != example.variant:

@@ -348,7 +348,8 @@ def as_json(changes: list[Change], old_name: str, new_name: str) -> str:
 # --- spec trees from directories or git revisions ----------------------------------------------
 
 def resolve_tree(arg: str, tmp: Path, label: str) -> Path:
-    """A spec directory on disk, or a git revision (REV for its spec/, or REV:DIR) extracted into tmp."""
+    """A spec directory (or overlay) on disk, or a git revision (REV for its spec/, or REV:DIR) extracted
+    into tmp."""
     path = Path(arg)
     if path.is_dir():
         return path
@@ -375,7 +376,8 @@ def main(args: argparse.Namespace) -> int:
         specs = []
         for arg, label in ((args.old, "old"), (args.new, "new")):
             try:
-                specs.append(load_spec(resolve_tree(arg, Path(tmp), label)))
+                tree = resolve_tree(arg, Path(tmp), label)
+                specs.append(load_spec(args.spec, [tree]) if args.overlays else load_spec(tree))
             except ValueError as err:
                 print(f"diff: {err}", file=sys.stderr)
                 return 2

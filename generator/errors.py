@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from .rules import rule as known_rule
+
 
 class SpecError(Exception):
     def __init__(self, file: str, line: int, path: str, message: str, rule: str) -> None:
@@ -10,7 +12,7 @@ class SpecError(Exception):
         self.line = line
         self.path = path
         self.message = message
-        self.rule = rule
+        self.rule = known_rule(rule).id  # only the ids of generator/rules.py can be reported
 
     def __str__(self) -> str:
         return f"{self.file}:{self.line}: {self.path}: {self.message} [{self.rule}]"

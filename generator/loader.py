@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 import jsonschema
+import referencing
 import yaml
 
 from .errors import SpecError
@@ -95,14 +96,23 @@ _VALIDATORS: dict[str, jsonschema.Draft202012Validator] = {}
 _VALID: set[tuple[str, str]] = set()
 
 
+def _validator(schema_name: str) -> jsonschema.Draft202012Validator:
+    """The validator of spec/schema/`schema_name`; the schemas know each other by their $id (an
+    overlay's extension refers to parts of the sentence schema)."""
+    if not _VALIDATORS:
+        schemas = {path.name: json.loads(path.read_text(encoding="utf-8")) for path in SCHEMA_DIR.glob("*.schema.json")}
+        registry = referencing.Registry().with_resources(
+            (name, referencing.Resource.from_contents(schema)) for name, schema in schemas.items())
+        _VALIDATORS.update((name, jsonschema.Draft202012Validator(schema, registry=registry))
+                           for name, schema in schemas.items())
+    return _VALIDATORS[schema_name]
+
+
 def schema_errors(doc: Document, schema_name: str) -> list[SpecError]:
     """Every place where `doc` breaks the JSON Schema `schema_name`."""
     if (schema_name, doc.digest) in _VALID:
         return []
-    validator = _VALIDATORS.get(schema_name)
-    if validator is None:
-        schema = json.loads((SCHEMA_DIR / schema_name).read_text(encoding="utf-8"))
-        validator = _VALIDATORS[schema_name] = jsonschema.Draft202012Validator(schema)
+    validator = _validator(schema_name)
     errors = []
     for err in sorted(validator.iter_errors(doc.data), key=lambda e: (list(map(str, e.absolute_path)), e.message)):
         where = tuple(err.absolute_path)

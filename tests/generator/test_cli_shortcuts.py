@@ -33,15 +33,15 @@ def test_shortcuts_reach_the_command_table() -> None:
     assert {("geos5", "nquery-request"), ("teseo", "pstmsetpar-dop"), ("comnav", "nmeatalker-list")} <= names
 
 
-@pytest.mark.parametrize(("old", "new", "message"), [
-    ("cli: set-baud 9600", "cli: set-baud 4800", "appears twice in enum geos5_command_word"),
-    ("cli: cold-start", "cli: nquery-request", "is named like a command"),
+@pytest.mark.parametrize(("old", "new", "rule", "message"), [
+    ("cli: set-baud 9600", "cli: set-baud 4800", "S026", "appears twice in enum geos5_command_word"),
+    ("cli: cold-start", "cli: nquery-request", "S027", "is named like a command"),
 ])
-def test_bad_shortcut_is_rejected(tmp_path: Path, old: str, new: str, message: str) -> None:
+def test_bad_shortcut_is_rejected(tmp_path: Path, old: str, new: str, rule: str, message: str) -> None:
     with pytest.raises(SpecErrors) as caught:
         load_spec(_spec_with(tmp_path, old, new))
     errors = caught.value.errors
-    assert len(errors) == 1 and errors[0].rule == "S006" and message in errors[0].message, [str(e) for e in errors]
+    assert len(errors) == 1 and errors[0].rule == rule and message in errors[0].message, [str(e) for e in errors]
     assert errors[0].file.endswith(str(WORDS)) and errors[0].path.endswith("cli") and errors[0].line > 1
 
 

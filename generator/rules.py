@@ -1,0 +1,198 @@
+"""Every rule a spec must keep, by the id its error messages carry: what it checks and how to fix a
+break. The loader, the build and checks.py report only ids of this table; `nmeaspec-gen rules`
+prints it and docs/rules.md is its Markdown form (`nmeaspec-gen rules --markdown`)."""
+
+from __future__ import annotations
+
+import textwrap
+from typing import NamedTuple
+
+
+class Rule(NamedTuple):
+    id: str
+    title: str
+    checks: str
+    fix: str
+
+
+RULES: dict[str, Rule] = {rule.id: rule for rule in (
+    Rule("yaml", "valid YAML",
+         "The file parses as YAML.",
+         "Fix the syntax at the line named (indentation, an unclosed quote or bracket, a tab)."),
+    Rule("schema", "the shape of the file",
+         "The file fits its JSON Schema (spec/schema/*.schema.json): required keys, known keys, value types.",
+         "Add the missing key, remove the unknown one or correct the value; the message names the schema's complaint."),
+    Rule("S001", "ids are unique",
+         "An id is defined once in its scope: sentences, enums, bitfields, tables and manuals in the spec and "
+         "its overlays, fields in a layout or a group, parameters in a table.",
+         "Rename one of the two (the message names the other's file), or drop the copy."),
+    Rule("S002", "enums and bitfields exist",
+         "A field's or parameter's `enum` or `bitfield` names a file of enums/ or bitfields/.",
+         "Correct the id, or add the enum or bitfield."),
+    Rule("S003", "manuals exist",
+         "Every `manuals`, example `manual` and proprietary `vendor` is an id of manuals.yaml.",
+         "Correct the id, or add the manual to manuals.yaml (`nmeaspec-gen new manual`)."),
+    Rule("S004", "optional fields are trailing",
+         "No required field and no group follows an optional field (`optional: true` or `since`).",
+         "Move the optional fields to the end, or make the later field optional too."),
+    Rule("S005", "a group's count is unambiguous",
+         "A group repeated a variable number of times is followed by fewer optional fields than its width.",
+         "Fix the group's count (min = max), drop optional fields after it, or describe the other form as a variant."),
+    Rule("S006", "enum values are unique",
+         "No code and no value id appears twice in an enum.",
+         "Remove the duplicate or give it its own code and id."),
+    Rule("S007", "attributes fit the field's type",
+         "`min`/`max` go with integer and decimal fields, `max_length` with text and enum_chars, `bitfield` "
+         "with hex and integer; a keyword has its word in `value`; a decimal_list parameter has `count`.",
+         "Remove the attribute, change the type, or add the attribute the type needs."),
+    Rule("S008", "examples decode to their expect",
+         "Every example decodes to exactly the values of its `expect`: every field on the wire is named, each "
+         "with a value of its type, and no other field.",
+         "Correct `expect` (the message shows the decoded value), or the field's type if the manual means another."),
+    Rule("S009", "examples decode with their variant",
+         "An example's `variant` exists and is the layout the line decodes with (none: the main layout).",
+         "Name the variant the line matches, or correct the variant's fields."),
+    Rule("S010", "files are named after their id",
+         "An enum lives in <id>.yaml, a sentence in <id in lower case>.yaml.",
+         "Rename the file (or the id)."),
+    Rule("S011", "replies exist",
+         "Every sentence a command's `replies` names is defined.",
+         "Correct the id, or add the reply sentence."),
+    Rule("S012", "bits fit their bitfield",
+         "Each named run of bits (high:low) lies within the bitfield's width, and its values fit the run.",
+         "Correct the bits or the width (write high:low), or the value."),
+    Rule("S013", "type names are distinct",
+         "Enums, bitfields, tables and sentence layouts become types of one namespace: their names differ.",
+         "Rename the enum, bitfield or table (e.g. <id>_code)."),
+    Rule("S014", "names the generated code keeps",
+         "A field or group id is not a name the generated code uses itself (envelope attributes, methods, "
+         "Python keywords, a group's <id>_count).",
+         "Choose another id."),
+    Rule("S015", "text commands are words",
+         "The fields of a text command (framing: text) are single words: no group, no latitude or longitude.",
+         "Describe the command with single-word fields."),
+    Rule("S016", "generated names do not clash",
+         "The names the emitters build from ids (C identifiers, Rust types, the tool's command names) are "
+         "not shared by two things nor taken from a runtime.",
+         "Rename one of the two things the message names."),
+    Rule("S017", "generic examples are real lines",
+         "A `generic` entry of manuals.yaml has an example that starts with its message and has a right checksum.",
+         "Correct the example (its checksum is the XOR of the bytes between $ and *)."),
+    Rule("S018", "enum_chars take one-character codes",
+         "An enum_chars field's enum has only one-character codes.",
+         "Use an enum of one-character codes, or type the field `enum`."),
+    Rule("S019", "group fields are required",
+         "No field inside a group is optional.",
+         "Remove `optional`/`since` from the group's fields."),
+    Rule("S020", "groups hold no keyword",
+         "No group holds a keyword field (a keyword picks the layout).",
+         "Move the keyword out of the group."),
+    Rule("S021", "optional fields follow the NMEA versions",
+         "Trailing fields with `since` come in the order of the versions that added them.",
+         "Reorder the fields, or correct `since`."),
+    Rule("S022", "a group's min is at most its max",
+         "A group's `min` does not exceed its `max`.",
+         "Swap or correct the bounds."),
+    Rule("S023", "one group per layout",
+         "A layout has at most one group.",
+         "Merge the groups, or describe the other form as a variant."),
+    Rule("S024", "enum codes fit a field",
+         "An enum code holds none of , * $ ! and neither starts nor ends with a space.",
+         "Correct the code."),
+    Rule("S025", "cli shortcuts belong to commands",
+         "A value with `cli` belongs to an enum that a command field takes.",
+         "Remove `cli`, or use the enum in a command."),
+    Rule("S026", "cli shortcuts are unique",
+         "No `cli` shortcut appears twice in an enum.",
+         "Give one of the values another shortcut."),
+    Rule("S027", "cli shortcuts are not command names",
+         "A `cli` shortcut's first word is not the name of a command of the vendors that take the enum.",
+         "Choose another shortcut."),
+    Rule("S028", "a field's min is at most its max",
+         "A field's `min` does not exceed its `max`.",
+         "Swap or correct the bounds."),
+    Rule("S029", "bounds fit a number",
+         "`min` and `max` fit the 18 digits a number holds in every runtime.",
+         "Use fewer digits."),
+    Rule("S030", "a damaged example says so",
+         "An example whose checksum fails has `corrected` and `reason`, or `unrecoverable`.",
+         "Add `corrected` (the line with the right checksum) and `reason`, or `unrecoverable: <why>`."),
+    Rule("S031", "a correction corrects",
+         "An example's `corrected` is not its `raw` text (a right checksum needs no correction).",
+         "Remove `corrected` and `reason`."),
+    Rule("S032", "a correction's checksum is right",
+         "The checksum of `corrected` is right.",
+         "Write the computed checksum the message names."),
+    Rule("S033", "examples decode as their sentence",
+         "An example decodes, and as the sentence whose file holds it.",
+         "Correct the line, move the example to the sentence it is, or fix the layout (the message has the "
+         "decoder's error)."),
+    Rule("S034", "a standard id is its formatter",
+         "A standard sentence's id is its 3-character formatter.",
+         "Use the formatter as id; a proprietary sentence goes to proprietary/ with `address`."),
+    Rule("S035", "standard sentences are plain",
+         "A standard sentence has no `kind`, `vendor`, `replies` or `framing`.",
+         "Remove the key, or make it a proprietary sentence."),
+    Rule("S036", "standard sentences have a domain",
+         "A standard sentence has a `domain` (the docs index groups by it).",
+         "Add `domain:` (gnss, navigation, heading, environment, ais_safety, alarms or system)."),
+    Rule("S037", "proprietary sentences start with $",
+         "A proprietary sentence has no `start` and no `domain`.",
+         "Remove the key."),
+    Rule("S038", "a text command's address is a word",
+         "A text command's address (its command word) is letters only.",
+         "Correct the address."),
+    Rule("S039", "text command keywords are upper case",
+         "A keyword of a text command is written in upper case (lines match it ignoring case).",
+         "Write the word in upper case."),
+    Rule("S040", "only commands have replies",
+         "Only a sentence of `kind: command` lists `replies`.",
+         "Set `kind: command`, or remove `replies`."),
+    Rule("S041", "a reply's `when` fits the reply",
+         "Each field a command's `when` names is a field of the reply, of a type a program compares exactly "
+         "(integer, enum, text, char), with a value of that type.",
+         "Correct the field id or the value."),
+    Rule("S042", "a reply's `outcome` fits its layout",
+         "An `outcome` names a field of each layout it applies to, of a comparable type, with values of that type.",
+         "Correct the field id or the values."),
+    Rule("S043", "only replies have an outcome",
+         "Only a sentence of `kind: reply` says `outcome`.",
+         "Set `kind: reply`, or remove `outcome`."),
+    Rule("S044", "bits do not overlap",
+         "No bit of a bitfield belongs to two named runs.",
+         "Correct the bits."),
+    Rule("S045", "generic messages stay generic",
+         "A `generic` entry of manuals.yaml is a message no layout of the spec reads.",
+         "Remove the entry: the spec now describes the message."),
+    Rule("S046", "overlay extensions extend a sentence",
+         "A file of an overlay's extensions/ names (`extends`) a sentence of the spec.",
+         "Correct the id, or write the sentence in the overlay's standard/ or proprietary/."),
+)}
+
+
+def rule(rule_id: str) -> Rule:
+    """The rule of `rule_id`; reporting an id the table does not have is a bug of the generator."""
+    try:
+        return RULES[rule_id]
+    except KeyError:
+        raise ValueError(f"rule {rule_id!r} is not in generator/rules.py") from None
+
+
+def as_text() -> str:
+    def wrapped(label: str, text: str) -> str:
+        return textwrap.fill(text, 100, initial_indent=f"       {label:8}", subsequent_indent=" " * 15) + "\n"
+
+    return "".join(f"{r.id:7}{r.title}\n" + wrapped("checks:", r.checks) + wrapped("fix:", r.fix) for r in RULES.values())
+
+
+def as_markdown() -> str:
+    def cell(text: str) -> str:
+        return text.replace("|", "\\|")
+
+    lines = ["# Spec rules", "",
+             "Every error of `nmeaspec-gen validate` ends with the id of the rule it breaks, e.g.",
+             "`spec/standard/gga.yaml:12: fields[3].enum: field quality refers to unknown enum 'x' [S002]`.",
+             "This page is `nmeaspec-gen rules --markdown` (generator/rules.py).", "",
+             "| id | rule | what it checks | how to fix |", "| --- | --- | --- | --- |"]
+    lines += [f"| {r.id} | {cell(r.title)} | {cell(r.checks)} | {cell(r.fix)} |" for r in RULES.values()]
+    return "\n".join(lines) + "\n"
