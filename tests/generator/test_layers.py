@@ -12,7 +12,7 @@ GENERATOR = Path(__file__).resolve().parents[2] / "generator"
 
 # Bottom to top.
 LAYERS = [
-    {"paths", "errors", "numbers"},
+    {"paths", "errors", "numbers", "rules"},              # rules: the checks' ids and what they mean
     {"field_types"},                                      # what differs by field type
     {"model"},                                            # the typed spec
     {"loader", "naming", "selection"},                    # reading YAML; naming and picking sentences
@@ -20,7 +20,7 @@ LAYERS = [
     {"reference"},                                        # the reference decoder
     {"resolve"},
     {"checks"},
-    {"build", "diff", "reconcile"},                       # load, resolve and check a spec; compare specs
+    {"build", "diff", "reconcile", "scaffold"},           # load, resolve and check a spec; compare specs; new files
     {"emit"},                                             # what the emitters share
     {"emit_vectors", "emit_python", "emit_tool", "emit_c", "emit_rust", "emit_docs", "emit_packaging"},
     {"render", "cli", "__main__", "__init__"},            # the drivers
