@@ -9,6 +9,7 @@ call for each field, the value ranges; the templates only loop and print.
 
 from __future__ import annotations
 
+import re
 import textwrap
 
 import jinja2
@@ -26,6 +27,20 @@ volatile while bool true false _Bool _Complex _Imaginary
 
 # The C member type of each field type (None: a keyword, which the layout implies).
 C_TYPES = {name: t.c_type for name, t in TYPES.items()}
+
+
+# The C runtime is pieces in runtime/c (runtime.h, and the .c files runtime.c lists: which, and in
+# what order, is said there and only there); nmea.c holds runtime.c before the generated code.
+RUNTIME_C = RUNTIME / "c"
+_PIECE = re.compile(r'^#include "(\w+\.c)"\n', re.M)
+_RULE = "/* " + "-" * 90 + " */\n"
+
+
+def runtime_source(name: str) -> str:
+    """runtime/c/<name> as nmea.c holds it: each piece it includes (#include "piece.c") pasted in
+    place of the #include, under a rule."""
+    text = (RUNTIME_C / name).read_text(encoding="utf-8")
+    return _PIECE.sub(lambda m: _RULE + (RUNTIME_C / m[1]).read_text(encoding="utf-8") + "\n", text)
 
 
 MAX_LINE = CONTRACT["limits"]["max_line"]  # NMEA_MAX_LINE
@@ -133,7 +148,7 @@ class Ranges:
 # Per-field calls
 
 
-# The field_type constant of each field type (runtime/c/runtime.c).
+# The field_type constant of each field type (runtime/c/layout.c).
 FIELD_TYPES = {name: "FIELD_" + name.upper() for name in TYPES}
 
 
@@ -692,8 +707,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "id": c_str(s.id),
         "layouts": [v for v in views if v["sentence"] is s],
     } for s in spec.sentences]
-    runtime_h = (RUNTIME / "c" / "runtime.h").read_text(encoding="utf-8")
-    runtime_c = (RUNTIME / "c" / "runtime.c").read_text(encoding="utf-8")
+    runtime_h = (RUNTIME_C / "runtime.h").read_text(encoding="utf-8")
+    runtime_c = runtime_source("runtime.c")
     # The fast path reads a standard-looking line by its last three letters ($GPGSV: GSV); only a
     # proprietary address whose last three letters name a standard sentence must be told apart.
     standard_ids = {e["sort"] for e in dispatch["standard"]}

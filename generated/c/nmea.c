@@ -9,12 +9,23 @@
 #include "nmea.h"
 
 /*
- * Runtime (hand-written: runtime/c/runtime.c): framing, checksum, field types, errors, JSON.
+ * Runtime (hand-written: runtime/c/): framing, checksum, field types, errors, JSON, and the one
+ * reader, writer and JSON form that interpret the layout tables the generator writes.
  *
  * The acceptance rules and messages here are shared byte for byte with the Python and Rust
- * runtimes (see docs/json.md). Everything below is static: the generated per-sentence code at
- * the end of this file is its only user, and the public functions are declared in nmea.h.
+ * runtimes (see docs/json.md). Everything is static: the generated per-sentence code after it in
+ * nmea.c is its only user, and the public functions are declared in nmea.h.
+ *
+ * This file is the list of the runtime's pieces in the order they are pasted into nmea.c (each
+ * uses only those before it): the C emitter (generator/emit_c.py) puts each piece in place of its
+ * #include, and the runtime's tests include this file as it is.
  */
+
+/* ------------------------------------------------------------------------------------------ */
+/* What every piece uses: the linkage macros (everything is static, and the generated code in the
+   same nmea.c is its only user: NMEA_INTERNAL for what some specs leave unused, NMEA_HOT,
+   NMEA_RARE and NMEA_OUTLINE for the compiler's inlining), the character classes, hex digits,
+   powers of ten, and nmea_text with the comparisons of texts the pieces make. */
 
 #include <string.h>
 
@@ -358,9 +369,10 @@ static void put_json_str(nmea_writer *w, nmea_text t, int depth)
 }
 #endif
 
-
 /* ------------------------------------------------------------------------------------------ */
-/* Errors */
+/* Errors: the kinds' names, `fail` and its helpers that fill an nmea_error, the message and name
+   of an error written from its pattern (the texts of runtime/contract.yaml, byte for byte those
+   of the Python and Rust runtimes), an error as JSON, and the problems lenient parsing keeps. */
 
 static const char *const ERROR_KINDS[] = {
     "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "missing_checksum", "too_few_fields",
@@ -563,7 +575,9 @@ size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap)
 }
 
 /* ------------------------------------------------------------------------------------------ */
-/* Framing: a line split into start, address and fields, its checksum verified. */
+/* Framing: a line split into start, address and fields, its checksum verified (eight bytes at a
+   time), a text command's words; and the other direction, the frame of a sentence being written
+   (begin_sentence, end_sentence with its checksum, a text command's words, a generic sentence). */
 
 typedef struct {
     nmea_text start;
@@ -780,81 +794,6 @@ static bool word_is(nmea_text word, const char *upper)
     return *upper == 0;
 }
 
-/* ------------------------------------------------------------------------------------------ */
-/* Stream framing */
-
-/* The bytes that end a line (CR, LF) or start a new one ('$', '!'). */
-static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2};
-
-void nmea_framer_init(nmea_framer *f)
-{
-    f->length = 0;
-}
-
-/* Adds bytes to the line being assembled (only its first NMEA_MAX_LINE bytes are kept). */
-static void framer_keep(nmea_framer *f, const char *p, size_t n)
-{
-    if (f->length < NMEA_MAX_LINE)
-        memcpy(f->line + f->length, p, n < NMEA_MAX_LINE - f->length ? n : NMEA_MAX_LINE - f->length);
-    f->length += n;
-}
-
-bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out)
-{
-    const char *p = *data, *end, *q;
-    if (*len == 0)
-        return false;
-    end = p + *len;
-    if (f->length == 0) {
-        while (p < end && LINE_BOUNDARY[(unsigned char)*p] == 1) /* empty lines */
-            p++;
-        if (p == end) {
-            *data = end;
-            *len = 0;
-            return false;
-        }
-        /* a line starts at p: one that ends in this chunk is handed on where it lies */
-        for (q = p + 1; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
-            continue;
-        if (q < end) {
-            out->ptr = (size_t)(q - p) <= NMEA_MAX_LINE ? p : NULL;
-            out->len = (size_t)(q - p);
-            q += LINE_BOUNDARY[(unsigned char)*q] == 1; /* a '$' or '!' stays for the next line */
-            *data = q;
-            *len = (size_t)(end - q);
-            return true;
-        }
-    } else {
-        for (q = p; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
-            continue;
-        framer_keep(f, p, (size_t)(q - p));
-        if (q < end) {
-            out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
-            out->len = f->length;
-            f->length = 0;
-            q += LINE_BOUNDARY[(unsigned char)*q] == 1;
-            *data = q;
-            *len = (size_t)(end - q);
-            return true;
-        }
-        p = q;
-    }
-    framer_keep(f, p, (size_t)(end - p));
-    *data = end;
-    *len = 0;
-    return false;
-}
-
-bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
-{
-    if (f->length == 0)
-        return false;
-    out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
-    out->len = f->length;
-    f->length = 0;
-    return true;
-}
-
 /* A known sentence starts with '$' (or '!', an encapsulation sentence), its talker and its
    sentence id; the checksum covers all but the start. Each field writes its comma, end_sentence
    the checksum. */
@@ -942,6 +881,82 @@ static void write_generic(nmea_writer *w, const nmea_generic *g)
         put_text(w, g->fields);
     }
     end_sentence(w, g->checksum);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* The stream framer (nmea_framer): bytes as a serial port or socket delivers them, in chunks of
+   any size, cut into lines at CR, LF, '$' and '!', an overlong line reported by its length. */
+
+/* The bytes that end a line (CR, LF) or start a new one ('$', '!'). */
+static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2};
+
+void nmea_framer_init(nmea_framer *f)
+{
+    f->length = 0;
+}
+
+/* Adds bytes to the line being assembled (only its first NMEA_MAX_LINE bytes are kept). */
+static void framer_keep(nmea_framer *f, const char *p, size_t n)
+{
+    if (f->length < NMEA_MAX_LINE)
+        memcpy(f->line + f->length, p, n < NMEA_MAX_LINE - f->length ? n : NMEA_MAX_LINE - f->length);
+    f->length += n;
+}
+
+bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out)
+{
+    const char *p = *data, *end, *q;
+    if (*len == 0)
+        return false;
+    end = p + *len;
+    if (f->length == 0) {
+        while (p < end && LINE_BOUNDARY[(unsigned char)*p] == 1) /* empty lines */
+            p++;
+        if (p == end) {
+            *data = end;
+            *len = 0;
+            return false;
+        }
+        /* a line starts at p: one that ends in this chunk is handed on where it lies */
+        for (q = p + 1; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
+            continue;
+        if (q < end) {
+            out->ptr = (size_t)(q - p) <= NMEA_MAX_LINE ? p : NULL;
+            out->len = (size_t)(q - p);
+            q += LINE_BOUNDARY[(unsigned char)*q] == 1; /* a '$' or '!' stays for the next line */
+            *data = q;
+            *len = (size_t)(end - q);
+            return true;
+        }
+    } else {
+        for (q = p; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
+            continue;
+        framer_keep(f, p, (size_t)(q - p));
+        if (q < end) {
+            out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
+            out->len = f->length;
+            f->length = 0;
+            q += LINE_BOUNDARY[(unsigned char)*q] == 1;
+            *data = q;
+            *len = (size_t)(end - q);
+            return true;
+        }
+        p = q;
+    }
+    framer_keep(f, p, (size_t)(end - p));
+    *data = end;
+    *len = 0;
+    return false;
+}
+
+bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
+{
+    if (f->length == 0)
+        return false;
+    out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
+    out->len = f->length;
+    f->length = 0;
+    return true;
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -1656,10 +1671,10 @@ NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *n
 /* ------------------------------------------------------------------------------------------ */
 /* The fast path: a sentence in its usual form, read in one pass without the bookkeeping errors
    need. nmea_parse_ex tries it first; whatever it is not sure of (any field it cannot read, a
-   field count that fits no layout, an unusual frame) it leaves to the general path above, which
-   then reads the line from the start and finds the error. It accepts a subset of what the
-   general path accepts and fills the struct exactly as the general path would: a build with
-   NMEA_TEST_HOOKS checks that on every line it is given (nmea_parse_general). */
+   field count that fits no layout, an unusual frame) it leaves to the general path (layout.c's
+   read_with), which then reads the line from the start and finds the error. It accepts a subset
+   of what the general path accepts and fills the struct exactly as the general path would: a
+   build with NMEA_TEST_HOOKS checks that on every line it is given (nmea_parse_general). */
 
 /* What a layout's fast reader found: the line read, or it cannot be this layout (its field
    count does not fit: the general path cannot read it with this layout either), or not sure. */
@@ -2552,16 +2567,17 @@ NMEA_HOT bool fast_put_entries(fast_writer *w, const nmea_entries *e, size_t fie
     return seps + 1 == fields; /* else the general writer writes the sentence again */
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* The fields as JSON: the lossless texts, or (values) the decoded values. Each writes
+   [,]"key": (no key inside an array) and the value. Left out by -DNMEA_NO_JSON, with the JSON
+   reader (json_read.c): the tools need them, a program that only parses and writes sentences
+   does not. */
+
 #ifndef NMEA_NO_JSON
 static void put_json_cstr(nmea_writer *w, const char *s)
 {
     put_json_str(w, nmea_text_of(s), 0);
 }
-
-/* ------------------------------------------------------------------------------------------ */
-/* The fields as JSON: the lossless texts, or (values) the decoded values. Each writes
-   [,]"key": (no key inside an array) and the value. Left out by -DNMEA_NO_JSON, with the JSON
-   reader below: the tools need them, a program that only parses and writes sentences does not. */
 
 static void json_key(nmea_writer *w, const char *key)
 {
@@ -2907,11 +2923,13 @@ static void json_generic(nmea_writer *w, const nmea_generic *g)
     put_char(w, ']');
     json_checksum(w, sum.sum, g->checksum);
 }
+#endif /* NMEA_NO_JSON */
 
 /* ------------------------------------------------------------------------------------------ */
 /* Reading JSON (the `encode` direction): a validator for the whole text, then lookups that
    walk the validated text again. A value is the span [p, end) of its text. */
 
+#ifndef NMEA_NO_JSON
 typedef struct {
     const char *p;
     const char *end;
@@ -3416,11 +3434,11 @@ bool nmea_json_is_failure(const char *json, size_t len)
 }
 #endif /* NMEA_NO_JSON */
 
-#ifndef NMEA_NO_TABLES
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables: the wire text of a value (Parameter.encode of the Python
    runtime). */
 
+#ifndef NMEA_NO_TABLES
 const nmea_parameter *nmea_param_find(const nmea_parameter *table, size_t count, unsigned number)
 {
     size_t i;
@@ -3577,8 +3595,8 @@ size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, siz
 
 /* ------------------------------------------------------------------------------------------ */
 /* Layouts: what the spec says of each sentence layout, as a table the generator writes (the
-   LAYOUTS of nmea.c), and the one reader, writer, JSON writer and JSON collector that read
-   them. Only the fast path has code of its own per layout. */
+   LAYOUTS of nmea.c), and the one reader and writer that interpret them (their JSON form is in
+   layout_json.c). Only the fast path has code of its own per layout. */
 
 /* The field types of the spec. */
 typedef enum {
@@ -4045,6 +4063,11 @@ static size_t build_with(const layout *l, const void *s, const nmea_problems *pr
     return build_end(&w);
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* The layout interpreter's JSON (the tools' two directions, see json.md): json_with writes a
+   sentence of any layout as decode's JSON, collect_with gathers the field texts of encode's JSON
+   into a wire for read_with. Left out by -DNMEA_NO_JSON, as the rest of the JSON. */
+
 #ifndef NMEA_NO_JSON
 /* A field in the JSON under `key` (NULL: a value of a group's array), from `in`, a value of its
    type. */
@@ -4225,6 +4248,7 @@ static bool collect_with(const layout *l, nmea_collector *c, nmea_json fields)
     return true;
 }
 #endif /* NMEA_NO_JSON */
+
 
 /* ========================================================================================== */
 /* Generated from the spec */
