@@ -29,8 +29,9 @@ volatile while bool true false _Bool _Complex _Imaginary
 C_TYPES = {name: t.c_type for name, t in TYPES.items()}
 
 
-# The C runtime is pieces in runtime/c (runtime.h, and the .c files runtime.c lists: which, and in
-# what order, is said there and only there); nmea.c holds runtime.c before the generated code.
+# The C runtime is pieces in runtime/c: nmea.h holds runtime.h before the sentences' types and
+# api.h after them; nmea.c holds the .c files that runtime.c lists (which, and in what order, is
+# said there and only there) before the generated code.
 RUNTIME_C = RUNTIME / "c"
 _PIECE = re.compile(r'^#include "(\w+\.c)"\n', re.M)
 _RULE = "/* " + "-" * 90 + " */\n"
@@ -707,8 +708,6 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "id": c_str(s.id),
         "layouts": [v for v in views if v["sentence"] is s],
     } for s in spec.sentences]
-    runtime_h = (RUNTIME_C / "runtime.h").read_text(encoding="utf-8")
-    runtime_c = runtime_source("runtime.c")
     # The fast path reads a standard-looking line by its last three letters ($GPGSV: GSV); only a
     # proprietary address whose last three letters name a standard sentence must be told apart.
     standard_ids = {e["sort"] for e in dispatch["standard"]}
@@ -724,7 +723,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),
         "json_max": json_max(spec, views),
-        "runtime_h": runtime_h, "runtime_c": runtime_c,
+        "runtime_h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),
+        "runtime_api_h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
+        "runtime_c": runtime_source("runtime.c"),
     }
     files = {
         "c/nmea.h": env.get_template("c/nmea.h.j2").render(header=header(spec, "//"), **context),

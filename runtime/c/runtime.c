@@ -7,8 +7,9 @@
  * nmea.c is its only user, and the public functions are declared in nmea.h.
  *
  * This file is the list of the runtime's pieces in the order they are pasted into nmea.c (each
- * uses only those before it): the C emitter (generator/emit_c.py) puts each piece in place of its
- * #include, and the runtime's tests include this file as it is.
+ * uses only those before it, and generated.c declares what the generated code after them
+ * defines): the C emitter (generator/emit_c.py) puts each piece in place of its #include, and
+ * the runtime's tests include this file as it is.
  */
 
 #include "base.c"
@@ -26,3 +27,7 @@
 #include "tables.c"
 #include "layout.c"
 #include "layout_json.c"
+#include "generated.c"
+#include "dispatch.c"
+#include "api.c"
+#include "json_api.c"

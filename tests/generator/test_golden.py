@@ -22,8 +22,9 @@ GOLDEN = Path(__file__).with_name("golden")
 EXPECTED = GOLDEN / "expected"
 
 # The C runtime is pasted into nmea.h / nmea.c: it is replaced by a line that names it.
-EMBEDDED = {"c/nmea.h": ["runtime.h"], "c/nmea.c": ["runtime.c"]}
+EMBEDDED = {"c/nmea.h": ["runtime.h", "api.h"], "c/nmea.c": ["runtime.c"]}
 RUNTIME_TEXTS = {"runtime.h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),
+                 "api.h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
                  "runtime.c": runtime_source("runtime.c")}
 
 
