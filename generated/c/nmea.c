@@ -3224,6 +3224,22 @@ static bool json_next(nmea_json *iter, nmea_json *element)
     return true;
 }
 
+/* Whether a line of decode's output is a JSON object whose "ok" is false (encode skips it). */
+bool nmea_json_is_failure(const char *json, size_t len)
+{
+    nmea_json root, ok;
+    return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
+        && memcmp(ok.p, "false", 5) == 0;
+}
+#endif /* NMEA_NO_JSON */
+
+/* ------------------------------------------------------------------------------------------ */
+/* encode's JSON to wire text: JSON strings copied into the caller's scratch buffer, the members
+   decode writes (required, nullable, a word, the checksum), and nmea_collector, which checks the
+   texts of a sentence's "fields" and joins them with commas, the wire a layout then reads. Left
+   out by -DNMEA_NO_JSON. */
+
+#ifndef NMEA_NO_JSON
 /* The bytes of JSON strings are copied into the caller's scratch buffer (a character beyond
    0xFF keeps its low byte, like the tools' escaping; `wide` tells). */
 typedef struct {
@@ -3428,14 +3444,6 @@ static nmea_text collected(const nmea_collector *c)
 {
     return text_span(c->scratch->buf + c->start, c->scratch->buf + c->scratch->len);
 }
-
-/* Whether a line of decode's output is a JSON object whose "ok" is false (encode skips it). */
-bool nmea_json_is_failure(const char *json, size_t len)
-{
-    nmea_json root, ok;
-    return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
-        && memcmp(ok.p, "false", 5) == 0;
-}
 #endif /* NMEA_NO_JSON */
 
 /* ------------------------------------------------------------------------------------------ */
@@ -3599,8 +3607,9 @@ size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, siz
 
 /* ------------------------------------------------------------------------------------------ */
 /* Layouts: what the spec says of each sentence layout, as a table the generator writes (the
-   LAYOUTS of nmea.c), and the one reader and writer that interpret them (their JSON form is in
-   layout_json.c). Only the fast path has code of its own per layout. */
+   LAYOUTS of nmea.c), and the one general reader that interprets them (read_with, and entry_of
+   for a repeated group's entries; the writer is layout_write.c, the JSON form layout_json.c).
+   Only the fast path has code of its own per layout. */
 
 /* The field types of the spec. */
 typedef enum {
@@ -3946,6 +3955,12 @@ NMEA_OUTLINE bool entry_of(const layout *l, const void *s, size_t i, void *out)
         reread_field(&c, &g->fields[j], member_at(out, g->fields[j].offset));
     return true;
 }
+
+/* ------------------------------------------------------------------------------------------ */
+/* The general writer of any layout: write_with writes a sentence's fields from its struct (its
+   keywords, its repeated group from the wire or the caller's items, the texts of its problems in
+   their places); serialize_with and build_with (written, then read back) are the per-layout
+   nmea_serialize_<layout> and nmea_build_<layout>. */
 
 /* Writes field `f` (its separator and text) from `in`, a value of its type. */
 static void write_field(nmea_writer *w, const layout_field *f, const void *in)
