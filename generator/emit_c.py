@@ -10,6 +10,7 @@ names of names_c.py; the templates only loop and print.
 
 from __future__ import annotations
 
+import re
 import textwrap
 
 import jinja2
@@ -20,6 +21,21 @@ from .model import BitfieldDef, EnumDef, Field, Group, Layout, Sentence, Spec, T
 from .names_c import (bits_const, bits_function, bits_mask, entry_type, enum_const, enum_def, enum_type,
                       group_accessor, layout_const, layout_type, member, parameter_macro, table_count, table_name)
 from .numbers import fixed_point, fmt_num
+
+# The C runtime is pieces in runtime/c: nmea.h holds runtime.h before the sentences' types and
+# api.h after them; nmea.c holds the .c files that runtime.c lists (which, and in what order, is
+# said there and only there) before the generated code.
+RUNTIME_C = RUNTIME / "c"
+_PIECE = re.compile(r'^#include "(\w+\.c)"\n', re.M)
+_RULE = "/* " + "-" * 90 + " */\n"
+
+
+def runtime_source(name: str) -> str:
+    """runtime/c/<name> as nmea.c holds it: each piece it includes (#include "piece.c") pasted in
+    place of the #include, under a rule."""
+    text = (RUNTIME_C / name).read_text(encoding="utf-8")
+    return _PIECE.sub(lambda m: _RULE + (RUNTIME_C / m[1]).read_text(encoding="utf-8") + "\n", text)
+
 
 MAX_LINE = CONTRACT["limits"]["max_line"]  # NMEA_MAX_LINE
 MAX_PROBLEMS = CONTRACT["limits"]["max_problems"]  # NMEA_MAX_PROBLEMS
@@ -599,8 +615,6 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "id": c_str(s.id),
         "layouts": [v for v in views if v["sentence"] is s],
     } for s in spec.sentences]
-    runtime_h = (RUNTIME / "c" / "runtime.h").read_text(encoding="utf-8")
-    runtime_c = (RUNTIME / "c" / "runtime.c").read_text(encoding="utf-8")
     # The fast path reads a standard-looking line by its last three letters ($GPGSV: GSV); only a
     # proprietary address whose last three letters name a standard sentence must be told apart.
     standard_ids = {e["sort"] for e in dispatch["standard"]}
@@ -616,7 +630,9 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         "code_max": max([e.max_len for e in spec.enums] + [1]),
         "max_fields": max([v["max_fields"] for v in views] + [1]),
         "json_max": json_max(spec, views),
-        "runtime_h": runtime_h, "runtime_c": runtime_c,
+        "runtime_h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),
+        "runtime_api_h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
+        "runtime_c": runtime_source("runtime.c"),
     }
     files = {
         "c/nmea.h": env.get_template("c/nmea.h.j2").render(header=header(spec, "//"), **context),

@@ -8,13 +8,28 @@
 
 #include "nmea.h"
 
+/* The most wire fields any layout takes (runtime/c/generated.c). */
+#define NMEA_MAX_FIELDS 386
+
 /*
- * Runtime (hand-written: runtime/c/runtime.c): framing, checksum, field types, errors, JSON.
+ * Runtime (hand-written: runtime/c/): framing, checksum, field types, errors, JSON, and the one
+ * reader, writer and JSON form that interpret the layout tables the generator writes.
  *
  * The acceptance rules and messages here are shared byte for byte with the Python and Rust
- * runtimes (see docs/json.md). Everything below is static: the generated per-sentence code at
- * the end of this file is its only user, and the public functions are declared in nmea.h.
+ * runtimes (see docs/json.md). Everything is static: the generated per-sentence code after it in
+ * nmea.c is its only user, and the public functions are declared in nmea.h.
+ *
+ * This file is the list of the runtime's pieces in the order they are pasted into nmea.c (each
+ * uses only those before it, and generated.c declares what the generated code after them
+ * defines): the C emitter (generator/emit_c.py) puts each piece in place of its #include, and
+ * the runtime's tests include this file as it is.
  */
+
+/* ------------------------------------------------------------------------------------------ */
+/* What every piece uses: the linkage macros (everything is static, and the generated code in the
+   same nmea.c is its only user: NMEA_INTERNAL for what some specs leave unused, NMEA_HOT,
+   NMEA_RARE and NMEA_OUTLINE for the compiler's inlining), the character classes, hex digits,
+   powers of ten, and nmea_text with the comparisons of texts the pieces make. */
 
 #include <string.h>
 
@@ -358,9 +373,10 @@ static void put_json_str(nmea_writer *w, nmea_text t, int depth)
 }
 #endif
 
-
 /* ------------------------------------------------------------------------------------------ */
-/* Errors */
+/* Errors: the kinds' names, `fail` and its helpers that fill an nmea_error, the message and name
+   of an error written from its pattern (the texts of runtime/contract.yaml, byte for byte those
+   of the Python and Rust runtimes), an error as JSON, and the problems lenient parsing keeps. */
 
 static const char *const ERROR_KINDS[] = {
     "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "missing_checksum", "too_few_fields",
@@ -563,7 +579,9 @@ size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap)
 }
 
 /* ------------------------------------------------------------------------------------------ */
-/* Framing: a line split into start, address and fields, its checksum verified. */
+/* Framing: a line split into start, address and fields, its checksum verified (eight bytes at a
+   time), a text command's words; and the other direction, the frame of a sentence being written
+   (begin_sentence, end_sentence with its checksum, a text command's words, a generic sentence). */
 
 typedef struct {
     nmea_text start;
@@ -780,81 +798,6 @@ static bool word_is(nmea_text word, const char *upper)
     return *upper == 0;
 }
 
-/* ------------------------------------------------------------------------------------------ */
-/* Stream framing */
-
-/* The bytes that end a line (CR, LF) or start a new one ('$', '!'). */
-static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2};
-
-void nmea_framer_init(nmea_framer *f)
-{
-    f->length = 0;
-}
-
-/* Adds bytes to the line being assembled (only its first NMEA_MAX_LINE bytes are kept). */
-static void framer_keep(nmea_framer *f, const char *p, size_t n)
-{
-    if (f->length < NMEA_MAX_LINE)
-        memcpy(f->line + f->length, p, n < NMEA_MAX_LINE - f->length ? n : NMEA_MAX_LINE - f->length);
-    f->length += n;
-}
-
-bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out)
-{
-    const char *p = *data, *end, *q;
-    if (*len == 0)
-        return false;
-    end = p + *len;
-    if (f->length == 0) {
-        while (p < end && LINE_BOUNDARY[(unsigned char)*p] == 1) /* empty lines */
-            p++;
-        if (p == end) {
-            *data = end;
-            *len = 0;
-            return false;
-        }
-        /* a line starts at p: one that ends in this chunk is handed on where it lies */
-        for (q = p + 1; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
-            continue;
-        if (q < end) {
-            out->ptr = (size_t)(q - p) <= NMEA_MAX_LINE ? p : NULL;
-            out->len = (size_t)(q - p);
-            q += LINE_BOUNDARY[(unsigned char)*q] == 1; /* a '$' or '!' stays for the next line */
-            *data = q;
-            *len = (size_t)(end - q);
-            return true;
-        }
-    } else {
-        for (q = p; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
-            continue;
-        framer_keep(f, p, (size_t)(q - p));
-        if (q < end) {
-            out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
-            out->len = f->length;
-            f->length = 0;
-            q += LINE_BOUNDARY[(unsigned char)*q] == 1;
-            *data = q;
-            *len = (size_t)(end - q);
-            return true;
-        }
-        p = q;
-    }
-    framer_keep(f, p, (size_t)(end - p));
-    *data = end;
-    *len = 0;
-    return false;
-}
-
-bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
-{
-    if (f->length == 0)
-        return false;
-    out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
-    out->len = f->length;
-    f->length = 0;
-    return true;
-}
-
 /* A known sentence starts with '$' (or '!', an encapsulation sentence), its talker and its
    sentence id; the checksum covers all but the start. Each field writes its comma, end_sentence
    the checksum. */
@@ -942,6 +885,82 @@ static void write_generic(nmea_writer *w, const nmea_generic *g)
         put_text(w, g->fields);
     }
     end_sentence(w, g->checksum);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* The stream framer (nmea_framer): bytes as a serial port or socket delivers them, in chunks of
+   any size, cut into lines at CR, LF, '$' and '!', an overlong line reported by its length. */
+
+/* The bytes that end a line (CR, LF) or start a new one ('$', '!'). */
+static const unsigned char LINE_BOUNDARY[256] = {['\r'] = 1, ['\n'] = 1, ['$'] = 2, ['!'] = 2};
+
+void nmea_framer_init(nmea_framer *f)
+{
+    f->length = 0;
+}
+
+/* Adds bytes to the line being assembled (only its first NMEA_MAX_LINE bytes are kept). */
+static void framer_keep(nmea_framer *f, const char *p, size_t n)
+{
+    if (f->length < NMEA_MAX_LINE)
+        memcpy(f->line + f->length, p, n < NMEA_MAX_LINE - f->length ? n : NMEA_MAX_LINE - f->length);
+    f->length += n;
+}
+
+bool nmea_framer_push(nmea_framer *f, const char **data, size_t *len, nmea_framed *out)
+{
+    const char *p = *data, *end, *q;
+    if (*len == 0)
+        return false;
+    end = p + *len;
+    if (f->length == 0) {
+        while (p < end && LINE_BOUNDARY[(unsigned char)*p] == 1) /* empty lines */
+            p++;
+        if (p == end) {
+            *data = end;
+            *len = 0;
+            return false;
+        }
+        /* a line starts at p: one that ends in this chunk is handed on where it lies */
+        for (q = p + 1; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
+            continue;
+        if (q < end) {
+            out->ptr = (size_t)(q - p) <= NMEA_MAX_LINE ? p : NULL;
+            out->len = (size_t)(q - p);
+            q += LINE_BOUNDARY[(unsigned char)*q] == 1; /* a '$' or '!' stays for the next line */
+            *data = q;
+            *len = (size_t)(end - q);
+            return true;
+        }
+    } else {
+        for (q = p; q < end && !LINE_BOUNDARY[(unsigned char)*q]; q++)
+            continue;
+        framer_keep(f, p, (size_t)(q - p));
+        if (q < end) {
+            out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
+            out->len = f->length;
+            f->length = 0;
+            q += LINE_BOUNDARY[(unsigned char)*q] == 1;
+            *data = q;
+            *len = (size_t)(end - q);
+            return true;
+        }
+        p = q;
+    }
+    framer_keep(f, p, (size_t)(end - p));
+    *data = end;
+    *len = 0;
+    return false;
+}
+
+bool nmea_framer_end(nmea_framer *f, nmea_framed *out)
+{
+    if (f->length == 0)
+        return false;
+    out->ptr = f->length <= NMEA_MAX_LINE ? f->line : NULL;
+    out->len = f->length;
+    f->length = 0;
+    return true;
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -1656,10 +1675,10 @@ NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *n
 /* ------------------------------------------------------------------------------------------ */
 /* The fast path: a sentence in its usual form, read in one pass without the bookkeeping errors
    need. nmea_parse_ex tries it first; whatever it is not sure of (any field it cannot read, a
-   field count that fits no layout, an unusual frame) it leaves to the general path above, which
-   then reads the line from the start and finds the error. It accepts a subset of what the
-   general path accepts and fills the struct exactly as the general path would: a build with
-   NMEA_TEST_HOOKS checks that on every line it is given (nmea_parse_general). */
+   field count that fits no layout, an unusual frame) it leaves to the general path (layout.c's
+   read_with), which then reads the line from the start and finds the error. It accepts a subset
+   of what the general path accepts and fills the struct exactly as the general path would: a
+   build with NMEA_TEST_HOOKS checks that on every line it is given (nmea_parse_general). */
 
 /* What a layout's fast reader found: the line read, or it cannot be this layout (its field
    count does not fit: the general path cannot read it with this layout either), or not sure. */
@@ -2552,16 +2571,17 @@ NMEA_HOT bool fast_put_entries(fast_writer *w, const nmea_entries *e, size_t fie
     return seps + 1 == fields; /* else the general writer writes the sentence again */
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* The fields as JSON: the lossless texts, or (values) the decoded values. Each writes
+   [,]"key": (no key inside an array) and the value. Left out by -DNMEA_NO_JSON, with the JSON
+   reader (json_read.c): the tools need them, a program that only parses and writes sentences
+   does not. */
+
 #ifndef NMEA_NO_JSON
 static void put_json_cstr(nmea_writer *w, const char *s)
 {
     put_json_str(w, nmea_text_of(s), 0);
 }
-
-/* ------------------------------------------------------------------------------------------ */
-/* The fields as JSON: the lossless texts, or (values) the decoded values. Each writes
-   [,]"key": (no key inside an array) and the value. Left out by -DNMEA_NO_JSON, with the JSON
-   reader below: the tools need them, a program that only parses and writes sentences does not. */
 
 static void json_key(nmea_writer *w, const char *key)
 {
@@ -2907,11 +2927,13 @@ static void json_generic(nmea_writer *w, const nmea_generic *g)
     put_char(w, ']');
     json_checksum(w, sum.sum, g->checksum);
 }
+#endif /* NMEA_NO_JSON */
 
 /* ------------------------------------------------------------------------------------------ */
 /* Reading JSON (the `encode` direction): a validator for the whole text, then lookups that
    walk the validated text again. A value is the span [p, end) of its text. */
 
+#ifndef NMEA_NO_JSON
 typedef struct {
     const char *p;
     const char *end;
@@ -3202,6 +3224,22 @@ static bool json_next(nmea_json *iter, nmea_json *element)
     return true;
 }
 
+/* Whether a line of decode's output is a JSON object whose "ok" is false (encode skips it). */
+bool nmea_json_is_failure(const char *json, size_t len)
+{
+    nmea_json root, ok;
+    return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
+        && memcmp(ok.p, "false", 5) == 0;
+}
+#endif /* NMEA_NO_JSON */
+
+/* ------------------------------------------------------------------------------------------ */
+/* encode's JSON to wire text: JSON strings copied into the caller's scratch buffer, the members
+   decode writes (required, nullable, a word, the checksum), and nmea_collector, which checks the
+   texts of a sentence's "fields" and joins them with commas, the wire a layout then reads. Left
+   out by -DNMEA_NO_JSON. */
+
+#ifndef NMEA_NO_JSON
 /* The bytes of JSON strings are copied into the caller's scratch buffer (a character beyond
    0xFF keeps its low byte, like the tools' escaping; `wide` tells). */
 typedef struct {
@@ -3406,21 +3444,13 @@ static nmea_text collected(const nmea_collector *c)
 {
     return text_span(c->scratch->buf + c->start, c->scratch->buf + c->scratch->len);
 }
-
-/* Whether a line of decode's output is a JSON object whose "ok" is false (encode skips it). */
-bool nmea_json_is_failure(const char *json, size_t len)
-{
-    nmea_json root, ok;
-    return json_parse(json, len, &root) && json_member(root, "ok", &ok) && ok.end - ok.p == 5
-        && memcmp(ok.p, "false", 5) == 0;
-}
 #endif /* NMEA_NO_JSON */
 
-#ifndef NMEA_NO_TABLES
 /* ------------------------------------------------------------------------------------------ */
 /* Configuration parameter tables: the wire text of a value (Parameter.encode of the Python
    runtime). */
 
+#ifndef NMEA_NO_TABLES
 const nmea_parameter *nmea_param_find(const nmea_parameter *table, size_t count, unsigned number)
 {
     size_t i;
@@ -3577,8 +3607,9 @@ size_t nmea_param_text(const nmea_parameter *p, const char *text, char *buf, siz
 
 /* ------------------------------------------------------------------------------------------ */
 /* Layouts: what the spec says of each sentence layout, as a table the generator writes (the
-   LAYOUTS of nmea.c), and the one reader, writer, JSON writer and JSON collector that read
-   them. Only the fast path has code of its own per layout. */
+   LAYOUTS of nmea.c), and the one general reader that interprets them (read_with, and entry_of
+   for a repeated group's entries; the writer is layout_write.c, the JSON form layout_json.c).
+   Only the fast path has code of its own per layout. */
 
 /* The field types of the spec. */
 typedef enum {
@@ -3925,6 +3956,12 @@ NMEA_OUTLINE bool entry_of(const layout *l, const void *s, size_t i, void *out)
     return true;
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* The general writer of any layout: write_with writes a sentence's fields from its struct (its
+   keywords, its repeated group from the wire or the caller's items, the texts of its problems in
+   their places); serialize_with and build_with (written, then read back) are the per-layout
+   nmea_serialize_<layout> and nmea_build_<layout>. */
+
 /* Writes field `f` (its separator and text) from `in`, a value of its type. */
 static void write_field(nmea_writer *w, const layout_field *f, const void *in)
 {
@@ -4044,6 +4081,11 @@ static size_t build_with(const layout *l, const void *s, const nmea_problems *pr
         return build_failed(&w);
     return build_end(&w);
 }
+
+/* ------------------------------------------------------------------------------------------ */
+/* The layout interpreter's JSON (the tools' two directions, see json.md): json_with writes a
+   sentence of any layout as decode's JSON, collect_with gathers the field texts of encode's JSON
+   into a wire for read_with. Left out by -DNMEA_NO_JSON, as the rest of the JSON. */
 
 #ifndef NMEA_NO_JSON
 /* A field in the JSON under `key` (NULL: a value of a group's array), from `in`, a value of its
@@ -4225,6 +4267,647 @@ static bool collect_with(const layout *l, nmea_collector *c, nmea_json fields)
     return true;
 }
 #endif /* NMEA_NO_JSON */
+
+/* ------------------------------------------------------------------------------------------ */
+/* What the generated code after the runtime in nmea.c defines for each spec, declared here for
+   the pieces that follow (dispatch.c, api.c, json_api.c); the runtime's tests define a small
+   fixture of it instead (test_runtime.c). Besides these, nmea.h gives the sentences' types
+   (nmea_sentence, nmea_sentence_id, NMEA_SENTENCE_COUNT) and nmea.c defines NMEA_MAX_FIELDS, the
+   most wire fields any layout takes, before the runtime. */
+
+/* Every layout by its nmea_sentence_id (NULL: the generic sentence). */
+static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT];
+
+/* Layout `id`'s fast reader on the fields of a line in the usual frame (fast_frame): FAST_NOT_THIS
+   for a layout without one. */
+static fast_result fast_read_layout(nmea_sentence *out, nmea_sentence_id id, const char *line, const char *fields,
+                                    const char *end, size_t count);
+
+/* nmea_parse_ex's fast path, which leaves what it is not sure of to its general path. */
+NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len);
+static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                          nmea_error *err);
+
+/* nmea_serialize's fast path: the length, or 0 to leave the sentence to the general writer. */
+NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size_t cap);
+
+/* ------------------------------------------------------------------------------------------ */
+/* Which layout reads a line: nmea_parse_<layout>'s framing (parse_with: the line must have the
+   layout's address), the tables of layouts by address that the generated code writes
+   (nmea_layouts, find_layouts), and the rules that pick among the layouts of one address: the
+   first that reads the line wins, the error of the layouts whose keyword the line holds is the
+   one reported, lenient parsing leaves the fields at fault empty one at a time (refit). */
+
+/* The wire of a line whose address must be $--<sentence> (or !--<sentence>: `start`). */
+NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, char start, const char *sentence,
+                               nmea_error *err)
+{
+    nmea_frame f;
+    if (!frame_line(&f, line, len, false, err))
+        return false;
+    if (!is_standard_address(&f) || f.start.ptr[0] != start ||
+        !text_is(text_span(f.address.ptr + 2, f.address.ptr + 5), sentence)) {
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, start == '!' ? "line is not a !--%s sentence" : "line is not a $--%s sentence");
+        set_address(err, f.address, NULL);
+        err->str[0] = sentence;
+        return false;
+    }
+    wire_of(wire, &f, sentence, NULL);
+    return true;
+}
+
+/* The wire of a line whose address must be $<address>. */
+NMEA_INTERNAL bool frame_proprietary(nmea_wire *wire, const char *line, size_t len, const char *address,
+                                     nmea_error *err)
+{
+    nmea_frame f;
+    if (!frame_line(&f, line, len, false, err))
+        return false;
+    if (f.start.ptr[0] != '$' || !text_is(f.address, address)) {
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a $%s sentence");
+        set_address(err, f.address, NULL);
+        err->str[0] = address;
+        return false;
+    }
+    wire_of(wire, &f, NULL, NULL);
+    return true;
+}
+
+/* The wire of a text command whose word must be `command` (in upper case). */
+NMEA_INTERNAL bool frame_command(nmea_wire *wire, const char *line, size_t len, const char *command,
+                                 nmea_error *err)
+{
+    nmea_frame f;
+    if ((len && (line[0] == '$' || line[0] == '!')) || !word_is(first_word(line, len), command)) {
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a %s command");
+        err->str[0] = command;
+        return false;
+    }
+    if (!text_frame(&f, line, len, err))
+        return false;
+    wire_of(wire, &f, NULL, line);
+    return true;
+}
+
+/* The length of a line without one trailing LF or CR LF: the parsers take a line as it was read,
+   as the Rust and Python ones do. A framed overlong line has no bytes (NULL): not read. */
+static size_t without_line_ending(const char *line, size_t len)
+{
+    if (line && len && line[len - 1] == '\n')
+        len -= len > 1 && line[len - 2] == '\r' ? 2 : 1;
+    return len;
+}
+
+/* nmea_parse_<layout>: the line framed as layout `l` says, then read into `out`, a struct of it. */
+static bool parse_with(const layout *l, void *out, const char *line, size_t len, nmea_error *err)
+{
+    nmea_wire wire;
+    len = without_line_ending(line, len);
+    if (l->kind == LAYOUT_STANDARD)
+        return frame_known(&wire, line, len, l->start, l->sentence, err) && read_with(l, out, &wire, err);
+    if (l->kind == LAYOUT_PROPRIETARY)
+        return frame_proprietary(&wire, line, len, l->address, err) && read_with(l, out, &wire, err);
+    return frame_command(&wire, line, len, l->command, err) && read_with(l, out, &wire, err);
+}
+
+/* The layouts a line may have, in the order they are tried. */
+typedef struct {
+    const char *key;
+    size_t key_len;
+    const char *suffix; /* a standard sentence: its id, after the talker in the address */
+    const nmea_sentence_id *ids;
+    size_t count;
+} nmea_layouts;
+
+/* The entry of a table sorted by key whose key is `key`, or NULL. The keys are compared byte by
+   byte (as memcmp would, but the first byte mostly decides, sooner than a call). */
+NMEA_INTERNAL inline const nmea_layouts *find_layouts(const nmea_layouts *table, size_t n, nmea_text key)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = (lo + hi) / 2, len = table[mid].key_len, common = len < key.len ? len : key.len, k;
+        const unsigned char *entry = (const unsigned char *)table[mid].key, *want = (const unsigned char *)key.ptr;
+        int order;
+        for (k = 0; k < common && entry[k] == want[k]; k++)
+            continue;
+        order = k < common ? entry[k] - want[k] : len < key.len ? -1 : len > key.len;
+        if (order == 0)
+            return &table[mid];
+        if (order < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return NULL;
+}
+
+/* The 3 characters at `id` as a number (big-endian), as the _CODES tables hold them. */
+NMEA_INTERNAL inline uint32_t standard_code(const char *id)
+{
+    return (uint32_t)(unsigned char)id[0] << 16 | (uint32_t)(unsigned char)id[1] << 8 | (unsigned char)id[2];
+}
+
+/* Wire field `index` (0-based) of `fields` (separated by `sep`); empty past the end. */
+static nmea_text field_at(nmea_text fields, char sep, size_t index)
+{
+    const char *p = fields.ptr, *end = fields.ptr + fields.len, *stop;
+    for (; index > 0 && p < end; index--) {
+        while (p < end && *p != sep)
+            p++;
+        if (p < end)
+            p++;
+        else
+            return text_span(end, end);
+    }
+    for (stop = p; stop < end && *stop != sep; stop++)
+        continue;
+    return text_span(p, stop);
+}
+
+/* Whether a line with `count` wire fields holds the keyword of layout `id` in its place (ignoring
+   case); blanked fields (lenient parsing) hold nothing. */
+static bool holds_selector(nmea_sentence_id id, const nmea_wire *wire)
+{
+    const layout *l = LAYOUTS[id];
+    if (!l->selector || l->selector_at >= wire->count)
+        return false;
+    if (wire->blanks && is_blank(wire->blank, wire->blanks, l->selector_at + 1u))
+        return false;
+    return upper_is(field_at(wire->fields, wire->sep, l->selector_at), l->selector);
+}
+
+/* Whether one of the layouts of a `$` line's address may read it: one without a keyword, or
+   one whose keyword the line holds; else the line is a message of a known family that the spec
+   does not know, kept as a generic sentence. */
+NMEA_INTERNAL bool claimed(const nmea_layouts *layouts, const nmea_wire *wire)
+{
+    size_t i;
+    for (i = 0; i < layouts->count; i++)
+        if (!LAYOUTS[layouts->ids[i]]->selector || holds_selector(layouts->ids[i], wire))
+            return true;
+    return false;
+}
+
+/* Parses the wire with one layout. */
+static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
+{
+    out->id = id;
+    return read_with(LAYOUTS[id], &out->as, wire, err);
+}
+
+/* The first of the layouts that reads the line, as first_fit would pick it: a layout whose field
+   count does not fit is passed over, any other doubt ends the fast path. */
+static bool fast_fit(nmea_sentence *out, const nmea_layouts *layouts, const char *line, const char *fields,
+                     const char *end, size_t count)
+{
+    size_t i;
+    for (i = 0; i < layouts->count; i++) {
+        fast_result result = fast_read_layout(out, layouts->ids[i], line, fields, end, count);
+        if (result != FAST_NOT_THIS)
+            return result == FAST_OK;
+    }
+    return false;
+}
+
+/* Keeps the error to report: the first one, or the first bad field that comes after it. */
+static void keep_error(nmea_error *kept, bool *have, const nmea_error *err)
+{
+    if (!*have || (kept->kind != NMEA_ERR_BAD_FIELD && err->kind == NMEA_ERR_BAD_FIELD)) {
+        *kept = *err;
+        *have = true;
+    }
+}
+
+/* The first of the layouts that reads the wire. When none does, `err` gets the error of the
+   layouts whose keyword the first field holds (else of all of them): the first bad field among
+   them, else their first error. */
+NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
+                                nmea_error *err)
+{
+    nmea_error attempt, chosen, fallback;
+    bool have_chosen = false, have_fallback = false;
+    size_t i;
+
+    for (i = 0; i < layouts->count; i++) {
+        if (read_layout(out, layouts->ids[i], wire, &attempt))
+            return true;
+        if (holds_selector(layouts->ids[i], wire))
+            keep_error(&chosen, &have_chosen, &attempt);
+        keep_error(&fallback, &have_fallback, &attempt);
+    }
+    *err = have_chosen ? chosen : fallback;
+    return false;
+}
+
+/* first_of_many, and for the usual single layout just that layout's reader (inlined here: no
+   bookkeeping of errors to compare). */
+static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
+{
+    if (layouts->count == 1)
+        return read_layout(out, layouts->ids[0], wire, err);
+    return first_of_many(out, layouts, wire, err);
+}
+
+/* first_fit, when it fails and `lenient`, the fields at fault are read as empty one at a time,
+   each kept as a problem, until a layout reads the wire, a field at fault is already empty, or
+   a problem would be one too many. The sentence's problems are then kept in `keep` (NULL: not
+   kept). */
+NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, nmea_problems *keep,
+                        nmea_error *err)
+{
+    nmea_problems problems;
+    problems.count = 0;
+    /* a bad field's text is the field's text on the wire, empty once it has been left empty */
+    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && problems.count < NMEA_MAX_PROBLEMS) {
+        problem_of(&problems.list[problems.count++], err);
+        wire->blank[wire->blanks++] = (uint16_t)err->field;
+        if (first_fit(out, layouts, wire, err)) {
+            if (keep) {
+                keep->count = problems.count;
+                memcpy(keep->list, problems.list, problems.count * sizeof problems.list[0]);
+            }
+            out->problems = keep;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* The first of the layouts that reads the wire (first_fit); when none does and the options are
+   lenient, refit. */
+static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
+                       nmea_error *err)
+{
+    return first_fit(out, layouts, wire, err) || (options->lenient && refit(out, layouts, wire, options->problems, err));
+}
+
+static void write_sentence(nmea_writer *w, const nmea_sentence *s)
+{
+    if (s->id == NMEA_SENTENCE_GENERIC)
+        write_generic(w, &s->as.generic);
+    else
+        write_with(w, LAYOUTS[s->id], &s->as, s->problems);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* The API of nmea.h for any sentence: nmea_parse (the fast path first, then the general path
+   with its options), nmea_serialize (likewise) and nmea_build (written, then read back). The
+   NMEA_TEST_HOOKS build also gives the general paths on their own, for the tests to compare. */
+
+bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *err)
+{
+    return nmea_parse_ex(out, line, len, NULL, err);
+}
+
+/* The fast path needs no options: what it reads has a checksum, and a line read without a
+   problem is read the same way leniently. */
+bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
+{
+    len = without_line_ending(line, len);
+#ifndef NMEA_NO_FAST_PATH
+    if (fast_parse(out, line, len))
+        return true;
+#endif
+    return parse_general(out, line, len, options, err);
+}
+
+#ifdef NMEA_TEST_HOOKS
+bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
+{
+    return parse_general(out, line, without_line_ending(line, len), options, err);
+}
+#endif
+
+/* nmea_serialize's general path: every sentence, every buffer. */
+static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
+{
+    nmea_writer w = writer_of(buf, cap);
+    write_sentence(&w, s);
+    return writer_finish(&w);
+}
+
+size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+{
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = s->problems && s->problems->count ? 0 : fast_write_sentence(s, buf, cap);
+    if (n)
+        return n;
+#endif
+    return serialize_general(s, buf, cap);
+}
+
+#ifdef NMEA_TEST_HOOKS
+size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap)
+{
+    return serialize_general(s, buf, cap);
+}
+#endif
+
+size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err)
+{
+    nmea_writer w;
+    nmea_wire wire;
+    nmea_sentence check;
+
+    if (s->id != NMEA_SENTENCE_GENERIC)
+        return build_with(LAYOUTS[s->id], &s->as, s->problems, &check.as, buf, cap, err);
+    w = writer_of(buf, cap);
+    write_generic(&w, &s->as.generic);
+    if (!build_wire(&w, false, &wire, err))
+        return build_failed(&w);
+    return build_end(&w);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* The API of nmea.h for the tools' JSON (json.md): nmea_to_json and nmea_decode_json (decode's
+   output for a line), and nmea_from_json (encode's input: the field texts put back on the wire
+   and read by the sentence's layout, leniently with the texts of its "problems" in their
+   places). Left out by -DNMEA_NO_JSON. */
+
+#ifndef NMEA_NO_JSON
+/* The layout that decode's JSON names by its sentence id and variant (NULL: the main one). */
+static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant)
+{
+    size_t id;
+    for (id = 1; id < NMEA_SENTENCE_COUNT; id++) {
+        const layout *l = LAYOUTS[id];
+        if (text_is(sentence, l->sentence) && (variant ? l->variant && text_is(*variant, l->variant) : !l->variant))
+            return (nmea_sentence_id)id;
+    }
+    return NMEA_SENTENCE_GENERIC;
+}
+
+size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
+{
+    nmea_writer w = writer_of(buf, cap);
+    if (s->id == NMEA_SENTENCE_GENERIC)
+        json_generic(&w, &s->as.generic);
+    else
+        json_with(&w, LAYOUTS[s->id], &s->as, s->problems, values);
+    return writer_finish(&w);
+}
+
+size_t nmea_decode_json(const char *line, size_t len, bool values, char *buf, size_t cap)
+{
+    return nmea_decode_json_ex(line, len, values, NULL, buf, cap);
+}
+
+size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea_options *options, char *buf,
+                           size_t cap)
+{
+    nmea_sentence s;
+    nmea_error err;
+    nmea_problems problems;
+    nmea_options keeping;
+
+    if (options && options->lenient && !options->problems) { /* the JSON lists them */
+        keeping = *options;
+        keeping.problems = &problems;
+        options = &keeping;
+    }
+    if (nmea_parse_ex(&s, line, len, options, &err))
+        return nmea_to_json(&s, values, buf, cap);
+    return nmea_error_to_json(&err, buf, cap);
+}
+
+/* A sentence the spec does not describe: "fields" (raw texts), "start" and "address". */
+static bool generic_from_json(nmea_generic *g, nmea_json root, nmea_scratch *scratch, nmea_error *err)
+{
+    nmea_json fields, entry;
+    nmea_collector c;
+    nmea_text start;
+    bool present, wide;
+
+    if (!json_require(root, "fields", &fields, err))
+        return false;
+    if (!json_is(fields, '['))
+        return bad_json(err, "\"%s\" is not an array", "fields");
+    if (!json_text_member(root, "start", false, scratch, &start, &present, &wide, err))
+        return false;
+    if (wide || !(text_is(start, "$") || text_is(start, "!")))
+        return bad_json(err, "\"start\" is not \"$\" or \"!\"", NULL);
+    g->start = nmea_text_of(start.ptr[0] == '$' ? "$" : "!");
+    if (!json_word_member(root, "address", scratch, &g->address, err))
+        return false;
+    c.scratch = scratch;
+    c.start = scratch->len;
+    c.count = 0;
+    c.err = err;
+    fields = json_items(fields);
+    while (json_next(&fields, &entry))
+        if (!collect_text(&c, entry))
+            return false;
+    g->fields = collected(&c);
+    g->field_count = c.count;
+    return true;
+}
+
+/* A text command's line as received from decode's JSON: its word and the collected texts
+   (comma separated in the scratch buffer) joined by single spaces. */
+static bool command_line(nmea_wire *wire, nmea_text word, nmea_scratch *s, nmea_error *err)
+{
+    size_t i, start = s->len;
+    if (s->cap - s->len < word.len + (wire->count ? 1 + wire->fields.len : 0))
+        return scratch_full(err);
+    memcpy(s->buf + s->len, word.ptr, word.len);
+    s->len += word.len;
+    if (wire->count) {
+        s->buf[s->len++] = ' ';
+        for (i = 0; i < wire->fields.len; i++)
+            s->buf[s->len++] = wire->fields.ptr[i] == ',' ? ' ' : wire->fields.ptr[i];
+    }
+    wire->line = text_span(s->buf + start, s->buf + s->len);
+    return true;
+}
+
+/* A JSON integer (no fraction, no exponent) from 1 to n. */
+static bool json_index(nmea_json v, size_t n, size_t *index)
+{
+    const char *p;
+    size_t value = 0;
+    if (v.p >= v.end)
+        return false;
+    for (p = v.p; p < v.end; p++) {
+        if (!is_digit(*p) || value > n)
+            return false;
+        value = value * 10 + (size_t)(*p - '0');
+    }
+    *index = value;
+    return value >= 1 && value <= n;
+}
+
+/* Room for the problems of a sentence rebuilt from JSON in the scratch buffer (aligned as the
+   struct needs), or NULL when it is full. */
+static nmea_problems *scratch_problems(nmea_scratch *s)
+{
+    typedef struct {
+        char c;
+        nmea_problems p;
+    } probe;
+    size_t align = offsetof(probe, p), at = s->len + (align - (uintptr_t)(s->buf + s->len) % align) % align;
+    if (at > s->cap || s->cap - at < sizeof(nmea_problems))
+        return NULL;
+    s->len = at + sizeof(nmea_problems);
+    return (nmea_problems *)(void *)(s->buf + at);
+}
+
+/* A sentence that lenient decoding kept (its JSON has "problems"): the texts of its problem
+   fields go back in their places, and its layout parses it leniently again. `wire` holds the
+   texts of the `fields` object. */
+static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json root, nmea_json problems,
+                          nmea_scratch *s, nmea_wire *wire, nmea_error *err)
+{
+    nmea_text start, text, texts[NMEA_MAX_FIELDS];
+    nmea_json problem, v;
+    nmea_layouts one;
+    nmea_options lenient = {true, false, NULL};
+    const char *p = wire->fields.ptr, *end = p + wire->fields.len, *comma;
+    size_t i, index, n = wire->count, need = 0;
+    bool present, wide;
+
+    if (!json_text_member(root, "start", false, s, &start, &present, &wide, err))
+        return false;
+    if (start.len == 0)
+        return bad_json(err, "a text command has no problems", NULL);
+    if (!json_is(problems, '['))
+        return bad_json(err, "\"%s\" is not an array", "problems");
+    /* the texts one by one (unless there are more than any layout takes: the layout then refuses
+       them whatever they say) */
+    for (i = 0; n <= NMEA_MAX_FIELDS && i < n; i++) {
+        for (comma = p; comma < end && *comma != ','; comma++)
+            continue;
+        texts[i] = text_span(p, comma);
+        p = comma < end ? comma + 1 : end;
+    }
+    problems = json_items(problems);
+    while (json_next(&problems, &problem)) {
+        if (!json_require(problem, "field", &v, err))
+            return false;
+        if (!json_index(v, n, &index))
+            return bad_json(err, "a problem's \"field\" is not the index of a field", NULL);
+        if (!json_require(problem, "text", &v, err) || !json_field_text(v, s, &text, err))
+            return false;
+        if (n <= NMEA_MAX_FIELDS)
+            texts[index - 1] = text;
+    }
+    if (!LAYOUTS[id]->address) { /* a standard sentence: the talker and the sentence id */
+        if (!json_word_member(root, "talker", s, &wire->address, err))
+            return false;
+        wire->suffix = LAYOUTS[id]->sentence;
+    }
+    if (n && n <= NMEA_MAX_FIELDS) { /* the texts joined again */
+        for (i = 0; i < n; i++)
+            need += texts[i].len + 1;
+        if (s->cap - s->len < need)
+            return scratch_full(err);
+        p = s->buf + s->len;
+        for (i = 0; i < n; i++) {
+            if (i)
+                s->buf[s->len++] = ',';
+            if (texts[i].len)
+                memcpy(s->buf + s->len, texts[i].ptr, texts[i].len);
+            s->len += texts[i].len;
+        }
+        wire->fields = text_span(p, s->buf + s->len);
+    }
+    if ((lenient.problems = scratch_problems(s)) == NULL)
+        return scratch_full(err);
+    one.key = NULL;
+    one.key_len = 0;
+    one.suffix = NULL;
+    one.ids = &id;
+    one.count = 1;
+    out->problems = NULL;
+    return fit(out, &one, wire, &lenient, err);
+}
+
+bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
+                    nmea_error *err)
+{
+    nmea_scratch s;
+    nmea_json root, fields;
+    nmea_text sentence, variant, word;
+    nmea_json problems;
+    bool has_sentence, has_variant, wide_sentence, wide_variant;
+    nmea_checksum_style checksum;
+    nmea_sentence_id id;
+    const layout *info;
+    nmea_collector c;
+    nmea_wire wire;
+
+    s.buf = scratch;
+    s.cap = scratch ? scratch_cap : 0;
+    s.len = 0;
+    out->problems = NULL;
+    if (!json_parse(json, len, &root))
+        return bad_json(err, "not JSON", NULL);
+    if (!json_is(root, '{'))
+        return bad_json(err, "not a JSON object", NULL);
+    if (!json_checksum_style(root, &checksum, err)
+        || !json_text_member(root, "sentence", true, &s, &sentence, &has_sentence, &wide_sentence, err))
+        return false;
+    if (!has_sentence) {
+        out->id = NMEA_SENTENCE_GENERIC;
+        out->as.generic.checksum = checksum;
+        return generic_from_json(&out->as.generic, root, &s, err);
+    }
+    if (!json_text_member(root, "variant", true, &s, &variant, &has_variant, &wide_variant, err))
+        return false;
+    id = wide_sentence || wide_variant ? NMEA_SENTENCE_GENERIC : find_layout(sentence, has_variant ? &variant : NULL);
+    if (id == NMEA_SENTENCE_GENERIC) {
+        nmea_json v;
+        bad_json(err, "unknown sentence \"%t\"", NULL);
+        json_member(root, "sentence", &v);
+        err->text = json_inside(v);
+        err->text_json = true;
+        return false;
+    }
+    if (!json_require(root, "fields", &fields, err))
+        return false;
+    if (!json_is(fields, '{'))
+        return bad_json(err, "\"%s\" is not an object", "fields");
+    c.scratch = &s;
+    c.start = s.len;
+    c.count = 0;
+    c.err = err;
+    if (!collect_with(LAYOUTS[id], &c, fields))
+        return false;
+    info = LAYOUTS[id];
+    wire.address = nmea_text_of(info->address);
+    wire.suffix = NULL;
+    wire.fields = collected(&c);
+    wire.count = c.count;
+    wire.sep = ',';
+    wire.ignore_case = false;
+    wire.checksum = checksum;
+    wire.line = nmea_text_of(NULL);
+    wire.blanks = 0;
+    if (json_member(root, "problems", &problems)) {
+        wire.ignore_case = info->command != NULL;
+        return with_problems(out, id, root, problems, &s, &wire, err);
+    }
+    if (!info->address) { /* a standard sentence: the talker and the sentence id */
+        if (!json_word_member(root, "talker", &s, &wire.address, err))
+            return false;
+        wire.suffix = info->sentence;
+    } else if (info->command) { /* a text command: its word as written, its letter case kept */
+        if (!json_word_member(root, "address", &s, &word, err))
+            return false;
+        if (!upper_is(word, info->command)) {
+            bad_json(err, "\"address\" is not %s", NULL);
+            err->str[0] = info->address;
+            return false;
+        }
+        wire.address = word;
+        wire.ignore_case = true;
+        wire.checksum = NMEA_CHECKSUM_NONE;
+        if (!command_line(&wire, word, &s, err))
+            return false;
+    }
+    return read_layout(out, id, &wire, err);
+}
+#endif /* NMEA_NO_JSON */
+
 
 /* ========================================================================================== */
 /* Generated from the spec */
@@ -7194,78 +7877,6 @@ static const nmea_range range_minus_999p999_to_999p999 = {.has_min = true, .min 
 static const nmea_range range_minus_999p9_to_9999p9 = {.has_min = true, .min = -9999, .min_scale = 1, .has_max = true, .max = 99999, .max_scale = 1}; /* -999.9..9999.9 */
 static const nmea_range range_up_to_518400000 = {.has_max = true, .max = 518400000}; /* ..518400000 */
 static const nmea_range range_up_to_999 = {.has_max = true, .max = 999}; /* ..999 */
-
-/* The wire of a line whose address must be $--<sentence> (or !--<sentence>: `start`). */
-NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, char start, const char *sentence,
-                               nmea_error *err)
-{
-    nmea_frame f;
-    if (!frame_line(&f, line, len, false, err))
-        return false;
-    if (!is_standard_address(&f) || f.start.ptr[0] != start ||
-        !text_is(text_span(f.address.ptr + 2, f.address.ptr + 5), sentence)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, start == '!' ? "line is not a !--%s sentence" : "line is not a $--%s sentence");
-        set_address(err, f.address, NULL);
-        err->str[0] = sentence;
-        return false;
-    }
-    wire_of(wire, &f, sentence, NULL);
-    return true;
-}
-
-/* The wire of a line whose address must be $<address>. */
-NMEA_INTERNAL bool frame_proprietary(nmea_wire *wire, const char *line, size_t len, const char *address,
-                                     nmea_error *err)
-{
-    nmea_frame f;
-    if (!frame_line(&f, line, len, false, err))
-        return false;
-    if (f.start.ptr[0] != '$' || !text_is(f.address, address)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a $%s sentence");
-        set_address(err, f.address, NULL);
-        err->str[0] = address;
-        return false;
-    }
-    wire_of(wire, &f, NULL, NULL);
-    return true;
-}
-
-/* The wire of a text command whose word must be `command` (in upper case). */
-NMEA_INTERNAL bool frame_command(nmea_wire *wire, const char *line, size_t len, const char *command,
-                                 nmea_error *err)
-{
-    nmea_frame f;
-    if ((len && (line[0] == '$' || line[0] == '!')) || !word_is(first_word(line, len), command)) {
-        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a %s command");
-        err->str[0] = command;
-        return false;
-    }
-    if (!text_frame(&f, line, len, err))
-        return false;
-    wire_of(wire, &f, NULL, line);
-    return true;
-}
-
-/* The length of a line without one trailing LF or CR LF: the parsers take a line as it was read,
-   as the Rust and Python ones do. A framed overlong line has no bytes (NULL): not read. */
-static size_t without_line_ending(const char *line, size_t len)
-{
-    if (line && len && line[len - 1] == '\n')
-        len -= len > 1 && line[len - 2] == '\r' ? 2 : 1;
-    return len;
-}
-
-/* nmea_parse_<layout>: the line framed as layout `l` says, then read into `out`, a struct of it. */
-static bool parse_with(const layout *l, void *out, const char *line, size_t len, nmea_error *err)
-{
-    nmea_wire wire;
-    len = without_line_ending(line, len);
-    if (l->kind == LAYOUT_STANDARD)
-        return frame_known(&wire, line, len, l->start, l->sentence, err) && read_with(l, out, &wire, err);
-    if (l->kind == LAYOUT_PROPRIETARY)
-        return frame_proprietary(&wire, line, len, l->address, err) && read_with(l, out, &wire, err);
-    return frame_command(&wire, line, len, l->command, err) && read_with(l, out, &wire, err);
-}
 
 /* ------------------------------------------------------------------------------------------ */
 /* AAM: Waypoint arrival alarm (spec/standard/aam.yaml) */
@@ -37871,55 +38482,6 @@ static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {
     &pubx_utm_layout,
 };
 
-/* Wire field `index` (0-based) of `fields` (separated by `sep`); empty past the end. */
-static nmea_text field_at(nmea_text fields, char sep, size_t index)
-{
-    const char *p = fields.ptr, *end = fields.ptr + fields.len, *stop;
-    for (; index > 0 && p < end; index--) {
-        while (p < end && *p != sep)
-            p++;
-        if (p < end)
-            p++;
-        else
-            return text_span(end, end);
-    }
-    for (stop = p; stop < end && *stop != sep; stop++)
-        continue;
-    return text_span(p, stop);
-}
-
-/* Whether a line with `count` wire fields holds the keyword of layout `id` in its place (ignoring
-   case); blanked fields (lenient parsing) hold nothing. */
-static bool holds_selector(nmea_sentence_id id, const nmea_wire *wire)
-{
-    const layout *l = LAYOUTS[id];
-    if (!l->selector || l->selector_at >= wire->count)
-        return false;
-    if (wire->blanks && is_blank(wire->blank, wire->blanks, l->selector_at + 1u))
-        return false;
-    return upper_is(field_at(wire->fields, wire->sep, l->selector_at), l->selector);
-}
-
-/* The layouts a line may have, in the order they are tried. */
-typedef struct {
-    const char *key;
-    size_t key_len;
-    const char *suffix; /* a standard sentence: its id, after the talker in the address */
-    const nmea_sentence_id *ids;
-    size_t count;
-} nmea_layouts;
-
-/* Whether one of the layouts of a `$` line's address may read it: one without a keyword, or
-   one whose keyword the line holds; else the line is a message of a known family that the spec
-   does not know, kept as a generic sentence. */
-static bool claimed(const nmea_layouts *layouts, const nmea_wire *wire)
-{
-    size_t i;
-    for (i = 0; i < layouts->count; i++)
-        if (!LAYOUTS[layouts->ids[i]]->selector || holds_selector(layouts->ids[i], wire))
-            return true;
-    return false;
-}
 static const nmea_sentence_id STANDARD_1[] = {NMEA_SENTENCE_AAM};
 static const nmea_sentence_id STANDARD_2[] = {NMEA_SENTENCE_ABK};
 static const nmea_sentence_id STANDARD_3[] = {NMEA_SENTENCE_ACA};
@@ -38909,35 +39471,6 @@ static const nmea_layouts TEXT[] = {
 };
 #define TEXT_COUNT 2
 
-/* The entry of a table sorted by key whose key is `key`, or NULL. The keys are compared byte by
-   byte (as memcmp would, but the first byte mostly decides, sooner than a call). */
-NMEA_INTERNAL inline const nmea_layouts *find_layouts(const nmea_layouts *table, size_t n, nmea_text key)
-{
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = (lo + hi) / 2, len = table[mid].key_len, common = len < key.len ? len : key.len, k;
-        const unsigned char *entry = (const unsigned char *)table[mid].key, *want = (const unsigned char *)key.ptr;
-        int order;
-        for (k = 0; k < common && entry[k] == want[k]; k++)
-            continue;
-        order = k < common ? entry[k] - want[k] : len < key.len ? -1 : len > key.len;
-        if (order == 0)
-            return &table[mid];
-        if (order < 0)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return NULL;
-}
-
-
-/* The 3 characters at `id` as a number (big-endian), as the _CODES tables hold them. */
-static inline uint32_t standard_code(const char *id)
-{
-    return (uint32_t)(unsigned char)id[0] << 16 | (uint32_t)(unsigned char)id[1] << 8 | (unsigned char)id[2];
-}
-
 /* The standard sentence whose id is the 3 characters at `id`, or NULL: one probe of the hash. */
 static const nmea_layouts *find_standard(const char *id)
 {
@@ -38962,28 +39495,6 @@ static const nmea_layouts *find_command(nmea_text word)
         if (word_is(word, TEXT[i].key))
             return &TEXT[i];
     return NULL;
-}
-
-#ifndef NMEA_NO_JSON
-/* The layout that decode's JSON names by its sentence id and variant (NULL: the main one). */
-static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant)
-{
-    size_t id;
-    for (id = 1; id < NMEA_SENTENCE_COUNT; id++) {
-        const layout *l = LAYOUTS[id];
-        if (text_is(sentence, l->sentence) && (variant ? l->variant && text_is(*variant, l->variant) : !l->variant))
-            return (nmea_sentence_id)id;
-    }
-    return NMEA_SENTENCE_GENERIC;
-}
-
-#endif
-
-/* Parses the wire with one layout. */
-static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
-{
-    out->id = id;
-    return read_with(LAYOUTS[id], &out->as, wire, err);
 }
 
 /* A layout's fast reader (FAST_NOT_THIS for a layout without one: a text command, or a sentence
@@ -39264,20 +39775,6 @@ static fast_result fast_read_layout(nmea_sentence *out, nmea_sentence_id id, con
     }
 }
 
-/* The first of the layouts that reads the line, as first_fit would pick it: a layout whose field
-   count does not fit is passed over, any other doubt ends the fast path. */
-static bool fast_fit(nmea_sentence *out, const nmea_layouts *layouts, const char *line, const char *fields,
-                     const char *end, size_t count)
-{
-    size_t i;
-    for (i = 0; i < layouts->count; i++) {
-        fast_result result = fast_read_layout(out, layouts->ids[i], line, fields, end, count);
-        if (result != FAST_NOT_THIS)
-            return result == FAST_OK;
-    }
-    return false;
-}
-
 /* nmea_parse_ex's fast path: a known `$` sentence in the usual frame (fast_frame), read by
    its layouts' fast readers; false leaves the line to the general path. */
 NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len)
@@ -39302,86 +39799,6 @@ NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len)
     if (line[comma] != ',' || comma == 1 || (layouts = find_layouts(PROPRIETARY, PROPRIETARY_COUNT, text_span(line + 1, line + comma))) == NULL)
         return false;
     return fast_fit(out, layouts, line, line + comma + 1, line + len - 2, count);
-}
-
-/* Keeps the error to report: the first one, or the first bad field that comes after it. */
-static void keep_error(nmea_error *kept, bool *have, const nmea_error *err)
-{
-    if (!*have || (kept->kind != NMEA_ERR_BAD_FIELD && err->kind == NMEA_ERR_BAD_FIELD)) {
-        *kept = *err;
-        *have = true;
-    }
-}
-
-/* The first of the layouts that reads the wire. When none does, `err` gets the error of the
-   layouts whose keyword the first field holds (else of all of them): the first bad field among
-   them, else their first error. */
-NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
-                                nmea_error *err)
-{
-    nmea_error attempt, chosen, fallback;
-    bool have_chosen = false, have_fallback = false;
-    size_t i;
-
-    for (i = 0; i < layouts->count; i++) {
-        if (read_layout(out, layouts->ids[i], wire, &attempt))
-            return true;
-        if (holds_selector(layouts->ids[i], wire))
-            keep_error(&chosen, &have_chosen, &attempt);
-        keep_error(&fallback, &have_fallback, &attempt);
-    }
-    *err = have_chosen ? chosen : fallback;
-    return false;
-}
-
-/* first_of_many, and for the usual single layout just that layout's reader (inlined here: no
-   bookkeeping of errors to compare). */
-static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
-{
-    if (layouts->count == 1)
-        return read_layout(out, layouts->ids[0], wire, err);
-    return first_of_many(out, layouts, wire, err);
-}
-
-/* first_fit, when it fails and `lenient`, the fields at fault are read as empty one at a time,
-   each kept as a problem, until a layout reads the wire, a field at fault is already empty, or
-   a problem would be one too many. The sentence's problems are then kept in `keep` (NULL: not
-   kept). */
-NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, nmea_problems *keep,
-                        nmea_error *err)
-{
-    nmea_problems problems;
-    problems.count = 0;
-    /* a bad field's text is the field's text on the wire, empty once it has been left empty */
-    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && problems.count < NMEA_MAX_PROBLEMS) {
-        problem_of(&problems.list[problems.count++], err);
-        wire->blank[wire->blanks++] = (uint16_t)err->field;
-        if (first_fit(out, layouts, wire, err)) {
-            if (keep) {
-                keep->count = problems.count;
-                memcpy(keep->list, problems.list, problems.count * sizeof problems.list[0]);
-            }
-            out->problems = keep;
-            return true;
-        }
-    }
-    return false;
-}
-
-/* The first of the layouts that reads the wire (first_fit); when none does and the options are
-   lenient, refit. */
-static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
-                       nmea_error *err)
-{
-    return first_fit(out, layouts, wire, err) || (options->lenient && refit(out, layouts, wire, options->problems, err));
-}
-
-static void write_sentence(nmea_writer *w, const nmea_sentence *s)
-{
-    if (s->id == NMEA_SENTENCE_GENERIC)
-        write_generic(w, &s->as.generic);
-    else
-        write_with(w, LAYOUTS[s->id], &s->as, s->problems);
 }
 
 /* write_sentence on the fast path: the length, or 0 to leave it to the general writer. */
@@ -41582,14 +41999,6 @@ nmea_reply nmea_reply_to(const nmea_sentence *s, nmea_sentence_id command)
     return answers ? reply_outcome(s) : NMEA_REPLY_NONE;
 }
 
-/* ------------------------------------------------------------------------------------------ */
-/* The API of nmea.h */
-
-bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *err)
-{
-    return nmea_parse_ex(out, line, len, NULL, err);
-}
-
 /* nmea_parse_ex's general path: every line, every option, every error. */
 static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
                           nmea_error *err)
@@ -41645,337 +42054,3 @@ static bool parse_general(nmea_sentence *out, const char *line, size_t len, cons
     out->as.generic.checksum = f.checksum;
     return true;
 }
-
-/* The fast path needs no options: what it reads has a checksum, and a line read without a
-   problem is read the same way leniently. */
-bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
-{
-    len = without_line_ending(line, len);
-#ifndef NMEA_NO_FAST_PATH
-    if (fast_parse(out, line, len))
-        return true;
-#endif
-    return parse_general(out, line, len, options, err);
-}
-
-#ifdef NMEA_TEST_HOOKS
-bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
-{
-    return parse_general(out, line, without_line_ending(line, len), options, err);
-}
-#endif
-
-/* nmea_serialize's general path: every sentence, every buffer. */
-static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
-{
-    nmea_writer w = writer_of(buf, cap);
-    write_sentence(&w, s);
-    return writer_finish(&w);
-}
-
-size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
-{
-#ifndef NMEA_NO_FAST_PATH
-    size_t n = s->problems && s->problems->count ? 0 : fast_write_sentence(s, buf, cap);
-    if (n)
-        return n;
-#endif
-    return serialize_general(s, buf, cap);
-}
-
-#ifdef NMEA_TEST_HOOKS
-size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap)
-{
-    return serialize_general(s, buf, cap);
-}
-#endif
-
-size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err)
-{
-    nmea_writer w;
-    nmea_wire wire;
-    nmea_sentence check;
-
-    if (s->id != NMEA_SENTENCE_GENERIC)
-        return build_with(LAYOUTS[s->id], &s->as, s->problems, &check.as, buf, cap, err);
-    w = writer_of(buf, cap);
-    write_generic(&w, &s->as.generic);
-    if (!build_wire(&w, false, &wire, err))
-        return build_failed(&w);
-    return build_end(&w);
-}
-
-#ifndef NMEA_NO_JSON
-size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
-{
-    nmea_writer w = writer_of(buf, cap);
-    if (s->id == NMEA_SENTENCE_GENERIC)
-        json_generic(&w, &s->as.generic);
-    else
-        json_with(&w, LAYOUTS[s->id], &s->as, s->problems, values);
-    return writer_finish(&w);
-}
-
-size_t nmea_decode_json(const char *line, size_t len, bool values, char *buf, size_t cap)
-{
-    return nmea_decode_json_ex(line, len, values, NULL, buf, cap);
-}
-
-size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea_options *options, char *buf,
-                           size_t cap)
-{
-    nmea_sentence s;
-    nmea_error err;
-    nmea_problems problems;
-    nmea_options keeping;
-
-    if (options && options->lenient && !options->problems) { /* the JSON lists them */
-        keeping = *options;
-        keeping.problems = &problems;
-        options = &keeping;
-    }
-    if (nmea_parse_ex(&s, line, len, options, &err))
-        return nmea_to_json(&s, values, buf, cap);
-    return nmea_error_to_json(&err, buf, cap);
-}
-
-/* A sentence the spec does not describe: "fields" (raw texts), "start" and "address". */
-static bool generic_from_json(nmea_generic *g, nmea_json root, nmea_scratch *scratch, nmea_error *err)
-{
-    nmea_json fields, entry;
-    nmea_collector c;
-    nmea_text start;
-    bool present, wide;
-
-    if (!json_require(root, "fields", &fields, err))
-        return false;
-    if (!json_is(fields, '['))
-        return bad_json(err, "\"%s\" is not an array", "fields");
-    if (!json_text_member(root, "start", false, scratch, &start, &present, &wide, err))
-        return false;
-    if (wide || !(text_is(start, "$") || text_is(start, "!")))
-        return bad_json(err, "\"start\" is not \"$\" or \"!\"", NULL);
-    g->start = nmea_text_of(start.ptr[0] == '$' ? "$" : "!");
-    if (!json_word_member(root, "address", scratch, &g->address, err))
-        return false;
-    c.scratch = scratch;
-    c.start = scratch->len;
-    c.count = 0;
-    c.err = err;
-    fields = json_items(fields);
-    while (json_next(&fields, &entry))
-        if (!collect_text(&c, entry))
-            return false;
-    g->fields = collected(&c);
-    g->field_count = c.count;
-    return true;
-}
-
-/* A text command's line as received from decode's JSON: its word and the collected texts
-   (comma separated in the scratch buffer) joined by single spaces. */
-static bool command_line(nmea_wire *wire, nmea_text word, nmea_scratch *s, nmea_error *err)
-{
-    size_t i, start = s->len;
-    if (s->cap - s->len < word.len + (wire->count ? 1 + wire->fields.len : 0))
-        return scratch_full(err);
-    memcpy(s->buf + s->len, word.ptr, word.len);
-    s->len += word.len;
-    if (wire->count) {
-        s->buf[s->len++] = ' ';
-        for (i = 0; i < wire->fields.len; i++)
-            s->buf[s->len++] = wire->fields.ptr[i] == ',' ? ' ' : wire->fields.ptr[i];
-    }
-    wire->line = text_span(s->buf + start, s->buf + s->len);
-    return true;
-}
-
-/* A JSON integer (no fraction, no exponent) from 1 to n. */
-static bool json_index(nmea_json v, size_t n, size_t *index)
-{
-    const char *p;
-    size_t value = 0;
-    if (v.p >= v.end)
-        return false;
-    for (p = v.p; p < v.end; p++) {
-        if (!is_digit(*p) || value > n)
-            return false;
-        value = value * 10 + (size_t)(*p - '0');
-    }
-    *index = value;
-    return value >= 1 && value <= n;
-}
-
-/* The most wire fields any layout takes. */
-#define NMEA_MAX_FIELDS 386
-
-/* Room for the problems of a sentence rebuilt from JSON in the scratch buffer (aligned as the
-   struct needs), or NULL when it is full. */
-static nmea_problems *scratch_problems(nmea_scratch *s)
-{
-    typedef struct {
-        char c;
-        nmea_problems p;
-    } probe;
-    size_t align = offsetof(probe, p), at = s->len + (align - (uintptr_t)(s->buf + s->len) % align) % align;
-    if (at > s->cap || s->cap - at < sizeof(nmea_problems))
-        return NULL;
-    s->len = at + sizeof(nmea_problems);
-    return (nmea_problems *)(void *)(s->buf + at);
-}
-
-/* A sentence that lenient decoding kept (its JSON has "problems"): the texts of its problem
-   fields go back in their places, and its layout parses it leniently again. `wire` holds the
-   texts of the `fields` object. */
-static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json root, nmea_json problems,
-                          nmea_scratch *s, nmea_wire *wire, nmea_error *err)
-{
-    nmea_text start, text, texts[NMEA_MAX_FIELDS];
-    nmea_json problem, v;
-    nmea_layouts one;
-    nmea_options lenient = {true, false, NULL};
-    const char *p = wire->fields.ptr, *end = p + wire->fields.len, *comma;
-    size_t i, index, n = wire->count, need = 0;
-    bool present, wide;
-
-    if (!json_text_member(root, "start", false, s, &start, &present, &wide, err))
-        return false;
-    if (start.len == 0)
-        return bad_json(err, "a text command has no problems", NULL);
-    if (!json_is(problems, '['))
-        return bad_json(err, "\"%s\" is not an array", "problems");
-    /* the texts one by one (unless there are more than any layout takes: the layout then refuses
-       them whatever they say) */
-    for (i = 0; n <= NMEA_MAX_FIELDS && i < n; i++) {
-        for (comma = p; comma < end && *comma != ','; comma++)
-            continue;
-        texts[i] = text_span(p, comma);
-        p = comma < end ? comma + 1 : end;
-    }
-    problems = json_items(problems);
-    while (json_next(&problems, &problem)) {
-        if (!json_require(problem, "field", &v, err))
-            return false;
-        if (!json_index(v, n, &index))
-            return bad_json(err, "a problem's \"field\" is not the index of a field", NULL);
-        if (!json_require(problem, "text", &v, err) || !json_field_text(v, s, &text, err))
-            return false;
-        if (n <= NMEA_MAX_FIELDS)
-            texts[index - 1] = text;
-    }
-    if (!LAYOUTS[id]->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_word_member(root, "talker", s, &wire->address, err))
-            return false;
-        wire->suffix = LAYOUTS[id]->sentence;
-    }
-    if (n && n <= NMEA_MAX_FIELDS) { /* the texts joined again */
-        for (i = 0; i < n; i++)
-            need += texts[i].len + 1;
-        if (s->cap - s->len < need)
-            return scratch_full(err);
-        p = s->buf + s->len;
-        for (i = 0; i < n; i++) {
-            if (i)
-                s->buf[s->len++] = ',';
-            if (texts[i].len)
-                memcpy(s->buf + s->len, texts[i].ptr, texts[i].len);
-            s->len += texts[i].len;
-        }
-        wire->fields = text_span(p, s->buf + s->len);
-    }
-    if ((lenient.problems = scratch_problems(s)) == NULL)
-        return scratch_full(err);
-    one.key = NULL;
-    one.key_len = 0;
-    one.suffix = NULL;
-    one.ids = &id;
-    one.count = 1;
-    out->problems = NULL;
-    return fit(out, &one, wire, &lenient, err);
-}
-
-bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
-                    nmea_error *err)
-{
-    nmea_scratch s;
-    nmea_json root, fields;
-    nmea_text sentence, variant, word;
-    nmea_json problems;
-    bool has_sentence, has_variant, wide_sentence, wide_variant;
-    nmea_checksum_style checksum;
-    nmea_sentence_id id;
-    const layout *info;
-    nmea_collector c;
-    nmea_wire wire;
-
-    s.buf = scratch;
-    s.cap = scratch ? scratch_cap : 0;
-    s.len = 0;
-    out->problems = NULL;
-    if (!json_parse(json, len, &root))
-        return bad_json(err, "not JSON", NULL);
-    if (!json_is(root, '{'))
-        return bad_json(err, "not a JSON object", NULL);
-    if (!json_checksum_style(root, &checksum, err)
-        || !json_text_member(root, "sentence", true, &s, &sentence, &has_sentence, &wide_sentence, err))
-        return false;
-    if (!has_sentence) {
-        out->id = NMEA_SENTENCE_GENERIC;
-        out->as.generic.checksum = checksum;
-        return generic_from_json(&out->as.generic, root, &s, err);
-    }
-    if (!json_text_member(root, "variant", true, &s, &variant, &has_variant, &wide_variant, err))
-        return false;
-    id = wide_sentence || wide_variant ? NMEA_SENTENCE_GENERIC : find_layout(sentence, has_variant ? &variant : NULL);
-    if (id == NMEA_SENTENCE_GENERIC) {
-        nmea_json v;
-        bad_json(err, "unknown sentence \"%t\"", NULL);
-        json_member(root, "sentence", &v);
-        err->text = json_inside(v);
-        err->text_json = true;
-        return false;
-    }
-    if (!json_require(root, "fields", &fields, err))
-        return false;
-    if (!json_is(fields, '{'))
-        return bad_json(err, "\"%s\" is not an object", "fields");
-    c.scratch = &s;
-    c.start = s.len;
-    c.count = 0;
-    c.err = err;
-    if (!collect_with(LAYOUTS[id], &c, fields))
-        return false;
-    info = LAYOUTS[id];
-    wire.address = nmea_text_of(info->address);
-    wire.suffix = NULL;
-    wire.fields = collected(&c);
-    wire.count = c.count;
-    wire.sep = ',';
-    wire.ignore_case = false;
-    wire.checksum = checksum;
-    wire.line = nmea_text_of(NULL);
-    wire.blanks = 0;
-    if (json_member(root, "problems", &problems)) {
-        wire.ignore_case = info->command != NULL;
-        return with_problems(out, id, root, problems, &s, &wire, err);
-    }
-    if (!info->address) { /* a standard sentence: the talker and the sentence id */
-        if (!json_word_member(root, "talker", &s, &wire.address, err))
-            return false;
-        wire.suffix = info->sentence;
-    } else if (info->command) { /* a text command: its word as written, its letter case kept */
-        if (!json_word_member(root, "address", &s, &word, err))
-            return false;
-        if (!upper_is(word, info->command)) {
-            bad_json(err, "\"address\" is not %s", NULL);
-            err->str[0] = info->address;
-            return false;
-        }
-        wire.address = word;
-        wire.ignore_case = true;
-        wire.checksum = NMEA_CHECKSUM_NONE;
-        if (!command_line(&wire, word, &s, err))
-            return false;
-    }
-    return read_layout(out, id, &wire, err);
-}
-#endif /* NMEA_NO_JSON */

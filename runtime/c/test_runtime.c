@@ -1,9 +1,10 @@
 /*
  * Unit tests of the C runtime on its own (make test-runtimes): runtime.h and runtime.c compiled
- * as one unit with the few settings the generated nmea.h gives them, without any sentence. The
- * generated pair is tested over the manuals' examples and the real logs elsewhere; this holds the
- * runtime's own rules (framing, checksum, the errors' messages, the stream framer, numbers and
- * enum lookups) where it is written.
+ * as one unit with a small fixture of what the generated nmea.h and nmea.c give them (one
+ * sentence, TST, and the definitions runtime/c/generated.c declares). The generated pair is
+ * tested over the manuals' examples and the real logs elsewhere; this holds the runtime's own
+ * rules (framing, checksum, the errors' messages, the stream framer, numbers and enum lookups,
+ * which layout reads a line, lenient parsing, the API and its JSON) where they are written.
  */
 
 #include <stdbool.h>
@@ -19,12 +20,113 @@
 
 #include "runtime.h"
 
-/* The generated code is the runtime's only user of its layout interpreter; unused here. */
+/* What nmea.h defines after it: the fixture's one sentence, $--TST,<count>,<name>. */
+typedef struct {
+    nmea_text talker;
+    nmea_number count; /* 0..99 */
+    nmea_text name;    /* at most 8 characters */
+    nmea_checksum_style checksum;
+} nmea_tst;
+
+typedef enum { NMEA_SENTENCE_GENERIC = 0, NMEA_SENTENCE_TST, NMEA_SENTENCE_COUNT } nmea_sentence_id;
+
+typedef struct {
+    nmea_sentence_id id;
+    const nmea_problems *problems;
+    union {
+        nmea_generic generic;
+        nmea_tst tst;
+    } as;
+} nmea_sentence;
+#include "api.h"
+
+/* What nmea.c defines before the runtime. */
+#define NMEA_MAX_FIELDS 2
+
+/* The runtime's internals that only some specs use are unused here. */
 #if defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wunused-function"
 #pragma GCC diagnostic ignored "-Wunused-const-variable"
 #endif
 #include "runtime.c"
+
+/* What nmea.c defines after the runtime (runtime/c/generated.c), written as the generator would
+   for TST, without a fast path: the fast reader and writer leave every line to the general ones,
+   which must then give the same results on their own. */
+
+static const nmea_range range_0_to_99 = {.has_min = true, .min = 0, .has_max = true, .max = 99};
+
+static const layout_field tst_fields[] = {
+    {"count", "integer 0..99", &range_0_to_99, offsetof(nmea_tst, count), FIELD_INTEGER, 1, 0},
+    {"name", "text of at most 8 characters", NULL, offsetof(nmea_tst, name), FIELD_TEXT, 1, 8},
+};
+
+static const layout tst_layout = {
+    .sentence = "TST", .fields = tst_fields, .before = 2, .fixed = 2, .max_fields = 2,
+    .size = sizeof(nmea_tst), .head = offsetof(nmea_tst, talker), .optional_count = NO_MEMBER,
+    .checksum = offsetof(nmea_tst, checksum), .kind = LAYOUT_STANDARD, .start = '$',
+};
+
+static bool nmea_parse_tst(nmea_tst *out, const char *line, size_t len, nmea_error *err)
+{
+    return parse_with(&tst_layout, out, line, len, err);
+}
+
+static const layout *const LAYOUTS[NMEA_SENTENCE_COUNT] = {NULL, &tst_layout};
+
+static const nmea_sentence_id STANDARD_1[] = {NMEA_SENTENCE_TST};
+static const nmea_layouts STANDARD[] = {{"TST", 3, "TST", STANDARD_1, 1}};
+
+static fast_result fast_read_layout(nmea_sentence *out, nmea_sentence_id id, const char *line, const char *fields,
+                                    const char *end, size_t count)
+{
+    (void)out, (void)id, (void)line, (void)fields, (void)end, (void)count;
+    return FAST_NOT_THIS;
+}
+
+NMEA_INTERNAL bool fast_parse(nmea_sentence *out, const char *line, size_t len)
+{
+    (void)out, (void)line, (void)len;
+    return false;
+}
+
+NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size_t cap)
+{
+    (void)s, (void)buf, (void)cap;
+    return 0;
+}
+
+/* The general path of a spec with standard sentences only. */
+static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
+                          nmea_error *err)
+{
+    static const nmea_options strict = {false, false, NULL};
+    nmea_frame f;
+    nmea_wire wire;
+    const nmea_layouts *layouts;
+
+    if (!options)
+        options = &strict;
+    out->problems = NULL;
+    if (len > NMEA_MAX_LINE) {
+        nmea_error_too_long(err, len);
+        return false;
+    }
+    if (!frame_line(&f, line, len, options->require_checksum, err))
+        return false;
+    if (is_standard_address(&f) && f.start.ptr[0] == '$'
+        && (layouts = find_layouts(STANDARD, 1, text_span(f.address.ptr + 2, f.address.ptr + 5))) != NULL) {
+        wire_of(&wire, &f, layouts->suffix, NULL);
+        return fit(out, layouts, &wire, options, err);
+    }
+    out->id = NMEA_SENTENCE_GENERIC;
+    out->as.generic.start = f.start;
+    out->as.generic.address = f.address;
+    out->as.generic.fields = f.fields;
+    out->as.generic.field_count = f.count;
+    out->as.generic.checksum = f.checksum;
+    return true;
+}
 
 static int failures;
 
@@ -147,6 +249,126 @@ static void test_enums(void)
     CHECK(nmea_enum_id(&status_def, &e) == NULL);
 }
 
+/* nmea_parse on a NUL-terminated line, with `options` (NULL: strict). */
+static bool parses(const char *line, const nmea_options *options, nmea_sentence *s, nmea_error *err)
+{
+    memset(err, 0, sizeof *err);
+    return nmea_parse_ex(s, line, strlen(line), options, err);
+}
+
+/* Whether `s` serializes to exactly `line`. */
+static bool writes(const nmea_sentence *s, const char *line)
+{
+    char buf[128];
+    size_t n = nmea_serialize(s, buf, sizeof buf);
+    if (n == strlen(line) && memcmp(buf, line, n) == 0)
+        return true;
+    fprintf(stderr, "wrote \"%.*s\", expected \"%s\"\n", (int)n, buf, line);
+    return false;
+}
+
+static void test_layouts(void)
+{
+    nmea_sentence s;
+    nmea_tst tst;
+    nmea_error err;
+
+    CHECK(parses("$GPTST,12,abc*27\r\n", NULL, &s, &err) && s.id == NMEA_SENTENCE_TST);
+    CHECK(nmea_number_scaled(&s.as.tst.count, 0) == 12 && text_is(s.as.tst.name, "abc"));
+    CHECK(text_is(s.as.tst.talker, "GP") && s.as.tst.checksum == NMEA_CHECKSUM_UPPER && s.problems == NULL);
+    CHECK(writes(&s, "$GPTST,12,abc*27"));
+
+    CHECK(parses("$GPXYZ,1,2", NULL, &s, &err) && s.id == NMEA_SENTENCE_GENERIC);
+    CHECK(s.as.generic.field_count == 2 && writes(&s, "$GPXYZ,1,2"));
+
+    CHECK(!parses("$GPTST,123,abc", NULL, &s, &err) && err.kind == NMEA_ERR_BAD_FIELD);
+    CHECK(err.field == 1 && message_is(&err, "expected integer 0..99, found \"123\""));
+    CHECK(!parses("$GPTST,1,a,b", NULL, &s, &err) && err.kind == NMEA_ERR_TOO_MANY_FIELDS);
+    CHECK(!parses("$GPTST,1", NULL, &s, &err) && err.kind == NMEA_ERR_TOO_FEW_FIELDS);
+
+    memset(&err, 0, sizeof err);
+    CHECK(nmea_parse_tst(&tst, "$GPTST,12,abc*27\n", 17, &err) && nmea_number_scaled(&tst.count, 0) == 12);
+    CHECK(!nmea_parse_tst(&tst, "$GPXYZ,1", 8, &err) && err.kind == NMEA_ERR_NOT_A_SENTENCE);
+    CHECK(message_is(&err, "line is not a $--TST sentence"));
+}
+
+/* Lenient parsing leaves the fields at fault empty, keeps their texts as problems, and the
+   serializer writes those texts back. */
+static void test_lenient(void)
+{
+    nmea_problems problems;
+    nmea_options lenient = {true, false, &problems};
+    nmea_sentence s;
+    nmea_error err;
+
+    CHECK(parses("$GPTST,123,abcdefghij", &lenient, &s, &err) && s.id == NMEA_SENTENCE_TST);
+    CHECK(s.problems == &problems && problems.count == 2);
+    CHECK(problems.list[0].field == 1 && problems.list[1].field == 2);
+    CHECK(!s.as.tst.count.present && s.as.tst.name.len == 0);
+    CHECK(writes(&s, "$GPTST,123,abcdefghij"));
+    CHECK(!parses("$GPTST,1,a,b", &lenient, &s, &err) && err.kind == NMEA_ERR_TOO_MANY_FIELDS);
+}
+
+static void test_build(void)
+{
+    nmea_sentence s;
+    nmea_error err;
+    char buf[64];
+
+    memset(&s, 0, sizeof s);
+    s.id = NMEA_SENTENCE_TST;
+    s.as.tst.talker = nmea_text_of("GP");
+    s.as.tst.count = nmea_number_of(5, 0);
+    s.as.tst.name = nmea_text_of("hello");
+    CHECK(nmea_build(&s, buf, sizeof buf, &err) == 19 && strcmp(buf, "$GPTST,5,hello*13\r\n") == 0);
+    s.as.tst.name = nmea_text_of("too,long");
+    CHECK(nmea_build(&s, buf, sizeof buf, &err) == 0 && err.kind == NMEA_ERR_TOO_MANY_FIELDS);
+    s.as.tst.count = nmea_number_of(100, 0);
+    s.as.tst.name = nmea_text_of("hello");
+    CHECK(nmea_build(&s, buf, sizeof buf, &err) == 0 && err.kind == NMEA_ERR_BAD_FIELD);
+    CHECK(nmea_build(&s, buf, 8, &err) == 0 && err.kind == NMEA_ERR_TOO_LONG);
+}
+
+#ifndef NMEA_NO_JSON
+/* decode's JSON of `line` is `expected`, and encode gives the line back from it. */
+static bool round_trips(const char *line, const nmea_options *options, const char *expected)
+{
+    char json[NMEA_JSON_MAX], scratch[2 * NMEA_JSON_MAX];
+    size_t n = nmea_decode_json_ex(line, strlen(line), false, options, json, sizeof json);
+    nmea_sentence s;
+    nmea_error err;
+    if (n != strlen(expected) || memcmp(json, expected, n) != 0) {
+        fprintf(stderr, "JSON %.*s\nexpected %s\n", (int)n, json, expected);
+        return false;
+    }
+    return nmea_from_json(&s, json, n, scratch, sizeof scratch, &err) && writes(&s, line);
+}
+
+static void test_json(void)
+{
+    static const char refused[] = "{\"ok\":false,\"error\":{\"kind\":\"bad_field\",\"address\":\"GPTST\",\"field\":1,"
+                                  "\"name\":\"count\",\"message\":\"expected integer 0..99, found \\\"123\\\"\"}}";
+    nmea_problems problems;
+    nmea_options lenient = {true, false, &problems};
+    char json[NMEA_JSON_MAX];
+    size_t n;
+
+    CHECK(round_trips("$GPTST,12,abc*27", NULL,
+                      "{\"ok\":true,\"start\":\"$\",\"address\":\"GPTST\",\"talker\":\"GP\",\"sentence\":\"TST\","
+                      "\"variant\":null,\"fields\":{\"count\":\"12\",\"name\":\"abc\"},\"checksum\":\"27\"}"));
+    CHECK(round_trips("$GPTST,123,abc", &lenient,
+                      "{\"ok\":true,\"start\":\"$\",\"address\":\"GPTST\",\"talker\":\"GP\",\"sentence\":\"TST\","
+                      "\"variant\":null,\"fields\":{\"count\":null,\"name\":\"abc\"},"
+                      "\"problems\":[{\"field\":1,\"name\":\"count\",\"text\":\"123\","
+                      "\"message\":\"expected integer 0..99, found \\\"123\\\"\"}],\"checksum\":null}"));
+    CHECK(round_trips("$GPXYZ,1,2", NULL,
+                      "{\"ok\":true,\"start\":\"$\",\"address\":\"GPXYZ\",\"talker\":null,\"sentence\":null,"
+                      "\"variant\":null,\"fields\":[\"1\",\"2\"],\"checksum\":null}"));
+    n = nmea_decode_json("$GPTST,123,abc", 14, false, json, sizeof json);
+    CHECK(n == strlen(refused) && memcmp(json, refused, n) == 0 && nmea_json_is_failure(json, n));
+}
+#endif
+
 int main(void)
 {
     test_framing();
@@ -154,6 +376,12 @@ int main(void)
     test_framer();
     test_numbers();
     test_enums();
+    test_layouts();
+    test_lenient();
+    test_build();
+#ifndef NMEA_NO_JSON
+    test_json();
+#endif
     if (failures) {
         fprintf(stderr, "%d check(s) failed\n", failures);
         return 1;

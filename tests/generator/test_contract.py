@@ -16,7 +16,7 @@ CONTRACT = yaml.safe_load((RUNTIME / "contract.yaml").read_text(encoding="utf-8"
 LIMITS = CONTRACT["limits"]
 
 C_HEADER = (RUNTIME / "c" / "runtime.h").read_text(encoding="utf-8")
-C_SOURCE = (RUNTIME / "c" / "runtime.c").read_text(encoding="utf-8")
+C_SOURCE = emit_c.runtime_source("runtime.c")
 RUST = "\n".join(p.read_text(encoding="utf-8") for p in sorted((RUNTIME / "rust" / "src").glob("*.rs")))
 PYTHON = (RUNTIME / "python" / "runtime.py").read_text(encoding="utf-8")
 SOURCES = {"c": C_SOURCE, "rust": RUST, "python": PYTHON}

@@ -13,7 +13,7 @@ import pytest
 from generator.build import load_spec
 from generator.render import render_all
 from generator.errors import SpecErrors
-from generator import emit_docs, reference
+from generator import emit_c, emit_docs, reference
 from generator.field_types import TYPES
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -55,7 +55,7 @@ def test_the_registry_knows_every_field_type_of_the_schema() -> None:
     assert named == set(TYPES)
     # and every runtime has the pieces the registry names
     python = (ROOT / "runtime" / "python" / "runtime.py").read_text(encoding="utf-8")
-    c = (ROOT / "runtime" / "c" / "runtime.c").read_text(encoding="utf-8")
+    c = emit_c.runtime_source("runtime.c")
     for t in TYPES.values():
         assert f"class {t.python_spec}(" in python, t.name
         assert f"FIELD_{t.name.upper()}," in c or f"FIELD_{t.name.upper()}\n" in c, t.name

@@ -15,14 +15,17 @@ import shutil
 from pathlib import Path
 
 from generator.build import load_spec
-from generator.emit import RUNTIME
+from generator.emit_c import RUNTIME_C, runtime_source
 from generator.render import render_all
 
 GOLDEN = Path(__file__).with_name("golden")
 EXPECTED = GOLDEN / "expected"
 
 # The C runtime is pasted into nmea.h / nmea.c: it is replaced by a line that names it.
-EMBEDDED = {"c/nmea.h": "runtime.h", "c/nmea.c": "runtime.c"}
+EMBEDDED = {"c/nmea.h": ["runtime.h", "api.h"], "c/nmea.c": ["runtime.c"]}
+RUNTIME_TEXTS = {"runtime.h": (RUNTIME_C / "runtime.h").read_text(encoding="utf-8"),
+                 "api.h": (RUNTIME_C / "api.h").read_text(encoding="utf-8"),
+                 "runtime.c": runtime_source("runtime.c")}
 
 
 def rendered() -> dict[str, str]:
@@ -31,10 +34,10 @@ def rendered() -> dict[str, str]:
     for path, text in files.items():
         if "Source: runtime/" in text[:400] or "/LICENSE-" in path:  # a runtime/ file as it is
             continue
-        if path in EMBEDDED:
-            runtime = (RUNTIME / "c" / EMBEDDED[path]).read_text(encoding="utf-8")
-            assert runtime in text, f"{path} no longer holds runtime/c/{EMBEDDED[path]} as it is"
-            text = text.replace(runtime, f"/* runtime/c/{EMBEDDED[path]} */\n")
+        for name in EMBEDDED.get(path, []):
+            runtime = RUNTIME_TEXTS[name]
+            assert runtime in text, f"{path} no longer holds runtime/c/{name} as it is"
+            text = text.replace(runtime, f"/* runtime/c/{name} */\n")
         out[path] = text
     return out
 

@@ -1,0 +1,67 @@
+/* The API of nmea.h for any sentence: nmea_parse (the fast path first, then the general path
+   with its options), nmea_serialize (likewise) and nmea_build (written, then read back). The
+   NMEA_TEST_HOOKS build also gives the general paths on their own, for the tests to compare. */
+
+bool nmea_parse(nmea_sentence *out, const char *line, size_t len, nmea_error *err)
+{
+    return nmea_parse_ex(out, line, len, NULL, err);
+}
+
+/* The fast path needs no options: what it reads has a checksum, and a line read without a
+   problem is read the same way leniently. */
+bool nmea_parse_ex(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
+{
+    len = without_line_ending(line, len);
+#ifndef NMEA_NO_FAST_PATH
+    if (fast_parse(out, line, len))
+        return true;
+#endif
+    return parse_general(out, line, len, options, err);
+}
+
+#ifdef NMEA_TEST_HOOKS
+bool nmea_parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options, nmea_error *err)
+{
+    return parse_general(out, line, without_line_ending(line, len), options, err);
+}
+#endif
+
+/* nmea_serialize's general path: every sentence, every buffer. */
+static size_t serialize_general(const nmea_sentence *s, char *buf, size_t cap)
+{
+    nmea_writer w = writer_of(buf, cap);
+    write_sentence(&w, s);
+    return writer_finish(&w);
+}
+
+size_t nmea_serialize(const nmea_sentence *s, char *buf, size_t cap)
+{
+#ifndef NMEA_NO_FAST_PATH
+    size_t n = s->problems && s->problems->count ? 0 : fast_write_sentence(s, buf, cap);
+    if (n)
+        return n;
+#endif
+    return serialize_general(s, buf, cap);
+}
+
+#ifdef NMEA_TEST_HOOKS
+size_t nmea_serialize_general(const nmea_sentence *s, char *buf, size_t cap)
+{
+    return serialize_general(s, buf, cap);
+}
+#endif
+
+size_t nmea_build(const nmea_sentence *s, char *buf, size_t cap, nmea_error *err)
+{
+    nmea_writer w;
+    nmea_wire wire;
+    nmea_sentence check;
+
+    if (s->id != NMEA_SENTENCE_GENERIC)
+        return build_with(LAYOUTS[s->id], &s->as, s->problems, &check.as, buf, cap, err);
+    w = writer_of(buf, cap);
+    write_generic(&w, &s->as.generic);
+    if (!build_wire(&w, false, &wire, err))
+        return build_failed(&w);
+    return build_end(&w);
+}

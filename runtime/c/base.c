@@ -1,0 +1,96 @@
+/* What every piece uses: the linkage macros (everything is static, and the generated code in the
+   same nmea.c is its only user: NMEA_INTERNAL for what some specs leave unused, NMEA_HOT,
+   NMEA_RARE and NMEA_OUTLINE for the compiler's inlining), the character classes, hex digits,
+   powers of ten, and nmea_text with the comparisons of texts the pieces make. */
+
+#include <string.h>
+
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__) /* -Os: the compiler's choices, for size */
+#define NMEA_INTERNAL static __attribute__((unused))
+#define NMEA_RARE static __attribute__((noinline, cold))
+#define NMEA_HOT static inline
+#define NMEA_OUTLINE static __attribute__((noinline))
+#elif defined(__GNUC__)
+#define NMEA_INTERNAL static __attribute__((unused))
+#define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
+#define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
+#define NMEA_OUTLINE static __attribute__((noinline))
+#else
+#define NMEA_INTERNAL static
+#define NMEA_RARE static
+#define NMEA_HOT static
+#define NMEA_OUTLINE static
+#endif
+
+static const char HEX_UPPER[] = "0123456789ABCDEF";
+static const char HEX_LOWER[] = "0123456789abcdef";
+
+static const int64_t POW10[NMEA_MAX_DIGITS + 1] = {
+    1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000,
+    10000000000, 100000000000, 1000000000000, 10000000000000, 100000000000000,
+    1000000000000000, 10000000000000000, 100000000000000000, 1000000000000000000,
+};
+
+static bool is_digit(char c) { return c >= '0' && c <= '9'; }
+static bool is_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+static bool is_alnum(char c) { return is_digit(c) || is_letter(c); }
+static bool is_printable(char c) { return (unsigned char)c >= 0x20 && (unsigned char)c <= 0x7E; }
+
+static int hex_value(char c)
+{
+    if (is_digit(c))
+        return c - '0';
+    if (c >= 'a' && c <= 'f')
+        return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F')
+        return c - 'A' + 10;
+    return -1;
+}
+
+nmea_text nmea_text_of(const char *s)
+{
+    nmea_text t;
+    t.ptr = s;
+    t.len = s ? strlen(s) : 0;
+    return t;
+}
+
+static nmea_text text_span(const char *begin, const char *end)
+{
+    nmea_text t;
+    t.ptr = begin;
+    t.len = (size_t)(end - begin);
+    return t;
+}
+
+/* Byte by byte: the words compared are a few characters, shorter than a call to strlen. */
+static bool text_is(nmea_text t, const char *s)
+{
+    size_t k;
+    for (k = 0; k < t.len && s[k] && s[k] == t.ptr[k]; k++)
+        continue;
+    return k == t.len && s[k] == 0;
+}
+
+/* Whether a number field holds the integer `v` (no decimals), as a reply's pairing asks. */
+static inline bool integer_is(nmea_number n, int64_t v)
+{
+    return n.present && n.scale == 0 && (n.sign == '-' ? -n.digits : n.digits) == v;
+}
+
+static char ascii_upper(char c)
+{
+    return c >= 'a' && c <= 'z' ? (char)(c - 'a' + 'A') : c;
+}
+
+/* Whether the upper-case form of `t` (ASCII letters only) is exactly `s`. */
+static bool upper_is(nmea_text t, const char *s)
+{
+    size_t i, n = strlen(s);
+    if (t.len != n)
+        return false;
+    for (i = 0; i < n; i++)
+        if (ascii_upper(t.ptr[i]) != s[i])
+            return false;
+    return true;
+}

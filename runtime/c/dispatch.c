@@ -1,0 +1,256 @@
+/* Which layout reads a line: nmea_parse_<layout>'s framing (parse_with: the line must have the
+   layout's address), the tables of layouts by address that the generated code writes
+   (nmea_layouts, find_layouts), and the rules that pick among the layouts of one address: the
+   first that reads the line wins, the error of the layouts whose keyword the line holds is the
+   one reported, lenient parsing leaves the fields at fault empty one at a time (refit). */
+
+/* The wire of a line whose address must be $--<sentence> (or !--<sentence>: `start`). */
+NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, char start, const char *sentence,
+                               nmea_error *err)
+{
+    nmea_frame f;
+    if (!frame_line(&f, line, len, false, err))
+        return false;
+    if (!is_standard_address(&f) || f.start.ptr[0] != start ||
+        !text_is(text_span(f.address.ptr + 2, f.address.ptr + 5), sentence)) {
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, start == '!' ? "line is not a !--%s sentence" : "line is not a $--%s sentence");
+        set_address(err, f.address, NULL);
+        err->str[0] = sentence;
+        return false;
+    }
+    wire_of(wire, &f, sentence, NULL);
+    return true;
+}
+
+/* The wire of a line whose address must be $<address>. */
+NMEA_INTERNAL bool frame_proprietary(nmea_wire *wire, const char *line, size_t len, const char *address,
+                                     nmea_error *err)
+{
+    nmea_frame f;
+    if (!frame_line(&f, line, len, false, err))
+        return false;
+    if (f.start.ptr[0] != '$' || !text_is(f.address, address)) {
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a $%s sentence");
+        set_address(err, f.address, NULL);
+        err->str[0] = address;
+        return false;
+    }
+    wire_of(wire, &f, NULL, NULL);
+    return true;
+}
+
+/* The wire of a text command whose word must be `command` (in upper case). */
+NMEA_INTERNAL bool frame_command(nmea_wire *wire, const char *line, size_t len, const char *command,
+                                 nmea_error *err)
+{
+    nmea_frame f;
+    if ((len && (line[0] == '$' || line[0] == '!')) || !word_is(first_word(line, len), command)) {
+        fail(err, NMEA_ERR_NOT_A_SENTENCE, "line is not a %s command");
+        err->str[0] = command;
+        return false;
+    }
+    if (!text_frame(&f, line, len, err))
+        return false;
+    wire_of(wire, &f, NULL, line);
+    return true;
+}
+
+/* The length of a line without one trailing LF or CR LF: the parsers take a line as it was read,
+   as the Rust and Python ones do. A framed overlong line has no bytes (NULL): not read. */
+static size_t without_line_ending(const char *line, size_t len)
+{
+    if (line && len && line[len - 1] == '\n')
+        len -= len > 1 && line[len - 2] == '\r' ? 2 : 1;
+    return len;
+}
+
+/* nmea_parse_<layout>: the line framed as layout `l` says, then read into `out`, a struct of it. */
+static bool parse_with(const layout *l, void *out, const char *line, size_t len, nmea_error *err)
+{
+    nmea_wire wire;
+    len = without_line_ending(line, len);
+    if (l->kind == LAYOUT_STANDARD)
+        return frame_known(&wire, line, len, l->start, l->sentence, err) && read_with(l, out, &wire, err);
+    if (l->kind == LAYOUT_PROPRIETARY)
+        return frame_proprietary(&wire, line, len, l->address, err) && read_with(l, out, &wire, err);
+    return frame_command(&wire, line, len, l->command, err) && read_with(l, out, &wire, err);
+}
+
+/* The layouts a line may have, in the order they are tried. */
+typedef struct {
+    const char *key;
+    size_t key_len;
+    const char *suffix; /* a standard sentence: its id, after the talker in the address */
+    const nmea_sentence_id *ids;
+    size_t count;
+} nmea_layouts;
+
+/* The entry of a table sorted by key whose key is `key`, or NULL. The keys are compared byte by
+   byte (as memcmp would, but the first byte mostly decides, sooner than a call). */
+NMEA_INTERNAL inline const nmea_layouts *find_layouts(const nmea_layouts *table, size_t n, nmea_text key)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = (lo + hi) / 2, len = table[mid].key_len, common = len < key.len ? len : key.len, k;
+        const unsigned char *entry = (const unsigned char *)table[mid].key, *want = (const unsigned char *)key.ptr;
+        int order;
+        for (k = 0; k < common && entry[k] == want[k]; k++)
+            continue;
+        order = k < common ? entry[k] - want[k] : len < key.len ? -1 : len > key.len;
+        if (order == 0)
+            return &table[mid];
+        if (order < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return NULL;
+}
+
+/* The 3 characters at `id` as a number (big-endian), as the _CODES tables hold them. */
+NMEA_INTERNAL inline uint32_t standard_code(const char *id)
+{
+    return (uint32_t)(unsigned char)id[0] << 16 | (uint32_t)(unsigned char)id[1] << 8 | (unsigned char)id[2];
+}
+
+/* Wire field `index` (0-based) of `fields` (separated by `sep`); empty past the end. */
+static nmea_text field_at(nmea_text fields, char sep, size_t index)
+{
+    const char *p = fields.ptr, *end = fields.ptr + fields.len, *stop;
+    for (; index > 0 && p < end; index--) {
+        while (p < end && *p != sep)
+            p++;
+        if (p < end)
+            p++;
+        else
+            return text_span(end, end);
+    }
+    for (stop = p; stop < end && *stop != sep; stop++)
+        continue;
+    return text_span(p, stop);
+}
+
+/* Whether a line with `count` wire fields holds the keyword of layout `id` in its place (ignoring
+   case); blanked fields (lenient parsing) hold nothing. */
+static bool holds_selector(nmea_sentence_id id, const nmea_wire *wire)
+{
+    const layout *l = LAYOUTS[id];
+    if (!l->selector || l->selector_at >= wire->count)
+        return false;
+    if (wire->blanks && is_blank(wire->blank, wire->blanks, l->selector_at + 1u))
+        return false;
+    return upper_is(field_at(wire->fields, wire->sep, l->selector_at), l->selector);
+}
+
+/* Whether one of the layouts of a `$` line's address may read it: one without a keyword, or
+   one whose keyword the line holds; else the line is a message of a known family that the spec
+   does not know, kept as a generic sentence. */
+NMEA_INTERNAL bool claimed(const nmea_layouts *layouts, const nmea_wire *wire)
+{
+    size_t i;
+    for (i = 0; i < layouts->count; i++)
+        if (!LAYOUTS[layouts->ids[i]]->selector || holds_selector(layouts->ids[i], wire))
+            return true;
+    return false;
+}
+
+/* Parses the wire with one layout. */
+static bool read_layout(nmea_sentence *out, nmea_sentence_id id, const nmea_wire *wire, nmea_error *err)
+{
+    out->id = id;
+    return read_with(LAYOUTS[id], &out->as, wire, err);
+}
+
+/* The first of the layouts that reads the line, as first_fit would pick it: a layout whose field
+   count does not fit is passed over, any other doubt ends the fast path. */
+static bool fast_fit(nmea_sentence *out, const nmea_layouts *layouts, const char *line, const char *fields,
+                     const char *end, size_t count)
+{
+    size_t i;
+    for (i = 0; i < layouts->count; i++) {
+        fast_result result = fast_read_layout(out, layouts->ids[i], line, fields, end, count);
+        if (result != FAST_NOT_THIS)
+            return result == FAST_OK;
+    }
+    return false;
+}
+
+/* Keeps the error to report: the first one, or the first bad field that comes after it. */
+static void keep_error(nmea_error *kept, bool *have, const nmea_error *err)
+{
+    if (!*have || (kept->kind != NMEA_ERR_BAD_FIELD && err->kind == NMEA_ERR_BAD_FIELD)) {
+        *kept = *err;
+        *have = true;
+    }
+}
+
+/* The first of the layouts that reads the wire. When none does, `err` gets the error of the
+   layouts whose keyword the first field holds (else of all of them): the first bad field among
+   them, else their first error. */
+NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
+                                nmea_error *err)
+{
+    nmea_error attempt, chosen, fallback;
+    bool have_chosen = false, have_fallback = false;
+    size_t i;
+
+    for (i = 0; i < layouts->count; i++) {
+        if (read_layout(out, layouts->ids[i], wire, &attempt))
+            return true;
+        if (holds_selector(layouts->ids[i], wire))
+            keep_error(&chosen, &have_chosen, &attempt);
+        keep_error(&fallback, &have_fallback, &attempt);
+    }
+    *err = have_chosen ? chosen : fallback;
+    return false;
+}
+
+/* first_of_many, and for the usual single layout just that layout's reader (inlined here: no
+   bookkeeping of errors to compare). */
+static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire, nmea_error *err)
+{
+    if (layouts->count == 1)
+        return read_layout(out, layouts->ids[0], wire, err);
+    return first_of_many(out, layouts, wire, err);
+}
+
+/* first_fit, when it fails and `lenient`, the fields at fault are read as empty one at a time,
+   each kept as a problem, until a layout reads the wire, a field at fault is already empty, or
+   a problem would be one too many. The sentence's problems are then kept in `keep` (NULL: not
+   kept). */
+NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, nmea_problems *keep,
+                        nmea_error *err)
+{
+    nmea_problems problems;
+    problems.count = 0;
+    /* a bad field's text is the field's text on the wire, empty once it has been left empty */
+    while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && problems.count < NMEA_MAX_PROBLEMS) {
+        problem_of(&problems.list[problems.count++], err);
+        wire->blank[wire->blanks++] = (uint16_t)err->field;
+        if (first_fit(out, layouts, wire, err)) {
+            if (keep) {
+                keep->count = problems.count;
+                memcpy(keep->list, problems.list, problems.count * sizeof problems.list[0]);
+            }
+            out->problems = keep;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* The first of the layouts that reads the wire (first_fit); when none does and the options are
+   lenient, refit. */
+static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
+                       nmea_error *err)
+{
+    return first_fit(out, layouts, wire, err) || (options->lenient && refit(out, layouts, wire, options->problems, err));
+}
+
+static void write_sentence(nmea_writer *w, const nmea_sentence *s)
+{
+    if (s->id == NMEA_SENTENCE_GENERIC)
+        write_generic(w, &s->as.generic);
+    else
+        write_with(w, LAYOUTS[s->id], &s->as, s->problems);
+}

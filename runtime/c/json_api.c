@@ -1,0 +1,288 @@
+/* The API of nmea.h for the tools' JSON (json.md): nmea_to_json and nmea_decode_json (decode's
+   output for a line), and nmea_from_json (encode's input: the field texts put back on the wire
+   and read by the sentence's layout, leniently with the texts of its "problems" in their
+   places). Left out by -DNMEA_NO_JSON. */
+
+#ifndef NMEA_NO_JSON
+/* The layout that decode's JSON names by its sentence id and variant (NULL: the main one). */
+static nmea_sentence_id find_layout(nmea_text sentence, const nmea_text *variant)
+{
+    size_t id;
+    for (id = 1; id < NMEA_SENTENCE_COUNT; id++) {
+        const layout *l = LAYOUTS[id];
+        if (text_is(sentence, l->sentence) && (variant ? l->variant && text_is(*variant, l->variant) : !l->variant))
+            return (nmea_sentence_id)id;
+    }
+    return NMEA_SENTENCE_GENERIC;
+}
+
+size_t nmea_to_json(const nmea_sentence *s, bool values, char *buf, size_t cap)
+{
+    nmea_writer w = writer_of(buf, cap);
+    if (s->id == NMEA_SENTENCE_GENERIC)
+        json_generic(&w, &s->as.generic);
+    else
+        json_with(&w, LAYOUTS[s->id], &s->as, s->problems, values);
+    return writer_finish(&w);
+}
+
+size_t nmea_decode_json(const char *line, size_t len, bool values, char *buf, size_t cap)
+{
+    return nmea_decode_json_ex(line, len, values, NULL, buf, cap);
+}
+
+size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea_options *options, char *buf,
+                           size_t cap)
+{
+    nmea_sentence s;
+    nmea_error err;
+    nmea_problems problems;
+    nmea_options keeping;
+
+    if (options && options->lenient && !options->problems) { /* the JSON lists them */
+        keeping = *options;
+        keeping.problems = &problems;
+        options = &keeping;
+    }
+    if (nmea_parse_ex(&s, line, len, options, &err))
+        return nmea_to_json(&s, values, buf, cap);
+    return nmea_error_to_json(&err, buf, cap);
+}
+
+/* A sentence the spec does not describe: "fields" (raw texts), "start" and "address". */
+static bool generic_from_json(nmea_generic *g, nmea_json root, nmea_scratch *scratch, nmea_error *err)
+{
+    nmea_json fields, entry;
+    nmea_collector c;
+    nmea_text start;
+    bool present, wide;
+
+    if (!json_require(root, "fields", &fields, err))
+        return false;
+    if (!json_is(fields, '['))
+        return bad_json(err, "\"%s\" is not an array", "fields");
+    if (!json_text_member(root, "start", false, scratch, &start, &present, &wide, err))
+        return false;
+    if (wide || !(text_is(start, "$") || text_is(start, "!")))
+        return bad_json(err, "\"start\" is not \"$\" or \"!\"", NULL);
+    g->start = nmea_text_of(start.ptr[0] == '$' ? "$" : "!");
+    if (!json_word_member(root, "address", scratch, &g->address, err))
+        return false;
+    c.scratch = scratch;
+    c.start = scratch->len;
+    c.count = 0;
+    c.err = err;
+    fields = json_items(fields);
+    while (json_next(&fields, &entry))
+        if (!collect_text(&c, entry))
+            return false;
+    g->fields = collected(&c);
+    g->field_count = c.count;
+    return true;
+}
+
+/* A text command's line as received from decode's JSON: its word and the collected texts
+   (comma separated in the scratch buffer) joined by single spaces. */
+static bool command_line(nmea_wire *wire, nmea_text word, nmea_scratch *s, nmea_error *err)
+{
+    size_t i, start = s->len;
+    if (s->cap - s->len < word.len + (wire->count ? 1 + wire->fields.len : 0))
+        return scratch_full(err);
+    memcpy(s->buf + s->len, word.ptr, word.len);
+    s->len += word.len;
+    if (wire->count) {
+        s->buf[s->len++] = ' ';
+        for (i = 0; i < wire->fields.len; i++)
+            s->buf[s->len++] = wire->fields.ptr[i] == ',' ? ' ' : wire->fields.ptr[i];
+    }
+    wire->line = text_span(s->buf + start, s->buf + s->len);
+    return true;
+}
+
+/* A JSON integer (no fraction, no exponent) from 1 to n. */
+static bool json_index(nmea_json v, size_t n, size_t *index)
+{
+    const char *p;
+    size_t value = 0;
+    if (v.p >= v.end)
+        return false;
+    for (p = v.p; p < v.end; p++) {
+        if (!is_digit(*p) || value > n)
+            return false;
+        value = value * 10 + (size_t)(*p - '0');
+    }
+    *index = value;
+    return value >= 1 && value <= n;
+}
+
+/* Room for the problems of a sentence rebuilt from JSON in the scratch buffer (aligned as the
+   struct needs), or NULL when it is full. */
+static nmea_problems *scratch_problems(nmea_scratch *s)
+{
+    typedef struct {
+        char c;
+        nmea_problems p;
+    } probe;
+    size_t align = offsetof(probe, p), at = s->len + (align - (uintptr_t)(s->buf + s->len) % align) % align;
+    if (at > s->cap || s->cap - at < sizeof(nmea_problems))
+        return NULL;
+    s->len = at + sizeof(nmea_problems);
+    return (nmea_problems *)(void *)(s->buf + at);
+}
+
+/* A sentence that lenient decoding kept (its JSON has "problems"): the texts of its problem
+   fields go back in their places, and its layout parses it leniently again. `wire` holds the
+   texts of the `fields` object. */
+static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json root, nmea_json problems,
+                          nmea_scratch *s, nmea_wire *wire, nmea_error *err)
+{
+    nmea_text start, text, texts[NMEA_MAX_FIELDS];
+    nmea_json problem, v;
+    nmea_layouts one;
+    nmea_options lenient = {true, false, NULL};
+    const char *p = wire->fields.ptr, *end = p + wire->fields.len, *comma;
+    size_t i, index, n = wire->count, need = 0;
+    bool present, wide;
+
+    if (!json_text_member(root, "start", false, s, &start, &present, &wide, err))
+        return false;
+    if (start.len == 0)
+        return bad_json(err, "a text command has no problems", NULL);
+    if (!json_is(problems, '['))
+        return bad_json(err, "\"%s\" is not an array", "problems");
+    /* the texts one by one (unless there are more than any layout takes: the layout then refuses
+       them whatever they say) */
+    for (i = 0; n <= NMEA_MAX_FIELDS && i < n; i++) {
+        for (comma = p; comma < end && *comma != ','; comma++)
+            continue;
+        texts[i] = text_span(p, comma);
+        p = comma < end ? comma + 1 : end;
+    }
+    problems = json_items(problems);
+    while (json_next(&problems, &problem)) {
+        if (!json_require(problem, "field", &v, err))
+            return false;
+        if (!json_index(v, n, &index))
+            return bad_json(err, "a problem's \"field\" is not the index of a field", NULL);
+        if (!json_require(problem, "text", &v, err) || !json_field_text(v, s, &text, err))
+            return false;
+        if (n <= NMEA_MAX_FIELDS)
+            texts[index - 1] = text;
+    }
+    if (!LAYOUTS[id]->address) { /* a standard sentence: the talker and the sentence id */
+        if (!json_word_member(root, "talker", s, &wire->address, err))
+            return false;
+        wire->suffix = LAYOUTS[id]->sentence;
+    }
+    if (n && n <= NMEA_MAX_FIELDS) { /* the texts joined again */
+        for (i = 0; i < n; i++)
+            need += texts[i].len + 1;
+        if (s->cap - s->len < need)
+            return scratch_full(err);
+        p = s->buf + s->len;
+        for (i = 0; i < n; i++) {
+            if (i)
+                s->buf[s->len++] = ',';
+            if (texts[i].len)
+                memcpy(s->buf + s->len, texts[i].ptr, texts[i].len);
+            s->len += texts[i].len;
+        }
+        wire->fields = text_span(p, s->buf + s->len);
+    }
+    if ((lenient.problems = scratch_problems(s)) == NULL)
+        return scratch_full(err);
+    one.key = NULL;
+    one.key_len = 0;
+    one.suffix = NULL;
+    one.ids = &id;
+    one.count = 1;
+    out->problems = NULL;
+    return fit(out, &one, wire, &lenient, err);
+}
+
+bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
+                    nmea_error *err)
+{
+    nmea_scratch s;
+    nmea_json root, fields;
+    nmea_text sentence, variant, word;
+    nmea_json problems;
+    bool has_sentence, has_variant, wide_sentence, wide_variant;
+    nmea_checksum_style checksum;
+    nmea_sentence_id id;
+    const layout *info;
+    nmea_collector c;
+    nmea_wire wire;
+
+    s.buf = scratch;
+    s.cap = scratch ? scratch_cap : 0;
+    s.len = 0;
+    out->problems = NULL;
+    if (!json_parse(json, len, &root))
+        return bad_json(err, "not JSON", NULL);
+    if (!json_is(root, '{'))
+        return bad_json(err, "not a JSON object", NULL);
+    if (!json_checksum_style(root, &checksum, err)
+        || !json_text_member(root, "sentence", true, &s, &sentence, &has_sentence, &wide_sentence, err))
+        return false;
+    if (!has_sentence) {
+        out->id = NMEA_SENTENCE_GENERIC;
+        out->as.generic.checksum = checksum;
+        return generic_from_json(&out->as.generic, root, &s, err);
+    }
+    if (!json_text_member(root, "variant", true, &s, &variant, &has_variant, &wide_variant, err))
+        return false;
+    id = wide_sentence || wide_variant ? NMEA_SENTENCE_GENERIC : find_layout(sentence, has_variant ? &variant : NULL);
+    if (id == NMEA_SENTENCE_GENERIC) {
+        nmea_json v;
+        bad_json(err, "unknown sentence \"%t\"", NULL);
+        json_member(root, "sentence", &v);
+        err->text = json_inside(v);
+        err->text_json = true;
+        return false;
+    }
+    if (!json_require(root, "fields", &fields, err))
+        return false;
+    if (!json_is(fields, '{'))
+        return bad_json(err, "\"%s\" is not an object", "fields");
+    c.scratch = &s;
+    c.start = s.len;
+    c.count = 0;
+    c.err = err;
+    if (!collect_with(LAYOUTS[id], &c, fields))
+        return false;
+    info = LAYOUTS[id];
+    wire.address = nmea_text_of(info->address);
+    wire.suffix = NULL;
+    wire.fields = collected(&c);
+    wire.count = c.count;
+    wire.sep = ',';
+    wire.ignore_case = false;
+    wire.checksum = checksum;
+    wire.line = nmea_text_of(NULL);
+    wire.blanks = 0;
+    if (json_member(root, "problems", &problems)) {
+        wire.ignore_case = info->command != NULL;
+        return with_problems(out, id, root, problems, &s, &wire, err);
+    }
+    if (!info->address) { /* a standard sentence: the talker and the sentence id */
+        if (!json_word_member(root, "talker", &s, &wire.address, err))
+            return false;
+        wire.suffix = info->sentence;
+    } else if (info->command) { /* a text command: its word as written, its letter case kept */
+        if (!json_word_member(root, "address", &s, &word, err))
+            return false;
+        if (!upper_is(word, info->command)) {
+            bad_json(err, "\"address\" is not %s", NULL);
+            err->str[0] = info->address;
+            return false;
+        }
+        wire.address = word;
+        wire.ignore_case = true;
+        wire.checksum = NMEA_CHECKSUM_NONE;
+        if (!command_line(&wire, word, &s, err))
+            return false;
+    }
+    return read_layout(out, id, &wire, err);
+}
+#endif /* NMEA_NO_JSON */

@@ -1,0 +1,349 @@
+/* Layouts: what the spec says of each sentence layout, as a table the generator writes (the
+   LAYOUTS of nmea.c), and the one general reader that interprets them (read_with, and entry_of
+   for a repeated group's entries; the writer is layout_write.c, the JSON form layout_json.c).
+   Only the fast path has code of its own per layout. */
+
+/* The field types of the spec. */
+typedef enum {
+    FIELD_KEYWORD,
+    FIELD_INTEGER,
+    FIELD_DECIMAL,
+    FIELD_HEX,
+    FIELD_TIME,
+    FIELD_DATE,
+    FIELD_LATITUDE,
+    FIELD_LONGITUDE,
+    FIELD_CHAR,
+    FIELD_LITERAL,
+    FIELD_TEXT,
+    FIELD_ENUM,
+    FIELD_ENUM_CHARS
+} field_type;
+
+/* A field of a layout, or of the entries of its repeated group. */
+typedef struct {
+    const char *id;
+    const char *expected; /* what the field takes, for errors */
+    const void *arg;      /* integer, decimal: its nmea_range (NULL: any value); enum, enum_chars:
+                             its nmea_enum_def; keyword, literal: its word; latitude, longitude:
+                             what the hemisphere takes */
+    uint16_t offset;      /* of its member in the layout struct (or the entry); 0 for a keyword */
+    uint8_t type;         /* field_type */
+    uint8_t width;        /* wire fields: 2 for a latitude or longitude, else 1 */
+    uint16_t max_length;  /* text, enum_chars: most characters (0: any number) */
+} layout_field;
+
+/* The fields of a layout without any (its `fields` point here, never NULL: no arithmetic on it;
+   a spec in which every layout has fields leaves it unused). */
+NMEA_INTERNAL const layout_field NO_FIELDS[1];
+
+/* An offset of a member a layout does not have. */
+#define NO_MEMBER 0xFFFFu
+
+/* The repeated group of a layout: `min` to `max` entries of `width` wire fields. */
+typedef struct {
+    const char *id;
+    const layout_field *fields; /* offsets in an entry (a single field: 0) */
+    uint16_t field_count;
+    uint16_t width;
+    uint16_t min;
+    uint16_t max;
+    bool single;           /* one field an entry: the JSON lists its values without keys */
+    uint16_t offset;       /* of its nmea_entries (NO_MEMBER: none, the entries hold only keywords) */
+    uint16_t entry_size;   /* of an entry of nmea_entries.items */
+    uint16_t count_offset; /* of the uint8_t entry count (NO_MEMBER: always `max` entries) */
+} layout_group;
+
+typedef enum { LAYOUT_STANDARD, LAYOUT_PROPRIETARY, LAYOUT_TEXT } layout_kind;
+
+/* A sentence layout. Its fields are those before the group, after it, and the optional trailing
+   ones, in wire order. */
+typedef struct {
+    const char *sentence;      /* the spec's sentence id */
+    const char *address;       /* a proprietary sentence's address, a text command's word; NULL */
+    const char *command;       /* a text command: its word in upper case; NULL */
+    const char *variant;       /* NULL: the sentence's main layout */
+    const char *selector;      /* the keyword (upper case) every line of it holds, or NULL */
+    const layout_field *fields; /* NO_FIELDS: none */
+    const layout_group *group;  /* NULL: none */
+    uint16_t selector_at;      /* the selector's wire index (0-based) */
+    uint16_t before;           /* fields before the group (all required ones without a group) */
+    uint16_t after;            /* required fields after the group */
+    uint16_t optional;         /* optional trailing fields */
+    uint16_t fixed;            /* required wire fields besides the group */
+    uint16_t max_fields;       /* wire fields at most (without a group) */
+    uint16_t optional_max;     /* optional wire fields at most */
+    uint16_t size;             /* of the struct */
+    uint16_t head;             /* offset of the talker (standard) or as_received (text); NO_MEMBER */
+    uint16_t optional_count;   /* offset of the uint8_t optional_count; NO_MEMBER */
+    uint16_t checksum;         /* offset of the nmea_checksum_style; NO_MEMBER (a text command) */
+    uint8_t kind;              /* layout_kind */
+    char start;                /* '$' or '!' */
+} layout;
+
+static inline void *member_at(void *s, uint16_t offset)
+{
+    return (char *)s + offset;
+}
+
+static inline const void *const_member_at(const void *s, uint16_t offset)
+{
+    return (const char *)s + offset;
+}
+
+/* How many optional trailing fields `optional` wire fields hold (a latitude needs both of its). */
+static size_t optional_present(const layout *l, size_t optional)
+{
+    const layout_field *f = l->fields + l->before + l->after;
+    size_t n, wire = 0;
+    for (n = 0; n < l->optional; n++) {
+        wire += f[n].width;
+        if (wire > optional)
+            break;
+    }
+    return n;
+}
+
+/* The entries of a layout's group that are on the wire (a struct's count may be too big). */
+static size_t entries_of(const layout_group *g, const void *s)
+{
+    size_t n;
+    if (g->count_offset == NO_MEMBER)
+        return g->max;
+    n = *(const uint8_t *)const_member_at(s, g->count_offset);
+    return n < g->max ? n : g->max;
+}
+
+/* The optional trailing fields of a struct that are on the wire. */
+static size_t optional_of(const layout *l, const void *s)
+{
+    return l->optional_count == NO_MEMBER ? 0 : *(const uint8_t *)const_member_at(s, l->optional_count);
+}
+
+/* The entries of a layout's group (NULL: it stores nothing, its entries hold only keywords). */
+static const nmea_entries *entries_in(const layout_group *g, const void *s)
+{
+    return g->offset == NO_MEMBER ? NULL : (const nmea_entries *)const_member_at(s, g->offset);
+}
+
+/* Reads field `f` into `out`, a value of its type (nothing for a keyword). */
+static bool read_field(nmea_reader *r, const layout_field *f, void *out)
+{
+    switch ((field_type)f->type) {
+    case FIELD_KEYWORD:
+        return read_keyword(r, f->id, f->expected, f->arg);
+    case FIELD_INTEGER:
+        return read_integer(r, out, f->id, f->expected, f->arg);
+    case FIELD_DECIMAL:
+        return read_decimal(r, out, f->id, f->expected, f->arg);
+    case FIELD_HEX:
+        return read_hex(r, out, f->id, f->expected);
+    case FIELD_TIME:
+        return read_time(r, out, f->id, f->expected);
+    case FIELD_DATE:
+        return read_date(r, out, f->id, f->expected);
+    case FIELD_LATITUDE:
+        return read_latitude(r, out, f->id, f->expected, f->arg);
+    case FIELD_LONGITUDE:
+        return read_longitude(r, out, f->id, f->expected, f->arg);
+    case FIELD_CHAR:
+        return read_char(r, out, f->id, f->expected);
+    case FIELD_LITERAL:
+        return read_literal(r, out, f->id, f->expected, f->arg);
+    case FIELD_TEXT:
+        return read_text(r, out, f->id, f->expected, f->max_length);
+    case FIELD_ENUM:
+        return read_enum(r, out, f->id, f->expected, f->arg);
+    case FIELD_ENUM_CHARS:
+        return read_enum_chars(r, out, f->id, f->expected, f->arg, f->max_length);
+    }
+    return false;
+}
+
+static bool read_fields(nmea_reader *r, const layout_field *f, size_t n, void *entry)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        if (!read_field(r, &f[i], member_at(entry, f[i].offset)))
+            return false;
+    return true;
+}
+
+/* Any value a field holds, for reading one field of a group entry on its own. */
+typedef union {
+    nmea_number number;
+    nmea_hex hex;
+    nmea_time time;
+    nmea_date date;
+    nmea_coordinate coordinate;
+    char c;
+    bool literal;
+    nmea_text text;
+    nmea_enum enumeration;
+} field_value;
+
+/* The size of the value of field `f` (0: a keyword holds none). */
+static size_t field_size(const layout_field *f)
+{
+    switch ((field_type)f->type) {
+    case FIELD_KEYWORD:
+        return 0;
+    case FIELD_INTEGER:
+    case FIELD_DECIMAL:
+        return sizeof(nmea_number);
+    case FIELD_HEX:
+        return sizeof(nmea_hex);
+    case FIELD_TIME:
+        return sizeof(nmea_time);
+    case FIELD_DATE:
+        return sizeof(nmea_date);
+    case FIELD_LATITUDE:
+    case FIELD_LONGITUDE:
+        return sizeof(nmea_coordinate);
+    case FIELD_CHAR:
+        return sizeof(char);
+    case FIELD_LITERAL:
+        return sizeof(bool);
+    case FIELD_TEXT:
+    case FIELD_ENUM_CHARS:
+        return sizeof(nmea_text);
+    case FIELD_ENUM:
+        return sizeof(nmea_enum);
+    }
+    return 0;
+}
+
+/* The end of the `n` fields (n > 0) that start at `p`, before `end`. */
+static const char *fields_end(const char *p, const char *end, char sep, size_t n)
+{
+    for (;; p++) {
+        while (p < end && *p != sep)
+            p++;
+        if (p == end || --n == 0)
+            return p;
+    }
+}
+
+/* Reads a parsed sentence's group entries again, field by field, from their wire text. */
+typedef struct {
+    nmea_reader r;
+    nmea_error err;
+} entry_reader;
+
+static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i);
+
+/* The next field `f` of an entry, into `out`, as parsing read it (lenient parsing's blanks
+   included). A field that does not read (in a struct the parser did not make) is empty. */
+static void reread_field(entry_reader *c, const layout_field *f, void *out)
+{
+    const char *next = c->r.next;
+    unsigned index = c->r.index;
+    size_t size = field_size(f);
+
+    if (size)
+        memset(out, 0, size);
+    if (read_field(&c->r, f, out))
+        return;
+    if (size)
+        memset(out, 0, size);
+    c->r.next = fields_end(next, c->r.end, c->r.sep, f->width);
+    c->r.next += c->r.next < c->r.end;
+    c->r.index = index + f->width;
+}
+
+/* Reads the wire into `s`, a struct of layout `l`. */
+NMEA_OUTLINE bool read_with(const layout *l, void *s, const nmea_wire *wire, nmea_error *err)
+{
+    const layout_group *g = l->group;
+    nmea_reader r;
+    size_t i, repeats = 0, optional, present;
+
+    reader_start(&r, wire, l->sentence, err);
+    if (g ? !read_group_count(&r, wire->count, g->id, l->fixed, g->width, g->min, g->max, l->optional_max, &repeats,
+                              &optional)
+          : !read_count(&r, wire->count, l->fixed, l->max_fields, &optional))
+        return false;
+    clear_layout(s, l->size);
+    if (l->head != NO_MEMBER)
+        *(nmea_text *)member_at(s, l->head) = l->kind == LAYOUT_TEXT ? wire->line : wire->address;
+    if (l->checksum != NO_MEMBER)
+        *(nmea_checksum_style *)member_at(s, l->checksum) = wire->checksum;
+    present = optional_present(l, optional);
+    if (l->optional_count != NO_MEMBER)
+        *(uint8_t *)member_at(s, l->optional_count) = (uint8_t)present;
+    if (!read_fields(&r, l->fields, l->before, s))
+        return false;
+    if (g) {
+        const char *start = r.next;
+        unsigned first = r.index;
+        field_value value;
+        size_t j;
+        for (i = 0; i < repeats; i++) {
+            reader_entry(&r, g->id, i);
+            for (j = 0; j < g->field_count; j++)
+                if (!read_field(&r, &g->fields[j], &value))
+                    return false;
+        }
+        if (g->offset != NO_MEMBER) { /* the entries stay on the wire, read when asked for */
+            nmea_entries *e = (nmea_entries *)member_at(s, g->offset);
+            e->wire = text_span(start, repeats ? fields_end(start, r.end, r.sep, repeats * g->width) : start);
+            for (j = 0; j < wire->blanks; j++)
+                if (wire->blank[j] > first && wire->blank[j] <= r.index)
+                    e->blank[e->blanks++] = (uint16_t)(wire->blank[j] - first);
+        }
+        if (g->count_offset != NO_MEMBER)
+            *(uint8_t *)member_at(s, g->count_offset) = (uint8_t)repeats;
+        reader_entry(&r, NULL, 0);
+    }
+    return read_fields(&r, l->fields + l->before, l->after + present, s);
+}
+
+/* Starts `c` at entry `i` of the group of layout `l` whose entries `e` holds on the wire; false
+   when the wire ends before it. */
+static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries *e, size_t i)
+{
+    nmea_wire w;
+    const char *p = e->wire.ptr, *end = p ? p + e->wire.len : NULL;
+    size_t skip;
+
+    memset(&w, 0, sizeof w);
+    w.sep = l->kind == LAYOUT_TEXT ? ' ' : ',';
+    w.ignore_case = l->kind == LAYOUT_TEXT;
+    for (skip = i * l->group->width; skip > 0; skip--) {
+        p = fields_end(p, end, w.sep, 1);
+        if (p == end)
+            return false;
+        p++;
+    }
+    if (p == NULL || (p == end && i > 0))
+        return false;
+    w.fields = text_span(p, end);
+    reader_start(&c->r, &w, l->sentence, &c->err);
+    c->r.index = (unsigned)(i * l->group->width); /* the blanks count from the first entry */
+    c->r.blank = e->blank;
+    c->r.blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;
+    return true;
+}
+
+/* Entry `i` of the group of `s`, a struct of layout `l`, into `out` (an entry, or the value of a
+   group of one field): false when the group has fewer entries. */
+NMEA_OUTLINE bool entry_of(const layout *l, const void *s, size_t i, void *out)
+{
+    const layout_group *g = l->group;
+    const nmea_entries *e = entries_in(g, s);
+    entry_reader c;
+    size_t j;
+
+    if (i >= entries_of(g, s))
+        return false;
+    if (e->items) {
+        memcpy(out, (const char *)e->items + i * g->entry_size, g->entry_size);
+        return true;
+    }
+    memset(out, 0, g->entry_size);
+    if (!entry_reader_at(&c, l, e, i))
+        return true; /* past what the wire holds: an empty entry */
+    for (j = 0; j < g->field_count; j++)
+        reread_field(&c, &g->fields[j], member_at(out, g->fields[j].offset));
+    return true;
+}

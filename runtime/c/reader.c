@@ -1,0 +1,398 @@
+/* Reading the fields of a layout: a cursor over the comma-separated fields, which knows the
+   address and the field being read for the errors. */
+
+/* The fields of a line (or of decode's JSON) for a layout to read, and the address its errors
+   name: `address` followed by `suffix` (a standard sentence: the talker and the sentence id). */
+typedef struct {
+    nmea_text address;
+    const char *suffix;
+    nmea_text fields;
+    size_t count;
+    char sep;                     /* between fields: ',' or ' ' (the words of a text command) */
+    bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
+    nmea_checksum_style checksum;
+    nmea_text line;               /* a text command: the command as received */
+    uint16_t blank[NMEA_MAX_PROBLEMS]; /* lenient parsing: the wire fields read as empty */
+    unsigned blanks;
+} nmea_wire;
+
+typedef struct {
+    const char *next;
+    const char *end;
+    unsigned index; /* 1-based wire index of the field read last */
+    nmea_text address;
+    const char *suffix;
+    const char *sentence;
+    const char *group;
+    unsigned entry;
+    char sep;
+    bool ignore_case;
+    const uint16_t *blank;
+    unsigned blanks;
+    nmea_error *err;
+} nmea_reader;
+
+static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sentence, nmea_error *err)
+{
+    r->next = wire->fields.ptr;
+    r->end = wire->fields.ptr + wire->fields.len;
+    r->index = 0;
+    r->address = wire->address;
+    r->suffix = wire->suffix;
+    r->sentence = sentence;
+    r->group = NULL;
+    r->entry = 0;
+    r->sep = wire->sep;
+    r->ignore_case = wire->ignore_case;
+    r->blank = wire->blank;
+    r->blanks = wire->blanks;
+    r->err = err;
+}
+
+/* Zeroes the `size` first bytes of a layout struct before it is read, with the C library's
+   memset: the size is read back from a volatile so that the compiler cannot see it is a
+   constant of a few hundred bytes, which it would inline as `rep stos`, slow to start. */
+NMEA_OUTLINE void clear_layout(void *s, size_t size)
+{
+    volatile size_t unknown = size;
+    memset(s, 0, unknown);
+}
+
+/* Whether lenient parsing reads wire field `index` (1-based) as empty. */
+NMEA_RARE bool is_blank(const uint16_t *blank, unsigned blanks, unsigned index)
+{
+    unsigned i;
+    for (i = 0; i < blanks; i++)
+        if (blank[i] == index)
+            return true;
+    return false;
+}
+
+/* From now on the fields read belong to entry `index` (0-based) of `group` (NULL: none). */
+NMEA_INTERNAL void reader_entry(nmea_reader *r, const char *group, size_t index)
+{
+    r->group = group;
+    r->entry = (unsigned)index + 1;
+}
+
+static inline nmea_text next_field(nmea_reader *r)
+{
+    const char *p = r->next, *q = p, *end = r->end; /* (locals: the bytes read could alias r) */
+    char sep = r->sep;
+    nmea_text t;
+    r->index++;
+    while (q < end && *q != sep)
+        q++;
+    t = text_span(p, q);
+    r->next = q < end ? q + 1 : q;
+    if (r->blanks && is_blank(r->blank, r->blanks, r->index))
+        t.len = 0;
+    return t;
+}
+
+static bool count_error(nmea_reader *r, nmea_error_kind kind, const char *pattern, size_t n, size_t m)
+{
+    fail(r->err, kind, pattern);
+    set_address(r->err, r->address, r->suffix);
+    r->err->str[0] = r->sentence;
+    r->err->num[0] = n;
+    r->err->num[1] = m;
+    return false;
+}
+
+static bool too_few(nmea_reader *r, size_t need, size_t found)
+{
+    return count_error(r, NMEA_ERR_TOO_FEW_FIELDS, "%s needs at least %n fields, found %n", need, found);
+}
+
+static bool too_many(nmea_reader *r, size_t limit, size_t found)
+{
+    return count_error(r, NMEA_ERR_TOO_MANY_FIELDS, "%s takes at most %n fields, found %n", limit, found);
+}
+
+/* A layout without a repeated group: `fixed` required fields, `max` in all. Sets `optional` to
+   the number of optional trailing wire fields present. */
+/* The wire of a framed line: a standard sentence's address is its talker followed by `suffix`
+   (its 3-character sentence id); a text command (`line`, as received) has words separated by
+   spaces. */
+static void wire_of(nmea_wire *wire, const nmea_frame *f, const char *suffix, const char *line)
+{
+    wire->address = suffix ? text_span(f->address.ptr, f->address.ptr + f->address.len - 3) : f->address;
+    wire->suffix = suffix;
+    wire->fields = f->fields;
+    wire->count = f->count;
+    wire->sep = line ? ' ' : ',';
+    wire->ignore_case = line != NULL;
+    wire->checksum = f->checksum;
+    wire->line = line ? text_span(line, f->fields.ptr + f->fields.len) : nmea_text_of(NULL);
+    wire->blanks = 0;
+}
+
+/* For nmea_build_*: the sentence just written to w (which must hold it, its CR LF and a NUL),
+   framed again as a receiver frames it. */
+NMEA_INTERNAL bool build_wire(nmea_writer *w, bool text, nmea_wire *wire, nmea_error *err)
+{
+    nmea_frame f;
+    if (w->len + 2 >= w->cap) {
+        fail(err, NMEA_ERR_TOO_LONG, "the sentence, its CR LF and a NUL need %n bytes, the buffer holds %n");
+        err->num[0] = w->len + 3;
+        err->num[1] = w->cap;
+        w->len = w->cap; /* nothing of it is kept */
+        return false;
+    }
+    if (!(text ? text_frame(&f, w->buf, w->len, err) : frame_line(&f, w->buf, w->len, false, err)))
+        return false;
+    wire_of(wire, &f, NULL, text ? w->buf : NULL);
+    return true;
+}
+
+/* A refused sentence stays in the buffer (the error points into it); one too long is not kept. */
+NMEA_INTERNAL size_t build_failed(nmea_writer *w)
+{
+    writer_finish(w);
+    return 0;
+}
+
+NMEA_INTERNAL size_t build_end(nmea_writer *w)
+{
+    put_char(w, '\r');
+    put_char(w, '\n');
+    return writer_finish(w);
+}
+
+NMEA_INTERNAL inline bool read_count(nmea_reader *r, size_t count, size_t fixed, size_t max, size_t *optional)
+{
+    *optional = 0; /* (set first: once inlined, gcc -O1 cannot tell it is read only on success) */
+    if (count < fixed)
+        return too_few(r, fixed, count);
+    if (count > max)
+        return too_many(r, max, count);
+    *optional = count - fixed;
+    return true;
+}
+
+/* A layout with a repeated group of `width` wire fields, `min` to `max` times, and `fixed`
+   required fields besides: how many times it occurs and how many optional wire fields follow. */
+NMEA_INTERNAL inline bool read_group_count(nmea_reader *r, size_t count, const char *group, size_t fixed, size_t width,
+                                           size_t min, size_t max, size_t optional_max, size_t *repeats, size_t *optional)
+{
+    size_t rest, extra;
+    *repeats = 0; /* (set first: once inlined, gcc -O1 cannot tell they are read only on success) */
+    *optional = 0;
+    if (count < fixed + min * width)
+        return too_few(r, fixed + min * width, count);
+    rest = count - fixed;
+    *repeats = rest / width < max ? rest / width : max;
+    extra = rest - *repeats * width;
+    if (extra > optional_max) {
+        if (*repeats == max)
+            return too_many(r, fixed + max * width + optional_max, count);
+        count_error(r, NMEA_ERR_TOO_FEW_FIELDS, "%s %s entries take %n fields each, %n left over", width, extra);
+        r->err->str[1] = group;
+        return false;
+    }
+    *optional = extra;
+    return true;
+}
+
+static bool bad_field(nmea_reader *r, unsigned index, const char *name, const char *expected, nmea_text text)
+{
+    nmea_error *err = r->err;
+    fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
+    set_address(err, r->address, r->suffix);
+    err->field = index;
+    err->group = r->group;
+    err->entry = r->entry;
+    err->name = name;
+    err->str[0] = expected;
+    err->text = text;
+    return false;
+}
+
+/* The general reading of an integer or decimal field. */
+NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range, bool integer)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !(parse_number(t, integer, out) && in_range(out, range)))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+/* The common case of read_number, in the one pass that finds the end of the field: an empty
+   field, or digits with (`integer` false) at most one point, NMEA_MAX_DIGITS digits in all, in
+   `range`. Anything else (a sign, more digits, not a number, out of range, a field lenient
+   parsing reads as empty) is left to read_number: returns false without having read it. */
+NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
+{
+    const char *p = r->next, *end = r->end, *point = NULL;
+    uint64_t digits = 0; /* unsigned: a run too long for it is refused below, not undefined */
+    unsigned digit;      /* unsigned: a byte below '0' wraps to a large value */
+    size_t whole, count;
+    nmea_number n;
+
+    if (r->blanks)
+        return false;
+    for (; p < end && (digit = (unsigned)(unsigned char)*p - '0') < 10; p++)
+        digits = digits * 10 + digit;
+    whole = (size_t)(p - r->next);
+    if (!integer && p < end && *p == '.')
+        for (point = p++; p < end && (digit = (unsigned)(unsigned char)*p - '0') < 10; p++)
+            digits = digits * 10 + digit;
+    count = (size_t)(p - r->next) - (point != NULL); /* digits before and after the point */
+    if ((p < end && *p != r->sep) || count > NMEA_MAX_DIGITS || (point && count == 0))
+        return false;
+    if (count) {
+        n.digits = (int64_t)digits;
+        n.scale = (uint8_t)(count - whole);
+        n.width = (uint8_t)whole;
+        n.sign = 0;
+        n.point = point != NULL;
+        n.present = true;
+        if (!in_range(&n, range))
+            return false;
+        *out = n;
+    }
+    r->index++;
+    r->next = p < end ? p + 1 : p;
+    return true;
+}
+
+NMEA_HOT bool read_integer(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range)
+{
+    return quick_number(r, out, range, true) || read_number(r, out, name, expected, range, true);
+}
+
+NMEA_HOT bool read_decimal(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
+                           const nmea_range *range)
+{
+    return quick_number(r, out, range, false) || read_number(r, out, name, expected, range, false);
+}
+
+NMEA_INTERNAL bool read_hex(nmea_reader *r, nmea_hex *out, const char *name, const char *expected)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !parse_hex(t, out))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+NMEA_INTERNAL bool read_time(nmea_reader *r, nmea_time *out, const char *name, const char *expected)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !parse_time(t, out))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+NMEA_INTERNAL bool read_date(nmea_reader *r, nmea_date *out, const char *name, const char *expected)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !parse_date(t, out))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+/* A value field and a hemisphere field, both empty or both set. */
+static bool read_coordinate(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
+                            const char *hemisphere_expected, const char *hemispheres, unsigned max_degree_digits,
+                            unsigned max_degrees)
+{
+    nmea_text value = next_field(r);
+    nmea_text hemisphere = next_field(r);
+    if (!value.len) {
+        if (hemisphere.len)
+            return bad_field(r, r->index - 1, name, expected, value);
+        return true;
+    }
+    if (!parse_coordinate(value, max_degree_digits, max_degrees, out))
+        return bad_field(r, r->index - 1, name, expected, value);
+    if (hemisphere.len != 1 || (hemisphere.ptr[0] != hemispheres[0] && hemisphere.ptr[0] != hemispheres[1])) {
+        out->present = false;
+        return bad_field(r, r->index, name, hemisphere_expected, hemisphere);
+    }
+    out->hemisphere = hemisphere.ptr[0];
+    return true;
+}
+
+NMEA_INTERNAL bool read_latitude(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
+                                 const char *hemisphere_expected)
+{
+    return read_coordinate(r, out, name, expected, hemisphere_expected, "NS", 2, 90);
+}
+
+NMEA_INTERNAL bool read_longitude(nmea_reader *r, nmea_coordinate *out, const char *name, const char *expected,
+                                  const char *hemisphere_expected)
+{
+    return read_coordinate(r, out, name, expected, hemisphere_expected, "EW", 3, 180);
+}
+
+NMEA_INTERNAL bool read_char(nmea_reader *r, char *out, const char *name, const char *expected)
+{
+    nmea_text t = next_field(r);
+    if (t.len > 1)
+        return bad_field(r, r->index, name, expected, t);
+    *out = t.len ? t.ptr[0] : 0;
+    return true;
+}
+
+NMEA_INTERNAL bool read_literal(nmea_reader *r, bool *out, const char *name, const char *expected, const char *literal)
+{
+    nmea_text t = next_field(r);
+    if (t.len && !text_is(t, literal))
+        return bad_field(r, r->index, name, expected, t);
+    *out = t.len > 0;
+    return true;
+}
+
+/* A fixed word that must be there (it picks the layout); in a text command ignoring case. */
+NMEA_INTERNAL bool read_keyword(nmea_reader *r, const char *name, const char *expected, const char *keyword)
+{
+    nmea_text t = next_field(r);
+    if (!text_is(t, keyword) && !(r->ignore_case && upper_is(t, keyword)))
+        return bad_field(r, r->index, name, expected, t);
+    return true;
+}
+
+NMEA_INTERNAL bool read_text(nmea_reader *r, nmea_text *out, const char *name, const char *expected, size_t max_length)
+{
+    nmea_text t = next_field(r);
+    if (max_length && t.len > max_length)
+        return bad_field(r, r->index, name, expected, t);
+    *out = t;
+    return true;
+}
+
+/* A known code, or a well-formed unknown one (kept in `code`). */
+NMEA_INTERNAL bool read_enum(nmea_reader *r, nmea_enum *out, const char *name, const char *expected,
+                             const nmea_enum_def *def)
+{
+    nmea_text t = next_field(r);
+    size_t i;
+    if (!t.len)
+        return true;
+    out->value = r->ignore_case ? enum_find_upper(def, t) : enum_find(def, t.ptr, t.len);
+    if (out->value == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr, t.len, def->min_len, def->max_len))
+        return bad_field(r, r->index, name, expected, t);
+    for (i = 0; i < t.len; i++) /* t.len <= max_len <= NMEA_CODE_MAX; a code is a character or two */
+        out->code[i] = t.ptr[i];
+    out->code[t.len] = 0;
+    out->present = true;
+    return true;
+}
+
+/* A run of one-character codes (GNS mode "ANNN"), kept as text. */
+NMEA_INTERNAL bool read_enum_chars(nmea_reader *r, nmea_text *out, const char *name, const char *expected,
+                                   const nmea_enum_def *def, size_t max_length)
+{
+    nmea_text t = next_field(r);
+    size_t i;
+    if (max_length && t.len > max_length)
+        return bad_field(r, r->index, name, expected, t);
+    for (i = 0; i < t.len; i++)
+        if (enum_find(def, t.ptr + i, 1) == NMEA_UNKNOWN_CODE && !is_code_like(def, t.ptr + i, 1, 1, 1))
+            return bad_field(r, r->index, name, expected, t);
+    *out = t;
+    return true;
+}
