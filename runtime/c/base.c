@@ -1,7 +1,8 @@
 /* What every piece uses: the linkage macros (everything is static, and the generated code in the
    same nmea.c is its only user: NMEA_INTERNAL for what some specs leave unused, NMEA_HOT,
-   NMEA_RARE and NMEA_OUTLINE for the compiler's inlining), the character classes, hex digits,
-   powers of ten, and nmea_text with the comparisons of texts the pieces make. */
+   NMEA_RARE and NMEA_OUTLINE for the compiler's inlining, NMEA_OUTLINE also for what a subset may
+   leave unused), the character classes, hex digits, powers of ten, and nmea_text with the
+   comparisons of texts the pieces make. */
 
 #include <string.h>
 
@@ -9,12 +10,12 @@
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold))
 #define NMEA_HOT static inline
-#define NMEA_OUTLINE static __attribute__((noinline))
+#define NMEA_OUTLINE static __attribute__((noinline, unused))
 #elif defined(__GNUC__)
 #define NMEA_INTERNAL static __attribute__((unused))
 #define NMEA_RARE static __attribute__((noinline, cold)) /* off the hot path */
 #define NMEA_HOT static inline __attribute__((always_inline)) /* a few instructions per byte or field */
-#define NMEA_OUTLINE static __attribute__((noinline))
+#define NMEA_OUTLINE static __attribute__((noinline, unused))
 #else
 #define NMEA_INTERNAL static
 #define NMEA_RARE static

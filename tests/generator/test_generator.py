@@ -4,8 +4,10 @@ line and YAML path at fault, generation is deterministic and every output carrie
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -249,3 +251,16 @@ int main(void)
     subprocess.run(["gcc", "-std=c99", "-Wall", "-Werror", "-DNMEA_TEST_HOOKS", "-o", str(tmp_path / "main"),
                     str(tmp_path / "main.c"), str(tmp_path / "nmea.c")], check=True)
     assert subprocess.run([str(tmp_path / "main")]).returncode == 0
+
+
+@pytest.mark.parametrize("only", ["GGA,RMC", "GSV"])
+def test_a_subset_compiles_without_a_warning(only: str, tmp_path: Path) -> None:
+    """A subset leaves runtime pieces unused (no group: nothing reads an entry); its C pair still
+    compiles under -Wall -Wextra -Werror with each build option."""
+    out = tmp_path / "out"
+    subprocess.run([sys.executable, "-m", "generator", "generate", "--only", only, "--out", str(out), "-q"],
+                   cwd=ROOT, check=True, capture_output=True)
+    for flags in ([], ["-DNMEA_NO_JSON"], ["-DNMEA_NO_FAST_PATH"], ["-DNMEA_NO_JSON", "-DNMEA_NO_FAST_PATH"], ["-Os"]):
+        done = subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2", *flags,
+                               "-c", "-o", os.devnull, str(out / "c" / "nmea.c")], capture_output=True, text=True)
+        assert done.returncode == 0, (flags, done.stderr[-2000:])
