@@ -75,11 +75,11 @@ def _distinct_names(spec: Spec, report: _Reporter) -> None:
 
 
 def _generated_names(spec: Spec, report: _Reporter) -> None:
-    """The names each emitter builds from the spec's ids (C identifiers, Rust types, the tool's
-    command names) must not be shared by two things, nor taken from a runtime."""
-    from . import emit_c, emit_rust, emit_tool  # the emitters know their names; they import no checks
+    """The names each emitter builds from the spec's ids (C identifiers, Rust types, the command
+    names of the `nmea` CLI) must not be shared by two things, nor taken from a runtime."""
+    from . import emit_c, emit_python_apps, emit_rust  # the emitters know their names; they import no checks
 
-    for emitter in (emit_c, emit_rust, emit_tool):
+    for emitter in (emit_c, emit_python_apps, emit_rust):
         for origin, message in emitter.name_clashes(spec):
             report(origin, "S016", f"{message}; rename one of them")
 

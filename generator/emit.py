@@ -92,12 +92,12 @@ def license_texts(folder: str) -> dict[str, str]:
 
 
 def render_all(spec: Spec) -> dict[str, str]:
-    from . import emit_c, emit_docs, emit_packaging, emit_python, emit_rust, emit_tool, emit_vectors
+    from . import emit_c, emit_docs, emit_packaging, emit_python, emit_python_apps, emit_rust, emit_vectors
 
     env = environment()
     files: dict[str, str] = {}
     emitters: list[Callable[[Spec, jinja2.Environment], dict[str, str]]] = [
-        emit_vectors.emit, emit_python.emit, emit_tool.emit, emit_c.emit, emit_packaging.emit, emit_rust.emit, emit_docs.emit,
+        emit_vectors.emit, emit_python.emit, emit_python_apps.emit, emit_c.emit, emit_packaging.emit, emit_rust.emit, emit_docs.emit,
     ]
     for emitter in emitters:
         for path, content in emitter(spec, env).items():

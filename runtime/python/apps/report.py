@@ -28,10 +28,10 @@ import typing
 from collections import Counter
 from typing import TYPE_CHECKING, Any
 
-from .api import parse
-from .runtime import Coordinate, Date, NmeaError, Number, Time
-from .stream import lines, too_long
-from .tool import ToolError, _chunks, add_progress_options, open_log, progress_for
+from ..api import parse
+from ..runtime import Coordinate, Date, NmeaError, Number, Time
+from ..stream import lines, too_long
+from .nmea_cli import CliError, _chunks, add_progress_options, open_log, progress_for
 
 if TYPE_CHECKING:  # matplotlib is optional: without it these are Any to mypy
     from matplotlib.axes import Axes  # type: ignore[import-not-found, unused-ignore]
@@ -1052,7 +1052,7 @@ def _check_matplotlib() -> None:
     try:
         import matplotlib  # type: ignore[import-not-found, unused-ignore]  # noqa: F401
     except ImportError:
-        raise ToolError(INSTALL_HINT) from None
+        raise CliError(INSTALL_HINT) from None
 
 
 def report(args: argparse.Namespace) -> int:
@@ -1072,10 +1072,10 @@ def report(args: argparse.Namespace) -> int:
     if progress is not None:
         progress.finish()
     if log.lines == 0:
-        raise ToolError(f"{args.log} is empty")
+        raise CliError(f"{args.log} is empty")
     if log.decoded == 0:
         kind = log.errors.most_common(1)[0][0]
-        raise ToolError(
+        raise CliError(
             f"{args.log} is not an NMEA log: none of its {log.lines} lines decodes ({kind})"
         )
     text = page(log, name)
@@ -1087,7 +1087,7 @@ def report(args: argparse.Namespace) -> int:
             with open(output, "w", encoding="utf-8") as out:
                 out.write(text)
     except OSError as err:
-        raise ToolError(f"cannot write {output}: {err.strerror}") from None
+        raise CliError(f"cannot write {output}: {err.strerror}") from None
     if not args.quiet:
         errors = sum(log.errors.values())
         sys.stderr.write(
@@ -1097,7 +1097,7 @@ def report(args: argparse.Namespace) -> int:
 
 
 def add_parser(verbs: Any) -> None:
-    """The `report` verb of `nmea` (tool.py)."""
+    """The `report` verb of `nmea` (nmea_cli.py)."""
     r = verbs.add_parser(
         "report",
         help="draw a log as one HTML page: track, sky plot, C/N0, fix quality, errors",
