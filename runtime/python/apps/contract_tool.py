@@ -15,7 +15,8 @@ from ..runtime import json_too_deep
 from ..stream import json_lines
 
 USAGE = (
-    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] | encode | --version\n"
+    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum]"
+    " | encode | --version\n"
     "       (reads stdin, writes stdout)\n"
 )
 FLAGS = ("--values", "--lenient", "--require-checksum")

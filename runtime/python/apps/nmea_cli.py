@@ -421,7 +421,8 @@ def list_commands(vendor: str | None) -> str:
                     f" ({', '.join(_kebab(m.id) for m in a.enum)})" if a.enum is not None else ""
                 )
                 out.append(
-                    f"      {a.id.upper()}: {a.type}{', optional' if a.optional else ''}{choices}. {_short(a.doc)}"
+                    f"      {a.id.upper()}: {a.type}{', optional' if a.optional else ''}{choices}. "
+                    f"{_short(a.doc)}"
                 )
         groups: dict[str, list[Shortcut]] = {}
         for s in (s for s in SHORTCUTS if s.vendor == vendor_id):
@@ -433,7 +434,8 @@ def list_commands(vendor: str | None) -> str:
             doc = (
                 shortcuts[0].doc
                 if len(shortcuts) == 1
-                else f"{shortcuts[0].command} {' '.join(k.upper() for k, _ in shortcuts[0].values)} "
+                else f"{shortcuts[0].command} "
+                f"{' '.join(k.upper() for k, _ in shortcuts[0].values)} "
                 + "|".join(v for s in shortcuts for _, v in s.values)
             )
             out.append(f"  {(name + ' ' + args).strip():<40} {_short(doc)}")
@@ -514,7 +516,8 @@ def build_sentence(vendor: str, words: list[str], checksum: bool = True) -> Any:
     for key, value in named.items():
         if key not in {a.id for a in typed}:
             raise CliError(
-                f"{command.name} has no argument --{key.replace('_', '-')}; usage: {usage_of(command)}"
+                f"{command.name} has no argument --{key.replace('_', '-')}; "
+                f"usage: {usage_of(command)}"
             )
         if key in values and values[key] != value:
             raise CliError(f"{key} given twice")

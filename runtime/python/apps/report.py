@@ -672,7 +672,10 @@ def draw_sky(log: Log) -> tuple[str, str] | None:
         "last seen, filled when it was tracked then (it had a C/N0)."
     )
     if log.ignored_satellites:
-        caption += f" {log.ignored_satellites} entries of satellites past the first {MAX_SATELLITES} are left out."
+        caption += (
+            f" {log.ignored_satellites} entries of satellites past the first {MAX_SATELLITES} "
+            "are left out."
+        )
     return _png(figure), caption
 
 
@@ -882,7 +885,9 @@ img { max-width: 100%; height: auto; display: block; margin: 0 auto; }
 .tile b { display: block; font-size: 19px; }
 .tile span { color: #56606b; font-size: 12px; }
 table { border-collapse: collapse; width: 100%; font-size: 14px; margin-bottom: 12px; }
-th, td { text-align: left; padding: 4px 10px; border-bottom: 1px solid #e4e7eb; vertical-align: top; }
+th, td {
+  text-align: left; padding: 4px 10px; border-bottom: 1px solid #e4e7eb; vertical-align: top;
+}
 th { background: #f6f8fa; font-weight: 600; }
 td.n { text-align: right; font-variant-numeric: tabular-nums; }
 code { font-size: 12.5px; word-break: break-all; }
@@ -968,7 +973,8 @@ def _tables(log: Log) -> str:
             out.append(f'<tr><td>{html.escape(kind)}</td><td class="n">{count:,}</td></tr>')
         out.append("</table>")
         out.append(
-            f"<table><tr><th>line</th><th>kind</th><th>first {len(log.first_errors)} errors</th></tr>"
+            "<table><tr><th>line</th><th>kind</th>"
+            f"<th>first {len(log.first_errors)} errors</th></tr>"
         )
         for number, kind, message, text in log.first_errors:
             out.append(
