@@ -167,7 +167,7 @@ test-bench-smoke: $(STAMP)
 
 # The users' workflows from fresh temporary directories: the C pair in a CMake project and a plain
 # build, the Rust crate as a path dependency with vendor features and serde, the Python package
-# pip-installed into a new venv (mypy --strict on a user script), the `nmea` tool, the docs' links
+# pip-installed into a new venv (mypy --strict on a user script), the `nmea` CLI, the docs' links
 # and the HTML site in headless Chromium.
 test-workflows: $(STAMP) $(DOCS_STAMP)
 	$(PY) -m pytest -q tests/workflows

@@ -76,8 +76,8 @@ def _distinct_names(spec: Spec, report: _Reporter) -> None:
 
 
 def _generated_names(spec: Spec, report: _Reporter) -> None:
-    """The names each emitter builds from the spec's ids (C identifiers, Rust types, the tool's
-    command names) must not be shared by two things, nor taken from a runtime."""
+    """The names each emitter builds from the spec's ids (C identifiers, Rust types, the command
+    names of the `nmea` CLI) must not be shared by two things, nor taken from a runtime."""
     for clashes in (names_c.clashes, names_rust.clashes, names.command_clashes):
         for origin, message in clashes(spec):
             report(origin, "S016", f"{message}; rename one of them")

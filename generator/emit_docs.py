@@ -175,7 +175,7 @@ def receiver_manuals(spec: Spec) -> list[Manual]:
 
 def _indexes(spec: Spec, env: jinja2.Environment, banner: str) -> dict[str, str]:
     """The index pages: sentences A to Z, receivers, commands."""
-    from .emit_tool import command_views, usage
+    from .emit_python_apps import command_views, usage
 
     commands, shortcuts = command_views(spec)
     sentences = [{"id": s.id, "name": s.name, "kind": s.kind, "vendor": s.vendor,

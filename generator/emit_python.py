@@ -1,5 +1,6 @@
-"""Python emitter: a stdlib-only package `nmeaspec` with a dataclass, parser and serializer per
-sentence layout, over the hand-written runtime."""
+"""Python emitter: the codec, a stdlib-only package `nmeaspec` with a dataclass, parser and
+serializer per sentence layout, over the hand-written runtime. Its applications (`nmea`, `nmea-py`)
+are emit_python_apps.py's."""
 
 from __future__ import annotations
 
@@ -233,10 +234,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
                        py_import=py_import, py_tuple=py_tuple)
     base = f"python/{PACKAGE}"
     files: dict[str, str] = {}
-    for module in ("runtime", "api", "cli", "stream", "receiver"):
+    for module in ("runtime", "api", "stream", "receiver"):
         files[f"{base}/{module}.py"] = runtime_file(spec, "#", f"python/{module}.py")
-    files[f"{base}/__main__.py"] = header(spec, "#", ["runtime/python/cli.py"]) + \
-        "from .cli import main\n\nraise SystemExit(main())\n"
     files[f"{base}/py.typed"] = ""
     files[f"{base}/enums.py"] = env.get_template("python/enums.py.j2").render(
         header=header(spec, "#", [e.origin.file for e in spec.enums]), enums=spec.enums)

@@ -18,7 +18,7 @@ becomes N; the Python package directory moves to N/ (its own imports are relativ
 console scripts `nmea...` become `N...` so that two installs do not overwrite each other's.
 
 The tools follow their copy: nmea-c becomes P-c (CMake target, usage text), nmea-py and nmea-rs
-become N-py and N-rs (console script, cargo bin, usage texts), the `nmea` tool N.
+become N-py and N-rs (console script, cargo bin, usage texts), the `nmea` CLI N.
 """
 
 from __future__ import annotations

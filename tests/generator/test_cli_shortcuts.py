@@ -1,4 +1,4 @@
-"""The `cli` shortcuts of enum values (the `nmea command` tool's `set-baud 115200`): checked like
+"""The `cli` shortcuts of enum values (`set-baud 115200` of `nmea command`): checked like
 the rest of the spec, with the file, line and YAML path of the value at fault."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from generator.build import load_spec
-from generator.emit_tool import command_views
+from generator.emit_python_apps import command_views
 from generator.errors import SpecErrors
 
 ROOT = Path(__file__).resolve().parents[2]

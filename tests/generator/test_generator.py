@@ -118,10 +118,9 @@ def test_every_generated_file_has_a_header(files) -> None:
 def test_generated_python_modules_keep_to_100_columns(files) -> None:
     """The modules made from the spec read like hand-written code: no line over 100 characters
     but a manual's example sentence quoted whole in a docstring."""
-    hand_written = {"runtime.py", "api.py", "tool.py", "report.py", "stream.py", "cli.py", "receiver.py"}  # runtime/python
     for path, content in files.items():
         if not path.startswith("python/nmeaspec/") or not path.endswith(".py") \
-                or path.rsplit("/", 1)[1] in hand_written:
+                or "Source: runtime/python/" in content[:400]:   # hand-written, copied as it is
             continue
         for number, line in enumerate(content.splitlines(), 1):
             assert len(line) <= 100 or line.lstrip().startswith(("$", "!")), f"{path}:{number}: {line}"

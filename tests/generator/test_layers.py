@@ -22,7 +22,7 @@ LAYERS = [
     {"checks"},
     {"build", "diff", "reconcile", "scaffold"},           # load, resolve and check a spec; compare specs; new files
     {"emit"},                                             # what the emitters share
-    {"emit_vectors", "emit_python", "emit_tool", "emit_c", "emit_rust", "emit_docs", "emit_packaging"},
+    {"emit_vectors", "emit_python", "emit_python_apps", "emit_c", "emit_rust", "emit_docs", "emit_packaging"},
     {"render", "cli", "__main__", "__init__"},            # the drivers
 ]
 LAYER = {module: n for n, layer in enumerate(LAYERS) for module in layer}

@@ -39,6 +39,9 @@ def test_import_from_anywhere(installed: Venv, tmp_path: Path) -> None:
     typed = run(installed.python, "-c", "import importlib.resources as r; print(r.files('nmeaspec')"
                 ".joinpath('py.typed').is_file())", cwd=tmp_path).stdout
     assert typed == b"True\n"
+    apps = run(installed.python, "-c", "import sys, nmeaspec; nmeaspec.Receiver, nmeaspec.Gga; "
+               "print(sorted(m for m in sys.modules if m.startswith('nmeaspec.apps')))", cwd=tmp_path).stdout
+    assert apps == b"[]\n", f"the codec imports its applications: {apps!r}"
 
 
 def test_console_scripts(installed: Venv, tmp_path: Path) -> None:

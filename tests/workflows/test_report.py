@@ -174,7 +174,7 @@ def test_report_errors(installed_report: Venv, tmp_path: Path) -> None:
 
 def test_report_without_the_extra(installed: Venv, tmp_path: Path) -> None:
     """The package itself needs only the standard library: without matplotlib the verb says what
-    to install, and the rest of the tool works."""
+    to install, and the rest of `nmea` works."""
     result = nmea(installed, "report", corpus_log(RMC_ONLY), cwd=tmp_path, check=False)
     assert result.returncode == 2
     assert result.stderr == b"nmea: nmea report draws with matplotlib, which is not installed: " \

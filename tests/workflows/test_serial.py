@@ -306,7 +306,7 @@ def test_api_port_errors() -> None:
 
 
 # --------------------------------------------------------------------------------------------
-# The tool, pip-installed with the serial extra
+# `nmea listen` and `nmea send`, pip-installed with the serial extra
 
 
 def nmea(env: Venv, *args: str | Path, check: bool = False, timeout: float = 120) -> subprocess.CompletedProcess:

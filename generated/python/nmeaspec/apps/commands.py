@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from . import enums, sentences
+from .. import enums, sentences
 
 
 @dataclass(frozen=True)

@@ -1,5 +1,6 @@
-"""The `nmea` tool as installed by pip into a fresh virtual environment, on real receiver logs and
-on stdin, and its command builder for several vendors (every command's checksum is verified)."""
+"""The `nmea` CLI as installed by pip into a fresh virtual environment, on real receiver
+logs and on stdin, and its command builder for several vendors (every command's checksum is
+verified)."""
 
 from __future__ import annotations
 

@@ -28,10 +28,10 @@ import typing
 from collections import Counter
 from typing import TYPE_CHECKING, Any
 
-from .api import parse
-from .runtime import Coordinate, Date, NmeaError, Number, Time
-from .stream import lines, too_long
-from .tool import ToolError, _chunks, add_progress_options, open_log, progress_for
+from ..api import parse
+from ..runtime import Coordinate, Date, NmeaError, Number, Time
+from ..stream import lines, too_long
+from .nmea_cli import CliError, _chunks, add_progress_options, open_log, progress_for
 
 if TYPE_CHECKING:  # matplotlib is optional: without it these are Any to mypy
     from matplotlib.axes import Axes  # type: ignore[import-not-found, unused-ignore]
@@ -672,7 +672,10 @@ def draw_sky(log: Log) -> tuple[str, str] | None:
         "last seen, filled when it was tracked then (it had a C/N0)."
     )
     if log.ignored_satellites:
-        caption += f" {log.ignored_satellites} entries of satellites past the first {MAX_SATELLITES} are left out."
+        caption += (
+            f" {log.ignored_satellites} entries of satellites past the first {MAX_SATELLITES} "
+            "are left out."
+        )
     return _png(figure), caption
 
 
@@ -882,7 +885,9 @@ img { max-width: 100%; height: auto; display: block; margin: 0 auto; }
 .tile b { display: block; font-size: 19px; }
 .tile span { color: #56606b; font-size: 12px; }
 table { border-collapse: collapse; width: 100%; font-size: 14px; margin-bottom: 12px; }
-th, td { text-align: left; padding: 4px 10px; border-bottom: 1px solid #e4e7eb; vertical-align: top; }
+th, td {
+  text-align: left; padding: 4px 10px; border-bottom: 1px solid #e4e7eb; vertical-align: top;
+}
 th { background: #f6f8fa; font-weight: 600; }
 td.n { text-align: right; font-variant-numeric: tabular-nums; }
 code { font-size: 12.5px; word-break: break-all; }
@@ -968,7 +973,8 @@ def _tables(log: Log) -> str:
             out.append(f'<tr><td>{html.escape(kind)}</td><td class="n">{count:,}</td></tr>')
         out.append("</table>")
         out.append(
-            f"<table><tr><th>line</th><th>kind</th><th>first {len(log.first_errors)} errors</th></tr>"
+            "<table><tr><th>line</th><th>kind</th>"
+            f"<th>first {len(log.first_errors)} errors</th></tr>"
         )
         for number, kind, message, text in log.first_errors:
             out.append(
@@ -1052,7 +1058,7 @@ def _check_matplotlib() -> None:
     try:
         import matplotlib  # type: ignore[import-not-found, unused-ignore]  # noqa: F401
     except ImportError:
-        raise ToolError(INSTALL_HINT) from None
+        raise CliError(INSTALL_HINT) from None
 
 
 def report(args: argparse.Namespace) -> int:
@@ -1072,10 +1078,10 @@ def report(args: argparse.Namespace) -> int:
     if progress is not None:
         progress.finish()
     if log.lines == 0:
-        raise ToolError(f"{args.log} is empty")
+        raise CliError(f"{args.log} is empty")
     if log.decoded == 0:
         kind = log.errors.most_common(1)[0][0]
-        raise ToolError(
+        raise CliError(
             f"{args.log} is not an NMEA log: none of its {log.lines} lines decodes ({kind})"
         )
     text = page(log, name)
@@ -1087,7 +1093,7 @@ def report(args: argparse.Namespace) -> int:
             with open(output, "w", encoding="utf-8") as out:
                 out.write(text)
     except OSError as err:
-        raise ToolError(f"cannot write {output}: {err.strerror}") from None
+        raise CliError(f"cannot write {output}: {err.strerror}") from None
     if not args.quiet:
         errors = sum(log.errors.values())
         sys.stderr.write(
@@ -1097,7 +1103,7 @@ def report(args: argparse.Namespace) -> int:
 
 
 def add_parser(verbs: Any) -> None:
-    """The `report` verb of `nmea` (tool.py)."""
+    """The `report` verb of `nmea` (nmea_cli.py)."""
     r = verbs.add_parser(
         "report",
         help="draw a log as one HTML page: track, sky plot, C/N0, fix quality, errors",

@@ -1,4 +1,5 @@
-"""The users' workflows, run the way a user runs them, from fresh temporary directories:
+"""The generator's commands, run the way a spec maintainer runs them, from fresh temporary
+directories:
 
 - regenerate when a manual changes: edit the YAML, `generate` (prints what changed), `diff`
   (the API changelog, BREAKING or compatible), `reconcile` a manual's text;
@@ -315,7 +316,7 @@ def test_renaming_is_complete(copies: Path) -> None:
             assert not re.search(r"\bnmea-(?:c|py|rs)\b", text), path       # the tools name their copy
     assert (gs5 / "rust/src/bin/gs5nmea-rs.rs").is_file()
     assert 'name = "gs5nmea-rs"' in (gs5 / "rust/Cargo.toml").read_text()
-    assert 'prog="gs5nmea"' in (gs5 / "python/gs5nmea/tool.py").read_text()
+    assert 'prog="gs5nmea"' in (gs5 / "python/gs5nmea/apps/nmea_cli.py").read_text()
 
 
 @pytest.mark.slow

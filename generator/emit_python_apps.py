@@ -1,6 +1,7 @@
-"""The `nmea` user tool of the Python package: the hand-written tool (and its `report` verb) and the
-table of vendor commands it builds (generated from the command sentences and the `cli` shortcuts of
-their enums)."""
+"""The applications of the Python package, in its subpackage `apps/` (runtime/python/apps/, copied
+as they are): the `nmea-py` tool and `python -m nmeaspec`, the user's `nmea` CLI with its
+`report` verb, and the table of vendor commands `nmea command` builds (generated from the command
+sentences and the `cli` shortcuts of their enums)."""
 
 from __future__ import annotations
 
@@ -59,11 +60,11 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     base = f"python/{PACKAGE}"
     commands, shortcuts = command_views(spec)
     vendors = [m for m in spec.manuals if any(c["vendor"] == m.id for c in commands)]
-    files = {
-        f"{base}/commands.py": env.get_template("python/commands.py.j2").render(
-            header=header(spec, "#"), commands=commands, shortcuts=shortcuts, vendors=vendors, py=py_literal,
-            py_call=py_call, py_str=py_str),
-        f"{base}/tool.py": runtime_file(spec, "#", "python/tool.py"),
-        f"{base}/report.py": runtime_file(spec, "#", "python/report.py"),
-    }
+    files = {f"{base}/apps/{module}.py": runtime_file(spec, "#", f"python/apps/{module}.py")
+             for module in ("__init__", "contract_tool", "nmea_cli", "report")}
+    files[f"{base}/apps/commands.py"] = env.get_template("python/apps/commands.py.j2").render(
+        header=header(spec, "#"), commands=commands, shortcuts=shortcuts, vendors=vendors, py=py_literal,
+        py_call=py_call, py_str=py_str)
+    files[f"{base}/__main__.py"] = header(spec, "#", ["runtime/python/apps/contract_tool.py"]) + \
+        "from .apps.contract_tool import main\n\nraise SystemExit(main())\n"
     return files

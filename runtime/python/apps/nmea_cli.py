@@ -6,7 +6,8 @@
     nmea send --port P ... a vendor command sent to a receiver, and its reply
     nmea report LOG        the log as pictures in one HTML page (report.py; needs matplotlib)
 
-Standard library only (listen and send import pyserial when they run); the contract tool for other programs is `nmea-py` (cli.py), not this one.
+Standard library only (listen and send import pyserial when they run). The tool other programs
+drive, with the JSON the C and Rust tools print too, is `nmea-py` (contract_tool.py), not this one.
 """
 
 from __future__ import annotations
@@ -23,12 +24,12 @@ from collections.abc import Iterable, Iterator
 from itertools import islice
 from typing import IO, Any
 
-from . import __version__
-from .api import Generic, parse
+from .. import __version__
+from ..api import Generic, parse
+from ..receiver import Receiver, ReceiverError, ReplyTimeout, check_baud
+from ..runtime import NmeaError
+from ..stream import lines, too_long
 from .commands import COMMANDS, SHORTCUTS, VENDORS, Command, Shortcut
-from .receiver import Receiver, ReceiverError, ReplyTimeout, check_baud
-from .runtime import NmeaError
-from .stream import lines, too_long
 
 SHOW_EXAMPLES = """\
 examples:
@@ -73,7 +74,7 @@ cannot be used. --show-all prints the sentences that came meanwhile; --log keeps
 """
 
 
-class ToolError(Exception):
+class CliError(Exception):
     """A mistake on the command line: printed without a traceback, exit status 2."""
 
     status = 2
@@ -186,7 +187,7 @@ def open_log(name: str) -> tuple[IO[bytes], int | None]:
     try:
         source = open(name, "rb")
     except OSError as err:
-        raise ToolError(f"cannot read {name}: {err.strerror}") from None
+        raise CliError(f"cannot read {name}: {err.strerror}") from None
     return source, os.fstat(source.fileno()).st_size if os.path.isfile(name) else None
 
 
@@ -375,7 +376,7 @@ def _kebab(text: str) -> str:
 def _vendor(name: str) -> str:
     vendor = name.lower()
     if vendor not in VENDORS:
-        raise ToolError(f"unknown vendor {name!r}; vendors: {', '.join(VENDORS)}")
+        raise CliError(f"unknown vendor {name!r}; vendors: {', '.join(VENDORS)}")
     return vendor
 
 
@@ -396,7 +397,7 @@ def _enum_code(argument: Any, given: str) -> str:
         _kebab(m.id) if _kebab(m.id) == str(m.value).lower() else f"{m.value} ({_kebab(m.id)})"
         for m in argument.enum
     )
-    raise ToolError(f"{argument.id}: {given!r} is not one of {codes}")
+    raise CliError(f"{argument.id}: {given!r} is not one of {codes}")
 
 
 def usage_of(command: Command) -> str:
@@ -420,7 +421,8 @@ def list_commands(vendor: str | None) -> str:
                     f" ({', '.join(_kebab(m.id) for m in a.enum)})" if a.enum is not None else ""
                 )
                 out.append(
-                    f"      {a.id.upper()}: {a.type}{', optional' if a.optional else ''}{choices}. {_short(a.doc)}"
+                    f"      {a.id.upper()}: {a.type}{', optional' if a.optional else ''}{choices}. "
+                    f"{_short(a.doc)}"
                 )
         groups: dict[str, list[Shortcut]] = {}
         for s in (s for s in SHORTCUTS if s.vendor == vendor_id):
@@ -432,7 +434,8 @@ def list_commands(vendor: str | None) -> str:
             doc = (
                 shortcuts[0].doc
                 if len(shortcuts) == 1
-                else f"{shortcuts[0].command} {' '.join(k.upper() for k, _ in shortcuts[0].values)} "
+                else f"{shortcuts[0].command} "
+                f"{' '.join(k.upper() for k, _ in shortcuts[0].values)} "
                 + "|".join(v for s in shortcuts for _, v in s.values)
             )
             out.append(f"  {(name + ' ' + args).strip():<40} {_short(doc)}")
@@ -452,7 +455,7 @@ def _split_options(words: list[str]) -> tuple[list[str], dict[str, str]]:
             key, eq, value = word[2:].partition("=")
             if not eq:
                 if i + 1 >= len(words):
-                    raise ToolError(f"--{key} needs a value")
+                    raise CliError(f"--{key} needs a value")
                 i += 1
                 value = words[i]
             named[key.replace("-", "_").lower()] = value
@@ -463,17 +466,17 @@ def _split_options(words: list[str]) -> tuple[list[str], dict[str, str]]:
 
 
 def build(vendor: str, words: list[str], checksum: bool = True) -> bytes:
-    """The bytes of the command `words` (name and arguments) of `vendor`; raises ToolError."""
+    """The bytes of the command `words` (name and arguments) of `vendor`; raises CliError."""
     data: bytes = build_sentence(vendor, words, checksum).to_bytes()
     return data
 
 
 def build_sentence(vendor: str, words: list[str], checksum: bool = True) -> Any:
     """The command sentence `words` (name and arguments) of `vendor`, every field checked;
-    raises ToolError."""
+    raises CliError."""
     vendor = _vendor(vendor)
     if not words:
-        raise ToolError("which command? see nmea command --list " + vendor)
+        raise CliError("which command? see nmea command --list " + vendor)
     positional, named = _split_options(words)
     shortcut = next(
         (
@@ -491,12 +494,12 @@ def build_sentence(vendor: str, words: list[str], checksum: bool = True) -> Any:
             for s in SHORTCUTS
             if s.vendor == vendor and s.words[0] == positional[0].lower()
         ]
-        raise ToolError(f"{positional[0]} takes one of: {', '.join(choices)}")
+        raise CliError(f"{positional[0]} takes one of: {', '.join(choices)}")
     name = positional[0].lower()
     command = next((c for c in COMMANDS if c.vendor == vendor and c.name == name), None)
     if command is None:
         known = ", ".join(c.name for c in COMMANDS if c.vendor == vendor)
-        raise ToolError(f"{vendor} has no command {name!r}; its commands: {known}")
+        raise CliError(f"{vendor} has no command {name!r}; its commands: {known}")
     typed = _typed(command)
     given = positional[1:]
     values: dict[str, str] = {}
@@ -509,14 +512,15 @@ def build_sentence(vendor: str, words: list[str], checksum: bool = True) -> Any:
         else:
             values[a.id] = given.pop(0)
     if given:
-        raise ToolError(f"too many arguments; usage: {usage_of(command)}")
+        raise CliError(f"too many arguments; usage: {usage_of(command)}")
     for key, value in named.items():
         if key not in {a.id for a in typed}:
-            raise ToolError(
-                f"{command.name} has no argument --{key.replace('_', '-')}; usage: {usage_of(command)}"
+            raise CliError(
+                f"{command.name} has no argument --{key.replace('_', '-')}; "
+                f"usage: {usage_of(command)}"
             )
         if key in values and values[key] != value:
-            raise ToolError(f"{key} given twice")
+            raise CliError(f"{key} given twice")
         values[key] = value
     texts: list[str] = []
     for a in command.arguments:
@@ -528,10 +532,10 @@ def build_sentence(vendor: str, words: list[str], checksum: bool = True) -> Any:
         elif a.optional:
             break
         else:
-            raise ToolError(f"missing {a.id.upper()}; usage: {usage_of(command)}")
+            raise CliError(f"missing {a.id.upper()}; usage: {usage_of(command)}")
     later = [a.id for a in command.arguments[len(texts) :] if a.id in values]
     if later:
-        raise ToolError(f"{', '.join(later)} needs the optional arguments before it")
+        raise CliError(f"{', '.join(later)} needs the optional arguments before it")
     address = command.layout.ADDRESS
     try:
         if command.text:
@@ -544,10 +548,10 @@ def build_sentence(vendor: str, words: list[str], checksum: bool = True) -> Any:
         return sentence
     except NmeaError as err:
         if err.kind == "bad_field" and err.name:
-            raise ToolError(
+            raise CliError(
                 f"{command.name} {err.name}: {err.message}; usage: {usage_of(command)}"
             ) from None
-        raise ToolError(str(err)) from None
+        raise CliError(str(err)) from None
 
 
 def command(args: argparse.Namespace) -> int:
@@ -556,7 +560,7 @@ def command(args: argparse.Namespace) -> int:
         sys.stdout.write(list_commands(vendor))
         return 0
     if not args.words:
-        raise ToolError("give VENDOR NAME [ARGS], or --list")
+        raise CliError("give VENDOR NAME [ARGS], or --list")
     data = build(args.words[0], args.words[1:], checksum=not args.no_checksum)
     sys.stdout.buffer.write(data)
     sys.stdout.flush()
@@ -567,7 +571,7 @@ def command(args: argparse.Namespace) -> int:
 # listen, send: a receiver on a serial port (pyserial, imported only by these verbs)
 
 
-class PortProblem(ToolError):
+class PortProblem(CliError):
     """The port cannot be opened or used, or pyserial is missing: exit status 3."""
 
     status = 3
@@ -577,7 +581,7 @@ def _baud(text: str) -> int:
     try:
         return check_baud(text)
     except ValueError as err:
-        raise ToolError(f"--baud {err}") from None
+        raise CliError(f"--baud {err}") from None
 
 
 def _seconds(option: str, text: str | float | None) -> float | None:
@@ -588,13 +592,13 @@ def _seconds(option: str, text: str | float | None) -> float | None:
     except ValueError:
         value = -1.0
     if not value > 0 or value == float("inf"):
-        raise ToolError(f"{option} {text!r}: give a number of seconds above 0")
+        raise CliError(f"{option} {text!r}: give a number of seconds above 0")
     return value
 
 
 def _open_port(port: str | None, baud: int, **options: Any) -> Receiver:
     if not port:
-        raise ToolError("which port? give --port DEVICE, e.g. --port /dev/ttyUSB0")
+        raise CliError("which port? give --port DEVICE, e.g. --port /dev/ttyUSB0")
     try:
         return Receiver.open(port, baud, **options)
     except ReceiverError as err:
@@ -607,7 +611,7 @@ def _append_log(path: str | None) -> IO[bytes] | None:
     try:
         return open(path, "ab")
     except OSError as err:
-        raise ToolError(f"cannot write {path}: {err.strerror}") from None
+        raise CliError(f"cannot write {path}: {err.strerror}") from None
 
 
 def listen(args: argparse.Namespace) -> int:
@@ -615,7 +619,7 @@ def listen(args: argparse.Namespace) -> int:
     baud = _baud(args.baud)
     duration = _seconds("--duration", args.duration)
     if args.count is not None and args.count <= 0:
-        raise ToolError(f"--count {args.count}: give a number of sentences above 0")
+        raise CliError(f"--count {args.count}: give a number of sentences above 0")
     summary = Summary()
     with _open_port(args.port, baud) as receiver:
         receiver.log = log = _append_log(args.log)
@@ -671,7 +675,7 @@ def send_options(argv: list[str]) -> argparse.Namespace:
         else:
             if not eq:
                 if i + 1 >= len(argv):
-                    raise ToolError(f"{key} needs a value")
+                    raise CliError(f"{key} needs a value")
                 i += 1
                 value = argv[i]
             values[SEND_OPTIONS[key]] = value
@@ -694,13 +698,13 @@ def _meanwhile(items: list[Any], out: IO[str]) -> None:
 
 def send(args: argparse.Namespace) -> int:
     if len(args.words) < 2:
-        raise ToolError("give VENDOR NAME [ARGS]; see nmea command --list")
+        raise CliError("give VENDOR NAME [ARGS]; see nmea command --list")
     timeout = _seconds("--timeout", args.timeout)
     assert timeout is not None
     baud = _baud(args.baud)
     sentence = build_sentence(args.words[0], args.words[1:])
     if not args.port:
-        raise ToolError("which port? give --port DEVICE, e.g. --port /dev/ttyUSB0")
+        raise CliError("which port? give --port DEVICE, e.g. --port /dev/ttyUSB0")
     out = sys.stdout
     with _open_port(args.port, baud, errors="yield") as receiver:
         receiver.log = log = _append_log(args.log)
@@ -842,7 +846,7 @@ def parser() -> argparse.ArgumentParser:
         "--show-all", action="store_true", help="print the sentences that come before the reply"
     )
     _command_words(se, "the command, as `nmea command` takes it")
-    from .report import add_parser as add_report  # here: report.py imports this module
+    from .report import add_parser as add_report  # here: report imports this module
 
     add_report(verbs)
     return top
@@ -873,7 +877,7 @@ def main(argv: list[str] | None = None) -> int:
         parsed = parser().parse_args(args)
         result: int = parsed.run(parsed)
         return result
-    except ToolError as err:
+    except CliError as err:
         sys.stderr.write(f"nmea: {err}\n")
         return err.status
     except KeyboardInterrupt:
