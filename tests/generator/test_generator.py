@@ -223,7 +223,8 @@ examples:
     expect: {{first: "123519.50", second: "4807.038", third: N}}
 """)
     files = render_all(load_spec(tmp_path / "spec"))
-    fast_parse = files["c/nmea.c"].split("bool fast_parse(", 1)[1].split("\n}\n", 1)[0]
+    # the definition, after its declaration
+    fast_parse = files["c/nmea.c"].rsplit("bool fast_parse(", 1)[1].split("\n}\n", 1)[0]
     assert ("find_layouts(TALKER_LIKE" in fast_parse) == shadows
     for name in ("nmea.h", "nmea.c"):
         (tmp_path / name).write_text(files[f"c/{name}"])
