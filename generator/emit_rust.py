@@ -273,7 +273,7 @@ def fmt_fast_arm(indent: int, pattern: str, layouts: list[str]) -> list[str]:
     `layouts`: its first layout's reader, given the others."""
     pad = " " * indent
     rest = [f"LayoutId::{n}" for n in layouts[1:]]
-    call = f"read_layout::<{layouts[0]}, O>"
+    call = f"read_layout::<LayoutId, {layouts[0]}, O>"
     value = f"{call}(fields, line, &[{', '.join(rest)}])"
     if len(f"{pad}{pattern} => {value},") <= WIDTH:
         return [f"{pad}{pattern} => {value},"]
@@ -769,7 +769,7 @@ def shape_lines(sentence: Sentence, layout: Layout) -> list[str]:
 
 
 def module_imports(views: list[dict]) -> list[str]:
-    runtime = {"Checksum", "Error", "FieldSink", "Fields", "Framing", "JsonMember", "Layout", "Shape"}
+    runtime = {"Checksum", "Error", "FieldSink", "Fields", "Framing", "JsonMember", "Layout", "Layouts", "Shape"}
     enums: set[str] = set()
     for view in views:
         if view["group"] is not None:
@@ -1031,7 +1031,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             reply_names = [r.layout_camel(lay) for r in s.replies for lay in r.layouts]
             parse_arm = with_cfg(12, gate, fmt_arm(
                 12, f"Self::{name}", f"{name}::parse_fields(fields, checksum).map(Sentence::{name})"))
-            fast_arm = with_cfg(8, gate, fmt_arm(8, f"LayoutId::{name}", f"read_layout::<{name}, O>(fields, line, rest)"))
+            fast_arm = with_cfg(8, gate, fmt_arm(8, f"LayoutId::{name}", f"read_layout::<LayoutId, {name}, O>(fields, line, rest)"))
             layouts.append({
                 "sentence": s, "name": name, "layout": view["layout"], "title": view["title"], "type": view["type"],
                 "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm, "fast_arm": fast_arm, "cfg": gate,
@@ -1129,7 +1129,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands, reply_arms=reply_arms, outcome_arms=outcome_arms,
         runtime_uses=fmt_use("runtime", rust_sorted(
-            {"first_word", "strip_line_ending", "FastReader", "Unsure"})),
+            {"read_layout", "Decoded", "FastReader", "Layouts", "Outcome"})),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],

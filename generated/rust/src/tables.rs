@@ -4,7 +4,7 @@
 // Regenerate: make generate (python3 -m generator generate)
 
 //! Receivers' tables of configuration parameters, one module per table: a constant per
-//! parameter and `TABLE`, all of them. [`Parameter::encode`](crate::runtime::Parameter::encode)
+//! parameter and `TABLE`, all of them. [`Parameter::encode`](crate::Parameter::encode)
 //! writes a value the way the receiver reads it.
 
 /// ST Teseo configuration data block (CDB): Operating parameters of the GNSS software, read with
