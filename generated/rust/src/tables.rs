@@ -318,4 +318,4 @@ pub mod teseo_cdb {
 
 /// ST Teseo configuration data block (CDB): every parameter (see [`teseo_cdb`]).
 #[cfg(feature = "teseo")]
-pub const TESEO_CDB: crate::runtime::Table = teseo_cdb::TABLE;
+pub const TESEO_CDB: crate::Table = teseo_cdb::TABLE;

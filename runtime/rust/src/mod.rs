@@ -4,6 +4,11 @@
 //!
 //! Its rules (what text each field type accepts, the error messages, the JSON form) are the
 //! Python and C runtimes' rules byte for byte; see docs/json.md.
+//!
+//! The generated code reaches it through the names below; the crate root re-exports to users only
+//! the public API (runtime/README.md lists it). The parser and the tools' JSON ([`parse`],
+//! [`write_decoded`], `Rebuilt`) hold for any spec: they work through [`Layouts`], which the
+//! generated `LayoutId` implements, and [`Decoded`], which the generated `Sentence` implements.
 
 mod error;
 mod fast;

@@ -382,3 +382,102 @@ fn first_fit<'a, L: Layouts>(
     }
     Err(best.1)
 }
+
+#[cfg(test)]
+pub(super) mod tests {
+    use super::*;
+
+    /// A spec without layouts: every well-formed line is a generic sentence.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub enum NoLayout {}
+
+    impl Layouts for NoLayout {
+        type Sentence<'a> = Generic<'a>;
+        #[cfg(feature = "std")]
+        const ALL: &'static [Self] = &[];
+
+        fn of(_: &str, _: &[u8]) -> &'static [Self] {
+            &[]
+        }
+
+        #[cfg(feature = "std")]
+        fn sentence(self) -> &'static str {
+            match self {}
+        }
+
+        #[cfg(feature = "std")]
+        fn variant(self) -> Option<&'static str> {
+            match self {}
+        }
+
+        fn framing(self) -> Framing {
+            match self {}
+        }
+
+        fn keyword(self) -> Option<(&'static str, usize)> {
+            match self {}
+        }
+
+        fn parse_fields<'a>(self, _: Fields<'a>, _: Checksum) -> Result<Generic<'a>, Error<'a>> {
+            match self {}
+        }
+
+        fn read_sentence<'a, O: Outcome<'a, Self>>(_: FastReader<'a>, line: &'a [u8]) -> O {
+            O::general(line)
+        }
+
+        fn read_next<'a, O: Outcome<'a, Self>>(_: &[Self], _: FastReader<'a>, line: &'a [u8]) -> O {
+            O::general(line)
+        }
+
+        #[cfg(feature = "std")]
+        fn fields_from_json(
+            self,
+            _: &super::super::json::Value,
+            _: &mut super::super::json::WireFields,
+        ) -> Result<(), Error<'static>> {
+            match self {}
+        }
+    }
+
+    impl Decoded for Generic<'_> {
+        fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, _: &Problems<'_>) -> fmt::Result {
+            self.write_sentence(out)
+        }
+
+        fn write_json_with<W: Write + ?Sized>(&self, out: &mut W, _: bool, _: &Problems<'_>) -> fmt::Result {
+            self.write_json(out)
+        }
+
+        fn put_sentence(&self, buf: &mut [u8]) -> Option<usize> {
+            self.put_sentence(buf)
+        }
+    }
+
+    #[test]
+    fn lines_the_spec_does_not_describe_are_generic() {
+        let line = "$PXUNKNOWN,00,01,,1*\r\n";
+        let sentence = parse::<NoLayout>(line.as_bytes()).unwrap();
+        assert_eq!((sentence.address, sentence.fields.as_str()), ("PXUNKNOWN", "00,01,,1"));
+        assert_eq!(parse_general::<NoLayout>(line.as_bytes()), Ok(sentence));
+        assert_eq!(parse_fast::<NoLayout>(line.as_bytes()), None);
+        let lenient = Options { lenient: true, require_checksum: false };
+        let parsed = parse_with::<NoLayout>(line.as_bytes(), lenient).unwrap();
+        assert_eq!(parsed, Parsed::from(sentence));
+        let mut buf = [0; MAX_LINE];
+        let len = parsed.serialize_into(&mut buf).unwrap();
+        assert_eq!(&buf[..len], line.trim_end().as_bytes());
+        assert_eq!(parsed.serialize_into(&mut buf[..len - 1]), None);
+    }
+
+    #[test]
+    fn framing_errors_come_before_layouts() {
+        let kind = |line: &str| parse::<NoLayout>(line.as_bytes()).unwrap_err().kind();
+        assert_eq!(kind("$GPGGA,1*00"), ErrorKind::ChecksumMismatch);
+        assert_eq!(kind("$GP GGA,1"), ErrorKind::NotASentence);
+        assert_eq!(kind("NMEATALKER GGA GP"), ErrorKind::NotASentence);
+        let required = Options { lenient: false, require_checksum: true };
+        let error = parse_with::<NoLayout>(b"$GPHDT,1.0,T*", required).unwrap_err();
+        assert_eq!(error.kind(), ErrorKind::MissingChecksum);
+    }
+}

@@ -201,3 +201,19 @@ pub fn encode_json<L: Layouts>(line: &[u8]) -> String {
     let _ = write_encoded::<L, _>(&mut out, Value::parse(line).as_ref());
     out
 }
+
+#[cfg(all(test, feature = "std"))]
+mod tests {
+    use super::super::parse::tests::NoLayout;
+    use super::*;
+
+    #[test]
+    fn decode_json_reads_back_to_the_line() {
+        let line = b"$PXUNKNOWN,00,01,,1*";
+        let json = decode_json::<NoLayout>(line, false);
+        assert!(json.starts_with(r#"{"ok":true,"start":"$","address":"PXUNKNOWN","#), "{json}");
+        assert_eq!(encode_json::<NoLayout>(json.as_bytes()).as_bytes(), line);
+        assert!(encode_json::<NoLayout>(b"[]").contains(r#""kind":"bad_json""#));
+        assert!(decode_json::<NoLayout>(b"", false).contains(r#""kind":"not_a_sentence""#));
+    }
+}
