@@ -186,7 +186,7 @@ def fmt_fast_arm(indent: int, pattern: str, layouts: list[str]) -> list[str]:
     """The match arm of the fast path's dispatch (lib.rs `read_sentence`) for an address with
     `layouts`: its first layout's reader, given the others."""
     rest = ", ".join(f"LayoutId::{n}" for n in layouts[1:])
-    return fmt_arm(indent, pattern, f"read_layout::<{layouts[0]}, O>(fields, line, &[{rest}])")
+    return fmt_arm(indent, pattern, f"read_layout::<LayoutId, {layouts[0]}, O>(fields, line, &[{rest}])")
 
 
 def fmt_const_slice(indent: int, decl: str, items: list[str]) -> list[str]:
@@ -596,7 +596,7 @@ def shape_lines(sentence: Sentence, layout: Layout) -> list[str]:
 
 
 def module_imports(views: list[dict]) -> list[str]:
-    runtime = {"Checksum", "Error", "FieldSink", "Fields", "Framing", "JsonMember", "Layout", "Shape"}
+    runtime = {"Checksum", "Error", "FieldSink", "Fields", "Framing", "JsonMember", "Layout", "Layouts", "Shape"}
     enums: set[str] = set()
     for view in views:
         if view["group"] is not None:
@@ -826,7 +826,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             reply_names = [r.layout_camel(lay) for r in s.replies for lay in r.layouts]
             parse_arm = with_cfg(12, gate, fmt_arm(
                 12, f"Self::{name}", f"{name}::parse_fields(fields, checksum).map(Sentence::{name})"))
-            fast_arm = with_cfg(8, gate, fmt_arm(8, f"LayoutId::{name}", f"read_layout::<{name}, O>(fields, line, rest)"))
+            fast_arm = with_cfg(8, gate, fmt_arm(8, f"LayoutId::{name}", f"read_layout::<LayoutId, {name}, O>(fields, line, rest)"))
             layouts.append({
                 "sentence": s, "name": name, "layout": view["layout"], "title": view["title"], "type": view["type"],
                 "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm, "fast_arm": fast_arm, "cfg": gate,
@@ -922,7 +922,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         standard_like_arms=standard_like_arms, standard_fast_arms=standard_fast_arms,
         proprietary_fast_arms=proprietary_fast_arms, standard_like_fast_arms=standard_like_fast_arms,
         text_commands=text_commands, reply_arms=reply_arms, outcome_arms=outcome_arms,
-        runtime_uses=fmt_use("runtime", {"first_word", "strip_line_ending", "FastReader", "Unsure"}),
+        runtime_uses=fmt_use("runtime", {"read_layout", "Decoded", "FastReader", "Layouts", "Outcome"}),
         text_cfg=text_cfg, text_not_cfg=text_cfg.replace("#[cfg(", "#[cfg(not(", 1)[:-1] + ")]" if text_cfg else "",
         all_layouts=["    pub const ALL: &'static [Self] = &[",
                      *[line for lay in layouts for line in with_cfg(8, lay["cfg"], [f"        Self::{lay['name']},"])],

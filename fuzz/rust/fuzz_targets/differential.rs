@@ -8,7 +8,7 @@
 //! Python stays in the replay differential (fuzz/differential.py).
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use nmeaspec::runtime::json::{Value, SKIP_CHECK_DEPTH};
+use nmeaspec::json::{Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{Framer, Item};
 use nmeaspec::Options;
 use std::fmt::Write;
@@ -45,7 +45,7 @@ fn decode(data: &[u8]) {
                 shim_decode(data.as_ptr(), data.len(), values.into(), lenient.into(), required.into(), out, cap)
             })
             .unwrap();
-            let rust = nmeaspec::decode_json_with(data, values, Options { lenient, require_checksum: required });
+            let rust = nmeaspec::json::decode_json_with(data, values, Options { lenient, require_checksum: required });
             assert!(
                 c == latin1(&rust),
                 "decode (values {values}, lenient {lenient}, require_checksum {required}):\n   C: {}\nRust: {rust}",
@@ -66,7 +66,7 @@ fn encode(data: &[u8]) {
     assert_eq!(c.is_none(), skipped, "encode: C skips the line: {}, Rust: {skipped}", c.is_none());
     if let Some(c) = c {
         let mut rust = String::new();
-        nmeaspec::write_encoded(&mut rust, value.as_ref()).unwrap();
+        nmeaspec::json::write_encoded(&mut rust, value.as_ref()).unwrap();
         let rust = latin1(&rust);
         assert!(c == rust, "encode:\n   C: {:?}\nRust: {:?}", String::from_utf8_lossy(&c), String::from_utf8_lossy(&rust));
     }

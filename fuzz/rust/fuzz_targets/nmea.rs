@@ -21,15 +21,15 @@ const LENIENT: Options = Options { lenient: true, require_checksum: false };
 const REQUIRED: Options = Options { lenient: false, require_checksum: true };
 
 fn as_line(data: &[u8]) {
-    assert_eq!(nmeaspec::parse(data), nmeaspec::parse_general(data), "the fast path disagrees with the general path");
+    assert_eq!(nmeaspec::parse(data), nmeaspec::paths::parse_general(data), "the fast path disagrees with the general path");
     for options in [LENIENT, REQUIRED, Options { lenient: true, require_checksum: true }] {
         assert_eq!(
             nmeaspec::parse_with(data, options),
-            nmeaspec::parse_with_general(data, options),
+            nmeaspec::paths::parse_with_general(data, options),
             "the fast path disagrees with the general path ({options:?})"
         );
     }
-    let _ = nmeaspec::decode_json(data, true);
+    let _ = nmeaspec::json::decode_json(data, true);
     if data.ends_with(b"\n") {
         return; // parse() drops one line ending: the round trip is checked without it
     }
@@ -40,7 +40,7 @@ fn as_line(data: &[u8]) {
             assert_serialized(|buf| parsed.serialize_into(buf), data);
             let _ = parsed.to_json(true);
             let json = parsed.to_json(false);
-            assert_eq!(nmeaspec::encode_json(json.as_bytes()).as_bytes(), data, "JSON with problems changed the line");
+            assert_eq!(nmeaspec::json::encode_json(json.as_bytes()).as_bytes(), data, "JSON with problems changed the line");
         }
         return;
     };
@@ -49,7 +49,7 @@ fn as_line(data: &[u8]) {
     assert_serialized(|buf| sentence.serialize_into(buf), data);
     let json = sentence.to_json(false);
     let _ = sentence.to_json(true);
-    assert_eq!(nmeaspec::encode_json(json.as_bytes()).as_bytes(), data, "JSON round trip changed the line");
+    assert_eq!(nmeaspec::json::encode_json(json.as_bytes()).as_bytes(), data, "JSON round trip changed the line");
     let lenient = nmeaspec::parse_with(data, LENIENT).expect("lenient parsing refused a valid line");
     assert!(lenient.problems.is_empty());
     assert_eq!(lenient.to_json(false), json, "lenient parsing disagrees on a valid line");
@@ -70,15 +70,15 @@ fn as_line(data: &[u8]) {
 /// `serialize` writes exactly `data` into a buffer with room to spare, and nothing into one a
 /// byte short.
 fn assert_serialized(serialize: impl Fn(&mut [u8]) -> Option<usize>, data: &[u8]) {
-    let mut buf = [0u8; nmeaspec::runtime::MAX_LINE + 64];
+    let mut buf = [0u8; nmeaspec::MAX_LINE + 64];
     let written = serialize(&mut buf).expect("serialize_into wrote nothing");
     assert_eq!(&buf[..written], data, "serialize_into changed the line");
     assert_eq!(serialize(&mut buf[..written - 1]), None, "serialize_into wrote into a buffer too small");
 }
 
 fn as_json(data: &[u8]) {
-    let out = nmeaspec::encode_json(data);
-    if out.starts_with("{\"ok\":false") || out.len() > nmeaspec::runtime::MAX_LINE {
+    let out = nmeaspec::json::encode_json(data);
+    if out.starts_with("{\"ok\":false") || out.len() > nmeaspec::MAX_LINE {
         return;
     }
     assert!(nmeaspec::parse_with(out.as_bytes(), LENIENT).is_ok(), "an encoded sentence does not parse: {out:?}");
@@ -102,7 +102,7 @@ impl From<Item<'_>> for Owned {
 
 /// The Python reference's Framer, one byte at a time.
 fn model(data: &[u8]) -> Vec<Owned> {
-    let max = nmeaspec::runtime::MAX_LINE;
+    let max = nmeaspec::MAX_LINE;
     let (mut out, mut line, mut length) = (Vec::new(), Vec::new(), 0usize);
     let mut finish = |line: &mut Vec<u8>, length: &mut usize| {
         if *length > 0 {

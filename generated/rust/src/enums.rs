@@ -125,7 +125,7 @@
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
-//! ([`CodeEnum::id`]); a field holding one is a [`Code`](crate::runtime::Code), which also keeps
+//! ([`CodeEnum::id`]); a field holding one is a [`Code`](crate::Code), which also keeps
 //! well-formed codes the spec does not list.
 
 use crate::runtime::{CodeClass, CodeEnum};

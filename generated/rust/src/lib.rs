@@ -41,8 +41,8 @@
 //! ```
 //!
 //! Errors carry a kind, the address, the 1-based index and spec name of the field at fault and
-//! the message of docs/json.md. With the `std` feature the crate also reads the tools' JSON back
-//! (`from_json`, `encode_json`) and builds the `nmea-rs` tool.
+//! the message of docs/json.md. [`json`] writes the tools' JSON lines and, with the `std` feature,
+//! reads them back; `std` also builds the `nmea-rs` tool.
 
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
@@ -52,7 +52,7 @@ use core::fmt::{self, Write};
 
 pub mod bitfields;
 pub mod enums;
-pub mod runtime;
+mod runtime;
 pub mod sentences;
 pub mod tables;
 
@@ -61,16 +61,13 @@ pub const VERSION: &str = "0.2.0";
 
 #[cfg(feature = "comnav")]
 use runtime::is_command_word;
-#[cfg(feature = "std")]
-use runtime::json::{self, Value, WireFields};
-use runtime::{first_word, strip_line_ending, FastReader, Unsure};
+use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};
 pub use runtime::{
-    Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Entries, EntryIter, Error, ErrorKind, FieldProblem, Fields,
-    Frame, Framing, Generic, Hex, Kind, Layout, Name, Number, Problems, ReplyOutcome, Sign, Texts, Time,
-    BUILD_CAPACITY, MAX_PROBLEMS,
+    stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Encoding, Entries, EntryIter, Error,
+    ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name, Number, Options, ParamValue, Parameter,
+    ParameterError, Problem, Problems, ReplyOutcome, Sign, Table, Texts, Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS,
 };
 
-pub use runtime::stream;
 pub use sentences::*;
 
 /// A decoded sentence: one variant per layout of the spec, and [`Generic`] for the rest.
@@ -11401,17 +11398,6 @@ impl LayoutId {
         }
     }
 
-    /// Whether `fields` hold this layout's keyword in its place (ignoring case).
-    pub fn holds_selector(self, fields: &Fields<'_>) -> bool {
-        match self.selector() {
-            Some(keyword) => fields
-                .get(self.selector_at() + 1)
-                .filter(|_| !fields.is_empty())
-                .is_some_and(|word| word.eq_ignore_ascii_case(keyword)),
-            None => false,
-        }
-    }
-
     /// The layouts of the sentences that answer this command (empty for the others).
     pub const fn replies(self) -> &'static [LayoutId] {
         match self {
@@ -12791,14 +12777,40 @@ impl LayoutId {
             Self::PubxUtm => &[],
         }
     }
+}
 
-    /// The first layout of sentence `sentence` with variant `variant`.
-    pub fn find(sentence: &str, variant: Option<&str>) -> Option<Self> {
-        Self::ALL.iter().copied().find(|layout| layout.sentence() == sentence && layout.variant() == variant)
+impl Layouts for LayoutId {
+    type Sentence<'a> = Sentence<'a>;
+
+    #[cfg(feature = "std")]
+    const ALL: &'static [Self] = Self::ALL;
+
+    fn of(start: &str, address: &[u8]) -> &'static [Self] {
+        layouts_of(start, address)
     }
 
-    /// Decodes the fields after the address with this layout.
-    pub fn parse_fields(self, fields: Fields<'_>, checksum: Checksum) -> Result<Sentence<'_>, Error<'_>> {
+    #[cfg(feature = "std")]
+    fn sentence(self) -> &'static str {
+        self.sentence()
+    }
+
+    #[cfg(feature = "std")]
+    fn variant(self) -> Option<&'static str> {
+        self.variant()
+    }
+
+    fn framing(self) -> Framing {
+        self.framing()
+    }
+
+    fn keyword(self) -> Option<(&'static str, usize)> {
+        match self.selector() {
+            Some(keyword) => Some((keyword, self.selector_at())),
+            None => None,
+        }
+    }
+
+    fn parse_fields<'a>(self, fields: Fields<'a>, checksum: Checksum) -> Result<Sentence<'a>, Error<'a>> {
         match self {
             Self::Aam => Aam::parse_fields(fields, checksum).map(Sentence::Aam),
             Self::Abk => Abk::parse_fields(fields, checksum).map(Sentence::Abk),
@@ -14289,19 +14301,20 @@ impl LayoutId {
         }
     }
 
-    /// The command builders' serialization: writes the line with `write` into `buf`, reads it
-    /// back with this layout and appends CR LF (see [`runtime::build`]).
-    pub fn build<'b>(
-        self,
-        buf: &'b mut [u8],
-        write: impl FnOnce(&mut runtime::Latin1Bytes<'_>) -> fmt::Result,
-    ) -> Result<&'b [u8], Error<'b>> {
-        runtime::build(buf, self.framing(), write, |fields, checksum| self.parse_fields(fields, checksum).map(drop))
+    fn read_sentence<'a, O: Outcome<'a, Self>>(fields: FastReader<'a>, line: &'a [u8]) -> O {
+        read_sentence(fields, line)
     }
 
-    /// Appends the wire fields described by a `fields` object of decode's lossless JSON.
+    fn read_next<'a, O: Outcome<'a, Self>>(layouts: &[Self], fields: FastReader<'a>, line: &'a [u8]) -> O {
+        read_fast(layouts, fields, line)
+    }
+
     #[cfg(feature = "std")]
-    pub fn fields_from_json(self, fields: &Value, out: &mut WireFields) -> Result<(), Error<'static>> {
+    fn fields_from_json(
+        self,
+        fields: &runtime::json::Value,
+        out: &mut runtime::json::WireFields,
+    ) -> Result<(), Error<'static>> {
         match self {
             Self::Aam => Aam::fields_from_json(fields, out),
             Self::Abk => Abk::fields_from_json(fields, out),
@@ -15539,7 +15552,7 @@ impl LayoutId {
     }
 }
 
-impl<'a> Sentence<'a> {
+impl Sentence<'_> {
     /// The layout, `None` for a generic sentence.
     pub const fn layout(&self) -> Option<LayoutId> {
         match self {
@@ -17863,1250 +17876,6 @@ impl<'a> Sentence<'a> {
         self.write_json_with(out, values, &Problems::new())
     }
 
-    /// Writes the tools' JSON line of a sentence lenient parsing kept with `problems`.
-    pub fn write_json_with<W: Write + ?Sized>(
-        &self,
-        out: &mut W,
-        values: bool,
-        problems: &Problems<'_>,
-    ) -> fmt::Result {
-        match self {
-            Self::Aam(s) => s.write_json_with(out, values, problems),
-            Self::Abk(s) => s.write_json_with(out, values, problems),
-            Self::Abm(s) => s.write_json_with(out, values, problems),
-            Self::Aca(s) => s.write_json_with(out, values, problems),
-            Self::Ack(s) => s.write_json_with(out, values, problems),
-            Self::Acn(s) => s.write_json_with(out, values, problems),
-            Self::Acs(s) => s.write_json_with(out, values, problems),
-            Self::Air(s) => s.write_json_with(out, values, problems),
-            Self::Akd(s) => s.write_json_with(out, values, problems),
-            Self::Ala(s) => s.write_json_with(out, values, problems),
-            Self::Alc(s) => s.write_json_with(out, values, problems),
-            Self::Alf(s) => s.write_json_with(out, values, problems),
-            Self::Alk(s) => s.write_json_with(out, values, problems),
-            Self::Alm(s) => s.write_json_with(out, values, problems),
-            Self::Alr(s) => s.write_json_with(out, values, problems),
-            Self::Apa(s) => s.write_json_with(out, values, problems),
-            Self::Apb(s) => s.write_json_with(out, values, problems),
-            Self::Arc(s) => s.write_json_with(out, values, problems),
-            Self::Bbm(s) => s.write_json_with(out, values, problems),
-            Self::Bec(s) => s.write_json_with(out, values, problems),
-            Self::Bod(s) => s.write_json_with(out, values, problems),
-            Self::Bwc(s) => s.write_json_with(out, values, problems),
-            Self::Bwr(s) => s.write_json_with(out, values, problems),
-            Self::Bww(s) => s.write_json_with(out, values, problems),
-            Self::Cur(s) => s.write_json_with(out, values, problems),
-            Self::Dbk(s) => s.write_json_with(out, values, problems),
-            Self::Dbs(s) => s.write_json_with(out, values, problems),
-            Self::Dbt(s) => s.write_json_with(out, values, problems),
-            Self::Ddc(s) => s.write_json_with(out, values, problems),
-            Self::Dor(s) => s.write_json_with(out, values, problems),
-            Self::Dpt(s) => s.write_json_with(out, values, problems),
-            Self::Dsc(s) => s.write_json_with(out, values, problems),
-            Self::Dse(s) => s.write_json_with(out, values, problems),
-            Self::Dtm(s) => s.write_json_with(out, values, problems),
-            Self::DtmShort(s) => s.write_json_with(out, values, problems),
-            Self::Epv(s) => s.write_json_with(out, values, problems),
-            Self::Etl(s) => s.write_json_with(out, values, problems),
-            Self::Eve(s) => s.write_json_with(out, values, problems),
-            Self::Fir(s) => s.write_json_with(out, values, problems),
-            Self::Fmi(s) => s.write_json_with(out, values, problems),
-            Self::Fsi(s) => s.write_json_with(out, values, problems),
-            Self::Gbs(s) => s.write_json_with(out, values, problems),
-            Self::GbsUnits(s) => s.write_json_with(out, values, problems),
-            Self::Gen(s) => s.write_json_with(out, values, problems),
-            Self::Gfa(s) => s.write_json_with(out, values, problems),
-            Self::Gga(s) => s.write_json_with(out, values, problems),
-            Self::Glc(s) => s.write_json_with(out, values, problems),
-            Self::Gll(s) => s.write_json_with(out, values, problems),
-            Self::GllSentinel(s) => s.write_json_with(out, values, problems),
-            Self::Gmp(s) => s.write_json_with(out, values, problems),
-            Self::Gns(s) => s.write_json_with(out, values, problems),
-            Self::GnsAux(s) => s.write_json_with(out, values, problems),
-            Self::Grs(s) => s.write_json_with(out, values, problems),
-            Self::Gsa(s) => s.write_json_with(out, values, problems),
-            Self::GsaShort(s) => s.write_json_with(out, values, problems),
-            Self::GsaWideSystem(s) => s.write_json_with(out, values, problems),
-            Self::GsaWide(s) => s.write_json_with(out, values, problems),
-            Self::GsaExtraDop(s) => s.write_json_with(out, values, problems),
-            Self::Gst(s) => s.write_json_with(out, values, problems),
-            Self::Gsv(s) => s.write_json_with(out, values, problems),
-            Self::Hbt(s) => s.write_json_with(out, values, problems),
-            Self::Hcr(s) => s.write_json_with(out, values, problems),
-            Self::Hdg(s) => s.write_json_with(out, values, problems),
-            Self::Hdm(s) => s.write_json_with(out, values, problems),
-            Self::Hdt(s) => s.write_json_with(out, values, problems),
-            Self::Hev(s) => s.write_json_with(out, values, problems),
-            Self::Hmr(s) => s.write_json_with(out, values, problems),
-            Self::Hms(s) => s.write_json_with(out, values, problems),
-            Self::Hpd(s) => s.write_json_with(out, values, problems),
-            Self::Hpr(s) => s.write_json_with(out, values, problems),
-            Self::Hrm(s) => s.write_json_with(out, values, problems),
-            Self::Hsc(s) => s.write_json_with(out, values, problems),
-            Self::Hss(s) => s.write_json_with(out, values, problems),
-            Self::Htc(s) => s.write_json_with(out, values, problems),
-            Self::Htd(s) => s.write_json_with(out, values, problems),
-            Self::Llq(s) => s.write_json_with(out, values, problems),
-            Self::Lr1(s) => s.write_json_with(out, values, problems),
-            Self::Lr2(s) => s.write_json_with(out, values, problems),
-            Self::Lr3(s) => s.write_json_with(out, values, problems),
-            Self::Lrf(s) => s.write_json_with(out, values, problems),
-            Self::Lri(s) => s.write_json_with(out, values, problems),
-            Self::Mda(s) => s.write_json_with(out, values, problems),
-            Self::Mmb(s) => s.write_json_with(out, values, problems),
-            Self::Mob(s) => s.write_json_with(out, values, problems),
-            Self::Msk(s) => s.write_json_with(out, values, problems),
-            Self::Mss(s) => s.write_json_with(out, values, problems),
-            Self::Mta(s) => s.write_json_with(out, values, problems),
-            Self::Mtw(s) => s.write_json_with(out, values, problems),
-            Self::Mwd(s) => s.write_json_with(out, values, problems),
-            Self::Mwv(s) => s.write_json_with(out, values, problems),
-            Self::Nak(s) => s.write_json_with(out, values, problems),
-            Self::Nrm(s) => s.write_json_with(out, values, problems),
-            Self::Nrx(s) => s.write_json_with(out, values, problems),
-            Self::NrxNx700(s) => s.write_json_with(out, values, problems),
-            Self::Nsr(s) => s.write_json_with(out, values, problems),
-            Self::Osd(s) => s.write_json_with(out, values, problems),
-            Self::Pos(s) => s.write_json_with(out, values, problems),
-            Self::Prc(s) => s.write_json_with(out, values, problems),
-            Self::R00(s) => s.write_json_with(out, values, problems),
-            Self::Rlm(s) => s.write_json_with(out, values, problems),
-            Self::Rma(s) => s.write_json_with(out, values, problems),
-            Self::Rmb(s) => s.write_json_with(out, values, problems),
-            Self::Rmc(s) => s.write_json_with(out, values, problems),
-            Self::RmcSentinel(s) => s.write_json_with(out, values, problems),
-            Self::Ror(s) => s.write_json_with(out, values, problems),
-            Self::Rot(s) => s.write_json_with(out, values, problems),
-            Self::Rpm(s) => s.write_json_with(out, values, problems),
-            Self::Rrt(s) => s.write_json_with(out, values, problems),
-            Self::Rsa(s) => s.write_json_with(out, values, problems),
-            Self::Rsd(s) => s.write_json_with(out, values, problems),
-            Self::Rte(s) => s.write_json_with(out, values, problems),
-            Self::Sfi(s) => s.write_json_with(out, values, problems),
-            Self::Sm1(s) => s.write_json_with(out, values, problems),
-            Self::Sm2(s) => s.write_json_with(out, values, problems),
-            Self::Sm3(s) => s.write_json_with(out, values, problems),
-            Self::Sm4(s) => s.write_json_with(out, values, problems),
-            Self::Smb(s) => s.write_json_with(out, values, problems),
-            Self::Spw(s) => s.write_json_with(out, values, problems),
-            Self::Ssd(s) => s.write_json_with(out, values, problems),
-            Self::Stn(s) => s.write_json_with(out, values, problems),
-            Self::Ths(s) => s.write_json_with(out, values, problems),
-            Self::Tlb(s) => s.write_json_with(out, values, problems),
-            Self::Tll(s) => s.write_json_with(out, values, problems),
-            Self::Tra(s) => s.write_json_with(out, values, problems),
-            Self::Trc(s) => s.write_json_with(out, values, problems),
-            Self::Trd(s) => s.write_json_with(out, values, problems),
-            Self::Trf(s) => s.write_json_with(out, values, problems),
-            Self::Trl(s) => s.write_json_with(out, values, problems),
-            Self::Ttd(s) => s.write_json_with(out, values, problems),
-            Self::Ttm(s) => s.write_json_with(out, values, problems),
-            Self::Tut(s) => s.write_json_with(out, values, problems),
-            Self::Txt(s) => s.write_json_with(out, values, problems),
-            Self::Uid(s) => s.write_json_with(out, values, problems),
-            Self::Vbw(s) => s.write_json_with(out, values, problems),
-            Self::Vdm(s) => s.write_json_with(out, values, problems),
-            Self::Vdo(s) => s.write_json_with(out, values, problems),
-            Self::Vdr(s) => s.write_json_with(out, values, problems),
-            Self::Ver(s) => s.write_json_with(out, values, problems),
-            Self::Vhw(s) => s.write_json_with(out, values, problems),
-            Self::Vlw(s) => s.write_json_with(out, values, problems),
-            Self::Vpw(s) => s.write_json_with(out, values, problems),
-            Self::Vsd(s) => s.write_json_with(out, values, problems),
-            Self::Vtg(s) => s.write_json_with(out, values, problems),
-            Self::Vwr(s) => s.write_json_with(out, values, problems),
-            Self::Vwt(s) => s.write_json_with(out, values, problems),
-            Self::Wat(s) => s.write_json_with(out, values, problems),
-            Self::Wcv(s) => s.write_json_with(out, values, problems),
-            Self::Wnc(s) => s.write_json_with(out, values, problems),
-            Self::Wpl(s) => s.write_json_with(out, values, problems),
-            Self::Xdr(s) => s.write_json_with(out, values, problems),
-            Self::Xte(s) => s.write_json_with(out, values, problems),
-            Self::Xtr(s) => s.write_json_with(out, values, problems),
-            Self::Zda(s) => s.write_json_with(out, values, problems),
-            Self::Zdl(s) => s.write_json_with(out, values, problems),
-            Self::Zfo(s) => s.write_json_with(out, values, problems),
-            Self::Ztg(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "comnav")]
-            Self::ComnavLog(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "comnav")]
-            Self::ComnavNmeatalker(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "comnav")]
-            Self::ComnavNmeatalkerList(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "comnav")]
-            Self::ComnavNmeatalkerReset(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Command(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Jamdet(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Nquery(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "geos5")]
-            Self::Geos5NqueryRequest(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Rquery(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "geos5")]
-            Self::Geos5RqueryRequest(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair001(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair002(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair003(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair004(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair005(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair006(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair007(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair010(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair050(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair051(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair051Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair058(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair059(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair059Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair062(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair063(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair063Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair066(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair067(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair067Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair070(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair071(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair071Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair072(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair073(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair073Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair074(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair075(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair075Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair080(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair081(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair081Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair086(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair087(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair087Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair098(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair099(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair099Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair100(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair101(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair101Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair104(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair105(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair105Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair154(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair155(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair155Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair158(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair382(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair391(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair400(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair401(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair401Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair410(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair411(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair411Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair420(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair421(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair421Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair432(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair433(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair433Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair434(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair435(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair435Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair436(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair437(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair437Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair490(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair491(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair491Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair511(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair512(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair513(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair6010(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair6011(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair6011Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair650(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair680(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair681(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair681Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair690(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair691(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair691Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair730(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair731(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair731Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair732(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair733(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair733Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair752(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair864(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair865(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair865Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair866(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair867(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair867Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair890(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair891(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair891Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair900(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair901(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair901Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair902(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair903(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair903Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair904(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair905(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair906(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair907(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair908(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair909(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair909Reply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pairspf(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pairspf5(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashqAtt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashqElm(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashqNmo(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashqPem(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashqPop(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashqPos(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashqPtt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashqSat(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashqSba(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::Pashr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrAtt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrElm(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrHpr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrNak(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrNmo(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrPem(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrPop(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrPos(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrPtt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrSat(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrSba(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashrTtt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashsNme(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ashtech")]
-            Self::PashsNmePeriod(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "furuno_eride")]
-            Self::Perdcrw(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "furuno_eride")]
-            Self::Perdcrx(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "furuno_eride")]
-            Self::Perdcry(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "furuno_eride")]
-            Self::Perdcrz(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "furuno")]
-            Self::PfecGpatt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "furuno")]
-            Self::PfecGphve(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "furuno")]
-            Self::PfecGprtc(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "furuno")]
-            Self::PfecGpwpl(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "furuno")]
-            Self::PfecGpxfr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorFix(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorLsq(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorPwr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorPwrV2(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorPwrV4(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSat(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSatV1(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSatV0(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSio(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSioV0(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSta(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorUnc(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmb(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmc(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmc1(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmc1e(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmce(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrme(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmf(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmi(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmie(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmm(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmo(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmv(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmz(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pgtop11(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "magellan_fx324")]
-            Self::Pmgncmd(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "magellan_fx324")]
-            Self::Pmgnst(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "magellan_fx324")]
-            Self::Pmgntrk(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "magellan_fx324")]
-            Self::Pmgnwpl(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk000(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk001(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk001SvMask(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk010(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk011(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk101(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk102(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk103(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk104(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk161(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk183(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk184(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk185(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk220(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk223(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk225(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk251(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk286(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk300(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk301(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk313(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk314(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk314RestoreDefault(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk319(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk353(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk386(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk397(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk400(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk401(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk413(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk414(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk447(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk500(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk501(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk513(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk514(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk527(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk605(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk622(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk660(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk661(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk705(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk869Query(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk869Result(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk869Set(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtkchn(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtklog(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::PmtkloxData(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::PmtkloxEnd(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::PmtkloxStart(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqgsv(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmantennastatus(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgantdelta(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantdeltaRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantdeltaResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantdeltaResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantdeltaResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgantinf(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantinfRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantinfResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantinfResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantinfResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgbld(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgbldRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgbldResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgbldResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgbldResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgcnrthd(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnrthdRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnrthdResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnrthdResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnrthdResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgcnst(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnstRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnstResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnstResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnstResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgelethd(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgelethdRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgelethdResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgelethdResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgelethdResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgfixrate(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgfixrateRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgfixrateResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgfixrateResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgfixrateResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfggeofence(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeofenceRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeofenceResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeofenceResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeofenceResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfggeosep(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeosepRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeosepResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeosepResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeosepResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgmsgrate(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgratePort(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateReadPort(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateResultPort(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgnmeadp(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeadpRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeadpResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeadpResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeadpResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgnmeatid(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeatidRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeatidResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeatidResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeatidResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgodo(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgodoRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgodoResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgodoResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgodoResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgpps(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgppsRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgppsResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgppsResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgppsResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgprot(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgprotRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgprotResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgprotResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgprotResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrcvrmode(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrcvrmodeRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrcvrmodeResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrcvrmodeResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrcvrmodeResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrsid(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrsidRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrsidResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrsidResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrsidResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrtcm(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtcmRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtcmResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtcmResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtcmResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrtk(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtkRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtkResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtkResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtkResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrtksrctype(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtksrctypeRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtksrctypeResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtksrctypeResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtksrctypeResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsat(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsatRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsatResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsatResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsatResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsbas(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsbasRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsbasResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsbasResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsbasResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsiggrp(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsiggrpRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsiggrpResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsiggrpResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsiggrpResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsignalRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2Read(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2Result(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2ResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2ResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsignalResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsignalResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsignalResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsvin(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsvinRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsvinResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsvinResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsvinResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfguart(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartCurrentBaud(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartCurrentFull(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartPortBaud(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgwn(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgwnRead(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgwnResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgwnResultAck(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgwnResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcold(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmdebugoff(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmdebugoffResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmdebugoffResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmdebugon(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmdebugonResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmdebugonResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmdop(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmeoe(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmepe(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmgeofencestatus(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmgnssstart(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmgnssstartResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmgnssstartResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmgnssstop(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmgnssstopResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmgnssstopResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmhot(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmnav(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmodo(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmpl(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmpvt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmresetodo(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmresetodoResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmresetodoResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmrestorepar(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmrestoreparResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmrestoreparResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmsavepar(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmsaveparResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmsaveparResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmsn(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmsnResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmsnResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmsrr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmsvinstatus(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmtar(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmtxt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmuniqid(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmuniqidResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmuniqidResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmvel(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmver(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmverLegacy(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmverno(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmvernoResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmvernoResultError(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmwarm(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqverno(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqvernoResult(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf100(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf101(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf102(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf103(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf103ShortCodes(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf104(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf105(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "gs501")]
-            Self::Psrf150(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf151(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "globalsat")]
-            Self::Psrfepe(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "septentrio")]
-            Self::PssnHrp(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "septentrio")]
-            Self::PssnRbd(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "septentrio")]
-            Self::PssnRbp(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "septentrio")]
-            Self::PssnRbv(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "septentrio")]
-            Self::PssnTfm(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti030(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti032(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti033(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti035(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti036(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti20(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmagps(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmalmanac(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmclralms(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmclrephs(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmcold(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmcorr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmcpu(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmdiff(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmeph(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetpar(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetparerror(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetrtctime(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::PstmgetrtctimeReply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetswver(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::PstmgetswverReply(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmhot(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmkfcov(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmnmeaonoff(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmpa(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmpres(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmres(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmrestorepar(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmrf(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsat(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsavepar(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsbas(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsbascorr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmset(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::PstmsetDop(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsetpar(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::PstmsetparDop(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsetparerror(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsetparok(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmtestrf(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmtg(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmtim(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmts(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmver(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmvres(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmwaas(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "teseo")]
-            Self::Pstmwarm(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlAvr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlBpq(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlEvt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlGgk(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlGgkSync(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlPjk(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlPjt(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlVgk(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlVhd(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnldg(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlev(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlid(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlqio(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlqvr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlrba(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlrio(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::PtnlrioInvalid(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlrkg(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::PtnlrkgInvalid(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlrsv(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlrtp(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlrvr(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::PtnlrvrInvalid(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlrxo(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlsio(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlskg(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlsm(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlssv(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "spectratime_isync")]
-            Self::Ptnta(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxConfig(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxPosition(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxPositionPoll(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxRate(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxSvstatus(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxSvstatusPoll(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxTime(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxTimePoll(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxUtm(s) => s.write_json_with(out, values, problems),
-            Self::Generic(s) => s.write_json(out),
-        }
-    }
-
     /// Writes the sentence text (what `Display` writes) without the `fmt` machinery.
     pub fn write_sentence<W: Write + ?Sized>(&self, out: &mut W) -> fmt::Result {
         match self {
@@ -20348,1262 +19117,32 @@ impl<'a> Sentence<'a> {
 
     /// The sentence text, what `Display` writes (no line ending), put at the start of `buf`, as
     /// C's `nmea_serialize` does: its length, or `None` when `buf` cannot hold it (a buffer of
-    /// [`runtime::MAX_LINE`] bytes holds any sentence [`parse`] gives). An ASCII text (every
-    /// parsed `$` sentence) is written without the `fmt` machinery.
+    /// [`MAX_LINE`] bytes holds any sentence [`parse`] gives). An ASCII text (every parsed `$`
+    /// sentence) is written without the `fmt` machinery.
     pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
-        if let Some(len) = self.serialize_fast(buf) {
-            return Some(len);
-        }
-        let mut w = runtime::ByteWriter::new(buf);
-        self.write_sentence_with(&mut w, &Problems::new()).ok()?;
-        Some(w.len())
+        self.serialize_with(buf, &Problems::new())
     }
 
-    /// The byte writer of [`Sentence::serialize_into`] alone, without its `fmt` fallback: `None`
-    /// for a text that is not all ASCII, a text command, or a buffer too small (the crate's tests
-    /// check that it writes what the `fmt` writer writes).
-    #[doc(hidden)]
-    pub fn serialize_fast(&self, buf: &mut [u8]) -> Option<usize> {
-        match self {
-            Self::Aam(s) => s.put_sentence(buf),
-            Self::Abk(s) => s.put_sentence(buf),
-            Self::Abm(s) => s.put_sentence(buf),
-            Self::Aca(s) => s.put_sentence(buf),
-            Self::Ack(s) => s.put_sentence(buf),
-            Self::Acn(s) => s.put_sentence(buf),
-            Self::Acs(s) => s.put_sentence(buf),
-            Self::Air(s) => s.put_sentence(buf),
-            Self::Akd(s) => s.put_sentence(buf),
-            Self::Ala(s) => s.put_sentence(buf),
-            Self::Alc(s) => s.put_sentence(buf),
-            Self::Alf(s) => s.put_sentence(buf),
-            Self::Alk(s) => s.put_sentence(buf),
-            Self::Alm(s) => s.put_sentence(buf),
-            Self::Alr(s) => s.put_sentence(buf),
-            Self::Apa(s) => s.put_sentence(buf),
-            Self::Apb(s) => s.put_sentence(buf),
-            Self::Arc(s) => s.put_sentence(buf),
-            Self::Bbm(s) => s.put_sentence(buf),
-            Self::Bec(s) => s.put_sentence(buf),
-            Self::Bod(s) => s.put_sentence(buf),
-            Self::Bwc(s) => s.put_sentence(buf),
-            Self::Bwr(s) => s.put_sentence(buf),
-            Self::Bww(s) => s.put_sentence(buf),
-            Self::Cur(s) => s.put_sentence(buf),
-            Self::Dbk(s) => s.put_sentence(buf),
-            Self::Dbs(s) => s.put_sentence(buf),
-            Self::Dbt(s) => s.put_sentence(buf),
-            Self::Ddc(s) => s.put_sentence(buf),
-            Self::Dor(s) => s.put_sentence(buf),
-            Self::Dpt(s) => s.put_sentence(buf),
-            Self::Dsc(s) => s.put_sentence(buf),
-            Self::Dse(s) => s.put_sentence(buf),
-            Self::Dtm(s) => s.put_sentence(buf),
-            Self::DtmShort(s) => s.put_sentence(buf),
-            Self::Epv(s) => s.put_sentence(buf),
-            Self::Etl(s) => s.put_sentence(buf),
-            Self::Eve(s) => s.put_sentence(buf),
-            Self::Fir(s) => s.put_sentence(buf),
-            Self::Fmi(s) => s.put_sentence(buf),
-            Self::Fsi(s) => s.put_sentence(buf),
-            Self::Gbs(s) => s.put_sentence(buf),
-            Self::GbsUnits(s) => s.put_sentence(buf),
-            Self::Gen(s) => s.put_sentence(buf),
-            Self::Gfa(s) => s.put_sentence(buf),
-            Self::Gga(s) => s.put_sentence(buf),
-            Self::Glc(s) => s.put_sentence(buf),
-            Self::Gll(s) => s.put_sentence(buf),
-            Self::GllSentinel(s) => s.put_sentence(buf),
-            Self::Gmp(s) => s.put_sentence(buf),
-            Self::Gns(s) => s.put_sentence(buf),
-            Self::GnsAux(s) => s.put_sentence(buf),
-            Self::Grs(s) => s.put_sentence(buf),
-            Self::Gsa(s) => s.put_sentence(buf),
-            Self::GsaShort(s) => s.put_sentence(buf),
-            Self::GsaWideSystem(s) => s.put_sentence(buf),
-            Self::GsaWide(s) => s.put_sentence(buf),
-            Self::GsaExtraDop(s) => s.put_sentence(buf),
-            Self::Gst(s) => s.put_sentence(buf),
-            Self::Gsv(s) => s.put_sentence(buf),
-            Self::Hbt(s) => s.put_sentence(buf),
-            Self::Hcr(s) => s.put_sentence(buf),
-            Self::Hdg(s) => s.put_sentence(buf),
-            Self::Hdm(s) => s.put_sentence(buf),
-            Self::Hdt(s) => s.put_sentence(buf),
-            Self::Hev(s) => s.put_sentence(buf),
-            Self::Hmr(s) => s.put_sentence(buf),
-            Self::Hms(s) => s.put_sentence(buf),
-            Self::Hpd(s) => s.put_sentence(buf),
-            Self::Hpr(s) => s.put_sentence(buf),
-            Self::Hrm(s) => s.put_sentence(buf),
-            Self::Hsc(s) => s.put_sentence(buf),
-            Self::Hss(s) => s.put_sentence(buf),
-            Self::Htc(s) => s.put_sentence(buf),
-            Self::Htd(s) => s.put_sentence(buf),
-            Self::Llq(s) => s.put_sentence(buf),
-            Self::Lr1(s) => s.put_sentence(buf),
-            Self::Lr2(s) => s.put_sentence(buf),
-            Self::Lr3(s) => s.put_sentence(buf),
-            Self::Lrf(s) => s.put_sentence(buf),
-            Self::Lri(s) => s.put_sentence(buf),
-            Self::Mda(s) => s.put_sentence(buf),
-            Self::Mmb(s) => s.put_sentence(buf),
-            Self::Mob(s) => s.put_sentence(buf),
-            Self::Msk(s) => s.put_sentence(buf),
-            Self::Mss(s) => s.put_sentence(buf),
-            Self::Mta(s) => s.put_sentence(buf),
-            Self::Mtw(s) => s.put_sentence(buf),
-            Self::Mwd(s) => s.put_sentence(buf),
-            Self::Mwv(s) => s.put_sentence(buf),
-            Self::Nak(s) => s.put_sentence(buf),
-            Self::Nrm(s) => s.put_sentence(buf),
-            Self::Nrx(s) => s.put_sentence(buf),
-            Self::NrxNx700(s) => s.put_sentence(buf),
-            Self::Nsr(s) => s.put_sentence(buf),
-            Self::Osd(s) => s.put_sentence(buf),
-            Self::Pos(s) => s.put_sentence(buf),
-            Self::Prc(s) => s.put_sentence(buf),
-            Self::R00(s) => s.put_sentence(buf),
-            Self::Rlm(s) => s.put_sentence(buf),
-            Self::Rma(s) => s.put_sentence(buf),
-            Self::Rmb(s) => s.put_sentence(buf),
-            Self::Rmc(s) => s.put_sentence(buf),
-            Self::RmcSentinel(s) => s.put_sentence(buf),
-            Self::Ror(s) => s.put_sentence(buf),
-            Self::Rot(s) => s.put_sentence(buf),
-            Self::Rpm(s) => s.put_sentence(buf),
-            Self::Rrt(s) => s.put_sentence(buf),
-            Self::Rsa(s) => s.put_sentence(buf),
-            Self::Rsd(s) => s.put_sentence(buf),
-            Self::Rte(s) => s.put_sentence(buf),
-            Self::Sfi(s) => s.put_sentence(buf),
-            Self::Sm1(s) => s.put_sentence(buf),
-            Self::Sm2(s) => s.put_sentence(buf),
-            Self::Sm3(s) => s.put_sentence(buf),
-            Self::Sm4(s) => s.put_sentence(buf),
-            Self::Smb(s) => s.put_sentence(buf),
-            Self::Spw(s) => s.put_sentence(buf),
-            Self::Ssd(s) => s.put_sentence(buf),
-            Self::Stn(s) => s.put_sentence(buf),
-            Self::Ths(s) => s.put_sentence(buf),
-            Self::Tlb(s) => s.put_sentence(buf),
-            Self::Tll(s) => s.put_sentence(buf),
-            Self::Tra(s) => s.put_sentence(buf),
-            Self::Trc(s) => s.put_sentence(buf),
-            Self::Trd(s) => s.put_sentence(buf),
-            Self::Trf(s) => s.put_sentence(buf),
-            Self::Trl(s) => s.put_sentence(buf),
-            Self::Ttd(s) => s.put_sentence(buf),
-            Self::Ttm(s) => s.put_sentence(buf),
-            Self::Tut(s) => s.put_sentence(buf),
-            Self::Txt(s) => s.put_sentence(buf),
-            Self::Uid(s) => s.put_sentence(buf),
-            Self::Vbw(s) => s.put_sentence(buf),
-            Self::Vdm(s) => s.put_sentence(buf),
-            Self::Vdo(s) => s.put_sentence(buf),
-            Self::Vdr(s) => s.put_sentence(buf),
-            Self::Ver(s) => s.put_sentence(buf),
-            Self::Vhw(s) => s.put_sentence(buf),
-            Self::Vlw(s) => s.put_sentence(buf),
-            Self::Vpw(s) => s.put_sentence(buf),
-            Self::Vsd(s) => s.put_sentence(buf),
-            Self::Vtg(s) => s.put_sentence(buf),
-            Self::Vwr(s) => s.put_sentence(buf),
-            Self::Vwt(s) => s.put_sentence(buf),
-            Self::Wat(s) => s.put_sentence(buf),
-            Self::Wcv(s) => s.put_sentence(buf),
-            Self::Wnc(s) => s.put_sentence(buf),
-            Self::Wpl(s) => s.put_sentence(buf),
-            Self::Xdr(s) => s.put_sentence(buf),
-            Self::Xte(s) => s.put_sentence(buf),
-            Self::Xtr(s) => s.put_sentence(buf),
-            Self::Zda(s) => s.put_sentence(buf),
-            Self::Zdl(s) => s.put_sentence(buf),
-            Self::Zfo(s) => s.put_sentence(buf),
-            Self::Ztg(s) => s.put_sentence(buf),
-            #[cfg(feature = "comnav")]
-            Self::ComnavLog(s) => s.put_sentence(buf),
-            #[cfg(feature = "comnav")]
-            Self::ComnavNmeatalker(s) => s.put_sentence(buf),
-            #[cfg(feature = "comnav")]
-            Self::ComnavNmeatalkerList(s) => s.put_sentence(buf),
-            #[cfg(feature = "comnav")]
-            Self::ComnavNmeatalkerReset(s) => s.put_sentence(buf),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Command(s) => s.put_sentence(buf),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Jamdet(s) => s.put_sentence(buf),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Nquery(s) => s.put_sentence(buf),
-            #[cfg(feature = "geos5")]
-            Self::Geos5NqueryRequest(s) => s.put_sentence(buf),
-            #[cfg(feature = "geos5")]
-            Self::Geos5Rquery(s) => s.put_sentence(buf),
-            #[cfg(feature = "geos5")]
-            Self::Geos5RqueryRequest(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair001(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair002(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair003(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair004(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair005(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair006(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair007(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair010(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair050(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair051(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair051Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair058(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair059(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair059Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair062(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair063(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair063Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair066(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair067(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair067Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair070(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair071(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair071Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair072(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair073(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair073Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair074(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair075(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair075Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair080(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair081(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair081Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair086(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair087(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair087Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair098(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair099(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair099Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair100(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair101(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair101Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair104(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair105(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair105Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair154(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair155(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair155Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair158(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair382(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair391(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair400(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair401(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair401Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair410(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair411(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair411Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair420(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair421(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair421Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair432(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair433(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair433Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair434(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair435(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair435Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair436(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair437(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair437Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair490(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair491(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair491Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair511(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair512(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair513(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair6010(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair6011(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair6011Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair650(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair680(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair681(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair681Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair690(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair691(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair691Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair730(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair731(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair731Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair732(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair733(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair733Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair752(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair864(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair865(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair865Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair866(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair867(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair867Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair890(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair891(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair891Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair900(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair901(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair901Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair902(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair903(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair903Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair904(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair905(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair906(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair907(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair908(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair909(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pair909Reply(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pairspf(s) => s.put_sentence(buf),
-            #[cfg(feature = "airoha_pair")]
-            Self::Pairspf5(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashqAtt(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashqElm(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashqNmo(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashqPem(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashqPop(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashqPos(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashqPtt(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashqSat(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashqSba(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::Pashr(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrAtt(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrElm(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrHpr(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrNak(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrNmo(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrPem(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrPop(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrPos(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrPtt(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrSat(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrSba(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashrTtt(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashsNme(s) => s.put_sentence(buf),
-            #[cfg(feature = "ashtech")]
-            Self::PashsNmePeriod(s) => s.put_sentence(buf),
-            #[cfg(feature = "furuno_eride")]
-            Self::Perdcrw(s) => s.put_sentence(buf),
-            #[cfg(feature = "furuno_eride")]
-            Self::Perdcrx(s) => s.put_sentence(buf),
-            #[cfg(feature = "furuno_eride")]
-            Self::Perdcry(s) => s.put_sentence(buf),
-            #[cfg(feature = "furuno_eride")]
-            Self::Perdcrz(s) => s.put_sentence(buf),
-            #[cfg(feature = "furuno")]
-            Self::PfecGpatt(s) => s.put_sentence(buf),
-            #[cfg(feature = "furuno")]
-            Self::PfecGphve(s) => s.put_sentence(buf),
-            #[cfg(feature = "furuno")]
-            Self::PfecGprtc(s) => s.put_sentence(buf),
-            #[cfg(feature = "furuno")]
-            Self::PfecGpwpl(s) => s.put_sentence(buf),
-            #[cfg(feature = "furuno")]
-            Self::PfecGpxfr(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorFix(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorLsq(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorPwr(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorPwrV2(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorPwrV4(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSat(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSatV1(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSatV0(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSio(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSioV0(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorSta(s) => s.put_sentence(buf),
-            #[cfg(feature = "broadcom_glor")]
-            Self::PglorUnc(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmb(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmc(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmc1(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmc1e(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmce(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrme(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmf(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmi(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmie(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmm(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmo(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmt(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmv(s) => s.put_sentence(buf),
-            #[cfg(feature = "garmin_gps18x")]
-            Self::Pgrmz(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pgtop11(s) => s.put_sentence(buf),
-            #[cfg(feature = "magellan_fx324")]
-            Self::Pmgncmd(s) => s.put_sentence(buf),
-            #[cfg(feature = "magellan_fx324")]
-            Self::Pmgnst(s) => s.put_sentence(buf),
-            #[cfg(feature = "magellan_fx324")]
-            Self::Pmgntrk(s) => s.put_sentence(buf),
-            #[cfg(feature = "magellan_fx324")]
-            Self::Pmgnwpl(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk000(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk001(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk001SvMask(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk010(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk011(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk101(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk102(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk103(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk104(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk161(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk183(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk184(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk185(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk220(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk223(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk225(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk251(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk286(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk300(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk301(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk313(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk314(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk314RestoreDefault(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk319(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk353(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk386(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk397(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk400(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk401(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk413(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk414(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk447(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk500(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk501(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk513(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk514(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk527(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk605(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk622(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk660(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk661(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk705(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk869Query(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk869Result(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtk869Set(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtkchn(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::Pmtklog(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::PmtkloxData(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::PmtkloxEnd(s) => s.put_sentence(buf),
-            #[cfg(feature = "mtk_pmtk")]
-            Self::PmtkloxStart(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqgsv(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmantennastatus(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgantdelta(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantdeltaRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantdeltaResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantdeltaResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantdeltaResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgantinf(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantinfRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantinfResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantinfResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgantinfResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgbld(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgbldRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgbldResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgbldResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgbldResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgcnrthd(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnrthdRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnrthdResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnrthdResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnrthdResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgcnst(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnstRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnstResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnstResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgcnstResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgelethd(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgelethdRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgelethdResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgelethdResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgelethdResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgfixrate(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgfixrateRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgfixrateResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgfixrateResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgfixrateResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfggeofence(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeofenceRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeofenceResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeofenceResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeofenceResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfggeosep(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeosepRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeosepResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeosepResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfggeosepResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgmsgrate(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgratePort(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateReadPort(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateResultPort(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgmsgrateResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgnmeadp(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeadpRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeadpResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeadpResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeadpResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgnmeatid(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeatidRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeatidResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeatidResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgnmeatidResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgodo(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgodoRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgodoResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgodoResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgodoResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgpps(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgppsRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgppsResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgppsResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgppsResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgprot(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgprotRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgprotResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgprotResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgprotResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrcvrmode(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrcvrmodeRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrcvrmodeResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrcvrmodeResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrcvrmodeResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrsid(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrsidRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrsidResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrsidResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrsidResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrtcm(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtcmRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtcmResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtcmResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtcmResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrtk(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtkRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtkResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtkResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtkResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgrtksrctype(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtksrctypeRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtksrctypeResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtksrctypeResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgrtksrctypeResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsat(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsatRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsatResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsatResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsatResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsbas(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsbasRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsbasResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsbasResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsbasResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsiggrp(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsiggrpRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsiggrpResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsiggrpResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsiggrpResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsignalRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2Read(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2Result(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2ResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsignal2ResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsignalResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsignalResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsignalResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgsvin(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsvinRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsvinResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsvinResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgsvinResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfguart(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartCurrentBaud(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartCurrentFull(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartPortBaud(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfguartResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcfgwn(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgwnRead(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgwnResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgwnResultAck(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmcfgwnResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmcold(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmdebugoff(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmdebugoffResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmdebugoffResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmdebugon(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmdebugonResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmdebugonResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmdop(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmeoe(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmepe(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmgeofencestatus(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmgnssstart(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmgnssstartResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmgnssstartResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmgnssstop(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmgnssstopResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmgnssstopResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmhot(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmnav(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmodo(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmpl(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmpvt(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmresetodo(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmresetodoResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmresetodoResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmrestorepar(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmrestoreparResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmrestoreparResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmsavepar(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmsaveparResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmsaveparResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmsn(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmsnResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmsnResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmsrr(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmsvinstatus(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmtar(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmtxt(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmuniqid(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmuniqidResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmuniqidResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmvel(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmver(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmverLegacy(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmverno(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmvernoResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqtmvernoResultError(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqtmwarm(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::Pqverno(s) => s.put_sentence(buf),
-            #[cfg(feature = "quectel_lg290p")]
-            Self::PqvernoResult(s) => s.put_sentence(buf),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf100(s) => s.put_sentence(buf),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf101(s) => s.put_sentence(buf),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf102(s) => s.put_sentence(buf),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf103(s) => s.put_sentence(buf),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf103ShortCodes(s) => s.put_sentence(buf),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf104(s) => s.put_sentence(buf),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf105(s) => s.put_sentence(buf),
-            #[cfg(feature = "gs501")]
-            Self::Psrf150(s) => s.put_sentence(buf),
-            #[cfg(feature = "globalsat")]
-            Self::Psrf151(s) => s.put_sentence(buf),
-            #[cfg(feature = "globalsat")]
-            Self::Psrfepe(s) => s.put_sentence(buf),
-            #[cfg(feature = "septentrio")]
-            Self::PssnHrp(s) => s.put_sentence(buf),
-            #[cfg(feature = "septentrio")]
-            Self::PssnRbd(s) => s.put_sentence(buf),
-            #[cfg(feature = "septentrio")]
-            Self::PssnRbp(s) => s.put_sentence(buf),
-            #[cfg(feature = "septentrio")]
-            Self::PssnRbv(s) => s.put_sentence(buf),
-            #[cfg(feature = "septentrio")]
-            Self::PssnTfm(s) => s.put_sentence(buf),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti030(s) => s.put_sentence(buf),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti032(s) => s.put_sentence(buf),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti033(s) => s.put_sentence(buf),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti035(s) => s.put_sentence(buf),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti036(s) => s.put_sentence(buf),
-            #[cfg(feature = "skytraq_rtk")]
-            Self::Psti20(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmagps(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmalmanac(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmclralms(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmclrephs(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmcold(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmcorr(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmcpu(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmdiff(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmeph(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetpar(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetparerror(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetrtctime(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::PstmgetrtctimeReply(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmgetswver(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::PstmgetswverReply(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmhot(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmkfcov(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmnmeaonoff(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmpa(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmpres(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmres(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmrestorepar(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmrf(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsat(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsavepar(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsbas(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsbascorr(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmset(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::PstmsetDop(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsetpar(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::PstmsetparDop(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsetparerror(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmsetparok(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmtestrf(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmtg(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmtim(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmts(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmver(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmvres(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmwaas(s) => s.put_sentence(buf),
-            #[cfg(feature = "teseo")]
-            Self::Pstmwarm(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlAvr(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlBpq(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlEvt(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlGgk(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlGgkSync(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlPjk(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlPjt(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlVgk(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::PtnlVhd(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnldg(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlev(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlid(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlqio(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlqvr(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlrba(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlrio(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::PtnlrioInvalid(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlrkg(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::PtnlrkgInvalid(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlrsv(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlrtp(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlrvr(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::PtnlrvrInvalid(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlrxo(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlsio(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlskg(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_nmea")]
-            Self::Ptnlsm(s) => s.put_sentence(buf),
-            #[cfg(feature = "trimble_copernicus")]
-            Self::Ptnlssv(s) => s.put_sentence(buf),
-            #[cfg(feature = "spectratime_isync")]
-            Self::Ptnta(s) => s.put_sentence(buf),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxConfig(s) => s.put_sentence(buf),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxPosition(s) => s.put_sentence(buf),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxPositionPoll(s) => s.put_sentence(buf),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxRate(s) => s.put_sentence(buf),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxSvstatus(s) => s.put_sentence(buf),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxSvstatusPoll(s) => s.put_sentence(buf),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxTime(s) => s.put_sentence(buf),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxTimePoll(s) => s.put_sentence(buf),
-            #[cfg(feature = "ublox_m8")]
-            Self::PubxUtm(s) => s.put_sentence(buf),
-            Self::Generic(s) => s.put_sentence(buf),
-        }
+    /// The tools' JSON line (`values`: decoded values instead of the lossless texts).
+    #[cfg(feature = "std")]
+    pub fn to_json(&self, values: bool) -> String {
+        let mut out = String::new();
+        let _ = self.write_json(&mut out, values);
+        out
     }
 
-    /// Writes the sentence text of a sentence lenient parsing kept with `problems`: the text of
-    /// each field it left empty is put back.
-    pub fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
+    /// The exact bytes to send, CR LF included, written into `buf` once the line reads back
+    /// with its layout (a generic sentence: once it frames).
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        match self.layout() {
+            Some(layout) => layout.build(buf, |w| self.write_sentence(w)),
+            None => runtime::build(buf, Framing::Standard, |w| self.write_sentence(w), |_, _| Ok(())),
+        }
+    }
+}
+
+impl Decoded for Sentence<'_> {
+    fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
         match self {
             Self::Aam(s) => s.write_sentence_with(out, problems),
             Self::Abk(s) => s.write_sentence_with(out, problems),
@@ -22841,20 +20380,2479 @@ impl<'a> Sentence<'a> {
         }
     }
 
-    /// The tools' JSON line (`values`: decoded values instead of the lossless texts).
-    #[cfg(feature = "std")]
-    pub fn to_json(&self, values: bool) -> String {
-        let mut out = String::new();
-        let _ = self.write_json(&mut out, values);
-        out
+    fn write_json_with<W: Write + ?Sized>(&self, out: &mut W, values: bool, problems: &Problems<'_>) -> fmt::Result {
+        match self {
+            Self::Aam(s) => s.write_json_with(out, values, problems),
+            Self::Abk(s) => s.write_json_with(out, values, problems),
+            Self::Abm(s) => s.write_json_with(out, values, problems),
+            Self::Aca(s) => s.write_json_with(out, values, problems),
+            Self::Ack(s) => s.write_json_with(out, values, problems),
+            Self::Acn(s) => s.write_json_with(out, values, problems),
+            Self::Acs(s) => s.write_json_with(out, values, problems),
+            Self::Air(s) => s.write_json_with(out, values, problems),
+            Self::Akd(s) => s.write_json_with(out, values, problems),
+            Self::Ala(s) => s.write_json_with(out, values, problems),
+            Self::Alc(s) => s.write_json_with(out, values, problems),
+            Self::Alf(s) => s.write_json_with(out, values, problems),
+            Self::Alk(s) => s.write_json_with(out, values, problems),
+            Self::Alm(s) => s.write_json_with(out, values, problems),
+            Self::Alr(s) => s.write_json_with(out, values, problems),
+            Self::Apa(s) => s.write_json_with(out, values, problems),
+            Self::Apb(s) => s.write_json_with(out, values, problems),
+            Self::Arc(s) => s.write_json_with(out, values, problems),
+            Self::Bbm(s) => s.write_json_with(out, values, problems),
+            Self::Bec(s) => s.write_json_with(out, values, problems),
+            Self::Bod(s) => s.write_json_with(out, values, problems),
+            Self::Bwc(s) => s.write_json_with(out, values, problems),
+            Self::Bwr(s) => s.write_json_with(out, values, problems),
+            Self::Bww(s) => s.write_json_with(out, values, problems),
+            Self::Cur(s) => s.write_json_with(out, values, problems),
+            Self::Dbk(s) => s.write_json_with(out, values, problems),
+            Self::Dbs(s) => s.write_json_with(out, values, problems),
+            Self::Dbt(s) => s.write_json_with(out, values, problems),
+            Self::Ddc(s) => s.write_json_with(out, values, problems),
+            Self::Dor(s) => s.write_json_with(out, values, problems),
+            Self::Dpt(s) => s.write_json_with(out, values, problems),
+            Self::Dsc(s) => s.write_json_with(out, values, problems),
+            Self::Dse(s) => s.write_json_with(out, values, problems),
+            Self::Dtm(s) => s.write_json_with(out, values, problems),
+            Self::DtmShort(s) => s.write_json_with(out, values, problems),
+            Self::Epv(s) => s.write_json_with(out, values, problems),
+            Self::Etl(s) => s.write_json_with(out, values, problems),
+            Self::Eve(s) => s.write_json_with(out, values, problems),
+            Self::Fir(s) => s.write_json_with(out, values, problems),
+            Self::Fmi(s) => s.write_json_with(out, values, problems),
+            Self::Fsi(s) => s.write_json_with(out, values, problems),
+            Self::Gbs(s) => s.write_json_with(out, values, problems),
+            Self::GbsUnits(s) => s.write_json_with(out, values, problems),
+            Self::Gen(s) => s.write_json_with(out, values, problems),
+            Self::Gfa(s) => s.write_json_with(out, values, problems),
+            Self::Gga(s) => s.write_json_with(out, values, problems),
+            Self::Glc(s) => s.write_json_with(out, values, problems),
+            Self::Gll(s) => s.write_json_with(out, values, problems),
+            Self::GllSentinel(s) => s.write_json_with(out, values, problems),
+            Self::Gmp(s) => s.write_json_with(out, values, problems),
+            Self::Gns(s) => s.write_json_with(out, values, problems),
+            Self::GnsAux(s) => s.write_json_with(out, values, problems),
+            Self::Grs(s) => s.write_json_with(out, values, problems),
+            Self::Gsa(s) => s.write_json_with(out, values, problems),
+            Self::GsaShort(s) => s.write_json_with(out, values, problems),
+            Self::GsaWideSystem(s) => s.write_json_with(out, values, problems),
+            Self::GsaWide(s) => s.write_json_with(out, values, problems),
+            Self::GsaExtraDop(s) => s.write_json_with(out, values, problems),
+            Self::Gst(s) => s.write_json_with(out, values, problems),
+            Self::Gsv(s) => s.write_json_with(out, values, problems),
+            Self::Hbt(s) => s.write_json_with(out, values, problems),
+            Self::Hcr(s) => s.write_json_with(out, values, problems),
+            Self::Hdg(s) => s.write_json_with(out, values, problems),
+            Self::Hdm(s) => s.write_json_with(out, values, problems),
+            Self::Hdt(s) => s.write_json_with(out, values, problems),
+            Self::Hev(s) => s.write_json_with(out, values, problems),
+            Self::Hmr(s) => s.write_json_with(out, values, problems),
+            Self::Hms(s) => s.write_json_with(out, values, problems),
+            Self::Hpd(s) => s.write_json_with(out, values, problems),
+            Self::Hpr(s) => s.write_json_with(out, values, problems),
+            Self::Hrm(s) => s.write_json_with(out, values, problems),
+            Self::Hsc(s) => s.write_json_with(out, values, problems),
+            Self::Hss(s) => s.write_json_with(out, values, problems),
+            Self::Htc(s) => s.write_json_with(out, values, problems),
+            Self::Htd(s) => s.write_json_with(out, values, problems),
+            Self::Llq(s) => s.write_json_with(out, values, problems),
+            Self::Lr1(s) => s.write_json_with(out, values, problems),
+            Self::Lr2(s) => s.write_json_with(out, values, problems),
+            Self::Lr3(s) => s.write_json_with(out, values, problems),
+            Self::Lrf(s) => s.write_json_with(out, values, problems),
+            Self::Lri(s) => s.write_json_with(out, values, problems),
+            Self::Mda(s) => s.write_json_with(out, values, problems),
+            Self::Mmb(s) => s.write_json_with(out, values, problems),
+            Self::Mob(s) => s.write_json_with(out, values, problems),
+            Self::Msk(s) => s.write_json_with(out, values, problems),
+            Self::Mss(s) => s.write_json_with(out, values, problems),
+            Self::Mta(s) => s.write_json_with(out, values, problems),
+            Self::Mtw(s) => s.write_json_with(out, values, problems),
+            Self::Mwd(s) => s.write_json_with(out, values, problems),
+            Self::Mwv(s) => s.write_json_with(out, values, problems),
+            Self::Nak(s) => s.write_json_with(out, values, problems),
+            Self::Nrm(s) => s.write_json_with(out, values, problems),
+            Self::Nrx(s) => s.write_json_with(out, values, problems),
+            Self::NrxNx700(s) => s.write_json_with(out, values, problems),
+            Self::Nsr(s) => s.write_json_with(out, values, problems),
+            Self::Osd(s) => s.write_json_with(out, values, problems),
+            Self::Pos(s) => s.write_json_with(out, values, problems),
+            Self::Prc(s) => s.write_json_with(out, values, problems),
+            Self::R00(s) => s.write_json_with(out, values, problems),
+            Self::Rlm(s) => s.write_json_with(out, values, problems),
+            Self::Rma(s) => s.write_json_with(out, values, problems),
+            Self::Rmb(s) => s.write_json_with(out, values, problems),
+            Self::Rmc(s) => s.write_json_with(out, values, problems),
+            Self::RmcSentinel(s) => s.write_json_with(out, values, problems),
+            Self::Ror(s) => s.write_json_with(out, values, problems),
+            Self::Rot(s) => s.write_json_with(out, values, problems),
+            Self::Rpm(s) => s.write_json_with(out, values, problems),
+            Self::Rrt(s) => s.write_json_with(out, values, problems),
+            Self::Rsa(s) => s.write_json_with(out, values, problems),
+            Self::Rsd(s) => s.write_json_with(out, values, problems),
+            Self::Rte(s) => s.write_json_with(out, values, problems),
+            Self::Sfi(s) => s.write_json_with(out, values, problems),
+            Self::Sm1(s) => s.write_json_with(out, values, problems),
+            Self::Sm2(s) => s.write_json_with(out, values, problems),
+            Self::Sm3(s) => s.write_json_with(out, values, problems),
+            Self::Sm4(s) => s.write_json_with(out, values, problems),
+            Self::Smb(s) => s.write_json_with(out, values, problems),
+            Self::Spw(s) => s.write_json_with(out, values, problems),
+            Self::Ssd(s) => s.write_json_with(out, values, problems),
+            Self::Stn(s) => s.write_json_with(out, values, problems),
+            Self::Ths(s) => s.write_json_with(out, values, problems),
+            Self::Tlb(s) => s.write_json_with(out, values, problems),
+            Self::Tll(s) => s.write_json_with(out, values, problems),
+            Self::Tra(s) => s.write_json_with(out, values, problems),
+            Self::Trc(s) => s.write_json_with(out, values, problems),
+            Self::Trd(s) => s.write_json_with(out, values, problems),
+            Self::Trf(s) => s.write_json_with(out, values, problems),
+            Self::Trl(s) => s.write_json_with(out, values, problems),
+            Self::Ttd(s) => s.write_json_with(out, values, problems),
+            Self::Ttm(s) => s.write_json_with(out, values, problems),
+            Self::Tut(s) => s.write_json_with(out, values, problems),
+            Self::Txt(s) => s.write_json_with(out, values, problems),
+            Self::Uid(s) => s.write_json_with(out, values, problems),
+            Self::Vbw(s) => s.write_json_with(out, values, problems),
+            Self::Vdm(s) => s.write_json_with(out, values, problems),
+            Self::Vdo(s) => s.write_json_with(out, values, problems),
+            Self::Vdr(s) => s.write_json_with(out, values, problems),
+            Self::Ver(s) => s.write_json_with(out, values, problems),
+            Self::Vhw(s) => s.write_json_with(out, values, problems),
+            Self::Vlw(s) => s.write_json_with(out, values, problems),
+            Self::Vpw(s) => s.write_json_with(out, values, problems),
+            Self::Vsd(s) => s.write_json_with(out, values, problems),
+            Self::Vtg(s) => s.write_json_with(out, values, problems),
+            Self::Vwr(s) => s.write_json_with(out, values, problems),
+            Self::Vwt(s) => s.write_json_with(out, values, problems),
+            Self::Wat(s) => s.write_json_with(out, values, problems),
+            Self::Wcv(s) => s.write_json_with(out, values, problems),
+            Self::Wnc(s) => s.write_json_with(out, values, problems),
+            Self::Wpl(s) => s.write_json_with(out, values, problems),
+            Self::Xdr(s) => s.write_json_with(out, values, problems),
+            Self::Xte(s) => s.write_json_with(out, values, problems),
+            Self::Xtr(s) => s.write_json_with(out, values, problems),
+            Self::Zda(s) => s.write_json_with(out, values, problems),
+            Self::Zdl(s) => s.write_json_with(out, values, problems),
+            Self::Zfo(s) => s.write_json_with(out, values, problems),
+            Self::Ztg(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "comnav")]
+            Self::ComnavLog(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalker(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerList(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerReset(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Command(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Jamdet(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Nquery(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
+            Self::Geos5NqueryRequest(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Rquery(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "geos5")]
+            Self::Geos5RqueryRequest(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair001(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair002(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair003(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair004(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair005(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair006(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair007(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair010(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair050(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair051(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair051Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair058(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair059(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair059Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair062(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair063(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair063Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair066(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair067(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair067Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair070(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair071(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair071Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair072(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair073(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair073Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair074(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair075(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair075Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair080(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair081(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair081Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair086(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair087(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair087Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair098(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair099(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair099Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair100(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair101(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair101Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair104(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair105(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair105Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair154(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair155(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair155Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair158(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair382(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair391(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair400(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair401(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair401Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair410(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair411(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair411Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair420(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair421(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair421Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair432(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair433(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair433Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair434(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair435(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair435Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair436(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair437(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair437Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair490(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair491(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair491Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair511(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair512(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair513(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair6010(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair6011(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair6011Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair650(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair680(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair681(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair681Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair690(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair691(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair691Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair730(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair731(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair731Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair732(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair733(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair733Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair752(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair864(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair865(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair865Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair866(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair867(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair867Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair890(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair891(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair891Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair900(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair901(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair901Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair902(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair903(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair903Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair904(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair905(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair906(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair907(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair908(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair909(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair909Reply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pairspf(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pairspf5(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashqAtt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashqElm(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashqNmo(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashqPem(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashqPop(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashqPos(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashqPtt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashqSat(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashqSba(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::Pashr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrAtt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrElm(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrHpr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrNak(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrNmo(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrPem(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrPop(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrPos(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrPtt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrSat(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrSba(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashrTtt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashsNme(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ashtech")]
+            Self::PashsNmePeriod(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "furuno_eride")]
+            Self::Perdcrw(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "furuno_eride")]
+            Self::Perdcrx(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "furuno_eride")]
+            Self::Perdcry(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "furuno_eride")]
+            Self::Perdcrz(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "furuno")]
+            Self::PfecGpatt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "furuno")]
+            Self::PfecGphve(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "furuno")]
+            Self::PfecGprtc(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "furuno")]
+            Self::PfecGpwpl(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "furuno")]
+            Self::PfecGpxfr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorFix(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorLsq(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorPwr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorPwrV2(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorPwrV4(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSat(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSatV1(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSatV0(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSio(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSioV0(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSta(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorUnc(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmb(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmc(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmc1(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmc1e(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmce(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrme(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmf(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmi(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmie(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmm(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmo(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmv(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmz(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pgtop11(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "magellan_fx324")]
+            Self::Pmgncmd(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "magellan_fx324")]
+            Self::Pmgnst(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "magellan_fx324")]
+            Self::Pmgntrk(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "magellan_fx324")]
+            Self::Pmgnwpl(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk000(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk001(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk001SvMask(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk010(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk011(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk101(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk102(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk103(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk104(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk161(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk183(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk184(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk185(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk220(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk223(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk225(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk251(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk286(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk300(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk301(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk313(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk314(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk314RestoreDefault(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk319(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk353(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk386(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk397(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk400(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk401(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk413(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk414(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk447(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk500(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk501(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk513(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk514(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk527(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk605(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk622(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk660(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk661(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk705(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk869Query(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk869Result(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk869Set(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtkchn(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtklog(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::PmtkloxData(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::PmtkloxEnd(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::PmtkloxStart(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqgsv(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmantennastatus(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgantdelta(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantdeltaRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantdeltaResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantdeltaResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantdeltaResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgantinf(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantinfRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantinfResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantinfResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantinfResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgbld(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgbldRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgbldResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgbldResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgbldResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgcnrthd(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnrthdRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnrthdResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnrthdResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnrthdResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgcnst(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnstRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnstResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnstResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnstResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgelethd(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgelethdRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgelethdResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgelethdResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgelethdResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgfixrate(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgfixrateRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgfixrateResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgfixrateResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgfixrateResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfggeofence(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeofenceRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeofenceResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeofenceResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeofenceResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfggeosep(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeosepRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeosepResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeosepResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeosepResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgmsgrate(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgratePort(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateReadPort(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateResultPort(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgnmeadp(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeadpRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeadpResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeadpResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeadpResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgnmeatid(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeatidRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeatidResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeatidResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeatidResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgodo(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgodoRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgodoResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgodoResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgodoResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgpps(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgppsRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgppsResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgppsResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgppsResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgprot(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgprotRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgprotResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgprotResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgprotResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrcvrmode(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrcvrmodeRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrcvrmodeResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrcvrmodeResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrcvrmodeResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrsid(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrsidRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrsidResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrsidResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrsidResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrtcm(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtcmRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtcmResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtcmResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtcmResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrtk(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtkRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtkResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtkResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtkResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrtksrctype(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtksrctypeRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtksrctypeResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtksrctypeResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtksrctypeResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsat(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsatRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsatResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsatResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsatResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsbas(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsbasRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsbasResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsbasResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsbasResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsiggrp(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsiggrpRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsiggrpResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsiggrpResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsiggrpResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsignalRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2Read(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2Result(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2ResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2ResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsignalResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsignalResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsignalResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsvin(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsvinRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsvinResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsvinResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsvinResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfguart(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartCurrentBaud(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartCurrentFull(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartPortBaud(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgwn(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgwnRead(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgwnResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgwnResultAck(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgwnResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcold(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdebugoff(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmdebugoffResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmdebugoffResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdebugon(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmdebugonResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmdebugonResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdop(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmeoe(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmepe(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmgeofencestatus(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmgnssstart(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmgnssstartResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmgnssstartResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmgnssstop(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmgnssstopResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmgnssstopResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmhot(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmnav(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmodo(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmpl(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmpvt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmresetodo(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmresetodoResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmresetodoResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmrestorepar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmrestoreparResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmrestoreparResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsavepar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmsaveparResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmsaveparResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsn(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmsnResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmsnResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsrr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsvinstatus(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmtar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmtxt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmuniqid(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmuniqidResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmuniqidResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmvel(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmver(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmverLegacy(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmverno(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmvernoResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmvernoResultError(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmwarm(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqverno(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqvernoResult(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf100(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf101(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf102(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf103(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf103ShortCodes(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf104(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf105(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "gs501")]
+            Self::Psrf150(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf151(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "globalsat")]
+            Self::Psrfepe(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "septentrio")]
+            Self::PssnHrp(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "septentrio")]
+            Self::PssnRbd(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "septentrio")]
+            Self::PssnRbp(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "septentrio")]
+            Self::PssnRbv(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "septentrio")]
+            Self::PssnTfm(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti030(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti032(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti033(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti035(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti036(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti20(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmagps(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmalmanac(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclralms(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclrephs(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcold(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcorr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcpu(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmdiff(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmeph(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetpar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetparerror(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetrtctime(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetrtctimeReply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetswver(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetswverReply(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmhot(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmkfcov(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmnmeaonoff(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpa(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpres(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmres(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrestorepar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrf(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsat(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsavepar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbas(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbascorr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmset(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetDop(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetpar(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetparDop(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparerror(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparok(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtestrf(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtg(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtim(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmts(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmver(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmvres(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwaas(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwarm(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlAvr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlBpq(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlEvt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlGgk(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlGgkSync(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlPjk(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlPjt(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlVgk(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlVhd(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnldg(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlev(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlid(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlqio(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlqvr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlrba(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrio(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::PtnlrioInvalid(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrkg(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::PtnlrkgInvalid(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrsv(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlrtp(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrvr(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::PtnlrvrInvalid(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlrxo(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlsio(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlskg(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlsm(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlssv(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "spectratime_isync")]
+            Self::Ptnta(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxConfig(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxPosition(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxPositionPoll(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxRate(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxSvstatus(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxSvstatusPoll(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxTime(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxTimePoll(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxUtm(s) => s.write_json_with(out, values, problems),
+            Self::Generic(s) => s.write_json(out),
+        }
     }
 
-    /// The exact bytes to send, CR LF included, written into `buf` once the line reads back
-    /// with its layout (a generic sentence: once it frames).
-    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
-        match self.layout() {
-            Some(layout) => layout.build(buf, |w| self.write_sentence(w)),
-            None => runtime::build(buf, Framing::Standard, |w| self.write_sentence(w), |_, _| Ok(())),
+    fn put_sentence(&self, buf: &mut [u8]) -> Option<usize> {
+        match self {
+            Self::Aam(s) => s.put_sentence(buf),
+            Self::Abk(s) => s.put_sentence(buf),
+            Self::Abm(s) => s.put_sentence(buf),
+            Self::Aca(s) => s.put_sentence(buf),
+            Self::Ack(s) => s.put_sentence(buf),
+            Self::Acn(s) => s.put_sentence(buf),
+            Self::Acs(s) => s.put_sentence(buf),
+            Self::Air(s) => s.put_sentence(buf),
+            Self::Akd(s) => s.put_sentence(buf),
+            Self::Ala(s) => s.put_sentence(buf),
+            Self::Alc(s) => s.put_sentence(buf),
+            Self::Alf(s) => s.put_sentence(buf),
+            Self::Alk(s) => s.put_sentence(buf),
+            Self::Alm(s) => s.put_sentence(buf),
+            Self::Alr(s) => s.put_sentence(buf),
+            Self::Apa(s) => s.put_sentence(buf),
+            Self::Apb(s) => s.put_sentence(buf),
+            Self::Arc(s) => s.put_sentence(buf),
+            Self::Bbm(s) => s.put_sentence(buf),
+            Self::Bec(s) => s.put_sentence(buf),
+            Self::Bod(s) => s.put_sentence(buf),
+            Self::Bwc(s) => s.put_sentence(buf),
+            Self::Bwr(s) => s.put_sentence(buf),
+            Self::Bww(s) => s.put_sentence(buf),
+            Self::Cur(s) => s.put_sentence(buf),
+            Self::Dbk(s) => s.put_sentence(buf),
+            Self::Dbs(s) => s.put_sentence(buf),
+            Self::Dbt(s) => s.put_sentence(buf),
+            Self::Ddc(s) => s.put_sentence(buf),
+            Self::Dor(s) => s.put_sentence(buf),
+            Self::Dpt(s) => s.put_sentence(buf),
+            Self::Dsc(s) => s.put_sentence(buf),
+            Self::Dse(s) => s.put_sentence(buf),
+            Self::Dtm(s) => s.put_sentence(buf),
+            Self::DtmShort(s) => s.put_sentence(buf),
+            Self::Epv(s) => s.put_sentence(buf),
+            Self::Etl(s) => s.put_sentence(buf),
+            Self::Eve(s) => s.put_sentence(buf),
+            Self::Fir(s) => s.put_sentence(buf),
+            Self::Fmi(s) => s.put_sentence(buf),
+            Self::Fsi(s) => s.put_sentence(buf),
+            Self::Gbs(s) => s.put_sentence(buf),
+            Self::GbsUnits(s) => s.put_sentence(buf),
+            Self::Gen(s) => s.put_sentence(buf),
+            Self::Gfa(s) => s.put_sentence(buf),
+            Self::Gga(s) => s.put_sentence(buf),
+            Self::Glc(s) => s.put_sentence(buf),
+            Self::Gll(s) => s.put_sentence(buf),
+            Self::GllSentinel(s) => s.put_sentence(buf),
+            Self::Gmp(s) => s.put_sentence(buf),
+            Self::Gns(s) => s.put_sentence(buf),
+            Self::GnsAux(s) => s.put_sentence(buf),
+            Self::Grs(s) => s.put_sentence(buf),
+            Self::Gsa(s) => s.put_sentence(buf),
+            Self::GsaShort(s) => s.put_sentence(buf),
+            Self::GsaWideSystem(s) => s.put_sentence(buf),
+            Self::GsaWide(s) => s.put_sentence(buf),
+            Self::GsaExtraDop(s) => s.put_sentence(buf),
+            Self::Gst(s) => s.put_sentence(buf),
+            Self::Gsv(s) => s.put_sentence(buf),
+            Self::Hbt(s) => s.put_sentence(buf),
+            Self::Hcr(s) => s.put_sentence(buf),
+            Self::Hdg(s) => s.put_sentence(buf),
+            Self::Hdm(s) => s.put_sentence(buf),
+            Self::Hdt(s) => s.put_sentence(buf),
+            Self::Hev(s) => s.put_sentence(buf),
+            Self::Hmr(s) => s.put_sentence(buf),
+            Self::Hms(s) => s.put_sentence(buf),
+            Self::Hpd(s) => s.put_sentence(buf),
+            Self::Hpr(s) => s.put_sentence(buf),
+            Self::Hrm(s) => s.put_sentence(buf),
+            Self::Hsc(s) => s.put_sentence(buf),
+            Self::Hss(s) => s.put_sentence(buf),
+            Self::Htc(s) => s.put_sentence(buf),
+            Self::Htd(s) => s.put_sentence(buf),
+            Self::Llq(s) => s.put_sentence(buf),
+            Self::Lr1(s) => s.put_sentence(buf),
+            Self::Lr2(s) => s.put_sentence(buf),
+            Self::Lr3(s) => s.put_sentence(buf),
+            Self::Lrf(s) => s.put_sentence(buf),
+            Self::Lri(s) => s.put_sentence(buf),
+            Self::Mda(s) => s.put_sentence(buf),
+            Self::Mmb(s) => s.put_sentence(buf),
+            Self::Mob(s) => s.put_sentence(buf),
+            Self::Msk(s) => s.put_sentence(buf),
+            Self::Mss(s) => s.put_sentence(buf),
+            Self::Mta(s) => s.put_sentence(buf),
+            Self::Mtw(s) => s.put_sentence(buf),
+            Self::Mwd(s) => s.put_sentence(buf),
+            Self::Mwv(s) => s.put_sentence(buf),
+            Self::Nak(s) => s.put_sentence(buf),
+            Self::Nrm(s) => s.put_sentence(buf),
+            Self::Nrx(s) => s.put_sentence(buf),
+            Self::NrxNx700(s) => s.put_sentence(buf),
+            Self::Nsr(s) => s.put_sentence(buf),
+            Self::Osd(s) => s.put_sentence(buf),
+            Self::Pos(s) => s.put_sentence(buf),
+            Self::Prc(s) => s.put_sentence(buf),
+            Self::R00(s) => s.put_sentence(buf),
+            Self::Rlm(s) => s.put_sentence(buf),
+            Self::Rma(s) => s.put_sentence(buf),
+            Self::Rmb(s) => s.put_sentence(buf),
+            Self::Rmc(s) => s.put_sentence(buf),
+            Self::RmcSentinel(s) => s.put_sentence(buf),
+            Self::Ror(s) => s.put_sentence(buf),
+            Self::Rot(s) => s.put_sentence(buf),
+            Self::Rpm(s) => s.put_sentence(buf),
+            Self::Rrt(s) => s.put_sentence(buf),
+            Self::Rsa(s) => s.put_sentence(buf),
+            Self::Rsd(s) => s.put_sentence(buf),
+            Self::Rte(s) => s.put_sentence(buf),
+            Self::Sfi(s) => s.put_sentence(buf),
+            Self::Sm1(s) => s.put_sentence(buf),
+            Self::Sm2(s) => s.put_sentence(buf),
+            Self::Sm3(s) => s.put_sentence(buf),
+            Self::Sm4(s) => s.put_sentence(buf),
+            Self::Smb(s) => s.put_sentence(buf),
+            Self::Spw(s) => s.put_sentence(buf),
+            Self::Ssd(s) => s.put_sentence(buf),
+            Self::Stn(s) => s.put_sentence(buf),
+            Self::Ths(s) => s.put_sentence(buf),
+            Self::Tlb(s) => s.put_sentence(buf),
+            Self::Tll(s) => s.put_sentence(buf),
+            Self::Tra(s) => s.put_sentence(buf),
+            Self::Trc(s) => s.put_sentence(buf),
+            Self::Trd(s) => s.put_sentence(buf),
+            Self::Trf(s) => s.put_sentence(buf),
+            Self::Trl(s) => s.put_sentence(buf),
+            Self::Ttd(s) => s.put_sentence(buf),
+            Self::Ttm(s) => s.put_sentence(buf),
+            Self::Tut(s) => s.put_sentence(buf),
+            Self::Txt(s) => s.put_sentence(buf),
+            Self::Uid(s) => s.put_sentence(buf),
+            Self::Vbw(s) => s.put_sentence(buf),
+            Self::Vdm(s) => s.put_sentence(buf),
+            Self::Vdo(s) => s.put_sentence(buf),
+            Self::Vdr(s) => s.put_sentence(buf),
+            Self::Ver(s) => s.put_sentence(buf),
+            Self::Vhw(s) => s.put_sentence(buf),
+            Self::Vlw(s) => s.put_sentence(buf),
+            Self::Vpw(s) => s.put_sentence(buf),
+            Self::Vsd(s) => s.put_sentence(buf),
+            Self::Vtg(s) => s.put_sentence(buf),
+            Self::Vwr(s) => s.put_sentence(buf),
+            Self::Vwt(s) => s.put_sentence(buf),
+            Self::Wat(s) => s.put_sentence(buf),
+            Self::Wcv(s) => s.put_sentence(buf),
+            Self::Wnc(s) => s.put_sentence(buf),
+            Self::Wpl(s) => s.put_sentence(buf),
+            Self::Xdr(s) => s.put_sentence(buf),
+            Self::Xte(s) => s.put_sentence(buf),
+            Self::Xtr(s) => s.put_sentence(buf),
+            Self::Zda(s) => s.put_sentence(buf),
+            Self::Zdl(s) => s.put_sentence(buf),
+            Self::Zfo(s) => s.put_sentence(buf),
+            Self::Ztg(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavLog(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalker(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerList(s) => s.put_sentence(buf),
+            #[cfg(feature = "comnav")]
+            Self::ComnavNmeatalkerReset(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Command(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Jamdet(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Nquery(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5NqueryRequest(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5Rquery(s) => s.put_sentence(buf),
+            #[cfg(feature = "geos5")]
+            Self::Geos5RqueryRequest(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair001(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair002(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair003(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair004(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair005(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair006(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair007(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair010(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair050(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair051(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair051Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair058(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair059(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair059Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair062(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair063(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair063Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair066(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair067(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair067Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair070(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair071(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair071Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair072(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair073(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair073Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair074(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair075(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair075Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair080(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair081(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair081Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair086(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair087(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair087Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair098(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair099(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair099Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair100(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair101(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair101Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair104(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair105(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair105Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair154(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair155(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair155Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair158(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair382(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair391(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair400(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair401(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair401Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair410(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair411(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair411Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair420(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair421(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair421Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair432(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair433(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair433Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair434(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair435(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair435Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair436(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair437(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair437Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair490(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair491(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair491Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair511(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair512(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair513(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair6010(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair6011(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair6011Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair650(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair680(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair681(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair681Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair690(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair691(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair691Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair730(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair731(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair731Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair732(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair733(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair733Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair752(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair864(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair865(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair865Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair866(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair867(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair867Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair890(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair891(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair891Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair900(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair901(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair901Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair902(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair903(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair903Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair904(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair905(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair906(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair907(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair908(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair909(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pair909Reply(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pairspf(s) => s.put_sentence(buf),
+            #[cfg(feature = "airoha_pair")]
+            Self::Pairspf5(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashqAtt(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashqElm(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashqNmo(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashqPem(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashqPop(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashqPos(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashqPtt(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashqSat(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashqSba(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::Pashr(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrAtt(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrElm(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrHpr(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrNak(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrNmo(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrPem(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrPop(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrPos(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrPtt(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrSat(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrSba(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashrTtt(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashsNme(s) => s.put_sentence(buf),
+            #[cfg(feature = "ashtech")]
+            Self::PashsNmePeriod(s) => s.put_sentence(buf),
+            #[cfg(feature = "furuno_eride")]
+            Self::Perdcrw(s) => s.put_sentence(buf),
+            #[cfg(feature = "furuno_eride")]
+            Self::Perdcrx(s) => s.put_sentence(buf),
+            #[cfg(feature = "furuno_eride")]
+            Self::Perdcry(s) => s.put_sentence(buf),
+            #[cfg(feature = "furuno_eride")]
+            Self::Perdcrz(s) => s.put_sentence(buf),
+            #[cfg(feature = "furuno")]
+            Self::PfecGpatt(s) => s.put_sentence(buf),
+            #[cfg(feature = "furuno")]
+            Self::PfecGphve(s) => s.put_sentence(buf),
+            #[cfg(feature = "furuno")]
+            Self::PfecGprtc(s) => s.put_sentence(buf),
+            #[cfg(feature = "furuno")]
+            Self::PfecGpwpl(s) => s.put_sentence(buf),
+            #[cfg(feature = "furuno")]
+            Self::PfecGpxfr(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorFix(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorLsq(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorPwr(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorPwrV2(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorPwrV4(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSat(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSatV1(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSatV0(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSio(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSioV0(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorSta(s) => s.put_sentence(buf),
+            #[cfg(feature = "broadcom_glor")]
+            Self::PglorUnc(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmb(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmc(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmc1(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmc1e(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmce(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrme(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmf(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmi(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmie(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmm(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmo(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmt(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmv(s) => s.put_sentence(buf),
+            #[cfg(feature = "garmin_gps18x")]
+            Self::Pgrmz(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pgtop11(s) => s.put_sentence(buf),
+            #[cfg(feature = "magellan_fx324")]
+            Self::Pmgncmd(s) => s.put_sentence(buf),
+            #[cfg(feature = "magellan_fx324")]
+            Self::Pmgnst(s) => s.put_sentence(buf),
+            #[cfg(feature = "magellan_fx324")]
+            Self::Pmgntrk(s) => s.put_sentence(buf),
+            #[cfg(feature = "magellan_fx324")]
+            Self::Pmgnwpl(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk000(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk001(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk001SvMask(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk010(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk011(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk101(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk102(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk103(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk104(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk161(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk183(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk184(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk185(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk220(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk223(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk225(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk251(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk286(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk300(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk301(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk313(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk314(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk314RestoreDefault(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk319(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk353(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk386(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk397(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk400(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk401(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk413(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk414(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk447(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk500(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk501(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk513(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk514(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk527(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk605(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk622(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk660(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk661(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk705(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk869Query(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk869Result(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtk869Set(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtkchn(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::Pmtklog(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::PmtkloxData(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::PmtkloxEnd(s) => s.put_sentence(buf),
+            #[cfg(feature = "mtk_pmtk")]
+            Self::PmtkloxStart(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqgsv(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmantennastatus(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgantdelta(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantdeltaRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantdeltaResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantdeltaResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantdeltaResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgantinf(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantinfRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantinfResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantinfResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgantinfResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgbld(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgbldRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgbldResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgbldResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgbldResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgcnrthd(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnrthdRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnrthdResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnrthdResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnrthdResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgcnst(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnstRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnstResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnstResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgcnstResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgelethd(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgelethdRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgelethdResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgelethdResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgelethdResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgfixrate(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgfixrateRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgfixrateResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgfixrateResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgfixrateResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfggeofence(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeofenceRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeofenceResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeofenceResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeofenceResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfggeosep(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeosepRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeosepResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeosepResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfggeosepResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgmsgrate(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgratePort(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateReadPort(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateResultPort(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgmsgrateResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgnmeadp(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeadpRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeadpResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeadpResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeadpResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgnmeatid(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeatidRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeatidResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeatidResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgnmeatidResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgodo(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgodoRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgodoResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgodoResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgodoResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgpps(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgppsRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgppsResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgppsResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgppsResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgprot(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgprotRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgprotResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgprotResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgprotResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrcvrmode(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrcvrmodeRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrcvrmodeResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrcvrmodeResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrcvrmodeResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrsid(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrsidRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrsidResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrsidResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrsidResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrtcm(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtcmRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtcmResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtcmResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtcmResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrtk(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtkRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtkResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtkResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtkResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgrtksrctype(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtksrctypeRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtksrctypeResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtksrctypeResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgrtksrctypeResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsat(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsatRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsatResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsatResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsatResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsbas(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsbasRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsbasResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsbasResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsbasResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsiggrp(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsiggrpRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsiggrpResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsiggrpResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsiggrpResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsignalRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2Read(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2Result(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2ResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsignal2ResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsignalResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsignalResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsignalResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgsvin(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsvinRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsvinResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsvinResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgsvinResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfguart(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartCurrentBaud(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartCurrentFull(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartPortBaud(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfguartResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcfgwn(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgwnRead(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgwnResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgwnResultAck(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmcfgwnResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmcold(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdebugoff(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmdebugoffResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmdebugoffResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdebugon(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmdebugonResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmdebugonResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmdop(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmeoe(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmepe(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmgeofencestatus(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmgnssstart(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmgnssstartResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmgnssstartResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmgnssstop(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmgnssstopResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmgnssstopResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmhot(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmnav(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmodo(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmpl(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmpvt(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmresetodo(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmresetodoResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmresetodoResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmrestorepar(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmrestoreparResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmrestoreparResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsavepar(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmsaveparResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmsaveparResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsn(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmsnResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmsnResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsrr(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmsvinstatus(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmtar(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmtxt(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmuniqid(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmuniqidResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmuniqidResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmvel(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmver(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmverLegacy(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmverno(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmvernoResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqtmvernoResultError(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqtmwarm(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::Pqverno(s) => s.put_sentence(buf),
+            #[cfg(feature = "quectel_lg290p")]
+            Self::PqvernoResult(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf100(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf101(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf102(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf103(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf103ShortCodes(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf104(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf105(s) => s.put_sentence(buf),
+            #[cfg(feature = "gs501")]
+            Self::Psrf150(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrf151(s) => s.put_sentence(buf),
+            #[cfg(feature = "globalsat")]
+            Self::Psrfepe(s) => s.put_sentence(buf),
+            #[cfg(feature = "septentrio")]
+            Self::PssnHrp(s) => s.put_sentence(buf),
+            #[cfg(feature = "septentrio")]
+            Self::PssnRbd(s) => s.put_sentence(buf),
+            #[cfg(feature = "septentrio")]
+            Self::PssnRbp(s) => s.put_sentence(buf),
+            #[cfg(feature = "septentrio")]
+            Self::PssnRbv(s) => s.put_sentence(buf),
+            #[cfg(feature = "septentrio")]
+            Self::PssnTfm(s) => s.put_sentence(buf),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti030(s) => s.put_sentence(buf),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti032(s) => s.put_sentence(buf),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti033(s) => s.put_sentence(buf),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti035(s) => s.put_sentence(buf),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti036(s) => s.put_sentence(buf),
+            #[cfg(feature = "skytraq_rtk")]
+            Self::Psti20(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmagps(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmalmanac(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclralms(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmclrephs(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcold(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcorr(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmcpu(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmdiff(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmeph(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetpar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetparerror(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetrtctime(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetrtctimeReply(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmgetswver(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmgetswverReply(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmhot(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmkfcov(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmnmeaonoff(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpa(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmpres(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmres(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrestorepar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmrf(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsat(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsavepar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbas(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsbascorr(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmset(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetDop(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetpar(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::PstmsetparDop(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparerror(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmsetparok(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtestrf(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtg(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmtim(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmts(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmver(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmvres(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwaas(s) => s.put_sentence(buf),
+            #[cfg(feature = "teseo")]
+            Self::Pstmwarm(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlAvr(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlBpq(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlEvt(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlGgk(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlGgkSync(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlPjk(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlPjt(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlVgk(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::PtnlVhd(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnldg(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlev(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlid(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlqio(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlqvr(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlrba(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrio(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::PtnlrioInvalid(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrkg(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::PtnlrkgInvalid(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrsv(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlrtp(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlrvr(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::PtnlrvrInvalid(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlrxo(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlsio(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlskg(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_nmea")]
+            Self::Ptnlsm(s) => s.put_sentence(buf),
+            #[cfg(feature = "trimble_copernicus")]
+            Self::Ptnlssv(s) => s.put_sentence(buf),
+            #[cfg(feature = "spectratime_isync")]
+            Self::Ptnta(s) => s.put_sentence(buf),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxConfig(s) => s.put_sentence(buf),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxPosition(s) => s.put_sentence(buf),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxPositionPoll(s) => s.put_sentence(buf),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxRate(s) => s.put_sentence(buf),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxSvstatus(s) => s.put_sentence(buf),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxSvstatusPoll(s) => s.put_sentence(buf),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxTime(s) => s.put_sentence(buf),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxTimePoll(s) => s.put_sentence(buf),
+            #[cfg(feature = "ublox_m8")]
+            Self::PubxUtm(s) => s.put_sentence(buf),
+            Self::Generic(s) => s.put_sentence(buf),
         }
     }
 }
@@ -27568,77 +27566,123 @@ impl<'a> From<PubxUtm<'a>> for Sentence<'a> {
     }
 }
 
+impl<'a> From<Generic<'a>> for Sentence<'a> {
+    fn from(sentence: Generic<'a>) -> Self {
+        Self::Generic(sentence)
+    }
+}
+
 /// Decodes one line (`&str` or bytes; a trailing LF or CR LF is allowed) into the struct of its
 /// layout, or [`Generic`] for a well-formed sentence the spec does not describe. A line that
 /// does not start with `$` or `!` is a text command when its first word is a command word
 /// (ignoring case).
 pub fn parse<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_>> {
-    let line = strip_line_ending(line.as_ref());
-    match FastReader::frame(line) {
-        Some(fields) => read_sentence(fields, line),
-        None => general(line),
+    runtime::parse::<LayoutId>(line.as_ref())
+}
+
+/// [`parse`] with options: lenient decoding and required checksums.
+pub fn parse_with<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
+    runtime::parse_with::<LayoutId>(line.as_ref(), options)
+}
+
+/// A sentence decoded by [`parse_with`], and the fields lenient parsing left empty (with their
+/// text as received, written back by `Display` so that the round trip stays exact).
+pub type Parsed<'a> = runtime::Parsed<'a, Sentence<'a>>;
+
+/// The tools' JSON: `decode`'s line for a sentence or an error (docs/json.md) and, with the `std`
+/// feature, `encode`'s way back from it to the sentence.
+pub mod json {
+    use core::fmt::{self, Write};
+
+    use crate::{runtime, LayoutId, Options};
+
+    #[cfg(feature = "std")]
+    pub use crate::runtime::json::{Value, SKIP_CHECK_DEPTH};
+
+    /// Writes `decode`'s output for one line (without line ending): the sentence or the error as
+    /// JSON.
+    pub fn write_decoded<W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool) -> fmt::Result {
+        runtime::write_decoded::<LayoutId, W>(out, line, values)
+    }
+
+    /// [`write_decoded`] with options (`decode --lenient --require-checksum`).
+    pub fn write_decoded_with<W: Write + ?Sized>(
+        out: &mut W,
+        line: &[u8],
+        values: bool,
+        options: Options,
+    ) -> fmt::Result {
+        runtime::write_decoded_with::<LayoutId, W>(out, line, values, options)
+    }
+
+    /// `decode`'s output for one line (without line ending): the sentence or the error as JSON.
+    #[cfg(feature = "std")]
+    pub fn decode_json(line: &[u8], values: bool) -> String {
+        runtime::decode_json::<LayoutId>(line, values)
+    }
+
+    /// [`decode_json`] with options.
+    #[cfg(feature = "std")]
+    pub fn decode_json_with(line: &[u8], values: bool, options: Options) -> String {
+        runtime::decode_json_with::<LayoutId>(line, values, options)
+    }
+
+    /// A sentence rebuilt from decode's lossless JSON ([`Rebuilt::from_json`]): its address and
+    /// wire fields, ready to parse.
+    #[cfg(feature = "std")]
+    pub type Rebuilt = runtime::Rebuilt<LayoutId>;
+
+    /// Writes `encode`'s output for one parsed line of decode's JSON (`None`: not JSON): the
+    /// sentence, or the error as JSON; no line ending.
+    #[cfg(feature = "std")]
+    pub fn write_encoded<W: Write + ?Sized>(out: &mut W, obj: Option<&Value>) -> fmt::Result {
+        runtime::write_encoded::<LayoutId, W>(out, obj)
+    }
+
+    /// `encode`'s output for one line of decode's JSON: the sentence, or the error as JSON.
+    #[cfg(feature = "std")]
+    pub fn encode_json(line: &[u8]) -> String {
+        runtime::encode_json::<LayoutId>(line)
     }
 }
 
-/// [`parse`] without its fast path: the general path alone, which reads every line and finds
-/// every error. It gives what [`parse`] gives (the crate's tests and fuzz target check it).
+/// The parser's two paths and the writer's byte path on their own, for the tests and fuzz
+/// targets that hold each to the other; not part of the API.
 #[doc(hidden)]
-pub fn parse_general<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_>> {
-    general(strip_line_ending(line.as_ref()))
-}
+pub mod paths {
+    use crate::{runtime, Error, LayoutId, Options, Parsed, Sentence};
 
-/// The fast path of [`parse`] alone: the sentence, or `None` for a line it leaves to the general
-/// path (for tests).
-#[doc(hidden)]
-pub fn parse_fast<L: AsRef<[u8]> + ?Sized>(line: &L) -> Option<Sentence<'_>> {
-    let line = strip_line_ending(line.as_ref());
-    read_sentence(FastReader::frame(line)?, line)
-}
-
-/// What the fast path of [`parse`] gives: the sentence it read or, when it is not sure, what the
-/// general path makes of the line ([`parse`]: the result of [`parse_general`]; [`parse_fast`]:
-/// `None`).
-trait Outcome<'a> {
-    fn read(sentence: Sentence<'a>) -> Self;
-    fn general(line: &'a [u8]) -> Self;
-}
-
-impl<'a> Outcome<'a> for Result<Sentence<'a>, Error<'a>> {
-    #[inline(always)]
-    fn read(sentence: Sentence<'a>) -> Self {
-        Ok(sentence)
+    /// [`parse`](crate::parse) without its fast path: the general path alone, which reads every
+    /// line and finds every error; it gives what `parse` gives.
+    pub fn parse_general<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_>> {
+        runtime::parse_general::<LayoutId>(line.as_ref())
     }
 
-    fn general(line: &'a [u8]) -> Self {
-        general(line)
+    /// The fast path of [`parse`](crate::parse) alone: the sentence, or `None` for a line it
+    /// leaves to the general path.
+    pub fn parse_fast<L: AsRef<[u8]> + ?Sized>(line: &L) -> Option<Sentence<'_>> {
+        runtime::parse_fast::<LayoutId>(line.as_ref())
+    }
+
+    /// [`parse_with`](crate::parse_with) without its fast path.
+    pub fn parse_with_general<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
+        runtime::parse_with_general::<LayoutId>(line.as_ref(), options)
+    }
+
+    /// The byte writer of [`Sentence::serialize_into`] alone, without its `fmt` fallback: `None`
+    /// for a text that is not all ASCII, a text command, or a buffer too small.
+    pub fn serialize_fast(sentence: &Sentence<'_>, buf: &mut [u8]) -> Option<usize> {
+        runtime::Decoded::put_sentence(sentence, buf)
     }
 }
 
-impl<'a> Outcome<'a> for Option<Sentence<'a>> {
-    #[inline(always)]
-    fn read(sentence: Sentence<'a>) -> Self {
-        Some(sentence)
-    }
-
-    fn general(_: &'a [u8]) -> Self {
-        None
-    }
-}
-
-/// The fast path of [`parse`]: a `$` sentence in its usual frame (see [`FastReader::frame`]),
-/// read by the fast reader of the first layout of its address ([`sentence_layouts`], matched
-/// here once more so that the reader is picked in one step) whose field count fits it (the
-/// general path could read it with no other before it either); when that reader is not sure,
-/// or none fits, the general path decides. What it reads has an upper-case checksum and no field
-/// at fault, so [`parse_with`]'s options would not change it.
-///
-/// Each step returns what the next one returns, so that the sentence read is copied once, into
-/// the caller's result: a copy of what was just written waits for those writes to land.
-fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> O {
+/// The fast path of [`parse`] (see [`runtime::Layouts::read_sentence`]): the addresses of
+/// [`sentence_layouts`], matched here once more so that the reader is picked in one step.
+fn read_sentence<'a, O: Outcome<'a, LayoutId>>(fields: FastReader<'a>, line: &'a [u8]) -> O {
     match fields.address() {
         &[first, _, a, b, c] if first != b'P' => match fields.address() {
             #[cfg(feature = "geos5")]
-            b"GPSGG" => read_layout::<Geos5Jamdet, O>(
+            b"GPSGG" => read_layout::<LayoutId, Geos5Jamdet, O>(
                 fields,
                 line,
                 &[
@@ -27652,175 +27696,175 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             _ => read_standard([a, b, c], fields, line),
         },
         #[cfg(feature = "airoha_pair")]
-        b"PAIR001" => read_layout::<Pair001, O>(fields, line, &[]),
+        b"PAIR001" => read_layout::<LayoutId, Pair001, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR002" => read_layout::<Pair002, O>(fields, line, &[]),
+        b"PAIR002" => read_layout::<LayoutId, Pair002, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR003" => read_layout::<Pair003, O>(fields, line, &[]),
+        b"PAIR003" => read_layout::<LayoutId, Pair003, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR004" => read_layout::<Pair004, O>(fields, line, &[]),
+        b"PAIR004" => read_layout::<LayoutId, Pair004, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR005" => read_layout::<Pair005, O>(fields, line, &[]),
+        b"PAIR005" => read_layout::<LayoutId, Pair005, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR006" => read_layout::<Pair006, O>(fields, line, &[]),
+        b"PAIR006" => read_layout::<LayoutId, Pair006, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR007" => read_layout::<Pair007, O>(fields, line, &[]),
+        b"PAIR007" => read_layout::<LayoutId, Pair007, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR010" => read_layout::<Pair010, O>(fields, line, &[]),
+        b"PAIR010" => read_layout::<LayoutId, Pair010, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR050" => read_layout::<Pair050, O>(fields, line, &[]),
+        b"PAIR050" => read_layout::<LayoutId, Pair050, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR051" => read_layout::<Pair051, O>(fields, line, &[LayoutId::Pair051Reply]),
+        b"PAIR051" => read_layout::<LayoutId, Pair051, O>(fields, line, &[LayoutId::Pair051Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR058" => read_layout::<Pair058, O>(fields, line, &[]),
+        b"PAIR058" => read_layout::<LayoutId, Pair058, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR059" => read_layout::<Pair059, O>(fields, line, &[LayoutId::Pair059Reply]),
+        b"PAIR059" => read_layout::<LayoutId, Pair059, O>(fields, line, &[LayoutId::Pair059Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR062" => read_layout::<Pair062, O>(fields, line, &[]),
+        b"PAIR062" => read_layout::<LayoutId, Pair062, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR063" => read_layout::<Pair063, O>(fields, line, &[LayoutId::Pair063Reply]),
+        b"PAIR063" => read_layout::<LayoutId, Pair063, O>(fields, line, &[LayoutId::Pair063Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR066" => read_layout::<Pair066, O>(fields, line, &[]),
+        b"PAIR066" => read_layout::<LayoutId, Pair066, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR067" => read_layout::<Pair067, O>(fields, line, &[LayoutId::Pair067Reply]),
+        b"PAIR067" => read_layout::<LayoutId, Pair067, O>(fields, line, &[LayoutId::Pair067Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR070" => read_layout::<Pair070, O>(fields, line, &[]),
+        b"PAIR070" => read_layout::<LayoutId, Pair070, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR071" => read_layout::<Pair071, O>(fields, line, &[LayoutId::Pair071Reply]),
+        b"PAIR071" => read_layout::<LayoutId, Pair071, O>(fields, line, &[LayoutId::Pair071Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR072" => read_layout::<Pair072, O>(fields, line, &[]),
+        b"PAIR072" => read_layout::<LayoutId, Pair072, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR073" => read_layout::<Pair073, O>(fields, line, &[LayoutId::Pair073Reply]),
+        b"PAIR073" => read_layout::<LayoutId, Pair073, O>(fields, line, &[LayoutId::Pair073Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR074" => read_layout::<Pair074, O>(fields, line, &[]),
+        b"PAIR074" => read_layout::<LayoutId, Pair074, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR075" => read_layout::<Pair075, O>(fields, line, &[LayoutId::Pair075Reply]),
+        b"PAIR075" => read_layout::<LayoutId, Pair075, O>(fields, line, &[LayoutId::Pair075Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR080" => read_layout::<Pair080, O>(fields, line, &[]),
+        b"PAIR080" => read_layout::<LayoutId, Pair080, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR081" => read_layout::<Pair081, O>(fields, line, &[LayoutId::Pair081Reply]),
+        b"PAIR081" => read_layout::<LayoutId, Pair081, O>(fields, line, &[LayoutId::Pair081Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR086" => read_layout::<Pair086, O>(fields, line, &[]),
+        b"PAIR086" => read_layout::<LayoutId, Pair086, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR087" => read_layout::<Pair087, O>(fields, line, &[LayoutId::Pair087Reply]),
+        b"PAIR087" => read_layout::<LayoutId, Pair087, O>(fields, line, &[LayoutId::Pair087Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR098" => read_layout::<Pair098, O>(fields, line, &[]),
+        b"PAIR098" => read_layout::<LayoutId, Pair098, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR099" => read_layout::<Pair099, O>(fields, line, &[LayoutId::Pair099Reply]),
+        b"PAIR099" => read_layout::<LayoutId, Pair099, O>(fields, line, &[LayoutId::Pair099Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR100" => read_layout::<Pair100, O>(fields, line, &[]),
+        b"PAIR100" => read_layout::<LayoutId, Pair100, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR101" => read_layout::<Pair101, O>(fields, line, &[LayoutId::Pair101Reply]),
+        b"PAIR101" => read_layout::<LayoutId, Pair101, O>(fields, line, &[LayoutId::Pair101Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR104" => read_layout::<Pair104, O>(fields, line, &[]),
+        b"PAIR104" => read_layout::<LayoutId, Pair104, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR105" => read_layout::<Pair105, O>(fields, line, &[LayoutId::Pair105Reply]),
+        b"PAIR105" => read_layout::<LayoutId, Pair105, O>(fields, line, &[LayoutId::Pair105Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR154" => read_layout::<Pair154, O>(fields, line, &[]),
+        b"PAIR154" => read_layout::<LayoutId, Pair154, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR155" => read_layout::<Pair155, O>(fields, line, &[LayoutId::Pair155Reply]),
+        b"PAIR155" => read_layout::<LayoutId, Pair155, O>(fields, line, &[LayoutId::Pair155Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR158" => read_layout::<Pair158, O>(fields, line, &[]),
+        b"PAIR158" => read_layout::<LayoutId, Pair158, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR382" => read_layout::<Pair382, O>(fields, line, &[]),
+        b"PAIR382" => read_layout::<LayoutId, Pair382, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR391" => read_layout::<Pair391, O>(fields, line, &[]),
+        b"PAIR391" => read_layout::<LayoutId, Pair391, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR400" => read_layout::<Pair400, O>(fields, line, &[]),
+        b"PAIR400" => read_layout::<LayoutId, Pair400, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR401" => read_layout::<Pair401, O>(fields, line, &[LayoutId::Pair401Reply]),
+        b"PAIR401" => read_layout::<LayoutId, Pair401, O>(fields, line, &[LayoutId::Pair401Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR410" => read_layout::<Pair410, O>(fields, line, &[]),
+        b"PAIR410" => read_layout::<LayoutId, Pair410, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR411" => read_layout::<Pair411, O>(fields, line, &[LayoutId::Pair411Reply]),
+        b"PAIR411" => read_layout::<LayoutId, Pair411, O>(fields, line, &[LayoutId::Pair411Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR420" => read_layout::<Pair420, O>(fields, line, &[]),
+        b"PAIR420" => read_layout::<LayoutId, Pair420, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR421" => read_layout::<Pair421, O>(fields, line, &[LayoutId::Pair421Reply]),
+        b"PAIR421" => read_layout::<LayoutId, Pair421, O>(fields, line, &[LayoutId::Pair421Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR432" => read_layout::<Pair432, O>(fields, line, &[]),
+        b"PAIR432" => read_layout::<LayoutId, Pair432, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR433" => read_layout::<Pair433, O>(fields, line, &[LayoutId::Pair433Reply]),
+        b"PAIR433" => read_layout::<LayoutId, Pair433, O>(fields, line, &[LayoutId::Pair433Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR434" => read_layout::<Pair434, O>(fields, line, &[]),
+        b"PAIR434" => read_layout::<LayoutId, Pair434, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR435" => read_layout::<Pair435, O>(fields, line, &[LayoutId::Pair435Reply]),
+        b"PAIR435" => read_layout::<LayoutId, Pair435, O>(fields, line, &[LayoutId::Pair435Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR436" => read_layout::<Pair436, O>(fields, line, &[]),
+        b"PAIR436" => read_layout::<LayoutId, Pair436, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR437" => read_layout::<Pair437, O>(fields, line, &[LayoutId::Pair437Reply]),
+        b"PAIR437" => read_layout::<LayoutId, Pair437, O>(fields, line, &[LayoutId::Pair437Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR490" => read_layout::<Pair490, O>(fields, line, &[]),
+        b"PAIR490" => read_layout::<LayoutId, Pair490, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR491" => read_layout::<Pair491, O>(fields, line, &[LayoutId::Pair491Reply]),
+        b"PAIR491" => read_layout::<LayoutId, Pair491, O>(fields, line, &[LayoutId::Pair491Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR511" => read_layout::<Pair511, O>(fields, line, &[]),
+        b"PAIR511" => read_layout::<LayoutId, Pair511, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR512" => read_layout::<Pair512, O>(fields, line, &[]),
+        b"PAIR512" => read_layout::<LayoutId, Pair512, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR513" => read_layout::<Pair513, O>(fields, line, &[]),
+        b"PAIR513" => read_layout::<LayoutId, Pair513, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR6010" => read_layout::<Pair6010, O>(fields, line, &[]),
+        b"PAIR6010" => read_layout::<LayoutId, Pair6010, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR6011" => read_layout::<Pair6011, O>(fields, line, &[LayoutId::Pair6011Reply]),
+        b"PAIR6011" => read_layout::<LayoutId, Pair6011, O>(fields, line, &[LayoutId::Pair6011Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR650" => read_layout::<Pair650, O>(fields, line, &[]),
+        b"PAIR650" => read_layout::<LayoutId, Pair650, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR680" => read_layout::<Pair680, O>(fields, line, &[]),
+        b"PAIR680" => read_layout::<LayoutId, Pair680, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR681" => read_layout::<Pair681, O>(fields, line, &[LayoutId::Pair681Reply]),
+        b"PAIR681" => read_layout::<LayoutId, Pair681, O>(fields, line, &[LayoutId::Pair681Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR690" => read_layout::<Pair690, O>(fields, line, &[]),
+        b"PAIR690" => read_layout::<LayoutId, Pair690, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR691" => read_layout::<Pair691, O>(fields, line, &[LayoutId::Pair691Reply]),
+        b"PAIR691" => read_layout::<LayoutId, Pair691, O>(fields, line, &[LayoutId::Pair691Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR730" => read_layout::<Pair730, O>(fields, line, &[]),
+        b"PAIR730" => read_layout::<LayoutId, Pair730, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR731" => read_layout::<Pair731, O>(fields, line, &[LayoutId::Pair731Reply]),
+        b"PAIR731" => read_layout::<LayoutId, Pair731, O>(fields, line, &[LayoutId::Pair731Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR732" => read_layout::<Pair732, O>(fields, line, &[]),
+        b"PAIR732" => read_layout::<LayoutId, Pair732, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR733" => read_layout::<Pair733, O>(fields, line, &[LayoutId::Pair733Reply]),
+        b"PAIR733" => read_layout::<LayoutId, Pair733, O>(fields, line, &[LayoutId::Pair733Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR752" => read_layout::<Pair752, O>(fields, line, &[]),
+        b"PAIR752" => read_layout::<LayoutId, Pair752, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR864" => read_layout::<Pair864, O>(fields, line, &[]),
+        b"PAIR864" => read_layout::<LayoutId, Pair864, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR865" => read_layout::<Pair865, O>(fields, line, &[LayoutId::Pair865Reply]),
+        b"PAIR865" => read_layout::<LayoutId, Pair865, O>(fields, line, &[LayoutId::Pair865Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR866" => read_layout::<Pair866, O>(fields, line, &[]),
+        b"PAIR866" => read_layout::<LayoutId, Pair866, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR867" => read_layout::<Pair867, O>(fields, line, &[LayoutId::Pair867Reply]),
+        b"PAIR867" => read_layout::<LayoutId, Pair867, O>(fields, line, &[LayoutId::Pair867Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR890" => read_layout::<Pair890, O>(fields, line, &[]),
+        b"PAIR890" => read_layout::<LayoutId, Pair890, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR891" => read_layout::<Pair891, O>(fields, line, &[LayoutId::Pair891Reply]),
+        b"PAIR891" => read_layout::<LayoutId, Pair891, O>(fields, line, &[LayoutId::Pair891Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR900" => read_layout::<Pair900, O>(fields, line, &[]),
+        b"PAIR900" => read_layout::<LayoutId, Pair900, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR901" => read_layout::<Pair901, O>(fields, line, &[LayoutId::Pair901Reply]),
+        b"PAIR901" => read_layout::<LayoutId, Pair901, O>(fields, line, &[LayoutId::Pair901Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR902" => read_layout::<Pair902, O>(fields, line, &[]),
+        b"PAIR902" => read_layout::<LayoutId, Pair902, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR903" => read_layout::<Pair903, O>(fields, line, &[LayoutId::Pair903Reply]),
+        b"PAIR903" => read_layout::<LayoutId, Pair903, O>(fields, line, &[LayoutId::Pair903Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR904" => read_layout::<Pair904, O>(fields, line, &[]),
+        b"PAIR904" => read_layout::<LayoutId, Pair904, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR905" => read_layout::<Pair905, O>(fields, line, &[]),
+        b"PAIR905" => read_layout::<LayoutId, Pair905, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR906" => read_layout::<Pair906, O>(fields, line, &[]),
+        b"PAIR906" => read_layout::<LayoutId, Pair906, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR907" => read_layout::<Pair907, O>(fields, line, &[]),
+        b"PAIR907" => read_layout::<LayoutId, Pair907, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR908" => read_layout::<Pair908, O>(fields, line, &[]),
+        b"PAIR908" => read_layout::<LayoutId, Pair908, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIR909" => read_layout::<Pair909, O>(fields, line, &[LayoutId::Pair909Reply]),
+        b"PAIR909" => read_layout::<LayoutId, Pair909, O>(fields, line, &[LayoutId::Pair909Reply]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIRSPF" => read_layout::<Pairspf, O>(fields, line, &[]),
+        b"PAIRSPF" => read_layout::<LayoutId, Pairspf, O>(fields, line, &[]),
         #[cfg(feature = "airoha_pair")]
-        b"PAIRSPF5" => read_layout::<Pairspf5, O>(fields, line, &[]),
+        b"PAIRSPF5" => read_layout::<LayoutId, Pairspf5, O>(fields, line, &[]),
         #[cfg(feature = "ashtech")]
-        b"PASHQ" => read_layout::<PashqAtt, O>(
+        b"PASHQ" => read_layout::<LayoutId, PashqAtt, O>(
             fields,
             line,
             &[
@@ -27835,7 +27879,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "ashtech")]
-        b"PASHR" => read_layout::<PashrAck, O>(
+        b"PASHR" => read_layout::<LayoutId, PashrAck, O>(
             fields,
             line,
             &[
@@ -27855,23 +27899,23 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "ashtech")]
-        b"PASHS" => read_layout::<PashsNme, O>(fields, line, &[LayoutId::PashsNmePeriod]),
+        b"PASHS" => read_layout::<LayoutId, PashsNme, O>(fields, line, &[LayoutId::PashsNmePeriod]),
         #[cfg(feature = "furuno_eride")]
-        b"PERDCRW" => read_layout::<Perdcrw, O>(fields, line, &[]),
+        b"PERDCRW" => read_layout::<LayoutId, Perdcrw, O>(fields, line, &[]),
         #[cfg(feature = "furuno_eride")]
-        b"PERDCRX" => read_layout::<Perdcrx, O>(fields, line, &[]),
+        b"PERDCRX" => read_layout::<LayoutId, Perdcrx, O>(fields, line, &[]),
         #[cfg(feature = "furuno_eride")]
-        b"PERDCRY" => read_layout::<Perdcry, O>(fields, line, &[]),
+        b"PERDCRY" => read_layout::<LayoutId, Perdcry, O>(fields, line, &[]),
         #[cfg(feature = "furuno_eride")]
-        b"PERDCRZ" => read_layout::<Perdcrz, O>(fields, line, &[]),
+        b"PERDCRZ" => read_layout::<LayoutId, Perdcrz, O>(fields, line, &[]),
         #[cfg(feature = "furuno")]
-        b"PFEC" => read_layout::<PfecGpatt, O>(
+        b"PFEC" => read_layout::<LayoutId, PfecGpatt, O>(
             fields,
             line,
             &[LayoutId::PfecGphve, LayoutId::PfecGprtc, LayoutId::PfecGpwpl, LayoutId::PfecGpxfr],
         ),
         #[cfg(feature = "broadcom_glor")]
-        b"PGLOR" => read_layout::<PglorFix, O>(
+        b"PGLOR" => read_layout::<LayoutId, PglorFix, O>(
             fields,
             line,
             &[
@@ -27889,137 +27933,141 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMB" => read_layout::<Pgrmb, O>(fields, line, &[]),
+        b"PGRMB" => read_layout::<LayoutId, Pgrmb, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMC" => read_layout::<Pgrmc, O>(fields, line, &[]),
+        b"PGRMC" => read_layout::<LayoutId, Pgrmc, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMC1" => read_layout::<Pgrmc1, O>(fields, line, &[]),
+        b"PGRMC1" => read_layout::<LayoutId, Pgrmc1, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMC1E" => read_layout::<Pgrmc1e, O>(fields, line, &[]),
+        b"PGRMC1E" => read_layout::<LayoutId, Pgrmc1e, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMCE" => read_layout::<Pgrmce, O>(fields, line, &[]),
+        b"PGRMCE" => read_layout::<LayoutId, Pgrmce, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRME" => read_layout::<Pgrme, O>(fields, line, &[]),
+        b"PGRME" => read_layout::<LayoutId, Pgrme, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMF" => read_layout::<Pgrmf, O>(fields, line, &[]),
+        b"PGRMF" => read_layout::<LayoutId, Pgrmf, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMI" => read_layout::<Pgrmi, O>(fields, line, &[]),
+        b"PGRMI" => read_layout::<LayoutId, Pgrmi, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMIE" => read_layout::<Pgrmie, O>(fields, line, &[]),
+        b"PGRMIE" => read_layout::<LayoutId, Pgrmie, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMM" => read_layout::<Pgrmm, O>(fields, line, &[]),
+        b"PGRMM" => read_layout::<LayoutId, Pgrmm, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMO" => read_layout::<Pgrmo, O>(fields, line, &[]),
+        b"PGRMO" => read_layout::<LayoutId, Pgrmo, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMT" => read_layout::<Pgrmt, O>(fields, line, &[]),
+        b"PGRMT" => read_layout::<LayoutId, Pgrmt, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMV" => read_layout::<Pgrmv, O>(fields, line, &[]),
+        b"PGRMV" => read_layout::<LayoutId, Pgrmv, O>(fields, line, &[]),
         #[cfg(feature = "garmin_gps18x")]
-        b"PGRMZ" => read_layout::<Pgrmz, O>(fields, line, &[]),
+        b"PGRMZ" => read_layout::<LayoutId, Pgrmz, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PGTOP" => read_layout::<Pgtop11, O>(fields, line, &[]),
+        b"PGTOP" => read_layout::<LayoutId, Pgtop11, O>(fields, line, &[]),
         #[cfg(feature = "magellan_fx324")]
-        b"PMGNCMD" => read_layout::<Pmgncmd, O>(fields, line, &[]),
+        b"PMGNCMD" => read_layout::<LayoutId, Pmgncmd, O>(fields, line, &[]),
         #[cfg(feature = "magellan_fx324")]
-        b"PMGNST" => read_layout::<Pmgnst, O>(fields, line, &[]),
+        b"PMGNST" => read_layout::<LayoutId, Pmgnst, O>(fields, line, &[]),
         #[cfg(feature = "magellan_fx324")]
-        b"PMGNTRK" => read_layout::<Pmgntrk, O>(fields, line, &[]),
+        b"PMGNTRK" => read_layout::<LayoutId, Pmgntrk, O>(fields, line, &[]),
         #[cfg(feature = "magellan_fx324")]
-        b"PMGNWPL" => read_layout::<Pmgnwpl, O>(fields, line, &[]),
+        b"PMGNWPL" => read_layout::<LayoutId, Pmgnwpl, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK000" => read_layout::<Pmtk000, O>(fields, line, &[]),
+        b"PMTK000" => read_layout::<LayoutId, Pmtk000, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK001" => read_layout::<Pmtk001, O>(fields, line, &[LayoutId::Pmtk001SvMask]),
+        b"PMTK001" => read_layout::<LayoutId, Pmtk001, O>(fields, line, &[LayoutId::Pmtk001SvMask]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK010" => read_layout::<Pmtk010, O>(fields, line, &[]),
+        b"PMTK010" => read_layout::<LayoutId, Pmtk010, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK011" => read_layout::<Pmtk011, O>(fields, line, &[]),
+        b"PMTK011" => read_layout::<LayoutId, Pmtk011, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK101" => read_layout::<Pmtk101, O>(fields, line, &[]),
+        b"PMTK101" => read_layout::<LayoutId, Pmtk101, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK102" => read_layout::<Pmtk102, O>(fields, line, &[]),
+        b"PMTK102" => read_layout::<LayoutId, Pmtk102, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK103" => read_layout::<Pmtk103, O>(fields, line, &[]),
+        b"PMTK103" => read_layout::<LayoutId, Pmtk103, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK104" => read_layout::<Pmtk104, O>(fields, line, &[]),
+        b"PMTK104" => read_layout::<LayoutId, Pmtk104, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK161" => read_layout::<Pmtk161, O>(fields, line, &[]),
+        b"PMTK161" => read_layout::<LayoutId, Pmtk161, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK183" => read_layout::<Pmtk183, O>(fields, line, &[]),
+        b"PMTK183" => read_layout::<LayoutId, Pmtk183, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK184" => read_layout::<Pmtk184, O>(fields, line, &[]),
+        b"PMTK184" => read_layout::<LayoutId, Pmtk184, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK185" => read_layout::<Pmtk185, O>(fields, line, &[]),
+        b"PMTK185" => read_layout::<LayoutId, Pmtk185, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK220" => read_layout::<Pmtk220, O>(fields, line, &[]),
+        b"PMTK220" => read_layout::<LayoutId, Pmtk220, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK223" => read_layout::<Pmtk223, O>(fields, line, &[]),
+        b"PMTK223" => read_layout::<LayoutId, Pmtk223, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK225" => read_layout::<Pmtk225, O>(fields, line, &[]),
+        b"PMTK225" => read_layout::<LayoutId, Pmtk225, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK251" => read_layout::<Pmtk251, O>(fields, line, &[]),
+        b"PMTK251" => read_layout::<LayoutId, Pmtk251, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK286" => read_layout::<Pmtk286, O>(fields, line, &[]),
+        b"PMTK286" => read_layout::<LayoutId, Pmtk286, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK300" => read_layout::<Pmtk300, O>(fields, line, &[]),
+        b"PMTK300" => read_layout::<LayoutId, Pmtk300, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK301" => read_layout::<Pmtk301, O>(fields, line, &[]),
+        b"PMTK301" => read_layout::<LayoutId, Pmtk301, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK313" => read_layout::<Pmtk313, O>(fields, line, &[]),
+        b"PMTK313" => read_layout::<LayoutId, Pmtk313, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK314" => read_layout::<Pmtk314RestoreDefault, O>(fields, line, &[LayoutId::Pmtk314]),
+        b"PMTK314" => read_layout::<LayoutId, Pmtk314RestoreDefault, O>(fields, line, &[LayoutId::Pmtk314]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK319" => read_layout::<Pmtk319, O>(fields, line, &[]),
+        b"PMTK319" => read_layout::<LayoutId, Pmtk319, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK353" => read_layout::<Pmtk353, O>(fields, line, &[]),
+        b"PMTK353" => read_layout::<LayoutId, Pmtk353, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK386" => read_layout::<Pmtk386, O>(fields, line, &[]),
+        b"PMTK386" => read_layout::<LayoutId, Pmtk386, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK397" => read_layout::<Pmtk397, O>(fields, line, &[]),
+        b"PMTK397" => read_layout::<LayoutId, Pmtk397, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK400" => read_layout::<Pmtk400, O>(fields, line, &[]),
+        b"PMTK400" => read_layout::<LayoutId, Pmtk400, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK401" => read_layout::<Pmtk401, O>(fields, line, &[]),
+        b"PMTK401" => read_layout::<LayoutId, Pmtk401, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK413" => read_layout::<Pmtk413, O>(fields, line, &[]),
+        b"PMTK413" => read_layout::<LayoutId, Pmtk413, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK414" => read_layout::<Pmtk414, O>(fields, line, &[]),
+        b"PMTK414" => read_layout::<LayoutId, Pmtk414, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK447" => read_layout::<Pmtk447, O>(fields, line, &[]),
+        b"PMTK447" => read_layout::<LayoutId, Pmtk447, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK500" => read_layout::<Pmtk500, O>(fields, line, &[]),
+        b"PMTK500" => read_layout::<LayoutId, Pmtk500, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK501" => read_layout::<Pmtk501, O>(fields, line, &[]),
+        b"PMTK501" => read_layout::<LayoutId, Pmtk501, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK513" => read_layout::<Pmtk513, O>(fields, line, &[]),
+        b"PMTK513" => read_layout::<LayoutId, Pmtk513, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK514" => read_layout::<Pmtk514, O>(fields, line, &[]),
+        b"PMTK514" => read_layout::<LayoutId, Pmtk514, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK527" => read_layout::<Pmtk527, O>(fields, line, &[]),
+        b"PMTK527" => read_layout::<LayoutId, Pmtk527, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK605" => read_layout::<Pmtk605, O>(fields, line, &[]),
+        b"PMTK605" => read_layout::<LayoutId, Pmtk605, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK622" => read_layout::<Pmtk622, O>(fields, line, &[]),
+        b"PMTK622" => read_layout::<LayoutId, Pmtk622, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK660" => read_layout::<Pmtk660, O>(fields, line, &[]),
+        b"PMTK660" => read_layout::<LayoutId, Pmtk660, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK661" => read_layout::<Pmtk661, O>(fields, line, &[]),
+        b"PMTK661" => read_layout::<LayoutId, Pmtk661, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK705" => read_layout::<Pmtk705, O>(fields, line, &[]),
+        b"PMTK705" => read_layout::<LayoutId, Pmtk705, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTK869" => read_layout::<Pmtk869Query, O>(fields, line, &[LayoutId::Pmtk869Result, LayoutId::Pmtk869Set]),
+        b"PMTK869" => {
+            read_layout::<LayoutId, Pmtk869Query, O>(fields, line, &[LayoutId::Pmtk869Result, LayoutId::Pmtk869Set])
+        }
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTKCHN" => read_layout::<Pmtkchn, O>(fields, line, &[]),
+        b"PMTKCHN" => read_layout::<LayoutId, Pmtkchn, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTKLOG" => read_layout::<Pmtklog, O>(fields, line, &[]),
+        b"PMTKLOG" => read_layout::<LayoutId, Pmtklog, O>(fields, line, &[]),
         #[cfg(feature = "mtk_pmtk")]
-        b"PMTKLOX" => read_layout::<PmtkloxData, O>(fields, line, &[LayoutId::PmtkloxEnd, LayoutId::PmtkloxStart]),
+        b"PMTKLOX" => {
+            read_layout::<LayoutId, PmtkloxData, O>(fields, line, &[LayoutId::PmtkloxEnd, LayoutId::PmtkloxStart])
+        }
         #[cfg(feature = "quectel_lg290p")]
-        b"PQGSV" => read_layout::<Pqgsv, O>(fields, line, &[]),
+        b"PQGSV" => read_layout::<LayoutId, Pqgsv, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMANTENNASTATUS" => read_layout::<Pqtmantennastatus, O>(fields, line, &[]),
+        b"PQTMANTENNASTATUS" => read_layout::<LayoutId, Pqtmantennastatus, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGANTDELTA" => read_layout::<Pqtmcfgantdelta, O>(
+        b"PQTMCFGANTDELTA" => read_layout::<LayoutId, Pqtmcfgantdelta, O>(
             fields,
             line,
             &[
@@ -28030,7 +28078,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGANTINF" => read_layout::<Pqtmcfgantinf, O>(
+        b"PQTMCFGANTINF" => read_layout::<LayoutId, Pqtmcfgantinf, O>(
             fields,
             line,
             &[
@@ -28041,7 +28089,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGBLD" => read_layout::<Pqtmcfgbld, O>(
+        b"PQTMCFGBLD" => read_layout::<LayoutId, Pqtmcfgbld, O>(
             fields,
             line,
             &[
@@ -28052,7 +28100,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGCNRTHD" => read_layout::<Pqtmcfgcnrthd, O>(
+        b"PQTMCFGCNRTHD" => read_layout::<LayoutId, Pqtmcfgcnrthd, O>(
             fields,
             line,
             &[
@@ -28063,7 +28111,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGCNST" => read_layout::<Pqtmcfgcnst, O>(
+        b"PQTMCFGCNST" => read_layout::<LayoutId, Pqtmcfgcnst, O>(
             fields,
             line,
             &[
@@ -28074,7 +28122,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGELETHD" => read_layout::<Pqtmcfgelethd, O>(
+        b"PQTMCFGELETHD" => read_layout::<LayoutId, Pqtmcfgelethd, O>(
             fields,
             line,
             &[
@@ -28085,7 +28133,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGFIXRATE" => read_layout::<Pqtmcfgfixrate, O>(
+        b"PQTMCFGFIXRATE" => read_layout::<LayoutId, Pqtmcfgfixrate, O>(
             fields,
             line,
             &[
@@ -28096,7 +28144,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGGEOFENCE" => read_layout::<Pqtmcfggeofence, O>(
+        b"PQTMCFGGEOFENCE" => read_layout::<LayoutId, Pqtmcfggeofence, O>(
             fields,
             line,
             &[
@@ -28107,7 +28155,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGGEOSEP" => read_layout::<Pqtmcfggeosep, O>(
+        b"PQTMCFGGEOSEP" => read_layout::<LayoutId, Pqtmcfggeosep, O>(
             fields,
             line,
             &[
@@ -28118,7 +28166,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGMSGRATE" => read_layout::<Pqtmcfgmsgrate, O>(
+        b"PQTMCFGMSGRATE" => read_layout::<LayoutId, Pqtmcfgmsgrate, O>(
             fields,
             line,
             &[
@@ -28132,7 +28180,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGNMEADP" => read_layout::<Pqtmcfgnmeadp, O>(
+        b"PQTMCFGNMEADP" => read_layout::<LayoutId, Pqtmcfgnmeadp, O>(
             fields,
             line,
             &[
@@ -28143,7 +28191,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGNMEATID" => read_layout::<Pqtmcfgnmeatid, O>(
+        b"PQTMCFGNMEATID" => read_layout::<LayoutId, Pqtmcfgnmeatid, O>(
             fields,
             line,
             &[
@@ -28154,7 +28202,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGODO" => read_layout::<Pqtmcfgodo, O>(
+        b"PQTMCFGODO" => read_layout::<LayoutId, Pqtmcfgodo, O>(
             fields,
             line,
             &[
@@ -28165,7 +28213,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGPPS" => read_layout::<Pqtmcfgpps, O>(
+        b"PQTMCFGPPS" => read_layout::<LayoutId, Pqtmcfgpps, O>(
             fields,
             line,
             &[
@@ -28176,7 +28224,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGPROT" => read_layout::<Pqtmcfgprot, O>(
+        b"PQTMCFGPROT" => read_layout::<LayoutId, Pqtmcfgprot, O>(
             fields,
             line,
             &[
@@ -28187,7 +28235,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGRCVRMODE" => read_layout::<Pqtmcfgrcvrmode, O>(
+        b"PQTMCFGRCVRMODE" => read_layout::<LayoutId, Pqtmcfgrcvrmode, O>(
             fields,
             line,
             &[
@@ -28198,7 +28246,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGRSID" => read_layout::<Pqtmcfgrsid, O>(
+        b"PQTMCFGRSID" => read_layout::<LayoutId, Pqtmcfgrsid, O>(
             fields,
             line,
             &[
@@ -28209,7 +28257,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGRTCM" => read_layout::<Pqtmcfgrtcm, O>(
+        b"PQTMCFGRTCM" => read_layout::<LayoutId, Pqtmcfgrtcm, O>(
             fields,
             line,
             &[
@@ -28220,7 +28268,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGRTK" => read_layout::<Pqtmcfgrtk, O>(
+        b"PQTMCFGRTK" => read_layout::<LayoutId, Pqtmcfgrtk, O>(
             fields,
             line,
             &[
@@ -28231,7 +28279,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGRTKSRCTYPE" => read_layout::<Pqtmcfgrtksrctype, O>(
+        b"PQTMCFGRTKSRCTYPE" => read_layout::<LayoutId, Pqtmcfgrtksrctype, O>(
             fields,
             line,
             &[
@@ -28242,7 +28290,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGSAT" => read_layout::<Pqtmcfgsat, O>(
+        b"PQTMCFGSAT" => read_layout::<LayoutId, Pqtmcfgsat, O>(
             fields,
             line,
             &[
@@ -28253,7 +28301,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGSBAS" => read_layout::<Pqtmcfgsbas, O>(
+        b"PQTMCFGSBAS" => read_layout::<LayoutId, Pqtmcfgsbas, O>(
             fields,
             line,
             &[
@@ -28264,7 +28312,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGSIGGRP" => read_layout::<Pqtmcfgsiggrp, O>(
+        b"PQTMCFGSIGGRP" => read_layout::<LayoutId, Pqtmcfgsiggrp, O>(
             fields,
             line,
             &[
@@ -28275,7 +28323,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGSIGNAL" => read_layout::<Pqtmcfgsignal, O>(
+        b"PQTMCFGSIGNAL" => read_layout::<LayoutId, Pqtmcfgsignal, O>(
             fields,
             line,
             &[
@@ -28286,7 +28334,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGSIGNAL2" => read_layout::<Pqtmcfgsignal2, O>(
+        b"PQTMCFGSIGNAL2" => read_layout::<LayoutId, Pqtmcfgsignal2, O>(
             fields,
             line,
             &[
@@ -28297,7 +28345,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGSVIN" => read_layout::<Pqtmcfgsvin, O>(
+        b"PQTMCFGSVIN" => read_layout::<LayoutId, Pqtmcfgsvin, O>(
             fields,
             line,
             &[
@@ -28308,7 +28356,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGUART" => read_layout::<Pqtmcfguart, O>(
+        b"PQTMCFGUART" => read_layout::<LayoutId, Pqtmcfguart, O>(
             fields,
             line,
             &[
@@ -28322,7 +28370,7 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCFGWN" => read_layout::<Pqtmcfgwn, O>(
+        b"PQTMCFGWN" => read_layout::<LayoutId, Pqtmcfgwn, O>(
             fields,
             line,
             &[
@@ -28333,199 +28381,205 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMCOLD" => read_layout::<Pqtmcold, O>(fields, line, &[]),
+        b"PQTMCOLD" => read_layout::<LayoutId, Pqtmcold, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMDEBUGOFF" => read_layout::<PqtmdebugoffResult, O>(
+        b"PQTMDEBUGOFF" => read_layout::<LayoutId, PqtmdebugoffResult, O>(
             fields,
             line,
             &[LayoutId::PqtmdebugoffResultError, LayoutId::Pqtmdebugoff],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMDEBUGON" => read_layout::<PqtmdebugonResult, O>(
+        b"PQTMDEBUGON" => read_layout::<LayoutId, PqtmdebugonResult, O>(
             fields,
             line,
             &[LayoutId::PqtmdebugonResultError, LayoutId::Pqtmdebugon],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMDOP" => read_layout::<Pqtmdop, O>(fields, line, &[]),
+        b"PQTMDOP" => read_layout::<LayoutId, Pqtmdop, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMEOE" => read_layout::<Pqtmeoe, O>(fields, line, &[]),
+        b"PQTMEOE" => read_layout::<LayoutId, Pqtmeoe, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMEPE" => read_layout::<Pqtmepe, O>(fields, line, &[]),
+        b"PQTMEPE" => read_layout::<LayoutId, Pqtmepe, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMGEOFENCESTATUS" => read_layout::<Pqtmgeofencestatus, O>(fields, line, &[]),
+        b"PQTMGEOFENCESTATUS" => read_layout::<LayoutId, Pqtmgeofencestatus, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMGNSSSTART" => read_layout::<PqtmgnssstartResult, O>(
+        b"PQTMGNSSSTART" => read_layout::<LayoutId, PqtmgnssstartResult, O>(
             fields,
             line,
             &[LayoutId::PqtmgnssstartResultError, LayoutId::Pqtmgnssstart],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMGNSSSTOP" => read_layout::<PqtmgnssstopResult, O>(
+        b"PQTMGNSSSTOP" => read_layout::<LayoutId, PqtmgnssstopResult, O>(
             fields,
             line,
             &[LayoutId::PqtmgnssstopResultError, LayoutId::Pqtmgnssstop],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMHOT" => read_layout::<Pqtmhot, O>(fields, line, &[]),
+        b"PQTMHOT" => read_layout::<LayoutId, Pqtmhot, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMNAV" => read_layout::<Pqtmnav, O>(fields, line, &[]),
+        b"PQTMNAV" => read_layout::<LayoutId, Pqtmnav, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMODO" => read_layout::<Pqtmodo, O>(fields, line, &[]),
+        b"PQTMODO" => read_layout::<LayoutId, Pqtmodo, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMPL" => read_layout::<Pqtmpl, O>(fields, line, &[]),
+        b"PQTMPL" => read_layout::<LayoutId, Pqtmpl, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMPVT" => read_layout::<Pqtmpvt, O>(fields, line, &[]),
+        b"PQTMPVT" => read_layout::<LayoutId, Pqtmpvt, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMRESETODO" => read_layout::<PqtmresetodoResult, O>(
+        b"PQTMRESETODO" => read_layout::<LayoutId, PqtmresetodoResult, O>(
             fields,
             line,
             &[LayoutId::PqtmresetodoResultError, LayoutId::Pqtmresetodo],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMRESTOREPAR" => read_layout::<PqtmrestoreparResult, O>(
+        b"PQTMRESTOREPAR" => read_layout::<LayoutId, PqtmrestoreparResult, O>(
             fields,
             line,
             &[LayoutId::PqtmrestoreparResultError, LayoutId::Pqtmrestorepar],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMSAVEPAR" => read_layout::<PqtmsaveparResult, O>(
+        b"PQTMSAVEPAR" => read_layout::<LayoutId, PqtmsaveparResult, O>(
             fields,
             line,
             &[LayoutId::PqtmsaveparResultError, LayoutId::Pqtmsavepar],
         ),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMSN" => read_layout::<PqtmsnResult, O>(fields, line, &[LayoutId::PqtmsnResultError, LayoutId::Pqtmsn]),
-        #[cfg(feature = "quectel_lg290p")]
-        b"PQTMSRR" => read_layout::<Pqtmsrr, O>(fields, line, &[]),
-        #[cfg(feature = "quectel_lg290p")]
-        b"PQTMSVINSTATUS" => read_layout::<Pqtmsvinstatus, O>(fields, line, &[]),
-        #[cfg(feature = "quectel_lg290p")]
-        b"PQTMTAR" => read_layout::<Pqtmtar, O>(fields, line, &[]),
-        #[cfg(feature = "quectel_lg290p")]
-        b"PQTMTXT" => read_layout::<Pqtmtxt, O>(fields, line, &[]),
-        #[cfg(feature = "quectel_lg290p")]
-        b"PQTMUNIQID" => {
-            read_layout::<PqtmuniqidResult, O>(fields, line, &[LayoutId::PqtmuniqidResultError, LayoutId::Pqtmuniqid])
+        b"PQTMSN" => {
+            read_layout::<LayoutId, PqtmsnResult, O>(fields, line, &[LayoutId::PqtmsnResultError, LayoutId::Pqtmsn])
         }
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMVEL" => read_layout::<Pqtmvel, O>(fields, line, &[]),
+        b"PQTMSRR" => read_layout::<LayoutId, Pqtmsrr, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMVER" => read_layout::<Pqtmver, O>(fields, line, &[LayoutId::PqtmverLegacy]),
+        b"PQTMSVINSTATUS" => read_layout::<LayoutId, Pqtmsvinstatus, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMVERNO" => {
-            read_layout::<PqtmvernoResultError, O>(fields, line, &[LayoutId::Pqtmverno, LayoutId::PqtmvernoResult])
-        }
+        b"PQTMTAR" => read_layout::<LayoutId, Pqtmtar, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQTMWARM" => read_layout::<Pqtmwarm, O>(fields, line, &[]),
+        b"PQTMTXT" => read_layout::<LayoutId, Pqtmtxt, O>(fields, line, &[]),
         #[cfg(feature = "quectel_lg290p")]
-        b"PQVERNO" => read_layout::<Pqverno, O>(fields, line, &[LayoutId::PqvernoResult]),
+        b"PQTMUNIQID" => read_layout::<LayoutId, PqtmuniqidResult, O>(
+            fields,
+            line,
+            &[LayoutId::PqtmuniqidResultError, LayoutId::Pqtmuniqid],
+        ),
+        #[cfg(feature = "quectel_lg290p")]
+        b"PQTMVEL" => read_layout::<LayoutId, Pqtmvel, O>(fields, line, &[]),
+        #[cfg(feature = "quectel_lg290p")]
+        b"PQTMVER" => read_layout::<LayoutId, Pqtmver, O>(fields, line, &[LayoutId::PqtmverLegacy]),
+        #[cfg(feature = "quectel_lg290p")]
+        b"PQTMVERNO" => read_layout::<LayoutId, PqtmvernoResultError, O>(
+            fields,
+            line,
+            &[LayoutId::Pqtmverno, LayoutId::PqtmvernoResult],
+        ),
+        #[cfg(feature = "quectel_lg290p")]
+        b"PQTMWARM" => read_layout::<LayoutId, Pqtmwarm, O>(fields, line, &[]),
+        #[cfg(feature = "quectel_lg290p")]
+        b"PQVERNO" => read_layout::<LayoutId, Pqverno, O>(fields, line, &[LayoutId::PqvernoResult]),
         #[cfg(feature = "globalsat")]
-        b"PSRF100" => read_layout::<Psrf100, O>(fields, line, &[]),
+        b"PSRF100" => read_layout::<LayoutId, Psrf100, O>(fields, line, &[]),
         #[cfg(feature = "globalsat")]
-        b"PSRF101" => read_layout::<Psrf101, O>(fields, line, &[]),
+        b"PSRF101" => read_layout::<LayoutId, Psrf101, O>(fields, line, &[]),
         #[cfg(feature = "globalsat")]
-        b"PSRF102" => read_layout::<Psrf102, O>(fields, line, &[]),
+        b"PSRF102" => read_layout::<LayoutId, Psrf102, O>(fields, line, &[]),
         #[cfg(feature = "globalsat")]
-        b"PSRF103" => read_layout::<Psrf103, O>(fields, line, &[LayoutId::Psrf103ShortCodes]),
+        b"PSRF103" => read_layout::<LayoutId, Psrf103, O>(fields, line, &[LayoutId::Psrf103ShortCodes]),
         #[cfg(feature = "globalsat")]
-        b"PSRF104" => read_layout::<Psrf104, O>(fields, line, &[]),
+        b"PSRF104" => read_layout::<LayoutId, Psrf104, O>(fields, line, &[]),
         #[cfg(feature = "globalsat")]
-        b"PSRF105" => read_layout::<Psrf105, O>(fields, line, &[]),
+        b"PSRF105" => read_layout::<LayoutId, Psrf105, O>(fields, line, &[]),
         #[cfg(feature = "gs501")]
-        b"PSRF150" => read_layout::<Psrf150, O>(fields, line, &[]),
+        b"PSRF150" => read_layout::<LayoutId, Psrf150, O>(fields, line, &[]),
         #[cfg(feature = "globalsat")]
-        b"PSRF151" => read_layout::<Psrf151, O>(fields, line, &[]),
+        b"PSRF151" => read_layout::<LayoutId, Psrf151, O>(fields, line, &[]),
         #[cfg(feature = "globalsat")]
-        b"PSRFEPE" => read_layout::<Psrfepe, O>(fields, line, &[]),
+        b"PSRFEPE" => read_layout::<LayoutId, Psrfepe, O>(fields, line, &[]),
         #[cfg(feature = "septentrio")]
-        b"PSSN" => read_layout::<PssnHrp, O>(
+        b"PSSN" => read_layout::<LayoutId, PssnHrp, O>(
             fields,
             line,
             &[LayoutId::PssnRbd, LayoutId::PssnRbp, LayoutId::PssnRbv, LayoutId::PssnTfm],
         ),
         #[cfg(feature = "skytraq_rtk")]
-        b"PSTI" => read_layout::<Psti030, O>(
+        b"PSTI" => read_layout::<LayoutId, Psti030, O>(
             fields,
             line,
             &[LayoutId::Psti032, LayoutId::Psti033, LayoutId::Psti035, LayoutId::Psti036, LayoutId::Psti20],
         ),
         #[cfg(feature = "teseo")]
-        b"PSTMAGPS" => read_layout::<Pstmagps, O>(fields, line, &[]),
+        b"PSTMAGPS" => read_layout::<LayoutId, Pstmagps, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMALMANAC" => read_layout::<Pstmalmanac, O>(fields, line, &[]),
+        b"PSTMALMANAC" => read_layout::<LayoutId, Pstmalmanac, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMCLRALMS" => read_layout::<Pstmclralms, O>(fields, line, &[]),
+        b"PSTMCLRALMS" => read_layout::<LayoutId, Pstmclralms, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMCLREPHS" => read_layout::<Pstmclrephs, O>(fields, line, &[]),
+        b"PSTMCLREPHS" => read_layout::<LayoutId, Pstmclrephs, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMCOLD" => read_layout::<Pstmcold, O>(fields, line, &[]),
+        b"PSTMCOLD" => read_layout::<LayoutId, Pstmcold, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMCORR" => read_layout::<Pstmcorr, O>(fields, line, &[]),
+        b"PSTMCORR" => read_layout::<LayoutId, Pstmcorr, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMCPU" => read_layout::<Pstmcpu, O>(fields, line, &[]),
+        b"PSTMCPU" => read_layout::<LayoutId, Pstmcpu, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMDIFF" => read_layout::<Pstmdiff, O>(fields, line, &[]),
+        b"PSTMDIFF" => read_layout::<LayoutId, Pstmdiff, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMEPH" => read_layout::<Pstmeph, O>(fields, line, &[]),
+        b"PSTMEPH" => read_layout::<LayoutId, Pstmeph, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMGETPAR" => read_layout::<Pstmgetpar, O>(fields, line, &[]),
+        b"PSTMGETPAR" => read_layout::<LayoutId, Pstmgetpar, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMGETPARERROR" => read_layout::<Pstmgetparerror, O>(fields, line, &[]),
+        b"PSTMGETPARERROR" => read_layout::<LayoutId, Pstmgetparerror, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMGETRTCTIME" => read_layout::<Pstmgetrtctime, O>(fields, line, &[LayoutId::PstmgetrtctimeReply]),
+        b"PSTMGETRTCTIME" => read_layout::<LayoutId, Pstmgetrtctime, O>(fields, line, &[LayoutId::PstmgetrtctimeReply]),
         #[cfg(feature = "teseo")]
-        b"PSTMGETSWVER" => read_layout::<Pstmgetswver, O>(fields, line, &[LayoutId::PstmgetswverReply]),
+        b"PSTMGETSWVER" => read_layout::<LayoutId, Pstmgetswver, O>(fields, line, &[LayoutId::PstmgetswverReply]),
         #[cfg(feature = "teseo")]
-        b"PSTMHOT" => read_layout::<Pstmhot, O>(fields, line, &[]),
+        b"PSTMHOT" => read_layout::<LayoutId, Pstmhot, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMKFCOV" => read_layout::<Pstmkfcov, O>(fields, line, &[]),
+        b"PSTMKFCOV" => read_layout::<LayoutId, Pstmkfcov, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMNMEAONOFF" => read_layout::<Pstmnmeaonoff, O>(fields, line, &[]),
+        b"PSTMNMEAONOFF" => read_layout::<LayoutId, Pstmnmeaonoff, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMPA" => read_layout::<Pstmpa, O>(fields, line, &[]),
+        b"PSTMPA" => read_layout::<LayoutId, Pstmpa, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMPRES" => read_layout::<Pstmpres, O>(fields, line, &[]),
+        b"PSTMPRES" => read_layout::<LayoutId, Pstmpres, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMRES" => read_layout::<Pstmres, O>(fields, line, &[]),
+        b"PSTMRES" => read_layout::<LayoutId, Pstmres, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMRESTOREPAR" => read_layout::<Pstmrestorepar, O>(fields, line, &[]),
+        b"PSTMRESTOREPAR" => read_layout::<LayoutId, Pstmrestorepar, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMRF" => read_layout::<Pstmrf, O>(fields, line, &[]),
+        b"PSTMRF" => read_layout::<LayoutId, Pstmrf, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMSAT" => read_layout::<Pstmsat, O>(fields, line, &[]),
+        b"PSTMSAT" => read_layout::<LayoutId, Pstmsat, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMSAVEPAR" => read_layout::<Pstmsavepar, O>(fields, line, &[]),
+        b"PSTMSAVEPAR" => read_layout::<LayoutId, Pstmsavepar, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMSBAS" => read_layout::<Pstmsbas, O>(fields, line, &[]),
+        b"PSTMSBAS" => read_layout::<LayoutId, Pstmsbas, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMSBASCORR" => read_layout::<Pstmsbascorr, O>(fields, line, &[]),
+        b"PSTMSBASCORR" => read_layout::<LayoutId, Pstmsbascorr, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMSET" => read_layout::<Pstmset, O>(fields, line, &[LayoutId::PstmsetDop]),
+        b"PSTMSET" => read_layout::<LayoutId, Pstmset, O>(fields, line, &[LayoutId::PstmsetDop]),
         #[cfg(feature = "teseo")]
-        b"PSTMSETPAR" => read_layout::<Pstmsetpar, O>(fields, line, &[LayoutId::PstmsetparDop]),
+        b"PSTMSETPAR" => read_layout::<LayoutId, Pstmsetpar, O>(fields, line, &[LayoutId::PstmsetparDop]),
         #[cfg(feature = "teseo")]
-        b"PSTMSETPARERROR" => read_layout::<Pstmsetparerror, O>(fields, line, &[]),
+        b"PSTMSETPARERROR" => read_layout::<LayoutId, Pstmsetparerror, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMSETPAROK" => read_layout::<Pstmsetparok, O>(fields, line, &[]),
+        b"PSTMSETPAROK" => read_layout::<LayoutId, Pstmsetparok, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMTESTRF" => read_layout::<Pstmtestrf, O>(fields, line, &[]),
+        b"PSTMTESTRF" => read_layout::<LayoutId, Pstmtestrf, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMTG" => read_layout::<Pstmtg, O>(fields, line, &[]),
+        b"PSTMTG" => read_layout::<LayoutId, Pstmtg, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMTIM" => read_layout::<Pstmtim, O>(fields, line, &[]),
+        b"PSTMTIM" => read_layout::<LayoutId, Pstmtim, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMTS" => read_layout::<Pstmts, O>(fields, line, &[]),
+        b"PSTMTS" => read_layout::<LayoutId, Pstmts, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMVER" => read_layout::<Pstmver, O>(fields, line, &[]),
+        b"PSTMVER" => read_layout::<LayoutId, Pstmver, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMVRES" => read_layout::<Pstmvres, O>(fields, line, &[]),
+        b"PSTMVRES" => read_layout::<LayoutId, Pstmvres, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMWAAS" => read_layout::<Pstmwaas, O>(fields, line, &[]),
+        b"PSTMWAAS" => read_layout::<LayoutId, Pstmwaas, O>(fields, line, &[]),
         #[cfg(feature = "teseo")]
-        b"PSTMWARM" => read_layout::<Pstmwarm, O>(fields, line, &[]),
+        b"PSTMWARM" => read_layout::<LayoutId, Pstmwarm, O>(fields, line, &[]),
         #[cfg(feature = "trimble_nmea")]
-        b"PTNL" => read_layout::<PtnlAvr, O>(
+        b"PTNL" => read_layout::<LayoutId, PtnlAvr, O>(
             fields,
             line,
             &[
@@ -28540,41 +28594,41 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
             ],
         ),
         #[cfg(feature = "trimble_nmea")]
-        b"PTNLDG" => read_layout::<Ptnldg, O>(fields, line, &[]),
+        b"PTNLDG" => read_layout::<LayoutId, Ptnldg, O>(fields, line, &[]),
         #[cfg(feature = "trimble_nmea")]
-        b"PTNLEV" => read_layout::<Ptnlev, O>(fields, line, &[]),
+        b"PTNLEV" => read_layout::<LayoutId, Ptnlev, O>(fields, line, &[]),
         #[cfg(feature = "trimble_nmea")]
-        b"PTNLID" => read_layout::<Ptnlid, O>(fields, line, &[]),
+        b"PTNLID" => read_layout::<LayoutId, Ptnlid, O>(fields, line, &[]),
         #[cfg(feature = "trimble_copernicus")]
-        b"PTNLQIO" => read_layout::<Ptnlqio, O>(fields, line, &[]),
+        b"PTNLQIO" => read_layout::<LayoutId, Ptnlqio, O>(fields, line, &[]),
         #[cfg(feature = "trimble_copernicus")]
-        b"PTNLQVR" => read_layout::<Ptnlqvr, O>(fields, line, &[]),
+        b"PTNLQVR" => read_layout::<LayoutId, Ptnlqvr, O>(fields, line, &[]),
         #[cfg(feature = "trimble_nmea")]
-        b"PTNLRBA" => read_layout::<Ptnlrba, O>(fields, line, &[]),
+        b"PTNLRBA" => read_layout::<LayoutId, Ptnlrba, O>(fields, line, &[]),
         #[cfg(feature = "trimble_copernicus")]
-        b"PTNLRIO" => read_layout::<PtnlrioInvalid, O>(fields, line, &[LayoutId::Ptnlrio]),
+        b"PTNLRIO" => read_layout::<LayoutId, PtnlrioInvalid, O>(fields, line, &[LayoutId::Ptnlrio]),
         #[cfg(feature = "trimble_copernicus")]
-        b"PTNLRKG" => read_layout::<PtnlrkgInvalid, O>(fields, line, &[LayoutId::Ptnlrkg]),
+        b"PTNLRKG" => read_layout::<LayoutId, PtnlrkgInvalid, O>(fields, line, &[LayoutId::Ptnlrkg]),
         #[cfg(feature = "trimble_copernicus")]
-        b"PTNLRSV" => read_layout::<Ptnlrsv, O>(fields, line, &[]),
+        b"PTNLRSV" => read_layout::<LayoutId, Ptnlrsv, O>(fields, line, &[]),
         #[cfg(feature = "trimble_nmea")]
-        b"PTNLRTP" => read_layout::<Ptnlrtp, O>(fields, line, &[]),
+        b"PTNLRTP" => read_layout::<LayoutId, Ptnlrtp, O>(fields, line, &[]),
         #[cfg(feature = "trimble_copernicus")]
-        b"PTNLRVR" => read_layout::<PtnlrvrInvalid, O>(fields, line, &[LayoutId::Ptnlrvr]),
+        b"PTNLRVR" => read_layout::<LayoutId, PtnlrvrInvalid, O>(fields, line, &[LayoutId::Ptnlrvr]),
         #[cfg(feature = "trimble_nmea")]
-        b"PTNLRXO" => read_layout::<Ptnlrxo, O>(fields, line, &[]),
+        b"PTNLRXO" => read_layout::<LayoutId, Ptnlrxo, O>(fields, line, &[]),
         #[cfg(feature = "trimble_copernicus")]
-        b"PTNLSIO" => read_layout::<Ptnlsio, O>(fields, line, &[]),
+        b"PTNLSIO" => read_layout::<LayoutId, Ptnlsio, O>(fields, line, &[]),
         #[cfg(feature = "trimble_copernicus")]
-        b"PTNLSKG" => read_layout::<Ptnlskg, O>(fields, line, &[]),
+        b"PTNLSKG" => read_layout::<LayoutId, Ptnlskg, O>(fields, line, &[]),
         #[cfg(feature = "trimble_nmea")]
-        b"PTNLSM" => read_layout::<Ptnlsm, O>(fields, line, &[]),
+        b"PTNLSM" => read_layout::<LayoutId, Ptnlsm, O>(fields, line, &[]),
         #[cfg(feature = "trimble_copernicus")]
-        b"PTNLSSV" => read_layout::<Ptnlssv, O>(fields, line, &[]),
+        b"PTNLSSV" => read_layout::<LayoutId, Ptnlssv, O>(fields, line, &[]),
         #[cfg(feature = "spectratime_isync")]
-        b"PTNTA" => read_layout::<Ptnta, O>(fields, line, &[]),
+        b"PTNTA" => read_layout::<LayoutId, Ptnta, O>(fields, line, &[]),
         #[cfg(feature = "ublox_m8")]
-        b"PUBX" => read_layout::<PubxConfig, O>(
+        b"PUBX" => read_layout::<LayoutId, PubxConfig, O>(
             fields,
             line,
             &[
@@ -28593,1480 +28647,1298 @@ fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> 
 }
 
 /// [`read_sentence`] for the standard sentence with formatter `formatter`.
-fn read_standard<'a, O: Outcome<'a>>(formatter: [u8; 3], fields: FastReader<'a>, line: &'a [u8]) -> O {
+fn read_standard<'a, O: Outcome<'a, LayoutId>>(formatter: [u8; 3], fields: FastReader<'a>, line: &'a [u8]) -> O {
     match &formatter {
-        b"GGA" => read_layout::<Gga, O>(fields, line, &[]),
-        b"GLL" => read_layout::<Gll, O>(fields, line, &[LayoutId::GllSentinel]),
-        b"GNS" => read_layout::<Gns, O>(fields, line, &[LayoutId::GnsAux]),
-        b"GSA" => read_layout::<Gsa, O>(
+        b"GGA" => read_layout::<LayoutId, Gga, O>(fields, line, &[]),
+        b"GLL" => read_layout::<LayoutId, Gll, O>(fields, line, &[LayoutId::GllSentinel]),
+        b"GNS" => read_layout::<LayoutId, Gns, O>(fields, line, &[LayoutId::GnsAux]),
+        b"GSA" => read_layout::<LayoutId, Gsa, O>(
             fields,
             line,
             &[LayoutId::GsaShort, LayoutId::GsaWideSystem, LayoutId::GsaWide, LayoutId::GsaExtraDop],
         ),
-        b"GST" => read_layout::<Gst, O>(fields, line, &[]),
-        b"GSV" => read_layout::<Gsv, O>(fields, line, &[]),
-        b"HDT" => read_layout::<Hdt, O>(fields, line, &[]),
-        b"RMC" => read_layout::<Rmc, O>(fields, line, &[LayoutId::RmcSentinel]),
-        b"VTG" => read_layout::<Vtg, O>(fields, line, &[]),
-        b"ZDA" => read_layout::<Zda, O>(fields, line, &[]),
+        b"GST" => read_layout::<LayoutId, Gst, O>(fields, line, &[]),
+        b"GSV" => read_layout::<LayoutId, Gsv, O>(fields, line, &[]),
+        b"HDT" => read_layout::<LayoutId, Hdt, O>(fields, line, &[]),
+        b"RMC" => read_layout::<LayoutId, Rmc, O>(fields, line, &[LayoutId::RmcSentinel]),
+        b"VTG" => read_layout::<LayoutId, Vtg, O>(fields, line, &[]),
+        b"ZDA" => read_layout::<LayoutId, Zda, O>(fields, line, &[]),
         _ => O::general(line),
     }
 }
 
 /// [`read_sentence`] with the next of `layouts`, the layouts of the address that remain.
-fn read_fast<'a, O: Outcome<'a>>(layouts: &[LayoutId], fields: FastReader<'a>, line: &'a [u8]) -> O {
+fn read_fast<'a, O: Outcome<'a, LayoutId>>(layouts: &[LayoutId], fields: FastReader<'a>, line: &'a [u8]) -> O {
     let Some((&layout, rest)) = layouts.split_first() else {
         return O::general(line);
     };
     match layout {
-        LayoutId::Aam => read_layout::<Aam, O>(fields, line, rest),
-        LayoutId::Abk => read_layout::<Abk, O>(fields, line, rest),
-        LayoutId::Abm => read_layout::<Abm, O>(fields, line, rest),
-        LayoutId::Aca => read_layout::<Aca, O>(fields, line, rest),
-        LayoutId::Ack => read_layout::<Ack, O>(fields, line, rest),
-        LayoutId::Acn => read_layout::<Acn, O>(fields, line, rest),
-        LayoutId::Acs => read_layout::<Acs, O>(fields, line, rest),
-        LayoutId::Air => read_layout::<Air, O>(fields, line, rest),
-        LayoutId::Akd => read_layout::<Akd, O>(fields, line, rest),
-        LayoutId::Ala => read_layout::<Ala, O>(fields, line, rest),
-        LayoutId::Alc => read_layout::<Alc, O>(fields, line, rest),
-        LayoutId::Alf => read_layout::<Alf, O>(fields, line, rest),
-        LayoutId::Alk => read_layout::<Alk, O>(fields, line, rest),
-        LayoutId::Alm => read_layout::<Alm, O>(fields, line, rest),
-        LayoutId::Alr => read_layout::<Alr, O>(fields, line, rest),
-        LayoutId::Apa => read_layout::<Apa, O>(fields, line, rest),
-        LayoutId::Apb => read_layout::<Apb, O>(fields, line, rest),
-        LayoutId::Arc => read_layout::<Arc, O>(fields, line, rest),
-        LayoutId::Bbm => read_layout::<Bbm, O>(fields, line, rest),
-        LayoutId::Bec => read_layout::<Bec, O>(fields, line, rest),
-        LayoutId::Bod => read_layout::<Bod, O>(fields, line, rest),
-        LayoutId::Bwc => read_layout::<Bwc, O>(fields, line, rest),
-        LayoutId::Bwr => read_layout::<Bwr, O>(fields, line, rest),
-        LayoutId::Bww => read_layout::<Bww, O>(fields, line, rest),
-        LayoutId::Cur => read_layout::<Cur, O>(fields, line, rest),
-        LayoutId::Dbk => read_layout::<Dbk, O>(fields, line, rest),
-        LayoutId::Dbs => read_layout::<Dbs, O>(fields, line, rest),
-        LayoutId::Dbt => read_layout::<Dbt, O>(fields, line, rest),
-        LayoutId::Ddc => read_layout::<Ddc, O>(fields, line, rest),
-        LayoutId::Dor => read_layout::<Dor, O>(fields, line, rest),
-        LayoutId::Dpt => read_layout::<Dpt, O>(fields, line, rest),
-        LayoutId::Dsc => read_layout::<Dsc, O>(fields, line, rest),
-        LayoutId::Dse => read_layout::<Dse, O>(fields, line, rest),
-        LayoutId::Dtm => read_layout::<Dtm, O>(fields, line, rest),
-        LayoutId::DtmShort => read_layout::<DtmShort, O>(fields, line, rest),
-        LayoutId::Epv => read_layout::<Epv, O>(fields, line, rest),
-        LayoutId::Etl => read_layout::<Etl, O>(fields, line, rest),
-        LayoutId::Eve => read_layout::<Eve, O>(fields, line, rest),
-        LayoutId::Fir => read_layout::<Fir, O>(fields, line, rest),
-        LayoutId::Fmi => read_layout::<Fmi, O>(fields, line, rest),
-        LayoutId::Fsi => read_layout::<Fsi, O>(fields, line, rest),
-        LayoutId::Gbs => read_layout::<Gbs, O>(fields, line, rest),
-        LayoutId::GbsUnits => read_layout::<GbsUnits, O>(fields, line, rest),
-        LayoutId::Gen => read_layout::<Gen, O>(fields, line, rest),
-        LayoutId::Gfa => read_layout::<Gfa, O>(fields, line, rest),
-        LayoutId::Gga => read_layout::<Gga, O>(fields, line, rest),
-        LayoutId::Glc => read_layout::<Glc, O>(fields, line, rest),
-        LayoutId::Gll => read_layout::<Gll, O>(fields, line, rest),
-        LayoutId::GllSentinel => read_layout::<GllSentinel, O>(fields, line, rest),
-        LayoutId::Gmp => read_layout::<Gmp, O>(fields, line, rest),
-        LayoutId::Gns => read_layout::<Gns, O>(fields, line, rest),
-        LayoutId::GnsAux => read_layout::<GnsAux, O>(fields, line, rest),
-        LayoutId::Grs => read_layout::<Grs, O>(fields, line, rest),
-        LayoutId::Gsa => read_layout::<Gsa, O>(fields, line, rest),
-        LayoutId::GsaShort => read_layout::<GsaShort, O>(fields, line, rest),
-        LayoutId::GsaWideSystem => read_layout::<GsaWideSystem, O>(fields, line, rest),
-        LayoutId::GsaWide => read_layout::<GsaWide, O>(fields, line, rest),
-        LayoutId::GsaExtraDop => read_layout::<GsaExtraDop, O>(fields, line, rest),
-        LayoutId::Gst => read_layout::<Gst, O>(fields, line, rest),
-        LayoutId::Gsv => read_layout::<Gsv, O>(fields, line, rest),
-        LayoutId::Hbt => read_layout::<Hbt, O>(fields, line, rest),
-        LayoutId::Hcr => read_layout::<Hcr, O>(fields, line, rest),
-        LayoutId::Hdg => read_layout::<Hdg, O>(fields, line, rest),
-        LayoutId::Hdm => read_layout::<Hdm, O>(fields, line, rest),
-        LayoutId::Hdt => read_layout::<Hdt, O>(fields, line, rest),
-        LayoutId::Hev => read_layout::<Hev, O>(fields, line, rest),
-        LayoutId::Hmr => read_layout::<Hmr, O>(fields, line, rest),
-        LayoutId::Hms => read_layout::<Hms, O>(fields, line, rest),
-        LayoutId::Hpd => read_layout::<Hpd, O>(fields, line, rest),
-        LayoutId::Hpr => read_layout::<Hpr, O>(fields, line, rest),
-        LayoutId::Hrm => read_layout::<Hrm, O>(fields, line, rest),
-        LayoutId::Hsc => read_layout::<Hsc, O>(fields, line, rest),
-        LayoutId::Hss => read_layout::<Hss, O>(fields, line, rest),
-        LayoutId::Htc => read_layout::<Htc, O>(fields, line, rest),
-        LayoutId::Htd => read_layout::<Htd, O>(fields, line, rest),
-        LayoutId::Llq => read_layout::<Llq, O>(fields, line, rest),
-        LayoutId::Lr1 => read_layout::<Lr1, O>(fields, line, rest),
-        LayoutId::Lr2 => read_layout::<Lr2, O>(fields, line, rest),
-        LayoutId::Lr3 => read_layout::<Lr3, O>(fields, line, rest),
-        LayoutId::Lrf => read_layout::<Lrf, O>(fields, line, rest),
-        LayoutId::Lri => read_layout::<Lri, O>(fields, line, rest),
-        LayoutId::Mda => read_layout::<Mda, O>(fields, line, rest),
-        LayoutId::Mmb => read_layout::<Mmb, O>(fields, line, rest),
-        LayoutId::Mob => read_layout::<Mob, O>(fields, line, rest),
-        LayoutId::Msk => read_layout::<Msk, O>(fields, line, rest),
-        LayoutId::Mss => read_layout::<Mss, O>(fields, line, rest),
-        LayoutId::Mta => read_layout::<Mta, O>(fields, line, rest),
-        LayoutId::Mtw => read_layout::<Mtw, O>(fields, line, rest),
-        LayoutId::Mwd => read_layout::<Mwd, O>(fields, line, rest),
-        LayoutId::Mwv => read_layout::<Mwv, O>(fields, line, rest),
-        LayoutId::Nak => read_layout::<Nak, O>(fields, line, rest),
-        LayoutId::Nrm => read_layout::<Nrm, O>(fields, line, rest),
-        LayoutId::Nrx => read_layout::<Nrx, O>(fields, line, rest),
-        LayoutId::NrxNx700 => read_layout::<NrxNx700, O>(fields, line, rest),
-        LayoutId::Nsr => read_layout::<Nsr, O>(fields, line, rest),
-        LayoutId::Osd => read_layout::<Osd, O>(fields, line, rest),
-        LayoutId::Pos => read_layout::<Pos, O>(fields, line, rest),
-        LayoutId::Prc => read_layout::<Prc, O>(fields, line, rest),
-        LayoutId::R00 => read_layout::<R00, O>(fields, line, rest),
-        LayoutId::Rlm => read_layout::<Rlm, O>(fields, line, rest),
-        LayoutId::Rma => read_layout::<Rma, O>(fields, line, rest),
-        LayoutId::Rmb => read_layout::<Rmb, O>(fields, line, rest),
-        LayoutId::Rmc => read_layout::<Rmc, O>(fields, line, rest),
-        LayoutId::RmcSentinel => read_layout::<RmcSentinel, O>(fields, line, rest),
-        LayoutId::Ror => read_layout::<Ror, O>(fields, line, rest),
-        LayoutId::Rot => read_layout::<Rot, O>(fields, line, rest),
-        LayoutId::Rpm => read_layout::<Rpm, O>(fields, line, rest),
-        LayoutId::Rrt => read_layout::<Rrt, O>(fields, line, rest),
-        LayoutId::Rsa => read_layout::<Rsa, O>(fields, line, rest),
-        LayoutId::Rsd => read_layout::<Rsd, O>(fields, line, rest),
-        LayoutId::Rte => read_layout::<Rte, O>(fields, line, rest),
-        LayoutId::Sfi => read_layout::<Sfi, O>(fields, line, rest),
-        LayoutId::Sm1 => read_layout::<Sm1, O>(fields, line, rest),
-        LayoutId::Sm2 => read_layout::<Sm2, O>(fields, line, rest),
-        LayoutId::Sm3 => read_layout::<Sm3, O>(fields, line, rest),
-        LayoutId::Sm4 => read_layout::<Sm4, O>(fields, line, rest),
-        LayoutId::Smb => read_layout::<Smb, O>(fields, line, rest),
-        LayoutId::Spw => read_layout::<Spw, O>(fields, line, rest),
-        LayoutId::Ssd => read_layout::<Ssd, O>(fields, line, rest),
-        LayoutId::Stn => read_layout::<Stn, O>(fields, line, rest),
-        LayoutId::Ths => read_layout::<Ths, O>(fields, line, rest),
-        LayoutId::Tlb => read_layout::<Tlb, O>(fields, line, rest),
-        LayoutId::Tll => read_layout::<Tll, O>(fields, line, rest),
-        LayoutId::Tra => read_layout::<Tra, O>(fields, line, rest),
-        LayoutId::Trc => read_layout::<Trc, O>(fields, line, rest),
-        LayoutId::Trd => read_layout::<Trd, O>(fields, line, rest),
-        LayoutId::Trf => read_layout::<Trf, O>(fields, line, rest),
-        LayoutId::Trl => read_layout::<Trl, O>(fields, line, rest),
-        LayoutId::Ttd => read_layout::<Ttd, O>(fields, line, rest),
-        LayoutId::Ttm => read_layout::<Ttm, O>(fields, line, rest),
-        LayoutId::Tut => read_layout::<Tut, O>(fields, line, rest),
-        LayoutId::Txt => read_layout::<Txt, O>(fields, line, rest),
-        LayoutId::Uid => read_layout::<Uid, O>(fields, line, rest),
-        LayoutId::Vbw => read_layout::<Vbw, O>(fields, line, rest),
-        LayoutId::Vdm => read_layout::<Vdm, O>(fields, line, rest),
-        LayoutId::Vdo => read_layout::<Vdo, O>(fields, line, rest),
-        LayoutId::Vdr => read_layout::<Vdr, O>(fields, line, rest),
-        LayoutId::Ver => read_layout::<Ver, O>(fields, line, rest),
-        LayoutId::Vhw => read_layout::<Vhw, O>(fields, line, rest),
-        LayoutId::Vlw => read_layout::<Vlw, O>(fields, line, rest),
-        LayoutId::Vpw => read_layout::<Vpw, O>(fields, line, rest),
-        LayoutId::Vsd => read_layout::<Vsd, O>(fields, line, rest),
-        LayoutId::Vtg => read_layout::<Vtg, O>(fields, line, rest),
-        LayoutId::Vwr => read_layout::<Vwr, O>(fields, line, rest),
-        LayoutId::Vwt => read_layout::<Vwt, O>(fields, line, rest),
-        LayoutId::Wat => read_layout::<Wat, O>(fields, line, rest),
-        LayoutId::Wcv => read_layout::<Wcv, O>(fields, line, rest),
-        LayoutId::Wnc => read_layout::<Wnc, O>(fields, line, rest),
-        LayoutId::Wpl => read_layout::<Wpl, O>(fields, line, rest),
-        LayoutId::Xdr => read_layout::<Xdr, O>(fields, line, rest),
-        LayoutId::Xte => read_layout::<Xte, O>(fields, line, rest),
-        LayoutId::Xtr => read_layout::<Xtr, O>(fields, line, rest),
-        LayoutId::Zda => read_layout::<Zda, O>(fields, line, rest),
-        LayoutId::Zdl => read_layout::<Zdl, O>(fields, line, rest),
-        LayoutId::Zfo => read_layout::<Zfo, O>(fields, line, rest),
-        LayoutId::Ztg => read_layout::<Ztg, O>(fields, line, rest),
+        LayoutId::Aam => read_layout::<LayoutId, Aam, O>(fields, line, rest),
+        LayoutId::Abk => read_layout::<LayoutId, Abk, O>(fields, line, rest),
+        LayoutId::Abm => read_layout::<LayoutId, Abm, O>(fields, line, rest),
+        LayoutId::Aca => read_layout::<LayoutId, Aca, O>(fields, line, rest),
+        LayoutId::Ack => read_layout::<LayoutId, Ack, O>(fields, line, rest),
+        LayoutId::Acn => read_layout::<LayoutId, Acn, O>(fields, line, rest),
+        LayoutId::Acs => read_layout::<LayoutId, Acs, O>(fields, line, rest),
+        LayoutId::Air => read_layout::<LayoutId, Air, O>(fields, line, rest),
+        LayoutId::Akd => read_layout::<LayoutId, Akd, O>(fields, line, rest),
+        LayoutId::Ala => read_layout::<LayoutId, Ala, O>(fields, line, rest),
+        LayoutId::Alc => read_layout::<LayoutId, Alc, O>(fields, line, rest),
+        LayoutId::Alf => read_layout::<LayoutId, Alf, O>(fields, line, rest),
+        LayoutId::Alk => read_layout::<LayoutId, Alk, O>(fields, line, rest),
+        LayoutId::Alm => read_layout::<LayoutId, Alm, O>(fields, line, rest),
+        LayoutId::Alr => read_layout::<LayoutId, Alr, O>(fields, line, rest),
+        LayoutId::Apa => read_layout::<LayoutId, Apa, O>(fields, line, rest),
+        LayoutId::Apb => read_layout::<LayoutId, Apb, O>(fields, line, rest),
+        LayoutId::Arc => read_layout::<LayoutId, Arc, O>(fields, line, rest),
+        LayoutId::Bbm => read_layout::<LayoutId, Bbm, O>(fields, line, rest),
+        LayoutId::Bec => read_layout::<LayoutId, Bec, O>(fields, line, rest),
+        LayoutId::Bod => read_layout::<LayoutId, Bod, O>(fields, line, rest),
+        LayoutId::Bwc => read_layout::<LayoutId, Bwc, O>(fields, line, rest),
+        LayoutId::Bwr => read_layout::<LayoutId, Bwr, O>(fields, line, rest),
+        LayoutId::Bww => read_layout::<LayoutId, Bww, O>(fields, line, rest),
+        LayoutId::Cur => read_layout::<LayoutId, Cur, O>(fields, line, rest),
+        LayoutId::Dbk => read_layout::<LayoutId, Dbk, O>(fields, line, rest),
+        LayoutId::Dbs => read_layout::<LayoutId, Dbs, O>(fields, line, rest),
+        LayoutId::Dbt => read_layout::<LayoutId, Dbt, O>(fields, line, rest),
+        LayoutId::Ddc => read_layout::<LayoutId, Ddc, O>(fields, line, rest),
+        LayoutId::Dor => read_layout::<LayoutId, Dor, O>(fields, line, rest),
+        LayoutId::Dpt => read_layout::<LayoutId, Dpt, O>(fields, line, rest),
+        LayoutId::Dsc => read_layout::<LayoutId, Dsc, O>(fields, line, rest),
+        LayoutId::Dse => read_layout::<LayoutId, Dse, O>(fields, line, rest),
+        LayoutId::Dtm => read_layout::<LayoutId, Dtm, O>(fields, line, rest),
+        LayoutId::DtmShort => read_layout::<LayoutId, DtmShort, O>(fields, line, rest),
+        LayoutId::Epv => read_layout::<LayoutId, Epv, O>(fields, line, rest),
+        LayoutId::Etl => read_layout::<LayoutId, Etl, O>(fields, line, rest),
+        LayoutId::Eve => read_layout::<LayoutId, Eve, O>(fields, line, rest),
+        LayoutId::Fir => read_layout::<LayoutId, Fir, O>(fields, line, rest),
+        LayoutId::Fmi => read_layout::<LayoutId, Fmi, O>(fields, line, rest),
+        LayoutId::Fsi => read_layout::<LayoutId, Fsi, O>(fields, line, rest),
+        LayoutId::Gbs => read_layout::<LayoutId, Gbs, O>(fields, line, rest),
+        LayoutId::GbsUnits => read_layout::<LayoutId, GbsUnits, O>(fields, line, rest),
+        LayoutId::Gen => read_layout::<LayoutId, Gen, O>(fields, line, rest),
+        LayoutId::Gfa => read_layout::<LayoutId, Gfa, O>(fields, line, rest),
+        LayoutId::Gga => read_layout::<LayoutId, Gga, O>(fields, line, rest),
+        LayoutId::Glc => read_layout::<LayoutId, Glc, O>(fields, line, rest),
+        LayoutId::Gll => read_layout::<LayoutId, Gll, O>(fields, line, rest),
+        LayoutId::GllSentinel => read_layout::<LayoutId, GllSentinel, O>(fields, line, rest),
+        LayoutId::Gmp => read_layout::<LayoutId, Gmp, O>(fields, line, rest),
+        LayoutId::Gns => read_layout::<LayoutId, Gns, O>(fields, line, rest),
+        LayoutId::GnsAux => read_layout::<LayoutId, GnsAux, O>(fields, line, rest),
+        LayoutId::Grs => read_layout::<LayoutId, Grs, O>(fields, line, rest),
+        LayoutId::Gsa => read_layout::<LayoutId, Gsa, O>(fields, line, rest),
+        LayoutId::GsaShort => read_layout::<LayoutId, GsaShort, O>(fields, line, rest),
+        LayoutId::GsaWideSystem => read_layout::<LayoutId, GsaWideSystem, O>(fields, line, rest),
+        LayoutId::GsaWide => read_layout::<LayoutId, GsaWide, O>(fields, line, rest),
+        LayoutId::GsaExtraDop => read_layout::<LayoutId, GsaExtraDop, O>(fields, line, rest),
+        LayoutId::Gst => read_layout::<LayoutId, Gst, O>(fields, line, rest),
+        LayoutId::Gsv => read_layout::<LayoutId, Gsv, O>(fields, line, rest),
+        LayoutId::Hbt => read_layout::<LayoutId, Hbt, O>(fields, line, rest),
+        LayoutId::Hcr => read_layout::<LayoutId, Hcr, O>(fields, line, rest),
+        LayoutId::Hdg => read_layout::<LayoutId, Hdg, O>(fields, line, rest),
+        LayoutId::Hdm => read_layout::<LayoutId, Hdm, O>(fields, line, rest),
+        LayoutId::Hdt => read_layout::<LayoutId, Hdt, O>(fields, line, rest),
+        LayoutId::Hev => read_layout::<LayoutId, Hev, O>(fields, line, rest),
+        LayoutId::Hmr => read_layout::<LayoutId, Hmr, O>(fields, line, rest),
+        LayoutId::Hms => read_layout::<LayoutId, Hms, O>(fields, line, rest),
+        LayoutId::Hpd => read_layout::<LayoutId, Hpd, O>(fields, line, rest),
+        LayoutId::Hpr => read_layout::<LayoutId, Hpr, O>(fields, line, rest),
+        LayoutId::Hrm => read_layout::<LayoutId, Hrm, O>(fields, line, rest),
+        LayoutId::Hsc => read_layout::<LayoutId, Hsc, O>(fields, line, rest),
+        LayoutId::Hss => read_layout::<LayoutId, Hss, O>(fields, line, rest),
+        LayoutId::Htc => read_layout::<LayoutId, Htc, O>(fields, line, rest),
+        LayoutId::Htd => read_layout::<LayoutId, Htd, O>(fields, line, rest),
+        LayoutId::Llq => read_layout::<LayoutId, Llq, O>(fields, line, rest),
+        LayoutId::Lr1 => read_layout::<LayoutId, Lr1, O>(fields, line, rest),
+        LayoutId::Lr2 => read_layout::<LayoutId, Lr2, O>(fields, line, rest),
+        LayoutId::Lr3 => read_layout::<LayoutId, Lr3, O>(fields, line, rest),
+        LayoutId::Lrf => read_layout::<LayoutId, Lrf, O>(fields, line, rest),
+        LayoutId::Lri => read_layout::<LayoutId, Lri, O>(fields, line, rest),
+        LayoutId::Mda => read_layout::<LayoutId, Mda, O>(fields, line, rest),
+        LayoutId::Mmb => read_layout::<LayoutId, Mmb, O>(fields, line, rest),
+        LayoutId::Mob => read_layout::<LayoutId, Mob, O>(fields, line, rest),
+        LayoutId::Msk => read_layout::<LayoutId, Msk, O>(fields, line, rest),
+        LayoutId::Mss => read_layout::<LayoutId, Mss, O>(fields, line, rest),
+        LayoutId::Mta => read_layout::<LayoutId, Mta, O>(fields, line, rest),
+        LayoutId::Mtw => read_layout::<LayoutId, Mtw, O>(fields, line, rest),
+        LayoutId::Mwd => read_layout::<LayoutId, Mwd, O>(fields, line, rest),
+        LayoutId::Mwv => read_layout::<LayoutId, Mwv, O>(fields, line, rest),
+        LayoutId::Nak => read_layout::<LayoutId, Nak, O>(fields, line, rest),
+        LayoutId::Nrm => read_layout::<LayoutId, Nrm, O>(fields, line, rest),
+        LayoutId::Nrx => read_layout::<LayoutId, Nrx, O>(fields, line, rest),
+        LayoutId::NrxNx700 => read_layout::<LayoutId, NrxNx700, O>(fields, line, rest),
+        LayoutId::Nsr => read_layout::<LayoutId, Nsr, O>(fields, line, rest),
+        LayoutId::Osd => read_layout::<LayoutId, Osd, O>(fields, line, rest),
+        LayoutId::Pos => read_layout::<LayoutId, Pos, O>(fields, line, rest),
+        LayoutId::Prc => read_layout::<LayoutId, Prc, O>(fields, line, rest),
+        LayoutId::R00 => read_layout::<LayoutId, R00, O>(fields, line, rest),
+        LayoutId::Rlm => read_layout::<LayoutId, Rlm, O>(fields, line, rest),
+        LayoutId::Rma => read_layout::<LayoutId, Rma, O>(fields, line, rest),
+        LayoutId::Rmb => read_layout::<LayoutId, Rmb, O>(fields, line, rest),
+        LayoutId::Rmc => read_layout::<LayoutId, Rmc, O>(fields, line, rest),
+        LayoutId::RmcSentinel => read_layout::<LayoutId, RmcSentinel, O>(fields, line, rest),
+        LayoutId::Ror => read_layout::<LayoutId, Ror, O>(fields, line, rest),
+        LayoutId::Rot => read_layout::<LayoutId, Rot, O>(fields, line, rest),
+        LayoutId::Rpm => read_layout::<LayoutId, Rpm, O>(fields, line, rest),
+        LayoutId::Rrt => read_layout::<LayoutId, Rrt, O>(fields, line, rest),
+        LayoutId::Rsa => read_layout::<LayoutId, Rsa, O>(fields, line, rest),
+        LayoutId::Rsd => read_layout::<LayoutId, Rsd, O>(fields, line, rest),
+        LayoutId::Rte => read_layout::<LayoutId, Rte, O>(fields, line, rest),
+        LayoutId::Sfi => read_layout::<LayoutId, Sfi, O>(fields, line, rest),
+        LayoutId::Sm1 => read_layout::<LayoutId, Sm1, O>(fields, line, rest),
+        LayoutId::Sm2 => read_layout::<LayoutId, Sm2, O>(fields, line, rest),
+        LayoutId::Sm3 => read_layout::<LayoutId, Sm3, O>(fields, line, rest),
+        LayoutId::Sm4 => read_layout::<LayoutId, Sm4, O>(fields, line, rest),
+        LayoutId::Smb => read_layout::<LayoutId, Smb, O>(fields, line, rest),
+        LayoutId::Spw => read_layout::<LayoutId, Spw, O>(fields, line, rest),
+        LayoutId::Ssd => read_layout::<LayoutId, Ssd, O>(fields, line, rest),
+        LayoutId::Stn => read_layout::<LayoutId, Stn, O>(fields, line, rest),
+        LayoutId::Ths => read_layout::<LayoutId, Ths, O>(fields, line, rest),
+        LayoutId::Tlb => read_layout::<LayoutId, Tlb, O>(fields, line, rest),
+        LayoutId::Tll => read_layout::<LayoutId, Tll, O>(fields, line, rest),
+        LayoutId::Tra => read_layout::<LayoutId, Tra, O>(fields, line, rest),
+        LayoutId::Trc => read_layout::<LayoutId, Trc, O>(fields, line, rest),
+        LayoutId::Trd => read_layout::<LayoutId, Trd, O>(fields, line, rest),
+        LayoutId::Trf => read_layout::<LayoutId, Trf, O>(fields, line, rest),
+        LayoutId::Trl => read_layout::<LayoutId, Trl, O>(fields, line, rest),
+        LayoutId::Ttd => read_layout::<LayoutId, Ttd, O>(fields, line, rest),
+        LayoutId::Ttm => read_layout::<LayoutId, Ttm, O>(fields, line, rest),
+        LayoutId::Tut => read_layout::<LayoutId, Tut, O>(fields, line, rest),
+        LayoutId::Txt => read_layout::<LayoutId, Txt, O>(fields, line, rest),
+        LayoutId::Uid => read_layout::<LayoutId, Uid, O>(fields, line, rest),
+        LayoutId::Vbw => read_layout::<LayoutId, Vbw, O>(fields, line, rest),
+        LayoutId::Vdm => read_layout::<LayoutId, Vdm, O>(fields, line, rest),
+        LayoutId::Vdo => read_layout::<LayoutId, Vdo, O>(fields, line, rest),
+        LayoutId::Vdr => read_layout::<LayoutId, Vdr, O>(fields, line, rest),
+        LayoutId::Ver => read_layout::<LayoutId, Ver, O>(fields, line, rest),
+        LayoutId::Vhw => read_layout::<LayoutId, Vhw, O>(fields, line, rest),
+        LayoutId::Vlw => read_layout::<LayoutId, Vlw, O>(fields, line, rest),
+        LayoutId::Vpw => read_layout::<LayoutId, Vpw, O>(fields, line, rest),
+        LayoutId::Vsd => read_layout::<LayoutId, Vsd, O>(fields, line, rest),
+        LayoutId::Vtg => read_layout::<LayoutId, Vtg, O>(fields, line, rest),
+        LayoutId::Vwr => read_layout::<LayoutId, Vwr, O>(fields, line, rest),
+        LayoutId::Vwt => read_layout::<LayoutId, Vwt, O>(fields, line, rest),
+        LayoutId::Wat => read_layout::<LayoutId, Wat, O>(fields, line, rest),
+        LayoutId::Wcv => read_layout::<LayoutId, Wcv, O>(fields, line, rest),
+        LayoutId::Wnc => read_layout::<LayoutId, Wnc, O>(fields, line, rest),
+        LayoutId::Wpl => read_layout::<LayoutId, Wpl, O>(fields, line, rest),
+        LayoutId::Xdr => read_layout::<LayoutId, Xdr, O>(fields, line, rest),
+        LayoutId::Xte => read_layout::<LayoutId, Xte, O>(fields, line, rest),
+        LayoutId::Xtr => read_layout::<LayoutId, Xtr, O>(fields, line, rest),
+        LayoutId::Zda => read_layout::<LayoutId, Zda, O>(fields, line, rest),
+        LayoutId::Zdl => read_layout::<LayoutId, Zdl, O>(fields, line, rest),
+        LayoutId::Zfo => read_layout::<LayoutId, Zfo, O>(fields, line, rest),
+        LayoutId::Ztg => read_layout::<LayoutId, Ztg, O>(fields, line, rest),
         #[cfg(feature = "comnav")]
-        LayoutId::ComnavLog => read_layout::<ComnavLog, O>(fields, line, rest),
+        LayoutId::ComnavLog => read_layout::<LayoutId, ComnavLog, O>(fields, line, rest),
         #[cfg(feature = "comnav")]
-        LayoutId::ComnavNmeatalker => read_layout::<ComnavNmeatalker, O>(fields, line, rest),
+        LayoutId::ComnavNmeatalker => read_layout::<LayoutId, ComnavNmeatalker, O>(fields, line, rest),
         #[cfg(feature = "comnav")]
-        LayoutId::ComnavNmeatalkerList => read_layout::<ComnavNmeatalkerList, O>(fields, line, rest),
+        LayoutId::ComnavNmeatalkerList => read_layout::<LayoutId, ComnavNmeatalkerList, O>(fields, line, rest),
         #[cfg(feature = "comnav")]
-        LayoutId::ComnavNmeatalkerReset => read_layout::<ComnavNmeatalkerReset, O>(fields, line, rest),
+        LayoutId::ComnavNmeatalkerReset => read_layout::<LayoutId, ComnavNmeatalkerReset, O>(fields, line, rest),
         #[cfg(feature = "geos5")]
-        LayoutId::Geos5Command => read_layout::<Geos5Command, O>(fields, line, rest),
+        LayoutId::Geos5Command => read_layout::<LayoutId, Geos5Command, O>(fields, line, rest),
         #[cfg(feature = "geos5")]
-        LayoutId::Geos5Jamdet => read_layout::<Geos5Jamdet, O>(fields, line, rest),
+        LayoutId::Geos5Jamdet => read_layout::<LayoutId, Geos5Jamdet, O>(fields, line, rest),
         #[cfg(feature = "geos5")]
-        LayoutId::Geos5Nquery => read_layout::<Geos5Nquery, O>(fields, line, rest),
+        LayoutId::Geos5Nquery => read_layout::<LayoutId, Geos5Nquery, O>(fields, line, rest),
         #[cfg(feature = "geos5")]
-        LayoutId::Geos5NqueryRequest => read_layout::<Geos5NqueryRequest, O>(fields, line, rest),
+        LayoutId::Geos5NqueryRequest => read_layout::<LayoutId, Geos5NqueryRequest, O>(fields, line, rest),
         #[cfg(feature = "geos5")]
-        LayoutId::Geos5Rquery => read_layout::<Geos5Rquery, O>(fields, line, rest),
+        LayoutId::Geos5Rquery => read_layout::<LayoutId, Geos5Rquery, O>(fields, line, rest),
         #[cfg(feature = "geos5")]
-        LayoutId::Geos5RqueryRequest => read_layout::<Geos5RqueryRequest, O>(fields, line, rest),
+        LayoutId::Geos5RqueryRequest => read_layout::<LayoutId, Geos5RqueryRequest, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair001 => read_layout::<Pair001, O>(fields, line, rest),
+        LayoutId::Pair001 => read_layout::<LayoutId, Pair001, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair002 => read_layout::<Pair002, O>(fields, line, rest),
+        LayoutId::Pair002 => read_layout::<LayoutId, Pair002, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair003 => read_layout::<Pair003, O>(fields, line, rest),
+        LayoutId::Pair003 => read_layout::<LayoutId, Pair003, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair004 => read_layout::<Pair004, O>(fields, line, rest),
+        LayoutId::Pair004 => read_layout::<LayoutId, Pair004, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair005 => read_layout::<Pair005, O>(fields, line, rest),
+        LayoutId::Pair005 => read_layout::<LayoutId, Pair005, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair006 => read_layout::<Pair006, O>(fields, line, rest),
+        LayoutId::Pair006 => read_layout::<LayoutId, Pair006, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair007 => read_layout::<Pair007, O>(fields, line, rest),
+        LayoutId::Pair007 => read_layout::<LayoutId, Pair007, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair010 => read_layout::<Pair010, O>(fields, line, rest),
+        LayoutId::Pair010 => read_layout::<LayoutId, Pair010, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair050 => read_layout::<Pair050, O>(fields, line, rest),
+        LayoutId::Pair050 => read_layout::<LayoutId, Pair050, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair051 => read_layout::<Pair051, O>(fields, line, rest),
+        LayoutId::Pair051 => read_layout::<LayoutId, Pair051, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair051Reply => read_layout::<Pair051Reply, O>(fields, line, rest),
+        LayoutId::Pair051Reply => read_layout::<LayoutId, Pair051Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair058 => read_layout::<Pair058, O>(fields, line, rest),
+        LayoutId::Pair058 => read_layout::<LayoutId, Pair058, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair059 => read_layout::<Pair059, O>(fields, line, rest),
+        LayoutId::Pair059 => read_layout::<LayoutId, Pair059, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair059Reply => read_layout::<Pair059Reply, O>(fields, line, rest),
+        LayoutId::Pair059Reply => read_layout::<LayoutId, Pair059Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair062 => read_layout::<Pair062, O>(fields, line, rest),
+        LayoutId::Pair062 => read_layout::<LayoutId, Pair062, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair063 => read_layout::<Pair063, O>(fields, line, rest),
+        LayoutId::Pair063 => read_layout::<LayoutId, Pair063, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair063Reply => read_layout::<Pair063Reply, O>(fields, line, rest),
+        LayoutId::Pair063Reply => read_layout::<LayoutId, Pair063Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair066 => read_layout::<Pair066, O>(fields, line, rest),
+        LayoutId::Pair066 => read_layout::<LayoutId, Pair066, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair067 => read_layout::<Pair067, O>(fields, line, rest),
+        LayoutId::Pair067 => read_layout::<LayoutId, Pair067, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair067Reply => read_layout::<Pair067Reply, O>(fields, line, rest),
+        LayoutId::Pair067Reply => read_layout::<LayoutId, Pair067Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair070 => read_layout::<Pair070, O>(fields, line, rest),
+        LayoutId::Pair070 => read_layout::<LayoutId, Pair070, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair071 => read_layout::<Pair071, O>(fields, line, rest),
+        LayoutId::Pair071 => read_layout::<LayoutId, Pair071, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair071Reply => read_layout::<Pair071Reply, O>(fields, line, rest),
+        LayoutId::Pair071Reply => read_layout::<LayoutId, Pair071Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair072 => read_layout::<Pair072, O>(fields, line, rest),
+        LayoutId::Pair072 => read_layout::<LayoutId, Pair072, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair073 => read_layout::<Pair073, O>(fields, line, rest),
+        LayoutId::Pair073 => read_layout::<LayoutId, Pair073, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair073Reply => read_layout::<Pair073Reply, O>(fields, line, rest),
+        LayoutId::Pair073Reply => read_layout::<LayoutId, Pair073Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair074 => read_layout::<Pair074, O>(fields, line, rest),
+        LayoutId::Pair074 => read_layout::<LayoutId, Pair074, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair075 => read_layout::<Pair075, O>(fields, line, rest),
+        LayoutId::Pair075 => read_layout::<LayoutId, Pair075, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair075Reply => read_layout::<Pair075Reply, O>(fields, line, rest),
+        LayoutId::Pair075Reply => read_layout::<LayoutId, Pair075Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair080 => read_layout::<Pair080, O>(fields, line, rest),
+        LayoutId::Pair080 => read_layout::<LayoutId, Pair080, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair081 => read_layout::<Pair081, O>(fields, line, rest),
+        LayoutId::Pair081 => read_layout::<LayoutId, Pair081, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair081Reply => read_layout::<Pair081Reply, O>(fields, line, rest),
+        LayoutId::Pair081Reply => read_layout::<LayoutId, Pair081Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair086 => read_layout::<Pair086, O>(fields, line, rest),
+        LayoutId::Pair086 => read_layout::<LayoutId, Pair086, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair087 => read_layout::<Pair087, O>(fields, line, rest),
+        LayoutId::Pair087 => read_layout::<LayoutId, Pair087, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair087Reply => read_layout::<Pair087Reply, O>(fields, line, rest),
+        LayoutId::Pair087Reply => read_layout::<LayoutId, Pair087Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair098 => read_layout::<Pair098, O>(fields, line, rest),
+        LayoutId::Pair098 => read_layout::<LayoutId, Pair098, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair099 => read_layout::<Pair099, O>(fields, line, rest),
+        LayoutId::Pair099 => read_layout::<LayoutId, Pair099, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair099Reply => read_layout::<Pair099Reply, O>(fields, line, rest),
+        LayoutId::Pair099Reply => read_layout::<LayoutId, Pair099Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair100 => read_layout::<Pair100, O>(fields, line, rest),
+        LayoutId::Pair100 => read_layout::<LayoutId, Pair100, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair101 => read_layout::<Pair101, O>(fields, line, rest),
+        LayoutId::Pair101 => read_layout::<LayoutId, Pair101, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair101Reply => read_layout::<Pair101Reply, O>(fields, line, rest),
+        LayoutId::Pair101Reply => read_layout::<LayoutId, Pair101Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair104 => read_layout::<Pair104, O>(fields, line, rest),
+        LayoutId::Pair104 => read_layout::<LayoutId, Pair104, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair105 => read_layout::<Pair105, O>(fields, line, rest),
+        LayoutId::Pair105 => read_layout::<LayoutId, Pair105, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair105Reply => read_layout::<Pair105Reply, O>(fields, line, rest),
+        LayoutId::Pair105Reply => read_layout::<LayoutId, Pair105Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair154 => read_layout::<Pair154, O>(fields, line, rest),
+        LayoutId::Pair154 => read_layout::<LayoutId, Pair154, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair155 => read_layout::<Pair155, O>(fields, line, rest),
+        LayoutId::Pair155 => read_layout::<LayoutId, Pair155, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair155Reply => read_layout::<Pair155Reply, O>(fields, line, rest),
+        LayoutId::Pair155Reply => read_layout::<LayoutId, Pair155Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair158 => read_layout::<Pair158, O>(fields, line, rest),
+        LayoutId::Pair158 => read_layout::<LayoutId, Pair158, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair382 => read_layout::<Pair382, O>(fields, line, rest),
+        LayoutId::Pair382 => read_layout::<LayoutId, Pair382, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair391 => read_layout::<Pair391, O>(fields, line, rest),
+        LayoutId::Pair391 => read_layout::<LayoutId, Pair391, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair400 => read_layout::<Pair400, O>(fields, line, rest),
+        LayoutId::Pair400 => read_layout::<LayoutId, Pair400, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair401 => read_layout::<Pair401, O>(fields, line, rest),
+        LayoutId::Pair401 => read_layout::<LayoutId, Pair401, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair401Reply => read_layout::<Pair401Reply, O>(fields, line, rest),
+        LayoutId::Pair401Reply => read_layout::<LayoutId, Pair401Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair410 => read_layout::<Pair410, O>(fields, line, rest),
+        LayoutId::Pair410 => read_layout::<LayoutId, Pair410, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair411 => read_layout::<Pair411, O>(fields, line, rest),
+        LayoutId::Pair411 => read_layout::<LayoutId, Pair411, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair411Reply => read_layout::<Pair411Reply, O>(fields, line, rest),
+        LayoutId::Pair411Reply => read_layout::<LayoutId, Pair411Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair420 => read_layout::<Pair420, O>(fields, line, rest),
+        LayoutId::Pair420 => read_layout::<LayoutId, Pair420, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair421 => read_layout::<Pair421, O>(fields, line, rest),
+        LayoutId::Pair421 => read_layout::<LayoutId, Pair421, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair421Reply => read_layout::<Pair421Reply, O>(fields, line, rest),
+        LayoutId::Pair421Reply => read_layout::<LayoutId, Pair421Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair432 => read_layout::<Pair432, O>(fields, line, rest),
+        LayoutId::Pair432 => read_layout::<LayoutId, Pair432, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair433 => read_layout::<Pair433, O>(fields, line, rest),
+        LayoutId::Pair433 => read_layout::<LayoutId, Pair433, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair433Reply => read_layout::<Pair433Reply, O>(fields, line, rest),
+        LayoutId::Pair433Reply => read_layout::<LayoutId, Pair433Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair434 => read_layout::<Pair434, O>(fields, line, rest),
+        LayoutId::Pair434 => read_layout::<LayoutId, Pair434, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair435 => read_layout::<Pair435, O>(fields, line, rest),
+        LayoutId::Pair435 => read_layout::<LayoutId, Pair435, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair435Reply => read_layout::<Pair435Reply, O>(fields, line, rest),
+        LayoutId::Pair435Reply => read_layout::<LayoutId, Pair435Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair436 => read_layout::<Pair436, O>(fields, line, rest),
+        LayoutId::Pair436 => read_layout::<LayoutId, Pair436, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair437 => read_layout::<Pair437, O>(fields, line, rest),
+        LayoutId::Pair437 => read_layout::<LayoutId, Pair437, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair437Reply => read_layout::<Pair437Reply, O>(fields, line, rest),
+        LayoutId::Pair437Reply => read_layout::<LayoutId, Pair437Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair490 => read_layout::<Pair490, O>(fields, line, rest),
+        LayoutId::Pair490 => read_layout::<LayoutId, Pair490, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair491 => read_layout::<Pair491, O>(fields, line, rest),
+        LayoutId::Pair491 => read_layout::<LayoutId, Pair491, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair491Reply => read_layout::<Pair491Reply, O>(fields, line, rest),
+        LayoutId::Pair491Reply => read_layout::<LayoutId, Pair491Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair511 => read_layout::<Pair511, O>(fields, line, rest),
+        LayoutId::Pair511 => read_layout::<LayoutId, Pair511, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair512 => read_layout::<Pair512, O>(fields, line, rest),
+        LayoutId::Pair512 => read_layout::<LayoutId, Pair512, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair513 => read_layout::<Pair513, O>(fields, line, rest),
+        LayoutId::Pair513 => read_layout::<LayoutId, Pair513, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair6010 => read_layout::<Pair6010, O>(fields, line, rest),
+        LayoutId::Pair6010 => read_layout::<LayoutId, Pair6010, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair6011 => read_layout::<Pair6011, O>(fields, line, rest),
+        LayoutId::Pair6011 => read_layout::<LayoutId, Pair6011, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair6011Reply => read_layout::<Pair6011Reply, O>(fields, line, rest),
+        LayoutId::Pair6011Reply => read_layout::<LayoutId, Pair6011Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair650 => read_layout::<Pair650, O>(fields, line, rest),
+        LayoutId::Pair650 => read_layout::<LayoutId, Pair650, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair680 => read_layout::<Pair680, O>(fields, line, rest),
+        LayoutId::Pair680 => read_layout::<LayoutId, Pair680, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair681 => read_layout::<Pair681, O>(fields, line, rest),
+        LayoutId::Pair681 => read_layout::<LayoutId, Pair681, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair681Reply => read_layout::<Pair681Reply, O>(fields, line, rest),
+        LayoutId::Pair681Reply => read_layout::<LayoutId, Pair681Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair690 => read_layout::<Pair690, O>(fields, line, rest),
+        LayoutId::Pair690 => read_layout::<LayoutId, Pair690, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair691 => read_layout::<Pair691, O>(fields, line, rest),
+        LayoutId::Pair691 => read_layout::<LayoutId, Pair691, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair691Reply => read_layout::<Pair691Reply, O>(fields, line, rest),
+        LayoutId::Pair691Reply => read_layout::<LayoutId, Pair691Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair730 => read_layout::<Pair730, O>(fields, line, rest),
+        LayoutId::Pair730 => read_layout::<LayoutId, Pair730, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair731 => read_layout::<Pair731, O>(fields, line, rest),
+        LayoutId::Pair731 => read_layout::<LayoutId, Pair731, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair731Reply => read_layout::<Pair731Reply, O>(fields, line, rest),
+        LayoutId::Pair731Reply => read_layout::<LayoutId, Pair731Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair732 => read_layout::<Pair732, O>(fields, line, rest),
+        LayoutId::Pair732 => read_layout::<LayoutId, Pair732, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair733 => read_layout::<Pair733, O>(fields, line, rest),
+        LayoutId::Pair733 => read_layout::<LayoutId, Pair733, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair733Reply => read_layout::<Pair733Reply, O>(fields, line, rest),
+        LayoutId::Pair733Reply => read_layout::<LayoutId, Pair733Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair752 => read_layout::<Pair752, O>(fields, line, rest),
+        LayoutId::Pair752 => read_layout::<LayoutId, Pair752, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair864 => read_layout::<Pair864, O>(fields, line, rest),
+        LayoutId::Pair864 => read_layout::<LayoutId, Pair864, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair865 => read_layout::<Pair865, O>(fields, line, rest),
+        LayoutId::Pair865 => read_layout::<LayoutId, Pair865, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair865Reply => read_layout::<Pair865Reply, O>(fields, line, rest),
+        LayoutId::Pair865Reply => read_layout::<LayoutId, Pair865Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair866 => read_layout::<Pair866, O>(fields, line, rest),
+        LayoutId::Pair866 => read_layout::<LayoutId, Pair866, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair867 => read_layout::<Pair867, O>(fields, line, rest),
+        LayoutId::Pair867 => read_layout::<LayoutId, Pair867, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair867Reply => read_layout::<Pair867Reply, O>(fields, line, rest),
+        LayoutId::Pair867Reply => read_layout::<LayoutId, Pair867Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair890 => read_layout::<Pair890, O>(fields, line, rest),
+        LayoutId::Pair890 => read_layout::<LayoutId, Pair890, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair891 => read_layout::<Pair891, O>(fields, line, rest),
+        LayoutId::Pair891 => read_layout::<LayoutId, Pair891, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair891Reply => read_layout::<Pair891Reply, O>(fields, line, rest),
+        LayoutId::Pair891Reply => read_layout::<LayoutId, Pair891Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair900 => read_layout::<Pair900, O>(fields, line, rest),
+        LayoutId::Pair900 => read_layout::<LayoutId, Pair900, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair901 => read_layout::<Pair901, O>(fields, line, rest),
+        LayoutId::Pair901 => read_layout::<LayoutId, Pair901, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair901Reply => read_layout::<Pair901Reply, O>(fields, line, rest),
+        LayoutId::Pair901Reply => read_layout::<LayoutId, Pair901Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair902 => read_layout::<Pair902, O>(fields, line, rest),
+        LayoutId::Pair902 => read_layout::<LayoutId, Pair902, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair903 => read_layout::<Pair903, O>(fields, line, rest),
+        LayoutId::Pair903 => read_layout::<LayoutId, Pair903, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair903Reply => read_layout::<Pair903Reply, O>(fields, line, rest),
+        LayoutId::Pair903Reply => read_layout::<LayoutId, Pair903Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair904 => read_layout::<Pair904, O>(fields, line, rest),
+        LayoutId::Pair904 => read_layout::<LayoutId, Pair904, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair905 => read_layout::<Pair905, O>(fields, line, rest),
+        LayoutId::Pair905 => read_layout::<LayoutId, Pair905, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair906 => read_layout::<Pair906, O>(fields, line, rest),
+        LayoutId::Pair906 => read_layout::<LayoutId, Pair906, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair907 => read_layout::<Pair907, O>(fields, line, rest),
+        LayoutId::Pair907 => read_layout::<LayoutId, Pair907, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair908 => read_layout::<Pair908, O>(fields, line, rest),
+        LayoutId::Pair908 => read_layout::<LayoutId, Pair908, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair909 => read_layout::<Pair909, O>(fields, line, rest),
+        LayoutId::Pair909 => read_layout::<LayoutId, Pair909, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pair909Reply => read_layout::<Pair909Reply, O>(fields, line, rest),
+        LayoutId::Pair909Reply => read_layout::<LayoutId, Pair909Reply, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pairspf => read_layout::<Pairspf, O>(fields, line, rest),
+        LayoutId::Pairspf => read_layout::<LayoutId, Pairspf, O>(fields, line, rest),
         #[cfg(feature = "airoha_pair")]
-        LayoutId::Pairspf5 => read_layout::<Pairspf5, O>(fields, line, rest),
+        LayoutId::Pairspf5 => read_layout::<LayoutId, Pairspf5, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashqAtt => read_layout::<PashqAtt, O>(fields, line, rest),
+        LayoutId::PashqAtt => read_layout::<LayoutId, PashqAtt, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashqElm => read_layout::<PashqElm, O>(fields, line, rest),
+        LayoutId::PashqElm => read_layout::<LayoutId, PashqElm, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashqNmo => read_layout::<PashqNmo, O>(fields, line, rest),
+        LayoutId::PashqNmo => read_layout::<LayoutId, PashqNmo, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashqPem => read_layout::<PashqPem, O>(fields, line, rest),
+        LayoutId::PashqPem => read_layout::<LayoutId, PashqPem, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashqPop => read_layout::<PashqPop, O>(fields, line, rest),
+        LayoutId::PashqPop => read_layout::<LayoutId, PashqPop, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashqPos => read_layout::<PashqPos, O>(fields, line, rest),
+        LayoutId::PashqPos => read_layout::<LayoutId, PashqPos, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashqPtt => read_layout::<PashqPtt, O>(fields, line, rest),
+        LayoutId::PashqPtt => read_layout::<LayoutId, PashqPtt, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashqSat => read_layout::<PashqSat, O>(fields, line, rest),
+        LayoutId::PashqSat => read_layout::<LayoutId, PashqSat, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashqSba => read_layout::<PashqSba, O>(fields, line, rest),
+        LayoutId::PashqSba => read_layout::<LayoutId, PashqSba, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::Pashr => read_layout::<Pashr, O>(fields, line, rest),
+        LayoutId::Pashr => read_layout::<LayoutId, Pashr, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrAck => read_layout::<PashrAck, O>(fields, line, rest),
+        LayoutId::PashrAck => read_layout::<LayoutId, PashrAck, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrAtt => read_layout::<PashrAtt, O>(fields, line, rest),
+        LayoutId::PashrAtt => read_layout::<LayoutId, PashrAtt, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrElm => read_layout::<PashrElm, O>(fields, line, rest),
+        LayoutId::PashrElm => read_layout::<LayoutId, PashrElm, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrHpr => read_layout::<PashrHpr, O>(fields, line, rest),
+        LayoutId::PashrHpr => read_layout::<LayoutId, PashrHpr, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrNak => read_layout::<PashrNak, O>(fields, line, rest),
+        LayoutId::PashrNak => read_layout::<LayoutId, PashrNak, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrNmo => read_layout::<PashrNmo, O>(fields, line, rest),
+        LayoutId::PashrNmo => read_layout::<LayoutId, PashrNmo, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrPem => read_layout::<PashrPem, O>(fields, line, rest),
+        LayoutId::PashrPem => read_layout::<LayoutId, PashrPem, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrPop => read_layout::<PashrPop, O>(fields, line, rest),
+        LayoutId::PashrPop => read_layout::<LayoutId, PashrPop, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrPos => read_layout::<PashrPos, O>(fields, line, rest),
+        LayoutId::PashrPos => read_layout::<LayoutId, PashrPos, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrPtt => read_layout::<PashrPtt, O>(fields, line, rest),
+        LayoutId::PashrPtt => read_layout::<LayoutId, PashrPtt, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrSat => read_layout::<PashrSat, O>(fields, line, rest),
+        LayoutId::PashrSat => read_layout::<LayoutId, PashrSat, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrSba => read_layout::<PashrSba, O>(fields, line, rest),
+        LayoutId::PashrSba => read_layout::<LayoutId, PashrSba, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashrTtt => read_layout::<PashrTtt, O>(fields, line, rest),
+        LayoutId::PashrTtt => read_layout::<LayoutId, PashrTtt, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashsNme => read_layout::<PashsNme, O>(fields, line, rest),
+        LayoutId::PashsNme => read_layout::<LayoutId, PashsNme, O>(fields, line, rest),
         #[cfg(feature = "ashtech")]
-        LayoutId::PashsNmePeriod => read_layout::<PashsNmePeriod, O>(fields, line, rest),
+        LayoutId::PashsNmePeriod => read_layout::<LayoutId, PashsNmePeriod, O>(fields, line, rest),
         #[cfg(feature = "furuno_eride")]
-        LayoutId::Perdcrw => read_layout::<Perdcrw, O>(fields, line, rest),
+        LayoutId::Perdcrw => read_layout::<LayoutId, Perdcrw, O>(fields, line, rest),
         #[cfg(feature = "furuno_eride")]
-        LayoutId::Perdcrx => read_layout::<Perdcrx, O>(fields, line, rest),
+        LayoutId::Perdcrx => read_layout::<LayoutId, Perdcrx, O>(fields, line, rest),
         #[cfg(feature = "furuno_eride")]
-        LayoutId::Perdcry => read_layout::<Perdcry, O>(fields, line, rest),
+        LayoutId::Perdcry => read_layout::<LayoutId, Perdcry, O>(fields, line, rest),
         #[cfg(feature = "furuno_eride")]
-        LayoutId::Perdcrz => read_layout::<Perdcrz, O>(fields, line, rest),
+        LayoutId::Perdcrz => read_layout::<LayoutId, Perdcrz, O>(fields, line, rest),
         #[cfg(feature = "furuno")]
-        LayoutId::PfecGpatt => read_layout::<PfecGpatt, O>(fields, line, rest),
+        LayoutId::PfecGpatt => read_layout::<LayoutId, PfecGpatt, O>(fields, line, rest),
         #[cfg(feature = "furuno")]
-        LayoutId::PfecGphve => read_layout::<PfecGphve, O>(fields, line, rest),
+        LayoutId::PfecGphve => read_layout::<LayoutId, PfecGphve, O>(fields, line, rest),
         #[cfg(feature = "furuno")]
-        LayoutId::PfecGprtc => read_layout::<PfecGprtc, O>(fields, line, rest),
+        LayoutId::PfecGprtc => read_layout::<LayoutId, PfecGprtc, O>(fields, line, rest),
         #[cfg(feature = "furuno")]
-        LayoutId::PfecGpwpl => read_layout::<PfecGpwpl, O>(fields, line, rest),
+        LayoutId::PfecGpwpl => read_layout::<LayoutId, PfecGpwpl, O>(fields, line, rest),
         #[cfg(feature = "furuno")]
-        LayoutId::PfecGpxfr => read_layout::<PfecGpxfr, O>(fields, line, rest),
+        LayoutId::PfecGpxfr => read_layout::<LayoutId, PfecGpxfr, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorFix => read_layout::<PglorFix, O>(fields, line, rest),
+        LayoutId::PglorFix => read_layout::<LayoutId, PglorFix, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorLsq => read_layout::<PglorLsq, O>(fields, line, rest),
+        LayoutId::PglorLsq => read_layout::<LayoutId, PglorLsq, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorPwr => read_layout::<PglorPwr, O>(fields, line, rest),
+        LayoutId::PglorPwr => read_layout::<LayoutId, PglorPwr, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorPwrV2 => read_layout::<PglorPwrV2, O>(fields, line, rest),
+        LayoutId::PglorPwrV2 => read_layout::<LayoutId, PglorPwrV2, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorPwrV4 => read_layout::<PglorPwrV4, O>(fields, line, rest),
+        LayoutId::PglorPwrV4 => read_layout::<LayoutId, PglorPwrV4, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorSat => read_layout::<PglorSat, O>(fields, line, rest),
+        LayoutId::PglorSat => read_layout::<LayoutId, PglorSat, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorSatV1 => read_layout::<PglorSatV1, O>(fields, line, rest),
+        LayoutId::PglorSatV1 => read_layout::<LayoutId, PglorSatV1, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorSatV0 => read_layout::<PglorSatV0, O>(fields, line, rest),
+        LayoutId::PglorSatV0 => read_layout::<LayoutId, PglorSatV0, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorSio => read_layout::<PglorSio, O>(fields, line, rest),
+        LayoutId::PglorSio => read_layout::<LayoutId, PglorSio, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorSioV0 => read_layout::<PglorSioV0, O>(fields, line, rest),
+        LayoutId::PglorSioV0 => read_layout::<LayoutId, PglorSioV0, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorSta => read_layout::<PglorSta, O>(fields, line, rest),
+        LayoutId::PglorSta => read_layout::<LayoutId, PglorSta, O>(fields, line, rest),
         #[cfg(feature = "broadcom_glor")]
-        LayoutId::PglorUnc => read_layout::<PglorUnc, O>(fields, line, rest),
+        LayoutId::PglorUnc => read_layout::<LayoutId, PglorUnc, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmb => read_layout::<Pgrmb, O>(fields, line, rest),
+        LayoutId::Pgrmb => read_layout::<LayoutId, Pgrmb, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmc => read_layout::<Pgrmc, O>(fields, line, rest),
+        LayoutId::Pgrmc => read_layout::<LayoutId, Pgrmc, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmc1 => read_layout::<Pgrmc1, O>(fields, line, rest),
+        LayoutId::Pgrmc1 => read_layout::<LayoutId, Pgrmc1, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmc1e => read_layout::<Pgrmc1e, O>(fields, line, rest),
+        LayoutId::Pgrmc1e => read_layout::<LayoutId, Pgrmc1e, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmce => read_layout::<Pgrmce, O>(fields, line, rest),
+        LayoutId::Pgrmce => read_layout::<LayoutId, Pgrmce, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrme => read_layout::<Pgrme, O>(fields, line, rest),
+        LayoutId::Pgrme => read_layout::<LayoutId, Pgrme, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmf => read_layout::<Pgrmf, O>(fields, line, rest),
+        LayoutId::Pgrmf => read_layout::<LayoutId, Pgrmf, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmi => read_layout::<Pgrmi, O>(fields, line, rest),
+        LayoutId::Pgrmi => read_layout::<LayoutId, Pgrmi, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmie => read_layout::<Pgrmie, O>(fields, line, rest),
+        LayoutId::Pgrmie => read_layout::<LayoutId, Pgrmie, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmm => read_layout::<Pgrmm, O>(fields, line, rest),
+        LayoutId::Pgrmm => read_layout::<LayoutId, Pgrmm, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmo => read_layout::<Pgrmo, O>(fields, line, rest),
+        LayoutId::Pgrmo => read_layout::<LayoutId, Pgrmo, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmt => read_layout::<Pgrmt, O>(fields, line, rest),
+        LayoutId::Pgrmt => read_layout::<LayoutId, Pgrmt, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmv => read_layout::<Pgrmv, O>(fields, line, rest),
+        LayoutId::Pgrmv => read_layout::<LayoutId, Pgrmv, O>(fields, line, rest),
         #[cfg(feature = "garmin_gps18x")]
-        LayoutId::Pgrmz => read_layout::<Pgrmz, O>(fields, line, rest),
+        LayoutId::Pgrmz => read_layout::<LayoutId, Pgrmz, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pgtop11 => read_layout::<Pgtop11, O>(fields, line, rest),
+        LayoutId::Pgtop11 => read_layout::<LayoutId, Pgtop11, O>(fields, line, rest),
         #[cfg(feature = "magellan_fx324")]
-        LayoutId::Pmgncmd => read_layout::<Pmgncmd, O>(fields, line, rest),
+        LayoutId::Pmgncmd => read_layout::<LayoutId, Pmgncmd, O>(fields, line, rest),
         #[cfg(feature = "magellan_fx324")]
-        LayoutId::Pmgnst => read_layout::<Pmgnst, O>(fields, line, rest),
+        LayoutId::Pmgnst => read_layout::<LayoutId, Pmgnst, O>(fields, line, rest),
         #[cfg(feature = "magellan_fx324")]
-        LayoutId::Pmgntrk => read_layout::<Pmgntrk, O>(fields, line, rest),
+        LayoutId::Pmgntrk => read_layout::<LayoutId, Pmgntrk, O>(fields, line, rest),
         #[cfg(feature = "magellan_fx324")]
-        LayoutId::Pmgnwpl => read_layout::<Pmgnwpl, O>(fields, line, rest),
+        LayoutId::Pmgnwpl => read_layout::<LayoutId, Pmgnwpl, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk000 => read_layout::<Pmtk000, O>(fields, line, rest),
+        LayoutId::Pmtk000 => read_layout::<LayoutId, Pmtk000, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk001 => read_layout::<Pmtk001, O>(fields, line, rest),
+        LayoutId::Pmtk001 => read_layout::<LayoutId, Pmtk001, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk001SvMask => read_layout::<Pmtk001SvMask, O>(fields, line, rest),
+        LayoutId::Pmtk001SvMask => read_layout::<LayoutId, Pmtk001SvMask, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk010 => read_layout::<Pmtk010, O>(fields, line, rest),
+        LayoutId::Pmtk010 => read_layout::<LayoutId, Pmtk010, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk011 => read_layout::<Pmtk011, O>(fields, line, rest),
+        LayoutId::Pmtk011 => read_layout::<LayoutId, Pmtk011, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk101 => read_layout::<Pmtk101, O>(fields, line, rest),
+        LayoutId::Pmtk101 => read_layout::<LayoutId, Pmtk101, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk102 => read_layout::<Pmtk102, O>(fields, line, rest),
+        LayoutId::Pmtk102 => read_layout::<LayoutId, Pmtk102, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk103 => read_layout::<Pmtk103, O>(fields, line, rest),
+        LayoutId::Pmtk103 => read_layout::<LayoutId, Pmtk103, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk104 => read_layout::<Pmtk104, O>(fields, line, rest),
+        LayoutId::Pmtk104 => read_layout::<LayoutId, Pmtk104, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk161 => read_layout::<Pmtk161, O>(fields, line, rest),
+        LayoutId::Pmtk161 => read_layout::<LayoutId, Pmtk161, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk183 => read_layout::<Pmtk183, O>(fields, line, rest),
+        LayoutId::Pmtk183 => read_layout::<LayoutId, Pmtk183, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk184 => read_layout::<Pmtk184, O>(fields, line, rest),
+        LayoutId::Pmtk184 => read_layout::<LayoutId, Pmtk184, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk185 => read_layout::<Pmtk185, O>(fields, line, rest),
+        LayoutId::Pmtk185 => read_layout::<LayoutId, Pmtk185, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk220 => read_layout::<Pmtk220, O>(fields, line, rest),
+        LayoutId::Pmtk220 => read_layout::<LayoutId, Pmtk220, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk223 => read_layout::<Pmtk223, O>(fields, line, rest),
+        LayoutId::Pmtk223 => read_layout::<LayoutId, Pmtk223, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk225 => read_layout::<Pmtk225, O>(fields, line, rest),
+        LayoutId::Pmtk225 => read_layout::<LayoutId, Pmtk225, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk251 => read_layout::<Pmtk251, O>(fields, line, rest),
+        LayoutId::Pmtk251 => read_layout::<LayoutId, Pmtk251, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk286 => read_layout::<Pmtk286, O>(fields, line, rest),
+        LayoutId::Pmtk286 => read_layout::<LayoutId, Pmtk286, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk300 => read_layout::<Pmtk300, O>(fields, line, rest),
+        LayoutId::Pmtk300 => read_layout::<LayoutId, Pmtk300, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk301 => read_layout::<Pmtk301, O>(fields, line, rest),
+        LayoutId::Pmtk301 => read_layout::<LayoutId, Pmtk301, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk313 => read_layout::<Pmtk313, O>(fields, line, rest),
+        LayoutId::Pmtk313 => read_layout::<LayoutId, Pmtk313, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk314 => read_layout::<Pmtk314, O>(fields, line, rest),
+        LayoutId::Pmtk314 => read_layout::<LayoutId, Pmtk314, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk314RestoreDefault => read_layout::<Pmtk314RestoreDefault, O>(fields, line, rest),
+        LayoutId::Pmtk314RestoreDefault => read_layout::<LayoutId, Pmtk314RestoreDefault, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk319 => read_layout::<Pmtk319, O>(fields, line, rest),
+        LayoutId::Pmtk319 => read_layout::<LayoutId, Pmtk319, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk353 => read_layout::<Pmtk353, O>(fields, line, rest),
+        LayoutId::Pmtk353 => read_layout::<LayoutId, Pmtk353, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk386 => read_layout::<Pmtk386, O>(fields, line, rest),
+        LayoutId::Pmtk386 => read_layout::<LayoutId, Pmtk386, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk397 => read_layout::<Pmtk397, O>(fields, line, rest),
+        LayoutId::Pmtk397 => read_layout::<LayoutId, Pmtk397, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk400 => read_layout::<Pmtk400, O>(fields, line, rest),
+        LayoutId::Pmtk400 => read_layout::<LayoutId, Pmtk400, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk401 => read_layout::<Pmtk401, O>(fields, line, rest),
+        LayoutId::Pmtk401 => read_layout::<LayoutId, Pmtk401, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk413 => read_layout::<Pmtk413, O>(fields, line, rest),
+        LayoutId::Pmtk413 => read_layout::<LayoutId, Pmtk413, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk414 => read_layout::<Pmtk414, O>(fields, line, rest),
+        LayoutId::Pmtk414 => read_layout::<LayoutId, Pmtk414, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk447 => read_layout::<Pmtk447, O>(fields, line, rest),
+        LayoutId::Pmtk447 => read_layout::<LayoutId, Pmtk447, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk500 => read_layout::<Pmtk500, O>(fields, line, rest),
+        LayoutId::Pmtk500 => read_layout::<LayoutId, Pmtk500, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk501 => read_layout::<Pmtk501, O>(fields, line, rest),
+        LayoutId::Pmtk501 => read_layout::<LayoutId, Pmtk501, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk513 => read_layout::<Pmtk513, O>(fields, line, rest),
+        LayoutId::Pmtk513 => read_layout::<LayoutId, Pmtk513, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk514 => read_layout::<Pmtk514, O>(fields, line, rest),
+        LayoutId::Pmtk514 => read_layout::<LayoutId, Pmtk514, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk527 => read_layout::<Pmtk527, O>(fields, line, rest),
+        LayoutId::Pmtk527 => read_layout::<LayoutId, Pmtk527, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk605 => read_layout::<Pmtk605, O>(fields, line, rest),
+        LayoutId::Pmtk605 => read_layout::<LayoutId, Pmtk605, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk622 => read_layout::<Pmtk622, O>(fields, line, rest),
+        LayoutId::Pmtk622 => read_layout::<LayoutId, Pmtk622, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk660 => read_layout::<Pmtk660, O>(fields, line, rest),
+        LayoutId::Pmtk660 => read_layout::<LayoutId, Pmtk660, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk661 => read_layout::<Pmtk661, O>(fields, line, rest),
+        LayoutId::Pmtk661 => read_layout::<LayoutId, Pmtk661, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk705 => read_layout::<Pmtk705, O>(fields, line, rest),
+        LayoutId::Pmtk705 => read_layout::<LayoutId, Pmtk705, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk869Query => read_layout::<Pmtk869Query, O>(fields, line, rest),
+        LayoutId::Pmtk869Query => read_layout::<LayoutId, Pmtk869Query, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk869Result => read_layout::<Pmtk869Result, O>(fields, line, rest),
+        LayoutId::Pmtk869Result => read_layout::<LayoutId, Pmtk869Result, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtk869Set => read_layout::<Pmtk869Set, O>(fields, line, rest),
+        LayoutId::Pmtk869Set => read_layout::<LayoutId, Pmtk869Set, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtkchn => read_layout::<Pmtkchn, O>(fields, line, rest),
+        LayoutId::Pmtkchn => read_layout::<LayoutId, Pmtkchn, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::Pmtklog => read_layout::<Pmtklog, O>(fields, line, rest),
+        LayoutId::Pmtklog => read_layout::<LayoutId, Pmtklog, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::PmtkloxData => read_layout::<PmtkloxData, O>(fields, line, rest),
+        LayoutId::PmtkloxData => read_layout::<LayoutId, PmtkloxData, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::PmtkloxEnd => read_layout::<PmtkloxEnd, O>(fields, line, rest),
+        LayoutId::PmtkloxEnd => read_layout::<LayoutId, PmtkloxEnd, O>(fields, line, rest),
         #[cfg(feature = "mtk_pmtk")]
-        LayoutId::PmtkloxStart => read_layout::<PmtkloxStart, O>(fields, line, rest),
+        LayoutId::PmtkloxStart => read_layout::<LayoutId, PmtkloxStart, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqgsv => read_layout::<Pqgsv, O>(fields, line, rest),
+        LayoutId::Pqgsv => read_layout::<LayoutId, Pqgsv, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmantennastatus => read_layout::<Pqtmantennastatus, O>(fields, line, rest),
+        LayoutId::Pqtmantennastatus => read_layout::<LayoutId, Pqtmantennastatus, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgantdelta => read_layout::<Pqtmcfgantdelta, O>(fields, line, rest),
+        LayoutId::Pqtmcfgantdelta => read_layout::<LayoutId, Pqtmcfgantdelta, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgantdeltaRead => read_layout::<PqtmcfgantdeltaRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgantdeltaRead => read_layout::<LayoutId, PqtmcfgantdeltaRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgantdeltaResult => read_layout::<PqtmcfgantdeltaResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgantdeltaResult => read_layout::<LayoutId, PqtmcfgantdeltaResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgantdeltaResultAck => read_layout::<PqtmcfgantdeltaResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgantdeltaResultAck => read_layout::<LayoutId, PqtmcfgantdeltaResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgantdeltaResultError => read_layout::<PqtmcfgantdeltaResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgantdeltaResultError => {
+            read_layout::<LayoutId, PqtmcfgantdeltaResultError, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgantinf => read_layout::<Pqtmcfgantinf, O>(fields, line, rest),
+        LayoutId::Pqtmcfgantinf => read_layout::<LayoutId, Pqtmcfgantinf, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgantinfRead => read_layout::<PqtmcfgantinfRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgantinfRead => read_layout::<LayoutId, PqtmcfgantinfRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgantinfResult => read_layout::<PqtmcfgantinfResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgantinfResult => read_layout::<LayoutId, PqtmcfgantinfResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgantinfResultAck => read_layout::<PqtmcfgantinfResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgantinfResultAck => read_layout::<LayoutId, PqtmcfgantinfResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgantinfResultError => read_layout::<PqtmcfgantinfResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgantinfResultError => read_layout::<LayoutId, PqtmcfgantinfResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgbld => read_layout::<Pqtmcfgbld, O>(fields, line, rest),
+        LayoutId::Pqtmcfgbld => read_layout::<LayoutId, Pqtmcfgbld, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgbldRead => read_layout::<PqtmcfgbldRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgbldRead => read_layout::<LayoutId, PqtmcfgbldRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgbldResult => read_layout::<PqtmcfgbldResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgbldResult => read_layout::<LayoutId, PqtmcfgbldResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgbldResultAck => read_layout::<PqtmcfgbldResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgbldResultAck => read_layout::<LayoutId, PqtmcfgbldResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgbldResultError => read_layout::<PqtmcfgbldResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgbldResultError => read_layout::<LayoutId, PqtmcfgbldResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgcnrthd => read_layout::<Pqtmcfgcnrthd, O>(fields, line, rest),
+        LayoutId::Pqtmcfgcnrthd => read_layout::<LayoutId, Pqtmcfgcnrthd, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgcnrthdRead => read_layout::<PqtmcfgcnrthdRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgcnrthdRead => read_layout::<LayoutId, PqtmcfgcnrthdRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgcnrthdResult => read_layout::<PqtmcfgcnrthdResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgcnrthdResult => read_layout::<LayoutId, PqtmcfgcnrthdResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgcnrthdResultAck => read_layout::<PqtmcfgcnrthdResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgcnrthdResultAck => read_layout::<LayoutId, PqtmcfgcnrthdResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgcnrthdResultError => read_layout::<PqtmcfgcnrthdResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgcnrthdResultError => read_layout::<LayoutId, PqtmcfgcnrthdResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgcnst => read_layout::<Pqtmcfgcnst, O>(fields, line, rest),
+        LayoutId::Pqtmcfgcnst => read_layout::<LayoutId, Pqtmcfgcnst, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgcnstRead => read_layout::<PqtmcfgcnstRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgcnstRead => read_layout::<LayoutId, PqtmcfgcnstRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgcnstResult => read_layout::<PqtmcfgcnstResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgcnstResult => read_layout::<LayoutId, PqtmcfgcnstResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgcnstResultAck => read_layout::<PqtmcfgcnstResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgcnstResultAck => read_layout::<LayoutId, PqtmcfgcnstResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgcnstResultError => read_layout::<PqtmcfgcnstResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgcnstResultError => read_layout::<LayoutId, PqtmcfgcnstResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgelethd => read_layout::<Pqtmcfgelethd, O>(fields, line, rest),
+        LayoutId::Pqtmcfgelethd => read_layout::<LayoutId, Pqtmcfgelethd, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgelethdRead => read_layout::<PqtmcfgelethdRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgelethdRead => read_layout::<LayoutId, PqtmcfgelethdRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgelethdResult => read_layout::<PqtmcfgelethdResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgelethdResult => read_layout::<LayoutId, PqtmcfgelethdResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgelethdResultAck => read_layout::<PqtmcfgelethdResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgelethdResultAck => read_layout::<LayoutId, PqtmcfgelethdResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgelethdResultError => read_layout::<PqtmcfgelethdResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgelethdResultError => read_layout::<LayoutId, PqtmcfgelethdResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgfixrate => read_layout::<Pqtmcfgfixrate, O>(fields, line, rest),
+        LayoutId::Pqtmcfgfixrate => read_layout::<LayoutId, Pqtmcfgfixrate, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgfixrateRead => read_layout::<PqtmcfgfixrateRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgfixrateRead => read_layout::<LayoutId, PqtmcfgfixrateRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgfixrateResult => read_layout::<PqtmcfgfixrateResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgfixrateResult => read_layout::<LayoutId, PqtmcfgfixrateResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgfixrateResultAck => read_layout::<PqtmcfgfixrateResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgfixrateResultAck => read_layout::<LayoutId, PqtmcfgfixrateResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgfixrateResultError => read_layout::<PqtmcfgfixrateResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgfixrateResultError => {
+            read_layout::<LayoutId, PqtmcfgfixrateResultError, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfggeofence => read_layout::<Pqtmcfggeofence, O>(fields, line, rest),
+        LayoutId::Pqtmcfggeofence => read_layout::<LayoutId, Pqtmcfggeofence, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfggeofenceRead => read_layout::<PqtmcfggeofenceRead, O>(fields, line, rest),
+        LayoutId::PqtmcfggeofenceRead => read_layout::<LayoutId, PqtmcfggeofenceRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfggeofenceResult => read_layout::<PqtmcfggeofenceResult, O>(fields, line, rest),
+        LayoutId::PqtmcfggeofenceResult => read_layout::<LayoutId, PqtmcfggeofenceResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfggeofenceResultAck => read_layout::<PqtmcfggeofenceResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfggeofenceResultAck => read_layout::<LayoutId, PqtmcfggeofenceResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfggeofenceResultError => read_layout::<PqtmcfggeofenceResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfggeofenceResultError => {
+            read_layout::<LayoutId, PqtmcfggeofenceResultError, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfggeosep => read_layout::<Pqtmcfggeosep, O>(fields, line, rest),
+        LayoutId::Pqtmcfggeosep => read_layout::<LayoutId, Pqtmcfggeosep, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfggeosepRead => read_layout::<PqtmcfggeosepRead, O>(fields, line, rest),
+        LayoutId::PqtmcfggeosepRead => read_layout::<LayoutId, PqtmcfggeosepRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfggeosepResult => read_layout::<PqtmcfggeosepResult, O>(fields, line, rest),
+        LayoutId::PqtmcfggeosepResult => read_layout::<LayoutId, PqtmcfggeosepResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfggeosepResultAck => read_layout::<PqtmcfggeosepResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfggeosepResultAck => read_layout::<LayoutId, PqtmcfggeosepResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfggeosepResultError => read_layout::<PqtmcfggeosepResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfggeosepResultError => read_layout::<LayoutId, PqtmcfggeosepResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgmsgrate => read_layout::<Pqtmcfgmsgrate, O>(fields, line, rest),
+        LayoutId::Pqtmcfgmsgrate => read_layout::<LayoutId, Pqtmcfgmsgrate, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgmsgratePort => read_layout::<PqtmcfgmsgratePort, O>(fields, line, rest),
+        LayoutId::PqtmcfgmsgratePort => read_layout::<LayoutId, PqtmcfgmsgratePort, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgmsgrateReadPort => read_layout::<PqtmcfgmsgrateReadPort, O>(fields, line, rest),
+        LayoutId::PqtmcfgmsgrateReadPort => read_layout::<LayoutId, PqtmcfgmsgrateReadPort, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgmsgrateRead => read_layout::<PqtmcfgmsgrateRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgmsgrateRead => read_layout::<LayoutId, PqtmcfgmsgrateRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgmsgrateResult => read_layout::<PqtmcfgmsgrateResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgmsgrateResult => read_layout::<LayoutId, PqtmcfgmsgrateResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgmsgrateResultPort => read_layout::<PqtmcfgmsgrateResultPort, O>(fields, line, rest),
+        LayoutId::PqtmcfgmsgrateResultPort => read_layout::<LayoutId, PqtmcfgmsgrateResultPort, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgmsgrateResultAck => read_layout::<PqtmcfgmsgrateResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgmsgrateResultAck => read_layout::<LayoutId, PqtmcfgmsgrateResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgmsgrateResultError => read_layout::<PqtmcfgmsgrateResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgmsgrateResultError => {
+            read_layout::<LayoutId, PqtmcfgmsgrateResultError, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgnmeadp => read_layout::<Pqtmcfgnmeadp, O>(fields, line, rest),
+        LayoutId::Pqtmcfgnmeadp => read_layout::<LayoutId, Pqtmcfgnmeadp, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgnmeadpRead => read_layout::<PqtmcfgnmeadpRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgnmeadpRead => read_layout::<LayoutId, PqtmcfgnmeadpRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgnmeadpResult => read_layout::<PqtmcfgnmeadpResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgnmeadpResult => read_layout::<LayoutId, PqtmcfgnmeadpResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgnmeadpResultAck => read_layout::<PqtmcfgnmeadpResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgnmeadpResultAck => read_layout::<LayoutId, PqtmcfgnmeadpResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgnmeadpResultError => read_layout::<PqtmcfgnmeadpResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgnmeadpResultError => read_layout::<LayoutId, PqtmcfgnmeadpResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgnmeatid => read_layout::<Pqtmcfgnmeatid, O>(fields, line, rest),
+        LayoutId::Pqtmcfgnmeatid => read_layout::<LayoutId, Pqtmcfgnmeatid, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgnmeatidRead => read_layout::<PqtmcfgnmeatidRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgnmeatidRead => read_layout::<LayoutId, PqtmcfgnmeatidRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgnmeatidResult => read_layout::<PqtmcfgnmeatidResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgnmeatidResult => read_layout::<LayoutId, PqtmcfgnmeatidResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgnmeatidResultAck => read_layout::<PqtmcfgnmeatidResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgnmeatidResultAck => read_layout::<LayoutId, PqtmcfgnmeatidResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgnmeatidResultError => read_layout::<PqtmcfgnmeatidResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgnmeatidResultError => {
+            read_layout::<LayoutId, PqtmcfgnmeatidResultError, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgodo => read_layout::<Pqtmcfgodo, O>(fields, line, rest),
+        LayoutId::Pqtmcfgodo => read_layout::<LayoutId, Pqtmcfgodo, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgodoRead => read_layout::<PqtmcfgodoRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgodoRead => read_layout::<LayoutId, PqtmcfgodoRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgodoResult => read_layout::<PqtmcfgodoResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgodoResult => read_layout::<LayoutId, PqtmcfgodoResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgodoResultAck => read_layout::<PqtmcfgodoResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgodoResultAck => read_layout::<LayoutId, PqtmcfgodoResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgodoResultError => read_layout::<PqtmcfgodoResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgodoResultError => read_layout::<LayoutId, PqtmcfgodoResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgpps => read_layout::<Pqtmcfgpps, O>(fields, line, rest),
+        LayoutId::Pqtmcfgpps => read_layout::<LayoutId, Pqtmcfgpps, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgppsRead => read_layout::<PqtmcfgppsRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgppsRead => read_layout::<LayoutId, PqtmcfgppsRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgppsResult => read_layout::<PqtmcfgppsResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgppsResult => read_layout::<LayoutId, PqtmcfgppsResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgppsResultAck => read_layout::<PqtmcfgppsResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgppsResultAck => read_layout::<LayoutId, PqtmcfgppsResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgppsResultError => read_layout::<PqtmcfgppsResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgppsResultError => read_layout::<LayoutId, PqtmcfgppsResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgprot => read_layout::<Pqtmcfgprot, O>(fields, line, rest),
+        LayoutId::Pqtmcfgprot => read_layout::<LayoutId, Pqtmcfgprot, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgprotRead => read_layout::<PqtmcfgprotRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgprotRead => read_layout::<LayoutId, PqtmcfgprotRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgprotResult => read_layout::<PqtmcfgprotResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgprotResult => read_layout::<LayoutId, PqtmcfgprotResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgprotResultAck => read_layout::<PqtmcfgprotResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgprotResultAck => read_layout::<LayoutId, PqtmcfgprotResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgprotResultError => read_layout::<PqtmcfgprotResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgprotResultError => read_layout::<LayoutId, PqtmcfgprotResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgrcvrmode => read_layout::<Pqtmcfgrcvrmode, O>(fields, line, rest),
+        LayoutId::Pqtmcfgrcvrmode => read_layout::<LayoutId, Pqtmcfgrcvrmode, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrcvrmodeRead => read_layout::<PqtmcfgrcvrmodeRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgrcvrmodeRead => read_layout::<LayoutId, PqtmcfgrcvrmodeRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrcvrmodeResult => read_layout::<PqtmcfgrcvrmodeResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgrcvrmodeResult => read_layout::<LayoutId, PqtmcfgrcvrmodeResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrcvrmodeResultAck => read_layout::<PqtmcfgrcvrmodeResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgrcvrmodeResultAck => read_layout::<LayoutId, PqtmcfgrcvrmodeResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrcvrmodeResultError => read_layout::<PqtmcfgrcvrmodeResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgrcvrmodeResultError => {
+            read_layout::<LayoutId, PqtmcfgrcvrmodeResultError, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgrsid => read_layout::<Pqtmcfgrsid, O>(fields, line, rest),
+        LayoutId::Pqtmcfgrsid => read_layout::<LayoutId, Pqtmcfgrsid, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrsidRead => read_layout::<PqtmcfgrsidRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgrsidRead => read_layout::<LayoutId, PqtmcfgrsidRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrsidResult => read_layout::<PqtmcfgrsidResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgrsidResult => read_layout::<LayoutId, PqtmcfgrsidResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrsidResultAck => read_layout::<PqtmcfgrsidResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgrsidResultAck => read_layout::<LayoutId, PqtmcfgrsidResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrsidResultError => read_layout::<PqtmcfgrsidResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgrsidResultError => read_layout::<LayoutId, PqtmcfgrsidResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgrtcm => read_layout::<Pqtmcfgrtcm, O>(fields, line, rest),
+        LayoutId::Pqtmcfgrtcm => read_layout::<LayoutId, Pqtmcfgrtcm, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtcmRead => read_layout::<PqtmcfgrtcmRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtcmRead => read_layout::<LayoutId, PqtmcfgrtcmRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtcmResult => read_layout::<PqtmcfgrtcmResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtcmResult => read_layout::<LayoutId, PqtmcfgrtcmResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtcmResultAck => read_layout::<PqtmcfgrtcmResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtcmResultAck => read_layout::<LayoutId, PqtmcfgrtcmResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtcmResultError => read_layout::<PqtmcfgrtcmResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtcmResultError => read_layout::<LayoutId, PqtmcfgrtcmResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgrtk => read_layout::<Pqtmcfgrtk, O>(fields, line, rest),
+        LayoutId::Pqtmcfgrtk => read_layout::<LayoutId, Pqtmcfgrtk, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtkRead => read_layout::<PqtmcfgrtkRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtkRead => read_layout::<LayoutId, PqtmcfgrtkRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtkResult => read_layout::<PqtmcfgrtkResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtkResult => read_layout::<LayoutId, PqtmcfgrtkResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtkResultAck => read_layout::<PqtmcfgrtkResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtkResultAck => read_layout::<LayoutId, PqtmcfgrtkResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtkResultError => read_layout::<PqtmcfgrtkResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtkResultError => read_layout::<LayoutId, PqtmcfgrtkResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgrtksrctype => read_layout::<Pqtmcfgrtksrctype, O>(fields, line, rest),
+        LayoutId::Pqtmcfgrtksrctype => read_layout::<LayoutId, Pqtmcfgrtksrctype, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtksrctypeRead => read_layout::<PqtmcfgrtksrctypeRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtksrctypeRead => read_layout::<LayoutId, PqtmcfgrtksrctypeRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtksrctypeResult => read_layout::<PqtmcfgrtksrctypeResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtksrctypeResult => read_layout::<LayoutId, PqtmcfgrtksrctypeResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtksrctypeResultAck => read_layout::<PqtmcfgrtksrctypeResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtksrctypeResultAck => {
+            read_layout::<LayoutId, PqtmcfgrtksrctypeResultAck, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgrtksrctypeResultError => read_layout::<PqtmcfgrtksrctypeResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgrtksrctypeResultError => {
+            read_layout::<LayoutId, PqtmcfgrtksrctypeResultError, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsat => read_layout::<Pqtmcfgsat, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsat => read_layout::<LayoutId, Pqtmcfgsat, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsatRead => read_layout::<PqtmcfgsatRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgsatRead => read_layout::<LayoutId, PqtmcfgsatRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsatResult => read_layout::<PqtmcfgsatResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgsatResult => read_layout::<LayoutId, PqtmcfgsatResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsatResultAck => read_layout::<PqtmcfgsatResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgsatResultAck => read_layout::<LayoutId, PqtmcfgsatResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsatResultError => read_layout::<PqtmcfgsatResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgsatResultError => read_layout::<LayoutId, PqtmcfgsatResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsbas => read_layout::<Pqtmcfgsbas, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsbas => read_layout::<LayoutId, Pqtmcfgsbas, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsbasRead => read_layout::<PqtmcfgsbasRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgsbasRead => read_layout::<LayoutId, PqtmcfgsbasRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsbasResult => read_layout::<PqtmcfgsbasResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgsbasResult => read_layout::<LayoutId, PqtmcfgsbasResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsbasResultAck => read_layout::<PqtmcfgsbasResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgsbasResultAck => read_layout::<LayoutId, PqtmcfgsbasResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsbasResultError => read_layout::<PqtmcfgsbasResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgsbasResultError => read_layout::<LayoutId, PqtmcfgsbasResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsiggrp => read_layout::<Pqtmcfgsiggrp, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsiggrp => read_layout::<LayoutId, Pqtmcfgsiggrp, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsiggrpRead => read_layout::<PqtmcfgsiggrpRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgsiggrpRead => read_layout::<LayoutId, PqtmcfgsiggrpRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsiggrpResult => read_layout::<PqtmcfgsiggrpResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgsiggrpResult => read_layout::<LayoutId, PqtmcfgsiggrpResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsiggrpResultAck => read_layout::<PqtmcfgsiggrpResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgsiggrpResultAck => read_layout::<LayoutId, PqtmcfgsiggrpResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsiggrpResultError => read_layout::<PqtmcfgsiggrpResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgsiggrpResultError => read_layout::<LayoutId, PqtmcfgsiggrpResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsignal => read_layout::<Pqtmcfgsignal, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsignal => read_layout::<LayoutId, Pqtmcfgsignal, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsignalRead => read_layout::<PqtmcfgsignalRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgsignalRead => read_layout::<LayoutId, PqtmcfgsignalRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsignal2 => read_layout::<Pqtmcfgsignal2, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsignal2 => read_layout::<LayoutId, Pqtmcfgsignal2, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsignal2Read => read_layout::<Pqtmcfgsignal2Read, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsignal2Read => read_layout::<LayoutId, Pqtmcfgsignal2Read, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsignal2Result => read_layout::<Pqtmcfgsignal2Result, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsignal2Result => read_layout::<LayoutId, Pqtmcfgsignal2Result, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsignal2ResultAck => read_layout::<Pqtmcfgsignal2ResultAck, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsignal2ResultAck => read_layout::<LayoutId, Pqtmcfgsignal2ResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsignal2ResultError => read_layout::<Pqtmcfgsignal2ResultError, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsignal2ResultError => {
+            read_layout::<LayoutId, Pqtmcfgsignal2ResultError, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsignalResult => read_layout::<PqtmcfgsignalResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgsignalResult => read_layout::<LayoutId, PqtmcfgsignalResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsignalResultAck => read_layout::<PqtmcfgsignalResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgsignalResultAck => read_layout::<LayoutId, PqtmcfgsignalResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsignalResultError => read_layout::<PqtmcfgsignalResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgsignalResultError => read_layout::<LayoutId, PqtmcfgsignalResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgsvin => read_layout::<Pqtmcfgsvin, O>(fields, line, rest),
+        LayoutId::Pqtmcfgsvin => read_layout::<LayoutId, Pqtmcfgsvin, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsvinRead => read_layout::<PqtmcfgsvinRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgsvinRead => read_layout::<LayoutId, PqtmcfgsvinRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsvinResult => read_layout::<PqtmcfgsvinResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgsvinResult => read_layout::<LayoutId, PqtmcfgsvinResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsvinResultAck => read_layout::<PqtmcfgsvinResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgsvinResultAck => read_layout::<LayoutId, PqtmcfgsvinResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgsvinResultError => read_layout::<PqtmcfgsvinResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgsvinResultError => read_layout::<LayoutId, PqtmcfgsvinResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfguart => read_layout::<Pqtmcfguart, O>(fields, line, rest),
+        LayoutId::Pqtmcfguart => read_layout::<LayoutId, Pqtmcfguart, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfguartCurrentBaud => read_layout::<PqtmcfguartCurrentBaud, O>(fields, line, rest),
+        LayoutId::PqtmcfguartCurrentBaud => read_layout::<LayoutId, PqtmcfguartCurrentBaud, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfguartCurrentFull => read_layout::<PqtmcfguartCurrentFull, O>(fields, line, rest),
+        LayoutId::PqtmcfguartCurrentFull => read_layout::<LayoutId, PqtmcfguartCurrentFull, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfguartPortBaud => read_layout::<PqtmcfguartPortBaud, O>(fields, line, rest),
+        LayoutId::PqtmcfguartPortBaud => read_layout::<LayoutId, PqtmcfguartPortBaud, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfguartRead => read_layout::<PqtmcfguartRead, O>(fields, line, rest),
+        LayoutId::PqtmcfguartRead => read_layout::<LayoutId, PqtmcfguartRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfguartResult => read_layout::<PqtmcfguartResult, O>(fields, line, rest),
+        LayoutId::PqtmcfguartResult => read_layout::<LayoutId, PqtmcfguartResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfguartResultAck => read_layout::<PqtmcfguartResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfguartResultAck => read_layout::<LayoutId, PqtmcfguartResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfguartResultError => read_layout::<PqtmcfguartResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfguartResultError => read_layout::<LayoutId, PqtmcfguartResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcfgwn => read_layout::<Pqtmcfgwn, O>(fields, line, rest),
+        LayoutId::Pqtmcfgwn => read_layout::<LayoutId, Pqtmcfgwn, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgwnRead => read_layout::<PqtmcfgwnRead, O>(fields, line, rest),
+        LayoutId::PqtmcfgwnRead => read_layout::<LayoutId, PqtmcfgwnRead, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgwnResult => read_layout::<PqtmcfgwnResult, O>(fields, line, rest),
+        LayoutId::PqtmcfgwnResult => read_layout::<LayoutId, PqtmcfgwnResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgwnResultAck => read_layout::<PqtmcfgwnResultAck, O>(fields, line, rest),
+        LayoutId::PqtmcfgwnResultAck => read_layout::<LayoutId, PqtmcfgwnResultAck, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmcfgwnResultError => read_layout::<PqtmcfgwnResultError, O>(fields, line, rest),
+        LayoutId::PqtmcfgwnResultError => read_layout::<LayoutId, PqtmcfgwnResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmcold => read_layout::<Pqtmcold, O>(fields, line, rest),
+        LayoutId::Pqtmcold => read_layout::<LayoutId, Pqtmcold, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmdebugoff => read_layout::<Pqtmdebugoff, O>(fields, line, rest),
+        LayoutId::Pqtmdebugoff => read_layout::<LayoutId, Pqtmdebugoff, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmdebugoffResult => read_layout::<PqtmdebugoffResult, O>(fields, line, rest),
+        LayoutId::PqtmdebugoffResult => read_layout::<LayoutId, PqtmdebugoffResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmdebugoffResultError => read_layout::<PqtmdebugoffResultError, O>(fields, line, rest),
+        LayoutId::PqtmdebugoffResultError => read_layout::<LayoutId, PqtmdebugoffResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmdebugon => read_layout::<Pqtmdebugon, O>(fields, line, rest),
+        LayoutId::Pqtmdebugon => read_layout::<LayoutId, Pqtmdebugon, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmdebugonResult => read_layout::<PqtmdebugonResult, O>(fields, line, rest),
+        LayoutId::PqtmdebugonResult => read_layout::<LayoutId, PqtmdebugonResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmdebugonResultError => read_layout::<PqtmdebugonResultError, O>(fields, line, rest),
+        LayoutId::PqtmdebugonResultError => read_layout::<LayoutId, PqtmdebugonResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmdop => read_layout::<Pqtmdop, O>(fields, line, rest),
+        LayoutId::Pqtmdop => read_layout::<LayoutId, Pqtmdop, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmeoe => read_layout::<Pqtmeoe, O>(fields, line, rest),
+        LayoutId::Pqtmeoe => read_layout::<LayoutId, Pqtmeoe, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmepe => read_layout::<Pqtmepe, O>(fields, line, rest),
+        LayoutId::Pqtmepe => read_layout::<LayoutId, Pqtmepe, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmgeofencestatus => read_layout::<Pqtmgeofencestatus, O>(fields, line, rest),
+        LayoutId::Pqtmgeofencestatus => read_layout::<LayoutId, Pqtmgeofencestatus, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmgnssstart => read_layout::<Pqtmgnssstart, O>(fields, line, rest),
+        LayoutId::Pqtmgnssstart => read_layout::<LayoutId, Pqtmgnssstart, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmgnssstartResult => read_layout::<PqtmgnssstartResult, O>(fields, line, rest),
+        LayoutId::PqtmgnssstartResult => read_layout::<LayoutId, PqtmgnssstartResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmgnssstartResultError => read_layout::<PqtmgnssstartResultError, O>(fields, line, rest),
+        LayoutId::PqtmgnssstartResultError => read_layout::<LayoutId, PqtmgnssstartResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmgnssstop => read_layout::<Pqtmgnssstop, O>(fields, line, rest),
+        LayoutId::Pqtmgnssstop => read_layout::<LayoutId, Pqtmgnssstop, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmgnssstopResult => read_layout::<PqtmgnssstopResult, O>(fields, line, rest),
+        LayoutId::PqtmgnssstopResult => read_layout::<LayoutId, PqtmgnssstopResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmgnssstopResultError => read_layout::<PqtmgnssstopResultError, O>(fields, line, rest),
+        LayoutId::PqtmgnssstopResultError => read_layout::<LayoutId, PqtmgnssstopResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmhot => read_layout::<Pqtmhot, O>(fields, line, rest),
+        LayoutId::Pqtmhot => read_layout::<LayoutId, Pqtmhot, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmnav => read_layout::<Pqtmnav, O>(fields, line, rest),
+        LayoutId::Pqtmnav => read_layout::<LayoutId, Pqtmnav, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmodo => read_layout::<Pqtmodo, O>(fields, line, rest),
+        LayoutId::Pqtmodo => read_layout::<LayoutId, Pqtmodo, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmpl => read_layout::<Pqtmpl, O>(fields, line, rest),
+        LayoutId::Pqtmpl => read_layout::<LayoutId, Pqtmpl, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmpvt => read_layout::<Pqtmpvt, O>(fields, line, rest),
+        LayoutId::Pqtmpvt => read_layout::<LayoutId, Pqtmpvt, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmresetodo => read_layout::<Pqtmresetodo, O>(fields, line, rest),
+        LayoutId::Pqtmresetodo => read_layout::<LayoutId, Pqtmresetodo, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmresetodoResult => read_layout::<PqtmresetodoResult, O>(fields, line, rest),
+        LayoutId::PqtmresetodoResult => read_layout::<LayoutId, PqtmresetodoResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmresetodoResultError => read_layout::<PqtmresetodoResultError, O>(fields, line, rest),
+        LayoutId::PqtmresetodoResultError => read_layout::<LayoutId, PqtmresetodoResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmrestorepar => read_layout::<Pqtmrestorepar, O>(fields, line, rest),
+        LayoutId::Pqtmrestorepar => read_layout::<LayoutId, Pqtmrestorepar, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmrestoreparResult => read_layout::<PqtmrestoreparResult, O>(fields, line, rest),
+        LayoutId::PqtmrestoreparResult => read_layout::<LayoutId, PqtmrestoreparResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmrestoreparResultError => read_layout::<PqtmrestoreparResultError, O>(fields, line, rest),
+        LayoutId::PqtmrestoreparResultError => {
+            read_layout::<LayoutId, PqtmrestoreparResultError, O>(fields, line, rest)
+        }
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmsavepar => read_layout::<Pqtmsavepar, O>(fields, line, rest),
+        LayoutId::Pqtmsavepar => read_layout::<LayoutId, Pqtmsavepar, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmsaveparResult => read_layout::<PqtmsaveparResult, O>(fields, line, rest),
+        LayoutId::PqtmsaveparResult => read_layout::<LayoutId, PqtmsaveparResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmsaveparResultError => read_layout::<PqtmsaveparResultError, O>(fields, line, rest),
+        LayoutId::PqtmsaveparResultError => read_layout::<LayoutId, PqtmsaveparResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmsn => read_layout::<Pqtmsn, O>(fields, line, rest),
+        LayoutId::Pqtmsn => read_layout::<LayoutId, Pqtmsn, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmsnResult => read_layout::<PqtmsnResult, O>(fields, line, rest),
+        LayoutId::PqtmsnResult => read_layout::<LayoutId, PqtmsnResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmsnResultError => read_layout::<PqtmsnResultError, O>(fields, line, rest),
+        LayoutId::PqtmsnResultError => read_layout::<LayoutId, PqtmsnResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmsrr => read_layout::<Pqtmsrr, O>(fields, line, rest),
+        LayoutId::Pqtmsrr => read_layout::<LayoutId, Pqtmsrr, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmsvinstatus => read_layout::<Pqtmsvinstatus, O>(fields, line, rest),
+        LayoutId::Pqtmsvinstatus => read_layout::<LayoutId, Pqtmsvinstatus, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmtar => read_layout::<Pqtmtar, O>(fields, line, rest),
+        LayoutId::Pqtmtar => read_layout::<LayoutId, Pqtmtar, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmtxt => read_layout::<Pqtmtxt, O>(fields, line, rest),
+        LayoutId::Pqtmtxt => read_layout::<LayoutId, Pqtmtxt, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmuniqid => read_layout::<Pqtmuniqid, O>(fields, line, rest),
+        LayoutId::Pqtmuniqid => read_layout::<LayoutId, Pqtmuniqid, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmuniqidResult => read_layout::<PqtmuniqidResult, O>(fields, line, rest),
+        LayoutId::PqtmuniqidResult => read_layout::<LayoutId, PqtmuniqidResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmuniqidResultError => read_layout::<PqtmuniqidResultError, O>(fields, line, rest),
+        LayoutId::PqtmuniqidResultError => read_layout::<LayoutId, PqtmuniqidResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmvel => read_layout::<Pqtmvel, O>(fields, line, rest),
+        LayoutId::Pqtmvel => read_layout::<LayoutId, Pqtmvel, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmver => read_layout::<Pqtmver, O>(fields, line, rest),
+        LayoutId::Pqtmver => read_layout::<LayoutId, Pqtmver, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmverLegacy => read_layout::<PqtmverLegacy, O>(fields, line, rest),
+        LayoutId::PqtmverLegacy => read_layout::<LayoutId, PqtmverLegacy, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmverno => read_layout::<Pqtmverno, O>(fields, line, rest),
+        LayoutId::Pqtmverno => read_layout::<LayoutId, Pqtmverno, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmvernoResult => read_layout::<PqtmvernoResult, O>(fields, line, rest),
+        LayoutId::PqtmvernoResult => read_layout::<LayoutId, PqtmvernoResult, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqtmvernoResultError => read_layout::<PqtmvernoResultError, O>(fields, line, rest),
+        LayoutId::PqtmvernoResultError => read_layout::<LayoutId, PqtmvernoResultError, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqtmwarm => read_layout::<Pqtmwarm, O>(fields, line, rest),
+        LayoutId::Pqtmwarm => read_layout::<LayoutId, Pqtmwarm, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::Pqverno => read_layout::<Pqverno, O>(fields, line, rest),
+        LayoutId::Pqverno => read_layout::<LayoutId, Pqverno, O>(fields, line, rest),
         #[cfg(feature = "quectel_lg290p")]
-        LayoutId::PqvernoResult => read_layout::<PqvernoResult, O>(fields, line, rest),
+        LayoutId::PqvernoResult => read_layout::<LayoutId, PqvernoResult, O>(fields, line, rest),
         #[cfg(feature = "globalsat")]
-        LayoutId::Psrf100 => read_layout::<Psrf100, O>(fields, line, rest),
+        LayoutId::Psrf100 => read_layout::<LayoutId, Psrf100, O>(fields, line, rest),
         #[cfg(feature = "globalsat")]
-        LayoutId::Psrf101 => read_layout::<Psrf101, O>(fields, line, rest),
+        LayoutId::Psrf101 => read_layout::<LayoutId, Psrf101, O>(fields, line, rest),
         #[cfg(feature = "globalsat")]
-        LayoutId::Psrf102 => read_layout::<Psrf102, O>(fields, line, rest),
+        LayoutId::Psrf102 => read_layout::<LayoutId, Psrf102, O>(fields, line, rest),
         #[cfg(feature = "globalsat")]
-        LayoutId::Psrf103 => read_layout::<Psrf103, O>(fields, line, rest),
+        LayoutId::Psrf103 => read_layout::<LayoutId, Psrf103, O>(fields, line, rest),
         #[cfg(feature = "globalsat")]
-        LayoutId::Psrf103ShortCodes => read_layout::<Psrf103ShortCodes, O>(fields, line, rest),
+        LayoutId::Psrf103ShortCodes => read_layout::<LayoutId, Psrf103ShortCodes, O>(fields, line, rest),
         #[cfg(feature = "globalsat")]
-        LayoutId::Psrf104 => read_layout::<Psrf104, O>(fields, line, rest),
+        LayoutId::Psrf104 => read_layout::<LayoutId, Psrf104, O>(fields, line, rest),
         #[cfg(feature = "globalsat")]
-        LayoutId::Psrf105 => read_layout::<Psrf105, O>(fields, line, rest),
+        LayoutId::Psrf105 => read_layout::<LayoutId, Psrf105, O>(fields, line, rest),
         #[cfg(feature = "gs501")]
-        LayoutId::Psrf150 => read_layout::<Psrf150, O>(fields, line, rest),
+        LayoutId::Psrf150 => read_layout::<LayoutId, Psrf150, O>(fields, line, rest),
         #[cfg(feature = "globalsat")]
-        LayoutId::Psrf151 => read_layout::<Psrf151, O>(fields, line, rest),
+        LayoutId::Psrf151 => read_layout::<LayoutId, Psrf151, O>(fields, line, rest),
         #[cfg(feature = "globalsat")]
-        LayoutId::Psrfepe => read_layout::<Psrfepe, O>(fields, line, rest),
+        LayoutId::Psrfepe => read_layout::<LayoutId, Psrfepe, O>(fields, line, rest),
         #[cfg(feature = "septentrio")]
-        LayoutId::PssnHrp => read_layout::<PssnHrp, O>(fields, line, rest),
+        LayoutId::PssnHrp => read_layout::<LayoutId, PssnHrp, O>(fields, line, rest),
         #[cfg(feature = "septentrio")]
-        LayoutId::PssnRbd => read_layout::<PssnRbd, O>(fields, line, rest),
+        LayoutId::PssnRbd => read_layout::<LayoutId, PssnRbd, O>(fields, line, rest),
         #[cfg(feature = "septentrio")]
-        LayoutId::PssnRbp => read_layout::<PssnRbp, O>(fields, line, rest),
+        LayoutId::PssnRbp => read_layout::<LayoutId, PssnRbp, O>(fields, line, rest),
         #[cfg(feature = "septentrio")]
-        LayoutId::PssnRbv => read_layout::<PssnRbv, O>(fields, line, rest),
+        LayoutId::PssnRbv => read_layout::<LayoutId, PssnRbv, O>(fields, line, rest),
         #[cfg(feature = "septentrio")]
-        LayoutId::PssnTfm => read_layout::<PssnTfm, O>(fields, line, rest),
+        LayoutId::PssnTfm => read_layout::<LayoutId, PssnTfm, O>(fields, line, rest),
         #[cfg(feature = "skytraq_rtk")]
-        LayoutId::Psti030 => read_layout::<Psti030, O>(fields, line, rest),
+        LayoutId::Psti030 => read_layout::<LayoutId, Psti030, O>(fields, line, rest),
         #[cfg(feature = "skytraq_rtk")]
-        LayoutId::Psti032 => read_layout::<Psti032, O>(fields, line, rest),
+        LayoutId::Psti032 => read_layout::<LayoutId, Psti032, O>(fields, line, rest),
         #[cfg(feature = "skytraq_rtk")]
-        LayoutId::Psti033 => read_layout::<Psti033, O>(fields, line, rest),
+        LayoutId::Psti033 => read_layout::<LayoutId, Psti033, O>(fields, line, rest),
         #[cfg(feature = "skytraq_rtk")]
-        LayoutId::Psti035 => read_layout::<Psti035, O>(fields, line, rest),
+        LayoutId::Psti035 => read_layout::<LayoutId, Psti035, O>(fields, line, rest),
         #[cfg(feature = "skytraq_rtk")]
-        LayoutId::Psti036 => read_layout::<Psti036, O>(fields, line, rest),
+        LayoutId::Psti036 => read_layout::<LayoutId, Psti036, O>(fields, line, rest),
         #[cfg(feature = "skytraq_rtk")]
-        LayoutId::Psti20 => read_layout::<Psti20, O>(fields, line, rest),
+        LayoutId::Psti20 => read_layout::<LayoutId, Psti20, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmagps => read_layout::<Pstmagps, O>(fields, line, rest),
+        LayoutId::Pstmagps => read_layout::<LayoutId, Pstmagps, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmalmanac => read_layout::<Pstmalmanac, O>(fields, line, rest),
+        LayoutId::Pstmalmanac => read_layout::<LayoutId, Pstmalmanac, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmclralms => read_layout::<Pstmclralms, O>(fields, line, rest),
+        LayoutId::Pstmclralms => read_layout::<LayoutId, Pstmclralms, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmclrephs => read_layout::<Pstmclrephs, O>(fields, line, rest),
+        LayoutId::Pstmclrephs => read_layout::<LayoutId, Pstmclrephs, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmcold => read_layout::<Pstmcold, O>(fields, line, rest),
+        LayoutId::Pstmcold => read_layout::<LayoutId, Pstmcold, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmcorr => read_layout::<Pstmcorr, O>(fields, line, rest),
+        LayoutId::Pstmcorr => read_layout::<LayoutId, Pstmcorr, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmcpu => read_layout::<Pstmcpu, O>(fields, line, rest),
+        LayoutId::Pstmcpu => read_layout::<LayoutId, Pstmcpu, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmdiff => read_layout::<Pstmdiff, O>(fields, line, rest),
+        LayoutId::Pstmdiff => read_layout::<LayoutId, Pstmdiff, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmeph => read_layout::<Pstmeph, O>(fields, line, rest),
+        LayoutId::Pstmeph => read_layout::<LayoutId, Pstmeph, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmgetpar => read_layout::<Pstmgetpar, O>(fields, line, rest),
+        LayoutId::Pstmgetpar => read_layout::<LayoutId, Pstmgetpar, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmgetparerror => read_layout::<Pstmgetparerror, O>(fields, line, rest),
+        LayoutId::Pstmgetparerror => read_layout::<LayoutId, Pstmgetparerror, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmgetrtctime => read_layout::<Pstmgetrtctime, O>(fields, line, rest),
+        LayoutId::Pstmgetrtctime => read_layout::<LayoutId, Pstmgetrtctime, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::PstmgetrtctimeReply => read_layout::<PstmgetrtctimeReply, O>(fields, line, rest),
+        LayoutId::PstmgetrtctimeReply => read_layout::<LayoutId, PstmgetrtctimeReply, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmgetswver => read_layout::<Pstmgetswver, O>(fields, line, rest),
+        LayoutId::Pstmgetswver => read_layout::<LayoutId, Pstmgetswver, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::PstmgetswverReply => read_layout::<PstmgetswverReply, O>(fields, line, rest),
+        LayoutId::PstmgetswverReply => read_layout::<LayoutId, PstmgetswverReply, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmhot => read_layout::<Pstmhot, O>(fields, line, rest),
+        LayoutId::Pstmhot => read_layout::<LayoutId, Pstmhot, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmkfcov => read_layout::<Pstmkfcov, O>(fields, line, rest),
+        LayoutId::Pstmkfcov => read_layout::<LayoutId, Pstmkfcov, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmnmeaonoff => read_layout::<Pstmnmeaonoff, O>(fields, line, rest),
+        LayoutId::Pstmnmeaonoff => read_layout::<LayoutId, Pstmnmeaonoff, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmpa => read_layout::<Pstmpa, O>(fields, line, rest),
+        LayoutId::Pstmpa => read_layout::<LayoutId, Pstmpa, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmpres => read_layout::<Pstmpres, O>(fields, line, rest),
+        LayoutId::Pstmpres => read_layout::<LayoutId, Pstmpres, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmres => read_layout::<Pstmres, O>(fields, line, rest),
+        LayoutId::Pstmres => read_layout::<LayoutId, Pstmres, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmrestorepar => read_layout::<Pstmrestorepar, O>(fields, line, rest),
+        LayoutId::Pstmrestorepar => read_layout::<LayoutId, Pstmrestorepar, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmrf => read_layout::<Pstmrf, O>(fields, line, rest),
+        LayoutId::Pstmrf => read_layout::<LayoutId, Pstmrf, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmsat => read_layout::<Pstmsat, O>(fields, line, rest),
+        LayoutId::Pstmsat => read_layout::<LayoutId, Pstmsat, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmsavepar => read_layout::<Pstmsavepar, O>(fields, line, rest),
+        LayoutId::Pstmsavepar => read_layout::<LayoutId, Pstmsavepar, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmsbas => read_layout::<Pstmsbas, O>(fields, line, rest),
+        LayoutId::Pstmsbas => read_layout::<LayoutId, Pstmsbas, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmsbascorr => read_layout::<Pstmsbascorr, O>(fields, line, rest),
+        LayoutId::Pstmsbascorr => read_layout::<LayoutId, Pstmsbascorr, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmset => read_layout::<Pstmset, O>(fields, line, rest),
+        LayoutId::Pstmset => read_layout::<LayoutId, Pstmset, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::PstmsetDop => read_layout::<PstmsetDop, O>(fields, line, rest),
+        LayoutId::PstmsetDop => read_layout::<LayoutId, PstmsetDop, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmsetpar => read_layout::<Pstmsetpar, O>(fields, line, rest),
+        LayoutId::Pstmsetpar => read_layout::<LayoutId, Pstmsetpar, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::PstmsetparDop => read_layout::<PstmsetparDop, O>(fields, line, rest),
+        LayoutId::PstmsetparDop => read_layout::<LayoutId, PstmsetparDop, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmsetparerror => read_layout::<Pstmsetparerror, O>(fields, line, rest),
+        LayoutId::Pstmsetparerror => read_layout::<LayoutId, Pstmsetparerror, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmsetparok => read_layout::<Pstmsetparok, O>(fields, line, rest),
+        LayoutId::Pstmsetparok => read_layout::<LayoutId, Pstmsetparok, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmtestrf => read_layout::<Pstmtestrf, O>(fields, line, rest),
+        LayoutId::Pstmtestrf => read_layout::<LayoutId, Pstmtestrf, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmtg => read_layout::<Pstmtg, O>(fields, line, rest),
+        LayoutId::Pstmtg => read_layout::<LayoutId, Pstmtg, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmtim => read_layout::<Pstmtim, O>(fields, line, rest),
+        LayoutId::Pstmtim => read_layout::<LayoutId, Pstmtim, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmts => read_layout::<Pstmts, O>(fields, line, rest),
+        LayoutId::Pstmts => read_layout::<LayoutId, Pstmts, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmver => read_layout::<Pstmver, O>(fields, line, rest),
+        LayoutId::Pstmver => read_layout::<LayoutId, Pstmver, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmvres => read_layout::<Pstmvres, O>(fields, line, rest),
+        LayoutId::Pstmvres => read_layout::<LayoutId, Pstmvres, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmwaas => read_layout::<Pstmwaas, O>(fields, line, rest),
+        LayoutId::Pstmwaas => read_layout::<LayoutId, Pstmwaas, O>(fields, line, rest),
         #[cfg(feature = "teseo")]
-        LayoutId::Pstmwarm => read_layout::<Pstmwarm, O>(fields, line, rest),
+        LayoutId::Pstmwarm => read_layout::<LayoutId, Pstmwarm, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::PtnlAvr => read_layout::<PtnlAvr, O>(fields, line, rest),
+        LayoutId::PtnlAvr => read_layout::<LayoutId, PtnlAvr, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::PtnlBpq => read_layout::<PtnlBpq, O>(fields, line, rest),
+        LayoutId::PtnlBpq => read_layout::<LayoutId, PtnlBpq, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::PtnlEvt => read_layout::<PtnlEvt, O>(fields, line, rest),
+        LayoutId::PtnlEvt => read_layout::<LayoutId, PtnlEvt, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::PtnlGgk => read_layout::<PtnlGgk, O>(fields, line, rest),
+        LayoutId::PtnlGgk => read_layout::<LayoutId, PtnlGgk, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::PtnlGgkSync => read_layout::<PtnlGgkSync, O>(fields, line, rest),
+        LayoutId::PtnlGgkSync => read_layout::<LayoutId, PtnlGgkSync, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::PtnlPjk => read_layout::<PtnlPjk, O>(fields, line, rest),
+        LayoutId::PtnlPjk => read_layout::<LayoutId, PtnlPjk, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::PtnlPjt => read_layout::<PtnlPjt, O>(fields, line, rest),
+        LayoutId::PtnlPjt => read_layout::<LayoutId, PtnlPjt, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::PtnlVgk => read_layout::<PtnlVgk, O>(fields, line, rest),
+        LayoutId::PtnlVgk => read_layout::<LayoutId, PtnlVgk, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::PtnlVhd => read_layout::<PtnlVhd, O>(fields, line, rest),
+        LayoutId::PtnlVhd => read_layout::<LayoutId, PtnlVhd, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::Ptnldg => read_layout::<Ptnldg, O>(fields, line, rest),
+        LayoutId::Ptnldg => read_layout::<LayoutId, Ptnldg, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::Ptnlev => read_layout::<Ptnlev, O>(fields, line, rest),
+        LayoutId::Ptnlev => read_layout::<LayoutId, Ptnlev, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::Ptnlid => read_layout::<Ptnlid, O>(fields, line, rest),
+        LayoutId::Ptnlid => read_layout::<LayoutId, Ptnlid, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::Ptnlqio => read_layout::<Ptnlqio, O>(fields, line, rest),
+        LayoutId::Ptnlqio => read_layout::<LayoutId, Ptnlqio, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::Ptnlqvr => read_layout::<Ptnlqvr, O>(fields, line, rest),
+        LayoutId::Ptnlqvr => read_layout::<LayoutId, Ptnlqvr, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::Ptnlrba => read_layout::<Ptnlrba, O>(fields, line, rest),
+        LayoutId::Ptnlrba => read_layout::<LayoutId, Ptnlrba, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::Ptnlrio => read_layout::<Ptnlrio, O>(fields, line, rest),
+        LayoutId::Ptnlrio => read_layout::<LayoutId, Ptnlrio, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::PtnlrioInvalid => read_layout::<PtnlrioInvalid, O>(fields, line, rest),
+        LayoutId::PtnlrioInvalid => read_layout::<LayoutId, PtnlrioInvalid, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::Ptnlrkg => read_layout::<Ptnlrkg, O>(fields, line, rest),
+        LayoutId::Ptnlrkg => read_layout::<LayoutId, Ptnlrkg, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::PtnlrkgInvalid => read_layout::<PtnlrkgInvalid, O>(fields, line, rest),
+        LayoutId::PtnlrkgInvalid => read_layout::<LayoutId, PtnlrkgInvalid, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::Ptnlrsv => read_layout::<Ptnlrsv, O>(fields, line, rest),
+        LayoutId::Ptnlrsv => read_layout::<LayoutId, Ptnlrsv, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::Ptnlrtp => read_layout::<Ptnlrtp, O>(fields, line, rest),
+        LayoutId::Ptnlrtp => read_layout::<LayoutId, Ptnlrtp, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::Ptnlrvr => read_layout::<Ptnlrvr, O>(fields, line, rest),
+        LayoutId::Ptnlrvr => read_layout::<LayoutId, Ptnlrvr, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::PtnlrvrInvalid => read_layout::<PtnlrvrInvalid, O>(fields, line, rest),
+        LayoutId::PtnlrvrInvalid => read_layout::<LayoutId, PtnlrvrInvalid, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::Ptnlrxo => read_layout::<Ptnlrxo, O>(fields, line, rest),
+        LayoutId::Ptnlrxo => read_layout::<LayoutId, Ptnlrxo, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::Ptnlsio => read_layout::<Ptnlsio, O>(fields, line, rest),
+        LayoutId::Ptnlsio => read_layout::<LayoutId, Ptnlsio, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::Ptnlskg => read_layout::<Ptnlskg, O>(fields, line, rest),
+        LayoutId::Ptnlskg => read_layout::<LayoutId, Ptnlskg, O>(fields, line, rest),
         #[cfg(feature = "trimble_nmea")]
-        LayoutId::Ptnlsm => read_layout::<Ptnlsm, O>(fields, line, rest),
+        LayoutId::Ptnlsm => read_layout::<LayoutId, Ptnlsm, O>(fields, line, rest),
         #[cfg(feature = "trimble_copernicus")]
-        LayoutId::Ptnlssv => read_layout::<Ptnlssv, O>(fields, line, rest),
+        LayoutId::Ptnlssv => read_layout::<LayoutId, Ptnlssv, O>(fields, line, rest),
         #[cfg(feature = "spectratime_isync")]
-        LayoutId::Ptnta => read_layout::<Ptnta, O>(fields, line, rest),
+        LayoutId::Ptnta => read_layout::<LayoutId, Ptnta, O>(fields, line, rest),
         #[cfg(feature = "ublox_m8")]
-        LayoutId::PubxConfig => read_layout::<PubxConfig, O>(fields, line, rest),
+        LayoutId::PubxConfig => read_layout::<LayoutId, PubxConfig, O>(fields, line, rest),
         #[cfg(feature = "ublox_m8")]
-        LayoutId::PubxPosition => read_layout::<PubxPosition, O>(fields, line, rest),
+        LayoutId::PubxPosition => read_layout::<LayoutId, PubxPosition, O>(fields, line, rest),
         #[cfg(feature = "ublox_m8")]
-        LayoutId::PubxPositionPoll => read_layout::<PubxPositionPoll, O>(fields, line, rest),
+        LayoutId::PubxPositionPoll => read_layout::<LayoutId, PubxPositionPoll, O>(fields, line, rest),
         #[cfg(feature = "ublox_m8")]
-        LayoutId::PubxRate => read_layout::<PubxRate, O>(fields, line, rest),
+        LayoutId::PubxRate => read_layout::<LayoutId, PubxRate, O>(fields, line, rest),
         #[cfg(feature = "ublox_m8")]
-        LayoutId::PubxSvstatus => read_layout::<PubxSvstatus, O>(fields, line, rest),
+        LayoutId::PubxSvstatus => read_layout::<LayoutId, PubxSvstatus, O>(fields, line, rest),
         #[cfg(feature = "ublox_m8")]
-        LayoutId::PubxSvstatusPoll => read_layout::<PubxSvstatusPoll, O>(fields, line, rest),
+        LayoutId::PubxSvstatusPoll => read_layout::<LayoutId, PubxSvstatusPoll, O>(fields, line, rest),
         #[cfg(feature = "ublox_m8")]
-        LayoutId::PubxTime => read_layout::<PubxTime, O>(fields, line, rest),
+        LayoutId::PubxTime => read_layout::<LayoutId, PubxTime, O>(fields, line, rest),
         #[cfg(feature = "ublox_m8")]
-        LayoutId::PubxTimePoll => read_layout::<PubxTimePoll, O>(fields, line, rest),
+        LayoutId::PubxTimePoll => read_layout::<LayoutId, PubxTimePoll, O>(fields, line, rest),
         #[cfg(feature = "ublox_m8")]
-        LayoutId::PubxUtm => read_layout::<PubxUtm, O>(fields, line, rest),
+        LayoutId::PubxUtm => read_layout::<LayoutId, PubxUtm, O>(fields, line, rest),
     }
-}
-
-/// [`read_sentence`] with layout `L` (`rest`: the layouts to try after it).
-#[inline(never)]
-fn read_layout<'a, L: Layout<'a> + Default + Into<Sentence<'a>>, O: Outcome<'a>>(
-    fields: FastReader<'a>,
-    line: &'a [u8],
-    rest: &[LayoutId],
-) -> O {
-    let Some((repeats, extra)) = fields.shape(&L::SHAPE) else {
-        return read_fast(rest, fields, line);
-    };
-    let mut layout = L::default();
-    match layout.read_fast(fields, repeats, extra) {
-        Ok(()) => O::read(layout.into()),
-        Err(Unsure) => O::general(line),
-    }
-}
-
-/// The general path of [`parse`], for a line without its line ending.
-fn general(line: &[u8]) -> Result<Sentence<'_>, Error<'_>> {
-    if !matches!(line.first(), Some(b'$' | b'!')) && !text_command(first_word(line)).is_empty() {
-        return parse_frame(Frame::parse_text(line)?);
-    }
-    parse_frame(Frame::parse(line)?)
-}
-
-/// How [`parse_with`] reads a line.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Options {
-    /// Keep a `$`/`!` sentence whose fields do not all fit their types: each field at fault is
-    /// read as empty and listed in [`Parsed::problems`] (at most [`MAX_PROBLEMS`]). Text
-    /// commands are always strict.
-    pub lenient: bool,
-    /// Refuse a `$`/`!` sentence without a checksum (or with a bare `*`): `missing_checksum`.
-    pub require_checksum: bool,
-}
-
-/// A sentence decoded by [`parse_with`], and the fields lenient parsing left empty (with their
-/// text as received, written back by `Display` so that the round trip stays exact).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Parsed<'a> {
-    /// The decoded sentence (fields at fault are `None`).
-    pub sentence: Sentence<'a>,
-    /// The fields lenient parsing left empty, in the order their errors came.
-    pub problems: Problems<'a>,
-}
-
-impl<'a> From<Sentence<'a>> for Parsed<'a> {
-    fn from(sentence: Sentence<'a>) -> Self {
-        Self { sentence, problems: Problems::new() }
-    }
-}
-
-impl Parsed<'_> {
-    /// Writes the tools' JSON line: `"problems"` follows `"fields"` when there are any.
-    pub fn write_json<W: Write + ?Sized>(&self, out: &mut W, values: bool) -> fmt::Result {
-        self.sentence.write_json_with(out, values, &self.problems)
-    }
-
-    /// The tools' JSON line (`values`: decoded values instead of the lossless texts).
-    #[cfg(feature = "std")]
-    pub fn to_json(&self, values: bool) -> String {
-        let mut out = String::new();
-        let _ = self.write_json(&mut out, values);
-        out
-    }
-}
-
-impl Parsed<'_> {
-    /// The sentence text with the problem fields' texts put back (what `Display` writes, no
-    /// line ending) at the start of `buf`: its length, or `None` when `buf` cannot hold it (see
-    /// [`Sentence::serialize_into`]).
-    pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
-        if self.problems.is_empty() {
-            return self.sentence.serialize_into(buf);
-        }
-        let mut w = runtime::ByteWriter::new(buf);
-        self.sentence.write_sentence_with(&mut w, &self.problems).ok()?;
-        Some(w.len())
-    }
-}
-
-impl fmt::Display for Parsed<'_> {
-    /// The sentence text with the problem fields' texts put back; no line ending.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.problems.is_empty() {
-            return self.sentence.write_sentence(f);
-        }
-        self.sentence.write_sentence_with(f, &self.problems)
-    }
-}
-
-/// [`parse`] with options: lenient decoding and required checksums.
-pub fn parse_with<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
-    let line = strip_line_ending(line.as_ref());
-    if let Some(sentence) = FastReader::frame(line).and_then(|fields| read_sentence::<Option<_>>(fields, line)) {
-        return Ok(sentence.into());
-    }
-    general_with(line, options)
-}
-
-/// [`parse_with`] without its fast path (see [`parse_general`]).
-#[doc(hidden)]
-pub fn parse_with_general<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
-    general_with(strip_line_ending(line.as_ref()), options)
-}
-
-/// The general path of [`parse_with`], for a line without its line ending.
-fn general_with(line: &[u8], options: Options) -> Result<Parsed<'_>, Error<'_>> {
-    if !matches!(line.first(), Some(b'$' | b'!')) && !text_command(first_word(line)).is_empty() {
-        return parse_frame(Frame::parse_text(line)?).map(Parsed::from);
-    }
-    let frame = Frame::parse_checked(line, options.require_checksum)?;
-    let layouts = layouts_of(frame.start, frame.address);
-    if !claimed(layouts, &frame) {
-        return Ok(Sentence::Generic(Generic::from_frame(frame)).into());
-    }
-    match first_fit(layouts, frame.fields, frame.checksum) {
-        Ok(sentence) => Ok(sentence.into()),
-        Err(error) if options.lenient && error.kind() == ErrorKind::BadField => {
-            lenient(layouts, frame.fields, frame.checksum, error)
-        }
-        Err(error) => Err(error),
-    }
-}
-
-/// Parses again with every field that does not fit left empty, one at a time; a field that is
-/// already empty and still does not fit, or one problem more than [`MAX_PROBLEMS`], ends the
-/// attempt with its error.
-pub fn lenient<'a>(
-    layouts: &[LayoutId],
-    mut fields: Fields<'a>,
-    checksum: Checksum,
-    mut error: Error<'a>,
-) -> Result<Parsed<'a>, Error<'a>> {
-    let mut problems = Problems::new();
-    loop {
-        let Some(problem) = error.problem() else {
-            return Err(error);
-        };
-        let index = problem.field();
-        if fields.get(index).is_none_or(str::is_empty) || !problems.push(problem) {
-            return Err(error);
-        }
-        fields = fields.with_blank(index);
-        match first_fit(layouts, fields, checksum) {
-            Ok(sentence) => return Ok(Parsed { sentence, problems }),
-            Err(again) => error = again,
-        }
-    }
-}
-
-/// Decodes a framed line with the layouts of its address ([`layouts_of`]), the first that fits;
-/// [`Generic`] when the spec knows none.
-pub fn parse_frame(frame: Frame<'_>) -> Result<Sentence<'_>, Error<'_>> {
-    let layouts = layouts_of(frame.start, frame.address);
-    if !claimed(layouts, &frame) {
-        return Ok(Sentence::Generic(Generic::from_frame(frame)));
-    }
-    first_fit(layouts, frame.fields, frame.checksum)
-}
-
-/// Whether one of the layouts of the line's address may read it: for a `$` line, one without a
-/// keyword or one whose keyword the line holds; else the line is a message of a known family
-/// that the spec does not know, kept as a [`Generic`] sentence.
-fn claimed(layouts: &[LayoutId], frame: &Frame<'_>) -> bool {
-    !layouts.is_empty()
-        && (frame.start != "$"
-            || layouts.iter().any(|layout| layout.selector().is_none() || layout.holds_selector(&frame.fields)))
-}
-
-/// The first of `layouts` (not empty) that fits the fields; when none does, the error of the
-/// contenders (the layouts whose keyword the first field holds, else all): the first that is a
-/// bad field, else the first.
-fn first_fit<'a>(layouts: &[LayoutId], fields: Fields<'a>, checksum: Checksum) -> Result<Sentence<'a>, Error<'a>> {
-    let Some((&first, others)) = layouts.split_first() else {
-        return Err(Error::new(None, runtime::Message::EmptyLine));
-    };
-    let error = match first.parse_fields(fields, checksum) {
-        Ok(sentence) => return Ok(sentence),
-        Err(error) => error,
-    };
-    if others.is_empty() {
-        return Err(error);
-    }
-    let rank = |layout: LayoutId, error: &Error<'_>| {
-        u8::from(!layout.holds_selector(&fields)) * 2 + u8::from(error.kind() != ErrorKind::BadField)
-    };
-    let mut best = (rank(first, &error), error);
-    for &layout in others {
-        match layout.parse_fields(fields, checksum) {
-            Ok(sentence) => return Ok(sentence),
-            Err(error) => {
-                let rank = rank(layout, &error);
-                if rank < best.0 {
-                    best = (rank, error);
-                }
-            }
-        }
-    }
-    Err(best.1)
 }
 
 /// The layouts a framed line may have, in the order the parser tries them: those of a
 /// proprietary `$` address, else of a standard sentence (`$`, a talker ID and a formatter), else
 /// of a text command's word (start `""`); none for anything else.
-pub fn layouts_of(start: &str, address: &str) -> &'static [LayoutId] {
+fn layouts_of(start: &str, address: &[u8]) -> &'static [LayoutId] {
     match start {
-        "$" => sentence_layouts(address.as_bytes()),
-        "!" => match address.as_bytes() {
+        "$" => sentence_layouts(address),
+        "!" => match address {
             &[first, _, a, b, c] if first != b'P' => encapsulated([a, b, c]),
             _ => &[],
         },
-        "" => text_command(address.as_bytes()),
+        "" => text_command(address),
         _ => &[],
     }
 }
@@ -31080,192 +30952,6 @@ fn text_command(word: &[u8]) -> &'static [LayoutId] {
 #[cfg(not(feature = "comnav"))]
 fn text_command(_word: &[u8]) -> &'static [LayoutId] {
     &[]
-}
-
-/// Writes `decode`'s output for one line (without line ending): the sentence or the error as
-/// JSON.
-pub fn write_decoded<W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool) -> fmt::Result {
-    match parse(line) {
-        Ok(sentence) => sentence.write_json(out, values),
-        Err(err) => err.write_json(out),
-    }
-}
-
-/// [`write_decoded`] with options (`decode --lenient --require-checksum`).
-pub fn write_decoded_with<W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool, options: Options) -> fmt::Result {
-    match parse_with(line, options) {
-        Ok(parsed) => parsed.write_json(out, values),
-        Err(err) => err.write_json(out),
-    }
-}
-
-/// `decode`'s output for one line (without line ending): the sentence or the error as JSON.
-#[cfg(feature = "std")]
-pub fn decode_json(line: &[u8], values: bool) -> String {
-    let mut out = String::new();
-    let _ = write_decoded(&mut out, line, values);
-    out
-}
-
-/// [`decode_json`] with options.
-#[cfg(feature = "std")]
-pub fn decode_json_with(line: &[u8], values: bool, options: Options) -> String {
-    let mut out = String::new();
-    let _ = write_decoded_with(&mut out, line, values, options);
-    out
-}
-
-/// A sentence rebuilt from decode's lossless JSON: its address and wire fields, ready to parse.
-#[cfg(feature = "std")]
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Rebuilt {
-    start: String,
-    address: String,
-    fields: WireFields,
-    checksum: Checksum,
-    layout: Option<LayoutId>,
-    /// A text command: its words joined by spaces, the command word as written.
-    line: Option<String>,
-    /// A sentence lenient decoding kept (its JSON has `"problems"`): parsed leniently again.
-    lenient: bool,
-}
-
-#[cfg(feature = "std")]
-impl Rebuilt {
-    /// Parses the rebuilt fields through the same field parsers as a received line (leniently
-    /// for a sentence whose JSON lists problems).
-    pub fn parse(&self) -> Result<Parsed<'_>, Error<'_>> {
-        let mut fields = self.fields.fields(&self.address);
-        if let Some(line) = &self.line {
-            fields = fields.with_line(line);
-        }
-        match self.layout {
-            Some(layout) => match layout.parse_fields(fields, self.checksum) {
-                Ok(sentence) => Ok(sentence.into()),
-                Err(error) if self.lenient && error.kind() == ErrorKind::BadField => {
-                    lenient(&[layout], fields, self.checksum, error)
-                }
-                Err(error) => Err(error),
-            },
-            None => Ok(Sentence::Generic(Generic {
-                start: &self.start,
-                address: &self.address,
-                fields,
-                checksum: self.checksum,
-            })
-            .into()),
-        }
-    }
-}
-
-/// Rebuilds a sentence from one object of decode's lossless JSON (`bad_json` errors name what
-/// is missing or malformed).
-#[cfg(feature = "std")]
-pub fn from_json(obj: &Value) -> Result<Rebuilt, Error<'static>> {
-    if !obj.is_object() {
-        return Err(Error::bad_json("not a JSON object"));
-    }
-    let checksum = json::checksum_case(json::opt_text(obj, "checksum")?);
-    let Some(sentence) = json::opt_text(obj, "sentence")? else {
-        let items = json::list(obj, "fields")?;
-        let start = json::str_member(obj, "start")?.to_string();
-        if start != "$" && start != "!" {
-            return Err(Error::bad_json("\"start\" is not \"$\" or \"!\""));
-        }
-        let address = json::word(obj, "address")?.to_string();
-        let mut fields = WireFields::default();
-        for item in items {
-            fields.push(json::text(item)?);
-        }
-        return Ok(Rebuilt { start, address, fields, checksum, layout: None, line: None, lenient: false });
-    };
-    let variant = json::opt_text(obj, "variant")?;
-    let unknown = || Error::bad_json(format!("unknown sentence \"{sentence}\""));
-    let layout = LayoutId::find(sentence, variant).ok_or_else(unknown)?;
-    let fields = json::member(obj, "fields")?;
-    if !fields.is_object() {
-        return Err(Error::bad_json("\"fields\" is not an object"));
-    }
-    let mut wire = WireFields::default();
-    layout.fields_from_json(fields, &mut wire)?;
-    if obj.get("problems").is_some() {
-        return with_problems(obj, layout, wire, checksum);
-    }
-    let (address, checksum, line) = match layout.framing() {
-        Framing::Standard | Framing::Encapsulated => {
-            (format!("{}{}", json::word(obj, "talker")?, layout.sentence()), checksum, None)
-        }
-        Framing::Proprietary(address) => (address.to_string(), checksum, None),
-        Framing::Text(command) => {
-            // A text command: its word as written, its letter case kept.
-            let word = json::word(obj, "address")?;
-            if !word.eq_ignore_ascii_case(command) {
-                return Err(Error::bad_json(format!("\"address\" is not {command}")));
-            }
-            (word.to_string(), Checksum::None, Some(wire.command_line(word)))
-        }
-    };
-    Ok(Rebuilt { start: "$".to_string(), address, fields: wire, checksum, layout: Some(layout), line, lenient: false })
-}
-
-/// A sentence that lenient decoding kept: its problem fields' texts go back where they were, and
-/// it is parsed leniently again.
-#[cfg(feature = "std")]
-fn with_problems(
-    obj: &Value,
-    layout: LayoutId,
-    mut wire: WireFields,
-    checksum: Checksum,
-) -> Result<Rebuilt, Error<'static>> {
-    if json::str_member(obj, "start")?.is_empty() {
-        return Err(Error::bad_json("a text command has no problems"));
-    }
-    for problem in json::list(obj, "problems")? {
-        let index = match json::member(problem, "field")? {
-            Value::Integer(Some(index)) => usize::try_from(*index).ok().filter(|&i| i <= wire.len()),
-            _ => None,
-        };
-        let Some(index) = index else {
-            return Err(Error::bad_json("a problem's \"field\" is not the index of a field"));
-        };
-        wire.set(index - 1, json::text(json::member(problem, "text")?)?);
-    }
-    let address = match layout.framing() {
-        Framing::Standard | Framing::Encapsulated => format!("{}{}", json::word(obj, "talker")?, layout.sentence()),
-        Framing::Proprietary(address) | Framing::Text(address) => address.to_string(),
-    };
-    Ok(Rebuilt {
-        start: "$".to_string(),
-        address,
-        fields: wire,
-        checksum,
-        layout: Some(layout),
-        line: None,
-        lenient: true,
-    })
-}
-
-/// Writes `encode`'s output for one parsed line of decode's JSON (`None`: not JSON): the
-/// sentence, or the error as JSON; no line ending.
-#[cfg(feature = "std")]
-pub fn write_encoded<W: Write + ?Sized>(out: &mut W, obj: Option<&Value>) -> fmt::Result {
-    let rebuilt = match obj.map(from_json) {
-        None => return Error::bad_json("not JSON").write_json(out),
-        Some(Err(err)) => return err.write_json(out),
-        Some(Ok(rebuilt)) => rebuilt,
-    };
-    match rebuilt.parse() {
-        Ok(parsed) => write!(out, "{parsed}"),
-        Err(err) => err.write_json(out),
-    }
-}
-
-/// `encode`'s output for one line of decode's JSON: the sentence, or the error as JSON.
-#[cfg(feature = "std")]
-pub fn encode_json(line: &[u8]) -> String {
-    let mut out = String::new();
-    let _ = write_encoded(&mut out, Value::parse(line).as_ref());
-    out
 }
 
 #[cfg(test)]
@@ -33957,7 +33643,7 @@ mod tests {
     #[test]
     fn errors_are_reported_in_order() {
         let mut out = Buf::new();
-        write_decoded(&mut out, b"", false).unwrap();
+        json::write_decoded(&mut out, b"", false).unwrap();
         assert_eq!(
             out.as_str(),
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"empty line"}}"#

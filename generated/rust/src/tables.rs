@@ -4,7 +4,7 @@
 // Regenerate: make generate (python3 -m generator generate)
 
 //! Receivers' tables of configuration parameters, one module per table: a constant per
-//! parameter and `TABLE`, all of them. [`Parameter::encode`](crate::runtime::Parameter::encode)
+//! parameter and `TABLE`, all of them. [`Parameter::encode`](crate::Parameter::encode)
 //! writes a value the way the receiver reads it.
 
 /// ST Teseo configuration data block (CDB): Operating parameters of the GNSS software, read with
@@ -318,4 +318,4 @@ pub mod teseo_cdb {
 
 /// ST Teseo configuration data block (CDB): every parameter (see [`teseo_cdb`]).
 #[cfg(feature = "teseo")]
-pub const TESEO_CDB: crate::runtime::Table = teseo_cdb::TABLE;
+pub const TESEO_CDB: crate::Table = teseo_cdb::TABLE;

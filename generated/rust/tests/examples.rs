@@ -8,7 +8,8 @@
 //! in both forms and encode back from it; the manual's text, where it differs, decodes exactly
 //! as expected (a damaged one is refused). tests/fast_path.rs checks the fast path on them.
 
-use nmeaspec::{decode_json, encode_json, parse, LayoutId, ReplyOutcome, BUILD_CAPACITY};
+use nmeaspec::json::{decode_json, encode_json};
+use nmeaspec::{parse, LayoutId, ReplyOutcome, BUILD_CAPACITY};
 
 struct Example {
     manual: &'static str,

@@ -4,12 +4,19 @@
 //!
 //! Its rules (what text each field type accepts, the error messages, the JSON form) are the
 //! Python and C runtimes' rules byte for byte; see docs/json.md.
+//!
+//! The generated code reaches it through the names below; the crate root re-exports to users only
+//! the public API (runtime/README.md lists it). The parser and the tools' JSON ([`parse`],
+//! [`write_decoded`], `Rebuilt`) hold for any spec: they work through [`Layouts`], which the
+//! generated `LayoutId` implements, and [`Decoded`], which the generated `Sentence` implements.
 
 mod error;
 mod fast;
 mod frame;
 mod layout;
+mod parse;
 mod table;
+mod tools;
 mod types;
 mod write;
 
@@ -21,19 +28,23 @@ pub mod stream;
 #[cfg(feature = "std")]
 pub mod json;
 
-pub use error::{Error, ErrorKind, FieldProblem, Message, Name, Problems};
-pub use fast::{FastReader, Read, Unsure};
-pub use frame::{
-    checksum, first_word, is_command_word, is_standard_address, Blanks, FieldIter, Fields, Frame, GroupShape, Reader,
-    Shape, MAX_LINE, MAX_PROBLEMS,
+pub use error::{Error, ErrorKind, FieldProblem, Name, Problems};
+pub use fast::{FastReader, Read};
+// Text commands compile with their receivers' features only.
+#[allow(unused_imports)]
+pub use frame::is_command_word;
+pub use frame::{Fields, GroupShape, Reader, Shape, MAX_LINE, MAX_PROBLEMS};
+pub use layout::{build, Framing, Generic, JsonMember, Kind, Layout, ReplyOutcome, BUILD_CAPACITY};
+pub use parse::{
+    parse, parse_fast, parse_general, parse_with, parse_with_general, read_layout, Decoded, Layouts, Options, Outcome,
+    Parsed,
 };
-pub use layout::{build, strip_line_ending, Framing, Generic, JsonMember, Kind, Layout, ReplyOutcome, BUILD_CAPACITY};
 pub use table::{Encoding, ParamValue, Parameter, ParameterError, Problem, Table};
+#[cfg(feature = "std")]
+pub use tools::{decode_json, decode_json_with, encode_json, write_encoded, Rebuilt};
+pub use tools::{write_decoded, write_decoded_with};
 pub use types::{
-    upper_eq, Ascii, Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Entries, EntryIter, Hex,
-    Number, Range, ReadEntry, Sign, Texts, Time, MAX_DIGITS,
+    Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Entries, EntryIter, Hex, Number, Range,
+    Sign, Texts, Time,
 };
-pub use write::{
-    write_json_char, write_json_display, write_json_str, write_sentence, write_sentence_with, write_words_json,
-    ByteWriter, Discard, Entry, FieldSink, FieldValue, JsonEscape, JsonFields, Latin1Bytes, SameUpper, WireWriter,
-};
+pub use write::{Entry, FieldSink};

@@ -15,7 +15,7 @@
 use core::fmt;
 
 use crate::enums::{ComnavTalkerId, ComnavTalkerSentence};
-use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Shape};
 use crate::LayoutId;
 
 /// COMNAV_NMEATALKER: Set, list or reset the NMEA talker IDs.
@@ -52,7 +52,7 @@ impl<'a> ComnavNmeatalker<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::ComnavNmeatalker.build(buf, |w| self.write_sentence(w))
@@ -129,7 +129,7 @@ impl<'a> ComnavNmeatalkerList<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::ComnavNmeatalkerList.build(buf, |w| self.write_sentence(w))
@@ -203,7 +203,7 @@ impl<'a> ComnavNmeatalkerReset<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::ComnavNmeatalkerReset.build(buf, |w| self.write_sentence(w))

@@ -13,8 +13,8 @@ use core::fmt;
 
 use crate::enums::{DseCode, DseQueryFlag};
 use crate::runtime::{
-    Bound, Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number,
-    Range, Reader, Shape,
+    Bound, Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts,
+    Number, Range, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -87,7 +87,7 @@ impl<'a> Dse<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Dse.build(buf, |w| self.write_sentence(w))

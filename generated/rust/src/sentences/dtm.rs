@@ -11,7 +11,9 @@
 use core::fmt;
 
 use crate::enums::{DtmDatum, DtmLatOffsetDir, DtmLonOffsetDir};
-use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
+use crate::runtime::{
+    Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape,
+};
 use crate::LayoutId;
 
 /// DTM: Datum reference.
@@ -68,7 +70,7 @@ impl<'a> Dtm<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Dtm.build(buf, |w| self.write_sentence(w))
@@ -172,7 +174,7 @@ impl<'a> DtmShort<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::DtmShort.build(buf, |w| self.write_sentence(w))

@@ -12,7 +12,7 @@
 use core::fmt;
 
 use crate::runtime::{
-    Checksum, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Number, Range, Shape, Time,
+    Checksum, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Layouts, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -79,7 +79,7 @@ impl<'a> Fmi<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Fmi.build(buf, |w| self.write_sentence(w))

@@ -13,7 +13,8 @@
 use core::fmt;
 
 use crate::runtime::{
-    Checksum, Entries, Error, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember, Layout, Reader, Shape, Time,
+    Checksum, Entries, Error, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember, Layout, Layouts, Reader, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -66,7 +67,7 @@ impl<'a> Gen<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Gen.build(buf, |w| self.write_sentence(w))

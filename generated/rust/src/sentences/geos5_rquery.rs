@@ -16,7 +16,7 @@
 
 use core::fmt;
 
-use crate::runtime::{Checksum, Date, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
+use crate::runtime::{Checksum, Date, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Layouts, Shape};
 use crate::LayoutId;
 
 /// GEOS5_RQUERY: GeoS-5 software version, telemetry and configuration.
@@ -74,7 +74,7 @@ impl<'a> Geos5Rquery<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Geos5Rquery.build(buf, |w| self.write_sentence(w))

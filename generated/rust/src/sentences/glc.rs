@@ -14,8 +14,8 @@ use core::fmt;
 
 use crate::enums::GlcSignalStatus;
 use crate::runtime::{
-    Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range,
-    Reader, Shape,
+    Checksum, Code, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts, Number,
+    Range, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -93,7 +93,7 @@ impl<'a> Glc<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Glc.build(buf, |w| self.write_sentence(w))

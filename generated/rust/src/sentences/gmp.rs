@@ -13,7 +13,8 @@ use core::fmt;
 
 use crate::enums::GnsMode;
 use crate::runtime::{
-    Bound, Checksum, CodeChars, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time,
+    Bound, Checksum, CodeChars, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape,
+    Time,
 };
 use crate::LayoutId;
 
@@ -80,7 +81,7 @@ impl<'a> Gmp<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Gmp.build(buf, |w| self.write_sentence(w))

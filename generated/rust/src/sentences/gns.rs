@@ -14,7 +14,7 @@ use core::fmt;
 use crate::enums::{GnsMode, NavStatus};
 use crate::runtime::{
     Bound, Checksum, Code, CodeChars, Coordinate, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout,
-    Number, Range, Read, Shape, Time,
+    Layouts, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -86,7 +86,7 @@ impl<'a> Gns<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Gns.build(buf, |w| self.write_sentence(w))
@@ -254,7 +254,7 @@ impl<'a> GnsAux<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::GnsAux.build(buf, |w| self.write_sentence(w))

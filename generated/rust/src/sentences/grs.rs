@@ -15,8 +15,8 @@ use core::fmt;
 
 use crate::enums::{GrsMode, SignalId, SystemId};
 use crate::runtime::{
-    Checksum, Code, Entries, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range, Reader,
-    Shape, Time,
+    Checksum, Code, Entries, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts, Number, Range,
+    Reader, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -78,7 +78,7 @@ impl<'a> Grs<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Grs.build(buf, |w| self.write_sentence(w))

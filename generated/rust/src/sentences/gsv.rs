@@ -13,7 +13,7 @@ use core::fmt;
 use crate::enums::SignalId;
 use crate::runtime::{
     Bound, Checksum, Code, Entries, Entry, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember,
-    Layout, Number, Range, Read, Reader, Shape,
+    Layout, Layouts, Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -115,7 +115,7 @@ impl<'a> Gsv<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Gsv.build(buf, |w| self.write_sentence(w))

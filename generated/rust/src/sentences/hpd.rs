@@ -11,7 +11,7 @@
 
 use core::fmt;
 
-use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape};
 use crate::LayoutId;
 
 /// HPD: Positioning and heading information (Unicore).
@@ -84,7 +84,7 @@ impl<'a> Hpd<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Hpd.build(buf, |w| self.write_sentence(w))

@@ -11,7 +11,9 @@
 
 use core::fmt;
 
-use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape, Time};
+use crate::runtime::{
+    Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape, Time,
+};
 use crate::LayoutId;
 
 /// HPR: Heading, pitch and roll (Unicore).
@@ -64,7 +66,7 @@ impl<'a> Hpr<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Hpr.build(buf, |w| self.write_sentence(w))

@@ -11,7 +11,7 @@
 use core::fmt;
 
 use crate::enums::AirohaEnable;
-use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Shape};
 use crate::LayoutId;
 
 /// PAIR900: Switch LOCUS logging.
@@ -46,7 +46,7 @@ impl<'a> Pair900<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pair900.build(buf, |w| self.write_sentence(w))

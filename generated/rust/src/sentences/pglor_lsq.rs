@@ -12,8 +12,8 @@
 use core::fmt;
 
 use crate::runtime::{
-    Checksum, Coordinate, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range,
-    Read, Shape, Texts, Time,
+    Checksum, Coordinate, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts,
+    Number, Range, Read, Shape, Texts, Time,
 };
 use crate::LayoutId;
 
@@ -88,7 +88,7 @@ impl<'a> PglorLsq<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PglorLsq.build(buf, |w| self.write_sentence(w))

@@ -11,8 +11,8 @@
 use core::fmt;
 
 use crate::runtime::{
-    Checksum, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range, Read,
-    Shape, Texts, Time,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts, Number, Range,
+    Read, Shape, Texts, Time,
 };
 use crate::LayoutId;
 
@@ -73,7 +73,7 @@ impl<'a> PglorPwr<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PglorPwr.build(buf, |w| self.write_sentence(w))
@@ -227,7 +227,7 @@ impl<'a> PglorPwrV2<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PglorPwrV2.build(buf, |w| self.write_sentence(w))
@@ -394,7 +394,7 @@ impl<'a> PglorPwrV4<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PglorPwrV4.build(buf, |w| self.write_sentence(w))

@@ -14,7 +14,7 @@ use core::fmt;
 
 use crate::runtime::{
     Bound, Checksum, Entries, Entry, Error, FastReader, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember,
-    Layout, Number, Range, Read, Reader, Shape,
+    Layout, Layouts, Number, Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -103,7 +103,7 @@ impl<'a> PglorSat<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PglorSat.build(buf, |w| self.write_sentence(w))
@@ -244,7 +244,7 @@ impl<'a> PglorSatV1<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PglorSatV1.build(buf, |w| self.write_sentence(w))
@@ -376,7 +376,7 @@ impl<'a> PglorSatV0<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PglorSatV0.build(buf, |w| self.write_sentence(w))

@@ -11,7 +11,7 @@
 use core::fmt;
 
 use crate::runtime::{
-    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Read, Shape,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Read, Shape,
 };
 use crate::LayoutId;
 
@@ -94,7 +94,7 @@ impl<'a> PglorSio<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PglorSio.build(buf, |w| self.write_sentence(w))
@@ -289,7 +289,7 @@ impl<'a> PglorSioV0<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PglorSioV0.build(buf, |w| self.write_sentence(w))

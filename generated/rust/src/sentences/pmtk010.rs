@@ -13,7 +13,9 @@
 use core::fmt;
 
 use crate::enums::MtkSystemMessage;
-use crate::runtime::{Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Read, Shape};
+use crate::runtime::{
+    Checksum, Code, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Read, Shape,
+};
 use crate::LayoutId;
 
 /// PMTK010: System message.
@@ -49,7 +51,7 @@ impl<'a> Pmtk010<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pmtk010.build(buf, |w| self.write_sentence(w))

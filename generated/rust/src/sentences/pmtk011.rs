@@ -9,7 +9,9 @@
 
 use core::fmt;
 
-use crate::runtime::{Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Read, Shape};
+use crate::runtime::{
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Read, Shape,
+};
 use crate::LayoutId;
 
 /// PMTK011: System text message.
@@ -44,7 +46,7 @@ impl<'a> Pmtk011<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pmtk011.build(buf, |w| self.write_sentence(w))

@@ -11,8 +11,8 @@
 use core::fmt;
 
 use crate::runtime::{
-    Checksum, Entries, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range,
-    Read, Reader, Shape,
+    Checksum, Entries, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts, Number,
+    Range, Read, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -55,7 +55,7 @@ impl<'a> Pmtkchn<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pmtkchn.build(buf, |w| self.write_sentence(w))

@@ -10,7 +10,9 @@
 
 use core::fmt;
 
-use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
+use crate::runtime::{
+    Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape,
+};
 use crate::LayoutId;
 
 /// PQTMCFGBLD: Configure antenna baseline.
@@ -48,7 +50,7 @@ impl Pqtmcfgbld {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pqtmcfgbld.build(buf, |w| self.write_sentence(w))
@@ -124,7 +126,7 @@ impl PqtmcfgbldRead {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgbldRead.build(buf, |w| self.write_sentence(w))

@@ -12,7 +12,7 @@
 use core::fmt;
 
 use crate::enums::{QuectelEnable, QuectelErrorCode};
-use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGCNST_RESULT: Configure constellations: result.
@@ -60,7 +60,7 @@ impl<'a> PqtmcfgcnstResult<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgcnstResult.build(buf, |w| self.write_sentence(w))
@@ -151,7 +151,7 @@ impl PqtmcfgcnstResultAck {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgcnstResultAck.build(buf, |w| self.write_sentence(w))
@@ -218,7 +218,7 @@ impl<'a> PqtmcfgcnstResultError<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgcnstResultError.build(buf, |w| self.write_sentence(w))

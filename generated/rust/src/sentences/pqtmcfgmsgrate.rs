@@ -12,7 +12,7 @@ use core::fmt;
 
 use crate::enums::QuectelPortType;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -62,7 +62,7 @@ impl<'a> Pqtmcfgmsgrate<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pqtmcfgmsgrate.build(buf, |w| self.write_sentence(w))
@@ -170,7 +170,7 @@ impl<'a> PqtmcfgmsgratePort<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgmsgratePort.build(buf, |w| self.write_sentence(w))
@@ -281,7 +281,7 @@ impl<'a> PqtmcfgmsgrateReadPort<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgmsgrateReadPort.build(buf, |w| self.write_sentence(w))
@@ -386,7 +386,7 @@ impl<'a> PqtmcfgmsgrateRead<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgmsgrateRead.build(buf, |w| self.write_sentence(w))

@@ -14,7 +14,7 @@ use core::fmt;
 
 use crate::enums::{QuectelErrorCode, QuectelPortType};
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Number, Range, Shape,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Layouts, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -63,7 +63,7 @@ impl<'a> PqtmcfgprotResult<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgprotResult.build(buf, |w| self.write_sentence(w))
@@ -148,7 +148,7 @@ impl PqtmcfgprotResultAck {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgprotResultAck.build(buf, |w| self.write_sentence(w))
@@ -215,7 +215,7 @@ impl<'a> PqtmcfgprotResultError<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgprotResultError.build(buf, |w| self.write_sentence(w))

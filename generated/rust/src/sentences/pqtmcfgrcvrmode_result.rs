@@ -12,7 +12,7 @@
 use core::fmt;
 
 use crate::enums::{QuectelErrorCode, QuectelReceiverMode};
-use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGRCVRMODE_RESULT: Configure receiver mode: result.
@@ -50,7 +50,7 @@ impl<'a> PqtmcfgrcvrmodeResult<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgrcvrmodeResult.build(buf, |w| self.write_sentence(w))
@@ -123,7 +123,7 @@ impl PqtmcfgrcvrmodeResultAck {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgrcvrmodeResultAck.build(buf, |w| self.write_sentence(w))
@@ -190,7 +190,7 @@ impl<'a> PqtmcfgrcvrmodeResultError<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgrcvrmodeResultError.build(buf, |w| self.write_sentence(w))

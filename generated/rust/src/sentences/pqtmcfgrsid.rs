@@ -9,7 +9,9 @@
 
 use core::fmt;
 
-use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
+use crate::runtime::{
+    Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape,
+};
 use crate::LayoutId;
 
 /// PQTMCFGRSID: Configure reference station ID.
@@ -46,7 +48,7 @@ impl Pqtmcfgrsid {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pqtmcfgrsid.build(buf, |w| self.write_sentence(w))
@@ -122,7 +124,7 @@ impl PqtmcfgrsidRead {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgrsidRead.build(buf, |w| self.write_sentence(w))

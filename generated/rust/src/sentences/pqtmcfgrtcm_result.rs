@@ -13,7 +13,7 @@ use core::fmt;
 
 use crate::enums::{QuectelErrorCode, QuectelRtcmEphMode};
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -65,7 +65,7 @@ impl<'a> PqtmcfgrtcmResult<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgrtcmResult.build(buf, |w| self.write_sentence(w))
@@ -161,7 +161,7 @@ impl PqtmcfgrtcmResultAck {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgrtcmResultAck.build(buf, |w| self.write_sentence(w))
@@ -228,7 +228,7 @@ impl<'a> PqtmcfgrtcmResultError<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgrtcmResultError.build(buf, |w| self.write_sentence(w))

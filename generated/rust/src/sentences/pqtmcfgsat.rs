@@ -10,7 +10,7 @@
 use core::fmt;
 
 use crate::enums::SystemId;
-use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Layouts, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGSAT: Configure satellite mask.
@@ -60,7 +60,7 @@ impl<'a> Pqtmcfgsat<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pqtmcfgsat.build(buf, |w| self.write_sentence(w))
@@ -160,7 +160,7 @@ impl<'a> PqtmcfgsatRead<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgsatRead.build(buf, |w| self.write_sentence(w))

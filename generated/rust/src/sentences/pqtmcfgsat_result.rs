@@ -12,7 +12,7 @@
 use core::fmt;
 
 use crate::enums::{QuectelErrorCode, SystemId};
-use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
+use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Layouts, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGSAT_RESULT: Configure satellite mask: result.
@@ -63,7 +63,7 @@ impl<'a> PqtmcfgsatResult<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgsatResult.build(buf, |w| self.write_sentence(w))
@@ -153,7 +153,7 @@ impl PqtmcfgsatResultAck {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgsatResultAck.build(buf, |w| self.write_sentence(w))
@@ -220,7 +220,7 @@ impl<'a> PqtmcfgsatResultError<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgsatResultError.build(buf, |w| self.write_sentence(w))

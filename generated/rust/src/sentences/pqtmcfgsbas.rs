@@ -10,7 +10,7 @@
 
 use core::fmt;
 
-use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Layouts, Shape};
 use crate::LayoutId;
 
 /// PQTMCFGSBAS: Configure SBAS.
@@ -48,7 +48,7 @@ impl Pqtmcfgsbas {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pqtmcfgsbas.build(buf, |w| self.write_sentence(w))
@@ -124,7 +124,7 @@ impl PqtmcfgsbasRead {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgsbasRead.build(buf, |w| self.write_sentence(w))

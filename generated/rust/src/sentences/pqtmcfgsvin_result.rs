@@ -13,7 +13,7 @@ use core::fmt;
 
 use crate::enums::{QuectelErrorCode, QuectelSvinMode};
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape,
 };
 use crate::LayoutId;
 
@@ -68,7 +68,7 @@ impl<'a> PqtmcfgsvinResult<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgsvinResult.build(buf, |w| self.write_sentence(w))
@@ -169,7 +169,7 @@ impl PqtmcfgsvinResultAck {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgsvinResultAck.build(buf, |w| self.write_sentence(w))
@@ -236,7 +236,7 @@ impl<'a> PqtmcfgsvinResultError<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PqtmcfgsvinResultError.build(buf, |w| self.write_sentence(w))

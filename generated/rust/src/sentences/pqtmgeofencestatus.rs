@@ -12,8 +12,8 @@ use core::fmt;
 
 use crate::enums::QuectelGeofenceState;
 use crate::runtime::{
-    Checksum, Code, Entries, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number,
-    Range, Read, Reader, Shape, Time,
+    Checksum, Code, Entries, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts,
+    Number, Range, Read, Reader, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -59,7 +59,7 @@ impl<'a> Pqtmgeofencestatus<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pqtmgeofencestatus.build(buf, |w| self.write_sentence(w))

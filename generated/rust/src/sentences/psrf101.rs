@@ -13,7 +13,9 @@
 
 use core::fmt;
 
-use crate::runtime::{Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range, Shape};
+use crate::runtime::{
+    Bound, Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape,
+};
 use crate::LayoutId;
 
 /// PSRF101: Navigation initialisation, ECEF.
@@ -76,7 +78,7 @@ impl Psrf101 {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Psrf101.build(buf, |w| self.write_sentence(w))

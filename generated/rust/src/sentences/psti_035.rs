@@ -14,8 +14,8 @@ use core::fmt;
 
 use crate::enums::{SkytraqMode, Status};
 use crate::runtime::{
-    Bound, Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number, Range,
-    Read, Shape, Time,
+    Bound, Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number,
+    Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -81,7 +81,7 @@ impl<'a> Psti035<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Psti035.build(buf, |w| self.write_sentence(w))

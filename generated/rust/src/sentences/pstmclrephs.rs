@@ -10,7 +10,7 @@
 
 use core::fmt;
 
-use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Shape};
+use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Shape};
 use crate::LayoutId;
 
 /// PSTMCLREPHS: Clear all ephemerides.
@@ -41,7 +41,7 @@ impl Pstmclrephs {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pstmclrephs.build(buf, |w| self.write_sentence(w))

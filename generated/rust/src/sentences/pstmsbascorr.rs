@@ -10,7 +10,8 @@
 use core::fmt;
 
 use crate::runtime::{
-    Checksum, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Read, Shape, Texts,
+    Checksum, Error, FastReader, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts, Read, Shape,
+    Texts,
 };
 use crate::LayoutId;
 
@@ -39,7 +40,7 @@ impl<'a> Pstmsbascorr<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Pstmsbascorr.build(buf, |w| self.write_sentence(w))

@@ -13,8 +13,8 @@ use core::fmt;
 
 use crate::enums::TrimbleBpqQuality;
 use crate::runtime::{
-    Checksum, Code, Coordinate, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Read, Shape,
-    Time,
+    Checksum, Code, Coordinate, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Read,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -67,7 +67,7 @@ impl<'a> PtnlBpq<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::PtnlBpq.build(buf, |w| self.write_sentence(w))

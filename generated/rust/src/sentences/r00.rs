@@ -9,7 +9,9 @@
 
 use core::fmt;
 
-use crate::runtime::{Checksum, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Shape, Texts};
+use crate::runtime::{
+    Checksum, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts, Shape, Texts,
+};
 use crate::LayoutId;
 
 /// R00: Waypoints in active route.
@@ -46,7 +48,7 @@ impl<'a> R00<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::R00.build(buf, |w| self.write_sentence(w))

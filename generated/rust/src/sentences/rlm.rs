@@ -10,7 +10,9 @@
 use core::fmt;
 
 use crate::enums::RlmMessageCode;
-use crate::runtime::{Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Shape, Time};
+use crate::runtime::{
+    Checksum, Code, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout, Layouts, Shape, Time,
+};
 use crate::LayoutId;
 
 /// RLM: Return link message.
@@ -54,7 +56,7 @@ impl<'a> Rlm<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Rlm.build(buf, |w| self.write_sentence(w))

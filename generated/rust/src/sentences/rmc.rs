@@ -14,8 +14,8 @@ use core::fmt;
 
 use crate::enums::{EastWest, NavStatus, NorthSouth, PosMode, RmcMagVarDir, Status};
 use crate::runtime::{
-    Bound, Checksum, Code, Coordinate, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Number,
-    Range, Read, Shape, Time,
+    Bound, Checksum, Code, Coordinate, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout,
+    Layouts, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -82,7 +82,7 @@ impl<'a> Rmc<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Rmc.build(buf, |w| self.write_sentence(w))
@@ -264,7 +264,7 @@ impl<'a> RmcSentinel<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::RmcSentinel.build(buf, |w| self.write_sentence(w))

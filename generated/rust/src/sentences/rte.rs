@@ -12,8 +12,8 @@ use core::fmt;
 
 use crate::enums::RteMode;
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Number, Range, Shape,
-    Texts,
+    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, GroupShape, JsonMember, Layout, Layouts, Number, Range,
+    Shape, Texts,
 };
 use crate::LayoutId;
 
@@ -62,7 +62,7 @@ impl<'a> Rte<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Rte.build(buf, |w| self.write_sentence(w))

@@ -8,10 +8,9 @@ use std::fmt;
 use std::io::{self, BufRead, BufReader, BufWriter, Read, Write};
 use std::process::ExitCode;
 
-use nmeaspec::runtime::json::{Value, SKIP_CHECK_DEPTH};
-use nmeaspec::runtime::MAX_LINE;
+use nmeaspec::json::{write_decoded_with, write_encoded, Value, SKIP_CHECK_DEPTH};
 use nmeaspec::stream::{Framer, Item};
-use nmeaspec::{write_decoded_with, write_encoded, Error, Options};
+use nmeaspec::{Error, Options, MAX_LINE};
 
 const USAGE: &str =
     "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] | encode | --version\n       \

@@ -11,7 +11,7 @@
 //!
 //! The fast path must also read most of the logs' lines, or this test would prove nothing.
 //!
-//! Likewise the byte writer of `serialize_into` against the `fmt` writer (`write_sentence_with`)
+//! Likewise the byte writer of `serialize_into` against the `fmt` writer (`Display`)
 //! on every sentence read, lenient readings with problems included: the same text, or `None`
 //! when the buffer is too small for it.
 
@@ -19,9 +19,9 @@ use std::collections::HashMap;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use nmeaspec::runtime::json::Value;
-use nmeaspec::runtime::MAX_LINE;
-use nmeaspec::{parse, parse_fast, parse_general, parse_with, parse_with_general, LayoutId, Options, Parsed};
+use nmeaspec::json::Value;
+use nmeaspec::paths::{parse_fast, parse_general, parse_with_general, serialize_fast};
+use nmeaspec::{parse, parse_with, LayoutId, Options, Parsed, MAX_LINE};
 
 const CRATE: &str = env!("CARGO_MANIFEST_DIR");
 
@@ -53,7 +53,7 @@ impl Tally {
         if let Ok(sentence) = &general {
             check_writing(&(*sentence).into(), line);
             self.read += 1;
-            self.written_fast += usize::from(sentence.serialize_fast(&mut [0; MAX_LINE]).is_some());
+            self.written_fast += usize::from(serialize_fast(sentence, &mut [0; MAX_LINE]).is_some());
         }
         if let Ok(parsed) = parse_with_general(line, Options { lenient: true, require_checksum: false }) {
             check_writing(&parsed, line);
@@ -86,15 +86,14 @@ impl Tally {
 /// `serialize_into` writes what the `fmt` writer writes (the sentence's text with its problem
 /// fields' texts put back), into a buffer of any size: all of it, or `None`.
 fn check_writing(parsed: &Parsed<'_>, line: &[u8]) {
-    let mut expected = String::new();
-    parsed.sentence.write_sentence_with(&mut expected, &parsed.problems).expect("a String takes any text");
+    let expected = parsed.to_string();
     let mut buf = [0u8; MAX_LINE + 64];
     let written =
         parsed.serialize_into(&mut buf).unwrap_or_else(|| panic!("serialize_into wrote nothing for {:?}", show(line)));
     assert_eq!(show(&buf[..written]), expected, "serialize_into and the fmt writer disagree on {:?}", show(line));
     if parsed.problems.is_empty() {
         assert_eq!(parsed.sentence.serialize_into(&mut buf), Some(written));
-        if let Some(fast) = parsed.sentence.serialize_fast(&mut buf) {
+        if let Some(fast) = serialize_fast(&parsed.sentence, &mut buf) {
             assert_eq!(show(&buf[..fast]), expected, "the byte writer alone wrote {:?} differently", show(line));
         }
     }

@@ -41,8 +41,8 @@
 //! ```
 //!
 //! Errors carry a kind, the address, the 1-based index and spec name of the field at fault and
-//! the message of docs/json.md. With the `std` feature the crate also reads the tools' JSON back
-//! (`from_json`, `encode_json`) and builds the `nmea-rs` tool.
+//! the message of docs/json.md. [`json`] writes the tools' JSON lines and, with the `std` feature,
+//! reads them back; `std` also builds the `nmea-rs` tool.
 
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
@@ -52,7 +52,7 @@ use core::fmt::{self, Write};
 
 pub mod bitfields;
 pub mod enums;
-pub mod runtime;
+mod runtime;
 pub mod sentences;
 pub mod tables;
 
@@ -61,16 +61,13 @@ pub const VERSION: &str = "0.2.0";
 
 #[cfg(feature = "acme")]
 use runtime::is_command_word;
-#[cfg(feature = "std")]
-use runtime::json::{self, Value, WireFields};
-use runtime::{first_word, strip_line_ending, FastReader, Unsure};
+use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};
 pub use runtime::{
-    Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Entries, EntryIter, Error, ErrorKind, FieldProblem, Fields,
-    Frame, Framing, Generic, Hex, Kind, Layout, Name, Number, Problems, ReplyOutcome, Sign, Texts, Time,
-    BUILD_CAPACITY, MAX_PROBLEMS,
+    stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Encoding, Entries, EntryIter, Error,
+    ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name, Number, Options, ParamValue, Parameter,
+    ParameterError, Problem, Problems, ReplyOutcome, Sign, Table, Texts, Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS,
 };
 
-pub use runtime::stream;
 pub use sentences::*;
 
 /// A decoded sentence: one variant per layout of the spec, and [`Generic`] for the rest.
@@ -225,17 +222,6 @@ impl LayoutId {
         }
     }
 
-    /// Whether `fields` hold this layout's keyword in its place (ignoring case).
-    pub fn holds_selector(self, fields: &Fields<'_>) -> bool {
-        match self.selector() {
-            Some(keyword) => fields
-                .get(self.selector_at() + 1)
-                .filter(|_| !fields.is_empty())
-                .is_some_and(|word| word.eq_ignore_ascii_case(keyword)),
-            None => false,
-        }
-    }
-
     /// The layouts of the sentences that answer this command (empty for the others).
     pub const fn replies(self) -> &'static [LayoutId] {
         match self {
@@ -251,14 +237,40 @@ impl LayoutId {
             Self::Pacmset => &[Self::Pacmack],
         }
     }
+}
 
-    /// The first layout of sentence `sentence` with variant `variant`.
-    pub fn find(sentence: &str, variant: Option<&str>) -> Option<Self> {
-        Self::ALL.iter().copied().find(|layout| layout.sentence() == sentence && layout.variant() == variant)
+impl Layouts for LayoutId {
+    type Sentence<'a> = Sentence<'a>;
+
+    #[cfg(feature = "std")]
+    const ALL: &'static [Self] = Self::ALL;
+
+    fn of(start: &str, address: &[u8]) -> &'static [Self] {
+        layouts_of(start, address)
     }
 
-    /// Decodes the fields after the address with this layout.
-    pub fn parse_fields(self, fields: Fields<'_>, checksum: Checksum) -> Result<Sentence<'_>, Error<'_>> {
+    #[cfg(feature = "std")]
+    fn sentence(self) -> &'static str {
+        self.sentence()
+    }
+
+    #[cfg(feature = "std")]
+    fn variant(self) -> Option<&'static str> {
+        self.variant()
+    }
+
+    fn framing(self) -> Framing {
+        self.framing()
+    }
+
+    fn keyword(self) -> Option<(&'static str, usize)> {
+        match self.selector() {
+            Some(keyword) => Some((keyword, self.selector_at())),
+            None => None,
+        }
+    }
+
+    fn parse_fields<'a>(self, fields: Fields<'a>, checksum: Checksum) -> Result<Sentence<'a>, Error<'a>> {
         match self {
             Self::Fix => Fix::parse_fields(fields, checksum).map(Sentence::Fix),
             Self::FixShort => FixShort::parse_fields(fields, checksum).map(Sentence::FixShort),
@@ -273,19 +285,20 @@ impl LayoutId {
         }
     }
 
-    /// The command builders' serialization: writes the line with `write` into `buf`, reads it
-    /// back with this layout and appends CR LF (see [`runtime::build`]).
-    pub fn build<'b>(
-        self,
-        buf: &'b mut [u8],
-        write: impl FnOnce(&mut runtime::Latin1Bytes<'_>) -> fmt::Result,
-    ) -> Result<&'b [u8], Error<'b>> {
-        runtime::build(buf, self.framing(), write, |fields, checksum| self.parse_fields(fields, checksum).map(drop))
+    fn read_sentence<'a, O: Outcome<'a, Self>>(fields: FastReader<'a>, line: &'a [u8]) -> O {
+        read_sentence(fields, line)
     }
 
-    /// Appends the wire fields described by a `fields` object of decode's lossless JSON.
+    fn read_next<'a, O: Outcome<'a, Self>>(layouts: &[Self], fields: FastReader<'a>, line: &'a [u8]) -> O {
+        read_fast(layouts, fields, line)
+    }
+
     #[cfg(feature = "std")]
-    pub fn fields_from_json(self, fields: &Value, out: &mut WireFields) -> Result<(), Error<'static>> {
+    fn fields_from_json(
+        self,
+        fields: &runtime::json::Value,
+        out: &mut runtime::json::WireFields,
+    ) -> Result<(), Error<'static>> {
         match self {
             Self::Fix => Fix::fields_from_json(fields, out),
             Self::FixShort => FixShort::fields_from_json(fields, out),
@@ -301,7 +314,7 @@ impl LayoutId {
     }
 }
 
-impl<'a> Sentence<'a> {
+impl Sentence<'_> {
     /// The layout, `None` for a generic sentence.
     pub const fn layout(&self) -> Option<LayoutId> {
         match self {
@@ -375,28 +388,6 @@ impl<'a> Sentence<'a> {
         self.write_json_with(out, values, &Problems::new())
     }
 
-    /// Writes the tools' JSON line of a sentence lenient parsing kept with `problems`.
-    pub fn write_json_with<W: Write + ?Sized>(
-        &self,
-        out: &mut W,
-        values: bool,
-        problems: &Problems<'_>,
-    ) -> fmt::Result {
-        match self {
-            Self::Fix(s) => s.write_json_with(out, values, problems),
-            Self::FixShort(s) => s.write_json_with(out, values, problems),
-            Self::Sat(s) => s.write_json_with(out, values, problems),
-            Self::Xdm(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "acme")]
-            Self::AcmeLog(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "acme")]
-            Self::Pacmack(s) => s.write_json_with(out, values, problems),
-            #[cfg(feature = "acme")]
-            Self::Pacmset(s) => s.write_json_with(out, values, problems),
-            Self::Generic(s) => s.write_json(out),
-        }
-    }
-
     /// Writes the sentence text (what `Display` writes) without the `fmt` machinery.
     pub fn write_sentence<W: Write + ?Sized>(&self, out: &mut W) -> fmt::Result {
         match self {
@@ -416,53 +407,10 @@ impl<'a> Sentence<'a> {
 
     /// The sentence text, what `Display` writes (no line ending), put at the start of `buf`, as
     /// C's `nmea_serialize` does: its length, or `None` when `buf` cannot hold it (a buffer of
-    /// [`runtime::MAX_LINE`] bytes holds any sentence [`parse`] gives). An ASCII text (every
-    /// parsed `$` sentence) is written without the `fmt` machinery.
+    /// [`MAX_LINE`] bytes holds any sentence [`parse`] gives). An ASCII text (every parsed `$`
+    /// sentence) is written without the `fmt` machinery.
     pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
-        if let Some(len) = self.serialize_fast(buf) {
-            return Some(len);
-        }
-        let mut w = runtime::ByteWriter::new(buf);
-        self.write_sentence_with(&mut w, &Problems::new()).ok()?;
-        Some(w.len())
-    }
-
-    /// The byte writer of [`Sentence::serialize_into`] alone, without its `fmt` fallback: `None`
-    /// for a text that is not all ASCII, a text command, or a buffer too small (the crate's tests
-    /// check that it writes what the `fmt` writer writes).
-    #[doc(hidden)]
-    pub fn serialize_fast(&self, buf: &mut [u8]) -> Option<usize> {
-        match self {
-            Self::Fix(s) => s.put_sentence(buf),
-            Self::FixShort(s) => s.put_sentence(buf),
-            Self::Sat(s) => s.put_sentence(buf),
-            Self::Xdm(s) => s.put_sentence(buf),
-            #[cfg(feature = "acme")]
-            Self::AcmeLog(s) => s.put_sentence(buf),
-            #[cfg(feature = "acme")]
-            Self::Pacmack(s) => s.put_sentence(buf),
-            #[cfg(feature = "acme")]
-            Self::Pacmset(s) => s.put_sentence(buf),
-            Self::Generic(s) => s.put_sentence(buf),
-        }
-    }
-
-    /// Writes the sentence text of a sentence lenient parsing kept with `problems`: the text of
-    /// each field it left empty is put back.
-    pub fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
-        match self {
-            Self::Fix(s) => s.write_sentence_with(out, problems),
-            Self::FixShort(s) => s.write_sentence_with(out, problems),
-            Self::Sat(s) => s.write_sentence_with(out, problems),
-            Self::Xdm(s) => s.write_sentence_with(out, problems),
-            #[cfg(feature = "acme")]
-            Self::AcmeLog(s) => s.write_sentence_with(out, problems),
-            #[cfg(feature = "acme")]
-            Self::Pacmack(s) => s.write_sentence_with(out, problems),
-            #[cfg(feature = "acme")]
-            Self::Pacmset(s) => s.write_sentence_with(out, problems),
-            Self::Generic(s) => s.write_sentence(out),
-        }
+        self.serialize_with(buf, &Problems::new())
     }
 
     /// The tools' JSON line (`values`: decoded values instead of the lossless texts).
@@ -479,6 +427,56 @@ impl<'a> Sentence<'a> {
         match self.layout() {
             Some(layout) => layout.build(buf, |w| self.write_sentence(w)),
             None => runtime::build(buf, Framing::Standard, |w| self.write_sentence(w), |_, _| Ok(())),
+        }
+    }
+}
+
+impl Decoded for Sentence<'_> {
+    fn write_sentence_with<W: Write + ?Sized>(&self, out: &mut W, problems: &Problems<'_>) -> fmt::Result {
+        match self {
+            Self::Fix(s) => s.write_sentence_with(out, problems),
+            Self::FixShort(s) => s.write_sentence_with(out, problems),
+            Self::Sat(s) => s.write_sentence_with(out, problems),
+            Self::Xdm(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "acme")]
+            Self::AcmeLog(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "acme")]
+            Self::Pacmack(s) => s.write_sentence_with(out, problems),
+            #[cfg(feature = "acme")]
+            Self::Pacmset(s) => s.write_sentence_with(out, problems),
+            Self::Generic(s) => s.write_sentence(out),
+        }
+    }
+
+    fn write_json_with<W: Write + ?Sized>(&self, out: &mut W, values: bool, problems: &Problems<'_>) -> fmt::Result {
+        match self {
+            Self::Fix(s) => s.write_json_with(out, values, problems),
+            Self::FixShort(s) => s.write_json_with(out, values, problems),
+            Self::Sat(s) => s.write_json_with(out, values, problems),
+            Self::Xdm(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "acme")]
+            Self::AcmeLog(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "acme")]
+            Self::Pacmack(s) => s.write_json_with(out, values, problems),
+            #[cfg(feature = "acme")]
+            Self::Pacmset(s) => s.write_json_with(out, values, problems),
+            Self::Generic(s) => s.write_json(out),
+        }
+    }
+
+    fn put_sentence(&self, buf: &mut [u8]) -> Option<usize> {
+        match self {
+            Self::Fix(s) => s.put_sentence(buf),
+            Self::FixShort(s) => s.put_sentence(buf),
+            Self::Sat(s) => s.put_sentence(buf),
+            Self::Xdm(s) => s.put_sentence(buf),
+            #[cfg(feature = "acme")]
+            Self::AcmeLog(s) => s.put_sentence(buf),
+            #[cfg(feature = "acme")]
+            Self::Pacmack(s) => s.put_sentence(buf),
+            #[cfg(feature = "acme")]
+            Self::Pacmset(s) => s.put_sentence(buf),
+            Self::Generic(s) => s.put_sentence(buf),
         }
     }
 }
@@ -535,321 +533,165 @@ impl<'a> From<Pacmset<'a>> for Sentence<'a> {
     }
 }
 
+impl<'a> From<Generic<'a>> for Sentence<'a> {
+    fn from(sentence: Generic<'a>) -> Self {
+        Self::Generic(sentence)
+    }
+}
+
 /// Decodes one line (`&str` or bytes; a trailing LF or CR LF is allowed) into the struct of its
 /// layout, or [`Generic`] for a well-formed sentence the spec does not describe. A line that
 /// does not start with `$` or `!` is a text command when its first word is a command word
 /// (ignoring case).
 pub fn parse<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_>> {
-    let line = strip_line_ending(line.as_ref());
-    match FastReader::frame(line) {
-        Some(fields) => read_sentence(fields, line),
-        None => general(line),
+    runtime::parse::<LayoutId>(line.as_ref())
+}
+
+/// [`parse`] with options: lenient decoding and required checksums.
+pub fn parse_with<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
+    runtime::parse_with::<LayoutId>(line.as_ref(), options)
+}
+
+/// A sentence decoded by [`parse_with`], and the fields lenient parsing left empty (with their
+/// text as received, written back by `Display` so that the round trip stays exact).
+pub type Parsed<'a> = runtime::Parsed<'a, Sentence<'a>>;
+
+/// The tools' JSON: `decode`'s line for a sentence or an error (docs/json.md) and, with the `std`
+/// feature, `encode`'s way back from it to the sentence.
+pub mod json {
+    use core::fmt::{self, Write};
+
+    use crate::{runtime, LayoutId, Options};
+
+    #[cfg(feature = "std")]
+    pub use crate::runtime::json::{Value, SKIP_CHECK_DEPTH};
+
+    /// Writes `decode`'s output for one line (without line ending): the sentence or the error as
+    /// JSON.
+    pub fn write_decoded<W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool) -> fmt::Result {
+        runtime::write_decoded::<LayoutId, W>(out, line, values)
+    }
+
+    /// [`write_decoded`] with options (`decode --lenient --require-checksum`).
+    pub fn write_decoded_with<W: Write + ?Sized>(
+        out: &mut W,
+        line: &[u8],
+        values: bool,
+        options: Options,
+    ) -> fmt::Result {
+        runtime::write_decoded_with::<LayoutId, W>(out, line, values, options)
+    }
+
+    /// `decode`'s output for one line (without line ending): the sentence or the error as JSON.
+    #[cfg(feature = "std")]
+    pub fn decode_json(line: &[u8], values: bool) -> String {
+        runtime::decode_json::<LayoutId>(line, values)
+    }
+
+    /// [`decode_json`] with options.
+    #[cfg(feature = "std")]
+    pub fn decode_json_with(line: &[u8], values: bool, options: Options) -> String {
+        runtime::decode_json_with::<LayoutId>(line, values, options)
+    }
+
+    /// A sentence rebuilt from decode's lossless JSON ([`Rebuilt::from_json`]): its address and
+    /// wire fields, ready to parse.
+    #[cfg(feature = "std")]
+    pub type Rebuilt = runtime::Rebuilt<LayoutId>;
+
+    /// Writes `encode`'s output for one parsed line of decode's JSON (`None`: not JSON): the
+    /// sentence, or the error as JSON; no line ending.
+    #[cfg(feature = "std")]
+    pub fn write_encoded<W: Write + ?Sized>(out: &mut W, obj: Option<&Value>) -> fmt::Result {
+        runtime::write_encoded::<LayoutId, W>(out, obj)
+    }
+
+    /// `encode`'s output for one line of decode's JSON: the sentence, or the error as JSON.
+    #[cfg(feature = "std")]
+    pub fn encode_json(line: &[u8]) -> String {
+        runtime::encode_json::<LayoutId>(line)
     }
 }
 
-/// [`parse`] without its fast path: the general path alone, which reads every line and finds
-/// every error. It gives what [`parse`] gives (the crate's tests and fuzz target check it).
+/// The parser's two paths and the writer's byte path on their own, for the tests and fuzz
+/// targets that hold each to the other; not part of the API.
 #[doc(hidden)]
-pub fn parse_general<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_>> {
-    general(strip_line_ending(line.as_ref()))
-}
+pub mod paths {
+    use crate::{runtime, Error, LayoutId, Options, Parsed, Sentence};
 
-/// The fast path of [`parse`] alone: the sentence, or `None` for a line it leaves to the general
-/// path (for tests).
-#[doc(hidden)]
-pub fn parse_fast<L: AsRef<[u8]> + ?Sized>(line: &L) -> Option<Sentence<'_>> {
-    let line = strip_line_ending(line.as_ref());
-    read_sentence(FastReader::frame(line)?, line)
-}
-
-/// What the fast path of [`parse`] gives: the sentence it read or, when it is not sure, what the
-/// general path makes of the line ([`parse`]: the result of [`parse_general`]; [`parse_fast`]:
-/// `None`).
-trait Outcome<'a> {
-    fn read(sentence: Sentence<'a>) -> Self;
-    fn general(line: &'a [u8]) -> Self;
-}
-
-impl<'a> Outcome<'a> for Result<Sentence<'a>, Error<'a>> {
-    #[inline(always)]
-    fn read(sentence: Sentence<'a>) -> Self {
-        Ok(sentence)
+    /// [`parse`](crate::parse) without its fast path: the general path alone, which reads every
+    /// line and finds every error; it gives what `parse` gives.
+    pub fn parse_general<L: AsRef<[u8]> + ?Sized>(line: &L) -> Result<Sentence<'_>, Error<'_>> {
+        runtime::parse_general::<LayoutId>(line.as_ref())
     }
 
-    fn general(line: &'a [u8]) -> Self {
-        general(line)
+    /// The fast path of [`parse`](crate::parse) alone: the sentence, or `None` for a line it
+    /// leaves to the general path.
+    pub fn parse_fast<L: AsRef<[u8]> + ?Sized>(line: &L) -> Option<Sentence<'_>> {
+        runtime::parse_fast::<LayoutId>(line.as_ref())
+    }
+
+    /// [`parse_with`](crate::parse_with) without its fast path.
+    pub fn parse_with_general<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
+        runtime::parse_with_general::<LayoutId>(line.as_ref(), options)
+    }
+
+    /// The byte writer of [`Sentence::serialize_into`] alone, without its `fmt` fallback: `None`
+    /// for a text that is not all ASCII, a text command, or a buffer too small.
+    pub fn serialize_fast(sentence: &Sentence<'_>, buf: &mut [u8]) -> Option<usize> {
+        runtime::Decoded::put_sentence(sentence, buf)
     }
 }
 
-impl<'a> Outcome<'a> for Option<Sentence<'a>> {
-    #[inline(always)]
-    fn read(sentence: Sentence<'a>) -> Self {
-        Some(sentence)
-    }
-
-    fn general(_: &'a [u8]) -> Self {
-        None
-    }
-}
-
-/// The fast path of [`parse`]: a `$` sentence in its usual frame (see [`FastReader::frame`]),
-/// read by the fast reader of the first layout of its address ([`sentence_layouts`], matched
-/// here once more so that the reader is picked in one step) whose field count fits it (the
-/// general path could read it with no other before it either); when that reader is not sure,
-/// or none fits, the general path decides. What it reads has an upper-case checksum and no field
-/// at fault, so [`parse_with`]'s options would not change it.
-///
-/// Each step returns what the next one returns, so that the sentence read is copied once, into
-/// the caller's result: a copy of what was just written waits for those writes to land.
-fn read_sentence<'a, O: Outcome<'a>>(fields: FastReader<'a>, line: &'a [u8]) -> O {
+/// The fast path of [`parse`] (see [`runtime::Layouts::read_sentence`]): the addresses of
+/// [`sentence_layouts`], matched here once more so that the reader is picked in one step.
+fn read_sentence<'a, O: Outcome<'a, LayoutId>>(fields: FastReader<'a>, line: &'a [u8]) -> O {
     match fields.address() {
         &[first, _, a, b, c] if first != b'P' => read_standard([a, b, c], fields, line),
         #[cfg(feature = "acme")]
-        b"PACMACK" => read_layout::<Pacmack, O>(fields, line, &[]),
+        b"PACMACK" => read_layout::<LayoutId, Pacmack, O>(fields, line, &[]),
         #[cfg(feature = "acme")]
-        b"PACMSET" => read_layout::<Pacmset, O>(fields, line, &[]),
+        b"PACMSET" => read_layout::<LayoutId, Pacmset, O>(fields, line, &[]),
         _ => O::general(line),
     }
 }
 
 /// [`read_sentence`] for the standard sentence with formatter `formatter`.
-fn read_standard<'a, O: Outcome<'a>>(formatter: [u8; 3], fields: FastReader<'a>, line: &'a [u8]) -> O {
+fn read_standard<'a, O: Outcome<'a, LayoutId>>(formatter: [u8; 3], fields: FastReader<'a>, line: &'a [u8]) -> O {
     let _ = (formatter, fields); // a subset of the spec without standard sentences
     O::general(line)
 }
 
 /// [`read_sentence`] with the next of `layouts`, the layouts of the address that remain.
-fn read_fast<'a, O: Outcome<'a>>(layouts: &[LayoutId], fields: FastReader<'a>, line: &'a [u8]) -> O {
+fn read_fast<'a, O: Outcome<'a, LayoutId>>(layouts: &[LayoutId], fields: FastReader<'a>, line: &'a [u8]) -> O {
     let Some((&layout, rest)) = layouts.split_first() else {
         return O::general(line);
     };
     match layout {
-        LayoutId::Fix => read_layout::<Fix, O>(fields, line, rest),
-        LayoutId::FixShort => read_layout::<FixShort, O>(fields, line, rest),
-        LayoutId::Sat => read_layout::<Sat, O>(fields, line, rest),
-        LayoutId::Xdm => read_layout::<Xdm, O>(fields, line, rest),
+        LayoutId::Fix => read_layout::<LayoutId, Fix, O>(fields, line, rest),
+        LayoutId::FixShort => read_layout::<LayoutId, FixShort, O>(fields, line, rest),
+        LayoutId::Sat => read_layout::<LayoutId, Sat, O>(fields, line, rest),
+        LayoutId::Xdm => read_layout::<LayoutId, Xdm, O>(fields, line, rest),
         #[cfg(feature = "acme")]
-        LayoutId::AcmeLog => read_layout::<AcmeLog, O>(fields, line, rest),
+        LayoutId::AcmeLog => read_layout::<LayoutId, AcmeLog, O>(fields, line, rest),
         #[cfg(feature = "acme")]
-        LayoutId::Pacmack => read_layout::<Pacmack, O>(fields, line, rest),
+        LayoutId::Pacmack => read_layout::<LayoutId, Pacmack, O>(fields, line, rest),
         #[cfg(feature = "acme")]
-        LayoutId::Pacmset => read_layout::<Pacmset, O>(fields, line, rest),
+        LayoutId::Pacmset => read_layout::<LayoutId, Pacmset, O>(fields, line, rest),
     }
-}
-
-/// [`read_sentence`] with layout `L` (`rest`: the layouts to try after it).
-#[inline(never)]
-fn read_layout<'a, L: Layout<'a> + Default + Into<Sentence<'a>>, O: Outcome<'a>>(
-    fields: FastReader<'a>,
-    line: &'a [u8],
-    rest: &[LayoutId],
-) -> O {
-    let Some((repeats, extra)) = fields.shape(&L::SHAPE) else {
-        return read_fast(rest, fields, line);
-    };
-    let mut layout = L::default();
-    match layout.read_fast(fields, repeats, extra) {
-        Ok(()) => O::read(layout.into()),
-        Err(Unsure) => O::general(line),
-    }
-}
-
-/// The general path of [`parse`], for a line without its line ending.
-fn general(line: &[u8]) -> Result<Sentence<'_>, Error<'_>> {
-    if !matches!(line.first(), Some(b'$' | b'!')) && !text_command(first_word(line)).is_empty() {
-        return parse_frame(Frame::parse_text(line)?);
-    }
-    parse_frame(Frame::parse(line)?)
-}
-
-/// How [`parse_with`] reads a line.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Options {
-    /// Keep a `$`/`!` sentence whose fields do not all fit their types: each field at fault is
-    /// read as empty and listed in [`Parsed::problems`] (at most [`MAX_PROBLEMS`]). Text
-    /// commands are always strict.
-    pub lenient: bool,
-    /// Refuse a `$`/`!` sentence without a checksum (or with a bare `*`): `missing_checksum`.
-    pub require_checksum: bool,
-}
-
-/// A sentence decoded by [`parse_with`], and the fields lenient parsing left empty (with their
-/// text as received, written back by `Display` so that the round trip stays exact).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Parsed<'a> {
-    /// The decoded sentence (fields at fault are `None`).
-    pub sentence: Sentence<'a>,
-    /// The fields lenient parsing left empty, in the order their errors came.
-    pub problems: Problems<'a>,
-}
-
-impl<'a> From<Sentence<'a>> for Parsed<'a> {
-    fn from(sentence: Sentence<'a>) -> Self {
-        Self { sentence, problems: Problems::new() }
-    }
-}
-
-impl Parsed<'_> {
-    /// Writes the tools' JSON line: `"problems"` follows `"fields"` when there are any.
-    pub fn write_json<W: Write + ?Sized>(&self, out: &mut W, values: bool) -> fmt::Result {
-        self.sentence.write_json_with(out, values, &self.problems)
-    }
-
-    /// The tools' JSON line (`values`: decoded values instead of the lossless texts).
-    #[cfg(feature = "std")]
-    pub fn to_json(&self, values: bool) -> String {
-        let mut out = String::new();
-        let _ = self.write_json(&mut out, values);
-        out
-    }
-}
-
-impl Parsed<'_> {
-    /// The sentence text with the problem fields' texts put back (what `Display` writes, no
-    /// line ending) at the start of `buf`: its length, or `None` when `buf` cannot hold it (see
-    /// [`Sentence::serialize_into`]).
-    pub fn serialize_into(&self, buf: &mut [u8]) -> Option<usize> {
-        if self.problems.is_empty() {
-            return self.sentence.serialize_into(buf);
-        }
-        let mut w = runtime::ByteWriter::new(buf);
-        self.sentence.write_sentence_with(&mut w, &self.problems).ok()?;
-        Some(w.len())
-    }
-}
-
-impl fmt::Display for Parsed<'_> {
-    /// The sentence text with the problem fields' texts put back; no line ending.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.problems.is_empty() {
-            return self.sentence.write_sentence(f);
-        }
-        self.sentence.write_sentence_with(f, &self.problems)
-    }
-}
-
-/// [`parse`] with options: lenient decoding and required checksums.
-pub fn parse_with<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
-    let line = strip_line_ending(line.as_ref());
-    if let Some(sentence) = FastReader::frame(line).and_then(|fields| read_sentence::<Option<_>>(fields, line)) {
-        return Ok(sentence.into());
-    }
-    general_with(line, options)
-}
-
-/// [`parse_with`] without its fast path (see [`parse_general`]).
-#[doc(hidden)]
-pub fn parse_with_general<L: AsRef<[u8]> + ?Sized>(line: &L, options: Options) -> Result<Parsed<'_>, Error<'_>> {
-    general_with(strip_line_ending(line.as_ref()), options)
-}
-
-/// The general path of [`parse_with`], for a line without its line ending.
-fn general_with(line: &[u8], options: Options) -> Result<Parsed<'_>, Error<'_>> {
-    if !matches!(line.first(), Some(b'$' | b'!')) && !text_command(first_word(line)).is_empty() {
-        return parse_frame(Frame::parse_text(line)?).map(Parsed::from);
-    }
-    let frame = Frame::parse_checked(line, options.require_checksum)?;
-    let layouts = layouts_of(frame.start, frame.address);
-    if !claimed(layouts, &frame) {
-        return Ok(Sentence::Generic(Generic::from_frame(frame)).into());
-    }
-    match first_fit(layouts, frame.fields, frame.checksum) {
-        Ok(sentence) => Ok(sentence.into()),
-        Err(error) if options.lenient && error.kind() == ErrorKind::BadField => {
-            lenient(layouts, frame.fields, frame.checksum, error)
-        }
-        Err(error) => Err(error),
-    }
-}
-
-/// Parses again with every field that does not fit left empty, one at a time; a field that is
-/// already empty and still does not fit, or one problem more than [`MAX_PROBLEMS`], ends the
-/// attempt with its error.
-pub fn lenient<'a>(
-    layouts: &[LayoutId],
-    mut fields: Fields<'a>,
-    checksum: Checksum,
-    mut error: Error<'a>,
-) -> Result<Parsed<'a>, Error<'a>> {
-    let mut problems = Problems::new();
-    loop {
-        let Some(problem) = error.problem() else {
-            return Err(error);
-        };
-        let index = problem.field();
-        if fields.get(index).is_none_or(str::is_empty) || !problems.push(problem) {
-            return Err(error);
-        }
-        fields = fields.with_blank(index);
-        match first_fit(layouts, fields, checksum) {
-            Ok(sentence) => return Ok(Parsed { sentence, problems }),
-            Err(again) => error = again,
-        }
-    }
-}
-
-/// Decodes a framed line with the layouts of its address ([`layouts_of`]), the first that fits;
-/// [`Generic`] when the spec knows none.
-pub fn parse_frame(frame: Frame<'_>) -> Result<Sentence<'_>, Error<'_>> {
-    let layouts = layouts_of(frame.start, frame.address);
-    if !claimed(layouts, &frame) {
-        return Ok(Sentence::Generic(Generic::from_frame(frame)));
-    }
-    first_fit(layouts, frame.fields, frame.checksum)
-}
-
-/// Whether one of the layouts of the line's address may read it: for a `$` line, one without a
-/// keyword or one whose keyword the line holds; else the line is a message of a known family
-/// that the spec does not know, kept as a [`Generic`] sentence.
-fn claimed(layouts: &[LayoutId], frame: &Frame<'_>) -> bool {
-    !layouts.is_empty()
-        && (frame.start != "$"
-            || layouts.iter().any(|layout| layout.selector().is_none() || layout.holds_selector(&frame.fields)))
-}
-
-/// The first of `layouts` (not empty) that fits the fields; when none does, the error of the
-/// contenders (the layouts whose keyword the first field holds, else all): the first that is a
-/// bad field, else the first.
-fn first_fit<'a>(layouts: &[LayoutId], fields: Fields<'a>, checksum: Checksum) -> Result<Sentence<'a>, Error<'a>> {
-    let Some((&first, others)) = layouts.split_first() else {
-        return Err(Error::new(None, runtime::Message::EmptyLine));
-    };
-    let error = match first.parse_fields(fields, checksum) {
-        Ok(sentence) => return Ok(sentence),
-        Err(error) => error,
-    };
-    if others.is_empty() {
-        return Err(error);
-    }
-    let rank = |layout: LayoutId, error: &Error<'_>| {
-        u8::from(!layout.holds_selector(&fields)) * 2 + u8::from(error.kind() != ErrorKind::BadField)
-    };
-    let mut best = (rank(first, &error), error);
-    for &layout in others {
-        match layout.parse_fields(fields, checksum) {
-            Ok(sentence) => return Ok(sentence),
-            Err(error) => {
-                let rank = rank(layout, &error);
-                if rank < best.0 {
-                    best = (rank, error);
-                }
-            }
-        }
-    }
-    Err(best.1)
 }
 
 /// The layouts a framed line may have, in the order the parser tries them: those of a
 /// proprietary `$` address, else of a standard sentence (`$`, a talker ID and a formatter), else
 /// of a text command's word (start `""`); none for anything else.
-pub fn layouts_of(start: &str, address: &str) -> &'static [LayoutId] {
+fn layouts_of(start: &str, address: &[u8]) -> &'static [LayoutId] {
     match start {
-        "$" => sentence_layouts(address.as_bytes()),
-        "!" => match address.as_bytes() {
+        "$" => sentence_layouts(address),
+        "!" => match address {
             &[first, _, a, b, c] if first != b'P' => encapsulated([a, b, c]),
             _ => &[],
         },
-        "" => text_command(address.as_bytes()),
+        "" => text_command(address),
         _ => &[],
     }
 }
@@ -900,192 +742,6 @@ fn text_command(word: &[u8]) -> &'static [LayoutId] {
 #[cfg(not(feature = "acme"))]
 fn text_command(_word: &[u8]) -> &'static [LayoutId] {
     &[]
-}
-
-/// Writes `decode`'s output for one line (without line ending): the sentence or the error as
-/// JSON.
-pub fn write_decoded<W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool) -> fmt::Result {
-    match parse(line) {
-        Ok(sentence) => sentence.write_json(out, values),
-        Err(err) => err.write_json(out),
-    }
-}
-
-/// [`write_decoded`] with options (`decode --lenient --require-checksum`).
-pub fn write_decoded_with<W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool, options: Options) -> fmt::Result {
-    match parse_with(line, options) {
-        Ok(parsed) => parsed.write_json(out, values),
-        Err(err) => err.write_json(out),
-    }
-}
-
-/// `decode`'s output for one line (without line ending): the sentence or the error as JSON.
-#[cfg(feature = "std")]
-pub fn decode_json(line: &[u8], values: bool) -> String {
-    let mut out = String::new();
-    let _ = write_decoded(&mut out, line, values);
-    out
-}
-
-/// [`decode_json`] with options.
-#[cfg(feature = "std")]
-pub fn decode_json_with(line: &[u8], values: bool, options: Options) -> String {
-    let mut out = String::new();
-    let _ = write_decoded_with(&mut out, line, values, options);
-    out
-}
-
-/// A sentence rebuilt from decode's lossless JSON: its address and wire fields, ready to parse.
-#[cfg(feature = "std")]
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Rebuilt {
-    start: String,
-    address: String,
-    fields: WireFields,
-    checksum: Checksum,
-    layout: Option<LayoutId>,
-    /// A text command: its words joined by spaces, the command word as written.
-    line: Option<String>,
-    /// A sentence lenient decoding kept (its JSON has `"problems"`): parsed leniently again.
-    lenient: bool,
-}
-
-#[cfg(feature = "std")]
-impl Rebuilt {
-    /// Parses the rebuilt fields through the same field parsers as a received line (leniently
-    /// for a sentence whose JSON lists problems).
-    pub fn parse(&self) -> Result<Parsed<'_>, Error<'_>> {
-        let mut fields = self.fields.fields(&self.address);
-        if let Some(line) = &self.line {
-            fields = fields.with_line(line);
-        }
-        match self.layout {
-            Some(layout) => match layout.parse_fields(fields, self.checksum) {
-                Ok(sentence) => Ok(sentence.into()),
-                Err(error) if self.lenient && error.kind() == ErrorKind::BadField => {
-                    lenient(&[layout], fields, self.checksum, error)
-                }
-                Err(error) => Err(error),
-            },
-            None => Ok(Sentence::Generic(Generic {
-                start: &self.start,
-                address: &self.address,
-                fields,
-                checksum: self.checksum,
-            })
-            .into()),
-        }
-    }
-}
-
-/// Rebuilds a sentence from one object of decode's lossless JSON (`bad_json` errors name what
-/// is missing or malformed).
-#[cfg(feature = "std")]
-pub fn from_json(obj: &Value) -> Result<Rebuilt, Error<'static>> {
-    if !obj.is_object() {
-        return Err(Error::bad_json("not a JSON object"));
-    }
-    let checksum = json::checksum_case(json::opt_text(obj, "checksum")?);
-    let Some(sentence) = json::opt_text(obj, "sentence")? else {
-        let items = json::list(obj, "fields")?;
-        let start = json::str_member(obj, "start")?.to_string();
-        if start != "$" && start != "!" {
-            return Err(Error::bad_json("\"start\" is not \"$\" or \"!\""));
-        }
-        let address = json::word(obj, "address")?.to_string();
-        let mut fields = WireFields::default();
-        for item in items {
-            fields.push(json::text(item)?);
-        }
-        return Ok(Rebuilt { start, address, fields, checksum, layout: None, line: None, lenient: false });
-    };
-    let variant = json::opt_text(obj, "variant")?;
-    let unknown = || Error::bad_json(format!("unknown sentence \"{sentence}\""));
-    let layout = LayoutId::find(sentence, variant).ok_or_else(unknown)?;
-    let fields = json::member(obj, "fields")?;
-    if !fields.is_object() {
-        return Err(Error::bad_json("\"fields\" is not an object"));
-    }
-    let mut wire = WireFields::default();
-    layout.fields_from_json(fields, &mut wire)?;
-    if obj.get("problems").is_some() {
-        return with_problems(obj, layout, wire, checksum);
-    }
-    let (address, checksum, line) = match layout.framing() {
-        Framing::Standard | Framing::Encapsulated => {
-            (format!("{}{}", json::word(obj, "talker")?, layout.sentence()), checksum, None)
-        }
-        Framing::Proprietary(address) => (address.to_string(), checksum, None),
-        Framing::Text(command) => {
-            // A text command: its word as written, its letter case kept.
-            let word = json::word(obj, "address")?;
-            if !word.eq_ignore_ascii_case(command) {
-                return Err(Error::bad_json(format!("\"address\" is not {command}")));
-            }
-            (word.to_string(), Checksum::None, Some(wire.command_line(word)))
-        }
-    };
-    Ok(Rebuilt { start: "$".to_string(), address, fields: wire, checksum, layout: Some(layout), line, lenient: false })
-}
-
-/// A sentence that lenient decoding kept: its problem fields' texts go back where they were, and
-/// it is parsed leniently again.
-#[cfg(feature = "std")]
-fn with_problems(
-    obj: &Value,
-    layout: LayoutId,
-    mut wire: WireFields,
-    checksum: Checksum,
-) -> Result<Rebuilt, Error<'static>> {
-    if json::str_member(obj, "start")?.is_empty() {
-        return Err(Error::bad_json("a text command has no problems"));
-    }
-    for problem in json::list(obj, "problems")? {
-        let index = match json::member(problem, "field")? {
-            Value::Integer(Some(index)) => usize::try_from(*index).ok().filter(|&i| i <= wire.len()),
-            _ => None,
-        };
-        let Some(index) = index else {
-            return Err(Error::bad_json("a problem's \"field\" is not the index of a field"));
-        };
-        wire.set(index - 1, json::text(json::member(problem, "text")?)?);
-    }
-    let address = match layout.framing() {
-        Framing::Standard | Framing::Encapsulated => format!("{}{}", json::word(obj, "talker")?, layout.sentence()),
-        Framing::Proprietary(address) | Framing::Text(address) => address.to_string(),
-    };
-    Ok(Rebuilt {
-        start: "$".to_string(),
-        address,
-        fields: wire,
-        checksum,
-        layout: Some(layout),
-        line: None,
-        lenient: true,
-    })
-}
-
-/// Writes `encode`'s output for one parsed line of decode's JSON (`None`: not JSON): the
-/// sentence, or the error as JSON; no line ending.
-#[cfg(feature = "std")]
-pub fn write_encoded<W: Write + ?Sized>(out: &mut W, obj: Option<&Value>) -> fmt::Result {
-    let rebuilt = match obj.map(from_json) {
-        None => return Error::bad_json("not JSON").write_json(out),
-        Some(Err(err)) => return err.write_json(out),
-        Some(Ok(rebuilt)) => rebuilt,
-    };
-    match rebuilt.parse() {
-        Ok(parsed) => write!(out, "{parsed}"),
-        Err(err) => err.write_json(out),
-    }
-}
-
-/// `encode`'s output for one line of decode's JSON: the sentence, or the error as JSON.
-#[cfg(feature = "std")]
-pub fn encode_json(line: &[u8]) -> String {
-    let mut out = String::new();
-    let _ = write_encoded(&mut out, Value::parse(line).as_ref());
-    out
 }
 
 #[cfg(test)]
@@ -1168,7 +824,7 @@ mod tests {
     #[test]
     fn errors_are_reported_in_order() {
         let mut out = Buf::new();
-        write_decoded(&mut out, b"", false).unwrap();
+        json::write_decoded(&mut out, b"", false).unwrap();
         assert_eq!(
             out.as_str(),
             r#"{"ok":false,"error":{"kind":"not_a_sentence","address":null,"field":null,"name":null,"message":"empty line"}}"#

@@ -4,5 +4,5 @@
 // Regenerate: make generate (python3 -m generator generate)
 
 //! Receivers' tables of configuration parameters, one module per table: a constant per
-//! parameter and `TABLE`, all of them. [`Parameter::encode`](crate::runtime::Parameter::encode)
+//! parameter and `TABLE`, all of them. [`Parameter::encode`](crate::Parameter::encode)
 //! writes a value the way the receiver reads it.

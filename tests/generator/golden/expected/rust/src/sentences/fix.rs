@@ -13,7 +13,7 @@ use core::fmt;
 use crate::enums::{FixQuality, SystemMode};
 use crate::runtime::{
     Bound, Checksum, Code, CodeChars, Coordinate, Date, Error, FieldSink, Fields, Framing, Hex, JsonMember, Layout,
-    Number, Range, Shape, Time,
+    Layouts, Number, Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -78,7 +78,7 @@ impl<'a> Fix<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Fix.build(buf, |w| self.write_sentence(w))
@@ -199,7 +199,7 @@ impl<'a> FixShort<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::FixShort.build(buf, |w| self.write_sentence(w))

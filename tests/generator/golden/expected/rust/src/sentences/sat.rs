@@ -10,8 +10,8 @@
 use core::fmt;
 
 use crate::runtime::{
-    Bound, Checksum, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember, Layout, Number,
-    Range, Reader, Shape,
+    Bound, Checksum, Entries, Entry, Error, FieldSink, Fields, Framing, GroupShape, Hex, JsonMember, Layout, Layouts,
+    Number, Range, Reader, Shape,
 };
 use crate::LayoutId;
 
@@ -94,7 +94,7 @@ impl<'a> Sat<'a> {
     }
 
     /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
-    /// [`BUILD_CAPACITY`](crate::runtime::BUILD_CAPACITY) bytes always suffices), once the line
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Sat.build(buf, |w| self.write_sentence(w))

@@ -1,0 +1,219 @@
+//! What the tools' `decode` and `encode` verbs do with one line, over any spec (see
+//! [`Layouts`]): a line to its JSON, and (with `std`) decode's lossless JSON back to the sentence.
+
+use core::fmt::{self, Write};
+
+use super::error::Problems;
+use super::parse::{parse, parse_with, Decoded, Layouts, Options};
+
+#[cfg(feature = "std")]
+use {
+    super::error::{Error, ErrorKind},
+    super::json::{self, Value, WireFields},
+    super::layout::{Framing, Generic},
+    super::parse::{lenient, Parsed},
+    super::types::Checksum,
+    std::string::{String, ToString},
+};
+
+/// Writes `decode`'s output for one line (without line ending): the sentence or the error as
+/// JSON.
+pub fn write_decoded<L: Layouts, W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool) -> fmt::Result {
+    match parse::<L>(line) {
+        Ok(sentence) => sentence.write_json_with(out, values, &Problems::new()),
+        Err(err) => err.write_json(out),
+    }
+}
+
+/// [`write_decoded`] with options (`decode --lenient --require-checksum`).
+pub fn write_decoded_with<L: Layouts, W: Write + ?Sized>(
+    out: &mut W,
+    line: &[u8],
+    values: bool,
+    options: Options,
+) -> fmt::Result {
+    match parse_with::<L>(line, options) {
+        Ok(parsed) => parsed.write_json(out, values),
+        Err(err) => err.write_json(out),
+    }
+}
+
+/// A sentence rebuilt from decode's lossless JSON: its address and wire fields, ready to parse.
+#[cfg(feature = "std")]
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rebuilt<L> {
+    start: String,
+    address: String,
+    fields: WireFields,
+    checksum: Checksum,
+    layout: Option<L>,
+    /// A text command: its words joined by spaces, the command word as written.
+    line: Option<String>,
+    /// A sentence lenient decoding kept (its JSON has `"problems"`): parsed leniently again.
+    lenient: bool,
+}
+
+#[cfg(feature = "std")]
+impl<L: Layouts> Rebuilt<L> {
+    /// Parses the rebuilt fields through the same field parsers as a received line (leniently
+    /// for a sentence whose JSON lists problems).
+    pub fn parse(&self) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
+        let mut fields = self.fields.fields(&self.address);
+        if let Some(line) = &self.line {
+            fields = fields.with_line(line);
+        }
+        match self.layout {
+            Some(layout) => match layout.parse_fields(fields, self.checksum) {
+                Ok(sentence) => Ok(sentence.into()),
+                Err(error) if self.lenient && error.kind() == ErrorKind::BadField => {
+                    lenient(&[layout], fields, self.checksum, error)
+                }
+                Err(error) => Err(error),
+            },
+            None => {
+                let generic = Generic { start: &self.start, address: &self.address, fields, checksum: self.checksum };
+                let sentence: L::Sentence<'_> = generic.into();
+                Ok(sentence.into())
+            }
+        }
+    }
+
+    /// Rebuilds a sentence from one object of decode's lossless JSON (`bad_json` errors name
+    /// what is missing or malformed).
+    pub fn from_json(obj: &Value) -> Result<Self, Error<'static>> {
+        if !obj.is_object() {
+            return Err(Error::bad_json("not a JSON object"));
+        }
+        let checksum = json::checksum_case(json::opt_text(obj, "checksum")?);
+        let Some(sentence) = json::opt_text(obj, "sentence")? else {
+            let items = json::list(obj, "fields")?;
+            let start = json::str_member(obj, "start")?.to_string();
+            if start != "$" && start != "!" {
+                return Err(Error::bad_json("\"start\" is not \"$\" or \"!\""));
+            }
+            let address = json::word(obj, "address")?.to_string();
+            let mut fields = WireFields::default();
+            for item in items {
+                fields.push(json::text(item)?);
+            }
+            return Ok(Self { start, address, fields, checksum, layout: None, line: None, lenient: false });
+        };
+        let variant = json::opt_text(obj, "variant")?;
+        let unknown = || Error::bad_json(format!("unknown sentence \"{sentence}\""));
+        let layout = L::find(sentence, variant).ok_or_else(unknown)?;
+        let fields = json::member(obj, "fields")?;
+        if !fields.is_object() {
+            return Err(Error::bad_json("\"fields\" is not an object"));
+        }
+        let mut wire = WireFields::default();
+        layout.fields_from_json(fields, &mut wire)?;
+        if obj.get("problems").is_some() {
+            return Self::with_problems(obj, layout, wire, checksum);
+        }
+        let (address, checksum, line) = match layout.framing() {
+            Framing::Standard | Framing::Encapsulated => {
+                (format!("{}{}", json::word(obj, "talker")?, layout.sentence()), checksum, None)
+            }
+            Framing::Proprietary(address) => (address.to_string(), checksum, None),
+            Framing::Text(command) => {
+                // A text command: its word as written, its letter case kept.
+                let word = json::word(obj, "address")?;
+                if !word.eq_ignore_ascii_case(command) {
+                    return Err(Error::bad_json(format!("\"address\" is not {command}")));
+                }
+                (word.to_string(), Checksum::None, Some(wire.command_line(word)))
+            }
+        };
+        let start = "$".to_string();
+        Ok(Self { start, address, fields: wire, checksum, layout: Some(layout), line, lenient: false })
+    }
+
+    /// A sentence that lenient decoding kept: its problem fields' texts go back where they
+    /// were, and it is parsed leniently again.
+    fn with_problems(obj: &Value, layout: L, mut wire: WireFields, checksum: Checksum) -> Result<Self, Error<'static>> {
+        if json::str_member(obj, "start")?.is_empty() {
+            return Err(Error::bad_json("a text command has no problems"));
+        }
+        for problem in json::list(obj, "problems")? {
+            let index = match json::member(problem, "field")? {
+                Value::Integer(Some(index)) => usize::try_from(*index).ok().filter(|&i| i <= wire.len()),
+                _ => None,
+            };
+            let Some(index) = index else {
+                return Err(Error::bad_json("a problem's \"field\" is not the index of a field"));
+            };
+            wire.set(index - 1, json::text(json::member(problem, "text")?)?);
+        }
+        let address = match layout.framing() {
+            Framing::Standard | Framing::Encapsulated => {
+                format!("{}{}", json::word(obj, "talker")?, layout.sentence())
+            }
+            Framing::Proprietary(address) | Framing::Text(address) => address.to_string(),
+        };
+        Ok(Self {
+            start: "$".to_string(),
+            address,
+            fields: wire,
+            checksum,
+            layout: Some(layout),
+            line: None,
+            lenient: true,
+        })
+    }
+}
+
+/// Writes `encode`'s output for one parsed line of decode's JSON (`None`: not JSON): the
+/// sentence, or the error as JSON; no line ending.
+#[cfg(feature = "std")]
+pub fn write_encoded<L: Layouts, W: Write + ?Sized>(out: &mut W, obj: Option<&Value>) -> fmt::Result {
+    let rebuilt = match obj.map(Rebuilt::<L>::from_json) {
+        None => return Error::bad_json("not JSON").write_json(out),
+        Some(Err(err)) => return err.write_json(out),
+        Some(Ok(rebuilt)) => rebuilt,
+    };
+    let written = match rebuilt.parse() {
+        Ok(parsed) => write!(out, "{parsed}"),
+        Err(err) => err.write_json(out),
+    };
+    written
+}
+
+/// `decode`'s output for one line (without line ending): the sentence or the error as JSON.
+#[cfg(feature = "std")]
+pub fn decode_json<L: Layouts>(line: &[u8], values: bool) -> String {
+    let mut out = String::new();
+    let _ = write_decoded::<L, _>(&mut out, line, values);
+    out
+}
+
+/// [`decode_json`] with options.
+#[cfg(feature = "std")]
+pub fn decode_json_with<L: Layouts>(line: &[u8], values: bool, options: Options) -> String {
+    let mut out = String::new();
+    let _ = write_decoded_with::<L, _>(&mut out, line, values, options);
+    out
+}
+
+/// `encode`'s output for one line of decode's JSON: the sentence, or the error as JSON.
+#[cfg(feature = "std")]
+pub fn encode_json<L: Layouts>(line: &[u8]) -> String {
+    let mut out = String::new();
+    let _ = write_encoded::<L, _>(&mut out, Value::parse(line).as_ref());
+    out
+}
+
+#[cfg(all(test, feature = "std"))]
+mod tests {
+    use super::super::parse::tests::NoLayout;
+    use super::*;
+
+    #[test]
+    fn decode_json_reads_back_to_the_line() {
+        let line = b"$PXUNKNOWN,00,01,,1*";
+        let json = decode_json::<NoLayout>(line, false);
+        assert!(json.starts_with(r#"{"ok":true,"start":"$","address":"PXUNKNOWN","#), "{json}");
+        assert_eq!(encode_json::<NoLayout>(json.as_bytes()).as_bytes(), line);
+        assert!(encode_json::<NoLayout>(b"[]").contains(r#""kind":"bad_json""#));
+        assert!(decode_json::<NoLayout>(b"", false).contains(r#""kind":"not_a_sentence""#));
+    }
+}
