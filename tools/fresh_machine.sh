@@ -20,7 +20,7 @@ mv -f "$root/root/.rustup/toolchains/settings.toml" "$root/root/.rustup/" 2>/dev
 cp -a "$HOME/.cargo/bin" "$root/root/.cargo/"
 cp /etc/resolv.conf "$root/etc/resolv.conf"
 rm -rf "$root/work" && mkdir -p "$root/work"
-git clone -q "$repo" "$root/work/main"
+git clone -q --branch "$(git -C "$repo" rev-parse --abbrev-ref HEAD)" "$repo" "$root/work/main"
 cp -a "$repo/../shared" "$root/work/shared"
 for fs in proc sys dev; do mountpoint -q "$root/$fs" || mount --rbind "/$fs" "$root/$fs"; done
 trap 'for fs in proc sys dev; do umount -R "$root/$fs" 2>/dev/null || true; done' EXIT
