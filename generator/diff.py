@@ -19,7 +19,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from .errors import SpecErrors
-from .model import BitfieldDef, EnumDef, Field, Group, Item, Layout, Sentence, Spec, TableDef
+from .model import EnumDef, Field, Group, Item, Layout, Sentence, Spec, TableDef
 
 SECTIONS = {
     "sentence": "Sentences and commands",
