@@ -31,8 +31,8 @@ DEFAULT_PREFIX = "nmea"
 DEFAULT_NAMESPACE = "nmeaspec"
 
 _C_IDENT = re.compile(r"\b(?:nmea|NMEA)_\w*")
-# A C source split into string/char literals (odd groups) and code; comments pass as code.
-_C_LITERALS = re.compile(r'("(?:[^"\\\n]|\\.)*"|\'(?:[^\'\\\n]|\\.)*\')')
+# Comments (renamed like code: an apostrophe in one starts no character literal) and literals.
+_C_COMMENTS_AND_LITERALS = re.compile(r'(/\*.*?\*/|//[^\n]*)|"(?:[^"\\\n]|\\.)*"|\'(?:[^\'\\\n]|\\.)*\'', re.S)
 _INCLUDE = re.compile(r'(#include\s+")((?:\.\./)?)nmea(\.h")')
 _FILE_NAMES = re.compile(r"\bnmea(?=(?:_tool)?\.[ch]\b)")
 
@@ -86,11 +86,15 @@ def _c_token(prefix: str, keep: set[str]):
 def rename_c(text: str, prefix: str, keep: set[str]) -> str:
     """Rename the C API names in C source (string literals untouched but for #include lines)."""
     rename = _c_token(prefix, keep)
-    parts = _C_LITERALS.split(text)
-    for i in range(0, len(parts), 2):
-        code = _C_IDENT.sub(rename, parts[i])
-        parts[i] = _FILE_NAMES.sub(prefix, code)
-    out = "".join(parts)
+
+    def code(part: str) -> str:
+        return _FILE_NAMES.sub(prefix, _C_IDENT.sub(rename, part))
+
+    parts, at = [], 0
+    for found in _C_COMMENTS_AND_LITERALS.finditer(text):
+        parts += [code(text[at:found.start()]), code(found[0]) if found[1] else found[0]]
+        at = found.end()
+    out = "".join(parts) + code(text[at:])
     return _INCLUDE.sub(lambda m: m.group(1) + m.group(2) + prefix + m.group(3), out)
 
 
