@@ -253,6 +253,7 @@ int main(void)
     assert subprocess.run([str(tmp_path / "main")]).returncode == 0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("only", ["GGA,RMC", "GSV"])
 def test_a_subset_compiles_without_a_warning(only: str, tmp_path: Path) -> None:
     """A subset leaves runtime pieces unused (no group: nothing reads an entry); its C pair still
