@@ -8,9 +8,10 @@ STAMP   := $(VENV)/.installed
 CC      ?= gcc
 CFLAGS  ?= -std=c99 -Wall -Wextra -Werror -pedantic -O2
 BIN     := build/bin
+TEST_BIN := build/test-bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build footprint release-check changelog test test-quick test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
+.PHONY: generate validate check build test-bin footprint release-check changelog test test-quick test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
@@ -32,16 +33,20 @@ check: $(STAMP)
 
 build: $(BIN)/nmea-py $(BIN)/nmea-c $(BIN)/nmea-rs
 
-$(BIN)/nmea-py: $(shell find generated/python -name '*.py' 2>/dev/null)
-	@mkdir -p $(BIN)
+PY_SOURCES   = $(shell find generated/python -name '*.py' 2>/dev/null)
+RUST_SOURCES = $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/dev/null)
+C_PAIR       := generated/c/nmea.c generated/c/nmea.h
+
+$(BIN)/nmea-py $(TEST_BIN)/nmea-py: $(PY_SOURCES)
+	@mkdir -p $(@D)
 	printf '#!/bin/sh\nPYTHONPATH="%s" exec python3 -m nmeaspec "$$@"\n' "$(CURDIR)/generated/python" > $@
 	chmod +x $@
 
-$(BIN)/nmea-c: $(wildcard generated/c/*.c generated/c/*.h)
+$(BIN)/nmea-c: $(C_PAIR) generated/c/nmea_tool.c
 	@mkdir -p $(BIN)
 	$(CC) $(CFLAGS) -o $@ generated/c/nmea.c generated/c/nmea_tool.c
 
-$(BIN)/nmea-rs: $(shell find generated/rust -name '*.rs' -o -name Cargo.toml 2>/dev/null)
+$(BIN)/nmea-rs: $(RUST_SOURCES)
 	@mkdir -p $(BIN)
 	cargo build --quiet --profile tools --manifest-path generated/rust/Cargo.toml --features std --bin nmea-rs --target-dir $(CARGO_TARGET)
 	cp $(CARGO_TARGET)/tools/nmea-rs $@
@@ -102,47 +107,77 @@ test-runtimes: $(STAMP)
 test-python: $(STAMP)
 	cd generated/python && ../../$(PY) -m pytest -q tests
 
-# NMEA_TEST_HOOKS: the test programs also check nmea_parse_ex's fast path against its general path.
-# The smallest build (-DNMEA_NO_JSON -DNMEA_NO_FAST_PATH) must compile without a warning too.
-test-c: $(STAMP)
-	@mkdir -p build/c
-	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o build/c/test_examples generated/c/nmea.c generated/c/tests/test_examples.c & first=$$!; \
-	$(CC) $(CFLAGS) -DNMEA_NO_FAST_PATH -o build/c/test_examples_general generated/c/nmea.c generated/c/tests/test_examples.c & \
-	second=$$!; wait $$first && wait $$second
-	$(CC) $(CFLAGS) -O0 -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -c -o build/c/nmea-small.o generated/c/nmea.c
+# --- the test builds: each binary built once, shared by the steps that run it -----------------
+# nmea.c compiled once per set of flags: the test object (-O2, NMEA_TEST_HOOKS: the programs also
+# check every fast-path parse against the general path) for the examples, the tools the tests run
+# and valgrind; the sanitized object (clang: AddressSanitizer, UndefinedBehaviorSanitizer and
+# libFuzzer's coverage counters) for the examples, the tool over every real log and the C fuzz
+# target. The tests' Rust tool is the dev build `cargo test` shares; the tests need answers, not
+# speed (`make build` gives the optimized tools).
+SANITIZE := -std=c99 -Wall -Wextra -Werror -pedantic -O0 -g -fsanitize=address,undefined -fno-sanitize-recover=all \
+            -fno-omit-frame-pointer -DNMEA_TEST_HOOKS
+CLANG ?= clang
+
+test-bin: $(TEST_BIN)/nmea-c $(TEST_BIN)/nmea-rs $(TEST_BIN)/nmea-py
+
+build/c/nmea-test.o: $(C_PAIR)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -c -o $@ generated/c/nmea.c
+
+build/c/test_examples: build/c/nmea-test.o generated/c/tests/test_examples.c
+	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o $@ $^
+
+$(TEST_BIN)/nmea-c: build/c/nmea-test.o generated/c/nmea_tool.c
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -DNMEA_TEST_HOOKS -o $@ $^
+
+$(TEST_BIN)/nmea-rs: $(RUST_SOURCES)
+	@mkdir -p $(@D)
+	cargo build --quiet --manifest-path generated/rust/Cargo.toml --features std --bin nmea-rs --target-dir $(CARGO_TARGET)
+	cp $(CARGO_TARGET)/debug/nmea-rs $@
+
+# The general path alone, unoptimized (the examples only need answers).
+build/c/test_examples_general: $(C_PAIR) generated/c/tests/test_examples.c
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -O0 -DNMEA_NO_FAST_PATH -o $@ generated/c/nmea.c generated/c/tests/test_examples.c
+
+# The smallest build must compile without a warning too.
+build/c/nmea-small.o: $(C_PAIR)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -O0 -DNMEA_NO_JSON -DNMEA_NO_FAST_PATH -c -o $@ generated/c/nmea.c
+
+build/c/nmea-san.o: $(C_PAIR)
+	@mkdir -p $(@D)
+	$(CLANG) $(SANITIZE) -fsanitize=fuzzer-no-link -c -o $@ generated/c/nmea.c
+
+build/c/test_examples_san: build/c/nmea-san.o generated/c/tests/test_examples.c
+	$(CLANG) $(SANITIZE) -o $@ $^
+
+build/c/nmea-c-san: build/c/nmea-san.o generated/c/nmea_tool.c
+	$(CLANG) $(SANITIZE) -o $@ $^
+
+test-c: build/c/test_examples build/c/test_examples_general build/c/nmea-small.o
 	build/c/test_examples
 	build/c/test_examples_general
 
-# The C test program and the C tool under AddressSanitizer + UndefinedBehaviorSanitizer over the
-# examples, the edge cases and every real log, and under valgrind over the examples, the edge cases
-# and the first five lines of each kind (sentence and address, or error) of every real log.
-SANITIZE := -std=c99 -Wall -Wextra -Werror -pedantic -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer \
-            -DNMEA_TEST_HOOKS
+# The C test program and the C tool under the sanitizers over the examples, the edge cases and
+# every real log, and under valgrind over the examples, the edge cases and the first five lines of
+# each kind (sentence and address, or error) of every real log.
 MEMORY_INPUTS := tests/agreement/edge_cases.txt $(sort $(wildcard ../shared/corpus/real/*/*.nmea))
 
-# nmea.c is compiled once per set of flags (the sanitized and the debug object, side by side on two
-# cores) and linked with the test program and with the tool.
-test-c-memory: $(STAMP)
-	@mkdir -p build/c
-	$(CC) $(SANITIZE) -c -o build/c/nmea-asan.o generated/c/nmea.c & first=$$!; \
-	$(CC) -std=c99 -O1 -g -c -o build/c/nmea-debug.o generated/c/nmea.c & second=$$!; \
-	wait $$first && wait $$second
-	$(CC) $(SANITIZE) -o build/c/test_examples_asan build/c/nmea-asan.o generated/c/tests/test_examples.c
-	build/c/test_examples_asan
-	$(CC) $(SANITIZE) -o build/c/nmea-c-asan build/c/nmea-asan.o generated/c/nmea_tool.c
+test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_examples $(TEST_BIN)/nmea-c $(STAMP)
+	build/c/test_examples_san
 	@cat $(MEMORY_INPUTS) > build/c/memory.nmea
-	build/c/nmea-c-asan decode < build/c/memory.nmea > build/c/asan.jsonl
-	build/c/nmea-c-asan encode < build/c/asan.jsonl > /dev/null
-	build/c/nmea-c-asan decode --values < build/c/memory.nmea > /dev/null
-	build/c/nmea-c-asan stream --lenient < build/c/memory.nmea > build/c/asan-lenient.jsonl
-	build/c/nmea-c-asan encode < build/c/asan-lenient.jsonl > /dev/null
-	build/c/nmea-c-asan stream --require-checksum < tests/agreement/stream_cases.bin > /dev/null
-	$(CC) -std=c99 -O1 -g -o build/c/nmea-c-debug build/c/nmea-debug.o generated/c/nmea_tool.c
-	$(CC) -std=c99 -O1 -g -o build/c/test_examples_debug build/c/nmea-debug.o generated/c/tests/test_examples.c
-	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_examples_debug > /dev/null
+	build/c/nmea-c-san decode < build/c/memory.nmea > build/c/asan.jsonl
+	build/c/nmea-c-san encode < build/c/asan.jsonl > /dev/null
+	build/c/nmea-c-san decode --values < build/c/memory.nmea > /dev/null
+	build/c/nmea-c-san stream --lenient < build/c/memory.nmea > build/c/asan-lenient.jsonl
+	build/c/nmea-c-san encode < build/c/asan-lenient.jsonl > /dev/null
+	build/c/nmea-c-san stream --require-checksum < tests/agreement/stream_cases.bin > /dev/null
+	valgrind -q --error-exitcode=1 --leak-check=full build/c/test_examples > /dev/null
 	$(PY) tools/distinct_lines.py 5 < build/c/asan.jsonl > build/c/valgrind.jsonl
-	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug decode < tests/agreement/edge_cases.txt > /dev/null
-	valgrind -q --error-exitcode=1 --leak-check=full build/c/nmea-c-debug encode < build/c/valgrind.jsonl > /dev/null
+	valgrind -q --error-exitcode=1 --leak-check=full $(TEST_BIN)/nmea-c decode < tests/agreement/edge_cases.txt > /dev/null
+	valgrind -q --error-exitcode=1 --leak-check=full $(TEST_BIN)/nmea-c encode < build/c/valgrind.jsonl > /dev/null
 
 # The crate's receiver features (default: all of them); each must build and lint on its own.
 RUST_VENDORS = $(shell sed -n 's/^\([a-z0-9_]*\) = \[\]$$/\1/p' generated/rust/Cargo.toml | grep -vx std)
@@ -158,8 +193,8 @@ test-rust:
 	done
 	cargo fmt --manifest-path generated/rust/Cargo.toml --check
 
-test-tools: build $(STAMP)
-	$(PY) -m pytest -q tests/agreement
+test-tools: test-bin $(STAMP)
+	NMEA_TOOLS=$(TEST_BIN) $(PY) -m pytest -q tests/agreement
 
 # The benchmark harness for our implementations only, at a tiny size (no peers, nothing fetched).
 test-bench-smoke: $(STAMP)
@@ -177,8 +212,8 @@ test-workflows: $(STAMP) $(DOCS_STAMP)
 # Python sdist and wheel built, `twine check`ed and installed into a fresh venv, `cargo package`
 # of the crate (tools/release_check.py; from copies in build/release). `make changelog` rewrites
 # CHANGELOG.md from the git history: the spec diff of each release against the one before.
-release-check: build $(STAMP)
-	$(PY) tools/release_check.py
+release-check: test-bin $(STAMP)
+	NMEA_TOOLS=$(TEST_BIN) $(PY) tools/release_check.py
 
 changelog: $(STAMP)
 	$(PY) tools/changelog.py
@@ -211,24 +246,29 @@ footprint: $(STAMP)
 FUZZ_SECONDS ?= 300
 FUZZ := build/fuzz
 FUZZ_FLAGS = -max_total_time=$(FUZZ_SECONDS) -max_len=1100 -timeout=10 -print_final_stats=1
-CLANG ?= clang
 
-fuzz-smoke:
-	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD=--dev FUZZ_LONG= \
-		INPROCESS_CORPUS=$(FUZZ)/corpus-inprocess-smoke INPROCESS_SEEDS= SEED_FLAGS=--no-corpus
+# The smoke run builds the Rust targets unoptimized, without debug information and without
+# AddressSanitizer (the crate forbids unsafe code; the C pair has its own ASan target): minutes less
+# to compile, and 15 seconds of fuzzing check the same. What it shares with the other steps of
+# `make test` is built first, by this make, so that the two makes never build one file at once.
+fuzz-smoke: test-bin build/c/nmea-san.o
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=15 CARGO_FUZZ_BUILD=--dev CARGO_FUZZ_SANITIZER=none \
+		CARGO_FUZZ_ENV=CARGO_PROFILE_DEV_DEBUG=0 FUZZ_LONG= INPROCESS_CORPUS=$(FUZZ)/corpus-inprocess-smoke INPROCESS_SEEDS= \
+		SEED_FLAGS=--no-corpus
 
 # The long runs of what `make test` checks briefly (fault injection, bounded memory).
 FUZZ_LONG ?= fuzz-faults fuzz-memory
-fuzz: fuzz-c fuzz-rust fuzz-inprocess fuzz-python fuzz-differential $(FUZZ_LONG)
+# The replay comes after the runs whose findings it replays.
+fuzz: fuzz-c fuzz-rust fuzz-inprocess fuzz-python
+	$(MAKE) --no-print-directory fuzz-differential $(FUZZ_LONG)
 
 fuzz-seeds: $(STAMP)
 	@rm -rf $(FUZZ)/seeds
 	$(PY) fuzz/seeds.py $(FUZZ)/seeds $(SEED_FLAGS)
 
-fuzz-c: fuzz-seeds
+fuzz-c: fuzz-seeds build/c/nmea-san.o
 	@mkdir -p $(FUZZ)/corpus-c
-	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -DNMEA_TEST_HOOKS -Igenerated/c \
-		-o $(FUZZ)/fuzz-c generated/c/nmea.c fuzz/c/fuzz_nmea.c fuzz/c/field_mutator.c
+	$(CLANG) $(SANITIZE) -fsanitize=fuzzer -Igenerated/c -o $(FUZZ)/fuzz-c build/c/nmea-san.o fuzz/c/fuzz_nmea.c fuzz/c/field_mutator.c
 	$(FUZZ)/fuzz-c $(FUZZ_FLAGS) -artifact_prefix=$(FUZZ)/crash-c- $(FUZZ)/corpus-c $(FUZZ)/seeds
 
 fuzz-python: fuzz-seeds
@@ -237,17 +277,17 @@ fuzz-python: fuzz-seeds
 		$(FUZZ)/corpus-python $(FUZZ)/seeds
 
 CARGO_FUZZ_VERSION := 0.13.2
-# The smoke run builds the Rust target unoptimized (--dev): minutes less to compile, and 15
-# seconds of fuzzing check the same; the campaign (`make fuzz`) builds it optimized.
+# The campaign (`make fuzz`) builds the Rust targets optimized; the smoke run passes --dev.
 CARGO_FUZZ_BUILD ?=
 # The Rust targets' sanitizer: AddressSanitizer by default; the crate forbids unsafe code, so a long
 # campaign may take `none` for more executions (the C pair has its own ASan target).
 CARGO_FUZZ_SANITIZER ?= address
+CARGO_FUZZ_ENV ?=
 
 fuzz-rust: fuzz-seeds
 	@command -v cargo-fuzz >/dev/null || cargo install --quiet --locked cargo-fuzz --version $(CARGO_FUZZ_VERSION)
 	@mkdir -p $(FUZZ)/corpus-rust
-	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) -s $(CARGO_FUZZ_SANITIZER) --fuzz-dir fuzz/rust nmea -- \
+	$(CARGO_FUZZ_ENV) RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) -s $(CARGO_FUZZ_SANITIZER) --fuzz-dir fuzz/rust nmea -- \
 		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-rust- $(CURDIR)/$(FUZZ)/corpus-rust $(CURDIR)/$(FUZZ)/seeds
 
 # The in-process differential: the C pair (built by fuzz/rust/build.rs) and the Rust crate in one
@@ -258,12 +298,12 @@ INPROCESS_SEEDS ?= $(CURDIR)/$(FUZZ)/seeds
 fuzz-inprocess: fuzz-seeds
 	@command -v cargo-fuzz >/dev/null || cargo install --quiet --locked cargo-fuzz --version $(CARGO_FUZZ_VERSION)
 	@mkdir -p $(INPROCESS_CORPUS)
-	RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) -s $(CARGO_FUZZ_SANITIZER) --fuzz-dir fuzz/rust differential -- \
+	$(CARGO_FUZZ_ENV) RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR=$(CURDIR)/$(FUZZ)/rust-target cargo fuzz run $(CARGO_FUZZ_BUILD) -s $(CARGO_FUZZ_SANITIZER) --fuzz-dir fuzz/rust differential -- \
 		$(FUZZ_FLAGS) -artifact_prefix=$(CURDIR)/$(FUZZ)/crash-inprocess- $(CURDIR)/$(INPROCESS_CORPUS) $(INPROCESS_SEEDS) \
 		$(CURDIR)/fuzz/regressions
 
-fuzz-differential: build
-	$(PY) fuzz/differential.py $(FUZZ)/seeds $(FUZZ)/corpus-c $(FUZZ)/corpus-python $(FUZZ)/corpus-rust $(FUZZ)/corpus-inprocess \
+fuzz-differential: test-bin $(STAMP)
+	NMEA_TOOLS=$(TEST_BIN) $(PY) fuzz/differential.py $(FUZZ)/seeds $(FUZZ)/corpus-c $(FUZZ)/corpus-python $(FUZZ)/corpus-rust $(FUZZ)/corpus-inprocess \
 		fuzz/regressions
 
 # Fault injection over every real log (fuzz/faults.py, tests/agreement/test_faults.py): each kind of

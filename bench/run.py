@@ -46,16 +46,19 @@ def log(message: str) -> None:
 # --- building ----------------------------------------------------------------------------------
 
 def build_c(out: Path) -> Path:
-    binary = out / "bench-c"
-    sh(["gcc", *CFLAGS, "-Igenerated/c", "-Ibench/c", "-o", str(binary),
-        "bench/c/driver.c", "bench/c/ceiling.c", "generated/c/nmea.c"])
+    """The C driver, linked with nmea.o compiled as `make build` does (heap_symbols reads it)."""
+    obj, binary = out / "nmea.o", out / "bench-c"
+    sh(["gcc", *CFLAGS, "-c", "-o", str(obj), "generated/c/nmea.c"])
+    sh(["gcc", *CFLAGS, "-Igenerated/c", "-Ibench/c", "-o", str(binary), "bench/c/driver.c", "bench/c/ceiling.c", str(obj)])
     return binary
 
 
-def build_rust(out: Path, peers: bool, profile: str) -> Path:
+def build_rust(out: Path, peers: bool, profile: str, standard_only: bool) -> Path:
     target = out / "rust-target"
     cmd = ["cargo", "build", "--quiet", "--profile", profile, "--locked", "--manifest-path", "bench/rust/Cargo.toml",
            "--target-dir", str(target)]
+    if standard_only:
+        cmd.append("--no-default-features")
     if peers:
         cmd += ["--features", "peers"]
         sh(cmd)
@@ -204,10 +207,9 @@ def struct_sizes(out: Path) -> dict[str, int]:
 
 
 def heap_symbols(out: Path) -> dict:
-    """The undefined symbols of nmea.o compiled as `make build` does: the heap functions it calls."""
-    obj = out / "nmea.o"
-    sh(["gcc", *CFLAGS, "-c", "-o", str(obj), "generated/c/nmea.c"])
-    undefined = sh(["nm", "-u", str(obj)], capture_output=True).stdout.split()
+    """The undefined symbols of nmea.o (build_c compiles it as `make build` does): the heap functions
+    it calls."""
+    undefined = sh(["nm", "-u", str(out / "nmea.o")], capture_output=True).stdout.split()
     names = sorted({name.split("@")[0] for name in undefined if name not in ("U", "w")})
     return {"undefined": names, "heap": [name for name in names if name in HEAP_SYMBOLS]}
 
@@ -438,6 +440,9 @@ def main() -> None:
     parser.add_argument("--no-instructions", action="store_true", help="skip the instruction counts (callgrind)")
     parser.add_argument("--cargo-profile", default="release",
                         help="smoke: a quick build for the smoke test, whose timings mean nothing")
+    parser.add_argument("--standard-only", action="store_true",
+                        help="the Rust driver with the crate's standard sentences only, the others read as generic "
+                             "sentences (the smoke test: a quicker build of the same harness)")
     parser.add_argument("--out", type=Path, default=ROOT / "build" / "bench")
     args = parser.parse_args()
     out = args.out.resolve()
@@ -449,7 +454,7 @@ def main() -> None:
     python_lines = min(args.python_lines, args.lines) if args.python_lines else args.lines
     log(f"corpus: {corpus_info['lines']} lines, {corpus_info['bytes']} bytes")
     c_bin = build_c(out)
-    rust_bin = build_rust(out, peers, args.cargo_profile)
+    rust_bin = build_rust(out, peers, args.cargo_profile, args.standard_only)
     python = python_for(out, peers)
 
     all_jobs = jobs(c_bin, rust_bin, python, corpus_path, python_lines if python_lines < args.lines else 0, peers)

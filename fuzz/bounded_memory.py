@@ -17,6 +17,7 @@ when a tool's peak RSS on the largest stream exceeds its peak on the smallest by
 from __future__ import annotations
 
 import argparse
+import os
 import random
 import subprocess
 import sys
@@ -101,7 +102,7 @@ def high_water_mb(pid: int) -> float | None:
 
 def run(tool: str, size: int, lines: list[bytes], argv: list[str] | None = None) -> Run:
     """`tool stream` (or the command `argv`) fed a stream of `size` bytes."""
-    binary = ROOT / "build" / "bin" / tool
+    binary = Path(os.environ.get("NMEA_TOOLS", ROOT / "build" / "bin")) / tool
     if argv is None and not binary.exists():
         raise SystemExit(f"bounded_memory: {binary} is missing: make build")
     start = time.perf_counter()

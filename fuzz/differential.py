@@ -9,12 +9,13 @@ difference and writes the input to fuzz/regressions/ so that it is replayed from
 from __future__ import annotations
 
 import hashlib
+import os
 import subprocess
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-TOOLS = [ROOT / "build" / "bin" / name for name in ("nmea-c", "nmea-rs", "nmea-py")]
+TOOLS = [Path(os.environ.get("NMEA_TOOLS", ROOT / "build" / "bin")) / name for name in ("nmea-c", "nmea-rs", "nmea-py")]
 REGRESSIONS = ROOT / "fuzz" / "regressions"
 RUNS = [["decode"], ["decode", "--values"], ["decode", "--lenient"], ["decode", "--require-checksum"], ["stream"]]
 

@@ -27,7 +27,9 @@ examples:
   {PROG} generate --spec-extra my-nmea --only standard,acme --prefix acme --out third_party/nmea
   {PROG} rules                         what each rule id of an error checks, and how to fix it
 
-`python -m generator` is the same program, run from the checkout.
+`python -m generator` is the same program, run from the checkout. It keeps the spec files it
+parsed and validated for its next run, found by their text, in $NMEASPEC_GEN_CACHE (default
+~/.cache/nmeaspec-gen; `off`: no cache).
 """
 
 

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import pickle
+import sys
 from dataclasses import dataclass, field
+from importlib import metadata
 from pathlib import Path
 from typing import Any
 
@@ -62,16 +65,53 @@ def _record_lines(node: yaml.Node, where: Path_, lines: dict[Path_, int]) -> Non
 _LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
-# The documents this process has parsed, by the digest of their text, pickled (a copy loads several
-# times faster than YAML parses): tests and tools load the same unchanged files many times.
+def _cache_dir() -> Path | None:
+    """Where the parsed documents and the digests of the valid ones are kept between runs: the
+    generator runs many times over the same unchanged files (make check, the tests, a firmware
+    build), and parsing and schema validation are most of a load. NMEASPEC_GEN_CACHE names the
+    folder (`off`: no cache); by default the user's cache folder."""
+    configured = os.environ.get("NMEASPEC_GEN_CACHE")
+    if configured == "off":
+        return None
+    return Path(configured) if configured else Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "nmeaspec-gen"
+
+
+CACHE = _cache_dir()
+
+
+def _write_atomically(path: Path, data: bytes) -> None:
+    """Write `path` whole or not at all (runs side by side share the cache); a cache that cannot be
+    written is no error."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        temporary = path.with_name(f"{path.name}.{os.getpid()}")
+        temporary.write_bytes(data)
+        os.replace(temporary, path)
+    except OSError:
+        pass
+
+
+# The documents parsed, by the digest of their text, pickled (a copy loads several times faster
+# than YAML parses); on disk, per Python and PyYAML version.
 _PARSED: dict[str, bytes] = {}
+_PARSED_DIR = CACHE / f"parsed-py{sys.version_info[0]}.{sys.version_info[1]}-yaml{yaml.__version__}" if CACHE else None
+
+
+def _parsed(digest: str) -> bytes | None:
+    if digest not in _PARSED and _PARSED_DIR is not None:
+        try:
+            _PARSED[digest] = (_PARSED_DIR / digest).read_bytes()
+        except OSError:
+            return None
+    return _PARSED.get(digest)
 
 
 def load_document(path: Path) -> Document:
     text = path.read_text(encoding="utf-8")
     digest = hashlib.sha256(text.encode()).hexdigest()
-    if digest in _PARSED:
-        data, lines = pickle.loads(_PARSED[digest])
+    cached = _parsed(digest)
+    if cached is not None:
+        data, lines = pickle.loads(cached)
         return Document(path, data, lines, digest)
     loader = _LOADER(text)
     try:  # parsed once: the nodes give the lines, the data is built from them
@@ -87,38 +127,62 @@ def load_document(path: Path) -> Document:
     if node is not None:
         _record_lines(node, (), lines)
     _PARSED[digest] = pickle.dumps((data, lines), pickle.HIGHEST_PROTOCOL)
+    if _PARSED_DIR is not None:
+        _write_atomically(_PARSED_DIR / digest, _PARSED[digest])
     return Document(path, data, lines, digest)
 
 
 _VALIDATORS: dict[str, jsonschema.Draft202012Validator] = {}
-# (schema, document digest) of the documents this process found valid: schema validation is most
-# of the time of a load, and tests and tools load the same unchanged files many times.
-_VALID: set[tuple[str, str]] = set()
+# "schema digest-of-document" of the documents found valid; on disk, one file per set of schemas
+# and jsonschema version, one line per document (appended by each run).
+_VALID: set[str] = set()
+_VALID_FILE: Path | None = None
 
 
 def _validator(schema_name: str) -> jsonschema.Draft202012Validator:
     """The validator of spec/schema/`schema_name`; the schemas know each other by their $id (an
     overlay's extension refers to parts of the sentence schema)."""
+    global _VALID_FILE
     if not _VALIDATORS:
-        schemas = {path.name: json.loads(path.read_text(encoding="utf-8")) for path in SCHEMA_DIR.glob("*.schema.json")}
+        texts = {path.name: path.read_text(encoding="utf-8") for path in sorted(SCHEMA_DIR.glob("*.schema.json"))}
+        schemas = {name: json.loads(text) for name, text in texts.items()}
         registry = referencing.Registry().with_resources(
             (name, referencing.Resource.from_contents(schema)) for name, schema in schemas.items())
         _VALIDATORS.update((name, jsonschema.Draft202012Validator(schema, registry=registry))
                            for name, schema in schemas.items())
+        if CACHE is not None:
+            key = hashlib.sha256(json.dumps([metadata.version("jsonschema"), texts]).encode()).hexdigest()
+            _VALID_FILE = CACHE / f"valid-{key[:32]}"
+            try:
+                _VALID.update(_VALID_FILE.read_text(encoding="ascii").split("\n"))
+            except (OSError, UnicodeDecodeError):
+                pass
     return _VALIDATORS[schema_name]
+
+
+def _remember_valid(entry: str) -> None:
+    _VALID.add(entry)
+    if _VALID_FILE is not None:
+        try:  # one short line appended at once: runs side by side do not mix their lines
+            _VALID_FILE.parent.mkdir(parents=True, exist_ok=True)
+            with open(_VALID_FILE, "a", encoding="ascii") as out:
+                out.write(entry + "\n")
+        except OSError:
+            pass
 
 
 def schema_errors(doc: Document, schema_name: str) -> list[SpecError]:
     """Every place where `doc` breaks the JSON Schema `schema_name`."""
-    if (schema_name, doc.digest) in _VALID:
-        return []
     validator = _validator(schema_name)
+    entry = f"{schema_name} {doc.digest}"
+    if doc.digest and entry in _VALID:
+        return []
     errors = []
     for err in sorted(validator.iter_errors(doc.data), key=lambda e: (list(map(str, e.absolute_path)), e.message)):
         where = tuple(err.absolute_path)
         errors.append(doc.error(where, _schema_message(err), "schema"))
     if not errors and doc.digest:
-        _VALID.add((schema_name, doc.digest))
+        _remember_valid(entry)
     return errors
 
 

@@ -9550,8 +9550,9 @@ static const layout gga_layout = {
 };
 
 /* The fast path's reader of gga (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gga_fast(nmea_gga *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gga_fast(nmea_gga *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -9688,8 +9689,9 @@ static const layout gll_layout = {
 };
 
 /* The fast path's reader of gll (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gll_fast(nmea_gll *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gll_fast(nmea_gll *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -9767,8 +9769,9 @@ static const layout gll_sentinel_layout = {
 };
 
 /* The fast path's reader of gll_sentinel (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gll_sentinel_fast(nmea_gll_sentinel *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gll_sentinel_fast(nmea_gll_sentinel *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -9894,8 +9897,9 @@ static const layout gns_layout = {
 };
 
 /* The fast path's reader of gns (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gns_fast(nmea_gns *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gns_fast(nmea_gns *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -9988,8 +9992,9 @@ static const layout gns_aux_layout = {
 };
 
 /* The fast path's reader of gns_aux (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gns_aux_fast(nmea_gns_aux *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gns_aux_fast(nmea_gns_aux *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -10129,8 +10134,9 @@ static const layout gsa_layout = {
 };
 
 /* The fast path's reader of gsa (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gsa_fast(nmea_gsa *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gsa_fast(nmea_gsa *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_number value; /* each value is read to check it, and kept on the wire */
@@ -10243,8 +10249,9 @@ static const layout gsa_short_layout = {
 };
 
 /* The fast path's reader of gsa_short (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gsa_short_fast(nmea_gsa_short *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gsa_short_fast(nmea_gsa_short *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_number value; /* each value is read to check it, and kept on the wire */
@@ -10356,8 +10363,9 @@ static const layout gsa_wide_system_layout = {
 };
 
 /* The fast path's reader of gsa_wide_system (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gsa_wide_system_fast(nmea_gsa_wide_system *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gsa_wide_system_fast(nmea_gsa_wide_system *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_number value; /* each value is read to check it, and kept on the wire */
@@ -10469,8 +10477,9 @@ static const layout gsa_wide_layout = {
 };
 
 /* The fast path's reader of gsa_wide (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gsa_wide_fast(nmea_gsa_wide *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gsa_wide_fast(nmea_gsa_wide *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_number value; /* each value is read to check it, and kept on the wire */
@@ -10583,8 +10592,9 @@ static const layout gsa_extra_dop_layout = {
 };
 
 /* The fast path's reader of gsa_extra_dop (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gsa_extra_dop_fast(nmea_gsa_extra_dop *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gsa_extra_dop_fast(nmea_gsa_extra_dop *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_number value; /* each value is read to check it, and kept on the wire */
@@ -10689,8 +10699,9 @@ static const layout gst_layout = {
 };
 
 /* The fast path's reader of gst (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gst_fast(nmea_gst *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gst_fast(nmea_gst *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -10782,8 +10793,9 @@ static const layout gsv_layout = {
 };
 
 /* The fast path's reader of gsv (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result gsv_fast(nmea_gsv *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result gsv_fast(nmea_gsv *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_gsv_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
@@ -11009,8 +11021,9 @@ static const layout hdt_layout = {
 };
 
 /* The fast path's reader of hdt (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result hdt_fast(nmea_hdt *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result hdt_fast(nmea_hdt *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -12432,8 +12445,9 @@ static const layout rmc_layout = {
 };
 
 /* The fast path's reader of rmc (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result rmc_fast(nmea_rmc *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result rmc_fast(nmea_rmc *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -12529,8 +12543,9 @@ static const layout rmc_sentinel_layout = {
 };
 
 /* The fast path's reader of rmc_sentinel (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result rmc_sentinel_fast(nmea_rmc_sentinel *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result rmc_sentinel_fast(nmea_rmc_sentinel *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -13982,8 +13997,9 @@ static const layout vtg_layout = {
 };
 
 /* The fast path's reader of vtg (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result vtg_fast(nmea_vtg *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result vtg_fast(nmea_vtg *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -14380,8 +14396,9 @@ static const layout zda_layout = {
 };
 
 /* The fast path's reader of zda (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result zda_fast(nmea_zda *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result zda_fast(nmea_zda *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -14701,8 +14718,9 @@ static const layout geos5_jamdet_layout = {
 };
 
 /* The fast path's reader of geos5_jamdet (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result geos5_jamdet_fast(nmea_geos5_jamdet *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result geos5_jamdet_fast(nmea_geos5_jamdet *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -15095,8 +15113,9 @@ static const layout pair010_layout = {
 };
 
 /* The fast path's reader of pair010 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pair010_fast(nmea_pair010 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pair010_fast(nmea_pair010 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -18186,8 +18205,9 @@ static const layout pairspf_layout = {
 };
 
 /* The fast path's reader of pairspf (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pairspf_fast(nmea_pairspf *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pairspf_fast(nmea_pairspf *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -18250,8 +18270,9 @@ static const layout pairspf5_layout = {
 };
 
 /* The fast path's reader of pairspf5 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pairspf5_fast(nmea_pairspf5 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pairspf5_fast(nmea_pairspf5 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -18596,8 +18617,9 @@ static const layout pashr_layout = {
 };
 
 /* The fast path's reader of pashr (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pashr_fast(nmea_pashr *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pashr_fast(nmea_pashr *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -18718,8 +18740,9 @@ static const layout pashr_att_layout = {
 };
 
 /* The fast path's reader of pashr_att (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pashr_att_fast(nmea_pashr_att *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pashr_att_fast(nmea_pashr_att *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -18836,8 +18859,9 @@ static const layout pashr_hpr_layout = {
 };
 
 /* The fast path's reader of pashr_hpr (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pashr_hpr_fast(nmea_pashr_hpr *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pashr_hpr_fast(nmea_pashr_hpr *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -19074,8 +19098,9 @@ static const layout pashr_pos_layout = {
 };
 
 /* The fast path's reader of pashr_pos (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pashr_pos_fast(nmea_pashr_pos *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pashr_pos_fast(nmea_pashr_pos *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -19171,8 +19196,9 @@ static const layout pashr_ptt_layout = {
 };
 
 /* The fast path's reader of pashr_ptt (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pashr_ptt_fast(nmea_pashr_ptt *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pashr_ptt_fast(nmea_pashr_ptt *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -19253,8 +19279,9 @@ static const layout pashr_sat_layout = {
 };
 
 /* The fast path's reader of pashr_sat (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pashr_sat_fast(nmea_pashr_sat *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pashr_sat_fast(nmea_pashr_sat *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_pashr_sat_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
@@ -19387,8 +19414,9 @@ static const layout pashr_ttt_layout = {
 };
 
 /* The fast path's reader of pashr_ttt (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pashr_ttt_fast(nmea_pashr_ttt *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pashr_ttt_fast(nmea_pashr_ttt *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -19528,8 +19556,9 @@ static const layout perdcrw_layout = {
 };
 
 /* The fast path's reader of perdcrw (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result perdcrw_fast(nmea_perdcrw *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result perdcrw_fast(nmea_perdcrw *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -19615,8 +19644,9 @@ static const layout perdcrx_layout = {
 };
 
 /* The fast path's reader of perdcrx (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result perdcrx_fast(nmea_perdcrx *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result perdcrx_fast(nmea_perdcrx *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -19709,8 +19739,9 @@ static const layout perdcry_layout = {
 };
 
 /* The fast path's reader of perdcry (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result perdcry_fast(nmea_perdcry *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result perdcry_fast(nmea_perdcry *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -19803,8 +19834,9 @@ static const layout perdcrz_layout = {
 };
 
 /* The fast path's reader of perdcrz (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result perdcrz_fast(nmea_perdcrz *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result perdcrz_fast(nmea_perdcrz *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -19891,8 +19923,9 @@ static const layout pfec_gpatt_layout = {
 };
 
 /* The fast path's reader of pfec_gpatt (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pfec_gpatt_fast(nmea_pfec_gpatt *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pfec_gpatt_fast(nmea_pfec_gpatt *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -19962,8 +19995,9 @@ static const layout pfec_gphve_layout = {
 };
 
 /* The fast path's reader of pfec_gphve (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pfec_gphve_fast(nmea_pfec_gphve *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pfec_gphve_fast(nmea_pfec_gphve *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -20033,8 +20067,9 @@ static const layout pfec_gprtc_layout = {
 };
 
 /* The fast path's reader of pfec_gprtc (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pfec_gprtc_fast(nmea_pfec_gprtc *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pfec_gprtc_fast(nmea_pfec_gprtc *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -20113,8 +20148,9 @@ static const layout pfec_gpwpl_layout = {
 };
 
 /* The fast path's reader of pfec_gpwpl (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pfec_gpwpl_fast(nmea_pfec_gpwpl *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pfec_gpwpl_fast(nmea_pfec_gpwpl *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -20200,8 +20236,9 @@ static const layout pfec_gpxfr_layout = {
 };
 
 /* The fast path's reader of pfec_gpxfr (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pfec_gpxfr_fast(nmea_pfec_gpxfr *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pfec_gpxfr_fast(nmea_pfec_gpxfr *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -20272,8 +20309,9 @@ static const layout pglor_fix_layout = {
 };
 
 /* The fast path's reader of pglor_fix (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_fix_fast(nmea_pglor_fix *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_fix_fast(nmea_pglor_fix *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -20367,8 +20405,9 @@ static const layout pglor_lsq_layout = {
 };
 
 /* The fast path's reader of pglor_lsq (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_lsq_fast(nmea_pglor_lsq *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_lsq_fast(nmea_pglor_lsq *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -20501,8 +20540,9 @@ static const layout pglor_pwr_layout = {
 };
 
 /* The fast path's reader of pglor_pwr (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_pwr_fast(nmea_pglor_pwr *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_pwr_fast(nmea_pglor_pwr *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -20601,8 +20641,9 @@ static const layout pglor_pwr_v2_layout = {
 };
 
 /* The fast path's reader of pglor_pwr_v2 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_pwr_v2_fast(nmea_pglor_pwr_v2 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_pwr_v2_fast(nmea_pglor_pwr_v2 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -20715,8 +20756,9 @@ static const layout pglor_pwr_v4_layout = {
 };
 
 /* The fast path's reader of pglor_pwr_v4 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_pwr_v4_fast(nmea_pglor_pwr_v4 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_pwr_v4_fast(nmea_pglor_pwr_v4 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -20841,8 +20883,9 @@ static const layout pglor_sat_layout = {
 };
 
 /* The fast path's reader of pglor_sat (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_sat_fast(nmea_pglor_sat *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_sat_fast(nmea_pglor_sat *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_pglor_sat_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
@@ -20952,8 +20995,9 @@ static const layout pglor_sat_v1_layout = {
 };
 
 /* The fast path's reader of pglor_sat_v1 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_sat_v1_fast(nmea_pglor_sat_v1 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_sat_v1_fast(nmea_pglor_sat_v1 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_pglor_sat_v1_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
@@ -21059,8 +21103,9 @@ static const layout pglor_sat_v0_layout = {
 };
 
 /* The fast path's reader of pglor_sat_v0 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_sat_v0_fast(nmea_pglor_sat_v0 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_sat_v0_fast(nmea_pglor_sat_v0 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_pglor_sat_v0_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
@@ -21177,8 +21222,9 @@ static const layout pglor_sio_layout = {
 };
 
 /* The fast path's reader of pglor_sio (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_sio_fast(nmea_pglor_sio *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_sio_fast(nmea_pglor_sio *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -21299,8 +21345,9 @@ static const layout pglor_sio_v0_layout = {
 };
 
 /* The fast path's reader of pglor_sio_v0 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_sio_v0_fast(nmea_pglor_sio_v0 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_sio_v0_fast(nmea_pglor_sio_v0 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -21422,8 +21469,9 @@ static const layout pglor_sta_layout = {
 };
 
 /* The fast path's reader of pglor_sta (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_sta_fast(nmea_pglor_sta *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_sta_fast(nmea_pglor_sta *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -21555,8 +21603,9 @@ static const layout pglor_unc_layout = {
 };
 
 /* The fast path's reader of pglor_unc (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pglor_unc_fast(nmea_pglor_unc *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pglor_unc_fast(nmea_pglor_unc *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -21646,8 +21695,9 @@ static const layout pgrmb_layout = {
 };
 
 /* The fast path's reader of pgrmb (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pgrmb_fast(nmea_pgrmb *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pgrmb_fast(nmea_pgrmb *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -21867,8 +21917,9 @@ static const layout pgrme_layout = {
 };
 
 /* The fast path's reader of pgrme (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pgrme_fast(nmea_pgrme *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pgrme_fast(nmea_pgrme *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -21951,8 +22002,9 @@ static const layout pgrmf_layout = {
 };
 
 /* The fast path's reader of pgrmf (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pgrmf_fast(nmea_pgrmf *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pgrmf_fast(nmea_pgrmf *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -22098,8 +22150,9 @@ static const layout pgrmm_layout = {
 };
 
 /* The fast path's reader of pgrmm (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pgrmm_fast(nmea_pgrmm *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pgrmm_fast(nmea_pgrmm *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -22200,8 +22253,9 @@ static const layout pgrmt_layout = {
 };
 
 /* The fast path's reader of pgrmt (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pgrmt_fast(nmea_pgrmt *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pgrmt_fast(nmea_pgrmt *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -22282,8 +22336,9 @@ static const layout pgrmv_layout = {
 };
 
 /* The fast path's reader of pgrmv (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pgrmv_fast(nmea_pgrmv *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pgrmv_fast(nmea_pgrmv *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -22352,8 +22407,9 @@ static const layout pgrmz_layout = {
 };
 
 /* The fast path's reader of pgrmz (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pgrmz_fast(nmea_pgrmz *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pgrmz_fast(nmea_pgrmz *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -22422,8 +22478,9 @@ static const layout pgtop_11_layout = {
 };
 
 /* The fast path's reader of pgtop_11 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pgtop_11_fast(nmea_pgtop_11 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pgtop_11_fast(nmea_pgtop_11 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -22525,8 +22582,9 @@ static const layout pmgnst_layout = {
 };
 
 /* The fast path's reader of pmgnst (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pmgnst_fast(nmea_pmgnst *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pmgnst_fast(nmea_pmgnst *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -22761,8 +22819,9 @@ static const layout pmtk010_layout = {
 };
 
 /* The fast path's reader of pmtk010 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pmtk010_fast(nmea_pmtk010 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pmtk010_fast(nmea_pmtk010 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -22825,8 +22884,9 @@ static const layout pmtk011_layout = {
 };
 
 /* The fast path's reader of pmtk011 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pmtk011_fast(nmea_pmtk011 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pmtk011_fast(nmea_pmtk011 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -24085,8 +24145,9 @@ static const layout pmtkchn_layout = {
 };
 
 /* The fast path's reader of pmtkchn (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pmtkchn_fast(nmea_pmtkchn *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pmtkchn_fast(nmea_pmtkchn *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_number value; /* each value is read to check it, and kept on the wire */
@@ -24330,8 +24391,9 @@ static const layout pqgsv_layout = {
 };
 
 /* The fast path's reader of pqgsv (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqgsv_fast(nmea_pqgsv *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqgsv_fast(nmea_pqgsv *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_pqgsv_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
@@ -24439,8 +24501,9 @@ static const layout pqtmantennastatus_layout = {
 };
 
 /* The fast path's reader of pqtmantennastatus (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmantennastatus_fast(nmea_pqtmantennastatus *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmantennastatus_fast(nmea_pqtmantennastatus *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -29308,8 +29371,9 @@ static const layout pqtmdop_layout = {
 };
 
 /* The fast path's reader of pqtmdop (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmdop_fast(nmea_pqtmdop *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmdop_fast(nmea_pqtmdop *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -29392,8 +29456,9 @@ static const layout pqtmeoe_layout = {
 };
 
 /* The fast path's reader of pqtmeoe (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmeoe_fast(nmea_pqtmeoe *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmeoe_fast(nmea_pqtmeoe *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -29469,8 +29534,9 @@ static const layout pqtmepe_layout = {
 };
 
 /* The fast path's reader of pqtmepe (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmepe_fast(nmea_pqtmepe *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmepe_fast(nmea_pqtmepe *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -29553,8 +29619,9 @@ static const layout pqtmgeofencestatus_layout = {
 };
 
 /* The fast path's reader of pqtmgeofencestatus (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmgeofencestatus_fast(nmea_pqtmgeofencestatus *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmgeofencestatus_fast(nmea_pqtmgeofencestatus *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_enum value; /* each value is read to check it, and kept on the wire */
@@ -29882,8 +29949,9 @@ static const layout pqtmnav_layout = {
 };
 
 /* The fast path's reader of pqtmnav (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmnav_fast(nmea_pqtmnav *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmnav_fast(nmea_pqtmnav *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -30033,8 +30101,9 @@ static const layout pqtmodo_layout = {
 };
 
 /* The fast path's reader of pqtmodo (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmodo_fast(nmea_pqtmodo *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmodo_fast(nmea_pqtmodo *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -30116,8 +30185,9 @@ static const layout pqtmpl_layout = {
 };
 
 /* The fast path's reader of pqtmpl (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmpl_fast(nmea_pqtmpl *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmpl_fast(nmea_pqtmpl *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -30224,8 +30294,9 @@ static const layout pqtmpvt_layout = {
 };
 
 /* The fast path's reader of pqtmpvt (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmpvt_fast(nmea_pqtmpvt *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmpvt_fast(nmea_pqtmpvt *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -30704,8 +30775,9 @@ static const layout pqtmsvinstatus_layout = {
 };
 
 /* The fast path's reader of pqtmsvinstatus (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmsvinstatus_fast(nmea_pqtmsvinstatus *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmsvinstatus_fast(nmea_pqtmsvinstatus *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -30799,8 +30871,9 @@ static const layout pqtmtar_layout = {
 };
 
 /* The fast path's reader of pqtmtar (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmtar_fast(nmea_pqtmtar *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmtar_fast(nmea_pqtmtar *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -30889,8 +30962,9 @@ static const layout pqtmtxt_layout = {
 };
 
 /* The fast path's reader of pqtmtxt (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmtxt_fast(nmea_pqtmtxt *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmtxt_fast(nmea_pqtmtxt *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -31058,8 +31132,9 @@ static const layout pqtmvel_layout = {
 };
 
 /* The fast path's reader of pqtmvel (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmvel_fast(nmea_pqtmvel *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmvel_fast(nmea_pqtmvel *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -31146,8 +31221,9 @@ static const layout pqtmver_layout = {
 };
 
 /* The fast path's reader of pqtmver (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmver_fast(nmea_pqtmver *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmver_fast(nmea_pqtmver *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -31221,8 +31297,9 @@ static const layout pqtmver_legacy_layout = {
 };
 
 /* The fast path's reader of pqtmver_legacy (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pqtmver_legacy_fast(nmea_pqtmver_legacy *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pqtmver_legacy_fast(nmea_pqtmver_legacy *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -31692,8 +31769,9 @@ static const layout psrf150_layout = {
 };
 
 /* The fast path's reader of psrf150 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result psrf150_fast(nmea_psrf150 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result psrf150_fast(nmea_psrf150 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -31759,8 +31837,9 @@ static const layout psrf151_layout = {
 };
 
 /* The fast path's reader of psrf151 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result psrf151_fast(nmea_psrf151 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result psrf151_fast(nmea_psrf151 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -31835,8 +31914,9 @@ static const layout psrfepe_layout = {
 };
 
 /* The fast path's reader of psrfepe (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result psrfepe_fast(nmea_psrfepe *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result psrfepe_fast(nmea_psrfepe *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -31924,8 +32004,9 @@ static const layout pssn_hrp_layout = {
 };
 
 /* The fast path's reader of pssn_hrp (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pssn_hrp_fast(nmea_pssn_hrp *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pssn_hrp_fast(nmea_pssn_hrp *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32021,8 +32102,9 @@ static const layout pssn_rbd_layout = {
 };
 
 /* The fast path's reader of pssn_rbd (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pssn_rbd_fast(nmea_pssn_rbd *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pssn_rbd_fast(nmea_pssn_rbd *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32115,8 +32197,9 @@ static const layout pssn_rbp_layout = {
 };
 
 /* The fast path's reader of pssn_rbp (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pssn_rbp_fast(nmea_pssn_rbp *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pssn_rbp_fast(nmea_pssn_rbp *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32211,8 +32294,9 @@ static const layout pssn_rbv_layout = {
 };
 
 /* The fast path's reader of pssn_rbv (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pssn_rbv_fast(nmea_pssn_rbv *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pssn_rbv_fast(nmea_pssn_rbv *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32303,8 +32387,9 @@ static const layout pssn_tfm_layout = {
 };
 
 /* The fast path's reader of pssn_tfm (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pssn_tfm_fast(nmea_pssn_tfm *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pssn_tfm_fast(nmea_pssn_tfm *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32390,8 +32475,9 @@ static const layout psti_030_layout = {
 };
 
 /* The fast path's reader of psti_030 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result psti_030_fast(nmea_psti_030 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result psti_030_fast(nmea_psti_030 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32493,8 +32579,9 @@ static const layout psti_032_layout = {
 };
 
 /* The fast path's reader of psti_032 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result psti_032_fast(nmea_psti_032 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result psti_032_fast(nmea_psti_032 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32612,8 +32699,9 @@ static const layout psti_033_layout = {
 };
 
 /* The fast path's reader of psti_033 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result psti_033_fast(nmea_psti_033 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result psti_033_fast(nmea_psti_033 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32743,8 +32831,9 @@ static const layout psti_035_layout = {
 };
 
 /* The fast path's reader of psti_035 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result psti_035_fast(nmea_psti_035 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result psti_035_fast(nmea_psti_035 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32842,8 +32931,9 @@ static const layout psti_036_layout = {
 };
 
 /* The fast path's reader of psti_036 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result psti_036_fast(nmea_psti_036 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result psti_036_fast(nmea_psti_036 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -32930,8 +33020,9 @@ static const layout psti_20_layout = {
 };
 
 /* The fast path's reader of psti_20 (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result psti_20_fast(nmea_psti_20 *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result psti_20_fast(nmea_psti_20 *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -33019,8 +33110,9 @@ static const layout pstmagps_layout = {
 };
 
 /* The fast path's reader of pstmagps (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmagps_fast(nmea_pstmagps *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmagps_fast(nmea_pstmagps *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -33108,8 +33200,9 @@ static const layout pstmalmanac_layout = {
 };
 
 /* The fast path's reader of pstmalmanac (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmalmanac_fast(nmea_pstmalmanac *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmalmanac_fast(nmea_pstmalmanac *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -33279,8 +33372,9 @@ static const layout pstmcorr_layout = {
 };
 
 /* The fast path's reader of pstmcorr (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmcorr_fast(nmea_pstmcorr *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmcorr_fast(nmea_pstmcorr *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -33367,8 +33461,9 @@ static const layout pstmcpu_layout = {
 };
 
 /* The fast path's reader of pstmcpu (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmcpu_fast(nmea_pstmcpu *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmcpu_fast(nmea_pstmcpu *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -33438,8 +33533,9 @@ static const layout pstmdiff_layout = {
 };
 
 /* The fast path's reader of pstmdiff (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmdiff_fast(nmea_pstmdiff *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmdiff_fast(nmea_pstmdiff *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -33527,8 +33623,9 @@ static const layout pstmeph_layout = {
 };
 
 /* The fast path's reader of pstmeph (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmeph_fast(nmea_pstmeph *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmeph_fast(nmea_pstmeph *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -33809,8 +33906,9 @@ static const layout pstmkfcov_layout = {
 };
 
 /* The fast path's reader of pstmkfcov (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmkfcov_fast(nmea_pstmkfcov *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmkfcov_fast(nmea_pstmkfcov *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -33928,8 +34026,9 @@ static const layout pstmpa_layout = {
 };
 
 /* The fast path's reader of pstmpa (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmpa_fast(nmea_pstmpa *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmpa_fast(nmea_pstmpa *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -34017,8 +34116,9 @@ static const layout pstmpres_layout = {
 };
 
 /* The fast path's reader of pstmpres (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmpres_fast(nmea_pstmpres *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmpres_fast(nmea_pstmpres *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -34106,8 +34206,9 @@ static const layout pstmres_layout = {
 };
 
 /* The fast path's reader of pstmres (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmres_fast(nmea_pstmres *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmres_fast(nmea_pstmres *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -34221,8 +34322,9 @@ static const layout pstmrf_layout = {
 };
 
 /* The fast path's reader of pstmrf (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmrf_fast(nmea_pstmrf *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmrf_fast(nmea_pstmrf *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -34310,8 +34412,9 @@ static const layout pstmsat_layout = {
 };
 
 /* The fast path's reader of pstmsat (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmsat_fast(nmea_pstmsat *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmsat_fast(nmea_pstmsat *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -34425,8 +34528,9 @@ static const layout pstmsbas_layout = {
 };
 
 /* The fast path's reader of pstmsbas (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmsbas_fast(nmea_pstmsbas *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmsbas_fast(nmea_pstmsbas *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -34514,8 +34618,9 @@ static const layout pstmsbascorr_layout = {
 };
 
 /* The fast path's reader of pstmsbascorr (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmsbascorr_fast(nmea_pstmsbascorr *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmsbascorr_fast(nmea_pstmsbascorr *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -34783,8 +34888,9 @@ static const layout pstmtestrf_layout = {
 };
 
 /* The fast path's reader of pstmtestrf (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmtestrf_fast(nmea_pstmtestrf *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmtestrf_fast(nmea_pstmtestrf *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -34872,8 +34978,9 @@ static const layout pstmtg_layout = {
 };
 
 /* The fast path's reader of pstmtg (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmtg_fast(nmea_pstmtg *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmtg_fast(nmea_pstmtg *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -34961,8 +35068,9 @@ static const layout pstmtim_layout = {
 };
 
 /* The fast path's reader of pstmtim (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmtim_fast(nmea_pstmtim *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmtim_fast(nmea_pstmtim *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -35050,8 +35158,9 @@ static const layout pstmts_layout = {
 };
 
 /* The fast path's reader of pstmts (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmts_fast(nmea_pstmts *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmts_fast(nmea_pstmts *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -35139,8 +35248,9 @@ static const layout pstmver_layout = {
 };
 
 /* The fast path's reader of pstmver (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmver_fast(nmea_pstmver *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmver_fast(nmea_pstmver *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -35228,8 +35338,9 @@ static const layout pstmvres_layout = {
 };
 
 /* The fast path's reader of pstmvres (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmvres_fast(nmea_pstmvres *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmvres_fast(nmea_pstmvres *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -35317,8 +35428,9 @@ static const layout pstmwaas_layout = {
 };
 
 /* The fast path's reader of pstmwaas (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pstmwaas_fast(nmea_pstmwaas *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pstmwaas_fast(nmea_pstmwaas *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_text value; /* each value is read to check it, and kept on the wire */
@@ -35441,8 +35553,9 @@ static const layout ptnl_avr_layout = {
 };
 
 /* The fast path's reader of ptnl_avr (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnl_avr_fast(nmea_ptnl_avr *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnl_avr_fast(nmea_ptnl_avr *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -35535,8 +35648,9 @@ static const layout ptnl_bpq_layout = {
 };
 
 /* The fast path's reader of ptnl_bpq (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnl_bpq_fast(nmea_ptnl_bpq *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnl_bpq_fast(nmea_ptnl_bpq *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -35620,8 +35734,9 @@ static const layout ptnl_evt_layout = {
 };
 
 /* The fast path's reader of ptnl_evt (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnl_evt_fast(nmea_ptnl_evt *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnl_evt_fast(nmea_ptnl_evt *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -35704,8 +35819,9 @@ static const layout ptnl_ggk_layout = {
 };
 
 /* The fast path's reader of ptnl_ggk (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnl_ggk_fast(nmea_ptnl_ggk *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnl_ggk_fast(nmea_ptnl_ggk *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -35794,8 +35910,9 @@ static const layout ptnl_ggk_sync_layout = {
 };
 
 /* The fast path's reader of ptnl_ggk_sync (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnl_ggk_sync_fast(nmea_ptnl_ggk_sync *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnl_ggk_sync_fast(nmea_ptnl_ggk_sync *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -35888,8 +36005,9 @@ static const layout ptnl_pjk_layout = {
 };
 
 /* The fast path's reader of ptnl_pjk (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnl_pjk_fast(nmea_ptnl_pjk *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnl_pjk_fast(nmea_ptnl_pjk *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -35976,8 +36094,9 @@ static const layout ptnl_pjt_layout = {
 };
 
 /* The fast path's reader of ptnl_pjt (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnl_pjt_fast(nmea_ptnl_pjt *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnl_pjt_fast(nmea_ptnl_pjt *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -36056,8 +36175,9 @@ static const layout ptnl_vgk_layout = {
 };
 
 /* The fast path's reader of ptnl_vgk (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnl_vgk_fast(nmea_ptnl_vgk *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnl_vgk_fast(nmea_ptnl_vgk *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -36151,8 +36271,9 @@ static const layout ptnl_vhd_layout = {
 };
 
 /* The fast path's reader of ptnl_vhd (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnl_vhd_fast(nmea_ptnl_vhd *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnl_vhd_fast(nmea_ptnl_vhd *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -36249,8 +36370,9 @@ static const layout ptnldg_layout = {
 };
 
 /* The fast path's reader of ptnldg (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnldg_fast(nmea_ptnldg *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnldg_fast(nmea_ptnldg *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -36332,8 +36454,9 @@ static const layout ptnlev_layout = {
 };
 
 /* The fast path's reader of ptnlev (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnlev_fast(nmea_ptnlev *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnlev_fast(nmea_ptnlev *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -36400,8 +36523,9 @@ static const layout ptnlid_layout = {
 };
 
 /* The fast path's reader of ptnlid (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnlid_fast(nmea_ptnlid *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnlid_fast(nmea_ptnlid *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -36524,8 +36648,9 @@ static const layout ptnlrba_layout = {
 };
 
 /* The fast path's reader of ptnlrba (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnlrba_fast(nmea_ptnlrba *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnlrba_fast(nmea_ptnlrba *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -36741,8 +36866,9 @@ static const layout ptnlrtp_layout = {
 };
 
 /* The fast path's reader of ptnlrtp (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnlrtp_fast(nmea_ptnlrtp *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnlrtp_fast(nmea_ptnlrtp *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -36870,8 +36996,9 @@ static const layout ptnlrxo_layout = {
 };
 
 /* The fast path's reader of ptnlrxo (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnlrxo_fast(nmea_ptnlrxo *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnlrxo_fast(nmea_ptnlrxo *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -37002,8 +37129,9 @@ static const layout ptnlsm_layout = {
 };
 
 /* The fast path's reader of ptnlsm (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnlsm_fast(nmea_ptnlsm *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnlsm_fast(nmea_ptnlsm *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -37107,8 +37235,9 @@ static const layout ptnta_layout = {
 };
 
 /* The fast path's reader of ptnta (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result ptnta_fast(nmea_ptnta *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result ptnta_fast(nmea_ptnta *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -37238,8 +37367,9 @@ static const layout pubx_position_layout = {
 };
 
 /* The fast path's reader of pubx_position (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pubx_position_fast(nmea_pubx_position *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pubx_position_fast(nmea_pubx_position *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -37419,8 +37549,9 @@ static const layout pubx_svstatus_layout = {
 };
 
 /* The fast path's reader of pubx_svstatus (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pubx_svstatus_fast(nmea_pubx_svstatus *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pubx_svstatus_fast(nmea_pubx_svstatus *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t i, repeats, optional;
     nmea_pubx_svstatus_satellite entry, *e = &entry; /* each entry is read to check it, and kept on the wire */
@@ -37561,8 +37692,9 @@ static const layout pubx_time_layout = {
 };
 
 /* The fast path's reader of pubx_time (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pubx_time_fast(nmea_pubx_time *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pubx_time_fast(nmea_pubx_time *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
@@ -37693,8 +37825,9 @@ static const layout pubx_utm_layout = {
 };
 
 /* The fast path's reader of pubx_utm (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result pubx_utm_fast(nmea_pubx_utm *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result pubx_utm_fast(nmea_pubx_utm *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 

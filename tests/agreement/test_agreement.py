@@ -10,15 +10,20 @@ on the manuals' examples, hand-written edge cases and every real receiver log in
 
 from __future__ import annotations
 
+import bisect
 import json
+import os
 import subprocess
+from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
+from typing import Callable
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = ROOT / "build" / "bin"
+# The tools under test: NMEA_TOOLS (make test-tools: build/test-bin), else make build's.
+BIN = Path(os.environ.get("NMEA_TOOLS", ROOT / "build" / "bin"))
 TOOLS = ["nmea-c", "nmea-rs", "nmea-py"]
 CORPUS = ROOT.parent / "shared" / "corpus" / "real"
 EDGE_CASES = Path(__file__).with_name("edge_cases.txt")
@@ -38,8 +43,9 @@ def input_lines(data: bytes) -> list[bytes]:
     return [p[:-1] if p.endswith(b"\r") else p for p in parts]
 
 
-def agreed(args: list[str], data: bytes) -> bytes:
-    """The output of `args`, after checking that the three tools agree byte for byte."""
+def agreed(args: list[str], data: bytes, origin: Callable[[int], str] = lambda i: f"line {i + 1}") -> bytes:
+    """The output of `args`, after checking that the three tools agree byte for byte; `origin`
+    names the input line of an index in a failure."""
     outputs = {tool: run(tool, args, data) for tool in TOOLS}
     reference = outputs[TOOLS[0]]
     for tool, out in outputs.items():
@@ -47,37 +53,38 @@ def agreed(args: list[str], data: bytes) -> bytes:
             a, b = reference.split(b"\n"), out.split(b"\n")
             diff = next(i for i in range(max(len(a), len(b))) if i >= len(a) or i >= len(b) or a[i] != b[i])
             line = input_lines(data)[diff] if diff < len(input_lines(data)) else b"(end)"
-            pytest.fail(f"{TOOLS[0]} and {tool} disagree ({' '.join(args)}) on line {diff + 1}: {line[:200]!r}\n"
+            pytest.fail(f"{TOOLS[0]} and {tool} disagree ({' '.join(args)}) on {origin(diff)}: {line[:200]!r}\n"
                         f"{TOOLS[0]}: {a[diff][:400] if diff < len(a) else b'(none)'!r}\n"
                         f"{tool}: {b[diff][:400] if diff < len(b) else b'(none)'!r}")
     return reference
 
 
 @lru_cache(maxsize=None)
-def decode_all(data: bytes, values: bool = False) -> bytes:
+def decode_all(data: bytes, values: bool = False, origin: Callable[[int], str] = lambda i: f"line {i + 1}") -> bytes:
     """decode's output, after checking that the three tools agree byte for byte."""
-    return agreed(["decode", "--values"] if values else ["decode"], data)
+    return agreed(["decode", "--values"] if values else ["decode"], data, origin)
 
 
-def check_stream(data: bytes) -> list[dict]:
-    """The properties every input must have; returns the decoded objects."""
+def check_stream(data: bytes, origin: Callable[[int], str] = lambda i: f"line {i + 1}") -> list[dict]:
+    """The properties every input must have; returns the decoded objects. `origin` names the input
+    line of an index in a failure."""
     lines = input_lines(data)
-    out = decode_all(data).split(b"\n")
+    out = decode_all(data, False, origin).split(b"\n")
     assert out[-1] == b"" and len(out) - 1 == len(lines), "decode must print one line per input line"
-    decode_all(data, values=True)
+    decode_all(data, True, origin)
     objects = [json.loads(line) for line in out[:-1]]
-    ok_lines = [line for line, obj in zip(lines, objects) if obj["ok"]]
-    ok_json = b"".join(line + b"\n" for line, obj in zip(out, objects) if obj["ok"])
+    ok = [i for i, obj in enumerate(objects) if obj["ok"]]
+    ok_json = b"".join(out[i] + b"\n" for i in ok)
     encoded = {tool: run(tool, ["encode"], ok_json) for tool in TOOLS}
     for tool, text in encoded.items():
         assert text == encoded[TOOLS[0]], f"{tool} encodes differently from {TOOLS[0]}"
     back = encoded[TOOLS[0]].split(b"\n")[:-1]
-    assert len(back) == len(ok_lines)
-    for original, again in zip(ok_lines, back):
-        assert again == original, f"round trip changed {original!r} into {again!r}"
-    for line, obj in zip(lines, objects):
+    assert len(back) == len(ok)
+    for i, again in zip(ok, back):
+        assert again == lines[i], f"round trip changed {lines[i]!r} ({origin(i)}) into {again!r}"
+    for i, (line, obj) in enumerate(zip(lines, objects)):
         if wrong_checksum(line):
-            assert not obj["ok"] and obj["error"]["kind"] == "checksum_mismatch", (line, obj)
+            assert not obj["ok"] and obj["error"]["kind"] == "checksum_mismatch", (origin(i), line, obj)
     return objects
 
 
@@ -132,9 +139,41 @@ def test_empty_and_unterminated_input() -> None:
 CORPUS_FILES = sorted(CORPUS.rglob("*.nmea"))
 
 
-@pytest.mark.parametrize("path", CORPUS_FILES, ids=[str(p.relative_to(CORPUS)) for p in CORPUS_FILES])
-def test_real_logs(path: Path) -> None:
-    check_stream(path.read_bytes())
+@dataclass(frozen=True)
+class Corpus:
+    """Every real log, one after the other, each ending with a newline: the tools run once per verb
+    over all of them (the Python tool's start-up is most of a small log's time)."""
+
+    data: bytes
+    files: tuple[tuple[str, int], ...]  # each log's name and first line (0-based), in order
+
+    def origin(self, index: int) -> str:
+        """The file and line of the input line `index`."""
+        at = bisect.bisect_right([first for _, first in self.files], index) - 1
+        name, first = self.files[at]
+        return f"{name}:{index - first + 1}"
+
+    def lines_of(self, output: bytes) -> dict[str, list[bytes]]:
+        """Output lines (one per input line), by log."""
+        lines = output.split(b"\n")[:-1]
+        bounds = [first for _, first in self.files] + [len(lines)]
+        return {name: lines[bounds[i]:bounds[i + 1]] for i, (name, _) in enumerate(self.files)}
+
+
+@lru_cache(maxsize=None)
+def corpus() -> Corpus:
+    parts, files, count = [], [], 0
+    for path in CORPUS_FILES:
+        data = path.read_bytes()
+        data = data if data.endswith(b"\n") or not data else data + b"\n"
+        files.append((str(path.relative_to(CORPUS)), count))
+        parts.append(data)
+        count += len(input_lines(data))
+    return Corpus(b"".join(parts), tuple(files))
+
+
+def test_real_logs() -> None:
+    check_stream(corpus().data, corpus().origin)
 
 
 def test_corpus_present() -> None:

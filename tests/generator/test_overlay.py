@@ -3,7 +3,10 @@ sentences, laid over the spec, under the same schema and rules; `new` starts the
 
 from __future__ import annotations
 
+import os
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -94,3 +97,23 @@ examples:
     with pytest.raises(SpecErrors) as caught:
         load_spec(SPEC, [overlay])
     assert [(e.file, e.line, e.rule) for e in caught.value.errors] == [(str(extension), 1, "S046")]
+
+
+def test_the_cache_between_runs_never_hides_a_change(overlay: Path, tmp_path: Path) -> None:
+    """The parsed and valid documents a run keeps for the next (NMEASPEC_GEN_CACHE) are found by
+    their text: a file changed after a valid run is parsed and checked again, whole."""
+    env = {**os.environ, "NMEASPEC_GEN_CACHE": str(tmp_path / "cache")}
+
+    def validate() -> subprocess.CompletedProcess:
+        return subprocess.run([sys.executable, "-m", "generator", "validate", "--spec-extra", str(overlay.resolve())],
+                              cwd=ROOT, env=env, capture_output=True, text=True)
+
+    assert validate().returncode == 0
+    assert any((tmp_path / "cache").glob("valid-*")) and any((tmp_path / "cache").glob("parsed-*/*"))
+    sentence = overlay / "proprietary" / "pacmepos.yaml"
+    text = sentence.read_text()
+    sentence.write_text(text + "colour: blue\n")
+    broken = validate()
+    assert broken.returncode == 1 and "pacmepos.yaml" in broken.stderr and "colour" in broken.stderr, broken.stderr
+    sentence.write_text(text)
+    assert validate().returncode == 0

@@ -52,38 +52,49 @@ class Venv:
         run(self.python, "-m", "pip", "install", "--quiet", "--disable-pip-version-check", *args)
 
 
-def _install(tmp_path_factory: pytest.TempPathFactory, name: str, extra: str = "") -> Venv:
-    home = tmp_path_factory.mktemp(name)
+@pytest.fixture(scope="session")
+def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The wheel pip builds from a copy of generated/python, as it does for a user's `pip install
+    DIR` (setuptools from PyPI, in an isolated build environment); built once, installed into each
+    fresh environment below."""
+    home = tmp_path_factory.mktemp("pywheel")
     source = home / "nmeaspec-src"
     shutil.copytree(GENERATED / "python", source, ignore=shutil.ignore_patterns("__pycache__", ".pytest_cache"))
+    run(sys.executable, "-m", "pip", "wheel", "--quiet", "--disable-pip-version-check", "--no-deps",
+        "--wheel-dir", home / "dist", source)
+    (built,) = (home / "dist").glob("nmeaspec-*.whl")
+    return built
+
+
+def _install(tmp_path_factory: pytest.TempPathFactory, wheel: Path, name: str, extra: str = "") -> Venv:
+    home = tmp_path_factory.mktemp(name)
     venv.create(home / "venv", with_pip=True)
     env = Venv(home / "venv")
     if extra:  # the extra's packages at the versions requirements.txt pins for the tests
-        env.pip(f"{source}[{extra}]", "--constraint", ROOT / "requirements.txt")
+        env.pip(f"{wheel}[{extra}]", "--constraint", ROOT / "requirements.txt")
     else:
-        env.pip(source)
+        env.pip(wheel)
     return env
 
 
 @pytest.fixture(scope="session")
-def installed(tmp_path_factory: pytest.TempPathFactory) -> Venv:
-    """A fresh virtual environment with a copy of generated/python installed by pip, as a user
-    would (the wheel is built by setuptools from PyPI in an isolated build environment): the
+def installed(tmp_path_factory: pytest.TempPathFactory, wheel: Path) -> Venv:
+    """A fresh virtual environment with generated/python installed by pip, as a user would: the
     standard library only, no extra."""
-    return _install(tmp_path_factory, "pyuser")
+    return _install(tmp_path_factory, wheel, "pyuser")
 
 
 @pytest.fixture(scope="session")
-def installed_serial(tmp_path_factory: pytest.TempPathFactory) -> Venv:
+def installed_serial(tmp_path_factory: pytest.TempPathFactory, wheel: Path) -> Venv:
     """The same with the serial extra (`pip install 'nmeaspec[serial]'`: pyserial), for `nmea
     listen` and `nmea send`."""
-    return _install(tmp_path_factory, "pyserialuser", "serial")
+    return _install(tmp_path_factory, wheel, "pyserialuser", "serial")
 
 
 @pytest.fixture(scope="session")
-def installed_report(tmp_path_factory: pytest.TempPathFactory) -> Venv:
+def installed_report(tmp_path_factory: pytest.TempPathFactory, wheel: Path) -> Venv:
     """The same with the `report` extra (`pip install 'nmeaspec[report]'`: matplotlib)."""
-    return _install(tmp_path_factory, "pyreportuser", "report")
+    return _install(tmp_path_factory, wheel, "pyreportuser", "report")
 
 
 def corpus_log(name: str) -> Path:

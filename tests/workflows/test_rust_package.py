@@ -1,11 +1,11 @@
-"""The Rust crate as a path dependency of a fresh cargo project: one receiver family only
+"""The Rust crate, packed as crates.io serves it, as a path dependency of a fresh cargo project: one receiver family only
 (`default-features = false, features = ["geos5"]`, still no_std), and `serde` with serde_json."""
 
 from __future__ import annotations
 
 import json
 import os
-import shutil
+import tarfile
 from pathlib import Path
 
 from .conftest import GENERATED, need, run
@@ -37,10 +37,23 @@ fn serializes_a_parsed_sentence() {
 '''
 
 
+def _packaged_crate(root: Path) -> Path:
+    """The crate as crates.io would hand it to a user: `cargo package` of generated/rust, unpacked.
+    Building it here is also the check that the package is complete (release-check packs the crate
+    without building it)."""
+    target = root / "package-target"
+    run("cargo", "package", "--quiet", "--no-verify", "--allow-dirty", "--manifest-path", GENERATED / "rust" / "Cargo.toml",
+        "--target-dir", target)
+    (crate,) = (target / "package").glob("nmeaspec-*.crate")
+    with tarfile.open(crate) as archive:
+        archive.extractall(root / "vendor", filter="data")
+    (unpacked,) = (root / "vendor").glob("nmeaspec-*")
+    return unpacked.rename(root / "vendor" / "nmeaspec")
+
+
 def _project(root: Path, name: str, dependency: str) -> Path:
-    crate = root / "vendor" / "nmeaspec"
-    if not crate.exists():
-        shutil.copytree(GENERATED / "rust", crate, ignore=shutil.ignore_patterns("target", "Cargo.lock"))
+    if not (root / "vendor" / "nmeaspec").exists():
+        _packaged_crate(root)
     project = root / name
     (project / "src").mkdir(parents=True)
     (project / "Cargo.toml").write_text(f'[package]\nname = "{name}"\nversion = "0.1.0"\nedition = "2021"\n\n'
