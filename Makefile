@@ -11,7 +11,7 @@ BIN     := build/bin
 TEST_BIN := build/test-bin
 CARGO_TARGET := build/rust-target
 
-.PHONY: generate validate check build test-bin footprint release-check changelog test test-quick test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows docs-site clean \
+.PHONY: generate validate check build test-bin footprint release-check changelog test test-quick test-steps system-deps test-runtimes test-generator test-python test-c test-c-memory test-rust test-rust-lint test-tools test-workflows docs-site clean \
         bench test-bench-smoke \
         fuzz fuzz-smoke fuzz-seeds fuzz-c fuzz-python fuzz-rust fuzz-inprocess fuzz-differential fuzz-faults fuzz-memory
 
@@ -74,8 +74,9 @@ test: system-deps
 system-deps:
 	tools/system_deps.sh
 
-test-steps: check test-runtimes test-generator test-python test-c test-c-memory test-rust test-tools test-workflows test-bench-smoke \
-        fuzz-smoke release-check
+# The longest first, so that the two lanes end together.
+test-steps: test-rust test-workflows test-rust-lint test-generator fuzz-smoke test-tools test-c-memory check test-c \
+        test-bench-smoke release-check test-runtimes test-python
 
 test-generator: $(STAMP)
 	$(PY) -m pytest -q tests/generator
@@ -179,17 +180,23 @@ test-c-memory: build/c/test_examples_san build/c/nmea-c-san build/c/test_example
 	valgrind -q --error-exitcode=1 --leak-check=full $(TEST_BIN)/nmea-c decode < tests/agreement/edge_cases.txt > /dev/null
 	valgrind -q --error-exitcode=1 --leak-check=full $(TEST_BIN)/nmea-c encode < build/c/valgrind.jsonl > /dev/null
 
-# The crate's receiver features (default: all of them); each must build and lint on its own.
+# The generated crate's tests (with std: the dev build the tools' tests share; without std), and
+# apart, so that the two run side by side, its lints: clippy with every feature and with none, each
+# receiver feature (default: all of them) on its own, rustfmt. The lints have their own target
+# directory: they share no build with the tests, and one directory would hold one cargo at a time.
 RUST_VENDORS = $(shell sed -n 's/^\([a-z0-9_]*\) = \[\]$$/\1/p' generated/rust/Cargo.toml | grep -vx std)
+LINT_TARGET := build/rust-lint-target
 
 test-rust:
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --features std --target-dir $(CARGO_TARGET)
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --no-default-features --lib --target-dir $(CARGO_TARGET)
-	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --features std,serde --target-dir $(CARGO_TARGET) -- -D warnings
-	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --target-dir $(CARGO_TARGET) -- -D warnings
+
+test-rust-lint:
+	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --features std,serde --target-dir $(LINT_TARGET) -- -D warnings
+	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --target-dir $(LINT_TARGET) -- -D warnings
 	set -e; for vendor in $(RUST_VENDORS); do \
 		cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --lib --no-default-features --features $$vendor \
-			--target-dir $(CARGO_TARGET) -- -D warnings; \
+			--target-dir $(LINT_TARGET) -- -D warnings; \
 	done
 	cargo fmt --manifest-path generated/rust/Cargo.toml --check
 
