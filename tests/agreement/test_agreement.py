@@ -43,7 +43,12 @@ def input_lines(data: bytes) -> list[bytes]:
     return [p[:-1] if p.endswith(b"\r") else p for p in parts]
 
 
-def agreed(args: list[str], data: bytes, origin: Callable[[int], str] = lambda i: f"line {i + 1}") -> bytes:
+def line_number(index: int) -> str:
+    """How a failure names input line `index` of a stream read on its own."""
+    return f"line {index + 1}"
+
+
+def agreed(args: list[str], data: bytes, origin: Callable[[int], str] = line_number) -> bytes:
     """The output of `args`, after checking that the three tools agree byte for byte; `origin`
     names the input line of an index in a failure."""
     outputs = {tool: run(tool, args, data) for tool in TOOLS}
@@ -60,12 +65,12 @@ def agreed(args: list[str], data: bytes, origin: Callable[[int], str] = lambda i
 
 
 @lru_cache(maxsize=None)
-def decode_all(data: bytes, values: bool = False, origin: Callable[[int], str] = lambda i: f"line {i + 1}") -> bytes:
+def decode_all(data: bytes, values: bool = False, origin: Callable[[int], str] = line_number) -> bytes:
     """decode's output, after checking that the three tools agree byte for byte."""
     return agreed(["decode", "--values"] if values else ["decode"], data, origin)
 
 
-def check_stream(data: bytes, origin: Callable[[int], str] = lambda i: f"line {i + 1}") -> list[dict]:
+def check_stream(data: bytes, origin: Callable[[int], str] = line_number) -> list[dict]:
     """The properties every input must have; returns the decoded objects. `origin` names the input
     line of an index in a failure."""
     lines = input_lines(data)
