@@ -440,8 +440,7 @@ def enum_view(e: EnumDef) -> dict:
         "def": enum_def(e),
         "codes": f"{e.id}_codes",
         "doc": doc_lines(f"{e.id}: {e.name}. {e.doc}"),
-        "class": {"digits": "NMEA_CODES_DIGITS", "letters": "NMEA_CODES_LETTERS", "alnum": "NMEA_CODES_ALNUM"}[
-            e.code_class],
+        "class": f"NMEA_CODES_{e.code_class.upper()}",
         "values": [{
             "const": enum_const(e, v.id),
             "code": c_str(v.code),

@@ -646,7 +646,7 @@ def enum_view(e: EnumDef) -> dict:
         "variants": variants,
         "expected": fmt_const(4, "const EXPECTED: &'static str", rust_str(codes_expected(e, False))),
         "expected_chars": fmt_const(4, "const EXPECTED_CHARS: &'static str", rust_str(codes_expected(e, True))),
-        "class": {"digits": "Digits", "letters": "Letters", "alnum": "Alnum"}[e.code_class],
+        "class": e.code_class.capitalize(),
         "all": fmt_const_slice(4, "const ALL: &'static [Self]", [f"Self::{v['name']}" for v in variants]),
     }
 

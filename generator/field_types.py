@@ -252,7 +252,7 @@ class CodeType(FieldType):
         if f.format or self.per_char:
             return super().placeholders(f)
         assert f.enum is not None
-        return [("x" if f.enum.code_class == "digits" else "a") * f.enum.max_len]
+        return [("a" if f.enum.letters else "x") * f.enum.max_len]
 
     def pairing_problem(self, f: Field, value: Any) -> str | None:
         if not self.pairing:

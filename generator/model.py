@@ -68,6 +68,7 @@ class EnumDef:
     doc: str
     values: list[EnumValue]
     origin: Origin
+    closed: bool = False         # `codes: closed`: a code the spec does not list is refused, never kept
 
     # Derived: what an unknown code must look like to be kept rather than rejected.
     @property
@@ -88,7 +89,10 @@ class EnumDef:
 
     @property
     def code_class(self) -> str:
-        """`digits`, `letters` or `alnum`: the characters an unknown code may use."""
+        """`digits`, `letters` or `alnum`: the characters an unknown code may use; `closed`: no
+        unknown code is kept."""
+        if self.closed:
+            return "closed"
         if self.digits and not self.letters:
             return "digits"
         if self.letters and not self.digits:

@@ -112,8 +112,9 @@ typedef struct {
     nmea_number minutes;
 } nmea_coordinate;
 
-/** Which characters a code unknown to the spec may use to be kept rather than rejected. */
-typedef enum { NMEA_CODES_DIGITS, NMEA_CODES_LETTERS, NMEA_CODES_ALNUM } nmea_code_class;
+/** Which characters a code unknown to the spec may use to be kept rather than rejected;
+    NMEA_CODES_CLOSED: none (a closed set such as N/S or A/V refuses every other code). */
+typedef enum { NMEA_CODES_DIGITS, NMEA_CODES_LETTERS, NMEA_CODES_ALNUM, NMEA_CODES_CLOSED } nmea_code_class;
 
 /** One code of a lookup table: the wire text and the spec's id. */
 typedef struct {

@@ -643,8 +643,9 @@ def parse_coordinate(text: str, max_degree_digits: int, max_degrees: int) -> Coo
 
 def is_code_like(text: str, code_class: str, min_len: int, max_len: int) -> bool:
     """Whether an enum code the spec does not know is still well formed for its enum: the same
-    length range and character class (`digits`, `letters`, `alnum`) as the known codes."""
-    if not min_len <= len(text) <= max_len or not text.isascii():
+    length range and character class (`digits`, `letters`, `alnum`) as the known codes. A closed
+    enum (`closed`: N/S, A/V, units) keeps none."""
+    if code_class == "closed" or not min_len <= len(text) <= max_len or not text.isascii():
         return False
     if code_class == "digits":
         return text.isdigit()

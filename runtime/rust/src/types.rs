@@ -757,6 +757,8 @@ pub enum CodeClass {
     Letters,
     /// ASCII letters and digits.
     Alnum,
+    /// None: a closed set (N/S, A/V, units) refuses every code it does not list.
+    Closed,
 }
 
 impl CodeClass {
@@ -768,6 +770,7 @@ impl CodeClass {
                 Self::Digits => b.is_ascii_digit(),
                 Self::Letters => b.is_ascii_alphabetic(),
                 Self::Alnum => b.is_ascii_alphanumeric(),
+                Self::Closed => false,
             })
     }
 }
