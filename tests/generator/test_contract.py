@@ -61,7 +61,7 @@ def test_error_kinds() -> None:
     rust_kinds = [snake(k) for k in re.findall(r"^\s*(\w+),", rust_enum, re.M)]
     assert sorted(rust_kinds) == sorted(kinds + own["rust"])
     error_rs = (RUNTIME / "rust" / "src" / "error.rs").read_text(encoding="utf-8")
-    as_str = one(r"pub const fn as_str\(self\) -> &'static str \{(.*?)\n    \}", error_rs)
+    as_str = one(r"impl ErrorKind \{.*?pub const fn as_str\(self\) -> &'static str \{(.*?)\n    \}", error_rs)
     rust_names = dict(re.findall(r'Self::(\w+) => "(\w+)"', as_str))
     assert {snake(variant): name for variant, name in rust_names.items()} == {k: k for k in rust_kinds}
     python_kinds = set(re.findall(r'NmeaError\(\s*"(\w+)"', PYTHON))

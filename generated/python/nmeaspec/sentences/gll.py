@@ -80,6 +80,7 @@ class GllSentinel(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({2, 4, 5, 6, 7})
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("GLL", "standard", "$", 6, 7, (

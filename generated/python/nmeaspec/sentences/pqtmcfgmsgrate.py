@@ -192,6 +192,7 @@ class PqtmcfgmsgrateRead(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PQTMCFGMSGRATE"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = "R"
+    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({2})
     REPLIES: ClassVar[tuple[str, ...]] = ("PQTMCFGMSGRATE_RESULT",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (

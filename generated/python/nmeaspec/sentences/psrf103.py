@@ -97,6 +97,7 @@ class Psrf103ShortCodes(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PSRF103"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
+    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({3})
     REPLIES: ClassVar[tuple[str, ...]] = ("GGA", "GLL", "GSA", "GSV", "RMC", "VTG")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (

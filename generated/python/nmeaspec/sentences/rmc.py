@@ -104,6 +104,7 @@ class RmcSentinel(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({1, 2, 4, 6, 7, 8, 9, 10, 11, 12, 13})
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMC", "standard", "$", 11, 13, (
@@ -185,6 +186,7 @@ class RmcNoVariationDirection(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({1, 2, 3, 4, 5, 6, 7, 8, 9, 10})
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMC", "standard", "$", 11, 11, (

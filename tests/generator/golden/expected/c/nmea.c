@@ -488,13 +488,13 @@ nmea_reply nmea_reply_to(const nmea_sentence *s, nmea_sentence_id command)
 static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
                           nmea_error *err)
 {
-    static const nmea_options strict = {false, false, NULL};
+    static const nmea_options defaults = {false, false, NULL, false};
     nmea_frame f;
     nmea_wire wire;
     const nmea_layouts *layouts = NULL;
 
     if (!options)
-        options = &strict;
+        options = &defaults;
     out->problems = NULL;
     if (len > NMEA_MAX_LINE) { /* not even read (a framed overlong line has no bytes) */
         nmea_error_too_long(err, len);

@@ -16,11 +16,12 @@
  * Serializing a parsed sentence gives back the exact bytes of the line.
  *
  * From a serial port or socket, nmea_framer cuts the bytes into lines, and nmea_parse_ex takes
- * options (keep sentences with bad fields as problems, require checksums):
+ * options (keep sentences with bad fields as problems, require checksums, refuse numbers outside
+ * their range):
  *
  *     static nmea_framer framer;              (zeroed: ready)
- *     nmea_problems problems;                 (the fields lenient parsing left empty)
- *     nmea_options options = {true, false, &problems};   (lenient, require_checksum, problems)
+ *     nmea_problems problems;                 (numbers kept outside their range, fields left empty)
+ *     nmea_options options = {true, false, &problems, false};   (lenient, require_checksum, problems, strict)
  *     nmea_framed line;
  *     while (nmea_framer_push(&framer, &chunk, &chunk_len, &line))
  *         if (nmea_parse_ex(&s, line.ptr, line.len, &options, &err))

@@ -127,7 +127,7 @@ static bool regroup(nmea_sentence *s)
 
 static bool check(const example *ex)
 {
-    static const nmea_options lenient = {true, false, NULL}; /* nmea_decode_json_ex keeps the problems */
+    static const nmea_options lenient = {true, false, NULL, false}; /* nmea_decode_json_ex keeps the problems */
     nmea_sentence s, again;
     nmea_error err;
     size_t n;

@@ -65,7 +65,8 @@ use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};
 pub use runtime::{
     stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Encoding, Entries, EntryIter, Error,
     ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name, Number, Options, ParamValue, Parameter,
-    ParameterError, Problem, Problems, ReplyOutcome, Sign, Table, Texts, Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS,
+    ParameterError, Problem, ProblemKind, Problems, ReplyOutcome, Sign, Table, Texts, Time, BUILD_CAPACITY, MAX_LINE,
+    MAX_PROBLEMS,
 };
 
 pub use sentences::*;
@@ -267,6 +268,19 @@ impl Layouts for LayoutId {
         match self.selector() {
             Some(keyword) => Some((keyword, self.selector_at())),
             None => None,
+        }
+    }
+
+    fn main_layout(self) -> Self {
+        match self {
+            Self::FixShort => Self::Fix,
+            _ => self,
+        }
+    }
+
+    fn same_as_main(self) -> &'static [u16] {
+        match self {
+            _ => &[],
         }
     }
 
