@@ -68,6 +68,17 @@ def test_error_kinds() -> None:
     assert python_kinds == set(kinds + own["python"])
 
 
+def test_problem_kinds() -> None:
+    kinds = CONTRACT["problem_kinds"]
+    c_enum = one(r"typedef enum \{([^}]*)\} nmea_problem_kind;", C_HEADER)
+    assert sorted(re.findall(r'"(\w+)"', c_enum)) == sorted(kinds)
+    json_md = (RUNTIME / "json.md").read_text(encoding="utf-8")
+    for kind in kinds:
+        for language, source in SOURCES.items():
+            assert f'"{kind}"' in source, f"{language} runtime: problem kind {kind}"
+        assert f'"kind":"{kind}"' in json_md
+
+
 def fragments(message: str) -> list[str]:
     """The literal runs of a message pattern, quotes around a {quoted} part left out."""
     runs = re.split(r"\{\w+\}", message)
