@@ -178,8 +178,8 @@ def _first_fit(
         except NmeaError as err:
             errors.append((layout, err))
             if layout.VARIANT is None:
-                bad = err.kind == "bad_field" and err.field is not None
-                refused = (layout.SENTENCE, err.field) if bad else None
+                bad = err.field if err.kind == "bad_field" else None
+                refused = (layout.SENTENCE, bad) if bad is not None else None
     contenders = [err for layout, err in errors if runtime.holds_selector(layout, fields)]
     contenders = contenders or [err for _, err in errors]
     raise next((err for err in contenders if err.kind == "bad_field"), contenders[0])
