@@ -136,7 +136,7 @@ def _enum(doc: Document) -> EnumDef:
     values = [EnumValue(v["code"], v["id"], v["doc"], v.get("manuals", []), v.get("since"),
                         Origin(str(doc.path), ("values", i)), v.get("cli"))
               for i, v in enumerate(d["values"])]
-    return EnumDef(d["enum"], d["name"], d["doc"], values, Origin(str(doc.path), ()))
+    return EnumDef(d["enum"], d["name"], d["doc"], values, Origin(str(doc.path), ()), d["codes"] == "closed")
 
 
 def _field(data: dict[str, Any], origin: Origin) -> Field:

@@ -401,7 +401,7 @@ def _check_example(spec: Spec, sentence: Sentence, example: Example, manual_ids:
     line = example.line
     assert line is not None
     try:
-        decoded = reference.decode(spec, line)
+        decoded = reference.decode(spec, line, strict=True)  # within every range the spec gives
     except reference.rt.NmeaError as err:
         report(o, "S033", f"does not decode: {err}", "corrected" if example.corrected else "raw")
         return

@@ -290,12 +290,14 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
             ("count_offset", f"offsetof({struct}, {group_view['count']})" if group_view["count"] else "NO_MEMBER"),
         ])
     head_member = {"standard": "talker", "text": "as_received"}.get(kind)
+    same_as_main = sentence.same_as_main(layout) if layout.id else []
     layout_init = _designated([
         ("sentence", c_str(sentence.id)),
         ("address", c_str(sentence.address or "") if kind != "standard" else None),
         ("command", c_str((sentence.address or "").upper()) if kind == "text" else None),
         ("variant", c_str(layout.id) if layout.id else None),
         ("selector", c_str(layout.selector.upper()) if layout.selector is not None else None),  # upper_is
+        ("same_as_main", f"{snake}_same_as_main" if same_as_main else None),
         ("fields", f"{snake}_fields" if ordered else "NO_FIELDS"),
         ("group", f"&{snake}_group" if group is not None else None),
         ("selector_at", layout.selector_at if layout.selector is not None else None),
@@ -338,6 +340,7 @@ def layout_view(sentence: Sentence, layout: Layout, ranges: Ranges) -> dict:
         "optional": optional,
         "fields": ordered,
         "init": layout_init,
+        "same_as_main": same_as_main,
         "group_init": group_init,
         "head_fast": _conditions(head, "fast"),
         "tail_fast": _conditions(tail, "fast"),
@@ -440,8 +443,7 @@ def enum_view(e: EnumDef) -> dict:
         "def": enum_def(e),
         "codes": f"{e.id}_codes",
         "doc": doc_lines(f"{e.id}: {e.name}. {e.doc}"),
-        "class": {"digits": "NMEA_CODES_DIGITS", "letters": "NMEA_CODES_LETTERS", "alnum": "NMEA_CODES_ALNUM"}[
-            e.code_class],
+        "class": f"NMEA_CODES_{e.code_class.upper()}",
         "values": [{
             "const": enum_const(e, v.id),
             "code": c_str(v.code),

@@ -208,7 +208,19 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
                         f"({''.join(reply_test(c) + ', ' for c in p.conditions)})),"
                         for p in pairing.pairings(sentence)],
         "outcome": _outcome(layout),
+        "same_as_main": _same_as_main(sentence, layout),
     }
+
+
+def _same_as_main(sentence: Sentence, layout: Layout) -> list[str]:
+    """The SAME_AS_MAIN line of a variant (wrapped as ruff would), or none."""
+    fields = sentence.same_as_main(layout) if layout.id else []
+    if not fields:
+        return []
+    head, value = "    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset(", "{" + ", ".join(map(str, fields)) + "}"
+    if len(head) + len(value) + 1 <= 100:
+        return [f"{head}{value})"]
+    return [head, f"        {value}", "    )"]
 
 
 def reply_test(condition: pairing.Condition) -> str:

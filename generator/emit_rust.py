@@ -646,7 +646,7 @@ def enum_view(e: EnumDef) -> dict:
         "variants": variants,
         "expected": fmt_const(4, "const EXPECTED: &'static str", rust_str(codes_expected(e, False))),
         "expected_chars": fmt_const(4, "const EXPECTED_CHARS: &'static str", rust_str(codes_expected(e, True))),
-        "class": {"digits": "Digits", "letters": "Letters", "alnum": "Alnum"}[e.code_class],
+        "class": e.code_class.capitalize(),
         "all": fmt_const_slice(4, "const ALL: &'static [Self]", [f"Self::{v['name']}" for v in variants]),
     }
 
@@ -829,6 +829,8 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             fast_arm = with_cfg(8, gate, fmt_arm(8, f"LayoutId::{name}", f"read_layout::<LayoutId, {name}, O>(fields, line, rest)"))
             layouts.append({
                 "sentence": s, "name": name, "layout": view["layout"], "title": view["title"], "type": view["type"],
+                "main": s.layout_camel(s.layout),
+                "same_as_main": s.same_as_main(view["layout"]) if view["layout"].id else [],
                 "lifetime": view["lifetime"], "kind": camel(s.kind), "parse_arm": parse_arm, "fast_arm": fast_arm, "cfg": gate,
                 "framing_arm": with_cfg(12, gate, fmt_arm(12, f"Self::{name}", framing_expr(s))),
                 "replies_arm": with_cfg(12, gate, fmt_slice(12, f"Self::{name} => ", [f"Self::{r}" for r in reply_names],

@@ -1,4 +1,5 @@
-"""Language-neutral test vectors: every example of the manuals, with the JSON each tool must print."""
+"""Language-neutral test vectors: every example of the manuals, with the JSON each tool must print,
+and lines outside what the manuals allow, with what each tool prints for them by its options."""
 
 from __future__ import annotations
 
@@ -43,6 +44,27 @@ def example_vectors(spec: Spec) -> list[dict]:
     return out
 
 
+# Lines that show how parsing treats a value outside what the manual allows, each decoded with
+# the tools' options below: a number outside its range is kept and flagged unless --strict; an
+# unknown code of a closed enum, or a line that a variant is not there for, is refused.
+TOLERANCE_LINES = (
+    "$PUBX,03,02,1,-,014,-1,08,000,12,U,207,-2,28,009*5C",  # u-blox: satellites below the horizon
+    "$GPRMC,225446,A,4916.45,N,12311.12,W,000.5,454.7,191194,020.3,E*6C",  # course over 359.9
+    "$GPRMC,225446,X,4916.45,N,12311.12,W,000.5,054.7,191194,020.3,E*71",  # status X: closed A/V
+    "$GPRMC,225446,A,4916.45,Q,12311.12,W,000.5,054.7,191194,020.3,E*77",  # hemisphere Q: not `sentinel`
+)
+TOLERANCE_OPTIONS = ((), ("--strict",), ("--lenient", "--strict"))
+
+
+def tolerance_vectors(spec: Spec) -> list[dict]:
+    return [{"line": line, "options": list(options),
+             "decode": reference.decode_json(spec, line, lenient="--lenient" in options, strict="--strict" in options)}
+            for line in TOLERANCE_LINES for options in TOLERANCE_OPTIONS]
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
-    lines = [json.dumps(v, ensure_ascii=True, separators=(",", ":")) for v in example_vectors(spec)]
-    return {"vectors/examples.jsonl": "".join(line + "\n" for line in lines)}
+    def jsonl(records: list[dict]) -> str:
+        return "".join(json.dumps(r, ensure_ascii=True, separators=(",", ":")) + "\n" for r in records)
+
+    return {"vectors/examples.jsonl": jsonl(example_vectors(spec)),
+            "vectors/tolerance.jsonl": jsonl(tolerance_vectors(spec))}

@@ -118,6 +118,11 @@ class FieldType:
         """How the manual writes the field's wire text, one string per wire field."""
         return [f.format or self.placeholder]
 
+    def readings(self, f: Field) -> list[tuple[Any, ...]]:
+        """What field `f` takes, one entry per wire field: two fields (of two layouts) with equal
+        readings take the same texts as the same values."""
+        return [(self.name, f.min, f.max, f.max_length, f.value, f.enum_id)]
+
     def pairing_problem(self, f: Field, value: Any) -> str | None:
         """Why `value` (expect form) cannot be a value of `f` in a reply's `when` or `outcome`."""
         kinds = ", ".join(t.name for t in TYPES.values() if t.pairing)
@@ -188,6 +193,9 @@ class CoordinateType(FieldType):
         parts = (f.format or self.placeholder).split(",")
         return parts if len(parts) == 2 else [parts[0], "a"]
 
+    def readings(self, f: Field) -> list[tuple[Any, ...]]:
+        return [(self.name,), ("codes", tuple(self.hemispheres))]  # the hemisphere: a closed set
+
 
 @dataclass(frozen=True)
 class WordType(FieldType):
@@ -252,7 +260,13 @@ class CodeType(FieldType):
         if f.format or self.per_char:
             return super().placeholders(f)
         assert f.enum is not None
-        return [("x" if f.enum.code_class == "digits" else "a") * f.enum.max_len]
+        return [("a" if f.enum.letters else "x") * f.enum.max_len]
+
+    def readings(self, f: Field) -> list[tuple[Any, ...]]:
+        assert f.enum is not None
+        if f.enum.closed and not self.per_char:  # as a coordinate's hemisphere reads N or S
+            return [("codes", tuple(sorted(v.code for v in f.enum.values)))]
+        return super().readings(f)
 
     def pairing_problem(self, f: Field, value: Any) -> str | None:
         if not self.pairing:

@@ -68,6 +68,7 @@ class EnumDef:
     doc: str
     values: list[EnumValue]
     origin: Origin
+    closed: bool = False         # `codes: closed`: a code the spec does not list is refused, never kept
 
     # Derived: what an unknown code must look like to be kept rather than rejected.
     @property
@@ -88,7 +89,10 @@ class EnumDef:
 
     @property
     def code_class(self) -> str:
-        """`digits`, `letters` or `alnum`: the characters an unknown code may use."""
+        """`digits`, `letters` or `alnum`: the characters an unknown code may use; `closed`: no
+        unknown code is kept."""
+        if self.closed:
+            return "closed"
         if self.digits and not self.letters:
             return "digits"
         if self.letters and not self.digits:
@@ -267,6 +271,19 @@ class Layout:
             at += item.wire_width
         return None
 
+    def wire_readings(self) -> list[tuple[Any, ...]] | None:
+        """What each wire field takes (field_types' readings), in wire order, optional trailing
+        fields included; None when a repeated group of variable length moves the fields after
+        it from line to line."""
+        g = self.group
+        if g is not None and not g.is_fixed:
+            return None
+        out: list[tuple[Any, ...]] = []
+        for item in self.items:
+            for f in item.fields * item.max if isinstance(item, Group) else [item]:
+                out += f.field_type.readings(f)
+        return out
+
     @property
     def min_fields(self) -> int:
         g = self.group
@@ -367,6 +384,17 @@ class Sentence:
     @property
     def layouts(self) -> list[Layout]:
         return [self.layout, *self.variants]
+
+    def same_as_main(self, variant: Layout) -> list[int]:
+        """The wire fields (1-based) that `variant` reads as the main layout does. A line the main
+        layout refuses for one of them is not one the variant exists for, so the variant is not
+        tried on it; a line refused for its field count, or for a field the variant reads
+        otherwise, is. (None when no line has a field count both layouts take.)"""
+        main, other = self.layout.wire_readings(), variant.wire_readings()
+        if main is None or other is None or variant.max_fields < self.layout.min_fields \
+                or variant.min_fields > self.layout.max_fields:
+            return []
+        return [i for i, (a, b) in enumerate(zip(main, other), 1) if a == b]
 
     @property
     def camel(self) -> str:

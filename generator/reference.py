@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import importlib.util
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from decimal import InvalidOperation
 from types import ModuleType
 from typing import Any
@@ -40,6 +40,7 @@ class Decoded:
     # For every item on the wire: (field or group id, value, wire texts). A group's value is a
     # list of entries, each a list of (field id, value, texts).
     values: list[tuple[str, Any, Any]]
+    problems: list[Any] = field(default_factory=list)   # the runtime's NmeaError of each problem
 
 
 class _EnumMember:
@@ -66,17 +67,65 @@ def candidates(spec: Spec, line: str) -> tuple[Any, list[tuple[Sentence, Layout]
     return frame, found
 
 
-def decode(spec: Spec, line: str) -> Decoded:
+def decode(spec: Spec, line: str, lenient: bool = False, strict: bool = False) -> Decoded:
+    """The line decoded as every runtime's parse does it with these options: a number outside its
+    field's range is kept and listed as a problem unless `strict`; `lenient` leaves the other
+    fields at fault empty (one at a time, each a problem)."""
     frame, candidates_ = candidates(spec, line)
     if not candidates_:
         return Decoded(frame, None, None, [])
+    try:
+        return _first_fit(candidates_, frame)
+    except rt.NmeaError as err:
+        if err.kind != "bad_field" or (strict and not lenient) or line[:1] not in ("$", "!"):  # text commands: strict
+            raise
+        return _refit(candidates_, frame, err, lenient, strict)
+
+
+def _first_fit(candidates_: list[tuple[Sentence, Layout]], frame: Any) -> Decoded:
+    """The first layout that reads the line. A variant is passed over when the main layout of
+    its sentence, tried last before it, refused the line at a field the variant reads the same
+    way (Sentence.same_as_main): it is not what the variant is there for."""
     errors = []
+    refused: tuple[Sentence, int] | None = None   # the main layout tried last: its bad field
     for sentence, layout in candidates_:
+        if layout.id is not None and refused is not None and refused[0] is sentence \
+                and refused[1] in sentence.same_as_main(layout):
+            continue
         try:
             return Decoded(frame, sentence, layout, _decode_layout(sentence, layout, frame))
         except rt.NmeaError as err:
             errors.append((layout, err))
+            if layout.id is None:
+                refused = (sentence, err.field) if err.kind == "bad_field" and err.field is not None else None
     raise _best_error(errors, frame)
+
+
+def _refit(candidates_: list[tuple[Sentence, Layout]], frame: Any, err: Any, lenient: bool, strict: bool) -> Decoded:
+    """The runtimes' second reading of a line no layout fits: one field at fault at a time, a
+    number outside its range kept (unless `strict`) or (`lenient`) any other field left empty,
+    until a layout fits, a field cannot be helped, or there would be MAX_PROBLEMS + 1 problems."""
+    fields = list(frame.fields)
+    problems = []
+    while err.kind == "bad_field" and err.field is not None and fields[err.field - 1] \
+            and len(problems) < rt.MAX_PROBLEMS:
+        if err.out_of_range and not strict:
+            fields[err.field - 1] = rt.RangeKept(fields[err.field - 1])
+        elif lenient:
+            fields[err.field - 1] = ""
+            err.out_of_range = False  # its problem: a field left empty, not a value kept
+        else:
+            break
+        problems.append(err)
+        try:
+            decoded = _first_fit(candidates_, rt.Frame(frame.start, frame.address, fields, frame.checksum))
+        except rt.NmeaError as again:
+            err = again
+            continue
+        decoded.frame = frame
+        decoded.problems = problems
+        return decoded
+    raise err
 
 
 def holds_selector(layout: Layout, fields: list[str]) -> bool:
@@ -223,13 +272,16 @@ def to_json(decoded: Decoded, values: bool = False) -> str:
         return head + '"talker":null,"sentence":null,"variant":null,"fields":' + fields + tail
     variant = rt.json_opt(decoded.layout.id if decoded.layout else None)
     talker = "null" if decoded.sentence.is_proprietary else rt.json_str(frame.address[:-3])
+    problems = ""
+    if decoded.problems:
+        problems = ',"problems":[' + ",".join(rt.problem_json(p) for p in decoded.problems) + "]"
     return (head + f'"talker":{talker},"sentence":{rt.json_str(decoded.sentence.id)},'
-            f'"variant":{variant},"fields":{fields_json(decoded, values)}' + tail)
+            f'"variant":{variant},"fields":{fields_json(decoded, values)}{problems}' + tail)
 
 
-def decode_json(spec: Spec, line: str, values: bool = False) -> str:
-    """decode's output line for `line`: the sentence or the error."""
+def decode_json(spec: Spec, line: str, values: bool = False, lenient: bool = False, strict: bool = False) -> str:
+    """decode's output line for `line` (with decode's --lenient, --strict): the sentence or the error."""
     try:
-        return to_json(decode(spec, line), values)
+        return to_json(decode(spec, line, lenient, strict), values)
     except rt.NmeaError as err:
         return err.to_json()

@@ -30,8 +30,8 @@ static char json2[NMEA_JSON_MAX];
 static char scratch[NMEA_JSON_MAX];
 
 static nmea_problems problems;
-static const nmea_options LENIENT = {true, false, &problems};
-static const nmea_options REQUIRED = {false, true, NULL};
+static const nmea_options LENIENT = {true, false, &problems, false};
+static const nmea_options REQUIRED = {false, true, NULL, false};
 
 static void check(bool ok)
 {

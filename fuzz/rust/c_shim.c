@@ -19,6 +19,7 @@ size_t shim_decode(const char *line, size_t len, int values, int lenient, int re
     options.lenient = lenient != 0;
     options.require_checksum = required != 0;
     options.problems = &problems;
+    options.strict = false;
     return nmea_decode_json_ex(line, len, values != 0, &options, out, cap);
 }
 

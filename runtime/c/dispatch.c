@@ -2,7 +2,8 @@
    layout's address), the tables of layouts by address that the generated code writes
    (nmea_layouts, find_layouts), and the rules that pick among the layouts of one address: the
    first that reads the line wins, the error of the layouts whose keyword the line holds is the
-   one reported, lenient parsing leaves the fields at fault empty one at a time (refit). */
+   one reported, a second reading keeps numbers outside their range or (lenient) leaves the
+   fields at fault empty, one at a time (refit). */
 
 /* The wire of a line whose address must be $--<sentence> (or !--<sentence>: `start`). */
 NMEA_INTERNAL bool frame_known(nmea_wire *wire, const char *line, size_t len, char start, const char *sentence,
@@ -184,19 +185,40 @@ static void keep_error(nmea_error *kept, bool *have, const nmea_error *err)
     }
 }
 
-/* The first of the layouts that reads the wire. When none does, `err` gets the error of the
-   layouts whose keyword the first field holds (else of all of them): the first bad field among
-   them, else their first error. */
+/* Whether variant `l` reads wire field `field` as its main layout does (see same_as_main). */
+static bool same_as_main(const layout *l, unsigned field)
+{
+    const uint16_t *at;
+    for (at = l->same_as_main; at && *at; at++)
+        if (*at == field)
+            return true;
+    return false;
+}
+
+/* The first of the layouts that reads the wire; a variant is passed over when the main layout
+   of its sentence, tried last before it, refused a field the variant reads the same way. When
+   none does, `err` gets the error of the layouts whose keyword the first field holds (else of
+   all of them): the first bad field among them, else their first error. */
 NMEA_OUTLINE bool first_of_many(nmea_sentence *out, const nmea_layouts *layouts, const nmea_wire *wire,
                                 nmea_error *err)
 {
     nmea_error attempt, chosen, fallback;
     bool have_chosen = false, have_fallback = false;
+    const char *refused = NULL; /* the sentence of the main layout tried last, when it refused */
+    unsigned refused_field = 0; /* and the field it refused */
     size_t i;
 
     for (i = 0; i < layouts->count; i++) {
+        const layout *l = LAYOUTS[layouts->ids[i]];
+        if (l->variant && refused && strcmp(refused, l->sentence) == 0 && same_as_main(l, refused_field))
+            continue;
         if (read_layout(out, layouts->ids[i], wire, &attempt))
             return true;
+        if (!l->variant) {
+            bool bad = attempt.kind == NMEA_ERR_BAD_FIELD && attempt.field;
+            refused = bad ? l->sentence : NULL;
+            refused_field = attempt.field;
+        }
         if (holds_selector(layouts->ids[i], wire))
             keep_error(&chosen, &have_chosen, &attempt);
         keep_error(&fallback, &have_fallback, &attempt);
@@ -214,19 +236,27 @@ static inline bool first_fit(nmea_sentence *out, const nmea_layouts *layouts, co
     return first_of_many(out, layouts, wire, err);
 }
 
-/* first_fit, when it fails and `lenient`, the fields at fault are read as empty one at a time,
-   each kept as a problem, until a layout reads the wire, a field at fault is already empty, or
-   a problem would be one too many. The sentence's problems are then kept in `keep` (NULL: not
-   kept). */
-NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, nmea_problems *keep,
+/* After first_fit fails: the fields at fault one at a time, a number outside its range kept as
+   sent (unless options->strict) or any other (options->lenient) read as empty, each kept as a
+   problem, until a layout reads the wire, a field cannot be helped, or a problem would be one
+   too many. The sentence's problems are then kept in options->problems (NULL: not kept). */
+NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                         nmea_error *err)
 {
+    nmea_problems *keep = options->problems;
     nmea_problems problems;
     problems.count = 0;
     /* a bad field's text is the field's text on the wire, empty once it has been left empty */
     while (err->kind == NMEA_ERR_BAD_FIELD && err->field && err->text.len && problems.count < NMEA_MAX_PROBLEMS) {
-        problem_of(&problems.list[problems.count++], err);
-        wire->blank[wire->blanks++] = (uint16_t)err->field;
+        if (err->out_of_range && !options->strict) {
+            problem_of(&problems.list[problems.count++], err, NMEA_PROBLEM_OUT_OF_RANGE);
+            wire->blank[wire->blanks++] = (uint16_t)(err->field | RANGE_KEPT);
+        } else if (options->lenient) {
+            problem_of(&problems.list[problems.count++], err, NMEA_PROBLEM_LEFT_EMPTY);
+            wire->blank[wire->blanks++] = (uint16_t)err->field;
+        } else {
+            return false;
+        }
         if (first_fit(out, layouts, wire, err)) {
             if (keep) {
                 keep->count = problems.count;
@@ -239,12 +269,13 @@ NMEA_OUTLINE bool refit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wi
     return false;
 }
 
-/* The first of the layouts that reads the wire (first_fit); when none does and the options are
-   lenient, refit. */
+/* The first of the layouts that reads the wire (first_fit); when none does, refit (unless the
+   options are strict and not lenient: then nothing is kept). */
 static inline bool fit(nmea_sentence *out, const nmea_layouts *layouts, nmea_wire *wire, const nmea_options *options,
                        nmea_error *err)
 {
-    return first_fit(out, layouts, wire, err) || (options->lenient && refit(out, layouts, wire, options->problems, err));
+    return first_fit(out, layouts, wire, err) ||
+           ((!options->strict || options->lenient) && refit(out, layouts, wire, options, err));
 }
 
 static void write_sentence(nmea_writer *w, const nmea_sentence *s)

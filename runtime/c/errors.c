@@ -1,6 +1,6 @@
 /* Errors: the kinds' names, `fail` and its helpers that fill an nmea_error, the message and name
    of an error written from its pattern (the texts of runtime/contract.yaml, byte for byte those
-   of the Python and Rust runtimes), an error as JSON, and the problems lenient parsing keeps. */
+   of the Python and Rust runtimes), an error as JSON, and the problems of the sentences parsing keeps. */
 
 static const char *const ERROR_KINDS[] = {
     "too_long", "not_a_sentence", "bad_checksum", "checksum_mismatch", "missing_checksum", "too_few_fields",
@@ -169,6 +169,7 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap)
 static void problem_error(const nmea_problem *p, nmea_error *err)
 {
     fail(err, NMEA_ERR_BAD_FIELD, "expected %s, found %q");
+    err->out_of_range = p->kind == NMEA_PROBLEM_OUT_OF_RANGE;
     err->field = p->field;
     err->group = p->group;
     err->entry = p->entry;
@@ -177,11 +178,12 @@ static void problem_error(const nmea_problem *p, nmea_error *err)
     err->text = p->text;
 }
 
-/* A bad_field error kept as a problem. */
-static void problem_of(nmea_problem *p, const nmea_error *err)
+/* A bad_field error kept as a problem of `kind`. */
+static void problem_of(nmea_problem *p, const nmea_error *err, nmea_problem_kind kind)
 {
     p->field = (uint16_t)err->field;
     p->entry = (uint16_t)err->entry;
+    p->kind = (uint8_t)kind;
     p->group = err->group;
     p->name = err->name;
     p->expected = err->str[0];

@@ -245,11 +245,11 @@ static bool parse_coordinate(nmea_text t, unsigned max_degree_digits, unsigned m
 }
 
 /* Whether a code the table does not know is still well formed for it: the same length range
-   and character class as the known codes. */
+   and character class as the known codes (never, for a closed table). */
 static bool is_code_like(const nmea_enum_def *def, const char *p, size_t n, size_t min_len, size_t max_len)
 {
     size_t i;
-    if (n < min_len || n > max_len)
+    if (def->code_class == NMEA_CODES_CLOSED || n < min_len || n > max_len)
         return false;
     for (i = 0; i < n; i++) {
         if (def->code_class == NMEA_CODES_DIGITS ? !is_digit(p[i])

@@ -1,12 +1,13 @@
 /* Writing fields back: each writes its comma and its text (nothing for an empty field). */
 
-/* The text of a field lenient parsing left empty, in its place (the last problem naming it). */
+/* The text of a field lenient parsing left empty, in its place (the last problem naming it; a
+   number kept outside its range is written from its value). */
 NMEA_RARE bool put_problem(nmea_writer *w)
 {
     const nmea_problem *found = NULL;
     size_t i;
     for (i = 0; i < w->problems->count && i < NMEA_MAX_PROBLEMS; i++)
-        if (w->problems->list[i].field == w->field)
+        if (w->problems->list[i].field == w->field && w->problems->list[i].kind == NMEA_PROBLEM_LEFT_EMPTY)
             found = &w->problems->list[i];
     if (found)
         put_text(w, found->text);

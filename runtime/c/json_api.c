@@ -34,17 +34,15 @@ size_t nmea_decode_json(const char *line, size_t len, bool values, char *buf, si
 size_t nmea_decode_json_ex(const char *line, size_t len, bool values, const nmea_options *options, char *buf,
                            size_t cap)
 {
+    static const nmea_options defaults = {false, false, NULL, false};
     nmea_sentence s;
     nmea_error err;
     nmea_problems problems;
-    nmea_options keeping;
+    nmea_options keeping = options ? *options : defaults;
 
-    if (options && options->lenient && !options->problems) { /* the JSON lists them */
-        keeping = *options;
+    if (!keeping.problems) /* the JSON lists them */
         keeping.problems = &problems;
-        options = &keeping;
-    }
-    if (nmea_parse_ex(&s, line, len, options, &err))
+    if (nmea_parse_ex(&s, line, len, &keeping, &err))
         return nmea_to_json(&s, values, buf, cap);
     return nmea_error_to_json(&err, buf, cap);
 }
@@ -139,7 +137,7 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
     nmea_text start, text, texts[NMEA_MAX_FIELDS];
     nmea_json problem, v;
     nmea_layouts one;
-    nmea_options lenient = {true, false, NULL};
+    nmea_options lenient = {true, false, NULL, false};
     const char *p = wire->fields.ptr, *end = p + wire->fields.len, *comma;
     size_t i, index, n = wire->count, need = 0;
     bool present, wide;

@@ -277,7 +277,8 @@ static void json_checksum(nmea_writer *w, unsigned char sum, nmea_checksum_style
     put_str(w, "\"}");
 }
 
-/* ,"problems":[...]: each field lenient parsing left empty, with its text and why. */
+/* ,"problems":[...]: each number kept outside its range and each field lenient parsing left
+   empty, with its text and why. */
 static void json_problems(nmea_writer *w, const nmea_problems *problems)
 {
     nmea_error err;
@@ -285,7 +286,9 @@ static void json_problems(nmea_writer *w, const nmea_problems *problems)
     put_str(w, ",\"problems\":[");
     for (i = 0; i < problems->count && i < NMEA_MAX_PROBLEMS; i++) {
         problem_error(&problems->list[i], &err);
-        put_str(w, i ? ",{\"field\":" : "{\"field\":");
+        put_str(w, i ? ",{\"kind\":\"" : "{\"kind\":\"");
+        put_str(w, problems->list[i].kind == NMEA_PROBLEM_OUT_OF_RANGE ? "out_of_range" : "left_empty");
+        put_str(w, "\",\"field\":");
         put_uint(w, err.field, 1);
         put_str(w, ",\"name\":");
         if (err.name) {

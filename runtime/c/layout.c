@@ -64,6 +64,8 @@ typedef struct {
     const char *command;       /* a text command: its word in upper case; NULL */
     const char *variant;       /* NULL: the sentence's main layout */
     const char *selector;      /* the keyword (upper case) every line of it holds, or NULL */
+    const uint16_t *same_as_main; /* a variant: the wire fields (1-based, then 0) it reads as its
+                                     main layout does, which it is not tried for; or NULL */
     const layout_field *fields; /* NO_FIELDS: none */
     const layout_group *group;  /* NULL: none */
     uint16_t selector_at;      /* the selector's wire index (0-based) */
@@ -319,6 +321,7 @@ static bool entry_reader_at(entry_reader *c, const layout *l, const nmea_entries
         return false;
     w.fields = text_span(p, end);
     reader_start(&c->r, &w, l->sentence, &c->err);
+    c->r.any_range = true; /* parsing has held each number to its range, or kept it outside */
     c->r.index = (unsigned)(i * l->group->width); /* the blanks count from the first entry */
     c->r.blank = e->blank;
     c->r.blanks = e->blanks < NMEA_MAX_PROBLEMS ? e->blanks : NMEA_MAX_PROBLEMS;

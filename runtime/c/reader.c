@@ -12,9 +12,13 @@ typedef struct {
     bool ignore_case;             /* a text command: keywords and enum codes match ignoring case */
     nmea_checksum_style checksum;
     nmea_text line;               /* a text command: the command as received */
-    uint16_t blank[NMEA_MAX_PROBLEMS]; /* lenient parsing: the wire fields read as empty */
-    unsigned blanks;
+    uint16_t blank[NMEA_MAX_PROBLEMS]; /* the wire fields at fault: read as empty (lenient parsing), */
+    unsigned blanks;                   /* or with RANGE_KEPT, numbers read without their range */
 } nmea_wire;
+
+/* Added to a wire index in nmea_wire.blank: the number there is kept outside its range. (No
+   line has that many fields, and an index so marked is never taken for a field read as empty.) */
+#define RANGE_KEPT 0x8000u
 
 typedef struct {
     const char *next;
@@ -27,6 +31,7 @@ typedef struct {
     unsigned entry;
     char sep;
     bool ignore_case;
+    bool any_range;   /* numbers are not held to their range (a parsed sentence's entries read again) */
     const uint16_t *blank;
     unsigned blanks;
     nmea_error *err;
@@ -44,6 +49,7 @@ static void reader_start(nmea_reader *r, const nmea_wire *wire, const char *sent
     r->entry = 0;
     r->sep = wire->sep;
     r->ignore_case = wire->ignore_case;
+    r->any_range = false;
     r->blank = wire->blank;
     r->blanks = wire->blanks;
     r->err = err;
@@ -209,20 +215,27 @@ static bool bad_field(nmea_reader *r, unsigned index, const char *name, const ch
     return false;
 }
 
-/* The general reading of an integer or decimal field. */
+/* The general reading of an integer or decimal field: out of its range, an error that says so
+   (out_of_range), unless the field is one whose number is kept outside its range. */
 NMEA_RARE bool read_number(nmea_reader *r, nmea_number *out, const char *name, const char *expected,
                            const nmea_range *range, bool integer)
 {
     nmea_text t = next_field(r);
-    if (t.len && !(parse_number(t, integer, out) && in_range(out, range)))
+    if (!t.len)
+        return true;
+    if (!parse_number(t, integer, out))
         return bad_field(r, r->index, name, expected, t);
-    return true;
+    if (in_range(out, range) || r->any_range || is_blank(r->blank, r->blanks, r->index | RANGE_KEPT))
+        return true;
+    bad_field(r, r->index, name, expected, t);
+    r->err->out_of_range = true;
+    return false;
 }
 
 /* The common case of read_number, in the one pass that finds the end of the field: an empty
    field, or digits with (`integer` false) at most one point, NMEA_MAX_DIGITS digits in all, in
-   `range`. Anything else (a sign, more digits, not a number, out of range, a field lenient
-   parsing reads as empty) is left to read_number: returns false without having read it. */
+   `range`. Anything else (a sign, more digits, not a number, out of range, a field at fault
+   in a second reading) is left to read_number: returns false without having read it. */
 NMEA_HOT bool quick_number(nmea_reader *r, nmea_number *out, const nmea_range *range, bool integer)
 {
     const char *p = r->next, *end = r->end, *point = NULL;

@@ -112,8 +112,9 @@ typedef struct {
     nmea_number minutes;
 } nmea_coordinate;
 
-/** Which characters a code unknown to the spec may use to be kept rather than rejected. */
-typedef enum { NMEA_CODES_DIGITS, NMEA_CODES_LETTERS, NMEA_CODES_ALNUM } nmea_code_class;
+/** Which characters a code unknown to the spec may use to be kept rather than rejected;
+    NMEA_CODES_CLOSED: none (a closed set such as N/S or A/V refuses every other code). */
+typedef enum { NMEA_CODES_DIGITS, NMEA_CODES_LETTERS, NMEA_CODES_ALNUM, NMEA_CODES_CLOSED } nmea_code_class;
 
 /** One code of a lookup table: the wire text and the spec's id. */
 typedef struct {
@@ -182,6 +183,7 @@ const char *nmea_error_kind_name(nmea_error_kind kind);
 typedef struct {
     nmea_error_kind kind;
     bool has_address;
+    bool out_of_range;          /* bad_field: a number of the right form outside its field's range */
     nmea_text address;          /* the address, or the talker when address_suffix is set */
     const char *address_suffix; /* the sentence id after the talker, or NULL */
     unsigned field;             /* 1-based wire field after the address; 0 when none */
@@ -209,25 +211,35 @@ size_t nmea_error_to_json(const nmea_error *err, char *buf, size_t cap);
 /** The too_long error for a line of `len` bytes (for readers that stream long lines away). */
 void nmea_error_too_long(nmea_error *err, size_t len);
 
-/** Most fields lenient parsing leaves empty in one sentence. */
+/** Most problems one sentence may have (numbers kept outside their range and fields left
+    empty, together). */
 #define NMEA_MAX_PROBLEMS 8
 
+/** What parsing did with a field at fault (the "kind" of a problem in the tools' JSON). */
+typedef enum {
+    NMEA_PROBLEM_LEFT_EMPTY,  /* "left_empty": lenient parsing read it as empty */
+    NMEA_PROBLEM_OUT_OF_RANGE /* "out_of_range": a number outside its field's range, kept as sent */
+} nmea_problem_kind;
+
 /**
- * A field that lenient parsing (nmea_options.lenient) left empty because its text does not fit
- * its type: where it is, its text as received (which the serializer writes back in its place, so
- * the round trip stays exact) and what was expected. The message ("expected integer 0..99, found
- * \"x\"") is rendered by nmea_problem_message.
+ * A field at fault in a sentence parsing kept: a number outside its field's range, kept as sent
+ * (unless nmea_options.strict), or a field whose text does not fit its type, which lenient
+ * parsing (nmea_options.lenient) left empty. Where it is, its text as received (the serializer
+ * writes the text of a field left empty back in its place, so the round trip stays exact) and
+ * what was expected. The message ("expected integer 0..99, found \"x\"") is rendered by
+ * nmea_problem_message.
  */
 typedef struct {
     uint16_t field;       /* 1-based wire field after the address */
     uint16_t entry;       /* in a repeated group: the 1-based entry */
+    uint8_t kind;         /* nmea_problem_kind */
     const char *group;    /* in a repeated group: the group id, else NULL */
     const char *name;     /* the field id */
     const char *expected; /* what the field takes */
     nmea_text text;       /* the field's text as received */
 } nmea_problem;
 
-/** The problems of a sentence that lenient parsing kept (see nmea_options.problems). */
+/** The problems of a sentence parsing kept (see nmea_options.problems). */
 typedef struct {
     uint8_t count;
     nmea_problem list[NMEA_MAX_PROBLEMS];
@@ -259,22 +271,28 @@ size_t nmea_problem_message(const nmea_problem *p, char *buf, size_t cap);
 size_t nmea_problem_name(const nmea_problem *p, char *buf, size_t cap);
 
 /**
- * How nmea_parse_ex reads a line (a zeroed struct, or NULL, is nmea_parse's strict reading):
+ * How nmea_parse_ex reads a line (a zeroed struct, or NULL, is nmea_parse's reading). By default
+ * a `$`/`!` sentence with a number of the right form outside its field's range (the manual's
+ * `min`/`max`) is decoded with the number kept as sent, each such field a problem
+ * (NMEA_PROBLEM_OUT_OF_RANGE); the fields at fault are taken one at a time in the order the
+ * errors come.
+ * - strict: such a number is refused as NMEA_ERR_BAD_FIELD (or, lenient, left empty).
  * - lenient: a `$`/`!` sentence whose fields do not all fit their types is still decoded: the
- *   fields at fault are read as empty, one at a time in the order the errors come. A field that
- *   is already empty and still does not fit (a keyword, a hemisphere without its latitude), or a
- *   problem more than NMEA_MAX_PROBLEMS, ends the attempt with its error. Text commands are
- *   always strict.
+ *   other fields at fault are read as empty (NMEA_PROBLEM_LEFT_EMPTY). A field that is already
+ *   empty and still does not fit (a keyword, a hemisphere without its latitude), or a problem
+ *   more than NMEA_MAX_PROBLEMS, ends the attempt with its error. Text commands are always read
+ *   strictly.
  * - require_checksum: a `$`/`!` sentence without a checksum (or with a bare '*') is refused as
  *   NMEA_ERR_MISSING_CHECKSUM.
- * - problems: where lenient parsing lists the fields it left empty (the sentence's `problems`
- *   then points here, and serializing it writes their texts back in their places, so the round
- *   trip stays exact); NULL: they are not kept, and the fields are written empty.
+ * - problems: where parsing lists the problems (the sentence's `problems` then points here, and
+ *   serializing it writes the texts of the fields left empty back in their places, so the round
+ *   trip stays exact); NULL: they are not kept, and the fields left empty are written empty.
  */
 typedef struct {
     bool lenient;
     bool require_checksum;
     nmea_problems *problems;
+    bool strict;
 } nmea_options;
 
 /* ------------------------------------------------------------------------------------------ */

@@ -100,13 +100,13 @@ NMEA_INTERNAL size_t fast_write_sentence(const nmea_sentence *s, char *buf, size
 static bool parse_general(nmea_sentence *out, const char *line, size_t len, const nmea_options *options,
                           nmea_error *err)
 {
-    static const nmea_options strict = {false, false, NULL};
+    static const nmea_options defaults = {false, false, NULL, false};
     nmea_frame f;
     nmea_wire wire;
     const nmea_layouts *layouts;
 
     if (!options)
-        options = &strict;
+        options = &defaults;
     out->problems = NULL;
     if (len > NMEA_MAX_LINE) {
         nmea_error_too_long(err, len);
@@ -269,6 +269,7 @@ static bool writes(const nmea_sentence *s, const char *line)
 
 static void test_layouts(void)
 {
+    nmea_options strict = {false, false, NULL, true};
     nmea_sentence s;
     nmea_tst tst;
     nmea_error err;
@@ -281,8 +282,11 @@ static void test_layouts(void)
     CHECK(parses("$GPXYZ,1,2", NULL, &s, &err) && s.id == NMEA_SENTENCE_GENERIC);
     CHECK(s.as.generic.field_count == 2 && writes(&s, "$GPXYZ,1,2"));
 
-    CHECK(!parses("$GPTST,123,abc", NULL, &s, &err) && err.kind == NMEA_ERR_BAD_FIELD);
+    CHECK(parses("$GPTST,123,abc", NULL, &s, &err) && nmea_number_scaled(&s.as.tst.count, 0) == 123);
+    CHECK(s.problems == NULL && writes(&s, "$GPTST,123,abc"));
+    CHECK(!parses("$GPTST,123,abc", &strict, &s, &err) && err.kind == NMEA_ERR_BAD_FIELD && err.out_of_range);
     CHECK(err.field == 1 && message_is(&err, "expected integer 0..99, found \"123\""));
+    CHECK(!parses("$GPTST,1x,abc", NULL, &s, &err) && err.kind == NMEA_ERR_BAD_FIELD && !err.out_of_range);
     CHECK(!parses("$GPTST,1,a,b", NULL, &s, &err) && err.kind == NMEA_ERR_TOO_MANY_FIELDS);
     CHECK(!parses("$GPTST,1", NULL, &s, &err) && err.kind == NMEA_ERR_TOO_FEW_FIELDS);
 
@@ -292,19 +296,25 @@ static void test_layouts(void)
     CHECK(message_is(&err, "line is not a $--TST sentence"));
 }
 
-/* Lenient parsing leaves the fields at fault empty, keeps their texts as problems, and the
-   serializer writes those texts back. */
+/* A number outside its range is kept as a problem; lenient parsing leaves the other fields at
+   fault empty (with strict, the number too), keeps their texts as problems, and the serializer
+   writes those texts back. */
 static void test_lenient(void)
 {
     nmea_problems problems;
-    nmea_options lenient = {true, false, &problems};
+    nmea_options lenient = {true, false, &problems, false};
+    nmea_options strict = {true, false, &problems, true};
     nmea_sentence s;
     nmea_error err;
 
     CHECK(parses("$GPTST,123,abcdefghij", &lenient, &s, &err) && s.id == NMEA_SENTENCE_TST);
     CHECK(s.problems == &problems && problems.count == 2);
     CHECK(problems.list[0].field == 1 && problems.list[1].field == 2);
-    CHECK(!s.as.tst.count.present && s.as.tst.name.len == 0);
+    CHECK(problems.list[0].kind == NMEA_PROBLEM_OUT_OF_RANGE && problems.list[1].kind == NMEA_PROBLEM_LEFT_EMPTY);
+    CHECK(nmea_number_scaled(&s.as.tst.count, 0) == 123 && s.as.tst.name.len == 0);
+    CHECK(writes(&s, "$GPTST,123,abcdefghij"));
+    CHECK(parses("$GPTST,123,abcdefghij", &strict, &s, &err) && problems.count == 2);
+    CHECK(problems.list[0].kind == NMEA_PROBLEM_LEFT_EMPTY && !s.as.tst.count.present);
     CHECK(writes(&s, "$GPTST,123,abcdefghij"));
     CHECK(!parses("$GPTST,1,a,b", &lenient, &s, &err) && err.kind == NMEA_ERR_TOO_MANY_FIELDS);
 }
@@ -349,7 +359,8 @@ static void test_json(void)
     static const char refused[] = "{\"ok\":false,\"error\":{\"kind\":\"bad_field\",\"address\":\"GPTST\",\"field\":1,"
                                   "\"name\":\"count\",\"message\":\"expected integer 0..99, found \\\"123\\\"\"}}";
     nmea_problems problems;
-    nmea_options lenient = {true, false, &problems};
+    nmea_options lenient = {true, false, &problems, true};
+    nmea_options strict = {false, false, NULL, true};
     char json[NMEA_JSON_MAX];
     size_t n;
 
@@ -359,12 +370,17 @@ static void test_json(void)
     CHECK(round_trips("$GPTST,123,abc", &lenient,
                       "{\"ok\":true,\"start\":\"$\",\"address\":\"GPTST\",\"talker\":\"GP\",\"sentence\":\"TST\","
                       "\"variant\":null,\"fields\":{\"count\":null,\"name\":\"abc\"},"
-                      "\"problems\":[{\"field\":1,\"name\":\"count\",\"text\":\"123\","
+                      "\"problems\":[{\"kind\":\"left_empty\",\"field\":1,\"name\":\"count\",\"text\":\"123\","
+                      "\"message\":\"expected integer 0..99, found \\\"123\\\"\"}],\"checksum\":null}"));
+    CHECK(round_trips("$GPTST,123,abc", NULL,
+                      "{\"ok\":true,\"start\":\"$\",\"address\":\"GPTST\",\"talker\":\"GP\",\"sentence\":\"TST\","
+                      "\"variant\":null,\"fields\":{\"count\":\"123\",\"name\":\"abc\"},"
+                      "\"problems\":[{\"kind\":\"out_of_range\",\"field\":1,\"name\":\"count\",\"text\":\"123\","
                       "\"message\":\"expected integer 0..99, found \\\"123\\\"\"}],\"checksum\":null}"));
     CHECK(round_trips("$GPXYZ,1,2", NULL,
                       "{\"ok\":true,\"start\":\"$\",\"address\":\"GPXYZ\",\"talker\":null,\"sentence\":null,"
                       "\"variant\":null,\"fields\":[\"1\",\"2\"],\"checksum\":null}"));
-    n = nmea_decode_json("$GPTST,123,abc", 14, false, json, sizeof json);
+    n = nmea_decode_json_ex("$GPTST,123,abc", 14, false, &strict, json, sizeof json);
     CHECK(n == strlen(refused) && memcmp(json, refused, n) == 0 && nmea_json_is_failure(json, n));
 }
 #endif

@@ -3,8 +3,8 @@
  * stream that may hold garbage, cut lines or sentences run together (hand-written:
  * runtime/c/tool.c). Same behaviour, byte for byte, as nmea-py and nmea-rs; see docs/json.md.
  *
- *     nmea-c decode [--values] [--lenient] [--require-checksum]   stdin: NMEA lines
- *     nmea-c stream [--values] [--lenient] [--require-checksum]   stdin: any bytes
+ *     nmea-c decode [--values] [--lenient] [--require-checksum] [--strict]   stdin: NMEA lines
+ *     nmea-c stream [--values] [--lenient] [--require-checksum] [--strict]   stdin: any bytes
  *     nmea-c encode                                               stdin: decode's output
  *
  * decode splits its input on LF and drops one CR before it; stream frames it with nmea_framer.
@@ -33,7 +33,7 @@ typedef struct {
     bool encode;
     bool values;
     nmea_options options;
-    nmea_problems problems; /* of the line decoded last (--lenient) */
+    nmea_problems problems; /* of the line decoded last */
     size_t out_len;
 } tool;
 
@@ -154,17 +154,19 @@ static void handle(tool *t, const char *line, size_t len, size_t kept, char last
 static bool decode_flags(tool *t, int argc, char **argv)
 {
     int i;
-    bool lenient = false, required = false;
+    bool lenient = false, required = false, strict = false;
     for (i = 2; i < argc; i++) {
         bool *flag = strcmp(argv[i], "--values") == 0 ? &t->values
             : strcmp(argv[i], "--lenient") == 0 ? &lenient
-            : strcmp(argv[i], "--require-checksum") == 0 ? &required : NULL;
+            : strcmp(argv[i], "--require-checksum") == 0 ? &required
+            : strcmp(argv[i], "--strict") == 0 ? &strict : NULL;
         if (!flag || *flag)
             return false;
         *flag = true;
     }
     t->options.lenient = lenient;
     t->options.require_checksum = required;
+    t->options.strict = strict;
     t->options.problems = &t->problems;
     return true;
 }
@@ -205,7 +207,7 @@ int main(int argc, char **argv)
         puts("nmea-c " NMEA_VERSION);
         return 0;
     } else {
-        fputs("usage: nmea-c decode|stream [--values] [--lenient] [--require-checksum] | encode"
+        fputs("usage: nmea-c decode|stream [--values] [--lenient] [--require-checksum] [--strict] | encode"
               " | --version\n"
               "       (reads stdin, writes stdout)\n",
               stderr);

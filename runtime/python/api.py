@@ -28,14 +28,18 @@ class Generic:
         return runtime.assemble(self.start, self.address, self.fields, self.checksum)
 
 
-def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = False) -> Any:
+def parse(
+    line: str | bytes, lenient: bool = False, require_checksum: bool = False, strict: bool = False
+) -> Any:
     """Decode one line (a trailing CR LF is allowed) into the class of its layout, or a Generic
     for a well-formed sentence the spec does not describe. Raises NmeaError.
 
+    A number outside its field's range (but of the right type) is kept as sent and listed in the
+    result's `problems` (`out_of_range`); `strict` refuses it as bad_field instead.
     `require_checksum` refuses a `$`/`!` sentence without a checksum (missing_checksum).
     `lenient` keeps a sentence whose fields do not all fit their types: each such field is left
     empty and listed in the result's `problems` with its text, which the sentence is written back
-    with, so the round trip stays exact. Text commands are always strict."""
+    with, so the round trip stays exact. Text commands are always read strictly."""
     if isinstance(line, bytes):
         line = line.decode("latin-1")
     if line.endswith("\n"):
@@ -76,9 +80,9 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
                     return layouts[0].parse_fields(address, fields, checksum, line)
                 return _first_fit(layouts, address, fields, checksum, line)
             except NmeaError as err:
-                if not lenient or err.kind != "bad_field":
+                if err.kind != "bad_field" or (strict and not lenient):
                     raise
-                return _lenient(layouts, address, fields, checksum, err)
+                return _refit(layouts, address, fields, checksum, err, lenient, strict)
     if line[:1] not in ("$", "!"):
         word = runtime.first_word(line).upper()
         layouts = TEXT_COMMANDS.get(word) or sentences.text_command(word)
@@ -104,21 +108,28 @@ def parse(line: str | bytes, lenient: bool = False, require_checksum: bool = Fal
     try:
         return _first_fit(layouts, frame.address, frame.fields, checksum, line)
     except NmeaError as err:
-        if not lenient or err.kind != "bad_field":
+        if err.kind != "bad_field" or (strict and not lenient):
             raise
-        return _lenient(layouts, frame.address, frame.fields, checksum, err)
+        return _refit(layouts, frame.address, frame.fields, checksum, err, lenient, strict)
 
 
 _UPPER_HEX = [f"{value:02X}" for value in range(256)]
 _LOWER_HEX = [f"{value:02x}" for value in range(256)]
 
 
-def _lenient(
-    layouts: tuple[Any, ...], address: str, fields: list[str], checksum: str | None, err: NmeaError
+def _refit(
+    layouts: tuple[Any, ...],
+    address: str,
+    fields: list[str],
+    checksum: str | None,
+    err: NmeaError,
+    lenient: bool,
+    strict: bool,
 ) -> Any:
-    """Parse again with every field that does not fit left empty, one at a time; a field that is
-    already empty and still does not fit, or one problem more than MAX_PROBLEMS, ends the attempt
-    with its error."""
+    """Parse again, one field at fault at a time: a number outside its range kept as sent (unless
+    `strict`), any other field (`lenient`) left empty. A field neither can take (or one that is
+    already empty and still does not fit), or one problem more than MAX_PROBLEMS, ends the
+    attempt with its error."""
     fields = list(fields)
     problems: list[NmeaError] = []
     while (
@@ -127,8 +138,14 @@ def _lenient(
         and fields[err.field - 1]
         and len(problems) < runtime.MAX_PROBLEMS
     ):
+        if err.out_of_range and not strict:
+            fields[err.field - 1] = runtime.RangeKept(fields[err.field - 1])
+        elif lenient:
+            fields[err.field - 1] = ""
+            err.out_of_range = False  # its problem: a field left empty, not a value kept
+        else:
+            break
         problems.append(err)
-        fields[err.field - 1] = ""
         try:
             sentence = _first_fit(layouts, address, fields, checksum, "")
         except NmeaError as again:
@@ -142,14 +159,27 @@ def _lenient(
 def _first_fit(
     layouts: tuple[Any, ...], address: str, fields: list[str], checksum: str | None, line: str
 ) -> Any:
-    """The first layout that parses the fields. When none does, the error of the layouts whose
-    keyword the line holds in its place (else of all): the first bad field, else the first error."""
+    """The first layout that parses the fields; a variant is passed over when the main layout of
+    its sentence, tried last before it, refused a field the variant reads the same way
+    (SAME_AS_MAIN). When none does, the error of the layouts whose keyword the line holds in its
+    place (else of all): the first bad field, else the first error."""
     errors = []
+    refused: tuple[str, int] | None = None  # the main layout tried last: its sentence, bad field
     for layout in layouts:
+        if (
+            refused is not None
+            and layout.VARIANT is not None
+            and refused[0] == layout.SENTENCE
+            and refused[1] in layout.SAME_AS_MAIN
+        ):
+            continue
         try:
             return layout.parse_fields(address, fields, checksum, line)
         except NmeaError as err:
             errors.append((layout, err))
+            if layout.VARIANT is None:
+                bad = err.field if err.kind == "bad_field" else None
+                refused = (layout.SENTENCE, bad) if bad is not None else None
     contenders = [err for layout, err in errors if runtime.holds_selector(layout, fields)]
     contenders = contenders or [err for _, err in errors]
     raise next((err for err in contenders if err.kind == "bad_field"), contenders[0])
@@ -202,11 +232,15 @@ def to_json(sentence: Any, values: bool = False) -> str:
 
 
 def decode_json(
-    line: str | bytes, values: bool = False, lenient: bool = False, require_checksum: bool = False
+    line: str | bytes,
+    values: bool = False,
+    lenient: bool = False,
+    require_checksum: bool = False,
+    strict: bool = False,
 ) -> str:
     """`decode`'s output for one line: the sentence as JSON, or the error as JSON."""
     try:
-        return to_json(parse(line, lenient, require_checksum), values)
+        return to_json(parse(line, lenient, require_checksum, strict), values)
     except NmeaError as err:
         return err.to_json()
 
@@ -251,8 +285,8 @@ def from_json(obj: Any) -> Any:
 
 
 def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum: str | None) -> Any:
-    """A sentence that lenient decoding kept: its problem fields' texts go back where they were,
-    and it is parsed leniently again."""
+    """A sentence decoded with problems: its problem fields' texts go back where they were, and it
+    is parsed leniently again."""
     if runtime.json_str_member(obj, "start") == "":
         raise runtime.bad_json("a text command has no problems")
     for problem in runtime.json_list(obj, "problems"):
@@ -270,7 +304,7 @@ def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum:
     except NmeaError as err:
         if err.kind != "bad_field":
             raise
-        return _lenient((layout,), address, texts, checksum, err)
+        return _refit((layout,), address, texts, checksum, err, lenient=True, strict=False)
 
 
 def encode_json(line: str) -> str:

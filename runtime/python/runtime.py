@@ -16,7 +16,8 @@ MAX_LINE: Final = 1024
 """Longest line (without its line ending) the parser accepts."""
 
 MAX_PROBLEMS: Final = 8
-"""Most fields lenient parsing leaves empty in one sentence (as many as C and Rust keep)."""
+"""Most problems one sentence may have, fields kept outside their range and fields lenient
+parsing leaves empty together (as many as C and Rust keep)."""
 
 MAX_DIGITS: Final = 18
 """Most digits a number may have, so that every runtime holds it in a signed 64-bit integer."""
@@ -35,6 +36,7 @@ class NmeaError(ValueError):
         field: int | None = None,
         name: str | None = None,
         text: str | None = None,
+        out_of_range: bool = False,
     ) -> None:
         super().__init__(message)
         self.kind = kind
@@ -43,6 +45,14 @@ class NmeaError(ValueError):
         self.field = field
         self.name = name
         self.text = text  # bad_field: the field's text as received
+        # bad_field: a number outside its field's range, which parsing keeps unless it is strict
+        self.out_of_range = out_of_range
+
+    @property
+    def problem_kind(self) -> str:
+        """As a problem of a decoded sentence: "out_of_range" (the value is kept as sent) or
+        "left_empty" (lenient parsing read the field as empty)."""
+        return "out_of_range" if self.out_of_range else "left_empty"
 
     def __str__(self) -> str:
         where = self.address or "line"
@@ -643,8 +653,9 @@ def parse_coordinate(text: str, max_degree_digits: int, max_degrees: int) -> Coo
 
 def is_code_like(text: str, code_class: str, min_len: int, max_len: int) -> bool:
     """Whether an enum code the spec does not know is still well formed for its enum: the same
-    length range and character class (`digits`, `letters`, `alnum`) as the known codes."""
-    if not min_len <= len(text) <= max_len or not text.isascii():
+    length range and character class (`digits`, `letters`, `alnum`) as the known codes. A closed
+    enum (`closed`: N/S, A/V, units) keeps none."""
+    if code_class == "closed" or not min_len <= len(text) <= max_len or not text.isascii():
         return False
     if code_class == "digits":
         return text.isdigit()
@@ -761,17 +772,25 @@ def json_opt(text: str | None) -> str:
     return "null" if text is None else json_str(text)
 
 
-def bad_field(address: str, index: int, name: str, expected: str, text: str) -> NmeaError:
-    return NmeaError(
-        "bad_field", f"expected {expected}, found {json_str(text)}", address, index, name, text
-    )
+def bad_field(
+    address: str, index: int, name: str, expected: str, text: str, out_of_range: bool = False
+) -> NmeaError:
+    message = f"expected {expected}, found {json_str(text)}"
+    return NmeaError("bad_field", message, address, index, name, text, out_of_range)
+
+
+class RangeKept(str):
+    """The text of a field whose value parsing keeps outside the field's range (a problem of the
+    sentence): the number readers do not check its range, nor remember its value."""
+
+    __slots__ = ()
 
 
 def problem_json(problem: NmeaError) -> str:
-    """A field lenient parsing left empty: where it is, its text as received, and why."""
+    """A problem of a decoded sentence: its kind, where it is, its text as received, and why."""
     return (
-        f'{{"field":{problem.field},"name":{json_opt(problem.name)},"text":{json_opt(problem.text)},'
-        f'"message":{json_str(problem.message)}}}'
+        f'{{"kind":"{problem.problem_kind}","field":{problem.field},"name":{json_opt(problem.name)},'
+        f'"text":{json_opt(problem.text)},"message":{json_str(problem.message)}}}'
     )
 
 
@@ -781,7 +800,12 @@ def with_problems(fields: list[str], problems: list[NmeaError]) -> list[str]:
         return fields
     out = list(fields)
     for problem in problems:
-        if problem.field is not None and problem.field <= len(out) and problem.text is not None:
+        if (
+            not problem.out_of_range
+            and problem.field is not None
+            and problem.field <= len(out)
+            and problem.text is not None
+        ):
             out[problem.field - 1] = problem.text
     return out
 
@@ -921,12 +945,17 @@ def number_field(
     high: Decimal | int | None = None,
     table: dict[str, Number] | None = None,
 ) -> Number | None:
-    """An integer (`integer`) or decimal field, in [low, high] when they are given."""
+    """An integer (`integer`) or decimal field, in [low, high] when they are given (but for a
+    RangeKept text)."""
     if not text:
         return None
     number = parse_number(text, integer)
-    if number is None or not _within(text, integer, low, high):
+    if number is None:
         raise bad_field(address, index, name, expected, text)
+    if not _within(text, integer, low, high):
+        if text.__class__ is not RangeKept:
+            raise bad_field(address, index, name, expected, text, out_of_range=True)
+        return number
     remember(table, text, number)
     return number
 
@@ -1808,6 +1837,8 @@ class Sentence:
     LAYOUT: ClassVar[Layout]
     SENTENCE: ClassVar[str]
     ADDRESS: ClassVar[str | None]
+    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset()
+    """A variant: the wire fields (1-based) it reads as its main layout does (see api._first_fit)."""
     problems: list[NmeaError]
 
     def __init_subclass__(cls, **kwargs: Any) -> None:

@@ -89,7 +89,7 @@ def too_long(length: int) -> NmeaError:
 
 def sentences(source: BinaryIO | Any | Iterable[bytes], **options: bool) -> Iterator[Any]:
     """Every item of the stream: a decoded sentence, or the NmeaError that says what was wrong.
-    `options` are parse()'s (lenient, require_checksum)."""
+    `options` are parse()'s (lenient, require_checksum, strict)."""
     for item in lines(source):
         if isinstance(item, int):
             yield too_long(item)

@@ -28,6 +28,7 @@ TOOLS = ["nmea-c", "nmea-rs", "nmea-py"]
 CORPUS = ROOT.parent / "shared" / "corpus" / "real"
 EDGE_CASES = Path(__file__).with_name("edge_cases.txt")
 VECTORS = ROOT / "generated" / "vectors" / "examples.jsonl"
+TOLERANCE = ROOT / "generated" / "vectors" / "tolerance.jsonl"
 
 
 def run(tool: str, args: list[str], data: bytes) -> bytes:
@@ -125,6 +126,24 @@ def test_examples_match_the_reference() -> None:
     damaged = [v for v in vectors if "raw_decode" in v]
     raw = "".join(v["raw"] + "\n" for v in damaged).encode()
     assert decode_all(raw).decode().splitlines() == [v["raw_decode"] for v in damaged]
+
+
+def test_tolerance_vectors() -> None:
+    """A number outside its range is kept and flagged unless --strict, which refuses it as before;
+    unknown codes of closed enums are refused; each line with its options as the reference says,
+    and what is kept encodes back to the line."""
+    vectors = [json.loads(line) for line in TOLERANCE.read_text().splitlines()]
+    kinds = set()
+    for options in {tuple(v["options"]) for v in vectors}:
+        chosen = [v for v in vectors if tuple(v["options"]) == options]
+        data = "".join(v["line"] + "\n" for v in chosen).encode()
+        out = agreed(["decode", *options], data).decode().splitlines()
+        assert out == [v["decode"] for v in chosen], options
+        kept = [(v["line"], o) for v, o in zip(chosen, out) if o.startswith('{"ok":true')]
+        back = agreed(["encode"], "".join(o + "\n" for _, o in kept).encode()).decode().splitlines()
+        assert back == [line for line, _ in kept], options
+        kinds |= {p["kind"] for o in out for p in json.loads(o).get("problems", [])}
+    assert kinds == {"out_of_range", "left_empty"}
 
 
 def test_edge_cases() -> None:

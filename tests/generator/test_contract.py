@@ -61,11 +61,22 @@ def test_error_kinds() -> None:
     rust_kinds = [snake(k) for k in re.findall(r"^\s*(\w+),", rust_enum, re.M)]
     assert sorted(rust_kinds) == sorted(kinds + own["rust"])
     error_rs = (RUNTIME / "rust" / "src" / "error.rs").read_text(encoding="utf-8")
-    as_str = one(r"pub const fn as_str\(self\) -> &'static str \{(.*?)\n    \}", error_rs)
+    as_str = one(r"impl ErrorKind \{.*?pub const fn as_str\(self\) -> &'static str \{(.*?)\n    \}", error_rs)
     rust_names = dict(re.findall(r'Self::(\w+) => "(\w+)"', as_str))
     assert {snake(variant): name for variant, name in rust_names.items()} == {k: k for k in rust_kinds}
     python_kinds = set(re.findall(r'NmeaError\(\s*"(\w+)"', PYTHON))
     assert python_kinds == set(kinds + own["python"])
+
+
+def test_problem_kinds() -> None:
+    kinds = CONTRACT["problem_kinds"]
+    c_enum = one(r"typedef enum \{([^}]*)\} nmea_problem_kind;", C_HEADER)
+    assert sorted(re.findall(r'"(\w+)"', c_enum)) == sorted(kinds)
+    json_md = (RUNTIME / "json.md").read_text(encoding="utf-8")
+    for kind in kinds:
+        for language, source in SOURCES.items():
+            assert f'"{kind}"' in source, f"{language} runtime: problem kind {kind}"
+        assert f'"kind":"{kind}"' in json_md
 
 
 def fragments(message: str) -> list[str]:

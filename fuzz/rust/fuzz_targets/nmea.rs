@@ -17,12 +17,12 @@ use libfuzzer_sys::fuzz_target;
 use nmeaspec::stream::{Framer, Item};
 use nmeaspec::{ErrorKind, Options};
 
-const LENIENT: Options = Options { lenient: true, require_checksum: false };
-const REQUIRED: Options = Options { lenient: false, require_checksum: true };
+const LENIENT: Options = Options { lenient: true, require_checksum: false, strict: false };
+const REQUIRED: Options = Options { lenient: false, require_checksum: true, strict: true };
 
 fn as_line(data: &[u8]) {
     assert_eq!(nmeaspec::parse(data), nmeaspec::paths::parse_general(data), "the fast path disagrees with the general path");
-    for options in [LENIENT, REQUIRED, Options { lenient: true, require_checksum: true }] {
+    for options in [LENIENT, REQUIRED, Options { lenient: true, require_checksum: true, strict: true }] {
         assert_eq!(
             nmeaspec::parse_with(data, options),
             nmeaspec::paths::parse_with_general(data, options),

@@ -120,7 +120,7 @@
 #   spec/enums/vsd_nav_status.yaml, spec/enums/wat_alarm_condition.yaml,
 #   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml,
 #   spec/enums/xdr_transducer_type.yaml, spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml
-#   (digest 082b2baae3bc4d88)
+#   (digest 042d4dbd3ca7edd0)
 # Regenerate: make generate (python3 -m generator generate)
 """The spec's lookup tables. A member's value is its wire code; `.id` is the spec's id."""
 
@@ -5403,12 +5403,12 @@ class ZdlPointType(CodeEnum):
 
 
 AamArrivalCircle.BY_CODE = by_code(AamArrivalCircle)
-AamArrivalCircle.CODE_CLASS = "letters"
+AamArrivalCircle.CODE_CLASS = "closed"
 AamArrivalCircle.MIN_LEN, AamArrivalCircle.MAX_LEN = 1, 1
 
 
 AamPerpendicular.BY_CODE = by_code(AamPerpendicular)
-AamPerpendicular.CODE_CLASS = "letters"
+AamPerpendicular.CODE_CLASS = "closed"
 AamPerpendicular.MIN_LEN, AamPerpendicular.MAX_LEN = 1, 1
 
 
@@ -5418,7 +5418,7 @@ AbkAckType.MIN_LEN, AbkAckType.MAX_LEN = 1, 1
 
 
 AbkChannel.BY_CODE = by_code(AbkChannel)
-AbkChannel.CODE_CLASS = "letters"
+AbkChannel.CODE_CLASS = "closed"
 AbkChannel.MIN_LEN, AbkChannel.MAX_LEN = 1, 1
 
 
@@ -5433,7 +5433,7 @@ AcaBandwidth.MIN_LEN, AcaBandwidth.MAX_LEN = 1, 1
 
 
 AcaInUse.BY_CODE = by_code(AcaInUse)
-AcaInUse.CODE_CLASS = "digits"
+AcaInUse.CODE_CLASS = "closed"
 AcaInUse.MIN_LEN, AcaInUse.MAX_LEN = 1, 1
 
 
@@ -5493,7 +5493,7 @@ AirohaEasyStatus.MIN_LEN, AirohaEasyStatus.MAX_LEN = 1, 1
 
 
 AirohaEnable.BY_CODE = by_code(AirohaEnable)
-AirohaEnable.CODE_CLASS = "digits"
+AirohaEnable.CODE_CLASS = "closed"
 AirohaEnable.MIN_LEN, AirohaEnable.MAX_LEN = 1, 1
 
 
@@ -5563,7 +5563,7 @@ AirohaRtcmMode.MIN_LEN, AirohaRtcmMode.MAX_LEN = 1, 2
 
 
 AisChannel.BY_CODE = by_code(AisChannel)
-AisChannel.CODE_CLASS = "alnum"
+AisChannel.CODE_CLASS = "closed"
 AisChannel.MIN_LEN, AisChannel.MAX_LEN = 1, 1
 
 
@@ -5593,17 +5593,17 @@ AlfState.MIN_LEN, AlfState.MAX_LEN = 1, 1
 
 
 AlrAckState.BY_CODE = by_code(AlrAckState)
-AlrAckState.CODE_CLASS = "letters"
+AlrAckState.CODE_CLASS = "closed"
 AlrAckState.MIN_LEN, AlrAckState.MAX_LEN = 1, 1
 
 
 AlrCondition.BY_CODE = by_code(AlrCondition)
-AlrCondition.CODE_CLASS = "letters"
+AlrCondition.CODE_CLASS = "closed"
 AlrCondition.MIN_LEN, AlrCondition.MAX_LEN = 1, 1
 
 
 ApbBearingRef.BY_CODE = by_code(ApbBearingRef)
-ApbBearingRef.CODE_CLASS = "letters"
+ApbBearingRef.CODE_CLASS = "closed"
 ApbBearingRef.MIN_LEN, ApbBearingRef.MAX_LEN = 1, 1
 
 
@@ -5618,7 +5618,7 @@ AshtechNmeMessage.MIN_LEN, AshtechNmeMessage.MAX_LEN = 3, 3
 
 
 AshtechOnOff.BY_CODE = by_code(AshtechOnOff)
-AshtechOnOff.CODE_CLASS = "letters"
+AshtechOnOff.CODE_CLASS = "closed"
 AshtechOnOff.MIN_LEN, AshtechOnOff.MAX_LEN = 2, 3
 
 
@@ -5643,7 +5643,7 @@ AshtechRt300Quality.MIN_LEN, AshtechRt300Quality.MAX_LEN = 1, 1
 
 
 AshtechSvUsed.BY_CODE = by_code(AshtechSvUsed)
-AshtechSvUsed.CODE_CLASS = "letters"
+AshtechSvUsed.CODE_CLASS = "closed"
 AshtechSvUsed.MIN_LEN, AshtechSvUsed.MAX_LEN = 1, 1
 
 
@@ -5653,7 +5653,7 @@ BroadcomGlorConfidence.MIN_LEN, BroadcomGlorConfidence.MAX_LEN = 1, 1
 
 
 BroadcomGlorLocationRequest.BY_CODE = by_code(BroadcomGlorLocationRequest)
-BroadcomGlorLocationRequest.CODE_CLASS = "digits"
+BroadcomGlorLocationRequest.CODE_CLASS = "closed"
 BroadcomGlorLocationRequest.MIN_LEN, BroadcomGlorLocationRequest.MAX_LEN = 1, 1
 
 
@@ -5683,12 +5683,12 @@ ComnavTalkerSentence.MIN_LEN, ComnavTalkerSentence.MAX_LEN = 3, 3
 
 
 CurDirectionReference.BY_CODE = by_code(CurDirectionReference)
-CurDirectionReference.CODE_CLASS = "letters"
+CurDirectionReference.CODE_CLASS = "closed"
 CurDirectionReference.MIN_LEN, CurDirectionReference.MAX_LEN = 1, 1
 
 
 CurHeadingReference.BY_CODE = by_code(CurHeadingReference)
-CurHeadingReference.CODE_CLASS = "letters"
+CurHeadingReference.CODE_CLASS = "closed"
 CurHeadingReference.MIN_LEN, CurHeadingReference.MAX_LEN = 1, 1
 
 
@@ -5763,22 +5763,22 @@ DtmDatum.MIN_LEN, DtmDatum.MAX_LEN = 3, 3
 
 
 DtmLatOffsetDir.BY_CODE = by_code(DtmLatOffsetDir)
-DtmLatOffsetDir.CODE_CLASS = "letters"
+DtmLatOffsetDir.CODE_CLASS = "closed"
 DtmLatOffsetDir.MIN_LEN, DtmLatOffsetDir.MAX_LEN = 1, 1
 
 
 DtmLonOffsetDir.BY_CODE = by_code(DtmLonOffsetDir)
-DtmLonOffsetDir.CODE_CLASS = "letters"
+DtmLonOffsetDir.CODE_CLASS = "closed"
 DtmLonOffsetDir.MIN_LEN, DtmLonOffsetDir.MAX_LEN = 1, 1
 
 
 EastWest.BY_CODE = by_code(EastWest)
-EastWest.CODE_CLASS = "letters"
+EastWest.CODE_CLASS = "closed"
 EastWest.MIN_LEN, EastWest.MAX_LEN = 1, 1
 
 
 EtlMessageType.BY_CODE = by_code(EtlMessageType)
-EtlMessageType.CODE_CLASS = "letters"
+EtlMessageType.CODE_CLASS = "closed"
 EtlMessageType.MIN_LEN, EtlMessageType.MAX_LEN = 1, 1
 
 
@@ -5813,7 +5813,7 @@ FsiMode.MIN_LEN, FsiMode.MAX_LEN = 1, 1
 
 
 FsiSentenceStatus.BY_CODE = by_code(FsiSentenceStatus)
-FsiSentenceStatus.CODE_CLASS = "letters"
+FsiSentenceStatus.CODE_CLASS = "closed"
 FsiSentenceStatus.MIN_LEN, FsiSentenceStatus.MAX_LEN = 1, 1
 
 
@@ -5823,12 +5823,12 @@ FurunoErideFreqMode.MIN_LEN, FurunoErideFreqMode.MAX_LEN = 1, 1
 
 
 FurunoErideOnOff.BY_CODE = by_code(FurunoErideOnOff)
-FurunoErideOnOff.CODE_CLASS = "digits"
+FurunoErideOnOff.CODE_CLASS = "closed"
 FurunoErideOnOff.MIN_LEN, FurunoErideOnOff.MAX_LEN = 1, 1
 
 
 FurunoEridePolarity.BY_CODE = by_code(FurunoEridePolarity)
-FurunoEridePolarity.CODE_CLASS = "digits"
+FurunoEridePolarity.CODE_CLASS = "closed"
 FurunoEridePolarity.MIN_LEN, FurunoEridePolarity.MAX_LEN = 1, 1
 
 
@@ -5908,7 +5908,7 @@ GarminFixDimension.MIN_LEN, GarminFixDimension.MAX_LEN = 1, 1
 
 
 GarminFixMode.BY_CODE = by_code(GarminFixMode)
-GarminFixMode.CODE_CLASS = "letters"
+GarminFixMode.CODE_CLASS = "closed"
 GarminFixMode.MIN_LEN, GarminFixMode.MAX_LEN = 1, 1
 
 
@@ -5918,7 +5918,7 @@ GarminFixType.MIN_LEN, GarminFixType.MAX_LEN = 1, 1
 
 
 GarminOffOn.BY_CODE = by_code(GarminOffOn)
-GarminOffOn.CODE_CLASS = "digits"
+GarminOffOn.CODE_CLASS = "closed"
 GarminOffOn.MIN_LEN, GarminOffOn.MAX_LEN = 1, 1
 
 
@@ -5928,7 +5928,7 @@ GarminOutputMode.MIN_LEN, GarminOutputMode.MAX_LEN = 1, 1
 
 
 GarminPassFail.BY_CODE = by_code(GarminPassFail)
-GarminPassFail.CODE_CLASS = "letters"
+GarminPassFail.CODE_CLASS = "closed"
 GarminPassFail.MIN_LEN, GarminPassFail.MAX_LEN = 1, 1
 
 
@@ -5943,12 +5943,12 @@ GarminReceiverCommand.MIN_LEN, GarminReceiverCommand.MAX_LEN = 1, 1
 
 
 GarminRetainedLost.BY_CODE = by_code(GarminRetainedLost)
-GarminRetainedLost.CODE_CLASS = "letters"
+GarminRetainedLost.CODE_CLASS = "closed"
 GarminRetainedLost.MIN_LEN, GarminRetainedLost.MAX_LEN = 1, 1
 
 
 GarminWaasMode.BY_CODE = by_code(GarminWaasMode)
-GarminWaasMode.CODE_CLASS = "letters"
+GarminWaasMode.CODE_CLASS = "closed"
 GarminWaasMode.MIN_LEN, GarminWaasMode.MAX_LEN = 1, 1
 
 
@@ -6003,12 +6003,12 @@ GsaFixType.MIN_LEN, GsaFixType.MAX_LEN = 1, 1
 
 
 GsaSelectionMode.BY_CODE = by_code(GsaSelectionMode)
-GsaSelectionMode.CODE_CLASS = "letters"
+GsaSelectionMode.CODE_CLASS = "closed"
 GsaSelectionMode.MIN_LEN, GsaSelectionMode.MAX_LEN = 1, 1
 
 
 HbtEquipmentStatus.BY_CODE = by_code(HbtEquipmentStatus)
-HbtEquipmentStatus.CODE_CLASS = "letters"
+HbtEquipmentStatus.CODE_CLASS = "closed"
 HbtEquipmentStatus.MIN_LEN, HbtEquipmentStatus.MAX_LEN = 1, 1
 
 
@@ -6018,22 +6018,22 @@ HcrCorrectionState.MIN_LEN, HcrCorrectionState.MAX_LEN = 1, 1
 
 
 HmrDifferenceStatus.BY_CODE = by_code(HmrDifferenceStatus)
-HmrDifferenceStatus.CODE_CLASS = "letters"
+HmrDifferenceStatus.CODE_CLASS = "closed"
 HmrDifferenceStatus.MIN_LEN, HmrDifferenceStatus.MAX_LEN = 1, 1
 
 
 HscSentenceStatus.BY_CODE = by_code(HscSentenceStatus)
-HscSentenceStatus.CODE_CLASS = "letters"
+HscSentenceStatus.CODE_CLASS = "closed"
 HscSentenceStatus.MIN_LEN, HscSentenceStatus.MAX_LEN = 1, 1
 
 
 HtcHeadingReference.BY_CODE = by_code(HtcHeadingReference)
-HtcHeadingReference.CODE_CLASS = "letters"
+HtcHeadingReference.CODE_CLASS = "closed"
 HtcHeadingReference.MIN_LEN, HtcHeadingReference.MAX_LEN = 1, 1
 
 
 HtcOverride.BY_CODE = by_code(HtcOverride)
-HtcOverride.CODE_CLASS = "letters"
+HtcOverride.CODE_CLASS = "closed"
 HtcOverride.MIN_LEN, HtcOverride.MAX_LEN = 1, 1
 
 
@@ -6048,12 +6048,12 @@ HtcTurnMode.MIN_LEN, HtcTurnMode.MAX_LEN = 1, 1
 
 
 HtdLimitStatus.BY_CODE = by_code(HtdLimitStatus)
-HtdLimitStatus.CODE_CLASS = "letters"
+HtdLimitStatus.CODE_CLASS = "closed"
 HtdLimitStatus.MIN_LEN, HtdLimitStatus.MAX_LEN = 1, 1
 
 
 LeftRight.BY_CODE = by_code(LeftRight)
-LeftRight.CODE_CLASS = "letters"
+LeftRight.CODE_CLASS = "closed"
 LeftRight.MIN_LEN, LeftRight.MAX_LEN = 1, 1
 
 
@@ -6078,7 +6078,7 @@ LriControlFlag.MIN_LEN, LriControlFlag.MAX_LEN = 1, 1
 
 
 MagellanAltitudeUnit.BY_CODE = by_code(MagellanAltitudeUnit)
-MagellanAltitudeUnit.CODE_CLASS = "letters"
+MagellanAltitudeUnit.CODE_CLASS = "closed"
 MagellanAltitudeUnit.MIN_LEN, MagellanAltitudeUnit.MAX_LEN = 1, 1
 
 
@@ -6088,7 +6088,7 @@ MagellanCommand.MIN_LEN, MagellanCommand.MAX_LEN = 5, 8
 
 
 MagellanFixFlag.BY_CODE = by_code(MagellanFixFlag)
-MagellanFixFlag.CODE_CLASS = "letters"
+MagellanFixFlag.CODE_CLASS = "closed"
 MagellanFixFlag.MIN_LEN, MagellanFixFlag.MAX_LEN = 1, 1
 
 
@@ -6113,7 +6113,7 @@ MobStatus.MIN_LEN, MobStatus.MAX_LEN = 1, 1
 
 
 MskAutoManual.BY_CODE = by_code(MskAutoManual)
-MskAutoManual.CODE_CLASS = "letters"
+MskAutoManual.CODE_CLASS = "closed"
 MskAutoManual.MIN_LEN, MskAutoManual.MAX_LEN = 1, 1
 
 
@@ -6138,7 +6138,7 @@ MtkDgpsMode.MIN_LEN, MtkDgpsMode.MAX_LEN = 1, 1
 
 
 MtkEnable.BY_CODE = by_code(MtkEnable)
-MtkEnable.CODE_CLASS = "digits"
+MtkEnable.CODE_CLASS = "closed"
 MtkEnable.MIN_LEN, MtkEnable.MAX_LEN = 1, 1
 
 
@@ -6168,12 +6168,12 @@ MtkSystemMessage.MIN_LEN, MtkSystemMessage.MAX_LEN = 3, 3
 
 
 MwvReference.BY_CODE = by_code(MwvReference)
-MwvReference.CODE_CLASS = "letters"
+MwvReference.CODE_CLASS = "closed"
 MwvReference.MIN_LEN, MwvReference.MAX_LEN = 1, 1
 
 
 MwvSpeedUnit.BY_CODE = by_code(MwvSpeedUnit)
-MwvSpeedUnit.CODE_CLASS = "letters"
+MwvSpeedUnit.CODE_CLASS = "closed"
 MwvSpeedUnit.MIN_LEN, MwvSpeedUnit.MAX_LEN = 1, 1
 
 
@@ -6188,7 +6188,7 @@ NavStatus.MIN_LEN, NavStatus.MAX_LEN = 1, 1
 
 
 NorthSouth.BY_CODE = by_code(NorthSouth)
-NorthSouth.CODE_CLASS = "letters"
+NorthSouth.CODE_CLASS = "closed"
 NorthSouth.MIN_LEN, NorthSouth.MAX_LEN = 1, 1
 
 
@@ -6228,7 +6228,7 @@ PosMode.MIN_LEN, PosMode.MAX_LEN = 1, 1
 
 
 PosSentenceStatus.BY_CODE = by_code(PosSentenceStatus)
-PosSentenceStatus.CODE_CLASS = "letters"
+PosSentenceStatus.CODE_CLASS = "closed"
 PosSentenceStatus.MIN_LEN, PosSentenceStatus.MAX_LEN = 1, 1
 
 
@@ -6263,7 +6263,7 @@ QuectelBaudRate.MIN_LEN, QuectelBaudRate.MAX_LEN = 4, 6
 
 
 QuectelEnable.BY_CODE = by_code(QuectelEnable)
-QuectelEnable.CODE_CLASS = "digits"
+QuectelEnable.CODE_CLASS = "closed"
 QuectelEnable.MIN_LEN, QuectelEnable.MAX_LEN = 1, 1
 
 
@@ -6323,7 +6323,7 @@ QuectelPpsMode.MIN_LEN, QuectelPpsMode.MAX_LEN = 1, 1
 
 
 QuectelPpsPolarity.BY_CODE = by_code(QuectelPpsPolarity)
-QuectelPpsPolarity.CODE_CLASS = "digits"
+QuectelPpsPolarity.CODE_CLASS = "closed"
 QuectelPpsPolarity.MIN_LEN, QuectelPpsPolarity.MAX_LEN = 1, 1
 
 
@@ -6383,7 +6383,7 @@ QuectelTimeReference.MIN_LEN, QuectelTimeReference.MAX_LEN = 1, 1
 
 
 QuectelTimeStatus.BY_CODE = by_code(QuectelTimeStatus)
-QuectelTimeStatus.CODE_CLASS = "digits"
+QuectelTimeStatus.CODE_CLASS = "closed"
 QuectelTimeStatus.MIN_LEN, QuectelTimeStatus.MAX_LEN = 1, 1
 
 
@@ -6398,12 +6398,12 @@ RlmMessageCode.MIN_LEN, RlmMessageCode.MAX_LEN = 1, 1
 
 
 RmbArrivalStatus.BY_CODE = by_code(RmbArrivalStatus)
-RmbArrivalStatus.CODE_CLASS = "letters"
+RmbArrivalStatus.CODE_CLASS = "closed"
 RmbArrivalStatus.MIN_LEN, RmbArrivalStatus.MAX_LEN = 1, 1
 
 
 RmcMagVarDir.BY_CODE = by_code(RmcMagVarDir)
-RmcMagVarDir.CODE_CLASS = "letters"
+RmcMagVarDir.CODE_CLASS = "closed"
 RmcMagVarDir.MIN_LEN, RmcMagVarDir.MAX_LEN = 1, 1
 
 
@@ -6433,7 +6433,7 @@ RsdDisplayRotation.MIN_LEN, RsdDisplayRotation.MAX_LEN = 1, 1
 
 
 RteMode.BY_CODE = by_code(RteMode)
-RteMode.CODE_CLASS = "letters"
+RteMode.CODE_CLASS = "closed"
 RteMode.MIN_LEN, RteMode.MAX_LEN = 1, 1
 
 
@@ -6458,17 +6458,17 @@ SirfBaud.MIN_LEN, SirfBaud.MAX_LEN = 4, 5
 
 
 SirfChecksumEnable.BY_CODE = by_code(SirfChecksumEnable)
-SirfChecksumEnable.CODE_CLASS = "digits"
+SirfChecksumEnable.CODE_CLASS = "closed"
 SirfChecksumEnable.MIN_LEN, SirfChecksumEnable.MAX_LEN = 2, 2
 
 
 SirfChecksumEnableDigit.BY_CODE = by_code(SirfChecksumEnableDigit)
-SirfChecksumEnableDigit.CODE_CLASS = "digits"
+SirfChecksumEnableDigit.CODE_CLASS = "closed"
 SirfChecksumEnableDigit.MIN_LEN, SirfChecksumEnableDigit.MAX_LEN = 1, 1
 
 
 SirfDebug.BY_CODE = by_code(SirfDebug)
-SirfDebug.CODE_CLASS = "digits"
+SirfDebug.CODE_CLASS = "closed"
 SirfDebug.MIN_LEN, SirfDebug.MAX_LEN = 1, 1
 
 
@@ -6483,7 +6483,7 @@ SirfNmeaMessageDigit.MIN_LEN, SirfNmeaMessageDigit.MAX_LEN = 1, 1
 
 
 SirfOkToSend.BY_CODE = by_code(SirfOkToSend)
-SirfOkToSend.CODE_CLASS = "digits"
+SirfOkToSend.CODE_CLASS = "closed"
 SirfOkToSend.MIN_LEN, SirfOkToSend.MAX_LEN = 1, 1
 
 
@@ -6508,17 +6508,17 @@ SirfRateModeDigit.MIN_LEN, SirfRateModeDigit.MAX_LEN = 1, 1
 
 
 SkytraqAvailability.BY_CODE = by_code(SkytraqAvailability)
-SkytraqAvailability.CODE_CLASS = "digits"
+SkytraqAvailability.CODE_CLASS = "closed"
 SkytraqAvailability.MIN_LEN, SkytraqAvailability.MAX_LEN = 1, 1
 
 
 SkytraqCalibration.BY_CODE = by_code(SkytraqCalibration)
-SkytraqCalibration.CODE_CLASS = "digits"
+SkytraqCalibration.CODE_CLASS = "closed"
 SkytraqCalibration.MIN_LEN, SkytraqCalibration.MAX_LEN = 1, 1
 
 
 SkytraqDirection.BY_CODE = by_code(SkytraqDirection)
-SkytraqDirection.CODE_CLASS = "digits"
+SkytraqDirection.CODE_CLASS = "closed"
 SkytraqDirection.MIN_LEN, SkytraqDirection.MAX_LEN = 1, 1
 
 
@@ -6533,12 +6533,12 @@ SkytraqMode.MIN_LEN, SkytraqMode.MAX_LEN = 1, 1
 
 
 SkytraqReceiverRole.BY_CODE = by_code(SkytraqReceiverRole)
-SkytraqReceiverRole.CODE_CLASS = "letters"
+SkytraqReceiverRole.CODE_CLASS = "closed"
 SkytraqReceiverRole.MIN_LEN, SkytraqReceiverRole.MAX_LEN = 1, 1
 
 
 Sm1MsiStatus.BY_CODE = by_code(Sm1MsiStatus)
-Sm1MsiStatus.CODE_CLASS = "letters"
+Sm1MsiStatus.CODE_CLASS = "closed"
 Sm1MsiStatus.MIN_LEN, Sm1MsiStatus.MAX_LEN = 1, 1
 
 
@@ -6583,12 +6583,12 @@ SpwPasswordLevel.MIN_LEN, SpwPasswordLevel.MAX_LEN = 1, 1
 
 
 SsdDte.BY_CODE = by_code(SsdDte)
-SsdDte.CODE_CLASS = "digits"
+SsdDte.CODE_CLASS = "closed"
 SsdDte.MIN_LEN, SsdDte.MAX_LEN = 1, 1
 
 
 Status.BY_CODE = by_code(Status)
-Status.CODE_CLASS = "letters"
+Status.CODE_CLASS = "closed"
 Status.MIN_LEN, Status.MAX_LEN = 1, 1
 
 
@@ -6608,7 +6608,7 @@ TeseoCompilerType.MIN_LEN, TeseoCompilerType.MAX_LEN = 3, 3
 
 
 TeseoNmeaOnOff.BY_CODE = by_code(TeseoNmeaOnOff)
-TeseoNmeaOnOff.CODE_CLASS = "digits"
+TeseoNmeaOnOff.CODE_CLASS = "closed"
 TeseoNmeaOnOff.MIN_LEN, TeseoNmeaOnOff.MAX_LEN = 1, 1
 
 
@@ -6633,7 +6633,7 @@ ThsMode.MIN_LEN, ThsMode.MAX_LEN = 1, 1
 
 
 TrimbleAntennaStatus.BY_CODE = by_code(TrimbleAntennaStatus)
-TrimbleAntennaStatus.CODE_CLASS = "digits"
+TrimbleAntennaStatus.CODE_CLASS = "closed"
 TrimbleAntennaStatus.MIN_LEN, TrimbleAntennaStatus.MAX_LEN = 1, 1
 
 
@@ -6648,7 +6648,7 @@ TrimbleCopernicusVersionPart.MIN_LEN, TrimbleCopernicusVersionPart.MAX_LEN = 1, 
 
 
 TrimbleDgChannelUsed.BY_CODE = by_code(TrimbleDgChannelUsed)
-TrimbleDgChannelUsed.CODE_CLASS = "digits"
+TrimbleDgChannelUsed.CODE_CLASS = "closed"
 TrimbleDgChannelUsed.MIN_LEN, TrimbleDgChannelUsed.MAX_LEN = 1, 1
 
 
@@ -6663,7 +6663,7 @@ TrimbleGpsQuality.MIN_LEN, TrimbleGpsQuality.MAX_LEN = 1, 2
 
 
 TrimbleOscillatorLock.BY_CODE = by_code(TrimbleOscillatorLock)
-TrimbleOscillatorLock.CODE_CLASS = "digits"
+TrimbleOscillatorLock.CODE_CLASS = "closed"
 TrimbleOscillatorLock.MIN_LEN, TrimbleOscillatorLock.MAX_LEN = 1, 1
 
 
@@ -6678,7 +6678,7 @@ TtmAcquisition.MIN_LEN, TtmAcquisition.MAX_LEN = 1, 1
 
 
 TtmReference.BY_CODE = by_code(TtmReference)
-TtmReference.CODE_CLASS = "letters"
+TtmReference.CODE_CLASS = "closed"
 TtmReference.MIN_LEN, TtmReference.MAX_LEN = 1, 1
 
 
@@ -6688,12 +6688,12 @@ TtmTargetStatus.MIN_LEN, TtmTargetStatus.MAX_LEN = 1, 1
 
 
 TtmUnits.BY_CODE = by_code(TtmUnits)
-TtmUnits.CODE_CLASS = "letters"
+TtmUnits.CODE_CLASS = "closed"
 TtmUnits.MIN_LEN, TtmUnits.MAX_LEN = 1, 1
 
 
 UbloxAutobauding.BY_CODE = by_code(UbloxAutobauding)
-UbloxAutobauding.CODE_CLASS = "digits"
+UbloxAutobauding.CODE_CLASS = "closed"
 UbloxAutobauding.MIN_LEN, UbloxAutobauding.MAX_LEN = 1, 1
 
 

@@ -121,7 +121,7 @@
 //   spec/enums/ublox_port.yaml, spec/enums/ublox_sv_status.yaml, spec/enums/vsd_nav_status.yaml,
 //   spec/enums/wat_alarm_condition.yaml, spec/enums/wat_message_type.yaml,
 //   spec/enums/wat_override.yaml, spec/enums/wat_system.yaml, spec/enums/xdr_transducer_type.yaml,
-//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 082b2baae3bc4d88)
+//   spec/enums/xdr_unit.yaml, spec/enums/zdl_point_type.yaml (digest 042d4dbd3ca7edd0)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! The spec's lookup tables. Each value has a wire code ([`CodeEnum::code`]) and the spec's id
@@ -143,7 +143,7 @@ pub enum AamArrivalCircle {
 impl CodeEnum for AamArrivalCircle {
     const EXPECTED: &'static str = "aam_arrival_circle code (A V)";
     const EXPECTED_CHARS: &'static str = "aam_arrival_circle codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Entered, Self::NotEntered];
@@ -188,7 +188,7 @@ pub enum AamPerpendicular {
 impl CodeEnum for AamPerpendicular {
     const EXPECTED: &'static str = "aam_perpendicular code (A V)";
     const EXPECTED_CHARS: &'static str = "aam_perpendicular codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Passed, Self::NotPassed];
@@ -307,7 +307,7 @@ pub enum AbkChannel {
 impl CodeEnum for AbkChannel {
     const EXPECTED: &'static str = "abk_channel code (A B)";
     const EXPECTED_CHARS: &'static str = "abk_channel codes (A B)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::A, Self::B];
@@ -450,7 +450,7 @@ pub enum AcaInUse {
 impl CodeEnum for AcaInUse {
     const EXPECTED: &'static str = "aca_in_use code (0 1)";
     const EXPECTED_CHARS: &'static str = "aca_in_use codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::NotInUse, Self::InUse];
@@ -1158,7 +1158,7 @@ pub enum AirohaEnable {
 impl CodeEnum for AirohaEnable {
     const EXPECTED: &'static str = "airoha_enable code (0 1)";
     const EXPECTED_CHARS: &'static str = "airoha_enable codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Disabled, Self::Enabled];
@@ -1965,7 +1965,7 @@ pub enum AisChannel {
 impl CodeEnum for AisChannel {
     const EXPECTED: &'static str = "ais_channel code (A B 1 2)";
     const EXPECTED_CHARS: &'static str = "ais_channel codes (A B 1 2)";
-    const CLASS: CodeClass = CodeClass::Alnum;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::A, Self::B, Self::One, Self::Two];
@@ -2317,7 +2317,7 @@ pub enum AlrAckState {
 impl CodeEnum for AlrAckState {
     const EXPECTED: &'static str = "alr_ack_state code (A V)";
     const EXPECTED_CHARS: &'static str = "alr_ack_state codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Acknowledged, Self::Unacknowledged];
@@ -2361,7 +2361,7 @@ pub enum AlrCondition {
 impl CodeEnum for AlrCondition {
     const EXPECTED: &'static str = "alr_condition code (A V)";
     const EXPECTED_CHARS: &'static str = "alr_condition codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::ThresholdExceeded, Self::NotExceeded];
@@ -2405,7 +2405,7 @@ pub enum ApbBearingRef {
 impl CodeEnum for ApbBearingRef {
     const EXPECTED: &'static str = "apb_bearing_ref code (M T)";
     const EXPECTED_CHARS: &'static str = "apb_bearing_ref codes (M T)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Magnetic, Self::TrueNorth];
@@ -2745,7 +2745,7 @@ pub enum AshtechOnOff {
 impl CodeEnum for AshtechOnOff {
     const EXPECTED: &'static str = "ashtech_on_off code (ON OFF)";
     const EXPECTED_CHARS: &'static str = "ashtech_on_off codes (ON OFF)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 2;
     const MAX_LEN: usize = 3;
     const ALL: &'static [Self] = &[Self::On, Self::Off];
@@ -3198,7 +3198,7 @@ pub enum AshtechSvUsed {
 impl CodeEnum for AshtechSvUsed {
     const EXPECTED: &'static str = "ashtech_sv_used code (U -)";
     const EXPECTED_CHARS: &'static str = "ashtech_sv_used codes (U -)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Used, Self::NotUsed];
@@ -3301,7 +3301,7 @@ pub enum BroadcomGlorLocationRequest {
 impl CodeEnum for BroadcomGlorLocationRequest {
     const EXPECTED: &'static str = "broadcom_glor_location_request code (0 1)";
     const EXPECTED_CHARS: &'static str = "broadcom_glor_location_request codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::NotNeeded, Self::Requested];
@@ -3728,7 +3728,7 @@ pub enum CurDirectionReference {
 impl CodeEnum for CurDirectionReference {
     const EXPECTED: &'static str = "cur_direction_reference code (T R)";
     const EXPECTED_CHARS: &'static str = "cur_direction_reference codes (T R)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::TrueNorth, Self::Relative];
@@ -3772,7 +3772,7 @@ pub enum CurHeadingReference {
 impl CodeEnum for CurHeadingReference {
     const EXPECTED: &'static str = "cur_heading_reference code (T M)";
     const EXPECTED_CHARS: &'static str = "cur_heading_reference codes (T M)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::TrueNorth, Self::Magnetic];
@@ -4650,7 +4650,7 @@ pub enum DtmLatOffsetDir {
 impl CodeEnum for DtmLatOffsetDir {
     const EXPECTED: &'static str = "dtm_lat_offset_dir code (N S)";
     const EXPECTED_CHARS: &'static str = "dtm_lat_offset_dir codes (N S)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::North, Self::South];
@@ -4695,7 +4695,7 @@ pub enum DtmLonOffsetDir {
 impl CodeEnum for DtmLonOffsetDir {
     const EXPECTED: &'static str = "dtm_lon_offset_dir code (E W)";
     const EXPECTED_CHARS: &'static str = "dtm_lon_offset_dir codes (E W)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::East, Self::West];
@@ -4740,7 +4740,7 @@ pub enum EastWest {
 impl CodeEnum for EastWest {
     const EXPECTED: &'static str = "east_west code (E W)";
     const EXPECTED_CHARS: &'static str = "east_west codes (E W)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::East, Self::West];
@@ -4785,7 +4785,7 @@ pub enum EtlMessageType {
 impl CodeEnum for EtlMessageType {
     const EXPECTED: &'static str = "etl_message_type code (O A)";
     const EXPECTED_CHARS: &'static str = "etl_message_type codes (O A)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Order, Self::AnswerBack];
@@ -5296,7 +5296,7 @@ pub enum FsiSentenceStatus {
 impl CodeEnum for FsiSentenceStatus {
     const EXPECTED: &'static str = "fsi_sentence_status code (R C)";
     const EXPECTED_CHARS: &'static str = "fsi_sentence_status codes (R C)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Report, Self::Command];
@@ -5414,7 +5414,7 @@ pub enum FurunoErideOnOff {
 impl CodeEnum for FurunoErideOnOff {
     const EXPECTED: &'static str = "furuno_eride_on_off code (0 1)";
     const EXPECTED_CHARS: &'static str = "furuno_eride_on_off codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Off, Self::On];
@@ -5460,7 +5460,7 @@ pub enum FurunoEridePolarity {
 impl CodeEnum for FurunoEridePolarity {
     const EXPECTED: &'static str = "furuno_eride_polarity code (0 1)";
     const EXPECTED_CHARS: &'static str = "furuno_eride_polarity codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Rising, Self::Falling];
@@ -6316,7 +6316,7 @@ pub enum GarminFixMode {
 impl CodeEnum for GarminFixMode {
     const EXPECTED: &'static str = "garmin_fix_mode code (M A)";
     const EXPECTED_CHARS: &'static str = "garmin_fix_mode codes (M A)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Manual, Self::Automatic];
@@ -6415,7 +6415,7 @@ pub enum GarminOffOn {
 impl CodeEnum for GarminOffOn {
     const EXPECTED: &'static str = "garmin_off_on code (1 2)";
     const EXPECTED_CHARS: &'static str = "garmin_off_on codes (1 2)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Off, Self::On];
@@ -6531,7 +6531,7 @@ pub enum GarminPassFail {
 impl CodeEnum for GarminPassFail {
     const EXPECTED: &'static str = "garmin_pass_fail code (P F)";
     const EXPECTED_CHARS: &'static str = "garmin_pass_fail codes (P F)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Pass, Self::Fail];
@@ -6669,7 +6669,7 @@ pub enum GarminRetainedLost {
 impl CodeEnum for GarminRetainedLost {
     const EXPECTED: &'static str = "garmin_retained_lost code (R L)";
     const EXPECTED_CHARS: &'static str = "garmin_retained_lost codes (R L)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Retained, Self::Lost];
@@ -6715,7 +6715,7 @@ pub enum GarminWaasMode {
 impl CodeEnum for GarminWaasMode {
     const EXPECTED: &'static str = "garmin_waas_mode code (W N)";
     const EXPECTED_CHARS: &'static str = "garmin_waas_mode codes (W N)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Enabled, Self::Disabled];
@@ -7751,7 +7751,7 @@ pub enum GsaSelectionMode {
 impl CodeEnum for GsaSelectionMode {
     const EXPECTED: &'static str = "gsa_selection_mode code (M A)";
     const EXPECTED_CHARS: &'static str = "gsa_selection_mode codes (M A)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Manual, Self::Automatic];
@@ -7796,7 +7796,7 @@ pub enum HbtEquipmentStatus {
 impl CodeEnum for HbtEquipmentStatus {
     const EXPECTED: &'static str = "hbt_equipment_status code (A V)";
     const EXPECTED_CHARS: &'static str = "hbt_equipment_status codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Normal, Self::NotNormal];
@@ -7902,7 +7902,7 @@ pub enum HmrDifferenceStatus {
 impl CodeEnum for HmrDifferenceStatus {
     const EXPECTED: &'static str = "hmr_difference_status code (A V)";
     const EXPECTED_CHARS: &'static str = "hmr_difference_status codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::WithinLimit, Self::LimitExceeded];
@@ -7948,7 +7948,7 @@ pub enum HscSentenceStatus {
 impl CodeEnum for HscSentenceStatus {
     const EXPECTED: &'static str = "hsc_sentence_status code (R C)";
     const EXPECTED_CHARS: &'static str = "hsc_sentence_status codes (R C)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Report, Self::Command];
@@ -7993,7 +7993,7 @@ pub enum HtcHeadingReference {
 impl CodeEnum for HtcHeadingReference {
     const EXPECTED: &'static str = "htc_heading_reference code (T M)";
     const EXPECTED_CHARS: &'static str = "htc_heading_reference codes (T M)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::TrueNorth, Self::Magnetic];
@@ -8039,7 +8039,7 @@ pub enum HtcOverride {
 impl CodeEnum for HtcOverride {
     const EXPECTED: &'static str = "htc_override code (A V)";
     const EXPECTED_CHARS: &'static str = "htc_override codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::InUse, Self::NotInUse];
@@ -8196,7 +8196,7 @@ pub enum HtdLimitStatus {
 impl CodeEnum for HtdLimitStatus {
     const EXPECTED: &'static str = "htd_limit_status code (A V)";
     const EXPECTED_CHARS: &'static str = "htd_limit_status codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::WithinLimits, Self::LimitReached];
@@ -8241,7 +8241,7 @@ pub enum LeftRight {
 impl CodeEnum for LeftRight {
     const EXPECTED: &'static str = "left_right code (L R)";
     const EXPECTED_CHARS: &'static str = "left_right codes (L R)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Left, Self::Right];
@@ -8533,7 +8533,7 @@ pub enum MagellanAltitudeUnit {
 impl CodeEnum for MagellanAltitudeUnit {
     const EXPECTED: &'static str = "magellan_altitude_unit code (F M)";
     const EXPECTED_CHARS: &'static str = "magellan_altitude_unit codes (F M)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Feet, Self::Meters];
@@ -8631,7 +8631,7 @@ pub enum MagellanFixFlag {
 impl CodeEnum for MagellanFixFlag {
     const EXPECTED: &'static str = "magellan_fix_flag code (T F)";
     const EXPECTED_CHARS: &'static str = "magellan_fix_flag codes (T F)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Fix, Self::NoFix];
@@ -8884,7 +8884,7 @@ pub enum MskAutoManual {
 impl CodeEnum for MskAutoManual {
     const EXPECTED: &'static str = "msk_auto_manual code (A M)";
     const EXPECTED_CHARS: &'static str = "msk_auto_manual codes (A M)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Automatic, Self::Manual];
@@ -9176,7 +9176,7 @@ pub enum MtkEnable {
 impl CodeEnum for MtkEnable {
     const EXPECTED: &'static str = "mtk_enable code (0 1)";
     const EXPECTED_CHARS: &'static str = "mtk_enable codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Disabled, Self::Enabled];
@@ -9491,7 +9491,7 @@ pub enum MwvReference {
 impl CodeEnum for MwvReference {
     const EXPECTED: &'static str = "mwv_reference code (R T)";
     const EXPECTED_CHARS: &'static str = "mwv_reference codes (R T)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Relative, Self::Theoretical];
@@ -9539,7 +9539,7 @@ pub enum MwvSpeedUnit {
 impl CodeEnum for MwvSpeedUnit {
     const EXPECTED: &'static str = "mwv_speed_unit code (K M N S)";
     const EXPECTED_CHARS: &'static str = "mwv_speed_unit codes (K M N S)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Kmh, Self::MetresPerSecond, Self::Knots, Self::StatuteMph];
@@ -9748,7 +9748,7 @@ pub enum NorthSouth {
 impl CodeEnum for NorthSouth {
     const EXPECTED: &'static str = "north_south code (N S)";
     const EXPECTED_CHARS: &'static str = "north_south codes (N S)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::North, Self::South];
@@ -10224,7 +10224,7 @@ pub enum PosSentenceStatus {
 impl CodeEnum for PosSentenceStatus {
     const EXPECTED: &'static str = "pos_sentence_status code (R C)";
     const EXPECTED_CHARS: &'static str = "pos_sentence_status codes (R C)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Report, Self::Command];
@@ -10605,7 +10605,7 @@ pub enum QuectelEnable {
 impl CodeEnum for QuectelEnable {
     const EXPECTED: &'static str = "quectel_enable code (0 1)";
     const EXPECTED_CHARS: &'static str = "quectel_enable codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Disabled, Self::Enabled];
@@ -11213,7 +11213,7 @@ pub enum QuectelPpsPolarity {
 impl CodeEnum for QuectelPpsPolarity {
     const EXPECTED: &'static str = "quectel_pps_polarity code (0 1)";
     const EXPECTED_CHARS: &'static str = "quectel_pps_polarity codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Low, Self::High];
@@ -11825,7 +11825,7 @@ pub enum QuectelTimeStatus {
 impl CodeEnum for QuectelTimeStatus {
     const EXPECTED: &'static str = "quectel_time_status code (0 1)";
     const EXPECTED_CHARS: &'static str = "quectel_time_status codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Invalid, Self::Valid];
@@ -12052,7 +12052,7 @@ pub enum RmbArrivalStatus {
 impl CodeEnum for RmbArrivalStatus {
     const EXPECTED: &'static str = "rmb_arrival_status code (A V)";
     const EXPECTED_CHARS: &'static str = "rmb_arrival_status codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Arrived, Self::NotArrived];
@@ -12097,7 +12097,7 @@ pub enum RmcMagVarDir {
 impl CodeEnum for RmcMagVarDir {
     const EXPECTED: &'static str = "rmc_mag_var_dir code (E W)";
     const EXPECTED_CHARS: &'static str = "rmc_mag_var_dir codes (E W)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::East, Self::West];
@@ -12383,7 +12383,7 @@ pub enum RteMode {
 impl CodeEnum for RteMode {
     const EXPECTED: &'static str = "rte_mode code (c w)";
     const EXPECTED_CHARS: &'static str = "rte_mode codes (c w)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Complete, Self::Working];
@@ -12722,7 +12722,7 @@ pub enum SirfChecksumEnable {
 impl CodeEnum for SirfChecksumEnable {
     const EXPECTED: &'static str = "sirf_checksum_enable code (00 01)";
     const EXPECTED_CHARS: &'static str = "sirf_checksum_enable codes (00 01)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 2;
     const MAX_LEN: usize = 2;
     const ALL: &'static [Self] = &[Self::Disabled, Self::Enabled];
@@ -12769,7 +12769,7 @@ pub enum SirfChecksumEnableDigit {
 impl CodeEnum for SirfChecksumEnableDigit {
     const EXPECTED: &'static str = "sirf_checksum_enable_digit code (0 1)";
     const EXPECTED_CHARS: &'static str = "sirf_checksum_enable_digit codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Disabled, Self::Enabled];
@@ -12817,7 +12817,7 @@ pub enum SirfDebug {
 impl CodeEnum for SirfDebug {
     const EXPECTED: &'static str = "sirf_debug code (0 1)";
     const EXPECTED_CHARS: &'static str = "sirf_debug codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Off, Self::On];
@@ -13000,7 +13000,7 @@ pub enum SirfOkToSend {
 impl CodeEnum for SirfOkToSend {
     const EXPECTED: &'static str = "sirf_ok_to_send code (0 1)";
     const EXPECTED_CHARS: &'static str = "sirf_ok_to_send codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::NotOk, Self::Ok];
@@ -13245,7 +13245,7 @@ pub enum SkytraqAvailability {
 impl CodeEnum for SkytraqAvailability {
     const EXPECTED: &'static str = "skytraq_availability code (0 1)";
     const EXPECTED_CHARS: &'static str = "skytraq_availability codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::NotAvailable, Self::Available];
@@ -13292,7 +13292,7 @@ pub enum SkytraqCalibration {
 impl CodeEnum for SkytraqCalibration {
     const EXPECTED: &'static str = "skytraq_calibration code (0 1)";
     const EXPECTED_CHARS: &'static str = "skytraq_calibration codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::NotCalibrated, Self::Calibrated];
@@ -13339,7 +13339,7 @@ pub enum SkytraqDirection {
 impl CodeEnum for SkytraqDirection {
     const EXPECTED: &'static str = "skytraq_direction code (0 1)";
     const EXPECTED_CHARS: &'static str = "skytraq_direction codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Forward, Self::Backward];
@@ -13538,7 +13538,7 @@ pub enum SkytraqReceiverRole {
 impl CodeEnum for SkytraqReceiverRole {
     const EXPECTED: &'static str = "skytraq_receiver_role code (R B)";
     const EXPECTED_CHARS: &'static str = "skytraq_receiver_role codes (R B)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Rover, Self::Base];
@@ -13584,7 +13584,7 @@ pub enum Sm1MsiStatus {
 impl CodeEnum for Sm1MsiStatus {
     const EXPECTED: &'static str = "sm1_msi_status code (A V)";
     const EXPECTED_CHARS: &'static str = "sm1_msi_status codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Complete, Self::Incomplete];
@@ -14189,7 +14189,7 @@ pub enum SsdDte {
 impl CodeEnum for SsdDte {
     const EXPECTED: &'static str = "ssd_dte code (0 1)";
     const EXPECTED_CHARS: &'static str = "ssd_dte codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Available, Self::NotAvailable];
@@ -14234,7 +14234,7 @@ pub enum Status {
 impl CodeEnum for Status {
     const EXPECTED: &'static str = "status code (A V)";
     const EXPECTED_CHARS: &'static str = "status codes (A V)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Valid, Self::Invalid];
@@ -14525,7 +14525,7 @@ pub enum TeseoNmeaOnOff {
 impl CodeEnum for TeseoNmeaOnOff {
     const EXPECTED: &'static str = "teseo_nmea_on_off code (0 1)";
     const EXPECTED_CHARS: &'static str = "teseo_nmea_on_off codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Off, Self::On];
@@ -14832,7 +14832,7 @@ pub enum TrimbleAntennaStatus {
 impl CodeEnum for TrimbleAntennaStatus {
     const EXPECTED: &'static str = "trimble_antenna_status code (0 1)";
     const EXPECTED_CHARS: &'static str = "trimble_antenna_status codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Fault, Self::Ok];
@@ -14994,7 +14994,7 @@ pub enum TrimbleDgChannelUsed {
 impl CodeEnum for TrimbleDgChannelUsed {
     const EXPECTED: &'static str = "trimble_dg_channel_used code (0 1)";
     const EXPECTED_CHARS: &'static str = "trimble_dg_channel_used codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::NotUsed, Self::Used];
@@ -15246,7 +15246,7 @@ pub enum TrimbleOscillatorLock {
 impl CodeEnum for TrimbleOscillatorLock {
     const EXPECTED: &'static str = "trimble_oscillator_lock code (0 1)";
     const EXPECTED_CHARS: &'static str = "trimble_oscillator_lock codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Unlocked, Self::Locked];
@@ -15406,7 +15406,7 @@ pub enum TtmReference {
 impl CodeEnum for TtmReference {
     const EXPECTED: &'static str = "ttm_reference code (T R)";
     const EXPECTED_CHARS: &'static str = "ttm_reference codes (T R)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::TrueNorth, Self::Relative];
@@ -15502,7 +15502,7 @@ pub enum TtmUnits {
 impl CodeEnum for TtmUnits {
     const EXPECTED: &'static str = "ttm_units code (K N S)";
     const EXPECTED_CHARS: &'static str = "ttm_units codes (K N S)";
-    const CLASS: CodeClass = CodeClass::Letters;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Kilometres, Self::NauticalMiles, Self::StatuteMiles];
@@ -15552,7 +15552,7 @@ pub enum UbloxAutobauding {
 impl CodeEnum for UbloxAutobauding {
     const EXPECTED: &'static str = "ublox_autobauding code (0 1)";
     const EXPECTED_CHARS: &'static str = "ublox_autobauding codes (0 1)";
-    const CLASS: CodeClass = CodeClass::Digits;
+    const CLASS: CodeClass = CodeClass::Closed;
     const MIN_LEN: usize = 1;
     const MAX_LEN: usize = 1;
     const ALL: &'static [Self] = &[Self::Disabled, Self::Enabled];

@@ -15,11 +15,11 @@ from ..runtime import json_too_deep
 from ..stream import json_lines
 
 USAGE = (
-    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum]"
+    "usage: nmea-py decode|stream [--values] [--lenient] [--require-checksum] [--strict]"
     " | encode | --version\n"
     "       (reads stdin, writes stdout)\n"
 )
-FLAGS = ("--values", "--lenient", "--require-checksum")
+FLAGS = ("--values", "--lenient", "--require-checksum", "--strict")
 
 
 def lines(data: bytes) -> list[str]:
@@ -38,15 +38,16 @@ def main(argv: list[str] | None = None) -> int:
         and all(f in FLAGS for f in flags)
         and len(set(flags)) == len(flags)
     ):
-        values, lenient, required = (f in flags for f in FLAGS)
+        values, lenient, required, strict = (f in flags for f in FLAGS)
         out: Iterator[str]
         if verb == "decode":
             out = (
-                decode_json(line, values, lenient, required)
+                decode_json(line, values, lenient, required, strict)
                 for line in lines(sys.stdin.buffer.read())
             )
         else:
-            out = json_lines(sys.stdin.buffer, values, lenient=lenient, require_checksum=required)
+            options = {"lenient": lenient, "require_checksum": required, "strict": strict}
+            out = json_lines(sys.stdin.buffer, values, **options)
         write = sys.stdout.buffer.write
         for text in out:
             write(text.encode("latin-1") + b"\n")

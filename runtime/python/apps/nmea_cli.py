@@ -219,16 +219,16 @@ def _chunks(source: IO[bytes], progress: Progress | None, size: int = 1 << 16) -
 
 
 def records(
-    chunks: Iterable[bytes], wanted: set[str] | None, summary: Summary, lenient: bool = False
+    chunks: Iterable[bytes], wanted: set[str] | None, summary: Summary, **options: bool
 ) -> Iterator[dict[str, Any]]:
     """Each sentence of a byte stream as {line, talker, sentence, fields}, counted in `summary`;
     errors are only counted. `wanted`: the sentence ids (or addresses of unknown sentences) to
-    keep."""
-    return framed_records(lines(chunks), wanted, summary, lenient)
+    keep; `options`: parse()'s (lenient, strict)."""
+    return framed_records(lines(chunks), wanted, summary, **options)
 
 
 def framed_records(
-    items: Iterable[bytes | int], wanted: set[str] | None, summary: Summary, lenient: bool = False
+    items: Iterable[bytes | int], wanted: set[str] | None, summary: Summary, **options: bool
 ) -> Iterator[dict[str, Any]]:
     """records() of lines already framed (an int: the length of an overlong line)."""
     for number, item in enumerate(items, 1):
@@ -236,7 +236,7 @@ def framed_records(
         try:
             if isinstance(item, int):
                 raise too_long(item)
-            sentence = parse(item, lenient=lenient)
+            sentence = parse(item, **options)
         except NmeaError as err:
             summary.errors[err.kind] += 1
             continue
@@ -344,12 +344,17 @@ def _quiet_stdout() -> None:
     sys.stdout = io.TextIOWrapper(io.BytesIO())
 
 
+def parse_options(args: argparse.Namespace) -> dict[str, bool]:
+    """parse()'s options as the command line gives them."""
+    return {"lenient": args.lenient, "strict": args.strict}
+
+
 def show(args: argparse.Namespace) -> int:
     fields, wanted = view_of(args)
     source, size = open_log(args.log)
     progress = progress_for(args.progress, size)
     summary = Summary()
-    stream = records(_chunks(source, progress), wanted, summary, args.lenient)
+    stream = records(_chunks(source, progress), wanted, summary, **parse_options(args))
     try:
         write_records(stream, args.format, fields, sys.stdout)
     except BrokenPipeError:  # `nmea show log | head`
@@ -623,7 +628,7 @@ def listen(args: argparse.Namespace) -> int:
     summary = Summary()
     with _open_port(args.port, baud) as receiver:
         receiver.log = log = _append_log(args.log)
-        stream = framed_records(receiver.lines(duration), wanted, summary, args.lenient)
+        stream = framed_records(receiver.lines(duration), wanted, summary, **parse_options(args))
         if args.count is not None:
             stream = islice(stream, args.count)
         try:
@@ -757,6 +762,11 @@ def _view_options(verb: argparse.ArgumentParser) -> None:
         "--lenient",
         action="store_true",
         help="keep sentences with fields that do not fit (left empty)",
+    )
+    verb.add_argument(
+        "--strict",
+        action="store_true",
+        help="refuse sentences with a number outside its field's range (kept by default)",
     )
     verb.add_argument("-q", "--quiet", action="store_true", help="no summary on stderr")
 

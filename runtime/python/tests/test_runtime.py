@@ -91,3 +91,21 @@ def test_error_json() -> None:
         '{"ok":false,"error":{"kind":"bad_field","address":"GPGSV","field":3,"name":"satellites_in_view",'
         '"message":"expected integer 0..99, found \\"x\\""}}'
     )
+
+
+def test_a_number_outside_its_range_is_refused_unless_its_text_is_range_kept() -> None:
+    memo: dict[str, object] = {}
+    args = ("GPTST", 1, "count", "integer 0..99", 0, 99, memo)
+    with pytest.raises(rt.NmeaError) as refused:
+        rt.number_field("123", True, *args)
+    assert refused.value.out_of_range and refused.value.problem_kind == "out_of_range"
+    kept = rt.number_field(rt.RangeKept("123"), True, *args)
+    assert kept is not None and kept.digits == 123 and "123" not in memo  # never remembered
+    with pytest.raises(rt.NmeaError) as malformed:
+        rt.number_field(rt.RangeKept("12x"), True, *args)
+    assert not malformed.value.out_of_range and malformed.value.problem_kind == "left_empty"
+    assert rt.problem_json(refused.value) == (
+        '{"kind":"out_of_range","field":1,"name":"count","text":"123",'
+        '"message":"expected integer 0..99, found \\"123\\""}'
+    )
+    assert rt.with_problems(["123", "abc"], [refused.value]) == ["123", "abc"]

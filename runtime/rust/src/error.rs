@@ -182,6 +182,14 @@ pub enum Message<'a> {
         /// The field's text.
         text: &'a str,
     },
+    /// `expected DESCRIPTION, found "TEXT"` too, for a number of the right form outside its
+    /// field's range (which parsing keeps unless it is strict): a `bad_field` error.
+    OutOfRange {
+        /// What the field should hold, from the spec.
+        expected: &'static str,
+        /// The field's text.
+        text: &'a str,
+    },
     /// `the line needs N bytes, the buffer holds M` (a command builder's buffer).
     BufferTooSmall {
         /// Bytes of the line with its CR LF.
@@ -208,7 +216,7 @@ impl Message<'_> {
             Self::ChecksumMismatch { .. } => ErrorKind::ChecksumMismatch,
             Self::TooFew { .. } | Self::GroupCut { .. } => ErrorKind::TooFewFields,
             Self::TooMany { .. } => ErrorKind::TooManyFields,
-            Self::BadField { .. } => ErrorKind::BadField,
+            Self::BadField { .. } | Self::OutOfRange { .. } => ErrorKind::BadField,
             Self::MissingChecksum => ErrorKind::MissingChecksum,
             Self::BufferTooSmall { .. } => ErrorKind::BufferTooSmall,
             #[cfg(feature = "std")]
@@ -255,7 +263,7 @@ impl fmt::Display for Message<'_> {
             Self::TooMany { sentence, limit, found } => {
                 write!(f, "{sentence} takes at most {limit} fields, found {found}")
             }
-            Self::BadField { expected, text } => {
+            Self::BadField { expected, text } | Self::OutOfRange { expected, text } => {
                 write!(f, "expected {expected}, found ")?;
                 write_json_str(f, text)
             }
@@ -303,6 +311,21 @@ impl<'a> Error<'a> {
         }
     }
 
+    /// The same `bad_field` error, for a number of the right form outside its field's range
+    /// (which parsing keeps unless it is strict).
+    #[must_use]
+    pub fn outside_range(self) -> Self {
+        match self.message {
+            Message::BadField { expected, text } => Self { message: Message::OutOfRange { expected, text }, ..self },
+            _ => self,
+        }
+    }
+
+    /// Whether this `bad_field` error is a number outside its field's range.
+    pub const fn is_out_of_range(&self) -> bool {
+        matches!(self.message, Message::OutOfRange { .. })
+    }
+
     /// A `bad_json` error of the encode verb.
     #[cfg(feature = "std")]
     pub fn bad_json(message: impl Into<std::string::String>) -> Self {
@@ -335,17 +358,19 @@ impl<'a> Error<'a> {
     /// The field's text as received, for a `bad_field` error.
     pub const fn text(&self) -> Option<&'a str> {
         match self.message {
-            Message::BadField { text, .. } => Some(text),
+            Message::BadField { text, .. } | Message::OutOfRange { text, .. } => Some(text),
             _ => None,
         }
     }
 
-    /// The problem lenient parsing records for a `bad_field` error.
-    pub const fn problem(&self) -> Option<FieldProblem<'a>> {
+    /// The problem of `kind` a sentence parsing keeps records for a `bad_field` error.
+    pub const fn problem(&self, kind: ProblemKind) -> Option<FieldProblem<'a>> {
         match (self.field, self.name, &self.message) {
-            (Some(field), Some(name), Message::BadField { expected, text }) => {
-                Some(FieldProblem { field, name, expected, text })
-            }
+            (
+                Some(field),
+                Some(name),
+                Message::BadField { expected, text } | Message::OutOfRange { expected, text },
+            ) => Some(FieldProblem { kind, field, name, expected, text }),
             _ => None,
         }
     }
@@ -401,10 +426,31 @@ impl fmt::Display for Error<'_> {
 #[cfg(feature = "std")]
 impl std::error::Error for Error<'_> {}
 
-/// A field lenient parsing left empty: where it is, its text as received, and why (the
+/// What parsing did with a field at fault (the `kind` of a problem in the tools' JSON).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ProblemKind {
+    /// `left_empty`: lenient parsing read the field as empty.
+    LeftEmpty,
+    /// `out_of_range`: a number outside its field's range, kept as sent.
+    OutOfRange,
+}
+
+impl ProblemKind {
+    /// The kind as the tools print it, e.g. `"out_of_range"`.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            Self::LeftEmpty => "left_empty",
+            Self::OutOfRange => "out_of_range",
+        }
+    }
+}
+
+/// A field at fault in a sentence parsing kept: a number outside its field's range, kept as
+/// sent, or a field lenient parsing left empty. Where it is, its text as received, and why (the
 /// `bad_field` error it gave).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FieldProblem<'a> {
+    kind: ProblemKind,
     field: u32,
     name: Name,
     expected: &'static str,
@@ -412,6 +458,11 @@ pub struct FieldProblem<'a> {
 }
 
 impl<'a> FieldProblem<'a> {
+    /// What parsing did with the field.
+    pub const fn kind(&self) -> ProblemKind {
+        self.kind
+    }
+
     /// The 1-based index of the wire field (after the address).
     pub const fn field(&self) -> usize {
         self.field as usize
@@ -434,7 +485,7 @@ impl<'a> FieldProblem<'a> {
 
     /// Writes the `problems` entry of the tools' JSON.
     pub fn write_json<W: fmt::Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
-        write!(w, "{{\"field\":{},\"name\":", self.field)?;
+        write!(w, "{{\"kind\":\"{}\",\"field\":{},\"name\":", self.kind.as_str(), self.field)?;
         super::write::write_json_display(w, &self.name)?;
         w.write_str(",\"text\":")?;
         write_json_str(w, self.text)?;
@@ -444,8 +495,9 @@ impl<'a> FieldProblem<'a> {
     }
 }
 
-/// The fields lenient parsing left empty in one sentence, in the order their errors came: at
-/// most [`MAX_PROBLEMS`](super::MAX_PROBLEMS), kept inline (no allocation).
+/// The problems of one sentence (numbers kept outside their range, fields lenient parsing left
+/// empty), in the order their errors came: at most [`MAX_PROBLEMS`](super::MAX_PROBLEMS), kept
+/// inline (no allocation).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Problems<'a> {
     items: [Option<FieldProblem<'a>>; super::MAX_PROBLEMS],
@@ -485,7 +537,7 @@ impl<'a> Problems<'a> {
 
     /// The text to write back for wire field `index`, if lenient parsing left it empty.
     pub fn text_of(&self, index: usize) -> Option<&'a str> {
-        self.iter().find(|p| p.field() == index).map(|p| p.text)
+        self.iter().find(|p| p.field() == index && p.kind == ProblemKind::LeftEmpty).map(|p| p.text)
     }
 
     /// Writes `,"problems":[...]` (nothing when there are none).

@@ -12,10 +12,16 @@ use super::types::{
 /// Longest line (without its line ending) the parser accepts.
 pub const MAX_LINE: usize = 1024;
 
-/// Most fields lenient parsing leaves empty in one sentence.
+/// Most problems one sentence may have (numbers kept outside their range and fields left
+/// empty, together).
 pub const MAX_PROBLEMS: usize = 8;
 
-/// The wire fields (1-based indices) that lenient parsing reads as empty: at most
+/// Added to a wire index in [`Blanks`]: the number there is kept outside its range. (No line has
+/// that many fields, and an index so marked is never taken for a field read as empty.)
+const RANGE_KEPT: usize = 0x8000;
+
+/// The wire fields (1-based indices) at fault in a second reading: read as empty (lenient
+/// parsing) or, marked with `RANGE_KEPT`, numbers read without their range. At most
 /// [`MAX_PROBLEMS`], kept inline so that [`Fields`] stays a copyable view of the line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Blanks {
@@ -349,6 +355,12 @@ impl<'a> Fields<'a> {
         Self { blanks: self.blanks.with(index), ..self }
     }
 
+    /// The same fields with the number of wire field `index` (1-based) kept outside its range.
+    #[must_use]
+    pub fn with_range_kept(self, index: usize) -> Self {
+        Self { blanks: self.blanks.with(index | RANGE_KEPT), ..self }
+    }
+
     /// The fields lenient parsing reads as empty.
     pub const fn blanks(&self) -> &Blanks {
         &self.blanks
@@ -406,6 +418,7 @@ impl<'a> Fields<'a> {
             separator: self.separator,
             blanks: self.blanks,
             ignore_case: false,
+            any_range: false,
             index: 0,
             group: "",
             entry: 0,
@@ -551,6 +564,8 @@ pub struct Reader<'a> {
     separator: u8,
     blanks: Blanks,
     ignore_case: bool,
+    /// Numbers are not held to their range (a parsed sentence's entries, read again).
+    any_range: bool,
     index: usize,
     group: &'static str,
     entry: usize,
@@ -563,9 +578,20 @@ impl<'a> Reader<'a> {
     }
 
     /// A reader of `text` alone: the entries of a group as a parsed sentence keeps them, with the
-    /// fields lenient parsing read as empty (1-based in `text`).
+    /// fields lenient parsing read as empty (1-based in `text`); parsing has held each number to
+    /// its range or kept it outside.
     pub(crate) const fn over(text: &'a str, separator: u8, blanks: Blanks) -> Self {
-        Self { address: "", rest: text, separator, blanks, ignore_case: false, index: 0, group: "", entry: 0 }
+        Self {
+            address: "",
+            rest: text,
+            separator,
+            blanks,
+            ignore_case: false,
+            any_range: true,
+            index: 0,
+            group: "",
+            entry: 0,
+        }
     }
 
     /// Reads `count` entries of the repeated group `id`, each of `width` wire fields, with `read`,
@@ -710,7 +736,8 @@ impl<'a> Reader<'a> {
         self.any_number(id, expected, range, integer)
     }
 
-    /// [`Reader::number`] for a field its fast path leaves: kept out of line.
+    /// [`Reader::number`] for a field its fast path leaves: kept out of line. Outside its range,
+    /// an error that says so, unless the field is one whose number is kept outside its range.
     #[cold]
     #[inline(never)]
     fn any_number(
@@ -720,7 +747,17 @@ impl<'a> Reader<'a> {
         range: Range,
         integer: bool,
     ) -> Result<Option<Number>, Error<'a>> {
-        self.read(id, expected, |t| Number::parse(t, integer).filter(|n| range.contains(*n)))
+        let text = self.next_text();
+        if text.is_empty() {
+            return Ok(None);
+        }
+        let Some(number) = Number::parse(text, integer) else {
+            return Err(self.bad_field(id, expected, text));
+        };
+        if range.contains(number) || self.any_range || self.blanks.contains(self.index | RANGE_KEPT) {
+            return Ok(Some(number));
+        }
+        Err(self.bad_field(id, expected, text).outside_range())
     }
 
     /// The next field as `digits[.digits]` (no point for an `integer`) without taking it: where

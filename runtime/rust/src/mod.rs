@@ -28,7 +28,7 @@ pub mod stream;
 #[cfg(feature = "std")]
 pub mod json;
 
-pub use error::{Error, ErrorKind, FieldProblem, Name, Problems};
+pub use error::{Error, ErrorKind, FieldProblem, Name, ProblemKind, Problems};
 pub use fast::{FastReader, Read};
 // Text commands compile with their receivers' features only.
 #[allow(unused_imports)]

@@ -1,11 +1,12 @@
 //! The parser over any spec: the fast path and the general path, the first layout that fits a
-//! framed line, lenient parsing, and what a sentence writes of itself whatever its layout. The
+//! framed line, the second reading that keeps numbers outside their range and (lenient parsing)
+//! leaves fields at fault empty, and what a sentence writes of itself whatever its layout. The
 //! generated crate describes its layouts with [`Layouts`] (its `LayoutId`) and its sentence with
 //! [`Decoded`] (its `Sentence`); its `parse` and `parse_with` call these functions.
 
 use core::fmt::{self, Write};
 
-use super::error::{Error, ErrorKind, Message, Problems};
+use super::error::{Error, ErrorKind, Message, ProblemKind, Problems};
 use super::fast::{FastReader, Unsure};
 use super::frame::{first_word, Fields, Frame, MAX_LINE};
 use super::layout::{build, strip_line_ending, Framing, Generic, Layout};
@@ -14,7 +15,7 @@ use super::write::{ByteWriter, Latin1Bytes};
 
 /// The spec's layouts, as the generated `LayoutId` lists them: what the parser needs to find the
 /// layouts a line may have and to decode it with one.
-pub trait Layouts: Copy + 'static {
+pub trait Layouts: Copy + PartialEq + 'static {
     /// A decoded line: the struct of one layout, or a [`Generic`] sentence.
     type Sentence<'a>: Decoded + From<Generic<'a>>;
 
@@ -39,6 +40,17 @@ pub trait Layouts: Copy + 'static {
 
     /// The keyword that picks this layout and its wire index (0-based, after the address).
     fn keyword(self) -> Option<(&'static str, usize)>;
+
+    /// The main layout of this layout's sentence (itself for a main layout).
+    fn main_layout(self) -> Self {
+        self
+    }
+
+    /// A variant: the wire fields (1-based) it reads as its main layout does. A line its main
+    /// layout refuses for one of them is not one it exists for, and it is not tried on it.
+    fn same_as_main(self) -> &'static [u16] {
+        &[]
+    }
 
     /// Decodes the fields after the address with this layout.
     fn parse_fields<'a>(self, fields: Fields<'a>, checksum: Checksum) -> Result<Self::Sentence<'a>, Error<'a>>;
@@ -141,7 +153,9 @@ impl<'a, L: Layouts> Outcome<'a, L> for Option<L::Sentence<'a>> {
 }
 
 /// Decodes one line (a trailing LF or CR LF is allowed) into the struct of its layout, or a
-/// [`Generic`] sentence: the fast path, else the general path.
+/// [`Generic`] sentence: the fast path, else the general path. A number outside its field's
+/// range is kept as sent ([`parse_with`] lists it among the problems, or refuses it when
+/// strict).
 pub fn parse<L: Layouts>(line: &[u8]) -> Result<L::Sentence<'_>, Error<'_>> {
     let line = strip_line_ending(line);
     match FastReader::frame(line) {
@@ -192,30 +206,34 @@ fn is_text_command<L: Layouts>(line: &[u8]) -> bool {
 
 /// The general path of [`parse`], for a line without its line ending.
 fn general<L: Layouts>(line: &[u8]) -> Result<L::Sentence<'_>, Error<'_>> {
-    if is_text_command::<L>(line) {
-        return parse_frame::<L>(Frame::parse_text(line)?);
-    }
-    parse_frame::<L>(Frame::parse(line)?)
+    general_with::<L>(line, Options::default()).map(|parsed| parsed.sentence)
 }
 
-/// How `parse_with` reads a line.
+/// How `parse_with` reads a line. By default a `$`/`!` sentence with a number of the right form
+/// outside its field's range is decoded with the number kept as sent, listed in
+/// [`Parsed::problems`] ([`ProblemKind::OutOfRange`](super::ProblemKind)).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Options {
-    /// Keep a `$`/`!` sentence whose fields do not all fit their types: each field at fault is
-    /// read as empty and listed in [`Parsed::problems`] (at most
-    /// [`MAX_PROBLEMS`](super::MAX_PROBLEMS)). Text commands are always strict.
+    /// Keep a `$`/`!` sentence whose fields do not all fit their types: each other field at
+    /// fault is read as empty and listed in [`Parsed::problems`] (at most
+    /// [`MAX_PROBLEMS`](super::MAX_PROBLEMS) problems in all). Text commands are always read
+    /// strictly.
     pub lenient: bool,
     /// Refuse a `$`/`!` sentence without a checksum (or with a bare `*`): `missing_checksum`.
     pub require_checksum: bool,
+    /// Refuse a number outside its field's range as `bad_field` (or, `lenient`, leave it empty).
+    pub strict: bool,
 }
 
-/// A sentence decoded by `parse_with`, and the fields lenient parsing left empty (with their
-/// text as received, written back by `Display` so that the round trip stays exact).
+/// A sentence decoded by `parse_with`, and its problems: the numbers kept outside their range,
+/// and the fields lenient parsing left empty (with their text as received, written back by
+/// `Display` so that the round trip stays exact).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Parsed<'a, S> {
     /// The decoded sentence (fields at fault are `None`).
     pub sentence: S,
-    /// The fields lenient parsing left empty, in the order their errors came.
+    /// The numbers kept outside their range and the fields lenient parsing left empty, in the
+    /// order their errors came.
     pub problems: Problems<'a>,
 }
 
@@ -260,7 +278,7 @@ impl<S: Decoded> fmt::Display for Parsed<'_, S> {
     }
 }
 
-/// [`parse`] with options: lenient decoding and required checksums.
+/// [`parse`] with options: lenient decoding, required checksums, strict ranges.
 pub fn parse_with<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
     let line = strip_line_ending(line);
     let fast = FastReader::frame(line).and_then(|fields| L::read_sentence::<Option<_>>(fields, line));
@@ -288,32 +306,44 @@ fn general_with<L: Layouts>(line: &[u8], options: Options) -> Result<Parsed<'_, 
     }
     match first_fit(layouts, frame.fields, frame.checksum) {
         Ok(sentence) => Ok(sentence.into()),
-        Err(error) if options.lenient && error.kind() == ErrorKind::BadField => {
-            lenient(layouts, frame.fields, frame.checksum, error)
+        Err(error) if error.kind() == ErrorKind::BadField && (options.lenient || !options.strict) => {
+            refit(layouts, frame.fields, frame.checksum, error, options)
         }
         Err(error) => Err(error),
     }
 }
 
-/// Parses again with every field that does not fit left empty, one at a time; a field that is
-/// already empty and still does not fit, or one problem more than
+/// Parses again, one field at fault at a time: a number outside its range kept as sent (unless
+/// `options.strict`), any other field (`options.lenient`) left empty. A field neither can take
+/// (or one already empty that still does not fit), or one problem more than
 /// [`MAX_PROBLEMS`](super::MAX_PROBLEMS), ends the attempt with its error.
-pub fn lenient<'a, L: Layouts>(
+pub fn refit<'a, L: Layouts>(
     layouts: &[L],
     mut fields: Fields<'a>,
     checksum: Checksum,
     mut error: Error<'a>,
+    options: Options,
 ) -> Result<Parsed<'a, L::Sentence<'a>>, Error<'a>> {
     let mut problems = Problems::new();
     loop {
-        let Some(problem) = error.problem() else {
+        let kind = if error.is_out_of_range() && !options.strict {
+            ProblemKind::OutOfRange
+        } else if options.lenient {
+            ProblemKind::LeftEmpty
+        } else {
+            return Err(error);
+        };
+        let Some(problem) = error.problem(kind) else {
             return Err(error);
         };
         let index = problem.field();
         if fields.get(index).is_none_or(str::is_empty) || !problems.push(problem) {
             return Err(error);
         }
-        fields = fields.with_blank(index);
+        fields = match kind {
+            ProblemKind::OutOfRange => fields.with_range_kept(index),
+            ProblemKind::LeftEmpty => fields.with_blank(index),
+        };
         match first_fit(layouts, fields, checksum) {
             Ok(sentence) => return Ok(Parsed { sentence, problems }),
             Err(again) => error = again,
@@ -347,9 +377,10 @@ fn claimed<L: Layouts>(layouts: &[L], frame: &Frame<'_>) -> bool {
             || layouts.iter().any(|&layout| layout.keyword().is_none() || holds_keyword(layout, &frame.fields)))
 }
 
-/// The first of `layouts` (not empty) that fits the fields; when none does, the error of the
-/// contenders (the layouts whose keyword the first field holds, else all): the first that is a
-/// bad field, else the first.
+/// The first of `layouts` (not empty) that fits the fields; a variant is passed over when the main
+/// layout of its sentence, tried last before it, refused a field the variant reads the same way
+/// ([`Layouts::same_as_main`]). When none does, the error of the contenders (the layouts whose
+/// keyword the first field holds, else all): the first that is a bad field, else the first.
 fn first_fit<'a, L: Layouts>(
     layouts: &[L],
     fields: Fields<'a>,
@@ -368,11 +399,30 @@ fn first_fit<'a, L: Layouts>(
     let rank = |layout: L, error: &Error<'_>| {
         u8::from(!holds_keyword(layout, &fields)) * 2 + u8::from(error.kind() != ErrorKind::BadField)
     };
+    // The main layout tried last, when it refused a field: that layout and the field.
+    let refused_by = |layout: L, error: &Error<'_>| {
+        error
+            .field()
+            .filter(|_| error.kind() == ErrorKind::BadField && layout.main_layout() == layout)
+            .map(|at| (layout, at))
+    };
+    let mut refused = refused_by(first, &error);
     let mut best = (rank(first, &error), error);
     for &layout in others {
+        if let Some((main, at)) = refused {
+            if layout.main_layout() == main
+                && layout != main
+                && layout.same_as_main().iter().any(|&f| usize::from(f) == at)
+            {
+                continue;
+            }
+        }
         match layout.parse_fields(fields, checksum) {
             Ok(sentence) => return Ok(sentence),
             Err(error) => {
+                if layout.main_layout() == layout {
+                    refused = refused_by(layout, &error);
+                }
                 let rank = rank(layout, &error);
                 if rank < best.0 {
                     best = (rank, error);
@@ -461,7 +511,7 @@ pub(super) mod tests {
         assert_eq!((sentence.address, sentence.fields.as_str()), ("PXUNKNOWN", "00,01,,1"));
         assert_eq!(parse_general::<NoLayout>(line.as_bytes()), Ok(sentence));
         assert_eq!(parse_fast::<NoLayout>(line.as_bytes()), None);
-        let lenient = Options { lenient: true, require_checksum: false };
+        let lenient = Options { lenient: true, ..Options::default() };
         let parsed = parse_with::<NoLayout>(line.as_bytes(), lenient).unwrap();
         assert_eq!(parsed, Parsed::from(sentence));
         let mut buf = [0; MAX_LINE];
@@ -476,7 +526,7 @@ pub(super) mod tests {
         assert_eq!(kind("$GPGGA,1*00"), ErrorKind::ChecksumMismatch);
         assert_eq!(kind("$GP GGA,1"), ErrorKind::NotASentence);
         assert_eq!(kind("NMEATALKER GGA GP"), ErrorKind::NotASentence);
-        let required = Options { lenient: false, require_checksum: true };
+        let required = Options { require_checksum: true, ..Options::default() };
         let error = parse_with::<NoLayout>(b"$GPHDT,1.0,T*", required).unwrap_err();
         assert_eq!(error.kind(), ErrorKind::MissingChecksum);
     }

@@ -3,29 +3,25 @@
 
 use core::fmt::{self, Write};
 
-use super::error::Problems;
-use super::parse::{parse, parse_with, Decoded, Layouts, Options};
+use super::parse::{parse_with, Layouts, Options};
 
 #[cfg(feature = "std")]
 use {
     super::error::{Error, ErrorKind},
     super::json::{self, Value, WireFields},
     super::layout::{Framing, Generic},
-    super::parse::{lenient, Parsed},
+    super::parse::{refit, Parsed},
     super::types::Checksum,
     std::string::{String, ToString},
 };
 
-/// Writes `decode`'s output for one line (without line ending): the sentence or the error as
-/// JSON.
+/// Writes `decode`'s output for one line (without line ending): the sentence, with its problems,
+/// or the error as JSON.
 pub fn write_decoded<L: Layouts, W: Write + ?Sized>(out: &mut W, line: &[u8], values: bool) -> fmt::Result {
-    match parse::<L>(line) {
-        Ok(sentence) => sentence.write_json_with(out, values, &Problems::new()),
-        Err(err) => err.write_json(out),
-    }
+    write_decoded_with::<L, W>(out, line, values, Options::default())
 }
 
-/// [`write_decoded`] with options (`decode --lenient --require-checksum`).
+/// [`write_decoded`] with options (`decode --lenient --require-checksum --strict`).
 pub fn write_decoded_with<L: Layouts, W: Write + ?Sized>(
     out: &mut W,
     line: &[u8],
@@ -66,7 +62,7 @@ impl<L: Layouts> Rebuilt<L> {
             Some(layout) => match layout.parse_fields(fields, self.checksum) {
                 Ok(sentence) => Ok(sentence.into()),
                 Err(error) if self.lenient && error.kind() == ErrorKind::BadField => {
-                    lenient(&[layout], fields, self.checksum, error)
+                    refit(&[layout], fields, self.checksum, error, Options { lenient: true, ..Options::default() })
                 }
                 Err(error) => Err(error),
             },

@@ -757,6 +757,8 @@ pub enum CodeClass {
     Letters,
     /// ASCII letters and digits.
     Alnum,
+    /// None: a closed set (N/S, A/V, units) refuses every code it does not list.
+    Closed,
 }
 
 impl CodeClass {
@@ -768,6 +770,7 @@ impl CodeClass {
                 Self::Digits => b.is_ascii_digit(),
                 Self::Letters => b.is_ascii_alphabetic(),
                 Self::Alnum => b.is_ascii_alphanumeric(),
+                Self::Closed => false,
             })
     }
 }
@@ -1205,9 +1208,9 @@ mod tests {
 
     #[test]
     fn a_bad_entry_is_refused_where_it_is() {
-        use super::super::frame::{Blanks, Reader};
-        let mut f = Reader::over("07,a,100,b", b',', Blanks::EMPTY);
+        let mut f = super::super::frame::Fields::new("GPTST", "07,a,100,b", 4).reader();
         let err = f.entries("pairs", 2, 2, pair).unwrap_err();
-        assert_eq!(err.kind(), super::super::ErrorKind::BadField);
+        assert!(err.kind() == super::super::ErrorKind::BadField && err.is_out_of_range());
+        assert_eq!(err.field(), Some(3));
     }
 }

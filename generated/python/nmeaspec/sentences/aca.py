@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/standard/aca.yaml, spec/enums/aca_bandwidth.yaml, spec/enums/aca_in_use.yaml,
 #   spec/enums/aca_info_source.yaml, spec/enums/aca_power_level.yaml, spec/enums/aca_txrx_mode.yaml
-#   (digest 12b2bb7692f331fa)
+#   (digest 9e0196ae7a370222)
 # Regenerate: make generate (python3 -m generator generate)
 """ACA: AIS channel assignment message.
 

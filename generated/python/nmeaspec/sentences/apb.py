@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/standard/apb.yaml, spec/enums/aam_arrival_circle.yaml,
 #   spec/enums/aam_perpendicular.yaml, spec/enums/apb_bearing_ref.yaml, spec/enums/left_right.yaml,
-#   spec/enums/pos_mode.yaml, spec/enums/status.yaml (digest 8d88222ffe581666)
+#   spec/enums/pos_mode.yaml, spec/enums/status.yaml (digest 57db4ca525ebf5aa)
 # Regenerate: make generate (python3 -m generator generate)
 """APB: Autopilot sentence B (heading/track controller).
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/standard/cur.yaml, spec/enums/cur_direction_reference.yaml,
 #   spec/enums/cur_heading_reference.yaml, spec/enums/cur_speed_reference.yaml,
-#   spec/enums/status.yaml (digest cd6561ebb1e5ca81)
+#   spec/enums/status.yaml (digest a003325b1a926f55)
 # Regenerate: make generate (python3 -m generator generate)
 """CUR: Water current layer.
 

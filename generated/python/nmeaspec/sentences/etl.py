@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/standard/etl.yaml, spec/enums/etl_message_type.yaml,
 #   spec/enums/etl_sub_telegraph.yaml, spec/enums/etl_telegraph_position.yaml,
-#   spec/enums/prc_operating_location.yaml (digest 7143cf480907a8aa)
+#   spec/enums/prc_operating_location.yaml (digest d91d1221fc066196)
 # Regenerate: make generate (python3 -m generator generate)
 """ETL: Engine telegraph operation status.
 

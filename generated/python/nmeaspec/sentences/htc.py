@@ -3,7 +3,7 @@
 # Source: spec/standard/htc.yaml, spec/enums/hsc_sentence_status.yaml,
 #   spec/enums/htc_heading_reference.yaml, spec/enums/htc_override.yaml,
 #   spec/enums/htc_steering_mode.yaml, spec/enums/htc_turn_mode.yaml, spec/enums/left_right.yaml
-#   (digest 810e635520d8acec)
+#   (digest 90907397f3453e81)
 # Regenerate: make generate (python3 -m generator generate)
 """HTC: Heading/track control command.
 

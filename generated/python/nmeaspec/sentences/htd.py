@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/standard/htd.yaml, spec/enums/htc_heading_reference.yaml,
 #   spec/enums/htc_override.yaml, spec/enums/htc_steering_mode.yaml, spec/enums/htc_turn_mode.yaml,
-#   spec/enums/htd_limit_status.yaml, spec/enums/left_right.yaml (digest 29a63f8704f7b335)
+#   spec/enums/htd_limit_status.yaml, spec/enums/left_right.yaml (digest f28a09fb344c00b6)
 # Regenerate: make generate (python3 -m generator generate)
 """HTD: Heading/track control data.
 

@@ -3,7 +3,7 @@
 # Source: spec/proprietary/perdcrx.yaml, spec/enums/furuno_eride_on_off.yaml,
 #   spec/enums/furuno_eride_polarity.yaml, spec/enums/furuno_eride_pps_mode.yaml,
 #   spec/enums/furuno_eride_pps_period.yaml, spec/enums/furuno_eride_pps_type.yaml
-#   (digest 057f982a8aa33789)
+#   (digest b2a24b115ee8a99d)
 # Regenerate: make generate (python3 -m generator generate)
 """PERDCRX: Furuno time transfer, PPS settings and accuracy.
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/proprietary/perdcry.yaml, spec/enums/furuno_eride_position_mode.yaml,
 #   spec/enums/furuno_eride_traim_solution.yaml, spec/enums/furuno_eride_traim_status.yaml
-#   (digest b9453ec70e1932fd)
+#   (digest 66b533ff5d0d10d0)
 # Regenerate: make generate (python3 -m generator generate)
 """PERDCRY: Furuno time transfer, survey and TRAIM.
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/proprietary/pglor_sta.yaml, spec/enums/broadcom_glor_confidence.yaml,
 #   spec/enums/broadcom_glor_location_request.yaml, spec/enums/broadcom_glor_power_save.yaml,
-#   spec/enums/broadcom_glor_vel_track_quality.yaml (digest 40acff92d25a638e)
+#   spec/enums/broadcom_glor_vel_track_quality.yaml (digest a6320d7d4f4d962d)
 # Regenerate: make generate (python3 -m generator generate)
 """PGLOR_STA: Broadcom GLL status.
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/proprietary/pqtmcfggeofence_result.yaml, spec/enums/quectel_enable.yaml,
 #   spec/enums/quectel_error_code.yaml, spec/enums/quectel_geofence_shape.yaml
-#   (digest bd03386168ce768c)
+#   (digest 96160e6bc84285ad)
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGGEOFENCE_RESULT: Configure geofence: result.
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/proprietary/pqtmcfgpps_result.yaml, spec/enums/quectel_enable.yaml,
 #   spec/enums/quectel_error_code.yaml, spec/enums/quectel_pps_mode.yaml,
-#   spec/enums/quectel_pps_polarity.yaml (digest fd3b224019b6f727)
+#   spec/enums/quectel_pps_polarity.yaml (digest ff45fba8b4132bef)
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGPPS_RESULT: Configure PPS: result.
 

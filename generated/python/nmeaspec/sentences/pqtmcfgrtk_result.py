@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/proprietary/pqtmcfgrtk_result.yaml, spec/enums/quectel_error_code.yaml,
 #   spec/enums/quectel_rtk_diff_mode.yaml, spec/enums/quectel_rtk_rel_mode.yaml
-#   (digest 005fb75193f6c15b)
+#   (digest 0c96db0732291e31)
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGRTK_RESULT: Configure RTK: result.
 

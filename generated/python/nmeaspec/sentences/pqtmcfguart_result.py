@@ -3,7 +3,7 @@
 # Source: spec/proprietary/pqtmcfguart_result.yaml, spec/enums/quectel_baud_rate.yaml,
 #   spec/enums/quectel_error_code.yaml, spec/enums/quectel_flow_control.yaml,
 #   spec/enums/quectel_parity.yaml, spec/enums/quectel_stop_bits.yaml,
-#   spec/enums/quectel_uart_index.yaml (digest 7c71a3a8ebeec6a5)
+#   spec/enums/quectel_uart_index.yaml (digest 2fc8686d5f25de2c)
 # Regenerate: make generate (python3 -m generator generate)
 """PQTMCFGUART_RESULT: Configure UART: result.
 

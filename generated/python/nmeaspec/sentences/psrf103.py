@@ -3,7 +3,7 @@
 # Source: spec/proprietary/psrf103.yaml, spec/enums/sirf_checksum_enable.yaml,
 #   spec/enums/sirf_checksum_enable_digit.yaml, spec/enums/sirf_nmea_message.yaml,
 #   spec/enums/sirf_nmea_message_digit.yaml, spec/enums/sirf_rate_mode.yaml,
-#   spec/enums/sirf_rate_mode_digit.yaml (digest 4bfc76ea802e577a)
+#   spec/enums/sirf_rate_mode_digit.yaml (digest f21093ffd5d3e249)
 # Regenerate: make generate (python3 -m generator generate)
 """PSRF103: Query or set the rate of a standard NMEA sentence.
 
@@ -56,6 +56,7 @@ class Psrf103(rt.Sentence):
         ("GSV", None, ()),
         ("RMC", None, ()),
         ("RMC", "sentinel", ()),
+        ("RMC", "no_variation_direction", ()),
         ("VTG", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""
@@ -96,6 +97,7 @@ class Psrf103ShortCodes(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PSRF103"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
+    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({3})
     REPLIES: ClassVar[tuple[str, ...]] = ("GGA", "GLL", "GSA", "GSV", "RMC", "VTG")
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
@@ -110,6 +112,7 @@ class Psrf103ShortCodes(rt.Sentence):
         ("GSV", None, ()),
         ("RMC", None, ()),
         ("RMC", "sentinel", ()),
+        ("RMC", "no_variation_direction", ()),
         ("VTG", None, ()),
     )
     """Reply layouts (sentence, variant) and the field values that pair them with this command."""

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/proprietary/psti_20.yaml, spec/enums/skytraq_availability.yaml,
 #   spec/enums/skytraq_calibration.yaml, spec/enums/skytraq_direction.yaml,
-#   spec/enums/skytraq_dr_mode.yaml (digest 8932be948e9b337e)
+#   spec/enums/skytraq_dr_mode.yaml (digest b87af0a01aaa6e49)
 # Regenerate: make generate (python3 -m generator generate)
 """PSTI_20: Dead reckoning status.
 

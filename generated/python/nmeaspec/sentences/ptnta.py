@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/proprietary/ptnta.yaml, spec/enums/spectratime_gps_messages.yaml,
 #   spec/enums/spectratime_isync_status.yaml, spec/enums/spectratime_osc_quality.yaml,
-#   spec/enums/spectratime_time_transfer.yaml (digest 891e34ba8d160167)
+#   spec/enums/spectratime_time_transfer.yaml (digest 289be94964813bee)
 # Regenerate: make generate (python3 -m generator generate)
 """PTNTA: iSync clock time and status.
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/standard/rmc.yaml, spec/enums/east_west.yaml, spec/enums/nav_status.yaml,
 #   spec/enums/north_south.yaml, spec/enums/pos_mode.yaml, spec/enums/rmc_mag_var_dir.yaml,
-#   spec/enums/status.yaml (digest 9cd874b69eae9b39)
+#   spec/enums/status.yaml (digest 5233c449c234ff9f)
 # Regenerate: make generate (python3 -m generator generate)
 """RMC: Recommended minimum specific GNSS data.
 
@@ -104,6 +104,7 @@ class RmcSentinel(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({1, 2, 4, 6, 7, 8, 9, 10, 11, 12, 13})
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMC", "standard", "$", 11, 13, (
@@ -166,5 +167,71 @@ class RmcSentinel(rt.Sentence):
     None."""
 
 
-LAYOUTS: tuple[Any, ...] = (Rmc, RmcSentinel)
+@dataclass(slots=True)
+class RmcNoVariationDirection(rt.Sentence):
+    """RMC (Mode indicator in place of the variation direction): Recommended minimum specific GNSS
+    data.
+
+    Receivers that leave out the magnetic variation direction and send the mode indicator right
+    after the magnetic variation (11 fields, the last one the mode): a Saab R4 (`,,A` with an empty
+    variation) and a Motorola T805 (`,0,N`). The main layout reads the 11th field as the variation
+    direction, E or W, and so rejects them.
+
+    Example (log_gpsd):
+    $GPRMC,130711.00,A,5012.790800,N,00806.879600,W,0.5,3.0,010611,,A*6A
+    """
+
+    SENTENCE: ClassVar[str] = "RMC"
+    VARIANT: ClassVar[str | None] = "no_variation_direction"
+    ADDRESS: ClassVar[str | None] = None
+    KIND: ClassVar[str] = "standard"
+    SELECTOR: ClassVar[str | None] = None
+    SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({1, 2, 3, 4, 5, 6, 7, 8, 9, 10})
+    REPLIES: ClassVar[tuple[str, ...]] = ()
+    """Sentences that answer this command (see nmeaspec.replies_of)."""
+    LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMC", "standard", "$", 11, 11, (
+        rt.TimeField("time", "time hhmmss[.s]"),
+        rt.EnumField("status", "status code (A V)", Status),
+        rt.LatitudeField("lat", "latitude ddmm.mmmm", "hemisphere N or S"),
+        rt.LongitudeField("lon", "longitude dddmm.mmmm", "hemisphere E or W"),
+        rt.DecimalField("speed", "decimal number"),
+        rt.DecimalField("course", "decimal number 0..359.9", 0, Decimal("359.9")),
+        rt.DateField("date", "date ddmmyy"),
+        rt.DecimalField("mag_var", "decimal number"),
+        rt.EnumField("mode", "pos_mode code (A D E F G M N P R S)", PosMode),
+    ))
+    """Its wire form: what the runtime reads, writes and shows."""
+
+    talker: str = "GP"
+    """Talker ID (GP, GL, GN, ...)."""
+    time: rt.Time | None = None
+    """UTC time: UTC time of the position fix."""
+    status: Status | str | None = None
+    """Data status: A when the data are valid, V for a receiver warning. GeoS-5 sets V exactly when
+    the mode indicator is N."""
+    lat: rt.Coordinate | None = None
+    """Latitude: Latitude and hemisphere (N/S)."""
+    lon: rt.Coordinate | None = None
+    """Longitude: Longitude and hemisphere (E/W)."""
+    speed: rt.Number | None = None
+    """Speed over ground [knots]: Speed over ground in knots (ST gives a maximum of 999.9)."""
+    course: rt.Number | None = None
+    """Course over ground [deg]: Course over ground, degrees true."""
+    date: rt.Date | None = None
+    """Date: UTC date of the fix."""
+    mag_var: rt.Number | None = None
+    """Magnetic variation [deg]: Magnetic variation in degrees (ST gives a maximum of 090.0); empty
+    on GeoS-5, GS501 and GlobalSat, which do not support it."""
+    mode: PosMode | str | None = None
+    """Mode indicator: Positioning system mode indicator, where the main layout has the variation
+    direction."""
+    problems: list[rt.NmeaError] = field(default_factory=list)
+    """Fields that lenient parsing left empty (nmeaspec.parse(..., lenient=True)), with their
+    text."""
+    checksum: str | None = "upper"
+    """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
+    None."""
+
+
+LAYOUTS: tuple[Any, ...] = (Rmc, RmcSentinel, RmcNoVariationDirection)
 """The layouts of RMC, in the order the parser tries them."""

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/standard/trc.yaml, spec/enums/hsc_sentence_status.yaml,
 #   spec/enums/prc_operating_location.yaml, spec/enums/prc_pitch_mode.yaml,
-#   spec/enums/prc_rpm_mode.yaml (digest bbfadc1d220dfb29)
+#   spec/enums/prc_rpm_mode.yaml (digest e74ca2c3f52619ce)
 # Regenerate: make generate (python3 -m generator generate)
 """TRC: Thruster control data.
 

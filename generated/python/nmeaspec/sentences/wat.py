@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT OR Apache-2.0
 # Source: spec/standard/wat.yaml, spec/enums/wat_alarm_condition.yaml,
 #   spec/enums/wat_message_type.yaml, spec/enums/wat_override.yaml, spec/enums/wat_system.yaml
-#   (digest 4e0fdb18ed3a3199)
+#   (digest 6dce4afc7ce2a3ea)
 # Regenerate: make generate (python3 -m generator generate)
 """WAT: Water level detection.
 

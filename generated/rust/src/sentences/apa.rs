@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/standard/apa.yaml, spec/enums/aam_arrival_circle.yaml,
 //   spec/enums/aam_perpendicular.yaml, spec/enums/apb_bearing_ref.yaml, spec/enums/left_right.yaml,
-//   spec/enums/status.yaml (digest c39a10c23f855cfd)
+//   spec/enums/status.yaml (digest 5d7afcaecd90235a)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! APA: Autopilot sentence A.

@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/standard/dsc.yaml, spec/enums/dsc_acknowledgement.yaml,
 //   spec/enums/dsc_category.yaml, spec/enums/dsc_distress_nature.yaml, spec/enums/dsc_format.yaml
-//   (digest 5d8bf7cde652e6c5)
+//   (digest b11693c44d34e8be)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! DSC: Digital selective calling information.

@@ -3,7 +3,7 @@
 // Source: spec/proprietary/pglor_sta.yaml, spec/enums/broadcom_glor_confidence.yaml,
 //   spec/enums/broadcom_glor_location_request.yaml, spec/enums/broadcom_glor_power_save.yaml,
 //   spec/enums/broadcom_glor_vel_track_quality.yaml, spec/bitfields/broadcom_glor_hula_source.yaml
-//   (digest b9e900a5fec436ca)
+//   (digest d979d60d1cc9b3b4)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PGLOR_STA: Broadcom GLL status.

@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/proprietary/pgrmc.yaml, spec/enums/garmin_baud.yaml,
 //   spec/enums/garmin_config_fix_mode.yaml, spec/enums/garmin_diff_mode.yaml,
-//   spec/enums/garmin_off_on.yaml (digest 3fc5be8a60304fb5)
+//   spec/enums/garmin_off_on.yaml (digest a82b4536e1ef51ba)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PGRMC: Garmin sensor configuration.

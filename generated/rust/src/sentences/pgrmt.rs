@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/proprietary/pgrmt.yaml, spec/enums/garmin_data_collection.yaml,
 //   spec/enums/garmin_pass_fail.yaml, spec/enums/garmin_retained_lost.yaml
-//   (digest 059eccf326578d18)
+//   (digest abf8ce4ec04d9a9f)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PGRMT: Garmin sensor status information.

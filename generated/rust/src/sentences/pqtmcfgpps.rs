@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/proprietary/pqtmcfgpps.yaml, spec/enums/quectel_enable.yaml,
 //   spec/enums/quectel_pps_mode.yaml, spec/enums/quectel_pps_polarity.yaml
-//   (digest 7f7ee883218f709f)
+//   (digest d62591b0faced234)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PQTMCFGPPS: Configure PPS.

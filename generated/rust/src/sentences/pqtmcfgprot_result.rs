@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/proprietary/pqtmcfgprot_result.yaml, spec/enums/quectel_error_code.yaml,
 //   spec/enums/quectel_port_type.yaml, spec/bitfields/quectel_protocol_mask.yaml
-//   (digest 4011e02667804994)
+//   (digest 8203b53a962c6f27)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PQTMCFGPROT_RESULT: Configure port protocols: result.

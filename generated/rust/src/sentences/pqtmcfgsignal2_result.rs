@@ -4,7 +4,7 @@
 //   spec/bitfields/quectel_bds_signal_mask.yaml, spec/bitfields/quectel_galileo_signal_mask.yaml,
 //   spec/bitfields/quectel_glonass_signal_mask.yaml, spec/bitfields/quectel_gps_signal_mask.yaml,
 //   spec/bitfields/quectel_navic_signal_mask.yaml, spec/bitfields/quectel_qzss_signal_mask.yaml
-//   (digest 085390ce7a082aaa)
+//   (digest c5c7325468bc02e1)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PQTMCFGSIGNAL2_RESULT: Configure antenna 2 signals: result.

@@ -4,7 +4,7 @@
 //   spec/bitfields/quectel_bds_signal_mask.yaml, spec/bitfields/quectel_galileo_signal_mask.yaml,
 //   spec/bitfields/quectel_glonass_signal_mask.yaml, spec/bitfields/quectel_gps_signal_mask.yaml,
 //   spec/bitfields/quectel_navic_signal_mask.yaml, spec/bitfields/quectel_qzss_signal_mask.yaml
-//   (digest f230f62bd0f345c9)
+//   (digest 0faa8e479af8265e)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PQTMCFGSIGNAL_RESULT: Configure signals: result.

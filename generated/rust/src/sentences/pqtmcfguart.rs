@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/proprietary/pqtmcfguart.yaml, spec/enums/quectel_baud_rate.yaml,
 //   spec/enums/quectel_flow_control.yaml, spec/enums/quectel_parity.yaml,
-//   spec/enums/quectel_stop_bits.yaml, spec/enums/quectel_uart_index.yaml (digest 370fce3791e9dd02)
+//   spec/enums/quectel_stop_bits.yaml, spec/enums/quectel_uart_index.yaml (digest d485dbae73d77315)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PQTMCFGUART: Configure UART.

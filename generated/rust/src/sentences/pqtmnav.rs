@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/proprietary/pqtmnav.yaml, spec/enums/quectel_solution_type.yaml,
 //   spec/enums/quectel_time_reference.yaml, spec/enums/quectel_time_status.yaml
-//   (digest 2ca65b4800abee12)
+//   (digest de49d782ab4ff1eb)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PQTMNAV: Navigation information.

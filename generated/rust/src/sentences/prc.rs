@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/standard/prc.yaml, spec/enums/prc_operating_location.yaml,
 //   spec/enums/prc_pitch_mode.yaml, spec/enums/prc_rpm_mode.yaml, spec/enums/status.yaml
-//   (digest bd85f627f0acab99)
+//   (digest a9f67af1cd53f3c0)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PRC: Propulsion remote control status.

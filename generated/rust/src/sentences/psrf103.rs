@@ -3,7 +3,7 @@
 // Source: spec/proprietary/psrf103.yaml, spec/enums/sirf_checksum_enable.yaml,
 //   spec/enums/sirf_checksum_enable_digit.yaml, spec/enums/sirf_nmea_message.yaml,
 //   spec/enums/sirf_nmea_message_digit.yaml, spec/enums/sirf_rate_mode.yaml,
-//   spec/enums/sirf_rate_mode_digit.yaml (digest 4bfc76ea802e577a)
+//   spec/enums/sirf_rate_mode_digit.yaml (digest f21093ffd5d3e249)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PSRF103: Query or set the rate of a standard NMEA sentence.

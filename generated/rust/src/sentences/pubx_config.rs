@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/proprietary/pubx_config.yaml, spec/enums/ublox_autobauding.yaml,
 //   spec/enums/ublox_port.yaml, spec/bitfields/ublox_in_proto.yaml,
-//   spec/bitfields/ublox_out_proto.yaml (digest 81a8e6772fd24376)
+//   spec/bitfields/ublox_out_proto.yaml (digest 2c496a01ad1b4e1c)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! PUBX_CONFIG: Set u-blox port protocols and baud rate.

@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT OR Apache-2.0
 // Source: spec/standard/rmc.yaml, spec/enums/east_west.yaml, spec/enums/nav_status.yaml,
 //   spec/enums/north_south.yaml, spec/enums/pos_mode.yaml, spec/enums/rmc_mag_var_dir.yaml,
-//   spec/enums/status.yaml (digest 9cd874b69eae9b39)
+//   spec/enums/status.yaml (digest 5233c449c234ff9f)
 // Regenerate: make generate (python3 -m generator generate)
 
 //! RMC: Recommended minimum specific GNSS data.
@@ -376,6 +376,147 @@ impl<'a> Layout<'a> for RmcSentinel<'a> {
 }
 
 impl fmt::Display for RmcSentinel<'_> {
+    /// The sentence text, checksum included unless it is `Checksum::None`; no line ending.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write_sentence(f)
+    }
+}
+
+/// RMC (Mode indicator in place of the variation direction).
+///
+/// Receivers that leave out the magnetic variation direction and send the mode indicator right
+/// after the magnetic variation (11 fields, the last one the mode): a Saab R4 (`,,A` with an empty
+/// variation) and a Motorola T805 (`,0,N`). The main layout reads the 11th field as the variation
+/// direction, E or W, and so rejects them.
+///
+/// ```text
+///        1         2 3           4 5            6 7   8   9      10  11
+///        |         | |           | |            | |   |   |      |   |
+/// $--RMC,hhmmss.ss,a,ddmm.mmmmmm,a,dddmm.mmmmmm,a,x.x,x.x,ddmmyy,x.x,a*hh
+/// ```
+///
+/// Example (gpsd regression logs (test/daemon), captured from receivers by gpsd users):
+///
+/// ```text
+/// $GPRMC,130711.00,A,5012.790800,N,00806.879600,W,0.5,3.0,010611,,A*6A
+/// ```
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RmcNoVariationDirection<'a> {
+    /// Talker ID (`GP`, `GL`, `GN`, …).
+    pub talker: &'a str,
+    /// UTC time: UTC time of the position fix.
+    pub time: Option<Time>,
+    /// Data status: A when the data are valid, V for a receiver warning. GeoS-5 sets V exactly when
+    /// the mode indicator is N.
+    pub status: Option<Code<'a, Status>>,
+    /// Latitude: Latitude and hemisphere (N/S).
+    pub lat: Option<Coordinate>,
+    /// Longitude: Longitude and hemisphere (E/W).
+    pub lon: Option<Coordinate>,
+    /// Speed over ground \[knots\]: Speed over ground in knots (ST gives a maximum of 999.9).
+    pub speed: Option<Number>,
+    /// Course over ground \[deg\]: Course over ground, degrees true.
+    pub course: Option<Number>,
+    /// Date: UTC date of the fix.
+    pub date: Option<Date>,
+    /// Magnetic variation \[deg\]: Magnetic variation in degrees (ST gives a maximum of 090.0); empty
+    /// on GeoS-5, GS501 and GlobalSat, which do not support it.
+    pub mag_var: Option<Number>,
+    /// Mode indicator: Positioning system mode indicator, where the main layout has the variation
+    /// direction.
+    pub mode: Option<Code<'a, PosMode>>,
+    /// How the checksum is written.
+    pub checksum: Checksum,
+}
+
+impl<'a> RmcNoVariationDirection<'a> {
+    /// Parses a whole `$--RMC` line with this layout; a trailing LF or CR LF is allowed.
+    pub fn parse(line: &'a str) -> Result<Self, Error<'a>> {
+        Self::parse_line(line)
+    }
+
+    /// The exact bytes to send, CR LF included, written into `buf` (a buffer of
+    /// [`BUILD_CAPACITY`](crate::BUILD_CAPACITY) bytes always suffices), once the line
+    /// reads back with this layout; else the parser's error, naming the field at fault.
+    pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
+        LayoutId::RmcNoVariationDirection.build(buf, |w| self.write_sentence(w))
+    }
+}
+
+impl<'a> Layout<'a> for RmcNoVariationDirection<'a> {
+    const SENTENCE: &'static str = "RMC";
+    const VARIANT: Option<&'static str> = Some("no_variation_direction");
+    const FRAMING: Framing = Framing::Standard;
+    const SHAPE: Shape = Shape { sentence: "RMC", fixed: 11, optional: 0, group: None };
+    const JSON: &'static [JsonMember] = &[
+        JsonMember::Field("time", 1),
+        JsonMember::Field("status", 1),
+        JsonMember::Field("lat", 2),
+        JsonMember::Field("lon", 2),
+        JsonMember::Field("speed", 1),
+        JsonMember::Field("course", 1),
+        JsonMember::Field("date", 1),
+        JsonMember::Field("mag_var", 1),
+        JsonMember::Field("mode", 1),
+    ];
+
+    fn parse_fields(fields: Fields<'a>, checksum: Checksum) -> Result<Self, Error<'a>> {
+        fields.shape(&Self::SHAPE)?;
+        let mut f = fields.reader();
+        let mut out = Self { talker: fields.talker(), checksum, ..Self::default() };
+        out.time = f.time("time")?;
+        out.status = f.code("status")?;
+        out.lat = f.latitude("lat")?;
+        out.lon = f.longitude("lon")?;
+        out.speed = f.decimal("speed", "decimal number", Range::ANY)?;
+        out.course =
+            f.decimal("course", "decimal number 0..359.9", Range::between(Bound::int(0), Bound::new(3599, 1)))?;
+        out.date = f.date("date")?;
+        out.mag_var = f.decimal("mag_var", "decimal number", Range::ANY)?;
+        out.mode = f.code("mode")?;
+        Ok(out)
+    }
+
+    #[inline(never)] // `self` stays in memory: each member is stored once, not kept in a register
+    fn read_fast(&mut self, mut f: FastReader<'a>, _repeats: usize, _extra: usize) -> Read<()> {
+        self.talker = f.talker()?;
+        self.checksum = Checksum::Upper;
+        self.time = f.time()?;
+        self.status = f.code()?;
+        self.lat = f.latitude()?;
+        self.lon = f.longitude()?;
+        self.speed = f.decimal(Range::ANY)?;
+        self.course = f.decimal(Range::between(Bound::int(0), Bound::new(3599, 1)))?;
+        self.date = f.date()?;
+        self.mag_var = f.decimal(Range::ANY)?;
+        self.mode = f.code()?;
+        f.end()
+    }
+
+    fn talker(&self) -> &'a str {
+        self.talker
+    }
+
+    fn checksum(&self) -> Checksum {
+        self.checksum
+    }
+
+    fn visit<S: FieldSink>(&self, sink: &mut S) -> fmt::Result {
+        sink.field("time", &self.time)?;
+        sink.field("status", &self.status)?;
+        sink.field("lat", &self.lat)?;
+        sink.field("lon", &self.lon)?;
+        sink.field("speed", &self.speed)?;
+        sink.field("course", &self.course)?;
+        sink.field("date", &self.date)?;
+        sink.field("mag_var", &self.mag_var)?;
+        sink.field("mode", &self.mode)?;
+        Ok(())
+    }
+}
+
+impl fmt::Display for RmcNoVariationDirection<'_> {
     /// The sentence text, checksum included unless it is `Checksum::None`; no line ending.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         self.write_sentence(f)

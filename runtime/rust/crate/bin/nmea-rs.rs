@@ -13,7 +13,7 @@ use nmeaspec::stream::{Framer, Item};
 use nmeaspec::{Error, Options, MAX_LINE};
 
 const USAGE: &str =
-    "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] | encode | --version\n       \
+    "usage: nmea-rs decode|stream [--values] [--lenient] [--require-checksum] [--strict] | encode | --version\n       \
      (reads stdin, writes stdout)\n";
 const BUFFER: usize = 1 << 16;
 
@@ -153,7 +153,7 @@ fn encode() -> io::Result<()> {
 
 /// Flags of decode and stream: each known one at most once, in any order.
 fn flags_ok(flags: &[&str]) -> bool {
-    const FLAGS: [&str; 3] = ["--values", "--lenient", "--require-checksum"];
+    const FLAGS: [&str; 4] = ["--values", "--lenient", "--require-checksum", "--strict"];
     flags.iter().enumerate().all(|(i, flag)| FLAGS.contains(flag) && !flags[..i].contains(flag))
 }
 
@@ -171,6 +171,7 @@ fn main() -> ExitCode {
             let options = Options {
                 lenient: flags.contains(&"--lenient"),
                 require_checksum: flags.contains(&"--require-checksum"),
+                strict: flags.contains(&"--strict"),
             };
             if *verb == "decode" {
                 decode(values, options)

@@ -55,7 +55,7 @@ impl Tally {
             self.read += 1;
             self.written_fast += usize::from(serialize_fast(sentence, &mut [0; MAX_LINE]).is_some());
         }
-        if let Ok(parsed) = parse_with_general(line, Options { lenient: true, require_checksum: false }) {
+        if let Ok(parsed) = parse_with_general(line, Options { lenient: true, ..Options::default() }) {
             check_writing(&parsed, line);
         }
         let Some(sentence) = parse_fast(line) else {
@@ -63,8 +63,10 @@ impl Tally {
         };
         assert_eq!(Ok(sentence), general, "the fast path read {:?} differently", show(line));
         self.fast += 1;
-        for (lenient, require_checksum) in [(false, false), (true, false), (false, true), (true, true)] {
-            let options = Options { lenient, require_checksum };
+        for (lenient, require_checksum, strict) in
+            [(false, false, false), (true, false, false), (false, true, true), (true, true, true)]
+        {
+            let options = Options { lenient, require_checksum, strict };
             assert_eq!(
                 parse_with(line, options),
                 parse_with_general(line, options),
