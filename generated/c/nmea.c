@@ -12701,8 +12701,9 @@ static const layout rmc_no_variation_direction_layout = {
 };
 
 /* The fast path's reader of rmc_no_variation_direction (see fast_frame): `count` fields from `p` to the final
-   '*' (`end` is just past it). */
-static fast_result rmc_no_variation_direction_fast(nmea_rmc_no_variation_direction *s, const char *line, const char *p, const char *end, size_t count)
+   '*' (`end` is just past it). Never inlined: every reader inlined into fast_read_layout's switch
+   makes one function of the whole spec, which takes an optimizer minutes to compile. */
+NMEA_OUTLINE fast_result rmc_no_variation_direction_fast(nmea_rmc_no_variation_direction *s, const char *line, const char *p, const char *end, size_t count)
 {
     size_t optional;
 
