@@ -4803,6 +4803,21 @@ static nmea_problems *scratch_problems(nmea_scratch *s)
     return (nmea_problems *)(void *)(s->buf + at);
 }
 
+/* The sentence of the JSON's wire read as a received line is, with `options` (a number outside
+   its range is kept, as decoding kept it, whether or not the JSON lists it as a problem). */
+static bool read_again(nmea_sentence *out, nmea_sentence_id id, nmea_wire *wire, const nmea_options *options,
+                       nmea_error *err)
+{
+    nmea_layouts one;
+    one.key = NULL;
+    one.key_len = 0;
+    one.suffix = NULL;
+    one.ids = &id;
+    one.count = 1;
+    out->problems = NULL;
+    return fit(out, &one, wire, options, err);
+}
+
 /* A sentence that lenient decoding kept (its JSON has "problems"): the texts of its problem
    fields go back in their places, and its layout parses it leniently again. `wire` holds the
    texts of the `fields` object. */
@@ -4811,7 +4826,6 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
 {
     nmea_text start, text, texts[NMEA_MAX_FIELDS];
     nmea_json problem, v;
-    nmea_layouts one;
     nmea_options lenient = {true, false, NULL, false};
     const char *p = wire->fields.ptr, *end = p + wire->fields.len, *comma;
     size_t i, index, n = wire->count, need = 0;
@@ -4864,13 +4878,7 @@ static bool with_problems(nmea_sentence *out, nmea_sentence_id id, nmea_json roo
     }
     if ((lenient.problems = scratch_problems(s)) == NULL)
         return scratch_full(err);
-    one.key = NULL;
-    one.key_len = 0;
-    one.suffix = NULL;
-    one.ids = &id;
-    one.count = 1;
-    out->problems = NULL;
-    return fit(out, &one, wire, &lenient, err);
+    return read_again(out, id, wire, &lenient, err);
 }
 
 bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scratch, size_t scratch_cap,
@@ -4886,6 +4894,7 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
     const layout *info;
     nmea_collector c;
     nmea_wire wire;
+    static const nmea_options tolerant = {false, false, NULL, false};
 
     s.buf = scratch;
     s.cap = scratch ? scratch_cap : 0;
@@ -4955,8 +4964,9 @@ bool nmea_from_json(nmea_sentence *out, const char *json, size_t len, char *scra
         wire.checksum = NMEA_CHECKSUM_NONE;
         if (!command_line(&wire, word, &s, err))
             return false;
+        return read_layout(out, id, &wire, err); /* text commands are always read strictly */
     }
-    return read_layout(out, id, &wire, err);
+    return read_again(out, id, &wire, &tolerant, err);
 }
 #endif /* NMEA_NO_JSON */
 

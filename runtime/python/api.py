@@ -274,14 +274,34 @@ def from_json(obj: Any) -> Any:
     texts = layout.fields_from_json(fields)
     if "problems" in obj:
         return _with_problems(layout, obj, texts, checksum)
-    if layout.ADDRESS is None:
-        return layout.parse_fields(runtime.json_word(obj, "talker") + sentence_id, texts, checksum)
     if layout.checksum is None:  # a text command: its word as written, its letter case kept
         word = runtime.json_word(obj, "address")
         if word.upper() != layout.ADDRESS.upper():
             raise runtime.bad_json(f'"address" is not {layout.ADDRESS}')
         return layout.parse_fields(word, texts, None, " ".join([word, *texts]))
-    return layout.parse_fields(layout.ADDRESS, texts, checksum)
+    return _read_again(layout, _json_address(layout, obj), texts, checksum, lenient=False)
+
+
+def _json_address(layout: Any, obj: dict[str, Any]) -> str:
+    """The address of a `$`/`!` sentence rebuilt from JSON: its talker and sentence id, or the
+    proprietary address."""
+    if layout.ADDRESS is None:
+        return runtime.json_word(obj, "talker") + layout.SENTENCE
+    return str(layout.ADDRESS)
+
+
+def _read_again(
+    layout: Any, address: str, texts: list[str], checksum: str | None, lenient: bool
+) -> Any:
+    """A sentence rebuilt from JSON read as a received line is: a number outside its range kept,
+    as decoding kept it, whether or not the JSON lists it among the problems; `lenient` (its
+    JSON lists problems) other fields at fault left empty."""
+    try:
+        return _first_fit((layout,), address, texts, checksum, "")
+    except NmeaError as err:
+        if err.kind != "bad_field":
+            raise
+        return _refit((layout,), address, texts, checksum, err, lenient=lenient, strict=False)
 
 
 def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum: str | None) -> Any:
@@ -294,17 +314,7 @@ def _with_problems(layout: Any, obj: dict[str, Any], texts: list[str], checksum:
         if not isinstance(index, int) or isinstance(index, bool) or not 1 <= index <= len(texts):
             raise runtime.bad_json('a problem\'s "field" is not the index of a field')
         texts[index - 1] = runtime.json_text(runtime.json_member(problem, "text"))
-    address = (
-        runtime.json_word(obj, "talker") + layout.SENTENCE
-        if layout.ADDRESS is None
-        else layout.ADDRESS
-    )
-    try:
-        return _first_fit((layout,), address, texts, checksum, "")
-    except NmeaError as err:
-        if err.kind != "bad_field":
-            raise
-        return _refit((layout,), address, texts, checksum, err, lenient=True, strict=False)
+    return _read_again(layout, _json_address(layout, obj), texts, checksum, lenient=True)
 
 
 def encode_json(line: str) -> str:

@@ -51,8 +51,10 @@ pub struct Rebuilt<L> {
 
 #[cfg(feature = "std")]
 impl<L: Layouts> Rebuilt<L> {
-    /// Parses the rebuilt fields through the same field parsers as a received line (leniently
-    /// for a sentence whose JSON lists problems).
+    /// Parses the rebuilt fields through the same field parsers as a received line: a number
+    /// outside its range is kept, as decoding kept it, whether or not the JSON lists it among
+    /// the problems; a sentence whose JSON lists problems is parsed leniently (text commands
+    /// are always read strictly).
     pub fn parse(&self) -> Result<Parsed<'_, L::Sentence<'_>>, Error<'_>> {
         let mut fields = self.fields.fields(&self.address);
         if let Some(line) = &self.line {
@@ -61,8 +63,9 @@ impl<L: Layouts> Rebuilt<L> {
         match self.layout {
             Some(layout) => match layout.parse_fields(fields, self.checksum) {
                 Ok(sentence) => Ok(sentence.into()),
-                Err(error) if self.lenient && error.kind() == ErrorKind::BadField => {
-                    refit(&[layout], fields, self.checksum, error, Options { lenient: true, ..Options::default() })
+                Err(error) if self.line.is_none() && error.kind() == ErrorKind::BadField => {
+                    let options = Options { lenient: self.lenient, ..Options::default() };
+                    refit(&[layout], fields, self.checksum, error, options)
                 }
                 Err(error) => Err(error),
             },
