@@ -134,7 +134,7 @@ def load_document(path: Path) -> Document:
 
 _VALIDATORS: dict[str, jsonschema.Draft202012Validator] = {}
 # "schema digest-of-document" of the documents found valid; on disk, one file per set of schemas
-# and jsonschema version, one line per document (appended by each run).
+# and versions of the validating libraries, one line per document (appended by each run).
 _VALID: set[str] = set()
 _VALID_FILE: Path | None = None
 
@@ -151,7 +151,8 @@ def _validator(schema_name: str) -> jsonschema.Draft202012Validator:
         _VALIDATORS.update((name, jsonschema.Draft202012Validator(schema, registry=registry))
                            for name, schema in schemas.items())
         if CACHE is not None:
-            key = hashlib.sha256(json.dumps([metadata.version("jsonschema"), texts]).encode()).hexdigest()
+            versions = [metadata.version(name) for name in ("jsonschema", "jsonschema-specifications", "referencing")]
+            key = hashlib.sha256(json.dumps([versions, texts]).encode()).hexdigest()
             _VALID_FILE = CACHE / f"valid-{key[:32]}"
             try:
                 _VALID.update(_VALID_FILE.read_text(encoding="ascii").split("\n"))
