@@ -97,9 +97,10 @@ test-runtimes: $(STAMP)
 	build/c/test_runtime
 	$(CC) $(CFLAGS) -DNMEA_NO_JSON -o build/c/test_runtime_small runtime/c/test_runtime.c
 	build/c/test_runtime_small
-	cargo test --quiet --manifest-path runtime/rust/Cargo.toml --target-dir $(CARGO_TARGET)
+	cargo test --quiet --manifest-path runtime/rust/Cargo.toml --features time,chrono --target-dir $(CARGO_TARGET)
 	cargo test --quiet --manifest-path runtime/rust/Cargo.toml --no-default-features --target-dir $(CARGO_TARGET)
-	cargo clippy --quiet --manifest-path runtime/rust/Cargo.toml --all-targets --target-dir $(CARGO_TARGET) -- -D warnings
+	cargo clippy --quiet --manifest-path runtime/rust/Cargo.toml --all-targets --features time,chrono --target-dir $(CARGO_TARGET) \
+		-- -D warnings
 	cargo clippy --quiet --manifest-path runtime/rust/Cargo.toml --all-targets --no-default-features \
 		--target-dir $(CARGO_TARGET) -- -D warnings
 	cargo fmt --manifest-path runtime/rust/Cargo.toml --check
@@ -192,7 +193,8 @@ test-rust:
 	cargo test --quiet --manifest-path generated/rust/Cargo.toml --no-default-features --lib --target-dir $(CARGO_TARGET)
 
 test-rust-lint:
-	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --features std,serde --target-dir $(LINT_TARGET) -- -D warnings
+	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --features std,serde,time,chrono \
+		--target-dir $(LINT_TARGET) -- -D warnings
 	cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --all-targets --no-default-features --target-dir $(LINT_TARGET) -- -D warnings
 	set -e; for vendor in $(RUST_VENDORS); do \
 		cargo clippy --quiet --manifest-path generated/rust/Cargo.toml --lib --no-default-features --features $$vendor \

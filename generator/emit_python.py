@@ -209,7 +209,29 @@ def layout_view(sentence: Sentence, layout: Layout) -> dict:
                         for p in pairing.pairings(sentence)],
         "outcome": _outcome(layout),
         "same_as_main": _same_as_main(sentence, layout),
+        "derived": derived_view(layout),
     }
+
+
+def derived_view(layout: Layout) -> list[dict]:
+    """The sentence-level values of a layout with one position or one date and time (the model's
+    position and calendar): each property's name, type, docstring and the runtime call it returns."""
+    out: list[dict] = []
+    if layout.position:
+        for name, f, negative in (("latitude", layout.position.lat, "south"),
+                                  ("longitude", layout.position.lon, "west")):
+            out.append({"name": name, "type": "float | None", "call": f"rt.degrees(self.{f.id})",
+                        "doc": docstring(f"{f.name} in signed decimal degrees ({negative} negative); None when "
+                                         "empty.", 8)})
+    if (c := layout.calendar):
+        call = (f"rt.utc_datetime(self.{c.date.id}, self.{c.time.id})" if c.date else
+                f"rt.utc_datetime_of(self.{c.year.id}, self.{c.month.id}, self.{c.day.id}, self.{c.time.id})")
+        parts = c.date.id if c.date else f"{c.day.id}, {c.month.id}, {c.year.id}"
+        out.append({"name": "datetime", "type": "dt.datetime | None", "call": call,
+                    "doc": docstring(f"UTC date and time ({parts}, {c.time.id}), timezone-aware"
+                                     f"{'; two-digit years 00-68 are 20yy, 69-99 19yy' if c.date else ''}. "
+                                     "None when a field is empty, for a day its month lacks or a leap second.", 8)})
+    return out
 
 
 def _same_as_main(sentence: Sentence, layout: Layout) -> list[str]:
@@ -258,6 +280,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
             sentence=sentence,
             layouts=[layout_view(sentence, lay) for lay in sentence.layouts],
             enums=sorted({f.enum.camel for lay in sentence.layouts for f in _all_fields(lay) if f.enum}),
+            uses_datetime=any(lay.calendar for lay in sentence.layouts),
             uses_decimal=any(f.field_type.numeric and "Decimal" in _bound(f.min) + _bound(f.max)
                              for lay in sentence.layouts for f in _all_fields(lay)))
     by_address = {s.address: spec.by_address(s.address) for s in spec.proprietary if s.framing == "sentence"}

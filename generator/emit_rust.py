@@ -514,6 +514,7 @@ def layout_view(spec: Spec, sentence: Sentence, layout: Layout) -> dict:
         "words": fmt_const_slice(4, "const WORDS: &'static [(&'static str, usize)]",
                                  [f"({rust_str(it['field'].id)}, {it['width']})" for it in items]) if text else [],
         "json": json_const(items),
+        "derived": derived_view(layout),
         "visit": visit_lines(items),
         "init": init,
         "fast": fast,
@@ -595,6 +596,29 @@ def shape_lines(sentence: Sentence, layout: Layout) -> list[str]:
     return fmt_struct(4, "const SHAPE: Shape = ", "Shape", members, ";")
 
 
+def derived_view(layout: Layout) -> list[dict]:
+    """The sentence-level values of a layout with one position or one date and time (the model's
+    position and calendar): each method's name, return type, docs and body."""
+    out: list[dict] = []
+    if layout.position:
+        for name, f, negative in (("latitude", layout.position.lat, "south"),
+                                  ("longitude", layout.position.lon, "west")):
+            out.append({"name": name, "type": "Option<f64>", "body": f"self.{ident(f.id)}.map(f64::from)",
+                        "doc": doc_lines(f"{f.name} in signed decimal degrees ({negative} negative).", 92)})
+    if (c := layout.calendar):
+        if c.date:
+            body = f"DateTime::of_date(self.{ident(c.date.id)}?, self.{ident(c.time.id)}?)"
+            parts = f"`{c.date.id}` (two-digit years 00–68 are 20yy, 69–99 19yy)"
+        else:
+            body = (f"DateTime::of_parts(self.{ident(c.year.id)}?, self.{ident(c.month.id)}?, "
+                    f"self.{ident(c.day.id)}?, self.{ident(c.time.id)}?)")
+            parts = f"`{c.day.id}`, `{c.month.id}`, `{c.year.id}`"
+        out.append({"name": "datetime", "type": "Option<DateTime>", "body": body,
+                    "doc": doc_lines(f"The UTC date and time of {parts} and `{c.time.id}`; `None` when a field is "
+                                     "empty, for a day its month lacks or a leap second.", 92)})
+    return out
+
+
 def module_imports(views: list[dict]) -> list[str]:
     runtime = {"Checksum", "Error", "FieldSink", "Fields", "Framing", "JsonMember", "Layout", "Layouts", "Shape"}
     enums: set[str] = set()
@@ -607,6 +631,8 @@ def module_imports(views: list[dict]) -> list[str]:
             runtime.add("Texts")
         if view["entries"]:
             runtime |= {"Entry", "Reader"}
+        if view["layout"].calendar:
+            runtime.add("DateTime")
         if not view["text"] and view["fast_path"]:
             runtime |= {"FastReader", "Read"}
         fields = [it["field"] for it in view["items"] if it["kind"] == "field"]
@@ -809,6 +835,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
         files[f"{base}/src/runtime/{module}.rs"] = runtime_file(spec, "//", f"rust/src/{module}.rs", blank_line=True)
     files[f"{base}/src/bin/nmea-rs.rs"] = runtime_file(spec, "//", "rust/crate/bin/nmea-rs.rs", blank_line=True)
     files[f"{base}/tests/fast_path.rs"] = runtime_file(spec, "//", "rust/crate/tests/fast_path.rs", blank_line=True)
+    files[f"{base}/tests/values.rs"] = runtime_file(spec, "//", "rust/crate/tests/values.rs", blank_line=True)
 
     gates = Gates(spec)
     layouts = []

@@ -3,7 +3,10 @@ and lines outside what the manuals allow, with what each tool prints for them by
 
 from __future__ import annotations
 
+import datetime
 import json
+import struct
+from typing import Callable
 
 import jinja2
 
@@ -62,9 +65,114 @@ def tolerance_vectors(spec: Spec) -> list[dict]:
             for line in TOLERANCE_LINES for options in TOLERANCE_OPTIONS]
 
 
+# Values the manuals' examples lack: signs, 18 digits (past 2^53), rounding of degrees x 10^7 half
+# way, 60 minutes, the two-digit year's pivot (68, 69), a leap second, days their month lacks.
+VALUE_EDGES: tuple[tuple[str, ...], ...] = (
+    ("number", "-007.50"), ("number", "+12"), ("number", "-0"), ("number", ".5"), ("number", "5."),
+    ("number", "123456789012345678"), ("number", ".000000000000000001"), ("number", "9007199254740993"),
+    ("number", "-99.95"), ("number", "0.1"),
+    ("latitude", "0000.0003", "S"), ("latitude", "0000.000003", "N"), ("latitude", "8960.0", "N"),
+    ("latitude", "0000.000009", "S"), ("latitude", "4916.4500000000000001", "N"),
+    ("longitude", "18000.0000", "W"), ("longitude", "00000.0000000000000001", "E"),
+    ("time", "235960.5"), ("time", "000000"), ("time", "123456.123456789"), ("time", "235959.9999"),
+    ("date", "010100"), ("date", "311268"), ("date", "010169"), ("date", "291200"), ("date", "290299"),
+    ("date", "310218"), ("date", "290200"),
+    ("datetime", "311268", "235959.999"), ("datetime", "010170", "000000"), ("datetime", "310218", "120000"),
+    ("datetime", "191194", "235960"),
+    ("civil", "2000", "2", "29"), ("civil", "1900", "2", "29"), ("civil", "1970", "1", "1"),
+    ("civil", "2024", "4", "31"), ("civil", "9999", "12", "31"), ("civil", "0", "1", "1"),
+)
+
+
+def value_vectors(spec: Spec) -> list[dict]:
+    """What each language's value accessors give for every number, coordinate, time, date, and
+    date and time of the manuals' examples, and for VALUE_EDGES: one record a value, by the
+    reference runtime (doubles as their shortest round-trip text: compared exactly)."""
+    rt = reference.rt
+    seen: set[tuple[str, ...]] = set()
+    out: list[dict] = []
+
+    def add(key: tuple[str, ...]) -> None:
+        if key not in seen:
+            seen.add(key)
+            out.append(value_record(key))
+
+    for sentence in spec.sentences:
+        for example in sentence.examples:
+            if example.line is None:
+                continue
+            decoded = reference.decode(spec, example.line)
+            assert decoded.layout is not None
+            values = {item_id: (value, texts) for item_id, value, texts in decoded.values}
+            for _, value, texts in decoded.values:
+                for v, t in ([(ev, et) for entry in value for _, ev, et in entry] if texts is None else [(value, texts)]):
+                    if isinstance(v, rt.Coordinate):
+                        add(("latitude" if v.hemisphere in "NS" else "longitude", *t))
+                    elif isinstance(v, (rt.Number, rt.Time, rt.Date)):
+                        add(({rt.Number: "number", rt.Time: "time", rt.Date: "date"}[type(v)], t[0]))
+            calendar = decoded.layout.calendar
+            if calendar is None or values.get(calendar.time.id, (None,))[0] is None:
+                continue
+            if calendar.date and values.get(calendar.date.id, (None,))[0] is not None:
+                add(("datetime", values[calendar.date.id][1][0], values[calendar.time.id][1][0]))
+            elif calendar.year and all(values.get(f.id, (None,))[0] is not None
+                                       for f in (calendar.year, calendar.month, calendar.day)):
+                add(("civil", *(values[f.id][1][0] for f in (calendar.year, calendar.month, calendar.day))))
+    for key in VALUE_EDGES:
+        add(key)
+    return out
+
+
+def value_record(key: tuple[str, ...]) -> dict:
+    """One record of value_vectors: the input texts, their parts (what a C struct holds) and the
+    values every language must give."""
+    rt = reference.rt
+    kind, *texts = key
+    if kind == "number":
+        n = rt.parse_decimal(texts[0])
+        return {"type": kind, "text": texts[0], "digits": n.digits, "scale": n.scale, "negative": n.sign == "-",
+                "double": repr(float(n)), "float": repr(struct.unpack("f", struct.pack("f", float(n)))[0]),
+                "int": int(n)}
+    if kind in ("latitude", "longitude"):
+        c = rt.parse_coordinate(texts[0], 2 if kind == "latitude" else 3, 90 if kind == "latitude" else 180)
+        c = rt.Coordinate(c.degrees, c.minutes, texts[1], c.degree_digits)
+        return {"type": kind, "text": texts[0], "hemisphere": texts[1], "deg": c.degrees,
+                "minutes_digits": c.minutes.digits, "minutes_scale": c.minutes.scale,
+                "degrees": repr(float(c)), "e7": c.degrees_e7()}
+    if kind == "time":
+        t = rt.parse_time(texts[0])
+        return {"type": kind, "text": texts[0], "hour": t.hour, "minute": t.minute, "second": t.second,
+                "fraction": t.fraction, "fraction_digits": t.fraction_digits, "ms": t.ms_of_day()}
+    if kind == "date":
+        d = rt.parse_date(texts[0])
+        return {"type": kind, "text": texts[0], "day": d.day, "month": d.month, "year": d.year,
+                "full_year": d.full_year, "days": _or_none(d.days_since_epoch)}
+    if kind == "datetime":
+        d, t = rt.parse_date(texts[0]), rt.parse_time(texts[1])
+        when = rt.utc_datetime(d, t)
+        return {"type": kind, "date": texts[0], "time": texts[1],
+                "ms": None if when is None else (when - UNIX_EPOCH) // datetime.timedelta(milliseconds=1)}
+    year, month, day = (int(rt.parse_integer(text)) for text in texts)
+    return {"type": kind, "year": year, "month": month, "day": day,
+            "days": _or_none(lambda: (datetime.date(year, month, day) - EPOCH).days)}
+
+
+EPOCH = datetime.date(1970, 1, 1)
+UNIX_EPOCH = datetime.datetime(1970, 1, 1, tzinfo=datetime.timezone.utc)
+
+
+def _or_none(value: Callable[[], int]) -> int | None:
+    """The value, or None where datetime holds no such date (a day its month lacks, year 0)."""
+    try:
+        return value()
+    except ValueError:
+        return None
+
+
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     def jsonl(records: list[dict]) -> str:
         return "".join(json.dumps(r, ensure_ascii=True, separators=(",", ":")) + "\n" for r in records)
 
     return {"vectors/examples.jsonl": jsonl(example_vectors(spec)),
-            "vectors/tolerance.jsonl": jsonl(tolerance_vectors(spec))}
+            "vectors/tolerance.jsonl": jsonl(tolerance_vectors(spec)),
+            "vectors/values.jsonl": jsonl(value_vectors(spec))}

@@ -210,6 +210,32 @@ class ReplyRule:
     sentence: Sentence | None = None     # derived by resolve()
 
 
+# The names the derived accessors of a layout take (a layout with a field of that name has none).
+POSITION_NAMES = ("latitude", "longitude")
+CALENDAR_NAMES = ("datetime",)
+# The ids of the integer fields that carry a date in three parts (ZDA: day, month, four-digit year).
+DATE_PART_IDS = ("day", "month", "year")
+
+
+@dataclass(frozen=True)
+class Position:
+    """A layout's one latitude and one longitude field."""
+
+    lat: Field
+    lon: Field
+
+
+@dataclass(frozen=True)
+class Calendar:
+    """A layout's UTC time field and its date: one `date` field, or `day`, `month` and `year`."""
+
+    time: Field
+    date: Field | None = None
+    day: Field | None = None
+    month: Field | None = None
+    year: Field | None = None
+
+
 @dataclass
 class Layout:
     """One way the fields of a sentence are laid out on the wire."""
@@ -283,6 +309,37 @@ class Layout:
             for f in item.fields * item.max if isinstance(item, Group) else [item]:
                 out += f.field_type.readings(f)
         return out
+
+    @property
+    def position(self) -> Position | None:
+        """The layout's position, when its top-level fields hold exactly one latitude and one
+        longitude: what the sentence-level `latitude` and `longitude` accessors read."""
+        lats = [f for f in self.fields if f.type == "latitude"]
+        lons = [f for f in self.fields if f.type == "longitude"]
+        if len(lats) != 1 or len(lons) != 1 or self._taken(POSITION_NAMES):
+            return None
+        return Position(lats[0], lons[0])
+
+    @property
+    def calendar(self) -> Calendar | None:
+        """The layout's UTC date and time, when its top-level fields hold exactly one time and
+        one date: a `date` field (ddmmyy), or the integer fields `day`, `month` and a four-digit
+        `year` (ZDA's form). What the sentence-level `datetime` accessors read."""
+        times = [f for f in self.fields if f.type == "time"]
+        dates = [f for f in self.fields if f.type == "date"]
+        if len(times) != 1 or self._taken(CALENDAR_NAMES):
+            return None
+        if len(dates) == 1:
+            return Calendar(times[0], date=dates[0])
+        by_id = {f.id: f for f in self.fields if f.type == "integer"}
+        day, month, year = (by_id.get(i) for i in DATE_PART_IDS)
+        if dates or not (day and month and year) or year.format != "xxxx":
+            return None
+        return Calendar(times[0], day=day, month=month, year=year)
+
+    def _taken(self, names: tuple[str, ...]) -> bool:
+        """Whether a field already has one of the names a derived accessor would take."""
+        return any(f.id in names for f in self.fields)
 
     @property
     def min_fields(self) -> int:

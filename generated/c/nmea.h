@@ -25426,6 +25426,40 @@ typedef enum {
     success. */
 nmea_reply nmea_reply_to(const nmea_sentence *s, nmea_sentence_id command);
 
+/* The field values as numbers to compute with (no heap, no libm; Python and Rust give the same). */
+
+/** Two-digit years below it are 20yy, the others 19yy (00-68: 2000-2068, 69-99: 1969-1999): the
+    POSIX rule of strptime's %y, as pynmea2 reads them (gpsd takes its build century, 20yy). */
+#define NMEA_PIVOT_YEAR 69
+
+/** The number as a double: the nearest one for up to 15 significant digits (digits < 2^53). */
+double nmea_to_double(const nmea_number *n);
+
+/** nmea_to_double rounded to a float. */
+float nmea_to_float(const nmea_number *n);
+
+/** Signed degrees x 10^7 (south and west negative), exact integer arithmetic rounded half away
+    from zero: 4916.45,N is 492741667 (49.2741666...). */
+int32_t nmea_coordinate_e7(const nmea_coordinate *c);
+
+/** Milliseconds since midnight, digits after the third decimal dropped; a leap second (60)
+    counts on past 86400000. */
+uint32_t nmea_time_ms(const nmea_time *t);
+
+/** The four-digit year of a date (NMEA_PIVOT_YEAR). */
+int nmea_date_year(const nmea_date *d);
+
+/** Days since 1970-01-01 of year-month-day (proleptic Gregorian, years 1 to 9999); false for a
+    day its month lacks. For a date in three fields (ZDA: day, month, four-digit year). */
+bool nmea_days_from_civil(int32_t year, int month, int day, int32_t *days);
+
+/** nmea_days_from_civil of a ddmmyy date, its year by NMEA_PIVOT_YEAR. */
+bool nmea_date_days(const nmea_date *d, int32_t *days);
+
+/** Milliseconds since 1970-01-01T00:00Z of a date and a time; false when either is not present,
+    for a day its month lacks and for a leap second (as Python's datetime and Rust's). */
+bool nmea_datetime_ms(const nmea_date *d, const nmea_time *t, int64_t *ms);
+
 #ifndef NMEA_NO_JSON
 /* The tools' JSON (json.md of the docs), which -DNMEA_NO_JSON leaves out of a build that only
    parses and writes sentences: about a quarter of the code. */

@@ -32,4 +32,5 @@
 #include "generated.c"
 #include "dispatch.c"
 #include "api.c"
+#include "values.c"
 #include "json_api.c"

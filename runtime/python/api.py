@@ -27,6 +27,10 @@ class Generic:
     def to_sentence(self) -> str:
         return runtime.assemble(self.start, self.address, self.fields, self.checksum)
 
+    def to_dict(self) -> dict[str, Any]:
+        """The sentence as plain values, as a typed sentence's to_dict: its address and fields."""
+        return {"address": self.address, "fields": list(self.fields)}
+
 
 def parse(
     line: str | bytes, lenient: bool = False, require_checksum: bool = False, strict: bool = False

@@ -7,6 +7,7 @@ Rust runtimes byte for byte; see docs/json.md.
 
 from __future__ import annotations
 
+import datetime as dt
 from dataclasses import dataclass
 from decimal import Decimal
 from enum import Enum
@@ -333,10 +334,15 @@ class Number(_Value):
         return -magnitude if sign == "-" else magnitude
 
     def __int__(self) -> int:
+        """The integer part (toward zero), as int() of a float."""
         return int(self.value)
 
     def __float__(self) -> float:
-        return float(self.value)
+        """The nearest double for up to 15 significant digits (2^53); the same double as C's
+        nmea_to_double and Rust's f64::from for every number: the signed digits and 10^scale as
+        doubles, divided (exact operands, one rounding)."""
+        digits, scale, _, sign, _ = self._split()
+        return float(-digits if sign == "-" else digits) / float(10**scale)
 
     def value_json(self) -> str:
         digits, scale, _, sign, _ = self._split()
@@ -421,6 +427,12 @@ class Hex(_Value):
         out = f"{value:0{digits}X}"
         return out.lower() if lower else out
 
+    def __int__(self) -> int:
+        return self.value
+
+    def __index__(self) -> int:
+        return self.value
+
     def value_json(self) -> str:
         return str(self.value)
 
@@ -495,6 +507,22 @@ class Time(_Value):
             out += "." + (str(fraction).zfill(fraction_digits) if fraction_digits else "")
         return out
 
+    def ms_of_day(self) -> int:
+        """Milliseconds since midnight, digits after the third decimal dropped (a leap second,
+        second 60, counts on past 86,400,000)."""
+        hour, minute, second, fraction, fraction_digits, _ = self._split()
+        ms: int = (
+            (hour * 60 + minute) * 60 + second
+        ) * 1000 + fraction * 1000 // 10**fraction_digits
+        return ms
+
+    def to_time(self) -> dt.time:
+        """A `datetime.time` in UTC, digits after the sixth decimal dropped; ValueError for a
+        leap second (second 60), which datetime cannot hold."""
+        hour, minute, second, fraction, fraction_digits, _ = self._split()
+        micro = fraction * 1_000_000 // 10**fraction_digits
+        return dt.time(hour, minute, second, micro, tzinfo=dt.timezone.utc)
+
     def value_json(self) -> str:
         hour, minute, second, fraction, fraction_digits, _ = self._split()
         out = f"{hour:02d}:{minute:02d}:{second:02d}"
@@ -515,8 +543,21 @@ def parse_time(text: str) -> Time | None:
     return Time._read(text)  # type: ignore[no-any-return]
 
 
+PIVOT_YEAR: Final = 69
+"""Two-digit years below it are 20yy, the others 19yy (00-68: 2000-2068, 69-99: 1969-1999): the
+POSIX rule of strptime's %y, which pynmea2 inherits (gpsd instead takes its build century, 20yy)."""
+
+
+def full_year(yy: int) -> int:
+    """The four-digit year of a two-digit one (PIVOT_YEAR)."""
+    return yy + (2000 if yy < PIVOT_YEAR else 1900)
+
+
+_EPOCH_ORDINAL: Final = dt.date(1970, 1, 1).toordinal()
+
+
 class Date(_Value):
-    """A date ddmmyy with a two-digit year."""
+    """A date ddmmyy with a two-digit year (full_year: 00-68 are 2000-2068, 69-99 1969-1999)."""
 
     __slots__ = ()
     __match_args__ = _FIELDS = ("day", "month", "year")
@@ -543,6 +584,21 @@ class Date(_Value):
     @staticmethod
     def _text_of(day: int, month: int, year: int) -> str:
         return f"{day:02d}{month:02d}{year:02d}"
+
+    @property
+    def full_year(self) -> int:
+        """The four-digit year: 00-68 are 2000-2068, 69-99 are 1969-1999 (PIVOT_YEAR)."""
+        return full_year(self.year)
+
+    def to_date(self) -> dt.date:
+        """A `datetime.date`, its year by the pivot of full_year (00-68: 20yy, 69-99: 19yy);
+        ValueError for a day its month does not have (310218)."""
+        day, month, year = self._split()
+        return dt.date(full_year(year), month, day)
+
+    def days_since_epoch(self) -> int:
+        """Days since 1970-01-01 (full_year's pivot); ValueError as to_date."""
+        return self.to_date().toordinal() - _EPOCH_ORDINAL
 
     def value_json(self) -> str:
         day, month, year = self._split()
@@ -622,9 +678,23 @@ class Coordinate(_Value):
 
     @property
     def decimal_degrees(self) -> float:
+        """Signed decimal degrees (south and west negative): the degrees plus the minutes' double
+        divided by 60, in doubles, as Rust's f64::from (within one ulp of the exact value)."""
         degrees, minutes, hemisphere, _ = self._split()
-        value: float = degrees + float(minutes.value) / 60.0
+        value: float = degrees + float(minutes) / 60.0
         return -value if hemisphere in ("S", "W") else value
+
+    def __float__(self) -> float:
+        return self.decimal_degrees
+
+    def degrees_e7(self) -> int:
+        """Signed degrees x 10^7, exact, rounded half away from zero (C's nmea_coordinate_e7)."""
+        degrees, minutes, hemisphere, _ = self._split()
+        # minutes = digits / 10^scale; degrees x 10^7 = degrees * 10^7 + digits * 10^7 / (60 * 10^scale).
+        num = minutes.digits * 10**7 + degrees * 10**7 * 60 * 10**minutes.scale
+        den = 60 * 10**minutes.scale
+        e7: int = (2 * num + den) // (2 * den)
+        return -e7 if hemisphere in ("S", "W") else e7
 
     def texts(self) -> tuple[str, str]:
         return self.text(), self._hemisphere
@@ -632,6 +702,69 @@ class Coordinate(_Value):
     def value_json(self) -> str:
         degrees, minutes, hemisphere, _ = self._split()
         return f'{{"deg":{degrees},"min":{minutes.value_json()},"hemi":"{hemisphere}"}}'
+
+
+# The sentence-level accessors (latitude, longitude, datetime) that the generated classes have
+# where the spec gives a layout one position or one date and time.
+
+
+def degrees(value: Coordinate | None | _Absent) -> float | None:
+    """A latitude or longitude in signed decimal degrees; None for an empty field."""
+    return value.decimal_degrees if isinstance(value, Coordinate) else None
+
+
+def utc_datetime(date: Date | None | _Absent, time: Time | None | _Absent) -> dt.datetime | None:
+    """The UTC datetime of a date field and a time field; None when either is empty or when
+    datetime cannot hold them (a day its month lacks, a leap second)."""
+    if not isinstance(date, Date):
+        return None
+    return _at(full_year(date.year), date.month, date.day, time)
+
+
+def utc_datetime_of(
+    year: Number | None | _Absent,
+    month: Number | None | _Absent,
+    day: Number | None | _Absent,
+    time: Time | None | _Absent,
+) -> dt.datetime | None:
+    """utc_datetime of a date in three integer fields (ZDA: day, month, four-digit year)."""
+    if not (isinstance(year, Number) and isinstance(month, Number) and isinstance(day, Number)):
+        return None
+    return _at(int(year), int(month), int(day), time)
+
+
+def _at(year: int, month: int, day: int, time: Time | None | _Absent) -> dt.datetime | None:
+    if not isinstance(time, Time):
+        return None
+    try:
+        return dt.datetime.combine(dt.date(year, month, day), time.to_time())
+    except ValueError:
+        return None
+
+
+def plain(value: Any) -> Any:
+    """A field value as a plain Python value (to_dict): a number as a float, a time, date or
+    date and time as datetime's (None where datetime cannot hold it), a coordinate as signed
+    decimal degrees, a hex number as an int, an enum as its value id (an unknown code as sent),
+    text as text, an empty or absent field as None."""
+    if value is None or value is ABSENT:
+        return None
+    if value.__class__ is str:
+        return value
+    if isinstance(value, CodeEnum):
+        return value.id
+    if isinstance(value, list):
+        return [plain(v) for v in value]
+    if isinstance(value, (Time, Date)):
+        try:
+            return value.to_time() if isinstance(value, Time) else value.to_date()
+        except ValueError:
+            return None
+    if isinstance(value, Hex):
+        return value.value
+    if isinstance(value, (Number, Coordinate)):
+        return float(value)
+    return str(value)
 
 
 def parse_coordinate(text: str, max_degree_digits: int, max_degrees: int) -> Coordinate | None:
@@ -1358,6 +1491,10 @@ class FieldSpec:
         is most of what reading a field costs then)."""
         return _NOTHING_KNOWN
 
+    def plain(self, value: Any) -> Any:
+        """The field's value as a plain Python value (see the function plain)."""
+        return plain(value)
+
 
 _NOTHING_KNOWN: dict[Any, Any] = {}
 
@@ -1396,10 +1533,16 @@ class IntegerField(_Memo):
         integer, args = self.KIND == "integer", (self.expected, self.low, self.high, self.memo)
         return number_field(fields[pos], integer, address, pos + 1, name, *args)
 
+    def plain(self, value: Any) -> Any:
+        return int(value) if isinstance(value, Number) else plain(value)
+
 
 class DecimalField(IntegerField):
     __slots__ = ()
     KIND = "decimal"
+
+    def plain(self, value: Any) -> Any:
+        return plain(value)
 
 
 def _coordinate_pair(value: Any) -> tuple[str, str]:
@@ -1804,6 +1947,23 @@ class Layout:
                 parts.append(f'"{item.id}":' + show(value))
         return "{" + ",".join(parts) + "}"
 
+    def to_dict(self, sentence: Any) -> dict[str, Any]:
+        """The fields of `sentence` as plain Python values (FieldSpec.plain), by field id; a
+        group as a list of entries (a list of dicts, or of values for a group of one field)."""
+        out: dict[str, Any] = {}
+        for item in self.items:
+            value = getattr(sentence, item.id)
+            if isinstance(item, Group):
+                if item.entry is None:
+                    out[item.id] = [item.fields[0].plain(v) for v in value]
+                else:
+                    out[item.id] = [
+                        {f.id: f.plain(getattr(e, f.id)) for f in item.fields} for e in value
+                    ]
+            else:
+                out[item.id] = item.plain(value)
+        return out
+
     def from_json(self, fields: dict[str, Any]) -> list[str]:
         """The wire fields described by a `fields` object of the tools' lossless JSON."""
         out: list[str] = []
@@ -1839,6 +1999,9 @@ class Sentence:
     ADDRESS: ClassVar[str | None]
     SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset()
     """A variant: the wire fields (1-based) it reads as its main layout does (see api._first_fit)."""
+    DERIVED: ClassVar[tuple[str, ...]] = ()
+    """The sentence-level values the class derives from its fields (latitude, longitude,
+    datetime), which to_dict gives beside the fields."""
     problems: list[NmeaError]
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
@@ -1882,6 +2045,17 @@ class Sentence:
         if self.LAYOUT.kind == "text" and not values:
             return words_json(self.LAYOUT.field_ids, self.to_sentence())
         return self.LAYOUT.json(self, values)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The sentence as plain Python values, for pandas, JSON or a database: `talker` (a
+        standard sentence), each field by id (FieldSpec.plain: numbers as int or float, times and
+        dates as datetime's, coordinates as signed degrees, enums as value ids, groups as lists)
+        and the DERIVED values (latitude, longitude, datetime)."""
+        out: dict[str, Any] = {"talker": self.talker} if hasattr(self, "talker") else {}
+        out.update(self.LAYOUT.to_dict(self))
+        for name in self.DERIVED:
+            out[name] = getattr(self, name)
+        return out
 
     @classmethod
     def fields_from_json(cls, fields: dict[str, Any]) -> list[str]:

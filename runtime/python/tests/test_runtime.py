@@ -109,3 +109,30 @@ def test_a_number_outside_its_range_is_refused_unless_its_text_is_range_kept() -
         '"message":"expected integer 0..99, found \\"123\\""}'
     )
     assert rt.with_problems(["123", "abc"], [refused.value]) == ["123", "abc"]
+
+
+def test_values_as_python_expects_them() -> None:
+    import datetime as dt
+
+    number = rt.parse_decimal("-007.50")
+    assert (float(number), int(number), number.text()) == (-7.5, -7, "-007.50")
+    assert int(rt.parse_hex("1F")) == 31
+    time = rt.parse_time("225446.1234567")
+    assert time.to_time() == dt.time(22, 54, 46, 123456, tzinfo=dt.timezone.utc)
+    assert time.ms_of_day() == 82486123
+    with pytest.raises(ValueError):
+        rt.parse_time("235960").to_time()  # datetime holds no leap second
+    # The pivot: 00-68 are 20yy, 69-99 19yy.
+    assert rt.parse_date("311268").to_date() == dt.date(2068, 12, 31)
+    assert rt.parse_date("010169").to_date() == dt.date(1969, 1, 1)
+    assert rt.parse_date("010170").days_since_epoch() == 0
+    lat = rt.coordinate_field("4916.45", "S", "GPGLL", 1, "lat", "", "", "NS", {})
+    assert (float(lat), lat.degrees_e7(), lat.degrees) == (-49.274166666666666, -492741667, 49)
+    when = rt.utc_datetime(rt.parse_date("191194"), time)
+    assert when == dt.datetime(1994, 11, 19, 22, 54, 46, 123456, tzinfo=dt.timezone.utc)
+    assert rt.utc_datetime(rt.parse_date("310218"), time) is None  # no 31 February
+    assert rt.utc_datetime(None, time) is None
+    parts = [rt.Number.of(n) for n in (2003, 10, 14)]
+    assert rt.utc_datetime_of(*parts, time) == when.replace(2003, 10, 14)
+    assert rt.plain(rt.ABSENT) is None and rt.plain(lat) == float(lat)
+    assert rt.plain(rt.parse_time("235960")) is None

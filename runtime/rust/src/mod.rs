@@ -18,6 +18,7 @@ mod parse;
 mod table;
 mod tools;
 mod types;
+mod values;
 mod write;
 
 #[cfg(feature = "serde")]
@@ -47,4 +48,5 @@ pub use types::{
     Bound, Checksum, Code, CodeChars, CodeClass, CodeEnum, Coordinate, Date, Entries, EntryIter, Hex, Number, Range,
     Sign, Texts, Time,
 };
+pub use values::{days_from_civil, DateTime, NotWhole, PIVOT_YEAR};
 pub use write::{Entry, FieldSink};

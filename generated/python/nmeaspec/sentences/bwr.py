@@ -30,6 +30,7 @@ class Bwr(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("BWR", "standard", "$", 12, 13, (
@@ -78,6 +79,16 @@ class Bwr(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Waypoint latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.waypoint_lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Waypoint longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.waypoint_lon)
 
 
 LAYOUTS: tuple[Any, ...] = (Bwr,)

@@ -32,6 +32,7 @@ class Gns(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("GNS", "standard", "$", 12, 13, (
@@ -91,6 +92,16 @@ class Gns(rt.Sentence):
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
 
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
+
 
 @dataclass(slots=True)
 class GnsAux(rt.Sentence):
@@ -111,6 +122,7 @@ class GnsAux(rt.Sentence):
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
     SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({1, 2, 3, 4, 5, 8, 9})
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("GNS", "standard", "$", 11, 12, (
@@ -163,6 +175,16 @@ class GnsAux(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
 
 
 LAYOUTS: tuple[Any, ...] = (Gns, GnsAux)

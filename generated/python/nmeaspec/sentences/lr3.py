@@ -10,6 +10,7 @@ dimensions, ship type and persons on board (functions I, O, P, U and W). Follows
 
 from __future__ import annotations
 
+import datetime as dt
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -26,6 +27,7 @@ class Lr3(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("datetime",)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("LR3", "standard", "$", 11, 11, (
@@ -73,6 +75,12 @@ class Lr3(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (eta_date, eta_time), timezone-aware; two-digit years 00-68 are 20yy,
+        69-99 19yy. None when a field is empty, for a day its month lacks or a leap second."""
+        return rt.utc_datetime(self.eta_date, self.eta_time)
 
 
 LAYOUTS: tuple[Any, ...] = (Lr3,)

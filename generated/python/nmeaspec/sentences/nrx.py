@@ -12,6 +12,7 @@ The first sentence carries all the fields, later ones usually only the counters 
 
 from __future__ import annotations
 
+import datetime as dt
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -32,6 +33,7 @@ class Nrx(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("datetime",)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("NRX", "standard", "$", 13, 13, (
@@ -94,6 +96,12 @@ class Nrx(rt.Sentence):
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
 
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (day, month, year, time), timezone-aware. None when a field is empty,
+        for a day its month lacks or a leap second."""
+        return rt.utc_datetime_of(self.year, self.month, self.day, self.time)
+
 
 @dataclass(slots=True)
 class NrxNx700(rt.Sentence):
@@ -108,6 +116,7 @@ class NrxNx700(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("datetime",)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("NRX", "standard", "$", 10, 10, (
@@ -153,6 +162,12 @@ class NrxNx700(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (day, month, year, time), timezone-aware. None when a field is empty,
+        for a day its month lacks or a leap second."""
+        return rt.utc_datetime_of(self.year, self.month, self.day, self.time)
 
 
 LAYOUTS: tuple[Any, ...] = (Nrx, NrxNx700)

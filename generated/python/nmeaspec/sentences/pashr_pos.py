@@ -31,6 +31,7 @@ class PashrPos(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PASHR"
     KIND: ClassVar[str] = "output"
     SELECTOR: ClassVar[str | None] = "POS"
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PASHR_POS", "proprietary", "$", 18, 18, (
@@ -108,6 +109,16 @@ class PashrPos(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
 
 
 LAYOUTS: tuple[Any, ...] = (PashrPos,)

@@ -26,6 +26,7 @@ class PfecGpwpl(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PFEC"
     KIND: ClassVar[str] = "output"
     SELECTOR: ClassVar[str | None] = "GPwpl"
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PFEC_GPWPL", "proprietary", "$", 9, 13, (
@@ -73,6 +74,16 @@ class PfecGpwpl(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
 
 
 LAYOUTS: tuple[Any, ...] = (PfecGpwpl,)

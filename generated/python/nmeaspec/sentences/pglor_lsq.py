@@ -30,6 +30,7 @@ class PglorLsq(rt.Sentence):
     KIND: ClassVar[str] = "output"
     SELECTOR: ClassVar[str | None] = "LSQ"
     SELECTOR_AT: ClassVar[int] = 1
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGLOR_LSQ", "proprietary", "$", 19, 23, (
@@ -99,6 +100,16 @@ class PglorLsq(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
 
 
 LAYOUTS: tuple[Any, ...] = (PglorLsq,)

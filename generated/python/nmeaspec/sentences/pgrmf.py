@@ -11,6 +11,7 @@ type, speed, course and rounded PDOP/TDOP in one sentence.
 
 from __future__ import annotations
 
+import datetime as dt
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -28,6 +29,7 @@ class Pgrmf(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PGRMF"
     KIND: ClassVar[str] = "output"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude", "datetime")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PGRMF", "proprietary", "$", 15, 15, (
@@ -80,6 +82,22 @@ class Pgrmf(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
+
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (date, time), timezone-aware; two-digit years 00-68 are 20yy, 69-99
+        19yy. None when a field is empty, for a day its month lacks or a leap second."""
+        return rt.utc_datetime(self.date, self.time)
 
 
 LAYOUTS: tuple[Any, ...] = (Pgrmf,)

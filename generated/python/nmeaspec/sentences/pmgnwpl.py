@@ -28,6 +28,7 @@ class Pmgnwpl(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PMGNWPL"
     KIND: ClassVar[str] = "reply"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PMGNWPL", "proprietary", "$", 9, 10, (
@@ -64,6 +65,16 @@ class Pmgnwpl(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
 
 
 LAYOUTS: tuple[Any, ...] = (Pmgnwpl,)

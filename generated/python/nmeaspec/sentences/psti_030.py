@@ -12,6 +12,7 @@ and ratio of the RTK solution. Sent by SkyTraq RTK receivers (PX1122R, PX1172R, 
 
 from __future__ import annotations
 
+import datetime as dt
 from dataclasses import dataclass, field
 from decimal import Decimal
 from typing import Any, ClassVar
@@ -33,6 +34,7 @@ class Psti030(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PSTI"
     KIND: ClassVar[str] = "output"
     SELECTOR: ClassVar[str | None] = "030"
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude", "datetime")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTI_030", "proprietary", "$", 15, 15, (
@@ -90,6 +92,22 @@ class Psti030(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
+
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (date, time), timezone-aware; two-digit years 00-68 are 20yy, 69-99
+        19yy. None when a field is empty, for a day its month lacks or a leap second."""
+        return rt.utc_datetime(self.date, self.time)
 
 
 LAYOUTS: tuple[Any, ...] = (Psti030,)

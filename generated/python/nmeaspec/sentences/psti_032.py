@@ -12,6 +12,7 @@ and mode. Sent by SkyTraq RTK receivers.
 
 from __future__ import annotations
 
+import datetime as dt
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -32,6 +33,7 @@ class Psti032(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PSTI"
     KIND: ClassVar[str] = "output"
     SELECTOR: ClassVar[str | None] = "032"
+    DERIVED: ClassVar[tuple[str, ...]] = ("datetime",)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PSTI_032", "proprietary", "$", 15, 15, (
@@ -88,6 +90,12 @@ class Psti032(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (date, time), timezone-aware; two-digit years 00-68 are 20yy, 69-99
+        19yy. None when a field is empty, for a day its month lacks or a leap second."""
+        return rt.utc_datetime(self.date, self.time)
 
 
 LAYOUTS: tuple[Any, ...] = (Psti032,)

@@ -29,6 +29,7 @@ class PtnlGgkSync(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PTNL"
     KIND: ClassVar[str] = "output"
     SELECTOR: ClassVar[str | None] = "GGK_SYNC"
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PTNL_GGK_SYNC", "proprietary", "$", 12, 12, (
@@ -78,6 +79,16 @@ class PtnlGgkSync(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
 
 
 LAYOUTS: tuple[Any, ...] = (PtnlGgkSync,)

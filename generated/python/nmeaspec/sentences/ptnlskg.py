@@ -27,6 +27,7 @@ class Ptnlskg(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PTNLSKG"
     KIND: ClassVar[str] = "command"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ("PTNLRKG",)
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     REPLY_RULES: ClassVar[tuple[rt.ReplyRule, ...]] = (
@@ -58,6 +59,16 @@ class Ptnlskg(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
 
 
 LAYOUTS: tuple[Any, ...] = (Ptnlskg,)

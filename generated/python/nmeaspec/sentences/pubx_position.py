@@ -34,6 +34,7 @@ class PubxPosition(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PUBX"
     KIND: ClassVar[str] = "output"
     SELECTOR: ClassVar[str | None] = "00"
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PUBX_POSITION", "proprietary", "$", 20, 20, (
@@ -112,6 +113,16 @@ class PubxPosition(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
 
 
 LAYOUTS: tuple[Any, ...] = (PubxPosition,)

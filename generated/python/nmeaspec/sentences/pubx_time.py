@@ -11,6 +11,7 @@ configured rate or once in answer to the poll $PUBX,04 (PUBX_TIME_POLL).
 
 from __future__ import annotations
 
+import datetime as dt
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -30,6 +31,7 @@ class PubxTime(rt.Sentence):
     ADDRESS: ClassVar[str | None] = "PUBX"
     KIND: ClassVar[str] = "output"
     SELECTOR: ClassVar[str | None] = "04"
+    DERIVED: ClassVar[tuple[str, ...]] = ("datetime",)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("PUBX_TIME", "proprietary", "$", 9, 10, (
@@ -76,6 +78,12 @@ class PubxTime(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (date, time), timezone-aware; two-digit years 00-68 are 20yy, 69-99
+        19yy. None when a field is empty, for a day its month lacks or a leap second."""
+        return rt.utc_datetime(self.date, self.time)
 
 
 LAYOUTS: tuple[Any, ...] = (PubxTime,)

@@ -32,6 +32,7 @@ class Rmb(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMB", "standard", "$", 13, 14, (
@@ -88,6 +89,16 @@ class Rmb(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Destination latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.destination_lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Destination longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.destination_lon)
 
 
 LAYOUTS: tuple[Any, ...] = (Rmb,)

@@ -12,6 +12,7 @@ navigational status.
 
 from __future__ import annotations
 
+import datetime as dt
 from dataclasses import dataclass, field
 from decimal import Decimal
 from typing import Any, ClassVar
@@ -33,6 +34,7 @@ class Rmc(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude", "datetime")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMC", "standard", "$", 11, 13, (
@@ -85,6 +87,22 @@ class Rmc(rt.Sentence):
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
 
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
+
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (date, time), timezone-aware; two-digit years 00-68 are 20yy, 69-99
+        19yy. None when a field is empty, for a day its month lacks or a leap second."""
+        return rt.utc_datetime(self.date, self.time)
+
 
 @dataclass(slots=True)
 class RmcSentinel(rt.Sentence):
@@ -105,6 +123,7 @@ class RmcSentinel(rt.Sentence):
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
     SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({1, 2, 4, 6, 7, 8, 9, 10, 11, 12, 13})
+    DERIVED: ClassVar[tuple[str, ...]] = ("datetime",)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMC", "standard", "$", 11, 13, (
@@ -166,6 +185,12 @@ class RmcSentinel(rt.Sentence):
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
 
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (date, time), timezone-aware; two-digit years 00-68 are 20yy, 69-99
+        19yy. None when a field is empty, for a day its month lacks or a leap second."""
+        return rt.utc_datetime(self.date, self.time)
+
 
 @dataclass(slots=True)
 class RmcNoVariationDirection(rt.Sentence):
@@ -187,6 +212,7 @@ class RmcNoVariationDirection(rt.Sentence):
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
     SAME_AS_MAIN: ClassVar[frozenset[int]] = frozenset({1, 2, 3, 4, 5, 6, 7, 8, 9, 10})
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude", "datetime")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("RMC", "standard", "$", 11, 11, (
@@ -231,6 +257,22 @@ class RmcNoVariationDirection(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
+
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (date, time), timezone-aware; two-digit years 00-68 are 20yy, 69-99
+        19yy. None when a field is empty, for a day its month lacks or a leap second."""
+        return rt.utc_datetime(self.date, self.time)
 
 
 LAYOUTS: tuple[Any, ...] = (Rmc, RmcSentinel, RmcNoVariationDirection)

@@ -29,6 +29,7 @@ class Sm3(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("SM3", "standard", "$", 18, 18, (
@@ -102,6 +103,16 @@ class Sm3(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Centre latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.center_lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Centre longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.center_lon)
 
 
 LAYOUTS: tuple[Any, ...] = (Sm3,)

@@ -29,6 +29,7 @@ class Sm4(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("SM4", "standard", "$", 19, 19, (
@@ -103,6 +104,18 @@ class Sm4(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """South-west corner latitude in signed decimal degrees (south negative); None when
+        empty."""
+        return rt.degrees(self.sw_lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """South-west corner longitude in signed decimal degrees (west negative); None when
+        empty."""
+        return rt.degrees(self.sw_lon)
 
 
 LAYOUTS: tuple[Any, ...] = (Sm4,)

@@ -29,6 +29,7 @@ class Tll(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("latitude", "longitude")
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("TLL", "standard", "$", 9, 9, (
@@ -67,6 +68,16 @@ class Tll(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def latitude(self) -> float | None:
+        """Target latitude in signed decimal degrees (south negative); None when empty."""
+        return rt.degrees(self.lat)
+
+    @property
+    def longitude(self) -> float | None:
+        """Target longitude in signed decimal degrees (west negative); None when empty."""
+        return rt.degrees(self.lon)
 
 
 LAYOUTS: tuple[Any, ...] = (Tll,)

@@ -9,6 +9,7 @@ UTC time, day, month, year and local time zone offset.
 
 from __future__ import annotations
 
+import datetime as dt
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -28,6 +29,7 @@ class Zda(rt.Sentence):
     ADDRESS: ClassVar[str | None] = None
     KIND: ClassVar[str] = "standard"
     SELECTOR: ClassVar[str | None] = None
+    DERIVED: ClassVar[tuple[str, ...]] = ("datetime",)
     REPLIES: ClassVar[tuple[str, ...]] = ()
     """Sentences that answer this command (see nmeaspec.replies_of)."""
     LAYOUT: ClassVar[rt.Layout] = rt.Layout("ZDA", "standard", "$", 6, 6, (
@@ -63,6 +65,12 @@ class Zda(rt.Sentence):
     checksum: str | None = "upper"
     """How the checksum is written: "upper", "lower" (hex letter case), "empty" (a bare '*') or
     None."""
+
+    @property
+    def datetime(self) -> dt.datetime | None:
+        """UTC date and time (day, month, year, time), timezone-aware. None when a field is empty,
+        for a day its month lacks or a leap second."""
+        return rt.utc_datetime_of(self.year, self.month, self.day, self.time)
 
 
 LAYOUTS: tuple[Any, ...] = (Zda,)

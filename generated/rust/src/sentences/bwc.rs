@@ -81,6 +81,16 @@ impl<'a> Bwc<'a> {
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Bwc.build(buf, |w| self.write_sentence(w))
     }
+
+    /// Waypoint latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.waypoint_lat.map(f64::from)
+    }
+
+    /// Waypoint longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.waypoint_lon.map(f64::from)
+    }
 }
 
 impl<'a> Layout<'a> for Bwc<'a> {

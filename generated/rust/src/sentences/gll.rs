@@ -68,6 +68,16 @@ impl<'a> Gll<'a> {
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Gll.build(buf, |w| self.write_sentence(w))
     }
+
+    /// Latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.lat.map(f64::from)
+    }
+
+    /// Longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.lon.map(f64::from)
+    }
 }
 
 impl<'a> Layout<'a> for Gll<'a> {

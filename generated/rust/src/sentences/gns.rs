@@ -91,6 +91,16 @@ impl<'a> Gns<'a> {
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Gns.build(buf, |w| self.write_sentence(w))
     }
+
+    /// Latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.lat.map(f64::from)
+    }
+
+    /// Longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.lon.map(f64::from)
+    }
 }
 
 impl<'a> Layout<'a> for Gns<'a> {
@@ -258,6 +268,16 @@ impl<'a> GnsAux<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::GnsAux.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// Latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.lat.map(f64::from)
+    }
+
+    /// Longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.lon.map(f64::from)
     }
 }
 

@@ -11,7 +11,8 @@
 use core::fmt;
 
 use crate::runtime::{
-    Bound, Checksum, Date, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape, Time,
+    Bound, Checksum, Date, DateTime, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -67,6 +68,12 @@ impl<'a> Lr3<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Lr3.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// The UTC date and time of `eta_date` (two-digit years 00–68 are 20yy, 69–99 19yy) and
+    /// `eta_time`; `None` when a field is empty, for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_date(self.eta_date?, self.eta_time?)
     }
 }
 

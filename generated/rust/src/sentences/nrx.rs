@@ -15,7 +15,8 @@ use core::fmt;
 
 use crate::enums::{NrxFrequency, Status};
 use crate::runtime::{
-    Bound, Checksum, Code, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Shape, Time,
+    Bound, Checksum, Code, DateTime, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range,
+    Shape, Time,
 };
 use crate::LayoutId;
 
@@ -92,6 +93,12 @@ impl<'a> Nrx<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Nrx.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// The UTC date and time of `day`, `month`, `year` and `time`; `None` when a field is empty,
+    /// for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_parts(self.year?, self.month?, self.day?, self.time?)
     }
 }
 
@@ -221,6 +228,12 @@ impl<'a> NrxNx700<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::NrxNx700.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// The UTC date and time of `day`, `month`, `year` and `time`; `None` when a field is empty,
+    /// for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_parts(self.year?, self.month?, self.day?, self.time?)
     }
 }
 

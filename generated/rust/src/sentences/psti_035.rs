@@ -14,8 +14,8 @@ use core::fmt;
 
 use crate::enums::{SkytraqMode, Status};
 use crate::runtime::{
-    Bound, Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number,
-    Range, Read, Shape, Time,
+    Bound, Checksum, Code, Date, DateTime, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts,
+    Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -85,6 +85,12 @@ impl<'a> Psti035<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Psti035.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// The UTC date and time of `date` (two-digit years 00–68 are 20yy, 69–99 19yy) and `time`;
+    /// `None` when a field is empty, for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_date(self.date?, self.time?)
     }
 }
 

@@ -13,8 +13,8 @@ use core::fmt;
 
 use crate::enums::SkytraqMode;
 use crate::runtime::{
-    Bound, Checksum, Code, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number,
-    Range, Read, Shape, Time,
+    Bound, Checksum, Code, Date, DateTime, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts,
+    Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -69,6 +69,12 @@ impl<'a> Psti036<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Psti036.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// The UTC date and time of `date` (two-digit years 00–68 are 20yy, 69–99 19yy) and `time`;
+    /// `None` when a field is empty, for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_date(self.date?, self.time?)
     }
 }
 

@@ -57,6 +57,16 @@ impl Ptnlskg {
         LayoutId::Ptnlskg.build(buf, |w| self.write_sentence(w))
     }
 
+    /// Latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.lat.map(f64::from)
+    }
+
+    /// Longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.lon.map(f64::from)
+    }
+
     /// The layouts of the sentences that answer this command.
     pub const REPLIES: &'static [LayoutId] = LayoutId::Ptnlskg.replies();
 }

@@ -91,6 +91,16 @@ impl<'a> Rmb<'a> {
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Rmb.build(buf, |w| self.write_sentence(w))
     }
+
+    /// Destination latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.destination_lat.map(f64::from)
+    }
+
+    /// Destination longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.destination_lon.map(f64::from)
+    }
 }
 
 impl<'a> Layout<'a> for Rmb<'a> {

@@ -14,8 +14,8 @@ use core::fmt;
 
 use crate::enums::{EastWest, NavStatus, NorthSouth, PosMode, RmcMagVarDir, Status};
 use crate::runtime::{
-    Bound, Checksum, Code, Coordinate, Date, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout,
-    Layouts, Number, Range, Read, Shape, Time,
+    Bound, Checksum, Code, Coordinate, Date, DateTime, Error, FastReader, FieldSink, Fields, Framing, JsonMember,
+    Layout, Layouts, Number, Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -86,6 +86,22 @@ impl<'a> Rmc<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Rmc.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// Latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.lat.map(f64::from)
+    }
+
+    /// Longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.lon.map(f64::from)
+    }
+
+    /// The UTC date and time of `date` (two-digit years 00–68 are 20yy, 69–99 19yy) and `time`;
+    /// `None` when a field is empty, for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_date(self.date?, self.time?)
     }
 }
 
@@ -269,6 +285,12 @@ impl<'a> RmcSentinel<'a> {
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::RmcSentinel.build(buf, |w| self.write_sentence(w))
     }
+
+    /// The UTC date and time of `date` (two-digit years 00–68 are 20yy, 69–99 19yy) and `time`;
+    /// `None` when a field is empty, for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_date(self.date?, self.time?)
+    }
 }
 
 impl<'a> Layout<'a> for RmcSentinel<'a> {
@@ -441,6 +463,22 @@ impl<'a> RmcNoVariationDirection<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::RmcNoVariationDirection.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// Latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.lat.map(f64::from)
+    }
+
+    /// Longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.lon.map(f64::from)
+    }
+
+    /// The UTC date and time of `date` (two-digit years 00–68 are 20yy, 69–99 19yy) and `time`;
+    /// `None` when a field is empty, for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_date(self.date?, self.time?)
     }
 }
 

@@ -94,6 +94,16 @@ impl<'a> Sm3<'a> {
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Sm3.build(buf, |w| self.write_sentence(w))
     }
+
+    /// Centre latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.center_lat.map(f64::from)
+    }
+
+    /// Centre longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.center_lon.map(f64::from)
+    }
 }
 
 impl<'a> Layout<'a> for Sm3<'a> {

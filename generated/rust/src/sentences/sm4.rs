@@ -94,6 +94,16 @@ impl<'a> Sm4<'a> {
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Sm4.build(buf, |w| self.write_sentence(w))
     }
+
+    /// South-west corner latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.sw_lat.map(f64::from)
+    }
+
+    /// South-west corner longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.sw_lon.map(f64::from)
+    }
 }
 
 impl<'a> Layout<'a> for Sm4<'a> {

@@ -12,8 +12,8 @@ use core::fmt;
 
 use crate::enums::Status;
 use crate::runtime::{
-    Checksum, Code, Coordinate, Date, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range,
-    Shape, Time,
+    Checksum, Code, Coordinate, Date, DateTime, Error, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number,
+    Range, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -67,6 +67,22 @@ impl<'a> Trf<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Trf.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// Latitude in signed decimal degrees (south negative).
+    pub fn latitude(&self) -> Option<f64> {
+        self.lat.map(f64::from)
+    }
+
+    /// Longitude in signed decimal degrees (west negative).
+    pub fn longitude(&self) -> Option<f64> {
+        self.lon.map(f64::from)
+    }
+
+    /// The UTC date and time of `date` (two-digit years 00–68 are 20yy, 69–99 19yy) and `time`;
+    /// `None` when a field is empty, for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_date(self.date?, self.time?)
     }
 }
 

@@ -10,8 +10,8 @@
 use core::fmt;
 
 use crate::runtime::{
-    Bound, Checksum, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number, Range, Read,
-    Shape, Time,
+    Bound, Checksum, DateTime, Error, FastReader, FieldSink, Fields, Framing, JsonMember, Layout, Layouts, Number,
+    Range, Read, Shape, Time,
 };
 use crate::LayoutId;
 
@@ -65,6 +65,12 @@ impl<'a> Zda<'a> {
     /// reads back with this layout; else the parser's error, naming the field at fault.
     pub fn to_bytes<'b>(&self, buf: &'b mut [u8]) -> Result<&'b [u8], Error<'b>> {
         LayoutId::Zda.build(buf, |w| self.write_sentence(w))
+    }
+
+    /// The UTC date and time of `day`, `month`, `year` and `time`; `None` when a field is empty,
+    /// for a day its month lacks or a leap second.
+    pub fn datetime(&self) -> Option<DateTime> {
+        DateTime::of_parts(self.year?, self.month?, self.day?, self.time?)
     }
 }
 

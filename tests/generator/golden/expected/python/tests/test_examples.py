@@ -7,6 +7,8 @@ re-encode byte for byte; damaged ones are rejected and their corrections round-t
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 import nmeaspec
@@ -67,6 +69,11 @@ def test_example(manual: str, raw: str, checksum_ok: bool, line: str | None, tex
     assert nmeaspec.to_json(sentence) == text_json
     assert nmeaspec.to_json(sentence, values=True) == values_json
     assert nmeaspec.encode_json(text_json) == line
+    plain = sentence.to_dict()  # plain values: JSON takes them, datetime's as text
+    assert json.loads(json.dumps(plain, default=str)).keys() == plain.keys()
+    for name, limit in (("latitude", 90), ("longitude", 180)):
+        if name in sentence.DERIVED:
+            assert plain[name] is None or -limit <= plain[name] <= limit
 
 
 # (command, a line of one of its replies, what reply_to says: "ok", "error" or None)

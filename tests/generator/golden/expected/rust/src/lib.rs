@@ -61,13 +61,13 @@ pub const VERSION: &str = "0.2.0";
 
 #[cfg(feature = "acme")]
 use runtime::is_command_word;
-use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};
 pub use runtime::{
-    stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, Encoding, Entries, EntryIter, Error,
-    ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name, Number, Options, ParamValue, Parameter,
-    ParameterError, Problem, ProblemKind, Problems, ReplyOutcome, Sign, Table, Texts, Time, BUILD_CAPACITY, MAX_LINE,
-    MAX_PROBLEMS,
+    days_from_civil, stream, Bound, Checksum, Code, CodeChars, CodeEnum, Coordinate, Date, DateTime, Encoding, Entries,
+    EntryIter, Error, ErrorKind, FieldProblem, Fields, Framing, Generic, Hex, Kind, Layout, Name, NotWhole, Number,
+    Options, ParamValue, Parameter, ParameterError, Problem, ProblemKind, Problems, ReplyOutcome, Sign, Table, Texts,
+    Time, BUILD_CAPACITY, MAX_LINE, MAX_PROBLEMS, PIVOT_YEAR,
 };
+use runtime::{read_layout, Decoded, FastReader, Layouts, Outcome};
 
 pub use sentences::*;
 
