@@ -1,0 +1,347 @@
+"""Fixes assembled across sentences: one `Fix` per epoch (the sentences of one UTC time of day).
+
+    >>> from nmeaspec.fixes import fixes
+    >>> for fix in fixes(open("drive.nmea")):   # doctest: +SKIP
+    ...     print(fix.datetime, fix.latitude, fix.longitude, fix.mode)
+
+Which field of which sentence carries which fact is the spec's (spec/fix.yaml and the `fix:` keys
+of the sentences' fields, generated into fix_fields.py); this module only merges facts:
+
+- An epoch is the run of sentences with the same time of day. A sentence without time (GSA, GSV,
+  VTG, PUBX,03) joins the epoch under way; a sentence with another time closes it, as does the end
+  of the stream (`FixAssembler.close`).
+- A fix holds only what the sentences of its epoch say: a sentence sent at a lower rate leaves the
+  other epochs without its facts. The one exception is the date: an epoch without one takes the
+  last date seen, a day later when the time of day went back past midnight.
+- Satellites in view come in sets of GSV sentences (one per talker and signal); a set belongs to
+  the epoch in which its last sentence arrives. Satellites used (GSA) are kept per GNSS: the
+  system id of NMEA 4.10, else the talker, else (GP, GN) the range of the satellite id.
+- The mode (no fix, 2D, 3D) is the receiver's (GSA, PUBX,00) where the epoch has it, else
+  inferred: no fix when a sentence calls the position invalid, 3D with an altitude, 2D without.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+from . import runtime as rt
+from .api import parse
+from .fix_fields import FIELDS, SATELLITE_IDS, TALKER_SYSTEMS
+from .runtime import NmeaError
+
+
+@dataclass(slots=True)
+class Satellite:
+    """A satellite in view, as one signal's GSV set (or PUBX,03) reports it."""
+
+    system: str | None
+    """Its GNSS (gps, sbas, glonass, galileo, beidou, qzss, navic), None when not told."""
+    id: int
+    """Its id in the NMEA numbering of its talker."""
+    talker: str
+    signal: str | None = None
+    """The signal id (NMEA 4.10) of its set, e.g. signal_1; None before NMEA 4.10."""
+    elevation: int | None = None
+    azimuth: int | None = None
+    snr: int | None = None
+    """Carrier-to-noise density [dB-Hz]; None when not tracked."""
+    used: bool | None = None
+    """Whether the solution uses it, where the receiver says so beside it (PUBX,03)."""
+
+
+@dataclass(slots=True)
+class Fix:
+    """What the sentences of one epoch say. Every fact is None when no sentence of the epoch
+    gave it; units are those of spec/fix.yaml (degrees, metres, metres per second)."""
+
+    time: _dt.time | None = None
+    date: _dt.date | None = None
+    latitude: float | None = None
+    longitude: float | None = None
+    altitude_msl: float | None = None
+    geoid_separation: float | None = None
+    speed: float | None = None
+    course: float | None = None
+    fix_quality: str | None = None
+    """GGA's quality as a value id of gga_quality (autonomous, differential, rtk_fixed, ...)."""
+    fix_status: str | None = None
+    """valid or invalid (RMC, GLL)."""
+    pos_mode: str | None = None
+    """The NMEA 2.3 mode indicator as a value id (autonomous, differential, not_valid, ...)."""
+    mode: str | None = None
+    """no_fix, fix_2d or fix_3d: the receiver's (GSA, PUBX,00), else inferred (module doc)."""
+    pdop: float | None = None
+    hdop: float | None = None
+    vdop: float | None = None
+    tdop: float | None = None
+    lat_error: float | None = None
+    lon_error: float | None = None
+    alt_error: float | None = None
+    horizontal_error: float | None = None
+    satellites_used: int | None = None
+    """The receiver's count of satellites used (GGA, GNS, PUBX,00)."""
+    used: dict[str, list[int]] = field(default_factory=dict)
+    """The ids of the satellites used, per GNSS ("unknown" when no rule tells it)."""
+    in_view: list[Satellite] = field(default_factory=list)
+    """The satellites in view, one entry per satellite and signal."""
+    sentences: list[str] = field(default_factory=list)
+    """The sentences the fix came from, in order: talker and formatter (GNGGA) or the id of a
+    proprietary sentence (PUBX_POSITION)."""
+    altitude_hae_sent: float | None = None
+    """The ellipsoid height where a sentence gives it itself (PUBX,00)."""
+
+    @property
+    def datetime(self) -> _dt.datetime | None:
+        """The epoch's UTC date and time, when both are known."""
+        if self.date is None or self.time is None:
+            return None
+        return _dt.datetime.combine(self.date, self.time, tzinfo=_dt.timezone.utc)
+
+    @property
+    def altitude_hae(self) -> float | None:
+        """Height above the ellipsoid: as sent, else MSL altitude plus geoid separation."""
+        if self.altitude_hae_sent is not None:
+            return self.altitude_hae_sent
+        if self.altitude_msl is None or self.geoid_separation is None:
+            return None
+        return self.altitude_msl + self.geoid_separation
+
+    @property
+    def used_count(self) -> int:
+        """How many satellites the GSA sentences of the epoch list as used."""
+        return sum(len(ids) for ids in self.used.values())
+
+    @property
+    def in_view_count(self) -> int:
+        """How many distinct satellites are in view (a satellite of several signals once)."""
+        return len({(s.system, s.id) for s in self.in_view})
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fix as plain values (ISO 8601 texts for date and time), for JSON and tables."""
+        out: dict[str, Any] = {}
+        for name in self.__slots__:  # type: ignore[attr-defined]
+            value = getattr(self, name)
+            if name == "altitude_hae_sent":
+                name, value = "altitude_hae", self.altitude_hae
+            elif name == "in_view":
+                value = [{key: getattr(s, key) for key in s.__slots__} for s in value]
+            elif isinstance(value, (_dt.date, _dt.time)):
+                value = value.isoformat()
+            out[name] = value
+        return out
+
+
+# The facts a Fix holds as the sentences give them (the later sentence of an epoch wins); the
+# others are merged by FixAssembler.
+_SCALARS = frozenset({
+    "latitude", "longitude", "altitude_msl", "geoid_separation", "altitude_hae", "speed",
+    "course", "pdop", "hdop", "vdop", "tdop", "lat_error", "lon_error", "alt_error",
+    "horizontal_error", "satellites_used", "fix_quality", "fix_status", "pos_mode", "mode",
+})
+_ATTRIBUTE = {"altitude_hae": "altitude_hae_sent"}
+
+
+class FixAssembler:
+    """Turns a stream of sentences into fixes: `feed` each parsed sentence (or line) in order, it
+    returns the fix of the epoch the sentence closed, if any; `close` ends the stream."""
+
+    def __init__(self) -> None:
+        self._fix: Fix | None = None
+        self._sets: dict[tuple[str, str | None], tuple[int, list[Satellite]]] = {}
+        self._last_date: tuple[_dt.date, _dt.time | None] | None = None
+
+    def feed(self, sentence: Any) -> Fix | None:
+        """Add one sentence (a parsed one, or a line: one that does not parse is skipped)."""
+        if isinstance(sentence, (str, bytes)):
+            try:
+                sentence = parse(sentence)
+            except NmeaError:
+                return None
+        fields = FIELDS.get((type(sentence).SENTENCE, type(sentence).VARIANT))
+        if fields is None:
+            return None
+        facts, groups = _facts(sentence, fields)
+        carried = {f.fact for f in fields}
+        closed = None
+        time = facts.pop("time", None)
+        if self._fix is not None and time is not None and self._fix.time not in (None, time):
+            closed = self._finish()
+        fix = self._fix if self._fix is not None else Fix()
+        self._fix = fix
+        if time is not None:
+            fix.time = time
+        talker = getattr(sentence, "talker", None) or ""
+        fix.sentences.append(talker + type(sentence).SENTENCE)
+        self._merge(fix, facts, groups, carried, talker)
+        return closed
+
+    def close(self) -> Fix | None:
+        """The fix of the epoch under way, at the end of the stream."""
+        return self._finish() if self._fix is not None else None
+
+    def _merge(
+        self, fix: Fix, facts: dict[str, Any], groups: list[dict[str, Any]], carried: set[str],
+        talker: str,
+    ) -> None:
+        for name, value in facts.items():
+            if name in _SCALARS and value is not None:
+                setattr(fix, _ATTRIBUTE.get(name, name), value)
+        date = facts.get("date") or _calendar(facts)
+        if date is not None:
+            fix.date = date
+        if "used_satellite" in carried:
+            system = facts.get("used_system")
+            for entry in groups:
+                sat = entry.get("used_satellite")
+                if sat is not None:
+                    ids = fix.used.setdefault(system or _system(talker, sat) or "unknown", [])
+                    if sat not in ids:
+                        ids.append(sat)
+        if "satellite" in carried:
+            self._satellites(fix, facts, groups, talker)
+
+    def _satellites(
+        self, fix: Fix, facts: dict[str, Any], groups: list[dict[str, Any]], talker: str
+    ) -> None:
+        """Collect a set of satellites in view; a set is the epoch's when its last part arrives
+        (a report in one sentence, PUBX,03, is a set of one)."""
+        signal = facts.get("signal")
+        sats = [
+            Satellite(_system(talker, g["satellite"]), g["satellite"], talker, signal,
+                      g.get("elevation"), g.get("azimuth"), g.get("snr"), _used(g.get("satellite_used")))
+            for g in groups if g.get("satellite") is not None
+        ]
+        size, index = facts.get("set_size") or 1, facts.get("set_index") or 1
+        key = (talker, signal)
+        if index == 1:
+            self._sets[key] = (1, sats)
+        elif key in self._sets and self._sets[key][0] == index - 1:
+            self._sets[key] = (index, self._sets[key][1] + sats)
+        else:  # a part missing: the set is incomplete
+            self._sets.pop(key, None)
+            return
+        if index == size:
+            kept = [s for s in fix.in_view if (s.talker, s.signal) != key]
+            fix.in_view = kept + self._sets.pop(key)[1]
+
+    def _finish(self) -> Fix:
+        fix = self._fix
+        assert fix is not None
+        self._fix = None
+        if fix.date is None and self._last_date is not None and fix.time is not None:
+            date, time = self._last_date
+            rolled_over = time is not None and fix.time < time
+            fix.date = date + _dt.timedelta(days=1) if rolled_over else date
+        if fix.date is not None:
+            self._last_date = (fix.date, fix.time)
+        if fix.mode is None:
+            fix.mode = _inferred_mode(fix)
+        return fix
+
+
+def fixes(stream: Iterable[Any]) -> Iterator[Fix]:
+    """The fixes of a stream of parsed sentences or lines (an open log file), epoch by epoch."""
+    assembler = FixAssembler()
+    for sentence in stream:
+        fix = assembler.feed(sentence)
+        if fix is not None:
+            yield fix
+    last = assembler.close()
+    if last is not None:
+        yield last
+
+
+def _facts(sentence: Any, fields: tuple[Any, ...]) -> tuple[dict[str, Any], list[dict[str, Any]]]:
+    """The facts a sentence gives (converted to the Fix's types), and its group's, one dict per
+    entry."""
+    facts: dict[str, Any] = {}
+    groups: list[dict[str, Any]] = []
+    for f in fields:
+        if f.group is None:
+            facts[f.fact] = _value(getattr(sentence, f.field), f)
+            continue
+        for i, entry in enumerate(getattr(sentence, f.group)):
+            if i == len(groups):
+                groups.append({})
+            groups[i][f.fact] = _value(entry if f.field is None else getattr(entry, f.field), f)
+    return facts, groups
+
+
+def _value(value: Any, f: Any) -> Any:
+    """A field's value as the fact's: numbers scaled to its unit, enums as value ids (mapped by
+    the spec's `from`), coordinates in signed degrees, time and date as datetime's."""
+    if value is None or value is rt.ABSENT:
+        return None
+    if isinstance(value, list):  # enum_chars: the first mode that is not not_valid
+        ids = [v.id for v in value if isinstance(v, rt.CodeEnum)]
+        return next((i for i in ids if i != "not_valid"), ids[0] if ids else None)
+    if isinstance(value, rt.CodeEnum):
+        return f.values.get(value.id) if f.values is not None else value.id
+    if isinstance(value, rt.Coordinate):
+        return _degrees(value)
+    if isinstance(value, rt.Time):
+        return _time(value)
+    if isinstance(value, rt.Date):
+        return _date(value)
+    if isinstance(value, rt.Number):
+        if f.scale == 1.0 and not value.point:
+            return int(value)
+        return float(value) * f.scale
+    return None  # an unknown enum code kept as text: no fact
+
+
+def _system(talker: str, sat: int) -> str | None:
+    """The GNSS of a satellite id under a talker (GP and GN: by the id's range)."""
+    system = TALKER_SYSTEMS.get(talker)
+    if system is not None:
+        return system
+    return next((name for name, low, high in SATELLITE_IDS if low <= sat <= high), None)
+
+
+def _used(value: str | None) -> bool | None:
+    return None if value is None else value == "used"
+
+
+def _calendar(facts: dict[str, Any]) -> _dt.date | None:
+    """A date of three numbers (ZDA's day, month, year)."""
+    try:
+        return _dt.date(int(facts["year"]), int(facts["month"]), int(facts["day"]))
+    except (KeyError, TypeError, ValueError):
+        return None
+
+
+def _inferred_mode(fix: Fix) -> str | None:
+    """The mode where no sentence of the epoch gives it (module doc)."""
+    if fix.latitude is None and fix.fix_quality is None and fix.fix_status is None:
+        return None
+    if fix.fix_status == "invalid" or fix.fix_quality == "invalid" or fix.pos_mode == "not_valid" \
+            or fix.latitude is None:
+        return "no_fix"
+    return "fix_3d" if fix.altitude_msl is not None or fix.altitude_hae is not None else "fix_2d"
+
+
+# --- Value conversions. ACCESSORS: the value types' own float()/degrees/datetime accessors (another
+# branch) replace these three at merge time.
+
+def _degrees(value: rt.Coordinate) -> float:
+    return value.decimal_degrees
+
+
+def _time(value: rt.Time) -> _dt.time | None:
+    fraction = value.fraction * 10 ** (6 - value.fraction_digits) if value.fraction_digits <= 6 \
+        else value.fraction // 10 ** (value.fraction_digits - 6)
+    try:
+        return _dt.time(value.hour, value.minute, min(value.second, 59), fraction)
+    except ValueError:
+        return None
+
+
+def _date(value: rt.Date) -> _dt.date | None:
+    """Two-digit years 80-99 are 1980-1999, the others 2000-2079."""
+    try:
+        return _dt.date(value.year + (1900 if value.year >= 80 else 2000), value.month, value.day)
+    except ValueError:
+        return None
