@@ -29,7 +29,7 @@ from typing import Any
 
 from . import runtime as rt
 from .api import parse
-from .fix_fields import FIELDS, SATELLITE_IDS, TALKER_SYSTEMS
+from .fix_fields import FIELDS, SATELLITE_IDS, TALKER_SYSTEMS, FixField
 from .runtime import NmeaError
 
 
@@ -63,6 +63,8 @@ class Fix:
     longitude: float | None = None
     altitude_msl: float | None = None
     geoid_separation: float | None = None
+    altitude_hae: float | None = None
+    """Height above the ellipsoid: as sent (PUBX,00), else MSL altitude plus geoid separation."""
     speed: float | None = None
     course: float | None = None
     fix_quality: str | None = None
@@ -90,8 +92,6 @@ class Fix:
     sentences: list[str] = field(default_factory=list)
     """The sentences the fix came from, in order: talker and formatter (GNGGA) or the id of a
     proprietary sentence (PUBX_POSITION)."""
-    altitude_hae_sent: float | None = None
-    """The ellipsoid height where a sentence gives it itself (PUBX,00)."""
 
     @property
     def datetime(self) -> _dt.datetime | None:
@@ -99,15 +99,6 @@ class Fix:
         if self.date is None or self.time is None:
             return None
         return _dt.datetime.combine(self.date, self.time, tzinfo=_dt.timezone.utc)
-
-    @property
-    def altitude_hae(self) -> float | None:
-        """Height above the ellipsoid: as sent, else MSL altitude plus geoid separation."""
-        if self.altitude_hae_sent is not None:
-            return self.altitude_hae_sent
-        if self.altitude_msl is None or self.geoid_separation is None:
-            return None
-        return self.altitude_msl + self.geoid_separation
 
     @property
     def used_count(self) -> int:
@@ -124,9 +115,7 @@ class Fix:
         out: dict[str, Any] = {}
         for name in self.__slots__:  # type: ignore[attr-defined]
             value = getattr(self, name)
-            if name == "altitude_hae_sent":
-                name, value = "altitude_hae", self.altitude_hae
-            elif name == "in_view":
+            if name == "in_view":
                 value = [{key: getattr(s, key) for key in s.__slots__} for s in value]
             elif isinstance(value, (_dt.date, _dt.time)):
                 value = value.isoformat()
@@ -141,7 +130,6 @@ _SCALARS = frozenset({
     "course", "pdop", "hdop", "vdop", "tdop", "lat_error", "lon_error", "alt_error",
     "horizontal_error", "satellites_used", "fix_quality", "fix_status", "pos_mode", "mode",
 })
-_ATTRIBUTE = {"altitude_hae": "altitude_hae_sent"}
 
 
 class FixAssembler:
@@ -188,7 +176,7 @@ class FixAssembler:
     ) -> None:
         for name, value in facts.items():
             if name in _SCALARS and value is not None:
-                setattr(fix, _ATTRIBUTE.get(name, name), value)
+                setattr(fix, name, value)
         date = facts.get("date") or _calendar(facts)
         if date is not None:
             fix.date = date
@@ -209,11 +197,7 @@ class FixAssembler:
         """Collect a set of satellites in view; a set is the epoch's when its last part arrives
         (a report in one sentence, PUBX,03, is a set of one)."""
         signal = facts.get("signal")
-        sats = [
-            Satellite(_system(talker, g["satellite"]), g["satellite"], talker, signal,
-                      g.get("elevation"), g.get("azimuth"), g.get("snr"), _used(g.get("satellite_used")))
-            for g in groups if g.get("satellite") is not None
-        ]
+        sats = [_satellite(g, talker, signal) for g in groups if g.get("satellite") is not None]
         size, index = facts.get("set_size") or 1, facts.get("set_index") or 1
         key = (talker, signal)
         if index == 1:
@@ -237,6 +221,9 @@ class FixAssembler:
             fix.date = date + _dt.timedelta(days=1) if rolled_over else date
         if fix.date is not None:
             self._last_date = (fix.date, fix.time)
+        msl, separation = fix.altitude_msl, fix.geoid_separation
+        if fix.altitude_hae is None and msl is not None and separation is not None:
+            fix.altitude_hae = msl + separation
         if fix.mode is None:
             fix.mode = _inferred_mode(fix)
         return fix
@@ -254,13 +241,16 @@ def fixes(stream: Iterable[Any]) -> Iterator[Fix]:
         yield last
 
 
-def _facts(sentence: Any, fields: tuple[Any, ...]) -> tuple[dict[str, Any], list[dict[str, Any]]]:
+def _facts(
+    sentence: Any, fields: tuple[FixField, ...]
+) -> tuple[dict[str, Any], list[dict[str, Any]]]:
     """The facts a sentence gives (converted to the Fix's types), and its group's, one dict per
     entry."""
     facts: dict[str, Any] = {}
     groups: list[dict[str, Any]] = []
     for f in fields:
         if f.group is None:
+            assert f.field is not None  # only the entries of a one-field group are values
             facts[f.fact] = _value(getattr(sentence, f.field), f)
             continue
         for i, entry in enumerate(getattr(sentence, f.group)):
@@ -270,7 +260,7 @@ def _facts(sentence: Any, fields: tuple[Any, ...]) -> tuple[dict[str, Any], list
     return facts, groups
 
 
-def _value(value: Any, f: Any) -> Any:
+def _value(value: Any, f: FixField) -> Any:
     """A field's value as the fact's: numbers scaled to its unit, enums as value ids (mapped by
     the spec's `from`), coordinates in signed degrees, time and date as datetime's."""
     if value is None or value is rt.ABSENT:
@@ -301,8 +291,12 @@ def _system(talker: str, sat: int) -> str | None:
     return next((name for name, low, high in SATELLITE_IDS if low <= sat <= high), None)
 
 
-def _used(value: str | None) -> bool | None:
-    return None if value is None else value == "used"
+def _satellite(entry: dict[str, Any], talker: str, signal: str | None) -> Satellite:
+    """A satellite in view of a group entry's facts."""
+    sat = entry["satellite"]
+    used = entry.get("satellite_used")
+    return Satellite(_system(talker, sat), sat, talker, signal, entry.get("elevation"),
+                     entry.get("azimuth"), entry.get("snr"), used == "used" if used else None)
 
 
 def _calendar(facts: dict[str, Any]) -> _dt.date | None:

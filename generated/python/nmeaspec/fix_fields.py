@@ -4,7 +4,7 @@
 #   spec/proprietary/pubx_svstatus.yaml, spec/proprietary/pubx_time.yaml, spec/standard/gga.yaml,
 #   spec/standard/gll.yaml, spec/standard/gns.yaml, spec/standard/gsa.yaml, spec/standard/gst.yaml,
 #   spec/standard/gsv.yaml, spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml
-#   (digest bd90d558023ecdb4)
+#   (digest efdb0878dba70a18)
 # Regenerate: make generate (python3 -m generator generate)
 """The fields that carry the facts of a fix (spec/fix.yaml), per sentence layout: what
 fixes.py assembles a fix from, without naming a sentence itself."""
@@ -103,7 +103,6 @@ FIELDS: dict[tuple[str, str | None], tuple[FixField, ...]] = {
         FixField("time", None, "time", 1.0, None),
         FixField("latitude", None, "lat", 1.0, None),
         FixField("longitude", None, "lon", 1.0, None),
-        FixField("satellites_used", None, "satellites", 1.0, None),
         FixField("hdop", None, "hdop", 1.0, None),
         FixField("altitude_msl", None, "altitude", 1.0, None),
         FixField("geoid_separation", None, "geoid_separation", 1.0, None),
