@@ -11,8 +11,8 @@ from typing import Any
 from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
-from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, GenericMessage, Group,
-                    Item, Layout, Manual, Note, Origin, Outcome, Parameter, ReplyRule, Sentence, Spec, TableDef)
+from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, FixExample,
+                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, ReplyRule, Sentence, Spec, TableDef)
 from .resolve import resolve
 
 
@@ -76,6 +76,9 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
                          for d in docs[kind]],
                 digest=digest.hexdigest()[:16], file_digests=file_digests,
                 bitfields=bitfields, tables=tables, generic=generic, facts=facts,
+                fix_sources=[str(d.path) for d in docs["facts"]],
+                fix_examples=[FixExample(e["where"], e["lines"], e["expect"], Origin(str(d.path), ("examples", i)))
+                              for d in docs["facts"] for i, e in enumerate(d.data.get("examples", []))],
                 talker_systems={k: v for d in docs["facts"] for k, v in d.data.get("talkers", {}).items()},
                 satellite_ids=[(r["system"], r["min"], r["max"]) for d in docs["facts"]
                                for r in d.data.get("satellite_ids", [])])

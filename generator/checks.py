@@ -54,6 +54,7 @@ def run(spec: Spec, docs: dict[str, Document]) -> list[SpecError]:
     _check_cli(spec, report)
     for sentence in spec.sentences:
         _check_replies(sentence, report)
+    _check_fix_examples(spec, report)
     for sentence in spec.sentences:
         variant_ids = {v.id for v in sentence.variants}
         for example in sentence.examples:
@@ -190,6 +191,22 @@ def _check_facts(spec: Spec, report: _Reporter) -> None:
                 if value not in fact.values:
                     report(fact.origin, "S047", f"fact {fact.id}: {value!r} is not one of its values "
                            f"({', '.join(fact.values)})", "from", enum_id)
+
+
+def _check_fix_examples(spec: Spec, report: _Reporter) -> None:
+    """Each line of a fix example is an intact sentence of a layout that carries facts."""
+    for example in spec.fix_examples:
+        for i, line in enumerate(example.lines):
+            if not checksum_ok(line):
+                report(example.origin, "S048", f"the checksum fails (computed {_computed(line)})", "lines", i)
+                continue
+            try:
+                decoded = reference.decode(spec, line)
+            except reference.rt.NmeaError as err:
+                report(example.origin, "S048", f"does not decode: {err}", "lines", i)
+                continue
+            if decoded.layout is None or not decoded.layout.fix_fields:
+                report(example.origin, "S048", "no field of its layout carries a fact of a fix", "lines", i)
 
 
 def _check_fix(sentence: Sentence, layout: Layout, report: _Reporter) -> None:

@@ -164,7 +164,7 @@ def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:
     files["docs/errata.md"] = env.get_template("docs/errata.md.j2").render(
         banner=banner, spec=spec, vectors=[v for v in vectors if v["status"] != "intact"], counts=counts)
     files["docs/fix.md"] = env.get_template("docs/fix.md.j2").render(
-        banner=banner_of(["spec/fix.yaml", "templates/docs/fix.md.j2"]), spec=spec)
+        banner=banner_of([*spec.fix_sources, "templates/docs/fix.md.j2"]), spec=spec)
     files["docs/json.md"] = banner_of(["runtime/json.md"]) + (RUNTIME / "json.md").read_text(encoding="utf-8")
     return files
 

@@ -266,7 +266,7 @@ def fix_fields(spec: Spec, env: jinja2.Environment) -> str:
                        len("TALKER_SYSTEMS: dict[str, str] = "), brackets="{}")
     ids = py_tuple([f"({json.dumps(s)}, {low}, {high})" for s, low, high in spec.satellite_ids], 0,
                    len("SATELLITE_IDS: tuple[tuple[str, int, int], ...] = "))
-    sources = sorted({"spec/fix.yaml", *(s.source for s, _ in spec.fix_layouts)})
+    sources = sorted({*spec.fix_sources, *(s.source for s, _ in spec.fix_layouts)})
     return env.get_template("python/fix_fields.py.j2").render(
         header=header(spec, "#", ["templates/python/fix_fields.py.j2", *sources]), layouts=layouts,
         fact_units=units, talkers=talkers, satellite_ids=ids)

@@ -137,6 +137,16 @@ class Fact:
 
 
 @dataclass
+class FixExample:
+    """A stream of lines and the fixes every assembler must make of them (spec/fix.yaml)."""
+
+    where: str
+    lines: list[str]
+    expect: list[dict[str, Any]]
+    origin: Origin
+
+
+@dataclass
 class FixField:
     """A field that carries a fact of the fix, in a layout: `group` is the repeated group whose
     entries hold it, or None."""
@@ -562,6 +572,8 @@ class Spec:
     tables: list[TableDef] = field(default_factory=list)
     generic: list[GenericMessage] = field(default_factory=list)
     facts: list[Fact] = field(default_factory=list)
+    fix_sources: list[str] = field(default_factory=list)   # the fix.yaml files loaded
+    fix_examples: list[FixExample] = field(default_factory=list)
     talker_systems: dict[str, str] = field(default_factory=dict)   # spec/fix.yaml: talker -> GNSS
     satellite_ids: list[tuple[str, int, int]] = field(default_factory=list)  # (GNSS, first id, last id)
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)

@@ -174,6 +174,11 @@ RULES: dict[str, Rule] = {rule.id: rule for rule in (
          "enums to its `values`.",
          "Correct the field's `fix` or the fact in spec/fix.yaml (add the unit with its factor, the enum to "
          "`enums` or `from`), or leave the field out of the fix."),
+    Rule("S048", "fix examples are sentences that carry facts",
+         "Every line of an example of spec/fix.yaml has a right checksum and decodes as a layout with fields that "
+         "carry facts of a fix.",
+         "Correct the line (the message has the decoder's error or the computed checksum), or tag the fields "
+         "with `fix:`."),
 )}
 
 

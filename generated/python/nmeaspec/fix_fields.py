@@ -4,7 +4,7 @@
 #   spec/proprietary/pubx_svstatus.yaml, spec/proprietary/pubx_time.yaml, spec/standard/gga.yaml,
 #   spec/standard/gll.yaml, spec/standard/gns.yaml, spec/standard/gsa.yaml, spec/standard/gst.yaml,
 #   spec/standard/gsv.yaml, spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml
-#   (digest efdb0878dba70a18)
+#   (digest 9b44598a7cd72d6d)
 # Regenerate: make generate (python3 -m generator generate)
 """The fields that carry the facts of a fix (spec/fix.yaml), per sentence layout: what
 fixes.py assembles a fix from, without naming a sentence itself."""
@@ -195,7 +195,7 @@ FIELDS: dict[tuple[str, str | None], tuple[FixField, ...]] = {
         FixField("fix_status", None, "status", 1.0, {"valid": "valid", "invalid": "invalid"}),
         FixField("latitude", None, "lat", 1.0, None),
         FixField("longitude", None, "lon", 1.0, None),
-        FixField("speed", None, "speed", 0.514444, None),
+        FixField("speed", None, "speed", 0.514444444, None),
         FixField("course", None, "course", 1.0, None),
         FixField("date", None, "date", 1.0, None),
         FixField("pos_mode", None, "mode", 1.0, None),
@@ -203,7 +203,7 @@ FIELDS: dict[tuple[str, str | None], tuple[FixField, ...]] = {
     ("RMC", "sentinel"): (
         FixField("time", None, "time", 1.0, None),
         FixField("fix_status", None, "status", 1.0, {"valid": "valid", "invalid": "invalid"}),
-        FixField("speed", None, "speed", 0.514444, None),
+        FixField("speed", None, "speed", 0.514444444, None),
         FixField("course", None, "course", 1.0, None),
         FixField("date", None, "date", 1.0, None),
         FixField("pos_mode", None, "mode", 1.0, None),
@@ -213,14 +213,14 @@ FIELDS: dict[tuple[str, str | None], tuple[FixField, ...]] = {
         FixField("fix_status", None, "status", 1.0, {"valid": "valid", "invalid": "invalid"}),
         FixField("latitude", None, "lat", 1.0, None),
         FixField("longitude", None, "lon", 1.0, None),
-        FixField("speed", None, "speed", 0.514444, None),
+        FixField("speed", None, "speed", 0.514444444, None),
         FixField("course", None, "course", 1.0, None),
         FixField("date", None, "date", 1.0, None),
         FixField("pos_mode", None, "mode", 1.0, None),
     ),
     ("VTG", None): (
         FixField("course", None, "course_true", 1.0, None),
-        FixField("speed", None, "speed_knots", 0.514444, None),
+        FixField("speed", None, "speed_knots", 0.514444444, None),
         FixField("pos_mode", None, "mode", 1.0, None),
     ),
     ("ZDA", None): (
@@ -252,7 +252,7 @@ FIELDS: dict[tuple[str, str | None], tuple[FixField, ...]] = {
         ),
         FixField("horizontal_error", None, "h_acc", 1.0, None),
         FixField("alt_error", None, "v_acc", 1.0, None),
-        FixField("speed", None, "sog", 0.277778, None),
+        FixField("speed", None, "sog", 0.277777778, None),
         FixField("course", None, "cog", 1.0, None),
         FixField("hdop", None, "hdop", 1.0, None),
         FixField("vdop", None, "vdop", 1.0, None),
