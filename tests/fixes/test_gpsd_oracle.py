@@ -4,22 +4,26 @@ and fact, the epochs that agree do not fall below the figures measured (gpsd_agr
 improves them).
 
 Where the two differ, the reason is known (measured on these logs, 2026-11):
-- epoch: gpsd reports no time in an epoch before it knows a date (the first RMC or ZDA), nor for
-  sentences it does not take time from (a depth sounder's, GPSmap-76S's, tn200's); our epochs
-  start with the first time of day.
+- epoch: gpsd reports no time in an epoch without a fix (tn200's cold start; GPSmap-76S in
+  simulator mode, GGA quality 8), nor before it knows a date (the echo sounder's GLL-only log, the
+  first epochs of most logs); our epochs are every time of day the sentences give.
 - date: gpsd moves dates before its build's GPS week rollover window forward by 1024 weeks
   (neo-m8n's RMC says 2015, gpsd 2034; gp-320fw's cold boot, a receiver hit by the 2019 rollover,
   says 1999, gpsd 2019); ours is the date as sent.
 - mode: gpsd calls a fix 3D whenever GGA gives an altitude, also where the receiver's GSA says 2D
   (quectel, foretrex, garmin, ch-4711); ours is the receiver's GSA fix type where the epoch has one.
-- used: where a receiver sends one GSA per system without a system id (sirfstarv, telit-pls83-w),
-  gpsd's uSat is that of one GSA line; ours are all GSA lines of the epoch, per GNSS. geos-1m:
-  gpsd reports uSat 0 beside GSA lines listing 5 satellites (not explained).
+- used: gpsd's uSat is that of the last line that counts (sirfstarv sends GPGGA with 8 and
+  GLGGA with 2, then two GN GSA of 10: gpsd says 2), and its SKY after a GSV set counts only the
+  used satellites among those the set lists (geos-1m's GSV lists 1 satellite, used by none of its
+  GSA's 5: gpsd says 0); ours are all GSA lines of the epoch, per GNSS.
 - in_view: gpsd keeps satellites of GSV sets of earlier epochs (ublox-lea-4h: 6 against the 3 of
   the epoch's set); ours counts the sets completed in the epoch. st-teseo-liv3f: one satellite
   more in gpsd's count in 10 epochs (not explained).
-- speed (humminbird-M37, GLL + VTG without RMC): gpsd's speed differs from the VTG of the epoch
-  in 5 epochs (not explained).
+- position (humminbird-M37): the log holds two captures with the same times of day (19:41:11 to
+  19:41:13 twice, at other positions); epochs are matched by time of day, gpsd's last wins.
+- speed (humminbird-M37, GLL + VTG without RMC): gpsd computes the speed from the positions of
+  successive fixes (2.256 m/s from the RMC of 19:41:01 to the GLL of 19:41:02) where the epoch's
+  VTG says 5.2 knots (2.675 m/s).
 """
 
 from __future__ import annotations
