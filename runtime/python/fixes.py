@@ -25,7 +25,7 @@ from __future__ import annotations
 import datetime as _dt
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 from . import runtime as rt
 from .api import parse
@@ -148,11 +148,10 @@ class FixAssembler:
                 sentence = parse(sentence)
             except NmeaError:
                 return None
-        fields = FIELDS.get((type(sentence).SENTENCE, type(sentence).VARIANT))
-        if fields is None:
+        layout = _layout(type(sentence))
+        if layout is None:
             return None
-        facts, groups = _facts(sentence, fields)
-        carried = {f.fact for f in fields}
+        facts, groups = _facts(sentence, layout)
         closed = None
         time = facts.pop("time", None)
         if self._fix is not None and time is not None and self._fix.time not in (None, time):
@@ -163,7 +162,7 @@ class FixAssembler:
             fix.time = time
         talker = getattr(sentence, "talker", None) or ""
         fix.sentences.append(talker + type(sentence).SENTENCE)
-        self._merge(fix, facts, groups, carried, talker)
+        self._merge(fix, facts, groups, layout.carried, talker)
         return closed
 
     def close(self) -> Fix | None:
@@ -171,7 +170,11 @@ class FixAssembler:
         return self._finish() if self._fix is not None else None
 
     def _merge(
-        self, fix: Fix, facts: dict[str, Any], groups: list[dict[str, Any]], carried: set[str],
+        self,
+        fix: Fix,
+        facts: dict[str, Any],
+        groups: list[dict[str, Any]],
+        carried: frozenset[str],
         talker: str,
     ) -> None:
         for name, value in facts.items():
@@ -241,22 +244,44 @@ def fixes(stream: Iterable[Any]) -> Iterator[Fix]:
         yield last
 
 
-def _facts(
-    sentence: Any, fields: tuple[FixField, ...]
-) -> tuple[dict[str, Any], list[dict[str, Any]]]:
+class _Layout(NamedTuple):
+    """The fields of a layout that carry facts, as the assembler reads them."""
+
+    fields: tuple[FixField, ...]        # outside the group
+    group: str | None                    # the repeated group with satellite facts
+    entry: tuple[FixField, ...]         # the facts of each of its entries
+    carried: frozenset[str]             # every fact the layout carries
+
+
+_LAYOUTS: dict[type, _Layout | None] = {}
+
+
+def _layout(cls: type) -> _Layout | None:
+    """The fact-carrying fields of a sentence class, or None (worked out once per class)."""
+    try:
+        return _LAYOUTS[cls]
+    except KeyError:
+        fields = FIELDS.get((getattr(cls, "SENTENCE", None), getattr(cls, "VARIANT", None)))
+        layout = None if fields is None else _Layout(
+            tuple(f for f in fields if f.group is None),
+            next((f.group for f in fields if f.group is not None), None),
+            tuple(f for f in fields if f.group is not None),
+            frozenset(f.fact for f in fields),
+        )
+        _LAYOUTS[cls] = layout
+        return layout
+
+
+def _facts(sentence: Any, layout: _Layout) -> tuple[dict[str, Any], list[dict[str, Any]]]:
     """The facts a sentence gives (converted to the Fix's types), and its group's, one dict per
     entry."""
-    facts: dict[str, Any] = {}
-    groups: list[dict[str, Any]] = []
-    for f in fields:
-        if f.group is None:
-            assert f.field is not None  # only the entries of a one-field group are values
-            facts[f.fact] = _value(getattr(sentence, f.field), f)
-            continue
-        for i, entry in enumerate(getattr(sentence, f.group)):
-            if i == len(groups):
-                groups.append({})
-            groups[i][f.fact] = _value(entry if f.field is None else getattr(entry, f.field), f)
+    facts = {f.fact: _value(getattr(sentence, f.field), f) for f in layout.fields if f.field}
+    if layout.group is None:
+        return facts, []
+    groups = [
+        {f.fact: _value(getattr(entry, f.field) if f.field else entry, f) for f in layout.entry}
+        for entry in getattr(sentence, layout.group)
+    ]
     return facts, groups
 
 
@@ -265,21 +290,15 @@ def _value(value: Any, f: FixField) -> Any:
     the spec's `from`), coordinates in signed degrees, time and date as datetime's."""
     if value is None or value is rt.ABSENT:
         return None
+    convert = _CONVERT.get(type(value))
+    if convert is not None:
+        converted = convert(value)
+        return converted * f.scale if f.scale != 1.0 and converted is not None else converted
+    if isinstance(value, rt.CodeEnum):
+        return f.values.get(value.id) if f.values is not None else value.id
     if isinstance(value, list):  # enum_chars: the first mode that is not not_valid
         ids = [v.id for v in value if isinstance(v, rt.CodeEnum)]
         return next((i for i in ids if i != "not_valid"), ids[0] if ids else None)
-    if isinstance(value, rt.CodeEnum):
-        return f.values.get(value.id) if f.values is not None else value.id
-    if isinstance(value, rt.Coordinate):
-        return _degrees(value)
-    if isinstance(value, rt.Time):
-        return _time(value)
-    if isinstance(value, rt.Date):
-        return _date(value)
-    if isinstance(value, rt.Number):
-        if f.scale == 1.0 and not value.point:
-            return int(value)
-        return float(value) * f.scale
     return None  # an unknown enum code kept as text: no fact
 
 
@@ -317,25 +336,42 @@ def _inferred_mode(fix: Fix) -> str | None:
     return "fix_3d" if fix.altitude_msl is not None or fix.altitude_hae is not None else "fix_2d"
 
 
-# --- Value conversions. ACCESSORS: the value types' own float()/degrees/datetime accessors (another
-# branch) replace these three at merge time.
+# --- Value conversions from the wire text, kept by every value. ACCESSORS: the value types' own
+# int()/float()/degrees/datetime accessors (another branch) replace these four at merge time.
+
+def _number(value: rt.Number) -> int | float:
+    text = value.text()
+    return float(text) if "." in text else int(text)
+
 
 def _degrees(value: rt.Coordinate) -> float:
-    return value.decimal_degrees
+    """ddmm.mmmm (dddmm.mmmm) and the hemisphere as signed decimal degrees."""
+    text = value.text()
+    whole = text.find(".") if "." in text else len(text)
+    degrees = int(text[: whole - 2] or 0) + float(text[whole - 2 :]) / 60.0
+    return -degrees if value.hemisphere in ("S", "W") else degrees
 
 
 def _time(value: rt.Time) -> _dt.time | None:
-    fraction = value.fraction * 10 ** (6 - value.fraction_digits) if value.fraction_digits <= 6 \
-        else value.fraction // 10 ** (value.fraction_digits - 6)
+    """hhmmss[.s...]: a second of 60 (a leap second) is read as 59."""
+    text = value.text()
+    fraction = (text[7:13] if len(text) > 7 else "").ljust(6, "0")
     try:
-        return _dt.time(value.hour, value.minute, min(value.second, 59), fraction)
+        return _dt.time(int(text[0:2]), int(text[2:4]), min(int(text[4:6]), 59), int(fraction))
     except ValueError:
         return None
 
 
 def _date(value: rt.Date) -> _dt.date | None:
-    """Two-digit years 80-99 are 1980-1999, the others 2000-2079."""
+    """ddmmyy: two-digit years 80-99 are 1980-1999, the others 2000-2079."""
+    text = value.text()
+    year = int(text[4:6])
     try:
-        return _dt.date(value.year + (1900 if value.year >= 80 else 2000), value.month, value.day)
+        return _dt.date(year + (1900 if year >= 80 else 2000), int(text[2:4]), int(text[0:2]))
     except ValueError:
         return None
+
+
+_CONVERT: dict[type, Any] = {
+    rt.Number: _number, rt.Coordinate: _degrees, rt.Time: _time, rt.Date: _date,
+}
