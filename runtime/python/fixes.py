@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import datetime as _dt
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any, NamedTuple
 
 from . import runtime as rt
@@ -123,13 +123,9 @@ class Fix:
         return out
 
 
-# The facts a Fix holds as the sentences give them (the later sentence of an epoch wins); the
-# others are merged by FixAssembler.
-_SCALARS = frozenset({
-    "latitude", "longitude", "altitude_msl", "geoid_separation", "altitude_hae", "speed",
-    "course", "pdop", "hdop", "vdop", "tdop", "lat_error", "lon_error", "alt_error",
-    "horizontal_error", "satellites_used", "fix_quality", "fix_status", "pos_mode", "mode",
-})
+# The facts a Fix holds as the sentences give them, under their own names (the later sentence of
+# an epoch wins); time, date and the satellites are merged by FixAssembler.
+_SCALARS = frozenset(f.name for f in fields(Fix)) - {"time", "date", "used", "in_view", "sentences"}
 
 
 class FixAssembler:
