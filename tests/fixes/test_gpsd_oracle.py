@@ -12,6 +12,8 @@ Where the two differ, the reason is known (measured on these logs, 2026-11):
   says 1999, gpsd 2019); ours is the date as sent.
 - mode: gpsd calls a fix 3D whenever GGA gives an altitude, also where the receiver's GSA says 2D
   (quectel, foretrex, garmin, ch-4711); ours is the receiver's GSA fix type where the epoch has one.
+  Without GSA, ours is inferred from the epoch alone (humminbird-M37's GLL-only epochs: 2D, no
+  altitude), where gpsd keeps the 3D of an earlier GGA.
 - used: gpsd's uSat is that of the last line that counts (sirfstarv sends GPGGA with 8 and
   GLGGA with 2, then two GN GSA of 10: gpsd says 2), and its SKY after a GSV set counts only the
   used satellites among those the set lists (geos-1m's GSV lists 1 satellite, used by none of its
