@@ -12,7 +12,8 @@ from . import checks
 from .errors import SpecError, SpecErrors
 from .loader import Document, load_document, schema_errors
 from .model import (BitfieldDef, Bits, BitValue, EnumDef, EnumValue, Example, Fact, Field, FixExample,
-                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, ReplyRule, Sentence, Spec, TableDef)
+                    GenericMessage, Group, Item, Layout, Manual, Note, Origin, Outcome, Parameter, ReplyRule,
+                    Sentence, Spec, TableDef)
 from .resolve import resolve
 
 
@@ -80,6 +81,8 @@ def load_spec(spec_dir: Path, extras: Sequence[Path] = ()) -> Spec:
                 fix_examples=[FixExample(e["where"], e["lines"], e["expect"], Origin(str(d.path), ("examples", i)))
                               for d in docs["facts"] for i, e in enumerate(d.data.get("examples", []))],
                 talker_systems={k: v for d in docs["facts"] for k, v in d.data.get("talkers", {}).items()},
+                combined_talker=next((d.data["combined_talker"] for d in docs["facts"]
+                                      if "combined_talker" in d.data), None),
                 satellite_ids=[(r["system"], r["min"], r["max"]) for d in docs["facts"]
                                for r in d.data.get("satellite_ids", [])])
     by_file = {str(d.path): d for kind in docs.values() for d in kind}

@@ -269,7 +269,7 @@ def fix_fields(spec: Spec, env: jinja2.Environment) -> str:
     sources = sorted({*spec.fix_sources, *(s.source for s, _ in spec.fix_layouts)})
     return env.get_template("python/fix_fields.py.j2").render(
         header=header(spec, "#", ["templates/python/fix_fields.py.j2", *sources]), layouts=layouts,
-        fact_units=units, talkers=talkers, satellite_ids=ids)
+        fact_units=units, talkers=talkers, satellite_ids=ids, combined_talker=py_literal(spec.combined_talker))
 
 
 def emit(spec: Spec, env: jinja2.Environment) -> dict[str, str]:

@@ -575,6 +575,7 @@ class Spec:
     fix_sources: list[str] = field(default_factory=list)   # the fix.yaml files loaded
     fix_examples: list[FixExample] = field(default_factory=list)
     talker_systems: dict[str, str] = field(default_factory=dict)   # spec/fix.yaml: talker -> GNSS
+    combined_talker: str | None = None   # spec/fix.yaml: the talker of a solution of several systems
     satellite_ids: list[tuple[str, int, int]] = field(default_factory=list)  # (GNSS, first id, last id)
     enum_by_id: dict[str, EnumDef] = field(default_factory=dict)
 

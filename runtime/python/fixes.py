@@ -29,7 +29,7 @@ from typing import Any, NamedTuple
 
 from . import runtime as rt
 from .api import parse
-from .fix_fields import FIELDS, SATELLITE_IDS, TALKER_SYSTEMS, FixField
+from .fix_fields import COMBINED_TALKER, FIELDS, SATELLITE_IDS, TALKER_SYSTEMS, FixField
 from .runtime import NmeaError
 
 
@@ -84,7 +84,8 @@ class Fix:
     alt_error: float | None = None
     horizontal_error: float | None = None
     satellites_used: int | None = None
-    """The receiver's count of satellites used (GGA, GNS, PUBX,00)."""
+    """The receiver's count of satellites used (GGA, GNS, PUBX,00): the combined talker's (GN),
+    else the sum of each talker's (one GGA per system)."""
     used: dict[str, list[int]] = field(default_factory=dict)
     """The ids of the satellites used, per GNSS ("unknown" when no rule tells it)."""
     in_view: list[Satellite] = field(default_factory=list)
@@ -125,7 +126,9 @@ class Fix:
 
 # The facts a Fix holds as the sentences give them, under their own names (the later sentence of
 # an epoch wins); time, date and the satellites are merged by FixAssembler.
-_SCALARS = frozenset(f.name for f in fields(Fix)) - {"time", "date", "used", "in_view", "sentences"}
+_SCALARS = frozenset(f.name for f in fields(Fix)) - {
+    "time", "date", "satellites_used", "used", "in_view", "sentences"
+}
 
 
 class FixAssembler:
@@ -136,6 +139,7 @@ class FixAssembler:
         self._fix: Fix | None = None
         self._sets: dict[tuple[str, str | None], tuple[int, list[Satellite]]] = {}
         self._last_date: tuple[_dt.date, _dt.time | None] | None = None
+        self._counts: dict[str, int] = {}  # satellites used, by talker, in the epoch under way
 
     def feed(self, sentence: Any) -> Fix | None:
         """Add one sentence (a parsed one, or a line: one that does not parse is skipped)."""
@@ -176,6 +180,9 @@ class FixAssembler:
         for name, value in facts.items():
             if name in _SCALARS and value is not None:
                 setattr(fix, name, value)
+        count = facts.get("satellites_used")
+        if count is not None:
+            self._counts[talker] = count
         date = facts.get("date") or _calendar(facts)
         if date is not None:
             fix.date = date
@@ -220,6 +227,9 @@ class FixAssembler:
             fix.date = date + _dt.timedelta(days=1) if rolled_over else date
         if fix.date is not None:
             self._last_date = (fix.date, fix.time)
+        counts, self._counts = self._counts, {}
+        if counts:
+            fix.satellites_used = counts.get(COMBINED_TALKER or "", sum(counts.values()))
         msl, separation = fix.altitude_msl, fix.geoid_separation
         if fix.altitude_hae is None and msl is not None and separation is not None:
             fix.altitude_hae = msl + separation

@@ -4,7 +4,7 @@
 #   spec/proprietary/pubx_svstatus.yaml, spec/proprietary/pubx_time.yaml, spec/standard/gga.yaml,
 #   spec/standard/gll.yaml, spec/standard/gns.yaml, spec/standard/gsa.yaml, spec/standard/gst.yaml,
 #   spec/standard/gsv.yaml, spec/standard/rmc.yaml, spec/standard/vtg.yaml, spec/standard/zda.yaml
-#   (digest 9b44598a7cd72d6d)
+#   (digest 843d85a7ea89376c)
 # Regenerate: make generate (python3 -m generator generate)
 """The fields that carry the facts of a fix (spec/fix.yaml), per sentence layout: what
 fixes.py assembles a fix from, without naming a sentence itself."""
@@ -55,6 +55,9 @@ TALKER_SYSTEMS: dict[str, str] = {
     "GI": "navic",
 }
 """The GNSS each talker reports on."""
+
+COMBINED_TALKER: str | None = "GN"
+"""The talker of a solution of several systems, whose count of satellites used is the fix's."""
 
 SATELLITE_IDS: tuple[tuple[str, int, int], ...] = (
     ("gps", 1, 32),
